@@ -1,0 +1,3 @@
+program tmain
+   print *, 'ok'
+end program tmain
