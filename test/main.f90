@@ -1,3 +1,52 @@
-program tmain
-   print *, 'ok'
-end program tmain
+!> Test driver: runs every suite, or only the tests whose suite or name is given
+!> on the command line (`fpm test -- model`, `fpm test -- model/energy`).
+!> Closes with `N passed, M failed` and exits non-zero on any failure.
+program tester
+   use, intrinsic :: iso_fortran_env, only: output_unit
+   use testing, only: unittest_t, error_t
+   use test_model, only: collect_model
+   implicit none
+
+   type :: suite_t
+      character(len=:), allocatable :: name
+      type(unittest_t), allocatable :: tests(:)
+   end type suite_t
+
+   type(suite_t), allocatable :: suites(:)
+   type(error_t), allocatable :: error
+   character(len=:), allocatable :: filter, full
+   integer :: i, j, n_pass, n_fail, n_arg, length
+
+   allocate (suites(1))
+   suites(1)%name = 'model'; call collect_model(suites(1)%tests)
+
+   n_arg = command_argument_count()
+   filter = ''
+   if (n_arg >= 1) then
+      call get_command_argument(1, length=length)
+      allocate (character(len=length) :: filter)
+      call get_command_argument(1, filter)
+   end if
+
+   n_pass = 0; n_fail = 0
+   do i = 1, size(suites)
+      do j = 1, size(suites(i)%tests)
+         full = suites(i)%name//'/'//suites(i)%tests(j)%name
+         if (len(filter) > 0) then
+            if (filter /= suites(i)%name .and. filter /= full) cycle
+         end if
+         call suites(i)%tests(j)%run(error)
+         if (allocated(error)) then
+            n_fail = n_fail + 1
+            write (output_unit, '(a)') '  FAIL '//full//': '//error%message
+            deallocate (error)
+         else
+            n_pass = n_pass + 1
+            write (output_unit, '(a)') '  ok   '//full
+         end if
+         flush (output_unit)
+      end do
+   end do
+   write (output_unit, '(i0, " passed, ", i0, " failed")') n_pass, n_fail
+   if (n_fail > 0 .or. n_pass == 0) error stop 1
+end program tester

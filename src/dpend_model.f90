@@ -1,0 +1,235 @@
+!> The compound double pendulum of the chapter (shared/reference): two uniform
+!> rods on pin joints, angles q1, q2 measured from the horizontal x axis,
+!> counter-clockwise positive, y up, SI units.
+!>
+!> The equations of motion come from the corrected Newton–Euler equations
+!> (docs/errata.md); Lagrange's equations are derived independently and kept as
+!> a cross-check; the Hamiltonian form H(q, p) serves the symplectic methods.
+!>
+!> With k = m2 L1 L2 / 2 and d = q1 - q2 the mass matrix is
+!>   M11 = (m1/3 + m2) L1²,  M12 = k cos d,  M22 = m2 L2²/3,
+!> and the potential energy V = (m1/2 + m2) g L1 sin q1 + m2 g (L2/2) sin q2.
+module dpend_model
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   implicit none
+   private
+   public :: pendulum_t, validate, mass_matrix, generalized_forces
+   public :: qddot_newton_euler, qddot_lagrange, qddot
+   public :: kinetic_energy, potential_energy, energy
+   public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
+   public :: rhs_qqdot, rhs_qp
+
+   !> Physical parameters (SI units). Defaults are the chapter's numerical application.
+   type :: pendulum_t
+      real(dp) :: m1 = 1.0_dp   !! mass of link 1 [kg]
+      real(dp) :: m2 = 1.0_dp   !! mass of link 2 [kg]
+      real(dp) :: l1 = 1.0_dp   !! length of link 1 [m]
+      real(dp) :: l2 = 1.0_dp   !! length of link 2 [m]
+      real(dp) :: g = 9.8_dp    !! gravitational acceleration [m/s²]
+   end type pendulum_t
+
+contains
+
+   !> Check that every parameter is finite and positive.
+   pure subroutine validate(par, error)
+      type(pendulum_t), intent(in) :: par               !! parameters to check
+      type(error_t), allocatable, intent(out) :: error  !! set if a value is invalid
+      character(len=*), parameter :: names(5) = ['m1', 'm2', 'l1', 'l2', 'g ']
+      character(len=*), parameter :: units(5) = ['kg   ', 'kg   ', 'm    ', 'm    ', 'm/s^2']
+      real(dp) :: x(5)
+      integer :: i
+      x = [par%m1, par%m2, par%l1, par%l2, par%g]
+      do i = 1, 5
+         if (.not. (x(i) > 0.0_dp .and. x(i) <= huge(x))) then
+            call fatal_error(error, 'invalid '//trim(names(i))//': must be finite and > 0 (' &
+                             //trim(units(i))//')')
+            return
+         end if
+      end do
+   end subroutine validate
+
+   !> Mass matrix M(q) of Lagrange's equations [kg m²].
+   pure function mass_matrix(par, q) result(m)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: m(2, 2)
+      m(1, 1) = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m(1, 2) = 0.5_dp*par%m2*par%l1*par%l2*cos(q(1) - q(2))
+      m(2, 1) = m(1, 2)
+      m(2, 2) = par%m2*par%l2**2/3.0_dp
+   end function mass_matrix
+
+   !> Generalized gravity forces Q = -dV/dq [N m].
+   pure function generalized_forces(par, q) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: f(2)
+      f(1) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*cos(q(1))
+      f(2) = -0.5_dp*par%m2*par%g*par%l2*cos(q(2))
+   end function generalized_forces
+
+   !> Angular accelerations from the corrected Newton–Euler equations [rad/s²].
+   !>
+   !> Unknowns q̈1, q̈2 with the joint reaction F21 eliminated through
+   !> (6.22) F21x = -m2 ẍC2 and (6.23, corrected 6.26) F21y = -m2 (ÿC2 + g), where
+   !> a_C2 = a0 + q̈1 L1 (-sin q1, cos q1) + q̈2 (L2/2)(-sin q2, cos q2) and a0 holds the
+   !> centripetal terms. Substituted into (6.19) and the corrected (6.24)
+   !>   I_A q̈1  = -m1 g (L1/2) cos q1 + L1 (F21y cos q1 - F21x sin q1)
+   !>   I_C2 q̈2 = (L2/2)(F21y cos q2 - F21x sin q2)
+   !> they give a 2×2 linear system solved by Cramer's rule.
+   pure function qddot_newton_euler(par, q, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: c1, s1, c2, s2, h2, a0x, a0y, ia, ic2, a(2, 2), b(2), det
+      c1 = cos(q(1)); s1 = sin(q(1)); c2 = cos(q(2)); s2 = sin(q(2))
+      h2 = 0.5_dp*par%l2
+      ia = par%m1*par%l1**2/3.0_dp
+      ic2 = par%m2*par%l2**2/12.0_dp
+      ! centripetal part of a_C2 (q̈ = 0), eq. (6.12)
+      a0x = -par%l1*qd(1)**2*c1 - h2*qd(2)**2*c2
+      a0y = -par%l1*qd(1)**2*s1 - h2*qd(2)**2*s2
+      ! F21y cos q - F21x sin q = -m2 [(ÿC2 + g) cos q - ẍC2 sin q]; ẍ, ÿ linear in q̈
+      ! link 1, moment about A (6.19)
+      a(1, 1) = ia + par%m2*par%l1*(par%l1*c1*c1 + par%l1*s1*s1)
+      a(1, 2) = par%m2*par%l1*(h2*c2*c1 + h2*s2*s1)
+      b(1) = -par%m1*par%g*0.5_dp*par%l1*c1 - par%m2*par%l1*((a0y + par%g)*c1 - a0x*s1)
+      ! link 2, moment about C2 (6.24 corrected)
+      a(2, 1) = par%m2*h2*(par%l1*c1*c2 + par%l1*s1*s2)
+      a(2, 2) = ic2 + par%m2*h2*(h2*c2*c2 + h2*s2*s2)
+      b(2) = -par%m2*h2*((a0y + par%g)*c2 - a0x*s2)
+      det = a(1, 1)*a(2, 2) - a(1, 2)*a(2, 1)
+      qdd(1) = (b(1)*a(2, 2) - a(1, 2)*b(2))/det
+      qdd(2) = (a(1, 1)*b(2) - a(2, 1)*b(1))/det
+   end function qddot_newton_euler
+
+   !> Angular accelerations from Lagrange's equations M(q) q̈ = Q(q) - c(q, q̇) [rad/s²],
+   !> with c1 = k sin(q1-q2) q̇2², c2 = -k sin(q1-q2) q̇1², k = m2 L1 L2/2.
+   pure function qddot_lagrange(par, q, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: m(2, 2), r(2), k, sd, det
+      m = mass_matrix(par, q)
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      sd = sin(q(1) - q(2))
+      r = generalized_forces(par, q) - [k*sd*qd(2)**2, -k*sd*qd(1)**2]
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      qdd(1) = (m(2, 2)*r(1) - m(1, 2)*r(2))/det
+      qdd(2) = (m(1, 1)*r(2) - m(1, 2)*r(1))/det
+   end function qddot_lagrange
+
+   !> The accelerations used by the integrators: the corrected Newton–Euler form.
+   pure function qddot(par, q, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      qdd = qddot_newton_euler(par, q, qd)
+   end function qddot
+
+   !> Kinetic energy ½ q̇ᵀ M(q) q̇ [J].
+   pure real(dp) function kinetic_energy(par, q, qd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: m(2, 2)
+      m = mass_matrix(par, q)
+      kinetic_energy = 0.5_dp*(m(1, 1)*qd(1)**2 + 2.0_dp*m(1, 2)*qd(1)*qd(2) &
+                               + m(2, 2)*qd(2)**2)
+   end function kinetic_energy
+
+   !> Potential energy V(q), zero with both links horizontal (y = 0 at the pin A) [J].
+   pure real(dp) function potential_energy(par, q)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      potential_energy = (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(q(1)) &
+                         + 0.5_dp*par%m2*par%g*par%l2*sin(q(2))
+   end function potential_energy
+
+   !> Total mechanical energy T + V [J].
+   pure real(dp) function energy(par, q, qd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      energy = kinetic_energy(par, q, qd) + potential_energy(par, q)
+   end function energy
+
+   !> Canonical momenta p = M(q) q̇ [kg m²/s].
+   pure function momenta(par, q, qd) result(p)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: p(2)
+      p = matmul(mass_matrix(par, q), qd)
+   end function momenta
+
+   !> Angular velocities q̇ = M(q)⁻¹ p = ∂H/∂p [rad/s].
+   pure function velocities(par, q, p) result(qd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: qd(2)
+      real(dp) :: m(2, 2), det
+      m = mass_matrix(par, q)
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      qd(1) = (m(2, 2)*p(1) - m(1, 2)*p(2))/det
+      qd(2) = (m(1, 1)*p(2) - m(1, 2)*p(1))/det
+   end function velocities
+
+   !> Hamiltonian H(q, p) = ½ pᵀ M(q)⁻¹ p + V(q) [J].
+   pure real(dp) function hamiltonian(par, q, p)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: qd(2)
+      qd = velocities(par, q, p)
+      hamiltonian = 0.5_dp*(p(1)*qd(1) + p(2)*qd(2)) + potential_energy(par, q)
+   end function hamiltonian
+
+   !> ∂H/∂p = M(q)⁻¹ p [rad/s].
+   pure function dh_dp(par, q, p) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: g(2)
+      g = velocities(par, q, p)
+   end function dh_dp
+
+   !> ∂H/∂q [J/rad]. Only M12 depends on q (through d = q1 - q2):
+   !> ∂/∂d (½ pᵀM⁻¹p) = -½ q̇ᵀ (∂M/∂d) q̇ = k sin d q̇1 q̇2.
+   pure function dh_dq(par, q, p) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: g(2)
+      real(dp) :: qd(2), t
+      qd = velocities(par, q, p)
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
+      g = [t, -t] - generalized_forces(par, q)
+   end function dh_dq
+
+   !> First-order right-hand side for y = (q1, q2, q̇1, q̇2): (q̇, q̈).
+   pure function rhs_qqdot(par, y) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state [rad, rad, rad/s, rad/s]
+      real(dp) :: f(4)
+      f(1:2) = y(3:4)
+      f(3:4) = qddot(par, y(1:2), y(3:4))
+   end function rhs_qqdot
+
+   !> Hamiltonian vector field for z = (q1, q2, p1, p2): (∂H/∂p, -∂H/∂q).
+   pure function rhs_qp(par, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
+      real(dp) :: f(4)
+      real(dp) :: qd(2), t
+      qd = velocities(par, z(1:2), z(3:4))
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(z(1) - z(2))*qd(1)*qd(2)
+      f(1:2) = qd
+      f(3:4) = generalized_forces(par, z(1:2)) - [t, -t]
+   end function rhs_qp
+end module dpend_model
