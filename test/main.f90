@@ -5,6 +5,8 @@ program tester
    use, intrinsic :: iso_fortran_env, only: output_unit
    use testing, only: unittest_t, error_t
    use test_model, only: collect_model
+   use test_hdf5, only: collect_hdf5
+   use test_cli, only: collect_cli
    implicit none
 
    type :: suite_t
@@ -17,8 +19,10 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(1))
+   allocate (suites(3))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
+   suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
+   suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
 
    n_arg = command_argument_count()
    filter = ''

@@ -1,0 +1,289 @@
+!> `dpend simulate`: one trajectory from the command line through an integrator
+!> into an HDF5 file (layout in docs/hdf5-layout.md).
+module dpend_simulate
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: arg_t, next_option
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
+                           validate_run_config, check_output_file, run_flags_help
+   use dpend_model, only: pendulum_t, qddot, energy, momenta
+   use dpend_kinematics, only: kinematics_t, kinematics
+   use dpend_reactions, only: reactions
+   use dpend_integrator, only: integrator_t, stat_ok, status_message
+   use dpend_integrators, only: new_integrator
+   use dpend_hdf5, only: h5file_t
+   use dpend_version, only: version
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   implicit none
+   private
+   public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
+   public :: trajectory_t, write_trajectory
+
+   !> Sampled states of a run: internal variables converted to (q, q̇).
+   type :: trajectory_t
+      integer :: n = 0                      !! number of samples
+      real(dp), allocatable :: t(:)         !! times [s]
+      real(dp), allocatable :: q(:, :)      !! angles (2, n) [rad]
+      real(dp), allocatable :: qd(:, :)     !! angular velocities (2, n) [rad/s]
+      character(len=:), allocatable :: status  !! 'completed' or why the run stopped
+   end type trajectory_t
+
+contains
+
+   !> Defaults of simulate: the chapter's parameters, both links horizontal at rest.
+   function simulate_defaults() result(cfg)
+      type(run_config_t) :: cfg
+      cfg%method = 'rk4'
+      cfg%dt = 1e-3_dp
+      cfg%t_end = 10.0_dp
+      cfg%save_every = 10
+      cfg%output = 'simulate.h5'
+   end function simulate_defaults
+
+   !> Help text of `dpend simulate`.
+   function simulate_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      type(run_config_t) :: cfg
+      cfg = simulate_defaults()
+      s = 'usage: dpend simulate [options]'//nl//nl// &
+          'Integrate one trajectory of the double pendulum and write it to HDF5'//nl// &
+          '(layout: docs/hdf5-layout.md; figures: scripts/plot_simulate.sh FILE.h5).'//nl//nl// &
+          'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
+          run_flags_help(cfg)//nl// &
+          '  --save-every N    keep every N-th step (and always the last); default ' &
+          //itoa(cfg%save_every)//nl// &
+          '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
+          '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
+          '  --force           overwrite an existing output file'//nl// &
+          '  -h, --help        this text'
+   end function simulate_help
+
+   !> Build the configuration from defaults, --config and flags.
+   subroutine parse_simulate(args, cfg, help, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'simulate'
+      type(run_config_t), intent(out) :: cfg            !! the configuration
+      logical, intent(out) :: help                      !! --help was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value
+      logical :: matched
+      integer :: i
+      cfg = simulate_defaults()
+      help = .false.
+      ! first pass: help and the config file, so that flags override the file
+      i = 1
+      do while (i <= size(args))
+         select case (args(i)%s)
+         case ('-h', '--help')
+            help = .true.
+            return
+         case ('--config')
+            if (i == size(args)) then
+               call fatal_error(error, 'option --config needs a value')
+               return
+            end if
+            call read_run_config(args(i + 1)%s, cfg, error)
+            if (allocated(error)) return
+            i = i + 2
+         case default
+            i = i + 1
+         end select
+      end do
+      i = 1
+      do while (i <= size(args))
+         if (args(i)%s == '--force') then
+            cfg%force = .true.
+            i = i + 1
+            cycle
+         end if
+         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
+            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+                             "' (dpend simulate --help lists the options)")
+            return
+         end if
+         call next_option(args, i, name, value, .true., error)
+         if (allocated(error)) return
+         if (name == '--config') cycle
+         call apply_run_flag(cfg, name, value, matched, error)
+         if (allocated(error)) return
+         if (.not. matched) then
+            call fatal_error(error, "unknown option '"//name// &
+                             "' (dpend simulate --help lists the options)")
+            return
+         end if
+      end do
+      call validate_run_config(cfg, error)
+   end subroutine parse_simulate
+
+   !> Integrate, sample and write. `error` is set for invalid input (nothing written)
+   !> or for a failed run (the file holds the samples before the failure).
+   subroutine run_simulate(cfg, error, failed)
+      type(run_config_t), intent(in) :: cfg             !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the run started but stopped early
+      class(integrator_t), allocatable :: integ
+      type(trajectory_t) :: traj
+      type(error_t), allocatable :: werr
+      failed = .false.
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      call check_output_file(cfg%output, cfg%force, error)
+      if (allocated(error)) return
+      call integrate_trajectory(cfg, integ, traj)
+      call write_trajectory(cfg, integ, traj, werr)
+      if (allocated(werr)) then
+         call move_alloc(werr, error)
+         return
+      end if
+      if (traj%status /= 'completed') then
+         failed = .true.
+         call fatal_error(error, 'run stopped: '//traj%status//"; '"//cfg%output// &
+                          "' holds the samples before the failure")
+      end if
+   end subroutine run_simulate
+
+   !> Integrate from t = 0 to t_end with the configured method, keeping every
+   !> save_every-th step and the last one.
+   subroutine integrate_trajectory(cfg, integ, traj)
+      type(run_config_t), intent(in) :: cfg               !! configuration
+      class(integrator_t), intent(inout) :: integ         !! the method
+      type(trajectory_t), intent(out) :: traj             !! the samples
+      real(dp) :: t, h, y(4)
+      integer(i8) :: k, n_fixed
+      integer :: stat
+      character(len=32) :: tbuf
+      y = integ%to_internal(cfg%par, cfg%q0, cfg%w0)
+      t = 0.0_dp
+      call append(traj, integ, cfg%par, t, y)
+      traj%status = 'completed'
+      k = 0
+      h = cfg%dt
+      if (integ%adaptive()) then
+         do while (t < cfg%t_end)
+            h = min(h, cfg%t_end - t)
+            call integ%step(cfg%par, t, y, h, stat)
+            if (stat /= stat_ok) exit
+            k = k + 1
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. t >= cfg%t_end) &
+               call append(traj, integ, cfg%par, t, y)
+         end do
+      else
+         ! whole steps of dt; times are k*dt (not accumulated); a shorter last step
+         ! lands exactly on t_end when dt does not divide it
+         n_fixed = ceiling(cfg%t_end/cfg%dt*(1.0_dp - 1e-12_dp), i8)
+         do k = 1, n_fixed
+            h = min(cfg%dt, cfg%t_end - real(k - 1, dp)*cfg%dt)
+            call integ%step(cfg%par, t, y, h, stat)
+            if (stat /= stat_ok) exit
+            t = min(real(k, dp)*cfg%dt, cfg%t_end)
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. k == n_fixed) &
+               call append(traj, integ, cfg%par, t, y)
+         end do
+      end if
+      if (stat /= stat_ok) then
+         write (tbuf, '(es14.6)') t
+         traj%status = status_message(stat)//' after t = '//trim(adjustl(tbuf))//' s'
+      end if
+   end subroutine integrate_trajectory
+
+   !> Append the state (t, y) to the samples, growing the buffers geometrically.
+   subroutine append(traj, integ, par, t, y)
+      type(trajectory_t), intent(inout) :: traj     !! samples
+      class(integrator_t), intent(in) :: integ      !! for the conversion to (q, q̇)
+      type(pendulum_t), intent(in) :: par           !! parameters
+      real(dp), intent(in) :: t                     !! time [s]
+      real(dp), intent(in) :: y(4)                  !! internal state
+      real(dp), allocatable :: tt(:), qq(:, :), ww(:, :)
+      integer :: cap
+      if (.not. allocated(traj%t)) then
+         allocate (traj%t(1024), traj%q(2, 1024), traj%qd(2, 1024))
+      else if (traj%n == size(traj%t)) then
+         cap = 2*size(traj%t)
+         allocate (tt(cap), qq(2, cap), ww(2, cap))
+         tt(:traj%n) = traj%t; qq(:, :traj%n) = traj%q; ww(:, :traj%n) = traj%qd
+         call move_alloc(tt, traj%t); call move_alloc(qq, traj%q); call move_alloc(ww, traj%qd)
+      end if
+      traj%n = traj%n + 1
+      traj%t(traj%n) = t
+      call integ%to_physical(par, y, traj%q(:, traj%n), traj%qd(:, traj%n))
+   end subroutine append
+
+   !> Write the samples with their derived quantities (accelerations, momenta,
+   !> energy, reactions, kinematics) and the run's attributes.
+   subroutine write_trajectory(cfg, integ, traj, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration
+      class(integrator_t), intent(in) :: integ          !! the method and its counters
+      type(trajectory_t), intent(in) :: traj            !! the samples
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      type(h5file_t) :: h5
+      type(kinematics_t) :: k
+      real(dp), allocatable :: qdd(:, :), p(:, :), e(:), f01(:, :), f21(:, :)
+      real(dp), allocatable :: rc1(:, :), vc1(:, :), ac1(:, :), rc2(:, :), vc2(:, :), &
+                               ac2(:, :), rb(:, :)
+      integer :: i, n
+      n = traj%n
+      allocate (qdd(2, n), p(2, n), e(n), f01(2, n), f21(2, n), rc1(2, n), vc1(2, n), &
+                ac1(2, n), rc2(2, n), vc2(2, n), ac2(2, n), rb(2, n))
+      do i = 1, n
+         associate (q => traj%q(:, i), w => traj%qd(:, i))
+            qdd(:, i) = qddot(cfg%par, q, w)
+            p(:, i) = momenta(cfg%par, q, w)
+            e(i) = energy(cfg%par, q, w)
+            call reactions(cfg%par, q, w, qdd(:, i), f01(:, i), f21(:, i))
+            k = kinematics(cfg%par, q, w, qdd(:, i))
+         end associate
+         rc1(:, i) = k%rc1; vc1(:, i) = k%vc1; ac1(:, i) = k%ac1
+         rc2(:, i) = k%rc2; vc2(:, i) = k%vc2; ac2(:, i) = k%ac2; rb(:, i) = k%rb
+      end do
+      call h5%open(cfg%output, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/trajectory/t', traj%t(:n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/qdot', traj%qd(:, :n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/qddot', qdd, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/p', p, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/energy', e, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/F01', f01, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/F21', f21, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rC1', rc1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/vC1', vc1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/aC1', ac1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rC2', rc2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/vC2', vc2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/aC2', ac2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rB', rb, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%writeattr('/', 'm1', cfg%par%m1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%par%m2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%par%l1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%par%l2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%par%g, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 't_end', cfg%t_end, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'save_every', cfg%save_every, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'order', integ%order(), error)
+      if (.not. allocated(error) .and. integ%adaptive()) then
+         call h5%writeattr('/', 'rtol', cfg%rtol, error)
+         if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
+      end if
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', int(integ%n_steps), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', int(integ%n_rhs), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
+      call h5%close()
+   end subroutine write_trajectory
+
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+end module dpend_simulate

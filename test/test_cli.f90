@@ -1,0 +1,301 @@
+!> The `dpend` command run as a process: every bad input ends with one line on
+!> stderr naming the field, exit status 2 and no output file; a run that blows up
+!> leaves a valid file; a trajectory matches the high-precision reference.
+module test_cli
+   use dpend_kinds, only: dp
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   implicit none
+   private
+   public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text
+
+contains
+
+   subroutine collect_cli(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [ &
+               new_unittest('help_lists_options', test_help), &
+               new_unittest('bad_input_rejected', test_bad_input), &
+               new_unittest('bad_config_rejected', test_bad_config), &
+               new_unittest('existing_output_kept', test_existing_output), &
+               new_unittest('nonfinite_run_leaves_valid_file', test_nonfinite), &
+               new_unittest('config_file_and_flags', test_config_run), &
+               new_unittest('trajectory_matches_reference', test_reference)]
+   end subroutine collect_cli
+
+   !> Path of the dpend executable built with the same flags as this test program:
+   !> fpm puts both under build/<compiler_hash>/{app,test}/.
+   function dpend_binary() result(path)
+      character(len=:), allocatable :: path
+      character(len=4096) :: self
+      integer :: slash
+      call get_command_argument(0, self)
+      slash = index(self, '/test/', back=.true.)
+      if (slash == 0) then
+         path = 'dpend'
+      else
+         path = self(:slash)//'app/dpend'
+      end if
+   end function dpend_binary
+
+   !> A fresh scratch directory for this test run.
+   function scratch_dir(tag) result(dir)
+      character(len=*), intent(in) :: tag
+      character(len=:), allocatable :: dir
+      character(len=64) :: buf
+      integer :: clock
+      call system_clock(clock)
+      write (buf, '("/tmp/dpend-test-", a, "-", i0)') tag, clock
+      dir = trim(buf)
+      call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+   end function scratch_dir
+
+   !> Run `dpend args` with stdout and stderr captured in dir; returns the exit status.
+   integer function run_command(dir, args) result(stat)
+      character(len=*), intent(in) :: dir, args
+      call execute_command_line(dpend_binary()//' '//args//' > '//dir//'/stdout 2> '//dir// &
+                                '/stderr', exitstat=stat)
+   end function run_command
+
+   !> Whole text file as lines joined by new_line; n_lines counts them.
+   subroutine read_text(path, text, n_lines)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: text
+      integer, intent(out) :: n_lines
+      integer :: unit, stat
+      character(len=2048) :: line
+      text = ''
+      n_lines = 0
+      open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+      if (stat /= 0) return
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         n_lines = n_lines + 1
+         text = text//trim(line)//new_line('a')
+      end do
+      close (unit)
+   end subroutine read_text
+
+   !> Expect exit status 2, exactly one stderr line containing `needle`, no output file.
+   subroutine expect_rejected(error, dir, args, needle)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: dir, args, needle
+      integer :: stat, n
+      logical :: exists
+      character(len=:), allocatable :: text
+      if (allocated(error)) return
+      stat = run_command(dir, 'simulate --output '//dir//'/out.h5 '//args)
+      call read_text(dir//'/stderr', text, n)
+      inquire (file=dir//'/out.h5', exist=exists)
+      call check_true(error, stat == 2, '['//args//'] exit status 2, got '//itoa(stat)// &
+                      '; stderr: '//text)
+      call check_true(error, n == 1, '['//args//'] one stderr line, got '//itoa(n)//': '//text)
+      call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
+                      needle//'": '//text)
+      call check_true(error, .not. exists, '['//args//'] no output file')
+   end subroutine expect_rejected
+
+   subroutine test_help(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat, i
+      character(len=12), parameter :: opts(20) = [character(len=12) :: '--config', '--q1', &
+         '--q2', '--w1', '--w2', '--m1', '--m2', '--l1', '--l2', '--g', '--method', '--dt', &
+         '--t-end', '--save-every', '--output', '--force', 'RAD/S', 'KG', 'M/S^2', 'default']
+      dir = scratch_dir('help')
+      stat = run_command(dir, 'simulate --help')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'simulate --help exits 0')
+      do i = 1, size(opts)
+         call check_true(error, index(text, trim(opts(i))) > 0, 'help mentions '//trim(opts(i)))
+      end do
+      stat = run_command(dir, '--help')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'simulate') > 0, 'dpend --help')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_help
+
+   subroutine test_bad_input(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('bad')
+      call expect_rejected(error, dir, '--m1 -1', 'm1')
+      call expect_rejected(error, dir, '--m2 0', 'm2')
+      call expect_rejected(error, dir, '--l1 0', 'l1')
+      call expect_rejected(error, dir, '--l2 -3', 'l2')
+      call expect_rejected(error, dir, '--g 0', 'g')
+      call expect_rejected(error, dir, '--g nan', '--g')
+      call expect_rejected(error, dir, '--m1 inf', '--m1')
+      call expect_rejected(error, dir, '--q1 nan', '--q1')
+      call expect_rejected(error, dir, '--w2 -inf', '--w2')
+      call expect_rejected(error, dir, '--dt 0', 'dt')
+      call expect_rejected(error, dir, '--dt -1e-3', 'dt')
+      call expect_rejected(error, dir, '--t-end -1', 't_end')
+      call expect_rejected(error, dir, '--dt abc', '--dt')
+      call expect_rejected(error, dir, '--save-every 0', 'save_every')
+      call expect_rejected(error, dir, '--method nosuch', 'method')
+      call expect_rejected(error, dir, '--bogus 1', 'unknown option')
+      call expect_rejected(error, dir, '--dt', 'needs a value')
+      call expect_rejected(error, dir, '--config '//dir//'/missing.nml', 'config')
+      call expect_rejected(error, dir, '--output '//dir//'/no/such/dir/x.h5', 'directory')
+      call expect_rejected(error, dir, '--output /proc/dpend-test.h5', 'not writable')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_bad_input
+
+   subroutine test_bad_config(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('badcfg')
+      call write_file(dir//'/group.nml', '&pendulum m1 = 2 /'//new_line('a')//'&bogus x = 1 /')
+      call expect_rejected(error, dir, '--config '//dir//'/group.nml', 'unknown namelist group')
+      call write_file(dir//'/key.nml', '&pendulum m1 = 2, mass3 = 1 /')
+      call expect_rejected(error, dir, '--config '//dir//'/key.nml', 'mass3')
+      call write_file(dir//'/nan.nml', '&pendulum m1 = NaN /')
+      call expect_rejected(error, dir, '--config '//dir//'/nan.nml', 'm1')
+      call write_file(dir//'/dt.nml', '&integration dt = -1 /')
+      call expect_rejected(error, dir, '--config '//dir//'/dt.nml', 'dt')
+      call write_file(dir//'/method.nml', "&integration method = 'euler' /")
+      call expect_rejected(error, dir, '--config '//dir//'/method.nml', 'method')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_bad_config
+
+   !> An existing output file without --force is refused and left as it was.
+   subroutine test_existing_output(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('exists')
+      call write_file(dir//'/out.h5', 'keep me')
+      stat = run_command(dir, 'simulate --t-end 0.01 --output '//dir//'/out.h5')
+      call check_true(error, stat == 2, 'exit status 2 for an existing output')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, n == 1 .and. index(text, 'exists') > 0, 'message: '//text)
+      call read_text(dir//'/out.h5', text, n)
+      call check_true(error, text == 'keep me'//new_line('a'), 'existing file untouched')
+      stat = run_command(dir, 'simulate --t-end 0.01 --output '//dir//'/out.h5 --force')
+      call check_true(error, stat == 0 .and. is_hdf5(dir//'/out.h5'), '--force overwrites')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_existing_output
+
+   !> A step far too large for rk4 makes the state overflow: exit 1, one message,
+   !> and a valid HDF5 file with the samples before the failure and a status.
+   subroutine test_nonfinite(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, status
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :)
+      integer :: n, stat
+      dir = scratch_dir('nonfinite')
+      stat = run_command(dir, 'simulate --q1 0 --q2 0 --w1 30 --dt 2 --t-end 1e6 ' &
+                         //'--save-every 1 --output '//dir//'/out.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 1, 'exit status 1, got '//itoa(stat)//': '//text)
+      call check_true(error, n == 1 .and. index(text, 'non-finite') > 0, 'message: '//text)
+      call check_true(error, is_hdf5(dir//'/out.h5'), 'valid HDF5 left behind')
+      if (allocated(error)) return
+      call h5%open(dir//'/out.h5', 'r', error)
+      if (allocated(error)) return
+      call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'status', status, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, size(t) >= 1 .and. all(abs(q) < huge(1.0_dp)), &
+                      'samples before the failure are finite')
+      call check_true(error, index(status, 'non-finite') > 0, 'status attribute: '//status)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_nonfinite
+
+   !> The config file sets values and flags override them.
+   subroutine test_config_run(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, method
+      type(h5file_t) :: h5
+      real(dp) :: m2, t_end
+      real(dp), allocatable :: t(:)
+      integer :: stat
+      dir = scratch_dir('cfg')
+      call write_file(dir//'/run.nml', '! comment'//new_line('a')// &
+                      '&pendulum m2 = 2.5, g = 9.81 /'//new_line('a')// &
+                      "&integration method = 'rk4', dt = 0.01, t_end = 3, save_every = 5 /")
+      stat = run_command(dir, 'simulate --config '//dir//'/run.nml --t-end 1 --output '// &
+                         dir//'/out.h5')
+      call check_true(error, stat == 0, 'run with config exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/out.h5', 'r', error)
+      if (allocated(error)) return
+      call h5%readattr('/', 'm2', m2, error)
+      if (.not. allocated(error)) call h5%readattr('/', 't_end', t_end, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'method', method, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check(error, m2, 2.5_dp, 'm2 from the file', abs=0.0_dp)
+      call check(error, t_end, 1.0_dp, 't_end from the flag', abs=0.0_dp)
+      call check_true(error, method == 'rk4', 'method attribute')
+      call check_true(error, size(t) == 21, 'samples at 0, 0.05, ..., 1: '//itoa(size(t)))
+      call check(error, t(size(t)), 1.0_dp, 'last sample at t_end', abs=1e-15_dp)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_config_run
+
+   !> Horizontal release with rk4, dt = 1e-4, against the 40-digit Taylor-series
+   !> solution of data/reference/release_horizontal.txt: 1e-8 in q and q̇ at t = 1..5.
+   subroutine test_reference(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :), qd(:, :)
+      real(dp) :: ref(5, 5)
+      integer :: stat, unit, i
+      character(len=256) :: line
+      open (newunit=unit, file='data/reference/release_horizontal.txt', status='old', &
+            action='read', iostat=stat)
+      call check_true(error, stat == 0, 'reference table readable')
+      if (allocated(error)) return
+      i = 0
+      do while (i < 5)
+         read (unit, '(a)') line
+         if (line(1:1) == '#') cycle
+         i = i + 1
+         read (line, *) ref(:, i)
+      end do
+      close (unit)
+      dir = scratch_dir('ref')
+      stat = run_command(dir, 'simulate --q1 0 --q2 0 --method rk4 --dt 1e-4 --t-end 5 ' &
+                         //'--save-every 10000 --output '//dir//'/run.h5')
+      call check_true(error, stat == 0, 'simulate exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/run.h5', 'r', error)
+      if (allocated(error)) return
+      call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/qdot', qd, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, size(t) == 6, 'samples at t = 0..5')
+      if (allocated(error)) return
+      do i = 1, 5
+         call check(error, t(i + 1), ref(1, i), 't', abs=1e-12_dp)
+         call check(error, q(:, i + 1), ref(2:3, i), 'q', abs=1e-8_dp)
+         call check(error, qd(:, i + 1), ref(4:5, i), 'qdot', abs=1e-8_dp)
+      end do
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_reference
+
+   subroutine write_file(path, text)
+      character(len=*), intent(in) :: path, text
+      integer :: unit
+      open (newunit=unit, file=path, status='replace', action='write')
+      write (unit, '(a)') text
+      close (unit)
+   end subroutine write_file
+
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+end module test_cli

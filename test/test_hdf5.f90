@@ -1,0 +1,532 @@
+!> Tests of `dpend_hdf5`: round trips of every written type and shape, attributes,
+!> slab writes, overwrites, `exists`, and the errors of missing files and datasets.
+module test_hdf5
+   use dpend_kinds, only: dp, i8
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   implicit none
+   private
+   public :: collect_hdf5
+
+contains
+
+   !> The hdf5 test suite.
+   subroutine collect_hdf5(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)  !! the tests
+      tests = [ &
+         new_unittest('hdf5_real_roundtrip', test_real_roundtrip), &
+         new_unittest('hdf5_int_roundtrip', test_int_roundtrip), &
+         new_unittest('hdf5_string_roundtrip', test_string_roundtrip), &
+         new_unittest('hdf5_attributes', test_attributes), &
+         new_unittest('hdf5_slabs', test_slabs), &
+         new_unittest('hdf5_extendible', test_extendible), &
+         new_unittest('hdf5_overwrite', test_overwrite), &
+         new_unittest('hdf5_exists', test_exists), &
+         new_unittest('hdf5_missing_file', test_missing_file), &
+         new_unittest('hdf5_missing_dataset', test_missing_dataset), &
+         new_unittest('hdf5_modes', test_modes), &
+         new_unittest('hdf5_is_hdf5', test_is_hdf5), &
+         new_unittest('hdf5_finalizer', test_finalizer) &
+         ]
+   end subroutine collect_hdf5
+
+   !> A file name in /tmp unique to this run and `tag`.
+   function temp_name(tag) result(name)
+      character(len=*), intent(in) :: tag  !! distinguishes files of one run
+      character(len=:), allocatable :: name
+      integer(i8) :: clock
+      real(dp) :: r
+      character(len=64) :: buf
+      call system_clock(clock)
+      call random_number(r)
+      write (buf, '(i0, "_", i0)') clock, int(r*1.0e9_dp)
+      name = '/tmp/dpend_test_hdf5_'//trim(buf)//'_'//tag//'.h5'
+   end function temp_name
+
+   !> Delete `name` if it exists.
+   subroutine delete_file(name)
+      character(len=*), intent(in) :: name  !! file to remove
+      integer :: unit, ios
+      logical :: there
+      inquire (file=name, exist=there)
+      if (.not. there) return
+      open (newunit=unit, file=name, status='old', iostat=ios)
+      if (ios == 0) close (unit, status='delete')
+   end subroutine delete_file
+
+   !> Fail unless `actual` and `expected` have the same shape and integer values.
+   subroutine check_ints(error, actual, expected, what)
+      type(error_t), allocatable, intent(inout) :: error  !! set on failure
+      integer, intent(in) :: actual(:)                    !! values read
+      integer, intent(in) :: expected(:)                  !! values written
+      character(len=*), intent(in) :: what                !! what is compared
+      call check_true(error, size(actual) == size(expected), what//': size differs')
+      if (allocated(error)) return
+      call check_true(error, all(actual == expected), what//': values differ')
+   end subroutine check_ints
+
+   !> Real scalars and 1-D, 2-D, 3-D arrays come back with equal shape and values.
+   subroutine test_real_roundtrip(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      real(dp) :: x0, y0, x1(5), x2(2, 7), x3(3, 4, 2)
+      real(dp), allocatable :: y1(:), y2(:, :), y3(:, :, :), empty(:)
+      integer, allocatable :: dims(:)
+      integer :: i
+      name = temp_name('real')
+      x0 = -1.25e-300_dp
+      x1 = [(real(i, dp)/3.0_dp, i=1, 5)]
+      x2 = reshape([(sin(real(i, dp)), i=1, 14)], [2, 7])
+      x3 = reshape([(real(i, dp)**1.5_dp, i=1, 24)], [3, 4, 2])
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/scalar', x0, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/x1', x1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/q', x2, error)
+      if (.not. allocated(error)) call h5%write('/deep/er/x3', x3, error)
+      if (.not. allocated(error)) call h5%write('/empty', x1(1:0), error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, .not. h5%is_open(), 'is_open after close')
+
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call check_true(error, h5%is_open(), 'is_open after open')
+      call h5%read('/scalar', y0, error)
+      call check(error, y0, x0, 'scalar')
+      if (.not. allocated(error)) call h5%read('/trajectory/x1', y1, error)
+      if (.not. allocated(error)) call check(error, y1, x1, 'x1')
+      if (.not. allocated(error)) call h5%read('/trajectory/q', y2, error)
+      if (.not. allocated(error)) call check_true(error, all(shape(y2) == [2, 7]), 'q shape')
+      if (.not. allocated(error)) call check(error, pack(y2, .true.), pack(x2, .true.), 'q')
+      if (.not. allocated(error)) call h5%read('/deep/er/x3', y3, error)
+      if (.not. allocated(error)) call check_true(error, all(shape(y3) == [3, 4, 2]), 'x3 shape')
+      if (.not. allocated(error)) call check(error, pack(y3, .true.), pack(x3, .true.), 'x3')
+      if (.not. allocated(error)) call h5%read('/empty', empty, error)
+      if (.not. allocated(error)) call check_true(error, size(empty) == 0, 'empty size')
+      if (.not. allocated(error)) call h5%shape('/trajectory/q', dims, error)
+      if (.not. allocated(error)) call check_ints(error, dims, [2, 7], 'shape of q')
+      if (.not. allocated(error)) call h5%shape('/scalar', dims, error)
+      if (.not. allocated(error)) call check_true(error, size(dims) == 0, 'scalar has rank 0')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_real_roundtrip
+
+   !> Integer scalars, 1-D, 2-D and integer(i8) 1-D arrays round-trip exactly.
+   subroutine test_int_roundtrip(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      integer :: n0, m0, n1(4), n2(3, 2), i
+      integer, allocatable :: m1(:), m2(:, :)
+      integer(i8) :: l1(3)
+      integer(i8), allocatable :: k1(:)
+      real(dp), allocatable :: as_real(:)
+      name = temp_name('int')
+      n0 = -huge(0)
+      n1 = [1, -2, 3, huge(0)]
+      n2 = reshape([(i*i - 4, i=1, 6)], [3, 2])
+      l1 = [-huge(0_i8), 0_i8, 2_i8**40 + 7_i8]
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/n0', n0, error)
+      if (.not. allocated(error)) call h5%write('/ints/n1', n1, error)
+      if (.not. allocated(error)) call h5%write('/ints/n2', n2, error)
+      if (.not. allocated(error)) call h5%write('/ints/l1', l1, error)
+      call h5%close()
+      if (allocated(error)) return
+
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%read('/n0', m0, error)
+      if (.not. allocated(error)) call check_true(error, m0 == n0, 'n0 differs')
+      if (.not. allocated(error)) call h5%read('/ints/n1', m1, error)
+      if (.not. allocated(error)) call check_ints(error, m1, n1, 'n1')
+      if (.not. allocated(error)) call h5%read('/ints/n2', m2, error)
+      if (.not. allocated(error)) call check_true(error, all(shape(m2) == [3, 2]), 'n2 shape')
+      if (.not. allocated(error)) call check_true(error, all(m2 == n2), 'n2 values')
+      if (.not. allocated(error)) call h5%read('/ints/l1', k1, error)
+      if (.not. allocated(error)) call check_true(error, size(k1) == 3, 'l1 size')
+      if (.not. allocated(error)) call check_true(error, all(k1 == l1), 'l1 values')
+      ! integers read as reals are converted; reals never read as integers
+      if (.not. allocated(error)) call h5%read('/ints/n1', as_real, error)
+      if (.not. allocated(error)) call check(error, as_real, real(n1, dp), 'n1 as real')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_int_roundtrip
+
+   !> Strings, including empty ones and trailing blanks, round-trip exactly.
+   subroutine test_string_roundtrip(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name, s
+      integer, allocatable :: dims(:)
+      real(dp) :: x
+      name = temp_name('str')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/meta/integrator', 'rk4 (fixed step)', error)
+      if (.not. allocated(error)) call h5%write('/meta/empty', '', error)
+      if (.not. allocated(error)) call h5%write('/meta/padded', 'ab  ', error)
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%read('/meta/integrator', s, error)
+      if (.not. allocated(error)) call check_true(error, s == 'rk4 (fixed step)' .and. &
+         len(s) == 16, 'integrator string differs: "'//s//'"')
+      if (.not. allocated(error)) call h5%read('/meta/empty', s, error)
+      if (.not. allocated(error)) call check_true(error, len(s) == 0, 'empty string')
+      if (.not. allocated(error)) call h5%read('/meta/padded', s, error)
+      if (.not. allocated(error)) call check_true(error, len(s) == 4, 'trailing blanks')
+      if (.not. allocated(error)) call h5%shape('/meta/integrator', dims, error)
+      if (.not. allocated(error)) call check_true(error, size(dims) == 0, 'string is scalar')
+      if (allocated(error)) return
+      call h5%read('/meta/integrator', x, err)
+      call check_true(error, allocated(err), 'string read as real must fail')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_string_roundtrip
+
+   !> Attributes on the root, a group and a dataset round-trip and can be replaced.
+   subroutine test_attributes(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name, s
+      real(dp) :: x
+      real(dp), allocatable :: v(:)
+      integer :: n
+      name = temp_name('attr')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/run/theta', [1.0_dp, 2.0_dp], error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'version', '0.1.0', error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'seed', 42, error)
+      if (.not. allocated(error)) call h5%writeattr('/run', 'dt', 1.0e-3_dp, error)
+      if (.not. allocated(error)) call h5%writeattr('/run', 'dt', 2.5e-3_dp, error)
+      if (.not. allocated(error)) call h5%writeattr('/run/theta', 'units', 'rad', error)
+      if (.not. allocated(error)) call h5%writeattr('/run/theta', 'range', &
+         [-3.0_dp, 3.0_dp, 0.5_dp], error)
+      call h5%close()
+      if (allocated(error)) return
+
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call check_true(error, h5%attr_exists('/', 'version'), 'root attr exists')
+      call check_true(error, h5%attr_exists('/run/theta', 'units'), 'dataset attr exists')
+      call check_true(error, .not. h5%attr_exists('/run', 'units'), 'no such attr')
+      call check_true(error, .not. h5%attr_exists('/nope', 'units'), 'no such object')
+      if (allocated(error)) return
+      call h5%readattr('/', 'version', s, error)
+      if (.not. allocated(error)) call check_true(error, s == '0.1.0', 'version: '//s)
+      if (.not. allocated(error)) call h5%readattr('/', 'seed', n, error)
+      if (.not. allocated(error)) call check_true(error, n == 42, 'seed')
+      if (.not. allocated(error)) call h5%readattr('/run', 'dt', x, error)
+      if (.not. allocated(error)) call check(error, x, 2.5e-3_dp, 'dt replaced')
+      if (.not. allocated(error)) call h5%readattr('/run/theta', 'units', s, error)
+      if (.not. allocated(error)) call check_true(error, s == 'rad', 'units: '//s)
+      if (.not. allocated(error)) call h5%readattr('/run/theta', 'range', v, error)
+      if (.not. allocated(error)) call check_true(error, size(v) == 3, 'range size')
+      if (.not. allocated(error)) call check(error, v, [-3.0_dp, 3.0_dp, 0.5_dp], 'range')
+      if (allocated(error)) return
+      call h5%readattr('/run', 'missing', x, err)
+      call check_true(error, allocated(err), 'missing attribute must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, "'missing'") > 0, &
+         'message names the attribute: '//err%message)
+      call h5%close()
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%writeattr('/', 'x', 1, err)
+      call check_true(error, allocated(err), 'writing a read-only file must fail')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_attributes
+
+   !> Columns and blocks written with write_slab reassemble the full array.
+   subroutine test_slabs(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      real(dp) :: full(4, 10)
+      real(dp), allocatable :: back(:, :)
+      integer :: counts(3, 5), j
+      integer, allocatable :: nback(:, :)
+      name = temp_name('slab')
+      full = reshape([(real(j, dp)*0.1_dp - 1.0_dp, j=1, 40)], [4, 10])
+      counts = reshape([(j, j=1, 15)], [3, 5])
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%create_dataset('/sweep/grid', 'real64', [4, 10], [4, 3], error, fill=-7.0_dp)
+      if (allocated(error)) return
+      do j = 1, 6   ! columns one at a time, 1-D into 2-D
+         call h5%write_slab('/sweep/grid', full(:, j), [1, j], error)
+         if (allocated(error)) return
+      end do
+      call h5%write_slab('/sweep/grid', full(:, 7:10), [1, 7], error)
+      if (allocated(error)) return
+      call h5%create_dataset('/sweep/count', 'int32', [3, 5], [2, 2], error, fill=0.0_dp)
+      if (allocated(error)) return
+      call h5%write_slab('/sweep/count', counts(:, 1:2), [1, 1], error)
+      if (.not. allocated(error)) call h5%write_slab('/sweep/count', counts(:, 3:5), &
+         [1, 3], error)
+      if (.not. allocated(error)) call h5%create_dataset('/sweep/unwritten', 'real64', &
+         [2, 3], [2, 1], error, fill=-7.0_dp)
+      if (.not. allocated(error)) call h5%write_slab('/sweep/unwritten', [1.0_dp], [2, 3], error)
+      if (allocated(error)) return
+      call h5%write_slab('/sweep/grid', full(:, 1:2), [1, 10], err)
+      call check_true(error, allocated(err), 'slab outside the dataset must fail')
+      call h5%flush()
+      call h5%close()
+
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%read('/sweep/grid', back, error)
+      if (.not. allocated(error)) call check_true(error, all(shape(back) == [4, 10]), 'shape')
+      if (.not. allocated(error)) call check(error, pack(back, .true.), pack(full, .true.), 'grid')
+      if (.not. allocated(error)) call h5%read('/sweep/count', nback, error)
+      if (.not. allocated(error)) call check_true(error, all(nback == counts), 'counts')
+      if (.not. allocated(error)) call h5%read('/sweep/unwritten', back, error)
+      if (.not. allocated(error)) call check(error, pack(back, .true.), &
+         [-7.0_dp, -7.0_dp, -7.0_dp, -7.0_dp, -7.0_dp, 1.0_dp], 'fill value and one element')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_slabs
+
+   !> An extendible dataset grows along its last dimension as columns are written.
+   subroutine test_extendible(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      real(dp) :: cols(3, 5)
+      real(dp), allocatable :: back(:, :)
+      integer, allocatable :: dims(:)
+      integer :: j
+      name = temp_name('ext')
+      cols = reshape([(real(j, dp), j=1, 15)], [3, 5])
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%create_dataset('/log', 'real64', [3, 0], [3, 4], error, extendible=.true.)
+      if (allocated(error)) return
+      do j = 1, 5
+         call h5%write_slab('/log', cols(:, j), [1, j], error)
+         if (allocated(error)) return
+      end do
+      call h5%shape('/log', dims, error)
+      if (.not. allocated(error)) call check_ints(error, dims, [3, 5], 'grown shape')
+      if (.not. allocated(error)) call h5%read('/log', back, error)
+      if (.not. allocated(error)) call check(error, pack(back, .true.), pack(cols, .true.), 'grown')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_extendible
+
+   !> Rewriting a dataset works with the same shape, another shape and another type.
+   subroutine test_overwrite(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name, s
+      real(dp), allocatable :: back(:)
+      integer, allocatable :: nback(:)
+      name = temp_name('over')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/a', [1.0_dp, 2.0_dp, 3.0_dp], error)
+      if (.not. allocated(error)) call h5%writeattr('/a', 'units', 'm', error)
+      if (.not. allocated(error)) call h5%write('/a', [4.0_dp, 5.0_dp, 6.0_dp], error)
+      if (.not. allocated(error)) call check_true(error, h5%attr_exists('/a', 'units'), &
+         'same shape: dataset reused, attribute kept')
+      if (.not. allocated(error)) call h5%write('/b', [1.0_dp, 2.0_dp], error)
+      if (.not. allocated(error)) call h5%write('/b', [7.0_dp, 8.0_dp, 9.0_dp, 10.0_dp], error)
+      if (.not. allocated(error)) call h5%write('/c', [1.0_dp], error)
+      if (.not. allocated(error)) call h5%write('/c', [3, 4], error)
+      if (.not. allocated(error)) call h5%write('/s', 'short', error)
+      if (.not. allocated(error)) call h5%write('/s', 'much longer text', error)
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'rw', error)
+      if (allocated(error)) return
+      call h5%write('/a', [0.5_dp, 0.25_dp, 0.125_dp], error)   ! again after reopening
+      if (.not. allocated(error)) call h5%read('/a', back, error)
+      if (.not. allocated(error)) call check(error, back, [0.5_dp, 0.25_dp, 0.125_dp], 'a')
+      if (.not. allocated(error)) call h5%read('/b', back, error)
+      if (.not. allocated(error)) call check_true(error, size(back) == 4, 'b resized')
+      if (.not. allocated(error)) call check_true(error, h5%attr_exists('/a', 'units'), &
+         'attribute kept after reopening')
+      if (.not. allocated(error)) call check(error, back, [7.0_dp, 8.0_dp, 9.0_dp, 10.0_dp], 'b')
+      if (.not. allocated(error)) call h5%read('/c', nback, error)
+      if (.not. allocated(error)) call check_ints(error, nback, [3, 4], 'c')
+      if (.not. allocated(error)) call h5%read('/s', s, error)
+      if (.not. allocated(error)) call check_true(error, s == 'much longer text', 's: '//s)
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_overwrite
+
+   !> `exists` is true for the root, groups and datasets and false otherwise.
+   subroutine test_exists(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      character(len=16) :: padded
+      name = temp_name('exists')
+      call check_true(error, .not. h5%exists('/'), 'nothing exists in a closed file')
+      if (allocated(error)) return
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/a/b/x', 1.0_dp, error)
+      if (allocated(error)) return
+      call check_true(error, h5%exists('/'), '/')
+      call check_true(error, h5%exists('/a'), '/a')
+      call check_true(error, h5%exists('/a/b'), '/a/b')
+      call check_true(error, h5%exists('/a/b/x'), '/a/b/x')
+      call check_true(error, h5%exists('a/b/x'), 'a/b/x')
+      call check_true(error, .not. h5%exists('/nope'), '/nope')
+      call check_true(error, .not. h5%exists('/a/nope/x'), '/a/nope/x')
+      call check_true(error, .not. h5%exists('/a/b/x/y'), '/a/b/x/y below a dataset')
+      call check_true(error, .not. h5%exists(''), 'empty path')
+      padded = '/a/p'
+      call h5%write(padded, 2, error)
+      call check_true(error, h5%exists('/a/p'), 'trailing blanks of a path are ignored')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_exists
+
+   !> Opening a missing file for reading fails with a message naming the file.
+   subroutine test_missing_file(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      real(dp) :: x
+      name = temp_name('missing')
+      call h5%open(name, 'r', err)
+      call check_true(error, allocated(err), 'opening a missing file must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, name) > 0, 'message names the file')
+      call check_true(error, .not. h5%is_open(), 'not open after failure')
+      call h5%read('/x', x, err)
+      call check_true(error, allocated(err), 'reading with no open file must fail')
+      call h5%open(name, 'q', err)
+      call check_true(error, allocated(err), 'mode q must fail')
+      call h5%open('/nonexistent_dir_dpend/x.h5', 'w', err)
+      call check_true(error, allocated(err), 'creating in a missing directory must fail')
+   end subroutine test_missing_file
+
+   !> Reading a missing dataset, or one of the wrong rank, fails with a clear message.
+   subroutine test_missing_dataset(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      real(dp), allocatable :: v(:), m(:, :)
+      integer :: n
+      name = temp_name('nodset')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/v', [1.0_dp, 2.0_dp], error)
+      if (allocated(error)) return
+      call h5%read('/absent/v', v, err)
+      call check_true(error, allocated(err), 'missing dataset must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, '/absent/v') > 0 .and. &
+         index(err%message, name) > 0, 'message names path and file: '//err%message)
+      call h5%read('/v', m, err)
+      call check_true(error, allocated(err), 'rank mismatch must fail')
+      call h5%read('/v', n, err)
+      call check_true(error, allocated(err), 'reals read as integer must fail')
+      call h5%read('/', v, err)
+      call check_true(error, allocated(err), 'a group is not a dataset')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_missing_dataset
+
+   !> 'x' refuses an existing file, 'rw' keeps data, 'w' truncates.
+   subroutine test_modes(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      real(dp) :: x
+      name = temp_name('modes')
+      call h5%open(name, 'x', error)
+      if (allocated(error)) return
+      call h5%write('/x', 3.0_dp, error)
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'x', err)
+      call check_true(error, allocated(err), "mode 'x' must refuse an existing file")
+      call check_true(error, .not. h5%is_open(), "not open after refused 'x'")
+      if (allocated(error)) return
+      call h5%open(name, 'rw', error)
+      if (allocated(error)) return
+      call h5%read('/x', x, error)
+      if (.not. allocated(error)) call check(error, x, 3.0_dp, "'rw' keeps data")
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call check_true(error, .not. h5%exists('/x'), "'w' truncates")
+      call h5%close()
+      call delete_file(name)
+      call h5%open(name, 'rw', error)
+      if (allocated(error)) return
+      call check_true(error, h5%is_open(), "'rw' creates a missing file")
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_modes
+
+   !> is_hdf5 accepts our files and rejects text files and missing files.
+   subroutine test_is_hdf5(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name, text
+      integer :: unit
+      name = temp_name('ish5')
+      text = temp_name('text')
+      call check_true(error, .not. is_hdf5(name), 'missing file is not HDF5')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%close()
+      call check_true(error, is_hdf5(name), 'our file is HDF5')
+      open (newunit=unit, file=text, status='replace', action='write')
+      write (unit, '(a)') 'not hdf5'
+      close (unit)
+      call check_true(error, .not. is_hdf5(text), 'text file is not HDF5')
+      call h5%open(text, 'r', err)
+      call check_true(error, allocated(err), 'opening a text file must fail')
+      call delete_file(name)
+      call delete_file(text)
+   end subroutine test_is_hdf5
+
+   !> A file left open is closed when its h5file_t goes away, so it can be recreated.
+   subroutine test_finalizer(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      real(dp) :: x
+      name = temp_name('final')
+      call leave_open(name, error)
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (.not. allocated(error)) call h5%read('/x', x, error)
+      if (.not. allocated(error)) call check(error, x, 5.0_dp, 'forgotten file')
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'w', error)   ! truncating fails while another handle is open
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_finalizer
+
+   !> Write to `name` and return without closing.
+   subroutine leave_open(name, error)
+      character(len=*), intent(in) :: name              !! file to write
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      call h5%open(name, 'w', error)
+      if (.not. allocated(error)) call h5%write('/x', 5.0_dp, error)
+   end subroutine leave_open
+end module test_hdf5
