@@ -12,6 +12,7 @@ dat="$(mktemp)"; trap 'rm -f "$dat"' EXIT
 "$here/dpend" export "$h5" /trajectory/t /trajectory/q /trajectory/energy \
   /trajectory/F01 /trajectory/F21 /trajectory/rC2 /trajectory/rB > "$dat"
 method=$(h5dump -a /method "$h5" 2>/dev/null | sed -n 's/.*(0): "\(.*\)".*/\1/p' | head -n1)
-gnuplot -e "datafile='$dat'; outdir='$out'; title='${method:-dpend}, $(basename "$h5")'" \
+escale=$(h5dump -a /energy_scale "$h5" 2>/dev/null | sed -n 's/.*(0): \([-+0-9.eE]*\).*/\1/p' | head -n1)
+gnuplot -e "datafile='$dat'; outdir='$out'; Escale=${escale:-1.0}; title='${method:-dpend}, $(basename "$h5")'" \
   "$here/simulate.gp"
 echo "plot_simulate.sh: wrote $out/{angles,energy_error,reactions,tip_path}.png"

@@ -4,10 +4,10 @@
 set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
 set grid
 set key outside right
-E0 = 0
+# Escale (J) comes from the file's energy_scale attribute: |E0|, or when E0 ~ 0
+# the potential energy with both links upright (docs/hdf5-layout.md)
 stats datafile using 4 every ::0::0 nooutput
 E0 = STATS_min
-Escale = (abs(E0) > 0) ? abs(E0) : 1.0
 
 set output outdir."/angles.png"
 set title "Angles from the horizontal x axis (".title.")"
@@ -15,7 +15,7 @@ set xlabel "t [s]"; set ylabel "angle [rad]"
 plot datafile u 1:2 w l lw 1.5 t "q_1", datafile u 1:3 w l lw 1.5 t "q_2"
 
 set output outdir."/energy_error.png"
-set title "Relative energy error |E(t) - E(0)| / |E(0)|".((abs(E0) > 0) ? "" : " (E(0) = 0: absolute, J)")
+set title sprintf("Energy error |E(t) - E(0)| / E_s,  E_s = %.4g J%s", Escale, (abs(abs(E0) - Escale) < 1e-12*Escale) ? " = |E(0)|" : " (E(0) = 0: V with both links upright)")
 set ylabel "relative energy error"
 set logscale y
 set format y "10^{%L}"

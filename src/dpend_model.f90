@@ -18,7 +18,7 @@ module dpend_model
    public :: qddot_newton_euler, qddot_lagrange, qddot
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
-   public :: rhs_qqdot, rhs_qp
+   public :: rhs_qqdot, rhs_qp, energy_scale
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -157,6 +157,17 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       energy = kinetic_energy(par, q, qd) + potential_energy(par, q)
    end function energy
+
+   !> Energy unit for relative energy errors [J]: |E0| when it is at least 1e-3 of
+   !> E_ref = V(π/2, π/2) = (m1/2 + m2) g L1 + (m2/2) g L2 (both links upright),
+   !> and E_ref itself when E0 ≈ 0 (e.g. both links released horizontally).
+   pure real(dp) function energy_scale(par, e0)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: e0           !! initial energy [J]
+      real(dp) :: e_ref
+      e_ref = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2
+      energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
+   end function energy_scale
 
    !> Canonical momenta p = M(q) q̇ [kg m²/s].
    pure function momenta(par, q, qd) result(p)

@@ -6,7 +6,7 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, check_output_file, run_flags_help
-   use dpend_model, only: pendulum_t, qddot, energy, momenta
+   use dpend_model, only: pendulum_t, qddot, energy, momenta, energy_scale
    use dpend_kinematics, only: kinematics_t, kinematics
    use dpend_reactions, only: reactions
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -276,6 +276,8 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', int(integ%n_steps), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', int(integ%n_rhs), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
+                                                    energy_scale(cfg%par, e(1)), error)
       call h5%close()
    end subroutine write_trajectory
 

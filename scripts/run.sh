@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The main job: build in the release profile, run the showcase, write every .h5
+# and figure under out/.  Usage: scripts/run.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mkdir -p out/simulate
+echo "== simulate: the chapter's numerical application (both links horizontal, at rest)"
+scripts/dpend simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
+scripts/plot_simulate.sh out/simulate/simulate.h5 out/simulate
+echo "== done: see out/"
