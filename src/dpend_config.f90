@@ -7,7 +7,7 @@
 module dpend_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_model, only: pendulum_t, validate
+   use dpend_model, only: pendulum_t, validate, finite_positive
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
@@ -199,19 +199,20 @@ contains
       end if
       if (.not. all(ieee_is_finite([cfg%q0, cfg%w0]))) then
          call fatal_error(error, 'invalid initial state: q1, q2, w1, w2 must be finite')
-      else if (.not. (cfg%dt > 0.0_dp .and. ieee_is_finite(cfg%dt))) then
+      else if (.not. finite_positive(cfg%dt)) then
          call fatal_error(error, 'invalid dt: must be finite and > 0 (s)')
-      else if (.not. (cfg%t_end >= 0.0_dp .and. ieee_is_finite(cfg%t_end))) then
+      else if (.not. (finite_positive(cfg%t_end) .or. cfg%t_end == 0.0_dp)) then
          call fatal_error(error, 'invalid t_end: must be finite and >= 0 (s)')
       else if (cfg%save_every < 1) then
          call fatal_error(error, 'invalid save_every: must be an integer >= 1')
-      else if (.not. (cfg%rtol > 0.0_dp .and. cfg%rtol < 1.0_dp)) then
+      else if (.not. finite_positive(cfg%rtol) .or. .not. finite_positive(1.0_dp - cfg%rtol)) &
+         then
          call fatal_error(error, 'invalid rtol: must be in (0, 1)')
-      else if (.not. (cfg%atol > 0.0_dp .and. ieee_is_finite(cfg%atol))) then
+      else if (.not. finite_positive(cfg%atol)) then
          call fatal_error(error, 'invalid atol: must be finite and > 0')
-      else if (.not. (cfg%output_dt >= 0.0_dp .and. ieee_is_finite(cfg%output_dt))) then
+      else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
          call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
-      else if (.not. (cfg%omega > 0.0_dp .and. ieee_is_finite(cfg%omega))) then
+      else if (.not. finite_positive(cfg%omega)) then
          call fatal_error(error, 'invalid omega: must be finite and > 0 (1/s)')
       end if
    end subroutine validate_run_config

@@ -8,16 +8,22 @@
 module dpend_integrator
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t, rhs_qqdot, rhs_qp, momenta, velocities
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: integrator_t
    public :: stat_ok, stat_no_convergence, stat_nonfinite, stat_step_too_small
-   public :: status_message
+   public :: status_message, state_ok, diverged_bound
 
    integer, parameter :: stat_ok = 0              !! the step was taken
    integer, parameter :: stat_no_convergence = 1  !! implicit stages did not converge
    integer, parameter :: stat_nonfinite = 2       !! the state became NaN or Inf
    integer, parameter :: stat_step_too_small = 3  !! adaptive step fell below roundoff
+
+   !> A state component beyond this magnitude counts as diverged: no physical state of
+   !> the pendulum comes near it, and stopping there keeps every intermediate stage of
+   !> the next step below overflow (which would trap under -ffpe-trap=overflow).
+   real(dp), parameter :: diverged_bound = 1e30_dp
 
    !> Common state and counters of every method.
    type, abstract :: integrator_t
@@ -124,6 +130,13 @@ contains
       end if
    end subroutine to_physical
 
+   !> The state is finite and below `diverged_bound`.
+   pure logical function state_ok(y)
+      real(dp), intent(in) :: y(:)  !! any state vector
+      state_ok = all(ieee_is_finite(y))
+      if (state_ok) state_ok = maxval(abs(y)) < diverged_bound
+   end function state_ok
+
    !> One-line description of a step status.
    pure function status_message(stat) result(msg)
       integer, intent(in) :: stat  !! a stat_* code
@@ -131,7 +144,7 @@ contains
       select case (stat)
       case (stat_ok); msg = 'ok'
       case (stat_no_convergence); msg = 'implicit stage iteration did not converge'
-      case (stat_nonfinite); msg = 'state became non-finite (NaN or Inf)'
+      case (stat_nonfinite); msg = 'state became non-finite (NaN, Inf or |y| > 1e30)'
       case (stat_step_too_small); msg = 'adaptive step size fell below roundoff'
       case default; msg = 'unknown status'
       end select

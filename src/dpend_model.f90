@@ -12,9 +12,10 @@
 module dpend_model
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: pendulum_t, validate, mass_matrix, generalized_forces
+   public :: pendulum_t, validate, finite_positive, mass_matrix, generalized_forces
    public :: qddot_newton_euler, qddot_lagrange, qddot
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
@@ -41,13 +42,21 @@ contains
       integer :: i
       x = [par%m1, par%m2, par%l1, par%l2, par%g]
       do i = 1, 5
-         if (.not. (x(i) > 0.0_dp .and. x(i) <= huge(x))) then
+         if (.not. finite_positive(x(i))) then
             call fatal_error(error, 'invalid '//trim(names(i))//': must be finite and > 0 (' &
                              //trim(units(i))//')')
             return
          end if
       end do
    end subroutine validate
+
+   !> x is finite and > 0, tested without an ordered comparison on NaN (which
+   !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
+   elemental logical function finite_positive(x)
+      real(dp), intent(in) :: x  !! value to test
+      finite_positive = .false.
+      if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
+   end function finite_positive
 
    !> Mass matrix M(q) of Lagrange's equations [kg m²].
    pure function mass_matrix(par, q) result(m)

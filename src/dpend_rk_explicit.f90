@@ -2,8 +2,7 @@
 module dpend_rk_explicit
    use dpend_kinds, only: dp
    use dpend_model, only: pendulum_t
-   use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok
    implicit none
    private
    public :: rk4_t
@@ -32,7 +31,7 @@ contains
       k3 = self%rhs(par, y + 0.5_dp*h*k2)
       k4 = self%rhs(par, y + h*k3)
       ynew = y + (h/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
-      if (.not. all(ieee_is_finite(ynew))) then
+      if (.not. state_ok(ynew)) then
          stat = stat_nonfinite
          return
       end if

@@ -257,7 +257,7 @@ contains
    end subroutine test_momentum_balance
 
    subroutine test_validate(error)
-      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf, ieee_quiet_nan
       type(error_t), allocatable, intent(out) :: error
       type(error_t), allocatable :: e
       real(dp) :: zero
@@ -267,7 +267,7 @@ contains
       call validate(pendulum_t(m1=-1.0_dp), e)
       call check_true(error, allocated(e), 'm1 < 0 rejected')
       if (allocated(e)) call check_true(error, index(e%message, 'm1') > 0, 'names m1')
-      call validate(pendulum_t(l2=zero/zero), e)
+      call validate(pendulum_t(l2=ieee_value(zero, ieee_quiet_nan)), e)
       call check_true(error, allocated(e), 'NaN l2 rejected')
       call validate(pendulum_t(g=ieee_value(zero, ieee_positive_inf)), e)
       call check_true(error, allocated(e), 'Inf g rejected')
