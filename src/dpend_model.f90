@@ -19,7 +19,7 @@ module dpend_model
    public :: qddot_newton_euler, qddot_lagrange, qddot
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
-   public :: rhs_qqdot, rhs_qp, energy_scale
+   public :: rhs_qqdot, rhs_qp, energy_scale, jacobian_qqdot, jacobian_qp
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -252,4 +252,60 @@ contains
       f(1:2) = qd
       f(3:4) = generalized_forces(par, z(1:2)) - [t, -t]
    end function rhs_qp
+
+   !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
+   !> with q̈ = M⁻¹ r, r = Q(q) - c(q, q̇), ∂q̈/∂x = M⁻¹ (∂r/∂x - (∂M/∂x) q̈).
+   pure function jacobian_qqdot(par, y) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state (q, q̇)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
+      m = mass_matrix(par, y(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      a = qddot_lagrange(par, y(1:2), y(3:4))
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      sd = sin(y(1) - y(2)); cd = cos(y(1) - y(2))
+      ! ∂r/∂(q1, q2, q̇1, q̇2)
+      dr(1, :) = [(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(y(1)) - k*cd*y(4)**2, &
+                  k*cd*y(4)**2, 0.0_dp, -2.0_dp*k*sd*y(4)]
+      dr(2, :) = [k*cd*y(3)**2, 0.5_dp*par%m2*par%g*par%l2*sin(y(2)) - k*cd*y(3)**2, &
+                  2.0_dp*k*sd*y(3), 0.0_dp]
+      ! (∂M/∂x) q̈: only M12 = k cos(q1 - q2) depends on q
+      dma = 0.0_dp
+      dma(:, 1) = -k*sd*[a(2), a(1)]
+      dma(:, 2) = k*sd*[a(2), a(1)]
+      jac = 0.0_dp
+      jac(1, 3) = 1.0_dp
+      jac(2, 4) = 1.0_dp
+      jac(3:4, :) = matmul(minv, dr - dma)
+   end function jacobian_qqdot
+
+   !> Jacobian ∂f/∂z of `rhs_qp` for z = (q, p), written analytically:
+   !> f = (q̇, -∂H/∂q) with q̇ = M⁻¹p, ∂q̇/∂q_j = -M⁻¹ (∂M/∂q_j) q̇, ∂q̇/∂p = M⁻¹, and
+   !> -∂H/∂q = (-φ - V_1, φ - V_2), φ = k sin(q1 - q2) q̇1 q̇2.
+   pure function jacobian_qp(par, z) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: z(4)         !! canonical state (q, p)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
+      m = mass_matrix(par, z(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      qd = matmul(minv, z(3:4))
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      sd = sin(z(1) - z(2)); cd = cos(z(1) - z(2))
+      ! ∂q̇/∂(q1, q2, p1, p2); (∂M/∂q1) q̇ = -k sd (q̇2, q̇1), (∂M/∂q2) q̇ = +k sd (q̇2, q̇1)
+      dqd(:, 1) = matmul(minv, k*sd*[qd(2), qd(1)])
+      dqd(:, 2) = -dqd(:, 1)
+      dqd(:, 3:4) = minv
+      dphi = k*sd*(dqd(1, :)*qd(2) + qd(1)*dqd(2, :))
+      dphi(1) = dphi(1) + k*cd*qd(1)*qd(2)
+      dphi(2) = dphi(2) - k*cd*qd(1)*qd(2)
+      jac(1:2, :) = dqd
+      jac(3, :) = -dphi
+      jac(4, :) = dphi
+      jac(3, 1) = jac(3, 1) + (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(z(1))
+      jac(4, 2) = jac(4, 2) + 0.5_dp*par%m2*par%g*par%l2*sin(z(2))
+   end function jacobian_qp
 end module dpend_model

@@ -25,11 +25,12 @@ program tester
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
 
    n_arg = command_argument_count()
-   filter = ''
    if (n_arg >= 1) then
       call get_command_argument(1, length=length)
       allocate (character(len=length) :: filter)
       call get_command_argument(1, filter)
+   else
+      filter = ''
    end if
 
    n_pass = 0; n_fail = 0

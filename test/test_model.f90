@@ -23,7 +23,9 @@ contains
                new_unittest('hamiltonian_gradients_fd', test_dh), &
                new_unittest('hamiltonian_equals_energy', test_h_energy), &
                new_unittest('reactions_balance_momentum', test_momentum_balance), &
-               new_unittest('invalid_parameters_rejected', test_validate)]
+               new_unittest('invalid_parameters_rejected', test_validate), &
+               new_unittest('jacobians_finite_differences', test_jacobians), &
+               new_unittest('jacobian_qp_hamiltonian', test_jacobian_hamiltonian)]
    end subroutine collect_model
 
    !> Random parameters in [0.2, 5] (masses, lengths) and g in [1, 20].
@@ -272,4 +274,54 @@ contains
       call validate(pendulum_t(g=ieee_value(zero, ieee_positive_inf)), e)
       call check_true(error, allocated(e), 'Inf g rejected')
    end subroutine test_validate
+
+   !> Both analytic Jacobians against 4th-order central differences of the fields.
+   subroutine test_jacobians(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      real(dp) :: q(2), qd(2), y(4), z(4), ja(4, 4), jb(4, 4), e(4), h
+      integer :: i, j
+      call seed()
+      do i = 1, 50
+         par = random_pendulum()
+         call random_state(q, qd)
+         y = [q, qd]
+         z = [q, momenta(par, q, qd)]
+         ja = jacobian_qqdot(par, y)
+         jb = jacobian_qp(par, z)
+         do j = 1, 4
+            e = 0.0_dp; e(j) = 1.0_dp
+            h = 1e-4_dp*max(1.0_dp, abs(y(j)))
+            call check(error, ja(:, j), (rhs_qqdot(par, y - 2*h*e) - 8*rhs_qqdot(par, y - h*e) &
+                       + 8*rhs_qqdot(par, y + h*e) - rhs_qqdot(par, y + 2*h*e))/(12*h), &
+                       'jacobian_qqdot column', abs=1e-6_dp*(1.0_dp + maxval(abs(ja))))
+            h = 1e-4_dp*max(1.0_dp, abs(z(j)))
+            call check(error, jb(:, j), (rhs_qp(par, z - 2*h*e) - 8*rhs_qp(par, z - h*e) &
+                       + 8*rhs_qp(par, z + h*e) - rhs_qp(par, z + 2*h*e))/(12*h), &
+                       'jacobian_qp column', abs=1e-6_dp*(1.0_dp + maxval(abs(jb))))
+         end do
+         if (allocated(error)) return
+      end do
+   end subroutine test_jacobians
+
+   !> The Jacobian of a Hamiltonian field is Ω⁻¹ ∇²H, so Ω J is symmetric
+   !> (Ω = [0 I; -I 0]): an identity the analytic Jacobian must satisfy to roundoff.
+   subroutine test_jacobian_hamiltonian(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      real(dp) :: q(2), qd(2), jb(4, 4), om(4, 4), s(4, 4)
+      integer :: i
+      om = 0.0_dp
+      om(1, 3) = 1.0_dp; om(2, 4) = 1.0_dp; om(3, 1) = -1.0_dp; om(4, 2) = -1.0_dp
+      call seed()
+      do i = 1, 50
+         par = random_pendulum()
+         call random_state(q, qd)
+         jb = jacobian_qp(par, [q, momenta(par, q, qd)])
+         s = matmul(om, jb)
+         call check(error, reshape(s - transpose(s), [16]), [(0.0_dp, i=1, 16)], &
+                    'Omega J symmetric', abs=1e-12_dp*maxval(abs(s)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_jacobian_hamiltonian
 end module test_model
