@@ -5,6 +5,7 @@ program tester
    use, intrinsic :: iso_fortran_env, only: output_unit
    use testing, only: unittest_t, error_t
    use test_model, only: collect_model
+   use test_integrators, only: collect_integrators
    implicit none
 
    type :: suite_t
@@ -17,14 +18,15 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(1))
+   allocate (suites(2))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
+   suites(2)%name = 'integrators'; call collect_integrators(suites(2)%tests)
 
    n_arg = command_argument_count()
    filter = ''
    if (n_arg >= 1) then
       call get_command_argument(1, length=length)
-      allocate (character(len=length) :: filter)
+      deallocate (filter); allocate (character(len=length) :: filter)
       call get_command_argument(1, filter)
    end if
 
