@@ -409,70 +409,69 @@ contains
       real(dp), intent(inout) :: y(4)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: ynew(4), e(4), err, hnew, fac
+      real(dp) :: k(4, 7), ynew(4), e(4), err, hnew, fac
       logical :: rejected, bad
       real(dp), parameter :: expo = 0.2_dp - 0.75_dp*dopri5_beta
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
          return
       end if
-      associate (k => self%k)
-         call first_stage(self, par, y, k(:, 1))
-         if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 5)
-         h = sign(min(abs(h), self%h_max), h)
-         rejected = .false.; bad = .false.
-         do
-            if (too_small(t, h)) then
-               stat = merge(stat_nonfinite, stat_step_too_small, bad)
+      call first_stage(self, par, y, k(:, 1))
+      if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 5)
+      h = sign(min(abs(h), self%h_max), h)
+      rejected = .false.; bad = .false.
+      do
+         if (too_small(t, h)) then
+            stat = merge(stat_nonfinite, stat_step_too_small, bad)
+            return
+         end if
+         k(:, 2) = rhs_qqdot(par, y + h*p5a21*k(:, 1))
+         k(:, 3) = rhs_qqdot(par, y + h*(p5a31*k(:, 1) + p5a32*k(:, 2)))
+         k(:, 4) = rhs_qqdot(par, y + h*(p5a41*k(:, 1) + p5a42*k(:, 2) + p5a43*k(:, 3)))
+         k(:, 5) = rhs_qqdot(par, y + h*(p5a51*k(:, 1) + p5a52*k(:, 2) + p5a53*k(:, 3) &
+                                         + p5a54*k(:, 4)))
+         k(:, 6) = rhs_qqdot(par, y + h*(p5a61*k(:, 1) + p5a62*k(:, 2) + p5a63*k(:, 3) &
+                                         + p5a64*k(:, 4) + p5a65*k(:, 5)))
+         ynew = y + h*(p5a71*k(:, 1) + p5a73*k(:, 3) + p5a74*k(:, 4) + p5a75*k(:, 5) &
+                       + p5a76*k(:, 6))
+         k(:, 7) = rhs_qqdot(par, ynew)
+         self%n_rhs = self%n_rhs + 6
+         bad = .not. (all(ieee_is_finite(ynew)) .and. all(ieee_is_finite(k(:, 7))))
+         if (self%fixed_step) then
+            if (bad) then
+               stat = stat_nonfinite
                return
             end if
-            k(:, 2) = rhs_qqdot(par, y + h*p5a21*k(:, 1))
-            k(:, 3) = rhs_qqdot(par, y + h*(p5a31*k(:, 1) + p5a32*k(:, 2)))
-            k(:, 4) = rhs_qqdot(par, y + h*(p5a41*k(:, 1) + p5a42*k(:, 2) + p5a43*k(:, 3)))
-            k(:, 5) = rhs_qqdot(par, y + h*(p5a51*k(:, 1) + p5a52*k(:, 2) + p5a53*k(:, 3) &
-                                            + p5a54*k(:, 4)))
-            k(:, 6) = rhs_qqdot(par, y + h*(p5a61*k(:, 1) + p5a62*k(:, 2) + p5a63*k(:, 3) &
-                                            + p5a64*k(:, 4) + p5a65*k(:, 5)))
-            ynew = y + h*(p5a71*k(:, 1) + p5a73*k(:, 3) + p5a74*k(:, 4) + p5a75*k(:, 5) &
-                          + p5a76*k(:, 6))
-            k(:, 7) = rhs_qqdot(par, ynew)
-            self%n_rhs = self%n_rhs + 6
-            bad = .not. (all(ieee_is_finite(ynew)) .and. all(ieee_is_finite(k(:, 7))))
-            if (self%fixed_step) then
-               if (bad) then
-                  stat = stat_nonfinite
-                  return
-               end if
-               exit
-            end if
-            if (.not. bad) then
-               e = h*(p5e1*k(:, 1) + p5e3*k(:, 3) + p5e4*k(:, 4) + p5e5*k(:, 5) &
-                      + p5e6*k(:, 6) + p5e7*k(:, 7))
-               err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/4.0_dp)
-               bad = .not. ieee_is_finite(err)
-            end if
-            if (bad) then
-               ! overflow inside the step: shrink hard and retry
-               self%n_rejected = self%n_rejected + 1
-               rejected = .true.
-               h = dopri5_facmin*h
-               cycle
-            end if
-            fac = pi_factor(err, self%err_old, expo, dopri5_beta, self%safety, &
-                            dopri5_facmin, dopri5_facmax)
-            if (err <= 1.0_dp) then
-               self%err_old = max(err, 1.0e-4_dp)
-               hnew = h*fac
-               if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
-               exit
-            end if
-            ! rejected: no growth, no PI memory (Hairer's DOPRI5)
+            exit
+         end if
+         if (.not. bad) then
+            e = h*(p5e1*k(:, 1) + p5e3*k(:, 3) + p5e4*k(:, 4) + p5e5*k(:, 5) &
+                   + p5e6*k(:, 6) + p5e7*k(:, 7))
+            err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/4.0_dp)
+            bad = .not. ieee_is_finite(err)
+         end if
+         if (bad) then
+            ! overflow inside the step: shrink hard and retry
             self%n_rejected = self%n_rejected + 1
             rejected = .true.
-            h = h/min(1.0_dp/dopri5_facmin, err**expo/self%safety)
-         end do
-         call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 7))
-      end associate
+            h = dopri5_facmin*h
+            cycle
+         end if
+         fac = pi_factor(err, self%err_old, expo, dopri5_beta, self%safety, &
+                         dopri5_facmin, dopri5_facmax)
+         if (err <= 1.0_dp) then
+            self%err_old = max(err, 1.0e-4_dp)
+            hnew = h*fac
+            if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
+            exit
+         end if
+         ! rejected: no growth, no PI memory (Hairer's DOPRI5)
+         self%n_rejected = self%n_rejected + 1
+         rejected = .true.
+         h = h/min(1.0_dp/dopri5_facmin, err**expo/self%safety)
+      end do
+      self%k = k                  ! stages of the recorded step, for dense output
+      call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 7))
       if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
       stat = stat_ok
    end subroutine dopri5_step
@@ -528,96 +527,95 @@ contains
       real(dp), intent(inout) :: y(4)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: ynew(4), inc(4), e5(4), e3(4), err, err5, err3, deno, hnew, fac
+      real(dp) :: k(4, 13), ynew(4), inc(4), e5(4), e3(4), err, err5, err3, deno, hnew, fac
       logical :: rejected, bad
       real(dp), parameter :: expo = 1.0_dp/8.0_dp - 0.2_dp*dop853_beta
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
          return
       end if
-      associate (k => self%k)
-         call first_stage(self, par, y, k(:, 1))
-         if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 8)
-         h = sign(min(abs(h), self%h_max), h)
-         rejected = .false.; bad = .false.
-         do
-            if (too_small(t, h)) then
-               stat = merge(stat_nonfinite, stat_step_too_small, bad)
-               return
-            end if
-            k(:, 2) = rhs_qqdot(par, y + h*a21*k(:, 1))
-            k(:, 3) = rhs_qqdot(par, y + h*(a31*k(:, 1) + a32*k(:, 2)))
-            k(:, 4) = rhs_qqdot(par, y + h*(a41*k(:, 1) + a43*k(:, 3)))
-            k(:, 5) = rhs_qqdot(par, y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4)))
-            k(:, 6) = rhs_qqdot(par, y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5)))
-            k(:, 7) = rhs_qqdot(par, y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) &
-                                            + a76*k(:, 6)))
-            k(:, 8) = rhs_qqdot(par, y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) &
-                                            + a86*k(:, 6) + a87*k(:, 7)))
-            k(:, 9) = rhs_qqdot(par, y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) &
-                                            + a96*k(:, 6) + a97*k(:, 7) + a98*k(:, 8)))
-            k(:, 10) = rhs_qqdot(par, y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) &
-                                             + a106*k(:, 6) + a107*k(:, 7) + a108*k(:, 8) &
-                                             + a109*k(:, 9)))
-            k(:, 11) = rhs_qqdot(par, y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) &
-                                             + a116*k(:, 6) + a117*k(:, 7) + a118*k(:, 8) &
-                                             + a119*k(:, 9) + a1110*k(:, 10)))
-            k(:, 12) = rhs_qqdot(par, y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) &
-                                             + a126*k(:, 6) + a127*k(:, 7) + a128*k(:, 8) &
-                                             + a129*k(:, 9) + a1210*k(:, 10) &
-                                             + a1211*k(:, 11)))
-            self%n_rhs = self%n_rhs + 11
-            inc = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) &
-                  + b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
-            ynew = y + h*inc
-            bad = .not. all(ieee_is_finite(ynew))
-            if (self%fixed_step) then
-               if (bad) then
-                  stat = stat_nonfinite
-                  return
-               end if
-               exit
-            end if
-            if (.not. bad) then
-               ! 5th- and 3rd-order estimates combined as in DOP853:
-               ! err = |h| err5² / sqrt(n (err5² + 0.01 err3²))
-               e5 = er1*k(:, 1) + er6*k(:, 6) + er7*k(:, 7) + er8*k(:, 8) + er9*k(:, 9) &
-                    + er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
-               e3 = inc - bhh1*k(:, 1) - bhh2*k(:, 9) - bhh3*k(:, 12)
-               err5 = weighted_ss(self%rtol, self%atol, y, ynew, e5)
-               err3 = weighted_ss(self%rtol, self%atol, y, ynew, e3)
-               deno = err5 + 0.01_dp*err3
-               if (deno <= 0.0_dp) deno = 1.0_dp
-               err = abs(h)*err5*sqrt(1.0_dp/(4.0_dp*deno))
-               bad = .not. ieee_is_finite(err)
-            end if
-            if (bad) then
-               self%n_rejected = self%n_rejected + 1
-               rejected = .true.
-               h = dop853_facmin*h
-               cycle
-            end if
-            fac = pi_factor(err, self%err_old, expo, dop853_beta, self%safety, &
-                            dop853_facmin, dop853_facmax)
-            if (err <= 1.0_dp) then
-               self%err_old = max(err, 1.0e-4_dp)
-               hnew = h*fac
-               if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
-               exit
-            end if
-            self%n_rejected = self%n_rejected + 1
-            rejected = .true.
-            h = h/min(1.0_dp/dop853_facmin, err**expo/self%safety)
-         end do
-         ! FSAL: f(y_new) is stage 1 of the next step and stage 13 of the dense output
-         k(:, 13) = rhs_qqdot(par, ynew)
-         self%n_rhs = self%n_rhs + 1
-         if (.not. all(ieee_is_finite(k(:, 13)))) then
-            stat = stat_nonfinite
+      call first_stage(self, par, y, k(:, 1))
+      if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 8)
+      h = sign(min(abs(h), self%h_max), h)
+      rejected = .false.; bad = .false.
+      do
+         if (too_small(t, h)) then
+            stat = merge(stat_nonfinite, stat_step_too_small, bad)
             return
          end if
-         call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 13))
-      end associate
+         k(:, 2) = rhs_qqdot(par, y + h*a21*k(:, 1))
+         k(:, 3) = rhs_qqdot(par, y + h*(a31*k(:, 1) + a32*k(:, 2)))
+         k(:, 4) = rhs_qqdot(par, y + h*(a41*k(:, 1) + a43*k(:, 3)))
+         k(:, 5) = rhs_qqdot(par, y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4)))
+         k(:, 6) = rhs_qqdot(par, y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5)))
+         k(:, 7) = rhs_qqdot(par, y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) &
+                                         + a76*k(:, 6)))
+         k(:, 8) = rhs_qqdot(par, y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) &
+                                         + a86*k(:, 6) + a87*k(:, 7)))
+         k(:, 9) = rhs_qqdot(par, y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) &
+                                         + a96*k(:, 6) + a97*k(:, 7) + a98*k(:, 8)))
+         k(:, 10) = rhs_qqdot(par, y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) &
+                                          + a106*k(:, 6) + a107*k(:, 7) + a108*k(:, 8) &
+                                          + a109*k(:, 9)))
+         k(:, 11) = rhs_qqdot(par, y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) &
+                                          + a116*k(:, 6) + a117*k(:, 7) + a118*k(:, 8) &
+                                          + a119*k(:, 9) + a1110*k(:, 10)))
+         k(:, 12) = rhs_qqdot(par, y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) &
+                                          + a126*k(:, 6) + a127*k(:, 7) + a128*k(:, 8) &
+                                          + a129*k(:, 9) + a1210*k(:, 10) &
+                                          + a1211*k(:, 11)))
+         self%n_rhs = self%n_rhs + 11
+         inc = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) &
+               + b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
+         ynew = y + h*inc
+         bad = .not. all(ieee_is_finite(ynew))
+         if (self%fixed_step) then
+            if (bad) then
+               stat = stat_nonfinite
+               return
+            end if
+            exit
+         end if
+         if (.not. bad) then
+            ! 5th- and 3rd-order estimates combined as in DOP853:
+            ! err = |h| err5² / sqrt(n (err5² + 0.01 err3²))
+            e5 = er1*k(:, 1) + er6*k(:, 6) + er7*k(:, 7) + er8*k(:, 8) + er9*k(:, 9) &
+                 + er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
+            e3 = inc - bhh1*k(:, 1) - bhh2*k(:, 9) - bhh3*k(:, 12)
+            err5 = weighted_ss(self%rtol, self%atol, y, ynew, e5)
+            err3 = weighted_ss(self%rtol, self%atol, y, ynew, e3)
+            deno = err5 + 0.01_dp*err3
+            if (deno <= 0.0_dp) deno = 1.0_dp
+            err = abs(h)*err5*sqrt(1.0_dp/(4.0_dp*deno))
+            bad = .not. ieee_is_finite(err)
+         end if
+         if (bad) then
+            self%n_rejected = self%n_rejected + 1
+            rejected = .true.
+            h = dop853_facmin*h
+            cycle
+         end if
+         fac = pi_factor(err, self%err_old, expo, dop853_beta, self%safety, &
+                         dop853_facmin, dop853_facmax)
+         if (err <= 1.0_dp) then
+            self%err_old = max(err, 1.0e-4_dp)
+            hnew = h*fac
+            if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
+            exit
+         end if
+         self%n_rejected = self%n_rejected + 1
+         rejected = .true.
+         h = h/min(1.0_dp/dop853_facmin, err**expo/self%safety)
+      end do
+      ! FSAL: f(y_new) is stage 1 of the next step and stage 13 of the dense output
+      k(:, 13) = rhs_qqdot(par, ynew)
+      self%n_rhs = self%n_rhs + 1
+      if (.not. all(ieee_is_finite(k(:, 13)))) then
+         stat = stat_nonfinite
+         return
+      end if
+      self%k(:, 1:13) = k
+      call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 13))
       if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
       stat = stat_ok
    end subroutine dop853_step
