@@ -598,7 +598,7 @@ contains
                       abs(integ%t_new - t) <= 1.0e-15_dp, &
                       'max_hits stops at the end of the step of the last hit')
       do j = 1, size(h1)
-         call check(error, modulo(h1(j)%q(2), 2.0_dp*pi), 0.0_dp, 'q2 = 0 mod 2 pi', &
+         call check(error, modulo(h1(j)%q(2) + pi, 2.0_dp*pi) - pi, 0.0_dp, 'q2 = 0 mod 2 pi', &
                     abs=1.0e-12_dp)
          if (j > 1) call check_true(error, h1(j)%q(2) > h1(j - 1)%q(2) + 6.0_dp, 'one a turn')
       end do
