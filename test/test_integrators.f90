@@ -375,6 +375,14 @@ contains
       call advance_to(integ, par, t, y, 1.0_dp, h, stat)
       y2 = solve(integ, y_swing, 1.0_dp, 0.0_dp)
       call check(error, y, y2, 'dop853 0→0.3→1 vs 0→1', abs=1.0e-8_dp)
+      ! an interval shorter than the automatic first step (HINIT gives 1.3e-4 here)
+      call make('dop853', integ)
+      t = 0.0_dp; y = y_swing; h = 0.0_dp
+      call advance_to(integ, par, t, y, 1.0e-5_dp, h, stat)
+      call check_true(error, stat == stat_ok .and. t == 1.0e-5_dp, 'dop853 reaches t = 1e-5')
+      call check_true(error, integ%t_new <= 1.0e-5_dp, 'dop853 did not step past t = 1e-5')
+      y2 = solve(integ, y_swing, 1.0e-5_dp, 1.0e-5_dp)
+      call check(error, y, y2, 'dop853 short interval', abs=1.0e-15_dp)
       ! backward: rk4 from 1 back to 0 returns to the start
       call make('rk4', integ)
       t = 0.0_dp; y = y_swing; h = 0.01_dp
