@@ -8,10 +8,11 @@
 !> proposed size, the last one capped to end exactly on t_end; a step is stretched
 !> by up to 1 % to avoid a tiny last step (as in DOPRI5/DOP853). Both directions
 !> of time are supported: the sign of t_end - t decides, h is taken as |h|.
+!> A fixed-step method given h = 0 fails with stat_step_too_small.
 module dpend_propagate
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t
-   use dpend_integrator, only: integrator_t, stat_ok
+   use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small
    implicit none
    private
    public :: march_t, advance_fixed, advance_to, integrate_sampled
@@ -66,10 +67,7 @@ contains
       end if
       h = self%dir*abs(h)
       self%h_fixed = h
-      if (self%finished .or. h == 0.0_dp) then
-         self%finished = .true.
-         return
-      end if
+      if (self%finished .or. h == 0.0_dp) return   ! h = 0: `next` reports it
       r = (t_end - t)/h
       n = nint(r, i8)
       tol = 16.0_dp*epsilon(1.0_dp)*max(abs(t), abs(t_end), abs(real(n, dp)*h))
@@ -123,6 +121,10 @@ contains
          else
             h = hs
          end if
+         return
+      end if
+      if (self%h_fixed == 0.0_dp) then
+         stat = stat_step_too_small              ! a fixed-step method needs h /= 0
          return
       end if
       if (self%i < self%n_whole) then

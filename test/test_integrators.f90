@@ -493,6 +493,10 @@ contains
       call integ%step(par, t, y, h, stat)
       call check_true(error, stat == stat_nonfinite, 'NaN state: stat_nonfinite')
       call check_true(error, t == 0.0_dp .and. integ%n_steps == 0, 'nothing done')
+      call make('rk4', integ)
+      t = 0.0_dp; y = y_swing; h = 0.0_dp
+      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+      call check_true(error, stat == stat_step_too_small .and. t == 0.0_dp, 'rk4 with h = 0')
       call make('dopri5', integ)
       t = 1.0e20_dp; y = y_swing; h = 1.0_dp
       call integ%step(par, t, y, h, stat)
