@@ -5,6 +5,13 @@
 !> Runge–Kutta methods, (q1, q2, p1, p2) for the symplectic ones (`canonical()`).
 !> Drivers convert with `to_internal` / `to_physical` once at the start and when
 !> sampling; the methods never convert inside a step.
+!>
+!> Every method remembers its last accepted step [t_old, t_new] so that drivers can
+!> sample it (dense output) and locate events inside it: each `step` calls
+!> `record_step` once, after the step is accepted and before it overwrites (t, y).
+!> `interpolate` then evaluates a continuous extension on that step; the default is
+!> the cubic Hermite interpolant of the internal state (order 3 locally, O(h⁴)),
+!> which methods with a better continuous extension (dopri5, dop853) override.
 module dpend_integrator
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t, rhs_qqdot, rhs_qp, momenta, velocities
@@ -31,6 +38,16 @@ module dpend_integrator
       integer(i8) :: n_steps = 0     !! accepted steps
       integer(i8) :: n_rejected = 0  !! rejected steps (adaptive methods)
       integer(i8) :: n_iter = 0      !! inner iterations (implicit methods)
+      ! The last accepted step, written by `record_step` only; read-only elsewhere.
+      logical :: stepped = .false.   !! a step has been recorded since `clear_step`
+      real(dp) :: t_old = 0.0_dp     !! start of the last step [s]
+      real(dp) :: t_new = 0.0_dp     !! end of the last step [s]
+      real(dp) :: y_old(4) = 0.0_dp  !! internal state at t_old
+      real(dp) :: y_new(4) = 0.0_dp  !! internal state at t_new
+      real(dp) :: f_old(4) = 0.0_dp  !! vector field at y_old (valid if known_f_old)
+      real(dp) :: f_new(4) = 0.0_dp  !! vector field at y_new (valid if known_f_new)
+      logical :: known_f_old = .false.  !! f_old holds f(y_old)
+      logical :: known_f_new = .false.  !! f_new holds f(y_new)
    contains
       procedure(step_i), deferred :: step
       procedure(name_i), deferred :: name
@@ -43,13 +60,22 @@ module dpend_integrator
       procedure :: rhs
       procedure :: to_internal
       procedure :: to_physical
+      procedure, non_overridable :: record_step
+      procedure, non_overridable :: has_step
+      procedure, non_overridable :: clear_step
+      procedure :: interpolate
    end type integrator_t
 
    abstract interface
-      !> Advance (t, y) by one step. Fixed-step methods take exactly h; adaptive
-      !> methods take one accepted step of at most h (retrying internally) and
-      !> return in h the step size proposed for the next step. On failure t and
-      !> y are left unchanged and `stat` says why.
+      !> Advance (t, y) by one step. Fixed-step methods take exactly h (h < 0
+      !> integrates backward). Adaptive methods take ONE accepted step of size at
+      !> most |h| in the direction of h, retrying internally after rejections
+      !> (counted in `n_rejected`), and return in h the step size proposed for the
+      !> next step; h = 0 asks the method to choose the first step itself (forward).
+      !> Drivers cap h so as not to pass their end time. Every successful step calls
+      !> `self%record_step(t, y, t_new, y_new)` before overwriting t and y, and
+      !> increments `n_steps`. On failure t and y are left unchanged and `stat`
+      !> says why (stat_nonfinite, stat_step_too_small, stat_no_convergence).
       subroutine step_i(self, par, t, y, h, stat)
          import :: integrator_t, pendulum_t, dp
          class(integrator_t), intent(inout) :: self  !! the method and its counters
@@ -136,6 +162,83 @@ contains
       state_ok = all(ieee_is_finite(y))
       if (state_ok) state_ok = maxval(abs(y)) < diverged_bound
    end function state_ok
+
+   !> Remember the accepted step from (t0, y0) to (t1, y1) for `interpolate` and the
+   !> event locator. Every `step` calls it once per accepted step, before it
+   !> overwrites t and y. A method that has the vector field at either end for free
+   !> passes it (f0 = f(y0), f1 = f(y1), internal variables) so that the Hermite
+   !> interpolant need not evaluate it; otherwise it is evaluated lazily, only when
+   !> `interpolate` is called.
+   subroutine record_step(self, t0, y0, t1, y1, f0, f1)
+      class(integrator_t), intent(inout) :: self  !! the method
+      real(dp), intent(in) :: t0                  !! start of the step [s]
+      real(dp), intent(in) :: y0(4)               !! internal state at t0
+      real(dp), intent(in) :: t1                  !! end of the step [s]
+      real(dp), intent(in) :: y1(4)               !! internal state at t1
+      real(dp), intent(in), optional :: f0(4)     !! vector field at y0, if known
+      real(dp), intent(in), optional :: f1(4)     !! vector field at y1, if known
+      self%stepped = .true.
+      self%t_old = t0; self%y_old = y0
+      self%t_new = t1; self%y_new = y1
+      self%known_f_old = present(f0)
+      if (present(f0)) self%f_old = f0
+      self%known_f_new = present(f1)
+      if (present(f1)) self%f_new = f1
+   end subroutine record_step
+
+   !> True once a step has been recorded (and not cleared): `interpolate` and the
+   !> event locator have a step [t_old, t_new] to work on.
+   pure logical function has_step(self)
+      class(integrator_t), intent(in) :: self  !! the method
+      has_step = self%stepped
+   end function has_step
+
+   !> Forget the last step (call before starting an unrelated trajectory).
+   !> Methods with more memory (e.g. a step-size controller) reset it when they
+   !> step without a recorded step.
+   subroutine clear_step(self)
+      class(integrator_t), intent(inout) :: self  !! the method
+      self%stepped = .false.
+      self%known_f_old = .false.
+      self%known_f_new = .false.
+   end subroutine clear_step
+
+   !> Internal state at t_eval from the continuous extension of the last step.
+   !> Default: cubic Hermite interpolation of y on [t_old, t_new] using y and f at
+   !> both ends (Hairer, Nørsett, Wanner, Solving ODEs I, eq. II.6.7); f is
+   !> evaluated (and counted in `n_rhs`) only on the first call within a step and
+   !> only where the step did not provide it. Local error O(h⁴) for any method of
+   !> order ≥ 3. t_eval should lie in [t_old, t_new] (otherwise the cubic is
+   !> extrapolated). Without a recorded step y_eval is left unchanged.
+   subroutine interpolate(self, par, t_eval, y_eval)
+      class(integrator_t), intent(inout) :: self  !! the method
+      type(pendulum_t), intent(in) :: par         !! parameters
+      real(dp), intent(in) :: t_eval              !! time [s]
+      real(dp), intent(inout) :: y_eval(4)        !! internal state at t_eval
+      real(dp) :: h, th, dy(4)
+      if (.not. self%stepped) return
+      h = self%t_new - self%t_old
+      if (t_eval == self%t_new .or. h == 0.0_dp) then
+         y_eval = self%y_new
+         return
+      else if (t_eval == self%t_old) then
+         y_eval = self%y_old
+         return
+      end if
+      if (.not. self%known_f_old) then
+         self%f_old = self%rhs(par, self%y_old)
+         self%known_f_old = .true.
+      end if
+      if (.not. self%known_f_new) then
+         self%f_new = self%rhs(par, self%y_new)
+         self%known_f_new = .true.
+      end if
+      th = (t_eval - self%t_old)/h
+      dy = self%y_new - self%y_old
+      y_eval = (1.0_dp - th)*self%y_old + th*self%y_new &
+               + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
+                                   + (th - 1.0_dp)*h*self%f_old + th*h*self%f_new)
+   end subroutine interpolate
 
    !> One-line description of a step status.
    pure function status_message(stat) result(msg)

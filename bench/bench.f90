@@ -1,0 +1,103 @@
+!> dpend-bench: cost of the integrators on the chapter's pendulum, one figure a line
+!> as `key: value unit`. Each figure is timed (wall clock, system_clock int64) over
+!> at least 0.3 s; a checksum of the final states defeats dead-code elimination.
+!> Run in release: fpm run dpend-bench --profile release --flag "-O3 -march=native"
+!> To add a method, add a line calling `time_method('<name>', …)` below.
+program bench
+   use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64
+   use dpend_kinds, only: dp, i8
+   use dpend_model, only: pendulum_t, rhs_qqdot
+   use dpend_error, only: error_t
+   use dpend_integrator, only: integrator_t, stat_ok
+   use dpend_integrators, only: new_integrator
+   implicit none
+
+   real(dp), parameter :: pi = acos(-1.0_dp)
+   real(dp), parameter :: min_seconds = 0.3_dp
+   !> a large regular swing released at rest
+   real(dp), parameter :: y0(4) = [-0.5_dp*pi + 1.0_dp, -0.5_dp*pi + 1.0_dp, 0.0_dp, 0.0_dp]
+   real(dp) :: checksum, ns, rhs_per_step
+
+   checksum = 0.0_dp
+   write (*, '(a)') 'compiler: '//compiler_version()
+   write (*, '(a)') 'flags: '//compiler_options()
+   call report('rhs_ns', time_rhs(), 'ns')
+   call report('rk4_ns_per_step', time_method('rk4', 1.0e-3_dp), 'ns')
+   call report('dopri5_ns_per_step', time_method('dopri5', 0.0_dp), 'ns')
+   ns = time_method('dop853', 0.0_dp, n_rhs_per_step=rhs_per_step)
+   call report('dop853_ns_per_accepted_step', ns, 'ns')
+   call report('dop853_ns_per_rhs', ns/rhs_per_step, 'ns')
+   write (*, '(a, es24.16)') 'checksum: ', checksum
+
+contains
+
+   subroutine report(key, value, unit)
+      character(len=*), intent(in) :: key, unit
+      real(dp), intent(in) :: value
+      write (*, '(a, ": ", f0.1, " ", a)') key, value, unit
+   end subroutine report
+
+   !> Seconds since an arbitrary origin.
+   real(dp) function now()
+      integer(int64) :: count, rate
+      call system_clock(count, rate)
+      now = real(count, dp)/real(rate, dp)
+   end function now
+
+   !> ns per accepted step of method `name` from the factory, stepping the swing
+   !> with h (fixed-step methods) or from h = 0 at default tolerances (adaptive
+   !> ones); the number of steps doubles until the run lasts min_seconds.
+   !> Optionally returns the right-hand-side evaluations per accepted step.
+   real(dp) function time_method(name, h, n_rhs_per_step) result(ns_per_step)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: h
+      real(dp), intent(out), optional :: n_rhs_per_step
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      type(pendulum_t) :: par
+      real(dp) :: t, y(4), hh, start, elapsed
+      integer(i8) :: nsteps, i
+      integer :: stat
+      call new_integrator(name, integ, error)
+      if (allocated(error)) error stop 'unknown method'
+      nsteps = 1000
+      do
+         call integ%reset_counters()
+         call integ%clear_step()
+         t = 0.0_dp; y = y0; hh = h
+         start = now()
+         do i = 1, nsteps
+            call integ%step(par, t, y, hh, stat)
+            if (stat /= stat_ok) error stop 'step failed'
+         end do
+         elapsed = now() - start
+         checksum = checksum + sum(y)
+         if (elapsed >= min_seconds) exit
+         nsteps = 2*nsteps
+      end do
+      ns_per_step = 1.0e9_dp*elapsed/real(integ%n_steps, dp)
+      if (present(n_rhs_per_step)) &
+         n_rhs_per_step = real(integ%n_rhs, dp)/real(integ%n_steps, dp)
+   end function time_method
+
+   !> ns per evaluation of rhs_qqdot along a slowly varying state.
+   real(dp) function time_rhs() result(ns)
+      type(pendulum_t) :: par
+      real(dp) :: y(4), f(4), start, elapsed
+      integer(i8) :: n, i
+      n = 100000
+      do
+         y = y0
+         start = now()
+         do i = 1, n
+            f = rhs_qqdot(par, y)
+            y = y + 1.0e-7_dp*f
+         end do
+         elapsed = now() - start
+         checksum = checksum + sum(y)
+         if (elapsed >= min_seconds) exit
+         n = 2*n
+      end do
+      ns = 1.0e9_dp*elapsed/real(n, dp)
+   end function time_rhs
+end program bench
