@@ -1,8 +1,9 @@
 !> The factory: every integration method of dpend, constructed by name.
 module dpend_integrators
+   use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_integrator, only: integrator_t
-   use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t
+   use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t, rk_adaptive_t
    implicit none
    private
    public :: new_integrator, method_names
@@ -12,11 +13,15 @@ module dpend_integrators
 
 contains
 
-   !> Allocate the method called `name`.
-   subroutine new_integrator(name, integ, error)
+   !> Allocate the method called `name` and set its options: tolerances for the
+   !> adaptive methods, the binding constant for Tao's (ignored by the others).
+   subroutine new_integrator(name, integ, error, rtol, atol, omega)
       character(len=*), intent(in) :: name                        !! method name
       class(integrator_t), allocatable, intent(out) :: integ      !! the method
       type(error_t), allocatable, intent(out) :: error            !! unknown name
+      real(dp), intent(in), optional :: rtol                      !! relative tolerance
+      real(dp), intent(in), optional :: atol                      !! absolute tolerance
+      real(dp), intent(in), optional :: omega                     !! Tao's ω [1/s]
       select case (name)
       case ('rk4')
          allocate (rk4_t :: integ)
@@ -27,6 +32,13 @@ contains
       case default
          call fatal_error(error, "invalid method: '"//trim(name)//"' (accepted: " &
                           //method_names//")")
+         return
       end select
+      select type (integ)
+      class is (rk_adaptive_t)
+         if (present(rtol)) integ%rtol = rtol
+         if (present(atol)) integ%atol = atol
+      end select
+      if (present(omega)) continue
    end subroutine new_integrator
 end module dpend_integrators

@@ -11,6 +11,7 @@ module dpend_simulate
    use dpend_reactions, only: reactions
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_integrators, only: new_integrator
+   use dpend_propagate, only: march_t, integrate_sampled
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -125,7 +126,8 @@ contains
       type(trajectory_t) :: traj
       type(error_t), allocatable :: werr
       failed = .false.
-      call new_integrator(cfg%method, integ, error)
+      call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
+                          omega=cfg%omega)
       if (allocated(error)) return
       call check_output_file(cfg%output, cfg%force, error)
       if (allocated(error)) return
@@ -143,40 +145,40 @@ contains
    end subroutine run_simulate
 
    !> Integrate from t = 0 to t_end with the configured method, keeping every
-   !> save_every-th step and the last one.
+   !> save_every-th step and the last one, or, with output_dt > 0, the states at
+   !> exactly k·output_dt and t_end from the method's continuous extension.
    subroutine integrate_trajectory(cfg, integ, traj)
       type(run_config_t), intent(in) :: cfg               !! configuration
       class(integrator_t), intent(inout) :: integ         !! the method
       type(trajectory_t), intent(out) :: traj             !! the samples
+      type(march_t) :: march
       real(dp) :: t, h, y(4)
-      integer(i8) :: k, n_fixed
-      integer :: stat
+      real(dp), allocatable :: times(:), states(:, :)
+      integer(i8) :: k
+      integer :: stat, i
       character(len=32) :: tbuf
       y = integ%to_internal(cfg%par, cfg%q0, cfg%w0)
       t = 0.0_dp
-      call append(traj, integ, cfg%par, t, y)
-      traj%status = 'completed'
-      k = 0
       h = cfg%dt
-      if (integ%adaptive()) then
-         do while (t < cfg%t_end)
-            h = min(h, cfg%t_end - t)
-            call integ%step(cfg%par, t, y, h, stat)
+      traj%status = 'completed'
+      stat = stat_ok
+      if (cfg%output_dt > 0.0_dp) then
+         call integrate_sampled(integ, cfg%par, t, y, cfg%t_end, h, cfg%output_dt, times, &
+                                states, stat)
+         do i = 1, size(times)
+            call append(traj, integ, cfg%par, times(i), states(:, i))
+         end do
+         if (size(times) > 0) t = times(size(times))
+      else
+         call append(traj, integ, cfg%par, t, y)
+         call integ%clear_step()
+         call march%start(integ, t, cfg%t_end, h)
+         k = 0
+         do while (.not. march%finished)
+            call march%next(integ, cfg%par, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
-            if (mod(k, int(cfg%save_every, i8)) == 0 .or. t >= cfg%t_end) &
-               call append(traj, integ, cfg%par, t, y)
-         end do
-      else
-         ! whole steps of dt; times are k*dt (not accumulated); a shorter last step
-         ! lands exactly on t_end when dt does not divide it
-         n_fixed = ceiling(cfg%t_end/cfg%dt*(1.0_dp - 1e-12_dp), i8)
-         do k = 1, n_fixed
-            h = min(cfg%dt, cfg%t_end - real(k - 1, dp)*cfg%dt)
-            call integ%step(cfg%par, t, y, h, stat)
-            if (stat /= stat_ok) exit
-            t = min(real(k, dp)*cfg%dt, cfg%t_end)
-            if (mod(k, int(cfg%save_every, i8)) == 0 .or. k == n_fixed) &
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) &
                call append(traj, integ, cfg%par, t, y)
          end do
       end if

@@ -20,7 +20,8 @@ contains
                new_unittest('existing_output_kept', test_existing_output), &
                new_unittest('nonfinite_run_leaves_valid_file', test_nonfinite), &
                new_unittest('config_file_and_flags', test_config_run), &
-               new_unittest('trajectory_matches_reference', test_reference)]
+               new_unittest('trajectory_matches_reference', test_reference), &
+               new_unittest('dense_output_matches_reference', test_reference_dense)]
    end subroutine collect_cli
 
    !> Path of the dpend executable built with the same flags as this test program:
@@ -239,10 +240,28 @@ contains
       call execute_command_line('rm -rf '//dir)
    end subroutine test_config_run
 
+   !> dop853 at rtol = 1e-13 sampled by dense output at exactly t = 1..5 s against the
+   !> same 40-digit reference: 1e-9 in q and q̇.
+   subroutine test_reference_dense(error)
+      type(error_t), allocatable, intent(out) :: error
+      call compare_with_reference(error, 'dense', '--method dop853 --rtol 1e-13 --atol 1e-15 ' &
+                                  //'--output-dt 1', 1e-9_dp)
+   end subroutine test_reference_dense
+
    !> Horizontal release with rk4, dt = 1e-4, against the 40-digit Taylor-series
    !> solution of data/reference/release_horizontal.txt: 1e-8 in q and q̇ at t = 1..5.
    subroutine test_reference(error)
       type(error_t), allocatable, intent(out) :: error
+      call compare_with_reference(error, 'ref', '--method rk4 --dt 1e-4 --save-every 10000', &
+                                  1e-8_dp)
+   end subroutine test_reference
+
+   !> Run simulate from the horizontal release to t = 5 s with `options`, compare
+   !> samples at t = 1..5 s with data/reference/release_horizontal.txt within `tol`.
+   subroutine compare_with_reference(error, tag, options, tol)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: tag, options
+      real(dp), intent(in) :: tol
       character(len=:), allocatable :: dir
       type(h5file_t) :: h5
       real(dp), allocatable :: t(:), q(:, :), qd(:, :)
@@ -261,9 +280,9 @@ contains
          read (line, *) ref(:, i)
       end do
       close (unit)
-      dir = scratch_dir('ref')
-      stat = run_command(dir, 'simulate --q1 0 --q2 0 --method rk4 --dt 1e-4 --t-end 5 ' &
-                         //'--save-every 10000 --output '//dir//'/run.h5')
+      dir = scratch_dir(tag)
+      stat = run_command(dir, 'simulate --q1 0 --q2 0 --t-end 5 '//options//' --output ' &
+                         //dir//'/run.h5')
       call check_true(error, stat == 0, 'simulate exits 0')
       if (allocated(error)) return
       call h5%open(dir//'/run.h5', 'r', error)
@@ -277,11 +296,11 @@ contains
       if (allocated(error)) return
       do i = 1, 5
          call check(error, t(i + 1), ref(1, i), 't', abs=1e-12_dp)
-         call check(error, q(:, i + 1), ref(2:3, i), 'q', abs=1e-8_dp)
-         call check(error, qd(:, i + 1), ref(4:5, i), 'qdot', abs=1e-8_dp)
+         call check(error, q(:, i + 1), ref(2:3, i), 'q', abs=tol)
+         call check(error, qd(:, i + 1), ref(4:5, i), 'qdot', abs=tol)
       end do
       call execute_command_line('rm -rf '//dir)
-   end subroutine test_reference
+   end subroutine compare_with_reference
 
    subroutine write_file(path, text)
       character(len=*), intent(in) :: path, text
