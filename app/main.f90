@@ -9,6 +9,7 @@ program dpend
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version
    use dpend_export, only: export_columns
+   use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    implicit none
 
    type(arg_t), allocatable :: args(:)
@@ -30,6 +31,8 @@ program dpend
       call simulate(args(2:))
    case ('export')
       call export(args(2:))
+   case ('lyapunov', 'divergence', 'poincare')
+      call chaos(args(1)%s, args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -42,6 +45,9 @@ contains
           'usage: dpend COMMAND [options]     (dpend COMMAND --help for its options)'//nl//nl// &
           'commands:'//nl// &
           '  simulate   integrate one trajectory and write it to HDF5'//nl// &
+          '  lyapunov   Lyapunov exponents (Benettin, QR) with their running estimates'//nl// &
+          '  divergence divergence of nearby trajectories, fitted exponential slope'//nl// &
+          '  poincare   Poincare section at one energy'//nl// &
           '  export     print HDF5 datasets as text columns (for gnuplot)'//nl// &
           '  methods    list the integration methods'//nl// &
           '  version    print the version'//nl//nl// &
@@ -68,6 +74,29 @@ contains
       end if
       write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
    end subroutine simulate
+
+   !> The chaos commands: lyapunov, divergence, poincare.
+   subroutine chaos(command, sub)
+      character(len=*), intent(in) :: command
+      type(arg_t), intent(in) :: sub(:)
+      type(run_config_t) :: cfg
+      type(chaos_config_t) :: ch
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: summary
+      logical :: help, failed
+      call parse_chaos(command, sub, cfg, ch, help, error)
+      if (allocated(error)) call fail(2, 'dpend '//command//': '//error%message)
+      if (help) then
+         write (output_unit, '(a)') chaos_help(command)
+         return
+      end if
+      call run_chaos(cfg, ch, summary, error, failed)
+      if (len(summary) > 0) write (output_unit, '(a)') summary
+      if (allocated(error)) then
+         if (failed) call fail(1, 'dpend '//command//': '//error%message)
+         call fail(2, 'dpend '//command//': '//error%message)
+      end if
+   end subroutine chaos
 
    subroutine export(sub)
       type(arg_t), intent(in) :: sub(:)
