@@ -225,7 +225,8 @@ contains
                call fatal_error(error, 'option --config needs a value')
                return
             end if
-            call read_run_config(args(i + 1)%s, cfg, error, extra_groups=['chaos'])
+            call read_run_config(args(i + 1)%s, cfg, error, &
+                                 extra_groups=[character(len=16) :: 'chaos'])
             if (allocated(error)) return
             call read_chaos_config(args(i + 1)%s, ch, error)
             if (allocated(error)) return
