@@ -675,11 +675,9 @@ contains
    function pct(x, ref) result(s)
       real(dp), intent(in) :: x, ref
       character(len=:), allocatable :: s
-      character(len=32) :: buf
       s = ''
       if (ref == 0.0_dp) return
-      write (buf, '(f0.3)') 100.0_dp*abs(x/ref)
-      s = ' ('//trim(buf)//' % of |lambda1|)'
+      s = ' ('//fixed(100.0_dp*abs(x/ref))//' % of |lambda1|)'
    end function pct
 
    !> Compact text of a number for summaries: up to 6 significant digits.

@@ -1,0 +1,15 @@
+# Figure of `dpend poincare`. Called by scripts/plot_chaos.sh with
+#   dat: columns q_o p_o orbit; E (energy, J), link (section link), other,
+#   angle (section angle), dir (direction), norb (orbits), outfile, title
+set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
+set output outfile
+set title sprintf("Poincaré section q_%d = %.4f (mod 2{/Symbol p}), d q_%d/dt %s 0, E = %g J\n%d orbits (%s)", \
+    link, angle, link, (dir > 0 ? ">" : (dir < 0 ? "<" : "≷")), E, norb, title)
+set xlabel sprintf("q_%d [rad]", other); set ylabel sprintf("p_%d [kg m^2/s]", other)
+set xrange [-pi:pi]
+set xtics ("-{/Symbol p}" -pi, "-{/Symbol p}/2" -pi/2, "0" 0, "{/Symbol p}/2" pi/2, "{/Symbol p}" pi)
+set palette defined (0 "#1f77b4", 1 "#2ca02c", 2 "#bcbd22", 3 "#ff7f0e", 4 "#d62728", 5 "#9467bd")
+set cbrange [1:(norb > 1 ? norb : 2)]
+unset colorbox
+set key off
+plot dat u 1:2:3 w p pt 7 ps 0.12 lc palette
