@@ -110,6 +110,8 @@ module dpend_symplectic
       real(dp) :: b(4) = 0.0_dp    !! weights
       real(dp) :: c(4) = 0.0_dp    !! nodes, ascending
       real(dp) :: d(4) = 0.0_dp    !! dᵀ = bᵀA⁻¹
+      real(dp), private :: a_lo(4, 4) = 0.0_dp  ! a + a_lo: A to twice double precision
+      real(dp), private :: d_lo(4) = 0.0_dp     ! d + d_lo: d to twice double precision
       logical, private :: ready = .false.        ! the tableau is set up for s
       real(dp), private :: z_old(4, 4) = 0.0_dp  ! stage increments of the last step
       real(dp), private :: h_old = 0.0_dp        ! its step size
@@ -276,10 +278,12 @@ contains
    !> Compute the tableau for `self%s` (clamped to 1..4).
    subroutine gauss_setup(self)
       class(gauss_t), intent(inout) :: self  !! the method
-      real(dp) :: a(4, 4), b(4), c(4), d(4)
+      real(dp) :: a(4, 4), b(4), c(4), d(4), a_lo(4, 4), d_lo(4)
       integer :: s
       s = max(1, min(4, self%s))
-      call gauss_tableau(s, a, b, c, d)
+      call gauss_tableau(s, a, b, c, d, a_lo, d_lo)
+      self%a_lo = 0.0_dp; self%d_lo = 0.0_dp
+      self%a_lo(1:s, 1:s) = a_lo(1:s, 1:s); self%d_lo(1:s) = d_lo(1:s)
       self%s = s
       self%a = 0.0_dp; self%b = 0.0_dp; self%c = 0.0_dp; self%d = 0.0_dp
       self%a(1:s, 1:s) = a(1:s, 1:s)
@@ -295,12 +299,14 @@ contains
    !> conditions B(s) and C(s), Σ_j b_j c_j^{k-1} = 1/k and
    !> Σ_j a_ij c_j^{k-1} = c_i^k/k (k = 1..s), i.e. a_ij = ∫_0^{c_i} ℓ_j;
    !> d solves Aᵀd = b.
-   pure subroutine gauss_tableau(s, a, b, c, d)
+   pure subroutine gauss_tableau(s, a, b, c, d, a_lo, d_lo)
       integer, intent(in) :: s            !! number of stages
       real(dp), intent(out) :: a(:, :)    !! Runge–Kutta matrix in a(1:s, 1:s)
       real(dp), intent(out) :: b(:)       !! weights in b(1:s)
       real(dp), intent(out) :: c(:)       !! nodes in c(1:s)
       real(dp), intent(out) :: d(:)       !! bᵀA⁻¹ in d(1:s)
+      real(dp), intent(out), optional :: a_lo(:, :)  !! rounding error of a: a + a_lo ≈ A
+      real(dp), intent(out), optional :: d_lo(:)     !! rounding error of d
       real(qp), parameter :: pi_q = acos(-1.0_qp)
       real(qp) :: t, p0, p1, p2, dpdt, dt, cq(s), v(s, s), r(s, s + 1), at(s, s), dq(s, 1)
       integer :: i, j, k, n, it
@@ -338,6 +344,8 @@ contains
       b(1:s) = real(r(:, 1), dp)
       a(1:s, 1:s) = transpose(real(at, dp))
       d(1:s) = real(dq(:, 1), dp)
+      if (present(a_lo)) a_lo(1:s, 1:s) = real(transpose(at) - real(a(1:s, 1:s), qp), dp)
+      if (present(d_lo)) d_lo(1:s) = real(dq(:, 1) - real(d(1:s), qp), dp)
    end subroutine gauss_tableau
 
    !> Solve m x = r in quadruple precision (Gaussian elimination, partial
@@ -405,7 +413,7 @@ contains
       real(dp), intent(inout) :: e(4)        !! compensation of y
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
-      real(dp) :: z(4, 4), f(4, 4), zi(4), f0(4), delta(4), wq, wp, dnew, dm1, dm2
+      real(dp) :: z(4, 4), f(4, 4), zi(4), zl(4), f0(4), delta(4), wq, wp, dnew, dm1, dm2
       integer :: s, i, j, k, verdict
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
@@ -443,10 +451,12 @@ contains
          dnew = 0.0_dp
          do i = 1, s
             zi = 0.0_dp
+            zl = 0.0_dp
             do j = 1, s
                zi = zi + self%a(i, j)*f(:, j)
+               zl = zl + self%a_lo(i, j)*f(:, j)
             end do
-            zi = h*zi
+            zi = h*(zi + zl)
             dnew = max(dnew, wq*maxval(abs(zi(1:2) - z(1:2, i))), &
                        wp*maxval(abs(zi(3:4) - z(3:4, i))))
             z(:, i) = zi
@@ -459,9 +469,12 @@ contains
       end do
       if (stat /= stat_ok) return
       delta = 0.0_dp
+      zl = 0.0_dp
       do j = 1, s
          delta = delta + self%d(j)*z(:, j)
+         zl = zl + self%d_lo(j)*z(:, j)
       end do
+      delta = delta + zl
       if (.not. all(ieee_is_finite(delta))) then
          stat = stat_nonfinite
          return

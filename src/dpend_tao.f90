@@ -47,6 +47,8 @@ module dpend_tao
       procedure :: name => tao_name
       procedure :: order => tao_order
       procedure :: reset => tao_reset
+      procedure :: get_copy => tao_get_copy
+      procedure :: set_copy => tao_set_copy
    end type tao_t
 
 contains
@@ -66,6 +68,30 @@ contains
          call set_omega(integ%base, omega, found)
       end select
    end subroutine set_omega
+
+   !> The second copy (x, y) carried between steps, e.g. to monitor how far the
+   !> copies drift apart (|q - x|, |p - y|); `have` is false before the first step
+   !> of a trajectory.
+   pure subroutine tao_get_copy(self, x, y, have)
+      class(tao_t), intent(in) :: self  !! the method
+      real(dp), intent(out) :: x(2)     !! second copy of q [rad]
+      real(dp), intent(out) :: y(2)     !! second copy of p [kg m²/s]
+      logical, intent(out) :: have      !! the copy belongs to the current trajectory
+      x = self%x
+      y = self%w
+      have = self%have_copy
+   end subroutine tao_get_copy
+
+   !> Impose the second copy (x, y) for the next call of `advance` (the
+   !> extended-phase-space map; `step` resets it when a new trajectory starts).
+   pure subroutine tao_set_copy(self, x, y)
+      class(tao_t), intent(inout) :: self  !! the method
+      real(dp), intent(in) :: x(2)         !! second copy of q [rad]
+      real(dp), intent(in) :: y(2)         !! second copy of p [kg m²/s]
+      self%x = x
+      self%w = y
+      self%have_copy = .true.
+   end subroutine tao_set_copy
 
    subroutine tao_reset(self)
       class(tao_t), intent(inout) :: self  !! the method

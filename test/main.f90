@@ -5,6 +5,7 @@ program tester
    use, intrinsic :: iso_fortran_env, only: output_unit
    use testing, only: unittest_t, error_t
    use test_model, only: collect_model
+   use test_symplectic, only: collect_symplectic
    implicit none
 
    type :: suite_t
@@ -17,8 +18,9 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(1))
+   allocate (suites(2))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
+   suites(2)%name = 'symplectic'; call collect_symplectic(suites(2)%tests)
 
    n_arg = command_argument_count()
    filter = ''
