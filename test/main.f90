@@ -26,7 +26,7 @@ program tester
    filter = ''
    if (n_arg >= 1) then
       call get_command_argument(1, length=length)
-      allocate (character(len=length) :: filter)
+      filter = repeat(" ", length)
       call get_command_argument(1, filter)
    end if
 

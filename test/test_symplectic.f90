@@ -137,8 +137,8 @@ contains
       r3 = sqrt(3.0_dp)
       call gauss_tableau(2, a, b, c, d)
       call check(error, c(1:2), [0.5_dp - r3/6, 0.5_dp + r3/6], 'gauss4 c', abs=2e-16_dp)
-      call check(error, [a(1, 1:2), a(2, 1:2)], [0.25_dp, 0.25_dp - r3/6, &
-                                                  0.25_dp + r3/6, 0.25_dp], 'gauss4 A', abs=2e-16_dp)
+      call check(error, [a(1, 1:2), a(2, 1:2)], &
+                 [0.25_dp, 0.25_dp - r3/6, 0.25_dp + r3/6, 0.25_dp], 'gauss4 A', abs=2e-16_dp)
       r15 = sqrt(15.0_dp)
       call gauss_tableau(3, a, b, c, d)
       call check(error, c(1:3), [0.5_dp - r15/10, 0.5_dp, 0.5_dp + r15/10], 'gauss6 c', &
