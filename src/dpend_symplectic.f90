@@ -57,7 +57,7 @@ module dpend_symplectic
    public :: symplectic_t, gauss_t, verlet_t, composition_t
    public :: gauss, composition, gauss_tableau, accumulate, symplectic_reset
    public :: triple_jump, kahan_li_6, kahan_li_8
-   public :: max_iter, iter_tol, iteration_verdict, it_continue, it_converged, it_failed
+   public :: max_iter, iter_tol
 
    integer, parameter :: max_iter = 50  !! cap on fixed-point iterations per implicit solve
    !> An increment at or below this (relative to the state) is roundoff.

@@ -18,7 +18,8 @@
 !> to (q, p) when a new trajectory starts. The maps are symplectic in the
 !> extended phase space (ℝ⁸), not exactly on (q, p): the reduced map's defect
 !> is measured in the tests. The (q, p) update is summed with compensation
-!> like the other methods; the copy (x, y) is updated plainly.
+!> like the other methods (see `dpend_symplectic`: never compile with
+!> reassociating flags such as -ffast-math); the copy (x, y) is updated plainly.
 !>
 !> The binding constant ω [1/s]: Tao's error bound O(T h^l ω) (l the order)
 !> wants ω h^l small, while the copies stay bound only if ω is large compared

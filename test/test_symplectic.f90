@@ -8,8 +8,8 @@ module test_symplectic
    use dpend_model, only: pendulum_t, hamiltonian, energy, momenta, velocities
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence
    use dpend_integrators, only: new_integrator
-   use dpend_symplectic, only: symplectic_t, gauss_tableau, triple_jump, kahan_li_6, &
-                               kahan_li_8
+   use dpend_symplectic, only: symplectic_t, gauss_t, gauss_tableau, triple_jump, &
+                               kahan_li_6, kahan_li_8
    use dpend_tao, only: tao_t, set_omega
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
@@ -175,10 +175,20 @@ contains
    end subroutine test_coefficients
 
    !> Every method by name: symplectic, symmetric, canonical, not adaptive, its order.
+   !> A default-initialized gauss_t is gauss4 and sets its tableau up at first use.
    subroutine test_properties(error)
       type(error_t), allocatable, intent(out) :: error
       class(integrator_t), allocatable :: integ
-      integer :: i
+      type(gauss_t) :: g
+      type(pendulum_t) :: par
+      real(dp) :: z(4), t, h
+      integer :: i, stat
+      z = start()
+      t = 0.0_dp
+      h = 0.01_dp
+      call g%step(par, t, z, h, stat)
+      call check_true(error, g%name() == 'gauss4' .and. g%order() == 4 .and. stat == stat_ok &
+                      .and. g%c(2) > 0.78_dp, 'default gauss_t')
       do i = 1, n_methods
          call make(trim(names(i)), integ, error)
          if (allocated(error)) return
