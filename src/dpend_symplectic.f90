@@ -31,8 +31,10 @@
 !> `max_iter` = 50 iterations it has converged only if Δ_k ≤ `iter_tol`. A
 !> failed step returns `stat_no_convergence` and leaves t, y unchanged. The
 !> pendulum is not stiff, so the fixed-point iteration converges at every
-!> step size of practical interest (contraction factor ≈ h ρ(A) ‖f'‖) and is
-!> cheaper than a simplified Newton iteration on the 4s×4s system.
+!> step size of practical interest (contraction factor ≈ h ρ(A) ‖f'‖) and
+!> needs neither a Jacobian nor an LU factorization of the 4s×4s system of a
+!> simplified Newton iteration (gauss6 at h = 0.01 s: 8 iterations, 24
+!> evaluations of f, ≈ 5–6 rk4 steps of time).
 !>
 !> **Compensated summation** (Kahan; GNI §VIII.5) of
 !> y_{n+1} = y_n + δ_n keeps the rounding error of the update in `comp(4)`;
@@ -153,9 +155,11 @@ module dpend_symplectic
    !> second-order base method Φ (GNI §II.4, §V.3.2). Every substep's update is
    !> summed with the composition's compensation, so roundoff does not grow with
    !> the number of substeps. The coefficients are `triple_jump`, `kahan_li_6`,
-   !> `kahan_li_8`; the base is `verlet_t` (`yoshida4`, `comp6`, `comp8`: the
-   !> cheapest symmetric base, and the one these coefficients were designed and
-   !> tested with) or `tao_t` (`tao4`).
+   !> `kahan_li_8`; the base is `verlet_t` for `yoshida4`, `comp6`, `comp8` (the
+   !> base these coefficients are classically used with; measured on the test
+   !> trajectory it gives 7× and 1.6× smaller errors than the midpoint base
+   !> for orders 4 and 6, 4× larger for order 8, at 40–55 % more evaluations
+   !> of f, 15–20 % more time) and `tao_t` for `tao4`.
    type, extends(symplectic_t) :: composition_t
       class(symplectic_t), allocatable :: base  !! the symmetric base method
       real(dp), allocatable :: gamma(:)         !! substep fractions, Σ γ_i = 1
