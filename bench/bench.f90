@@ -16,7 +16,10 @@ program bench
    real(dp), parameter :: min_seconds = 0.3_dp
    !> a large regular swing released at rest
    real(dp), parameter :: y0(4) = [-0.5_dp*pi + 1.0_dp, -0.5_dp*pi + 1.0_dp, 0.0_dp, 0.0_dp]
-   real(dp) :: checksum, ns, rhs_per_step
+   real(dp) :: checksum, ns, rhs_per_step, rk4_ns
+   integer :: i
+   character(len=8), parameter :: fixed_methods(10) = [character(len=8) :: 'midpoint', &
+      'gauss4', 'gauss6', 'gauss8', 'verlet', 'yoshida4', 'comp6', 'comp8', 'tao2', 'tao4']
 
    checksum = 0.0_dp
    write (*, '(a)') 'compiler: '//compiler_version()
@@ -27,6 +30,14 @@ program bench
    ns = time_method('dop853', 0.0_dp, n_rhs_per_step=rhs_per_step)
    call report('dop853_ns_per_accepted_step', ns, 'ns')
    call report('dop853_ns_per_rhs', ns/rhs_per_step, 'ns')
+   rk4_ns = time_method('rk4', 1.0e-2_dp)   ! same step as the implicit methods below
+   do i = 1, size(fixed_methods)
+      ns = time_method(trim(fixed_methods(i)), 1.0e-2_dp, n_rhs_per_step=rhs_per_step)
+      call report(trim(fixed_methods(i))//'_ns_per_step', ns, 'ns')
+      call report(trim(fixed_methods(i))//'_rhs_per_step', rhs_per_step, '')
+      if (fixed_methods(i) == 'gauss6') call report('gauss6_over_rk4_step_cost', ns/rk4_ns, '')
+   end do
+   call work_precision()
    write (*, '(a, es24.16)') 'checksum: ', checksum
 
 contains
@@ -34,8 +45,79 @@ contains
    subroutine report(key, value, unit)
       character(len=*), intent(in) :: key, unit
       real(dp), intent(in) :: value
-      write (*, '(a, ": ", f0.1, " ", a)') key, value, unit
+      if (abs(value) >= 10.0_dp) then
+         write (*, '(a, ": ", f0.1, " ", a)') key, value, unit
+      else
+         write (*, '(a, ": ", f0.3, " ", a)') key, value, unit
+      end if
    end subroutine report
+
+   !> Work–precision table: the error at t = 1 s of the horizontal release against
+   !> the 40-digit reference of data/reference/release_horizontal.txt, against the
+   !> right-hand-side evaluations and the wall time, for every method at three steps
+   !> (tolerances for the adaptive ones). Lines: `wp: method h_or_rtol error n_rhs us`.
+   subroutine work_precision()
+      use dpend_propagate, only: advance_to
+      use dpend_rk_explicit, only: rk_adaptive_t
+      character(len=8), parameter :: names(13) = [character(len=8) :: 'rk4', 'dopri5', &
+         'dop853', 'midpoint', 'gauss4', 'gauss6', 'gauss8', 'verlet', 'yoshida4', 'comp6', &
+         'comp8', 'tao2', 'tao4']
+      real(dp), parameter :: steps(3) = [1.0e-2_dp, 3.0e-3_dp, 1.0e-3_dp]
+      real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-9_dp, 1.0e-12_dp]
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      type(pendulum_t) :: par
+      real(dp) :: ref(4), t, y(4), h, q(2), qd(2), err, start, elapsed
+      integer :: m, j, stat, unit, reps, r
+      character(len=256) :: line
+      open (newunit=unit, file='data/reference/release_horizontal.txt', status='old', &
+            action='read', iostat=stat)
+      if (stat /= 0) then
+         write (*, '(a)') 'wp: skipped (run from the project root to read the reference)'
+         return
+      end if
+      do
+         read (unit, '(a)') line
+         if (line(1:1) /= '#') exit
+      end do
+      read (line, *) t, ref
+      close (unit)
+      write (*, '(a)') 'wp: method step_or_rtol error_at_1s n_rhs microseconds'
+      do m = 1, size(names)
+         do j = 1, 3
+            call new_integrator(trim(names(m)), integ, error)
+            reps = 0
+            start = now()
+            do r = 1, 1000
+               call integ%reset_counters()
+               call integ%clear_step()
+               select type (integ)
+               class is (rk_adaptive_t)
+                  integ%rtol = tols(j); integ%atol = tols(j)*1.0e-3_dp
+                  h = 0.0_dp
+               class default
+                  h = steps(j)
+               end select
+               t = 0.0_dp
+               y = integ%to_internal(par, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp])
+               call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+               reps = reps + 1
+               if (now() - start > 0.05_dp) exit
+            end do
+            elapsed = (now() - start)/real(reps, dp)
+            call integ%to_physical(par, y, q, qd)
+            err = maxval(abs([q, qd] - ref))
+            checksum = checksum + err
+            if (integ%adaptive()) then
+               write (*, '("wp: ", a8, " rtol=", es8.1, es10.2, i9, f12.1)') names(m), &
+                  tols(j), err, integ%n_rhs, 1.0e6_dp*elapsed
+            else
+               write (*, '("wp: ", a8, " h=   ", es8.1, es10.2, i9, f12.1)') names(m), &
+                  steps(j), err, integ%n_rhs, 1.0e6_dp*elapsed
+            end if
+         end do
+      end do
+   end subroutine work_precision
 
    !> Seconds since an arbitrary origin.
    real(dp) function now()
