@@ -139,9 +139,9 @@ contains
       case default
          s = s//'  --t-end S         longest integration of each orbit; default ' &
              //num(cfg%t_end)//nl// &
-             '  --energy J        energy of the section; default: that of the initial state'// &
-             nl//'                    (--q1 --q2 --w1 --w2; 0 J = both links horizontal at rest)'// &
-             nl//'  --ics N           orbits; default '//itoa(ch%n_ics)//nl// &
+             '  --energy J        energy of the section; default: that of the initial state' &
+             //nl//'                    (--q1 --q2 --w1 --w2; 0 J = both links horizontal' &
+             //' at rest)'//nl//'  --ics N           orbits; default '//itoa(ch%n_ics)//nl// &
              '  --points N        most section points per orbit; default ' &
              //itoa(ch%n_points)//nl// &
              '  --section-link L  link whose angle defines the section, 1 or 2; default ' &
