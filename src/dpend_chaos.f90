@@ -21,7 +21,8 @@ module dpend_chaos
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
+                                            ieee_quiet_nan
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
@@ -449,13 +450,17 @@ contains
                    'zero pair: lambda2 = '//es(res%exponents(2))//', lambda3 = ' &
                    //es(res%exponents(3))//', lambda2 + lambda3 = '//es(defect23)//' 1/s'//nl
       end if
-      summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"//nl
+      summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"
+      if (stat /= stat_ok) then
+         ! no scripting line: a failed run has no exponents to report
+         call stopped(status, cfg%output, error, failed)
+         return
+      end if
       line = 'lyapunov:'
       do i = 1, res%k
          line = line//' '//es(res%exponents(i))
       end do
-      summary = summary//line
-      if (stat /= stat_ok) call stopped(status, cfg%output, error, failed)
+      summary = summary//nl//line
    end subroutine run_lyapunov
 
    !> `dpend divergence`.
@@ -478,6 +483,10 @@ contains
                             res, stat)
       status = run_status(stat, -1.0_dp)
       call fit_exponential_phase(res%t, res%log10_mean, ch%fit_start, ch%fit_end, fit)
+      if (.not. fit%ok) then   ! no exponential phase to fit: no slope
+         fit%slope = ieee_value(1.0_dp, ieee_quiet_nan)
+         fit%slope_stderr = fit%slope
+      end if
       lam = 0.0_dp; lam_spread = 0.0_dp; lstat = stat_ok
       if (ch%lyapunov_t > 0.0_dp .and. stat == stat_ok) then
          call lyapunov_spectrum(integ, cfg%par, 0.0_dp, &
@@ -530,17 +539,22 @@ contains
                    //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
                    'slope: '//es(fit%slope)//' +- '//es(fit%slope_stderr)//' 1/s'//nl
       else
-         summary = summary//'fit: fewer than 3 samples in the window'//nl
+         summary = summary//'fit: fewer than 3 samples in the window (no rise of one decade'// &
+                   ' above delta0?)'//nl
       end if
       if (ch%lyapunov_t > 0.0_dp .and. lstat == stat_ok .and. stat == stat_ok) then
          summary = summary//'Benettin lambda1 over t = 0 .. '//num(ch%lyapunov_t)//' s: ' &
                    //es(lam)//' +- '//es(lam_spread)//' 1/s'
-         if (lam > 0.0_dp) summary = summary//'; slope / lambda1 = '//fixed(fit%slope/lam)
+         if (lam > 0.0_dp .and. fit%ok) summary = summary//'; slope / lambda1 = '// &
+                                                  fixed(fit%slope/lam)
          summary = summary//nl
       end if
-      summary = summary//"dpend divergence: wrote '"//cfg%output//"'"//nl// &
-                'divergence slope: '//es(fit%slope)
-      if (stat /= stat_ok .or. lstat /= stat_ok) call stopped(status, cfg%output, error, failed)
+      summary = summary//"dpend divergence: wrote '"//cfg%output//"'"
+      if (stat /= stat_ok .or. lstat /= stat_ok) then
+         call stopped(status, cfg%output, error, failed)
+         return
+      end if
+      summary = summary//nl//'divergence slope: '//es(fit%slope)
    end subroutine run_divergence
 
    !> `dpend poincare`.
