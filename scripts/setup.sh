@@ -30,6 +30,16 @@ else
   echo "setup.sh: Debian packages already installed"
 fi
 
+# Debian's libhdf5-openmpi-dev (setup.sh --mpi) takes over the hdf5.pc alternative,
+# which fpm's hdf5 metapackage reads: pin the serial HDF5 for the default build (the
+# MPI variant asks for hdf5-openmpi by name).
+serial_pc=/usr/lib/x86_64-linux-gnu/pkgconfig/hdf5-serial.pc
+if [[ -e $serial_pc ]] && command -v update-alternatives >/dev/null 2>&1 &&
+   [[ "$(readlink -f /usr/lib/x86_64-linux-gnu/pkgconfig/hdf5.pc)" != "$(readlink -f $serial_pc)" ]]; then
+  echo "setup.sh: pinning pkg-config hdf5 to the serial HDF5"
+  $sudo update-alternatives --set hdf5.pc "$serial_pc" >/dev/null
+fi
+
 if ! command -v fpm >/dev/null 2>&1; then
   echo "setup.sh: installing fpm from PyPI"
   if ! python3 -m pip --version >/dev/null 2>&1; then
