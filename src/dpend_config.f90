@@ -94,7 +94,7 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! unreadable or invalid
       character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
       real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
-      integer :: save_every, unit, stat
+      integer :: save_every, unit, stat, n_extra, i
       character(len=64) :: method
       character(len=1024) :: file
       character(len=512) :: msg
@@ -105,8 +105,15 @@ contains
       namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega
       namelist /output/ file, force
 
-      known = [character(len=16) :: 'pendulum', 'initial', 'integration', 'output']
-      if (present(extra_groups)) known = [known, [character(len=16) :: extra_groups]]
+      n_extra = 0
+      if (present(extra_groups)) n_extra = size(extra_groups)
+      allocate (known(4 + n_extra))
+      known(1:4) = [character(len=16) :: 'pendulum', 'initial', 'integration', 'output']
+      ! element by element: gfortran's -fcheck=all rejects a typed array constructor
+      ! over an array of another character length
+      do i = 1, n_extra
+         known(4 + i) = extra_groups(i)
+      end do
       call check_groups(filename, known, error)
       if (allocated(error)) return
 
