@@ -64,6 +64,9 @@ module dpend_batch
       integer(i8) :: n_steps = 0       !! steps from t = 0 to t_end (t_end = n_steps h)
       integer :: stop_rule = stop_both !! stop_both, stop_either or stop_end
       logical :: lyapunov = .false.    !! also the largest Lyapunov exponent (runs to t_end)
+      logical :: skip_cannot_flip = .true.  !! leave out initial conditions below the
+                                            !! flip energy bounds (always integrated with
+                                            !! the Lyapunov exponent)
    end type batch_options_t
 
    !> Reduced results per initial condition (arrays of size n). NaN marks "none".
@@ -340,13 +343,21 @@ contains
                 res%energy_error(n), res%t_stop(n), res%final(4, n), res%lyapunov(n), &
                 res%status(n), res%steps(n))
       allocate (can_flip1(n), can_flip2(n), todo(n))
+      if (opt%n_steps < 1) then   ! t_end = 0: nothing to integrate
+         call energies(c, y0, res%energy0)
+         res%t_flip1 = nan; res%t_flip2 = nan; res%t_flip = nan; res%lyapunov = nan
+         res%energy_error = 0.0_dp; res%t_stop = 0.0_dp; res%final = y0
+         res%status = st_end; res%steps = 0
+         return
+      end if
 
       ! initial energies, W at a time (padding lanes hold the hanging state)
       call energies(c, y0, res%energy0)
       do j = 1, n
          can_flip1(j) = .not. (res%energy0(j) < bounds(1))
          can_flip2(j) = .not. (res%energy0(j) < bounds(2))
-         todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov
+         todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
+                   .not. opt%skip_cannot_flip
          res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
          res%energy_error(j) = 0.0_dp
          res%t_stop(j) = 0.0_dp
@@ -443,6 +454,7 @@ contains
          if (.not. (res%t_flip1(j) >= 0.0_dp)) res%t_flip1(j) = nan
          if (.not. (res%t_flip2(j) >= 0.0_dp)) res%t_flip2(j) = nan
          if (.not. opt%lyapunov .or. .not. todo(j)) res%lyapunov(j) = nan
+         if (.not. todo(j)) res%final(:, j) = y0(:, j)
       end do
 
    contains

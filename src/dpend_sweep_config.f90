@@ -245,7 +245,9 @@ contains
       logical :: lyapunov, stats, quiet
       namelist /sweep/ axis1, axis2, n1, n2, min1, max1, min2, max2, ic_file, ic_dataset, &
          ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet
-      call read_run_config(filename, cfg%run, error, extra_groups=['sweep'])
+      ! length 16 as read_run_config's own list (-fcheck=all checks constructors)
+      call read_run_config(filename, cfg%run, error, &
+                           extra_groups=[character(len=16) :: 'sweep'])
       if (allocated(error)) return
       axis1 = cfg%axis1; axis2 = cfg%axis2
       n1 = cfg%n1; n2 = cfg%n2

@@ -7,6 +7,7 @@ program tester
    use test_model, only: collect_model
    use test_hdf5, only: collect_hdf5
    use test_cli, only: collect_cli
+   use test_sweep, only: collect_sweep
    implicit none
 
    type :: suite_t
@@ -19,15 +20,17 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(3))
+   allocate (suites(4))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
+   suites(4)%name = 'sweep'; call collect_sweep(suites(4)%tests)
 
    n_arg = command_argument_count()
    filter = ''
    if (n_arg >= 1) then
       call get_command_argument(1, length=length)
+      deallocate (filter)
       allocate (character(len=length) :: filter)
       call get_command_argument(1, filter)
    end if
