@@ -145,7 +145,7 @@ contains
             "' is complete (nothing to compute)"
       else
          write (line, '(i0, " initial conditions computed (", i0, " below the flip '// &
-                'energy bound, not integrated) in ", f0.1, " s, ", es9.3, " per second")') &
+                'energy bound) in ", f0.1, " s, ", es9.3, " per second")') &
             summary%computed, summary%skipped, summary%seconds, &
             real(summary%computed, dp)/max(summary%seconds, 1e-9_dp)
          write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "//trim(line)

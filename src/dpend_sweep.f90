@@ -484,25 +484,27 @@ contains
       subroutine put_r(name, v)
          character(len=*), intent(in) :: name
          real(dp), intent(in) :: v(:)
-         real(dp), allocatable :: a2(:, :)
+         real(dp), allocatable :: a2(:, :), a1(:)
          if (allocated(error)) return
          if (setup%grid) then
             a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
             call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
          else
-            call h5%write_slab('/sweep/'//name, v, [j0], error)
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error)
          end if
       end subroutine put_r
       subroutine put_i(name, v)
          character(len=*), intent(in) :: name
          integer, intent(in) :: v(:)
-         integer, allocatable :: a2(:, :)
+         integer, allocatable :: a2(:, :), a1(:)
          if (allocated(error)) return
          if (setup%grid) then
             a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
             call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
          else
-            call h5%write_slab('/sweep/'//name, v, [j0], error)
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error)
          end if
       end subroutine put_i
    end subroutine write_block

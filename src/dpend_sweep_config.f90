@@ -112,12 +112,13 @@ contains
       s = 'usage: dpend sweep [options]'//nl//nl// &
           'Integrate many initial conditions with a vectorized, parallel RK4 and write'//nl// &
           'per-condition results (flip times, energy, energy error, final state, optional'//nl// &
-          'Lyapunov exponent) to HDF5, block by block. Rerunning the same command after an'//nl// &
-          'interruption computes only the missing blocks. Layout: docs/sweep-hdf5.md;'//nl// &
+          'Lyapunov exponent) to HDF5, block by block. Rerunning the same command after'//nl// &
+          'an interruption computes only the missing blocks. Layout: docs/sweep-hdf5.md;'//nl// &
           'figures: scripts/plot_sweep.sh FILE.h5 OUTDIR; examples: data/sweep_*.nml.'//nl//nl// &
-          'initial conditions (a grid over two values, the others from --q1 --q2 --w1 --w2):'//nl// &
+          'initial conditions (a grid over two values, the rest from --q1 --q2 --w1 --w2):' &
+          //nl// &
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
-          '                    position, theta = q + pi/2), q1 q2 (rad from the horizontal),'//nl// &
+          '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each; default ' &
           //itoa(cfg%n1)//nl// &
@@ -126,7 +127,8 @@ contains
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
           '  --ic-dataset PATH dataset of an HDF5 list, shape (n, 4); default ' &
           //cfg%ic_dataset//nl// &
-          '  --ic-angles q|theta  angles of the list measured as q or theta; default q'//nl//nl// &
+          '  --ic-angles q|theta  angles of the list measured as q or theta; default q' &
+          //nl//nl// &
           'integration (rk4 only; the step is t_end / ceiling(t_end / dt)):'//nl// &
           '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
           '                    default '//cfg%time_unit//nl// &
@@ -141,7 +143,8 @@ contains
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
           '                    (fixed initial values of what is not swept; default 0)'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
-          '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)'//nl//nl// &
+          '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
+          //nl//nl// &
           'run:'//nl// &
           '  --output FILE     HDF5 file; default '//cfg%run%output//nl// &
           '  --force           overwrite a file written with another configuration'//nl// &
