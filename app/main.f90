@@ -13,7 +13,16 @@ program dpend
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
    use dpend_cli, only: parse_real
    use dpend_kinds, only: dp
+   use, intrinsic :: iso_c_binding, only: c_int
    implicit none
+
+   interface
+      !> POSIX _exit(2): end the process at once, without exit handlers.
+      subroutine c_exit(status) bind(C, name='_exit')
+         import :: c_int
+         integer(c_int), value :: status
+      end subroutine c_exit
+   end interface
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
@@ -139,7 +148,14 @@ contains
          return
       end if
       call run_sweep(cfg, summary, error)
-      if (allocated(error)) call fail(2, 'dpend sweep: '//error%message)
+      if (allocated(error)) then
+         ! leave without HDF5's exit handler: after a failed flush (full disk) it would
+         ! retry closing forever; the files written so far are closed and valid
+         write (error_unit, '(a)') 'dpend sweep: '//error%message
+         flush (error_unit)
+         flush (output_unit)
+         call c_exit(2_c_int)
+      end if
       if (summary%blocks_computed == 0) then
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
             "' is complete (nothing to compute)"

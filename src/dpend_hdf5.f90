@@ -112,14 +112,19 @@ contains
       self%readonly = mode == 'r'
    end subroutine file_open
 
-   !> Close the file if it is open (this also flushes it).
-   subroutine file_close(self)
-      class(h5file_t), intent(inout) :: self  !! the file object
+   !> Close the file if it is open (this also flushes it). With `error`, a failed
+   !> close (e.g. a full disk while flushing) is reported.
+   subroutine file_close(self, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      type(error_t), allocatable, intent(out), optional :: error  !! set if the close failed
       integer :: ierr
       logical :: valid
       if (self%id < 0) return
+      ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
+      if (ierr /= 0 .and. present(error)) call fatal_error(error, 'cannot close '// &
+         quoted(self%filename)//': HDF5 could not flush it (is the disk full?)')
       self%id = -1
       self%readonly = .false.
    end subroutine file_close

@@ -306,8 +306,8 @@ contains
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//itoa8(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
-             'lyapunov = '//merge('true ', 'false', c%lyapunov)//nl// &
-             'stats = '//merge('true ', 'false', c%stats)//nl// &
+             'lyapunov = '//trim(merge('true ', 'false', c%lyapunov))//nl// &
+             'stats = '//trim(merge('true ', 'false', c%stats))//nl// &
              'block = '//itoa(setup%block)//nl
          if (setup%grid) then
             s = s//'initial = grid'//nl// &
@@ -549,7 +549,12 @@ contains
          end if
       end do
       call src%close()
-      call dst%close()
+      if (allocated(error)) then
+         call dst%close()
+      else
+         call dst%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(tmp, setup, error)
       if (.not. allocated(error)) then
          if (c_rename(tmp//c_null_char, filename//c_null_char) /= 0) &
             call fatal_error(error, "cannot rename '"//tmp//"' to '"//filename//"'")
@@ -701,7 +706,12 @@ contains
       ! a new working file, complete before it gets its name
       tmp = file//'.tmp'
       call create_layout(h5, tmp, setup, .false., error)
-      call h5%close()
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(tmp, setup, error)
       if (.not. allocated(error)) then
          if (c_rename(tmp//c_null_char, file//c_null_char) /= 0) &
             call fatal_error(error, "cannot rename '"//tmp//"' to '"//file//"'")
@@ -717,6 +727,23 @@ contains
       allocate (done(setup%nblocks))
       done = 0
    end subroutine open_output
+
+   !> Check that a freshly written file opens and holds this configuration.
+   subroutine verify_file(filename, setup, error)
+      character(len=*), intent(in) :: filename          !! file to check
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! unreadable
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: stored
+      integer, allocatable :: done(:)
+      call h5%open(filename, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', stored, error)
+      if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+      call h5%close()
+      if (allocated(error)) return
+      if (stored /= setup%config .or. size(done) /= setup%nblocks) &
+         call fatal_error(error, "'"//filename//"' did not read back as written")
+   end subroutine verify_file
 
    !> "key: a here, b in the file" for the first line where two configurations differ.
    function first_difference(new, old) result(s)
