@@ -133,7 +133,7 @@ contains
    end function batch_ns
 
    !> The classic flip map at 128 x 128 (theta1, theta2 in [-3, 3], rest, chapter
-   !> parameters, t_end = 1000 sqrt(L/g), the default step of data/sweep_classic.nml),
+   !> parameters, t_end = 1000 sqrt(L/g), step 0.005 sqrt(L/g) as data/sweep_classic.nml),
    !> computed in memory on all threads.
    subroutine classic_map(unit)
       integer, intent(in) :: unit
@@ -146,7 +146,7 @@ contains
       cfg = sweep_defaults()
       cfg%n1 = 128; cfg%n2 = 128
       cfg%run%t_end = 1000.0_dp
-      cfg%run%dt = 0.01_dp
+      cfg%run%dt = 0.005_dp
       cfg%stop_at = 'either'
       cfg%stats = .true.
       cfg%block = 512

@@ -13,15 +13,13 @@
 !> blocks not flagged done; another configuration is refused unless --force.
 module dpend_sweep
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-   use, intrinsic :: iso_fortran_env, only: output_unit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       ieee_quiet_nan
-   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+   use omp_lib, only: omp_set_num_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_model, only: pendulum_t
    use dpend_config, only: check_output_file
-   use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
+   use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, &
       energy_scale, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
    use dpend_hdf5, only: h5file_t, is_hdf5

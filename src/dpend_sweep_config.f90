@@ -19,11 +19,11 @@
 !>   stats          also the number of steps of every trajectory
 !>   threads        OpenMP threads (0: all; not part of the stored configuration)
 module dpend_sweep_config
-   use dpend_kinds, only: dp, i8
+   use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, namelist_error, run_flags_help
+                           validate_run_config, namelist_error
    use dpend_batch, only: stop_both, stop_either, stop_end
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
