@@ -8,9 +8,22 @@ program dpend
    use dpend_integrators, only: method_names
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version
-   use dpend_export, only: export_columns
+   use dpend_export, only: export_columns, export_matrix
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
+   use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
+   use dpend_cli, only: parse_real
+   use dpend_kinds, only: dp
+   use, intrinsic :: iso_c_binding, only: c_int
    implicit none
+
+   interface
+      !> POSIX _exit(2): end the process at once, without exit handlers.
+      subroutine c_exit(status) bind(C, name='_exit')
+         import :: c_int
+         integer(c_int), value :: status
+      end subroutine c_exit
+   end interface
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
@@ -33,6 +46,10 @@ program dpend
       call export(args(2:))
    case ('lyapunov', 'divergence', 'poincare')
       call chaos(args(1)%s, args(2:))
+   case ('sweep')
+      call sweep(args(2:))
+   case ('sweep-compare')
+      call sweep_compare(args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -48,7 +65,9 @@ contains
           '  lyapunov   Lyapunov exponents (Benettin, QR) with their running estimates'//nl// &
           '  divergence divergence of nearby trajectories, fitted exponential slope'//nl// &
           '  poincare   Poincare section at one energy'//nl// &
-          '  export     print HDF5 datasets as text columns (for gnuplot)'//nl// &
+          '  sweep      maps over initial conditions (flip time, energy error, Lyapunov)'//nl// &
+          '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
+          '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
           '  methods    list the integration methods'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
@@ -102,13 +121,38 @@ contains
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
       character(len=256), allocatable :: paths(:)
+      real(dp) :: scale
       integer :: i
       if (size(sub) < 2 .or. any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', &
                                    i=1, size(sub))])) then
          write (output_unit, '(a)') 'usage: dpend export FILE.h5 DATASET [DATASET ...]'//nl// &
+            '       dpend export FILE.h5 --matrix DATASET [XAXIS YAXIS [SCALE]]'//nl// &
             'Print datasets as whitespace-separated columns: a (n) dataset gives one'//nl// &
-            'column, an (n, k) dataset (h5py order) gives k; all must share n.'
+            'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
+            'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
+            'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE.'
          if (size(sub) < 2) call fail(2, 'dpend export: needs a file and at least one dataset')
+         return
+      end if
+      if (sub(2)%s == '--matrix') then
+         select case (size(sub))
+         case (3)
+            call export_matrix(sub(1)%s, sub(3)%s, output_unit, error)
+         case (5)
+            call export_matrix(sub(1)%s, sub(3)%s, output_unit, error, sub(4)%s, sub(5)%s)
+         case (6)
+            call parse_real(sub(6)%s, 'SCALE', scale, error)
+            if (.not. allocated(error)) then
+               if (.not. (scale > 0.0_dp)) then
+                  call fail(2, 'dpend export: invalid SCALE: must be > 0')
+               end if
+               call export_matrix(sub(1)%s, sub(3)%s, output_unit, error, sub(4)%s, &
+                                  sub(5)%s, scale)
+            end if
+         case default
+            call fail(2, 'dpend export: --matrix takes DATASET [XAXIS YAXIS [SCALE]]')
+         end select
+         if (allocated(error)) call fail(2, 'dpend export: '//error%message)
          return
       end if
       allocate (paths(size(sub) - 1))
@@ -118,6 +162,67 @@ contains
       call export_columns(sub(1)%s, paths, output_unit, error)
       if (allocated(error)) call fail(2, 'dpend export: '//error%message)
    end subroutine export
+
+   subroutine sweep(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(sweep_config_t) :: cfg
+      type(sweep_summary_t) :: summary
+      type(error_t), allocatable :: error
+      logical :: help
+      character(len=200) :: line
+      call parse_sweep(sub, cfg, help, error)
+      if (allocated(error)) call fail(2, 'dpend sweep: '//error%message)
+      if (help) then
+         write (output_unit, '(a)') sweep_help()
+         return
+      end if
+      call run_sweep(cfg, summary, error)
+      if (allocated(error)) then
+         ! leave without HDF5's exit handler: after a failed flush (full disk) it would
+         ! retry closing forever; the files written so far are closed and valid
+         write (error_unit, '(a)') 'dpend sweep: '//error%message
+         flush (error_unit)
+         flush (output_unit)
+         call c_exit(2_c_int)
+      end if
+      if (summary%blocks_computed == 0) then
+         write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
+            "' is complete (nothing to compute)"
+      else
+         write (line, '(i0, " initial conditions computed (", i0, " below the flip '// &
+                'energy bound) in ", f0.1, " s, ", es9.3, " per second")') &
+            summary%computed, summary%skipped, summary%seconds, &
+            real(summary%computed, dp)/max(summary%seconds, 1e-9_dp)
+         write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "//trim(line)
+      end if
+   end subroutine sweep
+
+   subroutine sweep_compare(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(error_t), allocatable :: error
+      real(dp) :: rel
+      integer :: i
+      if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
+         write (output_unit, '(a)') 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
+            'Accuracy report of two complete sweeps of the same initial conditions (e.g.'//nl// &
+            'steps dt and dt/2): the fraction of pixels whose first flip time changes by'//nl// &
+            'more than R (default 0.01) relative, or that flip in one and not the other,'//nl// &
+            'overall and by flip time in units of sqrt(l1/g).'
+         return
+      end if
+      rel = 0.01_dp
+      if (size(sub) == 4) then
+         if (sub(3)%s /= '--rel') call fail(2, "dpend sweep-compare: unknown option '"// &
+                                            sub(3)%s//"'")
+         call parse_real(sub(4)%s, '--rel', rel, error)
+         if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
+         if (.not. (rel > 0.0_dp)) call fail(2, 'dpend sweep-compare: invalid --rel: must be > 0')
+      else if (size(sub) /= 2) then
+         call fail(2, 'dpend sweep-compare: needs two files (dpend sweep-compare --help)')
+      end if
+      call compare_sweeps(sub(1)%s, sub(2)%s, rel, output_unit, error)
+      if (allocated(error)) call fail(2, 'dpend '//error%message)
+   end subroutine sweep_compare
 
    !> One line on stderr, then exit with `code` and no runtime noise.
    subroutine fail(code, message)

@@ -3,8 +3,12 @@
 !> at least 0.3 s; a checksum of the final states defeats dead-code elimination.
 !> Run in release: fpm run dpend-bench --profile release --flag "-O3 -march=native"
 !> To add a method, add a line calling `time_method('<name>', …)` below.
+!> The batch kernel of the sweep (and the single-trajectory rk4_ns_per_step) is timed
+!> by `bench_batch`.
 program bench
-   use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64
+   use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64, &
+                                            output_unit
+   use bench_batch, only: run_batch_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t, rhs_qqdot
    use dpend_error, only: error_t
@@ -25,7 +29,7 @@ program bench
    write (*, '(a)') 'compiler: '//compiler_version()
    write (*, '(a)') 'flags: '//compiler_options()
    call report('rhs_ns', time_rhs(), 'ns')
-   call report('rk4_ns_per_step', time_method('rk4', 1.0e-3_dp), 'ns')
+   call run_batch_benchmarks(output_unit)
    call report('dopri5_ns_per_step', time_method('dopri5', 0.0_dp), 'ns')
    ns = time_method('dop853', 0.0_dp, n_rhs_per_step=rhs_per_step)
    call report('dop853_ns_per_accepted_step', ns, 'ns')

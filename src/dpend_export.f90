@@ -1,13 +1,14 @@
 !> `dpend export`: datasets of an HDF5 file as whitespace-separated text columns,
 !> for gnuplot. A 1-D dataset (n) gives one column, a 2-D one (n, k as h5py sees
-!> it) gives k columns; all must have the same n.
+!> it) gives k columns; all must have the same n. `export_matrix` prints one 2-D
+!> dataset as a gnuplot "nonuniform matrix" (for `plot ... with image`).
 module dpend_export
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
    implicit none
    private
-   public :: export_columns
+   public :: export_columns, export_matrix
 
 contains
 
@@ -70,4 +71,59 @@ contains
          write (unit, fmt) table(:, j)
       end do
    end subroutine export_columns
+
+   !> Write the 2-D dataset `path` of `filename` (h5py shape (ny, nx)) to `unit` as a
+   !> gnuplot nonuniform matrix: a first line "nx x(1) ... x(nx)", then one line
+   !> "y(j) v(1, j) ... v(nx, j)" per row. x and y come from the 1-D datasets
+   !> `xpath` and `ypath` if given, else they are the indices 1, 2, ... Values are
+   !> divided by `scale` if given; NaN is printed as NaN (gnuplot leaves it out).
+   subroutine export_matrix(filename, path, unit, error, xpath, ypath, scale)
+      character(len=*), intent(in) :: filename          !! HDF5 file
+      character(len=*), intent(in) :: path              !! 2-D dataset
+      integer, intent(in) :: unit                       !! output unit
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
+      character(len=*), intent(in), optional :: xpath   !! 1-D dataset of x values
+      character(len=*), intent(in), optional :: ypath   !! 1-D dataset of y values
+      real(dp), intent(in), optional :: scale           !! divide the values by it
+      type(h5file_t) :: h5
+      real(dp), allocatable :: v(:, :), x(:), y(:), row(:)
+      integer :: i, j
+      character(len=*), parameter :: fmt = '(*(es15.7e3, :, " "))'
+      call h5%open(filename, 'r', error)
+      if (allocated(error)) return
+      call h5%read(trim(path), v, error)
+      if (.not. allocated(error)) then
+         if (present(xpath)) then
+            call h5%read(trim(xpath), x, error)
+         else
+            x = [(real(i, dp), i=1, size(v, 1))]
+         end if
+      end if
+      if (.not. allocated(error)) then
+         if (present(ypath)) then
+            call h5%read(trim(ypath), y, error)
+         else
+            y = [(real(j, dp), j=1, size(v, 2))]
+         end if
+      end if
+      call h5%close()
+      if (allocated(error)) return
+      if (size(x) /= size(v, 1) .or. size(y) /= size(v, 2)) then
+         call fatal_error(error, "export: the axes do not match the shape of '"// &
+                          trim(path)//"'")
+         return
+      end if
+      if (present(scale)) then
+         where (v == v) v = v/scale   ! NaN stays NaN without arithmetic on it
+      end if
+      allocate (row(size(x) + 1))
+      row(1) = real(size(x), dp)
+      row(2:) = x
+      write (unit, fmt) row
+      do j = 1, size(y)
+         row(1) = y(j)
+         row(2:) = v(:, j)
+         write (unit, fmt) row
+      end do
+   end subroutine export_matrix
 end module dpend_export

@@ -112,14 +112,19 @@ contains
       self%readonly = mode == 'r'
    end subroutine file_open
 
-   !> Close the file if it is open (this also flushes it).
-   subroutine file_close(self)
-      class(h5file_t), intent(inout) :: self  !! the file object
+   !> Close the file if it is open (this also flushes it). With `error`, a failed
+   !> close (e.g. a full disk while flushing) is reported.
+   subroutine file_close(self, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      type(error_t), allocatable, intent(out), optional :: error  !! set if the close failed
       integer :: ierr
       logical :: valid
       if (self%id < 0) return
+      ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
+      if (ierr /= 0 .and. present(error)) call fatal_error(error, 'cannot close '// &
+         quoted(self%filename)//': HDF5 could not flush it (is the disk full?)')
       self%id = -1
       self%readonly = .false.
    end subroutine file_close
@@ -296,8 +301,11 @@ contains
    !> compressed with shuffle + deflate level 4 when the filters are available.
    !> An existing dataset at `path` is replaced. Unwritten elements read as `fill`
    !> (default 0; rounded with `nint` for 'int32'). With `extendible`, the
-   !> last dimension is unlimited and `write_slab` grows it as needed.
-   subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, extendible)
+   !> last dimension is unlimited and `write_slab` grows it as needed. With
+   !> `compress` false no filter is set; with `alloc_early` every chunk is allocated
+   !> (and filled) now, so that later writes change no metadata (crash-safe updates).
+   subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, extendible, &
+                                  compress, alloc_early)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       character(len=*), intent(in) :: dtype             !! 'real64' or 'int32'
@@ -306,10 +314,12 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       real(dp), intent(in), optional :: fill            !! value of unwritten elements
       logical, intent(in), optional :: extendible       !! last dimension unlimited
+      logical, intent(in), optional :: compress         !! shuffle + deflate (default true)
+      logical, intent(in), optional :: alloc_early      !! allocate all chunks at creation
       integer(hid_t) :: type_id, dcpl, space, lcpl, dset
       integer(hsize_t) :: maxdims(size(dims)), hchunk(size(dims))
       integer :: rank, hdferr, ierr
-      logical :: grows
+      logical :: grows, packed, early
 
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
@@ -317,6 +327,10 @@ contains
       rank = size(dims)
       grows = .false.
       if (present(extendible)) grows = extendible
+      packed = .true.
+      if (present(compress)) packed = compress
+      early = .false.
+      if (present(alloc_early)) early = alloc_early
       if (dtype /= 'real64' .and. dtype /= 'int32') then
          call fail(error, 'create', self, quoted(path), "dtype is not 'real64' or 'int32'")
       else if (rank < 1 .or. size(chunk) /= rank .or. any(dims < 0) .or. any(chunk < 1)) then
@@ -340,8 +354,14 @@ contains
 
       call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, ierr)
       call h5pset_chunk_f(dcpl, rank, hchunk, ierr)
-      if (filter_available(H5Z_FILTER_SHUFFLE_F)) call h5pset_shuffle_f(dcpl, ierr)
-      if (filter_available(H5Z_FILTER_DEFLATE_F)) call h5pset_deflate_f(dcpl, 4, ierr)
+      if (packed) then
+         if (filter_available(H5Z_FILTER_SHUFFLE_F)) call h5pset_shuffle_f(dcpl, ierr)
+         if (filter_available(H5Z_FILTER_DEFLATE_F)) call h5pset_deflate_f(dcpl, 4, ierr)
+      end if
+      if (early) then
+         call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, ierr)
+         call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, ierr)
+      end if
       if (present(fill)) then
          if (dtype == 'int32') then
             call h5pset_fill_value_f(dcpl, type_id, nint(fill), ierr)

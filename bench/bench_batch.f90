@@ -1,0 +1,182 @@
+!> Benchmarks of the batch RK4 kernel (docs/sweep.md): printed figures, one per line
+!> as `key: value unit`. Run in the release profile:
+!>   fpm run dpend-bench --profile release --flag "$RELEASE_FLAGS"
+module bench_batch
+   use, intrinsic :: iso_fortran_env, only: output_unit
+   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t
+   use dpend_model, only: pendulum_t
+   use dpend_rk_explicit, only: rk4_t
+   use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
+      stop_end
+   use dpend_sweep_config, only: sweep_config_t, sweep_defaults
+   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
+   use dpend_progress, only: wall_seconds
+   implicit none
+   private
+   public :: run_batch_benchmarks
+
+contains
+
+   !> Print the benchmark figures of the batch kernel to `unit`.
+   subroutine run_batch_benchmarks(unit)
+      integer, intent(in) :: unit  !! where to print
+      integer :: nthreads
+      real(dp) :: ns1, nsn, single, c1, cn
+      nthreads = omp_get_max_threads()
+      write (unit, '(a, a)') 'load_average_1min_at_start: ', load_average()
+      single = single_trajectory_ns()
+      write (unit, '(a, f0.2, a)') 'rk4_ns_per_step: ', single, ' ns'
+      write (unit, '(a, i0)') 'batch_lane_width: ', lane_width
+      ! best of three: the machine may be shared
+      call omp_set_num_threads(1)
+      call best_of_3(8, ns1, c1)
+      write (unit, '(a, f0.2, a)') 'batch_rk4_ns_per_traj_step_1thread: ', ns1, ' ns'
+      call omp_set_num_threads(nthreads)
+      call best_of_3(8*nthreads, nsn, cn)
+      write (unit, '(a, f0.2, a)') 'batch_rk4_ns_per_traj_step_all_threads: ', nsn, ' ns'
+      write (unit, '(a, i0)') 'threads: ', nthreads
+      write (unit, '(a, f0.2, a)') 'batch_rk4_ns_per_traj_step_per_core: ', nsn*nthreads, ' ns'
+      write (unit, '(a, f0.1, a)') 'batch_speedup_vs_single_trajectory: ', single/ns1, ' x'
+      write (unit, '(a, f0.1, a)') 'parallel_efficiency: ', 100.0_dp*ns1/(nsn*nthreads), ' %'
+      ! CPU time of the process: insensitive to other processes taking a core
+      write (unit, '(a, f0.2, a)') 'batch_rk4_cpu_ns_per_traj_step_1thread: ', c1, ' ns'
+      write (unit, '(a, f0.2, a)') 'batch_rk4_cpu_ns_per_traj_step_all_threads: ', cn, ' ns'
+      write (unit, '(a, f0.1, a)') 'parallel_efficiency_cpu_time: ', 100.0_dp*c1/cn, ' %'
+      call classic_map(unit)
+      flush (unit)
+   end subroutine run_batch_benchmarks
+
+   !> The first field of /proc/loadavg ('?' if unreadable).
+   function load_average() result(s)
+      character(len=:), allocatable :: s
+      character(len=64) :: line
+      integer :: u, stat
+      s = '?'
+      open (newunit=u, file='/proc/loadavg', status='old', action='read', iostat=stat)
+      if (stat /= 0) return
+      read (u, '(a)', iostat=stat) line
+      close (u)
+      if (stat == 0) s = line(:index(line, ' ') - 1)
+   end function load_average
+
+   !> ns per step of the library's one-trajectory rk4_t (chapter parameters).
+   real(dp) function single_trajectory_ns() result(ns)
+      type(rk4_t) :: rk
+      type(pendulum_t) :: par
+      real(dp) :: t, y(4), h, t0
+      integer :: k, stat
+      integer, parameter :: n = 2000000
+      y = [0.5_dp, -1.0_dp, 0.0_dp, 0.0_dp]
+      t = 0.0_dp
+      t0 = wall_seconds()
+      do k = 1, n
+         h = 1e-3_dp
+         call rk%step(par, t, y, h, stat)
+      end do
+      ns = (wall_seconds() - t0)/real(n, dp)*1e9_dp
+      if (.not. (abs(y(1)) < 1e30_dp)) ns = -1.0_dp   ! keep the result alive
+   end function single_trajectory_ns
+
+   !> Best (least) wall and CPU ns per trajectory-step of three runs of `batch_ns`.
+   subroutine best_of_3(nblocks, wall, cpu)
+      integer, intent(in) :: nblocks   !! blocks of work
+      real(dp), intent(out) :: wall    !! wall ns per trajectory-step
+      real(dp), intent(out) :: cpu     !! process CPU ns per trajectory-step
+      real(dp) :: w, c
+      integer :: k
+      wall = huge(1.0_dp); cpu = huge(1.0_dp)
+      do k = 1, 3
+         w = batch_ns(nblocks, c)
+         wall = min(wall, w); cpu = min(cpu, c)
+      end do
+   end subroutine best_of_3
+
+   !> ns per trajectory-step of integrate_batch over `nblocks` blocks of 1024
+   !> trajectories x 2000 steps run to the end (no early stop), OpenMP over blocks.
+   real(dp) function batch_ns(nblocks, cpu_ns) result(ns)
+      integer, intent(in) :: nblocks  !! blocks of work
+      real(dp), intent(out) :: cpu_ns !! process CPU time per trajectory-step [ns]
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      integer, parameter :: nb = 1024, steps = 2000
+      real(dp) :: t0, check, c0, c1
+      integer :: b
+      opt%h = 1e-3_dp
+      opt%n_steps = steps
+      opt%stop_rule = stop_end
+      check = 0.0_dp
+      call cpu_time(c0)
+      t0 = wall_seconds()
+      !$omp parallel do schedule(dynamic, 1) reduction(+:check)
+      do b = 1, nblocks
+         check = check + one_block(b)
+      end do
+      !$omp end parallel do
+      ns = (wall_seconds() - t0)/(real(nblocks, dp)*nb*steps)*1e9_dp
+      call cpu_time(c1)
+      cpu_ns = (c1 - c0)/(real(nblocks, dp)*nb*steps)*1e9_dp
+      if (.not. (check > -1e300_dp)) ns = -1.0_dp
+   contains
+      real(dp) function one_block(b) result(s)
+         integer, intent(in) :: b
+         type(batch_result_t) :: res
+         real(dp) :: y0(4, nb)
+         integer :: j
+         do j = 1, nb   ! angles well above the flip bound: full-length chaotic runs
+            y0(:, j) = [1.0_dp + 1e-3_dp*j, 1.5_dp + 1e-3_dp*b, 0.0_dp, 0.0_dp]
+         end do
+         call integrate_batch(par, opt, y0, res)
+         s = sum(res%final(1, :))
+      end function one_block
+   end function batch_ns
+
+   !> The classic flip map at 128 x 128 (theta1, theta2 in [-3, 3], rest, chapter
+   !> parameters, t_end = 1000 sqrt(L/g), step 0.005 sqrt(L/g) as data/sweep_classic.nml),
+   !> computed in memory on all threads.
+   subroutine classic_map(unit)
+      integer, intent(in) :: unit
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(error_t), allocatable :: error
+      real(dp) :: t0, secs
+      integer(i8) :: steps
+      integer :: b
+      cfg = sweep_defaults()
+      cfg%n1 = 128; cfg%n2 = 128
+      cfg%run%t_end = 1000.0_dp
+      cfg%run%dt = 0.005_dp
+      cfg%stop_at = 'either'
+      cfg%stats = .true.
+      cfg%block = 512
+      call build_setup(cfg, setup, error)
+      if (allocated(error)) then
+         write (unit, '(a)') 'classic_map: '//error%message
+         return
+      end if
+      steps = 0
+      t0 = wall_seconds()
+      !$omp parallel do schedule(dynamic, 1) reduction(+:steps)
+      do b = 1, setup%nblocks
+         steps = steps + block_steps(b)
+      end do
+      !$omp end parallel do
+      secs = wall_seconds() - t0
+      write (unit, '(a, f0.1, a)') 'classic_map_128_seconds: ', secs, ' s'
+      write (unit, '(a, f0.1, a)') 'classic_map_trajectories_per_second: ', &
+         real(setup%n, dp)/secs, ' 1/s'
+      write (unit, '(a, f0.1, a)') 'classic_map_mean_steps_per_trajectory: ', &
+         real(steps, dp)/real(setup%n, dp), ' steps'
+      write (unit, '(a, f0.1, a)') 'classic_map_1024_estimate: ', &
+         secs*64.0_dp/60.0_dp, ' min'
+   contains
+      integer(i8) function block_steps(b) result(s)
+         integer, intent(in) :: b
+         type(batch_result_t) :: res
+         call compute_block(setup, b, res)
+         s = sum(int(res%steps, i8))
+      end function block_steps
+   end subroutine classic_map
+
+end module bench_batch

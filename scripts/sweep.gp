@@ -1,0 +1,52 @@
+# Maps of one `dpend sweep` grid. Called by scripts/plot_sweep.sh with
+#   dir: folder of the exported matrices (gnuplot nonuniform matrix format)
+#   outdir: where the PNGs go; tend: end time in sqrt(l1/g); ax1, ax2: axis names
+#   lyap: Lyapunov matrix file or ''; name: file name for the titles
+set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
+set size ratio -1
+set tics out
+set border lw 1
+axlabel(a) = (a eq "theta1") ? "{/Symbol q}_1 [rad] (from hanging)" : \
+             (a eq "theta2") ? "{/Symbol q}_2 [rad] (from hanging)" : \
+             (a eq "w1" || a eq "w2") ? a." [rad/s]" : a." [rad] (from horizontal)"
+set xlabel axlabel(ax1)
+set ylabel axlabel(ax2)
+set autoscale xfix; set autoscale yfix
+set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb "white" fs solid noborder
+# flip times: log scale, white = no flip before t_end (NaN pixels are not drawn)
+set logscale cb
+set cbrange [0.3:tend]
+set format cb "10^{%L}"
+set palette defined (0 "#1a9850", 1 "#fee08b", 2 "#d73027", 3 "#762a83", 4 "#2166ac")
+set cblabel "time of the first flip [{/Symbol \326}(L/g)]"
+
+set output outdir."/flip_map.png"
+set title "First flip of either link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
+plot dir."/flip.dat" nonuniform matrix using 1:2:3 with image notitle
+
+set output outdir."/flip_map_link1.png"
+set title "First flip of link 1 (white: none)\n".name
+plot dir."/flip1.dat" nonuniform matrix using 1:2:3 with image notitle
+
+set output outdir."/flip_map_link2.png"
+set title "First flip of link 2 (white: none)\n".name
+plot dir."/flip2.dat" nonuniform matrix using 1:2:3 with image notitle
+
+set output outdir."/energy_error.png"
+set title "Maximum energy error |E(t) - E(0)| / (V_{max} - V_{min}) (white: not integrated)\n".name
+set autoscale cb
+set cblabel "relative energy error"
+set palette rgb 33,13,10
+plot dir."/eerr.dat" nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) \
+     with image notitle
+
+if (strlen(lyap) > 0) {
+  set output outdir."/lyapunov.png"
+  set title "Largest Lyapunov exponent (white: not integrated)\n".name
+  unset logscale cb
+  set format cb "%g"
+  set autoscale cb
+  set cblabel "{/Symbol l} [1/{/Symbol \326}(L/g)]"
+  set palette rgb 21,22,23
+  plot lyap nonuniform matrix using 1:2:3 with image notitle
+}

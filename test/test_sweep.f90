@@ -1,0 +1,613 @@
+!> Sweeps over initial conditions: the batch kernel against the library's
+!> one-trajectory RK4, its tangent map against finite differences, flip times
+!> against a quadrature, the flip energy bound against brute force, and the
+!> `dpend sweep` command as a process: bitwise independence of threads, blocks and
+!> lane positions, resume after kill -9, refusal of another configuration, bad input.
+module test_sweep
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use dpend_kinds, only: dp, i8
+   use dpend_model, only: pendulum_t, energy, potential_energy
+   use dpend_rk_explicit, only: rk4_t
+   use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
+      batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &
+      stop_either, stop_end, st_cannot_flip
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use test_cli, only: dpend_binary, run_command, scratch_dir, read_text
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   implicit none
+   private
+   public :: collect_sweep
+
+   real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+   real(dp), parameter :: half_pi = 0.5_dp*pi
+
+   !> Result datasets compared bit for bit.
+   character(len=*), parameter :: real_sets(10) = [character(len=20) :: '/sweep/t_flip', &
+      '/sweep/t_flip1', '/sweep/t_flip2', '/sweep/energy0', '/sweep/energy_error', &
+      '/sweep/t_stop', '/sweep/final/q1', '/sweep/final/q2', '/sweep/final/w1', &
+      '/sweep/final/w2']
+
+contains
+
+   subroutine collect_sweep(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [ &
+               new_unittest('batch_matches_rk4', test_batch_matches_rk4), &
+               new_unittest('tangent_matches_finite_differences', test_tangent), &
+               new_unittest('flip_time_single_link', test_flip_time), &
+               new_unittest('energy_bound_brute_force', test_energy_bound), &
+               new_unittest('energy_bound_no_flip_below', test_bound_dynamics), &
+               new_unittest('help', test_help), &
+               new_unittest('threads_and_blocks_bitwise', test_threads_blocks), &
+               new_unittest('list_matches_grid', test_list_matches_grid), &
+               new_unittest('resume_after_kill', test_resume_after_kill), &
+               new_unittest('config_mismatch_refused', test_mismatch), &
+               new_unittest('bad_input_rejected', test_bad_input), &
+               new_unittest('export_matrix_and_compare', test_export_compare)]
+   end subroutine collect_sweep
+
+   ! ------------------------------------------------------------ kernel ---
+
+   !> The batch kernel (Lagrange form, SoA lanes) and the library's rk4_t on the
+   !> corrected Newton–Euler form agree after 2000 steps on regular trajectories.
+   subroutine test_batch_matches_rk4(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      type(rk4_t) :: rk
+      real(dp) :: y0(4, 5), y(4), t, h
+      integer :: j, k, stat
+      y0(:, 1) = [-half_pi + 0.1_dp, -half_pi - 0.2_dp, 0.0_dp, 0.0_dp]
+      y0(:, 2) = [-half_pi + 0.5_dp, -half_pi + 0.3_dp, 0.2_dp, -0.1_dp]
+      y0(:, 3) = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+      y0(:, 4) = [-1.0_dp, -2.0_dp, 1.0_dp, 2.0_dp]
+      y0(:, 5) = [-half_pi, -half_pi, 0.0_dp, 0.0_dp]
+      par = pendulum_t(m1=1.3_dp, m2=0.7_dp, l1=0.9_dp, l2=1.2_dp, g=9.81_dp)
+      opt%h = 1e-3_dp
+      opt%n_steps = 2000
+      opt%stop_rule = stop_end
+      opt%skip_cannot_flip = .false.
+      call integrate_batch(par, opt, y0, res)
+      do j = 1, size(y0, 2)
+         y = y0(:, j)
+         t = 0.0_dp
+         do k = 1, 2000
+            h = 1e-3_dp
+            call rk%step(par, t, y, h, stat)
+         end do
+         call check(error, res%final(:, j), y, 'final state', abs=1e-11_dp)
+         call check(error, res%energy0(j), energy(par, y0(1:2, j), y0(3:4, j)), 'E(0)', &
+                    abs=1e-12_dp)
+         call check(error, res%t_stop(j), 2.0_dp, 't_stop', abs=1e-12_dp)
+         call check_true(error, res%steps(j) == 2000, 'steps')
+      end do
+   end subroutine test_batch_matches_rk4
+
+   !> The tangent RK4 map against central differences of the RK4 map.
+   subroutine test_tangent(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: w = lane_width
+      type(batch_coef_t) :: c
+      real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e
+      real(dp), dimension(w) :: p1, p2, pw1, pw2, m1, m2, mw1, mw2
+      real(dp), parameter :: eps = 1e-6_dp, h = 2e-3_dp
+      integer :: i, k
+      c = batch_coef(pendulum_t())
+      do i = 1, w
+         q1(i) = -1.0_dp + 0.15_dp*i; q2(i) = 0.5_dp - 0.1_dp*i
+         w1(i) = 0.3_dp*sin(real(i, dp)); w2(i) = -0.2_dp*cos(real(i, dp))
+         u1(i) = 1.0_dp; u2(i) = -0.5_dp; v1(i) = 0.25_dp*i; v2(i) = 0.1_dp
+      end do
+      p1 = q1 + eps*u1; p2 = q2 + eps*u2; pw1 = w1 + eps*v1; pw2 = w2 + eps*v2
+      m1 = q1 - eps*u1; m2 = q2 - eps*u2; mw1 = w1 - eps*v1; mw2 = w2 - eps*v2
+      do k = 1, 100
+         call rk4_tangent_lanes(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+         call rk4_lanes(c, h, p1, p2, pw1, pw2, e)
+         call rk4_lanes(c, h, m1, m2, mw1, mw2, e)
+      end do
+      do i = 1, w
+         call check(error, (p1(i) - m1(i))/(2*eps), u1(i), 'du1', abs=1e-6_dp, rel=1e-6_dp)
+         call check(error, (p2(i) - m2(i))/(2*eps), u2(i), 'du2', abs=1e-6_dp, rel=1e-6_dp)
+         call check(error, (pw1(i) - mw1(i))/(2*eps), v1(i), 'dv1', abs=1e-6_dp, rel=1e-6_dp)
+         call check(error, (pw2(i) - mw2(i))/(2*eps), v2(i), 'dv2', abs=1e-6_dp, rel=1e-6_dp)
+      end do
+   end subroutine test_tangent
+
+   !> With m2 negligible, link 1 is a compound pendulum: launched from the bottom
+   !> with w0 it reaches the top after t = ∫ dq / sqrt(w0² - (3g/L1)(1 + sin q))
+   !> over [-π/2, π/2] (quadrature). Both senses of rotation.
+   subroutine test_flip_time(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      real(dp) :: y0(4, 2), expected, q, dq, w0
+      integer :: i
+      integer, parameter :: n = 20000
+      par = pendulum_t(m1=1.0_dp, m2=1e-10_dp, l1=1.0_dp, l2=1.0_dp, g=9.8_dp)
+      w0 = 9.0_dp
+      ! composite Simpson
+      dq = pi/n
+      expected = 0.0_dp
+      do i = 0, n
+         q = -half_pi + i*dq
+         expected = expected + merge(1.0_dp, merge(4.0_dp, 2.0_dp, mod(i, 2) == 1), &
+                                     i == 0 .or. i == n)/sqrt(w0**2 - 3.0_dp*par%g/par%l1 &
+                                                              *(1.0_dp + sin(q)))
+      end do
+      expected = expected*dq/3.0_dp
+      y0(:, 1) = [-half_pi, -half_pi, w0, 0.0_dp]
+      y0(:, 2) = [-half_pi, -half_pi, -w0, 0.0_dp]
+      opt%h = 1e-3_dp
+      opt%n_steps = 1000
+      opt%stop_rule = stop_end
+      call integrate_batch(par, opt, y0, res)
+      call check(error, res%t_flip1(1), expected, 'counter-clockwise flip time', abs=1e-6_dp)
+      call check(error, res%t_flip1(2), expected, 'clockwise flip time', abs=1e-6_dp)
+      if (allocated(error)) return
+      ! the light link 2 is whipped over first; stop_either ends at that step
+      call check_true(error, .not. ieee_is_nan(res%t_flip2(1)), 'link 2 flips')
+      if (allocated(error)) return
+      call check(error, res%t_flip(1), min(res%t_flip1(1), res%t_flip2(1)), 'first of both')
+      opt%stop_rule = stop_either
+      call integrate_batch(par, opt, y0, res)
+      call check_true(error, res%steps(1) == ceiling(res%t_flip(1)/opt%h), &
+                      'stop_either: stopped at the step of the first flip')
+   end subroutine test_flip_time
+
+   !> The least energy to bring each link to the top, against a brute-force
+   !> minimum of V over the other angle, and the classic criterion
+   !> 3 cos θ1 + cos θ2 > 2 for equal uniform rods.
+   subroutine test_energy_bound(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: pars(3), par
+      real(dp) :: bounds(2), vmin1, vmin2, x, th1, th2, e0, lhs
+      integer :: k, i, j
+      integer, parameter :: n = 200000
+      pars(1) = pendulum_t()
+      pars(2) = pendulum_t(m1=0.5_dp, m2=2.0_dp, l1=0.6_dp, l2=1.5_dp, g=9.81_dp)
+      pars(3) = pendulum_t(m1=3.0_dp, m2=0.2_dp, l1=0.3_dp, l2=2.5_dp, g=1.62_dp)
+      do k = 1, 3
+         bounds = flip_energy_bounds(pars(k))
+         vmin1 = huge(1.0_dp); vmin2 = huge(1.0_dp)
+         do i = 0, n - 1
+            x = 2*pi*i/n
+            vmin1 = min(vmin1, potential_energy(pars(k), [half_pi, x]))
+            vmin2 = min(vmin2, potential_energy(pars(k), [x, half_pi]))
+         end do
+         call check(error, bounds(1), vmin1, 'link 1 bound', abs=1e-8_dp)
+         call check(error, bounds(2), vmin2, 'link 2 bound', abs=1e-8_dp)
+      end do
+      par = pendulum_t()
+      bounds = flip_energy_bounds(par)
+      do i = -60, 60
+         do j = -60, 60
+            th1 = 0.05_dp*i; th2 = 0.05_dp*j
+            lhs = 3*cos(th1) + cos(th2)
+            if (abs(lhs - 2) < 1e-9_dp) cycle
+            e0 = energy(par, [th1 - half_pi, th2 - half_pi], [0.0_dp, 0.0_dp])
+            call check_true(error, (e0 < minval(bounds)) .eqv. (lhs > 2), &
+                            'cannot flip <=> 3 cos th1 + cos th2 > 2')
+         end do
+      end do
+   end subroutine test_energy_bound
+
+   !> Below the bound nothing is integrated; forced through the integrator (the
+   !> Lyapunov option integrates everything) no such trajectory flips in 30 s.
+   subroutine test_bound_dynamics(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      real(dp) :: y0(4, 40), th1, th2
+      integer :: j
+      do j = 1, 40   ! just inside 3 cos θ1 + cos θ2 = 2, from rest
+         th2 = -pi + 2*pi*(j - 0.5_dp)/40
+         th1 = acos((2.0_dp - cos(th2))/3.0_dp) - 1e-3_dp
+         y0(:, j) = [th1 - half_pi, th2 - half_pi, 0.0_dp, 0.0_dp]
+      end do
+      opt%h = 0.01_dp
+      opt%n_steps = 100
+      call integrate_batch(par, opt, y0, res)
+      call check_true(error, all(res%status == st_cannot_flip), 'status cannot flip')
+      call check_true(error, all(res%steps == 0), 'not integrated')
+      call check_true(error, all(ieee_is_nan(res%t_flip)), 'no flip time')
+      opt%n_steps = 3000
+      opt%lyapunov = .true.
+      call integrate_batch(par, opt, y0, res)
+      call check_true(error, all(res%steps == 3000), 'integrated with lyapunov')
+      call check_true(error, all(ieee_is_nan(res%t_flip)), 'no flip below the bound')
+   end subroutine test_bound_dynamics
+
+   ! ----------------------------------------------------------- command ---
+
+   subroutine test_help(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat, i
+      character(len=12), parameter :: opts(16) = [character(len=12) :: '--axis1', '--n1', &
+         '--min1', '--max2', '--ic-file', '--time-unit', '--dt', '--t-end', '--stop-at', &
+         '--lyapunov', '--block', '--threads', '--quiet', '--force', '--output', 'theta1']
+      dir = scratch_dir('sweephelp')
+      stat = run_command(dir, 'sweep --help')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'sweep --help exits 0')
+      do i = 1, size(opts)
+         call check_true(error, index(text, trim(opts(i))) > 0, 'help mentions '//trim(opts(i)))
+      end do
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_help
+
+   !> Threads 1 and 2, blocks of 1, 3 and all rows, give bitwise equal results.
+   subroutine test_threads_blocks(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common
+      integer :: stat
+      dir = scratch_dir('sweepthr')
+      common = 'sweep --quiet --n 16 --t-end 30 --dt 0.02 --stats --output '
+      stat = run_command(dir, common//dir//'/a.h5 --threads 1 --block 16')
+      call check_true(error, stat == 0, 'run a exits 0')
+      stat = run_command(dir, common//dir//'/b.h5 --threads 2 --block 48')
+      call check_true(error, stat == 0, 'run b exits 0')
+      stat = run_command(dir, common//dir//'/c.h5 --threads 2 --block 100000')
+      call check_true(error, stat == 0, 'run c exits 0')
+      if (allocated(error)) return
+      call same_results(error, dir//'/a.h5', dir//'/b.h5', .true.)
+      call same_results(error, dir//'/a.h5', dir//'/c.h5', .true.)
+      ! with the Lyapunov exponent (every trajectory to t_end)
+      common = 'sweep --quiet --n 8 --t-end 10 --dt 0.02 --lyapunov --output '
+      stat = run_command(dir, common//dir//'/d.h5 --threads 1 --block 8')
+      call check_true(error, stat == 0, 'run d exits 0')
+      stat = run_command(dir, common//dir//'/e.h5 --threads 2 --block 1000')
+      call check_true(error, stat == 0, 'run e exits 0')
+      if (allocated(error)) return
+      call same_results(error, dir//'/d.h5', dir//'/e.h5', .false.)
+      call same_dataset(error, dir//'/d.h5', dir//'/e.h5', '/sweep/lyapunov')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_threads_blocks
+
+   !> A list of grid points, shuffled, in text and HDF5 form, gives the grid's
+   !> results bit for bit (other lanes, other blocks, other neighbours).
+   subroutine test_list_matches_grid(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ax1(:), ax2(:), tg(:, :), tl(:), ql(:), qg(:, :), ics(:, :)
+      integer, allocatable :: sg(:, :), sl(:)
+      integer :: stat, unit, k
+      integer, parameter :: pick(2, 7) = reshape([3, 5, 16, 1, 8, 8, 1, 16, 12, 2, 7, 13, &
+                                                  15, 15], [2, 7])
+      character(len=2) :: kind
+      dir = scratch_dir('sweeplist')
+      common = ' --quiet --t-end 30 --dt 0.02 --threads 2 '
+      stat = run_command(dir, 'sweep --n 16 --output '//dir//'/grid.h5'//common)
+      call check_true(error, stat == 0, 'grid run exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/grid.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis1', ax1, error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis2', ax2, error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip', tg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/q1', qg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/status', sg, error)
+      call h5%close()
+      if (allocated(error)) return
+      allocate (ics(4, size(pick, 2)))
+      do k = 1, size(pick, 2)
+         ics(:, k) = [ax1(pick(1, k)) - half_pi, ax2(pick(2, k)) - half_pi, 0.0_dp, 0.0_dp]
+      end do
+      open (newunit=unit, file=dir//'/ics.txt', status='replace', action='write')
+      write (unit, '(a)') '# q1 q2 w1 w2'
+      do k = 1, size(pick, 2)
+         write (unit, '(4es26.17e3)') ics(:, k)
+      end do
+      close (unit)
+      call h5%open(dir//'/ics.h5', 'w', error)
+      if (.not. allocated(error)) call h5%write('/initial', ics, error)
+      call h5%close()
+      if (allocated(error)) return
+      stat = run_command(dir, 'sweep --ic-file '//dir//'/ics.txt --block 3 --output '// &
+                         dir//'/tx.h5'//common)
+      call check_true(error, stat == 0, 'text list run exits 0')
+      stat = run_command(dir, 'sweep --ic-file '//dir//'/ics.h5 --output '// &
+                         dir//'/h5.h5'//common)
+      call check_true(error, stat == 0, 'HDF5 list run exits 0')
+      if (allocated(error)) return
+      do stat = 1, 2
+         kind = merge('tx', 'h5', stat == 1)
+         call h5%open(dir//'/'//kind//'.h5', 'r', error)
+         if (.not. allocated(error)) call h5%read('/sweep/t_flip', tl, error)
+         if (.not. allocated(error)) call h5%read('/sweep/final/q1', ql, error)
+         if (.not. allocated(error)) call h5%read('/sweep/status', sl, error)
+         call h5%close()
+         if (allocated(error)) return
+         do k = 1, size(pick, 2)
+            call check_true(error, bits(tl(k)) == bits(tg(pick(1, k), pick(2, k))) .and. &
+                            bits(ql(k)) == bits(qg(pick(1, k), pick(2, k))) .and. &
+                            sl(k) == sg(pick(1, k), pick(2, k)), &
+                            kind//' list entry equals its grid pixel bit for bit')
+         end do
+      end do
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_list_matches_grid
+
+   !> kill -9 three times at moments spread over the run, then resume: the file
+   !> equals an uninterrupted run's, and a finished file is left as it is.
+   subroutine test_resume_after_kill(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, args, text
+      integer :: stat, k, n, count_start, count_end, rate
+      real(dp) :: secs, t_end
+      integer, allocatable :: done(:)
+      type(h5file_t) :: h5
+      character(len=16) :: delay
+      logical :: partial
+      dir = scratch_dir('sweepkill')
+      ! a run long enough (>= ~1 s, whatever the build profile) to be killed midway
+      t_end = 60.0_dp
+      do k = 1, 3
+         write (delay, '(f0.1)') t_end
+         args = 'sweep --quiet --n 32 --t-end '//trim(delay)//' --dt 0.02 --block 32 ' &
+                //'--stats --threads 2 --force --output '
+         call system_clock(count_start, rate)
+         stat = run_command(dir, args//dir//'/ref.h5')
+         call system_clock(count_end)
+         call check_true(error, stat == 0, 'uninterrupted run exits 0')
+         if (allocated(error)) return
+         secs = real(count_end - count_start, dp)/rate
+         if (secs >= 1.0_dp) exit
+         t_end = t_end*min(20.0_dp, 1.5_dp/max(secs, 0.05_dp))
+      end do
+      args = args(:index(args, '--force') - 1)//'--output '
+      partial = .false.
+      do k = 1, 3
+         write (delay, '(f0.3)') secs*(0.15_dp + 0.05_dp*k)
+         call execute_command_line(dpend_binary()//' '//args//dir// &
+            '/run.h5 > /dev/null 2>&1 & pid=$!; sleep '//trim(delay)// &
+            '; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null; true', exitstat=stat)
+         if (.not. is_hdf5(dir//'/run.h5')) cycle   ! killed before the file existed
+         call h5%open(dir//'/run.h5', 'r', error)
+         if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+         call h5%close()
+         call check_true(error, .not. allocated(error), 'file valid after kill -9')
+         if (allocated(error)) return
+         if (any(done == 0)) partial = .true.
+      end do
+      call check_true(error, partial, 'a kill hit a run in progress')
+      stat = run_command(dir, args//dir//'/run.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'resumed run exits 0: '//text)
+      if (allocated(error)) return
+      call same_results(error, dir//'/ref.h5', dir//'/run.h5', .true.)
+      call same_dataset_i(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/done')
+      call same_attr(error, dir//'/ref.h5', dir//'/run.h5', 'config')
+      stat = run_command(dir, args//dir//'/run.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'complete') > 0, &
+                      'rerun of a complete file: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_resume_after_kill
+
+   !> Another configuration against an existing file: exit 2, one line, file kept;
+   !> --force overwrites.
+   subroutine test_mismatch(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, args, config
+      type(h5file_t) :: h5
+      integer :: stat, n
+      dir = scratch_dir('sweepcfg')
+      args = 'sweep --quiet --n 8 --t-end 5 --output '//dir//'/s.h5'
+      stat = run_command(dir, args)
+      call check_true(error, stat == 0, 'first run exits 0')
+      stat = run_command(dir, args//' --t-end 6')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2, 'another t_end: exit 2')
+      call check_true(error, n == 1 .and. index(text, 'another configuration') > 0 .and. &
+                      index(text, 't_end') > 0 .and. index(text, '--force') > 0, &
+                      'one line naming t_end and --force: '//text)
+      call h5%open(dir//'/s.h5', 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', config, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, index(config, 't_end = 5.0') > 0, 'file kept')
+      stat = run_command(dir, args//' --t-end 6 --force')
+      call check_true(error, stat == 0, '--force overwrites')
+      call write_file(dir//'/junk.h5', 'not hdf5')
+      stat = run_command(dir, 'sweep --quiet --n 4 --t-end 1 --output '//dir//'/junk.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. index(text, 'not an HDF5') > 0, &
+                      'a foreign file is refused: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_mismatch
+
+   subroutine test_bad_input(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('sweepbad')
+      call expect_rejected(error, dir, '--n 0', 'n1')
+      call expect_rejected(error, dir, '--n2 -3', 'n2')
+      call expect_rejected(error, dir, '--min1 2 --max1 1', 'min1')
+      call expect_rejected(error, dir, '--min2 1 --max2 1', 'empty')
+      call expect_rejected(error, dir, '--max1 nan', '--max1')
+      call expect_rejected(error, dir, '--min2 inf', '--min2')
+      call expect_rejected(error, dir, '--axis1 q3', 'axis1')
+      call expect_rejected(error, dir, '--axis1 q1 --axis2 theta1', 'axis2')
+      call expect_rejected(error, dir, '--t-end 0', 't_end')
+      call expect_rejected(error, dir, '--dt -1', 'dt')
+      call expect_rejected(error, dir, '--block 0', 'block')
+      call expect_rejected(error, dir, '--threads -1', 'threads')
+      call expect_rejected(error, dir, '--time-unit h', 'time_unit')
+      call expect_rejected(error, dir, '--stop-at never', 'stop_at')
+      call expect_rejected(error, dir, '--method verlet', 'method')
+      call expect_rejected(error, dir, '--save-every 3', 'unknown option')
+      call expect_rejected(error, dir, '--bogus 1', 'unknown option')
+      call expect_rejected(error, dir, '--m2 0', 'm2')
+      call expect_rejected(error, dir, '--ic-file '//dir//'/none.txt', 'ic_file')
+      call write_file(dir//'/bad.txt', '0 0 0 0'//new_line('a')//'1 2 three 4')
+      call expect_rejected(error, dir, '--ic-file '//dir//'/bad.txt', 'line 2')
+      call write_file(dir//'/short.txt', '0 0 0')
+      call expect_rejected(error, dir, '--ic-file '//dir//'/short.txt', 'line 1')
+      call write_file(dir//'/empty.txt', '# nothing')
+      call expect_rejected(error, dir, '--ic-file '//dir//'/empty.txt', 'no initial')
+      call write_file(dir//'/n.nml', '&sweep min1 = 2, max1 = 1 /')
+      call expect_rejected(error, dir, '--config '//dir//'/n.nml', 'min1')
+      call write_file(dir//'/k.nml', '&sweep n3 = 4 /')
+      call expect_rejected(error, dir, '--config '//dir//'/k.nml', 'sweep')
+      call write_file(dir//'/g.nml', '&grid n1 = 4 /')
+      call expect_rejected(error, dir, '--config '//dir//'/g.nml', 'unknown namelist group')
+      call expect_rejected(error, dir, '--output '//dir//'/no/dir/s.h5', 'directory')
+      call expect_rejected(error, dir, '--output /proc/dpend-sweep.h5', 'not writable')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_bad_input
+
+   !> `dpend export --matrix` gives a gnuplot nonuniform matrix; a sweep compared
+   !> with itself changes no pixel.
+   subroutine test_export_compare(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: stat, n
+      dir = scratch_dir('sweepexp')
+      stat = run_command(dir, 'sweep --quiet --n1 6 --n2 4 --t-end 5 --output '//dir//'/s.h5')
+      call check_true(error, stat == 0, 'run exits 0')
+      stat = run_command(dir, 'export '//dir//'/s.h5 --matrix /sweep/t_flip /sweep/axis1 '// &
+                         '/sweep/axis2 0.5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 5, 'matrix: 1 + n2 lines, got: '//text)
+      call check_true(error, index(text, '6.0000000E+000') == 3 .or. &
+                      index(text, '6.0000000E+000') == 2, 'first field is n1: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/s.h5 '//dir//'/s.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'changed_fraction: .000 %') > 0, &
+                      'self comparison: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_export_compare
+
+   ! ----------------------------------------------------------- helpers ---
+
+   !> Expect exit status 2, exactly one stderr line containing `needle`, no file.
+   subroutine expect_rejected(error, dir, args, needle)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: dir, args, needle
+      integer :: stat, n
+      logical :: exists
+      character(len=:), allocatable :: text
+      if (allocated(error)) return
+      stat = run_command(dir, 'sweep --quiet --n 4 --t-end 1 --output '//dir//'/out.h5 '//args)
+      call read_text(dir//'/stderr', text, n)
+      inquire (file=dir//'/out.h5', exist=exists)
+      call check_true(error, stat == 2, '['//args//'] exit status 2; stderr: '//text)
+      call check_true(error, n == 1, '['//args//'] one stderr line: '//text)
+      call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
+                      needle//'": '//text)
+      call check_true(error, .not. exists, '['//args//'] no output file')
+   end subroutine expect_rejected
+
+   !> Every result dataset of two sweep files equal bit for bit.
+   subroutine same_results(error, a, b, with_steps)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: a, b
+      logical, intent(in) :: with_steps
+      integer :: k
+      do k = 1, size(real_sets)
+         call same_dataset(error, a, b, trim(real_sets(k)))
+      end do
+      call same_dataset_i(error, a, b, '/sweep/status')
+      if (with_steps) call same_dataset_i(error, a, b, '/sweep/steps')
+   end subroutine same_results
+
+   subroutine same_dataset(error, a, b, path)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: a, b, path
+      real(dp), allocatable :: x(:, :), y(:, :)
+      call read2(a, x)
+      call read2(b, y)
+      if (allocated(error)) return
+      call check_true(error, all(shape(x) == shape(y)), path//' same shape')
+      if (allocated(error)) return
+      call check_true(error, all(bits(x) == bits(y)), path//' bitwise equal in '//a//' and '//b)
+   contains
+      subroutine read2(file, v)
+         character(len=*), intent(in) :: file
+         real(dp), allocatable, intent(out) :: v(:, :)
+         type(h5file_t) :: h5
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine read2
+   end subroutine same_dataset
+
+   subroutine same_dataset_i(error, a, b, path)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: a, b, path
+      integer, allocatable :: x(:), y(:), x2(:, :), y2(:, :)
+      integer, allocatable :: dims(:)
+      type(h5file_t) :: h5
+      if (allocated(error)) return
+      call h5%open(a, 'r', error)
+      if (.not. allocated(error)) call h5%shape(path, dims, error)
+      call h5%close()
+      if (allocated(error)) return
+      if (size(dims) == 1) then
+         call readi1(a, x); call readi1(b, y)
+         if (allocated(error)) return
+         call check_true(error, size(x) == size(y), path//' same size')
+         if (allocated(error)) return
+         call check_true(error, all(x == y), path//' equal')
+      else
+         call readi2(a, x2); call readi2(b, y2)
+         if (allocated(error)) return
+         call check_true(error, all(shape(x2) == shape(y2)), path//' same shape')
+         if (allocated(error)) return
+         call check_true(error, all(x2 == y2), path//' equal')
+      end if
+   contains
+      subroutine readi1(file, v)
+         character(len=*), intent(in) :: file
+         integer, allocatable, intent(out) :: v(:)
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine readi1
+      subroutine readi2(file, v)
+         character(len=*), intent(in) :: file
+         integer, allocatable, intent(out) :: v(:, :)
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine readi2
+   end subroutine same_dataset_i
+
+   subroutine same_attr(error, a, b, name)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: a, b, name
+      character(len=:), allocatable :: x, y
+      type(h5file_t) :: h5
+      if (allocated(error)) return
+      call h5%open(a, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', name, x, error)
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(b, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', name, y, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, x == y, 'attribute '//name//' equal')
+   end subroutine same_attr
+
+   !> Bit pattern of a real (NaN-safe comparison without arithmetic).
+   elemental integer(i8) function bits(x)
+      real(dp), intent(in) :: x
+      bits = transfer(x, 0_i8)
+   end function bits
+
+   subroutine write_file(path, text)
+      character(len=*), intent(in) :: path, text
+      integer :: unit
+      open (newunit=unit, file=path, status='replace', action='write')
+      write (unit, '(a)') text
+      close (unit)
+   end subroutine write_file
+end module test_sweep
