@@ -1,10 +1,47 @@
 #!/usr/bin/env bash
-# The main job: build in the release profile, run the showcase, write every .h5
-# and figure under out/.  Usage: scripts/run.sh
+# The main job, a showcase of every driver in small versions: builds the release
+# profile and writes every .h5 and figure under out/ (a few minutes on 2 cores).
+#   scripts/run.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+d=scripts/dpend
+start=$SECONDS
+step() { echo; echo "== $1"; }
+
+step "simulate: the chapter's numerical application (both links horizontal, at rest)"
 mkdir -p out/simulate
-echo "== simulate: the chapter's numerical application (both links horizontal, at rest)"
-scripts/dpend simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
+$d simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
 scripts/plot_simulate.sh out/simulate/simulate.h5 out/simulate
-echo "== done: see out/"
+
+if grep -q "'study'" app/main.f90; then
+  step "study --quick: energy conservation of every integrator"
+  mkdir -p out/study
+  $d study --quick --output out/study/study.h5 --force
+  scripts/plot_study.sh out/study/study.h5 out/study
+fi
+
+step "lyapunov: spectrum of the horizontal release (t = 300 s)"
+mkdir -p out/chaos
+$d lyapunov --t-end 300 --output out/chaos/lyapunov.h5 --force | tail -n 1
+scripts/plot_chaos.sh out/chaos/lyapunov.h5 out/chaos
+
+step "divergence: 20 pairs of trajectories 1e-9 apart"
+$d divergence --output out/chaos/divergence.h5 --force | tail -n 1
+scripts/plot_chaos.sh out/chaos/divergence.h5 out/chaos
+
+step "poincare: sections at E = -15 J (regular) and E = 0 J (chaotic)"
+$d poincare --energy -15 --ics 20 --points 300 --output out/chaos/poincare_low.h5 --force \
+  | tail -n 1
+scripts/plot_chaos.sh out/chaos/poincare_low.h5 out/chaos/poincare_low
+$d poincare --energy 0 --ics 20 --points 300 --output out/chaos/poincare_release.h5 --force \
+  | tail -n 1
+scripts/plot_chaos.sh out/chaos/poincare_release.h5 out/chaos/poincare_release
+
+step "sweep: the flip-time map, 256 x 256 (the classic map at a quarter resolution)"
+mkdir -p out/sweep
+$d sweep --config data/sweep_classic.nml --n 256 --output out/sweep/flip_map_256.h5 --force
+scripts/plot_sweep.sh out/sweep/flip_map_256.h5 out/sweep
+
+echo
+echo "== done in $((SECONDS - start)) s: figures and files under out/"
+find out -name '*.png' | sort
