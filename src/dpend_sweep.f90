@@ -1,6 +1,6 @@
 !> `dpend sweep`: many initial conditions through the batch RK4 kernel
 !> (dpend_batch), in blocks distributed over OpenMP threads, into one HDF5 file
-!> (layout in docs/sweep-hdf5.md, design in docs/sweep.md).
+!> (layout in docs/hdf5-layout.md, design in docs/sweep.md).
 !>
 !> Crash safety and resume. While it runs, the output is a *working* file whose
 !> datasets are chunked (one chunk per block), uncompressed and allocated in full

@@ -113,7 +113,7 @@ contains
           'Integrate many initial conditions with a vectorized, parallel RK4 and write'//nl// &
           'per-condition results (flip times, energy, energy error, final state, optional'//nl// &
           'Lyapunov exponent) to HDF5, block by block. Rerunning the same command after'//nl// &
-          'an interruption computes only the missing blocks. Layout: docs/sweep-hdf5.md;'//nl// &
+          'an interruption computes only the missing blocks. Layout: docs/hdf5-layout.md;'//nl// &
           'figures: scripts/plot_sweep.sh FILE.h5 OUTDIR; examples: data/sweep_*.nml.'//nl//nl// &
           'initial conditions (a grid over two values, the rest from --q1 --q2 --w1 --w2):' &
           //nl// &
