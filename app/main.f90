@@ -9,6 +9,8 @@ program dpend
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version
    use dpend_export, only: export_columns
+   use dpend_study_config, only: study_config_t, parse_study, study_help
+   use dpend_study_output, only: run_study_command
    implicit none
 
    type(arg_t), allocatable :: args(:)
@@ -30,6 +32,8 @@ program dpend
       call simulate(args(2:))
    case ('export')
       call export(args(2:))
+   case ('study')
+      call study(args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -43,6 +47,7 @@ contains
           'commands:'//nl// &
           '  simulate   integrate one trajectory and write it to HDF5'//nl// &
           '  export     print HDF5 datasets as text columns (for gnuplot)'//nl// &
+          '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  methods    list the integration methods'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
@@ -68,6 +73,24 @@ contains
       end if
       write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
    end subroutine simulate
+
+   subroutine study(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(study_config_t) :: cfg
+      type(error_t), allocatable :: error
+      logical :: help, failed
+      call parse_study(sub, cfg, help, error)
+      if (allocated(error)) call fail(2, 'dpend study: '//error%message)
+      if (help) then
+         write (output_unit, '(a)') study_help()
+         return
+      end if
+      call run_study_command(cfg, error, failed)
+      if (allocated(error)) then
+         if (failed) call fail(1, 'dpend study: '//error%message)
+         call fail(2, 'dpend study: '//error%message)
+      end if
+   end subroutine study
 
    subroutine export(sub)
       type(arg_t), intent(in) :: sub(:)

@@ -9,6 +9,7 @@ program tester
    use test_cli, only: collect_cli
    use test_integrators, only: collect_integrators
    use test_symplectic, only: collect_symplectic
+   use test_study, only: collect_study
    implicit none
 
    type :: suite_t
@@ -21,12 +22,13 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(5))
+   allocate (suites(6))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
    suites(4)%name = 'integrators'; call collect_integrators(suites(4)%tests)
    suites(5)%name = 'symplectic'; call collect_symplectic(suites(5)%tests)
+   suites(6)%name = 'study'; call collect_study(suites(6)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
