@@ -78,11 +78,11 @@ EOF
 # ---- figure 1: energy error against time at the middle step
 {
   echo "set output '$out/energy_vs_time.png'"
-  echo "set title \"Relative energy error |H(t) - H(0)| / E_s, case $dc, each method at its middle step (maximum per time bin)$note\""
+  echo "set title \"Relative energy error |H(t) - H(0)| / E_s against time, case $dc, each method at its middle step (maximum per logarithmic time bin)$note\""
   echo "set xlabel 't [s]'; set ylabel '|H(t) - H(0)| / E_s'"
   echo "set key outside right top"
   plot="plot"
-  tmax=0
+  guide=""
   for m in $methods; do
     mode=step; [[ -f "$tmp/${dc}_${m}_tol.dat" ]] && mode=tol
     mid=$(attr /cases/$dc/$m/$mode/mid)
@@ -94,11 +94,19 @@ EOF
       lab="$m, rtol = $(printf '%.0e' "$rt")"
     fi
     dash=1; lw=2
-    in_list "$m" "rk4 dopri5 dop853" && { dash=2; lw=2.5; }
+    if in_list "$m" "rk4 dopri5 dop853"; then
+      dash=2; lw=2.5
+      # a t^1 guide 3 decades long, a factor 3 below the end of the first explicit method
+      if [[ -z "$guide" ]]; then
+        read -r gx gy < <(awk -v c="$col" '$c != "NaN" { x = $1; y = $c } END { print x, y }' \
+          "$tmp/${dc}_${m}_${mode}_bins.dat")
+        guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 1.5 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
+      fi
+    fi
     plot="$plot '$tmp/${dc}_${m}_${mode}_bins.dat' u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
   done
-  # t^1 and t^1/2 guides through the right end of the plot
-  echo "$plot 1e-14*x w l lw 1 dt 3 lc rgb 'black' t 'slope 1 (linear drift)'"
+  plot="$plot $guide"
+  echo "${plot%,}"
 } >> "$gp"
 
 # ---- figures 2 and 3: errors against the step, 2x2 panels by family, reference slopes
@@ -174,9 +182,25 @@ panels energy_vs_step.png \
 
 # ---- figure 5: roundoff (Brouwer's law)
 {
+  fit_t=""
+  for m in $ro_methods; do
+    [[ "$m" == none ]] && continue
+    for mode in compensated plain; do
+      ex /roundoff/$m/t /roundoff/$m/rms_$mode > "$tmp/ro_${m}_${mode}.dat"
+    done
+    fit_t=$(attr /roundoff/$m/fit_t_min)
+  done
+  # one y range for both panels, so that the two magnitudes compare
+  yr=""
+  if ls "$tmp"/ro_*.dat >/dev/null 2>&1; then
+    yr=$(cat "$tmp"/ro_*.dat | awk '$2 != "NaN" && $2 > 0 { if (!n || $2 < lo) lo = $2; if (!n || $2 > hi) hi = $2; n = 1 }
+      END { if (n) printf "set yrange [%g:%g]", lo / 3, hi * 3 }')
+  fi
   echo "set output '$out/roundoff.png'"
-  echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision; dotted: √t through the last point$note\" font ',13'"
+  echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state; dotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
   echo "set xlabel 't [s]'; set ylabel 'RMS of (H - H(0)) / E_s'; set key inside left top font ',10'"
+  echo "$yr"
+  [[ -n "$fit_t" ]] && echo "set arrow 2 from $fit_t, graph 0 to $fit_t, graph 1 nohead dt 2 lc rgb 'gray50'"
   for mode in compensated plain; do
     if [[ $mode == compensated ]]; then echo "set title 'with compensated summation'"; else echo "set title 'without compensated summation'"; fi
     plot="plot"
@@ -185,25 +209,32 @@ panels energy_vs_step.png \
       [[ "$m" == none ]] && continue
       g="/roundoff/$m"
       f="$tmp/ro_${m}_${mode}.dat"
-      ex $g/t $g/rms_$mode > "$f"
       read -r x0 y0 < <(tail -n 1 "$f")
       e=$(attr $g/exponent_$mode)
       dt=$(attr $g/dt)
-      plot="$plot '$f' u 1:(\$2 > 0 ? \$2 : NaN) w lp lw 2 pt 7 ps 0.7 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$dt") s: exponent $(printf '%.2f' "$e")',"
-      plot="$plot $y0*(x/$x0)**0.5 w l lw 1.5 dt 3 lc rgb '$(color "$m")' notitle,"
+      rc=("#1f77b4" "#d62728" "#2ca02c" "#9467bd")
+      plot="$plot '$f' u 1:(\$2 > 0 ? \$2 : NaN) w lp lw 2 pt 7 ps 0.7 lc rgb '${rc[$k]}' t '$m, h = $(printf '%.1e' "$dt") s: fitted exponent $(printf '%.2f' "$e")',"
+      plot="$plot (x >= $fit_t ? $y0/2.5*(x/$x0)**0.5 : NaN) w l lw 2 dt 3 lc rgb '${rc[$k]}' notitle,"
       k=$((k + 1))
     done
     if [[ $k -eq 0 ]]; then echo "plot 1/0 notitle"; else echo "${plot%,}"; fi
   done
-  echo "unset multiplot"
+  echo "unset multiplot; unset arrow 2; set autoscale y"
 } >> "$gp"
 
 # ---- figure 6: Tao's binding constant
 {
   echo "set output '$out/tao_omega.png'"
-  echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (dashed: default ω = 20/s)$note\" font ',13'"
+  echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font ',13'"
   echo "set xlabel 'ω [1/s]'; set key inside left top font ',10'"
   echo "set arrow 1 from 20, graph 0 to 20, graph 1 nohead dt 2 lc rgb 'gray40'"
+  # resonances 2 ω h = 2π k: the binding rotation is the identity
+  tdt=$(attr /tao/$(echo $tao_methods | awk '{print $1}')/dt 2>/dev/null || echo "")
+  if [[ -n "$tdt" && "$tao_methods" != none ]]; then
+    for k in 1 2 3 4 5 6; do
+      echo "set arrow $((k + 2)) from $k*pi/$tdt, graph 0 to $k*pi/$tdt, graph 1 nohead dt 3 lc rgb '#e08080'"
+    done
+  fi
   for panel in energy global; do
     if [[ $panel == energy ]]; then
       echo "set title 'maximum energy error'; set ylabel 'max |H - H(0)| / E_s'"; col=2
@@ -222,7 +253,7 @@ panels energy_vs_step.png \
     done
     if [[ $k -eq 0 ]]; then echo "plot 1/0 notitle"; else echo "${plot%,}"; fi
   done
-  echo "unset multiplot"
+  echo "unset multiplot; unset arrow"
 } >> "$gp"
 
 gnuplot "$gp"

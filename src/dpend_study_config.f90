@@ -82,10 +82,10 @@ module dpend_study_config
       ! Tao's binding constant
       character(len=16), allocatable :: tao_methods(:)  !! tao2, tao4
       real(dp) :: tao_dt = 2.0e-3_dp       !! step [s]
-      real(dp) :: tao_t_end = 200.0_dp     !! horizon [s]
+      real(dp) :: tao_t_end = 500.0_dp     !! horizon [s]
       real(dp) :: omega_min = 1.0_dp       !! smallest ω [1/s]
       real(dp) :: omega_max = 1.0e4_dp     !! largest ω [1/s]
-      integer :: n_omega = 17              !! values of ω (geometric)
+      integer :: n_omega = 41              !! values of ω (geometric)
       character(len=:), allocatable :: tao_case  !! case
       ! run control
       logical :: quick = .false.           !! reduced long runs (smoke test, CI)

@@ -279,7 +279,7 @@ contains
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
            'the potential energy with both links upright (see the cases). Global error: '// &
            'max |Δq|, |Δq̇| [rad, rad/s] over '//itoa(cfg%n_check)//' checkpoints up to '// &
-           't = '//fmt(cfg%t_short, 'g0')//' s against '//cfg%ref_method//' at h = '// &
+           't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
       md = md//'## Verdicts'//nl//nl// &
            '- orders: '//mark(v%orders)//' '//v%orders_text//nl// &
@@ -316,7 +316,7 @@ contains
       end do
       ! ---- orders in every case
       md = md//nl//'## Orders in every case'//nl//nl// &
-           'global / energy (fixed steps, t ≤ '//fmt(cfg%t_short, 'g0')//' s); drift exponent '// &
+           'global / energy (fixed steps, t ≤ '//pretty(cfg%t_short)//' s); drift exponent '// &
            'at the middle step'//nl//nl//'| method | p |'
       do ic = 1, size(cfg%cases)
          md = md//' '//cfg%cases(ic)%name//' |'
@@ -338,7 +338,7 @@ contains
       ! ---- adaptive
       if (any(res%sweeps%mode == mode_tol)) then
          md = md//nl//'## Adaptive methods over tolerances'//nl//nl// &
-              'atol = '//fmt(cfg%atol_ratio, 'g0')//' rtol. Order against the mean accepted '// &
+              'atol = '//pretty(cfg%atol_ratio)//' rtol. Order against the mean accepted '// &
               'step t_short/n_steps (global error) and slope of the global error against rtol '// &
               '(tolerance proportionality: 1 is ideal); drift at the middle tolerance.'//nl//nl// &
               '| method | case | rtol | order vs mean step | error vs rtol | drift exponent |'// &
@@ -361,7 +361,7 @@ contains
               'RMS over '//itoa(cfg%ro_runs)//' runs (case `'//cfg%ro_case//'`, q0 perturbed by '// &
               'multiples of '//fmt(cfg%ro_perturb, 'es8.2')//' rad) of (H − H0)/E_s, H in '// &
               'quadruple precision at the compensated state; exponent fitted in t ≥ '// &
-              fmt(cfg%ro_fit_t_min, 'g0')//' s.'//nl//nl// &
+              pretty(cfg%ro_fit_t_min)//' s.'//nl//nl// &
               '| method | h [s] | steps | exponent, compensated | exponent, plain |'// &
               ' RMS at the end, compensated | plain | |'//nl// &
               '|---|---|---|---|---|---|---|---|'//nl
@@ -379,17 +379,17 @@ contains
       ! ---- Tao
       if (size(res%tao) > 0) then
          md = md//nl//"## Tao's binding constant"//nl//nl// &
-              'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//fmt(cfg%tao_t_end, 'g0')// &
+              'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//pretty(cfg%tao_t_end)// &
               ' s, case `'//cfg%tao_case//'`.'//nl//nl// &
               '| method | ω range [1/s] | best ω | its max energy error | '// &
               'failed runs |'//nl//'|---|---|---|---|---|'//nl
          do i = 1, size(res%tao)
             associate (ts => res%tao(i))
                k = best_index(ts%energy_max)
-               md = md//'| '//ts%method//' | '//num(ts%omega(1), 'g0.3')//' … '// &
-                    num(ts%omega(size(ts%omega)), 'g0.3')//' | '
+               md = md//'| '//ts%method//' | '//pretty(ts%omega(1))//' … '// &
+                    pretty(ts%omega(size(ts%omega)))//' | '
                if (k > 0) then
-                  md = md//num(ts%omega(k), 'g0.3')//' | '//num(ts%energy_max(k), 'es8.2')
+                  md = md//pretty(ts%omega(k))//' | '//num(ts%energy_max(k), 'es8.2')
                else
                   md = md//'– | –'
                end if
@@ -475,6 +475,36 @@ contains
          if (s(1:2) == '-.') s = '-0'//s(2:)
       end if
    end function fmt
+
+   !> Up to 4 significant digits without trailing zeros (1e-3 ≤ |x| < 1e5),
+   !> else scientific notation.
+   function pretty(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      integer :: d
+      if (.not. ieee_is_finite(x)) then
+         s = '–'
+      else if (x == 0.0_dp) then
+         s = '0'
+      else if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e5_dp) then
+         d = max(0, 3 - floor(log10(abs(x))))
+         write (buf, '(f0.'//itoa(d)//')') x
+         s = trim(adjustl(buf))
+         if (index(s, '.') > 0) then
+            do while (s(len(s):len(s)) == '0')
+               s = s(:len(s) - 1)
+            end do
+            if (s(len(s):len(s)) == '.') s = s(:len(s) - 1)
+         end if
+         if (s(1:1) == '.') s = '0'//s
+         if (len(s) > 1) then
+            if (s(1:2) == '-.') s = '-0'//s(2:)
+         end if
+      else
+         s = fmt(x, 'es9.2')
+      end if
+   end function pretty
 
    function ratio(a, b) result(s)
       integer(i8), intent(in) :: a, b

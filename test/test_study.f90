@@ -231,7 +231,7 @@ contains
    subroutine test_tiny_study(error)
       type(error_t), allocatable, intent(out) :: error
       type(study_config_t) :: cfg
-      type(study_result_t) :: res
+      type(study_result_t) :: res, res1
       type(verdicts_t) :: v
       type(h5file_t) :: h5
       character(len=:), allocatable :: dir, md, text
@@ -266,6 +266,17 @@ contains
       if (allocated(error)) return
       call run_study(cfg, res, quiet=.true.)
       call check_true(error, size(res%sweeps) == 2*5, 'sweeps: 2 cases x (4 + 1 tolerance)')
+      ! the jobs share nothing: one thread gives bit for bit the same numbers
+      cfg%threads = 1
+      call run_study(cfg, res1, quiet=.true.)
+      do s = 1, size(res%sweeps)
+         call check_true(error, all(res1%sweeps(s)%global_error == res%sweeps(s)%global_error) &
+                         .and. all(res1%sweeps(s)%energy_long == res%sweeps(s)%energy_long), &
+                         res%sweeps(s)%method//': 1 and 2 threads agree')
+      end do
+      call check_true(error, all(res1%roundoff(1)%rms == res%roundoff(1)%rms) .and. &
+                      all(res1%tao(1)%energy_max == res%tao(1)%energy_max), &
+                      'roundoff and Tao runs: 1 and 2 threads agree')
       do s = 1, size(res%sweeps)
          associate (sw => res%sweeps(s))
             if (sw%mode /= 1 .or. sw%icase /= 1) cycle
