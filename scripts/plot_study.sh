@@ -7,7 +7,18 @@
 # into text columns (layout: docs/study.md).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-dpend="${DPEND:-$here/dpend}"
+if [[ -n "${DPEND:-}" ]]; then
+  dpend="$DPEND"
+else
+  # resolve the release binary once (scripts/dpend would ask fpm at every call)
+  root="$(cd "$here/.." && pwd)"
+  . "$root/scripts/flags.sh"
+  (cd "$root" && fpm build --profile release --flag "$RELEASE_FLAGS" >/dev/null 2>&1) ||
+    { echo "plot_study.sh: release build failed" >&2; exit 1; }
+  dpend=$(cd "$root" && fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo \
+    2>/dev/null | tail -n 1)
+  [[ "$dpend" == /* ]] || dpend="$root/$dpend"
+fi
 [[ $# -ge 1 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
 h5="$1"; out="${2:-$(dirname "$h5")}"
 [[ -r "$h5" ]] || { echo "plot_study.sh: cannot read '$h5'" >&2; exit 2; }
@@ -100,7 +111,7 @@ EOF
       if [[ -z "$guide" ]]; then
         read -r gx gy < <(awk -v c="$col" '$c != "NaN" { x = $1; y = $c } END { print x, y }' \
           "$tmp/${dc}_${m}_${mode}_bins.dat")
-        guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 1.5 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
+        guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 2 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
       fi
     fi
     plot="$plot '$tmp/${dc}_${m}_${mode}_bins.dat' u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"

@@ -296,6 +296,7 @@ contains
       end do
       !$omp end parallel do
       if (tty) write (error_unit, '(a)') ''
+      call time_short_runs(cfg, res, show)
       call fit_sweeps(res)
       call fit_roundoff(cfg, res)
       res%wall_total = wall_clock() - start
@@ -496,12 +497,10 @@ contains
                   do k = 1, n
                      if (mode == mode_step) then
                         list = [list, job_t(job_sweep, s, k, 1, &
-                                            cps*(sw%t_long + 3.0_dp*cfg%t_short)/sw%x(k) &
-                                            + 3.0_dp*cfg%wall_min)]
+                                            cps*(sw%t_long + cfg%t_short)/sw%x(k))]
                      else
                         list = [list, job_t(job_sweep, s, k, 1, cps*sw%t_long/ &
-                                            adaptive_step_guess(me%name, sw%x(k)) &
-                                            + 3.0_dp*cfg%wall_min)]
+                                            adaptive_step_guess(me%name, sw%x(k)))]
                      end if
                   end do
                end associate
@@ -715,7 +714,6 @@ contains
          if (stat == stat_ok) then
             sw%global_error(k) = maxval(abs(sw%y_check(:, :, k) - ref%y))
             sw%h_mean_short(k) = cfg%t_short/real(max(integ%n_steps, 1_i8), dp)
-            sw%wall_short(k) = time_short_run(integ, cfg, ref, y0, h0, sw%mode)
          else
             sw%energy_short(k) = ieee_value(1.0_dp, ieee_quiet_nan)
             return
@@ -758,6 +756,37 @@ contains
          end if
       end associate
    end subroutine sweep_point
+
+   !> Wall times of the short runs, on one thread after the parallel phase so that
+   !> the runs timed do not compete with each other for the cores.
+   subroutine time_short_runs(cfg, res, show)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(inout) :: res
+      logical, intent(in) :: show
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y0(4), start
+      integer :: s, k, n
+      start = wall_clock()
+      n = 0
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s), cs => cfg%cases(res%sweeps(s)%icase))
+            do k = 1, size(sw%x)
+               if (sw%stat(k) /= stat_ok) cycle
+               call make_method(cfg, sw, k, integ)
+               y0 = integ%to_internal(cfg%par, cs%q0, cs%w0)
+               sw%wall_short(k) = time_short_run(integ, cfg, res%refs(sw%icase), y0, &
+                                                 merge(sw%x(k), 0.0_dp, sw%mode == mode_step), &
+                                                 sw%mode)
+               n = n + 1
+            end do
+         end associate
+      end do
+      if (show) then
+         write (error_unit, '(a, i0, a, f0.1, a)') 'dpend study: timed ', n, &
+            ' short runs on one thread in ', wall_clock() - start, ' s'
+         flush (error_unit)
+      end if
+   end subroutine time_short_runs
 
    !> Wall time of one short run without monitoring [s]: the count of repetitions
    !> doubles until a batch lasts wall_min/5; the time per run is the minimum over

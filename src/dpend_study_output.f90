@@ -381,8 +381,9 @@ contains
          md = md//nl//"## Tao's binding constant"//nl//nl// &
               'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//pretty(cfg%tao_t_end)// &
               ' s, case `'//cfg%tao_case//'`.'//nl//nl// &
-              '| method | ω range [1/s] | best ω | its max energy error | '// &
-              'failed runs |'//nl//'|---|---|---|---|---|'//nl
+              '| method | ω range [1/s] | best ω | its max energy error | ω ≈ 20/s: '// &
+              'max energy error | global error | failed runs |'//nl// &
+              '|---|---|---|---|---|---|---|'//nl
          do i = 1, size(res%tao)
             associate (ts => res%tao(i))
                k = best_index(ts%energy_max)
@@ -393,7 +394,10 @@ contains
                else
                   md = md//'– | –'
                end if
-               md = md//' | '//itoa(count(ts%stat /= stat_ok))//' |'//nl
+               k = minloc(abs(log(ts%omega/20.0_dp)), 1)
+               md = md//' | '//pretty(ts%omega(k))//': '//num(ts%energy_max(k), 'es8.2')// &
+                    ' | '//num(ts%global_error(k), 'es8.2')// &
+                    ' | '//itoa(count(ts%stat /= stat_ok))//' |'//nl
             end associate
          end do
       end if

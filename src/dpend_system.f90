@@ -46,8 +46,10 @@ contains
       integer(c_long) :: n
       integer :: i
       n = c_readlink('/proc/self/exe'//c_null_char, buf, int(size(buf), c_size_t))
-      path = ''
-      if (n <= 0 .or. n >= size(buf)) return
+      if (n <= 0 .or. n >= size(buf)) then
+         path = ''
+         return
+      end if
       allocate (character(len=int(n)) :: path)
       do i = 1, int(n)
          path(i:i) = buf(i)
