@@ -4,7 +4,7 @@
 # Writes energy_vs_time.png, energy_vs_step.png, error_vs_step.png,
 # work_precision.png, roundoff.png, tao_omega.png. `dpend study` runs it at the
 # end (with DPEND set to its own executable); `dpend export` turns the datasets
-# into text columns (layout: docs/study.md).
+# into text columns (layout: docs/study-hdf5.md).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 if [[ -n "${DPEND:-}" ]]; then

@@ -122,7 +122,8 @@ module dpend_study
       real(dp) :: dt = 0.0_dp                  !! step [s]
       integer(i8), allocatable :: steps(:)     !! sample steps
       real(dp), allocatable :: t(:)            !! sample times [s]
-      real(dp), allocatable :: err(:, :, :)    !! (H - H0)/E_s, (n_samples, runs, 2): 1 compensated, 2 plain
+      !> (H - H0)/E_s, (n_samples, runs, 2): 1 compensated, 2 plain
+      real(dp), allocatable :: err(:, :, :)
       real(dp), allocatable :: rms(:, :)       !! RMS over the runs, (n_samples, 2)
       integer, allocatable :: stat(:, :)       !! (runs, 2)
       real(dp), allocatable :: wall(:, :)      !! wall time per run (runs, 2) [s]

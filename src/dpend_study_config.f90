@@ -202,7 +202,7 @@ contains
           '(tolerances for dopri5/dop853) on several initial conditions, to long times;'//nl// &
           'global errors against a reference, energy errors on a logarithmic time grid,'//nl// &
           "Brouwer's law of roundoff, Tao's binding constant. Writes one HDF5 file"//nl// &
-          '(layout: docs/study.md), a Markdown summary next to it (FILE with .md), prints'//nl// &
+          '(docs/study-hdf5.md), a Markdown summary next to it (FILE with .md), prints'//nl// &
           'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
           'options:'//nl// &
           '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
@@ -296,8 +296,8 @@ contains
             if (allocated(error)) return
             cfg%par = rcfg%par
          case default
-            call fatal_error(error, "unknown option '"//name// &
-                             "' (dpend study --help lists the options; the sweeps are set in &study)")
+            call fatal_error(error, "unknown option '"//name//"' (dpend study --help "// &
+                             'lists the options; the sweeps are set in &study)')
             return
          end select
       end do

@@ -1,4 +1,4 @@
-!> Output of `dpend study`: the HDF5 file (layout in docs/study.md), the
+!> Output of `dpend study`: the HDF5 file (layout in docs/study-hdf5.md), the
 !> verdicts, the Markdown summary, and the command that runs it all and draws
 !> the figures with scripts/plot_study.sh.
 module dpend_study_output
@@ -358,7 +358,8 @@ contains
       ! ---- roundoff
       if (size(res%roundoff) > 0) then
          md = md//nl//"## Roundoff (Brouwer's law)"//nl//nl// &
-              'RMS over '//itoa(cfg%ro_runs)//' runs (case `'//cfg%ro_case//'`, q0 perturbed by '// &
+              'RMS over '//itoa(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
+              '`, q0 perturbed by '// &
               'multiples of '//fmt(cfg%ro_perturb, 'es8.2')//' rad) of (H − H0)/E_s, H in '// &
               'quadruple precision at the compensated state; exponent fitted in t ≥ '// &
               pretty(cfg%ro_fit_t_min)//' s.'//nl//nl// &
@@ -538,7 +539,7 @@ contains
 
    ! ================================================================== HDF5
 
-   !> Write everything to `filename` (layout: docs/study.md).
+   !> Write everything to `filename` (layout: docs/study-hdf5.md).
    subroutine write_study_h5(cfg, res, filename, error)
       type(study_config_t), intent(in) :: cfg
       type(study_result_t), intent(in) :: res
