@@ -76,6 +76,13 @@ cell() { awk -v c="$2" -v r="$3" 'NR == r + 1 { print $c }' "$1"; }
 # reference line through row r of a data file: "x0 y0"
 anchor() { awk -v cx="$2" -v cy="$3" -v r="$4" 'NR == r + 1 { print $cx, $cy }' "$1"; }
 
+# a panel with nothing to show (a family or experiment absent from the study)
+empty_panel() {
+  echo "set label 10 '$1' at graph 0.5, graph 0.5 center; unset logscale; unset key"
+  echo "unset xtics; unset ytics; set xrange [0:1]; set yrange [0:1]; plot -1 notitle"
+  echo "unset label 10; set logscale xy; set xtics; set ytics; set key; set autoscale"
+}
+
 gp="$tmp/study.gp"
 cat > "$gp" <<EOF
 set terminal pngcairo size 1400,900 enhanced font "DejaVu Sans,11"
@@ -157,7 +164,7 @@ panels() { # $1 output, $2 title, $3 case, $4 column, $5 ylabel, $6 fit attribut
       fi
       n=$((n + 1))
     done
-    if [[ $n -eq 0 ]]; then echo "unset key; plot 1/0 notitle; set key"; else echo "${plot%,}"; fi
+    if [[ $n -eq 0 ]]; then empty_panel "no method of this family in the study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; set autoscale x"
 }
@@ -228,7 +235,7 @@ panels energy_vs_step.png \
       plot="$plot (x >= $fit_t ? $y0/2.5*(x/$x0)**0.5 : NaN) w l lw 2 dt 3 lc rgb '${rc[$k]}' notitle,"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then echo "plot 1/0 notitle"; else echo "${plot%,}"; fi
+    if [[ $k -eq 0 ]]; then empty_panel "no roundoff runs in the study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow 2; set autoscale y"
 } >> "$gp"
@@ -262,7 +269,7 @@ panels energy_vs_step.png \
       plot="$plot '$f' u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$(attr $g/dt)") s, t = $(attr $g/t_end) s',"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then echo "plot 1/0 notitle"; else echo "${plot%,}"; fi
+    if [[ $k -eq 0 ]]; then empty_panel "no Tao method in the study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow"
 } >> "$gp"

@@ -346,6 +346,16 @@ contains
       s = trim(buf)
    end function clock
 
+   !> Seconds with two decimals, e.g. '0.04'.
+   function seconds(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(f0.2)') x
+      s = trim(adjustl(buf))
+      if (s(1:1) == '.') s = '0'//s
+   end function seconds
+
    !> One line describing a job.
    function describe(cfg, res, job) result(s)
       type(study_config_t), intent(in) :: cfg
@@ -356,20 +366,20 @@ contains
       case (job_sweep)
          associate (sw => res%sweeps(job%i))
             if (sw%mode == mode_step) then
-               write (s, '(a, " ", a, " h=", es9.3, " to t=", es8.2, " s (", f0.2, " s)")') &
+               write (s, '(a, " ", a, " h=", es9.3, " to t=", es8.2, " s (", a, " s)")') &
                   cfg%cases(sw%icase)%name, sw%method, sw%x(job%k), sw%t_long, &
-                  sw%wall_long(job%k)
+                  seconds(sw%wall_long(job%k))
             else
-               write (s, '(a, " ", a, " rtol=", es8.2, " to t=", es8.2, " s (", f0.2, " s)")') &
+               write (s, '(a, " ", a, " rtol=", es8.2, " to t=", es8.2, " s (", a, " s)")') &
                   cfg%cases(sw%icase)%name, sw%method, sw%x(job%k), sw%t_long, &
-                  sw%wall_long(job%k)
+                  seconds(sw%wall_long(job%k))
             end if
          end associate
       case (job_roundoff)
          associate (ro => res%roundoff(job%i))
-            write (s, '("roundoff ", a, " ", a, " run ", i0, " (", f0.2, " s)")') ro%method, &
+            write (s, '("roundoff ", a, " ", a, " run ", i0, " (", a, " s)")') ro%method, &
                trim(merge('compensated', 'plain      ', job%c == 1)), job%k, &
-               ro%wall(job%k, job%c)
+               seconds(ro%wall(job%k, job%c))
          end associate
       case default
          associate (ts => res%tao(job%i))
@@ -783,8 +793,8 @@ contains
          end associate
       end do
       if (show) then
-         write (error_unit, '(a, i0, a, f0.1, a)') 'dpend study: timed ', n, &
-            ' short runs on one thread in ', wall_clock() - start, ' s'
+         write (error_unit, '(a, i0, a, a, a)') 'dpend study: timed ', n, &
+            ' short runs on one thread in ', seconds(wall_clock() - start), ' s'
          flush (error_unit)
       end if
    end subroutine time_short_runs

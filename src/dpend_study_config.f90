@@ -209,8 +209,10 @@ contains
           '                    data/study.nml, identical to the built-in defaults)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
-          '  --methods LIST    only these methods (comma separated, from the config)'//nl// &
-          '  --cases LIST      only these cases (comma separated, from the config)'//nl// &
+          '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
+          '                    in the roundoff and Tao experiments'//nl// &
+          '  --cases LIST      only these cases (comma separated, from the config); a'//nl// &
+          '                    verdict case left out becomes the first of them'//nl// &
           '  --threads N       OpenMP threads (default: OMP_NUM_THREADS or all cores)'//nl// &
           '  --output FILE     HDF5 file; default out/study/study.h5 (directory created)'//nl// &
           '  --force           overwrite an existing output file'//nl// &
@@ -331,6 +333,19 @@ contains
          end if
       end do
       cfg%methods = pack(cfg%methods, keep)
+      ! the roundoff and Tao experiments keep only the selected methods
+      keep_ro: block
+         logical :: sel(max(size(cfg%ro_methods), size(cfg%tao_methods)))
+         do i = 1, size(cfg%ro_methods)
+            sel(i) = any(names == cfg%ro_methods(i))
+         end do
+         cfg%ro_dt = pack(cfg%ro_dt, sel(:size(cfg%ro_methods)))
+         cfg%ro_methods = pack(cfg%ro_methods, sel(:size(cfg%ro_methods)))
+         do i = 1, size(cfg%tao_methods)
+            sel(i) = any(names == cfg%tao_methods(i))
+         end do
+         cfg%tao_methods = pack(cfg%tao_methods, sel(:size(cfg%tao_methods)))
+      end block keep_ro
    end subroutine select_methods
 
    !> Keep only the cases named in the comma-separated `list`.
@@ -353,6 +368,11 @@ contains
          keep(i) = .true.
       end do
       cfg%cases = pack(cfg%cases, keep)
+      ! the verdict and experiment cases fall back to the first selected case
+      if (case_index(cfg, cfg%order_case) == 0) cfg%order_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%drift_case) == 0) cfg%drift_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%ro_case) == 0) cfg%ro_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%tao_case) == 0) cfg%tao_case = cfg%cases(1)%name
    end subroutine select_cases
 
    ! ----------------------------------------------------------------- namelist

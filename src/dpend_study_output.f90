@@ -244,7 +244,9 @@ contains
          end associate
       end do
       v%roundoff = len(bad) == 0 .and. size(res%roundoff) > 0
-      if (v%roundoff) then
+      if (size(res%roundoff) == 0) then
+         v%roundoff_text = 'no roundoff runs in this study'
+      else if (v%roundoff) then
          v%roundoff_text = "Brouwer's law: compensated exponents within 0.5 ± " &
                            //fmt(brouwer_tol, 'f0.2')
       else
