@@ -45,9 +45,9 @@ module dpend_study
    use, intrinsic :: iso_fortran_env, only: error_unit, qp => real128
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t
    use dpend_model, only: pendulum_t, energy, hamiltonian, energy_scale
-   use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite
+   use dpend_integrator, only: integrator_t, stat_ok
    use dpend_integrators, only: new_integrator
    use dpend_rk_explicit, only: rk_adaptive_t
    use dpend_symplectic, only: symplectic_t

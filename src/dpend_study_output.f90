@@ -2,8 +2,7 @@
 !> verdicts, the Markdown summary, and the command that runs it all and draws
 !> the figures with scripts/plot_study.sh.
 module dpend_study_output
-   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, compiler_version, &
-                                            compiler_options
+   use, intrinsic :: iso_fortran_env, only: output_unit, compiler_version, compiler_options
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error

@@ -14,7 +14,7 @@ module test_study
    use dpend_study, only: study_result_t, run_study, step_grid, time_bins, hamiltonian_qp
    use dpend_study_output, only: write_study_h5, study_summary, study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
-   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private
    public :: collect_study
