@@ -15,6 +15,8 @@ program dpend
    use dpend_cli, only: parse_real
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
+   use dpend_study_config, only: study_config_t, parse_study, study_help
+   use dpend_study_output, only: run_study_command
    implicit none
 
    interface
@@ -50,6 +52,8 @@ program dpend
       call sweep(args(2:))
    case ('sweep-compare')
       call sweep_compare(args(2:))
+   case ('study')
+      call study(args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -68,6 +72,7 @@ contains
           '  sweep      maps over initial conditions (flip time, energy error, Lyapunov)'//nl// &
           '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
           '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
+          '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  methods    list the integration methods'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
@@ -116,6 +121,24 @@ contains
          call fail(2, 'dpend '//command//': '//error%message)
       end if
    end subroutine chaos
+
+   subroutine study(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(study_config_t) :: cfg
+      type(error_t), allocatable :: error
+      logical :: help, failed
+      call parse_study(sub, cfg, help, error)
+      if (allocated(error)) call fail(2, 'dpend study: '//error%message)
+      if (help) then
+         write (output_unit, '(a)') study_help()
+         return
+      end if
+      call run_study_command(cfg, error, failed)
+      if (allocated(error)) then
+         if (failed) call fail(1, 'dpend study: '//error%message)
+         call fail(2, 'dpend study: '//error%message)
+      end if
+   end subroutine study
 
    subroutine export(sub)
       type(arg_t), intent(in) :: sub(:)

@@ -1,0 +1,402 @@
+!> The energy-conservation study: its arithmetic (power-law fits, drift
+!> exponents, grids) on synthetic data with known answers, the quadruple-
+!> precision energy, a tiny study run in process, the default configuration
+!> file, and the command's rejection of bad input.
+module test_study
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use dpend_kinds, only: dp, i8
+   use dpend_model, only: pendulum_t, hamiltonian, dh_dq, dh_dp
+   use dpend_fit, only: fit_t, loglog_fit, drift_exponent
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
+                                 study_defaults, read_study_config, validate_study_config, &
+                                 study_namelist, apply_quick
+   use dpend_study, only: study_result_t, run_study, step_grid, time_bins, hamiltonian_qp
+   use dpend_study_output, only: write_study_h5, study_summary, study_verdicts, verdicts_t
+   use test_cli, only: run_command, scratch_dir, read_text
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t
+   implicit none
+   private
+   public :: collect_study
+
+   real(dp), parameter :: pi = acos(-1.0_dp)
+
+contains
+
+   subroutine collect_study(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [ &
+              new_unittest('fit_exact_power_law', test_fit_exact), &
+              new_unittest('fit_with_noise', test_fit_noise), &
+              new_unittest('fit_window_floor_and_gaps', test_fit_window), &
+              new_unittest('drift_exponents_known', test_drift), &
+              new_unittest('grids', test_grids), &
+              new_unittest('hamiltonian_quadruple', test_hamiltonian_qp), &
+              new_unittest('tiny_study_orders', test_tiny_study), &
+              new_unittest('default_config_file', test_default_config), &
+              new_unittest('bad_input_rejected', test_bad_input)]
+   end subroutine collect_study
+
+   ! ----------------------------------------------------------------- helpers
+
+   !> Deterministic standard normal numbers (Park–Miller generator + Box–Muller),
+   !> reproducible on every compiler.
+   subroutine normals(z)
+      real(dp), intent(out) :: z(:)
+      integer(i8) :: s
+      real(dp) :: u1, u2
+      integer :: i
+      s = 12345_i8
+      do i = 1, size(z)
+         u1 = next()
+         u2 = next()
+         z(i) = sqrt(-2.0_dp*log(u1))*cos(2.0_dp*pi*u2)
+      end do
+   contains
+      real(dp) function next()
+         s = modulo(16807_i8*s, 2147483647_i8)
+         next = real(s, dp)/2147483647.0_dp
+      end function next
+   end subroutine normals
+
+   subroutine write_file(path, text)
+      character(len=*), intent(in) :: path, text
+      integer :: unit
+      open (newunit=unit, file=path, status='replace', action='write')
+      write (unit, '(a)') text
+      close (unit)
+   end subroutine write_file
+
+   function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+
+   ! ------------------------------------------------------------------- fits
+
+   !> y = 3 x^2.5 exactly: slope 2.5, intercept ln 3, no scatter.
+   subroutine test_fit_exact(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: x(9), y(9)
+      type(fit_t) :: fit
+      integer :: i
+      x = [(1.0e-3_dp*2.0_dp**(0.5_dp*i), i=0, 8)]
+      y = 3.0_dp*x**2.5_dp
+      fit = loglog_fit(x, y)
+      call check_true(error, fit%ok .and. fit%n == 9, 'fit uses all 9 points')
+      call check(error, fit%slope, 2.5_dp, 'slope', abs=1e-12_dp)
+      call check(error, fit%intercept, log(3.0_dp), 'intercept', abs=1e-10_dp)
+      call check(error, fit%stderr, 0.0_dp, 'standard error', abs=1e-10_dp)
+      call check(error, fit%x_lo, x(1), 'x_lo', rel=1e-15_dp)
+      call check(error, fit%x_hi, x(9), 'x_hi', rel=1e-15_dp)
+      ! decreasing power (error against work)
+      fit = loglog_fit(x, 7.0_dp*x**(-8))
+      call check(error, fit%slope, -8.0_dp, 'slope -8', abs=1e-10_dp)
+   end subroutine test_fit_exact
+
+   !> y = 2 x^(-1.5) exp(σ z), z standard normal, σ = 0.1, 400 points over 3
+   !> decades: the slope is -1.5 within 3 theoretical standard errors
+   !> σ/(√n sd(ln x)), and the reported standard error is that value within 20 %.
+   subroutine test_fit_noise(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: n = 400
+      real(dp), parameter :: sigma = 0.1_dp
+      real(dp) :: x(n), y(n), z(n), lx(n), sd, expected
+      type(fit_t) :: fit
+      integer :: i
+      call normals(z)
+      x = [(10.0_dp**(3.0_dp*(i - 1)/real(n - 1, dp)), i=1, n)]
+      y = 2.0_dp*x**(-1.5_dp)*exp(sigma*z)
+      lx = log(x)
+      sd = sqrt(sum((lx - sum(lx)/n)**2)/n)
+      expected = sigma/(sqrt(real(n, dp))*sd)
+      fit = loglog_fit(x, y)
+      call check(error, fit%slope, -1.5_dp, 'noisy slope', abs=3.0_dp*expected)
+      call check(error, fit%stderr, expected, 'standard error of the slope', rel=0.2_dp)
+      call check(error, fit%intercept, log(2.0_dp), 'noisy intercept', abs=0.05_dp)
+   end subroutine test_fit_noise
+
+   !> Window and floor select the points; NaN, zero and negative values are
+   !> skipped; fewer than two usable points give no fit.
+   subroutine test_fit_window(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: t(40), e(40), nan
+      type(fit_t) :: fit
+      integer :: i
+      nan = ieee_value(1.0_dp, ieee_quiet_nan)
+      ! bounded (1e-8) up to t = 10, then a linear drift 1e-9 t
+      t = [(10.0_dp**(-1.0_dp + 0.15_dp*i), i=0, 39)]
+      e = max(1.0e-8_dp, 1.0e-9_dp*t)
+      fit = loglog_fit(t, e, x_min=20.0_dp, x_max=1.0e5_dp)
+      call check(error, fit%slope, 1.0_dp, 'windowed drift', abs=1e-12_dp)
+      fit = loglog_fit(t, e, x_max=9.0_dp)
+      call check(error, fit%slope, 0.0_dp, 'windowed plateau', abs=1e-12_dp)
+      ! a roundoff floor at 1e-8: only the drifting points count
+      fit = loglog_fit(t, e, y_min=1.5e-8_dp)
+      call check(error, fit%slope, 1.0_dp, 'floor removes the plateau', abs=1e-12_dp)
+      ! gaps
+      e(5) = nan; e(30) = 0.0_dp; e(31) = -1.0_dp
+      fit = loglog_fit(t, e, x_min=20.0_dp)
+      call check_true(error, fit%ok .and. fit%n == count(t >= 20.0_dp) - 2, &
+                      'NaN, zero and negative values skipped, n = '//itoa(fit%n))
+      call check(error, fit%slope, 1.0_dp, 'slope with gaps', abs=1e-12_dp)
+      fit = loglog_fit([1.0_dp, 2.0_dp, 3.0_dp], [nan, 1.0_dp, 0.0_dp])
+      call check_true(error, .not. fit%ok .and. fit%n == 1, 'one usable point: no fit')
+      fit = loglog_fit([2.0_dp, 2.0_dp], [1.0_dp, 3.0_dp])
+      call check_true(error, .not. fit%ok, 'equal x: no fit')
+   end subroutine test_fit_window
+
+   !> Drift exponents of known error histories kept as maxima in logarithmic
+   !> time bins, as the study does: a bounded oscillation (0), a linear drift
+   !> plus oscillation (1), and a √t envelope (1/2).
+   subroutine test_drift(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: edges(50), b0(50), b1(50), bh(50), t, e
+      integer :: j, i
+      type(fit_t) :: fit
+      edges = time_bins(1.0e4_dp, 5, 10)
+      call check(error, edges(50), 1.0e4_dp, 'last bin edge', rel=1e-15_dp)
+      call check(error, edges(1), 1.0e4_dp*10.0_dp**(-4.9_dp), 'first bin edge', rel=1e-12_dp)
+      b0 = -1.0_dp; b1 = -1.0_dp; bh = -1.0_dp
+      j = 1
+      do i = 1, 1000000
+         t = 0.01_dp*i
+         do while (j < 50)
+            if (t <= edges(j)) exit
+            j = j + 1
+         end do
+         e = 1.0e-6_dp*abs(sin(2.7_dp*t))
+         b0(j) = max(b0(j), e)
+         b1(j) = max(b1(j), 1.0e-9_dp*t + 1.0e-10_dp*abs(sin(2.7_dp*t)))
+         bh(j) = max(bh(j), 1.0e-12_dp*sqrt(t)*(1.0_dp + 0.1_dp*sin(t)))
+      end do
+      where (b0 < 0.0_dp) b0 = ieee_value(1.0_dp, ieee_quiet_nan)
+      fit = drift_exponent(edges, b0, 100.0_dp, 1.0e4_dp)
+      call check(error, fit%slope, 0.0_dp, 'bounded oscillation', abs=1e-3_dp)
+      fit = drift_exponent(edges, b1, 100.0_dp, 1.0e4_dp)
+      call check(error, fit%slope, 1.0_dp, 'linear drift', abs=0.01_dp)
+      fit = drift_exponent(edges, bh, 100.0_dp, 1.0e4_dp)
+      call check(error, fit%slope, 0.5_dp, 'square-root growth', abs=0.01_dp)
+   end subroutine test_drift
+
+   !> Step grids hit the checkpoints exactly and stay geometric.
+   subroutine test_grids(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: h(7), target
+      integer :: k
+      h = step_grid(1.0e-3_dp, 4.0e-3_dp, 7, 0.25_dp)
+      do k = 1, 7
+         call check(error, 0.25_dp/h(k), real(nint(0.25_dp/h(k)), dp), 'steps per interval', &
+                    abs=1e-9_dp)
+         target = 4.0e-3_dp*(0.25_dp)**((k - 1)/6.0_dp)
+         call check(error, h(k), target, 'close to the geometric target', rel=0.02_dp)
+         if (k > 1) call check_true(error, h(k) < h(k - 1), 'strictly decreasing')
+      end do
+      ! coarse rounding still gives distinct steps
+      h = step_grid(0.05_dp, 0.1_dp, 7, 0.25_dp)
+      call check_true(error, all(h(2:) < h(:6)), 'distinct steps when rounding is coarse')
+   end subroutine test_grids
+
+   !> The quadruple-precision H agrees with the model's H, and its dependence
+   !> on the compensation e is the gradient of H.
+   subroutine test_hamiltonian_qp(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      real(dp) :: y(4), e(4), grad(4), dh
+      real(dp), parameter :: states(4, 3) = reshape([-1.2_dp, -1.7_dp, 0.3_dp, -0.2_dp, &
+                                                     0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
+                                                     2.0_dp, -3.0_dp, 4.0_dp, 1.0_dp], [4, 3])
+      integer :: i
+      par = pendulum_t(m1=1.3_dp, m2=0.7_dp, l1=0.9_dp, l2=1.4_dp, g=9.81_dp)
+      do i = 1, 3
+         y = states(:, i)
+         call check(error, real(hamiltonian_qp(par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]), dp), &
+                    hamiltonian(par, y(1:2), y(3:4)), 'H in quad vs double', abs=1e-14_dp)
+         e = 1.0e-12_dp*[1.0_dp, -2.0_dp, 0.5_dp, 3.0_dp]
+         grad = [dh_dq(par, y(1:2), y(3:4)), dh_dp(par, y(1:2), y(3:4))]
+         dh = real(hamiltonian_qp(par, y, e) - hamiltonian_qp(par, y, 0.0_dp*e), dp)
+         call check(error, dh, dot_product(grad, e), 'dH = grad H . e', &
+                    rel=1e-6_dp, abs=1e-24_dp)
+      end do
+   end subroutine test_hamiltonian_qp
+
+   ! ------------------------------------------------------------------ study
+
+   !> A tiny study in process: two cases, four methods, short long runs, two
+   !> roundoff runs, two values of ω. The measured orders are the nominal ones
+   !> (±0.3), the file holds the tables, the summary names every method.
+   subroutine test_tiny_study(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(study_result_t) :: res, res1
+      type(verdicts_t) :: v
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: dir, md, text
+      real(dp), allocatable :: h(:), ge(:)
+      real(dp) :: order
+      integer :: s
+      cfg = study_defaults()
+      cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
+                                [0.0_dp, 0.0_dp], 3000.0_dp), &
+                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 300.0_dp)]
+      cfg%methods = [study_method_t('rk4', 2.0e-3_dp, 5.0e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('dopri5', 3.0e-3_dp, 8.0e-3_dp, 1.0e-10_dp, 1.0e-8_dp), &
+                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('verlet', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 4
+      cfg%n_rtol = 3
+      cfg%order_case = 'small'
+      cfg%drift_case = 'small'
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%ro_methods = [character(len=16) :: 'gauss4']
+      cfg%ro_dt = [1.0e-2_dp]
+      cfg%ro_steps = 300.0_dp
+      cfg%ro_runs = 2
+      cfg%ro_fit_t_min = 0.1_dp
+      cfg%tao_methods = [character(len=16) :: 'tao2']
+      cfg%n_omega = 2
+      cfg%tao_t_end = 0.5_dp
+      cfg%tao_dt = 1.0e-2_dp
+      cfg%threads = 2
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call run_study(cfg, res, quiet=.true.)
+      call check_true(error, size(res%sweeps) == 2*5, 'sweeps: 2 cases x (4 + 1 tolerance)')
+      ! the jobs share nothing: one thread gives bit for bit the same numbers
+      cfg%threads = 1
+      call run_study(cfg, res1, quiet=.true.)
+      do s = 1, size(res%sweeps)
+         call check_true(error, all(res1%sweeps(s)%global_error == res%sweeps(s)%global_error) &
+                         .and. all(res1%sweeps(s)%energy_long == res%sweeps(s)%energy_long), &
+                         res%sweeps(s)%method//': 1 and 2 threads agree')
+      end do
+      call check_true(error, all(res1%roundoff(1)%rms == res%roundoff(1)%rms) .and. &
+                      all(res1%tao(1)%energy_max == res%tao(1)%energy_max), &
+                      'roundoff and Tao runs: 1 and 2 threads agree')
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            if (sw%mode /= 1 .or. sw%icase /= 1) cycle
+            call check_true(error, all(sw%stat == 0), sw%method//': every run succeeded')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, real(sw%order, dp), &
+                       sw%method//' order from the global error', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
+                       sw%method//' order from the energy error', abs=0.3_dp)
+            call check_true(error, all(sw%long_steps > 0) .and. all(sw%short_rhs > 0), &
+                            sw%method//' counters')
+            call check_true(error, all(sw%wall_short > 0.0_dp), sw%method//' wall times')
+            if (sw%method == 'gauss4' .or. sw%method == 'verlet') &
+               call check_true(error, all(sw%short_iter > 0), sw%method//' inner iterations')
+         end associate
+      end do
+      call check_true(error, res%refs(1)%check_difference < 1e-12_dp, &
+                      'reference and check method agree')
+      call check_true(error, res%refs(2)%e_scale > 19.0_dp, &
+                      'horizontal release: E_s is the upright potential energy (19.6 J)')
+      v = study_verdicts(cfg, res)
+      call check_true(error, v%orders, 'order verdict: '//v%orders_text)
+      if (allocated(error)) return   ! (the next call would reset error)
+      dir = scratch_dir('study-tiny')
+      call write_study_h5(cfg, res, dir//'/tiny.h5', error)
+      if (allocated(error)) return
+      call h5%open(dir//'/tiny.h5', 'r', error)
+      if (allocated(error)) return
+      call h5%read('/cases/small/gauss4/step/h', h, error)
+      if (.not. allocated(error)) call h5%read('/cases/small/gauss4/step/global_error', ge, error)
+      if (.not. allocated(error)) call h5%readattr('/cases/small/gauss4/step', 'order_global', &
+                                                    order, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'methods', text, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, size(h) == 4 .and. size(ge) == 4, 'sweep arrays of 4 points')
+      call check(error, order, 4.0_dp, 'order attribute', abs=0.3_dp)
+      call check_true(error, text == 'rk4 dopri5 gauss4 verlet', 'methods attribute: '//text)
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, '| gauss4 | 4 |') > 0 .and. index(md, '| verlet |') > 0 &
+                      .and. index(md, 'Roundoff') > 0 .and. index(md, 'tao2') > 0, &
+                      'summary tables')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_tiny_study
+
+   !> data/study.nml is the default study, written out: reading it gives the
+   !> built-in defaults.
+   subroutine test_default_config(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: from_file, defaults
+      character(len=:), allocatable :: text_file, text_defaults
+      from_file = study_defaults()
+      from_file%cases = [from_file%cases(1)]
+      from_file%methods = [from_file%methods(1)]
+      call read_study_config('data/study.nml', from_file, error)
+      if (allocated(error)) return
+      defaults = study_defaults()
+      text_file = study_namelist(from_file)
+      text_defaults = study_namelist(defaults)
+      call check_true(error, text_file == text_defaults, &
+                      'data/study.nml differs from the defaults:'//new_line('a')//text_file)
+      call check_true(error, from_file%output == 'out/study/study.h5', 'output file')
+      if (allocated(error)) return   ! (the next call would reset error)
+      call validate_study_config(from_file, error)
+      if (allocated(error)) return
+      from_file%quick = .true.
+      call apply_quick(from_file)
+      call check(error, from_file%cases(1)%long_steps, 2.0e4_dp, 'quick long runs', rel=1e-12_dp)
+   end subroutine test_default_config
+
+   !> Bad input: exit status 2, one line on stderr naming the field, no file.
+   subroutine test_bad_input(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('study-bad')
+      call rejected('--threads 0', 'threads')
+      call rejected('--methods rk4,nosuch', 'nosuch')
+      call rejected('--cases tiny', 'tiny')
+      call rejected('--dt 1e-3', 'unknown option')
+      call rejected('--m1 -1', 'm1')
+      call rejected('--config '//dir//'/missing.nml', 'config')
+      call write_file(dir//'/range.nml', "&study method(1) = 'rk4', h_min(1) = 0.01, "// &
+                      'h_max(1) = 0.001 /')
+      call rejected('--config '//dir//'/range.nml', 'h_min')
+      call write_file(dir//'/key.nml', '&study n_h = 5, bogus = 1 /')
+      call rejected('--config '//dir//'/key.nml', 'bogus')
+      call write_file(dir//'/group.nml', '&integration dt = 1 /')
+      call rejected('--config '//dir//'/group.nml', 'integration')
+      call write_file(dir//'/case.nml', "&study order_case = 'nowhere' /")
+      call rejected('--config '//dir//'/case.nml', 'order_case')
+      call write_file(dir//'/ro.nml', "&study ro_method(1) = 'rk4' /")
+      call rejected('--config '//dir//'/ro.nml', 'ro_method')
+      call write_file(dir//'/tao.nml', "&study tao_method(1) = 'gauss4' /")
+      call rejected('--config '//dir//'/tao.nml', 'tao_method')
+      call write_file(dir//'/tol.nml', "&study method(1) = 'rk4', rtol_min(1) = 1e-9, "// &
+                      'rtol_max(1) = 1e-6 /')
+      call rejected('--config '//dir//'/tol.nml', 'rtol')
+      ! an existing output is kept
+      call write_file(dir//'/out.h5', 'keep me')
+      call rejected('--quick', 'exists')
+      call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine rejected(args, needle)
+         character(len=*), intent(in) :: args, needle
+         character(len=:), allocatable :: text
+         integer :: stat, n
+         logical :: exists, kept
+         if (allocated(error)) return
+         stat = run_command(dir, 'study --no-figures --output '//dir//'/out.h5 '//args)
+         call read_text(dir//'/stderr', text, n)
+         inquire (file=dir//'/out.h5', exist=exists)
+         kept = .true.
+         if (exists) kept = .not. is_hdf5(dir//'/out.h5')
+         call check_true(error, stat == 2, '['//args//'] exit status 2, got '//itoa(stat)// &
+                         ': '//text)
+         call check_true(error, n == 1, '['//args//'] one stderr line, got '//itoa(n)//': '//text)
+         call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
+                         needle//'": '//text)
+         call check_true(error, kept, '['//args//'] no HDF5 output written')
+      end subroutine rejected
+   end subroutine test_bad_input
+end module test_study
