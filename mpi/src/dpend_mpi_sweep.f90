@@ -43,7 +43,7 @@ module dpend_mpi_sweep
 
    !> Per-rank figures, in the order of `mpi_report_t%ranks`' rows.
    integer, parameter :: f_blocks = 1, f_traj = 2, f_steps = 3, f_busy = 4, f_io = 5, &
-                         f_finish = 6, f_threads = 7, n_fields = 7
+                         f_finish = 6, f_threads = 7, f_cpu = 8, n_fields = 8
 
    !> What an MPI sweep did: the summary of the serial sweep, and on rank 0 the
    !> load balance (per rank) and the cost of every block computed by this run.
@@ -54,7 +54,8 @@ module dpend_mpi_sweep
       real(dp), allocatable :: ranks(:, :)    !! (n_fields, nranks): blocks, trajectories,
                                               !! RK4 steps, busy thread-seconds in the
                                               !! kernel, seconds writing, time of its last
-                                              !! block since the start [s], threads
+                                              !! block since the start [s], threads, CPU
+                                              !! seconds of the process in that time
       integer, allocatable :: block_rank(:)   !! rank that computed block b (-1: not
                                               !! computed by this run)
       integer, allocatable :: block_size(:)   !! initial conditions of block b
@@ -82,6 +83,7 @@ contains
       integer :: me, np, complete, b, j0, nb, nmissing, ierr
       logical :: failed
       real(dp) :: t0, mine(n_fields)
+      real :: cpu0, cpu1
       real(dp), allocatable :: all_ranks(:, :)
       integer :: ignored_i(1)
       integer(i8) :: ignored_i8(1)
@@ -144,11 +146,14 @@ contains
                           cfg%quiet .or. me /= 0)
       call counter%create(comm, 2)   ! 0: next missing block, 1: trajectories written
       failed = .false.
+      call cpu_time(cpu0)
       t0 = MPI_Wtime()
       !$omp parallel default(shared)
       call work()
       !$omp end parallel
       mine(f_finish) = MPI_Wtime() - t0
+      call cpu_time(cpu1)
+      mine(f_cpu) = cpu1 - cpu0
       call counter%destroy()
       report%wall = MPI_Wtime() - t0
       call h5%close(cerr)
@@ -277,11 +282,11 @@ contains
       if (.not. allocated(report%ranks)) return
       associate (t => report%ranks)
          write (unit, '(a)') 'rank  threads  blocks  trajectories       rk4_steps'// &
-            '  busy_thread_s  write_s  last_block_s'
+            '  busy_thread_s  write_s  last_block_s  cpu_s'
          do r = 1, report%nranks
-            write (unit, '(i4, i9, i8, i14, i16, f15.2, f9.2, f14.2)') r - 1, &
+            write (unit, '(i4, i9, i8, i14, i16, f15.2, f9.2, f14.2, f7.2)') r - 1, &
                nint(t(f_threads, r)), nint(t(f_blocks, r)), nint(t(f_traj, r), i8), &
-               nint(t(f_steps, r), i8), t(f_busy, r), t(f_io, r), t(f_finish, r)
+               nint(t(f_steps, r), i8), t(f_busy, r), t(f_io, r), t(f_finish, r), t(f_cpu, r)
          end do
          busy_mean = sum(t(f_busy, :))/report%nranks
          busy_max = maxval(t(f_busy, :))
