@@ -2,6 +2,7 @@
 """Per-block cost distribution of a sweep and its predicted behaviour on more ranks.
 
 Usage: scripts/mpi_scaling.py BLOCKS.txt [--groups 1,4,16] [--workers 1,2,4,...]
+                              [--cost seconds|steps]
 
 BLOCKS.txt is written by `dpend-mpi sweep --block-times FILE` (columns: block, rank,
 initial conditions, RK4 steps, kernel seconds), best from a run on 1 rank x 1 thread
@@ -13,6 +14,8 @@ index order, each to the first worker that is free. Printed: the predicted wall
 time, the parallel efficiency total / (W x wall), and the bound of a greedy
 schedule, wall <= total / W + max block (the tail: the last block started may be
 the largest). Overheads (counter, writes: about 1 ms per block here) are left out.
+With --cost steps, a block costs its number of RK4 steps times the mean time per
+step of the file: deterministic, free of the noise of a shared machine.
 Standard library only.
 """
 import heapq
@@ -52,12 +55,18 @@ def main(argv):
         print(__doc__.strip())
         return 0 if len(argv) >= 2 else 2
     groups = [1]
+    cost = 'seconds'
     workers = [1, 2, 4, 8, 16, 32, 64, 128, 256, 512]
     args = argv[2:]
     while args:
         opt = args.pop(0)
         if opt == '--groups':
             groups = [int(x) for x in args.pop(0).split(',')]
+        elif opt == '--cost':
+            cost = args.pop(0)
+            if cost not in ('seconds', 'steps'):
+                print('mpi_scaling.py: --cost is seconds or steps', file=sys.stderr)
+                return 2
         elif opt == '--workers':
             workers = [int(x) for x in args.pop(0).split(',')]
         else:
@@ -78,8 +87,13 @@ def main(argv):
     rate = [st / sc for st, sc in zip(steps, secs) if sc > 0]
     print(f'steps per second over the blocks: cv {statistics.pstdev(rate) / statistics.fmean(rate):.3f}'
           ' (the cost of a block is its number of RK4 steps)')
+    unit = secs
+    if cost == 'steps':
+        per_step = total / sum(steps)
+        unit = [st * per_step for st in steps]
+        print(f'costs from the step counts at {per_step * 1e9:.1f} ns per trajectory-step')
     for g in groups:
-        costs = [sum(secs[i:i + g]) for i in range(0, len(secs), g)]
+        costs = [sum(unit[i:i + g]) for i in range(0, len(unit), g)]
         cmax, cmean = max(costs), statistics.fmean(costs)
         print()
         print(f'block = {g} x {rows[0][1]} initial conditions: {len(costs)} blocks, '

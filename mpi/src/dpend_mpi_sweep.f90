@@ -51,6 +51,7 @@ module dpend_mpi_sweep
       type(sweep_summary_t) :: summary        !! as `dpend sweep` reports it
       integer :: nranks = 1                   !! MPI ranks
       real(dp) :: wall = 0                    !! wall time of the distributed phase [s]
+      real(dp) :: finalize = 0                !! rank 0: the compressed rewrite [s]
       real(dp), allocatable :: ranks(:, :)    !! (n_fields, nranks): blocks, trajectories,
                                               !! RK4 steps, busy thread-seconds in the
                                               !! kernel, seconds writing, time of its last
@@ -198,7 +199,11 @@ contains
       if (me == 0) call move_alloc(all_ranks, report%ranks)
 
       ! rank 0 alone: the compressed rewrite (serial open of the closed file)
-      if (me == 0) call finalize_file(cfg%run%output, setup, error)
+      if (me == 0) then
+         t0 = MPI_Wtime()
+         call finalize_file(cfg%run%output, setup, error)
+         report%finalize = MPI_Wtime() - t0
+      end if
       call agree(comm, error)
 
    contains
@@ -297,8 +302,9 @@ contains
             maxval(t(f_steps, :))/max(sum(t(f_steps, :))/report%nranks, 1.0_dp), &
             ', efficiency busy/(threads x wall) = ', &
             100*sum(t(f_busy, :))/max(threads*report%wall, 1e-12_dp), ' %'
-         write (unit, '(a, f0.2, a, f0.2, a)') 'wall_s: ', report%wall, &
-            ' (last rank out of work at ', finish_max, ' s)'
+         write (unit, '(a, f0.2, a, f0.2, a, f0.2, a)') 'wall_s: ', report%wall, &
+            ' (last rank out of work at ', finish_max, ' s); compressed rewrite on rank 0: ', &
+            report%finalize, ' s'
       end associate
       secs = pack(report%block_seconds, report%block_rank >= 0)
       if (size(secs) > 0) then
