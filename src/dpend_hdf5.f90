@@ -7,7 +7,8 @@
 !> Strings are fixed-length, null-padded, ASCII. Trailing blanks of paths, names
 !> and file names are ignored. Every failure comes back as an `error_t` naming the
 !> file and the path; HDF5's own error printing is off.
-!> HDF5 here is the serial library: use an `h5file_t` from one thread at a time.
+!> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
+!> an `h5file_t` from one thread at a time.
 module dpend_hdf5
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
    use, intrinsic :: iso_fortran_env, only: real64, int32
