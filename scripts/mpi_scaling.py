@@ -85,7 +85,8 @@ def main(argv):
           f'mean {statistics.fmean(s):.4f}  cv {statistics.pstdev(s) / statistics.fmean(s):.3f}'
           f'  max/mean {s[-1] / statistics.fmean(s):.2f}')
     rate = [st / sc for st, sc in zip(steps, secs) if sc > 0]
-    print(f'steps per second over the blocks: cv {statistics.pstdev(rate) / statistics.fmean(rate):.3f}'
+    cv_rate = statistics.pstdev(rate) / statistics.fmean(rate)
+    print(f'steps per second over the blocks: cv {cv_rate:.3f}'
           ' (the cost of a block is its number of RK4 steps)')
     unit = secs
     if cost == 'steps':

@@ -61,7 +61,8 @@ echo
 echo "| run | ranks x threads | wall [s] | speed-up vs 1 x 1 |"
 echo "| --- | --- | --- | --- |"
 base=$(awk '$1 == "mpi_1r_1t" { print $4 }' "$out/walls.txt")
-awk -v b="$base" '{ printf "| %s | %s | %.2f | %.2f |\n", $1, ($2 == 0 ? "serial, " $3 " thread(s)" : $2 " x " $3), $4, b / $4 }' \
+awk -v b="$base" '{ how = ($2 == 0 ? "serial, " $3 " thread(s)" : $2 " x " $3)
+  printf "| %s | %s | %.2f | %.2f |\n", $1, how, $4, b / $4 }' \
   "$out/walls.txt"
 for f in mpi_1r_1t mpi_2r_1t mpi_1r_2t; do
   echo
