@@ -29,12 +29,12 @@ program dpend_mpi
    end interface
 
    type(arg_t), allocatable :: args(:)
-   integer :: provided, me, np
+   integer :: provided, me, np, stat
    character(len=*), parameter :: nl = new_line('a')
 
    ! A rank dies with its launcher (mpirun, orted, slurmstepd): after a kill -9 of
    ! mpirun no orphaned rank goes on writing the file while it is rerun.
-   provided = c_prctl(1_c_int, 9_c_long, 0_c_long, 0_c_long, 0_c_long) ! PDEATHSIG, KILL
+   stat = c_prctl(1_c_int, 9_c_long, 0_c_long, 0_c_long, 0_c_long)   ! PDEATHSIG, KILL
    call MPI_Init_thread(MPI_THREAD_SERIALIZED, provided)
    call MPI_Comm_rank(MPI_COMM_WORLD, me)
    call MPI_Comm_size(MPI_COMM_WORLD, np)
