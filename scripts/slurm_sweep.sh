@@ -17,6 +17,8 @@ set -euo pipefail
 # module load gcc openmpi hdf5/parallel     # site-specific: MPI wrapper + parallel HDF5
 # The HDF5 module's pkg-config name, if it is not Debian's hdf5-openmpi:
 # export DPEND_HDF5_PC=hdf5
+# A file system without file locks (some Lustre mounts):
+# export HDF5_USE_FILE_LOCKING=FALSE
 
 cd "${SLURM_SUBMIT_DIR:-.}"
 # Build once, on the first node, before the ranks start (the build directory is on
