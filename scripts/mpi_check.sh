@@ -12,8 +12,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 . scripts/flags.sh
 dir="${1:-out/mpi_check}"
-rm -rf "$dir"
 mkdir -p "$dir"
+rm -f "$dir"/*.h5 "$dir"/*.h5.tmp "$dir"/*.bin "$dir"/*.txt   # this script's files only
 
 echo "== mpi_check: build (release): dpend and dpend-mpi"
 if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then

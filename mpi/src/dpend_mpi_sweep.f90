@@ -314,8 +314,9 @@ contains
             pct(0.99_dp), secs(size(secs)), ' cv ', stdev(secs)/max(mean(secs), 1e-300_dp)
       end if
    contains
+      !> The p-quantile of the sorted block seconds (nearest rank).
       real(dp) function pct(p)
-         real(dp), intent(in) :: p
+         real(dp), intent(in) :: p  !! in [0, 1]
          pct = secs(max(1, min(size(secs), ceiling(p*size(secs)))))
       end function pct
    end subroutine write_balance
@@ -342,19 +343,21 @@ contains
       close (unit)
    end subroutine write_block_times
 
+   !> Mean of x.
    pure real(dp) function mean(x)
-      real(dp), intent(in) :: x(:)
+      real(dp), intent(in) :: x(:)  !! values
       mean = sum(x)/max(size(x), 1)
    end function mean
 
+   !> Population standard deviation of x.
    pure real(dp) function stdev(x)
-      real(dp), intent(in) :: x(:)
+      real(dp), intent(in) :: x(:)  !! values
       stdev = sqrt(sum((x - mean(x))**2)/max(size(x), 1))
    end function stdev
 
    !> Sort ascending (heapsort).
    subroutine sort(x)
-      real(dp), intent(inout) :: x(:)
+      real(dp), intent(inout) :: x(:)  !! values, sorted on return
       real(dp) :: v
       integer :: n, i
       n = size(x)
