@@ -7,7 +7,8 @@
 !> Strings are fixed-length, null-padded, ASCII. Trailing blanks of paths, names
 !> and file names are ignored. Every failure comes back as an `error_t` naming the
 !> file and the path; HDF5's own error printing is off.
-!> HDF5 here is the serial library: use an `h5file_t` from one thread at a time.
+!> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
+!> an `h5file_t` from one thread at a time.
 module dpend_hdf5
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
    use, intrinsic :: iso_fortran_env, only: real64, int32
@@ -62,12 +63,15 @@ contains
 
    !> Open `filename`: 'r' read only, 'w' create or truncate, 'rw' read-write
    !> (created if missing), 'x' create and fail if it exists. An open file is
-   !> closed first.
-   subroutine file_open(self, filename, mode, error)
+   !> closed first. `access` is a file access property list to start from (e.g.
+   !> one set up for MPI-IO by a parallel HDF5 program; then open and close are
+   !> collective); it is copied, not kept.
+   subroutine file_open(self, filename, mode, error, access)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: filename          !! path on disk
       character(len=*), intent(in) :: mode              !! 'r', 'w', 'rw' or 'x'
       type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t), intent(in), optional :: access    !! file access property list
       integer(hid_t) :: fapl, fid
       integer :: hdferr, ierr
       logical :: on_disk
@@ -77,7 +81,11 @@ contains
       call init_library(error)
       if (allocated(error)) return
       inquire (file=filename, exist=on_disk)
-      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
+      if (present(access)) then
+         call h5pcopy_f(access, fapl, ierr)
+      else
+         call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
+      end if
       call h5pset_fclose_degree_f(fapl, H5F_CLOSE_STRONG_F, ierr)
       hdferr = -1
       why = 'cannot create it (does the directory exist? is the file in use?)'

@@ -29,6 +29,8 @@ module dpend_sweep
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps
+   ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
+   public :: block_range, open_output, write_block, finalize_file
 
    real(dp), parameter :: half_pi = 1.57079632679489661923132169163975144_dp
 
@@ -452,13 +454,21 @@ contains
    end subroutine create_layout
 
    !> Write the results of block b, flush, then flag it done and flush again.
-   subroutine write_block(h5, setup, b, res, error)
+   !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
+   !> flush is collective and the independent raw-data writes of allocated,
+   !> unfiltered chunks bypass HDF5's caches (they reach the file, in order, before
+   !> the write returns).
+   subroutine write_block(h5, setup, b, res, error, flush)
       type(h5file_t), intent(inout) :: h5               !! open working file
       type(sweep_setup_t), intent(in) :: setup          !! setup
       integer, intent(in) :: b                          !! block, 1-based
       type(batch_result_t), intent(in) :: res           !! its results
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      logical, intent(in), optional :: flush            !! flush the file (default true)
       integer :: j0, nb
+      logical :: sync
+      sync = .true.
+      if (present(flush)) sync = flush
       call block_range(setup, b, j0, nb)
       call put_r('t_flip', res%t_flip)
       call put_r('t_flip1', res%t_flip1)
@@ -474,10 +484,10 @@ contains
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)
       if (allocated(error)) return
-      call h5%flush()
+      if (sync) call h5%flush()
       call h5%write_slab('/sweep/done', [1], [b], error)
       if (allocated(error)) return
-      call h5%flush()
+      if (sync) call h5%flush()
    contains
       subroutine put_r(name, v)
          character(len=*), intent(in) :: name

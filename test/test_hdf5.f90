@@ -1,8 +1,11 @@
 !> Tests of `dpend_hdf5`: round trips of every written type and shape, attributes,
-!> slab writes, overwrites, `exists`, and the errors of missing files and datasets.
+!> slab writes, overwrites, `exists`, a given file access list, and the errors of
+!> missing files and datasets.
 module test_hdf5
    use dpend_kinds, only: dp, i8
    use dpend_hdf5, only: h5file_t, is_hdf5
+   use hdf5, only: hid_t, size_t, H5P_FILE_ACCESS_F, h5open_f, h5pcreate_f, h5pclose_f, &
+      h5pset_fapl_core_f
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -26,7 +29,8 @@ contains
          new_unittest('hdf5_missing_dataset', test_missing_dataset), &
          new_unittest('hdf5_modes', test_modes), &
          new_unittest('hdf5_is_hdf5', test_is_hdf5), &
-         new_unittest('hdf5_finalizer', test_finalizer) &
+         new_unittest('hdf5_finalizer', test_finalizer), &
+         new_unittest('hdf5_access_list', test_access_list) &
          ]
    end subroutine collect_hdf5
 
@@ -520,6 +524,35 @@ contains
       call h5%close()
       call delete_file(name)
    end subroutine test_finalizer
+
+   !> `open` with a file access list uses it (the MPI build passes an MPI-IO list):
+   !> with the in-memory driver and no backing store, nothing reaches the disk; the
+   !> caller's list stays valid.
+   subroutine test_access_list(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      integer(hid_t) :: fapl
+      integer :: hdferr
+      real(dp) :: x
+      logical :: there
+      name = temp_name('core')
+      call h5open_f(hdferr)
+      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, hdferr)
+      call h5pset_fapl_core_f(fapl, int(65536, size_t), .false., hdferr)
+      call h5%open(name, 'w', error, access=fapl)
+      if (.not. allocated(error)) call h5%write('/x', 7.0_dp, error)
+      if (.not. allocated(error)) call h5%read('/x', x, error)
+      if (.not. allocated(error)) call check(error, x, 7.0_dp, 'read back in memory')
+      call h5%close()
+      call h5pclose_f(fapl, hdferr)
+      if (allocated(error)) return
+      call check_true(error, hdferr == 0, 'the caller''s access list is still valid')
+      if (allocated(error)) return
+      inquire (file=name, exist=there)
+      call check_true(error, .not. there, 'in-memory file not written to disk')
+      call delete_file(name)
+   end subroutine test_access_list
 
    !> Write to `name` and return without closing.
    subroutine leave_open(name, error)

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Build the MPI variant of the sweep (the fpm package in mpi/, release profile) and
+# print the path of the dpend-mpi binary on the last line. Usage: scripts/build_mpi.sh
+#
+# The package needs the MPI compiler wrapper and parallel HDF5. fpm's hdf5
+# metapackage reads the pkg-config package `hdf5`, which on Debian is the serial
+# library (scripts/setup.sh pins it); this script puts a generated hdf5.pc for the
+# parallel library first on PKG_CONFIG_PATH, for this build only. Environment:
+#   DPEND_HDF5_PC  pkg-config name of the parallel HDF5 (default hdf5-openmpi;
+#                  on a cluster, whatever its HDF5 module provides, e.g. hdf5)
+#   FPM_FC         MPI Fortran compiler wrapper (default mpif90)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+. "$root/scripts/flags.sh"
+pcname="${DPEND_HDF5_PC:-hdf5-openmpi}"
+export FPM_FC="${FPM_FC:-mpif90}"
+command -v "$FPM_FC" >/dev/null 2>&1 ||
+  { echo "build_mpi.sh: no $FPM_FC (run: bash scripts/setup.sh --mpi)" >&2; exit 1; }
+pcdir=$(pkg-config --variable=pcfiledir "$pcname" 2>/dev/null) ||
+  { echo "build_mpi.sh: pkg-config has no $pcname (run: bash scripts/setup.sh --mpi)" >&2
+    exit 1; }
+# The copy drops `Requires:` (the MPI wrapper links MPI itself): with it, fpm takes
+# the MPI library directory for HDF5's and misses the Fortran HDF5 libraries.
+gen="$root/mpi/build/pkgconfig"
+mkdir -p "$gen"
+sed '/^Requires/d' "$pcdir/$pcname.pc" >"$gen/hdf5.pc.new"
+mv "$gen/hdf5.pc.new" "$gen/hdf5.pc"
+export PKG_CONFIG_PATH="$gen${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
+cd "$root/mpi"
+if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then
+  printf '%s\n' "$log" >&2
+  echo "build_mpi.sh: build failed" >&2
+  exit 1
+fi
+bin=$(fpm run dpend-mpi --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |
+  tail -n 1)
+case "$bin" in /*) ;; *) bin="$root/mpi/$bin" ;; esac
+echo "$bin"
