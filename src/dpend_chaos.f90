@@ -23,6 +23,8 @@ module dpend_chaos
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
+   use dpend_cli, only: to_str
+   use dpend_cli, only: scan_help_config
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
@@ -119,9 +121,9 @@ contains
       case ('lyapunov')
          s = s//'  --tau S           renormalisation (QR) interval; default '//num(ch%tau)//nl// &
              '  --vectors K       exponents computed, 1 (largest) to 4; default ' &
-             //itoa(ch%vectors)//nl// &
+             //to_str(ch%vectors)//nl// &
              '  --batches N       time segments for the spread (standard error of the'//nl// &
-             '                    segment exponents); default '//itoa(ch%batches)//nl
+             '                    segment exponents); default '//to_str(ch%batches)//nl
       case ('divergence')
          s = s//'  --t-end S         duration of each pair; default '//num(cfg%t_end)//nl// &
              '  --output-dt S     sampling interval of |delta|; default ' &
@@ -130,7 +132,7 @@ contains
              //num(ch%delta0)//nl// &
              '  --same-energy     put the partner on the energy surface of the reference'//nl// &
              '  --pairs N         pairs averaged; pair k starts at t = (k-1)*spacing on the'//nl// &
-             '                    orbit of the initial state; default '//itoa(ch%pairs)//nl// &
+             '                    orbit of the initial state; default '//to_str(ch%pairs)//nl// &
              '  --pair-spacing S  time between pair starts; default ' &
              //num(ch%pair_spacing)//nl// &
              '  --fit-start S, --fit-end S  fit window; default automatic (from 1 decade'//nl// &
@@ -142,15 +144,15 @@ contains
              //num(cfg%t_end)//nl// &
              '  --energy J        energy of the section; default: that of the initial state' &
              //nl//'                    (--q1 --q2 --w1 --w2; 0 J = both links horizontal' &
-             //' at rest)'//nl//'  --ics N           orbits; default '//itoa(ch%n_ics)//nl// &
+             //' at rest)'//nl//'  --ics N           orbits; default '//to_str(ch%n_ics)//nl// &
              '  --points N        most section points per orbit; default ' &
-             //itoa(ch%n_points)//nl// &
+             //to_str(ch%n_points)//nl// &
              '  --section-link L  link whose angle defines the section, 1 or 2; default ' &
-             //itoa(ch%section_link)//nl// &
+             //to_str(ch%section_link)//nl// &
              '  --section-angle A section angle (mod 2 pi); default '// &
              num(ch%section_angle)//nl// &
              '  --section-direction D  +1: crossing with w_L > 0, -1: w_L < 0, 0: both;' &
-             //' default '//itoa(ch%section_direction)//nl
+             //' default '//to_str(ch%section_direction)//nl
       end select
       s = s//'  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
@@ -209,33 +211,21 @@ contains
       type(chaos_config_t), intent(out) :: ch           !! chaos settings
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value
+      character(len=:), allocatable :: name, value, config
       logical :: matched
       integer :: i
       cfg = chaos_run_defaults(command)
       ch = chaos_defaults(command)
       help = .false.
-      i = 1
-      do while (i <= size(args))
-         select case (args(i)%s)
-         case ('-h', '--help')
-            help = .true.
-            return
-         case ('--config')
-            if (i == size(args)) then
-               call fatal_error(error, 'option --config needs a value')
-               return
-            end if
-            call read_run_config(args(i + 1)%s, cfg, error, &
-                                 extra_groups=[character(len=16) :: 'chaos'])
-            if (allocated(error)) return
-            call read_chaos_config(args(i + 1)%s, ch, error)
-            if (allocated(error)) return
-            i = i + 2
-         case default
-            i = i + 1
-         end select
-      end do
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_run_config(config, cfg, error, &
+                              extra_groups=[character(len=16) :: 'chaos'])
+         if (allocated(error)) return
+         call read_chaos_config(config, ch, error)
+         if (allocated(error)) return
+      end if
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)
@@ -437,11 +427,11 @@ contains
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
                 //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
-                //itoa(size(res%t))//' renormalisations, '//itoa(int(integ%n_steps)) &
+                //to_str(size(res%t))//' renormalisations, '//to_str(int(integ%n_steps)) &
                 //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
-                //itoa(size(res%batches, 2))//' batch means)'//nl
+                //to_str(size(res%batches, 2))//' batch means)'//nl
       do i = 1, res%k
-         summary = summary//'  '//itoa(i)//'  '//es(res%exponents(i))//'  '// &
+         summary = summary//'  '//to_str(i)//'  '//es(res%exponents(i))//'  '// &
                    es(res%spread(i))//nl
       end do
       if (res%k == 4) then
@@ -530,12 +520,12 @@ contains
       call h5%close()
       if (allocated(error)) return
       summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
-                //itoa(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
+                //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
                 //' s, delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl
       if (fit%ok) then
          summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &
-                   //itoa(fit%n_points)//' samples); saturation at log10|delta| = ' &
+                   //to_str(fit%n_points)//' samples); saturation at log10|delta| = ' &
                    //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
                    'slope: '//es(fit%slope)//' +- '//es(fit%slope_stderr)//' 1/s'//nl
       else
@@ -579,7 +569,7 @@ contains
                          ch%n_ics, q0, qd0, n_found)
       if (n_found == 0) then
          call fatal_error(error, 'invalid energy: E = '//num(e)//' J has no state on the'// &
-                          ' section q'//itoa(ch%section_link)//' = '//num(ch%section_angle) &
+                          ' section q'//to_str(ch%section_link)//' = '//num(ch%section_angle) &
                           //' (it lies below the potential energy there)')
          return
       end if
@@ -589,7 +579,7 @@ contains
                              cfg%t_end, cfg%dt, ch%n_points, res)
       n_failed = count(res%status /= stat_ok)
       status = 'completed'
-      if (n_failed > 0) status = itoa(n_failed)//' orbit(s) stopped early: '// &
+      if (n_failed > 0) status = to_str(n_failed)//' orbit(s) stopped early: '// &
                                  status_message(res%status(findloc(res%status /= stat_ok, &
                                                                    .true., dim=1)))
       es_ = energy_scale(cfg%par, e)
@@ -619,13 +609,13 @@ contains
       call h5%close()
       if (allocated(error)) return
       summary = 'dpend poincare: '//integ%name()//', dt = '//num(cfg%dt)//' s, E = ' &
-                //num(e)//' J, section q'//itoa(ch%section_link)//' = ' &
+                //num(e)//' J, section q'//to_str(ch%section_link)//' = ' &
                 //num(ch%section_angle)//' (mod 2 pi), direction '// &
-                itoa(ch%section_direction)//nl//itoa(n_found)//' orbits'
-      if (n_found < ch%n_ics) summary = summary//' (of '//itoa(ch%n_ics)// &
+                to_str(ch%section_direction)//nl//to_str(n_found)//' orbits'
+      if (n_found < ch%n_ics) summary = summary//' (of '//to_str(ch%n_ics)// &
                                         ' requested: the shell is thin)'
-      summary = summary//', '//itoa(size(res%q))//' section points, '// &
-                itoa(int(res%n_steps))//' steps'
+      summary = summary//', '//to_str(size(res%q))//' section points, '// &
+                to_str(int(res%n_steps))//' steps'
       if (size(res%q) > 0) summary = summary//'; max |E - E0| / E_s = '// &
                                      es(maxval(abs(res%energy - e))/es_)
       summary = summary//nl//"dpend poincare: wrote '"//cfg%output//"'"
@@ -756,11 +746,4 @@ contains
       end if
    end function fixed
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module dpend_chaos

@@ -1,13 +1,18 @@
 !> Command-line helpers: the argument list, option splitting (`--name value` or
 !> `--name=value`) and validated number parsing with one-line error messages.
 module dpend_cli
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
-   public :: real_str
+   public :: real_str, to_str, scan_help_config
+
+   !> Text of an integer (default or 64-bit), without blanks.
+   interface to_str
+      module procedure int_str, int8_str
+   end interface to_str
 
    !> One command-line argument.
    type :: arg_t
@@ -118,4 +123,50 @@ contains
       write (buf, '(g0)') x
       s = trim(adjustl(buf))
    end function real_str
+
+   pure function int_str(i) result(s)
+      integer, intent(in) :: i  !! the number
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function int_str
+
+   pure function int8_str(i) result(s)
+      integer(i8), intent(in) :: i  !! the number
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function int8_str
+
+   !> The first pass of every command's parser: whether -h/--help was given and
+   !> the file of the last `--config FILE` ('' if none), so that the file is read
+   !> before the flags that override it.
+   subroutine scan_help_config(args, help, config, error)
+      type(arg_t), intent(in) :: args(:)                   !! the command's arguments
+      logical, intent(out) :: help                         !! -h or --help present
+      character(len=:), allocatable, intent(out) :: config !! config file or ''
+      type(error_t), allocatable, intent(out) :: error     !! --config without a value
+      integer :: i
+      help = .false.
+      config = ''
+      i = 1
+      do while (i <= size(args))
+         select case (args(i)%s)
+         case ('-h', '--help')
+            help = .true.
+            return
+         case ('--config')
+            if (i == size(args)) then
+               call fatal_error(error, 'option --config needs a value')
+               return
+            end if
+            config = args(i + 1)%s
+            i = i + 2
+         case default
+            i = i + 1
+         end select
+      end do
+   end subroutine scan_help_config
 end module dpend_cli

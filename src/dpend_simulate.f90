@@ -15,6 +15,8 @@ module dpend_simulate
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: to_str
+   use dpend_cli, only: scan_help_config
    implicit none
    private
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
@@ -53,7 +55,7 @@ contains
           'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
           run_flags_help(cfg)//nl// &
           '  --save-every N    keep every N-th step (and always the last); default ' &
-          //itoa(cfg%save_every)//nl// &
+          //to_str(cfg%save_every)//nl// &
           '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
           '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
@@ -66,30 +68,18 @@ contains
       type(run_config_t), intent(out) :: cfg            !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value
+      character(len=:), allocatable :: name, value, config
       logical :: matched
       integer :: i
       cfg = simulate_defaults()
       help = .false.
       ! first pass: help and the config file, so that flags override the file
-      i = 1
-      do while (i <= size(args))
-         select case (args(i)%s)
-         case ('-h', '--help')
-            help = .true.
-            return
-         case ('--config')
-            if (i == size(args)) then
-               call fatal_error(error, 'option --config needs a value')
-               return
-            end if
-            call read_run_config(args(i + 1)%s, cfg, error)
-            if (allocated(error)) return
-            i = i + 2
-         case default
-            i = i + 1
-         end select
-      end do
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_run_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
       i = 1
       do while (i <= size(args))
          if (args(i)%s == '--force') then
@@ -283,11 +273,4 @@ contains
       call h5%close()
    end subroutine write_trajectory
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module dpend_simulate

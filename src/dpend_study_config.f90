@@ -20,6 +20,7 @@ module dpend_study_config
    use dpend_symplectic, only: symplectic_t
    use dpend_tao, only: set_omega
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: scan_help_config
    implicit none
    private
    public :: study_config_t, study_case_t, study_method_t
@@ -233,7 +234,7 @@ contains
       type(study_config_t), intent(out) :: cfg          !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value, only_methods, only_cases
+      character(len=:), allocatable :: name, value, only_methods, only_cases, config
       type(run_config_t) :: rcfg
       logical :: matched
       integer :: i
@@ -241,24 +242,12 @@ contains
       help = .false.
       only_methods = ''
       only_cases = ''
-      i = 1
-      do while (i <= size(args))
-         select case (args(i)%s)
-         case ('-h', '--help')
-            help = .true.
-            return
-         case ('--config')
-            if (i == size(args)) then
-               call fatal_error(error, 'option --config needs a value')
-               return
-            end if
-            call read_study_config(args(i + 1)%s, cfg, error)
-            if (allocated(error)) return
-            i = i + 2
-         case default
-            i = i + 1
-         end select
-      end do
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_study_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
       rcfg%par = cfg%par
       i = 1
       do while (i <= size(args))

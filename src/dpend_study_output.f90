@@ -15,6 +15,7 @@ module dpend_study_output
                            directory_of
    use dpend_study_config, only: study_config_t, case_index, study_namelist
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
+   use dpend_cli, only: to_str
    implicit none
    private
    public :: run_study_command, write_study_h5, study_summary, verdicts_t, study_verdicts
@@ -274,12 +275,12 @@ contains
       md = '# dpend energy-conservation study'//nl//nl// &
            'dpend '//version//', '//date(1:4)//'-'//date(5:6)//'-'//date(7:8)//' '// &
            time(1:2)//':'//time(3:4)//', host '//host_name()//', '//cpu_model()//', '// &
-           itoa(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
+           to_str(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
       md = md//nl//nl// &
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
            'the potential energy with both links upright (see the cases). Global error: '// &
-           'max |Δq|, |Δq̇| [rad, rad/s] over '//itoa(cfg%n_check)//' checkpoints up to '// &
+           'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
       md = md//'## Verdicts'//nl//nl// &
@@ -304,10 +305,10 @@ contains
          associate (o => res%sweeps(so), d => res%sweeps(s))
             k = d%mid
             per_step = d%wall_long(k)/real(max(d%long_steps(k), 1_i8), dp)
-            md = md//'| '//d%method//' | '//itoa(d%order)//' | '//slope(o%fit_global)//' | ' &
+            md = md//'| '//d%method//' | '//to_str(d%order)//' | '//slope(o%fit_global)//' | ' &
                  //slope(o%fit_energy)//' | '//num(d%drift(k), 'f0.2')//' | ' &
                  //slope(d%fit_energy_long)//' | '//num(d%x(k), 'es8.2')//' | ' &
-                 //itoa8(d%long_steps(k))//' | '//num(d%energy_long(k), 'es8.2')//' | ' &
+                 //to_str(d%long_steps(k))//' | '//num(d%energy_long(k), 'es8.2')//' | ' &
                  //ratio(d%long_rhs(k), d%long_steps(k))//' | ' &
                  //ratio(d%long_iter(k), d%long_steps(k))//' | ' &
                  //num(1.0e6_dp*per_step, 'f0.2')//' | ' &
@@ -326,7 +327,7 @@ contains
       do im = 1, size(cfg%methods)
          s = sweep_index(res, 1, cfg%methods(im)%name, mode_step)
          if (s == 0) cycle
-         md = md//'| '//cfg%methods(im)%name//' | '//itoa(res%sweeps(s)%order)//' |'
+         md = md//'| '//cfg%methods(im)%name//' | '//to_str(res%sweeps(s)%order)//' |'
          do ic = 1, size(cfg%cases)
             s = sweep_index(res, ic, cfg%methods(im)%name, mode_step)
             associate (w => res%sweeps(s))
@@ -359,7 +360,7 @@ contains
       ! ---- roundoff
       if (size(res%roundoff) > 0) then
          md = md//nl//"## Roundoff (Brouwer's law)"//nl//nl// &
-              'RMS over '//itoa(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
+              'RMS over '//to_str(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
               '`, q0 perturbed by '// &
               'multiples of '//fmt(cfg%ro_perturb, 'es8.2')//' rad) of (H − H0)/E_s, H in '// &
               'quadruple precision at the compensated state; exponent fitted in t ≥ '// &
@@ -371,7 +372,7 @@ contains
             associate (ro => res%roundoff(i))
                k = size(ro%steps)
                md = md//'| '//ro%method//' | '//num(ro%dt, 'es8.2')//' | '// &
-                    itoa8(ro%steps(k))//' | '//slope(ro%fit(1))//' | '//slope(ro%fit(2))// &
+                    to_str(ro%steps(k))//' | '//slope(ro%fit(1))//' | '//slope(ro%fit(2))// &
                     ' | '//num(ro%rms(k, 1), 'es8.2')//' | '//num(ro%rms(k, 2), 'es8.2')// &
                     ' | '//mark(ro%fit(1)%ok .and. abs(ro%fit(1)%slope - 0.5_dp) <= brouwer_tol) &
                     //' |'//nl
@@ -399,7 +400,7 @@ contains
                k = minloc(abs(log(ts%omega/20.0_dp)), 1)
                md = md//' | '//pretty(ts%omega(k))//': '//num(ts%energy_max(k), 'es8.2')// &
                     ' | '//num(ts%global_error(k), 'es8.2')// &
-                    ' | '//itoa(count(ts%stat /= stat_ok))//' |'//nl
+                    ' | '//to_str(count(ts%stat /= stat_ok))//' |'//nl
             end associate
          end do
       end if
@@ -495,7 +496,7 @@ contains
          s = '0'
       else if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e5_dp) then
          d = max(0, 3 - floor(log10(abs(x))))
-         write (buf, '(f0.'//itoa(d)//')') x
+         write (buf, '(f0.'//to_str(d)//')') x
          s = trim(adjustl(buf))
          if (index(s, '.') > 0) then
             do while (s(len(s):len(s)) == '0')
@@ -522,21 +523,7 @@ contains
       end if
    end function ratio
 
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
-   function itoa8(i) result(s)
-      integer(i8), intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa8
 
    ! ================================================================== HDF5
 

@@ -25,6 +25,7 @@ module dpend_sweep
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_version, only: version
+   use dpend_cli, only: to_str
    implicit none
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
@@ -241,13 +242,13 @@ contains
             hash = index(line, '#')
             if (hash > 0) line(hash:) = ' '
             if (stat > 0) then
-               call fatal_error(error, what//': cannot read line '//itoa(nline))
+               call fatal_error(error, what//': cannot read line '//to_str(nline))
                exit
             end if
             if (len_trim(line) == 0) cycle
             read (line, *, iostat=stat) row
             if (stat /= 0 .or. count_fields(line) /= 4) then
-               call fatal_error(error, what//': line '//itoa(nline)// &
+               call fatal_error(error, what//': line '//to_str(nline)// &
                                 ' is not 4 numbers "q1 q2 w1 w2"')
                exit
             end if
@@ -304,21 +305,21 @@ contains
              'w1 = '//r(c%run%w0(1))//nl//'w2 = '//r(c%run%w0(2))//nl// &
              'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
-             'n_steps = '//itoa8(setup%opt%n_steps)//nl// &
+             'n_steps = '//to_str(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
              'lyapunov = '//trim(merge('true ', 'false', c%lyapunov))//nl// &
              'stats = '//trim(merge('true ', 'false', c%stats))//nl// &
-             'block = '//itoa(setup%block)//nl
+             'block = '//to_str(setup%block)//nl
          if (setup%grid) then
             s = s//'initial = grid'//nl// &
-                'axis1 = '//c%axis1//nl//'n1 = '//itoa(c%n1)//nl// &
+                'axis1 = '//c%axis1//nl//'n1 = '//to_str(c%n1)//nl// &
                 'min1 = '//r(c%min1)//nl//'max1 = '//r(c%max1)//nl// &
-                'axis2 = '//c%axis2//nl//'n2 = '//itoa(c%n2)//nl// &
+                'axis2 = '//c%axis2//nl//'n2 = '//to_str(c%n2)//nl// &
                 'min2 = '//r(c%min2)//nl//'max2 = '//r(c%max2)
          else
             s = s//'initial = list'//nl//'ic_file = '//c%ic_file//nl// &
                 'ic_dataset = '//c%ic_dataset//nl//'ic_angles = '//c%ic_angles//nl// &
-                'ic_count = '//itoa(setup%n)//nl//'ic_hash = '//itoa8(list_hash(setup%list))
+                'ic_count = '//to_str(setup%n)//nl//'ic_hash = '//to_str(list_hash(setup%list))
          end if
       end associate
    contains
@@ -880,19 +881,5 @@ contains
       end subroutine read_times
    end subroutine compare_sweeps
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
-   pure function itoa8(i) result(s)
-      integer(i8), intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa8
 end module dpend_sweep

@@ -26,6 +26,8 @@ module dpend_sweep_config
                            validate_run_config, namelist_error
    use dpend_batch, only: stop_both, stop_either, stop_end
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: to_str
+   use dpend_cli, only: scan_help_config
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
@@ -121,7 +123,7 @@ contains
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each; default ' &
-          //itoa(cfg%n1)//nl// &
+          //to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
           ' .. '//real_str(cfg%max1)//nl// &
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
@@ -149,7 +151,7 @@ contains
           '  --output FILE     HDF5 file; default '//cfg%run%output//nl// &
           '  --force           overwrite a file written with another configuration'//nl// &
           '  --block N         initial conditions per block (whole rows of axis 1 in a'//nl// &
-          '                    grid); default '//itoa(cfg%block)//nl// &
+          '                    grid); default '//to_str(cfg%block)//nl// &
           '  --threads N       OpenMP threads; default all'//nl// &
           '  --quiet           no progress report on stderr'//nl// &
           '  -h, --help        this text'
@@ -161,29 +163,17 @@ contains
       type(sweep_config_t), intent(out) :: cfg          !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value
+      character(len=:), allocatable :: name, value, config
       logical :: matched
       integer :: i, n
       cfg = sweep_defaults()
       help = .false.
-      i = 1
-      do while (i <= size(args))
-         select case (args(i)%s)
-         case ('-h', '--help')
-            help = .true.
-            return
-         case ('--config')
-            if (i == size(args)) then
-               call fatal_error(error, 'option --config needs a value')
-               return
-            end if
-            call read_sweep_config(args(i + 1)%s, cfg, error)
-            if (allocated(error)) return
-            i = i + 2
-         case default
-            i = i + 1
-         end select
-      end do
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_sweep_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)
@@ -361,11 +351,4 @@ contains
       end select
    end function variable
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module dpend_sweep_config

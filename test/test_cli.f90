@@ -5,6 +5,7 @@ module test_cli
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t, is_hdf5
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   use dpend_cli, only: to_str
    implicit none
    private
    public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text
@@ -89,9 +90,9 @@ contains
       stat = run_command(dir, 'simulate --output '//dir//'/out.h5 '//args)
       call read_text(dir//'/stderr', text, n)
       inquire (file=dir//'/out.h5', exist=exists)
-      call check_true(error, stat == 2, '['//args//'] exit status 2, got '//itoa(stat)// &
+      call check_true(error, stat == 2, '['//args//'] exit status 2, got '//to_str(stat)// &
                       '; stderr: '//text)
-      call check_true(error, n == 1, '['//args//'] one stderr line, got '//itoa(n)//': '//text)
+      call check_true(error, n == 1, '['//args//'] one stderr line, got '//to_str(n)//': '//text)
       call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
                       needle//'": '//text)
       call check_true(error, .not. exists, '['//args//'] no output file')
@@ -191,7 +192,7 @@ contains
       stat = run_command(dir, 'simulate --q1 0 --q2 0 --w1 30 --dt 2 --t-end 1e6 ' &
                          //'--save-every 1 --output '//dir//'/out.h5')
       call read_text(dir//'/stderr', text, n)
-      call check_true(error, stat == 1, 'exit status 1, got '//itoa(stat)//': '//text)
+      call check_true(error, stat == 1, 'exit status 1, got '//to_str(stat)//': '//text)
       call check_true(error, n == 1 .and. index(text, 'non-finite') > 0, 'message: '//text)
       call check_true(error, is_hdf5(dir//'/out.h5'), 'valid HDF5 left behind')
       if (allocated(error)) return
@@ -235,7 +236,7 @@ contains
       call check(error, m2, 2.5_dp, 'm2 from the file', abs=0.0_dp)
       call check(error, t_end, 1.0_dp, 't_end from the flag', abs=0.0_dp)
       call check_true(error, method == 'rk4', 'method attribute')
-      call check_true(error, size(t) == 21, 'samples at 0, 0.05, ..., 1: '//itoa(size(t)))
+      call check_true(error, size(t) == 21, 'samples at 0, 0.05, ..., 1: '//to_str(size(t)))
       call check(error, t(size(t)), 1.0_dp, 'last sample at t_end', abs=1e-15_dp)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_config_run
@@ -310,11 +311,4 @@ contains
       close (unit)
    end subroutine write_file
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module test_cli

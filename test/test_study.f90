@@ -15,6 +15,7 @@ module test_study
    use dpend_study_output, only: write_study_h5, study_summary, study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
+   use dpend_cli, only: to_str
    implicit none
    private
    public :: collect_study
@@ -67,13 +68,6 @@ contains
       close (unit)
    end subroutine write_file
 
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
    ! ------------------------------------------------------------------- fits
 
@@ -141,7 +135,7 @@ contains
       e(5) = nan; e(30) = 0.0_dp; e(31) = -1.0_dp
       fit = loglog_fit(t, e, x_min=20.0_dp)
       call check_true(error, fit%ok .and. fit%n == count(t >= 20.0_dp) - 2, &
-                      'NaN, zero and negative values skipped, n = '//itoa(fit%n))
+                      'NaN, zero and negative values skipped, n = '//to_str(fit%n))
       call check(error, fit%slope, 1.0_dp, 'slope with gaps', abs=1e-12_dp)
       fit = loglog_fit([1.0_dp, 2.0_dp, 3.0_dp], [nan, 1.0_dp, 0.0_dp])
       call check_true(error, .not. fit%ok .and. fit%n == 1, 'one usable point: no fit')
@@ -391,9 +385,9 @@ contains
          inquire (file=dir//'/out.h5', exist=exists)
          kept = .true.
          if (exists) kept = .not. is_hdf5(dir//'/out.h5')
-         call check_true(error, stat == 2, '['//args//'] exit status 2, got '//itoa(stat)// &
+         call check_true(error, stat == 2, '['//args//'] exit status 2, got '//to_str(stat)// &
                          ': '//text)
-         call check_true(error, n == 1, '['//args//'] one stderr line, got '//itoa(n)//': '//text)
+         call check_true(error, n == 1, '['//args//'] one stderr line, got '//to_str(n)//': '//text)
          call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
                          needle//'": '//text)
          call check_true(error, kept, '['//args//'] no HDF5 output written')
