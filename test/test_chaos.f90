@@ -20,7 +20,7 @@ module test_chaos
    use dpend_error, only: error_t
    use dpend_hdf5, only: h5file_t
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
-   use test_cli, only: run_command, scratch_dir, read_text
+   use test_cli, only: run_command, scratch_dir, read_text, expect_rejected
    implicit none
    private
    public :: collect_chaos
@@ -602,40 +602,24 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir
       dir = scratch_dir('chaosbad')
-      call expect_rejected(error, dir, 'lyapunov --tau 0', 'tau')
-      call expect_rejected(error, dir, 'lyapunov --vectors 5', 'vectors')
-      call expect_rejected(error, dir, 'lyapunov --t-end 0', 't_end')
-      call expect_rejected(error, dir, 'lyapunov --method nosuch', 'method')
-      call expect_rejected(error, dir, 'lyapunov --output-dt 1', 'unknown option')
-      call expect_rejected(error, dir, 'divergence --delta0 0', 'delta0')
-      call expect_rejected(error, dir, 'divergence --pairs 0', 'pairs')
-      call expect_rejected(error, dir, 'divergence --fit-start 5 --fit-end 2', 'fit_end')
-      call expect_rejected(error, dir, 'divergence --output-dt 0', 'output_dt')
-      call expect_rejected(error, dir, 'poincare --energy -100', 'energy')
-      call expect_rejected(error, dir, 'poincare --section-link 3', 'section_link')
-      call expect_rejected(error, dir, 'poincare --ics 0', 'n_ics')
-      call expect_rejected(error, dir, 'poincare --tau 1', 'unknown option')
+      call expect_rejected(error, dir, 'lyapunov', '--tau 0', 'tau')
+      call expect_rejected(error, dir, 'lyapunov', '--vectors 5', 'vectors')
+      call expect_rejected(error, dir, 'lyapunov', '--t-end 0', 't_end')
+      call expect_rejected(error, dir, 'lyapunov', '--method nosuch', 'method')
+      call expect_rejected(error, dir, 'lyapunov', '--output-dt 1', 'unknown option')
+      call expect_rejected(error, dir, 'divergence', '--delta0 0', 'delta0')
+      call expect_rejected(error, dir, 'divergence', '--pairs 0', 'pairs')
+      call expect_rejected(error, dir, 'divergence', '--fit-start 5 --fit-end 2', 'fit_end')
+      call expect_rejected(error, dir, 'divergence', '--output-dt 0', 'output_dt')
+      call expect_rejected(error, dir, 'poincare', '--energy -100', 'energy')
+      call expect_rejected(error, dir, 'poincare', '--section-link 3', 'section_link')
+      call expect_rejected(error, dir, 'poincare', '--ics 0', 'n_ics')
+      call expect_rejected(error, dir, 'poincare', '--tau 1', 'unknown option')
       call write_file(dir//'/bad.nml', '&chaos tau = 1.0, bogus = 2 /')
-      call expect_rejected(error, dir, 'lyapunov --config '//dir//'/bad.nml', '&chaos')
+      call expect_rejected(error, dir, 'lyapunov', '--config '//dir//'/bad.nml', '&chaos')
       call execute_command_line('rm -rf '//dir)
    end subroutine test_cli_bad
 
-   subroutine expect_rejected(error, dir, args, needle)
-      type(error_t), allocatable, intent(inout) :: error
-      character(len=*), intent(in) :: dir, args, needle
-      integer :: stat, n
-      logical :: exists
-      character(len=:), allocatable :: text
-      if (allocated(error)) return
-      stat = run_command(dir, args//' --output '//dir//'/out.h5')
-      call read_text(dir//'/stderr', text, n)
-      inquire (file=dir//'/out.h5', exist=exists)
-      call check_true(error, stat == 2, '['//args//'] exit status 2; stderr: '//text)
-      call check_true(error, n == 1, '['//args//'] one stderr line: '//text)
-      call check_true(error, index(text, needle) > 0, '['//args//'] names "'//needle// &
-                      '": '//text)
-      call check_true(error, .not. exists, '['//args//'] no output file')
-   end subroutine expect_rejected
 
    !> Each command runs, ends its output with the scripting line, and writes
    !> the datasets of docs/hdf5-layout.md; &chaos settings are read.

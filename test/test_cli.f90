@@ -8,7 +8,7 @@ module test_cli
    use dpend_cli, only: to_str
    implicit none
    private
-   public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text
+   public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text, expect_rejected
 
 contains
 
@@ -79,19 +79,23 @@ contains
       close (unit)
    end subroutine read_text
 
-   !> Expect exit status 2, exactly one stderr line containing `needle`, no output file.
-   subroutine expect_rejected(error, dir, args, needle)
+   !> Run `dpend command --output dir/out.h5 args` and expect exit status 2, exactly one
+   !> stderr line containing `needle`, and no output file.
+   subroutine expect_rejected(error, dir, command, args, needle)
       type(error_t), allocatable, intent(inout) :: error
-      character(len=*), intent(in) :: dir, args, needle
+      character(len=*), intent(in) :: dir      !! scratch directory
+      character(len=*), intent(in) :: command  !! subcommand and fixed options
+      character(len=*), intent(in) :: args     !! the options under test
+      character(len=*), intent(in) :: needle   !! text the message must contain
       integer :: stat, n
       logical :: exists
       character(len=:), allocatable :: text
       if (allocated(error)) return
-      stat = run_command(dir, 'simulate --output '//dir//'/out.h5 '//args)
+      stat = run_command(dir, command//' --output '//dir//'/out.h5 '//args)
       call read_text(dir//'/stderr', text, n)
       inquire (file=dir//'/out.h5', exist=exists)
-      call check_true(error, stat == 2, '['//args//'] exit status 2, got '//to_str(stat)// &
-                      '; stderr: '//text)
+      call check_true(error, stat == 2, '['//command//' '//args//'] exit status 2, got '// &
+                      to_str(stat)//'; stderr: '//text)
       call check_true(error, n == 1, '['//args//'] one stderr line, got '//to_str(n)//': '//text)
       call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
                       needle//'": '//text)
@@ -122,26 +126,26 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir
       dir = scratch_dir('bad')
-      call expect_rejected(error, dir, '--m1 -1', 'm1')
-      call expect_rejected(error, dir, '--m2 0', 'm2')
-      call expect_rejected(error, dir, '--l1 0', 'l1')
-      call expect_rejected(error, dir, '--l2 -3', 'l2')
-      call expect_rejected(error, dir, '--g 0', 'g')
-      call expect_rejected(error, dir, '--g nan', '--g')
-      call expect_rejected(error, dir, '--m1 inf', '--m1')
-      call expect_rejected(error, dir, '--q1 nan', '--q1')
-      call expect_rejected(error, dir, '--w2 -inf', '--w2')
-      call expect_rejected(error, dir, '--dt 0', 'dt')
-      call expect_rejected(error, dir, '--dt -1e-3', 'dt')
-      call expect_rejected(error, dir, '--t-end -1', 't_end')
-      call expect_rejected(error, dir, '--dt abc', '--dt')
-      call expect_rejected(error, dir, '--save-every 0', 'save_every')
-      call expect_rejected(error, dir, '--method nosuch', 'method')
-      call expect_rejected(error, dir, '--bogus 1', 'unknown option')
-      call expect_rejected(error, dir, '--dt', 'needs a value')
-      call expect_rejected(error, dir, '--config '//dir//'/missing.nml', 'config')
-      call expect_rejected(error, dir, '--output '//dir//'/no/such/dir/x.h5', 'directory')
-      call expect_rejected(error, dir, '--output /proc/dpend-test.h5', 'not writable')
+      call expect_rejected(error, dir, 'simulate', '--m1 -1', 'm1')
+      call expect_rejected(error, dir, 'simulate', '--m2 0', 'm2')
+      call expect_rejected(error, dir, 'simulate', '--l1 0', 'l1')
+      call expect_rejected(error, dir, 'simulate', '--l2 -3', 'l2')
+      call expect_rejected(error, dir, 'simulate', '--g 0', 'g')
+      call expect_rejected(error, dir, 'simulate', '--g nan', '--g')
+      call expect_rejected(error, dir, 'simulate', '--m1 inf', '--m1')
+      call expect_rejected(error, dir, 'simulate', '--q1 nan', '--q1')
+      call expect_rejected(error, dir, 'simulate', '--w2 -inf', '--w2')
+      call expect_rejected(error, dir, 'simulate', '--dt 0', 'dt')
+      call expect_rejected(error, dir, 'simulate', '--dt -1e-3', 'dt')
+      call expect_rejected(error, dir, 'simulate', '--t-end -1', 't_end')
+      call expect_rejected(error, dir, 'simulate', '--dt abc', '--dt')
+      call expect_rejected(error, dir, 'simulate', '--save-every 0', 'save_every')
+      call expect_rejected(error, dir, 'simulate', '--method nosuch', 'method')
+      call expect_rejected(error, dir, 'simulate', '--bogus 1', 'unknown option')
+      call expect_rejected(error, dir, 'simulate', '--dt', 'needs a value')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/missing.nml', 'config')
+      call expect_rejected(error, dir, 'simulate', '--output '//dir//'/no/such/dir/x.h5', 'directory')
+      call expect_rejected(error, dir, 'simulate', '--output /proc/dpend-test.h5', 'not writable')
       call execute_command_line('rm -rf '//dir)
    end subroutine test_bad_input
 
@@ -150,15 +154,15 @@ contains
       character(len=:), allocatable :: dir
       dir = scratch_dir('badcfg')
       call write_file(dir//'/group.nml', '&pendulum m1 = 2 /'//new_line('a')//'&bogus x = 1 /')
-      call expect_rejected(error, dir, '--config '//dir//'/group.nml', 'unknown namelist group')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/group.nml', 'unknown namelist group')
       call write_file(dir//'/key.nml', '&pendulum m1 = 2, mass3 = 1 /')
-      call expect_rejected(error, dir, '--config '//dir//'/key.nml', 'mass3')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/key.nml', 'mass3')
       call write_file(dir//'/nan.nml', '&pendulum m1 = NaN /')
-      call expect_rejected(error, dir, '--config '//dir//'/nan.nml', 'm1')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/nan.nml', 'm1')
       call write_file(dir//'/dt.nml', '&integration dt = -1 /')
-      call expect_rejected(error, dir, '--config '//dir//'/dt.nml', 'dt')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/dt.nml', 'dt')
       call write_file(dir//'/method.nml', "&integration method = 'euler' /")
-      call expect_rejected(error, dir, '--config '//dir//'/method.nml', 'method')
+      call expect_rejected(error, dir, 'simulate', '--config '//dir//'/method.nml', 'method')
       call execute_command_line('rm -rf '//dir)
    end subroutine test_bad_config
 

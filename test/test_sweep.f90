@@ -12,7 +12,7 @@ module test_sweep
       batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &
       stop_either, stop_end, st_cannot_flip
    use dpend_hdf5, only: h5file_t, is_hdf5
-   use test_cli, only: dpend_binary, run_command, scratch_dir, read_text
+   use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -424,39 +424,39 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir
       dir = scratch_dir('sweepbad')
-      call expect_rejected(error, dir, '--n 0', 'n1')
-      call expect_rejected(error, dir, '--n2 -3', 'n2')
-      call expect_rejected(error, dir, '--min1 2 --max1 1', 'min1')
-      call expect_rejected(error, dir, '--min2 1 --max2 1', 'empty')
-      call expect_rejected(error, dir, '--max1 nan', '--max1')
-      call expect_rejected(error, dir, '--min2 inf', '--min2')
-      call expect_rejected(error, dir, '--axis1 q3', 'axis1')
-      call expect_rejected(error, dir, '--axis1 q1 --axis2 theta1', 'axis2')
-      call expect_rejected(error, dir, '--t-end 0', 't_end')
-      call expect_rejected(error, dir, '--dt -1', 'dt')
-      call expect_rejected(error, dir, '--block 0', 'block')
-      call expect_rejected(error, dir, '--threads -1', 'threads')
-      call expect_rejected(error, dir, '--time-unit h', 'time_unit')
-      call expect_rejected(error, dir, '--stop-at never', 'stop_at')
-      call expect_rejected(error, dir, '--method verlet', 'method')
-      call expect_rejected(error, dir, '--save-every 3', 'unknown option')
-      call expect_rejected(error, dir, '--bogus 1', 'unknown option')
-      call expect_rejected(error, dir, '--m2 0', 'm2')
-      call expect_rejected(error, dir, '--ic-file '//dir//'/none.txt', 'ic_file')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--n 0', 'n1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--n2 -3', 'n2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--min1 2 --max1 1', 'min1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--min2 1 --max2 1', 'empty')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--max1 nan', '--max1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--min2 inf', '--min2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--axis1 q3', 'axis1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--axis1 q1 --axis2 theta1', 'axis2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--t-end 0', 't_end')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--dt -1', 'dt')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--block 0', 'block')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--threads -1', 'threads')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--time-unit h', 'time_unit')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--stop-at never', 'stop_at')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--method verlet', 'method')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--save-every 3', 'unknown option')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--bogus 1', 'unknown option')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--m2 0', 'm2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--ic-file '//dir//'/none.txt', 'ic_file')
       call write_file(dir//'/bad.txt', '0 0 0 0'//new_line('a')//'1 2 three 4')
-      call expect_rejected(error, dir, '--ic-file '//dir//'/bad.txt', 'line 2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--ic-file '//dir//'/bad.txt', 'line 2')
       call write_file(dir//'/short.txt', '0 0 0')
-      call expect_rejected(error, dir, '--ic-file '//dir//'/short.txt', 'line 1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--ic-file '//dir//'/short.txt', 'line 1')
       call write_file(dir//'/empty.txt', '# nothing')
-      call expect_rejected(error, dir, '--ic-file '//dir//'/empty.txt', 'no initial')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--ic-file '//dir//'/empty.txt', 'no initial')
       call write_file(dir//'/n.nml', '&sweep min1 = 2, max1 = 1 /')
-      call expect_rejected(error, dir, '--config '//dir//'/n.nml', 'min1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--config '//dir//'/n.nml', 'min1')
       call write_file(dir//'/k.nml', '&sweep n3 = 4 /')
-      call expect_rejected(error, dir, '--config '//dir//'/k.nml', 'sweep')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--config '//dir//'/k.nml', 'sweep')
       call write_file(dir//'/g.nml', '&grid n1 = 4 /')
-      call expect_rejected(error, dir, '--config '//dir//'/g.nml', 'unknown namelist group')
-      call expect_rejected(error, dir, '--output '//dir//'/no/dir/s.h5', 'directory')
-      call expect_rejected(error, dir, '--output /proc/dpend-sweep.h5', 'not writable')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--config '//dir//'/g.nml', 'unknown namelist group')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--output '//dir//'/no/dir/s.h5', 'directory')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--output /proc/dpend-sweep.h5', 'not writable')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_bad_input
 
@@ -485,22 +485,6 @@ contains
    ! ----------------------------------------------------------- helpers ---
 
    !> Expect exit status 2, exactly one stderr line containing `needle`, no file.
-   subroutine expect_rejected(error, dir, args, needle)
-      type(error_t), allocatable, intent(inout) :: error
-      character(len=*), intent(in) :: dir, args, needle
-      integer :: stat, n
-      logical :: exists
-      character(len=:), allocatable :: text
-      if (allocated(error)) return
-      stat = run_command(dir, 'sweep --quiet --n 4 --t-end 1 --output '//dir//'/out.h5 '//args)
-      call read_text(dir//'/stderr', text, n)
-      inquire (file=dir//'/out.h5', exist=exists)
-      call check_true(error, stat == 2, '['//args//'] exit status 2; stderr: '//text)
-      call check_true(error, n == 1, '['//args//'] one stderr line: '//text)
-      call check_true(error, index(text, needle) > 0, '['//args//'] message names "'// &
-                      needle//'": '//text)
-      call check_true(error, .not. exists, '['//args//'] no output file')
-   end subroutine expect_rejected
 
    !> Every result dataset of two sweep files equal bit for bit.
    subroutine same_results(error, a, b, with_steps)
