@@ -20,6 +20,7 @@ module dpend_model
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
    public :: rhs_qqdot, rhs_qp, energy_scale, jacobian_qqdot, jacobian_qp
+   public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -92,9 +93,18 @@ contains
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
+      qdd = qddot_trig(par, sin_cos(q), qd)
+   end function qddot_newton_euler
+
+   !> The corrected Newton–Euler accelerations (see `qddot_newton_euler`) from the
+   !> sines and cosines of the angles, sc = (sin q1, sin q2, cos q1, cos q2), so that
+   !> a caller who has them (rk4's stages, via `sin_cos_near`) need not recompute them.
+   pure function qddot_trig(par, sc, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
       real(dp) :: c1, s1, c2, s2, h2, m2l1, m2h2, a0x, a0y, a11, a12, a22, b1, b2, rdet
-      real(dp) :: sc(4)
-      sc = sin_cos(q)
       s1 = sc(1); s2 = sc(2); c1 = sc(3); c2 = sc(4)
       h2 = 0.5_dp*par%l2
       m2l1 = par%m2*par%l1
@@ -118,7 +128,7 @@ contains
       rdet = 1.0_dp/(a11*a22 - a12*a12)
       qdd(1) = (b1*a22 - a12*b2)*rdet
       qdd(2) = (a11*b2 - a12*b1)*rdet
-   end function qddot_newton_euler
+   end function qddot_trig
 
    !> (sin q1, sin q2, cos q1, cos q2) as one 4-wide sine, cos q = sin(q + π/2), so that
    !> the release build calls glibc's vector sine (libmvec) once instead of two scalar
@@ -135,6 +145,33 @@ contains
          sc(i) = sin(x(i))
       end do
    end function sin_cos
+
+   !> (sin, cos) of the angles q = q0 + d from sc0 = sin_cos(q0), for small d: the
+   !> angle-addition formulas with sin d and cos d - 1 from their Taylor series,
+   !> truncated where the remainder is below 1e-17 for |d| ≤ 0.25 rad (13th and 14th
+   !> powers). Agrees with sin_cos(q) to a few ulp; the rounding of q0 + d, which
+   !> sin_cos(q) would see, is ulp(q)/2 as in `sin_cos`. For |d| > 0.25 it calls
+   !> sin_cos(q). Explicit Runge–Kutta stages differ from the step start by
+   !> d = h Σ a_ij q̇_j, so rk4 evaluates the sine once per step instead of 4 times.
+   pure function sin_cos_near(sc0, q, d) result(sc)
+      real(dp), intent(in) :: sc0(4)  !! sin_cos(q - d)
+      real(dp), intent(in) :: q(2)    !! the angles [rad]
+      real(dp), intent(in) :: d(2)    !! their offset from the angles of sc0 [rad]
+      real(dp) :: sc(4)
+      real(dp), parameter :: d_max = 0.25_dp
+      real(dp) :: d2(2), sd(2), cm1(2)
+      if (abs(d(1)) > d_max .or. abs(d(2)) > d_max) then
+         sc = sin_cos(q)
+         return
+      end if
+      d2 = d*d
+      sd = d*(1.0_dp + d2*(-1.0_dp/6.0_dp + d2*(1.0_dp/120.0_dp + d2*(-1.0_dp/5040.0_dp &
+           + d2*(1.0_dp/362880.0_dp + d2*(-1.0_dp/39916800.0_dp))))))
+      cm1 = d2*(-0.5_dp + d2*(1.0_dp/24.0_dp + d2*(-1.0_dp/720.0_dp + d2*(1.0_dp/40320.0_dp &
+            + d2*(-1.0_dp/3628800.0_dp + d2*(1.0_dp/479001600.0_dp))))))
+      sc(1:2) = sc0(1:2) + (sc0(1:2)*cm1 + sc0(3:4)*sd)
+      sc(3:4) = sc0(3:4) + (sc0(3:4)*cm1 - sc0(1:2)*sd)
+   end function sin_cos_near
 
    !> Angular accelerations from Lagrange's equations M(q) q̈ = Q(q) - c(q, q̇) [rad/s²],
    !> with c1 = k sin(q1-q2) q̇2², c2 = -k sin(q1-q2) q̇1², k = m2 L1 L2/2.
@@ -268,12 +305,31 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
-      real(dp) :: qd(2), t
-      qd = velocities(par, z(1:2), z(3:4))
-      t = 0.5_dp*par%m2*par%l1*par%l2*sin(z(1) - z(2))*qd(1)*qd(2)
-      f(1:2) = qd
-      f(3:4) = generalized_forces(par, z(1:2)) - [t, -t]
+      f = rhs_qp_trig(par, sin_cos(z(1:2)), z)
    end function rhs_qp
+
+   !> `rhs_qp` from sc = (sin q1, sin q2, cos q1, cos q2), for callers that have them
+   !> (the implicit stages of the symplectic methods, via `sin_cos_near`):
+   !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas.
+   pure function rhs_qp_trig(par, sc, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
+      real(dp) :: f(4)
+      real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      cd = sc(3)*sc(4) + sc(1)*sc(2)
+      sd = sc(1)*sc(4) - sc(3)*sc(2)
+      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m12 = k*cd
+      m22 = par%m2*par%l2**2/3.0_dp
+      rdet = 1.0_dp/(m11*m22 - m12*m12)
+      f(1) = (m22*z(3) - m12*z(4))*rdet
+      f(2) = (m11*z(4) - m12*z(3))*rdet
+      t = k*sd*f(1)*f(2)
+      f(3) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sc(3) - t
+      f(4) = -0.5_dp*par%m2*par%g*par%l2*sc(4) + t
+   end function rhs_qp_trig
 
    !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
    !> with q̈ = M⁻¹ r, r = Q(q) - c(q, q̇), ∂q̈/∂x = M⁻¹ (∂r/∂x - (∂M/∂x) q̈).

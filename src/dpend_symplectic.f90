@@ -52,7 +52,7 @@ module dpend_symplectic
    use, intrinsic :: iso_fortran_env, only: qp => real128
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_kinds, only: dp
-   use dpend_model, only: pendulum_t, rhs_qp
+   use dpend_model, only: pendulum_t, rhs_qp, rhs_qp_trig, sin_cos, sin_cos_near
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
                                state_ok
    implicit none
@@ -427,6 +427,7 @@ contains
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
       real(dp) :: z(4, 4), f(4, 4), zi(4), zl(4), f0(4), delta(4), wq, wp, dnew, dm1, dm2
+      real(dp) :: sc0(4), yj(4)
       integer :: s, i, j, k, verdict
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
@@ -455,9 +456,11 @@ contains
       dm1 = huge(1.0_dp)
       dm2 = huge(1.0_dp)
       stat = stat_no_convergence
+      sc0 = sin_cos(y(1:2))   ! the stage angles q_n + Z_j are near q_n
       do k = 1, max_iter
          do j = 1, s
-            f(:, j) = rhs_qp(par, y + z(:, j))
+            yj = y + z(:, j)
+            f(:, j) = rhs_qp_trig(par, sin_cos_near(sc0, yj(1:2), z(1:2, j)), yj)
          end do
          self%n_rhs = self%n_rhs + s
          self%n_iter = self%n_iter + 1
@@ -531,6 +534,7 @@ contains
       real(dp), intent(in) :: h               !! step [s]
       integer, intent(out) :: stat            !! status
       real(dp) :: f(4), g(4), dp_half(2), dpn(2), dq(2), dqn(2), v0(2), ph(2), w, dnew, dm1, dm2
+      real(dp) :: sc0(4), qn(2)
       integer :: k, verdict
       ! p_{n+½} = p_n + Δp, Δp = h/2 F(q_n, p_n + Δp), F = -∂H/∂q
       if (self%have_force) then
@@ -566,8 +570,10 @@ contains
       dm1 = huge(1.0_dp)
       dm2 = huge(1.0_dp)
       stat = stat_no_convergence
+      sc0 = sin_cos(y(1:2))   ! q_n + Δq is near q_n
       do k = 1, max_iter
-         g = rhs_qp(par, [y(1:2) + dq, ph])
+         qn = y(1:2) + dq
+         g = rhs_qp_trig(par, sin_cos_near(sc0, qn, dq), [qn, ph])
          self%n_rhs = self%n_rhs + 1
          self%n_iter = self%n_iter + 1
          dqn = (0.5_dp*h)*(v0 + g(1:2))

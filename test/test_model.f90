@@ -25,7 +25,8 @@ contains
                new_unittest('reactions_balance_momentum', test_momentum_balance), &
                new_unittest('invalid_parameters_rejected', test_validate), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
-               new_unittest('jacobian_qp_hamiltonian', test_jacobian_hamiltonian)]
+               new_unittest('jacobian_qp_hamiltonian', test_jacobian_hamiltonian), &
+               new_unittest('sin_cos_near_matches_direct', test_sin_cos_near)]
    end subroutine collect_model
 
    !> Random parameters in [0.2, 5] (masses, lengths) and g in [1, 20].
@@ -324,4 +325,34 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_jacobian_hamiltonian
+
+   !> Angle addition with Taylor-series sin d, cos d - 1 (rk4's stages) against the
+   !> direct sine and cosine, over |d| ≤ 0.25 rad and past it (fallback), for angles
+   !> up to 200 rad; and the Newton–Euler field from it against `qddot`.
+   subroutine test_sin_cos_near(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      real(dp) :: q0(2), d(2), q(2), sc(4), qd(2), worst
+      integer :: i
+      call seed()
+      worst = 0.0_dp
+      do i = 1, 2000
+         call random_number(q0); call random_number(d); call random_number(qd)
+         ! angles within ±2π for the first half, up to ±200 rad after
+         q0 = merge(400.0_dp, 4.0_dp*pi, i > 1000)*(q0 - 0.5_dp)
+         d = merge(0.6_dp, 0.5_dp, i > 1800)*(2.0_dp*d - 1.0_dp)
+         q = q0 + d
+         sc = sin_cos_near(sin_cos(q0), q, d)
+         ! reference: sin and cos of the exact q0 + d differ from those of the rounded
+         ! q by up to ulp(q)/2; compare with the libm values at q within that
+         worst = max(worst, maxval(abs(sc - [sin(q), cos(q)])))
+         call check(error, sc, [sin(q), cos(q)], 'sin_cos_near', abs=4.0_dp*spacing(maxval(abs(q))))
+         par = random_pendulum()
+         qd = 20.0_dp*(qd - 0.5_dp)
+         if (i <= 1000) call check(error, qddot_trig(par, sc, qd), qddot(par, q, qd), &
+                                   'qddot_trig', abs=1e-12_dp*maxval(abs(qddot(par, q, qd))))
+         if (allocated(error)) return
+      end do
+      call check_true(error, worst > 0.0_dp .and. worst < 1e-13_dp, 'worst difference sane')
+   end subroutine test_sin_cos_near
 end module test_model
