@@ -384,6 +384,45 @@ contains
       h = min(100.0_dp*h, h1, self%h_max)
    end function hinit
 
+   !> The decision after an error estimate, shared by dopri5 and dop853 (Hairer's
+   !> codes): a non-finite step (`bad`) is retried with h·facmin; err ≤ 1 accepts
+   !> the step and proposes hnew by the PI controller, never larger than h right
+   !> after a rejection; err > 1 rejects it and shrinks h without PI memory.
+   subroutine control_step(self, err, bad, expo, beta, facmin, facmax, h, hnew, rejected, &
+                           accepted)
+      class(rk_adaptive_t), intent(inout) :: self  !! the method (err_old, n_rejected)
+      real(dp), intent(in) :: err                  !! weighted error norm (if not bad)
+      logical, intent(in) :: bad                   !! the step overflowed
+      real(dp), intent(in) :: expo                 !! 1/(q+1) - 0.75 β
+      real(dp), intent(in) :: beta                 !! PI stabilization β
+      real(dp), intent(in) :: facmin, facmax       !! bounds of h_new/h
+      real(dp), intent(inout) :: h                 !! step tried; retry size if rejected [s]
+      real(dp), intent(out) :: hnew                !! proposal for the next step (accepted) [s]
+      logical, intent(inout) :: rejected           !! a rejection happened in this step
+      logical, intent(out) :: accepted             !! the step is accepted
+      accepted = .false.
+      hnew = h
+      if (bad) then
+         ! overflow inside the step: shrink hard and retry
+         self%n_rejected = self%n_rejected + 1
+         rejected = .true.
+         h = facmin*h
+         return
+      end if
+      if (err <= 1.0_dp) then
+         accepted = .true.
+         hnew = h*pi_factor(err, self%err_old, expo, beta, self%safety, &
+                            facmin, facmax)
+         self%err_old = max(err, 1.0e-4_dp)
+         if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
+         return
+      end if
+      ! rejected: no growth, no PI memory (Hairer's DOPRI5)
+      self%n_rejected = self%n_rejected + 1
+      rejected = .true.
+      h = h/min(1.0_dp/facmin, err**expo/self%safety)
+   end subroutine control_step
+
    !> Step-size factor h_new/h of the PI controller (see the module header).
    pure real(dp) function pi_factor(err, err_old, expo, beta, safety, facmin, facmax)
       real(dp), intent(in) :: err, err_old    !! current and previous accepted errors
@@ -427,8 +466,8 @@ contains
       real(dp), intent(inout) :: y(4)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: k(4, 7), ynew(4), e(4), err, hnew, fac
-      logical :: rejected, bad
+      real(dp) :: k(4, 7), ynew(4), e(4), err, hnew
+      logical :: rejected, bad, accepted
       real(dp) :: expo
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
@@ -469,25 +508,9 @@ contains
             err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/4.0_dp)
             bad = .not. ieee_is_finite(err)
          end if
-         if (bad) then
-            ! overflow inside the step: shrink hard and retry
-            self%n_rejected = self%n_rejected + 1
-            rejected = .true.
-            h = self%facmin*h
-            cycle
-         end if
-         fac = pi_factor(err, self%err_old, expo, self%beta, self%safety, &
-                         self%facmin, self%facmax)
-         if (err <= 1.0_dp) then
-            self%err_old = max(err, 1.0e-4_dp)
-            hnew = h*fac
-            if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
-            exit
-         end if
-         ! rejected: no growth, no PI memory (Hairer's DOPRI5)
-         self%n_rejected = self%n_rejected + 1
-         rejected = .true.
-         h = h/min(1.0_dp/self%facmin, err**expo/self%safety)
+         call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
+                           hnew, rejected, accepted)
+         if (accepted) exit
       end do
       self%k = k                  ! stages of the recorded step, for dense output
       call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 7))
@@ -546,8 +569,8 @@ contains
       real(dp), intent(inout) :: y(4)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: k(4, 13), ynew(4), inc(4), e5(4), e3(4), err, err5, err3, deno, hnew, fac
-      logical :: rejected, bad
+      real(dp) :: k(4, 13), ynew(4), inc(4), e5(4), e3(4), err, err5, err3, deno, hnew
+      logical :: rejected, bad, accepted
       real(dp) :: expo
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
@@ -609,23 +632,9 @@ contains
             err = abs(h)*err5*sqrt(1.0_dp/(4.0_dp*deno))
             bad = .not. ieee_is_finite(err)
          end if
-         if (bad) then
-            self%n_rejected = self%n_rejected + 1
-            rejected = .true.
-            h = self%facmin*h
-            cycle
-         end if
-         fac = pi_factor(err, self%err_old, expo, self%beta, self%safety, &
-                         self%facmin, self%facmax)
-         if (err <= 1.0_dp) then
-            self%err_old = max(err, 1.0e-4_dp)
-            hnew = h*fac
-            if (rejected) hnew = sign(min(abs(hnew), abs(h)), h)
-            exit
-         end if
-         self%n_rejected = self%n_rejected + 1
-         rejected = .true.
-         h = h/min(1.0_dp/self%facmin, err**expo/self%safety)
+         call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
+                           hnew, rejected, accepted)
+         if (accepted) exit
       end do
       ! FSAL: f(y_new) is stage 1 of the next step and stage 13 of the dense output
       k(:, 13) = rhs_qqdot(par, ynew)

@@ -529,7 +529,7 @@ contains
       character(len=:), allocatable :: tmp, path
       real(dp), allocatable :: r1(:), r2(:, :)
       integer, allocatable :: i1(:), i2(:, :)
-      integer :: k, unit, stat
+      integer :: k
       tmp = filename//'.tmp'
       call src%open(filename, 'r', error)
       if (allocated(error)) return
@@ -558,19 +558,8 @@ contains
          end if
       end do
       call src%close()
+      call install_file(dst, tmp, filename, setup, error)
       if (allocated(error)) then
-         call dst%close()
-      else
-         call dst%close(error)
-      end if
-      if (.not. allocated(error)) call verify_file(tmp, setup, error)
-      if (.not. allocated(error)) then
-         if (c_rename(tmp//c_null_char, filename//c_null_char) /= 0) &
-            call fatal_error(error, "cannot rename '"//tmp//"' to '"//filename//"'")
-      end if
-      if (allocated(error)) then
-         open (newunit=unit, file=tmp, status='old', iostat=stat)
-         if (stat == 0) close (unit, status='delete')
          error%message = 'cannot write the compressed file: '//error%message// &
                          "; the uncompressed '"//filename//"' is complete and valid, "// &
                          'rerun to compress it'
@@ -671,7 +660,6 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
       character(len=:), allocatable :: file, stored, tmp
       logical :: exists
-      integer :: unit, stat
       file = setup%cfg%run%output
       complete = 0
       call check_output_file(file, .true., error)   ! directory exists and is writable
@@ -715,19 +703,8 @@ contains
       ! a new working file, complete before it gets its name
       tmp = file//'.tmp'
       call create_layout(h5, tmp, setup, .false., error)
+      call install_file(h5, tmp, file, setup, error)
       if (allocated(error)) then
-         call h5%close()
-      else
-         call h5%close(error)
-      end if
-      if (.not. allocated(error)) call verify_file(tmp, setup, error)
-      if (.not. allocated(error)) then
-         if (c_rename(tmp//c_null_char, file//c_null_char) /= 0) &
-            call fatal_error(error, "cannot rename '"//tmp//"' to '"//file//"'")
-      end if
-      if (allocated(error)) then
-         open (newunit=unit, file=tmp, status='old', iostat=stat)
-         if (stat == 0) close (unit, status='delete')
          error%message = 'cannot create the output: '//error%message// &
                          ' (is the disk full or the directory not writable?)'
          return
@@ -736,6 +713,32 @@ contains
       allocate (done(setup%nblocks))
       done = 0
    end subroutine open_output
+
+   !> Put a freshly written file in place: close it (the close checked unless an
+   !> error is already set), verify it, rename tmp to filename; on any failure
+   !> remove tmp, so that `filename` is either the old file or the complete new one.
+   subroutine install_file(h5, tmp, filename, setup, error)
+      type(h5file_t), intent(inout) :: h5                 !! the new file, open on tmp
+      character(len=*), intent(in) :: tmp                 !! its temporary name
+      character(len=*), intent(in) :: filename            !! its final name
+      type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
+      type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
+      integer :: unit, stat
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(tmp, setup, error)
+      if (.not. allocated(error)) then
+         if (c_rename(tmp//c_null_char, filename//c_null_char) /= 0) &
+            call fatal_error(error, "cannot rename '"//tmp//"' to '"//filename//"'")
+      end if
+      if (allocated(error)) then
+         open (newunit=unit, file=tmp, status='old', iostat=stat)
+         if (stat == 0) close (unit, status='delete')
+      end if
+   end subroutine install_file
 
    !> Check that a freshly written file opens and holds this configuration.
    subroutine verify_file(filename, setup, error)
