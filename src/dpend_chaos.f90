@@ -9,7 +9,7 @@ module dpend_chaos
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, check_output_file, run_flags_help, &
+                           validate_run_config, run_flags_help, &
                            namelist_error
    use dpend_model, only: pendulum_t, energy, energy_scale, finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -20,6 +20,7 @@ module dpend_chaos
                                fit_exponential_phase
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
    use dpend_hdf5, only: h5file_t
+   use dpend_output, only: output_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
@@ -365,28 +366,44 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the run started but failed
       class(integrator_t), allocatable :: integ
+      type(output_t) :: out
+      type(error_t), allocatable :: werr
       failed = .false.
       summary = ''
       call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
                           omega=cfg%omega)
       if (allocated(error)) return
-      call check_output_file(cfg%output, cfg%force, error)
+      call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return
       select case (ch%command)
       case ('lyapunov')
-         call run_lyapunov(cfg, ch, integ, summary, error, failed)
+         call run_lyapunov(cfg, ch, integ, out%temp, summary, error, failed)
       case ('divergence')
-         call run_divergence(cfg, ch, integ, summary, error, failed)
+         call run_divergence(cfg, ch, integ, out%temp, summary, error, failed)
       case default
-         call run_poincare(cfg, ch, integ, summary, error, failed)
+         call run_poincare(cfg, ch, integ, out%temp, summary, error, failed)
       end select
+      ! a complete file (also of a run that stopped early) goes into place; a file
+      ! whose writing failed is removed and the old output stays as it was
+      if (.not. allocated(error) .or. failed) then
+         call out%commit(werr)
+         if (allocated(werr)) call move_alloc(werr, error)
+      end if
+      call out%discard()
+      ! refused input found only now (e.g. an energy with no state on the section)
+      ! keeps exit status 2; any other error ends a run that had started
+      if (allocated(error)) then
+         if (index(error%message, 'invalid ') /= 1) failed = .true.
+         if (index(error%message, 'run stopped') /= 1) summary = ''
+      end if
    end subroutine run_chaos
 
    !> `dpend lyapunov`.
-   subroutine run_lyapunov(cfg, ch, integ, summary, error, failed)
+   subroutine run_lyapunov(cfg, ch, integ, filename, summary, error, failed)
       type(run_config_t), intent(in) :: cfg
       type(chaos_config_t), intent(in) :: ch
       class(integrator_t), intent(inout) :: integ
+      character(len=*), intent(in) :: filename  !! the file to write
       character(len=:), allocatable, intent(inout) :: summary
       type(error_t), allocatable, intent(out) :: error
       logical, intent(inout) :: failed
@@ -403,7 +420,7 @@ contains
          defect14 = res%exponents(1) + res%exponents(4)
          defect23 = res%exponents(2) + res%exponents(3)
       end if
-      call h5%open(cfg%output, 'w', error)
+      call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'lyapunov', status, error)
       if (.not. allocated(error)) call h5%write('/lyapunov/t', res%t, error)
@@ -423,7 +440,11 @@ contains
          call h5%writeattr('/', 'pairing_defect', defect14, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'zero_pair_sum', defect23, error)
       end if
-      call h5%close()
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%close(error)
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
                 //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
@@ -454,10 +475,11 @@ contains
    end subroutine run_lyapunov
 
    !> `dpend divergence`.
-   subroutine run_divergence(cfg, ch, integ, summary, error, failed)
+   subroutine run_divergence(cfg, ch, integ, filename, summary, error, failed)
       type(run_config_t), intent(in) :: cfg
       type(chaos_config_t), intent(in) :: ch
       class(integrator_t), intent(inout) :: integ
+      character(len=*), intent(in) :: filename  !! the file to write
       character(len=:), allocatable, intent(inout) :: summary
       type(error_t), allocatable, intent(out) :: error
       logical, intent(inout) :: failed
@@ -485,7 +507,7 @@ contains
          lam = lres%exponents(1); lam_spread = lres%spread(1)
          if (lstat /= stat_ok) status = run_status(lstat, lres%t_reached)
       end if
-      call h5%open(cfg%output, 'w', error)
+      call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'divergence', status, error)
       if (.not. allocated(error)) call h5%write('/divergence/t', res%t, error)
@@ -517,7 +539,11 @@ contains
          call h5%writeattr('/', 'lyapunov', lam, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'lyapunov_spread', lam_spread, error)
       end if
-      call h5%close()
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%close(error)
       if (allocated(error)) return
       summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
                 //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
@@ -548,10 +574,11 @@ contains
    end subroutine run_divergence
 
    !> `dpend poincare`.
-   subroutine run_poincare(cfg, ch, integ, summary, error, failed)
+   subroutine run_poincare(cfg, ch, integ, filename, summary, error, failed)
       type(run_config_t), intent(in) :: cfg
       type(chaos_config_t), intent(in) :: ch
       class(integrator_t), intent(inout) :: integ
+      character(len=*), intent(in) :: filename  !! the file to write
       character(len=:), allocatable, intent(inout) :: summary
       type(error_t), allocatable, intent(out) :: error
       logical, intent(inout) :: failed
@@ -583,7 +610,7 @@ contains
                                  status_message(res%status(findloc(res%status /= stat_ok, &
                                                                    .true., dim=1)))
       es_ = energy_scale(cfg%par, e)
-      call h5%open(cfg%output, 'w', error)
+      call h5%open(filename, 'w', error)
       if (allocated(error)) return
       integ%n_steps = res%n_steps
       call write_common(h5, cfg, integ, 'poincare', status, error)
@@ -606,7 +633,11 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'other_link', 3 - ch%section_link, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_orbits', n_found, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'max_points', ch%n_points, error)
-      call h5%close()
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%close(error)
       if (allocated(error)) return
       summary = 'dpend poincare: '//integ%name()//', dt = '//num(cfg%dt)//' s, E = ' &
                 //num(e)//' J, section q'//to_str(ch%section_link)//' = ' &

@@ -16,6 +16,7 @@ module dpend_hdf5
    use hdf5
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
+   use dpend_system, only: io_failure_reason
    implicit none
    private
    public :: h5file_t, is_hdf5
@@ -88,7 +89,7 @@ contains
       end if
       call h5pset_fclose_degree_f(fapl, H5F_CLOSE_STRONG_F, ierr)
       hdferr = -1
-      why = 'cannot create it (does the directory exist? is the file in use?)'
+      why = io_failure_reason(filename, 'cannot create it')
       select case (mode)
       case ('r', 'rw')
          if (on_disk) then
@@ -132,7 +133,7 @@ contains
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
       if (ierr /= 0 .and. present(error)) call fatal_error(error, 'cannot close '// &
-         quoted(self%filename)//': HDF5 could not flush it (is the disk full?)')
+         quoted(self%filename)//': '//io_failure_reason(self%filename, 'HDF5 could not flush it'))
       self%id = -1
       self%readonly = .false.
    end subroutine file_close
@@ -761,8 +762,13 @@ contains
       character(len=*), intent(in) :: what              !! quoted path or attr_label
       character(len=*), intent(in) :: why               !! the reason
       if (allocated(self%filename)) then
-         call fatal_error(error, 'cannot '//verb//' '//what//' in '//quoted(self%filename) &
-            //': '//why)
+         if (verb == 'write' .or. verb == 'create') then
+            call fatal_error(error, 'cannot '//verb//' '//what//' in '//quoted(self%filename) &
+               //': '//io_failure_reason(self%filename, why))
+         else
+            call fatal_error(error, 'cannot '//verb//' '//what//' in '//quoted(self%filename) &
+               //': '//why)
+         end if
       else
          call fatal_error(error, 'cannot '//verb//' '//what//': '//why)
       end if

@@ -5,7 +5,7 @@ module dpend_simulate
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, check_output_file, run_flags_help
+                           validate_run_config, run_flags_help
    use dpend_model, only: pendulum_t, qddot, energy, momenta, energy_scale
    use dpend_kinematics, only: kinematics_t, kinematics
    use dpend_reactions, only: reactions
@@ -13,6 +13,7 @@ module dpend_simulate
    use dpend_integrators, only: new_integrator
    use dpend_propagate, only: march_t, integrate_sampled
    use dpend_hdf5, only: h5file_t
+   use dpend_output, only: output_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
@@ -115,15 +116,19 @@ contains
       class(integrator_t), allocatable :: integ
       type(trajectory_t) :: traj
       type(error_t), allocatable :: werr
+      type(output_t) :: out
       failed = .false.
       call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
                           omega=cfg%omega)
       if (allocated(error)) return
-      call check_output_file(cfg%output, cfg%force, error)
+      call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return
       call integrate_trajectory(cfg, integ, traj)
-      call write_trajectory(cfg, integ, traj, werr)
+      call write_trajectory(out%temp, cfg, integ, traj, werr)
+      if (.not. allocated(werr)) call out%commit(werr)
+      call out%discard()
       if (allocated(werr)) then
+         failed = .true.
          call move_alloc(werr, error)
          return
       end if
@@ -202,7 +207,8 @@ contains
 
    !> Write the samples with their derived quantities (accelerations, momenta,
    !> energy, reactions, kinematics) and the run's attributes.
-   subroutine write_trajectory(cfg, integ, traj, error)
+   subroutine write_trajectory(filename, cfg, integ, traj, error)
+      character(len=*), intent(in) :: filename          !! file to write
       type(run_config_t), intent(in) :: cfg             !! configuration
       class(integrator_t), intent(in) :: integ          !! the method and its counters
       type(trajectory_t), intent(in) :: traj            !! the samples
@@ -227,7 +233,7 @@ contains
          rc1(:, i) = k%rc1; vc1(:, i) = k%vc1; ac1(:, i) = k%ac1
          rc2(:, i) = k%rc2; vc2(:, i) = k%vc2; ac2(:, i) = k%ac2; rb(:, i) = k%rb
       end do
-      call h5%open(cfg%output, 'w', error)
+      call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call h5%write('/trajectory/t', traj%t(:n), error)
       if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
@@ -270,7 +276,11 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
                                                     energy_scale(cfg%par, e(1)), error)
-      call h5%close()
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
    end subroutine write_trajectory
 
 end module dpend_simulate

@@ -1,15 +1,29 @@
-!> Small operating-system services for long-running commands (POSIX, Linux):
-!> whether stderr is a terminal, the path of the running executable, creating
-!> directories, the host name and CPU model for output files, and a wall clock.
+!> Small operating-system services (POSIX, Linux): whether stderr is a terminal,
+!> the path of the running executable, creating directories, the host name and
+!> CPU model for output files, a wall clock; and, through src/dpend_posix.c, the
+!> kind of a path, free disk and memory, unique temporary files, fsync, one-step
+!> moves (with or without replacing), errno texts, and running a program with an
+!> argument vector and no shell. The file operations return 0 or an errno value.
 module dpend_system
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_size_t, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_long_long, c_size_t, &
+      c_null_char, c_ptr, c_loc, c_null_ptr
    use, intrinsic :: iso_fortran_env, only: int64
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    implicit none
    private
    public :: stderr_is_terminal, executable_path, make_directories, host_name, cpu_model
-   public :: wall_clock, directory_of
+   public :: wall_clock, directory_of, base_name
+   public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
+   public :: free_disk_bytes, available_memory_bytes, make_temp_file, sync_path
+   public :: move_noreplace, move_replace, remove_file, errno_text, run_program
+   public :: errno_exists, errno_nospc, io_failure_reason
+
+   !> What `path_kind` finds at a path.
+   integer, parameter :: path_missing = 0, path_file = 1, path_directory = 2, &
+                         path_link = 3, path_other = 4
+   !> errno values that callers test (Linux).
+   integer, parameter :: errno_exists = 17, errno_nospc = 28
 
    interface
       function c_isatty(fd) bind(C, name='isatty') result(r)
@@ -30,9 +44,181 @@ module dpend_system
          integer(c_int), value :: mode
          integer(c_int) :: r
       end function c_mkdir
+      integer(c_int) function c_path_kind(path) bind(C, name='dpend_path_kind')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_path_kind
+      integer(c_long_long) function c_free_bytes(path) bind(C, name='dpend_free_bytes')
+         import :: c_long_long, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_free_bytes
+      integer(c_int) function c_make_temp(template) bind(C, name='dpend_make_temp')
+         import :: c_int, c_char
+         character(kind=c_char), intent(inout) :: template(*)
+      end function c_make_temp
+      integer(c_int) function c_sync_path(path) bind(C, name='dpend_sync_path')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_sync_path
+      integer(c_int) function c_move_noreplace(from, to) bind(C, name='dpend_move_noreplace')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: from(*), to(*)
+      end function c_move_noreplace
+      integer(c_int) function c_move_replace(from, to) bind(C, name='dpend_move_replace')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: from(*), to(*)
+      end function c_move_replace
+      integer(c_int) function c_remove(path) bind(C, name='dpend_remove')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_remove
+      subroutine c_error_text(err, buf, length) bind(C, name='dpend_error_text')
+         import :: c_int, c_char
+         integer(c_int), value :: err, length
+         character(kind=c_char), intent(out) :: buf(*)
+      end subroutine c_error_text
+      integer(c_int) function c_spawn_wait(argv, status) bind(C, name='dpend_spawn_wait')
+         import :: c_int, c_ptr
+         type(c_ptr), intent(in) :: argv(*)
+         integer(c_int), intent(out) :: status
+      end function c_spawn_wait
    end interface
 
 contains
+
+   !> What is at `path` (not following a final symbolic link): path_missing,
+   !> path_file, path_directory, path_link or path_other (device, FIFO, socket);
+   !> a negative errno value if it cannot be examined.
+   integer function path_kind(path)
+      character(len=*), intent(in) :: path  !! file path
+      path_kind = int(c_path_kind(path//c_null_char))
+   end function path_kind
+
+   !> Bytes free for an ordinary user on the file system holding `path`, or -1.
+   integer(int64) function free_disk_bytes(path)
+      character(len=*), intent(in) :: path  !! a file or directory on that file system
+      free_disk_bytes = int(c_free_bytes(path//c_null_char), int64)
+   end function free_disk_bytes
+
+   !> Memory available to a new process (MemAvailable in /proc/meminfo) in bytes,
+   !> or -1 when unknown.
+   integer(int64) function available_memory_bytes() result(bytes)
+      character(len=256) :: line
+      integer :: unit, stat
+      integer(int64) :: kib
+      bytes = -1
+      open (newunit=unit, file='/proc/meminfo', status='old', action='read', iostat=stat)
+      if (stat /= 0) return
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         if (index(line, 'MemAvailable:') == 1) then
+            read (line(14:), *, iostat=stat) kib
+            if (stat == 0) bytes = kib*1024_int64
+            exit
+         end if
+      end do
+      close (unit)
+   end function available_memory_bytes
+
+   !> Create a new, empty file named `prefix` followed by six unique characters;
+   !> `name` is its path. Returns 0 or an errno value.
+   integer function make_temp_file(prefix, name) result(err)
+      character(len=*), intent(in) :: prefix            !! path and start of the name
+      character(len=:), allocatable, intent(out) :: name  !! the file created
+      character(kind=c_char) :: buf(len(prefix) + 7)
+      integer :: i
+      do i = 1, len(prefix)
+         buf(i) = prefix(i:i)
+      end do
+      buf(len(prefix) + 1:len(prefix) + 6) = 'X'
+      buf(len(prefix) + 7) = c_null_char
+      err = int(c_make_temp(buf))
+      allocate (character(len=len(prefix) + 6) :: name)
+      do i = 1, len(name)
+         name(i:i) = buf(i)
+      end do
+   end function make_temp_file
+
+   !> fsync a file or a directory. Returns 0 or an errno value.
+   integer function sync_path(path)
+      character(len=*), intent(in) :: path
+      sync_path = int(c_sync_path(path//c_null_char))
+   end function sync_path
+
+   !> Rename `from` to `to` in one step unless `to` exists (then errno_exists).
+   integer function move_noreplace(from, to)
+      character(len=*), intent(in) :: from, to
+      move_noreplace = int(c_move_noreplace(from//c_null_char, to//c_null_char))
+   end function move_noreplace
+
+   !> Rename `from` to `to` in one step, replacing `to`. Returns 0 or an errno value.
+   integer function move_replace(from, to)
+      character(len=*), intent(in) :: from, to
+      move_replace = int(c_move_replace(from//c_null_char, to//c_null_char))
+   end function move_replace
+
+   !> Remove a file. Returns 0 or an errno value.
+   integer function remove_file(path)
+      character(len=*), intent(in) :: path
+      remove_file = int(c_remove(path//c_null_char))
+   end function remove_file
+
+   !> The system's text for errno value `err`, in lower case ('no space left on device').
+   function errno_text(err) result(text)
+      integer, intent(in) :: err
+      character(len=:), allocatable :: text
+      character(kind=c_char) :: buf(256)
+      integer :: i, n
+      call c_error_text(int(err, c_int), buf, int(size(buf), c_int))
+      n = 0
+      do while (n < size(buf))
+         if (buf(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      allocate (character(len=n) :: text)
+      do i = 1, n
+         text(i:i) = buf(i)
+         if (i == 1 .and. text(1:1) >= 'A' .and. text(1:1) <= 'Z') &
+            text(1:1) = achar(iachar(text(1:1)) + 32)
+      end do
+   end function errno_text
+
+   !> Run the program argv(1) (searched on PATH) with arguments argv(2:), each
+   !> passed as it is (trailing blanks removed), without a shell, and wait for it.
+   !> `status` is its exit status (128 + N when signal N ended it); `error` is set
+   !> when it could not be started.
+   subroutine run_program(argv, status, error)
+      character(len=*), intent(in) :: argv(:)           !! program and arguments
+      integer, intent(out) :: status                    !! its exit status
+      type(error_t), allocatable, intent(out) :: error  !! could not start it
+      type :: c_string_t
+         character(kind=c_char), allocatable :: s(:)
+      end type c_string_t
+      type(c_string_t), allocatable, target :: args(:)
+      type(c_ptr) :: ptrs(size(argv) + 1)
+      integer(c_int) :: cstatus, err
+      integer :: i, j, n
+      allocate (args(size(argv)))
+      do i = 1, size(argv)
+         n = len_trim(argv(i))
+         allocate (args(i)%s(n + 1))
+         do j = 1, n
+            args(i)%s(j) = argv(i)(j:j)
+         end do
+         args(i)%s(n + 1) = c_null_char
+         ptrs(i) = c_loc(args(i)%s)
+      end do
+      ptrs(size(argv) + 1) = c_null_ptr
+      status = -1
+      cstatus = -1
+      err = c_spawn_wait(ptrs, cstatus)
+      if (err /= 0) then
+         call fatal_error(error, "cannot run '"//trim(argv(1))//"': "//errno_text(int(err)))
+         return
+      end if
+      status = int(cstatus)
+   end subroutine run_program
 
    !> True when standard error (file descriptor 2) is a terminal.
    logical function stderr_is_terminal()
@@ -70,6 +256,13 @@ contains
          dir = path(:slash - 1)
       end if
    end function directory_of
+
+   !> The last component of `path` (everything after the last '/').
+   pure function base_name(path) result(name)
+      character(len=*), intent(in) :: path  !! a file path
+      character(len=:), allocatable :: name
+      name = path(index(path, '/', back=.true.) + 1:)
+   end function base_name
 
    !> Create directory `dir` and its missing parents (like mkdir -p), mode 0777
    !> before the umask. Fails if a component cannot be created.
@@ -154,4 +347,18 @@ contains
       close (unit)
       if (stat == 0) line = trim(adjustl(buf))
    end function first_line
+   !> Why writing `path` may have failed, for a message: 'no space left on device'
+   !> when its file system has (almost) no room left, else `fallback`.
+   function io_failure_reason(path, fallback) result(reason)
+      character(len=*), intent(in) :: path      !! the file that could not be written
+      character(len=*), intent(in) :: fallback  !! what to say otherwise
+      character(len=:), allocatable :: reason
+      integer(int64) :: free
+      free = free_disk_bytes(directory_of(path))
+      if (free >= 0 .and. free < 1048576_int64) then
+         reason = errno_text(errno_nospc)
+      else
+         reason = fallback
+      end if
+   end function io_failure_reason
 end module dpend_system
