@@ -113,8 +113,8 @@ contains
       if (len(name) > max_name) name = name(:max_name)
       err = make_temp_file(dir//'/.'//name//'.tmp-', self%temp)
       if (err /= 0) then
-         call fatal_error(error, 'invalid '//opt//": cannot create a file in '"//dir// &
-                          "': "//errno_text(err))
+         call fatal_error(error, 'invalid '//opt//": directory '"//dir// &
+                          "' is not writable ("//errno_text(err)//')')
          return
       end if
       self%target = target
