@@ -201,12 +201,9 @@ contains
       end if
       call run_sweep(cfg, summary, error)
       if (allocated(error)) then
-         ! leave without HDF5's exit handler: after a failed flush (full disk) it would
-         ! retry closing forever; the files written so far are closed and valid
-         write (error_unit, '(a)') 'dpend sweep: '//error%message
-         flush (error_unit)
-         flush (output_unit)
-         call c_exit(2_c_int)
+         ! refused input (found when the output is examined) or a run that failed
+         if (index(error%message, 'invalid ') == 1) call fail(2, 'dpend sweep: '//error%message)
+         call fail(1, 'dpend sweep: '//error%message)
       end if
       if (summary%blocks_computed == 0) then
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
@@ -247,14 +244,15 @@ contains
       if (allocated(error)) call fail(2, 'dpend '//error%message)
    end subroutine sweep_compare
 
-   !> One line on stderr, then exit with `code` and no runtime noise.
+   !> One line on stderr, then exit with `code` (1 or 2) and no runtime noise. The
+   !> process ends without exit handlers: after a failed flush (full disk) HDF5's
+   !> would retry closing forever. Every output file is closed or removed by then.
    subroutine fail(code, message)
       integer, intent(in) :: code
       character(len=*), intent(in) :: message
       write (error_unit, '(a)') message
-      select case (code)
-      case (1); stop 1, quiet=.true.
-      case default; stop 2, quiet=.true.
-      end select
+      flush (error_unit)
+      flush (output_unit)
+      call c_exit(int(merge(1, 2, code == 1), c_int))
    end subroutine fail
 end program dpend

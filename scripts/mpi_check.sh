@@ -95,15 +95,15 @@ partial() {
 mpirun_cmd=(mpirun "${mpiflags[@]}" "$mpibin" sweep --quiet "${classic[@]}")
 interrupted=0
 kill_at 0.35 "${mpirun_cmd[@]}" --output "$dir/run.h5"
-partial "$dir/run.h5" && interrupted=1
+partial "$dir/run.h5.part" && interrupted=1
 kill_at 0.4 "${mpirun_cmd[@]}" --output "$dir/run.h5"
-partial "$dir/run.h5" && interrupted=1
+partial "$dir/run.h5.part" && interrupted=1
 mpi "${classic[@]}" --output "$dir/run.h5" >/dev/null
 ((interrupted)) || echo "  (note: no kill hit a run in progress; the machine was fast)"
 same_content "$dir/ref.h5" "$dir/run.h5"
 echo "== 2b. serial run killed, finished by dpend-mpi"
 kill_at 0.5 "$serial" sweep --quiet --threads 2 "${classic[@]}" --output "$dir/cross.h5"
-partial "$dir/cross.h5" || true
+partial "$dir/cross.h5.part" || true
 mpi "${classic[@]}" --output "$dir/cross.h5" >/dev/null
 same_content "$dir/ref.h5" "$dir/cross.h5"
 

@@ -389,6 +389,7 @@ contains
          call out%commit(werr)
          if (allocated(werr)) call move_alloc(werr, error)
       end if
+      call out%explain(error)
       call out%discard()
       ! refused input found only now (e.g. an energy with no state on the section)
       ! keeps exit status 2; any other error ends a run that had started

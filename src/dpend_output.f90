@@ -35,6 +35,7 @@ module dpend_output
       procedure :: begin => output_begin
       procedure :: commit => output_commit
       procedure :: discard => output_discard
+      procedure :: explain => output_explain
    end type output_t
 
    integer, parameter :: max_name = 240  !! longest base name kept in a temporary name
@@ -177,4 +178,19 @@ contains
       self%active = .false.
    end subroutine output_discard
 
+   !> Say the target's name where a message names the temporary file (the user
+   !> knows the file by its final name).
+   subroutine output_explain(self, error)
+      class(output_t), intent(in) :: self                 !! the output
+      type(error_t), allocatable, intent(inout) :: error  !! message to rewrite, if any
+      integer :: k
+      if (.not. allocated(error) .or. .not. allocated(self%temp)) return
+      if (len(self%temp) == 0) return
+      do
+         k = index(error%message, self%temp)
+         if (k == 0) exit
+         error%message = error%message(:k - 1)//self%target// &
+                         error%message(k + len(self%temp):)
+      end do
+   end subroutine output_explain
 end module dpend_output

@@ -126,6 +126,7 @@ contains
       call integrate_trajectory(cfg, integ, traj)
       call write_trajectory(out%temp, cfg, integ, traj, werr)
       if (.not. allocated(werr)) call out%commit(werr)
+      call out%explain(werr)
       call out%discard()
       if (allocated(werr)) then
          failed = .true.

@@ -9,10 +9,10 @@ module dpend_study_output
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use dpend_fit, only: fit_t
-   use dpend_config, only: check_output_file
+   use dpend_output, only: output_t, check_output_path
    use dpend_integrator, only: stat_ok
    use dpend_system, only: host_name, cpu_model, executable_path, make_directories, &
-                           directory_of
+                           directory_of, run_program, io_failure_reason
    use dpend_study_config, only: study_config_t, case_index, study_namelist
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
    use dpend_cli, only: to_str
@@ -58,44 +58,66 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the study ran, then failed
       type(study_result_t) :: res
-      character(len=:), allocatable :: text, md, script, fig_dir, command
-      logical :: exists
-      integer :: unit, stat, cstat
+      type(output_t) :: h5_out, md_out
+      character(len=:), allocatable :: text, md, script, fig_dir, exe, argv(:)
+      integer :: unit, stat
+      character(len=512) :: msg
       failed = .false.
-      inquire (file=cfg%output, exist=exists)
-      if (exists .and. .not. cfg%force) then
-         call fatal_error(error, "invalid --output: '"//cfg%output// &
-                          "' exists (use --force to overwrite)")
-         return
-      end if
+      ! every output path is checked, and its temporary file created, before the study
       if (len_trim(cfg%output) == 0) then
          call fatal_error(error, 'invalid --output: empty file name')
          return
       end if
-      call make_directories(directory_of(cfg%output), error)
+      md = summary_path(cfg%output)
+      call check_output_path(cfg%output, cfg%force, error)
+      if (.not. allocated(error)) call check_output_path(md, cfg%force, error, &
+                                                          '--output (its summary)')
       if (allocated(error)) then
-         error%message = 'invalid --output: '//error%message
+         if (index(error%message, 'does not exist') == 0) return
+         deallocate (error)
+         call make_directories(directory_of(cfg%output), error)
+         if (allocated(error)) then
+            error%message = 'invalid --output: '//error%message
+            return
+         end if
+      end if
+      call h5_out%begin(cfg%output, cfg%force, error)
+      if (.not. allocated(error)) call md_out%begin(md, cfg%force, error, &
+                                                     '--output (its summary)')
+      if (allocated(error)) then
+         call h5_out%discard()
          return
       end if
-      call check_output_file(cfg%output, cfg%force, error)
-      if (allocated(error)) return
 
       call run_study(cfg, res)
       failed = .true.
-      call write_study_h5(cfg, res, cfg%output, error)
-      if (allocated(error)) return
       text = study_summary(cfg, res)
-      md = summary_path(cfg%output)
-      open (newunit=unit, file=md, status='replace', action='write', iostat=stat)
-      if (stat /= 0) then
-         call fatal_error(error, "cannot write the summary '"//md//"'")
-         return
+      call write_study_h5(cfg, res, h5_out%temp, error)
+      if (.not. allocated(error)) then
+         open (newunit=unit, file=md_out%temp, status='replace', action='write', &
+               iostat=stat, iomsg=msg)
+         if (stat == 0) write (unit, '(a)', iostat=stat, iomsg=msg) text
+         if (stat == 0) then
+            close (unit, iostat=stat, iomsg=msg)
+         else
+            close (unit)
+         end if
+         if (stat /= 0) call fatal_error(error, "cannot write the summary '"//md//"': "// &
+                                         io_failure_reason(md_out%temp, trim(msg)))
       end if
-      write (unit, '(a)') text
-      close (unit)
+      if (.not. allocated(error)) call h5_out%commit(error)
+      if (.not. allocated(error)) call md_out%commit(error)
+      call h5_out%explain(error)
+      call md_out%explain(error)
+      call h5_out%discard()
+      call md_out%discard()
+      if (allocated(error)) return
       write (output_unit, '(a)') text
       write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md//"'"
-      if (.not. cfg%figures) return
+      if (.not. cfg%figures) then
+         failed = .false.
+         return
+      end if
       script = plot_script()
       fig_dir = directory_of(cfg%output)
       if (len(script) == 0) then
@@ -103,12 +125,23 @@ contains
                           'DPEND_ROOT to the dpend source tree); the .h5 and summary are written')
          return
       end if
-      command = "DPEND='"//executable_path()//"' '"//script//"' '"//cfg%output//"' '" &
-                //fig_dir//"'"
-      call execute_command_line(command, exitstat=stat, cmdstat=cstat)
-      if (stat /= 0 .or. cstat /= 0) then
-         call fatal_error(error, 'figures failed ('//script//'); the .h5 and summary are '// &
-                          'written: rerun scripts/plot_study.sh '//cfg%output//' '//fig_dir)
+      ! an argument vector, no shell: names are passed as they are
+      exe = executable_path()
+      ! element by element: -fcheck=all rejects a typed constructor of other lengths
+      allocate (character(len=max(len(exe) + 6, len(script), len(cfg%output), &
+                                  len(fig_dir))) :: argv(6))
+      argv(1) = 'env'
+      argv(2) = 'DPEND='//exe
+      argv(3) = 'bash'
+      argv(4) = script
+      argv(5) = cfg%output
+      argv(6) = fig_dir
+      call run_program(argv, stat, error)
+      if (allocated(error)) return
+      if (stat /= 0) then
+         call fatal_error(error, 'figures failed ('//script//', exit status '//to_str(stat)// &
+                          '); the .h5 and summary are written: rerun scripts/plot_study.sh '// &
+                          'with the file and the figure directory')
          return
       end if
       failed = .false.
@@ -675,7 +708,11 @@ contains
       call w%as('/summary', 'drift', v%drift_text)
       call w%ai('/summary', 'roundoff_ok', merge(1, 0, v%roundoff))
       call w%as('/summary', 'roundoff', v%roundoff_text)
-      call w%h5%close()
+      if (allocated(w%error)) then
+         call w%h5%close()
+      else
+         call w%h5%close(w%error)
+      end if
       if (allocated(w%error)) call move_alloc(w%error, error)
    end subroutine write_study_h5
 

@@ -2,23 +2,25 @@
 !> (dpend_batch), in blocks distributed over OpenMP threads, into one HDF5 file
 !> (layout in docs/hdf5-layout.md, design in docs/sweep.md).
 !>
-!> Crash safety and resume. While it runs, the output is a *working* file whose
-!> datasets are chunked (one chunk per block), uncompressed and allocated in full
-!> when the file is created, so writing a block changes raw data only, never the
-!> file's metadata: a kill at any moment leaves a valid file. A block's data are
-!> written and flushed before its flag in /sweep/done. The working file is created
-!> under a temporary name and renamed into place. When every block is done, the
-!> file is rewritten with compressed chunks (again via a temporary file and an
-!> atomic rename) and marked complete. Rerunning the same command computes only the
-!> blocks not flagged done; another configuration is refused unless --force.
+!> Crash safety and resume. While it runs, the results go to a *working* file,
+!> FILE.part beside the output FILE, whose datasets are chunked (one chunk per
+!> block), uncompressed and allocated in full when the file is created, so writing
+!> a block changes raw data only, never the file's metadata: a kill at any moment
+!> leaves a valid file. A block's data are written and flushed before its flag in
+!> /sweep/done. When every block is done, the results are rewritten with
+!> compressed chunks through the one writer (dpend_output: temporary file, checked
+!> close, one-step move) into FILE, marked complete, and the working file is
+!> removed. FILE itself is never changed before the new result is complete.
+!> Rerunning the same command computes only the blocks not flagged done in
+!> FILE.part; another configuration is refused unless --force.
 module dpend_sweep
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       ieee_quiet_nan
    use omp_lib, only: omp_set_num_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_config, only: check_output_file
+   use dpend_output, only: output_t, check_output_path
+   use dpend_system, only: path_kind, path_missing, path_file, remove_file
    use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, &
       energy_scale, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
@@ -31,7 +33,7 @@ module dpend_sweep
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
-   public :: block_range, open_output, write_block, finalize_file
+   public :: block_range, open_output, write_block, finalize_file, working_file
 
    real(dp), parameter :: half_pi = 1.57079632679489661923132169163975144_dp
 
@@ -62,12 +64,6 @@ module dpend_sweep
       real(dp) :: seconds = 0            !! wall time of the computation [s]
    end type sweep_summary_t
 
-   interface
-      integer(c_int) function c_rename(old, new) bind(C, name='rename')
-         import :: c_int, c_char
-         character(kind=c_char), intent(in) :: old(*), new(*)
-      end function c_rename
-   end interface
 
 contains
 
@@ -518,22 +514,35 @@ contains
       end subroutine put_i
    end subroutine write_block
 
-   !> Rewrite the complete working file `filename` with compressed chunks: write
-   !> `filename`.tmp, then rename it over `filename` (atomic).
+   !> The working file of the sweep whose output is `output`: FILE.part.
+   pure function working_file(output) result(path)
+      character(len=*), intent(in) :: output  !! the output file
+      character(len=:), allocatable :: path
+      path = output//'.part'
+   end function working_file
+
+   !> Rewrite the complete working file of `filename` with compressed chunks into
+   !> `filename` (through the one writer), then remove the working file.
    subroutine finalize_file(filename, setup, error)
-      character(len=*), intent(in) :: filename          !! complete working file
+      character(len=*), intent(in) :: filename          !! the output file
       type(sweep_setup_t), intent(in) :: setup          !! setup
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       type(h5file_t) :: src, dst
+      type(output_t) :: out
       character(len=32), allocatable :: reals(:), ints(:)
-      character(len=:), allocatable :: tmp, path
+      character(len=:), allocatable :: path, part
       real(dp), allocatable :: r1(:), r2(:, :)
       integer, allocatable :: i1(:), i2(:, :)
-      integer :: k
-      tmp = filename//'.tmp'
-      call src%open(filename, 'r', error)
+      integer :: k, err
+      part = working_file(filename)
+      call out%begin(filename, setup%cfg%run%force, error)
       if (allocated(error)) return
-      call create_layout(dst, tmp, setup, .true., error)
+      call src%open(part, 'r', error)
+      if (allocated(error)) then
+         call out%discard()
+         return
+      end if
+      call create_layout(dst, out%temp, setup, .true., error)
       call result_names(setup, reals, ints)
       do k = 1, size(reals)
          if (allocated(error)) exit
@@ -558,12 +567,22 @@ contains
          end if
       end do
       call src%close()
-      call install_file(dst, tmp, filename, setup, error)
       if (allocated(error)) then
-         error%message = 'cannot write the compressed file: '//error%message// &
-                         "; the uncompressed '"//filename//"' is complete and valid, "// &
-                         'rerun to compress it'
+         call dst%close()
+      else
+         call dst%close(error)
       end if
+      if (.not. allocated(error)) call verify_file(out%temp, setup, error)
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+      if (allocated(error)) then
+         error%message = 'cannot write the final file: '//error%message// &
+                         "; the working file '"//part//"' is complete and valid: "// &
+                         'rerun to finish'
+         return
+      end if
+      err = remove_file(part)
    end subroutine finalize_file
 
    ! --------------------------------------------------------------- run ---
@@ -613,7 +632,7 @@ contains
       call h5%close()
       call progress%finish()
       if (failed) then
-         error%message = error%message//"; '"//cfg%run%output// &
+         error%message = error%message//"; '"//working_file(cfg%run%output)// &
                          "' holds the blocks done so far: rerun to resume"
          return
       end if
@@ -650,95 +669,109 @@ contains
       end subroutine do_block
    end subroutine run_sweep
 
-   !> Open the output for writing: resume an existing file of the same configuration,
-   !> refuse another unless --force, else create the working file.
+   !> Open the working file for writing: resume FILE.part of the same configuration,
+   !> refuse another unless --force, else create a new working file. A complete FILE
+   !> of the same configuration needs nothing (`complete` = 1); another FILE is
+   !> refused unless --force, and with --force it is replaced only at the end.
    subroutine open_output(setup, h5, done, complete, error)
       type(sweep_setup_t), intent(in) :: setup          !! setup
-      type(h5file_t), intent(inout) :: h5               !! opened 'rw'
+      type(h5file_t), intent(inout) :: h5               !! the working file, opened 'rw'
       integer, allocatable, intent(out) :: done(:)      !! block flags
       integer, intent(out) :: complete                  !! 1 if already complete
       type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
-      character(len=:), allocatable :: file, stored, tmp
-      logical :: exists
+      type(output_t) :: probe, work
+      character(len=:), allocatable :: file, part
+      logical :: force
       file = setup%cfg%run%output
+      part = working_file(file)
+      force = setup%cfg%run%force
       complete = 0
-      call check_output_file(file, .true., error)   ! directory exists and is writable
+      ! the output and the working file: regular files or missing, in a writable
+      ! directory (a real temporary file, removed at once)
+      call check_output_path(file, .true., error)
+      if (.not. allocated(error)) call check_output_path(part, .true., error, &
+                                                          '--output (its working file)')
+      if (.not. allocated(error)) call probe%begin(file, .true., error)
+      call probe%discard()
       if (allocated(error)) return
-      inquire (file=file, exist=exists)
-      if (exists .and. .not. setup%cfg%run%force) then
-         if (.not. is_hdf5(file)) then
-            call fatal_error(error, "invalid --output: '"//file//"' exists and is not "// &
-                             'an HDF5 file (use --force to overwrite)')
-            return
+      if (path_kind(file) == path_file .and. .not. force) then
+         call read_stored(file, done, complete, error)
+         if (allocated(error)) return
+         if (complete /= 1) then
+            call fatal_error(error, "invalid --output: '"//file//"' holds an unfinished "// &
+                             'sweep written by an older dpend (use --force to start again)')
          end if
-         call h5%open(file, 'r', error)
-         if (.not. allocated(error)) call h5%readattr('/sweep', 'config', stored, error)
-         call h5%close()
-         if (allocated(error)) then
-            call fatal_error(error, "invalid --output: '"//file//"' exists and is not "// &
-                             'a dpend sweep file (use --force to overwrite)')
-            return
-         end if
-         if (stored /= setup%config) then
-            call fatal_error(error, "invalid --output: '"//file//"' holds a sweep with "// &
-                             'another configuration ('//first_difference(setup%config, &
-                             stored)//'); use --force to overwrite it')
-            return
-         end if
-         call h5%open(file, 'rw', error)
-         if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
-         if (.not. allocated(error)) call h5%readattr('/sweep', 'complete', complete, error)
-         if (allocated(error)) then
-            error%message = error%message//' (use --force to start again)'
-            call h5%close()
-            return
-         end if
-         if (size(done) /= setup%nblocks) then
-            call fatal_error(error, "invalid --output: '"//file//"' has a damaged block "// &
-                             'list (use --force to start again)')
-            call h5%close()
-         end if
+         return
+      end if
+      if (path_kind(part) == path_file .and. .not. force) then
+         call read_stored(part, done, complete, error)
+         if (allocated(error)) return
+         call h5%open(part, 'rw', error)
+         if (allocated(error)) error%message = error%message//' (use --force to start again)'
          return
       end if
       ! a new working file, complete before it gets its name
-      tmp = file//'.tmp'
-      call create_layout(h5, tmp, setup, .false., error)
-      call install_file(h5, tmp, file, setup, error)
-      if (allocated(error)) then
-         error%message = 'cannot create the output: '//error%message// &
-                         ' (is the disk full or the directory not writable?)'
-         return
-      end if
-      call h5%open(file, 'rw', error)
-      allocate (done(setup%nblocks))
-      done = 0
-   end subroutine open_output
-
-   !> Put a freshly written file in place: close it (the close checked unless an
-   !> error is already set), verify it, rename tmp to filename; on any failure
-   !> remove tmp, so that `filename` is either the old file or the complete new one.
-   subroutine install_file(h5, tmp, filename, setup, error)
-      type(h5file_t), intent(inout) :: h5                 !! the new file, open on tmp
-      character(len=*), intent(in) :: tmp                 !! its temporary name
-      character(len=*), intent(in) :: filename            !! its final name
-      type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
-      type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
-      integer :: unit, stat
+      call work%begin(part, .true., error, '--output (its working file)')
+      if (allocated(error)) return
+      call create_layout(h5, work%temp, setup, .false., error)
       if (allocated(error)) then
          call h5%close()
       else
          call h5%close(error)
       end if
-      if (.not. allocated(error)) call verify_file(tmp, setup, error)
-      if (.not. allocated(error)) then
-         if (c_rename(tmp//c_null_char, filename//c_null_char) /= 0) &
-            call fatal_error(error, "cannot rename '"//tmp//"' to '"//filename//"'")
-      end if
+      if (.not. allocated(error)) call verify_file(work%temp, setup, error)
+      if (.not. allocated(error)) call work%commit(error)
+      call work%explain(error)
+      call work%discard()
       if (allocated(error)) then
-         open (newunit=unit, file=tmp, status='old', iostat=stat)
-         if (stat == 0) close (unit, status='delete')
+         error%message = 'cannot create the working file: '//error%message
+         return
       end if
-   end subroutine install_file
+      call h5%open(part, 'rw', error)
+      allocate (done(setup%nblocks))
+      done = 0
+   contains
+      !> The block flags and the completeness of an existing sweep file of this
+      !> configuration; refused when it is another file or another configuration.
+      subroutine read_stored(path, done, complete, error)
+         character(len=*), intent(in) :: path
+         integer, allocatable, intent(out) :: done(:)
+         integer, intent(out) :: complete
+         type(error_t), allocatable, intent(out) :: error
+         type(h5file_t) :: f
+         character(len=:), allocatable :: stored
+         complete = 0
+         if (.not. is_hdf5(path)) then
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'an HDF5 file (use --force to overwrite)')
+            return
+         end if
+         call f%open(path, 'r', error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'config', stored, error)
+         if (allocated(error)) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'a dpend sweep file (use --force to overwrite)')
+            return
+         end if
+         if (stored /= setup%config) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' holds a sweep with "// &
+                             'another configuration ('//first_difference(setup%config, &
+                             stored)//'); use --force to overwrite it')
+            return
+         end if
+         call f%read('/sweep/done', done, error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'complete', complete, error)
+         call f%close()
+         if (allocated(error)) then
+            error%message = error%message//' (use --force to start again)'
+         else if (size(done) /= setup%nblocks) then
+            call fatal_error(error, "invalid --output: '"//path//"' has a damaged block "// &
+                             'list (use --force to start again)')
+         end if
+      end subroutine read_stored
+   end subroutine open_output
 
    !> Check that a freshly written file opens and holds this configuration.
    subroutine verify_file(filename, setup, error)

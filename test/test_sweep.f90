@@ -365,8 +365,9 @@ contains
          call execute_command_line(dpend_binary()//' '//args//dir// &
             '/run.h5 > /dev/null 2>&1 & pid=$!; sleep '//trim(delay)// &
             '; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null; true', exitstat=stat)
-         if (.not. is_hdf5(dir//'/run.h5')) cycle   ! killed before the file existed
-         call h5%open(dir//'/run.h5', 'r', error)
+         ! the working file run.h5.part holds the blocks done so far
+         if (.not. is_hdf5(dir//'/run.h5.part')) cycle   ! killed before the file existed
+         call h5%open(dir//'/run.h5.part', 'r', error)
          if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
          call h5%close()
          call check_true(error, .not. allocated(error), 'file valid after kill -9')

@@ -33,7 +33,7 @@ module dpend_mpi_sweep
    use dpend_batch, only: batch_result_t, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t
    use dpend_sweep, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
-      compute_block, open_output, write_block, finalize_file
+      compute_block, open_output, write_block, finalize_file, working_file
    use dpend_hdf5, only: h5file_t
    use dpend_progress, only: progress_t
    use dpend_mpi_counter, only: shared_counter_t
@@ -133,7 +133,7 @@ contains
       call h5open_f(ierr)
       call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
       call h5pset_fapl_mpio_f(fapl, comm%MPI_VAL, MPI_INFO_NULL%MPI_VAL, ierr)
-      call h5%open(cfg%run%output, 'rw', error, access=fapl)
+      call h5%open(working_file(cfg%run%output), 'rw', error, access=fapl)
       call h5pclose_f(fapl, ierr)
       call agree(comm, error)
       if (allocated(error)) then
@@ -162,7 +162,7 @@ contains
       call agree(comm, error)
       if (allocated(error)) then
          call progress%finish()
-         error%message = error%message//"; '"//cfg%run%output// &
+         error%message = error%message//"; '"//working_file(cfg%run%output)// &
                          "' holds the blocks done so far: rerun to resume"
          return
       end if
