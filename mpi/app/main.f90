@@ -14,6 +14,7 @@ program dpend_mpi
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, get_arguments
    use dpend_version, only: version
+   use dpend_output, only: check_output_path
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
@@ -90,6 +91,10 @@ contains
                   '  --block-times FILE  cost of every block computed, as text columns')
          return
       end if
+      if (allocated(times_file)) then
+         call check_output_path(times_file, cfg%run%force, error, '--block-times')
+         if (allocated(error)) call finish(2, 'dpend-mpi sweep: '//error%message)
+      end if
       if (provided < MPI_THREAD_SERIALIZED) cfg%threads = 1
       call run_mpi_sweep(cfg, MPI_COMM_WORLD, report, error)
       if (allocated(error)) call finish(2, 'dpend-mpi sweep: '//error%message)
@@ -109,10 +114,10 @@ contains
          omp_get_max_threads()
       call write_balance(report, output_unit)
       if (allocated(times_file)) then
-         call write_block_times(report, times_file, error)
+         call write_block_times(report, times_file, cfg%run%force, error)
          if (allocated(error)) then
             write (error_unit, '(a)') 'dpend-mpi sweep: '//error%message
-            call finish(2)
+            call finish(1)
          end if
       end if
    end subroutine sweep

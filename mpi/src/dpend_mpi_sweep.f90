@@ -35,6 +35,8 @@ module dpend_mpi_sweep
    use dpend_sweep, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
       compute_block, open_output, write_block, finalize_file, working_file
    use dpend_hdf5, only: h5file_t
+   use dpend_output, only: output_t
+   use dpend_system, only: io_failure_reason
    use dpend_progress, only: progress_t
    use dpend_mpi_counter, only: shared_counter_t
    implicit none
@@ -323,24 +325,41 @@ contains
 
    !> Per-block costs as text columns: block, rank, initial conditions, RK4 steps,
    !> kernel seconds (blocks computed by this run only).
-   subroutine write_block_times(report, filename, error)
+   subroutine write_block_times(report, filename, force, error)
       type(mpi_report_t), intent(in) :: report          !! a report of rank 0
       character(len=*), intent(in) :: filename          !! text file to write
+      logical, intent(in) :: force                      !! replace an existing file
       type(error_t), allocatable, intent(out) :: error  !! unwritable
+      type(output_t) :: out
       integer :: unit, stat, b
-      open (newunit=unit, file=filename, status='replace', action='write', iostat=stat)
-      if (stat /= 0) then
-         call fatal_error(error, "invalid --block-times: cannot write '"//filename//"'")
-         return
-      end if
-      write (unit, '(a, i0, a)') '# dpend-mpi sweep block costs, ', report%nranks, ' ranks'
-      write (unit, '(a)') '# block rank initial_conditions rk4_steps seconds'
+      character(len=512) :: msg
+      call out%begin(filename, force, error, '--block-times')
+      if (allocated(error)) return
+      open (newunit=unit, file=out%temp, status='replace', action='write', iostat=stat, &
+            iomsg=msg)
+      if (stat == 0) write (unit, '(a, i0, a)', iostat=stat, iomsg=msg) &
+         '# dpend-mpi sweep block costs, ', report%nranks, ' ranks'
+      if (stat == 0) write (unit, '(a)', iostat=stat, iomsg=msg) &
+         '# block rank initial_conditions rk4_steps seconds'
       do b = 1, size(report%block_rank)
+         if (stat /= 0) exit
          if (report%block_rank(b) < 0) cycle
-         write (unit, '(i0, 1x, i0, 1x, i0, 1x, i0, 1x, es12.5)') b, report%block_rank(b), &
-            report%block_size(b), report%block_steps(b), report%block_seconds(b)
+         write (unit, '(i0, 1x, i0, 1x, i0, 1x, i0, 1x, es12.5)', iostat=stat, iomsg=msg) &
+            b, report%block_rank(b), report%block_size(b), report%block_steps(b), &
+            report%block_seconds(b)
       end do
-      close (unit)
+      if (stat == 0) then
+         close (unit, iostat=stat, iomsg=msg)
+      else
+         close (unit)
+      end if
+      if (stat /= 0) then
+         call fatal_error(error, "cannot write '"//filename//"': "// &
+                          io_failure_reason(out%temp, trim(msg)))
+      else
+         call out%commit(error)
+      end if
+      call out%discard()
    end subroutine write_block_times
 
    !> Mean of x.
