@@ -567,15 +567,7 @@ contains
          end if
       end do
       call src%close()
-      if (allocated(error)) then
-         call dst%close()
-      else
-         call dst%close(error)
-      end if
-      if (.not. allocated(error)) call verify_file(out%temp, setup, error)
-      if (.not. allocated(error)) call out%commit(error)
-      call out%explain(error)
-      call out%discard()
+      call install_file(dst, out, setup, error)
       if (allocated(error)) then
          error%message = 'cannot write the final file: '//error%message// &
                          "; the working file '"//part//"' is complete and valid: "// &
@@ -714,15 +706,7 @@ contains
       call work%begin(part, .true., error, '--output (its working file)')
       if (allocated(error)) return
       call create_layout(h5, work%temp, setup, .false., error)
-      if (allocated(error)) then
-         call h5%close()
-      else
-         call h5%close(error)
-      end if
-      if (.not. allocated(error)) call verify_file(work%temp, setup, error)
-      if (.not. allocated(error)) call work%commit(error)
-      call work%explain(error)
-      call work%discard()
+      call install_file(h5, work, setup, error)
       if (allocated(error)) then
          error%message = 'cannot create the working file: '//error%message
          return
@@ -772,6 +756,25 @@ contains
          end if
       end subroutine read_stored
    end subroutine open_output
+
+   !> Put a freshly written file in place: close it (the close checked unless an
+   !> error is already set), verify it, and commit it through the one writer; on
+   !> any failure the temporary file is removed and the target is as it was.
+   subroutine install_file(h5, out, setup, error)
+      type(h5file_t), intent(inout) :: h5                 !! the new file, open on out%temp
+      type(output_t), intent(inout) :: out                !! its output
+      type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
+      type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(out%temp, setup, error)
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+   end subroutine install_file
 
    !> Check that a freshly written file opens and holds this configuration.
    subroutine verify_file(filename, setup, error)
