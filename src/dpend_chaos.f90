@@ -26,6 +26,7 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
+   use dpend_limits, only: int32_sat
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
@@ -435,7 +436,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'n_renormalisations', size(res%t), &
                                                     error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_tangent_substeps', &
-                                                    int(res%n_sub), error)
+                                                    int32_sat(res%n_sub), error)
       if (.not. allocated(error) .and. res%k == 4) then
          call h5%writeattr('/', 'pairing_defect', defect14, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'zero_pair_sum', defect23, error)
@@ -678,7 +679,8 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
                                                     energy(cfg%par, cfg%q0, cfg%w0), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', int(integ%n_steps), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
+                                                    int32_sat(integ%n_steps), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
    end subroutine write_common
