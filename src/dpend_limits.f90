@@ -202,9 +202,13 @@ contains
          s = '0'
          return
       end if
-      if (abs(x) >= 1e-3_dp .and. abs(x) < 1e5_dp .and. x == anint(x)) then
-         write (buf, '(i0)') nint(x)
-         s = trim(buf)
+      if (abs(x) >= 1e-3_dp .and. abs(x) < 1e5_dp) then
+         write (buf, '(f0.6)') x
+         s = fmt_mantissa_text(trim(adjustl(buf)))
+         if (s(1:1) == '.') s = '0'//s
+         if (len(s) >= 2) then
+            if (s(1:2) == '-.') s = '-0'//s(2:)
+         end if
          return
       end if
       write (buf, '(es12.4e3)') x
