@@ -26,7 +26,7 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
-   use dpend_limits, only: int32_sat, check_range, check_count, check_memory, check_disk, &
+   use dpend_limits, only: int32_sat, in_range, check_range, check_count, check_memory, check_disk, &
                            sci, max_time, max_steps, max_samples, max_angle, &
                            max_angular_velocity, min_delta0_relative
    implicit none
@@ -323,7 +323,7 @@ contains
       fixed = .not. integ%adaptive()
       select case (ch%command)
       case ('lyapunov')
-         if (.not. finite_positive(ch%tau) .or. ch%tau > max_time) then
+         if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
             call fatal_error(error, 'invalid tau: must be in (0, '//sci(max_time)//'] (s)')
          else if (fixed .and. ch%tau < cfg%dt) then
             call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
@@ -353,20 +353,21 @@ contains
                              'the displacement would be lost in the rounding of the state')
          else if (ch%pairs < 1 .or. ch%pairs > 100000) then
             call fatal_error(error, 'invalid pairs: must be an integer from 1 to 100000')
-         else if (.not. finite_positive(ch%pair_spacing) .or. ch%pair_spacing > max_time) then
+         else if (.not. (finite_positive(ch%pair_spacing) .and. &
+                       in_range(ch%pair_spacing, 0.0_dp, max_time))) then
             call fatal_error(error, 'invalid pair_spacing: must be in (0, '//sci(max_time)// &
                              '] (s)')
          else if (ch%pair_spacing*real(ch%pairs - 1, dp) > max_time) then
             call fatal_error(error, 'invalid pair_spacing: (pairs - 1) * pair_spacing = ' &
                              //sci(ch%pair_spacing*real(ch%pairs - 1, dp))//' s is above ' &
                              //sci(max_time)//' s')
-         else if (.not. (nonneg(ch%fit_start) .and. ch%fit_start <= max_time) .or. &
-                  .not. (nonneg(ch%fit_end) .and. ch%fit_end <= max_time)) then
+         else if (.not. (in_range(ch%fit_start, 0.0_dp, max_time) .and. &
+                         in_range(ch%fit_end, 0.0_dp, max_time))) then
             call fatal_error(error, 'invalid fit_start/fit_end: must be in [0, '// &
                              sci(max_time)//'] (s)')
          else if (ch%fit_end > 0.0_dp .and. ch%fit_end <= ch%fit_start) then
             call fatal_error(error, 'invalid fit_end: must be > fit_start (s), or 0 (automatic)')
-         else if (.not. (nonneg(ch%lyapunov_t) .and. ch%lyapunov_t <= max_time)) then
+         else if (.not. in_range(ch%lyapunov_t, 0.0_dp, max_time)) then
             call fatal_error(error, 'invalid lyapunov_t: must be in [0, '//sci(max_time)// &
                              '] (s; 0 = none)')
          else if (.not. finite_positive(cfg%output_dt) .or. cfg%output_dt > cfg%t_end) then

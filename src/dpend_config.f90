@@ -10,7 +10,7 @@ module dpend_config
    use dpend_model, only: pendulum_t, validate, finite_positive
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str
    use dpend_kinds, only: i8
-   use dpend_limits, only: check_range, check_count, max_angle, max_angular_velocity, &
+   use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
                            max_steps, default_max_steps, sci
    use dpend_integrator, only: integrator_t
@@ -263,8 +263,7 @@ contains
          call fatal_error(error, 'invalid rtol: '//sci(cfg%rtol)//' is below '//sci(min_rtol) &
                           //' (double precision cannot honour it: the error estimate is '// &
                           'dominated by rounding and the step shrinks until it stalls)')
-      else if (.not. (finite_positive(cfg%atol) .and. cfg%atol >= min_atol .and. &
-                      cfg%atol <= max_atol)) then
+      else if (.not. in_range(cfg%atol, min_atol, max_atol)) then
          call fatal_error(error, 'invalid atol: must be in ['//sci(min_atol)//', ' &
                           //sci(max_atol)//'] (rad, rad/s)')
       else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
@@ -272,7 +271,8 @@ contains
       else if (cfg%output_dt > max_time) then
          call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
                           //sci(max_time)//' s')
-      else if (.not. (finite_positive(cfg%omega) .and. cfg%omega <= max_omega)) then
+      else if (.not. (finite_positive(cfg%omega) .and. in_range(cfg%omega, 0.0_dp, max_omega))) &
+         then
          call fatal_error(error, 'invalid omega: must be in (0, '//sci(max_omega)//'] (1/s)')
       else if (cfg%max_steps < 1 .or. cfg%max_steps > max_steps) then
          call fatal_error(error, 'invalid max_steps: must be an integer from 1 to ' &

@@ -24,7 +24,7 @@ module dpend_limits
    public :: max_angle, max_angular_velocity, max_time, max_dt, min_rtol, min_atol, max_atol
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
-   public :: check_range, check_count, check_memory, check_disk, sci, bytes_text, int32_sat
+   public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text, int32_sat
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
    !> product of the model (m l² g … at most eight factors, with the angular
@@ -97,6 +97,15 @@ contains
       integer(i8), intent(in) :: n  !! the counter
       int32_sat = int(max(min(n, int(huge(1), i8)), -int(huge(1), i8)))
    end function int32_sat
+
+   !> x is finite and lo <= x <= hi, tested without an ordered comparison on NaN
+   !> (which raises IEEE invalid and traps under -ffpe-trap=invalid).
+   elemental logical function in_range(x, lo, hi)
+      real(dp), intent(in) :: x       !! value
+      real(dp), intent(in) :: lo, hi  !! accepted range (inclusive)
+      in_range = .false.
+      if (ieee_is_finite(x)) in_range = x >= lo .and. x <= hi
+   end function in_range
 
    !> Refuse x outside [lo, hi] (or not finite): 'invalid FIELD: X UNIT is outside
    !> [LO, HI] (REASON)'.
