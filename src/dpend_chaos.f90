@@ -26,7 +26,8 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
-   use dpend_limits, only: int32_sat, in_range, check_range, check_count, check_memory, check_disk, &
+   use dpend_limits, only: int32_sat, in_range, check_range, check_count, check_memory, &
+                           check_disk, &
                            sci, max_time, max_steps, max_samples, max_angle, &
                            max_angular_velocity, min_delta0_relative
    implicit none

@@ -348,7 +348,8 @@ contains
           //real_str(cfg%q0(2))//nl// &
           '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
           //real_str(cfg%w0(2))//nl// &
-          '  --m1, --m2 KG     link masses; default '//real_str(cfg%par%m1)//', ' &
+          '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &
+          //real_str(cfg%par%m1)//', ' &
           //real_str(cfg%par%m2)//nl// &
           '  --l1, --l2 M      link lengths; default '//real_str(cfg%par%l1)//', ' &
           //real_str(cfg%par%l2)//nl// &

@@ -24,7 +24,8 @@ module dpend_limits
    public :: max_angle, max_angular_velocity, max_time, max_dt, min_rtol, min_atol, max_atol
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
-   public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text, int32_sat
+   public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
+   public :: int32_sat
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
    !> product of the model (m l² g … at most eight factors, with the angular
@@ -166,7 +167,8 @@ contains
    end subroutine check_memory
 
    !> Refuse when a file of `bytes` does not fit the free space of the file system
-   !> of `path` (unknown: accepted).
+   !> of `path`. Unknown or zero free space (a pseudo file system such as /proc, or a
+   !> full disk) is left to the writer, which names the cause when it fails.
    subroutine check_disk(field, bytes, path, hint, error)
       character(len=*), intent(in) :: field             !! field to change
       real(dp), intent(in) :: bytes                     !! estimated file size [B]
@@ -175,7 +177,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set when refused
       integer(i8) :: free
       free = free_disk_bytes(directory_of(path))
-      if (free < 0) return
+      if (free <= 0) return
       if (bytes <= real(free, dp)) return
       call fatal_error(error, 'invalid '//field//": the output '"//path//"' needs about " &
                        //bytes_text(bytes)//', '//bytes_text(real(free, dp))// &

@@ -19,7 +19,8 @@ module dpend_study_config
    use dpend_integrators, only: new_integrator, method_names
    use dpend_symplectic, only: symplectic_t
    use dpend_kinds, only: i8
-   use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, max_angular_velocity, &
+   use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, &
+                           max_angular_velocity, &
                            max_time, max_steps, min_rtol, min_atol, max_atol, max_omega, &
                            max_threads
    use dpend_tao, only: set_omega

@@ -124,8 +124,8 @@ contains
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
-          '  --n N             points on both axes; --n1 N, --n2 N each; default ' &
-          //to_str(cfg%n1)//nl// &
+          '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
+          '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
           ' .. '//real_str(cfg%max1)//nl// &
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
@@ -154,7 +154,7 @@ contains
           '  --force           overwrite a file written with another configuration'//nl// &
           '  --block N         initial conditions per block (whole rows of axis 1 in a'//nl// &
           '                    grid); default '//to_str(cfg%block)//nl// &
-          '  --threads N       OpenMP threads; default all'//nl// &
+          '  --threads N       OpenMP threads, 0 (all) to 1024; default all'//nl// &
           '  --quiet           no progress report on stderr'//nl// &
           '  -h, --help        this text'
    end function sweep_help
