@@ -26,6 +26,10 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
+   use dpend_limits, only: int32_sat, in_range, check_range, check_count, check_memory, &
+                           check_disk, &
+                           sci, max_time, max_steps, max_samples, max_angle, &
+                           max_angular_velocity, min_delta0_relative
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
@@ -299,62 +303,159 @@ contains
       end select
    end subroutine apply_chaos_flag
 
-   !> Check the settings of the command; messages name the field and the range.
+   !> Check the settings of the command; messages name the field and the range
+   !> (limits and reasons in `dpend_limits`). Counts are compared before any division:
+   !> steps (fixed-step methods) at most `max_steps` per integration, renormalisations,
+   !> samples and section points at most `max_samples`, and what is kept must fit
+   !> the available memory and the free space of the output's file system.
    subroutine validate_chaos(cfg, ch, error)
       type(run_config_t), intent(in) :: cfg             !! run configuration (validated)
       type(chaos_config_t), intent(in) :: ch            !! chaos settings
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      class(integrator_t), allocatable :: integ
+      logical :: fixed
+      real(dp) :: n, y_max, e_lim
       if (.not. finite_positive(cfg%t_end)) then
          call fatal_error(error, 'invalid t_end: must be finite and > 0 (s)')
          return
       end if
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      fixed = .not. integ%adaptive()
       select case (ch%command)
       case ('lyapunov')
-         if (.not. finite_positive(ch%tau)) then
-            call fatal_error(error, 'invalid tau: must be finite and > 0 (s)')
+         if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
+            call fatal_error(error, 'invalid tau: must be in (0, '//sci(max_time)//'] (s)')
+         else if (fixed .and. ch%tau < cfg%dt) then
+            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
+                             //sci(cfg%dt)//' s of '//cfg%method//' (renormalisations '// &
+                             'happen at step ends; use tau >= dt)')
          else if (ch%vectors < 1 .or. ch%vectors > 4) then
             call fatal_error(error, 'invalid vectors: must be an integer from 1 to 4')
          else if (ch%batches < 1 .or. ch%batches > 100000) then
             call fatal_error(error, 'invalid batches: must be an integer from 1 to 100000')
          end if
+         if (allocated(error)) return
+         call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
+                          'renormalisations', 'use a larger --tau or a shorter --t-end', error)
+         if (allocated(error)) return
+         n = cfg%t_end/ch%tau + 2.0_dp
+         call check_resources('tau', n, 3.0_dp*8.0_dp*real(1 + ch%vectors, dp), &
+                              8.0_dp*real(1 + ch%vectors, dp), sci(n)//' renormalisations', &
+                              'use a larger --tau', error)
       case ('divergence')
+         y_max = max(1.0_dp, maxval(abs(cfg%q0)), maxval(abs(cfg%w0)))
          if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
             then
             call fatal_error(error, 'invalid delta0: must be in (0, 0.1) (rad, rad/s)')
+         else if (ch%delta0 < min_delta0_relative*y_max) then
+            call fatal_error(error, 'invalid delta0: '//sci(ch%delta0)//' is below '// &
+                             sci(min_delta0_relative*y_max)//' = 1e-13 max(1, |state|): '// &
+                             'the displacement would be lost in the rounding of the state')
          else if (ch%pairs < 1 .or. ch%pairs > 100000) then
             call fatal_error(error, 'invalid pairs: must be an integer from 1 to 100000')
-         else if (.not. finite_positive(ch%pair_spacing)) then
-            call fatal_error(error, 'invalid pair_spacing: must be finite and > 0 (s)')
-         else if (.not. nonneg(ch%fit_start) .or. .not. nonneg(ch%fit_end)) then
-            call fatal_error(error, 'invalid fit_start/fit_end: must be finite and >= 0 (s)')
+         else if (.not. (finite_positive(ch%pair_spacing) .and. &
+                       in_range(ch%pair_spacing, 0.0_dp, max_time))) then
+            call fatal_error(error, 'invalid pair_spacing: must be in (0, '//sci(max_time)// &
+                             '] (s)')
+         else if (ch%pair_spacing*real(ch%pairs - 1, dp) > max_time) then
+            call fatal_error(error, 'invalid pair_spacing: (pairs - 1) * pair_spacing = ' &
+                             //sci(ch%pair_spacing*real(ch%pairs - 1, dp))//' s is above ' &
+                             //sci(max_time)//' s')
+         else if (.not. (in_range(ch%fit_start, 0.0_dp, max_time) .and. &
+                         in_range(ch%fit_end, 0.0_dp, max_time))) then
+            call fatal_error(error, 'invalid fit_start/fit_end: must be in [0, '// &
+                             sci(max_time)//'] (s)')
          else if (ch%fit_end > 0.0_dp .and. ch%fit_end <= ch%fit_start) then
             call fatal_error(error, 'invalid fit_end: must be > fit_start (s), or 0 (automatic)')
-         else if (.not. nonneg(ch%lyapunov_t)) then
-            call fatal_error(error, 'invalid lyapunov_t: must be finite and >= 0 (s; 0 = none)')
+         else if (.not. in_range(ch%lyapunov_t, 0.0_dp, max_time)) then
+            call fatal_error(error, 'invalid lyapunov_t: must be in [0, '//sci(max_time)// &
+                             '] (s; 0 = none)')
          else if (.not. finite_positive(cfg%output_dt) .or. cfg%output_dt > cfg%t_end) then
             call fatal_error(error, 'invalid output_dt: must be > 0 and <= t_end (s)')
          end if
+         if (allocated(error)) return
+         if (fixed) then
+            call check_count('pair_spacing', cfg%dt, ch%pair_spacing*real(ch%pairs - 1, dp), &
+                             '(pairs - 1) * pair_spacing', max_steps, 'steps', &
+                             'use a larger --dt, fewer --pairs or a shorter --pair-spacing', &
+                             error)
+            if (allocated(error)) return
+            call check_count('lyapunov_t', cfg%dt, ch%lyapunov_t, 'lyapunov_t', max_steps, &
+                             'steps', 'use a larger --dt or a shorter --lyapunov-t', error)
+            if (allocated(error)) return
+         end if
+         call check_count('lyapunov_t', 0.5_dp, ch%lyapunov_t, 'lyapunov_t', max_samples, &
+                          'renormalisations', 'use a shorter --lyapunov-t', error)
+         if (allocated(error)) return
+         call check_count('output_dt', cfg%output_dt, cfg%t_end, 't_end', max_samples, &
+                          'samples', 'use a larger --output-dt or a shorter --t-end', error)
+         if (allocated(error)) return
+         n = cfg%t_end/cfg%output_dt + 2.0_dp
+         ! per sample: times, two (4, n) state arrays and their copies, the pairs' curves
+         call check_resources('output_dt', n, 8.0_dp*(20.0_dp + real(ch%pairs, dp)), &
+                              8.0_dp*(2.0_dp + real(ch%pairs, dp)), sci(n)//' samples of ' &
+                              //to_str(ch%pairs)//' pair(s)', &
+                              'use a larger --output-dt or fewer --pairs', error)
+         if (allocated(error)) return
+         n = ch%lyapunov_t/0.5_dp + 2.0_dp
+         call check_resources('lyapunov_t', n, 48.0_dp, 0.0_dp, sci(n)//' renormalisations', &
+                              'use a shorter --lyapunov-t', error)
       case ('poincare')
+         e_lim = energy_limit(cfg%par)
          if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
             call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
          else if (ch%n_points < 1) then
             call fatal_error(error, 'invalid n_points (--points): must be an integer >= 1')
+         else if (real(ch%n_points, dp)*real(ch%n_ics, dp) > real(max_samples, dp)) then
+            call fatal_error(error, 'invalid n_points (--points): '//to_str(ch%n_ics)// &
+                             ' orbits of '//to_str(ch%n_points)//' points keep more than ' &
+                             //sci(real(max_samples, dp))//' section points (fewer points)')
          else if (ch%section_link /= 1 .and. ch%section_link /= 2) then
             call fatal_error(error, 'invalid section_link: must be 1 or 2')
          else if (abs(ch%section_direction) > 1) then
             call fatal_error(error, 'invalid section_direction: must be -1, 0 or 1')
-         else if (.not. ieee_is_finite(ch%section_angle)) then
-            call fatal_error(error, 'invalid section_angle: must be finite (rad)')
-         else if (.not. ieee_is_finite(ch%energy)) then
-            call fatal_error(error, 'invalid energy: must be finite (J)')
          end if
+         if (allocated(error)) return
+         call check_range('section_angle', ch%section_angle, -max_angle, max_angle, 'rad', &
+                          error)
+         if (allocated(error)) return
+         call check_range('energy', ch%energy, -e_lim, e_lim, 'J', error, 'the energy of '// &
+                          'angular velocities up to 1e6 rad/s with these parameters')
+         if (allocated(error)) return
+         n = real(ch%n_points, dp)*real(ch%n_ics, dp)
+         ! per point: the orbit's buffers (4 reals), the gathered result (5) and copies
+         call check_resources('n_points (--points)', n, 2.0_dp*8.0_dp*9.0_dp, 48.0_dp, &
+                              sci(n)//' section points', 'use fewer --points or --ics', error)
       end select
    contains
       elemental logical function nonneg(x)
          real(dp), intent(in) :: x
          nonneg = finite_positive(x) .or. x == 0.0_dp
       end function nonneg
+
+      !> Memory (n·per_memory) and file size (n·per_file) of n kept items.
+      subroutine check_resources(field, n, per_memory, per_file, what, hint, err)
+         character(len=*), intent(in) :: field, what, hint
+         real(dp), intent(in) :: n, per_memory, per_file
+         type(error_t), allocatable, intent(out) :: err
+         call check_memory(field, n*per_memory, what, hint, err)
+         if (allocated(err) .or. per_file <= 0.0_dp) return
+         call check_disk(field, n*per_file + 65536.0_dp, cfg%output, hint, err)
+      end subroutine check_resources
    end subroutine validate_chaos
+
+   !> Largest |energy| accepted for a Poincaré section: both links upright plus the
+   !> kinetic energy of angular velocities of `max_angular_velocity` [J].
+   pure real(dp) function energy_limit(par)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp) :: m11, m22, k
+      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m22 = par%m2*par%l2**2/3.0_dp
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
+                     + 0.5_dp*max_angular_velocity**2*(m11 + m22 + 2.0_dp*k)
+   end function energy_limit
 
    !> Run the command. `error` is set for invalid input (nothing written) or for
    !> a failed run (`failed`; the file holds what was computed before). `summary`
@@ -371,7 +472,7 @@ contains
       failed = .false.
       summary = ''
       call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
-                          omega=cfg%omega)
+                          omega=cfg%omega, max_steps=cfg%max_steps)
       if (allocated(error)) return
       call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return
@@ -436,7 +537,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'n_renormalisations', size(res%t), &
                                                     error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_tangent_substeps', &
-                                                    int(res%n_sub), error)
+                                                    int32_sat(res%n_sub), error)
       if (.not. allocated(error) .and. res%k == 4) then
          call h5%writeattr('/', 'pairing_defect', defect14, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'zero_pair_sum', defect23, error)
@@ -679,7 +780,8 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
                                                     energy(cfg%par, cfg%q0, cfg%w0), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', int(integ%n_steps), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
+                                                    int32_sat(integ%n_steps), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
    end subroutine write_common

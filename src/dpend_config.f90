@@ -9,6 +9,12 @@ module dpend_config
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: pendulum_t, validate, finite_positive
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str
+   use dpend_kinds, only: i8
+   use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
+                           max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
+                           max_steps, default_max_steps, sci
+   use dpend_integrator, only: integrator_t
+   use dpend_integrators, only: new_integrator
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -29,6 +35,8 @@ module dpend_config
       real(dp) :: atol = 1e-12_dp              !! absolute tolerance (adaptive methods)
       real(dp) :: output_dt = 0.0_dp           !! sample at k·output_dt (0: every save_every steps) [s]
       real(dp) :: omega = 20.0_dp              !! Tao's binding constant [1/s]
+      integer(i8) :: max_steps = default_max_steps !! most accepted steps of one
+                                               !! integration (adaptive methods)
       character(len=:), allocatable :: output  !! output file
       logical :: force = .false.               !! overwrite an existing output file
    end type run_config_t
@@ -95,6 +103,7 @@ contains
       character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
       real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
       integer :: save_every, unit, stat, n_extra, i
+      integer(i8) :: max_steps
       character(len=64) :: method
       character(len=1024) :: file
       character(len=512) :: msg
@@ -102,7 +111,8 @@ contains
       character(len=16), allocatable :: known(:)
       namelist /pendulum/ m1, m2, l1, l2, g
       namelist /initial/ q1, q2, w1, w2
-      namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega
+      namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
+         max_steps
       namelist /output/ file, force
 
       n_extra = 0
@@ -123,6 +133,7 @@ contains
       if (allocated(cfg%method)) method = cfg%method
       dt = cfg%dt; t_end = cfg%t_end; save_every = cfg%save_every
       rtol = cfg%rtol; atol = cfg%atol; output_dt = cfg%output_dt; omega = cfg%omega
+      max_steps = cfg%max_steps
       file = ''
       if (allocated(cfg%output)) file = cfg%output
       force = cfg%force
@@ -159,6 +170,7 @@ contains
       if (len_trim(method) > 0) cfg%method = trim(method)
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
       cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
+      cfg%max_steps = max_steps
       if (len_trim(file) > 0) cfg%output = trim(file)
       cfg%force = force
    end subroutine read_run_config
@@ -189,40 +201,102 @@ contains
       case ('--atol'); call parse_real(value, name, cfg%atol, error)
       case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
       case ('--omega'); call parse_real(value, name, cfg%omega, error)
+      case ('--max-steps'); call parse_i8(value, name, cfg%max_steps, error)
       case ('--output', '-o'); cfg%output = value
       case default
          matched = .false.
       end select
    end subroutine apply_run_flag
 
-   !> Check the whole configuration; messages name the field and the accepted range.
+   !> Check the whole configuration; messages name the field and the accepted range
+   !> (the limits and their reasons are in `dpend_limits`). For a fixed-step method
+   !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
+   !> after `max_steps` accepted steps instead (`--max-steps`).
    subroutine validate_run_config(cfg, error)
       type(run_config_t), intent(in) :: cfg             !! configuration
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      character(len=*), parameter :: qn(2) = ['q1', 'q2'], wn(2) = ['w1', 'w2']
+      class(integrator_t), allocatable :: integ
+      integer :: i
       call validate(cfg%par, error)
       if (allocated(error)) then
          error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
          return
       end if
-      if (.not. all(ieee_is_finite([cfg%q0, cfg%w0]))) then
-         call fatal_error(error, 'invalid initial state: q1, q2, w1, w2 must be finite')
-      else if (.not. finite_positive(cfg%dt)) then
-         call fatal_error(error, 'invalid dt: must be finite and > 0 (s)')
-      else if (.not. (finite_positive(cfg%t_end) .or. cfg%t_end == 0.0_dp)) then
-         call fatal_error(error, 'invalid t_end: must be finite and >= 0 (s)')
-      else if (cfg%save_every < 1) then
-         call fatal_error(error, 'invalid save_every: must be an integer >= 1')
+      do i = 1, 2
+         call check_range(qn(i), cfg%q0(i), -max_angle, max_angle, 'rad', error, &
+                          'beyond, the rounding of the angle exceeds 1e-10 rad')
+         if (allocated(error)) return
+      end do
+      do i = 1, 2
+         call check_range(wn(i), cfg%w0(i), -max_angular_velocity, max_angular_velocity, &
+                          'rad/s', error, 'keeps energies and momenta finite')
+         if (allocated(error)) return
+      end do
+      if (.not. allocated(cfg%method)) then
+         call fatal_error(error, 'invalid method: none given')
+         return
+      end if
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      if (.not. finite_positive(cfg%dt)) then
+         call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
+                          //' s')
+         return
+      end if
+      call check_range('dt', cfg%dt, 0.0_dp, max_dt, 's', error)
+      if (allocated(error)) return
+      call check_range('t_end', cfg%t_end, 0.0_dp, max_time, 's', error)
+      if (allocated(error)) return
+      if (.not. integ%adaptive()) then
+         call check_count('dt', cfg%dt, cfg%t_end, 't_end', max_steps, 'steps', &
+                          'use a larger --dt or a shorter --t-end', error)
+         if (allocated(error)) return
+      end if
+      if (cfg%save_every < 1) then
+         call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
+                          ' must be an integer >= 1')
       else if (.not. finite_positive(cfg%rtol) .or. .not. finite_positive(1.0_dp - cfg%rtol)) &
          then
-         call fatal_error(error, 'invalid rtol: must be in (0, 1)')
-      else if (.not. finite_positive(cfg%atol)) then
-         call fatal_error(error, 'invalid atol: must be finite and > 0')
+         call fatal_error(error, 'invalid rtol: must be in ['//sci(min_rtol)//', 1)')
+      else if (cfg%rtol < min_rtol) then
+         call fatal_error(error, 'invalid rtol: '//sci(cfg%rtol)//' is below '//sci(min_rtol) &
+                          //' (double precision cannot honour it: the error estimate is '// &
+                          'dominated by rounding and the step shrinks until it stalls)')
+      else if (.not. in_range(cfg%atol, min_atol, max_atol)) then
+         call fatal_error(error, 'invalid atol: must be in ['//sci(min_atol)//', ' &
+                          //sci(max_atol)//'] (rad, rad/s)')
       else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
          call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
-      else if (.not. finite_positive(cfg%omega)) then
-         call fatal_error(error, 'invalid omega: must be finite and > 0 (1/s)')
+      else if (cfg%output_dt > max_time) then
+         call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
+                          //sci(max_time)//' s')
+      else if (.not. (finite_positive(cfg%omega) .and. in_range(cfg%omega, 0.0_dp, max_omega))) &
+         then
+         call fatal_error(error, 'invalid omega: must be in (0, '//sci(max_omega)//'] (1/s)')
+      else if (cfg%max_steps < 1 .or. cfg%max_steps > max_steps) then
+         call fatal_error(error, 'invalid max_steps: must be an integer from 1 to ' &
+                          //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> Parse a 64-bit integer for field `name`.
+   subroutine parse_i8(text, name, n, error)
+      character(len=*), intent(in) :: text              !! the text
+      character(len=*), intent(in) :: name              !! field name for messages
+      integer(i8), intent(out) :: n                     !! the value
+      type(error_t), allocatable, intent(out) :: error  !! not an integer
+      integer :: stat
+      n = 0
+      if (len_trim(text) == 0 .or. len_trim(text) > 19 .or. &
+          verify(trim(text), '0123456789+-') /= 0) then
+         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
+         return
+      end if
+      read (text, *, iostat=stat) n
+      if (stat /= 0) call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
+                                      "' is not an integer")
+   end subroutine parse_i8
 
    !> Refuse an output path whose directory is missing or unwritable, or that exists
    !> without `force`. Creates and removes nothing.
@@ -274,7 +348,8 @@ contains
           //real_str(cfg%q0(2))//nl// &
           '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
           //real_str(cfg%w0(2))//nl// &
-          '  --m1, --m2 KG     link masses; default '//real_str(cfg%par%m1)//', ' &
+          '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &
+          //real_str(cfg%par%m1)//', ' &
           //real_str(cfg%par%m2)//nl// &
           '  --l1, --l2 M      link lengths; default '//real_str(cfg%par%l1)//', ' &
           //real_str(cfg%par%l2)//nl// &
@@ -285,8 +360,19 @@ contains
           '  --t-end S         end time; default '//real_str(cfg%t_end)//nl// &
           '  --rtol, --atol    tolerances of the adaptive methods; default '//real_str(cfg%rtol) &
           //', '//real_str(cfg%atol)//nl// &
-          "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)
+          "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &
+          nl//'  --max-steps N     most accepted steps of one integration of an adaptive'//nl// &
+          '                    method (steps); reaching it stops the run; default ' &
+          //int8_text(cfg%max_steps)
    end function run_flags_help
+
+   pure function int8_text(n) result(s)
+      integer(i8), intent(in) :: n
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write (buf, '(i0)') n
+      s = trim(buf)
+   end function int8_text
 
    pure function to_lower(s) result(t)
       character(len=*), intent(in) :: s

@@ -15,16 +15,21 @@
 module dpend_integrator
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t, rhs_qqdot, rhs_qp, momenta, velocities
+   use dpend_limits, only: default_max_steps
    implicit none
    private
    public :: integrator_t
    public :: stat_ok, stat_no_convergence, stat_nonfinite, stat_step_too_small
+   public :: stat_max_steps, stat_count_limit, stat_tangent_substeps
    public :: status_message, state_ok, diverged_bound
 
    integer, parameter :: stat_ok = 0              !! the step was taken
    integer, parameter :: stat_no_convergence = 1  !! implicit stages did not converge
    integer, parameter :: stat_nonfinite = 2       !! the state became NaN or Inf
    integer, parameter :: stat_step_too_small = 3  !! adaptive step fell below roundoff
+   integer, parameter :: stat_max_steps = 4       !! the integration reached max_steps
+   integer, parameter :: stat_count_limit = 5     !! a step or sample count above its limit
+   integer, parameter :: stat_tangent_substeps = 6 !! tangent equations need too many substeps
 
    !> A state component beyond this magnitude counts as diverged: no physical state of
    !> the pendulum comes near it, and stopping there keeps every intermediate stage of
@@ -37,6 +42,9 @@ module dpend_integrator
       integer(i8) :: n_steps = 0     !! accepted steps
       integer(i8) :: n_rejected = 0  !! rejected steps (adaptive methods)
       integer(i8) :: n_iter = 0      !! inner iterations (implicit methods)
+      !> Most accepted steps of one integration (one `march_t`) of an adaptive method
+      !> (`--max-steps`); reaching it ends the march with stat_max_steps.
+      integer(i8) :: max_steps = default_max_steps
       ! The last accepted step, written by `record_step` only; read-only elsewhere.
       logical :: stepped = .false.   !! a step has been recorded since `clear_step`
       real(dp) :: t_old = 0.0_dp     !! start of the last step [s]
@@ -249,6 +257,11 @@ contains
       case (stat_no_convergence); msg = 'implicit stage iteration did not converge'
       case (stat_nonfinite); msg = 'state became non-finite (NaN, Inf or |y| > 1e30)'
       case (stat_step_too_small); msg = 'adaptive step size fell below roundoff'
+      case (stat_max_steps); msg = 'maximum number of steps reached (--max-steps)'
+      case (stat_count_limit); msg = 'step or sample count above its limit (1e12 steps, ' &
+                                     //'1e9 samples)'
+      case (stat_tangent_substeps); msg = 'tangent equations need more than 1e6 substeps ' &
+                                          //'in one step (use a smaller --dt)'
       case default; msg = 'unknown status'
       end select
    end function status_message

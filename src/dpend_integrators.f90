@@ -1,6 +1,6 @@
 !> The factory: every integration method of dpend, constructed by name.
 module dpend_integrators
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_integrator, only: integrator_t
    use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t, rk_adaptive_t
@@ -18,14 +18,17 @@ module dpend_integrators
 contains
 
    !> Allocate the method called `name` and set its options: tolerances for the
-   !> adaptive methods, the binding constant for Tao's (ignored by the others).
-   subroutine new_integrator(name, integ, error, rtol, atol, omega)
+   !> adaptive methods, the binding constant for Tao's (ignored by the others), the
+   !> most accepted steps of one adaptive integration.
+   subroutine new_integrator(name, integ, error, rtol, atol, omega, max_steps)
       character(len=*), intent(in) :: name                        !! method name
       class(integrator_t), allocatable, intent(out) :: integ      !! the method
       type(error_t), allocatable, intent(out) :: error            !! unknown name
       real(dp), intent(in), optional :: rtol                      !! relative tolerance
       real(dp), intent(in), optional :: atol                      !! absolute tolerance
       real(dp), intent(in), optional :: omega                     !! Tao's ω [1/s]
+      integer(i8), intent(in), optional :: max_steps              !! most steps of one
+                                                                  !! adaptive integration
       logical :: found
       select case (name)
       case ('rk4')
@@ -65,5 +68,6 @@ contains
          if (present(atol)) integ%atol = atol
       end select
       if (present(omega)) call set_omega(integ, omega, found)
+      if (present(max_steps)) integ%max_steps = max_steps
    end subroutine new_integrator
 end module dpend_integrators

@@ -21,14 +21,15 @@
 module dpend_lyapunov
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t
-   use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok
+   use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok, &
+                               stat_tangent_substeps
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
    public :: qr_positive, lyapunov_acc_t, renormalize, batch_exponents
-   public :: lyapunov_result_t, lyapunov_spectrum
+   public :: lyapunov_result_t, lyapunov_spectrum, sort_descending
 
    interface
       !> LAPACK: QR factorization of a general m×n matrix (Householder).
@@ -266,6 +267,10 @@ contains
          call march%next(integ, par, t, y, hh, stat)
          if (stat /= stat_ok) exit
          call tan%propagate(integ, par)
+         if (tan%too_stiff) then
+            stat = stat_tangent_substeps
+            exit
+         end if
          if (.not. all([(state_ok(tan%v(:, i)), i=1, k)])) then
             stat = stat_nonfinite
             exit
@@ -276,10 +281,17 @@ contains
                stat = stat_nonfinite
                exit
             end if
-            do while (t_next <= t + 1e-9_dp*tau)
-               j = j + 1
+            ! the next multiple of tau after t, found directly: a step may span many
+            ! intervals (tau < step of an adaptive method), counting them one by one
+            ! would not end (j fits: t_end/tau <= max_samples is validated)
+            if (t_next <= t + 1e-9_dp*tau) then
+               j = max(j + 1, int((t - t0)/tau, i8))
                t_next = t0 + real(j, dp)*tau
-            end do
+               do while (t_next <= t + 1e-9_dp*tau)
+                  j = j + 1
+                  t_next = t0 + real(j, dp)*tau
+               end do
+            end if
          end if
       end do
       res%k = k
@@ -291,5 +303,31 @@ contains
       res%n_sub = tan%n_sub
       allocate (res%spread(k))
       call batch_exponents(acc, n_batches, res%batches, res%spread)
+      call sort_descending(res)
    end subroutine lyapunov_spectrum
+
+   !> Order the exponents descending, as documented, permuting their spreads, batch
+   !> exponents and running estimates alike. The QR order is descending only in the
+   !> limit; over a finite time two close exponents (e.g. the pair near zero) can
+   !> come out swapped. Stable insertion sort (k <= 4); NaN stays in place.
+   subroutine sort_descending(res)
+      type(lyapunov_result_t), intent(inout) :: res  !! result to reorder
+      integer :: perm(res%k), i, j, p
+      perm = [(i, i=1, res%k)]
+      do i = 2, res%k
+         p = perm(i)
+         j = i - 1
+         do while (j >= 1)
+            if (.not. (res%exponents(perm(j)) < res%exponents(p))) exit
+            perm(j + 1) = perm(j)
+            j = j - 1
+         end do
+         perm(j + 1) = p
+      end do
+      if (all(perm == [(i, i=1, res%k)])) return
+      res%exponents = res%exponents(perm)
+      if (allocated(res%spread)) res%spread = res%spread(perm)
+      if (allocated(res%batches)) res%batches = res%batches(perm, :)
+      if (allocated(res%running)) res%running = res%running(perm, :)
+   end subroutine sort_descending
 end module dpend_lyapunov

@@ -12,6 +12,8 @@
 module dpend_model
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
+   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, &
+                           min_g, max_g
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -33,21 +35,22 @@ module dpend_model
 
 contains
 
-   !> Check that every parameter is finite and positive.
-   pure subroutine validate(par, error)
+   !> Check that every parameter is finite and within its accepted range
+   !> (`dpend_limits`: [1e-6, 1e6] each, so that no product of the model overflows).
+   subroutine validate(par, error)
       type(pendulum_t), intent(in) :: par               !! parameters to check
       type(error_t), allocatable, intent(out) :: error  !! set if a value is invalid
       character(len=*), parameter :: names(5) = ['m1', 'm2', 'l1', 'l2', 'g ']
       character(len=*), parameter :: units(5) = ['kg   ', 'kg   ', 'm    ', 'm    ', 'm/s^2']
-      real(dp) :: x(5)
+      character(len=*), parameter :: reason = 'keeps every product of the model finite'
+      real(dp) :: x(5), lo(5), hi(5)
       integer :: i
       x = [par%m1, par%m2, par%l1, par%l2, par%g]
+      lo = [min_mass, min_mass, min_length, min_length, min_g]
+      hi = [max_mass, max_mass, max_length, max_length, max_g]
       do i = 1, 5
-         if (.not. finite_positive(x(i))) then
-            call fatal_error(error, 'invalid '//trim(names(i))//': must be finite and > 0 (' &
-                             //trim(units(i))//')')
-            return
-         end if
+         call check_range(trim(names(i)), x(i), lo(i), hi(i), trim(units(i)), error, reason)
+         if (allocated(error)) return
       end do
    end subroutine validate
 

@@ -12,7 +12,9 @@
 module dpend_propagate
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t
-   use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small
+   use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small, stat_max_steps, &
+                               stat_count_limit
+   use dpend_limits, only: max_steps, max_samples
    implicit none
    private
    public :: march_t, advance_fixed, advance_to, integrate_sampled
@@ -34,6 +36,8 @@ module dpend_propagate
       logical :: shortened = .false.   !! a shortened last fixed step is needed
       logical :: adaptive = .false.    !! the method controls its step
       logical :: finished = .true.     !! t_end has been reached
+      logical :: too_many = .false.    !! fixed steps above max_steps: `next` refuses
+      integer(i8) :: n_adaptive = 0    !! accepted steps so far (adaptive methods)
    contains
       procedure :: start => march_start
       procedure :: next => march_next
@@ -60,6 +64,8 @@ contains
       self%i = 0
       self%n_whole = 0
       self%shortened = .false.
+      self%too_many = .false.
+      self%n_adaptive = 0
       if (self%adaptive) then
          h = self%dir*abs(h)
          if (h == 0.0_dp .and. self%dir < 0.0_dp) h = -1.0e-3_dp*abs(t_end - t)
@@ -68,6 +74,11 @@ contains
       h = self%dir*abs(h)
       self%h_fixed = h
       if (self%finished .or. h == 0.0_dp) return   ! h = 0: `next` reports it
+      ! compared before dividing: (t_end - t)/h may not fit an integer (or a real)
+      if (abs(t_end - t) > abs(h)*real(max_steps, dp)) then
+         self%too_many = .true.                    ! `next` reports it
+         return
+      end if
       r = (t_end - t)/h
       n = nint(r, i8)
       tol = 16.0_dp*epsilon(1.0_dp)*max(abs(t), abs(t_end), abs(real(n, dp)*h))
@@ -94,6 +105,11 @@ contains
       stat = stat_ok
       if (self%finished) return
       if (self%adaptive) then
+         if (self%n_adaptive >= integ%max_steps) then
+            stat = stat_max_steps
+            return
+         end if
+         self%n_adaptive = self%n_adaptive + 1
          last = self%dir*(t + 1.01_dp*h - self%t_end) >= 0.0_dp
          if (last) then
             hs = self%t_end - t
@@ -125,6 +141,10 @@ contains
       end if
       if (self%h_fixed == 0.0_dp) then
          stat = stat_step_too_small              ! a fixed-step method needs h /= 0
+         return
+      end if
+      if (self%too_many) then
+         stat = stat_count_limit                 ! more than max_steps steps
          return
       end if
       if (self%i < self%n_whole) then
@@ -219,6 +239,13 @@ contains
       call integ%clear_step()
       t = t0; y = y0; hh = h
       d = merge(-1.0_dp, 1.0_dp, t_end < t0)*abs(output_dt)
+      if (output_dt > 0.0_dp .and. abs(t_end - t0) > abs(d)*real(max_samples, dp)) then
+         ! compared before dividing: more samples than any array can hold
+         stat = stat_count_limit
+         allocate (times(1), states(4, 1))
+         times(1) = t0; states(:, 1) = y0
+         return
+      end if
       if (output_dt > 0.0_dp) then
          ! grid t0 + k d, k = 0..n_grid, and t_end if it is off the grid
          r = (t_end - t0)/d

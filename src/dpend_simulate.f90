@@ -18,10 +18,19 @@ module dpend_simulate
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
+   use dpend_limits, only: int32_sat, check_count, check_memory, check_disk, &
+                           max_samples, sci
+   use dpend_system, only: available_memory_bytes
    implicit none
    private
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
-   public :: trajectory_t, write_trajectory
+   public :: trajectory_t, write_trajectory, check_simulate_resources
+
+   !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
+   !> and the derived quantities written beside them (23 reals) [B].
+   real(dp), parameter :: sample_memory = 272.0_dp
+   !> File size per kept sample: 28 reals [B], and the fixed part of a file [B].
+   real(dp), parameter :: sample_file = 224.0_dp, file_overhead = 65536.0_dp
 
    !> Sampled states of a run: internal variables converted to (q, q̇).
    type :: trajectory_t
@@ -105,7 +114,48 @@ contains
          end if
       end do
       call validate_run_config(cfg, error)
+      if (allocated(error)) return
+      call check_simulate_resources(cfg, error)
    end subroutine parse_simulate
+
+   !> Refuse a run whose kept samples exceed `max_samples`, the available memory or
+   !> the free space of the output's file system. The count is known for a
+   !> fixed-step method (t_end/(dt save_every) + 2) and with output_dt (t_end/output_dt
+   !> + 2); an adaptive method without output_dt is capped while it runs instead.
+   subroutine check_simulate_resources(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      class(integrator_t), allocatable :: integ
+      character(len=*), parameter :: hint = 'use a larger --save-every or --output-dt'
+      real(dp) :: n, span
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      span = cfg%t_end
+      if (cfg%output_dt > 0.0_dp) then
+         call check_count('output_dt', cfg%output_dt, span, 't_end', max_samples - 2, &
+                          'samples', 'use a larger --output-dt', error)
+         if (allocated(error)) return
+         n = span/cfg%output_dt + 2.0_dp
+         call check_memory('output_dt', n*sample_memory, sci(n)//' samples', &
+                           'use a larger --output-dt', error)
+         if (.not. allocated(error)) call check_disk('output_dt', n*sample_file + &
+                                                     file_overhead, cfg%output, &
+                                                     'use a larger --output-dt', error)
+      else if (.not. integ%adaptive()) then
+         ! dt save_every ≤ 1e9 s · 2^31 and max_samples ≤ 1e9: no overflow
+         if (cfg%dt*real(cfg%save_every, dp)*real(max_samples - 2, dp) < span) then
+            call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
+                             ' keeps a sample every '//sci(cfg%dt*real(cfg%save_every, dp))// &
+                             ' s, more than '//sci(real(max_samples, dp))// &
+                             ' samples over t_end = '//sci(span)//' s ('//hint//')')
+            return
+         end if
+         n = span/(cfg%dt*real(cfg%save_every, dp)) + 2.0_dp
+         call check_memory('save_every', n*sample_memory, sci(n)//' samples', hint, error)
+         if (.not. allocated(error)) call check_disk('save_every', n*sample_file + &
+                                                     file_overhead, cfg%output, hint, error)
+      end if
+   end subroutine check_simulate_resources
 
    !> Integrate, sample and write. `error` is set for invalid input (nothing written)
    !> or for a failed run (the file holds the samples before the failure).
@@ -119,7 +169,7 @@ contains
       type(output_t) :: out
       failed = .false.
       call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
-                          omega=cfg%omega)
+                          omega=cfg%omega, max_steps=cfg%max_steps)
       if (allocated(error)) return
       call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return
@@ -150,9 +200,14 @@ contains
       type(march_t) :: march
       real(dp) :: t, h, y(4)
       real(dp), allocatable :: times(:), states(:, :)
-      integer(i8) :: k
+      integer(i8) :: k, cap, avail
       integer :: stat, i
       character(len=32) :: tbuf
+      ! an adaptive run without output_dt keeps an unknown number of samples: at most
+      ! max_samples and what fits the memory now
+      cap = max_samples
+      avail = available_memory_bytes()
+      if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
       y = integ%to_internal(cfg%par, cfg%q0, cfg%w0)
       t = 0.0_dp
       h = cfg%dt
@@ -174,8 +229,16 @@ contains
             call march%next(integ, cfg%par, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
-            if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) &
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
+               if (traj%n >= cap) then
+                  write (tbuf, '(es14.6)') t
+                  traj%status = 'kept samples reached '//sci(real(cap, dp))// &
+                                ' (memory limit) after t = '//trim(adjustl(tbuf))// &
+                                ' s; use a larger --save-every or --output-dt'
+                  exit
+               end if
                call append(traj, integ, cfg%par, t, y)
+            end if
          end do
       end if
       if (stat /= stat_ok) then
@@ -272,8 +335,10 @@ contains
          call h5%writeattr('/', 'rtol', cfg%rtol, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
       end if
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', int(integ%n_steps), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', int(integ%n_rhs), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
+                                                    int32_sat(integ%n_steps), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', int32_sat(integ%n_rhs), &
+                                                    error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
                                                     energy_scale(cfg%par, e(1)), error)

@@ -18,6 +18,11 @@ module dpend_study_config
    use dpend_integrator, only: integrator_t
    use dpend_integrators, only: new_integrator, method_names
    use dpend_symplectic, only: symplectic_t
+   use dpend_kinds, only: i8
+   use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, &
+                           max_angular_velocity, &
+                           max_time, max_steps, min_rtol, min_atol, max_atol, max_omega, &
+                           max_threads
    use dpend_tao, only: set_omega
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: scan_help_config
@@ -588,6 +593,15 @@ contains
          call fatal_error(error, 'invalid case_name: at least one case is needed')
          return
       end if
+      ! the scalars that later checks divide by, first (limits: dpend_limits)
+      if (.not. (finite_positive(cfg%t_short) .and. in_range(cfg%t_short, 0.0_dp, max_time))) &
+         then
+         call fatal_error(error, 'invalid t_short: must be in (0, '//sci(max_time)//'] (s)')
+         return
+      else if (cfg%n_check < 1 .or. cfg%n_check > 1000) then
+         call fatal_error(error, 'invalid n_check: must be an integer in 1..1000')
+         return
+      end if
       do i = 1, size(cfg%cases)
          write (idx, '("(", i0, ")")') i
          if (.not. all(ieee_is_finite([cfg%cases(i)%q0, cfg%cases(i)%w0]))) then
@@ -595,8 +609,21 @@ contains
                              ': must be finite (rad, rad/s)')
             return
          end if
-         if (.not. finite_positive(cfg%cases(i)%long_steps - 0.5_dp)) then
-            call fatal_error(error, 'invalid case_long_steps'//trim(idx)//': must be >= 1')
+         if (maxval(abs(cfg%cases(i)%q0)) > max_angle) then
+            call fatal_error(error, 'invalid case_q1, case_q2'//trim(idx)//': must be within ' &
+                             //'[-'//sci(max_angle)//', '//sci(max_angle)//'] (rad)')
+            return
+         end if
+         if (maxval(abs(cfg%cases(i)%w0)) > max_angular_velocity) then
+            call fatal_error(error, 'invalid case_w1, case_w2'//trim(idx)//': must be within ' &
+                             //'[-'//sci(max_angular_velocity)//', ' &
+                             //sci(max_angular_velocity)//'] (rad/s)')
+            return
+         end if
+         if (.not. finite_positive(cfg%cases(i)%long_steps - 0.5_dp) .or. &
+             cfg%cases(i)%long_steps > real(max_steps, dp)) then
+            call fatal_error(error, 'invalid case_long_steps'//trim(idx)//': must be in 1..' &
+                             //sci(real(max_steps, dp)))
             return
          end if
          if (verify(cfg%cases(i)%name, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ' &
@@ -641,6 +668,9 @@ contains
             else if (m%h_max > cfg%t_short/cfg%n_check) then
                call fatal_error(error, 'invalid h_max'//trim(idx)//' ('//m%name// &
                                 '): must be <= t_short/n_check (s)')
+            else if (m%h_min*real(max_steps, dp) < cfg%t_short) then
+               call check_count('h_min'//trim(idx), m%h_min, cfg%t_short, 't_short', &
+                                max_steps, 'steps', 'use a larger h_min', error)
             else if (m%rtol_min /= 0.0_dp .or. m%rtol_max /= 0.0_dp) then
                if (.not. integ%adaptive()) then
                   call fatal_error(error, 'invalid rtol_min, rtol_max'//trim(idx)//' ('// &
@@ -649,6 +679,19 @@ contains
                                .and. m%rtol_max < 1.0_dp)) then
                   call fatal_error(error, 'invalid rtol_min, rtol_max'//trim(idx)//' ('// &
                                    m%name//'): need 0 < rtol_min <= rtol_max < 1')
+               else if (m%rtol_min < min_rtol) then
+                  call fatal_error(error, 'invalid rtol_min'//trim(idx)//' ('//m%name// &
+                                   '): '//sci(m%rtol_min)//' is below '//sci(min_rtol)// &
+                                   ' (double precision cannot honour it)')
+               else if (.not. (finite_positive(cfg%atol_ratio) .and. &
+                                in_range(cfg%atol_ratio, 0.0_dp, 1e6_dp))) then
+                  call fatal_error(error, 'invalid atol_ratio: must be in (0, 1e6]')
+               else if (cfg%atol_ratio*m%rtol_min < min_atol .or. &
+                        cfg%atol_ratio*m%rtol_max > max_atol) then
+                  call fatal_error(error, 'invalid atol_ratio: atol = atol_ratio * rtol ' &
+                                   //'must stay in ['//sci(min_atol)//', '//sci(max_atol)// &
+                                   '] for rtol in ['//sci(m%rtol_min)//', '// &
+                                   sci(m%rtol_max)//']')
                end if
             end if
          end associate
@@ -656,6 +699,20 @@ contains
       end do
       if (cfg%n_h < 2 .or. cfg%n_h > 64) then
          call fatal_error(error, 'invalid n_h: must be an integer in 2..64')
+      else if (.not. (finite_positive(cfg%drift_decades) .and. &
+                      in_range(cfg%drift_decades, 0.0_dp, 100.0_dp))) then
+         call fatal_error(error, 'invalid drift_decades: must be in (0, 100]')
+      else if (cfg%threads > max_threads) then
+         call fatal_error(error, 'invalid threads: '//sci(real(cfg%threads, dp))// &
+                          ' must be an integer from 0 (default) to '//sci(real(max_threads, dp)))
+      else if (.not. (in_range(cfg%wall_min, 0.0_dp, max_time) .and. &
+                      in_range(cfg%ro_fit_t_min, 0.0_dp, max_time) .and. &
+                      in_range(cfg%tao_t_end, 0.0_dp, max_time) .and. &
+                      in_range(cfg%ro_perturb, 0.0_dp, 1.0_dp))) then
+         call fatal_error(error, 'invalid wall_min, ro_fit_t_min, tao_t_end: must be in [0, ' &
+                          //sci(max_time)//'] s; ro_perturb in [0, 1] rad')
+      else if (.not. in_range(cfg%omega_max, -huge(1.0_dp), max_omega)) then
+         call fatal_error(error, 'invalid omega_max: must be at most '//sci(max_omega)//' 1/s')
       else if (cfg%n_rtol < 2 .or. cfg%n_rtol > 64) then
          call fatal_error(error, 'invalid n_rtol: must be an integer in 2..64')
       else if (.not. finite_positive(cfg%atol_ratio)) then
@@ -694,6 +751,12 @@ contains
          call fatal_error(error, 'invalid omega_min: must be <= omega_max (1/s)')
       else if (cfg%n_omega < 1 .or. cfg%n_omega > 200) then
          call fatal_error(error, 'invalid n_omega: must be an integer in 1..200')
+      else if (cfg%ref_dt*real(max_steps, dp) < cfg%t_short) then
+         call fatal_error(error, 'invalid ref_dt: '//sci(cfg%ref_dt)//' s gives more than ' &
+                          //sci(real(max_steps, dp))//' steps over t_short')
+      else if (cfg%tao_dt*real(max_steps, dp) < cfg%tao_t_end + cfg%t_short) then
+         call fatal_error(error, 'invalid tao_dt: '//sci(cfg%tao_dt)//' s gives more than ' &
+                          //sci(real(max_steps, dp))//' steps over tao_t_end + t_short')
       else if (cfg%threads < 0) then
          call fatal_error(error, 'invalid --threads: must be an integer >= 1')
       end if

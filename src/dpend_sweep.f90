@@ -16,7 +16,9 @@
 module dpend_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       ieee_quiet_nan
-   use omp_lib, only: omp_set_num_threads
+   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+   use dpend_limits, only: check_memory, check_disk, sci, max_sweep_points, max_angle, &
+                           max_angular_velocity
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t, check_output_path
@@ -108,6 +110,36 @@ contains
       end if
       setup%config = canonical_config(setup)
    end subroutine build_setup
+
+   !> Refuse a sweep whose blocks in flight do not fit the available memory or whose
+   !> file does not fit the free space of the output's file system. Memory: one block
+   !> per thread at about 256 B per initial condition (state, results, flags), plus a
+   !> list's states. Disk: the working file (every dataset uncompressed) and, while
+   !> it is rewritten compressed at the end, the final file (at most as large), less
+   !> the size of an existing output that is resumed or replaced.
+   subroutine check_sweep_resources(setup, error)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=32), allocatable :: reals(:), ints(:)
+      real(dp) :: mem, disk, per_point, existing
+      integer(i8) :: fsize
+      logical :: exists
+      mem = real(omp_get_max_threads(), dp)*real(setup%block, dp)*256.0_dp
+      if (.not. setup%grid) mem = mem + 32.0_dp*real(setup%n, dp)
+      call check_memory('block', mem, to_str(omp_get_max_threads())//' thread(s) with blocks of ' &
+                        //to_str(setup%block)//' initial conditions', &
+                        'use a smaller --block or fewer --threads', error)
+      if (allocated(error)) return
+      call result_names(setup, reals, ints)
+      per_point = 8.0_dp*real(size(reals) + 1, dp) + 4.0_dp*real(size(ints), dp)
+      disk = 2.0_dp*per_point*real(setup%n, dp) + 1048576.0_dp
+      existing = 0.0_dp
+      inquire (file=setup%cfg%run%output, exist=exists, size=fsize)
+      if (exists .and. fsize > 0) existing = real(fsize, dp)
+      call check_disk(trim(merge('n1, n2 ', 'ic_file', setup%grid)), disk - existing, &
+                      setup%cfg%run%output, sci(real(setup%n, dp))//' initial conditions; '// &
+                      'use fewer points or another --output directory', error)
+   end subroutine check_sweep_resources
 
    !> Value number i of n on [lo, hi].
    pure real(dp) function axis_value(lo, hi, n, i)
@@ -217,6 +249,9 @@ contains
          else if (dims(1) /= 4) then
             call fatal_error(error, what//': dataset '//cfg%ic_dataset// &
                              ' must have shape (n, 4)')
+         else if (dims(2) > max_sweep_points) then
+            call fatal_error(error, what//': '//to_str(dims(2))//' initial conditions, at ' &
+                             //'most '//to_str(max_sweep_points))
          else
             call h5%read(cfg%ic_dataset, list, error)
          end if
@@ -248,8 +283,13 @@ contains
                                 ' is not 4 numbers "q1 q2 w1 w2"')
                exit
             end if
+            if (n >= max_sweep_points) then
+               call fatal_error(error, what//': more than '//to_str(max_sweep_points)// &
+                                ' initial conditions')
+               exit
+            end if
             if (n == size(list, 2)) then
-               allocate (tmp(4, 2*n))
+               allocate (tmp(4, min(2*n, max_sweep_points)))
                tmp(:, :n) = list
                call move_alloc(tmp, list)
             end if
@@ -264,6 +304,13 @@ contains
          call fatal_error(error, what//': it holds no initial condition')
       else if (.not. all(ieee_is_finite(list))) then
          call fatal_error(error, what//': every value must be finite')
+      else if (maxval(abs(list(1:2, :))) > max_angle) then
+         call fatal_error(error, what//': angles must be within [-'//sci(max_angle)//', ' &
+                          //sci(max_angle)//'] rad')
+      else if (maxval(abs(list(3:4, :))) > max_angular_velocity) then
+         call fatal_error(error, what//': angular velocities must be within [-' &
+                          //sci(max_angular_velocity)//', '//sci(max_angular_velocity)// &
+                          '] rad/s')
       end if
       if (allocated(error)) return
       if (cfg%ic_angles == 'theta') list(1:2, :) = list(1:2, :) - half_pi
@@ -596,6 +643,8 @@ contains
 
       if (cfg%threads > 0) call omp_set_num_threads(cfg%threads)
       call build_setup(cfg, setup, error)
+      if (allocated(error)) return
+      call check_sweep_resources(setup, error)
       if (allocated(error)) return
       summary%n = setup%n
       call open_output(setup, h5, done, complete, error)

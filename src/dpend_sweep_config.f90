@@ -25,6 +25,8 @@ module dpend_sweep_config
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, namelist_error
    use dpend_batch, only: stop_both, stop_either, stop_end
+   use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
+                           max_angle, max_angular_velocity, max_time
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
@@ -122,8 +124,8 @@ contains
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
-          '  --n N             points on both axes; --n1 N, --n2 N each; default ' &
-          //to_str(cfg%n1)//nl// &
+          '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
+          '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
           ' .. '//real_str(cfg%max1)//nl// &
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
@@ -152,7 +154,7 @@ contains
           '  --force           overwrite a file written with another configuration'//nl// &
           '  --block N         initial conditions per block (whole rows of axis 1 in a'//nl// &
           '                    grid); default '//to_str(cfg%block)//nl// &
-          '  --threads N       OpenMP threads; default all'//nl// &
+          '  --threads N       OpenMP threads, 0 (all) to 1024; default all'//nl// &
           '  --quiet           no progress report on stderr'//nl// &
           '  -h, --help        this text'
    end function sweep_help
@@ -210,7 +212,7 @@ contains
          case ('--stop-at'); cfg%stop_at = value
          case ('--block'); call parse_int(value, name, cfg%block, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
-         case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega')
+         case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
             matched = .false.
          case default
             call apply_run_flag(cfg%run, name, value, matched, error)
@@ -288,12 +290,17 @@ contains
                cfg%stop_at /= 'end') then
          call fatal_error(error, "invalid stop_at: '"//cfg%stop_at// &
                           "' (accepted: both, either, end)")
-      else if (cfg%block < 1) then
-         call fatal_error(error, 'invalid block: must be an integer >= 1')
-      else if (cfg%threads < 0) then
-         call fatal_error(error, 'invalid threads: must be an integer >= 0 (0: all)')
-      else if (cfg%run%t_end/cfg%run%dt > 1e12_dp) then
-         call fatal_error(error, 'invalid dt: t_end/dt must be <= 1e12')
+      else if (cfg%block < 1 .or. cfg%block > max_sweep_points) then
+         call fatal_error(error, 'invalid block: must be an integer from 1 to '// &
+                          to_str(max_sweep_points))
+      else if (cfg%threads < 0 .or. cfg%threads > max_threads) then
+         call fatal_error(error, 'invalid threads: '//to_str(cfg%threads)// &
+                          ' must be an integer from 0 (all) to '//to_str(max_threads))
+      else if (cfg%run%t_end*time_scale(cfg) > max_time) then
+         ! both factors are bounded (t_end <= 1e9, sqrt(l1/g) <= 1e6): no overflow
+         call fatal_error(error, 'invalid t_end: '//sci(cfg%run%t_end)//' '// &
+                          trim(unit_name(cfg))//' is '//sci(cfg%run%t_end*time_scale(cfg))// &
+                          ' s, above '//sci(max_time)//' s')
       end if
       if (allocated(error)) return
       if (grid_mode(cfg)) then
@@ -304,8 +311,10 @@ contains
          if (variable(cfg%axis1) == variable(cfg%axis2)) then
             call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
                              "initial value as axis1 '"//cfg%axis1//"'")
-         else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(huge(1), dp)) then
-            call fatal_error(error, 'invalid n1, n2: n1*n2 must be <= 2147483647')
+         else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
+            call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
+                             sci(real(cfg%n1, dp)*real(cfg%n2, dp))//' points, at most '// &
+                             sci(real(max_sweep_points, dp))//' (fewer points)')
          end if
       else if (cfg%ic_angles /= 'q' .and. cfg%ic_angles /= 'theta') then
          call fatal_error(error, "invalid ic_angles: '"//cfg%ic_angles// &
@@ -321,15 +330,28 @@ contains
       real(dp), intent(in) :: lo, hi                    !! range
       type(error_t), allocatable, intent(out) :: error  !! what is wrong
       character(len=1) :: c
+      character(len=5) :: unit
+      real(dp) :: bound
       c = achar(iachar('0') + k)
+      ! the angles' and angular velocities' ranges of every command (dpend_limits)
+      bound = max_angle
+      unit = 'rad'
+      if (variable(name) >= 3) then
+         bound = max_angular_velocity
+         unit = 'rad/s'
+      end if
       if (variable(name) == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
                           //axis_names//')')
-      else if (n < 1) then
-         call fatal_error(error, 'invalid n'//c//': must be an integer >= 1 (points on axis ' &
-                          //c//')')
+      else if (n < 1 .or. n > max_axis_points) then
+         call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
+                          //' to '//to_str(max_axis_points)//' (points on axis '//c//')')
       else if (.not. (ieee_is_finite(lo) .and. ieee_is_finite(hi))) then
          call fatal_error(error, 'invalid min'//c//', max'//c//': must be finite')
+      else if (max(abs(lo), abs(hi)) > bound) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': '//sci(lo)//' .. ' &
+                          //sci(hi)//' is outside ['//sci(-bound)//', '//sci(bound)// &
+                          '] ('//trim(unit)//')')
       else if (lo > hi) then
          call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
                           //real_str(lo)//' > max'//c//' = '//real_str(hi))
@@ -338,6 +360,14 @@ contains
                           //c//' < max'//c//' when n'//c//' > 1')
       end if
    end subroutine check_axis
+
+   !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
+   pure function unit_name(cfg) result(u)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      character(len=16) :: u
+      u = 's'
+      if (cfg%time_unit == 'natural') u = 'sqrt(l1/g)'
+   end function unit_name
 
    !> Index of the initial value an axis sweeps: 1 q1, 2 q2, 3 w1, 4 w2, 0 unknown.
    pure integer function variable(name)

@@ -30,6 +30,7 @@ module dpend_tangent
    use dpend_kinds, only: dp, i8
    use dpend_model, only: pendulum_t, jacobian_qqdot, jacobian_qp
    use dpend_integrator, only: integrator_t
+   use dpend_limits, only: max_tangent_substeps
    implicit none
    private
    public :: tangent_t, internal_jacobian
@@ -42,6 +43,9 @@ module dpend_tangent
       real(dp) :: theta = 0.1_dp
       integer(i8) :: n_jac = 0   !! Jacobian evaluations
       integer(i8) :: n_sub = 0   !! RK4 substeps taken
+      !> the last step needed more than `max_tangent_substeps` substeps: the vectors
+      !> were not propagated (the step is far too long for the local frequency)
+      logical :: too_stiff = .false.
       logical :: cached = .false.         !! j_cache holds J(y_cache)
       real(dp) :: y_cache(4) = 0.0_dp     !! state of the cached Jacobian
       real(dp) :: j_cache(4, 4) = 0.0_dp  !! cached Jacobian
@@ -95,6 +99,9 @@ contains
          ja = jacobian(integ%y_old)
       end if
       omega = sqrt(maxval(sum(abs(matmul(ja, ja)), dim=2)))
+      ! compared before converting: the substep count must fit an integer
+      self%too_stiff = .not. (abs(h)*omega <= self%theta*real(max_tangent_substeps, dp))
+      if (self%too_stiff) return
       n = max(1, ceiling(abs(h)*omega/self%theta))
       hs = h/real(n, dp)
       do i = 1, n
