@@ -17,6 +17,7 @@ module dpend_config
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
    public :: check_groups, run_flags_help, check_output_file, namelist_error
+   public :: check_regular_file
 
    !> Largest configuration file read [bytes].
    integer(i8), parameter :: max_config_bytes = 1048576_i8
@@ -65,7 +66,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! why the file is refused
       character(len=:), allocatable :: pre, text
       pre = "invalid --config '"//printable(filename)//"': "
-      call check_config_path(filename, pre, error)
+      call check_regular_file(filename, pre, error)
       if (allocated(error)) return
       call read_config_bytes(filename, pre, text, error)
       if (allocated(error)) return
@@ -74,14 +75,15 @@ contains
       call check_group_structure(text, known, pre, error)
    end subroutine check_groups
 
-   !> Refuse a configuration path that is not (a link to) a regular file.
-   subroutine check_config_path(filename, pre, error)
+   !> Refuse an input path that is not (a link to) a regular file, before anything
+   !> opens it (a FIFO would block the open); messages start with `pre`.
+   subroutine check_regular_file(filename, pre, error)
       character(len=*), intent(in) :: filename          !! the path
       character(len=*), intent(in) :: pre               !! message prefix
       type(error_t), allocatable, intent(out) :: error  !! not a regular file
       integer :: kind
       if (len_trim(filename) == 0) then
-         call fatal_error(error, 'invalid --config: empty file name')
+         call fatal_error(error, pre//'empty file name')
          return
       end if
       kind = followed_kind(filename)
@@ -90,16 +92,15 @@ contains
       case (path_missing)
          call fatal_error(error, pre//'no such file')
       case (path_directory)
-         call fatal_error(error, pre//'is a directory, not a namelist file')
+         call fatal_error(error, pre//'is a directory, not a file')
       case (path_link)
          call fatal_error(error, pre//'too many levels of symbolic links')
       case (path_other)
-         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device); '// &
-                          'give a namelist text file')
+         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
       case default
          call fatal_error(error, pre//'cannot be examined: '//errno_text(-kind))
       end select
-   end subroutine check_config_path
+   end subroutine check_regular_file
 
    !> `path_kind` of the file a path names, following symbolic links (at most 40).
    integer function followed_kind(path) result(kind)
