@@ -12,7 +12,7 @@ program dpend
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
-   use dpend_cli, only: parse_real, is_long_option
+   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
@@ -244,30 +244,48 @@ contains
       end if
    end subroutine sweep
 
+   !> `dpend sweep-compare A B [--rel R]`, the option anywhere (also --rel=R).
    subroutine sweep_compare(sub)
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
+      type(arg_t), allocatable :: files(:)
+      character(len=:), allocatable :: name, value
       real(dp) :: rel
+      logical :: missing
       integer :: i
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
             'Accuracy report of two complete sweeps of the same initial conditions (e.g.'//nl// &
             'steps dt and dt/2): the fraction of pixels whose first flip time changes by'//nl// &
-            'more than R (default 0.01) relative, or that flip in one and not the other,'//nl// &
-            'overall and by flip time in units of sqrt(l1/g).'
+            'more than R (default 0.01, at most 1000) relative, or that flip in one and'//nl// &
+            'not the other, overall and by flip time in units of sqrt(l1/g). Sweeps of'//nl// &
+            'other initial conditions (grid or list, shape, axes, ranges, parameters,'//nl// &
+            'time unit, t_end, stop rule) are refused.'
          return
       end if
       rel = 0.01_dp
-      if (size(sub) == 4) then
-         if (sub(3)%s /= '--rel') call fail(2, "dpend sweep-compare: unknown option '"// &
-                                            sub(3)%s//"'")
-         call parse_real(sub(4)%s, '--rel', rel, error)
+      allocate (files(0))
+      i = 1
+      do while (i <= size(sub))
+         if (.not. is_long_option(sub(i)%s)) then
+            files = [files, sub(i)]
+            i = i + 1
+            cycle
+         end if
+         call next_option(sub, i, name, value, .true., error, missing)
+         if (name == '--rel') then
+            call parse_real(value, name, rel, error)
+            call option_outcome('sweep-compare', name, .true., missing, &
+                                [character(len=16) :: ''], error)
+         else
+            call option_outcome('sweep-compare', name, .false., missing, &
+                                [character(len=16) :: ''], error)
+         end if
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
-         if (.not. (rel > 0.0_dp)) call fail(2, 'dpend sweep-compare: invalid --rel: must be > 0')
-      else if (size(sub) /= 2) then
-         call fail(2, 'dpend sweep-compare: needs two files (dpend sweep-compare --help)')
-      end if
-      call compare_sweeps(sub(1)%s, sub(2)%s, rel, output_unit, error)
+      end do
+      if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &
+                                      to_str(size(files))//' (dpend sweep-compare --help)')
+      call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
       if (allocated(error)) call fail(2, 'dpend '//error%message)
    end subroutine sweep_compare
 
