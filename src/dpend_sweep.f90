@@ -402,12 +402,14 @@ contains
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
-                                fill=nan, compress=final, alloc_early=.not. final)
+                                fill=nan, compress=final, alloc_early=.not. final, &
+                                checksum=.true.)
          if (allocated(error)) return
       end do
       do i = 1, size(ints)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
-                                fill=0.0_dp, compress=final, alloc_early=.not. final)
+                                fill=0.0_dp, compress=final, alloc_early=.not. final, &
+                                checksum=.true.)
          if (allocated(error)) return
       end do
       call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error)
@@ -533,6 +535,8 @@ contains
       real(dp), allocatable :: r1(:), r2(:, :)
       integer, allocatable :: i1(:), i2(:, :)
       integer :: k
+      logical :: unreadable
+      unreadable = .false.
       tmp = filename//'.tmp'
       call src%open(filename, 'r', error)
       if (allocated(error)) return
@@ -543,9 +547,11 @@ contains
          path = '/sweep/'//trim(reals(k))
          if (setup%grid) then
             call src%read(path, r2, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, r2, [1, 1], error)
          else
             call src%read(path, r1, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, r1, [1], error)
          end if
       end do
@@ -554,15 +560,21 @@ contains
          path = '/sweep/'//trim(ints(k))
          if (setup%grid) then
             call src%read(path, i2, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, i2, [1, 1], error)
          else
             call src%read(path, i1, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, i1, [1], error)
          end if
       end do
       call src%close()
       call install_file(dst, tmp, filename, setup, error)
-      if (allocated(error)) then
+      if (unreadable) then
+         ! a checksum failed: nothing was installed and the working file is damaged
+         error%message = "'"//filename//"' is damaged: "//error%message// &
+                         ' (a checksum does not match); use --force to start again'
+      else if (allocated(error)) then
          error%message = 'cannot write the compressed file: '//error%message// &
                          "; the uncompressed '"//filename//"' is complete and valid, "// &
                          'rerun to compress it'
@@ -692,15 +704,18 @@ contains
          if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
          if (.not. allocated(error)) call h5%readattr('/sweep', 'complete', complete, error)
          if (allocated(error)) then
-            error%message = error%message//' (use --force to start again)'
+            error%message = "invalid --output: '"//file//"' is damaged ("//error%message// &
+                            '); use --force to start again'
             call h5%close()
             return
          end if
          if (size(done) /= setup%nblocks) then
             call fatal_error(error, "invalid --output: '"//file//"' has a damaged block "// &
                              'list (use --force to start again)')
-            call h5%close()
+         else
+            call verify_blocks(h5, setup, done, error)
          end if
+         if (allocated(error)) call h5%close()
          return
       end if
       ! a new working file, complete before it gets its name
@@ -716,6 +731,67 @@ contains
       allocate (done(setup%nblocks))
       done = 0
    end subroutine open_output
+
+   !> Check the results of an existing sweep file before it is resumed or reported
+   !> complete: every chunk reads back (its Fletcher-32 checksum matches; files
+   !> written before checksums are read in full all the same), every flag in
+   !> /sweep/done is 0 or 1, and every block flagged done has a status for each of
+   !> its initial conditions. A damaged file is refused, never finished or copied.
+   subroutine verify_blocks(h5, setup, done, error)
+      type(h5file_t), intent(inout) :: h5               !! the open file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: done(:)                    !! its block flags
+      type(error_t), allocatable, intent(out) :: error  !! the first damage found
+      character(len=32), allocatable :: reals(:), ints(:)
+      real(dp), allocatable :: r1(:), r2(:, :)
+      integer, allocatable :: i1(:), i2(:, :), status(:)
+      character(len=:), allocatable :: damaged
+      integer :: k, b, j0, nb
+      damaged = "invalid --output: '"//setup%cfg%run%output//"' is damaged ("
+      if (any(done /= 0 .and. done /= 1)) then
+         call fatal_error(error, damaged//'/sweep/done holds flags other than 0 and 1); '// &
+                          'use --force to start again')
+         return
+      end if
+      call result_names(setup, reals, ints)
+      do k = 1, size(reals) + size(ints)
+         if (k <= size(reals)) then
+            if (setup%grid) then
+               call h5%read('/sweep/'//trim(reals(k)), r2, error)
+            else
+               call h5%read('/sweep/'//trim(reals(k)), r1, error)
+            end if
+         else if (setup%grid) then
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i2, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) &
+               status = reshape(i2, [size(i2)])
+         else
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i1, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) status = i1
+         end if
+         if (allocated(error)) then
+            error%message = damaged//'/sweep/'//trim(merge(reals(min(k, size(reals))), &
+                            ints(max(1, k - size(reals))), k <= size(reals)))// &
+                            ' does not read back: a checksum does not match or its chunk '// &
+                            'index is broken); use --force to start again'
+            return
+         end if
+      end do
+      if (size(status) /= setup%n) then
+         call fatal_error(error, damaged//'/sweep/status has '//to_str(size(status))// &
+                          ' values, not '//to_str(setup%n)//'); use --force to start again')
+         return
+      end if
+      do b = 1, setup%nblocks
+         if (done(b) /= 1) cycle
+         call block_range(setup, b, j0, nb)
+         if (any(status(j0:j0 + nb - 1) == 0)) then
+            call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
+                             'but not written); use --force to start again')
+            return
+         end if
+      end do
+   end subroutine verify_blocks
 
    !> Put a freshly written file in place: close it (the close checked unless an
    !> error is already set), verify it, rename tmp to filename; on any failure
