@@ -12,7 +12,7 @@ program dpend
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
-   use dpend_cli, only: parse_real
+   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
@@ -140,51 +140,75 @@ contains
       end if
    end subroutine study
 
+   !> `dpend export FILE DATASET...` or `FILE --matrix DATASET [XAXIS YAXIS [SCALE]]`;
+   !> --matrix and --help may stand anywhere. Every failure: one line, exit 2.
    subroutine export(sub)
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
-      character(len=256), allocatable :: paths(:)
+      character(len=:), allocatable :: usage
+      type(arg_t), allocatable :: pos(:)
+      character(len=:), allocatable :: paths(:)
       real(dp) :: scale
-      integer :: i
-      if (size(sub) < 2 .or. any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', &
-                                   i=1, size(sub))])) then
-         write (output_unit, '(a)') 'usage: dpend export FILE.h5 DATASET [DATASET ...]'//nl// &
-            '       dpend export FILE.h5 --matrix DATASET [XAXIS YAXIS [SCALE]]'//nl// &
-            'Print datasets as whitespace-separated columns: a (n) dataset gives one'//nl// &
-            'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
-            'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
-            'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE.'
-         if (size(sub) < 2) call fail(2, 'dpend export: needs a file and at least one dataset')
+      logical :: matrix
+      integer :: i, n, width
+      usage = 'usage: dpend export FILE.h5 DATASET [DATASET ...]'//nl// &
+              '       dpend export FILE.h5 --matrix DATASET [XAXIS YAXIS [SCALE]]'//nl// &
+              'Print datasets as whitespace-separated columns: a (n) dataset gives one'//nl// &
+              'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
+              'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
+              'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE'//nl// &
+              '(SCALE > 0, at least 2.2250738585072014E-308).'
+      if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
+         write (output_unit, '(a)') usage
          return
       end if
-      if (sub(2)%s == '--matrix') then
-         select case (size(sub))
-         case (3)
-            call export_matrix(sub(1)%s, sub(3)%s, output_unit, error)
-         case (5)
-            call export_matrix(sub(1)%s, sub(3)%s, output_unit, error, sub(4)%s, sub(5)%s)
-         case (6)
-            call parse_real(sub(6)%s, 'SCALE', scale, error)
-            if (.not. allocated(error)) then
-               if (.not. (scale > 0.0_dp)) then
-                  call fail(2, 'dpend export: invalid SCALE: must be > 0')
-               end if
-               call export_matrix(sub(1)%s, sub(3)%s, output_unit, error, sub(4)%s, &
-                                  sub(5)%s, scale)
-            end if
-         case default
-            call fail(2, 'dpend export: --matrix takes DATASET [XAXIS YAXIS [SCALE]]')
-         end select
-         if (allocated(error)) call fail(2, 'dpend export: '//error%message)
-         return
-      end if
-      allocate (paths(size(sub) - 1))
-      do i = 2, size(sub)
-         paths(i - 1) = sub(i)%s
+      matrix = .false.
+      allocate (pos(0))
+      do i = 1, size(sub)
+         if (sub(i)%s == '--matrix') then
+            matrix = .true.
+         else if (index(sub(i)%s, '--matrix=') == 1) then
+            call fail(2, 'dpend export: option --matrix takes no value')
+         else if (is_long_option(sub(i)%s)) then
+            call fail(2, "dpend export: unknown option '"//sub(i)%s// &
+                      "' (dpend export --help lists the options)")
+         else
+            pos = [pos, sub(i)]
+         end if
       end do
-      call export_columns(sub(1)%s, paths, output_unit, error)
+      n = size(pos)
+      if (n < 2) call fail(2, 'dpend export: needs a file and at least one dataset '// &
+                           '(dpend export --help)')
+      if (matrix) then
+         select case (n)
+         case (2)
+            call export_matrix(pos(1)%s, pos(2)%s, output_unit, error)
+         case (4)
+            call export_matrix(pos(1)%s, pos(2)%s, output_unit, error, pos(3)%s, pos(4)%s)
+         case (5)
+            call parse_real(pos(5)%s, 'SCALE', scale, error)
+            if (allocated(error)) call fail(2, 'dpend export: '//error%message)
+            if (.not. (scale >= tiny(1.0_dp))) call fail(2, 'dpend export: invalid SCALE: '// &
+               pos(5)%s//' (accepted: a number >= 2.2250738585072014E-308)')
+            call export_matrix(pos(1)%s, pos(2)%s, output_unit, error, pos(3)%s, &
+                               pos(4)%s, scale)
+         case default
+            call fail(2, 'dpend export: --matrix takes FILE DATASET [XAXIS YAXIS [SCALE]]')
+         end select
+      else
+         width = 1
+         do i = 2, n
+            width = max(width, len(pos(i)%s))
+         end do
+         allocate (character(len=width) :: paths(n - 1))
+         do i = 2, n
+            paths(i - 1) = pos(i)%s
+         end do
+         call export_columns(pos(1)%s, paths, output_unit, error)
+      end if
       if (allocated(error)) call fail(2, 'dpend export: '//error%message)
    end subroutine export
+
 
    subroutine sweep(sub)
       type(arg_t), intent(in) :: sub(:)
@@ -217,30 +241,48 @@ contains
       end if
    end subroutine sweep
 
+   !> `dpend sweep-compare A B [--rel R]`, the option anywhere (also --rel=R).
    subroutine sweep_compare(sub)
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
+      type(arg_t), allocatable :: files(:)
+      character(len=:), allocatable :: name, value
       real(dp) :: rel
+      logical :: missing
       integer :: i
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
             'Accuracy report of two complete sweeps of the same initial conditions (e.g.'//nl// &
             'steps dt and dt/2): the fraction of pixels whose first flip time changes by'//nl// &
-            'more than R (default 0.01) relative, or that flip in one and not the other,'//nl// &
-            'overall and by flip time in units of sqrt(l1/g).'
+            'more than R (default 0.01, at most 1000) relative, or that flip in one and'//nl// &
+            'not the other, overall and by flip time in units of sqrt(l1/g). Sweeps of'//nl// &
+            'other initial conditions (grid or list, shape, axes, ranges, parameters,'//nl// &
+            'time unit, t_end, stop rule) are refused.'
          return
       end if
       rel = 0.01_dp
-      if (size(sub) == 4) then
-         if (sub(3)%s /= '--rel') call fail(2, "dpend sweep-compare: unknown option '"// &
-                                            sub(3)%s//"'")
-         call parse_real(sub(4)%s, '--rel', rel, error)
+      allocate (files(0))
+      i = 1
+      do while (i <= size(sub))
+         if (.not. is_long_option(sub(i)%s)) then
+            files = [files, sub(i)]
+            i = i + 1
+            cycle
+         end if
+         call next_option(sub, i, name, value, .true., error, missing)
+         if (name == '--rel') then
+            call parse_real(value, name, rel, error)
+            call option_outcome('sweep-compare', name, .true., missing, &
+                                [character(len=16) :: ''], error)
+         else
+            call option_outcome('sweep-compare', name, .false., missing, &
+                                [character(len=16) :: ''], error)
+         end if
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
-         if (.not. (rel > 0.0_dp)) call fail(2, 'dpend sweep-compare: invalid --rel: must be > 0')
-      else if (size(sub) /= 2) then
-         call fail(2, 'dpend sweep-compare: needs two files (dpend sweep-compare --help)')
-      end if
-      call compare_sweeps(sub(1)%s, sub(2)%s, rel, output_unit, error)
+      end do
+      if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &
+                                      to_str(size(files))//' (dpend sweep-compare --help)')
+      call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
       if (allocated(error)) call fail(2, 'dpend '//error%message)
    end subroutine sweep_compare
 

@@ -7,7 +7,7 @@
 module dpend_chaos
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, next_option, parse_real, parse_int
+   use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help, &
                            namelist_error
@@ -217,7 +217,7 @@ contains
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, config
-      logical :: matched
+      logical :: matched, missing
       integer :: i
       cfg = chaos_run_defaults(command)
       ch = chaos_defaults(command)
@@ -250,20 +250,20 @@ contains
                              command//' --help lists the options)')
             return
          end if
-         call next_option(args, i, name, value, .true., error)
-         if (allocated(error)) return
+         call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
          matched = .false.
          if (name /= '--save-every' .and. (name /= '--output-dt' .or. command == 'divergence')) &
             call apply_run_flag(cfg, name, value, matched, error)
-         if (allocated(error)) return
          if (.not. matched) call apply_chaos_flag(command, ch, name, value, matched, error)
-         if (allocated(error)) return
-         if (.not. matched) then
-            call fatal_error(error, "unknown option '"//name//"' (dpend "//command// &
-                             ' --help lists the options)')
-            return
+         if (command == 'divergence') then
+            call option_outcome(command, name, matched, missing, &
+                                [character(len=16) :: '--force', '--same-energy'], error)
+         else
+            call option_outcome(command, name, matched, missing, &
+                                [character(len=16) :: '--force'], error)
          end if
+         if (allocated(error)) return
       end do
       call validate_run_config(cfg, error)
       if (allocated(error)) return

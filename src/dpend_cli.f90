@@ -7,7 +7,7 @@ module dpend_cli
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
-   public :: real_str, to_str, scan_help_config
+   public :: real_str, to_str, scan_help_config, option_outcome, is_long_option
 
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
@@ -35,16 +35,22 @@ contains
    end subroutine get_arguments
 
    !> Split the option at args(i): its name (with the leading dashes) and, for
-   !> options that take one, its value, from `--name=value` or the next argument.
-   !> Advances i past what was consumed. Flags (`takes_value` false) get value ''.
-   subroutine next_option(args, i, name, value, takes_value, error)
+   !> options that take one, its value, from `--name=value` or the next argument
+   !> (which must not start with '--'). Advances i past what was consumed. Flags
+   !> (`takes_value` false) get value ''. A missing value is an error unless
+   !> `missing` is present: then it is reported there, so that the caller can first
+   !> tell an unknown option from a known one without its value (`option_outcome`).
+   subroutine next_option(args, i, name, value, takes_value, error, missing)
       type(arg_t), intent(in) :: args(:)                 !! all arguments
       integer, intent(inout) :: i                        !! current position
       character(len=:), allocatable, intent(out) :: name !! e.g. '--dt'
       character(len=:), allocatable, intent(out) :: value !! its value or ''
       logical, intent(in) :: takes_value                 !! whether the option has a value
       type(error_t), allocatable, intent(out) :: error   !! missing value
+      logical, intent(out), optional :: missing          !! the value is missing
       integer :: eq
+      logical :: absent
+      if (present(missing)) missing = .false.
       eq = index(args(i)%s, '=')
       if (eq > 0) then
          name = args(i)%s(:eq - 1)
@@ -57,19 +63,50 @@ contains
       value = ''
       i = i + 1
       if (.not. takes_value) return
-      if (i > size(args)) then
-         call fatal_error(error, 'option '//name//' needs a value')
-         return
-      end if
-      if (len(args(i)%s) >= 2) then
-         if (args(i)%s(1:2) == '--') then
+      absent = i > size(args)
+      if (.not. absent) absent = is_long_option(args(i)%s)
+      if (absent) then
+         if (present(missing)) then
+            missing = .true.
+         else
             call fatal_error(error, 'option '//name//' needs a value')
-            return
          end if
+         return
       end if
       value = args(i)%s
       i = i + 1
    end subroutine next_option
+
+   !> The one error after a command has tried to apply option `name` (`matched`:
+   !> it is one of its options; `error`: its value was refused): an unknown
+   !> option, a flag (one of `flags`) given a value with '=', a missing value, or
+   !> the value's own error, in that order.
+   subroutine option_outcome(command, name, matched, missing, flags, error)
+      character(len=*), intent(in) :: command             !! e.g. 'simulate'
+      character(len=*), intent(in) :: name                !! the option
+      logical, intent(in) :: matched                      !! a valued option of the command
+      logical, intent(in) :: missing                      !! its value was missing
+      character(len=*), intent(in) :: flags(:)            !! the command's flags
+      type(error_t), allocatable, intent(inout) :: error  !! the value's error, if any
+      if (any(flags == name)) then
+         if (allocated(error)) deallocate (error)
+         call fatal_error(error, 'option '//name//' takes no value')
+      else if (.not. matched) then
+         if (allocated(error)) deallocate (error)
+         call fatal_error(error, "unknown option '"//name//"' (dpend "//command// &
+                          ' --help lists the options)')
+      else if (missing) then
+         if (allocated(error)) deallocate (error)
+         call fatal_error(error, 'option '//name//' needs a value')
+      end if
+   end subroutine option_outcome
+
+   !> True if `arg` starts with '--' (an option, never a value).
+   pure logical function is_long_option(arg)
+      character(len=*), intent(in) :: arg  !! an argument
+      is_long_option = .false.
+      if (len(arg) >= 2) is_long_option = arg(1:2) == '--'
+   end function is_long_option
 
    !> Parse a finite real number for field `name`.
    subroutine parse_real(text, name, x, error)
@@ -141,8 +178,9 @@ contains
    end function int8_str
 
    !> The first pass of every command's parser: whether -h/--help was given and
-   !> the file of the last `--config FILE` ('' if none), so that the file is read
-   !> before the flags that override it.
+   !> the file of the last `--config FILE` or `--config=FILE` ('' if none), so that
+   !> the file is read before the flags that override it. Values of other options
+   !> are not looked at, so `--output --help` asks for help.
    subroutine scan_help_config(args, help, config, error)
       type(arg_t), intent(in) :: args(:)                   !! the command's arguments
       logical, intent(out) :: help                         !! -h or --help present
@@ -151,22 +189,34 @@ contains
       integer :: i
       help = .false.
       config = ''
+      if (allocated(error)) deallocate (error)
       i = 1
       do while (i <= size(args))
-         select case (args(i)%s)
-         case ('-h', '--help')
+         if (args(i)%s == '-h' .or. args(i)%s == '--help') then
             help = .true.
+            if (allocated(error)) deallocate (error)
             return
-         case ('--config')
+         else if (args(i)%s == '--config') then
             if (i == size(args)) then
-               call fatal_error(error, 'option --config needs a value')
-               return
+               if (.not. allocated(error)) &
+                  call fatal_error(error, 'option --config needs a value')
+               i = i + 1
+            else if (is_long_option(args(i + 1)%s)) then
+               if (.not. allocated(error)) &
+                  call fatal_error(error, 'option --config needs a value')
+               i = i + 1
+            else
+               config = args(i + 1)%s
+               i = i + 2
             end if
-            config = args(i + 1)%s
-            i = i + 2
-         case default
+         else if (index(args(i)%s, '--config=') == 1) then
+            config = args(i)%s(len('--config=') + 1:)
+            if (len(config) == 0 .and. .not. allocated(error)) &
+               call fatal_error(error, 'invalid --config: empty file name')
             i = i + 1
-         end select
+         else
+            i = i + 1
+         end if
       end do
    end subroutine scan_help_config
 end module dpend_cli

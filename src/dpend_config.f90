@@ -5,22 +5,38 @@
 !> &output (file force). Commands with more settings read further groups
 !> through `check_groups` and their own namelists.
 module dpend_config
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: pendulum_t, validate, finite_positive
-   use dpend_cli, only: arg_t, parse_real, parse_int, real_str
-   use dpend_kinds, only: i8
+   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
+   use dpend_system, only: path_kind, path_missing, path_file, path_directory, path_link, &
+      path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
                            max_steps, default_max_steps, sci
    use dpend_integrator, only: integrator_t
    use dpend_integrators, only: new_integrator
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_c_binding, only: c_char, c_long, c_size_t, c_null_char
    implicit none
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
    public :: check_groups, run_flags_help, check_output_file, namelist_error
+   public :: check_regular_file
 
+   !> Largest configuration file read [bytes].
+   integer(i8), parameter :: max_config_bytes = 1048576_i8
+
+   interface
+      !> POSIX readlink(2).
+      function c_readlink(path, buf, bufsiz) bind(C, name='readlink') result(r)
+         import :: c_char, c_size_t, c_long
+         character(kind=c_char), intent(in) :: path(*)
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_size_t), value :: bufsiz
+         integer(c_long) :: r
+      end function c_readlink
+   end interface
 
    !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
    type :: run_config_t
@@ -43,38 +59,292 @@ module dpend_config
 
 contains
 
-   !> Fail if `filename` holds a namelist group not in `known` (names without '&').
+   !> Check that `filename` is a namelist file made only of the groups `known`
+   !> (names without '&'), each at most once, and nothing outside them but blanks
+   !> and '!' comments. Refused, with one line naming the file and the problem: a
+   !> missing, unreadable or too large file, a directory, a FIFO or device (never
+   !> opened, so nothing blocks), a binary file (NUL, control bytes, not UTF-8),
+   !> text outside a group (e.g. a key before any group), an unknown, repeated or
+   !> unclosed group, and a file without any group. Bytes of the file are never
+   !> echoed except as printable ASCII.
    subroutine check_groups(filename, known, error)
       character(len=*), intent(in) :: filename          !! the namelist file
       character(len=*), intent(in) :: known(:)          !! accepted group names
-      type(error_t), allocatable, intent(out) :: error  !! unknown group or unreadable
-      integer :: unit, stat, amp, bang, e
-      character(len=1024) :: line
-      character(len=:), allocatable :: group
-      open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
-      if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+      type(error_t), allocatable, intent(out) :: error  !! why the file is refused
+      character(len=:), allocatable :: pre, text
+      pre = "invalid --config '"//printable(filename)//"': "
+      call check_regular_file(filename, pre, error)
+      if (allocated(error)) return
+      call read_config_bytes(filename, pre, text, error)
+      if (allocated(error)) return
+      call check_text_bytes(text, pre, error)
+      if (allocated(error)) return
+      call check_group_structure(text, known, pre, error)
+   end subroutine check_groups
+
+   !> Refuse an input path that is not (a link to) a regular file, before anything
+   !> opens it (a FIFO would block the open); messages start with `pre`.
+   subroutine check_regular_file(filename, pre, error)
+      character(len=*), intent(in) :: filename          !! the path
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! not a regular file
+      integer :: kind
+      if (len_trim(filename) == 0) then
+         call fatal_error(error, pre//'empty file name')
          return
       end if
-      do
-         read (unit, '(a)', iostat=stat) line
-         if (stat /= 0) exit
-         bang = index(line, '!')
-         if (bang > 0) line(bang:) = ' '
-         amp = index(line, '&')
-         if (amp == 0) cycle
-         e = scan(line(amp + 1:), ' ,/') + amp
-         if (e == amp) e = len_trim(line) + 1
-         group = to_lower(line(amp + 1:e - 1))
-         if (len(group) == 0 .or. group == 'end') cycle
-         if (.not. any(known == group)) then
-            call fatal_error(error, "invalid config '"//filename//"': unknown namelist group &" &
-                             //group//' (accepted: &'//join(known)//')')
-            exit
+      kind = followed_kind(filename)
+      select case (kind)
+      case (path_file)
+      case (path_missing)
+         call fatal_error(error, pre//'no such file')
+      case (path_directory)
+         call fatal_error(error, pre//'is a directory, not a file')
+      case (path_link)
+         call fatal_error(error, pre//'too many levels of symbolic links')
+      case (path_other)
+         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
+      case default
+         call fatal_error(error, pre//'cannot be examined: '//errno_text(-kind))
+      end select
+   end subroutine check_regular_file
+
+   !> `path_kind` of the file a path names, following symbolic links (at most 40).
+   integer function followed_kind(path) result(kind)
+      character(len=*), intent(in) :: path  !! the path
+      character(len=:), allocatable :: p, target
+      character(kind=c_char) :: buf(4096)
+      integer(c_long) :: n
+      integer :: hops, k
+      p = path
+      do hops = 1, 40
+         kind = path_kind(p)
+         if (kind /= path_link) return
+         n = c_readlink(p//c_null_char, buf, int(size(buf), c_size_t))
+         if (n < 0 .or. n >= size(buf)) then
+            kind = path_missing
+            return
          end if
+         allocate (character(len=int(n)) :: target)
+         do k = 1, int(n)
+            target(k:k) = buf(k)
+         end do
+         if (target(1:min(1, len(target))) == '/') then
+            p = target
+         else
+            p = directory_of(p)//'/'//target
+         end if
+         deallocate (target)
       end do
+      kind = path_link
+   end function followed_kind
+
+   !> The whole file as one string (at most max_config_bytes).
+   subroutine read_config_bytes(filename, pre, text, error)
+      character(len=*), intent(in) :: filename               !! a regular file
+      character(len=*), intent(in) :: pre                    !! message prefix
+      character(len=:), allocatable, intent(out) :: text     !! its bytes
+      type(error_t), allocatable, intent(out) :: error       !! unreadable or too large
+      integer :: unit, stat
+      integer(i8) :: bytes
+      character(len=256) :: msg
+      text = ''
+      open (newunit=unit, file=filename, status='old', action='read', access='stream', &
+            form='unformatted', iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         call fatal_error(error, pre//'cannot be read ('//reason(msg)//')')
+         return
+      end if
+      inquire (unit=unit, size=bytes)
+      if (bytes > max_config_bytes) then
+         call fatal_error(error, pre//'is '//to_str(bytes)//' bytes; a namelist file '// &
+                          'has at most '//to_str(max_config_bytes)//' bytes')
+      else if (bytes > 0) then
+         deallocate (text)
+         allocate (character(len=int(bytes)) :: text)
+         read (unit, iostat=stat, iomsg=msg) text
+         if (stat /= 0) call fatal_error(error, pre//'cannot be read ('//reason(msg)//')')
+      end if
       close (unit)
    contains
+      function reason(m) result(r)
+         character(len=*), intent(in) :: m
+         character(len=:), allocatable :: r
+         integer :: colon
+         ! the runtime's message ends with the system's reason after the last ': '
+         colon = index(m, ': ', back=.true.)
+         r = printable(trim(m(colon + 1:)))
+         if (colon > 0) r = printable(trim(m(colon + 2:)))
+         if (len(r) == 0) r = 'I/O error'
+      end function reason
+   end subroutine read_config_bytes
+
+   !> Refuse bytes that are not text: NUL, control bytes other than blanks and line
+   !> ends, and anything that is not UTF-8.
+   subroutine check_text_bytes(text, pre, error)
+      character(len=*), intent(in) :: text              !! the file
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! the first non-text byte
+      integer :: i, c, follow, k, line
+      character(len=*), parameter :: hdf5_signature = achar(137)//'HDF'//achar(13)//achar(10)
+      if (len(text) >= len(hdf5_signature)) then
+         if (text(:len(hdf5_signature)) == hdf5_signature) then
+            call fatal_error(error, pre//'is an HDF5 file, not a namelist text file '// &
+                             '(binary data)')
+            return
+         end if
+      end if
+      i = 1
+      line = 1
+      do while (i <= len(text))
+         c = iachar(text(i:i))
+         if (c == 10) line = line + 1
+         follow = -1
+         if (c >= 32 .and. c < 127) then
+            follow = 0
+         else if (c == 9 .or. c == 10 .or. c == 11 .or. c == 12 .or. c == 13) then
+            follow = 0
+         else if (c >= 194 .and. c <= 223) then
+            follow = 1
+         else if (c >= 224 .and. c <= 239) then
+            follow = 2
+         else if (c >= 240 .and. c <= 244) then
+            follow = 3
+         end if
+         if (follow > 0) then
+            if (i + follow > len(text)) then
+               follow = -1
+            else
+               do k = i + 1, i + follow
+                  if (iachar(text(k:k)) < 128 .or. iachar(text(k:k)) > 191) follow = -1
+               end do
+            end if
+         end if
+         if (follow < 0) then
+            call fatal_error(error, pre//'not a text file (binary data: byte '// &
+                             hex(c)//' at line '//to_str(line)//')')
+            return
+         end if
+         i = i + 1 + follow
+      end do
+   contains
+      function hex(byte) result(s)
+         integer, intent(in) :: byte
+         character(len=:), allocatable :: s
+         character(len=2) :: buf
+         write (buf, '(z2.2)') byte
+         s = '0x'//buf
+      end function hex
+   end subroutine check_text_bytes
+
+   !> Refuse text outside the groups, unknown, repeated and unclosed groups, and a
+   !> file without a group. Knows namelist syntax: quoted strings, '!' comments,
+   !> groups '&name ... /' (or '&end', and '$' for '&').
+   subroutine check_group_structure(text, known, pre, error)
+      character(len=*), intent(in) :: text              !! the file (checked bytes)
+      character(len=*), intent(in) :: known(:)          !! accepted group names
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! the first problem
+      character(len=32) :: seen(size(known))   ! each group at most once, all known
+      character(len=:), allocatable :: group, name
+      character(len=1) :: c, quote
+      character(len=1), parameter :: lf = achar(10)
+      integer :: i, j, line, group_line, n_seen
+      logical :: inside
+      n_seen = 0
+      inside = .false.
+      quote = ' '
+      group = ''
+      group_line = 0
+      line = 1
+      i = 1
+      do while (i <= len(text))
+         c = text(i:i)
+         if (c == lf) line = line + 1
+         if (inside .and. quote /= ' ') then
+            if (c == quote) quote = ' '
+            i = i + 1
+            cycle
+         end if
+         if (c == '!') then        ! a comment, to the end of the line
+            j = index(text(i:), lf)
+            if (j == 0) exit
+            i = i + j - 1
+            cycle
+         end if
+         if (c == '&' .or. c == '$') then
+            j = i + 1
+            do while (j <= len(text))
+               if (.not. is_name_char(text(j:j))) exit
+               j = j + 1
+            end do
+            name = to_lower(text(i + 1:j - 1))
+            if (inside) then
+               if (name /= 'end') then
+                  call fatal_error(error, pre//'group &'//group//' (line '// &
+                                   to_str(group_line)//") is not closed with '/' before "// &
+                                   c//printable(name)//' (line '//to_str(line)//')')
+                  return
+               end if
+               inside = .false.
+            else if (len(name) == 0) then
+               call fatal_error(error, pre//"'"//c//"' without a group name at line "// &
+                                to_str(line))
+               return
+            else if (name == 'end') then
+               call fatal_error(error, pre//c//'end at line '//to_str(line)// &
+                                ' closes no group')
+               return
+            else if (.not. any(known == name)) then
+               call fatal_error(error, pre//'unknown namelist group &'//printable(name)// &
+                                ' at line '//to_str(line)//' (accepted: &'//join(known)//')')
+               return
+            else if (any(seen(:n_seen) == name)) then
+               call fatal_error(error, pre//'group &'//name//' appears twice (again at line '// &
+                                to_str(line)//'); give each group once')
+               return
+            else
+               n_seen = n_seen + 1
+               seen(n_seen) = name
+               group = name
+               group_line = line
+               inside = .true.
+            end if
+            i = j
+            cycle
+         end if
+         if (inside) then
+            if (c == "'" .or. c == '"') quote = c
+            if (c == '/') inside = .false.
+         else if (.not. is_blank(c)) then
+            j = i
+            do while (j <= len(text))
+               if (is_blank(text(j:j))) exit
+               j = j + 1
+            end do
+            call fatal_error(error, pre//"'"//printable(text(i:min(j - 1, i + 23)))// &
+                             "' at line "//to_str(line)//' is outside any namelist group '// &
+                             '(keys go between &group and /)')
+            return
+         end if
+         i = i + 1
+      end do
+      if (inside) then
+         call fatal_error(error, pre//'group &'//group//' (line '//to_str(group_line)// &
+                          ") is not closed with '/'")
+      else if (n_seen == 0) then
+         call fatal_error(error, pre//'holds no namelist group (accepted: &'//join(known)//')')
+      end if
+   contains
+      pure logical function is_name_char(ch)
+         character(len=1), intent(in) :: ch
+         is_name_char = (ch >= 'a' .and. ch <= 'z') .or. (ch >= 'A' .and. ch <= 'Z') .or. &
+                        (ch >= '0' .and. ch <= '9') .or. ch == '_'
+      end function is_name_char
+      pure logical function is_blank(ch)
+         character(len=1), intent(in) :: ch
+         is_blank = ch == ' ' .or. (iachar(ch) >= 9 .and. iachar(ch) <= 13)
+      end function is_blank
       pure function join(list) result(s)
          character(len=*), intent(in) :: list(:)
          character(len=:), allocatable :: s
@@ -84,7 +354,18 @@ contains
             s = s//' &'//trim(list(k))
          end do
       end function join
-   end subroutine check_groups
+   end subroutine check_group_structure
+
+   !> `s` with every byte that is not printable ASCII replaced by '?'.
+   pure function printable(s) result(t)
+      character(len=*), intent(in) :: s  !! any bytes
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) t(i:i) = '?'
+      end do
+   end function printable
 
    !> The message for a failed namelist read, naming the group and the offending key.
    function namelist_error(filename, group, iomsg) result(msg)

@@ -6,6 +6,8 @@ module dpend_export
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
+   use dpend_config, only: check_regular_file
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: export_columns, export_matrix
@@ -23,6 +25,8 @@ contains
       integer, allocatable :: dims(:)
       integer :: i, j, n, ncol, col
       character(len=:), allocatable :: fmt
+      call check_regular_file(filename, "invalid FILE '"//filename//"': ", error)
+      if (allocated(error)) return
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
       ncol = 0
@@ -87,8 +91,11 @@ contains
       real(dp), intent(in), optional :: scale           !! divide the values by it
       type(h5file_t) :: h5
       real(dp), allocatable :: v(:, :), x(:), y(:), row(:)
+      real(dp) :: big
       integer :: i, j
       character(len=*), parameter :: fmt = '(*(es15.7e3, :, " "))'
+      call check_regular_file(filename, "invalid FILE '"//filename//"': ", error)
+      if (allocated(error)) return
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
       call h5%read(trim(path), v, error)
@@ -114,7 +121,26 @@ contains
          return
       end if
       if (present(scale)) then
-         where (v == v) v = v/scale   ! NaN stays NaN without arithmetic on it
+         if (.not. (scale > 0.0_dp .and. ieee_is_finite(scale))) then
+            call fatal_error(error, 'invalid SCALE: must be finite and > 0')
+            return
+         end if
+         ! refuse quotients beyond the largest real (the division would overflow)
+         ! (element by element: an ordered comparison with NaN would trap)
+         big = 0.0_dp
+         do j = 1, size(v, 2)
+            do i = 1, size(v, 1)
+               if (ieee_is_finite(v(i, j))) big = max(big, abs(v(i, j)))
+            end do
+         end do
+         if (scale < 1.0_dp .and. big > huge(1.0_dp)*scale) then
+            call fatal_error(error, 'invalid SCALE: '//real_text(scale)//" makes the values "// &
+                             "of '"//trim(path)//"' exceed the largest real (largest |value| "// &
+                             real_text(big)//'; SCALE must be >= '// &
+                             real_text(big/huge(1.0_dp))//')')
+            return
+         end if
+         where (ieee_is_finite(v)) v = v/scale   ! NaN and Inf stay, without arithmetic
       end if
       allocate (row(size(x) + 1))
       row(1) = real(size(x), dp)
@@ -126,4 +152,13 @@ contains
          write (unit, fmt) row
       end do
    end subroutine export_matrix
+
+   !> Short text of a real number.
+   function real_text(x) result(s)
+      real(dp), intent(in) :: x  !! the number
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es10.3e3)') x
+      s = trim(adjustl(buf))
+   end function real_text
 end module dpend_export

@@ -25,6 +25,10 @@ module dpend_hdf5
    integer, parameter :: want_any = 0, want_real = 1, want_int = 2, want_str = 3
 
    logical, save :: library_ready = .false.  !! h5open_f has been called
+   !> HDF5's error printing is off in this thread. The library is thread-safe, so
+   !> the setting is per thread: every OpenMP thread that calls HDF5 turns it off.
+   logical, save :: thread_quiet = .false.
+   !$omp threadprivate(thread_quiet)
 
    !> One open HDF5 file. Do not copy an open `h5file_t`: the copy shares the id.
    type :: h5file_t
@@ -129,6 +133,7 @@ contains
       integer :: ierr
       logical :: valid
       if (self%id < 0) return
+      call quiet_thread()
       ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
@@ -154,7 +159,9 @@ contains
    subroutine file_flush(self)
       class(h5file_t), intent(inout) :: self  !! the file object
       integer :: ierr
-      if (self%is_open()) call h5fflush_f(self%id, H5F_SCOPE_GLOBAL_F, ierr)
+      if (.not. self%is_open()) return
+      call quiet_thread()
+      call h5fflush_f(self%id, H5F_SCOPE_GLOBAL_F, ierr)
    end subroutine file_flush
 
    !> True if the group or dataset `path` exists: every component is checked.
@@ -313,8 +320,10 @@ contains
    !> last dimension is unlimited and `write_slab` grows it as needed. With
    !> `compress` false no filter is set; with `alloc_early` every chunk is allocated
    !> (and filled) now, so that later writes change no metadata (crash-safe updates).
+   !> With `checksum`, every chunk carries a Fletcher-32 checksum (filter applied
+   !> last, size fixed: a rewrite stays in place), and reading a damaged chunk fails.
    subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, extendible, &
-                                  compress, alloc_early)
+                                  compress, alloc_early, checksum)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       character(len=*), intent(in) :: dtype             !! 'real64' or 'int32'
@@ -325,10 +334,11 @@ contains
       logical, intent(in), optional :: extendible       !! last dimension unlimited
       logical, intent(in), optional :: compress         !! shuffle + deflate (default true)
       logical, intent(in), optional :: alloc_early      !! allocate all chunks at creation
+      logical, intent(in), optional :: checksum         !! Fletcher-32 checksum per chunk
       integer(hid_t) :: type_id, dcpl, space, lcpl, dset
       integer(hsize_t) :: maxdims(size(dims)), hchunk(size(dims))
       integer :: rank, hdferr, ierr
-      logical :: grows, packed, early
+      logical :: grows, packed, early, summed
 
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
@@ -340,6 +350,8 @@ contains
       if (present(compress)) packed = compress
       early = .false.
       if (present(alloc_early)) early = alloc_early
+      summed = .false.
+      if (present(checksum)) summed = checksum
       if (dtype /= 'real64' .and. dtype /= 'int32') then
          call fail(error, 'create', self, quoted(path), "dtype is not 'real64' or 'int32'")
       else if (rank < 1 .or. size(chunk) /= rank .or. any(dims < 0) .or. any(chunk < 1)) then
@@ -367,6 +379,9 @@ contains
          if (filter_available(H5Z_FILTER_SHUFFLE_F)) call h5pset_shuffle_f(dcpl, ierr)
          if (filter_available(H5Z_FILTER_DEFLATE_F)) call h5pset_deflate_f(dcpl, 4, ierr)
       end if
+      ! last in the pipeline: the checksum covers the bytes as stored
+      if (summed .and. filter_available(H5Z_FILTER_FLETCHER32_F)) &
+         call h5pset_fletcher32_f(dcpl, ierr)
       if (early) then
          call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, ierr)
          call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, ierr)
@@ -651,12 +666,24 @@ contains
       !$omp critical (dpend_hdf5_init)
       if (.not. library_ready) then
          call h5open_f(hdferr)
-         if (hdferr == 0) call h5eset_auto_f(0, ierr)
          library_ready = hdferr == 0
       end if
       !$omp end critical (dpend_hdf5_init)
-      if (hdferr /= 0) call fatal_error(error, 'cannot initialise the HDF5 library')
+      if (hdferr /= 0) then
+         call fatal_error(error, 'cannot initialise the HDF5 library')
+         return
+      end if
+      call quiet_thread()
    end subroutine init_library
+
+   !> Turn off HDF5's error printing in the calling thread (once per thread), so
+   !> that its error stack never reaches the user: failures come back as error_t.
+   subroutine quiet_thread()
+      integer :: ierr
+      if (thread_quiet .or. .not. library_ready) return
+      call h5eset_auto_f(0, ierr)
+      thread_quiet = ierr == 0
+   end subroutine quiet_thread
 
    !> Memory and file type of real(dp).
    integer(hid_t) function real_type()
@@ -780,6 +807,7 @@ contains
       character(len=*), intent(in) :: path              !! path, for the message
       logical, intent(in) :: write                      !! writing is intended
       type(error_t), allocatable, intent(out) :: error  !! set on failure
+      if (self%is_open()) call quiet_thread()
       if (.not. self%is_open()) then
          call fatal_error(error, 'cannot access '//quoted(path)//': no HDF5 file is open')
       else if (write .and. self%readonly) then

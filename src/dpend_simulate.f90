@@ -3,7 +3,7 @@
 module dpend_simulate
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, next_option
+   use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: pendulum_t, qddot, energy, momenta, energy_scale
@@ -79,7 +79,7 @@ contains
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, config
-      logical :: matched
+      logical :: matched, missing
       integer :: i
       cfg = simulate_defaults()
       help = .false.
@@ -102,16 +102,12 @@ contains
                              "' (dpend simulate --help lists the options)")
             return
          end if
-         call next_option(args, i, name, value, .true., error)
-         if (allocated(error)) return
+         call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
          call apply_run_flag(cfg, name, value, matched, error)
+         call option_outcome('simulate', name, matched, missing, &
+                             [character(len=16) :: '--force'], error)
          if (allocated(error)) return
-         if (.not. matched) then
-            call fatal_error(error, "unknown option '"//name// &
-                             "' (dpend simulate --help lists the options)")
-            return
-         end if
       end do
       call validate_run_config(cfg, error)
       if (allocated(error)) return

@@ -12,7 +12,7 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: pendulum_t, validate, finite_positive
-   use dpend_cli, only: arg_t, next_option, parse_int
+   use dpend_cli, only: arg_t, next_option, parse_int, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
                            namelist_error
    use dpend_integrator, only: integrator_t
@@ -241,12 +241,14 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, only_methods, only_cases, config
       type(run_config_t) :: rcfg
-      logical :: matched
+      logical :: matched, missing, methods_given, cases_given
       integer :: i
       cfg = study_defaults()
       help = .false.
       only_methods = ''
       only_cases = ''
+      methods_given = .false.
+      cases_given = .false.
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
       if (len(config) > 0) then
@@ -269,8 +271,8 @@ contains
                              "' (dpend study --help lists the options)")
             return
          end if
-         call next_option(args, i, name, value, .true., error)
-         if (allocated(error)) return
+         call next_option(args, i, name, value, .true., error, missing)
+         matched = .true.
          select case (name)
          case ('--config')
             cycle
@@ -278,28 +280,27 @@ contains
             cfg%output = value
          case ('--threads')
             call parse_int(value, name, cfg%threads, error)
-            if (allocated(error)) return
-            if (cfg%threads < 1) then
+            if (.not. allocated(error) .and. .not. missing .and. cfg%threads < 1) &
                call fatal_error(error, 'invalid --threads: must be an integer >= 1')
-               return
-            end if
          case ('--methods')
             only_methods = value
+            methods_given = .true.
          case ('--cases')
             only_cases = value
+            cases_given = .true.
          case ('--m1', '--m2', '--l1', '--l2', '--g')
             call apply_run_flag(rcfg, name, value, matched, error)
-            if (allocated(error)) return
             cfg%par = rcfg%par
          case default
-            call fatal_error(error, "unknown option '"//name//"' (dpend study --help "// &
-                             'lists the options; the sweeps are set in &study)')
-            return
+            matched = .false.
          end select
+         call option_outcome('study', name, matched, missing, [character(len=16) :: &
+                             '--force', '--quick', '--no-figures'], error)
+         if (allocated(error)) return
       end do
-      if (len(only_methods) > 0) call select_methods(cfg, only_methods, error)
+      if (methods_given) call select_methods(cfg, only_methods, error)
       if (allocated(error)) return
-      if (len(only_cases) > 0) call select_cases(cfg, only_cases, error)
+      if (cases_given) call select_cases(cfg, only_cases, error)
       if (allocated(error)) return
       call validate_study_config(cfg, error)
       if (allocated(error)) return
@@ -311,10 +312,11 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! configuration
       character(len=*), intent(in) :: list               !! e.g. 'rk4,gauss6'
       type(error_t), allocatable, intent(out) :: error   !! a name not in the config
-      character(len=16), allocatable :: names(:)
+      character(len=:), allocatable :: names(:)
       logical :: keep(size(cfg%methods))
       integer :: i, j
-      call split_words(replace_commas(list), names)
+      call split_list(list, '--methods', names, error)
+      if (allocated(error)) return
       keep = .false.
       do j = 1, size(names)
          do i = 1, size(cfg%methods)
@@ -347,10 +349,11 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! configuration
       character(len=*), intent(in) :: list               !! e.g. 'small,mixed'
       type(error_t), allocatable, intent(out) :: error   !! a name not in the config
-      character(len=16), allocatable :: names(:)
+      character(len=:), allocatable :: names(:)
       logical :: keep(size(cfg%cases))
       integer :: i, j
-      call split_words(replace_commas(list), names)
+      call split_list(list, '--cases', names, error)
+      if (allocated(error)) return
       keep = .false.
       do j = 1, size(names)
          i = case_index(cfg, trim(names(j)))
@@ -837,15 +840,60 @@ contains
       end do
    end function case_list
 
-   pure function replace_commas(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (s(i:i) == ',') t(i:i) = ' '
+   !> The names of a list given to option `field`: items separated by commas
+   !> and/or blanks ('rk4,gauss6' or 'rk4, gauss6'). An empty list or an empty
+   !> item (',', 'rk4,,gauss6', 'rk4,') is refused, naming the field.
+   subroutine split_list(list, field, names, error)
+      character(len=*), intent(in) :: list                  !! the option's value
+      character(len=*), intent(in) :: field                 !! e.g. '--cases'
+      character(len=:), allocatable, intent(out) :: names(:) !! the items
+      type(error_t), allocatable, intent(out) :: error      !! empty list or item
+      integer :: first(len(list) + 1), last(len(list) + 1)
+      integer :: i, n, k
+      logical :: in_word, item_empty
+      character(len=len(list)) :: shown
+      n = 0
+      in_word = .false.
+      item_empty = .true.
+      do i = 1, len(list) + 1
+         if (i > len(list)) then
+            if (in_word) last(n) = i - 1
+            if (item_empty) exit
+         else if (list(i:i) == ',') then
+            if (in_word) last(n) = i - 1
+            in_word = .false.
+            if (item_empty) exit
+            item_empty = .true.
+         else if (list(i:i) == ' ') then
+            if (in_word) last(n) = i - 1
+            in_word = .false.
+         else if (.not. in_word) then
+            n = n + 1
+            first(n) = i
+            in_word = .true.
+            item_empty = .false.
+         end if
       end do
-   end function replace_commas
+      if (item_empty) then
+         shown = list
+         do k = 1, len(list)
+            if (iachar(list(k:k)) < 32 .or. iachar(list(k:k)) > 126) shown(k:k) = '?'
+         end do
+         if (len_trim(list) == 0) then
+            call fatal_error(error, 'invalid '//field//': empty list (give names '// &
+                             'separated by commas)')
+         else
+            call fatal_error(error, 'invalid '//field//": '"//shown// &
+                             "' has an empty item (give names separated by commas)")
+         end if
+         allocate (character(len=1) :: names(0))
+         return
+      end if
+      allocate (character(len=maxval(last(:n) - first(:n) + 1)) :: names(n))
+      do k = 1, n
+         names(k) = list(first(k):last(k))
+      end do
+   end subroutine split_list
 
    !> The blank-separated words of `s`.
    pure subroutine split_words(s, words)

@@ -23,6 +23,7 @@ module dpend_sweep
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t, check_output_path
    use dpend_system, only: path_kind, path_missing, path_file, remove_file
+   use dpend_config, only: check_regular_file
    use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, &
       energy_scale, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
@@ -38,6 +39,9 @@ module dpend_sweep
    public :: block_range, open_output, write_block, finalize_file, working_file
 
    real(dp), parameter :: half_pi = 1.57079632679489661923132169163975144_dp
+   !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
+   real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
+                          max_time = 1e300_dp
 
    !> Everything derived from a configuration that the blocks need.
    type :: sweep_setup_t
@@ -442,12 +446,14 @@ contains
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
-                                fill=nan, compress=final, alloc_early=.not. final)
+                                fill=nan, compress=final, alloc_early=.not. final, &
+                                checksum=.true.)
          if (allocated(error)) return
       end do
       do i = 1, size(ints)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
-                                fill=0.0_dp, compress=final, alloc_early=.not. final)
+                                fill=0.0_dp, compress=final, alloc_early=.not. final, &
+                                checksum=.true.)
          if (allocated(error)) return
       end do
       call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error)
@@ -581,6 +587,8 @@ contains
       real(dp), allocatable :: r1(:), r2(:, :)
       integer, allocatable :: i1(:), i2(:, :)
       integer :: k, err
+      logical :: unreadable
+      unreadable = .false.
       part = working_file(filename)
       call out%begin(filename, setup%cfg%run%force, error)
       if (allocated(error)) return
@@ -596,9 +604,11 @@ contains
          path = '/sweep/'//trim(reals(k))
          if (setup%grid) then
             call src%read(path, r2, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, r2, [1, 1], error)
          else
             call src%read(path, r1, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, r1, [1], error)
          end if
       end do
@@ -607,15 +617,22 @@ contains
          path = '/sweep/'//trim(ints(k))
          if (setup%grid) then
             call src%read(path, i2, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, i2, [1, 1], error)
          else
             call src%read(path, i1, error)
+            unreadable = unreadable .or. allocated(error)
             if (.not. allocated(error)) call dst%write_slab(path, i1, [1], error)
          end if
       end do
       call src%close()
       call install_file(dst, out, setup, error)
-      if (allocated(error)) then
+      if (unreadable) then
+         ! a checksum failed: nothing was installed and the working file is damaged
+         error%message = "'"//part//"' is damaged: "//error%message// &
+                         ' (a checksum does not match); use --force to start again'
+         return
+      else if (allocated(error)) then
          error%message = 'cannot write the final file: '//error%message// &
                          "; the working file '"//part//"' is complete and valid: "// &
                          'rerun to finish'
@@ -796,15 +813,80 @@ contains
          end if
          call f%read('/sweep/done', done, error)
          if (.not. allocated(error)) call f%readattr('/sweep', 'complete', complete, error)
-         call f%close()
          if (allocated(error)) then
-            error%message = error%message//' (use --force to start again)'
+            error%message = "invalid --output: '"//path//"' is damaged ("//error%message// &
+                            '); use --force to start again'
          else if (size(done) /= setup%nblocks) then
             call fatal_error(error, "invalid --output: '"//path//"' has a damaged block "// &
                              'list (use --force to start again)')
+         else
+            call verify_blocks(f, path, setup, done, error)
          end if
+         call f%close()
       end subroutine read_stored
    end subroutine open_output
+
+   !> Check the results of an existing sweep file before it is resumed or reported
+   !> complete: every chunk reads back (its Fletcher-32 checksum matches; files
+   !> written before checksums are read in full all the same), every flag in
+   !> /sweep/done is 0 or 1, and every block flagged done has a status for each of
+   !> its initial conditions. A damaged file is refused, never finished or copied.
+   subroutine verify_blocks(h5, path, setup, done, error)
+      type(h5file_t), intent(inout) :: h5               !! the open file
+      character(len=*), intent(in) :: path              !! its name, for messages
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: done(:)                    !! its block flags
+      type(error_t), allocatable, intent(out) :: error  !! the first damage found
+      character(len=32), allocatable :: reals(:), ints(:)
+      real(dp), allocatable :: r1(:), r2(:, :)
+      integer, allocatable :: i1(:), i2(:, :), status(:)
+      character(len=:), allocatable :: damaged
+      integer :: k, b, j0, nb
+      damaged = "invalid --output: '"//path//"' is damaged ("
+      if (any(done /= 0 .and. done /= 1)) then
+         call fatal_error(error, damaged//'/sweep/done holds flags other than 0 and 1); '// &
+                          'use --force to start again')
+         return
+      end if
+      call result_names(setup, reals, ints)
+      do k = 1, size(reals) + size(ints)
+         if (k <= size(reals)) then
+            if (setup%grid) then
+               call h5%read('/sweep/'//trim(reals(k)), r2, error)
+            else
+               call h5%read('/sweep/'//trim(reals(k)), r1, error)
+            end if
+         else if (setup%grid) then
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i2, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) &
+               status = reshape(i2, [size(i2)])
+         else
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i1, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) status = i1
+         end if
+         if (allocated(error)) then
+            error%message = damaged//'/sweep/'//trim(merge(reals(min(k, size(reals))), &
+                            ints(max(1, k - size(reals))), k <= size(reals)))// &
+                            ' does not read back: a checksum does not match or its chunk '// &
+                            'index is broken); use --force to start again'
+            return
+         end if
+      end do
+      if (size(status) /= setup%n) then
+         call fatal_error(error, damaged//'/sweep/status has '//to_str(size(status))// &
+                          ' values, not '//to_str(setup%n)//'); use --force to start again')
+         return
+      end if
+      do b = 1, setup%nblocks
+         if (done(b) /= 1) cycle
+         call block_range(setup, b, j0, nb)
+         if (any(status(j0:j0 + nb - 1) == 0)) then
+            call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
+                             'but not written); use --force to start again')
+            return
+         end if
+      end do
+   end subroutine verify_blocks
 
    !> Put a freshly written file in place: close it (the close checked unless an
    !> error is already set), verify it, and commit it through the one writer; on
@@ -869,9 +951,13 @@ contains
 
    ! ----------------------------------------------------------- compare ---
 
-   !> Accuracy report: compare the flip times of two sweeps of the same initial
-   !> conditions (e.g. step dt and dt/2). A pixel changes if it flips in one and not
-   !> the other, or if |t_B - t_A| > rel t_A. Prints `key: value unit` lines.
+   !> Accuracy report: compare the flip times of two complete sweeps of the same
+   !> initial conditions (e.g. step dt and dt/2). A pixel changes if it flips in one
+   !> and not the other, or if |t_B - t_A| > rel t_A. Prints `key: value unit` lines.
+   !> Sweeps that are not comparable (grid or list, shape, axes, ranges, initial
+   !> states, parameters, time unit, t_end, stop rule) or not complete are refused,
+   !> naming what differs, as are damaged values (a time unit sqrt(l1/g) or flip
+   !> times that are not finite and in range).
    subroutine compare_sweeps(file_a, file_b, rel, unit, error)
       character(len=*), intent(in) :: file_a, file_b    !! the two sweeps
       real(dp), intent(in) :: rel                       !! relative tolerance
@@ -879,19 +965,48 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
       type(h5file_t) :: h5
       real(dp), allocatable :: ta(:), tb(:)
-      real(dp) :: tau, ha, hb, bands(5)
-      integer, allocatable :: sa(:)
+      real(dp) :: tau, tau_b, ha, hb, bands(5)
+      integer, allocatable :: sa(:), dims_a(:), dims_b(:)
+      character(len=:), allocatable :: cfg_a, cfg_b, va, vb
       integer :: i, k, n_changed, n_flip, band_n(4), band_c(4), n_noflip_changed
-      logical :: fa, fb, changed
+      logical :: fa, fb, changed, in_band
       character(len=*), parameter :: band_names(4) = [character(len=12) :: 'lt_10', &
                                                       '10_to_100', '100_to_1000', 'ge_1000']
-      call read_times(file_a, ta, sa, tau, ha, error)
+      ! what must be equal for two sweeps to hold the same initial conditions
+      character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
+         'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
+         'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at']
+      if (.not. (rel > 0.0_dp .and. rel <= max_rel)) then
+         call fatal_error(error, 'sweep-compare: invalid --rel: '//real_text(rel)// &
+                          ' (accepted: > 0 and <= 1000)')
+         return
+      end if
+      call read_times(file_a, ta, sa, tau, ha, dims_a, cfg_a, error)
       if (allocated(error)) return
-      call read_times(file_b, tb, sa, tau, hb, error)
+      call read_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
       if (allocated(error)) return
-      if (size(ta) /= size(tb)) then
-         call fatal_error(error, 'sweep-compare: the files hold different numbers of '// &
-                          'initial conditions')
+      do k = 1, size(same)
+         va = config_value(cfg_a, trim(same(k)))
+         vb = config_value(cfg_b, trim(same(k)))
+         if (va /= vb) then
+            call refuse(trim(same(k))//' = '//va//" in '"//file_a//"', "//vb//" in '"// &
+                        file_b//"'")
+            return
+         end if
+         if (same(k) == 'initial') then   ! then the shapes, in the file's terms
+            if (size(dims_a) /= size(dims_b)) then
+               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
+            else if (any(dims_a /= dims_b)) then
+               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
+            end if
+            if (allocated(error)) return
+         end if
+      end do
+      if (abs(tau - tau_b) > 1e-12_dp*tau) then
+         call refuse('sqrt_l1_over_g = '//real_text(tau)//" s in '"//file_a//"', "// &
+                     real_text(tau_b)//" s in '"//file_b//"' (another time unit)")
          return
       end if
       bands = [0.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp, huge(1.0_dp)]
@@ -908,7 +1023,10 @@ contains
          if (changed) n_changed = n_changed + 1
          if (fa) then
             do k = 1, 4
-               if (ta(i)/tau >= bands(k) .and. ta(i)/tau < bands(k + 1)) then
+               ! t/tau in [bands(k), bands(k+1)), without dividing by tau
+               in_band = ta(i) >= bands(k)*tau
+               if (k < 4) in_band = in_band .and. ta(i) < bands(k + 1)*tau
+               if (in_band) then
                   band_n(k) = band_n(k) + 1
                   if (changed) band_c(k) = band_c(k) + 1
                end if
@@ -936,17 +1054,51 @@ contains
          pct = 0.0_dp
          if (b > 0) pct = 100.0_dp*real(a, dp)/real(b, dp)
       end function pct
-      subroutine read_times(file, t, st, tau, h, error)
+      subroutine refuse(what)
+         character(len=*), intent(in) :: what
+         call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
+                          what//' (compare sweeps of the same initial conditions)')
+      end subroutine refuse
+      function shape_text(d) result(s)
+         integer, intent(in) :: d(:)
+         character(len=:), allocatable :: s
+         integer :: j
+         s = to_str(d(1))
+         do j = 2, size(d)
+            s = s//'x'//to_str(d(j))
+         end do
+         if (size(d) == 1) s = s//' (a list)'
+      end function shape_text
+      subroutine read_times(file, t, st, tau, h, dims, config, error)
          character(len=*), intent(in) :: file
          real(dp), allocatable, intent(out) :: t(:)
          integer, allocatable, intent(out) :: st(:)
          real(dp), intent(out) :: tau, h
+         integer, allocatable, intent(out) :: dims(:)
+         character(len=:), allocatable, intent(out) :: config
          type(error_t), allocatable, intent(out) :: error
          real(dp), allocatable :: t2(:, :)
-         integer, allocatable :: dims(:), s2(:, :)
-         call h5%open(file, 'r', error)
+         integer, allocatable :: s2(:, :), done(:)
+         integer :: complete, j
+         character(len=:), allocatable :: pre
+         pre = "sweep-compare: invalid sweep '"//file//"': "
+         tau = 1; h = 0; complete = 0
+         call check_regular_file(file, pre, error)
          if (allocated(error)) return
-         call h5%shape('/sweep/t_flip', dims, error)
+         if (.not. is_hdf5(file)) then
+            call fatal_error(error, pre//'not an HDF5 file')
+            return
+         end if
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%readattr('/sweep', 'config', config, error)
+         if (allocated(error)) then
+            call h5%close()
+            call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
+            return
+         end if
+         call h5%readattr('/sweep', 'complete', complete, error)
+         if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+         if (.not. allocated(error)) call h5%shape('/sweep/t_flip', dims, error)
          if (.not. allocated(error)) then
             if (size(dims) == 2) then
                call h5%read('/sweep/t_flip', t2, error)
@@ -962,12 +1114,65 @@ contains
          if (.not. allocated(error)) call h5%readattr('/sweep', 'h', h, error)
          call h5%close()
          if (allocated(error)) then
-            error%message = 'sweep-compare: '//error%message
-         else if (any(st == 0)) then
-            call fatal_error(error, "sweep-compare: '"//file//"' is not complete")
+            error%message = pre//error%message
+         else if (complete /= 1 .or. any(done /= 1) .or. any(st == 0)) then
+            call fatal_error(error, pre//'not complete ('//to_str(count(done == 1))// &
+                             ' of '//to_str(size(done))//' blocks done; rerun the sweep '// &
+                             'to finish it)')
+         else if (size(st) /= size(t)) then
+            call fatal_error(error, pre//'damaged: /sweep/status and /sweep/t_flip '// &
+                             'differ in size')
+         else if (.not. tau_ok(tau)) then
+            call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '// &
+                             real_text(tau)//' (accepted: 1e-150 to 1e150 s)')
+         else
+            do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
+               if (ieee_is_nan(t(j))) cycle
+               if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
+                  call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &
+                                   real_text(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
+                  exit
+               end if
+            end do
          end if
       end subroutine read_times
+      !> Finite and in [min_tau, max_tau] (no ordered comparison with NaN: it traps).
+      logical function tau_ok(x)
+         real(dp), intent(in) :: x
+         tau_ok = .false.
+         if (ieee_is_finite(x)) tau_ok = x >= min_tau .and. x <= max_tau
+      end function tau_ok
    end subroutine compare_sweeps
+
+   !> The value of `key` in a configuration text of "key = value" lines ('' if absent).
+   function config_value(text, key) result(v)
+      character(len=*), intent(in) :: text  !! configuration text
+      character(len=*), intent(in) :: key   !! key
+      character(len=:), allocatable :: v
+      character(len=1), parameter :: nl = new_line('a')
+      character(len=:), allocatable :: probe
+      integer :: at, eol
+      v = ''
+      probe = nl//text
+      at = index(probe, nl//key//' = ')
+      if (at == 0) return
+      at = at + len(key) + 4
+      eol = index(probe(at:), nl)
+      if (eol == 0) then
+         v = probe(at:)
+      else
+         v = probe(at:at + eol - 2)
+      end if
+   end function config_value
+
+   !> Short text of a real number.
+   function real_text(x) result(s)
+      real(dp), intent(in) :: x  !! the number
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es11.4e3)') x
+      s = trim(adjustl(buf))
+   end function real_text
 
 
 end module dpend_sweep

@@ -21,7 +21,7 @@
 module dpend_sweep_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str
+   use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, namelist_error
    use dpend_batch, only: stop_both, stop_either, stop_end
@@ -166,7 +166,7 @@ contains
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, config
-      logical :: matched
+      logical :: matched, missing
       integer :: i, n
       cfg = sweep_defaults()
       help = .false.
@@ -189,8 +189,7 @@ contains
                              "' (dpend sweep --help lists the options)")
             return
          end if
-         call next_option(args, i, name, value, .true., error)
-         if (allocated(error)) return
+         call next_option(args, i, name, value, .true., error, missing)
          matched = .true.
          select case (name)
          case ('--config')
@@ -217,12 +216,9 @@ contains
          case default
             call apply_run_flag(cfg%run, name, value, matched, error)
          end select
+         call option_outcome('sweep', name, matched, missing, [character(len=16) :: &
+                             '--force', '--quiet', '--lyapunov', '--stats'], error)
          if (allocated(error)) return
-         if (.not. matched) then
-            call fatal_error(error, "unknown option '"//name// &
-                             "' (dpend sweep --help lists the options)")
-            return
-         end if
       end do
       call validate_sweep(cfg, error)
    end subroutine parse_sweep
