@@ -3,7 +3,9 @@
 #  1. small sweeps (a grid with the Lyapunov exponent and step counts, a list) with
 #     `dpend-mpi` on 2 ranks and with `dpend sweep`: identical in content;
 #  2. kill -9 of mpirun twice in the middle of a run, then a rerun: identical to an
-#     uninterrupted run; a serial run killed and finished by dpend-mpi: identical.
+#     uninterrupted run; an MPI run killed and finished by the serial dpend sweep:
+#     identical; a serial run killed is refused by dpend-mpi (its working file
+#     carries checksums, which parallel HDF5 cannot write block by block).
 # "Identical in content": h5diff finds no difference, every dataset is equal bit for
 # bit (h5dump -b) and the attributes are equal (h5dump -A). Prints what differs and
 # exits 1 on any difference. Usage: scripts/mpi_check.sh [WORKDIR]   (default out/mpi_check)
@@ -13,7 +15,7 @@ cd "$root"
 . scripts/flags.sh
 dir="${1:-out/mpi_check}"
 mkdir -p "$dir"
-rm -f "$dir"/*.h5 "$dir"/*.h5.tmp "$dir"/*.bin "$dir"/*.txt   # this script's files only
+rm -f "$dir"/*.h5 "$dir"/*.h5.part "$dir"/*.bin "$dir"/*.txt "$dir"/*.err   # this script's files only
 
 echo "== mpi_check: build (release): dpend and dpend-mpi"
 if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then
@@ -101,11 +103,23 @@ partial "$dir/run.h5.part" && interrupted=1
 mpi "${classic[@]}" --output "$dir/run.h5" >/dev/null
 ((interrupted)) || echo "  (note: no kill hit a run in progress; the machine was fast)"
 same_content "$dir/ref.h5" "$dir/run.h5"
-echo "== 2b. serial run killed, finished by dpend-mpi"
-kill_at 0.5 "$serial" sweep --quiet --threads 2 "${classic[@]}" --output "$dir/cross.h5"
+echo "== 2b. MPI run killed, finished by the serial dpend sweep"
+kill_at 0.5 "${mpirun_cmd[@]}" --output "$dir/cross.h5"
 partial "$dir/cross.h5.part" || true
-mpi "${classic[@]}" --output "$dir/cross.h5" >/dev/null
+ser "${classic[@]}" --output "$dir/cross.h5" >/dev/null
 same_content "$dir/ref.h5" "$dir/cross.h5"
+
+echo "== 2c. serial run killed: dpend-mpi refuses its checksummed working file"
+kill_at 0.5 "$serial" sweep --quiet --threads 2 "${classic[@]}" --output "$dir/cross2.h5"
+if partial "$dir/cross2.h5.part"; then
+  if mpi "${classic[@]}" --output "$dir/cross2.h5" >/dev/null 2>"$dir/cross2.err"; then
+    echo "  dpend-mpi resumed a checksummed working file"; failures=$((failures + 1))
+  elif grep -q "finish it with dpend sweep" "$dir/cross2.err"; then
+    echo "  refused: $(grep -m1 -o 'was started by dpend sweep.*' "$dir/cross2.err" | cut -c1-90)..."
+  else
+    echo "  unexpected failure:"; cat "$dir/cross2.err"; failures=$((failures + 1))
+  fi
+fi
 
 echo "== mpi_check: $((SECONDS - t0)) s of runs, $failures difference(s)"
 ((failures == 0))

@@ -44,6 +44,7 @@ module dpend_hdf5
       procedure :: exists => file_exists
       procedure :: attr_exists => file_attr_exists
       procedure :: shape => file_shape
+      procedure :: filters => file_filters
       procedure :: create_dataset => file_create_dataset
       procedure, private :: write_r0, write_r1, write_r2, write_r3
       procedure, private :: write_i0, write_i1, write_i2, write_i64_1, write_str
@@ -208,6 +209,27 @@ contains
       call close_id(dset)
       if (.not. allocated(error)) dims = int(hdims)
    end subroutine file_shape
+
+   !> Number of filters (compression, shuffle, checksum) in the pipeline of dataset
+   !> `path` (0 for a contiguous or unfiltered chunked dataset).
+   subroutine file_filters(self, path, n, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, intent(out) :: n                         !! its filters
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: dset, dcpl
+      integer(hsize_t), allocatable :: hdims(:)
+      integer :: ierr
+      n = 0
+      call open_read(self, path, -1, want_any, dset, hdims, error)
+      if (allocated(error)) return
+      call h5dget_create_plist_f(dset, dcpl, ierr)
+      if (ierr == 0) then
+         call h5pget_nfilters_f(dcpl, n, ierr)
+         call h5pclose_f(dcpl, ierr)
+      end if
+      call close_id(dset)
+   end subroutine file_filters
 
    !> True if `filename` exists and is an HDF5 file.
    logical function is_hdf5(filename)

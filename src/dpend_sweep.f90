@@ -58,6 +58,10 @@ module dpend_sweep
       real(dp), allocatable :: list(:, :)       !! list: (4, n) states (q, q̇)
       real(dp) :: tau = 1                       !! √(L1/g) [s]
       character(len=:), allocatable :: config   !! canonical configuration text
+      !> Fletcher-32 checksums on the working file's datasets (the final file always
+      !> has them). The MPI sweep turns them off: parallel HDF5 writes filtered
+      !> datasets only collectively, and its blocks arrive in any order.
+      logical :: checksum = .true.
    end type sweep_setup_t
 
    !> What a run did, for the closing line.
@@ -447,13 +451,13 @@ contains
       do i = 1, size(reals)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
-                                checksum=.true.)
+                                checksum=final .or. setup%checksum)
          if (allocated(error)) return
       end do
       do i = 1, size(ints)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
                                 fill=0.0_dp, compress=final, alloc_early=.not. final, &
-                                checksum=.true.)
+                                checksum=final .or. setup%checksum)
          if (allocated(error)) return
       end do
       call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error)
@@ -766,6 +770,7 @@ contains
          if (allocated(error)) return
          call h5%open(part, 'rw', error)
          if (allocated(error)) error%message = error%message//' (use --force to start again)'
+         if (.not. allocated(error) .and. .not. setup%checksum) call check_unfiltered()
          return
       end if
       ! a new working file, complete before it gets its name
@@ -781,6 +786,19 @@ contains
       allocate (done(setup%nblocks))
       done = 0
    contains
+      !> A program that writes blocks without filters (the MPI sweep) cannot resume a
+      !> working file whose datasets carry checksums (one started by `dpend sweep`).
+      subroutine check_unfiltered()
+         character(len=32), allocatable :: reals(:), ints(:)
+         integer :: n
+         call result_names(setup, reals, ints)
+         call h5%filters('/sweep/'//trim(reals(1)), n, error)
+         if (allocated(error) .or. n == 0) return
+         call h5%close()
+         call fatal_error(error, "invalid --output: '"//part//"' was started by dpend "// &
+                          'sweep, whose checksummed blocks parallel HDF5 cannot write one '// &
+                          'by one: finish it with dpend sweep, or use --force to start again')
+      end subroutine check_unfiltered
       !> The block flags and the completeness of an existing sweep file of this
       !> configuration; refused when it is another file or another configuration.
       subroutine read_stored(path, done, complete, error)

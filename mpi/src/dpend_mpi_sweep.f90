@@ -97,6 +97,7 @@ contains
       report%nranks = np
       if (cfg%threads > 0) call omp_set_num_threads(cfg%threads)
       call build_setup(cfg, setup, error)
+      setup%checksum = .false.   ! independent block writes: no filters in the working file
       call agree(comm, error)
       if (allocated(error)) return
       report%summary%n = setup%n
