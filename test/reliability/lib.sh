@@ -24,6 +24,13 @@ sha() { sha256sum "$1" | cut -d' ' -f1; }
 h5_status() {
   h5dump -a /status "$1" 2>/dev/null | sed -n 's/.*(0): "\(.*\)".*/\1/p' | head -n 1
 }
+# h5_sweep_complete FILE: a sweep file whose /sweep attribute "complete" is 1.
+h5_sweep_complete() {
+  h5dump -A "$1" > /dev/null 2>&1 || return 1
+  [ "$(h5dump -a /sweep/complete "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p')" = 1 ]
+}
+# h5_valid FILE: a complete file of any command (status completed, or a complete sweep).
+h5_valid() { h5_complete "$1" || h5_sweep_complete "$1"; }
 # h5_header FILE: the structure (groups, datasets, shapes, attributes) without the file name.
 h5_header() { h5dump -H "$1" 2>/dev/null | tail -n +2; }
 # h5_complete FILE [REF]: readable (h5dump -A), status completed, and, with REF, the
