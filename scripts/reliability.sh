@@ -342,6 +342,11 @@ for s in "${SPECIALS[@]}"; do
   esac
 done
 
+# A safety net: a faulty --force must not have replaced the machine's /dev/null.
+if [ ! -c /dev/null ]; then
+  echo "FAIL: /dev/null is no longer a device (restore: mknod -m 666 /dev/null c 1 3)"
+  failed=$((failed + 1))
+fi
 [ $VERBOSE = 0 ] || echo "reliability: $((SECONDS - START)) s"
 closing="reliability: $passed passed, $failed failed"
 [ $skipped = 0 ] || closing+=", $skipped skipped"
