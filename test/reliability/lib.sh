@@ -29,8 +29,15 @@ h5_sweep_complete() {
   h5dump -A "$1" > /dev/null 2>&1 || return 1
   [ "$(h5dump -a /sweep/complete "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p')" = 1 ]
 }
-# h5_valid FILE: a complete file of any command (status completed, or a complete sweep).
-h5_valid() { h5_complete "$1" || h5_sweep_complete "$1"; }
+# h5_study_complete FILE: a study file (it has no status attribute): every byte
+# readable (full h5dump) with its root attribute "wall_time", written last.
+h5_study_complete() {
+  h5dump "$1" > /dev/null 2>&1 || return 1
+  h5dump -a /wall_time "$1" > /dev/null 2>&1
+}
+# h5_valid FILE: a complete file of any command (status completed, a complete sweep,
+# or a complete study).
+h5_valid() { h5_complete "$1" || h5_sweep_complete "$1" || h5_study_complete "$1"; }
 # h5_header FILE: the structure (groups, datasets, shapes, attributes) without the file name.
 h5_header() { h5dump -H "$1" 2>/dev/null | tail -n +2; }
 # h5_complete FILE [REF]: readable (h5dump -A), status completed, and, with REF, the
