@@ -32,7 +32,7 @@ options:
 Row forms in a case file (bash function calls; the words after -- are the
 arguments of dpend, run with the scratch directory as cwd):
   refuse  ID  FIELD  -- ARGS...   exit 2, exactly one stderr line containing FIELD
-                                  (case-insensitive), no file in the scratch dir
+                                  (case-insensitive, - and _ alike), no file in the scratch dir
                                   created, removed or changed (names incl. hidden
                                   ones, sha256 of every file), no trap
   fail    ID  TEXT   -- ARGS...   exit 1, stderr contains TEXT (case-insensitive),
@@ -211,6 +211,7 @@ succeed() {
 if [ $RUN_CASES = 1 ]; then
   for f in "${CASE_FILES[@]}"; do
     [ -f "$f" ] || { echo "reliability: no case file '$f'" >&2; exit 2; }
+    case $f in /*) ;; *) f=$(pwd)/$f ;; esac
     CURRENT_FILE=${f#"$ROOT"/}
     # shellcheck disable=SC1090
     pushd "$FIXTURES" > /dev/null || exit 1
@@ -266,7 +267,9 @@ run_row() {
     refuse)
       [ $rc = 2 ] || reasons+=("exit $rc, expected 2")
       [ "$nlines" = 1 ] || reasons+=("$nlines stderr lines, expected 1")
-      grep -qiF -- "$text" "$r/stderr" || reasons+=("stderr lacks '$text'")
+      # FIELD matches case-insensitively, with - and _ alike (--save-every, save_every)
+      tr 'A-Z_' 'a-z-' < "$r/stderr" | grep -qF -- "$(printf '%s' "$text" | tr 'A-Z_' 'a-z-')" ||
+        reasons+=("stderr lacks '$text'")
       snapshot "$s" > "$r/after"
       if ! cmp -s "$r/before" "$r/after"; then
         local changed
