@@ -215,7 +215,11 @@ if [ $RUN_CASES = 1 ]; then
     CURRENT_FILE=${f#"$ROOT"/}
     # shellcheck disable=SC1090
     pushd "$FIXTURES" > /dev/null || exit 1
-    . "$f" || SETUP_FAILS+=("FAIL $CURRENT_FILE: sourcing it ended with status $?")
+    if [ $LIST = 1 ]; then
+      . "$f" 2> /dev/null  # the fixtures are not made for --list
+    else
+      . "$f" || SETUP_FAILS+=("FAIL $CURRENT_FILE: sourcing it ended with status $?")
+    fi
     popd > /dev/null || exit 1
   done
 fi
@@ -341,7 +345,7 @@ for s in "${SPECIALS[@]}"; do
         echo "skip special $name: $(tail -n 3 "$WORK/special-$name.log" | tr '\n' ' ')" ;;
     *) failed=$((failed + 1))
        echo "FAIL special $name: exit $rc after ${dt} s; command: $s"
-       tail -n 15 "$WORK/special-$name.log" | sed 's/^/    /' ;;
+       tail -n 30 "$WORK/special-$name.log" | sed 's/^/    /' ;;
   esac
 done
 
