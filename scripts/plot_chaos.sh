@@ -13,8 +13,10 @@
 # overlays their running lambda1 with the batch-means spread of each.
 # Figures are written through temporary files and moved into place once drawn
 # (scripts/lib/output.sh). DPEND: the dpend executable (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_chaos.sh
 usage() { echo "usage: $0 FILE.h5 [OUTDIR] | $0 --compare OUT.png FILE.h5..." >&2; exit 2; }

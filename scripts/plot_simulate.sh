@@ -4,8 +4,10 @@
 # Writes angles.png, energy_error.png, reactions.png, tip_path.png (each through a
 # temporary file, moved into place once all are drawn: scripts/lib/output.sh).
 # DPEND: the dpend executable to use (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_simulate.sh
 [[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }

@@ -12,8 +12,10 @@
 # File names and the case names of the study reach gnuplot only as data (gnuplot -c
 # with ARG1..); the gnuplot code generated below holds only numbers and method names
 # checked to be plain words.
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_study.sh
 [[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
@@ -224,6 +226,7 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
   echo "unset multiplot; set autoscale x"
 }
 nattr ts /config/t_short
+# shellcheck disable=SC2129
 panels error_vs_step.png \
   "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
   "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"

@@ -6,8 +6,10 @@
 # energy_error.png and, if the sweep has it, lyapunov.png. Figures are written
 # through temporary files and moved into place once drawn (scripts/lib/output.sh).
 # DPEND: the dpend executable (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_sweep.sh
 [[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }

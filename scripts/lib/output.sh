@@ -112,7 +112,7 @@ plot_dpend() {
   fi
   local root
   root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-  # shellcheck source=../flags.sh
+  # shellcheck source-path=SCRIPTDIR source=../flags.sh
   . "$root/scripts/flags.sh"
   (cd "$root" && fpm build --profile release --flag "$RELEASE_FLAGS" >/dev/null 2>&1) ||
     plot_fail 1 "release build failed"

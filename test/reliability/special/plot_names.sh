@@ -52,6 +52,7 @@ gen "study O'Brien.h5" study --quick --methods rk4,tao2 --cases small --threads 
   --no-figures
 
 # hostile names: command injection attempts, options, gnuplot pipes and markup
+# shellcheck disable=SC2016  # the names are literal on purpose
 names=("x';touch PWNED;'y" 'x";touch PWNED;"y' '$(touch PWNED)' '`touch PWNED`'
        '-dash' '<touch PWNED' '|touch PWNED' $'new\nline' 'a_b^c{d}@e&f~g\h%s')
 kinds=(sim lyap lyap1 div poi sweep study)
