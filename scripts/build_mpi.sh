@@ -13,6 +13,8 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 . "$root/scripts/flags.sh"
 pcname="${DPEND_HDF5_PC:-hdf5-openmpi}"
+[[ $pcname =~ ^[A-Za-z0-9_][A-Za-z0-9_.+-]*$ ]] ||
+  { echo "build_mpi.sh: DPEND_HDF5_PC is not a pkg-config package name: '$pcname'" >&2; exit 2; }
 export FPM_FC="${FPM_FC:-mpif90}"
 command -v "$FPM_FC" >/dev/null 2>&1 ||
   { echo "build_mpi.sh: no $FPM_FC (run: bash scripts/setup.sh --mpi)" >&2; exit 1; }

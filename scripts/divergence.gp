@@ -1,7 +1,16 @@
-# Figure of `dpend divergence`. Called by scripts/plot_chaos.sh with
-#   dat: columns t mean(log10|delta|) log10|delta| of each pair (npairs columns)
-#   slope [1/s, natural log], b (log10 intercept), t0, t1 (fit window), sat
-#   (saturation, log10), lam (Benettin lambda1, 0 if not computed), delta0, outfile, title
+# Figure of `dpend divergence`. Called by scripts/plot_chaos.sh as
+#   gnuplot -c divergence.gp DAT OUTDIR TITLE "SLOPE B T0 T1 SAT LAM NPAIRS DELTA0"
+# DAT: columns t mean(log10|delta|) log10|delta| of each pair (NPAIRS columns);
+# OUTDIR: where divergence.png goes; TITLE: enhanced text (escaped); then one
+# argument of numbers: SLOPE [1/s, natural log], B (log10 intercept), T0, T1 (fit
+# window), SAT (saturation, log10), LAM (Benettin lambda1, 0 if not computed),
+# NPAIRS, DELTA0. The arguments are data: never pasted into code.
+dat = ARG1
+outfile = ARG2."/divergence.png"
+title = ARG3
+slope = real(word(ARG4, 1)); b = real(word(ARG4, 2))
+t0 = real(word(ARG4, 3)); t1 = real(word(ARG4, 4)); sat = real(word(ARG4, 5))
+lam = real(word(ARG4, 6)); npairs = int(real(word(ARG4, 7))); delta0 = real(word(ARG4, 8))
 set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
 set output outfile
 set grid

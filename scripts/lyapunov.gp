@@ -1,6 +1,13 @@
-# Figures of `dpend lyapunov`. Called by scripts/plot_chaos.sh with
-#   run:  columns t lambda_1(t) .. lambda_k(t)   spec: columns lambda_i spread_i
-#   k: number of exponents; tau: renormalisation interval; outdir, title
+# Figures of `dpend lyapunov`. Called by scripts/plot_chaos.sh as
+#   gnuplot -c lyapunov.gp RUN SPEC OUTDIR TITLE K
+# RUN: columns t lambda_1(t) .. lambda_k(t); SPEC: columns lambda_i spread_i;
+# OUTDIR: where the PNGs go; TITLE: enhanced text (escaped); K: number of exponents.
+# The arguments are data: never pasted into code.
+run = ARG1
+spec = ARG2
+outdir = ARG3
+title = ARG4
+k = int(real(ARG5))
 set terminal pngcairo size 1000,800 enhanced font "DejaVu Sans,11"
 set grid
 array col[4] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"]

@@ -14,8 +14,9 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 . scripts/flags.sh
 dir="${1:-out/mpi_check}"
-mkdir -p "$dir"
-rm -f "$dir"/*.h5 "$dir"/*.h5.part "$dir"/*.bin "$dir"/*.txt "$dir"/*.err   # this script's files only
+case $dir in /*) ;; *) dir="$root/$dir" ;; esac   # absolute: no name read as an option
+mkdir -p -- "$dir"
+rm -f -- "$dir"/*.h5 "$dir"/*.h5.part "$dir"/*.bin "$dir"/*.txt "$dir"/*.err   # this script's files only
 
 echo "== mpi_check: build (release): dpend and dpend-mpi"
 if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then
@@ -45,11 +46,11 @@ same_content() {
       "$dir/h5diff.txt" | head -n 40
     ok=0
   fi
-  for ds in $(h5ls -r "$a" | awk '$2 == "Dataset" {print $1}'); do
+  while read -r ds; do
     h5dump -d "$ds" -b LE -o "$dir/a.bin" "$a" >/dev/null
     h5dump -d "$ds" -b LE -o "$dir/b.bin" "$b" >/dev/null 2>&1 || : >"$dir/b.bin"
     if ! cmp -s "$dir/a.bin" "$dir/b.bin"; then echo "DIFFERENT: bits of $ds"; ok=0; fi
-  done
+  done < <(h5ls -r "$a" | awk '$2 == "Dataset" {print $1}')
   if ! diff <(h5dump -A "$a" | tail -n +2) <(h5dump -A "$b" | tail -n +2) \
     >"$dir/attrs.txt"; then
     echo "DIFFERENT: attributes of $a and $b:"; head -n 40 "$dir/attrs.txt"; ok=0

@@ -11,9 +11,10 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 . scripts/flags.sh
 out="${1:-out/mpi_scaling}"
+case $out in /*) ;; *) out="$root/$out" ;; esac   # absolute: no name read as an option
 repeat="${REPEAT:-2}"
 read -r -a map <<<"${MAP:---config data/sweep_classic.nml --n 512 --t-end 100 --block 4096 --stats}"
-mkdir -p "$out"
+mkdir -p -- "$out"
 fpm build --profile release --flag "$RELEASE_FLAGS" >/dev/null 2>&1
 serial=$(fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |
   tail -n 1)
@@ -48,7 +49,7 @@ run() {
   done
   echo "$label $np $nt $best" >>"$out/walls.txt"
 }
-rm -f "$out/walls.txt"
+rm -f -- "$out/walls.txt"
 run serial_1t 0 1
 run mpi_1r_1t 1 1
 run mpi_2r_1t 2 1

@@ -21,5 +21,6 @@ export OMP_NUM_THREADS="${OMP_NUM_THREADS:-$((cores / np > 0 ? cores / np : 1))}
 flags=(--bind-to none)
 ((np > cores)) && flags+=(--oversubscribe)
 [[ $(id -u) -eq 0 ]] && flags+=(--allow-run-as-root)
-# shellcheck disable=SC2086
-exec mpirun "${flags[@]}" ${MPIRUN_FLAGS:-} -np "$np" "$bin" sweep "$@"
+# MPIRUN_FLAGS: split into words (no glob expansion, no other shell syntax)
+read -r -a extra <<<"${MPIRUN_FLAGS:-}" || true
+exec mpirun "${flags[@]}" "${extra[@]}" -np "$np" "$bin" sweep "$@"

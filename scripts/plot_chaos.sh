@@ -11,8 +11,14 @@
 #   poincare   -> poincare.png (the section points, one colour per orbit)
 # Several lyapunov files (same vectors): scripts/plot_chaos.sh --compare OUT.png F1.h5 F2.h5 ...
 # overlays their running lambda1 with the batch-means spread of each.
+# Figures are written through temporary files and moved into place once drawn
+# (scripts/lib/output.sh). DPEND: the dpend executable (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
+. "$here/lib/output.sh"
+plot_init plot_chaos.sh
 usage() { echo "usage: $0 FILE.h5 [OUTDIR] | $0 --compare OUT.png FILE.h5..." >&2; exit 2; }
 [[ $# -ge 1 ]] || usage
 
@@ -20,74 +26,93 @@ usage() { echo "usage: $0 FILE.h5 [OUTDIR] | $0 --compare OUT.png FILE.h5..." >&
 attr() {
   h5dump -m %.17g -a "/$2" "$1" 2>/dev/null | sed -n 's/^ *(0): *//p' | head -n1 | tr -d '"' || true
 }
-tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+# num VAR FILE NAME [DEFAULT]: VAR := the numeric root attribute NAME of FILE
+num() {
+  local v
+  v=$(attr "$2" "$3")
+  [[ -n "$v" || $# -lt 4 ]] || v=$4
+  plot_number "$1" "$v" "the attribute $3 of '$2'"
+}
 
 if [[ "$1" == "--compare" ]]; then
   [[ $# -ge 3 ]] || usage
-  out="$2"; shift 2
-  plots=""; i=0
-  for h5 in "$@"; do
-    [[ -r "$h5" ]] || { echo "plot_chaos.sh: cannot read '$h5'" >&2; exit 2; }
+  out=$2; shift 2
+  [[ "$out" != */ ]] || plot_fail 2 "--compare wants a file name, not '$out'"
+  plot_dir outdir "$out"; plot_base outname "$out"
+  plot_dpend
+  plot_tmpdir
+  labels=""; lams=""; i=0
+  for f in "$@"; do
+    [[ -f "$f" && -r "$f" ]] || plot_fail 2 "cannot read '$f'"
+    plot_abs h5 "$f"
     i=$((i + 1))
-    "$here/dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/c$i.dat"
+    "$dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/c$i.dat"
     lam=$(h5dump -m %.17g -d /lyapunov/exponents "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
     spr=$(h5dump -m %.17g -d /lyapunov/spread "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
+    plot_number lam "$lam" "lambda1 of '$f'"
+    plot_number spr "$spr" "the spread of lambda1 of '$f'"
     rtol=$(attr "$h5" rtol)
-    if [[ -n "$rtol" ]]; then step=$(printf 'rtol = %g' "$rtol"); else
-      step=$(printf 'dt = %g s' "$(attr "$h5" dt)"); fi
-    label=$(printf '%s, %s: %.4f ± %.4f' "$(attr "$h5" method)" "$step" "$lam" "$spr")
-    plots+="'$tmp/c$i.dat' u 1:2 w l lw 1.5 lc $i t '$label', "
-    plots+="${lam} w l lc $i dt 2 notitle, "
+    if [[ -n "$rtol" ]]; then
+      plot_number rtol "$rtol" "the attribute rtol of '$f'"
+      step=$(printf 'rtol = %g' "$rtol")
+    else
+      num dt "$h5" dt
+      step=$(printf 'dt = %g s' "$dt")
+    fi
+    plot_enhanced method "$(attr "$h5" method)"
+    label=$(printf '%s, %s: %.4f ± %.4f' "$method" "$step" "$lam" "$spr")
+    labels+="${labels:+$'\n'}$label"
+    lams+="${lams:+ }$lam"
     echo "$lam $spr $i" >> "$tmp/final.dat"
   done
-  gnuplot <<GP
-set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
-set output "$out"
-set title "Largest Lyapunov exponent: running estimates of several methods / steps"
-set xlabel "t [s]"; set ylabel "{/Symbol l}_1(t) [1/s]"
-set logscale x; set grid; set key top left box opaque
-set yrange [0.8:1.6]; set xrange [1:6000]
-plot ${plots%, }, '$tmp/final.dat' u (3300*1.1**\$3):1:2:3 w yerrorbars lc variable pt 7 ps 0.6 \
-     t "final value ± spread (batch means)"
-GP
-  echo "plot_chaos.sh: wrote $out"
+  plot_begin "$outdir" "$outname"
+  plot_run gnuplot -c "$here/compare.gp" "$tmp" "$figdir/$outname" "$i" "$labels" "$lams"
+  printf 'plot_chaos.sh: wrote %s\n' "$out"
   exit 0
 fi
 
-h5="$1"; out="${2:-$(dirname "$h5")}"
-[[ -r "$h5" ]] || { echo "plot_chaos.sh: cannot read '$h5'" >&2; exit 2; }
-mkdir -p "$out"
+[[ $# -le 2 ]] || usage
+plot_abs h5 "$1"
+if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
+[[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
+plot_dpend
+plot_tmpdir
 cmd=$(attr "$h5" command)
-title="$(attr "$h5" method), dt = $(attr "$h5" dt) s, $(basename "$h5")"
-title="${title//_/\\_}"   # gnuplot enhanced text: a literal underscore
+plot_base name "$1"
+plot_enhanced title "$(attr "$h5" method), dt = $(attr "$h5" dt) s, $name"
 case "$cmd" in
   lyapunov)
-    "$here/dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/run.dat"
-    "$here/dpend" export "$h5" /lyapunov/exponents /lyapunov/spread > "$tmp/spec.dat"
-    gnuplot -e "run='$tmp/run.dat'; spec='$tmp/spec.dat'; outdir='$out'; title='$title'; \
-      k=$(attr "$h5" vectors); tau=$(attr "$h5" tau)" "$here/lyapunov.gp"
-    echo "plot_chaos.sh: wrote $out/lyapunov_convergence.png $out/lyapunov_spectrum.png"
+    "$dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/run.dat"
+    "$dpend" export "$h5" /lyapunov/exponents /lyapunov/spread > "$tmp/spec.dat"
+    num k "$h5" vectors
+    plot_begin "$out" lyapunov_convergence.png lyapunov_spectrum.png
+    plot_run gnuplot -c "$here/lyapunov.gp" "$tmp/run.dat" "$tmp/spec.dat" "$figdir" \
+      "$title" "$k"
+    printf 'plot_chaos.sh: wrote %s/lyapunov_convergence.png %s/lyapunov_spectrum.png\n' \
+      "$out" "$out"
     ;;
   divergence)
-    "$here/dpend" export "$h5" /divergence/t /divergence/log10_delta \
+    "$dpend" export "$h5" /divergence/t /divergence/log10_delta \
       /divergence/log10_delta_pairs > "$tmp/div.dat"
-    lam=$(attr "$h5" lyapunov); lam=${lam:-0}
-    gnuplot -e "dat='$tmp/div.dat'; outfile='$out/divergence.png'; title='$title'; \
-      slope=$(attr "$h5" slope); b=$(attr "$h5" fit_intercept); t0=$(attr "$h5" fit_start); \
-      t1=$(attr "$h5" fit_end); sat=$(attr "$h5" saturation); lam=$lam; \
-      npairs=$(attr "$h5" pairs); delta0=$(attr "$h5" delta0)" "$here/divergence.gp"
-    echo "plot_chaos.sh: wrote $out/divergence.png"
+    num slope "$h5" slope; num b "$h5" fit_intercept; num t0 "$h5" fit_start
+    num t1 "$h5" fit_end; num sat "$h5" saturation; num lam "$h5" lyapunov 0
+    num npairs "$h5" pairs; num delta0 "$h5" delta0
+    plot_begin "$out" divergence.png
+    plot_run gnuplot -c "$here/divergence.gp" "$tmp/div.dat" "$figdir" "$title" \
+      "$slope $b $t0 $t1 $sat $lam $npairs $delta0"
+    printf 'plot_chaos.sh: wrote %s/divergence.png\n' "$out"
     ;;
   poincare)
-    "$here/dpend" export "$h5" /poincare/q /poincare/p /poincare/orbit > "$tmp/sec.dat"
-    gnuplot -e "dat='$tmp/sec.dat'; outfile='$out/poincare.png'; title='$title'; \
-      E=$(attr "$h5" energy); link=$(attr "$h5" section_link); \
-      other=$(attr "$h5" other_link); angle=$(attr "$h5" section_angle); \
-      dir=$(attr "$h5" section_direction); norb=$(attr "$h5" n_orbits)" "$here/poincare.gp"
-    echo "plot_chaos.sh: wrote $out/poincare.png"
+    "$dpend" export "$h5" /poincare/q /poincare/p /poincare/orbit > "$tmp/sec.dat"
+    num E "$h5" energy; num link "$h5" section_link; num other "$h5" other_link
+    num angle "$h5" section_angle; num dir "$h5" section_direction
+    num norb "$h5" n_orbits
+    plot_begin "$out" poincare.png
+    plot_run gnuplot -c "$here/poincare.gp" "$tmp/sec.dat" "$figdir" "$title" \
+      "$E $link $other $angle $dir $norb"
+    printf 'plot_chaos.sh: wrote %s/poincare.png\n' "$out"
     ;;
   *)
-    echo "plot_chaos.sh: '$h5' was not written by dpend lyapunov/divergence/poincare" >&2
-    exit 2
+    plot_fail 2 "'$1' was not written by dpend lyapunov/divergence/poincare"
     ;;
 esac

@@ -1,18 +1,29 @@
 #!/usr/bin/env bash
 # Turn the .h5 of `dpend simulate` into PNG figures:
 #   scripts/plot_simulate.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
-# Writes angles.png, energy_error.png, reactions.png, tip_path.png.
+# Writes angles.png, energy_error.png, reactions.png, tip_path.png (each through a
+# temporary file, moved into place once all are drawn: scripts/lib/output.sh).
+# DPEND: the dpend executable to use (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-[[ $# -ge 1 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
-h5="$1"; out="${2:-$(dirname "$h5")}"
-[[ -r "$h5" ]] || { echo "plot_simulate.sh: cannot read '$h5'" >&2; exit 2; }
-mkdir -p "$out"
-dat="$(mktemp)"; trap 'rm -f "$dat"' EXIT
-"$here/dpend" export "$h5" /trajectory/t /trajectory/q /trajectory/energy \
-  /trajectory/F01 /trajectory/F21 /trajectory/rC2 /trajectory/rB > "$dat"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
+. "$here/lib/output.sh"
+plot_init plot_simulate.sh
+[[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
+plot_abs h5 "$1"
+if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
+[[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
+plot_dpend
+plot_tmpdir
+"$dpend" export "$h5" /trajectory/t /trajectory/q /trajectory/energy \
+  /trajectory/F01 /trajectory/F21 /trajectory/rC2 /trajectory/rB > "$tmp/sim.dat"
 method=$(h5dump -a /method "$h5" 2>/dev/null | sed -n 's/.*(0): "\(.*\)".*/\1/p' | head -n1)
-escale=$(h5dump -a /energy_scale "$h5" 2>/dev/null | sed -n 's/.*(0): \([-+0-9.eE]*\).*/\1/p' | head -n1)
-gnuplot -e "datafile='$dat'; outdir='$out'; Escale=${escale:-1.0}; title='${method:-dpend}, $(basename "$h5")'" \
-  "$here/simulate.gp"
-echo "plot_simulate.sh: wrote $out/{angles,energy_error,reactions,tip_path}.png"
+escale=$(h5dump -a /energy_scale "$h5" 2>/dev/null | sed -n 's/.*(0): \([-+0-9.eE]*\).*/\1/p' |
+  head -n1)
+plot_number escale "${escale:-1.0}" "the attribute energy_scale of '$1'"
+plot_base name "$1"
+plot_enhanced title "${method:-dpend}, $name"
+plot_begin "$out" angles.png energy_error.png reactions.png tip_path.png
+plot_run gnuplot -c "$here/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$escale"
+printf 'plot_simulate.sh: wrote %s/{angles,energy_error,reactions,tip_path}.png\n' "$out"

@@ -2,42 +2,79 @@
 # The six figures of `dpend study` from its HDF5 file (gnuplot, pngcairo):
 #   scripts/plot_study.sh FILE.h5 [OUTDIR]      (OUTDIR defaults to FILE's folder)
 # Writes energy_vs_time.png, energy_vs_step.png, error_vs_step.png,
-# work_precision.png, roundoff.png, tao_omega.png. `dpend study` runs it at the
-# end (with DPEND set to its own executable); `dpend export` turns the datasets
-# into text columns (layout: docs/study-hdf5.md).
+# work_precision.png, roundoff.png, tao_omega.png, each through a temporary file in
+# OUTDIR, moved into place once all six are drawn (scripts/lib/output.sh); on a
+# failure the old figures are kept. `dpend study` runs it at the end, without a
+# shell, as the argument vector
+#   bash SCRIPTS/plot_study.sh FILE.h5 OUTDIR        (environment: DPEND=its own path)
+# DPEND: the dpend executable (default: the release build, built once). `dpend
+# export` turns the datasets into text columns (layout: docs/study-hdf5.md).
+# File names and the case names of the study reach gnuplot only as data (gnuplot -c
+# with ARG1..); the gnuplot code generated below holds only numbers and method names
+# checked to be plain words.
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-if [[ -n "${DPEND:-}" ]]; then
-  dpend="$DPEND"
-else
-  # resolve the release binary once (scripts/dpend would ask fpm at every call)
-  root="$(cd "$here/.." && pwd)"
-  . "$root/scripts/flags.sh"
-  (cd "$root" && fpm build --profile release --flag "$RELEASE_FLAGS" >/dev/null 2>&1) ||
-    { echo "plot_study.sh: release build failed" >&2; exit 1; }
-  dpend=$(cd "$root" && fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo \
-    2>/dev/null | tail -n 1)
-  [[ "$dpend" == /* ]] || dpend="$root/$dpend"
-fi
-[[ $# -ge 1 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
-h5="$1"; out="${2:-$(dirname "$h5")}"
-[[ -r "$h5" ]] || { echo "plot_study.sh: cannot read '$h5'" >&2; exit 2; }
-command -v gnuplot >/dev/null || { echo "plot_study.sh: gnuplot not found" >&2; exit 1; }
-command -v h5dump >/dev/null || { echo "plot_study.sh: h5dump not found" >&2; exit 1; }
-mkdir -p "$out"
-tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
+. "$here/lib/output.sh"
+plot_init plot_study.sh
+[[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
+plot_abs h5 "$1"
+if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
+[[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
+command -v gnuplot >/dev/null || plot_fail 1 "gnuplot not found"
+command -v h5dump >/dev/null || plot_fail 1 "h5dump not found"
+plot_dpend
+plot_tmpdir
 
 # attribute value (first element), strings without quotes
 attr() { h5dump -w 0 -a "$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *//p' | head -n1 |
   sed 's/^"\(.*\)"$/\1/'; }
+# numeric attribute: nattr VAR PATH
+nattr() { plot_number "$1" "$(attr "$2")" "the attribute $2 of '$h5name'"; }
+# a value read from the exported data: number VAR VALUE
+number() { plot_number "$1" "$2" "a value read from '$h5name'"; }
+# a row index: index VAR PATH
+index() {
+  local v
+  v=$(attr "$2")
+  [[ $v =~ ^[0-9]{1,9}$ ]] || plot_fail 2 "the attribute $2 of '$h5name' is not an index: '$v'"
+  printf -v "$1" '%d' "$((10#$v))"
+}
 has() { h5dump -w 0 -H -d "$1" "$h5" >/dev/null 2>&1; }
 ex() { "$dpend" export "$h5" "$@"; }
+# words VAR LIST: VAR := the array of the words of LIST (no glob expansion)
+words() { read -r -a "$1" <<<"$2" || true; }
+# method names become part of the gnuplot code and of file names: plain words only
+plain() {
+  local w
+  for w in "${@:2}"; do
+    [[ $w =~ ^[A-Za-z0-9_]+$ ]] ||
+      plot_fail 2 "$1 of '$h5name' holds '$w', not a method name"
+  done
+}
+# a data file of $tmp as a gnuplot string expression (D is ARG1, the folder)
+df() { printf "D.'/%s'" "$1"; }
 
-cases=$(attr /cases); methods=$(attr /methods)
+h5name=$1
+words cases "$(attr /cases)"; words methods "$(attr /methods)"
 oc=$(attr /order_case); dc=$(attr /drift_case)
-ro_methods=$(attr /roundoff_methods); tao_methods=$(attr /tao_methods)
+words ro_methods "$(attr /roundoff_methods)"; words tao_methods "$(attr /tao_methods)"
+plain "the attribute methods" "${methods[@]}"
+plain "the attribute roundoff_methods" "${ro_methods[@]}"
+plain "the attribute tao_methods" "${tao_methods[@]}"
 quick=$(attr /config/quick)
 note=""; [[ "$quick" == "1" ]] && note=" (--quick)"
+# cases by their index: c1, c2, ... in file names; oi and di the verdict cases
+oi=0; di=0
+for i in "${!cases[@]}"; do
+  [[ "${cases[$i]}" == "$oc" ]] && oi=$((i + 1))
+  [[ "${cases[$i]}" == "$dc" ]] && di=$((i + 1))
+done
+((oi > 0 && di > 0)) ||
+  plot_fail 2 "the attributes order_case and drift_case of '$h5name' name no case of /cases"
+plot_enhanced oc_text "$oc"
+plot_enhanced dc_text "$dc"
 
 # one colour and one point type per method
 color() {
@@ -56,17 +93,20 @@ titles=("explicit Runge-Kutta (fixed steps)" "Gauss-Legendre (implicit, symplect
 in_list() { [[ " $2 " == *" $1 "* ]]; }
 
 # ---- data: one file per case, method and sweep
-for c in $cases; do
-  for m in $methods; do
+for ci in "${!cases[@]}"; do
+  c=${cases[$ci]}
+  for m in "${methods[@]}"; do
     g="/cases/$c/$m"
-    ex $g/step/h $g/step/global_error $g/step/energy_max_short $g/step/energy_max_long \
-      $g/step/short_rhs $g/step/wall_short $g/step/status > "$tmp/${c}_${m}_step.dat"
-    ex $g/step/t_bins $g/step/energy_bins > "$tmp/${c}_${m}_step_bins.dat"
-    if has $g/tol/rtol; then
-      ex $g/tol/mean_step_short $g/tol/global_error $g/tol/energy_max_short \
-        $g/tol/energy_max_long $g/tol/short_rhs $g/tol/wall_short $g/tol/status \
-        > "$tmp/${c}_${m}_tol.dat"
-      ex $g/tol/t_bins $g/tol/energy_bins > "$tmp/${c}_${m}_tol_bins.dat"
+    f="$tmp/c$((ci + 1))_${m}"
+    ex "$g/step/h" "$g/step/global_error" "$g/step/energy_max_short" \
+      "$g/step/energy_max_long" "$g/step/short_rhs" "$g/step/wall_short" "$g/step/status" \
+      > "${f}_step.dat"
+    ex "$g/step/t_bins" "$g/step/energy_bins" > "${f}_step_bins.dat"
+    if has "$g/tol/rtol"; then
+      ex "$g/tol/mean_step_short" "$g/tol/global_error" "$g/tol/energy_max_short" \
+        "$g/tol/energy_max_long" "$g/tol/short_rhs" "$g/tol/wall_short" "$g/tol/status" \
+        > "${f}_tol.dat"
+      ex "$g/tol/t_bins" "$g/tol/energy_bins" > "${f}_tol_bins.dat"
     fi
   done
 done
@@ -83,8 +123,13 @@ empty_panel() {
   echo "unset label 10; set logscale xy; set xtics; set ytics; set key; set autoscale"
 }
 
+# the generated script: gnuplot -c study.gp DATADIR FIGDIR ORDER_CASE DRIFT_CASE
 gp="$tmp/study.gp"
-cat > "$gp" <<EOF
+cat > "$gp" <<'EOF'
+D = ARG1
+O = ARG2
+OC = ARG3
+DC = ARG4
 set terminal pngcairo size 1400,900 enhanced font "DejaVu Sans,11"
 set logscale xy
 set format x "10^{%L}"; set format y "10^{%L}"
@@ -94,21 +139,24 @@ set datafile missing NaN
 EOF
 
 # ---- figure 1: energy error against time at the middle step
+ms=" ${methods[*]} "   # the method list, for in_list
 {
-  echo "set output '$out/energy_vs_time.png'"
-  echo "set title \"Relative energy error |H(t) - H(0)| / E_s against time, case $dc, each method at its middle step (maximum per logarithmic time bin)$note\""
+  echo "set output O.'/energy_vs_time.png'"
+  echo "set title \"Relative energy error |H(t) - H(0)| / E_s against time, case \".DC.\", each method at its middle step (maximum per logarithmic time bin)$note\""
   echo "set xlabel 't [s]'; set ylabel '|H(t) - H(0)| / E_s'"
   echo "set key outside right top"
   plot="plot"
   guide=""
-  for m in $methods; do
-    mode=step; [[ -f "$tmp/${dc}_${m}_tol.dat" ]] && mode=tol
-    mid=$(attr /cases/$dc/$m/$mode/mid)
+  for m in "${methods[@]}"; do
+    f="c${di}_${m}"
+    mode=step; [[ -f "$tmp/${f}_tol.dat" ]] && mode=tol
+    index mid "/cases/$dc/$m/$mode/mid"
     col=$((mid + 2))
     if [[ $mode == step ]]; then
-      lab="$m, h = $(printf '%.2g' "$(cell "$tmp/${dc}_${m}_step.dat" 1 "$mid")") s"
+      number h "$(cell "$tmp/${f}_step.dat" 1 "$mid")"
+      lab="$m, h = $(printf '%.2g' "$h") s"
     else
-      rt=$(ex /cases/$dc/$m/tol/rtol | awk -v r="$mid" 'NR == r + 1 {print $1}')
+      number rt "$(ex "/cases/$dc/$m/tol/rtol" | awk -v r="$mid" 'NR == r + 1 {print $1}')"
       lab="$m, rtol = $(printf '%.0e' "$rt")"
     fi
     dash=1; lw=2
@@ -117,11 +165,12 @@ EOF
       # a t^1 guide 3 decades long, a factor 3 below the end of the first explicit method
       if [[ -z "$guide" ]]; then
         read -r gx gy < <(awk -v c="$col" '$c != "NaN" { x = $1; y = $c } END { print x, y }' \
-          "$tmp/${dc}_${m}_${mode}_bins.dat")
+          "$tmp/${f}_${mode}_bins.dat")
+        number gx "$gx"; number gy "$gy"
         guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 2 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
       fi
     fi
-    plot="$plot '$tmp/${dc}_${m}_${mode}_bins.dat' u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
+    plot="$plot $(df "${f}_${mode}_bins.dat") u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
   done
   plot="$plot $guide"
   echo "${plot%,}"
@@ -130,37 +179,45 @@ EOF
 # ---- figures 2 and 3: errors against the step, 2x2 panels by family, reference slopes
 # reference line of slope p through (x0, y0), drawn over [xa/1.3, xb*1.3] only
 ref() { echo "(x >= $3/1.3 && x <= $4*1.3 ? $2*(x/$1)**$5 : NaN)"; }
-panels() { # $1 output, $2 title, $3 case, $4 column, $5 ylabel, $6 fit attribute,
-           # [$7 case of the second curve, $8 its column, $9 its fit attribute]
-  echo "set output '$out/$1'"
-  echo "set multiplot layout 2,2 title \"$2$note\" font ',13'"
+panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $4 column,
+           # $5 ylabel, $6 fit attribute,
+           # [$7 case index of the second curve, $8 its column, $9 its fit attribute]
+  local c1=${cases[$3 - 1]} c2=""
+  [[ -z "${7:-}" ]] || c2=${cases[$7 - 1]}
+  echo "set output O.'/$1'"
+  echo "set multiplot layout 2,2 title $2 font ',13'"
   echo "set xlabel 'step h [s]'; set ylabel '$5'; set key inside right bottom font ',10'"
   for i in 0 1 2 3; do
     echo "set title '${titles[$i]}'"
     # room on the right for the key: x from the smallest step / 1.5 to the largest × 6
     files=()
-    for m in ${groups[$i]}; do in_list "$m" "$methods" && files+=("$tmp/${3}_${m}_step.dat"); done
+    for m in ${groups[$i]}; do in_list "$m" "$ms" && files+=("$tmp/c${3}_${m}_step.dat"); done
     if [[ ${#files[@]} -gt 0 ]]; then
-      echo "set xrange [$(cat "${files[@]}" | awk 'NR == 1 || $1 < m { m = $1 } END { print m/1.5 }'):$(cat "${files[@]}" | awk 'NR == 1 || $1 > m { m = $1 } END { print m*6 }')]"
+      number lo "$(cat "${files[@]}" | awk 'NR == 1 || $1 < m { m = $1 } END { print m/1.5 }')"
+      number hi "$(cat "${files[@]}" | awk 'NR == 1 || $1 > m { m = $1 } END { print m*6 }')"
+      echo "set xrange [$lo:$hi]"
     fi
     plot="plot"
     n=0
     for m in ${groups[$i]}; do
-      in_list "$m" "$methods" || continue
-      f="$tmp/${3}_${m}_step.dat"
-      mid=$(attr /cases/$3/$m/step/mid)
-      p=$(attr /cases/$3/$m/step/order)
+      in_list "$m" "$ms" || continue
+      f="$tmp/c${3}_${m}_step.dat"
+      index mid "/cases/$c1/$m/step/mid"
+      nattr p "/cases/$c1/$m/step/order"
       read -r x0 y0 < <(anchor "$f" 1 "$4" "$mid")
-      xa=$(awk 'NR == 1 || $1 < m { m = $1 } END { print m }' "$f")
-      xb=$(awk 'NR == 1 || $1 > m { m = $1 } END { print m }' "$f")
-      lab="$m (p = $p): $(printf '%.2f' "$(attr /cases/$3/$m/step/$6)")"
+      number x0 "$x0"; number y0 "$y0"
+      number xa "$(awk 'NR == 1 || $1 < m { m = $1 } END { print m }' "$f")"
+      number xb "$(awk 'NR == 1 || $1 > m { m = $1 } END { print m }' "$f")"
+      nattr fit "/cases/$c1/$m/step/$6"
+      lab="$m (p = $p): $(printf '%.2f' "$fit")"
       if [[ -n "${7:-}" ]]; then
-        lab="$lab, long run $(printf '%.2f' "$(attr /cases/$7/$m/step/$9)")"
+        nattr fit "/cases/$c2/$m/step/$9"
+        lab="$lab, long run $(printf '%.2f' "$fit")"
       fi
-      plot="$plot '$f' u 1:(\$$4 > 0 ? \$$4 : NaN) w lp lw 2 pt 7 ps 1 lc rgb '$(color "$m")' t '$lab',"
+      plot="$plot $(df "c${3}_${m}_step.dat") u 1:(\$$4 > 0 ? \$$4 : NaN) w lp lw 2 pt 7 ps 1 lc rgb '$(color "$m")' t '$lab',"
       plot="$plot $(ref "$x0" "$y0" "$xa" "$xb" "$p") w l lw 1.2 dt 2 lc rgb 'black' notitle,"
       if [[ -n "${7:-}" ]]; then
-        plot="$plot '$tmp/${7}_${m}_step.dat' u 1:(\$$8 > 0 ? \$$8 : NaN) w lp lw 1.5 dt 4 pt 6 ps 1 lc rgb '$(color "$m")' notitle,"
+        plot="$plot $(df "c${7}_${m}_step.dat") u 1:(\$$8 > 0 ? \$$8 : NaN) w lp lw 1.5 dt 4 pt 6 ps 1 lc rgb '$(color "$m")' notitle,"
       fi
       n=$((n + 1))
     done
@@ -168,18 +225,19 @@ panels() { # $1 output, $2 title, $3 case, $4 column, $5 ylabel, $6 fit attribut
   done
   echo "unset multiplot; set autoscale x"
 }
-ts=$(attr /config/t_short)
+nattr ts /config/t_short
+# shellcheck disable=SC2129
 panels error_vs_step.png \
-  "Global error over t ≤ $ts s against the step, case $oc; legend: fitted slope; dashed: slope p" \
-  "$oc" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
+  "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
+  "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
 panels energy_vs_step.png \
-  "Maximum energy error against the step: filled, t ≤ $ts s (case $oc); open, whole long run (case $dc); dashed: slope p" \
-  "$oc" 3 "max |H - H(0)| / E_s" order_energy "$dc" 4 order_energy_long >> "$gp"
+  "\"Maximum energy error against the step: filled, t ≤ $ts s (case \".OC.\"); open, whole long run (case \".DC.\"); dashed: slope p$note\"" \
+  "$oi" 3 "max |H - H(0)| / E_s" order_energy "$di" 4 order_energy_long >> "$gp"
 
 # ---- figure 4: work-precision
 {
-  echo "set output '$out/work_precision.png'"
-  echo "set multiplot layout 1,2 title \"Work-precision, case $oc: global error at t ≤ $(attr /config/t_short) s (fixed steps; dopri5, dop853 over tolerances)$note\" font ',13'"
+  echo "set output O.'/work_precision.png'"
+  echo "set multiplot layout 1,2 title \"Work-precision, case \".OC.\": global error at t ≤ $ts s (fixed steps; dopri5, dop853 over tolerances)$note\" font ',13'"
   echo "set ylabel 'max |Δq|, |Δq̇| [rad, rad/s]'; set key inside right top font ',9'"
   for panel in wall rhs; do
     if [[ $panel == wall ]]; then
@@ -188,10 +246,10 @@ panels energy_vs_step.png \
       echo "set title 'against right-hand-side evaluations'; set xlabel 'evaluations of the vector field'"; col=5
     fi
     plot="plot"
-    for m in $methods; do
-      mode=step; [[ -f "$tmp/${oc}_${m}_tol.dat" ]] && mode=tol
+    for m in "${methods[@]}"; do
+      mode=step; [[ -f "$tmp/c${oi}_${m}_tol.dat" ]] && mode=tol
       dash=1; in_list "$m" "rk4 dopri5 dop853" && dash=2
-      plot="$plot '$tmp/${oc}_${m}_${mode}.dat' u $col:(\$2 > 0 ? \$2 : NaN) w lp lw 2 dt $dash pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m',"
+      plot="$plot $(df "c${oi}_${m}_${mode}.dat") u $col:(\$2 > 0 ? \$2 : NaN) w lp lw 2 dt $dash pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m',"
     done
     echo "${plot%,}"
   done
@@ -201,20 +259,22 @@ panels energy_vs_step.png \
 # ---- figure 5: roundoff (Brouwer's law)
 {
   fit_t=""
-  for m in $ro_methods; do
+  ro=()
+  for m in "${ro_methods[@]}"; do
     [[ "$m" == none ]] && continue
+    ro+=("$m")
     for mode in compensated plain; do
-      ex /roundoff/$m/t /roundoff/$m/rms_$mode > "$tmp/ro_${m}_${mode}.dat"
+      ex "/roundoff/$m/t" "/roundoff/$m/rms_$mode" > "$tmp/ro_${m}_${mode}.dat"
     done
-    fit_t=$(attr /roundoff/$m/fit_t_min)
+    nattr fit_t "/roundoff/$m/fit_t_min"
   done
   # one y range for both panels, so that the two magnitudes compare
   yr=""
-  if ls "$tmp"/ro_*.dat >/dev/null 2>&1; then
+  if ((${#ro[@]})); then
     yr=$(cat "$tmp"/ro_*.dat | awk '$2 != "NaN" && $2 > 0 { if (!n || $2 < lo) lo = $2; if (!n || $2 > hi) hi = $2; n = 1 }
       END { if (n) printf "set yrange [%g:%g]", lo / 3, hi * 3 }')
   fi
-  echo "set output '$out/roundoff.png'"
+  echo "set output O.'/roundoff.png'"
   echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state; dotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
   echo "set xlabel 't [s]'; set ylabel 'RMS of (H - H(0)) / E_s'; set key inside left top font ',10'"
   echo "$yr"
@@ -223,15 +283,15 @@ panels energy_vs_step.png \
     if [[ $mode == compensated ]]; then echo "set title 'with compensated summation'"; else echo "set title 'without compensated summation'"; fi
     plot="plot"
     k=0
-    for m in $ro_methods; do
-      [[ "$m" == none ]] && continue
+    for m in "${ro[@]}"; do
       g="/roundoff/$m"
-      f="$tmp/ro_${m}_${mode}.dat"
-      read -r x0 y0 < <(tail -n 1 "$f")
-      e=$(attr $g/exponent_$mode)
-      dt=$(attr $g/dt)
+      f="ro_${m}_${mode}.dat"
+      read -r x0 y0 < <(tail -n 1 "$tmp/$f")
+      number x0 "$x0"; number y0 "$y0"
+      nattr e "$g/exponent_$mode"
+      nattr dt "$g/dt"
       rc=("#1f77b4" "#d62728" "#2ca02c" "#9467bd")
-      plot="$plot '$f' u 1:(\$2 > 0 ? \$2 : NaN) w lp lw 2 pt 7 ps 0.7 lc rgb '${rc[$k]}' t '$m, h = $(printf '%.1e' "$dt") s: fitted exponent $(printf '%.2f' "$e")',"
+      plot="$plot $(df "$f") u 1:(\$2 > 0 ? \$2 : NaN) w lp lw 2 pt 7 ps 0.7 lc rgb '${rc[$k]}' t '$m, h = $(printf '%.1e' "$dt") s: fitted exponent $(printf '%.2f' "$e")',"
       plot="$plot (x >= $fit_t ? $y0/2.5*(x/$x0)**0.5 : NaN) w l lw 2 dt 3 lc rgb '${rc[$k]}' notitle,"
       k=$((k + 1))
     done
@@ -242,13 +302,15 @@ panels energy_vs_step.png \
 
 # ---- figure 6: Tao's binding constant
 {
-  echo "set output '$out/tao_omega.png'"
+  tao=()
+  for m in "${tao_methods[@]}"; do [[ "$m" == none ]] || tao+=("$m"); done
+  echo "set output O.'/tao_omega.png'"
   echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font ',13'"
   echo "set xlabel 'ω [1/s]'; set key inside left top font ',10'"
   echo "set arrow 1 from 20, graph 0 to 20, graph 1 nohead dt 2 lc rgb 'gray40'"
   # resonances 2 ω h = 2π k: the binding rotation is the identity
-  tdt=$(attr /tao/$(echo $tao_methods | awk '{print $1}')/dt 2>/dev/null || echo "")
-  if [[ -n "$tdt" && "$tao_methods" != none ]]; then
+  if ((${#tao[@]})); then
+    nattr tdt "/tao/${tao[0]}/dt"
     for k in 1 2 3 4 5 6; do
       echo "set arrow $((k + 2)) from $k*pi/$tdt, graph 0 to $k*pi/$tdt, graph 1 nohead dt 3 lc rgb '#e08080'"
     done
@@ -257,16 +319,17 @@ panels energy_vs_step.png \
     if [[ $panel == energy ]]; then
       echo "set title 'maximum energy error'; set ylabel 'max |H - H(0)| / E_s'"; col=2
     else
-      echo "set title 'global error at t ≤ $(attr /config/t_short) s'; set ylabel 'max |Δq|, |Δq̇| [rad, rad/s]'"; col=3
+      echo "set title 'global error at t ≤ $ts s'; set ylabel 'max |Δq|, |Δq̇| [rad, rad/s]'"; col=3
     fi
     plot="plot"
     k=0
-    for m in $tao_methods; do
-      [[ "$m" == none ]] && continue
+    for m in "${tao[@]}"; do
       g="/tao/$m"
-      f="$tmp/tao_$m.dat"
-      ex $g/omega $g/energy_max $g/global_error > "$f"
-      plot="$plot '$f' u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$(attr $g/dt)") s, t = $(attr $g/t_end) s',"
+      f="tao_$m.dat"
+      ex "$g/omega" "$g/energy_max" "$g/global_error" > "$tmp/$f"
+      nattr dt "$g/dt"
+      nattr te "$g/t_end"
+      plot="$plot $(df "$f") u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$dt") s, t = $te s',"
       k=$((k + 1))
     done
     if [[ $k -eq 0 ]]; then empty_panel "no Tao method in the study"; else echo "${plot%,}"; fi
@@ -274,5 +337,7 @@ panels energy_vs_step.png \
   echo "unset multiplot; unset arrow"
 } >> "$gp"
 
-gnuplot "$gp"
-echo "plot_study.sh: wrote $out/{energy_vs_time,energy_vs_step,error_vs_step,work_precision,roundoff,tao_omega}.png"
+plot_begin "$out" energy_vs_time.png energy_vs_step.png error_vs_step.png \
+  work_precision.png roundoff.png tao_omega.png
+plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text"
+printf 'plot_study.sh: wrote %s/{energy_vs_time,energy_vs_step,error_vs_step,work_precision,roundoff,tao_omega}.png\n' "$out"

@@ -3,29 +3,43 @@
 #   scripts/plot_sweep.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
 # Writes flip_map.png (first flip of either link, log colour scale in sqrt(l1/g),
 # white: no flip before the end), flip_map_link1.png, flip_map_link2.png,
-# energy_error.png and, if the sweep has it, lyapunov.png.
+# energy_error.png and, if the sweep has it, lyapunov.png. Figures are written
+# through temporary files and moved into place once drawn (scripts/lib/output.sh).
+# DPEND: the dpend executable (default: the release build).
+# shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-[[ $# -ge 1 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
-h5="$1"; out="${2:-$(dirname "$h5")}"
-[[ -r "$h5" ]] || { echo "plot_sweep.sh: cannot read '$h5'" >&2; exit 2; }
-mkdir -p "$out"
+# shellcheck source-path=SCRIPTDIR source=lib/output.sh
+. "$here/lib/output.sh"
+plot_init plot_sweep.sh
+[[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
+plot_abs h5 "$1"
+if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
+[[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
 attr() { h5dump -a "/sweep/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *"\{0,1\}\([^"]*\)"\{0,1\}.*/\1/p' | head -n1; }
-[[ "$(attr initial)" == grid ]] || { echo "plot_sweep.sh: '$h5' is not a grid sweep" >&2; exit 2; }
-tau=$(attr sqrt_l1_over_g); t_end=$(attr t_end); ax1=$(attr axis1); ax2=$(attr axis2)
-tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
-ex() { "$here/dpend" export "$h5" --matrix "$1" /sweep/axis1 /sweep/axis2 "$2" > "$tmp/$3"; }
+[[ "$(attr initial)" == grid ]] || plot_fail 2 "'$1' is not a grid sweep"
+plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
+plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
+ax1=$(attr axis1); ax2=$(attr axis2)
+plot_dpend
+plot_tmpdir
+ex() { "$dpend" export "$h5" --matrix "$1" /sweep/axis1 /sweep/axis2 "$2" > "$tmp/$3"; }
 ex /sweep/t_flip "$tau" flip.dat
 ex /sweep/t_flip1 "$tau" flip1.dat
 ex /sweep/t_flip2 "$tau" flip2.dat
 ex /sweep/energy_error 1 eerr.dat
 lyap=""
+figures=(flip_map.png flip_map_link1.png flip_map_link2.png energy_error.png)
 if h5dump -H -d /sweep/lyapunov "$h5" >/dev/null 2>&1; then
-  ex /sweep/lyapunov "$(awk "BEGIN { print 1 / $tau }")" lyap.dat   # x tau: in 1/sqrt(l1/g)
+  ex /sweep/lyapunov "$(awk -v tau="$tau" 'BEGIN { print 1 / tau }')" lyap.dat   # x tau
   lyap="$tmp/lyap.dat"
+  figures+=(lyapunov.png)
 fi
-gnuplot -e "dir='$tmp'; outdir='$out'; tend=$t_end/$tau; ax1='$ax1'; ax2='$ax2'; \
-  lyap='$lyap'; name='$(basename "$h5" | sed 's/_/\\_/g')'" "$here/sweep.gp" \
-  2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
+plot_base name "$1"
+plot_enhanced name "$name"
+plot_begin "$out" "${figures[@]}"
 # (no-flip pixels are NaN on purpose: gnuplot leaves them white and warns)
-echo "plot_sweep.sh: wrote $out/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png${lyap:+ and lyapunov.png}"
+plot_run gnuplot -c "$here/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$ax2" \
+  "$lyap" "$name" 2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
+printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \
+  "$out" "${lyap:+ and lyapunov.png}"

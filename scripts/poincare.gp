@@ -1,6 +1,14 @@
-# Figure of `dpend poincare`. Called by scripts/plot_chaos.sh with
-#   dat: columns q_o p_o orbit; E (energy, J), link (section link), other,
-#   angle (section angle), dir (direction), norb (orbits), outfile, title
+# Figure of `dpend poincare`. Called by scripts/plot_chaos.sh as
+#   gnuplot -c poincare.gp DAT OUTDIR TITLE "E LINK OTHER ANGLE DIR NORB"
+# DAT: columns q_o p_o orbit; OUTDIR: where poincare.png goes; TITLE: enhanced text
+# (escaped); then one argument of numbers: E (energy, J), LINK (section link),
+# OTHER, ANGLE (section angle), DIR (direction), NORB (orbits). The arguments are
+# data: never pasted into code.
+dat = ARG1
+outfile = ARG2."/poincare.png"
+title = ARG3
+E = real(word(ARG4, 1)); link = int(real(word(ARG4, 2))); other = int(real(word(ARG4, 3)))
+angle = real(word(ARG4, 4)); dir = real(word(ARG4, 5)); norb = int(real(word(ARG4, 6)))
 set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
 set output outfile
 set title sprintf("Poincaré section q_%d = %.4f (mod 2{/Symbol p}), d q_%d/dt %s 0, E = %g J\n%d orbits (%s)", \

@@ -4,39 +4,39 @@
 #   scripts/run.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-d=scripts/dpend
+d=scripts/dpend   # always quoted: "$d"
 start=$SECONDS
 step() { echo; echo "== $1"; }
 
 step "simulate: the chapter's numerical application (both links horizontal, at rest)"
 mkdir -p out/simulate
-$d simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
+"$d" simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
 scripts/plot_simulate.sh out/simulate/simulate.h5 out/simulate
 
 step "study --quick: energy conservation of every integrator (the full study: dpend study)"
-$d study --quick --output out/study/study.h5 --force > /dev/null
+"$d" study --quick --output out/study/study.h5 --force > /dev/null
 echo "summary: out/study/study.md; figures: out/study/*.png"
 
 step "lyapunov: spectrum of the horizontal release (t = 300 s)"
 mkdir -p out/chaos
-$d lyapunov --t-end 300 --output out/chaos/lyapunov.h5 --force | tail -n 1
+"$d" lyapunov --t-end 300 --output out/chaos/lyapunov.h5 --force | tail -n 1
 scripts/plot_chaos.sh out/chaos/lyapunov.h5 out/chaos
 
 step "divergence: 20 pairs of trajectories 1e-9 apart"
-$d divergence --output out/chaos/divergence.h5 --force | tail -n 1
+"$d" divergence --output out/chaos/divergence.h5 --force | tail -n 1
 scripts/plot_chaos.sh out/chaos/divergence.h5 out/chaos
 
 step "poincare: sections at E = -15 J (regular) and E = 0 J (chaotic)"
-$d poincare --energy -15 --ics 20 --points 300 --output out/chaos/poincare_low.h5 --force \
+"$d" poincare --energy -15 --ics 20 --points 300 --output out/chaos/poincare_low.h5 --force \
   | tail -n 1
 scripts/plot_chaos.sh out/chaos/poincare_low.h5 out/chaos/poincare_low
-$d poincare --energy 0 --ics 20 --points 300 --output out/chaos/poincare_release.h5 --force \
+"$d" poincare --energy 0 --ics 20 --points 300 --output out/chaos/poincare_release.h5 --force \
   | tail -n 1
 scripts/plot_chaos.sh out/chaos/poincare_release.h5 out/chaos/poincare_release
 
 step "sweep: the flip-time map, 256 x 256 (the classic map at a quarter resolution)"
 mkdir -p out/sweep
-$d sweep --config data/sweep_classic.nml --n 256 --output out/sweep/flip_map_256.h5 --force
+"$d" sweep --config data/sweep_classic.nml --n 256 --output out/sweep/flip_map_256.h5 --force
 scripts/plot_sweep.sh out/sweep/flip_map_256.h5 out/sweep
 
 echo

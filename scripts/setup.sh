@@ -8,9 +8,9 @@ if [[ "${1:-}" == "--mpi" ]]; then
   packages+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 fi
 
-sudo=""
+sudo=()
 if [[ $(id -u) -ne 0 ]]; then
-  if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+  if command -v sudo >/dev/null 2>&1; then sudo=(sudo); else
     echo "setup.sh: not root and no sudo; install as root: ${packages[*]}" >&2; exit 1
   fi
 fi
@@ -23,8 +23,8 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]})); then
   echo "setup.sh: installing ${missing[*]}"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
     "${missing[@]}" >/dev/null
 else
   echo "setup.sh: Debian packages already installed"
@@ -37,14 +37,14 @@ serial_pc=/usr/lib/x86_64-linux-gnu/pkgconfig/hdf5-serial.pc
 if [[ -e $serial_pc ]] && command -v update-alternatives >/dev/null 2>&1 &&
    [[ "$(readlink -f /usr/lib/x86_64-linux-gnu/pkgconfig/hdf5.pc)" != "$(readlink -f $serial_pc)" ]]; then
   echo "setup.sh: pinning pkg-config hdf5 to the serial HDF5"
-  $sudo update-alternatives --set hdf5.pc "$serial_pc" >/dev/null
+  "${sudo[@]}" update-alternatives --set hdf5.pc "$serial_pc" >/dev/null
 fi
 
 if ! command -v fpm >/dev/null 2>&1; then
   echo "setup.sh: installing fpm from PyPI"
   if ! python3 -m pip --version >/dev/null 2>&1; then
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq python3-pip >/dev/null
+    "${sudo[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq python3-pip >/dev/null
   fi
   python3 -m pip install --quiet fpm 2>/dev/null || python3 -m pip install --quiet \
     --break-system-packages fpm

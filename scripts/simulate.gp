@@ -1,6 +1,12 @@
-# Figures of one `dpend simulate` run. Called by scripts/plot_simulate.sh with
-#   datafile: columns t q1 q2 E F01x F01y F21x F21y rC2x rC2y rBx rBy
-#   outdir:   where the PNGs go;  title: run description
+# Figures of one `dpend simulate` run. Called by scripts/plot_simulate.sh as
+#   gnuplot -c simulate.gp DATAFILE OUTDIR TITLE ESCALE
+# DATAFILE: columns t q1 q2 E F01x F01y F21x F21y rC2x rC2y rBx rBy; OUTDIR: where the
+# PNGs go; TITLE: run description (enhanced text, escaped); ESCALE: energy scale [J].
+# The arguments are data: never pasted into code.
+datafile = ARG1
+outdir = ARG2
+title = ARG3
+Escale = real(ARG4)
 set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
 set grid
 set key outside right
@@ -34,5 +40,8 @@ set title "Path of the tip of link 2 (y up, pin A at the origin)"
 set xlabel "x [m]"; set ylabel "y [m]"
 set size ratio -1
 set key off
+$origin << EOD
+0 0
+EOD
 plot datafile u (2*$9 - $11):(2*$10 - $12) w l lw 0.8 lc rgb "#1f77b4", \
-     "<echo 0 0" w p pt 7 ps 1.5 lc rgb "black"
+     $origin w p pt 7 ps 1.5 lc rgb "black"

@@ -35,4 +35,4 @@ if [[ $# -eq 0 ]]; then set -- --config data/sweep_classic.nml; fi
 # passed on explicitly); with Open MPI built without Slurm/PMIx support use
 #   mpirun --map-by ppr:${SLURM_NTASKS_PER_NODE}:node:PE=${SLURM_CPUS_PER_TASK} "$bin" ...
 srun --cpus-per-task="${SLURM_CPUS_PER_TASK:-1}" "$bin" sweep --block-times \
-  "dpend-sweep-$SLURM_JOB_ID-blocks.txt" "$@"
+  "dpend-sweep-${SLURM_JOB_ID:-local}-blocks.txt" "$@"

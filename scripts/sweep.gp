@@ -1,7 +1,16 @@
-# Maps of one `dpend sweep` grid. Called by scripts/plot_sweep.sh with
-#   dir: folder of the exported matrices (gnuplot nonuniform matrix format)
-#   outdir: where the PNGs go; tend: end time in sqrt(l1/g); ax1, ax2: axis names
-#   lyap: Lyapunov matrix file or ''; name: file name for the titles
+# Maps of one `dpend sweep` grid. Called by scripts/plot_sweep.sh as
+#   gnuplot -c sweep.gp DIR OUTDIR T_END TAU AX1 AX2 LYAP NAME
+# DIR: folder of the exported matrices (gnuplot nonuniform matrix format); OUTDIR:
+# where the PNGs go; T_END: end time [s]; TAU: sqrt(l1/g) [s]; AX1, AX2: axis names;
+# LYAP: Lyapunov matrix file or ''; NAME: file name for the titles (enhanced text,
+# escaped). The arguments are data: never pasted into code.
+dir = ARG1
+outdir = ARG2
+tend = real(ARG3)/real(ARG4)
+ax1 = ARG5
+ax2 = ARG6
+lyap = ARG7
+name = ARG8
 set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
 set size ratio -1
 set tics out
