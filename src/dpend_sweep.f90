@@ -140,9 +140,11 @@ contains
       if (allocated(error)) return
       call result_names(setup, reals, ints)
       per_point = 8.0_dp*real(size(reals) + 1, dp) + 4.0_dp*real(size(ints), dp)
-      disk = 2.0_dp*per_point*real(setup%n, dp) + 1048576.0_dp
+      ! the working file and the final file side by side, plus HDF5's own bytes; an
+      ! existing working file (a resume) already has its share
+      disk = 2.0_dp*per_point*real(setup%n, dp) + 65536.0_dp
       existing = 0.0_dp
-      inquire (file=setup%cfg%run%output, exist=exists, size=fsize)
+      inquire (file=working_file(setup%cfg%run%output), exist=exists, size=fsize)
       if (exists .and. fsize > 0) existing = real(fsize, dp)
       call check_disk(trim(merge('n1, n2 ', 'ic_file', setup%grid)), disk - existing, &
                       setup%cfg%run%output, sci(real(setup%n, dp))//' initial conditions; '// &

@@ -92,7 +92,8 @@ refuse gen-swp-axis          axis1     -- "${SWP[@]}" --axis1 bogus
 refuse gen-swp-unit          time_unit -- "${SWP[@]}" --time-unit hours
 refuse gen-swp-stop          stop_at   -- "${SWP[@]}" --stop-at never
 refuse gen-swp-block-zero    block     -- "${SWP[@]}" --block 0
-refuse gen-swp-threads-zero  threads   -- "${SWP[@]}" --threads 0
+succeed gen-swp-threads-zero          -- "${SWP[@]}" --threads 0   # 0: all CPUs
+refuse gen-swp-threads-big   threads   -- "${SWP[@]}" --threads 1025
 refuse gen-swp-angles        angles    -- sweep --ic-file list.txt --t-end 1 --quiet --output g.h5 --ic-angles x
 refuse gen-swp-icfile-none   nothere   -- sweep --ic-file nothere.txt --t-end 1 --quiet --output g.h5
 refuse gen-stu-cases-comma   cases     -- "${STU[@]/small/,}"
@@ -113,7 +114,7 @@ refuse  gen-cmp-rel-junk     rel       -- sweep-compare sweep.h5 sweep.h5 --rel 
 refuse  gen-cmp-rel-missing  rel       -- sweep-compare sweep.h5 sweep.h5 --rel
 refuse  gen-cmp-grid-list64  list      -- sweep-compare sweep.h5 sweep_list64.h5
 refuse  gen-cmp-theta-w      axis      -- sweep-compare sweep.h5 sweep_w.h5
-refuse  gen-cmp-8x8-64x1     n1        -- sweep-compare sweep.h5 sweep_64x1.h5
+refuse  gen-cmp-8x8-64x1     shape     -- sweep-compare sweep.h5 sweep_64x1.h5
 refuse  gen-cmp-unknown      bogus     -- sweep-compare sweep.h5 sweep.h5 --bogus
 succeed gen-cmp-self         -- sweep-compare sweep.h5 sweep.h5
 succeed gen-cmp-rel-first    -- sweep-compare --rel 0.1 sweep.h5 sweep.h5

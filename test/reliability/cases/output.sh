@@ -27,8 +27,15 @@ out_rows() {  # out_rows KEY ARGS...: the same problems for one command
   refuse out-$k-dot           output -- "$@" --output . --force
   refuse out-$k-slash         output -- "$@" --output new.h5/
   refuse out-$k-dir-slash     output -- "$@" --output dir/ --force
-  refuse out-$k-nodir         output -- "$@" --output nodir/x.h5
-  refuse out-$k-nodir-deep    output -- "$@" --output nodir/a/b/x.h5 --force
+  if [ "$k" = stu ]; then
+    # the study creates the missing directories of its output (its default is
+    # out/study/study.h5), after every other check has passed
+    succeed out-$k-nodir              -- "$@" --output nodir/x.h5
+    succeed out-$k-nodir-deep         -- "$@" --output nodir/a/b/x.h5 --force
+  else
+    refuse out-$k-nodir         output -- "$@" --output nodir/x.h5
+    refuse out-$k-nodir-deep    output -- "$@" --output nodir/a/b/x.h5 --force
+  fi
   refuse out-$k-proc          output -- "$@" --output /proc/x.h5
   refuse out-$k-empty         output -- "$@" --output ''
   refuse out-$k-blank         output -- "$@" --output ' '
