@@ -26,7 +26,7 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
-   use dpend_limits, only: int32_sat, in_range, check_range, check_count, check_memory, &
+   use dpend_limits, only: in_range, check_range, check_count, check_memory, &
                            check_disk, &
                            sci, max_time, max_steps, max_samples, max_angle, &
                            max_angular_velocity, min_delta0_relative
@@ -537,7 +537,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'n_renormalisations', size(res%t), &
                                                     error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_tangent_substeps', &
-                                                    int32_sat(res%n_sub), error)
+                                                    res%n_sub, error)
       if (.not. allocated(error) .and. res%k == 4) then
          call h5%writeattr('/', 'pairing_defect', defect14, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'zero_pair_sum', defect23, error)
@@ -550,7 +550,7 @@ contains
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
                 //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
-                //to_str(size(res%t))//' renormalisations, '//to_str(int(integ%n_steps)) &
+                //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
                 //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
                 //to_str(size(res%batches, 2))//' batch means)'//nl
       do i = 1, res%k
@@ -748,7 +748,7 @@ contains
       if (n_found < ch%n_ics) summary = summary//' (of '//to_str(ch%n_ics)// &
                                         ' requested: the shell is thin)'
       summary = summary//', '//to_str(size(res%q))//' section points, '// &
-                to_str(int(res%n_steps))//' steps'
+                to_str(res%n_steps)//' steps'
       if (size(res%q) > 0) summary = summary//'; max |E - E0| / E_s = '// &
                                      es(maxval(abs(res%energy - e))/es_)
       summary = summary//nl//"dpend poincare: wrote '"//cfg%output//"'"
@@ -781,7 +781,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
                                                     energy(cfg%par, cfg%q0, cfg%w0), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
-                                                    int32_sat(integ%n_steps), error)
+                                                    integ%n_steps, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
    end subroutine write_common

@@ -21,7 +21,7 @@ module dpend_config
    implicit none
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
-   public :: check_groups, run_flags_help, check_output_file, namelist_error
+   public :: check_groups, run_flags_help, namelist_error
    public :: check_regular_file
 
    !> Largest configuration file read [bytes].
@@ -578,44 +578,6 @@ contains
       if (stat /= 0) call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
                                       "' is not an integer")
    end subroutine parse_i8
-
-   !> Refuse an output path whose directory is missing or unwritable, or that exists
-   !> without `force`. Creates and removes nothing.
-   subroutine check_output_file(filename, force, error)
-      character(len=*), intent(in) :: filename          !! output path
-      logical, intent(in) :: force                      !! overwrite allowed
-      type(error_t), allocatable, intent(out) :: error  !! why it cannot be written
-      logical :: exists
-      character(len=:), allocatable :: dir
-      integer :: slash, stat, unit
-      if (len_trim(filename) == 0) then
-         call fatal_error(error, 'invalid --output: empty file name')
-         return
-      end if
-      inquire (file=filename, exist=exists)
-      if (exists .and. .not. force) then
-         call fatal_error(error, "invalid --output: '"//filename// &
-                          "' exists (use --force to overwrite)")
-         return
-      end if
-      slash = index(filename, '/', back=.true.)
-      dir = '.'
-      if (slash == 1) dir = '/'
-      if (slash > 1) dir = filename(:slash - 1)
-      inquire (file=dir//'/.', exist=exists)
-      if (.not. exists) then
-         call fatal_error(error, "invalid --output: directory '"//dir//"' does not exist")
-         return
-      end if
-      ! probe with a scratch file of another name: the output itself is not touched
-      open (newunit=unit, file=dir//'/.dpend-write-probe', status='replace', &
-            action='write', iostat=stat)
-      if (stat /= 0) then
-         call fatal_error(error, "invalid --output: directory '"//dir//"' is not writable")
-         return
-      end if
-      close (unit, status='delete')
-   end subroutine check_output_file
 
    !> Help lines for the common flags, with units and the defaults of `cfg`.
    function run_flags_help(cfg) result(s)

@@ -56,8 +56,10 @@ module dpend_hdf5
       procedure, private :: read_i0, read_i1, read_i2, read_i64_1, read_str
       generic :: read => read_r0, read_r1, read_r2, read_r3, &
          read_i0, read_i1, read_i2, read_i64_1, read_str
-      procedure, private :: writeattr_r0, writeattr_r1, writeattr_i0, writeattr_str
-      generic :: writeattr => writeattr_r0, writeattr_r1, writeattr_i0, writeattr_str
+      procedure, private :: writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0
+      procedure, private :: writeattr_str
+      generic :: writeattr => writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0, &
+         writeattr_str
       procedure, private :: readattr_r0, readattr_r1, readattr_i0, readattr_str
       generic :: readattr => readattr_r0, readattr_r1, readattr_i0, readattr_str
       final :: file_finalize
@@ -502,6 +504,17 @@ contains
       call writeattr_raw(self, path, name, int_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
    end subroutine writeattr_i0
+
+   !> Write a 64-bit integer scalar attribute (counts that may pass 2^31 - 1).
+   subroutine writeattr_i64_0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      integer(i8), intent(in), target :: value          !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call writeattr_raw(self, path, name, i64_type(), int(shape(value), hsize_t), &
+         c_loc(value), error)
+   end subroutine writeattr_i64_0
 
    !> Write a fixed-length string attribute on the group or dataset `path`.
    subroutine writeattr_str(self, path, name, value, error)

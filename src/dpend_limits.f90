@@ -25,7 +25,6 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
-   public :: int32_sat
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
    !> product of the model (m l² g … at most eight factors, with the angular
@@ -91,13 +90,6 @@ module dpend_limits
    real(dp), parameter :: min_delta0_relative = 1e-13_dp
 
 contains
-
-   !> A 64-bit counter as a default integer for the HDF5 attributes, saturated at
-   !> 2^31 - 1 instead of wrapping (counts up to `max_steps` exceed it).
-   elemental integer function int32_sat(n)
-      integer(i8), intent(in) :: n  !! the counter
-      int32_sat = int(max(min(n, int(huge(1), i8)), -int(huge(1), i8)))
-   end function int32_sat
 
    !> x is finite and lo <= x <= hi, tested without an ordered comparison on NaN
    !> (which raises IEEE invalid and traps under -ffpe-trap=invalid).

@@ -18,7 +18,7 @@ module dpend_simulate
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config
-   use dpend_limits, only: int32_sat, check_count, check_memory, check_disk, &
+   use dpend_limits, only: check_count, check_memory, check_disk, &
                            max_samples, sci
    use dpend_system, only: available_memory_bytes
    implicit none
@@ -332,8 +332,8 @@ contains
          if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
       end if
       if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
-                                                    int32_sat(integ%n_steps), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', int32_sat(integ%n_rhs), &
+                                                    integ%n_steps, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', integ%n_rhs, &
                                                     error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &

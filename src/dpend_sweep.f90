@@ -490,7 +490,7 @@ contains
          if (.not. allocated(error)) call h5%writeattr('/sweep', 't_end', &
                                                       setup%opt%h*setup%opt%n_steps, error)
          if (.not. allocated(error)) call h5%writeattr('/sweep', 'n_steps', &
-                                                      int(setup%opt%n_steps), error)
+                                                      setup%opt%n_steps, error)
          if (.not. allocated(error)) call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau, &
                                                       error)
          if (.not. allocated(error)) call h5%writeattr('/sweep', 'energy_scale', &
