@@ -9,7 +9,7 @@ module dpend_config
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: pendulum_t, validate, finite_positive
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
-   use dpend_system, only: path_kind, path_missing, path_file, path_directory, path_link, &
+   use dpend_system, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
@@ -17,7 +17,6 @@ module dpend_config
    use dpend_integrator, only: integrator_t
    use dpend_integrators, only: new_integrator
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use, intrinsic :: iso_c_binding, only: c_char, c_long, c_size_t, c_null_char
    implicit none
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
@@ -26,17 +25,6 @@ module dpend_config
 
    !> Largest configuration file read [bytes].
    integer(i8), parameter :: max_config_bytes = 1048576_i8
-
-   interface
-      !> POSIX readlink(2).
-      function c_readlink(path, buf, bufsiz) bind(C, name='readlink') result(r)
-         import :: c_char, c_size_t, c_long
-         character(kind=c_char), intent(in) :: path(*)
-         character(kind=c_char), intent(out) :: buf(*)
-         integer(c_size_t), value :: bufsiz
-         integer(c_long) :: r
-      end function c_readlink
-   end interface
 
    !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
    type :: run_config_t
@@ -93,51 +81,19 @@ contains
          call fatal_error(error, pre//'empty file name')
          return
       end if
-      kind = followed_kind(filename)
+      kind = path_kind(filename, follow=.true.)
       select case (kind)
       case (path_file)
       case (path_missing)
          call fatal_error(error, pre//'no such file')
       case (path_directory)
          call fatal_error(error, pre//'is a directory, not a file')
-      case (path_link)
-         call fatal_error(error, pre//'too many levels of symbolic links')
       case (path_other)
          call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
       case default
          call fatal_error(error, pre//'cannot be examined: '//errno_text(-kind))
       end select
    end subroutine check_regular_file
-
-   !> `path_kind` of the file a path names, following symbolic links (at most 40).
-   integer function followed_kind(path) result(kind)
-      character(len=*), intent(in) :: path  !! the path
-      character(len=:), allocatable :: p, target
-      character(kind=c_char) :: buf(4096)
-      integer(c_long) :: n
-      integer :: hops, k
-      p = path
-      do hops = 1, 40
-         kind = path_kind(p)
-         if (kind /= path_link) return
-         n = c_readlink(p//c_null_char, buf, int(size(buf), c_size_t))
-         if (n < 0 .or. n >= size(buf)) then
-            kind = path_missing
-            return
-         end if
-         allocate (character(len=int(n)) :: target)
-         do k = 1, int(n)
-            target(k:k) = buf(k)
-         end do
-         if (target(1:min(1, len(target))) == '/') then
-            p = target
-         else
-            p = directory_of(p)//'/'//target
-         end if
-         deallocate (target)
-      end do
-      kind = path_link
-   end function followed_kind
 
    !> The whole file as one string (at most max_config_bytes).
    subroutine read_config_bytes(filename, pre, text, error)

@@ -7,6 +7,7 @@ module dpend_export
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
    use dpend_config, only: check_regular_file
+   use dpend_limits, only: sci
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -134,10 +135,10 @@ contains
             end do
          end do
          if (scale < 1.0_dp .and. big > huge(1.0_dp)*scale) then
-            call fatal_error(error, 'invalid SCALE: '//real_text(scale)//" makes the values "// &
+            call fatal_error(error, 'invalid SCALE: '//sci(scale)//" makes the values "// &
                              "of '"//trim(path)//"' exceed the largest real (largest |value| "// &
-                             real_text(big)//'; SCALE must be >= '// &
-                             real_text(big/huge(1.0_dp))//')')
+                             sci(big)//'; SCALE must be >= '// &
+                             sci(big/huge(1.0_dp))//')')
             return
          end if
          where (ieee_is_finite(v)) v = v/scale   ! NaN and Inf stay, without arithmetic
@@ -152,13 +153,4 @@ contains
          write (unit, fmt) row
       end do
    end subroutine export_matrix
-
-   !> Short text of a real number.
-   function real_text(x) result(s)
-      real(dp), intent(in) :: x  !! the number
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es10.3e3)') x
-      s = trim(adjustl(buf))
-   end function real_text
 end module dpend_export

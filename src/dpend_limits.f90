@@ -205,6 +205,11 @@ contains
          s = '0'
          return
       end if
+      if (.not. ieee_is_finite(x)) then   ! NaN, ±Infinity: no comparison with them
+         write (buf, '(g0)') x
+         s = trim(adjustl(buf))
+         return
+      end if
       if (abs(x) >= 1e-3_dp .and. abs(x) < 1e5_dp) then
          write (buf, '(f0.6)') x
          s = fmt_mantissa_text(trim(adjustl(buf)))

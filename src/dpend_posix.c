@@ -19,11 +19,13 @@
 extern char **environ;
 
 /* 0 missing, 1 regular file, 2 directory, 3 symbolic link, 4 anything else
- * (device, FIFO, socket); -errno when lstat fails otherwise. */
-int dpend_path_kind(const char *path)
+ * (device, FIFO, socket); -errno when (l)stat fails otherwise. With `follow`
+ * nonzero, symbolic links are followed (stat), else not (lstat). */
+int dpend_path_kind(const char *path, int follow)
 {
     struct stat st;
-    if (lstat(path, &st) != 0) return errno == ENOENT || errno == ENOTDIR ? 0 : -errno;
+    int r = follow ? stat(path, &st) : lstat(path, &st);
+    if (r != 0) return errno == ENOENT || errno == ENOTDIR ? 0 : -errno;
     if (S_ISREG(st.st_mode)) return 1;
     if (S_ISDIR(st.st_mode)) return 2;
     if (S_ISLNK(st.st_mode)) return 3;

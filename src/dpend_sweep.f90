@@ -997,7 +997,7 @@ contains
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
          'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at']
       if (.not. (rel > 0.0_dp .and. rel <= max_rel)) then
-         call fatal_error(error, 'sweep-compare: invalid --rel: '//real_text(rel)// &
+         call fatal_error(error, 'sweep-compare: invalid --rel: '//sci(rel)// &
                           ' (accepted: > 0 and <= 1000)')
          return
       end if
@@ -1025,8 +1025,8 @@ contains
          end if
       end do
       if (abs(tau - tau_b) > 1e-12_dp*tau) then
-         call refuse('sqrt_l1_over_g = '//real_text(tau)//" s in '"//file_a//"', "// &
-                     real_text(tau_b)//" s in '"//file_b//"' (another time unit)")
+         call refuse('sqrt_l1_over_g = '//sci(tau)//" s in '"//file_a//"', "// &
+                     sci(tau_b)//" s in '"//file_b//"' (another time unit)")
          return
       end if
       bands = [0.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp, huge(1.0_dp)]
@@ -1144,13 +1144,13 @@ contains
                              'differ in size')
          else if (.not. tau_ok(tau)) then
             call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '// &
-                             real_text(tau)//' (accepted: 1e-150 to 1e150 s)')
+                             sci(tau)//' (accepted: 1e-150 to 1e150 s)')
          else
             do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
                if (ieee_is_nan(t(j))) cycle
                if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
                   call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &
-                                   real_text(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
+                                   sci(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
                   exit
                end if
             end do
@@ -1184,15 +1184,6 @@ contains
          v = probe(at:at + eol - 2)
       end if
    end function config_value
-
-   !> Short text of a real number.
-   function real_text(x) result(s)
-      real(dp), intent(in) :: x  !! the number
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es11.4e3)') x
-      s = trim(adjustl(buf))
-   end function real_text
 
 
 end module dpend_sweep

@@ -44,9 +44,10 @@ module dpend_system
          integer(c_int), value :: mode
          integer(c_int) :: r
       end function c_mkdir
-      integer(c_int) function c_path_kind(path) bind(C, name='dpend_path_kind')
+      integer(c_int) function c_path_kind(path, follow) bind(C, name='dpend_path_kind')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: follow
       end function c_path_kind
       integer(c_long_long) function c_free_bytes(path) bind(C, name='dpend_free_bytes')
          import :: c_long_long, c_char
@@ -86,12 +87,17 @@ module dpend_system
 
 contains
 
-   !> What is at `path` (not following a final symbolic link): path_missing,
-   !> path_file, path_directory, path_link or path_other (device, FIFO, socket);
-   !> a negative errno value if it cannot be examined.
-   integer function path_kind(path)
-      character(len=*), intent(in) :: path  !! file path
-      path_kind = int(c_path_kind(path//c_null_char))
+   !> What is at `path`: path_missing, path_file, path_directory, path_link or
+   !> path_other (device, FIFO, socket); a negative errno value if it cannot be
+   !> examined (e.g. a loop of links). A final symbolic link is reported as
+   !> path_link unless `follow` is true, when the file it leads to is examined.
+   integer function path_kind(path, follow)
+      character(len=*), intent(in) :: path           !! file path
+      logical, intent(in), optional :: follow        !! follow symbolic links
+      integer(c_int) :: f
+      f = 0
+      if (present(follow)) f = merge(1, 0, follow)
+      path_kind = int(c_path_kind(path//c_null_char, f))
    end function path_kind
 
    !> Bytes free for an ordinary user on the file system holding `path`, or -1.
