@@ -7,7 +7,7 @@ program dpend
    use dpend_config, only: run_config_t
    use dpend_integrators, only: method_names
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
-   use dpend_version, only: version
+   use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
@@ -229,6 +229,9 @@ contains
          if (index(error%message, 'invalid ') == 1) call fail(2, 'dpend sweep: '//error%message)
          call fail(1, 'dpend sweep: '//error%message)
       end if
+      ! once, after a run that computed (a refusal stays one line)
+      if (summary%blocks_computed > 0 .and. len(slow_build_note()) > 0) &
+         write (error_unit, '(a)') 'dpend sweep: '//slow_build_note()
       if (summary%blocks_computed == 0) then
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
             "' is complete (nothing to compute)"

@@ -1,4 +1,4 @@
-!> The compound double pendulum of the chapter (shared/reference): two uniform
+!> The compound double pendulum of the chapter (docs/physics.md#reference): two uniform
 !> rods on pin joints, angles q1, q2 measured from the horizontal x axis,
 !> counter-clockwise positive, y up, SI units.
 !>
