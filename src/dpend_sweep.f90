@@ -239,13 +239,10 @@ contains
       character(len=4096) :: line
       character(len=:), allocatable :: what
       integer :: unit, stat, n, nline, hash
-      logical :: exists
       what = "invalid ic_file '"//cfg%ic_file//"'"
-      inquire (file=cfg%ic_file, exist=exists)
-      if (.not. exists) then
-         call fatal_error(error, what//': no such file')
-         return
-      end if
+      ! a regular file (a FIFO would block, a directory cannot be read)
+      call check_regular_file(cfg%ic_file, what//': ', error)
+      if (allocated(error)) return
       if (is_hdf5(cfg%ic_file)) then
          call h5%open(cfg%ic_file, 'r', error)
          if (.not. allocated(error)) call h5%shape(cfg%ic_dataset, dims, error)

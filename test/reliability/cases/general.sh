@@ -95,6 +95,10 @@ refuse gen-swp-block-zero    block     -- "${SWP[@]}" --block 0
 succeed gen-swp-threads-zero          -- "${SWP[@]}" --threads 0   # 0: all CPUs
 refuse gen-swp-threads-big   threads   -- "${SWP[@]}" --threads 1025
 refuse gen-swp-angles        angles    -- sweep --ic-file list.txt --t-end 1 --quiet --output g.h5 --ic-angles x
+[ -e "$FIXTURES/ic.fifo" ] || mkfifo "$FIXTURES/ic.fifo"
+refuse gen-swp-ic-fifo       ic_file   -- sweep --ic-file ic.fifo --t-end 1 --quiet --output g.h5
+refuse gen-swp-ic-dir        ic_file   -- sweep --ic-file dir --t-end 1 --quiet --output g.h5
+refuse gen-swp-ic-missing    ic_file   -- sweep --ic-file nope.txt --t-end 1 --quiet --output g.h5
 refuse gen-swp-icfile-none   nothere   -- sweep --ic-file nothere.txt --t-end 1 --quiet --output g.h5
 refuse gen-stu-cases-comma   cases     -- "${STU[@]/small/,}"
 refuse gen-stu-cases-empty   cases     -- study --quick --methods rk4 --cases '' --no-figures --output g.h5
