@@ -56,7 +56,7 @@ set output outdir."/energy_error.png"
 # E(0) = 0 when the scale is not |E(0)| (relative tolerance: the scale is |E(0)| to
 # the last bits when it is one)
 scale_is_E0 = abs(abs(E0) - Escale) <= 1e-9*Escale
-set title sprintf("Energy error |E(t) - E(0)| / E_s, E(0) = %.6g J, E_s = %.6g J%s\n(%s)", E0, Escale, scale_is_E0 ? " = |E(0)|" : " (E(0) ~ 0: V with both links upright)", title)
+set title sprintf("Energy error |E(t) - E(0)| / E_s, E(0) = %.6g J, E_s = %.6g J%s\n(%s)", E0, Escale, scale_is_E0 ? " = |E(0)|" : " (E(0) ≈ 0: V with both links upright)", title)
 set xlabel "t [s]"; set ylabel "relative energy error"
 set logscale y
 set format y "10^{%L}"
