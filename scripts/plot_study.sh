@@ -278,6 +278,7 @@ panels energy_vs_step.png \
   fi
   echo "set output O.'/roundoff.png'"
   if ((${#ro[@]})); then
+    # shellcheck disable=SC2028  # the \n is gnuplot's, inside its string
     echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state;\ndotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
   else
     echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s (Brouwer's law)$note\" font ',13'"
