@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Turn the .h5 of `dpend simulate` into PNG figures:
 #   scripts/plot_simulate.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
-# Writes angles.png, energy_error.png, reactions.png, tip_path.png (each through a
-# temporary file, moved into place once all are drawn: scripts/lib/output.sh).
+# Writes angles.png (unwrapped), angles_wrapped.png (wrapped to (-pi, pi]), phase.png
+# (qdot against wrapped q, one panel per link), energy_error.png, reactions.png,
+# tip_path.png (each through a temporary file, moved into place once all are drawn:
+# scripts/lib/output.sh). Attributes are read at full precision (h5dump -m %.17g).
 # DPEND: the dpend executable to use (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
@@ -17,13 +19,19 @@ if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
 plot_dpend
 plot_tmpdir
 "$dpend" export "$h5" /trajectory/t /trajectory/q /trajectory/energy \
-  /trajectory/F01 /trajectory/F21 /trajectory/rC2 /trajectory/rB > "$tmp/sim.dat"
-method=$(h5dump -a /method "$h5" 2>/dev/null | sed -n 's/.*(0): "\(.*\)".*/\1/p' | head -n1)
-escale=$(h5dump -a /energy_scale "$h5" 2>/dev/null | sed -n 's/.*(0): \([-+0-9.eE]*\).*/\1/p' |
-  head -n1)
+  /trajectory/F01 /trajectory/F21 /trajectory/rC2 /trajectory/rB /trajectory/qdot \
+  > "$tmp/sim.dat"
+# attr NAME: a scalar root attribute, numbers at full precision, strings without quotes
+attr() {
+  h5dump -m %.17g -a "/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *//p' | head -n1 |
+    sed 's/^"\(.*\)"$/\1/' || true
+}
+method=$(attr method)
+escale=$(attr energy_scale)
 plot_number escale "${escale:-1.0}" "the attribute energy_scale of '$1'"
 plot_base name "$1"
 plot_enhanced title "${method:-dpend}, $name"
-plot_begin "$out" angles.png energy_error.png reactions.png tip_path.png
+plot_begin "$out" angles.png angles_wrapped.png phase.png energy_error.png reactions.png \
+  tip_path.png
 plot_run gnuplot -c "$here/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$escale"
-printf 'plot_simulate.sh: wrote %s/{angles,energy_error,reactions,tip_path}.png\n' "$out"
+printf 'plot_simulate.sh: wrote %s/{angles,angles_wrapped,phase,energy_error,reactions,tip_path}.png\n' "$out"

@@ -116,11 +116,13 @@ cell() { awk -v c="$2" -v r="$3" 'NR == r + 1 { print $c }' "$1"; }
 # reference line through row r of a data file: "x0 y0"
 anchor() { awk -v cx="$2" -v cy="$3" -v r="$4" 'NR == r + 1 { print $cx, $cy }' "$1"; }
 
-# a panel with nothing to show (a family or experiment absent from the study)
+# a panel with nothing to show (a family or experiment absent from the study): a grey
+# "not run" and the reason in its middle
 empty_panel() {
-  echo "set label 10 '$1' at graph 0.5, graph 0.5 center; unset logscale; unset key"
+  echo "set label 10 'not run' at graph 0.5, graph 0.56 center font ',20' tc rgb 'gray40'"
+  echo "set label 11 '$1' at graph 0.5, graph 0.46 center tc rgb 'gray40'; unset logscale; unset key"
   echo "unset xtics; unset ytics; set xrange [0:1]; set yrange [0:1]; plot -1 notitle"
-  echo "unset label 10; set logscale xy; set xtics; set ytics; set key; set autoscale"
+  echo "unset label 10; unset label 11; set logscale xy; set xtics; set ytics; set key; set autoscale"
 }
 
 # the generated script: gnuplot -c study.gp DATADIR FIGDIR ORDER_CASE DRIFT_CASE
@@ -221,7 +223,7 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
       fi
       n=$((n + 1))
     done
-    if [[ $n -eq 0 ]]; then empty_panel "no method of this family in the study"; else echo "${plot%,}"; fi
+    if [[ $n -eq 0 ]]; then empty_panel "no method of this family among the methods of this study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; set autoscale x"
 }
@@ -275,7 +277,12 @@ panels energy_vs_step.png \
       END { if (n) printf "set yrange [%g:%g]", lo / 3, hi * 3 }')
   fi
   echo "set output O.'/roundoff.png'"
-  echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state; dotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
+  if ((${#ro[@]})); then
+    # shellcheck disable=SC2028  # the \n is gnuplot's, inside its string
+    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state;\ndotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
+  else
+    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s (Brouwer's law)$note\" font ',13'"
+  fi
   echo "set xlabel 't [s]'; set ylabel 'RMS of (H - H(0)) / E_s'; set key inside left top font ',10'"
   echo "$yr"
   [[ -n "$fit_t" ]] && echo "set arrow 2 from $fit_t, graph 0 to $fit_t, graph 1 nohead dt 2 lc rgb 'gray50'"
@@ -295,7 +302,7 @@ panels energy_vs_step.png \
       plot="$plot (x >= $fit_t ? $y0/2.5*(x/$x0)**0.5 : NaN) w l lw 2 dt 3 lc rgb '${rc[$k]}' notitle,"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then empty_panel "no roundoff runs in the study"; else echo "${plot%,}"; fi
+    if [[ $k -eq 0 ]]; then empty_panel "no roundoff method among the methods of this study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow 2; set autoscale y"
 } >> "$gp"
@@ -305,7 +312,11 @@ panels energy_vs_step.png \
   tao=()
   for m in "${tao_methods[@]}"; do [[ "$m" == none ]] || tao+=("$m"); done
   echo "set output O.'/tao_omega.png'"
-  echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font ',13'"
+  if ((${#tao[@]})); then
+    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font ',13'"
+  else
+    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω$note\" font ',13'"
+  fi
   echo "set xlabel 'ω [1/s]'; set key inside left top font ',10'"
   echo "set arrow 1 from 20, graph 0 to 20, graph 1 nohead dt 2 lc rgb 'gray40'"
   # resonances 2 ω h = 2π k: the binding rotation is the identity
@@ -332,7 +343,7 @@ panels energy_vs_step.png \
       plot="$plot $(df "$f") u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$dt") s, t = $te s',"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then empty_panel "no Tao method in the study"; else echo "${plot%,}"; fi
+    if [[ $k -eq 0 ]]; then empty_panel "no Tao method among the methods of this study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow"
 } >> "$gp"

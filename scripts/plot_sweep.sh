@@ -3,7 +3,9 @@
 #   scripts/plot_sweep.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
 # Writes flip_map.png (first flip of either link, log colour scale in sqrt(l1/g),
 # white: no flip before the end), flip_map_link1.png, flip_map_link2.png,
-# energy_error.png and, if the sweep has it, lyapunov.png. Figures are written
+# energy_error.png and, if the sweep has it, lyapunov.png; on every map the initial
+# conditions not integrated (status 0 or 4: a partial file, a non-finite state) are
+# grey, with a key entry, a colour none of the palettes holds. Figures are written
 # through temporary files and moved into place once drawn (scripts/lib/output.sh).
 # DPEND: the dpend executable (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
@@ -16,7 +18,8 @@ plot_init plot_sweep.sh
 plot_abs h5 "$1"
 if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
 [[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
-attr() { h5dump -a "/sweep/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *"\{0,1\}\([^"]*\)"\{0,1\}.*/\1/p' | head -n1; }
+# a scalar attribute of /sweep, numbers at full precision, strings without quotes
+attr() { h5dump -m %.17g -a "/sweep/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *"\{0,1\}\([^"]*\)"\{0,1\}.*/\1/p' | head -n1; }
 [[ "$(attr initial)" == grid ]] || plot_fail 2 "'$1' is not a grid sweep"
 plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
@@ -31,15 +34,23 @@ ex /sweep/energy_error 1 eerr.dat
 lyap=""
 figures=(flip_map.png flip_map_link1.png flip_map_link2.png energy_error.png)
 if h5dump -H -d /sweep/lyapunov "$h5" >/dev/null 2>&1; then
-  ex /sweep/lyapunov "$(awk -v tau="$tau" 'BEGIN { print 1 / tau }')" lyap.dat   # x tau
+  # in 1/s (sweep.gp multiplies by tau): no SCALE above 1 for `dpend export`
+  "$dpend" export "$h5" --matrix /sweep/lyapunov /sweep/axis1 /sweep/axis2 > "$tmp/lyap.dat"
   lyap="$tmp/lyap.dat"
   figures+=(lyapunov.png)
+fi
+# status of every initial condition: 0 (not computed) and 4 (non-finite) are drawn
+# grey, "not integrated", on every map
+status=""
+if h5dump -H -d /sweep/status "$h5" >/dev/null 2>&1; then
+  ex /sweep/status 1 status.dat
+  status="$tmp/status.dat"
 fi
 plot_base name "$1"
 plot_enhanced name "$name"
 plot_begin "$out" "${figures[@]}"
 # (no-flip pixels are NaN on purpose: gnuplot leaves them white and warns)
 plot_run gnuplot -c "$here/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$ax2" \
-  "$lyap" "$name" 2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
+  "$lyap" "$name" "$status" 2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
 printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \
   "$out" "${lyap:+ and lyapunov.png}"

@@ -14,8 +14,18 @@ set output outfile
 set title sprintf("Poincaré section q_%d = %.4f (mod 2{/Symbol p}), d q_%d/dt %s 0, E = %g J\n%d orbits (%s)", \
     link, angle, link, (dir > 0 ? ">" : (dir < 0 ? "<" : "≷")), E, norb, title)
 set xlabel sprintf("q_%d [rad]", other); set ylabel sprintf("p_%d [kg m^2/s]", other)
-set xrange [-pi:pi]
-set xtics ("-{/Symbol p}" -pi, "-{/Symbol p}/2" -pi/2, "0" 0, "{/Symbol p}/2" pi/2, "{/Symbol p}" pi)
+# Axes fitted to the points with a margin of 4 % of their extent on each side (the angle
+# kept within [-pi, pi], where the section wraps it); multiples of pi/2 as tics when
+# the points span more than pi
+stats dat u 1:2 nooutput
+margin(lo, hi) = 0.04*((hi > lo) ? hi - lo : ((abs(lo) > 0) ? abs(lo) : 1))
+xlo = STATS_min_x - margin(STATS_min_x, STATS_max_x)
+xhi = STATS_max_x + margin(STATS_min_x, STATS_max_x)
+set xrange [(xlo > -pi ? xlo : -pi):(xhi < pi ? xhi : pi)]
+set yrange [STATS_min_y - margin(STATS_min_y, STATS_max_y):STATS_max_y + margin(STATS_min_y, STATS_max_y)]
+if (STATS_max_x - STATS_min_x > pi) {
+  set xtics ("-{/Symbol p}" -pi, "-{/Symbol p}/2" -pi/2, "0" 0, "{/Symbol p}/2" pi/2, "{/Symbol p}" pi)
+}
 set palette defined (0 "#1f77b4", 1 "#2ca02c", 2 "#bcbd22", 3 "#ff7f0e", 4 "#d62728", 5 "#9467bd")
 set cbrange [1:(norb > 1 ? norb : 2)]
 unset colorbox

@@ -1,16 +1,29 @@
 # Maps of one `dpend sweep` grid. Called by scripts/plot_sweep.sh as
-#   gnuplot -c sweep.gp DIR OUTDIR T_END TAU AX1 AX2 LYAP NAME
+#   gnuplot -c sweep.gp DIR OUTDIR T_END TAU AX1 AX2 LYAP NAME STATUS
 # DIR: folder of the exported matrices (gnuplot nonuniform matrix format); OUTDIR:
 # where the PNGs go; T_END: end time [s]; TAU: sqrt(l1/g) [s]; AX1, AX2: axis names;
-# LYAP: Lyapunov matrix file or ''; NAME: file name for the titles (enhanced text,
-# escaped). The arguments are data: never pasted into code.
+# LYAP: Lyapunov matrix file [1/s] or ''; NAME: file name for the titles (enhanced
+# text, escaped); STATUS: status matrix file or '' (0 not computed, 4 non-finite:
+# drawn grey as "not integrated"). The arguments are data: never pasted into code.
 dir = ARG1
 outdir = ARG2
-tend = real(ARG3)/real(ARG4)
+tau = real(ARG4)
+tend = real(ARG3)/tau
 ax1 = ARG5
 ax2 = ARG6
 lyap = ARG7
 name = ARG8
+status = ARG9
+# "not integrated": grey, which none of the palettes below holds (their ends are
+# white, red and near-white), drawn over the map from the status matrix, with a key
+# entry; without a status matrix the NaN pixels of the energy and Lyapunov maps show
+# the grey background instead
+grey = "#8c8c8c"
+ni(s) = (s == 0 || s == 4)
+notint = (strlen(status) > 0) ? \
+  "status nonuniform matrix u 1:2:(140):(140):(140):(ni($3) ? 255 : 0) w rgbalpha notitle, " : ""
+notint = notint."NaN w boxes fs solid 1.0 noborder fc rgb grey t 'not integrated'"
+set key outside bottom center horizontal
 set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
 set size ratio -1
 set tics out
@@ -31,31 +44,32 @@ set cblabel "time of the first flip [{/Symbol \326}(L/g)]"
 
 set output outdir."/flip_map.png"
 set title "First flip of either link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
-plot dir."/flip.dat" nonuniform matrix using 1:2:3 with image notitle
+eval "plot dir.'/flip.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
 
 set output outdir."/flip_map_link1.png"
 set title "First flip of link 1 (white: none)\n".name
-plot dir."/flip1.dat" nonuniform matrix using 1:2:3 with image notitle
+eval "plot dir.'/flip1.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
 
 set output outdir."/flip_map_link2.png"
 set title "First flip of link 2 (white: none)\n".name
-plot dir."/flip2.dat" nonuniform matrix using 1:2:3 with image notitle
+eval "plot dir.'/flip2.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
 
+# NaN here means not integrated: the background is the grey of the key entry
+set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb grey fs solid noborder
 set output outdir."/energy_error.png"
-set title "Maximum energy error |E(t) - E(0)| / (V_{max} - V_{min}) (white: not integrated)\n".name
+set title "Maximum energy error |E(t) - E(0)| / (V_{max} - V_{min})\n".name
 set autoscale cb
 set cblabel "relative energy error"
 set palette rgb 33,13,10
-plot dir."/eerr.dat" nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) \
-     with image notitle
+eval "plot dir.'/eerr.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint
 
 if (strlen(lyap) > 0) {
   set output outdir."/lyapunov.png"
-  set title "Largest Lyapunov exponent (white: not integrated)\n".name
+  set title "Largest Lyapunov exponent\n".name
   unset logscale cb
   set format cb "%g"
   set autoscale cb
   set cblabel "{/Symbol l} [1/{/Symbol \326}(L/g)]"
   set palette rgb 21,22,23
-  plot lyap nonuniform matrix using 1:2:3 with image notitle
+  eval "plot lyap nonuniform matrix using 1:2:($3*tau) with image notitle, ".notint
 }
