@@ -134,12 +134,16 @@ contains
                if (ieee_is_finite(v(i, j))) big = max(big, abs(v(i, j)))
             end do
          end do
-         if (scale < 1.0_dp .and. big > huge(1.0_dp)*scale) then
-            call fatal_error(error, 'invalid SCALE: '//sci(scale)//" makes the values "// &
-                             "of '"//trim(path)//"' exceed the largest real (largest |value| "// &
-                             sci(big)//'; SCALE must be >= '// &
-                             sci(big/huge(1.0_dp))//')')
-            return
+         ! (nested, not `.and.`: Fortran may evaluate both operands, and huge*scale
+         ! overflows for scale > 1)
+         if (scale < 1.0_dp) then
+            if (big > huge(1.0_dp)*scale) then
+               call fatal_error(error, 'invalid SCALE: '//sci(scale)//" makes the values "// &
+                                "of '"//trim(path)//"' exceed the largest real (largest "// &
+                                '|value| '//sci(big)//'; SCALE must be >= '// &
+                                sci(big/huge(1.0_dp))//')')
+               return
+            end if
          end if
          where (ieee_is_finite(v)) v = v/scale   ! NaN and Inf stay, without arithmetic
       end if

@@ -178,6 +178,8 @@ refuse  cfg-exp-scale-subnormal 'SCALE'            -- export sweep.h5 --matrix /
 refuse  cfg-exp-scale-overflow 'SCALE'             -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 1e-307
 refuse  cfg-exp-scale-zero     'SCALE'             -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 0
 refuse  cfg-exp-scale-negative 'SCALE'             -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 -1
+succeed cfg-exp-scale-above-one                    -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 2.5
+succeed cfg-exp-scale-huge                         -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 1e300
 refuse  cfg-exp-scale-nan      'SCALE'             -- export sweep.h5 --matrix /sweep/energy0 /sweep/axis1 /sweep/axis2 nan
 succeed cfg-exp-scale-small    -- export sweep.h5 --matrix /sweep/t_flip /sweep/axis1 /sweep/axis2 1e-300
 succeed cfg-exp-matrix-first   -- export --matrix sweep.h5 /sweep/t_flip
