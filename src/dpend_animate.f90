@@ -208,9 +208,13 @@ contains
          call fatal_error(error, "invalid size: '"//text//"' is not WxH"//rng)
          return
       end if
-      if (verify(text(:x - 1), '0123456789') /= 0 .or. verify(text(x + 1:), '0123456789') /= 0 &
-          .or. x > 6 .or. len(text) - x > 5) then
+      if (verify(text(:x - 1), '0123456789') /= 0 .or. verify(text(x + 1:), '0123456789') /= 0) &
+         then
          call fatal_error(error, "invalid size: '"//text//"' is not WxH"//rng)
+         return
+      end if
+      if (x > 6 .or. len(text) - x > 5) then      ! more than 5 digits: too large to read
+         call fatal_error(error, "invalid size: '"//text//"' is outside 64..4096"//rng)
          return
       end if
       read (text(:x - 1), *) w
