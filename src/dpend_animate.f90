@@ -61,13 +61,15 @@ contains
    function animate_help() result(s)
       character(len=:), allocatable :: s
       s = 'usage: dpend animate FILE.h5 [options]'//nl//nl// &
-          'Animated GIF of the double pendulum from a dpend simulate file, drawn by gnuplot:'//nl// &
-          'both rods, the pins, a fading trail of the tip (the last 1.5 s of simulated'//nl// &
-          'time), the time, equal axis scales fixed at +-(l1 + l2) and a margin.'//nl// &
+          'Animated GIF of the double pendulum from a dpend simulate file, drawn by'//nl// &
+          'gnuplot: both rods, the pins, a fading trail of the tip (the last 1.5 s of'//nl// &
+          'simulated time), the time, equal axis scales fixed at +-(l1 + l2) and a'//nl// &
+          'margin.'//nl//nl// &
           'Frame k (k = 0, 1, ...) shows t = t0 + k*speed/fps, interpolated linearly in'//nl// &
           'the angles between the stored samples (use --output-dt in simulate for'//nl// &
           'exact states). Frames: round(duration*fps), at least 1; without --duration'//nl// &
-          'floor(span*fps/speed) + 1 covering the whole trajectory; at most '// &
+          'floor(span*fps/speed) + 1 covering the whole trajectory (with --overlay the'//nl// &
+          'shorter of the two); at most '// &
           to_str(max_frames)//'.'//nl// &
           'The GIF delay is in 1/100 s: the frame rate played is 100/round(100/fps).'//nl//nl// &
           'options:'//nl// &
