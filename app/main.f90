@@ -17,6 +17,7 @@ program dpend
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
    use dpend_study_output, only: run_study_command
+   use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    implicit none
 
    interface
@@ -54,6 +55,8 @@ program dpend
       call sweep_compare(args(2:))
    case ('study')
       call study(args(2:))
+   case ('animate')
+      call animate(args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -73,6 +76,7 @@ contains
           '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
           '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
+          '  animate    animated GIF of a simulate file (gnuplot): rods, tip trail, time'//nl// &
           '  methods    list the integration methods'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
@@ -139,6 +143,27 @@ contains
          call fail(2, 'dpend study: '//error%message)
       end if
    end subroutine study
+
+   !> `dpend animate FILE.h5 [options]`: an animated GIF through gnuplot.
+   subroutine animate(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(animate_config_t) :: cfg
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: summary
+      logical :: help, failed
+      call parse_animate(sub, cfg, help, error)
+      if (allocated(error)) call fail(2, 'dpend animate: '//error%message)
+      if (help) then
+         write (output_unit, '(a)') animate_help()
+         return
+      end if
+      call run_animate(cfg, summary, error, failed)
+      if (allocated(error)) then
+         if (failed) call fail(1, 'dpend animate: '//error%message)
+         call fail(2, 'dpend animate: '//error%message)
+      end if
+      write (output_unit, '(a)') 'dpend animate: '//summary
+   end subroutine animate
 
    !> `dpend export FILE DATASET...` or `FILE --matrix DATASET [XAXIS YAXIS [SCALE]]`;
    !> --matrix and --help may stand anywhere. Every failure: one line, exit 2.

@@ -12,6 +12,8 @@ step "simulate: the chapter's numerical application (both links horizontal, at r
 mkdir -p out/simulate
 "$d" simulate --config data/simulate.nml --output out/simulate/simulate.h5 --force
 scripts/plot_simulate.sh out/simulate/simulate.h5 out/simulate
+"$d" animate out/simulate/simulate.h5 --output out/simulate/simulate.gif --force \
+  --duration 6 --reactions   # the first 6 s at 25 fps: 150 frames
 
 step "study --quick: energy conservation of every integrator (the full study: dpend study)"
 "$d" study --quick --output out/study/study.h5 --force > /dev/null

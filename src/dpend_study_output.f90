@@ -12,6 +12,7 @@ module dpend_study_output
    use dpend_output, only: output_t, check_output_path
    use dpend_integrator, only: stat_ok
    use dpend_system, only: host_name, cpu_model, executable_path, make_directories, &
+                           find_script, &
                            directory_of, run_program, io_failure_reason
    use dpend_study_config, only: study_config_t, case_index, study_namelist
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
@@ -129,7 +130,7 @@ contains
          failed = .false.
          return
       end if
-      script = plot_script()
+      script = find_script('plot_study.sh')
       fig_dir = directory_of(cfg%output)
       if (len(script) == 0) then
          call fatal_error(error, 'figures not drawn: scripts/plot_study.sh not found (set '// &
@@ -172,32 +173,6 @@ contains
       end if
       path = trim(output)//'.md'
    end function summary_path
-
-   !> scripts/plot_study.sh of the source tree: $DPEND_ROOT, the tree the running
-   !> executable was built in (…/build/…), or ./scripts; '' if none has it.
-   function plot_script() result(path)
-      character(len=:), allocatable :: path
-      character(len=4096) :: root
-      character(len=:), allocatable :: exe
-      integer :: length, stat, b
-      logical :: exists
-      call get_environment_variable('DPEND_ROOT', root, length, stat)
-      if (stat == 0 .and. length > 0) then
-         path = trim(root)//'/scripts/plot_study.sh'
-         inquire (file=path, exist=exists)
-         if (exists) return
-      end if
-      exe = executable_path()
-      b = index(exe, '/build/', back=.true.)
-      if (b > 0) then
-         path = exe(:b - 1)//'/scripts/plot_study.sh'
-         inquire (file=path, exist=exists)
-         if (exists) return
-      end if
-      path = 'scripts/plot_study.sh'
-      inquire (file=path, exist=exists)
-      if (.not. exists) path = ''
-   end function plot_script
 
    ! ================================================================ verdicts
 

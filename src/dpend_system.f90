@@ -13,7 +13,7 @@ module dpend_system
    implicit none
    private
    public :: stderr_is_terminal, executable_path, make_directories, host_name, cpu_model
-   public :: wall_clock, directory_of, base_name
+   public :: wall_clock, directory_of, base_name, find_script
    public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
    public :: free_disk_bytes, available_memory_bytes, make_temp_file, sync_path
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
@@ -247,6 +247,34 @@ contains
          path(i:i) = buf(i)
       end do
    end function executable_path
+
+   !> Path of the file scripts/NAME of the dpend source tree, or '' if not found:
+   !> under $DPEND_ROOT, then above the running executable's build/ directory (fpm
+   !> puts it in ROOT/build/...), then under the current directory.
+   function find_script(name) result(path)
+      character(len=*), intent(in) :: name  !! e.g. 'plot_study.sh'
+      character(len=:), allocatable :: path
+      character(len=4096) :: root
+      character(len=:), allocatable :: exe
+      integer :: length, stat, b
+      logical :: exists
+      call get_environment_variable('DPEND_ROOT', root, length, stat)
+      if (stat == 0 .and. length > 0) then
+         path = trim(root)//'/scripts/'//name
+         inquire (file=path, exist=exists)
+         if (exists) return
+      end if
+      exe = executable_path()
+      b = index(exe, '/build/', back=.true.)
+      if (b > 0) then
+         path = exe(:b - 1)//'/scripts/'//name
+         inquire (file=path, exist=exists)
+         if (exists) return
+      end if
+      path = 'scripts/'//name
+      inquire (file=path, exist=exists)
+      if (.not. exists) path = ''
+   end function find_script
 
    !> The directory part of `path` ('.' when there is none).
    pure function directory_of(path) result(dir)

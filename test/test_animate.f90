@@ -1,0 +1,194 @@
+!> `dpend animate` run as a process: the GIF it writes is parsed block by block
+!> (header, logical screen, extensions, image descriptors, trailer) and its frame
+!> count and size are checked against the options. Skipped when gnuplot is missing.
+module test_animate
+   use testing, only: unittest_t, new_unittest, check_true, error_t, fatal_error
+   use test_cli, only: run_command, scratch_dir, read_text
+   use dpend_cli, only: to_str
+   implicit none
+   private
+   public :: collect_animate, gif_info
+
+contains
+
+   subroutine collect_animate(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [new_unittest('gif_frames_and_size', test_gif), &
+               new_unittest('refused_options', test_refused)]
+   end subroutine collect_animate
+
+   !> Parse the GIF file `path`: logical screen width and height, the number of
+   !> images, and whether it is well formed up to its trailer (`why` says otherwise).
+   subroutine gif_info(path, width, height, frames, why)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: width, height, frames
+      character(len=:), allocatable, intent(out) :: why
+      character(len=1), allocatable :: b(:)
+      integer :: unit, stat, n, p, packed
+      width = 0; height = 0; frames = 0; why = ''
+      open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
+            action='read', iostat=stat)
+      if (stat /= 0) then
+         why = 'cannot open '//path
+         return
+      end if
+      inquire (unit=unit, size=n)
+      allocate (b(n))
+      read (unit, iostat=stat) b
+      close (unit)
+      if (stat /= 0 .or. n < 13) then
+         why = 'short file'
+         return
+      end if
+      if (transfer(b(1:6), repeat(' ', 6)) /= 'GIF89a' .and. &
+          transfer(b(1:6), repeat(' ', 6)) /= 'GIF87a') then
+         why = 'no GIF header'
+         return
+      end if
+      width = u8(7) + 256*u8(8)
+      height = u8(9) + 256*u8(10)
+      packed = u8(11)
+      p = 14                                          ! after the 13-byte header + screen
+      if (iand(packed, 128) /= 0) p = p + 3*2**(iand(packed, 7) + 1)
+      do
+         if (p > n) then
+            why = 'no trailer (0x3B)'
+            return
+         end if
+         select case (u8(p))
+         case (int(z'21'))                           ! extension: label, sub-blocks
+            p = p + 2
+            call skip_blocks()
+         case (int(z'2C'))                           ! image descriptor
+            if (p + 9 > n) exit
+            packed = u8(p + 9)
+            p = p + 10
+            if (iand(packed, 128) /= 0) p = p + 3*2**(iand(packed, 7) + 1)
+            p = p + 1                                 ! LZW minimum code size
+            call skip_blocks()
+            frames = frames + 1
+         case (int(z'3B'))                           ! trailer
+            return
+         case default
+            why = 'unexpected block 0x'//hex(u8(p))//' at byte '//to_str(p - 1)
+            return
+         end select
+         if (len(why) > 0) return
+      end do
+      why = 'truncated image descriptor'
+   contains
+      integer function u8(i)
+         integer, intent(in) :: i
+         u8 = ichar(b(i))
+      end function u8
+      subroutine skip_blocks()
+         do
+            if (p > n) then
+               why = 'truncated sub-blocks'
+               return
+            end if
+            if (u8(p) == 0) then
+               p = p + 1
+               return
+            end if
+            p = p + 1 + u8(p)
+         end do
+      end subroutine skip_blocks
+      function hex(i) result(s)
+         integer, intent(in) :: i
+         character(len=2) :: s
+         write (s, '(z2.2)') i
+      end function hex
+   end subroutine gif_info
+
+   logical function have_gnuplot()
+      integer :: stat
+      call execute_command_line('command -v gnuplot > /dev/null 2>&1', exitstat=stat)
+      have_gnuplot = stat == 0
+   end function have_gnuplot
+
+   !> Run animate with options and check the GIF's frame count and size.
+   subroutine expect_gif(error, dir, options, name, frames, width, height)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: dir, options, name
+      integer, intent(in) :: frames, width, height
+      integer :: stat, w, h, k, n
+      character(len=:), allocatable :: why, text
+      if (allocated(error)) return
+      stat = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir//'/'//name// &
+                         ' '//options)
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 0, '['//options//'] exit status 0, got '// &
+                      to_str(stat)//': '//text)
+      if (allocated(error)) return
+      call gif_info(dir//'/'//name, w, h, k, why)
+      call check_true(error, len(why) == 0, '['//options//'] well-formed GIF: '//why)
+      call check_true(error, k == frames, '['//options//'] '//to_str(frames)// &
+                      ' frames, got '//to_str(k))
+      call check_true(error, w == width .and. h == height, '['//options//'] size '// &
+                      to_str(width)//'x'//to_str(height)//', got '//to_str(w)//'x'//to_str(h))
+   end subroutine expect_gif
+
+   subroutine test_gif(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      integer :: stat
+      if (.not. have_gnuplot()) then
+         print '(a)', '       note: gnuplot not found, animate/gif_frames_and_size skipped'
+         return
+      end if
+      dir = scratch_dir('animate')
+      ! 101 samples over 1 s
+      stat = run_command(dir, 'simulate --t-end 1 --dt 1e-3 --save-every 10 --output '// &
+                         dir//'/sim.h5')
+      call check_true(error, stat == 0, 'simulate for animate')
+      if (allocated(error)) return
+      ! fps × duration frames: 10 × 0.8 = 8
+      call expect_gif(error, dir, '--fps 10 --duration 0.8 --size 200x150', 'a.gif', 8, &
+                      200, 150)
+      ! slowed playback: 10 × 1.5 = 15 frames at t = 0, 0.05, ..., 0.7 s, with arrows
+      call expect_gif(error, dir, '--fps 10 --duration 1.5 --speed 0.5 --size 96x64 '// &
+                      '--reactions', 'b.gif', 15, 96, 64)
+      ! the whole trajectory: floor(1 s × 5 fps / speed 1) + 1 = 6 frames, default size
+      call expect_gif(error, dir, '--fps 5', 'c.gif', 6, 640, 640)
+      ! an overlay and PNG frames
+      call expect_gif(error, dir, '--fps 4 --overlay '//dir//'/sim.h5 --size 128x128 '// &
+                      '--frames '//dir, 'd.gif', 5, 128, 128)
+      block
+         logical :: exists
+         inquire (file=dir//'/frame_0005.png', exist=exists)
+         call check_true(error, exists, 'PNG frame 5 written')
+         inquire (file=dir//'/frame_0006.png', exist=exists)
+         call check_true(error, .not. exists, 'no PNG frame 6')
+      end block
+   end subroutine test_gif
+
+   !> Refused values: exit 2, one line, no GIF.
+   subroutine test_refused(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      integer :: stat
+      dir = scratch_dir('animate-bad')
+      stat = run_command(dir, 'simulate --t-end 0.1 --output '//dir//'/sim.h5')
+      call check_true(error, stat == 0, 'simulate for animate')
+      call refused('--fps 0', 'invalid fps')
+      call refused('--fps 101', 'invalid fps')
+      call refused('--size 10x10', 'invalid size')
+      call refused('--speed 0', 'invalid speed')
+      call refused('--duration 1000', 'invalid duration')
+   contains
+      subroutine refused(options, needle)
+         character(len=*), intent(in) :: options, needle
+         character(len=:), allocatable :: text
+         integer :: st, n
+         logical :: exists
+         if (allocated(error)) return
+         st = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir//'/x.gif '//options)
+         call read_text(dir//'/stderr', text, n)
+         inquire (file=dir//'/x.gif', exist=exists)
+         call check_true(error, st == 2 .and. n == 1 .and. index(text, needle) > 0 .and. &
+                         .not. exists, '['//options//'] refused with "'//needle//'": '// &
+                         to_str(st)//' '//text)
+      end subroutine refused
+   end subroutine test_refused
+end module test_animate
