@@ -12,7 +12,8 @@ program dpend
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
-   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str
+   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
+                        real_str
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
@@ -157,7 +158,7 @@ contains
               'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
               'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
               'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE'//nl// &
-              '(SCALE > 0, at least 2.2250738585072014E-308).'
+              '(SCALE > 0, at least '//real_str(tiny(1.0_dp))//').'
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') usage
          return
@@ -189,7 +190,7 @@ contains
             call parse_real(pos(5)%s, 'SCALE', scale, error)
             if (allocated(error)) call fail(2, 'dpend export: '//error%message)
             if (.not. (scale >= tiny(1.0_dp))) call fail(2, 'dpend export: invalid SCALE: '// &
-               pos(5)%s//' (accepted: a number >= 2.2250738585072014E-308)')
+               pos(5)%s//' (accepted: a number >= '//real_str(tiny(1.0_dp))//')')
             call export_matrix(pos(1)%s, pos(2)%s, output_unit, error, pos(3)%s, &
                                pos(4)%s, scale)
          case default
