@@ -11,7 +11,7 @@ program dpend
    use dpend_export, only: export_columns, export_matrix
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
-   use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
+   use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
                         real_str
    use dpend_kinds, only: dp
@@ -86,18 +86,20 @@ contains
       type(run_config_t) :: cfg
       type(error_t), allocatable :: error
       logical :: help, failed
+      character(len=:), allocatable :: summary
       call parse_simulate(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend simulate: '//error%message)
       if (help) then
          write (output_unit, '(a)') simulate_help()
          return
       end if
-      call run_simulate(cfg, error, failed)
+      call run_simulate(cfg, error, failed, summary)
       if (allocated(error)) then
          if (failed) call fail(1, 'dpend simulate: '//error%message)
          call fail(2, 'dpend simulate: '//error%message)
       end if
       write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
+      if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
    !> The chaos commands: lyapunov, divergence, poincare.
@@ -217,7 +219,6 @@ contains
       type(sweep_summary_t) :: summary
       type(error_t), allocatable :: error
       logical :: help
-      character(len=200) :: line
       call parse_sweep(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend sweep: '//error%message)
       if (help) then
@@ -234,11 +235,8 @@ contains
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
             "' is complete (nothing to compute)"
       else
-         write (line, '(i0, " initial conditions computed (", i0, " below the flip '// &
-                'energy bound) in ", f0.1, " s, ", es9.3, " per second")') &
-            summary%computed, summary%skipped, summary%seconds, &
-            real(summary%computed, dp)/max(summary%seconds, 1e-9_dp)
-         write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "//trim(line)
+         write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "// &
+            summary_text(summary)
       end if
    end subroutine sweep
 

@@ -7,7 +7,7 @@ module dpend_cli
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
-   public :: real_str, to_str, scan_help_config, option_outcome, is_long_option
+   public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
 
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
@@ -237,6 +237,20 @@ contains
          end if
       end function decimal
    end function real_str
+
+   !> A duration for people, from `real_str`: two significant digits below 1 s
+   !> (0.4, 0.043), one decimal above (2.5, 12.3, 1234.5); never '.4'.
+   pure function seconds_str(t) result(s)
+      real(dp), intent(in) :: t  !! seconds
+      character(len=:), allocatable :: s
+      if (.not. ieee_is_finite(t)) then
+         s = real_str(t)
+      else if (abs(t) < 1.0_dp) then
+         s = real_str(t, 2)
+      else
+         s = real_str(t, min(17, floor(log10(abs(t))) + 2))
+      end if
+   end function seconds_str
 
    pure function int_str(i) result(s)
       integer, intent(in) :: i  !! the number
