@@ -5,7 +5,8 @@ program dpend
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, get_arguments
    use dpend_config, only: run_config_t
-   use dpend_integrators, only: method_names
+   use dpend_integrators, only: method_names, new_integrator
+   use dpend_integrator, only: integrator_t
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version
    use dpend_export, only: export_columns, export_matrix
@@ -42,7 +43,7 @@ program dpend
    case ('--version', 'version')
       write (output_unit, '(a)') 'dpend '//version
    case ('methods')
-      write (output_unit, '(a)') method_names
+      call methods(args(2:))
    case ('simulate')
       call simulate(args(2:))
    case ('export')
@@ -74,7 +75,7 @@ contains
           '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
           '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
-          '  methods    list the integration methods'//nl// &
+          '  methods    the integration methods: order, properties, commands'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q1 = q2 = -pi/2).'//nl// &
@@ -142,6 +143,75 @@ contains
          call fail(2, 'dpend study: '//error%message)
       end if
    end subroutine study
+
+   !> `dpend methods`: one row per method with the facts of its integrator object
+   !> (name, variables, order, properties); `--names`: the names on one line.
+   subroutine methods(sub)
+      type(arg_t), intent(in) :: sub(:)
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: rest, name, props, commands
+      character(len=*), parameter :: all = 'simulate lyapunov divergence poincare study'
+      character(len=16) :: cell
+      integer :: i, k
+      logical :: names_only
+      names_only = .false.
+      do i = 1, size(sub)
+         select case (sub(i)%s)
+         case ('-h', '--help')
+            write (output_unit, '(a)') 'usage: dpend methods [--names]'//nl//nl// &
+               'The integration methods of --method: variables advanced ((q, qdot) or'//nl// &
+               'canonical (q, p)), classical order, properties and the commands that'//nl// &
+               'accept them. --names prints only the names, on one line (for scripts).'
+            return
+         case ('--names')
+            names_only = .true.
+         case default
+            if (is_long_option(sub(i)%s)) then
+               call fail(2, "dpend methods: unknown option '"//sub(i)%s// &
+                         "' (dpend methods --help lists the options)")
+            end if
+            call fail(2, "dpend methods: unexpected argument '"//sub(i)%s// &
+                      "' (dpend methods --help)")
+         end select
+      end do
+      if (names_only) then
+         write (output_unit, '(a)') method_names
+         return
+      end if
+      write (output_unit, '(a)') 'method    variables  order  properties' &
+         //'                        commands'
+      rest = method_names//' '
+      do while (len_trim(rest) > 0)
+         rest = adjustl(rest)
+         k = index(rest, ' ')
+         name = rest(:k - 1)
+         rest = rest(k + 1:)
+         call new_integrator(name, integ, error)
+         if (allocated(error)) call fail(1, 'dpend methods: '//error%message)
+         props = trim(merge('implicit', 'explicit', integ%implicit()))
+         if (integ%adaptive()) props = props//', adaptive'
+         if (integ%symplectic()) props = props//', symplectic'
+         if (integ%symmetric()) props = props//', symmetric'
+         cell = integ%name()
+         commands = all
+         if (integ%name() == 'rk4') commands = all//' sweep'
+         write (output_unit, '(a)') cell(:10)//pad(merge('(q, p)   ', '(q, qdot)', &
+            integ%canonical()), 11)//pad(to_str(integ%order()), 7)//pad(props, 34)// &
+            commands
+         deallocate (integ)
+      end do
+      write (output_unit, '(a)') nl//'sweep accepts only rk4: it integrates with its own '// &
+         'vectorised batch rk4 (dpend sweep --help).'
+   end subroutine methods
+
+   !> `text` padded with blanks to `width` columns (at least one blank).
+   function pad(text, width) result(t)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: width
+      character(len=:), allocatable :: t
+      t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
+   end function pad
 
    !> `dpend export FILE DATASET...` or `FILE --matrix DATASET [XAXIS YAXIS [SCALE]]`;
    !> --matrix and --help may stand anywhere. Every failure: one line, exit 2.
