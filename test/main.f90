@@ -13,6 +13,7 @@ program tester
    use test_sweep, only: collect_sweep
    use test_study, only: collect_study
    use test_limits, only: collect_limits
+   use test_messages, only: collect_messages
    implicit none
 
    type :: suite_t
@@ -25,7 +26,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(9))
+   allocate (suites(10))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -35,6 +36,7 @@ program tester
    suites(7)%name = 'sweep'; call collect_sweep(suites(7)%tests)
    suites(8)%name = 'study'; call collect_study(suites(8)%tests)
    suites(9)%name = 'limits'; call collect_limits(suites(9)%tests)
+   suites(10)%name = 'messages'; call collect_messages(suites(10)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
