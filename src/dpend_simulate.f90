@@ -244,7 +244,7 @@ contains
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
                if (traj%n >= cap) then
                   traj%status = 'kept samples reached '//sci(real(cap, dp))// &
-                                ' (memory limit) after t = '//sci(t)// &
+                                ' (memory limit) after t = '//sci(t, 6)// &
                                 ' s; use a larger --save-every or --output-dt'
                   exit
                end if
@@ -253,7 +253,7 @@ contains
          end do
       end if
       if (stat /= stat_ok) then
-         traj%status = status_message(stat)//' after t = '//sci(t)//' s'
+         traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
       end if
    end subroutine integrate_trajectory
 
