@@ -971,13 +971,29 @@ contains
          a = ra(:ia - 1)
          b = rb(:ib - 1)
          if (a /= b) then
-            s = a//' here, '//b//' in the file'
+            s = readable(a)//' here, '//readable(b)//' in the file'
             return
          end if
          ra = ra(ia + 1:)
          rb = rb(ib + 1:)
       end do
       s = 'the configurations differ'
+   contains
+      !> 'key = value' with a stored real (es24.16e3, kept so that older files still
+      !> compare equal) shown as real_str shows it: 't_end = 6'.
+      function readable(line) result(t)
+         character(len=*), intent(in) :: line
+         character(len=:), allocatable :: t
+         real(dp) :: x
+         integer :: eq, stat
+         t = line
+         eq = index(line, ' = ')
+         if (eq == 0) return
+         if (index(line(eq + 3:), 'E') == 0) return
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-') /= 0) return
+         read (line(eq + 3:), *, iostat=stat) x
+         if (stat == 0) t = line(:eq + 2)//real_str(x)
+      end function readable
    end function first_difference
 
    ! ----------------------------------------------------------- compare ---
