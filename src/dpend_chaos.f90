@@ -124,7 +124,8 @@ contains
           '                    (namelist group &chaos holds the settings below)'//nl
       select case (command)
       case ('lyapunov')
-         s = s//'  --tau S           renormalisation (QR) interval; default '//real_str(ch%tau)//nl// &
+         s = s//'  --tau S           renormalisation (QR) interval; default ' &
+             //real_str(ch%tau)//nl// &
              '  --vectors K       exponents computed, 1 (largest) to 4; default ' &
              //to_str(ch%vectors)//nl// &
              '  --batches N       time segments for the spread (standard error of the'//nl// &
