@@ -5,14 +5,16 @@ program dpend
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, get_arguments
    use dpend_config, only: run_config_t
-   use dpend_integrators, only: method_names
+   use dpend_integrators, only: method_names, new_integrator
+   use dpend_integrator, only: integrator_t
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
-   use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps
-   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str
+   use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
+   use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
+                        real_str
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
@@ -42,7 +44,7 @@ program dpend
    case ('--version', 'version')
       write (output_unit, '(a)') 'dpend '//version
    case ('methods')
-      write (output_unit, '(a)') method_names
+      call methods(args(2:))
    case ('simulate')
       call simulate(args(2:))
    case ('export')
@@ -77,7 +79,7 @@ contains
           '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  animate    animated GIF of a simulate file (gnuplot): rods, tip trail, time'//nl// &
-          '  methods    list the integration methods'//nl// &
+          '  methods    the integration methods: order, properties, commands'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q1 = q2 = -pi/2).'//nl// &
@@ -89,18 +91,20 @@ contains
       type(run_config_t) :: cfg
       type(error_t), allocatable :: error
       logical :: help, failed
+      character(len=:), allocatable :: summary
       call parse_simulate(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend simulate: '//error%message)
       if (help) then
          write (output_unit, '(a)') simulate_help()
          return
       end if
-      call run_simulate(cfg, error, failed)
+      call run_simulate(cfg, error, failed, summary)
       if (allocated(error)) then
          if (failed) call fail(1, 'dpend simulate: '//error%message)
          call fail(2, 'dpend simulate: '//error%message)
       end if
       write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
+      if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
    !> The chaos commands: lyapunov, divergence, poincare.
@@ -165,6 +169,75 @@ contains
       write (output_unit, '(a)') 'dpend animate: '//summary
    end subroutine animate
 
+   !> `dpend methods`: one row per method with the facts of its integrator object
+   !> (name, variables, order, properties); `--names`: the names on one line.
+   subroutine methods(sub)
+      type(arg_t), intent(in) :: sub(:)
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: rest, name, props, commands
+      character(len=*), parameter :: all = 'simulate lyapunov divergence poincare study'
+      character(len=16) :: cell
+      integer :: i, k
+      logical :: names_only
+      names_only = .false.
+      do i = 1, size(sub)
+         select case (sub(i)%s)
+         case ('-h', '--help')
+            write (output_unit, '(a)') 'usage: dpend methods [--names]'//nl//nl// &
+               'The integration methods of --method: variables advanced ((q, qdot) or'//nl// &
+               'canonical (q, p)), classical order, properties and the commands that'//nl// &
+               'accept them. --names prints only the names, on one line (for scripts).'
+            return
+         case ('--names')
+            names_only = .true.
+         case default
+            if (is_long_option(sub(i)%s)) then
+               call fail(2, "dpend methods: unknown option '"//sub(i)%s// &
+                         "' (dpend methods --help lists the options)")
+            end if
+            call fail(2, "dpend methods: unexpected argument '"//sub(i)%s// &
+                      "' (dpend methods --help)")
+         end select
+      end do
+      if (names_only) then
+         write (output_unit, '(a)') method_names
+         return
+      end if
+      write (output_unit, '(a)') 'method    variables  order  properties' &
+         //'                        commands'
+      rest = method_names//' '
+      do while (len_trim(rest) > 0)
+         rest = adjustl(rest)
+         k = index(rest, ' ')
+         name = rest(:k - 1)
+         rest = rest(k + 1:)
+         call new_integrator(name, integ, error)
+         if (allocated(error)) call fail(1, 'dpend methods: '//error%message)
+         props = trim(merge('implicit', 'explicit', integ%implicit()))
+         if (integ%adaptive()) props = props//', adaptive'
+         if (integ%symplectic()) props = props//', symplectic'
+         if (integ%symmetric()) props = props//', symmetric'
+         cell = integ%name()
+         commands = all
+         if (integ%name() == 'rk4') commands = all//' sweep'
+         write (output_unit, '(a)') cell(:10)//pad(merge('(q, p)   ', '(q, qdot)', &
+            integ%canonical()), 11)//pad(to_str(integ%order()), 7)//pad(props, 34)// &
+            commands
+         deallocate (integ)
+      end do
+      write (output_unit, '(a)') nl//'sweep accepts only rk4: it integrates with its own '// &
+         'vectorised batch rk4 (dpend sweep --help).'
+   end subroutine methods
+
+   !> `text` padded with blanks to `width` columns (at least one blank).
+   function pad(text, width) result(t)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: width
+      character(len=:), allocatable :: t
+      t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
+   end function pad
+
    !> `dpend export FILE DATASET...` or `FILE --matrix DATASET [XAXIS YAXIS [SCALE]]`;
    !> --matrix and --help may stand anywhere. Every failure: one line, exit 2.
    subroutine export(sub)
@@ -182,7 +255,7 @@ contains
               'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
               'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
               'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE'//nl// &
-              '(SCALE > 0, at least 2.2250738585072014E-308).'
+              '(SCALE > 0, at least '//real_str(tiny(1.0_dp))//').'
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') usage
          return
@@ -214,7 +287,7 @@ contains
             call parse_real(pos(5)%s, 'SCALE', scale, error)
             if (allocated(error)) call fail(2, 'dpend export: '//error%message)
             if (.not. (scale >= tiny(1.0_dp))) call fail(2, 'dpend export: invalid SCALE: '// &
-               pos(5)%s//' (accepted: a number >= 2.2250738585072014E-308)')
+               pos(5)%s//' (accepted: a number >= '//real_str(tiny(1.0_dp))//')')
             call export_matrix(pos(1)%s, pos(2)%s, output_unit, error, pos(3)%s, &
                                pos(4)%s, scale)
          case default
@@ -241,7 +314,6 @@ contains
       type(sweep_summary_t) :: summary
       type(error_t), allocatable :: error
       logical :: help
-      character(len=200) :: line
       call parse_sweep(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend sweep: '//error%message)
       if (help) then
@@ -254,18 +326,15 @@ contains
          if (index(error%message, 'invalid ') == 1) call fail(2, 'dpend sweep: '//error%message)
          call fail(1, 'dpend sweep: '//error%message)
       end if
-      ! once, after a run that computed (a refusal stays one line)
-      if (summary%blocks_computed > 0 .and. len(slow_build_note()) > 0) &
+      ! once, after a run that computed (a refusal stays one line); not with --quiet
+      if (summary%blocks_computed > 0 .and. .not. cfg%quiet .and. len(slow_build_note()) > 0) &
          write (error_unit, '(a)') 'dpend sweep: '//slow_build_note()
       if (summary%blocks_computed == 0) then
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
             "' is complete (nothing to compute)"
       else
-         write (line, '(i0, " initial conditions computed (", i0, " below the flip '// &
-                'energy bound) in ", f0.1, " s, ", es9.3, " per second")') &
-            summary%computed, summary%skipped, summary%seconds, &
-            real(summary%computed, dp)/max(summary%seconds, 1e-9_dp)
-         write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "//trim(line)
+         write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "// &
+            summary_text(summary)
       end if
    end subroutine sweep
 

@@ -25,7 +25,7 @@ module dpend_chaos
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
-   use dpend_cli, only: scan_help_config
+   use dpend_cli, only: scan_help_config, real_str
    use dpend_limits, only: in_range, check_range, check_count, check_memory, &
                            check_disk, &
                            sci, max_time, max_steps, max_samples, max_angle, &
@@ -120,34 +120,32 @@ contains
       end select
       s = s//nl//'Output: HDF5 (docs/hdf5-layout.md); figures: scripts/plot_chaos.sh FILE.h5'// &
           nl//nl//'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
-          run_flags_help(cfg)//nl// &
+          run_flags_help(cfg, t_end_text(command))//nl// &
           '                    (namelist group &chaos holds the settings below)'//nl
       select case (command)
       case ('lyapunov')
-         s = s//'  --tau S           renormalisation (QR) interval; default '//num(ch%tau)//nl// &
+         s = s//'  --tau S           renormalisation (QR) interval; default ' &
+             //real_str(ch%tau)//nl// &
              '  --vectors K       exponents computed, 1 (largest) to 4; default ' &
              //to_str(ch%vectors)//nl// &
              '  --batches N       time segments for the spread (standard error of the'//nl// &
              '                    segment exponents); default '//to_str(ch%batches)//nl
       case ('divergence')
-         s = s//'  --t-end S         duration of each pair; default '//num(cfg%t_end)//nl// &
-             '  --output-dt S     sampling interval of |delta|; default ' &
-             //num(cfg%output_dt)//nl// &
+         s = s//'  --output-dt S     sampling interval of |delta|; default ' &
+             //real_str(cfg%output_dt)//nl// &
              '  --delta0 D        initial distance in (q, w) [rad, rad/s]; default ' &
-             //num(ch%delta0)//nl// &
+             //real_str(ch%delta0)//nl// &
              '  --same-energy     put the partner on the energy surface of the reference'//nl// &
              '  --pairs N         pairs averaged; pair k starts at t = (k-1)*spacing on the'//nl// &
              '                    orbit of the initial state; default '//to_str(ch%pairs)//nl// &
              '  --pair-spacing S  time between pair starts; default ' &
-             //num(ch%pair_spacing)//nl// &
+             //real_str(ch%pair_spacing)//nl// &
              '  --fit-start S, --fit-end S  fit window; default automatic (from 1 decade'//nl// &
              '                    above delta0 to 1.5 decades below saturation)'//nl// &
              '  --lyapunov-t S    duration of the Benettin run reported beside (0: none);' &
-             //nl//'                    default '//num(ch%lyapunov_t)//nl
+             //nl//'                    default '//real_str(ch%lyapunov_t)//nl
       case default
-         s = s//'  --t-end S         longest integration of each orbit; default ' &
-             //num(cfg%t_end)//nl// &
-             '  --energy J        energy of the section; default: that of the initial state' &
+         s = s//'  --energy J        energy of the section; default: that of the initial state' &
              //nl//'                    (--q1 --q2 --w1 --w2; 0 J = both links horizontal' &
              //' at rest)'//nl//'  --ics N           orbits; default '//to_str(ch%n_ics)//nl// &
              '  --points N        most section points per orbit; default ' &
@@ -155,13 +153,24 @@ contains
              '  --section-link L  link whose angle defines the section, 1 or 2; default ' &
              //to_str(ch%section_link)//nl// &
              '  --section-angle A section angle (mod 2 pi); default '// &
-             num(ch%section_angle)//nl// &
+             real_str(ch%section_angle)//nl// &
              '  --section-direction D  +1: crossing with w_L > 0, -1: w_L < 0, 0: both;' &
              //' default '//to_str(ch%section_direction)//nl
       end select
       s = s//'  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
           '  -h, --help        this text'
+   contains
+      !> What --t-end means for the command.
+      function t_end_text(command) result(t)
+         character(len=*), intent(in) :: command
+         character(len=:), allocatable :: t
+         select case (command)
+         case ('divergence'); t = 'duration of each pair'
+         case ('poincare'); t = 'longest integration of each orbit'
+         case default; t = 'end time'
+         end select
+      end function t_end_text
    end function chaos_help
 
    !> Read the group &chaos of `filename` into `ch` (absent group: unchanged).
@@ -822,27 +831,7 @@ contains
    pure function num(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
-      character(len=32) :: buf
-      integer :: e
-      if (x == 0.0_dp) then
-         s = '0'
-      else if (abs(x) >= 1e-3_dp .and. abs(x) < 1e6_dp) then
-         write (buf, '(f0.6)') x
-         s = trim(adjustl(buf))
-         e = len(s)
-         do while (s(e:e) == '0')
-            e = e - 1
-         end do
-         if (s(e:e) == '.') e = e - 1
-         s = s(:e)
-         if (s(1:1) == '.') s = '0'//s
-         if (len(s) >= 2) then
-            if (s(1:2) == '-.') s = '-0'//s(2:)
-         end if
-      else
-         write (buf, '(es13.6)') x
-         s = trim(adjustl(buf))
-      end if
+      s = real_str(x, 6)
    end function num
 
    pure function pick(cond, a, b) result(s)

@@ -536,14 +536,19 @@ contains
    end subroutine parse_i8
 
    !> Help lines for the common flags, with units and the defaults of `cfg`.
-   function run_flags_help(cfg) result(s)
+   function run_flags_help(cfg, t_end_text) result(s)
       type(run_config_t), intent(in) :: cfg  !! defaults to show
+      character(len=*), intent(in), optional :: t_end_text  !! what --t-end means, if not
+                                                            !! 'end time'
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
+      character(len=:), allocatable :: t_end_line
+      t_end_line = 'end time'
+      if (present(t_end_text)) t_end_line = t_end_text
       s = '  --config FILE     Fortran namelist file (groups &pendulum &initial &integration' &
           //nl//'                    &output; see data/*.nml); flags below override it'//nl// &
           '  --q1, --q2 RAD    initial angles from the horizontal x axis, counter-clockwise' &
-          //nl//'                    (hanging: -1.5707963); default '//real_str(cfg%q0(1))//', ' &
+          //nl//'                    (hanging: -pi/2); default '//real_str(cfg%q0(1))//', ' &
           //real_str(cfg%q0(2))//nl// &
           '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
           //real_str(cfg%w0(2))//nl// &
@@ -556,7 +561,7 @@ contains
           '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &
-          '  --t-end S         end time; default '//real_str(cfg%t_end)//nl// &
+          '  --t-end S         '//t_end_line//'; default '//real_str(cfg%t_end)//nl// &
           '  --rtol, --atol    tolerances of the adaptive methods; default '//real_str(cfg%rtol) &
           //', '//real_str(cfg%atol)//nl// &
           "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &

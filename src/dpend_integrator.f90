@@ -62,6 +62,8 @@ module dpend_integrator
       procedure :: symplectic => false_property
       procedure :: symmetric => false_property
       procedure :: adaptive => false_property
+      !> Whether a step solves equations (fixed-point iterations, counted in n_iter).
+      procedure :: implicit => false_property
       procedure :: canonical => false_property
       procedure :: reset_counters
       procedure :: rhs

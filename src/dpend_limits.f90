@@ -17,6 +17,8 @@ module dpend_limits
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_system, only: available_memory_bytes, free_disk_bytes, directory_of
+   !> `sci` is the one number formatter of dpend_cli under the name the messages use
+   use dpend_cli, only: sci => real_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -176,7 +178,8 @@ contains
                        ' free on its file system ('//hint//')')
    end subroutine check_disk
 
-   !> a/b for a, b > 0 as text, without forming the quotient when it would overflow.
+   !> a/b for a, b > 0 as text (4 significant digits), without forming the quotient
+   !> when it would overflow.
    function ratio_text(a, b) result(s)
       real(dp), intent(in) :: a, b
       character(len=:), allocatable :: s
@@ -188,50 +191,18 @@ contains
       end if
       l = log10(a) - log10(b)
       if (l < 300.0_dp) then
-         s = sci(10.0_dp**l)
+         s = sci(10.0_dp**l, 4)
       else
          e = floor(l)
-         s = fmt_mantissa(10.0_dp**(l - real(e, dp)))//'e'//itoa(e)
+         s = sci(10.0_dp**(l - real(e, dp)), 4)//'e'//sci(real(e, dp))
       end if
    end function ratio_text
 
-   !> Compact scientific text of x: '1e-19', '2.5e+06', '0', '10'.
-   function sci(x) result(s)
-      real(dp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      integer :: e
-      if (x == 0.0_dp) then
-         s = '0'
-         return
-      end if
-      if (.not. ieee_is_finite(x)) then   ! NaN, ±Infinity: no comparison with them
-         write (buf, '(g0)') x
-         s = trim(adjustl(buf))
-         return
-      end if
-      if (abs(x) >= 1e-3_dp .and. abs(x) < 1e5_dp) then
-         write (buf, '(f0.6)') x
-         s = fmt_mantissa_text(trim(adjustl(buf)))
-         if (s(1:1) == '.') s = '0'//s
-         if (len(s) >= 2) then
-            if (s(1:2) == '-.') s = '-0'//s(2:)
-         end if
-         return
-      end if
-      write (buf, '(es12.4e3)') x
-      s = trim(adjustl(buf))
-      e = index(s, 'E')
-      ! strip trailing zeros of the mantissa
-      s = fmt_mantissa_text(s(:e - 1))//'e'//itoa(exponent_of(s(e + 1:)))
-   end function sci
-
-   !> "12.3 GB" style text of a byte count.
+   !> "12.3 GB" style text of a byte count (3 significant digits).
    function bytes_text(b) result(s)
       real(dp), intent(in) :: b
       character(len=:), allocatable :: s
       character(len=*), parameter :: units(6) = ['B ', 'kB', 'MB', 'GB', 'TB', 'PB']
-      character(len=32) :: buf
       real(dp) :: x
       integer :: i
       x = b
@@ -240,50 +211,6 @@ contains
          x = x/1000.0_dp
          i = i + 1
       end do
-      if (x >= 1e6_dp) then
-         write (buf, '(es10.3)') x
-      else
-         write (buf, '(f0.1)') x
-      end if
-      s = trim(adjustl(buf))
-      if (s(1:1) == '.') s = '0'//s
-      s = s//' '//trim(units(i))
+      s = sci(x, 3)//' '//trim(units(i))
    end function bytes_text
-
-   function fmt_mantissa(m) result(s)
-      real(dp), intent(in) :: m
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(f6.4)') m
-      s = fmt_mantissa_text(trim(adjustl(buf)))
-   end function fmt_mantissa
-
-   pure function fmt_mantissa_text(t) result(s)
-      character(len=*), intent(in) :: t
-      character(len=:), allocatable :: s
-      integer :: k
-      s = trim(t)
-      if (index(s, '.') == 0) return
-      k = len(s)
-      do while (s(k:k) == '0')
-         k = k - 1
-      end do
-      if (s(k:k) == '.') k = k - 1
-      s = s(:k)
-   end function fmt_mantissa_text
-
-   pure integer function exponent_of(t)
-      character(len=*), intent(in) :: t
-      integer :: stat
-      read (t, *, iostat=stat) exponent_of
-      if (stat /= 0) exponent_of = 0
-   end function exponent_of
-
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module dpend_limits

@@ -5,6 +5,7 @@ module dpend_progress
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
    use dpend_kinds, only: dp, i8
+   use dpend_cli, only: real_str
    implicit none
    private
    public :: progress_t, stderr_is_terminal, wall_seconds
@@ -110,13 +111,14 @@ contains
       if (self%tty) then
          filled = min(width, int(frac*width))
          bar = repeat('#', filled)//repeat('.', width - filled)
-         write (line, '(a, " [", a, "] ", f5.1, "%  ", es9.2, " traj/s  ETA ", a)') &
-            self%label, bar, 100.0_dp*frac, rate, clock(eta)
+         write (line, '(a, " [", a, "] ", f5.1, "%  ", a, " traj/s  ETA ", a)') &
+            self%label, bar, 100.0_dp*frac, real_str(rate, 3), clock(eta)
          write (error_unit, '(a)', advance='no') achar(13)//trim(line)//'   '
       else
-         write (line, '(a, ": ", f5.1, "% (", i0, "/", i0, "), ", es9.2, &
-            &" traj/s, elapsed ", a, ", ETA ", a)') self%label, 100.0_dp*frac, self%done, &
-            self%total, rate, clock(elapsed), clock(eta)
+         write (line, '(a, ": ", a, "% (", i0, "/", i0, "), ", a, &
+            &" traj/s, elapsed ", a, ", ETA ", a)') self%label, &
+            real_str(anint(1000.0_dp*frac)/10.0_dp), self%done, &
+            self%total, real_str(rate, 3), clock(elapsed), clock(eta)
          write (error_unit, '(a)') trim(line)
       end if
       flush (error_unit)

@@ -564,9 +564,7 @@ contains
       function g(x) result(s)
          real(dp), intent(in) :: x
          character(len=:), allocatable :: s
-         character(len=32) :: buf
-         write (buf, '(es23.16)') x
-         s = trim(adjustl(buf))
+         s = sci(x)   ! the shortest text that reads back exactly
       end function g
       function i_(k) result(s)
          integer, intent(in) :: k

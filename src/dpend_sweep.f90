@@ -30,11 +30,11 @@ module dpend_sweep
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_version, only: version
-   use dpend_cli, only: to_str
+   use dpend_cli, only: to_str, real_str, seconds_str
    implicit none
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
-   public :: run_sweep, sweep_summary_t, compare_sweeps
+   public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
@@ -76,6 +76,17 @@ module dpend_sweep
 
 
 contains
+
+   !> The closing line of a run that computed something: 'N initial conditions
+   !> computed (K below the flip energy bound) in 0.4 s, 1.2e5 per second'.
+   function summary_text(summary) result(s)
+      type(sweep_summary_t), intent(in) :: summary  !! what the run did
+      character(len=:), allocatable :: s
+      s = to_str(summary%computed)//' initial conditions computed ('// &
+          to_str(summary%skipped)//' below the flip energy bound) in '// &
+          seconds_str(summary%seconds)//' s, '// &
+          real_str(real(summary%computed, dp)/max(summary%seconds, 1e-9_dp), 3)//' per second'
+   end function summary_text
 
    ! ------------------------------------------------------------- setup ---
 
@@ -957,13 +968,29 @@ contains
          a = ra(:ia - 1)
          b = rb(:ib - 1)
          if (a /= b) then
-            s = a//' here, '//b//' in the file'
+            s = readable(a)//' here, '//readable(b)//' in the file'
             return
          end if
          ra = ra(ia + 1:)
          rb = rb(ib + 1:)
       end do
       s = 'the configurations differ'
+   contains
+      !> 'key = value' with a stored real (es24.16e3, kept so that older files still
+      !> compare equal) shown as real_str shows it: 't_end = 6'.
+      function readable(line) result(t)
+         character(len=*), intent(in) :: line
+         character(len=:), allocatable :: t
+         real(dp) :: x
+         integer :: eq, stat
+         t = line
+         eq = index(line, ' = ')
+         if (eq == 0) return
+         if (index(line(eq + 3:), 'E') == 0) return
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-') /= 0) return
+         read (line(eq + 3:), *, iostat=stat) x
+         if (stat == 0) t = line(:eq + 2)//real_str(x)
+      end function readable
    end function first_difference
 
    ! ----------------------------------------------------------- compare ---
@@ -1052,24 +1079,26 @@ contains
             n_noflip_changed = n_noflip_changed + 1
          end if
       end do
-      write (unit, '(a, es12.5, a)') 'step_a: ', ha, ' s'
-      write (unit, '(a, es12.5, a)') 'step_b: ', hb, ' s'
-      write (unit, '(a, f0.4)') 'relative_tolerance: ', rel
+      write (unit, '(a)') 'step_a: '//real_str(ha, 6)//' s'
+      write (unit, '(a)') 'step_b: '//real_str(hb, 6)//' s'
+      write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
       write (unit, '(a, i0)') 'pixels: ', size(ta)
       write (unit, '(a, i0)') 'pixels_flipping: ', n_flip
       write (unit, '(a, i0)') 'pixels_changed: ', n_changed
-      write (unit, '(a, f0.3, a)') 'changed_fraction: ', pct(n_changed, size(ta)), ' %'
-      write (unit, '(a, f0.3, a)') 'changed_fraction_of_flipping: ', pct(n_changed, n_flip), ' %'
+      write (unit, '(a)') 'changed_fraction: '//pct(n_changed, size(ta))//' %'
+      write (unit, '(a)') 'changed_fraction_of_flipping: '//pct(n_changed, n_flip)//' %'
       do k = 1, 4
-         write (unit, '(a, f0.3, a, i0, a)') 'changed_fraction_tflip_'//trim(band_names(k))// &
-            ': ', pct(band_c(k), band_n(k)), ' % (of ', band_n(k), ' pixels)'
+         write (unit, '(a, i0, a)') 'changed_fraction_tflip_'//trim(band_names(k))// &
+            ': '//pct(band_c(k), band_n(k))//' % (of ', band_n(k), ' pixels)'
       end do
       write (unit, '(a, i0)') 'pixels_changed_no_flip_in_a: ', n_noflip_changed
    contains
-      pure real(dp) function pct(a, b)
+      !> 100 a/b rounded to 3 decimals ('0' when b = 0).
+      function pct(a, b) result(t)
          integer, intent(in) :: a, b
-         pct = 0.0_dp
-         if (b > 0) pct = 100.0_dp*real(a, dp)/real(b, dp)
+         character(len=:), allocatable :: t
+         t = '0'
+         if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
       end function pct
       subroutine refuse(what)
          character(len=*), intent(in) :: what

@@ -133,6 +133,7 @@ module dpend_symplectic
       procedure :: advance => gauss_advance
       procedure :: name => gauss_name
       procedure :: order => gauss_order
+      procedure :: implicit => gauss_implicit
       procedure :: reset => gauss_reset
    end type gauss_t
 
@@ -149,6 +150,7 @@ module dpend_symplectic
       procedure :: advance => verlet_advance
       procedure :: name => verlet_name
       procedure :: order => verlet_order
+      procedure :: implicit => verlet_implicit
       procedure :: reset => verlet_reset
    end type verlet_t
 
@@ -170,6 +172,7 @@ module dpend_symplectic
       procedure :: advance => composition_advance
       procedure :: name => composition_name
       procedure :: order => composition_order
+      procedure :: implicit => composition_implicit
       procedure :: reset => composition_reset
    end type composition_t
 
@@ -699,4 +702,22 @@ contains
       class(composition_t), intent(in) :: self
       composition_order = self%p
    end function composition_order
+
+   !> Gauss collocation solves its stage equations by fixed-point iteration.
+   pure logical function gauss_implicit(self)
+      class(gauss_t), intent(in) :: self
+      gauss_implicit = .true.
+   end function gauss_implicit
+
+   !> The generalised leapfrog is implicit in p and in q (non-separable H).
+   pure logical function verlet_implicit(self)
+      class(verlet_t), intent(in) :: self
+      verlet_implicit = .true.
+   end function verlet_implicit
+
+   !> A composition is implicit when its base method is.
+   pure logical function composition_implicit(self)
+      class(composition_t), intent(in) :: self
+      composition_implicit = self%base%implicit()
+   end function composition_implicit
 end module dpend_symplectic

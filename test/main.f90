@@ -14,6 +14,7 @@ program tester
    use test_study, only: collect_study
    use test_limits, only: collect_limits
    use test_animate, only: collect_animate
+   use test_messages, only: collect_messages
    implicit none
 
    type :: suite_t
@@ -26,7 +27,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(10))
+   allocate (suites(11))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -37,6 +38,7 @@ program tester
    suites(8)%name = 'study'; call collect_study(suites(8)%tests)
    suites(9)%name = 'limits'; call collect_limits(suites(9)%tests)
    suites(10)%name = 'animate'; call collect_animate(suites(10)%tests)
+   suites(11)%name = 'messages'; call collect_messages(suites(11)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

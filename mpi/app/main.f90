@@ -18,6 +18,7 @@ program dpend_mpi
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
+   use dpend_sweep, only: summary_text
    implicit none
 
    interface
@@ -80,7 +81,6 @@ contains
       type(mpi_report_t) :: report
       type(error_t), allocatable :: error
       character(len=:), allocatable :: times_file
-      character(len=200) :: line
       logical :: help
       call take_block_times(sub, rest, times_file, error)
       if (.not. allocated(error)) call parse_sweep(rest, cfg, help, error)
@@ -104,12 +104,8 @@ contains
             "' is complete (nothing to compute)"
          return
       end if
-      write (line, '(i0, " initial conditions computed (", i0, " below the flip '// &
-             'energy bound) in ", f0.1, " s, ", es9.3, " per second")') &
-         report%summary%computed, report%summary%skipped, report%summary%seconds, &
-         real(report%summary%computed, dp)/max(report%summary%seconds, 1e-9_dp)
       write (output_unit, '(a)') "dpend-mpi sweep: wrote '"//cfg%run%output//"': "// &
-         trim(line)
+         summary_text(report%summary)
       write (output_unit, '(a, i0, a, i0)') 'ranks: ', np, ', threads of rank 0: ', &
          omp_get_max_threads()
       call write_balance(report, output_unit)

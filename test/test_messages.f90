@@ -1,0 +1,408 @@
+!> Help texts and messages: numbers in the shortest text that reads back exactly
+!> (`real_str`), every option listed once, the closing lines of simulate and sweep,
+!> the `dpend methods` table.
+module test_messages
+   use dpend_kinds, only: dp
+   use testing, only: unittest_t, new_unittest, check_true, error_t
+   use dpend_cli, only: real_str, seconds_str
+   use dpend_config, only: run_config_t
+   use dpend_simulate, only: simulate_help, simulate_defaults
+   use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
+   use dpend_sweep_config, only: sweep_help, sweep_config_t, sweep_defaults
+   use dpend_integrators, only: method_names
+   use test_cli, only: run_command, scratch_dir, read_text
+   implicit none
+   private
+   public :: collect_messages
+
+   character(len=*), parameter :: nl = new_line('a')
+   !> Every command with a --help (plus the program's own help).
+   character(len=16), parameter :: commands(11) = [character(len=16) :: 'simulate', &
+      'lyapunov', 'divergence', 'poincare', 'sweep', 'sweep-compare', 'export', 'study', &
+      'methods', '--help', 'help']
+
+contains
+
+   subroutine collect_messages(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [ &
+               new_unittest('real_str_cases', test_real_str), &
+               new_unittest('real_str_round_trip', test_round_trip), &
+               new_unittest('help_numbers_shortest', test_help_numbers), &
+               new_unittest('help_defaults_read_back', test_help_defaults), &
+               new_unittest('help_options_once', test_options_once), &
+               new_unittest('simulate_summary_line', test_simulate_summary), &
+               new_unittest('sweep_closing_line', test_sweep_line), &
+               new_unittest('methods_table', test_methods)]
+   end subroutine collect_messages
+
+   !> The table of formatter cases.
+   subroutine test_real_str(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: zero
+      zero = 0.0_dp
+      call expect(error, 0.001_dp, '0.001')
+      call expect(error, 9.8_dp, '9.8')
+      call expect(error, 1e-12_dp, '1e-12')
+      call expect(error, 20.0_dp, '20')
+      call expect(error, 1.0_dp/3.0_dp, '0.3333333333333333')
+      call expect(error, 2.0_dp/3.0_dp, '0.6666666666666666')
+      call expect(error, -2.5e300_dp, '-2.5e300')
+      call expect(error, 5e-324_dp, '5e-324')
+      call expect(error, 0.0_dp, '0')
+      call expect(error, -zero, '-0')
+      call expect(error, -1.5_dp, '-1.5')
+      call expect(error, 1e6_dp, '1e6')
+      call expect(error, 2.5e6_dp, '2.5e6')
+      call expect(error, 1234567.0_dp, '1234567')
+      call expect(error, 1e-4_dp, '0.0001')
+      call expect(error, 5e-5_dp, '5e-5')
+      call expect(error, 123456.789_dp, '123456.789')
+      call expect(error, 0.1_dp + 0.2_dp, '0.30000000000000004')
+      call expect(error, huge(1.0_dp), '1.7976931348623157e308')
+      call expect(error, tiny(1.0_dp), '2.2250738585072014e-308')
+      call expect(error, -huge(1.0_dp), '-1.7976931348623157e308')
+      call expect(error, ieee_nan(), 'NaN')
+      call expect(error, ieee_inf(), 'Infinity')
+      call expect(error, -ieee_inf(), '-Infinity')
+      ! with a limit on the significant digits (measured values)
+      call check_true(error, real_str(1.0_dp/3.0_dp, 2) == '0.33', 'real_str(1/3, 2) = ' &
+                      //real_str(1.0_dp/3.0_dp, 2))
+      call check_true(error, real_str(3.2e-13_dp*1.0001_dp, 2) == '3.2e-13', &
+                      'real_str(3.2e-13, 2) = '//real_str(3.2e-13_dp*1.0001_dp, 2))
+      call check_true(error, seconds_str(0.4_dp) == '0.4', 'seconds 0.4: '//seconds_str(0.4_dp))
+      call check_true(error, seconds_str(0.0432_dp) == '0.043', 'seconds 0.0432: ' &
+                      //seconds_str(0.0432_dp))
+      call check_true(error, seconds_str(12.34_dp) == '12.3', 'seconds 12.34: ' &
+                      //seconds_str(12.34_dp))
+   end subroutine test_real_str
+
+   !> Shortest and exact on numbers of every magnitude: the text reads back to the
+   !> same bits, and one digit less does not.
+   subroutine test_round_trip(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: x, y, u
+      integer :: i, stat, digits
+      character(len=:), allocatable :: s, shorter
+      do i = 1, 2000
+         call random_number(u)
+         x = (u - 0.5_dp)*10.0_dp**(real(mod(i*37, 600), dp) - 300.0_dp)
+         if (mod(i, 3) == 0) x = real(nint(u*1e6_dp), dp)/1000.0_dp
+         s = real_str(x)
+         read (s, *, iostat=stat) y
+         if (stat /= 0 .or. y /= x) then
+            call check_true(error, .false., 'does not read back: '//s)
+            return
+         end if
+         digits = significant_digits(s)
+         if (digits > 17) then
+            call check_true(error, .false., 'more than 17 digits: '//s)
+            return
+         end if
+         if (digits > 1) then
+            shorter = real_str(x, digits - 1)
+            if (shorter /= s) then
+               read (shorter, *) y
+               if (y == x) then
+                  call check_true(error, .false., 'not the shortest: '//s)
+                  return
+               end if
+            end if
+         end if
+      end do
+   end subroutine test_round_trip
+
+   !> Every number in every --help is printed with no more significant digits than
+   !> the shortest text that reads back (real_str), e.g. never 0.10000000000000000E-2.
+   subroutine test_help_numbers(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, token
+      integer :: i, n, stat, pos
+      real(dp) :: x
+      dir = scratch_dir('helpnum')
+      do i = 1, size(commands)
+         if (commands(i)(1:2) == '--' .or. commands(i) == 'help') then
+            stat = run_command(dir, trim(commands(i)))
+         else
+            stat = run_command(dir, trim(commands(i))//' --help')
+         end if
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0 .and. n > 1, trim(commands(i))//' --help')
+         if (allocated(error)) return
+         pos = 1
+         do while (next_token(text, pos, token))
+            if (.not. numeric(token)) cycle
+            if (verify(token, '0123456789') == 0) cycle   ! an integer
+            read (token, *, iostat=stat) x
+            if (stat /= 0) cycle
+            ! hand-written prose may say 1e5 for 100000: as few digits, not the same text
+            call check_true(error, significant_digits(token) <= &
+                            significant_digits(real_str(x)) .and. &
+                            scan(token, 'E') == 0, trim(commands(i))// &
+                            ' --help prints '//token//', shortest is '//real_str(x))
+            if (allocated(error)) return
+         end do
+      end do
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_help_numbers
+
+   !> The defaults shown read back to the bits of the defaults used.
+   subroutine test_help_defaults(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      type(chaos_config_t) :: ch
+      type(sweep_config_t) :: sw
+      character(len=:), allocatable :: text
+      text = simulate_help()
+      cfg = simulate_defaults()
+      call shown(error, text, '--dt S', [cfg%dt])
+      call shown(error, text, '--t-end S', [cfg%t_end])
+      call shown(error, text, '--rtol, --atol', [cfg%rtol, cfg%atol])
+      call shown(error, text, '--omega', [cfg%omega])
+      call shown(error, text, '--g M/S^2', [cfg%par%g])
+      call shown(error, text, '--l1, --l2', [cfg%par%l1, cfg%par%l2])
+      call shown(error, text, '--m1, --m2', [cfg%par%m1, cfg%par%m2])
+      text = chaos_help('divergence')
+      cfg = chaos_run_defaults('divergence')
+      ch = chaos_defaults('divergence')
+      call shown(error, text, '--t-end S', [cfg%t_end])
+      call shown(error, text, '--delta0', [ch%delta0])
+      call shown(error, text, '--output-dt', [cfg%output_dt])
+      call shown(error, text, '--pair-spacing', [ch%pair_spacing])
+      text = chaos_help('lyapunov')
+      ch = chaos_defaults('lyapunov')
+      call shown(error, text, '--tau', [ch%tau])
+      text = chaos_help('poincare')
+      ch = chaos_defaults('poincare')
+      call shown(error, text, '--section-angle', [ch%section_angle])
+      text = sweep_help()
+      sw = sweep_defaults()
+      call shown(error, text, '--dt DT, --t-end T', [sw%run%dt, sw%run%t_end])
+   end subroutine test_help_defaults
+
+   !> Each option once in each --help.
+   subroutine test_options_once(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, token, seen
+      integer :: i, n, stat, pos, start
+      dir = scratch_dir('helpopt')
+      do i = 1, size(commands)
+         if (commands(i)(1:2) == '--' .or. commands(i) == 'help') cycle
+         stat = run_command(dir, trim(commands(i))//' --help')
+         call read_text(dir//'/stdout', text, n)
+         seen = ' '
+         pos = 1
+         do
+            ! an option is listed where a line starts with '  --' or after ', --'
+            start = listed_option(text, pos)
+            if (start == 0) exit
+            pos = start
+            token = ''
+            do while (pos <= len(text))
+               if (index(' =,;)'//nl, text(pos:pos)) > 0) exit
+               token = token//text(pos:pos)
+               pos = pos + 1
+            end do
+            call check_true(error, index(seen, ' '//token//' ') == 0, &
+                            trim(commands(i))//' --help lists '//token//' twice')
+            if (allocated(error)) return
+            seen = seen//token//' '
+         end do
+      end do
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_options_once
+
+   !> simulate prints, after 'wrote', the steps, evaluations, energy error, time.
+   subroutine test_simulate_summary(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('simsum')
+      stat = run_command(dir, 'simulate --t-end 1 --q1 0.5 --output '//dir//'/s.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 2, 'simulate: two lines: '//text)
+      if (allocated(error)) return
+      call check_true(error, index(text, 'dpend simulate: rk4: 1000 steps, 4000 f evaluations,' &
+                                   //' relative energy error ') > 0 .and. &
+                      index(text, ' s'//nl) > 0, 'simulate summary: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_simulate_summary
+
+   !> sweep's closing line: '0.4 s' style seconds, no E-notation, kept by --quiet.
+   subroutine test_sweep_line(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('sweepline')
+      stat = run_command(dir, 'sweep --n 4 --t-end 1 --quiet --output '//dir//'/s.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 1, 'sweep --quiet: one line: '//text)
+      call check_true(error, index(text, '16 initial conditions computed') > 0 .and. &
+                      index(text, ' .') == 0 .and. index(text, 'E+') == 0 .and. &
+                      index(text, ' s, ') > 0, 'sweep closing line: '//text)
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, n == 0, '--quiet: nothing on stderr: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_sweep_line
+
+   !> `dpend methods`: a header and one row per method; --names the bare list.
+   subroutine test_methods(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('methods')
+      stat = run_command(dir, 'methods')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'method ') == 1 .and. &
+                      index(text, nl//'gauss4    (q, p)     4      implicit, symplectic, ' &
+                            //'symmetric') > 0 .and. &
+                      index(text, nl//'dopri5    (q, qdot)  5      explicit, adaptive ') > 0 &
+                      .and. index(text, 'study sweep') > 0, 'methods table: '//text)
+      stat = run_command(dir, 'methods --names')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. text == method_names//nl, 'methods --names: ' &
+                      //text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_methods
+
+   ! ----------------------------------------------------------------- helpers
+
+   subroutine expect(error, x, text)
+      type(error_t), allocatable, intent(inout) :: error
+      real(dp), intent(in) :: x
+      character(len=*), intent(in) :: text
+      real(dp) :: y
+      integer :: stat
+      if (allocated(error)) return
+      call check_true(error, real_str(x) == text, 'real_str gives '//real_str(x)// &
+                      ', expected '//text)
+      if (allocated(error) .or. x /= x) return
+      read (text, *, iostat=stat) y
+      call check_true(error, stat == 0 .and. (y == x .and. (sign(1.0_dp, y) == &
+                      sign(1.0_dp, x))), text//' does not read back')
+   end subroutine expect
+
+   !> The numbers after 'default' on the line of `option` equal `values` exactly.
+   subroutine shown(error, text, option, values)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: text, option
+      real(dp), intent(in) :: values(:)
+      character(len=:), allocatable :: line, token
+      integer :: a, b, i, pos, stat
+      real(dp) :: x
+      if (allocated(error)) return
+      a = index(text, nl//'  '//option)
+      call check_true(error, a > 0, 'help has no line '//option)
+      if (allocated(error)) return
+      ! the option's entry: up to the next line that starts an option
+      b = index(text(a + 1:), nl//'  -')
+      if (b == 0) b = len(text) - a
+      line = text(a + 1:a + b)
+      a = index(line, 'default ')
+      call check_true(error, a > 0, option//': no default in '//line)
+      if (allocated(error)) return
+      pos = a + len('default ')
+      do i = 1, size(values)
+         call check_true(error, next_token(line, pos, token), option//': missing value')
+         if (allocated(error)) return
+         read (token, *, iostat=stat) x
+         call check_true(error, stat == 0 .and. x == values(i) .and. token == &
+                         real_str(values(i)), option//': shows '//token//' for '// &
+                         real_str(values(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine shown
+
+   !> The next blank-separated word of `text` from `pos`, without surrounding
+   !> brackets and punctuation; false at the end.
+   logical function next_token(text, pos, token) result(found)
+      character(len=*), intent(in) :: text
+      integer, intent(inout) :: pos
+      character(len=:), allocatable, intent(out) :: token
+      integer :: a
+      token = ''
+      do while (pos <= len(text))
+         if (index(' '//nl, text(pos:pos)) == 0) exit
+         pos = pos + 1
+      end do
+      found = pos <= len(text)
+      if (.not. found) return
+      a = pos
+      do while (pos <= len(text))
+         if (index(' '//nl, text(pos:pos)) > 0) exit
+         pos = pos + 1
+      end do
+      token = text(a:pos - 1)
+      do while (len(token) > 0)
+         if (index('([', token(1:1)) == 0) exit
+         token = token(2:)
+      end do
+      do while (len(token) > 0)
+         if (index(')],;:.', token(len(token):len(token))) == 0) exit
+         token = token(:len(token) - 1)
+      end do
+   end function next_token
+
+   !> A number as printed: digits with an optional sign, point and exponent.
+   pure logical function numeric(token)
+      character(len=*), intent(in) :: token
+      numeric = len(token) > 0 .and. verify(token, '0123456789.eE-+') == 0 .and. &
+                scan(token, '0123456789') > 0
+      if (numeric) numeric = scan(token(1:1), '0123456789-') > 0
+   end function numeric
+
+   !> Position of the next listed option (its '--') from `pos`, 0 if none.
+   integer function listed_option(text, pos) result(at)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: pos
+      integer :: a, b
+      a = index(text(pos:), nl//'  --')
+      b = index(text(pos:), ', --')
+      if (a > 0) a = a + pos - 1 + 3
+      if (b > 0) b = b + pos - 1 + 2
+      if (a == 0) then
+         at = b
+      else if (b == 0) then
+         at = a
+      else
+         at = min(a, b)
+      end if
+   end function listed_option
+
+   !> Significant digits of a real_str text.
+   pure integer function significant_digits(s)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: m
+      integer :: e, k
+      e = scan(s, 'eE')
+      m = s
+      if (e > 0) m = s(:e - 1)
+      significant_digits = 0
+      k = 0
+      do e = 1, len(m)
+         if (scan(m(e:e), '0123456789') == 0) cycle
+         if (k == 0 .and. m(e:e) == '0') cycle   ! leading zeros
+         k = k + 1
+      end do
+      ! trailing zeros of an integer without point do not count
+      if (index(m, '.') == 0) then
+         do e = len(m), 1, -1
+            if (m(e:e) /= '0') exit
+            k = k - 1
+         end do
+      end if
+      significant_digits = k
+   end function significant_digits
+
+   function ieee_nan() result(x)
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+      real(dp) :: x
+      x = ieee_value(x, ieee_quiet_nan)
+   end function ieee_nan
+
+   function ieee_inf() result(x)
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
+      real(dp) :: x
+      x = ieee_value(x, ieee_positive_inf)
+   end function ieee_inf
+end module test_messages
