@@ -116,7 +116,8 @@ if [[ -z "$base_rev" ]]; then
     base_rev=HEAD~1; base_why="HEAD~1 (HEAD is on main's line, the working tree is clean)"
   fi
 fi
-base_commit=$(git rev-parse --verify --quiet -- "${base_rev}^{commit}") \
+[[ "$base_rev" != -* ]] || die 2 "invalid --base: '$base_rev' starts with '-'"
+base_commit=$(git rev-parse --verify --quiet "${base_rev}^{commit}") \
   || die 2 "invalid --base: '$base_rev' is not a commit of this repository"
 base_label="$(git log -1 --format='%h %s' "$base_commit" | cut -c1-70)"
 
