@@ -363,13 +363,25 @@ function excluded(key,   nm) {
 function short(s) { return length(s) > 60 ? substr(s, 1, 57) "..." : s }
 function num(s) { return s ~ /^[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?$/ }
 function special(s) { return tolower(s) ~ /(nan|inf)/ }
-function note(s) { notes[++nn] = "  note: " s }
+# note(KEY, WHAT): notes with the same WHAT are printed once, with their keys
+function note(key, what) {
+  if (!(what in NK)) { NW[++nn] = what; NK[what] = key; NC[what] = 1 }
+  else { NC[what]++; if (NC[what] <= 4) NK[what] = NK[what] ", " key }
+}
+function filterdiff(a, b,   x, y, i, n, s, A, B) {   # "+ added; - removed" filters
+  n = split(a, x, "; "); for (i = 1; i <= n; i++) A[x[i]] = 1
+  n = split(b, y, "; "); for (i = 1; i <= n; i++) B[y[i]] = 1
+  s = ""
+  for (i in B) if (!(i in A)) s = s (s == "" ? "" : ", ") "+ " i
+  for (i in A) if (!(i in B)) s = s (s == "" ? "" : ", ") "- " i
+  return s == "" ? "order " a " -> " b : s
+}
 function bad(s) { lines[++nl] = "  " s; worst = 2 }
 function within(s) { lines[++nl] = "  " s; if (worst < 1) worst = 1 }
 function cmpdata(key, a, b, isnum,   na, nb, x, y, i, nd, mr, r, d, m) {
   if (a == b) return
   if (!isnum) {
-    if (leaf(key) in INFO) note(key ": \"" short(a) "\" -> \"" short(b) "\"")
+    if (leaf(key) in INFO) note(key, short(a) " -> " short(b))
     else bad(key ": text differs: " short(a) " -> " short(b))
     return
   }
@@ -394,7 +406,7 @@ function cmpdata(key, a, b, isnum,   na, nb, x, y, i, nd, mr, r, d, m) {
   if (nd == 0) return
   msg = sprintf("%s: %d of %d elements differ, max rel %s", key, nd, na, \
                 mr == "inf" ? "inf (nan or inf against a number)" : sprintf("%.2e", mr))
-  if (leaf(key) in INFO) { note(msg); return }
+  if (leaf(key) in INFO) { note(key, sprintf("%d of %d elements differ", nd, na)); return }
   if (mr == "inf" || mr > thr) bad(msg); else within(msg)
 }
 NR == FNR { BK[$2] = $1; BT[$2] = $3; BS[$2] = $4; BL[$2] = $5; BF[$2] = $6; BV[$2] = $7
@@ -406,9 +418,9 @@ NR == FNR { BK[$2] = $1; BT[$2] = $3; BS[$2] = $4; BL[$2] = $5; BF[$2] = $6; BV[
   if (!(key in BK)) { bad("only in new: " key); next }
   if (BK[key] != $1) { bad(key ": kind " BK[key] " in base, " $1 " in new"); next }
   if (BS[key] != $4) { bad(key ": dataspace " BS[key] " -> " $4); next }
-  if (BT[key] != $3) note(key ": type " BT[key] " -> " $3)
-  if (BL[key] != $5) note(key ": layout " (BL[key] == "" ? "-" : BL[key]) " -> " ($5 == "" ? "-" : $5))
-  if (BF[key] != $6) note(key ": filters " (BF[key] == "" ? "-" : BF[key]) " -> " ($6 == "" ? "-" : $6))
+  if (BT[key] != $3) note(key, "type " BT[key] " -> " $3)
+  if (BL[key] != $5) note(key, "layout " (BL[key] == "" ? "-" : BL[key]) " -> " ($5 == "" ? "-" : $5))
+  if (BF[key] != $6) note(key, "filters " filterdiff(BF[key], $6))
   isnum = ($3 !~ /H5T_STRING/ && $7 !~ /"/)
   cmpdata(key, BV[key], $7, isnum)
 }
@@ -416,7 +428,8 @@ END {
   for (i = 1; i <= nb0; i++) { key = border[i]
     if (!(key in seen) && !excluded(key)) bad("only in base: " key) }
   for (i = 1; i <= nl; i++) print lines[i]
-  for (i = 1; i <= nn; i++) print notes[i]
+  for (i = 1; i <= nn; i++) { w = NW[i]
+    printf "  note: %s: %s%s\n", w, NK[w], (NC[w] > 4 ? sprintf(", ... (%d in all)", NC[w]) : "") }
   printf "RESULT %s %d %d %d %d\n", (worst == 2 ? "differ" : worst == 1 ? "within" : "identical"), \
     nds, nat, nex, nn
 }
@@ -463,7 +476,7 @@ for name in "${methods[@]/#/simulate_}" lyapunov divergence poincare sweep study
   if [[ $head_note == "exit status "*"against"* ]]; then result=differ; fi
   counts="$nds datasets, $nat attributes"
   if [[ $nex -gt 0 ]]; then counts+=", $nex excluded"; fi
-  if [[ $nnotes -gt 0 ]]; then counts+="; $nnotes notes"; fi
+  if [[ $nnotes -eq 1 ]]; then counts+="; 1 note"; elif [[ $nnotes -gt 1 ]]; then counts+="; $nnotes notes"; fi
   if [[ -n "$head_note" ]]; then counts+="; $head_note"; fi
   case $result in
     identical) echo "identical: $rel_path ($counts)"; n_ident=$((n_ident + 1)) ;;
