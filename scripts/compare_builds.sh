@@ -499,9 +499,14 @@ if [[ $bench -eq 1 ]]; then
   new_bench=$(bench_path "$root") || die 3 "dpend-bench of the working tree not found"
   echo
   echo "bench: cpu $(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)," \
-    "$(nproc 2>/dev/null || echo '?') CPUs"
+    "$(nproc 2>/dev/null || echo '?') CPUs; base $base_bench; new $new_bench"
   echo "bench: flags $flags"
-  echo "bench: load average at start $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+  load=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '? ? ?')
+  ncpu=$(nproc 2>/dev/null || echo 1)
+  echo "bench: load average at start $load"
+  if awk -v l="${load%% *}" -v n="$ncpu" 'BEGIN { exit !(l + 0 > 0.5 * n) }'; then
+    echo "bench: warning: the machine is busy (load ${load%% *} on $ncpu CPUs); timings are unreliable"
+  fi
   order=(base new)
   [[ $repeat -eq 2 ]] && order=(base new new base)
   i=0
@@ -548,7 +553,8 @@ AWK
       }
       printf "bench: %d of %d timed figures more than 5 %% slower\n", slow, timed
     }' "$workdir"/bench-*-*.tsv
-  echo "bench: ${#order[@]} rounds in $((SECONDS - t0)) s"
+  echo "bench: ${#order[@]} rounds in $((SECONDS - t0)) s; load average at the end" \
+    "$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 fi
 kept=""
 if [[ $keep -eq 1 ]]; then kept="; kept $workdir"; fi
