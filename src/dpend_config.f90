@@ -5,7 +5,7 @@
 !> &output (file force). Commands with more settings read further groups
 !> through `check_groups` and their own namelists.
 module dpend_config
-   use dpend_kinds, only: dp, i8
+   use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: pendulum_t, validate, finite_positive
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
@@ -423,6 +423,8 @@ contains
       select case (name)
       case ('--q1'); call parse_real(value, name, cfg%q0(1), error)
       case ('--q2'); call parse_real(value, name, cfg%q0(2), error)
+      case ('--theta1', '--theta2')   ! from the hanging position, as the sweep's axes
+         call parse_theta(merge(1, 2, name == '--theta1'))
       case ('--w1'); call parse_real(value, name, cfg%w0(1), error)
       case ('--w2'); call parse_real(value, name, cfg%w0(2), error)
       case ('--m1'); call parse_real(value, name, cfg%par%m1, error)
@@ -443,6 +445,20 @@ contains
       case default
          matched = .false.
       end select
+   contains
+      !> q_k = θ_k − π/2 (θ from the hanging position, counter-clockwise).
+      subroutine parse_theta(k)
+         integer, intent(in) :: k
+         real(dp) :: theta
+         call parse_real(value, name, theta, error)
+         if (allocated(error)) return
+         if (.not. in_range(theta, -max_angle, max_angle)) then
+            call fatal_error(error, 'invalid '//name//': '//real_str(theta)// &
+                             ' rad is outside [-1e6, 1e6]')
+            return
+         end if
+         cfg%q0(k) = theta - half_pi
+      end subroutine parse_theta
    end subroutine apply_run_flag
 
    !> Check the whole configuration; messages name the field and the accepted range
@@ -550,6 +566,8 @@ contains
           '  --q1, --q2 RAD    initial angles from the horizontal x axis, counter-clockwise' &
           //nl//'                    (hanging: -pi/2); default '//real_str(cfg%q0(1))//', ' &
           //real_str(cfg%q0(2))//nl// &
+          '  --theta1, --theta2 RAD  the same angles from the hanging position, as the'//nl// &
+          "                    sweep's axes: q = theta - pi/2"//nl// &
           '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
           //real_str(cfg%w0(2))//nl// &
           '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &

@@ -19,7 +19,7 @@ module dpend_sweep
    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
    use dpend_limits, only: check_memory, check_disk, sci, max_sweep_points, max_angle, &
                            max_angular_velocity
-   use dpend_kinds, only: dp, i8
+   use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t, check_output_path
    use dpend_system, only: path_kind, path_missing, path_file, remove_file
@@ -38,7 +38,6 @@ module dpend_sweep
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
-   real(dp), parameter :: half_pi = 1.57079632679489661923132169163975144_dp
    !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
    real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
                           max_time = 1e300_dp

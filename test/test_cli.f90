@@ -22,7 +22,8 @@ contains
                new_unittest('nonfinite_run_leaves_valid_file', test_nonfinite), &
                new_unittest('config_file_and_flags', test_config_run), &
                new_unittest('trajectory_matches_reference', test_reference), &
-               new_unittest('dense_output_matches_reference', test_reference_dense)]
+               new_unittest('dense_output_matches_reference', test_reference_dense), &
+               new_unittest('theta_is_q_from_hanging', test_theta)]
    end subroutine collect_cli
 
    !> Path of the dpend executable built with the same flags as this test program:
@@ -315,4 +316,23 @@ contains
       close (unit)
    end subroutine write_file
 
+   !> --theta1/--theta2 give the angles from the hanging position: q = θ − π/2,
+   !> compared with π from acos(-1) (independent of dpend's constant), and the
+   !> hanging position θ = 0 is q = -π/2 for both links.
+   subroutine test_theta(error)
+      use dpend_config, only: run_config_t, apply_run_flag
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      logical :: matched
+      real(dp), parameter :: half = 0.5_dp*acos(-1.0_dp)
+      call apply_run_flag(cfg, '--theta1', '0.3', matched, error)
+      if (allocated(error)) return
+      call check_true(error, matched, '--theta1 is a common flag')
+      if (allocated(error)) return
+      call check(error, cfg%q0(1), 0.3_dp - half, 'q1 = 0.3 - pi/2', rel=1e-15_dp)
+      if (allocated(error)) return
+      call apply_run_flag(cfg, '--theta2', '0', matched, error)
+      if (allocated(error)) return
+      call check(error, cfg%q0(2), -half, 'theta2 = 0 is hanging, q2 = -pi/2', rel=1e-15_dp)
+   end subroutine test_theta
 end module test_cli
