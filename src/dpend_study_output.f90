@@ -730,9 +730,10 @@ contains
       call w%s0('/summary/markdown', study_summary(cfg, res))
       call w%ai('/summary', 'orders_ok', merge(1, 0, v%orders))
       call w%as('/summary', 'orders', v%orders_text)
-      call w%ai('/summary', 'drift_ok', merge(1, 0, v%drift))
+      ! -1: not judged (every long run too short) or not run, as the text says
+      call w%ai('/summary', 'drift_ok', merge(merge(1, 0, v%drift), -1, v%drift_judged))
       call w%as('/summary', 'drift', v%drift_text)
-      call w%ai('/summary', 'roundoff_ok', merge(1, 0, v%roundoff))
+      call w%ai('/summary', 'roundoff_ok', merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
       call w%as('/summary', 'roundoff', v%roundoff_text)
       if (allocated(w%error)) then
          call w%h5%close()

@@ -231,7 +231,7 @@ contains
       character(len=:), allocatable :: dir, md, text
       real(dp), allocatable :: h(:), ge(:)
       real(dp) :: order
-      integer :: s
+      integer :: s, drift_ok, roundoff_ok
       cfg = study_defaults()
       cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
                                 [0.0_dp, 0.0_dp], 3000.0_dp), &
@@ -305,8 +305,16 @@ contains
       if (.not. allocated(error)) call h5%readattr('/cases/small/gauss4/step', 'order_global', &
                                                     order, error)
       if (.not. allocated(error)) call h5%readattr('/', 'methods', text, error)
+      if (.not. allocated(error)) call h5%readattr('/summary', 'drift_ok', drift_ok, error)
+      if (.not. allocated(error)) call h5%readattr('/summary', 'roundoff_ok', roundoff_ok, error)
       call h5%close()
       if (allocated(error)) return
+      ! every long run here is far below drift_min_steps: the drift is not judged (-1),
+      ! while the roundoff experiment ran (0 or 1)
+      call check_true(error, drift_ok == -1 .and. .not. v%drift_judged, &
+                      'drift_ok = -1 when no long run is long enough: '//to_str(drift_ok))
+      call check_true(error, roundoff_ok == 0 .or. roundoff_ok == 1, &
+                      'roundoff_ok 0 or 1 when the experiment ran: '//to_str(roundoff_ok))
       call check_true(error, size(h) == 4 .and. size(ge) == 4, 'sweep arrays of 4 points')
       call check(error, order, 4.0_dp, 'order attribute', abs=0.3_dp)
       call check_true(error, text == 'rk4 dopri5 gauss4 verlet', 'methods attribute: '//text)
