@@ -379,8 +379,9 @@ contains
       real(dp), allocatable :: tf(:), ttr(:), pa(:, :), fa(:, :), pb(:, :), fb(:, :)
       real(dp), allocatable :: qa(:, :), qb(:, :), ga(:, :), gb(:, :), tab(:, :)
       character(len=:), allocatable :: script, dir, params, frames_dat, trail_dat, stem, title
-      character(len=:), allocatable :: label1, label2, argv(:)
-      integer :: nframes, m, ntr, nrows, i, stat, err, u, width
+      character(len=:), allocatable :: label1, label2
+      type(arg_t) :: argv(11)
+      integer :: nframes, m, ntr, nrows, i, stat, err, u
       logical :: overlay, made_params, made_frames, made_trail, made_stem
       failed = .false.
       summary = ''
@@ -543,12 +544,11 @@ contains
          title = label1//'  and  '//label2
       end if
       title = 'double pendulum: '//title
-      width = max(len(script), len(params), len(frames_dat), len(trail_dat), len(out%temp), &
-                  len(title), len(label1), len(label2), len(stem), 8)
-      allocate (character(len=width) :: argv(11))
-      argv(1) = 'gnuplot'; argv(2) = '-c'; argv(3) = script
-      argv(4) = params; argv(5) = frames_dat; argv(6) = trail_dat; argv(7) = out%temp
-      argv(8) = title; argv(9) = label1; argv(10) = label2; argv(11) = stem
+      ! component by component (gfortran 12 mangles an array constructor of
+      ! structure constructors with deferred-length components)
+      argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = params
+      argv(5)%s = frames_dat; argv(6)%s = trail_dat; argv(7)%s = out%temp
+      argv(8)%s = title; argv(9)%s = label1; argv(10)%s = label2; argv(11)%s = stem
       call run_program(argv, stat, error)
       if (.not. allocated(error) .and. stat /= 0) &
          call fatal_error(error, 'gnuplot failed (exit status '//to_str(stat)//', '//script//')')

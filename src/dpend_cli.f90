@@ -9,6 +9,11 @@ module dpend_cli
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
 
+   !> Parse an integer (default or 64-bit) for a field.
+   interface parse_int
+      module procedure parse_int_default, parse_int_i8
+   end interface parse_int
+
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
       module procedure int_str, int8_str
@@ -125,7 +130,7 @@ contains
    end subroutine parse_real
 
    !> Parse an integer for field `name`.
-   subroutine parse_int(text, name, n, error)
+   subroutine parse_int_default(text, name, n, error)
       character(len=*), intent(in) :: text              !! the text
       character(len=*), intent(in) :: name              !! field name for messages
       integer, intent(out) :: n                         !! the value
@@ -135,7 +140,25 @@ contains
       read (text, *, iostat=stat) n
       if (stat /= 0 .or. len_trim(text) == 0 .or. verify(trim(text), '0123456789+-') /= 0) &
          call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
-   end subroutine parse_int
+   end subroutine parse_int_default
+
+   !> Parse a 64-bit integer for field `name` (counts up to 9.2e18).
+   subroutine parse_int_i8(text, name, n, error)
+      character(len=*), intent(in) :: text              !! the text
+      character(len=*), intent(in) :: name              !! field name for messages
+      integer(i8), intent(out) :: n                     !! the value
+      type(error_t), allocatable, intent(out) :: error  !! not an integer
+      integer :: stat
+      n = 0
+      if (len_trim(text) == 0 .or. len_trim(text) > 19 .or. &
+          verify(trim(text), '0123456789+-') /= 0) then
+         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
+         return
+      end if
+      read (text, *, iostat=stat) n
+      if (stat /= 0) call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
+                                      "' is not an integer")
+   end subroutine parse_int_i8
 
    !> Parse a logical (true/false, yes/no, 1/0) for field `name`.
    subroutine parse_logical(text, name, b, error)

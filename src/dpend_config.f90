@@ -440,7 +440,7 @@ contains
       case ('--atol'); call parse_real(value, name, cfg%atol, error)
       case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
       case ('--omega'); call parse_real(value, name, cfg%omega, error)
-      case ('--max-steps'); call parse_i8(value, name, cfg%max_steps, error)
+      case ('--max-steps'); call parse_int(value, name, cfg%max_steps, error)
       case ('--output', '-o'); cfg%output = value
       case default
          matched = .false.
@@ -532,24 +532,6 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
-
-   !> Parse a 64-bit integer for field `name`.
-   subroutine parse_i8(text, name, n, error)
-      character(len=*), intent(in) :: text              !! the text
-      character(len=*), intent(in) :: name              !! field name for messages
-      integer(i8), intent(out) :: n                     !! the value
-      type(error_t), allocatable, intent(out) :: error  !! not an integer
-      integer :: stat
-      n = 0
-      if (len_trim(text) == 0 .or. len_trim(text) > 19 .or. &
-          verify(trim(text), '0123456789+-') /= 0) then
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
-         return
-      end if
-      read (text, *, iostat=stat) n
-      if (stat /= 0) call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
-                                      "' is not an integer")
-   end subroutine parse_i8
 
    !> Help lines for the common flags, with units and the defaults of `cfg`.
    function run_flags_help(cfg, t_end_text) result(s)

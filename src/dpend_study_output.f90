@@ -16,7 +16,7 @@ module dpend_study_output
                            directory_of, run_program, io_failure_reason
    use dpend_study_config, only: study_config_t, case_index, study_namelist
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
-   use dpend_cli, only: to_str
+   use dpend_cli, only: to_str, arg_t
    implicit none
    private
    public :: run_study_command, write_study_h5, study_summary, verdicts_t, study_verdicts
@@ -71,7 +71,8 @@ contains
       logical, intent(out) :: failed                    !! the study ran, then failed
       type(study_result_t) :: res
       type(output_t) :: h5_out, md_out
-      character(len=:), allocatable :: text, md, script, fig_dir, exe, argv(:)
+      character(len=:), allocatable :: text, md, script, fig_dir, exe
+      type(arg_t) :: argv(6)
       integer :: unit, stat
       character(len=512) :: msg
       failed = .false.
@@ -139,15 +140,10 @@ contains
       end if
       ! an argument vector, no shell: names are passed as they are
       exe = executable_path()
-      ! element by element: -fcheck=all rejects a typed constructor of other lengths
-      allocate (character(len=max(len(exe) + 6, len(script), len(cfg%output), &
-                                  len(fig_dir))) :: argv(6))
-      argv(1) = 'env'
-      argv(2) = 'DPEND='//exe
-      argv(3) = 'bash'
-      argv(4) = script
-      argv(5) = cfg%output
-      argv(6) = fig_dir
+      ! component by component (gfortran 12 mangles an array constructor of
+      ! structure constructors with deferred-length components)
+      argv(1)%s = 'env'; argv(2)%s = 'DPEND='//exe; argv(3)%s = 'bash'
+      argv(4)%s = script; argv(5)%s = cfg%output; argv(6)%s = fig_dir
       call run_program(argv, stat, error)
       if (allocated(error)) return
       if (stat /= 0) then

@@ -10,6 +10,7 @@ module dpend_system
    use, intrinsic :: iso_fortran_env, only: int64
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: arg_t
    implicit none
    private
    public :: stderr_is_terminal, executable_path, make_directories, host_name, cpu_model
@@ -190,12 +191,12 @@ contains
       end do
    end function errno_text
 
-   !> Run the program argv(1) (searched on PATH) with arguments argv(2:), each
-   !> passed as it is (trailing blanks removed), without a shell, and wait for it.
-   !> `status` is its exit status (128 + N when signal N ended it); `error` is set
-   !> when it could not be started.
+   !> Run the program argv(1)%s (searched on PATH) with arguments argv(2:), each
+   !> passed exactly as it is (no trimming, no splitting), without a shell, and
+   !> wait for it. `status` is its exit status (128 + N when signal N ended it);
+   !> `error` is set when it could not be started.
    subroutine run_program(argv, status, error)
-      character(len=*), intent(in) :: argv(:)           !! program and arguments
+      type(arg_t), intent(in) :: argv(:)                !! program and arguments
       integer, intent(out) :: status                    !! its exit status
       type(error_t), allocatable, intent(out) :: error  !! could not start it
       type :: c_string_t
@@ -207,10 +208,10 @@ contains
       integer :: i, j, n
       allocate (args(size(argv)))
       do i = 1, size(argv)
-         n = len_trim(argv(i))
+         n = len(argv(i)%s)
          allocate (args(i)%s(n + 1))
          do j = 1, n
-            args(i)%s(j) = argv(i)(j:j)
+            args(i)%s(j) = argv(i)%s(j:j)
          end do
          args(i)%s(n + 1) = c_null_char
          ptrs(i) = c_loc(args(i)%s)
@@ -220,7 +221,7 @@ contains
       cstatus = -1
       err = c_spawn_wait(ptrs, cstatus)
       if (err /= 0) then
-         call fatal_error(error, "cannot run '"//trim(argv(1))//"': "//errno_text(int(err)))
+         call fatal_error(error, "cannot run '"//argv(1)%s//"': "//errno_text(int(err)))
          return
       end if
       status = int(cstatus)
