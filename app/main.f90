@@ -5,7 +5,7 @@ program dpend
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, get_arguments
    use dpend_config, only: run_config_t
-   use dpend_integrators, only: method_names, new_integrator
+   use dpend_methods, only: method_names, new_integrator
    use dpend_integrator, only: integrator_t
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
@@ -18,7 +18,7 @@ program dpend
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
-   use dpend_study_output, only: run_study_command
+   use dpend_study_command, only: run_study_command
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    implicit none
 

@@ -10,10 +10,10 @@ program bench
                                             output_unit
    use bench_batch, only: run_batch_benchmarks
    use dpend_kinds, only: dp, i8
-   use dpend_model, only: pendulum_t, rhs_qqdot
+   use dpend_pendulum, only: pendulum_t, rhs_qqdot
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_integrators, only: new_integrator
+   use dpend_methods, only: new_integrator
    implicit none
 
    real(dp), parameter :: pi = acos(-1.0_dp)

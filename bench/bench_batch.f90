@@ -6,9 +6,9 @@ module bench_batch
    use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
-   use dpend_model, only: pendulum_t
+   use dpend_pendulum, only: pendulum_t
    use dpend_rk_explicit, only: rk4_t
-   use dpend_batch, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
+   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       stop_end
    use dpend_sweep_config, only: sweep_config_t, sweep_defaults
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block

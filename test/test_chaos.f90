@@ -5,9 +5,9 @@
 !> sections (a normal mode's period), and the three commands run as processes.
 module test_chaos
    use dpend_kinds, only: dp
-   use dpend_model, only: pendulum_t, energy, hamiltonian, momenta, velocities
+   use dpend_pendulum, only: pendulum_t, energy, hamiltonian, momenta, velocities
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_integrators, only: new_integrator, method_names
+   use dpend_methods, only: new_integrator, method_names
    use dpend_propagate, only: march_t, advance_to
    use dpend_tangent, only: tangent_t
    use dpend_lyapunov, only: qr_positive, lyapunov_acc_t, renormalize, batch_exponents, &

@@ -5,9 +5,9 @@
 module test_integrators
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
-   use dpend_model, only: pendulum_t, mass_matrix, energy
+   use dpend_pendulum, only: pendulum_t, mass_matrix, energy
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small
-   use dpend_integrators, only: new_integrator
+   use dpend_methods, only: new_integrator
    use dpend_rk_explicit, only: rk_adaptive_t
    use dpend_propagate, only: advance_fixed, advance_to, integrate_sampled
    use dpend_events, only: angle_crossing_t, crossing_t, locate_crossing, find_crossings

@@ -6,9 +6,9 @@ module test_limits
    use dpend_error, only: error_t
    use dpend_limits, only: in_range, check_count, check_range, max_steps, sci
    use dpend_config, only: run_config_t, validate_run_config
-   use dpend_model, only: pendulum_t
+   use dpend_pendulum, only: pendulum_t
    use dpend_integrator, only: integrator_t, stat_ok, stat_max_steps, stat_count_limit
-   use dpend_integrators, only: new_integrator
+   use dpend_methods, only: new_integrator
    use dpend_propagate, only: march_t, integrate_sampled
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum, sort_descending
    use testing, only: unittest_t, new_unittest, check, check_true

@@ -9,7 +9,7 @@ module test_messages
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
    use dpend_sweep_config, only: sweep_help, sweep_config_t, sweep_defaults
-   use dpend_integrators, only: method_names
+   use dpend_methods, only: method_names
    use test_cli, only: run_command, scratch_dir, read_text
    implicit none
    private

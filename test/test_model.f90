@@ -1,9 +1,9 @@
 !> Model, kinematics and reactions against independently known values.
 module test_model
    use dpend_kinds, only: dp
-   use dpend_model
-   use dpend_kinematics, only: kinematics_t, kinematics
-   use dpend_reactions, only: reactions
+   use dpend_pendulum
+   use dpend_pendulum_kinematics, only: kinematics_t, kinematics
+   use dpend_pendulum_reactions, only: reactions
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private

@@ -5,9 +5,9 @@
 module test_symplectic
    use, intrinsic :: iso_fortran_env, only: compiler_options
    use dpend_kinds, only: dp, i8
-   use dpend_model, only: pendulum_t, hamiltonian, energy, momenta, velocities
+   use dpend_pendulum, only: pendulum_t, hamiltonian, energy, momenta, velocities
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence
-   use dpend_integrators, only: new_integrator
+   use dpend_methods, only: new_integrator
    use dpend_symplectic, only: symplectic_t, gauss_t, gauss_tableau, triple_jump, &
                                kahan_li_6, kahan_li_8
    use dpend_tao, only: tao_t, set_omega

@@ -30,13 +30,13 @@ module dpend_mpi_sweep
    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_batch, only: batch_result_t, st_cannot_flip
+   use dpend_pendulum_lanes, only: batch_result_t, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t
    use dpend_sweep, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
       compute_block, open_output, write_block, finalize_file, working_file
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
-   use dpend_system, only: io_failure_reason
+   use dpend_os, only: io_failure_reason
    use dpend_progress, only: progress_t
    use dpend_mpi_counter, only: shared_counter_t
    implicit none

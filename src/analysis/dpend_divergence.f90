@@ -1,0 +1,281 @@
+!> Divergence of nearby trajectories: two trajectories started δ0 apart, the
+!> distance |δ(t)| between them sampled on a uniform grid, and a straight-line
+!> fit of log10 |δ| against t over the exponential phase, whose slope (times
+!> ln 10) estimates the largest Lyapunov exponent.
+!>
+!> Distance: the Euclidean norm in (q1, q2, q̇1, q̇2) with the angle differences
+!> wrapped to (-π, π], so that it saturates at the size of the accessible
+!> region instead of growing when one pendulum turns over and the other does
+!> not. The initial displacement is δ0 (1, 1, 1, 1)/2 in (q, q̇); on request it
+!> is first projected onto the tangent plane of the energy surface
+!> E(q, q̇) = E0 and then corrected by Newton steps along ∇E, so that both
+!> trajectories have the same energy (to roundoff) and |δ(0)| = δ0 (to O(δ0²)).
+!>
+!> Ensembles: with n_pairs > 1 the pairs start at the states of the reference
+!> orbit at t = 0, s, 2s, … (s the spacing) and the curve is the mean of
+!> log10 |δ| over the pairs (the average of the logarithm, as for the Lyapunov
+!> exponent itself), which removes much of the finite-time scatter of one pair.
+!> Pair 1 always starts at the given initial state.
+!>
+!> Both trajectories are sampled through the method's continuous extension
+!> (`integrate_sampled`). Fixed-step methods take the same steps on both, so the
+!> difference of their truncation errors is O(h^p δ); adaptive methods choose
+!> different steps for each, and their tolerances must be far below δ0.
+module dpend_divergence
+   use dpend_kinds, only: dp
+   use dpend_pendulum, only: pendulum_t, energy, momenta, generalized_forces
+   use dpend_integrator, only: integrator_t, stat_ok
+   use dpend_propagate, only: integrate_sampled
+   implicit none
+   private
+   public :: energy_gradient, perturbed_state, phase_distance
+   public :: divergence_result_t, divergence_pairs, line_fit_t, fit_exponential_phase
+
+   real(dp), parameter :: pi = acos(-1.0_dp)
+
+   !> Sampled divergence of one or more pairs.
+   type :: divergence_result_t
+      real(dp), allocatable :: t(:)             !! sample times from each pair's start (n) [s]
+      real(dp), allocatable :: log10_pairs(:, :) !! log10 |δ| of each pair (n_pairs, n)
+      real(dp), allocatable :: log10_mean(:)    !! mean over the pairs of log10 |δ| (n)
+      real(dp), allocatable :: start(:, :)      !! (q1, q2, q̇1, q̇2) of each pair's reference
+      real(dp), allocatable :: delta_start(:)   !! actual |δ(0)| of each pair
+      real(dp), allocatable :: energy_diff(:)   !! E_b - E_a at t = 0 of each pair [J]
+   end type divergence_result_t
+
+   !> A straight line fitted to log10 |δ| against t.
+   type :: line_fit_t
+      real(dp) :: slope = 0.0_dp        !! d ln|δ|/dt [1/s] (natural log)
+      real(dp) :: slope_stderr = 0.0_dp !! its least-squares standard error [1/s]
+      real(dp) :: intercept = 0.0_dp    !! log10 |δ| of the line at t = 0
+      real(dp) :: t_start = 0.0_dp      !! fit window start [s]
+      real(dp) :: t_end = 0.0_dp        !! fit window end [s]
+      integer :: n_points = 0           !! samples in the window
+      real(dp) :: saturation = 0.0_dp   !! log10 |δ| level of saturation
+      logical :: saturated = .false.    !! the curve reached saturation
+      logical :: ok = .false.           !! at least 3 points were fitted
+   end type line_fit_t
+
+contains
+
+   !> ∇E in (q1, q2, q̇1, q̇2): ∂E/∂q = ∂V/∂q + ½ q̇ᵀ (∂M/∂q) q̇, ∂E/∂q̇ = M q̇ = p,
+   !> where only M12 = k cos(q1 - q2) depends on q [J/rad, J s/rad].
+   pure function energy_gradient(par, q, qd) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: g(4)
+      real(dp) :: t
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
+      g(1:2) = -generalized_forces(par, q) + [-t, t]
+      g(3:4) = momenta(par, q, qd)
+   end function energy_gradient
+
+   !> The partner of (q, q̇): displaced by δ0 (1, 1, 1, 1)/2, or with `same_energy`
+   !> by δ0 along the projection of that direction on the energy surface, then
+   !> put back on E = E(q, q̇) by Newton steps along ∇E (see the module header).
+   pure subroutine perturbed_state(par, q, qd, delta0, same_energy, qb, qdb)
+      type(pendulum_t), intent(in) :: par   !! parameters
+      real(dp), intent(in) :: q(2)          !! angles [rad]
+      real(dp), intent(in) :: qd(2)         !! angular velocities [rad/s]
+      real(dp), intent(in) :: delta0        !! displacement [mixed: rad, rad/s]
+      logical, intent(in) :: same_energy    !! keep the energy
+      real(dp), intent(out) :: qb(2)        !! displaced angles [rad]
+      real(dp), intent(out) :: qdb(2)       !! displaced angular velocities [rad/s]
+      real(dp) :: u(4), n(4), z(4), e0, nn
+      integer :: it
+      u = 0.5_dp
+      if (same_energy) then
+         n = energy_gradient(par, q, qd)
+         nn = dot_product(n, n)
+         if (nn > 0.0_dp) u = u - (dot_product(u, n)/nn)*n
+         u = u/norm2(u)
+      end if
+      z = [q, qd] + delta0*u
+      if (same_energy) then
+         e0 = energy(par, q, qd)
+         do it = 1, 3
+            n = energy_gradient(par, z(1:2), z(3:4))
+            nn = dot_product(n, n)
+            if (nn == 0.0_dp) exit
+            z = z - ((energy(par, z(1:2), z(3:4)) - e0)/nn)*n
+         end do
+      end if
+      qb = z(1:2); qdb = z(3:4)
+   end subroutine perturbed_state
+
+   !> Distance in (q, q̇) with angle differences wrapped to (-π, π] [mixed units].
+   pure real(dp) function phase_distance(qa, qda, qb, qdb)
+      real(dp), intent(in) :: qa(2), qda(2)  !! first state [rad, rad/s]
+      real(dp), intent(in) :: qb(2), qdb(2)  !! second state [rad, rad/s]
+      real(dp) :: dq(2)
+      dq = qb - qa
+      dq = dq - 2.0_dp*pi*anint(dq/(2.0_dp*pi))
+      phase_distance = sqrt(sum(dq**2) + sum((qdb - qda)**2))
+   end function phase_distance
+
+   !> Divergence of `n_pairs` pairs over [0, t_span], sampled every sample_dt
+   !> (see the module header). h: fixed step or initial proposal of `integ`.
+   !> On failure `stat` says why and `res` holds the pairs completed before.
+   subroutine divergence_pairs(integ, par, q0, qd0, t_span, sample_dt, delta0, same_energy, &
+                               n_pairs, spacing, h, res, stat)
+      class(integrator_t), intent(inout) :: integ  !! the method
+      type(pendulum_t), intent(in) :: par          !! parameters
+      real(dp), intent(in) :: q0(2)                !! initial angles [rad]
+      real(dp), intent(in) :: qd0(2)               !! initial angular velocities [rad/s]
+      real(dp), intent(in) :: t_span               !! duration of each pair [s]
+      real(dp), intent(in) :: sample_dt            !! sampling interval [s]
+      real(dp), intent(in) :: delta0               !! initial distance
+      logical, intent(in) :: same_energy           !! partner on the same energy surface
+      integer, intent(in) :: n_pairs               !! pairs (≥ 1)
+      real(dp), intent(in) :: spacing              !! time between pair starts on the orbit [s]
+      real(dp), intent(in) :: h                    !! step or proposal [s]
+      type(divergence_result_t), intent(out) :: res !! curves
+      integer, intent(out) :: stat                 !! stat_ok or a failure code
+      real(dp), allocatable :: times(:), sa(:, :), sb(:, :), tref(:), sref(:, :)
+      real(dp) :: qa(2), qda(2), qb(2), qdb(2), ya(4), yb(4)
+      integer :: p, i, n_done
+      allocate (res%start(4, n_pairs), res%delta_start(n_pairs), res%energy_diff(n_pairs))
+      ya = integ%to_internal(par, q0, qd0)
+      if (n_pairs > 1) then
+         call integrate_sampled(integ, par, 0.0_dp, ya, real(n_pairs - 1, dp)*spacing, h, &
+                                spacing, tref, sref, stat)
+         if (stat /= stat_ok) then
+            allocate (res%t(0), res%log10_pairs(0, 0), res%log10_mean(0))
+            return
+         end if
+      else
+         tref = [0.0_dp]
+         sref = reshape(ya, [4, 1])
+      end if
+      n_done = 0
+      do p = 1, n_pairs
+         call integ%to_physical(par, sref(:, p), qa, qda)
+         call perturbed_state(par, qa, qda, delta0, same_energy, qb, qdb)
+         res%start(:, p) = [qa, qda]
+         res%delta_start(p) = phase_distance(qa, qda, qb, qdb)
+         res%energy_diff(p) = energy(par, qb, qdb) - energy(par, qa, qda)
+         ya = integ%to_internal(par, qa, qda)
+         yb = integ%to_internal(par, qb, qdb)
+         call integrate_sampled(integ, par, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat)
+         if (stat /= stat_ok) exit
+         call integrate_sampled(integ, par, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat)
+         if (stat /= stat_ok) exit
+         if (p == 1) then
+            res%t = times
+            allocate (res%log10_pairs(n_pairs, size(times)))
+         end if
+         do i = 1, size(times)
+            call integ%to_physical(par, sa(:, i), qa, qda)
+            call integ%to_physical(par, sb(:, i), qb, qdb)
+            res%log10_pairs(p, i) = log10(max(phase_distance(qa, qda, qb, qdb), tiny(1.0_dp)))
+         end do
+         n_done = p
+      end do
+      if (.not. allocated(res%t)) then
+         allocate (res%t(0), res%log10_pairs(0, 0))
+      end if
+      res%log10_pairs = res%log10_pairs(1:n_done, :)
+      if (n_done > 0) then
+         res%log10_mean = sum(res%log10_pairs, dim=1)/real(n_done, dp)
+      else
+         allocate (res%log10_mean(size(res%t)))
+         res%log10_mean = 0.0_dp
+      end if
+   end subroutine divergence_pairs
+
+   !> Least-squares line through (t, y = log10 |δ|) over the exponential phase.
+   !> Window: [t_fit0, t_fit1] when t_fit1 > t_fit0; otherwise automatic, from
+   !> the first sample `low` decades above y(1) to the first sample `high`
+   !> decades below the saturation level (the median of y over the last quarter
+   !> of the samples). The curve counts as saturated when that level lies at
+   !> least low + high + 1 decades above y(1) and is approached before the last
+   !> quarter; otherwise the window runs to the end and `saturated` is false.
+   pure subroutine fit_exponential_phase(t, y, t_fit0, t_fit1, fit, low, high)
+      real(dp), intent(in) :: t(:)              !! sample times [s]
+      real(dp), intent(in) :: y(:)              !! log10 |δ|
+      real(dp), intent(in) :: t_fit0            !! window start [s] (if t_fit1 > t_fit0)
+      real(dp), intent(in) :: t_fit1            !! window end [s]; <= t_fit0: automatic
+      type(line_fit_t), intent(out) :: fit      !! the fitted line
+      real(dp), intent(in), optional :: low     !! decades above y(1); default 1
+      real(dp), intent(in), optional :: high    !! decades below saturation; default 1.5
+      real(dp) :: lo, hi, tq, sx, sy, sxx, sxy, d, resid
+      real(dp), allocatable :: tail(:)
+      integer :: n, i, i0, i1, m
+      n = size(t)
+      if (n < 3) return
+      lo = 1.0_dp; if (present(low)) lo = low
+      hi = 1.5_dp; if (present(high)) hi = high
+      tq = t(1) + 0.75_dp*(t(n) - t(1))
+      tail = pack(y, t >= tq)
+      fit%saturation = median(tail)
+      if (t_fit1 > t_fit0) then
+         i0 = n + 1; i1 = 0
+         do i = 1, n
+            if (t(i) >= t_fit0 .and. t(i) <= t_fit1) then
+               i0 = min(i0, i); i1 = max(i1, i)
+            end if
+         end do
+         fit%saturated = fit%saturation >= y(1) + lo + hi + 1.0_dp
+      else
+         i0 = first_above(y(1) + lo)
+         i1 = first_above(fit%saturation - hi)
+         fit%saturated = fit%saturation >= y(1) + lo + hi + 1.0_dp .and. i1 <= n
+         if (i1 <= n) fit%saturated = fit%saturated .and. t(i1) < tq
+         if (.not. fit%saturated) i1 = n
+         if (i0 > n) i0 = n
+      end if
+      m = i1 - i0 + 1
+      fit%n_points = max(m, 0)
+      if (m < 3) return
+      fit%t_start = t(i0); fit%t_end = t(i1)
+      sx = sum(t(i0:i1)); sy = sum(y(i0:i1))
+      sxx = sum((t(i0:i1) - sx/m)**2)
+      sxy = sum((t(i0:i1) - sx/m)*(y(i0:i1) - sy/m))
+      if (sxx <= 0.0_dp) return
+      d = sxy/sxx
+      fit%intercept = sy/m - d*sx/m
+      resid = sum((y(i0:i1) - fit%intercept - d*t(i0:i1))**2)
+      fit%slope = d*log(10.0_dp)
+      fit%slope_stderr = sqrt(resid/max(m - 2, 1)/sxx)*log(10.0_dp)
+      fit%ok = .true.
+   contains
+      pure integer function first_above(level)
+         real(dp), intent(in) :: level
+         integer :: j
+         first_above = n + 1
+         do j = 1, n
+            if (y(j) >= level) then
+               first_above = j
+               return
+            end if
+         end do
+      end function first_above
+   end subroutine fit_exponential_phase
+
+   !> Median of x (insertion sort of a copy; x is short).
+   pure real(dp) function median(x)
+      real(dp), intent(in) :: x(:)
+      real(dp) :: s(size(x)), v
+      integer :: i, j, n
+      n = size(x)
+      if (n == 0) then
+         median = 0.0_dp
+         return
+      end if
+      s = x
+      do i = 2, n
+         v = s(i); j = i - 1
+         do while (j >= 1)
+            if (s(j) <= v) exit
+            s(j + 1) = s(j); j = j - 1
+         end do
+         s(j + 1) = v
+      end do
+      if (mod(n, 2) == 1) then
+         median = s((n + 1)/2)
+      else
+         median = 0.5_dp*(s(n/2) + s(n/2 + 1))
+      end if
+   end function median
+end module dpend_divergence

@@ -1,0 +1,639 @@
+!> `dpend animate`: an animated GIF of the double pendulum from a `dpend simulate`
+!> file, drawn by gnuplot (scripts/animate.gp) from a data file written here.
+!>
+!> Frames: N = round(duration × fps) (at least 1) without --duration the whole
+!> trajectory, N = floor(span × fps / speed) + 1; frame k (k = 0 … N−1) shows the
+!> state at t = t(1) + k·speed/fps, interpolated linearly in the angles between
+!> the stored samples (the rods keep their lengths). gnuplot receives file names
+!> only as arguments, never inside code; it runs without a shell.
+module dpend_animate
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: arg_t, next_option, option_outcome, parse_int, parse_real, to_str, &
+                        is_long_option
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_output, only: output_t, check_output_path
+   use dpend_limits, only: check_range, sci
+   use dpend_os, only: find_script, run_program, make_temp_file, remove_file, &
+                           directory_of, base_name, path_kind, path_directory, path_missing, &
+                           move_noreplace, move_replace, sync_path, errno_text
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   implicit none
+   private
+   public :: animate_config_t, parse_animate, run_animate, animate_help
+   public :: max_frames
+
+   integer, parameter :: max_frames = 10000        !! most frames of one animation
+   integer, parameter :: min_fps = 1, max_fps = 100
+   integer, parameter :: min_pixels = 64, max_pixels = 4096
+   real(dp), parameter :: min_speed = 1e-3_dp, max_speed = 1e3_dp
+   real(dp), parameter :: min_duration = 1e-2_dp, max_duration = 1e5_dp
+   real(dp), parameter :: trail_span = 1.5_dp       !! tip trail: the last 1.5 s [s]
+   real(dp), parameter :: trail_step = 0.01_dp      !! finest trail sampling [s]
+   integer, parameter :: max_trail_rows = 400000    !! most trail samples in all
+
+   !> What to animate and how.
+   type :: animate_config_t
+      character(len=:), allocatable :: input        !! simulate file
+      character(len=:), allocatable :: output       !! GIF ('' = input with .gif)
+      character(len=:), allocatable :: overlay      !! second simulate file or ''
+      character(len=:), allocatable :: frames       !! PNG directory or ''
+      logical :: force = .false.                    !! replace existing outputs
+      logical :: reactions = .false.                !! draw F01 and F21
+      integer :: fps = 25                           !! frames per second
+      integer :: width = 640, height = 640          !! pixels
+      real(dp) :: speed = 1.0_dp                    !! simulated s per real s
+      real(dp) :: duration = -1.0_dp                !! animation length [s]; < 0 = all
+   end type animate_config_t
+
+   !> The samples of one simulate file that the animation needs.
+   type :: track_t
+      character(len=:), allocatable :: path, method
+      real(dp) :: l1 = 1, l2 = 1
+      real(dp), allocatable :: t(:), q(:, :), f01(:, :), f21(:, :)
+   end type track_t
+
+   character(len=*), parameter :: nl = new_line('a')
+
+contains
+
+   !> Help text of `dpend animate`.
+   function animate_help() result(s)
+      character(len=:), allocatable :: s
+      s = 'usage: dpend animate FILE.h5 [options]'//nl//nl// &
+          'Animated GIF of the double pendulum from a dpend simulate file, drawn by'//nl// &
+          'gnuplot: both rods, the pins, a fading trail of the tip (the last 1.5 s of'//nl// &
+          'simulated time), the time, equal axis scales fixed at +-(l1 + l2) and a'//nl// &
+          'margin.'//nl//nl// &
+          'Frame k (k = 0, 1, ...) shows t = t0 + k*speed/fps, interpolated linearly in'//nl// &
+          'the angles between the stored samples (use --output-dt in simulate for'//nl// &
+          'exact states). Frames: round(duration*fps), at least 1; without --duration'//nl// &
+          'floor(span*fps/speed) + 1 covering the whole trajectory (with --overlay the'//nl// &
+          'shorter of the two); at most '// &
+          to_str(max_frames)//'.'//nl// &
+          'The GIF delay is in 1/100 s: the frame rate played is 100/round(100/fps).'//nl//nl// &
+          'options:'//nl// &
+          '  --output FILE   GIF to write; default FILE.gif beside the input (.h5 replaced)'//nl// &
+          '  --force         overwrite an existing GIF (and PNG frames)'//nl// &
+          '  --fps N         frames per second, '//to_str(min_fps)//'..'//to_str(max_fps)// &
+          '; default 25'//nl// &
+          '  --duration S    length of the animation [s of playback], '//sci(min_duration)// &
+          '..'//sci(max_duration)//';'//nl// &
+          '                  default: the whole trajectory at the chosen speed'//nl// &
+          '  --speed X       playback speed: 1 real time, 0.25 four times slower, 2 twice'//nl// &
+          '                  as fast; '//sci(min_speed)//'..'//sci(max_speed)//'; default 1'//nl// &
+          '  --size WxH      image size in pixels, each '//to_str(min_pixels)//'..'// &
+          to_str(max_pixels)//'; default 640x640'//nl// &
+          '  --reactions     arrows of the joint reactions F01 (ground on link 1, at A) and'//nl// &
+          '                  F21 (link 2 on link 1, at B), to one scale [N per m] chosen'//nl// &
+          '                  from the largest |F| shown, stated in a legend'//nl// &
+          '  --overlay FILE2 a second simulate file drawn in another colour on the same'//nl// &
+          '                  frames (e.g. two nearby initial conditions separating)'//nl// &
+          '  --frames DIR    also write frame_0001.png, ... into the existing directory DIR'//nl// &
+          '  -h, --help      this text'//nl//nl// &
+          'Needs gnuplot (5.4 or later) on PATH and scripts/animate.gp of the source tree'//nl// &
+          '(found beside the build, or under $DPEND_ROOT).'
+   end function animate_help
+
+   !> Read the command line: one input file and the options, each value checked.
+   subroutine parse_animate(args, cfg, help, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'animate'
+      type(animate_config_t), intent(out) :: cfg        !! the configuration
+      logical, intent(out) :: help                      !! --help was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value
+      logical :: matched, missing
+      real(dp) :: x
+      integer :: i, n
+      cfg%input = ''
+      cfg%output = ''
+      cfg%overlay = ''
+      cfg%frames = ''
+      help = any([(args(i)%s == '-h' .or. args(i)%s == '--help', i=1, size(args))])
+      if (help) return
+      i = 1
+      do while (i <= size(args))
+         if (.not. is_long_option(args(i)%s)) then
+            if (len(cfg%input) > 0 .or. len(args(i)%s) == 0) then
+               call fatal_error(error, "unexpected argument '"//args(i)%s// &
+                                "' (dpend animate --help lists the options)")
+               return
+            end if
+            cfg%input = args(i)%s
+            i = i + 1
+            cycle
+         end if
+         if (args(i)%s == '--force' .or. args(i)%s == '--reactions') then
+            if (args(i)%s == '--force') cfg%force = .true.
+            if (args(i)%s == '--reactions') cfg%reactions = .true.
+            i = i + 1
+            cycle
+         end if
+         call next_option(args, i, name, value, .true., error, missing)
+         matched = .true.
+         if (allocated(error)) deallocate (error)
+         select case (name)
+         case ('--output')
+            cfg%output = value
+            if (len(value) == 0 .and. .not. missing) &
+               call fatal_error(error, 'invalid --output: empty file name')
+         case ('--overlay')
+            cfg%overlay = value
+            if (len(value) == 0 .and. .not. missing) &
+               call fatal_error(error, 'invalid overlay: empty file name')
+         case ('--frames')
+            cfg%frames = value
+            if (.not. missing) call check_frames_dir(value, error)
+         case ('--fps')
+            call parse_int(value, 'fps', n, error)
+            if (.not. allocated(error)) call check_range('fps', real(n, dp), &
+               real(min_fps, dp), real(max_fps, dp), 'frames per second', error)
+            cfg%fps = n
+         case ('--speed')
+            call parse_real(value, 'speed', x, error)
+            if (.not. allocated(error)) call check_range('speed', x, min_speed, max_speed, &
+               '', error, 'simulated seconds per second of playback')
+            cfg%speed = x
+         case ('--duration')
+            call parse_real(value, 'duration', x, error)
+            if (.not. allocated(error)) call check_range('duration', x, min_duration, &
+               max_duration, 's', error, 'length of the animation')
+            cfg%duration = x
+         case ('--size')
+            call parse_size(value, cfg%width, cfg%height, error)
+         case default
+            matched = .false.
+         end select
+         call option_outcome('animate', name, matched, missing, &
+                             [character(len=16) :: '--force', '--reactions'], error)
+         if (allocated(error)) return
+      end do
+      if (len(cfg%input) == 0) then
+         call fatal_error(error, 'invalid input: no simulate file given '// &
+                          '(usage: dpend animate FILE.h5 [options])')
+         return
+      end if
+      if (len(cfg%output) == 0) cfg%output = gif_name(cfg%input)
+      ! a frame budget known from the options alone (the default duration is checked
+      ! once the file's span is known)
+      if (cfg%duration > 0.0_dp) then
+         if (cfg%duration*real(cfg%fps, dp) > real(max_frames, dp) + 0.5_dp) &
+            call fatal_error(error, 'invalid duration: '//sci(cfg%duration)//' s at '// &
+                             to_str(cfg%fps)//' fps gives '// &
+                             sci(real(nint(cfg%duration*real(cfg%fps, dp)), dp))// &
+                             ' frames; at most '//to_str(max_frames)// &
+                             ' (use a smaller --duration or --fps)')
+      end if
+   end subroutine parse_animate
+
+   !> The GIF beside the input: FILE.h5 → FILE.gif, other names get .gif appended.
+   pure function gif_name(input) result(path)
+      character(len=*), intent(in) :: input  !! simulate file
+      character(len=:), allocatable :: path
+      integer :: n
+      n = len(input)
+      path = input//'.gif'
+      if (n > 3) then
+         if (input(n - 2:n) == '.h5') path = input(:n - 3)//'.gif'
+      end if
+   end function gif_name
+
+   !> Parse 'WxH' (pixels), each in [min_pixels, max_pixels].
+   subroutine parse_size(text, w, h, error)
+      character(len=*), intent(in) :: text              !! e.g. '640x480'
+      integer, intent(inout) :: w, h                    !! width and height
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: x
+      character(len=*), parameter :: rng = ' (accepted: WxH pixels, each 64..4096, e.g. 640x640)'
+      x = scan(text, 'xX')
+      if (x < 2 .or. x == len(text)) then
+         call fatal_error(error, "invalid size: '"//text//"' is not WxH"//rng)
+         return
+      end if
+      if (verify(text(:x - 1), '0123456789') /= 0 .or. verify(text(x + 1:), '0123456789') /= 0) &
+         then
+         call fatal_error(error, "invalid size: '"//text//"' is not WxH"//rng)
+         return
+      end if
+      if (x > 6 .or. len(text) - x > 5) then      ! more than 5 digits: too large to read
+         call fatal_error(error, "invalid size: '"//text//"' is outside 64..4096"//rng)
+         return
+      end if
+      read (text(:x - 1), *) w
+      read (text(x + 1:), *) h
+      if (min(w, h) < min_pixels .or. max(w, h) > max_pixels) &
+         call fatal_error(error, "invalid size: '"//text//"' is outside 64..4096"//rng)
+   end subroutine parse_size
+
+   !> The --frames directory must exist.
+   subroutine check_frames_dir(dir, error)
+      character(len=*), intent(in) :: dir               !! directory
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      if (len(dir) == 0) then
+         call fatal_error(error, 'invalid frames: empty directory name')
+      else if (path_kind(dir) /= path_directory .and. &
+               path_kind(dir//'/.') /= path_directory) then
+         call fatal_error(error, "invalid frames: '"//dir//"' is not an existing directory")
+      end if
+   end subroutine check_frames_dir
+
+   !> Read the samples of a simulate file; refuse other files.
+   subroutine read_track(path, field, tr, error)
+      character(len=*), intent(in) :: path              !! simulate file
+      character(len=*), intent(in) :: field             !! 'input' or 'overlay'
+      type(track_t), intent(out) :: tr                  !! its samples
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(h5file_t) :: h5
+      real(dp), allocatable :: f(:, :)
+      integer :: n, k
+      tr%path = path
+      select case (path_kind(path, .true.))
+      case (path_missing)
+         call fatal_error(error, 'invalid '//field//": '"//path//"' does not exist")
+         return
+      case (path_directory)
+         call fatal_error(error, 'invalid '//field//": '"//path//"' is a directory")
+         return
+      end select
+      if (.not. is_hdf5(path)) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"' is not an HDF5 file")
+         return
+      end if
+      call h5%open(path, 'r', error)
+      if (allocated(error)) then
+         error%message = 'invalid '//field//': '//error%message
+         return
+      end if
+      if (.not. h5%exists('/trajectory/q')) then
+         call h5%close()
+         call fatal_error(error, 'invalid '//field//": '"//path//"' is not a dpend simulate "// &
+                          'file (no /trajectory/q)')
+         return
+      end if
+      call h5%read('/trajectory/t', tr%t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', tr%q, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/F01', tr%f01, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/F21', tr%f21, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'l1', tr%l1, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'l2', tr%l2, error)
+      if (.not. allocated(error)) then
+         if (h5%attr_exists('/', 'method')) then
+            call h5%readattr('/', 'method', tr%method, error)
+         else
+            tr%method = '?'
+         end if
+      end if
+      call h5%close()
+      if (allocated(error)) then
+         error%message = 'invalid '//field//": '"//path//"': "//error%message
+         return
+      end if
+      n = size(tr%t)
+      if (n < 1 .or. any(shape(tr%q) /= [2, n]) .or. any(shape(tr%f01) /= [2, n]) .or. &
+          any(shape(tr%f21) /= [2, n])) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory datasets of "// &
+                          'different lengths or none')
+         return
+      end if
+      if (.not. (all(ieee_is_finite(tr%t)) .and. all(ieee_is_finite(tr%q)) .and. &
+                 all(ieee_is_finite(tr%f01)) .and. all(ieee_is_finite(tr%f21)))) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': non-finite samples")
+         return
+      end if
+      if (.not. (in(tr%l1) .and. in(tr%l2))) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': link lengths l1 = "// &
+                          sci(tr%l1)//', l2 = '//sci(tr%l2)//' m')
+         return
+      end if
+      do k = 2, n
+         if (tr%t(k) < tr%t(k - 1)) then
+            call fatal_error(error, 'invalid '//field//": '"//path//"': times decrease at "// &
+                             'sample '//to_str(k))
+            return
+         end if
+      end do
+      ! forces beyond 1e100 N are not drawn to any sensible scale
+      f = max(abs(tr%f01), abs(tr%f21))
+      if (maxval(f) > 1e100_dp) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': reaction forces up to "// &
+                          sci(maxval(f))//' N')
+      end if
+   contains
+      logical function in(l)
+         real(dp), intent(in) :: l
+         in = ieee_is_finite(l) .and. l >= 1e-6_dp .and. l <= 1e6_dp
+      end function in
+   end subroutine read_track
+
+   !> State of a track at times `tt` (sorted), linear in the samples: angles and
+   !> reactions; positions of B and D from the interpolated angles.
+   subroutine resample(tr, tt, pos, f)
+      type(track_t), intent(in) :: tr            !! samples
+      real(dp), intent(in) :: tt(:)              !! times, increasing [s]
+      real(dp), intent(out) :: pos(4, size(tt))  !! xB, yB, xD, yD [m]
+      real(dp), intent(out) :: f(4, size(tt))    !! F01x, F01y, F21x, F21y [N]
+      real(dp) :: w, q(2)
+      integer :: i, k, n
+      n = size(tr%t)
+      k = 1
+      do i = 1, size(tt)
+         do while (k < n - 1 .and. tr%t(min(k + 1, n)) < tt(i))
+            k = k + 1
+         end do
+         if (n == 1) then
+            q = tr%q(:, 1)
+            f(:, i) = [tr%f01(:, 1), tr%f21(:, 1)]
+         else
+            w = 0.0_dp
+            if (tr%t(k + 1) > tr%t(k)) w = (tt(i) - tr%t(k))/(tr%t(k + 1) - tr%t(k))
+            w = min(1.0_dp, max(0.0_dp, w))
+            q = (1 - w)*tr%q(:, k) + w*tr%q(:, k + 1)
+            f(:, i) = (1 - w)*[tr%f01(:, k), tr%f21(:, k)] + w*[tr%f01(:, k + 1), tr%f21(:, k + 1)]
+         end if
+         pos(1:2, i) = tr%l1*[cos(q(1)), sin(q(1))]
+         pos(3:4, i) = pos(1:2, i) + tr%l2*[cos(q(2)), sin(q(2))]
+      end do
+   end subroutine resample
+
+   !> Name of PNG frame i in dir.
+   pure function frame_name(dir, i) result(path)
+      character(len=*), intent(in) :: dir  !! directory
+      integer, intent(in) :: i             !! frame number (1-based)
+      character(len=:), allocatable :: path
+      character(len=16) :: buf
+      write (buf, '(i4.4)') i
+      path = dir//'/frame_'//trim(buf)//'.png'
+   end function frame_name
+
+   !> Read, check, resample, draw and write. `error` with `failed` false: refused
+   !> input, nothing written; with `failed` true: the run failed (nothing written
+   !> either: temporary files are removed).
+   subroutine run_animate(cfg, summary, error, failed)
+      type(animate_config_t), intent(in) :: cfg         !! the configuration
+      character(len=:), allocatable, intent(out) :: summary  !! what was written
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the run started and failed
+      type(track_t) :: a, b
+      type(output_t) :: out
+      real(dp) :: span, dtf, ht, lim, fmax, npm, e
+      real(dp), allocatable :: tf(:), ttr(:), pa(:, :), fa(:, :), pb(:, :), fb(:, :)
+      real(dp), allocatable :: qa(:, :), qb(:, :), ga(:, :), gb(:, :), tab(:, :)
+      character(len=:), allocatable :: script, dir, params, frames_dat, trail_dat, stem, title
+      character(len=:), allocatable :: label1, label2
+      type(arg_t) :: argv(11)
+      integer :: nframes, m, ntr, nrows, i, stat, err, u
+      logical :: overlay, made_params, made_frames, made_trail, made_stem
+      failed = .false.
+      summary = ''
+      overlay = len(cfg%overlay) > 0
+      made_params = .false.; made_frames = .false.; made_trail = .false.; made_stem = .false.
+      call read_track(cfg%input, 'input', a, error)
+      if (allocated(error)) return
+      span = a%t(size(a%t)) - a%t(1)
+      if (overlay) then
+         call read_track(cfg%overlay, 'overlay', b, error)
+         if (allocated(error)) return
+         if (b%t(1) > a%t(1) + 1e-9_dp*max(1.0_dp, abs(a%t(1)))) then
+            call fatal_error(error, "invalid overlay: '"//cfg%overlay//"' starts at t = "// &
+                             sci(b%t(1))//' s, after the input ('//sci(a%t(1))//' s)')
+            return
+         end if
+         span = min(span, b%t(size(b%t)) - a%t(1))
+      end if
+      ! the frames
+      dtf = cfg%speed/real(cfg%fps, dp)
+      if (cfg%duration > 0.0_dp) then
+         nframes = max(1, nint(cfg%duration*real(cfg%fps, dp)))
+         if (real(nframes - 1, dp)*dtf > span*(1 + 1e-9_dp) + 1e-12_dp) then
+            call fatal_error(error, 'invalid duration: '//sci(cfg%duration)//' s at speed '// &
+                             sci(cfg%speed)//' shows t up to '// &
+                             sci(a%t(1) + real(nframes - 1, dp)*dtf)//' s; the trajectory'// &
+                             trim(merge(' (both files)', '             ', overlay))// &
+                             ' ends at t = '//sci(a%t(1) + span)//' s (at most '// &
+                             sci(span/cfg%speed)//' s at this speed)')
+            return
+         end if
+      else
+         if (span/dtf > real(max_frames, dp)) then
+            call fatal_error(error, 'invalid duration: the whole trajectory ('//sci(span)// &
+                             ' s at speed '//sci(cfg%speed)//', '//to_str(cfg%fps)// &
+                             ' fps) gives '//sci(aint(span/dtf) + 1)//' frames; at most '// &
+                             to_str(max_frames)//' (use --duration, a larger --speed or a '// &
+                             'smaller --fps)')
+            return
+         end if
+         nframes = int(span/dtf + 1e-9_dp) + 1
+      end if
+      ! the trail: m samples per frame interval, ntr samples long
+      m = max(1, min(ceiling(dtf/trail_step), max_trail_rows/nframes))
+      ht = dtf/real(m, dp)
+      ntr = max(1, nint(min(trail_span/ht, real(max_trail_rows, dp))))
+      nrows = (nframes - 1)*m + 1
+      ! PNG frames: none may exist without --force
+      if (len(cfg%frames) > 0) then
+         do i = 1, nframes
+            call check_output_path(frame_name(cfg%frames, i), cfg%force, error, '--frames')
+            if (allocated(error)) return
+         end do
+      end if
+      script = find_script('animate.gp')
+      if (len(script) == 0) then
+         failed = .true.
+         call fatal_error(error, 'scripts/animate.gp not found (set DPEND_ROOT to the dpend '// &
+                          'source tree)')
+         return
+      end if
+      call out%begin(cfg%output, cfg%force, error)
+      if (allocated(error)) return
+      ! from here on, a failure is a failed run
+      failed = .true.
+      allocate (tf(nframes), ttr(nrows))
+      tf = a%t(1) + dtf*[(real(i, dp), i=0, nframes - 1)]
+      ttr = a%t(1) + ht*[(real(i, dp), i=0, nrows - 1)]
+      ttr = min(ttr, a%t(1) + span)
+      allocate (pa(4, nframes), fa(4, nframes), qa(4, nrows), ga(4, nrows))
+      call resample(a, tf, pa, fa)
+      call resample(a, ttr, qa, ga)
+      if (overlay) then
+         allocate (pb(4, nframes), fb(4, nframes), qb(4, nrows), gb(4, nrows))
+         call resample(b, tf, pb, fb)
+         call resample(b, ttr, qb, gb)
+      end if
+      lim = a%l1 + a%l2
+      if (overlay) lim = max(lim, b%l1 + b%l2)
+      ! reaction arrows: the longest 0.3 to 0.6 (l1 + l2), the scale a round number of N per m
+      fmax = 0.0_dp
+      npm = 0.0_dp
+      if (cfg%reactions) then
+         do i = 1, nframes
+            fmax = max(fmax, hypot(fa(1, i), fa(2, i)), hypot(fa(3, i), fa(4, i)))
+         end do
+         if (fmax > 0.0_dp) then
+            e = log10(fmax) - log10(0.6_dp*lim)
+            npm = 10.0_dp**floor(e)
+            if (fmax/npm > 5.0_dp*0.6_dp*lim) then
+               npm = 10*npm
+            else if (fmax/npm > 2.0_dp*0.6_dp*lim) then
+               npm = 5*npm
+            else if (fmax/npm > 0.6_dp*lim) then
+               npm = 2*npm
+            end if
+         end if
+      end if
+      dir = directory_of(cfg%output)
+      params = new_temp(dir//'/.'//base_name(cfg%output)//'.params-', made_params)
+      if (made_params) frames_dat = new_temp(dir//'/.'//base_name(cfg%output)//'.frames-', &
+                                             made_frames)
+      if (made_frames) trail_dat = new_temp(dir//'/.'//base_name(cfg%output)//'.trail-', &
+                                            made_trail)
+      stem = ''
+      if (made_trail .and. len(cfg%frames) > 0) then
+         stem = new_temp(cfg%frames//'/.dpend-frames-', made_stem)
+         if (.not. made_stem) call fatal_error(error, "cannot write into '"//cfg%frames// &
+                                               "' (--frames)")
+      end if
+      if (.not. made_trail .and. .not. allocated(error)) &
+         call fatal_error(error, "cannot create temporary files in '"//dir//"'")
+      if (allocated(error)) then
+         call cleanup()
+         return
+      end if
+      ! numbers only: file names reach gnuplot as arguments
+      open (newunit=u, file=params, status='replace', action='write', iostat=stat)
+      if (stat == 0) then
+         write (u, '(a, i0)', iostat=stat) 'nframes = ', nframes
+         write (u, '(a, i0)', iostat=stat) 'nrows = ', nrows
+         write (u, '(a, i0)', iostat=stat) 'per_frame = ', m
+         write (u, '(a, i0)', iostat=stat) 'ntrail = ', ntr
+         write (u, '(a, i0)', iostat=stat) 'delay = ', max(1, nint(100.0_dp/real(cfg%fps, dp)))
+         write (u, '(a, i0)', iostat=stat) 'width = ', cfg%width
+         write (u, '(a, i0)', iostat=stat) 'height = ', cfg%height
+         write (u, '(a, i0)', iostat=stat) 'overlay = ', merge(1, 0, overlay)
+         write (u, '(a, i0)', iostat=stat) 'reactions = ', merge(1, 0, cfg%reactions .and. &
+                                                                  npm > 0)
+         write (u, '(a, es24.16e3)', iostat=stat) 'lim = ', 1.08_dp*lim
+         write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', max(npm, 1.0_dp)
+         write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
+         close (u, iostat=err)
+         if (err /= 0) stat = err
+      end if
+      if (stat == 0) then
+         allocate (tab(merge(12, 8, overlay), nframes))
+         tab(1:4, :) = pa
+         tab(5:8, :) = fa
+         if (overlay) tab(9:12, :) = pb
+         call write_table(frames_dat, tf, tab, stat)
+         deallocate (tab)
+      end if
+      if (stat == 0) then
+         allocate (tab(merge(4, 2, overlay), nrows))
+         tab(1:2, :) = qa(3:4, :)
+         if (overlay) tab(3:4, :) = qb(3:4, :)
+         call write_table(trail_dat, ttr, tab, stat)
+      end if
+      if (stat /= 0) then
+         call fatal_error(error, "cannot write temporary files in '"//dir//"'")
+         call cleanup()
+         return
+      end if
+      title = base_name(cfg%input)//' ('//a%method//')'
+      label1 = title
+      label2 = ''
+      if (overlay) then
+         label2 = base_name(cfg%overlay)//' ('//b%method//')'
+         title = label1//'  and  '//label2
+      end if
+      title = 'double pendulum: '//title
+      ! component by component (gfortran 12 mangles an array constructor of
+      ! structure constructors with deferred-length components)
+      argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = params
+      argv(5)%s = frames_dat; argv(6)%s = trail_dat; argv(7)%s = out%temp
+      argv(8)%s = title; argv(9)%s = label1; argv(10)%s = label2; argv(11)%s = stem
+      call run_program(argv, stat, error)
+      if (.not. allocated(error) .and. stat /= 0) &
+         call fatal_error(error, 'gnuplot failed (exit status '//to_str(stat)//', '//script//')')
+      if (.not. allocated(error)) call out%commit(error)
+      if (.not. allocated(error) .and. len(stem) > 0) call move_frames()
+      call out%explain(error)
+      call cleanup()
+      if (allocated(error)) return
+      failed = .false.
+      summary = "wrote '"//cfg%output//"': "//to_str(nframes)//' frames, '// &
+                sci(real(nframes, dp)/real(cfg%fps, dp))//' s at '//to_str(cfg%fps)// &
+                ' fps, t = '//sci(tf(1))//' .. '//sci(tf(nframes))//' s'
+      if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
+      if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &
+                                                 sci(npm)//' N'
+
+   contains
+
+      !> A new empty temporary file named prefix + XXXXXX.
+      function new_temp(prefix, made) result(path)
+         character(len=*), intent(in) :: prefix
+         logical, intent(out) :: made
+         character(len=:), allocatable :: path
+         made = make_temp_file(prefix, path) == 0
+         if (.not. made) path = ''
+      end function new_temp
+
+      !> Move the PNG frames gnuplot wrote (STEM-0001.png …) into place.
+      subroutine move_frames()
+         character(len=:), allocatable :: from, to
+         character(len=8) :: buf
+         integer :: j, r
+         do j = 1, nframes
+            write (buf, '(i4.4)') j
+            from = stem//'-'//trim(buf)//'.png'
+            to = frame_name(cfg%frames, j)
+            r = sync_path(from)
+            if (r == 0) then
+               if (cfg%force) then
+                  r = move_replace(from, to)
+               else
+                  r = move_noreplace(from, to)
+               end if
+            end if
+            if (r /= 0) then
+               call fatal_error(error, "cannot write '"//to//"': "//errno_text(r)// &
+                                ' (the GIF is written)')
+               return
+            end if
+         end do
+      end subroutine move_frames
+
+      !> Remove the temporary files (and PNG frames not moved into place).
+      subroutine cleanup()
+         character(len=8) :: buf
+         integer :: j, r
+         if (made_params) r = remove_file(params)
+         if (made_frames) r = remove_file(frames_dat)
+         if (made_trail) r = remove_file(trail_dat)
+         if (made_stem) then
+            do j = 1, nframes
+               write (buf, '(i4.4)') j
+               if (path_kind(stem//'-'//trim(buf)//'.png') /= path_missing) &
+                  r = remove_file(stem//'-'//trim(buf)//'.png')
+            end do
+            r = remove_file(stem)
+         end if
+         call out%discard()
+      end subroutine cleanup
+   end subroutine run_animate
+
+   !> Write rows t(i), cols(:, i).
+   subroutine write_table(path, t, cols, stat)
+      character(len=*), intent(in) :: path      !! file
+      real(dp), intent(in) :: t(:)              !! first column
+      real(dp), intent(in) :: cols(:, :)        !! next columns (ncol, n)
+      integer, intent(out) :: stat              !! iostat
+      integer :: u, i, err
+      open (newunit=u, file=path, status='replace', action='write', iostat=stat)
+      if (stat /= 0) return
+      do i = 1, size(t)
+         write (u, '(*(es16.8e3, :, 1x))', iostat=stat) t(i), cols(:, i)
+         if (stat /= 0) exit
+      end do
+      close (u, iostat=err)
+      if (stat == 0) stat = err
+   end subroutine write_table
+end module dpend_animate

@@ -1,0 +1,590 @@
+!> Run configuration shared by every command: a Fortran namelist file
+!> (`--config FILE`, commented examples in data/) and command-line flags that
+!> override it. Groups: &pendulum (m1 m2 l1 l2 g), &initial (q1 q2 w1 w2),
+!> &integration (method dt t_end save_every rtol atol output_dt omega),
+!> &output (file force). Commands with more settings read further groups
+!> through `check_groups` and their own namelists.
+module dpend_config
+   use dpend_kinds, only: dp, i8, half_pi
+   use dpend_error, only: error_t, fatal_error
+   use dpend_pendulum, only: pendulum_t, validate, finite_positive
+   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
+   use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
+      path_other, errno_text, directory_of
+   use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
+                           max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
+                           max_steps, default_max_steps, sci
+   use dpend_integrator, only: integrator_t
+   use dpend_methods, only: new_integrator
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   implicit none
+   private
+   public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
+   public :: check_groups, run_flags_help, namelist_error
+   public :: check_regular_file
+
+   !> Largest configuration file read [bytes].
+   integer(i8), parameter :: max_config_bytes = 1048576_i8
+
+   !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
+   type :: run_config_t
+      type(pendulum_t) :: par                  !! physical parameters
+      real(dp) :: q0(2) = [0.0_dp, 0.0_dp]     !! initial angles [rad]
+      real(dp) :: w0(2) = [0.0_dp, 0.0_dp]     !! initial angular velocities [rad/s]
+      character(len=:), allocatable :: method  !! integrator name
+      real(dp) :: dt = 1e-3_dp                 !! step (initial step for adaptive) [s]
+      real(dp) :: t_end = 10.0_dp              !! end time [s]
+      integer :: save_every = 10               !! keep every N-th step
+      real(dp) :: rtol = 1e-9_dp               !! relative tolerance (adaptive methods)
+      real(dp) :: atol = 1e-12_dp              !! absolute tolerance (adaptive methods)
+      real(dp) :: output_dt = 0.0_dp           !! sample at k·output_dt (0: every save_every steps) [s]
+      real(dp) :: omega = 20.0_dp              !! Tao's binding constant [1/s]
+      integer(i8) :: max_steps = default_max_steps !! most accepted steps of one
+                                               !! integration (adaptive methods)
+      character(len=:), allocatable :: output  !! output file
+      logical :: force = .false.               !! overwrite an existing output file
+   end type run_config_t
+
+contains
+
+   !> Check that `filename` is a namelist file made only of the groups `known`
+   !> (names without '&'), each at most once, and nothing outside them but blanks
+   !> and '!' comments. Refused, with one line naming the file and the problem: a
+   !> missing, unreadable or too large file, a directory, a FIFO or device (never
+   !> opened, so nothing blocks), a binary file (NUL, control bytes, not UTF-8),
+   !> text outside a group (e.g. a key before any group), an unknown, repeated or
+   !> unclosed group, and a file without any group. Bytes of the file are never
+   !> echoed except as printable ASCII.
+   subroutine check_groups(filename, known, error)
+      character(len=*), intent(in) :: filename          !! the namelist file
+      character(len=*), intent(in) :: known(:)          !! accepted group names
+      type(error_t), allocatable, intent(out) :: error  !! why the file is refused
+      character(len=:), allocatable :: pre, text
+      pre = "invalid --config '"//printable(filename)//"': "
+      call check_regular_file(filename, pre, error)
+      if (allocated(error)) return
+      call read_config_bytes(filename, pre, text, error)
+      if (allocated(error)) return
+      call check_text_bytes(text, pre, error)
+      if (allocated(error)) return
+      call check_group_structure(text, known, pre, error)
+   end subroutine check_groups
+
+   !> Refuse an input path that is not (a link to) a regular file, before anything
+   !> opens it (a FIFO would block the open); messages start with `pre`.
+   subroutine check_regular_file(filename, pre, error)
+      character(len=*), intent(in) :: filename          !! the path
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! not a regular file
+      integer :: kind
+      if (len_trim(filename) == 0) then
+         call fatal_error(error, pre//'empty file name')
+         return
+      end if
+      kind = path_kind(filename, follow=.true.)
+      select case (kind)
+      case (path_file)
+      case (path_missing)
+         call fatal_error(error, pre//'no such file')
+      case (path_directory)
+         call fatal_error(error, pre//'is a directory, not a file')
+      case (path_other)
+         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
+      case default
+         call fatal_error(error, pre//'cannot be examined: '//errno_text(-kind))
+      end select
+   end subroutine check_regular_file
+
+   !> The whole file as one string (at most max_config_bytes).
+   subroutine read_config_bytes(filename, pre, text, error)
+      character(len=*), intent(in) :: filename               !! a regular file
+      character(len=*), intent(in) :: pre                    !! message prefix
+      character(len=:), allocatable, intent(out) :: text     !! its bytes
+      type(error_t), allocatable, intent(out) :: error       !! unreadable or too large
+      integer :: unit, stat
+      integer(i8) :: bytes
+      character(len=256) :: msg
+      text = ''
+      open (newunit=unit, file=filename, status='old', action='read', access='stream', &
+            form='unformatted', iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         call fatal_error(error, pre//'cannot be read ('//reason(msg)//')')
+         return
+      end if
+      inquire (unit=unit, size=bytes)
+      if (bytes > max_config_bytes) then
+         call fatal_error(error, pre//'is '//to_str(bytes)//' bytes; a namelist file '// &
+                          'has at most '//to_str(max_config_bytes)//' bytes')
+      else if (bytes > 0) then
+         deallocate (text)
+         allocate (character(len=int(bytes)) :: text)
+         read (unit, iostat=stat, iomsg=msg) text
+         if (stat /= 0) call fatal_error(error, pre//'cannot be read ('//reason(msg)//')')
+      end if
+      close (unit)
+   contains
+      function reason(m) result(r)
+         character(len=*), intent(in) :: m
+         character(len=:), allocatable :: r
+         integer :: colon
+         ! the runtime's message ends with the system's reason after the last ': '
+         colon = index(m, ': ', back=.true.)
+         r = printable(trim(m(colon + 1:)))
+         if (colon > 0) r = printable(trim(m(colon + 2:)))
+         if (len(r) == 0) r = 'I/O error'
+      end function reason
+   end subroutine read_config_bytes
+
+   !> Refuse bytes that are not text: NUL, control bytes other than blanks and line
+   !> ends, and anything that is not UTF-8.
+   subroutine check_text_bytes(text, pre, error)
+      character(len=*), intent(in) :: text              !! the file
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! the first non-text byte
+      integer :: i, c, follow, k, line
+      character(len=*), parameter :: hdf5_signature = achar(137)//'HDF'//achar(13)//achar(10)
+      if (len(text) >= len(hdf5_signature)) then
+         if (text(:len(hdf5_signature)) == hdf5_signature) then
+            call fatal_error(error, pre//'is an HDF5 file, not a namelist text file '// &
+                             '(binary data)')
+            return
+         end if
+      end if
+      i = 1
+      line = 1
+      do while (i <= len(text))
+         c = iachar(text(i:i))
+         if (c == 10) line = line + 1
+         follow = -1
+         if (c >= 32 .and. c < 127) then
+            follow = 0
+         else if (c == 9 .or. c == 10 .or. c == 11 .or. c == 12 .or. c == 13) then
+            follow = 0
+         else if (c >= 194 .and. c <= 223) then
+            follow = 1
+         else if (c >= 224 .and. c <= 239) then
+            follow = 2
+         else if (c >= 240 .and. c <= 244) then
+            follow = 3
+         end if
+         if (follow > 0) then
+            if (i + follow > len(text)) then
+               follow = -1
+            else
+               do k = i + 1, i + follow
+                  if (iachar(text(k:k)) < 128 .or. iachar(text(k:k)) > 191) follow = -1
+               end do
+            end if
+         end if
+         if (follow < 0) then
+            call fatal_error(error, pre//'not a text file (binary data: byte '// &
+                             hex(c)//' at line '//to_str(line)//')')
+            return
+         end if
+         i = i + 1 + follow
+      end do
+   contains
+      function hex(byte) result(s)
+         integer, intent(in) :: byte
+         character(len=:), allocatable :: s
+         character(len=2) :: buf
+         write (buf, '(z2.2)') byte
+         s = '0x'//buf
+      end function hex
+   end subroutine check_text_bytes
+
+   !> Refuse text outside the groups, unknown, repeated and unclosed groups, and a
+   !> file without a group. Knows namelist syntax: quoted strings, '!' comments,
+   !> groups '&name ... /' (or '&end', and '$' for '&').
+   subroutine check_group_structure(text, known, pre, error)
+      character(len=*), intent(in) :: text              !! the file (checked bytes)
+      character(len=*), intent(in) :: known(:)          !! accepted group names
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! the first problem
+      character(len=32) :: seen(size(known))   ! each group at most once, all known
+      character(len=:), allocatable :: group, name
+      character(len=1) :: c, quote
+      character(len=1), parameter :: lf = achar(10)
+      integer :: i, j, line, group_line, n_seen
+      logical :: inside
+      n_seen = 0
+      inside = .false.
+      quote = ' '
+      group = ''
+      group_line = 0
+      line = 1
+      i = 1
+      do while (i <= len(text))
+         c = text(i:i)
+         if (c == lf) line = line + 1
+         if (inside .and. quote /= ' ') then
+            if (c == quote) quote = ' '
+            i = i + 1
+            cycle
+         end if
+         if (c == '!') then        ! a comment, to the end of the line
+            j = index(text(i:), lf)
+            if (j == 0) exit
+            i = i + j - 1
+            cycle
+         end if
+         if (c == '&' .or. c == '$') then
+            j = i + 1
+            do while (j <= len(text))
+               if (.not. is_name_char(text(j:j))) exit
+               j = j + 1
+            end do
+            name = to_lower(text(i + 1:j - 1))
+            if (inside) then
+               if (name /= 'end') then
+                  call fatal_error(error, pre//'group &'//group//' (line '// &
+                                   to_str(group_line)//") is not closed with '/' before "// &
+                                   c//printable(name)//' (line '//to_str(line)//')')
+                  return
+               end if
+               inside = .false.
+            else if (len(name) == 0) then
+               call fatal_error(error, pre//"'"//c//"' without a group name at line "// &
+                                to_str(line))
+               return
+            else if (name == 'end') then
+               call fatal_error(error, pre//c//'end at line '//to_str(line)// &
+                                ' closes no group')
+               return
+            else if (.not. any(known == name)) then
+               call fatal_error(error, pre//'unknown namelist group &'//printable(name)// &
+                                ' at line '//to_str(line)//' (accepted: &'//join(known)//')')
+               return
+            else if (any(seen(:n_seen) == name)) then
+               call fatal_error(error, pre//'group &'//name//' appears twice (again at line '// &
+                                to_str(line)//'); give each group once')
+               return
+            else
+               n_seen = n_seen + 1
+               seen(n_seen) = name
+               group = name
+               group_line = line
+               inside = .true.
+            end if
+            i = j
+            cycle
+         end if
+         if (inside) then
+            if (c == "'" .or. c == '"') quote = c
+            if (c == '/') inside = .false.
+         else if (.not. is_blank(c)) then
+            j = i
+            do while (j <= len(text))
+               if (is_blank(text(j:j))) exit
+               j = j + 1
+            end do
+            call fatal_error(error, pre//"'"//printable(text(i:min(j - 1, i + 23)))// &
+                             "' at line "//to_str(line)//' is outside any namelist group '// &
+                             '(keys go between &group and /)')
+            return
+         end if
+         i = i + 1
+      end do
+      if (inside) then
+         call fatal_error(error, pre//'group &'//group//' (line '//to_str(group_line)// &
+                          ") is not closed with '/'")
+      else if (n_seen == 0) then
+         call fatal_error(error, pre//'holds no namelist group (accepted: &'//join(known)//')')
+      end if
+   contains
+      pure logical function is_name_char(ch)
+         character(len=1), intent(in) :: ch
+         is_name_char = (ch >= 'a' .and. ch <= 'z') .or. (ch >= 'A' .and. ch <= 'Z') .or. &
+                        (ch >= '0' .and. ch <= '9') .or. ch == '_'
+      end function is_name_char
+      pure logical function is_blank(ch)
+         character(len=1), intent(in) :: ch
+         is_blank = ch == ' ' .or. (iachar(ch) >= 9 .and. iachar(ch) <= 13)
+      end function is_blank
+      pure function join(list) result(s)
+         character(len=*), intent(in) :: list(:)
+         character(len=:), allocatable :: s
+         integer :: k
+         s = trim(list(1))
+         do k = 2, size(list)
+            s = s//' &'//trim(list(k))
+         end do
+      end function join
+   end subroutine check_group_structure
+
+   !> `s` with every byte that is not printable ASCII replaced by '?'.
+   pure function printable(s) result(t)
+      character(len=*), intent(in) :: s  !! any bytes
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) t(i:i) = '?'
+      end do
+   end function printable
+
+   !> The message for a failed namelist read, naming the group and the offending key.
+   function namelist_error(filename, group, iomsg) result(msg)
+      character(len=*), intent(in) :: filename  !! file
+      character(len=*), intent(in) :: group     !! group name
+      character(len=*), intent(in) :: iomsg     !! the runtime's message
+      character(len=:), allocatable :: msg
+      msg = "invalid config '"//filename//"' in &"//group//': '//trim(iomsg)
+   end function namelist_error
+
+   !> Read the groups of a run configuration present in `filename` into `cfg`.
+   subroutine read_run_config(filename, cfg, error, extra_groups)
+      character(len=*), intent(in) :: filename               !! namelist file
+      type(run_config_t), intent(inout) :: cfg               !! updated from the file
+      type(error_t), allocatable, intent(out) :: error       !! unreadable or invalid
+      character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
+      real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
+      integer :: save_every, unit, stat, n_extra, i
+      integer(i8) :: max_steps
+      character(len=64) :: method
+      character(len=1024) :: file
+      character(len=512) :: msg
+      logical :: force
+      character(len=16), allocatable :: known(:)
+      namelist /pendulum/ m1, m2, l1, l2, g
+      namelist /initial/ q1, q2, w1, w2
+      namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
+         max_steps
+      namelist /output/ file, force
+
+      n_extra = 0
+      if (present(extra_groups)) n_extra = size(extra_groups)
+      allocate (known(4 + n_extra))
+      known(1:4) = [character(len=16) :: 'pendulum', 'initial', 'integration', 'output']
+      ! element by element: gfortran's -fcheck=all rejects a typed array constructor
+      ! over an array of another character length
+      do i = 1, n_extra
+         known(4 + i) = extra_groups(i)
+      end do
+      call check_groups(filename, known, error)
+      if (allocated(error)) return
+
+      m1 = cfg%par%m1; m2 = cfg%par%m2; l1 = cfg%par%l1; l2 = cfg%par%l2; g = cfg%par%g
+      q1 = cfg%q0(1); q2 = cfg%q0(2); w1 = cfg%w0(1); w2 = cfg%w0(2)
+      method = ''
+      if (allocated(cfg%method)) method = cfg%method
+      dt = cfg%dt; t_end = cfg%t_end; save_every = cfg%save_every
+      rtol = cfg%rtol; atol = cfg%atol; output_dt = cfg%output_dt; omega = cfg%omega
+      max_steps = cfg%max_steps
+      file = ''
+      if (allocated(cfg%output)) file = cfg%output
+      force = cfg%force
+
+      open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         return
+      end if
+      read (unit, nml=pendulum, iostat=stat, iomsg=msg)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'pendulum', msg)); close (unit); return
+      end if
+      rewind (unit)
+      read (unit, nml=initial, iostat=stat, iomsg=msg)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'initial', msg)); close (unit); return
+      end if
+      rewind (unit)
+      read (unit, nml=integration, iostat=stat, iomsg=msg)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'integration', msg)); close (unit)
+         return
+      end if
+      rewind (unit)
+      read (unit, nml=output, iostat=stat, iomsg=msg)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'output', msg)); close (unit); return
+      end if
+      close (unit)
+
+      cfg%par = pendulum_t(m1=m1, m2=m2, l1=l1, l2=l2, g=g)
+      cfg%q0 = [q1, q2]; cfg%w0 = [w1, w2]
+      if (len_trim(method) > 0) cfg%method = trim(method)
+      cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
+      cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
+      cfg%max_steps = max_steps
+      if (len_trim(file) > 0) cfg%output = trim(file)
+      cfg%force = force
+   end subroutine read_run_config
+
+   !> Apply one of the common flags; `matched` is false if `name` is not one of them.
+   subroutine apply_run_flag(cfg, name, value, matched, error)
+      type(run_config_t), intent(inout) :: cfg          !! configuration to update
+      character(len=*), intent(in) :: name              !! option, e.g. '--dt'
+      character(len=*), intent(in) :: value             !! its value
+      logical, intent(out) :: matched                   !! whether it was a common flag
+      type(error_t), allocatable, intent(out) :: error  !! invalid value
+      matched = .true.
+      select case (name)
+      case ('--q1'); call parse_real(value, name, cfg%q0(1), error)
+      case ('--q2'); call parse_real(value, name, cfg%q0(2), error)
+      case ('--theta1', '--theta2')   ! from the hanging position, as the sweep's axes
+         call parse_theta(merge(1, 2, name == '--theta1'))
+      case ('--w1'); call parse_real(value, name, cfg%w0(1), error)
+      case ('--w2'); call parse_real(value, name, cfg%w0(2), error)
+      case ('--m1'); call parse_real(value, name, cfg%par%m1, error)
+      case ('--m2'); call parse_real(value, name, cfg%par%m2, error)
+      case ('--l1'); call parse_real(value, name, cfg%par%l1, error)
+      case ('--l2'); call parse_real(value, name, cfg%par%l2, error)
+      case ('--g'); call parse_real(value, name, cfg%par%g, error)
+      case ('--method'); cfg%method = value
+      case ('--dt'); call parse_real(value, name, cfg%dt, error)
+      case ('--t-end'); call parse_real(value, name, cfg%t_end, error)
+      case ('--save-every'); call parse_int(value, name, cfg%save_every, error)
+      case ('--rtol'); call parse_real(value, name, cfg%rtol, error)
+      case ('--atol'); call parse_real(value, name, cfg%atol, error)
+      case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
+      case ('--omega'); call parse_real(value, name, cfg%omega, error)
+      case ('--max-steps'); call parse_int(value, name, cfg%max_steps, error)
+      case ('--output', '-o'); cfg%output = value
+      case default
+         matched = .false.
+      end select
+   contains
+      !> q_k = θ_k − π/2 (θ from the hanging position, counter-clockwise).
+      subroutine parse_theta(k)
+         integer, intent(in) :: k
+         real(dp) :: theta
+         call parse_real(value, name, theta, error)
+         if (allocated(error)) return
+         if (.not. in_range(theta, -max_angle, max_angle)) then
+            call fatal_error(error, 'invalid '//name//': '//real_str(theta)// &
+                             ' rad is outside [-1e6, 1e6]')
+            return
+         end if
+         cfg%q0(k) = theta - half_pi
+      end subroutine parse_theta
+   end subroutine apply_run_flag
+
+   !> Check the whole configuration; messages name the field and the accepted range
+   !> (the limits and their reasons are in `dpend_limits`). For a fixed-step method
+   !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
+   !> after `max_steps` accepted steps instead (`--max-steps`).
+   subroutine validate_run_config(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      character(len=*), parameter :: qn(2) = ['q1', 'q2'], wn(2) = ['w1', 'w2']
+      class(integrator_t), allocatable :: integ
+      integer :: i
+      call validate(cfg%par, error)
+      if (allocated(error)) then
+         error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         return
+      end if
+      do i = 1, 2
+         call check_range(qn(i), cfg%q0(i), -max_angle, max_angle, 'rad', error, &
+                          'beyond, the rounding of the angle exceeds 1e-10 rad')
+         if (allocated(error)) return
+      end do
+      do i = 1, 2
+         call check_range(wn(i), cfg%w0(i), -max_angular_velocity, max_angular_velocity, &
+                          'rad/s', error, 'keeps energies and momenta finite')
+         if (allocated(error)) return
+      end do
+      if (.not. allocated(cfg%method)) then
+         call fatal_error(error, 'invalid method: none given')
+         return
+      end if
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      if (.not. finite_positive(cfg%dt)) then
+         call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
+                          //' s')
+         return
+      end if
+      call check_range('dt', cfg%dt, 0.0_dp, max_dt, 's', error)
+      if (allocated(error)) return
+      call check_range('t_end', cfg%t_end, 0.0_dp, max_time, 's', error)
+      if (allocated(error)) return
+      if (.not. integ%adaptive()) then
+         call check_count('dt', cfg%dt, cfg%t_end, 't_end', max_steps, 'steps', &
+                          'use a larger --dt or a shorter --t-end', error)
+         if (allocated(error)) return
+      end if
+      if (cfg%save_every < 1) then
+         call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
+                          ' must be an integer >= 1')
+      else if (.not. finite_positive(cfg%rtol) .or. .not. finite_positive(1.0_dp - cfg%rtol)) &
+         then
+         call fatal_error(error, 'invalid rtol: must be in ['//sci(min_rtol)//', 1)')
+      else if (cfg%rtol < min_rtol) then
+         call fatal_error(error, 'invalid rtol: '//sci(cfg%rtol)//' is below '//sci(min_rtol) &
+                          //' (double precision cannot honour it: the error estimate is '// &
+                          'dominated by rounding and the step shrinks until it stalls)')
+      else if (.not. in_range(cfg%atol, min_atol, max_atol)) then
+         call fatal_error(error, 'invalid atol: must be in ['//sci(min_atol)//', ' &
+                          //sci(max_atol)//'] (rad, rad/s)')
+      else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
+         call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
+      else if (cfg%output_dt > max_time) then
+         call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
+                          //sci(max_time)//' s')
+      else if (.not. (finite_positive(cfg%omega) .and. in_range(cfg%omega, 0.0_dp, max_omega))) &
+         then
+         call fatal_error(error, 'invalid omega: must be in (0, '//sci(max_omega)//'] (1/s)')
+      else if (cfg%max_steps < 1 .or. cfg%max_steps > max_steps) then
+         call fatal_error(error, 'invalid max_steps: must be an integer from 1 to ' &
+                          //sci(real(max_steps, dp))//' (steps)')
+      end if
+   end subroutine validate_run_config
+
+   !> Help lines for the common flags, with units and the defaults of `cfg`.
+   function run_flags_help(cfg, t_end_text) result(s)
+      type(run_config_t), intent(in) :: cfg  !! defaults to show
+      character(len=*), intent(in), optional :: t_end_text  !! what --t-end means, if not
+                                                            !! 'end time'
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      character(len=:), allocatable :: t_end_line
+      t_end_line = 'end time'
+      if (present(t_end_text)) t_end_line = t_end_text
+      s = '  --config FILE     Fortran namelist file (groups &pendulum &initial &integration' &
+          //nl//'                    &output; see data/*.nml); flags below override it'//nl// &
+          '  --q1, --q2 RAD    initial angles from the horizontal x axis, counter-clockwise' &
+          //nl//'                    (hanging: -pi/2); default '//real_str(cfg%q0(1))//', ' &
+          //real_str(cfg%q0(2))//nl// &
+          '  --theta1, --theta2 RAD  the same angles from the hanging position, as the'//nl// &
+          "                    sweep's axes: q = theta - pi/2"//nl// &
+          '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
+          //real_str(cfg%w0(2))//nl// &
+          '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &
+          //real_str(cfg%par%m1)//', ' &
+          //real_str(cfg%par%m2)//nl// &
+          '  --l1, --l2 M      link lengths; default '//real_str(cfg%par%l1)//', ' &
+          //real_str(cfg%par%l2)//nl// &
+          '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%par%g)//nl// &
+          '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
+          '  --dt S            step (first trial step for adaptive methods); default ' &
+          //real_str(cfg%dt)//nl// &
+          '  --t-end S         '//t_end_line//'; default '//real_str(cfg%t_end)//nl// &
+          '  --rtol, --atol    tolerances of the adaptive methods; default '//real_str(cfg%rtol) &
+          //', '//real_str(cfg%atol)//nl// &
+          "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &
+          nl//'  --max-steps N     most accepted steps of one integration of an adaptive'//nl// &
+          '                    method (steps); reaching it stops the run; default ' &
+          //int8_text(cfg%max_steps)
+   end function run_flags_help
+
+   pure function int8_text(n) result(s)
+      integer(i8), intent(in) :: n
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write (buf, '(i0)') n
+      s = trim(buf)
+   end function int8_text
+
+   pure function to_lower(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function to_lower
+end module dpend_config

@@ -1,0 +1,362 @@
+!> `dpend simulate`: one trajectory from the command line through an integrator
+!> into an HDF5 file (layout in docs/hdf5-layout.md).
+module dpend_simulate
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: arg_t, next_option, option_outcome
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
+                           validate_run_config, run_flags_help
+   use dpend_pendulum, only: pendulum_t, qddot, energy, momenta, energy_scale
+   use dpend_pendulum_kinematics, only: kinematics_t, kinematics
+   use dpend_pendulum_reactions, only: reactions
+   use dpend_integrator, only: integrator_t, stat_ok, status_message
+   use dpend_methods, only: new_integrator
+   use dpend_propagate, only: march_t, integrate_sampled
+   use dpend_hdf5, only: h5file_t
+   use dpend_output, only: output_t
+   use dpend_version, only: version
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: to_str
+   use dpend_cli, only: scan_help_config
+   use dpend_limits, only: check_count, check_memory, check_disk, &
+                           max_samples, sci
+   use dpend_os, only: available_memory_bytes
+   use dpend_progress, only: wall_seconds
+   use dpend_cli, only: real_str, seconds_str
+   implicit none
+   private
+   public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
+   public :: trajectory_t, write_trajectory, check_simulate_resources
+
+   !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
+   !> and the derived quantities written beside them (23 reals) [B].
+   real(dp), parameter :: sample_memory = 272.0_dp
+   !> File size per kept sample: 28 reals [B], and the fixed part of a file [B].
+   real(dp), parameter :: sample_file = 224.0_dp, file_overhead = 65536.0_dp
+
+   !> Sampled states of a run: internal variables converted to (q, q̇).
+   type :: trajectory_t
+      integer :: n = 0                      !! number of samples
+      real(dp), allocatable :: t(:)         !! times [s]
+      real(dp), allocatable :: q(:, :)      !! angles (2, n) [rad]
+      real(dp), allocatable :: qd(:, :)     !! angular velocities (2, n) [rad/s]
+      character(len=:), allocatable :: status  !! 'completed' or why the run stopped
+   end type trajectory_t
+
+contains
+
+   !> Defaults of simulate: the chapter's parameters, both links horizontal at rest.
+   function simulate_defaults() result(cfg)
+      type(run_config_t) :: cfg
+      cfg%method = 'rk4'
+      cfg%dt = 1e-3_dp
+      cfg%t_end = 10.0_dp
+      cfg%save_every = 10
+      cfg%output = 'simulate.h5'
+   end function simulate_defaults
+
+   !> Help text of `dpend simulate`.
+   function simulate_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      type(run_config_t) :: cfg
+      cfg = simulate_defaults()
+      s = 'usage: dpend simulate [options]'//nl//nl// &
+          'Integrate one trajectory of the double pendulum and write it to HDF5'//nl// &
+          '(layout: docs/hdf5-layout.md; figures: scripts/plot_simulate.sh FILE.h5).'//nl//nl// &
+          'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
+          run_flags_help(cfg)//nl// &
+          '  --save-every N    keep every N-th step (and always the last); default ' &
+          //to_str(cfg%save_every)//nl// &
+          '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
+          '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
+          '  --force           overwrite an existing output file'//nl// &
+          '  -h, --help        this text'
+   end function simulate_help
+
+   !> Build the configuration from defaults, --config and flags.
+   subroutine parse_simulate(args, cfg, help, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'simulate'
+      type(run_config_t), intent(out) :: cfg            !! the configuration
+      logical, intent(out) :: help                      !! --help was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value, config
+      logical :: matched, missing
+      integer :: i
+      cfg = simulate_defaults()
+      help = .false.
+      ! first pass: help and the config file, so that flags override the file
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_run_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
+      i = 1
+      do while (i <= size(args))
+         if (args(i)%s == '--force') then
+            cfg%force = .true.
+            i = i + 1
+            cycle
+         end if
+         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
+            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+                             "' (dpend simulate --help lists the options)")
+            return
+         end if
+         call next_option(args, i, name, value, .true., error, missing)
+         if (name == '--config') cycle
+         call apply_run_flag(cfg, name, value, matched, error)
+         call option_outcome('simulate', name, matched, missing, &
+                             [character(len=16) :: '--force'], error)
+         if (allocated(error)) return
+      end do
+      call validate_run_config(cfg, error)
+      if (allocated(error)) return
+      call check_simulate_resources(cfg, error)
+   end subroutine parse_simulate
+
+   !> Refuse a run whose kept samples exceed `max_samples`, the available memory or
+   !> the free space of the output's file system. The count is known for a
+   !> fixed-step method (t_end/(dt save_every) + 2) and with output_dt (t_end/output_dt
+   !> + 2); an adaptive method without output_dt is capped while it runs instead.
+   subroutine check_simulate_resources(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      class(integrator_t), allocatable :: integ
+      character(len=*), parameter :: hint = 'use a larger --save-every or --output-dt'
+      real(dp) :: n, span
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      span = cfg%t_end
+      if (cfg%output_dt > 0.0_dp) then
+         call check_count('output_dt', cfg%output_dt, span, 't_end', max_samples - 2, &
+                          'samples', 'use a larger --output-dt', error)
+         if (allocated(error)) return
+         n = span/cfg%output_dt + 2.0_dp
+         call check_memory('output_dt', n*sample_memory, sci(n)//' samples', &
+                           'use a larger --output-dt', error)
+         if (.not. allocated(error)) call check_disk('output_dt', n*sample_file + &
+                                                     file_overhead, cfg%output, &
+                                                     'use a larger --output-dt', error)
+      else if (.not. integ%adaptive()) then
+         ! dt save_every ≤ 1e9 s · 2^31 and max_samples ≤ 1e9: no overflow
+         if (cfg%dt*real(cfg%save_every, dp)*real(max_samples - 2, dp) < span) then
+            call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
+                             ' keeps a sample every '//sci(cfg%dt*real(cfg%save_every, dp))// &
+                             ' s, more than '//sci(real(max_samples, dp))// &
+                             ' samples over t_end = '//sci(span)//' s ('//hint//')')
+            return
+         end if
+         n = span/(cfg%dt*real(cfg%save_every, dp)) + 2.0_dp
+         call check_memory('save_every', n*sample_memory, sci(n)//' samples', hint, error)
+         if (.not. allocated(error)) call check_disk('save_every', n*sample_file + &
+                                                     file_overhead, cfg%output, hint, error)
+      end if
+   end subroutine check_simulate_resources
+
+   !> Integrate, sample and write. `error` is set for invalid input (nothing written)
+   !> or for a failed run (the file holds the samples before the failure).
+   !> `summary`: 'rk4: 10000 steps, 40000 f evaluations, relative energy error
+   !> 3.2e-13, 0.05 s' (steps, right-hand-side evaluations, |E(t_end) − E(0)| over
+   !> the energy scale, wall time), '' when nothing was integrated.
+   subroutine run_simulate(cfg, error, failed, summary)
+      type(run_config_t), intent(in) :: cfg             !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the run started but stopped early
+      character(len=:), allocatable, intent(out), optional :: summary  !! the closing line
+      class(integrator_t), allocatable :: integ
+      type(trajectory_t) :: traj
+      type(error_t), allocatable :: werr
+      type(output_t) :: out
+      real(dp) :: t0, e0, e1
+      failed = .false.
+      if (present(summary)) summary = ''
+      t0 = wall_seconds()
+      call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
+                          omega=cfg%omega, max_steps=cfg%max_steps)
+      if (allocated(error)) return
+      call out%begin(cfg%output, cfg%force, error)
+      if (allocated(error)) return
+      call integrate_trajectory(cfg, integ, traj)
+      call write_trajectory(out%temp, cfg, integ, traj, werr)
+      if (present(summary) .and. traj%n > 0) then
+         e0 = energy(cfg%par, traj%q(:, 1), traj%qd(:, 1))
+         e1 = energy(cfg%par, traj%q(:, traj%n), traj%qd(:, traj%n))
+         summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
+                   to_str(integ%n_rhs)//' f evaluations, relative energy error '// &
+                   real_str(abs(e1 - e0)/energy_scale(cfg%par, e0), 2)//', '// &
+                   seconds_str(wall_seconds() - t0)//' s'
+      end if
+      if (.not. allocated(werr)) call out%commit(werr)
+      call out%explain(werr)
+      call out%discard()
+      if (allocated(werr)) then
+         failed = .true.
+         call move_alloc(werr, error)
+         return
+      end if
+      if (traj%status /= 'completed') then
+         failed = .true.
+         call fatal_error(error, 'run stopped: '//traj%status//"; '"//cfg%output// &
+                          "' holds the samples before the failure")
+      end if
+   end subroutine run_simulate
+
+   !> Integrate from t = 0 to t_end with the configured method, keeping every
+   !> save_every-th step and the last one, or, with output_dt > 0, the states at
+   !> exactly k·output_dt and t_end from the method's continuous extension.
+   subroutine integrate_trajectory(cfg, integ, traj)
+      type(run_config_t), intent(in) :: cfg               !! configuration
+      class(integrator_t), intent(inout) :: integ         !! the method
+      type(trajectory_t), intent(out) :: traj             !! the samples
+      type(march_t) :: march
+      real(dp) :: t, h, y(4)
+      real(dp), allocatable :: times(:), states(:, :)
+      integer(i8) :: k, cap, avail
+      integer :: stat, i
+      ! an adaptive run without output_dt keeps an unknown number of samples: at most
+      ! max_samples and what fits the memory now
+      cap = max_samples
+      avail = available_memory_bytes()
+      if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
+      y = integ%to_internal(cfg%par, cfg%q0, cfg%w0)
+      t = 0.0_dp
+      h = cfg%dt
+      traj%status = 'completed'
+      stat = stat_ok
+      if (cfg%output_dt > 0.0_dp) then
+         call integrate_sampled(integ, cfg%par, t, y, cfg%t_end, h, cfg%output_dt, times, &
+                                states, stat)
+         do i = 1, size(times)
+            call append(traj, integ, cfg%par, times(i), states(:, i))
+         end do
+         if (size(times) > 0) t = times(size(times))
+      else
+         call append(traj, integ, cfg%par, t, y)
+         call integ%clear_step()
+         call march%start(integ, t, cfg%t_end, h)
+         k = 0
+         do while (.not. march%finished)
+            call march%next(integ, cfg%par, t, y, h, stat)
+            if (stat /= stat_ok) exit
+            k = k + 1
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
+               if (traj%n >= cap) then
+                  traj%status = 'kept samples reached '//sci(real(cap, dp))// &
+                                ' (memory limit) after t = '//sci(t, 6)// &
+                                ' s; use a larger --save-every or --output-dt'
+                  exit
+               end if
+               call append(traj, integ, cfg%par, t, y)
+            end if
+         end do
+      end if
+      if (stat /= stat_ok) then
+         traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
+      end if
+   end subroutine integrate_trajectory
+
+   !> Append the state (t, y) to the samples, growing the buffers geometrically.
+   subroutine append(traj, integ, par, t, y)
+      type(trajectory_t), intent(inout) :: traj     !! samples
+      class(integrator_t), intent(in) :: integ      !! for the conversion to (q, q̇)
+      type(pendulum_t), intent(in) :: par           !! parameters
+      real(dp), intent(in) :: t                     !! time [s]
+      real(dp), intent(in) :: y(4)                  !! internal state
+      real(dp), allocatable :: tt(:), qq(:, :), ww(:, :)
+      integer :: cap
+      if (.not. allocated(traj%t)) then
+         allocate (traj%t(1024), traj%q(2, 1024), traj%qd(2, 1024))
+      else if (traj%n == size(traj%t)) then
+         cap = 2*size(traj%t)
+         allocate (tt(cap), qq(2, cap), ww(2, cap))
+         tt(:traj%n) = traj%t; qq(:, :traj%n) = traj%q; ww(:, :traj%n) = traj%qd
+         call move_alloc(tt, traj%t); call move_alloc(qq, traj%q); call move_alloc(ww, traj%qd)
+      end if
+      traj%n = traj%n + 1
+      traj%t(traj%n) = t
+      call integ%to_physical(par, y, traj%q(:, traj%n), traj%qd(:, traj%n))
+   end subroutine append
+
+   !> Write the samples with their derived quantities (accelerations, momenta,
+   !> energy, reactions, kinematics) and the run's attributes.
+   subroutine write_trajectory(filename, cfg, integ, traj, error)
+      character(len=*), intent(in) :: filename          !! file to write
+      type(run_config_t), intent(in) :: cfg             !! configuration
+      class(integrator_t), intent(in) :: integ          !! the method and its counters
+      type(trajectory_t), intent(in) :: traj            !! the samples
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      type(h5file_t) :: h5
+      type(kinematics_t) :: k
+      real(dp), allocatable :: qdd(:, :), p(:, :), e(:), f01(:, :), f21(:, :)
+      real(dp), allocatable :: rc1(:, :), vc1(:, :), ac1(:, :), rc2(:, :), vc2(:, :), &
+                               ac2(:, :), rb(:, :)
+      integer :: i, n
+      n = traj%n
+      allocate (qdd(2, n), p(2, n), e(n), f01(2, n), f21(2, n), rc1(2, n), vc1(2, n), &
+                ac1(2, n), rc2(2, n), vc2(2, n), ac2(2, n), rb(2, n))
+      do i = 1, n
+         associate (q => traj%q(:, i), w => traj%qd(:, i))
+            qdd(:, i) = qddot(cfg%par, q, w)
+            p(:, i) = momenta(cfg%par, q, w)
+            e(i) = energy(cfg%par, q, w)
+            call reactions(cfg%par, q, w, qdd(:, i), f01(:, i), f21(:, i))
+            k = kinematics(cfg%par, q, w, qdd(:, i))
+         end associate
+         rc1(:, i) = k%rc1; vc1(:, i) = k%vc1; ac1(:, i) = k%ac1
+         rc2(:, i) = k%rc2; vc2(:, i) = k%vc2; ac2(:, i) = k%ac2; rb(:, i) = k%rb
+      end do
+      call h5%open(filename, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/trajectory/t', traj%t(:n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/qdot', traj%qd(:, :n), error)
+      if (.not. allocated(error)) call h5%write('/trajectory/qddot', qdd, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/p', p, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/energy', e, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/F01', f01, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/F21', f21, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rC1', rc1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/vC1', vc1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/aC1', ac1, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rC2', rc2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/vC2', vc2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/aC2', ac2, error)
+      if (.not. allocated(error)) call h5%write('/trajectory/rB', rb, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%writeattr('/', 'm1', cfg%par%m1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%par%m2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%par%l1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%par%l2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%par%g, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 't_end', cfg%t_end, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'save_every', cfg%save_every, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'order', integ%order(), error)
+      if (.not. allocated(error) .and. integ%adaptive()) then
+         call h5%writeattr('/', 'rtol', cfg%rtol, error)
+         if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
+      end if
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
+                                                    integ%n_steps, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', integ%n_rhs, &
+                                                    error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
+                                                    energy_scale(cfg%par, e(1)), error)
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+   end subroutine write_trajectory
+
+end module dpend_simulate

@@ -1,0 +1,883 @@
+!> Output of `dpend study`: the HDF5 file (layout in docs/study-hdf5.md), the
+!> verdicts, the Markdown summary, and the command that runs it all and draws
+!> the figures with scripts/plot_study.sh.
+module dpend_study_command
+   use, intrinsic :: iso_fortran_env, only: output_unit, compiler_version, compiler_options
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t, fatal_error
+   use dpend_hdf5, only: h5file_t
+   use dpend_version, only: version
+   use dpend_fit, only: fit_t
+   use dpend_output, only: output_t, check_output_path
+   use dpend_integrator, only: stat_ok
+   use dpend_os, only: host_name, cpu_model, executable_path, make_directories, &
+                           find_script, &
+                           directory_of, run_program, io_failure_reason
+   use dpend_study_config, only: study_config_t, case_index, study_namelist
+   use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
+   use dpend_cli, only: to_str, arg_t
+   implicit none
+   private
+   public :: run_study_command, write_study_h5, study_summary, verdicts_t, study_verdicts
+   public :: summary_path, order_tolerance
+
+   !> Measured orders must lie within this of the nominal order.
+   real(dp), parameter :: order_tolerance = 0.3_dp
+   !> Drift exponents: symplectic below `bounded_max`, explicit within `linear_tol` of 1.
+   real(dp), parameter :: bounded_max = 0.1_dp, linear_tol = 0.2_dp
+   !> Brouwer's law: exponent 0.5 within this.
+   real(dp), parameter :: brouwer_tol = 0.15_dp
+   !> The drift exponent is judged only when the long run at the middle step has at
+   !> least this many steps. The exponent is fitted over the last `drift_decades`
+   !> (default 2) decades of t, so a shorter run starts its fit window within its
+   !> first 1000 steps: for the study's steps (1e-3 to 4e-2 s) within the first
+   !> period or so of the motion (about 2 s for small oscillations), where the energy
+   !> error of a non-symplectic method still oscillates within each period instead
+   !> of growing secularly (rk4 on case small: exponent 0.51 with the 2e4 steps of
+   !> --quick, 1 expected). Shorter runs read "too short to judge", neither ✓ nor ✗.
+   integer(i8), parameter :: drift_min_steps = 100000_i8
+
+   !> The done-when checks of the study.
+   type :: verdicts_t
+      logical :: orders = .false.      !! every method's orders within ±0.3 (order case)
+      logical :: drift = .false.       !! bounded symplectic, linear explicit (drift case)
+      logical :: roundoff = .false.    !! compensated exponents 0.5 ± 0.15
+      logical :: drift_judged = .false.  !! some method's long run was long enough
+      logical :: roundoff_run = .false.  !! the study made roundoff runs
+      character(len=:), allocatable :: orders_text, drift_text, roundoff_text
+   end type verdicts_t
+
+   !> HDF5 writer that stops at the first error.
+   type :: writer_t
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: error
+   contains
+      procedure :: r0 => w_r0, r1 => w_r1, r2 => w_r2, i1 => w_i1, l1 => w_l1, s0 => w_s0
+      procedure :: ar => w_ar, ar1 => w_ar1, ai => w_ai, as => w_as
+   end type writer_t
+
+contains
+
+   ! ================================================================ command
+
+   !> Run the study of `cfg` (validated): write the HDF5 file and the summary,
+   !> print the summary, draw the figures. `error` with `failed` false: invalid
+   !> output (nothing written); with `failed` true: the study ran but a later
+   !> stage (writing, figures) failed.
+   subroutine run_study_command(cfg, error, failed)
+      type(study_config_t), intent(in) :: cfg           !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the study ran, then failed
+      type(study_result_t) :: res
+      type(output_t) :: h5_out, md_out
+      character(len=:), allocatable :: text, md, script, fig_dir, exe
+      type(arg_t) :: argv(6)
+      integer :: unit, stat
+      character(len=512) :: msg
+      failed = .false.
+      ! every output path is checked, and its temporary file created, before the study
+      if (len_trim(cfg%output) == 0) then
+         call fatal_error(error, 'invalid --output: empty file name')
+         return
+      end if
+      md = summary_path(cfg%output)
+      call check_output_path(cfg%output, cfg%force, error)
+      if (.not. allocated(error)) call check_output_path(md, cfg%force, error, &
+                                                          '--output (its summary)')
+      if (allocated(error)) then
+         if (index(error%message, 'does not exist') == 0) return
+         deallocate (error)
+         call make_directories(directory_of(cfg%output), error)
+         if (allocated(error)) then
+            error%message = 'invalid --output: '//error%message
+            return
+         end if
+      end if
+      call h5_out%begin(cfg%output, cfg%force, error)
+      if (.not. allocated(error)) call md_out%begin(md, cfg%force, error, &
+                                                     '--output (its summary)')
+      if (allocated(error)) then
+         call h5_out%discard()
+         return
+      end if
+
+      call run_study(cfg, res)
+      failed = .true.
+      text = study_summary(cfg, res)
+      call write_study_h5(cfg, res, h5_out%temp, error)
+      if (.not. allocated(error)) then
+         open (newunit=unit, file=md_out%temp, status='replace', action='write', &
+               iostat=stat, iomsg=msg)
+         if (stat == 0) write (unit, '(a)', iostat=stat, iomsg=msg) text
+         if (stat == 0) then
+            close (unit, iostat=stat, iomsg=msg)
+         else
+            close (unit)
+         end if
+         if (stat /= 0) call fatal_error(error, "cannot write the summary '"//md//"': "// &
+                                         io_failure_reason(md_out%temp, trim(msg)))
+      end if
+      if (.not. allocated(error)) call h5_out%commit(error)
+      if (.not. allocated(error)) call md_out%commit(error)
+      call h5_out%explain(error)
+      call md_out%explain(error)
+      call h5_out%discard()
+      call md_out%discard()
+      if (allocated(error)) return
+      write (output_unit, '(a)') text
+      write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md//"'"
+      if (.not. cfg%figures) then
+         failed = .false.
+         return
+      end if
+      script = find_script('plot_study.sh')
+      fig_dir = directory_of(cfg%output)
+      if (len(script) == 0) then
+         call fatal_error(error, 'figures not drawn: scripts/plot_study.sh not found (set '// &
+                          'DPEND_ROOT to the dpend source tree); the .h5 and summary are written')
+         return
+      end if
+      ! an argument vector, no shell: names are passed as they are
+      exe = executable_path()
+      ! component by component (gfortran 12 mangles an array constructor of
+      ! structure constructors with deferred-length components)
+      argv(1)%s = 'env'; argv(2)%s = 'DPEND='//exe; argv(3)%s = 'bash'
+      argv(4)%s = script; argv(5)%s = cfg%output; argv(6)%s = fig_dir
+      call run_program(argv, stat, error)
+      if (allocated(error)) return
+      if (stat /= 0) then
+         call fatal_error(error, 'figures failed ('//script//', exit status '//to_str(stat)// &
+                          '); the .h5 and summary are written: rerun scripts/plot_study.sh '// &
+                          'with the file and the figure directory')
+         return
+      end if
+      failed = .false.
+   end subroutine run_study_command
+
+   !> The summary file next to the HDF5 file: FILE.h5 → FILE.md.
+   pure function summary_path(output) result(path)
+      character(len=*), intent(in) :: output  !! HDF5 file name
+      character(len=:), allocatable :: path
+      integer :: n
+      n = len_trim(output)
+      if (n > 3) then
+         if (output(n - 2:n) == '.h5') then
+            path = output(:n - 3)//'.md'
+            return
+         end if
+      end if
+      path = trim(output)//'.md'
+   end function summary_path
+
+   ! ================================================================ verdicts
+
+   !> Index of the fixed-step sweep of method `name` on case ic (0 if none).
+   pure integer function sweep_index(res, ic, name, mode) result(s)
+      type(study_result_t), intent(in) :: res
+      integer, intent(in) :: ic, mode
+      character(len=*), intent(in) :: name
+      integer :: i
+      s = 0
+      do i = 1, size(res%sweeps)
+         if (res%sweeps(i)%icase == ic .and. res%sweeps(i)%method == name .and. &
+             res%sweeps(i)%mode == mode) then
+            s = i
+            return
+         end if
+      end do
+   end function sweep_index
+
+   !> |fitted - nominal| <= tol for a successful fit.
+   pure logical function order_ok(fit, nominal)
+      type(fit_t), intent(in) :: fit
+      integer, intent(in) :: nominal
+      order_ok = .false.
+      if (fit%ok) order_ok = abs(fit%slope - nominal) <= order_tolerance
+   end function order_ok
+
+   !> The drift exponent of the middle point is as expected: below 0.1 for
+   !> symplectic methods, within 0.2 of 1 for the others.
+   pure logical function drift_ok(sw)
+      type(sweep_t), intent(in) :: sw
+      drift_ok = .false.
+      if (.not. ieee_is_finite(sw%drift(sw%mid))) return
+      if (sw%symplectic) then
+         drift_ok = sw%drift(sw%mid) < bounded_max
+      else
+         drift_ok = abs(sw%drift(sw%mid) - 1.0_dp) <= linear_tol
+      end if
+   end function drift_ok
+
+   !> The long run of `sw` at its middle step is long enough to judge its drift
+   !> exponent (at least `drift_min_steps` steps).
+   pure logical function drift_judged(sw)
+      type(sweep_t), intent(in) :: sw
+      drift_judged = sw%long_steps(sw%mid) >= drift_min_steps
+   end function drift_judged
+
+   !> Evaluate the done-when checks. An experiment that was not run reads "not run";
+   !> a drift exponent from too short a run reads "too short to judge"; neither is a
+   !> failure.
+   function study_verdicts(cfg, res) result(v)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      type(verdicts_t) :: v
+      integer :: im, s, io, id, i
+      character(len=:), allocatable :: bad, short
+      io = case_index(cfg, cfg%order_case)
+      id = case_index(cfg, cfg%drift_case)
+      bad = ''
+      do im = 1, size(cfg%methods)
+         s = sweep_index(res, io, cfg%methods(im)%name, mode_step)
+         if (s == 0) cycle
+         if (.not. (order_ok(res%sweeps(s)%fit_global, res%sweeps(s)%order) .and. &
+                    order_ok(res%sweeps(s)%fit_energy, res%sweeps(s)%order))) &
+            bad = bad//' '//cfg%methods(im)%name
+      end do
+      v%orders = len(bad) == 0
+      if (v%orders) then
+         v%orders_text = 'every method within ±'//fmt(order_tolerance, 'f0.1')// &
+                         ' of its nominal order (case '//cfg%order_case//')'
+      else
+         v%orders_text = 'outside ±'//fmt(order_tolerance, 'f0.1')//' (case '// &
+                         cfg%order_case//'):'//bad
+      end if
+      bad = ''
+      short = ''
+      do im = 1, size(cfg%methods)
+         s = sweep_index(res, id, cfg%methods(im)%name, mode_step)
+         if (s == 0) cycle
+         if (.not. drift_judged(res%sweeps(s))) then
+            short = short//' '//cfg%methods(im)%name
+         else
+            v%drift_judged = .true.
+            if (.not. drift_ok(res%sweeps(s))) bad = bad//' '//cfg%methods(im)%name
+         end if
+      end do
+      v%drift = len(bad) == 0 .and. v%drift_judged
+      if (.not. v%drift_judged) then
+         v%drift_text = 'every long run has fewer than '//to_str(drift_min_steps)// &
+                        ' steps at the middle step (case '//cfg%drift_case//'):'//short
+      else
+         if (v%drift) then
+            v%drift_text = 'symplectic methods bounded (exponent < '// &
+                           fmt(bounded_max, 'f0.1')//'), the others linear (1 ± '// &
+                           fmt(linear_tol, 'f0.1')//') (case '//cfg%drift_case//', middle step)'
+         else
+            v%drift_text = 'unexpected drift exponent (case '//cfg%drift_case//'):'//bad
+         end if
+         if (len(short) > 0) v%drift_text = v%drift_text//'; too short to judge (fewer than '// &
+                                            to_str(drift_min_steps)//' steps):'//short
+      end if
+      bad = ''
+      do i = 1, size(res%roundoff)
+         associate (ro => res%roundoff(i))
+            if (.not. ro%fit(1)%ok) then
+               bad = bad//' '//ro%method
+            else if (abs(ro%fit(1)%slope - 0.5_dp) > brouwer_tol) then
+               bad = bad//' '//ro%method
+            end if
+         end associate
+      end do
+      v%roundoff_run = size(res%roundoff) > 0
+      v%roundoff = len(bad) == 0 .and. v%roundoff_run
+      if (.not. v%roundoff_run) then
+         v%roundoff_text = 'no roundoff method among the methods of this study'
+      else if (v%roundoff) then
+         v%roundoff_text = "Brouwer's law: compensated exponents within 0.5 ± " &
+                           //fmt(brouwer_tol, 'f0.2')
+      else
+         v%roundoff_text = 'compensated exponent outside 0.5 ± '//fmt(brouwer_tol, 'f0.2')// &
+                           ':'//bad
+      end if
+   end function study_verdicts
+
+   ! ================================================================ summary
+
+   !> The Markdown summary: verdicts and tables.
+   function study_summary(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      type(verdicts_t) :: v
+      integer :: im, ic, io, id, s, so, i, k
+      character(len=8) :: date
+      character(len=10) :: time
+      real(dp) :: per_step
+      v = study_verdicts(cfg, res)
+      io = case_index(cfg, cfg%order_case)
+      id = case_index(cfg, cfg%drift_case)
+      call date_and_time(date, time)
+      md = '# dpend energy-conservation study'//nl//nl// &
+           'dpend '//version//', '//date(1:4)//'-'//date(5:6)//'-'//date(7:8)//' '// &
+           time(1:2)//':'//time(3:4)//', host '//host_name()//', '//cpu_model()//', '// &
+           to_str(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
+      if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
+      md = md//nl//nl// &
+           'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
+           'the potential energy with both links upright (see the cases). Global error: '// &
+           'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
+           't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
+           fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
+      md = md//'## Verdicts'//nl//nl// &
+           '- orders: '//mark(v%orders)//' '//v%orders_text//nl// &
+           '- drift: '//verdict(v%drift, v%drift_judged, 'too short to judge:')// &
+           ' '//v%drift_text//nl// &
+           '- roundoff: '//verdict(v%roundoff, v%roundoff_run, 'not run:')//' '// &
+           v%roundoff_text//nl//nl
+      ! ---- main table
+      md = md//'## Methods'//nl//nl// &
+           'Orders: slopes of the global error and of the maximum energy error up to '// &
+           't_short against the step, fixed steps (dopri5, dop853 with the error control off), '// &
+           'case `'//cfg%order_case//'`. Drift: exponent of the energy error in t over the '// &
+           'last '//fmt(cfg%drift_decades, 'f0.1')//' decades of the long run at the middle '// &
+           'step, case `'//cfg%drift_case//'`; long-run slope: maximum energy error over the '// &
+           'long run against the step; cost: the long run at the middle step.'//nl//nl// &
+           '| method | p | order (global) | order (energy) | drift exponent | long-run slope |'// &
+           ' h_mid [s] | steps | max energy error | rhs/step | iter/step | µs/step | |'//nl// &
+           '|---|---|---|---|---|---|---|---|---|---|---|---|---|'//nl
+      do im = 1, size(cfg%methods)
+         so = sweep_index(res, io, cfg%methods(im)%name, mode_step)
+         s = sweep_index(res, id, cfg%methods(im)%name, mode_step)
+         if (so == 0 .or. s == 0) cycle
+         associate (o => res%sweeps(so), d => res%sweeps(s))
+            k = d%mid
+            per_step = d%wall_long(k)/real(max(d%long_steps(k), 1_i8), dp)
+            md = md//'| '//d%method//' | '//to_str(d%order)//' | '//slope(o%fit_global)//' | ' &
+                 //slope(o%fit_energy)//' | '//num(d%drift(k), 'f0.2') &
+                 //trim(merge('                     ', ' (too short to judge)', drift_judged(d))) &
+                 //' | ' &
+                 //slope(d%fit_energy_long)//' | '//num(d%x(k), 'es8.2')//' | ' &
+                 //to_str(d%long_steps(k))//' | '//num(d%energy_long(k), 'es8.2')//' | ' &
+                 //ratio(d%long_rhs(k), d%long_steps(k))//' | ' &
+                 //ratio(d%long_iter(k), d%long_steps(k))//' | ' &
+                 //num(1.0e6_dp*per_step, 'f0.2')//' | ' &
+                 //mark(order_ok(o%fit_global, o%order) .and. order_ok(o%fit_energy, o%order) &
+                        .and. (drift_ok(d) .or. .not. drift_judged(d)))//' |'//nl
+         end associate
+      end do
+      ! ---- orders in every case
+      md = md//nl//'## Orders in every case'//nl//nl// &
+           'global / energy (fixed steps, t ≤ '//pretty(cfg%t_short)//' s); drift exponent '// &
+           'at the middle step'//nl//nl//'| method | p |'
+      do ic = 1, size(cfg%cases)
+         md = md//' '//cfg%cases(ic)%name//' |'
+      end do
+      md = md//nl//'|---|---|'//repeat('---|', size(cfg%cases))//nl
+      do im = 1, size(cfg%methods)
+         s = sweep_index(res, 1, cfg%methods(im)%name, mode_step)
+         if (s == 0) cycle
+         md = md//'| '//cfg%methods(im)%name//' | '//to_str(res%sweeps(s)%order)//' |'
+         do ic = 1, size(cfg%cases)
+            s = sweep_index(res, ic, cfg%methods(im)%name, mode_step)
+            associate (w => res%sweeps(s))
+               md = md//' '//slope(w%fit_global)//' / '//slope(w%fit_energy)//'; '// &
+                    num(w%drift(w%mid), 'f0.2')//' |'
+            end associate
+         end do
+         md = md//nl
+      end do
+      ! ---- adaptive
+      if (any(res%sweeps%mode == mode_tol)) then
+         md = md//nl//'## Adaptive methods over tolerances'//nl//nl// &
+              'atol = '//pretty(cfg%atol_ratio)//' rtol. Order against the mean accepted '// &
+              'step t_short/n_steps (global error) and slope of the global error against rtol '// &
+              '(tolerance proportionality: 1 is ideal); drift at the middle tolerance.'//nl//nl// &
+              '| method | case | rtol | order vs mean step | error vs rtol | drift exponent |'// &
+              ' rejected/accepted |'//nl//'|---|---|---|---|---|---|---|'//nl
+         do s = 1, size(res%sweeps)
+            associate (w => res%sweeps(s))
+               if (w%mode /= mode_tol) cycle
+               md = md//'| '//w%method//' | '//cfg%cases(w%icase)%name//' | '// &
+                    num(minval(w%x), 'es7.1')//' … '//num(maxval(w%x), 'es7.1')//' | '// &
+                    slope(w%fit_global)//' | '//slope(w%fit_tolerance)//' | '// &
+                    num(w%drift(w%mid), 'f0.2')//' | '// &
+                    num(real(sum(w%long_rejected), dp)/real(max(sum(w%long_steps), 1_i8), dp), &
+                        'f0.3')//' |'//nl
+            end associate
+         end do
+      end if
+      ! ---- roundoff
+      if (size(res%roundoff) > 0) then
+         md = md//nl//"## Roundoff (Brouwer's law)"//nl//nl// &
+              'RMS over '//to_str(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
+              '`, q0 perturbed by '// &
+              'multiples of '//fmt(cfg%ro_perturb, 'es8.2')//' rad) of (H − H0)/E_s, H in '// &
+              'quadruple precision at the compensated state; exponent fitted in t ≥ '// &
+              pretty(cfg%ro_fit_t_min)//' s.'//nl//nl// &
+              '| method | h [s] | steps | exponent, compensated | exponent, plain |'// &
+              ' RMS at the end, compensated | plain | |'//nl// &
+              '|---|---|---|---|---|---|---|---|'//nl
+         do i = 1, size(res%roundoff)
+            associate (ro => res%roundoff(i))
+               k = size(ro%steps)
+               md = md//'| '//ro%method//' | '//num(ro%dt, 'es8.2')//' | '// &
+                    to_str(ro%steps(k))//' | '//slope(ro%fit(1))//' | '//slope(ro%fit(2))// &
+                    ' | '//num(ro%rms(k, 1), 'es8.2')//' | '//num(ro%rms(k, 2), 'es8.2')// &
+                    ' | '//mark(ro%fit(1)%ok .and. abs(ro%fit(1)%slope - 0.5_dp) <= brouwer_tol) &
+                    //' |'//nl
+            end associate
+         end do
+      end if
+      ! ---- Tao
+      if (size(res%tao) > 0) then
+         md = md//nl//"## Tao's binding constant"//nl//nl// &
+              'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//pretty(cfg%tao_t_end)// &
+              ' s, case `'//cfg%tao_case//'`.'//nl//nl// &
+              '| method | ω range [1/s] | best ω | its max energy error | ω ≈ 20/s: '// &
+              'max energy error | global error | failed runs |'//nl// &
+              '|---|---|---|---|---|---|---|'//nl
+         do i = 1, size(res%tao)
+            associate (ts => res%tao(i))
+               k = best_index(ts%energy_max)
+               md = md//'| '//ts%method//' | '//pretty(ts%omega(1))//' … '// &
+                    pretty(ts%omega(size(ts%omega)))//' | '
+               if (k > 0) then
+                  md = md//pretty(ts%omega(k))//' | '//num(ts%energy_max(k), 'es8.2')
+               else
+                  md = md//'– | –'
+               end if
+               k = minloc(abs(log(ts%omega/20.0_dp)), 1)
+               md = md//' | '//pretty(ts%omega(k))//': '//num(ts%energy_max(k), 'es8.2')// &
+                    ' | '//num(ts%global_error(k), 'es8.2')// &
+                    ' | '//to_str(count(ts%stat /= stat_ok))//' |'//nl
+            end associate
+         end do
+      end if
+      ! ---- cases
+      md = md//nl//'## Cases'//nl//nl// &
+           '| case | q0 [rad] | q̇0 [rad/s] | H(0) [J] | E_s [J] | reference check |'//nl// &
+           '|---|---|---|---|---|---|'//nl
+      do ic = 1, size(cfg%cases)
+         associate (cs => cfg%cases(ic), ref => res%refs(ic))
+            md = md//'| '//cs%name//' | '//num(cs%q0(1), 'f0.4')//', '// &
+                 num(cs%q0(2), 'f0.4')//' | '//num(cs%w0(1), 'f0.3')//', '// &
+                 num(cs%w0(2), 'f0.3')//' | '//num(ref%e0, 'f0.4')//' | '// &
+                 num(ref%e_scale, 'f0.4')
+            if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
+               md = md//' = \|H(0)\|'
+            else
+               md = md//' (V, links upright)'
+            end if
+            md = md//' | '//cfg%check_method//': '//num(ref%check_difference, 'es8.2') &
+                 //' |'//nl
+         end associate
+      end do
+   end function study_summary
+
+   pure integer function best_index(v) result(k)
+      real(dp), intent(in) :: v(:)
+      integer :: i
+      k = 0
+      do i = 1, size(v)
+         if (.not. ieee_is_finite(v(i))) cycle
+         if (k == 0) then
+            k = i
+         else if (v(i) < v(k)) then
+            k = i
+         end if
+      end do
+   end function best_index
+
+   !> ✓ or ✗ for an experiment that ran (`ran`), else `other` ("not run:", ...).
+   function verdict(ok, ran, other) result(s)
+      logical, intent(in) :: ok         !! the check passed
+      logical, intent(in) :: ran        !! there was something to check
+      character(len=*), intent(in) :: other  !! the text instead of a mark
+      character(len=:), allocatable :: s
+      if (ran) then
+         s = mark(ok)
+      else
+         s = other
+      end if
+   end function verdict
+
+   function mark(ok) result(s)
+      logical, intent(in) :: ok
+      character(len=:), allocatable :: s
+      if (ok) then
+         s = '✓'
+      else
+         s = '✗'
+      end if
+   end function mark
+
+   function slope(fit) result(s)
+      type(fit_t), intent(in) :: fit
+      character(len=:), allocatable :: s
+      if (fit%ok) then
+         s = fmt(fit%slope, 'f0.2')
+      else
+         s = '–'
+      end if
+   end function slope
+
+   function num(x, f) result(s)
+      real(dp), intent(in) :: x
+      character(len=*), intent(in) :: f
+      character(len=:), allocatable :: s
+      if (ieee_is_finite(x)) then
+         s = fmt(x, f)
+      else
+         s = '–'
+      end if
+   end function num
+
+   function fmt(x, f) result(s)
+      real(dp), intent(in) :: x
+      character(len=*), intent(in) :: f
+      character(len=:), allocatable :: s
+      character(len=64) :: buf
+      write (buf, '('//f//')') x
+      s = trim(adjustl(buf))
+      if (len(s) > 1) then
+         if (s(1:1) == '.') s = '0'//s
+         if (s(1:2) == '-.') s = '-0'//s(2:)
+      end if
+   end function fmt
+
+   !> Up to 4 significant digits without trailing zeros (1e-3 ≤ |x| < 1e5),
+   !> else scientific notation.
+   function pretty(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      integer :: d
+      if (.not. ieee_is_finite(x)) then
+         s = '–'
+      else if (x == 0.0_dp) then
+         s = '0'
+      else if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e5_dp) then
+         d = max(0, 3 - floor(log10(abs(x))))
+         write (buf, '(f0.'//to_str(d)//')') x
+         s = trim(adjustl(buf))
+         if (index(s, '.') > 0) then
+            do while (s(len(s):len(s)) == '0')
+               s = s(:len(s) - 1)
+            end do
+            if (s(len(s):len(s)) == '.') s = s(:len(s) - 1)
+         end if
+         if (s(1:1) == '.') s = '0'//s
+         if (len(s) > 1) then
+            if (s(1:2) == '-.') s = '-0'//s(2:)
+         end if
+      else
+         s = fmt(x, 'es9.2')
+      end if
+   end function pretty
+
+   function ratio(a, b) result(s)
+      integer(i8), intent(in) :: a, b
+      character(len=:), allocatable :: s
+      if (b > 0) then
+         s = fmt(real(a, dp)/real(b, dp), 'f0.1')
+      else
+         s = '–'
+      end if
+   end function ratio
+
+
+
+   ! ================================================================== HDF5
+
+   !> Write everything to `filename` (layout: docs/study-hdf5.md).
+   subroutine write_study_h5(cfg, res, filename, error)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=*), intent(in) :: filename
+      type(error_t), allocatable, intent(out) :: error
+      type(writer_t) :: w
+      type(verdicts_t) :: v
+      integer :: ic, s, i
+      character(len=:), allocatable :: g, names
+      character(len=8) :: date
+      character(len=10) :: time
+      call w%h5%open(filename, 'w', w%error)
+      if (allocated(w%error)) then
+         call move_alloc(w%error, error)
+         return
+      end if
+      ! configuration
+      call w%s0('/config/namelist', study_namelist(cfg))
+      call w%ar('/config', 'm1', cfg%par%m1); call w%ar('/config', 'm2', cfg%par%m2)
+      call w%ar('/config', 'l1', cfg%par%l1); call w%ar('/config', 'l2', cfg%par%l2)
+      call w%ar('/config', 'g', cfg%par%g)
+      call w%ar('/config', 't_short', cfg%t_short)
+      call w%ai('/config', 'n_check', cfg%n_check)
+      call w%as('/config', 'order_case', cfg%order_case)
+      call w%as('/config', 'drift_case', cfg%drift_case)
+      call w%ar('/config', 'drift_decades', cfg%drift_decades)
+      call w%as('/config', 'ref_method', cfg%ref_method)
+      call w%ar('/config', 'ref_dt', cfg%ref_dt)
+      call w%as('/config', 'check_method', cfg%check_method)
+      call w%ar('/config', 'check_rtol', cfg%check_rtol)
+      call w%ar('/config', 'atol_ratio', cfg%atol_ratio)
+      call w%ai('/config', 'quick', merge(1, 0, cfg%quick))
+      ! root: provenance and the lists the plot script needs
+      call date_and_time(date, time)
+      call w%as('/', 'program', 'dpend study')
+      call w%as('/', 'version', version)
+      call w%as('/', 'created', date(1:4)//'-'//date(5:6)//'-'//date(7:8)//'T'// &
+                time(1:2)//':'//time(3:4)//':'//time(5:6))
+      call w%as('/', 'host', host_name())
+      call w%as('/', 'cpu', cpu_model())
+      call w%as('/', 'compiler', compiler_version())
+      call w%as('/', 'compiler_options', compiler_options())
+      call w%ai('/', 'threads', res%threads)
+      call w%ar('/', 'wall_time', res%wall_total)
+      call w%as('/', 'energy_error', '|H(t) - H(0)| / E_s, E_s = |H(0)|, or when H(0) ~ 0 '// &
+                'the potential energy with both links upright (per case: energy_scale)')
+      call w%as('/', 'global_error', 'max over the checkpoints of max(|dq1|, |dq2|, '// &
+                '|dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
+      names = cfg%cases(1)%name
+      do ic = 2, size(cfg%cases)
+         names = names//' '//cfg%cases(ic)%name
+      end do
+      call w%as('/', 'cases', names)
+      names = cfg%methods(1)%name
+      do i = 2, size(cfg%methods)
+         names = names//' '//cfg%methods(i)%name
+      end do
+      call w%as('/', 'methods', names)
+      call w%as('/', 'order_case', cfg%order_case)
+      call w%as('/', 'drift_case', cfg%drift_case)
+      names = ''
+      do i = 1, size(res%roundoff)
+         if (i > 1) names = names//' '
+         names = names//res%roundoff(i)%method
+      end do
+      if (len(names) == 0) names = 'none'
+      call w%as('/', 'roundoff_methods', names)
+      names = ''
+      do i = 1, size(res%tao)
+         if (i > 1) names = names//' '
+         names = names//res%tao(i)%method
+      end do
+      if (len(names) == 0) names = 'none'
+      call w%as('/', 'tao_methods', names)
+      ! cases and references
+      do ic = 1, size(cfg%cases)
+         g = '/cases/'//cfg%cases(ic)%name
+         associate (ref => res%refs(ic), cs => cfg%cases(ic))
+            call w%r1(g//'/reference/t', ref%t)
+            call w%r2(g//'/reference/state', ref%y)
+            call w%as(g//'/reference', 'method', cfg%ref_method)
+            call w%ar(g//'/reference', 'dt', cfg%ref_dt)
+            call w%as(g//'/reference', 'check_method', cfg%check_method)
+            call w%ar(g//'/reference', 'check_rtol', cfg%check_rtol)
+            call w%ar(g//'/reference', 'check_difference', ref%check_difference)
+            call w%ar1(g, 'q0', cs%q0)
+            call w%ar1(g, 'qdot0', cs%w0)
+            call w%ar(g, 'energy0', ref%e0)
+            call w%ar(g, 'energy_scale', ref%e_scale)
+            if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
+               call w%as(g, 'energy_scale_definition', '|H(0)|')
+            else
+               call w%as(g, 'energy_scale_definition', 'potential energy, both links upright')
+            end if
+            call w%ar(g, 'long_steps', cs%long_steps)
+         end associate
+      end do
+      ! sweeps
+      do s = 1, size(res%sweeps)
+         call write_sweep(w, cfg, res%sweeps(s))
+      end do
+      ! roundoff
+      do i = 1, size(res%roundoff)
+         associate (ro => res%roundoff(i))
+            g = '/roundoff/'//ro%method
+            call w%l1(g//'/steps', ro%steps)
+            call w%r1(g//'/t', ro%t)
+            call w%r1(g//'/rms_compensated', ro%rms(:, 1))
+            call w%r1(g//'/rms_plain', ro%rms(:, 2))
+            call w%r2(g//'/error_compensated', transpose(ro%err(:, :, 1)))
+            call w%r2(g//'/error_plain', transpose(ro%err(:, :, 2)))
+            call w%i1(g//'/status_compensated', ro%stat(:, 1))
+            call w%i1(g//'/status_plain', ro%stat(:, 2))
+            call w%r1(g//'/wall_compensated', ro%wall(:, 1))
+            call w%r1(g//'/wall_plain', ro%wall(:, 2))
+            call w%ar(g, 'dt', ro%dt)
+            call w%ai(g, 'runs', cfg%ro_runs)
+            call w%as(g, 'case', cfg%ro_case)
+            call w%ar(g, 'perturbation', cfg%ro_perturb)
+            call w%ar(g, 'fit_t_min', cfg%ro_fit_t_min)
+            call fit_attrs(w, g, 'exponent_compensated', ro%fit(1))
+            call fit_attrs(w, g, 'exponent_plain', ro%fit(2))
+         end associate
+      end do
+      ! Tao
+      do i = 1, size(res%tao)
+         associate (ts => res%tao(i))
+            g = '/tao/'//ts%method
+            call w%r1(g//'/omega', ts%omega)
+            call w%r1(g//'/energy_max', ts%energy_max)
+            call w%r1(g//'/energy_final', ts%energy_final)
+            call w%r1(g//'/global_error', ts%global_error)
+            call w%i1(g//'/status', ts%stat)
+            call w%ar(g, 'dt', cfg%tao_dt)
+            call w%ar(g, 't_end', cfg%tao_t_end)
+            call w%as(g, 'case', cfg%tao_case)
+         end associate
+      end do
+      ! summary
+      v = study_verdicts(cfg, res)
+      call w%s0('/summary/markdown', study_summary(cfg, res))
+      call w%ai('/summary', 'orders_ok', merge(1, 0, v%orders))
+      call w%as('/summary', 'orders', v%orders_text)
+      ! -1: not judged (every long run too short) or not run, as the text says
+      call w%ai('/summary', 'drift_ok', merge(merge(1, 0, v%drift), -1, v%drift_judged))
+      call w%as('/summary', 'drift', v%drift_text)
+      call w%ai('/summary', 'roundoff_ok', merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
+      call w%as('/summary', 'roundoff', v%roundoff_text)
+      if (allocated(w%error)) then
+         call w%h5%close()
+      else
+         call w%h5%close(w%error)
+      end if
+      if (allocated(w%error)) call move_alloc(w%error, error)
+   end subroutine write_study_h5
+
+   !> One sweep under /cases/<case>/<method>/step or …/tol.
+   subroutine write_sweep(w, cfg, sw)
+      type(writer_t), intent(inout) :: w
+      type(study_config_t), intent(in) :: cfg
+      type(sweep_t), intent(in) :: sw
+      character(len=:), allocatable :: g
+      g = '/cases/'//cfg%cases(sw%icase)%name//'/'//sw%method//'/'// &
+          trim(merge('step', 'tol ', sw%mode == mode_step))
+      if (sw%mode == mode_step) then
+         call w%r1(g//'/h', sw%x)
+      else
+         call w%r1(g//'/rtol', sw%x)
+         call w%r1(g//'/atol', cfg%atol_ratio*sw%x)
+      end if
+      call w%r1(g//'/mean_step_short', sw%h_mean_short)
+      call w%r1(g//'/mean_step_long', sw%h_mean_long)
+      call w%r1(g//'/global_error', sw%global_error)
+      call w%r1(g//'/energy_max_short', sw%energy_short)
+      call w%r1(g//'/energy_max_long', sw%energy_long)
+      call w%r1(g//'/energy_final', sw%energy_final)
+      call w%r1(g//'/drift_exponent', sw%drift)
+      call w%r1(g//'/drift_stderr', sw%drift_stderr)
+      call w%l1(g//'/short_steps', sw%short_steps)
+      call w%l1(g//'/short_rhs', sw%short_rhs)
+      call w%l1(g//'/short_iterations', sw%short_iter)
+      call w%l1(g//'/short_rejected', sw%short_rejected)
+      call w%l1(g//'/long_steps', sw%long_steps)
+      call w%l1(g//'/long_rhs', sw%long_rhs)
+      call w%l1(g//'/long_iterations', sw%long_iter)
+      call w%l1(g//'/long_rejected', sw%long_rejected)
+      call w%r1(g//'/wall_short', sw%wall_short)
+      call w%r1(g//'/wall_long', sw%wall_long)
+      call w%i1(g//'/status', sw%stat)
+      call w%r1(g//'/t_bins', sw%t_bins)
+      call w%r2(g//'/energy_bins', sw%bins)
+      call w%ai(g, 'order', sw%order)
+      call w%ai(g, 'symplectic', merge(1, 0, sw%symplectic))
+      call w%ai(g, 'mid', sw%mid - 1)
+      call w%ar(g, 't_long', sw%t_long)
+      call w%ar(g, 't_short', cfg%t_short)
+      call fit_attrs(w, g, 'order_global', sw%fit_global)
+      call fit_attrs(w, g, 'order_energy', sw%fit_energy)
+      call fit_attrs(w, g, 'order_energy_long', sw%fit_energy_long)
+      if (sw%mode == mode_tol) call fit_attrs(w, g, 'slope_vs_rtol', sw%fit_tolerance)
+   end subroutine write_sweep
+
+   !> A fit as attributes NAME (slope, NaN if no fit), NAME_stderr, NAME_points.
+   subroutine fit_attrs(w, path, name, fit)
+      type(writer_t), intent(inout) :: w
+      character(len=*), intent(in) :: path, name
+      type(fit_t), intent(in) :: fit
+      if (fit%ok) then
+         call w%ar(path, name, fit%slope)
+      else
+         call w%ar(path, name, ieee_value(1.0_dp, ieee_quiet_nan))
+      end if
+      call w%ar(path, name//'_stderr', fit%stderr)
+      call w%ai(path, name//'_points', fit%n)
+   end subroutine fit_attrs
+
+   ! --------------------------------------------------------------- writer
+
+   subroutine w_r0(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      real(dp), intent(in) :: x
+      if (.not. allocated(self%error)) call self%h5%write(path, x, self%error)
+   end subroutine w_r0
+
+   subroutine w_r1(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      real(dp), intent(in) :: x(:)
+      real(dp), allocatable :: c(:)
+      c = x
+      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
+   end subroutine w_r1
+
+   subroutine w_r2(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      real(dp), intent(in) :: x(:, :)
+      real(dp), allocatable :: c(:, :)
+      c = x
+      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
+   end subroutine w_r2
+
+   subroutine w_i1(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: x(:)
+      integer, allocatable :: c(:)
+      c = x
+      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
+   end subroutine w_i1
+
+   subroutine w_l1(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      integer(i8), intent(in) :: x(:)
+      integer(i8), allocatable :: c(:)
+      c = x
+      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
+   end subroutine w_l1
+
+   subroutine w_s0(self, path, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: x
+      if (.not. allocated(self%error)) call self%h5%write(path, x, self%error)
+   end subroutine w_s0
+
+   subroutine w_ar(self, path, name, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path, name
+      real(dp), intent(in) :: x
+      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
+   end subroutine w_ar
+
+   subroutine w_ar1(self, path, name, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path, name
+      real(dp), intent(in) :: x(:)
+      real(dp), allocatable :: c(:)
+      c = x
+      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, c, self%error)
+   end subroutine w_ar1
+
+   subroutine w_ai(self, path, name, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path, name
+      integer, intent(in) :: x
+      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
+   end subroutine w_ai
+
+   subroutine w_as(self, path, name, x)
+      class(writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path, name
+      character(len=*), intent(in) :: x
+      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
+   end subroutine w_as
+end module dpend_study_command

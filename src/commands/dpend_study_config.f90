@@ -1,0 +1,921 @@
+!> Configuration of `dpend study`: the cases, the methods with their step and
+!> tolerance ranges, the horizons, the roundoff (Brouwer) and Tao experiments,
+!> read from the namelist group &study (plus &pendulum and &output) and from
+!> the command line. The built-in defaults are the default study, written out
+!> with comments in data/study.nml.
+!>
+!> Lists in &study are indexed arrays (`method(1) = 'rk4'`, `h_min(1) = 1e-3`).
+!> A list that the file does not set keeps its default; a list that it sets
+!> replaces the default list entirely, and a range left at 0 for a listed
+!> method takes that method's default range.
+module dpend_study_config
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_pendulum, only: pendulum_t, validate, finite_positive
+   use dpend_cli, only: arg_t, next_option, parse_int, option_outcome
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
+                           namelist_error
+   use dpend_integrator, only: integrator_t
+   use dpend_methods, only: new_integrator, method_names
+   use dpend_symplectic, only: symplectic_t
+   use dpend_kinds, only: i8
+   use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, &
+                           max_angular_velocity, &
+                           max_time, max_steps, min_rtol, min_atol, max_atol, max_omega, &
+                           max_threads
+   use dpend_tao, only: set_omega
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: scan_help_config
+   implicit none
+   private
+   public :: study_config_t, study_case_t, study_method_t
+   public :: study_defaults, parse_study, read_study_config, validate_study_config
+   public :: apply_quick, study_help, study_namelist, case_index, default_ranges
+   public :: max_cases, max_methods, max_extra
+
+   integer, parameter :: max_cases = 8      !! most cases in &study
+   integer, parameter :: max_methods = 16   !! most methods in &study
+   integer, parameter :: max_extra = 4      !! most roundoff / Tao methods
+   real(dp), parameter :: pi = acos(-1.0_dp)
+
+   !> One initial condition (SI units, angles from the horizontal x axis).
+   type :: study_case_t
+      character(len=:), allocatable :: name  !! label, e.g. 'small'
+      real(dp) :: q0(2) = 0.0_dp             !! initial angles [rad]
+      real(dp) :: w0(2) = 0.0_dp             !! initial angular velocities [rad/s]
+      !> steps of the long runs at each method's mid-range step: the long runs of a
+      !> method reach t_long = long_steps × h_mid [s] (every step size of the sweep)
+      real(dp) :: long_steps = 1.0e6_dp
+   end type study_case_t
+
+   !> One method and its sweeps.
+   type :: study_method_t
+      character(len=:), allocatable :: name  !! as in `dpend methods`
+      real(dp) :: h_min = 0.0_dp     !! smallest step of the fixed-step sweep [s]
+      real(dp) :: h_max = 0.0_dp     !! largest step of the fixed-step sweep [s]
+      real(dp) :: rtol_min = 0.0_dp  !! tolerance sweep of adaptive methods (0: none)
+      real(dp) :: rtol_max = 0.0_dp  !! largest relative tolerance
+   end type study_method_t
+
+   !> The whole study.
+   type :: study_config_t
+      type(pendulum_t) :: par                         !! physical parameters
+      type(study_case_t), allocatable :: cases(:)     !! initial conditions
+      type(study_method_t), allocatable :: methods(:) !! methods and ranges
+      integer :: n_h = 7            !! steps per fixed-step sweep (geometric)
+      integer :: n_rtol = 7         !! tolerances per tolerance sweep (geometric)
+      real(dp) :: atol_ratio = 1.0_dp  !! atol = atol_ratio × rtol
+      real(dp) :: t_short = 1.0_dp  !! horizon of the global error [s]
+      integer :: n_check = 4        !! checkpoints k t_short / n_check, k = 1..n_check
+      character(len=:), allocatable :: order_case  !! case of the order verdicts
+      character(len=:), allocatable :: drift_case  !! case of the drift verdicts
+      real(dp) :: drift_decades = 2.0_dp  !! drift fit over [t_long 10^-d, t_long]
+      integer :: bins_per_decade = 10     !! logarithmic time bins per decade
+      integer :: decades = 5              !! decades of the time grid below t_long
+      character(len=:), allocatable :: ref_method    !! reference solution
+      real(dp) :: ref_dt = 2.5e-4_dp                 !! its step [s]
+      character(len=:), allocatable :: check_method  !! second method checking it
+      real(dp) :: check_rtol = 1.0e-14_dp            !! its tolerance
+      real(dp) :: wall_min = 0.05_dp  !! time each short run for at least this [s]
+      ! roundoff (Brouwer's law)
+      character(len=16), allocatable :: ro_methods(:)  !! symplectic methods
+      real(dp), allocatable :: ro_dt(:)                !! their steps [s]
+      real(dp) :: ro_steps = 1.0e6_dp     !! steps per run
+      integer :: ro_runs = 32             !! runs (perturbed initial conditions)
+      character(len=:), allocatable :: ro_case  !! case perturbed
+      real(dp) :: ro_perturb = 2.0e-3_dp  !! perturbation of q per run [rad]
+      real(dp) :: ro_fit_t_min = 10.0_dp  !! fit of the exponent from this time [s]
+      ! Tao's binding constant
+      character(len=16), allocatable :: tao_methods(:)  !! tao2, tao4
+      real(dp) :: tao_dt = 2.0e-3_dp       !! step [s]
+      real(dp) :: tao_t_end = 500.0_dp     !! horizon [s]
+      real(dp) :: omega_min = 1.0_dp       !! smallest ω [1/s]
+      real(dp) :: omega_max = 1.0e4_dp     !! largest ω [1/s]
+      integer :: n_omega = 41              !! values of ω (geometric)
+      character(len=:), allocatable :: tao_case  !! case
+      ! run control
+      logical :: quick = .false.           !! reduced long runs (smoke test, CI)
+      integer :: threads = 0               !! OpenMP threads (0: the default)
+      logical :: figures = .true.          !! run scripts/plot_study.sh at the end
+      character(len=:), allocatable :: output  !! HDF5 file
+      logical :: force = .false.               !! overwrite it
+   end type study_config_t
+
+contains
+
+   ! ----------------------------------------------------------------- defaults
+
+   !> Default step range [s] and tolerance range of method `name` (0 when unknown):
+   !> chosen so that the fixed-step sweep is in the asymptotic regime and above
+   !> roundoff on the three default cases (errors 1e-13 … 1e-4 at t_short = 1 s).
+   subroutine default_ranges(name, h_min, h_max, rtol_min, rtol_max)
+      character(len=*), intent(in) :: name  !! method
+      real(dp), intent(out) :: h_min        !! smallest step [s]
+      real(dp), intent(out) :: h_max        !! largest step [s]
+      real(dp), intent(out) :: rtol_min     !! smallest tolerance (0: none)
+      real(dp), intent(out) :: rtol_max     !! largest tolerance
+      rtol_min = 0.0_dp
+      rtol_max = 0.0_dp
+      select case (name)
+      case ('rk4'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
+      case ('dopri5')
+         h_min = 2.0e-3_dp; h_max = 8.0e-3_dp; rtol_min = 1.0e-12_dp; rtol_max = 1.0e-7_dp
+      case ('dop853')
+         h_min = 1.2e-2_dp; h_max = 3.2e-2_dp; rtol_min = 1.0e-13_dp; rtol_max = 1.0e-8_dp
+      case ('midpoint'); h_min = 2.5e-3_dp; h_max = 1.0e-2_dp
+      case ('gauss4'); h_min = 5.0e-3_dp; h_max = 2.0e-2_dp
+      case ('gauss6'); h_min = 1.0e-2_dp; h_max = 3.0e-2_dp
+      case ('gauss8'); h_min = 1.5e-2_dp; h_max = 4.0e-2_dp
+      case ('verlet'); h_min = 2.5e-3_dp; h_max = 1.0e-2_dp
+      case ('yoshida4'); h_min = 5.0e-3_dp; h_max = 2.0e-2_dp
+      case ('comp6'); h_min = 1.0e-2_dp; h_max = 3.0e-2_dp
+      case ('comp8'); h_min = 1.5e-2_dp; h_max = 3.5e-2_dp
+      case ('tao2'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
+      case ('tao4'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
+      case default; h_min = 0.0_dp; h_max = 0.0_dp
+      end select
+   end subroutine default_ranges
+
+   !> The default study: three cases, every method, Brouwer and Tao experiments.
+   function study_defaults() result(cfg)
+      type(study_config_t) :: cfg
+      character(len=16), allocatable :: names(:)
+      integer :: i
+      cfg%cases = [ &
+                  study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
+                               [0.0_dp, 0.0_dp], 1.0e6_dp), &
+                  study_case_t('mixed', [-0.5_dp*pi + 0.75_dp, -0.5_dp*pi + 1.5_dp], &
+                               [0.0_dp, 0.0_dp], 1.0e5_dp), &
+                  study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 1.0e5_dp)]
+      call split_words(method_names, names)
+      allocate (cfg%methods(size(names)))
+      do i = 1, size(names)
+         cfg%methods(i)%name = trim(names(i))
+         call default_ranges(trim(names(i)), cfg%methods(i)%h_min, cfg%methods(i)%h_max, &
+                             cfg%methods(i)%rtol_min, cfg%methods(i)%rtol_max)
+      end do
+      cfg%order_case = 'mixed'
+      cfg%drift_case = 'small'
+      cfg%ref_method = 'gauss8'
+      cfg%check_method = 'dop853'
+      cfg%ro_methods = [character(len=16) :: 'gauss6', 'gauss8']
+      cfg%ro_dt = [1.0e-3_dp, 1.0e-3_dp]
+      cfg%ro_case = 'small'
+      cfg%tao_methods = [character(len=16) :: 'tao2', 'tao4']
+      cfg%tao_case = 'small'
+      cfg%output = 'out/study/study.h5'
+   end function study_defaults
+
+   !> Reduce the study to a smoke test (`--quick`, about 50× cheaper): long runs
+   !> of 2 % of their steps, 4 roundoff runs of at most 10⁵ steps, Tao runs of a
+   !> tenth of their horizon, short runs timed for 2 ms.
+   subroutine apply_quick(cfg)
+      type(study_config_t), intent(inout) :: cfg  !! configuration to reduce
+      integer :: i
+      if (.not. cfg%quick) return
+      do i = 1, size(cfg%cases)
+         cfg%cases(i)%long_steps = max(1.0e3_dp, 0.02_dp*cfg%cases(i)%long_steps)
+      end do
+      cfg%ro_steps = min(cfg%ro_steps, 1.0e5_dp)
+      cfg%ro_runs = min(cfg%ro_runs, 4)
+      cfg%ro_fit_t_min = min(cfg%ro_fit_t_min, 1.0_dp)
+      cfg%tao_t_end = 0.1_dp*cfg%tao_t_end
+      cfg%wall_min = min(cfg%wall_min, 0.002_dp)
+   end subroutine apply_quick
+
+   !> Index of the case called `name` in cfg%cases, 0 if none.
+   pure integer function case_index(cfg, name)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: name     !! case name
+      integer :: i
+      case_index = 0
+      do i = 1, size(cfg%cases)
+         if (cfg%cases(i)%name == trim(name)) then
+            case_index = i
+            return
+         end if
+      end do
+   end function case_index
+
+   ! -------------------------------------------------------------------- help
+
+   !> Help text of `dpend study`.
+   function study_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      s = 'usage: dpend study [options]'//nl//nl// &
+          'The energy-conservation study: every method over a geometric range of steps'//nl// &
+          '(tolerances for dopri5/dop853) on several initial conditions, to long times;'//nl// &
+          'global errors against a reference, energy errors on a logarithmic time grid,'//nl// &
+          "Brouwer's law of roundoff, Tao's binding constant. Writes one HDF5 file"//nl// &
+          '(docs/study-hdf5.md), a Markdown summary next to it (FILE with .md), prints'//nl// &
+          'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
+          'options:'//nl// &
+          '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
+          '                    data/study.nml, identical to the built-in defaults)'//nl// &
+          '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
+          '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
+          '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
+          '                    in the roundoff and Tao experiments'//nl// &
+          '  --cases LIST      only these cases (comma separated, from the config); a'//nl// &
+          '                    verdict case left out becomes the first of them'//nl// &
+          '  --threads N       OpenMP threads (default: OMP_NUM_THREADS or all cores)'//nl// &
+          '  --output FILE     HDF5 file; default out/study/study.h5 (directory created)'//nl// &
+          '  --force           overwrite an existing output file'//nl// &
+          '  --no-figures      do not run scripts/plot_study.sh'//nl// &
+          '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2   pendulum parameters (default:'//nl// &
+          "                    the chapter's 1 kg, 1 m, 9.8 m/s^2)"//nl// &
+          '  -h, --help        this text'//nl//nl// &
+          'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
+          'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &
+          'links upright, (m1/2 + m2) g l1 + (m2/2) g l2.'
+   end function study_help
+
+   ! ------------------------------------------------------------ command line
+
+   !> Build the study configuration from the defaults, --config and the flags.
+   subroutine parse_study(args, cfg, help, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'study'
+      type(study_config_t), intent(out) :: cfg          !! the configuration
+      logical, intent(out) :: help                      !! --help was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value, only_methods, only_cases, config
+      type(run_config_t) :: rcfg
+      logical :: matched, missing, methods_given, cases_given
+      integer :: i
+      cfg = study_defaults()
+      help = .false.
+      only_methods = ''
+      only_cases = ''
+      methods_given = .false.
+      cases_given = .false.
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_study_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
+      rcfg%par = cfg%par
+      i = 1
+      do while (i <= size(args))
+         select case (args(i)%s)
+         case ('--force')
+            cfg%force = .true.; i = i + 1; cycle
+         case ('--quick')
+            cfg%quick = .true.; i = i + 1; cycle
+         case ('--no-figures')
+            cfg%figures = .false.; i = i + 1; cycle
+         end select
+         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
+            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+                             "' (dpend study --help lists the options)")
+            return
+         end if
+         call next_option(args, i, name, value, .true., error, missing)
+         matched = .true.
+         select case (name)
+         case ('--config')
+            cycle
+         case ('--output', '-o')
+            cfg%output = value
+         case ('--threads')
+            call parse_int(value, name, cfg%threads, error)
+            if (.not. allocated(error) .and. .not. missing .and. cfg%threads < 1) &
+               call fatal_error(error, 'invalid --threads: must be an integer >= 1')
+         case ('--methods')
+            only_methods = value
+            methods_given = .true.
+         case ('--cases')
+            only_cases = value
+            cases_given = .true.
+         case ('--m1', '--m2', '--l1', '--l2', '--g')
+            call apply_run_flag(rcfg, name, value, matched, error)
+            cfg%par = rcfg%par
+         case default
+            matched = .false.
+         end select
+         call option_outcome('study', name, matched, missing, [character(len=16) :: &
+                             '--force', '--quick', '--no-figures'], error)
+         if (allocated(error)) return
+      end do
+      if (methods_given) call select_methods(cfg, only_methods, error)
+      if (allocated(error)) return
+      if (cases_given) call select_cases(cfg, only_cases, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call apply_quick(cfg)
+   end subroutine parse_study
+
+   !> Keep only the methods named in the comma-separated `list`.
+   subroutine select_methods(cfg, list, error)
+      type(study_config_t), intent(inout) :: cfg         !! configuration
+      character(len=*), intent(in) :: list               !! e.g. 'rk4,gauss6'
+      type(error_t), allocatable, intent(out) :: error   !! a name not in the config
+      character(len=:), allocatable :: names(:)
+      logical :: keep(size(cfg%methods))
+      integer :: i, j
+      call split_list(list, '--methods', names, error)
+      if (allocated(error)) return
+      keep = .false.
+      do j = 1, size(names)
+         do i = 1, size(cfg%methods)
+            if (cfg%methods(i)%name == trim(names(j))) keep(i) = .true.
+         end do
+         if (.not. any([(cfg%methods(i)%name == trim(names(j)), i=1, size(cfg%methods))])) then
+            call fatal_error(error, "invalid --methods: '"//trim(names(j))// &
+                             "' is not a method of the study (accepted: "//method_names//")")
+            return
+         end if
+      end do
+      cfg%methods = pack(cfg%methods, keep)
+      ! the roundoff and Tao experiments keep only the selected methods
+      keep_ro: block
+         logical :: sel(max(size(cfg%ro_methods), size(cfg%tao_methods)))
+         do i = 1, size(cfg%ro_methods)
+            sel(i) = any(names == cfg%ro_methods(i))
+         end do
+         cfg%ro_dt = pack(cfg%ro_dt, sel(:size(cfg%ro_methods)))
+         cfg%ro_methods = pack(cfg%ro_methods, sel(:size(cfg%ro_methods)))
+         do i = 1, size(cfg%tao_methods)
+            sel(i) = any(names == cfg%tao_methods(i))
+         end do
+         cfg%tao_methods = pack(cfg%tao_methods, sel(:size(cfg%tao_methods)))
+      end block keep_ro
+   end subroutine select_methods
+
+   !> Keep only the cases named in the comma-separated `list`.
+   subroutine select_cases(cfg, list, error)
+      type(study_config_t), intent(inout) :: cfg         !! configuration
+      character(len=*), intent(in) :: list               !! e.g. 'small,mixed'
+      type(error_t), allocatable, intent(out) :: error   !! a name not in the config
+      character(len=:), allocatable :: names(:)
+      logical :: keep(size(cfg%cases))
+      integer :: i, j
+      call split_list(list, '--cases', names, error)
+      if (allocated(error)) return
+      keep = .false.
+      do j = 1, size(names)
+         i = case_index(cfg, trim(names(j)))
+         if (i == 0) then
+            call fatal_error(error, "invalid --cases: '"//trim(names(j))// &
+                             "' is not a case of the study (accepted: "//case_list(cfg)//")")
+            return
+         end if
+         keep(i) = .true.
+      end do
+      cfg%cases = pack(cfg%cases, keep)
+      ! the verdict and experiment cases fall back to the first selected case
+      if (case_index(cfg, cfg%order_case) == 0) cfg%order_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%drift_case) == 0) cfg%drift_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%ro_case) == 0) cfg%ro_case = cfg%cases(1)%name
+      if (case_index(cfg, cfg%tao_case) == 0) cfg%tao_case = cfg%cases(1)%name
+   end subroutine select_cases
+
+   ! ----------------------------------------------------------------- namelist
+
+   !> Read &pendulum, &output and &study from `filename` into `cfg` (see the
+   !> module header for how lists replace the defaults).
+   subroutine read_study_config(filename, cfg, error)
+      character(len=*), intent(in) :: filename           !! namelist file
+      type(study_config_t), intent(inout) :: cfg         !! updated from the file
+      type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
+      type(run_config_t) :: rcfg
+      character(len=32) :: case_name(max_cases), order_case, drift_case, ro_case, tao_case
+      real(dp) :: case_q1(max_cases), case_q2(max_cases), case_w1(max_cases), &
+                  case_w2(max_cases), case_long_steps(max_cases)
+      character(len=16) :: method(max_methods), ref_method, check_method
+      real(dp) :: h_min(max_methods), h_max(max_methods), rtol_min(max_methods), &
+                  rtol_max(max_methods)
+      character(len=16) :: ro_method(max_extra), tao_method(max_extra)
+      real(dp) :: ro_dt(max_extra)
+      integer :: n_h, n_rtol, n_check, bins_per_decade, decades, ro_runs, n_omega
+      real(dp) :: atol_ratio, t_short, drift_decades, ref_dt, check_rtol, wall_min, ro_steps, &
+                  ro_perturb, ro_fit_t_min, tao_dt, tao_t_end, omega_min, omega_max
+      logical :: quick
+      integer :: unit, stat, i, n
+      character(len=512) :: msg
+      namelist /study/ case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
+         method, h_min, h_max, rtol_min, rtol_max, n_h, n_rtol, atol_ratio, t_short, &
+         n_check, order_case, drift_case, drift_decades, bins_per_decade, decades, &
+         ref_method, ref_dt, check_method, check_rtol, wall_min, ro_method, ro_dt, ro_steps, &
+         ro_runs, ro_case, ro_perturb, ro_fit_t_min, tao_method, tao_dt, tao_t_end, &
+         omega_min, omega_max, n_omega, tao_case, quick
+
+      call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
+      if (allocated(error)) return
+      rcfg%par = cfg%par
+      rcfg%output = cfg%output
+      rcfg%force = cfg%force
+      call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
+      if (allocated(error)) return
+      cfg%par = rcfg%par
+      cfg%output = rcfg%output
+      cfg%force = rcfg%force
+
+      ! lists start empty (a set list replaces the default); scalars start at the defaults
+      case_name = ''; case_q1 = 0; case_q2 = 0; case_w1 = 0; case_w2 = 0; case_long_steps = 0
+      method = ''; h_min = 0; h_max = 0; rtol_min = 0; rtol_max = 0
+      ro_method = ''; ro_dt = 0; tao_method = ''
+      n_h = cfg%n_h; n_rtol = cfg%n_rtol; atol_ratio = cfg%atol_ratio; t_short = cfg%t_short
+      n_check = cfg%n_check; order_case = cfg%order_case; drift_case = cfg%drift_case
+      drift_decades = cfg%drift_decades; bins_per_decade = cfg%bins_per_decade
+      decades = cfg%decades; ref_method = cfg%ref_method; ref_dt = cfg%ref_dt
+      check_method = cfg%check_method; check_rtol = cfg%check_rtol; wall_min = cfg%wall_min
+      ro_steps = cfg%ro_steps; ro_runs = cfg%ro_runs; ro_case = cfg%ro_case
+      ro_perturb = cfg%ro_perturb; ro_fit_t_min = cfg%ro_fit_t_min; tao_dt = cfg%tao_dt
+      tao_t_end = cfg%tao_t_end; omega_min = cfg%omega_min; omega_max = cfg%omega_max
+      n_omega = cfg%n_omega; tao_case = cfg%tao_case; quick = cfg%quick
+
+      open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         return
+      end if
+      read (unit, nml=study, iostat=stat, iomsg=msg)
+      close (unit)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'study', msg))
+         return
+      end if
+
+      n = count(len_trim(case_name) > 0)
+      if (n > 0) then
+         if (any(len_trim(case_name(1:n)) == 0)) then
+            call fatal_error(error, "invalid config '"//filename// &
+                             "' in &study: case_name(1..n) must be set without gaps")
+            return
+         end if
+         deallocate (cfg%cases)
+         allocate (cfg%cases(n))
+         do i = 1, n
+            cfg%cases(i)%name = trim(case_name(i))
+            cfg%cases(i)%q0 = [case_q1(i), case_q2(i)]
+            cfg%cases(i)%w0 = [case_w1(i), case_w2(i)]
+            cfg%cases(i)%long_steps = merge(case_long_steps(i), 1.0e6_dp, &
+                                            case_long_steps(i) /= 0.0_dp)
+         end do
+      end if
+      n = count(len_trim(method) > 0)
+      if (n > 0) then
+         if (any(len_trim(method(1:n)) == 0)) then
+            call fatal_error(error, "invalid config '"//filename// &
+                             "' in &study: method(1..n) must be set without gaps")
+            return
+         end if
+         deallocate (cfg%methods)
+         allocate (cfg%methods(n))
+         do i = 1, n
+            cfg%methods(i)%name = trim(method(i))
+            call default_ranges(trim(method(i)), cfg%methods(i)%h_min, cfg%methods(i)%h_max, &
+                                cfg%methods(i)%rtol_min, cfg%methods(i)%rtol_max)
+            if (h_min(i) /= 0.0_dp) cfg%methods(i)%h_min = h_min(i)
+            if (h_max(i) /= 0.0_dp) cfg%methods(i)%h_max = h_max(i)
+            if (rtol_min(i) /= 0.0_dp) cfg%methods(i)%rtol_min = rtol_min(i)
+            if (rtol_max(i) /= 0.0_dp) cfg%methods(i)%rtol_max = rtol_max(i)
+         end do
+      end if
+      n = count(len_trim(ro_method) > 0)
+      if (n > 0) then
+         cfg%ro_methods = ro_method(1:n)
+         cfg%ro_dt = merge(ro_dt(1:n), 1.0e-3_dp, ro_dt(1:n) /= 0.0_dp)
+      else if (any(ro_dt /= 0.0_dp)) then
+         do i = 1, min(size(cfg%ro_dt), max_extra)
+            if (ro_dt(i) /= 0.0_dp) cfg%ro_dt(i) = ro_dt(i)
+         end do
+      end if
+      n = count(len_trim(tao_method) > 0)
+      if (n > 0) cfg%tao_methods = tao_method(1:n)
+
+      cfg%n_h = n_h; cfg%n_rtol = n_rtol; cfg%atol_ratio = atol_ratio; cfg%t_short = t_short
+      cfg%n_check = n_check; cfg%order_case = trim(order_case)
+      cfg%drift_case = trim(drift_case); cfg%drift_decades = drift_decades
+      cfg%bins_per_decade = bins_per_decade; cfg%decades = decades
+      cfg%ref_method = trim(ref_method); cfg%ref_dt = ref_dt
+      cfg%check_method = trim(check_method); cfg%check_rtol = check_rtol
+      cfg%wall_min = wall_min; cfg%ro_steps = ro_steps; cfg%ro_runs = ro_runs
+      cfg%ro_case = trim(ro_case); cfg%ro_perturb = ro_perturb
+      cfg%ro_fit_t_min = ro_fit_t_min; cfg%tao_dt = tao_dt; cfg%tao_t_end = tao_t_end
+      cfg%omega_min = omega_min; cfg%omega_max = omega_max; cfg%n_omega = n_omega
+      cfg%tao_case = trim(tao_case); cfg%quick = quick
+   end subroutine read_study_config
+
+   !> The effective configuration as &pendulum and &study namelists (one string
+   !> with new lines), for the output file: reading it back reproduces the study
+   !> (with --quick already applied, so it is written with quick = .false.).
+   function study_namelist(cfg) result(text)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: nl = new_line('a')
+      character(len=64) :: b
+      integer :: i
+      text = '&pendulum m1 = '//g(cfg%par%m1)//', m2 = '//g(cfg%par%m2)//', l1 = ' &
+             //g(cfg%par%l1)//', l2 = '//g(cfg%par%l2)//', g = '//g(cfg%par%g)//' /'//nl
+      text = text//'&study'//nl
+      do i = 1, size(cfg%cases)
+         write (b, '(i0)') i
+         text = text//'  case_name('//trim(b)//") = '"//cfg%cases(i)%name//"', case_q1(" &
+                //trim(b)//') = '//g(cfg%cases(i)%q0(1))//', case_q2('//trim(b)//') = ' &
+                //g(cfg%cases(i)%q0(2))//', case_w1('//trim(b)//') = ' &
+                //g(cfg%cases(i)%w0(1))//', case_w2('//trim(b)//') = ' &
+                //g(cfg%cases(i)%w0(2))//', case_long_steps('//trim(b)//') = ' &
+                //g(cfg%cases(i)%long_steps)//nl
+      end do
+      do i = 1, size(cfg%methods)
+         write (b, '(i0)') i
+         text = text//'  method('//trim(b)//") = '"//cfg%methods(i)%name//"', h_min(" &
+                //trim(b)//') = '//g(cfg%methods(i)%h_min)//', h_max('//trim(b)//') = ' &
+                //g(cfg%methods(i)%h_max)
+         if (cfg%methods(i)%rtol_min > 0.0_dp) text = text//', rtol_min('//trim(b)//') = ' &
+                                                      //g(cfg%methods(i)%rtol_min)// &
+                                                      ', rtol_max('//trim(b)//') = ' &
+                                                      //g(cfg%methods(i)%rtol_max)
+         text = text//nl
+      end do
+      text = text//'  n_h = '//i_(cfg%n_h)//', n_rtol = '//i_(cfg%n_rtol)//', atol_ratio = ' &
+             //g(cfg%atol_ratio)//nl// &
+             '  t_short = '//g(cfg%t_short)//', n_check = '//i_(cfg%n_check)//nl// &
+             "  order_case = '"//cfg%order_case//"', drift_case = '"//cfg%drift_case// &
+             "', drift_decades = "//g(cfg%drift_decades)//nl// &
+             '  bins_per_decade = '//i_(cfg%bins_per_decade)//', decades = ' &
+             //i_(cfg%decades)//nl// &
+             "  ref_method = '"//cfg%ref_method//"', ref_dt = "//g(cfg%ref_dt)// &
+             ", check_method = '"//cfg%check_method//"', check_rtol = "//g(cfg%check_rtol)//nl// &
+             '  wall_min = '//g(cfg%wall_min)//nl
+      do i = 1, size(cfg%ro_methods)
+         write (b, '(i0)') i
+         text = text//'  ro_method('//trim(b)//") = '"//trim(cfg%ro_methods(i))// &
+                "', ro_dt("//trim(b)//') = '//g(cfg%ro_dt(i))//nl
+      end do
+      text = text//'  ro_steps = '//g(cfg%ro_steps)//', ro_runs = '//i_(cfg%ro_runs)// &
+             ", ro_case = '"//cfg%ro_case//"', ro_perturb = "//g(cfg%ro_perturb)// &
+             ', ro_fit_t_min = '//g(cfg%ro_fit_t_min)//nl
+      do i = 1, size(cfg%tao_methods)
+         write (b, '(i0)') i
+         text = text//'  tao_method('//trim(b)//") = '"//trim(cfg%tao_methods(i))//"'"//nl
+      end do
+      text = text//'  tao_dt = '//g(cfg%tao_dt)//', tao_t_end = '//g(cfg%tao_t_end)// &
+             ', omega_min = '//g(cfg%omega_min)//', omega_max = '//g(cfg%omega_max)// &
+             ', n_omega = '//i_(cfg%n_omega)//", tao_case = '"//cfg%tao_case//"'"//nl
+      ! the values above are the effective ones: --quick is already applied
+      if (cfg%quick) text = text//'  ! reduced by --quick'//nl
+      text = text//'  quick = .false.'//nl//'/'
+   contains
+      function g(x) result(s)
+         real(dp), intent(in) :: x
+         character(len=:), allocatable :: s
+         s = sci(x)   ! the shortest text that reads back exactly
+      end function g
+      function i_(k) result(s)
+         integer, intent(in) :: k
+         character(len=:), allocatable :: s
+         character(len=16) :: buf
+         write (buf, '(i0)') k
+         s = trim(buf)
+      end function i_
+   end function study_namelist
+
+   ! --------------------------------------------------------------- validation
+
+   !> Check the whole configuration; messages name the field and the accepted range.
+   subroutine validate_study_config(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      class(integrator_t), allocatable :: integ
+      logical :: found
+      integer :: i, j
+      character(len=16) :: idx
+      call validate(cfg%par, error)
+      if (allocated(error)) then
+         error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         return
+      end if
+      if (size(cfg%cases) == 0) then
+         call fatal_error(error, 'invalid case_name: at least one case is needed')
+         return
+      end if
+      ! the scalars that later checks divide by, first (limits: dpend_limits)
+      if (.not. (finite_positive(cfg%t_short) .and. in_range(cfg%t_short, 0.0_dp, max_time))) &
+         then
+         call fatal_error(error, 'invalid t_short: must be in (0, '//sci(max_time)//'] (s)')
+         return
+      else if (cfg%n_check < 1 .or. cfg%n_check > 1000) then
+         call fatal_error(error, 'invalid n_check: must be an integer in 1..1000')
+         return
+      end if
+      do i = 1, size(cfg%cases)
+         write (idx, '("(", i0, ")")') i
+         if (.not. all(ieee_is_finite([cfg%cases(i)%q0, cfg%cases(i)%w0]))) then
+            call fatal_error(error, 'invalid case_q1, case_q2, case_w1, case_w2'//trim(idx)// &
+                             ': must be finite (rad, rad/s)')
+            return
+         end if
+         if (maxval(abs(cfg%cases(i)%q0)) > max_angle) then
+            call fatal_error(error, 'invalid case_q1, case_q2'//trim(idx)//': must be within ' &
+                             //'[-'//sci(max_angle)//', '//sci(max_angle)//'] (rad)')
+            return
+         end if
+         if (maxval(abs(cfg%cases(i)%w0)) > max_angular_velocity) then
+            call fatal_error(error, 'invalid case_w1, case_w2'//trim(idx)//': must be within ' &
+                             //'[-'//sci(max_angular_velocity)//', ' &
+                             //sci(max_angular_velocity)//'] (rad/s)')
+            return
+         end if
+         if (.not. finite_positive(cfg%cases(i)%long_steps - 0.5_dp) .or. &
+             cfg%cases(i)%long_steps > real(max_steps, dp)) then
+            call fatal_error(error, 'invalid case_long_steps'//trim(idx)//': must be in 1..' &
+                             //sci(real(max_steps, dp)))
+            return
+         end if
+         if (verify(cfg%cases(i)%name, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ' &
+                    //'0123456789_-') /= 0) then
+            call fatal_error(error, "invalid case_name"//trim(idx)//": '"//cfg%cases(i)%name// &
+                             "' (letters, digits, '_' and '-' only)")
+            return
+         end if
+         do j = 1, i - 1
+            if (cfg%cases(j)%name == cfg%cases(i)%name) then
+               call fatal_error(error, "invalid case_name: '"//cfg%cases(i)%name// &
+                                "' appears twice")
+               return
+            end if
+         end do
+      end do
+      if (size(cfg%methods) == 0) then
+         call fatal_error(error, 'invalid method: at least one method is needed')
+         return
+      end if
+      do i = 1, size(cfg%methods)
+         write (idx, '("(", i0, ")")') i
+         call new_integrator(cfg%methods(i)%name, integ, error)
+         if (allocated(error)) then
+            error%message = 'in &study method'//trim(idx)//': '//error%message
+            return
+         end if
+         do j = 1, i - 1
+            if (cfg%methods(j)%name == cfg%methods(i)%name) then
+               call fatal_error(error, "invalid method: '"//cfg%methods(i)%name// &
+                                "' appears twice")
+               return
+            end if
+         end do
+         associate (m => cfg%methods(i))
+            if (.not. (finite_positive(m%h_min) .and. finite_positive(m%h_max))) then
+               call fatal_error(error, 'invalid h_min, h_max'//trim(idx)//' ('//m%name// &
+                                '): must be finite and > 0 (s)')
+            else if (m%h_min > m%h_max) then
+               call fatal_error(error, 'invalid h_min'//trim(idx)//' ('//m%name// &
+                                '): must be <= h_max (s)')
+            else if (m%h_max > cfg%t_short/cfg%n_check) then
+               call fatal_error(error, 'invalid h_max'//trim(idx)//' ('//m%name// &
+                                '): must be <= t_short/n_check (s)')
+            else if (m%h_min*real(max_steps, dp) < cfg%t_short) then
+               call check_count('h_min'//trim(idx), m%h_min, cfg%t_short, 't_short', &
+                                max_steps, 'steps', 'use a larger h_min', error)
+            else if (m%rtol_min /= 0.0_dp .or. m%rtol_max /= 0.0_dp) then
+               if (.not. integ%adaptive()) then
+                  call fatal_error(error, 'invalid rtol_min, rtol_max'//trim(idx)//' ('// &
+                                   m%name//'): only for the adaptive methods dopri5, dop853')
+               else if (.not. (finite_positive(m%rtol_min) .and. m%rtol_min <= m%rtol_max &
+                               .and. m%rtol_max < 1.0_dp)) then
+                  call fatal_error(error, 'invalid rtol_min, rtol_max'//trim(idx)//' ('// &
+                                   m%name//'): need 0 < rtol_min <= rtol_max < 1')
+               else if (m%rtol_min < min_rtol) then
+                  call fatal_error(error, 'invalid rtol_min'//trim(idx)//' ('//m%name// &
+                                   '): '//sci(m%rtol_min)//' is below '//sci(min_rtol)// &
+                                   ' (double precision cannot honour it)')
+               else if (.not. (finite_positive(cfg%atol_ratio) .and. &
+                                in_range(cfg%atol_ratio, 0.0_dp, 1e6_dp))) then
+                  call fatal_error(error, 'invalid atol_ratio: must be in (0, 1e6]')
+               else if (cfg%atol_ratio*m%rtol_min < min_atol .or. &
+                        cfg%atol_ratio*m%rtol_max > max_atol) then
+                  call fatal_error(error, 'invalid atol_ratio: atol = atol_ratio * rtol ' &
+                                   //'must stay in ['//sci(min_atol)//', '//sci(max_atol)// &
+                                   '] for rtol in ['//sci(m%rtol_min)//', '// &
+                                   sci(m%rtol_max)//']')
+               end if
+            end if
+         end associate
+         if (allocated(error)) return
+      end do
+      if (cfg%n_h < 2 .or. cfg%n_h > 64) then
+         call fatal_error(error, 'invalid n_h: must be an integer in 2..64')
+      else if (.not. (finite_positive(cfg%drift_decades) .and. &
+                      in_range(cfg%drift_decades, 0.0_dp, 100.0_dp))) then
+         call fatal_error(error, 'invalid drift_decades: must be in (0, 100]')
+      else if (cfg%threads > max_threads) then
+         call fatal_error(error, 'invalid threads: '//sci(real(cfg%threads, dp))// &
+                          ' must be an integer from 0 (default) to '//sci(real(max_threads, dp)))
+      else if (.not. (in_range(cfg%wall_min, 0.0_dp, max_time) .and. &
+                      in_range(cfg%ro_fit_t_min, 0.0_dp, max_time) .and. &
+                      in_range(cfg%tao_t_end, 0.0_dp, max_time) .and. &
+                      in_range(cfg%ro_perturb, 0.0_dp, 1.0_dp))) then
+         call fatal_error(error, 'invalid wall_min, ro_fit_t_min, tao_t_end: must be in [0, ' &
+                          //sci(max_time)//'] s; ro_perturb in [0, 1] rad')
+      else if (.not. in_range(cfg%omega_max, -huge(1.0_dp), max_omega)) then
+         call fatal_error(error, 'invalid omega_max: must be at most '//sci(max_omega)//' 1/s')
+      else if (cfg%n_rtol < 2 .or. cfg%n_rtol > 64) then
+         call fatal_error(error, 'invalid n_rtol: must be an integer in 2..64')
+      else if (.not. finite_positive(cfg%atol_ratio)) then
+         call fatal_error(error, 'invalid atol_ratio: must be finite and > 0')
+      else if (.not. finite_positive(cfg%t_short)) then
+         call fatal_error(error, 'invalid t_short: must be finite and > 0 (s)')
+      else if (cfg%n_check < 1 .or. cfg%n_check > 1000) then
+         call fatal_error(error, 'invalid n_check: must be an integer in 1..1000')
+      else if (.not. finite_positive(cfg%drift_decades)) then
+         call fatal_error(error, 'invalid drift_decades: must be finite and > 0')
+      else if (cfg%bins_per_decade < 1 .or. cfg%bins_per_decade > 100) then
+         call fatal_error(error, 'invalid bins_per_decade: must be an integer in 1..100')
+      else if (cfg%decades < 1 .or. cfg%decades > 12) then
+         call fatal_error(error, 'invalid decades: must be an integer in 1..12')
+      else if (.not. finite_positive(cfg%ref_dt) .or. cfg%ref_dt > cfg%t_short/cfg%n_check) &
+         then
+         call fatal_error(error, 'invalid ref_dt: must be in (0, t_short/n_check] (s)')
+      else if (.not. (finite_positive(cfg%check_rtol) .and. cfg%check_rtol < 1.0_dp)) then
+         call fatal_error(error, 'invalid check_rtol: must be in (0, 1)')
+      else if (.not. (finite_positive(cfg%wall_min) .or. cfg%wall_min == 0.0_dp)) then
+         call fatal_error(error, 'invalid wall_min: must be finite and >= 0 (s)')
+      else if (.not. finite_positive(cfg%ro_steps - 0.5_dp) .or. cfg%ro_steps > 1e10_dp) then
+         call fatal_error(error, 'invalid ro_steps: must be in 1..1e10')
+      else if (cfg%ro_runs < 1 .or. cfg%ro_runs > 10000) then
+         call fatal_error(error, 'invalid ro_runs: must be an integer in 1..10000')
+      else if (.not. (finite_positive(cfg%ro_perturb) .or. cfg%ro_perturb == 0.0_dp)) then
+         call fatal_error(error, 'invalid ro_perturb: must be finite and >= 0 (rad)')
+      else if (.not. (finite_positive(cfg%ro_fit_t_min))) then
+         call fatal_error(error, 'invalid ro_fit_t_min: must be finite and > 0 (s)')
+      else if (.not. (finite_positive(cfg%tao_dt) .and. finite_positive(cfg%tao_t_end))) then
+         call fatal_error(error, 'invalid tao_dt, tao_t_end: must be finite and > 0 (s)')
+      else if (.not. (finite_positive(cfg%omega_min) .and. finite_positive(cfg%omega_max))) &
+         then
+         call fatal_error(error, 'invalid omega_min, omega_max: must be finite and > 0 (1/s)')
+      else if (cfg%omega_min > cfg%omega_max) then
+         call fatal_error(error, 'invalid omega_min: must be <= omega_max (1/s)')
+      else if (cfg%n_omega < 1 .or. cfg%n_omega > 200) then
+         call fatal_error(error, 'invalid n_omega: must be an integer in 1..200')
+      else if (cfg%ref_dt*real(max_steps, dp) < cfg%t_short) then
+         call fatal_error(error, 'invalid ref_dt: '//sci(cfg%ref_dt)//' s gives more than ' &
+                          //sci(real(max_steps, dp))//' steps over t_short')
+      else if (cfg%tao_dt*real(max_steps, dp) < cfg%tao_t_end + cfg%t_short) then
+         call fatal_error(error, 'invalid tao_dt: '//sci(cfg%tao_dt)//' s gives more than ' &
+                          //sci(real(max_steps, dp))//' steps over tao_t_end + t_short')
+      else if (cfg%threads < 0) then
+         call fatal_error(error, 'invalid --threads: must be an integer >= 1')
+      end if
+      if (allocated(error)) return
+      call check_case_name('order_case', cfg%order_case)
+      if (.not. allocated(error)) call check_case_name('drift_case', cfg%drift_case)
+      if (.not. allocated(error)) call check_case_name('ro_case', cfg%ro_case)
+      if (.not. allocated(error)) call check_case_name('tao_case', cfg%tao_case)
+      if (allocated(error)) return
+      call new_integrator(cfg%ref_method, integ, error)
+      if (allocated(error)) then
+         error%message = 'in &study ref_method: '//error%message
+         return
+      end if
+      if (integ%adaptive()) then
+         call fatal_error(error, "invalid ref_method: '"//cfg%ref_method// &
+                          "' must be a fixed-step method (e.g. gauss8)")
+         return
+      end if
+      call new_integrator(cfg%check_method, integ, error)
+      if (allocated(error)) then
+         error%message = 'in &study check_method: '//error%message
+         return
+      end if
+      do i = 1, size(cfg%ro_methods)
+         write (idx, '("(", i0, ")")') i
+         call new_integrator(trim(cfg%ro_methods(i)), integ, error)
+         if (allocated(error)) then
+            error%message = 'in &study ro_method'//trim(idx)//': '//error%message
+            return
+         end if
+         select type (integ)
+         class is (symplectic_t)
+         class default
+            call fatal_error(error, "invalid ro_method"//trim(idx)//": '"// &
+                             trim(cfg%ro_methods(i))//"' has no compensated summation (use "// &
+                             "midpoint gauss4 gauss6 gauss8 verlet yoshida4 comp6 comp8)")
+            return
+         end select
+         if (.not. finite_positive(cfg%ro_dt(i)) .or. cfg%ro_dt(i) > 1.0_dp) then
+            call fatal_error(error, 'invalid ro_dt'//trim(idx)//': must be in (0, 1] (s)')
+            return
+         end if
+      end do
+      do i = 1, size(cfg%tao_methods)
+         write (idx, '("(", i0, ")")') i
+         call new_integrator(trim(cfg%tao_methods(i)), integ, error)
+         if (allocated(error)) then
+            error%message = 'in &study tao_method'//trim(idx)//': '//error%message
+            return
+         end if
+         call set_omega(integ, 1.0_dp, found)
+         if (.not. found) then
+            call fatal_error(error, "invalid tao_method"//trim(idx)//": '"// &
+                             trim(cfg%tao_methods(i))//"' (accepted: tao2 tao4)")
+            return
+         end if
+      end do
+   contains
+      subroutine check_case_name(field, name)
+         character(len=*), intent(in) :: field, name
+         if (case_index(cfg, name) == 0) call fatal_error(error, 'invalid '//field//": '"// &
+                                                          name//"' is not a case (accepted: " &
+                                                          //case_list(cfg)//')')
+      end subroutine check_case_name
+   end subroutine validate_study_config
+
+   ! ------------------------------------------------------------------ helpers
+
+   !> The case names, space separated.
+   function case_list(cfg) result(s)
+      type(study_config_t), intent(in) :: cfg
+      character(len=:), allocatable :: s
+      integer :: i
+      s = cfg%cases(1)%name
+      do i = 2, size(cfg%cases)
+         s = s//' '//cfg%cases(i)%name
+      end do
+   end function case_list
+
+   !> The names of a list given to option `field`: items separated by commas
+   !> and/or blanks ('rk4,gauss6' or 'rk4, gauss6'). An empty list or an empty
+   !> item (',', 'rk4,,gauss6', 'rk4,') is refused, naming the field.
+   subroutine split_list(list, field, names, error)
+      character(len=*), intent(in) :: list                  !! the option's value
+      character(len=*), intent(in) :: field                 !! e.g. '--cases'
+      character(len=:), allocatable, intent(out) :: names(:) !! the items
+      type(error_t), allocatable, intent(out) :: error      !! empty list or item
+      integer :: first(len(list) + 1), last(len(list) + 1)
+      integer :: i, n, k
+      logical :: in_word, item_empty
+      character(len=len(list)) :: shown
+      n = 0
+      in_word = .false.
+      item_empty = .true.
+      do i = 1, len(list) + 1
+         if (i > len(list)) then
+            if (in_word) last(n) = i - 1
+            if (item_empty) exit
+         else if (list(i:i) == ',') then
+            if (in_word) last(n) = i - 1
+            in_word = .false.
+            if (item_empty) exit
+            item_empty = .true.
+         else if (list(i:i) == ' ') then
+            if (in_word) last(n) = i - 1
+            in_word = .false.
+         else if (.not. in_word) then
+            n = n + 1
+            first(n) = i
+            in_word = .true.
+            item_empty = .false.
+         end if
+      end do
+      if (item_empty) then
+         shown = list
+         do k = 1, len(list)
+            if (iachar(list(k:k)) < 32 .or. iachar(list(k:k)) > 126) shown(k:k) = '?'
+         end do
+         if (len_trim(list) == 0) then
+            call fatal_error(error, 'invalid '//field//': empty list (give names '// &
+                             'separated by commas)')
+         else
+            call fatal_error(error, 'invalid '//field//": '"//shown// &
+                             "' has an empty item (give names separated by commas)")
+         end if
+         allocate (character(len=1) :: names(0))
+         return
+      end if
+      allocate (character(len=maxval(last(:n) - first(:n) + 1)) :: names(n))
+      do k = 1, n
+         names(k) = list(first(k):last(k))
+      end do
+   end subroutine split_list
+
+   !> The blank-separated words of `s`.
+   pure subroutine split_words(s, words)
+      character(len=*), intent(in) :: s
+      character(len=16), allocatable, intent(out) :: words(:)
+      integer :: i, n, start
+      character(len=16) :: buf(64)
+      n = 0
+      i = 1
+      do while (i <= len(s))
+         if (s(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         start = i
+         do while (i <= len(s))
+            if (s(i:i) == ' ') exit
+            i = i + 1
+         end do
+         if (n < size(buf)) then
+            n = n + 1
+            buf(n) = s(start:i - 1)
+         end if
+      end do
+      words = buf(1:n)
+   end subroutine split_words
+end module dpend_study_config

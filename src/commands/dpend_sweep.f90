@@ -1,0 +1,1214 @@
+!> `dpend sweep`: many initial conditions through the batch RK4 kernel
+!> (dpend_pendulum_lanes), in blocks distributed over OpenMP threads, into one HDF5 file
+!> (layout in docs/hdf5-layout.md, design in docs/sweep.md).
+!>
+!> Crash safety and resume. While it runs, the results go to a *working* file,
+!> FILE.part beside the output FILE, whose datasets are chunked (one chunk per
+!> block), uncompressed and allocated in full when the file is created, so writing
+!> a block changes raw data only, never the file's metadata: a kill at any moment
+!> leaves a valid file. A block's data are written and flushed before its flag in
+!> /sweep/done. When every block is done, the results are rewritten with
+!> compressed chunks through the one writer (dpend_output: temporary file, checked
+!> close, one-step move) into FILE, marked complete, and the working file is
+!> removed. FILE itself is never changed before the new result is complete.
+!> Rerunning the same command computes only the blocks not flagged done in
+!> FILE.part; another configuration is refused unless --force.
+module dpend_sweep
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
+      ieee_quiet_nan
+   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+   use dpend_limits, only: check_memory, check_disk, sci, max_sweep_points, max_angle, &
+                           max_angular_velocity
+   use dpend_kinds, only: dp, i8, half_pi
+   use dpend_error, only: error_t, fatal_error
+   use dpend_output, only: output_t, check_output_path
+   use dpend_os, only: path_kind, path_missing, path_file, remove_file
+   use dpend_config, only: check_regular_file
+   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
+      energy_scale, flip_energy_bounds, st_cannot_flip
+   use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_progress, only: progress_t, wall_seconds
+   use dpend_version, only: version
+   use dpend_cli, only: to_str, real_str, seconds_str
+   implicit none
+   private
+   public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
+   public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
+   ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
+   public :: block_range, open_output, write_block, finalize_file, working_file
+
+   !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
+   real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
+                          max_time = 1e300_dp
+
+   !> Everything derived from a configuration that the blocks need.
+   type :: sweep_setup_t
+      type(sweep_config_t) :: cfg               !! the configuration
+      type(batch_options_t) :: opt              !! kernel options (step in s)
+      logical :: grid = .true.                  !! grid or list
+      integer :: n = 0                          !! initial conditions in all
+      integer :: nblocks = 0                    !! blocks
+      integer :: block = 0                      !! initial conditions per full block
+      integer :: rows = 0                       !! grid: rows of axis 1 per block
+      integer :: var1 = 0, var2 = 0             !! swept values (1 q1, 2 q2, 3 w1, 4 w2)
+      real(dp), allocatable :: axis1(:)         !! grid: axis values (axis units)
+      real(dp), allocatable :: axis2(:)         !! grid: axis values (axis units)
+      real(dp), allocatable :: list(:, :)       !! list: (4, n) states (q, q̇)
+      real(dp) :: tau = 1                       !! √(L1/g) [s]
+      character(len=:), allocatable :: config   !! canonical configuration text
+      !> Fletcher-32 checksums on the working file's datasets (the final file always
+      !> has them). The MPI sweep turns them off: parallel HDF5 writes filtered
+      !> datasets only collectively, and its blocks arrive in any order.
+      logical :: checksum = .true.
+   end type sweep_setup_t
+
+   !> What a run did, for the closing line.
+   type :: sweep_summary_t
+      integer :: n = 0                   !! initial conditions
+      integer :: blocks_computed = 0     !! blocks computed by this run
+      integer :: blocks_before = 0       !! blocks found done in an existing file
+      integer(i8) :: computed = 0        !! initial conditions computed by this run
+      integer(i8) :: skipped = 0         !! of those: below the flip energy bound
+      real(dp) :: seconds = 0            !! wall time of the computation [s]
+   end type sweep_summary_t
+
+
+contains
+
+   !> The closing line of a run that computed something: 'N initial conditions
+   !> computed (K below the flip energy bound) in 0.4 s, 1.2e5 per second'.
+   function summary_text(summary) result(s)
+      type(sweep_summary_t), intent(in) :: summary  !! what the run did
+      character(len=:), allocatable :: s
+      s = to_str(summary%computed)//' initial conditions computed ('// &
+          to_str(summary%skipped)//' below the flip energy bound) in '// &
+          seconds_str(summary%seconds)//' s, '// &
+          real_str(real(summary%computed, dp)/max(summary%seconds, 1e-9_dp), 3)//' per second'
+   end function summary_text
+
+   ! ------------------------------------------------------------- setup ---
+
+   !> Derive the step, the initial conditions and the blocks; read a list file.
+   subroutine build_setup(cfg, setup, error)
+      type(sweep_config_t), intent(in) :: cfg           !! validated configuration
+      type(sweep_setup_t), intent(out) :: setup         !! the setup
+      type(error_t), allocatable, intent(out) :: error  !! unreadable list
+      real(dp) :: scale, t_end
+      integer :: i
+      setup%cfg = cfg
+      setup%grid = grid_mode(cfg)
+      setup%tau = sqrt(cfg%run%par%l1/cfg%run%par%g)
+      scale = time_scale(cfg)
+      t_end = cfg%run%t_end*scale
+      setup%opt%n_steps = max(1_i8, ceiling(cfg%run%t_end/cfg%run%dt*(1.0_dp - 1e-12_dp), i8))
+      setup%opt%h = t_end/real(setup%opt%n_steps, dp)
+      setup%opt%stop_rule = stop_rule(cfg)
+      setup%opt%lyapunov = cfg%lyapunov
+      if (setup%grid) then
+         setup%var1 = variable_index(cfg%axis1)
+         setup%var2 = variable_index(cfg%axis2)
+         allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
+         do i = 1, cfg%n1
+            setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
+         end do
+         do i = 1, cfg%n2
+            setup%axis2(i) = axis_value(cfg%min2, cfg%max2, cfg%n2, i)
+         end do
+         setup%n = cfg%n1*cfg%n2
+         setup%rows = max(1, min(cfg%n2, cfg%block/cfg%n1))
+         setup%block = setup%rows*cfg%n1
+         setup%nblocks = (cfg%n2 + setup%rows - 1)/setup%rows
+      else
+         call read_list(cfg, setup%list, error)
+         if (allocated(error)) return
+         setup%n = size(setup%list, 2)
+         setup%block = min(cfg%block, setup%n)
+         setup%nblocks = (setup%n + setup%block - 1)/setup%block
+      end if
+      setup%config = canonical_config(setup)
+   end subroutine build_setup
+
+   !> Refuse a sweep whose blocks in flight do not fit the available memory or whose
+   !> file does not fit the free space of the output's file system. Memory: one block
+   !> per thread at about 256 B per initial condition (state, results, flags), plus a
+   !> list's states. Disk: the working file (every dataset uncompressed) and, while
+   !> it is rewritten compressed at the end, the final file (at most as large), less
+   !> the size of an existing output that is resumed or replaced.
+   subroutine check_sweep_resources(setup, error)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=32), allocatable :: reals(:), ints(:)
+      real(dp) :: mem, disk, per_point, existing
+      integer(i8) :: fsize
+      logical :: exists
+      mem = real(omp_get_max_threads(), dp)*real(setup%block, dp)*256.0_dp
+      if (.not. setup%grid) mem = mem + 32.0_dp*real(setup%n, dp)
+      call check_memory('block', mem, to_str(omp_get_max_threads())//' thread(s) with blocks of ' &
+                        //to_str(setup%block)//' initial conditions', &
+                        'use a smaller --block or fewer --threads', error)
+      if (allocated(error)) return
+      call result_names(setup, reals, ints)
+      per_point = 8.0_dp*real(size(reals) + 1, dp) + 4.0_dp*real(size(ints), dp)
+      ! the working file and the final file side by side, plus HDF5's own bytes; an
+      ! existing working file (a resume) already has its share
+      disk = 2.0_dp*per_point*real(setup%n, dp) + 65536.0_dp
+      existing = 0.0_dp
+      inquire (file=working_file(setup%cfg%run%output), exist=exists, size=fsize)
+      if (exists .and. fsize > 0) existing = real(fsize, dp)
+      call check_disk(trim(merge('n1, n2 ', 'ic_file', setup%grid)), disk - existing, &
+                      setup%cfg%run%output, sci(real(setup%n, dp))//' initial conditions; '// &
+                      'use fewer points or another --output directory', error)
+   end subroutine check_sweep_resources
+
+   !> Value number i of n on [lo, hi].
+   pure real(dp) function axis_value(lo, hi, n, i)
+      real(dp), intent(in) :: lo, hi  !! range
+      integer, intent(in) :: n, i     !! points, index
+      if (n == 1) then
+         axis_value = lo
+      else if (i == n) then
+         axis_value = hi
+      else
+         axis_value = lo + (hi - lo)*(real(i - 1, dp)/real(n - 1, dp))
+      end if
+   end function axis_value
+
+   !> 1 q1, 2 q2, 3 w1, 4 w2 for an axis name.
+   pure integer function variable_index(name)
+      character(len=*), intent(in) :: name  !! axis name
+      select case (name)
+      case ('theta1', 'q1'); variable_index = 1
+      case ('theta2', 'q2'); variable_index = 2
+      case ('w1'); variable_index = 3
+      case default; variable_index = 4
+      end select
+   end function variable_index
+
+   !> Initial state component from an axis value (θ → q = θ - π/2).
+   pure real(dp) function state_value(name, x)
+      character(len=*), intent(in) :: name  !! axis name
+      real(dp), intent(in) :: x             !! axis value
+      state_value = x
+      if (name == 'theta1' .or. name == 'theta2') state_value = x - half_pi
+   end function state_value
+
+   !> First initial condition and number of initial conditions of block b.
+   pure subroutine block_range(setup, b, j0, nb)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      integer, intent(in) :: b                  !! block, 1-based
+      integer, intent(out) :: j0, nb            !! first index, count
+      j0 = (b - 1)*setup%block + 1
+      nb = min(setup%block, setup%n - j0 + 1)
+   end subroutine block_range
+
+   !> The initial states (q1, q2, q̇1, q̇2) of block b.
+   subroutine block_initial_conditions(setup, b, y0)
+      type(sweep_setup_t), intent(in) :: setup      !! setup
+      integer, intent(in) :: b                      !! block, 1-based
+      real(dp), allocatable, intent(out) :: y0(:, :) !! (4, nb)
+      real(dp) :: base(4)
+      integer :: j0, nb, j, jj, i1, i2
+      call block_range(setup, b, j0, nb)
+      allocate (y0(4, nb))
+      if (.not. setup%grid) then
+         y0 = setup%list(:, j0:j0 + nb - 1)
+         return
+      end if
+      base = [setup%cfg%run%q0, setup%cfg%run%w0]
+      do j = 1, nb
+         jj = j0 + j - 1
+         i1 = mod(jj - 1, setup%cfg%n1) + 1
+         i2 = (jj - 1)/setup%cfg%n1 + 1
+         y0(:, j) = base
+         y0(setup%var1, j) = state_value(setup%cfg%axis1, setup%axis1(i1))
+         y0(setup%var2, j) = state_value(setup%cfg%axis2, setup%axis2(i2))
+      end do
+   end subroutine block_initial_conditions
+
+   !> Integrate block b.
+   subroutine compute_block(setup, b, res)
+      type(sweep_setup_t), intent(in) :: setup    !! setup
+      integer, intent(in) :: b                    !! block, 1-based
+      type(batch_result_t), intent(out) :: res    !! its results
+      real(dp), allocatable :: y0(:, :)
+      call block_initial_conditions(setup, b, y0)
+      call integrate_batch(setup%cfg%run%par, setup%opt, y0, res)
+   end subroutine compute_block
+
+   !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or
+   !> an HDF5 dataset of shape (n, 4) as h5py sees it.
+   subroutine read_list(cfg, list, error)
+      type(sweep_config_t), intent(in) :: cfg            !! configuration
+      real(dp), allocatable, intent(out) :: list(:, :)   !! (4, n)
+      type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
+      type(h5file_t) :: h5
+      integer, allocatable :: dims(:)
+      real(dp), allocatable :: tmp(:, :)
+      real(dp) :: row(4)
+      character(len=4096) :: line
+      character(len=:), allocatable :: what
+      integer :: unit, stat, n, nline, hash
+      what = "invalid ic_file '"//cfg%ic_file//"'"
+      ! a regular file (a FIFO would block, a directory cannot be read)
+      call check_regular_file(cfg%ic_file, what//': ', error)
+      if (allocated(error)) return
+      if (is_hdf5(cfg%ic_file)) then
+         call h5%open(cfg%ic_file, 'r', error)
+         if (.not. allocated(error)) call h5%shape(cfg%ic_dataset, dims, error)
+         if (allocated(error)) then
+            error%message = what//': '//error%message
+            return
+         end if
+         if (size(dims) /= 2) then
+            call fatal_error(error, what//': dataset '//cfg%ic_dataset// &
+                             ' must have shape (n, 4)')
+         else if (dims(1) /= 4) then
+            call fatal_error(error, what//': dataset '//cfg%ic_dataset// &
+                             ' must have shape (n, 4)')
+         else if (dims(2) > max_sweep_points) then
+            call fatal_error(error, what//': '//to_str(dims(2))//' initial conditions, at ' &
+                             //'most '//to_str(max_sweep_points))
+         else
+            call h5%read(cfg%ic_dataset, list, error)
+         end if
+         call h5%close()
+         if (allocated(error)) return
+      else
+         open (newunit=unit, file=cfg%ic_file, status='old', action='read', iostat=stat)
+         if (stat /= 0) then
+            call fatal_error(error, what//': cannot open it')
+            return
+         end if
+         allocate (list(4, 1024))
+         n = 0
+         nline = 0
+         do
+            read (unit, '(a)', iostat=stat) line
+            if (stat < 0) exit
+            nline = nline + 1
+            hash = index(line, '#')
+            if (hash > 0) line(hash:) = ' '
+            if (stat > 0) then
+               call fatal_error(error, what//': cannot read line '//to_str(nline))
+               exit
+            end if
+            if (len_trim(line) == 0) cycle
+            read (line, *, iostat=stat) row
+            if (stat /= 0 .or. count_fields(line) /= 4) then
+               call fatal_error(error, what//': line '//to_str(nline)// &
+                                ' is not 4 numbers "q1 q2 w1 w2"')
+               exit
+            end if
+            if (n >= max_sweep_points) then
+               call fatal_error(error, what//': more than '//to_str(max_sweep_points)// &
+                                ' initial conditions')
+               exit
+            end if
+            if (n == size(list, 2)) then
+               allocate (tmp(4, min(2*n, max_sweep_points)))
+               tmp(:, :n) = list
+               call move_alloc(tmp, list)
+            end if
+            n = n + 1
+            list(:, n) = row
+         end do
+         close (unit)
+         if (allocated(error)) return
+         list = list(:, :n)
+      end if
+      if (size(list, 2) == 0) then
+         call fatal_error(error, what//': it holds no initial condition')
+      else if (.not. all(ieee_is_finite(list))) then
+         call fatal_error(error, what//': every value must be finite')
+      else if (maxval(abs(list(1:2, :))) > max_angle) then
+         call fatal_error(error, what//': angles must be within [-'//sci(max_angle)//', ' &
+                          //sci(max_angle)//'] rad')
+      else if (maxval(abs(list(3:4, :))) > max_angular_velocity) then
+         call fatal_error(error, what//': angular velocities must be within [-' &
+                          //sci(max_angular_velocity)//', '//sci(max_angular_velocity)// &
+                          '] rad/s')
+      end if
+      if (allocated(error)) return
+      if (cfg%ic_angles == 'theta') list(1:2, :) = list(1:2, :) - half_pi
+   end subroutine read_list
+
+   !> Number of blank-separated fields of a line.
+   pure integer function count_fields(line)
+      character(len=*), intent(in) :: line  !! text
+      integer :: i
+      logical :: in_field
+      count_fields = 0
+      in_field = .false.
+      do i = 1, len_trim(line)
+         if (line(i:i) == ' ' .or. line(i:i) == achar(9) .or. line(i:i) == ',') then
+            in_field = .false.
+         else if (.not. in_field) then
+            in_field = .true.
+            count_fields = count_fields + 1
+         end if
+      end do
+   end function count_fields
+
+   !> The whole configuration as "key = value" lines; two runs whose texts are equal
+   !> produce identical files. Threads and progress options are not part of it.
+   function canonical_config(setup) result(s)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      associate (c => setup%cfg, p => setup%cfg%run%par)
+         s = 'program = dpend '//version//nl//'command = sweep'//nl// &
+             'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
+             'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
+             'l2 = '//r(p%l2)//nl//'g = '//r(p%g)//nl// &
+             'q1 = '//r(c%run%q0(1))//nl//'q2 = '//r(c%run%q0(2))//nl// &
+             'w1 = '//r(c%run%w0(1))//nl//'w2 = '//r(c%run%w0(2))//nl// &
+             'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
+             't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
+             'n_steps = '//to_str(setup%opt%n_steps)//nl// &
+             'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
+             'lyapunov = '//trim(merge('true ', 'false', c%lyapunov))//nl// &
+             'stats = '//trim(merge('true ', 'false', c%stats))//nl// &
+             'block = '//to_str(setup%block)//nl
+         if (setup%grid) then
+            s = s//'initial = grid'//nl// &
+                'axis1 = '//c%axis1//nl//'n1 = '//to_str(c%n1)//nl// &
+                'min1 = '//r(c%min1)//nl//'max1 = '//r(c%max1)//nl// &
+                'axis2 = '//c%axis2//nl//'n2 = '//to_str(c%n2)//nl// &
+                'min2 = '//r(c%min2)//nl//'max2 = '//r(c%max2)
+         else
+            s = s//'initial = list'//nl//'ic_file = '//c%ic_file//nl// &
+                'ic_dataset = '//c%ic_dataset//nl//'ic_angles = '//c%ic_angles//nl// &
+                'ic_count = '//to_str(setup%n)//nl//'ic_hash = '//to_str(list_hash(setup%list))
+         end if
+      end associate
+   contains
+      function r(x) result(t)
+         real(dp), intent(in) :: x
+         character(len=:), allocatable :: t
+         character(len=32) :: buf
+         write (buf, '(es24.16e3)') x
+         t = trim(adjustl(buf))
+      end function r
+   end function canonical_config
+
+   !> Name of a stop rule.
+   pure function stop_name(rule) result(s)
+      integer, intent(in) :: rule  !! stop_* code
+      character(len=:), allocatable :: s
+      select case (rule)
+      case (1); s = 'both'
+      case (2); s = 'either'
+      case default; s = 'end'
+      end select
+   end function stop_name
+
+   !> A checksum of the bit patterns of a list of initial conditions.
+   pure integer(i8) function list_hash(list)
+      real(dp), intent(in) :: list(:, :)  !! (4, n)
+      integer(i8), parameter :: p = 2147483647_i8, mask = 2147483647_i8
+      integer(i8) :: bits
+      integer :: i, j, k
+      list_hash = 17
+      do j = 1, size(list, 2)
+         do i = 1, size(list, 1)
+            bits = transfer(list(i, j), bits)
+            do k = 0, 2
+               list_hash = mod(list_hash*1000003_i8 + iand(ishft(bits, -31*k), mask), p)
+            end do
+         end do
+      end do
+   end function list_hash
+
+   ! ------------------------------------------------------------ layout ---
+
+   !> Names of the result datasets under /sweep (reals, then integers).
+   subroutine result_names(setup, reals, ints)
+      type(sweep_setup_t), intent(in) :: setup                     !! setup
+      character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
+      character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
+      reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
+               'energy_error', 't_stop', 'final/q1', 'final/q2', 'final/w1', 'final/w2']
+      if (setup%cfg%lyapunov) reals = [reals, [character(len=32) :: 'lyapunov']]
+      ints = [character(len=32) :: 'status']
+      if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
+   end subroutine result_names
+
+   !> Create the file with every dataset and attribute: the working layout
+   !> (uncompressed, allocated now) or the final one (compressed).
+   subroutine create_layout(h5, filename, setup, final, error)
+      type(h5file_t), intent(inout) :: h5               !! file object, left open
+      character(len=*), intent(in) :: filename          !! file to create (truncated)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      logical, intent(in) :: final                      !! compressed, complete
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      character(len=32), allocatable :: reals(:), ints(:)
+      integer, allocatable :: dims(:), chunk(:)
+      real(dp) :: nan, bounds(2)
+      integer :: i
+      nan = ieee_value(nan, ieee_quiet_nan)
+      call h5%open(filename, 'w', error)
+      if (allocated(error)) return
+      if (setup%grid) then
+         dims = [setup%cfg%n1, setup%cfg%n2]
+         chunk = [setup%cfg%n1, setup%rows]
+      else
+         dims = [setup%n]
+         chunk = [setup%block]
+      end if
+      call result_names(setup, reals, ints)
+      do i = 1, size(reals)
+         call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
+                                fill=nan, compress=final, alloc_early=.not. final, &
+                                checksum=final .or. setup%checksum)
+         if (allocated(error)) return
+      end do
+      do i = 1, size(ints)
+         call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
+                                fill=0.0_dp, compress=final, alloc_early=.not. final, &
+                                checksum=final .or. setup%checksum)
+         if (allocated(error)) return
+      end do
+      call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error)
+      if (allocated(error)) return
+      if (setup%grid) then
+         call h5%write('/sweep/axis1', setup%axis1, error)
+         if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error)
+      else
+         call h5%write('/sweep/initial', setup%list, error)
+      end if
+      if (allocated(error)) return
+      bounds = flip_energy_bounds(setup%cfg%run%par)
+      associate (c => setup%cfg, p => setup%cfg%run%par)
+         call h5%writeattr('/', 'program', 'dpend sweep', error)
+         if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
+         if (.not. allocated(error)) call h5%writeattr('/', 'method', c%run%method, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'config', setup%config, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'complete', &
+                                                      merge(1, 0, final), error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'm1', p%m1, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'm2', p%m2, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'l1', p%l1, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'l2', p%l2, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'g', p%g, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'q0', c%run%q0, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'qdot0', c%run%w0, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'h', setup%opt%h, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 't_end', &
+                                                      setup%opt%h*setup%opt%n_steps, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'n_steps', &
+                                                      setup%opt%n_steps, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau, &
+                                                      error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'energy_scale', &
+                                                      energy_scale(p), error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'flip_energy_bounds', &
+                                                      bounds, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'stop_at', &
+                                                      stop_name(setup%opt%stop_rule), error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'block', setup%block, error)
+         if (.not. allocated(error)) call h5%writeattr('/sweep', 'initial', &
+                                                      merge('grid', 'list', setup%grid), error)
+         if (setup%grid) then
+            if (.not. allocated(error)) call h5%writeattr('/sweep', 'axis1', c%axis1, error)
+            if (.not. allocated(error)) call h5%writeattr('/sweep', 'axis2', c%axis2, error)
+         end if
+      end associate
+   end subroutine create_layout
+
+   !> Write the results of block b, flush, then flag it done and flush again.
+   !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
+   !> flush is collective and the independent raw-data writes of allocated,
+   !> unfiltered chunks bypass HDF5's caches (they reach the file, in order, before
+   !> the write returns).
+   subroutine write_block(h5, setup, b, res, error, flush)
+      type(h5file_t), intent(inout) :: h5               !! open working file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: b                          !! block, 1-based
+      type(batch_result_t), intent(in) :: res           !! its results
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      logical, intent(in), optional :: flush            !! flush the file (default true)
+      integer :: j0, nb
+      logical :: sync
+      sync = .true.
+      if (present(flush)) sync = flush
+      call block_range(setup, b, j0, nb)
+      call put_r('t_flip', res%t_flip)
+      call put_r('t_flip1', res%t_flip1)
+      call put_r('t_flip2', res%t_flip2)
+      call put_r('energy0', res%energy0)
+      call put_r('energy_error', res%energy_error)
+      call put_r('t_stop', res%t_stop)
+      call put_r('final/q1', res%final(1, :))
+      call put_r('final/q2', res%final(2, :))
+      call put_r('final/w1', res%final(3, :))
+      call put_r('final/w2', res%final(4, :))
+      if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
+      call put_i('status', res%status)
+      if (setup%cfg%stats) call put_i('steps', res%steps)
+      if (allocated(error)) return
+      if (sync) call h5%flush()
+      call h5%write_slab('/sweep/done', [1], [b], error)
+      if (allocated(error)) return
+      if (sync) call h5%flush()
+   contains
+      subroutine put_r(name, v)
+         character(len=*), intent(in) :: name
+         real(dp), intent(in) :: v(:)
+         real(dp), allocatable :: a2(:, :), a1(:)
+         if (allocated(error)) return
+         if (setup%grid) then
+            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
+         else
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error)
+         end if
+      end subroutine put_r
+      subroutine put_i(name, v)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: v(:)
+         integer, allocatable :: a2(:, :), a1(:)
+         if (allocated(error)) return
+         if (setup%grid) then
+            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
+         else
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error)
+         end if
+      end subroutine put_i
+   end subroutine write_block
+
+   !> The working file of the sweep whose output is `output`: FILE.part.
+   pure function working_file(output) result(path)
+      character(len=*), intent(in) :: output  !! the output file
+      character(len=:), allocatable :: path
+      path = output//'.part'
+   end function working_file
+
+   !> Rewrite the complete working file of `filename` with compressed chunks into
+   !> `filename` (through the one writer), then remove the working file.
+   subroutine finalize_file(filename, setup, error)
+      character(len=*), intent(in) :: filename          !! the output file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      type(h5file_t) :: src, dst
+      type(output_t) :: out
+      character(len=32), allocatable :: reals(:), ints(:)
+      character(len=:), allocatable :: path, part
+      real(dp), allocatable :: r1(:), r2(:, :)
+      integer, allocatable :: i1(:), i2(:, :)
+      integer :: k, err
+      logical :: unreadable
+      unreadable = .false.
+      part = working_file(filename)
+      call out%begin(filename, setup%cfg%run%force, error)
+      if (allocated(error)) return
+      call src%open(part, 'r', error)
+      if (allocated(error)) then
+         call out%discard()
+         return
+      end if
+      call create_layout(dst, out%temp, setup, .true., error)
+      call result_names(setup, reals, ints)
+      do k = 1, size(reals)
+         if (allocated(error)) exit
+         path = '/sweep/'//trim(reals(k))
+         if (setup%grid) then
+            call src%read(path, r2, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, r2, [1, 1], error)
+         else
+            call src%read(path, r1, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, r1, [1], error)
+         end if
+      end do
+      do k = 1, size(ints)
+         if (allocated(error)) exit
+         path = '/sweep/'//trim(ints(k))
+         if (setup%grid) then
+            call src%read(path, i2, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, i2, [1, 1], error)
+         else
+            call src%read(path, i1, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, i1, [1], error)
+         end if
+      end do
+      call src%close()
+      call install_file(dst, out, setup, error)
+      if (unreadable) then
+         ! a checksum failed: nothing was installed and the working file is damaged
+         error%message = "'"//part//"' is damaged: "//error%message// &
+                         ' (a checksum does not match); use --force to start again'
+         return
+      else if (allocated(error)) then
+         error%message = 'cannot write the final file: '//error%message// &
+                         "; the working file '"//part//"' is complete and valid: "// &
+                         'rerun to finish'
+         return
+      end if
+      err = remove_file(part)
+   end subroutine finalize_file
+
+   ! --------------------------------------------------------------- run ---
+
+   !> Run or resume the sweep of `cfg` into cfg%run%output. Errors leave the file
+   !> valid and resumable.
+   subroutine run_sweep(cfg, summary, error)
+      type(sweep_config_t), intent(in) :: cfg           !! validated configuration
+      type(sweep_summary_t), intent(out) :: summary     !! what was done
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      type(sweep_setup_t) :: setup
+      type(h5file_t) :: h5
+      type(progress_t) :: progress
+      integer, allocatable :: done(:), missing(:)
+      integer(i8) :: n_done
+      integer :: complete, b, j0, nb, k
+      logical :: failed
+      real(dp) :: t0
+
+      if (cfg%threads > 0) call omp_set_num_threads(cfg%threads)
+      call build_setup(cfg, setup, error)
+      if (allocated(error)) return
+      call check_sweep_resources(setup, error)
+      if (allocated(error)) return
+      summary%n = setup%n
+      call open_output(setup, h5, done, complete, error)
+      if (allocated(error)) return
+      summary%blocks_before = count(done == 1)
+      if (complete == 1) then
+         call h5%close()
+         return
+      end if
+
+      missing = pack([(b, b=1, setup%nblocks)], done /= 1)
+      n_done = 0
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, nb)
+         if (done(b) == 1) n_done = n_done + nb
+      end do
+      call progress%start('dpend sweep', int(setup%n, i8), n_done, cfg%quiet)
+      failed = .false.
+      t0 = wall_seconds()
+      !$omp parallel do schedule(dynamic, 1) default(shared) private(k)
+      do k = 1, size(missing)
+         call do_block(missing(k))
+      end do
+      !$omp end parallel do
+      summary%seconds = wall_seconds() - t0
+      call h5%close()
+      call progress%finish()
+      if (failed) then
+         error%message = error%message//"; '"//working_file(cfg%run%output)// &
+                         "' holds the blocks done so far: rerun to resume"
+         return
+      end if
+      call finalize_file(cfg%run%output, setup, error)
+
+   contains
+
+      subroutine do_block(bb)
+         integer, intent(in) :: bb
+         type(batch_result_t) :: res
+         type(error_t), allocatable :: werr
+         logical :: stop_now
+         integer :: jj0, nnb
+         !$omp atomic read
+         stop_now = failed
+         if (stop_now) return
+         call compute_block(setup, bb, res)
+         call block_range(setup, bb, jj0, nnb)
+         !$omp critical (dpend_sweep_io)
+         if (.not. failed) then
+            call write_block(h5, setup, bb, res, werr)
+            if (allocated(werr)) then
+               call move_alloc(werr, error)
+               !$omp atomic write
+               failed = .true.
+            else
+               summary%blocks_computed = summary%blocks_computed + 1
+               summary%computed = summary%computed + nnb
+               summary%skipped = summary%skipped + count(res%status == st_cannot_flip)
+               call progress%update(int(nnb, i8))
+            end if
+         end if
+         !$omp end critical (dpend_sweep_io)
+      end subroutine do_block
+   end subroutine run_sweep
+
+   !> Open the working file for writing: resume FILE.part of the same configuration,
+   !> refuse another unless --force, else create a new working file. A complete FILE
+   !> of the same configuration needs nothing (`complete` = 1); another FILE is
+   !> refused unless --force, and with --force it is replaced only at the end.
+   subroutine open_output(setup, h5, done, complete, error)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(h5file_t), intent(inout) :: h5               !! the working file, opened 'rw'
+      integer, allocatable, intent(out) :: done(:)      !! block flags
+      integer, intent(out) :: complete                  !! 1 if already complete
+      type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
+      type(output_t) :: probe, work
+      character(len=:), allocatable :: file, part
+      logical :: force
+      file = setup%cfg%run%output
+      part = working_file(file)
+      force = setup%cfg%run%force
+      complete = 0
+      ! the output and the working file: regular files or missing, in a writable
+      ! directory (a real temporary file, removed at once)
+      call check_output_path(file, .true., error)
+      if (.not. allocated(error)) call check_output_path(part, .true., error, &
+                                                          '--output (its working file)')
+      if (.not. allocated(error)) call probe%begin(file, .true., error)
+      call probe%discard()
+      if (allocated(error)) return
+      if (path_kind(file) == path_file .and. .not. force) then
+         call read_stored(file, done, complete, error)
+         if (allocated(error)) return
+         if (complete /= 1) then
+            call fatal_error(error, "invalid --output: '"//file//"' holds an unfinished "// &
+                             'sweep written by an older dpend (use --force to start again)')
+         end if
+         return
+      end if
+      if (path_kind(part) == path_file .and. .not. force) then
+         call read_stored(part, done, complete, error)
+         if (allocated(error)) return
+         call h5%open(part, 'rw', error)
+         if (allocated(error)) error%message = error%message//' (use --force to start again)'
+         if (.not. allocated(error) .and. .not. setup%checksum) call check_unfiltered()
+         return
+      end if
+      ! a new working file, complete before it gets its name
+      call work%begin(part, .true., error, '--output (its working file)')
+      if (allocated(error)) return
+      call create_layout(h5, work%temp, setup, .false., error)
+      call install_file(h5, work, setup, error)
+      if (allocated(error)) then
+         error%message = 'cannot create the working file: '//error%message
+         return
+      end if
+      call h5%open(part, 'rw', error)
+      allocate (done(setup%nblocks))
+      done = 0
+   contains
+      !> A program that writes blocks without filters (the MPI sweep) cannot resume a
+      !> working file whose datasets carry checksums (one started by `dpend sweep`).
+      subroutine check_unfiltered()
+         character(len=32), allocatable :: reals(:), ints(:)
+         integer :: n
+         call result_names(setup, reals, ints)
+         call h5%filters('/sweep/'//trim(reals(1)), n, error)
+         if (allocated(error) .or. n == 0) return
+         call h5%close()
+         call fatal_error(error, "invalid --output: '"//part//"' was started by dpend "// &
+                          'sweep, whose checksummed blocks parallel HDF5 cannot write one '// &
+                          'by one: finish it with dpend sweep, or use --force to start again')
+      end subroutine check_unfiltered
+      !> The block flags and the completeness of an existing sweep file of this
+      !> configuration; refused when it is another file or another configuration.
+      subroutine read_stored(path, done, complete, error)
+         character(len=*), intent(in) :: path
+         integer, allocatable, intent(out) :: done(:)
+         integer, intent(out) :: complete
+         type(error_t), allocatable, intent(out) :: error
+         type(h5file_t) :: f
+         character(len=:), allocatable :: stored
+         complete = 0
+         if (.not. is_hdf5(path)) then
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'an HDF5 file (use --force to overwrite)')
+            return
+         end if
+         call f%open(path, 'r', error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'config', stored, error)
+         if (allocated(error)) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'a dpend sweep file (use --force to overwrite)')
+            return
+         end if
+         if (stored /= setup%config) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' holds a sweep with "// &
+                             'another configuration ('//first_difference(setup%config, &
+                             stored)//'); use --force to overwrite it')
+            return
+         end if
+         call f%read('/sweep/done', done, error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'complete', complete, error)
+         if (allocated(error)) then
+            error%message = "invalid --output: '"//path//"' is damaged ("//error%message// &
+                            '); use --force to start again'
+         else if (size(done) /= setup%nblocks) then
+            call fatal_error(error, "invalid --output: '"//path//"' has a damaged block "// &
+                             'list (use --force to start again)')
+         else
+            call verify_blocks(f, path, setup, done, error)
+         end if
+         call f%close()
+      end subroutine read_stored
+   end subroutine open_output
+
+   !> Check the results of an existing sweep file before it is resumed or reported
+   !> complete: every chunk reads back (its Fletcher-32 checksum matches; files
+   !> written before checksums are read in full all the same), every flag in
+   !> /sweep/done is 0 or 1, and every block flagged done has a status for each of
+   !> its initial conditions. A damaged file is refused, never finished or copied.
+   subroutine verify_blocks(h5, path, setup, done, error)
+      type(h5file_t), intent(inout) :: h5               !! the open file
+      character(len=*), intent(in) :: path              !! its name, for messages
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: done(:)                    !! its block flags
+      type(error_t), allocatable, intent(out) :: error  !! the first damage found
+      character(len=32), allocatable :: reals(:), ints(:)
+      real(dp), allocatable :: r1(:), r2(:, :)
+      integer, allocatable :: i1(:), i2(:, :), status(:)
+      character(len=:), allocatable :: damaged
+      integer :: k, b, j0, nb
+      damaged = "invalid --output: '"//path//"' is damaged ("
+      if (any(done /= 0 .and. done /= 1)) then
+         call fatal_error(error, damaged//'/sweep/done holds flags other than 0 and 1); '// &
+                          'use --force to start again')
+         return
+      end if
+      call result_names(setup, reals, ints)
+      do k = 1, size(reals) + size(ints)
+         if (k <= size(reals)) then
+            if (setup%grid) then
+               call h5%read('/sweep/'//trim(reals(k)), r2, error)
+            else
+               call h5%read('/sweep/'//trim(reals(k)), r1, error)
+            end if
+         else if (setup%grid) then
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i2, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) &
+               status = reshape(i2, [size(i2)])
+         else
+            call h5%read('/sweep/'//trim(ints(k - size(reals))), i1, error)
+            if (.not. allocated(error) .and. k == size(reals) + 1) status = i1
+         end if
+         if (allocated(error)) then
+            error%message = damaged//'/sweep/'//trim(merge(reals(min(k, size(reals))), &
+                            ints(max(1, k - size(reals))), k <= size(reals)))// &
+                            ' does not read back: a checksum does not match or its chunk '// &
+                            'index is broken); use --force to start again'
+            return
+         end if
+      end do
+      if (size(status) /= setup%n) then
+         call fatal_error(error, damaged//'/sweep/status has '//to_str(size(status))// &
+                          ' values, not '//to_str(setup%n)//'); use --force to start again')
+         return
+      end if
+      do b = 1, setup%nblocks
+         if (done(b) /= 1) cycle
+         call block_range(setup, b, j0, nb)
+         if (any(status(j0:j0 + nb - 1) == 0)) then
+            call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
+                             'but not written); use --force to start again')
+            return
+         end if
+      end do
+   end subroutine verify_blocks
+
+   !> Put a freshly written file in place: close it (the close checked unless an
+   !> error is already set), verify it, and commit it through the one writer; on
+   !> any failure the temporary file is removed and the target is as it was.
+   subroutine install_file(h5, out, setup, error)
+      type(h5file_t), intent(inout) :: h5                 !! the new file, open on out%temp
+      type(output_t), intent(inout) :: out                !! its output
+      type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
+      type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(out%temp, setup, error)
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+   end subroutine install_file
+
+   !> Check that a freshly written file opens and holds this configuration.
+   subroutine verify_file(filename, setup, error)
+      character(len=*), intent(in) :: filename          !! file to check
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! unreadable
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: stored
+      integer, allocatable :: done(:)
+      call h5%open(filename, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', stored, error)
+      if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+      call h5%close()
+      if (allocated(error)) return
+      if (stored /= setup%config .or. size(done) /= setup%nblocks) &
+         call fatal_error(error, "'"//filename//"' did not read back as written")
+   end subroutine verify_file
+
+   !> "key: a here, b in the file" for the first line where two configurations differ.
+   function first_difference(new, old) result(s)
+      character(len=*), intent(in) :: new, old  !! configuration texts
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: a, b, ra, rb
+      integer :: ia, ib
+      character(len=1), parameter :: nl = new_line('a')
+      ra = new//nl
+      rb = old//nl
+      do
+         ia = index(ra, nl)
+         ib = index(rb, nl)
+         if (ia == 0 .or. ib == 0) exit
+         a = ra(:ia - 1)
+         b = rb(:ib - 1)
+         if (a /= b) then
+            s = readable(a)//' here, '//readable(b)//' in the file'
+            return
+         end if
+         ra = ra(ia + 1:)
+         rb = rb(ib + 1:)
+      end do
+      s = 'the configurations differ'
+   contains
+      !> 'key = value' with a stored real (es24.16e3, kept so that older files still
+      !> compare equal) shown as real_str shows it: 't_end = 6'.
+      function readable(line) result(t)
+         character(len=*), intent(in) :: line
+         character(len=:), allocatable :: t
+         real(dp) :: x
+         integer :: eq, stat
+         t = line
+         eq = index(line, ' = ')
+         if (eq == 0) return
+         if (index(line(eq + 3:), 'E') == 0) return
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-') /= 0) return
+         read (line(eq + 3:), *, iostat=stat) x
+         if (stat == 0) t = line(:eq + 2)//real_str(x)
+      end function readable
+   end function first_difference
+
+   ! ----------------------------------------------------------- compare ---
+
+   !> Accuracy report: compare the flip times of two complete sweeps of the same
+   !> initial conditions (e.g. step dt and dt/2). A pixel changes if it flips in one
+   !> and not the other, or if |t_B - t_A| > rel t_A. Prints `key: value unit` lines.
+   !> Sweeps that are not comparable (grid or list, shape, axes, ranges, initial
+   !> states, parameters, time unit, t_end, stop rule) or not complete are refused,
+   !> naming what differs, as are damaged values (a time unit sqrt(l1/g) or flip
+   !> times that are not finite and in range).
+   subroutine compare_sweeps(file_a, file_b, rel, unit, error)
+      character(len=*), intent(in) :: file_a, file_b    !! the two sweeps
+      real(dp), intent(in) :: rel                       !! relative tolerance
+      integer, intent(in) :: unit                       !! where to print
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ta(:), tb(:)
+      real(dp) :: tau, tau_b, ha, hb, bands(5)
+      integer, allocatable :: sa(:), dims_a(:), dims_b(:)
+      character(len=:), allocatable :: cfg_a, cfg_b, va, vb
+      integer :: i, k, n_changed, n_flip, band_n(4), band_c(4), n_noflip_changed
+      logical :: fa, fb, changed, in_band
+      character(len=*), parameter :: band_names(4) = [character(len=12) :: 'lt_10', &
+                                                      '10_to_100', '100_to_1000', 'ge_1000']
+      ! what must be equal for two sweeps to hold the same initial conditions
+      character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
+         'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
+         'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at']
+      if (.not. (rel > 0.0_dp .and. rel <= max_rel)) then
+         call fatal_error(error, 'sweep-compare: invalid --rel: '//sci(rel)// &
+                          ' (accepted: > 0 and <= 1000)')
+         return
+      end if
+      call read_times(file_a, ta, sa, tau, ha, dims_a, cfg_a, error)
+      if (allocated(error)) return
+      call read_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
+      if (allocated(error)) return
+      do k = 1, size(same)
+         va = config_value(cfg_a, trim(same(k)))
+         vb = config_value(cfg_b, trim(same(k)))
+         if (va /= vb) then
+            call refuse(trim(same(k))//' = '//va//" in '"//file_a//"', "//vb//" in '"// &
+                        file_b//"'")
+            return
+         end if
+         if (same(k) == 'initial') then   ! then the shapes, in the file's terms
+            if (size(dims_a) /= size(dims_b)) then
+               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
+            else if (any(dims_a /= dims_b)) then
+               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
+            end if
+            if (allocated(error)) return
+         end if
+      end do
+      if (abs(tau - tau_b) > 1e-12_dp*tau) then
+         call refuse('sqrt_l1_over_g = '//sci(tau)//" s in '"//file_a//"', "// &
+                     sci(tau_b)//" s in '"//file_b//"' (another time unit)")
+         return
+      end if
+      bands = [0.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp, huge(1.0_dp)]
+      n_changed = 0; n_flip = 0; band_n = 0; band_c = 0; n_noflip_changed = 0
+      do i = 1, size(ta)
+         fa = .not. ieee_is_nan(ta(i))
+         fb = .not. ieee_is_nan(tb(i))
+         if (fa .and. fb) then
+            changed = abs(tb(i) - ta(i)) > rel*abs(ta(i))
+         else
+            changed = fa .neqv. fb
+         end if
+         if (fa .or. fb) n_flip = n_flip + 1
+         if (changed) n_changed = n_changed + 1
+         if (fa) then
+            do k = 1, 4
+               ! t/tau in [bands(k), bands(k+1)), without dividing by tau
+               in_band = ta(i) >= bands(k)*tau
+               if (k < 4) in_band = in_band .and. ta(i) < bands(k + 1)*tau
+               if (in_band) then
+                  band_n(k) = band_n(k) + 1
+                  if (changed) band_c(k) = band_c(k) + 1
+               end if
+            end do
+         else if (changed) then
+            n_noflip_changed = n_noflip_changed + 1
+         end if
+      end do
+      write (unit, '(a)') 'step_a: '//real_str(ha, 6)//' s'
+      write (unit, '(a)') 'step_b: '//real_str(hb, 6)//' s'
+      write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
+      write (unit, '(a, i0)') 'pixels: ', size(ta)
+      write (unit, '(a, i0)') 'pixels_flipping: ', n_flip
+      write (unit, '(a, i0)') 'pixels_changed: ', n_changed
+      write (unit, '(a)') 'changed_fraction: '//pct(n_changed, size(ta))//' %'
+      write (unit, '(a)') 'changed_fraction_of_flipping: '//pct(n_changed, n_flip)//' %'
+      do k = 1, 4
+         write (unit, '(a, i0, a)') 'changed_fraction_tflip_'//trim(band_names(k))// &
+            ': '//pct(band_c(k), band_n(k))//' % (of ', band_n(k), ' pixels)'
+      end do
+      write (unit, '(a, i0)') 'pixels_changed_no_flip_in_a: ', n_noflip_changed
+   contains
+      !> 100 a/b rounded to 3 decimals ('0' when b = 0).
+      function pct(a, b) result(t)
+         integer, intent(in) :: a, b
+         character(len=:), allocatable :: t
+         t = '0'
+         if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
+      end function pct
+      subroutine refuse(what)
+         character(len=*), intent(in) :: what
+         call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
+                          what//' (compare sweeps of the same initial conditions)')
+      end subroutine refuse
+      function shape_text(d) result(s)
+         integer, intent(in) :: d(:)
+         character(len=:), allocatable :: s
+         integer :: j
+         s = to_str(d(1))
+         do j = 2, size(d)
+            s = s//'x'//to_str(d(j))
+         end do
+         if (size(d) == 1) s = s//' (a list)'
+      end function shape_text
+      subroutine read_times(file, t, st, tau, h, dims, config, error)
+         character(len=*), intent(in) :: file
+         real(dp), allocatable, intent(out) :: t(:)
+         integer, allocatable, intent(out) :: st(:)
+         real(dp), intent(out) :: tau, h
+         integer, allocatable, intent(out) :: dims(:)
+         character(len=:), allocatable, intent(out) :: config
+         type(error_t), allocatable, intent(out) :: error
+         real(dp), allocatable :: t2(:, :)
+         integer, allocatable :: s2(:, :), done(:)
+         integer :: complete, j
+         character(len=:), allocatable :: pre
+         pre = "sweep-compare: invalid sweep '"//file//"': "
+         tau = 1; h = 0; complete = 0
+         call check_regular_file(file, pre, error)
+         if (allocated(error)) return
+         if (.not. is_hdf5(file)) then
+            call fatal_error(error, pre//'not an HDF5 file')
+            return
+         end if
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%readattr('/sweep', 'config', config, error)
+         if (allocated(error)) then
+            call h5%close()
+            call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
+            return
+         end if
+         call h5%readattr('/sweep', 'complete', complete, error)
+         if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+         if (.not. allocated(error)) call h5%shape('/sweep/t_flip', dims, error)
+         if (.not. allocated(error)) then
+            if (size(dims) == 2) then
+               call h5%read('/sweep/t_flip', t2, error)
+               if (.not. allocated(error)) call h5%read('/sweep/status', s2, error)
+               if (.not. allocated(error)) t = reshape(t2, [size(t2)])
+               if (.not. allocated(error)) st = reshape(s2, [size(s2)])
+            else
+               call h5%read('/sweep/t_flip', t, error)
+               if (.not. allocated(error)) call h5%read('/sweep/status', st, error)
+            end if
+         end if
+         if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', tau, error)
+         if (.not. allocated(error)) call h5%readattr('/sweep', 'h', h, error)
+         call h5%close()
+         if (allocated(error)) then
+            error%message = pre//error%message
+         else if (complete /= 1 .or. any(done /= 1) .or. any(st == 0)) then
+            call fatal_error(error, pre//'not complete ('//to_str(count(done == 1))// &
+                             ' of '//to_str(size(done))//' blocks done; rerun the sweep '// &
+                             'to finish it)')
+         else if (size(st) /= size(t)) then
+            call fatal_error(error, pre//'damaged: /sweep/status and /sweep/t_flip '// &
+                             'differ in size')
+         else if (.not. tau_ok(tau)) then
+            call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '// &
+                             sci(tau)//' (accepted: 1e-150 to 1e150 s)')
+         else
+            do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
+               if (ieee_is_nan(t(j))) cycle
+               if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
+                  call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &
+                                   sci(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
+                  exit
+               end if
+            end do
+         end if
+      end subroutine read_times
+      !> Finite and in [min_tau, max_tau] (no ordered comparison with NaN: it traps).
+      logical function tau_ok(x)
+         real(dp), intent(in) :: x
+         tau_ok = .false.
+         if (ieee_is_finite(x)) tau_ok = x >= min_tau .and. x <= max_tau
+      end function tau_ok
+   end subroutine compare_sweeps
+
+   !> The value of `key` in a configuration text of "key = value" lines ('' if absent).
+   function config_value(text, key) result(v)
+      character(len=*), intent(in) :: text  !! configuration text
+      character(len=*), intent(in) :: key   !! key
+      character(len=:), allocatable :: v
+      character(len=1), parameter :: nl = new_line('a')
+      character(len=:), allocatable :: probe
+      integer :: at, eol
+      v = ''
+      probe = nl//text
+      at = index(probe, nl//key//' = ')
+      if (at == 0) return
+      at = at + len(key) + 4
+      eol = index(probe(at:), nl)
+      if (eol == 0) then
+         v = probe(at:)
+      else
+         v = probe(at:at + eol - 2)
+      end if
+   end function config_value
+
+
+end module dpend_sweep

@@ -1,0 +1,380 @@
+!> Configuration of `dpend sweep`: the common run configuration (&pendulum,
+!> &initial for the values that are not swept, &integration for dt and t_end,
+!> &output) plus the namelist group &sweep, and the command-line flags.
+!>
+!> &sweep keys (docs/sweep.md):
+!>   axis1, axis2   swept initial values: 'theta1' 'theta2' (angles from the hanging
+!>                  position, θ = q + π/2), 'q1' 'q2' (from the horizontal x axis),
+!>                  'w1' 'w2' (angular velocities) [rad, rad/s]
+!>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
+!>   ic_file        a list of initial conditions instead of a grid: a text file of
+!>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4))
+!>   ic_dataset     dataset of an HDF5 list, default '/initial'
+!>   ic_angles      angles of a list: 'q' (from horizontal, default) or 'theta'
+!>   time_unit      unit of dt and t_end: 's' or 'natural' (√(L1/g))
+!>   stop_at        'both' (every link that can flip has flipped), 'either', 'end'
+!>   block          initial conditions per block (unit of parallel work, output
+!>                  chunks and resume); whole rows of axis 1 in a grid
+!>   lyapunov       also the largest Lyapunov exponent (runs every trajectory to t_end)
+!>   stats          also the number of steps of every trajectory
+!>   threads        OpenMP threads (0: all; not part of the stored configuration)
+module dpend_sweep_config
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str, option_outcome
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
+                           validate_run_config, namelist_error
+   use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
+   use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
+                           max_angle, max_angular_velocity, max_time
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_cli, only: to_str
+   use dpend_cli, only: scan_help_config
+   implicit none
+   private
+   public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
+   public :: axis_names, time_scale, stop_rule, grid_mode
+
+   !> Names accepted for axis1 and axis2.
+   character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
+
+   !> Everything `dpend sweep` needs.
+   type :: sweep_config_t
+      type(run_config_t) :: run                    !! parameters, fixed initial values,
+                                                   !! dt, t_end, output, force
+      character(len=:), allocatable :: axis1       !! first swept value (fastest index)
+      character(len=:), allocatable :: axis2       !! second swept value
+      integer :: n1 = 256                          !! points on axis 1
+      integer :: n2 = 256                          !! points on axis 2
+      real(dp) :: min1 = -3.0_dp                   !! axis 1 from [rad or rad/s]
+      real(dp) :: max1 = 3.0_dp                    !! axis 1 to
+      real(dp) :: min2 = -3.0_dp                   !! axis 2 from
+      real(dp) :: max2 = 3.0_dp                    !! axis 2 to
+      character(len=:), allocatable :: ic_file     !! list of initial conditions ('' = grid)
+      character(len=:), allocatable :: ic_dataset  !! dataset of an HDF5 list
+      character(len=:), allocatable :: ic_angles   !! 'q' or 'theta'
+      character(len=:), allocatable :: time_unit   !! 's' or 'natural'
+      character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
+      integer :: block = 4096                      !! initial conditions per block
+      logical :: lyapunov = .false.                !! largest Lyapunov exponent
+      logical :: stats = .false.                   !! steps per trajectory
+      integer :: threads = 0                       !! OpenMP threads, 0: all
+      logical :: quiet = .false.                   !! no progress report
+   end type sweep_config_t
+
+contains
+
+   !> Defaults: the classic flip map at 256 x 256 over θ1, θ2 in [-3, 3] rad from rest,
+   !> the chapter's parameters, 100 √(L1/g), step 0.01 √(L1/g).
+   function sweep_defaults() result(cfg)
+      type(sweep_config_t) :: cfg
+      cfg%run%method = 'rk4'
+      cfg%run%dt = 0.01_dp
+      cfg%run%t_end = 100.0_dp
+      cfg%run%output = 'sweep.h5'
+      cfg%run%q0 = [0.0_dp, 0.0_dp]
+      cfg%run%w0 = [0.0_dp, 0.0_dp]
+      cfg%axis1 = 'theta1'
+      cfg%axis2 = 'theta2'
+      cfg%ic_file = ''
+      cfg%ic_dataset = '/initial'
+      cfg%ic_angles = 'q'
+      cfg%time_unit = 'natural'
+      cfg%stop_at = 'both'
+   end function sweep_defaults
+
+   !> True for a grid, false for a list of initial conditions.
+   pure logical function grid_mode(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      grid_mode = len_trim(cfg%ic_file) == 0
+   end function grid_mode
+
+   !> Seconds per unit of dt and t_end: 1 or √(L1/g).
+   pure real(dp) function time_scale(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      time_scale = 1.0_dp
+      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%par%l1/cfg%run%par%g)
+   end function time_scale
+
+   !> The stop rule of the kernel (stop_end with the Lyapunov exponent).
+   pure integer function stop_rule(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      select case (cfg%stop_at)
+      case ('either'); stop_rule = stop_either
+      case ('end'); stop_rule = stop_end
+      case default; stop_rule = stop_both
+      end select
+      if (cfg%lyapunov) stop_rule = stop_end
+   end function stop_rule
+
+   !> Help text of `dpend sweep`.
+   function sweep_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      type(sweep_config_t) :: cfg
+      cfg = sweep_defaults()
+      s = 'usage: dpend sweep [options]'//nl//nl// &
+          'Integrate many initial conditions with a vectorized, parallel RK4 and write'//nl// &
+          'per-condition results (flip times, energy, energy error, final state, optional'//nl// &
+          'Lyapunov exponent) to HDF5, block by block. Rerunning the same command after'//nl// &
+          'an interruption computes only the missing blocks. Layout: docs/hdf5-layout.md;'//nl// &
+          'figures: scripts/plot_sweep.sh FILE.h5 OUTDIR; examples: data/sweep_*.nml.'//nl//nl// &
+          'initial conditions (a grid over two values, the rest from --q1 --q2 --w1 --w2):' &
+          //nl// &
+          '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
+          '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
+          '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
+          '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
+          '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
+          '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
+          ' .. '//real_str(cfg%max1)//nl// &
+          '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
+          '  --ic-dataset PATH dataset of an HDF5 list, shape (n, 4); default ' &
+          //cfg%ic_dataset//nl// &
+          '  --ic-angles q|theta  angles of the list measured as q or theta; default q' &
+          //nl//nl// &
+          'integration (rk4 only; the step is t_end / ceiling(t_end / dt)):'//nl// &
+          '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
+          '                    default '//cfg%time_unit//nl// &
+          '  --dt DT, --t-end T  step and end time in that unit; default ' &
+          //real_str(cfg%run%dt)//', '//real_str(cfg%run%t_end)//nl// &
+          '  --stop-at RULE    both: stop once every link that can flip has flipped;'//nl// &
+          '                    either: at the first flip; end: run to t_end; default ' &
+          //cfg%stop_at//nl// &
+          '  --lyapunov        also the largest Lyapunov exponent (all run to t_end)'//nl// &
+          '  --stats           also the number of steps of every trajectory'//nl//nl// &
+          'parameters (as in dpend simulate):'//nl// &
+          '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
+          '                    (fixed initial values of what is not swept; default 0)'//nl// &
+          '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
+          '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
+          //nl//nl// &
+          'run:'//nl// &
+          '  --output FILE     HDF5 file; default '//cfg%run%output//nl// &
+          '  --force           overwrite a file written with another configuration'//nl// &
+          '  --block N         initial conditions per block (whole rows of axis 1 in a'//nl// &
+          '                    grid); default '//to_str(cfg%block)//nl// &
+          '  --threads N       OpenMP threads, 0 (all) to 1024; default all'//nl// &
+          '  --quiet           no progress report on stderr'//nl// &
+          '  -h, --help        this text'
+   end function sweep_help
+
+   !> Build the configuration from defaults, --config and flags; `help` if asked.
+   subroutine parse_sweep(args, cfg, help, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'sweep'
+      type(sweep_config_t), intent(out) :: cfg          !! the configuration
+      logical, intent(out) :: help                      !! --help was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value, config
+      logical :: matched, missing
+      integer :: i, n
+      cfg = sweep_defaults()
+      help = .false.
+      call scan_help_config(args, help, config, error)
+      if (allocated(error) .or. help) return
+      if (len(config) > 0) then
+         call read_sweep_config(config, cfg, error)
+         if (allocated(error)) return
+      end if
+      i = 1
+      do while (i <= size(args))
+         select case (args(i)%s)
+         case ('--force'); cfg%run%force = .true.; i = i + 1; cycle
+         case ('--quiet'); cfg%quiet = .true.; i = i + 1; cycle
+         case ('--lyapunov'); cfg%lyapunov = .true.; i = i + 1; cycle
+         case ('--stats'); cfg%stats = .true.; i = i + 1; cycle
+         end select
+         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
+            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+                             "' (dpend sweep --help lists the options)")
+            return
+         end if
+         call next_option(args, i, name, value, .true., error, missing)
+         matched = .true.
+         select case (name)
+         case ('--config')
+         case ('--axis1'); cfg%axis1 = value
+         case ('--axis2'); cfg%axis2 = value
+         case ('--n')
+            call parse_int(value, name, n, error)
+            cfg%n1 = n; cfg%n2 = n
+         case ('--n1'); call parse_int(value, name, cfg%n1, error)
+         case ('--n2'); call parse_int(value, name, cfg%n2, error)
+         case ('--min1'); call parse_real(value, name, cfg%min1, error)
+         case ('--max1'); call parse_real(value, name, cfg%max1, error)
+         case ('--min2'); call parse_real(value, name, cfg%min2, error)
+         case ('--max2'); call parse_real(value, name, cfg%max2, error)
+         case ('--ic-file'); cfg%ic_file = value
+         case ('--ic-dataset'); cfg%ic_dataset = value
+         case ('--ic-angles'); cfg%ic_angles = value
+         case ('--time-unit'); cfg%time_unit = value
+         case ('--stop-at'); cfg%stop_at = value
+         case ('--block'); call parse_int(value, name, cfg%block, error)
+         case ('--threads'); call parse_int(value, name, cfg%threads, error)
+         case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
+            matched = .false.
+         case default
+            call apply_run_flag(cfg%run, name, value, matched, error)
+         end select
+         call option_outcome('sweep', name, matched, missing, [character(len=16) :: &
+                             '--force', '--quiet', '--lyapunov', '--stats'], error)
+         if (allocated(error)) return
+      end do
+      call validate_sweep(cfg, error)
+   end subroutine parse_sweep
+
+   !> Read the common groups and &sweep of `filename` into `cfg`.
+   subroutine read_sweep_config(filename, cfg, error)
+      character(len=*), intent(in) :: filename          !! namelist file
+      type(sweep_config_t), intent(inout) :: cfg        !! updated from the file
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
+      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at
+      character(len=1024) :: ic_file, ic_dataset
+      character(len=512) :: msg
+      integer :: n1, n2, block, threads, unit, stat
+      real(dp) :: min1, max1, min2, max2
+      logical :: lyapunov, stats, quiet
+      namelist /sweep/ axis1, axis2, n1, n2, min1, max1, min2, max2, ic_file, ic_dataset, &
+         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet
+      ! length 16 as read_run_config's own list (-fcheck=all checks constructors)
+      call read_run_config(filename, cfg%run, error, &
+                           extra_groups=[character(len=16) :: 'sweep'])
+      if (allocated(error)) return
+      axis1 = cfg%axis1; axis2 = cfg%axis2
+      n1 = cfg%n1; n2 = cfg%n2
+      min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
+      ic_file = cfg%ic_file; ic_dataset = cfg%ic_dataset; ic_angles = cfg%ic_angles
+      time_unit = cfg%time_unit; stop_at = cfg%stop_at
+      block = cfg%block; threads = cfg%threads
+      lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
+      open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         return
+      end if
+      read (unit, nml=sweep, iostat=stat, iomsg=msg)
+      close (unit)
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, 'sweep', msg))
+         return
+      end if
+      cfg%axis1 = trim(axis1); cfg%axis2 = trim(axis2)
+      cfg%n1 = n1; cfg%n2 = n2
+      cfg%min1 = min1; cfg%max1 = max1; cfg%min2 = min2; cfg%max2 = max2
+      cfg%ic_file = trim(ic_file); cfg%ic_dataset = trim(ic_dataset)
+      cfg%ic_angles = trim(ic_angles)
+      cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
+      cfg%block = block; cfg%threads = threads
+      cfg%lyapunov = lyapunov; cfg%stats = stats; cfg%quiet = quiet
+   end subroutine read_sweep_config
+
+   !> Check the configuration; messages name the field and the accepted range.
+   subroutine validate_sweep(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      call validate_run_config(cfg%run, error)
+      if (allocated(error)) return
+      if (cfg%run%method /= 'rk4') then
+         call fatal_error(error, "invalid method: '"//cfg%run%method// &
+                          "' (dpend sweep accepts: rk4)")
+      else if (.not. (cfg%run%t_end > 0.0_dp)) then
+         call fatal_error(error, 'invalid t_end: must be finite and > 0')
+      else if (cfg%time_unit /= 's' .and. cfg%time_unit /= 'natural') then
+         call fatal_error(error, "invalid time_unit: '"//cfg%time_unit// &
+                          "' (accepted: s, natural)")
+      else if (cfg%stop_at /= 'both' .and. cfg%stop_at /= 'either' .and. &
+               cfg%stop_at /= 'end') then
+         call fatal_error(error, "invalid stop_at: '"//cfg%stop_at// &
+                          "' (accepted: both, either, end)")
+      else if (cfg%block < 1 .or. cfg%block > max_sweep_points) then
+         call fatal_error(error, 'invalid block: must be an integer from 1 to '// &
+                          to_str(max_sweep_points))
+      else if (cfg%threads < 0 .or. cfg%threads > max_threads) then
+         call fatal_error(error, 'invalid threads: '//to_str(cfg%threads)// &
+                          ' must be an integer from 0 (all) to '//to_str(max_threads))
+      else if (cfg%run%t_end*time_scale(cfg) > max_time) then
+         ! both factors are bounded (t_end <= 1e9, sqrt(l1/g) <= 1e6): no overflow
+         call fatal_error(error, 'invalid t_end: '//sci(cfg%run%t_end)//' '// &
+                          trim(unit_name(cfg))//' is '//sci(cfg%run%t_end*time_scale(cfg))// &
+                          ' s, above '//sci(max_time)//' s')
+      end if
+      if (allocated(error)) return
+      if (grid_mode(cfg)) then
+         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, error)
+         if (allocated(error)) return
+         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, error)
+         if (allocated(error)) return
+         if (variable(cfg%axis1) == variable(cfg%axis2)) then
+            call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
+                             "initial value as axis1 '"//cfg%axis1//"'")
+         else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
+            call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
+                             sci(real(cfg%n1, dp)*real(cfg%n2, dp))//' points, at most '// &
+                             sci(real(max_sweep_points, dp))//' (fewer points)')
+         end if
+      else if (cfg%ic_angles /= 'q' .and. cfg%ic_angles /= 'theta') then
+         call fatal_error(error, "invalid ic_angles: '"//cfg%ic_angles// &
+                          "' (accepted: q, theta)")
+      end if
+   end subroutine validate_sweep
+
+   !> Check one axis: a known name, n >= 1, finite min <= max (min < max if n > 1).
+   subroutine check_axis(name, k, n, lo, hi, error)
+      character(len=*), intent(in) :: name              !! axis name
+      integer, intent(in) :: k                          !! 1 or 2
+      integer, intent(in) :: n                          !! points
+      real(dp), intent(in) :: lo, hi                    !! range
+      type(error_t), allocatable, intent(out) :: error  !! what is wrong
+      character(len=1) :: c
+      character(len=5) :: unit
+      real(dp) :: bound
+      c = achar(iachar('0') + k)
+      ! the angles' and angular velocities' ranges of every command (dpend_limits)
+      bound = max_angle
+      unit = 'rad'
+      if (variable(name) >= 3) then
+         bound = max_angular_velocity
+         unit = 'rad/s'
+      end if
+      if (variable(name) == 0) then
+         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
+                          //axis_names//')')
+      else if (n < 1 .or. n > max_axis_points) then
+         call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
+                          //' to '//to_str(max_axis_points)//' (points on axis '//c//')')
+      else if (.not. (ieee_is_finite(lo) .and. ieee_is_finite(hi))) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': must be finite')
+      else if (max(abs(lo), abs(hi)) > bound) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': '//sci(lo)//' .. ' &
+                          //sci(hi)//' is outside ['//sci(-bound)//', '//sci(bound)// &
+                          '] ('//trim(unit)//')')
+      else if (lo > hi) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
+                          //real_str(lo)//' > max'//c//' = '//real_str(hi))
+      else if (n > 1 .and. .not. (lo < hi)) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': the grid is empty, need min' &
+                          //c//' < max'//c//' when n'//c//' > 1')
+      end if
+   end subroutine check_axis
+
+   !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
+   pure function unit_name(cfg) result(u)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      character(len=16) :: u
+      u = 's'
+      if (cfg%time_unit == 'natural') u = 'sqrt(l1/g)'
+   end function unit_name
+
+   !> Index of the initial value an axis sweeps: 1 q1, 2 q2, 3 w1, 4 w2, 0 unknown.
+   pure integer function variable(name)
+      character(len=*), intent(in) :: name  !! axis name
+      select case (name)
+      case ('theta1', 'q1'); variable = 1
+      case ('theta2', 'q2'); variable = 2
+      case ('w1'); variable = 3
+      case ('w2'); variable = 4
+      case default; variable = 0
+      end select
+   end function variable
+
+end module dpend_sweep_config

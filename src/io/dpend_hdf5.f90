@@ -1,0 +1,1175 @@
+!> A thin layer over the HDF5 Fortran API in the spirit of h5fortran.
+!>
+!> `h5file_t` opens one file and reads or writes whole datasets, attributes and
+!> hyperslabs of chunked, compressed datasets. Paths are absolute ('/a/b/c');
+!> intermediate groups are created on write. Shapes are stored in Fortran order
+!> as the HDF5 Fortran API does: `q(2, n)` is seen by h5py and h5dump as (n, 2).
+!> Strings are fixed-length, null-padded, ASCII. Trailing blanks of paths, names
+!> and file names are ignored. Every failure comes back as an `error_t` naming the
+!> file and the path; HDF5's own error printing is off.
+!> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
+!> an `h5file_t` from one thread at a time.
+module dpend_hdf5
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
+   use, intrinsic :: iso_fortran_env, only: real64, int32
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use hdf5
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t, fatal_error
+   use dpend_os, only: io_failure_reason
+   implicit none
+   private
+   public :: h5file_t, is_hdf5
+
+   !> What a read accepts in the file: anything, numbers, integers, a string.
+   integer, parameter :: want_any = 0, want_real = 1, want_int = 2, want_str = 3
+
+   logical, save :: library_ready = .false.  !! h5open_f has been called
+   !> HDF5's error printing is off in this thread. The library is thread-safe, so
+   !> the setting is per thread: every OpenMP thread that calls HDF5 turns it off.
+   logical, save :: thread_quiet = .false.
+   !$omp threadprivate(thread_quiet)
+
+   !> One open HDF5 file. Do not copy an open `h5file_t`: the copy shares the id.
+   type :: h5file_t
+      private
+      character(len=:), allocatable :: filename  !! name given to `open`
+      integer(hid_t) :: id = -1                  !! HDF5 file id, -1 when closed
+      logical :: readonly = .false.              !! opened with mode 'r'
+   contains
+      procedure :: open => file_open
+      procedure :: close => file_close
+      procedure :: is_open => file_is_open
+      procedure :: flush => file_flush
+      procedure :: exists => file_exists
+      procedure :: attr_exists => file_attr_exists
+      procedure :: shape => file_shape
+      procedure :: filters => file_filters
+      procedure :: create_dataset => file_create_dataset
+      procedure, private :: write_r0, write_r1, write_r2, write_r3
+      procedure, private :: write_i0, write_i1, write_i2, write_i64_1, write_str
+      generic :: write => write_r0, write_r1, write_r2, write_r3, &
+         write_i0, write_i1, write_i2, write_i64_1, write_str
+      procedure, private :: slab_r1, slab_r2, slab_i1, slab_i2
+      generic :: write_slab => slab_r1, slab_r2, slab_i1, slab_i2
+      procedure, private :: read_r0, read_r1, read_r2, read_r3
+      procedure, private :: read_i0, read_i1, read_i2, read_i64_1, read_str
+      generic :: read => read_r0, read_r1, read_r2, read_r3, &
+         read_i0, read_i1, read_i2, read_i64_1, read_str
+      procedure, private :: writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0
+      procedure, private :: writeattr_str
+      generic :: writeattr => writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0, &
+         writeattr_str
+      procedure, private :: readattr_r0, readattr_r1, readattr_i0, readattr_str
+      generic :: readattr => readattr_r0, readattr_r1, readattr_i0, readattr_str
+      final :: file_finalize
+   end type h5file_t
+
+contains
+
+   ! ---------------------------------------------------------------- file ---
+
+   !> Open `filename`: 'r' read only, 'w' create or truncate, 'rw' read-write
+   !> (created if missing), 'x' create and fail if it exists. An open file is
+   !> closed first. `access` is a file access property list to start from (e.g.
+   !> one set up for MPI-IO by a parallel HDF5 program; then open and close are
+   !> collective); it is copied, not kept.
+   subroutine file_open(self, filename, mode, error, access)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: filename          !! path on disk
+      character(len=*), intent(in) :: mode              !! 'r', 'w', 'rw' or 'x'
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t), intent(in), optional :: access    !! file access property list
+      integer(hid_t) :: fapl, fid
+      integer :: hdferr, ierr
+      logical :: on_disk
+      character(len=:), allocatable :: why
+
+      call self%close()
+      call init_library(error)
+      if (allocated(error)) return
+      inquire (file=filename, exist=on_disk)
+      if (present(access)) then
+         call h5pcopy_f(access, fapl, ierr)
+      else
+         call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
+      end if
+      call h5pset_fclose_degree_f(fapl, H5F_CLOSE_STRONG_F, ierr)
+      hdferr = -1
+      why = io_failure_reason(filename, 'cannot create it')
+      select case (mode)
+      case ('r', 'rw')
+         if (on_disk) then
+            why = 'not an HDF5 file or not '//merge('readable', 'writable', mode == 'r')
+            call h5fopen_f(trim(filename), merge(H5F_ACC_RDONLY_F, H5F_ACC_RDWR_F, mode == 'r'), &
+               fid, hdferr, access_prp=fapl)
+         else if (mode == 'r') then
+            why = 'no such file'
+         else
+            call h5fcreate_f(trim(filename), H5F_ACC_EXCL_F, fid, hdferr, access_prp=fapl)
+         end if
+      case ('w', 'x')
+         if (mode == 'x' .and. on_disk) then
+            why = 'file exists'
+         else
+            call h5fcreate_f(trim(filename), merge(H5F_ACC_TRUNC_F, H5F_ACC_EXCL_F, mode == 'w'), &
+               fid, hdferr, access_prp=fapl)
+         end if
+      case default
+         why = "invalid mode '"//mode//"' (use 'r', 'w', 'rw' or 'x')"
+      end select
+      call h5pclose_f(fapl, ierr)
+      if (hdferr /= 0) then
+         call fatal_error(error, 'cannot open '//quoted(filename)//': '//why)
+         return
+      end if
+      self%id = fid
+      self%filename = trim(filename)
+      self%readonly = mode == 'r'
+   end subroutine file_open
+
+   !> Close the file if it is open (this also flushes it). With `error`, a failed
+   !> close (e.g. a full disk while flushing) is reported.
+   subroutine file_close(self, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      type(error_t), allocatable, intent(out), optional :: error  !! set if the close failed
+      integer :: ierr
+      logical :: valid
+      if (self%id < 0) return
+      call quiet_thread()
+      ierr = 0
+      call h5iis_valid_f(self%id, valid, ierr)
+      if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
+      if (ierr /= 0 .and. present(error)) call fatal_error(error, 'cannot close '// &
+         quoted(self%filename)//': '//io_failure_reason(self%filename, 'HDF5 could not flush it'))
+      self%id = -1
+      self%readonly = .false.
+   end subroutine file_close
+
+   !> Finaliser: close a file that was left open.
+   subroutine file_finalize(self)
+      type(h5file_t), intent(inout) :: self  !! the file object going away
+      call file_close(self)
+   end subroutine file_finalize
+
+   !> True while a file is open.
+   logical function file_is_open(self) result(is_open)
+      class(h5file_t), intent(in) :: self  !! the file object
+      is_open = self%id >= 0
+   end function file_is_open
+
+   !> Flush everything written so far to disk (whole file).
+   subroutine file_flush(self)
+      class(h5file_t), intent(inout) :: self  !! the file object
+      integer :: ierr
+      if (.not. self%is_open()) return
+      call quiet_thread()
+      call h5fflush_f(self%id, H5F_SCOPE_GLOBAL_F, ierr)
+   end subroutine file_flush
+
+   !> True if the group or dataset `path` exists: every component is checked.
+   logical function file_exists(self, path) result(found)
+      class(h5file_t), intent(in) :: self   !! the file object
+      character(len=*), intent(in) :: path  !! e.g. '/trajectory/q', '/' for the root
+      integer :: i, n, ierr
+      found = .false.
+      if (.not. self%is_open() .or. len_trim(path) == 0) return
+      found = .true.
+      n = len_trim(path)
+      do i = 2, n + 1   ! check path(1:i-1) at every component end
+         if (i <= n) then
+            if (path(i:i) /= '/') cycle
+         end if
+         if (path(i - 1:i - 1) == '/') cycle
+         call h5lexists_f(self%id, path(1:i - 1), found, ierr)
+         if (ierr /= 0) found = .false.
+         if (.not. found) return
+      end do
+   end function file_exists
+
+   !> True if the group or dataset `path` carries an attribute `name`.
+   logical function file_attr_exists(self, path, name) result(found)
+      class(h5file_t), intent(in) :: self   !! the file object
+      character(len=*), intent(in) :: path  !! group or dataset, '/' for the root
+      character(len=*), intent(in) :: name  !! attribute name
+      integer :: ierr
+      found = .false.
+      if (.not. self%exists(path)) return
+      call h5aexists_by_name_f(self%id, trim(path), trim(name), found, ierr)
+      if (ierr /= 0) found = .false.
+   end function file_attr_exists
+
+   !> Shape of dataset `path` in Fortran order (size 0 for a scalar).
+   subroutine file_shape(self, path, dims, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, allocatable, intent(out) :: dims(:)      !! its shape
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: dset
+      integer(hsize_t), allocatable :: hdims(:)
+      call open_read(self, path, -1, want_any, dset, hdims, error)
+      call close_id(dset)
+      if (.not. allocated(error)) dims = int(hdims)
+   end subroutine file_shape
+
+   !> Number of filters (compression, shuffle, checksum) in the pipeline of dataset
+   !> `path` (0 for a contiguous or unfiltered chunked dataset).
+   subroutine file_filters(self, path, n, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, intent(out) :: n                         !! its filters
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: dset, dcpl
+      integer(hsize_t), allocatable :: hdims(:)
+      integer :: ierr
+      n = 0
+      call open_read(self, path, -1, want_any, dset, hdims, error)
+      if (allocated(error)) return
+      call h5dget_create_plist_f(dset, dcpl, ierr)
+      if (ierr == 0) then
+         call h5pget_nfilters_f(dcpl, n, ierr)
+         call h5pclose_f(dcpl, ierr)
+      end if
+      call close_id(dset)
+   end subroutine file_filters
+
+   !> True if `filename` exists and is an HDF5 file.
+   logical function is_hdf5(filename)
+      character(len=*), intent(in) :: filename  !! path on disk
+      type(error_t), allocatable :: error
+      logical :: on_disk, status
+      integer :: ierr
+      is_hdf5 = .false.
+      inquire (file=filename, exist=on_disk)
+      if (.not. on_disk) return
+      call init_library(error)
+      if (allocated(error)) return
+      call h5fis_hdf5_f(trim(filename), status, ierr)
+      is_hdf5 = ierr == 0 .and. status
+   end function is_hdf5
+
+   ! ------------------------------------------------------------- writing ---
+
+   !> Write a real(dp) scalar dataset.
+   subroutine write_r0(self, path, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      real(dp), intent(in), target :: value             !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_r0
+
+   !> Write a real(dp) 1-D dataset.
+   subroutine write_r1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      real(dp), intent(in), target, contiguous :: value(:)   !! values to store
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_r1
+
+   !> Write a real(dp) 2-D dataset.
+   subroutine write_r2(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                   !! the file object
+      character(len=*), intent(in) :: path                     !! dataset path
+      real(dp), intent(in), target, contiguous :: value(:, :)  !! values to store
+      type(error_t), allocatable, intent(out) :: error         !! set on failure
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_r2
+
+   !> Write a real(dp) 3-D dataset.
+   subroutine write_r3(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      real(dp), intent(in), target, contiguous :: value(:, :, :)  !! values to store
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_r3
+
+   !> Write a default-integer scalar dataset.
+   subroutine write_i0(self, path, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, intent(in), target :: value              !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_i0
+
+   !> Write a default-integer 1-D dataset.
+   subroutine write_i1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                !! the file object
+      character(len=*), intent(in) :: path                  !! dataset path
+      integer, intent(in), target, contiguous :: value(:)   !! values to store
+      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_i1
+
+   !> Write a default-integer 2-D dataset.
+   subroutine write_i2(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! dataset path
+      integer, intent(in), target, contiguous :: value(:, :)  !! values to store
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_i2
+
+   !> Write an integer(i8) 1-D dataset (stored as 64-bit integers).
+   subroutine write_i64_1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                     !! the file object
+      character(len=*), intent(in) :: path                       !! dataset path
+      integer(i8), intent(in), target, contiguous :: value(:)    !! values to store
+      type(error_t), allocatable, intent(out) :: error           !! set on failure
+      call write_raw(self, path, i64_type(), int(shape(value), hsize_t), c_loc(value), error)
+   end subroutine write_i64_1
+
+   !> Write a scalar fixed-length string dataset (stored exactly, trailing blanks kept).
+   subroutine write_str(self, path, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      character(len=*), intent(in) :: value             !! text to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(kind=c_char), allocatable, target :: buf(:)
+      integer(hid_t) :: stype
+      call require_open(self, path, .true., error)
+      if (allocated(error)) return
+      call string_buffer(value, buf, stype)
+      call write_raw(self, path, stype, [integer(hsize_t) ::], c_loc(buf), error)
+      call close_id(stype)
+   end subroutine write_str
+
+   !> Create a chunked dataset of shape `dims` for partial writes with `write_slab`,
+   !> compressed with shuffle + deflate level 4 when the filters are available.
+   !> An existing dataset at `path` is replaced. Unwritten elements read as `fill`
+   !> (default 0; rounded with `nint` for 'int32'). With `extendible`, the
+   !> last dimension is unlimited and `write_slab` grows it as needed. With
+   !> `compress` false no filter is set; with `alloc_early` every chunk is allocated
+   !> (and filled) now, so that later writes change no metadata (crash-safe updates).
+   !> With `checksum`, every chunk carries a Fletcher-32 checksum (filter applied
+   !> last, size fixed: a rewrite stays in place), and reading a damaged chunk fails.
+   subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, extendible, &
+                                  compress, alloc_early, checksum)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      character(len=*), intent(in) :: dtype             !! 'real64' or 'int32'
+      integer, intent(in) :: dims(:)                    !! full shape, Fortran order
+      integer, intent(in) :: chunk(:)                   !! chunk shape, same rank
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      real(dp), intent(in), optional :: fill            !! value of unwritten elements
+      logical, intent(in), optional :: extendible       !! last dimension unlimited
+      logical, intent(in), optional :: compress         !! shuffle + deflate (default true)
+      logical, intent(in), optional :: alloc_early      !! allocate all chunks at creation
+      logical, intent(in), optional :: checksum         !! Fletcher-32 checksum per chunk
+      integer(hid_t) :: type_id, dcpl, space, lcpl, dset
+      integer(hsize_t) :: maxdims(size(dims)), hchunk(size(dims))
+      integer :: rank, hdferr, ierr
+      logical :: grows, packed, early, summed
+
+      call open_for_write(self, path, dset, error)
+      if (allocated(error)) return
+      call close_id(dset)
+      rank = size(dims)
+      grows = .false.
+      if (present(extendible)) grows = extendible
+      packed = .true.
+      if (present(compress)) packed = compress
+      early = .false.
+      if (present(alloc_early)) early = alloc_early
+      summed = .false.
+      if (present(checksum)) summed = checksum
+      if (dtype /= 'real64' .and. dtype /= 'int32') then
+         call fail(error, 'create', self, quoted(path), "dtype is not 'real64' or 'int32'")
+      else if (rank < 1 .or. size(chunk) /= rank .or. any(dims < 0) .or. any(chunk < 1)) then
+         call fail(error, 'create', self, quoted(path), 'bad dims or chunk')
+      else if (present(fill) .and. dtype == 'int32') then
+         if (.not. ieee_is_finite(fill)) then
+            call fail(error, 'create', self, quoted(path), 'int32 fill out of range')
+         else if (abs(fill) > real(huge(0_int32), dp)) then
+            call fail(error, 'create', self, quoted(path), 'int32 fill out of range')
+         end if
+      end if
+      if (allocated(error)) return
+      type_id = merge(real_type(), h5kind_to_type(int32, H5_INTEGER_KIND), dtype == 'real64')
+      maxdims = int(dims, hsize_t)
+      hchunk = int(min(chunk, max(dims, 1)), hsize_t)
+      if (grows) then
+         maxdims(rank) = H5S_UNLIMITED_F
+         hchunk(rank) = int(chunk(rank), hsize_t)
+      end if
+      if (self%exists(path)) call h5ldelete_f(self%id, trim(path), ierr)   ! a dataset, see above
+
+      call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, ierr)
+      call h5pset_chunk_f(dcpl, rank, hchunk, ierr)
+      if (packed) then
+         if (filter_available(H5Z_FILTER_SHUFFLE_F)) call h5pset_shuffle_f(dcpl, ierr)
+         if (filter_available(H5Z_FILTER_DEFLATE_F)) call h5pset_deflate_f(dcpl, 4, ierr)
+      end if
+      ! last in the pipeline: the checksum covers the bytes as stored
+      if (summed .and. filter_available(H5Z_FILTER_FLETCHER32_F)) &
+         call h5pset_fletcher32_f(dcpl, ierr)
+      if (early) then
+         call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, ierr)
+         call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, ierr)
+      end if
+      if (present(fill)) then
+         if (dtype == 'int32') then
+            call h5pset_fill_value_f(dcpl, type_id, nint(fill), ierr)
+         else
+            call h5pset_fill_value_f(dcpl, type_id, fill, ierr)
+         end if
+      end if
+      call h5screate_simple_f(rank, int(dims, hsize_t), space, ierr, maxdims)
+      lcpl = link_plist()
+      call h5dcreate_f(self%id, trim(path), type_id, space, dset, hdferr, dcpl_id=dcpl, &
+         lcpl_id=lcpl)
+      call close_id(dset)
+      call close_id(lcpl)
+      call close_id(space)
+      call close_id(dcpl)
+      if (hdferr /= 0) call fail(error, 'create', self, quoted(path), 'HDF5 refused it')
+   end subroutine file_create_dataset
+
+   !> Write a real(dp) 1-D block into dataset `path` from index `start`.
+   subroutine slab_r1(self, path, array, start, error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      real(dp), intent(in), target, contiguous :: array(:)   !! block to write
+      integer, intent(in) :: start(:)                        !! 1-based first index
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
+         c_loc(array), error)
+   end subroutine slab_r1
+
+   !> Write a real(dp) 2-D block into dataset `path` from index `start`.
+   subroutine slab_r2(self, path, array, start, error)
+      class(h5file_t), intent(inout) :: self                   !! the file object
+      character(len=*), intent(in) :: path                     !! dataset path
+      real(dp), intent(in), target, contiguous :: array(:, :)  !! block to write
+      integer, intent(in) :: start(:)                          !! 1-based first index
+      type(error_t), allocatable, intent(out) :: error         !! set on failure
+      call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
+         c_loc(array), error)
+   end subroutine slab_r2
+
+   !> Write a default-integer 1-D block into dataset `path` from index `start`.
+   subroutine slab_i1(self, path, array, start, error)
+      class(h5file_t), intent(inout) :: self                !! the file object
+      character(len=*), intent(in) :: path                  !! dataset path
+      integer, intent(in), target, contiguous :: array(:)   !! block to write
+      integer, intent(in) :: start(:)                       !! 1-based first index
+      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
+         c_loc(array), error)
+   end subroutine slab_i1
+
+   !> Write a default-integer 2-D block into dataset `path` from index `start`.
+   subroutine slab_i2(self, path, array, start, error)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! dataset path
+      integer, intent(in), target, contiguous :: array(:, :)  !! block to write
+      integer, intent(in) :: start(:)                         !! 1-based first index
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
+         c_loc(array), error)
+   end subroutine slab_i2
+
+   !> Write a real(dp) scalar attribute on the group or dataset `path`.
+   subroutine writeattr_r0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      real(dp), intent(in), target :: value             !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
+         c_loc(value), error)
+   end subroutine writeattr_r0
+
+   !> Write a real(dp) 1-D attribute on the group or dataset `path`.
+   subroutine writeattr_r1(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self                !! the file object
+      character(len=*), intent(in) :: path                  !! object path, '/' for the root
+      character(len=*), intent(in) :: name                  !! attribute name
+      real(dp), intent(in), target, contiguous :: value(:)  !! values to store
+      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
+         c_loc(value), error)
+   end subroutine writeattr_r1
+
+   !> Write a default-integer scalar attribute on the group or dataset `path`.
+   subroutine writeattr_i0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      integer, intent(in), target :: value              !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call writeattr_raw(self, path, name, int_type(), int(shape(value), hsize_t), &
+         c_loc(value), error)
+   end subroutine writeattr_i0
+
+   !> Write a 64-bit integer scalar attribute (counts that may pass 2^31 - 1).
+   subroutine writeattr_i64_0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      integer(i8), intent(in), target :: value          !! value to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call writeattr_raw(self, path, name, i64_type(), int(shape(value), hsize_t), &
+         c_loc(value), error)
+   end subroutine writeattr_i64_0
+
+   !> Write a fixed-length string attribute on the group or dataset `path`.
+   subroutine writeattr_str(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      character(len=*), intent(in) :: value             !! text to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(kind=c_char), allocatable, target :: buf(:)
+      integer(hid_t) :: stype
+      call require_open(self, path, .true., error)
+      if (allocated(error)) return
+      call string_buffer(value, buf, stype)
+      call writeattr_raw(self, path, name, stype, [integer(hsize_t) ::], c_loc(buf), error)
+      call close_id(stype)
+   end subroutine writeattr_str
+
+   ! ------------------------------------------------------------- reading ---
+
+   !> Read a scalar (or one-element) numeric dataset as real(dp).
+   subroutine read_r0(self, path, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      real(dp), intent(out), target :: value            !! value read
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call read_one(self, path, want_real, real_type(), c_loc(value), error)
+   end subroutine read_r0
+
+   !> Read a 1-D numeric dataset as real(dp); `value` takes the dataset's shape.
+   subroutine read_r1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      real(dp), allocatable, intent(out), target :: value(:)      !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 1, want_real, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1)))
+      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+   end subroutine read_r1
+
+   !> Read a 2-D numeric dataset as real(dp); `value` takes the dataset's shape.
+   subroutine read_r2(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      real(dp), allocatable, intent(out), target :: value(:, :)   !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 2, want_real, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1), dims(2)))
+      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+   end subroutine read_r2
+
+   !> Read a 3-D numeric dataset as real(dp); `value` takes the dataset's shape.
+   subroutine read_r3(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                        !! the file object
+      character(len=*), intent(in) :: path                          !! dataset path
+      real(dp), allocatable, intent(out), target :: value(:, :, :)  !! values read
+      type(error_t), allocatable, intent(out) :: error              !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 3, want_real, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1), dims(2), dims(3)))
+      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+   end subroutine read_r3
+
+   !> Read a scalar (or one-element) integer dataset.
+   subroutine read_i0(self, path, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, intent(out), target :: value             !! value read
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call read_one(self, path, want_int, int_type(), c_loc(value), error)
+   end subroutine read_i0
+
+   !> Read a 1-D integer dataset; `value` takes the dataset's shape.
+   subroutine read_i1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! dataset path
+      integer, allocatable, intent(out), target :: value(:)   !! values read
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 1, want_int, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1)))
+      call read_obj(self, quoted(path), obj, int_type(), c_loc(value), size(value), error)
+   end subroutine read_i1
+
+   !> Read a 2-D integer dataset; `value` takes the dataset's shape.
+   subroutine read_i2(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                    !! the file object
+      character(len=*), intent(in) :: path                      !! dataset path
+      integer, allocatable, intent(out), target :: value(:, :)  !! values read
+      type(error_t), allocatable, intent(out) :: error          !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 2, want_int, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1), dims(2)))
+      call read_obj(self, quoted(path), obj, int_type(), c_loc(value), size(value), error)
+   end subroutine read_i2
+
+   !> Read a 1-D integer dataset as integer(i8); `value` takes the dataset's shape.
+   subroutine read_i64_1(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer(i8), allocatable, intent(out), target :: value(:)   !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 1, want_int, obj, dims, error)
+      if (allocated(error)) return
+      allocate (value(dims(1)))
+      call read_obj(self, quoted(path), obj, i64_type(), c_loc(value), size(value), error)
+   end subroutine read_i64_1
+
+   !> Read a scalar fixed-length string dataset (up to the first null byte).
+   subroutine read_str(self, path, value, error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      character(len=:), allocatable, intent(out) :: value    !! text read
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      call read_string(self, path, value, error)
+   end subroutine read_str
+
+   !> Read a real(dp) scalar attribute of the group or dataset `path`.
+   subroutine readattr_r0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      real(dp), intent(out), target :: value            !! value read
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call read_one(self, path, want_real, real_type(), c_loc(value), error, name)
+   end subroutine readattr_r0
+
+   !> Read a real(dp) 1-D attribute of the group or dataset `path`.
+   subroutine readattr_r1(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! object path, '/' for the root
+      character(len=*), intent(in) :: name                    !! attribute name
+      real(dp), allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 1, want_real, obj, dims, error, name=name)
+      if (allocated(error)) return
+      allocate (value(dims(1)))
+      call read_obj(self, attr_label(path, name), obj, real_type(), c_loc(value), &
+         size(value), error)
+   end subroutine readattr_r1
+
+   !> Read an integer scalar attribute of the group or dataset `path`.
+   subroutine readattr_i0(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      integer, intent(out), target :: value             !! value read
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call read_one(self, path, want_int, int_type(), c_loc(value), error, name)
+   end subroutine readattr_i0
+
+   !> Read a fixed-length string attribute of the group or dataset `path`.
+   subroutine readattr_str(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self               !! the file object
+      character(len=*), intent(in) :: path                 !! object path, '/' for the root
+      character(len=*), intent(in) :: name                 !! attribute name
+      character(len=:), allocatable, intent(out) :: value  !! text read
+      type(error_t), allocatable, intent(out) :: error     !! set on failure
+      call read_string(self, path, value, error, name)
+   end subroutine readattr_str
+
+   ! ------------------------------------------------------------- helpers ---
+
+   !> Start the HDF5 library once and silence its error-stack printing.
+   subroutine init_library(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer :: hdferr, ierr
+      hdferr = 0
+      !$omp critical (dpend_hdf5_init)
+      if (.not. library_ready) then
+         call h5open_f(hdferr)
+         library_ready = hdferr == 0
+      end if
+      !$omp end critical (dpend_hdf5_init)
+      if (hdferr /= 0) then
+         call fatal_error(error, 'cannot initialise the HDF5 library')
+         return
+      end if
+      call quiet_thread()
+   end subroutine init_library
+
+   !> Turn off HDF5's error printing in the calling thread (once per thread), so
+   !> that its error stack never reaches the user: failures come back as error_t.
+   subroutine quiet_thread()
+      integer :: ierr
+      if (thread_quiet .or. .not. library_ready) return
+      call h5eset_auto_f(0, ierr)
+      thread_quiet = ierr == 0
+   end subroutine quiet_thread
+
+   !> Memory and file type of real(dp).
+   integer(hid_t) function real_type()
+      real_type = h5kind_to_type(real64, H5_REAL_KIND)
+   end function real_type
+
+   !> Memory and file type of default integers.
+   integer(hid_t) function int_type()
+      int_type = h5kind_to_type(kind(0), H5_INTEGER_KIND)
+   end function int_type
+
+   !> Memory and file type of integer(i8).
+   integer(hid_t) function i64_type()
+      i64_type = h5kind_to_type(i8, H5_INTEGER_KIND)
+   end function i64_type
+
+   !> A new fixed-length, null-padded ASCII string type of `length` bytes (>= 1).
+   integer(hid_t) function string_type(length) result(stype)
+      integer, intent(in) :: length  !! bytes per string
+      integer :: ierr
+      call h5tcopy_f(H5T_NATIVE_CHARACTER, stype, ierr)
+      call h5tset_size_f(stype, int(max(1, length), size_t), ierr)
+      call h5tset_strpad_f(stype, H5T_STR_NULLPAD_F, ierr)
+   end function string_type
+
+   !> `value` as C characters (an empty string is one null byte) and its string type.
+   subroutine string_buffer(value, buf, stype)
+      character(len=*), intent(in) :: value                       !! Fortran text
+      character(kind=c_char), allocatable, intent(out) :: buf(:)  !! bytes to store
+      integer(hid_t), intent(out) :: stype                        !! type to close after use
+      integer :: i
+      allocate (buf(max(1, len(value))))
+      buf = c_null_char
+      do i = 1, len(value)
+         buf(i) = value(i:i)
+      end do
+      stype = string_type(size(buf))
+   end subroutine string_buffer
+
+   !> A link-creation property list that creates missing intermediate groups.
+   integer(hid_t) function link_plist() result(lcpl)
+      integer :: ierr
+      call h5pcreate_f(H5P_LINK_CREATE_F, lcpl, ierr)
+      call h5pset_create_inter_group_f(lcpl, 1, ierr)
+   end function link_plist
+
+   !> True if the HDF5 filter `filter` can be used.
+   logical function filter_available(filter) result(avail)
+      integer, intent(in) :: filter  !! e.g. H5Z_FILTER_DEFLATE_F
+      integer :: ierr
+      call h5zfilter_avail_f(filter, avail, ierr)
+      if (ierr /= 0) avail = .false.
+   end function filter_available
+
+   !> Close any HDF5 identifier we own and set it to -1.
+   subroutine close_id(id)
+      integer(hid_t), intent(inout) :: id  !! dataset, space, type, attribute or plist
+      integer :: id_type, ierr
+      if (id < 0) return
+      call h5iget_type_f(id, id_type, ierr)
+      if (ierr /= 0) id_type = H5I_BADID_F
+      if (id_type == H5I_DATASET_F) call h5dclose_f(id, ierr)
+      if (id_type == H5I_DATASPACE_F) call h5sclose_f(id, ierr)
+      if (id_type == H5I_DATATYPE_F) call h5tclose_f(id, ierr)
+      if (id_type == H5I_ATTR_F) call h5aclose_f(id, ierr)
+      if (id_type == H5I_GROUP_F) call h5gclose_f(id, ierr)
+      if (id_type == H5I_GENPROP_LST_F) call h5pclose_f(id, ierr)
+      id = -1
+   end subroutine close_id
+
+   !> `text` in single quotes.
+   pure function quoted(text) result(q)
+      character(len=*), intent(in) :: text  !! e.g. a path
+      character(len=:), allocatable :: q
+      q = "'"//trim(text)//"'"
+   end function quoted
+
+   !> "attribute 'name' of 'path'", used in messages.
+   pure function attr_label(path, name) result(text)
+      character(len=*), intent(in) :: path  !! object path
+      character(len=*), intent(in) :: name  !! attribute name
+      character(len=:), allocatable :: text
+      text = "attribute '"//trim(name)//"' of '"//trim(path)//"'"
+   end function attr_label
+
+   !> `attr_label(path, name)` if `name` is present, else `quoted(path)`.
+   pure function label(path, name) result(text)
+      character(len=*), intent(in) :: path            !! object path
+      character(len=*), intent(in), optional :: name  !! attribute name
+      character(len=:), allocatable :: text
+      if (present(name)) then
+         text = attr_label(path, name)
+      else
+         text = quoted(path)
+      end if
+   end function label
+
+   !> Set `error` to "cannot <verb> <what> in '<file>': <why>".
+   subroutine fail(error, verb, self, what, why)
+      type(error_t), allocatable, intent(out) :: error  !! the error to create
+      character(len=*), intent(in) :: verb              !! e.g. 'read'
+      class(h5file_t), intent(in) :: self               !! the file object
+      character(len=*), intent(in) :: what              !! quoted path or attr_label
+      character(len=*), intent(in) :: why               !! the reason
+      if (allocated(self%filename)) then
+         if (verb == 'write' .or. verb == 'create') then
+            call fatal_error(error, 'cannot '//verb//' '//what//' in '//quoted(self%filename) &
+               //': '//io_failure_reason(self%filename, why))
+         else
+            call fatal_error(error, 'cannot '//verb//' '//what//' in '//quoted(self%filename) &
+               //': '//why)
+         end if
+      else
+         call fatal_error(error, 'cannot '//verb//' '//what//': '//why)
+      end if
+   end subroutine fail
+
+   !> Fail unless a file is open (and writable when `write` is true).
+   subroutine require_open(self, path, write, error)
+      class(h5file_t), intent(in) :: self               !! the file object
+      character(len=*), intent(in) :: path              !! path, for the message
+      logical, intent(in) :: write                      !! writing is intended
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      if (self%is_open()) call quiet_thread()
+      if (.not. self%is_open()) then
+         call fatal_error(error, 'cannot access '//quoted(path)//': no HDF5 file is open')
+      else if (write .and. self%readonly) then
+         call fail(error, 'write', self, quoted(path), 'file is open read-only')
+      end if
+   end subroutine require_open
+
+   !> Shape (Fortran order) and optionally maximum shape of dataspace `space`.
+   subroutine space_dims(space, dims, maxdims)
+      integer(hid_t), intent(in) :: space                                !! dataspace id
+      integer(hsize_t), allocatable, intent(out) :: dims(:)              !! shape
+      integer(hsize_t), allocatable, intent(out), optional :: maxdims(:) !! maximum shape
+      integer(hsize_t), allocatable :: maxd(:)
+      integer :: rank, ierr
+      call h5sget_simple_extent_ndims_f(space, rank, ierr)
+      allocate (dims(max(rank, 0)), maxd(max(rank, 0)))
+      if (rank > 0) call h5sget_simple_extent_dims_f(space, dims, maxd, ierr)
+      if (present(maxdims)) maxdims = maxd
+   end subroutine space_dims
+
+   !> Open dataset `path` for writing, or give `dset` = -1 if there is none.
+   subroutine open_for_write(self, path, dset, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer(hid_t), intent(out) :: dset               !! dataset id or -1
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer :: hdferr
+      dset = -1
+      call require_open(self, path, .true., error)
+      if (allocated(error) .or. .not. self%exists(path)) return
+      call h5dopen_f(self%id, trim(path), dset, hdferr)
+      if (hdferr /= 0) then
+         dset = -1
+         call fail(error, 'write', self, quoted(path), 'it exists and is not a dataset')
+      end if
+   end subroutine open_for_write
+
+   !> Write a whole dataset from `buf`, reusing an existing dataset of equal type
+   !> and shape (so its attributes and chunking stay), and replacing any other.
+   subroutine write_raw(self, path, mem_type, dims, buf, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`, also stored
+      integer(hsize_t), intent(in) :: dims(:)           !! shape, size 0 for a scalar
+      type(c_ptr), intent(in) :: buf                    !! address of the data
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: dset, space, dtype, lcpl
+      integer(hsize_t), allocatable :: old_dims(:)
+      integer :: hdferr, ierr
+      logical :: same
+      call open_for_write(self, path, dset, error)
+      if (allocated(error)) return
+      if (dset >= 0) then
+         call h5dget_space_f(dset, space, ierr)
+         call space_dims(space, old_dims)
+         call close_id(space)
+         call h5dget_type_f(dset, dtype, ierr)
+         call h5tequal_f(dtype, mem_type, same, ierr)   ! also tells vlen from fixed strings
+         call close_id(dtype)
+         same = same .and. ierr == 0 .and. size(old_dims) == size(dims)
+         if (same) same = all(old_dims == dims)
+         if (.not. same) then
+            call close_id(dset)
+            call h5ldelete_f(self%id, trim(path), ierr)
+         end if
+      end if
+      if (dset < 0) then
+         if (size(dims) == 0) then
+            call h5screate_f(H5S_SCALAR_F, space, ierr)
+         else
+            call h5screate_simple_f(size(dims), dims, space, ierr)
+         end if
+         lcpl = link_plist()
+         call h5dcreate_f(self%id, trim(path), mem_type, space, dset, hdferr, lcpl_id=lcpl)
+         call close_id(lcpl)
+         call close_id(space)
+         if (hdferr /= 0) then
+            call fail(error, 'create', self, quoted(path), 'bad path or a name clash')
+            return
+         end if
+      end if
+      hdferr = 0
+      if (product(dims) > 0) call h5dwrite_f(dset, mem_type, buf, hdferr)
+      call close_id(dset)
+      if (hdferr /= 0) call fail(error, 'write', self, quoted(path), 'HDF5 write failed')
+   end subroutine write_raw
+
+   !> Write `buf` (shape `mem_dims`) into dataset `path` from 1-based `start`. Missing
+   !> trailing dimensions of `mem_dims` count as 1, so a column goes in as 1-D.
+   subroutine slab_raw(self, path, mem_type, mem_dims, start, buf, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      integer(hsize_t), intent(in) :: mem_dims(:)       !! shape of the block
+      integer, intent(in) :: start(:)                   !! 1-based first index
+      type(c_ptr), intent(in) :: buf                    !! address of the block
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: dset, fspace, mspace
+      integer(hsize_t), allocatable :: dims(:), maxdims(:), cnt(:), last(:)
+      integer :: rank, hdferr, ierr
+      character(len=:), allocatable :: why
+      call open_for_write(self, path, dset, error)
+      if (allocated(error)) return
+      if (dset < 0) then
+         call fail(error, 'write a slab of', self, quoted(path), 'no such dataset')
+         return
+      end if
+      call h5dget_space_f(dset, fspace, ierr)
+      call space_dims(fspace, dims, maxdims)
+      rank = size(dims)
+      allocate (cnt(rank), last(rank))
+      hdferr = 0
+      if (size(start) /= rank .or. size(mem_dims) > rank) then
+         why = 'start or block rank does not match the dataset'
+         hdferr = -1
+      else
+         cnt = 1
+         cnt(1:size(mem_dims)) = mem_dims
+         last = int(start, hsize_t) - 1 + cnt
+         if (any(start < 1) .or. any(last > maxdims .and. maxdims /= H5S_UNLIMITED_F)) then
+            why = 'block lies outside the dataset'
+            hdferr = -1
+         else if (any(last > dims)) then
+            why = 'cannot extend the dataset'
+            call close_id(fspace)
+            call h5dset_extent_f(dset, max(dims, last), hdferr)
+            call h5dget_space_f(dset, fspace, ierr)
+         end if
+      end if
+      if (hdferr == 0) then
+         if (product(cnt) > 0) then
+            why = 'HDF5 write failed'
+            call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, int(start - 1, hsize_t), &
+               cnt, hdferr)
+            call h5screate_simple_f(size(mem_dims), mem_dims, mspace, ierr)
+            if (hdferr == 0) call h5dwrite_f(dset, mem_type, buf, hdferr, &
+               mem_space_id=mspace, file_space_id=fspace)
+            call close_id(mspace)
+         end if
+      end if
+      call close_id(fspace)
+      call close_id(dset)
+      if (hdferr /= 0) call fail(error, 'write a slab of', self, quoted(path), why)
+   end subroutine slab_raw
+
+   !> Write attribute `name` on object `path`, replacing an existing one.
+   subroutine writeattr_raw(self, path, name, mem_type, dims, buf, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path, '/' for the root
+      character(len=*), intent(in) :: name              !! attribute name
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`, also stored
+      integer(hsize_t), intent(in) :: dims(:)           !! shape, size 0 for a scalar
+      type(c_ptr), intent(in) :: buf                    !! address of the data
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: obj, space, attr
+      integer :: hdferr, ierr
+      logical :: found
+      call require_open(self, path, .true., error)
+      if (allocated(error)) return
+      hdferr = -1
+      if (self%exists(path)) call h5oopen_f(self%id, trim(path), obj, hdferr)
+      if (hdferr /= 0) then
+         call fail(error, 'write', self, attr_label(path, name), 'no such group or dataset')
+         return
+      end if
+      call h5aexists_f(obj, trim(name), found, ierr)
+      if (ierr == 0 .and. found) call h5adelete_f(obj, trim(name), ierr)
+      if (size(dims) == 0) then
+         call h5screate_f(H5S_SCALAR_F, space, ierr)
+      else
+         call h5screate_simple_f(size(dims), dims, space, ierr)
+      end if
+      call h5acreate_f(obj, trim(name), mem_type, space, attr, hdferr)
+      if (hdferr == 0 .and. product(dims) > 0) call h5awrite_f(attr, mem_type, buf, hdferr)
+      call close_id(attr)
+      call close_id(space)
+      call h5oclose_f(obj, ierr)
+      if (hdferr /= 0) call fail(error, 'write', self, attr_label(path, name), &
+         'HDF5 write failed')
+   end subroutine writeattr_raw
+
+   !> Open dataset `path`, or with `name` its attribute, for reading; check that it
+   !> holds what `want` asks for, with rank `rank` (0: one element, -1: any).
+   subroutine open_read(self, path, rank, want, obj, dims, error, name, length)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset or object path
+      integer, intent(in) :: rank                            !! expected rank
+      integer, intent(in) :: want                            !! want_any/_real/_int/_str
+      integer(hid_t), intent(out) :: obj                     !! open dataset or attribute
+      integer(hsize_t), allocatable, intent(out) :: dims(:)  !! its shape
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      character(len=*), intent(in), optional :: name         !! attribute name
+      integer, intent(out), optional :: length               !! string size in bytes
+      character(len=*), parameter :: wanted(0:3) = [character(len=21) :: '', 'numbers', &
+         'integers', 'a fixed-length string']
+      integer(hid_t) :: dtype, space
+      integer(size_t) :: tsize
+      integer :: tclass, ierr
+      logical :: ok, vlen
+      character(len=:), allocatable :: what
+      character(len=40) :: msg
+      obj = -1
+      what = label(path, name)
+      call require_open(self, path, .false., error)
+      if (allocated(error)) return
+      ierr = -1
+      if (present(name)) then
+         if (self%attr_exists(path, name)) &
+            call h5aopen_by_name_f(self%id, trim(path), trim(name), obj, ierr)
+         if (ierr == 0) call h5aget_type_f(obj, dtype, ierr)
+         if (ierr == 0) call h5aget_space_f(obj, space, ierr)
+      else
+         if (self%exists(path)) call h5dopen_f(self%id, trim(path), obj, ierr)
+         if (ierr == 0) call h5dget_type_f(obj, dtype, ierr)
+         if (ierr == 0) call h5dget_space_f(obj, space, ierr)
+      end if
+      if (ierr /= 0) then
+         call close_id(obj)
+         if (present(name)) then
+            call fail(error, 'read', self, what, 'no such attribute')
+         else if (self%exists(path)) then
+            call fail(error, 'read', self, what, 'not a dataset')
+         else
+            call fail(error, 'read', self, what, 'no such dataset')
+         end if
+         return
+      end if
+      call space_dims(space, dims)
+      call close_id(space)
+      call h5tget_class_f(dtype, tclass, ierr)
+      call h5tget_size_f(dtype, tsize, ierr)
+      vlen = .false.
+      if (tclass == H5T_STRING_F) call h5tis_variable_str_f(dtype, vlen, ierr)
+      call close_id(dtype)
+      if (present(length)) length = int(tsize)
+      select case (want)
+      case (want_real)
+         ok = tclass == H5T_FLOAT_F .or. tclass == H5T_INTEGER_F
+      case (want_int)
+         ok = tclass == H5T_INTEGER_F
+      case (want_str)
+         ok = tclass == H5T_STRING_F .and. .not. vlen
+      case default
+         ok = .true.
+      end select
+      if (.not. ok) then
+         call fail(error, 'read', self, what, 'it does not hold '//trim(wanted(want)))
+      else if (rank == 0 .and. product(dims) /= 1) then
+         call fail(error, 'read', self, what, 'it is not a scalar')
+      else if (rank > 0 .and. size(dims) /= rank) then
+         write (msg, '("it has rank ", i0, ", expected ", i0)') size(dims), rank
+         call fail(error, 'read', self, what, trim(msg))
+      end if
+      if (allocated(error)) call close_id(obj)
+   end subroutine open_read
+
+   !> Read all of the open dataset or attribute `obj` into `buf`, then close it.
+   subroutine read_obj(self, what, obj, mem_type, buf, n, error)
+      class(h5file_t), intent(in) :: self               !! the file object
+      character(len=*), intent(in) :: what              !! quoted path or attr_label
+      integer(hid_t), intent(inout) :: obj              !! open dataset or attribute
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      type(c_ptr), intent(in) :: buf                    !! where to put the data
+      integer, intent(in) :: n                          !! number of elements
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(c_ptr) :: ptr  ! the HDF5 interfaces take buf as intent(inout)
+      integer :: id_type, hdferr
+      hdferr = 0
+      ptr = buf
+      if (n > 0) then
+         call h5iget_type_f(obj, id_type, hdferr)
+         if (id_type == H5I_ATTR_F) then
+            call h5aread_f(obj, mem_type, ptr, hdferr)
+         else
+            call h5dread_f(obj, mem_type, ptr, hdferr)
+         end if
+      end if
+      call close_id(obj)
+      if (hdferr /= 0) call fail(error, 'read', self, what, 'HDF5 read failed')
+   end subroutine read_obj
+
+   !> Read a one-element dataset `path`, or its attribute `name`, into `buf`.
+   subroutine read_one(self, path, want, mem_type, buf, error, name)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset or object path
+      integer, intent(in) :: want                       !! want_real or want_int
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      type(c_ptr), intent(in) :: buf                    !! where to put the value
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=*), intent(in), optional :: name    !! attribute name
+      integer(hid_t) :: obj
+      integer(hsize_t), allocatable :: dims(:)
+      call open_read(self, path, 0, want, obj, dims, error, name)
+      if (allocated(error)) return
+      call read_obj(self, label(path, name), obj, mem_type, buf, 1, error)
+   end subroutine read_one
+
+   !> Read a fixed-length string dataset `path`, or its attribute `name`, up to the
+   !> first null byte.
+   subroutine read_string(self, path, value, error, name)
+      class(h5file_t), intent(inout) :: self               !! the file object
+      character(len=*), intent(in) :: path                 !! dataset or object path
+      character(len=:), allocatable, intent(out) :: value  !! text read
+      type(error_t), allocatable, intent(out) :: error     !! set on failure
+      character(len=*), intent(in), optional :: name       !! attribute name
+      character(kind=c_char), allocatable, target :: buf(:)
+      integer(hid_t) :: obj, stype
+      integer(hsize_t), allocatable :: dims(:)
+      integer :: i, n, length
+      call open_read(self, path, 0, want_str, obj, dims, error, name, length)
+      if (allocated(error)) return
+      allocate (buf(max(1, length)))
+      buf = c_null_char
+      stype = string_type(size(buf))
+      call read_obj(self, label(path, name), obj, stype, c_loc(buf), 1, error)
+      call close_id(stype)
+      if (allocated(error)) return
+      n = size(buf)
+      do i = 1, size(buf)
+         if (buf(i) == c_null_char) then
+            n = i - 1
+            exit
+         end if
+      end do
+      allocate (character(len=n) :: value)
+      do i = 1, n
+         value(i:i) = buf(i)
+      end do
+   end subroutine read_string
+end module dpend_hdf5

@@ -1,0 +1,196 @@
+!> The one writer: every output file of every command (.h5, .md, figures) is made
+!> through an `output_t`.
+!>
+!> `begin` checks the path before any computation and creates a temporary file
+!> with a unique name in the target directory (the real writability check; no
+!> fixed-name probe). The command writes the temporary file (`output%temp`) and
+!> closes it, checking the close; `commit` then flushes it to the device and
+!> moves it into place in one step:
+!> - without `force`, the move fails if the target exists by then (RENAME_NOREPLACE,
+!>   or a hard link), so two runs racing for one name never both succeed;
+!> - with `force`, it replaces only a regular file (never a directory, device,
+!>   FIFO or symbolic link).
+!> The old file is never opened, truncated or changed: a process holding it open
+!> keeps reading the old contents. A failure at any point removes the temporary
+!> file (`discard`); a killed process leaves at most a `.NAME.tmp-XXXXXX` file
+!> beside the target, never a damaged file at the target's name.
+module dpend_output
+   use dpend_error, only: error_t, fatal_error
+   use dpend_os, only: path_kind, path_missing, path_file, path_directory, path_link, &
+                           directory_of, base_name, make_temp_file, sync_path, &
+                           move_noreplace, move_replace, remove_file, errno_text, &
+                           errno_exists
+   implicit none
+   private
+   public :: output_t, check_output_path
+
+   !> One output file on its way into place.
+   type :: output_t
+      character(len=:), allocatable :: target  !! the final path
+      character(len=:), allocatable :: temp    !! the temporary file to write
+      character(len=:), allocatable :: option  !! the option that named it (for messages)
+      logical :: force = .false.               !! replace an existing regular file
+      logical :: active = .false.              !! a temporary file exists
+   contains
+      procedure :: begin => output_begin
+      procedure :: commit => output_commit
+      procedure :: discard => output_discard
+      procedure :: explain => output_explain
+   end type output_t
+
+   integer, parameter :: max_name = 240  !! longest base name kept in a temporary name
+
+contains
+
+   !> Check `target` without creating anything: not empty, not a directory or a
+   !> special file, not existing unless `force`, in an existing directory.
+   subroutine check_output_path(target, force, error, option)
+      character(len=*), intent(in) :: target            !! final path
+      logical, intent(in) :: force                      !! replacing allowed
+      type(error_t), allocatable, intent(out) :: error  !! why it cannot be written
+      character(len=*), intent(in), optional :: option  !! e.g. '--output'
+      character(len=:), allocatable :: opt, dir
+      integer :: kind
+      opt = '--output'
+      if (present(option)) opt = option
+      if (len_trim(target) == 0) then
+         call fatal_error(error, 'invalid '//opt//': empty file name')
+         return
+      end if
+      if (target(len(target):len(target)) == '/') then
+         call fatal_error(error, 'invalid '//opt//": '"//target//"' names a directory")
+         return
+      end if
+      kind = path_kind(target)
+      select case (kind)
+      case (path_missing)
+      case (path_file)
+         if (.not. force) then
+            call fatal_error(error, 'invalid '//opt//": '"//target// &
+                             "' exists (use --force to overwrite)")
+            return
+         end if
+      case (path_directory)
+         call fatal_error(error, 'invalid '//opt//": '"//target//"' is a directory")
+         return
+      case (path_link)
+         call fatal_error(error, 'invalid '//opt//": '"//target// &
+                          "' is a symbolic link (dpend replaces only regular files)")
+         return
+      case default
+         if (kind < 0) then
+            call fatal_error(error, 'invalid '//opt//": cannot examine '"//target//"': "// &
+                             errno_text(-kind))
+         else
+            call fatal_error(error, 'invalid '//opt//": '"//target// &
+                             "' is not a regular file (a device, FIFO or socket; "// &
+                             'dpend replaces only regular files)')
+         end if
+         return
+      end select
+      dir = directory_of(target)
+      if (path_kind(dir) /= path_directory .and. path_kind(dir//'/.') /= path_directory) then
+         call fatal_error(error, 'invalid '//opt//": directory '"//dir//"' does not exist")
+      end if
+   end subroutine check_output_path
+
+   !> Check `target` (see `check_output_path`) and create the temporary file that
+   !> the command will write. Call before any computation.
+   subroutine output_begin(self, target, force, error, option)
+      class(output_t), intent(inout) :: self            !! the output
+      character(len=*), intent(in) :: target            !! final path
+      logical, intent(in) :: force                      !! replace an existing file
+      type(error_t), allocatable, intent(out) :: error  !! refused path (exit status 2)
+      character(len=*), intent(in), optional :: option  !! e.g. '--output'
+      character(len=:), allocatable :: dir, name, opt
+      integer :: err
+      call self%discard()
+      opt = '--output'
+      if (present(option)) opt = option
+      call check_output_path(target, force, error, opt)
+      if (allocated(error)) return
+      dir = directory_of(target)
+      name = base_name(target)
+      if (len(name) > max_name) name = name(:max_name)
+      err = make_temp_file(dir//'/.'//name//'.tmp-', self%temp)
+      if (err /= 0) then
+         call fatal_error(error, 'invalid '//opt//": directory '"//dir// &
+                          "' is not writable ("//errno_text(err)//')')
+         return
+      end if
+      self%target = target
+      self%force = force
+      self%option = opt
+      self%active = .true.
+   end subroutine output_begin
+
+   !> Flush the (closed) temporary file to the device and move it into place.
+   !> On failure the temporary file is removed and the target is as it was.
+   subroutine output_commit(self, error)
+      class(output_t), intent(inout) :: self            !! the output
+      type(error_t), allocatable, intent(out) :: error  !! why it was not installed
+      integer :: err
+      if (.not. self%active) then
+         call fatal_error(error, 'internal error: commit without begin')
+         return
+      end if
+      err = sync_path(self%temp)
+      if (err /= 0) then
+         call fatal_error(error, "cannot write '"//self%target//"': "//errno_text(err))
+         call self%discard()
+         return
+      end if
+      if (self%force) then
+         select case (path_kind(self%target))
+         case (path_missing, path_file)
+            err = move_replace(self%temp, self%target)
+         case default
+            call fatal_error(error, "cannot write '"//self%target//"': it is no longer a "// &
+                             'regular file (dpend replaces only regular files)')
+            call self%discard()
+            return
+         end select
+      else
+         err = move_noreplace(self%temp, self%target)
+         if (err == errno_exists) then
+            call fatal_error(error, "cannot write '"//self%target//"': it was created by "// &
+                             'another program during this run (use --force to overwrite)')
+            call self%discard()
+            return
+         end if
+      end if
+      if (err /= 0) then
+         call fatal_error(error, "cannot move the result into '"//self%target//"': "// &
+                          errno_text(err))
+         call self%discard()
+         return
+      end if
+      self%active = .false.
+      err = sync_path(directory_of(self%target))
+   end subroutine output_commit
+
+   !> Remove the temporary file, if any. The target is not touched.
+   subroutine output_discard(self)
+      class(output_t), intent(inout) :: self  !! the output
+      integer :: err
+      if (.not. self%active) return
+      err = remove_file(self%temp)
+      self%active = .false.
+   end subroutine output_discard
+
+   !> Say the target's name where a message names the temporary file (the user
+   !> knows the file by its final name).
+   subroutine output_explain(self, error)
+      class(output_t), intent(in) :: self                 !! the output
+      type(error_t), allocatable, intent(inout) :: error  !! message to rewrite, if any
+      integer :: k
+      if (.not. allocated(error) .or. .not. allocated(self%temp)) return
+      if (len(self%temp) == 0) return
+      do
+         k = index(error%message, self%temp)
+         if (k == 0) exit
+         error%message = error%message(:k - 1)//self%target// &
+                         error%message(k + len(self%temp):)
+      end do
+   end subroutine output_explain
+end module dpend_output

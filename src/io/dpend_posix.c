@@ -1,0 +1,111 @@
+/* POSIX services that Fortran cannot reach portably: the kind of a path (lstat),
+ * free disk space (statvfs), unique temporary files (mkstemp), fsync, a move that
+ * never replaces (renameat2 RENAME_NOREPLACE, else link + unlink), errno texts,
+ * and running a program with an argument vector and no shell (posix_spawnp).
+ * Called from dpend_os through bind(C) interfaces. Every function returns 0
+ * or a positive errno value; nothing here prints or exits. */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+/* 0 missing, 1 regular file, 2 directory, 3 symbolic link, 4 anything else
+ * (device, FIFO, socket); -errno when (l)stat fails otherwise. With `follow`
+ * nonzero, symbolic links are followed (stat), else not (lstat). */
+int dpend_path_kind(const char *path, int follow)
+{
+    struct stat st;
+    int r = follow ? stat(path, &st) : lstat(path, &st);
+    if (r != 0) return errno == ENOENT || errno == ENOTDIR ? 0 : -errno;
+    if (S_ISREG(st.st_mode)) return 1;
+    if (S_ISDIR(st.st_mode)) return 2;
+    if (S_ISLNK(st.st_mode)) return 3;
+    return 4;
+}
+
+/* Bytes available to an unprivileged user on the file system of `path`, or -1. */
+long long dpend_free_bytes(const char *path)
+{
+    struct statvfs s;
+    if (statvfs(path, &s) != 0) return -1;
+    return (long long)s.f_bavail * (long long)s.f_frsize;
+}
+
+/* Create a new empty file from `template` (ending in XXXXXX, replaced in place),
+ * with the permissions an ordinary new file gets (0666 less the umask). */
+int dpend_make_temp(char *template)
+{
+    int fd = mkstemp(template);
+    if (fd < 0) return errno;
+    mode_t mask = umask(0);
+    umask(mask);
+    int err = fchmod(fd, 0666 & ~mask) != 0 ? errno : 0;
+    if (close(fd) != 0 && err == 0) err = errno;
+    return err;
+}
+
+/* Flush a file's data (or a directory's entries) to the device. */
+int dpend_sync_path(const char *path)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return errno;
+    int err = fsync(fd) != 0 ? errno : 0;
+    /* directories on some file systems refuse fsync: not an error for us */
+    if (err == EINVAL || err == EROFS) err = 0;
+    if (close(fd) != 0 && err == 0) err = errno;
+    return err;
+}
+
+/* Move `from` to `to` in one step, failing with EEXIST if `to` exists. */
+int dpend_move_noreplace(const char *from, const char *to)
+{
+    if (renameat2(AT_FDCWD, from, AT_FDCWD, to, RENAME_NOREPLACE) == 0) return 0;
+    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return errno;
+    /* file systems without RENAME_NOREPLACE: a hard link is also exclusive */
+    if (link(from, to) != 0) return errno;
+    unlink(from);
+    return 0;
+}
+
+/* Move `from` to `to` in one step, replacing `to`. */
+int dpend_move_replace(const char *from, const char *to)
+{
+    return rename(from, to) == 0 ? 0 : errno;
+}
+
+int dpend_remove(const char *path)
+{
+    return unlink(path) == 0 ? 0 : errno;
+}
+
+/* The text of errno value `err` in `buf` (NUL-terminated, at most `len` bytes). */
+void dpend_error_text(int err, char *buf, int len)
+{
+    if (len <= 0) return;
+    snprintf(buf, (size_t)len, "%s", strerror(err));
+}
+
+/* Run argv[0] (searched on PATH) with the argument vector `argv` (NULL-ended),
+ * no shell, and wait for it. `status` is its exit status, or 128 + the signal
+ * that ended it. Returns 0, or the errno of a failed start. */
+int dpend_spawn_wait(char *const argv[], int *status)
+{
+    pid_t pid;
+    int err = posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ);
+    if (err != 0) return err;
+    int ws;
+    while (waitpid(pid, &ws, 0) < 0) {
+        if (errno != EINTR) return errno;
+    }
+    *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + (WIFSIGNALED(ws) ? WTERMSIG(ws) : 0);
+    return 0;
+}

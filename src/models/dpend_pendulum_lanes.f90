@@ -1,0 +1,533 @@
+!> Batch RK4 kernel: many trajectories of the double pendulum at once, for sweeps
+!> over initial conditions (docs/sweep.md).
+!>
+!> Layout: structure of arrays over `lane_width` lanes (q1(W), q2(W), w1(W), w2(W)),
+!> every loop runs over all W lanes so that gfortran vectorizes it (AVX-512 with
+!> -march=native) and calls the SIMD sin/cos of glibc's libmvec (`_ZGVeN8v_sin`,
+!> `_ZGVeN8v_cos`). sin and cos of the same angle are taken in separate loops:
+!> in one loop gfortran fuses them into `sincos`, which has no vector form.
+!>
+!> Reproducibility: every trajectory goes through exactly the same operations in
+!> the same order whatever its lane, its block or the thread: lanes never mix,
+!> every loop runs the full width (no scalar remainder), idle lanes hold a
+!> harmless dummy state. Results are therefore bitwise independent of the number
+!> of threads, the block size and the order in which lanes are refilled.
+!>
+!> The right-hand side is Lagrange's form of the equations of motion
+!> (docs/physics.md) with d = q1 - q2, cos d and sin d built from sin q and cos q:
+!>   M11 q̈1 + M12 q̈2 = -A cos q1 - k sin d q̇2²,
+!>   M12 q̈1 + M22 q̈2 = -B cos q2 + k sin d q̇1²,
+!> M11 = (m1/3 + m2) L1², M22 = m2 L2²/3, M12 = k cos d, k = m2 L1 L2/2,
+!> A = (m1/2 + m2) g L1, B = (m2/2) g L2.
+module dpend_pendulum_lanes
+   use dpend_kinds, only: dp, i8
+   use dpend_pendulum, only: pendulum_t
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   implicit none
+   private
+   public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, energy_scale
+   public :: rk4_lanes, rk4_tangent_lanes, energy_lanes
+   public :: batch_options_t, batch_result_t, integrate_batch
+   public :: stop_both, stop_either, stop_end
+   public :: st_missing, st_end, st_flipped, st_cannot_flip, st_nonfinite
+
+   integer, parameter :: lane_width = 16  !! trajectories per lane set (two AVX-512 vectors)
+
+   real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+   real(dp), parameter :: half_pi = 0.5_dp*pi, two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
+
+   ! stop rules: when a trajectory ends before t_end
+   integer, parameter :: stop_both = 1    !! when every link that can flip has flipped
+   integer, parameter :: stop_either = 2  !! at the first flip of either link
+   integer, parameter :: stop_end = 3     !! never: always run to t_end
+
+   ! status of an initial condition (0 is the fill value of the files: not computed)
+   integer, parameter :: st_missing = 0      !! not computed yet
+   integer, parameter :: st_end = 1          !! integrated to t_end
+   integer, parameter :: st_flipped = 2      !! stopped early by the stop rule after a flip
+   integer, parameter :: st_cannot_flip = 3  !! energy below the flip bound (not integrated
+                                             !! unless the Lyapunov exponent is wanted)
+   integer, parameter :: st_nonfinite = 4    !! the state became NaN or Inf
+
+   !> Constants of the right-hand side, from `pendulum_t` [SI].
+   type :: batch_coef_t
+      real(dp) :: m11 = 0  !! (m1/3 + m2) L1² [kg m²]
+      real(dp) :: m22 = 0  !! m2 L2²/3 [kg m²]
+      real(dp) :: k = 0    !! m2 L1 L2/2 [kg m²]
+      real(dp) :: ga = 0   !! A = (m1/2 + m2) g L1 [J]
+      real(dp) :: gb = 0   !! B = (m2/2) g L2 [J]
+   end type batch_coef_t
+
+   !> How to integrate a batch.
+   type :: batch_options_t
+      real(dp) :: h = 1e-3_dp          !! step [s]
+      integer(i8) :: n_steps = 0       !! steps from t = 0 to t_end (t_end = n_steps h)
+      integer :: stop_rule = stop_both !! stop_both, stop_either or stop_end
+      logical :: lyapunov = .false.    !! also the largest Lyapunov exponent (runs to t_end)
+      logical :: skip_cannot_flip = .true.  !! leave out initial conditions below the
+                                            !! flip energy bounds (always integrated with
+                                            !! the Lyapunov exponent)
+   end type batch_options_t
+
+   !> Reduced results per initial condition (arrays of size n). NaN marks "none".
+   type :: batch_result_t
+      integer :: n = 0                          !! number of initial conditions
+      real(dp), allocatable :: t_flip1(:)       !! first flip of link 1 [s], NaN: none
+      real(dp), allocatable :: t_flip2(:)       !! first flip of link 2 [s], NaN: none
+      real(dp), allocatable :: t_flip(:)        !! first flip of either link [s], NaN: none
+      real(dp), allocatable :: energy0(:)       !! initial energy E(0) [J]
+      real(dp), allocatable :: energy_error(:)  !! max |E(t) - E(0)| / energy_scale [1]
+      real(dp), allocatable :: t_stop(:)        !! time integrated to [s]
+      real(dp), allocatable :: final(:, :)      !! (4, n) state at t_stop [rad, rad/s]
+      real(dp), allocatable :: lyapunov(:)      !! largest Lyapunov exponent [1/s], NaN: off
+      integer, allocatable :: status(:)         !! st_* code
+      integer, allocatable :: steps(:)          !! RK4 steps taken (4 evaluations each)
+   end type batch_result_t
+
+contains
+
+   !> The constants of the right-hand side.
+   pure function batch_coef(par) result(c)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      type(batch_coef_t) :: c
+      c%m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      c%m22 = par%m2*par%l2**2/3.0_dp
+      c%k = 0.5_dp*par%m2*par%l1*par%l2
+      c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
+      c%gb = 0.5_dp*par%m2*par%g*par%l2
+   end function batch_coef
+
+   !> Least energy with which link 1, resp. link 2, can reach the upward vertical [J]
+   !> (docs/sweep.md): with V = A sin q1 + B sin q2 and T >= 0, link 1 at the top
+   !> needs E >= min over q2 of V(π/2, q2) = A - B, link 2 needs E >= B - A.
+   pure function flip_energy_bounds(par) result(e)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp) :: e(2)
+      type(batch_coef_t) :: c
+      c = batch_coef(par)
+      e = [c%ga - c%gb, c%gb - c%ga]
+   end function flip_energy_bounds
+
+   !> The energy scale of the relative energy error: V_max - V_min = 2 (A + B) [J].
+   pure real(dp) function energy_scale(par)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      type(batch_coef_t) :: c
+      c = batch_coef(par)
+      energy_scale = 2.0_dp*(c%ga + c%gb)
+   end function energy_scale
+
+   !> sin and cos of both angles, in separate loops (no fusion into scalar sincos).
+   pure subroutine trig_lanes(q1, q2, s1, c1, s2, c2)
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)   !! angles [rad]
+      real(dp), intent(out) :: s1(lane_width), c1(lane_width)  !! sin q1, cos q1
+      real(dp), intent(out) :: s2(lane_width), c2(lane_width)  !! sin q2, cos q2
+      integer :: i
+      do i = 1, lane_width
+         s1(i) = sin(q1(i))
+         s2(i) = sin(q2(i))
+      end do
+      do i = 1, lane_width
+         c1(i) = cos(q1(i))
+         c2(i) = cos(q2(i))
+      end do
+   end subroutine trig_lanes
+
+   !> Angular accelerations at (q, q̇) and the trigonometric values used [rad/s²].
+   pure subroutine accel_lanes(c, q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
+      type(batch_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)    !! angles [rad]
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
+      real(dp), intent(out) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
+      real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      real(dp) :: cd, sd, r1, r2, m12, rdet
+      integer :: i
+      call trig_lanes(q1, q2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         cd = c1(i)*c2(i) + s1(i)*s2(i)
+         sd = s1(i)*c2(i) - c1(i)*s2(i)
+         r1 = -c%ga*c1(i) - c%k*sd*w2(i)**2
+         r2 = -c%gb*c2(i) + c%k*sd*w1(i)**2
+         m12 = c%k*cd
+         rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
+         a1(i) = (c%m22*r1 - m12*r2)*rdet
+         a2(i) = (c%m11*r2 - m12*r1)*rdet
+      end do
+   end subroutine accel_lanes
+
+   !> Directional derivative of the accelerations at (q, q̇) along (u, v) [rad/s²],
+   !> from the values of `accel_lanes` at the same point (no further sin/cos).
+   pure subroutine tangent_accel_lanes(c, w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
+                                       b1, b2)
+      type(batch_coef_t), intent(in) :: c                      !! constants
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)   !! velocities [rad/s]
+      real(dp), intent(in) :: a1(lane_width), a2(lane_width)   !! accelerations there
+      real(dp), intent(in) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
+      real(dp), intent(in) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
+      real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
+      real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
+      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet
+      integer :: i
+      do i = 1, lane_width
+         cd = c1(i)*c2(i) + s1(i)*s2(i)
+         sd = s1(i)*c2(i) - c1(i)*s2(i)
+         ud = u1(i) - u2(i)
+         dcd = -sd*ud
+         dsd = cd*ud
+         dr1 = c%ga*s1(i)*u1(i) - c%k*(dsd*w2(i)**2 + 2.0_dp*sd*w2(i)*v2(i))
+         dr2 = c%gb*s2(i)*u2(i) + c%k*(dsd*w1(i)**2 + 2.0_dp*sd*w1(i)*v1(i))
+         m12 = c%k*cd
+         dm12 = c%k*dcd
+         ddet = -2.0_dp*m12*dm12
+         rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
+         b1(i) = (c%m22*dr1 - dm12*(a2(i)*c%m22 + a1(i)*m12) - m12*dr2 - a1(i)*ddet)*rdet
+         b2(i) = (c%m11*dr2 - dm12*(a1(i)*c%m11 + a2(i)*m12) - m12*dr1 - a2(i)*ddet)*rdet
+      end do
+   end subroutine tangent_accel_lanes
+
+   !> Energy T + V of each lane [J].
+   pure subroutine energy_lanes(c, q1, q2, w1, w2, e)
+      type(batch_coef_t), intent(in) :: c                     !! constants
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(out) :: e(lane_width)                  !! energy [J]
+      real(dp) :: s1(lane_width), c1(lane_width), s2(lane_width), c2(lane_width)
+      integer :: i
+      call trig_lanes(q1, q2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+      end do
+   end subroutine energy_lanes
+
+   !> T + V from the trigonometric values [J].
+   pure elemental real(dp) function energy_formula(c, s1, c1, s2, c2, w1, w2) result(e)
+      type(batch_coef_t), intent(in) :: c         !! constants
+      real(dp), intent(in) :: s1, c1, s2, c2      !! sin q1, cos q1, sin q2, cos q2
+      real(dp), intent(in) :: w1, w2              !! velocities [rad/s]
+      e = 0.5_dp*(c%m11*w1*w1 + 2.0_dp*c%k*(c1*c2 + s1*s2)*w1*w2 + c%m22*w2*w2) &
+          + (c%ga*s1 + c%gb*s2)
+   end function energy_formula
+
+   !> One classical RK4 step of size h on every lane; `e` is the energy of the state
+   !> before the step [J] (it costs no extra sin/cos).
+   pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
+      real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
+      real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
+      real(dp) :: hh, h6
+      integer :: i
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+         x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
+         vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
+      end do
+      call accel_lanes(c, x1, x2, vb1, vb2, kb1, kb2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         x1(i) = q1(i) + hh*vb1(i); x2(i) = q2(i) + hh*vb2(i)
+         vc1(i) = w1(i) + hh*kb1(i); vc2(i) = w2(i) + hh*kb2(i)
+      end do
+      call accel_lanes(c, x1, x2, vc1, vc2, kc1, kc2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         y1(i) = q1(i) + h*vc1(i); y2(i) = q2(i) + h*vc2(i)
+         vd1(i) = w1(i) + h*kc1(i); vd2(i) = w2(i) + h*kc2(i)
+      end do
+      call accel_lanes(c, y1, y2, vd1, vd2, kd1, kd2, s1, c1, s2, c2)
+      do i = 1, lane_width
+         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
+         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
+         w1(i) = w1(i) + h6*(ka1(i) + 2.0_dp*(kb1(i) + kc1(i)) + kd1(i))
+         w2(i) = w2(i) + h6*(ka2(i) + 2.0_dp*(kb2(i) + kc2(i)) + kd2(i))
+      end do
+   end subroutine rk4_lanes
+
+   !> One RK4 step of the state and of a tangent vector (u, v) of the variational
+   !> equations, the same RK4 applied to the extended system; `e` as in `rk4_lanes`.
+   pure subroutine rk4_tangent_lanes(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(inout) :: u1(lane_width), u2(lane_width)  !! tangent, angles
+      real(dp), intent(inout) :: v1(lane_width), v2(lane_width)  !! tangent, velocities
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
+      real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
+      real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
+      real(dp), dimension(lane_width) :: xu1, xu2, ub1, ub2, uc1, uc2, ud1, ud2
+      real(dp), dimension(lane_width) :: la1, la2, lb1, lb2, lc1, lc2, ld1, ld2
+      real(dp) :: hh, h6
+      integer :: i
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1, c1, s2, c2)
+      call tangent_accel_lanes(c, w1, w2, ka1, ka2, s1, c1, s2, c2, u1, u2, v1, v2, la1, la2)
+      do i = 1, lane_width
+         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+         x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
+         vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
+         xu1(i) = u1(i) + hh*v1(i); xu2(i) = u2(i) + hh*v2(i)
+         ub1(i) = v1(i) + hh*la1(i); ub2(i) = v2(i) + hh*la2(i)
+      end do
+      call accel_lanes(c, x1, x2, vb1, vb2, kb1, kb2, s1, c1, s2, c2)
+      call tangent_accel_lanes(c, vb1, vb2, kb1, kb2, s1, c1, s2, c2, xu1, xu2, ub1, ub2, &
+                               lb1, lb2)
+      do i = 1, lane_width
+         x1(i) = q1(i) + hh*vb1(i); x2(i) = q2(i) + hh*vb2(i)
+         vc1(i) = w1(i) + hh*kb1(i); vc2(i) = w2(i) + hh*kb2(i)
+         xu1(i) = u1(i) + hh*ub1(i); xu2(i) = u2(i) + hh*ub2(i)
+         uc1(i) = v1(i) + hh*lb1(i); uc2(i) = v2(i) + hh*lb2(i)
+      end do
+      call accel_lanes(c, x1, x2, vc1, vc2, kc1, kc2, s1, c1, s2, c2)
+      call tangent_accel_lanes(c, vc1, vc2, kc1, kc2, s1, c1, s2, c2, xu1, xu2, uc1, uc2, &
+                               lc1, lc2)
+      do i = 1, lane_width
+         y1(i) = q1(i) + h*vc1(i); y2(i) = q2(i) + h*vc2(i)
+         vd1(i) = w1(i) + h*kc1(i); vd2(i) = w2(i) + h*kc2(i)
+         xu1(i) = u1(i) + h*uc1(i); xu2(i) = u2(i) + h*uc2(i)
+         ud1(i) = v1(i) + h*lc1(i); ud2(i) = v2(i) + h*lc2(i)
+      end do
+      call accel_lanes(c, y1, y2, vd1, vd2, kd1, kd2, s1, c1, s2, c2)
+      call tangent_accel_lanes(c, vd1, vd2, kd1, kd2, s1, c1, s2, c2, xu1, xu2, ud1, ud2, &
+                               ld1, ld2)
+      do i = 1, lane_width
+         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
+         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
+         w1(i) = w1(i) + h6*(ka1(i) + 2.0_dp*(kb1(i) + kc1(i)) + kd1(i))
+         w2(i) = w2(i) + h6*(ka2(i) + 2.0_dp*(kb2(i) + kc2(i)) + kd2(i))
+         u1(i) = u1(i) + h6*(v1(i) + 2.0_dp*(ub1(i) + uc1(i)) + ud1(i))
+         u2(i) = u2(i) + h6*(v2(i) + 2.0_dp*(ub2(i) + uc2(i)) + ud2(i))
+         v1(i) = v1(i) + h6*(la1(i) + 2.0_dp*(lb1(i) + lc1(i)) + ld1(i))
+         v2(i) = v2(i) + h6*(la2(i) + 2.0_dp*(lb2(i) + lc2(i)) + ld2(i))
+      end do
+   end subroutine rk4_tangent_lanes
+
+   !> Integrate the initial conditions y0(:, j) = (q1, q2, q̇1, q̇2) with RK4 of step
+   !> opt%h up to opt%n_steps steps, lanes refilled with the next initial condition as
+   !> soon as a trajectory ends. Initial conditions whose energy is below both flip
+   !> bounds are not integrated (status st_cannot_flip) unless opt%lyapunov.
+   subroutine integrate_batch(par, opt, y0, res)
+      type(pendulum_t), intent(in) :: par             !! parameters
+      type(batch_options_t), intent(in) :: opt        !! step, length, stop rule
+      real(dp), intent(in) :: y0(:, :)                !! (4, n) initial states
+      type(batch_result_t), intent(out) :: res        !! results
+      integer, parameter :: w = lane_width
+      type(batch_coef_t) :: c
+      real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
+      real(dp), dimension(w) :: p1, p2, n1, n2, lacc
+      integer(i8) :: ks(w)
+      integer :: lane_ic(w)
+      logical :: can1(w), can2(w), ended(w)
+      logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
+      real(dp) :: bounds(2), escale, nan, m, qc, nrm, s
+      integer :: n, i, j, next, n_active, rule
+      logical :: any_ended
+
+      n = size(y0, 2)
+      c = batch_coef(par)
+      escale = energy_scale(par)
+      bounds = flip_energy_bounds(par)
+      nan = ieee_value(nan, ieee_quiet_nan)
+      rule = opt%stop_rule
+      if (opt%lyapunov) rule = stop_end
+      res%n = n
+      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%energy0(n), &
+                res%energy_error(n), res%t_stop(n), res%final(4, n), res%lyapunov(n), &
+                res%status(n), res%steps(n))
+      allocate (can_flip1(n), can_flip2(n), todo(n))
+      if (opt%n_steps < 1) then   ! t_end = 0: nothing to integrate
+         call energies(c, y0, res%energy0)
+         res%t_flip1 = nan; res%t_flip2 = nan; res%t_flip = nan; res%lyapunov = nan
+         res%energy_error = 0.0_dp; res%t_stop = 0.0_dp; res%final = y0
+         res%status = st_end; res%steps = 0
+         return
+      end if
+
+      ! initial energies, W at a time (padding lanes hold the hanging state)
+      call energies(c, y0, res%energy0)
+      do j = 1, n
+         can_flip1(j) = .not. (res%energy0(j) < bounds(1))
+         can_flip2(j) = .not. (res%energy0(j) < bounds(2))
+         todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
+                   .not. opt%skip_cannot_flip
+         res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
+         res%energy_error(j) = 0.0_dp
+         res%t_stop(j) = 0.0_dp
+         res%final(:, j) = y0(:, j)
+         res%lyapunov(j) = 0.0_dp
+         res%steps(j) = 0
+         res%status(j) = merge(st_end, st_cannot_flip, can_flip1(j) .or. can_flip2(j))
+      end do
+
+      ! fill the lanes
+      next = 1
+      n_active = 0
+      do i = 1, w
+         call load(i)
+      end do
+
+      do while (n_active > 0)
+         p1 = q1
+         p2 = q2
+         if (opt%lyapunov) then
+            call rk4_tangent_lanes(c, opt%h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+            do i = 1, w
+               nrm = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
+               lacc(i) = lacc(i) + log(nrm)
+               s = 1.0_dp/nrm
+               u1(i) = u1(i)*s; u2(i) = u2(i)*s; v1(i) = v1(i)*s; v2(i) = v2(i)*s
+            end do
+         else
+            call rk4_lanes(c, opt%h, q1, q2, w1, w2, e)
+         end if
+         do i = 1, w
+            err(i) = max(err(i), abs(e(i) - e0(i)))
+            ks(i) = ks(i) + 1
+            ! link 1: index of the last upward vertical below q, π/2 + 2π n
+            m = real(floor((q1(i) - half_pi)*inv_two_pi, i8), dp)
+            if (m /= n1(i)) then
+               if (tf1(i) < 0.0_dp) then
+                  qc = half_pi + two_pi*max(m, n1(i))
+                  tf1(i) = (real(ks(i) - 1, dp) + (qc - p1(i))/(q1(i) - p1(i)))*opt%h
+               end if
+               n1(i) = m
+            end if
+            m = real(floor((q2(i) - half_pi)*inv_two_pi, i8), dp)
+            if (m /= n2(i)) then
+               if (tf2(i) < 0.0_dp) then
+                  qc = half_pi + two_pi*max(m, n2(i))
+                  tf2(i) = (real(ks(i) - 1, dp) + (qc - p2(i))/(q2(i) - p2(i)))*opt%h
+               end if
+               n2(i) = m
+            end if
+            s = q1(i) + q2(i) + w1(i) + w2(i)
+            ended(i) = ks(i) >= opt%n_steps .or. .not. (s - s == 0.0_dp)
+            select case (rule)
+            case (stop_both)
+               ended(i) = ended(i) .or. ((tf1(i) >= 0.0_dp .or. .not. can1(i)) .and. &
+                                         (tf2(i) >= 0.0_dp .or. .not. can2(i)))
+            case (stop_either)
+               ended(i) = ended(i) .or. tf1(i) >= 0.0_dp .or. tf2(i) >= 0.0_dp
+            end select
+            ended(i) = ended(i) .and. lane_ic(i) > 0
+         end do
+         any_ended = .false.
+         do i = 1, w
+            any_ended = any_ended .or. ended(i)
+         end do
+         if (.not. any_ended) cycle
+         do i = 1, w
+            if (.not. ended(i)) cycle
+            call finish(i)
+            call load(i)
+         end do
+      end do
+
+      ! the energy of the final states enters the maximum error
+      call energies(c, res%final, e_final=res%t_flip)   ! t_flip used as scratch
+      do j = 1, n
+         if (todo(j) .and. res%status(j) /= st_nonfinite) then
+            res%energy_error(j) = max(res%energy_error(j), abs(res%t_flip(j) - res%energy0(j)))
+            res%energy_error(j) = res%energy_error(j)/escale
+         else
+            res%energy_error(j) = nan
+         end if
+      end do
+      do j = 1, n
+         if (res%t_flip1(j) >= 0.0_dp .and. res%t_flip2(j) >= 0.0_dp) then
+            res%t_flip(j) = min(res%t_flip1(j), res%t_flip2(j))
+         else if (res%t_flip1(j) >= 0.0_dp) then
+            res%t_flip(j) = res%t_flip1(j)
+         else if (res%t_flip2(j) >= 0.0_dp) then
+            res%t_flip(j) = res%t_flip2(j)
+         else
+            res%t_flip(j) = nan
+         end if
+         if (.not. (res%t_flip1(j) >= 0.0_dp)) res%t_flip1(j) = nan
+         if (.not. (res%t_flip2(j) >= 0.0_dp)) res%t_flip2(j) = nan
+         if (.not. opt%lyapunov .or. .not. todo(j)) res%lyapunov(j) = nan
+         if (.not. todo(j)) res%final(:, j) = y0(:, j)
+      end do
+
+   contains
+
+      !> Put the next initial condition to integrate into lane l, or the idle state.
+      subroutine load(l)
+         integer, intent(in) :: l
+         do while (next <= n)
+            if (todo(next)) exit
+            next = next + 1
+         end do
+         ks(l) = 0
+         err(l) = 0.0_dp
+         tf1(l) = -1.0_dp; tf2(l) = -1.0_dp
+         lacc(l) = 0.0_dp
+         u1(l) = 0.5_dp; u2(l) = 0.5_dp; v1(l) = 0.5_dp; v2(l) = 0.5_dp
+         if (next <= n) then
+            lane_ic(l) = next
+            q1(l) = y0(1, next); q2(l) = y0(2, next)
+            w1(l) = y0(3, next); w2(l) = y0(4, next)
+            e0(l) = res%energy0(next)
+            can1(l) = can_flip1(next); can2(l) = can_flip2(next)
+            next = next + 1
+            n_active = n_active + 1
+         else
+            lane_ic(l) = 0
+            q1(l) = -half_pi; q2(l) = -half_pi; w1(l) = 0.0_dp; w2(l) = 0.0_dp
+            e0(l) = 0.0_dp
+            can1(l) = .false.; can2(l) = .false.
+         end if
+         n1(l) = real(floor((q1(l) - half_pi)*inv_two_pi, i8), dp)
+         n2(l) = real(floor((q2(l) - half_pi)*inv_two_pi, i8), dp)
+      end subroutine load
+
+      !> Store the results of the trajectory in lane l.
+      subroutine finish(l)
+         integer, intent(in) :: l
+         integer :: jj
+         real(dp) :: s
+         jj = lane_ic(l)
+         s = q1(l) + q2(l) + w1(l) + w2(l)
+         res%t_stop(jj) = real(ks(l), dp)*opt%h
+         res%final(:, jj) = [q1(l), q2(l), w1(l), w2(l)]
+         res%t_flip1(jj) = tf1(l); res%t_flip2(jj) = tf2(l)
+         res%energy_error(jj) = err(l)
+         res%steps(jj) = int(ks(l))
+         if (opt%lyapunov) res%lyapunov(jj) = lacc(l)/res%t_stop(jj)
+         if (.not. (s - s == 0.0_dp)) then
+            res%status(jj) = st_nonfinite
+         else if (ks(l) < opt%n_steps) then
+            res%status(jj) = st_flipped
+         end if
+         n_active = n_active - 1
+      end subroutine finish
+   end subroutine integrate_batch
+
+   !> Energies of the states y(:, j), computed W at a time with the lane kernel.
+   subroutine energies(c, y, e_final)
+      type(batch_coef_t), intent(in) :: c     !! constants
+      real(dp), intent(in) :: y(:, :)         !! (4, n) states
+      real(dp), intent(out) :: e_final(:)     !! (n) energies [J]
+      real(dp), dimension(lane_width) :: q1, q2, w1, w2, e
+      integer :: j0, i, n, m
+      n = size(y, 2)
+      do j0 = 1, n, lane_width
+         m = min(lane_width, n - j0 + 1)
+         q1 = -half_pi; q2 = -half_pi; w1 = 0.0_dp; w2 = 0.0_dp
+         do i = 1, m
+            q1(i) = y(1, j0 + i - 1); q2(i) = y(2, j0 + i - 1)
+            w1(i) = y(3, j0 + i - 1); w2(i) = y(4, j0 + i - 1)
+         end do
+         call energy_lanes(c, q1, q2, w1, w2, e)
+         e_final(j0:j0 + m - 1) = e(:m)
+      end do
+   end subroutine energies
+end module dpend_pendulum_lanes
