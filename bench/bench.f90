@@ -11,6 +11,7 @@ program bench
    use bench_batch, only: run_batch_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
+   use dpend_double_pendulum, only: double_pendulum_t
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator
@@ -71,6 +72,7 @@ contains
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
       type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
       real(dp) :: ref(4), t, y(4), h, q(2), qd(2), err, start, elapsed
       integer :: m, j, stat, unit, reps, r
       character(len=256) :: line
@@ -103,13 +105,13 @@ contains
                   h = steps(j)
                end select
                t = 0.0_dp
-               y = integ%to_internal(par, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp])
-               call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+               y = integ%to_internal(model, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp])
+               call advance_to(integ, model, t, y, 1.0_dp, h, stat)
                reps = reps + 1
                if (now() - start > 0.05_dp) exit
             end do
             elapsed = (now() - start)/real(reps, dp)
-            call integ%to_physical(par, y, q, qd)
+            call integ%to_physical(model, y, q, qd)
             err = maxval(abs([q, qd] - ref))
             checksum = checksum + err
             if (integ%adaptive()) then
@@ -141,6 +143,7 @@ contains
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
       type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
       real(dp) :: t, y(4), hh, start, elapsed
       integer(i8) :: nsteps, i
       integer :: stat
@@ -153,7 +156,7 @@ contains
          t = 0.0_dp; y = y0; hh = h
          start = now()
          do i = 1, nsteps
-            call integ%step(par, t, y, hh, stat)
+            call integ%step(model, t, y, hh, stat)
             if (stat /= stat_ok) error stop 'step failed'
          end do
          elapsed = now() - start
@@ -169,6 +172,7 @@ contains
    !> ns per evaluation of rhs_qqdot along a slowly varying state.
    real(dp) function time_rhs() result(ns)
       type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
       real(dp) :: y(4), f(4), start, elapsed
       integer(i8) :: n, i
       n = 100000

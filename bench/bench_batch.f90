@@ -7,6 +7,7 @@ module bench_batch
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
+   use dpend_double_pendulum, only: double_pendulum_t
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       stop_end
@@ -65,6 +66,7 @@ contains
    real(dp) function single_trajectory_ns() result(ns)
       type(rk4_t) :: rk
       type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
       real(dp) :: t, y(4), h, t0
       integer :: k, stat
       integer, parameter :: n = 2000000
@@ -73,7 +75,7 @@ contains
       t0 = wall_seconds()
       do k = 1, n
          h = 1e-3_dp
-         call rk%step(par, t, y, h, stat)
+         call rk%step(model, t, y, h, stat)
       end do
       ns = (wall_seconds() - t0)/real(n, dp)*1e9_dp
       if (.not. (abs(y(1)) < 1e30_dp)) ns = -1.0_dp   ! keep the result alive
@@ -99,6 +101,7 @@ contains
       integer, intent(in) :: nblocks  !! blocks of work
       real(dp), intent(out) :: cpu_ns !! process CPU time per trajectory-step [ns]
       type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
       type(batch_options_t) :: opt
       integer, parameter :: nb = 1024, steps = 2000
       real(dp) :: t0, check, c0, c1

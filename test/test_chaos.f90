@@ -6,16 +6,18 @@
 module test_chaos
    use dpend_kinds, only: dp
    use dpend_pendulum, only: pendulum_t, energy, hamiltonian, momenta, velocities
+   use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_names
    use dpend_propagate, only: march_t, advance_to
    use dpend_tangent, only: tangent_t
    use dpend_lyapunov, only: qr_positive, lyapunov_acc_t, renormalize, batch_exponents, &
                              lyapunov_result_t, lyapunov_spectrum
-   use dpend_divergence, only: energy_gradient, perturbed_state, phase_distance, &
+   use dpend_divergence, only: perturbed_state, phase_distance, &
                                divergence_result_t, divergence_pairs, line_fit_t, &
                                fit_exponential_phase
-   use dpend_poincare, only: halton, shell_state, shell_samples, section_orbit
+   use dpend_poincare, only: halton, shell_samples, section_orbit
+   use dpend_pendulum, only: energy_gradient, shell_state
    use dpend_events, only: angle_crossing_t
    use dpend_error, only: error_t
    use dpend_hdf5, only: h5file_t
@@ -235,7 +237,7 @@ contains
          ! the nearby trajectories carry the method's own truncation error, O(dt^p):
          ! second-order methods take a smaller step to bring it below the tolerance
          dt_m = merge(1e-3_dp, 5e-5_dp, integ%order() >= 4)
-         y0 = integ%to_internal(par, [0.3_dp, -0.4_dp], [1.0_dp, -2.0_dp])
+         y0 = integ%to_internal(pendulum_model(par), [0.3_dp, -0.4_dp], [1.0_dp, -2.0_dp])
          eye = 0.0_dp
          do j = 1, 4
             eye(j, j) = 1.0_dp
@@ -245,9 +247,9 @@ contains
          call integ%clear_step()
          call march%start(integ, t, 2.0_dp, h)
          do while (.not. march%finished)
-            call march%next(integ, par, t, y, h, stat)
+            call march%next(integ, pendulum_model(par), t, y, h, stat)
             if (stat /= stat_ok) exit
-            call tan%propagate(integ, par)
+            call tan%propagate(integ, pendulum_model(par))
          end do
          call check_true(error, stat == stat_ok, meth//': reference run')
          eps = 1e-5_dp
@@ -271,7 +273,7 @@ contains
          integer :: stat
          call new_integrator(trim(name), integ, err, rtol=1e-13_dp, atol=1e-15_dp)
          t = 0.0_dp; ye = ys; h = dt_m
-         call advance_to(integ, par, t, ye, 2.0_dp, h, stat)
+         call advance_to(integ, pendulum_model(par), t, ye, 2.0_dp, h, stat)
       end function end_state
    end subroutine test_tangent_fd
 
@@ -303,8 +305,8 @@ contains
          name = names(p:q - 1)
          p = q + 1
          call new_integrator(trim(name), integ, err, rtol=1e-10_dp, atol=1e-12_dp)
-         call lyapunov_spectrum(integ, par, 0.0_dp, &
-                                integ%to_internal(par, [0.5_dp*pi, 0.5_dp*pi], [0.0_dp, 0.0_dp]), &
+         call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, &
+                                integ%to_internal(pendulum_model(par), [0.5_dp*pi, 0.5_dp*pi], [0.0_dp, 0.0_dp]), &
                                 3.0_dp, 1e-3_dp, 0.25_dp, 4, 4, res, stat)
          call check_true(error, stat == stat_ok, trim(name)//': run')
          if (allocated(error)) return
@@ -330,8 +332,8 @@ contains
       type(lyapunov_result_t) :: res
       integer :: stat, i
       call new_integrator('rk4', integ, err)
-      call lyapunov_spectrum(integ, par, 0.0_dp, &
-                             integ%to_internal(par, [-1.5_dp, -1.5_dp], [0.0_dp, 0.0_dp]), &
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, &
+                             integ%to_internal(pendulum_model(par), [-1.5_dp, -1.5_dp], [0.0_dp, 0.0_dp]), &
                              300.0_dp, 1e-3_dp, 0.5_dp, 1, 10, res, stat)
       call check_true(error, stat == stat_ok, 'run')
       call check(error, res%exponents(1), 0.0_dp, 'lambda1 at t = 300 s', abs=2e-2_dp)
@@ -356,11 +358,11 @@ contains
       integer :: stat
       real(dp) :: combined
       call new_integrator('rk4', integ, err)
-      call lyapunov_spectrum(integ, par, 0.0_dp, integ%to_internal(par, [0.0_dp, 0.0_dp], &
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 1e-3_dp, 0.5_dp, 1, 10, ra, stat)
       call check_true(error, stat == stat_ok, 'rk4 run')
       call new_integrator('dop853', integ, err, rtol=1e-10_dp, atol=1e-12_dp)
-      call lyapunov_spectrum(integ, par, 0.0_dp, integ%to_internal(par, [0.0_dp, 0.0_dp], &
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 0.0_dp, 0.5_dp, 1, 10, rb, stat)
       call check_true(error, stat == stat_ok, 'dop853 run')
       if (allocated(error)) return
@@ -384,7 +386,7 @@ contains
       integer :: stat
       real(dp) :: lam(4), liouville
       call new_integrator('rk4', integ, err)
-      call lyapunov_spectrum(integ, par, 0.0_dp, integ%to_internal(par, [0.0_dp, 0.0_dp], &
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 1e-3_dp, 0.5_dp, 4, 10, res, stat)
       call check_true(error, stat == stat_ok, 'run')
       if (allocated(error)) return
@@ -432,10 +434,10 @@ contains
       qda = reshape([0.0_dp, 0.0_dp, 1.0_dp, -3.0_dp, -0.5_dp, 2.0_dp], [2, 3])
       d0 = 1e-9_dp
       do j = 1, 3
-         call perturbed_state(par, qa(:, j), qda(:, j), d0, .false., qb, qdb)
+         call perturbed_state(pendulum_model(par), qa(:, j), qda(:, j), d0, .false., qb, qdb)
          call check(error, phase_distance(qa(:, j), qda(:, j), qb, qdb), d0, '|delta(0)|', &
                     rel=1e-6_dp)
-         call perturbed_state(par, qa(:, j), qda(:, j), d0, .true., qb, qdb)
+         call perturbed_state(pendulum_model(par), qa(:, j), qda(:, j), d0, .true., qb, qdb)
          call check(error, phase_distance(qa(:, j), qda(:, j), qb, qdb), d0, &
                     '|delta(0)| on the energy surface', rel=1e-6_dp)
          call check(error, energy(par, qb, qdb), energy(par, qa(:, j), qda(:, j)), &
@@ -488,7 +490,7 @@ contains
       type(line_fit_t) :: fit
       integer :: stat
       call new_integrator('rk4', integ, err)
-      call divergence_pairs(integ, par, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 30.0_dp, 0.01_dp, &
+      call divergence_pairs(integ, pendulum_model(par), [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 30.0_dp, 0.01_dp, &
                             1e-9_dp, .false., 10, 25.0_dp, 1e-3_dp, dres, stat)
       call check_true(error, stat == stat_ok, 'divergence run')
       call check_true(error, size(dres%log10_pairs, 1) == 10 .and. size(dres%t) == 3001, &
@@ -497,7 +499,7 @@ contains
       call check(error, dres%log10_mean(1), -9.0_dp, 'log10 delta0', abs=1e-6_dp)
       call fit_exponential_phase(dres%t, dres%log10_mean, 0.0_dp, 0.0_dp, fit)
       call check_true(error, fit%ok .and. fit%saturated, 'exponential phase and saturation')
-      call lyapunov_spectrum(integ, par, 0.0_dp, integ%to_internal(par, [0.0_dp, 0.0_dp], &
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 1e-3_dp, 0.5_dp, 1, 10, lres, stat)
       call check(error, fit%slope, lres%exponents(1), 'slope vs lambda1', &
                  rel=0.2_dp)
@@ -523,7 +525,7 @@ contains
          do link = 1, 2
             do dir = -1, 1, 2
                e = energies(c)
-               call shell_samples(par, e, link, -0.5_dp*pi, dir, 50, q, qd, n)
+               call shell_samples(pendulum_model(par), e, link, -0.5_dp*pi, dir, 50, q, qd, n)
                call check_true(error, n == 50, 'found 50 samples')
                do j = 1, n
                   call check_true(error, q(link, j) == -0.5_dp*pi, 'on the section')
@@ -535,7 +537,7 @@ contains
             end do
          end do
       end do
-      call shell_samples(par, -25.0_dp, 1, -0.5_dp*pi, 1, 50, q, qd, n)
+      call shell_samples(pendulum_model(par), -25.0_dp, 1, -0.5_dp*pi, 1, 50, q, qd, n)
       call check_true(error, n == 0, 'no samples below the minimum -19.6 J')
    end subroutine test_shell
 
@@ -550,11 +552,11 @@ contains
       real(dp) :: q(2, 1), qd(2, 1), p(2)
       real(dp), allocatable :: qo(:), po(:), t(:), e(:)
       integer :: n, stat
-      call shell_samples(par, 0.0_dp, 1, -0.5_dp*pi, 1, 1, q, qd, n)
+      call shell_samples(pendulum_model(par), 0.0_dp, 1, -0.5_dp*pi, 1, 1, q, qd, n)
       call new_integrator('rk4', integ, err)
       section = angle_crossing_t(index=1, angle=-0.5_dp*pi, wrap=.true.)
       section%direction = 1
-      call section_orbit(integ, par, section, q(:, 1), qd(:, 1), 500.0_dp, 1e-3_dp, 30, &
+      call section_orbit(integ, pendulum_model(par), section, q(:, 1), qd(:, 1), 500.0_dp, 1e-3_dp, 30, &
                          qo, po, t, e, stat)
       call check_true(error, stat == stat_ok .and. size(qo) == 30, '30 points')
       if (allocated(error)) return
@@ -587,7 +589,7 @@ contains
       call new_integrator('rk4', integ, err)
       section = angle_crossing_t(index=1, angle=-0.5_dp*pi, wrap=.true.)
       section%direction = 1
-      call section_orbit(integ, par, section, q0, qd0, 100.0_dp, 1e-3_dp, 11, qo, po, t, e, stat)
+      call section_orbit(integ, pendulum_model(par), section, q0, qd0, 100.0_dp, 1e-3_dp, 11, qo, po, t, e, stat)
       call check_true(error, stat == stat_ok .and. size(t) == 11, '11 points')
       if (allocated(error)) return
       call check(error, (t(11) - t(1))/10.0_dp, 2.345568_dp, 'return time', rel=1e-4_dp)

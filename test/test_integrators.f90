@@ -6,6 +6,7 @@ module test_integrators
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, mass_matrix, energy
+   use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small
    use dpend_methods, only: new_integrator
    use dpend_rk_explicit, only: rk_adaptive_t
@@ -77,7 +78,7 @@ contains
       integer :: stat
       call integ%clear_step()
       t = 0.0_dp; y = y0; hh = h
-      call advance_to(integ, pendulum_t(), t, y, t_end, hh, stat)
+      call advance_to(integ, pendulum_model(pendulum_t()), t, y, t_end, hh, stat)
       if (stat /= stat_ok) y = huge(1.0_dp)
    end function solve
 
@@ -240,19 +241,19 @@ contains
       worst = 0.0_dp
       n = 0
       do while (t < 3.0_dp)
-         call integ%step(par, t, y, h, stat)
+         call integ%step(pendulum_model(par), t, y, h, stat)
          call check_true(error, stat == stat_ok, name//': step failed')
          if (allocated(error)) return
          n = n + 1
          do j = 1, 7
             te = integ%t_old + real(j, dp)/8.0_dp*(integ%t_new - integ%t_old)
             yi = 0.0_dp
-            call integ%interpolate(par, te, yi)
+            call integ%interpolate(pendulum_model(par), te, yi)
             ! local exact solution: rk4 with ~1e-5 steps from (t_old, y_old)
-            ye = integ%y_old
+            ye = integ%y_old(:4)
             he = (te - integ%t_old)/real(max(1, nint((te - integ%t_old)/1.0e-5_dp)), dp)
             call advance_exact(ye, te - integ%t_old, he)
-            sk = atol + rtol*max(abs(integ%y_old), abs(integ%y_new))
+            sk = atol + rtol*max(abs(integ%y_old(:4)), abs(integ%y_new(:4)))
             worst = max(worst, sqrt(sum(((yi - ye)/sk)**2)/4.0_dp))
          end do
       end do
@@ -266,7 +267,7 @@ contains
          integer :: st
          tt = 0.0_dp; hh = hs
          call exact%clear_step()
-         call advance_to(exact, par, tt, ys, span, hh, st)
+         call advance_to(exact, pendulum_model(par), tt, ys, span, hh, st)
       end subroutine advance_exact
    end subroutine dense_local
 
@@ -291,12 +292,12 @@ contains
       character(len=6), parameter :: names(2) = ['dopri5', 'dop853']
       integer :: stat, i
       call make('rk4', integ)
-      call integrate_sampled(integ, par, 0.0_dp, y_swing, 5.0_dp, 1.0e-4_dp, 0.01_dp, tr, sr, stat)
+      call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 5.0_dp, 1.0e-4_dp, 0.01_dp, tr, sr, stat)
       call check_true(error, stat == stat_ok .and. size(tr) == 501, 'reference run')
       if (allocated(error)) return
       do i = 1, 2
          call make(names(i), integ, rtol=1.0e-8_dp, atol=1.0e-11_dp)
-         call integrate_sampled(integ, par, 0.0_dp, y_swing, 5.0_dp, 0.0_dp, 0.01_dp, &
+         call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 5.0_dp, 0.0_dp, 0.01_dp, &
                                 ts, ss, stat)
          call check_true(error, stat == stat_ok .and. size(ts) == 501, names(i)//' run')
          if (allocated(error)) return
@@ -315,10 +316,10 @@ contains
       real(dp) :: hs(3), e(3)
       integer :: stat, i
       call make('rk4', integ)
-      call integrate_sampled(integ, par, 0.0_dp, y_swing, 5.0_dp, 1.0e-4_dp, 0.007_dp, tr, sr, stat)
+      call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 5.0_dp, 1.0e-4_dp, 0.007_dp, tr, sr, stat)
       hs = [0.02_dp, 0.01_dp, 0.005_dp]
       do i = 1, 3
-         call integrate_sampled(integ, par, 0.0_dp, y_swing, 5.0_dp, hs(i), 0.007_dp, ts, ss, stat)
+         call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 5.0_dp, hs(i), 0.007_dp, ts, ss, stat)
          call check_true(error, stat == stat_ok .and. size(ts) == size(tr), 'rk4 sampled run')
          if (allocated(error)) return
          e(i) = maxval(abs(ss - sr))
@@ -337,7 +338,7 @@ contains
          call make(trim(names(i)), integ)
          y = [1.0_dp, 2.0_dp, 3.0_dp, 4.0_dp]
          call check_true(error, .not. integ%has_step(), 'has_step before a step')
-         call integ%interpolate(pendulum_t(), 0.5_dp, y)
+         call integ%interpolate(pendulum_model(pendulum_t()), 0.5_dp, y)
          call check(error, y, [1.0_dp, 2.0_dp, 3.0_dp, 4.0_dp], 'untouched', abs=0.0_dp)
          call check_true(error, integ%n_rhs == 0, 'no evaluation')
       end do
@@ -354,31 +355,31 @@ contains
       integer :: stat
       call make('rk4', integ)
       t = 0.0_dp; y = y_swing; h = 0.03_dp
-      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0_dp, h, stat)
       call check_true(error, stat == stat_ok .and. t == 1.0_dp, 'rk4 reaches t = 1 exactly')
       call check_true(error, integ%n_steps == 34, 'rk4: 33 whole steps + 1 shortened')
       t2 = 0.0_dp; y2 = y_swing; h2 = 0.03_dp
-      call advance_fixed(integ, par, t2, y2, h2, 33_i8, stat)
+      call advance_fixed(integ, pendulum_model(par), t2, y2, h2, 33_i8, stat)
       h2 = 1.0_dp - t2
-      call integ%step(par, t2, y2, h2, stat)
+      call integ%step(pendulum_model(par), t2, y2, h2, stat)
       call check(error, y, y2, 'same as by hand', abs=1.0e-15_dp)
       call integ%reset_counters()
       t = 0.0_dp; y = y_swing; h = 0.025_dp
-      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0_dp, h, stat)
       call check_true(error, t == 1.0_dp .and. integ%n_steps == 40, 'rk4: 40 whole steps')
       call make('dop853', integ, rtol=1.0e-10_dp, atol=1.0e-13_dp)
       t = 0.0_dp; y = y_swing; h = 0.0_dp
-      call advance_to(integ, par, t, y, 0.3_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 0.3_dp, h, stat)
       call check_true(error, stat == stat_ok .and. t == 0.3_dp, 'dop853 reaches t = 0.3')
       call check_true(error, h > 0.0_dp, 'dop853 returns a proposal')
       ! continuing to 1 equals going to 1 at once up to the tolerance
-      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0_dp, h, stat)
       y2 = solve(integ, y_swing, 1.0_dp, 0.0_dp)
       call check(error, y, y2, 'dop853 0→0.3→1 vs 0→1', abs=1.0e-8_dp)
       ! an interval shorter than the automatic first step (HINIT gives 1.3e-4 here)
       call make('dop853', integ)
       t = 0.0_dp; y = y_swing; h = 0.0_dp
-      call advance_to(integ, par, t, y, 1.0e-5_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0e-5_dp, h, stat)
       call check_true(error, stat == stat_ok .and. t == 1.0e-5_dp, 'dop853 reaches t = 1e-5')
       call check_true(error, integ%t_new <= 1.0e-5_dp, 'dop853 did not step past t = 1e-5')
       y2 = solve(integ, y_swing, 1.0e-5_dp, 1.0e-5_dp)
@@ -386,8 +387,8 @@ contains
       ! backward: rk4 from 1 back to 0 returns to the start
       call make('rk4', integ)
       t = 0.0_dp; y = y_swing; h = 0.01_dp
-      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
-      call advance_to(integ, par, t, y, 0.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 0.0_dp, h, stat)
       call check_true(error, t == 0.0_dp, 'backward to 0')
       call check(error, y, y_swing, 'rk4 forth and back', abs=1.0e-6_dp)
    end subroutine test_advance_to
@@ -400,7 +401,7 @@ contains
       real(dp), allocatable :: ts(:), ss(:, :)
       integer :: stat, k
       call make('rk4', integ)
-      call integrate_sampled(integ, par, 1.0_dp, y_swing, 2.05_dp, 0.003_dp, 0.1_dp, ts, ss, stat)
+      call integrate_sampled(integ, pendulum_model(par), 1.0_dp, y_swing, 2.05_dp, 0.003_dp, 0.1_dp, ts, ss, stat)
       call check_true(error, size(ts) == 12, 'rk4: 11 grid times + t_end')
       if (allocated(error)) return
       do k = 0, 10
@@ -409,11 +410,11 @@ contains
       call check(error, ts(12), 2.05_dp, 'last sample at t_end', abs=0.0_dp)
       call check(error, ss(:, 1), y_swing, 'first sample is y0', abs=0.0_dp)
       call make('dopri5', integ)
-      call integrate_sampled(integ, par, 0.0_dp, y_swing, 1.0_dp, 0.0_dp, 0.1_dp, ts, ss, stat)
+      call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 1.0_dp, 0.0_dp, 0.1_dp, ts, ss, stat)
       call check_true(error, size(ts) == 11, 'dopri5: t_end on the grid is not repeated')
       call check(error, ts(11), 1.0_dp, 'dopri5 last time', abs=0.0_dp)
       call integ%reset_counters()
-      call integrate_sampled(integ, par, 0.0_dp, y_swing, 1.0_dp, 0.0_dp, 0.0_dp, ts, ss, stat)
+      call integrate_sampled(integ, pendulum_model(par), 0.0_dp, y_swing, 1.0_dp, 0.0_dp, 0.0_dp, ts, ss, stat)
       call check_true(error, size(ts) == integ%n_steps + 1, 'every step: n_steps + 1 samples')
       call check(error, ts(size(ts)), 1.0_dp, 'every step: ends at t_end', abs=0.0_dp)
    end subroutine test_sampled_grid
@@ -425,7 +426,7 @@ contains
       integer :: stat
       call make('rk4', integ)
       t = 0.0_dp; y = y_swing; h = 0.01_dp
-      call advance_fixed(integ, pendulum_t(), t, y, h, 100_i8, stat)
+      call advance_fixed(integ, pendulum_model(pendulum_t()), t, y, h, 100_i8, stat)
       call check_true(error, integ%n_steps == 100, 'rk4 n_steps')
       call check_true(error, integ%n_rhs == 4*integ%n_steps, 'rk4 n_rhs = 4 n_steps')
       call check(error, t, 1.0_dp, 't after 100 steps of 0.01', abs=0.0_dp)
@@ -442,8 +443,8 @@ contains
       call make('dopri5', integ, rtol=1.0e-6_dp, atol=1.0e-9_dp)
       t = 0.0_dp; y = y_swing; h = 0.0_dp
       do i = 1, 50
-         call integ%step(par, t, y, h, stat)
-         call integ%interpolate(par, t - 0.5_dp*h, yi)
+         call integ%step(pendulum_model(par), t, y, h, stat)
+         call integ%interpolate(pendulum_model(par), t - 0.5_dp*h, yi)
       end do
       call check_true(error, integ%n_steps == 50, 'dopri5 n_steps')
       call check_true(error, integ%n_rhs == 2 + 6*(integ%n_steps + integ%n_rejected), &
@@ -451,11 +452,11 @@ contains
       ! a large first step is rejected and counted
       call make('dopri5', integ, rtol=1.0e-6_dp, atol=1.0e-9_dp)
       t = 0.0_dp; y = y_swing; h = 1.0_dp
-      call integ%step(par, t, y, h, stat)
+      call integ%step(pendulum_model(par), t, y, h, stat)
       call check_true(error, integ%n_rejected >= 1 .and. integ%n_steps == 1, 'rejections')
       call check_true(error, integ%n_rhs == 1 + 6*(1 + integ%n_rejected), 'n_rhs with rejections')
       y(3) = y(3) + 1.0e-3_dp       ! not the state of the last step: no FSAL reuse
-      call integ%step(par, t, y, h, stat)
+      call integ%step(pendulum_model(par), t, y, h, stat)
       call check_true(error, integ%n_rhs == 2 + 6*(2 + integ%n_rejected), 'FSAL only on y_new')
    end subroutine test_counters_dopri5
 
@@ -470,10 +471,10 @@ contains
       call make('dop853', integ, rtol=1.0e-6_dp, atol=1.0e-9_dp)
       t = 0.0_dp; y = y_swing; h = 0.0_dp
       do i = 1, 40
-         call integ%step(par, t, y, h, stat)
+         call integ%step(pendulum_model(par), t, y, h, stat)
          if (i > 20) then
-            call integ%interpolate(par, t - 0.5_dp*h, yi)
-            call integ%interpolate(par, t - 0.25_dp*h, yi)
+            call integ%interpolate(pendulum_model(par), t - 0.5_dp*h, yi)
+            call integ%interpolate(pendulum_model(par), t - 0.25_dp*h, yi)
          end if
       end do
       call check_true(error, integ%n_steps == 40, 'dop853 n_steps')
@@ -490,16 +491,16 @@ contains
       call make('dop853', integ)
       t = 0.0_dp; y = y_swing; h = 0.01_dp
       y(2) = ieee_value(1.0_dp, ieee_quiet_nan)
-      call integ%step(par, t, y, h, stat)
+      call integ%step(pendulum_model(par), t, y, h, stat)
       call check_true(error, stat == stat_nonfinite, 'NaN state: stat_nonfinite')
       call check_true(error, t == 0.0_dp .and. integ%n_steps == 0, 'nothing done')
       call make('rk4', integ)
       t = 0.0_dp; y = y_swing; h = 0.0_dp
-      call advance_to(integ, par, t, y, 1.0_dp, h, stat)
+      call advance_to(integ, pendulum_model(par), t, y, 1.0_dp, h, stat)
       call check_true(error, stat == stat_step_too_small .and. t == 0.0_dp, 'rk4 with h = 0')
       call make('dopri5', integ)
       t = 1.0e20_dp; y = y_swing; h = 1.0_dp
-      call integ%step(par, t, y, h, stat)
+      call integ%step(pendulum_model(par), t, y, h, stat)
       call check_true(error, stat == stat_step_too_small, 'h < 16 eps |t|')
       call check(error, y, y_swing, 'state unchanged', abs=0.0_dp)
    end subroutine test_status
@@ -538,7 +539,7 @@ contains
             y = [-0.5_dp*pi + 1.0e-5_dp*v(1), -0.5_dp*pi + 1.0e-5_dp*v(2), 0.0_dp, 0.0_dp]
             t = 0.0_dp
             h = merge(0.0_dp, 1.0e-3_dp, im == 1)
-            call find_crossings(ev, integ, par, t, y, 8.0_dp, h, hits, stat)
+            call find_crossings(ev, integ, pendulum_model(par), t, y, 8.0_dp, h, hits, stat)
             call check_true(error, stat == stat_ok .and. size(hits) >= 2, 'crossings found')
             if (allocated(error)) return
             call check(error, hits(1)%t, 0.75_dp*period, trim(names(im))//' first crossing', &
@@ -572,9 +573,9 @@ contains
       t = 0.0_dp; y = y_swing; h = 0.05_dp
       found = .false.
       do i = 1, 200
-         call integ%step(par, t, y, h, stat)
+         call integ%step(pendulum_model(par), t, y, h, stat)
          before = integ%n_rhs
-         call locate_crossing(ev, integ, par, found, hit, stat)
+         call locate_crossing(ev, integ, pendulum_model(par), found, hit, stat)
          if (found) exit
       end do
       call check_true(error, found .and. stat == stat_ok, 'a crossing of q1 = -pi/2')
@@ -582,8 +583,8 @@ contains
       call check_true(error, hit%direction == -1, 'first crossing is downward')
       call check_true(error, integ%n_rhs > before, 'fractional steps are counted')
       call check(error, hit%q(1), -0.5_dp*pi, 'q1 at the event', abs=4.0e-16_dp)
-      t1 = integ%t_old; y1 = integ%y_old; s = hit%t - integ%t_old
-      call integ%step(par, t1, y1, s, stat)
+      t1 = integ%t_old; y1 = integ%y_old(:4); s = hit%t - integ%t_old
+      call integ%step(pendulum_model(par), t1, y1, s, stat)
       call check(error, y1, hit%y, 'event state is the fractional step', abs=0.0_dp)
    end subroutine test_events_fixed
 
@@ -600,10 +601,10 @@ contains
       ev = angle_crossing_t(index=2, angle=0.0_dp, direction=1, wrap=.true.)
       call make('dop853', integ, rtol=1.0e-12_dp, atol=1.0e-14_dp)
       t = 0.0_dp; y = y_whirl; h = 0.0_dp
-      call find_crossings(ev, integ, par, t, y, 2.0_dp, h, h1, stat)
+      call find_crossings(ev, integ, pendulum_model(par), t, y, 2.0_dp, h, h1, stat)
       call make('rk4', integ)
       t = 0.0_dp; y = y_whirl; h = 1.0e-3_dp
-      call find_crossings(ev, integ, par, t, y, 2.0_dp, h, h2, stat, max_hits=2)
+      call find_crossings(ev, integ, pendulum_model(par), t, y, 2.0_dp, h, h2, stat, max_hits=2)
       call check_true(error, size(h1) >= 2 .and. size(h2) == 2, 'crossings on each turn')
       if (allocated(error)) return
       call check_true(error, t >= h2(2)%t .and. t - h2(2)%t <= 1.0e-3_dp .and. &

@@ -7,6 +7,7 @@ module test_limits
    use dpend_limits, only: in_range, check_count, check_range, max_steps, sci
    use dpend_config, only: run_config_t, validate_run_config
    use dpend_pendulum, only: pendulum_t
+   use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_max_steps, stat_count_limit
    use dpend_methods, only: new_integrator
    use dpend_propagate, only: march_t, integrate_sampled
@@ -68,15 +69,15 @@ contains
       base%output = 'x.h5'
       c = base
       call expect(c, .true., 'defaults')
-      c = base; c%par%m1 = 1e308_dp; call expect(c, .false., 'm1 = 1e308')
-      c = base; c%par%l1 = 1e-300_dp; call expect(c, .false., 'l1 = 1e-300')
+      c = base; c%model%par%m1 = 1e308_dp; call expect(c, .false., 'm1 = 1e308')
+      c = base; c%model%par%l1 = 1e-300_dp; call expect(c, .false., 'l1 = 1e-300')
       c = base; c%w0(2) = 1e150_dp; call expect(c, .false., 'w2 = 1e150')
       c = base; c%t_end = 1.0_dp; c%dt = 1e-19_dp; call expect(c, .false., 'dt = 1e-19')
       c = base; c%dt = 5e-324_dp; call expect(c, .false., 'dt = 5e-324')
       c = base; c%method = 'dopri5'; c%rtol = 1e-300_dp; call expect(c, .false., 'rtol')
       c = base; c%method = 'dopri5'; c%atol = 1e-300_dp; call expect(c, .false., 'atol')
       c = base; c%max_steps = 0; call expect(c, .false., 'max_steps = 0')
-      c = base; c%par = pendulum_t(m1=1e6_dp, m2=1e-6_dp, l1=1e6_dp, l2=1e-6_dp, g=1e6_dp)
+      c = base; c%model%par = pendulum_t(m1=1e6_dp, m2=1e-6_dp, l1=1e6_dp, l2=1e-6_dp, g=1e6_dp)
       c%w0 = [1e6_dp, -1e6_dp]; c%q0 = [1e6_dp, -1e6_dp]
       call expect(c, .true., 'every value on its boundary')
       c = base; c%t_end = 1.0_dp; c%dt = 1e-12_dp; call expect(c, .true., '1e12 steps')
@@ -107,7 +108,7 @@ contains
       call march%start(integ, t, 100.0_dp, h)
       stat = stat_ok
       do while (.not. march%finished)
-         call march%next(integ, pendulum_t(), t, y, h, stat)
+         call march%next(integ, pendulum_model(pendulum_t()), t, y, h, stat)
          if (stat /= stat_ok) exit
       end do
       call check_true(error, stat == stat_max_steps, 'stat_max_steps')
@@ -127,7 +128,7 @@ contains
       if (allocated(error)) return
       t = 0.0_dp; h = 1e-19_dp; y = [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp]
       call march%start(integ, t, 1.0_dp, h)
-      call march%next(integ, pendulum_t(), t, y, h, stat)
+      call march%next(integ, pendulum_model(pendulum_t()), t, y, h, stat)
       call check_true(error, stat == stat_count_limit, 'stat_count_limit')
       call check_true(error, integ%n_steps == 0_i8 .and. t == 0.0_dp, 'no step taken')
    end subroutine test_fixed_limit
@@ -140,7 +141,7 @@ contains
       integer :: stat
       call new_integrator('rk4', integ, error)
       if (allocated(error)) return
-      call integrate_sampled(integ, pendulum_t(), 0.0_dp, [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp], &
+      call integrate_sampled(integ, pendulum_model(pendulum_t()), 0.0_dp, [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp], &
                              1.0_dp, 1e-3_dp, 1e-300_dp, times, states, stat)
       call check_true(error, stat == stat_count_limit, 'stat_count_limit')
       call check_true(error, size(times) == 1, 'only the initial sample')
@@ -180,7 +181,7 @@ contains
       integer :: stat, i
       call new_integrator('dopri5', integ, error, rtol=1e-8_dp, atol=1e-10_dp)
       if (allocated(error)) return
-      call lyapunov_spectrum(integ, pendulum_t(), 0.0_dp, [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp], &
+      call lyapunov_spectrum(integ, pendulum_model(pendulum_t()), 0.0_dp, [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp], &
                              1.0_dp, 1e-3_dp, 1e-12_dp, 4, 5, res, stat)
       call check_true(error, stat == stat_ok, 'run completed')
       call check_true(error, size(res%t) <= integ%n_steps + 1, &

@@ -7,6 +7,7 @@ module test_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, energy, potential_energy
+   use dpend_double_pendulum, only: pendulum_model
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &
@@ -74,7 +75,7 @@ contains
          t = 0.0_dp
          do k = 1, 2000
             h = 1e-3_dp
-            call rk%step(par, t, y, h, stat)
+            call rk%step(pendulum_model(par), t, y, h, stat)
          end do
          call check(error, res%final(:, j), y, 'final state', abs=1e-11_dp)
          call check(error, res%energy0(j), energy(par, y0(1:2, j), y0(3:4, j)), 'E(0)', &

@@ -6,6 +6,7 @@ module test_symplectic
    use, intrinsic :: iso_fortran_env, only: compiler_options
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, hamiltonian, energy, momenta, velocities
+   use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence
    use dpend_methods, only: new_integrator
    use dpend_symplectic, only: symplectic_t, gauss_t, gauss_tableau, triple_jump, &
@@ -90,7 +91,7 @@ contains
       stat = stat_ok
       do k = 1, n
          hh = h
-         call integ%step(par, t, z, hh, stat)
+         call integ%step(pendulum_model(par), t, z, hh, stat)
          if (stat /= stat_ok) return
       end do
    end subroutine integrate
@@ -186,7 +187,7 @@ contains
       z = start()
       t = 0.0_dp
       h = 0.01_dp
-      call g%step(par, t, z, h, stat)
+      call g%step(pendulum_model(par), t, z, h, stat)
       call check_true(error, g%name() == 'gauss4' .and. g%order() == 4 .and. stat == stat_ok &
                       .and. g%c(2) > 0.78_dp, 'default gauss_t')
       do i = 1, n_methods
@@ -217,7 +218,7 @@ contains
       zref = reference()
       call make('rk4', integ, error)
       if (allocated(error)) return
-      y = integ%to_internal(par, q0, [0.0_dp, 0.0_dp])
+      y = integ%to_internal(pendulum_model(par), q0, [0.0_dp, 0.0_dp])
       call integrate(integ, y, t_end/20000, 20000, stat)
       call check(error, [y(1:2), momenta(par, y(1:2), y(3:4))], zref, 'rk4 vs gauss8', &
                  abs=1e-12_dp)
@@ -278,11 +279,11 @@ contains
          hh = h
          if (physical) then
             y = [z(1:2), velocities(par, z(1:2), z(3:4))]
-            call integ%step(par, t, y, hh, stat)
+            call integ%step(pendulum_model(par), t, y, hh, stat)
             zn = [y(1:2), momenta(par, y(1:2), y(3:4))]
          else
             y = z
-            call integ%step(par, t, y, hh, stat)
+            call integ%step(pendulum_model(par), t, y, hh, stat)
             zn = y
          end if
       end function phi
@@ -364,7 +365,7 @@ contains
          e4 = 0.0_dp
          tao%compensated = .false.
          call tao%set_copy(z(5:6), z(7:8))
-         call tao%advance(par, y, e4, h, stat)
+         call tao%advance(pendulum_model(par), 0.0_dp, y, e4, h, stat)
          zn(1:4) = y
          call tao%get_copy(zn(5:6), zn(7:8), have)
       end function phi
@@ -387,9 +388,9 @@ contains
             z1 = z
             t = 0.0_dp
             h = 0.05_dp
-            call integ%step(par, t, z, h, stat)
+            call integ%step(pendulum_model(par), t, z, h, stat)
             h = -0.05_dp
-            call integ%step(par, t, z, h, stat)
+            call integ%step(pendulum_model(par), t, z, h, stat)
             call check(error, z, z1, trim(names(i))//' +h -h', rel=1e-13_dp, &
                        abs=1e-13_dp*maxval(abs(z1)))
             call check(error, t, 0.0_dp, trim(names(i))//' time', abs=1e-17_dp)
@@ -416,12 +417,12 @@ contains
          z1 = z
          t = 1.0_dp
          h = 50.0_dp
-         call integ%step(par, t, z, h, stat)
+         call integ%step(pendulum_model(par), t, z, h, stat)
          call check_true(error, stat == stat_no_convergence, trim(names(i))//' h = 50: stat')
          call check_true(error, all(z == z1) .and. t == 1.0_dp, &
                          trim(names(i))//' h = 50: state changed')
          h = 0.01_dp
-         call integ%step(par, t, z, h, stat)
+         call integ%step(pendulum_model(par), t, z, h, stat)
          call check_true(error, stat == stat_ok, trim(names(i))//' no recovery')
          if (allocated(error)) return
          deallocate (integ)
@@ -515,7 +516,7 @@ contains
          emax = 0.0_dp
          do k = 1, 300000
             h = 1e-4_dp
-            call integ%step(par, t, z, h, stat)
+            call integ%step(pendulum_model(par), t, z, h, stat)
             emax = max(emax, abs(hamiltonian(par, z(1:2), z(3:4)) - h0))
          end do
          emax = emax/abs(h0)
@@ -550,18 +551,18 @@ contains
          if (allocated(error)) return
          n = 1000000
          if (costly(i) .and. .not. optimized) n = 100000
-         z = integ%to_internal(par, q0, [0.0_dp, 0.0_dp])
-         call integ%to_physical(par, z, q, qd)
+         z = integ%to_internal(pendulum_model(par), q0, [0.0_dp, 0.0_dp])
+         call integ%to_physical(pendulum_model(par), z, q, qd)
          h0 = energy(par, q, qd)
          t = 0.0_dp
          first = 0.0_dp
          last = 0.0_dp
          do k = 1, n
             h = steps(i)
-            call integ%step(par, t, z, h, stat)
+            call integ%step(pendulum_model(par), t, z, h, stat)
             if (stat /= stat_ok) exit
             if (k <= n/10 .or. k > n - n/10) then
-               call integ%to_physical(par, z, q, qd)
+               call integ%to_physical(pendulum_model(par), z, q, qd)
                de = abs(energy(par, q, qd) - h0)/abs(h0)
                if (k <= n/10) first = max(first, de)
                if (k > n - n/10) last = max(last, de)

@@ -23,12 +23,12 @@
 !> different steps for each, and their tolerances must be far below δ0.
 module dpend_divergence
    use dpend_kinds, only: dp
-   use dpend_pendulum, only: pendulum_t, energy, momenta, generalized_forces
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_propagate, only: integrate_sampled
    implicit none
    private
-   public :: energy_gradient, perturbed_state, phase_distance
+   public :: perturbed_state, phase_distance
    public :: divergence_result_t, divergence_pairs, line_fit_t, fit_exponential_phase
 
    real(dp), parameter :: pi = acos(-1.0_dp)
@@ -58,57 +58,45 @@ module dpend_divergence
 
 contains
 
-   !> ∇E in (q1, q2, q̇1, q̇2): ∂E/∂q = ∂V/∂q + ½ q̇ᵀ (∂M/∂q) q̇, ∂E/∂q̇ = M q̇ = p,
-   !> where only M12 = k cos(q1 - q2) depends on q [J/rad, J s/rad].
-   pure function energy_gradient(par, q, qd) result(g)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(in) :: q(2)         !! angles [rad]
-      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
-      real(dp) :: g(4)
-      real(dp) :: t
-      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
-      g(1:2) = -generalized_forces(par, q) + [-t, t]
-      g(3:4) = momenta(par, q, qd)
-   end function energy_gradient
-
    !> The partner of (q, q̇): displaced by δ0 (1, 1, 1, 1)/2, or with `same_energy`
    !> by δ0 along the projection of that direction on the energy surface, then
    !> put back on E = E(q, q̇) by Newton steps along ∇E (see the module header).
-   pure subroutine perturbed_state(par, q, qd, delta0, same_energy, qb, qdb)
-      type(pendulum_t), intent(in) :: par   !! parameters
-      real(dp), intent(in) :: q(2)          !! angles [rad]
-      real(dp), intent(in) :: qd(2)         !! angular velocities [rad/s]
+   pure subroutine perturbed_state(model, q, qd, delta0, same_energy, qb, qdb)
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(in) :: q(:)          !! angles [rad]
+      real(dp), intent(in) :: qd(:)         !! angular velocities [rad/s]
       real(dp), intent(in) :: delta0        !! displacement [mixed: rad, rad/s]
       logical, intent(in) :: same_energy    !! keep the energy
-      real(dp), intent(out) :: qb(2)        !! displaced angles [rad]
-      real(dp), intent(out) :: qdb(2)       !! displaced angular velocities [rad/s]
-      real(dp) :: u(4), n(4), z(4), e0, nn
-      integer :: it
+      real(dp), intent(out) :: qb(:)        !! displaced angles [rad]
+      real(dp), intent(out) :: qdb(:)       !! displaced angular velocities [rad/s]
+      real(dp) :: u(2*size(q)), n(2*size(q)), z(2*size(q)), e0, nn
+      integer :: it, m
+      m = size(q)
       u = 0.5_dp
       if (same_energy) then
-         n = energy_gradient(par, q, qd)
+         call model%energy_gradient(0.0_dp, [q, qd], n)
          nn = dot_product(n, n)
          if (nn > 0.0_dp) u = u - (dot_product(u, n)/nn)*n
          u = u/norm2(u)
       end if
       z = [q, qd] + delta0*u
       if (same_energy) then
-         e0 = energy(par, q, qd)
+         e0 = model%energy(0.0_dp, [q, qd])
          do it = 1, 3
-            n = energy_gradient(par, z(1:2), z(3:4))
+            call model%energy_gradient(0.0_dp, z, n)
             nn = dot_product(n, n)
             if (nn == 0.0_dp) exit
-            z = z - ((energy(par, z(1:2), z(3:4)) - e0)/nn)*n
+            z = z - ((model%energy(0.0_dp, z) - e0)/nn)*n
          end do
       end if
-      qb = z(1:2); qdb = z(3:4)
+      qb = z(1:m); qdb = z(m + 1:)
    end subroutine perturbed_state
 
    !> Distance in (q, q̇) with angle differences wrapped to (-π, π] [mixed units].
    pure real(dp) function phase_distance(qa, qda, qb, qdb)
-      real(dp), intent(in) :: qa(2), qda(2)  !! first state [rad, rad/s]
-      real(dp), intent(in) :: qb(2), qdb(2)  !! second state [rad, rad/s]
-      real(dp) :: dq(2)
+      real(dp), intent(in) :: qa(:), qda(:)  !! first state [rad, rad/s]
+      real(dp), intent(in) :: qb(:), qdb(:)  !! second state [rad, rad/s]
+      real(dp) :: dq(size(qa))
       dq = qb - qa
       dq = dq - 2.0_dp*pi*anint(dq/(2.0_dp*pi))
       phase_distance = sqrt(sum(dq**2) + sum((qdb - qda)**2))
@@ -117,12 +105,12 @@ contains
    !> Divergence of `n_pairs` pairs over [0, t_span], sampled every sample_dt
    !> (see the module header). h: fixed step or initial proposal of `integ`.
    !> On failure `stat` says why and `res` holds the pairs completed before.
-   subroutine divergence_pairs(integ, par, q0, qd0, t_span, sample_dt, delta0, same_energy, &
+   subroutine divergence_pairs(integ, model, q0, qd0, t_span, sample_dt, delta0, same_energy, &
                                n_pairs, spacing, h, res, stat)
       class(integrator_t), intent(inout) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
-      real(dp), intent(in) :: q0(2)                !! initial angles [rad]
-      real(dp), intent(in) :: qd0(2)               !! initial angular velocities [rad/s]
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(in) :: q0(:)                !! initial angles [rad]
+      real(dp), intent(in) :: qd0(:)               !! initial angular velocities [rad/s]
       real(dp), intent(in) :: t_span               !! duration of each pair [s]
       real(dp), intent(in) :: sample_dt            !! sampling interval [s]
       real(dp), intent(in) :: delta0               !! initial distance
@@ -133,12 +121,14 @@ contains
       type(divergence_result_t), intent(out) :: res !! curves
       integer, intent(out) :: stat                 !! stat_ok or a failure code
       real(dp), allocatable :: times(:), sa(:, :), sb(:, :), tref(:), sref(:, :)
-      real(dp) :: qa(2), qda(2), qb(2), qdb(2), ya(4), yb(4)
+      real(dp), dimension(size(q0)) :: qa, qda, qb, qdb
+      real(dp) :: ya(2*size(q0)), yb(2*size(q0))
       integer :: p, i, n_done
-      allocate (res%start(4, n_pairs), res%delta_start(n_pairs), res%energy_diff(n_pairs))
-      ya = integ%to_internal(par, q0, qd0)
+      allocate (res%start(2*size(q0), n_pairs), res%delta_start(n_pairs), &
+                res%energy_diff(n_pairs))
+      ya = integ%to_internal(model, q0, qd0)
       if (n_pairs > 1) then
-         call integrate_sampled(integ, par, 0.0_dp, ya, real(n_pairs - 1, dp)*spacing, h, &
+         call integrate_sampled(integ, model, 0.0_dp, ya, real(n_pairs - 1, dp)*spacing, h, &
                                 spacing, tref, sref, stat)
          if (stat /= stat_ok) then
             allocate (res%t(0), res%log10_pairs(0, 0), res%log10_mean(0))
@@ -146,28 +136,28 @@ contains
          end if
       else
          tref = [0.0_dp]
-         sref = reshape(ya, [4, 1])
+         sref = reshape(ya, [size(ya), 1])
       end if
       n_done = 0
       do p = 1, n_pairs
-         call integ%to_physical(par, sref(:, p), qa, qda)
-         call perturbed_state(par, qa, qda, delta0, same_energy, qb, qdb)
+         call integ%to_physical(model, sref(:, p), qa, qda)
+         call perturbed_state(model, qa, qda, delta0, same_energy, qb, qdb)
          res%start(:, p) = [qa, qda]
          res%delta_start(p) = phase_distance(qa, qda, qb, qdb)
-         res%energy_diff(p) = energy(par, qb, qdb) - energy(par, qa, qda)
-         ya = integ%to_internal(par, qa, qda)
-         yb = integ%to_internal(par, qb, qdb)
-         call integrate_sampled(integ, par, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat)
+         res%energy_diff(p) = model%energy(0.0_dp, [qb, qdb]) - model%energy(0.0_dp, [qa, qda])
+         ya = integ%to_internal(model, qa, qda)
+         yb = integ%to_internal(model, qb, qdb)
+         call integrate_sampled(integ, model, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat)
          if (stat /= stat_ok) exit
-         call integrate_sampled(integ, par, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat)
+         call integrate_sampled(integ, model, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat)
          if (stat /= stat_ok) exit
          if (p == 1) then
             res%t = times
             allocate (res%log10_pairs(n_pairs, size(times)))
          end if
          do i = 1, size(times)
-            call integ%to_physical(par, sa(:, i), qa, qda)
-            call integ%to_physical(par, sb(:, i), qb, qdb)
+            call integ%to_physical(model, sa(:, i), qa, qda)
+            call integ%to_physical(model, sb(:, i), qb, qdb)
             res%log10_pairs(p, i) = log10(max(phase_distance(qa, qda, qb, qdb), tiny(1.0_dp)))
          end do
          n_done = p

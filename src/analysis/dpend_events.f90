@@ -21,7 +21,7 @@
 !> a filter applied to the located crossing).
 module dpend_events
    use dpend_kinds, only: dp
-   use dpend_pendulum, only: pendulum_t
+   use dpend_model, only: model_t, max_state
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_propagate, only: march_t
    implicit none
@@ -40,13 +40,13 @@ module dpend_events
 
    abstract interface
       !> The event function.
-      pure real(dp) function value_i(self, par, t, q, qd)
-         import :: event_t, pendulum_t, dp
+      pure real(dp) function value_i(self, model, t, q, qd)
+         import :: event_t, model_t, dp
          class(event_t), intent(in) :: self  !! the event
-         type(pendulum_t), intent(in) :: par !! parameters
+         class(model_t), intent(in) :: model  !! the system
          real(dp), intent(in) :: t           !! time [s]
-         real(dp), intent(in) :: q(2)        !! angles [rad]
-         real(dp), intent(in) :: qd(2)       !! angular velocities [rad/s]
+         real(dp), intent(in) :: q(:)        !! angles [rad]
+         real(dp), intent(in) :: qd(:)       !! angular velocities [rad/s]
       end function value_i
    end interface
 
@@ -66,31 +66,31 @@ module dpend_events
    !> A located crossing.
    type :: crossing_t
       real(dp) :: t = 0.0_dp       !! time [s]
-      real(dp) :: q(2) = 0.0_dp    !! angles [rad]
-      real(dp) :: qd(2) = 0.0_dp   !! angular velocities [rad/s]
-      real(dp) :: y(4) = 0.0_dp    !! the method's internal state
+      real(dp), allocatable :: q(:)    !! coordinates [rad]
+      real(dp), allocatable :: qd(:)   !! their rates [rad/s]
+      real(dp), allocatable :: y(:)    !! the method's internal state
       integer :: direction = 0     !! +1 rising, -1 falling
    end type crossing_t
 
 contains
 
    !> Default filter: keep every located crossing.
-   pure logical function accept_all(self, par, t, q, qd)
+   pure logical function accept_all(self, model, t, q, qd)
       class(event_t), intent(in) :: self  !! the event
-      type(pendulum_t), intent(in) :: par !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t           !! time [s]
-      real(dp), intent(in) :: q(2)        !! angles [rad]
-      real(dp), intent(in) :: qd(2)       !! angular velocities [rad/s]
+      real(dp), intent(in) :: q(:)        !! angles [rad]
+      real(dp), intent(in) :: qd(:)       !! angular velocities [rad/s]
       accept_all = .true.
    end function accept_all
 
    !> g = q(index) - angle, or sin(q(index) - angle) with `wrap` [rad or 1].
-   pure real(dp) function angle_value(self, par, t, q, qd)
+   pure real(dp) function angle_value(self, model, t, q, qd)
       class(angle_crossing_t), intent(in) :: self  !! the event
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t                    !! time [s]
-      real(dp), intent(in) :: q(2)                 !! angles [rad]
-      real(dp), intent(in) :: qd(2)                !! angular velocities [rad/s]
+      real(dp), intent(in) :: q(:)                 !! angles [rad]
+      real(dp), intent(in) :: qd(:)                !! angular velocities [rad/s]
       if (self%wrap) then
          angle_value = sin(q(self%index) - self%angle)
       else
@@ -99,12 +99,12 @@ contains
    end function angle_value
 
    !> With `wrap`, reject the crossings of sin at angle + π.
-   pure logical function angle_accept(self, par, t, q, qd)
+   pure logical function angle_accept(self, model, t, q, qd)
       class(angle_crossing_t), intent(in) :: self  !! the event
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t                    !! time [s]
-      real(dp), intent(in) :: q(2)                 !! angles [rad]
-      real(dp), intent(in) :: qd(2)                !! angular velocities [rad/s]
+      real(dp), intent(in) :: q(:)                 !! angles [rad]
+      real(dp), intent(in) :: qd(:)                !! angular velocities [rad/s]
       angle_accept = .true.
       if (self%wrap) angle_accept = cos(q(self%index) - self%angle) > 0.0_dp
    end function angle_accept
@@ -113,22 +113,23 @@ contains
    !> (see the module header). `found` is false when there is no step, no sign
    !> change in the requested direction, or the crossing is not accepted.
    !> `stat` reports a failure of the fractional steps (fixed-step methods).
-   subroutine locate_crossing(event, integ, par, found, hit, stat)
+   subroutine locate_crossing(event, integ, model, found, hit, stat)
       class(event_t), intent(in) :: event          !! the event
       class(integrator_t), intent(inout) :: integ  !! the method, after a step
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       logical, intent(out) :: found                !! a crossing was located
       type(crossing_t), intent(out) :: hit         !! the crossing, when found
       integer, intent(out) :: stat                 !! stat_ok or a step failure code
       class(integrator_t), allocatable :: work
-      real(dp) :: ga, gb, gc, a, b, c, d, e, tol1, xm, p, q, r, s, yb(4)
-      integer :: dir, it
+      real(dp) :: ga, gb, gc, a, b, c, d, e, tol1, xm, p, q, r, s, yb(max_state)
+      integer :: dir, it, n
       found = .false.
       stat = stat_ok
       if (.not. integ%has_step()) return
+      n = integ%n_rec
       a = integ%t_old; b = integ%t_new
-      ga = g_of(integ%y_old, a)
-      gb = g_of(integ%y_new, b)
+      ga = g_of(integ%y_old(:n), a)
+      gb = g_of(integ%y_new(:n), b)
       if (ga < 0.0_dp .and. gb >= 0.0_dp) then
          dir = 1
       else if (ga > 0.0_dp .and. gb <= 0.0_dp) then
@@ -180,42 +181,47 @@ contains
          else
             b = b + sign(tol1, xm)
          end if
-         gb = g_of(state_at(b), b)
+         call state_at(b, yb(:n))
+         gb = g_of(yb(:n), b)
          if (stat /= stat_ok) exit
       end do
-      yb = state_at(b)
+      call state_at(b, yb(:n))
       if (allocated(work)) integ%n_rhs = work%n_rhs  ! the copy started from integ's count
       if (stat /= stat_ok) return
       hit%t = b
-      hit%y = yb
+      hit%y = yb(:n)
       hit%direction = dir
-      call integ%to_physical(par, yb, hit%q, hit%qd)
-      found = event%accept(par, b, hit%q, hit%qd)
+      allocate (hit%q(n/2), hit%qd(n/2))
+      call integ%to_physical(model, yb(:n), hit%q, hit%qd)
+      found = event%accept(model, b, hit%q, hit%qd)
    contains
       !> g at internal state ys and time ts.
       real(dp) function g_of(ys, ts)
-         real(dp), intent(in) :: ys(4), ts
-         real(dp) :: qq(2), qqd(2)
-         call integ%to_physical(par, ys, qq, qqd)
-         g_of = event%value(par, ts, qq, qqd)
+         real(dp), intent(in) :: ys(:), ts
+         real(dp) :: qq(max_state), qqd(max_state)
+         integer :: m
+         m = size(ys)/2
+         call integ%to_physical(model, ys, qq(:m), qqd(:m))
+         g_of = event%value(model, ts, qq(:m), qqd(:m))
       end function g_of
 
       !> Internal state at ts inside the last step.
-      function state_at(ts) result(ys)
+      subroutine state_at(ts, ys)
          real(dp), intent(in) :: ts
-         real(dp) :: ys(4), tt, hs
+         real(dp), intent(out) :: ys(:)
+         real(dp) :: tt, hs
          if (ts == integ%t_new) then
-            ys = integ%y_new
+            ys = integ%y_new(:n)
          else if (ts == integ%t_old) then
-            ys = integ%y_old
+            ys = integ%y_old(:n)
          else if (allocated(work)) then
-            tt = integ%t_old; ys = integ%y_old; hs = ts - integ%t_old
-            call work%step(par, tt, ys, hs, stat)
+            tt = integ%t_old; ys = integ%y_old(:n); hs = ts - integ%t_old
+            call work%step(model, tt, ys, hs, stat)
          else
-            ys = integ%y_new
-            call integ%interpolate(par, ts, ys)
+            ys = integ%y_new(:n)
+            call integ%interpolate(model, ts, ys)
          end if
-      end function state_at
+      end subroutine state_at
    end subroutine locate_crossing
 
    !> Integrate from (t, y) to t_end (rules of `march_t`) and collect the
@@ -224,12 +230,12 @@ contains
    !> step end, so that a further call continues the same discrete trajectory.
    !> h: fixed step or initial proposal (0: auto), returned as the next proposal.
    !> The method's step memory is cleared first.
-   subroutine find_crossings(event, integ, par, t, y, t_end, h, hits, stat, max_hits)
+   subroutine find_crossings(event, integ, model, t, y, t_end, h, hits, stat, max_hits)
       class(event_t), intent(in) :: event               !! the event
       class(integrator_t), intent(inout) :: integ       !! the method
-      type(pendulum_t), intent(in) :: par               !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t                      !! start, then stop time [s]
-      real(dp), intent(inout) :: y(4)                   !! internal state at t
+      real(dp), intent(inout) :: y(:)                   !! internal state at t
       real(dp), intent(in) :: t_end                     !! end time [s]
       real(dp), intent(inout) :: h                      !! step or proposal [s]
       type(crossing_t), allocatable, intent(out) :: hits(:) !! the crossings, in order
@@ -248,9 +254,9 @@ contains
       call integ%clear_step()
       call march%start(integ, t, t_end, h)
       do while (.not. march%finished .and. n < limit)
-         call march%next(integ, par, t, y, h, stat)
+         call march%next(integ, model, t, y, h, stat)
          if (stat /= stat_ok) exit
-         call locate_crossing(event, integ, par, found, hit, stat)
+         call locate_crossing(event, integ, model, found, hit, stat)
          if (stat /= stat_ok) exit
          if (.not. found) cycle
          if (n == size(hits)) then

@@ -20,7 +20,7 @@
 !> spread is the standard error of their mean, std/√n_batches.
 module dpend_lyapunov
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok, &
                                stat_tangent_substeps
    use dpend_propagate, only: march_t
@@ -77,7 +77,7 @@ module dpend_lyapunov
       real(dp), allocatable :: t(:)             !! renormalisation times (n) [s]
       real(dp), allocatable :: running(:, :)    !! running estimates λ_i(t) (k, n) [1/s]
       real(dp) :: t_reached = 0.0_dp            !! time reached [s]
-      real(dp) :: y(4) = 0.0_dp                 !! internal state reached
+      real(dp), allocatable :: y(:)             !! internal state reached
       integer(i8) :: n_sub = 0                  !! tangent substeps
    end type lyapunov_result_t
 
@@ -233,26 +233,26 @@ contains
    !> step that reaches t0 + j τ, and at t_end. On failure `stat` says why
    !> (a step failure, or stat_nonfinite for non-finite tangent vectors) and
    !> `res` holds what was computed up to `res%t_reached`.
-   subroutine lyapunov_spectrum(integ, par, t0, y0, t_end, h, tau, k, n_batches, res, stat)
+   subroutine lyapunov_spectrum(integ, model, t0, y0, t_end, h, tau, k, n_batches, res, stat)
       class(integrator_t), intent(inout) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t0                   !! start time [s]
-      real(dp), intent(in) :: y0(4)                !! internal state at t0
+      real(dp), intent(in) :: y0(:)                !! internal state at t0
       real(dp), intent(in) :: t_end                !! end time [s], > t0
       real(dp), intent(in) :: h                    !! step or initial proposal [s]
       real(dp), intent(in) :: tau                  !! renormalisation interval [s], > 0
-      integer, intent(in) :: k                     !! exponents wanted, 1 to 4
+      integer, intent(in) :: k                     !! exponents wanted, 1 to 2n
       integer, intent(in) :: n_batches             !! batches for the spread
       type(lyapunov_result_t), intent(out) :: res  !! exponents and running estimates
       integer, intent(out) :: stat                 !! stat_ok or a failure code
       type(march_t) :: march
       type(tangent_t) :: tan
       type(lyapunov_acc_t) :: acc
-      real(dp) :: t, y(4), hh, eye(4, 4), t_next
+      real(dp) :: t, y(size(y0)), hh, eye(size(y0), size(y0)), t_next
       integer :: i, info
       integer(i8) :: j
       eye = 0.0_dp
-      do i = 1, 4
+      do i = 1, size(y0)
          eye(i, i) = 1.0_dp
       end do
       call tan%init(eye(:, 1:k))
@@ -264,9 +264,9 @@ contains
       call integ%clear_step()
       call march%start(integ, t, t_end, hh)
       do while (.not. march%finished)
-         call march%next(integ, par, t, y, hh, stat)
+         call march%next(integ, model, t, y, hh, stat)
          if (stat /= stat_ok) exit
-         call tan%propagate(integ, par)
+         call tan%propagate(integ, model)
          if (tan%too_stiff) then
             stat = stat_tangent_substeps
             exit

@@ -19,17 +19,15 @@
 !> The orbits are independent and run in parallel (OpenMP), each on its own
 !> copy of the method; results do not depend on the number of threads.
 module dpend_poincare
-   use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t, mass_matrix, potential_energy, velocities, momenta, &
-                          energy
+   use dpend_kinds, only: dp, i8, pi
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_events, only: angle_crossing_t, crossing_t, find_crossings
    implicit none
    private
-   public :: shell_state, shell_samples, shell_p_max, halton
+   public :: shell_samples, halton
    public :: poincare_result_t, section_orbit, poincare_sections
 
-   real(dp), parameter :: pi = acos(-1.0_dp)
 
    !> Section points of many orbits, concatenated in orbit order.
    type :: poincare_result_t
@@ -62,66 +60,11 @@ contains
       end do
    end function halton
 
-   !> The state on the section with q_s = angle, q_o, p_o given and H = E (see the
-   !> module header); `found` is false outside the energy shell. direction: sign
-   !> of q̇_s (−1 negative, otherwise positive).
-   pure subroutine shell_state(par, e, link, angle, direction, q_o, p_o, q, qd, found)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(in) :: e            !! energy [J]
-      integer, intent(in) :: link          !! section link s (1 or 2)
-      real(dp), intent(in) :: angle        !! section angle [rad]
-      integer, intent(in) :: direction     !! crossing direction
-      real(dp), intent(in) :: q_o          !! other link's angle [rad]
-      real(dp), intent(in) :: p_o          !! other link's momentum [kg m²/s]
-      real(dp), intent(out) :: q(2)        !! angles [rad]
-      real(dp), intent(out) :: qd(2)       !! angular velocities [rad/s]
-      logical, intent(out) :: found        !! (q_o, p_o) lies inside the shell
-      integer :: o
-      real(dp) :: a, b, det_inv, disc, qd_s, p(2), m(2, 2)
-      o = 3 - link
-      q(link) = angle; q(o) = q_o
-      m = mass_matrix(par, q)
-      det_inv = 1.0_dp/(m(1, 1)*m(2, 2) - m(1, 2)**2)
-      a = m(o, o)*det_inv            ! (M⁻¹)_ss
-      b = -m(1, 2)*det_inv           ! (M⁻¹)_so
-      disc = 2.0_dp*a*(e - potential_energy(par, q)) - det_inv*p_o**2
-      found = disc > 0.0_dp
-      qd = 0.0_dp
-      if (.not. found) return
-      qd_s = sqrt(disc)
-      if (direction < 0) qd_s = -qd_s
-      p(o) = p_o
-      p(link) = (qd_s - b*p_o)/a
-      qd = velocities(par, q, p)
-   end subroutine shell_state
-
-   !> Largest |p_o| on the energy shell of the section (0 if the shell is empty),
-   !> from q̇_s² ≥ 0 maximised over a grid of 1441 values of q_o, plus 2 %.
-   pure real(dp) function shell_p_max(par, e, link, angle)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(in) :: e            !! energy [J]
-      integer, intent(in) :: link          !! section link (1 or 2)
-      real(dp), intent(in) :: angle        !! section angle [rad]
-      real(dp) :: q(2), m(2, 2), det_inv, a, x
-      integer :: i
-      shell_p_max = 0.0_dp
-      q(link) = angle
-      do i = 0, 1440
-         q(3 - link) = -pi + 2.0_dp*pi*real(i, dp)/1440.0_dp
-         m = mass_matrix(par, q)
-         det_inv = 1.0_dp/(m(1, 1)*m(2, 2) - m(1, 2)**2)
-         a = m(3 - link, 3 - link)*det_inv
-         x = 2.0_dp*a*(e - potential_energy(par, q))/det_inv
-         if (x > 0.0_dp) shell_p_max = max(shell_p_max, sqrt(x))
-      end do
-      shell_p_max = 1.02_dp*shell_p_max
-   end function shell_p_max
-
    !> Up to n initial states on the section at energy e, from the Halton points
    !> (see the module header); at most 1000 n + 1000 points are tried. n_found
    !> < n when the shell is empty or very thin.
-   pure subroutine shell_samples(par, e, link, angle, direction, n, q, qd, n_found)
-      type(pendulum_t), intent(in) :: par  !! parameters
+   pure subroutine shell_samples(model, e, link, angle, direction, n, q, qd, n_found)
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: e            !! energy [J]
       integer, intent(in) :: link          !! section link (1 or 2)
       real(dp), intent(in) :: angle        !! section angle [rad]
@@ -135,12 +78,12 @@ contains
       logical :: found
       q = 0.0_dp; qd = 0.0_dp
       n_found = 0
-      pmax = shell_p_max(par, e, link, angle)
+      pmax = model%section_p_max(e, link, angle)
       if (pmax <= 0.0_dp) return
       do i = 1, 1000*n + 1000
          q_o = -pi + 2.0_dp*pi*halton(i, 2)
          p_o = pmax*(2.0_dp*halton(i, 3) - 1.0_dp)
-         call shell_state(par, e, link, angle, direction, q_o, p_o, &
+         call model%section_state(e, link, angle, direction, q_o, p_o, &
                           q(:, n_found + 1), qd(:, n_found + 1), found)
          if (found) n_found = n_found + 1
          if (n_found == n) return
@@ -151,13 +94,13 @@ contains
    !> it lies on the section (first point, t = 0), then up to `max_points`
    !> crossings of `section` before t_end, located by `find_crossings`.
    !> h: fixed step or initial proposal. Returns the points found before a failure.
-   subroutine section_orbit(integ, par, section, q0, qd0, t_end, h, max_points, &
+   subroutine section_orbit(integ, model, section, q0, qd0, t_end, h, max_points, &
                             qo, po, t, e, stat)
       class(integrator_t), intent(inout) :: integ        !! the method
-      type(pendulum_t), intent(in) :: par                !! parameters
+      class(model_t), intent(in) :: model  !! the system
       type(angle_crossing_t), intent(in) :: section      !! the section
-      real(dp), intent(in) :: q0(2)                      !! initial angles [rad]
-      real(dp), intent(in) :: qd0(2)                     !! initial angular velocities [rad/s]
+      real(dp), intent(in) :: q0(:)                      !! initial angles [rad]
+      real(dp), intent(in) :: qd0(:)                     !! initial angular velocities [rad/s]
       real(dp), intent(in) :: t_end                      !! longest integration [s]
       real(dp), intent(in) :: h                          !! step or proposal [s]
       integer, intent(in) :: max_points                  !! most points of the orbit
@@ -167,7 +110,7 @@ contains
       real(dp), allocatable, intent(out) :: e(:)         !! energies [J]
       integer, intent(out) :: stat                       !! stat_ok or a failure code
       type(crossing_t), allocatable :: hits(:)
-      real(dp) :: y(4), tt, hh, p(2)
+      real(dp) :: y(2*size(q0)), tt, hh, p(size(q0))
       integer :: o, i, n0, n
       logical :: on_section
       o = 3 - section%index
@@ -176,22 +119,23 @@ contains
                    .and. (section%direction == 0 .or. &
                           section%direction*qd0(section%index) > 0.0_dp)
       n0 = merge(1, 0, on_section)
-      y = integ%to_internal(par, q0, qd0)
+      y = integ%to_internal(model, q0, qd0)
       tt = 0.0_dp; hh = h
-      call find_crossings(section, integ, par, tt, y, t_end, hh, hits, stat, &
+      call find_crossings(section, integ, model, tt, y, t_end, hh, hits, stat, &
                           max_hits=max(max_points - n0, 0))
       n = n0 + size(hits)
       allocate (qo(n), po(n), t(n), e(n))
       if (on_section) then
-         p = momenta(par, q0, qd0)
-         qo(1) = wrap(q0(o)); po(1) = p(o); t(1) = 0.0_dp; e(1) = energy(par, q0, qd0)
+         call model%momenta(0.0_dp, [q0, qd0], p)
+         qo(1) = wrap(q0(o)); po(1) = p(o); t(1) = 0.0_dp
+         e(1) = model%energy(0.0_dp, [q0, qd0])
       end if
       do i = 1, size(hits)
-         p = momenta(par, hits(i)%q, hits(i)%qd)
+         call model%momenta(hits(i)%t, [hits(i)%q, hits(i)%qd], p)
          qo(n0 + i) = wrap(hits(i)%q(o))
          po(n0 + i) = p(o)
          t(n0 + i) = hits(i)%t
-         e(n0 + i) = energy(par, hits(i)%q, hits(i)%qd)
+         e(n0 + i) = model%energy(hits(i)%t, [hits(i)%q, hits(i)%qd])
       end do
    contains
       pure real(dp) function wrap(x)
@@ -202,9 +146,9 @@ contains
 
    !> Section points of the orbits from q0(:, j), q̇0(:, j), each integrated by
    !> its own copy of `proto` (in parallel), concatenated in orbit order.
-   subroutine poincare_sections(proto, par, section, q0, qd0, t_end, h, max_points, res)
+   subroutine poincare_sections(proto, model, section, q0, qd0, t_end, h, max_points, res)
       class(integrator_t), intent(in) :: proto           !! the method (copied per orbit)
-      type(pendulum_t), intent(in) :: par                !! parameters
+      class(model_t), intent(in) :: model  !! the system
       type(angle_crossing_t), intent(in) :: section      !! the section
       real(dp), intent(in) :: q0(:, :)                   !! initial angles (2, n) [rad]
       real(dp), intent(in) :: qd0(:, :)                  !! initial velocities (2, n) [rad/s]
@@ -244,7 +188,7 @@ contains
          class(integrator_t), allocatable :: work
          allocate (work, source=proto)
          call work%reset_counters()
-         call section_orbit(work, par, section, q0(:, jj), qd0(:, jj), t_end, h, max_points, &
+         call section_orbit(work, model, section, q0(:, jj), qd0(:, jj), t_end, h, max_points, &
                             orb(jj)%qo, orb(jj)%po, orb(jj)%t, orb(jj)%e, res%status(jj))
          res%count(jj) = size(orb(jj)%qo)
          steps(jj) = work%n_steps

@@ -11,7 +11,7 @@
 !> A fixed-step method given h = 0 fails with stat_step_too_small.
 module dpend_propagate
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t
+   use dpend_model, only: model_t, max_state
    use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small, stat_max_steps, &
                                stat_count_limit
    use dpend_limits, only: max_steps, max_samples
@@ -23,7 +23,7 @@ module dpend_propagate
    !> loops (streaming output, events) that share the stepping rules above:
    !>   call march%start(integ, t, t_end, h)
    !>   do while (.not. march%finished)
-   !>      call march%next(integ, par, t, y, h, stat); if (stat /= stat_ok) exit
+   !>      call march%next(integ, model, t, y, h, stat); if (stat /= stat_ok) exit
    !>      ... the step [integ%t_old, integ%t_new] is available for interpolation
    !>   end do
    type :: march_t
@@ -92,17 +92,19 @@ contains
 
    !> Take the next step of the march; sets `finished` after the last one, which
    !> ends exactly on t_end. h: the fixed step, or the adaptive proposal (updated).
-   subroutine march_next(self, integ, par, t, y, h, stat)
+   subroutine march_next(self, integ, model, t, y, h, stat)
       class(march_t), intent(inout) :: self        !! the march
       class(integrator_t), intent(inout) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t                 !! time [s]
-      real(dp), intent(inout) :: y(4)              !! internal state
+      real(dp), intent(inout) :: y(:)              !! internal state
       real(dp), intent(inout) :: h                 !! step or proposal [s]
       integer, intent(out) :: stat                 !! stat_ok or a failure code
-      real(dp) :: hs, t_save, y_save(4)
+      real(dp) :: hs, t_save, y_save(max_state)
+      integer :: ns
       logical :: last
       stat = stat_ok
+      ns = size(y)
       if (self%finished) return
       if (self%adaptive) then
          if (self%n_adaptive >= integ%max_steps) then
@@ -116,16 +118,16 @@ contains
          else
             hs = h
          end if
-         t_save = t; y_save = y
-         call integ%step(par, t, y, hs, stat)
+         t_save = t; y_save(:ns) = y
+         call integ%step(model, t, y, hs, stat)
          if (stat /= stat_ok) return
          if (self%dir*(t - self%t_end) > 0.0_dp) then
             ! only possible when the method chose its first step (h = 0) longer
             ! than the whole interval: redo it, capped
-            t = t_save; y = y_save
+            t = t_save; y = y_save(:ns)
             h = hs
             hs = self%t_end - t
-            call integ%step(par, t, y, hs, stat)
+            call integ%step(model, t, y, hs, stat)
             if (stat /= stat_ok) return
          end if
          if (abs(self%t_end - t) <= 4.0_dp*epsilon(1.0_dp)*max(abs(t), abs(self%t_end))) then
@@ -149,7 +151,7 @@ contains
       end if
       if (self%i < self%n_whole) then
          hs = self%h_fixed
-         call integ%step(par, t, y, hs, stat)
+         call integ%step(model, t, y, hs, stat)
          if (stat /= stat_ok) return
          self%i = self%i + 1
          t = self%t0 + real(self%i, dp)*self%h_fixed
@@ -159,7 +161,7 @@ contains
          end if
       else
          hs = self%t_end - t
-         call integ%step(par, t, y, hs, stat)
+         call integ%step(model, t, y, hs, stat)
          if (stat /= stat_ok) return
          t = self%t_end
          self%finished = .true.
@@ -169,11 +171,11 @@ contains
    !> Take exactly `nsteps` calls of `step` with h, from (t, y). For fixed-step
    !> methods t advances to t0 + nsteps h (computed without drift); adaptive
    !> methods take `nsteps` accepted steps and return the next proposal in h.
-   subroutine advance_fixed(integ, par, t, y, h, nsteps, stat)
+   subroutine advance_fixed(integ, model, t, y, h, nsteps, stat)
       class(integrator_t), intent(inout) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t                 !! time [s]
-      real(dp), intent(inout) :: y(4)              !! internal state
+      real(dp), intent(inout) :: y(:)              !! internal state
       real(dp), intent(inout) :: h                 !! step [s]
       integer(i8), intent(in) :: nsteps            !! number of steps
       integer, intent(out) :: stat                 !! stat_ok or a failure code
@@ -183,7 +185,7 @@ contains
       t0 = t
       do i = 1, nsteps
          hs = h
-         call integ%step(par, t, y, hs, stat)
+         call integ%step(model, t, y, hs, stat)
          if (stat /= stat_ok) return
          if (integ%adaptive()) then
             h = hs
@@ -196,11 +198,11 @@ contains
    !> Advance (t, y) to exactly t = t_target (see the module header for the rules).
    !> h: the fixed step, or the initial proposal of an adaptive method (0: the
    !> method chooses), returned as the next proposal.
-   subroutine advance_to(integ, par, t, y, t_target, h, stat)
+   subroutine advance_to(integ, model, t, y, t_target, h, stat)
       class(integrator_t), intent(inout) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t                 !! time [s]
-      real(dp), intent(inout) :: y(4)              !! internal state
+      real(dp), intent(inout) :: y(:)              !! internal state
       real(dp), intent(in) :: t_target             !! end time [s]
       real(dp), intent(inout) :: h                 !! step or proposal [s]
       integer, intent(out) :: stat                 !! stat_ok or a failure code
@@ -208,7 +210,7 @@ contains
       stat = stat_ok
       call march%start(integ, t, t_target, h)
       do while (.not. march%finished)
-         call march%next(integ, par, t, y, h, stat)
+         call march%next(integ, model, t, y, h, stat)
          if (stat /= stat_ok) return
       end do
    end subroutine advance_to
@@ -221,19 +223,19 @@ contains
    !> h: the fixed step, or the initial proposal of an adaptive method (0: auto).
    !> The method's step memory is cleared at the start. On failure `stat` says
    !> why and the arrays hold the samples computed so far.
-   subroutine integrate_sampled(integ, par, t0, y0, t_end, h, output_dt, times, states, stat)
+   subroutine integrate_sampled(integ, model, t0, y0, t_end, h, output_dt, times, states, stat)
       class(integrator_t), intent(inout) :: integ        !! the method
-      type(pendulum_t), intent(in) :: par                !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t0                         !! start time [s]
-      real(dp), intent(in) :: y0(4)                      !! internal state at t0
+      real(dp), intent(in) :: y0(:)                      !! internal state at t0
       real(dp), intent(in) :: t_end                      !! end time [s]
       real(dp), intent(in) :: h                          !! step or initial proposal [s]
       real(dp), intent(in) :: output_dt                  !! sampling interval [s]
       real(dp), allocatable, intent(out) :: times(:)     !! sample times [s]
-      real(dp), allocatable, intent(out) :: states(:, :) !! internal states, (4, n)
+      real(dp), allocatable, intent(out) :: states(:, :) !! internal states, (2n, samples)
       integer, intent(out) :: stat                       !! stat_ok or a failure code
       type(march_t) :: march
-      real(dp) :: t, y(4), hh, d, tk, tol, r
+      real(dp) :: t, y(size(y0)), hh, d, tk, tol, r
       integer(i8) :: k, n_grid, n
       stat = stat_ok
       call integ%clear_step()
@@ -242,7 +244,7 @@ contains
       if (output_dt > 0.0_dp .and. abs(t_end - t0) > abs(d)*real(max_samples, dp)) then
          ! compared before dividing: more samples than any array can hold
          stat = stat_count_limit
-         allocate (times(1), states(4, 1))
+         allocate (times(1), states(size(y0), 1))
          times(1) = t0; states(:, 1) = y0
          return
       end if
@@ -259,13 +261,13 @@ contains
          n_grid = 0
          n = 64
       end if
-      allocate (times(n), states(4, n))
+      allocate (times(n), states(size(y0), n))
       n = 1
       times(1) = t0; states(:, 1) = y0
       k = 1
       call march%start(integ, t, t_end, hh)
       do while (.not. march%finished)
-         call march%next(integ, par, t, y, hh, stat)
+         call march%next(integ, model, t, y, hh, stat)
          if (stat /= stat_ok) exit
          if (output_dt <= 0.0_dp) then
             call push(t, y)
@@ -296,16 +298,16 @@ contains
    contains
       function interpolated(ts) result(ys)
          real(dp), intent(in) :: ts
-         real(dp) :: ys(4)
+         real(dp) :: ys(size(y))
          ys = y
-         call integ%interpolate(par, ts, ys)
+         call integ%interpolate(model, ts, ys)
       end function interpolated
 
       subroutine push(ts, ys)
-         real(dp), intent(in) :: ts, ys(4)
+         real(dp), intent(in) :: ts, ys(:)
          real(dp), allocatable :: tt(:), ss(:, :)
          if (n == size(times)) then
-            allocate (tt(2*n), ss(4, 2*n))
+            allocate (tt(2*n), ss(size(y0), 2*n))
             tt(1:n) = times; ss(:, 1:n) = states
             call move_alloc(tt, times); call move_alloc(ss, states)
          end if

@@ -28,7 +28,7 @@
 !> The Jacobian at the end of a step is kept for the start of the next one.
 module dpend_tangent
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t, jacobian_qqdot, jacobian_qp
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t
    use dpend_limits, only: max_tangent_substeps
    implicit none
@@ -47,8 +47,8 @@ module dpend_tangent
       !> were not propagated (the step is far too long for the local frequency)
       logical :: too_stiff = .false.
       logical :: cached = .false.         !! j_cache holds J(y_cache)
-      real(dp) :: y_cache(4) = 0.0_dp     !! state of the cached Jacobian
-      real(dp) :: j_cache(4, 4) = 0.0_dp  !! cached Jacobian
+      real(dp), allocatable :: y_cache(:)     !! state of the cached Jacobian
+      real(dp), allocatable :: j_cache(:, :)  !! cached Jacobian
    contains
       procedure :: init => tangent_init
       procedure :: propagate => tangent_propagate
@@ -59,7 +59,7 @@ contains
    !> Start with the vectors `v0` (4, k), e.g. the first k columns of the identity.
    subroutine tangent_init(self, v0)
       class(tangent_t), intent(inout) :: self  !! the tangent state
-      real(dp), intent(in) :: v0(:, :)         !! initial tangent vectors (4, k)
+      real(dp), intent(in) :: v0(:, :)         !! initial tangent vectors (2n, k)
       self%v = v0
       self%cached = .false.
       self%n_jac = 0
@@ -68,37 +68,45 @@ contains
 
    !> The Jacobian of the method's vector field at its internal state y:
    !> ∂f/∂(q, p) for canonical methods, ∂f/∂(q, q̇) otherwise.
-   pure function internal_jacobian(integ, par, y) result(jac)
+   pure function internal_jacobian(integ, model, y) result(jac)
       class(integrator_t), intent(in) :: integ  !! the method (decides the variables)
-      type(pendulum_t), intent(in) :: par       !! parameters
-      real(dp), intent(in) :: y(4)              !! internal state
-      real(dp) :: jac(4, 4)
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(in) :: y(:)              !! internal state
+      real(dp) :: jac(size(y), size(y))
       if (integ%canonical()) then
-         jac = jacobian_qp(par, y)
+         call model%canonical_jacobian(0.0_dp, y, jac)
       else
-         jac = jacobian_qqdot(par, y)
+         call model%jacobian(0.0_dp, y, jac)
       end if
    end function internal_jacobian
 
    !> Propagate the tangent vectors over the last accepted step of `integ`
    !> (see the module header). Call once after every accepted step. Without a
    !> recorded step, or for a step of zero length, nothing happens.
-   subroutine tangent_propagate(self, integ, par)
+   subroutine tangent_propagate(self, integ, model)
       class(tangent_t), intent(inout) :: self      !! the tangent state
       class(integrator_t), intent(inout) :: integ  !! the method, after a step
-      type(pendulum_t), intent(in) :: par          !! parameters
-      real(dp) :: h, hs, ta, omega, ja(4, 4), jm(4, 4), jb(4, 4), ym(4), yb(4)
-      real(dp), dimension(4, size(self%v, 2)) :: k1, k2, k3, k4
-      integer :: n, i
+      class(model_t), intent(in) :: model  !! the system
+      real(dp) :: h, hs, ta, omega
+      real(dp), dimension(integ%n_rec, integ%n_rec) :: ja, jm, jb, ja2
+      real(dp), dimension(integ%n_rec) :: ym, yb
+      real(dp), dimension(integ%n_rec, size(self%v, 2)) :: k1, k2, k3, k4
+      integer :: n, i, ns
+      logical :: hit
       if (.not. integ%has_step()) return
       h = integ%t_new - integ%t_old
       if (h == 0.0_dp) return
-      if (self%cached .and. all(self%y_cache == integ%y_old)) then
+      ns = integ%n_rec
+      ! (nested: y_cache is unallocated until the first step is cached)
+      hit = .false.
+      if (self%cached) hit = all(self%y_cache == integ%y_old(:ns))
+      if (hit) then
          ja = self%j_cache
       else
-         ja = jacobian(integ%y_old)
+         ja = jacobian(integ%y_old(:ns))
       end if
-      omega = sqrt(maxval(sum(abs(matmul(ja, ja)), dim=2)))
+      call mat_mul(ja, ja, ja2)
+      omega = sqrt(maxval(sum(abs(ja2), dim=2)))
       ! compared before converting: the substep count must fit an integer
       self%too_stiff = .not. (abs(h)*omega <= self%theta*real(max_tangent_substeps, dp))
       if (self%too_stiff) return
@@ -106,35 +114,53 @@ contains
       hs = h/real(n, dp)
       do i = 1, n
          ta = integ%t_old + real(i - 1, dp)*hs
-         ym = integ%y_new
-         call integ%interpolate(par, ta + 0.5_dp*hs, ym)
+         ym = integ%y_new(:ns)
+         call integ%interpolate(model, ta + 0.5_dp*hs, ym)
          jm = jacobian(ym)
          if (i == n) then
-            yb = integ%y_new
+            yb = integ%y_new(:ns)
          else
-            yb = integ%y_new
-            call integ%interpolate(par, ta + hs, yb)
+            yb = integ%y_new(:ns)
+            call integ%interpolate(model, ta + hs, yb)
          end if
          jb = jacobian(yb)
          associate (v => self%v)
-            k1 = matmul(ja, v)
-            k2 = matmul(jm, v + (0.5_dp*hs)*k1)
-            k3 = matmul(jm, v + (0.5_dp*hs)*k2)
-            k4 = matmul(jb, v + hs*k3)
+            call mat_mul(ja, v, k1)
+            call mat_mul(jm, v + (0.5_dp*hs)*k1, k2)
+            call mat_mul(jm, v + (0.5_dp*hs)*k2, k3)
+            call mat_mul(jb, v + hs*k3, k4)
             v = v + (hs/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
          end associate
          ja = jb
       end do
       self%n_sub = self%n_sub + n
       self%cached = .true.
-      self%y_cache = integ%y_new
+      self%y_cache = integ%y_new(:ns)
       self%j_cache = jb
    contains
       function jacobian(y) result(jac)
-         real(dp), intent(in) :: y(4)
-         real(dp) :: jac(4, 4)
-         jac = internal_jacobian(integ, par, y)
+         real(dp), intent(in) :: y(:)
+         real(dp) :: jac(size(y), size(y))
+         jac = internal_jacobian(integ, model, y)
          self%n_jac = self%n_jac + 1
       end function jacobian
    end subroutine tangent_propagate
+
+   !> c = a b by the plain triple loop, summing over l in ascending order: the same
+   !> operations as gfortran's inlined `matmul` of small fixed-size arrays, whatever
+   !> the size (the library `matmul` used for run-time sizes sums differently).
+   pure subroutine mat_mul(a, b, c)
+      real(dp), intent(in) :: a(:, :)   !! (m, k)
+      real(dp), intent(in) :: b(:, :)   !! (k, p)
+      real(dp), intent(out) :: c(:, :)  !! (m, p)
+      integer :: i, j, l
+      c = 0.0_dp
+      do j = 1, size(b, 2)
+         do l = 1, size(a, 2)
+            do i = 1, size(a, 1)
+               c(i, j) = c(i, j) + a(i, l)*b(l, j)
+            end do
+         end do
+      end do
+   end subroutine mat_mul
 end module dpend_tangent

@@ -411,7 +411,7 @@ contains
          call check_resources('lyapunov_t', n, 48.0_dp, 0.0_dp, sci(n)//' renormalisations', &
                               'use a shorter --lyapunov-t', error)
       case ('poincare')
-         e_lim = energy_limit(cfg%par)
+         e_lim = energy_limit(cfg%model%par)
          if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
             call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
          else if (ch%n_points < 1) then
@@ -523,7 +523,7 @@ contains
       character(len=:), allocatable :: status, line
       integer :: stat, i
       real(dp) :: defect14, defect23
-      call lyapunov_spectrum(integ, cfg%par, 0.0_dp, integ%to_internal(cfg%par, cfg%q0, cfg%w0), &
+      call lyapunov_spectrum(integ, cfg%model, 0.0_dp, integ%to_internal(cfg%model, cfg%q0, cfg%w0), &
                              cfg%t_end, cfg%dt, ch%tau, ch%vectors, ch%batches, res, stat)
       status = run_status(stat, res%t_reached)
       defect14 = 0.0_dp; defect23 = 0.0_dp
@@ -601,7 +601,7 @@ contains
       character(len=:), allocatable :: status
       integer :: stat, lstat
       real(dp) :: lam, lam_spread
-      call divergence_pairs(integ, cfg%par, cfg%q0, cfg%w0, cfg%t_end, cfg%output_dt, &
+      call divergence_pairs(integ, cfg%model, cfg%q0, cfg%w0, cfg%t_end, cfg%output_dt, &
                             ch%delta0, ch%same_energy, ch%pairs, ch%pair_spacing, cfg%dt, &
                             res, stat)
       status = run_status(stat, -1.0_dp)
@@ -612,8 +612,8 @@ contains
       end if
       lam = 0.0_dp; lam_spread = 0.0_dp; lstat = stat_ok
       if (ch%lyapunov_t > 0.0_dp .and. stat == stat_ok) then
-         call lyapunov_spectrum(integ, cfg%par, 0.0_dp, &
-                                integ%to_internal(cfg%par, cfg%q0, cfg%w0), ch%lyapunov_t, &
+         call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
+                                integ%to_internal(cfg%model, cfg%q0, cfg%w0), ch%lyapunov_t, &
                                 cfg%dt, 0.5_dp, 1, 10, lres, lstat)
          lam = lres%exponents(1); lam_spread = lres%spread(1)
          if (lstat /= stat_ok) status = run_status(lstat, lres%t_reached)
@@ -701,9 +701,9 @@ contains
       integer :: n_found, n_failed
       character(len=:), allocatable :: status
       e = ch%energy
-      if (.not. ch%energy_given) e = energy(cfg%par, cfg%q0, cfg%w0)
+      if (.not. ch%energy_given) e = energy(cfg%model%par, cfg%q0, cfg%w0)
       allocate (q0(2, ch%n_ics), qd0(2, ch%n_ics))
-      call shell_samples(cfg%par, e, ch%section_link, ch%section_angle, ch%section_direction, &
+      call shell_samples(cfg%model, e, ch%section_link, ch%section_angle, ch%section_direction, &
                          ch%n_ics, q0, qd0, n_found)
       if (n_found == 0) then
          call fatal_error(error, 'invalid energy: E = '//num(e)//' J has no state on the'// &
@@ -713,14 +713,14 @@ contains
       end if
       section = angle_crossing_t(index=ch%section_link, angle=ch%section_angle, wrap=.true.)
       section%direction = ch%section_direction
-      call poincare_sections(integ, cfg%par, section, q0(:, 1:n_found), qd0(:, 1:n_found), &
+      call poincare_sections(integ, cfg%model, section, q0(:, 1:n_found), qd0(:, 1:n_found), &
                              cfg%t_end, cfg%dt, ch%n_points, res)
       n_failed = count(res%status /= stat_ok)
       status = 'completed'
       if (n_failed > 0) status = to_str(n_failed)//' orbit(s) stopped early: '// &
                                  status_message(res%status(findloc(res%status /= stat_ok, &
                                                                    .true., dim=1)))
-      es_ = energy_scale(cfg%par, e)
+      es_ = energy_scale(cfg%model%par, e)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       integ%n_steps = res%n_steps
@@ -772,11 +772,11 @@ contains
       character(len=*), intent(in) :: command, status
       type(error_t), allocatable, intent(out) :: error
       call h5%writeattr('/', 'command', command, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'm1', cfg%par%m1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%par%m2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%par%l1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%par%l2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%par%g, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'm1', cfg%model%par%m1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%model%par%m2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%model%par%l1, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%model%par%l2, error)
+      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%model%par%g, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'order', integ%order(), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
@@ -788,7 +788,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
-                                                    energy(cfg%par, cfg%q0, cfg%w0), error)
+                                                    energy(cfg%model%par, cfg%q0, cfg%w0), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
                                                     integ%n_steps, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)

@@ -8,6 +8,7 @@ module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive
+   use dpend_double_pendulum, only: double_pendulum_t
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
@@ -28,7 +29,7 @@ module dpend_config
 
    !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
    type :: run_config_t
-      type(pendulum_t) :: par                  !! physical parameters
+      type(double_pendulum_t) :: model         !! the double pendulum and its parameters
       real(dp) :: q0(2) = [0.0_dp, 0.0_dp]     !! initial angles [rad]
       real(dp) :: w0(2) = [0.0_dp, 0.0_dp]     !! initial angular velocities [rad/s]
       character(len=:), allocatable :: method  !! integrator name
@@ -364,7 +365,7 @@ contains
       call check_groups(filename, known, error)
       if (allocated(error)) return
 
-      m1 = cfg%par%m1; m2 = cfg%par%m2; l1 = cfg%par%l1; l2 = cfg%par%l2; g = cfg%par%g
+      m1 = cfg%model%par%m1; m2 = cfg%model%par%m2; l1 = cfg%model%par%l1; l2 = cfg%model%par%l2; g = cfg%model%par%g
       q1 = cfg%q0(1); q2 = cfg%q0(2); w1 = cfg%w0(1); w2 = cfg%w0(2)
       method = ''
       if (allocated(cfg%method)) method = cfg%method
@@ -402,7 +403,7 @@ contains
       end if
       close (unit)
 
-      cfg%par = pendulum_t(m1=m1, m2=m2, l1=l1, l2=l2, g=g)
+      cfg%model%par = pendulum_t(m1=m1, m2=m2, l1=l1, l2=l2, g=g)
       cfg%q0 = [q1, q2]; cfg%w0 = [w1, w2]
       if (len_trim(method) > 0) cfg%method = trim(method)
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
@@ -427,11 +428,11 @@ contains
          call parse_theta(merge(1, 2, name == '--theta1'))
       case ('--w1'); call parse_real(value, name, cfg%w0(1), error)
       case ('--w2'); call parse_real(value, name, cfg%w0(2), error)
-      case ('--m1'); call parse_real(value, name, cfg%par%m1, error)
-      case ('--m2'); call parse_real(value, name, cfg%par%m2, error)
-      case ('--l1'); call parse_real(value, name, cfg%par%l1, error)
-      case ('--l2'); call parse_real(value, name, cfg%par%l2, error)
-      case ('--g'); call parse_real(value, name, cfg%par%g, error)
+      case ('--m1'); call parse_real(value, name, cfg%model%par%m1, error)
+      case ('--m2'); call parse_real(value, name, cfg%model%par%m2, error)
+      case ('--l1'); call parse_real(value, name, cfg%model%par%l1, error)
+      case ('--l2'); call parse_real(value, name, cfg%model%par%l2, error)
+      case ('--g'); call parse_real(value, name, cfg%model%par%g, error)
       case ('--method'); cfg%method = value
       case ('--dt'); call parse_real(value, name, cfg%dt, error)
       case ('--t-end'); call parse_real(value, name, cfg%t_end, error)
@@ -471,7 +472,7 @@ contains
       character(len=*), parameter :: qn(2) = ['q1', 'q2'], wn(2) = ['w1', 'w2']
       class(integrator_t), allocatable :: integ
       integer :: i
-      call validate(cfg%par, error)
+      call validate(cfg%model%par, error)
       if (allocated(error)) then
          error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
          return
@@ -553,11 +554,11 @@ contains
           '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
           //real_str(cfg%w0(2))//nl// &
           '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &
-          //real_str(cfg%par%m1)//', ' &
-          //real_str(cfg%par%m2)//nl// &
-          '  --l1, --l2 M      link lengths; default '//real_str(cfg%par%l1)//', ' &
-          //real_str(cfg%par%l2)//nl// &
-          '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%par%g)//nl// &
+          //real_str(cfg%model%par%m1)//', ' &
+          //real_str(cfg%model%par%m2)//nl// &
+          '  --l1, --l2 M      link lengths; default '//real_str(cfg%model%par%l1)//', ' &
+          //real_str(cfg%model%par%l2)//nl// &
+          '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%model%par%g)//nl// &
           '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &

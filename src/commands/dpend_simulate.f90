@@ -6,9 +6,7 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
-   use dpend_pendulum, only: pendulum_t, qddot, energy, momenta, energy_scale
-   use dpend_pendulum_kinematics, only: kinematics_t, kinematics
-   use dpend_pendulum_reactions, only: reactions
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator
    use dpend_propagate, only: march_t, integrate_sampled
@@ -181,11 +179,11 @@ contains
       call integrate_trajectory(cfg, integ, traj)
       call write_trajectory(out%temp, cfg, integ, traj, werr)
       if (present(summary) .and. traj%n > 0) then
-         e0 = energy(cfg%par, traj%q(:, 1), traj%qd(:, 1))
-         e1 = energy(cfg%par, traj%q(:, traj%n), traj%qd(:, traj%n))
+         e0 = cfg%model%energy(traj%t(1), [traj%q(:, 1), traj%qd(:, 1)])
+         e1 = cfg%model%energy(traj%t(traj%n), [traj%q(:, traj%n), traj%qd(:, traj%n)])
          summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
                    to_str(integ%n_rhs)//' f evaluations, relative energy error '// &
-                   real_str(abs(e1 - e0)/energy_scale(cfg%par, e0), 2)//', '// &
+                   real_str(abs(e1 - e0)/cfg%model%energy_scale(e0), 2)//', '// &
                    seconds_str(wall_seconds() - t0)//' s'
       end if
       if (.not. allocated(werr)) call out%commit(werr)
@@ -211,7 +209,7 @@ contains
       class(integrator_t), intent(inout) :: integ         !! the method
       type(trajectory_t), intent(out) :: traj             !! the samples
       type(march_t) :: march
-      real(dp) :: t, h, y(4)
+      real(dp) :: t, h, y(cfg%model%n_state())
       real(dp), allocatable :: times(:), states(:, :)
       integer(i8) :: k, cap, avail
       integer :: stat, i
@@ -220,25 +218,25 @@ contains
       cap = max_samples
       avail = available_memory_bytes()
       if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
-      y = integ%to_internal(cfg%par, cfg%q0, cfg%w0)
+      y = integ%to_internal(cfg%model, cfg%q0, cfg%w0)
       t = 0.0_dp
       h = cfg%dt
       traj%status = 'completed'
       stat = stat_ok
       if (cfg%output_dt > 0.0_dp) then
-         call integrate_sampled(integ, cfg%par, t, y, cfg%t_end, h, cfg%output_dt, times, &
+         call integrate_sampled(integ, cfg%model, t, y, cfg%t_end, h, cfg%output_dt, times, &
                                 states, stat)
          do i = 1, size(times)
-            call append(traj, integ, cfg%par, times(i), states(:, i))
+            call append(traj, integ, cfg%model, times(i), states(:, i))
          end do
          if (size(times) > 0) t = times(size(times))
       else
-         call append(traj, integ, cfg%par, t, y)
+         call append(traj, integ, cfg%model, t, y)
          call integ%clear_step()
          call march%start(integ, t, cfg%t_end, h)
          k = 0
          do while (.not. march%finished)
-            call march%next(integ, cfg%par, t, y, h, stat)
+            call march%next(integ, cfg%model, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
@@ -248,7 +246,7 @@ contains
                                 ' s; use a larger --save-every or --output-dt'
                   exit
                end if
-               call append(traj, integ, cfg%par, t, y)
+               call append(traj, integ, cfg%model, t, y)
             end if
          end do
       end if
@@ -258,25 +256,26 @@ contains
    end subroutine integrate_trajectory
 
    !> Append the state (t, y) to the samples, growing the buffers geometrically.
-   subroutine append(traj, integ, par, t, y)
+   subroutine append(traj, integ, model, t, y)
       type(trajectory_t), intent(inout) :: traj     !! samples
       class(integrator_t), intent(in) :: integ      !! for the conversion to (q, q̇)
-      type(pendulum_t), intent(in) :: par           !! parameters
+      class(model_t), intent(in) :: model           !! the system
       real(dp), intent(in) :: t                     !! time [s]
-      real(dp), intent(in) :: y(4)                  !! internal state
+      real(dp), intent(in) :: y(:)                  !! internal state
       real(dp), allocatable :: tt(:), qq(:, :), ww(:, :)
-      integer :: cap
+      integer :: cap, nd
+      nd = model%n_dof()
       if (.not. allocated(traj%t)) then
-         allocate (traj%t(1024), traj%q(2, 1024), traj%qd(2, 1024))
+         allocate (traj%t(1024), traj%q(nd, 1024), traj%qd(nd, 1024))
       else if (traj%n == size(traj%t)) then
          cap = 2*size(traj%t)
-         allocate (tt(cap), qq(2, cap), ww(2, cap))
+         allocate (tt(cap), qq(nd, cap), ww(nd, cap))
          tt(:traj%n) = traj%t; qq(:, :traj%n) = traj%q; ww(:, :traj%n) = traj%qd
          call move_alloc(tt, traj%t); call move_alloc(qq, traj%q); call move_alloc(ww, traj%qd)
       end if
       traj%n = traj%n + 1
       traj%t(traj%n) = t
-      call integ%to_physical(par, y, traj%q(:, traj%n), traj%qd(:, traj%n))
+      call integ%to_physical(model, y, traj%q(:, traj%n), traj%qd(:, traj%n), t)
    end subroutine append
 
    !> Write the samples with their derived quantities (accelerations, momenta,
@@ -288,51 +287,57 @@ contains
       type(trajectory_t), intent(in) :: traj            !! the samples
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       type(h5file_t) :: h5
-      type(kinematics_t) :: k
-      real(dp), allocatable :: qdd(:, :), p(:, :), e(:), f01(:, :), f21(:, :)
-      real(dp), allocatable :: rc1(:, :), vc1(:, :), ac1(:, :), rc2(:, :), vc2(:, :), &
-                               ac2(:, :), rb(:, :)
-      integer :: i, n
+      real(dp), allocatable :: qdd(:, :), p(:, :), e(:), out(:, :), y(:), f(:), slab(:, :)
+      character(len=:), allocatable :: name, units, text
+      integer :: i, n, nd, j, n_comp, off, n_out
+      logical :: canonical
       n = traj%n
-      allocate (qdd(2, n), p(2, n), e(n), f01(2, n), f21(2, n), rc1(2, n), vc1(2, n), &
-                ac1(2, n), rc2(2, n), vc2(2, n), ac2(2, n), rb(2, n))
-      do i = 1, n
-         associate (q => traj%q(:, i), w => traj%qd(:, i))
-            qdd(:, i) = qddot(cfg%par, q, w)
-            p(:, i) = momenta(cfg%par, q, w)
-            e(i) = energy(cfg%par, q, w)
-            call reactions(cfg%par, q, w, qdd(:, i), f01(:, i), f21(:, i))
-            k = kinematics(cfg%par, q, w, qdd(:, i))
-         end associate
-         rc1(:, i) = k%rc1; vc1(:, i) = k%vc1; ac1(:, i) = k%ac1
-         rc2(:, i) = k%rc2; vc2(:, i) = k%vc2; ac2(:, i) = k%ac2; rb(:, i) = k%rb
-      end do
-      call h5%open(filename, 'w', error)
-      if (allocated(error)) return
-      call h5%write('/trajectory/t', traj%t(:n), error)
-      if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
-      if (.not. allocated(error)) call h5%write('/trajectory/qdot', traj%qd(:, :n), error)
-      if (.not. allocated(error)) call h5%write('/trajectory/qddot', qdd, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/p', p, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/energy', e, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/F01', f01, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/F21', f21, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/rC1', rc1, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/vC1', vc1, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/aC1', ac1, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/rC2', rc2, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/vC2', vc2, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/aC2', ac2, error)
-      if (.not. allocated(error)) call h5%write('/trajectory/rB', rb, error)
-      if (allocated(error)) then
-         call h5%close()
-         return
-      end if
-      call h5%writeattr('/', 'm1', cfg%par%m1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%par%m2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%par%l1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%par%l2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%par%g, error)
+      associate (model => cfg%model)
+         nd = model%n_dof()
+         canonical = model%hamiltonian()
+         n_out = 0
+         do j = 1, model%n_outputs()
+            call model%output_info(j, name, n_comp, units, text)
+            n_out = n_out + n_comp
+         end do
+         allocate (qdd(nd, n), p(nd, n), e(n), out(n_out, n), y(2*nd), f(2*nd))
+         p = 0.0_dp
+         do i = 1, n
+            y(1:nd) = traj%q(:, i); y(nd + 1:) = traj%qd(:, i)
+            call model%field(traj%t(i), y, f)
+            qdd(:, i) = f(nd + 1:)
+            if (canonical) call model%momenta(traj%t(i), y, p(:, i))
+            e(i) = model%energy(traj%t(i), y)
+            call model%outputs(traj%t(i), y, f, out(:, i))
+         end do
+         call h5%open(filename, 'w', error)
+         if (allocated(error)) return
+         call h5%write('/trajectory/t', traj%t(:n), error)
+         if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
+         if (.not. allocated(error)) call h5%write('/trajectory/qdot', traj%qd(:, :n), error)
+         if (.not. allocated(error)) call h5%write('/trajectory/qddot', qdd, error)
+         if (.not. allocated(error) .and. canonical) call h5%write('/trajectory/p', p, error)
+         if (.not. allocated(error)) call h5%write('/trajectory/energy', e, error)
+         off = 0
+         do j = 1, model%n_outputs()
+            call model%output_info(j, name, n_comp, units, text)
+            slab = out(off + 1:off + n_comp, :)   ! contiguous, for the HDF5 layer
+            if (.not. allocated(error)) call h5%write('/trajectory/'//name, slab, error)
+            off = off + n_comp
+         end do
+         if (allocated(error)) then
+            call h5%close()
+            return
+         end if
+         do j = 1, model%n_parameters()
+            if (allocated(error)) exit
+            block
+               real(dp) :: value
+               call model%parameter(j, name, value, units)
+               call h5%writeattr('/', name, value, error)
+            end block
+         end do
+      end associate
       if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
       if (.not. allocated(error)) call h5%writeattr('/', 't_end', cfg%t_end, error)
@@ -351,7 +356,7 @@ contains
                                                     error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
-                                                    energy_scale(cfg%par, e(1)), error)
+                                                    cfg%model%energy_scale(e(1)), error)
       if (allocated(error)) then
          call h5%close()
       else

@@ -601,9 +601,9 @@ contains
       end if
       ! configuration
       call w%s0('/config/namelist', study_namelist(cfg))
-      call w%ar('/config', 'm1', cfg%par%m1); call w%ar('/config', 'm2', cfg%par%m2)
-      call w%ar('/config', 'l1', cfg%par%l1); call w%ar('/config', 'l2', cfg%par%l2)
-      call w%ar('/config', 'g', cfg%par%g)
+      call w%ar('/config', 'm1', cfg%model%par%m1); call w%ar('/config', 'm2', cfg%model%par%m2)
+      call w%ar('/config', 'l1', cfg%model%par%l1); call w%ar('/config', 'l2', cfg%model%par%l2)
+      call w%ar('/config', 'g', cfg%model%par%g)
       call w%ar('/config', 't_short', cfg%t_short)
       call w%ai('/config', 'n_check', cfg%n_check)
       call w%as('/config', 'order_case', cfg%order_case)

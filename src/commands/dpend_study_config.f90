@@ -12,6 +12,7 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive
+   use dpend_double_pendulum, only: double_pendulum_t
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
                            namelist_error
@@ -59,7 +60,7 @@ module dpend_study_config
 
    !> The whole study.
    type :: study_config_t
-      type(pendulum_t) :: par                         !! physical parameters
+      type(double_pendulum_t) :: model                !! the double pendulum, parameters
       type(study_case_t), allocatable :: cases(:)     !! initial conditions
       type(study_method_t), allocatable :: methods(:) !! methods and ranges
       integer :: n_h = 7            !! steps per fixed-step sweep (geometric)
@@ -255,7 +256,7 @@ contains
          call read_study_config(config, cfg, error)
          if (allocated(error)) return
       end if
-      rcfg%par = cfg%par
+      rcfg%model = cfg%model
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)
@@ -290,7 +291,7 @@ contains
             cases_given = .true.
          case ('--m1', '--m2', '--l1', '--l2', '--g')
             call apply_run_flag(rcfg, name, value, matched, error)
-            cfg%par = rcfg%par
+            cfg%model = rcfg%model
          case default
             matched = .false.
          end select
@@ -404,12 +405,12 @@ contains
 
       call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
       if (allocated(error)) return
-      rcfg%par = cfg%par
+      rcfg%model = cfg%model
       rcfg%output = cfg%output
       rcfg%force = cfg%force
       call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
       if (allocated(error)) return
-      cfg%par = rcfg%par
+      cfg%model = rcfg%model
       cfg%output = rcfg%output
       cfg%force = rcfg%force
 
@@ -509,8 +510,8 @@ contains
       character(len=*), parameter :: nl = new_line('a')
       character(len=64) :: b
       integer :: i
-      text = '&pendulum m1 = '//g(cfg%par%m1)//', m2 = '//g(cfg%par%m2)//', l1 = ' &
-             //g(cfg%par%l1)//', l2 = '//g(cfg%par%l2)//', g = '//g(cfg%par%g)//' /'//nl
+      text = '&pendulum m1 = '//g(cfg%model%par%m1)//', m2 = '//g(cfg%model%par%m2)//', l1 = ' &
+             //g(cfg%model%par%l1)//', l2 = '//g(cfg%model%par%l2)//', g = '//g(cfg%model%par%g)//' /'//nl
       text = text//'&study'//nl
       do i = 1, size(cfg%cases)
          write (b, '(i0)') i
@@ -585,7 +586,7 @@ contains
       logical :: found
       integer :: i, j
       character(len=16) :: idx
-      call validate(cfg%par, error)
+      call validate(cfg%model%par, error)
       if (allocated(error)) then
          error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
          return

@@ -98,7 +98,7 @@ contains
       integer :: i
       setup%cfg = cfg
       setup%grid = grid_mode(cfg)
-      setup%tau = sqrt(cfg%run%par%l1/cfg%run%par%g)
+      setup%tau = sqrt(cfg%run%model%par%l1/cfg%run%model%par%g)
       scale = time_scale(cfg)
       t_end = cfg%run%t_end*scale
       setup%opt%n_steps = max(1_i8, ceiling(cfg%run%t_end/cfg%run%dt*(1.0_dp - 1e-12_dp), i8))
@@ -233,7 +233,7 @@ contains
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: y0(:, :)
       call block_initial_conditions(setup, b, y0)
-      call integrate_batch(setup%cfg%run%par, setup%opt, y0, res)
+      call integrate_batch(setup%cfg%run%model%par, setup%opt, y0, res)
    end subroutine compute_block
 
    !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or
@@ -356,7 +356,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup  !! setup
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
-      associate (c => setup%cfg, p => setup%cfg%run%par)
+      associate (c => setup%cfg, p => setup%cfg%run%model%par)
          s = 'program = dpend '//version//nl//'command = sweep'//nl// &
              'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
              'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
@@ -478,8 +478,8 @@ contains
          call h5%write('/sweep/initial', setup%list, error)
       end if
       if (allocated(error)) return
-      bounds = flip_energy_bounds(setup%cfg%run%par)
-      associate (c => setup%cfg, p => setup%cfg%run%par)
+      bounds = flip_energy_bounds(setup%cfg%run%model%par)
+      associate (c => setup%cfg, p => setup%cfg%run%model%par)
          call h5%writeattr('/', 'program', 'dpend sweep', error)
          if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
          if (.not. allocated(error)) call h5%writeattr('/', 'method', c%run%method, error)

@@ -93,7 +93,7 @@ contains
    pure real(dp) function time_scale(cfg)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       time_scale = 1.0_dp
-      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%par%l1/cfg%run%par%g)
+      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%model%par%l1/cfg%run%model%par%g)
    end function time_scale
 
    !> The stop rule of the kernel (stop_end with the Lyapunov exponent).

@@ -1,8 +1,10 @@
 !> The one abstract integrator type of dpend, its step status codes and the state
 !> conventions shared by every method.
 !>
-!> A method advances an internal state y(4): (q1, q2, q̇1, q̇2) for the explicit
-!> Runge–Kutta methods, (q1, q2, p1, p2) for the symplectic ones (`canonical()`).
+!> A method advances an internal state y(2n) of a `model_t` with n degrees of freedom:
+!> (q, q̇) for the explicit Runge–Kutta methods, (q, p) for the methods on canonical
+!> variables (`canonical()`, which need a Hamiltonian model). No method names a model:
+!> it calls the model's vector field and, where it has them, its fast-path hooks.
 !> Drivers convert with `to_internal` / `to_physical` once at the start and when
 !> sampling; the methods never convert inside a step.
 !>
@@ -14,8 +16,9 @@
 !> which methods with a better continuous extension (dopri5, dop853) override.
 module dpend_integrator
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t, rhs_qqdot, rhs_qp, momenta, velocities
+   use dpend_model, only: model_t, max_state
    use dpend_limits, only: default_max_steps
+   use dpend_error, only: error_t, fatal_error
    implicit none
    private
    public :: integrator_t
@@ -49,10 +52,11 @@ module dpend_integrator
       logical :: stepped = .false.   !! a step has been recorded since `clear_step`
       real(dp) :: t_old = 0.0_dp     !! start of the last step [s]
       real(dp) :: t_new = 0.0_dp     !! end of the last step [s]
-      real(dp) :: y_old(4) = 0.0_dp  !! internal state at t_old
-      real(dp) :: y_new(4) = 0.0_dp  !! internal state at t_new
-      real(dp) :: f_old(4) = 0.0_dp  !! vector field at y_old (valid if known_f_old)
-      real(dp) :: f_new(4) = 0.0_dp  !! vector field at y_new (valid if known_f_new)
+      integer :: n_rec = 0           !! size of the recorded states (2n)
+      real(dp) :: y_old(max_state) = 0.0_dp  !! internal state at t_old (first n_rec)
+      real(dp) :: y_new(max_state) = 0.0_dp  !! internal state at t_new
+      real(dp) :: f_old(max_state) = 0.0_dp  !! vector field at y_old (if known_f_old)
+      real(dp) :: f_new(max_state) = 0.0_dp  !! vector field at y_new (if known_f_new)
       logical :: known_f_old = .false.  !! f_old holds f(y_old)
       logical :: known_f_new = .false.  !! f_new holds f(y_new)
    contains
@@ -65,11 +69,14 @@ module dpend_integrator
       !> Whether a step solves equations (fixed-point iterations, counted in n_iter).
       procedure :: implicit => false_property
       procedure :: canonical => false_property
+      !> Whether the method needs a Hamiltonian model (default: `canonical()`).
+      procedure :: needs_hamiltonian => canonical_property
       procedure :: reset_counters
       procedure :: rhs
       procedure :: to_internal
       procedure :: to_physical
       procedure, non_overridable :: record_step
+      procedure, non_overridable :: check_model
       procedure, non_overridable :: has_step
       procedure, non_overridable :: clear_step
       procedure :: interpolate
@@ -85,12 +92,12 @@ module dpend_integrator
       !> `self%record_step(t, y, t_new, y_new)` before overwriting t and y, and
       !> increments `n_steps`. On failure t and y are left unchanged and `stat`
       !> says why (stat_nonfinite, stat_step_too_small, stat_no_convergence).
-      subroutine step_i(self, par, t, y, h, stat)
-         import :: integrator_t, pendulum_t, dp
+      subroutine step_i(self, model, t, y, h, stat)
+         import :: integrator_t, model_t, dp
          class(integrator_t), intent(inout) :: self  !! the method and its counters
-         type(pendulum_t), intent(in) :: par         !! parameters
+         class(model_t), intent(in) :: model         !! the system
          real(dp), intent(inout) :: t                !! time [s]
-         real(dp), intent(inout) :: y(4)             !! internal state
+         real(dp), intent(inout) :: y(:)             !! internal state, size 2n
          real(dp), intent(inout) :: h                !! step [s]
          integer, intent(out) :: stat                !! stat_ok or a failure code
       end subroutine step_i
@@ -115,6 +122,12 @@ contains
       false_property = .false.
    end function false_property
 
+   !> Default of `needs_hamiltonian`: the methods on canonical variables.
+   pure logical function canonical_property(self)
+      class(integrator_t), intent(in) :: self  !! the method
+      canonical_property = self%canonical()
+   end function canonical_property
+
    !> Zero the counters.
    subroutine reset_counters(self)
       class(integrator_t), intent(inout) :: self  !! the method
@@ -122,46 +135,59 @@ contains
    end subroutine reset_counters
 
    !> The vector field in the method's own variables, counted in `n_rhs`.
-   function rhs(self, par, y) result(f)
+   subroutine rhs(self, model, t, y, f)
       class(integrator_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par         !! parameters
-      real(dp), intent(in) :: y(4)                !! internal state
-      real(dp) :: f(4)
+      class(model_t), intent(in) :: model         !! the system
+      real(dp), intent(in) :: t                   !! time [s]
+      real(dp), intent(in) :: y(:)                !! internal state
+      real(dp), intent(out) :: f(:)               !! its rate
       self%n_rhs = self%n_rhs + 1
       if (self%canonical()) then
-         f = rhs_qp(par, y)
+         call model%canonical_field(t, y, f)
       else
-         f = rhs_qqdot(par, y)
+         call model%field(t, y, f)
       end if
-   end function rhs
+   end subroutine rhs
 
    !> Internal state from angles and angular velocities.
-   pure function to_internal(self, par, q, qd) result(y)
+   pure function to_internal(self, model, q, qd, t) result(y)
       class(integrator_t), intent(in) :: self  !! the method
-      type(pendulum_t), intent(in) :: par      !! parameters
-      real(dp), intent(in) :: q(2)             !! angles [rad]
-      real(dp), intent(in) :: qd(2)            !! angular velocities [rad/s]
-      real(dp) :: y(4)
-      y(1:2) = q
+      class(model_t), intent(in) :: model      !! the system
+      real(dp), intent(in) :: q(:)             !! coordinates [rad]
+      real(dp), intent(in) :: qd(:)            !! their rates [rad/s]
+      real(dp), intent(in), optional :: t      !! time [s] (default 0)
+      real(dp) :: y(2*size(q))
+      real(dp) :: tt
+      integer :: n
+      n = size(q)
+      tt = 0.0_dp
+      if (present(t)) tt = t
+      y(1:n) = q
       if (self%canonical()) then
-         y(3:4) = momenta(par, q, qd)
+         call model%momenta(tt, [q, qd], y(n + 1:))
       else
-         y(3:4) = qd
+         y(n + 1:) = qd
       end if
    end function to_internal
 
    !> Angles and angular velocities from the internal state.
-   pure subroutine to_physical(self, par, y, q, qd)
+   pure subroutine to_physical(self, model, y, q, qd, t)
       class(integrator_t), intent(in) :: self  !! the method
-      type(pendulum_t), intent(in) :: par      !! parameters
-      real(dp), intent(in) :: y(4)             !! internal state
-      real(dp), intent(out) :: q(2)            !! angles [rad]
-      real(dp), intent(out) :: qd(2)           !! angular velocities [rad/s]
-      q = y(1:2)
+      class(model_t), intent(in) :: model      !! the system
+      real(dp), intent(in) :: y(:)             !! internal state
+      real(dp), intent(out) :: q(:)            !! coordinates [rad]
+      real(dp), intent(out) :: qd(:)           !! their rates [rad/s]
+      real(dp), intent(in), optional :: t      !! time [s] (default 0)
+      real(dp) :: tt
+      integer :: n
+      n = size(q)
+      tt = 0.0_dp
+      if (present(t)) tt = t
+      q = y(1:n)
       if (self%canonical()) then
-         qd = velocities(par, y(1:2), y(3:4))
+         call model%velocities(tt, y, qd)
       else
-         qd = y(3:4)
+         qd = y(n + 1:2*n)
       end if
    end subroutine to_physical
 
@@ -173,6 +199,21 @@ contains
       state_ok = sum(abs(y)) < diverged_bound
    end function state_ok
 
+   !> Refuse a model that lacks structure the method needs (one line, e.g.
+   !> "invalid method: gauss6 needs a Hamiltonian model; the damped pendulum is not").
+   subroutine check_model(self, model, error)
+      class(integrator_t), intent(in) :: self           !! the method
+      class(model_t), intent(in) :: model               !! the system
+      type(error_t), allocatable, intent(out) :: error  !! set if the method cannot run it
+      if (self%needs_hamiltonian() .and. .not. model%hamiltonian()) then
+         call fatal_error(error, 'invalid method: '//self%name()//' needs a Hamiltonian ' &
+                          //'model; the '//model%name()//' is not (use rk4, dopri5 or dop853)')
+      else if (model%n_state() > max_state) then
+         call fatal_error(error, 'invalid model: the '//model%name()//' has too many degrees ' &
+                          //'of freedom for the integrators (at most 32)')
+      end if
+   end subroutine check_model
+
    !> Remember the accepted step from (t0, y0) to (t1, y1) for `interpolate` and the
    !> event locator. Every `step` calls it once per accepted step, before it
    !> overwrites t and y. A method that has the vector field at either end for free
@@ -182,18 +223,21 @@ contains
    subroutine record_step(self, t0, y0, t1, y1, f0, f1)
       class(integrator_t), intent(inout) :: self  !! the method
       real(dp), intent(in) :: t0                  !! start of the step [s]
-      real(dp), intent(in) :: y0(4)               !! internal state at t0
+      real(dp), intent(in) :: y0(:)               !! internal state at t0
       real(dp), intent(in) :: t1                  !! end of the step [s]
-      real(dp), intent(in) :: y1(4)               !! internal state at t1
-      real(dp), intent(in), optional :: f0(4)     !! vector field at y0, if known
-      real(dp), intent(in), optional :: f1(4)     !! vector field at y1, if known
+      real(dp), intent(in) :: y1(:)               !! internal state at t1
+      real(dp), intent(in), optional :: f0(:)     !! vector field at y0, if known
+      real(dp), intent(in), optional :: f1(:)     !! vector field at y1, if known
+      integer :: n
+      n = size(y0)
       self%stepped = .true.
-      self%t_old = t0; self%y_old = y0
-      self%t_new = t1; self%y_new = y1
+      self%n_rec = n
+      self%t_old = t0; self%y_old(:n) = y0
+      self%t_new = t1; self%y_new(:n) = y1
       self%known_f_old = present(f0)
-      if (present(f0)) self%f_old = f0
+      if (present(f0)) self%f_old(:n) = f0
       self%known_f_new = present(f1)
-      if (present(f1)) self%f_new = f1
+      if (present(f1)) self%f_new(:n) = f1
    end subroutine record_step
 
    !> True once a step has been recorded (and not cleared): `interpolate` and the
@@ -220,34 +264,41 @@ contains
    !> only where the step did not provide it. Local error O(h⁴) for any method of
    !> order ≥ 3. t_eval should lie in [t_old, t_new] (otherwise the cubic is
    !> extrapolated). Without a recorded step y_eval is left unchanged.
-   subroutine interpolate(self, par, t_eval, y_eval)
+   subroutine interpolate(self, model, t_eval, y_eval)
       class(integrator_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par         !! parameters
+      class(model_t), intent(in) :: model         !! the system
       real(dp), intent(in) :: t_eval              !! time [s]
-      real(dp), intent(inout) :: y_eval(4)        !! internal state at t_eval
-      real(dp) :: h, th, dy(4)
+      real(dp), intent(inout) :: y_eval(:)        !! internal state at t_eval
+      real(dp) :: h, th, dy(max_state), yl(max_state), fl(max_state)
+      integer :: n
       if (.not. self%stepped) return
+      n = self%n_rec
       h = self%t_new - self%t_old
       if (t_eval == self%t_new .or. h == 0.0_dp) then
-         y_eval = self%y_new
+         y_eval = self%y_new(:n)
          return
       else if (t_eval == self%t_old) then
-         y_eval = self%y_old
+         y_eval = self%y_old(:n)
          return
       end if
+      ! (through locals: self is also the counter's owner)
       if (.not. self%known_f_old) then
-         self%f_old = self%rhs(par, self%y_old)
+         yl(:n) = self%y_old(:n)
+         call self%rhs(model, self%t_old, yl(:n), fl(:n))
+         self%f_old(:n) = fl(:n)
          self%known_f_old = .true.
       end if
       if (.not. self%known_f_new) then
-         self%f_new = self%rhs(par, self%y_new)
+         yl(:n) = self%y_new(:n)
+         call self%rhs(model, self%t_new, yl(:n), fl(:n))
+         self%f_new(:n) = fl(:n)
          self%known_f_new = .true.
       end if
       th = (t_eval - self%t_old)/h
-      dy = self%y_new - self%y_old
-      y_eval = (1.0_dp - th)*self%y_old + th*self%y_new &
-               + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
-                                   + (th - 1.0_dp)*h*self%f_old + th*h*self%f_new)
+      dy(:n) = self%y_new(:n) - self%y_old(:n)
+      y_eval = (1.0_dp - th)*self%y_old(:n) + th*self%y_new(:n) &
+               + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy(:n) &
+                                   + (th - 1.0_dp)*h*self%f_old(:n) + th*h*self%f_new(:n))
    end subroutine interpolate
 
    !> One-line description of a step status.

@@ -12,7 +12,7 @@
 !> (Hairer et al. II.4, "Starting step size"), and FSAL reuse of f(y_new).
 module dpend_rk_explicit
    use dpend_kinds, only: dp
-   use dpend_pendulum, only: pendulum_t, rhs_qqdot, qddot_trig, sin_cos, sin_cos_near
+   use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small, &
                                state_ok
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -52,8 +52,8 @@ module dpend_rk_explicit
       real(dp) :: beta = 0.04_dp       !! PI (Lund) stabilization, 0 for a plain I controller
       real(dp) :: facmin = 0.2_dp      !! smallest h_new/h
       real(dp) :: facmax = 10.0_dp     !! largest h_new/h
-      real(dp) :: k(4, 7) = 0.0_dp     !! stages of the last accepted step
-      real(dp) :: cont(4, 5) = 0.0_dp  !! dense-output coefficients (CONTD5)
+      real(dp) :: k(max_state, 7) = 0.0_dp     !! stages of the last accepted step
+      real(dp) :: cont(max_state, 5) = 0.0_dp  !! dense-output coefficients (CONTD5)
    contains
       procedure :: step => dopri5_step
       procedure :: name => dopri5_name
@@ -73,8 +73,8 @@ module dpend_rk_explicit
       real(dp) :: beta = 0.04_dp       !! PI (Lund) stabilization, 0 for a plain I controller
       real(dp) :: facmin = 0.333_dp    !! smallest h_new/h
       real(dp) :: facmax = 6.0_dp      !! largest h_new/h
-      real(dp) :: k(4, 16) = 0.0_dp    !! stages 1–12, f(y_new) as 13, dense stages 14–16
-      real(dp) :: cont(4, 8) = 0.0_dp  !! dense-output coefficients (CONTD8)
+      real(dp) :: k(max_state, 16) = 0.0_dp  !! stages 1–12, f(y_new) as 13, dense 14–16
+      real(dp) :: cont(max_state, 8) = 0.0_dp  !! dense-output coefficients (CONTD8)
    contains
       procedure :: step => dop853_step
       procedure :: name => dop853_name
@@ -268,44 +268,46 @@ contains
 
    ! ======================================================================== rk4
 
-   subroutine rk4_step(self, par, t, y, h, stat)
+   subroutine rk4_step(self, model, t, y, h, stat)
       class(rk4_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par  !! parameters
+      class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t         !! time [s]
-      real(dp), intent(inout) :: y(4)      !! state (q, q̇)
+      real(dp), intent(inout) :: y(:)      !! state (q, q̇)
       real(dp), intent(inout) :: h         !! step [s]
       integer, intent(out) :: stat         !! status
-      real(dp) :: k1(4), k2(4), k3(4), k4(4), ynew(4), ys(4), sc0(4)
-      ! (q, q̇) by construction: the model's Newton–Euler field, counted as `rhs` does.
-      ! The stage angles differ from the step start by h·q̇ terms: their sines and
-      ! cosines come from those at the start by angle addition (`sin_cos_near`), one
-      ! vector sine per step instead of four (the step's latency is the sine's).
-      sc0 = sin_cos(y(1:2))
-      k1 = field(y, sc0)
-      ys = y + 0.5_dp*h*k1
-      k2 = field(ys, sin_cos_near(sc0, ys(1:2), 0.5_dp*h*k1(1:2)))
-      ys = y + 0.5_dp*h*k2
-      k3 = field(ys, sin_cos_near(sc0, ys(1:2), 0.5_dp*h*k2(1:2)))
-      ys = y + h*k3
-      k4 = field(ys, sin_cos_near(sc0, ys(1:2), h*k3(1:2)))
-      self%n_rhs = self%n_rhs + 4
-      ynew = y + (h/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
-      if (.not. state_ok(ynew)) then
-         stat = stat_nonfinite
-         return
-      end if
-      call self%record_step(t, y, t + h, ynew, f0=k1)
-      y = ynew
+      real(dp) :: k1_(max_state), k2_(max_state), k3_(max_state), k4_(max_state)
+      real(dp) :: ynew_(max_state), ys_(max_state), d_(max_dof), cache(2*max_state)
+      integer :: n, m
+      n = size(y); m = n/2
+      ! The stage coordinates differ from the step start by h·q̇ terms: a model with a
+      ! cache (the double pendulum: sines and cosines of the angles) updates it by
+      ! angle addition (`field_near`), one vector sine per step instead of four.
+      associate (k1 => k1_(:n), k2 => k2_(:n), k3 => k3_(:n), k4 => k4_(:n), &
+                 ynew => ynew_(:n), ys => ys_(:n), d => d_(:m), &
+                 c => cache(:model%cache_size()))
+         call model%fill_cache(y(1:m), c)
+         call model%field(t, y, k1)
+         ys = y + 0.5_dp*h*k1
+         d = 0.5_dp*h*k1(1:m)
+         call model%field_near(t + 0.5_dp*h, ys, d, c, k2)
+         ys = y + 0.5_dp*h*k2
+         d = 0.5_dp*h*k2(1:m)
+         call model%field_near(t + 0.5_dp*h, ys, d, c, k3)
+         ys = y + h*k3
+         d = h*k3(1:m)
+         call model%field_near(t + h, ys, d, c, k4)
+         self%n_rhs = self%n_rhs + 4
+         ynew = y + (h/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
+         if (.not. state_ok(ynew)) then
+            stat = stat_nonfinite
+            return
+         end if
+         call self%record_step(t, y, t + h, ynew, f0=k1)
+         y = ynew
+      end associate
       t = t + h
       self%n_steps = self%n_steps + 1
       stat = stat_ok
-   contains
-      pure function field(yy, sc) result(f)
-         real(dp), intent(in) :: yy(4), sc(4)
-         real(dp) :: f(4)
-         f(1:2) = yy(3:4)
-         f(3:4) = qddot_trig(par, sc, yy(3:4))
-      end function field
    end subroutine rk4_step
 
    pure function rk4_name(self) result(name)
@@ -329,40 +331,47 @@ contains
 
    !> Stage 1: f(y), reused from the end of the last step when y is that state (FSAL).
    !> Without a recorded step (new trajectory) the controller memory is reset.
-   subroutine first_stage(self, par, y, k1)
+   subroutine first_stage(self, model, t, y, k1)
       class(rk_adaptive_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
-      real(dp), intent(in) :: y(4)                 !! state (q, q̇)
-      real(dp), intent(out) :: k1(4)               !! f(y)
+      class(model_t), intent(in) :: model          !! the system
+      real(dp), intent(in) :: t                    !! time [s]
+      real(dp), intent(in) :: y(:)                 !! state (q, q̇)
+      real(dp), intent(out) :: k1(:)               !! f(t, y)
+      integer :: n
+      n = size(y)
       if (.not. self%stepped) self%err_old = 1.0e-4_dp
-      if (self%stepped .and. self%known_f_new) then
-         if (all(y == self%y_new)) then
-            k1 = self%f_new
+      if (self%stepped .and. self%known_f_new .and. self%n_rec == n) then
+         if (all(y == self%y_new(:n)) .and. (model%autonomous() .or. self%t_new == t)) then
+            k1 = self%f_new(:n)
             return
          end if
       end if
-      k1 = rhs_qqdot(par, y)
+      call model%field(t, y, k1)
       self%n_rhs = self%n_rhs + 1
    end subroutine first_stage
 
    !> Weighted sum of squares Σ (e_i/sk_i)², sk_i = atol + rtol max(|y_i|, |ŷ_i|).
    pure real(dp) function weighted_ss(rtol, atol, y, ynew, e)
       real(dp), intent(in) :: rtol, atol          !! tolerances
-      real(dp), intent(in) :: y(4), ynew(4), e(4) !! states and error vector
+      real(dp), intent(in) :: y(:), ynew(:), e(:) !! states and error vector
       weighted_ss = sum((e/(atol + rtol*max(abs(y), abs(ynew))))**2)
    end function weighted_ss
 
    !> Initial step size guess, HINIT of DOPRI5/DOP853 (Hairer et al. I, II.4):
    !> h such that h^order max(‖f‖, ‖f'‖) = 0.01, at most 100 times the Euler guess.
    !> Costs one evaluation of f (counted).
-   function hinit(self, par, y, f0, order) result(h)
+   function hinit(self, model, t, y, f0, order) result(h)
       class(rk_adaptive_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
-      real(dp), intent(in) :: y(4)                 !! state (q, q̇)
-      real(dp), intent(in) :: f0(4)                !! f(y)
+      class(model_t), intent(in) :: model          !! the system
+      real(dp), intent(in) :: t                    !! time [s]
+      real(dp), intent(in) :: y(:)                 !! state (q, q̇)
+      real(dp), intent(in) :: f0(:)                !! f(t, y)
       integer, intent(in) :: order                 !! order of the method
       real(dp) :: h
-      real(dp) :: sk(4), dnf, dny, der2, der12, h1, f1(4)
+      real(dp) :: sk_(max_state), dnf, dny, der2, der12, h1, f1_(max_state), ys_(max_state)
+      integer :: n
+      n = size(y)
+      associate (sk => sk_(:n), f1 => f1_(:n), ys => ys_(:n))
       sk = self%atol + self%rtol*abs(y)
       dnf = sum((f0/sk)**2)
       dny = sum((y/sk)**2)
@@ -372,7 +381,8 @@ contains
          h = 0.01_dp*sqrt(dny/dnf)
       end if
       h = min(h, self%h_max)
-      f1 = rhs_qqdot(par, y + h*f0)
+      ys = y + h*f0
+      call model%field(t + h, ys, f1)
       self%n_rhs = self%n_rhs + 1
       der2 = sqrt(sum(((f1 - f0)/sk)**2))/h
       der12 = max(der2, sqrt(dnf))
@@ -382,6 +392,7 @@ contains
          h1 = (0.01_dp/der12)**(1.0_dp/order)
       end if
       h = min(100.0_dp*h, h1, self%h_max)
+      end associate
    end function hinit
 
    !> The decision after an error estimate, shared by dopri5 and dop853 (Hairer's
@@ -438,11 +449,11 @@ contains
    subroutine accept_step(self, t, y, h, ynew, k1, fnew)
       class(rk_adaptive_t), intent(inout) :: self  !! the method
       real(dp), intent(inout) :: t                 !! time [s]
-      real(dp), intent(inout) :: y(4)              !! state (q, q̇)
+      real(dp), intent(inout) :: y(:)              !! state (q, q̇)
       real(dp), intent(in) :: h                    !! accepted step [s]
-      real(dp), intent(in) :: ynew(4)              !! new state
-      real(dp), intent(in) :: k1(4)                !! f(y)
-      real(dp), intent(in), optional :: fnew(4)    !! f(ynew), if computed
+      real(dp), intent(in) :: ynew(:)              !! new state
+      real(dp), intent(in) :: k1(:)                !! f(y)
+      real(dp), intent(in), optional :: fnew(:)    !! f(ynew), if computed
       call self%record_step(t, y, t + h, ynew, f0=k1, f1=fnew)
       y = ynew
       t = t + h
@@ -459,23 +470,27 @@ contains
    ! ===================================================================== dopri5
 
    !> One accepted DOPRI5 step (see `integrator_t%step` for the semantics).
-   subroutine dopri5_step(self, par, t, y, h, stat)
+   subroutine dopri5_step(self, model, t, y, h, stat)
       class(dopri5_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
+      class(model_t), intent(in) :: model     !! the system
       real(dp), intent(inout) :: t            !! time [s]
-      real(dp), intent(inout) :: y(4)         !! state (q, q̇)
+      real(dp), intent(inout) :: y(:)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: k(4, 7), ynew(4), e(4), err, hnew
+      real(dp) :: k_(max_state, 7), ynew_(max_state), e_(max_state), ys_(max_state)
+      real(dp) :: err, hnew
+      integer :: n
       logical :: rejected, bad, accepted
       real(dp) :: expo
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
          return
       end if
+      n = size(y)
+      associate (k => k_(:n, :), ynew => ynew_(:n), e => e_(:n), ys => ys_(:n))
       expo = 0.2_dp - 0.75_dp*self%beta
-      call first_stage(self, par, y, k(:, 1))
-      if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 5)
+      call first_stage(self, model, t, y, k(:, 1))
+      if (h == 0.0_dp) h = hinit(self, model, t, y, k(:, 1), 5)
       h = sign(min(abs(h), self%h_max), h)
       rejected = .false.; bad = .false.
       do
@@ -483,16 +498,21 @@ contains
             stat = merge(stat_nonfinite, stat_step_too_small, bad)
             return
          end if
-         k(:, 2) = rhs_qqdot(par, y + h*p5a21*k(:, 1))
-         k(:, 3) = rhs_qqdot(par, y + h*(p5a31*k(:, 1) + p5a32*k(:, 2)))
-         k(:, 4) = rhs_qqdot(par, y + h*(p5a41*k(:, 1) + p5a42*k(:, 2) + p5a43*k(:, 3)))
-         k(:, 5) = rhs_qqdot(par, y + h*(p5a51*k(:, 1) + p5a52*k(:, 2) + p5a53*k(:, 3) &
-                                         + p5a54*k(:, 4)))
-         k(:, 6) = rhs_qqdot(par, y + h*(p5a61*k(:, 1) + p5a62*k(:, 2) + p5a63*k(:, 3) &
-                                         + p5a64*k(:, 4) + p5a65*k(:, 5)))
+         ys = y + h*p5a21*k(:, 1)
+         call model%field(t + p5c2*h, ys, k(:, 2))
+         ys = y + h*(p5a31*k(:, 1) + p5a32*k(:, 2))
+         call model%field(t + p5c3*h, ys, k(:, 3))
+         ys = y + h*(p5a41*k(:, 1) + p5a42*k(:, 2) + p5a43*k(:, 3))
+         call model%field(t + p5c4*h, ys, k(:, 4))
+         ys = y + h*(p5a51*k(:, 1) + p5a52*k(:, 2) + p5a53*k(:, 3) &
+                                         + p5a54*k(:, 4))
+         call model%field(t + p5c5*h, ys, k(:, 5))
+         ys = y + h*(p5a61*k(:, 1) + p5a62*k(:, 2) + p5a63*k(:, 3) &
+                                         + p5a64*k(:, 4) + p5a65*k(:, 5))
+         call model%field(t + h, ys, k(:, 6))
          ynew = y + h*(p5a71*k(:, 1) + p5a73*k(:, 3) + p5a74*k(:, 4) + p5a75*k(:, 5) &
                        + p5a76*k(:, 6))
-         k(:, 7) = rhs_qqdot(par, ynew)
+         call model%field(t + h, ynew, k(:, 7))
          self%n_rhs = self%n_rhs + 6
          bad = .not. (state_ok(ynew) .and. state_ok(k(:, 7)))
          if (self%fixed_step) then
@@ -505,37 +525,40 @@ contains
          if (.not. bad) then
             e = h*(p5e1*k(:, 1) + p5e3*k(:, 3) + p5e4*k(:, 4) + p5e5*k(:, 5) &
                    + p5e6*k(:, 6) + p5e7*k(:, 7))
-            err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/4.0_dp)
+            err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/real(n, dp))
             bad = .not. ieee_is_finite(err)
          end if
          call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
                            hnew, rejected, accepted)
          if (accepted) exit
       end do
-      self%k = k                  ! stages of the recorded step, for dense output
+      self%k(:n, :) = k           ! stages of the recorded step, for dense output
       call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 7))
+      end associate
       if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
       stat = stat_ok
    end subroutine dopri5_step
 
    !> 4th-order continuous extension of DOPRI5 (Shampine 1986; CONTD5 in DOPRI5):
    !> y(t_old + θh) = r1 + θ(r2 + (1-θ)(r3 + θ(r4 + (1-θ) r5))).
-   subroutine dopri5_interpolate(self, par, t_eval, y_eval)
+   subroutine dopri5_interpolate(self, model, t_eval, y_eval)
       class(dopri5_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
+      class(model_t), intent(in) :: model     !! the system
       real(dp), intent(in) :: t_eval          !! time [s]
-      real(dp), intent(inout) :: y_eval(4)    !! state (q, q̇) at t_eval
+      real(dp), intent(inout) :: y_eval(:)    !! state (q, q̇) at t_eval
       real(dp) :: h, th, th1
+      integer :: n
       if (.not. self%stepped) return
+      n = self%n_rec
       h = self%t_new - self%t_old
       if (t_eval == self%t_new .or. h == 0.0_dp) then
-         y_eval = self%y_new
+         y_eval = self%y_new(:n)
          return
       end if
-      associate (k => self%k, r => self%cont)
+      associate (k => self%k(:n, :), r => self%cont(:n, :))
          if (.not. self%dense_ready) then
-            r(:, 1) = self%y_old
-            r(:, 2) = self%y_new - self%y_old
+            r(:, 1) = self%y_old(:n)
+            r(:, 2) = self%y_new(:n) - self%y_old(:n)
             r(:, 3) = h*k(:, 1) - r(:, 2)
             r(:, 4) = r(:, 2) - h*k(:, 7) - r(:, 3)
             r(:, 5) = h*(p5d1*k(:, 1) + p5d3*k(:, 3) + p5d4*k(:, 4) + p5d5*k(:, 5) &
@@ -562,23 +585,28 @@ contains
    ! ===================================================================== dop853
 
    !> One accepted DOP853 step (see `integrator_t%step` for the semantics).
-   subroutine dop853_step(self, par, t, y, h, stat)
+   subroutine dop853_step(self, model, t, y, h, stat)
       class(dop853_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
+      class(model_t), intent(in) :: model     !! the system
       real(dp), intent(inout) :: t            !! time [s]
-      real(dp), intent(inout) :: y(4)         !! state (q, q̇)
+      real(dp), intent(inout) :: y(:)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: k(4, 13), ynew(4), inc(4), e5(4), e3(4), err, err5, err3, deno, hnew
+      real(dp) :: k_(max_state, 13), ynew_(max_state), inc_(max_state), e5_(max_state)
+      real(dp) :: e3_(max_state), ys_(max_state), err, err5, err3, deno, hnew
+      integer :: n
       logical :: rejected, bad, accepted
       real(dp) :: expo
       if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
          stat = stat_nonfinite
          return
       end if
+      n = size(y)
+      associate (k => k_(:n, :), ynew => ynew_(:n), inc => inc_(:n), e5 => e5_(:n), &
+                 e3 => e3_(:n), ys => ys_(:n))
       expo = 1.0_dp/8.0_dp - 0.2_dp*self%beta
-      call first_stage(self, par, y, k(:, 1))
-      if (h == 0.0_dp) h = hinit(self, par, y, k(:, 1), 8)
+      call first_stage(self, model, t, y, k(:, 1))
+      if (h == 0.0_dp) h = hinit(self, model, t, y, k(:, 1), 8)
       h = sign(min(abs(h), self%h_max), h)
       rejected = .false.; bad = .false.
       do
@@ -586,27 +614,38 @@ contains
             stat = merge(stat_nonfinite, stat_step_too_small, bad)
             return
          end if
-         k(:, 2) = rhs_qqdot(par, y + h*a21*k(:, 1))
-         k(:, 3) = rhs_qqdot(par, y + h*(a31*k(:, 1) + a32*k(:, 2)))
-         k(:, 4) = rhs_qqdot(par, y + h*(a41*k(:, 1) + a43*k(:, 3)))
-         k(:, 5) = rhs_qqdot(par, y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4)))
-         k(:, 6) = rhs_qqdot(par, y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5)))
-         k(:, 7) = rhs_qqdot(par, y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) &
-                                         + a76*k(:, 6)))
-         k(:, 8) = rhs_qqdot(par, y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) &
-                                         + a86*k(:, 6) + a87*k(:, 7)))
-         k(:, 9) = rhs_qqdot(par, y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) &
-                                         + a96*k(:, 6) + a97*k(:, 7) + a98*k(:, 8)))
-         k(:, 10) = rhs_qqdot(par, y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) &
+         ys = y + h*a21*k(:, 1)
+         call model%field(t + c2*h, ys, k(:, 2))
+         ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
+         call model%field(t + c3*h, ys, k(:, 3))
+         ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
+         call model%field(t + c4*h, ys, k(:, 4))
+         ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
+         call model%field(t + c5*h, ys, k(:, 5))
+         ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
+         call model%field(t + c6*h, ys, k(:, 6))
+         ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) &
+                                         + a76*k(:, 6))
+         call model%field(t + c7*h, ys, k(:, 7))
+         ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) &
+                                         + a86*k(:, 6) + a87*k(:, 7))
+         call model%field(t + c8*h, ys, k(:, 8))
+         ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) &
+                                         + a96*k(:, 6) + a97*k(:, 7) + a98*k(:, 8))
+         call model%field(t + c9*h, ys, k(:, 9))
+         ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) &
                                           + a106*k(:, 6) + a107*k(:, 7) + a108*k(:, 8) &
-                                          + a109*k(:, 9)))
-         k(:, 11) = rhs_qqdot(par, y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) &
+                                          + a109*k(:, 9))
+         call model%field(t + c10*h, ys, k(:, 10))
+         ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) &
                                           + a116*k(:, 6) + a117*k(:, 7) + a118*k(:, 8) &
-                                          + a119*k(:, 9) + a1110*k(:, 10)))
-         k(:, 12) = rhs_qqdot(par, y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) &
+                                          + a119*k(:, 9) + a1110*k(:, 10))
+         call model%field(t + c11*h, ys, k(:, 11))
+         ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) &
                                           + a126*k(:, 6) + a127*k(:, 7) + a128*k(:, 8) &
                                           + a129*k(:, 9) + a1210*k(:, 10) &
-                                          + a1211*k(:, 11)))
+                                          + a1211*k(:, 11))
+         call model%field(t + h, ys, k(:, 12))
          self%n_rhs = self%n_rhs + 11
          inc = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) &
                + b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
@@ -629,7 +668,7 @@ contains
             err3 = weighted_ss(self%rtol, self%atol, y, ynew, e3)
             deno = err5 + 0.01_dp*err3
             if (deno <= 0.0_dp) deno = 1.0_dp
-            err = abs(h)*err5*sqrt(1.0_dp/(4.0_dp*deno))
+            err = abs(h)*err5*sqrt(1.0_dp/(real(n, dp)*deno))
             bad = .not. ieee_is_finite(err)
          end if
          call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
@@ -637,34 +676,37 @@ contains
          if (accepted) exit
       end do
       ! FSAL: f(y_new) is stage 1 of the next step and stage 13 of the dense output
-      k(:, 13) = rhs_qqdot(par, ynew)
+      call model%field(t + h, ynew, k(:, 13))
       self%n_rhs = self%n_rhs + 1
       if (.not. all(ieee_is_finite(k(:, 13)))) then
          stat = stat_nonfinite
          return
       end if
-      self%k(:, 1:13) = k
+      self%k(:n, 1:13) = k
       call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 13))
+      end associate
       if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
       stat = stat_ok
    end subroutine dop853_step
 
    !> 7th-order continuous extension of DOP853 (Hairer et al. I, II.6 and CONTD8):
    !> three extra stages (14–16) are evaluated on the first call within a step.
-   subroutine dop853_interpolate(self, par, t_eval, y_eval)
+   subroutine dop853_interpolate(self, model, t_eval, y_eval)
       class(dop853_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
+      class(model_t), intent(in) :: model     !! the system
       real(dp), intent(in) :: t_eval          !! time [s]
-      real(dp), intent(inout) :: y_eval(4)    !! state (q, q̇) at t_eval
-      real(dp) :: h, s, s1, conpar(4)
+      real(dp), intent(inout) :: y_eval(:)    !! state (q, q̇) at t_eval
+      real(dp) :: h, s, s1, conpar_(max_state)
+      integer :: n
       if (.not. self%stepped) return
+      n = self%n_rec
       h = self%t_new - self%t_old
       if (t_eval == self%t_new .or. h == 0.0_dp) then
-         y_eval = self%y_new
+         y_eval = self%y_new(:n)
          return
       end if
-      if (.not. self%dense_ready) call dop853_dense(self, par, h)
-      associate (r => self%cont)
+      if (.not. self%dense_ready) call dop853_dense(self, model, h)
+      associate (r => self%cont(:n, :), conpar => conpar_(:n))
          s = (t_eval - self%t_old)/h
          s1 = 1.0_dp - s
          conpar = r(:, 5) + s*(r(:, 6) + s1*(r(:, 7) + s*r(:, 8)))
@@ -673,24 +715,31 @@ contains
    end subroutine dop853_interpolate
 
    !> Dense-output coefficients of the last DOP853 step (3 extra evaluations).
-   subroutine dop853_dense(self, par, h)
+   subroutine dop853_dense(self, model, h)
       class(dop853_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
+      class(model_t), intent(in) :: model     !! the system
       real(dp), intent(in) :: h               !! the step [s]
-      associate (k => self%k, r => self%cont, y => self%y_old)
+      real(dp) :: ys_(max_state), y_(max_state)
+      integer :: n
+      n = self%n_rec
+      y_(:n) = self%y_old(:n)
+      associate (k => self%k(:n, :), r => self%cont(:n, :), y => y_(:n), ys => ys_(:n))
          r(:, 1) = y
-         r(:, 2) = self%y_new - y
+         r(:, 2) = self%y_new(:n) - y
          r(:, 3) = h*k(:, 1) - r(:, 2)
          r(:, 4) = r(:, 2) - h*k(:, 13) - r(:, 3)
-         k(:, 14) = rhs_qqdot(par, y + h*(a141*k(:, 1) + a147*k(:, 7) + a148*k(:, 8) &
+         ys = y + h*(a141*k(:, 1) + a147*k(:, 7) + a148*k(:, 8) &
                                           + a149*k(:, 9) + a1410*k(:, 10) + a1411*k(:, 11) &
-                                          + a1412*k(:, 12) + a1413*k(:, 13)))
-         k(:, 15) = rhs_qqdot(par, y + h*(a151*k(:, 1) + a156*k(:, 6) + a157*k(:, 7) &
+                                          + a1412*k(:, 12) + a1413*k(:, 13))
+         call model%field(self%t_old + c14*h, ys, k(:, 14))
+         ys = y + h*(a151*k(:, 1) + a156*k(:, 6) + a157*k(:, 7) &
                                           + a158*k(:, 8) + a1511*k(:, 11) + a1512*k(:, 12) &
-                                          + a1513*k(:, 13) + a1514*k(:, 14)))
-         k(:, 16) = rhs_qqdot(par, y + h*(a161*k(:, 1) + a166*k(:, 6) + a167*k(:, 7) &
+                                          + a1513*k(:, 13) + a1514*k(:, 14))
+         call model%field(self%t_old + c15*h, ys, k(:, 15))
+         ys = y + h*(a161*k(:, 1) + a166*k(:, 6) + a167*k(:, 7) &
                                           + a168*k(:, 8) + a169*k(:, 9) + a1613*k(:, 13) &
-                                          + a1614*k(:, 14) + a1615*k(:, 15)))
+                                          + a1614*k(:, 14) + a1615*k(:, 15))
+         call model%field(self%t_old + c16*h, ys, k(:, 16))
          self%n_rhs = self%n_rhs + 3
          r(:, 5) = h*(d41*k(:, 1) + d46*k(:, 6) + d47*k(:, 7) + d48*k(:, 8) + d49*k(:, 9) &
                       + d410*k(:, 10) + d411*k(:, 11) + d412*k(:, 12) + d413*k(:, 13) &

@@ -52,7 +52,7 @@ module dpend_symplectic
    use, intrinsic :: iso_fortran_env, only: qp => real128
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_kinds, only: dp
-   use dpend_pendulum, only: pendulum_t, rhs_qp, rhs_qp_trig, sin_cos, sin_cos_near
+   use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
                                state_ok
    implicit none
@@ -75,8 +75,8 @@ module dpend_symplectic
       !> Kahan-compensated update y_{n+1} = y_n + δ (GNI §VIII.5); set to .false.
       !> to see the uncompensated roundoff.
       logical :: compensated = .true.
-      real(dp) :: comp(4) = 0.0_dp  !! compensation: the part of y lost to rounding
-      real(dp), private :: y_last(4) = 0.0_dp  ! the state returned by the last step
+      real(dp) :: comp(max_state) = 0.0_dp  !! compensation: the part of y lost to rounding
+      real(dp), private :: y_last(max_state) = 0.0_dp  ! the state returned by the last step
       logical, private :: started = .false.    ! y_last is valid
    contains
       procedure(advance_i), deferred :: advance
@@ -91,12 +91,13 @@ module dpend_symplectic
       !> One step of the scheme from y by h, applied in place with
       !> `accumulate(y, e, δ, self%compensated)`. On failure `stat` /= stat_ok
       !> and the caller discards y and e.
-      subroutine advance_i(self, par, y, e, h, stat)
-         import :: symplectic_t, pendulum_t, dp
+      subroutine advance_i(self, model, t, y, e, h, stat)
+         import :: symplectic_t, model_t, dp
          class(symplectic_t), intent(inout) :: self  !! the method
-         type(pendulum_t), intent(in) :: par         !! parameters
-         real(dp), intent(inout) :: y(4)             !! state (q, p)
-         real(dp), intent(inout) :: e(4)             !! compensation of y
+         class(model_t), intent(in) :: model         !! the system (Hamiltonian)
+         real(dp), intent(in) :: t                   !! time at the start [s]
+         real(dp), intent(inout) :: y(:)             !! state (q, p)
+         real(dp), intent(inout) :: e(:)             !! compensation of y
          real(dp), intent(in) :: h                   !! step [s]
          integer, intent(out) :: stat                !! stat_ok or a failure code
       end subroutine advance_i
@@ -123,7 +124,7 @@ module dpend_symplectic
       real(dp), private :: a_lo(4, 4) = 0.0_dp  ! a + a_lo: A to twice double precision
       real(dp), private :: d_lo(4) = 0.0_dp     ! d + d_lo: d to twice double precision
       logical, private :: ready = .false.        ! the tableau is set up for s
-      real(dp), private :: z_old(4, 4) = 0.0_dp  ! stage increments of the last step
+      real(dp), private :: z_old(max_state, 4) = 0.0_dp  ! stage increments of the last step
       real(dp), private :: h_old = 0.0_dp        ! its step size
       logical, private :: have_z = .false.       ! z_old belongs to this trajectory
       real(dp), private :: w(4, 4) = 0.0_dp      ! extrapolation weights for ratio r_w
@@ -144,7 +145,7 @@ module dpend_symplectic
    !>   p_{n+1} = p_{n+½} - h/2 ∂H/∂q(q_{n+1}, p_{n+½})              (explicit)
    !> Both implicit equations are 2-dimensional fixed-point problems.
    type, extends(symplectic_t) :: verlet_t
-      real(dp), private :: force(2) = 0.0_dp  ! -∂H/∂q(q_{n}, p_{n-½}): first guess
+      real(dp), private :: force(max_dof) = 0.0_dp  ! -∂H/∂q(q_{n}, p_{n-½}): first guess
       logical, private :: have_force = .false.
    contains
       procedure :: advance => verlet_advance
@@ -195,22 +196,25 @@ contains
    end subroutine symplectic_reset
 
    !> One step of the method (see `integrator_t`); t and y change only on success.
-   subroutine symplectic_step(self, par, t, y, h, stat)
+   subroutine symplectic_step(self, model, t, y, h, stat)
       class(symplectic_t), intent(inout) :: self  !! the method and its counters
-      type(pendulum_t), intent(in) :: par         !! parameters
+      class(model_t), intent(in) :: model         !! the system (Hamiltonian)
       real(dp), intent(inout) :: t                !! time [s]
-      real(dp), intent(inout) :: y(4)             !! state (q [rad], p [kg m²/s])
+      real(dp), intent(inout) :: y(:)             !! state (q [rad], p [kg m²/s])
       real(dp), intent(inout) :: h                !! step [s]
       integer, intent(out) :: stat                !! stat_ok or a failure code
-      real(dp) :: ynew(4), enew(4)
+      real(dp) :: ynew_(max_state), enew_(max_state)
+      integer :: n
+      n = size(y)
       if (self%started) then
-         if (any(y /= self%y_last)) call self%reset()
+         if (any(y /= self%y_last(:n))) call self%reset()
       else
          call self%reset()
       end if
+      associate (ynew => ynew_(:n), enew => enew_(:n))
       ynew = y
-      enew = self%comp
-      call self%advance(par, ynew, enew, h, stat)
+      enew = self%comp(:n)
+      call self%advance(model, t, ynew, enew, h, stat)
       if (stat /= stat_ok) return
       if (.not. state_ok(ynew)) then
          call self%reset()
@@ -219,10 +223,11 @@ contains
       end if
       call self%record_step(t, y, t + h, ynew)
       y = ynew
-      self%comp = enew
+      self%comp(:n) = enew
+      end associate
       t = t + h
       self%n_steps = self%n_steps + 1
-      self%y_last = y
+      self%y_last(:n) = y
       self%started = .true.
    end subroutine symplectic_step
 
@@ -422,18 +427,23 @@ contains
       self%have_z = .false.
    end subroutine gauss_reset
 
-   subroutine gauss_advance(self, par, y, e, h, stat)
+   subroutine gauss_advance(self, model, t, y, e, h, stat)
       class(gauss_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par    !! parameters
-      real(dp), intent(inout) :: y(4)        !! state (q, p)
-      real(dp), intent(inout) :: e(4)        !! compensation of y
+      class(model_t), intent(in) :: model    !! the system (Hamiltonian)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(inout) :: y(:)        !! state (q, p)
+      real(dp), intent(inout) :: e(:)        !! compensation of y
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
-      real(dp) :: z(4, 4), f(4, 4), zi(4), zl(4), f0(4), delta(4), wq, wp, dnew, dm1, dm2
-      real(dp) :: sc0(4), yj(4)
-      integer :: s, i, j, k, verdict
+      real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
+      real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state), cache(2*max_state)
+      real(dp) :: wq, wp, dnew, dm1, dm2
+      integer :: s, i, j, k, verdict, n, m
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
+      n = size(y); m = n/2
+      associate (z => z_(:n, :), f => f_(:n, :), zi => zi_(:n), zl => zl_(:n), f0 => f0_(:n), &
+                 delta => delta_(:n), yj => yj_(:n), sc0 => cache(:model%cache_size()))
       ! starting guess: the last collocation polynomial, or c_i h f(y_n)
       z = 0.0_dp
       if (self%have_z .and. self%h_old /= 0.0_dp) then
@@ -444,26 +454,26 @@ contains
          end if
          do i = 1, s
             do j = 1, s
-               z(:, i) = z(:, i) + self%w(i, j)*self%z_old(:, j)
+               z(:, i) = z(:, i) + self%w(i, j)*self%z_old(:n, j)
             end do
          end do
       else
-         f0 = rhs_qp(par, y)
+         call model%canonical_field(t, y, f0)
          self%n_rhs = self%n_rhs + 1
          do i = 1, s
             z(:, i) = (self%c(i)*h)*f0
          end do
       end if
-      wq = inv_scale(y(1:2), [maxval(abs(z(1:2, 1:s)))])
-      wp = inv_scale(y(3:4), [maxval(abs(z(3:4, 1:s)))])
+      wq = inv_scale(y(1:m), [maxval(abs(z(1:m, 1:s)))])
+      wp = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, 1:s)))])
       dm1 = huge(1.0_dp)
       dm2 = huge(1.0_dp)
       stat = stat_no_convergence
-      sc0 = sin_cos(y(1:2))   ! the stage angles q_n + Z_j are near q_n
+      call model%fill_cache(y(1:m), sc0)   ! the stage coordinates q_n + Z_j are near q_n
       do k = 1, max_iter
          do j = 1, s
             yj = y + z(:, j)
-            f(:, j) = rhs_qp_trig(par, sin_cos_near(sc0, yj(1:2), z(1:2, j)), yj)
+            call model%canonical_field_near(t + self%c(j)*h, yj, z(1:m, j), sc0, f(:, j))
          end do
          self%n_rhs = self%n_rhs + s
          self%n_iter = self%n_iter + 1
@@ -476,8 +486,8 @@ contains
                zl = zl + self%a_lo(i, j)*f(:, j)
             end do
             zi = h*(zi + zl)
-            dnew = max(dnew, wq*maxval(abs(zi(1:2) - z(1:2, i))), &
-                       wp*maxval(abs(zi(3:4) - z(3:4, i))))
+            dnew = max(dnew, wq*maxval(abs(zi(1:m) - z(1:m, i))), &
+                       wp*maxval(abs(zi(m + 1:n) - z(m + 1:n, i))))
             z(:, i) = zi
          end do
          verdict = iteration_verdict(dnew, dm2, k)
@@ -486,7 +496,7 @@ contains
          dm2 = dm1
          dm1 = dnew
       end do
-      if (stat /= stat_ok) return
+      if (stat /= stat_ok) return   ! (leaves the associate block)
       delta = 0.0_dp
       zl = 0.0_dp
       do j = 1, s
@@ -498,10 +508,11 @@ contains
          stat = stat_nonfinite
          return
       end if
-      self%z_old = z
+      self%z_old(:n, :) = z
       self%h_old = h
       self%have_z = .true.
       call accumulate(y, e, delta, self%compensated)
+      end associate
    end subroutine gauss_advance
 
    pure function gauss_name(self) result(name)
@@ -529,33 +540,41 @@ contains
       self%have_force = .false.
    end subroutine verlet_reset
 
-   subroutine verlet_advance(self, par, y, e, h, stat)
+   subroutine verlet_advance(self, model, t, y, e, h, stat)
       class(verlet_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par     !! parameters
-      real(dp), intent(inout) :: y(4)         !! state (q, p)
-      real(dp), intent(inout) :: e(4)         !! compensation of y
+      class(model_t), intent(in) :: model     !! the system (Hamiltonian)
+      real(dp), intent(in) :: t               !! time at the start [s]
+      real(dp), intent(inout) :: y(:)         !! state (q, p)
+      real(dp), intent(inout) :: e(:)         !! compensation of y
       real(dp), intent(in) :: h               !! step [s]
       integer, intent(out) :: stat            !! status
-      real(dp) :: f(4), g(4), dp_half(2), dpn(2), dq(2), dqn(2), v0(2), ph(2), w, dnew, dm1, dm2
-      real(dp) :: sc0(4), qn(2)
-      integer :: k, verdict
+      real(dp) :: f_(max_state), g_(max_state), z_(max_state), cache(2*max_state)
+      real(dp) :: dp_half_(max_dof), dpn_(max_dof), dq_(max_dof), dqn_(max_dof)
+      real(dp) :: v0_(max_dof), ph_(max_dof), w, dnew, dm1, dm2
+      integer :: k, verdict, n, m
+      n = size(y); m = n/2
+      associate (f => f_(:n), g => g_(:n), z => z_(:n), dp_half => dp_half_(:m), &
+                 dpn => dpn_(:m), dq => dq_(:m), dqn => dqn_(:m), v0 => v0_(:m), &
+                 ph => ph_(:m), sc0 => cache(:model%cache_size()))
       ! p_{n+½} = p_n + Δp, Δp = h/2 F(q_n, p_n + Δp), F = -∂H/∂q
       if (self%have_force) then
-         dp_half = (0.5_dp*h)*self%force
+         dp_half = (0.5_dp*h)*self%force(:m)
       else
-         f = rhs_qp(par, y)
+         call model%canonical_field(t, y, f)
          self%n_rhs = self%n_rhs + 1
-         dp_half = (0.5_dp*h)*f(3:4)
+         dp_half = (0.5_dp*h)*f(m + 1:n)
       end if
-      w = inv_scale(y(3:4), dp_half)
+      w = inv_scale(y(m + 1:n), dp_half)
       dm1 = huge(1.0_dp)
       dm2 = huge(1.0_dp)
       stat = stat_no_convergence
       do k = 1, max_iter
-         f = rhs_qp(par, [y(1:2), y(3:4) + dp_half])
+         z(1:m) = y(1:m)
+         z(m + 1:n) = y(m + 1:n) + dp_half
+         call model%canonical_field(t, z, f)
          self%n_rhs = self%n_rhs + 1
          self%n_iter = self%n_iter + 1
-         dpn = (0.5_dp*h)*f(3:4)
+         dpn = (0.5_dp*h)*f(m + 1:n)
          dnew = w*maxval(abs(dpn - dp_half))
          dp_half = dpn
          verdict = iteration_verdict(dnew, dm2, k)
@@ -565,21 +584,22 @@ contains
          dm1 = dnew
       end do
       if (stat /= stat_ok) return
-      v0 = f(1:2)                  ! ∂H/∂p(q_n, p_{n+½})
-      ph = y(3:4) + dp_half
+      v0 = f(1:m)                  ! ∂H/∂p(q_n, p_{n+½})
+      ph = y(m + 1:n) + dp_half
       ! q_{n+1} = q_n + Δq, Δq = h/2 [v0 + ∂H/∂p(q_n + Δq, p_{n+½})]
       dq = h*v0
-      w = inv_scale(y(1:2), dq)
+      w = inv_scale(y(1:m), dq)
       dm1 = huge(1.0_dp)
       dm2 = huge(1.0_dp)
       stat = stat_no_convergence
-      sc0 = sin_cos(y(1:2))   ! q_n + Δq is near q_n
+      call model%fill_cache(y(1:m), sc0)   ! q_n + Δq is near q_n
+      z(m + 1:n) = ph
       do k = 1, max_iter
-         qn = y(1:2) + dq
-         g = rhs_qp_trig(par, sin_cos_near(sc0, qn, dq), [qn, ph])
+         z(1:m) = y(1:m) + dq
+         call model%canonical_field_near(t + h, z, dq, sc0, g)
          self%n_rhs = self%n_rhs + 1
          self%n_iter = self%n_iter + 1
-         dqn = (0.5_dp*h)*(v0 + g(1:2))
+         dqn = (0.5_dp*h)*(v0 + g(1:m))
          dnew = w*maxval(abs(dqn - dq))
          dq = dqn
          verdict = iteration_verdict(dnew, dm2, k)
@@ -590,14 +610,16 @@ contains
       end do
       if (stat /= stat_ok) return
       ! p_{n+1} = p_{n+½} + h/2 F(q_{n+1}, p_{n+½})
-      f = [dq, dp_half + (0.5_dp*h)*g(3:4)]
+      f(1:m) = dq
+      f(m + 1:n) = dp_half + (0.5_dp*h)*g(m + 1:n)
       if (.not. all(ieee_is_finite(f))) then
          stat = stat_nonfinite
          return
       end if
-      self%force = g(3:4)
+      self%force(:m) = g(m + 1:n)
       self%have_force = .true.
       call accumulate(y, e, f, self%compensated)
+      end associate
    end subroutine verlet_advance
 
    pure function verlet_name(self) result(name)
@@ -671,19 +693,23 @@ contains
       if (allocated(self%base)) call self%base%reset()
    end subroutine composition_reset
 
-   subroutine composition_advance(self, par, y, e, h, stat)
+   subroutine composition_advance(self, model, t, y, e, h, stat)
       class(composition_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par          !! parameters
-      real(dp), intent(inout) :: y(4)              !! state (q, p)
-      real(dp), intent(inout) :: e(4)              !! compensation of y
+      class(model_t), intent(in) :: model          !! the system (Hamiltonian)
+      real(dp), intent(in) :: t                    !! time at the start [s]
+      real(dp), intent(inout) :: y(:)              !! state (q, p)
+      real(dp), intent(inout) :: e(:)              !! compensation of y
       real(dp), intent(in) :: h                    !! step [s]
       integer, intent(out) :: stat                 !! status
+      real(dp) :: ts
       integer :: k
       self%base%compensated = self%compensated
       stat = stat_ok
+      ts = t
       do k = 1, size(self%gamma)
-         call self%base%advance(par, y, e, self%gamma(k)*h, stat)
+         call self%base%advance(model, ts, y, e, self%gamma(k)*h, stat)
          if (stat /= stat_ok) exit
+         ts = ts + self%gamma(k)*h
       end do
       self%n_rhs = self%n_rhs + self%base%n_rhs
       self%n_iter = self%n_iter + self%base%n_iter

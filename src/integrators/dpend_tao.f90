@@ -29,7 +29,7 @@
 module dpend_tao
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_kinds, only: dp
-   use dpend_pendulum, only: pendulum_t, rhs_qp
+   use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite
    use dpend_symplectic, only: symplectic_t, composition_t, accumulate, symplectic_reset
    implicit none
@@ -40,8 +40,8 @@ module dpend_tao
    !> extended phase space (q, p, x, y) and symmetric.
    type, extends(symplectic_t) :: tao_t
       real(dp) :: omega = 20.0_dp  !! binding constant ω [1/s] (`--omega`)
-      real(dp), private :: x(2) = 0.0_dp   ! second copy of q [rad]
-      real(dp), private :: w(2) = 0.0_dp   ! second copy of p [kg m²/s]
+      real(dp), private :: x(max_dof) = 0.0_dp   ! second copy of q [rad]
+      real(dp), private :: w(max_dof) = 0.0_dp   ! second copy of p [kg m²/s]
       logical, private :: have_copy = .false.
    contains
       procedure :: advance => tao_advance
@@ -75,11 +75,11 @@ contains
    !> of a trajectory.
    pure subroutine tao_get_copy(self, x, y, have)
       class(tao_t), intent(in) :: self  !! the method
-      real(dp), intent(out) :: x(2)     !! second copy of q [rad]
-      real(dp), intent(out) :: y(2)     !! second copy of p [kg m²/s]
+      real(dp), intent(out) :: x(:)     !! second copy of q [rad]
+      real(dp), intent(out) :: y(:)     !! second copy of p [kg m²/s]
       logical, intent(out) :: have      !! the copy belongs to the current trajectory
-      x = self%x
-      y = self%w
+      x = self%x(:size(x))
+      y = self%w(:size(y))
       have = self%have_copy
    end subroutine tao_get_copy
 
@@ -87,10 +87,10 @@ contains
    !> extended-phase-space map; `step` resets it when a new trajectory starts).
    pure subroutine tao_set_copy(self, x, y)
       class(tao_t), intent(inout) :: self  !! the method
-      real(dp), intent(in) :: x(2)         !! second copy of q [rad]
-      real(dp), intent(in) :: y(2)         !! second copy of p [kg m²/s]
-      self%x = x
-      self%w = y
+      real(dp), intent(in) :: x(:)         !! second copy of q [rad]
+      real(dp), intent(in) :: y(:)         !! second copy of p [kg m²/s]
+      self%x(:size(x)) = x
+      self%w(:size(y)) = y
       self%have_copy = .true.
    end subroutine tao_set_copy
 
@@ -100,20 +100,28 @@ contains
       self%have_copy = .false.
    end subroutine tao_reset
 
-   subroutine tao_advance(self, par, y, e, h, stat)
+   subroutine tao_advance(self, model, t, y, e, h, stat)
       class(tao_t), intent(inout) :: self  !! the method
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(inout) :: y(4)      !! state (q, p), the first copy
-      real(dp), intent(inout) :: e(4)      !! compensation of y
+      class(model_t), intent(in) :: model  !! the system (Hamiltonian)
+      real(dp), intent(in) :: t            !! time at the start [s]
+      real(dp), intent(inout) :: y(:)      !! state (q, p), the first copy
+      real(dp), intent(inout) :: e(:)      !! compensation of y
       real(dp), intent(in) :: h            !! step [s]
       integer, intent(out) :: stat         !! status
-      real(dp) :: x(2), w(2), dq(2), dp_(2), u(2), v(2), ru(2), rv(2), cs, sn, delta(4)
+      ! x_, w_, dq_, dp__ are read and updated by the flows below (first m entries)
+      real(dp) :: x_(max_dof), w_(max_dof), dq_(max_dof), dp__(max_dof), u_(max_dof)
+      real(dp) :: v_(max_dof), ru_(max_dof), rv_(max_dof), delta_(max_state), cs, sn
+      real(dp) :: f_(max_state), z_(max_state)
+      integer :: n, m
+      n = size(y); m = n/2
+      associate (x => x_(:m), w => w_(:m), dq => dq_(:m), dp_ => dp__(:m), u => u_(:m), &
+                 v => v_(:m), ru => ru_(:m), rv => rv_(:m), delta => delta_(:n))
       if (.not. self%have_copy) then
-         self%x = y(1:2)
-         self%w = y(3:4)
+         self%x(:m) = y(1:m)
+         self%w(:m) = y(m + 1:n)
       end if
-      x = self%x
-      w = self%w
+      x = self%x(:m)
+      w = self%w(:m)
       ! (q, p) = (q_n + dq, p_n + dp_): the increments are kept separately so that
       ! the update of (q, p) can be summed with compensation
       dq = 0.0_dp
@@ -123,45 +131,49 @@ contains
       ! φ_C^h: u = q - x, v = p - y rotate by 2ωh; q + x and p + y stay
       cs = cos(2.0_dp*self%omega*h)
       sn = sin(2.0_dp*self%omega*h)
-      u = (y(1:2) - x) + dq
-      v = (y(3:4) - w) + dp_
+      u = (y(1:m) - x) + dq
+      v = (y(m + 1:n) - w) + dp_
       ru = cs*u + sn*v
       rv = -sn*u + cs*v
-      dq = 0.5_dp*((dq + (x - y(1:2))) + ru)
-      dp_ = 0.5_dp*((dp_ + (w - y(3:4))) + rv)
+      dq = 0.5_dp*((dq + (x - y(1:m))) + ru)
+      dp_ = 0.5_dp*((dp_ + (w - y(m + 1:n))) + rv)
       x = x + 0.5_dp*(u - ru)
       w = w + 0.5_dp*(v - rv)
       call flow_b(0.5_dp*h)
       call flow_a(0.5_dp*h)
-      delta = [dq, dp_]
+      delta(1:m) = dq
+      delta(m + 1:n) = dp_
       if (.not. (all(ieee_is_finite(delta)) .and. all(ieee_is_finite(x)) &
                  .and. all(ieee_is_finite(w)))) then
          stat = stat_nonfinite
          return
       end if
-      self%x = x
-      self%w = w
+      self%x(:m) = x
+      self%w(:m) = w
       self%have_copy = .true.
       call accumulate(y, e, delta, self%compensated)
       stat = stat_ok
+      end associate
    contains
       !> φ_A^δ of H(q, y): p and x move.
       subroutine flow_a(dt)
          real(dp), intent(in) :: dt
-         real(dp) :: f(4)
-         f = rhs_qp(par, [y(1:2) + dq, w])
+         z_(1:m) = y(1:m) + dq_(:m)
+         z_(m + 1:n) = w_(:m)
+         call model%canonical_field(t, z_(:n), f_(:n))
          self%n_rhs = self%n_rhs + 1
-         dp_ = dp_ + dt*f(3:4)
-         x = x + dt*f(1:2)
+         dp__(:m) = dp__(:m) + dt*f_(m + 1:n)
+         x_(:m) = x_(:m) + dt*f_(1:m)
       end subroutine flow_a
       !> φ_B^δ of H(x, p): q and y move.
       subroutine flow_b(dt)
          real(dp), intent(in) :: dt
-         real(dp) :: f(4)
-         f = rhs_qp(par, [x, y(3:4) + dp_])
+         z_(1:m) = x_(:m)
+         z_(m + 1:n) = y(m + 1:n) + dp__(:m)
+         call model%canonical_field(t, z_(:n), f_(:n))
          self%n_rhs = self%n_rhs + 1
-         dq = dq + dt*f(1:2)
-         w = w + dt*f(3:4)
+         dq_(:m) = dq_(:m) + dt*f_(1:m)
+         w_(:m) = w_(:m) + dt*f_(m + 1:n)
       end subroutine flow_b
    end subroutine tao_advance
 

@@ -10,7 +10,7 @@
 !>   M11 = (m1/3 + m2) L1²,  M12 = k cos d,  M22 = m2 L2²/3,
 !> and the potential energy V = (m1/2 + m2) g L1 sin q1 + m2 g (L2/2) sin q2.
 module dpend_pendulum
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, &
                            min_g, max_g
@@ -22,7 +22,8 @@ module dpend_pendulum
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
    public :: rhs_qqdot, rhs_qp, energy_scale, jacobian_qqdot, jacobian_qp
-   public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near
+   public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near, energy_gradient
+   public :: shell_state, shell_p_max
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -293,6 +294,73 @@ contains
       t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
       g = [t, -t] - generalized_forces(par, q)
    end function dh_dq
+
+   !> The state on the section with q_s = angle, q_o, p_o given and H = E (see dpend_poincare); `found` is false outside the energy shell. direction: sign
+   !> of q̇_s (−1 negative, otherwise positive).
+   pure subroutine shell_state(par, e, link, angle, direction, q_o, p_o, q, qd, found)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: e            !! energy [J]
+      integer, intent(in) :: link          !! section link s (1 or 2)
+      real(dp), intent(in) :: angle        !! section angle [rad]
+      integer, intent(in) :: direction     !! crossing direction
+      real(dp), intent(in) :: q_o          !! other link's angle [rad]
+      real(dp), intent(in) :: p_o          !! other link's momentum [kg m²/s]
+      real(dp), intent(out) :: q(2)        !! angles [rad]
+      real(dp), intent(out) :: qd(2)       !! angular velocities [rad/s]
+      logical, intent(out) :: found        !! (q_o, p_o) lies inside the shell
+      integer :: o
+      real(dp) :: a, b, det_inv, disc, qd_s, p(2), m(2, 2)
+      o = 3 - link
+      q(link) = angle; q(o) = q_o
+      m = mass_matrix(par, q)
+      det_inv = 1.0_dp/(m(1, 1)*m(2, 2) - m(1, 2)**2)
+      a = m(o, o)*det_inv            ! (M⁻¹)_ss
+      b = -m(1, 2)*det_inv           ! (M⁻¹)_so
+      disc = 2.0_dp*a*(e - potential_energy(par, q)) - det_inv*p_o**2
+      found = disc > 0.0_dp
+      qd = 0.0_dp
+      if (.not. found) return
+      qd_s = sqrt(disc)
+      if (direction < 0) qd_s = -qd_s
+      p(o) = p_o
+      p(link) = (qd_s - b*p_o)/a
+      qd = velocities(par, q, p)
+   end subroutine shell_state
+
+   !> Largest |p_o| on the energy shell of the section (0 if the shell is empty),
+   !> from q̇_s² ≥ 0 maximised over a grid of 1441 values of q_o, plus 2 %.
+   pure real(dp) function shell_p_max(par, e, link, angle)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: e            !! energy [J]
+      integer, intent(in) :: link          !! section link (1 or 2)
+      real(dp), intent(in) :: angle        !! section angle [rad]
+      real(dp) :: q(2), m(2, 2), det_inv, a, x
+      integer :: i
+      shell_p_max = 0.0_dp
+      q(link) = angle
+      do i = 0, 1440
+         q(3 - link) = -pi + 2.0_dp*pi*real(i, dp)/1440.0_dp
+         m = mass_matrix(par, q)
+         det_inv = 1.0_dp/(m(1, 1)*m(2, 2) - m(1, 2)**2)
+         a = m(3 - link, 3 - link)*det_inv
+         x = 2.0_dp*a*(e - potential_energy(par, q))/det_inv
+         if (x > 0.0_dp) shell_p_max = max(shell_p_max, sqrt(x))
+      end do
+      shell_p_max = 1.02_dp*shell_p_max
+   end function shell_p_max
+
+   !> Gradient of the energy in (q, q̇): ∂E/∂q = -Q(q) + ∂T/∂q with
+   !> ∂T/∂q1 = -k sin(q1 - q2) q̇1 q̇2 = -∂T/∂q2, and ∂E/∂q̇ = M(q) q̇ = p.
+   pure function energy_gradient(par, q, qd) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: g(4)
+      real(dp) :: t
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
+      g(1:2) = -generalized_forces(par, q) + [-t, t]
+      g(3:4) = momenta(par, q, qd)
+   end function energy_gradient
 
    !> First-order right-hand side for y = (q1, q2, q̇1, q̇2): (q̇, q̈).
    pure function rhs_qqdot(par, y) result(f)

@@ -46,7 +46,8 @@ module dpend_study
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
-   use dpend_pendulum, only: pendulum_t, energy, hamiltonian, energy_scale
+   use dpend_pendulum, only: pendulum_t, energy, energy_scale
+   use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator
    use dpend_rk_explicit, only: rk_adaptive_t
@@ -242,15 +243,15 @@ contains
    end function hamiltonian_qp
 
    !> Energy of the internal state: H(q, p) for canonical methods, T + V else [J].
-   function energy_of(integ, par, y) result(e)
+   function energy_of(integ, model, y) result(e)
       class(integrator_t), intent(in) :: integ  !! the method
-      type(pendulum_t), intent(in) :: par       !! parameters
-      real(dp), intent(in) :: y(4)              !! internal state
+      class(model_t), intent(in) :: model       !! the system
+      real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: e
       if (integ%canonical()) then
-         e = hamiltonian(par, y(1:2), y(3:4))
+         e = model%hamiltonian_value(0.0_dp, y)
       else
-         e = energy(par, y(1:2), y(3:4))
+         e = model%energy(0.0_dp, y)
       end if
    end function energy_of
 
@@ -404,14 +405,14 @@ contains
          associate (ref => res%refs(ic), cs => cfg%cases(ic))
             ref%t = [(k*interval, k=1, cfg%n_check)]
             allocate (ref%y(4, cfg%n_check))
-            ref%e0 = energy(cfg%par, cs%q0, cs%w0)
-            ref%e_scale = energy_scale(cfg%par, ref%e0)
+            ref%e0 = energy(cfg%model%par, cs%q0, cs%w0)
+            ref%e_scale = energy_scale(cfg%model%par, ref%e0)
             call new_integrator(cfg%ref_method, integ, error)
-            call checkpoints(integ, cfg%par, cs%q0, cs%w0, ref%t, &
+            call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, &
                              interval/real(max(1, nint(interval/cfg%ref_dt)), dp), ref%y, ref%stat)
             call new_integrator(cfg%check_method, integ, error, rtol=cfg%check_rtol, &
                                 atol=1.0e-2_dp*cfg%check_rtol)
-            call checkpoints(integ, cfg%par, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
+            call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
             if (k == stat_ok .and. ref%stat == stat_ok) then
                ref%check_difference = maxval(abs(yc - ref%y))
             else
@@ -426,7 +427,7 @@ contains
    !> fixed step h (exactly hitting each time) or, for adaptive methods, h = 0.
    subroutine checkpoints(integ, par, q0, w0, times, h, ys, stat)
       class(integrator_t), intent(inout) :: integ
-      type(pendulum_t), intent(in) :: par
+      class(model_t), intent(in) :: par
       real(dp), intent(in) :: q0(2), w0(2), times(:), h
       real(dp), intent(out) :: ys(:, :)
       integer, intent(out) :: stat
@@ -699,9 +700,9 @@ contains
       type(fit_t) :: fit
       associate (cs => cfg%cases(sw%icase))
          call make_method(cfg, sw, k, integ)
-         y0 = integ%to_internal(cfg%par, cs%q0, cs%w0)
-         e0 = energy_of(integ, cfg%par, y0)
-         es = energy_scale(cfg%par, e0)
+         y0 = integ%to_internal(cfg%model, cs%q0, cs%w0)
+         e0 = energy_of(integ, cfg%model, y0)
+         es = energy_scale(cfg%model%par, e0)
          h0 = merge(sw%x(k), 0.0_dp, sw%mode == mode_step)
          ! ---- short run with monitoring
          y = y0; t = 0.0_dp; hh = h0
@@ -711,13 +712,13 @@ contains
             if (sw%mode == mode_step) hh = h0
             call march%start(integ, t, ref%t(kc), hh)
             do while (.not. march%finished)
-               call march%next(integ, cfg%par, t, y, hh, stat)
+               call march%next(integ, cfg%model, t, y, hh, stat)
                if (stat /= stat_ok) exit
                sw%energy_short(k) = max(sw%energy_short(k), &
-                                        abs(energy_of(integ, cfg%par, y) - e0)/es)
+                                        abs(energy_of(integ, cfg%model, y) - e0)/es)
             end do
             if (stat /= stat_ok) exit
-            call integ%to_physical(cfg%par, y, sw%y_check(1:2, kc, k), sw%y_check(3:4, kc, k))
+            call integ%to_physical(cfg%model, y, sw%y_check(1:2, kc, k), sw%y_check(3:4, kc, k))
          end do
          sw%short_steps(k) = integ%n_steps; sw%short_rhs(k) = integ%n_rhs
          sw%short_iter(k) = integ%n_iter; sw%short_rejected(k) = integ%n_rejected
@@ -740,9 +741,9 @@ contains
          start = wall_clock()
          call march%start(integ, t, sw%t_long, hh)
          do while (.not. march%finished)
-            call march%next(integ, cfg%par, t, y, hh, stat)
+            call march%next(integ, cfg%model, t, y, hh, stat)
             if (stat /= stat_ok) exit
-            e = abs(energy_of(integ, cfg%par, y) - e0)/es
+            e = abs(energy_of(integ, cfg%model, y) - e0)/es
             do while (jb < nb)
                if (t <= sw%t_bins(jb)) exit
                jb = jb + 1
@@ -784,7 +785,7 @@ contains
             do k = 1, size(sw%x)
                if (sw%stat(k) /= stat_ok) cycle
                call make_method(cfg, sw, k, integ)
-               y0 = integ%to_internal(cfg%par, cs%q0, cs%w0)
+               y0 = integ%to_internal(cfg%model, cs%q0, cs%w0)
                sw%wall_short(k) = time_short_run(integ, cfg, res%refs(sw%icase), y0, &
                                                  merge(sw%x(k), 0.0_dp, sw%mode == mode_step), &
                                                  sw%mode)
@@ -825,7 +826,7 @@ contains
                if (mode == mode_step) hh = h0
                call march%start(integ, t, ref%t(kc), hh)
                do while (.not. march%finished)
-                  call march%next(integ, cfg%par, t, y, hh, stat)
+                  call march%next(integ, cfg%model, t, y, hh, stat)
                   if (stat /= stat_ok) exit
                end do
             end do
@@ -862,24 +863,24 @@ contains
             integ%compensated = c == 1
          end select
          q0 = cs%q0 + cfg%ro_perturb*real(r - 1, dp)*[1.0_dp, -0.7_dp]
-         y = integ%to_internal(cfg%par, q0, cs%w0)
-         h0 = hamiltonian_qp(cfg%par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-         es = energy_scale(cfg%par, real(h0, dp))
+         y = integ%to_internal(cfg%model, q0, cs%w0)
+         h0 = hamiltonian_qp(cfg%model%par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
+         es = energy_scale(cfg%model%par, real(h0, dp))
          t = 0.0_dp
          j = 1
          start = wall_clock()
          do n = 1, ro%steps(size(ro%steps))
             h = ro%dt
-            call integ%step(cfg%par, t, y, h, stat)
+            call integ%step(cfg%model, t, y, h, stat)
             if (stat /= stat_ok) exit
             t = real(n, dp)*ro%dt
             if (n == ro%steps(j)) then
                comp = 0.0_dp
                select type (integ)
                class is (symplectic_t)
-                  comp = integ%comp
+                  comp = integ%comp(:4)
                end select
-               ro%err(j, r, c) = real((hamiltonian_qp(cfg%par, y, comp) - h0)/real(es, qp), dp)
+               ro%err(j, r, c) = real((hamiltonian_qp(cfg%model%par, y, comp) - h0)/real(es, qp), dp)
                j = j + 1
             end if
          end do
@@ -903,22 +904,22 @@ contains
       associate (cs => cfg%cases(case_index(cfg, cfg%tao_case)))
          call new_integrator(ts%method, integ, error)
          call set_omega(integ, ts%omega(k), found)
-         call checkpoints(integ, cfg%par, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
+         call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
          if (stat == stat_ok) ts%global_error(k) = maxval(abs(yc - ref%y))
          call new_integrator(ts%method, integ, error)
          call set_omega(integ, ts%omega(k), found)
-         y = integ%to_internal(cfg%par, cs%q0, cs%w0)
-         e0 = energy_of(integ, cfg%par, y)
-         es = energy_scale(cfg%par, e0)
+         y = integ%to_internal(cfg%model, cs%q0, cs%w0)
+         e0 = energy_of(integ, cfg%model, y)
+         es = energy_scale(cfg%model%par, e0)
          t = 0.0_dp
          hh = cfg%tao_dt
          e = 0.0_dp
          ts%energy_max(k) = 0.0_dp
          call march%start(integ, t, cfg%tao_t_end, hh)
          do while (.not. march%finished)
-            call march%next(integ, cfg%par, t, y, hh, stat)
+            call march%next(integ, cfg%model, t, y, hh, stat)
             if (stat /= stat_ok) exit
-            e = abs(energy_of(integ, cfg%par, y) - e0)/es
+            e = abs(energy_of(integ, cfg%model, y) - e0)/es
             ts%energy_max(k) = max(ts%energy_max(k), e)
          end do
          ts%energy_final(k) = e

@@ -1,0 +1,311 @@
+!> The abstract model: what every integrator, analysis and writer may ask of a
+!> mechanical system with n degrees of freedom (docs/architecture.md).
+!>
+!> The state is y = (q, q̇), size 2n: generalized coordinates q [rad for the chain
+!> models] and their rates. Every procedure takes the time t, so that a model may be
+!> time-dependent (a moving support); an autonomous model ignores it.
+!>
+!> Structure a model may have, and says it has:
+!> - `hamiltonian()`: canonical variables z = (q, p) with p = ∂L/∂q̇, H(q, p), the
+!>   Hamiltonian vector field (∂H/∂p, −∂H/∂q) and its Jacobian. Methods on (q, p)
+!>   (Gauss collocation, Störmer–Verlet and its compositions, Tao's) need it, and
+!>   refuse a model without it (`dpend_methods`). A damped model is not Hamiltonian.
+!> - `conservative()`: the energy is a constant of motion, so that energy-error
+!>   verdicts apply (false for damping or a moving support).
+!> - fast paths: `cache_size() > 0` means the model keeps quantities of the step start
+!>   (for the double pendulum: sin and cos of the angles) in a cache that
+!>   `field_near` / `canonical_field_near` update for states near the start by angle
+!>   addition. Integrators call these hooks without knowing what the cache holds;
+!>   the defaults ignore the cache and evaluate the field.
+!>
+!> Writers ask for `n_outputs` named quantities per sample (kinematics, joint
+!> reactions, …, with units) and the model's named parameters, so that a writer never
+!> names a model's fields.
+!>
+!> Procedures for structure a model lacks have default bodies that are never reached:
+!> the factory refuses such a method before any step (they `error stop` as an internal
+!> check, with a message naming the model and the procedure).
+module dpend_model
+   use dpend_kinds, only: dp
+   implicit none
+   private
+   public :: model_t, max_dof, max_state
+
+   !> Most degrees of freedom of any model: integrators keep their stage vectors on
+   !> the stack in arrays of this size (no allocation per step).
+   integer, parameter :: max_dof = 32
+   !> Most state components, 2 max_dof.
+   integer, parameter :: max_state = 2*max_dof
+
+   type, abstract :: model_t
+   contains
+      procedure(n_dof_i), deferred :: n_dof
+      procedure(name_i), deferred :: name
+      procedure(field_i), deferred :: field
+      procedure(jacobian_i), deferred :: jacobian
+      procedure(energy_i), deferred :: energy
+      procedure(energy_scale_i), deferred :: energy_scale
+      !> Size 2n of the state vector.
+      procedure, non_overridable :: n_state
+      procedure :: hamiltonian => model_false
+      procedure :: conservative => model_true
+      procedure :: autonomous => model_true
+      ! the Hamiltonian structure (models with hamiltonian() true override all five)
+      procedure :: momenta => model_momenta
+      procedure :: velocities => model_velocities
+      procedure :: hamiltonian_value => model_hamiltonian_value
+      procedure :: canonical_field => model_canonical_field
+      procedure :: canonical_jacobian => model_canonical_jacobian
+      ! gradient of the energy in (q, q̇) (the divergence's energy-shell projection)
+      procedure :: energy_gradient => model_energy_gradient
+      ! energy-shell sections of a two-degree-of-freedom Hamiltonian (Poincaré maps)
+      procedure :: energy_sections => model_false
+      procedure :: section_state => model_section_state
+      procedure :: section_p_max => model_section_p_max
+      ! fast-path hooks
+      procedure :: cache_size => model_cache_size
+      procedure :: fill_cache => model_fill_cache
+      procedure :: field_near => model_field_near
+      procedure :: canonical_field_near => model_canonical_field_near
+      ! what writers need
+      procedure :: n_outputs => model_n_outputs
+      procedure :: output_info => model_output_info
+      procedure :: outputs => model_outputs
+      procedure :: n_parameters => model_n_outputs
+      procedure :: parameter => model_parameter
+   end type model_t
+
+   abstract interface
+      !> Degrees of freedom n (the state has 2n components).
+      pure integer function n_dof_i(self)
+         import :: model_t
+         class(model_t), intent(in) :: self
+      end function n_dof_i
+      !> Short name, e.g. 'double pendulum'.
+      pure function name_i(self) result(name)
+         import :: model_t
+         class(model_t), intent(in) :: self
+         character(len=:), allocatable :: name
+      end function name_i
+      !> The vector field f(t, y) = (q̇, q̈) for y = (q, q̇).
+      pure subroutine field_i(self, t, y, f)
+         import :: model_t, dp
+         class(model_t), intent(in) :: self
+         real(dp), intent(in) :: t       !! time [s]
+         real(dp), intent(in) :: y(:)    !! state (q, q̇), size 2n
+         real(dp), intent(out) :: f(:)   !! (q̇, q̈), size 2n
+      end subroutine field_i
+      !> The Jacobian ∂f/∂y of `field`, (2n, 2n).
+      pure subroutine jacobian_i(self, t, y, jac)
+         import :: model_t, dp
+         class(model_t), intent(in) :: self
+         real(dp), intent(in) :: t          !! time [s]
+         real(dp), intent(in) :: y(:)       !! state (q, q̇)
+         real(dp), intent(out) :: jac(:, :) !! ∂f/∂y
+      end subroutine jacobian_i
+      !> Mechanical energy E(t, y) = T + V [J].
+      pure real(dp) function energy_i(self, t, y)
+         import :: model_t, dp
+         class(model_t), intent(in) :: self
+         real(dp), intent(in) :: t      !! time [s]
+         real(dp), intent(in) :: y(:)   !! state (q, q̇)
+      end function energy_i
+      !> The unit of relative energy errors for a run starting with energy e0 [J].
+      pure real(dp) function energy_scale_i(self, e0)
+         import :: model_t, dp
+         class(model_t), intent(in) :: self
+         real(dp), intent(in) :: e0     !! initial energy [J]
+      end function energy_scale_i
+   end interface
+
+contains
+
+   pure integer function n_state(self)
+      class(model_t), intent(in) :: self  !! the model
+      n_state = 2*self%n_dof()
+   end function n_state
+
+   !> Default of a structure query: false.
+   pure logical function model_false(self)
+      class(model_t), intent(in) :: self  !! the model
+      model_false = .false.
+   end function model_false
+
+   !> Default of a structure query: true.
+   pure logical function model_true(self)
+      class(model_t), intent(in) :: self  !! the model
+      model_true = .true.
+   end function model_true
+
+   !> Unreachable default (the caller checks `hamiltonian()` first).
+   pure subroutine lacks(self, what)
+      class(model_t), intent(in) :: self  !! the model
+      character(len=*), intent(in) :: what  !! the missing procedure
+      error stop 'internal error: the model has no '//what
+   end subroutine lacks
+
+   !> Canonical momenta p(t, q, q̇) [kg m²/s for angles].
+   pure subroutine model_momenta(self, t, y, p)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t        !! time [s]
+      real(dp), intent(in) :: y(:)     !! state (q, q̇)
+      real(dp), intent(out) :: p(:)    !! momenta, size n
+      p = 0.0_dp
+      call lacks(self, 'momenta (not a Hamiltonian model)')
+   end subroutine model_momenta
+
+   !> Rates q̇ = ∂H/∂p from z = (q, p).
+   pure subroutine model_velocities(self, t, z, qd)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t        !! time [s]
+      real(dp), intent(in) :: z(:)     !! canonical state (q, p)
+      real(dp), intent(out) :: qd(:)   !! q̇, size n
+      qd = 0.0_dp
+      call lacks(self, 'velocities (not a Hamiltonian model)')
+   end subroutine model_velocities
+
+   !> H(t, z) [J].
+   pure real(dp) function model_hamiltonian_value(self, t, z) result(h)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t        !! time [s]
+      real(dp), intent(in) :: z(:)     !! canonical state (q, p)
+      h = 0.0_dp
+      call lacks(self, 'Hamiltonian')
+   end function model_hamiltonian_value
+
+   !> The Hamiltonian vector field (∂H/∂p, −∂H/∂q) at z = (q, p).
+   pure subroutine model_canonical_field(self, t, z, f)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t        !! time [s]
+      real(dp), intent(in) :: z(:)     !! canonical state (q, p)
+      real(dp), intent(out) :: f(:)    !! (∂H/∂p, −∂H/∂q)
+      f = 0.0_dp
+      call lacks(self, 'Hamiltonian vector field')
+   end subroutine model_canonical_field
+
+   !> Jacobian of `canonical_field`.
+   pure subroutine model_canonical_jacobian(self, t, z, jac)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t          !! time [s]
+      real(dp), intent(in) :: z(:)       !! canonical state (q, p)
+      real(dp), intent(out) :: jac(:, :) !! ∂f/∂z
+      jac = 0.0_dp
+      call lacks(self, 'Jacobian of the Hamiltonian vector field')
+   end subroutine model_canonical_jacobian
+
+   !> ∂E/∂y at y = (q, q̇). Default: central differences with steps scaled to each
+   !> component (relative accuracy ~1e-10); models override it with the exact form.
+   pure subroutine model_energy_gradient(self, t, y, g)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t        !! time [s]
+      real(dp), intent(in) :: y(:)     !! state (q, q̇)
+      real(dp), intent(out) :: g(:)    !! ∂E/∂y
+      real(dp) :: yp(size(y)), ym(size(y)), d
+      integer :: i
+      do i = 1, size(y)
+         d = 1e-5_dp*max(1.0_dp, abs(y(i)))
+         yp = y; ym = y
+         yp(i) = y(i) + d; ym(i) = y(i) - d
+         g(i) = (self%energy(t, yp) - self%energy(t, ym))/(2.0_dp*d)
+      end do
+   end subroutine model_energy_gradient
+
+   !> The state on the section q_link = angle with the other coordinate q_o, its
+   !> momentum p_o and energy e (models with `energy_sections()`; dpend_poincare).
+   pure subroutine model_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, &
+                                       found)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle, q_o, p_o   !! energy [J], section, other q and p
+      integer, intent(in) :: link, direction       !! section coordinate, sign of its rate
+      real(dp), intent(out) :: q(:), qd(:)         !! the state
+      logical, intent(out) :: found                !! (q_o, p_o) is inside the shell
+      q = 0.0_dp; qd = 0.0_dp; found = .false.
+      call lacks(self, 'energy-shell sections')
+   end subroutine model_section_state
+
+   !> Largest |p_o| on the energy shell of the section (see `section_state`).
+   pure real(dp) function model_section_p_max(self, e, link, angle) result(p)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle   !! energy [J], section angle [rad]
+      integer, intent(in) :: link        !! section coordinate
+      p = 0.0_dp
+      call lacks(self, 'energy-shell sections')
+   end function model_section_p_max
+
+   !> No fast path by default.
+   pure integer function model_cache_size(self)
+      class(model_t), intent(in) :: self
+      model_cache_size = 0
+   end function model_cache_size
+
+   !> Fill the step-start cache from the coordinates q (nothing by default).
+   pure subroutine model_fill_cache(self, q, cache)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: q(:)         !! coordinates at the step start
+      real(dp), intent(inout) :: cache(:)  !! the model's cache, size cache_size()
+   end subroutine model_fill_cache
+
+   !> `field` at y, whose coordinates are those of the cache plus d (|d| small);
+   !> the default ignores the cache.
+   pure subroutine model_field_near(self, t, y, d, cache, f)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t          !! time [s]
+      real(dp), intent(in) :: y(:)       !! state (q, q̇)
+      real(dp), intent(in) :: d(:)       !! q minus the coordinates of the cache
+      real(dp), intent(in) :: cache(:)   !! from `fill_cache`
+      real(dp), intent(out) :: f(:)      !! (q̇, q̈)
+      call self%field(t, y, f)
+   end subroutine model_field_near
+
+   !> `canonical_field` at z with the step-start cache (see `field_near`).
+   pure subroutine model_canonical_field_near(self, t, z, d, cache, f)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t          !! time [s]
+      real(dp), intent(in) :: z(:)       !! canonical state (q, p)
+      real(dp), intent(in) :: d(:)       !! q minus the coordinates of the cache
+      real(dp), intent(in) :: cache(:)   !! from `fill_cache`
+      real(dp), intent(out) :: f(:)      !! (∂H/∂p, −∂H/∂q)
+      call self%canonical_field(t, z, f)
+   end subroutine model_canonical_field_near
+
+   !> Number of named per-sample outputs (none by default); also the default number
+   !> of named parameters.
+   pure integer function model_n_outputs(self)
+      class(model_t), intent(in) :: self
+      model_n_outputs = 0
+   end function model_n_outputs
+
+   !> Name, number of components, units and description of output i.
+   subroutine model_output_info(self, i, name, n_comp, units, description)
+      class(model_t), intent(in) :: self
+      integer, intent(in) :: i                                   !! 1 … n_outputs()
+      character(len=:), allocatable, intent(out) :: name         !! dataset name
+      integer, intent(out) :: n_comp                             !! components per sample
+      character(len=:), allocatable, intent(out) :: units        !! SI units
+      character(len=:), allocatable, intent(out) :: description  !! one line
+      name = ''; n_comp = 0; units = ''; description = ''
+      call lacks(self, 'outputs')
+   end subroutine model_output_info
+
+   !> All outputs of one sample, concatenated in the order of `output_info`, from the
+   !> state y = (q, q̇) and its rate f = (q̇, q̈) at time t.
+   pure subroutine model_outputs(self, t, y, f, values)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t          !! time [s]
+      real(dp), intent(in) :: y(:)       !! state (q, q̇)
+      real(dp), intent(in) :: f(:)       !! field at y
+      real(dp), intent(out) :: values(:) !! Σ n_comp values
+      values = 0.0_dp
+   end subroutine model_outputs
+
+   !> Name, value and units of parameter i (1 … n_parameters()).
+   subroutine model_parameter(self, i, name, value, units)
+      class(model_t), intent(in) :: self
+      integer, intent(in) :: i                              !! parameter index
+      character(len=:), allocatable, intent(out) :: name    !! attribute name
+      real(dp), intent(out) :: value                        !! its value
+      character(len=:), allocatable, intent(out) :: units   !! SI units
+      name = ''; value = 0.0_dp; units = ''
+      call lacks(self, 'parameters')
+   end subroutine model_parameter
+end module dpend_model
