@@ -11,7 +11,7 @@ module dpend_chaos
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help, &
                            namelist_error
-   use dpend_pendulum, only: pendulum_t, energy, energy_scale, finite_positive
+   use dpend_pendulum, only: finite_positive, energy_limit
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator
    use dpend_events, only: angle_crossing_t
@@ -411,7 +411,7 @@ contains
          call check_resources('lyapunov_t', n, 48.0_dp, 0.0_dp, sci(n)//' renormalisations', &
                               'use a shorter --lyapunov-t', error)
       case ('poincare')
-         e_lim = energy_limit(cfg%model%par)
+         e_lim = energy_limit(cfg%model%par, max_angular_velocity)
          if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
             call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
          else if (ch%n_points < 1) then
@@ -453,18 +453,6 @@ contains
          call check_disk(field, n*per_file + 65536.0_dp, cfg%output, hint, err)
       end subroutine check_resources
    end subroutine validate_chaos
-
-   !> Largest |energy| accepted for a Poincaré section: both links upright plus the
-   !> kinetic energy of angular velocities of `max_angular_velocity` [J].
-   pure real(dp) function energy_limit(par)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp) :: m11, m22, k
-      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
-      m22 = par%m2*par%l2**2/3.0_dp
-      k = 0.5_dp*par%m2*par%l1*par%l2
-      energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
-                     + 0.5_dp*max_angular_velocity**2*(m11 + m22 + 2.0_dp*k)
-   end function energy_limit
 
    !> Run the command. `error` is set for invalid input (nothing written) or for
    !> a failed run (`failed`; the file holds what was computed before). `summary`
@@ -701,7 +689,7 @@ contains
       integer :: n_found, n_failed
       character(len=:), allocatable :: status
       e = ch%energy
-      if (.not. ch%energy_given) e = energy(cfg%model%par, cfg%q0, cfg%w0)
+      if (.not. ch%energy_given) e = cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0])
       allocate (q0(2, ch%n_ics), qd0(2, ch%n_ics))
       call shell_samples(cfg%model, e, ch%section_link, ch%section_angle, ch%section_direction, &
                          ch%n_ics, q0, qd0, n_found)
@@ -720,7 +708,7 @@ contains
       if (n_failed > 0) status = to_str(n_failed)//' orbit(s) stopped early: '// &
                                  status_message(res%status(findloc(res%status /= stat_ok, &
                                                                    .true., dim=1)))
-      es_ = energy_scale(cfg%model%par, e)
+      es_ = cfg%model%energy_scale(e)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       integ%n_steps = res%n_steps
@@ -788,7 +776,7 @@ contains
       if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
-                                                    energy(cfg%model%par, cfg%q0, cfg%w0), error)
+                                                    cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0]), error)
       if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
                                                     integ%n_steps, error)
       if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)

@@ -23,7 +23,7 @@ module dpend_pendulum
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
    public :: rhs_qqdot, rhs_qp, energy_scale, jacobian_qqdot, jacobian_qp
    public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near, energy_gradient
-   public :: shell_state, shell_p_max
+   public :: shell_state, shell_p_max, energy_limit
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -348,6 +348,19 @@ contains
       end do
       shell_p_max = 1.02_dp*shell_p_max
    end function shell_p_max
+
+   !> Largest |energy| accepted for a Poincaré section: both links upright plus the
+   !> kinetic energy of angular velocities w_max [J].
+   pure real(dp) function energy_limit(par, w_max)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
+      real(dp) :: m11, m22, k
+      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m22 = par%m2*par%l2**2/3.0_dp
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
+                     + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
+   end function energy_limit
 
    !> Gradient of the energy in (q, q̇): ∂E/∂q = -Q(q) + ∂T/∂q with
    !> ∂T/∂q1 = -k sin(q1 - q2) q̇1 q̇2 = -∂T/∂q2, and ∂E/∂q̇ = M(q) q̇ = p.
