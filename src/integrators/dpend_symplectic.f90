@@ -437,8 +437,8 @@ contains
       integer, intent(out) :: stat           !! status
       real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
       real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state), cache(2*max_state)
-      real(dp) :: wq, wp, dnew, dm1, dm2
-      integer :: s, i, j, k, verdict, n, m
+      real(dp) :: wq, wp, dnew, dm1, dm2, z4(4, 4), d4(4), l4(4)
+      integer :: s, i, j, k, verdict, n, m, nb
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
       n = size(y); m = n/2
@@ -497,13 +497,19 @@ contains
          dm1 = dnew
       end do
       if (stat /= stat_ok) return   ! (leaves the associate block)
-      delta = 0.0_dp
-      zl = 0.0_dp
-      do j = 1, s
-         delta = delta + self%d(j)*z(:, j)
-         zl = zl + self%d_lo(j)*z(:, j)
+      ! in zero-padded blocks of four components, as the fixed-size code rounded it
+      do i = 1, n, 4
+         nb = min(4, n - i + 1)
+         z4 = 0.0_dp
+         z4(1:nb, 1:s) = z(i:i + nb - 1, 1:s)
+         d4 = 0.0_dp
+         l4 = 0.0_dp
+         do j = 1, s
+            d4 = d4 + self%d(j)*z4(:, j)
+            l4 = l4 + self%d_lo(j)*z4(:, j)
+         end do
+         delta(i:i + nb - 1) = d4(1:nb) + l4(1:nb)
       end do
-      delta = delta + zl
       if (.not. all(ieee_is_finite(delta))) then
          stat = stat_nonfinite
          return
