@@ -220,6 +220,8 @@ contains
 
    ! ================================================================ energy
 
+   !> Copy of `hamiltonian` (dpend_pendulum) for precision: quadruple precision;
+   !> test/test_copies.f90 compares them.
    !> H(q, p) in quadruple precision at the compensated state y + e (canonical
    !> variables), for errors below the double-precision rounding of H [J].
    pure function hamiltonian_qp(par, y, e) result(h)

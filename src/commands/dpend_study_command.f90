@@ -581,6 +581,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(h5file_t) :: h5
       type(verdicts_t) :: v
+      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
       integer :: ic, s, i
       character(len=:), allocatable :: g, names
       character(len=8) :: date
@@ -684,8 +685,10 @@ contains
             call h5%write(g//'/t', ro%t)
             call h5%write(g//'/rms_compensated', ro%rms(:, 1))
             call h5%write(g//'/rms_plain', ro%rms(:, 2))
-            call h5%write(g//'/error_compensated', transpose(ro%err(:, :, 1)))
-            call h5%write(g//'/error_plain', transpose(ro%err(:, :, 2)))
+            table = transpose(ro%err(:, :, 1))
+            call h5%write(g//'/error_compensated', table)
+            table = transpose(ro%err(:, :, 2))
+            call h5%write(g//'/error_plain', table)
             call h5%write(g//'/status_compensated', ro%stat(:, 1))
             call h5%write(g//'/status_plain', ro%stat(:, 2))
             call h5%write(g//'/wall_compensated', ro%wall(:, 1))
