@@ -8,7 +8,9 @@
 # shell, as the argument vector
 #   bash SCRIPTS/plot_study.sh FILE.h5 OUTDIR        (environment: DPEND=its own path)
 # DPEND: the dpend executable (default: the release build, built once). `dpend
-# export` turns the datasets into text columns (layout: docs/study-hdf5.md).
+# export` turns the datasets into text columns (layout: docs/study-hdf5.md);
+# `dpend methods --plot-styles` gives each method's colour and group and the
+# panels (the method registry, src/integrators/dpend_method_registry.f90).
 # File names and the case names of the study reach gnuplot only as data (gnuplot -c
 # with ARG1..); the gnuplot code generated below holds only numbers and method names
 # checked to be plain words.
