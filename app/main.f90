@@ -5,8 +5,7 @@ program dpend
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, get_arguments
    use dpend_config, only: run_config_t
-   use dpend_methods, only: method_names, new_integrator
-   use dpend_integrator, only: integrator_t
+   use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix
@@ -169,28 +168,33 @@ contains
       write (output_unit, '(a)') 'dpend animate: '//summary
    end subroutine animate
 
-   !> `dpend methods`: one row per method with the facts of its integrator object
-   !> (name, variables, order, properties); `--names`: the names on one line.
+   !> `dpend methods`: one row per method of the registry (dpend_method_registry):
+   !> name, variables, order, properties, commands, then a line of description
+   !> each; `--names`: the names on one line; `--plot-styles`: the plot groups and
+   !> the colour of each method, for scripts/plot_study.sh.
    subroutine methods(sub)
       type(arg_t), intent(in) :: sub(:)
-      class(integrator_t), allocatable :: integ
-      type(error_t), allocatable :: error
-      character(len=:), allocatable :: rest, name, props, commands
+      character(len=:), allocatable :: props, commands, mode
       character(len=*), parameter :: all = 'simulate lyapunov divergence poincare study'
-      character(len=16) :: cell
-      integer :: i, k
-      logical :: names_only
-      names_only = .false.
+      integer :: i
+      mode = 'table'
       do i = 1, size(sub)
          select case (sub(i)%s)
          case ('-h', '--help')
-            write (output_unit, '(a)') 'usage: dpend methods [--names]'//nl//nl// &
-               'The integration methods of --method: variables advanced ((q, qdot) or'//nl// &
-               'canonical (q, p)), classical order, properties and the commands that'//nl// &
-               'accept them. --names prints only the names, on one line (for scripts).'
+            write (output_unit, '(a)') 'usage: dpend methods [--names | --plot-styles]'//nl &
+               //nl//'The integration methods of --method: variables advanced ((q, qdot) or' &
+               //nl//'canonical (q, p)), classical order, properties and the commands that' &
+               //nl//'accept them, then one line of description each.'//nl &
+               //'--names prints only the names, on one line (for scripts).'//nl &
+               //'--plot-styles prints the study''s plot styles (for scripts), one record a' &
+               //nl//'line, words separated by one blank:'//nl &
+               //'  group ID TITLE...       a panel of the figures, in panel order'//nl &
+               //'  method NAME #RRGGBB ID  a method, its colour and its group'
             return
          case ('--names')
-            names_only = .true.
+            mode = 'names'
+         case ('--plot-styles')
+            mode = 'styles'
          case default
             if (is_long_option(sub(i)%s)) then
                call fail(2, "dpend methods: unknown option '"//sub(i)%s// &
@@ -200,34 +204,41 @@ contains
                       "' (dpend methods --help)")
          end select
       end do
-      if (names_only) then
-         write (output_unit, '(a)') method_names
-         return
-      end if
-      write (output_unit, '(a)') 'method    variables  order  properties' &
-         //'                        commands'
-      rest = method_names//' '
-      do while (len_trim(rest) > 0)
-         rest = adjustl(rest)
-         k = index(rest, ' ')
-         name = rest(:k - 1)
-         rest = rest(k + 1:)
-         call new_integrator(name, integ, error)
-         if (allocated(error)) call fail(1, 'dpend methods: '//error%message)
-         props = trim(merge('implicit', 'explicit', integ%implicit()))
-         if (integ%adaptive()) props = props//', adaptive'
-         if (integ%symplectic()) props = props//', symplectic'
-         if (integ%symmetric()) props = props//', symmetric'
-         cell = integ%name()
-         commands = all
-         if (integ%name() == 'rk4') commands = all//' sweep'
-         write (output_unit, '(a)') cell(:10)//pad(merge('(q, p)   ', '(q, qdot)', &
-            integ%canonical()), 11)//pad(to_str(integ%order()), 7)//pad(props, 34)// &
-            commands
-         deallocate (integ)
-      end do
-      write (output_unit, '(a)') nl//'sweep accepts only rk4: it integrates with its own '// &
-         'vectorised batch rk4 (dpend sweep --help).'
+      select case (mode)
+      case ('names')
+         write (output_unit, '(a)') method_names()
+      case ('styles')
+         do i = 1, size(plot_groups)
+            write (output_unit, '(a)') 'group '//trim(plot_groups(i)%id)//' '// &
+               trim(plot_groups(i)%title)
+         end do
+         do i = 1, n_methods
+            associate (m => method_table(i))
+               write (output_unit, '(a)') 'method '//trim(m%name)//' '//m%colour//' '// &
+                  trim(m%group)
+            end associate
+         end do
+      case default
+         write (output_unit, '(a)') 'method    variables  order  properties' &
+            //'                        commands'
+         do i = 1, n_methods
+            associate (m => method_table(i))
+               props = trim(merge('implicit', 'explicit', m%implicit))
+               if (m%adaptive) props = props//', adaptive'
+               if (m%symplectic) props = props//', symplectic'
+               if (m%symmetric) props = props//', symmetric'
+               commands = all
+               if (m%name == 'rk4') commands = all//' sweep'
+               write (output_unit, '(a)') m%name//pad(merge('(q, p)   ', '(q, qdot)', &
+                  m%hamiltonian), 11)//pad(to_str(m%order), 7)//pad(props, 34)//commands
+            end associate
+         end do
+         write (output_unit, '(a)') nl//'sweep accepts only rk4: it integrates with its ' &
+            //'own vectorised batch rk4 (dpend sweep --help).'//nl
+         do i = 1, n_methods
+            write (output_unit, '(a)') method_table(i)%name//trim(method_table(i)%description)
+         end do
+      end select
    end subroutine methods
 
    !> `text` padded with blanks to `width` columns (at least one blank).

@@ -2,7 +2,8 @@
 !> as `key: value unit`. Each figure is timed (wall clock, system_clock int64) over
 !> at least 0.3 s; a checksum of the final states defeats dead-code elimination.
 !> Run in release: fpm run dpend-bench --profile release --flag "-O3 -march=native"
-!> To add a method, add a line calling `time_method('<name>', …)` below.
+!> The methods come from the registry (dpend_method_registry): every fixed-step
+!> method is timed at h = 0.01 s, every method enters the work-precision table.
 !> The batch kernel of the sweep (and the single-trajectory rk4_ns_per_step) is timed
 !> by `bench_batch`.
 program bench
@@ -14,7 +15,8 @@ program bench
    use dpend_double_pendulum, only: double_pendulum_t
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
+   use dpend_method_registry, only: method_table, n_methods
    implicit none
 
    real(dp), parameter :: pi = acos(-1.0_dp)
@@ -23,8 +25,7 @@ program bench
    real(dp), parameter :: y0(4) = [-0.5_dp*pi + 1.0_dp, -0.5_dp*pi + 1.0_dp, 0.0_dp, 0.0_dp]
    real(dp) :: checksum, ns, rhs_per_step, rk4_ns
    integer :: i
-   character(len=8), parameter :: fixed_methods(10) = [character(len=8) :: 'midpoint', &
-      'gauss4', 'gauss6', 'gauss8', 'verlet', 'yoshida4', 'comp6', 'comp8', 'tao2', 'tao4']
+   character(len=:), allocatable :: name
 
    checksum = 0.0_dp
    write (*, '(a)') 'compiler: '//compiler_version()
@@ -36,11 +37,14 @@ program bench
    call report('dop853_ns_per_accepted_step', ns, 'ns')
    call report('dop853_ns_per_rhs', ns/rhs_per_step, 'ns')
    rk4_ns = time_method('rk4', 1.0e-2_dp)   ! same step as the implicit methods below
-   do i = 1, size(fixed_methods)
-      ns = time_method(trim(fixed_methods(i)), 1.0e-2_dp, n_rhs_per_step=rhs_per_step)
-      call report(trim(fixed_methods(i))//'_ns_per_step', ns, 'ns')
-      call report(trim(fixed_methods(i))//'_rhs_per_step', rhs_per_step, '')
-      if (fixed_methods(i) == 'gauss6') call report('gauss6_over_rk4_step_cost', ns/rk4_ns, '')
+   ! every fixed-step method of the registry but rk4 (timed above and by bench_batch)
+   do i = 1, n_methods
+      name = trim(method_table(i)%name)
+      if (method_table(i)%adaptive .or. name == 'rk4') cycle
+      ns = time_method(name, 1.0e-2_dp, n_rhs_per_step=rhs_per_step)
+      call report(name//'_ns_per_step', ns, 'ns')
+      call report(name//'_rhs_per_step', rhs_per_step, '')
+      if (name == 'gauss6') call report('gauss6_over_rk4_step_cost', ns/rk4_ns, '')
    end do
    call work_precision()
    write (*, '(a, es24.16)') 'checksum: ', checksum
@@ -63,10 +67,6 @@ contains
    !> (tolerances for the adaptive ones). Lines: `wp: method h_or_rtol error n_rhs us`.
    subroutine work_precision()
       use dpend_propagate, only: advance_to
-      use dpend_rk_explicit, only: rk_adaptive_t
-      character(len=8), parameter :: names(13) = [character(len=8) :: 'rk4', 'dopri5', &
-         'dop853', 'midpoint', 'gauss4', 'gauss6', 'gauss8', 'verlet', 'yoshida4', 'comp6', &
-         'comp8', 'tao2', 'tao4']
       real(dp), parameter :: steps(3) = [1.0e-2_dp, 3.0e-3_dp, 1.0e-3_dp]
       real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-9_dp, 1.0e-12_dp]
       class(integrator_t), allocatable :: integ
@@ -89,21 +89,17 @@ contains
       read (line, *) t, ref
       close (unit)
       write (*, '(a)') 'wp: method step_or_rtol error_at_1s n_rhs microseconds'
-      do m = 1, size(names)
+      do m = 1, n_methods
          do j = 1, 3
-            call new_integrator(trim(names(m)), integ, error)
+            ! tolerances reach only the adaptive methods
+            call new_integrator(trim(method_table(m)%name), integ, error, &
+                                method_options_t(rtol=tols(j), atol=tols(j)*1.0e-3_dp))
             reps = 0
             start = now()
             do r = 1, 1000
                call integ%reset_counters()
                call integ%clear_step()
-               select type (integ)
-               class is (rk_adaptive_t)
-                  integ%rtol = tols(j); integ%atol = tols(j)*1.0e-3_dp
-                  h = 0.0_dp
-               class default
-                  h = steps(j)
-               end select
+               h = merge(0.0_dp, steps(j), integ%adaptive())
                t = 0.0_dp
                y = integ%to_internal(model, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp])
                call advance_to(integ, model, t, y, 1.0_dp, h, stat)
@@ -115,10 +111,12 @@ contains
             err = maxval(abs([q, qd] - ref))
             checksum = checksum + err
             if (integ%adaptive()) then
-               write (*, '("wp: ", a8, " rtol=", es8.1, es10.2, i9, f12.1)') names(m), &
+               write (*, '("wp: ", a8, " rtol=", es8.1, es10.2, i9, f12.1)') &
+                  method_table(m)%name(1:8), &
                   tols(j), err, integ%n_rhs, 1.0e6_dp*elapsed
             else
-               write (*, '("wp: ", a8, " h=   ", es8.1, es10.2, i9, f12.1)') names(m), &
+               write (*, '("wp: ", a8, " h=   ", es8.1, es10.2, i9, f12.1)') &
+                  method_table(m)%name(1:8), &
                   steps(j), err, integ%n_rhs, 1.0e6_dp*elapsed
             end if
          end do

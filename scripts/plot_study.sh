@@ -8,7 +8,9 @@
 # shell, as the argument vector
 #   bash SCRIPTS/plot_study.sh FILE.h5 OUTDIR        (environment: DPEND=its own path)
 # DPEND: the dpend executable (default: the release build, built once). `dpend
-# export` turns the datasets into text columns (layout: docs/study-hdf5.md).
+# export` turns the datasets into text columns (layout: docs/study-hdf5.md);
+# `dpend methods --plot-styles` gives each method's colour and group and the
+# panels (the method registry, src/integrators/dpend_method_registry.f90).
 # File names and the case names of the study reach gnuplot only as data (gnuplot -c
 # with ARG1..); the gnuplot code generated below holds only numbers and method names
 # checked to be plain words.
@@ -76,20 +78,40 @@ done
 plot_enhanced oc_text "$oc"
 plot_enhanced dc_text "$dc"
 
-# one colour and one point type per method
-color() {
-  case "$1" in
-    rk4) echo "#d62728";; dopri5) echo "#ff7f0e";; dop853) echo "#8c564b";;
-    midpoint) echo "#9ecae1";; gauss4) echo "#4292c6";; gauss6) echo "#08519c";;
-    gauss8) echo "#08306b";; verlet) echo "#a1d99b";; yoshida4) echo "#41ab5d";;
-    comp6) echo "#006d2c";; comp8) echo "#00441b";; tao2) echo "#bc80bd";;
-    tao4) echo "#6a3d9a";; *) echo "#7f7f7f";;
+# the colour and plot group of each method and the panel of each group, from the
+# method registry: `dpend methods --plot-styles` prints `group ID TITLE...` and
+# `method NAME #RRGGBB ID` lines (app/main.f90). Checked word by word: they become
+# part of the gnuplot code.
+declare -A colour_of=() group_of=()
+group_ids=(); titles=(); registry_methods=()
+while read -r kind a b c; do
+  case "$kind" in
+    group)
+      t="$b${c:+ $c}"
+      [[ $a =~ ^[a-z0-9_]+$ && -n "$t" ]] ||
+        plot_fail 1 "dpend methods --plot-styles: bad group line '$kind $a $t'"
+      case "$t" in *\'* | *\"* | *\\*)
+        plot_fail 1 "dpend methods --plot-styles: quote in the title of group '$a'";;
+      esac
+      group_ids+=("$a"); titles+=("$t");;
+    method)
+      [[ $a =~ ^[a-z0-9_]+$ && $b =~ ^#[0-9a-f]{6}$ && $c =~ ^[a-z0-9_]+$ ]] ||
+        plot_fail 1 "dpend methods --plot-styles: bad method line '$kind $a $b $c'"
+      registry_methods+=("$a"); colour_of[$a]=$b; group_of[$a]=$c;;
+    *) plot_fail 1 "dpend methods --plot-styles failed or printed '$kind'";;
   esac
+done < <("$dpend" methods --plot-styles || echo "failed")
+((${#group_ids[@]} > 0)) || plot_fail 1 "dpend methods --plot-styles printed no group"
+# colour of method $1; grey for a method the registry does not know
+color() { echo "${colour_of[$1]:-#7f7f7f}"; }
+# the explicit Runge-Kutta methods (group rk) are drawn dashed
+dashed() { [[ "${group_of[$1]:-}" == rk ]]; }
+# the methods of the registry in group $1, in the registry's order
+group_members() {
+  local m list=()
+  for m in "${registry_methods[@]}"; do [[ ${group_of[$m]} == "$1" ]] && list+=("$m"); done
+  echo "${list[*]}"
 }
-groups=("rk4 dopri5 dop853" "midpoint gauss4 gauss6 gauss8" "verlet yoshida4 comp6 comp8"
-        "tao2 tao4")
-titles=("explicit Runge-Kutta (fixed steps)" "Gauss-Legendre (implicit, symplectic)"
-        "Störmer-Verlet and its compositions" "Tao (explicit, extended phase space)")
 in_list() { [[ " $2 " == *" $1 "* ]]; }
 
 # ---- data: one file per case, method and sweep
@@ -162,7 +184,7 @@ ms=" ${methods[*]} "   # the method list, for in_list
       lab="$m, rtol = $(printf '%.0e' "$rt")"
     fi
     dash=1; lw=2
-    if in_list "$m" "rk4 dopri5 dop853"; then
+    if dashed "$m"; then
       dash=2; lw=2.5
       # a t^1 guide 3 decades long, a factor 3 below the end of the first explicit method
       if [[ -z "$guide" ]]; then
@@ -187,13 +209,14 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
   local c1=${cases[$3 - 1]} c2=""
   [[ -z "${7:-}" ]] || c2=${cases[$7 - 1]}
   echo "set output O.'/$1'"
-  echo "set multiplot layout 2,2 title $2 font ',13'"
+  echo "set multiplot layout $(((${#group_ids[@]} + 1) / 2)),2 title $2 font ',13'"
   echo "set xlabel 'step h [s]'; set ylabel '$5'; set key inside right bottom font ',10'"
-  for i in 0 1 2 3; do
+  for i in "${!group_ids[@]}"; do
+    members=$(group_members "${group_ids[$i]}")
     echo "set title '${titles[$i]}'"
     # room on the right for the key: x from the smallest step / 1.5 to the largest × 6
     files=()
-    for m in ${groups[$i]}; do in_list "$m" "$ms" && files+=("$tmp/c${3}_${m}_step.dat"); done
+    for m in $members; do in_list "$m" "$ms" && files+=("$tmp/c${3}_${m}_step.dat"); done
     if [[ ${#files[@]} -gt 0 ]]; then
       number lo "$(cat "${files[@]}" | awk 'NR == 1 || $1 < m { m = $1 } END { print m/1.5 }')"
       number hi "$(cat "${files[@]}" | awk 'NR == 1 || $1 > m { m = $1 } END { print m*6 }')"
@@ -201,7 +224,7 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
     fi
     plot="plot"
     n=0
-    for m in ${groups[$i]}; do
+    for m in $members; do
       in_list "$m" "$ms" || continue
       f="$tmp/c${3}_${m}_step.dat"
       index mid "/cases/$c1/$m/step/mid"
@@ -250,7 +273,7 @@ panels energy_vs_step.png \
     plot="plot"
     for m in "${methods[@]}"; do
       mode=step; [[ -f "$tmp/c${oi}_${m}_tol.dat" ]] && mode=tol
-      dash=1; in_list "$m" "rk4 dopri5 dop853" && dash=2
+      dash=1; dashed "$m" && dash=2
       plot="$plot $(df "c${oi}_${m}_${mode}.dat") u $col:(\$2 > 0 ? \$2 : NaN) w lp lw 2 dt $dash pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m',"
     done
     echo "${plot%,}"

@@ -15,6 +15,8 @@ program tester
    use test_limits, only: collect_limits
    use test_animate, only: collect_animate
    use test_messages, only: collect_messages
+   use test_copies, only: collect_copies
+   use test_registry, only: collect_registry
    implicit none
 
    type :: suite_t
@@ -27,7 +29,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(11))
+   allocate (suites(13))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -39,6 +41,8 @@ program tester
    suites(9)%name = 'limits'; call collect_limits(suites(9)%tests)
    suites(10)%name = 'animate'; call collect_animate(suites(10)%tests)
    suites(11)%name = 'messages'; call collect_messages(suites(11)%tests)
+   suites(12)%name = 'copies'; call collect_copies(suites(12)%tests)
+   suites(13)%name = 'registry'; call collect_registry(suites(13)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -8,7 +8,7 @@ module test_chaos
    use dpend_pendulum, only: pendulum_t, energy, hamiltonian, momenta, velocities
    use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_methods, only: new_integrator, method_names
+   use dpend_methods, only: new_integrator, method_names, method_options_t
    use dpend_propagate, only: march_t, advance_to
    use dpend_tangent, only: tangent_t
    use dpend_lyapunov, only: qr_positive, lyapunov_acc_t, renormalize, batch_exponents, &
@@ -214,7 +214,7 @@ contains
       character(len=16) :: name
       real(dp) :: dt_m
       integer :: p, q
-      names = method_names//' '
+      names = method_names()//' '
       p = 1
       do while (p <= len_trim(names))
          q = index(names(p:), ' ') + p - 1
@@ -233,7 +233,7 @@ contains
          type(march_t) :: march
          real(dp) :: y0(4), y(4), t, h, eye(4, 4), yp(4), ym(4), fd(4), eps, scale
          integer :: j, stat
-         call new_integrator(meth, integ, err, rtol=1e-13_dp, atol=1e-15_dp)
+         call new_integrator(meth, integ, err, method_options_t(rtol=1e-13_dp, atol=1e-15_dp))
          ! the nearby trajectories carry the method's own truncation error, O(dt^p):
          ! second-order methods take a smaller step to bring it below the tolerance
          dt_m = merge(1e-3_dp, 5e-5_dp, integ%order() >= 4)
@@ -271,7 +271,7 @@ contains
          type(error_t), allocatable :: err
          real(dp) :: t, h
          integer :: stat
-         call new_integrator(trim(name), integ, err, rtol=1e-13_dp, atol=1e-15_dp)
+         call new_integrator(trim(name), integ, err, method_options_t(rtol=1e-13_dp, atol=1e-15_dp))
          t = 0.0_dp; ye = ys; h = dt_m
          call advance_to(integ, pendulum_model(par), t, ye, 2.0_dp, h, stat)
       end function end_state
@@ -298,13 +298,13 @@ contains
       mu(2) = sqrt((3.0_dp - 6.0_dp/sqrt(7.0_dp))*par%g/par%l1)
       mu(3) = -mu(2); mu(4) = -mu(1)
       call check(error, mu(1), 7.185006_dp, 'mu1 (docs/physics.md)', abs=1e-6_dp)
-      names = method_names//' '
+      names = method_names()//' '
       p = 1
       do while (p <= len_trim(names))
          q = index(names(p:), ' ') + p - 1
          name = names(p:q - 1)
          p = q + 1
-         call new_integrator(trim(name), integ, err, rtol=1e-10_dp, atol=1e-12_dp)
+         call new_integrator(trim(name), integ, err, method_options_t(rtol=1e-10_dp, atol=1e-12_dp))
          call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, &
                                 integ%to_internal(pendulum_model(par), [0.5_dp*pi, 0.5_dp*pi], [0.0_dp, 0.0_dp]), &
                                 3.0_dp, 1e-3_dp, 0.25_dp, 4, 4, res, stat)
@@ -361,7 +361,7 @@ contains
       call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 1e-3_dp, 0.5_dp, 1, 10, ra, stat)
       call check_true(error, stat == stat_ok, 'rk4 run')
-      call new_integrator('dop853', integ, err, rtol=1e-10_dp, atol=1e-12_dp)
+      call new_integrator('dop853', integ, err, method_options_t(rtol=1e-10_dp, atol=1e-12_dp))
       call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, integ%to_internal(pendulum_model(par), [0.0_dp, 0.0_dp], &
                              [0.0_dp, 0.0_dp]), 300.0_dp, 0.0_dp, 0.5_dp, 1, 10, rb, stat)
       call check_true(error, stat == stat_ok, 'dop853 run')

@@ -1,6 +1,6 @@
 !> Tests of `dpend_hdf5`: round trips of every written type and shape, attributes,
-!> slab writes, overwrites, `exists`, a given file access list, and the errors of
-!> missing files and datasets.
+!> slab writes, overwrites, `exists`, a given file access list, the errors of
+!> missing files and datasets, and the failure kept by writes made without `error`.
 module test_hdf5
    use dpend_kinds, only: dp, i8
    use dpend_hdf5, only: h5file_t, is_hdf5
@@ -28,6 +28,7 @@ contains
          new_unittest('hdf5_missing_file', test_missing_file), &
          new_unittest('hdf5_missing_dataset', test_missing_dataset), &
          new_unittest('hdf5_modes', test_modes), &
+         new_unittest('hdf5_kept_error', test_kept_error), &
          new_unittest('hdf5_is_hdf5', test_is_hdf5), &
          new_unittest('hdf5_finalizer', test_finalizer), &
          new_unittest('hdf5_access_list', test_access_list) &
@@ -481,6 +482,54 @@ contains
       call h5%close()
       call delete_file(name)
    end subroutine test_modes
+
+   !> Writes without `error`: the first failure is kept, later such writes do
+   !> nothing, a write with `error` still works and reports its own, and
+   !> `take_error` / `close(error)` hand the kept failure over.
+   subroutine test_kept_error(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      name = temp_name('kept')
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%write('/a', 1.0_dp)
+      call h5%writeattr('/missing', 'x', 2.0_dp)   ! fails: no such object
+      call h5%write('/b', [1, 2])                  ! skipped
+      call h5%writeattr('/', 's', 'text')          ! skipped
+      call h5%write('/c', 3.0_dp, err)             ! with error: done
+      call check_true(error, .not. allocated(err), 'a write with error must still work')
+      if (allocated(error)) return
+      call h5%take_error(err)
+      call check_true(error, allocated(err), 'take_error must return the kept failure')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'missing') > 0, &
+                      'the kept failure names the first failed path: '//err%message)
+      if (allocated(error)) return
+      call h5%take_error(err)
+      call check_true(error, .not. allocated(err), 'take_error hands the failure over once')
+      if (allocated(error)) return
+      call h5%write('/d', 4.0_dp)                  ! works again
+      call h5%writeattr('/nothing', 'y', 1)        ! fails, kept
+      call h5%close(err)
+      call check_true(error, allocated(err), 'close(error) must return the kept failure')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'nothing') > 0, &
+                      'close returns the kept failure: '//err%message)
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call check_true(error, h5%exists('/a') .and. h5%exists('/c') .and. h5%exists('/d'), &
+                      'the writes before and after the failure are in the file')
+      if (.not. allocated(error)) call check_true(error, .not. h5%exists('/b') .and. &
+                                                  .not. h5%attr_exists('/', 's'), &
+                                                  'the writes after a kept failure are skipped')
+      call h5%close(err)
+      if (.not. allocated(error)) call check_true(error, .not. allocated(err), &
+                                                  'a clean close reports nothing')
+      call delete_file(name)
+   end subroutine test_kept_error
 
    !> is_hdf5 accepts our files and rejects text files and missing files.
    subroutine test_is_hdf5(error)

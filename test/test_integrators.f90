@@ -8,8 +8,7 @@ module test_integrators
    use dpend_pendulum, only: pendulum_t, mass_matrix, energy
    use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small
-   use dpend_methods, only: new_integrator
-   use dpend_rk_explicit, only: rk_adaptive_t
+   use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_fixed, advance_to, integrate_sampled
    use dpend_events, only: angle_crossing_t, crossing_t, locate_crossing, find_crossings
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
@@ -61,13 +60,11 @@ contains
       real(dp), intent(in), optional :: rtol, atol
       logical, intent(in), optional :: fixed
       type(error_t), allocatable :: error
-      call new_integrator(name, integ, error)
-      select type (integ)
-      class is (rk_adaptive_t)
-         if (present(rtol)) integ%rtol = rtol
-         if (present(atol)) integ%atol = atol
-         if (present(fixed)) integ%fixed_step = fixed
-      end select
+      type(method_options_t) :: options
+      if (present(rtol)) options%rtol = rtol
+      if (present(atol)) options%atol = atol
+      if (present(fixed)) options%fixed_step = fixed
+      call new_integrator(name, integ, error, options)
    end subroutine make
 
    !> State at t_end from (0, y0): fixed step h, or adaptive with h = 0.

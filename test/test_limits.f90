@@ -9,7 +9,7 @@ module test_limits
    use dpend_pendulum, only: pendulum_t
    use dpend_double_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_max_steps, stat_count_limit
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum, sort_descending
    use testing, only: unittest_t, new_unittest, check, check_true
@@ -101,8 +101,8 @@ contains
       type(march_t) :: march
       real(dp) :: t, h, y(4)
       integer :: stat
-      call new_integrator('dopri5', integ, error, rtol=1e-10_dp, atol=1e-12_dp, &
-                          max_steps=5_i8)
+      call new_integrator('dopri5', integ, error, method_options_t(rtol=1e-10_dp, &
+                          atol=1e-12_dp, max_steps=5_i8))
       if (allocated(error)) return
       t = 0.0_dp; h = 1e-3_dp; y = [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp]
       call march%start(integ, t, 100.0_dp, h)
@@ -179,7 +179,7 @@ contains
       class(integrator_t), allocatable :: integ
       type(lyapunov_result_t) :: res
       integer :: stat, i
-      call new_integrator('dopri5', integ, error, rtol=1e-8_dp, atol=1e-10_dp)
+      call new_integrator('dopri5', integ, error, method_options_t(rtol=1e-8_dp, atol=1e-10_dp))
       if (allocated(error)) return
       call lyapunov_spectrum(integ, pendulum_model(pendulum_t()), 0.0_dp, [1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp], &
                              1.0_dp, 1e-3_dp, 1e-12_dp, 4, 5, res, stat)

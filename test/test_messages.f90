@@ -260,7 +260,7 @@ contains
                       .and. index(text, 'study sweep') > 0, 'methods table: '//text)
       stat = run_command(dir, 'methods --names')
       call read_text(dir//'/stdout', text, n)
-      call check_true(error, stat == 0 .and. text == method_names//nl, 'methods --names: ' &
+      call check_true(error, stat == 0 .and. text == method_names()//nl, 'methods --names: ' &
                       //text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_methods

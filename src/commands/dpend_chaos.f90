@@ -13,7 +13,7 @@ module dpend_chaos
                            namelist_error
    use dpend_pendulum, only: finite_positive, energy_limit
    use dpend_integrator, only: integrator_t, stat_ok, status_message
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
    use dpend_events, only: angle_crossing_t
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_divergence, only: divergence_result_t, divergence_pairs, line_fit_t, &
@@ -468,8 +468,8 @@ contains
       type(error_t), allocatable :: werr
       failed = .false.
       summary = ''
-      call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
-                          omega=cfg%omega, max_steps=cfg%max_steps)
+      call new_integrator(cfg%method, integ, error, method_options_t(rtol=cfg%rtol, &
+                          atol=cfg%atol, omega=cfg%omega, max_steps=cfg%max_steps))
       if (allocated(error)) return
       call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return

@@ -8,7 +8,7 @@ module dpend_simulate
                            validate_run_config, run_flags_help
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok, status_message
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
@@ -171,8 +171,8 @@ contains
       failed = .false.
       if (present(summary)) summary = ''
       t0 = wall_seconds()
-      call new_integrator(cfg%method, integ, error, rtol=cfg%rtol, atol=cfg%atol, &
-                          omega=cfg%omega, max_steps=cfg%max_steps)
+      call new_integrator(cfg%method, integ, error, method_options_t(rtol=cfg%rtol, &
+                          atol=cfg%atol, omega=cfg%omega, max_steps=cfg%max_steps))
       if (allocated(error)) return
       call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return

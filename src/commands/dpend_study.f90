@@ -49,10 +49,9 @@ module dpend_study
    use dpend_pendulum, only: pendulum_t, energy, energy_scale
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_methods, only: new_integrator
-   use dpend_rk_explicit, only: rk_adaptive_t
+   use dpend_methods, only: new_integrator, method_options_t
+   use dpend_method_registry, only: method_index, method_table
    use dpend_symplectic, only: symplectic_t
-   use dpend_tao, only: set_omega
    use dpend_propagate, only: march_t
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock, stderr_is_terminal
@@ -221,6 +220,8 @@ contains
 
    ! ================================================================ energy
 
+   !> Copy of `hamiltonian` (dpend_pendulum) for precision: quadruple precision;
+   !> test/test_copies.f90 compares them.
    !> H(q, p) in quadruple precision at the compensated state y + e (canonical
    !> variables), for errors below the double-precision rounding of H [J].
    pure function hamiltonian_qp(par, y, e) result(h)
@@ -410,8 +411,8 @@ contains
             call new_integrator(cfg%ref_method, integ, error)
             call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, &
                              interval/real(max(1, nint(interval/cfg%ref_dt)), dp), ref%y, ref%stat)
-            call new_integrator(cfg%check_method, integ, error, rtol=cfg%check_rtol, &
-                                atol=1.0e-2_dp*cfg%check_rtol)
+            call new_integrator(cfg%check_method, integ, error, method_options_t( &
+                                rtol=cfg%check_rtol, atol=1.0e-2_dp*cfg%check_rtol))
             call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
             if (k == stat_ok .and. ref%stat == stat_ok) then
                ref%check_difference = maxval(abs(yc - ref%y))
@@ -600,25 +601,14 @@ contains
    end function sample_steps
 
    !> Rough cost of one step with energy monitoring [s] (release build, one core),
-   !> used only to schedule the longest jobs first and for the ETA.
+   !> from the method registry (`dpend methods`); used only to schedule the longest
+   !> jobs first and for the ETA.
    pure real(dp) function cost_per_step(name) result(c)
       character(len=*), intent(in) :: name
-      select case (name)
-      case ('rk4'); c = 0.3e-6_dp
-      case ('dopri5'); c = 0.6e-6_dp
-      case ('dop853'); c = 1.2e-6_dp
-      case ('midpoint'); c = 1.2e-6_dp
-      case ('gauss4'); c = 1.6e-6_dp
-      case ('gauss6'); c = 2.0e-6_dp
-      case ('gauss8'); c = 2.8e-6_dp
-      case ('verlet'); c = 1.6e-6_dp
-      case ('yoshida4'); c = 4.5e-6_dp
-      case ('comp6'); c = 12.0e-6_dp
-      case ('comp8'); c = 22.0e-6_dp
-      case ('tao2'); c = 0.35e-6_dp
-      case ('tao4'); c = 1.0e-6_dp
-      case default; c = 2.0e-6_dp
-      end select
+      integer :: i
+      i = method_index(name)
+      c = 2.0e-6_dp
+      if (i > 0) c = method_table(i)%cost
    end function cost_per_step
 
    !> Rough mean step of an adaptive method at tolerance rtol [s] (for the ETA).
@@ -675,14 +665,10 @@ contains
       class(integrator_t), allocatable, intent(out) :: integ
       type(error_t), allocatable :: error
       if (sw%mode == mode_tol) then
-         call new_integrator(sw%method, integ, error, rtol=sw%x(k), &
-                             atol=cfg%atol_ratio*sw%x(k))
+         call new_integrator(sw%method, integ, error, method_options_t(rtol=sw%x(k), &
+                             atol=cfg%atol_ratio*sw%x(k)))
       else
-         call new_integrator(sw%method, integ, error)
-         select type (integ)
-         class is (rk_adaptive_t)
-            integ%fixed_step = .true.
-         end select
+         call new_integrator(sw%method, integ, error, method_options_t(fixed_step=.true.))
       end if
    end subroutine make_method
 
@@ -857,11 +843,7 @@ contains
       integer(i8) :: n
       integer :: stat, j
       associate (cs => cfg%cases(case_index(cfg, cfg%ro_case)))
-         call new_integrator(ro%method, integ, error)
-         select type (integ)
-         class is (symplectic_t)
-            integ%compensated = c == 1
-         end select
+         call new_integrator(ro%method, integ, error, method_options_t(compensated=c == 1))
          q0 = cs%q0 + cfg%ro_perturb*real(r - 1, dp)*[1.0_dp, -0.7_dp]
          y = integ%to_internal(cfg%model, q0, cs%w0)
          h0 = hamiltonian_qp(cfg%model%par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
@@ -900,14 +882,11 @@ contains
       type(march_t) :: march
       real(dp) :: y(4), t, hh, e0, es, e, yc(4, cfg%n_check)
       integer :: stat
-      logical :: found
       associate (cs => cfg%cases(case_index(cfg, cfg%tao_case)))
-         call new_integrator(ts%method, integ, error)
-         call set_omega(integ, ts%omega(k), found)
+         call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
          call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
          if (stat == stat_ok) ts%global_error(k) = maxval(abs(yc - ref%y))
-         call new_integrator(ts%method, integ, error)
-         call set_omega(integ, ts%omega(k), found)
+         call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
          y = integ%to_internal(cfg%model, cs%q0, cs%w0)
          e0 = energy_of(integ, cfg%model, y)
          es = energy_scale(cfg%model%par, e0)

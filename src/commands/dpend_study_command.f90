@@ -48,15 +48,6 @@ module dpend_study_command
       character(len=:), allocatable :: orders_text, drift_text, roundoff_text
    end type verdicts_t
 
-   !> HDF5 writer that stops at the first error.
-   type :: writer_t
-      type(h5file_t) :: h5
-      type(error_t), allocatable :: error
-   contains
-      procedure :: r0 => w_r0, r1 => w_r1, r2 => w_r2, i1 => w_i1, l1 => w_l1, s0 => w_s0
-      procedure :: ar => w_ar, ar1 => w_ar1, ai => w_ai, as => w_as
-   end type writer_t
-
 contains
 
    ! ================================================================ command
@@ -588,296 +579,214 @@ contains
       type(study_result_t), intent(in) :: res
       character(len=*), intent(in) :: filename
       type(error_t), allocatable, intent(out) :: error
-      type(writer_t) :: w
+      type(h5file_t) :: h5
       type(verdicts_t) :: v
+      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
       integer :: ic, s, i
       character(len=:), allocatable :: g, names
       character(len=8) :: date
       character(len=10) :: time
-      call w%h5%open(filename, 'w', w%error)
-      if (allocated(w%error)) then
-         call move_alloc(w%error, error)
-         return
-      end if
+      call h5%open(filename, 'w', error)
+      if (allocated(error)) return
+      ! the writes below pass no `error`: h5 keeps the first failure, the later
+      ! writes do nothing, and close hands it over
       ! configuration
-      call w%s0('/config/namelist', study_namelist(cfg))
-      call w%ar('/config', 'm1', cfg%model%par%m1); call w%ar('/config', 'm2', cfg%model%par%m2)
-      call w%ar('/config', 'l1', cfg%model%par%l1); call w%ar('/config', 'l2', cfg%model%par%l2)
-      call w%ar('/config', 'g', cfg%model%par%g)
-      call w%ar('/config', 't_short', cfg%t_short)
-      call w%ai('/config', 'n_check', cfg%n_check)
-      call w%as('/config', 'order_case', cfg%order_case)
-      call w%as('/config', 'drift_case', cfg%drift_case)
-      call w%ar('/config', 'drift_decades', cfg%drift_decades)
-      call w%as('/config', 'ref_method', cfg%ref_method)
-      call w%ar('/config', 'ref_dt', cfg%ref_dt)
-      call w%as('/config', 'check_method', cfg%check_method)
-      call w%ar('/config', 'check_rtol', cfg%check_rtol)
-      call w%ar('/config', 'atol_ratio', cfg%atol_ratio)
-      call w%ai('/config', 'quick', merge(1, 0, cfg%quick))
+      call h5%write('/config/namelist', study_namelist(cfg))
+      call h5%writeattr('/config', 'm1', cfg%model%par%m1); call h5%writeattr('/config', 'm2', cfg%model%par%m2)
+      call h5%writeattr('/config', 'l1', cfg%model%par%l1); call h5%writeattr('/config', 'l2', cfg%model%par%l2)
+      call h5%writeattr('/config', 'g', cfg%model%par%g)
+      call h5%writeattr('/config', 't_short', cfg%t_short)
+      call h5%writeattr('/config', 'n_check', cfg%n_check)
+      call h5%writeattr('/config', 'order_case', cfg%order_case)
+      call h5%writeattr('/config', 'drift_case', cfg%drift_case)
+      call h5%writeattr('/config', 'drift_decades', cfg%drift_decades)
+      call h5%writeattr('/config', 'ref_method', cfg%ref_method)
+      call h5%writeattr('/config', 'ref_dt', cfg%ref_dt)
+      call h5%writeattr('/config', 'check_method', cfg%check_method)
+      call h5%writeattr('/config', 'check_rtol', cfg%check_rtol)
+      call h5%writeattr('/config', 'atol_ratio', cfg%atol_ratio)
+      call h5%writeattr('/config', 'quick', merge(1, 0, cfg%quick))
       ! root: provenance and the lists the plot script needs
       call date_and_time(date, time)
-      call w%as('/', 'program', 'dpend study')
-      call w%as('/', 'version', version)
-      call w%as('/', 'created', date(1:4)//'-'//date(5:6)//'-'//date(7:8)//'T'// &
+      call h5%writeattr('/', 'program', 'dpend study')
+      call h5%writeattr('/', 'version', version)
+      call h5%writeattr('/', 'created', date(1:4)//'-'//date(5:6)//'-'//date(7:8)//'T'// &
                 time(1:2)//':'//time(3:4)//':'//time(5:6))
-      call w%as('/', 'host', host_name())
-      call w%as('/', 'cpu', cpu_model())
-      call w%as('/', 'compiler', compiler_version())
-      call w%as('/', 'compiler_options', compiler_options())
-      call w%ai('/', 'threads', res%threads)
-      call w%ar('/', 'wall_time', res%wall_total)
-      call w%as('/', 'energy_error', '|H(t) - H(0)| / E_s, E_s = |H(0)|, or when H(0) ~ 0 '// &
-                'the potential energy with both links upright (per case: energy_scale)')
-      call w%as('/', 'global_error', 'max over the checkpoints of max(|dq1|, |dq2|, '// &
-                '|dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
+      call h5%writeattr('/', 'host', host_name())
+      call h5%writeattr('/', 'cpu', cpu_model())
+      call h5%writeattr('/', 'compiler', compiler_version())
+      call h5%writeattr('/', 'compiler_options', compiler_options())
+      call h5%writeattr('/', 'threads', res%threads)
+      call h5%writeattr('/', 'wall_time', res%wall_total)
+      call h5%writeattr('/', 'energy_error', '|H(t) - H(0)| / E_s, E_s = |H(0)|, or when '// &
+                        'H(0) ~ 0 the potential energy with both links upright (per case: '// &
+                        'energy_scale)')
+      call h5%writeattr('/', 'global_error', 'max over the checkpoints of max(|dq1|, '// &
+                        '|dq2|, |dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
       names = cfg%cases(1)%name
       do ic = 2, size(cfg%cases)
          names = names//' '//cfg%cases(ic)%name
       end do
-      call w%as('/', 'cases', names)
+      call h5%writeattr('/', 'cases', names)
       names = cfg%methods(1)%name
       do i = 2, size(cfg%methods)
          names = names//' '//cfg%methods(i)%name
       end do
-      call w%as('/', 'methods', names)
-      call w%as('/', 'order_case', cfg%order_case)
-      call w%as('/', 'drift_case', cfg%drift_case)
+      call h5%writeattr('/', 'methods', names)
+      call h5%writeattr('/', 'order_case', cfg%order_case)
+      call h5%writeattr('/', 'drift_case', cfg%drift_case)
       names = ''
       do i = 1, size(res%roundoff)
          if (i > 1) names = names//' '
          names = names//res%roundoff(i)%method
       end do
       if (len(names) == 0) names = 'none'
-      call w%as('/', 'roundoff_methods', names)
+      call h5%writeattr('/', 'roundoff_methods', names)
       names = ''
       do i = 1, size(res%tao)
          if (i > 1) names = names//' '
          names = names//res%tao(i)%method
       end do
       if (len(names) == 0) names = 'none'
-      call w%as('/', 'tao_methods', names)
+      call h5%writeattr('/', 'tao_methods', names)
       ! cases and references
       do ic = 1, size(cfg%cases)
          g = '/cases/'//cfg%cases(ic)%name
          associate (ref => res%refs(ic), cs => cfg%cases(ic))
-            call w%r1(g//'/reference/t', ref%t)
-            call w%r2(g//'/reference/state', ref%y)
-            call w%as(g//'/reference', 'method', cfg%ref_method)
-            call w%ar(g//'/reference', 'dt', cfg%ref_dt)
-            call w%as(g//'/reference', 'check_method', cfg%check_method)
-            call w%ar(g//'/reference', 'check_rtol', cfg%check_rtol)
-            call w%ar(g//'/reference', 'check_difference', ref%check_difference)
-            call w%ar1(g, 'q0', cs%q0)
-            call w%ar1(g, 'qdot0', cs%w0)
-            call w%ar(g, 'energy0', ref%e0)
-            call w%ar(g, 'energy_scale', ref%e_scale)
+            call h5%write(g//'/reference/t', ref%t)
+            call h5%write(g//'/reference/state', ref%y)
+            call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
+            call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
+            call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
+            call h5%writeattr(g//'/reference', 'check_rtol', cfg%check_rtol)
+            call h5%writeattr(g//'/reference', 'check_difference', ref%check_difference)
+            call h5%writeattr(g, 'q0', cs%q0)
+            call h5%writeattr(g, 'qdot0', cs%w0)
+            call h5%writeattr(g, 'energy0', ref%e0)
+            call h5%writeattr(g, 'energy_scale', ref%e_scale)
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
-               call w%as(g, 'energy_scale_definition', '|H(0)|')
+               call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
             else
-               call w%as(g, 'energy_scale_definition', 'potential energy, both links upright')
+               call h5%writeattr(g, 'energy_scale_definition', &
+                                 'potential energy, both links upright')
             end if
-            call w%ar(g, 'long_steps', cs%long_steps)
+            call h5%writeattr(g, 'long_steps', cs%long_steps)
          end associate
       end do
       ! sweeps
       do s = 1, size(res%sweeps)
-         call write_sweep(w, cfg, res%sweeps(s))
+         call write_sweep(h5, cfg, res%sweeps(s))
       end do
       ! roundoff
       do i = 1, size(res%roundoff)
          associate (ro => res%roundoff(i))
             g = '/roundoff/'//ro%method
-            call w%l1(g//'/steps', ro%steps)
-            call w%r1(g//'/t', ro%t)
-            call w%r1(g//'/rms_compensated', ro%rms(:, 1))
-            call w%r1(g//'/rms_plain', ro%rms(:, 2))
-            call w%r2(g//'/error_compensated', transpose(ro%err(:, :, 1)))
-            call w%r2(g//'/error_plain', transpose(ro%err(:, :, 2)))
-            call w%i1(g//'/status_compensated', ro%stat(:, 1))
-            call w%i1(g//'/status_plain', ro%stat(:, 2))
-            call w%r1(g//'/wall_compensated', ro%wall(:, 1))
-            call w%r1(g//'/wall_plain', ro%wall(:, 2))
-            call w%ar(g, 'dt', ro%dt)
-            call w%ai(g, 'runs', cfg%ro_runs)
-            call w%as(g, 'case', cfg%ro_case)
-            call w%ar(g, 'perturbation', cfg%ro_perturb)
-            call w%ar(g, 'fit_t_min', cfg%ro_fit_t_min)
-            call fit_attrs(w, g, 'exponent_compensated', ro%fit(1))
-            call fit_attrs(w, g, 'exponent_plain', ro%fit(2))
+            call h5%write(g//'/steps', ro%steps)
+            call h5%write(g//'/t', ro%t)
+            call h5%write(g//'/rms_compensated', ro%rms(:, 1))
+            call h5%write(g//'/rms_plain', ro%rms(:, 2))
+            table = transpose(ro%err(:, :, 1))
+            call h5%write(g//'/error_compensated', table)
+            table = transpose(ro%err(:, :, 2))
+            call h5%write(g//'/error_plain', table)
+            call h5%write(g//'/status_compensated', ro%stat(:, 1))
+            call h5%write(g//'/status_plain', ro%stat(:, 2))
+            call h5%write(g//'/wall_compensated', ro%wall(:, 1))
+            call h5%write(g//'/wall_plain', ro%wall(:, 2))
+            call h5%writeattr(g, 'dt', ro%dt)
+            call h5%writeattr(g, 'runs', cfg%ro_runs)
+            call h5%writeattr(g, 'case', cfg%ro_case)
+            call h5%writeattr(g, 'perturbation', cfg%ro_perturb)
+            call h5%writeattr(g, 'fit_t_min', cfg%ro_fit_t_min)
+            call fit_attrs(h5, g, 'exponent_compensated', ro%fit(1))
+            call fit_attrs(h5, g, 'exponent_plain', ro%fit(2))
          end associate
       end do
       ! Tao
       do i = 1, size(res%tao)
          associate (ts => res%tao(i))
             g = '/tao/'//ts%method
-            call w%r1(g//'/omega', ts%omega)
-            call w%r1(g//'/energy_max', ts%energy_max)
-            call w%r1(g//'/energy_final', ts%energy_final)
-            call w%r1(g//'/global_error', ts%global_error)
-            call w%i1(g//'/status', ts%stat)
-            call w%ar(g, 'dt', cfg%tao_dt)
-            call w%ar(g, 't_end', cfg%tao_t_end)
-            call w%as(g, 'case', cfg%tao_case)
+            call h5%write(g//'/omega', ts%omega)
+            call h5%write(g//'/energy_max', ts%energy_max)
+            call h5%write(g//'/energy_final', ts%energy_final)
+            call h5%write(g//'/global_error', ts%global_error)
+            call h5%write(g//'/status', ts%stat)
+            call h5%writeattr(g, 'dt', cfg%tao_dt)
+            call h5%writeattr(g, 't_end', cfg%tao_t_end)
+            call h5%writeattr(g, 'case', cfg%tao_case)
          end associate
       end do
       ! summary
       v = study_verdicts(cfg, res)
-      call w%s0('/summary/markdown', study_summary(cfg, res))
-      call w%ai('/summary', 'orders_ok', merge(1, 0, v%orders))
-      call w%as('/summary', 'orders', v%orders_text)
+      call h5%write('/summary/markdown', study_summary(cfg, res))
+      call h5%writeattr('/summary', 'orders_ok', merge(1, 0, v%orders))
+      call h5%writeattr('/summary', 'orders', v%orders_text)
       ! -1: not judged (every long run too short) or not run, as the text says
-      call w%ai('/summary', 'drift_ok', merge(merge(1, 0, v%drift), -1, v%drift_judged))
-      call w%as('/summary', 'drift', v%drift_text)
-      call w%ai('/summary', 'roundoff_ok', merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
-      call w%as('/summary', 'roundoff', v%roundoff_text)
-      if (allocated(w%error)) then
-         call w%h5%close()
-      else
-         call w%h5%close(w%error)
-      end if
-      if (allocated(w%error)) call move_alloc(w%error, error)
+      call h5%writeattr('/summary', 'drift_ok', merge(merge(1, 0, v%drift), -1, v%drift_judged))
+      call h5%writeattr('/summary', 'drift', v%drift_text)
+      call h5%writeattr('/summary', 'roundoff_ok', &
+                        merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
+      call h5%writeattr('/summary', 'roundoff', v%roundoff_text)
+      call h5%close(error)
    end subroutine write_study_h5
 
    !> One sweep under /cases/<case>/<method>/step or …/tol.
-   subroutine write_sweep(w, cfg, sw)
-      type(writer_t), intent(inout) :: w
+   subroutine write_sweep(h5, cfg, sw)
+      type(h5file_t), intent(inout) :: h5
       type(study_config_t), intent(in) :: cfg
       type(sweep_t), intent(in) :: sw
       character(len=:), allocatable :: g
       g = '/cases/'//cfg%cases(sw%icase)%name//'/'//sw%method//'/'// &
           trim(merge('step', 'tol ', sw%mode == mode_step))
       if (sw%mode == mode_step) then
-         call w%r1(g//'/h', sw%x)
+         call h5%write(g//'/h', sw%x)
       else
-         call w%r1(g//'/rtol', sw%x)
-         call w%r1(g//'/atol', cfg%atol_ratio*sw%x)
+         call h5%write(g//'/rtol', sw%x)
+         call h5%write(g//'/atol', cfg%atol_ratio*sw%x)
       end if
-      call w%r1(g//'/mean_step_short', sw%h_mean_short)
-      call w%r1(g//'/mean_step_long', sw%h_mean_long)
-      call w%r1(g//'/global_error', sw%global_error)
-      call w%r1(g//'/energy_max_short', sw%energy_short)
-      call w%r1(g//'/energy_max_long', sw%energy_long)
-      call w%r1(g//'/energy_final', sw%energy_final)
-      call w%r1(g//'/drift_exponent', sw%drift)
-      call w%r1(g//'/drift_stderr', sw%drift_stderr)
-      call w%l1(g//'/short_steps', sw%short_steps)
-      call w%l1(g//'/short_rhs', sw%short_rhs)
-      call w%l1(g//'/short_iterations', sw%short_iter)
-      call w%l1(g//'/short_rejected', sw%short_rejected)
-      call w%l1(g//'/long_steps', sw%long_steps)
-      call w%l1(g//'/long_rhs', sw%long_rhs)
-      call w%l1(g//'/long_iterations', sw%long_iter)
-      call w%l1(g//'/long_rejected', sw%long_rejected)
-      call w%r1(g//'/wall_short', sw%wall_short)
-      call w%r1(g//'/wall_long', sw%wall_long)
-      call w%i1(g//'/status', sw%stat)
-      call w%r1(g//'/t_bins', sw%t_bins)
-      call w%r2(g//'/energy_bins', sw%bins)
-      call w%ai(g, 'order', sw%order)
-      call w%ai(g, 'symplectic', merge(1, 0, sw%symplectic))
-      call w%ai(g, 'mid', sw%mid - 1)
-      call w%ar(g, 't_long', sw%t_long)
-      call w%ar(g, 't_short', cfg%t_short)
-      call fit_attrs(w, g, 'order_global', sw%fit_global)
-      call fit_attrs(w, g, 'order_energy', sw%fit_energy)
-      call fit_attrs(w, g, 'order_energy_long', sw%fit_energy_long)
-      if (sw%mode == mode_tol) call fit_attrs(w, g, 'slope_vs_rtol', sw%fit_tolerance)
+      call h5%write(g//'/mean_step_short', sw%h_mean_short)
+      call h5%write(g//'/mean_step_long', sw%h_mean_long)
+      call h5%write(g//'/global_error', sw%global_error)
+      call h5%write(g//'/energy_max_short', sw%energy_short)
+      call h5%write(g//'/energy_max_long', sw%energy_long)
+      call h5%write(g//'/energy_final', sw%energy_final)
+      call h5%write(g//'/drift_exponent', sw%drift)
+      call h5%write(g//'/drift_stderr', sw%drift_stderr)
+      call h5%write(g//'/short_steps', sw%short_steps)
+      call h5%write(g//'/short_rhs', sw%short_rhs)
+      call h5%write(g//'/short_iterations', sw%short_iter)
+      call h5%write(g//'/short_rejected', sw%short_rejected)
+      call h5%write(g//'/long_steps', sw%long_steps)
+      call h5%write(g//'/long_rhs', sw%long_rhs)
+      call h5%write(g//'/long_iterations', sw%long_iter)
+      call h5%write(g//'/long_rejected', sw%long_rejected)
+      call h5%write(g//'/wall_short', sw%wall_short)
+      call h5%write(g//'/wall_long', sw%wall_long)
+      call h5%write(g//'/status', sw%stat)
+      call h5%write(g//'/t_bins', sw%t_bins)
+      call h5%write(g//'/energy_bins', sw%bins)
+      call h5%writeattr(g, 'order', sw%order)
+      call h5%writeattr(g, 'symplectic', merge(1, 0, sw%symplectic))
+      call h5%writeattr(g, 'mid', sw%mid - 1)
+      call h5%writeattr(g, 't_long', sw%t_long)
+      call h5%writeattr(g, 't_short', cfg%t_short)
+      call fit_attrs(h5, g, 'order_global', sw%fit_global)
+      call fit_attrs(h5, g, 'order_energy', sw%fit_energy)
+      call fit_attrs(h5, g, 'order_energy_long', sw%fit_energy_long)
+      if (sw%mode == mode_tol) call fit_attrs(h5, g, 'slope_vs_rtol', sw%fit_tolerance)
    end subroutine write_sweep
 
    !> A fit as attributes NAME (slope, NaN if no fit), NAME_stderr, NAME_points.
-   subroutine fit_attrs(w, path, name, fit)
-      type(writer_t), intent(inout) :: w
+   subroutine fit_attrs(h5, path, name, fit)
+      type(h5file_t), intent(inout) :: h5
       character(len=*), intent(in) :: path, name
       type(fit_t), intent(in) :: fit
       if (fit%ok) then
-         call w%ar(path, name, fit%slope)
+         call h5%writeattr(path, name, fit%slope)
       else
-         call w%ar(path, name, ieee_value(1.0_dp, ieee_quiet_nan))
+         call h5%writeattr(path, name, ieee_value(1.0_dp, ieee_quiet_nan))
       end if
-      call w%ar(path, name//'_stderr', fit%stderr)
-      call w%ai(path, name//'_points', fit%n)
+      call h5%writeattr(path, name//'_stderr', fit%stderr)
+      call h5%writeattr(path, name//'_points', fit%n)
    end subroutine fit_attrs
-
-   ! --------------------------------------------------------------- writer
-
-   subroutine w_r0(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      real(dp), intent(in) :: x
-      if (.not. allocated(self%error)) call self%h5%write(path, x, self%error)
-   end subroutine w_r0
-
-   subroutine w_r1(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      real(dp), intent(in) :: x(:)
-      real(dp), allocatable :: c(:)
-      c = x
-      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
-   end subroutine w_r1
-
-   subroutine w_r2(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      real(dp), intent(in) :: x(:, :)
-      real(dp), allocatable :: c(:, :)
-      c = x
-      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
-   end subroutine w_r2
-
-   subroutine w_i1(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: x(:)
-      integer, allocatable :: c(:)
-      c = x
-      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
-   end subroutine w_i1
-
-   subroutine w_l1(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer(i8), intent(in) :: x(:)
-      integer(i8), allocatable :: c(:)
-      c = x
-      if (.not. allocated(self%error)) call self%h5%write(path, c, self%error)
-   end subroutine w_l1
-
-   subroutine w_s0(self, path, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      character(len=*), intent(in) :: x
-      if (.not. allocated(self%error)) call self%h5%write(path, x, self%error)
-   end subroutine w_s0
-
-   subroutine w_ar(self, path, name, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path, name
-      real(dp), intent(in) :: x
-      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
-   end subroutine w_ar
-
-   subroutine w_ar1(self, path, name, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path, name
-      real(dp), intent(in) :: x(:)
-      real(dp), allocatable :: c(:)
-      c = x
-      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, c, self%error)
-   end subroutine w_ar1
-
-   subroutine w_ai(self, path, name, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path, name
-      integer, intent(in) :: x
-      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
-   end subroutine w_ai
-
-   subroutine w_as(self, path, name, x)
-      class(writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path, name
-      character(len=*), intent(in) :: x
-      if (.not. allocated(self%error)) call self%h5%writeattr(path, name, x, self%error)
-   end subroutine w_as
 end module dpend_study_command

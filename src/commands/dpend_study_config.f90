@@ -17,14 +17,13 @@ module dpend_study_config
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
                            namelist_error
    use dpend_integrator, only: integrator_t
-   use dpend_methods, only: new_integrator, method_names
-   use dpend_symplectic, only: symplectic_t
+   use dpend_methods, only: new_integrator
+   use dpend_method_registry, only: method_names, method_index, method_table
    use dpend_kinds, only: i8
    use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, &
                            max_angular_velocity, &
                            max_time, max_steps, min_rtol, min_atol, max_atol, max_omega, &
                            max_threads
-   use dpend_tao, only: set_omega
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: scan_help_config
    implicit none
@@ -106,35 +105,22 @@ contains
 
    ! ----------------------------------------------------------------- defaults
 
-   !> Default step range [s] and tolerance range of method `name` (0 when unknown):
-   !> chosen so that the fixed-step sweep is in the asymptotic regime and above
-   !> roundoff on the three default cases (errors 1e-13 … 1e-4 at t_short = 1 s).
+   !> Default step range [s] and tolerance range of method `name`, from the method
+   !> registry (`dpend methods`); 0 when unknown.
    subroutine default_ranges(name, h_min, h_max, rtol_min, rtol_max)
       character(len=*), intent(in) :: name  !! method
       real(dp), intent(out) :: h_min        !! smallest step [s]
       real(dp), intent(out) :: h_max        !! largest step [s]
       real(dp), intent(out) :: rtol_min     !! smallest tolerance (0: none)
       real(dp), intent(out) :: rtol_max     !! largest tolerance
-      rtol_min = 0.0_dp
-      rtol_max = 0.0_dp
-      select case (name)
-      case ('rk4'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
-      case ('dopri5')
-         h_min = 2.0e-3_dp; h_max = 8.0e-3_dp; rtol_min = 1.0e-12_dp; rtol_max = 1.0e-7_dp
-      case ('dop853')
-         h_min = 1.2e-2_dp; h_max = 3.2e-2_dp; rtol_min = 1.0e-13_dp; rtol_max = 1.0e-8_dp
-      case ('midpoint'); h_min = 2.5e-3_dp; h_max = 1.0e-2_dp
-      case ('gauss4'); h_min = 5.0e-3_dp; h_max = 2.0e-2_dp
-      case ('gauss6'); h_min = 1.0e-2_dp; h_max = 3.0e-2_dp
-      case ('gauss8'); h_min = 1.5e-2_dp; h_max = 4.0e-2_dp
-      case ('verlet'); h_min = 2.5e-3_dp; h_max = 1.0e-2_dp
-      case ('yoshida4'); h_min = 5.0e-3_dp; h_max = 2.0e-2_dp
-      case ('comp6'); h_min = 1.0e-2_dp; h_max = 3.0e-2_dp
-      case ('comp8'); h_min = 1.5e-2_dp; h_max = 3.5e-2_dp
-      case ('tao2'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
-      case ('tao4'); h_min = 1.0e-3_dp; h_max = 4.0e-3_dp
-      case default; h_min = 0.0_dp; h_max = 0.0_dp
-      end select
+      integer :: i
+      h_min = 0.0_dp; h_max = 0.0_dp; rtol_min = 0.0_dp; rtol_max = 0.0_dp
+      i = method_index(name)
+      if (i == 0) return
+      h_min = method_table(i)%h_min
+      h_max = method_table(i)%h_max
+      rtol_min = method_table(i)%rtol_min
+      rtol_max = method_table(i)%rtol_max
    end subroutine default_ranges
 
    !> The default study: three cases, every method, Brouwer and Tao experiments.
@@ -148,7 +134,7 @@ contains
                   study_case_t('mixed', [-0.5_dp*pi + 0.75_dp, -0.5_dp*pi + 1.5_dp], &
                                [0.0_dp, 0.0_dp], 1.0e5_dp), &
                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 1.0e5_dp)]
-      call split_words(method_names, names)
+      call split_words(method_names(), names)
       allocate (cfg%methods(size(names)))
       do i = 1, size(names)
          cfg%methods(i)%name = trim(names(i))
@@ -325,7 +311,7 @@ contains
          end do
          if (.not. any([(cfg%methods(i)%name == trim(names(j)), i=1, size(cfg%methods))])) then
             call fatal_error(error, "invalid --methods: '"//trim(names(j))// &
-                             "' is not a method of the study (accepted: "//method_names//")")
+                             "' is not a method of the study (accepted: "//method_names()//")")
             return
          end if
       end do
@@ -583,7 +569,6 @@ contains
       type(study_config_t), intent(in) :: cfg           !! configuration
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       class(integrator_t), allocatable :: integ
-      logical :: found
       integer :: i, j
       character(len=16) :: idx
       call validate(cfg%model%par, error)
@@ -790,14 +775,12 @@ contains
             error%message = 'in &study ro_method'//trim(idx)//': '//error%message
             return
          end if
-         select type (integ)
-         class is (symplectic_t)
-         class default
+         if (.not. method_table(method_index(trim(cfg%ro_methods(i))))%compensated) then
             call fatal_error(error, "invalid ro_method"//trim(idx)//": '"// &
                              trim(cfg%ro_methods(i))//"' has no compensated summation (use "// &
                              "midpoint gauss4 gauss6 gauss8 verlet yoshida4 comp6 comp8)")
             return
-         end select
+         end if
          if (.not. finite_positive(cfg%ro_dt(i)) .or. cfg%ro_dt(i) > 1.0_dp) then
             call fatal_error(error, 'invalid ro_dt'//trim(idx)//': must be in (0, 1] (s)')
             return
@@ -810,8 +793,7 @@ contains
             error%message = 'in &study tao_method'//trim(idx)//': '//error%message
             return
          end if
-         call set_omega(integ, 1.0_dp, found)
-         if (.not. found) then
+         if (.not. method_table(method_index(trim(cfg%tao_methods(i))))%omega) then
             call fatal_error(error, "invalid tao_method"//trim(idx)//": '"// &
                              trim(cfg%tao_methods(i))//"' (accepted: tao2 tao4)")
             return

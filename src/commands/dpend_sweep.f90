@@ -25,7 +25,7 @@ module dpend_sweep
    use dpend_os, only: path_kind, path_missing, path_file, remove_file
    use dpend_config, only: check_regular_file
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
-      energy_scale, flip_energy_bounds, st_cannot_flip
+      potential_range, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
@@ -479,41 +479,35 @@ contains
       end if
       if (allocated(error)) return
       bounds = flip_energy_bounds(setup%cfg%run%model%par)
+      ! the attributes pass no `error`: h5 keeps the first failure (take_error below)
       associate (c => setup%cfg, p => setup%cfg%run%model%par)
-         call h5%writeattr('/', 'program', 'dpend sweep', error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'method', c%run%method, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'config', setup%config, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'complete', &
-                                                      merge(1, 0, final), error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'm1', p%m1, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'm2', p%m2, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'l1', p%l1, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'l2', p%l2, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'g', p%g, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'q0', c%run%q0, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'qdot0', c%run%w0, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'h', setup%opt%h, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 't_end', &
-                                                      setup%opt%h*setup%opt%n_steps, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'n_steps', &
-                                                      setup%opt%n_steps, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau, &
-                                                      error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'energy_scale', &
-                                                      energy_scale(p), error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'flip_energy_bounds', &
-                                                      bounds, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'stop_at', &
-                                                      stop_name(setup%opt%stop_rule), error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'block', setup%block, error)
-         if (.not. allocated(error)) call h5%writeattr('/sweep', 'initial', &
-                                                      merge('grid', 'list', setup%grid), error)
+         call h5%writeattr('/', 'program', 'dpend sweep')
+         call h5%writeattr('/', 'version', version)
+         call h5%writeattr('/', 'method', c%run%method)
+         call h5%writeattr('/sweep', 'config', setup%config)
+         call h5%writeattr('/sweep', 'complete', merge(1, 0, final))
+         call h5%writeattr('/sweep', 'm1', p%m1)
+         call h5%writeattr('/sweep', 'm2', p%m2)
+         call h5%writeattr('/sweep', 'l1', p%l1)
+         call h5%writeattr('/sweep', 'l2', p%l2)
+         call h5%writeattr('/sweep', 'g', p%g)
+         call h5%writeattr('/sweep', 'q0', c%run%q0)
+         call h5%writeattr('/sweep', 'qdot0', c%run%w0)
+         call h5%writeattr('/sweep', 'h', setup%opt%h)
+         call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau)
+         call h5%writeattr('/sweep', 'potential_range', potential_range(p))
+         call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
+         call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
+         call h5%writeattr('/sweep', 'block', setup%block)
+         call h5%writeattr('/sweep', 'initial', merge('grid', 'list', setup%grid))
          if (setup%grid) then
-            if (.not. allocated(error)) call h5%writeattr('/sweep', 'axis1', c%axis1, error)
-            if (.not. allocated(error)) call h5%writeattr('/sweep', 'axis2', c%axis2, error)
+            call h5%writeattr('/sweep', 'axis1', c%axis1)
+            call h5%writeattr('/sweep', 'axis2', c%axis2)
          end if
       end associate
+      call h5%take_error(error)
    end subroutine create_layout
 
    !> Write the results of block b, flush, then flag it done and flush again.

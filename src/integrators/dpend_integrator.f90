@@ -19,9 +19,10 @@ module dpend_integrator
    use dpend_model, only: model_t, max_state
    use dpend_limits, only: default_max_steps
    use dpend_error, only: error_t, fatal_error
+   use dpend_method_options, only: method_options_t
    implicit none
    private
-   public :: integrator_t
+   public :: integrator_t, integrator_configure
    public :: stat_ok, stat_no_convergence, stat_nonfinite, stat_step_too_small
    public :: stat_max_steps, stat_count_limit, stat_tangent_substeps
    public :: status_message, state_ok, diverged_bound
@@ -71,6 +72,9 @@ module dpend_integrator
       procedure :: canonical => false_property
       !> Whether the method needs a Hamiltonian model (default: `canonical()`).
       procedure :: needs_hamiltonian => canonical_property
+      !> Set the options a method has from one record (`dpend_method_options`);
+      !> methods with more options override it and call `integrator_configure`.
+      procedure :: configure => integrator_configure
       procedure :: reset_counters
       procedure :: rhs
       procedure :: to_internal
@@ -127,6 +131,12 @@ contains
       class(integrator_t), intent(in) :: self  !! the method
       canonical_property = self%canonical()
    end function canonical_property
+   !> The options every method has: `max_steps` (0 keeps the default).
+   subroutine integrator_configure(self, options)
+      class(integrator_t), intent(inout) :: self       !! the method
+      type(method_options_t), intent(in) :: options    !! its options
+      if (options%max_steps > 0) self%max_steps = options%max_steps
+   end subroutine integrator_configure
 
    !> Zero the counters.
    subroutine reset_counters(self)

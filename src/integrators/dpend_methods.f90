@@ -1,35 +1,34 @@
-!> The factory: every integration method of dpend, constructed by name.
+!> The factory: every integration method of dpend, constructed by name. The names,
+!> orders and properties are those of the method registry (dpend_method_registry);
+!> this module only allocates the type that implements each name.
 module dpend_methods
-   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_integrator, only: integrator_t
-   use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t, rk_adaptive_t
+   use dpend_method_options, only: method_options_t
+   use dpend_method_registry, only: method_index, method_names
+   use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t
    use dpend_symplectic, only: gauss, verlet_t, composition, triple_jump, kahan_li_6, kahan_li_8
-   use dpend_tao, only: tao_t, set_omega
+   use dpend_tao, only: tao_t
    implicit none
    private
-   public :: new_integrator, method_names
-
-   !> Names accepted by --method, space separated.
-   character(len=*), parameter :: method_names = 'rk4 dopri5 dop853' &
-                                                  //' midpoint gauss4 gauss6 gauss8 verlet' &
-                                                  //' yoshida4 comp6 comp8 tao2 tao4'
+   public :: new_integrator, method_names, method_options_t
 
 contains
 
-   !> Allocate the method called `name` and set its options: tolerances for the
-   !> adaptive methods, the binding constant for Tao's (ignored by the others), the
-   !> most accepted steps of one adaptive integration.
-   subroutine new_integrator(name, integ, error, rtol, atol, omega, max_steps)
+   !> Allocate the method called `name` (a name of the registry) and set its
+   !> options (`integ%configure`): tolerances of the adaptive methods, Tao's ω,
+   !> the most accepted steps of one adaptive integration, ... Without `options`
+   !> every method has its defaults.
+   subroutine new_integrator(name, integ, error, options)
       character(len=*), intent(in) :: name                        !! method name
       class(integrator_t), allocatable, intent(out) :: integ      !! the method
       type(error_t), allocatable, intent(out) :: error            !! unknown name
-      real(dp), intent(in), optional :: rtol                      !! relative tolerance
-      real(dp), intent(in), optional :: atol                      !! absolute tolerance
-      real(dp), intent(in), optional :: omega                     !! Tao's ω [1/s]
-      integer(i8), intent(in), optional :: max_steps              !! most steps of one
-                                                                  !! adaptive integration
-      logical :: found
+      type(method_options_t), intent(in), optional :: options     !! its options
+      if (method_index(name) == 0) then
+         call fatal_error(error, "invalid method: '"//trim(name)//"' (accepted: " &
+                          //method_names()//")")
+         return
+      end if
       select case (name)
       case ('rk4')
          allocate (rk4_t :: integ)
@@ -58,16 +57,10 @@ contains
       case ('tao4')
          allocate (integ, source=composition(tao_t(), triple_jump(), 4, 'tao4'))
       case default
-         call fatal_error(error, "invalid method: '"//trim(name)//"' (accepted: " &
-                          //method_names//")")
+         call fatal_error(error, "method '"//trim(name)//"' is in the registry but " &
+                          //"new_integrator cannot build it")
          return
       end select
-      select type (integ)
-      class is (rk_adaptive_t)
-         if (present(rtol)) integ%rtol = rtol
-         if (present(atol)) integ%atol = atol
-      end select
-      if (present(omega)) call set_omega(integ, omega, found)
-      if (present(max_steps)) integ%max_steps = max_steps
+      if (present(options)) call integ%configure(options)
    end subroutine new_integrator
 end module dpend_methods

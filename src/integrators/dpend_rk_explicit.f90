@@ -14,7 +14,8 @@ module dpend_rk_explicit
    use dpend_kinds, only: dp
    use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small, &
-                               state_ok
+                               state_ok, integrator_configure
+   use dpend_method_options, only: method_options_t
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -42,6 +43,7 @@ module dpend_rk_explicit
       logical :: dense_ready = .false. !! dense-output coefficients of the last step are set
    contains
       procedure :: adaptive => rk_adaptive_adaptive
+      procedure :: configure => rk_adaptive_configure
    end type rk_adaptive_t
 
    !> Dormand–Prince 5(4), "DOPRI5" (Dormand & Prince 1980; Hairer, Nørsett, Wanner,
@@ -328,6 +330,17 @@ contains
       class(rk_adaptive_t), intent(in) :: self  !! the method
       rk_adaptive_adaptive = .not. self%fixed_step
    end function rk_adaptive_adaptive
+
+   !> Options of the embedded pairs: rtol, atol (0 keeps the default), fixed_step,
+   !> and those of every method.
+   subroutine rk_adaptive_configure(self, options)
+      class(rk_adaptive_t), intent(inout) :: self     !! the method
+      type(method_options_t), intent(in) :: options   !! its options
+      call integrator_configure(self, options)
+      if (options%rtol > 0.0_dp) self%rtol = options%rtol
+      if (options%atol > 0.0_dp) self%atol = options%atol
+      self%fixed_step = options%fixed_step
+   end subroutine rk_adaptive_configure
 
    !> Stage 1: f(y), reused from the end of the last step when y is that state (FSAL).
    !> Without a recorded step (new trajectory) the controller memory is reset.

@@ -54,11 +54,13 @@ module dpend_symplectic
    use dpend_kinds, only: dp
    use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
-                               state_ok
+                               state_ok, integrator_configure
+   use dpend_method_options, only: method_options_t
    implicit none
    private
    public :: symplectic_t, gauss_t, verlet_t, composition_t
    public :: gauss, composition, gauss_tableau, accumulate, symplectic_reset
+   public :: symplectic_configure
    public :: triple_jump, kahan_li_6, kahan_li_8
    public :: max_iter, iter_tol
 
@@ -85,6 +87,7 @@ module dpend_symplectic
       procedure :: symmetric => true_property
       procedure :: canonical => true_property
       procedure :: reset => symplectic_reset
+      procedure :: configure => symplectic_configure
    end type symplectic_t
 
    abstract interface
@@ -175,6 +178,7 @@ module dpend_symplectic
       procedure :: order => composition_order
       procedure :: implicit => composition_implicit
       procedure :: reset => composition_reset
+      procedure :: configure => composition_configure
    end type composition_t
 
 contains
@@ -194,6 +198,14 @@ contains
       self%comp = 0.0_dp
       self%started = .false.
    end subroutine symplectic_reset
+
+   !> Options of the (q, p) methods: `compensated`, and those of every method.
+   subroutine symplectic_configure(self, options)
+      class(symplectic_t), intent(inout) :: self      !! the method
+      type(method_options_t), intent(in) :: options   !! its options
+      call integrator_configure(self, options)
+      self%compensated = options%compensated
+   end subroutine symplectic_configure
 
    !> One step of the method (see `integrator_t`); t and y change only on success.
    subroutine symplectic_step(self, model, t, y, h, stat)
@@ -698,6 +710,14 @@ contains
       call symplectic_reset(self)
       if (allocated(self%base)) call self%base%reset()
    end subroutine composition_reset
+
+   !> Options of a composition: its own, and its base method's (e.g. Tao's ω).
+   subroutine composition_configure(self, options)
+      class(composition_t), intent(inout) :: self     !! the method
+      type(method_options_t), intent(in) :: options   !! its options
+      call symplectic_configure(self, options)
+      if (allocated(self%base)) call self%base%configure(options)
+   end subroutine composition_configure
 
    subroutine composition_advance(self, model, t, y, e, h, stat)
       class(composition_t), intent(inout) :: self  !! the method

@@ -31,10 +31,12 @@ module dpend_tao
    use dpend_kinds, only: dp
    use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite
-   use dpend_symplectic, only: symplectic_t, composition_t, accumulate, symplectic_reset
+   use dpend_symplectic, only: symplectic_t, accumulate, symplectic_reset, &
+                               symplectic_configure
+   use dpend_method_options, only: method_options_t
    implicit none
    private
-   public :: tao_t, set_omega
+   public :: tao_t
 
    !> Tao's second-order extended-phase-space method (`tao2`). Symplectic in the
    !> extended phase space (q, p, x, y) and symmetric.
@@ -48,27 +50,21 @@ module dpend_tao
       procedure :: name => tao_name
       procedure :: order => tao_order
       procedure :: reset => tao_reset
+      procedure :: configure => tao_configure
       procedure :: get_copy => tao_get_copy
       procedure :: set_copy => tao_set_copy
    end type tao_t
 
 contains
 
-   !> Set the binding constant of a Tao method (`tao2`, or `tao4` through its
-   !> base); `found` is false if `integ` is not one.
-   recursive subroutine set_omega(integ, omega, found)
-      class(integrator_t), intent(inout) :: integ  !! the method
-      real(dp), intent(in) :: omega                !! binding constant ω [1/s]
-      logical, intent(out) :: found                !! integ is a Tao method
-      found = .false.
-      select type (integ)
-      class is (tao_t)
-         integ%omega = omega
-         found = .true.
-      class is (composition_t)
-         call set_omega(integ%base, omega, found)
-      end select
-   end subroutine set_omega
+   !> Options of Tao's method: ω (0 keeps the default), and those of the (q, p)
+   !> methods. tao4 reaches it through its composition.
+   subroutine tao_configure(self, options)
+      class(tao_t), intent(inout) :: self             !! the method
+      type(method_options_t), intent(in) :: options   !! its options
+      call symplectic_configure(self, options)
+      if (options%omega > 0.0_dp) self%omega = options%omega
+   end subroutine tao_configure
 
    !> The second copy (x, y) carried between steps, e.g. to monitor how far the
    !> copies drift apart (|q - x|, |p - y|); `have` is false before the first step

@@ -6,7 +6,11 @@
 !> as the HDF5 Fortran API does: `q(2, n)` is seen by h5py and h5dump as (n, 2).
 !> Strings are fixed-length, null-padded, ASCII. Trailing blanks of paths, names
 !> and file names are ignored. Every failure comes back as an `error_t` naming the
-!> file and the path; HDF5's own error printing is off.
+!> file and the path; HDF5's own error printing is off. A write (`write`,
+!> `write_slab`, `writeattr`) called without `error` keeps its failure in the file
+!> object instead: the first failure is kept, later writes without `error` do
+!> nothing, and `close(error)` or `take_error` hands it over, so that a writer
+!> writes plainly and checks once at the end.
 !> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
 !> an `h5file_t` from one thread at a time.
 module dpend_hdf5
@@ -36,11 +40,14 @@ module dpend_hdf5
       character(len=:), allocatable :: filename  !! name given to `open`
       integer(hid_t) :: id = -1                  !! HDF5 file id, -1 when closed
       logical :: readonly = .false.              !! opened with mode 'r'
+      !> first failure of a write called without `error` (see `take_error`)
+      type(error_t), allocatable :: error
    contains
       procedure :: open => file_open
       procedure :: close => file_close
       procedure :: is_open => file_is_open
       procedure :: flush => file_flush
+      procedure :: take_error => file_take_error
       procedure :: exists => file_exists
       procedure :: attr_exists => file_attr_exists
       procedure :: shape => file_shape
@@ -86,6 +93,7 @@ contains
       character(len=:), allocatable :: why
 
       call self%close()
+      if (allocated(self%error)) deallocate (self%error)
       call init_library(error)
       if (allocated(error)) return
       inquire (file=filename, exist=on_disk)
@@ -128,23 +136,38 @@ contains
       self%readonly = mode == 'r'
    end subroutine file_open
 
-   !> Close the file if it is open (this also flushes it). With `error`, a failed
-   !> close (e.g. a full disk while flushing) is reported.
+   !> Close the file if it is open (this also flushes it). With `error`: the kept
+   !> failure of a write (see `take_error`), else a failed close (e.g. a full disk
+   !> while flushing). Without, a kept failure is dropped.
    subroutine file_close(self, error)
       class(h5file_t), intent(inout) :: self                      !! the file object
-      type(error_t), allocatable, intent(out), optional :: error  !! set if the close failed
+      type(error_t), allocatable, intent(out), optional :: error  !! a write or the close failed
       integer :: ierr
       logical :: valid
+      if (present(error)) call self%take_error(error)
+      if (allocated(self%error)) deallocate (self%error)
       if (self%id < 0) return
       call quiet_thread()
       ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
-      if (ierr /= 0 .and. present(error)) call fatal_error(error, 'cannot close '// &
-         quoted(self%filename)//': '//io_failure_reason(self%filename, 'HDF5 could not flush it'))
+      if (ierr /= 0 .and. present(error)) then
+         if (.not. allocated(error)) call fatal_error(error, 'cannot close '// &
+            quoted(self%filename)//': '//io_failure_reason(self%filename, &
+            'HDF5 could not flush it'))
+      end if
       self%id = -1
       self%readonly = .false.
    end subroutine file_close
+
+   !> Hand over the first failure of the writes called without `error` since the
+   !> file was opened or the last `take_error` (unallocated: none failed), and
+   !> let such writes work again.
+   subroutine file_take_error(self, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      type(error_t), allocatable, intent(out) :: error  !! the kept failure, if any
+      if (allocated(self%error)) call move_alloc(self%error, error)
+   end subroutine file_take_error
 
    !> Finaliser: close a file that was left open.
    subroutine file_finalize(self)
@@ -255,7 +278,7 @@ contains
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       real(dp), intent(in), target :: value             !! value to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_r0
 
@@ -264,7 +287,7 @@ contains
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
       real(dp), intent(in), target, contiguous :: value(:)   !! values to store
-      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_r1
 
@@ -273,7 +296,7 @@ contains
       class(h5file_t), intent(inout) :: self                   !! the file object
       character(len=*), intent(in) :: path                     !! dataset path
       real(dp), intent(in), target, contiguous :: value(:, :)  !! values to store
-      type(error_t), allocatable, intent(out) :: error         !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_r2
 
@@ -282,7 +305,7 @@ contains
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       real(dp), intent(in), target, contiguous :: value(:, :, :)  !! values to store
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_r3
 
@@ -291,7 +314,7 @@ contains
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer, intent(in), target :: value              !! value to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_i0
 
@@ -300,7 +323,7 @@ contains
       class(h5file_t), intent(inout) :: self                !! the file object
       character(len=*), intent(in) :: path                  !! dataset path
       integer, intent(in), target, contiguous :: value(:)   !! values to store
-      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_i1
 
@@ -309,7 +332,7 @@ contains
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! dataset path
       integer, intent(in), target, contiguous :: value(:, :)  !! values to store
-      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_i2
 
@@ -318,7 +341,7 @@ contains
       class(h5file_t), intent(inout) :: self                     !! the file object
       character(len=*), intent(in) :: path                       !! dataset path
       integer(i8), intent(in), target, contiguous :: value(:)    !! values to store
-      type(error_t), allocatable, intent(out) :: error           !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call write_raw(self, path, i64_type(), int(shape(value), hsize_t), c_loc(value), error)
    end subroutine write_i64_1
 
@@ -327,14 +350,18 @@ contains
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       character(len=*), intent(in) :: value             !! text to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       character(kind=c_char), allocatable, target :: buf(:)
       integer(hid_t) :: stype
-      call require_open(self, path, .true., error)
-      if (allocated(error)) return
-      call string_buffer(value, buf, stype)
-      call write_raw(self, path, stype, [integer(hsize_t) ::], c_loc(buf), error)
-      call close_id(stype)
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call require_open(self, path, .true., err)
+      if (.not. allocated(err)) then
+         call string_buffer(value, buf, stype)
+         call write_now(self, path, stype, [integer(hsize_t) ::], c_loc(buf), err)
+         call close_id(stype)
+      end if
+      call settle(self, err, error)
    end subroutine write_str
 
    !> Create a chunked dataset of shape `dims` for partial writes with `write_slab`,
@@ -434,7 +461,7 @@ contains
       character(len=*), intent(in) :: path                   !! dataset path
       real(dp), intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                        !! 1-based first index
-      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error)
    end subroutine slab_r1
@@ -445,7 +472,7 @@ contains
       character(len=*), intent(in) :: path                     !! dataset path
       real(dp), intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                          !! 1-based first index
-      type(error_t), allocatable, intent(out) :: error         !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error)
    end subroutine slab_r2
@@ -456,7 +483,7 @@ contains
       character(len=*), intent(in) :: path                  !! dataset path
       integer, intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                       !! 1-based first index
-      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error)
    end subroutine slab_i1
@@ -467,7 +494,7 @@ contains
       character(len=*), intent(in) :: path                    !! dataset path
       integer, intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                         !! 1-based first index
-      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error)
    end subroutine slab_i2
@@ -478,7 +505,7 @@ contains
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       real(dp), intent(in), target :: value             !! value to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
    end subroutine writeattr_r0
@@ -489,7 +516,7 @@ contains
       character(len=*), intent(in) :: path                  !! object path, '/' for the root
       character(len=*), intent(in) :: name                  !! attribute name
       real(dp), intent(in), target, contiguous :: value(:)  !! values to store
-      type(error_t), allocatable, intent(out) :: error      !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
    end subroutine writeattr_r1
@@ -500,7 +527,7 @@ contains
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       integer, intent(in), target :: value              !! value to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, int_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
    end subroutine writeattr_i0
@@ -511,7 +538,7 @@ contains
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       integer(i8), intent(in), target :: value          !! value to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, i64_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
    end subroutine writeattr_i64_0
@@ -522,14 +549,18 @@ contains
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       character(len=*), intent(in) :: value             !! text to store
-      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       character(kind=c_char), allocatable, target :: buf(:)
       integer(hid_t) :: stype
-      call require_open(self, path, .true., error)
-      if (allocated(error)) return
-      call string_buffer(value, buf, stype)
-      call writeattr_raw(self, path, name, stype, [integer(hsize_t) ::], c_loc(buf), error)
-      call close_id(stype)
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call require_open(self, path, .true., err)
+      if (.not. allocated(err)) then
+         call string_buffer(value, buf, stype)
+         call writeattr_now(self, path, name, stype, [integer(hsize_t) ::], c_loc(buf), err)
+         call close_id(stype)
+      end if
+      call settle(self, err, error)
    end subroutine writeattr_str
 
    ! ------------------------------------------------------------- reading ---
@@ -880,9 +911,67 @@ contains
       end if
    end subroutine open_for_write
 
+   !> `write_now` for the public writers: with `error`, the failure goes there;
+   !> without, it is kept in the file and later writes without `error` do nothing.
+   subroutine write_raw(self, path, mem_type, dims, buf, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
+      integer(hsize_t), intent(in) :: dims(:)                     !! shape
+      type(c_ptr), intent(in) :: buf                              !! address of the data
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call write_now(self, path, mem_type, dims, buf, err)
+      call settle(self, err, error)
+   end subroutine write_raw
+
+   !> `slab_now` for the public writers, failures handled as by `write_raw`.
+   subroutine slab_raw(self, path, mem_type, mem_dims, start, buf, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
+      integer(hsize_t), intent(in) :: mem_dims(:)                 !! shape of the block
+      integer, intent(in) :: start(:)                             !! 1-based first index
+      type(c_ptr), intent(in) :: buf                              !! address of the block
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call slab_now(self, path, mem_type, mem_dims, start, buf, err)
+      call settle(self, err, error)
+   end subroutine slab_raw
+
+   !> `writeattr_now` for the public writers, failures handled as by `write_raw`.
+   subroutine writeattr_raw(self, path, name, mem_type, dims, buf, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! object path
+      character(len=*), intent(in) :: name                        !! attribute name
+      integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
+      integer(hsize_t), intent(in) :: dims(:)                     !! shape
+      type(c_ptr), intent(in) :: buf                              !! address of the data
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call writeattr_now(self, path, name, mem_type, dims, buf, err)
+      call settle(self, err, error)
+   end subroutine writeattr_raw
+
+   !> The failure `err` of one write goes to `error` when the caller passed it, else
+   !> it becomes the file's kept error (the first one; later ones do not happen).
+   subroutine settle(self, err, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      type(error_t), allocatable, intent(inout) :: err            !! failure of the write
+      type(error_t), allocatable, intent(out), optional :: error  !! the caller's error
+      if (present(error)) then
+         call move_alloc(err, error)
+      else if (allocated(err)) then
+         call move_alloc(err, self%error)
+      end if
+   end subroutine settle
+
    !> Write a whole dataset from `buf`, reusing an existing dataset of equal type
    !> and shape (so its attributes and chunking stay), and replacing any other.
-   subroutine write_raw(self, path, mem_type, dims, buf, error)
+   subroutine write_now(self, path, mem_type, dims, buf, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer(hid_t), intent(in) :: mem_type            !! type of `buf`, also stored
@@ -928,11 +1017,11 @@ contains
       if (product(dims) > 0) call h5dwrite_f(dset, mem_type, buf, hdferr)
       call close_id(dset)
       if (hdferr /= 0) call fail(error, 'write', self, quoted(path), 'HDF5 write failed')
-   end subroutine write_raw
+   end subroutine write_now
 
    !> Write `buf` (shape `mem_dims`) into dataset `path` from 1-based `start`. Missing
    !> trailing dimensions of `mem_dims` count as 1, so a column goes in as 1-D.
-   subroutine slab_raw(self, path, mem_type, mem_dims, start, buf, error)
+   subroutine slab_now(self, path, mem_type, mem_dims, start, buf, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer(hid_t), intent(in) :: mem_type            !! type of `buf`
@@ -986,10 +1075,10 @@ contains
       call close_id(fspace)
       call close_id(dset)
       if (hdferr /= 0) call fail(error, 'write a slab of', self, quoted(path), why)
-   end subroutine slab_raw
+   end subroutine slab_now
 
    !> Write attribute `name` on object `path`, replacing an existing one.
-   subroutine writeattr_raw(self, path, name, mem_type, dims, buf, error)
+   subroutine writeattr_now(self, path, name, mem_type, dims, buf, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
@@ -1022,7 +1111,7 @@ contains
       call h5oclose_f(obj, ierr)
       if (hdferr /= 0) call fail(error, 'write', self, attr_label(path, name), &
          'HDF5 write failed')
-   end subroutine writeattr_raw
+   end subroutine writeattr_now
 
    !> Open dataset `path`, or with `name` its attribute, for reading; check that it
    !> holds what `want` asks for, with rank `rank` (0: one element, -1: any).

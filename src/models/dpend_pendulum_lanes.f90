@@ -25,8 +25,9 @@ module dpend_pendulum_lanes
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
-   public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, energy_scale
+   public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes
+   public :: accel_lanes, tangent_accel_lanes
    public :: batch_options_t, batch_result_t, integrate_batch
    public :: stop_both, stop_either, stop_end
    public :: st_missing, st_end, st_flipped, st_cannot_flip, st_nonfinite
@@ -76,7 +77,7 @@ module dpend_pendulum_lanes
       real(dp), allocatable :: t_flip2(:)       !! first flip of link 2 [s], NaN: none
       real(dp), allocatable :: t_flip(:)        !! first flip of either link [s], NaN: none
       real(dp), allocatable :: energy0(:)       !! initial energy E(0) [J]
-      real(dp), allocatable :: energy_error(:)  !! max |E(t) - E(0)| / energy_scale [1]
+      real(dp), allocatable :: energy_error(:)  !! max |E(t) - E(0)| / potential_range [1]
       real(dp), allocatable :: t_stop(:)        !! time integrated to [s]
       real(dp), allocatable :: final(:, :)      !! (4, n) state at t_stop [rad, rad/s]
       real(dp), allocatable :: lyapunov(:)      !! largest Lyapunov exponent [1/s], NaN: off
@@ -108,13 +109,15 @@ contains
       e = [c%ga - c%gb, c%gb - c%ga]
    end function flip_energy_bounds
 
-   !> The energy scale of the relative energy error: V_max - V_min = 2 (A + B) [J].
-   pure real(dp) function energy_scale(par)
+   !> The range of the potential energy, V_max - V_min = 2 (A + B) [J]: the unit of
+   !> the sweep's relative energy error (one unit for every initial condition of a
+   !> sweep; not `dpend_pendulum`'s `energy_scale`, which depends on E(0)).
+   pure real(dp) function potential_range(par)
       type(pendulum_t), intent(in) :: par  !! parameters
       type(batch_coef_t) :: c
       c = batch_coef(par)
-      energy_scale = 2.0_dp*(c%ga + c%gb)
-   end function energy_scale
+      potential_range = 2.0_dp*(c%ga + c%gb)
+   end function potential_range
 
    !> sin and cos of both angles, in separate loops (no fusion into scalar sincos).
    pure subroutine trig_lanes(q1, q2, s1, c1, s2, c2)
@@ -132,6 +135,9 @@ contains
       end do
    end subroutine trig_lanes
 
+   !> Copy of `qddot_lagrange` (dpend_pendulum) for speed: SIMD over the lanes, with
+   !> cos and sin of q1 - q2 by the subtraction formulas; test/test_copies.f90
+   !> compares them.
    !> Angular accelerations at (q, q̇) and the trigonometric values used [rad/s²].
    pure subroutine accel_lanes(c, q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
       type(batch_coef_t), intent(in) :: c                       !! constants
@@ -155,6 +161,9 @@ contains
       end do
    end subroutine accel_lanes
 
+   !> Copy of `jacobian_qqdot` (dpend_pendulum, rows of q̈, applied to a vector) for
+   !> speed: SIMD over the lanes, reusing the values of `accel_lanes`;
+   !> test/test_copies.f90 compares them.
    !> Directional derivative of the accelerations at (q, q̇) along (u, v) [rad/s²],
    !> from the values of `accel_lanes` at the same point (no further sin/cos).
    pure subroutine tangent_accel_lanes(c, w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
@@ -186,6 +195,8 @@ contains
       end do
    end subroutine tangent_accel_lanes
 
+   !> Copy of `energy` (dpend_pendulum) for speed: SIMD over the lanes, through
+   !> `energy_formula`, also used by the RK4 steps; test/test_copies.f90 compares them.
    !> Energy T + V of each lane [J].
    pure subroutine energy_lanes(c, q1, q2, w1, w2, e)
       type(batch_coef_t), intent(in) :: c                     !! constants
@@ -333,7 +344,7 @@ contains
 
       n = size(y0, 2)
       c = batch_coef(par)
-      escale = energy_scale(par)
+      escale = potential_range(par)
       bounds = flip_energy_bounds(par)
       nan = ieee_value(nan, ieee_quiet_nan)
       rule = opt%stop_rule
