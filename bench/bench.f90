@@ -12,7 +12,7 @@ program bench
    use bench_batch, only: run_batch_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
-   use dpend_double_pendulum, only: double_pendulum_t
+   use dpend_pendulum, only: double_pendulum_t
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t

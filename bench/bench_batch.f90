@@ -7,7 +7,7 @@ module bench_batch
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
-   use dpend_double_pendulum, only: double_pendulum_t
+   use dpend_pendulum, only: double_pendulum_t
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       stop_end

@@ -6,7 +6,7 @@
 module test_chaos
    use dpend_kinds, only: dp
    use dpend_pendulum, only: pendulum_t, energy, hamiltonian, momenta, velocities
-   use dpend_double_pendulum, only: pendulum_model
+   use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_names, method_options_t
    use dpend_propagate, only: march_t, advance_to

@@ -6,7 +6,7 @@ module test_integrators
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, mass_matrix, energy
-   use dpend_double_pendulum, only: pendulum_model
+   use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, stat_step_too_small
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_fixed, advance_to, integrate_sampled

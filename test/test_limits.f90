@@ -7,7 +7,7 @@ module test_limits
    use dpend_limits, only: in_range, check_count, check_range, max_steps, sci
    use dpend_config, only: run_config_t, validate_run_config
    use dpend_pendulum, only: pendulum_t
-   use dpend_double_pendulum, only: pendulum_model
+   use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_max_steps, stat_count_limit
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled

@@ -2,8 +2,8 @@
 module test_model
    use dpend_kinds, only: dp
    use dpend_pendulum
-   use dpend_pendulum_kinematics, only: kinematics_t, kinematics
-   use dpend_pendulum_reactions, only: reactions
+   use dpend_pendulum, only: kinematics_t, kinematics
+   use dpend_pendulum, only: reactions
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private

@@ -7,7 +7,7 @@ module test_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, energy, potential_energy
-   use dpend_double_pendulum, only: pendulum_model
+   use dpend_pendulum, only: pendulum_model
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &

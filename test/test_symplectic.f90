@@ -6,7 +6,7 @@ module test_symplectic
    use, intrinsic :: iso_fortran_env, only: compiler_options
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, hamiltonian, energy, momenta, velocities
-   use dpend_double_pendulum, only: pendulum_model
+   use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_symplectic, only: symplectic_t, gauss_t, gauss_tableau, triple_jump, &

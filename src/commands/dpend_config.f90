@@ -8,7 +8,7 @@ module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive
-   use dpend_double_pendulum, only: double_pendulum_t
+   use dpend_pendulum, only: double_pendulum_t
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of

@@ -12,7 +12,7 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive
-   use dpend_double_pendulum, only: double_pendulum_t
+   use dpend_pendulum, only: double_pendulum_t
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
                            namelist_error

@@ -270,7 +270,41 @@ contains
 
    ! ======================================================================== rk4
 
+   !> One rk4 step. States of four components (two degrees of freedom) take the
+   !> same statements compiled with fixed sizes (unrolled, in registers); others
+   !> the generic ones on stack workspaces.
    subroutine rk4_step(self, model, t, y, h, stat)
+      class(rk4_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(inout) :: t         !! time [s]
+      real(dp), intent(inout) :: y(:)      !! state (q, q̇)
+      real(dp), intent(inout) :: h         !! step [s]
+      integer, intent(out) :: stat         !! status
+      if (size(y) == 4) then
+         call rk4_step_4(self, model, t, y, h, stat)
+      else
+         call rk4_step_n(self, model, t, y, h, stat)
+      end if
+   end subroutine rk4_step
+
+   subroutine rk4_step_4(self, model, t, y, h, stat)
+      class(rk4_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(inout) :: t         !! time [s]
+      real(dp), intent(inout) :: y(4)      !! state (q, q̇)
+      real(dp), intent(inout) :: h         !! step [s]
+      integer, intent(out) :: stat         !! status
+      integer, parameter :: n = 4, m = 2
+      real(dp) :: k1(n), k2(n), k3(n), k4(n), ynew(n), ys(n), d(m), cache(2*max_state)
+      associate (c => cache(:model%cache_size()))
+         include 'dpend_rk4_body.inc'
+      end associate
+      t = t + h
+      self%n_steps = self%n_steps + 1
+      stat = stat_ok
+   end subroutine rk4_step_4
+
+   subroutine rk4_step_n(self, model, t, y, h, stat)
       class(rk4_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model  !! the system
       real(dp), intent(inout) :: t         !! time [s]
@@ -281,36 +315,15 @@ contains
       real(dp) :: ynew_(max_state), ys_(max_state), d_(max_dof), cache(2*max_state)
       integer :: n, m
       n = size(y); m = n/2
-      ! The stage coordinates differ from the step start by h·q̇ terms: a model with a
-      ! cache (the double pendulum: sines and cosines of the angles) updates it by
-      ! angle addition (`field_near`), one vector sine per step instead of four.
       associate (k1 => k1_(:n), k2 => k2_(:n), k3 => k3_(:n), k4 => k4_(:n), &
                  ynew => ynew_(:n), ys => ys_(:n), d => d_(:m), &
                  c => cache(:model%cache_size()))
-         call model%fill_cache(y(1:m), c)
-         call model%field(t, y, k1)
-         ys = y + 0.5_dp*h*k1
-         d = 0.5_dp*h*k1(1:m)
-         call model%field_near(t + 0.5_dp*h, ys, d, c, k2)
-         ys = y + 0.5_dp*h*k2
-         d = 0.5_dp*h*k2(1:m)
-         call model%field_near(t + 0.5_dp*h, ys, d, c, k3)
-         ys = y + h*k3
-         d = h*k3(1:m)
-         call model%field_near(t + h, ys, d, c, k4)
-         self%n_rhs = self%n_rhs + 4
-         ynew = y + (h/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
-         if (.not. state_ok(ynew)) then
-            stat = stat_nonfinite
-            return
-         end if
-         call self%record_step(t, y, t + h, ynew, f0=k1)
-         y = ynew
+         include 'dpend_rk4_body.inc'
       end associate
       t = t + h
       self%n_steps = self%n_steps + 1
       stat = stat_ok
-   end subroutine rk4_step
+   end subroutine rk4_step_n
 
    pure function rk4_name(self) result(name)
       class(rk4_t), intent(in) :: self

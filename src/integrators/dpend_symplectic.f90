@@ -439,7 +439,43 @@ contains
       self%have_z = .false.
    end subroutine gauss_reset
 
+   !> One Gauss step; states of four components take the same statements compiled
+   !> with fixed sizes (dpend_gauss_body.inc), others the generic ones.
    subroutine gauss_advance(self, model, t, y, e, h, stat)
+      class(gauss_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model    !! the system (Hamiltonian)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(inout) :: y(:)        !! state (q, p)
+      real(dp), intent(inout) :: e(:)        !! compensation of y
+      real(dp), intent(in) :: h              !! step [s]
+      integer, intent(out) :: stat           !! status
+      if (size(y) == 4) then
+         call gauss_advance_4(self, model, t, y, e, h, stat)
+      else
+         call gauss_advance_n(self, model, t, y, e, h, stat)
+      end if
+   end subroutine gauss_advance
+
+   subroutine gauss_advance_4(self, model, t, y, e, h, stat)
+      class(gauss_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model    !! the system (Hamiltonian)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(inout) :: y(4)        !! state (q, p)
+      real(dp), intent(inout) :: e(4)        !! compensation of y
+      real(dp), intent(in) :: h              !! step [s]
+      integer, intent(out) :: stat           !! status
+      integer, parameter :: n = 4, m = 2
+      real(dp) :: z(n, 4), f(n, 4), zi(n), zl(n), f0(n), delta(n), yj(n), cache(2*max_state)
+      real(dp) :: wq, wp, dnew, dm1, dm2, z4(4, 4), d4(4), l4(4)
+      integer :: s, i, j, k, verdict, nb
+      if (.not. self%ready) call gauss_setup(self)
+      s = self%s
+      associate (sc0 => cache(:model%cache_size()))
+      include 'dpend_gauss_body.inc'
+      end associate
+   end subroutine gauss_advance_4
+
+   subroutine gauss_advance_n(self, model, t, y, e, h, stat)
       class(gauss_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model    !! the system (Hamiltonian)
       real(dp), intent(in) :: t              !! time at the start [s]
@@ -456,82 +492,9 @@ contains
       n = size(y); m = n/2
       associate (z => z_(:n, :), f => f_(:n, :), zi => zi_(:n), zl => zl_(:n), f0 => f0_(:n), &
                  delta => delta_(:n), yj => yj_(:n), sc0 => cache(:model%cache_size()))
-      ! starting guess: the last collocation polynomial, or c_i h f(y_n)
-      z = 0.0_dp
-      if (self%have_z .and. self%h_old /= 0.0_dp) then
-         if (.not. (self%have_w .and. self%r_w == h/self%h_old)) then
-            self%r_w = h/self%h_old
-            self%w = extrapolation_weights(s, self%c, self%r_w)
-            self%have_w = .true.
-         end if
-         do i = 1, s
-            do j = 1, s
-               z(:, i) = z(:, i) + self%w(i, j)*self%z_old(:n, j)
-            end do
-         end do
-      else
-         call model%canonical_field(t, y, f0)
-         self%n_rhs = self%n_rhs + 1
-         do i = 1, s
-            z(:, i) = (self%c(i)*h)*f0
-         end do
-      end if
-      wq = inv_scale(y(1:m), [maxval(abs(z(1:m, 1:s)))])
-      wp = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, 1:s)))])
-      dm1 = huge(1.0_dp)
-      dm2 = huge(1.0_dp)
-      stat = stat_no_convergence
-      call model%fill_cache(y(1:m), sc0)   ! the stage coordinates q_n + Z_j are near q_n
-      do k = 1, max_iter
-         do j = 1, s
-            yj = y + z(:, j)
-            call model%canonical_field_near(t + self%c(j)*h, yj, z(1:m, j), sc0, f(:, j))
-         end do
-         self%n_rhs = self%n_rhs + s
-         self%n_iter = self%n_iter + 1
-         dnew = 0.0_dp
-         do i = 1, s
-            zi = 0.0_dp
-            zl = 0.0_dp
-            do j = 1, s
-               zi = zi + self%a(i, j)*f(:, j)
-               zl = zl + self%a_lo(i, j)*f(:, j)
-            end do
-            zi = h*(zi + zl)
-            dnew = max(dnew, wq*maxval(abs(zi(1:m) - z(1:m, i))), &
-                       wp*maxval(abs(zi(m + 1:n) - z(m + 1:n, i))))
-            z(:, i) = zi
-         end do
-         verdict = iteration_verdict(dnew, dm2, k)
-         if (verdict == it_converged) stat = stat_ok
-         if (verdict /= it_continue) exit
-         dm2 = dm1
-         dm1 = dnew
-      end do
-      if (stat /= stat_ok) return   ! (leaves the associate block)
-      ! in zero-padded blocks of four components, as the fixed-size code rounded it
-      do i = 1, n, 4
-         nb = min(4, n - i + 1)
-         z4 = 0.0_dp
-         z4(1:nb, 1:s) = z(i:i + nb - 1, 1:s)
-         d4 = 0.0_dp
-         l4 = 0.0_dp
-         do j = 1, s
-            d4 = d4 + self%d(j)*z4(:, j)
-            l4 = l4 + self%d_lo(j)*z4(:, j)
-         end do
-         delta(i:i + nb - 1) = d4(1:nb) + l4(1:nb)
-      end do
-      if (.not. all(ieee_is_finite(delta))) then
-         stat = stat_nonfinite
-         return
-      end if
-      self%z_old(:n, :) = z
-      self%h_old = h
-      self%have_z = .true.
-      call accumulate(y, e, delta, self%compensated)
+      include 'dpend_gauss_body.inc'
       end associate
-   end subroutine gauss_advance
+   end subroutine gauss_advance_n
 
    pure function gauss_name(self) result(name)
       class(gauss_t), intent(in) :: self

@@ -9,11 +9,17 @@
 !> With k = m2 L1 L2 / 2 and d = q1 - q2 the mass matrix is
 !>   M11 = (m1/3 + m2) L1²,  M12 = k cos d,  M22 = m2 L2²/3,
 !> and the potential energy V = (m1/2 + m2) g L1 sin q1 + m2 g (L2/2) sin q2.
+!>
+!> The module holds, once, every formula of the double pendulum (equations of motion,
+!> energy, Hamiltonian form, Jacobians, kinematics, joint reactions, energy shells)
+!> and `double_pendulum_t`, which binds the model interface (`dpend_model`) to them:
+!> one translation unit, so that the bindings inline the formulas.
 module dpend_pendulum
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, &
                            min_g, max_g
+   use dpend_model, only: model_t
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -24,6 +30,8 @@ module dpend_pendulum
    public :: rhs_qqdot, rhs_qp, energy_scale, jacobian_qqdot, jacobian_qp
    public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near, energy_gradient
    public :: shell_state, shell_p_max, energy_limit
+   public :: kinematics_t, kinematics, tip_position, reactions
+   public :: double_pendulum_t, double_pendulum, pendulum_model
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -34,7 +42,114 @@ module dpend_pendulum
       real(dp) :: g = 9.8_dp    !! gravitational acceleration [m/s²]
    end type pendulum_t
 
+   !> Positions [m], velocities [m/s] and accelerations [m/s²] of C1, C2 and B.
+   type :: kinematics_t
+      real(dp) :: rc1(2) !! position of C1 [m] (6.2)
+      real(dp) :: vc1(2) !! velocity of C1 [m/s] (6.6)
+      real(dp) :: ac1(2) !! acceleration of C1 [m/s²] (6.10)
+      real(dp) :: rc2(2) !! position of C2 [m] (6.4)
+      real(dp) :: vc2(2) !! velocity of C2 [m/s] (6.8)
+      real(dp) :: ac2(2) !! acceleration of C2 [m/s²] (6.12)
+      real(dp) :: rb(2)  !! position of the joint B [m]
+      real(dp) :: vb(2)  !! velocity of B [m/s]
+      real(dp) :: ab(2)  !! acceleration of B [m/s²]
+   end type kinematics_t
+
+   !> The double pendulum with its parameters (SI units).
+   type, extends(model_t) :: double_pendulum_t
+      type(pendulum_t) :: par   !! masses, lengths, g
+   contains
+      procedure :: n_dof => dp_n_dof
+      procedure :: name => dp_name
+      procedure :: field => dp_field
+      procedure :: jacobian => dp_jacobian
+      procedure :: energy => dp_energy
+      procedure :: energy_scale => dp_energy_scale
+      procedure :: hamiltonian => dp_true
+      procedure :: momenta => dp_momenta
+      procedure :: velocities => dp_velocities
+      procedure :: hamiltonian_value => dp_hamiltonian_value
+      procedure :: canonical_field => dp_canonical_field
+      procedure :: canonical_jacobian => dp_canonical_jacobian
+      procedure :: energy_gradient => dp_energy_gradient
+      procedure :: energy_sections => dp_true
+      procedure :: section_state => dp_section_state
+      procedure :: section_p_max => dp_section_p_max
+      procedure :: cache_size => dp_cache_size
+      procedure :: fill_cache => dp_fill_cache
+      procedure :: field_near => dp_field_near
+      procedure :: canonical_field_near => dp_canonical_field_near
+      procedure :: n_outputs => dp_n_outputs
+      procedure :: output_info => dp_output_info
+      procedure :: outputs => dp_outputs
+      procedure :: n_parameters => dp_n_parameters
+      procedure :: parameter => dp_parameter
+   end type double_pendulum_t
+
+   !> The writer's per-sample outputs: joint reactions (chapter 6.16–6.26, corrected)
+   !> and kinematics (6.2–6.12), two components (x, y) each.
+   integer, parameter :: n_out = 9
+   character(len=3), parameter :: out_names(n_out) = &
+      [character(len=3) :: 'F01', 'F21', 'rC1', 'vC1', 'aC1', 'rC2', 'vC2', 'aC2', 'rB']
+   character(len=5), parameter :: out_units(n_out) = &
+      [character(len=5) :: 'N', 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm']
+   character(len=48), parameter :: out_text(n_out) = [character(len=48) :: &
+      'force of the ground on link 1 at A (x, y)', &
+      'force of link 2 on link 1 at B (x, y)', &
+      'position of the centre of mass C1 (x, y)', &
+      'velocity of C1 (x, y)', 'acceleration of C1 (x, y)', &
+      'position of the centre of mass C2 (x, y)', &
+      'velocity of C2 (x, y)', 'acceleration of C2 (x, y)', &
+      'position of the joint B (x, y)']
+
 contains
+
+   ! ---- public entry points of the hot formulas; the bodies (`*_impl`) are private,
+   ! so that the model bindings in this module can inline them (a public procedure
+   ! compiled with -fPIC could be interposed, and gcc does not inline it)
+   pure function sin_cos(q) result(sc)
+      real(dp), intent(in) :: q(2)  !! angles [rad]
+      real(dp) :: sc(4)
+      sc = sin_cos_impl(q)
+   end function sin_cos
+
+   pure function sin_cos_near(sc0, q, d) result(sc)
+      real(dp), intent(in) :: sc0(4)  !! sin_cos(q - d)
+      real(dp), intent(in) :: q(2)    !! the angles [rad]
+      real(dp), intent(in) :: d(2)    !! their offset from the angles of sc0 [rad]
+      real(dp) :: sc(4)
+      sc = sin_cos_near_impl(sc0, q, d)
+   end function sin_cos_near
+
+   pure function qddot_trig(par, sc, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      qdd = qddot_trig_impl(par, sc, qd)
+   end function qddot_trig
+
+   pure function rhs_qp_trig(par, sc, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: z(4)         !! canonical state
+      real(dp) :: f(4)
+      f = rhs_qp_trig_impl(par, sc, z)
+   end function rhs_qp_trig
+
+   pure function rhs_qqdot(par, y) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state [rad, rad, rad/s, rad/s]
+      real(dp) :: f(4)
+      f = rhs_qqdot_impl(par, y)
+   end function rhs_qqdot
+
+   pure function rhs_qp(par, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: z(4)         !! canonical state
+      real(dp) :: f(4)
+      f = rhs_qp_impl(par, z)
+   end function rhs_qp
 
    !> Check that every parameter is finite and within its accepted range
    !> (`dpend_limits`: [1e-6, 1e6] each, so that no product of the model overflows).
@@ -97,13 +212,13 @@ contains
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
-      qdd = qddot_trig(par, sin_cos(q), qd)
+      qdd = qddot_trig_impl(par, sin_cos_impl(q), qd)
    end function qddot_newton_euler
 
    !> The corrected Newton–Euler accelerations (see `qddot_newton_euler`) from the
    !> sines and cosines of the angles, sc = (sin q1, sin q2, cos q1, cos q2), so that
    !> a caller who has them (rk4's stages, via `sin_cos_near`) need not recompute them.
-   pure function qddot_trig(par, sc, qd) result(qdd)
+   pure function qddot_trig_impl(par, sc, qd) result(qdd)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
@@ -132,13 +247,13 @@ contains
       rdet = 1.0_dp/(a11*a22 - a12*a12)
       qdd(1) = (b1*a22 - a12*b2)*rdet
       qdd(2) = (a11*b2 - a12*b1)*rdet
-   end function qddot_trig
+   end function qddot_trig_impl
 
    !> (sin q1, sin q2, cos q1, cos q2) as one 4-wide sine, cos q = sin(q + π/2), so that
    !> the release build calls glibc's vector sine (libmvec) once instead of two scalar
    !> sincos (19 ns → 7 ns on AVX-512). The rounding of q + π/2 adds at most
    !> ulp(q)/2 absolute to cos q: the size of the rounding already carried by q.
-   pure function sin_cos(q) result(sc)
+   pure function sin_cos_impl(q) result(sc)
       real(dp), intent(in) :: q(2)  !! angles [rad]
       real(dp) :: sc(4)
       real(dp), parameter :: half_pi = 0.5_dp*acos(-1.0_dp)
@@ -148,24 +263,24 @@ contains
       do i = 1, 4
          sc(i) = sin(x(i))
       end do
-   end function sin_cos
+   end function sin_cos_impl
 
-   !> (sin, cos) of the angles q = q0 + d from sc0 = sin_cos(q0), for small d: the
+   !> (sin, cos) of the angles q = q0 + d from sc0 = sin_cos_impl(q0), for small d: the
    !> angle-addition formulas with sin d and cos d - 1 from their Taylor series,
    !> truncated where the remainder is below 1e-17 for |d| ≤ 0.25 rad (13th and 14th
-   !> powers). Agrees with sin_cos(q) to a few ulp; the rounding of q0 + d, which
-   !> sin_cos(q) would see, is ulp(q)/2 as in `sin_cos`. For |d| > 0.25 it calls
-   !> sin_cos(q). Explicit Runge–Kutta stages differ from the step start by
+   !> powers). Agrees with sin_cos_impl(q) to a few ulp; the rounding of q0 + d, which
+   !> sin_cos_impl(q) would see, is ulp(q)/2 as in `sin_cos`. For |d| > 0.25 it calls
+   !> sin_cos_impl(q). Explicit Runge–Kutta stages differ from the step start by
    !> d = h Σ a_ij q̇_j, so rk4 evaluates the sine once per step instead of 4 times.
-   pure function sin_cos_near(sc0, q, d) result(sc)
-      real(dp), intent(in) :: sc0(4)  !! sin_cos(q - d)
+   pure function sin_cos_near_impl(sc0, q, d) result(sc)
+      real(dp), intent(in) :: sc0(4)  !! sin_cos_impl(q - d)
       real(dp), intent(in) :: q(2)    !! the angles [rad]
       real(dp), intent(in) :: d(2)    !! their offset from the angles of sc0 [rad]
       real(dp) :: sc(4)
       real(dp), parameter :: d_max = 0.25_dp
       real(dp) :: d2(2), sd(2), cm1(2)
       if (abs(d(1)) > d_max .or. abs(d(2)) > d_max) then
-         sc = sin_cos(q)
+         sc = sin_cos_impl(q)
          return
       end if
       d2 = d*d
@@ -175,7 +290,7 @@ contains
             + d2*(-1.0_dp/3628800.0_dp + d2*(1.0_dp/479001600.0_dp))))))
       sc(1:2) = sc0(1:2) + (sc0(1:2)*cm1 + sc0(3:4)*sd)
       sc(3:4) = sc0(3:4) + (sc0(3:4)*cm1 - sc0(1:2)*sd)
-   end function sin_cos_near
+   end function sin_cos_near_impl
 
    !> Angular accelerations from Lagrange's equations M(q) q̈ = Q(q) - c(q, q̇) [rad/s²],
    !> with c1 = k sin(q1-q2) q̇2², c2 = -k sin(q1-q2) q̇1², k = m2 L1 L2/2.
@@ -376,26 +491,26 @@ contains
    end function energy_gradient
 
    !> First-order right-hand side for y = (q1, q2, q̇1, q̇2): (q̇, q̈).
-   pure function rhs_qqdot(par, y) result(f)
+   pure function rhs_qqdot_impl(par, y) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: y(4)         !! state [rad, rad, rad/s, rad/s]
       real(dp) :: f(4)
       f(1:2) = y(3:4)
       f(3:4) = qddot(par, y(1:2), y(3:4))
-   end function rhs_qqdot
+   end function rhs_qqdot_impl
 
    !> Hamiltonian vector field for z = (q1, q2, p1, p2): (∂H/∂p, -∂H/∂q).
-   pure function rhs_qp(par, z) result(f)
+   pure function rhs_qp_impl(par, z) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
-      f = rhs_qp_trig(par, sin_cos(z(1:2)), z)
-   end function rhs_qp
+      f = rhs_qp_trig_impl(par, sin_cos_impl(z(1:2)), z)
+   end function rhs_qp_impl
 
    !> `rhs_qp` from sc = (sin q1, sin q2, cos q1, cos q2), for callers that have them
    !> (the implicit stages of the symplectic methods, via `sin_cos_near`):
    !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas.
-   pure function rhs_qp_trig(par, sc, z) result(f)
+   pure function rhs_qp_trig_impl(par, sc, z) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
@@ -413,7 +528,7 @@ contains
       t = k*sd*f(1)*f(2)
       f(3) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sc(3) - t
       f(4) = -0.5_dp*par%m2*par%g*par%l2*sc(4) + t
-   end function rhs_qp_trig
+   end function rhs_qp_trig_impl
 
    !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
    !> with q̈ = M⁻¹ r, r = Q(q) - c(q, q̇), ∂q̈/∂x = M⁻¹ (∂r/∂x - (∂M/∂x) q̈).
@@ -470,4 +585,261 @@ contains
       jac(3, 1) = jac(3, 1) + (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(z(1))
       jac(4, 2) = jac(4, 2) + 0.5_dp*par%m2*par%g*par%l2*sin(z(2))
    end function jacobian_qp
+
+   ! ---------------------------------------------------------------- kinematics
+
+   !> Kinematics of C1, C2 and B for given q, q̇, q̈.
+   pure function kinematics(par, q, qd, qdd) result(k)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp), intent(in) :: qdd(2)       !! angular accelerations [rad/s²]
+      type(kinematics_t) :: k
+      real(dp) :: u1(2), u2(2), n1(2), n2(2)
+      u1 = [cos(q(1)), sin(q(1))]     ! unit vector along link 1
+      u2 = [cos(q(2)), sin(q(2))]     ! unit vector along link 2
+      n1 = [-u1(2), u1(1)]            ! u1 turned by +90°
+      n2 = [-u2(2), u2(1)]
+      ! a point at distance s along a link: r = s u, v = s q̇ n, a = s (q̈ n - q̇² u)
+      k%rb = par%l1*u1
+      k%vb = par%l1*qd(1)*n1
+      k%ab = par%l1*(qdd(1)*n1 - qd(1)**2*u1)
+      k%rc1 = 0.5_dp*k%rb
+      k%vc1 = 0.5_dp*k%vb
+      k%ac1 = 0.5_dp*k%ab
+      k%rc2 = k%rb + 0.5_dp*par%l2*u2
+      k%vc2 = k%vb + 0.5_dp*par%l2*qd(2)*n2
+      k%ac2 = k%ab + 0.5_dp*par%l2*(qdd(2)*n2 - qd(2)**2*u2)
+   end function kinematics
+
+   !> Position of the free end of link 2 [m].
+   pure function tip_position(par, q) result(r)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: r(2)
+      r = par%l1*[cos(q(1)), sin(q(1))] + par%l2*[cos(q(2)), sin(q(2))]
+   end function tip_position
+
+   ! ---------------------------------------------------------------- reactions
+
+   !> F01 and F21 [N] for a state and its accelerations.
+   !>
+   !> Link 2 (6.22, 6.23): m2 a_C2 = -F21 + G2, so F21 = -m2 (a_C2 + g j)
+   !> (the chapter's 6.26 prints + m2 g; the sign is corrected here, docs/errata.md).
+   !> Link 1 (6.16): m1 a_C1 = F01 + F21 + G1, so F01 = m1 (a_C1 + g j) - F21.
+   pure subroutine reactions(par, q, qd, qdd, f01, f21)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp), intent(in) :: qdd(2)       !! angular accelerations [rad/s²]
+      real(dp), intent(out) :: f01(2)      !! ground on link 1 at A [N]
+      real(dp), intent(out) :: f21(2)      !! link 2 on link 1 at B [N]
+      type(kinematics_t) :: k
+      k = kinematics(par, q, qd, qdd)
+      f21 = -par%m2*(k%ac2 + [0.0_dp, par%g])
+      f01 = par%m1*(k%ac1 + [0.0_dp, par%g]) - f21
+   end subroutine reactions
+
+   ! ------------------------------------------------ the model interface bindings
+
+   !> The model with parameters `par`, checked (`validate`).
+   subroutine double_pendulum(par, model, error)
+      type(pendulum_t), intent(in) :: par               !! parameters
+      type(double_pendulum_t), intent(out) :: model     !! the model
+      type(error_t), allocatable, intent(out) :: error  !! a parameter out of range
+      call validate(par, error)
+      model%par = par
+   end subroutine double_pendulum
+
+   !> The model with parameters `par`, unchecked (tests and callers that validated).
+   pure function pendulum_model(par) result(model)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      type(double_pendulum_t) :: model
+      model%par = par
+   end function pendulum_model
+
+   pure integer function dp_n_dof(self)
+      class(double_pendulum_t), intent(in) :: self
+      dp_n_dof = 2
+   end function dp_n_dof
+
+   pure function dp_name(self) result(name)
+      class(double_pendulum_t), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = 'double pendulum'
+   end function dp_name
+
+   pure logical function dp_true(self)
+      class(double_pendulum_t), intent(in) :: self
+      dp_true = .true.
+   end function dp_true
+
+   pure subroutine dp_field(self, t, y, f)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: f(:)
+      f = rhs_qqdot_impl(self%par, y)
+   end subroutine dp_field
+
+   pure subroutine dp_jacobian(self, t, y, jac)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: jac(:, :)
+      jac = jacobian_qqdot(self%par, y)
+   end subroutine dp_jacobian
+
+   pure real(dp) function dp_energy(self, t, y)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      dp_energy = energy(self%par, y(1:2), y(3:4))
+   end function dp_energy
+
+   pure real(dp) function dp_energy_scale(self, e0)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: e0
+      dp_energy_scale = energy_scale(self%par, e0)
+   end function dp_energy_scale
+
+   pure subroutine dp_momenta(self, t, y, p)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: p(:)
+      p = momenta(self%par, y(1:2), y(3:4))
+   end subroutine dp_momenta
+
+   pure subroutine dp_velocities(self, t, z, qd)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp), intent(out) :: qd(:)
+      qd = velocities(self%par, z(1:2), z(3:4))
+   end subroutine dp_velocities
+
+   pure real(dp) function dp_hamiltonian_value(self, t, z) result(h)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      h = hamiltonian(self%par, z(1:2), z(3:4))
+   end function dp_hamiltonian_value
+
+   pure subroutine dp_canonical_field(self, t, z, f)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp), intent(out) :: f(:)
+      f = rhs_qp_impl(self%par, z)
+   end subroutine dp_canonical_field
+
+   pure subroutine dp_canonical_jacobian(self, t, z, jac)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp), intent(out) :: jac(:, :)
+      jac = jacobian_qp(self%par, z)
+   end subroutine dp_canonical_jacobian
+
+   pure subroutine dp_energy_gradient(self, t, y, g)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: g(:)
+      g = energy_gradient(self%par, y(1:2), y(3:4))
+   end subroutine dp_energy_gradient
+
+   pure subroutine dp_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, found)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle, q_o, p_o
+      integer, intent(in) :: link, direction
+      real(dp), intent(out) :: q(:), qd(:)
+      logical, intent(out) :: found
+      call shell_state(self%par, e, link, angle, direction, q_o, p_o, q, qd, found)
+   end subroutine dp_section_state
+
+   pure real(dp) function dp_section_p_max(self, e, link, angle) result(p)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle
+      integer, intent(in) :: link
+      p = shell_p_max(self%par, e, link, angle)
+   end function dp_section_p_max
+
+   !> The cache: (sin q1, sin q2, cos q1, cos q2) of the step start.
+   pure integer function dp_cache_size(self)
+      class(double_pendulum_t), intent(in) :: self
+      dp_cache_size = 4
+   end function dp_cache_size
+
+   pure subroutine dp_fill_cache(self, q, cache)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: q(:)
+      real(dp), intent(inout) :: cache(:)
+      cache(1:4) = sin_cos_impl(q(1:2))
+   end subroutine dp_fill_cache
+
+   !> (q̇, q̈) with the sines of q = q_start + d by angle addition.
+   pure subroutine dp_field_near(self, t, y, d, cache, f)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:), d(:), cache(:)
+      real(dp), intent(out) :: f(:)
+      real(dp) :: q(2), w(2), dq(2), c0(4), sc(4)
+      q = y(1:2); w = y(3:4); dq = d(1:2); c0 = cache(1:4)   ! fixed-size copies: no packing
+      if (dq(1) == 0.0_dp .and. dq(2) == 0.0_dp) then
+         sc = c0                  ! at the cache's own angles
+      else
+         sc = sin_cos_near_impl(c0, q, dq)
+      end if
+      f(1:2) = w
+      f(3:4) = qddot_trig_impl(self%par, sc, w)
+   end subroutine dp_field_near
+
+   !> (∂H/∂p, −∂H/∂q) with the sines of q = q_start + d by angle addition.
+   pure subroutine dp_canonical_field_near(self, t, z, d, cache, f)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:), d(:), cache(:)
+      real(dp), intent(out) :: f(:)
+      real(dp) :: z4(4), dq(2), c0(4)
+      z4 = z(1:4); dq = d(1:2); c0 = cache(1:4)   ! fixed-size copies: no packing
+      f(1:4) = rhs_qp_trig_impl(self%par, sin_cos_near_impl(c0, z4(1:2), dq), z4)
+   end subroutine dp_canonical_field_near
+
+   pure integer function dp_n_outputs(self)
+      class(double_pendulum_t), intent(in) :: self
+      dp_n_outputs = n_out
+   end function dp_n_outputs
+
+   subroutine dp_output_info(self, i, name, n_comp, units, description)
+      class(double_pendulum_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units, description
+      integer, intent(out) :: n_comp
+      name = trim(out_names(i)); n_comp = 2
+      units = trim(out_units(i)); description = trim(out_text(i))
+   end subroutine dp_output_info
+
+   !> F01, F21, rC1, vC1, aC1, rC2, vC2, aC2, rB of one sample (18 values).
+   pure subroutine dp_outputs(self, t, y, f, values)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:), f(:)
+      real(dp), intent(out) :: values(:)
+      type(kinematics_t) :: k
+      call reactions(self%par, y(1:2), y(3:4), f(3:4), values(1:2), values(3:4))
+      k = kinematics(self%par, y(1:2), y(3:4), f(3:4))
+      values(5:6) = k%rc1; values(7:8) = k%vc1; values(9:10) = k%ac1
+      values(11:12) = k%rc2; values(13:14) = k%vc2; values(15:16) = k%ac2
+      values(17:18) = k%rb
+   end subroutine dp_outputs
+
+   pure integer function dp_n_parameters(self)
+      class(double_pendulum_t), intent(in) :: self
+      dp_n_parameters = 5
+   end function dp_n_parameters
+
+   !> m1, m2 [kg], l1, l2 [m], g [m/s²], in that order.
+   subroutine dp_parameter(self, i, name, value, units)
+      class(double_pendulum_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units
+      real(dp), intent(out) :: value
+      select case (i)
+      case (1); name = 'm1'; value = self%par%m1; units = 'kg'
+      case (2); name = 'm2'; value = self%par%m2; units = 'kg'
+      case (3); name = 'l1'; value = self%par%l1; units = 'm'
+      case (4); name = 'l2'; value = self%par%l2; units = 'm'
+      case default; name = 'g'; value = self%par%g; units = 'm/s^2'
+      end select
+   end subroutine dp_parameter
 end module dpend_pendulum
