@@ -242,12 +242,21 @@ contains
       n = size(y0)
       self%stepped = .true.
       self%n_rec = n
-      self%t_old = t0; self%y_old(:n) = y0
-      self%t_new = t1; self%y_new(:n) = y1
+      self%t_old = t0
+      self%t_new = t1
       self%known_f_old = present(f0)
-      if (present(f0)) self%f_old(:n) = f0
       self%known_f_new = present(f1)
-      if (present(f1)) self%f_new(:n) = f1
+      if (n == 4) then   ! constant-size copies, inline (a run-time size calls memmove)
+         self%y_old(1:4) = y0(1:4)
+         self%y_new(1:4) = y1(1:4)
+         if (present(f0)) self%f_old(1:4) = f0(1:4)
+         if (present(f1)) self%f_new(1:4) = f1(1:4)
+      else
+         self%y_old(:n) = y0
+         self%y_new(:n) = y1
+         if (present(f0)) self%f_old(:n) = f0
+         if (present(f1)) self%f_new(:n) = f1
+      end if
    end subroutine record_step
 
    !> True once a step has been recorded (and not cleared): `interpolate` and the

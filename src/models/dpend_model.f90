@@ -22,6 +22,10 @@
 !> reactions, …, with units) and the model's named parameters, so that a writer never
 !> names a model's fields.
 !>
+!> The hot procedures (`field`, `canonical_field`, `fill_cache`, `field_near`,
+!> `canonical_field_near`) take assumed-size arrays of the model's own size (2n, n,
+!> `cache_size()`): no array descriptors on the integrators' inner loop.
+!>
 !> Procedures for structure a model lacks have default bodies that are never reached:
 !> the factory refuses such a method before any step (they `error stop` as an internal
 !> check, with a message naming the model and the procedure).
@@ -92,8 +96,8 @@ module dpend_model
          import :: model_t, dp
          class(model_t), intent(in) :: self
          real(dp), intent(in) :: t       !! time [s]
-         real(dp), intent(in) :: y(:)    !! state (q, q̇), size 2n
-         real(dp), intent(out) :: f(:)   !! (q̇, q̈), size 2n
+         real(dp), intent(in) :: y(*)    !! state (q, q̇), size 2n
+         real(dp), intent(out) :: f(*)   !! (q̇, q̈), size 2n
       end subroutine field_i
       !> The Jacobian ∂f/∂y of `field`, (2n, 2n).
       pure subroutine jacobian_i(self, t, y, jac)
@@ -177,9 +181,9 @@ contains
    pure subroutine model_canonical_field(self, t, z, f)
       class(model_t), intent(in) :: self
       real(dp), intent(in) :: t        !! time [s]
-      real(dp), intent(in) :: z(:)     !! canonical state (q, p)
-      real(dp), intent(out) :: f(:)    !! (∂H/∂p, −∂H/∂q)
-      f = 0.0_dp
+      real(dp), intent(in) :: z(*)     !! canonical state (q, p)
+      real(dp), intent(out) :: f(*)    !! (∂H/∂p, −∂H/∂q)
+      f(:self%n_state()) = 0.0_dp
       call lacks(self, 'Hamiltonian vector field')
    end subroutine model_canonical_field
 
@@ -241,8 +245,8 @@ contains
    !> Fill the step-start cache from the coordinates q (nothing by default).
    pure subroutine model_fill_cache(self, q, cache)
       class(model_t), intent(in) :: self
-      real(dp), intent(in) :: q(:)         !! coordinates at the step start
-      real(dp), intent(inout) :: cache(:)  !! the model's cache, size cache_size()
+      real(dp), intent(in) :: q(*)         !! coordinates at the step start
+      real(dp), intent(inout) :: cache(*)  !! the model's cache, size cache_size()
    end subroutine model_fill_cache
 
    !> `field` at y, whose coordinates are those of the cache plus d (|d| small);
@@ -250,10 +254,10 @@ contains
    pure subroutine model_field_near(self, t, y, d, cache, f)
       class(model_t), intent(in) :: self
       real(dp), intent(in) :: t          !! time [s]
-      real(dp), intent(in) :: y(:)       !! state (q, q̇)
-      real(dp), intent(in) :: d(:)       !! q minus the coordinates of the cache
-      real(dp), intent(in) :: cache(:)   !! from `fill_cache`
-      real(dp), intent(out) :: f(:)      !! (q̇, q̈)
+      real(dp), intent(in) :: y(*)       !! state (q, q̇)
+      real(dp), intent(in) :: d(*)       !! q minus the coordinates of the cache
+      real(dp), intent(in) :: cache(*)   !! from `fill_cache`
+      real(dp), intent(out) :: f(*)      !! (q̇, q̈)
       call self%field(t, y, f)
    end subroutine model_field_near
 
@@ -261,10 +265,10 @@ contains
    pure subroutine model_canonical_field_near(self, t, z, d, cache, f)
       class(model_t), intent(in) :: self
       real(dp), intent(in) :: t          !! time [s]
-      real(dp), intent(in) :: z(:)       !! canonical state (q, p)
-      real(dp), intent(in) :: d(:)       !! q minus the coordinates of the cache
-      real(dp), intent(in) :: cache(:)   !! from `fill_cache`
-      real(dp), intent(out) :: f(:)      !! (∂H/∂p, −∂H/∂q)
+      real(dp), intent(in) :: z(*)       !! canonical state (q, p)
+      real(dp), intent(in) :: d(*)       !! q minus the coordinates of the cache
+      real(dp), intent(in) :: cache(*)   !! from `fill_cache`
+      real(dp), intent(out) :: f(*)      !! (∂H/∂p, −∂H/∂q)
       call self%canonical_field(t, z, f)
    end subroutine model_canonical_field_near
 

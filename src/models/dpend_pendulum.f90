@@ -676,9 +676,9 @@ contains
 
    pure subroutine dp_field(self, t, y, f)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: t, y(:)
-      real(dp), intent(out) :: f(:)
-      f = rhs_qqdot_impl(self%par, y)
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(out) :: f(*)
+      f(1:4) = rhs_qqdot_impl(self%par, y(1:4))
    end subroutine dp_field
 
    pure subroutine dp_jacobian(self, t, y, jac)
@@ -722,9 +722,9 @@ contains
 
    pure subroutine dp_canonical_field(self, t, z, f)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: t, z(:)
-      real(dp), intent(out) :: f(:)
-      f = rhs_qp_impl(self%par, z)
+      real(dp), intent(in) :: t, z(*)
+      real(dp), intent(out) :: f(*)
+      f(1:4) = rhs_qp_impl(self%par, z(1:4))
    end subroutine dp_canonical_field
 
    pure subroutine dp_canonical_jacobian(self, t, z, jac)
@@ -765,35 +765,32 @@ contains
 
    pure subroutine dp_fill_cache(self, q, cache)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: q(:)
-      real(dp), intent(inout) :: cache(:)
+      real(dp), intent(in) :: q(*)
+      real(dp), intent(inout) :: cache(*)
       cache(1:4) = sin_cos_impl(q(1:2))
    end subroutine dp_fill_cache
 
    !> (q̇, q̈) with the sines of q = q_start + d by angle addition.
    pure subroutine dp_field_near(self, t, y, d, cache, f)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: t, y(:), d(:), cache(:)
-      real(dp), intent(out) :: f(:)
-      real(dp) :: q(2), w(2), dq(2), c0(4), sc(4)
-      q = y(1:2); w = y(3:4); dq = d(1:2); c0 = cache(1:4)   ! fixed-size copies: no packing
-      if (dq(1) == 0.0_dp .and. dq(2) == 0.0_dp) then
-         sc = c0                  ! at the cache's own angles
+      real(dp), intent(in) :: t, y(*), d(*), cache(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: sc(4)
+      if (d(1) == 0.0_dp .and. d(2) == 0.0_dp) then
+         sc = cache(1:4)          ! at the cache's own angles
       else
-         sc = sin_cos_near_impl(c0, q, dq)
+         sc = sin_cos_near_impl(cache(1:4), y(1:2), d(1:2))
       end if
-      f(1:2) = w
-      f(3:4) = qddot_trig_impl(self%par, sc, w)
+      f(1:2) = y(3:4)
+      f(3:4) = qddot_trig_impl(self%par, sc, y(3:4))
    end subroutine dp_field_near
 
    !> (∂H/∂p, −∂H/∂q) with the sines of q = q_start + d by angle addition.
    pure subroutine dp_canonical_field_near(self, t, z, d, cache, f)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: t, z(:), d(:), cache(:)
-      real(dp), intent(out) :: f(:)
-      real(dp) :: z4(4), dq(2), c0(4)
-      z4 = z(1:4); dq = d(1:2); c0 = cache(1:4)   ! fixed-size copies: no packing
-      f(1:4) = rhs_qp_trig_impl(self%par, sin_cos_near_impl(c0, z4(1:2), dq), z4)
+      real(dp), intent(in) :: t, z(*), d(*), cache(*)
+      real(dp), intent(out) :: f(*)
+      f(1:4) = rhs_qp_trig_impl(self%par, sin_cos_near_impl(cache(1:4), z(1:2), d(1:2)), z(1:4))
    end subroutine dp_canonical_field_near
 
    pure integer function dp_n_outputs(self)
