@@ -521,29 +521,23 @@ contains
       end if
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
-      call write_common(h5, cfg, integ, 'lyapunov', status, error)
-      if (.not. allocated(error)) call h5%write('/lyapunov/t', res%t, error)
-      if (.not. allocated(error)) call h5%write('/lyapunov/running', res%running, error)
-      if (.not. allocated(error)) call h5%write('/lyapunov/exponents', res%exponents, error)
-      if (.not. allocated(error)) call h5%write('/lyapunov/spread', res%spread, error)
-      if (.not. allocated(error)) call h5%write('/lyapunov/batches', res%batches, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'tau', ch%tau, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'vectors', ch%vectors, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'batches', size(res%batches, 2), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 't_reached', res%t_reached, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_renormalisations', size(res%t), &
-                                                    error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_tangent_substeps', &
-                                                    res%n_sub, error)
-      if (.not. allocated(error) .and. res%k == 4) then
-         call h5%writeattr('/', 'pairing_defect', defect14, error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'zero_pair_sum', defect23, error)
+      call write_common(h5, cfg, integ, 'lyapunov', status)
+      call h5%write('/lyapunov/t', res%t)
+      call h5%write('/lyapunov/running', res%running)
+      call h5%write('/lyapunov/exponents', res%exponents)
+      call h5%write('/lyapunov/spread', res%spread)
+      call h5%write('/lyapunov/batches', res%batches)
+      call h5%writeattr('/', 'tau', ch%tau)
+      call h5%writeattr('/', 'vectors', ch%vectors)
+      call h5%writeattr('/', 'batches', size(res%batches, 2))
+      call h5%writeattr('/', 't_reached', res%t_reached)
+      call h5%writeattr('/', 'n_renormalisations', size(res%t))
+      call h5%writeattr('/', 'n_tangent_substeps', res%n_sub)
+      if (res%k == 4) then
+         call h5%writeattr('/', 'pairing_defect', defect14)
+         call h5%writeattr('/', 'zero_pair_sum', defect23)
       end if
-      if (allocated(error)) then
-         call h5%close()
-         return
-      end if
-      call h5%close(error)
+      call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
                 //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
@@ -608,41 +602,32 @@ contains
       end if
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
-      call write_common(h5, cfg, integ, 'divergence', status, error)
-      if (.not. allocated(error)) call h5%write('/divergence/t', res%t, error)
-      if (.not. allocated(error)) call h5%write('/divergence/log10_delta', res%log10_mean, error)
-      if (.not. allocated(error)) call h5%write('/divergence/log10_delta_pairs', &
-                                                res%log10_pairs, error)
-      if (.not. allocated(error)) call h5%write('/divergence/start', res%start, error)
-      if (.not. allocated(error)) call h5%write('/divergence/delta_start', res%delta_start, &
-                                                error)
-      if (.not. allocated(error)) call h5%write('/divergence/energy_difference', &
-                                                res%energy_diff, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'delta0', ch%delta0, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'same_energy', &
-                                                    merge(1, 0, ch%same_energy), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'pairs', size(res%delta_start), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'pair_spacing', ch%pair_spacing, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'output_dt', cfg%output_dt, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'slope', fit%slope, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'slope_stderr', fit%slope_stderr, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'fit_intercept', fit%intercept, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'fit_start', fit%t_start, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'fit_end', fit%t_end, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'fit_points', fit%n_points, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'saturation', fit%saturation, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'saturated', &
-                                                    merge(1, 0, fit%saturated), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'lyapunov_t', ch%lyapunov_t, error)
-      if (.not. allocated(error) .and. ch%lyapunov_t > 0.0_dp) then
-         call h5%writeattr('/', 'lyapunov', lam, error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'lyapunov_spread', lam_spread, error)
+      call write_common(h5, cfg, integ, 'divergence', status)
+      call h5%write('/divergence/t', res%t)
+      call h5%write('/divergence/log10_delta', res%log10_mean)
+      call h5%write('/divergence/log10_delta_pairs', res%log10_pairs)
+      call h5%write('/divergence/start', res%start)
+      call h5%write('/divergence/delta_start', res%delta_start)
+      call h5%write('/divergence/energy_difference', res%energy_diff)
+      call h5%writeattr('/', 'delta0', ch%delta0)
+      call h5%writeattr('/', 'same_energy', merge(1, 0, ch%same_energy))
+      call h5%writeattr('/', 'pairs', size(res%delta_start))
+      call h5%writeattr('/', 'pair_spacing', ch%pair_spacing)
+      call h5%writeattr('/', 'output_dt', cfg%output_dt)
+      call h5%writeattr('/', 'slope', fit%slope)
+      call h5%writeattr('/', 'slope_stderr', fit%slope_stderr)
+      call h5%writeattr('/', 'fit_intercept', fit%intercept)
+      call h5%writeattr('/', 'fit_start', fit%t_start)
+      call h5%writeattr('/', 'fit_end', fit%t_end)
+      call h5%writeattr('/', 'fit_points', fit%n_points)
+      call h5%writeattr('/', 'saturation', fit%saturation)
+      call h5%writeattr('/', 'saturated', merge(1, 0, fit%saturated))
+      call h5%writeattr('/', 'lyapunov_t', ch%lyapunov_t)
+      if (ch%lyapunov_t > 0.0_dp) then
+         call h5%writeattr('/', 'lyapunov', lam)
+         call h5%writeattr('/', 'lyapunov_spread', lam_spread)
       end if
-      if (allocated(error)) then
-         call h5%close()
-         return
-      end if
-      call h5%close(error)
+      call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
                 //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
@@ -712,31 +697,25 @@ contains
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       integ%n_steps = res%n_steps
-      call write_common(h5, cfg, integ, 'poincare', status, error)
-      if (.not. allocated(error)) call h5%write('/poincare/q', res%q, error)
-      if (.not. allocated(error)) call h5%write('/poincare/p', res%p, error)
-      if (.not. allocated(error)) call h5%write('/poincare/t', res%t, error)
-      if (.not. allocated(error)) call h5%write('/poincare/energy', res%energy, error)
-      if (.not. allocated(error)) call h5%write('/poincare/orbit', res%orbit, error)
-      if (.not. allocated(error)) call h5%write('/poincare/initial_q', q0(:, 1:n_found), error)
-      if (.not. allocated(error)) call h5%write('/poincare/initial_qdot', qd0(:, 1:n_found), &
-                                                error)
-      if (.not. allocated(error)) call h5%write('/poincare/count', res%count, error)
-      if (.not. allocated(error)) call h5%write('/poincare/orbit_status', res%status, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'energy', e, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', es_, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'section_link', ch%section_link, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'section_angle', ch%section_angle, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'section_direction', &
-                                                    ch%section_direction, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'other_link', 3 - ch%section_link, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_orbits', n_found, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'max_points', ch%n_points, error)
-      if (allocated(error)) then
-         call h5%close()
-         return
-      end if
-      call h5%close(error)
+      call write_common(h5, cfg, integ, 'poincare', status)
+      call h5%write('/poincare/q', res%q)
+      call h5%write('/poincare/p', res%p)
+      call h5%write('/poincare/t', res%t)
+      call h5%write('/poincare/energy', res%energy)
+      call h5%write('/poincare/orbit', res%orbit)
+      call h5%write('/poincare/initial_q', q0(:, 1:n_found))
+      call h5%write('/poincare/initial_qdot', qd0(:, 1:n_found))
+      call h5%write('/poincare/count', res%count)
+      call h5%write('/poincare/orbit_status', res%status)
+      call h5%writeattr('/', 'energy', e)
+      call h5%writeattr('/', 'energy_scale', es_)
+      call h5%writeattr('/', 'section_link', ch%section_link)
+      call h5%writeattr('/', 'section_angle', ch%section_angle)
+      call h5%writeattr('/', 'section_direction', ch%section_direction)
+      call h5%writeattr('/', 'other_link', 3 - ch%section_link)
+      call h5%writeattr('/', 'n_orbits', n_found)
+      call h5%writeattr('/', 'max_points', ch%n_points)
+      call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend poincare: '//integ%name()//', dt = '//num(cfg%dt)//' s, E = ' &
                 //num(e)//' J, section q'//to_str(ch%section_link)//' = ' &
@@ -753,34 +732,33 @@ contains
    end subroutine run_poincare
 
    !> Root attributes shared by the chaos commands.
-   subroutine write_common(h5, cfg, integ, command, status, error)
-      type(h5file_t), intent(inout) :: h5
+   subroutine write_common(h5, cfg, integ, command, status)
+      type(h5file_t), intent(inout) :: h5          !! the file (keeps the first failure)
       type(run_config_t), intent(in) :: cfg
       class(integrator_t), intent(in) :: integ
       character(len=*), intent(in) :: command, status
-      type(error_t), allocatable, intent(out) :: error
-      call h5%writeattr('/', 'command', command, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'm1', cfg%model%par%m1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'm2', cfg%model%par%m2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l1', cfg%model%par%l1, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'l2', cfg%model%par%l2, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'g', cfg%model%par%g, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'order', integ%order(), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 't_end', cfg%t_end, error)
-      if (.not. allocated(error) .and. integ%adaptive()) then
-         call h5%writeattr('/', 'rtol', cfg%rtol, error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
+      character(len=:), allocatable :: name, units
+      real(dp) :: value
+      integer :: j
+      call h5%writeattr('/', 'command', command)
+      do j = 1, cfg%model%n_parameters()   ! the model's parameters, by name
+         call cfg%model%parameter(j, name, value, units)
+         call h5%writeattr('/', name, value)
+      end do
+      call h5%writeattr('/', 'method', integ%name())
+      call h5%writeattr('/', 'order', integ%order())
+      call h5%writeattr('/', 'dt', cfg%dt)
+      call h5%writeattr('/', 't_end', cfg%t_end)
+      if (integ%adaptive()) then
+         call h5%writeattr('/', 'rtol', cfg%rtol)
+         call h5%writeattr('/', 'atol', cfg%atol)
       end if
-      if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'energy0', &
-                                                    cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0]), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
-                                                    integ%n_steps, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'status', status, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
+      call h5%writeattr('/', 'q0', cfg%q0)
+      call h5%writeattr('/', 'qdot0', cfg%w0)
+      call h5%writeattr('/', 'energy0', cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0]))
+      call h5%writeattr('/', 'n_steps', integ%n_steps)
+      call h5%writeattr('/', 'status', status)
+      call h5%writeattr('/', 'version', version)
    end subroutine write_common
 
    !> 'completed' or the failure and the time reached (t < 0: not known).

@@ -312,56 +312,44 @@ contains
          end do
          call h5%open(filename, 'w', error)
          if (allocated(error)) return
-         call h5%write('/trajectory/t', traj%t(:n), error)
-         if (.not. allocated(error)) call h5%write('/trajectory/q', traj%q(:, :n), error)
-         if (.not. allocated(error)) call h5%write('/trajectory/qdot', traj%qd(:, :n), error)
-         if (.not. allocated(error)) call h5%write('/trajectory/qddot', qdd, error)
-         if (.not. allocated(error) .and. canonical) call h5%write('/trajectory/p', p, error)
-         if (.not. allocated(error)) call h5%write('/trajectory/energy', e, error)
+         call h5%write('/trajectory/t', traj%t(:n))
+         call h5%write('/trajectory/q', traj%q(:, :n))
+         call h5%write('/trajectory/qdot', traj%qd(:, :n))
+         call h5%write('/trajectory/qddot', qdd)
+         if (canonical) call h5%write('/trajectory/p', p)
+         call h5%write('/trajectory/energy', e)
          off = 0
          do j = 1, model%n_outputs()
             call model%output_info(j, name, n_comp, units, text)
             slab = out(off + 1:off + n_comp, :)   ! contiguous, for the HDF5 layer
-            if (.not. allocated(error)) call h5%write('/trajectory/'//name, slab, error)
+            call h5%write('/trajectory/'//name, slab)
             off = off + n_comp
          end do
-         if (allocated(error)) then
-            call h5%close()
-            return
-         end if
          do j = 1, model%n_parameters()
-            if (allocated(error)) exit
             block
                real(dp) :: value
                call model%parameter(j, name, value, units)
-               call h5%writeattr('/', name, value, error)
+               call h5%writeattr('/', name, value)
             end block
          end do
       end associate
-      if (.not. allocated(error)) call h5%writeattr('/', 'method', integ%name(), error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'dt', cfg%dt, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 't_end', cfg%t_end, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'version', version, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'q0', cfg%q0, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'qdot0', cfg%w0, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'save_every', cfg%save_every, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'order', integ%order(), error)
-      if (.not. allocated(error) .and. integ%adaptive()) then
-         call h5%writeattr('/', 'rtol', cfg%rtol, error)
-         if (.not. allocated(error)) call h5%writeattr('/', 'atol', cfg%atol, error)
+      call h5%writeattr('/', 'method', integ%name())
+      call h5%writeattr('/', 'dt', cfg%dt)
+      call h5%writeattr('/', 't_end', cfg%t_end)
+      call h5%writeattr('/', 'version', version)
+      call h5%writeattr('/', 'q0', cfg%q0)
+      call h5%writeattr('/', 'qdot0', cfg%w0)
+      call h5%writeattr('/', 'save_every', cfg%save_every)
+      call h5%writeattr('/', 'order', integ%order())
+      if (integ%adaptive()) then
+         call h5%writeattr('/', 'rtol', cfg%rtol)
+         call h5%writeattr('/', 'atol', cfg%atol)
       end if
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_steps', &
-                                                    integ%n_steps, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'n_rhs', integ%n_rhs, &
-                                                    error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'status', traj%status, error)
-      if (.not. allocated(error)) call h5%writeattr('/', 'energy_scale', &
-                                                    cfg%model%energy_scale(e(1)), error)
-      if (allocated(error)) then
-         call h5%close()
-      else
-         call h5%close(error)
-      end if
+      call h5%writeattr('/', 'n_steps', integ%n_steps)
+      call h5%writeattr('/', 'n_rhs', integ%n_rhs)
+      call h5%writeattr('/', 'status', traj%status)
+      call h5%writeattr('/', 'energy_scale', cfg%model%energy_scale(e(1)))
+      call h5%close(error)   ! reports the first failed write, if any
    end subroutine write_trajectory
 
 end module dpend_simulate
