@@ -96,6 +96,8 @@ contains
       self%have_copy = .false.
    end subroutine tao_reset
 
+   !> One step of Tao's method. Four-component states take the statements of
+   !> dpend_tao_body.inc compiled with constant sizes, others the generic ones.
    subroutine tao_advance(self, model, t, y, e, h, stat)
       class(tao_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model  !! the system (Hamiltonian)
@@ -104,74 +106,44 @@ contains
       real(dp), intent(inout) :: e(:)      !! compensation of y
       real(dp), intent(in) :: h            !! step [s]
       integer, intent(out) :: stat         !! status
-      ! x_, w_, dq_, dp__ are read and updated by the flows below (first m entries)
+      if (size(y) == 4) then
+         call tao_advance_4(self, model, t, y, e, h, stat)
+      else
+         call tao_advance_n(self, model, t, y, e, h, stat)
+      end if
+   end subroutine tao_advance
+
+   subroutine tao_advance_4(self, model, t, y, e, h, stat)
+      class(tao_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model  !! the system (Hamiltonian)
+      real(dp), intent(in) :: t            !! time at the start [s]
+      real(dp), intent(inout) :: y(:)      !! state (q, p), the first copy
+      real(dp), intent(inout) :: e(:)      !! compensation of y
+      real(dp), intent(in) :: h            !! step [s]
+      integer, intent(out) :: stat         !! status
+      integer, parameter :: n = 4, m = 2
+      ! x_, w_, dq_, dp__ are read and updated by the flows (dpend_tao_body.inc)
+      real(dp) :: x_(m), w_(m), dq_(m), dp__(m), u_(m), v_(m), ru_(m), rv_(m)
+      real(dp) :: delta_(n), f_(n), z_(n), cs, sn
+      include 'dpend_tao_body.inc'
+   end subroutine tao_advance_4
+
+   subroutine tao_advance_n(self, model, t, y, e, h, stat)
+      class(tao_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model  !! the system (Hamiltonian)
+      real(dp), intent(in) :: t            !! time at the start [s]
+      real(dp), intent(inout) :: y(:)      !! state (q, p), the first copy
+      real(dp), intent(inout) :: e(:)      !! compensation of y
+      real(dp), intent(in) :: h            !! step [s]
+      integer, intent(out) :: stat         !! status
+      ! x_, w_, dq_, dp__ are read and updated by the flows (dpend_tao_body.inc)
       real(dp) :: x_(max_dof), w_(max_dof), dq_(max_dof), dp__(max_dof), u_(max_dof)
       real(dp) :: v_(max_dof), ru_(max_dof), rv_(max_dof), delta_(max_state), cs, sn
       real(dp) :: f_(max_state), z_(max_state)
       integer :: n, m
       n = size(y); m = n/2
-      associate (x => x_(:m), w => w_(:m), dq => dq_(:m), dp_ => dp__(:m), u => u_(:m), &
-                 v => v_(:m), ru => ru_(:m), rv => rv_(:m), delta => delta_(:n))
-      if (.not. self%have_copy) then
-         self%x(:m) = y(1:m)
-         self%w(:m) = y(m + 1:n)
-      end if
-      x = self%x(:m)
-      w = self%w(:m)
-      ! (q, p) = (q_n + dq, p_n + dp_): the increments are kept separately so that
-      ! the update of (q, p) can be summed with compensation
-      dq = 0.0_dp
-      dp_ = 0.0_dp
-      call flow_a(0.5_dp*h)
-      call flow_b(0.5_dp*h)
-      ! φ_C^h: u = q - x, v = p - y rotate by 2ωh; q + x and p + y stay
-      cs = cos(2.0_dp*self%omega*h)
-      sn = sin(2.0_dp*self%omega*h)
-      u = (y(1:m) - x) + dq
-      v = (y(m + 1:n) - w) + dp_
-      ru = cs*u + sn*v
-      rv = -sn*u + cs*v
-      dq = 0.5_dp*((dq + (x - y(1:m))) + ru)
-      dp_ = 0.5_dp*((dp_ + (w - y(m + 1:n))) + rv)
-      x = x + 0.5_dp*(u - ru)
-      w = w + 0.5_dp*(v - rv)
-      call flow_b(0.5_dp*h)
-      call flow_a(0.5_dp*h)
-      delta(1:m) = dq
-      delta(m + 1:n) = dp_
-      if (.not. (all(ieee_is_finite(delta)) .and. all(ieee_is_finite(x)) &
-                 .and. all(ieee_is_finite(w)))) then
-         stat = stat_nonfinite
-         return
-      end if
-      self%x(:m) = x
-      self%w(:m) = w
-      self%have_copy = .true.
-      call accumulate(y, e, delta, self%compensated)
-      stat = stat_ok
-      end associate
-   contains
-      !> φ_A^δ of H(q, y): p and x move.
-      subroutine flow_a(dt)
-         real(dp), intent(in) :: dt
-         z_(1:m) = y(1:m) + dq_(:m)
-         z_(m + 1:n) = w_(:m)
-         call model%canonical_field(t, z_(:n), f_(:n))
-         self%n_rhs = self%n_rhs + 1
-         dp__(:m) = dp__(:m) + dt*f_(m + 1:n)
-         x_(:m) = x_(:m) + dt*f_(1:m)
-      end subroutine flow_a
-      !> φ_B^δ of H(x, p): q and y move.
-      subroutine flow_b(dt)
-         real(dp), intent(in) :: dt
-         z_(1:m) = x_(:m)
-         z_(m + 1:n) = y(m + 1:n) + dp__(:m)
-         call model%canonical_field(t, z_(:n), f_(:n))
-         self%n_rhs = self%n_rhs + 1
-         dq_(:m) = dq_(:m) + dt*f_(1:m)
-         w_(:m) = w_(:m) + dt*f_(m + 1:n)
-      end subroutine flow_b
-   end subroutine tao_advance
+      include 'dpend_tao_body.inc'
+   end subroutine tao_advance_n
 
    pure function tao_name(self) result(name)
       class(tao_t), intent(in) :: self
