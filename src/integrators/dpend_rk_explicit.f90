@@ -516,67 +516,43 @@ contains
       real(dp), intent(inout) :: y(:)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
+      if (size(y) == 4) then
+         call dopri5_step_4(self, model, t, y, h, stat)
+      else
+         call dopri5_step_n(self, model, t, y, h, stat)
+      end if
+   end subroutine dopri5_step
+
+   subroutine dopri5_step_4(self, model, t, y, h, stat)
+      class(dopri5_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model     !! the system
+      real(dp), intent(inout) :: t            !! time [s]
+      real(dp), intent(inout) :: y(4)         !! state (q, q̇)
+      real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
+      integer, intent(out) :: stat            !! status
+      integer, parameter :: n = 4
+      real(dp) :: k_(n, 7), ynew_(n), e_(n), ys_(n)
+      real(dp) :: err, hnew
+      logical :: rejected, bad, accepted
+      real(dp) :: expo
+      include 'dpend_dopri5_body.inc'
+   end subroutine dopri5_step_4
+
+   subroutine dopri5_step_n(self, model, t, y, h, stat)
+      class(dopri5_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model     !! the system
+      real(dp), intent(inout) :: t            !! time [s]
+      real(dp), intent(inout) :: y(:)         !! state (q, q̇)
+      real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
+      integer, intent(out) :: stat            !! status
       real(dp) :: k_(max_state, 7), ynew_(max_state), e_(max_state), ys_(max_state)
       real(dp) :: err, hnew
       integer :: n
       logical :: rejected, bad, accepted
       real(dp) :: expo
-      if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
-         stat = stat_nonfinite
-         return
-      end if
       n = size(y)
-      associate (k => k_(:n, :), ynew => ynew_(:n), e => e_(:n), ys => ys_(:n))
-      expo = 0.2_dp - 0.75_dp*self%beta
-      call first_stage(self, model, t, y, k(:, 1))
-      if (h == 0.0_dp) h = hinit(self, model, t, y, k(:, 1), 5)
-      h = sign(min(abs(h), self%h_max), h)
-      rejected = .false.; bad = .false.
-      do
-         if (too_small(t, h)) then
-            stat = merge(stat_nonfinite, stat_step_too_small, bad)
-            return
-         end if
-         ys = y + h*p5a21*k(:, 1)
-         call model%field(t + p5c2*h, ys, k(:, 2))
-         ys = y + h*(p5a31*k(:, 1) + p5a32*k(:, 2))
-         call model%field(t + p5c3*h, ys, k(:, 3))
-         ys = y + h*(p5a41*k(:, 1) + p5a42*k(:, 2) + p5a43*k(:, 3))
-         call model%field(t + p5c4*h, ys, k(:, 4))
-         ys = y + h*(p5a51*k(:, 1) + p5a52*k(:, 2) + p5a53*k(:, 3) &
-                                         + p5a54*k(:, 4))
-         call model%field(t + p5c5*h, ys, k(:, 5))
-         ys = y + h*(p5a61*k(:, 1) + p5a62*k(:, 2) + p5a63*k(:, 3) &
-                                         + p5a64*k(:, 4) + p5a65*k(:, 5))
-         call model%field(t + h, ys, k(:, 6))
-         ynew = y + h*(p5a71*k(:, 1) + p5a73*k(:, 3) + p5a74*k(:, 4) + p5a75*k(:, 5) &
-                       + p5a76*k(:, 6))
-         call model%field(t + h, ynew, k(:, 7))
-         self%n_rhs = self%n_rhs + 6
-         bad = .not. (state_ok(ynew) .and. state_ok(k(:, 7)))
-         if (self%fixed_step) then
-            if (bad) then
-               stat = stat_nonfinite
-               return
-            end if
-            exit
-         end if
-         if (.not. bad) then
-            e = h*(p5e1*k(:, 1) + p5e3*k(:, 3) + p5e4*k(:, 4) + p5e5*k(:, 5) &
-                   + p5e6*k(:, 6) + p5e7*k(:, 7))
-            err = sqrt(weighted_ss(self%rtol, self%atol, y, ynew, e)/real(n, dp))
-            bad = .not. ieee_is_finite(err)
-         end if
-         call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
-                           hnew, rejected, accepted)
-         if (accepted) exit
-      end do
-      self%k(:n, :) = k           ! stages of the recorded step, for dense output
-      call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 7))
-      end associate
-      if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
-      stat = stat_ok
-   end subroutine dopri5_step
+      include 'dpend_dopri5_body.inc'
+   end subroutine dopri5_step_n
 
    !> 4th-order continuous extension of DOPRI5 (Shampine 1986; CONTD5 in DOPRI5):
    !> y(t_old + θh) = r1 + θ(r2 + (1-θ)(r3 + θ(r4 + (1-θ) r5))).
@@ -631,102 +607,43 @@ contains
       real(dp), intent(inout) :: y(:)         !! state (q, q̇)
       real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
       integer, intent(out) :: stat            !! status
+      if (size(y) == 4) then
+         call dop853_step_4(self, model, t, y, h, stat)
+      else
+         call dop853_step_n(self, model, t, y, h, stat)
+      end if
+   end subroutine dop853_step
+
+   subroutine dop853_step_4(self, model, t, y, h, stat)
+      class(dop853_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model     !! the system
+      real(dp), intent(inout) :: t            !! time [s]
+      real(dp), intent(inout) :: y(4)         !! state (q, q̇)
+      real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
+      integer, intent(out) :: stat            !! status
+      integer, parameter :: n = 4
+      real(dp) :: k_(n, 13), ynew_(n), inc_(n), e5_(n)
+      real(dp) :: e3_(n), ys_(n), err, err5, err3, deno, hnew
+      logical :: rejected, bad, accepted
+      real(dp) :: expo
+      include 'dpend_dop853_body.inc'
+   end subroutine dop853_step_4
+
+   subroutine dop853_step_n(self, model, t, y, h, stat)
+      class(dop853_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model     !! the system
+      real(dp), intent(inout) :: t            !! time [s]
+      real(dp), intent(inout) :: y(:)         !! state (q, q̇)
+      real(dp), intent(inout) :: h            !! step; on return the next proposal [s]
+      integer, intent(out) :: stat            !! status
       real(dp) :: k_(max_state, 13), ynew_(max_state), inc_(max_state), e5_(max_state)
       real(dp) :: e3_(max_state), ys_(max_state), err, err5, err3, deno, hnew
       integer :: n
       logical :: rejected, bad, accepted
       real(dp) :: expo
-      if (.not. (all(ieee_is_finite(y)) .and. ieee_is_finite(h))) then
-         stat = stat_nonfinite
-         return
-      end if
       n = size(y)
-      associate (k => k_(:n, :), ynew => ynew_(:n), inc => inc_(:n), e5 => e5_(:n), &
-                 e3 => e3_(:n), ys => ys_(:n))
-      expo = 1.0_dp/8.0_dp - 0.2_dp*self%beta
-      call first_stage(self, model, t, y, k(:, 1))
-      if (h == 0.0_dp) h = hinit(self, model, t, y, k(:, 1), 8)
-      h = sign(min(abs(h), self%h_max), h)
-      rejected = .false.; bad = .false.
-      do
-         if (too_small(t, h)) then
-            stat = merge(stat_nonfinite, stat_step_too_small, bad)
-            return
-         end if
-         ys = y + h*a21*k(:, 1)
-         call model%field(t + c2*h, ys, k(:, 2))
-         ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
-         call model%field(t + c3*h, ys, k(:, 3))
-         ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
-         call model%field(t + c4*h, ys, k(:, 4))
-         ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
-         call model%field(t + c5*h, ys, k(:, 5))
-         ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
-         call model%field(t + c6*h, ys, k(:, 6))
-         ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) &
-                                         + a76*k(:, 6))
-         call model%field(t + c7*h, ys, k(:, 7))
-         ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) &
-                                         + a86*k(:, 6) + a87*k(:, 7))
-         call model%field(t + c8*h, ys, k(:, 8))
-         ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) &
-                                         + a96*k(:, 6) + a97*k(:, 7) + a98*k(:, 8))
-         call model%field(t + c9*h, ys, k(:, 9))
-         ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) &
-                                          + a106*k(:, 6) + a107*k(:, 7) + a108*k(:, 8) &
-                                          + a109*k(:, 9))
-         call model%field(t + c10*h, ys, k(:, 10))
-         ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) &
-                                          + a116*k(:, 6) + a117*k(:, 7) + a118*k(:, 8) &
-                                          + a119*k(:, 9) + a1110*k(:, 10))
-         call model%field(t + c11*h, ys, k(:, 11))
-         ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) &
-                                          + a126*k(:, 6) + a127*k(:, 7) + a128*k(:, 8) &
-                                          + a129*k(:, 9) + a1210*k(:, 10) &
-                                          + a1211*k(:, 11))
-         call model%field(t + h, ys, k(:, 12))
-         self%n_rhs = self%n_rhs + 11
-         inc = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) &
-               + b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
-         ynew = y + h*inc
-         bad = .not. state_ok(ynew)
-         if (self%fixed_step) then
-            if (bad) then
-               stat = stat_nonfinite
-               return
-            end if
-            exit
-         end if
-         if (.not. bad) then
-            ! 5th- and 3rd-order estimates combined as in DOP853:
-            ! err = |h| err5² / sqrt(n (err5² + 0.01 err3²))
-            e5 = er1*k(:, 1) + er6*k(:, 6) + er7*k(:, 7) + er8*k(:, 8) + er9*k(:, 9) &
-                 + er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
-            e3 = inc - bhh1*k(:, 1) - bhh2*k(:, 9) - bhh3*k(:, 12)
-            err5 = weighted_ss(self%rtol, self%atol, y, ynew, e5)
-            err3 = weighted_ss(self%rtol, self%atol, y, ynew, e3)
-            deno = err5 + 0.01_dp*err3
-            if (deno <= 0.0_dp) deno = 1.0_dp
-            err = abs(h)*err5*sqrt(1.0_dp/(real(n, dp)*deno))
-            bad = .not. ieee_is_finite(err)
-         end if
-         call control_step(self, err, bad, expo, self%beta, self%facmin, self%facmax, h, &
-                           hnew, rejected, accepted)
-         if (accepted) exit
-      end do
-      ! FSAL: f(y_new) is stage 1 of the next step and stage 13 of the dense output
-      call model%field(t + h, ynew, k(:, 13))
-      self%n_rhs = self%n_rhs + 1
-      if (.not. all(ieee_is_finite(k(:, 13)))) then
-         stat = stat_nonfinite
-         return
-      end if
-      self%k(:n, 1:13) = k
-      call accept_step(self, t, y, h, ynew, k(:, 1), k(:, 13))
-      end associate
-      if (.not. self%fixed_step) h = sign(min(abs(hnew), self%h_max), hnew)
-      stat = stat_ok
-   end subroutine dop853_step
+      include 'dpend_dop853_body.inc'
+   end subroutine dop853_step_n
 
    !> 7th-order continuous extension of DOP853 (Hairer et al. I, II.6 and CONTD8):
    !> three extra stages (14–16) are evaluated on the first call within a step.
