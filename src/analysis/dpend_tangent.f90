@@ -68,15 +68,16 @@ contains
 
    !> The Jacobian of the method's vector field at its internal state y:
    !> ∂f/∂(q, p) for canonical methods, ∂f/∂(q, q̇) otherwise.
-   pure function internal_jacobian(integ, model, y) result(jac)
+   pure function internal_jacobian(integ, model, t, y) result(jac)
       class(integrator_t), intent(in) :: integ  !! the method (decides the variables)
       class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: jac(size(y), size(y))
       if (integ%canonical()) then
-         call model%canonical_jacobian(0.0_dp, y, jac)
+         call model%canonical_jacobian(t, y, jac)
       else
-         call model%jacobian(0.0_dp, y, jac)
+         call model%jacobian(t, y, jac)
       end if
    end function internal_jacobian
 
@@ -103,7 +104,7 @@ contains
       if (hit) then
          ja = self%j_cache
       else
-         ja = jacobian(integ%y_old(:ns))
+         ja = jacobian(integ%t_old, integ%y_old(:ns))
       end if
       call mat_mul(ja, ja, ja2)
       omega = sqrt(maxval(sum(abs(ja2), dim=2)))
@@ -116,14 +117,14 @@ contains
          ta = integ%t_old + real(i - 1, dp)*hs
          ym = integ%y_new(:ns)
          call integ%interpolate(model, ta + 0.5_dp*hs, ym)
-         jm = jacobian(ym)
+         jm = jacobian(ta + 0.5_dp*hs, ym)
          if (i == n) then
             yb = integ%y_new(:ns)
          else
             yb = integ%y_new(:ns)
             call integ%interpolate(model, ta + hs, yb)
          end if
-         jb = jacobian(yb)
+         jb = jacobian(ta + hs, yb)
          associate (v => self%v)
             call mat_mul(ja, v, k1)
             call mat_mul(jm, v + (0.5_dp*hs)*k1, k2)
@@ -138,10 +139,10 @@ contains
       self%y_cache = integ%y_new(:ns)
       self%j_cache = jb
    contains
-      function jacobian(y) result(jac)
-         real(dp), intent(in) :: y(:)
+      function jacobian(tt, y) result(jac)
+         real(dp), intent(in) :: tt, y(:)
          real(dp) :: jac(size(y), size(y))
-         jac = internal_jacobian(integ, model, y)
+         jac = internal_jacobian(integ, model, tt, y)
          self%n_jac = self%n_jac + 1
       end function jacobian
    end subroutine tangent_propagate

@@ -412,7 +412,10 @@ contains
                               'use a shorter --lyapunov-t', error)
       case ('poincare')
          e_lim = energy_limit(cfg%model%par, max_angular_velocity)
-         if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
+         if (.not. cfg%model%energy_sections()) then
+            call fatal_error(error, 'invalid command: poincare needs a model with '// &
+                             'energy-shell sections; the '//cfg%model%name()//' has none')
+         else if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
             call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
          else if (ch%n_points < 1) then
             call fatal_error(error, 'invalid n_points (--points): must be an integer >= 1')

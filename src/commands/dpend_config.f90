@@ -493,6 +493,8 @@ contains
       end if
       call new_integrator(cfg%method, integ, error)
       if (allocated(error)) return
+      call integ%check_model(cfg%model, error)   ! e.g. a canonical method, no Hamiltonian
+      if (allocated(error)) return
       if (.not. finite_positive(cfg%dt)) then
          call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
                           //' s')

@@ -72,10 +72,10 @@ module dpend_model
       procedure :: field_near => model_field_near
       procedure :: canonical_field_near => model_canonical_field_near
       ! what writers need
-      procedure :: n_outputs => model_n_outputs
+      procedure :: n_outputs => model_none
       procedure :: output_info => model_output_info
       procedure :: outputs => model_outputs
-      procedure :: n_parameters => model_n_outputs
+      procedure :: n_parameters => model_none
       procedure :: parameter => model_parameter
    end type model_t
 
@@ -272,12 +272,11 @@ contains
       call self%canonical_field(t, z, f)
    end subroutine model_canonical_field_near
 
-   !> Number of named per-sample outputs (none by default); also the default number
-   !> of named parameters.
-   pure integer function model_n_outputs(self)
+   !> Default count of named outputs and of named parameters: none.
+   pure integer function model_none(self)
       class(model_t), intent(in) :: self
-      model_n_outputs = 0
-   end function model_n_outputs
+      model_none = 0
+   end function model_none
 
    !> Name, number of components, units and description of output i.
    subroutine model_output_info(self, i, name, n_comp, units, description)
