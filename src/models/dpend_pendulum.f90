@@ -31,7 +31,7 @@ module dpend_pendulum
    public :: qddot_trig, rhs_qp_trig, sin_cos, sin_cos_near, energy_gradient
    public :: shell_state, shell_p_max, energy_limit
    public :: kinematics_t, kinematics, tip_position, reactions
-   public :: double_pendulum_t, double_pendulum, pendulum_model
+   public :: double_pendulum_t, pendulum_model
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -642,16 +642,7 @@ contains
 
    ! ------------------------------------------------ the model interface bindings
 
-   !> The model with parameters `par`, checked (`validate`).
-   subroutine double_pendulum(par, model, error)
-      type(pendulum_t), intent(in) :: par               !! parameters
-      type(double_pendulum_t), intent(out) :: model     !! the model
-      type(error_t), allocatable, intent(out) :: error  !! a parameter out of range
-      call validate(par, error)
-      model%par = par
-   end subroutine double_pendulum
-
-   !> The model with parameters `par`, unchecked (tests and callers that validated).
+   !> The model with parameters `par` (validated by the caller: `validate`).
    pure function pendulum_model(par) result(model)
       type(pendulum_t), intent(in) :: par  !! parameters
       type(double_pendulum_t) :: model
