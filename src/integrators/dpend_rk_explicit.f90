@@ -296,7 +296,8 @@ contains
       integer, intent(out) :: stat         !! status
       integer, parameter :: n = 4, m = 2
       real(dp) :: k1(n), k2(n), k3(n), k4(n), ynew(n), ys(n), d(m), cache(2*max_state)
-      associate (c => cache(:model%cache_size()))
+      ! the whole cache is passed (assumed size): no query of its size per step
+      associate (c => cache)
          include 'dpend_rk4_body.inc'
       end associate
       t = t + h
@@ -317,7 +318,7 @@ contains
       n = size(y); m = n/2
       associate (k1 => k1_(:n), k2 => k2_(:n), k3 => k3_(:n), k4 => k4_(:n), &
                  ynew => ynew_(:n), ys => ys_(:n), d => d_(:m), &
-                 c => cache(:model%cache_size()))
+                 c => cache)
          include 'dpend_rk4_body.inc'
       end associate
       t = t + h
