@@ -3,7 +3,8 @@
 !> - N = 2 against the double pendulum (its own formulas, Cramer's rule);
 !> - N = 1 against the compound pendulum's closed forms (pin reaction, period);
 !> - N = 3, 5 against the descriptor system of the free-body diagrams (3N unknowns q̈
-!>   and the reactions, solved at once by LAPACK dgesv), the balance of every link, and
+!>   and the reactions, solved at once by LAPACK dgesv), Lagrange's equations from the
+!>   links' energies, the balance of every link, and
 !>   the small-oscillation frequencies of K v = ω² M v (LAPACK dsygv) measured on
 !>   simulated small oscillations;
 !> - the analytic Jacobians and energy gradient against central differences;
@@ -50,7 +51,7 @@ contains
                new_unittest('n2_equals_double_pendulum', test_n2), &
                new_unittest('n1_pin_reaction_closed_form', test_n1_reaction), &
                new_unittest('n1_small_oscillation_period', test_n1_period), &
-               new_unittest('n3_n5_descriptor_system_and_balance', test_descriptor), &
+               new_unittest('n3_n5_descriptor_lagrange_balance', test_descriptor), &
                new_unittest('n3_n5_small_oscillation_frequencies', test_modes), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
                new_unittest('n3_gauss6_energy', test_energy)]
@@ -184,6 +185,8 @@ contains
          d(6) = max(d(6), rel_diff([chain%hamiltonian_value(0.0_dp, z)], &
                                    [pend%hamiltonian_value(0.0_dp, z)]))
       end do
+      call sections(error)
+      if (allocated(error)) return
       call report('N=2 vs double pendulum, max rel diff: qdd '//real_str(d(1), 2)// &
                   ', reactions '//real_str(d(2), 2)//', energy '//real_str(d(3), 2)// &
                   ', momenta '//real_str(d(4), 2)//', canonical field '//real_str(d(5), 2)// &
@@ -191,6 +194,39 @@ contains
       call check(error, maxval(d), 0.0_dp, 'N=2 vs double pendulum, max rel diff', &
                  abs=1e-13_dp)
    end subroutine test_n2
+
+   !> N = 2 has energy-shell sections (N = 3 not): the states on the section have the
+   !> requested energy (the chain's own `energy`) to 1e-12 of T + Σ G_i.
+   subroutine sections(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(rng_t) :: rng
+      type(chain_t) :: chain
+      real(dp) :: e, q(2), qd(2), pmax, d
+      logical :: found
+      integer :: k, link, n_found
+      call random_chain(rng, 3, chain)
+      call check_true(error, .not. chain%energy_sections(), 'N=3 claims energy sections')
+      if (allocated(error)) return
+      d = 0.0_dp; n_found = 0
+      do k = 1, 200
+         call random_chain(rng, 2, chain)
+         call check_true(error, chain%energy_sections(), 'N=2 has no energy sections')
+         if (allocated(error)) return
+         link = 1 + mod(k, 2)
+         e = uniform(rng, -0.5_dp, 2.0_dp)*sum(chain%gl)
+         pmax = chain%section_p_max(e, link, -0.5_dp*pi)
+         call chain%section_state(e, link, -0.5_dp*pi, 1, uniform(rng, -pi, pi), &
+                                  uniform(rng, -1.0_dp, 1.0_dp)*pmax, q, qd, found)
+         if (.not. found) cycle
+         n_found = n_found + 1
+         d = max(d, abs(chain%energy(0.0_dp, [q, qd]) - e) &
+                 /(chain%energy(0.0_dp, [q, qd]) - chain%potential(q) + sum(chain%gl)))
+      end do
+      call report('N=2 sections: '//to_str(n_found)//' states on the shell, max rel '// &
+                  'energy error '//real_str(d, 2))
+      call check_true(error, n_found > 20, 'too few section states: '//to_str(n_found))
+      call check(error, d, 0.0_dp, 'N=2 section state energy', abs=1e-12_dp)
+   end subroutine sections
 
    !> N = 1: q̈ = −(3g/(2L)) cos q and F01 = m (a_C + g ĵ), a_C = (L/2)(q̈ n − q̇² u).
    subroutine test_n1_reaction(error)
@@ -302,14 +338,65 @@ contains
       f = reshape(b(n + 1:3*n), [2, n])
    end subroutine descriptor
 
+   !> q̈ from Lagrange's equations M q̈ + Σ_jl Γ_ijl q̇_j q̇_l = −∂V/∂q_i, written from the
+   !> energies of the links: v_Ck = Σ_j c_kj q̇_j n_j (c_kj = L_j for j < k, L_k/2 for
+   !> j = k), T = Σ_k ½ m_k |v_Ck|² + ½ I_Ck q̇_k², so M_ij = Σ_k m_k c_ki c_kj n_i·n_j
+   !> + δ_ij I_Ci, ∂M_ij/∂q_l = −Σ_k m_k c_ki c_kj (δ_il u_i·n_j + δ_jl n_i·u_j), Γ the
+   !> Christoffel symbols of the first kind; V = Σ_k m_k g y_Ck. Solved by dgesv.
+   subroutine lagrange(chain, y, qdd)
+      type(chain_t), intent(in) :: chain
+      real(dp), intent(in) :: y(:)
+      real(dp), intent(out) :: qdd(:)
+      real(dp) :: u(2, chain%n), nv(2, chain%n), cc(chain%n, chain%n)
+      real(dp) :: mm(chain%n, chain%n), dm(chain%n, chain%n, chain%n), b(chain%n)
+      integer :: n, i, j, k, l, ipiv(chain%n), info
+      n = chain%n
+      cc = 0.0_dp
+      do k = 1, n
+         u(:, k) = [cos(y(k)), sin(y(k))]
+         nv(:, k) = [-sin(y(k)), cos(y(k))]
+         do j = 1, k - 1
+            cc(k, j) = chain%l(j)
+         end do
+         cc(k, k) = 0.5_dp*chain%l(k)
+      end do
+      mm = 0.0_dp; dm = 0.0_dp
+      do i = 1, n
+         mm(i, i) = chain%m(i)*chain%l(i)**2/12.0_dp
+         do j = 1, n
+            do k = 1, n
+               mm(i, j) = mm(i, j) + chain%m(k)*cc(k, i)*cc(k, j)*dot_product(nv(:, i), nv(:, j))
+               dm(i, j, i) = dm(i, j, i) &
+                             - chain%m(k)*cc(k, i)*cc(k, j)*dot_product(u(:, i), nv(:, j))
+               dm(i, j, j) = dm(i, j, j) &
+                             - chain%m(k)*cc(k, i)*cc(k, j)*dot_product(nv(:, i), u(:, j))
+            end do
+         end do
+      end do
+      do i = 1, n
+         b(i) = 0.0_dp
+         do k = 1, n
+            b(i) = b(i) - chain%m(k)*chain%g*cc(k, i)*u(1, i)
+         end do
+         do j = 1, n
+            do l = 1, n
+               b(i) = b(i) - 0.5_dp*(dm(i, j, l) + dm(i, l, j) - dm(j, l, i))*y(n + j)*y(n + l)
+            end do
+         end do
+      end do
+      call dgesv(n, 1, mm, n, ipiv, b, n, info)
+      if (info /= 0) error stop 'lagrange: dgesv failed'
+      qdd = b
+   end subroutine lagrange
+
    !> N = 3, 5: q̈ and the reactions of the model equal those of the descriptor system
-   !> to 1e-12; with the model's reactions every link's force and moment balance holds
-   !> to 1e-12 of the largest term.
+   !> to 1e-12, q̈ that of Lagrange's equations to 1e-12; with the model's reactions
+   !> every link's force and moment balance holds to 1e-12 of the largest term.
    subroutine test_descriptor(error)
       type(error_t), allocatable, intent(out) :: error
       type(rng_t) :: rng
       type(chain_t) :: chain
-      real(dp) :: y(10), fy(10), qdd(5), fd(2, 5), fm(2, 5), d(4)
+      real(dp) :: y(10), fy(10), qdd(5), fd(2, 5), fm(2, 5), d(5)
       real(dp) :: rc(2, 5), vc(2, 5), ac(2, 5), rj(2, 5), vj(2, 5), aj(2, 5), nxt(2), u(2)
       real(dp) :: res(3), scale(3), h
       integer :: k, n, i, nn
@@ -323,6 +410,8 @@ contains
             call chain%field(0.0_dp, y(1:2*n), fy(1:2*n))
             call descriptor(chain, y(1:2*n), qdd(1:n), fd(:, 1:n))
             d(1) = max(d(1), rel_diff(fy(n + 1:2*n), qdd(1:n)))
+            call lagrange(chain, y(1:2*n), qdd(1:n))
+            d(5) = max(d(5), rel_diff(fy(n + 1:2*n), qdd(1:n)))
             call chain%reactions(y(1:n), y(n + 1:2*n), fy(n + 1:2*n), fm(:, 1:n))
             d(2) = max(d(2), rel_diff(reshape(fm(:, 1:n), [2*n]), reshape(fd(:, 1:n), [2*n])))
             call chain%kinematics(y(1:n), y(n + 1:2*n), fy(n + 1:2*n), rc(:, 1:n), &
@@ -355,10 +444,12 @@ contains
       end do
       call report('N=3,5 vs descriptor system (dgesv), max rel diff: qdd '// &
                   real_str(d(1), 2)//', reactions '//real_str(d(2), 2)// &
+                  '; vs Lagrange: qdd '//real_str(d(5), 2)// &
                   '; balance residuals: force '//real_str(d(3), 2)//', moment '// &
                   real_str(d(4), 2))
       call check(error, max(d(1), d(2)), 0.0_dp, 'N=3,5 vs descriptor, max rel diff', &
                  abs=1e-12_dp)
+      call check(error, d(5), 0.0_dp, 'N=3,5 vs Lagrange, max rel diff', abs=1e-12_dp)
       call check(error, max(d(3), d(4)), 0.0_dp, 'N=3,5 link balance residual', abs=1e-12_dp)
    end subroutine test_descriptor
 

@@ -50,6 +50,7 @@ module dpend_chain
    use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
+   use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
    implicit none
    private
    public :: chain_t, chain_model
@@ -76,6 +77,9 @@ module dpend_chain
       procedure :: canonical_field => chain_canonical_field
       procedure :: canonical_jacobian => chain_canonical_jacobian
       procedure :: energy_gradient => chain_energy_gradient
+      procedure :: energy_sections => chain_energy_sections
+      procedure :: section_state => chain_section_state
+      procedure :: section_p_max => chain_section_p_max
       procedure :: n_outputs => chain_n_outputs
       procedure :: output_info => chain_output_info
       procedure :: outputs => chain_outputs
@@ -578,6 +582,43 @@ contains
       end do
       g(n + 1:2*n) = p(1:n)
    end subroutine chain_energy_gradient
+
+   ! ---------------------------------------------------------------- Poincaré sections
+
+   !> Energy-shell sections exist for two links only (a two-degree-of-freedom
+   !> Hamiltonian); there the chain is the double pendulum, whose formulas are used.
+   pure logical function chain_energy_sections(self)
+      class(chain_t), intent(in) :: self
+      chain_energy_sections = self%n == 2
+   end function chain_energy_sections
+
+   !> The double pendulum of a two-link chain.
+   pure function as_pendulum(self) result(par)
+      class(chain_t), intent(in) :: self
+      type(pendulum_t) :: par
+      par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+   end function as_pendulum
+
+   !> N = 2 only (`energy_sections`): the double pendulum's `shell_state`.
+   pure subroutine chain_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, &
+                                       found)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle, q_o, p_o
+      integer, intent(in) :: link, direction
+      real(dp), intent(out) :: q(:), qd(:)
+      logical, intent(out) :: found
+      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
+      call shell_state(as_pendulum(self), e, link, angle, direction, q_o, p_o, q, qd, found)
+   end subroutine chain_section_state
+
+   !> N = 2 only (`energy_sections`): the double pendulum's `shell_p_max`.
+   pure real(dp) function chain_section_p_max(self, e, link, angle) result(p)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle
+      integer, intent(in) :: link
+      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
+      p = shell_p_max(as_pendulum(self), e, link, angle)
+   end function chain_section_p_max
 
    ! ---------------------------------------------------------------- kinematics, reactions
 
