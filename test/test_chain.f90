@@ -154,7 +154,7 @@ contains
       type(double_pendulum_t) :: pend
       type(pendulum_t) :: par
       real(dp) :: y(4), fc(4), fp(4), pc(2), pp(2), z(4), gc(4), gp(4), fj(2, 2)
-      real(dp) :: f01(2), f21(2), d(6), out(28)
+      real(dp) :: f01(2), f21(2), d(8), out(28), jc(4, 4), jp(4, 4)
       type(error_t), allocatable :: err
       integer :: k
       d = 0.0_dp
@@ -184,16 +184,64 @@ contains
          d(5) = max(d(5), rel_diff(gc, gp))
          d(6) = max(d(6), rel_diff([chain%hamiltonian_value(0.0_dp, z)], &
                                    [pend%hamiltonian_value(0.0_dp, z)]))
+         call chain%jacobian(0.0_dp, y, jc)
+         call pend%jacobian(0.0_dp, y, jp)
+         d(7) = max(d(7), rel_diff(reshape(jc, [16]), reshape(jp, [16])))
+         call chain%canonical_jacobian(0.0_dp, z, jc)
+         call pend%canonical_jacobian(0.0_dp, z, jp)
+         d(7) = max(d(7), rel_diff(reshape(jc, [16]), reshape(jp, [16])))
+         call chain%energy_gradient(0.0_dp, y, gc)
+         call pend%energy_gradient(0.0_dp, y, gp)
+         d(8) = max(d(8), rel_diff(gc, gp))
       end do
       call sections(error)
       if (allocated(error)) return
       call report('N=2 vs double pendulum, max rel diff: qdd '//real_str(d(1), 2)// &
                   ', reactions '//real_str(d(2), 2)//', energy '//real_str(d(3), 2)// &
                   ', momenta '//real_str(d(4), 2)//', canonical field '//real_str(d(5), 2)// &
-                  ', H '//real_str(d(6), 2))
+                  ', H '//real_str(d(6), 2)//', jacobians '//real_str(d(7), 2)// &
+                  ', energy gradient '//real_str(d(8), 2))
       call check(error, maxval(d), 0.0_dp, 'N=2 vs double pendulum, max rel diff', &
                  abs=1e-13_dp)
+      if (allocated(error)) return
+      call same_trajectories(error)
    end subroutine test_n2
+
+   !> rk4, dop853 and gauss6 carry the two-link chain and the double pendulum along the
+   !> same trajectory (1 s from q = (0.3, 1.2) at rest; the integrators' four-component
+   !> paths): the states agree to 1e-10 (rounding of the fields ~1e-15, amplified by
+   !> the divergence of nearby trajectories).
+   subroutine same_trajectories(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      character(len=6), parameter :: names(3) = ['rk4   ', 'dop853', 'gauss6']
+      type(chain_t) :: chain
+      type(double_pendulum_t) :: pend
+      class(integrator_t), allocatable :: integ
+      real(dp) :: yc(4), yp(4), t, h, qc(2), wc(2), qp(2), wp(2), d
+      integer :: i, stat
+      chain = chain_model([1.0_dp, 0.6_dp], [1.0_dp, 0.8_dp], 9.81_dp, err)
+      pend = pendulum_model(pendulum_t(m1=1.0_dp, m2=0.6_dp, l1=1.0_dp, l2=0.8_dp, g=9.81_dp))
+      d = 0.0_dp
+      do i = 1, 3
+         call new_integrator(trim(names(i)), integ, err)
+         yc = integ%to_internal(chain, [0.3_dp, 1.2_dp], [0.0_dp, 0.0_dp])
+         t = 0.0_dp; h = 1e-3_dp
+         call advance_to(integ, chain, t, yc, 1.0_dp, h, stat)
+         call check_true(error, stat == stat_ok, trim(names(i))//' failed on the chain')
+         if (allocated(error)) return
+         call integ%to_physical(chain, yc, qc, wc)
+         call new_integrator(trim(names(i)), integ, err)
+         yp = integ%to_internal(pend, [0.3_dp, 1.2_dp], [0.0_dp, 0.0_dp])
+         t = 0.0_dp; h = 1e-3_dp
+         call advance_to(integ, pend, t, yp, 1.0_dp, h, stat)
+         call integ%to_physical(pend, yp, qp, wp)
+         d = max(d, rel_diff([qc, wc], [qp, wp]))
+      end do
+      call report('N=2 trajectories (rk4, dop853, gauss6; 1 s) vs double pendulum: '// &
+                  'max rel diff '//real_str(d, 2))
+      call check(error, d, 0.0_dp, 'N=2 trajectories vs double pendulum', abs=1e-10_dp)
+   end subroutine same_trajectories
 
    !> N = 2 has energy-shell sections (N = 3 not): the states on the section have the
    !> requested energy (the chain's own `energy`) to 1e-12 of T + Σ G_i.
