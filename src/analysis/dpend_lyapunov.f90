@@ -25,32 +25,12 @@ module dpend_lyapunov
                                stat_tangent_substeps
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
+   use dpend_lapack, only: dgeqrf, dorgqr
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
    public :: qr_positive, lyapunov_acc_t, renormalize, batch_exponents
    public :: lyapunov_result_t, lyapunov_spectrum, sort_descending
-
-   interface
-      !> LAPACK: QR factorization of a general m×n matrix (Householder).
-      subroutine dgeqrf(m, n, a, lda, tau, work, lwork, info)
-         import :: dp
-         integer, intent(in) :: m, n, lda, lwork
-         real(dp), intent(inout) :: a(lda, *)
-         real(dp), intent(out) :: tau(*)
-         real(dp), intent(inout) :: work(*)
-         integer, intent(out) :: info
-      end subroutine dgeqrf
-      !> LAPACK: the m×n matrix Q with orthonormal columns from dgeqrf's reflectors.
-      subroutine dorgqr(m, n, k, a, lda, tau, work, lwork, info)
-         import :: dp
-         integer, intent(in) :: m, n, k, lda, lwork
-         real(dp), intent(inout) :: a(lda, *)
-         real(dp), intent(in) :: tau(*)
-         real(dp), intent(inout) :: work(*)
-         integer, intent(out) :: info
-      end subroutine dorgqr
-   end interface
 
    !> Running sums of ln R_ii from time t0 and their history.
    type :: lyapunov_acc_t

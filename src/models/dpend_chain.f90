@@ -1,0 +1,721 @@
+!> The chain of N uniform rods on pin joints (issue 12): the chapter's Newton–Euler
+!> method for any number of links, with every joint's reaction.
+!>
+!> Link i (1 … N) has mass m_i, length L_i, centre of mass C_i at its middle and
+!> I_Ci = m_i L_i²/12. Link 1 turns about the pin A at the origin; link i + 1 is pinned
+!> to the far end of link i. Angles q_i are absolute, from the horizontal x axis,
+!> counter-clockwise, y up (the chapter's convention); hanging at rest: q_i = −π/2.
+!> N = 2 is the chapter's double pendulum (`dpend_pendulum`).
+!>
+!> Notation: u_i = (cos q_i, sin q_i) along link i, n_i = (−sin q_i, cos q_i),
+!> h_i = L_i/2, P_0 = A = 0 and P_i = P_(i−1) + L_i u_i the far end of link i (joint
+!> i + 1, the tip for i = N), C_i = P_(i−1) + h_i u_i. A point at distance s along link
+!> i moves with a = a_P(i−1) + s (q̈_i n_i − q̇_i² u_i). F_(i−1,i) is the force of body
+!> i − 1 on body i at joint i (body 0 the ground), F_(N,N+1) = 0; 2-D cross product
+!> a × b = a_x b_y − a_y b_x.
+!>
+!> Newton–Euler, per link (the chapter's free-body diagrams):
+!>   m_i a_Ci = F_(i−1,i) − F_(i,i+1) + G_i,                   G_i = (0, −m_i g),
+!>   I_Ci q̈_i = (P_(i−1) − C_i) × F_(i−1,i) + (P_i − C_i) × (−F_(i,i+1))
+!>            = −h_i u_i × (F_(i−1,i) + F_(i,i+1)).
+!> The force equations, summed from the tip, give every reaction:
+!>   F_(i−1,i) = F_(i,i+1) + m_i (a_Ci + g ĵ) = Σ_(k≥i) m_k (a_Ck + g ĵ).
+!> Substituted into the moment equations (eliminating the reactions), with
+!> a_Ck = Σ_(j<k) L_j (q̈_j n_j − q̇_j² u_j) + h_k (q̈_k n_k − q̇_k² u_k),
+!> u_i × n_j = cos(q_i − q_j) and u_i × u_j = sin(q_j − q_i), they become
+!>   M(q) q̈ = f(q, q̇),  M_ij = K_ij cos(q_i − q_j),
+!>   f_i = −h_i u_i × (F⁰_(i−1,i) + F⁰_(i,i+1)),
+!> where F⁰ are the reactions of the same recursion with q̈ = 0 (centripetal terms and
+!> gravity only), and the coefficient of q̈_j in the moment equation of link i is
+!>   K_ii = (m_i/3 + Σ_(k>i) m_k) L_i²,  K_ij = (m_l/2 + Σ_(k>l) m_k) L_i L_j,
+!>   l = max(i, j) (i ≠ j),
+!> symmetric, so that M is the mass matrix of Lagrange's equations (positive
+!> definite: ½ q̇ᵀ M q̇ is the kinetic energy). Written out,
+!>   f_i = −Σ_j K_ij sin(q_i − q_j) q̇_j² − G_i cos q_i,  G_i = g L_i (m_i/2 + Σ_(k>i) m_k),
+!> with V = Σ_i G_i sin q_i (zero with every link horizontal). The field evaluates f by
+!> the recursion (O(N)) and solves M q̈ = f by a Cholesky factorization (`cholesky`).
+!>
+!> Cholesky: a small pure routine of this module rather than LAPACK's dpotrf/dpotrs:
+!> the model interface's procedures are `pure` (LAPACK routines are external, not
+!> pure, and report errors through xerbla), and for N ≤ max_dof = 32 the inlined loops
+!> cost less than the calls (no blocking pays at this size). Locals are fixed-size
+!> arrays of max_dof (gfortran allocates automatic arrays on the heap), so the hot path
+!> does not allocate.
+!>
+!> Hamiltonian form: p = M(q) q̇, H = ½ pᵀ M⁻¹ p + V, ∂H/∂p = q̇ and
+!>   ∂H/∂q_i = −τ_i + G_i cos q_i,  τ_i = ∂T/∂q_i|_q̇ = −q̇_i Σ_j K_ij sin(q_i − q_j) q̇_j.
+module dpend_chain
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g
+   use dpend_cli, only: to_str
+   use dpend_model, only: model_t, max_dof
+   use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
+   implicit none
+   private
+   public :: chain_t, chain_model
+
+   !> The chain of N uniform rods (SI units); build it with `chain_model`.
+   type, extends(model_t) :: chain_t
+      integer :: n = 0                       !! number of links N
+      real(dp), allocatable :: m(:)          !! masses m_i [kg] (N)
+      real(dp), allocatable :: l(:)          !! lengths L_i [m] (N)
+      real(dp) :: g = 9.8_dp                 !! gravitational acceleration [m/s²]
+      real(dp), allocatable :: k(:, :)       !! K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²]
+      real(dp), allocatable :: gl(:)         !! G_i of V = Σ G_i sin q_i [J]
+   contains
+      procedure :: n_dof => chain_n_dof
+      procedure :: name => chain_name
+      procedure :: field => chain_field
+      procedure :: jacobian => chain_jacobian
+      procedure :: energy => chain_energy
+      procedure :: energy_scale => chain_energy_scale
+      procedure :: hamiltonian => chain_true
+      procedure :: momenta => chain_momenta
+      procedure :: velocities => chain_velocities
+      procedure :: hamiltonian_value => chain_hamiltonian_value
+      procedure :: canonical_field => chain_canonical_field
+      procedure :: canonical_jacobian => chain_canonical_jacobian
+      procedure :: energy_gradient => chain_energy_gradient
+      procedure :: energy_sections => chain_energy_sections
+      procedure :: section_state => chain_section_state
+      procedure :: section_p_max => chain_section_p_max
+      procedure :: n_outputs => chain_n_outputs
+      procedure :: output_info => chain_output_info
+      procedure :: outputs => chain_outputs
+      procedure :: n_parameters => chain_n_parameters
+      procedure :: parameter => chain_parameter
+      !> Mass matrix M(q) (n, n) [kg m²].
+      procedure :: mass_matrix => chain_mass_matrix
+      !> Accelerations q̈ by Newton–Euler [rad/s²].
+      procedure :: accelerations => chain_accelerations
+      !> Every joint reaction F_(i−1,i) [N] from q, q̇, q̈ (recursion from the tip).
+      procedure :: reactions => chain_reactions
+      !> Positions, velocities, accelerations of the centres and link ends.
+      procedure :: kinematics => chain_kinematics
+      !> Potential energy V(q) [J].
+      procedure :: potential => chain_potential
+   end type chain_t
+
+   !> The writer's per-sample outputs, 2N values (x, y per link or joint) each.
+   integer, parameter :: n_out = 7
+   character(len=7), parameter :: out_names(n_out) = &
+      [character(len=7) :: 'F_joint', 'rC', 'vC', 'aC', 'rJ', 'vJ', 'aJ']
+   character(len=5), parameter :: out_units(n_out) = &
+      [character(len=5) :: 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2']
+   character(len=80), parameter :: out_text(n_out) = [character(len=80) :: &
+      'force of body i-1 on body i at joint i (x, y), i = 1..N, body 0 the ground', &
+      'position of the centre of mass of link i (x, y)', &
+      'velocity of the centre of mass of link i (x, y)', &
+      'acceleration of the centre of mass of link i (x, y)', &
+      'position of the far end of link i: joint i+1, the tip for i = N (x, y)', &
+      'velocity of the far end of link i (x, y)', &
+      'acceleration of the far end of link i (x, y)']
+
+contains
+
+   !> The chain with masses m [kg], lengths l [m] (one per link) and g [m/s²],
+   !> checked: 1 ≤ N ≤ max_dof links, m and l of the same size, each within
+   !> dpend_limits' [min_mass, max_mass] and [min_length, max_length], g in [0, max_g].
+   !> The error names the field (m3, l2, g, links), its value and the accepted range.
+   function chain_model(m, l, g, error) result(model)
+      real(dp), intent(in) :: m(:)                      !! masses [kg]
+      real(dp), intent(in) :: l(:)                      !! lengths [m]
+      real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      type(chain_t) :: model                            !! the chain (n = 0 when refused)
+      character(len=*), parameter :: reason = 'keeps every product of the model finite'
+      integer :: i, j, n
+      real(dp) :: tail
+      n = size(m)
+      if (n < 1 .or. n > max_dof) then
+         call fatal_error(error, 'invalid links: '//to_str(n)//' is outside [1, ' &
+                          //to_str(max_dof)//']')
+         return
+      end if
+      if (size(l) /= n) then
+         call fatal_error(error, 'invalid l: '//to_str(size(l))//' lengths for ' &
+                          //to_str(n)//' links (one per link)')
+         return
+      end if
+      do i = 1, n
+         call check_range('m'//to_str(i), m(i), min_mass, max_mass, 'kg', error, reason)
+         if (allocated(error)) return
+      end do
+      do i = 1, n
+         call check_range('l'//to_str(i), l(i), min_length, max_length, 'm', error, reason)
+         if (allocated(error)) return
+      end do
+      call check_range('g', g, 0.0_dp, max_g, 'm/s^2', error, reason)
+      if (allocated(error)) return
+      model%n = n
+      model%m = m
+      model%l = l
+      model%g = g
+      allocate (model%k(n, n), model%gl(n))
+      ! tail = Σ_(k>i) m_k, from the tip
+      tail = 0.0_dp
+      do i = n, 1, -1
+         model%k(i, i) = (m(i)/3.0_dp + tail)*l(i)**2
+         do j = i + 1, n
+            model%k(i, j) = (0.5_dp*m(j) + sum(m(j + 1:n)))*l(i)*l(j)
+            model%k(j, i) = model%k(i, j)
+         end do
+         model%gl(i) = g*l(i)*(0.5_dp*m(i) + tail)
+         tail = tail + m(i)
+      end do
+   end function chain_model
+
+   ! ---------------------------------------------------------------- linear algebra
+
+   !> In-place Cholesky factorization A = L Lᵀ of the leading n×n block of a
+   !> (lower triangle used and overwritten by L). M is positive definite for every
+   !> accepted parameter; a non-positive pivot (not reachable) gives a NaN-free
+   !> result by clamping at tiny, so that the debug profile never traps.
+   pure subroutine cholesky(n, a)
+      integer, intent(in) :: n                       !! order
+      real(dp), intent(inout) :: a(max_dof, max_dof) !! matrix, then L (lower)
+      integer :: i, j, k
+      real(dp) :: s
+      do j = 1, n
+         s = a(j, j)
+         do k = 1, j - 1
+            s = s - a(j, k)**2
+         end do
+         a(j, j) = sqrt(max(s, tiny(1.0_dp)))
+         do i = j + 1, n
+            s = a(i, j)
+            do k = 1, j - 1
+               s = s - a(i, k)*a(j, k)
+            end do
+            a(i, j) = s/a(j, j)
+         end do
+      end do
+   end subroutine cholesky
+
+   !> Solve L Lᵀ x = b in place for the factor of `cholesky`.
+   pure subroutine cholesky_solve(n, a, b)
+      integer, intent(in) :: n                       !! order
+      real(dp), intent(in) :: a(max_dof, max_dof)    !! L (lower)
+      real(dp), intent(inout) :: b(max_dof)          !! right-hand side, then x
+      integer :: i, k
+      real(dp) :: s
+      do i = 1, n
+         s = b(i)
+         do k = 1, i - 1
+            s = s - a(i, k)*b(k)
+         end do
+         b(i) = s/a(i, i)
+      end do
+      do i = n, 1, -1
+         s = b(i)
+         do k = i + 1, n
+            s = s - a(k, i)*b(k)
+         end do
+         b(i) = s/a(i, i)
+      end do
+   end subroutine cholesky_solve
+
+   !> cos and sin of the angles.
+   pure subroutine trig(n, q, c, s)
+      integer, intent(in) :: n            !! links
+      real(dp), intent(in) :: q(*)        !! angles [rad]
+      real(dp), intent(out) :: c(max_dof) !! cos q_i
+      real(dp), intent(out) :: s(max_dof) !! sin q_i
+      integer :: i
+      do i = 1, n
+         c(i) = cos(q(i))
+         s(i) = sin(q(i))
+      end do
+   end subroutine trig
+
+   !> M(q) = K_ij cos(q_i − q_j) into the leading block of a, from cos and sin.
+   pure subroutine fill_mass(self, c, s, a)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), intent(out) :: a(max_dof, max_dof)    !! M in a(1:n, 1:n)
+      integer :: i, j
+      do j = 1, self%n
+         a(j, j) = self%k(j, j)
+         do i = j + 1, self%n
+            a(i, j) = self%k(i, j)*(c(i)*c(j) + s(i)*s(j))
+            a(j, i) = a(i, j)
+         end do
+      end do
+   end subroutine fill_mass
+
+   !> f(q, q̇) of M q̈ = f by the Newton–Euler recursion with q̈ = 0: centripetal
+   !> accelerations a⁰ from the pin outwards, the reactions F⁰ from the tip inwards,
+   !> f_i = −h_i u_i × (F⁰_(i−1,i) + F⁰_(i,i+1)).
+   pure subroutine rhs_newton_euler(self, c, s, qd, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), intent(in) :: qd(*)                   !! q̇ [rad/s]
+      real(dp), intent(out) :: f(max_dof)             !! f [N m]
+      real(dp) :: acx(max_dof), acy(max_dof), px, py, w2, h, fx, fy, gx, gy
+      integer :: i, n
+      n = self%n
+      px = 0.0_dp; py = 0.0_dp            ! a⁰ of the near end of link i
+      do i = 1, n
+         w2 = qd(i)**2
+         h = 0.5_dp*self%l(i)
+         acx(i) = px - h*w2*c(i)
+         acy(i) = py - h*w2*s(i)
+         px = px - self%l(i)*w2*c(i)
+         py = py - self%l(i)*w2*s(i)
+      end do
+      fx = 0.0_dp; fy = 0.0_dp            ! F⁰_(i,i+1), zero beyond the tip
+      do i = n, 1, -1
+         gx = fx + self%m(i)*acx(i)                 ! F⁰_(i−1,i)
+         gy = fy + self%m(i)*(acy(i) + self%g)
+         f(i) = -0.5_dp*self%l(i)*(c(i)*(gy + fy) - s(i)*(gx + fx))
+         fx = gx; fy = gy
+      end do
+   end subroutine rhs_newton_euler
+
+   !> q̈ (leading n of qdd) and the Cholesky factor of M at (q, q̇).
+   pure subroutine solve_qdd(self, q, qd, qdd, a, c, s)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(*), qd(*)            !! angles [rad], rates [rad/s]
+      real(dp), intent(out) :: qdd(max_dof)          !! q̈ [rad/s²]
+      real(dp), intent(out) :: a(max_dof, max_dof)   !! Cholesky factor of M
+      real(dp), intent(out) :: c(max_dof), s(max_dof) !! cos q, sin q
+      call trig(self%n, q, c, s)
+      call fill_mass(self, c, s, a)
+      call cholesky(self%n, a)
+      call rhs_newton_euler(self, c, s, qd, qdd)
+      call cholesky_solve(self%n, a, qdd)
+   end subroutine solve_qdd
+
+   !> q̇ = M⁻¹ p (leading n of qd) and the Cholesky factor of M.
+   pure subroutine solve_qd(self, q, p, qd, a, c, s)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(*), p(*)             !! angles [rad], momenta [kg m²/s]
+      real(dp), intent(out) :: qd(max_dof)           !! q̇ [rad/s]
+      real(dp), intent(out) :: a(max_dof, max_dof)   !! Cholesky factor of M
+      real(dp), intent(out) :: c(max_dof), s(max_dof) !! cos q, sin q
+      integer :: n
+      n = self%n
+      call trig(n, q, c, s)
+      call fill_mass(self, c, s, a)
+      call cholesky(n, a)
+      qd(1:n) = p(1:n)
+      call cholesky_solve(n, a, qd)
+   end subroutine solve_qd
+
+   ! ---------------------------------------------------------------- model bindings
+
+   pure integer function chain_n_dof(self)
+      class(chain_t), intent(in) :: self
+      chain_n_dof = self%n
+   end function chain_n_dof
+
+   pure function chain_name(self) result(name)
+      class(chain_t), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = 'chain of '//to_str(self%n)//' links'
+   end function chain_name
+
+   pure logical function chain_true(self)
+      class(chain_t), intent(in) :: self
+      chain_true = .true.
+   end function chain_true
+
+   !> (q̇, q̈) with q̈ from Newton–Euler and a Cholesky solve.
+   pure subroutine chain_field(self, t, y, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call solve_qdd(self, y(1:n), y(n + 1:2*n), qdd, a, c, s)
+      f(1:n) = y(n + 1:2*n)
+      f(n + 1:2*n) = qdd(1:n)
+   end subroutine chain_field
+
+   !> The accelerations q̈ [rad/s²] (n) at (q, q̇).
+   pure function chain_accelerations(self, q, qd) result(qdd)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(:), qd(:)   !! angles [rad], rates [rad/s]
+      real(dp) :: qdd(self%n)
+      real(dp) :: w(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      call solve_qdd(self, q, qd, w, a, c, s)
+      qdd = w(1:self%n)
+   end function chain_accelerations
+
+   !> M(q) [kg m²].
+   pure function chain_mass_matrix(self, q) result(mm)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(:)          !! angles [rad]
+      real(dp) :: mm(self%n, self%n)
+      real(dp) :: a(max_dof, max_dof), c(max_dof), s(max_dof)
+      call trig(self%n, q, c, s)
+      call fill_mass(self, c, s, a)
+      mm = a(1:self%n, 1:self%n)
+   end function chain_mass_matrix
+
+   !> ∂f/∂y of `field`: with q̈ = M⁻¹ f,
+   !>   ∂q̈/∂q_k = M⁻¹ (∂f/∂q_k − (∂M/∂q_k) q̈),  ∂q̈/∂q̇_k = M⁻¹ ∂f/∂q̇_k, where
+   !>   ∂f_i/∂q_i = G_i sin q_i − Σ_(j≠i) K_ij cos(q_i − q_j) q̇_j²,
+   !>   ∂f_i/∂q_k = K_ik cos(q_i − q_k) q̇_k² (k ≠ i),  ∂f_i/∂q̇_k = −2 K_ik sin(q_i − q_k) q̇_k,
+   !>   ((∂M/∂q_k) x)_i = −δ_ik Σ_j K_ij sin(q_i − q_j) x_j + K_ik sin(q_i − q_k) x_k.
+   pure subroutine chain_jacobian(self, t, y, jac)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: jac(:, :)
+      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), col(max_dof)
+      real(dp) :: cij, sij, qd(max_dof)
+      integer :: n, i, k
+      n = self%n
+      qd(1:n) = y(n + 1:2*n)
+      call solve_qdd(self, y(1:n), qd, qdd, a, c, s)
+      jac = 0.0_dp
+      do i = 1, n
+         jac(i, n + i) = 1.0_dp
+      end do
+      do k = 1, n
+         ! column ∂/∂q_k
+         col(1:n) = 0.0_dp
+         do i = 1, n
+            if (i == k) cycle
+            cij = c(i)*c(k) + s(i)*s(k)
+            sij = s(i)*c(k) - c(i)*s(k)
+            col(i) = self%k(i, k)*(cij*qd(k)**2 - sij*qdd(k))
+            col(k) = col(k) - self%k(k, i)*(cij*qd(i)**2 + sij*qdd(i))
+         end do
+         col(k) = col(k) + self%gl(k)*s(k)
+         call cholesky_solve(n, a, col)
+         jac(n + 1:2*n, k) = col(1:n)
+         ! column ∂/∂q̇_k
+         do i = 1, n
+            sij = s(i)*c(k) - c(i)*s(k)
+            col(i) = -2.0_dp*self%k(i, k)*sij*qd(k)
+         end do
+         call cholesky_solve(n, a, col)
+         jac(n + 1:2*n, n + k) = col(1:n)
+      end do
+   end subroutine chain_jacobian
+
+   !> V(q) = Σ G_i sin q_i, zero with every link horizontal [J].
+   pure real(dp) function chain_potential(self, q) result(v)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(:)          !! angles [rad]
+      integer :: i
+      v = 0.0_dp
+      do i = 1, self%n
+         v = v + self%gl(i)*sin(q(i))
+      end do
+   end function chain_potential
+
+   !> ½ q̇ᵀ M q̇ + V [J].
+   pure real(dp) function chain_energy(self, t, y)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp) :: p(max_dof)
+      integer :: n
+      n = self%n
+      call momenta_of(self, y(1:n), y(n + 1:2*n), p)
+      chain_energy = 0.5_dp*dot_product(p(1:n), y(n + 1:2*n)) + self%potential(y(1:n))
+   end function chain_energy
+
+   !> The unit of relative energy errors [J], as for the double pendulum: |E0| when it is
+   !> at least 1e-3 of E_ref = V(π/2, …, π/2) = Σ G_i (every link upright), E_ref itself
+   !> when E0 ≈ 0 (e.g. released horizontally); 1 J when both vanish (g = 0 at rest),
+   !> so that the relative error is then the error in joules.
+   pure real(dp) function chain_energy_scale(self, e0)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: e0
+      real(dp) :: e_ref
+      e_ref = sum(self%gl)
+      chain_energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
+      if (.not. chain_energy_scale > 0.0_dp) chain_energy_scale = 1.0_dp
+   end function chain_energy_scale
+
+   !> p = M(q) q̇ into the leading n of p.
+   pure subroutine momenta_of(self, q, qd, p)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(*), qd(*)   !! angles [rad], rates [rad/s]
+      real(dp), intent(out) :: p(max_dof)   !! momenta [kg m²/s]
+      real(dp) :: a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: i, n
+      n = self%n
+      call trig(n, q, c, s)
+      call fill_mass(self, c, s, a)
+      do i = 1, n
+         p(i) = dot_product(a(i, 1:n), qd(1:n))
+      end do
+   end subroutine momenta_of
+
+   pure subroutine chain_momenta(self, t, y, p)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: p(:)
+      real(dp) :: w(max_dof)
+      integer :: n
+      n = self%n
+      call momenta_of(self, y(1:n), y(n + 1:2*n), w)
+      p(1:n) = w(1:n)
+   end subroutine chain_momenta
+
+   pure subroutine chain_velocities(self, t, z, qd)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp), intent(out) :: qd(:)
+      real(dp) :: w(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call solve_qd(self, z(1:n), z(n + 1:2*n), w, a, c, s)
+      qd(1:n) = w(1:n)
+   end subroutine chain_velocities
+
+   !> H = ½ pᵀ M⁻¹ p + V [J].
+   pure real(dp) function chain_hamiltonian_value(self, t, z) result(h)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp) :: w(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call solve_qd(self, z(1:n), z(n + 1:2*n), w, a, c, s)
+      h = 0.5_dp*dot_product(z(n + 1:2*n), w(1:n)) + self%potential(z(1:n))
+   end function chain_hamiltonian_value
+
+   !> σ_i = Σ_j K_ij sin(q_i − q_j) x_j.
+   pure subroutine sigma(self, c, s, x, sg)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof), x(max_dof)
+      real(dp), intent(out) :: sg(max_dof)
+      integer :: i, j
+      do i = 1, self%n
+         sg(i) = 0.0_dp
+         do j = 1, self%n
+            if (j == i) cycle
+            sg(i) = sg(i) + self%k(i, j)*(s(i)*c(j) - c(i)*s(j))*x(j)
+         end do
+      end do
+   end subroutine sigma
+
+   !> (∂H/∂p, −∂H/∂q) = (q̇, τ − G cos q), τ_i = −q̇_i σ_i(q̇).
+   pure subroutine chain_canonical_field(self, t, z, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), sg(max_dof)
+      integer :: n, i
+      n = self%n
+      call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
+      call sigma(self, c, s, qd, sg)
+      f(1:n) = qd(1:n)
+      do i = 1, n
+         f(n + i) = -qd(i)*sg(i) - self%gl(i)*c(i)
+      end do
+   end subroutine chain_canonical_field
+
+   !> ∂f/∂z of `canonical_field`, z = (q, p): ∂q̇/∂p = M⁻¹, ∂q̇/∂q_k = −M⁻¹ (∂M/∂q_k) q̇,
+   !> and for f_p,i = −q̇_i σ_i − G_i cos q_i:
+   !>   ∂f_p,i/∂x = −(∂q̇_i/∂x) σ_i − q̇_i Σ_j K_ij sin(q_i − q_j) ∂q̇_j/∂x
+   !>               − q̇_i ∂σ_i/∂q_k|_q̇ + δ_ik G_i sin q_i  (last two for x = q_k),
+   !>   ∂σ_i/∂q_k|_q̇ = δ_ik Σ_j K_ij cos(q_i − q_j) q̇_j − K_ik cos(q_i − q_k) q̇_k (k ≠ i).
+   pure subroutine chain_canonical_jacobian(self, t, z, jac)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(:)
+      real(dp), intent(out) :: jac(:, :)
+      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), sg(max_dof)
+      real(dp) :: col(max_dof), dsg(max_dof), cik, sik
+      integer :: n, i, k, j
+      n = self%n
+      call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
+      call sigma(self, c, s, qd, sg)
+      do k = 1, 2*n
+         ! ∂q̇/∂z_k
+         col(1:n) = 0.0_dp
+         if (k <= n) then
+            do i = 1, n
+               if (i == k) cycle
+               sik = s(i)*c(k) - c(i)*s(k)
+               ! −(∂M/∂q_k) q̇: entry i ≠ k is −K_ik sin(q_i − q_k) q̇_k, entry k is
+               ! Σ_j K_kj sin(q_k − q_j) q̇_j
+               col(i) = -self%k(i, k)*sik*qd(k)
+               col(k) = col(k) - self%k(k, i)*sik*qd(i)
+            end do
+         else
+            col(k - n) = 1.0_dp
+         end if
+         call cholesky_solve(n, a, col)
+         jac(1:n, k) = col(1:n)
+         call sigma(self, c, s, col, dsg)
+         do i = 1, n
+            jac(n + i, k) = -col(i)*sg(i) - qd(i)*dsg(i)
+         end do
+         if (k <= n) then
+            do i = 1, n
+               if (i == k) then
+                  do j = 1, n
+                     if (j == i) cycle
+                     jac(n + i, k) = jac(n + i, k) &
+                                     - qd(i)*self%k(i, j)*(c(i)*c(j) + s(i)*s(j))*qd(j)
+                  end do
+                  jac(n + i, k) = jac(n + i, k) + self%gl(i)*s(i)
+               else
+                  cik = c(i)*c(k) + s(i)*s(k)
+                  jac(n + i, k) = jac(n + i, k) + qd(i)*self%k(i, k)*cik*qd(k)
+               end if
+            end do
+         end if
+      end do
+   end subroutine chain_canonical_jacobian
+
+   !> ∂E/∂y: ∂E/∂q_i = τ_i + G_i cos q_i (τ_i = −q̇_i σ_i(q̇)), ∂E/∂q̇ = p.
+   pure subroutine chain_energy_gradient(self, t, y, g)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: g(:)
+      real(dp) :: c(max_dof), s(max_dof), qd(max_dof), sg(max_dof), p(max_dof)
+      integer :: n, i
+      n = self%n
+      qd(1:n) = y(n + 1:2*n)
+      call trig(n, y, c, s)
+      call sigma(self, c, s, qd, sg)
+      call momenta_of(self, y(1:n), qd, p)
+      do i = 1, n
+         g(i) = -qd(i)*sg(i) + self%gl(i)*c(i)
+      end do
+      g(n + 1:2*n) = p(1:n)
+   end subroutine chain_energy_gradient
+
+   ! ---------------------------------------------------------------- Poincaré sections
+
+   !> Energy-shell sections exist for two links only (a two-degree-of-freedom
+   !> Hamiltonian); there the chain is the double pendulum, whose formulas are used.
+   pure logical function chain_energy_sections(self)
+      class(chain_t), intent(in) :: self
+      chain_energy_sections = self%n == 2
+   end function chain_energy_sections
+
+   !> The double pendulum of a two-link chain.
+   pure function as_pendulum(self) result(par)
+      class(chain_t), intent(in) :: self
+      type(pendulum_t) :: par
+      par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+   end function as_pendulum
+
+   !> N = 2 only (`energy_sections`): the double pendulum's `shell_state`.
+   pure subroutine chain_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, &
+                                       found)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle, q_o, p_o
+      integer, intent(in) :: link, direction
+      real(dp), intent(out) :: q(:), qd(:)
+      logical, intent(out) :: found
+      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
+      call shell_state(as_pendulum(self), e, link, angle, direction, q_o, p_o, q, qd, found)
+   end subroutine chain_section_state
+
+   !> N = 2 only (`energy_sections`): the double pendulum's `shell_p_max`.
+   pure real(dp) function chain_section_p_max(self, e, link, angle) result(p)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: e, angle
+      integer, intent(in) :: link
+      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
+      p = shell_p_max(as_pendulum(self), e, link, angle)
+   end function chain_section_p_max
+
+   ! ---------------------------------------------------------------- kinematics, reactions
+
+   !> Positions [m], velocities [m/s], accelerations [m/s²] of every centre of mass C_i
+   !> and far end P_i, as (2, n) arrays (x, y per link).
+   pure subroutine chain_kinematics(self, q, qd, qdd, rc, vc, ac, rj, vj, aj)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(:), qd(:), qdd(:)         !! q [rad], q̇ [rad/s], q̈ [rad/s²]
+      real(dp), intent(out) :: rc(:, :), vc(:, :), ac(:, :) !! of C_i (2, n)
+      real(dp), intent(out) :: rj(:, :), vj(:, :), aj(:, :) !! of P_i (2, n)
+      real(dp) :: u(2), nv(2), r0(2), v0(2), a0(2), h
+      integer :: i
+      r0 = 0.0_dp; v0 = 0.0_dp; a0 = 0.0_dp
+      do i = 1, self%n
+         u = [cos(q(i)), sin(q(i))]
+         nv = [-u(2), u(1)]
+         h = 0.5_dp*self%l(i)
+         rc(:, i) = r0 + h*u
+         vc(:, i) = v0 + h*qd(i)*nv
+         ac(:, i) = a0 + h*(qdd(i)*nv - qd(i)**2*u)
+         rj(:, i) = r0 + self%l(i)*u
+         vj(:, i) = v0 + self%l(i)*qd(i)*nv
+         aj(:, i) = a0 + self%l(i)*(qdd(i)*nv - qd(i)**2*u)
+         r0 = rj(:, i); v0 = vj(:, i); a0 = aj(:, i)
+      end do
+   end subroutine chain_kinematics
+
+   !> F_(i−1,i) [N] (2, n), the force of body i − 1 on body i at joint i, from the tip:
+   !> F_(i−1,i) = F_(i,i+1) + m_i (a_Ci + g ĵ), F_(N,N+1) = 0.
+   pure subroutine chain_reactions(self, q, qd, qdd, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(:), qd(:), qdd(:)   !! q [rad], q̇ [rad/s], q̈ [rad/s²]
+      real(dp), intent(out) :: f(:, :)              !! reactions (2, n) [N]
+      real(dp) :: rc(2, max_dof), vc(2, max_dof), ac(2, max_dof)
+      real(dp) :: rj(2, max_dof), vj(2, max_dof), aj(2, max_dof), nxt(2)
+      integer :: i, n
+      n = self%n
+      call self%kinematics(q, qd, qdd, rc(:, 1:n), vc(:, 1:n), ac(:, 1:n), &
+                           rj(:, 1:n), vj(:, 1:n), aj(:, 1:n))
+      nxt = 0.0_dp
+      do i = n, 1, -1
+         f(1, i) = nxt(1) + self%m(i)*ac(1, i)
+         f(2, i) = nxt(2) + self%m(i)*(ac(2, i) + self%g)
+         nxt = f(:, i)
+      end do
+   end subroutine chain_reactions
+
+   pure integer function chain_n_outputs(self)
+      class(chain_t), intent(in) :: self
+      chain_n_outputs = n_out
+   end function chain_n_outputs
+
+   !> F_joint, rC, vC, aC, rJ, vJ, aJ: 2N values each, (x, y) per joint or link.
+   subroutine chain_output_info(self, i, name, n_comp, units, description)
+      class(chain_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units, description
+      integer, intent(out) :: n_comp
+      name = trim(out_names(i)); n_comp = 2*self%n
+      units = trim(out_units(i)); description = trim(out_text(i))
+   end subroutine chain_output_info
+
+   !> The outputs of one sample (14 N values), q̈ taken from f = (q̇, q̈).
+   pure subroutine chain_outputs(self, t, y, f, values)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:), f(:)
+      real(dp), intent(out) :: values(:)
+      real(dp) :: w(2, max_dof, n_out)
+      integer :: n, k
+      n = self%n
+      associate (q => y(1:n), qd => y(n + 1:2*n), qdd => f(n + 1:2*n))
+         call self%reactions(q, qd, qdd, w(:, 1:n, 1))
+         call self%kinematics(q, qd, qdd, w(:, 1:n, 2), w(:, 1:n, 3), w(:, 1:n, 4), &
+                              w(:, 1:n, 5), w(:, 1:n, 6), w(:, 1:n, 7))
+      end associate
+      do k = 1, n_out
+         values(2*n*(k - 1) + 1:2*n*k) = reshape(w(:, 1:n, k), [2*n])
+      end do
+   end subroutine chain_outputs
+
+   pure integer function chain_n_parameters(self)
+      class(chain_t), intent(in) :: self
+      chain_n_parameters = 2*self%n + 1
+   end function chain_n_parameters
+
+   !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order.
+   subroutine chain_parameter(self, i, name, value, units)
+      class(chain_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units
+      real(dp), intent(out) :: value
+      if (i <= self%n) then
+         name = 'm'//to_str(i); value = self%m(i); units = 'kg'
+      else if (i <= 2*self%n) then
+         name = 'l'//to_str(i - self%n); value = self%l(i - self%n); units = 'm'
+      else
+         name = 'g'; value = self%g; units = 'm/s^2'
+      end if
+   end subroutine chain_parameter
+end module dpend_chain
