@@ -75,7 +75,7 @@ contains
           '  poincare   Poincare section at one energy'//nl// &
           '  sweep      maps over initial conditions (flip time, energy error, Lyapunov)'//nl// &
           '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
-          '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
+          '  export     print HDF5 datasets as text columns, CSV or a matrix; --list'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  animate    animated GIF of a simulate file (gnuplot): rods, tip trail, time'//nl// &
           '  methods    the integration methods: order, properties, commands'//nl// &

@@ -453,11 +453,14 @@ contains
       character(len=:), allocatable, intent(out) :: text   !! one-line description
       select case (name)
       case ('t_flip')
-         units = 's'; text = 'first flip of either link (NaN: none before t_stop)'
+         units = 's'; text = 'first flip of either link (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
       case ('t_flip1')
-         units = 's'; text = 'first flip of link 1 (NaN: none before t_stop)'
+         units = 's'; text = 'first flip of link 1 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
       case ('t_flip2')
-         units = 's'; text = 'first flip of link 2 (NaN: none before t_stop)'
+         units = 's'; text = 'first flip of link 2 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
       case ('energy0')
          units = 'J'; text = 'initial energy E(0) (V = 0 with both links horizontal)'
       case ('energy_error')
