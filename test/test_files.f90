@@ -11,6 +11,7 @@ module test_files
       H5T_STR_NULLPAD_F, h5open_f, h5fopen_f, h5fclose_f, h5tcopy_f, h5tset_size_f, &
       h5tset_strpad_f, h5tclose_f, h5screate_f, h5sclose_f, h5acreate_f, h5awrite_f, &
       h5aclose_f
+   use dpend_cli, only: to_str
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check_true, error_t
    implicit none
@@ -46,7 +47,7 @@ contains
       call h5%datasets('/', paths, error)
       if (allocated(error)) return
       call check_true(error, size(paths) == n_expected, filename//': '// &
-                      itoa(n_expected)//' datasets, found '//itoa(size(paths)))
+                      to_str(n_expected)//' datasets, found '//to_str(size(paths)))
       do i = 1, size(paths)
          if (allocated(error)) exit
          call h5%readattr(trim(paths(i)), 'units', s, error)
@@ -57,15 +58,6 @@ contains
       end do
       call h5%close()
    end subroutine check_all_described
-
-   !> `i` as text.
-   pure function itoa(i) result(t)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: t
-      character(len=12) :: buf
-      write (buf, '(i0)') i
-      t = trim(buf)
-   end function itoa
 
    !> Fail unless the string attribute `name` of `path` reads as `expected`.
    subroutine check_attr(error, h5, path, name, expected)
@@ -111,7 +103,7 @@ contains
       if (allocated(error)) return
       call h5%datasets('/', paths, error)
       if (allocated(error)) return
-      call check_true(error, size(paths) == 4, 'four datasets, got '//itoa(size(paths)))
+      call check_true(error, size(paths) == 4, 'four datasets, got '//to_str(size(paths)))
       if (allocated(error)) return
       call check_true(error, paths(1) == '/g/c' .and. paths(2) == '/g/sub/n' .and. &
                       paths(3) == '/g/t' .and. paths(4) == '/top', 'name order: '// &
@@ -236,7 +228,7 @@ contains
       stat = run_command(dir, 'export '//dir//'/sim.h5 --csv t q energy F01')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. n == 12, 'header and 11 lines, got '// &
-                      itoa(n)//': '//text)
+                      to_str(n)//': '//text)
       if (allocated(error)) return
       open (newunit=unit, file=dir//'/stdout', status='old', action='read')
       lines = 0
@@ -250,7 +242,7 @@ contains
                             'F01_1 [N],F01_2 [N]', 'header: '//line)
          else
             k = count([(line(stat:stat) == ',', stat=1, len(line))])
-            call check_true(error, k == 5, 'six fields in line '//itoa(lines)//': '//line)
+            call check_true(error, k == 5, 'six fields in line '//to_str(lines)//': '//line)
             if (lines == 2) call check_true(error, line(1:24) == &
                '0.0000000000000000E+000,', 'first time 0: '//line)
          end if
@@ -273,7 +265,7 @@ contains
       stat = run_command(dir, 'export '//dir//'/sim.h5 --list')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. n == 16, 'a header and 15 datasets, got '// &
-                      itoa(n)//': '//text)
+                      to_str(n)//': '//text)
       call check_true(error, index(text, '/trajectory/q ') > 0 .and. &
                       index(text, '(11, 2)') > 0 .and. index(text, ' rad/s ') > 0, &
                       'path, shape (h5py order) and units: '//text)
@@ -290,7 +282,7 @@ contains
          call read_text(dir//'/stderr', text, n)
          call check_true(error, stat == 2 .and. n == 1 .and. index(text, needle) > 0, &
                          args//': exit 2 and one line with "'//needle//'", got '// &
-                         itoa(stat)//': '//text)
+                         to_str(stat)//': '//text)
       end subroutine refused
    end subroutine test_export_list
 end module test_files

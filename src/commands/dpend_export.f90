@@ -12,6 +12,7 @@ module dpend_export
    use dpend_hdf5, only: h5file_t
    use dpend_config, only: check_regular_file
    use dpend_limits, only: sci
+   use dpend_cli, only: to_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -162,9 +163,9 @@ contains
          end if
          if (j > 1) header = header//','
          if (scan(name(len(name):len(name)), '0123456789') > 0) then
-            header = header//name//'_'//int_text(j)//bracket(unit_j)
+            header = header//name//'_'//to_str(j)//bracket(unit_j)
          else
-            header = header//name//int_text(j)//bracket(unit_j)
+            header = header//name//to_str(j)//bracket(unit_j)
          end if
       end do
    contains
@@ -225,7 +226,7 @@ contains
          shape_text = '('
          if (.not. allocated(err)) then
             do j = size(dims), 1, -1   ! h5py order
-               shape_text = shape_text//int_text(dims(j))
+               shape_text = shape_text//to_str(dims(j))
                if (j > 1 .or. size(dims) == 1) shape_text = shape_text//','
                if (j > 1) shape_text = shape_text//' '
             end do
@@ -263,15 +264,6 @@ contains
       character(len=:), allocatable :: t
       t = trim(text)//repeat(' ', max(0, width - len_trim(text)))
    end function padded
-
-   !> `i` in decimal without blanks.
-   pure function int_text(i) result(t)
-      integer, intent(in) :: i  !! number
-      character(len=:), allocatable :: t
-      character(len=12) :: buf
-      write (buf, '(i0)') i
-      t = trim(buf)
-   end function int_text
 
    !> Full paths of the datasets `names` of the open file (see `resolve`).
    subroutine resolve_all(h5, names, paths, error)
