@@ -275,6 +275,7 @@ contains
       call refused('export '//dir//'/sim.h5 --csv=1 t', '--csv takes no value')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    contains
+      !> `dpend args` exits 2 with one stderr line containing `needle`.
       subroutine refused(args, needle)
          character(len=*), intent(in) :: args, needle
          if (allocated(error)) return

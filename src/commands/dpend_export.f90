@@ -169,6 +169,7 @@ contains
          end if
       end do
    contains
+      !> Number of commas in `text`.
       pure integer function count_commas(text) result(c)
          character(len=*), intent(in) :: text
          integer :: i
@@ -177,6 +178,7 @@ contains
             if (text(i:i) == ',') c = c + 1
          end do
       end function count_commas
+      !> `text` with every comma replaced by ';' (a CSV field holds none).
       pure function replace_commas(text) result(t)
          character(len=*), intent(in) :: text
          character(len=:), allocatable :: t
@@ -186,6 +188,7 @@ contains
             if (t(i:i) == ',') t(i:i) = ';'
          end do
       end function replace_commas
+      !> ' [u]', or nothing for blank units.
       pure function bracket(u) result(t)
          character(len=*), intent(in) :: u
          character(len=:), allocatable :: t

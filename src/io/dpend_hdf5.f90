@@ -1435,6 +1435,7 @@ contains
          paths(i) = found(i)
       end do
    contains
+      !> Append the datasets of group `g` and of the groups below it.
       recursive subroutine visit(g)
          character(len=*), intent(in) :: g
          character(len=1024) :: name
