@@ -275,7 +275,8 @@ contains
               "            ('1': dimensionless) and description"//nl// &
               '  --matrix  a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
               '            the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates,'//nl// &
-              '            values / SCALE (SCALE > 0, at least '//real_str(tiny(1.0_dp))//')'//nl// &
+              '            values / SCALE (SCALE > 0, at least '// &
+              real_str(tiny(1.0_dp))//')'//nl// &
               '  -h, --help  this text'
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') usage
