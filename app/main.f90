@@ -8,7 +8,7 @@ program dpend
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
-   use dpend_export, only: export_columns, export_matrix
+   use dpend_export, only: export_columns, export_matrix, export_list
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
@@ -75,7 +75,7 @@ contains
           '  poincare   Poincare section at one energy'//nl// &
           '  sweep      maps over initial conditions (flip time, energy error, Lyapunov)'//nl// &
           '  sweep-compare  accuracy report: flip times of two sweeps (e.g. dt, dt/2)'//nl// &
-          '  export     print HDF5 datasets as text columns or a matrix (for gnuplot)'//nl// &
+          '  export     print HDF5 datasets as text columns, CSV or a matrix; --list'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  animate    animated GIF of a simulate file (gnuplot): rods, tip trail, time'//nl// &
           '  methods    the integration methods: order, properties, commands'//nl// &
@@ -249,8 +249,9 @@ contains
       t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
    end function pad
 
-   !> `dpend export FILE DATASET...` or `FILE --matrix DATASET [XAXIS YAXIS [SCALE]]`;
-   !> --matrix and --help may stand anywhere. Every failure: one line, exit 2.
+   !> `dpend export FILE [--csv] DATASET...`, `FILE --matrix DATASET [XAXIS YAXIS
+   !> [SCALE]]` or `FILE --list`; options may stand anywhere. Every failure: one
+   !> line, exit 2.
    subroutine export(sub)
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
@@ -258,26 +259,46 @@ contains
       type(arg_t), allocatable :: pos(:)
       character(len=:), allocatable :: paths(:)
       real(dp) :: scale
-      logical :: matrix
+      logical :: matrix, csv, list
       integer :: i, n, width
-      usage = 'usage: dpend export FILE.h5 DATASET [DATASET ...]'//nl// &
+      usage = 'usage: dpend export FILE.h5 [--csv] DATASET [DATASET ...]'//nl// &
               '       dpend export FILE.h5 --matrix DATASET [XAXIS YAXIS [SCALE]]'//nl// &
+              '       dpend export FILE.h5 --list'//nl// &
               'Print datasets as whitespace-separated columns: a (n) dataset gives one'//nl// &
               'column, an (n, k) dataset (h5py order) gives k; all must share n.'//nl// &
-              'With --matrix, a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
-              'the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates, values / SCALE'//nl// &
-              '(SCALE > 0, at least '//real_str(tiny(1.0_dp))//').'
+              'A DATASET is a full path (/trajectory/q) or a name relative to the'//nl// &
+              "command's group (q, energy; final/q1 in a sweep file)."//nl// &
+              '  --csv     comma-separated, after a header line of names and units'//nl// &
+              '            ("t [s],q1 [rad],q2 [rad]"; numpy.genfromtxt(names=True) and'//nl// &
+              '            pandas.read_csv read it as written)'//nl// &
+              '  --list    the datasets of the file: path, shape (h5py order), units'//nl// &
+              "            ('1': dimensionless) and description"//nl// &
+              '  --matrix  a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
+              '            the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates,'//nl// &
+              '            values / SCALE (SCALE > 0, at least '// &
+              real_str(tiny(1.0_dp))//')'//nl// &
+              '  -h, --help  this text'
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') usage
          return
       end if
       matrix = .false.
+      csv = .false.
+      list = .false.
       allocate (pos(0))
       do i = 1, size(sub)
          if (sub(i)%s == '--matrix') then
             matrix = .true.
+         else if (sub(i)%s == '--csv') then
+            csv = .true.
+         else if (sub(i)%s == '--list') then
+            list = .true.
          else if (index(sub(i)%s, '--matrix=') == 1) then
             call fail(2, 'dpend export: option --matrix takes no value')
+         else if (index(sub(i)%s, '--csv=') == 1) then
+            call fail(2, 'dpend export: option --csv takes no value')
+         else if (index(sub(i)%s, '--list=') == 1) then
+            call fail(2, 'dpend export: option --list takes no value')
          else if (is_long_option(sub(i)%s)) then
             call fail(2, "dpend export: unknown option '"//sub(i)%s// &
                       "' (dpend export --help lists the options)")
@@ -286,6 +307,15 @@ contains
          end if
       end do
       n = size(pos)
+      if (count([matrix, csv, list]) > 1) call fail(2, 'dpend export: --csv, --list and '// &
+         '--matrix exclude each other (give one)')
+      if (list) then
+         if (n /= 1) call fail(2, 'dpend export: --list takes the file alone '// &
+                               '(dpend export FILE.h5 --list)')
+         call export_list(pos(1)%s, output_unit, error)
+         if (allocated(error)) call fail(2, 'dpend export: '//error%message)
+         return
+      end if
       if (n < 2) call fail(2, 'dpend export: needs a file and at least one dataset '// &
                            '(dpend export --help)')
       if (matrix) then
@@ -313,7 +343,7 @@ contains
          do i = 2, n
             paths(i - 1) = pos(i)%s
          end do
-         call export_columns(pos(1)%s, paths, output_unit, error)
+         call export_columns(pos(1)%s, paths, output_unit, error, csv)
       end if
       if (allocated(error)) call fail(2, 'dpend export: '//error%message)
    end subroutine export

@@ -525,11 +525,16 @@ contains
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'lyapunov', status)
-      call h5%write('/lyapunov/t', res%t)
-      call h5%write('/lyapunov/running', res%running)
-      call h5%write('/lyapunov/exponents', res%exponents)
-      call h5%write('/lyapunov/spread', res%spread)
-      call h5%write('/lyapunov/batches', res%batches)
+      call h5%write('/lyapunov/t', res%t, units='s', description= &
+         'times of the renormalisations (every tau, and t_end)')
+      call h5%write('/lyapunov/running', res%running, units='1/s', description= &
+         'running estimates lambda_i(t) = (1/t) sum ln R_ii, column i-1 for lambda_i')
+      call h5%write('/lyapunov/exponents', res%exponents, units='1/s', description= &
+         'Lyapunov exponents lambda_1 >= ... >= lambda_k at the end')
+      call h5%write('/lyapunov/spread', res%spread, units='1/s', description= &
+         'standard error of the mean of the batch exponents (NaN with one batch)')
+      call h5%write('/lyapunov/batches', res%batches, units='1/s', description= &
+         'exponents of the equal time segments')
       call h5%writeattr('/', 'tau', ch%tau)
       call h5%writeattr('/', 'vectors', ch%vectors)
       call h5%writeattr('/', 'batches', size(res%batches, 2))
@@ -606,12 +611,18 @@ contains
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'divergence', status)
-      call h5%write('/divergence/t', res%t)
-      call h5%write('/divergence/log10_delta', res%log10_mean)
-      call h5%write('/divergence/log10_delta_pairs', res%log10_pairs)
-      call h5%write('/divergence/start', res%start)
-      call h5%write('/divergence/delta_start', res%delta_start)
-      call h5%write('/divergence/energy_difference', res%energy_diff)
+      call h5%write('/divergence/t', res%t, units='s', description= &
+         "sample times from each pair's start")
+      call h5%write('/divergence/log10_delta', res%log10_mean, units='1', description= &
+         'mean over the pairs of log10 |delta(t)| (|delta| in the units of the state)')
+      call h5%write('/divergence/log10_delta_pairs', res%log10_pairs, units='1', &
+         description='log10 |delta(t)| of each pair')
+      call h5%write('/divergence/start', res%start, units='rad, rad/s', description= &
+         "(q1, q2, qdot1, qdot2) of each pair's reference at its start")
+      call h5%write('/divergence/delta_start', res%delta_start, units='1', description= &
+         "|delta(0)| of each pair (norm in (q1, q2, qdot1, qdot2), rad and rad/s)")
+      call h5%write('/divergence/energy_difference', res%energy_diff, units='J', &
+         description='E(partner) - E(reference) at the start')
       call h5%writeattr('/', 'delta0', ch%delta0)
       call h5%writeattr('/', 'same_energy', merge(1, 0, ch%same_energy))
       call h5%writeattr('/', 'pairs', size(res%delta_start))
@@ -701,15 +712,24 @@ contains
       if (allocated(error)) return
       integ%n_steps = res%n_steps
       call write_common(h5, cfg, integ, 'poincare', status)
-      call h5%write('/poincare/q', res%q)
-      call h5%write('/poincare/p', res%p)
-      call h5%write('/poincare/t', res%t)
-      call h5%write('/poincare/energy', res%energy)
-      call h5%write('/poincare/orbit', res%orbit)
-      call h5%write('/poincare/initial_q', q0(:, 1:n_found))
-      call h5%write('/poincare/initial_qdot', qd0(:, 1:n_found))
-      call h5%write('/poincare/count', res%count)
-      call h5%write('/poincare/orbit_status', res%status)
+      call h5%write('/poincare/q', res%q, units='rad', description= &
+         'angle of the other link at each crossing, wrapped to (-pi, pi]')
+      call h5%write('/poincare/p', res%p, units='kg m^2/s', description= &
+         'canonical momentum of the other link at each crossing')
+      call h5%write('/poincare/t', res%t, units='s', description= &
+         "crossing time from the orbit's start")
+      call h5%write('/poincare/energy', res%energy, units='J', &
+         description='energy at the crossing')
+      call h5%write('/poincare/orbit', res%orbit, units='1', &
+         description='orbit number (1-based) of each point')
+      call h5%write('/poincare/initial_q', q0(:, 1:n_found), units='rad', &
+         description='initial angles of each orbit (q1, q2)')
+      call h5%write('/poincare/initial_qdot', qd0(:, 1:n_found), units='rad/s', &
+         description='initial angular velocities of each orbit (qdot1, qdot2)')
+      call h5%write('/poincare/count', res%count, units='1', &
+         description='points of each orbit')
+      call h5%write('/poincare/orbit_status', res%status, units='1', &
+         description='0, or the step failure code of the orbit')
       call h5%writeattr('/', 'energy', e)
       call h5%writeattr('/', 'energy_scale', es_)
       call h5%writeattr('/', 'section_link', ch%section_link)

@@ -1,35 +1,52 @@
 !> `dpend export`: datasets of an HDF5 file as whitespace-separated text columns,
-!> for gnuplot. A 1-D dataset (n) gives one column, a 2-D one (n, k as h5py sees
-!> it) gives k columns; all must have the same n. `export_matrix` prints one 2-D
-!> dataset as a gnuplot "nonuniform matrix" (for `plot ... with image`).
+!> for gnuplot, or as CSV with a header line of names and units. A 1-D dataset (n)
+!> gives one column, a 2-D one (n, k as h5py sees it) gives k columns; all must
+!> have the same n. `export_matrix` prints one 2-D dataset as a gnuplot
+!> "nonuniform matrix" (for `plot ... with image`); `export_list` lists the
+!> datasets of a file with shapes and units. A dataset name without a leading '/'
+!> is relative to the command's group ('t' is '/trajectory/t' in a simulate file):
+!> it names the one dataset '/NAME' or '/GROUP/NAME' of the file.
 module dpend_export
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
    use dpend_config, only: check_regular_file
    use dpend_limits, only: sci
+   use dpend_cli, only: to_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: export_columns, export_matrix
+   public :: export_columns, export_matrix, export_list, csv_header
 
 contains
 
-   !> Write the datasets `paths` of `filename` as columns to `unit`.
-   subroutine export_columns(filename, paths, unit, error)
+   !> Write the datasets `names` of `filename` as columns to `unit`: separated by
+   !> blanks, or with `csv` by commas after a header line "name [units],...".
+   subroutine export_columns(filename, names, unit, error, csv)
       character(len=*), intent(in) :: filename          !! HDF5 file
-      character(len=*), intent(in) :: paths(:)          !! dataset paths
+      character(len=*), intent(in) :: names(:)          !! dataset paths or relative names
       integer, intent(in) :: unit                       !! output unit
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
+      logical, intent(in), optional :: csv              !! CSV with a header line
       type(h5file_t) :: h5
       real(dp), allocatable :: table(:, :), v1(:), v2(:, :)
       integer, allocatable :: dims(:)
       integer :: i, j, n, ncol, col
-      character(len=:), allocatable :: fmt
+      character(len=:), allocatable :: fmt, header, line
+      character(len=:), allocatable :: paths(:)
+      character(len=32) :: field
+      logical :: as_csv
+      as_csv = .false.
+      if (present(csv)) as_csv = csv
       call check_regular_file(filename, "invalid FILE '"//filename//"': ", error)
       if (allocated(error)) return
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
+      call resolve_all(h5, names, paths, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
       ncol = 0
       n = -1
       do i = 1, size(paths)
@@ -54,6 +71,15 @@ contains
          return
       end if
       allocate (table(ncol, max(n, 0)))
+      header = ''
+      if (as_csv) then
+         do i = 1, size(paths)
+            call h5%shape(trim(paths(i)), dims, error)
+            if (allocated(error)) exit
+            if (i > 1) header = header//','
+            header = header//csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2))
+         end do
+      end if
       col = 0
       do i = 1, size(paths)
          call h5%shape(trim(paths(i)), dims, error)
@@ -71,11 +97,236 @@ contains
       end do
       call h5%close()
       if (allocated(error)) return
+      if (as_csv) then
+         write (unit, '(a)') header
+         do j = 1, n
+            line = ''
+            do i = 1, ncol
+               write (field, '(es24.16e3)') table(i, j)
+               if (i > 1) line = line//','
+               line = line//trim(adjustl(field))
+            end do
+            write (unit, '(a)') line
+         end do
+         return
+      end if
       fmt = '(*(es24.16e3, :, " "))'
       do j = 1, n
          write (unit, fmt) table(:, j)
       end do
    end subroutine export_columns
+
+   !> CSV column names of dataset `path` with their units, comma-separated:
+   !> "t [s]" for a 1-D dataset, "q1 [rad],q2 [rad]" for k = 2 columns (name_j
+   !> when the name ends in a digit: "F01_1"). Units listed per block of columns
+   !> ('rad, rad/s' for 4 columns: rad, rad, rad/s, rad/s) are spread over them;
+   !> other commas become ';'. A dataset without units gets no brackets.
+   function csv_header(h5, path, k) result(header)
+      type(h5file_t), intent(inout) :: h5   !! open file
+      character(len=*), intent(in) :: path  !! dataset path
+      integer, intent(in) :: k              !! columns, 0 for a 1-D dataset
+      character(len=:), allocatable :: header
+      character(len=:), allocatable :: name, units, unit_j
+      character(len=64), allocatable :: parts(:)
+      type(error_t), allocatable :: err
+      integer :: j, m, pos
+      name = path(index(path, '/', back=.true.) + 1:)
+      units = ''
+      if (h5%attr_exists(path, 'units')) call h5%readattr(path, 'units', units, err)
+      if (allocated(err)) units = ''
+      ! split 'a, b, c' into its m parts
+      m = 1 + count_commas(units)
+      allocate (parts(m))
+      block
+         character(len=:), allocatable :: rest
+         rest = units
+         do j = 1, m
+            pos = index(rest, ',')
+            if (pos == 0) then
+               parts(j) = adjustl(rest)
+            else
+               parts(j) = adjustl(rest(1:pos - 1))
+               rest = rest(pos + 1:)
+            end if
+         end do
+      end block
+      if (k == 0) then
+         header = name//bracket(replace_commas(units))
+         return
+      end if
+      header = ''
+      do j = 1, k
+         if (m > 1 .and. mod(k, m) == 0) then
+            unit_j = trim(parts((j - 1)/(k/m) + 1))
+         else
+            unit_j = replace_commas(units)
+         end if
+         if (j > 1) header = header//','
+         if (scan(name(len(name):len(name)), '0123456789') > 0) then
+            header = header//name//'_'//to_str(j)//bracket(unit_j)
+         else
+            header = header//name//to_str(j)//bracket(unit_j)
+         end if
+      end do
+   contains
+      !> Number of commas in `text`.
+      pure integer function count_commas(text) result(c)
+         character(len=*), intent(in) :: text
+         integer :: i
+         c = 0
+         do i = 1, len(text)
+            if (text(i:i) == ',') c = c + 1
+         end do
+      end function count_commas
+      !> `text` with every comma replaced by ';' (a CSV field holds none).
+      pure function replace_commas(text) result(t)
+         character(len=*), intent(in) :: text
+         character(len=:), allocatable :: t
+         integer :: i
+         t = text
+         do i = 1, len(t)
+            if (t(i:i) == ',') t(i:i) = ';'
+         end do
+      end function replace_commas
+      !> ' [u]', or nothing for blank units.
+      pure function bracket(u) result(t)
+         character(len=*), intent(in) :: u
+         character(len=:), allocatable :: t
+         if (len_trim(u) == 0) then
+            t = ''
+         else
+            t = ' ['//trim(u)//']'
+         end if
+      end function bracket
+   end function csv_header
+
+   !> Write one line per dataset of `filename` to `unit`: path, shape as h5py shows
+   !> it, units ('?' if none) and description.
+   subroutine export_list(filename, unit, error)
+      character(len=*), intent(in) :: filename          !! HDF5 file
+      integer, intent(in) :: unit                       !! output unit
+      type(error_t), allocatable, intent(out) :: error  !! unreadable
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: paths(:), units, text, shape_text
+      character(len=40), allocatable :: shapes(:), unit_list(:)
+      character(len=:), allocatable :: texts(:)
+      type(error_t), allocatable :: err
+      integer, allocatable :: dims(:)
+      integer :: i, j, wp, ws, wu, wt
+      call check_regular_file(filename, "invalid FILE '"//filename//"': ", error)
+      if (allocated(error)) return
+      call h5%open(filename, 'r', error)
+      if (allocated(error)) return
+      call h5%datasets('/', paths, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      allocate (shapes(size(paths)), unit_list(size(paths)))
+      allocate (character(len=200) :: texts(size(paths)))
+      do i = 1, size(paths)
+         call h5%shape(trim(paths(i)), dims, err)
+         shape_text = '('
+         if (.not. allocated(err)) then
+            do j = size(dims), 1, -1   ! h5py order
+               shape_text = shape_text//to_str(dims(j))
+               if (j > 1 .or. size(dims) == 1) shape_text = shape_text//','
+               if (j > 1) shape_text = shape_text//' '
+            end do
+         end if
+         shapes(i) = shape_text//')'
+         units = '?'
+         if (h5%attr_exists(trim(paths(i)), 'units')) &
+            call h5%readattr(trim(paths(i)), 'units', units, err)
+         if (len(units) == 0) units = "''"
+         unit_list(i) = units
+         text = ''
+         if (h5%attr_exists(trim(paths(i)), 'description')) &
+            call h5%readattr(trim(paths(i)), 'description', text, err)
+         texts(i) = text
+      end do
+      call h5%close()
+      wp = 4; ws = 5; wu = 5; wt = 0
+      do i = 1, size(paths)
+         wp = max(wp, len_trim(paths(i)))
+         ws = max(ws, len_trim(shapes(i)))
+         wu = max(wu, len_trim(unit_list(i)))
+      end do
+      write (unit, '(a)') padded('path', wp)//'  '//padded('shape', ws)//'  '// &
+         padded('units', wu)//'  description'
+      do i = 1, size(paths)
+         write (unit, '(a)') padded(paths(i), wp)//'  '//padded(shapes(i), ws)//'  '// &
+            padded(unit_list(i), wu)//'  '//trim(texts(i))
+      end do
+   end subroutine export_list
+
+   !> `text` without trailing blanks, padded to `width` columns.
+   pure function padded(text, width) result(t)
+      character(len=*), intent(in) :: text  !! text
+      integer, intent(in) :: width          !! columns
+      character(len=:), allocatable :: t
+      t = trim(text)//repeat(' ', max(0, width - len_trim(text)))
+   end function padded
+
+   !> Full paths of the datasets `names` of the open file (see `resolve`).
+   subroutine resolve_all(h5, names, paths, error)
+      type(h5file_t), intent(inout) :: h5                      !! open file
+      character(len=*), intent(in) :: names(:)                 !! paths or relative names
+      character(len=:), allocatable, intent(out) :: paths(:)   !! full paths
+      type(error_t), allocatable, intent(out) :: error         !! unknown or ambiguous
+      character(len=:), allocatable :: full(:), path
+      integer :: i, width
+      allocate (character(len=1024) :: full(size(names)))
+      width = 1
+      do i = 1, size(names)
+         call resolve(h5, trim(names(i)), path, error)
+         if (allocated(error)) return
+         full(i) = path
+         width = max(width, len(path))
+      end do
+      allocate (character(len=width) :: paths(size(names)))
+      do i = 1, size(names)
+         paths(i) = full(i)
+      end do
+   end subroutine resolve_all
+
+   !> The full path of the dataset `name` of the open file: `name` itself if it
+   !> starts with '/', else the one dataset '/name' or '/GROUP/name'.
+   subroutine resolve(h5, name, path, error)
+      type(h5file_t), intent(inout) :: h5                   !! open file
+      character(len=*), intent(in) :: name                  !! path or relative name
+      character(len=:), allocatable, intent(out) :: path    !! full path
+      type(error_t), allocatable, intent(out) :: error      !! unknown or ambiguous
+      character(len=:), allocatable :: all(:), tail
+      integer :: i, n, slash
+      path = name
+      if (len(name) == 0) then
+         call fatal_error(error, "invalid DATASET '': give a name (dpend export FILE --list "// &
+            "lists them)")
+         return
+      end if
+      if (name(1:1) == '/') return
+      call h5%datasets('/', all, error)
+      if (allocated(error)) return
+      n = 0
+      do i = 1, size(all)
+         slash = index(all(i)(2:), '/')   ! end of the first component
+         tail = trim(all(i)(2:))
+         if (slash > 0) tail = trim(all(i)(slash + 2:))
+         if (tail == name .or. trim(all(i)) == '/'//name) then
+            n = n + 1
+            if (n == 1) then
+               path = trim(all(i))
+            else
+               call fatal_error(error, "invalid DATASET '"//name//"': ambiguous ('"//path// &
+                  "', '"//trim(all(i))//"'); give the full path")
+               return
+            end if
+         end if
+      end do
+      if (n == 0) call fatal_error(error, "invalid DATASET '"//name//"': no such dataset "// &
+         "(dpend export FILE --list lists them)")
+   end subroutine resolve
 
    !> Write the 2-D dataset `path` of `filename` (h5py shape (ny, nx)) to `unit` as a
    !> gnuplot nonuniform matrix: a first line "nx x(1) ... x(nx)", then one line
@@ -95,21 +346,25 @@ contains
       real(dp) :: big
       integer :: i, j
       character(len=*), parameter :: fmt = '(*(es15.7e3, :, " "))'
+      character(len=:), allocatable :: full
       call check_regular_file(filename, "invalid FILE '"//filename//"': ", error)
       if (allocated(error)) return
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
-      call h5%read(trim(path), v, error)
+      call resolve(h5, trim(path), full, error)
+      if (.not. allocated(error)) call h5%read(full, v, error)
       if (.not. allocated(error)) then
          if (present(xpath)) then
-            call h5%read(trim(xpath), x, error)
+            call resolve(h5, trim(xpath), full, error)
+            if (.not. allocated(error)) call h5%read(full, x, error)
          else
             x = [(real(i, dp), i=1, size(v, 1))]
          end if
       end if
       if (.not. allocated(error)) then
          if (present(ypath)) then
-            call h5%read(trim(ypath), y, error)
+            call resolve(h5, trim(ypath), full, error)
+            if (.not. allocated(error)) call h5%read(full, y, error)
          else
             y = [(real(j, dp), j=1, size(v, 2))]
          end if

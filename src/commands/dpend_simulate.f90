@@ -312,17 +312,22 @@ contains
          end do
          call h5%open(filename, 'w', error)
          if (allocated(error)) return
-         call h5%write('/trajectory/t', traj%t(:n))
-         call h5%write('/trajectory/q', traj%q(:, :n))
-         call h5%write('/trajectory/qdot', traj%qd(:, :n))
-         call h5%write('/trajectory/qddot', qdd)
-         if (canonical) call h5%write('/trajectory/p', p)
-         call h5%write('/trajectory/energy', e)
+         call h5%write('/trajectory/t', traj%t(:n), units='s', description='sample times')
+         call h5%write('/trajectory/q', traj%q(:, :n), units='rad', description= &
+            'angles from the horizontal x axis, counter-clockwise, unwrapped (q1, q2)')
+         call h5%write('/trajectory/qdot', traj%qd(:, :n), units='rad/s', &
+            description='angular velocities (qdot1, qdot2)')
+         call h5%write('/trajectory/qddot', qdd, units='rad/s^2', &
+            description='angular accelerations (qddot1, qddot2)')
+         if (canonical) call h5%write('/trajectory/p', p, units='kg m^2/s', &
+            description='canonical momenta p = M(q) qdot (p1, p2)')
+         call h5%write('/trajectory/energy', e, units='J', &
+            description='total energy T + V (V = 0 with both links horizontal)')
          off = 0
          do j = 1, model%n_outputs()
             call model%output_info(j, name, n_comp, units, text)
             slab = out(off + 1:off + n_comp, :)   ! contiguous, for the HDF5 layer
-            call h5%write('/trajectory/'//name, slab)
+            call h5%write('/trajectory/'//name, slab, units=units, description=text)
             off = off + n_comp
          end do
          do j = 1, model%n_parameters()

@@ -591,7 +591,8 @@ contains
       ! the writes below pass no `error`: h5 keeps the first failure, the later
       ! writes do nothing, and close hands it over
       ! configuration
-      call h5%write('/config/namelist', study_namelist(cfg))
+      call h5%write('/config/namelist', study_namelist(cfg), units='', description= &
+         'the effective configuration as &pendulum and &study namelists')
       call h5%writeattr('/config', 'm1', cfg%model%par%m1); call h5%writeattr('/config', 'm2', cfg%model%par%m2)
       call h5%writeattr('/config', 'l1', cfg%model%par%l1); call h5%writeattr('/config', 'l2', cfg%model%par%l2)
       call h5%writeattr('/config', 'g', cfg%model%par%g)
@@ -653,8 +654,10 @@ contains
       do ic = 1, size(cfg%cases)
          g = '/cases/'//cfg%cases(ic)%name
          associate (ref => res%refs(ic), cs => cfg%cases(ic))
-            call h5%write(g//'/reference/t', ref%t)
-            call h5%write(g//'/reference/state', ref%y)
+            call h5%write(g//'/reference/t', ref%t, units='s', &
+               description='checkpoint times k t_short/K')
+            call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
+               description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
             call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
             call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
             call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
@@ -681,18 +684,27 @@ contains
       do i = 1, size(res%roundoff)
          associate (ro => res%roundoff(i))
             g = '/roundoff/'//ro%method
-            call h5%write(g//'/steps', ro%steps)
-            call h5%write(g//'/t', ro%t)
-            call h5%write(g//'/rms_compensated', ro%rms(:, 1))
-            call h5%write(g//'/rms_plain', ro%rms(:, 2))
+            call h5%write(g//'/steps', ro%steps, units='1', &
+               description='sample steps (logarithmic)')
+            call h5%write(g//'/t', ro%t, units='s', description='times of the sample steps')
+            call h5%write(g//'/rms_compensated', ro%rms(:, 1), units='1', description= &
+               'RMS over the runs of (H - H(0))/E_s, compensated summation')
+            call h5%write(g//'/rms_plain', ro%rms(:, 2), units='1', description= &
+               'RMS over the runs of (H - H(0))/E_s, plain summation')
             table = transpose(ro%err(:, :, 1))
-            call h5%write(g//'/error_compensated', table)
+            call h5%write(g//'/error_compensated', table, units='1', description= &
+               '(H - H(0))/E_s of every run, compensated summation')
             table = transpose(ro%err(:, :, 2))
-            call h5%write(g//'/error_plain', table)
-            call h5%write(g//'/status_compensated', ro%stat(:, 1))
-            call h5%write(g//'/status_plain', ro%stat(:, 2))
-            call h5%write(g//'/wall_compensated', ro%wall(:, 1))
-            call h5%write(g//'/wall_plain', ro%wall(:, 2))
+            call h5%write(g//'/error_plain', table, units='1', description= &
+               '(H - H(0))/E_s of every run, plain summation')
+            call h5%write(g//'/status_compensated', ro%stat(:, 1), units='1', &
+               description='status of every run (0 ok), compensated summation')
+            call h5%write(g//'/status_plain', ro%stat(:, 2), units='1', &
+               description='status of every run (0 ok), plain summation')
+            call h5%write(g//'/wall_compensated', ro%wall(:, 1), units='s', &
+               description='wall time of every run, compensated summation')
+            call h5%write(g//'/wall_plain', ro%wall(:, 2), units='s', &
+               description='wall time of every run, plain summation')
             call h5%writeattr(g, 'dt', ro%dt)
             call h5%writeattr(g, 'runs', cfg%ro_runs)
             call h5%writeattr(g, 'case', cfg%ro_case)
@@ -706,11 +718,16 @@ contains
       do i = 1, size(res%tao)
          associate (ts => res%tao(i))
             g = '/tao/'//ts%method
-            call h5%write(g//'/omega', ts%omega)
-            call h5%write(g//'/energy_max', ts%energy_max)
-            call h5%write(g//'/energy_final', ts%energy_final)
-            call h5%write(g//'/global_error', ts%global_error)
-            call h5%write(g//'/status', ts%stat)
+            call h5%write(g//'/omega', ts%omega, units='1/s', &
+               description='binding constants (geometric)')
+            call h5%write(g//'/energy_max', ts%energy_max, units='1', &
+               description='largest relative energy error up to t_end')
+            call h5%write(g//'/energy_final', ts%energy_final, units='1', &
+               description='relative energy error at t_end')
+            call h5%write(g//'/global_error', ts%global_error, units='rad, rad/s', &
+               description='global error up to t_short')
+            call h5%write(g//'/status', ts%stat, units='1', &
+               description='0 ok, else the failure code')
             call h5%writeattr(g, 'dt', cfg%tao_dt)
             call h5%writeattr(g, 't_end', cfg%tao_t_end)
             call h5%writeattr(g, 'case', cfg%tao_case)
@@ -718,7 +735,8 @@ contains
       end do
       ! summary
       v = study_verdicts(cfg, res)
-      call h5%write('/summary/markdown', study_summary(cfg, res))
+      call h5%write('/summary/markdown', study_summary(cfg, res), units='', &
+         description='the Markdown summary')
       call h5%writeattr('/summary', 'orders_ok', merge(1, 0, v%orders))
       call h5%writeattr('/summary', 'orders', v%orders_text)
       ! -1: not judged (every long run too short) or not run, as the text says
@@ -739,32 +757,54 @@ contains
       g = '/cases/'//cfg%cases(sw%icase)%name//'/'//sw%method//'/'// &
           trim(merge('step', 'tol ', sw%mode == mode_step))
       if (sw%mode == mode_step) then
-         call h5%write(g//'/h', sw%x)
+         call h5%write(g//'/h', sw%x, units='s', description='step')
       else
-         call h5%write(g//'/rtol', sw%x)
-         call h5%write(g//'/atol', cfg%atol_ratio*sw%x)
+         call h5%write(g//'/rtol', sw%x, units='1', description='relative tolerance')
+         call h5%write(g//'/atol', cfg%atol_ratio*sw%x, units='rad, rad/s', &
+            description='absolute tolerance')
       end if
-      call h5%write(g//'/mean_step_short', sw%h_mean_short)
-      call h5%write(g//'/mean_step_long', sw%h_mean_long)
-      call h5%write(g//'/global_error', sw%global_error)
-      call h5%write(g//'/energy_max_short', sw%energy_short)
-      call h5%write(g//'/energy_max_long', sw%energy_long)
-      call h5%write(g//'/energy_final', sw%energy_final)
-      call h5%write(g//'/drift_exponent', sw%drift)
-      call h5%write(g//'/drift_stderr', sw%drift_stderr)
-      call h5%write(g//'/short_steps', sw%short_steps)
-      call h5%write(g//'/short_rhs', sw%short_rhs)
-      call h5%write(g//'/short_iterations', sw%short_iter)
-      call h5%write(g//'/short_rejected', sw%short_rejected)
-      call h5%write(g//'/long_steps', sw%long_steps)
-      call h5%write(g//'/long_rhs', sw%long_rhs)
-      call h5%write(g//'/long_iterations', sw%long_iter)
-      call h5%write(g//'/long_rejected', sw%long_rejected)
-      call h5%write(g//'/wall_short', sw%wall_short)
-      call h5%write(g//'/wall_long', sw%wall_long)
-      call h5%write(g//'/status', sw%stat)
-      call h5%write(g//'/t_bins', sw%t_bins)
-      call h5%write(g//'/energy_bins', sw%bins)
+      call h5%write(g//'/mean_step_short', sw%h_mean_short, units='s', &
+         description='t_short / accepted steps of the short run')
+      call h5%write(g//'/mean_step_long', sw%h_mean_long, units='s', &
+         description='t_long / accepted steps of the long run')
+      call h5%write(g//'/global_error', sw%global_error, units='rad, rad/s', &
+         description='global error up to t_short')
+      call h5%write(g//'/energy_max_short', sw%energy_short, units='1', &
+         description='largest relative energy error up to t_short')
+      call h5%write(g//'/energy_max_long', sw%energy_long, units='1', &
+         description='largest relative energy error over the long run')
+      call h5%write(g//'/energy_final', sw%energy_final, units='1', &
+         description='relative energy error at t_long')
+      call h5%write(g//'/drift_exponent', sw%drift, units='1', &
+         description='slope of ln(bin maximum) against ln t')
+      call h5%write(g//'/drift_stderr', sw%drift_stderr, units='1', &
+         description='standard error of drift_exponent')
+      call h5%write(g//'/short_steps', sw%short_steps, units='1', &
+         description='accepted steps of the short run')
+      call h5%write(g//'/short_rhs', sw%short_rhs, units='1', &
+         description='vector-field evaluations of the short run')
+      call h5%write(g//'/short_iterations', sw%short_iter, units='1', &
+         description='inner iterations of the short run (implicit methods)')
+      call h5%write(g//'/short_rejected', sw%short_rejected, units='1', &
+         description='rejected steps of the short run')
+      call h5%write(g//'/long_steps', sw%long_steps, units='1', &
+         description='accepted steps of the long run')
+      call h5%write(g//'/long_rhs', sw%long_rhs, units='1', &
+         description='vector-field evaluations of the long run')
+      call h5%write(g//'/long_iterations', sw%long_iter, units='1', &
+         description='inner iterations of the long run (implicit methods)')
+      call h5%write(g//'/long_rejected', sw%long_rejected, units='1', &
+         description='rejected steps of the long run')
+      call h5%write(g//'/wall_short', sw%wall_short, units='s', &
+         description='wall time of one short run (fastest of 5 batches)')
+      call h5%write(g//'/wall_long', sw%wall_long, units='s', &
+         description='wall time of the long run')
+      call h5%write(g//'/status', sw%stat, units='1', &
+         description='0 ok, 1 implicit iteration failed, 2 non-finite state, 3 step too small')
+      call h5%write(g//'/t_bins', sw%t_bins, units='s', &
+         description='upper edges of the logarithmic time bins')
+      call h5%write(g//'/energy_bins', sw%bins, units='1', &
+         description='largest relative energy error of each step size within each bin')
       call h5%writeattr(g, 'order', sw%order)
       call h5%writeattr(g, 'symplectic', merge(1, 0, sw%symplectic))
       call h5%writeattr(g, 'mid', sw%mid - 1)

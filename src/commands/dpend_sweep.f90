@@ -434,6 +434,62 @@ contains
       if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
    end subroutine result_names
 
+   !> Units of a swept variable: 'rad' for an angle, 'rad/s' for a velocity.
+   pure function axis_units(axis) result(units)
+      character(len=*), intent(in) :: axis  !! theta1, theta2, q1, q2, w1 or w2
+      character(len=:), allocatable :: units
+      if (index(axis, 'w') == 1) then
+         units = 'rad/s'
+      else
+         units = 'rad'
+      end if
+   end function axis_units
+
+   !> Units and description of the sweep dataset `name` (below /sweep).
+   subroutine dataset_info(name, axis_units, units, text)
+      character(len=*), intent(in) :: name                 !! e.g. 't_flip', 'final/q1'
+      character(len=*), intent(in) :: axis_units           !! units of the swept axis
+      character(len=:), allocatable, intent(out) :: units  !! SI units, '1' dimensionless
+      character(len=:), allocatable, intent(out) :: text   !! one-line description
+      select case (name)
+      case ('t_flip')
+         units = 's'; text = 'first flip of either link (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('t_flip1')
+         units = 's'; text = 'first flip of link 1 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('t_flip2')
+         units = 's'; text = 'first flip of link 2 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('energy0')
+         units = 'J'; text = 'initial energy E(0) (V = 0 with both links horizontal)'
+      case ('energy_error')
+         units = '1'; text = 'max |E(t) - E(0)| / potential_range (NaN: not integrated)'
+      case ('t_stop')
+         units = 's'; text = 'time the trajectory was integrated to (0: not integrated)'
+      case ('final/q1', 'final/q2')
+         units = 'rad'; text = 'angle at t_stop from the horizontal x axis'
+      case ('final/w1', 'final/w2')
+         units = 'rad/s'; text = 'angular velocity at t_stop'
+      case ('lyapunov')
+         units = '1/s'; text = 'largest Lyapunov exponent'
+      case ('status')
+         units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after a '// &
+            'flip, 3 below both flip bounds, 4 state became non-finite'
+      case ('steps')
+         units = '1'; text = 'RK4 steps taken (4 right-hand-side evaluations each)'
+      case ('done')
+         units = '1'; text = '1 for every block written (resume flags)'
+      case ('axis1', 'axis2')
+         units = axis_units; text = 'grid values on '//name(1:4)//' '//name(5:5)
+      case ('initial')
+         units = 'rad, rad/s'; text = 'initial states (q1, q2, qdot1, qdot2), angles '// &
+            'from the horizontal x axis'
+      case default
+         units = '1'; text = name
+      end select
+   end subroutine dataset_info
+
    !> Create the file with every dataset and attribute: the working layout
    !> (uncompressed, allocated now) or the final one (compressed).
    subroutine create_layout(h5, filename, setup, final, error)
@@ -443,6 +499,7 @@ contains
       logical, intent(in) :: final                      !! compressed, complete
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       character(len=32), allocatable :: reals(:), ints(:)
+      character(len=:), allocatable :: units, text
       integer, allocatable :: dims(:), chunk(:)
       real(dp) :: nan, bounds(2)
       integer :: i
@@ -458,24 +515,34 @@ contains
       end if
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
+         call dataset_info(trim(reals(i)), '', units, text)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
-                                checksum=final .or. setup%checksum)
+                                checksum=final .or. setup%checksum, units=units, &
+                                description=text)
          if (allocated(error)) return
       end do
       do i = 1, size(ints)
+         call dataset_info(trim(ints(i)), '', units, text)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
                                 fill=0.0_dp, compress=final, alloc_early=.not. final, &
-                                checksum=final .or. setup%checksum)
+                                checksum=final .or. setup%checksum, units=units, &
+                                description=text)
          if (allocated(error)) return
       end do
-      call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error)
+      call dataset_info('done', '', units, text)
+      call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error, &
+                    units, text)
       if (allocated(error)) return
       if (setup%grid) then
-         call h5%write('/sweep/axis1', setup%axis1, error)
-         if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error)
+         call dataset_info('axis1', axis_units(setup%cfg%axis1), units, text)
+         call h5%write('/sweep/axis1', setup%axis1, error, units, text)
+         call dataset_info('axis2', axis_units(setup%cfg%axis2), units, text)
+         if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error, &
+                                                   units, text)
       else
-         call h5%write('/sweep/initial', setup%list, error)
+         call dataset_info('initial', '', units, text)
+         call h5%write('/sweep/initial', setup%list, error, units, text)
       end if
       if (allocated(error)) return
       bounds = flip_energy_bounds(setup%cfg%run%model%par)

@@ -4,7 +4,10 @@
 !> hyperslabs of chunked, compressed datasets. Paths are absolute ('/a/b/c');
 !> intermediate groups are created on write. Shapes are stored in Fortran order
 !> as the HDF5 Fortran API does: `q(2, n)` is seen by h5py and h5dump as (n, 2).
-!> Strings are fixed-length, null-padded, ASCII. Trailing blanks of paths, names
+!> String datasets are fixed-length, null-padded, ASCII; string attributes are
+!> variable-length UTF-8 (h5py reads them as `str`), and both forms are read.
+!> `write` and `create_dataset` take optional `units` and `description`, stored
+!> as attributes of the dataset (see `describe`). Trailing blanks of paths, names
 !> and file names are ignored. Every failure comes back as an `error_t` naming the
 !> file and the path; HDF5's own error printing is off. A write (`write`,
 !> `write_slab`, `writeattr`) called without `error` keeps its failure in the file
@@ -14,7 +17,8 @@
 !> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
 !> an `h5file_t` from one thread at a time.
 module dpend_hdf5
-   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_null_ptr, &
+      c_associated, c_f_pointer, c_size_t
    use, intrinsic :: iso_fortran_env, only: real64, int32
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use hdf5
@@ -53,6 +57,8 @@ module dpend_hdf5
       procedure :: shape => file_shape
       procedure :: filters => file_filters
       procedure :: create_dataset => file_create_dataset
+      procedure :: describe => file_describe
+      procedure :: datasets => file_datasets
       procedure, private :: write_r0, write_r1, write_r2, write_r3
       procedure, private :: write_i0, write_i1, write_i2, write_i64_1, write_str
       generic :: write => write_r0, write_r1, write_r2, write_r3, &
@@ -274,83 +280,109 @@ contains
    ! ------------------------------------------------------------- writing ---
 
    !> Write a real(dp) scalar dataset.
-   subroutine write_r0(self, path, value, error)
+   subroutine write_r0(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       real(dp), intent(in), target :: value             !! value to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_r0
 
    !> Write a real(dp) 1-D dataset.
-   subroutine write_r1(self, path, value, error)
+   subroutine write_r1(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
       real(dp), intent(in), target, contiguous :: value(:)   !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_r1
 
    !> Write a real(dp) 2-D dataset.
-   subroutine write_r2(self, path, value, error)
+   subroutine write_r2(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                   !! the file object
       character(len=*), intent(in) :: path                     !! dataset path
       real(dp), intent(in), target, contiguous :: value(:, :)  !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_r2
 
    !> Write a real(dp) 3-D dataset.
-   subroutine write_r3(self, path, value, error)
+   subroutine write_r3(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       real(dp), intent(in), target, contiguous :: value(:, :, :)  !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_r3
 
    !> Write a default-integer scalar dataset.
-   subroutine write_i0(self, path, value, error)
+   subroutine write_i0(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer, intent(in), target :: value              !! value to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_i0
 
    !> Write a default-integer 1-D dataset.
-   subroutine write_i1(self, path, value, error)
+   subroutine write_i1(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                !! the file object
       character(len=*), intent(in) :: path                  !! dataset path
       integer, intent(in), target, contiguous :: value(:)   !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_i1
 
    !> Write a default-integer 2-D dataset.
-   subroutine write_i2(self, path, value, error)
+   subroutine write_i2(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! dataset path
       integer, intent(in), target, contiguous :: value(:, :)  !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_i2
 
    !> Write an integer(i8) 1-D dataset (stored as 64-bit integers).
-   subroutine write_i64_1(self, path, value, error)
+   subroutine write_i64_1(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self                     !! the file object
       character(len=*), intent(in) :: path                       !! dataset path
       integer(i8), intent(in), target, contiguous :: value(:)    !! values to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call write_raw(self, path, i64_type(), int(shape(value), hsize_t), c_loc(value), error)
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      call write_raw(self, path, i64_type(), int(shape(value), hsize_t), c_loc(value), error, &
+         units, description)
    end subroutine write_i64_1
 
    !> Write a scalar fixed-length string dataset (stored exactly, trailing blanks kept).
-   subroutine write_str(self, path, value, error)
+   subroutine write_str(self, path, value, error, units, description)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       character(len=*), intent(in) :: value             !! text to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
       character(kind=c_char), allocatable, target :: buf(:)
       integer(hid_t) :: stype
       type(error_t), allocatable :: err
@@ -360,6 +392,7 @@ contains
          call string_buffer(value, buf, stype)
          call write_now(self, path, stype, [integer(hsize_t) ::], c_loc(buf), err)
          call close_id(stype)
+         if (.not. allocated(err)) call describe_now(self, path, err, units, description)
       end if
       call settle(self, err, error)
    end subroutine write_str
@@ -374,7 +407,7 @@ contains
    !> With `checksum`, every chunk carries a Fletcher-32 checksum (filter applied
    !> last, size fixed: a rewrite stays in place), and reading a damaged chunk fails.
    subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, extendible, &
-                                  compress, alloc_early, checksum)
+                                  compress, alloc_early, checksum, units, description)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       character(len=*), intent(in) :: dtype             !! 'real64' or 'int32'
@@ -386,6 +419,8 @@ contains
       logical, intent(in), optional :: compress         !! shuffle + deflate (default true)
       logical, intent(in), optional :: alloc_early      !! allocate all chunks at creation
       logical, intent(in), optional :: checksum         !! Fletcher-32 checksum per chunk
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
       integer(hid_t) :: type_id, dcpl, space, lcpl, dset
       integer(hsize_t) :: maxdims(size(dims)), hchunk(size(dims))
       integer :: rank, hdferr, ierr
@@ -452,7 +487,11 @@ contains
       call close_id(lcpl)
       call close_id(space)
       call close_id(dcpl)
-      if (hdferr /= 0) call fail(error, 'create', self, quoted(path), 'HDF5 refused it')
+      if (hdferr /= 0) then
+         call fail(error, 'create', self, quoted(path), 'HDF5 refused it')
+         return
+      end if
+      call describe_now(self, path, error, units, description)
    end subroutine file_create_dataset
 
    !> Write a real(dp) 1-D block into dataset `path` from index `start`.
@@ -543,25 +582,72 @@ contains
          c_loc(value), error)
    end subroutine writeattr_i64_0
 
-   !> Write a fixed-length string attribute on the group or dataset `path`.
+   !> Write a string attribute on the group or dataset `path`: a variable-length
+   !> UTF-8 string (h5py reads it as `str`).
    subroutine writeattr_str(self, path, name, value, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       character(len=*), intent(in) :: value             !! text to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(kind=c_char), allocatable, target :: buf(:)
-      integer(hid_t) :: stype
       type(error_t), allocatable :: err
       if (.not. present(error) .and. allocated(self%error)) return
       call require_open(self, path, .true., err)
-      if (.not. allocated(err)) then
-         call string_buffer(value, buf, stype)
-         call writeattr_now(self, path, name, stype, [integer(hsize_t) ::], c_loc(buf), err)
-         call close_id(stype)
-      end if
+      if (.not. allocated(err)) call writeattr_vlen(self, path, name, value, err)
       call settle(self, err, error)
    end subroutine writeattr_str
+
+   !> Write the attributes `units` and `description` (variable-length UTF-8 strings)
+   !> of the dataset `path`; either may be left out. Dimensionless quantities have
+   !> units '1'.
+   subroutine file_describe(self, path, units, description, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset (or group) path
+      character(len=*), intent(in), optional :: units        !! e.g. 'rad/s', '1'
+      character(len=*), intent(in), optional :: description  !! one line of text
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      type(error_t), allocatable :: err
+      if (.not. present(error) .and. allocated(self%error)) return
+      call require_open(self, path, .true., err)
+      if (.not. allocated(err)) call describe_now(self, path, err, units, description)
+      call settle(self, err, error)
+   end subroutine file_describe
+
+   !> `units` and `description` attributes of `path`, those present.
+   subroutine describe_now(self, path, error, units, description)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! object path
+      type(error_t), allocatable, intent(inout) :: error     !! set on failure
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
+      if (allocated(error)) return
+      if (present(units)) call writeattr_vlen(self, path, 'units', units, error)
+      if (allocated(error)) return
+      if (present(description)) &
+         call writeattr_vlen(self, path, 'description', description, error)
+   end subroutine describe_now
+
+   !> Write `value` as a scalar variable-length UTF-8 string attribute.
+   subroutine writeattr_vlen(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! object path
+      character(len=*), intent(in) :: name              !! attribute name
+      character(len=*), intent(in) :: value             !! text to store
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(kind=c_char), allocatable, target :: buf(:)
+      type(c_ptr), target :: ptr
+      integer(hid_t) :: stype
+      integer :: i
+      allocate (buf(len(value) + 1))
+      do i = 1, len(value)
+         buf(i) = value(i:i)
+      end do
+      buf(len(value) + 1) = c_null_char
+      ptr = c_loc(buf)
+      stype = vlen_string_type()
+      call writeattr_now(self, path, name, stype, [integer(hsize_t) ::], c_loc(ptr), error)
+      call close_id(stype)
+   end subroutine writeattr_vlen
 
    ! ------------------------------------------------------------- reading ---
 
@@ -775,6 +861,13 @@ contains
       call h5tset_strpad_f(stype, H5T_STR_NULLPAD_F, ierr)
    end function string_type
 
+   !> A new variable-length, null-terminated UTF-8 string type.
+   integer(hid_t) function vlen_string_type() result(stype)
+      integer :: ierr
+      call h5tcopy_f(H5T_STRING, stype, ierr)
+      call h5tset_cset_f(stype, H5T_CSET_UTF8_F, ierr)
+   end function vlen_string_type
+
    !> `value` as C characters (an empty string is one null byte) and its string type.
    subroutine string_buffer(value, buf, stype)
       character(len=*), intent(in) :: value                       !! Fortran text
@@ -913,16 +1006,19 @@ contains
 
    !> `write_now` for the public writers: with `error`, the failure goes there;
    !> without, it is kept in the file and later writes without `error` do nothing.
-   subroutine write_raw(self, path, mem_type, dims, buf, error)
+   subroutine write_raw(self, path, mem_type, dims, buf, error, units, description)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
       integer(hsize_t), intent(in) :: dims(:)                     !! shape
       type(c_ptr), intent(in) :: buf                              !! address of the data
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      character(len=*), intent(in), optional :: units        !! 'units' attribute
+      character(len=*), intent(in), optional :: description  !! 'description' attribute
       type(error_t), allocatable :: err
       if (.not. present(error) .and. allocated(self%error)) return
       call write_now(self, path, mem_type, dims, buf, err)
+      if (.not. allocated(err)) call describe_now(self, path, err, units, description)
       call settle(self, err, error)
    end subroutine write_raw
 
@@ -1115,7 +1211,7 @@ contains
 
    !> Open dataset `path`, or with `name` its attribute, for reading; check that it
    !> holds what `want` asks for, with rank `rank` (0: one element, -1: any).
-   subroutine open_read(self, path, rank, want, obj, dims, error, name, length)
+   subroutine open_read(self, path, rank, want, obj, dims, error, name, length, variable)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset or object path
       integer, intent(in) :: rank                            !! expected rank
@@ -1125,8 +1221,9 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! set on failure
       character(len=*), intent(in), optional :: name         !! attribute name
       integer, intent(out), optional :: length               !! string size in bytes
-      character(len=*), parameter :: wanted(0:3) = [character(len=21) :: '', 'numbers', &
-         'integers', 'a fixed-length string']
+      logical, intent(out), optional :: variable             !! a variable-length string
+      character(len=*), parameter :: wanted(0:3) = [character(len=8) :: '', 'numbers', &
+         'integers', 'a string']
       integer(hid_t) :: dtype, space
       integer(size_t) :: tsize
       integer :: tclass, ierr
@@ -1167,13 +1264,14 @@ contains
       if (tclass == H5T_STRING_F) call h5tis_variable_str_f(dtype, vlen, ierr)
       call close_id(dtype)
       if (present(length)) length = int(tsize)
+      if (present(variable)) variable = vlen
       select case (want)
       case (want_real)
          ok = tclass == H5T_FLOAT_F .or. tclass == H5T_INTEGER_F
       case (want_int)
          ok = tclass == H5T_INTEGER_F
       case (want_str)
-         ok = tclass == H5T_STRING_F .and. .not. vlen
+         ok = tclass == H5T_STRING_F
       case default
          ok = .true.
       end select
@@ -1229,8 +1327,8 @@ contains
       call read_obj(self, label(path, name), obj, mem_type, buf, 1, error)
    end subroutine read_one
 
-   !> Read a fixed-length string dataset `path`, or its attribute `name`, up to the
-   !> first null byte.
+   !> Read a string dataset `path`, or its attribute `name`, fixed-length (up to the
+   !> first null byte) or variable-length.
    subroutine read_string(self, path, value, error, name)
       class(h5file_t), intent(inout) :: self               !! the file object
       character(len=*), intent(in) :: path                 !! dataset or object path
@@ -1241,8 +1339,13 @@ contains
       integer(hid_t) :: obj, stype
       integer(hsize_t), allocatable :: dims(:)
       integer :: i, n, length
-      call open_read(self, path, 0, want_str, obj, dims, error, name, length)
+      logical :: variable
+      call open_read(self, path, 0, want_str, obj, dims, error, name, length, variable)
       if (allocated(error)) return
+      if (variable) then
+         call read_vlen(self, label(path, name), obj, value, error)
+         return
+      end if
       allocate (buf(max(1, length)))
       buf = c_null_char
       stype = string_type(size(buf))
@@ -1261,4 +1364,118 @@ contains
          value(i:i) = buf(i)
       end do
    end subroutine read_string
+
+   !> Read the open scalar variable-length string dataset or attribute `obj`, then
+   !> close it.
+   subroutine read_vlen(self, what, obj, value, error)
+      class(h5file_t), intent(in) :: self                  !! the file object
+      character(len=*), intent(in) :: what                 !! quoted path or attr_label
+      integer(hid_t), intent(inout) :: obj                 !! open dataset or attribute
+      character(len=:), allocatable, intent(out) :: value  !! text read
+      type(error_t), allocatable, intent(out) :: error     !! set on failure
+      interface
+         !> Free memory that the HDF5 library allocated (the string read).
+         subroutine h5free_memory(mem) bind(c, name='H5free_memory')
+            import :: c_ptr
+            type(c_ptr), value :: mem  !! the block
+         end subroutine h5free_memory
+         !> Length of a null-terminated C string.
+         function c_strlen(str) bind(c, name='strlen') result(n)
+            import :: c_ptr, c_size_t
+            type(c_ptr), value :: str  !! the string
+            integer(c_size_t) :: n
+         end function c_strlen
+      end interface
+      type(c_ptr), target :: text
+      character(kind=c_char), pointer :: chars(:)
+      integer(hid_t) :: stype
+      integer :: i
+      text = c_null_ptr
+      stype = vlen_string_type()
+      call read_obj(self, what, obj, stype, c_loc(text), 1, error)
+      call close_id(stype)
+      if (allocated(error)) return
+      if (.not. c_associated(text)) then
+         value = ''
+         return
+      end if
+      call c_f_pointer(text, chars, [c_strlen(text)])
+      allocate (character(len=size(chars)) :: value)
+      do i = 1, size(chars)
+         value(i:i) = chars(i)
+      end do
+      call h5free_memory(text)
+   end subroutine read_vlen
+
+   !> Paths of all datasets in the group `group` and the groups below it, in name
+   !> order (groups before the datasets they hold come in their place).
+   subroutine file_datasets(self, group, paths, error)
+      class(h5file_t), intent(inout) :: self                       !! the file object
+      character(len=*), intent(in) :: group                        !! e.g. '/' or '/sweep'
+      character(len=:), allocatable, intent(out) :: paths(:)      !! dataset paths
+      type(error_t), allocatable, intent(out) :: error             !! set on failure
+      character(len=1024), allocatable :: found(:)
+      integer :: n, i, width
+      allocate (found(16))
+      n = 0
+      call require_open(self, group, .false., error)
+      if (allocated(error)) return
+      if (.not. self%exists(group)) then
+         call fail(error, 'list', self, quoted(group), 'no such group')
+         return
+      end if
+      call visit(trim(group))
+      if (allocated(error)) return
+      width = 1
+      do i = 1, n
+         width = max(width, len_trim(found(i)))
+      end do
+      allocate (character(len=width) :: paths(n))
+      do i = 1, n
+         paths(i) = found(i)
+      end do
+   contains
+      !> Append the datasets of group `g` and of the groups below it.
+      recursive subroutine visit(g)
+         character(len=*), intent(in) :: g
+         character(len=1024) :: name
+         character(len=:), allocatable :: child
+         character(len=1024), allocatable :: more(:)
+         integer(hid_t) :: obj
+         integer(size_t) :: name_len
+         integer :: storage, nlinks, max_corder, ierr, id_type, k
+         call h5gget_info_by_name_f(self%id, g, storage, nlinks, max_corder, ierr)
+         if (ierr /= 0) then
+            call fail(error, 'list', self, quoted(g), 'not a group')
+            return
+         end if
+         do k = 0, nlinks - 1
+            name = ''
+            call h5lget_name_by_idx_f(self%id, g, H5_INDEX_NAME_F, H5_ITER_INC_F, &
+               int(k, hsize_t), name, ierr, name_len)
+            if (ierr /= 0) cycle
+            if (g == '/') then
+               child = '/'//name(1:min(int(name_len), len(name)))
+            else
+               child = g//'/'//name(1:min(int(name_len), len(name)))
+            end if
+            call h5oopen_f(self%id, child, obj, ierr)
+            if (ierr /= 0) cycle
+            call h5iget_type_f(obj, id_type, ierr)
+            call h5oclose_f(obj, ierr)
+            if (id_type == H5I_GROUP_F) then
+               call visit(child)
+               if (allocated(error)) return
+            else if (id_type == H5I_DATASET_F) then
+               if (n == size(found)) then
+                  allocate (more(2*n))
+                  more(1:n) = found
+                  call move_alloc(more, found)
+               end if
+               n = n + 1
+               found(n) = child
+            end if
+         end do
+      end subroutine visit
+   end subroutine file_datasets
 end module dpend_hdf5
