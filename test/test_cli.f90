@@ -329,10 +329,10 @@ contains
       if (allocated(error)) return
       call check_true(error, matched, '--theta1 is a common flag')
       if (allocated(error)) return
-      call check(error, cfg%q0(1), 0.3_dp - half, 'q1 = 0.3 - pi/2', rel=1e-15_dp)
+      call check(error, cfg%q(1), 0.3_dp - half, 'q1 = 0.3 - pi/2', rel=1e-15_dp)
       if (allocated(error)) return
       call apply_run_flag(cfg, '--theta2', '0', matched, error)
       if (allocated(error)) return
-      call check(error, cfg%q0(2), -half, 'theta2 = 0 is hanging, q2 = -pi/2', rel=1e-15_dp)
+      call check(error, cfg%q(2), -half, 'theta2 = 0 is hanging, q2 = -pi/2', rel=1e-15_dp)
    end subroutine test_theta
 end module test_cli

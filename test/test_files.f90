@@ -163,8 +163,8 @@ contains
       dir = scratch_dir('filessim')
       stat = run_command(dir, 'simulate --t-end 0.2 --output '//dir//'/sim.h5')
       call check_true(error, stat == 0, 'simulate exits 0')
-      ! t q qdot qddot p energy and the model's 9 outputs
-      call check_all_described(error, dir//'/sim.h5', 15)
+      ! t q qdot qddot p energy and the model's 10 outputs (F_joint among them)
+      call check_all_described(error, dir//'/sim.h5', 16)
       if (allocated(error)) return
       call h5%open(dir//'/sim.h5', 'r', error)
       if (allocated(error)) return
@@ -264,7 +264,7 @@ contains
       call check_true(error, stat == 0, 'simulate exits 0')
       stat = run_command(dir, 'export '//dir//'/sim.h5 --list')
       call read_text(dir//'/stdout', text, n)
-      call check_true(error, stat == 0 .and. n == 16, 'a header and 15 datasets, got '// &
+      call check_true(error, stat == 0 .and. n == 17, 'a header and 16 datasets, got '// &
                       to_str(n)//': '//text)
       call check_true(error, index(text, '/trajectory/q ') > 0 .and. &
                       index(text, '(11, 2)') > 0 .and. index(text, ' rad/s ') > 0, &

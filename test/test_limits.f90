@@ -69,21 +69,21 @@ contains
       base%output = 'x.h5'
       c = base
       call expect(c, .true., 'defaults')
-      c = base; c%model%par%m1 = 1e308_dp; call expect(c, .false., 'm1 = 1e308')
-      c = base; c%model%par%l1 = 1e-300_dp; call expect(c, .false., 'l1 = 1e-300')
-      c = base; c%w0(2) = 1e150_dp; call expect(c, .false., 'w2 = 1e150')
+      c = base; c%m(1) = 1e308_dp; call expect(c, .false., 'm1 = 1e308')
+      c = base; c%l(1) = 1e-300_dp; call expect(c, .false., 'l1 = 1e-300')
+      c = base; c%w(2) = 1e150_dp; call expect(c, .false., 'w2 = 1e150')
       c = base; c%t_end = 1.0_dp; c%dt = 1e-19_dp; call expect(c, .false., 'dt = 1e-19')
       c = base; c%dt = 5e-324_dp; call expect(c, .false., 'dt = 5e-324')
       c = base; c%method = 'dopri5'; c%rtol = 1e-300_dp; call expect(c, .false., 'rtol')
       c = base; c%method = 'dopri5'; c%atol = 1e-300_dp; call expect(c, .false., 'atol')
       c = base; c%max_steps = 0; call expect(c, .false., 'max_steps = 0')
-      c = base; c%model%par = pendulum_t(m1=1e6_dp, m2=1e-6_dp, l1=1e6_dp, l2=1e-6_dp, g=1e6_dp)
-      c%w0 = [1e6_dp, -1e6_dp]; c%q0 = [1e6_dp, -1e6_dp]
+      c = base; c%m(1:2) = [1e6_dp, 1e-6_dp]; c%l(1:2) = [1e6_dp, 1e-6_dp]; c%g = 1e6_dp
+      c%w(1:2) = [1e6_dp, -1e6_dp]; c%q(1:2) = [1e6_dp, -1e6_dp]
       call expect(c, .true., 'every value on its boundary')
       c = base; c%t_end = 1.0_dp; c%dt = 1e-12_dp; call expect(c, .true., '1e12 steps')
    contains
       subroutine expect(cfg, ok, what)
-         type(run_config_t), intent(in) :: cfg
+         type(run_config_t), intent(inout) :: cfg
          logical, intent(in) :: ok
          character(len=*), intent(in) :: what
          type(error_t), allocatable :: e

@@ -44,7 +44,8 @@ module dpend_chaos
       character(len=:), allocatable :: command  !! 'lyapunov', 'divergence' or 'poincare'
       ! lyapunov
       real(dp) :: tau = 0.5_dp           !! renormalisation interval [s]
-      integer :: vectors = 4             !! tangent vectors (exponents computed), 1 to 4
+      integer :: vectors = 0             !! tangent vectors (exponents computed), 1 to 2N;
+                                         !! 0: all 2N
       integer :: batches = 10            !! batches for the statistical spread
       ! divergence
       real(dp) :: delta0 = 1e-9_dp       !! initial distance in (q, q̇)
@@ -126,8 +127,8 @@ contains
       case ('lyapunov')
          s = s//'  --tau S           renormalisation (QR) interval; default ' &
              //real_str(ch%tau)//nl// &
-             '  --vectors K       exponents computed, 1 (largest) to 4; default ' &
-             //to_str(ch%vectors)//nl// &
+             '  --vectors K       exponents computed, 1 (largest) to 2N (N links);'//nl// &
+             '                    default all 2N'//nl// &
              '  --batches N       time segments for the spread (standard error of the'//nl// &
              '                    segment exponents); default '//to_str(ch%batches)//nl
       case ('divergence')
@@ -339,8 +340,10 @@ contains
             call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
                              //sci(cfg%dt)//' s of '//cfg%method//' (renormalisations '// &
                              'happen at step ends; use tau >= dt)')
-         else if (ch%vectors < 1 .or. ch%vectors > 4) then
-            call fatal_error(error, 'invalid vectors: must be an integer from 1 to 4')
+         else if (ch%vectors < 0 .or. ch%vectors > cfg%model%n_state()) then
+            call fatal_error(error, 'invalid vectors: '//to_str(ch%vectors)// &
+                             ' must be an integer from 1 to '//to_str(cfg%model%n_state())// &
+                             ' (2N for N links; 0: all)')
          else if (ch%batches < 1 .or. ch%batches > 100000) then
             call fatal_error(error, 'invalid batches: must be an integer from 1 to 100000')
          end if
@@ -349,11 +352,12 @@ contains
                           'renormalisations', 'use a larger --tau or a shorter --t-end', error)
          if (allocated(error)) return
          n = cfg%t_end/ch%tau + 2.0_dp
-         call check_resources('tau', n, 3.0_dp*8.0_dp*real(1 + ch%vectors, dp), &
-                              8.0_dp*real(1 + ch%vectors, dp), sci(n)//' renormalisations', &
+         call check_resources('tau', n, 3.0_dp*8.0_dp*real(1 + n_vectors(ch, cfg), dp), &
+                              8.0_dp*real(1 + n_vectors(ch, cfg), dp), sci(n)// &
+                              ' renormalisations', &
                               'use a larger --tau', error)
       case ('divergence')
-         y_max = max(1.0_dp, maxval(abs(cfg%q0)), maxval(abs(cfg%w0)))
+         y_max = max(1.0_dp, maxval(abs(cfg%q0())), maxval(abs(cfg%w0())))
          if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
             then
             call fatal_error(error, 'invalid delta0: must be in (0, 0.1) (rad, rad/s)')
@@ -411,7 +415,7 @@ contains
          call check_resources('lyapunov_t', n, 48.0_dp, 0.0_dp, sci(n)//' renormalisations', &
                               'use a shorter --lyapunov-t', error)
       case ('poincare')
-         e_lim = energy_limit(cfg%model%par, max_angular_velocity)
+         e_lim = energy_limit(cfg%pendulum(), max_angular_velocity)
          if (.not. cfg%model%energy_sections()) then
             call fatal_error(error, 'invalid command: poincare needs a model with '// &
                              'energy-shell sections; the '//cfg%model%name()//' has none')
@@ -512,16 +516,16 @@ contains
       type(lyapunov_result_t) :: res
       type(h5file_t) :: h5
       character(len=:), allocatable :: status, line
-      integer :: stat, i
-      real(dp) :: defect14, defect23
-      call lyapunov_spectrum(integ, cfg%model, 0.0_dp, integ%to_internal(cfg%model, cfg%q0, cfg%w0), &
-                             cfg%t_end, cfg%dt, ch%tau, ch%vectors, ch%batches, res, stat)
+      integer :: stat, i, k
+      real(dp), allocatable :: defects(:)
+      call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
+                             integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
+                             cfg%dt, ch%tau, n_vectors(ch, cfg), ch%batches, res, stat)
       status = run_status(stat, res%t_reached)
-      defect14 = 0.0_dp; defect23 = 0.0_dp
-      if (res%k == 4) then
-         defect14 = res%exponents(1) + res%exponents(4)
-         defect23 = res%exponents(2) + res%exponents(3)
-      end if
+      ! a Hamiltonian spectrum comes in pairs: lambda_i + lambda_(2N+1-i) = 0
+      k = res%k
+      allocate (defects(0))
+      if (k == cfg%model%n_state()) defects = res%exponents(:k/2) + res%exponents(k:k/2 + 1:-1)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'lyapunov', status)
@@ -536,14 +540,15 @@ contains
       call h5%write('/lyapunov/batches', res%batches, units='1/s', description= &
          'exponents of the equal time segments')
       call h5%writeattr('/', 'tau', ch%tau)
-      call h5%writeattr('/', 'vectors', ch%vectors)
+      call h5%writeattr('/', 'vectors', k)
       call h5%writeattr('/', 'batches', size(res%batches, 2))
       call h5%writeattr('/', 't_reached', res%t_reached)
       call h5%writeattr('/', 'n_renormalisations', size(res%t))
       call h5%writeattr('/', 'n_tangent_substeps', res%n_sub)
-      if (res%k == 4) then
-         call h5%writeattr('/', 'pairing_defect', defect14)
-         call h5%writeattr('/', 'zero_pair_sum', defect23)
+      if (size(defects) > 0) then
+         call h5%writeattr('/', 'pairing_defects', defects)
+         call h5%writeattr('/', 'pairing_defect', defects(1))
+         if (k == 4) call h5%writeattr('/', 'zero_pair_sum', defects(2))
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
@@ -556,12 +561,11 @@ contains
          summary = summary//'  '//to_str(i)//'  '//es(res%exponents(i))//'  '// &
                    es(res%spread(i))//nl
       end do
-      if (res%k == 4) then
-         summary = summary//'pairing defect: lambda1 + lambda4 = '//es(defect14)//' 1/s' &
-                   //pct(defect14, res%exponents(1))//nl// &
-                   'zero pair: lambda2 = '//es(res%exponents(2))//', lambda3 = ' &
-                   //es(res%exponents(3))//', lambda2 + lambda3 = '//es(defect23)//' 1/s'//nl
-      end if
+      do i = 1, size(defects)
+         summary = summary//'pairing defect: lambda'//to_str(i)//' + lambda'// &
+                   to_str(k + 1 - i)//' = '//es(defects(i))//' 1/s'// &
+                   pct(defects(i), res%exponents(1))//nl
+      end do
       summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"
       if (stat /= stat_ok) then
          ! no scripting line: a failed run has no exponents to report
@@ -591,7 +595,7 @@ contains
       character(len=:), allocatable :: status
       integer :: stat, lstat
       real(dp) :: lam, lam_spread
-      call divergence_pairs(integ, cfg%model, cfg%q0, cfg%w0, cfg%t_end, cfg%output_dt, &
+      call divergence_pairs(integ, cfg%model, cfg%q0(), cfg%w0(), cfg%t_end, cfg%output_dt, &
                             ch%delta0, ch%same_energy, ch%pairs, ch%pair_spacing, cfg%dt, &
                             res, stat)
       status = run_status(stat, -1.0_dp)
@@ -603,7 +607,7 @@ contains
       lam = 0.0_dp; lam_spread = 0.0_dp; lstat = stat_ok
       if (ch%lyapunov_t > 0.0_dp .and. stat == stat_ok) then
          call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
-                                integ%to_internal(cfg%model, cfg%q0, cfg%w0), ch%lyapunov_t, &
+                                integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), ch%lyapunov_t, &
                                 cfg%dt, 0.5_dp, 1, 10, lres, lstat)
          lam = lres%exponents(1); lam_spread = lres%spread(1)
          if (lstat /= stat_ok) status = run_status(lstat, lres%t_reached)
@@ -688,7 +692,7 @@ contains
       integer :: n_found, n_failed
       character(len=:), allocatable :: status
       e = ch%energy
-      if (.not. ch%energy_given) e = cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0])
+      if (.not. ch%energy_given) e = cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()])
       allocate (q0(2, ch%n_ics), qd0(2, ch%n_ics))
       call shell_samples(cfg%model, e, ch%section_link, ch%section_angle, ch%section_direction, &
                          ch%n_ics, q0, qd0, n_found)
@@ -776,9 +780,12 @@ contains
          call h5%writeattr('/', 'rtol', cfg%rtol)
          call h5%writeattr('/', 'atol', cfg%atol)
       end if
-      call h5%writeattr('/', 'q0', cfg%q0)
-      call h5%writeattr('/', 'qdot0', cfg%w0)
-      call h5%writeattr('/', 'energy0', cfg%model%energy(0.0_dp, [cfg%q0, cfg%w0]))
+      call h5%writeattr('/', 'q0', cfg%q0())
+      call h5%writeattr('/', 'qdot0', cfg%w0())
+      call h5%writeattr('/', 'links', cfg%links)
+      call h5%writeattr('/', 'm', cfg%m(:cfg%links))
+      call h5%writeattr('/', 'l', cfg%l(:cfg%links))
+      call h5%writeattr('/', 'energy0', cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()]))
       call h5%writeattr('/', 'n_steps', integ%n_steps)
       call h5%writeattr('/', 'status', status)
       call h5%writeattr('/', 'version', version)
@@ -808,6 +815,14 @@ contains
    end subroutine stopped
 
    !> " (x % of ref)" when ref /= 0.
+   !> Tangent vectors of `dpend lyapunov`: --vectors, or all 2N when it is 0.
+   pure integer function n_vectors(ch, cfg)
+      type(chaos_config_t), intent(in) :: ch  !! chaos settings
+      type(run_config_t), intent(in) :: cfg   !! run settings (model built)
+      n_vectors = ch%vectors
+      if (n_vectors == 0) n_vectors = cfg%model%n_state()
+   end function n_vectors
+
    function pct(x, ref) result(s)
       real(dp), intent(in) :: x, ref
       character(len=:), allocatable :: s

@@ -1,14 +1,20 @@
 !> Run configuration shared by every command: a Fortran namelist file
 !> (`--config FILE`, commented examples in data/) and command-line flags that
-!> override it. Groups: &pendulum (m1 m2 l1 l2 g), &initial (q1 q2 w1 w2),
-!> &integration (method dt t_end save_every rtol atol output_dt omega),
-!> &output (file force). Commands with more settings read further groups
-!> through `check_groups` and their own namelists.
+!> override it. Groups: &pendulum (links m l g, or m1 m2 l1 l2 for two links),
+!> &initial (q w, or q1 q2 w1 w2), &integration (method dt t_end save_every rtol atol
+!> output_dt omega), &output (file force). Commands with more settings read further
+!> groups through `check_groups` and their own namelists.
+!>
+!> The system is the chain of `links` uniform rods (issue 12): two links are the
+!> chapter's double pendulum (`double_pendulum_t`, with its fast paths), any other
+!> number the N-link chain (`chain_t`). `validate_run_config` checks the fields and
+!> builds `model`; before that, `model` is not allocated.
 module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, validate, finite_positive
-   use dpend_pendulum, only: double_pendulum_t
+   use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
+   use dpend_chain, only: chain_t, chain_model
+   use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
@@ -22,16 +28,26 @@ module dpend_config
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
    public :: check_groups, run_flags_help, namelist_error
-   public :: check_regular_file
+   public :: check_regular_file, set_pendulum
 
    !> Largest configuration file read [bytes].
    integer(i8), parameter :: max_config_bytes = 1048576_i8
 
+   !> The lists a user may give (--m --l --q --w, namelist m l q w), in this order.
+   character(len=1), parameter :: list_names(4) = ['m', 'l', 'q', 'w']
+
    !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
+   !> Per-link values are kept for max_dof links; the first `links` are used.
    type :: run_config_t
-      type(double_pendulum_t) :: model         !! the double pendulum and its parameters
-      real(dp) :: q0(2) = [0.0_dp, 0.0_dp]     !! initial angles [rad]
-      real(dp) :: w0(2) = [0.0_dp, 0.0_dp]     !! initial angular velocities [rad/s]
+      integer :: links = 2                     !! number of links N
+      real(dp) :: m(max_dof) = 1.0_dp          !! link masses [kg]
+      real(dp) :: l(max_dof) = 1.0_dp          !! link lengths [m]
+      real(dp) :: g = 9.8_dp                   !! gravitational acceleration [m/s²]
+      real(dp) :: q(max_dof) = 0.0_dp          !! initial angles [rad]
+      real(dp) :: w(max_dof) = 0.0_dp          !! initial angular velocities [rad/s]
+      !> Lengths of the lists given for m, l, q, w (0: none given); each must be N.
+      integer :: list_size(4) = 0
+      class(model_t), allocatable :: model     !! the system, built by validate_run_config
       character(len=:), allocatable :: method  !! integrator name
       real(dp) :: dt = 1e-3_dp                 !! step (initial step for adaptive) [s]
       real(dp) :: t_end = 10.0_dp              !! end time [s]
@@ -44,9 +60,41 @@ module dpend_config
                                                !! integration (adaptive methods)
       character(len=:), allocatable :: output  !! output file
       logical :: force = .false.               !! overwrite an existing output file
+   contains
+      !> Initial angles q(1:N) [rad].
+      procedure :: q0 => run_q0
+      !> Initial angular velocities w(1:N) [rad/s].
+      procedure :: w0 => run_w0
+      !> The double pendulum's parameters (links 1 and 2, g).
+      procedure :: pendulum => run_pendulum
    end type run_config_t
 
 contains
+
+   pure function run_q0(self) result(q)
+      class(run_config_t), intent(in) :: self  !! configuration
+      real(dp), allocatable :: q(:)
+      q = self%q(:self%links)
+   end function run_q0
+
+   pure function run_w0(self) result(w)
+      class(run_config_t), intent(in) :: self  !! configuration
+      real(dp), allocatable :: w(:)
+      w = self%w(:self%links)
+   end function run_w0
+
+   pure function run_pendulum(self) result(par)
+      class(run_config_t), intent(in) :: self  !! configuration
+      type(pendulum_t) :: par
+      par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+   end function run_pendulum
+
+   !> Set the parameters of the double pendulum (two links) from `par`.
+   pure subroutine set_pendulum(cfg, par)
+      type(run_config_t), intent(inout) :: cfg  !! configuration
+      type(pendulum_t), intent(in) :: par       !! parameters
+      cfg%m(1:2) = [par%m1, par%m2]; cfg%l(1:2) = [par%l1, par%l2]; cfg%g = par%g
+   end subroutine set_pendulum
 
    !> Check that `filename` is a namelist file made only of the groups `known`
    !> (names without '&'), each at most once, and nothing outside them but blanks
@@ -340,15 +388,17 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! unreadable or invalid
       character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
       real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
-      integer :: save_every, unit, stat, n_extra, i
+      real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof)
+      real(dp), parameter :: unset = -huge(1.0_dp)   ! marks list entries not given
+      integer :: save_every, unit, stat, n_extra, i, links
       integer(i8) :: max_steps
       character(len=64) :: method
       character(len=1024) :: file
       character(len=512) :: msg
       logical :: force
       character(len=16), allocatable :: known(:)
-      namelist /pendulum/ m1, m2, l1, l2, g
-      namelist /initial/ q1, q2, w1, w2
+      namelist /pendulum/ links, m, l, m1, m2, l1, l2, g
+      namelist /initial/ q, w, q1, q2, w1, w2
       namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
          max_steps
       namelist /output/ file, force
@@ -365,8 +415,10 @@ contains
       call check_groups(filename, known, error)
       if (allocated(error)) return
 
-      m1 = cfg%model%par%m1; m2 = cfg%model%par%m2; l1 = cfg%model%par%l1; l2 = cfg%model%par%l2; g = cfg%model%par%g
-      q1 = cfg%q0(1); q2 = cfg%q0(2); w1 = cfg%w0(1); w2 = cfg%w0(2)
+      links = cfg%links
+      m1 = cfg%m(1); m2 = cfg%m(2); l1 = cfg%l(1); l2 = cfg%l(2); g = cfg%g
+      q1 = cfg%q(1); q2 = cfg%q(2); w1 = cfg%w(1); w2 = cfg%w(2)
+      m = unset; l = unset; q = unset; w = unset
       method = ''
       if (allocated(cfg%method)) method = cfg%method
       dt = cfg%dt; t_end = cfg%t_end; save_every = cfg%save_every
@@ -403,14 +455,37 @@ contains
       end if
       close (unit)
 
-      cfg%model%par = pendulum_t(m1=m1, m2=m2, l1=l1, l2=l2, g=g)
-      cfg%q0 = [q1, q2]; cfg%w0 = [w1, w2]
+      cfg%links = links
+      cfg%m(1:2) = [m1, m2]; cfg%l(1:2) = [l1, l2]; cfg%g = g
+      cfg%q(1:2) = [q1, q2]; cfg%w(1:2) = [w1, w2]
+      ! the lists, where given, override the two-link names
+      call take_list(1, m, cfg%m)
+      call take_list(2, l, cfg%l)
+      call take_list(3, q, cfg%q)
+      call take_list(4, w, cfg%w)
       if (len_trim(method) > 0) cfg%method = trim(method)
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
       cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
       cfg%max_steps = max_steps
       if (len_trim(file) > 0) cfg%output = trim(file)
       cfg%force = force
+   contains
+      !> Keep the given leading entries of a namelist list (its size is checked
+      !> against the number of links by validate_run_config).
+      subroutine take_list(k, given, values)
+         integer, intent(in) :: k
+         real(dp), intent(in) :: given(:)
+         real(dp), intent(inout) :: values(:)
+         integer :: n
+         n = 0
+         do while (n < size(given))
+            if (given(n + 1) == unset) exit
+            n = n + 1
+         end do
+         if (n == 0) return
+         values(:n) = given(:n)
+         cfg%list_size(k) = n
+      end subroutine take_list
    end subroutine read_run_config
 
    !> Apply one of the common flags; `matched` is false if `name` is not one of them.
@@ -422,17 +497,22 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! invalid value
       matched = .true.
       select case (name)
-      case ('--q1'); call parse_real(value, name, cfg%q0(1), error)
-      case ('--q2'); call parse_real(value, name, cfg%q0(2), error)
+      case ('--links'); call parse_int(value, name, cfg%links, error)
+      case ('--m'); call parse_list(1, cfg%m)
+      case ('--l'); call parse_list(2, cfg%l)
+      case ('--q'); call parse_list(3, cfg%q)
+      case ('--w'); call parse_list(4, cfg%w)
+      case ('--q1'); call parse_real(value, name, cfg%q(1), error)
+      case ('--q2'); call parse_real(value, name, cfg%q(2), error)
       case ('--theta1', '--theta2')   ! from the hanging position, as the sweep's axes
          call parse_theta(merge(1, 2, name == '--theta1'))
-      case ('--w1'); call parse_real(value, name, cfg%w0(1), error)
-      case ('--w2'); call parse_real(value, name, cfg%w0(2), error)
-      case ('--m1'); call parse_real(value, name, cfg%model%par%m1, error)
-      case ('--m2'); call parse_real(value, name, cfg%model%par%m2, error)
-      case ('--l1'); call parse_real(value, name, cfg%model%par%l1, error)
-      case ('--l2'); call parse_real(value, name, cfg%model%par%l2, error)
-      case ('--g'); call parse_real(value, name, cfg%model%par%g, error)
+      case ('--w1'); call parse_real(value, name, cfg%w(1), error)
+      case ('--w2'); call parse_real(value, name, cfg%w(2), error)
+      case ('--m1'); call parse_real(value, name, cfg%m(1), error)
+      case ('--m2'); call parse_real(value, name, cfg%m(2), error)
+      case ('--l1'); call parse_real(value, name, cfg%l(1), error)
+      case ('--l2'); call parse_real(value, name, cfg%l(2), error)
+      case ('--g'); call parse_real(value, name, cfg%g, error)
       case ('--method'); cfg%method = value
       case ('--dt'); call parse_real(value, name, cfg%dt, error)
       case ('--t-end'); call parse_real(value, name, cfg%t_end, error)
@@ -458,33 +538,86 @@ contains
                              ' rad is outside [-1e6, 1e6]')
             return
          end if
-         cfg%q0(k) = theta - half_pi
+         cfg%q(k) = theta - half_pi
       end subroutine parse_theta
+      !> A comma-separated list of at most max_dof numbers, one per link.
+      subroutine parse_list(k, values)
+         integer, intent(in) :: k
+         real(dp), intent(inout) :: values(:)
+         integer :: n, start, comma
+         n = 0
+         start = 1
+         do
+            comma = index(value(start:), ',')
+            if (n == size(values)) then
+               call fatal_error(error, 'invalid '//name//': more than '//to_str(max_dof)// &
+                                ' values (at most '//to_str(max_dof)//' links)')
+               return
+            end if
+            n = n + 1
+            if (comma == 0) then
+               call parse_real(value(start:), name, values(n), error)
+               exit
+            end if
+            call parse_real(value(start:start + comma - 2), name, values(n), error)
+            if (allocated(error)) return
+            start = start + comma
+         end do
+         if (allocated(error)) return
+         cfg%list_size(k) = n
+      end subroutine parse_list
    end subroutine apply_run_flag
 
    !> Check the whole configuration; messages name the field and the accepted range
    !> (the limits and their reasons are in `dpend_limits`). For a fixed-step method
    !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
    !> after `max_steps` accepted steps instead (`--max-steps`).
+   !> Builds `cfg%model` (the double pendulum for two links, the chain otherwise).
    subroutine validate_run_config(cfg, error)
-      type(run_config_t), intent(in) :: cfg             !! configuration
+      type(run_config_t), intent(inout) :: cfg          !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
-      character(len=*), parameter :: qn(2) = ['q1', 'q2'], wn(2) = ['w1', 'w2']
       class(integrator_t), allocatable :: integ
-      integer :: i
-      call validate(cfg%model%par, error)
-      if (allocated(error)) then
-         error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
-         return
+      integer :: i, n
+      if (allocated(cfg%model)) deallocate (cfg%model)
+      call check_range('links', real(cfg%links, dp), 1.0_dp, real(max_dof, dp), '', error)
+      if (allocated(error)) return
+      n = cfg%links
+      do i = 1, size(list_names)
+         if (cfg%list_size(i) /= 0 .and. cfg%list_size(i) /= n) then
+            call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                             to_str(cfg%list_size(i))//' values for '//to_str(n)// &
+                             ' links (one per link; --links N sets N) [--'//list_names(i)// &
+                             ' / namelist '//list_names(i)//']')
+            return
+         end if
+      end do
+      if (n == 2) then
+         call validate(cfg%pendulum(), error)
+         if (allocated(error)) then
+            error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+            return
+         end if
+         allocate (cfg%model, source=pendulum_model(cfg%pendulum()))
+      else
+         block
+            type(chain_t) :: chain
+            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)
+            if (allocated(error)) then
+               error%message = error%message//' [--m --l --g / &pendulum]'
+               return
+            end if
+            allocate (cfg%model, source=chain)
+         end block
       end if
-      do i = 1, 2
-         call check_range(qn(i), cfg%q0(i), -max_angle, max_angle, 'rad', error, &
+      do i = 1, n
+         call check_range('q'//to_str(i), cfg%q(i), -max_angle, max_angle, 'rad', error, &
                           'beyond, the rounding of the angle exceeds 1e-10 rad')
          if (allocated(error)) return
       end do
-      do i = 1, 2
-         call check_range(wn(i), cfg%w0(i), -max_angular_velocity, max_angular_velocity, &
-                          'rad/s', error, 'keeps energies and momenta finite')
+      do i = 1, n
+         call check_range('w'//to_str(i), cfg%w(i), -max_angular_velocity, &
+                          max_angular_velocity, 'rad/s', error, &
+                          'keeps energies and momenta finite')
          if (allocated(error)) return
       end do
       if (.not. allocated(cfg%method)) then
@@ -548,19 +681,26 @@ contains
       if (present(t_end_text)) t_end_line = t_end_text
       s = '  --config FILE     Fortran namelist file (groups &pendulum &initial &integration' &
           //nl//'                    &output; see data/*.nml); flags below override it'//nl// &
+          '  --links N         number of links (uniform rods), 1 to '//to_str(max_dof)// &
+          '; default '//to_str(cfg%links)//nl// &
+          '                    (2: the double pendulum; 3: the triple pendulum, ...)'//nl// &
+          '  --m, --l, --q, --w LIST  one value per link, comma-separated: masses (kg),'//nl// &
+          '                    lengths (m), initial angles (rad), angular velocities (rad/s),'// &
+          nl//'                    e.g. --links 3 --m 1,1,1 --q 0,0.5,-1; defaults 1 kg, 1 m, 0, 0' &
+          //nl// &
           '  --q1, --q2 RAD    initial angles from the horizontal x axis, counter-clockwise' &
-          //nl//'                    (hanging: -pi/2); default '//real_str(cfg%q0(1))//', ' &
-          //real_str(cfg%q0(2))//nl// &
+          //nl//'                    (hanging: -pi/2); default '//real_str(cfg%q(1))//', ' &
+          //real_str(cfg%q(2))//nl// &
           '  --theta1, --theta2 RAD  the same angles from the hanging position, as the'//nl// &
           "                    sweep's axes: q = theta - pi/2"//nl// &
-          '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w0(1))//', ' &
-          //real_str(cfg%w0(2))//nl// &
+          '  --w1, --w2 RAD/S  initial angular velocities; default '//real_str(cfg%w(1))//', ' &
+          //real_str(cfg%w(2))//nl// &
           '  --m1, --m2 KG     link masses (m1 m2 l1 l2 g: each in [1e-6, 1e6]); default ' &
-          //real_str(cfg%model%par%m1)//', ' &
-          //real_str(cfg%model%par%m2)//nl// &
-          '  --l1, --l2 M      link lengths; default '//real_str(cfg%model%par%l1)//', ' &
-          //real_str(cfg%model%par%l2)//nl// &
-          '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%model%par%g)//nl// &
+          //real_str(cfg%m(1))//', ' &
+          //real_str(cfg%m(2))//nl// &
+          '  --l1, --l2 M      link lengths; default '//real_str(cfg%l(1))//', ' &
+          //real_str(cfg%l(2))//nl// &
+          '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%g)//nl// &
           '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &

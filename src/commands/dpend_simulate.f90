@@ -218,7 +218,7 @@ contains
       cap = max_samples
       avail = available_memory_bytes()
       if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
-      y = integ%to_internal(cfg%model, cfg%q0, cfg%w0)
+      y = integ%to_internal(cfg%model, cfg%q0(), cfg%w0())
       t = 0.0_dp
       h = cfg%dt
       traj%status = 'completed'
@@ -289,7 +289,7 @@ contains
       type(h5file_t) :: h5
       real(dp), allocatable :: qdd(:, :), p(:, :), e(:), out(:, :), y(:), f(:), slab(:, :)
       character(len=:), allocatable :: name, units, text
-      integer :: i, n, nd, j, n_comp, off, n_out
+      integer :: i, n, nd, j, n_comp, off, n_out, rows
       logical :: canonical
       n = traj%n
       associate (model => cfg%model)
@@ -325,9 +325,14 @@ contains
             description='total energy T + V (V = 0 with both links horizontal)')
          off = 0
          do j = 1, model%n_outputs()
-            call model%output_info(j, name, n_comp, units, text)
+            call model%output_info(j, name, n_comp, units, text, rows)
             slab = out(off + 1:off + n_comp, :)   ! contiguous, for the HDF5 layer
-            call h5%write('/trajectory/'//name, slab, units=units, description=text)
+            if (rows > 0) then   ! (samples, rows, n_comp/rows) as h5py shows it
+               call h5%write('/trajectory/'//name, reshape(slab, [n_comp/rows, rows, n]), &
+                             units=units, description=text)
+            else
+               call h5%write('/trajectory/'//name, slab, units=units, description=text)
+            end if
             off = off + n_comp
          end do
          do j = 1, model%n_parameters()
@@ -342,8 +347,11 @@ contains
       call h5%writeattr('/', 'dt', cfg%dt)
       call h5%writeattr('/', 't_end', cfg%t_end)
       call h5%writeattr('/', 'version', version)
-      call h5%writeattr('/', 'q0', cfg%q0)
-      call h5%writeattr('/', 'qdot0', cfg%w0)
+      call h5%writeattr('/', 'q0', cfg%q0())
+      call h5%writeattr('/', 'qdot0', cfg%w0())
+      call h5%writeattr('/', 'links', cfg%links)
+      call h5%writeattr('/', 'm', cfg%m(:cfg%links))
+      call h5%writeattr('/', 'l', cfg%l(:cfg%links))
       call h5%writeattr('/', 'save_every', cfg%save_every)
       call h5%writeattr('/', 'order', integ%order())
       if (integ%adaptive()) then

@@ -12,10 +12,10 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive
-   use dpend_pendulum, only: double_pendulum_t
-   use dpend_cli, only: arg_t, next_option, parse_int, option_outcome
+   use dpend_pendulum, only: double_pendulum_t, pendulum_model
+   use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
-                           namelist_error
+                           namelist_error, set_pendulum
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_method_registry, only: method_names, method_index, method_table
@@ -242,7 +242,7 @@ contains
          call read_study_config(config, cfg, error)
          if (allocated(error)) return
       end if
-      rcfg%model = cfg%model
+      call set_pendulum(rcfg, cfg%model%par)
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)
@@ -277,7 +277,7 @@ contains
             cases_given = .true.
          case ('--m1', '--m2', '--l1', '--l2', '--g')
             call apply_run_flag(rcfg, name, value, matched, error)
-            cfg%model = rcfg%model
+            cfg%model = pendulum_model(rcfg%pendulum())
          case default
             matched = .false.
          end select
@@ -391,12 +391,17 @@ contains
 
       call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
       if (allocated(error)) return
-      rcfg%model = cfg%model
+      call set_pendulum(rcfg, cfg%model%par)
       rcfg%output = cfg%output
       rcfg%force = cfg%force
       call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
       if (allocated(error)) return
-      cfg%model = rcfg%model
+      if (rcfg%links /= 2 .or. any(rcfg%list_size(1:2) /= 0 .and. rcfg%list_size(1:2) /= 2)) then
+         call fatal_error(error, "invalid links in '"//filename//"': "//to_str(rcfg%links)// &
+                          ' (dpend study runs the double pendulum: links = 2)')
+         return
+      end if
+      cfg%model = pendulum_model(rcfg%pendulum())
       cfg%output = rcfg%output
       cfg%force = rcfg%force
 

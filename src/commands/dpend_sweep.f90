@@ -98,7 +98,7 @@ contains
       integer :: i
       setup%cfg = cfg
       setup%grid = grid_mode(cfg)
-      setup%tau = sqrt(cfg%run%model%par%l1/cfg%run%model%par%g)
+      setup%tau = sqrt(cfg%run%l(1)/cfg%run%g)
       scale = time_scale(cfg)
       t_end = cfg%run%t_end*scale
       setup%opt%n_steps = max(1_i8, ceiling(cfg%run%t_end/cfg%run%dt*(1.0_dp - 1e-12_dp), i8))
@@ -215,7 +215,7 @@ contains
          y0 = setup%list(:, j0:j0 + nb - 1)
          return
       end if
-      base = [setup%cfg%run%q0, setup%cfg%run%w0]
+      base = [setup%cfg%run%q0(), setup%cfg%run%w0()]
       do j = 1, nb
          jj = j0 + j - 1
          i1 = mod(jj - 1, setup%cfg%n1) + 1
@@ -233,7 +233,7 @@ contains
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: y0(:, :)
       call block_initial_conditions(setup, b, y0)
-      call integrate_batch(setup%cfg%run%model%par, setup%opt, y0, res)
+      call integrate_batch(setup%cfg%run%pendulum(), setup%opt, y0, res)
    end subroutine compute_block
 
    !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or
@@ -356,13 +356,13 @@ contains
       type(sweep_setup_t), intent(in) :: setup  !! setup
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
-      associate (c => setup%cfg, p => setup%cfg%run%model%par)
+      associate (c => setup%cfg, p => setup%cfg%run%pendulum())
          s = 'program = dpend '//version//nl//'command = sweep'//nl// &
              'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
              'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
              'l2 = '//r(p%l2)//nl//'g = '//r(p%g)//nl// &
-             'q1 = '//r(c%run%q0(1))//nl//'q2 = '//r(c%run%q0(2))//nl// &
-             'w1 = '//r(c%run%w0(1))//nl//'w2 = '//r(c%run%w0(2))//nl// &
+             'q1 = '//r(c%run%q(1))//nl//'q2 = '//r(c%run%q(2))//nl// &
+             'w1 = '//r(c%run%w(1))//nl//'w2 = '//r(c%run%w(2))//nl// &
              'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
@@ -545,9 +545,9 @@ contains
          call h5%write('/sweep/initial', setup%list, error, units, text)
       end if
       if (allocated(error)) return
-      bounds = flip_energy_bounds(setup%cfg%run%model%par)
+      bounds = flip_energy_bounds(setup%cfg%run%pendulum())
       ! the attributes pass no `error`: h5 keeps the first failure (take_error below)
-      associate (c => setup%cfg, p => setup%cfg%run%model%par)
+      associate (c => setup%cfg, p => setup%cfg%run%pendulum())
          call h5%writeattr('/', 'program', 'dpend sweep')
          call h5%writeattr('/', 'version', version)
          call h5%writeattr('/', 'method', c%run%method)
@@ -558,8 +558,8 @@ contains
          call h5%writeattr('/sweep', 'l1', p%l1)
          call h5%writeattr('/sweep', 'l2', p%l2)
          call h5%writeattr('/sweep', 'g', p%g)
-         call h5%writeattr('/sweep', 'q0', c%run%q0)
-         call h5%writeattr('/sweep', 'qdot0', c%run%w0)
+         call h5%writeattr('/sweep', 'q0', c%run%q0())
+         call h5%writeattr('/sweep', 'qdot0', c%run%w0())
          call h5%writeattr('/sweep', 'h', setup%opt%h)
          call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
          call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)

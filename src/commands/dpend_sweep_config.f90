@@ -72,8 +72,8 @@ contains
       cfg%run%dt = 0.01_dp
       cfg%run%t_end = 100.0_dp
       cfg%run%output = 'sweep.h5'
-      cfg%run%q0 = [0.0_dp, 0.0_dp]
-      cfg%run%w0 = [0.0_dp, 0.0_dp]
+      cfg%run%q = 0.0_dp
+      cfg%run%w = 0.0_dp
       cfg%axis1 = 'theta1'
       cfg%axis2 = 'theta2'
       cfg%ic_file = ''
@@ -93,7 +93,7 @@ contains
    pure real(dp) function time_scale(cfg)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       time_scale = 1.0_dp
-      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%model%par%l1/cfg%run%model%par%g)
+      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%l(1)/cfg%run%g)
    end function time_scale
 
    !> The stop rule of the kernel (stop_end with the Lyapunov exponent).
@@ -270,10 +270,15 @@ contains
 
    !> Check the configuration; messages name the field and the accepted range.
    subroutine validate_sweep(cfg, error)
-      type(sweep_config_t), intent(in) :: cfg           !! configuration
+      type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
+      if (cfg%run%links /= 2) then
+         call fatal_error(error, 'invalid links: '//to_str(cfg%run%links)// &
+                          ' (dpend sweep accepts: 2, the double pendulum)')
+         return
+      end if
       if (cfg%run%method /= 'rk4') then
          call fatal_error(error, "invalid method: '"//cfg%run%method// &
                           "' (dpend sweep accepts: rk4)")

@@ -233,11 +233,11 @@ contains
    subroutine record_step(self, t0, y0, t1, y1, f0, f1)
       class(integrator_t), intent(inout) :: self  !! the method
       real(dp), intent(in) :: t0                  !! start of the step [s]
-      real(dp), intent(in), contiguous :: y0(:)   !! internal state at t0
+      real(dp), intent(in) :: y0(:)               !! internal state at t0
       real(dp), intent(in) :: t1                  !! end of the step [s]
-      real(dp), intent(in), contiguous :: y1(:)   !! internal state at t1
-      real(dp), intent(in), optional, contiguous :: f0(:)  !! vector field at y0, if known
-      real(dp), intent(in), optional, contiguous :: f1(:)  !! vector field at y1, if known
+      real(dp), intent(in) :: y1(:)               !! internal state at t1
+      real(dp), intent(in), optional :: f0(:)     !! vector field at y0, if known
+      real(dp), intent(in), optional :: f1(:)     !! vector field at y1, if known
       integer :: n
       n = size(y0)
       self%stepped = .true.

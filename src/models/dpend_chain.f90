@@ -672,12 +672,14 @@ contains
    end function chain_n_outputs
 
    !> F_joint, rC, vC, aC, rJ, vJ, aJ: 2N values each, (x, y) per joint or link.
-   subroutine chain_output_info(self, i, name, n_comp, units, description)
+   subroutine chain_output_info(self, i, name, n_comp, units, description, rows)
       class(chain_t), intent(in) :: self
       integer, intent(in) :: i
       character(len=:), allocatable, intent(out) :: name, units, description
       integer, intent(out) :: n_comp
+      integer, intent(out), optional :: rows
       name = trim(out_names(i)); n_comp = 2*self%n
+      if (present(rows)) rows = self%n   ! (samples, N, 2)
       units = trim(out_units(i)); description = trim(out_text(i))
    end subroutine chain_output_info
 

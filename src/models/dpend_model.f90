@@ -278,15 +278,20 @@ contains
       model_none = 0
    end function model_none
 
-   !> Name, number of components, units and description of output i.
-   subroutine model_output_info(self, i, name, n_comp, units, description)
+   !> Name, number of components, units and description of output i; `rows` > 0 says
+   !> that the n_comp values of a sample are `rows` vectors of n_comp/rows components
+   !> (e.g. (x, y) per joint), written with shape (samples, rows, n_comp/rows) as
+   !> h5py shows it; 0 (the default) writes (samples, n_comp).
+   subroutine model_output_info(self, i, name, n_comp, units, description, rows)
       class(model_t), intent(in) :: self
       integer, intent(in) :: i                                   !! 1 … n_outputs()
       character(len=:), allocatable, intent(out) :: name         !! dataset name
       integer, intent(out) :: n_comp                             !! components per sample
       character(len=:), allocatable, intent(out) :: units        !! SI units
       character(len=:), allocatable, intent(out) :: description  !! one line
+      integer, intent(out), optional :: rows                     !! vectors per sample
       name = ''; n_comp = 0; units = ''; description = ''
+      if (present(rows)) rows = 0
       call lacks(self, 'outputs')
    end subroutine model_output_info
 

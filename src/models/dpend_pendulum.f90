@@ -87,20 +87,23 @@ module dpend_pendulum
    end type double_pendulum_t
 
    !> The writer's per-sample outputs: joint reactions (chapter 6.16–6.26, corrected)
-   !> and kinematics (6.2–6.12), two components (x, y) each.
-   integer, parameter :: n_out = 9
-   character(len=3), parameter :: out_names(n_out) = &
-      [character(len=3) :: 'F01', 'F21', 'rC1', 'vC1', 'aC1', 'rC2', 'vC2', 'aC2', 'rB']
+   !> and kinematics (6.2–6.12), two components (x, y) each; then F_joint, the N-link
+   !> chain's layout of the reactions (force of body i-1 on body i at joint i: F01 and
+   !> F12 = -F21), so that scripts for any number of links read the same dataset.
+   integer, parameter :: n_out = 10
+   character(len=7), parameter :: out_names(n_out) = [character(len=7) :: &
+      'F01', 'F21', 'rC1', 'vC1', 'aC1', 'rC2', 'vC2', 'aC2', 'rB', 'F_joint']
    character(len=5), parameter :: out_units(n_out) = &
-      [character(len=5) :: 'N', 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm']
-   character(len=48), parameter :: out_text(n_out) = [character(len=48) :: &
+      [character(len=5) :: 'N', 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm', 'N']
+   character(len=74), parameter :: out_text(n_out) = [character(len=74) :: &
       'force of the ground on link 1 at A (x, y)', &
       'force of link 2 on link 1 at B (x, y)', &
       'position of the centre of mass C1 (x, y)', &
       'velocity of C1 (x, y)', 'acceleration of C1 (x, y)', &
       'position of the centre of mass C2 (x, y)', &
       'velocity of C2 (x, y)', 'acceleration of C2 (x, y)', &
-      'position of the joint B (x, y)']
+      'position of the joint B (x, y)', &
+      'force of body i-1 on body i at joint i (x, y): F01 and -F21 (body 0: ground)']
 
 contains
 
@@ -789,16 +792,22 @@ contains
       dp_n_outputs = n_out
    end function dp_n_outputs
 
-   subroutine dp_output_info(self, i, name, n_comp, units, description)
+   subroutine dp_output_info(self, i, name, n_comp, units, description, rows)
       class(double_pendulum_t), intent(in) :: self
       integer, intent(in) :: i
       character(len=:), allocatable, intent(out) :: name, units, description
       integer, intent(out) :: n_comp
+      integer, intent(out), optional :: rows
       name = trim(out_names(i)); n_comp = 2
+      if (present(rows)) rows = 0
+      if (i == n_out) then    ! F_joint: (samples, 2 joints, 2)
+         n_comp = 4
+         if (present(rows)) rows = 2
+      end if
       units = trim(out_units(i)); description = trim(out_text(i))
    end subroutine dp_output_info
 
-   !> F01, F21, rC1, vC1, aC1, rC2, vC2, aC2, rB of one sample (18 values).
+   !> F01, F21, rC1, vC1, aC1, rC2, vC2, aC2, rB, F_joint of one sample (22 values).
    pure subroutine dp_outputs(self, t, y, f, values)
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:), f(:)
@@ -809,6 +818,8 @@ contains
       values(5:6) = k%rc1; values(7:8) = k%vc1; values(9:10) = k%ac1
       values(11:12) = k%rc2; values(13:14) = k%vc2; values(15:16) = k%ac2
       values(17:18) = k%rb
+      values(19:20) = values(1:2)       ! F_joint: F01, then F12 = -F21
+      values(21:22) = -values(3:4)
    end subroutine dp_outputs
 
    pure integer function dp_n_parameters(self)
