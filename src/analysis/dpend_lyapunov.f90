@@ -84,7 +84,7 @@ contains
       call dorgqr(m, k, k, v, m, tau, work, lwork, info)
       if (info /= 0) return
       do i = 1, k
-         if (.not. state_ok([r(i, i)]) .or. r(i, i) == 0.0_dp) then
+         if (.not. state_ok(1, [r(i, i)]) .or. r(i, i) == 0.0_dp) then
             info = k + 1
             return
          end if
@@ -251,7 +251,7 @@ contains
             stat = stat_tangent_substeps
             exit
          end if
-         if (.not. all([(state_ok(tan%v(:, i)), i=1, k)])) then
+         if (.not. all([(state_ok(size(tan%v, 1), tan%v(:, i)), i=1, k)])) then
             stat = stat_nonfinite
             exit
          end if

@@ -494,7 +494,7 @@ contains
       real(dp), intent(in) :: ynew(:)              !! new state
       real(dp), intent(in) :: k1(:)                !! f(y)
       real(dp), intent(in), optional :: fnew(:)    !! f(ynew), if computed
-      call self%record_step(t, y, t + h, ynew, f0=k1, f1=fnew)
+      call self%record_step(size(y), t, y, t + h, ynew, f0=k1, f1=fnew)
       y = ynew
       t = t + h
       self%n_steps = self%n_steps + 1

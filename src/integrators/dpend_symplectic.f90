@@ -228,12 +228,12 @@ contains
       enew = self%comp(:n)
       call self%advance(model, t, ynew, enew, h, stat)
       if (stat /= stat_ok) return
-      if (.not. state_ok(ynew)) then
+      if (.not. state_ok(n, ynew)) then
          call self%reset()
          stat = stat_nonfinite
          return
       end if
-      call self%record_step(t, y, t + h, ynew)
+      call self%record_step(n, t, y, t + h, ynew)
       y = ynew
       self%comp(:n) = enew
       end associate

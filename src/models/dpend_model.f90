@@ -69,6 +69,7 @@ module dpend_model
       ! fast-path hooks
       procedure :: cache_size => model_cache_size
       procedure :: fill_cache => model_fill_cache
+      procedure :: field_at_cache => model_field_at_cache
       procedure :: field_near => model_field_near
       procedure :: canonical_field_near => model_canonical_field_near
       ! what writers need
@@ -248,6 +249,17 @@ contains
       real(dp), intent(in) :: q(*)         !! coordinates at the step start
       real(dp), intent(inout) :: cache(*)  !! the model's cache, size cache_size()
    end subroutine model_fill_cache
+
+   !> `field` at y, whose coordinates are those the cache was filled with (the
+   !> step's first stage); the default ignores the cache.
+   pure subroutine model_field_at_cache(self, t, y, cache, f)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t          !! time [s]
+      real(dp), intent(in) :: y(*)       !! state (q, q̇), q as given to `fill_cache`
+      real(dp), intent(in) :: cache(*)   !! from `fill_cache`
+      real(dp), intent(out) :: f(*)      !! (q̇, q̈)
+      call self%field(t, y, f)
+   end subroutine model_field_at_cache
 
    !> `field` at y, whose coordinates are those of the cache plus d (|d| small);
    !> the default ignores the cache.

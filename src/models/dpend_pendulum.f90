@@ -77,6 +77,7 @@ module dpend_pendulum
       procedure :: section_p_max => dp_section_p_max
       procedure :: cache_size => dp_cache_size
       procedure :: fill_cache => dp_fill_cache
+      procedure :: field_at_cache => dp_field_at_cache
       procedure :: field_near => dp_field_near
       procedure :: canonical_field_near => dp_canonical_field_near
       procedure :: n_outputs => dp_n_outputs
@@ -129,7 +130,8 @@ contains
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
-      qdd = qddot_trig_impl(par, sc, qd)
+      real(dp) :: c1, s1, c2, s2, h2, m2l1, m2h2, a0x, a0y, a11, a12, a22, b1, b2, rdet
+      include 'dpend_qddot_trig_body.inc'
    end function qddot_trig
 
    pure function rhs_qp_trig(par, sc, z) result(f)
@@ -227,29 +229,7 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
       real(dp) :: c1, s1, c2, s2, h2, m2l1, m2h2, a0x, a0y, a11, a12, a22, b1, b2, rdet
-      s1 = sc(1); s2 = sc(2); c1 = sc(3); c2 = sc(4)
-      h2 = 0.5_dp*par%l2
-      m2l1 = par%m2*par%l1
-      m2h2 = par%m2*h2
-      ! centripetal part of a_C2 (q̈ = 0), eq. (6.12)
-      a0x = -par%l1*qd(1)**2*c1 - h2*qd(2)**2*c2
-      a0y = -par%l1*qd(1)**2*s1 - h2*qd(2)**2*s2
-      ! With F21 = -m2 (a_C2 + g j) and a_C2 = a0 + q̈1 L1 n1 + q̈2 (L2/2) n2
-      ! (n = (-sin q, cos q)), F21y cos q - F21x sin q = -m2 [(ÿC2 + g) cos q - ẍC2 sin q],
-      ! where n1·(cos q1, sin q1)⊥ = 1 and n2·(cos q1, sin q1)⊥ = cos(q1 - q2).
-      ! Link 1, moments about A (6.19): I_A q̈1 + m2 L1 [L1 q̈1 + (L2/2) cos(q1-q2) q̈2]
-      !   = -m1 g (L1/2) cos q1 - m2 L1 [(a0y + g) cos q1 - a0x sin q1]
-      a11 = par%m1*par%l1**2/3.0_dp + m2l1*par%l1
-      a12 = m2l1*h2*(c1*c2 + s1*s2)
-      b1 = -0.5_dp*par%m1*par%g*par%l1*c1 - m2l1*((a0y + par%g)*c1 - a0x*s1)
-      ! Link 2, moments about C2 (6.24 corrected): I_C2 q̈2 + m2 (L2/2) [L1 cos(q1-q2) q̈1
-      !   + (L2/2) q̈2] = -m2 (L2/2) [(a0y + g) cos q2 - a0x sin q2]
-      a22 = par%m2*par%l2**2/12.0_dp + m2h2*h2
-      b2 = -m2h2*((a0y + par%g)*c2 - a0x*s2)
-      ! the coefficient of q̈1 in the link-2 equation is m2 (L2/2) L1 cos(q1-q2) = a12
-      rdet = 1.0_dp/(a11*a22 - a12*a12)
-      qdd(1) = (b1*a22 - a12*b2)*rdet
-      qdd(2) = (a11*b2 - a12*b1)*rdet
+      include 'dpend_qddot_trig_body.inc'
    end function qddot_trig_impl
 
    !> (sin q1, sin q2, cos q1, cos q2) as one 4-wide sine, cos q = sin(q + π/2), so that
@@ -771,13 +751,22 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: sc(4)
       if (d(1) == 0.0_dp .and. d(2) == 0.0_dp) then
-         sc = cache(1:4)          ! at the cache's own angles
+         sc = cache(1:4)          ! at the cache's own angles (a state at rest)
       else
          sc = sin_cos_near_impl(cache(1:4), y(1:2), d(1:2))
       end if
       f(1:2) = y(3:4)
-      f(3:4) = qddot_trig_impl(self%par, sc, y(3:4))
+      f(3:4) = qddot_trig(self%par, sc, y(3:4))
    end subroutine dp_field_near
+
+   !> (q̇, q̈) at the angles of the cache, with its sines and cosines.
+   pure subroutine dp_field_at_cache(self, t, y, cache, f)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(*), cache(*)
+      real(dp), intent(out) :: f(*)
+      f(1:2) = y(3:4)
+      f(3:4) = qddot_trig(self%par, cache(1:4), y(3:4))
+   end subroutine dp_field_at_cache
 
    !> (∂H/∂p, −∂H/∂q) with the sines of q = q_start + d by angle addition.
    pure subroutine dp_canonical_field_near(self, t, z, d, cache, f)
