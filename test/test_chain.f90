@@ -18,7 +18,8 @@ module test_chain
    use dpend_chain, only: chain_t, chain_model
    use dpend_pendulum, only: pendulum_t, double_pendulum_t, pendulum_model, reactions
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
+   use dpend_method_registry, only: method_table, n_methods
    use dpend_propagate, only: advance_to
    use dpend_events, only: event_t, angle_crossing_t, crossing_t, find_crossings
    use dpend_lapack, only: dgesv, dsygv
@@ -54,7 +55,8 @@ contains
                new_unittest('n3_n5_descriptor_lagrange_balance', test_descriptor), &
                new_unittest('n3_n5_small_oscillation_frequencies', test_modes), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
-               new_unittest('n3_gauss6_energy', test_energy)]
+               new_unittest('n3_gauss6_energy', test_energy), &
+               new_unittest('n3_order_every_method', test_orders)]
    end subroutine collect_chain
 
    !> Uniform number in [a, b).
@@ -647,4 +649,101 @@ contains
                   real_str(de, 2)//' (unit '//real_str(scale, 4)//' J)')
       call check(error, de, 0.0_dp, 'N=3 gauss6 energy error', abs=1e-10_dp)
    end subroutine test_energy
+
+   !> The states of the chain at t = k Δ, k = 1 … size(ys, 2), from y0 (physical q, q̇)
+   !> with `integ` at the fixed step h (0: adaptive), as physical (q, q̇); huge on
+   !> failure.
+   subroutine chain_samples(integ, chain, y0, dt, h, ys)
+      class(integrator_t), intent(inout) :: integ
+      type(chain_t), intent(in) :: chain
+      real(dp), intent(in) :: y0(:), dt, h
+      real(dp), intent(out) :: ys(:, :)
+      real(dp) :: z(size(y0)), t, hh
+      integer :: n, stat, k
+      n = size(y0)/2
+      call integ%clear_step()
+      z = integ%to_internal(chain, y0(1:n), y0(n + 1:))
+      t = 0.0_dp; hh = h
+      ys = huge(1.0_dp)
+      do k = 1, size(ys, 2)
+         call advance_to(integ, chain, t, z, dt*k, hh, stat)
+         if (stat /= stat_ok) return
+         call integ%to_physical(chain, z, ys(1:n, k), ys(n + 1:, k))
+      end do
+   end subroutine chain_samples
+
+   !> Least-squares slope of log(e) against log(h).
+   pure real(dp) function log_slope(h, e)
+      real(dp), intent(in) :: h(:), e(:)
+      real(dp) :: lx(size(h)), le(size(h))
+      lx = log(h); le = log(e)
+      log_slope = sum((lx - sum(lx)/size(h))*(le - sum(le)/size(h))) &
+                  /sum((lx - sum(lx)/size(h))**2)
+   end function log_slope
+
+   !> The measured order of every method of the registry on the triple pendulum
+   !> (unit links, g = 9.8) whirling from q_i = −π/2 + 0.1 i, q̇_i = 8 rad/s: the
+   !> global error max over t = 0.25, 0.5, …, 2 s and over (q, q̇) at three fixed
+   !> steps (the adaptive pairs in their fixed-step mode), against dop853 at
+   !> rtol = 1e-14 (cross-checked with gauss8 at h = 1/1024 s); the least-squares
+   !> slope of log error against log h is the nominal order ± 0.3. The steps
+   !> (divisors of 0.25 s) keep each method in its asymptotic range and its errors
+   !> far above the reference's (≤ 1e-12): the 8th-order methods from h = 1/64 s,
+   !> where the 9th-order term no longer shows.
+   subroutine test_orders(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      integer, parameter :: ns = 8
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y0(6), yref(6, ns), ys(6, ns), e(3), h(3), d, p, worst
+      integer :: m, k
+      character(len=:), allocatable :: name, line
+      chain = chain_model([1.0_dp, 1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp, 1.0_dp], 9.8_dp, err)
+      y0 = [-0.5_dp*pi + 0.1_dp, -0.5_dp*pi + 0.2_dp, -0.5_dp*pi + 0.3_dp, &
+            8.0_dp, 8.0_dp, 8.0_dp]
+      call new_integrator('dop853', integ, err, method_options_t(rtol=1e-14_dp, atol=1e-16_dp))
+      call chain_samples(integ, chain, y0, 0.25_dp, 0.0_dp, yref)
+      call new_integrator('gauss8', integ, err)
+      call chain_samples(integ, chain, y0, 0.25_dp, 1.0_dp/1024, ys)
+      d = maxval(abs(ys - yref))
+      call check(error, d, 0.0_dp, 'reference dop853 vs gauss8', abs=1e-12_dp)
+      if (allocated(error)) return
+      line = 'N=3 measured orders (reference dop853 vs gauss8 '//real_str(d, 2)//'):'
+      worst = 0.0_dp
+      do m = 1, n_methods
+         name = trim(method_table(m)%name)
+         select case (method_table(m)%order)
+         case (2)
+            h = [256, 512, 1024]
+         case (4)
+            h = [128, 256, 512]
+         case (5)
+            h = [256, 512, 1024]
+         case (6)
+            h = [64, 128, 256]
+         case default   ! 8
+            h = [64, 96, 128]
+         end select
+         h = 1.0_dp/h
+         call new_integrator(name, integ, err, method_options_t(fixed_step=.true.))
+         call check_true(error, .not. allocated(err), 'factory refused '//name)
+         if (allocated(error)) return
+         do k = 1, 3
+            call chain_samples(integ, chain, y0, 0.25_dp, h(k), ys)
+            e(k) = maxval(abs(ys - yref))
+         end do
+         call check_true(error, all(e > 5e-11_dp) .and. all(e < 0.2_dp), &
+                         name//': errors '//real_str(e(1), 2)//' … '//real_str(e(3), 2)// &
+                         ' outside [5e-11, 0.2]')
+         if (allocated(error)) return
+         p = log_slope(h, e)
+         line = line//' '//name//' '//real_str(p, 3)
+         worst = max(worst, abs(p - method_table(m)%order))
+         call check(error, p, real(method_table(m)%order, dp), name//' measured order', &
+                    abs=0.3_dp)
+         if (allocated(error)) exit
+      end do
+      call report(line//'; max |measured - nominal| '//real_str(worst, 2))
+   end subroutine test_orders
 end module test_chain
