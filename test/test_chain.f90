@@ -8,7 +8,8 @@
 !>   the small-oscillation frequencies of K v = ω² M v (LAPACK dsygv) measured on
 !>   simulated small oscillations;
 !> - the analytic Jacobians and energy gradient against central differences;
-!> - gauss6 keeps the energy of N = 3.
+!> - gauss6 keeps the energy of N = 3 and N = 5 bounded;
+!> - the measured order of every method of the registry on N = 3.
 !> Each test prints its measured figures on one line ('    chain: …').
 module test_chain
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -55,7 +56,7 @@ contains
                new_unittest('n3_n5_descriptor_lagrange_balance', test_descriptor), &
                new_unittest('n3_n5_small_oscillation_frequencies', test_modes), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
-               new_unittest('n3_gauss6_energy', test_energy), &
+               new_unittest('n3_n5_gauss6_energy_bounded', test_energy), &
                new_unittest('n3_order_every_method', test_orders)]
    end subroutine collect_chain
 
@@ -621,33 +622,60 @@ contains
       call check(error, maxval(d(5:6)), 0.0_dp, 'velocities(momenta), H = E', abs=1e-13_dp)
    end subroutine test_jacobians
 
-   !> gauss6, h = 1 ms, 5000 steps of the triple pendulum released horizontally
-   !> (E0 = 0, so the unit is E_ref = Σ G_i): the relative energy error stays below 1e-10.
-   subroutine test_energy(error)
-      type(error_t), allocatable, intent(out) :: error
+   !> gauss6 on the chain of n unit links released horizontally (E0 = 0, so the unit
+   !> is E_ref = Σ G_i), nsteps of h: the largest relative energy error in the first
+   !> and in the second half of the run (`de`), and the status.
+   subroutine gauss6_energy(n, h, nsteps, de, stat)
+      integer, intent(in) :: n, nsteps
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: de(2)
+      integer, intent(out) :: stat
       type(error_t), allocatable :: err
       type(chain_t) :: chain
       class(integrator_t), allocatable :: integ
-      real(dp) :: y(6), t, h, q(3), qd(3), e0, e, scale, de
-      integer :: k, stat
-      chain = chain_model([1.0_dp, 1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp, 1.0_dp], 9.8_dp, err)
+      real(dp) :: y(2*n), t, hh, q(n), qd(n), e0, scale
+      integer :: k
+      chain = chain_model([(1.0_dp, k=1, n)], [(1.0_dp, k=1, n)], 9.8_dp, err)
       call new_integrator('gauss6', integ, err)
       q = 0.0_dp; qd = 0.0_dp
       e0 = chain%energy(0.0_dp, [q, qd])
       scale = chain%energy_scale(e0)
       y = integ%to_internal(chain, q, qd)
-      t = 0.0_dp; h = 1e-3_dp; de = 0.0_dp
-      do k = 1, 50
-         call advance_to(integ, chain, t, y, 0.1_dp*k, h, stat)
-         call check_true(error, stat == stat_ok, 'gauss6 failed at t = '//real_str(t))
-         if (allocated(error)) return
+      t = 0.0_dp; de = 0.0_dp
+      do k = 1, nsteps
+         hh = h
+         call integ%step(chain, t, y, hh, stat)
+         if (stat /= stat_ok) return
+         if (mod(k, 10) /= 0) cycle
          call integ%to_physical(chain, y, q, qd)
-         e = chain%energy(t, [q, qd])
-         de = max(de, abs(e - e0)/scale)
+         de(1 + (2*k - 1)/nsteps) = max(de(1 + (2*k - 1)/nsteps), &
+                                        abs(chain%energy(t, [q, qd]) - e0)/scale)
       end do
-      call report('N=3 gauss6 h=1e-3, 5000 steps: max relative energy error '// &
-                  real_str(de, 2)//' (unit '//real_str(scale, 4)//' J)')
-      call check(error, de, 0.0_dp, 'N=3 gauss6 energy error', abs=1e-10_dp)
+   end subroutine gauss6_energy
+
+   !> gauss6, h = 1 ms, 2·10⁴ steps (20 s) of the chains of 3 and 5 unit links
+   !> released horizontally (chaotic): the relative energy error stays below 1e-10
+   !> and does not grow (the second half's maximum is below 10× the first half's).
+   !> The 10⁶-step runs: `dpend-bench --chain-energy` (release).
+   subroutine test_energy(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: de(2)
+      integer :: n, stat
+      character(len=:), allocatable :: line
+      line = 'gauss6 h=1e-3, 2e4 steps, max rel. energy error (1st half, 2nd half):'
+      do n = 3, 5, 2
+         call gauss6_energy(n, 1e-3_dp, 20000, de, stat)
+         call check_true(error, stat == stat_ok, 'N='//to_str(n)//' gauss6 failed')
+         if (allocated(error)) return
+         line = line//' N='//to_str(n)//' '//real_str(de(1), 2)//', '//real_str(de(2), 2)
+         call check(error, maxval(de), 0.0_dp, 'N='//to_str(n)//' gauss6 energy error', &
+                    abs=1e-10_dp)
+         if (allocated(error)) return
+         call check_true(error, de(2) < 10.0_dp*de(1), 'N='//to_str(n)// &
+                         ' gauss6 energy error grows')
+         if (allocated(error)) return
+      end do
+      call report(line)
    end subroutine test_energy
 
    !> The states of the chain at t = k Δ, k = 1 … size(ys, 2), from y0 (physical q, q̇)
