@@ -57,7 +57,8 @@ contains
                new_unittest('n3_n5_small_oscillation_frequencies', test_modes), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
                new_unittest('n3_n5_gauss6_energy_bounded', test_energy), &
-               new_unittest('n3_order_every_method', test_orders)]
+               new_unittest('n3_order_every_method', test_orders), &
+               new_unittest('gauss6_tiny_oscillations', test_tiny)]
    end subroutine collect_chain
 
    !> Uniform number in [a, b).
@@ -774,4 +775,71 @@ contains
       end do
       call report(line//'; max |measured - nominal| '//real_str(worst, 2))
    end subroutine test_orders
+
+   !> gauss6 steps of `model` (n links) from rest at q_i = −π/2 ± amp (alternating
+   !> signs): the steps done before a failure (of nsteps), the status and the
+   !> fixed-point iterations per step.
+   subroutine tiny_run(model, n, amp, h, nsteps, done, stat, iter)
+      class(model_t), intent(in) :: model
+      integer, intent(in) :: n, nsteps
+      real(dp), intent(in) :: amp, h
+      integer, intent(out) :: done, stat
+      real(dp), intent(out) :: iter
+      type(error_t), allocatable :: err
+      class(integrator_t), allocatable :: integ
+      real(dp) :: q(n), qd(n), y(2*n), t, hh
+      integer :: i
+      call new_integrator('gauss6', integ, err)
+      do i = 1, n
+         q(i) = -0.5_dp*pi + amp*merge(1.0_dp, -1.0_dp, mod(i, 2) == 1)
+      end do
+      qd = 0.0_dp
+      y = integ%to_internal(model, q, qd)
+      t = 0.0_dp
+      stat = stat_ok
+      done = 0
+      do i = 1, nsteps
+         hh = h
+         call integ%step(model, t, y, hh, stat)
+         if (stat /= stat_ok) exit
+         done = i
+      end do
+      iter = real(integ%n_iter, dp)/max(1, done)
+   end subroutine tiny_run
+
+   !> gauss6 at h = 0.01 s, 2000 steps of tiny oscillations about the hanging
+   !> equilibrium (amplitudes 1e-3 … 1e-9 rad) of the chains of 2 and 3 unit links:
+   !> every step converges, and the fixed-point iteration count does not depend on
+   !> the amplitude (the stage forces are computed relative to the offset from the
+   !> step start, `field_near`), as for the double pendulum (N = 2: the same count).
+   subroutine test_tiny(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(chain_t) :: chain
+      real(dp) :: amp, iter, iter_ref
+      integer :: n, ia, done, stat
+      character(len=:), allocatable :: line
+      line = 'gauss6 h=0.01, 2000 steps from q=-pi/2+-amp: iterations per step'
+      call tiny_run(pendulum_model(pendulum_t()), 2, 1e-5_dp, 0.01_dp, 2000, done, stat, &
+                    iter_ref)
+      line = line//'; double pendulum (amp 1e-5) '//real_str(iter_ref, 3)
+      do n = 2, 3
+         chain = chain_model([(1.0_dp, ia=1, n)], [(1.0_dp, ia=1, n)], 9.8_dp, err)
+         line = line//'; N='//to_str(n)//':'
+         do ia = 1, 4
+            amp = 10.0_dp**(-1 - 2*ia)
+            call tiny_run(chain, n, amp, 0.01_dp, 2000, done, stat, iter)
+            line = line//' '//real_str(iter, 3)
+            call check_true(error, stat == stat_ok, 'N='//to_str(n)//' amplitude '// &
+                            real_str(amp, 2)//': gauss6 failed after '//to_str(done)// &
+                            ' steps')
+            if (allocated(error)) return
+            if (ia == 1 .and. n == 3) iter_ref = iter
+            call check(error, iter, iter_ref, 'N='//to_str(n)//' amplitude '// &
+                       real_str(amp, 2)//': iterations per step', abs=0.5_dp)
+            if (allocated(error)) return
+         end do
+      end do
+      call report(line)
+   end subroutine test_tiny
 end module test_chain
