@@ -25,6 +25,7 @@ module test_chain
    use dpend_events, only: event_t, angle_crossing_t, crossing_t, find_crossings
    use dpend_lapack, only: dgesv, dsygv
    use dpend_cli, only: real_str, to_str
+   use test_integrators, only: slope
    use testing, only: unittest_t, new_unittest, check, check_true
    implicit none
    private
@@ -701,15 +702,6 @@ contains
       end do
    end subroutine chain_samples
 
-   !> Least-squares slope of log(e) against log(h).
-   pure real(dp) function log_slope(h, e)
-      real(dp), intent(in) :: h(:), e(:)
-      real(dp) :: lx(size(h)), le(size(h))
-      lx = log(h); le = log(e)
-      log_slope = sum((lx - sum(lx)/size(h))*(le - sum(le)/size(h))) &
-                  /sum((lx - sum(lx)/size(h))**2)
-   end function log_slope
-
    !> The measured order of every method of the registry on the triple pendulum
    !> (unit links, g = 9.8) whirling from q_i = −π/2 + 0.1 i, q̇_i = 8 rad/s: the
    !> global error max over t = 0.25, 0.5, …, 2 s and over (q, q̇) at three fixed
@@ -766,7 +758,7 @@ contains
                          name//': errors '//real_str(e(1), 2)//' … '//real_str(e(3), 2)// &
                          ' outside [5e-11, 0.2]')
          if (allocated(error)) return
-         p = log_slope(h, e)
+         p = slope(h, e)
          line = line//' '//name//' '//real_str(p, 3)
          worst = max(worst, abs(p - method_table(m)%order))
          call check(error, p, real(method_table(m)%order, dp), name//' measured order', &
