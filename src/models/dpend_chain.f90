@@ -616,15 +616,11 @@ contains
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, z(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), sg(max_dof)
-      integer :: n, i
+      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
       n = self%n
       call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
-      call sigma(self, c, s, qd, sg)
-      f(1:n) = qd(1:n)
-      do i = 1, n
-         f(n + i) = -qd(i)*sg(i) - self%gl(i)*c(i)
-      end do
+      call canonical_tail(self, c, s, qd, f)
    end subroutine chain_canonical_field
 
    !> ∂f/∂z of `canonical_field`, z = (q, p): ∂q̇/∂p = M⁻¹, ∂q̇/∂q_k = −M⁻¹ (∂M/∂q_k) q̇,
