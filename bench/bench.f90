@@ -5,14 +5,20 @@
 !> The methods come from the registry (dpend_method_registry): every fixed-step
 !> method is timed at h = 0.01 s, every method enters the work-precision table.
 !> The batch kernel of the sweep (and the single-trajectory rk4_ns_per_step) is timed
-!> by `bench_batch`.
+!> by `bench_batch`. The chain of N unit rods (dpend_chain) is timed with rk4 and
+!> gauss6 for N = 3, 5, 10, 20 (`chainN_METHOD_ns_per_step`), so that the cost's
+!> growth with N shows.
+!> `dpend-bench --chain-energy` prints instead only the energy figures of gauss6 over
+!> 10⁶ steps of the chains of 3 and 5 links (some seconds each, release).
 program bench
    use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64, &
-                                            output_unit
+                                            output_unit, error_unit
    use bench_batch, only: run_batch_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
    use dpend_pendulum, only: double_pendulum_t
+   use dpend_chain, only: chain_t, chain_model
+   use dpend_cli, only: to_str
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
@@ -23,11 +29,26 @@ program bench
    real(dp), parameter :: min_seconds = 0.3_dp
    !> a large regular swing released at rest
    real(dp), parameter :: y0(4) = [-0.5_dp*pi + 1.0_dp, -0.5_dp*pi + 1.0_dp, 0.0_dp, 0.0_dp]
+   !> links of the timed chains
+   integer, parameter :: chain_links(4) = [3, 5, 10, 20]
    real(dp) :: checksum, ns, rhs_per_step, rk4_ns
-   integer :: i
+   integer :: i, j
    character(len=:), allocatable :: name
+   character(len=32) :: arg
 
    checksum = 0.0_dp
+   if (command_argument_count() > 0) then
+      call get_command_argument(1, arg)
+      if (trim(arg) /= '--chain-energy' .or. command_argument_count() > 1) then
+         write (error_unit, '(a)') 'dpend-bench: argument "'//trim(arg)// &
+            '" refused; accepted: none, or --chain-energy'
+         stop 2, quiet=.true.
+      end if
+      call chain_energy(3)
+      call chain_energy(5)
+      write (*, '(a, es24.16)') 'checksum: ', checksum
+      stop
+   end if
    write (*, '(a)') 'compiler: '//compiler_version()
    write (*, '(a)') 'flags: '//compiler_options()
    call report('rhs_ns', time_rhs(), 'ns')
@@ -45,6 +66,15 @@ program bench
       call report(name//'_ns_per_step', ns, 'ns')
       call report(name//'_rhs_per_step', rhs_per_step, '')
       if (name == 'gauss6') call report('gauss6_over_rk4_step_cost', ns/rk4_ns, '')
+   end do
+   do i = 1, size(chain_links)
+      do j = 1, 2
+         name = trim(merge('rk4   ', 'gauss6', j == 1))
+         ns = time_chain(name, chain_links(i), 1.0e-3_dp, rhs_per_step)
+         call report('chain'//to_str(chain_links(i))//'_'//name//'_ns_per_step', ns, 'ns')
+         if (j == 2) call report('chain'//to_str(chain_links(i))//'_'//name// &
+                                 '_rhs_per_step', rhs_per_step, '')
+      end do
    end do
    call work_precision()
    write (*, '(a, es24.16)') 'checksum: ', checksum
@@ -166,6 +196,107 @@ contains
       if (present(n_rhs_per_step)) &
          n_rhs_per_step = real(integ%n_rhs, dp)/real(integ%n_steps, dp)
    end function time_method
+
+   !> The chain of n unit rods (1 kg, 1 m, g = 9.8) from a fixed generic state: the
+   !> links at q_i = −π/2 + 0.8 sin(1.7 i) (rad) with q̇_i = 0.5 cos(2.3 i) (rad/s).
+   subroutine chain_start(n, chain, q, qd)
+      integer, intent(in) :: n                       !! links
+      type(chain_t), intent(out) :: chain            !! the chain
+      real(dp), intent(out) :: q(n), qd(n)           !! its initial angles, rates
+      type(error_t), allocatable :: error
+      integer :: i
+      chain = chain_model([(1.0_dp, i=1, n)], [(1.0_dp, i=1, n)], 9.8_dp, error)
+      if (allocated(error)) error stop 'chain_model refused the bench chain'
+      do i = 1, n
+         q(i) = -0.5_dp*pi + 0.8_dp*sin(1.7_dp*i)
+         qd(i) = 0.5_dp*cos(2.3_dp*i)
+      end do
+   end subroutine chain_start
+
+   !> ns per step of method `name` (fixed step h) on the chain of n links from
+   !> `chain_start`; the number of steps doubles until the run lasts 0.2 s.
+   !> Also returns the right-hand-side evaluations per step.
+   real(dp) function time_chain(name, n, h, n_rhs_per_step) result(ns_per_step)
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: n
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: n_rhs_per_step
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      type(chain_t) :: chain
+      real(dp) :: t, y(2*n), y0(2*n), q(n), qd(n), hh, start, elapsed
+      integer(i8) :: nsteps, i
+      integer :: stat
+      call new_integrator(name, integ, error)
+      if (allocated(error)) error stop 'unknown method'
+      call chain_start(n, chain, q, qd)
+      y0 = integ%to_internal(chain, q, qd)
+      nsteps = 100
+      do
+         call integ%reset_counters()
+         call integ%clear_step()
+         t = 0.0_dp; y = y0
+         start = now()
+         do i = 1, nsteps
+            hh = h
+            call integ%step(chain, t, y, hh, stat)
+            if (stat /= stat_ok) error stop 'chain step failed'
+         end do
+         elapsed = now() - start
+         checksum = checksum + sum(y)
+         if (elapsed >= 0.2_dp) exit
+         nsteps = 2*nsteps
+      end do
+      ns_per_step = 1.0e9_dp*elapsed/real(integ%n_steps, dp)
+      n_rhs_per_step = real(integ%n_rhs, dp)/real(integ%n_steps, dp)
+   end function time_chain
+
+   !> gauss6 at h = 1 ms over 10⁶ steps (1000 s) of the chain of n unit links
+   !> released horizontally (q_i = 0, q̇_i = 0; E0 = 0, so the unit is the model's
+   !> energy scale Σ G_i): the largest relative energy error over the first 10⁵
+   !> steps, over all 10⁶, over the last 10⁵, and the error at the end, sampled
+   !> every 10 steps.
+   subroutine chain_energy(n)
+      integer, intent(in) :: n  !! links
+      integer, parameter :: nsteps = 1000000, part = nsteps/10
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      type(chain_t) :: chain
+      real(dp) :: t, y(2*n), q(n), qd(n), hh, e0, scale, de, de_first, de_all, de_last, &
+                  start
+      integer :: k, stat
+      character(len=:), allocatable :: key
+      call new_integrator('gauss6', integ, error)
+      call chain_start(n, chain, q, qd)
+      q = 0.0_dp; qd = 0.0_dp
+      e0 = chain%energy(0.0_dp, [q, qd])
+      scale = chain%energy_scale(e0)
+      y = integ%to_internal(chain, q, qd)
+      t = 0.0_dp; de_first = 0.0_dp; de_all = 0.0_dp; de_last = 0.0_dp; de = 0.0_dp
+      start = now()
+      do k = 1, nsteps
+         hh = 1.0e-3_dp
+         call integ%step(chain, t, y, hh, stat)
+         if (stat /= stat_ok) then
+            write (*, '(a)') 'chain'//to_str(n)//'_gauss6_energy_1e6: failed at step '// &
+               to_str(k)
+            return
+         end if
+         if (mod(k, 10) /= 0) cycle
+         call integ%to_physical(chain, y, q, qd)
+         de = abs(chain%energy(t, [q, qd]) - e0)/scale
+         de_all = max(de_all, de)
+         if (k <= part) de_first = max(de_first, de)
+         if (k > nsteps - part) de_last = max(de_last, de)
+      end do
+      checksum = checksum + sum(y)
+      key = 'chain'//to_str(n)//'_gauss6_h1e-3_'
+      write (*, '(a, es9.2)') key//'max_rel_energy_error_first_1e5: ', de_first
+      write (*, '(a, es9.2)') key//'max_rel_energy_error_last_1e5: ', de_last
+      write (*, '(a, es9.2)') key//'max_rel_energy_error_1e6: ', de_all
+      write (*, '(a, es9.2)') key//'rel_energy_error_at_1e6: ', de
+      write (*, '(a, f0.1, a)') key//'seconds_1e6: ', now() - start, ' s'
+   end subroutine chain_energy
 
    !> ns per evaluation of rhs_qqdot along a slowly varying state.
    real(dp) function time_rhs() result(ns)

@@ -8,7 +8,8 @@
 !>   the small-oscillation frequencies of K v = ω² M v (LAPACK dsygv) measured on
 !>   simulated small oscillations;
 !> - the analytic Jacobians and energy gradient against central differences;
-!> - gauss6 keeps the energy of N = 3.
+!> - gauss6 keeps the energy of N = 3 and N = 5 bounded;
+!> - the measured order of every method of the registry on N = 3.
 !> Each test prints its measured figures on one line ('    chain: …').
 module test_chain
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -18,11 +19,13 @@ module test_chain
    use dpend_chain, only: chain_t, chain_model
    use dpend_pendulum, only: pendulum_t, double_pendulum_t, pendulum_model, reactions
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_options_t
+   use dpend_method_registry, only: method_table, n_methods
    use dpend_propagate, only: advance_to
    use dpend_events, only: event_t, angle_crossing_t, crossing_t, find_crossings
    use dpend_lapack, only: dgesv, dsygv
    use dpend_cli, only: real_str, to_str
+   use test_integrators, only: slope
    use testing, only: unittest_t, new_unittest, check, check_true
    implicit none
    private
@@ -54,7 +57,9 @@ contains
                new_unittest('n3_n5_descriptor_lagrange_balance', test_descriptor), &
                new_unittest('n3_n5_small_oscillation_frequencies', test_modes), &
                new_unittest('jacobians_finite_differences', test_jacobians), &
-               new_unittest('n3_gauss6_energy', test_energy)]
+               new_unittest('n3_n5_gauss6_energy_bounded', test_energy), &
+               new_unittest('n3_order_every_method', test_orders), &
+               new_unittest('gauss6_tiny_oscillations', test_tiny)]
    end subroutine collect_chain
 
    !> Uniform number in [a, b).
@@ -619,32 +624,214 @@ contains
       call check(error, maxval(d(5:6)), 0.0_dp, 'velocities(momenta), H = E', abs=1e-13_dp)
    end subroutine test_jacobians
 
-   !> gauss6, h = 1 ms, 5000 steps of the triple pendulum released horizontally
-   !> (E0 = 0, so the unit is E_ref = Σ G_i): the relative energy error stays below 1e-10.
-   subroutine test_energy(error)
-      type(error_t), allocatable, intent(out) :: error
+   !> gauss6 on the chain of n unit links released horizontally (E0 = 0, so the unit
+   !> is E_ref = Σ G_i), nsteps of h: the largest relative energy error in the first
+   !> and in the second half of the run (`de`), and the status.
+   subroutine gauss6_energy(n, h, nsteps, de, stat)
+      integer, intent(in) :: n, nsteps
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: de(2)
+      integer, intent(out) :: stat
       type(error_t), allocatable :: err
       type(chain_t) :: chain
       class(integrator_t), allocatable :: integ
-      real(dp) :: y(6), t, h, q(3), qd(3), e0, e, scale, de
-      integer :: k, stat
-      chain = chain_model([1.0_dp, 1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp, 1.0_dp], 9.8_dp, err)
+      real(dp) :: y(2*n), t, hh, q(n), qd(n), e0, scale
+      integer :: k
+      chain = chain_model([(1.0_dp, k=1, n)], [(1.0_dp, k=1, n)], 9.8_dp, err)
       call new_integrator('gauss6', integ, err)
       q = 0.0_dp; qd = 0.0_dp
       e0 = chain%energy(0.0_dp, [q, qd])
       scale = chain%energy_scale(e0)
       y = integ%to_internal(chain, q, qd)
-      t = 0.0_dp; h = 1e-3_dp; de = 0.0_dp
-      do k = 1, 50
-         call advance_to(integ, chain, t, y, 0.1_dp*k, h, stat)
-         call check_true(error, stat == stat_ok, 'gauss6 failed at t = '//real_str(t))
-         if (allocated(error)) return
+      t = 0.0_dp; de = 0.0_dp
+      do k = 1, nsteps
+         hh = h
+         call integ%step(chain, t, y, hh, stat)
+         if (stat /= stat_ok) return
+         if (mod(k, 10) /= 0) cycle
          call integ%to_physical(chain, y, q, qd)
-         e = chain%energy(t, [q, qd])
-         de = max(de, abs(e - e0)/scale)
+         de(1 + (2*k - 1)/nsteps) = max(de(1 + (2*k - 1)/nsteps), &
+                                        abs(chain%energy(t, [q, qd]) - e0)/scale)
       end do
-      call report('N=3 gauss6 h=1e-3, 5000 steps: max relative energy error '// &
-                  real_str(de, 2)//' (unit '//real_str(scale, 4)//' J)')
-      call check(error, de, 0.0_dp, 'N=3 gauss6 energy error', abs=1e-10_dp)
+   end subroutine gauss6_energy
+
+   !> gauss6, h = 1 ms, 2·10⁴ steps (20 s) of the chains of 3 and 5 unit links
+   !> released horizontally (chaotic): the relative energy error stays below 1e-10
+   !> and does not grow (the second half's maximum is below 10× the first half's).
+   !> The 10⁶-step runs: `dpend-bench --chain-energy` (release).
+   subroutine test_energy(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: de(2)
+      integer :: n, stat
+      character(len=:), allocatable :: line
+      line = 'gauss6 h=1e-3, 2e4 steps, max rel. energy error (1st half, 2nd half):'
+      do n = 3, 5, 2
+         call gauss6_energy(n, 1e-3_dp, 20000, de, stat)
+         call check_true(error, stat == stat_ok, 'N='//to_str(n)//' gauss6 failed')
+         if (allocated(error)) return
+         line = line//' N='//to_str(n)//' '//real_str(de(1), 2)//', '//real_str(de(2), 2)
+         call check(error, maxval(de), 0.0_dp, 'N='//to_str(n)//' gauss6 energy error', &
+                    abs=1e-10_dp)
+         if (allocated(error)) return
+         call check_true(error, de(2) < 10.0_dp*de(1), 'N='//to_str(n)// &
+                         ' gauss6 energy error grows')
+         if (allocated(error)) return
+      end do
+      call report(line)
    end subroutine test_energy
+
+   !> The states of the chain at t = k Δ, k = 1 … size(ys, 2), from y0 (physical q, q̇)
+   !> with `integ` at the fixed step h (0: adaptive), as physical (q, q̇); huge on
+   !> failure.
+   subroutine chain_samples(integ, chain, y0, dt, h, ys)
+      class(integrator_t), intent(inout) :: integ
+      type(chain_t), intent(in) :: chain
+      real(dp), intent(in) :: y0(:), dt, h
+      real(dp), intent(out) :: ys(:, :)
+      real(dp) :: z(size(y0)), t, hh
+      integer :: n, stat, k
+      n = size(y0)/2
+      call integ%clear_step()
+      z = integ%to_internal(chain, y0(1:n), y0(n + 1:))
+      t = 0.0_dp; hh = h
+      ys = huge(1.0_dp)
+      do k = 1, size(ys, 2)
+         call advance_to(integ, chain, t, z, dt*k, hh, stat)
+         if (stat /= stat_ok) return
+         call integ%to_physical(chain, z, ys(1:n, k), ys(n + 1:, k))
+      end do
+   end subroutine chain_samples
+
+   !> The measured order of every method of the registry on the triple pendulum
+   !> (unit links, g = 9.8) whirling from q_i = −π/2 + 0.1 i, q̇_i = 8 rad/s: the
+   !> global error max over t = 0.25, 0.5, …, 2 s and over (q, q̇) at three fixed
+   !> steps (the adaptive pairs in their fixed-step mode), against dop853 at
+   !> rtol = 1e-14 (cross-checked with gauss8 at h = 1/1024 s); the least-squares
+   !> slope of log error against log h is the nominal order ± 0.3. The steps
+   !> (divisors of 0.25 s) keep each method in its asymptotic range and its errors
+   !> far above the reference's (≤ 1e-12): the 8th-order methods from h = 1/64 s,
+   !> where the 9th-order term no longer shows.
+   subroutine test_orders(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      integer, parameter :: ns = 8
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y0(6), yref(6, ns), ys(6, ns), e(3), h(3), d, p, worst
+      integer :: m, k
+      character(len=:), allocatable :: name, line
+      chain = chain_model([1.0_dp, 1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp, 1.0_dp], 9.8_dp, err)
+      y0 = [-0.5_dp*pi + 0.1_dp, -0.5_dp*pi + 0.2_dp, -0.5_dp*pi + 0.3_dp, &
+            8.0_dp, 8.0_dp, 8.0_dp]
+      call new_integrator('dop853', integ, err, method_options_t(rtol=1e-14_dp, atol=1e-16_dp))
+      call chain_samples(integ, chain, y0, 0.25_dp, 0.0_dp, yref)
+      call new_integrator('gauss8', integ, err)
+      call chain_samples(integ, chain, y0, 0.25_dp, 1.0_dp/1024, ys)
+      d = maxval(abs(ys - yref))
+      call check(error, d, 0.0_dp, 'reference dop853 vs gauss8', abs=1e-12_dp)
+      if (allocated(error)) return
+      line = 'N=3 measured orders (reference dop853 vs gauss8 '//real_str(d, 2)//'):'
+      worst = 0.0_dp
+      do m = 1, n_methods
+         name = trim(method_table(m)%name)
+         select case (method_table(m)%order)
+         case (2)
+            h = [256, 512, 1024]
+         case (4)
+            h = [128, 256, 512]
+         case (5)
+            h = [256, 512, 1024]
+         case (6)
+            h = [64, 128, 256]
+         case default   ! 8
+            h = [64, 96, 128]
+         end select
+         h = 1.0_dp/h
+         call new_integrator(name, integ, err, method_options_t(fixed_step=.true.))
+         call check_true(error, .not. allocated(err), 'factory refused '//name)
+         if (allocated(error)) return
+         do k = 1, 3
+            call chain_samples(integ, chain, y0, 0.25_dp, h(k), ys)
+            e(k) = maxval(abs(ys - yref))
+         end do
+         call check_true(error, all(e > 5e-11_dp) .and. all(e < 0.2_dp), &
+                         name//': errors '//real_str(e(1), 2)//' … '//real_str(e(3), 2)// &
+                         ' outside [5e-11, 0.2]')
+         if (allocated(error)) return
+         p = slope(h, e)
+         line = line//' '//name//' '//real_str(p, 3)
+         worst = max(worst, abs(p - method_table(m)%order))
+         call check(error, p, real(method_table(m)%order, dp), name//' measured order', &
+                    abs=0.3_dp)
+         if (allocated(error)) exit
+      end do
+      call report(line//'; max |measured - nominal| '//real_str(worst, 2))
+   end subroutine test_orders
+
+   !> gauss6 steps of `model` (n links) from rest at q_i = −π/2 ± amp (alternating
+   !> signs): the steps done before a failure (of nsteps), the status and the
+   !> fixed-point iterations per step.
+   subroutine tiny_run(model, n, amp, h, nsteps, done, stat, iter)
+      class(model_t), intent(in) :: model
+      integer, intent(in) :: n, nsteps
+      real(dp), intent(in) :: amp, h
+      integer, intent(out) :: done, stat
+      real(dp), intent(out) :: iter
+      type(error_t), allocatable :: err
+      class(integrator_t), allocatable :: integ
+      real(dp) :: q(n), qd(n), y(2*n), t, hh
+      integer :: i
+      call new_integrator('gauss6', integ, err)
+      do i = 1, n
+         q(i) = -0.5_dp*pi + amp*merge(1.0_dp, -1.0_dp, mod(i, 2) == 1)
+      end do
+      qd = 0.0_dp
+      y = integ%to_internal(model, q, qd)
+      t = 0.0_dp
+      stat = stat_ok
+      done = 0
+      do i = 1, nsteps
+         hh = h
+         call integ%step(model, t, y, hh, stat)
+         if (stat /= stat_ok) exit
+         done = i
+      end do
+      iter = real(integ%n_iter, dp)/max(1, done)
+   end subroutine tiny_run
+
+   !> gauss6 at h = 0.01 s, 2000 steps of tiny oscillations about the hanging
+   !> equilibrium (amplitudes 1e-3 … 1e-9 rad) of the chains of 2 and 3 unit links:
+   !> every step converges, and the fixed-point iteration count does not depend on
+   !> the amplitude (the stage forces are computed relative to the offset from the
+   !> step start, `field_near`), as for the double pendulum (N = 2: the same count).
+   subroutine test_tiny(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(chain_t) :: chain
+      real(dp) :: amp, iter, iter_ref
+      integer :: n, ia, done, stat
+      character(len=:), allocatable :: line
+      line = 'gauss6 h=0.01, 2000 steps from q=-pi/2+-amp: iterations per step'
+      call tiny_run(pendulum_model(pendulum_t()), 2, 1e-5_dp, 0.01_dp, 2000, done, stat, &
+                    iter_ref)
+      line = line//'; double pendulum (amp 1e-5) '//real_str(iter_ref, 3)
+      do n = 2, 3
+         chain = chain_model([(1.0_dp, ia=1, n)], [(1.0_dp, ia=1, n)], 9.8_dp, err)
+         line = line//'; N='//to_str(n)//':'
+         do ia = 1, 4
+            amp = 10.0_dp**(-1 - 2*ia)
+            call tiny_run(chain, n, amp, 0.01_dp, 2000, done, stat, iter)
+            line = line//' '//real_str(iter, 3)
+            call check_true(error, stat == stat_ok, 'N='//to_str(n)//' amplitude '// &
+                            real_str(amp, 2)//': gauss6 failed after '//to_str(done)// &
+                            ' steps')
+            if (allocated(error)) return
+            if (ia == 1 .and. n == 3) iter_ref = iter
+            call check(error, iter, iter_ref, 'N='//to_str(n)//' amplitude '// &
+                       real_str(amp, 2)//': iterations per step', abs=0.5_dp)
+            if (allocated(error)) return
+         end do
+      end do
+      call report(line)
+   end subroutine test_tiny
 end module test_chain

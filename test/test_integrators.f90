@@ -14,7 +14,7 @@ module test_integrators
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private
-   public :: collect_integrators
+   public :: collect_integrators, slope
 
    real(dp), parameter :: pi = acos(-1.0_dp)
    !> Small oscillation about the hanging equilibrium (regular, two modes).

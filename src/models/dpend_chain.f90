@@ -85,6 +85,10 @@ module dpend_chain
       procedure :: outputs => chain_outputs
       procedure :: n_parameters => chain_n_parameters
       procedure :: parameter => chain_parameter
+      procedure :: cache_size => chain_cache_size
+      procedure :: fill_cache => chain_fill_cache
+      procedure :: field_near => chain_field_near
+      procedure :: canonical_field_near => chain_canonical_field_near
       !> Mass matrix M(q) (n, n) [kg m²].
       procedure :: mass_matrix => chain_mass_matrix
       !> Accelerations q̈ by Newton–Euler [rad/s²].
@@ -281,11 +285,21 @@ contains
       real(dp), intent(out) :: a(max_dof, max_dof)   !! Cholesky factor of M
       real(dp), intent(out) :: c(max_dof), s(max_dof) !! cos q, sin q
       call trig(self%n, q, c, s)
+      call solve_qdd_trig(self, c, s, qd, qdd, a)
+   end subroutine solve_qdd
+
+   !> q̈ (leading n of qdd) and the Cholesky factor of M from cos q, sin q.
+   pure subroutine solve_qdd_trig(self, c, s, qd, qdd, a)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), intent(in) :: qd(*)                   !! rates [rad/s]
+      real(dp), intent(out) :: qdd(max_dof)           !! q̈ [rad/s²]
+      real(dp), intent(out) :: a(max_dof, max_dof)    !! Cholesky factor of M
       call fill_mass(self, c, s, a)
       call cholesky(self%n, a)
       call rhs_newton_euler(self, c, s, qd, qdd)
       call cholesky_solve(self%n, a, qdd)
-   end subroutine solve_qdd
+   end subroutine solve_qdd_trig
 
    !> q̇ = M⁻¹ p (leading n of qd) and the Cholesky factor of M.
    pure subroutine solve_qd(self, q, p, qd, a, c, s)
@@ -294,14 +308,57 @@ contains
       real(dp), intent(out) :: qd(max_dof)           !! q̇ [rad/s]
       real(dp), intent(out) :: a(max_dof, max_dof)   !! Cholesky factor of M
       real(dp), intent(out) :: c(max_dof), s(max_dof) !! cos q, sin q
+      call trig(self%n, q, c, s)
+      call solve_qd_trig(self, c, s, p, qd, a)
+   end subroutine solve_qd
+
+   !> q̇ = M⁻¹ p (leading n of qd) and the Cholesky factor of M from cos q, sin q.
+   pure subroutine solve_qd_trig(self, c, s, p, qd, a)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), intent(in) :: p(*)                    !! momenta [kg m²/s]
+      real(dp), intent(out) :: qd(max_dof)            !! q̇ [rad/s]
+      real(dp), intent(out) :: a(max_dof, max_dof)    !! Cholesky factor of M
       integer :: n
       n = self%n
-      call trig(n, q, c, s)
       call fill_mass(self, c, s, a)
       call cholesky(n, a)
       qd(1:n) = p(1:n)
       call cholesky_solve(n, a, qd)
-   end subroutine solve_qd
+   end subroutine solve_qd_trig
+
+   !> cos and sin of q = q0 + d from those of q0 (c0, s0), for small d: the
+   !> angle-addition formulas with sin d and cos d − 1 from their Taylor series (as
+   !> `sin_cos_near` of dpend_pendulum: remainder below 1e-17 for |d| ≤ 0.25 rad;
+   !> beyond, cos q and sin q directly). Unlike cos(q0 + d), which sees the rounding
+   !> of q0 + d (ulp(q)/2 absolute), this is accurate relative to d: the forces of
+   !> a state near equilibrium come out smooth in d, so that the fixed-point
+   !> iterations of the implicit methods converge to their roundoff test.
+   pure subroutine trig_near(n, c0, s0, q, d, c, s)
+      integer, intent(in) :: n                         !! links
+      real(dp), intent(in) :: c0(*), s0(*)             !! cos q0, sin q0
+      real(dp), intent(in) :: q(*), d(*)               !! q [rad], d = q − q0 [rad]
+      real(dp), intent(out) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), parameter :: d_max = 0.25_dp
+      real(dp) :: d2, sd, cm1
+      integer :: i
+      do i = 1, n
+         if (abs(d(i)) > d_max) then
+            c(i) = cos(q(i))
+            s(i) = sin(q(i))
+         else
+            d2 = d(i)*d(i)
+            sd = d(i)*(1.0_dp + d2*(-1.0_dp/6.0_dp + d2*(1.0_dp/120.0_dp &
+                 + d2*(-1.0_dp/5040.0_dp + d2*(1.0_dp/362880.0_dp &
+                 + d2*(-1.0_dp/39916800.0_dp))))))
+            cm1 = d2*(-0.5_dp + d2*(1.0_dp/24.0_dp + d2*(-1.0_dp/720.0_dp &
+                  + d2*(1.0_dp/40320.0_dp + d2*(-1.0_dp/3628800.0_dp &
+                  + d2*(1.0_dp/479001600.0_dp))))))
+            s(i) = s0(i) + (s0(i)*cm1 + c0(i)*sd)
+            c(i) = c0(i) + (c0(i)*cm1 - s0(i)*sd)
+         end if
+      end do
+   end subroutine trig_near
 
    ! ---------------------------------------------------------------- model bindings
 
@@ -495,20 +552,75 @@ contains
       end do
    end subroutine sigma
 
-   !> (∂H/∂p, −∂H/∂q) = (q̇, τ − G cos q), τ_i = −q̇_i σ_i(q̇).
-   pure subroutine chain_canonical_field(self, t, z, f)
+   !> The step-start cache: (cos q_1 … cos q_n, sin q_1 … sin q_n).
+   pure integer function chain_cache_size(self)
       class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: t, z(*)
+      chain_cache_size = 2*self%n
+   end function chain_cache_size
+
+   pure subroutine chain_fill_cache(self, q, cache)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: q(*)
+      real(dp), intent(inout) :: cache(*)
+      integer :: i
+      do i = 1, self%n
+         cache(i) = cos(q(i))
+         cache(self%n + i) = sin(q(i))
+      end do
+   end subroutine chain_fill_cache
+
+   !> `field` at y = (q0 + d, q̇) with the cos and sin of q0 from the cache.
+   pure subroutine chain_field_near(self, t, y, d, cache, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(*), d(*), cache(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), sg(max_dof)
+      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call trig_near(n, cache(1:n), cache(n + 1:2*n), y(1:n), d(1:n), c, s)
+      call solve_qdd_trig(self, c, s, y(n + 1:2*n), qdd, a)
+      f(1:n) = y(n + 1:2*n)
+      f(n + 1:2*n) = qdd(1:n)
+   end subroutine chain_field_near
+
+   !> `canonical_field` at z = (q0 + d, p) with the cos and sin of q0 from the cache.
+   pure subroutine chain_canonical_field_near(self, t, z, d, cache, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(*), d(*), cache(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call trig_near(n, cache(1:n), cache(n + 1:2*n), z(1:n), d(1:n), c, s)
+      call solve_qd_trig(self, c, s, z(n + 1:2*n), qd, a)
+      call canonical_tail(self, c, s, qd, f)
+   end subroutine chain_canonical_field_near
+
+   !> (q̇, τ − G cos q) from q̇ and the trigonometric values (see canonical_field).
+   pure subroutine canonical_tail(self, c, s, qd, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: c(max_dof), s(max_dof), qd(max_dof)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: sg(max_dof)
       integer :: n, i
       n = self%n
-      call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
       call sigma(self, c, s, qd, sg)
       f(1:n) = qd(1:n)
       do i = 1, n
          f(n + i) = -qd(i)*sg(i) - self%gl(i)*c(i)
       end do
+   end subroutine canonical_tail
+
+   !> (∂H/∂p, −∂H/∂q) = (q̇, τ − G cos q), τ_i = −q̇_i σ_i(q̇).
+   pure subroutine chain_canonical_field(self, t, z, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, z(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
+      call canonical_tail(self, c, s, qd, f)
    end subroutine chain_canonical_field
 
    !> ∂f/∂z of `canonical_field`, z = (q, p): ∂q̇/∂p = M⁻¹, ∂q̇/∂q_k = −M⁻¹ (∂M/∂q_k) q̇,
