@@ -26,12 +26,19 @@ module dpend_limits
    public :: max_angle, max_angular_velocity, max_time, max_dt, min_rtol, min_atol, max_atol
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
+   public :: diverged_bound
    public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
    !> product of the model (m l² g … at most eight factors, with the angular
    !> velocities below) stays within 1e±100, far from overflow (1e308) and from
    !> subnormals, and √(l/g) is within [1e-6, 1e6] s.
+   !> A state component beyond this magnitude counts as diverged: no physical state of
+   !> the pendulum comes near it, and stopping there keeps every intermediate stage of
+   !> the next step below overflow (which would trap under -ffpe-trap=overflow). The
+   !> integrators stop at it (`state_ok`); the chain model saturates its field beyond
+   !> it, so that a step that blows up within its stages cannot overflow either.
+   real(dp), parameter :: diverged_bound = 1e30_dp
    real(dp), parameter :: min_mass = 1e-6_dp      !! smallest m1, m2 [kg]
    real(dp), parameter :: max_mass = 1e6_dp       !! largest m1, m2 [kg]
    real(dp), parameter :: min_length = 1e-6_dp    !! smallest l1, l2 [m]

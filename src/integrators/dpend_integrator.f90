@@ -17,7 +17,7 @@
 module dpend_integrator
    use dpend_kinds, only: dp, i8
    use dpend_model, only: model_t, max_state
-   use dpend_limits, only: default_max_steps
+   use dpend_limits, only: default_max_steps, diverged_bound
    use dpend_error, only: error_t, fatal_error
    use dpend_method_options, only: method_options_t
    implicit none
@@ -35,10 +35,6 @@ module dpend_integrator
    integer, parameter :: stat_count_limit = 5     !! a step or sample count above its limit
    integer, parameter :: stat_tangent_substeps = 6 !! tangent equations need too many substeps
 
-   !> A state component beyond this magnitude counts as diverged: no physical state of
-   !> the pendulum comes near it, and stopping there keeps every intermediate stage of
-   !> the next step below overflow (which would trap under -ffpe-trap=overflow).
-   real(dp), parameter :: diverged_bound = 1e30_dp
 
    !> Common state and counters of every method.
    type, abstract :: integrator_t

@@ -47,7 +47,8 @@
 module dpend_chain
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g
+   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g, &
+                           diverged_bound
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
@@ -385,7 +386,10 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
       integer :: n
+      logical :: runaway
       n = self%n
+      call saturate(2*n, y, f, runaway)
+      if (runaway) return
       call solve_qdd(self, y(1:n), y(n + 1:2*n), qdd, a, c, s)
       f(1:n) = y(n + 1:2*n)
       f(n + 1:2*n) = qdd(1:n)
@@ -576,7 +580,10 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
       integer :: n
+      logical :: runaway
       n = self%n
+      call saturate(2*n, y, f, runaway)
+      if (runaway) return
       call trig_near(n, cache(1:n), cache(n + 1:2*n), y(1:n), d(1:n), c, s)
       call solve_qdd_trig(self, c, s, y(n + 1:2*n), qdd, a)
       f(1:n) = y(n + 1:2*n)
@@ -590,7 +597,10 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
       integer :: n
+      logical :: runaway
       n = self%n
+      call saturate(2*n, z, f, runaway)
+      if (runaway) return
       call trig_near(n, cache(1:n), cache(n + 1:2*n), z(1:n), d(1:n), c, s)
       call solve_qd_trig(self, c, s, z(n + 1:2*n), qd, a)
       call canonical_tail(self, c, s, qd, f)
@@ -618,10 +628,31 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: qd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
       integer :: n
+      logical :: runaway
       n = self%n
+      call saturate(2*n, z, f, runaway)
+      if (runaway) return
       call solve_qd(self, z(1:n), z(n + 1:2*n), qd, a, c, s)
       call canonical_tail(self, c, s, qd, f)
    end subroutine chain_canonical_field
+
+   !> A state with a component beyond `diverged_bound` (where the integrators stop
+   !> the run) gets the field f = diverged_bound in every component instead of the
+   !> dynamics: the accelerations grow like q̇², so the stages of one step that blows
+   !> up would otherwise overflow (a trap under -ffpe-trap=overflow) before the
+   !> step's end check sees the divergence.
+   pure subroutine saturate(m, y, f, runaway)
+      integer, intent(in) :: m           !! state size 2N
+      real(dp), intent(in) :: y(*)       !! state
+      real(dp), intent(inout) :: f(*)    !! set when runaway
+      logical, intent(out) :: runaway    !! a component is beyond diverged_bound
+      integer :: i
+      runaway = .false.
+      do i = 1, m
+         if (abs(y(i)) > diverged_bound) runaway = .true.
+      end do
+      if (runaway) f(1:m) = diverged_bound
+   end subroutine saturate
 
    !> ∂f/∂z of `canonical_field`, z = (q, p): ∂q̇/∂p = M⁻¹, ∂q̇/∂q_k = −M⁻¹ (∂M/∂q_k) q̇,
    !> and for f_p,i = −q̇_i σ_i − G_i cos q_i:
