@@ -48,8 +48,10 @@ if [[ "$1" == "--compare" ]]; then
     plot_abs h5 "$f"
     i=$((i + 1))
     "$dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/c$i.dat"
-    lam=$(h5dump -m %.17g -d /lyapunov/exponents "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
-    spr=$(h5dump -m %.17g -d /lyapunov/spread "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
+    # lambda1 and its spread: the first row (h5dump's "(0):" would also match the
+    # datasets' string attributes)
+    "$dpend" export "$h5" /lyapunov/exponents /lyapunov/spread > "$tmp/s$i.dat"
+    read -r lam spr _ < "$tmp/s$i.dat" || true
     plot_number lam "$lam" "lambda1 of '$f'"
     plot_number spr "$spr" "the spread of lambda1 of '$f'"
     rtol=$(attr "$h5" rtol)
