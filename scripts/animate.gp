@@ -1,9 +1,13 @@
 # Animated GIF of a `dpend simulate` file. Called by `dpend animate` as
 #   gnuplot -c animate.gp PARAMS FRAMES TRAIL GIF TITLE LABEL1 LABEL2 PNGSTEM
-# PARAMS  gnuplot assignments of numbers only, written by dpend: nframes, nrows,
-#         per_frame, ntrail, delay [1/100 s], width, height [px], overlay, reactions
-#         (0/1), lim [m], newtons_per_m [N/m], fmax [N]
-# FRAMES  one row per frame: t xB yB xD yD F01x F01y F21x F21y [xB2 yB2 xD2 yD2]
+# PARAMS  gnuplot assignments of numbers only, written by dpend: links, links2 (links
+#         of the input and of the overlay, 0 without), nframes, nrows, per_frame,
+#         ntrail, delay [1/100 s], width, height [px], overlay, reactions (0/1), lim [m],
+#         newtons_per_m [N/m], fmax [N]
+# FRAMES  one row per frame: t, the far end of every link x1 y1 .. xN yN, the reactions
+#         (N = 2: F01x F01y F21x F21y, the forces on link 1 at A and B; other N: the
+#         force of body i-1 on body i at joint i, i = 1..N), [the overlay's link ends]
+#         (two links: t xB yB xD yD F01x F01y F21x F21y [xB2 yB2 xD2 yD2])
 # TRAIL   the tip per_frame times per frame interval: t xD yD [xD2 yD2]
 #         (frame i, from 0, is trail row i*per_frame; the trail is ntrail rows long)
 # GIF     the animation to write; TITLE, LABEL1, LABEL2: text shown as it is
@@ -13,26 +17,42 @@ load ARG1
 framefile = ARG2
 trailfile = ARG3
 
-array T[nframes]; array BX[nframes]; array BY[nframes]; array DX[nframes]; array DY[nframes]
-array F1X[nframes]; array F1Y[nframes]; array F2X[nframes]; array F2Y[nframes]
-array BX2[nframes]; array BY2[nframes]; array DX2[nframes]; array DY2[nframes]
+# frame k (1-based), link i: its far end (PX, PY)[(k-1)*links + i], the reaction at
+# joint i (FX, FY)[(k-1)*links + i]; the overlay's link ends (PX2, PY2)[(k-1)*links2 + i]
+nl2 = (links2 > 0 ? links2 : 1)
+array T[nframes]
+array PX[nframes*links]; array PY[nframes*links]; array FX[nframes*links]
+array FY[nframes*links]; array PX2[nframes*nl2]; array PY2[nframes*nl2]
 array TX[nrows]; array TY[nrows]; array TX2[nrows]; array TY2[nrows]
+stats framefile using (r = int($0) + 1, T[r] = $1, 0) nooutput
+do for [i = 1:links] {
+  stats framefile using (r = int($0)*links + i, PX[r] = column(2*i), \
+    PY[r] = column(2*i + 1), FX[r] = column(2*links + 2*i), \
+    FY[r] = column(2*links + 2*i + 1), 0) nooutput
+}
 if (overlay) {
-  stats framefile using (r = int($0) + 1, T[r] = $1, BX[r] = $2, BY[r] = $3, DX[r] = $4, \
-    DY[r] = $5, F1X[r] = $6, F1Y[r] = $7, F2X[r] = $8, F2Y[r] = $9, BX2[r] = $10, \
-    BY2[r] = $11, DX2[r] = $12, DY2[r] = $13, 0) nooutput
+  do for [i = 1:links2] {
+    stats framefile using (r = int($0)*links2 + i, PX2[r] = column(4*links + 2*i), \
+      PY2[r] = column(4*links + 2*i + 1), 0) nooutput
+  }
   stats trailfile using (r = int($0) + 1, TX[r] = $2, TY[r] = $3, TX2[r] = $4, \
     TY2[r] = $5, 0) nooutput
 } else {
-  stats framefile using (r = int($0) + 1, T[r] = $1, BX[r] = $2, BY[r] = $3, DX[r] = $4, \
-    DY[r] = $5, F1X[r] = $6, F1Y[r] = $7, F2X[r] = $8, F2Y[r] = $9, 0) nooutput
   stats trailfile using (r = int($0) + 1, TX[r] = $2, TY[r] = $3, 0) nooutput
 }
+# start (x, y) of link i in frame k: the pin A or the far end of link i - 1
+sx(k, i) = (i == 1 ? 0 : PX[(k - 1)*links + i - 1])
+sy(k, i) = (i == 1 ? 0 : PY[(k - 1)*links + i - 1])
+sx2(k, i) = (i == 1 ? 0 : PX2[(k - 1)*links2 + i - 1])
+sy2(k, i) = (i == 1 ? 0 : PY2[(k - 1)*links2 + i - 1])
 
 # colours: rods and their tip trail; the overlay in warm colours
 rod = "#1f3b73"; rod2 = "#b03a2e"; pin = "#111111"
 trail_rgb = 0x2e86de; trail2_rgb = 0xe67e22
 react1 = "#1e8449"; react2 = "#8e44ad"
+# reaction arrows at joints 1, 2, ... (two links: react1, react2)
+array reactc[6] = ["#1e8449", "#8e44ad", "#d35400", "#2471a3", "#b7950b", "#c0392b"]
+rc(i) = reactc[(i - 1)%6 + 1]
 # older trail points lighter: mix with white by age in [0, 1]
 mix(c, s, age) = int(((c >> s) & 255) + (255 - ((c >> s) & 255))*age**0.7)
 fade(c, age) = (mix(c, 16, age) << 16) + (mix(c, 8, age) << 8) + mix(c, 0, age)
@@ -67,27 +87,41 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
     if (pass == 2) { set output sprintf("%s-%04d.png", ARG8, k) }
     unset arrow; unset object; unset label
     set label 1 sprintf("t = %.2f s", T[k]) at graph 0.03, graph 0.95 left front
+    # tags (drawn in tag order): rods 1..links, the overlay's 41..; pin A 1, the
+    # joints 2..links, the tip links + 1, the overlay's pins and tip 41..; reactions 101..
     if (overlay) {
-      set arrow 5 from 0,0 to BX2[k],BY2[k] nohead lw 7*s lc rgb rod2 front
-      set arrow 6 from BX2[k],BY2[k] to DX2[k],DY2[k] nohead lw 7*s lc rgb rod2 front
-      set object 5 circle at BX2[k],BY2[k] size r_pin fc rgb pin front
-      set object 6 circle at DX2[k],DY2[k] size r_pin fc rgb rod2 front
+      do for [i = 1:links2] {
+        j = (k - 1)*links2 + i
+        set arrow 40 + i from sx2(k, i),sy2(k, i) to PX2[j],PY2[j] nohead lw 7*s \
+          lc rgb rod2 front
+        set object 40 + i circle at PX2[j],PY2[j] size r_pin \
+          fc rgb (i < links2 ? pin : rod2) front
+      }
     }
-    set arrow 1 from 0,0 to BX[k],BY[k] nohead lw 7*s lc rgb rod front
-    set arrow 2 from BX[k],BY[k] to DX[k],DY[k] nohead lw 7*s lc rgb rod front
     set object 1 circle at 0,0 size 1.3*r_pin fc rgb pin front
-    set object 2 circle at BX[k],BY[k] size r_pin fc rgb pin front
-    set object 3 circle at DX[k],DY[k] size r_pin fc rgb rod front
+    do for [i = 1:links] {
+      j = (k - 1)*links + i
+      set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rod front
+      set object i + 1 circle at PX[j],PY[j] size r_pin fc rgb (i < links ? pin : rod) front
+    }
     if (reactions) {
-      set arrow 10 from 0,0 rto F1X[k]/newtons_per_m,F1Y[k]/newtons_per_m \
-        head filled size screen 0.018,20 lw 3*s lc rgb react1 front
-      set arrow 11 from BX[k],BY[k] rto F2X[k]/newtons_per_m,F2Y[k]/newtons_per_m \
-        head filled size screen 0.018,20 lw 3*s lc rgb react2 front
+      do for [i = 1:links] {
+        j = (k - 1)*links + i
+        set arrow 100 + i from sx(k, i),sy(k, i) rto FX[j]/newtons_per_m,FY[j]/newtons_per_m \
+          head filled size screen 0.018,20 lw 3*s lc rgb rc(i) front
+      }
       fsmall = sprintf(",%d", int(9*s + 0.5))
-      set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
-        font fsmall tc rgb react1
-      set label 3 "F21: link 2 on link 1, at B" at screen 0.03, screen 0.03 left front \
-        font fsmall tc rgb react2
+      if (links == 2) {
+        set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
+          font fsmall tc rgb react1
+        set label 3 "F21: link 2 on link 1, at B" at screen 0.03, screen 0.03 left front \
+          font fsmall tc rgb react2
+      } else {
+        set label 2 "at joint i: the force of link i-1 on link i" at screen 0.03, \
+          screen 0.065 left front font fsmall tc rgb "#333333"
+        set label 3 "(link 0: the ground; joint 1: the pin A)" at screen 0.03, \
+          screen 0.03 left front font fsmall tc rgb "#333333"
+      }
       set label 4 sprintf("arrows: 1 m = %g N\n(largest |F| shown %.3g N)", newtons_per_m, \
         fmax) at screen 0.97, screen 0.065 right front font fsmall tc rgb "#333333"
     }

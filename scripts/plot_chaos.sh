@@ -4,8 +4,9 @@
 # The command that wrote FILE (its root attribute `command`) decides the figures:
 #   lyapunov   -> lyapunov_convergence.png (running estimates against t, log time
 #                 axis; |lambda_i(t)| on log-log axes with ln(t)/t for reference)
-#                 lyapunov_spectrum.png (the exponents with their spread, and the
-#                 pairing defects |l1+l4|, |l2+l3| against t beside 1 % of l1)
+#                 lyapunov_spectrum.png (the exponents with their spread, and for
+#                 the full spectrum of N links (2N exponents) the pairing defects
+#                 |l_i + l_(2N+1-i)|, i = 1..N, against t beside 1 % of l1)
 #   divergence -> divergence.png (log10|delta(t)|: pairs, their mean, fitted slope,
 #                 Benettin's lambda1 for comparison, saturation level)
 #   poincare   -> poincare.png (the section points, one colour per orbit)
@@ -47,8 +48,10 @@ if [[ "$1" == "--compare" ]]; then
     plot_abs h5 "$f"
     i=$((i + 1))
     "$dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/c$i.dat"
-    lam=$(h5dump -m %.17g -d /lyapunov/exponents "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
-    spr=$(h5dump -m %.17g -d /lyapunov/spread "$h5" | sed -n 's/^ *(0): *\([^,]*\).*/\1/p')
+    # lambda1 and its spread: the first row (h5dump's "(0):" would also match the
+    # datasets' string attributes)
+    "$dpend" export "$h5" /lyapunov/exponents /lyapunov/spread > "$tmp/s$i.dat"
+    read -r lam spr _ < "$tmp/s$i.dat" || true
     plot_number lam "$lam" "lambda1 of '$f'"
     plot_number spr "$spr" "the spread of lambda1 of '$f'"
     rtol=$(attr "$h5" rtol)
@@ -85,9 +88,10 @@ case "$cmd" in
     "$dpend" export "$h5" /lyapunov/t /lyapunov/running > "$tmp/run.dat"
     "$dpend" export "$h5" /lyapunov/exponents /lyapunov/spread > "$tmp/spec.dat"
     num k "$h5" vectors
+    num links "$h5" links 2   # files from before --links: the double pendulum
     plot_begin "$out" lyapunov_convergence.png lyapunov_spectrum.png
     plot_run gnuplot -c "$here/lyapunov.gp" "$tmp/run.dat" "$tmp/spec.dat" "$figdir" \
-      "$title" "$k"
+      "$title" "$k" "$links"
     printf 'plot_chaos.sh: wrote %s/lyapunov_convergence.png %s/lyapunov_spectrum.png\n' \
       "$out" "$out"
     ;;

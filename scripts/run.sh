@@ -15,6 +15,13 @@ scripts/plot_simulate.sh out/simulate/simulate.h5 out/simulate
 "$d" animate out/simulate/simulate.h5 --output out/simulate/simulate.gif --force \
   --duration 6 --reactions   # the first 6 s at 25 fps: 150 frames
 
+step "simulate: the triple pendulum (three links horizontal, at rest; --links 3)"
+mkdir -p out/triple
+"$d" simulate --links 3 --q 0,0,0 --t-end 20 --output out/triple/triple.h5 --force
+scripts/plot_simulate.sh out/triple/triple.h5 out/triple
+"$d" animate out/triple/triple.h5 --output out/triple/triple.gif --force \
+  --duration 6 --reactions   # the first 6 s at 25 fps: 150 frames
+
 step "study --quick: energy conservation of every integrator (the full study: dpend study)"
 "$d" study --quick --output out/study/study.h5 --force > /dev/null
 echo "summary: out/study/study.md; figures: out/study/*.png"
@@ -23,6 +30,12 @@ step "lyapunov: spectrum of the horizontal release (t = 300 s)"
 mkdir -p out/chaos
 "$d" lyapunov --t-end 300 --output out/chaos/lyapunov.h5 --force | tail -n 1
 scripts/plot_chaos.sh out/chaos/lyapunov.h5 out/chaos
+
+step "lyapunov: the six exponents of the triple pendulum released horizontally (t = 200 s)"
+mkdir -p out/chaos/triple
+"$d" lyapunov --links 3 --q 0,0,0 --t-end 200 --output out/chaos/lyapunov_triple.h5 --force \
+  | tail -n 1
+scripts/plot_chaos.sh out/chaos/lyapunov_triple.h5 out/chaos/triple
 
 step "divergence: 20 pairs of trajectories 1e-9 apart"
 "$d" divergence --output out/chaos/divergence.h5 --force | tail -n 1

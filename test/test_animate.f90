@@ -14,6 +14,7 @@ contains
    subroutine collect_animate(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('gif_frames_and_size', test_gif), &
+               new_unittest('three_links', test_three_links), &
                new_unittest('refused_options', test_refused)]
    end subroutine collect_animate
 
@@ -107,15 +108,19 @@ contains
       have_gnuplot = stat == 0
    end function have_gnuplot
 
-   !> Run animate with options and check the GIF's frame count and size.
-   subroutine expect_gif(error, dir, options, name, frames, width, height)
+   !> Run animate on dir/sim.h5 (or dir/INPUT) with options and check the GIF's frame
+   !> count and size.
+   subroutine expect_gif(error, dir, options, name, frames, width, height, input)
       type(error_t), allocatable, intent(inout) :: error
       character(len=*), intent(in) :: dir, options, name
       integer, intent(in) :: frames, width, height
+      character(len=*), intent(in), optional :: input   !! simulate file in dir
       integer :: stat, w, h, k, n
-      character(len=:), allocatable :: why, text
+      character(len=:), allocatable :: why, text, file
       if (allocated(error)) return
-      stat = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir//'/'//name// &
+      file = 'sim.h5'
+      if (present(input)) file = input
+      stat = run_command(dir, 'animate '//dir//'/'//file//' --output '//dir//'/'//name// &
                          ' '//options)
       call read_text(dir//'/stderr', text, n)
       call check_true(error, stat == 0, '['//options//'] exit status 0, got '// &
@@ -162,6 +167,42 @@ contains
          call check_true(error, .not. exists, 'no PNG frame 6')
       end block
    end subroutine test_gif
+
+   !> A triple pendulum (simulate --links 3): frame count and size as for two links,
+   !> with the reactions at the three joints, an overlay of a double pendulum, and
+   !> PNG frames.
+   subroutine test_three_links(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      integer :: stat
+      logical :: exists
+      if (.not. have_gnuplot()) then
+         print '(a)', '       note: gnuplot not found, animate/three_links skipped'
+         return
+      end if
+      dir = scratch_dir('animate-3')
+      ! 101 samples over 1 s of the triple pendulum released horizontally
+      stat = run_command(dir, 'simulate --links 3 --q 0,0,0 --t-end 1 --dt 1e-3 '// &
+                         '--save-every 10 --output '//dir//'/sim3.h5')
+      call check_true(error, stat == 0, 'simulate --links 3 for animate')
+      if (allocated(error)) return
+      stat = run_command(dir, 'simulate --t-end 1 --dt 1e-3 --save-every 10 --output '// &
+                         dir//'/sim.h5')
+      call check_true(error, stat == 0, 'simulate (two links) for animate')
+      if (allocated(error)) return
+      ! fps × duration frames: 10 × 0.8 = 8, with the arrows at three joints
+      call expect_gif(error, dir, '--fps 10 --duration 0.8 --size 200x150 --reactions', &
+                      'a.gif', 8, 200, 150, 'sim3.h5')
+      ! the whole trajectory: floor(1 s × 5 fps) + 1 = 6 frames, a double pendulum
+      ! overlaid, PNG frames
+      call expect_gif(error, dir, '--fps 5 --overlay '//dir//'/sim.h5 --size 128x96 '// &
+                      '--frames '//dir, 'b.gif', 6, 128, 96, 'sim3.h5')
+      if (allocated(error)) return
+      inquire (file=dir//'/frame_0006.png', exist=exists)
+      call check_true(error, exists, 'PNG frame 6 written')
+      inquire (file=dir//'/frame_0007.png', exist=exists)
+      call check_true(error, .not. exists, 'no PNG frame 7')
+   end subroutine test_three_links
 
    !> Refused values: exit 2, one line, no GIF.
    subroutine test_refused(error)

@@ -1,5 +1,6 @@
-!> `dpend animate`: an animated GIF of the double pendulum from a `dpend simulate`
-!> file, drawn by gnuplot (scripts/animate.gp) from a data file written here.
+!> `dpend animate`: an animated GIF of the double pendulum (or the chain of N links)
+!> from a `dpend simulate` file, drawn by gnuplot (scripts/animate.gp) from a data
+!> file written here.
 !>
 !> Frames: N = round(duration × fps) (at least 1) without --duration the whole
 !> trajectory, N = floor(span × fps / speed) + 1; frame k (k = 0 … N−1) shows the
@@ -49,8 +50,12 @@ module dpend_animate
    !> The samples of one simulate file that the animation needs.
    type :: track_t
       character(len=:), allocatable :: path, method
-      real(dp) :: l1 = 1, l2 = 1
-      real(dp), allocatable :: t(:), q(:, :), f01(:, :), f21(:, :)
+      integer :: links = 2                          !! number of links N
+      real(dp), allocatable :: l(:)                 !! link lengths (N) [m]
+      real(dp), allocatable :: t(:), q(:, :)        !! times (n), angles (N, n)
+      !> reactions (2N, n): N = 2 F01, F21 (forces on link 1 at A and B); other N
+      !> F_joint, the force of body i-1 on body i at joint i (x, y for i = 1..N)
+      real(dp), allocatable :: f(:, :)
    end type track_t
 
    character(len=*), parameter :: nl = new_line('a')
@@ -61,10 +66,10 @@ contains
    function animate_help() result(s)
       character(len=:), allocatable :: s
       s = 'usage: dpend animate FILE.h5 [options]'//nl//nl// &
-          'Animated GIF of the double pendulum from a dpend simulate file, drawn by'//nl// &
-          'gnuplot: both rods, the pins, a fading trail of the tip (the last 1.5 s of'//nl// &
-          'simulated time), the time, equal axis scales fixed at +-(l1 + l2) and a'//nl// &
-          'margin.'//nl//nl// &
+          'Animated GIF of the double pendulum (or the chain of N links, --links) from'//nl// &
+          'a dpend simulate file, drawn by gnuplot: every rod, the pins, a fading trail'//nl// &
+          'of the tip (the last 1.5 s of simulated time), the time, equal axis scales'//nl// &
+          'fixed at +-(l1 + l2 + ...) and a margin.'//nl//nl// &
           'Frame k (k = 0, 1, ...) shows t = t0 + k*speed/fps, interpolated linearly in'//nl// &
           'the angles between the stored samples (use --output-dt in simulate for'//nl// &
           'exact states). Frames: round(duration*fps), at least 1; without --duration'//nl// &
@@ -85,8 +90,10 @@ contains
           '  --size WxH      image size in pixels, each '//to_str(min_pixels)//'..'// &
           to_str(max_pixels)//'; default 640x640'//nl// &
           '  --reactions     arrows of the joint reactions F01 (ground on link 1, at A) and'//nl// &
-          '                  F21 (link 2 on link 1, at B), to one scale [N per m] chosen'//nl// &
-          '                  from the largest |F| shown, stated in a legend'//nl// &
+          '                  F21 (link 2 on link 1, at B); for N links other than 2 the'//nl// &
+          '                  force of body i-1 on body i at every joint i (F_joint); to one'//nl// &
+          '                  scale [N per m] chosen from the largest |F| shown, stated in'//nl// &
+          '                  a legend'//nl// &
           '  --overlay FILE2 a second simulate file drawn in another colour on the same'//nl// &
           '                  frames (e.g. two nearby initial conditions separating)'//nl// &
           '  --frames DIR    also write frame_0001.png, ... into the existing directory DIR'//nl// &
@@ -244,8 +251,9 @@ contains
       type(track_t), intent(out) :: tr                  !! its samples
       type(error_t), allocatable, intent(out) :: error  !! refused
       type(h5file_t) :: h5
-      real(dp), allocatable :: f(:, :)
-      integer :: n, k
+      real(dp), allocatable :: f(:, :), f01(:, :), f21(:, :), fj(:, :, :)
+      real(dp) :: l1, l2
+      integer :: n, k, nl2
       tr%path = path
       select case (path_kind(path, .true.))
       case (path_missing)
@@ -270,12 +278,45 @@ contains
                           'file (no /trajectory/q)')
          return
       end if
-      call h5%read('/trajectory/t', tr%t, error)
+      ! the number of links (files of the double pendulum from before --links: 2)
+      tr%links = 2
+      if (h5%attr_exists('/', 'links')) call h5%readattr('/', 'links', tr%links, error)
+      if (.not. allocated(error) .and. (tr%links < 1 .or. tr%links > 1000)) &
+         call fatal_error(error, 'links = '//to_str(tr%links)//' (accepted: 1..1000)')
+      if (.not. allocated(error)) call h5%read('/trajectory/t', tr%t, error)
       if (.not. allocated(error)) call h5%read('/trajectory/q', tr%q, error)
-      if (.not. allocated(error)) call h5%read('/trajectory/F01', tr%f01, error)
-      if (.not. allocated(error)) call h5%read('/trajectory/F21', tr%f21, error)
-      if (.not. allocated(error)) call h5%readattr('/', 'l1', tr%l1, error)
-      if (.not. allocated(error)) call h5%readattr('/', 'l2', tr%l2, error)
+      if (tr%links == 2) then
+         ! the double pendulum: F01, F21 and l1, l2
+         if (.not. allocated(error)) call h5%read('/trajectory/F01', f01, error)
+         if (.not. allocated(error)) call h5%read('/trajectory/F21', f21, error)
+         if (.not. allocated(error)) call h5%readattr('/', 'l1', l1, error)
+         if (.not. allocated(error)) call h5%readattr('/', 'l2', l2, error)
+         if (.not. allocated(error)) then
+            n = size(tr%t)
+            if (any(shape(f01) /= [2, n]) .or. any(shape(f21) /= [2, n])) then
+               call fatal_error(error, '/trajectory datasets of different lengths or none')
+            else
+               tr%l = [l1, l2]
+               allocate (tr%f(4, n))
+               tr%f(1:2, :) = f01
+               tr%f(3:4, :) = f21
+            end if
+         end if
+      else
+         ! the chain: F_joint (2, N, n) and the lengths l (N)
+         if (.not. allocated(error)) call h5%read('/trajectory/F_joint', fj, error)
+         if (.not. allocated(error)) call h5%readattr('/', 'l', tr%l, error)
+         if (.not. allocated(error)) then
+            n = size(tr%t)
+            nl2 = 2*tr%links
+            if (any(shape(fj) /= [2, tr%links, n]) .or. size(tr%l) /= tr%links) then
+               call fatal_error(error, '/trajectory/F_joint or the attribute l do not '// &
+                                'match links = '//to_str(tr%links)//' and the samples')
+            else
+               tr%f = reshape(fj, [nl2, n])
+            end if
+         end if
+      end if
       if (.not. allocated(error)) then
          if (h5%attr_exists('/', 'method')) then
             call h5%readattr('/', 'method', tr%method, error)
@@ -289,22 +330,24 @@ contains
          return
       end if
       n = size(tr%t)
-      if (n < 1 .or. any(shape(tr%q) /= [2, n]) .or. any(shape(tr%f01) /= [2, n]) .or. &
-          any(shape(tr%f21) /= [2, n])) then
+      if (n < 1 .or. any(shape(tr%q) /= [tr%links, n]) .or. &
+          any(shape(tr%f) /= [2*tr%links, n])) then
          call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory datasets of "// &
                           'different lengths or none')
          return
       end if
       if (.not. (all(ieee_is_finite(tr%t)) .and. all(ieee_is_finite(tr%q)) .and. &
-                 all(ieee_is_finite(tr%f01)) .and. all(ieee_is_finite(tr%f21)))) then
+                 all(ieee_is_finite(tr%f)))) then
          call fatal_error(error, 'invalid '//field//": '"//path//"': non-finite samples")
          return
       end if
-      if (.not. (in(tr%l1) .and. in(tr%l2))) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': link lengths l1 = "// &
-                          sci(tr%l1)//', l2 = '//sci(tr%l2)//' m')
-         return
-      end if
+      do k = 1, tr%links
+         if (.not. in(tr%l(k))) then
+            call fatal_error(error, 'invalid '//field//": '"//path//"': link length l"// &
+                             to_str(k)//' = '//sci(tr%l(k))//' m (accepted: 1e-6..1e6 m)')
+            return
+         end if
+      end do
       do k = 2, n
          if (tr%t(k) < tr%t(k - 1)) then
             call fatal_error(error, 'invalid '//field//": '"//path//"': times decrease at "// &
@@ -313,7 +356,7 @@ contains
          end if
       end do
       ! forces beyond 1e100 N are not drawn to any sensible scale
-      f = max(abs(tr%f01), abs(tr%f21))
+      f = abs(tr%f)
       if (maxval(f) > 1e100_dp) then
          call fatal_error(error, 'invalid '//field//": '"//path//"': reaction forces up to "// &
                           sci(maxval(f))//' N')
@@ -326,14 +369,15 @@ contains
    end subroutine read_track
 
    !> State of a track at times `tt` (sorted), linear in the samples: angles and
-   !> reactions; positions of B and D from the interpolated angles.
+   !> reactions; positions of the far ends of the links (B and D for two) from the
+   !> interpolated angles.
    subroutine resample(tr, tt, pos, f)
-      type(track_t), intent(in) :: tr            !! samples
-      real(dp), intent(in) :: tt(:)              !! times, increasing [s]
-      real(dp), intent(out) :: pos(4, size(tt))  !! xB, yB, xD, yD [m]
-      real(dp), intent(out) :: f(4, size(tt))    !! F01x, F01y, F21x, F21y [N]
-      real(dp) :: w, q(2)
-      integer :: i, k, n
+      type(track_t), intent(in) :: tr                      !! samples
+      real(dp), intent(in) :: tt(:)                        !! times, increasing [s]
+      real(dp), intent(out) :: pos(2*tr%links, size(tt))   !! x, y of the end of each link [m]
+      real(dp), intent(out) :: f(2*tr%links, size(tt))     !! reactions (as track_t%f) [N]
+      real(dp) :: w, q(tr%links)
+      integer :: i, j, k, n
       n = size(tr%t)
       k = 1
       do i = 1, size(tt)
@@ -342,16 +386,18 @@ contains
          end do
          if (n == 1) then
             q = tr%q(:, 1)
-            f(:, i) = [tr%f01(:, 1), tr%f21(:, 1)]
+            f(:, i) = tr%f(:, 1)
          else
             w = 0.0_dp
             if (tr%t(k + 1) > tr%t(k)) w = (tt(i) - tr%t(k))/(tr%t(k + 1) - tr%t(k))
             w = min(1.0_dp, max(0.0_dp, w))
             q = (1 - w)*tr%q(:, k) + w*tr%q(:, k + 1)
-            f(:, i) = (1 - w)*[tr%f01(:, k), tr%f21(:, k)] + w*[tr%f01(:, k + 1), tr%f21(:, k + 1)]
+            f(:, i) = (1 - w)*tr%f(:, k) + w*tr%f(:, k + 1)
          end if
-         pos(1:2, i) = tr%l1*[cos(q(1)), sin(q(1))]
-         pos(3:4, i) = pos(1:2, i) + tr%l2*[cos(q(2)), sin(q(2))]
+         pos(1:2, i) = tr%l(1)*[cos(q(1)), sin(q(1))]
+         do j = 2, tr%links
+            pos(2*j - 1:2*j, i) = pos(2*j - 3:2*j - 2, i) + tr%l(j)*[cos(q(j)), sin(q(j))]
+         end do
       end do
    end subroutine resample
 
@@ -381,7 +427,7 @@ contains
       character(len=:), allocatable :: script, dir, params, frames_dat, trail_dat, stem, title
       character(len=:), allocatable :: label1, label2
       type(arg_t) :: argv(11)
-      integer :: nframes, m, ntr, nrows, i, stat, err, u
+      integer :: nframes, m, ntr, nrows, i, j, stat, err, u, na, nb
       logical :: overlay, made_params, made_frames, made_trail, made_stem
       failed = .false.
       summary = ''
@@ -451,22 +497,27 @@ contains
       tf = a%t(1) + dtf*[(real(i, dp), i=0, nframes - 1)]
       ttr = a%t(1) + ht*[(real(i, dp), i=0, nrows - 1)]
       ttr = min(ttr, a%t(1) + span)
-      allocate (pa(4, nframes), fa(4, nframes), qa(4, nrows), ga(4, nrows))
+      na = 2*a%links
+      nb = 0
+      if (overlay) nb = 2*b%links
+      allocate (pa(na, nframes), fa(na, nframes), qa(na, nrows), ga(na, nrows))
       call resample(a, tf, pa, fa)
       call resample(a, ttr, qa, ga)
       if (overlay) then
-         allocate (pb(4, nframes), fb(4, nframes), qb(4, nrows), gb(4, nrows))
+         allocate (pb(nb, nframes), fb(nb, nframes), qb(nb, nrows), gb(nb, nrows))
          call resample(b, tf, pb, fb)
          call resample(b, ttr, qb, gb)
       end if
-      lim = a%l1 + a%l2
-      if (overlay) lim = max(lim, b%l1 + b%l2)
-      ! reaction arrows: the longest 0.3 to 0.6 (l1 + l2), the scale a round number of N per m
+      lim = sum(a%l)
+      if (overlay) lim = max(lim, sum(b%l))
+      ! reaction arrows: the longest 0.3 to 0.6 (l1 + l2 + ...), the scale a round number of N/m
       fmax = 0.0_dp
       npm = 0.0_dp
       if (cfg%reactions) then
          do i = 1, nframes
-            fmax = max(fmax, hypot(fa(1, i), fa(2, i)), hypot(fa(3, i), fa(4, i)))
+            do j = 1, a%links
+               fmax = max(fmax, hypot(fa(2*j - 1, i), fa(2*j, i)))
+            end do
          end do
          if (fmax > 0.0_dp) then
             e = log10(fmax) - log10(0.6_dp*lim)
@@ -501,6 +552,8 @@ contains
       ! numbers only: file names reach gnuplot as arguments
       open (newunit=u, file=params, status='replace', action='write', iostat=stat)
       if (stat == 0) then
+         write (u, '(a, i0)', iostat=stat) 'links = ', a%links
+         write (u, '(a, i0)', iostat=stat) 'links2 = ', nb/2
          write (u, '(a, i0)', iostat=stat) 'nframes = ', nframes
          write (u, '(a, i0)', iostat=stat) 'nrows = ', nrows
          write (u, '(a, i0)', iostat=stat) 'per_frame = ', m
@@ -518,17 +571,17 @@ contains
          if (err /= 0) stat = err
       end if
       if (stat == 0) then
-         allocate (tab(merge(12, 8, overlay), nframes))
-         tab(1:4, :) = pa
-         tab(5:8, :) = fa
-         if (overlay) tab(9:12, :) = pb
+         allocate (tab(2*na + nb, nframes))
+         tab(1:na, :) = pa
+         tab(na + 1:2*na, :) = fa
+         if (overlay) tab(2*na + 1:2*na + nb, :) = pb
          call write_table(frames_dat, tf, tab, stat)
          deallocate (tab)
       end if
       if (stat == 0) then
          allocate (tab(merge(4, 2, overlay), nrows))
-         tab(1:2, :) = qa(3:4, :)
-         if (overlay) tab(3:4, :) = qb(3:4, :)
+         tab(1:2, :) = qa(na - 1:na, :)
+         if (overlay) tab(3:4, :) = qb(nb - 1:nb, :)
          call write_table(trail_dat, ttr, tab, stat)
       end if
       if (stat /= 0) then
@@ -543,7 +596,16 @@ contains
          label2 = base_name(cfg%overlay)//' ('//b%method//')'
          title = label1//'  and  '//label2
       end if
-      title = 'double pendulum: '//title
+      select case (a%links)
+      case (1)
+         title = 'compound pendulum: '//title
+      case (2)
+         title = 'double pendulum: '//title
+      case (3)
+         title = 'triple pendulum: '//title
+      case default
+         title = 'chain of '//to_str(a%links)//' links: '//title
+      end select
       ! component by component (gfortran 12 mangles an array constructor of
       ! structure constructors with deferred-length components)
       argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = params
