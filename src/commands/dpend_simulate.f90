@@ -314,15 +314,16 @@ contains
          if (allocated(error)) return
          call h5%write('/trajectory/t', traj%t(:n), units='s', description='sample times')
          call h5%write('/trajectory/q', traj%q(:, :n), units='rad', description= &
-            'angles from the horizontal x axis, counter-clockwise, unwrapped (q1, q2)')
+            'angles from the horizontal x axis, counter-clockwise, unwrapped (q1 .. q' &
+            //to_str(nd)//', one column per link)')
          call h5%write('/trajectory/qdot', traj%qd(:, :n), units='rad/s', &
-            description='angular velocities (qdot1, qdot2)')
+            description='angular velocities (qdot1 .. qdot'//to_str(nd)//')')
          call h5%write('/trajectory/qddot', qdd, units='rad/s^2', &
-            description='angular accelerations (qddot1, qddot2)')
+            description='angular accelerations (qddot1 .. qddot'//to_str(nd)//')')
          if (canonical) call h5%write('/trajectory/p', p, units='kg m^2/s', &
-            description='canonical momenta p = M(q) qdot (p1, p2)')
+            description='canonical momenta p = M(q) qdot (p1 .. p'//to_str(nd)//')')
          call h5%write('/trajectory/energy', e, units='J', &
-            description='total energy T + V (V = 0 with both links horizontal)')
+            description='total energy T + V (V = 0 with every link horizontal)')
          off = 0
          do j = 1, model%n_outputs()
             call model%output_info(j, name, n_comp, units, text, rows)
