@@ -5,10 +5,12 @@
 !> &sweep keys (docs/sweep.md):
 !>   axis1, axis2   swept initial values: 'theta1' 'theta2' (angles from the hanging
 !>                  position, θ = q + π/2), 'q1' 'q2' (from the horizontal x axis),
-!>                  'w1' 'w2' (angular velocities) [rad, rad/s]
+!>                  'w1' 'w2' (angular velocities) [rad, rad/s]; for N links any of
+!>                  theta1..thetaN, q1..qN, w1..wN
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
-!>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4))
+!>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4));
+!>                  for N links rows "q1 .. qN w1 .. wN", (n, 2N)
 !>   ic_dataset     dataset of an HDF5 list, default '/initial'
 !>   ic_angles      angles of a list: 'q' (from horizontal, default) or 'theta'
 !>   time_unit      unit of dt and t_end: 's' or 'natural' (√(L1/g))
@@ -33,9 +35,9 @@ module dpend_sweep_config
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
-   public :: axis_names, time_scale, stop_rule, grid_mode
+   public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
 
-   !> Names accepted for axis1 and axis2.
+   !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
 
    !> Everything `dpend sweep` needs.
@@ -274,9 +276,10 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
-      if (cfg%run%links /= 2) then
-         call fatal_error(error, 'invalid links: '//to_str(cfg%run%links)// &
-                          ' (dpend sweep accepts: 2, the double pendulum)')
+      if (cfg%run%links /= 2 .and. cfg%lyapunov) then
+         call fatal_error(error, 'invalid lyapunov: true with '//to_str(cfg%run%links)// &
+                          ' links (dpend sweep computes it for links = 2 only; '// &
+                          'dpend lyapunov computes it for any N)')
          return
       end if
       if (cfg%run%method /= 'rk4') then
@@ -305,11 +308,12 @@ contains
       end if
       if (allocated(error)) return
       if (grid_mode(cfg)) then
-         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, error)
+         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
          if (allocated(error)) return
-         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, error)
+         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error)
          if (allocated(error)) return
-         if (variable(cfg%axis1) == variable(cfg%axis2)) then
+         if (axis_variable(cfg%axis1, cfg%run%links) == &
+             axis_variable(cfg%axis2, cfg%run%links)) then
             call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
                              "initial value as axis1 '"//cfg%axis1//"'")
          else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
@@ -324,26 +328,29 @@ contains
    end subroutine validate_sweep
 
    !> Check one axis: a known name, n >= 1, finite min <= max (min < max if n > 1).
-   subroutine check_axis(name, k, n, lo, hi, error)
+   subroutine check_axis(name, k, n, lo, hi, links, error)
       character(len=*), intent(in) :: name              !! axis name
       integer, intent(in) :: k                          !! 1 or 2
       integer, intent(in) :: n                          !! points
       real(dp), intent(in) :: lo, hi                    !! range
+      integer, intent(in) :: links                      !! number of links N
       type(error_t), allocatable, intent(out) :: error  !! what is wrong
       character(len=1) :: c
       character(len=5) :: unit
       real(dp) :: bound
+      integer :: var
       c = achar(iachar('0') + k)
+      var = axis_variable(name, links)
       ! the angles' and angular velocities' ranges of every command (dpend_limits)
       bound = max_angle
       unit = 'rad'
-      if (variable(name) >= 3) then
+      if (var > links) then
          bound = max_angular_velocity
          unit = 'rad/s'
       end if
-      if (variable(name) == 0) then
+      if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
-                          //axis_names//')')
+                          //accepted_axes(links)//')')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
                           //' to '//to_str(max_axis_points)//' (points on axis '//c//')')
@@ -370,16 +377,41 @@ contains
       if (cfg%time_unit == 'natural') u = 'sqrt(l1/g)'
    end function unit_name
 
-   !> Index of the initial value an axis sweeps: 1 q1, 2 q2, 3 w1, 4 w2, 0 unknown.
-   pure integer function variable(name)
-      character(len=*), intent(in) :: name  !! axis name
-      select case (name)
-      case ('theta1', 'q1'); variable = 1
-      case ('theta2', 'q2'); variable = 2
-      case ('w1'); variable = 3
-      case ('w2'); variable = 4
-      case default; variable = 0
+   !> Index in the state (q1 .. qN, w1 .. wN) of the initial value an axis sweeps:
+   !> k for thetak and qk, N + k for wk (k = 1 .. N), 0 for an unknown name. Two links:
+   !> 1 q1, 2 q2, 3 w1, 4 w2.
+   pure integer function axis_variable(name, links)
+      character(len=*), intent(in) :: name   !! axis name
+      integer, intent(in) :: links           !! number of links N
+      integer :: k, start, stat
+      axis_variable = 0
+      if (index(name, 'theta') == 1) then
+         start = 6
+      else if (index(name, 'q') == 1 .or. index(name, 'w') == 1) then
+         start = 2
+      else
+         return
+      end if
+      if (len(name) < start .or. len(name) > start + 3) return
+      if (verify(name(start:), '0123456789') /= 0 .or. name(start:start) == '0') return
+      read (name(start:), *, iostat=stat) k
+      if (stat /= 0 .or. k < 1 .or. k > links) return
+      axis_variable = k
+      if (name(1:1) == 'w') axis_variable = links + k
+   end function axis_variable
+
+   !> The accepted axis names for N links, for messages.
+   pure function accepted_axes(links) result(s)
+      integer, intent(in) :: links  !! number of links N
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: n
+      n = to_str(links)
+      select case (links)
+      case (1); s = 'theta1 q1 w1 for 1 link'
+      case (2); s = axis_names
+      case default
+         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' for '//n//' links'
       end select
-   end function variable
+   end function accepted_axes
 
 end module dpend_sweep_config
