@@ -31,6 +31,7 @@ module dpend_sweep_config
                            max_angle, max_angular_velocity, max_time
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
+   use dpend_model, only: max_dof
    use dpend_cli, only: scan_help_config
    implicit none
    private
@@ -125,17 +126,21 @@ contains
           //nl// &
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
-          '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
+          '                    w1 w2 (rad/s); with --links N: theta1..thetaN, q1..qN,'//nl// &
+          '                    w1..wN; default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
           '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
           ' .. '//real_str(cfg%max1)//nl// &
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
+          '                    (N links: rows "q1 .. qN w1 .. wN", shape (n, 2N))'//nl// &
           '  --ic-dataset PATH dataset of an HDF5 list, shape (n, 4); default ' &
           //cfg%ic_dataset//nl// &
           '  --ic-angles q|theta  angles of the list measured as q or theta; default q' &
           //nl//nl// &
-          'integration (rk4 only; the step is t_end / ceiling(t_end / dt)):'//nl// &
+          'integration (rk4 only; the step is t_end / ceiling(t_end / dt); two links: the'//nl// &
+          'vectorized kernel, other N: rk4 on the N-link chain, one trajectory at a time):' &
+          //nl// &
           '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
           '                    default '//cfg%time_unit//nl// &
           '  --dt DT, --t-end T  step and end time in that unit; default ' &
@@ -143,11 +148,15 @@ contains
           '  --stop-at RULE    both: stop once every link that can flip has flipped;'//nl// &
           '                    either: at the first flip; end: run to t_end; default ' &
           //cfg%stop_at//nl// &
-          '  --lyapunov        also the largest Lyapunov exponent (all run to t_end)'//nl// &
+          '  --lyapunov        also the largest Lyapunov exponent (all run to t_end;'//nl// &
+          '                    two links only)'//nl// &
           '  --stats           also the number of steps of every trajectory'//nl//nl// &
           'parameters (as in dpend simulate):'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
           '                    (fixed initial values of what is not swept; default 0)'//nl// &
+          '  --links N         number of links, 1 to '//to_str(max_dof)// &
+          ' (default 2); --m, --l, --q, --w LIST'//nl// &
+          '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
           '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
           //nl//nl// &
