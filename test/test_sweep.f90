@@ -18,6 +18,8 @@ module test_sweep
    use dpend_error, only: error_t_lib => error_t
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
+   use dpend_trajectory_batch, only: link_flip_bounds
+   use dpend_chain, only: chain_t, chain_model
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -51,7 +53,9 @@ contains
                new_unittest('export_matrix_and_compare', test_export_compare), &
                new_unittest('links3_matches_simulate', test_links3_simulate), &
                new_unittest('per_trajectory_matches_kernel', test_per_trajectory_n2), &
-               new_unittest('links_axes_refused', test_links_refused)]
+               new_unittest('links_axes_refused', test_links_refused), &
+               new_unittest('links_bound_brute_force', test_links_bound), &
+               new_unittest('links3_list_matches_grid', test_links3_list)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -804,5 +808,108 @@ contains
                            'is not 6 numbers "q1 .. q3 w1 .. w3"')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_links_refused
+
+   !> The flip energy bounds of N links against brute force: with link i upright,
+   !> the chain's potential over 20 000 random configurations of the other links never
+   !> goes below E_i, and equals E_i with every other link hanging (N = 1, 3, 5).
+   subroutine test_links_bound(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: m(:), l(:), q(:), e(:)
+      real(dp) :: vmin, r
+      integer :: n, i, k, trial
+      integer, parameter :: sizes(3) = [1, 3, 5]
+      call random_seed(put=[(12345 + k, k=1, 64)])
+      do trial = 1, size(sizes)
+         n = sizes(trial)
+         allocate (m(n), l(n), q(n))
+         do k = 1, n
+            call random_number(r); m(k) = 0.2_dp + 2*r
+            call random_number(r); l(k) = 0.3_dp + 1.5_dp*r
+         end do
+         chain = chain_model(m, l, 9.81_dp, err)
+         if (allocated(err)) then
+            call fatal_error(error, err%message)
+            return
+         end if
+         e = link_flip_bounds(chain%gl)
+         do i = 1, n
+            q = -half_pi
+            q(i) = half_pi
+            call check(error, chain%potential(q), e(i), 'bound attained, link ' // &
+                       achar(iachar('0') + i), rel=1e-14_dp, abs=1e-14_dp)
+            vmin = huge(1.0_dp)
+            do k = 1, 20000
+               call random_number(q)
+               q = (2*q - 1)*pi
+               q(i) = half_pi + 2*pi*mod(k, 3)
+               vmin = min(vmin, chain%potential(q))
+            end do
+            call check_true(error, vmin >= e(i) - 1e-12_dp*sum(chain%gl), 'no V below E_i')
+            call check_true(error, vmin - e(i) < 0.05_dp*sum(chain%gl) .or. n > 3, &
+                            'brute force comes near E_i')
+         end do
+         deallocate (m, l, q)
+         if (allocated(error)) return
+      end do
+   end subroutine test_links_bound
+
+   !> Pixels of a 3-link grid given as a list (text, 6 columns, angles as theta) give
+   !> the same bits.
+   subroutine test_links3_list(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      character(len=*), parameter :: common = '--quiet --links 3 --q 0,0,-1.5 --w 0,0.5,0 '// &
+                                             '--t-end 4 --stats'
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ax1(:), ax2(:), tg(:, :), fg(:, :), tl(:), fl(:)
+      integer, allocatable :: sg(:, :), sl(:)
+      character(len=200) :: line
+      integer :: stat, unit, k
+      integer, parameter :: pick(2, 3) = reshape([2, 3, 5, 1, 4, 4], [2, 3])
+      dir = scratch_dir('sweepn3l')
+      stat = run_command(dir, 'sweep '//common//' --n 5 --output '//dir//'/grid.h5')
+      call check_true(error, stat == 0, 'grid run exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/grid.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis1', ax1, error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis2', ax2, error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip3', tg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/w2', fg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/steps', sg, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/ics.txt', status='replace', action='write')
+      write (unit, '(a)') '# theta1 theta2 theta3 w1 w2 w3'
+      do k = 1, 3
+         write (line, '(6(es25.16e3, 1x))') ax1(pick(1, k)), ax2(pick(2, k)), &
+            -1.5_dp + half_pi, 0.0_dp, 0.5_dp, 0.0_dp
+         write (unit, '(a)') trim(line)
+      end do
+      close (unit)
+      stat = run_command(dir, 'sweep '//common//' --ic-file '//dir//'/ics.txt '// &
+                         '--ic-angles theta --output '//dir//'/list.h5')
+      call check_true(error, stat == 0, 'list run exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/list.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip3', tl, error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/w2', fl, error)
+      if (.not. allocated(error)) call h5%read('/sweep/steps', sl, error)
+      call h5%close()
+      if (allocated(error)) return
+      do k = 1, 3
+         call check_true(error, sl(k) == sg(pick(1, k), pick(2, k)), 'same steps')
+         call check_true(error, bits(fl(k)) == bits(fg(pick(1, k), pick(2, k))), &
+                         'same final w2')
+         if (ieee_is_nan(tg(pick(1, k), pick(2, k)))) then
+            call check_true(error, ieee_is_nan(tl(k)), 'no flip of link 3 in both')
+         else
+            call check_true(error, bits(tl(k)) == bits(tg(pick(1, k), pick(2, k))), &
+                            'same t_flip3')
+         end if
+      end do
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_links3_list
 
 end module test_sweep
