@@ -1154,14 +1154,27 @@ contains
          character(len=*), intent(in) :: line
          character(len=:), allocatable :: t
          real(dp) :: x
-         integer :: eq, stat
+         integer :: eq, stat, comma
+         character(len=:), allocatable :: rest, u
          t = line
          eq = index(line, ' = ')
          if (eq == 0) return
          if (index(line(eq + 3:), 'E') == 0) return
-         if (verify(trim(line(eq + 3:)), '0123456789.E+-') /= 0) return
-         read (line(eq + 3:), *, iostat=stat) x
-         if (stat == 0) t = line(:eq + 2)//real_str(x)
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-, ') /= 0) return
+         ! one real, or a list of reals 'a, b, c' (N links: m, l, q, w)
+         rest = line(eq + 3:)
+         u = ''
+         do
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            read (rest(:comma - 1), *, iostat=stat) x
+            if (stat /= 0) return
+            u = u//real_str(x)
+            if (comma > len(rest)) exit
+            u = u//', '
+            rest = rest(comma + 1:)
+         end do
+         t = line(:eq + 2)//u
       end function readable
    end function first_difference
 
