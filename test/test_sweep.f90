@@ -15,7 +15,6 @@ module test_sweep
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t
-   use dpend_error, only: error_t_lib => error_t
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
    use dpend_trajectory_batch, only: link_flip_bounds
@@ -734,7 +733,7 @@ contains
       type(sweep_config_t) :: cfg
       type(sweep_setup_t) :: setup
       type(batch_result_t) :: a, b
-      type(error_t_lib), allocatable :: err
+      type(error_t), allocatable :: err
       logical :: help
       integer :: blk, j, nflip
       character(len=16), parameter :: words(15) = [character(len=16) :: '--n', '8', &
