@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Turn the .h5 of `dpend sweep` (a grid) into PNG maps:
 #   scripts/plot_sweep.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
-# Writes flip_map.png (first flip of either link, log colour scale in sqrt(l1/g),
-# white: no flip before the end), flip_map_link1.png, flip_map_link2.png,
+# Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g),
+# white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
+# attribute /sweep@links, 2 for files without it),
 # energy_error.png and, if the sweep has it, lyapunov.png; on every map the initial
 # conditions not integrated (status 0 or 4: a partial file, a non-finite state) are
 # grey, with a key entry, a colour none of the palettes holds. Figures are written
@@ -24,15 +25,22 @@ attr() { h5dump -m %.17g -a "/sweep/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *"
 plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
 ax1=$(attr axis1); ax2=$(attr axis2)
+links=$(attr links)
+[[ -z "$links" ]] && links=2   # files written before issue 12: the double pendulum
+[[ "$links" =~ ^[1-9][0-9]?$ ]] || plot_fail 2 "the attribute links of '$1' is not 1 to 99"
 plot_dpend
 plot_tmpdir
 ex() { "$dpend" export "$h5" --matrix "$1" /sweep/axis1 /sweep/axis2 "$2" > "$tmp/$3"; }
 ex /sweep/t_flip "$tau" flip.dat
-ex /sweep/t_flip1 "$tau" flip1.dat
-ex /sweep/t_flip2 "$tau" flip2.dat
+figures=(flip_map.png)
+printf '%s\n' "$links" > "$tmp/links"   # read by sweep.gp
+for ((k = 1; k <= links; k++)); do
+  ex "/sweep/t_flip$k" "$tau" "flip$k.dat"
+  figures+=("flip_map_link$k.png")
+done
 ex /sweep/energy_error 1 eerr.dat
 lyap=""
-figures=(flip_map.png flip_map_link1.png flip_map_link2.png energy_error.png)
+figures+=(energy_error.png)
 if h5dump -H -d /sweep/lyapunov "$h5" >/dev/null 2>&1; then
   # in 1/s (sweep.gp multiplies by tau): no SCALE above 1 for `dpend export`
   "$dpend" export "$h5" --matrix /sweep/lyapunov /sweep/axis1 /sweep/axis2 > "$tmp/lyap.dat"
@@ -52,5 +60,12 @@ plot_begin "$out" "${figures[@]}"
 # (no-flip pixels are NaN on purpose: gnuplot leaves them white and warns)
 plot_run gnuplot -c "$here/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$ax2" \
   "$lyap" "$name" "$status" 2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
-printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \
-  "$out" "${lyap:+ and lyapunov.png}"
+if [[ $links == 2 ]]; then
+  printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \
+    "$out" "${lyap:+ and lyapunov.png}"
+else
+  maps=flip_map_link1
+  ((links > 1)) && maps+="..$links"
+  printf 'plot_sweep.sh: wrote %s/{flip_map,%s,energy_error}.png%s\n' \
+    "$out" "$maps" "${lyap:+ and lyapunov.png}"
+fi

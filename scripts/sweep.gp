@@ -4,7 +4,9 @@
 # where the PNGs go; T_END: end time [s]; TAU: sqrt(l1/g) [s]; AX1, AX2: axis names;
 # LYAP: Lyapunov matrix file [1/s] or ''; NAME: file name for the titles (enhanced
 # text, escaped); STATUS: status matrix file or '' (0 not computed, 4 non-finite:
-# drawn grey as "not integrated"). The arguments are data: never pasted into code.
+# drawn grey as "not integrated"). DIR/links holds the number of links N (a file:
+# gnuplot -c takes nine arguments at most): one map flip_map_linkK.png per link from
+# DIR/flipK.dat. The arguments are data: never pasted into code.
 dir = ARG1
 outdir = ARG2
 tau = real(ARG4)
@@ -14,6 +16,8 @@ ax2 = ARG6
 lyap = ARG7
 name = ARG8
 status = ARG9
+stats dir.'/links' using 1 nooutput
+links = int(STATS_max)
 # "not integrated": grey, which none of the palettes below holds (their ends are
 # white, red and near-white), drawn over the map from the status matrix, with a key
 # entry; without a status matrix the NaN pixels of the energy and Lyapunov maps show
@@ -28,9 +32,8 @@ set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
 set size ratio -1
 set tics out
 set border lw 1
-axlabel(a) = (a eq "theta1") ? "{/Symbol q}_1 [rad] (from hanging)" : \
-             (a eq "theta2") ? "{/Symbol q}_2 [rad] (from hanging)" : \
-             (a eq "w1" || a eq "w2") ? a." [rad/s]" : a." [rad] (from horizontal)"
+axlabel(a) = (a[1:5] eq "theta") ? "{/Symbol q}_".a[6:]." [rad] (from hanging)" : \
+             (a[1:1] eq "w") ? a." [rad/s]" : a." [rad] (from horizontal)"
 set xlabel axlabel(ax1)
 set ylabel axlabel(ax2)
 set autoscale xfix; set autoscale yfix
@@ -43,16 +46,15 @@ set palette defined (0 "#1a9850", 1 "#fee08b", 2 "#d73027", 3 "#762a83", 4 "#216
 set cblabel "time of the first flip [{/Symbol \326}(L/g)]"
 
 set output outdir."/flip_map.png"
-set title "First flip of either link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
+which = (links == 2) ? "either" : "any"
+set title "First flip of ".which." link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
 eval "plot dir.'/flip.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
 
-set output outdir."/flip_map_link1.png"
-set title "First flip of link 1 (white: none)\n".name
-eval "plot dir.'/flip1.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
-
-set output outdir."/flip_map_link2.png"
-set title "First flip of link 2 (white: none)\n".name
-eval "plot dir.'/flip2.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
+do for [k = 1:links] {
+  set output outdir."/flip_map_link".k.".png"
+  set title "First flip of link ".k." (white: none)\n".name
+  eval "plot dir.'/flip".k.".dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
+}
 
 # NaN here means not integrated: the background is the grey of the key entry
 set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb grey fs solid noborder

@@ -14,6 +14,11 @@ module test_sweep
       stop_either, stop_end, st_cannot_flip
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
+   use dpend_cli, only: arg_t
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
+   use dpend_trajectory_batch, only: link_flip_bounds
+   use dpend_chain, only: chain_t, chain_model
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -44,7 +49,12 @@ contains
                new_unittest('resume_after_kill', test_resume_after_kill), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
-               new_unittest('export_matrix_and_compare', test_export_compare)]
+               new_unittest('export_matrix_and_compare', test_export_compare), &
+               new_unittest('links3_matches_simulate', test_links3_simulate), &
+               new_unittest('per_trajectory_matches_kernel', test_per_trajectory_n2), &
+               new_unittest('links_axes_refused', test_links_refused), &
+               new_unittest('links_bound_brute_force', test_links_bound), &
+               new_unittest('links3_list_matches_grid', test_links3_list)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -596,4 +606,309 @@ contains
       write (unit, '(a)') text
       close (unit)
    end subroutine write_file
+   ! ------------------------------------------------------------ N links ---
+
+   !> A 3-link sweep (the per-trajectory path) against `dpend simulate --links 3` of
+   !> two of its pixels with the same rk4 and step, sampled at every step: the final
+   !> state is identical and the flip times, found in the simulated angles by the
+   !> sweep's own rule (linear interpolation of the crossing of q = π/2 + 2π k), are
+   !> identical too.
+   subroutine test_links3_simulate(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: par = '--links 3 --m 1,0.8,1.2 --l 1,0.7,0.9 --g 9.81'
+      character(len=:), allocatable :: dir
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ax1(:), ax2(:), tf(:, :, :), fin(:, :, :), q(:, :), tq(:)
+      real(dp), allocatable :: t_any(:, :)
+      real(dp) :: h, tl(3), q0(3), m, m0
+      real(dp), parameter :: inv_two_pi = 1.0_dp/(2.0_dp*pi)
+      character(len=80) :: qs
+      integer :: stat, k, i, pix(2, 2), ks, i1, i2
+      real(dp) :: tmax
+      character(len=1) :: c
+      dir = scratch_dir('sweepn3')
+      stat = run_command(dir, 'sweep --quiet '//par//' --n 8 --min1 -3 --max1 3 --min2 -3 '// &
+                         '--max2 3 --q 0,0,0.4 --time-unit s --dt 0.01 --t-end 3 '// &
+                         '--stop-at end --output '//dir//'/s.h5')
+      call check_true(error, stat == 0, 'sweep --links 3 exits 0')
+      if (allocated(error)) return
+      allocate (tf(8, 8, 3), fin(8, 8, 6))
+      call h5%open(dir//'/s.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis1', ax1, error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis2', ax2, error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip', t_any, error)
+      do k = 1, 3
+         c = achar(iachar('0') + k)
+         if (.not. allocated(error)) call read2('/sweep/t_flip'//c, tf(:, :, k))
+         if (.not. allocated(error)) call read2('/sweep/final/q'//c, fin(:, :, k))
+         if (.not. allocated(error)) call read2('/sweep/final/w'//c, fin(:, :, 3 + k))
+      end do
+      call h5%close()
+      if (allocated(error)) return
+      ! two pixels: the first that flips, and the one whose flip comes last
+      pix = 0
+      tmax = -1.0_dp
+      do i2 = 1, 8
+         do i1 = 1, 8
+            if (ieee_is_nan(t_any(i1, i2))) cycle
+            if (pix(1, 1) == 0) pix(:, 1) = [i1, i2]
+            if (t_any(i1, i2) > tmax) then
+               tmax = t_any(i1, i2)
+               pix(:, 2) = [i1, i2]
+            end if
+         end do
+      end do
+      call check_true(error, pix(1, 1) > 0 .and. any(pix(:, 1) /= pix(:, 2)), &
+                      'two pixels flip')
+      if (allocated(error)) return
+      h = 0.01_dp
+      do i = 1, 2
+         q0 = [ax1(pix(1, i)) - half_pi, ax2(pix(2, i)) - half_pi, 0.4_dp]
+         write (qs, '(3(es25.16e3, :, ","))') q0
+         qs = squeeze(qs)
+         stat = run_command(dir, 'simulate '//par//' --q '//trim(qs)// &
+                            ' --w 0,0,0 --method rk4 --dt 0.01 --t-end 3 --save-every 1 '// &
+                            '--output '//dir//'/p.h5 --force')
+         call check_true(error, stat == 0, 'simulate --links 3 exits 0')
+         if (allocated(error)) return
+         call h5%open(dir//'/p.h5', 'r', error)
+         if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+         if (.not. allocated(error)) call h5%read('/trajectory/t', tq, error)
+         call h5%close()
+         if (allocated(error)) return
+         call check_true(error, size(q, 2) == 301, 'every step sampled')
+         if (allocated(error)) return
+         do k = 1, 3
+            tl(k) = -1.0_dp
+            m0 = real(floor((q(k, 1) - half_pi)*inv_two_pi, i8), dp)
+            do ks = 1, 300
+               m = real(floor((q(k, ks + 1) - half_pi)*inv_two_pi, i8), dp)
+               if (m /= m0) then
+                  tl(k) = (real(ks - 1, dp) + (half_pi + 2.0_dp*pi*max(m, m0) - q(k, ks))/ &
+                           (q(k, ks + 1) - q(k, ks)))*h
+                  exit
+               end if
+            end do
+            if (tl(k) < 0.0_dp) then
+               call check_true(error, ieee_is_nan(tf(pix(1, i), pix(2, i), k)), 'no flip')
+            else
+               call check_true(error, bits(tf(pix(1, i), pix(2, i), k)) == bits(tl(k)), &
+                               'flip time of link '//achar(iachar('0') + k)//' identical')
+            end if
+            call check_true(error, bits(fin(pix(1, i), pix(2, i), k)) == bits(q(k, 301)), &
+                            'final angle identical')
+         end do
+      end do
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> The text without blanks.
+      function squeeze(t) result(u)
+         character(len=*), intent(in) :: t
+         character(len=len(t)) :: u
+         integer :: j, n
+         u = ' '
+         n = 0
+         do j = 1, len_trim(t)
+            if (t(j:j) == ' ') cycle
+            n = n + 1
+            u(n:n) = t(j:j)
+         end do
+      end function squeeze
+      subroutine read2(name, a)
+         character(len=*), intent(in) :: name
+         real(dp), intent(out) :: a(:, :)
+         real(dp), allocatable :: t2(:, :)
+         call h5%read(name, t2, error)
+         if (.not. allocated(error)) a = t2
+      end subroutine read2
+   end subroutine test_links3_simulate
+
+   !> The per-trajectory path forced on two links (the double pendulum model through
+   !> the registry's rk4) against the batch kernel: the same statuses and steps, flip
+   !> times and final states within 1e-9 (relative) over 3 s of an 8 x 8 map, where the
+   !> two right-hand sides (Lagrange's form in lanes, Newton–Euler) differ by rounding.
+   subroutine test_per_trajectory_n2(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(arg_t), allocatable :: args(:)
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(batch_result_t) :: a, b
+      type(error_t), allocatable :: err
+      logical :: help
+      integer :: blk, j, nflip
+      character(len=16), parameter :: words(15) = [character(len=16) :: '--n', '8', &
+         '--t-end', '3', '--time-unit', 's', '--dt', '0.01', '--m1', '1.3', '--l2', '0.8', &
+         '--quiet', '--block', '16']
+      allocate (args(size(words)))
+      do j = 1, size(words)
+         args(j)%s = trim(words(j))
+      end do
+      call parse_sweep(args, cfg, help, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'parse_sweep: '//err%message)
+         return
+      end if
+      call build_setup(cfg, setup, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'build_setup: '//err%message)
+         return
+      end if
+      nflip = 0
+      do blk = 1, setup%nblocks
+         setup%per_trajectory = .false.
+         call compute_block(setup, blk, a)
+         setup%per_trajectory = .true.
+         call compute_block(setup, blk, b)
+         do j = 1, a%n
+            call check_true(error, a%status(j) == b%status(j) .and. a%steps(j) == b%steps(j), &
+                            'same status and steps')
+            call check(error, b%energy0(j), a%energy0(j), 'energy0', rel=1e-13_dp, &
+                       abs=1e-13_dp)
+            call same_time(b%t_flip(j), a%t_flip(j), 't_flip')
+            call same_time(b%t_flip1(j), a%t_flip1(j), 't_flip1')
+            call same_time(b%t_flip2(j), a%t_flip2(j), 't_flip2')
+            call check(error, b%final(:, j), a%final(:, j), 'final state', rel=1e-9_dp, &
+                       abs=1e-9_dp)
+            if (.not. ieee_is_nan(a%t_flip(j))) nflip = nflip + 1
+            if (allocated(error)) return
+         end do
+      end do
+      call check_true(error, nflip > 10, 'some pixels flip')
+   contains
+      subroutine same_time(x, y, what)
+         real(dp), intent(in) :: x, y
+         character(len=*), intent(in) :: what
+         if (ieee_is_nan(y)) then
+            call check_true(error, ieee_is_nan(x), what//': NaN in both')
+         else
+            call check_true(error, .not. ieee_is_nan(x), what//': a flip in both')
+            if (.not. allocated(error)) call check(error, x, y, what, rel=1e-9_dp)
+         end if
+      end subroutine same_time
+   end subroutine test_per_trajectory_n2
+
+   !> Axes and options that do not exist for N links are refused naming the field and
+   !> the accepted names.
+   subroutine test_links_refused(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      character(len=*), parameter :: base = 'sweep --quiet --n 4 --t-end 1'
+      dir = scratch_dir('sweeplinks')
+      call expect_rejected(error, dir, base//' --links 3', '--axis1 theta4', &
+                           "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 for 3 links)")
+      call expect_rejected(error, dir, base//' --links 3', '--axis2 w0', "axis2: 'w0'")
+      call expect_rejected(error, dir, base//' --links 1', '--axis1 theta1 --axis2 w2', &
+                           "axis2: 'w2' (accepted: theta1 q1 w1 for 1 link)")
+      call expect_rejected(error, dir, base//' --links 4', '--axis1 q3 --axis2 theta3', &
+                           'invalid axis2')
+      call expect_rejected(error, dir, base//' --links 3', '--lyapunov', 'invalid lyapunov')
+      call write_file(dir//'/four.txt', '0 0 0 0')
+      call expect_rejected(error, dir, base//' --links 3', '--ic-file '//dir//'/four.txt', &
+                           'is not 6 numbers "q1 .. q3 w1 .. w3"')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_links_refused
+
+   !> The flip energy bounds of N links against brute force: with link i upright,
+   !> the chain's potential over 20 000 random configurations of the other links never
+   !> goes below E_i, and equals E_i with every other link hanging (N = 1, 3, 5).
+   subroutine test_links_bound(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: m(:), l(:), q(:), e(:)
+      real(dp) :: vmin, r
+      integer :: n, i, k, trial
+      integer, parameter :: sizes(3) = [1, 3, 5]
+      call random_seed(put=[(12345 + k, k=1, 64)])
+      do trial = 1, size(sizes)
+         n = sizes(trial)
+         allocate (m(n), l(n), q(n))
+         do k = 1, n
+            call random_number(r); m(k) = 0.2_dp + 2*r
+            call random_number(r); l(k) = 0.3_dp + 1.5_dp*r
+         end do
+         chain = chain_model(m, l, 9.81_dp, err)
+         if (allocated(err)) then
+            call fatal_error(error, err%message)
+            return
+         end if
+         e = link_flip_bounds(chain%gl)
+         do i = 1, n
+            q = -half_pi
+            q(i) = half_pi
+            call check(error, chain%potential(q), e(i), 'bound attained, link ' // &
+                       achar(iachar('0') + i), rel=1e-14_dp, abs=1e-14_dp)
+            vmin = huge(1.0_dp)
+            do k = 1, 20000
+               call random_number(q)
+               q = (2*q - 1)*pi
+               q(i) = half_pi + 2*pi*mod(k, 3)
+               vmin = min(vmin, chain%potential(q))
+            end do
+            call check_true(error, vmin >= e(i) - 1e-12_dp*sum(chain%gl), 'no V below E_i')
+            call check_true(error, vmin - e(i) < 0.05_dp*sum(chain%gl) .or. n > 3, &
+                            'brute force comes near E_i')
+         end do
+         deallocate (m, l, q)
+         if (allocated(error)) return
+      end do
+   end subroutine test_links_bound
+
+   !> Pixels of a 3-link grid given as a list (text, 6 columns, angles as theta) give
+   !> the same bits.
+   subroutine test_links3_list(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      character(len=*), parameter :: common = '--quiet --links 3 --q 0,0,-1.5 --w 0,0.5,0 '// &
+                                             '--t-end 4 --stats'
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ax1(:), ax2(:), tg(:, :), fg(:, :), tl(:), fl(:)
+      integer, allocatable :: sg(:, :), sl(:)
+      character(len=200) :: line
+      integer :: stat, unit, k
+      integer, parameter :: pick(2, 3) = reshape([2, 3, 5, 1, 4, 4], [2, 3])
+      dir = scratch_dir('sweepn3l')
+      stat = run_command(dir, 'sweep '//common//' --n 5 --output '//dir//'/grid.h5')
+      call check_true(error, stat == 0, 'grid run exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/grid.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis1', ax1, error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis2', ax2, error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip3', tg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/w2', fg, error)
+      if (.not. allocated(error)) call h5%read('/sweep/steps', sg, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/ics.txt', status='replace', action='write')
+      write (unit, '(a)') '# theta1 theta2 theta3 w1 w2 w3'
+      do k = 1, 3
+         write (line, '(6(es25.16e3, 1x))') ax1(pick(1, k)), ax2(pick(2, k)), &
+            -1.5_dp + half_pi, 0.0_dp, 0.5_dp, 0.0_dp
+         write (unit, '(a)') trim(line)
+      end do
+      close (unit)
+      stat = run_command(dir, 'sweep '//common//' --ic-file '//dir//'/ics.txt '// &
+                         '--ic-angles theta --output '//dir//'/list.h5')
+      call check_true(error, stat == 0, 'list run exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/list.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/t_flip3', tl, error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/w2', fl, error)
+      if (.not. allocated(error)) call h5%read('/sweep/steps', sl, error)
+      call h5%close()
+      if (allocated(error)) return
+      do k = 1, 3
+         call check_true(error, sl(k) == sg(pick(1, k), pick(2, k)), 'same steps')
+         call check_true(error, bits(fl(k)) == bits(fg(pick(1, k), pick(2, k))), &
+                         'same final w2')
+         if (ieee_is_nan(tg(pick(1, k), pick(2, k)))) then
+            call check_true(error, ieee_is_nan(tl(k)), 'no flip of link 3 in both')
+         else
+            call check_true(error, bits(tl(k)) == bits(tg(pick(1, k), pick(2, k))), &
+                            'same t_flip3')
+         end if
+      end do
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_links3_list
+
 end module test_sweep

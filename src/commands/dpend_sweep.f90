@@ -1,6 +1,8 @@
 !> `dpend sweep`: many initial conditions through the batch RK4 kernel
-!> (dpend_pendulum_lanes), in blocks distributed over OpenMP threads, into one HDF5 file
-!> (layout in docs/hdf5-layout.md, design in docs/sweep.md).
+!> (dpend_pendulum_lanes) for two links, or one at a time through the registry's rk4
+!> on the run's model (dpend_trajectory_batch) for any other number of links, in
+!> blocks distributed over OpenMP threads, into one HDF5 file (layout in
+!> docs/hdf5-layout.md, design in docs/sweep.md).
 !>
 !> Crash safety and resume. While it runs, the results go to a *working* file,
 !> FILE.part beside the output FILE, whose datasets are chunked (one chunk per
@@ -26,7 +28,11 @@ module dpend_sweep
    use dpend_config, only: check_regular_file
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
       potential_range, flip_energy_bounds, st_cannot_flip
-   use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode
+   use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
+   use dpend_trajectory_batch, only: integrate_trajectories, link_flip_bounds
+   use dpend_integrator, only: integrator_t
+   use dpend_methods, only: new_integrator
+   use dpend_chain, only: chain_t, chain_model
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_version, only: version
@@ -51,10 +57,18 @@ module dpend_sweep
       integer :: nblocks = 0                    !! blocks
       integer :: block = 0                      !! initial conditions per full block
       integer :: rows = 0                       !! grid: rows of axis 1 per block
-      integer :: var1 = 0, var2 = 0             !! swept values (1 q1, 2 q2, 3 w1, 4 w2)
+      integer :: var1 = 0, var2 = 0             !! swept values: index in (q1..qN, w1..wN)
       real(dp), allocatable :: axis1(:)         !! grid: axis values (axis units)
       real(dp), allocatable :: axis2(:)         !! grid: axis values (axis units)
-      real(dp), allocatable :: list(:, :)       !! list: (4, n) states (q, q̇)
+      real(dp), allocatable :: list(:, :)       !! list: (2N, n) states (q, q̇)
+      integer :: links = 2                      !! number of links N
+      !> Integrate one trajectory at a time (dpend_trajectory_batch) instead of the
+      !> batch kernel: every N but 2; tests set it for N = 2 to compare the paths.
+      logical :: per_trajectory = .false.
+      real(dp), allocatable :: gl(:)            !! G_i of V = Σ G_i sin q_i [J] (N)
+      !> The method of the per-trajectory path (rk4 from the registry), copied for
+      !> every block in flight.
+      class(integrator_t), allocatable :: integ
       real(dp) :: tau = 1                       !! √(L1/g) [s]
       character(len=:), allocatable :: config   !! canonical configuration text
       !> Fletcher-32 checksums on the working file's datasets (the final file always
@@ -98,6 +112,17 @@ contains
       integer :: i
       setup%cfg = cfg
       setup%grid = grid_mode(cfg)
+      setup%links = cfg%run%links
+      setup%per_trajectory = setup%links /= 2
+      call new_integrator(cfg%run%method, setup%integ, error)
+      if (allocated(error)) return
+      block
+         type(chain_t) :: chain   ! its potential's weights G_i (any N, also 2)
+         chain = chain_model(cfg%run%m(:setup%links), cfg%run%l(:setup%links), cfg%run%g, &
+                             error)
+         if (allocated(error)) return
+         setup%gl = chain%gl
+      end block
       setup%tau = sqrt(cfg%run%l(1)/cfg%run%g)
       scale = time_scale(cfg)
       t_end = cfg%run%t_end*scale
@@ -106,8 +131,8 @@ contains
       setup%opt%stop_rule = stop_rule(cfg)
       setup%opt%lyapunov = cfg%lyapunov
       if (setup%grid) then
-         setup%var1 = variable_index(cfg%axis1)
-         setup%var2 = variable_index(cfg%axis2)
+         setup%var1 = axis_variable(cfg%axis1, setup%links)
+         setup%var2 = axis_variable(cfg%axis2, setup%links)
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
          do i = 1, cfg%n1
             setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
@@ -174,23 +199,12 @@ contains
       end if
    end function axis_value
 
-   !> 1 q1, 2 q2, 3 w1, 4 w2 for an axis name.
-   pure integer function variable_index(name)
-      character(len=*), intent(in) :: name  !! axis name
-      select case (name)
-      case ('theta1', 'q1'); variable_index = 1
-      case ('theta2', 'q2'); variable_index = 2
-      case ('w1'); variable_index = 3
-      case default; variable_index = 4
-      end select
-   end function variable_index
-
    !> Initial state component from an axis value (θ → q = θ - π/2).
    pure real(dp) function state_value(name, x)
       character(len=*), intent(in) :: name  !! axis name
       real(dp), intent(in) :: x             !! axis value
       state_value = x
-      if (name == 'theta1' .or. name == 'theta2') state_value = x - half_pi
+      if (index(name, 'theta') == 1) state_value = x - half_pi
    end function state_value
 
    !> First initial condition and number of initial conditions of block b.
@@ -202,15 +216,15 @@ contains
       nb = min(setup%block, setup%n - j0 + 1)
    end subroutine block_range
 
-   !> The initial states (q1, q2, q̇1, q̇2) of block b.
+   !> The initial states (q1 .. qN, q̇1 .. q̇N) of block b.
    subroutine block_initial_conditions(setup, b, y0)
       type(sweep_setup_t), intent(in) :: setup      !! setup
       integer, intent(in) :: b                      !! block, 1-based
-      real(dp), allocatable, intent(out) :: y0(:, :) !! (4, nb)
-      real(dp) :: base(4)
+      real(dp), allocatable, intent(out) :: y0(:, :) !! (2N, nb)
+      real(dp) :: base(2*setup%links)
       integer :: j0, nb, j, jj, i1, i2
       call block_range(setup, b, j0, nb)
-      allocate (y0(4, nb))
+      allocate (y0(2*setup%links, nb))
       if (.not. setup%grid) then
          y0 = setup%list(:, j0:j0 + nb - 1)
          return
@@ -226,30 +240,43 @@ contains
       end do
    end subroutine block_initial_conditions
 
-   !> Integrate block b.
+   !> Integrate block b: the batch kernel for two links, else one trajectory at a
+   !> time with this block's own copy of the method.
    subroutine compute_block(setup, b, res)
       type(sweep_setup_t), intent(in) :: setup    !! setup
       integer, intent(in) :: b                    !! block, 1-based
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: y0(:, :)
+      class(integrator_t), allocatable :: integ
       call block_initial_conditions(setup, b, y0)
-      call integrate_batch(setup%cfg%run%pendulum(), setup%opt, y0, res)
+      if (setup%per_trajectory) then
+         allocate (integ, source=setup%integ)
+         call integrate_trajectories(setup%cfg%run%model, integ, setup%gl, setup%opt, y0, res)
+      else
+         call integrate_batch(setup%cfg%run%pendulum(), setup%opt, y0, res)
+      end if
    end subroutine compute_block
 
    !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or
-   !> an HDF5 dataset of shape (n, 4) as h5py sees it.
+   !> an HDF5 dataset of shape (n, 4) as h5py sees it; for N links rows
+   !> "q1 .. qN w1 .. wN", (n, 2N).
    subroutine read_list(cfg, list, error)
       type(sweep_config_t), intent(in) :: cfg            !! configuration
-      real(dp), allocatable, intent(out) :: list(:, :)   !! (4, n)
+      real(dp), allocatable, intent(out) :: list(:, :)   !! (2N, n)
       type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
       type(h5file_t) :: h5
       integer, allocatable :: dims(:)
       real(dp), allocatable :: tmp(:, :)
-      real(dp) :: row(4)
+      real(dp) :: row(2*cfg%run%links)
       character(len=4096) :: line
-      character(len=:), allocatable :: what
-      integer :: unit, stat, n, nline, hash
+      character(len=:), allocatable :: what, cols, fields
+      integer :: unit, stat, n, nline, hash, nl
       what = "invalid ic_file '"//cfg%ic_file//"'"
+      nl = cfg%run%links
+      cols = to_str(2*nl)
+      fields = '"q1 q2 w1 w2"'
+      if (nl == 1) fields = '"q1 w1"'
+      if (nl > 2) fields = '"q1 .. q'//to_str(nl)//' w1 .. w'//to_str(nl)//'"'
       ! a regular file (a FIFO would block, a directory cannot be read)
       call check_regular_file(cfg%ic_file, what//': ', error)
       if (allocated(error)) return
@@ -262,10 +289,10 @@ contains
          end if
          if (size(dims) /= 2) then
             call fatal_error(error, what//': dataset '//cfg%ic_dataset// &
-                             ' must have shape (n, 4)')
-         else if (dims(1) /= 4) then
+                             ' must have shape (n, '//cols//')')
+         else if (dims(1) /= 2*nl) then
             call fatal_error(error, what//': dataset '//cfg%ic_dataset// &
-                             ' must have shape (n, 4)')
+                             ' must have shape (n, '//cols//')')
          else if (dims(2) > max_sweep_points) then
             call fatal_error(error, what//': '//to_str(dims(2))//' initial conditions, at ' &
                              //'most '//to_str(max_sweep_points))
@@ -280,7 +307,7 @@ contains
             call fatal_error(error, what//': cannot open it')
             return
          end if
-         allocate (list(4, 1024))
+         allocate (list(2*nl, 1024))
          n = 0
          nline = 0
          do
@@ -295,9 +322,9 @@ contains
             end if
             if (len_trim(line) == 0) cycle
             read (line, *, iostat=stat) row
-            if (stat /= 0 .or. count_fields(line) /= 4) then
+            if (stat /= 0 .or. count_fields(line) /= 2*nl) then
                call fatal_error(error, what//': line '//to_str(nline)// &
-                                ' is not 4 numbers "q1 q2 w1 w2"')
+                                ' is not '//cols//' numbers '//fields)
                exit
             end if
             if (n >= max_sweep_points) then
@@ -306,7 +333,7 @@ contains
                exit
             end if
             if (n == size(list, 2)) then
-               allocate (tmp(4, min(2*n, max_sweep_points)))
+               allocate (tmp(2*nl, min(2*n, max_sweep_points)))
                tmp(:, :n) = list
                call move_alloc(tmp, list)
             end if
@@ -321,16 +348,16 @@ contains
          call fatal_error(error, what//': it holds no initial condition')
       else if (.not. all(ieee_is_finite(list))) then
          call fatal_error(error, what//': every value must be finite')
-      else if (maxval(abs(list(1:2, :))) > max_angle) then
+      else if (maxval(abs(list(1:nl, :))) > max_angle) then
          call fatal_error(error, what//': angles must be within [-'//sci(max_angle)//', ' &
                           //sci(max_angle)//'] rad')
-      else if (maxval(abs(list(3:4, :))) > max_angular_velocity) then
+      else if (maxval(abs(list(nl + 1:2*nl, :))) > max_angular_velocity) then
          call fatal_error(error, what//': angular velocities must be within [-' &
                           //sci(max_angular_velocity)//', '//sci(max_angular_velocity)// &
                           '] rad/s')
       end if
       if (allocated(error)) return
-      if (cfg%ic_angles == 'theta') list(1:2, :) = list(1:2, :) - half_pi
+      if (cfg%ic_angles == 'theta') list(1:nl, :) = list(1:nl, :) - half_pi
    end subroutine read_list
 
    !> Number of blank-separated fields of a line.
@@ -357,13 +384,22 @@ contains
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
       associate (c => setup%cfg, p => setup%cfg%run%pendulum())
-         s = 'program = dpend '//version//nl//'command = sweep'//nl// &
-             'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
-             'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
-             'l2 = '//r(p%l2)//nl//'g = '//r(p%g)//nl// &
-             'q1 = '//r(c%run%q(1))//nl//'q2 = '//r(c%run%q(2))//nl// &
-             'w1 = '//r(c%run%w(1))//nl//'w2 = '//r(c%run%w(2))//nl// &
-             'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
+         if (setup%links == 2) then   ! as before issue 12: older files resume
+            s = 'program = dpend '//version//nl//'command = sweep'//nl// &
+                'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
+                'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
+                'l2 = '//r(p%l2)//nl//'g = '//r(p%g)//nl// &
+                'q1 = '//r(c%run%q(1))//nl//'q2 = '//r(c%run%q(2))//nl// &
+                'w1 = '//r(c%run%w(1))//nl//'w2 = '//r(c%run%w(2))//nl
+         else
+            s = 'program = dpend '//version//nl//'command = sweep'//nl// &
+                'method = '//c%run%method//nl//'kernel = per trajectory'//nl// &
+                'links = '//to_str(setup%links)//nl// &
+                'm = '//rl(c%run%m(:setup%links))//nl//'l = '//rl(c%run%l(:setup%links))// &
+                nl//'g = '//r(c%run%g)//nl//'q = '//rl(c%run%q0())//nl// &
+                'w = '//rl(c%run%w0())//nl
+         end if
+         s = s//'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
@@ -390,6 +426,16 @@ contains
          write (buf, '(es24.16e3)') x
          t = trim(adjustl(buf))
       end function r
+      !> A list, comma-separated.
+      function rl(x) result(t)
+         real(dp), intent(in) :: x(:)
+         character(len=:), allocatable :: t
+         integer :: i
+         t = r(x(1))
+         do i = 2, size(x)
+            t = t//', '//r(x(i))
+         end do
+      end function rl
    end function canonical_config
 
    !> Name of a stop rule.
@@ -427,8 +473,22 @@ contains
       type(sweep_setup_t), intent(in) :: setup                     !! setup
       character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
       character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
-      reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
-               'energy_error', 't_stop', 'final/q1', 'final/q2', 'final/w1', 'final/w2']
+      integer :: i
+      if (setup%links == 2) then
+         reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
+                  'energy_error', 't_stop', 'final/q1', 'final/q2', 'final/w1', 'final/w2']
+      else   ! N links: t_flip1 .. t_flipN, final/q1 .. final/qN, final/w1 .. final/wN
+         allocate (reals(3*setup%links + 4))
+         reals(1) = 't_flip'
+         do i = 1, setup%links
+            reals(1 + i) = 't_flip'//to_str(i)
+            reals(setup%links + 4 + i) = 'final/q'//to_str(i)
+            reals(2*setup%links + 4 + i) = 'final/w'//to_str(i)
+         end do
+         reals(setup%links + 2) = 'energy0'
+         reals(setup%links + 3) = 'energy_error'
+         reals(setup%links + 4) = 't_stop'
+      end if
       if (setup%cfg%lyapunov) reals = [reals, [character(len=32) :: 'lyapunov']]
       ints = [character(len=32) :: 'status']
       if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
@@ -446,11 +506,43 @@ contains
    end function axis_units
 
    !> Units and description of the sweep dataset `name` (below /sweep).
-   subroutine dataset_info(name, axis_units, units, text)
+   subroutine dataset_info(name, axis_units, units, text, links)
       character(len=*), intent(in) :: name                 !! e.g. 't_flip', 'final/q1'
       character(len=*), intent(in) :: axis_units           !! units of the swept axis
       character(len=:), allocatable, intent(out) :: units  !! SI units, '1' dimensionless
       character(len=:), allocatable, intent(out) :: text   !! one-line description
+      integer, intent(in), optional :: links               !! number of links (default 2)
+      integer :: nl
+      nl = 2
+      if (present(links)) nl = links
+      if (nl /= 2) then   ! the names and texts of N links; two links as before
+         if (name == 't_flip') then
+            units = 's'; text = 'first flip of any link (NaN: none before t_stop); '// &
+               'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+            return
+         else if (index(name, 't_flip') == 1) then
+            units = 's'; text = 'first flip of link '//name(7:)//' (NaN: none before '// &
+               't_stop); divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+            return
+         else if (index(name, 'final/q') == 1) then
+            units = 'rad'; text = 'angle at t_stop from the horizontal x axis'
+            return
+         else if (index(name, 'final/w') == 1) then
+            units = 'rad/s'; text = 'angular velocity at t_stop'
+            return
+         else if (name == 'energy0') then
+            units = 'J'; text = 'initial energy E(0) (V = 0 with every link horizontal)'
+            return
+         else if (name == 'status') then
+            units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after '// &
+               'a flip, 3 below every flip bound, 4 a step was not finite'
+            return
+         else if (name == 'initial') then
+            units = 'rad, rad/s'; text = 'initial states (q1 .. qN, qdot1 .. qdotN), '// &
+               'angles from the horizontal x axis'
+            return
+         end if
+      end if
       select case (name)
       case ('t_flip')
          units = 's'; text = 'first flip of either link (NaN: none before t_stop); '// &
@@ -501,7 +593,8 @@ contains
       character(len=32), allocatable :: reals(:), ints(:)
       character(len=:), allocatable :: units, text
       integer, allocatable :: dims(:), chunk(:)
-      real(dp) :: nan, bounds(2)
+      real(dp) :: nan, range
+      real(dp), allocatable :: bounds(:)
       integer :: i
       nan = ieee_value(nan, ieee_quiet_nan)
       call h5%open(filename, 'w', error)
@@ -515,7 +608,7 @@ contains
       end if
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
-         call dataset_info(trim(reals(i)), '', units, text)
+         call dataset_info(trim(reals(i)), '', units, text, setup%links)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
                                 checksum=final .or. setup%checksum, units=units, &
@@ -523,7 +616,7 @@ contains
          if (allocated(error)) return
       end do
       do i = 1, size(ints)
-         call dataset_info(trim(ints(i)), '', units, text)
+         call dataset_info(trim(ints(i)), '', units, text, setup%links)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
                                 fill=0.0_dp, compress=final, alloc_early=.not. final, &
                                 checksum=final .or. setup%checksum, units=units, &
@@ -541,11 +634,17 @@ contains
          if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error, &
                                                    units, text)
       else
-         call dataset_info('initial', '', units, text)
+         call dataset_info('initial', '', units, text, setup%links)
          call h5%write('/sweep/initial', setup%list, error, units, text)
       end if
       if (allocated(error)) return
-      bounds = flip_energy_bounds(setup%cfg%run%pendulum())
+      if (setup%links == 2) then
+         bounds = flip_energy_bounds(setup%cfg%run%pendulum())
+         range = potential_range(setup%cfg%run%pendulum())
+      else
+         bounds = link_flip_bounds(setup%gl)
+         range = 2.0_dp*sum(setup%gl)
+      end if
       ! the attributes pass no `error`: h5 keeps the first failure (take_error below)
       associate (c => setup%cfg, p => setup%cfg%run%pendulum())
          call h5%writeattr('/', 'program', 'dpend sweep')
@@ -553,18 +652,23 @@ contains
          call h5%writeattr('/', 'method', c%run%method)
          call h5%writeattr('/sweep', 'config', setup%config)
          call h5%writeattr('/sweep', 'complete', merge(1, 0, final))
-         call h5%writeattr('/sweep', 'm1', p%m1)
-         call h5%writeattr('/sweep', 'm2', p%m2)
-         call h5%writeattr('/sweep', 'l1', p%l1)
-         call h5%writeattr('/sweep', 'l2', p%l2)
-         call h5%writeattr('/sweep', 'g', p%g)
+         if (setup%links == 2) then
+            call h5%writeattr('/sweep', 'm1', p%m1)
+            call h5%writeattr('/sweep', 'm2', p%m2)
+            call h5%writeattr('/sweep', 'l1', p%l1)
+            call h5%writeattr('/sweep', 'l2', p%l2)
+         end if
+         call h5%writeattr('/sweep', 'links', setup%links)
+         call h5%writeattr('/sweep', 'm', c%run%m(:setup%links))
+         call h5%writeattr('/sweep', 'l', c%run%l(:setup%links))
+         call h5%writeattr('/sweep', 'g', c%run%g)
          call h5%writeattr('/sweep', 'q0', c%run%q0())
          call h5%writeattr('/sweep', 'qdot0', c%run%w0())
          call h5%writeattr('/sweep', 'h', setup%opt%h)
          call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
          call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
          call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau)
-         call h5%writeattr('/sweep', 'potential_range', potential_range(p))
+         call h5%writeattr('/sweep', 'potential_range', range)
          call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
          call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
          call h5%writeattr('/sweep', 'block', setup%block)
@@ -589,21 +693,29 @@ contains
       type(batch_result_t), intent(in) :: res           !! its results
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
-      integer :: j0, nb
+      integer :: j0, nb, i
       logical :: sync
       sync = .true.
       if (present(flush)) sync = flush
       call block_range(setup, b, j0, nb)
       call put_r('t_flip', res%t_flip)
-      call put_r('t_flip1', res%t_flip1)
-      call put_r('t_flip2', res%t_flip2)
+      if (setup%links == 2) then
+         call put_r('t_flip1', res%t_flip1)
+         call put_r('t_flip2', res%t_flip2)
+      else
+         do i = 1, setup%links
+            call put_r('t_flip'//to_str(i), res%t_flip_link(i, :))
+         end do
+      end if
       call put_r('energy0', res%energy0)
       call put_r('energy_error', res%energy_error)
       call put_r('t_stop', res%t_stop)
-      call put_r('final/q1', res%final(1, :))
-      call put_r('final/q2', res%final(2, :))
-      call put_r('final/w1', res%final(3, :))
-      call put_r('final/w2', res%final(4, :))
+      do i = 1, setup%links
+         call put_r('final/q'//to_str(i), res%final(i, :))
+      end do
+      do i = 1, setup%links
+         call put_r('final/w'//to_str(i), res%final(setup%links + i, :))
+      end do
       if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)
@@ -1042,14 +1154,27 @@ contains
          character(len=*), intent(in) :: line
          character(len=:), allocatable :: t
          real(dp) :: x
-         integer :: eq, stat
+         integer :: eq, stat, comma
+         character(len=:), allocatable :: rest, u
          t = line
          eq = index(line, ' = ')
          if (eq == 0) return
          if (index(line(eq + 3:), 'E') == 0) return
-         if (verify(trim(line(eq + 3:)), '0123456789.E+-') /= 0) return
-         read (line(eq + 3:), *, iostat=stat) x
-         if (stat == 0) t = line(:eq + 2)//real_str(x)
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-, ') /= 0) return
+         ! one real, or a list of reals 'a, b, c' (N links: m, l, q, w)
+         rest = line(eq + 3:)
+         u = ''
+         do
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            read (rest(:comma - 1), *, iostat=stat) x
+            if (stat /= 0) return
+            u = u//real_str(x)
+            if (comma > len(rest)) exit
+            u = u//', '
+            rest = rest(comma + 1:)
+         end do
+         t = line(:eq + 2)//u
       end function readable
    end function first_difference
 
@@ -1079,7 +1204,8 @@ contains
       ! what must be equal for two sweeps to hold the same initial conditions
       character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
-         'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at']
+         'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at', &
+         'links', 'm', 'l', 'q', 'w']
       if (.not. (rel > 0.0_dp .and. rel <= max_rel)) then
          call fatal_error(error, 'sweep-compare: invalid --rel: '//sci(rel)// &
                           ' (accepted: > 0 and <= 1000)')

@@ -5,10 +5,12 @@
 !> &sweep keys (docs/sweep.md):
 !>   axis1, axis2   swept initial values: 'theta1' 'theta2' (angles from the hanging
 !>                  position, θ = q + π/2), 'q1' 'q2' (from the horizontal x axis),
-!>                  'w1' 'w2' (angular velocities) [rad, rad/s]
+!>                  'w1' 'w2' (angular velocities) [rad, rad/s]; for N links any of
+!>                  theta1..thetaN, q1..qN, w1..wN
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
-!>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4))
+!>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4));
+!>                  for N links rows "q1 .. qN w1 .. wN", (n, 2N)
 !>   ic_dataset     dataset of an HDF5 list, default '/initial'
 !>   ic_angles      angles of a list: 'q' (from horizontal, default) or 'theta'
 !>   time_unit      unit of dt and t_end: 's' or 'natural' (√(L1/g))
@@ -29,13 +31,14 @@ module dpend_sweep_config
                            max_angle, max_angular_velocity, max_time
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
+   use dpend_model, only: max_dof
    use dpend_cli, only: scan_help_config
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
-   public :: axis_names, time_scale, stop_rule, grid_mode
+   public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
 
-   !> Names accepted for axis1 and axis2.
+   !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
 
    !> Everything `dpend sweep` needs.
@@ -123,17 +126,21 @@ contains
           //nl// &
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
-          '                    w1 w2 (rad/s); default '//cfg%axis1//', '//cfg%axis2//nl// &
+          '                    w1 w2 (rad/s); with --links N: theta1..thetaN, q1..qN,'//nl// &
+          '                    w1..wN; default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
           '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
           ' .. '//real_str(cfg%max1)//nl// &
           '  --ic-file FILE    a list instead of a grid: text rows "q1 q2 w1 w2" or HDF5'//nl// &
+          '                    (N links: rows "q1 .. qN w1 .. wN", shape (n, 2N))'//nl// &
           '  --ic-dataset PATH dataset of an HDF5 list, shape (n, 4); default ' &
           //cfg%ic_dataset//nl// &
           '  --ic-angles q|theta  angles of the list measured as q or theta; default q' &
           //nl//nl// &
-          'integration (rk4 only; the step is t_end / ceiling(t_end / dt)):'//nl// &
+          'integration (rk4 only; the step is t_end / ceiling(t_end / dt); two links: the'//nl// &
+          'vectorized kernel, other N: rk4 on the N-link chain, one trajectory at a time):' &
+          //nl// &
           '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
           '                    default '//cfg%time_unit//nl// &
           '  --dt DT, --t-end T  step and end time in that unit; default ' &
@@ -141,11 +148,15 @@ contains
           '  --stop-at RULE    both: stop once every link that can flip has flipped;'//nl// &
           '                    either: at the first flip; end: run to t_end; default ' &
           //cfg%stop_at//nl// &
-          '  --lyapunov        also the largest Lyapunov exponent (all run to t_end)'//nl// &
+          '  --lyapunov        also the largest Lyapunov exponent (all run to t_end;'//nl// &
+          '                    two links only)'//nl// &
           '  --stats           also the number of steps of every trajectory'//nl//nl// &
           'parameters (as in dpend simulate):'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
           '                    (fixed initial values of what is not swept; default 0)'//nl// &
+          '  --links N         number of links, 1 to '//to_str(max_dof)// &
+          ' (default 2); --m, --l, --q, --w LIST'//nl// &
+          '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
           '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
           //nl//nl// &
@@ -274,9 +285,10 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
-      if (cfg%run%links /= 2) then
-         call fatal_error(error, 'invalid links: '//to_str(cfg%run%links)// &
-                          ' (dpend sweep accepts: 2, the double pendulum)')
+      if (cfg%run%links /= 2 .and. cfg%lyapunov) then
+         call fatal_error(error, 'invalid lyapunov: true with '//to_str(cfg%run%links)// &
+                          ' links (dpend sweep computes it for links = 2 only; '// &
+                          'dpend lyapunov computes it for any N)')
          return
       end if
       if (cfg%run%method /= 'rk4') then
@@ -305,11 +317,12 @@ contains
       end if
       if (allocated(error)) return
       if (grid_mode(cfg)) then
-         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, error)
+         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
          if (allocated(error)) return
-         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, error)
+         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error)
          if (allocated(error)) return
-         if (variable(cfg%axis1) == variable(cfg%axis2)) then
+         if (axis_variable(cfg%axis1, cfg%run%links) == &
+             axis_variable(cfg%axis2, cfg%run%links)) then
             call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
                              "initial value as axis1 '"//cfg%axis1//"'")
          else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
@@ -324,26 +337,29 @@ contains
    end subroutine validate_sweep
 
    !> Check one axis: a known name, n >= 1, finite min <= max (min < max if n > 1).
-   subroutine check_axis(name, k, n, lo, hi, error)
+   subroutine check_axis(name, k, n, lo, hi, links, error)
       character(len=*), intent(in) :: name              !! axis name
       integer, intent(in) :: k                          !! 1 or 2
       integer, intent(in) :: n                          !! points
       real(dp), intent(in) :: lo, hi                    !! range
+      integer, intent(in) :: links                      !! number of links N
       type(error_t), allocatable, intent(out) :: error  !! what is wrong
       character(len=1) :: c
       character(len=5) :: unit
       real(dp) :: bound
+      integer :: var
       c = achar(iachar('0') + k)
+      var = axis_variable(name, links)
       ! the angles' and angular velocities' ranges of every command (dpend_limits)
       bound = max_angle
       unit = 'rad'
-      if (variable(name) >= 3) then
+      if (var > links) then
          bound = max_angular_velocity
          unit = 'rad/s'
       end if
-      if (variable(name) == 0) then
+      if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
-                          //axis_names//')')
+                          //accepted_axes(links)//')')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
                           //' to '//to_str(max_axis_points)//' (points on axis '//c//')')
@@ -370,16 +386,41 @@ contains
       if (cfg%time_unit == 'natural') u = 'sqrt(l1/g)'
    end function unit_name
 
-   !> Index of the initial value an axis sweeps: 1 q1, 2 q2, 3 w1, 4 w2, 0 unknown.
-   pure integer function variable(name)
-      character(len=*), intent(in) :: name  !! axis name
-      select case (name)
-      case ('theta1', 'q1'); variable = 1
-      case ('theta2', 'q2'); variable = 2
-      case ('w1'); variable = 3
-      case ('w2'); variable = 4
-      case default; variable = 0
+   !> Index in the state (q1 .. qN, w1 .. wN) of the initial value an axis sweeps:
+   !> k for thetak and qk, N + k for wk (k = 1 .. N), 0 for an unknown name. Two links:
+   !> 1 q1, 2 q2, 3 w1, 4 w2.
+   pure integer function axis_variable(name, links)
+      character(len=*), intent(in) :: name   !! axis name
+      integer, intent(in) :: links           !! number of links N
+      integer :: k, start, stat
+      axis_variable = 0
+      if (index(name, 'theta') == 1) then
+         start = 6
+      else if (index(name, 'q') == 1 .or. index(name, 'w') == 1) then
+         start = 2
+      else
+         return
+      end if
+      if (len(name) < start .or. len(name) > start + 3) return
+      if (verify(name(start:), '0123456789') /= 0 .or. name(start:start) == '0') return
+      read (name(start:), *, iostat=stat) k
+      if (stat /= 0 .or. k < 1 .or. k > links) return
+      axis_variable = k
+      if (name(1:1) == 'w') axis_variable = links + k
+   end function axis_variable
+
+   !> The accepted axis names for N links, for messages.
+   pure function accepted_axes(links) result(s)
+      integer, intent(in) :: links  !! number of links N
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: n
+      n = to_str(links)
+      select case (links)
+      case (1); s = 'theta1 q1 w1 for 1 link'
+      case (2); s = axis_names
+      case default
+         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' for '//n//' links'
       end select
-   end function variable
+   end function accepted_axes
 
 end module dpend_sweep_config

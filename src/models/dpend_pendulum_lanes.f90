@@ -76,10 +76,13 @@ module dpend_pendulum_lanes
       real(dp), allocatable :: t_flip1(:)       !! first flip of link 1 [s], NaN: none
       real(dp), allocatable :: t_flip2(:)       !! first flip of link 2 [s], NaN: none
       real(dp), allocatable :: t_flip(:)        !! first flip of either link [s], NaN: none
+      !> (N, n) first flip of every link [s], NaN: none; only from the per-trajectory
+      !> path of N links (dpend_trajectory_batch), where t_flip1 and t_flip2 are unused
+      real(dp), allocatable :: t_flip_link(:, :)
       real(dp), allocatable :: energy0(:)       !! initial energy E(0) [J]
       real(dp), allocatable :: energy_error(:)  !! max |E(t) - E(0)| / potential_range [1]
       real(dp), allocatable :: t_stop(:)        !! time integrated to [s]
-      real(dp), allocatable :: final(:, :)      !! (4, n) state at t_stop [rad, rad/s]
+      real(dp), allocatable :: final(:, :)      !! (2N, n) state at t_stop [rad, rad/s]
       real(dp), allocatable :: lyapunov(:)      !! largest Lyapunov exponent [1/s], NaN: off
       integer, allocatable :: status(:)         !! st_* code
       integer, allocatable :: steps(:)          !! RK4 steps taken (4 evaluations each)

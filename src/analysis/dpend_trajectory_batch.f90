@@ -1,0 +1,176 @@
+!> The sweep's per-trajectory path (issue 12): initial conditions of any model with
+!> n degrees of freedom integrated one at a time by a fixed-step method of the
+!> registry (the sweep uses rk4), each reduced to what the batch kernel
+!> (`dpend_pendulum_lanes`, the double pendulum only) computes: the first flip of
+!> every link, the initial energy, the largest energy error, the final state and a
+!> status (the kernel's st_* codes and stop rules). `dpend sweep` calls it for every
+!> number of links other than 2, one block per call, so that the blocks of a sweep
+!> run in parallel over the OpenMP threads with one integrator per block in flight.
+!>
+!> Definitions, as the kernel's (docs/sweep.md):
+!> - a flip of link i is a crossing of its upward vertical, q_i = π/2 + 2π k (θ_i = q_i
+!>   + π/2 leaves (−π, π]); its time is interpolated linearly in q_i within the step;
+!>   t_flip is the first flip of any link;
+!> - the energy error is max over the steps of |E(t_k) − E(0)|, divided by the range of
+!>   the potential V_max − V_min = 2 Σ G_i (V = Σ G_i sin q_i);
+!> - flip energy bound of link i: with T ≥ 0 and sin q_j ≥ −1, link i upright needs
+!>   E ≥ G_i − Σ_(j≠i) G_j. An initial condition whose energy is below every link's
+!>   bound (less a margin of 1e-12 Σ G_i for the rounding of E(0)) cannot flip and is
+!>   not integrated (st_cannot_flip), unless opt%skip_cannot_flip is false.
+!>
+!> Difference from the kernel: a step whose result is not finite (or beyond the
+!> integrators' `diverged_bound`) is not taken; the trajectory ends there with
+!> st_nonfinite, its final state the last finite one and t_stop the time reached.
+module dpend_trajectory_batch
+   use dpend_kinds, only: dp, i8, pi, half_pi
+   use dpend_model, only: model_t
+   use dpend_integrator, only: integrator_t, stat_ok
+   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, stop_both, stop_either, &
+      stop_end, st_end, st_flipped, st_cannot_flip, st_nonfinite
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   implicit none
+   private
+   public :: integrate_trajectories, link_flip_bounds
+
+   real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
+
+   !> Margin of the flip energy bounds, relative to Σ G_i (rounding of E(0)).
+   real(dp), parameter :: bound_margin = 1e-12_dp
+
+contains
+
+   !> Least energy with which link i can reach the upward vertical [J], for a
+   !> potential V = Σ G_i sin q_i with G_i ≥ 0: G_i − Σ_(j≠i) G_j (for two links the
+   !> kernel's `flip_energy_bounds`, A − B and B − A).
+   pure function link_flip_bounds(gl) result(e)
+      real(dp), intent(in) :: gl(:)  !! G_i [J]
+      real(dp) :: e(size(gl))
+      real(dp) :: others
+      integer :: i, j
+      do i = 1, size(gl)
+         others = 0.0_dp
+         do j = 1, size(gl)
+            if (j /= i) others = others + gl(j)
+         end do
+         e(i) = gl(i) - others
+      end do
+   end function link_flip_bounds
+
+   !> Integrate the initial conditions y0(:, j) = (q, q̇) of `model` with `integ`
+   !> (a fixed-step method) of step opt%h for at most opt%n_steps steps each, with
+   !> the stop rule opt%stop_rule; results as the kernel's, plus res%t_flip_link
+   !> (N, n). res%t_flip1 and res%t_flip2 hold links 1 and 2 (NaN if absent);
+   !> res%lyapunov is NaN (not computed on this path).
+   subroutine integrate_trajectories(model, integ, gl, opt, y0, res)
+      class(model_t), intent(in) :: model            !! the system, N degrees of freedom
+      class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
+      real(dp), intent(in) :: gl(:)                  !! G_i of V = Σ G_i sin q_i [J] (N)
+      type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
+      real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
+      type(batch_result_t), intent(out) :: res       !! results
+      real(dp), allocatable :: y(:)
+      real(dp) :: bounds(size(gl)), tf(size(gl)), p(size(gl)), nk(size(gl))
+      real(dp) :: escale, nan, margin, t, hs, err, mk, qc
+      logical :: can(size(gl)), ended
+      integer(i8) :: ks
+      integer :: n, nl, j, i, stat
+
+      nl = size(gl)
+      n = size(y0, 2)
+      nan = ieee_value(nan, ieee_quiet_nan)
+      bounds = link_flip_bounds(gl)
+      margin = bound_margin*sum(gl)
+      escale = 2.0_dp*sum(gl)
+      res%n = n
+      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
+                res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
+                res%lyapunov(n), res%status(n), res%steps(n))
+      allocate (y(2*nl))
+      res%lyapunov = nan
+      do j = 1, n
+         res%energy0(j) = model%energy(0.0_dp, y0(:, j))
+         do i = 1, nl
+            can(i) = .not. (res%energy0(j) < bounds(i) - margin)
+         end do
+         res%final(:, j) = y0(:, j)
+         res%t_stop(j) = 0.0_dp
+         res%steps(j) = 0
+         res%energy_error(j) = 0.0_dp
+         res%t_flip_link(:, j) = -1.0_dp   ! NaN at the end (no ordered test on NaN)
+         res%status(j) = merge(st_end, st_cannot_flip, any(can))
+         if (opt%n_steps < 1) then   ! t_end = 0: nothing to integrate
+            res%status(j) = st_end
+            cycle
+         end if
+         if (.not. (any(can) .or. .not. opt%skip_cannot_flip)) then
+            res%energy_error(j) = nan
+            cycle
+         end if
+         y = y0(:, j)
+         t = 0.0_dp
+         ks = 0
+         err = 0.0_dp
+         tf = -1.0_dp
+         do i = 1, nl
+            nk(i) = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
+         end do
+         call integ%clear_step()
+         do
+            p = y(1:nl)
+            hs = opt%h
+            call integ%step(model, t, y, hs, stat)
+            if (stat /= stat_ok) then
+               res%status(j) = st_nonfinite
+               exit
+            end if
+            ks = ks + 1
+            t = real(ks, dp)*opt%h
+            err = max(err, abs(model%energy(t, y) - res%energy0(j)))
+            ! link i: index of the last upward vertical below q_i, π/2 + 2π k
+            do i = 1, nl
+               mk = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
+               if (mk /= nk(i)) then
+                  if (tf(i) < 0.0_dp) then
+                     qc = half_pi + two_pi*max(mk, nk(i))
+                     tf(i) = (real(ks - 1, dp) + (qc - p(i))/(y(i) - p(i)))*opt%h
+                  end if
+                  nk(i) = mk
+               end if
+            end do
+            ended = ks >= opt%n_steps
+            select case (opt%stop_rule)
+            case (stop_both)
+               ended = ended .or. all(tf >= 0.0_dp .or. .not. can)
+            case (stop_either)
+               ended = ended .or. any(tf >= 0.0_dp)
+            case (stop_end)
+            end select
+            if (ended) exit
+         end do
+         res%final(:, j) = y
+         res%t_stop(j) = real(ks, dp)*opt%h
+         res%steps(j) = int(ks)
+         res%t_flip_link(:, j) = tf
+         if (res%status(j) == st_nonfinite) then
+            res%energy_error(j) = nan
+         else
+            res%energy_error(j) = err/escale
+            if (ks < opt%n_steps) res%status(j) = st_flipped
+         end if
+      end do
+      do j = 1, n
+         if (any(res%t_flip_link(:, j) >= 0.0_dp)) then
+            res%t_flip(j) = minval(res%t_flip_link(:, j), mask=res%t_flip_link(:, j) >= 0.0_dp)
+         else
+            res%t_flip(j) = nan
+         end if
+         do i = 1, nl
+            if (.not. (res%t_flip_link(i, j) >= 0.0_dp)) res%t_flip_link(i, j) = nan
+         end do
+         res%t_flip1(j) = res%t_flip_link(1, j)
+         res%t_flip2(j) = nan
+         if (nl >= 2) res%t_flip2(j) = res%t_flip_link(2, j)
+      end do
+   end subroutine integrate_trajectories
+
+end module dpend_trajectory_batch
