@@ -30,6 +30,9 @@ options:
                   the working tree has changes to tracked files, else HEAD~1
   --rel R         largest accepted relative difference |a-b|/max(|a|,|b|)
                   of one element; default 1e-13
+  --allow-added   datasets and attributes that only the new build writes (new
+                  outputs) are listed as notes, not differences; removed or
+                  changed ones still differ
   --exclude NAME  also exclude datasets or attributes called NAME (a name or
                   a full path such as /summary/markdown or /x@attr); repeatable
   --quick         smaller runs (about 4x cheaper; study restricted to 3
@@ -62,6 +65,7 @@ quick=0
 keep=0
 workdir=""
 extra_excludes=()
+allow_added=0
 
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -70,6 +74,7 @@ while [[ $# -gt 0 ]]; do
     --base=*) base_rev=${1#--base=}; shift ;;
     --rel) [[ $# -ge 2 ]] || die 2 "--rel needs a value"; rel=$2; shift 2 ;;
     --rel=*) rel=${1#--rel=}; shift ;;
+    --allow-added) allow_added=1; shift ;;
     --exclude) [[ $# -ge 2 ]] || die 2 "--exclude needs a value"; extra_excludes+=("$2"); shift 2 ;;
     --exclude=*) extra_excludes+=("${1#--exclude=}"); shift ;;
     --repeat) [[ $# -ge 2 ]] || die 2 "--repeat needs a value"; repeat=$2; shift 2 ;;
@@ -415,7 +420,11 @@ NR == FNR { BK[$2] = $1; BT[$2] = $3; BS[$2] = $4; BL[$2] = $5; BF[$2] = $6; BV[
   key = $2; seen[key] = 1
   if (excluded(key)) { nex++; next }
   if ($1 == "D") nds++; else if ($1 == "A") nat++
-  if (!(key in BK)) { bad("only in new: " key); next }
+  if (!(key in BK)) {
+    if (ENVIRON["CB_ALLOW_ADDED"] == "1") note(key, "only in new")
+    else bad("only in new: " key)
+    next
+  }
   if (BK[key] != $1) { bad(key ": kind " BK[key] " in base, " $1 " in new"); next }
   if (BS[key] != $4) { bad(key ": dataspace " BS[key] " -> " $4); next }
   if (BT[key] != $3) note(key, "type " BT[key] " -> " $3)
@@ -470,7 +479,8 @@ for name in "${methods[@]/#/simulate_}" lyapunov divergence poincare sweep study
   if ! flat "$fb" "$tb" || ! flat "$fn" "$tn"; then
     echo "differ: $rel_path (h5dump cannot read it)"; n_differ=$((n_differ + 1)); continue
   fi
-  report=$(CB_REL=$rel CB_EXCLUDES=$excl_list awk "$compare_awk" "$tb" "$tn")
+  report=$(CB_REL=$rel CB_EXCLUDES=$excl_list CB_ALLOW_ADDED=$allow_added \
+    awk "$compare_awk" "$tb" "$tn")
   read -r _ result nds nat nex nnotes <<<"$(tail -n 1 <<<"$report")"
   detail=$(sed '$d' <<<"$report")
   if [[ $head_note == "exit status "*"against"* ]]; then result=differ; fi

@@ -29,7 +29,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
       logical, intent(in), optional :: csv              !! CSV with a header line
       type(h5file_t) :: h5
-      real(dp), allocatable :: table(:, :), v1(:), v2(:, :)
+      real(dp), allocatable :: table(:, :), v1(:), v2(:, :), v3(:, :, :)
       integer, allocatable :: dims(:)
       integer :: i, j, n, ncol, col
       character(len=:), allocatable :: fmt, header, line
@@ -56,8 +56,10 @@ contains
             ncol = ncol + 1
          else if (size(dims) == 2) then
             ncol = ncol + dims(1)
+         else if (size(dims) == 3) then   ! (samples, N, 2): one column per component
+            ncol = ncol + dims(1)*dims(2)
          else
-            call fatal_error(error, "export: '"//trim(paths(i))//"' is not 1-D or 2-D")
+            call fatal_error(error, "export: '"//trim(paths(i))//"' is not 1-D, 2-D or 3-D")
             exit
          end if
          if (n >= 0 .and. dims(size(dims)) /= n) then
@@ -77,7 +79,11 @@ contains
             call h5%shape(trim(paths(i)), dims, error)
             if (allocated(error)) exit
             if (i > 1) header = header//','
-            header = header//csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2))
+            if (size(dims) == 3) then
+               header = header//csv_header(h5, trim(paths(i)), dims(1)*dims(2), dims(1))
+            else
+               header = header//csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2))
+            end if
          end do
       end if
       col = 0
@@ -88,11 +94,16 @@ contains
             if (allocated(error)) exit
             table(col + 1, :) = v1
             col = col + 1
-         else
+         else if (size(dims) == 2) then
             call h5%read(trim(paths(i)), v2, error)
             if (allocated(error)) exit
             table(col + 1:col + dims(1), :) = v2
             col = col + dims(1)
+         else
+            call h5%read(trim(paths(i)), v3, error)
+            if (allocated(error)) exit
+            table(col + 1:col + dims(1)*dims(2), :) = reshape(v3, [dims(1)*dims(2), dims(3)])
+            col = col + dims(1)*dims(2)
          end if
       end do
       call h5%close()
@@ -121,10 +132,13 @@ contains
    !> when the name ends in a digit: "F01_1"). Units listed per block of columns
    !> ('rad, rad/s' for 4 columns: rad, rad, rad/s, rad/s) are spread over them;
    !> other commas become ';'. A dataset without units gets no brackets.
-   function csv_header(h5, path, k) result(header)
+   function csv_header(h5, path, k, inner) result(header)
       type(h5file_t), intent(inout) :: h5   !! open file
       character(len=*), intent(in) :: path  !! dataset path
       integer, intent(in) :: k              !! columns, 0 for a 1-D dataset
+      !> For a 3-D dataset (samples, N, inner): columns NAME_i_x, NAME_i_y (inner = 2)
+      !> or NAME_i_j, i = 1 … N.
+      integer, intent(in), optional :: inner
       character(len=:), allocatable :: header
       character(len=:), allocatable :: name, units, unit_j
       character(len=64), allocatable :: parts(:)
@@ -162,13 +176,26 @@ contains
             unit_j = replace_commas(units)
          end if
          if (j > 1) header = header//','
-         if (scan(name(len(name):len(name)), '0123456789') > 0) then
+         if (present(inner)) then
+            header = header//name//'_'//to_str((j - 1)/inner + 1)//'_'// &
+                     component(mod(j - 1, inner) + 1, inner)//bracket(unit_j)
+         else if (scan(name(len(name):len(name)), '0123456789') > 0) then
             header = header//name//'_'//to_str(j)//bracket(unit_j)
          else
             header = header//name//to_str(j)//bracket(unit_j)
          end if
       end do
    contains
+      !> 'x', 'y' for pairs, else the index.
+      pure function component(c, n_c) result(t)
+         integer, intent(in) :: c, n_c
+         character(len=:), allocatable :: t
+         if (n_c == 2) then
+            t = merge('x', 'y', c == 1)
+         else
+            t = to_str(c)
+         end if
+      end function component
       !> Number of commas in `text`.
       pure integer function count_commas(text) result(c)
          character(len=*), intent(in) :: text
