@@ -60,8 +60,9 @@ contains
       type(run_config_t) :: cfg
       cfg = simulate_defaults()
       s = 'usage: dpend simulate [options]'//nl//nl// &
-          'Integrate one trajectory of the double pendulum and write it to HDF5'//nl// &
-          '(layout: docs/hdf5-layout.md; figures: scripts/plot_simulate.sh FILE.h5).'//nl//nl// &
+          'Integrate one trajectory of the double pendulum (or of the chain of N links,'//nl// &
+          '--links N) and write it to HDF5 (layout: docs/hdf5-layout.md; figures:'//nl// &
+          'scripts/plot_simulate.sh FILE.h5; animation: dpend animate FILE.h5).'//nl//nl// &
           'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
           run_flags_help(cfg)//nl// &
           '  --save-every N    keep every N-th step (and always the last); default ' &
