@@ -3,7 +3,8 @@
 !> tangent vectors are carried by `dpend_tangent`, in the method's internal
 !> variables: (q, q̇), or (q, p) for canonical methods).
 !>
-!> Deviation vectors. The k = 2n vectors start as the orthonormal set e_1 .. e_2n.
+!> Deviation vectors. The k = 2n vectors start as an orthonormal set in general
+!> position (`initial_vectors`).
 !> After every accepted step each vector is divided by its length and the
 !> logarithm of that length is added to its running log-norm L_i(t) = ln |δ_i(t)|:
 !> the directions are never mixed (no orthogonalisation, unlike Benettin's
@@ -17,23 +18,28 @@
 !>    chaotic ones.
 !>  * MEGNO (Cincotta & Simó, Astron. Astrophys. Suppl. 147, 205, 2000) of each
 !>    vector, Y(t) = (2/t) ∫_0^t s δ̇·δ/(δ·δ) ds, and its running mean
-!>    <Y>(t) = (1/t) ∫_0^t Y(s) ds. Discretisation (as REBOUND accumulates them,
-!>    but with the trapezoidal rule, second order in the step): the integrand
-!>    g(s) = s (Jδ)·δ/(δ·δ) is evaluated at every step end with the Jacobian J
-!>    that the tangent propagation computed there (g(0) = 0), and both integrals
-!>    are summed step by step with the trapezoidal rule (Y(0) = 0). Since
-!>    δ̇·δ/δ·δ = d ln|δ|/ds, integration by parts gives the independent check
-!>    Y(t) = 2 (L(t) - (1/t) ∫_0^t L(s) ds). Regular (quasi-periodic) orbits:
-!>    <Y> → 2 (→ 0 for isochronous oscillations); chaotic: <Y> ≈ λ1 t / 2.
-!>    `megno` and `megno_mean` report vector 1 (δq1); all vectors are kept.
+!>    <Y>(t) = (1/t) ∫_0^t Y(s) ds. Discretisation: both integrals are summed
+!>    step by step, as REBOUND accumulates them, but without evaluating δ̇: the
+!>    integrand is δ̇·δ/δ·δ = d ln|δ|/ds, whose integral over a step [a, b] is
+!>    known exactly from the renormalisation, ΔL = ln(|δ(b)|/|δ(a)|), so
+!>    ∫_a^b (s - t0) dL is summed as ((a + b)/2 - t0) ΔL (midpoint weight: second
+!>    order in the step, and exact for the growth within the step however fast
+!>    it varies), and ∫ Y ds by the trapezoidal rule (Y(t0) = 0).
+!>    Equivalently (integration by parts) Y(t) = 2 (L(t) - (1/t) ∫_0^t L(s) ds).
+!>    Regular (quasi-periodic) orbits with shear (frequencies depending on the
+!>    actions): Y oscillates about 2 and <Y> → 2; exponential growth e^(μt):
+!>    Y → μ t, <Y> → μ t/2; chaotic orbits: <Y> ≈ λ1 t/2.
+!>    (Isochronous oscillations, |δ| bounded: <Y> → 0.)
+!>    `megno` and `megno_mean` report vector 1; all vectors are kept.
 !>  * SALI (Skokos, J. Phys. A 34, 10029, 2001) of vectors 1 and 2:
 !>    min(|v̂1 + v̂2|, |v̂1 - v̂2|), v̂ = v/|v|; → 0 as exp(-(λ1 - λ2) t) on chaotic
 !>    orbits, stays away from 0 on regular ones.
 !>  * GALI_j, j = 2 .. 2n (Skokos, Bountis & Antonopoulos, Physica D 231, 30,
 !>    2007): the volume of the parallelepiped of the first j unit vectors, the
 !>    product of the singular values of the 2n×j matrix (v̂_1 .. v̂_j), as
-!>    |det R| of its QR decomposition (LAPACK dgeqrf). Regular orbits on an N-torus: GALI_j constant for j ≤ N, ∝ t^-2(j-N)
-!>    beyond; chaotic: GALI_j ∝ exp(-Σ_{i≤j} (λ1 - λi) t). GALI_2 = SALI·√(1 - SALI²/4).
+!>    |det R| of its QR decomposition (LAPACK dgeqrf). Regular orbits on an
+!>    N-torus: GALI_j constant for j ≤ N, ∝ t^-2(j-N) beyond; chaotic:
+!>    GALI_j ∝ exp(-Σ_{i≤j} (λ1 - λi) t). GALI_2 = SALI·√(1 - SALI²/4).
 module dpend_indicators
    use dpend_kinds, only: dp, i8
    use dpend_model, only: model_t
@@ -44,7 +50,7 @@ module dpend_indicators
    use dpend_lapack, only: dgeqrf
    implicit none
    private
-   public :: indicators_result_t, chaos_indicators, gali, sali, megno_integrand
+   public :: indicators_result_t, chaos_indicators, gali, sali, initial_vectors
 
    !> Time series of the indicators of one orbit.
    type :: indicators_result_t
@@ -81,19 +87,6 @@ contains
       y = self%mean_all(1, 1:self%n)
    end function res_megno_mean
 
-   !> (J v)·v / (v·v), the logarithmic growth rate d ln|v|/dt of a tangent vector.
-   pure real(dp) function megno_integrand(jac, v)
-      real(dp), intent(in) :: jac(:, :)  !! Jacobian of the vector field (m, m)
-      real(dp), intent(in) :: v(:)       !! tangent vector (m), not zero
-      real(dp) :: jv(size(v))
-      integer :: i
-      jv = 0.0_dp
-      do i = 1, size(v)
-         jv = jv + jac(:, i)*v(i)
-      end do
-      megno_integrand = dot_product(jv, v)/dot_product(v, v)
-   end function megno_integrand
-
    !> SALI of two vectors: min(|â + b̂|, |â - b̂|), â = a/|a|.
    pure real(dp) function sali(a, b)
       real(dp), intent(in) :: a(:), b(:)  !! the vectors, not zero
@@ -125,6 +118,25 @@ contains
       end do
    end subroutine gali
 
+   !> The initial deviation vectors: the columns of the Householder reflection
+   !> H = I - 2 w wᵀ/(wᵀw), w_i = 1 + i φ (φ the golden ratio), an orthonormal set
+   !> in general position. The unit vectors e_i would not do: at a turning point
+   !> (all q̇ = 0, as in the releases from rest) a velocity perturbation leaves the
+   !> energy and, by time-reversal symmetry, the actions unchanged to first order,
+   !> so e_(n+1) .. e_2n lie in the tangent space of the torus, never grow, and
+   !> GALI_j of a regular orbit would decay as t^-(j-N) instead of t^-2(j-N).
+   pure function initial_vectors(k) result(v)
+      integer, intent(in) :: k  !! dimension of the state (2n)
+      real(dp) :: v(k, k)
+      real(dp) :: w(k)
+      integer :: i
+      w = [(1.0_dp + real(i, dp)*0.5_dp*(1.0_dp + sqrt(5.0_dp)), i=1, k)]
+      do i = 1, k
+         v(:, i) = -2.0_dp*w(i)/dot_product(w, w)*w
+         v(i, i) = v(i, i) + 1.0_dp
+      end do
+   end function initial_vectors
+
    !> The indicators of the orbit from (t0, y0) to t_end, integrated with `integ`
    !> (fixed step or initial proposal h; rules of `march_t`), sampled at the end of
    !> the first step that reaches t0 + j τ, and at t_end (t0 itself is not
@@ -143,22 +155,17 @@ contains
       integer, intent(out) :: stat                 !! stat_ok or a failure code
       type(march_t) :: march
       type(tangent_t) :: tan
-      real(dp) :: t, t_prev, y(size(y0)), hh, eye(size(y0), size(y0)), t_next, nrm
-      real(dp), dimension(size(y0)) :: lg, g, g_prev, ig, yy, yy_prev, sy
+      real(dp) :: t, t_prev, y(size(y0)), hh, t_next, nrm
+      real(dp), dimension(size(y0)) :: lg, dl, ig, yy, yy_prev, sy
       integer :: i, k, info
       integer(i8) :: j
       k = size(y0)
-      eye = 0.0_dp
-      do i = 1, k
-         eye(i, i) = 1.0_dp
-      end do
-      call tan%init(eye)
+      call tan%init(initial_vectors(k))
       res%k = k
       allocate (res%t(256), res%log_norm(k, 256), res%fli(256), res%megno_all(k, 256), &
                 res%mean_all(k, 256), res%sali(256), res%gali(k - 1, 256))
       t = t0; y = y0; hh = h
       lg = 0.0_dp       ! ln |δ_i|
-      g_prev = 0.0_dp   ! (s - t0) δ̇·δ/δ·δ at the previous step end (0 at t0)
       ig = 0.0_dp       ! ∫ (s - t0) δ̇·δ/δ·δ ds
       yy_prev = 0.0_dp  ! Y at the previous step end (0 at t0)
       sy = 0.0_dp       ! ∫ Y ds
@@ -181,16 +188,8 @@ contains
             exit
          end if
          if (t == t_prev) cycle
-         ! the rates at the step end, with the Jacobian the propagation ended with
-         ! (the vectors' lengths do not matter: the rate is scale-free)
-         do i = 1, k
-            g(i) = (t - t0)*megno_integrand(tan%j_cache, tan%v(:, i))
-         end do
-         ig = ig + 0.5_dp*(t - t_prev)*(g_prev + g)
-         yy = 2.0_dp*ig/(t - t0)
-         sy = sy + 0.5_dp*(t - t_prev)*(yy_prev + yy)
-         g_prev = g; yy_prev = yy
-         ! renormalise: lengths to 1, directions kept, logarithms summed
+         ! renormalise: lengths to 1, directions kept; dl = ln of the growth over
+         ! the step, the exact integral of δ̇·δ/δ·δ over it
          do i = 1, k
             nrm = norm2(tan%v(:, i))
             if (.not. (nrm > 0.0_dp)) then
@@ -198,8 +197,14 @@ contains
                exit
             end if
             tan%v(:, i) = tan%v(:, i)/nrm
-            lg(i) = lg(i) + log(nrm)
+            dl(i) = log(nrm)
          end do
+         if (stat /= stat_ok) exit
+         lg = lg + dl
+         ig = ig + (0.5_dp*((t_prev - t0) + (t - t0)))*dl
+         yy = 2.0_dp*ig/(t - t0)
+         sy = sy + 0.5_dp*(t - t_prev)*(yy_prev + yy)
+         yy_prev = yy
          if (stat /= stat_ok) exit
          if (t >= t_next - 1e-9_dp*tau .or. march%finished) then
             call record(info)
