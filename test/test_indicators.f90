@@ -15,6 +15,8 @@ module test_indicators
    use dpend_fit, only: loglog_fit, fit_t
    use dpend_error, only: error_t
    use testing, only: unittest_t, new_unittest, check, check_true
+   use dpend_hdf5, only: h5file_t
+   use test_cli, only: run_command, scratch_dir, read_text, expect_rejected
    implicit none
    private
    public :: collect_indicators, line_slope
@@ -30,7 +32,9 @@ contains
       tests = [new_unittest('sali_gali_geometry', test_geometry), &
                new_unittest('megno_fli_upright_all_methods', test_megno_upright), &
                new_unittest('regular_orbit', test_regular), &
-               new_unittest('chaotic_orbit_rates', test_chaotic)]
+               new_unittest('chaotic_orbit_rates', test_chaotic), &
+               new_unittest('command_bad_input', test_cli_bad), &
+               new_unittest('command_run', test_cli_run)]
    end subroutine collect_indicators
 
    !> Least-squares slope of y against x over the points with x in [x0, x1].
@@ -222,4 +226,61 @@ contains
       call check(error, s_fli, lam(1), 'slope of FLI = lambda1', rel=0.1_dp)
       call check(error, rate, lam(1) - lam(2), 'GALI_2 rate = lambda1 - lambda2', rel=0.1_dp)
    end subroutine test_chaotic
+
+   subroutine test_cli_bad(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('indbad')
+      call expect_rejected(error, dir, 'indicators', '--tau 0', 'tau')
+      call expect_rejected(error, dir, 'indicators', '--tau 1e-4', 'tau')
+      call expect_rejected(error, dir, 'indicators', '--t-end 0', 't_end')
+      call expect_rejected(error, dir, 'indicators', '--vectors 2', 'unknown option')
+      call expect_rejected(error, dir, 'indicators', '--method nosuch', 'method')
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_cli_bad
+
+   !> `dpend indicators` on the chaotic release (20 s) and on a 3-link chain (5 s):
+   !> the scripting line holds the stored final values; the datasets' shapes.
+   subroutine test_cli_run(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, last
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), ym(:), fli(:), sa(:), ga(:, :), ln(:, :)
+      real(dp) :: x(6), x6(8)
+      integer :: stat, n, ios
+      dir = scratch_dir('indrun')
+      stat = run_command(dir, 'indicators --t-end 20 --output '//dir//'/i.h5')
+      call read_text(dir//'/stdout', text, n)
+      last = text(index(text(:len(text) - 1), new_line('a'), back=.true.) + 1:len(text) - 1)
+      call check_true(error, stat == 0, 'exit status 0: '//text)
+      call check_true(error, index(last, 'indicators: ') == 1, 'last line: '//last)
+      if (allocated(error)) return
+      read (last(13:), *, iostat=ios) x
+      call check_true(error, ios == 0, 'six numbers on the last line: '//last)
+      call h5%open(dir//'/i.h5', 'r', error)
+      if (allocated(error)) return
+      call h5%read('/indicators/t', t, error)
+      if (.not. allocated(error)) call h5%read('/indicators/megno_mean', ym, error)
+      if (.not. allocated(error)) call h5%read('/indicators/fli', fli, error)
+      if (.not. allocated(error)) call h5%read('/indicators/sali', sa, error)
+      if (.not. allocated(error)) call h5%read('/indicators/gali', ga, error)
+      if (.not. allocated(error)) call h5%read('/indicators/log_norm', ln, error)
+      call h5%close()
+      if (allocated(error)) return
+      n = size(t)
+      call check_true(error, n == 40 .and. size(ga, 1) == 3 .and. size(ga, 2) == 40 .and. &
+                      size(ln, 1) == 4, 'shapes: 40 samples, GALI_2..4, 4 log-norms')
+      if (allocated(error)) return
+      call check(error, x, [ym(n), fli(n), sa(n), ga(:, n)], 'printed = stored', rel=1e-6_dp)
+      call check_true(error, ym(n) > 5.0_dp .and. fli(n) > 10.0_dp .and. ga(1, n) < 1e-4_dp, &
+                      'chaotic: <Y> > 5, FLI > 10, GALI_2 < 1e-4')
+      stat = run_command(dir, 'indicators --links 3 --t-end 5 --output '//dir//'/c.h5')
+      call read_text(dir//'/stdout', text, n)
+      last = text(index(text(:len(text) - 1), new_line('a'), back=.true.) + 1:len(text) - 1)
+      call check_true(error, stat == 0, '3 links: exit status 0: '//text)
+      if (allocated(error)) return
+      read (last(13:), *, iostat=ios) x6
+      call check_true(error, ios == 0, '3 links: eight numbers (GALI_2 .. GALI_6): '//last)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_cli_run
 end module test_indicators
