@@ -48,6 +48,7 @@ module dpend_indicators
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
    use dpend_lapack, only: dgeqrf
+   use dpend_lyapunov, only: next_multiple
    implicit none
    private
    public :: indicators_result_t, chaos_indicators, gali, sali, initial_vectors
@@ -212,15 +213,7 @@ contains
                stat = stat_nonfinite
                exit
             end if
-            ! the next multiple of tau after t (as in `lyapunov_spectrum`)
-            if (t_next <= t + 1e-9_dp*tau) then
-               j = max(j + 1, int((t - t0)/tau, i8))
-               t_next = t0 + real(j, dp)*tau
-               do while (t_next <= t + 1e-9_dp*tau)
-                  j = j + 1
-                  t_next = t0 + real(j, dp)*tau
-               end do
-            end if
+            call next_multiple(t0, tau, t, j, t_next)
          end if
       end do
       res%t_reached = t
