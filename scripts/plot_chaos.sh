@@ -126,7 +126,8 @@ case "$cmd" in
     # the final GALI_2 .. GALI_K (h5dump: "(i): v1, v2, ..." lines)
     read -r -a gvals <<< "$(h5dump -m %.17g -a /gali_final "$h5" 2>/dev/null \
       | sed -n 's/^ *([0-9]*): *//p' | tr ',\n' '  ')"
-    [[ ${#gvals[@]} -eq $((k - 1)) ]] || plot_fail 2 "'$1': gali_final holds ${#gvals[@]} values, not $((k - 1))"
+    [[ ${#gvals[@]} -eq $((k - 1)) ]] ||
+      plot_fail 2 "'$1': gali_final holds ${#gvals[@]} values, not $((k - 1))"
     gal=""
     for v in "${gvals[@]}"; do
       plot_number g "$v" "a value of the attribute gali_final of '$1'"

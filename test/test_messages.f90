@@ -18,8 +18,8 @@ module test_messages
    character(len=*), parameter :: nl = new_line('a')
    !> Every command with a --help (plus the program's own help).
    character(len=16), parameter :: commands(12) = [character(len=16) :: 'simulate', &
-      'lyapunov', 'divergence', 'poincare', 'indicators', 'sweep', 'sweep-compare', 'export', 'study', &
-      'methods', '--help', 'help']
+      'lyapunov', 'divergence', 'poincare', 'indicators', 'sweep', 'sweep-compare', &
+      'export', 'study', 'methods', '--help', 'help']
 
 contains
 
