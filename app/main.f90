@@ -48,7 +48,7 @@ program dpend
       call simulate(args(2:))
    case ('export')
       call export(args(2:))
-   case ('lyapunov', 'divergence', 'poincare')
+   case ('lyapunov', 'divergence', 'poincare', 'indicators')
       call chaos(args(1)%s, args(2:))
    case ('sweep')
       call sweep(args(2:))
@@ -71,6 +71,7 @@ contains
           'commands:'//nl// &
           '  simulate   integrate one trajectory and write it to HDF5'//nl// &
           '  lyapunov   Lyapunov exponents (Benettin, QR) with their running estimates'//nl// &
+          '  indicators chaos indicators MEGNO, FLI, SALI, GALI_k against time'//nl// &
           '  divergence divergence of nearby trajectories, fitted exponential slope'//nl// &
           '  poincare   Poincare section at one energy'//nl// &
           '  sweep      maps over initial conditions (flip time, energy error, Lyapunov)'//nl// &
@@ -106,7 +107,7 @@ contains
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
-   !> The chaos commands: lyapunov, divergence, poincare.
+   !> The chaos commands: lyapunov, divergence, poincare, indicators.
    subroutine chaos(command, sub)
       character(len=*), intent(in) :: command
       type(arg_t), intent(in) :: sub(:)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures of the chaos commands (dpend lyapunov / divergence / poincare):
+# Figures of the chaos commands (dpend lyapunov / divergence / poincare / indicators):
 #   scripts/plot_chaos.sh FILE.h5 [OUTDIR]        (OUTDIR defaults to FILE's folder)
 # The command that wrote FILE (its root attribute `command`) decides the figures:
 #   lyapunov   -> lyapunov_convergence.png (running estimates against t, log time
@@ -10,6 +10,8 @@
 #   divergence -> divergence.png (log10|delta(t)|: pairs, their mean, fitted slope,
 #                 Benettin's lambda1 for comparison, saturation level)
 #   poincare   -> poincare.png (the section points, one colour per orbit)
+#   indicators -> indicators.png (MEGNO Y and <Y>, FLI, SALI and GALI_k against t,
+#                 with the regular and chaotic reference behaviours drawn in)
 # Several lyapunov files (same vectors): scripts/plot_chaos.sh --compare OUT.png F1.h5 F2.h5 ...
 # overlays their running lambda1 with the batch-means spread of each.
 # Figures are written through temporary files and moved into place once drawn
@@ -116,7 +118,27 @@ case "$cmd" in
       "$E $link $other $angle $dir $norb"
     printf 'plot_chaos.sh: wrote %s/poincare.png\n' "$out"
     ;;
+  indicators)
+    "$dpend" export "$h5" /indicators/t /indicators/megno /indicators/megno_mean \
+      /indicators/fli /indicators/sali /indicators/gali > "$tmp/ind.dat"
+    num k "$h5" vectors; num links "$h5" links 2
+    num tend "$h5" t_reached; num fli "$h5" fli_final
+    # the final GALI_2 .. GALI_K (h5dump: "(i): v1, v2, ..." lines)
+    read -r -a gvals <<< "$(h5dump -m %.17g -a /gali_final "$h5" 2>/dev/null \
+      | sed -n 's/^ *([0-9]*): *//p' | tr ',\n' '  ')"
+    [[ ${#gvals[@]} -eq $((k - 1)) ]] ||
+      plot_fail 2 "'$1': gali_final holds ${#gvals[@]} values, not $((k - 1))"
+    gal=""
+    for v in "${gvals[@]}"; do
+      plot_number g "$v" "a value of the attribute gali_final of '$1'"
+      gal+=" $g"
+    done
+    plot_begin "$out" indicators.png
+    plot_run gnuplot -c "$here/indicators.gp" "$tmp/ind.dat" "$figdir" "$title" \
+      "$k $links $tend $fli$gal"
+    printf 'plot_chaos.sh: wrote %s/indicators.png\n' "$out"
+    ;;
   *)
-    plot_fail 2 "'$1' was not written by dpend lyapunov/divergence/poincare"
+    plot_fail 2 "'$1' was not written by dpend lyapunov/divergence/poincare/indicators"
     ;;
 esac

@@ -17,9 +17,9 @@ module test_messages
 
    character(len=*), parameter :: nl = new_line('a')
    !> Every command with a --help (plus the program's own help).
-   character(len=16), parameter :: commands(11) = [character(len=16) :: 'simulate', &
-      'lyapunov', 'divergence', 'poincare', 'sweep', 'sweep-compare', 'export', 'study', &
-      'methods', '--help', 'help']
+   character(len=16), parameter :: commands(12) = [character(len=16) :: 'simulate', &
+      'lyapunov', 'divergence', 'poincare', 'indicators', 'sweep', 'sweep-compare', &
+      'export', 'study', 'methods', '--help', 'help']
 
 contains
 
@@ -171,6 +171,9 @@ contains
       call shown(error, text, '--pair-spacing', [ch%pair_spacing])
       text = chaos_help('lyapunov')
       ch = chaos_defaults('lyapunov')
+      call shown(error, text, '--tau', [ch%tau])
+      text = chaos_help('indicators')
+      ch = chaos_defaults('indicators')
       call shown(error, text, '--tau', [ch%tau])
       text = chaos_help('poincare')
       ch = chaos_defaults('poincare')

@@ -30,7 +30,7 @@ module dpend_lyapunov
    implicit none
    private
    public :: qr_positive, lyapunov_acc_t, renormalize, batch_exponents
-   public :: lyapunov_result_t, lyapunov_spectrum, sort_descending
+   public :: lyapunov_result_t, lyapunov_spectrum, sort_descending, next_multiple
 
    !> Running sums of ln R_ii from time t0 and their history.
    type :: lyapunov_acc_t
@@ -261,17 +261,7 @@ contains
                stat = stat_nonfinite
                exit
             end if
-            ! the next multiple of tau after t, found directly: a step may span many
-            ! intervals (tau < step of an adaptive method), counting them one by one
-            ! would not end (j fits: t_end/tau <= max_samples is validated)
-            if (t_next <= t + 1e-9_dp*tau) then
-               j = max(j + 1, int((t - t0)/tau, i8))
-               t_next = t0 + real(j, dp)*tau
-               do while (t_next <= t + 1e-9_dp*tau)
-                  j = j + 1
-                  t_next = t0 + real(j, dp)*tau
-               end do
-            end if
+            call next_multiple(t0, tau, t, j, t_next)
          end if
       end do
       res%k = k
@@ -285,6 +275,26 @@ contains
       call batch_exponents(acc, n_batches, res%batches, res%spread)
       call sort_descending(res)
    end subroutine lyapunov_spectrum
+
+   !> After a renormalisation (or sample) at t: t_next = t0 + j τ, the next multiple
+   !> of τ after t (j updated), unless t_next is already after t. Found directly: a
+   !> step may span many intervals (τ < step of an adaptive method), counting them
+   !> one by one would not end (j fits: t_end/τ <= max_samples is validated).
+   pure subroutine next_multiple(t0, tau, t, j, t_next)
+      real(dp), intent(in) :: t0             !! start time [s]
+      real(dp), intent(in) :: tau            !! interval [s], > 0
+      real(dp), intent(in) :: t              !! time reached [s]
+      integer(i8), intent(inout) :: j        !! index of t_next
+      real(dp), intent(inout) :: t_next      !! next scheduled time [s]
+      if (t_next <= t + 1e-9_dp*tau) then
+         j = max(j + 1, int((t - t0)/tau, i8))
+         t_next = t0 + real(j, dp)*tau
+         do while (t_next <= t + 1e-9_dp*tau)
+            j = j + 1
+            t_next = t0 + real(j, dp)*tau
+         end do
+      end if
+   end subroutine next_multiple
 
    !> Order the exponents descending, as documented, permuting their spreads, batch
    !> exponents and running estimates alike. The QR order is descending only in the

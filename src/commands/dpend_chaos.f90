@@ -1,7 +1,9 @@
-!> The chaos commands: `dpend lyapunov`, `dpend divergence`, `dpend poincare`.
+!> The chaos commands: `dpend lyapunov`, `dpend divergence`, `dpend poincare`,
+!> `dpend indicators`.
 !> Each builds a run configuration (the common flags and namelist groups of
 !> `dpend_config`, plus the group &chaos and its own flags), validates it, runs
-!> the numerics of `dpend_lyapunov`, `dpend_divergence` or `dpend_poincare` and
+!> the numerics of `dpend_lyapunov`, `dpend_divergence`, `dpend_poincare` or
+!> `dpend_indicators` and
 !> writes an HDF5 file (docs/hdf5-layout.md) and a summary on standard output
 !> whose last line is the result for scripts.
 module dpend_chaos
@@ -19,6 +21,7 @@ module dpend_chaos
    use dpend_divergence, only: divergence_result_t, divergence_pairs, line_fit_t, &
                                fit_exponential_phase
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
+   use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
    use dpend_version, only: version
@@ -41,8 +44,9 @@ module dpend_chaos
    !> Settings of the chaos commands (namelist group &chaos); each command uses
    !> its own subset.
    type :: chaos_config_t
-      character(len=:), allocatable :: command  !! 'lyapunov', 'divergence' or 'poincare'
-      ! lyapunov
+      character(len=:), allocatable :: command  !! 'lyapunov', 'divergence', 'poincare'
+                                                !! or 'indicators'
+      ! lyapunov (and indicators: the sampling interval)
       real(dp) :: tau = 0.5_dp           !! renormalisation interval [s]
       integer :: vectors = 0             !! tangent vectors (exponents computed), 1 to 2N;
                                          !! 0: all 2N
@@ -83,7 +87,7 @@ contains
       cfg%dt = 1e-3_dp
       cfg%output = command//'.h5'
       select case (command)
-      case ('lyapunov')
+      case ('lyapunov', 'indicators')
          cfg%t_end = 1000.0_dp
       case ('divergence')
          cfg%t_end = 40.0_dp
@@ -108,6 +112,18 @@ contains
              'vectors are integrated along it with the analytic Jacobian and'//nl// &
              're-orthonormalised by QR (LAPACK) every tau; the running estimates go'//nl// &
              'to HDF5. The last output line is "lyapunov: l1 l2 l3 l4" (1/s, descending).'
+      case ('indicators')
+         s = s//'Fast chaos indicators of one trajectory from its tangent dynamics: 2N'//nl// &
+             'deviation vectors (N links; an orthonormal set in general position) are'//nl// &
+             'integrated with the analytic Jacobian and rescaled to length 1 after'//nl// &
+             'every step (directions kept). Time series to HDF5, sampled every tau:'//nl// &
+             '  MEGNO Y(t) and its running mean <Y>(t) (Cincotta & Simo 2000): <Y> -> 2'//nl// &
+             '    on regular orbits, ~ lambda1 t/2 on chaotic ones;'//nl// &
+             '  FLI(t) = max_i ln|delta_i(t)| (Froeschle et al. 1997): ~ ln t (regular),'//nl// &
+             '    ~ lambda1 t (chaotic);'//nl// &
+             '  SALI (vectors 1, 2) and GALI_k, k = 2 .. 2N (Skokos et al. 2001, 2007):'//nl// &
+             '    GALI_k ~ t^(-2(k-N)) for k > N (regular), exponential decay (chaotic).'//nl// &
+             'The last output line is "indicators: <Y> FLI SALI GALI_2 .. GALI_2N".'
       case ('divergence')
          s = s//'Divergence of nearby trajectories: pairs started delta0 apart in'//nl// &
              '(q1, q2, w1, w2); log10|delta(t)| (angle differences wrapped), averaged'//nl// &
@@ -131,6 +147,9 @@ contains
              '                    default all 2N'//nl// &
              '  --batches N       time segments for the spread (standard error of the'//nl// &
              '                    segment exponents); default '//to_str(ch%batches)//nl
+      case ('indicators')
+         s = s//'  --tau S           sampling interval of the time series; default ' &
+             //real_str(ch%tau)//nl
       case ('divergence')
          s = s//'  --output-dt S     sampling interval of |delta|; default ' &
              //real_str(cfg%output_dt)//nl// &
@@ -293,6 +312,7 @@ contains
       case ('lyapunov --tau'); call parse_real(value, name, ch%tau, error)
       case ('lyapunov --vectors'); call parse_int(value, name, ch%vectors, error)
       case ('lyapunov --batches'); call parse_int(value, name, ch%batches, error)
+      case ('indicators --tau'); call parse_real(value, name, ch%tau, error)
       case ('divergence --delta0'); call parse_real(value, name, ch%delta0, error)
       case ('divergence --pairs'); call parse_int(value, name, ch%pairs, error)
       case ('divergence --pair-spacing'); call parse_real(value, name, ch%pair_spacing, error)
@@ -356,6 +376,24 @@ contains
                               8.0_dp*real(1 + n_vectors(ch, cfg), dp), sci(n)// &
                               ' renormalisations', &
                               'use a larger --tau', error)
+      case ('indicators')
+         if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
+            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' must be in (0, '// &
+                             sci(max_time)//'] (s)')
+         else if (fixed .and. ch%tau < cfg%dt) then
+            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
+                             //sci(cfg%dt)//' s of '//cfg%method//' (samples are taken '// &
+                             'at step ends; use tau >= dt)')
+         end if
+         if (allocated(error)) return
+         call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
+                          'samples', 'use a larger --tau or a shorter --t-end', error)
+         if (allocated(error)) return
+         n = cfg%t_end/ch%tau + 2.0_dp
+         ! per sample: time, FLI, SALI, 2N log-norms, 2N Y, 2N <Y>, 2N-1 GALI; copies
+         call check_resources('tau', n, 3.0_dp*8.0_dp*real(2 + 8*cfg%model%n_state(), dp), &
+                              8.0_dp*real(2 + 8*cfg%model%n_state(), dp), sci(n)// &
+                              ' samples', 'use a larger --tau', error)
       case ('divergence')
          y_max = max(1.0_dp, maxval(abs(cfg%q0())), maxval(abs(cfg%w0())))
          if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
@@ -483,6 +521,8 @@ contains
       select case (ch%command)
       case ('lyapunov')
          call run_lyapunov(cfg, ch, integ, out%temp, summary, error, failed)
+      case ('indicators')
+         call run_indicators(cfg, ch, integ, out%temp, summary, error, failed)
       case ('divergence')
          call run_divergence(cfg, ch, integ, out%temp, summary, error, failed)
       case default
@@ -578,6 +618,83 @@ contains
       end do
       summary = summary//nl//line
    end subroutine run_lyapunov
+
+   !> `dpend indicators`.
+   subroutine run_indicators(cfg, ch, integ, filename, summary, error, failed)
+      type(run_config_t), intent(in) :: cfg
+      type(chaos_config_t), intent(in) :: ch
+      class(integrator_t), intent(inout) :: integ
+      character(len=:), allocatable, intent(inout) :: summary
+      character(len=*), intent(in) :: filename  !! the file to write
+      type(error_t), allocatable, intent(out) :: error
+      logical, intent(inout) :: failed
+      type(indicators_result_t) :: res
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: status, line
+      integer :: stat, j, n
+      call chaos_indicators(integ, cfg%model, 0.0_dp, &
+                            integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
+                            cfg%dt, ch%tau, res, stat)
+      status = run_status(stat, res%t_reached)
+      n = res%n
+      call h5%open(filename, 'w', error)
+      if (allocated(error)) return
+      call write_common(h5, cfg, integ, 'indicators', status)
+      call h5%write('/indicators/t', res%t, units='s', description= &
+         'sample times (every tau, at step ends, and t_end)')
+      call h5%write('/indicators/megno', res%megno(), units='1', description= &
+         'MEGNO Y(t) = (2/t) int_0^t s (d ln|delta_1|/ds) ds of deviation vector 1')
+      call h5%write('/indicators/megno_mean', res%megno_mean(), units='1', description= &
+         'running mean <Y>(t) = (1/t) int_0^t Y ds of vector 1: 2 regular, lambda1 t/2 chaotic')
+      call h5%write('/indicators/fli', res%fli, units='1', description= &
+         'fast Lyapunov indicator FLI(t) = max_i ln|delta_i(t)|, |delta_i(0)| = 1')
+      call h5%write('/indicators/sali', res%sali, units='1', description= &
+         'SALI = min(|u1 + u2|, |u1 - u2|) of the unit deviation vectors 1 and 2')
+      call h5%write('/indicators/gali', res%gali, units='1', description= &
+         'GALI_k(t), column k-2 for k = 2 .. 2N: volume spanned by unit vectors 1 .. k')
+      call h5%write('/indicators/log_norm', res%log_norm, units='1', description= &
+         'ln|delta_i(t)| of each deviation vector, column i-1 for vector i')
+      call h5%write('/indicators/megno_vectors', res%megno_all, units='1', description= &
+         'MEGNO Y(t) of each deviation vector, column i-1 for vector i')
+      call h5%write('/indicators/megno_mean_vectors', res%mean_all, units='1', description= &
+         'running mean <Y>(t) of each deviation vector, column i-1 for vector i')
+      call h5%writeattr('/', 'tau', ch%tau)
+      call h5%writeattr('/', 'vectors', res%k)
+      call h5%writeattr('/', 't_reached', res%t_reached)
+      call h5%writeattr('/', 'n_samples', n)
+      call h5%writeattr('/', 'n_tangent_substeps', res%n_sub)
+      if (n > 0) then
+         call h5%writeattr('/', 'megno_mean_final', res%mean_all(1, n))
+         call h5%writeattr('/', 'fli_final', res%fli(n))
+         call h5%writeattr('/', 'sali_final', res%sali(n))
+         call h5%writeattr('/', 'gali_final', res%gali(:, n))
+      end if
+      call h5%close(error)   ! reports the first failed write, if any
+      if (allocated(error)) return
+      summary = 'dpend indicators: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
+                //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, '//to_str(n) &
+                //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
+                //' deviation vectors'//nl
+      if (n > 0) then
+         summary = summary//'MEGNO <Y> = '//es(res%mean_all(1, n))//' (Y = '// &
+                   es(res%megno_all(1, n))//'; 2: regular, ~ lambda1 t/2: chaotic)'//nl// &
+                   'FLI = '//es(res%fli(n))//' (ln t = '//es(log(res%t(n)))// &
+                   ': regular ~ ln t + c)'//nl//'SALI = '//es(res%sali(n))//nl
+         do j = 2, res%k
+            summary = summary//'GALI_'//to_str(j)//' = '//es(res%gali(j - 1, n))//nl
+         end do
+      end if
+      summary = summary//"dpend indicators: wrote '"//cfg%output//"'"
+      if (stat /= stat_ok .or. n == 0) then
+         call stopped(status, cfg%output, error, failed)
+         return
+      end if
+      line = 'indicators: '//es(res%mean_all(1, n))//' '//es(res%fli(n))//' '//es(res%sali(n))
+      do j = 1, res%k - 1
+         line = line//' '//es(res%gali(j, n))
+      end do
+      summary = summary//nl//line
+   end subroutine run_indicators
 
    !> `dpend divergence`.
    subroutine run_divergence(cfg, ch, integ, filename, summary, error, failed)
