@@ -43,12 +43,16 @@ module dpend_chaos
 
    !> Settings of the chaos commands (namelist group &chaos); each command uses
    !> its own subset.
+   !> --vectors not given: all 2N exponents (a value no user can give: huge is
+   !> refused by parse_int's range, and the check accepts only 1 … 2N otherwise).
+   integer, parameter :: all_vectors = -huge(1)
+
    type :: chaos_config_t
       character(len=:), allocatable :: command  !! 'lyapunov', 'divergence', 'poincare'
                                                 !! or 'indicators'
       ! lyapunov (and indicators: the sampling interval)
       real(dp) :: tau = 0.5_dp           !! renormalisation interval [s]
-      integer :: vectors = 0             !! tangent vectors (exponents computed), 1 to 2N;
+      integer :: vectors = all_vectors   !! tangent vectors (exponents computed), 1 to 2N;
                                          !! 0: all 2N
       integer :: batches = 10            !! batches for the statistical spread
       ! divergence
@@ -360,10 +364,11 @@ contains
             call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
                              //sci(cfg%dt)//' s of '//cfg%method//' (renormalisations '// &
                              'happen at step ends; use tau >= dt)')
-         else if (ch%vectors < 0 .or. ch%vectors > cfg%model%n_state()) then
+         else if (ch%vectors /= all_vectors .and. &
+                  (ch%vectors < 1 .or. ch%vectors > cfg%model%n_state())) then
             call fatal_error(error, 'invalid vectors: '//to_str(ch%vectors)// &
                              ' must be an integer from 1 to '//to_str(cfg%model%n_state())// &
-                             ' (2N for N links; 0: all)')
+                             ' (2N for N links)')
          else if (ch%batches < 1 .or. ch%batches > 100000) then
             call fatal_error(error, 'invalid batches: must be an integer from 1 to 100000')
          end if
@@ -932,12 +937,12 @@ contains
    end subroutine stopped
 
    !> " (x % of ref)" when ref /= 0.
-   !> Tangent vectors of `dpend lyapunov`: --vectors, or all 2N when it is 0.
+   !> Tangent vectors of `dpend lyapunov`: --vectors, or all 2N when not given.
    pure integer function n_vectors(ch, cfg)
       type(chaos_config_t), intent(in) :: ch  !! chaos settings
       type(run_config_t), intent(in) :: cfg   !! run settings (model built)
       n_vectors = ch%vectors
-      if (n_vectors == 0) n_vectors = cfg%model%n_state()
+      if (n_vectors == all_vectors) n_vectors = cfg%model%n_state()
    end function n_vectors
 
    function pct(x, ref) result(s)
