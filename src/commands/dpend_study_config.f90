@@ -234,7 +234,8 @@ contains
           'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
           'options:'//nl// &
           '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
-          '                    data/study.nml, identical to the built-in defaults)'//nl// &
+          '                    data/study.nml, identical to the built-in defaults;'//nl// &
+          '                    data/study_chain.nml: the triple pendulum, N-link chain)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
           '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
