@@ -302,6 +302,7 @@ contains
       integer :: im, ic, io, id, s, so, i, k
       character(len=8) :: date
       character(len=10) :: time
+      character(len=:), allocatable :: upright
       real(dp) :: per_step
       v = study_verdicts(cfg, res)
       io = case_index(cfg, cfg%order_case)
@@ -312,9 +313,11 @@ contains
            time(1:2)//':'//time(3:4)//', host '//host_name()//', '//cpu_model()//', '// &
            to_str(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
+      upright = 'both links'
+      if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) upright = 'every link'
       md = md//nl//nl// &
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
-           'the potential energy with both links upright (see the cases). Global error: '// &
+           'the potential energy with '//upright//' upright (see the cases). Global error: '// &
            'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
