@@ -16,6 +16,7 @@ module test_study
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    use dpend_cli, only: to_str
+   use dpend_limits, only: sci
    implicit none
    private
    public :: collect_study
@@ -34,6 +35,8 @@ contains
               new_unittest('grids', test_grids), &
               new_unittest('hamiltonian_quadruple', test_hamiltonian_qp), &
               new_unittest('tiny_study_orders', test_tiny_study), &
+              new_unittest('tiny_chain_study', test_tiny_chain_study), &
+              new_unittest('chain_config_file', test_chain_config), &
               new_unittest('default_config_file', test_default_config), &
               new_unittest('bad_input_rejected', test_bad_input)]
    end subroutine collect_study
@@ -325,6 +328,127 @@ contains
       call execute_command_line('rm -rf '//dir)
    end subroutine test_tiny_study
 
+   !> A tiny study of the triple pendulum (N-link chain, N = 3) in process: the
+   !> orders of rk4 and gauss4 are the nominal ones (±0.3), H(0) is the chain's
+   !> potential energy in closed form, the states have 2N = 6 components, and the
+   !> roundoff experiment (the double pendulum's H in quadruple precision) reads
+   !> "not run for the N-link chain" while the Tao runs are made.
+   subroutine test_tiny_chain_study(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(study_result_t) :: res
+      type(verdicts_t) :: v
+      character(len=:), allocatable :: md
+      real(dp) :: v0
+      integer :: s
+      cfg = study_defaults()
+      cfg%cases = [study_case_t('triple', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp, &
+                                           -0.5_dp*pi + 0.1_dp], [0.0_dp, 0.0_dp, 0.0_dp], &
+                                300.0_dp)]
+      cfg%methods = [study_method_t('rk4', 1.0e-3_dp, 2.5e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 4
+      cfg%order_case = 'triple'
+      cfg%drift_case = 'triple'
+      cfg%ro_case = 'triple'
+      cfg%tao_case = 'triple'
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%ro_methods = [character(len=16) :: 'gauss4']
+      cfg%ro_dt = [1.0e-2_dp]
+      cfg%ro_steps = 300.0_dp
+      cfg%ro_runs = 2
+      cfg%tao_methods = [character(len=16) :: 'tao2']
+      cfg%n_omega = 2
+      cfg%tao_t_end = 0.5_dp
+      cfg%tao_dt = 1.0e-2_dp
+      cfg%threads = 2
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call run_study(cfg, res, quiet=.true.)
+      ! V = sum_i G_i sin q_i, G = g l (m_i/2 + sum_(k>i) m_k) = 9.8 (2.5, 1.5, 0.5) J
+      v0 = -9.8_dp*(2.5_dp*cos(0.3_dp) + 1.5_dp*cos(0.2_dp) + 0.5_dp*cos(0.1_dp))
+      call check(error, res%refs(1)%e0, v0, 'H(0) of the triple pendulum at rest', &
+                 rel=1e-13_dp)
+      call check_true(error, size(res%refs(1)%y, 1) == 6 .and. &
+                      size(res%sweeps(1)%y_check, 1) == 6, 'states of 2N = 6 components')
+      call check_true(error, res%refs(1)%check_difference < 1e-12_dp, &
+                      'reference and check method agree: '//sci(res%refs(1)%check_difference))
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            call check_true(error, all(sw%stat == 0), sw%method//': every run succeeded')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, real(sw%order, dp), &
+                       sw%method//' order from the global error (N = 3)', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
+                       sw%method//' order from the energy error (N = 3)', abs=0.3_dp)
+         end associate
+      end do
+      call check_true(error, size(res%roundoff) == 0 .and. size(res%tao) == 1, &
+                      'no roundoff runs on the chain, Tao runs made')
+      call check_true(error, all(res%tao(1)%stat == 0), 'Tao runs succeeded')
+      v = study_verdicts(cfg, res)
+      call check_true(error, v%orders, 'order verdict: '//v%orders_text)
+      call check_true(error, .not. v%roundoff_run .and. &
+                      index(v%roundoff_text, 'not run for the N-link chain') > 0, &
+                      'roundoff verdict: '//v%roundoff_text)
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, 'roundoff: not run: not run for the N-link chain') > 0, &
+                      'summary names the roundoff experiment not run')
+   end subroutine test_tiny_chain_study
+
+   !> data/study_chain.nml: two triple-pendulum cases; the effective configuration
+   !> written by study_namelist reads back to the same text (lists of links), also
+   !> when a double-pendulum case and a chain case are mixed.
+   subroutine test_chain_config(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg, back
+      character(len=:), allocatable :: dir, text
+      cfg = study_defaults()
+      call read_study_config('data/study_chain.nml', cfg, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call check_true(error, size(cfg%cases) == 2, 'two cases')
+      if (allocated(error)) return
+      call check_true(error, size(cfg%cases(1)%q0) == 3 .and. size(cfg%cases(2)%w0) == 3, &
+                      'three links each')
+      call check(error, cfg%cases(1)%q0(3), -0.5_dp*pi + 0.1_dp, 'case_q(3, 1)', abs=1e-15_dp)
+      call check_true(error, all(cfg%cases(2)%q0 == 0.0_dp), 'horizontal release')
+      dir = scratch_dir('study-chain-config')
+      text = study_namelist(cfg)
+      call write_file(dir//'/back.nml', text)
+      back = study_defaults()
+      call read_study_config(dir//'/back.nml', back, error)
+      if (allocated(error)) return
+      call check_true(error, study_namelist(back) == text, 'chain namelist reads back:'// &
+                      new_line('a')//text)
+      ! a double-pendulum case next to a chain case of one link, with lists m, l
+      call write_file(dir//'/mixed.nml', "&pendulum m = 1.5, 0.5, l = 0.8, 1.2 /"// &
+                      new_line('a')//"&study case_name(1) = 'dp', case_q1(1) = 0.3, "// &
+                      "case_name(2) = 'one', case_links(2) = 1, case_q(1, 2) = -1.0, "// &
+                      "order_case = 'one', drift_case = 'dp', ro_case = 'dp', tao_case = 'one' /")
+      cfg = study_defaults()
+      call read_study_config(dir//'/mixed.nml', cfg, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call check_true(error, size(cfg%cases(1)%q0) == 2 .and. size(cfg%cases(2)%q0) == 1, &
+                      'links 2 and 1')
+      call check_true(error, all(cfg%cases(1)%q0 == [0.3_dp, 0.0_dp]) .and. &
+                      all(cfg%cases(2)%q0 == [-1.0_dp]) .and. cfg%m(2) == 0.5_dp .and. &
+                      cfg%l(1) == 0.8_dp, 'values read')
+      text = study_namelist(cfg)
+      call write_file(dir//'/back2.nml', text)
+      back = study_defaults()
+      call read_study_config(dir//'/back2.nml', back, error)
+      if (allocated(error)) return
+      call check_true(error, study_namelist(back) == text, 'mixed namelist reads back:'// &
+                      new_line('a')//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_chain_config
+
    !> data/study.nml is the default study, written out: reading it gives the
    !> built-in defaults.
    subroutine test_default_config(error)
@@ -377,6 +501,18 @@ contains
       call write_file(dir//'/tol.nml', "&study method(1) = 'rk4', rtol_min(1) = 1e-9, "// &
                       'rtol_max(1) = 1e-6 /')
       call rejected('--config '//dir//'/tol.nml', 'rtol')
+      ! chain cases: a list of the wrong length, the two-link names, m too short
+      call write_file(dir//'/links.nml', "&study case_name(1) = 'c', case_links(1) = 3, "// &
+                      'case_q(1:2, 1) = 0.1, 0.2 /')
+      call rejected('--config '//dir//'/links.nml', 'case_q(:, 1)')
+      call write_file(dir//'/names.nml', "&study case_name(1) = 'c', case_links(1) = 3, "// &
+                      'case_w2(1) = 0.1 /')
+      call rejected('--config '//dir//'/names.nml', 'case_w1, case_w2(1)')
+      call write_file(dir//'/mlist.nml', '&pendulum m = 1, 1 /'//new_line('a')// &
+                      "&study case_name(1) = 'c', case_links(1) = 3 /")
+      call rejected('--config '//dir//'/mlist.nml', 'invalid m: 2 values')
+      call write_file(dir//'/toomany.nml', "&study case_name(1) = 'c', case_links(1) = 33 /")
+      call rejected('--config '//dir//'/toomany.nml', 'case_links(1)')
       ! an existing output is kept
       call write_file(dir//'/out.h5', 'keep me')
       call rejected('--quick', 'exists')

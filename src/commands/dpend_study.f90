@@ -7,7 +7,7 @@
 !> * the **short run** to t_short, through `n_check` checkpoints k·t_short/n_check
 !>   that fixed steps hit exactly (h = (t_short/n_check)/m, m an integer) and the
 !>   adaptive methods reach exactly (their last step is capped). It gives the
-!>   global error, the largest deviation max(|Δq1|, |Δq2|, |Δq̇1|, |Δq̇2|) [rad,
+!>   global error, the largest deviation max(|Δq_i|, |Δq̇_i|) over the links [rad,
 !>   rad/s] from the reference over the checkpoints; the largest relative energy
 !>   error over every step up to t_short; the counters; and the wall time of the
 !>   same run without monitoring, repeated until it lasts `wall_min`.
@@ -18,9 +18,14 @@
 !>   drift exponent is the slope of ln(bin maximum) against ln t over the last
 !>   `drift_decades` decades.
 !>
-!> E_s = `energy_scale(par, H(0))`: |H(0)|, or the potential energy with both
-!> links upright when H(0) ≈ 0 (the horizontal release). H is the Hamiltonian of
-!> the canonical methods' (q, p) and the energy T + V of the others' (q, q̇).
+!> E_s = the model's `energy_scale(H(0))`: |H(0)|, or the potential energy with
+!> every link upright when H(0) ≈ 0 (the horizontal release). H is the Hamiltonian
+!> of the canonical methods' (q, p) and the energy T + V of the others' (q, q̇).
+!>
+!> A case of N links runs the double pendulum for N = 2 and the N-link chain
+!> otherwise (`case_model`), through the model interface; states have 2N values.
+!> Only the roundoff runs are the double pendulum's alone (H in quadruple precision):
+!> for a `ro_case` of other than two links they are not run.
 !>
 !> The adaptive methods are swept twice: at fixed steps with the error control
 !> off (`fixed_step`: the order of the underlying formula) and over tolerances
@@ -46,7 +51,7 @@ module dpend_study
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
-   use dpend_pendulum, only: pendulum_t, energy, energy_scale
+   use dpend_pendulum, only: pendulum_t, double_pendulum_t
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
@@ -55,7 +60,7 @@ module dpend_study
    use dpend_propagate, only: march_t
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock, stderr_is_terminal
-   use dpend_study_config, only: study_config_t, case_index
+   use dpend_study_config, only: study_config_t, case_index, case_model
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
    private
@@ -76,7 +81,7 @@ module dpend_study
    !> Reference solution of one case at the checkpoints.
    type :: reference_t
       real(dp), allocatable :: t(:)      !! checkpoint times (n_check) [s]
-      real(dp), allocatable :: y(:, :)   !! (q1, q2, q̇1, q̇2) at them, (4, n_check)
+      real(dp), allocatable :: y(:, :)   !! (q1 … qN, q̇1 … q̇N) at them, (2N, n_check)
       real(dp) :: check_difference = 0.0_dp  !! max deviation of the check method
       real(dp) :: e0 = 0.0_dp            !! initial energy [J]
       real(dp) :: e_scale = 1.0_dp       !! energy unit E_s [J]
@@ -97,7 +102,7 @@ module dpend_study
       real(dp), allocatable :: t_bins(:)   !! upper edges of the time bins [s]
       real(dp), allocatable :: h_mean_short(:)  !! t_short / accepted steps [s]
       real(dp), allocatable :: h_mean_long(:)   !! t_long / accepted steps [s]
-      real(dp), allocatable :: y_check(:, :, :) !! states at the checkpoints (4, n_check, n)
+      real(dp), allocatable :: y_check(:, :, :) !! states at the checkpoints (2N, n_check, n)
       real(dp), allocatable :: global_error(:)  !! max deviation from the reference
       real(dp), allocatable :: energy_short(:)  !! max relative energy error up to t_short
       real(dp), allocatable :: energy_long(:)   !! max relative energy error up to t_long
@@ -397,29 +402,33 @@ contains
       type(study_config_t), intent(in) :: cfg
       type(study_result_t), intent(inout) :: res
       class(integrator_t), allocatable :: integ
+      class(model_t), allocatable :: model
       type(error_t), allocatable :: error
-      real(dp) :: yc(4, cfg%n_check), interval
+      real(dp), allocatable :: yc(:, :)
+      real(dp) :: interval
       integer :: ic, k
       interval = cfg%t_short/cfg%n_check
       allocate (res%refs(size(cfg%cases)))
       do ic = 1, size(cfg%cases)
          associate (ref => res%refs(ic), cs => cfg%cases(ic))
+            call case_model(cfg, ic, model)
             ref%t = [(k*interval, k=1, cfg%n_check)]
-            allocate (ref%y(4, cfg%n_check))
-            ref%e0 = energy(cfg%model%par, cs%q0, cs%w0)
-            ref%e_scale = energy_scale(cfg%model%par, ref%e0)
+            allocate (ref%y(2*size(cs%q0), cfg%n_check), yc(2*size(cs%q0), cfg%n_check))
+            ref%e0 = model%energy(0.0_dp, [cs%q0, cs%w0])
+            ref%e_scale = model%energy_scale(ref%e0)
             call new_integrator(cfg%ref_method, integ, error)
-            call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, &
+            call checkpoints(integ, model, cs%q0, cs%w0, ref%t, &
                              interval/real(max(1, nint(interval/cfg%ref_dt)), dp), ref%y, ref%stat)
             call new_integrator(cfg%check_method, integ, error, method_options_t( &
                                 rtol=cfg%check_rtol, atol=1.0e-2_dp*cfg%check_rtol))
-            call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
+            call checkpoints(integ, model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
             if (k == stat_ok .and. ref%stat == stat_ok) then
                ref%check_difference = maxval(abs(yc - ref%y))
             else
                ref%check_difference = huge(1.0_dp)
                if (ref%stat == stat_ok) ref%stat = k
             end if
+            deallocate (yc)
          end associate
       end do
    end subroutine compute_references
@@ -429,12 +438,14 @@ contains
    subroutine checkpoints(integ, par, q0, w0, times, h, ys, stat)
       class(integrator_t), intent(inout) :: integ
       class(model_t), intent(in) :: par
-      real(dp), intent(in) :: q0(2), w0(2), times(:), h
+      real(dp), intent(in) :: q0(:), w0(:), times(:), h
       real(dp), intent(out) :: ys(:, :)
       integer, intent(out) :: stat
       type(march_t) :: march
-      real(dp) :: t, y(4), hh
-      integer :: k
+      real(dp) :: t, hh
+      real(dp), allocatable :: y(:)
+      integer :: k, n
+      n = size(q0)
       y = integ%to_internal(par, q0, w0)
       t = 0.0_dp
       hh = h
@@ -447,7 +458,7 @@ contains
             call march%next(integ, par, t, y, hh, stat)
             if (stat /= stat_ok) return
          end do
-         call integ%to_physical(par, y, ys(1:2, k), ys(3:4, k))
+         call integ%to_physical(par, y, ys(1:n, k), ys(n + 1:2*n, k))
       end do
    end subroutine checkpoints
 
@@ -497,7 +508,7 @@ contains
                      sw%x = geometric(me%rtol_max, me%rtol_min, n)
                   end if
                   sw%mid = (n + 1)/2
-                  call allocate_sweep(sw, n, cfg%n_check, nb, nan)
+                  call allocate_sweep(sw, n, 2*size(cfg%cases(ic)%q0), cfg%n_check, nb, nan)
                   ! the long horizon: long_steps steps of the fixed-step sweep's middle step
                   block
                      real(dp) :: hs(cfg%n_h)
@@ -520,10 +531,15 @@ contains
             end do
          end do
       end do
-      ! roundoff
+      ! roundoff: H in quadruple precision is the double pendulum's; not run for a
+      ! case of other than two links (the verdict says so)
       n_ro = nint(cfg%ro_steps, i8)
-      allocate (res%roundoff(size(cfg%ro_methods)))
-      do i = 1, size(cfg%ro_methods)
+      if (size(cfg%cases(case_index(cfg, cfg%ro_case))%q0) == 2) then
+         allocate (res%roundoff(size(cfg%ro_methods)))
+      else
+         allocate (res%roundoff(0))
+      end if
+      do i = 1, size(res%roundoff)
          associate (ro => res%roundoff(i))
             ro%method = trim(cfg%ro_methods(i))
             ro%dt = cfg%ro_dt(i)
@@ -560,11 +576,11 @@ contains
       call move_alloc(list, jobs)
    end subroutine plan
 
-   subroutine allocate_sweep(sw, n, n_check, nb, nan)
+   subroutine allocate_sweep(sw, n, n_state, n_check, nb, nan)
       type(sweep_t), intent(inout) :: sw
-      integer, intent(in) :: n, n_check, nb
+      integer, intent(in) :: n, n_state, n_check, nb
       real(dp), intent(in) :: nan
-      allocate (sw%h_mean_short(n), sw%h_mean_long(n), sw%y_check(4, n_check, n), &
+      allocate (sw%h_mean_short(n), sw%h_mean_long(n), sw%y_check(n_state, n_check, n), &
                 sw%global_error(n), sw%energy_short(n), sw%energy_long(n), &
                 sw%energy_final(n), sw%bins(n, nb), sw%drift(n), sw%drift_stderr(n), &
                 sw%short_steps(n), sw%short_rhs(n), sw%short_iter(n), sw%short_rejected(n), &
@@ -679,16 +695,20 @@ contains
       type(sweep_t), intent(inout) :: sw
       integer, intent(in) :: k
       class(integrator_t), allocatable :: integ
+      class(model_t), allocatable :: model
       type(march_t) :: march
-      real(dp) :: y(4), y0(4), t, hh, h0, e, e0, es, start
+      real(dp) :: t, hh, h0, e, e0, es, start
+      real(dp), allocatable :: y(:), y0(:)
       real(dp) :: bins(size(sw%t_bins))
-      integer :: stat, kc, jb, nb
+      integer :: stat, kc, jb, nb, n
       type(fit_t) :: fit
       associate (cs => cfg%cases(sw%icase))
+         call case_model(cfg, sw%icase, model)
+         n = size(cs%q0)
          call make_method(cfg, sw, k, integ)
-         y0 = integ%to_internal(cfg%model, cs%q0, cs%w0)
-         e0 = energy_of(integ, cfg%model, y0)
-         es = energy_scale(cfg%model%par, e0)
+         y0 = integ%to_internal(model, cs%q0, cs%w0)
+         e0 = energy_of(integ, model, y0)
+         es = model%energy_scale(e0)
          h0 = merge(sw%x(k), 0.0_dp, sw%mode == mode_step)
          ! ---- short run with monitoring
          y = y0; t = 0.0_dp; hh = h0
@@ -698,13 +718,14 @@ contains
             if (sw%mode == mode_step) hh = h0
             call march%start(integ, t, ref%t(kc), hh)
             do while (.not. march%finished)
-               call march%next(integ, cfg%model, t, y, hh, stat)
+               call march%next(integ, model, t, y, hh, stat)
                if (stat /= stat_ok) exit
                sw%energy_short(k) = max(sw%energy_short(k), &
-                                        abs(energy_of(integ, cfg%model, y) - e0)/es)
+                                        abs(energy_of(integ, model, y) - e0)/es)
             end do
             if (stat /= stat_ok) exit
-            call integ%to_physical(cfg%model, y, sw%y_check(1:2, kc, k), sw%y_check(3:4, kc, k))
+            call integ%to_physical(model, y, sw%y_check(1:n, kc, k), &
+                                   sw%y_check(n + 1:2*n, kc, k))
          end do
          sw%short_steps(k) = integ%n_steps; sw%short_rhs(k) = integ%n_rhs
          sw%short_iter(k) = integ%n_iter; sw%short_rejected(k) = integ%n_rejected
@@ -727,9 +748,9 @@ contains
          start = wall_clock()
          call march%start(integ, t, sw%t_long, hh)
          do while (.not. march%finished)
-            call march%next(integ, cfg%model, t, y, hh, stat)
+            call march%next(integ, model, t, y, hh, stat)
             if (stat /= stat_ok) exit
-            e = abs(energy_of(integ, cfg%model, y) - e0)/es
+            e = abs(energy_of(integ, model, y) - e0)/es
             do while (jb < nb)
                if (t <= sw%t_bins(jb)) exit
                jb = jb + 1
@@ -762,17 +783,20 @@ contains
       type(study_result_t), intent(inout) :: res
       logical, intent(in) :: show
       class(integrator_t), allocatable :: integ
-      real(dp) :: y0(4), start
+      class(model_t), allocatable :: model
+      real(dp) :: start
+      real(dp), allocatable :: y0(:)
       integer :: s, k, n
       start = wall_clock()
       n = 0
       do s = 1, size(res%sweeps)
          associate (sw => res%sweeps(s), cs => cfg%cases(res%sweeps(s)%icase))
+            call case_model(cfg, sw%icase, model)
             do k = 1, size(sw%x)
                if (sw%stat(k) /= stat_ok) cycle
                call make_method(cfg, sw, k, integ)
-               y0 = integ%to_internal(cfg%model, cs%q0, cs%w0)
-               sw%wall_short(k) = time_short_run(integ, cfg, res%refs(sw%icase), y0, &
+               y0 = integ%to_internal(model, cs%q0, cs%w0)
+               sw%wall_short(k) = time_short_run(integ, model, cfg, res%refs(sw%icase), y0, &
                                                  merge(sw%x(k), 0.0_dp, sw%mode == mode_step), &
                                                  sw%mode)
                n = n + 1
@@ -789,14 +813,15 @@ contains
    !> Wall time of one short run without monitoring [s]: the count of repetitions
    !> doubles until a batch lasts wall_min/5; the time per run is the minimum over
    !> five such batches (robust against preemption on a shared machine).
-   real(dp) function time_short_run(integ, cfg, ref, y0, h0, mode) result(seconds)
+   real(dp) function time_short_run(integ, model, cfg, ref, y0, h0, mode) result(seconds)
       class(integrator_t), intent(inout) :: integ
+      class(model_t), intent(in) :: model
       type(study_config_t), intent(in) :: cfg
       type(reference_t), intent(in) :: ref
-      real(dp), intent(in) :: y0(4), h0
+      real(dp), intent(in) :: y0(:), h0
       integer, intent(in) :: mode
       type(march_t) :: march
-      real(dp) :: y(4), t, hh, start, elapsed, best
+      real(dp) :: y(size(y0)), t, hh, start, elapsed, best
       integer :: reps, r, kc, stat, batch
       real(dp) :: sink
       reps = 1
@@ -812,7 +837,7 @@ contains
                if (mode == mode_step) hh = h0
                call march%start(integ, t, ref%t(kc), hh)
                do while (.not. march%finished)
-                  call march%next(integ, cfg%model, t, y, hh, stat)
+                  call march%next(integ, model, t, y, hh, stat)
                   if (stat /= stat_ok) exit
                end do
             end do
@@ -837,23 +862,34 @@ contains
       type(roundoff_t), intent(inout) :: ro
       integer, intent(in) :: r, c
       class(integrator_t), allocatable :: integ
+      class(model_t), allocatable :: model
       type(error_t), allocatable :: error
+      type(pendulum_t) :: par
       real(dp) :: y(4), t, h, q0(2), es, comp(4), start
       real(qp) :: h0
       integer(i8) :: n
       integer :: stat, j
+      ! the quadruple-precision H is the double pendulum's: `plan` makes no roundoff
+      ! jobs for a case of other than two links
+      call case_model(cfg, case_index(cfg, cfg%ro_case), model)
+      select type (model)
+      type is (double_pendulum_t)
+         par = model%par
+      class default
+         return
+      end select
       associate (cs => cfg%cases(case_index(cfg, cfg%ro_case)))
          call new_integrator(ro%method, integ, error, method_options_t(compensated=c == 1))
          q0 = cs%q0 + cfg%ro_perturb*real(r - 1, dp)*[1.0_dp, -0.7_dp]
-         y = integ%to_internal(cfg%model, q0, cs%w0)
-         h0 = hamiltonian_qp(cfg%model%par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-         es = energy_scale(cfg%model%par, real(h0, dp))
+         y = integ%to_internal(model, q0, cs%w0)
+         h0 = hamiltonian_qp(par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
+         es = model%energy_scale(real(h0, dp))
          t = 0.0_dp
          j = 1
          start = wall_clock()
          do n = 1, ro%steps(size(ro%steps))
             h = ro%dt
-            call integ%step(cfg%model, t, y, h, stat)
+            call integ%step(model, t, y, h, stat)
             if (stat /= stat_ok) exit
             t = real(n, dp)*ro%dt
             if (n == ro%steps(j)) then
@@ -862,7 +898,7 @@ contains
                class is (symplectic_t)
                   comp = integ%comp(:4)
                end select
-               ro%err(j, r, c) = real((hamiltonian_qp(cfg%model%par, y, comp) - h0)/real(es, qp), dp)
+               ro%err(j, r, c) = real((hamiltonian_qp(par, y, comp) - h0)/real(es, qp), dp)
                j = j + 1
             end if
          end do
@@ -878,27 +914,31 @@ contains
       type(tao_sweep_t), intent(inout) :: ts
       integer, intent(in) :: k
       class(integrator_t), allocatable :: integ
+      class(model_t), allocatable :: model
       type(error_t), allocatable :: error
       type(march_t) :: march
-      real(dp) :: y(4), t, hh, e0, es, e, yc(4, cfg%n_check)
+      real(dp) :: t, hh, e0, es, e
+      real(dp), allocatable :: y(:), yc(:, :)
       integer :: stat
       associate (cs => cfg%cases(case_index(cfg, cfg%tao_case)))
+         call case_model(cfg, case_index(cfg, cfg%tao_case), model)
+         allocate (yc(2*size(cs%q0), cfg%n_check))
          call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
-         call checkpoints(integ, cfg%model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
+         call checkpoints(integ, model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
          if (stat == stat_ok) ts%global_error(k) = maxval(abs(yc - ref%y))
          call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
-         y = integ%to_internal(cfg%model, cs%q0, cs%w0)
-         e0 = energy_of(integ, cfg%model, y)
-         es = energy_scale(cfg%model%par, e0)
+         y = integ%to_internal(model, cs%q0, cs%w0)
+         e0 = energy_of(integ, model, y)
+         es = model%energy_scale(e0)
          t = 0.0_dp
          hh = cfg%tao_dt
          e = 0.0_dp
          ts%energy_max(k) = 0.0_dp
          call march%start(integ, t, cfg%tao_t_end, hh)
          do while (.not. march%finished)
-            call march%next(integ, cfg%model, t, y, hh, stat)
+            call march%next(integ, model, t, y, hh, stat)
             if (stat /= stat_ok) exit
-            e = abs(energy_of(integ, cfg%model, y) - e0)/es
+            e = abs(energy_of(integ, model, y) - e0)/es
             ts%energy_max(k) = max(ts%energy_max(k), e)
          end do
          ts%energy_final(k) = e

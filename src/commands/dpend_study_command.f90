@@ -273,7 +273,13 @@ contains
       end do
       v%roundoff_run = size(res%roundoff) > 0
       v%roundoff = len(bad) == 0 .and. v%roundoff_run
-      if (.not. v%roundoff_run) then
+      i = case_index(cfg, cfg%ro_case)
+      if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0 .and. &
+          size(cfg%cases(max(i, 1))%q0) /= 2) then
+         v%roundoff_text = 'not run for the N-link chain (case '//cfg%ro_case//', '// &
+                           to_str(size(cfg%cases(max(i, 1))%q0))//' links): H in quadruple '// &
+                           'precision is the double pendulum''s'
+      else if (.not. v%roundoff_run) then
          v%roundoff_text = 'no roundoff method among the methods of this study'
       else if (v%roundoff) then
          v%roundoff_text = "Brouwer's law: compensated exponents within 0.5 ± " &
@@ -296,6 +302,7 @@ contains
       integer :: im, ic, io, id, s, so, i, k
       character(len=8) :: date
       character(len=10) :: time
+      character(len=:), allocatable :: upright
       real(dp) :: per_step
       v = study_verdicts(cfg, res)
       io = case_index(cfg, cfg%order_case)
@@ -306,9 +313,11 @@ contains
            time(1:2)//':'//time(3:4)//', host '//host_name()//', '//cpu_model()//', '// &
            to_str(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
+      upright = 'both links'
+      if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) upright = 'every link'
       md = md//nl//nl// &
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
-           'the potential energy with both links upright (see the cases). Global error: '// &
+           'the potential energy with '//upright//' upright (see the cases). Global error: '// &
            'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
@@ -443,9 +452,8 @@ contains
            '|---|---|---|---|---|---|'//nl
       do ic = 1, size(cfg%cases)
          associate (cs => cfg%cases(ic), ref => res%refs(ic))
-            md = md//'| '//cs%name//' | '//num(cs%q0(1), 'f0.4')//', '// &
-                 num(cs%q0(2), 'f0.4')//' | '//num(cs%w0(1), 'f0.3')//', '// &
-                 num(cs%w0(2), 'f0.3')//' | '//num(ref%e0, 'f0.4')//' | '// &
+            md = md//'| '//cs%name//' | '//nums(cs%q0, 'f0.4')//' | '// &
+                 nums(cs%w0, 'f0.3')//' | '//num(ref%e0, 'f0.4')//' | '// &
                  num(ref%e_scale, 'f0.4')
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
                md = md//' = \|H(0)\|'
@@ -504,6 +512,18 @@ contains
          s = '–'
       end if
    end function slope
+
+   !> The values of x, comma separated.
+   function nums(x, f) result(s)
+      real(dp), intent(in) :: x(:)
+      character(len=*), intent(in) :: f
+      character(len=:), allocatable :: s
+      integer :: k
+      s = num(x(1), f)
+      do k = 2, size(x)
+         s = s//', '//num(x(k), f)
+      end do
+   end function nums
 
    function num(x, f) result(s)
       real(dp), intent(in) :: x
@@ -582,7 +602,7 @@ contains
       type(h5file_t) :: h5
       type(verdicts_t) :: v
       real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
-      integer :: ic, s, i
+      integer :: ic, s, i, n
       character(len=:), allocatable :: g, names
       character(len=8) :: date
       character(len=10) :: time
@@ -593,9 +613,18 @@ contains
       ! configuration
       call h5%write('/config/namelist', study_namelist(cfg), units='', description= &
          'the effective configuration as &pendulum and &study namelists')
-      call h5%writeattr('/config', 'm1', cfg%model%par%m1); call h5%writeattr('/config', 'm2', cfg%model%par%m2)
-      call h5%writeattr('/config', 'l1', cfg%model%par%l1); call h5%writeattr('/config', 'l2', cfg%model%par%l2)
-      call h5%writeattr('/config', 'g', cfg%model%par%g)
+      call h5%writeattr('/config', 'm1', cfg%m(1)); call h5%writeattr('/config', 'm2', cfg%m(2))
+      call h5%writeattr('/config', 'l1', cfg%l(1)); call h5%writeattr('/config', 'l2', cfg%l(2))
+      call h5%writeattr('/config', 'g', cfg%g)
+      ! the per-link parameters when a case is a chain of other than two links
+      n = 2
+      do ic = 1, size(cfg%cases)
+         n = max(n, size(cfg%cases(ic)%q0))
+      end do
+      if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) then
+         call h5%writeattr('/config', 'm', cfg%m(:n))
+         call h5%writeattr('/config', 'l', cfg%l(:n))
+      end if
       call h5%writeattr('/config', 't_short', cfg%t_short)
       call h5%writeattr('/config', 'n_check', cfg%n_check)
       call h5%writeattr('/config', 'order_case', cfg%order_case)
@@ -656,8 +685,16 @@ contains
          associate (ref => res%refs(ic), cs => cfg%cases(ic))
             call h5%write(g//'/reference/t', ref%t, units='s', &
                description='checkpoint times k t_short/K')
-            call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
-               description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+            n = size(cs%q0)
+            if (n == 2) then
+               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
+                  description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+            else
+               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
+                  description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
+                  ' of the reference at the checkpoints')
+               call h5%writeattr(g, 'links', n)
+            end if
             call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
             call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
             call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
@@ -669,9 +706,12 @@ contains
             call h5%writeattr(g, 'energy_scale', ref%e_scale)
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
                call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
-            else
+            else if (n == 2) then
                call h5%writeattr(g, 'energy_scale_definition', &
                                  'potential energy, both links upright')
+            else
+               call h5%writeattr(g, 'energy_scale_definition', &
+                                 'potential energy, every link upright')
             end if
             call h5%writeattr(g, 'long_steps', cs%long_steps)
          end associate

@@ -11,11 +11,12 @@
 module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, validate, finite_positive
-   use dpend_pendulum, only: double_pendulum_t, pendulum_model
+   use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
+   use dpend_chain, only: chain_t, chain_model
+   use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
-                           namelist_error, set_pendulum
+                           namelist_error
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_method_registry, only: method_names, method_index, method_table
@@ -31,6 +32,7 @@ module dpend_study_config
    public :: study_config_t, study_case_t, study_method_t
    public :: study_defaults, parse_study, read_study_config, validate_study_config
    public :: apply_quick, study_help, study_namelist, case_index, default_ranges
+   public :: case_model, study_pendulum
    public :: max_cases, max_methods, max_extra
 
    integer, parameter :: max_cases = 8      !! most cases in &study
@@ -38,11 +40,13 @@ module dpend_study_config
    integer, parameter :: max_extra = 4      !! most roundoff / Tao methods
    real(dp), parameter :: pi = acos(-1.0_dp)
 
-   !> One initial condition (SI units, angles from the horizontal x axis).
+   !> One initial condition (SI units, angles from the horizontal x axis) of the
+   !> chain of N = size(q0) links: N = 2 is the double pendulum, any other N the
+   !> N-link chain (`case_model`).
    type :: study_case_t
       character(len=:), allocatable :: name  !! label, e.g. 'small'
-      real(dp) :: q0(2) = 0.0_dp             !! initial angles [rad]
-      real(dp) :: w0(2) = 0.0_dp             !! initial angular velocities [rad/s]
+      real(dp), allocatable :: q0(:)         !! initial angles [rad], one per link
+      real(dp), allocatable :: w0(:)         !! initial angular velocities [rad/s]
       !> steps of the long runs at each method's mid-range step: the long runs of a
       !> method reach t_long = long_steps × h_mid [s] (every step size of the sweep)
       real(dp) :: long_steps = 1.0e6_dp
@@ -59,7 +63,13 @@ module dpend_study_config
 
    !> The whole study.
    type :: study_config_t
-      type(double_pendulum_t) :: model                !! the double pendulum, parameters
+      !> link parameters: a case of N links uses m(1:N), l(1:N) and g (links 1 and 2
+      !> are the double pendulum's m1, m2, l1, l2)
+      real(dp) :: m(max_dof) = 1.0_dp   !! link masses [kg]
+      real(dp) :: l(max_dof) = 1.0_dp   !! link lengths [m]
+      real(dp) :: g = 9.8_dp            !! gravitational acceleration [m/s²]
+      !> links given by the lists m, l of &pendulum or --m, --l (0: none given)
+      integer :: list_size(2) = 0
       type(study_case_t), allocatable :: cases(:)     !! initial conditions
       type(study_method_t), allocatable :: methods(:) !! methods and ranges
       integer :: n_h = 7            !! steps per fixed-step sweep (geometric)
@@ -184,6 +194,31 @@ contains
       end do
    end function case_index
 
+   !> The double pendulum's parameters: links 1 and 2 of the study's parameters.
+   pure function study_pendulum(cfg) result(par)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      type(pendulum_t) :: par
+      par = pendulum_t(m1=cfg%m(1), m2=cfg%m(2), l1=cfg%l(1), l2=cfg%l(2), g=cfg%g)
+   end function study_pendulum
+
+   !> The system of case ic (validated): the double pendulum for two links, the
+   !> N-link chain of m(1:N), l(1:N), g otherwise.
+   subroutine case_model(cfg, ic, model)
+      type(study_config_t), intent(in) :: cfg             !! configuration (validated)
+      integer, intent(in) :: ic                           !! case index
+      class(model_t), allocatable, intent(out) :: model   !! its system
+      type(error_t), allocatable :: error
+      type(chain_t) :: chain
+      integer :: n
+      n = size(cfg%cases(ic)%q0)
+      if (n == 2) then
+         allocate (model, source=pendulum_model(study_pendulum(cfg)))
+      else
+         chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)   ! checked by validation
+         allocate (model, source=chain)
+      end if
+   end subroutine case_model
+
    ! -------------------------------------------------------------------- help
 
    !> Help text of `dpend study`.
@@ -199,7 +234,8 @@ contains
           'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
           'options:'//nl// &
           '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
-          '                    data/study.nml, identical to the built-in defaults)'//nl// &
+          '                    data/study.nml, identical to the built-in defaults;'//nl// &
+          '                    data/study_chain.nml: the triple pendulum, N-link chain)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
           '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
@@ -212,6 +248,8 @@ contains
           '  --no-figures      do not run scripts/plot_study.sh'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2   pendulum parameters (default:'//nl// &
           "                    the chapter's 1 kg, 1 m, 9.8 m/s^2)"//nl// &
+          '  --m LIST, --l LIST  per-link masses, lengths (comma separated) for cases of'//nl// &
+          '                    N links (case_links in &study; N = 2: the double pendulum)'//nl// &
           '  -h, --help        this text'//nl//nl// &
           'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
           'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &
@@ -242,7 +280,7 @@ contains
          call read_study_config(config, cfg, error)
          if (allocated(error)) return
       end if
-      call set_pendulum(rcfg, cfg%model%par)
+      rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)
@@ -275,9 +313,10 @@ contains
          case ('--cases')
             only_cases = value
             cases_given = .true.
-         case ('--m1', '--m2', '--l1', '--l2', '--g')
+         case ('--m1', '--m2', '--l1', '--l2', '--g', '--m', '--l')
             call apply_run_flag(rcfg, name, value, matched, error)
-            cfg%model = pendulum_model(rcfg%pendulum())
+            cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
+            cfg%list_size = rcfg%list_size(1:2)
          case default
             matched = .false.
          end select
@@ -371,6 +410,9 @@ contains
       character(len=32) :: case_name(max_cases), order_case, drift_case, ro_case, tao_case
       real(dp) :: case_q1(max_cases), case_q2(max_cases), case_w1(max_cases), &
                   case_w2(max_cases), case_long_steps(max_cases)
+      integer :: case_links(max_cases)
+      real(dp) :: case_q(max_dof, max_cases), case_w(max_dof, max_cases)
+      real(dp), parameter :: unset = -huge(1.0_dp)   ! marks entries not given
       character(len=16) :: method(max_methods), ref_method, check_method
       real(dp) :: h_min(max_methods), h_max(max_methods), rtol_min(max_methods), &
                   rtol_max(max_methods)
@@ -383,6 +425,7 @@ contains
       integer :: unit, stat, i, n
       character(len=512) :: msg
       namelist /study/ case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
+         case_links, case_q, case_w, &
          method, h_min, h_max, rtol_min, rtol_max, n_h, n_rtol, atol_ratio, t_short, &
          n_check, order_case, drift_case, drift_decades, bins_per_decade, decades, &
          ref_method, ref_dt, check_method, check_rtol, wall_min, ro_method, ro_dt, ro_steps, &
@@ -391,22 +434,25 @@ contains
 
       call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
       if (allocated(error)) return
-      call set_pendulum(rcfg, cfg%model%par)
+      rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
       rcfg%output = cfg%output
       rcfg%force = cfg%force
       call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
       if (allocated(error)) return
-      if (rcfg%links /= 2 .or. any(rcfg%list_size(1:2) /= 0 .and. rcfg%list_size(1:2) /= 2)) then
+      if (rcfg%links /= 2) then
          call fatal_error(error, "invalid links in '"//filename//"': "//to_str(rcfg%links)// &
-                          ' (dpend study runs the double pendulum: links = 2)')
+                          ' (the cases of the study carry their links: case_links(i); ' &
+                          //'&pendulum gives the lists m, l, one value per link)')
          return
       end if
-      cfg%model = pendulum_model(rcfg%pendulum())
+      cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
+      cfg%list_size = rcfg%list_size(1:2)
       cfg%output = rcfg%output
       cfg%force = rcfg%force
 
       ! lists start empty (a set list replaces the default); scalars start at the defaults
-      case_name = ''; case_q1 = 0; case_q2 = 0; case_w1 = 0; case_w2 = 0; case_long_steps = 0
+      case_name = ''; case_q1 = unset; case_q2 = unset; case_w1 = unset; case_w2 = unset
+      case_long_steps = 0; case_links = 0; case_q = unset; case_w = unset
       method = ''; h_min = 0; h_max = 0; rtol_min = 0; rtol_max = 0
       ro_method = ''; ro_dt = 0; tao_method = ''
       n_h = cfg%n_h; n_rtol = cfg%n_rtol; atol_ratio = cfg%atol_ratio; t_short = cfg%t_short
@@ -442,8 +488,12 @@ contains
          allocate (cfg%cases(n))
          do i = 1, n
             cfg%cases(i)%name = trim(case_name(i))
-            cfg%cases(i)%q0 = [case_q1(i), case_q2(i)]
-            cfg%cases(i)%w0 = [case_w1(i), case_w2(i)]
+            call case_values(i, 'case_q', case_q(:, i), case_q1(i), case_q2(i), &
+                             cfg%cases(i)%q0)
+            if (allocated(error)) return
+            call case_values(i, 'case_w', case_w(:, i), case_w1(i), case_w2(i), &
+                             cfg%cases(i)%w0)
+            if (allocated(error)) return
             cfg%cases(i)%long_steps = merge(case_long_steps(i), 1.0e6_dp, &
                                             case_long_steps(i) /= 0.0_dp)
          end do
@@ -490,6 +540,49 @@ contains
       cfg%ro_fit_t_min = ro_fit_t_min; cfg%tao_dt = tao_dt; cfg%tao_t_end = tao_t_end
       cfg%omega_min = omega_min; cfg%omega_max = omega_max; cfg%n_omega = n_omega
       cfg%tao_case = trim(tao_case); cfg%quick = quick
+   contains
+      !> The initial values of case i (N = case_links(i) links, 2 when not given): the
+      !> list case_q(1:N, i) (`field` 'case_q' or 'case_w'), or for two links
+      !> case_q1(i), case_q2(i); values not given are 0.
+      subroutine case_values(i, field, list, v1, v2, values)
+         integer, intent(in) :: i
+         character(len=*), intent(in) :: field
+         real(dp), intent(in) :: list(:), v1, v2
+         real(dp), allocatable, intent(out) :: values(:)
+         integer :: links, k
+         character(len=:), allocatable :: where
+         links = merge(case_links(i), 2, case_links(i) /= 0)
+         where = "in '"//filename//"' (case '"//trim(case_name(i))//"')"
+         if (links < 1 .or. links > max_dof) then
+            call fatal_error(error, 'invalid case_links('//to_str(i)//'): '//to_str(links)// &
+                             ' is outside [1, '//to_str(max_dof)//'] '//where)
+            return
+         end if
+         k = 0
+         do while (k < size(list))
+            if (list(k + 1) == unset) exit
+            k = k + 1
+         end do
+         if (k /= 0 .and. k /= links) then
+            call fatal_error(error, 'invalid '//field//'(:, '//to_str(i)//'): '//to_str(k)// &
+                             ' values for '//to_str(links)//' links (one per link) '//where)
+            return
+         end if
+         if (links /= 2 .and. (v1 /= unset .or. v2 /= unset)) then
+            call fatal_error(error, 'invalid '//field//'1, '//field//'2('//to_str(i)// &
+                             '): only for two links; give '//field//'(1:'//to_str(links)// &
+                             ', '//to_str(i)//') '//where)
+            return
+         end if
+         allocate (values(links))
+         values = 0.0_dp
+         if (k == links) then
+            values = list(:links)
+         else if (links == 2) then
+            if (v1 /= unset) values(1) = v1
+            if (v2 /= unset) values(2) = v2
+         end if
+      end subroutine case_values
    end subroutine read_study_config
 
    !> The effective configuration as &pendulum and &study namelists (one string
@@ -500,18 +593,38 @@ contains
       character(len=:), allocatable :: text
       character(len=*), parameter :: nl = new_line('a')
       character(len=64) :: b
-      integer :: i
-      text = '&pendulum m1 = '//g(cfg%model%par%m1)//', m2 = '//g(cfg%model%par%m2)//', l1 = ' &
-             //g(cfg%model%par%l1)//', l2 = '//g(cfg%model%par%l2)//', g = '//g(cfg%model%par%g)//' /'//nl
+      integer :: i, n
+      ! the lists m, l when a case has other than two links (as many values as the
+      ! longest case, at least two), else the double pendulum's names
+      n = 2
+      do i = 1, size(cfg%cases)
+         n = max(n, size(cfg%cases(i)%q0))
+      end do
+      if (all([(size(cfg%cases(i)%q0) == 2, i=1, size(cfg%cases))])) then
+         text = '&pendulum m1 = '//g(cfg%m(1))//', m2 = '//g(cfg%m(2))//', l1 = ' &
+                //g(cfg%l(1))//', l2 = '//g(cfg%l(2))//', g = '//g(cfg%g)//' /'//nl
+      else
+         text = '&pendulum m = '//list(cfg%m(:n))//', l = '//list(cfg%l(:n))//', g = ' &
+                //g(cfg%g)//' /'//nl
+      end if
       text = text//'&study'//nl
       do i = 1, size(cfg%cases)
          write (b, '(i0)') i
-         text = text//'  case_name('//trim(b)//") = '"//cfg%cases(i)%name//"', case_q1(" &
-                //trim(b)//') = '//g(cfg%cases(i)%q0(1))//', case_q2('//trim(b)//') = ' &
-                //g(cfg%cases(i)%q0(2))//', case_w1('//trim(b)//') = ' &
-                //g(cfg%cases(i)%w0(1))//', case_w2('//trim(b)//') = ' &
-                //g(cfg%cases(i)%w0(2))//', case_long_steps('//trim(b)//') = ' &
-                //g(cfg%cases(i)%long_steps)//nl
+         if (size(cfg%cases(i)%q0) == 2) then
+            text = text//'  case_name('//trim(b)//") = '"//cfg%cases(i)%name//"', case_q1(" &
+                   //trim(b)//') = '//g(cfg%cases(i)%q0(1))//', case_q2('//trim(b)//') = ' &
+                   //g(cfg%cases(i)%q0(2))//', case_w1('//trim(b)//') = ' &
+                   //g(cfg%cases(i)%w0(1))//', case_w2('//trim(b)//') = ' &
+                   //g(cfg%cases(i)%w0(2))//', case_long_steps('//trim(b)//') = ' &
+                   //g(cfg%cases(i)%long_steps)//nl
+         else
+            n = size(cfg%cases(i)%q0)
+            text = text//'  case_name('//trim(b)//") = '"//cfg%cases(i)%name// &
+                   "', case_links("//trim(b)//') = '//i_(n)//', case_q(1:'//i_(n)//', ' &
+                   //trim(b)//') = '//list(cfg%cases(i)%q0)//', case_w(1:'//i_(n)//', ' &
+                   //trim(b)//') = '//list(cfg%cases(i)%w0)//', case_long_steps(' &
+                   //trim(b)//') = '//g(cfg%cases(i)%long_steps)//nl
+         end if
       end do
       do i = 1, size(cfg%methods)
          write (b, '(i0)') i
@@ -565,6 +678,15 @@ contains
          write (buf, '(i0)') k
          s = trim(buf)
       end function i_
+      function list(x) result(s)
+         real(dp), intent(in) :: x(:)
+         character(len=:), allocatable :: s
+         integer :: k
+         s = g(x(1))
+         do k = 2, size(x)
+            s = s//', '//g(x(k))
+         end do
+      end function list
    end function study_namelist
 
    ! --------------------------------------------------------------- validation
@@ -576,15 +698,15 @@ contains
       class(integrator_t), allocatable :: integ
       integer :: i, j
       character(len=16) :: idx
-      call validate(cfg%model%par, error)
-      if (allocated(error)) then
-         error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
-         return
-      end if
       if (size(cfg%cases) == 0) then
          call fatal_error(error, 'invalid case_name: at least one case is needed')
          return
       end if
+      ! the parameters of every case's system
+      do i = 1, size(cfg%cases)
+         call check_system(i)
+         if (allocated(error)) return
+      end do
       ! the scalars that later checks divide by, first (limits: dpend_limits)
       if (.not. (finite_positive(cfg%t_short) .and. in_range(cfg%t_short, 0.0_dp, max_time))) &
          then
@@ -598,16 +720,17 @@ contains
          write (idx, '("(", i0, ")")') i
          if (.not. all(ieee_is_finite([cfg%cases(i)%q0, cfg%cases(i)%w0]))) then
             call fatal_error(error, 'invalid case_q1, case_q2, case_w1, case_w2'//trim(idx)// &
-                             ': must be finite (rad, rad/s)')
+                             ' (case_q, case_w): must be finite (rad, rad/s)')
             return
          end if
          if (maxval(abs(cfg%cases(i)%q0)) > max_angle) then
-            call fatal_error(error, 'invalid case_q1, case_q2'//trim(idx)//': must be within ' &
-                             //'[-'//sci(max_angle)//', '//sci(max_angle)//'] (rad)')
+            call fatal_error(error, 'invalid case_q1, case_q2'//trim(idx)//' (case_q): must ' &
+                             //'be within [-'//sci(max_angle)//', '//sci(max_angle)//'] (rad)')
             return
          end if
          if (maxval(abs(cfg%cases(i)%w0)) > max_angular_velocity) then
-            call fatal_error(error, 'invalid case_w1, case_w2'//trim(idx)//': must be within ' &
+            call fatal_error(error, 'invalid case_w1, case_w2'//trim(idx)//' (case_w): must ' &
+                             //'be within ' &
                              //'[-'//sci(max_angular_velocity)//', ' &
                              //sci(max_angular_velocity)//'] (rad/s)')
             return
@@ -805,6 +928,41 @@ contains
          end if
       end do
    contains
+      !> The system of case ic: the double pendulum's parameters for two links, the
+      !> chain's otherwise; given lists m, l cover the case's links.
+      subroutine check_system(ic)
+         integer, intent(in) :: ic
+         type(chain_t) :: chain
+         integer :: n, k
+         character(len=1), parameter :: names(2) = ['m', 'l']
+         n = size(cfg%cases(ic)%q0)
+         if (n < 1 .or. n > max_dof .or. size(cfg%cases(ic)%w0) /= n) then
+            call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
+                             ' links, '//to_str(size(cfg%cases(ic)%w0))//' angular velocities' &
+                             //' (1 to '//to_str(max_dof)//' links, one value per link)')
+            return
+         end if
+         do k = 1, 2
+            if (cfg%list_size(k) /= 0 .and. cfg%list_size(k) < n) then
+               call fatal_error(error, 'invalid '//names(k)//': '//to_str(cfg%list_size(k))// &
+                                ' values for the '//to_str(n)//" links of case '"// &
+                                cfg%cases(ic)%name//"' (one per link) [--"//names(k)// &
+                                ' / &pendulum '//names(k)//']')
+               return
+            end if
+         end do
+         if (n == 2) then
+            call validate(study_pendulum(cfg), error)
+            if (allocated(error)) error%message = error%message// &
+                                                  ' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         else
+            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)
+            if (allocated(error)) error%message = error%message//" (case '"// &
+                                                  cfg%cases(ic)%name//"', "//to_str(n)// &
+                                                  ' links) [--m --l --g / &pendulum]'
+         end if
+      end subroutine check_system
+
       subroutine check_case_name(field, name)
          character(len=*), intent(in) :: field, name
          if (case_index(cfg, name) == 0) call fatal_error(error, 'invalid '//field//": '"// &
