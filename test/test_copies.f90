@@ -318,9 +318,10 @@ contains
       write (output_unit, '(a, f0.2, a)') '    sincos_lanes vs sin, cos: max ', worst, ' ulp'
    end subroutine test_sincos
 
-   !> `sincos_near_lanes` against its source `sin_cos_near` (the same Taylor formulas;
-   !> for |d| <= 0.25), from the intrinsic's sin and cos at x0: equal to a few ulps
-   !> of 1, and close to sin x, cos x for every d (beyond 0.25: `sincos_lanes`).
+   !> `sincos_near_lanes` against its source `sin_cos_near` (Taylor formulas, the
+   !> lanes' truncated for |d| <= 1/16, beyond which they take `sincos_lanes`; the
+   !> source's for |d| <= 0.25), from the intrinsic's sin and cos at x0: equal to a
+   !> few ulps of 1, and close to sin x, cos x for every d.
    subroutine test_sincos_near(error)
       type(error_t), allocatable, intent(out) :: error
       real(dp), dimension(lane_width) :: x0, d, x, s0, c0, s, c
