@@ -9,7 +9,8 @@
 !> gauss6 for N = 3, 5, 10, 20 (`chainN_METHOD_ns_per_step`), so that the cost's
 !> growth with N shows.
 !> `dpend-bench --chain-energy` prints instead only the energy figures of gauss6 over
-!> 10⁶ steps of the chains of 3 and 5 links (some seconds each, release).
+!> 10⁶ steps of the chains of 3 and 5 links (some seconds each, release);
+!> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`).
 program bench
    use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64, &
                                             output_unit, error_unit
@@ -39,10 +40,17 @@ program bench
    checksum = 0.0_dp
    if (command_argument_count() > 0) then
       call get_command_argument(1, arg)
-      if (trim(arg) /= '--chain-energy' .or. command_argument_count() > 1) then
+      if ((trim(arg) /= '--chain-energy' .and. trim(arg) /= '--batch') &
+          .or. command_argument_count() > 1) then
          write (error_unit, '(a)') 'dpend-bench: argument "'//trim(arg)// &
-            '" refused; accepted: none, or --chain-energy'
+            '" refused; accepted: none, --chain-energy or --batch'
          stop 2, quiet=.true.
+      end if
+      if (trim(arg) == '--batch') then
+         write (*, '(a)') 'compiler: '//compiler_version()
+         write (*, '(a)') 'flags: '//compiler_options()
+         call run_batch_benchmarks(output_unit)
+         stop
       end if
       call chain_energy(3)
       call chain_energy(5)

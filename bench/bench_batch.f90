@@ -2,7 +2,7 @@
 !> as `key: value unit`. Run in the release profile:
 !>   fpm run dpend-bench --profile release --flag "$RELEASE_FLAGS"
 module bench_batch
-   use, intrinsic :: iso_fortran_env, only: output_unit
+   use, intrinsic :: iso_fortran_env, only: output_unit, compiler_options
    use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
@@ -16,20 +16,24 @@ module bench_batch
    use dpend_progress, only: wall_seconds
    implicit none
    private
-   public :: run_batch_benchmarks
+   public :: run_batch_benchmarks, instruction_set
 
 contains
 
    !> Print the benchmark figures of the batch kernel to `unit`.
    subroutine run_batch_benchmarks(unit)
       integer, intent(in) :: unit  !! where to print
-      integer :: nthreads
+      integer :: nthreads, width
       real(dp) :: ns1, nsn, single, c1, cn
+      character(len=:), allocatable :: isa
       nthreads = omp_get_max_threads()
       write (unit, '(a, a)') 'load_average_1min_at_start: ', load_average()
       single = single_trajectory_ns()
       write (unit, '(a, f0.2, a)') 'rk4_ns_per_step: ', single, ' ns'
       write (unit, '(a, i0)') 'batch_lane_width: ', lane_width
+      call instruction_set(isa, width)
+      write (unit, '(a, a)') 'built_for_instruction_set: ', isa
+      write (unit, '(a, i0, a)') 'kernel_vector_width: ', width, ' doubles'
       ! best of three: the machine may be shared
       call omp_set_num_threads(1)
       call best_of_3(8, ns1, c1)
@@ -48,6 +52,47 @@ contains
       call classic_map(unit)
       flush (unit)
    end subroutine run_batch_benchmarks
+
+   !> The vector instruction set this program was compiled for, from the options
+   !> gfortran records (`compiler_options`; -march=native is expanded there into
+   !> -march=CPU -mavx2 -mno-avx512f ...), and the vector width of the batch kernel
+   !> in doubles: the kernel's loops vectorize with any of them (-fopt-info-vec,
+   !> docs/sweep.md); gfortran 12 uses 256-bit vectors on AVX-512 CPUs unless
+   !> -mprefer-vector-width=512 is given.
+   subroutine instruction_set(isa, width)
+      character(len=:), allocatable, intent(out) :: isa  !! e.g. 'avx2 (-march=znver3)'
+      integer, intent(out) :: width                      !! doubles per vector
+      character(len=:), allocatable :: opts, march
+      integer :: i, j
+      opts = ' '//compiler_options()//' '
+      march = 'x86-64'
+      i = index(opts, ' -march=')
+      if (i > 0) then
+         j = index(opts(i + 1:), ' ')
+         march = opts(i + 8:i + j - 1)
+      end if
+      if (has(' -mavx512f ') .or. index(march, 'avx512') > 0 .or. march == 'x86-64-v4') then
+         isa = 'avx512'
+         width = 4
+         if (has(' -mprefer-vector-width=512 ')) width = 8
+      else if (has(' -mavx2 ') .or. march == 'x86-64-v3' .or. march == 'haswell' .or. &
+               index(march, 'znver') > 0 .or. index(march, 'lake') > 0) then
+         isa = 'avx2'
+         width = 4
+      else if (has(' -mavx ')) then
+         isa = 'avx'
+         width = 4
+      else
+         isa = 'sse2'
+         width = 2
+      end if
+      isa = isa//' (-march='//march//')'
+   contains
+      logical function has(flag)
+         character(len=*), intent(in) :: flag
+         has = index(opts, flag) > 0
+      end function has
+   end subroutine instruction_set
 
    !> The first field of /proc/loadavg ('?' if unreadable).
    function load_average() result(s)

@@ -8,6 +8,8 @@
 !> | `accel_lanes` (dpend_pendulum_lanes)         | `qddot_trig` and `qddot_lagrange`    |
 !> | `tangent_accel_lanes` (dpend_pendulum_lanes) | `jacobian_qqdot` times (u, v)        |
 !> | `energy_lanes` (dpend_pendulum_lanes)        | `energy`                             |
+!> | `sincos_lanes` (dpend_pendulum_lanes)        | the intrinsic `sin`, `cos`           |
+!> | `sincos_near_lanes` (dpend_pendulum_lanes)   | `sin_cos_near`                       |
 !> | `hamiltonian_qp` (dpend_study), quadruple    | `hamiltonian`, and with compensation |
 !> |                                             | e: `dh_dq`, `dh_dp` (first order)    |
 !>
@@ -31,12 +33,15 @@ module test_copies
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp, pi
    use dpend_pendulum, only: pendulum_t, qddot_trig, qddot_lagrange, sin_cos, energy, &
+                             sin_cos_near, &
                              momenta, hamiltonian, dh_dq, dh_dp, jacobian_qqdot, &
                              velocities
    use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, accel_lanes, &
-                                   tangent_accel_lanes, energy_lanes
+                                   tangent_accel_lanes, energy_lanes, sincos_lanes, &
+                                   sincos_near_lanes, sincos_exact_max
    use dpend_study, only: hamiltonian_qp
    use testing, only: unittest_t, new_unittest, check_true, error_t
+   use dpend_cli, only: real_str
    implicit none
    private
    public :: collect_copies
@@ -59,6 +64,8 @@ contains
          new_unittest('accel_lanes_vs_qddot', test_accel), &
          new_unittest('tangent_accel_lanes_vs_jacobian_qqdot', test_tangent), &
          new_unittest('energy_lanes_vs_energy', test_energy), &
+         new_unittest('sincos_lanes_vs_intrinsic', test_sincos), &
+         new_unittest('sincos_near_lanes_vs_sin_cos_near', test_sincos_near), &
          new_unittest('hamiltonian_qp_vs_hamiltonian', test_hamiltonian_qp), &
          new_unittest('hamiltonian_qp_compensation_vs_gradient', test_compensation) &
          ]
@@ -268,6 +275,81 @@ contains
       end do
       call report('energy_lanes vs energy', worst)
    end subroutine test_energy
+
+   !> `sincos_lanes` (own argument reduction and polynomials) against the intrinsic
+   !> sin and cos, in ulps of the intrinsic's value, over the whole accepted range of
+   !> angles (dpend_limits' max_angle = 1e6 rad) and beyond: |x| log-uniform in
+   !> [1e-9, 1.6e6], uniform in [-1e6, 1e6], the doubles nearest to k π/2 (up to
+   !> k = 2^20, where the reduction cancels most), and far lanes (> 2^20 π/2) that
+   !> take the intrinsic. Tolerance 4 ulp (measured maximum printed).
+   subroutine test_sincos(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: n_sets = 20000
+      real(dp), dimension(lane_width) :: x, s, c
+      real(dp) :: r(lane_width), worst, u
+      integer :: i, l, kind
+      call seed()
+      worst = 0
+      do i = 1, n_sets
+         call random_number(r)
+         kind = mod(i, 4)
+         select case (kind)
+         case (0)
+            x = sign(10.0_dp**(-9.0_dp + 15.2_dp*r), r - 0.5_dp)
+         case (1)
+            x = 2e6_dp*(r - 0.5_dp)
+         case (2)
+            x = real(nint(r*1048576.0_dp), dp)*(0.5_dp*pi)
+            x(1:4) = [0.5_dp*pi, pi, 1.5_dp*pi, 2.0_dp*pi]
+         case default
+            x = r*1e6_dp
+            x(1:3) = [2.0_dp*sincos_exact_max, 1e300_dp, -1e22_dp]
+         end select
+         call sincos_lanes(x, s, c)
+         do l = 1, lane_width
+            u = max(abs(s(l) - sin(x(l)))/spacing(sin(x(l))), &
+                    abs(c(l) - cos(x(l)))/spacing(cos(x(l))))
+            worst = max(worst, u)
+            call check_true(error, u <= 4.0_dp, 'sincos_lanes differs from sin, cos at x = ' &
+                            //real_str(x(l)))
+            if (allocated(error)) return
+         end do
+      end do
+      write (output_unit, '(a, f0.2, a)') '    sincos_lanes vs sin, cos: max ', worst, ' ulp'
+   end subroutine test_sincos
+
+   !> `sincos_near_lanes` against its source `sin_cos_near` (Taylor formulas, the
+   !> lanes' truncated for |d| <= 1/16, beyond which they take `sincos_lanes`; the
+   !> source's for |d| <= 0.25), from the intrinsic's sin and cos at x0: equal to a
+   !> few ulps of 1, and close to sin x, cos x for every d.
+   subroutine test_sincos_near(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), dimension(lane_width) :: x0, d, x, s0, c0, s, c
+      real(dp) :: r(lane_width), sc(4), worst(2)
+      integer :: i, l
+      call seed()
+      worst = 0
+      do i = 1, 200
+         call random_number(r)
+         x0 = 2000.0_dp*(r - 0.5_dp)
+         call random_number(r)
+         d = 0.6_dp*(r - 0.5_dp)    ! a fifth of the lanes beyond 0.25
+         x = x0 + d
+         d = x - x0
+         s0 = sin(x0); c0 = cos(x0)
+         call sincos_near_lanes(s0, c0, x, d, s, c)
+         do l = 1, lane_width
+            sc = sin_cos_near([s0(l), s0(l), c0(l), c0(l)], [x(l), x(l)], [d(l), d(l)])
+            if (abs(d(l)) <= 0.25_dp) &   ! beyond: sin_cos_near's cos is sin(x + π/2)
+               worst(1) = max(worst(1), abs(s(l) - sc(1)), abs(c(l) - sc(3)))
+            worst(2) = max(worst(2), abs(s(l) - sin(x(l))), abs(c(l) - cos(x(l))))
+         end do
+      end do
+      call check_true(error, worst(1) <= 4.0_dp*epsilon(1.0_dp) .and. &
+                      worst(2) <= 8.0_dp*epsilon(1.0_dp), 'sincos_near_lanes differs')
+      write (output_unit, '(a, es9.2, a, es9.2)') '    sincos_near_lanes vs sin_cos_near: ', &
+         worst(1), ', vs sin, cos: ', worst(2)
+   end subroutine test_sincos_near
 
    !> Copy `hamiltonian_qp` (no compensation), rounded to double, against the
    !> source `hamiltonian` at (q, p = M(q) q̇).

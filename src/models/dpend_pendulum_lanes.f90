@@ -2,10 +2,14 @@
 !> over initial conditions (docs/sweep.md).
 !>
 !> Layout: structure of arrays over `lane_width` lanes (q1(W), q2(W), w1(W), w2(W)),
-!> every loop runs over all W lanes so that gfortran vectorizes it (AVX-512 with
-!> -march=native) and calls the SIMD sin/cos of glibc's libmvec (`_ZGVeN8v_sin`,
-!> `_ZGVeN8v_cos`). sin and cos of the same angle are taken in separate loops:
-!> in one loop gfortran fuses them into `sincos`, which has no vector form.
+!> every loop runs over all W lanes so that gfortran vectorizes it. W = 16 is a
+!> multiple of every vector width (2 doubles with SSE2, the default of fpm's release
+!> profile; 4 with AVX2; 8 with AVX-512), so no loop has a remainder.
+!>
+!> Trigonometry: one sin/cos of both angles per step, at the step start, by
+!> `sincos_lanes` (our own polynomial, no libm call, so it vectorizes without
+!> libmvec or -fno-math-errno); the three later RK4 stages take theirs from it by
+!> the addition formulas (`sincos_near_lanes`, as the scalar `sin_cos_near`).
 !>
 !> Reproducibility: every trajectory goes through exactly the same operations in
 !> the same order whatever its lane, its block or the thread: lanes never mix,
@@ -27,7 +31,8 @@ module dpend_pendulum_lanes
    private
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes
-   public :: accel_lanes, tangent_accel_lanes
+   public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
+   public :: sincos_lanes, sincos_near_lanes, sincos_exact_max
    public :: batch_options_t, batch_result_t, integrate_batch
    public :: stop_both, stop_either, stop_end
    public :: st_missing, st_end, st_flipped, st_cannot_flip, st_nonfinite
@@ -36,6 +41,8 @@ module dpend_pendulum_lanes
 
    real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
    real(dp), parameter :: half_pi = 0.5_dp*pi, two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
+   !> |x| up to which `sincos_lanes` reduces exactly enough (2^20 π/2 rad)
+   real(dp), parameter :: sincos_exact_max = 1048576.0_dp*half_pi
 
    ! stop rules: when a trajectory ends before t_end
    integer, parameter :: stop_both = 1    !! when every link that can flip has flipped
@@ -122,21 +129,135 @@ contains
       potential_range = 2.0_dp*(c%ga + c%gb)
    end function potential_range
 
-   !> sin and cos of both angles, in separate loops (no fusion into scalar sincos).
+   !> sin and cos of both angles (`sincos_lanes`).
    pure subroutine trig_lanes(q1, q2, s1, c1, s2, c2)
       real(dp), intent(in) :: q1(lane_width), q2(lane_width)   !! angles [rad]
       real(dp), intent(out) :: s1(lane_width), c1(lane_width)  !! sin q1, cos q1
       real(dp), intent(out) :: s2(lane_width), c2(lane_width)  !! sin q2, cos q2
+      call sincos_lanes(q1, s1, c1)
+      call sincos_lanes(q2, s2, c2)
+   end subroutine trig_lanes
+
+   !> sin x and cos x of every lane, our own vectorizable implementation (no libm
+   !> call in the loop, so that any build vectorizes it, with or without libmvec
+   !> and -fno-math-errno). Argument reduction x = n π/2 + r, |r| <= π/4, by
+   !> Cody–Waite with π/2 in three parts (33 + 33 + 53 bits: n p1 and n p2 exact for
+   !> |n| < 2^20), the nearest integer n by the 1.5·2^52 rounding trick; then fdlibm's
+   !> minimax polynomials of sin and cos on [-π/4, π/4] (error < 2^-58) and the
+   !> quadrant n mod 4 by merges. Accurate to about 1 ulp for |x| <= `sincos_exact_max`
+   !> (= 2^20 π/2, above dpend_limits' max_angle = 1e6 rad; test/test_sweep.f90
+   !> checks it against the intrinsic); lanes beyond it (and NaN/Inf) take the
+   !> intrinsic sin and cos, lane by lane.
+   pure subroutine sincos_lanes(x, s, c)
+      real(dp), intent(in) :: x(lane_width)   !! angles [rad]
+      real(dp), intent(out) :: s(lane_width)  !! sin x
+      real(dp), intent(out) :: c(lane_width)  !! cos x
+      real(dp), parameter :: two_over_pi = 6.36619772367581382433e-01_dp
+      real(dp), parameter :: round_magic = 6755399441055744.0_dp  ! 1.5·2^52
+      real(dp), parameter :: pio2_1 = 1.57079632673412561417e+00_dp   ! first 33 bits
+      real(dp), parameter :: pio2_2 = 6.07710050630396597660e-11_dp   ! next 33 bits
+      real(dp), parameter :: pio2_2t = 2.02226624879595063154e-21_dp  ! π/2 - pio2_1 - pio2_2
+      real(dp), parameter :: s1 = -1.66666666666666324348e-01_dp, &
+                             s2 = 8.33333333332248946124e-03_dp, &
+                             s3 = -1.98412698298579493134e-04_dp, &
+                             s4 = 2.75573137070700676789e-06_dp, &
+                             s5 = -2.50507602534068634195e-08_dp, &
+                             s6 = 1.58969099521155010221e-10_dp
+      real(dp), parameter :: c1 = 4.16666666666666019037e-02_dp, &
+                             c2 = -1.38888888888741095749e-03_dp, &
+                             c3 = 2.48015872894767294178e-05_dp, &
+                             c4 = -2.75573143513906633035e-07_dp, &
+                             c5 = 2.08757232129817482790e-09_dp, &
+                             c6 = -1.13596475577881948265e-11_dp
+      real(dp) :: xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca, n_near
       integer :: i
       do i = 1, lane_width
-         s1(i) = sin(q1(i))
-         s2(i) = sin(q2(i))
+         xi = min(max(x(i), -sincos_exact_max), sincos_exact_max)  ! far lanes: below
+         fn = (xi*two_over_pi + round_magic) - round_magic        ! nearest integer
+         r = ((xi - fn*pio2_1) - fn*pio2_2) - fn*pio2_2t          ! x - n π/2
+         ! quadrant by exact arithmetic, no compare (compares and merges would stop the
+         ! vectorizer without -fno-trapping-math): j = n mod 4, odd = j mod 2, hi = j >= 2
+         fq = fn - 4.0_dp*((0.25_dp*(fn - 1.5_dp) + round_magic) - round_magic)
+         fo = fq - 2.0_dp*((0.5_dp*(fq - 0.5_dp) + round_magic) - round_magic)
+         fh = 0.5_dp*(fq - fo)
+         z = r*r
+         sr = r + r*z*(s1 + z*(s2 + z*(s3 + z*(s4 + z*(s5 + z*s6)))))
+         hz = 0.5_dp*z
+         wc = 1.0_dp - hz
+         cr = wc + (((1.0_dp - wc) - hz) + z*z*(c1 + z*(c2 + z*(c3 + z*(c4 + z*(c5 + z*c6))))))
+         ! j = 0: (sr, cr); 1: (cr, -sr); 2: (-sr, -cr); 3: (-cr, sr); exact products
+         sa = fo*cr + (1.0_dp - fo)*sr
+         ca = fo*sr + (1.0_dp - fo)*cr
+         s(i) = (1.0_dp - 2.0_dp*fh)*sa
+         c(i) = (1.0_dp - 2.0_dp*(fh - fo)**2)*ca
       end do
+      n_near = 0   ! a count, not a logical .or.: this form vectorizes
       do i = 1, lane_width
-         c1(i) = cos(q1(i))
-         c2(i) = cos(q2(i))
+         n_near = n_near + merge(1.0_dp, 0.0_dp, abs(x(i)) <= sincos_exact_max)
       end do
-   end subroutine trig_lanes
+      if (n_near == lane_width) return
+      do i = 1, lane_width
+         if (.not. (abs(x(i)) <= sincos_exact_max)) then
+            s(i) = sin(x(i))
+            c(i) = cos(x(i))
+         end if
+      end do
+   end subroutine sincos_lanes
+
+   !> The lanes' form of `sin_cos_near_impl` (dpend_pendulum), SIMD over the lanes:
+   !> sin and cos of x = x0 + d from those of x0 by the addition formulas, with the
+   !> Taylor polynomials of sin d (to d⁹) and cos d - 1 (to d⁸), whose remainders are
+   !> below 1e-21 and 3e-19 for |d| <= 1/16 (RK4 stages of the classic map have
+   !> |d| <= h |q̇| ~ 0.04 at most). A lane with |d| > 1/16 takes `sincos_lanes(x)`
+   !> instead (only its own value: the lanes never mix).
+   pure subroutine sincos_near_lanes(s0, c0, x, d, s, c)
+      real(dp), intent(in) :: s0(lane_width), c0(lane_width)  !! sin x0, cos x0
+      real(dp), intent(in) :: x(lane_width)                   !! angles [rad]
+      real(dp), intent(in) :: d(lane_width)                   !! x - x0 [rad]
+      real(dp), intent(out) :: s(lane_width), c(lane_width)   !! sin x, cos x
+      real(dp), parameter :: d_max = 0.0625_dp
+      real(dp) :: d2, sd, cm1, sf(lane_width), cf(lane_width), n_near
+      integer :: i
+      do i = 1, lane_width
+         d2 = d(i)*d(i)
+         sd = d(i)*(1.0_dp + d2*(-1.0_dp/6.0_dp + d2*(1.0_dp/120.0_dp + d2*(-1.0_dp/5040.0_dp &
+              + d2*(1.0_dp/362880.0_dp)))))
+         cm1 = d2*(-0.5_dp + d2*(1.0_dp/24.0_dp + d2*(-1.0_dp/720.0_dp + d2*(1.0_dp/40320.0_dp))))
+         s(i) = s0(i) + (s0(i)*cm1 + c0(i)*sd)
+         c(i) = c0(i) + (c0(i)*cm1 - s0(i)*sd)
+      end do
+      n_near = 0
+      do i = 1, lane_width
+         n_near = n_near + merge(1.0_dp, 0.0_dp, abs(d(i)) <= d_max)
+      end do
+      if (n_near == lane_width) return
+      call sincos_lanes(x, sf, cf)
+      do i = 1, lane_width
+         if (.not. (abs(d(i)) <= d_max)) then
+            s(i) = sf(i)
+            c(i) = cf(i)
+         end if
+      end do
+   end subroutine sincos_near_lanes
+
+   !> sin and cos of the stage angles (x1, x2) from those of the step start (q1, q2)
+   !> (`sincos_near_lanes`).
+   pure subroutine stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)    !! step start [rad]
+      real(dp), intent(in) :: s1a(lane_width), c1a(lane_width)  !! sin q1, cos q1
+      real(dp), intent(in) :: s2a(lane_width), c2a(lane_width)  !! sin q2, cos q2
+      real(dp), intent(in) :: x1(lane_width), x2(lane_width)    !! stage angles [rad]
+      real(dp), intent(out) :: s1(lane_width), c1(lane_width)   !! sin x1, cos x1
+      real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin x2, cos x2
+      real(dp) :: d1(lane_width), d2(lane_width)
+      integer :: i
+      do i = 1, lane_width
+         d1(i) = x1(i) - q1(i)
+         d2(i) = x2(i) - q2(i)
+      end do
+      call sincos_near_lanes(s1a, c1a, x1, d1, s1, c1)
+      call sincos_near_lanes(s2a, c2a, x2, d2, s2, c2)
+   end subroutine stage_trig_lanes
 
    !> Copy of `qddot_lagrange` (dpend_pendulum) for speed: SIMD over the lanes, with
    !> cos and sin of q1 - q2 by the subtraction formulas; test/test_copies.f90
@@ -149,9 +270,19 @@ contains
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
       real(dp), intent(out) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
       real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      call trig_lanes(q1, q2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, w1, w2, a1, a2)
+   end subroutine accel_lanes
+
+   !> The accelerations of `accel_lanes` from given sin and cos of the angles.
+   pure subroutine accel_trig_lanes(c, s1, c1, s2, c2, w1, w2, a1, a2)
+      type(batch_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: s1(lane_width), c1(lane_width)    !! sin q1, cos q1
+      real(dp), intent(in) :: s2(lane_width), c2(lane_width)    !! sin q2, cos q2
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
       real(dp) :: cd, sd, r1, r2, m12, rdet
       integer :: i
-      call trig_lanes(q1, q2, s1, c1, s2, c2)
       do i = 1, lane_width
          cd = c1(i)*c2(i) + s1(i)*s2(i)
          sd = s1(i)*c2(i) - c1(i)*s2(i)
@@ -162,7 +293,7 @@ contains
          a1(i) = (c%m22*r1 - m12*r2)*rdet
          a2(i) = (c%m11*r2 - m12*r1)*rdet
       end do
-   end subroutine accel_lanes
+   end subroutine accel_trig_lanes
 
    !> Copy of `jacobian_qqdot` (dpend_pendulum, rows of q̈, applied to a vector) for
    !> speed: SIMD over the lanes, reusing the values of `accel_lanes`;
@@ -232,29 +363,33 @@ contains
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
       real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
+      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
       real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
       real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
       real(dp) :: hh, h6
       integer :: i
       hh = 0.5_dp*h
       h6 = h/6.0_dp
-      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1, c1, s2, c2)
+      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a)
       do i = 1, lane_width
-         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+         e(i) = energy_formula(c, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
          vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
       end do
-      call accel_lanes(c, x1, x2, vb1, vb2, kb1, kb2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vb1, vb2, kb1, kb2)
       do i = 1, lane_width
          x1(i) = q1(i) + hh*vb1(i); x2(i) = q2(i) + hh*vb2(i)
          vc1(i) = w1(i) + hh*kb1(i); vc2(i) = w2(i) + hh*kb2(i)
       end do
-      call accel_lanes(c, x1, x2, vc1, vc2, kc1, kc2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vc1, vc2, kc1, kc2)
       do i = 1, lane_width
          y1(i) = q1(i) + h*vc1(i); y2(i) = q2(i) + h*vc2(i)
          vd1(i) = w1(i) + h*kc1(i); vd2(i) = w2(i) + h*kc2(i)
       end do
-      call accel_lanes(c, y1, y2, vd1, vd2, kd1, kd2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, y1, y2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vd1, vd2, kd1, kd2)
       do i = 1, lane_width
          q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
          q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
@@ -274,6 +409,7 @@ contains
       real(dp), intent(inout) :: v1(lane_width), v2(lane_width)  !! tangent, velocities
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
       real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
+      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
       real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
       real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
       real(dp), dimension(lane_width) :: xu1, xu2, ub1, ub2, uc1, uc2, ud1, ud2
@@ -282,16 +418,17 @@ contains
       integer :: i
       hh = 0.5_dp*h
       h6 = h/6.0_dp
-      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1, c1, s2, c2)
-      call tangent_accel_lanes(c, w1, w2, ka1, ka2, s1, c1, s2, c2, u1, u2, v1, v2, la1, la2)
+      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a)
+      call tangent_accel_lanes(c, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a, u1, u2, v1, v2, la1, la2)
       do i = 1, lane_width
-         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+         e(i) = energy_formula(c, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
          vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
          xu1(i) = u1(i) + hh*v1(i); xu2(i) = u2(i) + hh*v2(i)
          ub1(i) = v1(i) + hh*la1(i); ub2(i) = v2(i) + hh*la2(i)
       end do
-      call accel_lanes(c, x1, x2, vb1, vb2, kb1, kb2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vb1, vb2, kb1, kb2)
       call tangent_accel_lanes(c, vb1, vb2, kb1, kb2, s1, c1, s2, c2, xu1, xu2, ub1, ub2, &
                                lb1, lb2)
       do i = 1, lane_width
@@ -300,7 +437,8 @@ contains
          xu1(i) = u1(i) + hh*ub1(i); xu2(i) = u2(i) + hh*ub2(i)
          uc1(i) = v1(i) + hh*lb1(i); uc2(i) = v2(i) + hh*lb2(i)
       end do
-      call accel_lanes(c, x1, x2, vc1, vc2, kc1, kc2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vc1, vc2, kc1, kc2)
       call tangent_accel_lanes(c, vc1, vc2, kc1, kc2, s1, c1, s2, c2, xu1, xu2, uc1, uc2, &
                                lc1, lc2)
       do i = 1, lane_width
@@ -309,7 +447,8 @@ contains
          xu1(i) = u1(i) + h*uc1(i); xu2(i) = u2(i) + h*uc2(i)
          ud1(i) = v1(i) + h*lc1(i); ud2(i) = v2(i) + h*lc2(i)
       end do
-      call accel_lanes(c, y1, y2, vd1, vd2, kd1, kd2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, y1, y2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vd1, vd2, kd1, kd2)
       call tangent_accel_lanes(c, vd1, vd2, kd1, kd2, s1, c1, s2, c2, xu1, xu2, ud1, ud2, &
                                ld1, ld2)
       do i = 1, lane_width
@@ -336,12 +475,14 @@ contains
       integer, parameter :: w = lane_width
       type(batch_coef_t) :: c
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
-      real(dp), dimension(w) :: p1, p2, n1, n2, lacc
+      real(dp), dimension(w) :: p1, p2, n1, n2, m1, m2, lacc
+      real(dp), dimension(w) :: active, fresh  ! 1: lane holds an initial condition; just loaded
+      real(dp), dimension(w) :: left           ! steps left to n_steps
       integer(i8) :: ks(w)
       integer :: lane_ic(w)
       logical :: can1(w), can2(w), ended(w)
       logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
-      real(dp) :: bounds(2), escale, nan, m, qc, nrm, s
+      real(dp) :: bounds(2), escale, nan, m, qc, nrm, s, n_events
       integer :: n, i, j, next, n_active, rule
       logical :: any_ended
 
@@ -402,11 +543,28 @@ contains
          else
             call rk4_lanes(c, opt%h, q1, q2, w1, w2, e)
          end if
+         ! vectorized: error, step count, the index of the last upward vertical below
+         ! each angle (π/2 + 2π n, `floor_lanes`), and a count of the lanes with an
+         ! event (a crossing, the last step, a non-finite state, a fresh lane)
+         n_events = 0
          do i = 1, w
             err(i) = max(err(i), abs(e(i) - e0(i)))
             ks(i) = ks(i) + 1
-            ! link 1: index of the last upward vertical below q, π/2 + 2π n
-            m = real(floor((q1(i) - half_pi)*inv_two_pi, i8), dp)
+            m1(i) = floor_real((q1(i) - half_pi)*inv_two_pi)
+            m2(i) = floor_real((q2(i) - half_pi)*inv_two_pi)
+            s = q1(i) + q2(i) + w1(i) + w2(i)
+            left(i) = left(i) - 1.0_dp
+            ! no compare (it would stop the vectorizer without -fno-trapping-math):
+            ! every term >= 0, > 0 for an event; NaN (also an event) if s is not finite
+            n_events = n_events + active(i)*(abs(m1(i) - n1(i)) + abs(m2(i) - n2(i)) &
+                                             + 0.5_dp*(1.0_dp - sign(1.0_dp, left(i) - 0.5_dp)) &
+                                             + abs(s - s) + fresh(i))
+         end do
+         if (n_events == 0.0_dp) cycle   ! false for NaN
+         ! rare: flip times and the stop rule, lane by lane
+         do i = 1, w
+            fresh(i) = 0.0_dp
+            m = m1(i)
             if (m /= n1(i)) then
                if (tf1(i) < 0.0_dp) then
                   qc = half_pi + two_pi*max(m, n1(i))
@@ -414,7 +572,7 @@ contains
                end if
                n1(i) = m
             end if
-            m = real(floor((q2(i) - half_pi)*inv_two_pi, i8), dp)
+            m = m2(i)
             if (m /= n2(i)) then
                if (tf2(i) < 0.0_dp) then
                   qc = half_pi + two_pi*max(m, n2(i))
@@ -481,6 +639,7 @@ contains
             next = next + 1
          end do
          ks(l) = 0
+         left(l) = real(opt%n_steps, dp)
          err(l) = 0.0_dp
          tf1(l) = -1.0_dp; tf2(l) = -1.0_dp
          lacc(l) = 0.0_dp
@@ -493,14 +652,18 @@ contains
             can1(l) = can_flip1(next); can2(l) = can_flip2(next)
             next = next + 1
             n_active = n_active + 1
+            active(l) = 1.0_dp
+            fresh(l) = 1.0_dp
          else
             lane_ic(l) = 0
             q1(l) = -half_pi; q2(l) = -half_pi; w1(l) = 0.0_dp; w2(l) = 0.0_dp
             e0(l) = 0.0_dp
             can1(l) = .false.; can2(l) = .false.
+            active(l) = 0.0_dp
+            fresh(l) = 0.0_dp
          end if
-         n1(l) = real(floor((q1(l) - half_pi)*inv_two_pi, i8), dp)
-         n2(l) = real(floor((q2(l) - half_pi)*inv_two_pi, i8), dp)
+         n1(l) = floor_real((q1(l) - half_pi)*inv_two_pi)
+         n2(l) = floor_real((q2(l) - half_pi)*inv_two_pi)
       end subroutine load
 
       !> Store the results of the trajectory in lane l.
@@ -524,6 +687,20 @@ contains
          n_active = n_active - 1
       end subroutine finish
    end subroutine integrate_batch
+
+   !> floor(y) as a real, vectorizable (no conversion to integer): y rounded to an
+   !> integer by the 1.5·2^52 trick, minus 1 where that rounded up (yc - f < 0; for
+   !> yc = f, yc - f = +0); exact for
+   !> |y| < 2^50 (beyond, y is clamped to ±2^50: angles above 7e15 rad).
+   pure elemental real(dp) function floor_real(y) result(f)
+      real(dp), intent(in) :: y  !! value
+      real(dp), parameter :: round_magic = 6755399441055744.0_dp  ! 1.5·2^52
+      real(dp), parameter :: big = 1125899906842624.0_dp           ! 2^50
+      real(dp) :: yc
+      yc = min(max(y, -big), big)
+      f = (yc + round_magic) - round_magic
+      f = f - 0.5_dp*(1.0_dp - sign(1.0_dp, yc - f))   ! - 1 if f > yc, without a compare
+   end function floor_real
 
    !> Energies of the states y(:, j), computed W at a time with the lane kernel.
    subroutine energies(c, y, e_final)
