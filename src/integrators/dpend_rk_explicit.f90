@@ -296,6 +296,7 @@ contains
       integer, intent(out) :: stat         !! status
       integer, parameter :: n = 4, m = 2
       real(dp) :: k1(n), k2(n), k3(n), k4(n), ynew(n), ys(n), d(m), cache(2*max_state)
+      logical :: ok
       ! the whole cache is passed (assumed size): no query of its size per step
       associate (c => cache)
          include 'dpend_rk4_body.inc'
@@ -315,6 +316,7 @@ contains
       real(dp) :: k1_(max_state), k2_(max_state), k3_(max_state), k4_(max_state)
       real(dp) :: ynew_(max_state), ys_(max_state), d_(max_dof), cache(2*max_state)
       integer :: n, m
+      logical :: ok
       n = size(y); m = n/2
       associate (k1 => k1_(:n), k2 => k2_(:n), k3 => k3_(:n), k4 => k4_(:n), &
                  ynew => ynew_(:n), ys => ys_(:n), d => d_(:m), &

@@ -69,7 +69,7 @@ module dpend_model
       ! fast-path hooks
       procedure :: cache_size => model_cache_size
       procedure :: fill_cache => model_fill_cache
-      procedure :: field_at_cache => model_field_at_cache
+      procedure :: fill_cache_field => model_fill_cache_field
       procedure :: field_near => model_field_near
       procedure :: canonical_field_near => model_canonical_field_near
       ! what writers need
@@ -250,16 +250,17 @@ contains
       real(dp), intent(inout) :: cache(*)  !! the model's cache, size cache_size()
    end subroutine model_fill_cache
 
-   !> `field` at y, whose coordinates are those the cache was filled with (the
-   !> step's first stage); the default ignores the cache.
-   pure subroutine model_field_at_cache(self, t, y, cache, f)
+   !> `fill_cache` from the coordinates of y, and `field` at y (an explicit step's
+   !> first stage: one call where two would sit on the step's critical path).
+   pure subroutine model_fill_cache_field(self, t, y, cache, f)
       class(model_t), intent(in) :: self
-      real(dp), intent(in) :: t          !! time [s]
-      real(dp), intent(in) :: y(*)       !! state (q, q̇), q as given to `fill_cache`
-      real(dp), intent(in) :: cache(*)   !! from `fill_cache`
-      real(dp), intent(out) :: f(*)      !! (q̇, q̈)
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(*)         !! state (q, q̇) at the step start
+      real(dp), intent(inout) :: cache(*)  !! the model's cache, filled
+      real(dp), intent(out) :: f(*)        !! (q̇, q̈) at y
+      call self%fill_cache(y, cache)
       call self%field(t, y, f)
-   end subroutine model_field_at_cache
+   end subroutine model_fill_cache_field
 
    !> `field` at y, whose coordinates are those of the cache plus d (|d| small);
    !> the default ignores the cache.

@@ -77,7 +77,7 @@ module dpend_pendulum
       procedure :: section_p_max => dp_section_p_max
       procedure :: cache_size => dp_cache_size
       procedure :: fill_cache => dp_fill_cache
-      procedure :: field_at_cache => dp_field_at_cache
+      procedure :: fill_cache_field => dp_fill_cache_field
       procedure :: field_near => dp_field_near
       procedure :: canonical_field_near => dp_canonical_field_near
       procedure :: n_outputs => dp_n_outputs
@@ -759,14 +759,16 @@ contains
       f(3:4) = qddot_trig(self%par, sc, y(3:4))
    end subroutine dp_field_near
 
-   !> (q̇, q̈) at the angles of the cache, with its sines and cosines.
-   pure subroutine dp_field_at_cache(self, t, y, cache, f)
+   !> The cache at the angles of y, and (q̇, q̈) there with its sines and cosines.
+   pure subroutine dp_fill_cache_field(self, t, y, cache, f)
       class(double_pendulum_t), intent(in) :: self
-      real(dp), intent(in) :: t, y(*), cache(*)
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(inout) :: cache(*)
       real(dp), intent(out) :: f(*)
+      cache(1:4) = sin_cos_impl(y(1:2))
       f(1:2) = y(3:4)
       f(3:4) = qddot_trig(self%par, cache(1:4), y(3:4))
-   end subroutine dp_field_at_cache
+   end subroutine dp_fill_cache_field
 
    !> (∂H/∂p, −∂H/∂q) with the sines of q = q_start + d by angle addition.
    pure subroutine dp_canonical_field_near(self, t, z, d, cache, f)
