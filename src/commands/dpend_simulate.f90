@@ -373,8 +373,13 @@ contains
             description='angular accelerations (qddot1 .. qddot'//to_str(nd)//')')
          if (canonical) call h5%write('/trajectory/p', p, units='kg m^2/s', &
             description='canonical momenta p = M(q) qdot (p1 .. p'//to_str(nd)//')')
-         call h5%write('/trajectory/energy', e, units='J', &
-            description='total energy T + V (V = 0 with every link horizontal)')
+         if (model%autonomous()) then
+            call h5%write('/trajectory/energy', e, units='J', &
+               description='total energy T + V (V = 0 with every link horizontal)')
+         else   ! a moving support: the inertial energy
+            call h5%write('/trajectory/energy', e, units='J', description='total energy ' &
+               //'T + V in the fixed frame (V = 0 at y = 0, the mean height of the pin A)')
+         end if
          if (allocated(traj%w)) then   ! the energy balance (dpend_work)
             e_w = traj%w(1, :n)   ! contiguous, for the HDF5 layer
             call h5%write('/trajectory/W_friction', e_w, units='J', description= &
