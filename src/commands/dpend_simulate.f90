@@ -229,63 +229,59 @@ contains
       type(march_t) :: march
       real(dp) :: t, h
       real(dp), allocatable :: times(:), states(:, :), y(:)
-      class(model_t), allocatable :: work
+      class(model_t), allocatable :: model   ! the system integrated
       integer(i8) :: k, cap, avail
       integer :: stat, i
-      if (needs_work(cfg%model)) then   ! integrate the works too
-         call work_model(cfg%model, work)
-         call integrate_on(work)
+      ! a damped or driven chain is integrated with its works (dpend_work)
+      if (needs_work(cfg%model)) then
+         call work_model(cfg%model, model)
       else
-         call integrate_on(cfg%model)
+         allocate (model, source=cfg%model)
       end if
-   contains
-      subroutine integrate_on(model)
-         class(model_t), intent(in) :: model   !! the system integrated
-         ! an adaptive run without output_dt keeps an unknown number of samples: at most
-         ! max_samples and what fits the memory now
-         cap = max_samples
-         avail = available_memory_bytes()
-         if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
-         if (model%n_dof() > cfg%links) then
-            y = integ%to_internal(model, [cfg%q0(), 0.0_dp], [cfg%w0(), 0.0_dp])
-         else
-            y = integ%to_internal(model, cfg%q0(), cfg%w0())
-         end if
-         t = 0.0_dp
-         h = cfg%dt
-         traj%status = 'completed'
-         stat = stat_ok
-         if (cfg%output_dt > 0.0_dp) then
-            call integrate_sampled(integ, model, t, y, cfg%t_end, h, cfg%output_dt, times, &
-                                   states, stat)
-            do i = 1, size(times)
-               call append(traj, integ, model, times(i), states(:, i))
-            end do
-            if (size(times) > 0) t = times(size(times))
-         else
-            call append(traj, integ, model, t, y)
-            call integ%clear_step()
-            call march%start(integ, t, cfg%t_end, h)
-            k = 0
-            do while (.not. march%finished)
-               call march%next(integ, model, t, y, h, stat)
-               if (stat /= stat_ok) exit
-               k = k + 1
-               if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
-                  if (traj%n >= cap) then
-                     traj%status = 'kept samples reached '//sci(real(cap, dp))// &
-                                   ' (memory limit) after t = '//sci(t, 6)// &
-                                   ' s; use a larger --save-every or --output-dt'
-                     exit
-                  end if
-                  call append(traj, integ, model, t, y)
+      ! an adaptive run without output_dt keeps an unknown number of samples: at most
+      ! max_samples and what fits the memory now
+      cap = max_samples
+      avail = available_memory_bytes()
+      if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
+      if (model%n_dof() > cfg%links) then   ! the works start at 0
+         y = integ%to_internal(model, [cfg%q0(), 0.0_dp], [cfg%w0(), 0.0_dp])
+      else
+         y = integ%to_internal(model, cfg%q0(), cfg%w0())
+      end if
+      t = 0.0_dp
+      h = cfg%dt
+      traj%status = 'completed'
+      stat = stat_ok
+      if (cfg%output_dt > 0.0_dp) then
+         call integrate_sampled(integ, model, t, y, cfg%t_end, h, cfg%output_dt, times, &
+                                states, stat)
+         do i = 1, size(times)
+            call append(traj, integ, model, times(i), states(:, i))
+         end do
+         if (size(times) > 0) t = times(size(times))
+      else
+         call append(traj, integ, model, t, y)
+         call integ%clear_step()
+         call march%start(integ, t, cfg%t_end, h)
+         k = 0
+         do while (.not. march%finished)
+            call march%next(integ, model, t, y, h, stat)
+            if (stat /= stat_ok) exit
+            k = k + 1
+            if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
+               if (traj%n >= cap) then
+                  traj%status = 'kept samples reached '//sci(real(cap, dp))// &
+                                ' (memory limit) after t = '//sci(t, 6)// &
+                                ' s; use a larger --save-every or --output-dt'
+                  exit
                end if
-            end do
-         end if
-         if (stat /= stat_ok) then
-            traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
-         end if
-      end subroutine integrate_on
+               call append(traj, integ, model, t, y)
+            end if
+         end do
+      end if
+      if (stat /= stat_ok) then
+         traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
+      end if
    end subroutine integrate_trajectory
 
    !> Append the state (t, y) to the samples, growing the buffers geometrically.
