@@ -21,6 +21,7 @@ program tester
    use test_chain, only: collect_chain
    use test_files, only: collect_files
    use test_indicators, only: collect_indicators
+   use test_damping, only: collect_damping
    implicit none
 
    type :: suite_t
@@ -33,7 +34,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(17))
+   allocate (suites(18))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -51,6 +52,7 @@ program tester
    suites(15)%name = 'chain'; call collect_chain(suites(15)%tests)
    suites(16)%name = 'files'; call collect_files(suites(16)%tests)
    suites(17)%name = 'indicators'; call collect_indicators(suites(17)%tests)
+   suites(18)%name = 'damping'; call collect_damping(suites(18)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

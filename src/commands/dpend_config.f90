@@ -20,7 +20,7 @@ module dpend_config
       path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
-                           max_steps, default_max_steps, sci
+                           max_steps, default_max_steps, sci, max_support_frequency
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -47,6 +47,14 @@ module dpend_config
       real(dp) :: w(max_dof) = 0.0_dp          !! initial angular velocities [rad/s]
       !> Lengths of the lists given for m, l, q, w (0: none given); each must be N.
       integer :: list_size(4) = 0
+      !> Joint damping c_i [N m s] (issue 13) and the number of values given (0: none).
+      real(dp) :: damping(max_dof) = 0.0_dp
+      integer :: damping_size = 0
+      !> The support's motion x_A = a_x cos(ω t + φ_x), y_A = a_y cos(ω t + φ_y):
+      !> amplitudes (a_x, a_y) [m], ω [rad/s], phases (φ_x, φ_y) [rad]; zero: fixed pin.
+      real(dp) :: support_amplitude(2) = 0.0_dp
+      real(dp) :: support_frequency = 0.0_dp
+      real(dp) :: support_phase(2) = 0.0_dp
       class(model_t), allocatable :: model     !! the system, built by validate_run_config
       character(len=:), allocatable :: method  !! integrator name
       real(dp) :: dt = 1e-3_dp                 !! step (initial step for adaptive) [s]
@@ -388,7 +396,8 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! unreadable or invalid
       character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
       real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
-      real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof)
+      real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof), damping(max_dof)
+      real(dp) :: support_amplitude(2), support_frequency, support_phase(2)
       real(dp), parameter :: unset = -huge(1.0_dp)   ! marks list entries not given
       integer :: save_every, unit, stat, n_extra, i, links
       integer(i8) :: max_steps
@@ -397,7 +406,8 @@ contains
       character(len=512) :: msg
       logical :: force
       character(len=16), allocatable :: known(:)
-      namelist /pendulum/ links, m, l, m1, m2, l1, l2, g
+      namelist /pendulum/ links, m, l, m1, m2, l1, l2, g, damping, support_amplitude, &
+         support_frequency, support_phase
       namelist /initial/ q, w, q1, q2, w1, w2
       namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
          max_steps
@@ -418,7 +428,9 @@ contains
       links = cfg%links
       m1 = cfg%m(1); m2 = cfg%m(2); l1 = cfg%l(1); l2 = cfg%l(2); g = cfg%g
       q1 = cfg%q(1); q2 = cfg%q(2); w1 = cfg%w(1); w2 = cfg%w(2)
-      m = unset; l = unset; q = unset; w = unset
+      m = unset; l = unset; q = unset; w = unset; damping = unset
+      support_amplitude = cfg%support_amplitude; support_frequency = cfg%support_frequency
+      support_phase = cfg%support_phase
       method = ''
       if (allocated(cfg%method)) method = cfg%method
       dt = cfg%dt; t_end = cfg%t_end; save_every = cfg%save_every
@@ -463,6 +475,9 @@ contains
       call take_list(2, l, cfg%l)
       call take_list(3, q, cfg%q)
       call take_list(4, w, cfg%w)
+      call take_list(0, damping, cfg%damping)
+      cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
+      cfg%support_phase = support_phase
       if (len_trim(method) > 0) cfg%method = trim(method)
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
       cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
@@ -484,7 +499,11 @@ contains
          end do
          if (n == 0) return
          values(:n) = given(:n)
-         cfg%list_size(k) = n
+         if (k > 0) then
+            cfg%list_size(k) = n
+         else
+            cfg%damping_size = n
+         end if
       end subroutine take_list
    end subroutine read_run_config
 
@@ -522,6 +541,10 @@ contains
       case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
       case ('--omega'); call parse_real(value, name, cfg%omega, error)
       case ('--max-steps'); call parse_int(value, name, cfg%max_steps, error)
+      case ('--damping'); call parse_list(0, cfg%damping)
+      case ('--support-amplitude'); call parse_pair(cfg%support_amplitude, 'a_x,a_y (m)')
+      case ('--support-frequency'); call parse_real(value, name, cfg%support_frequency, error)
+      case ('--support-phase'); call parse_pair(cfg%support_phase, 'phi_x,phi_y (rad)')
       case ('--output', '-o'); cfg%output = value
       case default
          matched = .false.
@@ -564,8 +587,27 @@ contains
             start = start + comma
          end do
          if (allocated(error)) return
-         cfg%list_size(k) = n
+         if (k > 0) then
+            cfg%list_size(k) = n
+         else
+            cfg%damping_size = n
+         end if
       end subroutine parse_list
+      !> Two comma-separated numbers.
+      subroutine parse_pair(values, what)
+         real(dp), intent(inout) :: values(2)
+         character(len=*), intent(in) :: what
+         integer :: comma
+         comma = index(value, ',')
+         if (comma == 0 .or. index(value(comma + 1:), ',') > 0) then
+            call fatal_error(error, 'invalid '//name//": '"//value//"' must be two " &
+                             //'comma-separated numbers '//what)
+            return
+         end if
+         call parse_real(value(:comma - 1), name, values(1), error)
+         if (allocated(error)) return
+         call parse_real(value(comma + 1:), name, values(2), error)
+      end subroutine parse_pair
    end subroutine apply_run_flag
 
    !> Check the whole configuration; messages name the field and the accepted range
@@ -591,7 +633,23 @@ contains
             return
          end if
       end do
-      if (n == 2) then
+      if (cfg%damping_size /= 0 .and. cfg%damping_size /= n) then
+         call fatal_error(error, 'invalid damping: '//to_str(cfg%damping_size)// &
+                          ' values for '//to_str(n)//' links (one per joint; --links N ' &
+                          //'sets N) [--damping / namelist damping]')
+         return
+      end if
+      call check_range('support_frequency', cfg%support_frequency, 0.0_dp, &
+                       max_support_frequency, 'rad/s', error)
+      if (allocated(error)) return
+      do i = 1, 2
+         call check_range('support_phase '//merge('phi_x', 'phi_y', i == 1), &
+                          cfg%support_phase(i), -max_angle, max_angle, 'rad', error)
+         if (allocated(error)) return
+      end do
+      if (n == 2 .and. all(cfg%damping(:n) == 0.0_dp) .and. &
+          all(cfg%support_amplitude == 0.0_dp)) then
+         ! the conservative double pendulum (the chain carries damping and support)
          call validate(cfg%pendulum(), error)
          if (allocated(error)) then
             error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
@@ -601,9 +659,17 @@ contains
       else
          block
             type(chain_t) :: chain
-            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)
+            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, cfg%damping(:n), &
+                                cfg%support_amplitude, cfg%support_frequency, cfg%support_phase)
             if (allocated(error)) then
-               error%message = error%message//' [--m --l --g / &pendulum]'
+               if (index(error%message, 'invalid damping') == 1) then
+                  error%message = error%message//' [--damping / &pendulum damping]'
+               else if (index(error%message, 'invalid support') == 1) then
+                  error%message = error%message//' [--support-amplitude --support-frequency' &
+                                  //' --support-phase / &pendulum]'
+               else
+                  error%message = error%message//' [--m --l --g / &pendulum]'
+               end if
                return
             end if
             allocate (cfg%model, source=chain)
@@ -701,6 +767,15 @@ contains
           '  --l1, --l2 M      link lengths; default '//real_str(cfg%l(1))//', ' &
           //real_str(cfg%l(2))//nl// &
           '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%g)//nl// &
+          '  --damping LIST    joint damping c_i (N m s, one per joint, each in [0, 1e6]):'//nl// &
+          '                    torque -c_i (qdot_i - qdot_(i-1)) at joint i; default 0'//nl// &
+          '  --support-amplitude AX,AY  moving pin: x_A = AX cos(w t + PX),'//nl// &
+          '                    y_A = AY cos(w t + PY) (m, each in [-1e6, 1e6]); default 0,0'//nl// &
+          '  --support-frequency W  w (rad/s, in [0, 1e6]); default 0'//nl// &
+          '  --support-phase PX,PY  phases (rad); default 0,0. Damping or a moving support'//nl// &
+          '                    makes the model the (damped, driven) chain, also for two'//nl// &
+          '                    links: rk4, dopri5, dop853 only; simulate writes the energy'//nl// &
+          '                    balance (W_friction, W_support, balance_error)'//nl// &
           '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &

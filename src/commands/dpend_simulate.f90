@@ -6,7 +6,8 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
-   use dpend_model, only: model_t
+   use dpend_model, only: model_t, max_dof
+   use dpend_work, only: needs_work, work_model, split_work, is_work_model
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled
@@ -38,6 +39,8 @@ module dpend_simulate
       real(dp), allocatable :: t(:)         !! times [s]
       real(dp), allocatable :: q(:, :)      !! angles (2, n) [rad]
       real(dp), allocatable :: qd(:, :)     !! angular velocities (2, n) [rad/s]
+      !> W_friction, W_support (2, n) [J] of a damped or driven chain (dpend_work)
+      real(dp), allocatable :: w(:, :)
       character(len=:), allocatable :: status  !! 'completed' or why the run stopped
    end type trajectory_t
 
@@ -112,6 +115,12 @@ contains
       end do
       call validate_run_config(cfg, error)
       if (allocated(error)) return
+      if (needs_work(cfg%model) .and. cfg%links >= max_dof) then
+         call fatal_error(error, 'invalid links: '//to_str(cfg%links)//' with damping or a ' &
+                          //'moving support is outside [1, '//to_str(max_dof - 1)// &
+                          '] (the energy balance takes two state components)')
+         return
+      end if
       call check_simulate_resources(cfg, error)
    end subroutine parse_simulate
 
@@ -182,10 +191,18 @@ contains
       if (present(summary) .and. traj%n > 0) then
          e0 = cfg%model%energy(traj%t(1), [traj%q(:, 1), traj%qd(:, 1)])
          e1 = cfg%model%energy(traj%t(traj%n), [traj%q(:, traj%n), traj%qd(:, traj%n)])
-         summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
-                   to_str(integ%n_rhs)//' f evaluations, relative energy error '// &
-                   real_str(abs(e1 - e0)/cfg%model%energy_scale(e0), 2)//', '// &
-                   seconds_str(wall_seconds() - t0)//' s'
+         if (allocated(traj%w)) then   ! E(t) − E(0) + W_friction − W_support
+            summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
+                      to_str(integ%n_rhs)//' f evaluations, relative energy balance ' &
+                      //'error '//real_str(abs(e1 - e0 + traj%w(1, traj%n) - &
+                      traj%w(2, traj%n))/cfg%model%energy_scale(e0), 2)//', '// &
+                      seconds_str(wall_seconds() - t0)//' s'
+         else
+            summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
+                      to_str(integ%n_rhs)//' f evaluations, relative energy error '// &
+                      real_str(abs(e1 - e0)/cfg%model%energy_scale(e0), 2)//', '// &
+                      seconds_str(wall_seconds() - t0)//' s'
+         end if
       end if
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -210,34 +227,45 @@ contains
       class(integrator_t), intent(inout) :: integ         !! the method
       type(trajectory_t), intent(out) :: traj             !! the samples
       type(march_t) :: march
-      real(dp) :: t, h, y(cfg%model%n_state())
-      real(dp), allocatable :: times(:), states(:, :)
+      real(dp) :: t, h
+      real(dp), allocatable :: times(:), states(:, :), y(:)
+      class(model_t), allocatable :: model   ! the system integrated
       integer(i8) :: k, cap, avail
       integer :: stat, i
+      ! a damped or driven chain is integrated with its works (dpend_work)
+      if (needs_work(cfg%model)) then
+         call work_model(cfg%model, model)
+      else
+         allocate (model, source=cfg%model)
+      end if
       ! an adaptive run without output_dt keeps an unknown number of samples: at most
       ! max_samples and what fits the memory now
       cap = max_samples
       avail = available_memory_bytes()
       if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
-      y = integ%to_internal(cfg%model, cfg%q0(), cfg%w0())
+      if (model%n_dof() > cfg%links) then   ! the works start at 0
+         y = integ%to_internal(model, [cfg%q0(), 0.0_dp], [cfg%w0(), 0.0_dp])
+      else
+         y = integ%to_internal(model, cfg%q0(), cfg%w0())
+      end if
       t = 0.0_dp
       h = cfg%dt
       traj%status = 'completed'
       stat = stat_ok
       if (cfg%output_dt > 0.0_dp) then
-         call integrate_sampled(integ, cfg%model, t, y, cfg%t_end, h, cfg%output_dt, times, &
+         call integrate_sampled(integ, model, t, y, cfg%t_end, h, cfg%output_dt, times, &
                                 states, stat)
          do i = 1, size(times)
-            call append(traj, integ, cfg%model, times(i), states(:, i))
+            call append(traj, integ, model, times(i), states(:, i))
          end do
          if (size(times) > 0) t = times(size(times))
       else
-         call append(traj, integ, cfg%model, t, y)
+         call append(traj, integ, model, t, y)
          call integ%clear_step()
          call march%start(integ, t, cfg%t_end, h)
          k = 0
          do while (.not. march%finished)
-            call march%next(integ, cfg%model, t, y, h, stat)
+            call march%next(integ, model, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
@@ -247,7 +275,7 @@ contains
                                 ' s; use a larger --save-every or --output-dt'
                   exit
                end if
-               call append(traj, integ, cfg%model, t, y)
+               call append(traj, integ, model, t, y)
             end if
          end do
       end if
@@ -257,26 +285,43 @@ contains
    end subroutine integrate_trajectory
 
    !> Append the state (t, y) to the samples, growing the buffers geometrically.
+   !> The state of a chain with its works (dpend_work) is split into (q, q̇) and W.
    subroutine append(traj, integ, model, t, y)
       type(trajectory_t), intent(inout) :: traj     !! samples
       class(integrator_t), intent(in) :: integ      !! for the conversion to (q, q̇)
       class(model_t), intent(in) :: model           !! the system
       real(dp), intent(in) :: t                     !! time [s]
       real(dp), intent(in) :: y(:)                  !! internal state
-      real(dp), allocatable :: tt(:), qq(:, :), ww(:, :)
+      real(dp), allocatable :: tt(:), qq(:, :), ww(:, :), wk(:, :)
+      real(dp) :: qa(max_dof + 1), qda(max_dof + 1)
       integer :: cap, nd
+      logical :: works
       nd = model%n_dof()
+      works = is_work_model(model)
+      if (works) nd = nd - 1
       if (.not. allocated(traj%t)) then
          allocate (traj%t(1024), traj%q(nd, 1024), traj%qd(nd, 1024))
+         if (works) allocate (traj%w(2, 1024))
       else if (traj%n == size(traj%t)) then
          cap = 2*size(traj%t)
          allocate (tt(cap), qq(nd, cap), ww(nd, cap))
          tt(:traj%n) = traj%t; qq(:, :traj%n) = traj%q; ww(:, :traj%n) = traj%qd
          call move_alloc(tt, traj%t); call move_alloc(qq, traj%q); call move_alloc(ww, traj%qd)
+         if (works) then
+            allocate (wk(2, cap))
+            wk(:, :traj%n) = traj%w
+            call move_alloc(wk, traj%w)
+         end if
       end if
       traj%n = traj%n + 1
       traj%t(traj%n) = t
-      call integ%to_physical(model, y, traj%q(:, traj%n), traj%qd(:, traj%n), t)
+      if (works) then
+         call integ%to_physical(model, y, qa(1:nd + 1), qda(1:nd + 1), t)
+         call split_work(qa(1:nd + 1), qda(1:nd + 1), traj%q(:, traj%n), &
+                         traj%qd(:, traj%n), traj%w(:, traj%n))
+      else
+         call integ%to_physical(model, y, traj%q(:, traj%n), traj%qd(:, traj%n), t)
+      end if
    end subroutine append
 
    !> Write the samples with their derived quantities (accelerations, momenta,
@@ -289,6 +334,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       type(h5file_t) :: h5
       real(dp), allocatable :: qdd(:, :), p(:, :), e(:), out(:, :), y(:), f(:), slab(:, :)
+      real(dp), allocatable :: e_w(:)
       character(len=:), allocatable :: name, units, text
       integer :: i, n, nd, j, n_comp, off, n_out, rows
       logical :: canonical
@@ -323,8 +369,26 @@ contains
             description='angular accelerations (qddot1 .. qddot'//to_str(nd)//')')
          if (canonical) call h5%write('/trajectory/p', p, units='kg m^2/s', &
             description='canonical momenta p = M(q) qdot (p1 .. p'//to_str(nd)//')')
-         call h5%write('/trajectory/energy', e, units='J', &
-            description='total energy T + V (V = 0 with every link horizontal)')
+         if (model%autonomous()) then
+            call h5%write('/trajectory/energy', e, units='J', &
+               description='total energy T + V (V = 0 with every link horizontal)')
+         else   ! a moving support: the inertial energy
+            call h5%write('/trajectory/energy', e, units='J', description='total energy ' &
+               //'T + V in the fixed frame (V = 0 at y = 0, the mean height of the pin A)')
+         end if
+         if (allocated(traj%w)) then   ! the energy balance (dpend_work)
+            e_w = traj%w(1, :n)   ! contiguous, for the HDF5 layer
+            call h5%write('/trajectory/W_friction', e_w, units='J', description= &
+               'work dissipated by the joint damping since t = 0, integral of sum c_i ' &
+               //'(qdot_i - qdot_(i-1))^2 dt')
+            e_w = traj%w(2, :n)
+            call h5%write('/trajectory/W_support', e_w, units='J', description= &
+               'work done by the moving support since t = 0, integral of F_01 . v_A dt')
+            call h5%write('/trajectory/balance_error', (e - e(1) + traj%w(1, :n) - &
+               traj%w(2, :n))/model%energy_scale(e(1)), units='1', description= &
+               '(E(t) - E(0) + W_friction - W_support) / energy_scale: the integration ' &
+               //'error of the energy balance')
+         end if
          off = 0
          do j = 1, model%n_outputs()
             call model%output_info(j, name, n_comp, units, text, rows)

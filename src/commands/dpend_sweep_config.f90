@@ -285,6 +285,12 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
+      if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
+         call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
+                          //'conservative chain only (--damping and --support-amplitude ' &
+                          //'must be 0; dpend simulate takes them)')
+         return
+      end if
       if (cfg%run%links /= 2 .and. cfg%lyapunov) then
          call fatal_error(error, 'invalid lyapunov: true with '//to_str(cfg%run%links)// &
                           ' links (dpend sweep computes it for links = 2 only; '// &

@@ -5,7 +5,7 @@ module dpend_lapack
    use dpend_kinds, only: dp
    implicit none
    private
-   public :: dgeqrf, dorgqr, dpotrf, dpotrs, dsygv, dgesv
+   public :: dgeqrf, dorgqr, dpotrf, dpotrs, dsygv, dgesv, dgeev
 
    interface
       !> QR factorization of a general m×n matrix (Householder).
@@ -67,5 +67,19 @@ module dpend_lapack
          real(dp), intent(inout) :: b(ldb, *)
          integer, intent(out) :: info
       end subroutine dgesv
+      !> Eigenvalues (wr + i wi) and, with jobvl/jobvr 'V', left/right eigenvectors of a
+      !> general real n×n matrix; a complex pair j, j+1 (wi(j) > 0) has the eigenvector
+      !> vr(:, j) + i vr(:, j+1); info > 0: the QR algorithm failed.
+      subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, &
+                       info)
+         import :: dp
+         character(len=1), intent(in) :: jobvl, jobvr
+         integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+         real(dp), intent(inout) :: a(lda, *)
+         real(dp), intent(out) :: wr(*), wi(*)
+         real(dp), intent(out) :: vl(ldvl, *), vr(ldvr, *)
+         real(dp), intent(inout) :: work(*)
+         integer, intent(out) :: info
+      end subroutine dgeev
    end interface
 end module dpend_lapack

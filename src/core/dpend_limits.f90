@@ -26,7 +26,7 @@ module dpend_limits
    public :: max_angle, max_angular_velocity, max_time, max_dt, min_rtol, min_atol, max_atol
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
-   public :: diverged_bound
+   public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
    public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
@@ -71,6 +71,11 @@ module dpend_limits
    real(dp), parameter :: max_atol = 1.0_dp
    !> Tao's binding constant ω at most 1e9 1/s: ω h stays finite for every step.
    real(dp), parameter :: max_omega = 1e9_dp
+   !> Largest joint damping coefficient c_i [N m s] (issue 13).
+   real(dp), parameter :: max_damping = 1e6_dp
+   !> Largest support amplitude |a_x|, |a_y| [m] and frequency ω [rad/s] (issue 13).
+   real(dp), parameter :: max_support_amplitude = 1e6_dp
+   real(dp), parameter :: max_support_frequency = 1e6_dp
 
    !> At most 1e12 steps in one integration of a fixed-step method (a day at 1e7
    !> steps/s): the step index is exact in real(dp) (< 2^53) and t0 + i h never

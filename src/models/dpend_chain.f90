@@ -44,11 +44,31 @@
 !>
 !> Hamiltonian form: p = M(q) q̇, H = ½ pᵀ M⁻¹ p + V, ∂H/∂p = q̇ and
 !>   ∂H/∂q_i = −τ_i + G_i cos q_i,  τ_i = ∂T/∂q_i|_q̇ = −q̇_i Σ_j K_ij sin(q_i − q_j) q̇_j.
+!>
+!> Joint damping and a moving support (issue 13), both off by default (the
+!> conservative chain above, its arithmetic unchanged):
+!> - joint i exerts the viscous torque −c_i (q̇_i − q̇_(i−1)) on body i and its
+!>   opposite on body i − 1 (q̇_0 = 0, joint 1 the pin A). The moment equation of link
+!>   i is Lagrange's equation of q_i (the absolute angles), so the torques enter f as
+!>   the generalized forces Q = −C q̇, C_ii = c_i + c_(i+1), C_(i,i+1) = −c_(i+1);
+!> - the pin A moves: x_A = a_x cos(ω t + φ_x), y_A = a_y cos(ω t + φ_y). Its
+!>   acceleration a_A starts the recursion of accelerations (a⁰ of the near end of link
+!>   1), so that f gains −μ_i u_i × a_A, μ_i = L_i (m_i/2 + Σ_(k>i) m_k) (gravity g ĵ
+!>   becomes g ĵ + a_A); kinematics and reactions include the motion of A.
+!> With either, the model is neither Hamiltonian nor conservative (the support also
+!> makes it non-autonomous). The energy is then the inertial one,
+!>   E = T + V with T = Σ ½ m_k |v_Ck|² + ½ I_Ck q̇_k², V = Σ m_k g y_Ck,
+!>     = ½ q̇ᵀ M q̇ + Σ G_i sin q_i + v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A
+!> (m the total mass), and its balance is dE/dt = P_support − P_friction with
+!>   P_friction = Σ c_i (q̇_i − q̇_(i−1))² ≥ 0,
+!>   P_support = F_(0,1) · v_A,  F_(0,1) = m (a_A + g ĵ) + Σ μ_i (q̈_i n_i − q̇_i² u_i)
+!> (`powers`; `dpend_work` integrates both along the solution).
 module dpend_chain
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g, &
-                           diverged_bound
+                           diverged_bound, max_damping, max_support_amplitude, &
+                           max_support_frequency, max_angle
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
@@ -64,6 +84,13 @@ module dpend_chain
       real(dp) :: g = 9.8_dp                 !! gravitational acceleration [m/s²]
       real(dp), allocatable :: k(:, :)       !! K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²]
       real(dp), allocatable :: gl(:)         !! G_i of V = Σ G_i sin q_i [J]
+      real(dp), allocatable :: mu(:)         !! μ_i = L_i (m_i/2 + Σ_(k>i) m_k) [kg m]
+      real(dp), allocatable :: c(:)          !! joint damping c_i [N m s] (N)
+      logical :: damped = .false.            !! some c_i > 0
+      logical :: driven = .false.            !! the support moves
+      real(dp) :: sup_a(2) = 0.0_dp          !! support amplitudes (a_x, a_y) [m]
+      real(dp) :: sup_w = 0.0_dp             !! support angular frequency ω [rad/s]
+      real(dp) :: sup_phi(2) = 0.0_dp        !! support phases (φ_x, φ_y) [rad]
    contains
       procedure :: n_dof => chain_n_dof
       procedure :: name => chain_name
@@ -71,7 +98,9 @@ module dpend_chain
       procedure :: jacobian => chain_jacobian
       procedure :: energy => chain_energy
       procedure :: energy_scale => chain_energy_scale
-      procedure :: hamiltonian => chain_true
+      procedure :: hamiltonian => chain_hamiltonian
+      procedure :: conservative => chain_hamiltonian
+      procedure :: autonomous => chain_autonomous
       procedure :: momenta => chain_momenta
       procedure :: velocities => chain_velocities
       procedure :: hamiltonian_value => chain_hamiltonian_value
@@ -100,6 +129,10 @@ module dpend_chain
       procedure :: kinematics => chain_kinematics
       !> Potential energy V(q) [J].
       procedure :: potential => chain_potential
+      !> Position, velocity and acceleration of the pin A at time t.
+      procedure :: support => chain_support
+      !> Power dissipated by the joints and delivered by the support [W].
+      procedure :: powers => chain_powers
    end type chain_t
 
    !> The writer's per-sample outputs, 2N values (x, y per link or joint) each.
@@ -123,11 +156,20 @@ contains
    !> checked: 1 ≤ N ≤ max_dof links, m and l of the same size, each within
    !> dpend_limits' [min_mass, max_mass] and [min_length, max_length], g in [0, max_g].
    !> The error names the field (m3, l2, g, links), its value and the accepted range.
-   function chain_model(m, l, g, error) result(model)
+   !> Optional (issue 13): joint damping c [N m s] (one per link, each in
+   !> [0, max_damping]) and the support motion: amplitudes (a_x, a_y) [m] (each in
+   !> [−max_support_amplitude, max_support_amplitude]), angular frequency ω [rad/s]
+   !> (in [0, max_support_frequency]), phases (φ_x, φ_y) [rad] (|φ| ≤ max_angle).
+   !> All zero (the default) is the conservative chain.
+   function chain_model(m, l, g, error, damping, amplitude, frequency, phase) result(model)
       real(dp), intent(in) :: m(:)                      !! masses [kg]
       real(dp), intent(in) :: l(:)                      !! lengths [m]
       real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
       type(error_t), allocatable, intent(out) :: error  !! set when refused
+      real(dp), intent(in), optional :: damping(:)      !! c_i [N m s]
+      real(dp), intent(in), optional :: amplitude(2)    !! (a_x, a_y) [m]
+      real(dp), intent(in), optional :: frequency       !! ω [rad/s]
+      real(dp), intent(in), optional :: phase(2)        !! (φ_x, φ_y) [rad]
       type(chain_t) :: model                            !! the chain (n = 0 when refused)
       character(len=*), parameter :: reason = 'keeps every product of the model finite'
       integer :: i, j, n
@@ -153,11 +195,52 @@ contains
       end do
       call check_range('g', g, 0.0_dp, max_g, 'm/s^2', error, reason)
       if (allocated(error)) return
+      allocate (model%c(n))
+      model%c = 0.0_dp
+      if (present(damping)) then
+         if (size(damping) /= n) then
+            call fatal_error(error, 'invalid damping: '//to_str(size(damping))// &
+                             ' coefficients for '//to_str(n)//' links (one per joint)')
+            return
+         end if
+         do i = 1, n
+            call check_range('damping c'//to_str(i), damping(i), 0.0_dp, max_damping, &
+                             'N m s', error, reason)
+            if (allocated(error)) return
+         end do
+         model%c = damping
+      end if
+      model%damped = any(model%c > 0.0_dp)
+      if (present(amplitude)) then
+         do i = 1, 2
+            call check_range('support_amplitude '//merge('a_x', 'a_y', i == 1), &
+                             amplitude(i), -max_support_amplitude, max_support_amplitude, &
+                             'm', error, reason)
+            if (allocated(error)) return
+         end do
+         model%sup_a = amplitude
+      end if
+      if (present(frequency)) then
+         call check_range('support_frequency', frequency, 0.0_dp, max_support_frequency, &
+                          'rad/s', error, reason)
+         if (allocated(error)) return
+         model%sup_w = frequency
+      end if
+      if (present(phase)) then
+         do i = 1, 2
+            call check_range('support_phase '//merge('phi_x', 'phi_y', i == 1), phase(i), &
+                             -max_angle, max_angle, 'rad', error, reason)
+            if (allocated(error)) return
+         end do
+         model%sup_phi = phase
+      end if
+      ! a nonzero amplitude moves the pin (with ω = 0 it only offsets it)
+      model%driven = any(model%sup_a /= 0.0_dp)
       model%n = n
       model%m = m
       model%l = l
       model%g = g
-      allocate (model%k(n, n), model%gl(n))
+      allocate (model%k(n, n), model%gl(n), model%mu(n))
       ! tail = Σ_(k>i) m_k, from the tip
       tail = 0.0_dp
       do i = n, 1, -1
@@ -167,6 +250,7 @@ contains
             model%k(j, i) = model%k(i, j)
          end do
          model%gl(i) = g*l(i)*(0.5_dp*m(i) + tail)
+         model%mu(i) = l(i)*(0.5_dp*m(i) + tail)
          tail = tail + m(i)
       end do
    end function chain_model
@@ -252,15 +336,16 @@ contains
    !> f(q, q̇) of M q̈ = f by the Newton–Euler recursion with q̈ = 0: centripetal
    !> accelerations a⁰ from the pin outwards, the reactions F⁰ from the tip inwards,
    !> f_i = −h_i u_i × (F⁰_(i−1,i) + F⁰_(i,i+1)).
-   pure subroutine rhs_newton_euler(self, c, s, qd, f)
+   pure subroutine rhs_newton_euler(self, c, s, qd, a0, f)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
       real(dp), intent(in) :: qd(*)                   !! q̇ [rad/s]
+      real(dp), intent(in) :: a0(2)                   !! acceleration of A [m/s²]
       real(dp), intent(out) :: f(max_dof)             !! f [N m]
       real(dp) :: acx(max_dof), acy(max_dof), px, py, w2, h, fx, fy, gx, gy
       integer :: i, n
       n = self%n
-      px = 0.0_dp; py = 0.0_dp            ! a⁰ of the near end of link i
+      px = a0(1); py = a0(2)              ! a⁰ of the near end of link i
       do i = 1, n
          w2 = qd(i)**2
          h = 0.5_dp*self%l(i)
@@ -279,28 +364,86 @@ contains
    end subroutine rhs_newton_euler
 
    !> q̈ (leading n of qdd) and the Cholesky factor of M at (q, q̇).
-   pure subroutine solve_qdd(self, q, qd, qdd, a, c, s)
+   pure subroutine solve_qdd(self, t, q, qd, qdd, a, c, s)
       class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t                      !! time [s]
       real(dp), intent(in) :: q(*), qd(*)            !! angles [rad], rates [rad/s]
       real(dp), intent(out) :: qdd(max_dof)          !! q̈ [rad/s²]
       real(dp), intent(out) :: a(max_dof, max_dof)   !! Cholesky factor of M
       real(dp), intent(out) :: c(max_dof), s(max_dof) !! cos q, sin q
       call trig(self%n, q, c, s)
-      call solve_qdd_trig(self, c, s, qd, qdd, a)
+      call solve_qdd_trig(self, t, c, s, qd, qdd, a)
    end subroutine solve_qdd
 
    !> q̈ (leading n of qdd) and the Cholesky factor of M from cos q, sin q.
-   pure subroutine solve_qdd_trig(self, c, s, qd, qdd, a)
+   pure subroutine solve_qdd_trig(self, t, c, s, qd, qdd, a)
       class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t                       !! time [s]
       real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
       real(dp), intent(in) :: qd(*)                   !! rates [rad/s]
       real(dp), intent(out) :: qdd(max_dof)           !! q̈ [rad/s²]
       real(dp), intent(out) :: a(max_dof, max_dof)    !! Cholesky factor of M
+      real(dp) :: ra(2), va(2), aa(2)
+      integer :: i
+      aa = 0.0_dp
+      if (self%driven) call self%support(t, ra, va, aa)
       call fill_mass(self, c, s, a)
       call cholesky(self%n, a)
-      call rhs_newton_euler(self, c, s, qd, qdd)
+      call rhs_newton_euler(self, c, s, qd, aa, qdd)
+      if (self%damped) then   ! Q = −C q̇
+         do i = 1, self%n
+            qdd(i) = qdd(i) - self%c(i)*(qd(i) - merge(qd(max(i - 1, 1)), 0.0_dp, i > 1))
+            if (i < self%n) qdd(i) = qdd(i) + self%c(i + 1)*(qd(i + 1) - qd(i))
+         end do
+      end if
       call cholesky_solve(self%n, a, qdd)
    end subroutine solve_qdd_trig
+
+   !> x_A = a_x cos(ω t + φ_x), y_A = a_y cos(ω t + φ_y) and its derivatives.
+   pure subroutine chain_support(self, t, r, v, a)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t              !! time [s]
+      real(dp), intent(out) :: r(2)          !! position of A [m]
+      real(dp), intent(out) :: v(2)          !! velocity of A [m/s]
+      real(dp), intent(out) :: a(2)          !! acceleration of A [m/s²]
+      real(dp) :: ph(2)
+      ph = self%sup_w*t + self%sup_phi
+      r = self%sup_a*cos(ph)
+      v = -self%sup_w*self%sup_a*sin(ph)
+      a = -self%sup_w**2*r
+   end subroutine chain_support
+
+   !> P_friction = Σ c_i (q̇_i − q̇_(i−1))² and P_support = F_(0,1) · v_A [W] at
+   !> (t, q, q̇) with the accelerations q̈ (see the module's notes).
+   pure subroutine chain_powers(self, t, y, qdd, p_friction, p_support)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(*)         !! state (q, q̇)
+      real(dp), intent(in) :: qdd(*)       !! q̈ [rad/s²]
+      real(dp), intent(out) :: p_friction  !! power dissipated in the joints [W]
+      real(dp), intent(out) :: p_support   !! power delivered by the support [W]
+      real(dp) :: ra(2), va(2), aa(2), f(2), w, ci, si
+      integer :: i, n
+      n = self%n
+      p_friction = 0.0_dp
+      p_support = 0.0_dp
+      if (self%damped) then
+         do i = 1, n
+            w = y(n + i)
+            if (i > 1) w = w - y(n + i - 1)
+            p_friction = p_friction + self%c(i)*w**2
+         end do
+      end if
+      if (self%driven) then
+         call self%support(t, ra, va, aa)
+         f = sum(self%m)*(aa + [0.0_dp, self%g])
+         do i = 1, n
+            ci = cos(y(i)); si = sin(y(i))
+            f = f + self%mu(i)*(qdd(i)*[-si, ci] - y(n + i)**2*[ci, si])
+         end do
+         p_support = dot_product(f, va)
+      end if
+   end subroutine chain_powers
 
    !> q̇ = M⁻¹ p (leading n of qd) and the Cholesky factor of M.
    pure subroutine solve_qd(self, q, p, qd, a, c, s)
@@ -372,12 +515,21 @@ contains
       class(chain_t), intent(in) :: self
       character(len=:), allocatable :: name
       name = 'chain of '//to_str(self%n)//' links'
+      if (self%damped) name = 'damped '//name
+      if (self%driven) name = name//' on a moving support'
    end function chain_name
 
-   pure logical function chain_true(self)
+   !> Hamiltonian and conservative without damping and support.
+   pure logical function chain_hamiltonian(self)
       class(chain_t), intent(in) :: self
-      chain_true = .true.
-   end function chain_true
+      chain_hamiltonian = .not. (self%damped .or. self%driven)
+   end function chain_hamiltonian
+
+   !> Autonomous unless the support moves.
+   pure logical function chain_autonomous(self)
+      class(chain_t), intent(in) :: self
+      chain_autonomous = .not. self%driven
+   end function chain_autonomous
 
    !> (q̇, q̈) with q̈ from Newton–Euler and a Cholesky solve.
    pure subroutine chain_field(self, t, y, f)
@@ -390,18 +542,21 @@ contains
       n = self%n
       call saturate(2*n, y, f, runaway)
       if (runaway) return
-      call solve_qdd(self, y(1:n), y(n + 1:2*n), qdd, a, c, s)
+      call solve_qdd(self, t, y(1:n), y(n + 1:2*n), qdd, a, c, s)
       f(1:n) = y(n + 1:2*n)
       f(n + 1:2*n) = qdd(1:n)
    end subroutine chain_field
 
-   !> The accelerations q̈ [rad/s²] (n) at (q, q̇).
-   pure function chain_accelerations(self, q, qd) result(qdd)
+   !> The accelerations q̈ [rad/s²] (n) at (q, q̇) and time t (default 0).
+   pure function chain_accelerations(self, q, qd, t) result(qdd)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: q(:), qd(:)   !! angles [rad], rates [rad/s]
+      real(dp), intent(in), optional :: t   !! time [s]
       real(dp) :: qdd(self%n)
-      real(dp) :: w(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
-      call solve_qdd(self, q, qd, w, a, c, s)
+      real(dp) :: w(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), tt
+      tt = 0.0_dp
+      if (present(t)) tt = t
+      call solve_qdd(self, tt, q, qd, w, a, c, s)
       qdd = w(1:self%n)
    end function chain_accelerations
 
@@ -426,11 +581,12 @@ contains
       real(dp), intent(in) :: t, y(:)
       real(dp), intent(out) :: jac(:, :)
       real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), col(max_dof)
-      real(dp) :: cij, sij, qd(max_dof)
+      real(dp) :: cij, sij, qd(max_dof), ra(2), va(2), aa(2)
       integer :: n, i, k
       n = self%n
       qd(1:n) = y(n + 1:2*n)
-      call solve_qdd(self, y(1:n), qd, qdd, a, c, s)
+      call solve_qdd(self, t, y(1:n), qd, qdd, a, c, s)
+      if (self%driven) call self%support(t, ra, va, aa)
       jac = 0.0_dp
       do i = 1, n
          jac(i, n + i) = 1.0_dp
@@ -446,6 +602,8 @@ contains
             col(k) = col(k) - self%k(k, i)*(cij*qd(i)**2 + sij*qdd(i))
          end do
          col(k) = col(k) + self%gl(k)*s(k)
+         ! ∂(−μ_k u_k × a_A)/∂q_k
+         if (self%driven) col(k) = col(k) + self%mu(k)*(s(k)*aa(2) + c(k)*aa(1))
          call cholesky_solve(n, a, col)
          jac(n + 1:2*n, k) = col(1:n)
          ! column ∂/∂q̇_k
@@ -453,6 +611,14 @@ contains
             sij = s(i)*c(k) - c(i)*s(k)
             col(i) = -2.0_dp*self%k(i, k)*sij*qd(k)
          end do
+         if (self%damped) then   ! −C e_k
+            col(k) = col(k) - self%c(k)
+            if (k > 1) col(k - 1) = col(k - 1) + self%c(k)
+            if (k < n) then
+               col(k) = col(k) - self%c(k + 1)
+               col(k + 1) = col(k + 1) + self%c(k + 1)
+            end if
+         end if
          call cholesky_solve(n, a, col)
          jac(n + 1:2*n, n + k) = col(1:n)
       end do
@@ -470,14 +636,25 @@ contains
    end function chain_potential
 
    !> ½ q̇ᵀ M q̇ + V [J].
+   !> On a moving support, the inertial energy (module notes): plus
+   !> v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A.
    pure real(dp) function chain_energy(self, t, y)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)
-      real(dp) :: p(max_dof)
-      integer :: n
+      real(dp) :: p(max_dof), ra(2), va(2), aa(2), mt
+      integer :: n, i
       n = self%n
       call momenta_of(self, y(1:n), y(n + 1:2*n), p)
       chain_energy = 0.5_dp*dot_product(p(1:n), y(n + 1:2*n)) + self%potential(y(1:n))
+      if (self%driven) then
+         call self%support(t, ra, va, aa)
+         mt = sum(self%m)
+         chain_energy = chain_energy + 0.5_dp*mt*dot_product(va, va) + mt*self%g*ra(2)
+         do i = 1, n
+            chain_energy = chain_energy + self%mu(i)*y(n + i)* &
+                           (-sin(y(i))*va(1) + cos(y(i))*va(2))
+         end do
+      end if
    end function chain_energy
 
    !> The unit of relative energy errors [J], as for the double pendulum: |E0| when it is
@@ -585,7 +762,7 @@ contains
       call saturate(2*n, y, f, runaway)
       if (runaway) return
       call trig_near(n, cache(1:n), cache(n + 1:2*n), y(1:n), d(1:n), c, s)
-      call solve_qdd_trig(self, c, s, y(n + 1:2*n), qdd, a)
+      call solve_qdd_trig(self, t, c, s, y(n + 1:2*n), qdd, a)
       f(1:n) = y(n + 1:2*n)
       f(n + 1:2*n) = qdd(1:n)
    end subroutine chain_field_near
@@ -724,6 +901,16 @@ contains
          g(i) = -qd(i)*sg(i) + self%gl(i)*c(i)
       end do
       g(n + 1:2*n) = p(1:n)
+      if (self%driven) then   ! ∂/∂y of v_A · Σ μ_i q̇_i n_i
+         block
+            real(dp) :: ra(2), va(2), aa(2)
+            call self%support(t, ra, va, aa)
+            do i = 1, n
+               g(i) = g(i) - self%mu(i)*qd(i)*(c(i)*va(1) + s(i)*va(2))
+               g(n + i) = g(n + i) + self%mu(i)*(-s(i)*va(1) + c(i)*va(2))
+            end do
+         end block
+      end if
    end subroutine chain_energy_gradient
 
    ! ---------------------------------------------------------------- Poincaré sections
@@ -732,7 +919,7 @@ contains
    !> Hamiltonian); there the chain is the double pendulum, whose formulas are used.
    pure logical function chain_energy_sections(self)
       class(chain_t), intent(in) :: self
-      chain_energy_sections = self%n == 2
+      chain_energy_sections = self%n == 2 .and. self%hamiltonian()
    end function chain_energy_sections
 
    !> The double pendulum of a two-link chain.
@@ -766,15 +953,22 @@ contains
    ! ---------------------------------------------------------------- kinematics, reactions
 
    !> Positions [m], velocities [m/s], accelerations [m/s²] of every centre of mass C_i
-   !> and far end P_i, as (2, n) arrays (x, y per link).
-   pure subroutine chain_kinematics(self, q, qd, qdd, rc, vc, ac, rj, vj, aj)
+   !> and far end P_i, as (2, n) arrays (x, y per link), at time t (default 0; the
+   !> support's motion included).
+   pure subroutine chain_kinematics(self, q, qd, qdd, rc, vc, ac, rj, vj, aj, t)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: q(:), qd(:), qdd(:)         !! q [rad], q̇ [rad/s], q̈ [rad/s²]
       real(dp), intent(out) :: rc(:, :), vc(:, :), ac(:, :) !! of C_i (2, n)
       real(dp), intent(out) :: rj(:, :), vj(:, :), aj(:, :) !! of P_i (2, n)
+      real(dp), intent(in), optional :: t                 !! time [s]
       real(dp) :: u(2), nv(2), r0(2), v0(2), a0(2), h
       integer :: i
       r0 = 0.0_dp; v0 = 0.0_dp; a0 = 0.0_dp
+      if (self%driven) then
+         h = 0.0_dp
+         if (present(t)) h = t
+         call self%support(h, r0, v0, a0)
+      end if
       do i = 1, self%n
          u = [cos(q(i)), sin(q(i))]
          nv = [-u(2), u(1)]
@@ -791,16 +985,17 @@ contains
 
    !> F_(i−1,i) [N] (2, n), the force of body i − 1 on body i at joint i, from the tip:
    !> F_(i−1,i) = F_(i,i+1) + m_i (a_Ci + g ĵ), F_(N,N+1) = 0.
-   pure subroutine chain_reactions(self, q, qd, qdd, f)
+   pure subroutine chain_reactions(self, q, qd, qdd, f, t)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: q(:), qd(:), qdd(:)   !! q [rad], q̇ [rad/s], q̈ [rad/s²]
       real(dp), intent(out) :: f(:, :)              !! reactions (2, n) [N]
+      real(dp), intent(in), optional :: t           !! time [s] (default 0)
       real(dp) :: rc(2, max_dof), vc(2, max_dof), ac(2, max_dof)
       real(dp) :: rj(2, max_dof), vj(2, max_dof), aj(2, max_dof), nxt(2)
       integer :: i, n
       n = self%n
       call self%kinematics(q, qd, qdd, rc(:, 1:n), vc(:, 1:n), ac(:, 1:n), &
-                           rj(:, 1:n), vj(:, 1:n), aj(:, 1:n))
+                           rj(:, 1:n), vj(:, 1:n), aj(:, 1:n), t)
       nxt = 0.0_dp
       do i = n, 1, -1
          f(1, i) = nxt(1) + self%m(i)*ac(1, i)
@@ -835,9 +1030,9 @@ contains
       integer :: n, k
       n = self%n
       associate (q => y(1:n), qd => y(n + 1:2*n), qdd => f(n + 1:2*n))
-         call self%reactions(q, qd, qdd, w(:, 1:n, 1))
+         call self%reactions(q, qd, qdd, w(:, 1:n, 1), t)
          call self%kinematics(q, qd, qdd, w(:, 1:n, 2), w(:, 1:n, 3), w(:, 1:n, 4), &
-                              w(:, 1:n, 5), w(:, 1:n, 6), w(:, 1:n, 7))
+                              w(:, 1:n, 5), w(:, 1:n, 6), w(:, 1:n, 7), t)
       end associate
       do k = 1, n_out
          values(2*n*(k - 1) + 1:2*n*k) = reshape(w(:, 1:n, k), [2*n])
@@ -847,14 +1042,40 @@ contains
    pure integer function chain_n_parameters(self)
       class(chain_t), intent(in) :: self
       chain_n_parameters = 2*self%n + 1
+      if (self%damped) chain_n_parameters = chain_n_parameters + self%n
+      if (self%driven) chain_n_parameters = chain_n_parameters + 5
    end function chain_n_parameters
 
-   !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order.
+   !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order; then, when present, the
+   !> damping c1 … cN [N m s] and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad].
    subroutine chain_parameter(self, i, name, value, units)
       class(chain_t), intent(in) :: self
       integer, intent(in) :: i
       character(len=:), allocatable, intent(out) :: name, units
       real(dp), intent(out) :: value
+      integer :: j
+      character(len=*), parameter :: sup_names(5) = &
+         [character(len=17) :: 'support_ax', 'support_ay', 'support_frequency', &
+          'support_phase_x', 'support_phase_y']
+      character(len=*), parameter :: sup_units(5) = &
+         [character(len=5) :: 'm', 'm', 'rad/s', 'rad', 'rad']
+      j = i - (2*self%n + 1)
+      if (j > 0 .and. self%damped) then
+         if (j <= self%n) then
+            name = 'c'//to_str(j); value = self%c(j); units = 'N m s'
+            return
+         end if
+         j = j - self%n
+      end if
+      if (j > 0) then
+         name = trim(sup_names(j)); units = trim(sup_units(j))
+         select case (j)
+         case (1, 2); value = self%sup_a(j)
+         case (3); value = self%sup_w
+         case default; value = self%sup_phi(j - 3)
+         end select
+         return
+      end if
       if (i <= self%n) then
          name = 'm'//to_str(i); value = self%m(i); units = 'kg'
       else if (i <= 2*self%n) then
