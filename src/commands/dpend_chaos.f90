@@ -567,10 +567,12 @@ contains
                              integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
                              cfg%dt, ch%tau, n_vectors(ch, cfg), ch%batches, res, stat)
       status = run_status(stat, res%t_reached)
-      ! a Hamiltonian spectrum comes in pairs: lambda_i + lambda_(2N+1-i) = 0
+      ! a Hamiltonian spectrum comes in pairs: lambda_i + lambda_(2N+1-i) = 0 (a damped
+      ! or driven model has no such pairing: no defects are reported)
       k = res%k
       allocate (defects(0))
-      if (k == cfg%model%n_state()) defects = res%exponents(:k/2) + res%exponents(k:k/2 + 1:-1)
+      if (k == cfg%model%n_state() .and. cfg%model%hamiltonian()) &
+         defects = res%exponents(:k/2) + res%exponents(k:k/2 + 1:-1)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'lyapunov', status)
