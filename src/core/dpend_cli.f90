@@ -125,7 +125,7 @@ contains
       if (stat /= 0 .or. len_trim(text) == 0 .or. scan(trim(text), ' ,/*') /= 0) then
          call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not a number")
       else if (.not. ieee_is_finite(x)) then
-         call fatal_error(error, 'invalid '//name//': must be finite')
+         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not finite (a finite number is required)")
       end if
    end subroutine parse_real
 
