@@ -54,7 +54,7 @@ module dpend_symplectic
    use dpend_kinds, only: dp
    use dpend_model, only: model_t, max_state, max_dof
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
-                               state_ok, integrator_configure
+                               integrator_configure
    use dpend_method_options, only: method_options_t
    implicit none
    private
@@ -217,6 +217,7 @@ contains
       integer, intent(out) :: stat                !! stat_ok or a failure code
       real(dp) :: ynew_(max_state), enew_(max_state)
       integer :: n
+      logical :: ok
       n = size(y)
       if (self%started) then
          if (any(y /= self%y_last(:n))) call self%reset()
@@ -228,12 +229,12 @@ contains
       enew = self%comp(:n)
       call self%advance(model, t, ynew, enew, h, stat)
       if (stat /= stat_ok) return
-      if (.not. state_ok(n, ynew)) then
+      call self%record_finite_step(n, t, y, t + h, ynew, ok)
+      if (.not. ok) then
          call self%reset()
          stat = stat_nonfinite
          return
       end if
-      call self%record_step(n, t, y, t + h, ynew)
       y = ynew
       self%comp(:n) = enew
       end associate

@@ -117,6 +117,7 @@ module dpend_chain
       procedure :: parameter => chain_parameter
       procedure :: cache_size => chain_cache_size
       procedure :: fill_cache => chain_fill_cache
+      procedure :: fill_cache_field => chain_fill_cache_field
       procedure :: field_near => chain_field_near
       procedure :: canonical_field_near => chain_canonical_field_near
       !> Mass matrix M(q) (n, n) [kg m²].
@@ -743,12 +744,34 @@ contains
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: q(*)
       real(dp), intent(inout) :: cache(*)
-      integer :: i
-      do i = 1, self%n
-         cache(i) = cos(q(i))
-         cache(self%n + i) = sin(q(i))
-      end do
+      real(dp) :: c(max_dof), s(max_dof)
+      integer :: n
+      n = self%n
+      call trig(n, q, c, s)
+      cache(1:n) = c(1:n)
+      cache(n + 1:2*n) = s(1:n)
    end subroutine chain_fill_cache
+
+   !> The cache at the angles of y and `field` at y from it (rk4's first stage: the
+   !> sines and cosines once, not once for the cache and once for the field).
+   pure subroutine chain_fill_cache_field(self, t, y, cache, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(inout) :: cache(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      integer :: n
+      logical :: runaway
+      n = self%n
+      call trig(n, y, c, s)
+      cache(1:n) = c(1:n)
+      cache(n + 1:2*n) = s(1:n)
+      call saturate(2*n, y, f, runaway)
+      if (runaway) return
+      call solve_qdd_trig(self, t, c, s, y(n + 1:2*n), qdd, a)
+      f(1:n) = y(n + 1:2*n)
+      f(n + 1:2*n) = qdd(1:n)
+   end subroutine chain_fill_cache_field
 
    !> `field` at y = (q0 + d, q̇) with the cos and sin of q0 from the cache.
    pure subroutine chain_field_near(self, t, y, d, cache, f)
