@@ -3,7 +3,7 @@
 !> independently known values:
 !> - the transition curve of Mathieu's equation x'' + (δ + ε cos τ) x = 0 through
 !>   δ = 0, quoted in docs/kapitza.md from DLMF 28.6.1 (a_0(q) with a = 4δ, q = −2ε):
-!>   δ_c = −ε²/2 + 7ε⁴/32 − 29ε⁶/144 + 68687ε⁸/294912 − …, against the δ at which the
+!>   δ_c = −ε²/2 + 7ε⁴/32 − 29ε⁶/144 + 68687ε⁸/294912 + …, against the δ at which the
 !>   trace of the monodromy matrix (two fundamental solutions over τ ∈ [0, 2π], a
 !>   plain RK4 of this file) is 2;
 !> - the threshold amplitude of the inverted position, located by bisection on
