@@ -11,7 +11,7 @@ module test_sweep
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &
-      stop_either, stop_end, st_cannot_flip
+      stop_either, stop_end, st_cannot_flip, st_nonfinite
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t
@@ -40,6 +40,8 @@ contains
       tests = [ &
                new_unittest('batch_matches_rk4', test_batch_matches_rk4), &
                new_unittest('tangent_matches_finite_differences', test_tangent), &
+               new_unittest('fallback_lanes_bitwise_and_accurate', test_fallback_lanes), &
+               new_unittest('runaway_lanes_end_without_overflow', test_runaway), &
                new_unittest('flip_time_single_link', test_flip_time), &
                new_unittest('energy_bound_brute_force', test_energy_bound), &
                new_unittest('energy_bound_no_flip_below', test_bound_dynamics), &
@@ -94,6 +96,108 @@ contains
          call check_true(error, res%steps(j) == 2000, 'steps')
       end do
    end subroutine test_batch_matches_rk4
+
+   !> The kernel's fallback path: lanes with a stage offset |d| > 1/16 rad (fast
+   !> spin) or an angle beyond `sincos_exact_max` take `rk4_lanes`' reference step.
+   !> Each lane's result is bitwise the same whatever the other lanes hold and
+   !> whichever position it has (alone among ordinary lanes, or every lane on the
+   !> fallback), and it agrees with the library's rk4_t.
+   subroutine test_fallback_lanes(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: w = lane_width, n_special = 3
+      type(batch_coef_t) :: c
+      type(pendulum_t) :: par
+      type(rk4_t) :: rk
+      real(dp), dimension(w) :: q1, q2, w1, w2, e, r1, r2, rw1, rw2, q1x, q2x, w1x, w2x
+      real(dp) :: special(4, n_special), plain(4, w), y(4), t, hh, worst
+      real(dp), parameter :: h = 1e-3_dp
+      integer :: i, j, k, pos, stat
+      logical :: same
+      par = pendulum_t(m1=1.3_dp, m2=0.7_dp, l1=0.9_dp, l2=1.2_dp, g=9.81_dp)
+      c = batch_coef(par)
+      ! ordinary lanes, and three that need the fallback: a fast spin of link 2
+      ! (h/2 |q̇2| = 0.1 > 1/16), of link 1 in the fourth stage only (h |q̇1| = 0.07),
+      ! and an angle beyond sincos_exact_max (2^20 π/2 = 1.6e6 rad)
+      do i = 1, w
+         plain(:, i) = [-1.0_dp + 0.1_dp*i, 0.5_dp - 0.07_dp*i, 0.3_dp*sin(real(i, dp)), &
+                        -0.2_dp*cos(real(i, dp))]
+      end do
+      special(:, 1) = [0.3_dp, -0.4_dp, 1.0_dp, 200.0_dp]
+      special(:, 2) = [-0.2_dp, 1.1_dp, 70.0_dp, 0.5_dp]
+      special(:, 3) = [2.0e6_dp, -0.7_dp, 0.4_dp, -0.3_dp]
+      ! reference: the ordinary lanes alone, and each special lane on every lane
+      q1 = plain(1, :); q2 = plain(2, :); w1 = plain(3, :); w2 = plain(4, :)
+      do k = 1, 10
+         call rk4_lanes(c, h, q1, q2, w1, w2, e)
+      end do
+      r1 = q1; r2 = q2; rw1 = w1; rw2 = w2
+      worst = 0
+      do j = 1, n_special
+         q1 = special(1, j); q2 = special(2, j); w1 = special(3, j); w2 = special(4, j)
+         do k = 1, 10
+            call rk4_lanes(c, h, q1, q2, w1, w2, e)
+         end do
+         ! the same special lane at three positions among ordinary lanes
+         do pos = 1, w, 7
+            call load_mixed(j, pos)
+            do k = 1, 10
+               call rk4_lanes(c, h, q1x, q2x, w1x, w2x, e)
+            end do
+            same = q1x(pos) == q1(1) .and. q2x(pos) == q2(1) .and. w1x(pos) == w1(1) &
+                   .and. w2x(pos) == w2(1)
+            do i = 1, w
+               if (i /= pos) same = same .and. q1x(i) == r1(i) .and. q2x(i) == r2(i) &
+                                    .and. w1x(i) == rw1(i) .and. w2x(i) == rw2(i)
+            end do
+            call check_true(error, same, 'fallback lane or its neighbours changed with position')
+            if (allocated(error)) return
+         end do
+         ! against the library's rk4 (Newton–Euler form, intrinsic sin and cos)
+         y = special(:, j); t = 0.0_dp
+         do k = 1, 10
+            hh = h
+            call rk%step(pendulum_model(par), t, y, hh, stat)
+         end do
+         worst = max(worst, maxval(abs([q1(1), q2(1), w1(1), w2(1)] - y) &
+                                   /max(1.0_dp, abs(y))))
+      end do
+      ! (two formulations: Lagrange's in the kernel, Newton–Euler in rk4_t; at 200 rad/s
+      ! the accelerations reach 4e4 rad/s² and rounding differs at ~1e-11)
+      call check_true(error, worst <= 1e-10_dp, 'fallback lanes differ from rk4_t')
+      write (*, '(a, es9.2)') '    fallback lanes vs rk4_t (max relative, 10 steps): ', worst
+   contains
+      subroutine load_mixed(jj, p)
+         integer, intent(in) :: jj, p
+         q1x = plain(1, :); q2x = plain(2, :); w1x = plain(3, :); w2x = plain(4, :)
+         q1x(p) = special(1, jj); q2x(p) = special(2, jj)
+         w1x(p) = special(3, jj); w2x(p) = special(4, jj)
+      end subroutine load_mixed
+   end subroutine test_fallback_lanes
+
+   !> An unstable step (0.5 s at 1e4 rad/s) makes every trajectory run away: each
+   !> lane ends as st_nonfinite, with and without the tangent (λ1), and no step
+   !> overflows (the debug profile traps on overflow and invalid).
+   subroutine test_runaway(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      real(dp) :: y0(4, 20)
+      integer :: j, pass
+      do j = 1, size(y0, 2)
+         y0(:, j) = [0.1_dp*j, -0.2_dp*j, 1e4_dp*cos(real(j, dp)), -1e4_dp*sin(real(j, dp))]
+      end do
+      opt%h = 0.5_dp
+      opt%n_steps = 20
+      opt%stop_rule = stop_end
+      do pass = 1, 2
+         opt%lyapunov = pass == 2
+         call integrate_batch(pendulum_t(), opt, y0, res)
+         call check_true(error, all(res%status == st_nonfinite), 'runaway lanes not ended')
+         if (allocated(error)) return
+         call check_true(error, all(res%steps < opt%n_steps), 'runaway lanes ran to the end')
+         if (allocated(error)) return
+      end do
+   end subroutine test_runaway
 
    !> The tangent RK4 map against central differences of the RK4 map.
    subroutine test_tangent(error)

@@ -43,6 +43,34 @@ module dpend_pendulum_lanes
    real(dp), parameter :: half_pi = 0.5_dp*pi, two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
    !> |x| up to which `sincos_lanes` reduces exactly enough (2^20 π/2 rad)
    real(dp), parameter :: sincos_exact_max = 1048576.0_dp*half_pi
+   ! constants of `sincos_poly` (dpend_sincos_poly.inc)
+   real(dp), parameter :: two_over_pi = 6.36619772367581382433e-01_dp
+   real(dp), parameter :: round_magic = 6755399441055744.0_dp  ! 1.5·2^52
+   real(dp), parameter :: pio2_1 = 1.57079632673412561417e+00_dp   ! first 33 bits
+   real(dp), parameter :: pio2_2 = 6.07710050630396597660e-11_dp   ! next 33 bits
+   real(dp), parameter :: pio2_2t = 2.02226624879595063154e-21_dp  ! π/2 - pio2_1 - pio2_2
+   real(dp), parameter :: sin_p1 = -1.66666666666666324348e-01_dp, &
+                          sin_p2 = 8.33333333332248946124e-03_dp, &
+                          sin_p3 = -1.98412698298579493134e-04_dp, &
+                          sin_p4 = 2.75573137070700676789e-06_dp, &
+                          sin_p5 = -2.50507602534068634195e-08_dp, &
+                          sin_p6 = 1.58969099521155010221e-10_dp
+   real(dp), parameter :: cos_p1 = 4.16666666666666019037e-02_dp, &
+                          cos_p2 = -1.38888888888741095749e-03_dp, &
+                          cos_p3 = 2.48015872894767294178e-05_dp, &
+                          cos_p4 = -2.75573143513906633035e-07_dp, &
+                          cos_p5 = 2.08757232129817482790e-09_dp, &
+                          cos_p6 = -1.13596475577881948265e-11_dp
+   !> A lane whose |q1| + |q2| + |q̇1| + |q̇2| exceeds this has run away: it ends with
+   !> st_nonfinite, and the accelerations take velocities clamped to it, so that no
+   !> step of the kernel overflows (accepted inputs stay below 1e9; the scalar
+   !> integrators' bound, diverged_bound = 1e30, would let one RK4 step overflow here)
+   real(dp), parameter :: lane_bound = 1.0e15_dp
+   !> Margin of the sweep's angle windows [rad]: far above the rounding of
+   !> (q - π/2)/(2π) at the largest accepted angles (1e6 rad: ~1e-10)
+   real(dp), parameter :: window_margin = 1.0e-6_dp
+   !> |d| up to which `sincos_near_lanes` uses the addition formulas [rad]
+   real(dp), parameter :: d_max = 0.0625_dp
 
    ! stop rules: when a trajectory ends before t_end
    integer, parameter :: stop_both = 1    !! when every link that can flip has flipped
@@ -152,44 +180,10 @@ contains
       real(dp), intent(in) :: x(lane_width)   !! angles [rad]
       real(dp), intent(out) :: s(lane_width)  !! sin x
       real(dp), intent(out) :: c(lane_width)  !! cos x
-      real(dp), parameter :: two_over_pi = 6.36619772367581382433e-01_dp
-      real(dp), parameter :: round_magic = 6755399441055744.0_dp  ! 1.5·2^52
-      real(dp), parameter :: pio2_1 = 1.57079632673412561417e+00_dp   ! first 33 bits
-      real(dp), parameter :: pio2_2 = 6.07710050630396597660e-11_dp   ! next 33 bits
-      real(dp), parameter :: pio2_2t = 2.02226624879595063154e-21_dp  ! π/2 - pio2_1 - pio2_2
-      real(dp), parameter :: s1 = -1.66666666666666324348e-01_dp, &
-                             s2 = 8.33333333332248946124e-03_dp, &
-                             s3 = -1.98412698298579493134e-04_dp, &
-                             s4 = 2.75573137070700676789e-06_dp, &
-                             s5 = -2.50507602534068634195e-08_dp, &
-                             s6 = 1.58969099521155010221e-10_dp
-      real(dp), parameter :: c1 = 4.16666666666666019037e-02_dp, &
-                             c2 = -1.38888888888741095749e-03_dp, &
-                             c3 = 2.48015872894767294178e-05_dp, &
-                             c4 = -2.75573143513906633035e-07_dp, &
-                             c5 = 2.08757232129817482790e-09_dp, &
-                             c6 = -1.13596475577881948265e-11_dp
-      real(dp) :: xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca, n_near
+      real(dp) :: n_near
       integer :: i
       do i = 1, lane_width
-         xi = min(max(x(i), -sincos_exact_max), sincos_exact_max)  ! far lanes: below
-         fn = (xi*two_over_pi + round_magic) - round_magic        ! nearest integer
-         r = ((xi - fn*pio2_1) - fn*pio2_2) - fn*pio2_2t          ! x - n π/2
-         ! quadrant by exact arithmetic, no compare (compares and merges would stop the
-         ! vectorizer without -fno-trapping-math): j = n mod 4, odd = j mod 2, hi = j >= 2
-         fq = fn - 4.0_dp*((0.25_dp*(fn - 1.5_dp) + round_magic) - round_magic)
-         fo = fq - 2.0_dp*((0.5_dp*(fq - 0.5_dp) + round_magic) - round_magic)
-         fh = 0.5_dp*(fq - fo)
-         z = r*r
-         sr = r + r*z*(s1 + z*(s2 + z*(s3 + z*(s4 + z*(s5 + z*s6)))))
-         hz = 0.5_dp*z
-         wc = 1.0_dp - hz
-         cr = wc + (((1.0_dp - wc) - hz) + z*z*(c1 + z*(c2 + z*(c3 + z*(c4 + z*(c5 + z*c6))))))
-         ! j = 0: (sr, cr); 1: (cr, -sr); 2: (-sr, -cr); 3: (-cr, sr); exact products
-         sa = fo*cr + (1.0_dp - fo)*sr
-         ca = fo*sr + (1.0_dp - fo)*cr
-         s(i) = (1.0_dp - 2.0_dp*fh)*sa
-         c(i) = (1.0_dp - 2.0_dp*(fh - fo)**2)*ca
+         call sincos_poly(x(i), s(i), c(i))
       end do
       n_near = 0   ! a count, not a logical .or.: this form vectorizes
       do i = 1, lane_width
@@ -204,6 +198,20 @@ contains
       end do
    end subroutine sincos_lanes
 
+   !> One lane of `sincos_lanes` for |x| <= `sincos_exact_max` (clamped beyond): the
+   !> reduction and polynomials described there. Elemental and private, so that gcc
+   !> inlines it into the vectorized loops that call it.
+   pure elemental subroutine sincos_poly(x, s, c)
+      real(dp), intent(in) :: x   !! angle [rad]
+      real(dp), intent(out) :: s  !! sin x
+      real(dp), intent(out) :: c  !! cos x
+      real(dp) :: sp_x, sp_s, sp_c, xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca
+      sp_x = x
+      include 'dpend_sincos_poly.inc'
+      s = sp_s
+      c = sp_c
+   end subroutine sincos_poly
+
    !> The lanes' form of `sin_cos_near_impl` (dpend_pendulum), SIMD over the lanes:
    !> sin and cos of x = x0 + d from those of x0 by the addition formulas, with the
    !> Taylor polynomials of sin d (to d⁹) and cos d - 1 (to d⁸), whose remainders are
@@ -215,16 +223,10 @@ contains
       real(dp), intent(in) :: x(lane_width)                   !! angles [rad]
       real(dp), intent(in) :: d(lane_width)                   !! x - x0 [rad]
       real(dp), intent(out) :: s(lane_width), c(lane_width)   !! sin x, cos x
-      real(dp), parameter :: d_max = 0.0625_dp
-      real(dp) :: d2, sd, cm1, sf(lane_width), cf(lane_width), n_near
+      real(dp) :: sf(lane_width), cf(lane_width), n_near
       integer :: i
       do i = 1, lane_width
-         d2 = d(i)*d(i)
-         sd = d(i)*(1.0_dp + d2*(-1.0_dp/6.0_dp + d2*(1.0_dp/120.0_dp + d2*(-1.0_dp/5040.0_dp &
-              + d2*(1.0_dp/362880.0_dp)))))
-         cm1 = d2*(-0.5_dp + d2*(1.0_dp/24.0_dp + d2*(-1.0_dp/720.0_dp + d2*(1.0_dp/40320.0_dp))))
-         s(i) = s0(i) + (s0(i)*cm1 + c0(i)*sd)
-         c(i) = c0(i) + (c0(i)*cm1 - s0(i)*sd)
+         call sincos_add(s0(i), c0(i), d(i), s(i), c(i))
       end do
       n_near = 0
       do i = 1, lane_width
@@ -239,6 +241,22 @@ contains
          end if
       end do
    end subroutine sincos_near_lanes
+
+   !> One lane of `sincos_near_lanes` without its check of |d|: sin and cos of x0 + d
+   !> from s0 = sin x0, c0 = cos x0 by the addition formulas and the Taylor
+   !> polynomials of sin d and cos d - 1 (accurate for |d| <= `d_max`).
+   pure elemental subroutine sincos_add(s0, c0, d, s, c)
+      real(dp), intent(in) :: s0, c0  !! sin x0, cos x0
+      real(dp), intent(in) :: d       !! offset [rad]
+      real(dp), intent(out) :: s, c   !! sin(x0 + d), cos(x0 + d)
+      real(dp) :: d2, sd, cm1
+      d2 = d*d
+      sd = d*(1.0_dp + d2*(-1.0_dp/6.0_dp + d2*(1.0_dp/120.0_dp + d2*(-1.0_dp/5040.0_dp &
+           + d2*(1.0_dp/362880.0_dp)))))
+      cm1 = d2*(-0.5_dp + d2*(1.0_dp/24.0_dp + d2*(-1.0_dp/720.0_dp + d2*(1.0_dp/40320.0_dp))))
+      s = s0 + (s0*cm1 + c0*sd)
+      c = c0 + (c0*cm1 - s0*sd)
+   end subroutine sincos_add
 
    !> sin and cos of the stage angles (x1, x2) from those of the step start (q1, q2)
    !> (`sincos_near_lanes`).
@@ -281,19 +299,30 @@ contains
       real(dp), intent(in) :: s2(lane_width), c2(lane_width)    !! sin q2, cos q2
       real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
-      real(dp) :: cd, sd, r1, r2, m12, rdet
       integer :: i
       do i = 1, lane_width
-         cd = c1(i)*c2(i) + s1(i)*s2(i)
-         sd = s1(i)*c2(i) - c1(i)*s2(i)
-         r1 = -c%ga*c1(i) - c%k*sd*w2(i)**2
-         r2 = -c%gb*c2(i) + c%k*sd*w1(i)**2
-         m12 = c%k*cd
-         rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
-         a1(i) = (c%m22*r1 - m12*r2)*rdet
-         a2(i) = (c%m11*r2 - m12*r1)*rdet
+         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i), a1(i), a2(i))
       end do
    end subroutine accel_trig_lanes
+
+   !> One lane of `accel_trig_lanes`.
+   pure elemental subroutine accel_trig(c, s1, c1, s2, c2, w1, w2, a1, a2)
+      type(batch_coef_t), intent(in) :: c        !! constants
+      real(dp), intent(in) :: s1, c1, s2, c2     !! sin q1, cos q1, sin q2, cos q2
+      real(dp), intent(in) :: w1, w2             !! velocities [rad/s]
+      real(dp), intent(out) :: a1, a2            !! accelerations [rad/s²]
+      real(dp) :: cd, sd, r1, r2, m12, rdet, v1, v2
+      v1 = min(max(w1, -lane_bound), lane_bound)   ! w1 itself unless runaway
+      v2 = min(max(w2, -lane_bound), lane_bound)
+      cd = c1*c2 + s1*s2
+      sd = s1*c2 - c1*s2
+      r1 = -c%ga*c1 - c%k*sd*v2**2
+      r2 = -c%gb*c2 + c%k*sd*v1**2
+      m12 = c%k*cd
+      rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
+      a1 = (c%m22*r1 - m12*r2)*rdet
+      a2 = (c%m11*r2 - m12*r1)*rdet
+   end subroutine accel_trig
 
    !> Copy of `jacobian_qqdot` (dpend_pendulum, rows of q̈, applied to a vector) for
    !> speed: SIMD over the lanes, reusing the values of `accel_lanes`;
@@ -310,7 +339,7 @@ contains
       real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
       real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
       real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
-      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet
+      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet, wc1, wc2
       integer :: i
       do i = 1, lane_width
          cd = c1(i)*c2(i) + s1(i)*s2(i)
@@ -318,8 +347,10 @@ contains
          ud = u1(i) - u2(i)
          dcd = -sd*ud
          dsd = cd*ud
-         dr1 = c%ga*s1(i)*u1(i) - c%k*(dsd*w2(i)**2 + 2.0_dp*sd*w2(i)*v2(i))
-         dr2 = c%gb*s2(i)*u2(i) + c%k*(dsd*w1(i)**2 + 2.0_dp*sd*w1(i)*v1(i))
+         wc1 = min(max(w1(i), -lane_bound), lane_bound)   ! as in accel_trig
+         wc2 = min(max(w2(i), -lane_bound), lane_bound)
+         dr1 = c%ga*s1(i)*u1(i) - c%k*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2(i))
+         dr2 = c%gb*s2(i)*u2(i) + c%k*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1(i))
          m12 = c%k*cd
          dm12 = c%k*dcd
          ddet = -2.0_dp*m12*dm12
@@ -356,7 +387,136 @@ contains
 
    !> One classical RK4 step of size h on every lane; `e` is the energy of the state
    !> before the step [J] (it costs no extra sin/cos).
+   !>
+   !> The whole step of a lane is one loop body (the stages' values stay in vector
+   !> registers; no lane array passes through memory between the stages): the
+   !> step-start sines and cosines by `sincos_poly`, the stages' by `sincos_add`, the
+   !> accelerations by `accel_trig`. A lane outside that path's range (an angle beyond
+   !> `sincos_exact_max`, or a stage offset |d| > `d_max`) takes instead the result
+   !> of `rk4_lanes_ref`, the same step through the lane routines with their exact
+   !> fallbacks. Which path a lane takes depends on its own values only, so the
+   !> results stay bitwise independent of the other lanes.
    pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      integer, parameter :: half = lane_width/2
+      real(dp), dimension(lane_width) :: p1, p2, pw1, pw2, pe, off
+      real(dp) :: s1a_1, c1a_1, s2a_1, c2a_1, s1_1, c1_1, s2_1, c2_1, x1_1, x2_1, d1_1, d2_1
+      real(dp) :: s1a_2, c1a_2, s2a_2, c2a_2, s1_2, c1_2, s2_2, c2_2, x1_2, x2_2, d1_2, d2_2
+      real(dp) :: ka1_1, ka2_1, kb1_1, kb2_1, kc1_1, kc2_1, kd1_1, kd2_1
+      real(dp) :: ka1_2, ka2_2, kb1_2, kb2_2, kc1_2, kc2_2, kd1_2, kd2_2
+      real(dp) :: vb1_1, vb2_1, vc1_1, vc2_1, vd1_1, vd2_1
+      real(dp) :: vb1_2, vb2_2, vc1_2, vc2_2, vd1_2, vd2_2
+      real(dp) :: hh, h6, n_off
+      real(dp) :: sp_x, sp_s, sp_c, xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca
+      integer :: i
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      n_off = 0
+      do i = 1, lane_width
+         p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
+      end do
+      ! (the offsets are clamped to d_max: a lane beyond takes the reference step, and
+      ! its discarded values here stay bounded)
+      ! lanes i and i + half side by side: two independent chains of stages in each
+      ! vector iteration, so that one's divisions overlap the other's work
+      do i = 1, half
+         sp_x = q1(i)
+         include 'dpend_sincos_poly.inc'
+         s1a_1 = sp_s; c1a_1 = sp_c
+         sp_x = q2(i)
+         include 'dpend_sincos_poly.inc'
+         s2a_1 = sp_s; c2a_1 = sp_c
+         sp_x = q1(i + half)
+         include 'dpend_sincos_poly.inc'
+         s1a_2 = sp_s; c1a_2 = sp_c
+         sp_x = q2(i + half)
+         include 'dpend_sincos_poly.inc'
+         s2a_2 = sp_s; c2a_2 = sp_c
+         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i), ka1_1, ka2_1)
+         e(i) = energy_formula(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
+         ! a count of the checks that fail (not a logical .or.: this form vectorizes)
+         off(i) = merge(0.0_dp, 1.0_dp, abs(q1(i)) <= sincos_exact_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(q2(i)) <= sincos_exact_max)
+         x1_1 = q1(i) + hh*w1(i); x2_1 = q2(i) + hh*w2(i)
+         vb1_1 = w1(i) + hh*ka1_1; vb2_1 = w2(i) + hh*ka2_1
+         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
+         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(i + half), w2(i + half), ka1_2, ka2_2)
+         e(i + half) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(i + half), w2(i + half))
+         ! a count of the checks that fail (not a logical .or.: this form vectorizes)
+         off(i + half) = merge(0.0_dp, 1.0_dp, abs(q1(i + half)) <= sincos_exact_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(q2(i + half)) <= sincos_exact_max)
+         x1_2 = q1(i + half) + hh*w1(i + half); x2_2 = q2(i + half) + hh*w2(i + half)
+         vb1_2 = w1(i + half) + hh*ka1_2; vb2_2 = w2(i + half) + hh*ka2_2
+         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
+         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
+         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
+         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vb1_1, vb2_1, kb1_1, kb2_1)
+         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
+         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
+         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vb1_2, vb2_2, kb1_2, kb2_2)
+         x1_1 = q1(i) + hh*vb1_1; x2_1 = q2(i) + hh*vb2_1
+         vc1_1 = w1(i) + hh*kb1_1; vc2_1 = w2(i) + hh*kb2_1
+         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
+         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
+         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
+         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vc1_1, vc2_1, kc1_1, kc2_1)
+         x1_2 = q1(i + half) + hh*vb1_2; x2_2 = q2(i + half) + hh*vb2_2
+         vc1_2 = w1(i + half) + hh*kb1_2; vc2_2 = w2(i + half) + hh*kb2_2
+         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
+         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
+         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
+         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vc1_2, vc2_2, kc1_2, kc2_2)
+         x1_1 = q1(i) + h*vc1_1; x2_1 = q2(i) + h*vc2_1
+         vd1_1 = w1(i) + h*kc1_1; vd2_1 = w2(i) + h*kc2_1
+         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
+         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
+         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
+         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vd1_1, vd2_1, kd1_1, kd2_1)
+         x1_2 = q1(i + half) + h*vc1_2; x2_2 = q2(i + half) + h*vc2_2
+         vd1_2 = w1(i + half) + h*kc1_2; vd2_2 = w2(i + half) + h*kc2_2
+         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
+         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
+                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
+         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
+         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vd1_2, vd2_2, kd1_2, kd2_2)
+         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1_1 + vc1_1) + vd1_1)
+         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2_1 + vc2_1) + vd2_1)
+         w1(i) = w1(i) + h6*(ka1_1 + 2.0_dp*(kb1_1 + kc1_1) + kd1_1)
+         w2(i) = w2(i) + h6*(ka2_1 + 2.0_dp*(kb2_1 + kc2_1) + kd2_1)
+         q1(i + half) = q1(i + half) + h6*(w1(i + half) + 2.0_dp*(vb1_2 + vc1_2) + vd1_2)
+         q2(i + half) = q2(i + half) + h6*(w2(i + half) + 2.0_dp*(vb2_2 + vc2_2) + vd2_2)
+         w1(i + half) = w1(i + half) + h6*(ka1_2 + 2.0_dp*(kb1_2 + kc1_2) + kd1_2)
+         w2(i + half) = w2(i + half) + h6*(ka2_2 + 2.0_dp*(kb2_2 + kc2_2) + kd2_2)
+         n_off = n_off + (off(i) + off(i + half))
+      end do
+      if (n_off == 0.0_dp) return   ! (a NaN angle or offset fails its check)
+      call rk4_lanes_ref(c, h, p1, p2, pw1, pw2, pe)
+      do i = 1, lane_width
+         if (.not. (off(i) == 0.0_dp)) then
+            q1(i) = p1(i); q2(i) = p2(i); w1(i) = pw1(i); w2(i) = pw2(i); e(i) = pe(i)
+         end if
+      end do
+   end subroutine rk4_lanes
+
+   !> The RK4 step of `rk4_lanes` through the lane routines, stage by stage, with the
+   !> exact fallbacks of `sincos_lanes` and `sincos_near_lanes`: the path of the lanes
+   !> that `rk4_lanes`' fused loop does not cover.
+   pure subroutine rk4_lanes_ref(c, h, q1, q2, w1, w2, e)
       type(batch_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
@@ -396,7 +556,7 @@ contains
          w1(i) = w1(i) + h6*(ka1(i) + 2.0_dp*(kb1(i) + kc1(i)) + kd1(i))
          w2(i) = w2(i) + h6*(ka2(i) + 2.0_dp*(kb2(i) + kc2(i)) + kd2(i))
       end do
-   end subroutine rk4_lanes
+   end subroutine rk4_lanes_ref
 
    !> One RK4 step of the state and of a tangent vector (u, v) of the variational
    !> equations, the same RK4 applied to the extended system; `e` as in `rk4_lanes`.
@@ -475,7 +635,10 @@ contains
       integer, parameter :: w = lane_width
       type(batch_coef_t) :: c
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
-      real(dp), dimension(w) :: p1, p2, n1, n2, m1, m2, lacc
+      real(dp), dimension(w) :: p1, p2, n1, n2, lacc
+      ! the angles between lo and hi cannot have crossed an upward vertical since the last
+      ! check: (π/2 + 2π n, π/2 + 2π (n + 1)) shrunk by window_margin
+      real(dp), dimension(w) :: lo1, hi1, lo2, hi2
       real(dp), dimension(w) :: active, fresh  ! 1: lane holds an initial condition; just loaded
       real(dp), dimension(w) :: left           ! steps left to n_steps
       integer(i8) :: ks(w)
@@ -543,45 +706,49 @@ contains
          else
             call rk4_lanes(c, opt%h, q1, q2, w1, w2, e)
          end if
-         ! vectorized: error, step count, the index of the last upward vertical below
-         ! each angle (π/2 + 2π n, `floor_lanes`), and a count of the lanes with an
-         ! event (a crossing, the last step, a non-finite state, a fresh lane)
+         ! vectorized: error, step count, and a count of the lanes with a possible
+         ! event (an angle out of its window, the last step, a non-finite state, a fresh
+         ! lane); the rare path below decides each one exactly
          n_events = 0
          do i = 1, w
             err(i) = max(err(i), abs(e(i) - e0(i)))
             ks(i) = ks(i) + 1
-            m1(i) = floor_real((q1(i) - half_pi)*inv_two_pi)
-            m2(i) = floor_real((q2(i) - half_pi)*inv_two_pi)
-            s = q1(i) + q2(i) + w1(i) + w2(i)
+            s = abs(q1(i)) + abs(q2(i)) + abs(w1(i)) + abs(w2(i))
             left(i) = left(i) - 1.0_dp
             ! no compare (it would stop the vectorizer without -fno-trapping-math):
             ! every term >= 0, > 0 for an event; NaN (also an event) if s is not finite
-            n_events = n_events + active(i)*(abs(m1(i) - n1(i)) + abs(m2(i) - n2(i)) &
+            n_events = n_events + active(i)*(max(0.0_dp, lo1(i) - q1(i)) &
+                                             + max(0.0_dp, q1(i) - hi1(i)) &
+                                             + max(0.0_dp, lo2(i) - q2(i)) &
+                                             + max(0.0_dp, q2(i) - hi2(i)) &
                                              + 0.5_dp*(1.0_dp - sign(1.0_dp, left(i) - 0.5_dp)) &
-                                             + abs(s - s) + fresh(i))
+                                             + abs(s - s) + max(0.0_dp, s - lane_bound) &
+                                             + fresh(i))
          end do
          if (n_events == 0.0_dp) cycle   ! false for NaN
          ! rare: flip times and the stop rule, lane by lane
          do i = 1, w
             fresh(i) = 0.0_dp
-            m = m1(i)
+            ! the index of the last upward vertical below each angle (π/2 + 2π n)
+            m = floor_real((q1(i) - half_pi)*inv_two_pi)
             if (m /= n1(i)) then
                if (tf1(i) < 0.0_dp) then
                   qc = half_pi + two_pi*max(m, n1(i))
                   tf1(i) = (real(ks(i) - 1, dp) + (qc - p1(i))/(q1(i) - p1(i)))*opt%h
                end if
                n1(i) = m
+               call set_windows(i)
             end if
-            m = m2(i)
+            m = floor_real((q2(i) - half_pi)*inv_two_pi)
             if (m /= n2(i)) then
                if (tf2(i) < 0.0_dp) then
                   qc = half_pi + two_pi*max(m, n2(i))
                   tf2(i) = (real(ks(i) - 1, dp) + (qc - p2(i))/(q2(i) - p2(i)))*opt%h
                end if
                n2(i) = m
+               call set_windows(i)
             end if
-            s = q1(i) + q2(i) + w1(i) + w2(i)
-            ended(i) = ks(i) >= opt%n_steps .or. .not. (s - s == 0.0_dp)
+            ended(i) = ks(i) >= opt%n_steps .or. runaway(q1(i), q2(i), w1(i), w2(i))
             select case (rule)
             case (stop_both)
                ended(i) = ended(i) .or. ((tf1(i) >= 0.0_dp .or. .not. can1(i)) .and. &
@@ -664,22 +831,31 @@ contains
          end if
          n1(l) = floor_real((q1(l) - half_pi)*inv_two_pi)
          n2(l) = floor_real((q2(l) - half_pi)*inv_two_pi)
+         call set_windows(l)
       end subroutine load
+
+      !> The windows of lane l's angles from n1, n2: between two upward verticals,
+      !> shrunk by window_margin so that rounding never hides a crossing.
+      subroutine set_windows(l)
+         integer, intent(in) :: l
+         lo1(l) = half_pi + two_pi*n1(l) + window_margin
+         hi1(l) = half_pi + two_pi*(n1(l) + 1.0_dp) - window_margin
+         lo2(l) = half_pi + two_pi*n2(l) + window_margin
+         hi2(l) = half_pi + two_pi*(n2(l) + 1.0_dp) - window_margin
+      end subroutine set_windows
 
       !> Store the results of the trajectory in lane l.
       subroutine finish(l)
          integer, intent(in) :: l
          integer :: jj
-         real(dp) :: s
          jj = lane_ic(l)
-         s = q1(l) + q2(l) + w1(l) + w2(l)
          res%t_stop(jj) = real(ks(l), dp)*opt%h
          res%final(:, jj) = [q1(l), q2(l), w1(l), w2(l)]
          res%t_flip1(jj) = tf1(l); res%t_flip2(jj) = tf2(l)
          res%energy_error(jj) = err(l)
          res%steps(jj) = int(ks(l))
          if (opt%lyapunov) res%lyapunov(jj) = lacc(l)/res%t_stop(jj)
-         if (.not. (s - s == 0.0_dp)) then
+         if (runaway(q1(l), q2(l), w1(l), w2(l))) then
             res%status(jj) = st_nonfinite
          else if (ks(l) < opt%n_steps) then
             res%status(jj) = st_flipped
@@ -687,6 +863,16 @@ contains
          n_active = n_active - 1
       end subroutine finish
    end subroutine integrate_batch
+
+   !> The lane's state is not finite or beyond `lane_bound` (no ordered comparison
+   !> on NaN, which would raise IEEE invalid).
+   pure elemental logical function runaway(q1, q2, w1, w2)
+      real(dp), intent(in) :: q1, q2, w1, w2  !! state [rad, rad/s]
+      real(dp) :: s
+      s = abs(q1) + abs(q2) + abs(w1) + abs(w2)
+      runaway = .true.
+      if (s - s == 0.0_dp) runaway = s > lane_bound
+   end function runaway
 
    !> floor(y) as a real, vectorizable (no conversion to integer): y rounded to an
    !> integer by the 1.5·2^52 trick, minus 1 where that rounded up (yc - f < 0; for
