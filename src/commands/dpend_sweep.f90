@@ -29,6 +29,7 @@ module dpend_sweep
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
       potential_range, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
+   use dpend_sweep_config, only: indicator_vectors
    use dpend_trajectory_batch, only: integrate_trajectories, link_flip_bounds
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
@@ -130,6 +131,7 @@ contains
       setup%opt%h = t_end/real(setup%opt%n_steps, dp)
       setup%opt%stop_rule = stop_rule(cfg)
       setup%opt%lyapunov = cfg%lyapunov
+      setup%opt%vectors = indicator_vectors(cfg)
       if (setup%grid) then
          setup%var1 = axis_variable(cfg%axis1, setup%links)
          setup%var2 = axis_variable(cfg%axis2, setup%links)
@@ -404,6 +406,7 @@ contains
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
              'lyapunov = '//trim(merge('true ', 'false', c%lyapunov))//nl// &
+             indicator_line()// &
              'stats = '//trim(merge('true ', 'false', c%stats))//nl// &
              'block = '//to_str(setup%block)//nl
          if (setup%grid) then
@@ -419,6 +422,13 @@ contains
          end if
       end associate
    contains
+      !> 'indicator = megno' for the indicators of the kernel's deviation vectors;
+      !> nothing for flip and lambda1 (files from before the indicators resume).
+      function indicator_line() result(t)
+         character(len=:), allocatable :: t
+         t = ''
+         if (indicator_vectors(setup%cfg) > 0) t = 'indicator = '//setup%cfg%indicator//nl
+      end function indicator_line
       function r(x) result(t)
          real(dp), intent(in) :: x
          character(len=:), allocatable :: t
@@ -473,6 +483,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup                     !! setup
       character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
       character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
+      character(len=32) :: name
       integer :: i
       if (setup%links == 2) then
          reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
@@ -490,6 +501,12 @@ contains
          reals(setup%links + 4) = 't_stop'
       end if
       if (setup%cfg%lyapunov) reals = [reals, [character(len=32) :: 'lyapunov']]
+      select case (setup%cfg%indicator)
+      case ('megno'); reals = [reals, [character(len=32) :: 'megno', 'megno_y']]
+      case ('fli', 'sali', 'gali2')
+         name = setup%cfg%indicator   ! (one length in the constructor under -fcheck)
+         reals = [reals, name]
+      end select
       ints = [character(len=32) :: 'status']
       if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
    end subroutine result_names
@@ -565,6 +582,21 @@ contains
          units = 'rad/s'; text = 'angular velocity at t_stop'
       case ('lyapunov')
          units = '1/s'; text = 'largest Lyapunov exponent'
+      case ('megno')
+         units = '1'; text = 'MEGNO running mean <Y>(t_stop) of one deviation vector '// &
+            '(regular orbits -> 2, chaotic ~ lambda1 t/2; NaN: not finite)'
+      case ('megno_y')
+         units = '1'; text = 'MEGNO Y(t_stop) = 2/t int s (ddot.d)/(d.d) ds of one '// &
+            'deviation vector (NaN: not finite)'
+      case ('fli')
+         units = '1'; text = 'fast Lyapunov indicator ln |d(t_stop)| of one deviation '// &
+            'vector, |d(0)| = 1 (regular ~ ln t, chaotic ~ lambda1 t; NaN: not finite)'
+      case ('sali')
+         units = '1'; text = 'SALI of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
+      case ('gali2')
+         units = '1'; text = 'GALI_2 of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
       case ('status')
          units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after a '// &
             'flip, 3 below both flip bounds, 4 state became non-finite'
@@ -717,6 +749,14 @@ contains
          call put_r('final/w'//to_str(i), res%final(setup%links + i, :))
       end do
       if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
+      select case (setup%cfg%indicator)
+      case ('megno')
+         call put_r('megno', res%megno)
+         call put_r('megno_y', res%megno_y)
+      case ('fli'); call put_r('fli', res%fli)
+      case ('sali'); call put_r('sali', res%sali)
+      case ('gali2'); call put_r('gali2', res%gali2)
+      end select
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)
       if (allocated(error)) return

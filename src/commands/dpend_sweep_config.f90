@@ -18,6 +18,9 @@
 !>   block          initial conditions per block (unit of parallel work, output
 !>                  chunks and resume); whole rows of axis 1 in a grid
 !>   lyapunov       also the largest Lyapunov exponent (runs every trajectory to t_end)
+!>   indicator      per-pixel chaos indicator beside the flip time: 'flip' (none),
+!>                  'lambda1' (= lyapunov), 'megno', 'fli', 'sali', 'gali2' (every
+!>                  trajectory to t_end)
 !>   stats          also the number of steps of every trajectory
 !>   threads        OpenMP threads (0: all; not part of the stored configuration)
 module dpend_sweep_config
@@ -37,9 +40,13 @@ module dpend_sweep_config
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
+   public :: indicator_names, indicator_vectors
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
+
+   !> Names accepted for the per-pixel indicator.
+   character(len=*), parameter :: indicator_names = 'flip lambda1 megno fli sali gali2'
 
    !> Everything `dpend sweep` needs.
    type :: sweep_config_t
@@ -60,6 +67,8 @@ module dpend_sweep_config
       character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
       integer :: block = 4096                      !! initial conditions per block
       logical :: lyapunov = .false.                !! largest Lyapunov exponent
+      character(len=:), allocatable :: indicator   !! 'flip', 'lambda1', 'megno', 'fli',
+                                                   !! 'sali' or 'gali2'
       logical :: stats = .false.                   !! steps per trajectory
       integer :: threads = 0                       !! OpenMP threads, 0: all
       logical :: quiet = .false.                   !! no progress report
@@ -84,7 +93,19 @@ contains
       cfg%ic_angles = 'q'
       cfg%time_unit = 'natural'
       cfg%stop_at = 'both'
+      cfg%indicator = 'flip'
    end function sweep_defaults
+
+   !> Deviation vectors of the batch kernel for the indicator: 0 (flip, lambda1: the
+   !> Lyapunov exponent has its own), 1 (megno, fli), 2 (sali, gali2).
+   pure integer function indicator_vectors(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      select case (cfg%indicator)
+      case ('megno', 'fli'); indicator_vectors = 1
+      case ('sali', 'gali2'); indicator_vectors = 2
+      case default; indicator_vectors = 0
+      end select
+   end function indicator_vectors
 
    !> True for a grid, false for a list of initial conditions.
    pure logical function grid_mode(cfg)
@@ -107,7 +128,7 @@ contains
       case ('end'); stop_rule = stop_end
       case default; stop_rule = stop_both
       end select
-      if (cfg%lyapunov) stop_rule = stop_end
+      if (cfg%lyapunov .or. indicator_vectors(cfg) > 0) stop_rule = stop_end
    end function stop_rule
 
    !> Help text of `dpend sweep`.
@@ -150,6 +171,10 @@ contains
           //cfg%stop_at//nl// &
           '  --lyapunov        also the largest Lyapunov exponent (all run to t_end;'//nl// &
           '                    two links only)'//nl// &
+          '  --indicator NAME  per-pixel chaos indicator beside the flip time (all run'//nl// &
+          '                    to t_end): flip (none), lambda1 (= --lyapunov), megno'//nl// &
+          '                    (running mean <Y>, and Y), fli (ln |d|), sali, gali2;'//nl// &
+          '                    default '//cfg%indicator//nl// &
           '  --stats           also the number of steps of every trajectory'//nl//nl// &
           'parameters (as in dpend simulate):'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
@@ -220,6 +245,7 @@ contains
          case ('--ic-angles'); cfg%ic_angles = value
          case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value
+         case ('--indicator'); cfg%indicator = value
          case ('--block'); call parse_int(value, name, cfg%block, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
          case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
@@ -239,14 +265,14 @@ contains
       character(len=*), intent(in) :: filename          !! namelist file
       type(sweep_config_t), intent(inout) :: cfg        !! updated from the file
       type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
-      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at
+      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at, indicator
       character(len=1024) :: ic_file, ic_dataset
       character(len=512) :: msg
       integer :: n1, n2, block, threads, unit, stat
       real(dp) :: min1, max1, min2, max2
       logical :: lyapunov, stats, quiet
       namelist /sweep/ axis1, axis2, n1, n2, min1, max1, min2, max2, ic_file, ic_dataset, &
-         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet
+         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet, indicator
       ! length 16 as read_run_config's own list (-fcheck=all checks constructors)
       call read_run_config(filename, cfg%run, error, &
                            extra_groups=[character(len=16) :: 'sweep'])
@@ -255,7 +281,7 @@ contains
       n1 = cfg%n1; n2 = cfg%n2
       min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
       ic_file = cfg%ic_file; ic_dataset = cfg%ic_dataset; ic_angles = cfg%ic_angles
-      time_unit = cfg%time_unit; stop_at = cfg%stop_at
+      time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
@@ -275,6 +301,7 @@ contains
       cfg%ic_file = trim(ic_file); cfg%ic_dataset = trim(ic_dataset)
       cfg%ic_angles = trim(ic_angles)
       cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
+      cfg%indicator = trim(indicator)
       cfg%block = block; cfg%threads = threads
       cfg%lyapunov = lyapunov; cfg%stats = stats; cfg%quiet = quiet
    end subroutine read_sweep_config
@@ -289,6 +316,19 @@ contains
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
                           //'conservative chain only (--damping and --support-amplitude ' &
                           //'must be 0; dpend simulate takes them)')
+         return
+      end if
+      select case (cfg%indicator)
+      case ('flip', 'lambda1', 'megno', 'fli', 'sali', 'gali2')
+      case default
+         call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' (accepted: "// &
+                          indicator_names//')')
+         return
+      end select
+      if (cfg%indicator == 'lambda1') cfg%lyapunov = .true.
+      if (cfg%lyapunov .and. indicator_vectors(cfg) > 0) then
+         call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' with lyapunov "// &
+                          '= true (one indicator per sweep; lambda1 is the Lyapunov exponent)')
          return
       end if
       if (cfg%run%links /= 2 .and. cfg%lyapunov) then
