@@ -50,6 +50,8 @@ contains
                new_unittest('threads_and_blocks_bitwise', test_threads_blocks), &
                new_unittest('list_matches_grid', test_list_matches_grid), &
                new_unittest('resume_after_kill', test_resume_after_kill), &
+               new_unittest('resume_after_kill_parameters', test_resume_parameters), &
+               new_unittest('parameter_axes', test_parameter_axes), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
                new_unittest('export_matrix_and_compare', test_export_compare), &
@@ -369,6 +371,22 @@ contains
    !> equals an uninterrupted run's, and a finished file is left as it is.
    subroutine test_resume_after_kill(error)
       type(error_t), allocatable, intent(out) :: error
+      call resume_case(error, 'sweepkill', '', .false.)
+   end subroutine test_resume_after_kill
+
+   !> The same for a MEGNO map over (theta1, m2/m1): per-pixel parameters and
+   !> indicators resume bit for bit.
+   subroutine test_resume_parameters(error)
+      type(error_t), allocatable, intent(out) :: error
+      call resume_case(error, 'sweepkillp', '--axis2 m2/m1 --min2 0.5 --max2 2 ' &
+                       //'--indicator megno ', .true.)
+   end subroutine test_resume_parameters
+
+   !> kill -9 and resume a sweep with the extra arguments `extra`.
+   subroutine resume_case(error, name, extra, indicators)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: name, extra
+      logical, intent(in) :: indicators
       character(len=:), allocatable :: dir, args, text
       integer :: stat, k, n, count_start, count_end, rate
       real(dp) :: secs, t_end
@@ -376,13 +394,13 @@ contains
       type(h5file_t) :: h5
       character(len=16) :: delay
       logical :: partial
-      dir = scratch_dir('sweepkill')
+      dir = scratch_dir(name)
       ! a run long enough (>= ~1 s, whatever the build profile) to be killed midway
       t_end = 60.0_dp
       do k = 1, 3
          write (delay, '(f0.1)') t_end
          args = 'sweep --quiet --n 32 --t-end '//trim(delay)//' --dt 0.02 --block 32 ' &
-                //'--stats --threads 2 --force --output '
+                //'--stats --threads 2 '//extra//' --force --output '
          call system_clock(count_start, rate)
          stat = run_command(dir, args//dir//'/ref.h5')
          call system_clock(count_end)
@@ -414,6 +432,10 @@ contains
       call check_true(error, stat == 0, 'resumed run exits 0: '//text)
       if (allocated(error)) return
       call same_results(error, dir//'/ref.h5', dir//'/run.h5', .true.)
+      if (indicators) then
+         call same_dataset(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/megno')
+         call same_dataset(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/param/m2')
+      end if
       call same_dataset_i(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/done')
       call same_attr(error, dir//'/ref.h5', dir//'/run.h5', 'config')
       stat = run_command(dir, args//dir//'/run.h5')
@@ -421,7 +443,7 @@ contains
       call check_true(error, stat == 0 .and. index(text, 'complete') > 0, &
                       'rerun of a complete file: '//text)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
-   end subroutine test_resume_after_kill
+   end subroutine resume_case
 
    !> Another configuration against an existing file: exit 2, one line, file kept;
    !> --force overwrites.
@@ -477,6 +499,14 @@ contains
                            'indicator')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
                            '--indicator megno --lyapunov', 'indicator')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1 --min1 0.5 --max1 2', &
+                           '--axis1 m2 --axis2 m2/m1 --min2 0.5 --max2 2', 'axis2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--axis1 m2/m1 --min1 0 --max1 2', 'min1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--axis1 m2/m1 --min1 1 --max1 1e7', 'm2 of a pixel')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--links 1 --axis1 l1 --min1 1 --max1 2 --axis2 q1', 'axis1')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--method verlet', 'method')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--save-every 3', 'unknown option')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--bogus 1', 'unknown option')
@@ -1068,5 +1098,85 @@ contains
          end do
       end subroutine path_differences
    end subroutine test_indicators_paths
+
+   ! --------------------------------------------------------- parameters ---
+
+   !> Sweeps over parameters. A flip and MEGNO map over (theta1, m2/m1) at m2/m1 =
+   !> 0.5 and 2 equals, row for row and bit for bit, the maps over theta1 with the
+   !> parameters given as --m2; it stores the pixels' parameters; it and a map over
+   !> (m2/m1, l2/l1) (runs of one pixel) are bitwise independent of threads and block
+   !> size; a chain of three links takes parameter axes too.
+   subroutine test_parameter_axes(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common, pmap
+      real(dp), allocatable :: a(:, :), b(:, :)
+      type(h5file_t) :: h5
+      integer :: stat, k, row
+      character(len=16), parameter :: sets(4) = [character(len=16) :: '/sweep/t_flip', &
+         '/sweep/megno', '/sweep/final/q1', '/sweep/energy0']
+      dir = scratch_dir('sweeppar')
+      common = 'sweep --quiet --t-end 20 --dt 0.02 --stats --indicator megno --q2 -1 '
+      pmap = common//'--n1 8 --n2 2 --axis1 theta1 --axis2 m2/m1 --min2 0.5 --max2 2 '
+      stat = run_command(dir, pmap//'--threads 2 --block 8 --output '//dir//'/p.h5')
+      call check_true(error, stat == 0, 'parameter map exits 0')
+      stat = run_command(dir, pmap//'--threads 1 --block 100 --output '//dir//'/p2.h5')
+      call check_true(error, stat == 0, 'parameter map, other blocks, exits 0')
+      do k = 1, 2
+         stat = run_command(dir, common//'--n1 8 --n2 1 --axis1 theta1 --axis2 q2 ' &
+                            //'--min2 -1 --max2 -1 --threads 1 --m2 '// &
+                            trim(merge('0.5', '2  ', k == 1))//' --output '//dir//'/r'// &
+                            achar(iachar('0') + k)//'.h5')
+         call check_true(error, stat == 0, 'map at fixed parameters exits 0')
+      end do
+      if (allocated(error)) return
+      call same_results(error, dir//'/p.h5', dir//'/p2.h5', .true.)
+      call same_dataset(error, dir//'/p.h5', dir//'/p2.h5', '/sweep/megno')
+      do k = 1, size(sets)
+         do row = 1, 2
+            call read2(dir//'/p.h5', trim(sets(k)), a)
+            call read2(dir//'/r'//achar(iachar('0') + row)//'.h5', trim(sets(k)), b)
+            if (allocated(error)) return
+            call check_true(error, all(bits(a(:, row)) == bits(b(:, 1))), &
+                            trim(sets(k))//': row of the parameter map equals the fixed map')
+         end do
+      end do
+      call read2(dir//'/p.h5', '/sweep/param/m2', a)
+      call read2(dir//'/p.h5', '/sweep/param/m1', b)
+      if (allocated(error)) return
+      call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 2) == 2.0_dp) .and. &
+                      all(b == 1.0_dp), 'per-pixel masses stored')
+      ! both axes parameters: runs of one pixel
+      common = 'sweep --quiet --t-end 5 --dt 0.02 --q1 0 --q2 0 --n 4 --axis1 m2/m1 ' &
+               //'--axis2 l2/l1 --min1 0.5 --max1 3 --min2 0.5 --max2 3 --indicator sali '
+      stat = run_command(dir, common//'--threads 1 --block 4 --output '//dir//'/m.h5')
+      call check_true(error, stat == 0, 'map over (m2/m1, l2/l1) exits 0')
+      stat = run_command(dir, common//'--threads 2 --block 16 --output '//dir//'/m2.h5')
+      call check_true(error, stat == 0, 'map over (m2/m1, l2/l1), other blocks, exits 0')
+      if (allocated(error)) return
+      call same_results(error, dir//'/m.h5', dir//'/m2.h5', .false.)
+      call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/sali')
+      call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/param/l2')
+      ! three links: the per-trajectory path with a chain per pixel
+      stat = run_command(dir, 'sweep --quiet --links 3 --n 3 --t-end 2 --dt 0.02 ' &
+                         //'--axis1 theta1 --axis2 l2/l1 --min2 0.5 --max2 2 --indicator fli ' &
+                         //'--output '//dir//'/c.h5')
+      call check_true(error, stat == 0, 'three links over (theta1, l2/l1) exits 0')
+      call read2(dir//'/c.h5', '/sweep/param/l2', a)
+      call read2(dir//'/c.h5', '/sweep/fli', b)
+      if (allocated(error)) return
+      call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 3) == 2.0_dp), &
+                      'three links: per-pixel l2 stored')
+      call check_true(error, all(b == b), 'three links: FLI of every pixel')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine read2(file, path, v)
+         character(len=*), intent(in) :: file, path
+         real(dp), allocatable, intent(out) :: v(:, :)
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine read2
+   end subroutine test_parameter_axes
 
 end module test_sweep
