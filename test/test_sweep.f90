@@ -52,6 +52,7 @@ contains
                new_unittest('resume_after_kill', test_resume_after_kill), &
                new_unittest('resume_after_kill_parameters', test_resume_parameters), &
                new_unittest('parameter_axes', test_parameter_axes), &
+               new_unittest('agreement_megno_lambda1', test_agreement), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
                new_unittest('export_matrix_and_compare', test_export_compare), &
@@ -244,9 +245,10 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text
       integer :: n, stat, i
-      character(len=12), parameter :: opts(16) = [character(len=12) :: '--axis1', '--n1', &
+      character(len=12), parameter :: opts(18) = [character(len=12) :: '--axis1', '--n1', &
          '--min1', '--max2', '--ic-file', '--time-unit', '--dt', '--t-end', '--stop-at', &
-         '--lyapunov', '--block', '--threads', '--quiet', '--force', '--output', 'theta1']
+         '--lyapunov', '--block', '--threads', '--quiet', '--force', '--output', 'theta1', &
+         '--indicator', 'm2/m1']
       dir = scratch_dir('sweephelp')
       stat = run_command(dir, 'sweep --help')
       call read_text(dir//'/stdout', text, n)
@@ -1178,5 +1180,85 @@ contains
          call h5%close()
       end subroutine read2
    end subroutine test_parameter_axes
+
+   !> `sweep-compare --agreement` of a MEGNO map (t_end 20) and a lambda1 map
+   !> (t_end 200) of the same 6 x 6 pixels: exit 0, both times and the agreement
+   !> printed; the stored classes are the thresholds applied to the maps by hand
+   !> (MEGNO > 2.5, lambda1 sqrt(l1/g) > 0.05), the stored agreement their match;
+   !> other pixels, a sweep without an indicator, FLI without a threshold, and an
+   !> existing output without --force are refused.
+   subroutine test_agreement(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, common
+      type(h5file_t) :: h5
+      real(dp), allocatable :: megno(:, :), lam(:, :)
+      integer, allocatable :: ca(:, :), cb(:, :)
+      real(dp) :: tau, stored
+      integer :: stat, n, i, j
+      dir = scratch_dir('sweepagree')
+      common = 'sweep --quiet --n 6 --dt 0.02 --threads 2 '
+      stat = run_command(dir, common//'--t-end 20 --indicator megno --output '//dir//'/m.h5')
+      call check_true(error, stat == 0, 'MEGNO map exits 0')
+      stat = run_command(dir, common//'--t-end 200 --indicator lambda1 --output '//dir//'/l.h5')
+      call check_true(error, stat == 0, 'lambda1 map exits 0')
+      stat = run_command(dir, common//'--t-end 20 --output '//dir//'/f.h5')
+      call check_true(error, stat == 0, 'flip map exits 0')
+      stat = run_command(dir, 'sweep --quiet --n 5 --t-end 20 --indicator megno --output '// &
+                         dir//'/m5.h5')
+      call check_true(error, stat == 0, '5 x 5 MEGNO map exits 0')
+      if (allocated(error)) return
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--output '//dir//'/a.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'agreement exits 0: '//text)
+      call check_true(error, index(text, 'agreement: ') > 0 .and. &
+                      index(text, 't_end_a: 6.38877 s = 20 sqrt(l1/g)') > 0 .and. &
+                      index(text, 't_end_b: 63.8877 s = 200 sqrt(l1/g)') > 0, &
+                      'agreement and both times printed: '//text)
+      call h5%open(dir//'/m.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/megno', megno, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/l.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/lyapunov', lam, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', tau, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/a.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/agreement/class_a', ca, error)
+      if (.not. allocated(error)) call h5%read('/agreement/class_b', cb, error)
+      if (.not. allocated(error)) call h5%readattr('/agreement', 'agreement', stored, error)
+      call h5%close()
+      if (allocated(error)) return
+      do j = 1, 6
+         do i = 1, 6
+            call check_true(error, ca(i, j) == merge(1, 0, megno(i, j) > 2.5_dp) .and. &
+                            cb(i, j) == merge(1, 0, lam(i, j)*tau > 0.05_dp), &
+                            'stored classes are the thresholds applied by hand')
+         end do
+      end do
+      call check(error, stored, real(count(ca == cb), dp)/36.0_dp, 'stored agreement')
+      call check_true(error, count(ca == 1) > 0 .and. count(ca == 0) > 0, &
+                      'both classes present')
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--output '//dir//'/a.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1, 'existing output refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/m5.h5 --agreement '// &
+                         '--output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'n1') > 0, &
+                      'other pixels refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/f.h5 --agreement '// &
+                         '--output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'no indicator') > 0, &
+                      'a sweep without an indicator refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--threshold-a nan --output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'threshold-a') > 0, &
+                      'a NaN threshold refused: '//text)
+      call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_agreement
 
 end module test_sweep

@@ -44,6 +44,7 @@ module dpend_sweep
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
+   public :: config_value
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
