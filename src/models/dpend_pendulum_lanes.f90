@@ -27,11 +27,11 @@ module dpend_pendulum_lanes
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
-   use dpend_indicator_math, only: initial_vectors, megno_step, sali, gali
+   use dpend_indicator_math, only: initial_vectors, sali, gali
    implicit none
    private
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
-   public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes
+   public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
    public :: sincos_lanes, sincos_near_lanes, sincos_exact_max
    public :: batch_options_t, batch_result_t, integrate_batch
@@ -478,7 +478,7 @@ contains
    !> bit for bit), then renormalised to length 1 (directions kept, never
    !> orthogonalised); vector 1's growth enters the sums acc(:, 1:4) = (ln |δ|,
    !> MEGNO's integral, Y, ∫ Y ds) of the step [ks h, (ks + 1) h] (`megno_step`,
-   !> t0 = 0). `e` as in `rk4_lanes`.
+   !> t0 = 0, `megno_step_lanes`). `e` as in `rk4_lanes`.
    pure subroutine indicator_step_lanes(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
       type(batch_coef_t), intent(in) :: c                          !! constants
       real(dp), intent(in) :: h                                    !! step [s]
@@ -489,8 +489,8 @@ contains
       real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
       real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
-      real(dp), dimension(lane_width) :: p1, p2, r1, r2, e2, nrm
-      integer :: i, k
+      real(dp), dimension(lane_width) :: p1, p2, r1, r2, e2, nrm, dl, ta, tb
+      integer :: i, j, k
       if (nv > 1) then
          p1 = q1; p2 = q2; r1 = w1; r2 = w2
          call rk4_tangent_lanes(c, h, p1, p2, r1, r2, d(:, 1, 2), d(:, 2, 2), d(:, 3, 2), &
@@ -501,16 +501,43 @@ contains
       do k = 1, nv
          do i = 1, lane_width
             nrm(i) = sqrt(d(i, 1, k)**2 + d(i, 2, k)**2 + d(i, 3, k)**2 + d(i, 4, k)**2)
-            d(i, :, k) = d(i, :, k)/nrm(i)
+         end do
+         do j = 1, 4   ! loops over the lanes, innermost: they vectorize
+            do i = 1, lane_width
+               d(i, j, k) = d(i, j, k)/nrm(i)
+            end do
          end do
          if (k == 1) then
             do i = 1, lane_width
-               call megno_step(log(nrm(i)), real(ks(i), dp)*h, real(ks(i) + 1, dp)*h, &
-                               0.0_dp, acc(i, 1), acc(i, 2), acc(i, 3), acc(i, 4))
+               dl(i) = log(nrm(i))
+               ta(i) = real(ks(i), dp)*h
+               tb(i) = real(ks(i) + 1, dp)*h
             end do
+            call megno_step_lanes(dl, ta, tb, acc(:, 1), acc(:, 2), acc(:, 3), acc(:, 4))
          end if
       end do
    end subroutine indicator_step_lanes
+
+   !> Copy of `megno_step` (dpend_indicator_math) for speed, t0 = 0: SIMD over the
+   !> lanes (a call of the elemental in another module would not be inlined);
+   !> test/test_copies.f90 compares them.
+   pure subroutine megno_step_lanes(dl, t_prev, t, lg, ig, yy, sy)
+      real(dp), intent(in) :: dl(lane_width)                  !! ln of the growth of |δ|
+      real(dp), intent(in) :: t_prev(lane_width), t(lane_width)  !! step start, end [s]
+      real(dp), intent(inout) :: lg(lane_width)               !! ln |δ(t)| [1]
+      real(dp), intent(inout) :: ig(lane_width)               !! ∫ s d ln|δ| [s]
+      real(dp), intent(inout) :: yy(lane_width)               !! Y(t_prev) in, Y(t) out [1]
+      real(dp), intent(inout) :: sy(lane_width)               !! ∫ Y ds [s]
+      real(dp) :: y_new
+      integer :: i
+      do i = 1, lane_width
+         lg(i) = lg(i) + dl(i)
+         ig(i) = ig(i) + (0.5_dp*(t_prev(i) + t(i)))*dl(i)   ! s - t0 = s exactly
+         y_new = 2.0_dp*ig(i)/t(i)
+         sy(i) = sy(i) + 0.5_dp*(t(i) - t_prev(i))*(yy(i) + y_new)
+         yy(i) = y_new
+      end do
+   end subroutine megno_step_lanes
 
    !> Integrate the initial conditions y0(:, j) = (q1, q2, q̇1, q̇2) with RK4 of step
    !> opt%h up to opt%n_steps steps, lanes refilled with the next initial condition as
