@@ -854,7 +854,8 @@ contains
       character(len=*), parameter :: base = 'sweep --quiet --n 4 --t-end 1'
       dir = scratch_dir('sweeplinks')
       call expect_rejected(error, dir, base//' --links 3', '--axis1 theta4', &
-                           "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 for 3 links)")
+                           "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 m1 m2 l1 l2 m2/m1 "// &
+                           "l2/l1 for 3 links)")
       call expect_rejected(error, dir, base//' --links 3', '--axis2 w0', "axis2: 'w0'")
       call expect_rejected(error, dir, base//' --links 1', '--axis1 theta1 --axis2 w2', &
                            "axis2: 'w2' (accepted: theta1 q1 w1 for 1 link)")
