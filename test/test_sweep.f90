@@ -1106,9 +1106,11 @@ contains
 
    !> Sweeps over parameters. A flip and MEGNO map over (theta1, m2/m1) at m2/m1 =
    !> 0.5 and 2 equals, row for row and bit for bit, the maps over theta1 with the
-   !> parameters given as --m2; it stores the pixels' parameters; it and a map over
-   !> (m2/m1, l2/l1) (runs of one pixel) are bitwise independent of threads and block
-   !> size; a chain of three links takes parameter axes too.
+   !> parameters given as --m2; it stores the pixels' parameters; the map with its
+   !> axes swapped (the parameter on axis 1: groups across a block's rows) is its
+   !> transpose bit for bit; it and a map over (m2/m1, l2/l1) (groups of one pixel)
+   !> are bitwise independent of threads and block size; a chain of three links
+   !> takes parameter axes too.
    subroutine test_parameter_axes(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, common, pmap
@@ -1142,6 +1144,17 @@ contains
             call check_true(error, all(bits(a(:, row)) == bits(b(:, 1))), &
                             trim(sets(k))//': row of the parameter map equals the fixed map')
          end do
+      end do
+      ! the parameter on axis 1 (groups across the rows of a block): the transpose
+      stat = run_command(dir, common//'--n1 2 --n2 8 --axis2 theta1 --axis1 m2/m1 ' &
+                         //'--min1 0.5 --max1 2 --threads 2 --block 8 --output '//dir//'/t.h5')
+      call check_true(error, stat == 0, 'transposed parameter map exits 0')
+      do k = 1, size(sets)
+         call read2(dir//'/p.h5', trim(sets(k)), a)
+         call read2(dir//'/t.h5', trim(sets(k)), b)
+         if (allocated(error)) return
+         call check_true(error, all(bits(transpose(a)) == bits(b)), &
+                         trim(sets(k))//': the transposed map is the transpose')
       end do
       call read2(dir//'/p.h5', '/sweep/param/m2', a)
       call read2(dir//'/p.h5', '/sweep/param/m1', b)

@@ -296,33 +296,41 @@ contains
       end if
    end subroutine compute_block
 
-   !> Integrate block b of a sweep over parameters: its pixels in runs of equal
-   !> parameters (whole rows of axis 1 when only axis 2 is a parameter), each run by
-   !> the batch kernel with its own constants (or the per-trajectory path with its
-   !> own model). The lanes never mix, so a pixel's results do not depend on the
-   !> runs, blocks or threads. A parameter on axis 1 gives runs of one pixel: the
-   !> kernel's other lanes idle.
+   !> Integrate block b of a sweep over parameters: its pixels in groups of equal
+   !> parameters (the pixels of one value of each parameter axis: with one
+   !> parameter axis, a whole row (axis 2) or a column of the block's rows (axis 1)),
+   !> each group by the batch kernel with its own constants (or the per-trajectory
+   !> path with its own model). The lanes never mix, so a pixel's results do not
+   !> depend on its group, block or thread. With both axes parameters every group is
+   !> one pixel and the kernel's other lanes idle.
    subroutine compute_parameter_block(setup, b, y0, res)
       type(sweep_setup_t), intent(in) :: setup    !! setup
       integer, intent(in) :: b                    !! block, 1-based
       real(dp), intent(in) :: y0(:, :)            !! (2N, nb) its initial states
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: p(:, :), m(:), l(:)
+      integer, allocatable :: key(:, :), idx(:)
+      logical, allocatable :: todo(:)
       type(batch_result_t) :: sub
       type(pendulum_t) :: par
       type(chain_t) :: chain
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: err
-      integer :: j, k, nb
+      integer :: j, k, nb, j0, jj
       call block_parameters(setup, b, p)
-      nb = size(y0, 2)
-      j = 1
-      do while (j <= nb)
-         k = j
-         do while (k < nb)
-            if (any(p(:, k + 1) /= p(:, j))) exit
-            k = k + 1
-         end do
+      call block_range(setup, b, j0, nb)
+      ! the group of a pixel: its index on each parameter axis (0: not a parameter)
+      allocate (key(2, nb), todo(nb))
+      do j = 1, nb
+         jj = j0 + j - 1
+         key(1, j) = merge(mod(jj - 1, setup%cfg%n1) + 1, 0, setup%par1 > 0)
+         key(2, j) = merge((jj - 1)/setup%cfg%n1 + 1, 0, setup%par2 > 0)
+      end do
+      todo = .true.
+      do j = 1, nb
+         if (.not. todo(j)) cycle
+         idx = pack([(k, k=1, nb)], key(1, :) == key(1, j) .and. key(2, :) == key(2, j))
+         todo(idx) = .false.
          par = setup%cfg%run%pendulum()
          par%m1 = p(1, j); par%m2 = p(2, j); par%l1 = p(3, j); par%l2 = p(4, j)
          if (setup%per_trajectory) then
@@ -332,27 +340,24 @@ contains
             if (.not. allocated(integ)) allocate (integ, source=setup%integ)
             if (setup%links == 2) then
                call integrate_trajectories(pendulum_model(par), integ, chain%gl, setup%opt, &
-                                           y0(:, j:k), sub)
+                                           y0(:, idx), sub)
             else
-               call integrate_trajectories(chain, integ, chain%gl, setup%opt, y0(:, j:k), sub)
+               call integrate_trajectories(chain, integ, chain%gl, setup%opt, y0(:, idx), sub)
             end if
          else
-            call integrate_batch(par, setup%opt, y0(:, j:k), sub)
+            call integrate_batch(par, setup%opt, y0(:, idx), sub)
          end if
-         call place_results(sub, j, nb, res)
-         j = k + 1
+         call place_results(sub, idx, nb, res)
       end do
    end subroutine compute_parameter_block
 
-   !> Copy the results `sub` of a run into `res` from index j (`res` allocated for
-   !> nb initial conditions on the first call).
-   subroutine place_results(sub, j, nb, res)
-      type(batch_result_t), intent(in) :: sub     !! results of the run
-      integer, intent(in) :: j                    !! index of its first one in res
+   !> Copy the results `sub` of a group into `res` at the indices idx (`res`
+   !> allocated for nb initial conditions on the first call).
+   subroutine place_results(sub, idx, nb, res)
+      type(batch_result_t), intent(in) :: sub     !! results of the group
+      integer, intent(in) :: idx(:)               !! their indices in res
       integer, intent(in) :: nb                   !! size of res
       type(batch_result_t), intent(inout) :: res  !! the block's results
-      integer :: k
-      k = j + sub%n - 1
       if (.not. allocated(res%t_flip)) then
          res%n = nb
          allocate (res%t_flip1(nb), res%t_flip2(nb), res%t_flip(nb), res%energy0(nb), &
@@ -361,14 +366,14 @@ contains
                    res%megno_y(nb), res%fli(nb), res%sali(nb), res%gali2(nb))
          if (allocated(sub%t_flip_link)) allocate (res%t_flip_link(size(sub%t_flip_link, 1), nb))
       end if
-      res%t_flip1(j:k) = sub%t_flip1; res%t_flip2(j:k) = sub%t_flip2
-      res%t_flip(j:k) = sub%t_flip; res%energy0(j:k) = sub%energy0
-      res%energy_error(j:k) = sub%energy_error; res%t_stop(j:k) = sub%t_stop
-      res%final(:, j:k) = sub%final; res%lyapunov(j:k) = sub%lyapunov
-      res%status(j:k) = sub%status; res%steps(j:k) = sub%steps
-      res%megno(j:k) = sub%megno; res%megno_y(j:k) = sub%megno_y; res%fli(j:k) = sub%fli
-      res%sali(j:k) = sub%sali; res%gali2(j:k) = sub%gali2
-      if (allocated(res%t_flip_link)) res%t_flip_link(:, j:k) = sub%t_flip_link
+      res%t_flip1(idx) = sub%t_flip1; res%t_flip2(idx) = sub%t_flip2
+      res%t_flip(idx) = sub%t_flip; res%energy0(idx) = sub%energy0
+      res%energy_error(idx) = sub%energy_error; res%t_stop(idx) = sub%t_stop
+      res%final(:, idx) = sub%final; res%lyapunov(idx) = sub%lyapunov
+      res%status(idx) = sub%status; res%steps(idx) = sub%steps
+      res%megno(idx) = sub%megno; res%megno_y(idx) = sub%megno_y; res%fli(idx) = sub%fli
+      res%sali(idx) = sub%sali; res%gali2(idx) = sub%gali2
+      if (allocated(res%t_flip_link)) res%t_flip_link(:, idx) = sub%t_flip_link
    end subroutine place_results
 
    !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or

@@ -354,6 +354,7 @@ contains
    subroutine validate_sweep(cfg, error)
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      character(len=:), allocatable :: field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
@@ -376,7 +377,9 @@ contains
          return
       end if
       if (cfg%run%links /= 2 .and. cfg%lyapunov) then
-         call fatal_error(error, 'invalid lyapunov: true with '//to_str(cfg%run%links)// &
+         field = 'lyapunov: true'
+         if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
+         call fatal_error(error, 'invalid '//field//' with '//to_str(cfg%run%links)// &
                           ' links (dpend sweep computes it for links = 2 only; '// &
                           'dpend lyapunov computes it for any N)')
          return

@@ -10,7 +10,7 @@ refuse  swi-ind-empty           indicator -- "${W[@]}" --indicator ''
 refuse  swi-ind-two-words       indicator -- "${W[@]}" --indicator 'megno fli'
 refuse  swi-ind-missing         indicator -- "${W[@]}" --indicator
 refuse  swi-ind-with-lyapunov   indicator -- "${W[@]}" --indicator sali --lyapunov
-refuse  swi-ind-lambda1-3links  lyapunov  -- "${W[@]}" --links 3 --indicator lambda1
+refuse  swi-ind-lambda1-3links  indicator -- "${W[@]}" --links 3 --indicator lambda1
 # ---- parameter axes
 refuse  swi-par-unknown         axis1   -- "${W[@]}" --axis1 m3 --min1 1 --max1 2
 refuse  swi-par-zero            min1    -- "${W[@]}" --axis1 m2/m1 --min1 0 --max1 2
