@@ -391,6 +391,7 @@ contains
       type(agreement_options_t) :: agree
       real(dp) :: rel
       logical :: missing, agreement, matched
+      character(len=:), allocatable :: needs_agreement
       integer :: i
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
@@ -413,6 +414,7 @@ contains
       rel = 0.01_dp
       agreement = .false.
       agree%output = 'agreement.h5'
+      needs_agreement = ''
       allocate (files(0))
       i = 1
       do while (i <= size(sub))
@@ -424,6 +426,7 @@ contains
          if (sub(i)%s == '--agreement' .or. sub(i)%s == '--force') then
             if (sub(i)%s == '--agreement') agreement = .true.
             if (sub(i)%s == '--force') agree%force = .true.
+            if (sub(i)%s == '--force') needs_agreement = '--force'
             i = i + 1
             cycle
          end if
@@ -440,12 +443,16 @@ contains
          case ('--output'); agree%output = value
          case default; matched = .false.
          end select
+         if (name /= '--rel' .and. matched) needs_agreement = name
          call option_outcome('sweep-compare', name, matched, missing, &
                              [character(len=16) :: '--agreement', '--force'], error)
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
       end do
       if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &
                                       to_str(size(files))//' (dpend sweep-compare --help)')
+      if (.not. agreement .and. len(needs_agreement) > 0) &
+         call fail(2, 'dpend sweep-compare: invalid '//needs_agreement//': an option of '// &
+                   '--agreement (dpend sweep-compare --help)')
       if (agreement) then
          call sweep_agreement(files(1)%s, files(2)%s, agree, output_unit, error)
       else
