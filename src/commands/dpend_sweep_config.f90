@@ -189,10 +189,10 @@ contains
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); with --links N: theta1..thetaN, q1..qN,'//nl// &
-          '                    w1..wN; default '//cfg%axis1//', '//cfg%axis2//nl// &
-          '                    or a parameter (2 or more links): m1 m2 (kg), l1 l2 (m),'//nl// &
-          '                    m2/m1 (m2 = value m1), l2/l1 (l2 = value l1); stored per'//nl// &
-          '                    pixel in /sweep/param; --time-unit natural uses --l1'//nl// &
+          '                    w1..wN; or a parameter (2 or more links): m1 m2 (kg),'//nl// &
+          '                    l1 l2 (m), m2/m1 (m2 = value m1), l2/l1 (l2 = value l1),'//nl// &
+          '                    stored per pixel in /sweep/param (--time-unit natural'//nl// &
+          '                    uses --l1); default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
           '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
