@@ -12,6 +12,7 @@ program dpend
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
+   use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
                         real_str
    use dpend_kinds, only: dp
@@ -380,26 +381,40 @@ contains
       end if
    end subroutine sweep
 
-   !> `dpend sweep-compare A B [--rel R]`, the option anywhere (also --rel=R).
+   !> `dpend sweep-compare A B [--rel R]`, the option anywhere (also --rel=R);
+   !> `--agreement` classifies the pixels by their indicators instead.
    subroutine sweep_compare(sub)
       type(arg_t), intent(in) :: sub(:)
       type(error_t), allocatable :: error
       type(arg_t), allocatable :: files(:)
       character(len=:), allocatable :: name, value
+      type(agreement_options_t) :: agree
       real(dp) :: rel
-      logical :: missing
+      logical :: missing, agreement, matched
+      character(len=:), allocatable :: needs_agreement
       integer :: i
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
+            '       dpend sweep-compare A.h5 B.h5 --agreement [--threshold-a X]'//nl// &
+            '             [--threshold-b Y] [--output FILE] [--force]'//nl//nl// &
             'Accuracy report of two complete sweeps of the same initial conditions (e.g.'//nl// &
             'steps dt and dt/2): the fraction of pixels whose first flip time changes by'//nl// &
             'more than R (default 0.01, at most 1000) relative, or that flip in one and'//nl// &
             'not the other, overall and by flip time in units of sqrt(l1/g). Sweeps of'//nl// &
             'other initial conditions (grid or list, shape, axes, ranges, parameters,'//nl// &
-            'time unit, t_end, stop rule) are refused.'
+            'time unit, t_end, stop rule) are refused.'//nl//nl// &
+            '--agreement: classify every pixel of each sweep as regular or chaotic by its'//nl// &
+            'indicator (dpend sweep --indicator; t_end and the step may differ) and report'//nl// &
+            'the fraction of pixels where the two agree, with both times; stored in FILE'//nl// &
+            '(default agreement.h5). Chaotic: megno <Y> > X (default 2.5); lambda1'//nl// &
+            'lambda1 sqrt(l1/g) > X (default 0.05); fli > X (no default); sali, gali2'//nl// &
+            '< X (default 1e-8). --threshold-a, --threshold-b: X of file A, B.'
          return
       end if
       rel = 0.01_dp
+      agreement = .false.
+      agree%output = 'agreement.h5'
+      needs_agreement = ''
       allocate (files(0))
       i = 1
       do while (i <= size(sub))
@@ -408,21 +423,46 @@ contains
             i = i + 1
             cycle
          end if
-         call next_option(sub, i, name, value, .true., error, missing)
-         if (name == '--rel') then
-            call parse_real(value, name, rel, error)
-            call option_outcome('sweep-compare', name, .true., missing, &
-                                [character(len=16) :: ''], error)
-         else
-            call option_outcome('sweep-compare', name, .false., missing, &
-                                [character(len=16) :: ''], error)
+         if (sub(i)%s == '--agreement' .or. sub(i)%s == '--force') then
+            if (sub(i)%s == '--agreement') agreement = .true.
+            if (sub(i)%s == '--force') agree%force = .true.
+            if (sub(i)%s == '--force') needs_agreement = '--force'
+            i = i + 1
+            cycle
          end if
+         call next_option(sub, i, name, value, .true., error, missing)
+         matched = .true.
+         select case (name)
+         case ('--rel'); call parse_real(value, name, rel, error)
+         case ('--threshold-a')
+            call parse_real(value, name, agree%threshold_a, error)
+            agree%set_a = .true.
+         case ('--threshold-b')
+            call parse_real(value, name, agree%threshold_b, error)
+            agree%set_b = .true.
+         case ('--output'); agree%output = value
+         case default; matched = .false.
+         end select
+         if (name /= '--rel' .and. matched) needs_agreement = name
+         call option_outcome('sweep-compare', name, matched, missing, &
+                             [character(len=16) :: '--agreement', '--force'], error)
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
       end do
       if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &
                                       to_str(size(files))//' (dpend sweep-compare --help)')
-      call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
-      if (allocated(error)) call fail(2, 'dpend '//error%message)
+      if (.not. agreement .and. len(needs_agreement) > 0) &
+         call fail(2, 'dpend sweep-compare: invalid '//needs_agreement//': an option of '// &
+                   '--agreement (dpend sweep-compare --help)')
+      if (agreement) then
+         call sweep_agreement(files(1)%s, files(2)%s, agree, output_unit, error)
+      else
+         call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
+      end if
+      if (allocated(error)) then
+         if (index(error%message, 'sweep-compare: invalid') == 1) &
+            call fail(2, 'dpend '//error%message)
+         call fail(merge(2, 1, .not. agreement), 'dpend '//error%message)
+      end if
    end subroutine sweep_compare
 
    !> One line on stderr, then exit with `code` (1 or 2) and no runtime noise. The

@@ -10,11 +10,14 @@
 !> growth with N shows.
 !> `dpend-bench --chain-energy` prints instead only the energy figures of gauss6 over
 !> 10⁶ steps of the chains of 3 and 5 links (some seconds each, release);
-!> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`).
+!> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`);
+!> `dpend-bench --indicators` only the cost of the sweep's per-pixel indicators and
+!> parameter axes (`bench_indicators`).
 program bench
    use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64, &
                                             output_unit, error_unit
    use bench_batch, only: run_batch_benchmarks
+   use bench_indicators, only: run_indicator_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
    use dpend_pendulum, only: double_pendulum_t
@@ -40,11 +43,17 @@ program bench
    checksum = 0.0_dp
    if (command_argument_count() > 0) then
       call get_command_argument(1, arg)
-      if ((trim(arg) /= '--chain-energy' .and. trim(arg) /= '--batch') &
-          .or. command_argument_count() > 1) then
+      if ((trim(arg) /= '--chain-energy' .and. trim(arg) /= '--batch' .and. &
+           trim(arg) /= '--indicators') .or. command_argument_count() > 1) then
          write (error_unit, '(a)') 'dpend-bench: argument "'//trim(arg)// &
-            '" refused; accepted: none, --chain-energy or --batch'
+            '" refused; accepted: none, --chain-energy, --batch or --indicators'
          stop 2, quiet=.true.
+      end if
+      if (trim(arg) == '--indicators') then
+         write (*, '(a)') 'compiler: '//compiler_version()
+         write (*, '(a)') 'flags: '//compiler_options()
+         call run_indicator_benchmarks(output_unit)
+         stop
       end if
       if (trim(arg) == '--batch') then
          write (*, '(a)') 'compiler: '//compiler_version()

@@ -4,7 +4,10 @@
 # Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g),
 # white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
 # attribute /sweep@links, 2 for files without it),
-# energy_error.png and, if the sweep has it, lyapunov.png; on every map the initial
+# energy_error.png and, if the sweep has them, lyapunov.png and the map of its
+# indicator (dpend sweep --indicator): megno.png (<Y>, a diverging scale around 2,
+# the value of regular orbits), fli.png, sali.png or gali2.png (log scales, 0 for
+# chaos); parameter axes (m1 .. l2/l1) are labelled in kg, m or as ratios; on every map the initial
 # conditions not integrated (status 0 or 4: a partial file, a non-finite state) are
 # grey, with a key entry, a colour none of the palettes holds. Figures are written
 # through temporary files and moved into place once drawn (scripts/lib/output.sh).
@@ -47,6 +50,18 @@ if h5dump -H -d /sweep/lyapunov "$h5" >/dev/null 2>&1; then
   lyap="$tmp/lyap.dat"
   figures+=(lyapunov.png)
 fi
+# the fast indicator, if any: its code in $tmp/indicator (read by sweep.gp: 0 none,
+# 1 megno, 2 fli, 3 sali, 4 gali2), its matrix in $tmp/ind.dat
+ind=0
+for name_code in megno:1 fli:2 sali:3 gali2:4; do
+  if h5dump -H -d "/sweep/${name_code%%:*}" "$h5" >/dev/null 2>&1; then
+    ind=${name_code##*:}
+    ex "/sweep/${name_code%%:*}" 1 ind.dat
+    figures+=("${name_code%%:*}.png")
+    break
+  fi
+done
+printf '%s\n' "$ind" > "$tmp/indicator"
 # status of every initial condition: 0 (not computed) and 4 (non-finite) are drawn
 # grey, "not integrated", on every map
 status=""
@@ -63,9 +78,12 @@ plot_run gnuplot -c "$here/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$a
 if [[ $links == 2 ]]; then
   printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \
     "$out" "${lyap:+ and lyapunov.png}"
+  ((ind > 0)) && printf 'plot_sweep.sh: wrote %s/%s\n' "$out" "${figures[-1]}"
 else
   maps=flip_map_link1
   ((links > 1)) && maps+="..$links"
   printf 'plot_sweep.sh: wrote %s/{flip_map,%s,energy_error}.png%s\n' \
     "$out" "$maps" "${lyap:+ and lyapunov.png}"
+  ((ind > 0)) && printf 'plot_sweep.sh: wrote %s/%s\n' "$out" "${figures[-1]}"
 fi
+exit 0

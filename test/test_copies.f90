@@ -10,6 +10,7 @@
 !> | `energy_lanes` (dpend_pendulum_lanes)        | `energy`                             |
 !> | `sincos_lanes` (dpend_pendulum_lanes)        | the intrinsic `sin`, `cos`           |
 !> | `sincos_near_lanes` (dpend_pendulum_lanes)   | `sin_cos_near`                       |
+!> | `megno_step_lanes` (dpend_pendulum_lanes)    | `megno_step` (dpend_indicator_math)  |
 !> | `hamiltonian_qp` (dpend_study), quadruple    | `hamiltonian`, and with compensation |
 !> |                                             | e: `dh_dq`, `dh_dp` (first order)    |
 !>
@@ -36,10 +37,12 @@ module test_copies
                              sin_cos_near, &
                              momenta, hamiltonian, dh_dq, dh_dp, jacobian_qqdot, &
                              velocities
+   use dpend_pendulum_lanes, only: megno_step_lanes
    use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, accel_lanes, &
                                    tangent_accel_lanes, energy_lanes, sincos_lanes, &
                                    sincos_near_lanes, sincos_exact_max
    use dpend_study, only: hamiltonian_qp
+   use dpend_indicator_math, only: megno_step
    use testing, only: unittest_t, new_unittest, check_true, error_t
    use dpend_cli, only: real_str
    implicit none
@@ -66,6 +69,7 @@ contains
          new_unittest('energy_lanes_vs_energy', test_energy), &
          new_unittest('sincos_lanes_vs_intrinsic', test_sincos), &
          new_unittest('sincos_near_lanes_vs_sin_cos_near', test_sincos_near), &
+         new_unittest('megno_step_lanes_vs_megno_step', test_megno_step), &
          new_unittest('hamiltonian_qp_vs_hamiltonian', test_hamiltonian_qp), &
          new_unittest('hamiltonian_qp_compensation_vs_gradient', test_compensation) &
          ]
@@ -357,6 +361,33 @@ contains
 
    !> Copy `hamiltonian_qp` (no compensation), rounded to double, against the
    !> source `hamiltonian` at (q, p = M(q) q̇).
+   !> `megno_step_lanes` against `megno_step` (t0 = 0) over 200 steps of random
+   !> growths dl in [-1, 1] and steps in [1e-3, 1] s: equal to a few ulps (the same
+   !> operations; only a compiler's contraction into fused multiply-adds may differ).
+   subroutine test_megno_step(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), dimension(lane_width) :: dl, ta, tb, h, a1, a2, a3, a4
+      real(dp) :: b(lane_width, 4), worst
+      integer :: k, i
+      a1 = 0; a2 = 0; a3 = 0; a4 = 0; b = 0; tb = 0; worst = 0
+      do k = 1, 200
+         call random_number(dl)
+         call random_number(h)
+         dl = 2.0_dp*dl - 1.0_dp
+         ta = tb
+         tb = ta + 1e-3_dp + h
+         call megno_step_lanes(dl, ta, tb, a1, a2, a3, a4)
+         do i = 1, lane_width
+            call megno_step(dl(i), ta(i), tb(i), 0.0_dp, b(i, 1), b(i, 2), b(i, 3), b(i, 4))
+         end do
+         worst = max(worst, maxval(abs(a1 - b(:, 1))/(1 + abs(b(:, 1)))), &
+                     maxval(abs(a2 - b(:, 2))/(1 + abs(b(:, 2)))), &
+                     maxval(abs(a3 - b(:, 3))/(1 + abs(b(:, 3)))), &
+                     maxval(abs(a4 - b(:, 4))/(1 + abs(b(:, 4)))))
+      end do
+      call check_true(error, worst < 1e-13_dp, 'megno_step_lanes equals megno_step')
+   end subroutine test_megno_step
+
    subroutine test_hamiltonian_qp(error)
       type(error_t), allocatable, intent(out) :: error
       type(pendulum_t) :: par

@@ -19,6 +19,9 @@ module test_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
    use dpend_trajectory_batch, only: link_flip_bounds
    use dpend_chain, only: chain_t, chain_model
+   use dpend_indicators, only: indicators_result_t, chaos_indicators
+   use dpend_integrator, only: integrator_t, stat_ok
+   use dpend_methods, only: new_integrator
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -49,6 +52,9 @@ contains
                new_unittest('threads_and_blocks_bitwise', test_threads_blocks), &
                new_unittest('list_matches_grid', test_list_matches_grid), &
                new_unittest('resume_after_kill', test_resume_after_kill), &
+               new_unittest('resume_after_kill_parameters', test_resume_parameters), &
+               new_unittest('parameter_axes', test_parameter_axes), &
+               new_unittest('agreement_megno_lambda1', test_agreement), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
                new_unittest('export_matrix_and_compare', test_export_compare), &
@@ -56,7 +62,9 @@ contains
                new_unittest('per_trajectory_matches_kernel', test_per_trajectory_n2), &
                new_unittest('links_axes_refused', test_links_refused), &
                new_unittest('links_bound_brute_force', test_links_bound), &
-               new_unittest('links3_list_matches_grid', test_links3_list)]
+               new_unittest('links3_list_matches_grid', test_links3_list), &
+               new_unittest('indicators_kernel_match_one_orbit', test_indicators_kernel), &
+               new_unittest('indicators_per_trajectory_match_kernel', test_indicators_paths)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -341,9 +349,10 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text
       integer :: n, stat, i
-      character(len=12), parameter :: opts(16) = [character(len=12) :: '--axis1', '--n1', &
+      character(len=12), parameter :: opts(18) = [character(len=12) :: '--axis1', '--n1', &
          '--min1', '--max2', '--ic-file', '--time-unit', '--dt', '--t-end', '--stop-at', &
-         '--lyapunov', '--block', '--threads', '--quiet', '--force', '--output', 'theta1']
+         '--lyapunov', '--block', '--threads', '--quiet', '--force', '--output', 'theta1', &
+         '--indicator', 'm2/m1']
       dir = scratch_dir('sweephelp')
       stat = run_command(dir, 'sweep --help')
       call read_text(dir//'/stdout', text, n)
@@ -379,6 +388,24 @@ contains
       if (allocated(error)) return
       call same_results(error, dir//'/d.h5', dir//'/e.h5', .false.)
       call same_dataset(error, dir//'/d.h5', dir//'/e.h5', '/sweep/lyapunov')
+      ! with the fast indicators (one and two deviation vectors per lane)
+      common = 'sweep --quiet --n 8 --t-end 10 --dt 0.02 --output '
+      stat = run_command(dir, common//dir//'/f.h5 --threads 1 --block 8 --indicator megno')
+      call check_true(error, stat == 0, 'run f exits 0')
+      stat = run_command(dir, common//dir//'/g.h5 --threads 2 --block 1000 --indicator megno')
+      call check_true(error, stat == 0, 'run g exits 0')
+      stat = run_command(dir, common//dir//'/h.h5 --threads 1 --block 24 --indicator gali2')
+      call check_true(error, stat == 0, 'run h exits 0')
+      stat = run_command(dir, common//dir//'/i.h5 --threads 2 --block 8 --indicator gali2')
+      call check_true(error, stat == 0, 'run i exits 0')
+      if (allocated(error)) return
+      call same_results(error, dir//'/f.h5', dir//'/g.h5', .false.)
+      call same_dataset(error, dir//'/f.h5', dir//'/g.h5', '/sweep/megno')
+      call same_dataset(error, dir//'/f.h5', dir//'/g.h5', '/sweep/megno_y')
+      call same_results(error, dir//'/h.h5', dir//'/i.h5', .false.)
+      call same_dataset(error, dir//'/h.h5', dir//'/i.h5', '/sweep/gali2')
+      ! the state of a pixel does not depend on the number of vectors it carries
+      call same_dataset(error, dir//'/f.h5', dir//'/h.h5', '/sweep/final/q1')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_threads_blocks
 
@@ -450,6 +477,22 @@ contains
    !> equals an uninterrupted run's, and a finished file is left as it is.
    subroutine test_resume_after_kill(error)
       type(error_t), allocatable, intent(out) :: error
+      call resume_case(error, 'sweepkill', '', .false.)
+   end subroutine test_resume_after_kill
+
+   !> The same for a MEGNO map over (theta1, m2/m1): per-pixel parameters and
+   !> indicators resume bit for bit.
+   subroutine test_resume_parameters(error)
+      type(error_t), allocatable, intent(out) :: error
+      call resume_case(error, 'sweepkillp', '--axis2 m2/m1 --min2 0.5 --max2 2 ' &
+                       //'--indicator megno ', .true.)
+   end subroutine test_resume_parameters
+
+   !> kill -9 and resume a sweep with the extra arguments `extra`.
+   subroutine resume_case(error, name, extra, indicators)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: name, extra
+      logical, intent(in) :: indicators
       character(len=:), allocatable :: dir, args, text
       integer :: stat, k, n, count_start, count_end, rate
       real(dp) :: secs, t_end
@@ -457,13 +500,13 @@ contains
       type(h5file_t) :: h5
       character(len=16) :: delay
       logical :: partial
-      dir = scratch_dir('sweepkill')
+      dir = scratch_dir(name)
       ! a run long enough (>= ~1 s, whatever the build profile) to be killed midway
       t_end = 60.0_dp
       do k = 1, 3
          write (delay, '(f0.1)') t_end
          args = 'sweep --quiet --n 32 --t-end '//trim(delay)//' --dt 0.02 --block 32 ' &
-                //'--stats --threads 2 --force --output '
+                //'--stats --threads 2 '//extra//' --force --output '
          call system_clock(count_start, rate)
          stat = run_command(dir, args//dir//'/ref.h5')
          call system_clock(count_end)
@@ -495,6 +538,10 @@ contains
       call check_true(error, stat == 0, 'resumed run exits 0: '//text)
       if (allocated(error)) return
       call same_results(error, dir//'/ref.h5', dir//'/run.h5', .true.)
+      if (indicators) then
+         call same_dataset(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/megno')
+         call same_dataset(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/param/m2')
+      end if
       call same_dataset_i(error, dir//'/ref.h5', dir//'/run.h5', '/sweep/done')
       call same_attr(error, dir//'/ref.h5', dir//'/run.h5', 'config')
       stat = run_command(dir, args//dir//'/run.h5')
@@ -502,7 +549,7 @@ contains
       call check_true(error, stat == 0 .and. index(text, 'complete') > 0, &
                       'rerun of a complete file: '//text)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
-   end subroutine test_resume_after_kill
+   end subroutine resume_case
 
    !> Another configuration against an existing file: exit 2, one line, file kept;
    !> --force overwrites.
@@ -554,6 +601,18 @@ contains
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--threads -1', 'threads')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--time-unit h', 'time_unit')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--stop-at never', 'stop_at')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--indicator gali3', &
+                           'indicator')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--indicator megno --lyapunov', 'indicator')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1 --min1 0.5 --max1 2', &
+                           '--axis1 m2 --axis2 m2/m1 --min2 0.5 --max2 2', 'axis2')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--axis1 m2/m1 --min1 0 --max1 2', 'min1')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--axis1 m2/m1 --min1 1 --max1 1e7', 'm2 of a pixel')
+      call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', &
+                           '--links 1 --axis1 l1 --min1 1 --max1 2 --axis2 q1', 'axis1')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--method verlet', 'method')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--save-every 3', 'unknown option')
       call expect_rejected(error, dir, 'sweep --quiet --n 4 --t-end 1', '--bogus 1', 'unknown option')
@@ -899,7 +958,8 @@ contains
       character(len=*), parameter :: base = 'sweep --quiet --n 4 --t-end 1'
       dir = scratch_dir('sweeplinks')
       call expect_rejected(error, dir, base//' --links 3', '--axis1 theta4', &
-                           "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 for 3 links)")
+                           "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 m1 m2 l1 l2 m2/m1 "// &
+                           "l2/l1 for 3 links)")
       call expect_rejected(error, dir, base//' --links 3', '--axis2 w0', "axis2: 'w0'")
       call expect_rejected(error, dir, base//' --links 1', '--axis1 theta1 --axis2 w2', &
                            "axis2: 'w2' (accepted: theta1 q1 w1 for 1 link)")
@@ -1014,5 +1074,309 @@ contains
       end do
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_links3_list
+
+
+   ! -------------------------------------------------------- indicators ---
+
+   !> The batch kernel's per-pixel indicators (two deviation vectors) against
+   !> `chaos_indicators` (dpend_indicators) along the same orbits with the library's
+   !> rk4 and h = 0.01 s: a regular orbit (both links 1 rad from hanging, at rest)
+   !> over 60 s and the chaotic horizontal release over 5 s agree within 1e-3
+   !> relative (observed <= 2e-4: dpend_tangent integrates the linear flow by RK4 on
+   !> the step's Hermite interpolant, the kernel RK4 of the extended system, an
+   !> O(h^4) difference). Known behaviours: <Y> of the regular orbit between 1 and
+   !> the classification threshold 2.5 (it tends to 2), GALI_2 away from 0; the
+   !> horizontal release over 30 s: <Y> far above 2, SALI and GALI_2 near 0.
+   subroutine test_indicators_kernel(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      type(indicators_result_t) :: r
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      real(dp) :: y0(4, 1), t_end(3)
+      integer :: k, stat, m
+      character(len=8) :: which
+      t_end = [60.0_dp, 5.0_dp, 30.0_dp]
+      call new_integrator('rk4', integ, err)
+      do k = 1, 3
+         which = merge('regular ', 'chaotic ', k == 1)
+         if (k == 1) then
+            y0(:, 1) = [-half_pi + 1.0_dp, -half_pi + 1.0_dp, 0.0_dp, 0.0_dp]
+         else
+            y0(:, 1) = 0.0_dp
+         end if
+         opt%h = 0.01_dp
+         opt%n_steps = nint(t_end(k)/opt%h, i8)
+         opt%stop_rule = stop_end
+         opt%vectors = 2
+         call integrate_batch(par, opt, y0, res)
+         write (*, '(4x, a, f5.1, a, 5es11.3)') which//' t = ', t_end(k), &
+            ' s: <Y>, Y, FLI, SALI, GALI_2 = ', res%megno(1), res%megno_y(1), res%fli(1), &
+            res%sali(1), res%gali2(1)
+         if (k == 3) then
+            call check_true(error, res%megno(1) > 5.0_dp, 'chaotic <Y> far above 2')
+            call check_true(error, res%sali(1) < 1e-6_dp .and. res%gali2(1) < 1e-6_dp, &
+                            'chaotic SALI and GALI_2 near 0')
+            return
+         end if
+         call chaos_indicators(integ, pendulum_model(par), 0.0_dp, y0(:, 1), t_end(k), &
+                               opt%h, t_end(k), r, stat)
+         call check_true(error, stat == stat_ok .and. r%n >= 1, 'chaos_indicators runs')
+         if (allocated(error)) return
+         m = r%n
+         call check(error, r%t(m), res%t_stop(1), trim(which)//' t_stop', rel=1e-12_dp)
+         call check(error, res%megno(1), r%mean_all(1, m), trim(which)//' <Y>', rel=1e-3_dp)
+         call check(error, res%megno_y(1), r%megno_all(1, m), trim(which)//' Y', rel=1e-3_dp)
+         call check(error, res%fli(1), r%log_norm(1, m), trim(which)//' FLI', rel=1e-3_dp)
+         call check(error, res%sali(1), r%sali(m), trim(which)//' SALI', rel=1e-3_dp)
+         call check(error, res%gali2(1), r%gali(1, m), trim(which)//' GALI_2', rel=1e-3_dp)
+         if (k == 1) then
+            call check_true(error, res%megno(1) > 1.0_dp .and. res%megno(1) < 2.5_dp, &
+                            'regular <Y> between 1 and 2.5')
+            call check_true(error, res%gali2(1) > 1e-2_dp, 'regular GALI_2 away from 0')
+         end if
+         if (allocated(error)) return
+      end do
+   end subroutine test_indicators_kernel
+
+   !> The per-trajectory path forced on two links against the kernel, for the
+   !> indicators of a 4 x 4 map over 2 s: equal statuses; the indicators differ by
+   !> the tangents' O(h^4) difference (test_indicators_kernel): the largest
+   !> difference of each (<Y>, Y, FLI, SALI, GALI_2) shrinks by more than 8 from
+   !> dt = 0.01 s to 0.005 s (16 expected), and is below 1e-3 relative at 0.005 s.
+   subroutine test_indicators_paths(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: d1(5), d2(5), r1(5), r2(5)
+      integer :: k
+      call path_differences('0.01', d1, r1)
+      if (allocated(error)) return
+      call path_differences('0.005', d2, r2)
+      if (allocated(error)) return
+      write (*, '(4x, a, 5es10.2)') 'largest |difference| at dt = 0.01 s:  ', d1
+      write (*, '(4x, a, 5es10.2)') 'largest |difference| at dt = 0.005 s: ', d2
+      do k = 1, 5
+         call check_true(error, d2(k) < d1(k)/8.0_dp, 'difference shrinks like h^4')
+         call check_true(error, r2(k) < 1e-3_dp, 'relative difference below 1e-3')
+      end do
+   contains
+      !> Largest absolute and relative differences between the paths at step dt.
+      subroutine path_differences(dt, dmax, rmax)
+         character(len=*), intent(in) :: dt
+         real(dp), intent(out) :: dmax(5), rmax(5)
+         type(arg_t), allocatable :: args(:)
+         type(sweep_config_t) :: cfg
+         type(sweep_setup_t) :: setup
+         type(batch_result_t) :: a, b
+         type(error_t), allocatable :: err
+         logical :: help
+         integer :: blk, j
+         real(dp) :: x(5), y(5)
+         character(len=16), parameter :: words(10) = [character(len=16) :: '--n', '4', &
+            '--t-end', '2', '--time-unit', 's', '--quiet', '--indicator', 'sali', '--dt']
+         allocate (args(size(words) + 1))
+         do j = 1, size(words)
+            args(j)%s = trim(words(j))
+         end do
+         args(size(words) + 1)%s = dt
+         dmax = 0; rmax = 0
+         call parse_sweep(args, cfg, help, err)
+         if (.not. allocated(err)) call build_setup(cfg, setup, err)
+         if (allocated(err)) then
+            call fatal_error(error, err%message)
+            return
+         end if
+         do blk = 1, setup%nblocks
+            setup%per_trajectory = .false.
+            call compute_block(setup, blk, a)
+            setup%per_trajectory = .true.
+            call compute_block(setup, blk, b)
+            do j = 1, a%n
+               call check_true(error, a%status(j) == b%status(j) .and. &
+                               a%steps(j) == b%steps(j), 'same status and steps')
+               x = [a%megno(j), a%megno_y(j), a%fli(j), a%sali(j), a%gali2(j)]
+               y = [b%megno(j), b%megno_y(j), b%fli(j), b%sali(j), b%gali2(j)]
+               call check_true(error, all(x == x) .and. all(y == y), 'finite indicators')
+               if (allocated(error)) return
+               dmax = max(dmax, abs(y - x))
+               rmax = max(rmax, abs(y - x)/abs(x))
+            end do
+         end do
+      end subroutine path_differences
+   end subroutine test_indicators_paths
+
+   ! --------------------------------------------------------- parameters ---
+
+   !> Sweeps over parameters. A flip and MEGNO map over (theta1, m2/m1) at m2/m1 =
+   !> 0.5 and 2 equals, row for row and bit for bit, the maps over theta1 with the
+   !> parameters given as --m2; it stores the pixels' parameters; the map with its
+   !> axes swapped (the parameter on axis 1: groups across a block's rows) is its
+   !> transpose bit for bit; it and a map over (m2/m1, l2/l1) (groups of one pixel)
+   !> are bitwise independent of threads and block size; a chain of three links
+   !> takes parameter axes too.
+   subroutine test_parameter_axes(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common, pmap
+      real(dp), allocatable :: a(:, :), b(:, :)
+      type(h5file_t) :: h5
+      integer :: stat, k, row
+      character(len=16), parameter :: sets(4) = [character(len=16) :: '/sweep/t_flip', &
+         '/sweep/megno', '/sweep/final/q1', '/sweep/energy0']
+      dir = scratch_dir('sweeppar')
+      common = 'sweep --quiet --t-end 20 --dt 0.02 --stats --indicator megno --q2 -1 '
+      pmap = common//'--n1 8 --n2 2 --axis1 theta1 --axis2 m2/m1 --min2 0.5 --max2 2 '
+      stat = run_command(dir, pmap//'--threads 2 --block 8 --output '//dir//'/p.h5')
+      call check_true(error, stat == 0, 'parameter map exits 0')
+      stat = run_command(dir, pmap//'--threads 1 --block 100 --output '//dir//'/p2.h5')
+      call check_true(error, stat == 0, 'parameter map, other blocks, exits 0')
+      do k = 1, 2
+         stat = run_command(dir, common//'--n1 8 --n2 1 --axis1 theta1 --axis2 q2 ' &
+                            //'--min2 -1 --max2 -1 --threads 1 --m2 '// &
+                            trim(merge('0.5', '2  ', k == 1))//' --output '//dir//'/r'// &
+                            achar(iachar('0') + k)//'.h5')
+         call check_true(error, stat == 0, 'map at fixed parameters exits 0')
+      end do
+      if (allocated(error)) return
+      call same_results(error, dir//'/p.h5', dir//'/p2.h5', .true.)
+      call same_dataset(error, dir//'/p.h5', dir//'/p2.h5', '/sweep/megno')
+      do k = 1, size(sets)
+         do row = 1, 2
+            call read2(dir//'/p.h5', trim(sets(k)), a)
+            call read2(dir//'/r'//achar(iachar('0') + row)//'.h5', trim(sets(k)), b)
+            if (allocated(error)) return
+            call check_true(error, all(bits(a(:, row)) == bits(b(:, 1))), &
+                            trim(sets(k))//': row of the parameter map equals the fixed map')
+         end do
+      end do
+      ! the parameter on axis 1 (groups across the rows of a block): the transpose
+      stat = run_command(dir, common//'--n1 2 --n2 8 --axis2 theta1 --axis1 m2/m1 ' &
+                         //'--min1 0.5 --max1 2 --threads 2 --block 8 --output '//dir//'/t.h5')
+      call check_true(error, stat == 0, 'transposed parameter map exits 0')
+      do k = 1, size(sets)
+         call read2(dir//'/p.h5', trim(sets(k)), a)
+         call read2(dir//'/t.h5', trim(sets(k)), b)
+         if (allocated(error)) return
+         call check_true(error, all(bits(transpose(a)) == bits(b)), &
+                         trim(sets(k))//': the transposed map is the transpose')
+      end do
+      call read2(dir//'/p.h5', '/sweep/param/m2', a)
+      call read2(dir//'/p.h5', '/sweep/param/m1', b)
+      if (allocated(error)) return
+      call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 2) == 2.0_dp) .and. &
+                      all(b == 1.0_dp), 'per-pixel masses stored')
+      ! both axes parameters: runs of one pixel
+      common = 'sweep --quiet --t-end 5 --dt 0.02 --q1 0 --q2 0 --n 4 --axis1 m2/m1 ' &
+               //'--axis2 l2/l1 --min1 0.5 --max1 3 --min2 0.5 --max2 3 --indicator sali '
+      stat = run_command(dir, common//'--threads 1 --block 4 --output '//dir//'/m.h5')
+      call check_true(error, stat == 0, 'map over (m2/m1, l2/l1) exits 0')
+      stat = run_command(dir, common//'--threads 2 --block 16 --output '//dir//'/m2.h5')
+      call check_true(error, stat == 0, 'map over (m2/m1, l2/l1), other blocks, exits 0')
+      if (allocated(error)) return
+      call same_results(error, dir//'/m.h5', dir//'/m2.h5', .false.)
+      call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/sali')
+      call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/param/l2')
+      ! three links: the per-trajectory path with a chain per pixel
+      stat = run_command(dir, 'sweep --quiet --links 3 --n 3 --t-end 2 --dt 0.02 ' &
+                         //'--axis1 theta1 --axis2 l2/l1 --min2 0.5 --max2 2 --indicator fli ' &
+                         //'--output '//dir//'/c.h5')
+      call check_true(error, stat == 0, 'three links over (theta1, l2/l1) exits 0')
+      call read2(dir//'/c.h5', '/sweep/param/l2', a)
+      call read2(dir//'/c.h5', '/sweep/fli', b)
+      if (allocated(error)) return
+      call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 3) == 2.0_dp), &
+                      'three links: per-pixel l2 stored')
+      call check_true(error, all(b == b), 'three links: FLI of every pixel')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine read2(file, path, v)
+         character(len=*), intent(in) :: file, path
+         real(dp), allocatable, intent(out) :: v(:, :)
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine read2
+   end subroutine test_parameter_axes
+
+   !> `sweep-compare --agreement` of a MEGNO map (t_end 20) and a lambda1 map
+   !> (t_end 200) of the same 6 x 6 pixels: exit 0, both times and the agreement
+   !> printed; the stored classes are the thresholds applied to the maps by hand
+   !> (MEGNO > 2.5, lambda1 sqrt(l1/g) > 0.05), the stored agreement their match;
+   !> other pixels, a sweep without an indicator, FLI without a threshold, and an
+   !> existing output without --force are refused.
+   subroutine test_agreement(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, common
+      type(h5file_t) :: h5
+      real(dp), allocatable :: megno(:, :), lam(:, :)
+      integer, allocatable :: ca(:, :), cb(:, :)
+      real(dp) :: tau, stored
+      integer :: stat, n, i, j
+      dir = scratch_dir('sweepagree')
+      common = 'sweep --quiet --n 6 --dt 0.02 --threads 2 '
+      stat = run_command(dir, common//'--t-end 20 --indicator megno --output '//dir//'/m.h5')
+      call check_true(error, stat == 0, 'MEGNO map exits 0')
+      stat = run_command(dir, common//'--t-end 200 --indicator lambda1 --output '//dir//'/l.h5')
+      call check_true(error, stat == 0, 'lambda1 map exits 0')
+      stat = run_command(dir, common//'--t-end 20 --output '//dir//'/f.h5')
+      call check_true(error, stat == 0, 'flip map exits 0')
+      stat = run_command(dir, 'sweep --quiet --n 5 --t-end 20 --indicator megno --output '// &
+                         dir//'/m5.h5')
+      call check_true(error, stat == 0, '5 x 5 MEGNO map exits 0')
+      if (allocated(error)) return
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--output '//dir//'/a.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'agreement exits 0: '//text)
+      call check_true(error, index(text, 'agreement: ') > 0 .and. &
+                      index(text, 't_end_a: 6.38877 s = 20 sqrt(l1/g)') > 0 .and. &
+                      index(text, 't_end_b: 63.8877 s = 200 sqrt(l1/g)') > 0, &
+                      'agreement and both times printed: '//text)
+      call h5%open(dir//'/m.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/megno', megno, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/l.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/lyapunov', lam, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', tau, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/a.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/agreement/class_a', ca, error)
+      if (.not. allocated(error)) call h5%read('/agreement/class_b', cb, error)
+      if (.not. allocated(error)) call h5%readattr('/agreement', 'agreement', stored, error)
+      call h5%close()
+      if (allocated(error)) return
+      do j = 1, 6
+         do i = 1, 6
+            call check_true(error, ca(i, j) == merge(1, 0, megno(i, j) > 2.5_dp) .and. &
+                            cb(i, j) == merge(1, 0, lam(i, j)*tau > 0.05_dp), &
+                            'stored classes are the thresholds applied by hand')
+         end do
+      end do
+      call check(error, stored, real(count(ca == cb), dp)/36.0_dp, 'stored agreement')
+      call check_true(error, count(ca == 1) > 0 .and. count(ca == 0) > 0, &
+                      'both classes present')
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--output '//dir//'/a.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1, 'existing output refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/m5.h5 --agreement '// &
+                         '--output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'n1') > 0, &
+                      'other pixels refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/f.h5 --agreement '// &
+                         '--output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'no indicator') > 0, &
+                      'a sweep without an indicator refused: '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/l.h5 --agreement '// &
+                         '--threshold-a nan --output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'threshold-a') > 0, &
+                      'a NaN threshold refused: '//text)
+      call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_agreement
 
 end module test_sweep

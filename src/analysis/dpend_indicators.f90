@@ -47,7 +47,7 @@ module dpend_indicators
                                stat_tangent_substeps
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
-   use dpend_lapack, only: dgeqrf
+   use dpend_indicator_math, only: gali, sali, initial_vectors, megno_step
    use dpend_lyapunov, only: next_multiple
    implicit none
    private
@@ -87,56 +87,6 @@ contains
       real(dp) :: y(self%n)
       y = self%mean_all(1, 1:self%n)
    end function res_megno_mean
-
-   !> SALI of two vectors: min(|â + b̂|, |â - b̂|), â = a/|a|.
-   pure real(dp) function sali(a, b)
-      real(dp), intent(in) :: a(:), b(:)  !! the vectors, not zero
-      real(dp) :: ah(size(a)), bh(size(b))
-      ah = a/norm2(a); bh = b/norm2(b)
-      sali = min(norm2(ah + bh), norm2(ah - bh))
-   end function sali
-
-   !> GALI_j of the columns of v (m, j), j <= m: the volume of the parallelepiped of
-   !> the unit vectors v_i/|v_i|, i.e. the product of the singular values of their
-   !> matrix A, computed as |det R| = Π |R_ii| of its QR decomposition A = Q R
-   !> (LAPACK dgeqrf; AᵀA = RᵀR, so both are √det(AᵀA)). info /= 0: dgeqrf failed.
-   !> (dgesvd would give the same product, but the reference LAPACK's SVD raises
-   !> IEEE exceptions internally, which the debug build traps.)
-   subroutine gali(v, g, info)
-      real(dp), intent(in) :: v(:, :)  !! the vectors (m, j), not zero
-      real(dp), intent(out) :: g       !! GALI_j [1]
-      integer, intent(out) :: info     !! 0 on success
-      real(dp) :: a(size(v, 1), size(v, 2)), tau(size(v, 2)), work(64*size(v, 2))
-      integer :: m, j, i
-      m = size(v, 1); j = size(v, 2)
-      do i = 1, j
-         a(:, i) = v(:, i)/norm2(v(:, i))
-      end do
-      call dgeqrf(m, j, a, m, tau, work, size(work), info)
-      g = 1.0_dp
-      do i = 1, j
-         g = g*abs(a(i, i))
-      end do
-   end subroutine gali
-
-   !> The initial deviation vectors: the columns of the Householder reflection
-   !> H = I - 2 w wᵀ/(wᵀw), w_i = 1 + i φ (φ the golden ratio), an orthonormal set
-   !> in general position. The unit vectors e_i would not do: at a turning point
-   !> (all q̇ = 0, as in the releases from rest) a velocity perturbation leaves the
-   !> energy and, by time-reversal symmetry, the actions unchanged to first order,
-   !> so e_(n+1) .. e_2n lie in the tangent space of the torus, never grow, and
-   !> GALI_j of a regular orbit would decay as t^-(j-N) instead of t^-2(j-N).
-   pure function initial_vectors(k) result(v)
-      integer, intent(in) :: k  !! dimension of the state (2n)
-      real(dp) :: v(k, k)
-      real(dp) :: w(k)
-      integer :: i
-      w = [(1.0_dp + real(i, dp)*0.5_dp*(1.0_dp + sqrt(5.0_dp)), i=1, k)]
-      do i = 1, k
-         v(:, i) = -2.0_dp*w(i)/dot_product(w, w)*w
-         v(i, i) = v(i, i) + 1.0_dp
-      end do
-   end function initial_vectors
 
    !> The indicators of the orbit from (t0, y0) to t_end, integrated with `integ`
    !> (fixed step or initial proposal h; rules of `march_t`), sampled at the end of
@@ -201,11 +151,8 @@ contains
             dl(i) = log(nrm)
          end do
          if (stat /= stat_ok) exit
-         lg = lg + dl
-         ig = ig + (0.5_dp*((t_prev - t0) + (t - t0)))*dl
-         yy = 2.0_dp*ig/(t - t0)
-         sy = sy + 0.5_dp*(t - t_prev)*(yy_prev + yy)
-         yy_prev = yy
+         call megno_step(dl, t_prev, t, t0, lg, ig, yy_prev, sy)
+         yy = yy_prev
          if (stat /= stat_ok) exit
          if (t >= t_next - 1e-9_dp*tau .or. march%finished) then
             call record(info)

@@ -28,6 +28,7 @@ module dpend_trajectory_batch
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, stop_both, stop_either, &
       stop_end, st_end, st_flipped, st_cannot_flip, st_nonfinite
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use dpend_indicators, only: indicators_result_t, chaos_indicators
    implicit none
    private
    public :: integrate_trajectories, link_flip_bounds
@@ -60,7 +61,10 @@ contains
    !> (a fixed-step method) of step opt%h for at most opt%n_steps steps each, with
    !> the stop rule opt%stop_rule; results as the kernel's, plus res%t_flip_link
    !> (N, n). res%t_flip1 and res%t_flip2 hold links 1 and 2 (NaN if absent);
-   !> res%lyapunov is NaN (not computed on this path).
+   !> res%lyapunov is NaN (not computed on this path). With opt%vectors > 0 every
+   !> trajectory runs to t_end and its fast indicators come from `chaos_indicators`
+   !> (dpend_indicators, the 2N vectors of `initial_vectors`, one sample at t_end),
+   !> vector 1 for MEGNO and FLI, vectors 1 and 2 for SALI and GALI_2, as the kernel.
    subroutine integrate_trajectories(model, integ, gl, opt, y0, res)
       class(model_t), intent(in) :: model            !! the system, N degrees of freedom
       class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
@@ -87,6 +91,8 @@ contains
                 res%lyapunov(n), res%status(n), res%steps(n))
       allocate (y(2*nl))
       res%lyapunov = nan
+      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
+      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
       do j = 1, n
          res%energy0(j) = model%energy(0.0_dp, y0(:, j))
          do i = 1, nl
@@ -102,7 +108,7 @@ contains
             res%status(j) = st_end
             cycle
          end if
-         if (.not. (any(can) .or. .not. opt%skip_cannot_flip)) then
+         if (.not. (any(can) .or. .not. opt%skip_cannot_flip .or. opt%vectors > 0)) then
             res%energy_error(j) = nan
             cycle
          end if
@@ -157,6 +163,7 @@ contains
             res%energy_error(j) = err/escale
             if (ks < opt%n_steps) res%status(j) = st_flipped
          end if
+         if (opt%vectors > 0) call indicators(j)
       end do
       do j = 1, n
          if (any(res%t_flip_link(:, j) >= 0.0_dp)) then
@@ -171,6 +178,24 @@ contains
          res%t_flip2(j) = nan
          if (nl >= 2) res%t_flip2(j) = res%t_flip_link(2, j)
       end do
+   contains
+
+      !> The fast indicators of trajectory j, integrated again with its tangents.
+      subroutine indicators(j)
+         integer, intent(in) :: j
+         type(indicators_result_t) :: ind
+         real(dp) :: t_end
+         integer :: m
+         t_end = real(opt%n_steps, dp)*opt%h
+         call chaos_indicators(integ, model, 0.0_dp, y0(:, j), t_end, opt%h, t_end, ind, stat)
+         if (stat /= stat_ok .or. ind%n < 1) return
+         m = ind%n
+         res%fli(j) = ind%log_norm(1, m)
+         res%megno_y(j) = ind%megno_all(1, m)
+         res%megno(j) = ind%mean_all(1, m)
+         res%sali(j) = ind%sali(m)
+         res%gali2(j) = ind%gali(1, m)
+      end subroutine indicators
    end subroutine integrate_trajectories
 
 end module dpend_trajectory_batch

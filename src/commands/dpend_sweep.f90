@@ -29,6 +29,9 @@ module dpend_sweep
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
       potential_range, flip_energy_bounds, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
+   use dpend_sweep_config, only: indicator_vectors, axis_parameter, pixel_parameters
+   use dpend_pendulum, only: pendulum_t, pendulum_model
+   use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories, link_flip_bounds
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
@@ -41,6 +44,7 @@ module dpend_sweep
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
+   public :: config_value
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
@@ -58,6 +62,8 @@ module dpend_sweep
       integer :: block = 0                      !! initial conditions per full block
       integer :: rows = 0                       !! grid: rows of axis 1 per block
       integer :: var1 = 0, var2 = 0             !! swept values: index in (q1..qN, w1..wN)
+      !> swept parameters (`axis_parameter`: 1 m1 .. 6 l2/l1; 0: an initial value)
+      integer :: par1 = 0, par2 = 0
       real(dp), allocatable :: axis1(:)         !! grid: axis values (axis units)
       real(dp), allocatable :: axis2(:)         !! grid: axis values (axis units)
       real(dp), allocatable :: list(:, :)       !! list: (2N, n) states (q, q̇)
@@ -130,9 +136,12 @@ contains
       setup%opt%h = t_end/real(setup%opt%n_steps, dp)
       setup%opt%stop_rule = stop_rule(cfg)
       setup%opt%lyapunov = cfg%lyapunov
+      setup%opt%vectors = indicator_vectors(cfg)
       if (setup%grid) then
          setup%var1 = axis_variable(cfg%axis1, setup%links)
          setup%var2 = axis_variable(cfg%axis2, setup%links)
+         setup%par1 = axis_parameter(cfg%axis1)
+         setup%par2 = axis_parameter(cfg%axis2)
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
          do i = 1, cfg%n1
             setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
@@ -235,10 +244,38 @@ contains
          i1 = mod(jj - 1, setup%cfg%n1) + 1
          i2 = (jj - 1)/setup%cfg%n1 + 1
          y0(:, j) = base
-         y0(setup%var1, j) = state_value(setup%cfg%axis1, setup%axis1(i1))
-         y0(setup%var2, j) = state_value(setup%cfg%axis2, setup%axis2(i2))
+         if (setup%var1 > 0) y0(setup%var1, j) = state_value(setup%cfg%axis1, setup%axis1(i1))
+         if (setup%var2 > 0) y0(setup%var2, j) = state_value(setup%cfg%axis2, setup%axis2(i2))
       end do
    end subroutine block_initial_conditions
+
+   !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1).
+   pure logical function parameter_axes(setup)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      parameter_axes = setup%par1 > 0 .or. setup%par2 > 0
+   end function parameter_axes
+
+   !> The parameters (m1, m2, l1, l2) of the pixels of block b (4, nb).
+   subroutine block_parameters(setup, b, p)
+      type(sweep_setup_t), intent(in) :: setup      !! setup
+      integer, intent(in) :: b                      !! block, 1-based
+      real(dp), allocatable, intent(out) :: p(:, :) !! (4, nb) [kg, kg, m, m]
+      integer :: j0, nb, j, jj, i1, i2
+      call block_range(setup, b, j0, nb)
+      allocate (p(4, nb))
+      do j = 1, nb
+         jj = j0 + j - 1
+         i1 = 1; i2 = 1
+         if (setup%grid) then
+            i1 = mod(jj - 1, setup%cfg%n1) + 1
+            i2 = (jj - 1)/setup%cfg%n1 + 1
+            p(:, j) = pixel_parameters(setup%cfg, setup%par1, setup%axis1(i1), setup%par2, &
+                                       setup%axis2(i2))
+         else
+            p(:, j) = pixel_parameters(setup%cfg, 0, 0.0_dp, 0, 0.0_dp)
+         end if
+      end do
+   end subroutine block_parameters
 
    !> Integrate block b: the batch kernel for two links, else one trajectory at a
    !> time with this block's own copy of the method.
@@ -249,13 +286,95 @@ contains
       real(dp), allocatable :: y0(:, :)
       class(integrator_t), allocatable :: integ
       call block_initial_conditions(setup, b, y0)
-      if (setup%per_trajectory) then
+      if (parameter_axes(setup)) then
+         call compute_parameter_block(setup, b, y0, res)
+      else if (setup%per_trajectory) then
          allocate (integ, source=setup%integ)
          call integrate_trajectories(setup%cfg%run%model, integ, setup%gl, setup%opt, y0, res)
       else
          call integrate_batch(setup%cfg%run%pendulum(), setup%opt, y0, res)
       end if
    end subroutine compute_block
+
+   !> Integrate block b of a sweep over parameters: its pixels in groups of equal
+   !> parameters (the pixels of one value of each parameter axis: with one
+   !> parameter axis, a whole row (axis 2) or a column of the block's rows (axis 1)),
+   !> each group by the batch kernel with its own constants (or the per-trajectory
+   !> path with its own model). The lanes never mix, so a pixel's results do not
+   !> depend on its group, block or thread. With both axes parameters every group is
+   !> one pixel and the kernel's other lanes idle.
+   subroutine compute_parameter_block(setup, b, y0, res)
+      type(sweep_setup_t), intent(in) :: setup    !! setup
+      integer, intent(in) :: b                    !! block, 1-based
+      real(dp), intent(in) :: y0(:, :)            !! (2N, nb) its initial states
+      type(batch_result_t), intent(out) :: res    !! its results
+      real(dp), allocatable :: p(:, :), m(:), l(:)
+      integer, allocatable :: key(:, :), idx(:)
+      logical, allocatable :: todo(:)
+      type(batch_result_t) :: sub
+      type(pendulum_t) :: par
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      integer :: j, k, nb, j0, jj
+      call block_parameters(setup, b, p)
+      call block_range(setup, b, j0, nb)
+      ! the group of a pixel: its index on each parameter axis (0: not a parameter)
+      allocate (key(2, nb), todo(nb))
+      do j = 1, nb
+         jj = j0 + j - 1
+         key(1, j) = merge(mod(jj - 1, setup%cfg%n1) + 1, 0, setup%par1 > 0)
+         key(2, j) = merge((jj - 1)/setup%cfg%n1 + 1, 0, setup%par2 > 0)
+      end do
+      todo = .true.
+      do j = 1, nb
+         if (.not. todo(j)) cycle
+         idx = pack([(k, k=1, nb)], key(1, :) == key(1, j) .and. key(2, :) == key(2, j))
+         todo(idx) = .false.
+         par = setup%cfg%run%pendulum()
+         par%m1 = p(1, j); par%m2 = p(2, j); par%l1 = p(3, j); par%l2 = p(4, j)
+         if (setup%per_trajectory) then
+            m = setup%cfg%run%m(:setup%links); l = setup%cfg%run%l(:setup%links)
+            m(1:2) = p(1:2, j); l(1:2) = p(3:4, j)
+            chain = chain_model(m, l, setup%cfg%run%g, err)   ! checked by validate_sweep
+            if (.not. allocated(integ)) allocate (integ, source=setup%integ)
+            if (setup%links == 2) then
+               call integrate_trajectories(pendulum_model(par), integ, chain%gl, setup%opt, &
+                                           y0(:, idx), sub)
+            else
+               call integrate_trajectories(chain, integ, chain%gl, setup%opt, y0(:, idx), sub)
+            end if
+         else
+            call integrate_batch(par, setup%opt, y0(:, idx), sub)
+         end if
+         call place_results(sub, idx, nb, res)
+      end do
+   end subroutine compute_parameter_block
+
+   !> Copy the results `sub` of a group into `res` at the indices idx (`res`
+   !> allocated for nb initial conditions on the first call).
+   subroutine place_results(sub, idx, nb, res)
+      type(batch_result_t), intent(in) :: sub     !! results of the group
+      integer, intent(in) :: idx(:)               !! their indices in res
+      integer, intent(in) :: nb                   !! size of res
+      type(batch_result_t), intent(inout) :: res  !! the block's results
+      if (.not. allocated(res%t_flip)) then
+         res%n = nb
+         allocate (res%t_flip1(nb), res%t_flip2(nb), res%t_flip(nb), res%energy0(nb), &
+                   res%energy_error(nb), res%t_stop(nb), res%final(size(sub%final, 1), nb), &
+                   res%lyapunov(nb), res%status(nb), res%steps(nb), res%megno(nb), &
+                   res%megno_y(nb), res%fli(nb), res%sali(nb), res%gali2(nb))
+         if (allocated(sub%t_flip_link)) allocate (res%t_flip_link(size(sub%t_flip_link, 1), nb))
+      end if
+      res%t_flip1(idx) = sub%t_flip1; res%t_flip2(idx) = sub%t_flip2
+      res%t_flip(idx) = sub%t_flip; res%energy0(idx) = sub%energy0
+      res%energy_error(idx) = sub%energy_error; res%t_stop(idx) = sub%t_stop
+      res%final(:, idx) = sub%final; res%lyapunov(idx) = sub%lyapunov
+      res%status(idx) = sub%status; res%steps(idx) = sub%steps
+      res%megno(idx) = sub%megno; res%megno_y(idx) = sub%megno_y; res%fli(idx) = sub%fli
+      res%sali(idx) = sub%sali; res%gali2(idx) = sub%gali2
+      if (allocated(res%t_flip_link)) res%t_flip_link(:, idx) = sub%t_flip_link
+   end subroutine place_results
 
    !> Read a list of initial conditions: text rows "q1 q2 w1 w2" ('#' comments) or
    !> an HDF5 dataset of shape (n, 4) as h5py sees it; for N links rows
@@ -404,6 +523,7 @@ contains
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &
              'lyapunov = '//trim(merge('true ', 'false', c%lyapunov))//nl// &
+             indicator_line()// &
              'stats = '//trim(merge('true ', 'false', c%stats))//nl// &
              'block = '//to_str(setup%block)//nl
          if (setup%grid) then
@@ -419,6 +539,13 @@ contains
          end if
       end associate
    contains
+      !> 'indicator = megno' for the indicators of the kernel's deviation vectors;
+      !> nothing for flip and lambda1 (files from before the indicators resume).
+      function indicator_line() result(t)
+         character(len=:), allocatable :: t
+         t = ''
+         if (indicator_vectors(setup%cfg) > 0) t = 'indicator = '//setup%cfg%indicator//nl
+      end function indicator_line
       function r(x) result(t)
          real(dp), intent(in) :: x
          character(len=:), allocatable :: t
@@ -473,6 +600,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup                     !! setup
       character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
       character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
+      character(len=32) :: name
       integer :: i
       if (setup%links == 2) then
          reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
@@ -490,19 +618,33 @@ contains
          reals(setup%links + 4) = 't_stop'
       end if
       if (setup%cfg%lyapunov) reals = [reals, [character(len=32) :: 'lyapunov']]
+      select case (setup%cfg%indicator)
+      case ('megno'); reals = [reals, [character(len=32) :: 'megno', 'megno_y']]
+      case ('fli', 'sali', 'gali2')
+         name = setup%cfg%indicator   ! (one length in the constructor under -fcheck)
+         reals = [reals, name]
+      end select
+      if (parameter_axes(setup)) reals = [reals, [character(len=32) :: 'param/m1', &
+                                          'param/m2', 'param/l1', 'param/l2']]
       ints = [character(len=32) :: 'status']
       if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
    end subroutine result_names
 
    !> Units of a swept variable: 'rad' for an angle, 'rad/s' for a velocity.
    pure function axis_units(axis) result(units)
-      character(len=*), intent(in) :: axis  !! theta1, theta2, q1, q2, w1 or w2
+      character(len=*), intent(in) :: axis  !! theta1, theta2, q1, q2, w1, w2, m1, ...
       character(len=:), allocatable :: units
-      if (index(axis, 'w') == 1) then
-         units = 'rad/s'
-      else
-         units = 'rad'
-      end if
+      select case (axis_parameter(axis))
+      case (1, 2); units = 'kg'
+      case (3, 4); units = 'm'
+      case (5, 6); units = '1'
+      case default
+         if (index(axis, 'w') == 1) then
+            units = 'rad/s'
+         else
+            units = 'rad'
+         end if
+      end select
    end function axis_units
 
    !> Units and description of the sweep dataset `name` (below /sweep).
@@ -565,6 +707,25 @@ contains
          units = 'rad/s'; text = 'angular velocity at t_stop'
       case ('lyapunov')
          units = '1/s'; text = 'largest Lyapunov exponent'
+      case ('param/m1', 'param/m2')
+         units = 'kg'; text = 'mass of link '//name(8:8)//' of the pixel (parameter axes)'
+      case ('param/l1', 'param/l2')
+         units = 'm'; text = 'length of link '//name(8:8)//' of the pixel (parameter axes)'
+      case ('megno')
+         units = '1'; text = 'MEGNO running mean <Y>(t_stop) of one deviation vector '// &
+            '(regular orbits -> 2, chaotic ~ lambda1 t/2; NaN: not finite)'
+      case ('megno_y')
+         units = '1'; text = 'MEGNO Y(t_stop) = 2/t int s (ddot.d)/(d.d) ds of one '// &
+            'deviation vector (NaN: not finite)'
+      case ('fli')
+         units = '1'; text = 'fast Lyapunov indicator ln |d(t_stop)| of one deviation '// &
+            'vector, |d(0)| = 1 (regular ~ ln t, chaotic ~ lambda1 t; NaN: not finite)'
+      case ('sali')
+         units = '1'; text = 'SALI of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
+      case ('gali2')
+         units = '1'; text = 'GALI_2 of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
       case ('status')
          units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after a '// &
             'flip, 3 below both flip bounds, 4 state became non-finite'
@@ -693,6 +854,7 @@ contains
       type(batch_result_t), intent(in) :: res           !! its results
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
+      real(dp), allocatable :: p(:, :)
       integer :: j0, nb, i
       logical :: sync
       sync = .true.
@@ -717,6 +879,21 @@ contains
          call put_r('final/w'//to_str(i), res%final(setup%links + i, :))
       end do
       if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
+      select case (setup%cfg%indicator)
+      case ('megno')
+         call put_r('megno', res%megno)
+         call put_r('megno_y', res%megno_y)
+      case ('fli'); call put_r('fli', res%fli)
+      case ('sali'); call put_r('sali', res%sali)
+      case ('gali2'); call put_r('gali2', res%gali2)
+      end select
+      if (parameter_axes(setup)) then
+         call block_parameters(setup, b, p)
+         call put_r('param/m1', p(1, :))
+         call put_r('param/m2', p(2, :))
+         call put_r('param/l1', p(3, :))
+         call put_r('param/l2', p(4, :))
+      end if
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)
       if (allocated(error)) return

@@ -6,7 +6,10 @@
 !>   axis1, axis2   swept initial values: 'theta1' 'theta2' (angles from the hanging
 !>                  position, θ = q + π/2), 'q1' 'q2' (from the horizontal x axis),
 !>                  'w1' 'w2' (angular velocities) [rad, rad/s]; for N links any of
-!>                  theta1..thetaN, q1..qN, w1..wN
+!>                  theta1..thetaN, q1..qN, w1..wN; or a parameter (grids of 2 or
+!>                  more links): 'm1' 'm2' [kg], 'l1' 'l2' [m] of links 1 and 2, or the
+!>                  ratios 'm2/m1' (m2 = value m1), 'l2/l1' (l2 = value l1) [1]; the
+!>                  natural time unit stays √(l1/g) of the configured l1
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
 !>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4));
@@ -18,6 +21,9 @@
 !>   block          initial conditions per block (unit of parallel work, output
 !>                  chunks and resume); whole rows of axis 1 in a grid
 !>   lyapunov       also the largest Lyapunov exponent (runs every trajectory to t_end)
+!>   indicator      per-pixel chaos indicator beside the flip time: 'flip' (none),
+!>                  'lambda1' (= lyapunov), 'megno', 'fli', 'sali', 'gali2' (every
+!>                  trajectory to t_end)
 !>   stats          also the number of steps of every trajectory
 !>   threads        OpenMP threads (0: all; not part of the stored configuration)
 module dpend_sweep_config
@@ -29,6 +35,8 @@ module dpend_sweep_config
    use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
                            max_angle, max_angular_velocity, max_time
+   use dpend_limits, only: min_mass, max_mass, min_length, max_length
+   use dpend_chain, only: chain_t, chain_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
@@ -37,9 +45,17 @@ module dpend_sweep_config
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
+   public :: indicator_names, indicator_vectors, axis_parameter, param_axis_names
+   public :: pixel_parameters
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
+
+   !> Parameters accepted as axes (grids of two or more links).
+   character(len=*), parameter :: param_axis_names = 'm1 m2 l1 l2 m2/m1 l2/l1'
+
+   !> Names accepted for the per-pixel indicator.
+   character(len=*), parameter :: indicator_names = 'flip lambda1 megno fli sali gali2'
 
    !> Everything `dpend sweep` needs.
    type :: sweep_config_t
@@ -60,6 +76,8 @@ module dpend_sweep_config
       character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
       integer :: block = 4096                      !! initial conditions per block
       logical :: lyapunov = .false.                !! largest Lyapunov exponent
+      character(len=:), allocatable :: indicator   !! 'flip', 'lambda1', 'megno', 'fli',
+                                                   !! 'sali' or 'gali2'
       logical :: stats = .false.                   !! steps per trajectory
       integer :: threads = 0                       !! OpenMP threads, 0: all
       logical :: quiet = .false.                   !! no progress report
@@ -84,7 +102,19 @@ contains
       cfg%ic_angles = 'q'
       cfg%time_unit = 'natural'
       cfg%stop_at = 'both'
+      cfg%indicator = 'flip'
    end function sweep_defaults
+
+   !> Deviation vectors of the batch kernel for the indicator: 0 (flip, lambda1: the
+   !> Lyapunov exponent has its own), 1 (megno, fli), 2 (sali, gali2).
+   pure integer function indicator_vectors(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      select case (cfg%indicator)
+      case ('megno', 'fli'); indicator_vectors = 1
+      case ('sali', 'gali2'); indicator_vectors = 2
+      case default; indicator_vectors = 0
+      end select
+   end function indicator_vectors
 
    !> True for a grid, false for a list of initial conditions.
    pure logical function grid_mode(cfg)
@@ -107,8 +137,40 @@ contains
       case ('end'); stop_rule = stop_end
       case default; stop_rule = stop_both
       end select
-      if (cfg%lyapunov) stop_rule = stop_end
+      if (cfg%lyapunov .or. indicator_vectors(cfg) > 0) stop_rule = stop_end
    end function stop_rule
+
+   !> The parameter an axis sweeps: 1 m1, 2 m2, 3 l1, 4 l2, 5 m2/m1, 6 l2/l1; 0 for
+   !> an initial value or an unknown name.
+   pure integer function axis_parameter(name)
+      character(len=*), intent(in) :: name  !! axis name
+      select case (name)
+      case ('m1'); axis_parameter = 1
+      case ('m2'); axis_parameter = 2
+      case ('l1'); axis_parameter = 3
+      case ('l2'); axis_parameter = 4
+      case ('m2/m1'); axis_parameter = 5
+      case ('l2/l1'); axis_parameter = 6
+      case default; axis_parameter = 0
+      end select
+   end function axis_parameter
+
+   !> (m1, m2, l1, l2) of a pixel: the configured ones with the values x1, x2 of the
+   !> parameter axes p1, p2 (axis_parameter codes, 0: an initial value), the masses
+   !> and lengths first, then the ratios (m2 = r m1 with m1 possibly swept).
+   pure function pixel_parameters(cfg, p1, x1, p2, x2) result(p)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      integer, intent(in) :: p1, p2            !! axis_parameter of axis 1 and 2
+      real(dp), intent(in) :: x1, x2           !! the pixel's axis values
+      real(dp) :: p(4)
+      p = [cfg%run%m(1), cfg%run%m(2), cfg%run%l(1), cfg%run%l(2)]
+      if (p1 >= 1 .and. p1 <= 4) p(p1) = x1
+      if (p2 >= 1 .and. p2 <= 4) p(p2) = x2
+      if (p1 == 5) p(2) = x1*p(1)
+      if (p2 == 5) p(2) = x2*p(1)
+      if (p1 == 6) p(4) = x1*p(3)
+      if (p2 == 6) p(4) = x2*p(3)
+   end function pixel_parameters
 
    !> Help text of `dpend sweep`.
    function sweep_help() result(s)
@@ -127,7 +189,10 @@ contains
           '  --axis1, --axis2 NAME  swept values: theta1 theta2 (rad from the hanging'//nl// &
           '                    position, theta = q + pi/2), q1 q2 (rad from horizontal),'//nl// &
           '                    w1 w2 (rad/s); with --links N: theta1..thetaN, q1..qN,'//nl// &
-          '                    w1..wN; default '//cfg%axis1//', '//cfg%axis2//nl// &
+          '                    w1..wN; or a parameter (2 or more links): m1 m2 (kg),'//nl// &
+          '                    l1 l2 (m), m2/m1 (m2 = value m1), l2/l1 (l2 = value l1),'//nl// &
+          '                    stored per pixel in /sweep/param (--time-unit natural'//nl// &
+          '                    uses --l1); default '//cfg%axis1//', '//cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
           '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &
@@ -150,6 +215,10 @@ contains
           //cfg%stop_at//nl// &
           '  --lyapunov        also the largest Lyapunov exponent (all run to t_end;'//nl// &
           '                    two links only)'//nl// &
+          '  --indicator NAME  per-pixel chaos indicator beside the flip time (all run'//nl// &
+          '                    to t_end): flip (none), lambda1 (= --lyapunov), megno'//nl// &
+          '                    (running mean <Y>, and Y), fli (ln |d|), sali, gali2;'//nl// &
+          '                    default '//cfg%indicator//nl// &
           '  --stats           also the number of steps of every trajectory'//nl//nl// &
           'parameters (as in dpend simulate):'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
@@ -220,6 +289,7 @@ contains
          case ('--ic-angles'); cfg%ic_angles = value
          case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value
+         case ('--indicator'); cfg%indicator = value
          case ('--block'); call parse_int(value, name, cfg%block, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
          case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
@@ -239,14 +309,14 @@ contains
       character(len=*), intent(in) :: filename          !! namelist file
       type(sweep_config_t), intent(inout) :: cfg        !! updated from the file
       type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
-      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at
+      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at, indicator
       character(len=1024) :: ic_file, ic_dataset
       character(len=512) :: msg
       integer :: n1, n2, block, threads, unit, stat
       real(dp) :: min1, max1, min2, max2
       logical :: lyapunov, stats, quiet
       namelist /sweep/ axis1, axis2, n1, n2, min1, max1, min2, max2, ic_file, ic_dataset, &
-         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet
+         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet, indicator
       ! length 16 as read_run_config's own list (-fcheck=all checks constructors)
       call read_run_config(filename, cfg%run, error, &
                            extra_groups=[character(len=16) :: 'sweep'])
@@ -255,7 +325,7 @@ contains
       n1 = cfg%n1; n2 = cfg%n2
       min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
       ic_file = cfg%ic_file; ic_dataset = cfg%ic_dataset; ic_angles = cfg%ic_angles
-      time_unit = cfg%time_unit; stop_at = cfg%stop_at
+      time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
@@ -275,6 +345,7 @@ contains
       cfg%ic_file = trim(ic_file); cfg%ic_dataset = trim(ic_dataset)
       cfg%ic_angles = trim(ic_angles)
       cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
+      cfg%indicator = trim(indicator)
       cfg%block = block; cfg%threads = threads
       cfg%lyapunov = lyapunov; cfg%stats = stats; cfg%quiet = quiet
    end subroutine read_sweep_config
@@ -283,6 +354,7 @@ contains
    subroutine validate_sweep(cfg, error)
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      character(len=:), allocatable :: field
       call validate_run_config(cfg%run, error)
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
@@ -291,8 +363,23 @@ contains
                           //'must be 0; dpend simulate takes them)')
          return
       end if
+      select case (cfg%indicator)
+      case ('flip', 'lambda1', 'megno', 'fli', 'sali', 'gali2')
+      case default
+         call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' (accepted: "// &
+                          indicator_names//')')
+         return
+      end select
+      if (cfg%indicator == 'lambda1') cfg%lyapunov = .true.
+      if (cfg%lyapunov .and. indicator_vectors(cfg) > 0) then
+         call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' with lyapunov "// &
+                          '= true (one indicator per sweep; lambda1 is the Lyapunov exponent)')
+         return
+      end if
       if (cfg%run%links /= 2 .and. cfg%lyapunov) then
-         call fatal_error(error, 'invalid lyapunov: true with '//to_str(cfg%run%links)// &
+         field = 'lyapunov: true'
+         if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
+         call fatal_error(error, 'invalid '//field//' with '//to_str(cfg%run%links)// &
                           ' links (dpend sweep computes it for links = 2 only; '// &
                           'dpend lyapunov computes it for any N)')
          return
@@ -327,20 +414,70 @@ contains
          if (allocated(error)) return
          call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error)
          if (allocated(error)) return
-         if (axis_variable(cfg%axis1, cfg%run%links) == &
-             axis_variable(cfg%axis2, cfg%run%links)) then
+         if (same_value(cfg%axis1, cfg%axis2, cfg%run%links)) then
             call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
                              "initial value as axis1 '"//cfg%axis1//"'")
          else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
             call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
                              sci(real(cfg%n1, dp)*real(cfg%n2, dp))//' points, at most '// &
                              sci(real(max_sweep_points, dp))//' (fewer points)')
+         else
+            call check_pixel_parameters(cfg, error)
          end if
       else if (cfg%ic_angles /= 'q' .and. cfg%ic_angles /= 'theta') then
          call fatal_error(error, "invalid ic_angles: '"//cfg%ic_angles// &
                           "' (accepted: q, theta)")
       end if
    end subroutine validate_sweep
+
+   !> True if two axes set the same value: the same initial value, the same
+   !> parameter, or m2 and m2/m1, l2 and l2/l1.
+   pure logical function same_value(a1, a2, links)
+      character(len=*), intent(in) :: a1, a2  !! axis names
+      integer, intent(in) :: links            !! number of links N
+      integer :: p1, p2
+      p1 = axis_parameter(a1); p2 = axis_parameter(a2)
+      same_value = axis_variable(a1, links) == axis_variable(a2, links) .and. p1 == p2
+      if (min(p1, p2) == 2 .and. max(p1, p2) == 5) same_value = .true.
+      if (min(p1, p2) == 4 .and. max(p1, p2) == 6) same_value = .true.
+   end function same_value
+
+   !> The parameters of the pixels at the four corners of a grid (the extremes: each
+   !> is monotonic in either axis value) within the limits of every command, and,
+   !> for N links, a chain the model accepts.
+   subroutine check_pixel_parameters(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, axes checked
+      type(error_t), allocatable, intent(out) :: error  !! a corner out of range
+      integer :: p1, p2, i, j
+      real(dp) :: p(4), x1, x2, m(cfg%run%links), l(cfg%run%links)
+      character(len=*), parameter :: what = 'min1, max1, min2, max2'
+      type(chain_t) :: chain
+      p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
+      if (p1 == 0 .and. p2 == 0) return
+      do j = 1, 2
+         do i = 1, 2
+            x1 = merge(cfg%min1, cfg%max1, i == 1)
+            x2 = merge(cfg%min2, cfg%max2, j == 1)
+            p = pixel_parameters(cfg, p1, x1, p2, x2)
+            call check_range(what//' (m1 of a pixel)', p(1), min_mass, max_mass, 'kg', error)
+            if (.not. allocated(error)) call check_range(what//' (m2 of a pixel)', p(2), &
+                                                         min_mass, max_mass, 'kg', error)
+            if (.not. allocated(error)) call check_range(what//' (l1 of a pixel)', p(3), &
+                                                         min_length, max_length, 'm', error)
+            if (.not. allocated(error)) call check_range(what//' (l2 of a pixel)', p(4), &
+                                                         min_length, max_length, 'm', error)
+            if (allocated(error)) return
+            m = cfg%run%m(:cfg%run%links); l = cfg%run%l(:cfg%run%links)
+            m(1:2) = p(1:2); l(1:2) = p(3:4)
+            chain = chain_model(m, l, cfg%run%g, error)
+            if (allocated(error)) then
+               error%message = 'invalid '//what//': the pixel at ('//real_str(x1)//', '// &
+                               real_str(x2)//') is refused: '//error%message
+               return
+            end if
+         end do
+      end do
+   end subroutine check_pixel_parameters
 
    !> Check one axis: a known name, n >= 1, finite min <= max (min < max if n > 1).
    subroutine check_axis(name, k, n, lo, hi, links, error)
@@ -356,6 +493,10 @@ contains
       integer :: var
       c = achar(iachar('0') + k)
       var = axis_variable(name, links)
+      if (var == 0 .and. axis_parameter(name) > 0) then
+         call check_param_axis(name, k, n, lo, hi, links, error)
+         return
+      end if
       ! the angles' and angular velocities' ranges of every command (dpend_limits)
       bound = max_angle
       unit = 'rad'
@@ -383,6 +524,38 @@ contains
                           //c//' < max'//c//' when n'//c//' > 1')
       end if
    end subroutine check_axis
+
+   !> Check a parameter axis: two or more links, n as any axis, finite 0 < min <= max
+   !> (min < max if n > 1); the pixels' parameters are checked by
+   !> `check_pixel_parameters`.
+   subroutine check_param_axis(name, k, n, lo, hi, links, error)
+      character(len=*), intent(in) :: name              !! axis name
+      integer, intent(in) :: k                          !! 1 or 2
+      integer, intent(in) :: n                          !! points
+      real(dp), intent(in) :: lo, hi                    !! range
+      integer, intent(in) :: links                      !! number of links N
+      type(error_t), allocatable, intent(out) :: error  !! what is wrong
+      character(len=1) :: c
+      c = achar(iachar('0') + k)
+      if (links < 2) then
+         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: "// &
+                          accepted_axes(links)//'; parameter axes need 2 or more links)')
+      else if (n < 1 .or. n > max_axis_points) then
+         call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
+                          //' to '//to_str(max_axis_points)//' (points on axis '//c//')')
+      else if (.not. (ieee_is_finite(lo) .and. ieee_is_finite(hi))) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': must be finite')
+      else if (.not. (lo > 0.0_dp)) then
+         call fatal_error(error, 'invalid min'//c//': '//sci(lo)//' must be > 0 (axis '// &
+                          name//')')
+      else if (lo > hi) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
+                          //real_str(lo)//' > max'//c//' = '//real_str(hi))
+      else if (n > 1 .and. .not. (lo < hi)) then
+         call fatal_error(error, 'invalid min'//c//', max'//c//': the grid is empty, need min' &
+                          //c//' < max'//c//' when n'//c//' > 1')
+      end if
+   end subroutine check_param_axis
 
    !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
    pure function unit_name(cfg) result(u)
@@ -423,9 +596,10 @@ contains
       n = to_str(links)
       select case (links)
       case (1); s = 'theta1 q1 w1 for 1 link'
-      case (2); s = axis_names
+      case (2); s = axis_names//' '//param_axis_names
       case default
-         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' for '//n//' links'
+         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' '//param_axis_names//' for ' &
+             //n//' links'
       end select
    end function accepted_axes
 

@@ -26,11 +26,12 @@
 module dpend_pendulum_lanes
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
+   use dpend_indicator_math, only: initial_vectors, sali, gali
    implicit none
    private
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
-   public :: rk4_lanes, rk4_tangent_lanes, energy_lanes
+   public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
    public :: sincos_lanes, sincos_near_lanes, sincos_exact_max
    public :: batch_options_t, batch_result_t, integrate_batch
@@ -103,6 +104,10 @@ module dpend_pendulum_lanes
       logical :: skip_cannot_flip = .true.  !! leave out initial conditions below the
                                             !! flip energy bounds (always integrated with
                                             !! the Lyapunov exponent)
+      !> Deviation vectors of the fast indicators (dpend_indicator_math); runs to
+      !> t_end like the Lyapunov exponent (exclusive with it): 0 none, 1 MEGNO and
+      !> FLI, 2 also SALI and GALI_2
+      integer :: vectors = 0
    end type batch_options_t
 
    !> Reduced results per initial condition (arrays of size n). NaN marks "none".
@@ -121,6 +126,10 @@ module dpend_pendulum_lanes
       real(dp), allocatable :: lyapunov(:)      !! largest Lyapunov exponent [1/s], NaN: off
       integer, allocatable :: status(:)         !! st_* code
       integer, allocatable :: steps(:)          !! RK4 steps taken (4 evaluations each)
+      !> Fast indicators at t_stop (NaN: not computed) of deviation vector 1: <Y> the
+      !> running mean of MEGNO, Y itself, FLI = ln |δ|; of vectors 1 and 2: SALI,
+      !> GALI_2 [1]
+      real(dp), allocatable :: megno(:), megno_y(:), fli(:), sali(:), gali2(:)
    end type batch_result_t
 
 contains
@@ -623,6 +632,73 @@ contains
       end do
    end subroutine rk4_tangent_lanes
 
+   !> One RK4 step of the state with nv (1 or 2) deviation vectors d(:, :, k) =
+   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math), each through
+   !> `rk4_tangent_lanes` (vector 2 with a copy of the state, whose step is the same
+   !> bit for bit), then renormalised to length 1 (directions kept, never
+   !> orthogonalised); vector 1's growth enters the sums acc(:, 1:4) = (ln |δ|,
+   !> MEGNO's integral, Y, ∫ Y ds) of the step [ks h, (ks + 1) h] (`megno_step`,
+   !> t0 = 0, `megno_step_lanes`). `e` as in `rk4_lanes`.
+   pure subroutine indicator_step_lanes(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
+      type(batch_coef_t), intent(in) :: c                          !! constants
+      real(dp), intent(in) :: h                                    !! step [s]
+      integer(i8), intent(in) :: ks(lane_width)                    !! steps done before
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)    !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      integer, intent(in) :: nv                                    !! vectors, 1 or 2
+      real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
+      real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
+      real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
+      real(dp), dimension(lane_width) :: p1, p2, r1, r2, e2, nrm, dl, ta, tb
+      integer :: i, j, k
+      if (nv > 1) then
+         p1 = q1; p2 = q2; r1 = w1; r2 = w2
+         call rk4_tangent_lanes(c, h, p1, p2, r1, r2, d(:, 1, 2), d(:, 2, 2), d(:, 3, 2), &
+                                d(:, 4, 2), e2)
+      end if
+      call rk4_tangent_lanes(c, h, q1, q2, w1, w2, d(:, 1, 1), d(:, 2, 1), d(:, 3, 1), &
+                             d(:, 4, 1), e)
+      do k = 1, nv
+         do i = 1, lane_width
+            nrm(i) = sqrt(d(i, 1, k)**2 + d(i, 2, k)**2 + d(i, 3, k)**2 + d(i, 4, k)**2)
+         end do
+         do j = 1, 4   ! loops over the lanes, innermost: they vectorize
+            do i = 1, lane_width
+               d(i, j, k) = d(i, j, k)/nrm(i)
+            end do
+         end do
+         if (k == 1) then
+            do i = 1, lane_width
+               dl(i) = log(nrm(i))
+               ta(i) = real(ks(i), dp)*h
+               tb(i) = real(ks(i) + 1, dp)*h
+            end do
+            call megno_step_lanes(dl, ta, tb, acc(:, 1), acc(:, 2), acc(:, 3), acc(:, 4))
+         end if
+      end do
+   end subroutine indicator_step_lanes
+
+   !> Copy of `megno_step` (dpend_indicator_math) for speed, t0 = 0: SIMD over the
+   !> lanes (a call of the elemental in another module would not be inlined);
+   !> test/test_copies.f90 compares them.
+   pure subroutine megno_step_lanes(dl, t_prev, t, lg, ig, yy, sy)
+      real(dp), intent(in) :: dl(lane_width)                  !! ln of the growth of |δ|
+      real(dp), intent(in) :: t_prev(lane_width), t(lane_width)  !! step start, end [s]
+      real(dp), intent(inout) :: lg(lane_width)               !! ln |δ(t)| [1]
+      real(dp), intent(inout) :: ig(lane_width)               !! ∫ s d ln|δ| [s]
+      real(dp), intent(inout) :: yy(lane_width)               !! Y(t_prev) in, Y(t) out [1]
+      real(dp), intent(inout) :: sy(lane_width)               !! ∫ Y ds [s]
+      real(dp) :: y_new
+      integer :: i
+      do i = 1, lane_width
+         lg(i) = lg(i) + dl(i)
+         ig(i) = ig(i) + (0.5_dp*(t_prev(i) + t(i)))*dl(i)   ! s - t0 = s exactly
+         y_new = 2.0_dp*ig(i)/t(i)
+         sy(i) = sy(i) + 0.5_dp*(t(i) - t_prev(i))*(yy(i) + y_new)
+         yy(i) = y_new
+      end do
+   end subroutine megno_step_lanes
+
    !> Integrate the initial conditions y0(:, j) = (q1, q2, q̇1, q̇2) with RK4 of step
    !> opt%h up to opt%n_steps steps, lanes refilled with the next initial condition as
    !> soon as a trajectory ends. Initial conditions whose energy is below both flip
@@ -646,6 +722,7 @@ contains
       logical :: can1(w), can2(w), ended(w)
       logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
       real(dp) :: bounds(2), escale, nan, m, qc, nrm, s, n_events
+      real(dp) :: dv(w, 4, 2), acc(w, 4), v0(4, 4)   ! indicators' vectors and sums
       integer :: n, i, j, next, n_active, rule
       logical :: any_ended
 
@@ -655,7 +732,11 @@ contains
       bounds = flip_energy_bounds(par)
       nan = ieee_value(nan, ieee_quiet_nan)
       rule = opt%stop_rule
-      if (opt%lyapunov) rule = stop_end
+      if (opt%lyapunov .or. opt%vectors > 0) rule = stop_end
+      v0 = initial_vectors(4)
+      dv = 1.0_dp; acc = 0.0_dp
+      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
+      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
       res%n = n
       allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%energy0(n), &
                 res%energy_error(n), res%t_stop(n), res%final(4, n), res%lyapunov(n), &
@@ -675,7 +756,7 @@ contains
          can_flip1(j) = .not. (res%energy0(j) < bounds(1))
          can_flip2(j) = .not. (res%energy0(j) < bounds(2))
          todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
-                   .not. opt%skip_cannot_flip
+                   .not. opt%skip_cannot_flip .or. opt%vectors > 0
          res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
          res%energy_error(j) = 0.0_dp
          res%t_stop(j) = 0.0_dp
@@ -695,7 +776,9 @@ contains
       do while (n_active > 0)
          p1 = q1
          p2 = q2
-         if (opt%lyapunov) then
+         if (opt%vectors > 0) then
+            call indicator_step_lanes(c, opt%h, ks, q1, q2, w1, w2, opt%vectors, dv, acc, e)
+         else if (opt%lyapunov) then
             call rk4_tangent_lanes(c, opt%h, q1, q2, w1, w2, u1, u2, v1, v2, e)
             do i = 1, w
                nrm = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
@@ -811,6 +894,7 @@ contains
          tf1(l) = -1.0_dp; tf2(l) = -1.0_dp
          lacc(l) = 0.0_dp
          u1(l) = 0.5_dp; u2(l) = 0.5_dp; v1(l) = 0.5_dp; v2(l) = 0.5_dp
+         dv(l, :, 1) = v0(:, 1); dv(l, :, 2) = v0(:, 2); acc(l, :) = 0.0_dp
          if (next <= n) then
             lane_ic(l) = next
             q1(l) = y0(1, next); q2(l) = y0(2, next)
@@ -855,6 +939,7 @@ contains
          res%energy_error(jj) = err(l)
          res%steps(jj) = int(ks(l))
          if (opt%lyapunov) res%lyapunov(jj) = lacc(l)/res%t_stop(jj)
+         if (opt%vectors > 0) call finish_indicators(jj, l)
          if (runaway(q1(l), q2(l), w1(l), w2(l))) then
             res%status(jj) = st_nonfinite
          else if (ks(l) < opt%n_steps) then
@@ -862,6 +947,23 @@ contains
          end if
          n_active = n_active - 1
       end subroutine finish
+
+      !> The fast indicators of trajectory jj from the vectors and sums of lane l.
+      subroutine finish_indicators(jj, l)
+         integer, intent(in) :: jj, l
+         real(dp) :: d(4, 2), a(4)
+         integer :: info
+         d = dv(l, :, :); a = acc(l, :)
+         if (.not. (all(ieee_is_finite(d(:, 1:opt%vectors))) .and. &
+                    all(ieee_is_finite(a)))) return   ! NaN: not finite
+         res%fli(jj) = a(1)
+         res%megno_y(jj) = a(3)
+         res%megno(jj) = a(4)/res%t_stop(jj)
+         if (opt%vectors < 2) return
+         res%sali(jj) = sali(d(:, 1), d(:, 2))
+         call gali(d, res%gali2(jj), info)
+         if (info /= 0) res%gali2(jj) = nan
+      end subroutine finish_indicators
    end subroutine integrate_batch
 
    !> The lane's state is not finite or beyond `lane_bound` (no ordered comparison

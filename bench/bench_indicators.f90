@@ -1,0 +1,136 @@
+!> Benchmarks of the sweep's per-pixel indicators (issue 14): the cost per
+!> trajectory-step of the batch kernel with each indicator against the flip time
+!> alone, one thread, and of a sweep over parameters (each pixel its own constants)
+!> against one over initial values. Printed one per line as `key: value unit`.
+!> Run in the release profile:
+!>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --indicators
+module bench_indicators
+   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t
+   use dpend_pendulum, only: pendulum_t
+   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
+   use dpend_sweep_config, only: sweep_config_t, sweep_defaults
+   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
+   use dpend_progress, only: wall_seconds
+   implicit none
+   private
+   public :: run_indicator_benchmarks
+
+   !> least wall time of one timed run [s]: the work doubles until a run takes it
+   real(dp), parameter :: min_seconds = 0.3_dp
+
+contains
+
+   !> Print the figures to `unit`.
+   subroutine run_indicator_benchmarks(unit)
+      integer, intent(in) :: unit  !! where to print
+      character(len=8), parameter :: names(6) = [character(len=8) :: 'flip', 'lambda1', &
+                                                 'megno', 'fli', 'sali', 'gali2']
+      real(dp) :: base, ns, ns_ic, ns_par
+      integer :: k, nthreads
+      nthreads = omp_get_max_threads()
+      call omp_set_num_threads(1)
+      base = 0.0_dp
+      do k = 1, size(names)
+         ns = indicator_ns(trim(names(k)))
+         if (k == 1) base = ns
+         write (unit, '(a, f0.2, a)') 'indicator_'//trim(names(k))// &
+            '_ns_per_traj_step_1thread: ', ns, ' ns'
+         if (k > 1) write (unit, '(a, f0.2, a)') 'indicator_'//trim(names(k))// &
+            '_cost_vs_flip: ', ns/base, ' x'
+      end do
+      ! a MEGNO map over initial values against one over (m2/m1, l2/l1): there every
+      ! pixel has its own parameters, a lane set per pixel
+      ns_ic = map_ns('theta1', 'theta2')
+      ns_par = map_ns('m2/m1', 'l2/l1')
+      write (unit, '(a, f0.2, a)') 'megno_map_initial_values_ns_per_traj_step_1thread: ', &
+         ns_ic, ' ns'
+      write (unit, '(a, f0.2, a)') 'megno_map_parameters_ns_per_traj_step_1thread: ', &
+         ns_par, ' ns'
+      write (unit, '(a, f0.2, a)') 'megno_map_parameters_cost_vs_initial_values: ', &
+         ns_par/ns_ic, ' x'
+      call omp_set_num_threads(nthreads)
+   end subroutine run_indicator_benchmarks
+
+   !> Least ns per trajectory-step of three runs of integrate_batch with the
+   !> indicator `name` (256 chaotic trajectories run to the end, step 1e-3 s, the
+   !> steps doubled until a run takes min_seconds).
+   real(dp) function indicator_ns(name) result(ns)
+      character(len=*), intent(in) :: name  !! flip, lambda1, megno, fli, sali, gali2
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: res
+      integer, parameter :: nb = 256
+      real(dp) :: y0(4, nb), t0, secs, check
+      integer :: j, k
+      do j = 1, nb   ! angles well above the flip bound: full-length chaotic runs
+         y0(:, j) = [1.0_dp + 1e-3_dp*j, 1.5_dp, 0.0_dp, 0.0_dp]
+      end do
+      opt%h = 1e-3_dp
+      opt%stop_rule = stop_end
+      opt%lyapunov = name == 'lambda1'
+      select case (name)
+      case ('megno', 'fli'); opt%vectors = 1
+      case ('sali', 'gali2'); opt%vectors = 2
+      end select
+      opt%n_steps = 250
+      check = 0.0_dp
+      do
+         t0 = wall_seconds()
+         call integrate_batch(par, opt, y0, res)
+         secs = wall_seconds() - t0
+         check = check + sum(res%final(1, :))
+         if (secs >= min_seconds) exit
+         opt%n_steps = 2*opt%n_steps
+      end do
+      ns = secs
+      do k = 1, 2
+         t0 = wall_seconds()
+         call integrate_batch(par, opt, y0, res)
+         ns = min(ns, wall_seconds() - t0)
+         check = check + sum(res%final(1, :))
+      end do
+      ns = ns/(real(nb, dp)*real(opt%n_steps, dp))*1e9_dp
+      if (.not. (check > -1e300_dp)) ns = -1.0_dp   ! keep the results alive
+   end function indicator_ns
+
+   !> ns per trajectory-step of a 32 x 32 MEGNO map over the axes ax1, ax2 computed
+   !> block by block in memory (runs to t_end; the time doubled until it takes
+   !> min_seconds).
+   real(dp) function map_ns(ax1, ax2) result(ns)
+      character(len=*), intent(in) :: ax1, ax2  !! axes
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(batch_result_t) :: res
+      type(error_t), allocatable :: error
+      real(dp) :: t0, secs
+      integer :: b
+      cfg = sweep_defaults()
+      cfg%n1 = 32; cfg%n2 = 32
+      cfg%axis1 = ax1; cfg%axis2 = ax2
+      if (ax1 == 'm2/m1') then
+         cfg%min1 = 0.2_dp; cfg%max1 = 4.0_dp; cfg%min2 = 0.2_dp; cfg%max2 = 4.0_dp
+         cfg%run%q(1:2) = 0.0_dp
+      end if
+      cfg%indicator = 'megno'
+      cfg%run%dt = 0.01_dp
+      cfg%run%t_end = 1.0_dp
+      cfg%block = 256
+      do
+         call build_setup(cfg, setup, error)
+         if (allocated(error)) then
+            ns = -1.0_dp
+            return
+         end if
+         t0 = wall_seconds()
+         do b = 1, setup%nblocks
+            call compute_block(setup, b, res)
+         end do
+         secs = wall_seconds() - t0
+         if (secs >= min_seconds) exit
+         cfg%run%t_end = 2.0_dp*cfg%run%t_end
+      end do
+      ns = secs/(real(setup%n, dp)*real(setup%opt%n_steps, dp))*1e9_dp
+   end function map_ns
+end module bench_indicators

@@ -1,0 +1,274 @@
+!> `dpend sweep-compare A.h5 B.h5 --agreement`: classify every pixel of two
+!> complete sweeps of the same initial conditions as regular or chaotic by their
+!> indicators (e.g. MEGNO after a short run against λ1 after a ten times longer
+!> one) and report how often the two classifications agree, printed as
+!> `key: value` lines and stored in an HDF5 file (docs/sweep.md, "Indicators").
+!>
+!> Classification of a pixel by the indicator of its file (threshold x):
+!>   megno    <Y>(t_end) > x chaotic (default 2.5: regular orbits tend to 2)
+!>   lambda1  λ1 √(l1/g) > x chaotic, λ1 in units of the natural time (default 0.05)
+!>   fli      ln |δ(t_end)| > x chaotic (no default: it depends on t_end)
+!>   sali     SALI < x chaotic (default 1e-8)
+!>   gali2    GALI_2 < x chaotic (default 1e-8)
+!> A pixel whose value is NaN (not finite) is left out of the comparison.
+module dpend_sweep_agreement
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_output, only: output_t
+   use dpend_config, only: check_regular_file
+   use dpend_cli, only: to_str, real_str
+   use dpend_limits, only: sci
+   use dpend_sweep, only: config_value
+   implicit none
+   private
+   public :: agreement_options_t, sweep_agreement
+
+   !> Options of the agreement report.
+   type :: agreement_options_t
+      real(dp) :: threshold_a = 0.0_dp      !! threshold of file A's indicator
+      real(dp) :: threshold_b = 0.0_dp      !! threshold of file B's indicator
+      logical :: set_a = .false.            !! threshold_a given (else the default)
+      logical :: set_b = .false.            !! threshold_b given (else the default)
+      character(len=:), allocatable :: output  !! HDF5 file of the report
+      logical :: force = .false.            !! replace an existing output
+   end type agreement_options_t
+
+   !> One classified sweep.
+   type :: classified_t
+      character(len=:), allocatable :: file, config, indicator, dataset
+      real(dp) :: threshold = 0.0_dp        !! in the indicator's unit (λ1: natural)
+      logical :: above = .true.             !! chaotic above the threshold
+      real(dp) :: tau = 1.0_dp              !! √(l1/g) [s]
+      real(dp) :: t_end = 0.0_dp            !! [s]
+      integer, allocatable :: dims(:)       !! shape of the datasets
+      integer, allocatable :: cls(:)        !! 1 chaotic, 0 regular, -1 not classified
+   end type classified_t
+
+contains
+
+   !> Classify the pixels of file_a and file_b, print the report on `unit` and
+   !> store it in opt%output. Sweeps that are not comparable (other initial
+   !> conditions, parameters or time unit), not complete, or without an indicator
+   !> are refused.
+   subroutine sweep_agreement(file_a, file_b, opt, unit, error)
+      character(len=*), intent(in) :: file_a, file_b    !! the two sweeps
+      type(agreement_options_t), intent(in) :: opt      !! thresholds, output
+      integer, intent(in) :: unit                       !! where to print
+      type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
+      type(classified_t) :: a, b
+      type(output_t) :: out
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: va, vb
+      integer :: k, n_cls, both_reg, both_cha, only_a, only_b, n_agree
+      real(dp) :: fraction
+      ! what must be equal for two sweeps to hold the same pixels (t_end, the step
+      ! and the stop rule may differ)
+      character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
+         'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
+         'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 'links', 'm', 'l', 'q', &
+         'w']
+      call classify(file_a, opt%set_a, opt%threshold_a, a, error)
+      if (allocated(error)) return
+      call classify(file_b, opt%set_b, opt%threshold_b, b, error)
+      if (allocated(error)) return
+      do k = 1, size(same)
+         va = config_value(a%config, trim(same(k)))
+         vb = config_value(b%config, trim(same(k)))
+         if (va /= vb) then
+            call refuse(trim(same(k))//' = '//va//" in '"//file_a//"', "//vb//" in '"// &
+                        file_b//"'")
+            return
+         end if
+      end do
+      if (size(a%dims) /= size(b%dims)) then
+         call refuse('the datasets have other shapes')
+      else if (any(a%dims /= b%dims)) then
+         call refuse('the datasets have other shapes')
+      end if
+      if (allocated(error)) return
+      call out%begin(opt%output, opt%force, error)
+      if (allocated(error)) then
+         error%message = 'sweep-compare: '//error%message
+         return
+      end if
+      n_cls = count(a%cls >= 0 .and. b%cls >= 0)
+      both_reg = count(a%cls == 0 .and. b%cls == 0)
+      both_cha = count(a%cls == 1 .and. b%cls == 1)
+      only_a = count(a%cls == 1 .and. b%cls == 0)
+      only_b = count(a%cls == 0 .and. b%cls == 1)
+      n_agree = both_reg + both_cha
+      fraction = 0.0_dp
+      if (n_cls > 0) fraction = real(n_agree, dp)/real(n_cls, dp)
+      call report(unit)
+      call h5%open(out%temp, 'w', error)
+      if (.not. allocated(error)) then
+         call store(a, 'a')
+         call store(b, 'b')
+         call h5%writeattr('/', 'program', 'dpend sweep-compare --agreement')
+         call h5%writeattr('/agreement', 'pixels', size(a%cls))
+         call h5%writeattr('/agreement', 'pixels_classified', n_cls)
+         call h5%writeattr('/agreement', 'both_regular', both_reg)
+         call h5%writeattr('/agreement', 'both_chaotic', both_cha)
+         call h5%writeattr('/agreement', 'chaotic_only_a', only_a)
+         call h5%writeattr('/agreement', 'chaotic_only_b', only_b)
+         call h5%writeattr('/agreement', 'agreement', fraction)
+         call h5%take_error(error)
+         if (allocated(error)) then
+            call h5%close()
+         else
+            call h5%close(error)
+         end if
+      end if
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+      if (allocated(error)) error%message = 'sweep-compare: '//error%message
+   contains
+      subroutine refuse(what)
+         character(len=*), intent(in) :: what
+         call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
+                          what//' (classify sweeps of the same initial conditions)')
+      end subroutine refuse
+      subroutine report(u)
+         integer, intent(in) :: u
+         call line(a, 'a')
+         call line(b, 'b')
+         write (u, '(a, i0)') 'pixels: ', size(a%cls)
+         write (u, '(a, i0)') 'pixels_classified: ', n_cls
+         write (u, '(a, i0)') 'both_regular: ', both_reg
+         write (u, '(a, i0)') 'both_chaotic: ', both_cha
+         write (u, '(a, i0)') 'chaotic_only_a: ', only_a
+         write (u, '(a, i0)') 'chaotic_only_b: ', only_b
+         write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+         write (u, '(a)') 'stored: '//opt%output
+      end subroutine report
+      subroutine line(c, s)
+         type(classified_t), intent(in) :: c
+         character(len=1), intent(in) :: s
+         character(len=:), allocatable :: per
+         per = ''
+         if (c%indicator == 'lambda1') per = ' per sqrt(l1/g)'
+         write (unit, '(a)') 'indicator_'//s//': '//c%indicator//' (chaotic '// &
+            trim(merge('above', 'below', c%above))//' '//real_str(c%threshold)//per//')'
+         write (unit, '(a)') 't_end_'//s//': '//real_str(c%t_end, 6)//' s = '// &
+            real_str(c%t_end/c%tau, 6)//' sqrt(l1/g)'
+      end subroutine line
+      subroutine store(c, s)
+         type(classified_t), intent(in) :: c
+         character(len=1), intent(in) :: s
+         character(len=*), parameter :: text = '1 chaotic, 0 regular, -1 not classified '// &
+                                         '(value not finite)'
+         integer, allocatable :: m2(:, :)
+         if (size(c%dims) == 2) then
+            m2 = reshape(c%cls, [c%dims(1), c%dims(2)])
+            call h5%write('/agreement/class_'//s, m2, units='1', &
+                          description=text//' by file '//s)
+         else
+            call h5%write('/agreement/class_'//s, c%cls, units='1', &
+                          description=text//' by file '//s)
+         end if
+         call h5%writeattr('/agreement', 'file_'//s, c%file)
+         call h5%writeattr('/agreement', 'indicator_'//s, c%indicator)
+         call h5%writeattr('/agreement', 'threshold_'//s, c%threshold)
+         call h5%writeattr('/agreement', 'chaotic_'//s, merge('above', 'below', c%above))
+         call h5%writeattr('/agreement', 't_end_'//s, c%t_end)
+         call h5%writeattr('/agreement', 't_end_natural_'//s, c%t_end/c%tau)
+         call h5%writeattr('/agreement', 'sqrt_l1_over_g_'//s, c%tau)
+      end subroutine store
+   end subroutine sweep_agreement
+
+   !> Read a complete sweep file and classify its pixels by its indicator.
+   subroutine classify(file, set, threshold, c, error)
+      character(len=*), intent(in) :: file              !! sweep file
+      logical, intent(in) :: set                        !! threshold given
+      real(dp), intent(in) :: threshold                 !! the given threshold
+      type(classified_t), intent(out) :: c              !! the classification
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(h5file_t) :: h5
+      real(dp), allocatable :: v(:), v2(:, :)
+      integer, allocatable :: done(:)
+      integer :: complete, j
+      character(len=:), allocatable :: pre
+      pre = "sweep-compare: invalid sweep '"//file//"': "
+      c%file = file
+      complete = 0
+      call check_regular_file(file, pre, error)
+      if (allocated(error)) return
+      if (.not. is_hdf5(file)) then
+         call fatal_error(error, pre//'not an HDF5 file')
+         return
+      end if
+      call h5%open(file, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', c%config, error)
+      if (allocated(error)) then
+         call h5%close()
+         call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
+         return
+      end if
+      c%indicator = config_value(c%config, 'indicator')
+      if (len(c%indicator) == 0 .and. config_value(c%config, 'lyapunov') == 'true') &
+         c%indicator = 'lambda1'
+      select case (c%indicator)
+      case ('megno'); c%dataset = '/sweep/megno'; c%threshold = 2.5_dp
+      case ('lambda1'); c%dataset = '/sweep/lyapunov'; c%threshold = 0.05_dp
+      case ('fli'); c%dataset = '/sweep/fli'
+      case ('sali', 'gali2'); c%dataset = '/sweep/'//c%indicator; c%threshold = 1e-8_dp
+         c%above = .false.
+      case default
+         call h5%close()
+         call fatal_error(error, pre//'it has no indicator (run the sweep with --indicator '// &
+                          'megno, lambda1, fli, sali or gali2)')
+         return
+      end select
+      if (set) c%threshold = threshold
+      if (c%indicator == 'fli' .and. .not. set) then
+         call h5%close()
+         call fatal_error(error, 'sweep-compare: invalid --threshold: FLI has no default '// &
+                          "threshold (it grows with t_end): give one for '"//file//"'")
+         return
+      end if
+      call h5%readattr('/sweep', 'complete', complete, error)
+      if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', c%tau, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 't_end', c%t_end, error)
+      if (.not. allocated(error)) call h5%shape(c%dataset, c%dims, error)
+      if (.not. allocated(error)) then
+         if (size(c%dims) == 2) then
+            call h5%read(c%dataset, v2, error)
+            if (.not. allocated(error)) v = reshape(v2, [size(v2)])
+            if (.not. allocated(error)) c%dims = shape(v2)   ! Fortran order
+         else
+            call h5%read(c%dataset, v, error)
+         end if
+      end if
+      call h5%close()
+      if (allocated(error)) then
+         error%message = pre//error%message
+         return
+      end if
+      if (complete /= 1 .or. any(done /= 1)) then
+         call fatal_error(error, pre//'not complete ('//to_str(count(done == 1))//' of '// &
+                          to_str(size(done))//' blocks done; rerun the sweep to finish it)')
+         return
+      end if
+      if (.not. (ieee_is_finite(c%tau) .and. c%tau > 0.0_dp)) then
+         call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '//sci(c%tau))
+         return
+      end if
+      allocate (c%cls(size(v)))
+      do j = 1, size(v)   ! element by element: an ordered comparison with NaN traps
+         if (ieee_is_nan(v(j))) then
+            c%cls(j) = -1
+            cycle
+         end if
+         if (c%indicator == 'lambda1') v(j) = v(j)*c%tau
+         if (c%above) then
+            c%cls(j) = merge(1, 0, v(j) > c%threshold)
+         else
+            c%cls(j) = merge(1, 0, v(j) < c%threshold)
+         end if
+      end do
+   end subroutine classify
+end module dpend_sweep_agreement
