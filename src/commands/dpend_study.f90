@@ -254,7 +254,7 @@ contains
       class(model_t), intent(in) :: model       !! the system
       real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: e
-      if (integ%canonical()) then
+      if (integ%canonical_on(model)) then
          e = model%hamiltonian_value(0.0_dp, y)
       else
          e = model%energy(0.0_dp, y)

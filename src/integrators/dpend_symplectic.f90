@@ -10,7 +10,9 @@
 !> | `comp6`    | Kahan–Li s9odr6a, 9 substeps of `verlet`         | 6     |
 !> | `comp8`    | Kahan–Li s17odr8a, 17 substeps of `verlet`       | 8     |
 !>
-!> and Tao's explicit extended-phase-space methods in `dpend_tao`.
+!> and Tao's explicit extended-phase-space methods in `dpend_tao`. The Gauss methods
+!> also accept models without a Hamiltonian (damped, driven): they collocate the
+!> first-order field on (q, q̇) instead (`gauss_advance_field`); the others refuse them.
 !>
 !> All of them derive from `symplectic_t`, which owns the driver-facing `step`:
 !> it detects the start of a new trajectory, calls the method's `advance`, and
@@ -118,6 +120,12 @@ module dpend_symplectic
    !> compensated summation; cf. Hairer, McLachlan, Razakarivony, "Achieving
    !> Brouwer's law with implicit Runge–Kutta methods", BIT 48, 231–243, 2008).
    !> The extra products cost a few flops per stage, nothing next to f.
+   !>
+   !> A model without a Hamiltonian (damped, driven: `hamiltonian()` false) is
+   !> integrated by the same collocation on its first-order field y' = f(t, y),
+   !> y = (q, q̇) (`gauss_advance_field`): order 2s, A-stable and symmetric, no
+   !> longer symplectic (there is no symplectic structure to keep); the work
+   !> integrals of `dpend_work` are then collocated with the state, to the same order.
    type, extends(symplectic_t) :: gauss_t
       integer :: s = 2             !! number of stages, 1..4
       real(dp) :: a(4, 4) = 0.0_dp !! Runge–Kutta matrix (leading s×s block)
@@ -139,6 +147,7 @@ module dpend_symplectic
       procedure :: order => gauss_order
       procedure :: implicit => gauss_implicit
       procedure :: reset => gauss_reset
+      procedure :: needs_hamiltonian => gauss_needs_hamiltonian
    end type gauss_t
 
    !> Generalized Störmer–Verlet method for non-separable H (GNI §VI.3, eq. 3.4),
@@ -441,7 +450,8 @@ contains
    end subroutine gauss_reset
 
    !> One Gauss step; states of four components take the same statements compiled
-   !> with fixed sizes (dpend_gauss_body.inc), others the generic ones.
+   !> with fixed sizes (dpend_gauss_body.inc), others the generic ones; a model
+   !> without a Hamiltonian takes `gauss_advance_field` on (q, q̇).
    subroutine gauss_advance(self, model, t, y, e, h, stat)
       class(gauss_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model    !! the system (Hamiltonian)
@@ -450,7 +460,9 @@ contains
       real(dp), intent(inout) :: e(:)        !! compensation of y
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
-      if (size(y) == 4) then
+      if (.not. model%hamiltonian()) then
+         call gauss_advance_field(self, model, t, y, e, h, stat)
+      else if (size(y) == 4) then
          call gauss_advance_4(self, model, t, y, e, h, stat)
       else
          call gauss_advance_n(self, model, t, y, e, h, stat)
@@ -496,6 +508,103 @@ contains
       include 'dpend_gauss_body.inc'
       end associate
    end subroutine gauss_advance_n
+
+   !> One Gauss step on the first-order field y' = f(t, y), y = (q, q̇), of a model
+   !> without a Hamiltonian: the statements of dpend_gauss_body.inc with `field` at
+   !> the stage times t + c_j h in place of the canonical field (same starting
+   !> guess, fixed-point iteration, stopping rule and compensated update).
+   subroutine gauss_advance_field(self, model, t, y, e, h, stat)
+      class(gauss_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model    !! the system (damped, driven)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(inout) :: y(:)        !! state (q, q̇)
+      real(dp), intent(inout) :: e(:)        !! compensation of y
+      real(dp), intent(in) :: h              !! step [s]
+      integer, intent(out) :: stat           !! status
+      real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
+      real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state)
+      real(dp) :: wq, wv, dnew, dm1, dm2
+      integer :: s, i, j, k, verdict, n, m
+      if (.not. self%ready) call gauss_setup(self)
+      s = self%s
+      n = size(y); m = n/2
+      associate (z => z_(:n, :s), f => f_(:n, :s), zi => zi_(:n), zl => zl_(:n), &
+                 f0 => f0_(:n), delta => delta_(:n), yj => yj_(:n))
+      ! starting guess: the last collocation polynomial, or c_i h f(t, y_n)
+      z = 0.0_dp
+      if (self%have_z .and. self%h_old /= 0.0_dp) then
+         if (.not. (self%have_w .and. self%r_w == h/self%h_old)) then
+            self%r_w = h/self%h_old
+            self%w = extrapolation_weights(s, self%c, self%r_w)
+            self%have_w = .true.
+         end if
+         do i = 1, s
+            do j = 1, s
+               z(:, i) = z(:, i) + self%w(i, j)*self%z_old(:n, j)
+            end do
+         end do
+      else
+         call model%field(t, y, f0)
+         self%n_rhs = self%n_rhs + 1
+         do i = 1, s
+            z(:, i) = (self%c(i)*h)*f0
+         end do
+      end if
+      wq = inv_scale(y(1:m), [maxval(abs(z(1:m, :)))])
+      wv = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, :)))])
+      dm1 = huge(1.0_dp)
+      dm2 = huge(1.0_dp)
+      stat = stat_no_convergence
+      do k = 1, max_iter
+         do j = 1, s
+            yj = y + z(:, j)
+            call model%field(t + self%c(j)*h, yj, f(:, j))
+         end do
+         self%n_rhs = self%n_rhs + s
+         self%n_iter = self%n_iter + 1
+         dnew = 0.0_dp
+         do i = 1, s
+            zi = 0.0_dp
+            zl = 0.0_dp
+            do j = 1, s
+               zi = zi + self%a(i, j)*f(:, j)
+               zl = zl + self%a_lo(i, j)*f(:, j)
+            end do
+            zi = h*(zi + zl)
+            dnew = max(dnew, wq*maxval(abs(zi(1:m) - z(1:m, i))), &
+                       wv*maxval(abs(zi(m + 1:n) - z(m + 1:n, i))))
+            z(:, i) = zi
+         end do
+         verdict = iteration_verdict(dnew, dm2, k)
+         if (verdict == it_converged) stat = stat_ok
+         if (verdict /= it_continue) exit
+         dm2 = dm1
+         dm1 = dnew
+      end do
+      if (stat /= stat_ok) return   ! (leaves the associate block)
+      delta = 0.0_dp
+      zl = 0.0_dp
+      do j = 1, s
+         delta = delta + self%d(j)*z(:, j)
+         zl = zl + self%d_lo(j)*z(:, j)
+      end do
+      delta = delta + zl
+      if (.not. all(ieee_is_finite(delta))) then
+         stat = stat_nonfinite
+         return
+      end if
+      self%z_old(:n, :s) = z
+      self%h_old = h
+      self%have_z = .true.
+      call accumulate(y, e, delta, self%compensated)
+      end associate
+   end subroutine gauss_advance_field
+
+   !> The Gauss methods run on (q, q̇) when the model has no Hamiltonian.
+   pure logical function gauss_needs_hamiltonian(self)
+      class(gauss_t), intent(in) :: self
+      gauss_needs_hamiltonian = .false.
+   end function gauss_needs_hamiltonian
 
    pure function gauss_name(self) result(name)
       class(gauss_t), intent(in) :: self
