@@ -295,6 +295,45 @@ contains
       end if
    end function iteration_verdict
 
+   !> Stopping rule of the Gauss iteration on (q, q̇) (`gauss_advance_field`): the
+   !> iteration error of a damped or driven system rotates between the components
+   !> over several iterations (complex eigenvalues of h A ⊗ f'), so that Δ_k is not
+   !> monotone over two iterations as `iteration_verdict` assumes. Progress is
+   !> judged by the smallest increment so far, Δ_min (updated here): iterate while
+   !> Δ_k sets a new minimum or did within the last `field_patience` iterations;
+   !> converged when Δ_k vanishes, or is at roundoff level (≤ `iter_tol`) and no
+   !> longer decreases; failed when no new minimum came for `field_patience`
+   !> iterations above roundoff (divergence, stagnation) or after `max_iter`.
+   pure subroutine field_verdict(dnew, dmin, k_min, k, verdict)
+      real(dp), intent(in) :: dnew       !! scaled increment Δ_k of iteration k
+      real(dp), intent(inout) :: dmin    !! smallest Δ so far (huge before the first)
+      integer, intent(inout) :: k_min    !! the iteration of dmin
+      integer, intent(in) :: k           !! iteration number
+      integer, intent(out) :: verdict    !! it_continue, it_converged or it_failed
+      integer, parameter :: field_patience = 4
+      logical :: improved
+      if (.not. (dnew <= huge(dnew))) then
+         verdict = it_failed
+         return
+      end if
+      improved = dnew < dmin
+      if (improved) then
+         dmin = dnew
+         k_min = k
+      end if
+      if (dnew == 0.0_dp .or. (dnew <= iter_tol .and. .not. improved)) then
+         verdict = it_converged
+      else if (k >= max_iter .or. k - k_min >= field_patience) then
+         if (dnew <= iter_tol) then
+            verdict = it_converged
+         else
+            verdict = it_failed
+         end if
+      else
+         verdict = it_continue
+      end if
+   end subroutine field_verdict
+
    !> Reciprocal scale of an increment of x: 1/(max|x| + max|dx|), 1 if both vanish.
    pure real(dp) function inv_scale(x, dx)
       real(dp), intent(in) :: x(:)   !! the variable
@@ -523,8 +562,8 @@ contains
       integer, intent(out) :: stat           !! status
       real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
       real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state)
-      real(dp) :: wq, wv, dnew, dm1, dm2
-      integer :: s, i, j, k, verdict, n, m
+      real(dp) :: wq, wv, dnew, dmin
+      integer :: s, i, j, k, verdict, n, m, k_min
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
       n = size(y); m = n/2
@@ -552,8 +591,8 @@ contains
       end if
       wq = inv_scale(y(1:m), [maxval(abs(z(1:m, :)))])
       wv = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, :)))])
-      dm1 = huge(1.0_dp)
-      dm2 = huge(1.0_dp)
+      dmin = huge(1.0_dp)
+      k_min = 0
       stat = stat_no_convergence
       do k = 1, max_iter
          do j = 1, s
@@ -575,11 +614,9 @@ contains
                        wv*maxval(abs(zi(m + 1:n) - z(m + 1:n, i))))
             z(:, i) = zi
          end do
-         verdict = iteration_verdict(dnew, dm2, k)
+         call field_verdict(dnew, dmin, k_min, k, verdict)
          if (verdict == it_converged) stat = stat_ok
          if (verdict /= it_continue) exit
-         dm2 = dm1
-         dm1 = dnew
       end do
       if (stat /= stat_ok) return   ! (leaves the associate block)
       delta = 0.0_dp
