@@ -7,6 +7,8 @@
 !>   4, 6, 8 (a wrong stage time would show as order 1 or 2 on the driven chain);
 !> - the energy balance E(t) − E(0) + W_friction − W_support of gauss6 at a small step
 !>   on the damped and driven chain with its works (dpend_work), N = 2, 3, 20 s;
+!> - a strongly damped chain decays towards the hanging equilibrium (by a factor 1e-7
+!>   in 100 s): the stage iteration still converges as the rates vanish;
 !> - Hamiltonian models still take the canonical path, bitwise: gauss6 from the default
 !>   configuration (two links: the double pendulum, fixed size 4; three links: the
 !>   chain, generic size) at dt = 0.01 s to t = 5 s against the states that
@@ -37,6 +39,7 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('orders_damped_forced', test_orders), &
                new_unittest('energy_balance_gauss6', test_balance), &
+               new_unittest('damped_to_rest', test_rest), &
                new_unittest('hamiltonian_path_bitwise', test_bitwise)]
    end subroutine collect_gauss_damped
 
@@ -177,6 +180,40 @@ contains
                   //'error:'//text)
       call check(error, worst, 0.0_dp, 'energy balance error of gauss6', abs=1e-12_dp)
    end subroutine test_balance
+
+   !> midpoint, gauss4, gauss6, gauss8 at h = 0.02 s over 100 s on the chain of two
+   !> links with c = (1, 1) N m s from q = −π/2 + (0.5, −0.3) at rest: every step
+   !> converges and the chain ends near rest at the hanging equilibrium (below 1e-6).
+   subroutine test_rest(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(4) = [character(len=8) :: 'midpoint', 'gauss4', &
+                                                  'gauss6', 'gauss8']
+      type(chain_t) :: chain
+      type(error_t), allocatable :: err
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y(4), t, h, worst_v, worst_q
+      integer :: i, stat
+      chain = chain_model([1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp], 9.81_dp, err, &
+                          damping=[1.0_dp, 1.0_dp])
+      if (allocated(err)) error stop 'test_gauss_damped: chain refused'
+      worst_v = 0.0_dp; worst_q = 0.0_dp
+      do i = 1, size(names)
+         call new_integrator(trim(names(i)), integ, err)
+         y = [-0.5_dp*pi + 0.5_dp, -0.5_dp*pi - 0.3_dp, 0.0_dp, 0.0_dp]
+         t = 0.0_dp; h = 0.02_dp
+         call advance_to(integ, chain, t, y, 100.0_dp, h, stat)
+         call check_true(error, stat == stat_ok, trim(names(i))//' failed at t = '// &
+                         real_str(t, 6)//' s, state '//real_str(y(1), 17)//', '// &
+                         real_str(y(2), 17)//', '//real_str(y(3), 3)//', '//real_str(y(4), 3))
+         if (allocated(error)) return
+         worst_v = max(worst_v, maxval(abs(y(3:4))))
+         worst_q = max(worst_q, maxval(abs(y(1:2) + 0.5_dp*pi)))
+      end do
+      call report('damped to rest, 100 s at h = 0.02 s, midpoint gauss4 gauss6 gauss8: '// &
+                  'max |qdot| '//real_str(worst_v, 2)//' rad/s, max |q + pi/2| '// &
+                  real_str(worst_q, 2)//' rad')
+      call check_true(error, worst_v < 1e-6_dp .and. worst_q < 1e-6_dp, 'not near rest')
+   end subroutine test_rest
 
    !> gauss6 on the Hamiltonian models of the default configuration (2 and 3 links) at
    !> t = 5 s, dt = 0.01 s: (q, q̇) equal bitwise to the values written before the change.

@@ -591,6 +591,10 @@ contains
       end if
       wq = inv_scale(y(1:m), [maxval(abs(z(1:m, :)))])
       wv = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, :)))])
+      ! a damped chain comes to rest: its rates vanish, and their increments are the
+      ! roundoff of accelerations whose terms are set by the angles; so the scale of
+      ! the rates is at least min(1, that of the angles)
+      wv = min(wv, max(1.0_dp, wq))
       dmin = huge(1.0_dp)
       k_min = 0
       stat = stat_no_convergence
