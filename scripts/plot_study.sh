@@ -208,6 +208,8 @@ ms=" ${methods[*]} "   # the method list, for in_list
     fi
     plot="$plot $(df "${f}_${mode}_bins.dat") u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
   done
+  # no drift guide for a damped or driven case (no conserved energy to drift)
+  if is_balance "$dc"; then guide=""; fi
   plot="$plot $guide"
   echo "${plot%,}"
 } >> "$gp"
@@ -263,14 +265,14 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
   echo "unset multiplot; set autoscale x"
 }
 nattr ts /config/t_short
-# shellcheck disable=SC2129
-panels error_vs_step.png \
-  "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
-  "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
 ylab="max |H - H(0)| / E_s"; bnote=""
 if is_balance "$oc" || is_balance "$dc"; then
   ylab="max energy (balance) error / E_s"; bnote=" (damped or driven: the energy balance error)"
 fi
+# shellcheck disable=SC2129
+panels error_vs_step.png \
+  "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
+  "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
 panels energy_vs_step.png \
   "\"Maximum energy error$bnote against the step: filled, t ≤ $ts s (case \".OC.\"); open, whole long run (case \".DC.\"); dashed: slope p$note\"" \
   "$oi" 3 "$ylab" order_energy "$di" 4 order_energy_long >> "$gp"
@@ -444,5 +446,5 @@ fi
 
 plot_begin "$out" "${figures[@]}"
 plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text"
-list=$(IFS=,; echo "${figures[*]%.png}")
-printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$list"
+fig_list=$(IFS=,; echo "${figures[*]%.png}")
+printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"
