@@ -315,6 +315,8 @@ panels energy_vs_step.png \
   ro_why="no roundoff method among the methods of this study"
   [[ "$(attr /summary/roundoff)" == "not run for the N-link chain"* ]] &&
     ro_why="not run for the N-link chain (H in quadruple precision: double pendulum only)"
+  is_balance "$(attr /config/ro_case)" &&
+    ro_why="the roundoff case is damped or driven (no conserved H)"
   # one y range for both panels, so that the two magnitudes compare
   yr=""
   if ((${#ro[@]})); then
@@ -388,7 +390,10 @@ panels energy_vs_step.png \
       plot="$plot $(df "$f") u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$dt") s, t = $te s',"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then empty_panel "no Tao method among the methods of this study"; else echo "${plot%,}"; fi
+    tao_why="no Tao method among the methods of this study"
+    is_balance "$(attr /config/tao_case)" &&
+      tao_why="the Tao case is damped or driven (the Tao methods need a Hamiltonian)"
+    if [[ $k -eq 0 ]]; then empty_panel "$tao_why"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow"
 } >> "$gp"

@@ -675,6 +675,8 @@ contains
       call h5%writeattr('/config', 'n_check', cfg%n_check)
       call h5%writeattr('/config', 'order_case', cfg%order_case)
       call h5%writeattr('/config', 'drift_case', cfg%drift_case)
+      call h5%writeattr('/config', 'ro_case', cfg%ro_case)
+      call h5%writeattr('/config', 'tao_case', cfg%tao_case)
       call h5%writeattr('/config', 'drift_decades', cfg%drift_decades)
       call h5%writeattr('/config', 'ref_method', cfg%ref_method)
       call h5%writeattr('/config', 'ref_dt', cfg%ref_dt)
