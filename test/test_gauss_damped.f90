@@ -9,6 +9,9 @@
 !>   on the damped and driven chain with its works (dpend_work), N = 2, 3, 20 s;
 !> - a strongly damped chain decays towards the hanging equilibrium (by a factor 1e-7
 !>   in 100 s): the stage iteration still converges as the rates vanish;
+!> - stiff damping (c = 30 N m s at h = 0.01 s: the fixed-point iteration diverges,
+!>   the simplified Newton iteration takes over) against dop853 at rtol 1e-13, with
+!>   its energy balance;
 !> - Hamiltonian models still take the canonical path, bitwise: gauss6 from the default
 !>   configuration (two links: the double pendulum, fixed size 4; three links: the
 !>   chain, generic size) at dt = 0.01 s to t = 5 s against the states that
@@ -40,6 +43,7 @@ contains
       tests = [new_unittest('orders_damped_forced', test_orders), &
                new_unittest('energy_balance_gauss6', test_balance), &
                new_unittest('damped_to_rest', test_rest), &
+               new_unittest('stiff_damping_newton', test_stiff), &
                new_unittest('hamiltonian_path_bitwise', test_bitwise)]
    end subroutine collect_gauss_damped
 
@@ -214,6 +218,58 @@ contains
                   real_str(worst_q, 2)//' rad')
       call check_true(error, worst_v < 1e-6_dp .and. worst_q < 1e-6_dp, 'not near rest')
    end subroutine test_rest
+
+   !> The chain of two links with c = (30, 30) N m s on a moving support, from
+   !> q = −π/2 + (0.5, −0.3) at rest, to t = 2 s: gauss4/6/8 at h = 0.01 s (stiff:
+   !> h c/(m l²/3) = 0.9; solved by the simplified Newton iteration) against dop853 at
+   !> rtol 1e-13 (q, q̇ at t = 2 s), and the energy balance of gauss6 on the chain with
+   !> its works (rk4 at the same step, for comparison, is reported). Without the Newton
+   !> iteration this run fails (the fixed-point iteration diverges).
+   subroutine test_stiff(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(3) = [character(len=6) :: 'gauss4', 'gauss6', &
+                                                  'gauss8']
+      type(chain_t) :: chain
+      type(work_model_t) :: wm
+      type(error_t), allocatable :: err
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y0(4), yref(4, 1), ys(4, 1), d(3), yw(6), t, h, e0, b
+      character(len=:), allocatable :: text
+      integer :: i, stat
+      chain = chain_model([1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp], 9.81_dp, err, &
+                          damping=[30.0_dp, 30.0_dp], amplitude=[0.02_dp, 0.05_dp], &
+                          frequency=8.0_dp, phase=[0.0_dp, 0.4_dp])
+      if (allocated(err)) error stop 'test_gauss_damped: chain refused'
+      y0 = [-0.5_dp*pi + 0.5_dp, -0.5_dp*pi - 0.3_dp, 0.0_dp, 0.0_dp]
+      yref = samples('dop853', chain, y0, 2.0_dp, 1, 0.0_dp)
+      text = ''
+      do i = 1, 3
+         ys = samples(names(i), chain, y0, 2.0_dp, 1, 0.01_dp)
+         d(i) = maxval(abs(ys - yref))
+         text = text//' '//trim(names(i))//' '//real_str(d(i), 2)
+      end do
+      wm%chain = chain
+      call new_integrator('gauss6', integ, err)
+      yw = [y0(1:2), 0.0_dp, y0(3:4), 0.0_dp]
+      e0 = wm%energy(0.0_dp, yw)
+      t = 0.0_dp; h = 0.01_dp
+      call advance_to(integ, wm, t, yw, 2.0_dp, h, stat)
+      call check_true(error, stat == stat_ok, 'gauss6 failed on the stiff work model')
+      if (allocated(error)) return
+      b = abs(wm%energy(t, yw) - e0 + yw(3) - yw(6))/wm%energy_scale(e0)
+      call new_integrator('rk4', integ, err)
+      ys(:, 1) = y0
+      t = 0.0_dp; h = 0.01_dp
+      call advance_to(integ, chain, t, ys(:, 1), 2.0_dp, h, stat)
+      call report('stiff damping c = 30 N m s, h = 0.01 s, t = 2 s, max |y - y_dop853|:'// &
+                  text//'; gauss6 energy balance '//real_str(b, 2)//'; rk4: stat '// &
+                  to_str(stat)//' at t = '//real_str(t, 3)//' s, max |y - y_dop853| '// &
+                  real_str(maxval(abs(ys - yref)), 2))
+      call check(error, d(1), 0.0_dp, 'gauss4 vs dop853', abs=1e-6_dp)
+      call check(error, d(2), 0.0_dp, 'gauss6 vs dop853', abs=1e-8_dp)
+      call check(error, d(3), 0.0_dp, 'gauss8 vs dop853', abs=1e-10_dp)
+      call check(error, b, 0.0_dp, 'gauss6 energy balance', abs=1e-10_dp)
+   end subroutine test_stiff
 
    !> gauss6 on the Hamiltonian models of the default configuration (2 and 3 links) at
    !> t = 5 s, dt = 0.01 s: (q, q̇) equal bitwise to the values written before the change.

@@ -58,6 +58,7 @@ module dpend_symplectic
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
                                integrator_configure
    use dpend_method_options, only: method_options_t
+   use dpend_lapack, only: dgetrf, dgetrs
    implicit none
    private
    public :: symplectic_t, gauss_t, verlet_t, composition_t
@@ -550,8 +551,11 @@ contains
 
    !> One Gauss step on the first-order field y' = f(t, y), y = (q, q̇), of a model
    !> without a Hamiltonian: the statements of dpend_gauss_body.inc with `field` at
-   !> the stage times t + c_j h in place of the canonical field (same starting
-   !> guess, fixed-point iteration, stopping rule and compensated update).
+   !> the stage times t + c_j h in place of the canonical field (same starting guess,
+   !> fixed-point iteration and compensated update; stopping rule `field_verdict`).
+   !> Strong damping makes the problem stiff (h c/(m l²) of order 1 and more), where
+   !> the fixed-point iteration diverges: the step is then solved again from the same
+   !> starting guess by a simplified Newton iteration (`gauss_field_newton`).
    subroutine gauss_advance_field(self, model, t, y, e, h, stat)
       class(gauss_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model    !! the system (damped, driven)
@@ -561,14 +565,14 @@ contains
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
       real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
-      real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state)
+      real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state), z0_(max_state, 4)
       real(dp) :: wq, wv, dnew, dmin
       integer :: s, i, j, k, verdict, n, m, k_min
       if (.not. self%ready) call gauss_setup(self)
       s = self%s
       n = size(y); m = n/2
       associate (z => z_(:n, :s), f => f_(:n, :s), zi => zi_(:n), zl => zl_(:n), &
-                 f0 => f0_(:n), delta => delta_(:n), yj => yj_(:n))
+                 f0 => f0_(:n), delta => delta_(:n), yj => yj_(:n), z0 => z0_(:n, :s))
       ! starting guess: the last collocation polynomial, or c_i h f(t, y_n)
       z = 0.0_dp
       if (self%have_z .and. self%h_old /= 0.0_dp) then
@@ -595,6 +599,7 @@ contains
       ! roundoff of accelerations whose terms are set by the angles; so the scale of
       ! the rates is at least min(1, that of the angles)
       wv = min(wv, max(1.0_dp, wq))
+      z0 = z
       dmin = huge(1.0_dp)
       k_min = 0
       stat = stat_no_convergence
@@ -622,6 +627,10 @@ contains
          if (verdict == it_converged) stat = stat_ok
          if (verdict /= it_continue) exit
       end do
+      if (stat /= stat_ok) then   ! stiff: simplified Newton from the same guess
+         z = z0
+         call gauss_field_newton(self, model, t, y, h, wq, wv, z, stat)
+      end if
       if (stat /= stat_ok) return   ! (leaves the associate block)
       delta = 0.0_dp
       zl = 0.0_dp
@@ -640,6 +649,72 @@ contains
       call accumulate(y, e, delta, self%compensated)
       end associate
    end subroutine gauss_advance_field
+
+   !> The stage increments Z (n, s) of a Gauss step on the field by a simplified
+   !> Newton iteration (Hairer, Wanner, Solving ODEs II, §IV.8): with J = ∂f/∂y at
+   !> (t, y) (the model's `jacobian`), factor I − h A ⊗ J once (LAPACK dgetrf) and
+   !> solve (I − h A ⊗ J) ΔZ = h (A ⊗ I) F(Z) − Z (dgetrs) until `field_verdict`
+   !> stops it; wq, wv scale the increments as in the fixed-point iteration. For
+   !> stiff damping, where the fixed-point iteration diverges.
+   subroutine gauss_field_newton(self, model, t, y, h, wq, wv, z, stat)
+      class(gauss_t), intent(inout) :: self  !! the method and its counters
+      class(model_t), intent(in) :: model    !! the system (damped, driven)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(in) :: y(:)           !! state (q, q̇) at the start
+      real(dp), intent(in) :: h              !! step [s]
+      real(dp), intent(in) :: wq, wv         !! scales of the increments of q and q̇
+      real(dp), intent(inout) :: z(:, :)     !! (n, s): starting guess, then the solution
+      integer, intent(out) :: stat           !! stat_ok or stat_no_convergence
+      real(dp) :: jac(size(y), size(y)), mat(size(z), size(z)), g(size(z), 1)
+      real(dp) :: f(size(y), size(z, 2)), yj(size(y)), zi(size(y)), zl(size(y)), dnew, dmin
+      integer :: ipiv(size(z)), n, s, m, i, j, k, info, verdict, k_min, r
+      n = size(y); s = size(z, 2); m = n/2
+      stat = stat_no_convergence
+      call model%jacobian(t, y, jac)
+      do j = 1, s
+         do i = 1, s
+            mat((i - 1)*n + 1:i*n, (j - 1)*n + 1:j*n) = (-h*(self%a(i, j) + &
+                                                             self%a_lo(i, j)))*jac
+         end do
+      end do
+      do i = 1, s*n
+         mat(i, i) = mat(i, i) + 1.0_dp
+      end do
+      call dgetrf(s*n, s*n, mat, s*n, ipiv, info)
+      if (info /= 0) return
+      dmin = huge(1.0_dp)
+      k_min = 0
+      do k = 1, max_iter
+         do j = 1, s
+            yj = y + z(:, j)
+            call model%field(t + self%c(j)*h, yj, f(:, j))
+         end do
+         self%n_rhs = self%n_rhs + s
+         self%n_iter = self%n_iter + 1
+         do i = 1, s
+            zi = 0.0_dp
+            zl = 0.0_dp
+            do j = 1, s
+               zi = zi + self%a(i, j)*f(:, j)
+               zl = zl + self%a_lo(i, j)*f(:, j)
+            end do
+            g((i - 1)*n + 1:i*n, 1) = h*(zi + zl) - z(:, i)
+         end do
+         if (.not. all(ieee_is_finite(g))) return
+         call dgetrs('N', s*n, 1, mat, s*n, ipiv, g, s*n, info)
+         if (info /= 0) return
+         dnew = 0.0_dp
+         do i = 1, s
+            r = (i - 1)*n
+            dnew = max(dnew, wq*maxval(abs(g(r + 1:r + m, 1))), &
+                       wv*maxval(abs(g(r + m + 1:r + n, 1))))
+            z(:, i) = z(:, i) + g(r + 1:r + n, 1)
+         end do
+         call field_verdict(dnew, dmin, k_min, k, verdict)
+         if (verdict == it_converged) stat = stat_ok
+         if (verdict /= it_continue) exit
+      end do
+   end subroutine gauss_field_newton
 
    !> The Gauss methods run on (q, q̇) when the model has no Hamiltonian.
    pure logical function gauss_needs_hamiltonian(self)
