@@ -36,7 +36,9 @@
 !> step size of practical interest (contraction factor ≈ h ρ(A) ‖f'‖) and
 !> needs neither a Jacobian nor an LU factorization of the 4s×4s system of a
 !> simplified Newton iteration (gauss6 at h = 0.01 s: 8 iterations, 24
-!> evaluations of f, ≈ 5–6 rk4 steps of time).
+!> evaluations of f, ≈ 5–6 rk4 steps of time). Strong joint damping is stiff: on
+!> (q, q̇) the Gauss methods then fall back to a simplified Newton iteration with the
+!> model's Jacobian (`gauss_field_newton`).
 !>
 !> **Compensated summation** (Kahan; GNI §VIII.5) of
 !> y_{n+1} = y_n + δ_n keeps the rounding error of the update in `comp(4)`;
