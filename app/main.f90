@@ -176,7 +176,7 @@ contains
    !> the colour of each method, for scripts/plot_study.sh.
    subroutine methods(sub)
       type(arg_t), intent(in) :: sub(:)
-      character(len=:), allocatable :: props, commands, mode
+      character(len=:), allocatable :: props, commands, mode, variables
       character(len=*), parameter :: all = 'simulate lyapunov divergence poincare study'
       integer :: i
       mode = 'table'
@@ -185,8 +185,9 @@ contains
          case ('-h', '--help')
             write (output_unit, '(a)') 'usage: dpend methods [--names | --plot-styles]'//nl &
                //nl//'The integration methods of --method: variables advanced ((q, qdot) or' &
-               //nl//'canonical (q, p)), classical order, properties and the commands that' &
-               //nl//'accept them, then one line of description each.'//nl &
+               //nl//'canonical (q, p); (q, p)*: canonical on Hamiltonian models, (q, qdot)' &
+               //nl//'on damped or driven ones), classical order, properties and the' &
+               //nl//'commands that accept them, then one line of description each.'//nl &
                //'--names prints only the names, on one line (for scripts).'//nl &
                //'--plot-styles prints the study''s plot styles (for scripts), one record a' &
                //nl//'line, words separated by one blank:'//nl &
@@ -231,11 +232,16 @@ contains
                if (m%symmetric) props = props//', symmetric'
                commands = all
                if (m%name == 'rk4') commands = all//' sweep'
-               write (output_unit, '(a)') m%name//pad(merge('(q, p)   ', '(q, qdot)', &
-                  m%hamiltonian), 11)//pad(to_str(m%order), 7)//pad(props, 34)//commands
+               variables = '(q, qdot)'
+               if (m%canonical) variables = trim(merge('(q, p) ', '(q, p)*', m%hamiltonian))
+               write (output_unit, '(a)') m%name//pad(variables, 11)// &
+                  pad(to_str(m%order), 7)//pad(props, 34)//commands
             end associate
          end do
-         write (output_unit, '(a)') nl//'sweep accepts only rk4: it integrates with its ' &
+         write (output_unit, '(a)') nl//'* (q, p) on Hamiltonian models, (q, qdot) on ' &
+            //'damped or driven ones (--damping,'//nl//'  --support-*), where they are ' &
+            //'not symplectic; the other (q, p) methods refuse those.' &
+            //nl//'sweep accepts only rk4: it integrates with its ' &
             //'own vectorised batch rk4 (dpend sweep --help).'//nl
          do i = 1, n_methods
             write (output_unit, '(a)') method_table(i)%name//trim(method_table(i)%description)

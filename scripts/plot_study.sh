@@ -2,9 +2,10 @@
 # The six figures of `dpend study` from its HDF5 file (gnuplot, pngcairo):
 #   scripts/plot_study.sh FILE.h5 [OUTDIR]      (OUTDIR defaults to FILE's folder)
 # Writes energy_vs_time.png, energy_vs_step.png, error_vs_step.png,
-# work_precision.png, roundoff.png, tao_omega.png, each through a temporary file in
-# OUTDIR, moved into place once all six are drawn (scripts/lib/output.sh); on a
-# failure the old figures are kept. `dpend study` runs it at the end, without a
+# work_precision.png, roundoff.png, tao_omega.png, and balance.png when the study
+# has damped or driven cases (the energy balance error against time and step), each
+# through a temporary file in OUTDIR, moved into place once all are drawn
+# (scripts/lib/output.sh); on a failure the old figures are kept. `dpend study` runs it at the end, without a
 # shell, as the argument vector
 #   bash SCRIPTS/plot_study.sh FILE.h5 OUTDIR        (environment: DPEND=its own path)
 # DPEND: the dpend executable (default: the release build, built once). `dpend
@@ -60,6 +61,10 @@ df() { printf "D.'/%s'" "$1"; }
 
 h5name=$1
 words cases "$(attr /cases)"; words methods "$(attr /methods)"
+# the damped or driven cases (energy balance); 'none' or absent (older files): none
+bal_attr=$(attr /balance_cases); [[ -n "$bal_attr" ]] || bal_attr=none
+words balance_cases "$bal_attr"
+[[ "$bal_attr" == none ]] && balance_cases=()
 oc=$(attr /order_case); dc=$(attr /drift_case)
 words ro_methods "$(attr /roundoff_methods)"; words tao_methods "$(attr /tao_methods)"
 plain "the attribute methods" "${methods[@]}"
@@ -77,6 +82,12 @@ done
   plot_fail 2 "the attributes order_case and drift_case of '$h5name' name no case of /cases"
 plot_enhanced oc_text "$oc"
 plot_enhanced dc_text "$dc"
+is_balance() { [[ " ${balance_cases[*]} " == *" $1 "* ]]; }
+# the energy error's name in the titles: the balance for a damped or driven case
+e_name() {
+  if is_balance "$1"; then echo "energy balance error |E(t) - E(0) + W_f - W_s| / E_s"
+  else echo "relative energy error |H(t) - H(0)| / E_s"; fi
+}
 
 # the colour and plot group of each method and the panel of each group, from the
 # method registry: `dpend methods --plot-styles` prints `group ID TITLE...` and
@@ -166,8 +177,9 @@ EOF
 ms=" ${methods[*]} "   # the method list, for in_list
 {
   echo "set output O.'/energy_vs_time.png'"
-  echo "set title \"Relative energy error |H(t) - H(0)| / E_s against time, case \".DC.\", each method at its middle step (maximum per logarithmic time bin)$note\""
-  echo "set xlabel 't [s]'; set ylabel '|H(t) - H(0)| / E_s'"
+  en=$(e_name "$dc")
+  echo "set title \"${en^} against time, case \".DC.\", each method at its middle step (maximum per logarithmic time bin)$note\""
+  echo "set xlabel 't [s]'; set ylabel '${en#* error }'"
   echo "set key outside right top"
   plot="plot"
   guide=""
@@ -196,6 +208,8 @@ ms=" ${methods[*]} "   # the method list, for in_list
     fi
     plot="$plot $(df "${f}_${mode}_bins.dat") u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
   done
+  # no drift guide for a damped or driven case (no conserved energy to drift)
+  if is_balance "$dc"; then guide=""; fi
   plot="$plot $guide"
   echo "${plot%,}"
 } >> "$gp"
@@ -251,13 +265,17 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
   echo "unset multiplot; set autoscale x"
 }
 nattr ts /config/t_short
+ylab="max |H - H(0)| / E_s"; bnote=""
+if is_balance "$oc" || is_balance "$dc"; then
+  ylab="max energy (balance) error / E_s"; bnote=" (damped or driven: the energy balance error)"
+fi
 # shellcheck disable=SC2129
 panels error_vs_step.png \
   "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
   "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
 panels energy_vs_step.png \
-  "\"Maximum energy error against the step: filled, t ≤ $ts s (case \".OC.\"); open, whole long run (case \".DC.\"); dashed: slope p$note\"" \
-  "$oi" 3 "max |H - H(0)| / E_s" order_energy "$di" 4 order_energy_long >> "$gp"
+  "\"Maximum energy error$bnote against the step: filled, t ≤ $ts s (case \".OC.\"); open, whole long run (case \".DC.\"); dashed: slope p$note\"" \
+  "$oi" 3 "$ylab" order_energy "$di" 4 order_energy_long >> "$gp"
 
 # ---- figure 4: work-precision
 {
@@ -297,6 +315,8 @@ panels energy_vs_step.png \
   ro_why="no roundoff method among the methods of this study"
   [[ "$(attr /summary/roundoff)" == "not run for the N-link chain"* ]] &&
     ro_why="not run for the N-link chain (H in quadruple precision: double pendulum only)"
+  is_balance "$(attr /config/ro_case)" &&
+    ro_why="the roundoff case is damped or driven (no conserved H)"
   # one y range for both panels, so that the two magnitudes compare
   yr=""
   if ((${#ro[@]})); then
@@ -370,12 +390,66 @@ panels energy_vs_step.png \
       plot="$plot $(df "$f") u 1:(\$$col > 0 ? \$$col : NaN) w lp lw 2 pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m, h = $(printf '%.1e' "$dt") s, t = $te s',"
       k=$((k + 1))
     done
-    if [[ $k -eq 0 ]]; then empty_panel "no Tao method among the methods of this study"; else echo "${plot%,}"; fi
+    tao_why="no Tao method among the methods of this study"
+    is_balance "$(attr /config/tao_case)" &&
+      tao_why="the Tao case is damped or driven (the Tao methods need a Hamiltonian)"
+    if [[ $k -eq 0 ]]; then empty_panel "$tao_why"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; unset arrow"
 } >> "$gp"
 
-plot_begin "$out" energy_vs_time.png energy_vs_step.png error_vs_step.png \
-  work_precision.png roundoff.png tao_omega.png
+# ---- figure 7 (damped or driven cases only): the energy balance error against time
+# (each method at its middle step) and against the step (maximum up to t_short,
+# filled, and over the long run, open), one row per case
+figures=(energy_vs_time.png energy_vs_step.png error_vs_step.png work_precision.png
+  roundoff.png tao_omega.png)
+if ((${#balance_cases[@]})); then
+  figures+=(balance.png)
+  {
+    nb=${#balance_cases[@]}
+    echo "set output O.'/balance.png'"
+    echo "set terminal pngcairo size 1400,$((150 + 380 * nb)) enhanced font 'DejaVu Sans,11'"
+    echo "set multiplot layout $nb,2 title \"Energy balance |E(t) - E(0) + W_{friction}(t) - W_{support}(t)| / E_s of the damped and driven cases (fixed steps)$note\" font ',13'"
+    echo "set key outside right top font ',9'"
+    for bc in "${balance_cases[@]}"; do
+      bi=0
+      for i in "${!cases[@]}"; do [[ "${cases[$i]}" == "$bc" ]] && bi=$((i + 1)); done
+      ((bi > 0)) || plot_fail 2 "the attribute balance_cases of '$h5name' names no case of /cases"
+      # the case name becomes part of the gnuplot code: letters, digits, '_', '-' only
+      # (as dpend study accepts them)
+      [[ $bc =~ ^[A-Za-z0-9_-]+$ ]] ||
+        plot_fail 2 "the attribute balance_cases of '$h5name' holds '$bc', not a case name"
+      plot_enhanced bc_text "$bc"
+      echo "CASE = '$bc_text'"
+      echo "set title 'against time, each method at its middle step, case '.CASE"
+      echo "set xlabel 't [s]'; set ylabel 'max per time bin'"
+      plot="plot"
+      for m in "${methods[@]}"; do
+        f="c${bi}_${m}"
+        index mid "/cases/$bc/$m/step/mid"
+        number h "$(cell "$tmp/${f}_step.dat" 1 "$mid")"
+        dash=1; dashed "$m" && dash=2
+        plot="$plot $(df "${f}_step_bins.dat") u 1:$((mid + 2)) w l lw 2 dt $dash lc rgb '$(color "$m")' t '$m, h = $(printf '%.2g' "$h") s',"
+      done
+      echo "${plot%,}"
+      echo "set title 'against the step (filled: t ≤ $ts s; open: the long run), case '.CASE"
+      echo "set xlabel 'step h [s]'; set ylabel 'max |E - E(0) + W_f - W_s| / E_s'"
+      plot="plot"
+      for m in "${methods[@]}"; do
+        f="c${bi}_${m}_step.dat"
+        nattr p "/cases/$bc/$m/step/order"
+        nattr fit "/cases/$bc/$m/step/order_energy"
+        dash=1; dashed "$m" && dash=2
+        plot="$plot $(df "$f") u 1:(\$3 > 0 ? \$3 : NaN) w lp lw 2 dt $dash pt 7 ps 0.8 lc rgb '$(color "$m")' t '$m (p = $p): $(printf '%.2f' "$fit")',"
+        plot="$plot $(df "$f") u 1:(\$4 > 0 ? \$4 : NaN) w lp lw 1.5 dt 4 pt 6 ps 0.8 lc rgb '$(color "$m")' notitle,"
+      done
+      echo "${plot%,}"
+    done
+    echo "unset multiplot"
+  } >> "$gp"
+fi
+
+plot_begin "$out" "${figures[@]}"
 plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text"
-printf 'plot_study.sh: wrote %s/{energy_vs_time,energy_vs_step,error_vs_step,work_precision,roundoff,tao_omega}.png\n' "$out"
+fig_list=$(IFS=,; echo "${figures[*]%.png}")
+printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"

@@ -23,6 +23,7 @@ program tester
    use test_indicators, only: collect_indicators
    use test_damping, only: collect_damping
    use test_kapitza, only: collect_kapitza
+   use test_gauss_damped, only: collect_gauss_damped
    implicit none
 
    type :: suite_t
@@ -35,7 +36,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(19))
+   allocate (suites(20))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -55,6 +56,7 @@ program tester
    suites(17)%name = 'indicators'; call collect_indicators(suites(17)%tests)
    suites(18)%name = 'damping'; call collect_damping(suites(18)%tests)
    suites(19)%name = 'kapitza'; call collect_kapitza(suites(19)%tests)
+   suites(20)%name = 'gauss_damped'; call collect_gauss_damped(suites(20)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -12,7 +12,8 @@
 !>   over 100 s, damped, forced, damped and forced;
 !> - the Jacobian and the energy gradient of the damped, driven chain against central
 !>   differences; F_(0,1) · v_A of `reactions` equals P_support of `powers`;
-!> - the methods on (q, p) refuse the damped chain in one line.
+!> - the methods that need a Hamiltonian refuse the damped chain in one line; the
+!>   explicit Runge–Kutta and the Gauss methods accept it.
 !> Each test prints its measured figures on one line ('    damping: …').
 module test_damping
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -355,24 +356,46 @@ contains
       call check(error, d(3), 0.0_dp, 'F01 . v_A = P_support', abs=1e-12_dp)
    end subroutine test_derivatives
 
-   !> gauss6 (on (q, p)) refuses the damped chain with one line naming it; dop853
-   !> accepts it.
+   !> The methods that need a Hamiltonian (verlet, its compositions, Tao's) refuse the
+   !> damped chain with one line naming it and the methods that accept it; the
+   !> explicit Runge–Kutta and the Gauss methods accept it (and the driven chain).
    subroutine test_refuse(error)
       type(error_t), allocatable, intent(out) :: error
       type(error_t), allocatable :: err
       type(run_config_t) :: cfg
-      character(len=*), parameter :: expected = 'invalid method: gauss6 needs a ' &
-         //'Hamiltonian model; the damped chain of 2 links is not (use rk4, dopri5 or dop853)'
-      cfg%method = 'gauss6'
-      cfg%damping(1:2) = [0.1_dp, 0.05_dp]; cfg%damping_size = 2
-      call validate_run_config(cfg, err)
-      call check_true(error, allocated(err), 'gauss6 accepted the damped chain')
-      if (allocated(error)) return
-      call report('gauss6: '//err%message)
-      call check_true(error, err%message == expected, err%message)
-      if (allocated(error)) return
-      cfg%method = 'dop853'
-      call validate_run_config(cfg, err)
-      call check_true(error, .not. allocated(err), 'dop853 refused the damped chain')
+      character(len=*), parameter :: refusing(6) = [character(len=8) :: 'verlet', &
+                                                    'yoshida4', 'comp6', 'comp8', 'tao2', 'tao4']
+      character(len=*), parameter :: accepting(7) = [character(len=8) :: 'rk4', 'dopri5', &
+                                                     'dop853', 'midpoint', 'gauss4', 'gauss6', &
+                                                     'gauss8']
+      character(len=*), parameter :: tail = ' needs a Hamiltonian model; the damped chain ' &
+         //'of 2 links is not (use rk4, dopri5, dop853, midpoint, gauss4, gauss6 or gauss8)'
+      integer :: i, k
+      do i = 1, size(refusing)
+         cfg%method = trim(refusing(i))
+         cfg%damping(1:2) = [0.1_dp, 0.05_dp]; cfg%damping_size = 2
+         call validate_run_config(cfg, err)
+         call check_true(error, allocated(err), trim(refusing(i))//' accepted the damped chain')
+         if (allocated(error)) return
+         if (i == 1) call report(trim(refusing(i))//': '//err%message)
+         call check_true(error, err%message == 'invalid method: '//trim(refusing(i))//tail, &
+                         err%message)
+         if (allocated(error)) return
+      end do
+      do i = 1, size(accepting)
+         do k = 1, 2
+            cfg%method = trim(accepting(i))
+            cfg%damping(1:2) = [0.1_dp, 0.05_dp]; cfg%damping_size = 2
+            if (k == 2) then   ! driven, not damped
+               cfg%damping(1:2) = 0.0_dp
+               cfg%support_amplitude = [0.0_dp, 0.01_dp]; cfg%support_frequency = 30.0_dp
+            end if
+            call validate_run_config(cfg, err)
+            call check_true(error, .not. allocated(err), trim(accepting(i))// &
+                            ' refused the damped or driven chain')
+            if (allocated(error)) return
+            cfg%support_amplitude = 0.0_dp
+         end do
+      end do
    end subroutine test_refuse
 end module test_damping

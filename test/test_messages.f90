@@ -257,7 +257,9 @@ contains
       stat = run_command(dir, 'methods')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. index(text, 'method ') == 1 .and. &
-                      index(text, nl//'gauss4    (q, p)     4      implicit, symplectic, ' &
+                      index(text, nl//'gauss4    (q, p)*    4      implicit, symplectic, ' &
+                            //'symmetric') > 0 .and. &
+                      index(text, nl//'verlet    (q, p)     2      implicit, symplectic, ' &
                             //'symmetric') > 0 .and. &
                       index(text, nl//'dopri5    (q, qdot)  5      explicit, adaptive ') > 0 &
                       .and. index(text, 'study sweep') > 0, 'methods table: '//text)

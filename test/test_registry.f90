@@ -6,7 +6,7 @@ module test_registry
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_method_registry, only: method_table, n_methods, method_index, method_names, &
-                                    plot_groups
+                                    plot_groups, field_method_names
    use dpend_rk_explicit, only: rk_adaptive_t
    use dpend_symplectic, only: symplectic_t, composition_t
    use dpend_tao, only: tao_t
@@ -49,12 +49,16 @@ contains
             call check_true(error, m%colour(1:1) == '#' .and. &
                             verify(m%colour(2:), '0123456789abcdef') == 0, 'colour of '//m%name)
             call check_true(error, len_trim(m%description) > 0, 'description of '//m%name)
+            call check_true(error, m%canonical .or. .not. m%hamiltonian, &
+                            'needs a Hamiltonian but not canonical: '//m%name)
             if (i > 1) names = names//' '
             names = names//trim(m%name)
          end associate
          if (allocated(error)) return
       end do
       call check_true(error, method_names() == names, 'method_names: '//method_names())
+      call check_true(error, field_method_names() == 'rk4, dopri5, dop853, midpoint, ' &
+                      //'gauss4, gauss6 or gauss8', 'field_method_names: '//field_method_names())
       call check_true(error, method_index('dopri') == 0 .and. method_index('') == 0, &
                       'unknown names')
    end subroutine test_table
@@ -79,8 +83,10 @@ contains
             call check_true(error, integ%symplectic() .eqv. m%symplectic, &
                             'symplectic of '//name)
             call check_true(error, integ%symmetric() .eqv. m%symmetric, 'symmetric of '//name)
-            call check_true(error, integ%canonical() .eqv. m%hamiltonian, &
+            call check_true(error, integ%canonical() .eqv. m%canonical, &
                             'canonical of '//name)
+            call check_true(error, integ%needs_hamiltonian() .eqv. m%hamiltonian, &
+                            'needs_hamiltonian of '//name)
             select type (integ)
             class is (symplectic_t)
                call check_true(error, m%compensated, 'compensated of '//name)

@@ -10,7 +10,7 @@ module test_study
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
                                  study_defaults, read_study_config, validate_study_config, &
-                                 study_namelist, apply_quick
+                                 study_namelist, apply_quick, balance_case
    use dpend_study, only: study_result_t, run_study, step_grid, time_bins, hamiltonian_qp
    use dpend_study_command, only: write_study_h5, study_summary, study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
@@ -36,6 +36,8 @@ contains
               new_unittest('hamiltonian_quadruple', test_hamiltonian_qp), &
               new_unittest('tiny_study_orders', test_tiny_study), &
               new_unittest('tiny_chain_study', test_tiny_chain_study), &
+              new_unittest('tiny_damped_study', test_tiny_damped_study), &
+              new_unittest('damped_config_file', test_damped_config), &
               new_unittest('chain_config_file', test_chain_config), &
               new_unittest('default_config_file', test_default_config), &
               new_unittest('bad_input_rejected', test_bad_input)]
@@ -397,6 +399,122 @@ contains
       call check_true(error, index(md, 'roundoff: not run: not run for the N-link chain') > 0, &
                       'summary names the roundoff experiment not run')
    end subroutine test_tiny_chain_study
+
+   !> A tiny study of a damped double pendulum on a moving support (a balance case) in
+   !> process: rk4 and gauss6 (on (q, q̇): the model has no Hamiltonian) keep their
+   !> orders in the global error and in the energy balance error; gauss6 at its
+   !> smallest step balances to 1e-10; the case is not symplectic, the drift verdict is
+   !> not applied, and neither roundoff nor Tao runs are made on it.
+   subroutine test_tiny_damped_study(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(study_result_t) :: res
+      type(verdicts_t) :: v
+      character(len=:), allocatable :: md
+      integer :: s
+      cfg = study_defaults()
+      cfg%cases = [study_case_t('shaken', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
+                                [0.0_dp, 0.0_dp], 300.0_dp)]
+      cfg%cases(1)%damping = [0.05_dp, 0.03_dp]
+      cfg%cases(1)%support_amplitude = [0.01_dp, 0.02_dp]
+      cfg%cases(1)%support_frequency = 10.0_dp
+      cfg%methods = [study_method_t('rk4', 1.0e-3_dp, 2.5e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('gauss6', 6.0e-3_dp, 1.6e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 4
+      cfg%order_case = 'shaken'; cfg%drift_case = 'shaken'
+      cfg%ro_case = 'shaken'; cfg%tao_case = 'shaken'
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%threads = 2
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call run_study(cfg, res, quiet=.true.)
+      call check_true(error, res%refs(1)%check_difference < 1e-12_dp, &
+                      'reference (gauss8 on (q, qdot)) and dop853 agree: '// &
+                      sci(res%refs(1)%check_difference))
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            call check_true(error, all(sw%stat == 0) .and. .not. sw%symplectic, sw%method// &
+                            ': every run succeeded, not symplectic on the damped case')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, real(sw%order, dp), &
+                       sw%method//' order from the global error (damped, driven)', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
+                       sw%method//' order from the energy balance error', abs=0.3_dp)
+            if (allocated(error)) return
+            if (sw%method == 'gauss6') call check(error, sw%energy_long(size(sw%x)), 0.0_dp, &
+                                                  'gauss6 balance error at h = '// &
+                                                  sci(sw%x(size(sw%x))), abs=1e-10_dp)
+         end associate
+      end do
+      call check_true(error, size(res%roundoff) == 0 .and. size(res%tao) == 0, &
+                      'no roundoff or Tao runs on a damped case')
+      v = study_verdicts(cfg, res)
+      call check_true(error, v%orders, 'order verdict: '//v%orders_text)
+      call check_true(error, .not. v%drift_judged .and. &
+                      index(v%drift_text, 'is damped or driven') > 0, &
+                      'drift verdict: '//v%drift_text)
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, '- drift: not applied: case shaken is damped or ' &
+                                   //'driven') > 0 .and. index(md, '## Energy balance') > 0, &
+                      'summary: drift not applied, energy balance section')
+   end subroutine test_tiny_damped_study
+
+   !> data/study_damped.nml: three balance cases (damped; driven; damped and driven, three
+   !> links) that read back through study_namelist; a method that needs a Hamiltonian
+   !> is refused with them in one line, as is a damping list of the wrong length.
+   subroutine test_damped_config(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg, back
+      character(len=:), allocatable :: dir, text
+      integer :: s
+      cfg = study_defaults()
+      call read_study_config('data/study_damped.nml', cfg, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call check_true(error, size(cfg%cases) == 3 .and. all([(balance_case(cfg, s), &
+                                                             s=1, 3)]), 'three balance cases')
+      if (allocated(error)) return
+      call check_true(error, all(cfg%cases(1)%damping == [0.05_dp, 0.03_dp]) .and. &
+                      all(cfg%cases(2)%support_amplitude == [0.0_dp, 0.02_dp]) .and. &
+                      cfg%cases(2)%support_frequency == 12.0_dp .and. &
+                      size(cfg%cases(3)%damping) == 3 .and. cfg%cases(3)%support_phase(1) &
+                      == 0.5_dp, 'damping and support read')
+      if (allocated(error)) return
+      dir = scratch_dir('study-damped-config')
+      text = study_namelist(cfg)
+      call write_file(dir//'/back.nml', text)
+      back = study_defaults()
+      call read_study_config(dir//'/back.nml', back, error)
+      if (allocated(error)) return
+      call check_true(error, study_namelist(back) == text, 'damped namelist reads back:'// &
+                      new_line('a')//text)
+      if (allocated(error)) return
+      cfg%methods(1)%name = 'verlet'
+      call validate_study_config(cfg, error)
+      call check_true(error, allocated(error), 'verlet accepted on damped cases')
+      if (.not. allocated(error)) return
+      text = error%message
+      deallocate (error)
+      call check_true(error, text == "invalid method(1): 'verlet' needs a Hamiltonian " &
+                      //"model; case 'damped' is damped or driven (use rk4, dopri5, dop853, " &
+                      //"midpoint, gauss4, gauss6 or gauss8)", 'message: '//text)
+      if (allocated(error)) return
+      call write_file(dir//'/bad.nml', "&study case_name(1) = 'd', case_damping(1:3, 1) = "// &
+                      "0.1, 0.1, 0.1, order_case = 'd', drift_case = 'd', ro_case = 'd', "// &
+                      "tao_case = 'd' /")
+      cfg = study_defaults()
+      call read_study_config(dir//'/bad.nml', cfg, error)
+      call check_true(error, allocated(error), 'three damping values for two links accepted')
+      if (.not. allocated(error)) return
+      text = error%message
+      deallocate (error)
+      call check_true(error, index(text, 'invalid case_damping(:, 1): 3 values for 2 links') &
+                      == 1, 'message: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_damped_config
 
    !> data/study_chain.nml: two triple-pendulum cases; the effective configuration
    !> written by study_namelist reads back to the same text (lists of links), also

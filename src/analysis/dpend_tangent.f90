@@ -74,7 +74,7 @@ contains
       real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: jac(size(y), size(y))
-      if (integ%canonical()) then
+      if (integ%canonical_on(model)) then
          call model%canonical_jacobian(t, y, jac)
       else
          call model%jacobian(t, y, jac)

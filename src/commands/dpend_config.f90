@@ -774,8 +774,9 @@ contains
           '  --support-frequency W  w (rad/s, in [0, 1e6]); default 0'//nl// &
           '  --support-phase PX,PY  phases (rad); default 0,0. Damping or a moving support'//nl// &
           '                    makes the model the (damped, driven) chain, also for two'//nl// &
-          '                    links: rk4, dopri5, dop853 only; simulate writes the energy'//nl// &
-          '                    balance (W_friction, W_support, balance_error)'//nl// &
+          '                    links: rk4, dopri5, dop853, midpoint, gauss4/6/8 only;'//nl// &
+          '                    simulate writes the energy balance (W_friction,'//nl// &
+          '                    W_support, balance_error)'//nl// &
           '  --method NAME     integrator (dpend methods lists them); default '//cfg%method//nl// &
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &

@@ -24,6 +24,11 @@
 !>
 !> A case of N links runs the double pendulum for N = 2 and the N-link chain
 !> otherwise (`case_model`), through the model interface; states have 2N values.
+!> A damped or driven case (a balance case, issue 13) is the chain with its damping
+!> and moving support; its sweeps integrate it with its work integrals (dpend_work)
+!> and monitor the energy balance E(t) − E(0) + W_friction − W_support in place of
+!> the energy error (same fields, same bins and fits); its methods are not
+!> symplectic on it, and the roundoff and Tao experiments are not run on it.
 !> Only the roundoff runs are the double pendulum's alone (H in quadruple precision):
 !> for a `ro_case` of other than two links they are not run.
 !>
@@ -52,7 +57,7 @@ module dpend_study
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t, double_pendulum_t
-   use dpend_model, only: model_t
+   use dpend_model, only: model_t, max_dof
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_method_registry, only: method_index, method_table
@@ -60,7 +65,8 @@ module dpend_study
    use dpend_propagate, only: march_t
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock, stderr_is_terminal
-   use dpend_study_config, only: study_config_t, case_index, case_model
+   use dpend_study_config, only: study_config_t, case_index, case_model, balance_case
+   use dpend_work, only: needs_work, work_model, is_work_model
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
    private
@@ -254,12 +260,30 @@ contains
       class(model_t), intent(in) :: model       !! the system
       real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: e
-      if (integ%canonical()) then
+      if (integ%canonical_on(model)) then
          e = model%hamiltonian_value(0.0_dp, y)
       else
          e = model%energy(0.0_dp, y)
       end if
    end function energy_of
+
+   !> The energy monitored by the sweeps: `energy_of` (H or T + V), and for a damped
+   !> or driven chain with its works (dpend_work) E(t) + W_friction − W_support, whose
+   !> change from t = 0 is the error of the energy balance.
+   function monitored_energy(integ, model, t, y) result(e)
+      class(integrator_t), intent(in) :: integ  !! the method
+      class(model_t), intent(in) :: model       !! the system
+      real(dp), intent(in) :: t                 !! time [s]
+      real(dp), intent(in) :: y(:)              !! internal state
+      real(dp) :: e
+      integer :: n
+      if (is_work_model(model)) then   ! y = (q, W_friction, q̇, W_support), (q, q̇) inside
+         n = model%n_dof()
+         e = model%energy(t, y) + y(n) - y(2*n)
+      else
+         e = energy_of(integ, model, y)
+      end if
+   end function monitored_energy
 
    ! ================================================================ driver
 
@@ -499,7 +523,8 @@ contains
                   sw%method = me%name
                   call new_integrator(me%name, integ, error)
                   sw%order = integ%order()
-                  sw%symplectic = integ%symplectic()
+                  ! (not symplectic on a damped or driven case)
+                  sw%symplectic = integ%symplectic() .and. .not. balance_case(cfg, ic)
                   if (mode == mode_step) then
                      n = cfg%n_h
                      sw%x = step_grid(me%h_min, me%h_max, n, interval)
@@ -534,7 +559,8 @@ contains
       ! roundoff: H in quadruple precision is the double pendulum's; not run for a
       ! case of other than two links (the verdict says so)
       n_ro = nint(cfg%ro_steps, i8)
-      if (size(cfg%cases(case_index(cfg, cfg%ro_case))%q0) == 2) then
+      if (size(cfg%cases(case_index(cfg, cfg%ro_case))%q0) == 2 .and. &
+          .not. balance_case(cfg, case_index(cfg, cfg%ro_case))) then
          allocate (res%roundoff(size(cfg%ro_methods)))
       else
          allocate (res%roundoff(0))
@@ -557,9 +583,13 @@ contains
             end do
          end associate
       end do
-      ! Tao
-      allocate (res%tao(size(cfg%tao_methods)))
-      do i = 1, size(cfg%tao_methods)
+      ! Tao: on a Hamiltonian case only
+      if (balance_case(cfg, case_index(cfg, cfg%tao_case))) then
+         allocate (res%tao(0))
+      else
+         allocate (res%tao(size(cfg%tao_methods)))
+      end if
+      do i = 1, size(res%tao)
          associate (ts => res%tao(i))
             ts%method = trim(cfg%tao_methods(i))
             ts%omega = geometric(cfg%omega_min, cfg%omega_max, cfg%n_omega)
@@ -697,17 +727,29 @@ contains
       class(integrator_t), allocatable :: integ
       class(model_t), allocatable :: model
       type(march_t) :: march
-      real(dp) :: t, hh, h0, e, e0, es, start
+      real(dp) :: t, hh, h0, e, e0, es, start, qa(max_dof + 1), qda(max_dof + 1)
       real(dp), allocatable :: y(:), y0(:)
       real(dp) :: bins(size(sw%t_bins))
       integer :: stat, kc, jb, nb, n
       type(fit_t) :: fit
+      logical :: works
       associate (cs => cfg%cases(sw%icase))
          call case_model(cfg, sw%icase, model)
          n = size(cs%q0)
          call make_method(cfg, sw, k, integ)
-         y0 = integ%to_internal(model, cs%q0, cs%w0)
-         e0 = energy_of(integ, model, y0)
+         ! a damped or driven case: the chain with its works, the energy balance
+         works = needs_work(model)
+         if (works) then
+            block
+               class(model_t), allocatable :: chain
+               call move_alloc(model, chain)
+               call work_model(chain, model)
+            end block
+            y0 = integ%to_internal(model, [cs%q0, 0.0_dp], [cs%w0, 0.0_dp])
+         else
+            y0 = integ%to_internal(model, cs%q0, cs%w0)
+         end if
+         e0 = monitored_energy(integ, model, 0.0_dp, y0)
          es = model%energy_scale(e0)
          h0 = merge(sw%x(k), 0.0_dp, sw%mode == mode_step)
          ! ---- short run with monitoring
@@ -721,11 +763,17 @@ contains
                call march%next(integ, model, t, y, hh, stat)
                if (stat /= stat_ok) exit
                sw%energy_short(k) = max(sw%energy_short(k), &
-                                        abs(energy_of(integ, model, y) - e0)/es)
+                                        abs(monitored_energy(integ, model, t, y) - e0)/es)
             end do
             if (stat /= stat_ok) exit
-            call integ%to_physical(model, y, sw%y_check(1:n, kc, k), &
-                                   sw%y_check(n + 1:2*n, kc, k))
+            if (works) then   ! (q, W_friction), (q̇, W_support)
+               call integ%to_physical(model, y, qa(:n + 1), qda(:n + 1), t)
+               sw%y_check(1:n, kc, k) = qa(:n)
+               sw%y_check(n + 1:2*n, kc, k) = qda(:n)
+            else
+               call integ%to_physical(model, y, sw%y_check(1:n, kc, k), &
+                                      sw%y_check(n + 1:2*n, kc, k))
+            end if
          end do
          sw%short_steps(k) = integ%n_steps; sw%short_rhs(k) = integ%n_rhs
          sw%short_iter(k) = integ%n_iter; sw%short_rejected(k) = integ%n_rejected
@@ -750,7 +798,7 @@ contains
          do while (.not. march%finished)
             call march%next(integ, model, t, y, hh, stat)
             if (stat /= stat_ok) exit
-            e = abs(energy_of(integ, model, y) - e0)/es
+            e = abs(monitored_energy(integ, model, t, y) - e0)/es
             do while (jb < nb)
                if (t <= sw%t_bins(jb)) exit
                jb = jb + 1

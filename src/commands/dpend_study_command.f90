@@ -14,7 +14,7 @@ module dpend_study_command
    use dpend_os, only: host_name, cpu_model, executable_path, make_directories, &
                            find_script, &
                            directory_of, run_program, io_failure_reason
-   use dpend_study_config, only: study_config_t, case_index, study_namelist
+   use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
    use dpend_cli, only: to_str, arg_t
    implicit none
@@ -239,6 +239,7 @@ contains
       do im = 1, size(cfg%methods)
          s = sweep_index(res, id, cfg%methods(im)%name, mode_step)
          if (s == 0) cycle
+         if (balance_case(cfg, id)) cycle   ! no conserved energy: no drift verdict
          if (.not. drift_judged(res%sweeps(s))) then
             short = short//' '//cfg%methods(im)%name
          else
@@ -247,7 +248,10 @@ contains
          end if
       end do
       v%drift = len(bad) == 0 .and. v%drift_judged
-      if (.not. v%drift_judged) then
+      if (balance_case(cfg, id)) then
+         v%drift_text = 'case '//cfg%drift_case//' is damped or driven (its ' &
+                        //'energy balance error is shown instead; no conserved energy)'
+      else if (.not. v%drift_judged) then
          v%drift_text = 'every long run has fewer than '//to_str(drift_min_steps)// &
                         ' steps at the middle step (case '//cfg%drift_case//'):'//short
       else
@@ -275,7 +279,11 @@ contains
       v%roundoff = len(bad) == 0 .and. v%roundoff_run
       i = case_index(cfg, cfg%ro_case)
       if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0 .and. &
-          size(cfg%cases(max(i, 1))%q0) /= 2) then
+          balance_case(cfg, max(i, 1))) then
+         v%roundoff_text = 'case '//cfg%ro_case//' is damped or driven (no ' &
+                           //'conserved H)'
+      else if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0 .and. &
+               size(cfg%cases(max(i, 1))%q0) /= 2) then
          v%roundoff_text = 'not run for the N-link chain (case '//cfg%ro_case//', '// &
                            to_str(size(cfg%cases(max(i, 1))%q0))//' links): H in quadruple '// &
                            'precision is the double pendulum''s'
@@ -320,10 +328,17 @@ contains
            'the potential energy with '//upright//' upright (see the cases). Global error: '// &
            'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
-           fmt(cfg%ref_dt, 'es8.2')//' s.'//nl//nl
+           fmt(cfg%ref_dt, 'es8.2')//' s.'
+      if (any([(balance_case(cfg, ic), ic=1, size(cfg%cases))])) md = md//' In a damped or '// &
+         'driven case the energy error is that of the energy balance, |E(t) − E(0) + '// &
+         'W_friction − W_support| / E_s, the works integrated along the solution by the '// &
+         'same method (section Energy balance); the drift verdict is not applied to it.'
+      md = md//nl//nl
       md = md//'## Verdicts'//nl//nl// &
            '- orders: '//mark(v%orders)//' '//v%orders_text//nl// &
-           '- drift: '//verdict(v%drift, v%drift_judged, 'too short to judge:')// &
+           '- drift: '//verdict(v%drift, v%drift_judged, &
+                                trim(merge('not applied:       ', 'too short to judge:', &
+                                           balance_case(cfg, id))))// &
            ' '//v%drift_text//nl// &
            '- roundoff: '//verdict(v%roundoff, v%roundoff_run, 'not run:')//' '// &
            v%roundoff_text//nl//nl
@@ -347,7 +362,9 @@ contains
             per_step = d%wall_long(k)/real(max(d%long_steps(k), 1_i8), dp)
             md = md//'| '//d%method//' | '//to_str(d%order)//' | '//slope(o%fit_global)//' | ' &
                  //slope(o%fit_energy)//' | '//num(d%drift(k), 'f0.2') &
-                 //trim(merge('                     ', ' (too short to judge)', drift_judged(d))) &
+                 //trim(merge('                     ', ' (too short to judge)', drift_judged(d) &
+                              .or. balance_case(cfg, id))) &
+                 //trim(merge(' (not applied)', '              ', balance_case(cfg, id))) &
                  //' | ' &
                  //slope(d%fit_energy_long)//' | '//num(d%x(k), 'es8.2')//' | ' &
                  //to_str(d%long_steps(k))//' | '//num(d%energy_long(k), 'es8.2')//' | ' &
@@ -355,7 +372,8 @@ contains
                  //ratio(d%long_iter(k), d%long_steps(k))//' | ' &
                  //num(1.0e6_dp*per_step, 'f0.2')//' | ' &
                  //mark(order_ok(o%fit_global, o%order) .and. order_ok(o%fit_energy, o%order) &
-                        .and. (drift_ok(d) .or. .not. drift_judged(d)))//' |'//nl
+                        .and. (drift_ok(d) .or. .not. drift_judged(d) .or. &
+                               balance_case(cfg, id)))//' |'//nl
          end associate
       end do
       ! ---- orders in every case
@@ -379,6 +397,32 @@ contains
          end do
          md = md//nl
       end do
+      ! ---- the energy balance of the damped and driven cases
+      if (any([(balance_case(cfg, ic), ic=1, size(cfg%cases))])) then
+         md = md//nl//'## Energy balance'//nl//nl// &
+              'Damped and driven cases: |E(t) − E(0) + W_friction − W_support| / E_s. Slope '// &
+              'of its maximum up to t_short against the step (fixed steps), and its maximum '// &
+              'over the long run at the middle step.'//nl//nl//'| method | p |'
+         do ic = 1, size(cfg%cases)
+            if (balance_case(cfg, ic)) md = md//' '//cfg%cases(ic)%name//' |'
+         end do
+         md = md//nl//'|---|---|'//repeat('---|', count([(balance_case(cfg, ic), &
+                                                         ic=1, size(cfg%cases))]))//nl
+         do im = 1, size(cfg%methods)
+            s = sweep_index(res, 1, cfg%methods(im)%name, mode_step)
+            if (s == 0) cycle
+            md = md//'| '//cfg%methods(im)%name//' | '//to_str(res%sweeps(s)%order)//' |'
+            do ic = 1, size(cfg%cases)
+               if (.not. balance_case(cfg, ic)) cycle
+               s = sweep_index(res, ic, cfg%methods(im)%name, mode_step)
+               associate (w => res%sweeps(s))
+                  md = md//' '//slope(w%fit_energy)//'; '//num(w%energy_long(w%mid), &
+                                                               'es8.2')//' |'
+               end associate
+            end do
+            md = md//nl
+         end do
+      end if
       ! ---- adaptive
       if (any(res%sweeps%mode == mode_tol)) then
          md = md//nl//'## Adaptive methods over tolerances'//nl//nl// &
@@ -452,7 +496,9 @@ contains
            '|---|---|---|---|---|---|'//nl
       do ic = 1, size(cfg%cases)
          associate (cs => cfg%cases(ic), ref => res%refs(ic))
-            md = md//'| '//cs%name//' | '//nums(cs%q0, 'f0.4')//' | '// &
+            md = md//'| '//cs%name//trim(merge(' (damped or driven)', '                   ', &
+                                               balance_case(cfg, ic)))//' | '// &
+                 nums(cs%q0, 'f0.4')//' | '// &
                  nums(cs%w0, 'f0.3')//' | '//num(ref%e0, 'f0.4')//' | '// &
                  num(ref%e_scale, 'f0.4')
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
@@ -629,6 +675,8 @@ contains
       call h5%writeattr('/config', 'n_check', cfg%n_check)
       call h5%writeattr('/config', 'order_case', cfg%order_case)
       call h5%writeattr('/config', 'drift_case', cfg%drift_case)
+      call h5%writeattr('/config', 'ro_case', cfg%ro_case)
+      call h5%writeattr('/config', 'tao_case', cfg%tao_case)
       call h5%writeattr('/config', 'drift_decades', cfg%drift_decades)
       call h5%writeattr('/config', 'ref_method', cfg%ref_method)
       call h5%writeattr('/config', 'ref_dt', cfg%ref_dt)
@@ -650,7 +698,8 @@ contains
       call h5%writeattr('/', 'wall_time', res%wall_total)
       call h5%writeattr('/', 'energy_error', '|H(t) - H(0)| / E_s, E_s = |H(0)|, or when '// &
                         'H(0) ~ 0 the potential energy with both links upright (per case: '// &
-                        'energy_scale)')
+                        'energy_scale); in a damped or driven case (balance = 1) the energy '// &
+                        'balance |E(t) - E(0) + W_friction - W_support| / E_s')
       call h5%writeattr('/', 'global_error', 'max over the checkpoints of max(|dq1|, '// &
                         '|dq2|, |dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
       names = cfg%cases(1)%name
@@ -658,6 +707,14 @@ contains
          names = names//' '//cfg%cases(ic)%name
       end do
       call h5%writeattr('/', 'cases', names)
+      names = ''
+      do ic = 1, size(cfg%cases)
+         if (.not. balance_case(cfg, ic)) cycle
+         if (len(names) > 0) names = names//' '
+         names = names//cfg%cases(ic)%name
+      end do
+      if (len(names) == 0) names = 'none'
+      call h5%writeattr('/', 'balance_cases', names)
       names = cfg%methods(1)%name
       do i = 2, size(cfg%methods)
          names = names//' '//cfg%methods(i)%name
@@ -714,6 +771,17 @@ contains
                                  'potential energy, every link upright')
             end if
             call h5%writeattr(g, 'long_steps', cs%long_steps)
+            call h5%writeattr(g, 'balance', merge(1, 0, balance_case(cfg, ic)))
+            if (balance_case(cfg, ic)) then
+               if (allocated(cs%damping)) then
+                  call h5%writeattr(g, 'damping', cs%damping)
+               else
+                  call h5%writeattr(g, 'damping', [(0.0_dp, i=1, n)])
+               end if
+               call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
+               call h5%writeattr(g, 'support_frequency', cs%support_frequency)
+               call h5%writeattr(g, 'support_phase', cs%support_phase)
+            end if
          end associate
       end do
       ! sweeps

@@ -19,7 +19,8 @@ module dpend_study_config
                            namelist_error
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
-   use dpend_method_registry, only: method_names, method_index, method_table
+   use dpend_method_registry, only: method_names, method_index, method_table, &
+                                    field_method_names
    use dpend_kinds, only: i8
    use dpend_limits, only: in_range, check_range, check_count, sci, max_angle, &
                            max_angular_velocity, &
@@ -32,6 +33,7 @@ module dpend_study_config
    public :: study_config_t, study_case_t, study_method_t
    public :: study_defaults, parse_study, read_study_config, validate_study_config
    public :: apply_quick, study_help, study_namelist, case_index, default_ranges
+   public :: balance_case
    public :: case_model, study_pendulum
    public :: max_cases, max_methods, max_extra
 
@@ -50,6 +52,11 @@ module dpend_study_config
       !> steps of the long runs at each method's mid-range step: the long runs of a
       !> method reach t_long = long_steps × h_mid [s] (every step size of the sweep)
       real(dp) :: long_steps = 1.0e6_dp
+      !> joint damping c_i [N m s], one per link (issue 13); not allocated: none
+      real(dp), allocatable :: damping(:)
+      real(dp) :: support_amplitude(2) = 0.0_dp  !! moving pin (a_x, a_y) [m]
+      real(dp) :: support_frequency = 0.0_dp     !! its ω [rad/s]
+      real(dp) :: support_phase(2) = 0.0_dp      !! its phases (φ_x, φ_y) [rad]
    end type study_case_t
 
    !> One method and its sweeps.
@@ -201,8 +208,20 @@ contains
       par = pendulum_t(m1=cfg%m(1), m2=cfg%m(2), l1=cfg%l(1), l2=cfg%l(2), g=cfg%g)
    end function study_pendulum
 
+   !> Case ic is damped or driven (joint damping, a moving support): a balance case,
+   !> whose energy error is the energy balance E(t) − E(0) + W_friction − W_support
+   !> (dpend_work) and to which the drift verdicts are not applied.
+   pure logical function balance_case(cfg, ic)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      integer, intent(in) :: ic                !! case index
+      balance_case = any(cfg%cases(ic)%support_amplitude /= 0.0_dp)
+      if (allocated(cfg%cases(ic)%damping)) balance_case = balance_case .or. &
+                                                          any(cfg%cases(ic)%damping /= 0.0_dp)
+   end function balance_case
+
    !> The system of case ic (validated): the double pendulum for two links, the
-   !> N-link chain of m(1:N), l(1:N), g otherwise.
+   !> N-link chain of m(1:N), l(1:N), g otherwise, with the case's damping and
+   !> moving support (then also for two links).
    subroutine case_model(cfg, ic, model)
       type(study_config_t), intent(in) :: cfg             !! configuration (validated)
       integer, intent(in) :: ic                           !! case index
@@ -211,13 +230,28 @@ contains
       type(chain_t) :: chain
       integer :: n
       n = size(cfg%cases(ic)%q0)
-      if (n == 2) then
+      if (balance_case(cfg, ic)) then
+         associate (cs => cfg%cases(ic))
+            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, case_damping(cs, n), &
+                                cs%support_amplitude, cs%support_frequency, cs%support_phase)
+         end associate
+         allocate (model, source=chain)
+      else if (n == 2) then
          allocate (model, source=pendulum_model(study_pendulum(cfg)))
       else
          chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)   ! checked by validation
          allocate (model, source=chain)
       end if
    end subroutine case_model
+
+   !> The damping of a case of n links (0 when none is given).
+   pure function case_damping(cs, n) result(c)
+      type(study_case_t), intent(in) :: cs  !! the case
+      integer, intent(in) :: n              !! its links
+      real(dp) :: c(n)
+      c = 0.0_dp
+      if (allocated(cs%damping)) c = cs%damping(:n)
+   end function case_damping
 
    ! -------------------------------------------------------------------- help
 
@@ -235,7 +269,9 @@ contains
           'options:'//nl// &
           '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
           '                    data/study.nml, identical to the built-in defaults;'//nl// &
-          '                    data/study_chain.nml: the triple pendulum, N-link chain)'//nl// &
+          '                    data/study_chain.nml: the triple pendulum, N-link chain;'//nl// &
+          '                    data/study_damped.nml: damped and driven chains, whose'//nl// &
+          '                    energy error is the energy balance, no drift verdict)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
           '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
@@ -253,7 +289,10 @@ contains
           '  -h, --help        this text'//nl//nl// &
           'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
           'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &
-          'links upright, (m1/2 + m2) g l1 + (m2/2) g l2.'
+          'links upright, (m1/2 + m2) g l1 + (m2/2) g l2. A damped or driven case'//nl// &
+          '(case_damping, case_support_* in &study) measures the energy balance'//nl// &
+          '|E(t) - E(0) + W_friction - W_support| / E_s instead (methods that need a'//nl// &
+          'Hamiltonian refuse such a case; no drift, roundoff or Tao runs on it).'
    end function study_help
 
    ! ------------------------------------------------------------ command line
@@ -412,6 +451,8 @@ contains
                   case_w2(max_cases), case_long_steps(max_cases)
       integer :: case_links(max_cases)
       real(dp) :: case_q(max_dof, max_cases), case_w(max_dof, max_cases)
+      real(dp) :: case_damping(max_dof, max_cases), case_support_amplitude(2, max_cases), &
+                  case_support_frequency(max_cases), case_support_phase(2, max_cases)
       real(dp), parameter :: unset = -huge(1.0_dp)   ! marks entries not given
       character(len=16) :: method(max_methods), ref_method, check_method
       real(dp) :: h_min(max_methods), h_max(max_methods), rtol_min(max_methods), &
@@ -425,7 +466,8 @@ contains
       integer :: unit, stat, i, n
       character(len=512) :: msg
       namelist /study/ case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
-         case_links, case_q, case_w, &
+         case_links, case_q, case_w, case_damping, case_support_amplitude, &
+         case_support_frequency, case_support_phase, &
          method, h_min, h_max, rtol_min, rtol_max, n_h, n_rtol, atol_ratio, t_short, &
          n_check, order_case, drift_case, drift_decades, bins_per_decade, decades, &
          ref_method, ref_dt, check_method, check_rtol, wall_min, ro_method, ro_dt, ro_steps, &
@@ -453,6 +495,8 @@ contains
       ! lists start empty (a set list replaces the default); scalars start at the defaults
       case_name = ''; case_q1 = unset; case_q2 = unset; case_w1 = unset; case_w2 = unset
       case_long_steps = 0; case_links = 0; case_q = unset; case_w = unset
+      case_damping = unset; case_support_amplitude = 0; case_support_frequency = 0
+      case_support_phase = 0
       method = ''; h_min = 0; h_max = 0; rtol_min = 0; rtol_max = 0
       ro_method = ''; ro_dt = 0; tao_method = ''
       n_h = cfg%n_h; n_rtol = cfg%n_rtol; atol_ratio = cfg%atol_ratio; t_short = cfg%t_short
@@ -496,6 +540,12 @@ contains
             if (allocated(error)) return
             cfg%cases(i)%long_steps = merge(case_long_steps(i), 1.0e6_dp, &
                                             case_long_steps(i) /= 0.0_dp)
+            call case_values(i, 'case_damping', case_damping(:, i), unset, unset, &
+                             cfg%cases(i)%damping, none_given=.true.)
+            if (allocated(error)) return
+            cfg%cases(i)%support_amplitude = case_support_amplitude(:, i)
+            cfg%cases(i)%support_frequency = case_support_frequency(i)
+            cfg%cases(i)%support_phase = case_support_phase(:, i)
          end do
       end if
       n = count(len_trim(method) > 0)
@@ -543,12 +593,14 @@ contains
    contains
       !> The initial values of case i (N = case_links(i) links, 2 when not given): the
       !> list case_q(1:N, i) (`field` 'case_q' or 'case_w'), or for two links
-      !> case_q1(i), case_q2(i); values not given are 0.
-      subroutine case_values(i, field, list, v1, v2, values)
+      !> case_q1(i), case_q2(i); values not given are 0 (with `none_given`: `values`
+      !> is left unallocated).
+      subroutine case_values(i, field, list, v1, v2, values, none_given)
          integer, intent(in) :: i
          character(len=*), intent(in) :: field
          real(dp), intent(in) :: list(:), v1, v2
          real(dp), allocatable, intent(out) :: values(:)
+         logical, intent(in), optional :: none_given
          integer :: links, k
          character(len=:), allocatable :: where
          links = merge(case_links(i), 2, case_links(i) /= 0)
@@ -574,6 +626,7 @@ contains
                              ', '//to_str(i)//') '//where)
             return
          end if
+         if (present(none_given) .and. k == 0) return
          allocate (values(links))
          values = 0.0_dp
          if (k == links) then
@@ -624,6 +677,17 @@ contains
                    //trim(b)//') = '//list(cfg%cases(i)%q0)//', case_w(1:'//i_(n)//', ' &
                    //trim(b)//') = '//list(cfg%cases(i)%w0)//', case_long_steps(' &
                    //trim(b)//') = '//g(cfg%cases(i)%long_steps)//nl
+         end if
+         if (balance_case(cfg, i)) then
+            associate (cs => cfg%cases(i))
+               n = size(cs%q0)
+               text = text//'  case_damping(1:'//i_(n)//', '//trim(b)//') = '// &
+                      list(case_damping(cs, n))//nl//'  case_support_amplitude(1:2, '// &
+                      trim(b)//') = '//list(cs%support_amplitude)// &
+                      ', case_support_frequency('//trim(b)//') = '// &
+                      g(cs%support_frequency)//', case_support_phase(1:2, '//trim(b)// &
+                      ') = '//list(cs%support_phase)//nl
+            end associate
          end if
       end do
       do i = 1, size(cfg%methods)
@@ -773,6 +837,8 @@ contains
                return
             end if
          end do
+         call check_accepts('method'//trim(idx), integ)
+         if (allocated(error)) return
          associate (m => cfg%methods(i))
             if (.not. (finite_positive(m%h_min) .and. finite_positive(m%h_max))) then
                call fatal_error(error, 'invalid h_min, h_max'//trim(idx)//' ('//m%name// &
@@ -891,11 +957,15 @@ contains
                           "' must be a fixed-step method (e.g. gauss8)")
          return
       end if
+      call check_accepts('ref_method', integ)
+      if (allocated(error)) return
       call new_integrator(cfg%check_method, integ, error)
       if (allocated(error)) then
          error%message = 'in &study check_method: '//error%message
          return
       end if
+      call check_accepts('check_method', integ)
+      if (allocated(error)) return
       do i = 1, size(cfg%ro_methods)
          write (idx, '("(", i0, ")")') i
          call new_integrator(trim(cfg%ro_methods(i)), integ, error)
@@ -928,8 +998,25 @@ contains
          end if
       end do
    contains
+      !> A method that needs a Hamiltonian model refuses a damped or driven case.
+      subroutine check_accepts(field, method)
+         character(len=*), intent(in) :: field
+         class(integrator_t), intent(in) :: method
+         integer :: ic
+         if (.not. method%needs_hamiltonian()) return
+         do ic = 1, size(cfg%cases)
+            if (balance_case(cfg, ic)) then
+               call fatal_error(error, 'invalid '//field//": '"//method%name()//"' needs a " &
+                                //"Hamiltonian model; case '"//cfg%cases(ic)%name// &
+                                "' is damped or driven (use "//field_method_names()//')')
+               return
+            end if
+         end do
+      end subroutine check_accepts
+
       !> The system of case ic: the double pendulum's parameters for two links, the
-      !> chain's otherwise; given lists m, l cover the case's links.
+      !> chain's otherwise; given lists m, l cover the case's links; the damping and
+      !> the moving support of a balance case (a chain of at most max_dof − 1 links).
       subroutine check_system(ic)
          integer, intent(in) :: ic
          type(chain_t) :: chain
@@ -961,6 +1048,21 @@ contains
                                                   cfg%cases(ic)%name//"', "//to_str(n)// &
                                                   ' links) [--m --l --g / &pendulum]'
          end if
+         if (allocated(error) .or. .not. balance_case(cfg, ic)) return
+         if (n > max_dof - 1) then
+            call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
+                             ' with damping or a moving support is outside [1, '// &
+                             to_str(max_dof - 1)//'] (the energy balance takes two state ' &
+                             //'components)')
+            return
+         end if
+         associate (cs => cfg%cases(ic))
+            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, case_damping(cs, n), &
+                                cs%support_amplitude, cs%support_frequency, cs%support_phase)
+         end associate
+         if (allocated(error)) error%message = error%message//" (case '"// &
+                                               cfg%cases(ic)%name//"': case_damping, " &
+                                               //'case_support_*)'
       end subroutine check_system
 
       subroutine check_case_name(field, name)

@@ -5,7 +5,7 @@ module dpend_lapack
    use dpend_kinds, only: dp
    implicit none
    private
-   public :: dgeqrf, dorgqr, dpotrf, dpotrs, dsygv, dgesv, dgeev
+   public :: dgeqrf, dorgqr, dpotrf, dpotrs, dsygv, dgesv, dgeev, dgetrf, dgetrs
 
    interface
       !> QR factorization of a general m×n matrix (Householder).
@@ -67,6 +67,25 @@ module dpend_lapack
          real(dp), intent(inout) :: b(ldb, *)
          integer, intent(out) :: info
       end subroutine dgesv
+      !> LU factorization with partial pivoting of a general m×n matrix;
+      !> info > 0: U(info, info) is exactly zero.
+      subroutine dgetrf(m, n, a, lda, ipiv, info)
+         import :: dp
+         integer, intent(in) :: m, n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: ipiv(*)
+         integer, intent(out) :: info
+      end subroutine dgetrf
+      !> Solve A X = B (trans 'N') or Aᵀ X = B ('T') with the LU factors of dgetrf.
+      subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+         import :: dp
+         character(len=1), intent(in) :: trans
+         integer, intent(in) :: n, nrhs, lda, ldb
+         real(dp), intent(in) :: a(lda, *)
+         integer, intent(in) :: ipiv(*)
+         real(dp), intent(inout) :: b(ldb, *)
+         integer, intent(out) :: info
+      end subroutine dgetrs
       !> Eigenvalues (wr + i wi) and, with jobvl/jobvr 'V', left/right eigenvectors of a
       !> general real n×n matrix; a complex pair j, j+1 (wi(j) > 0) has the eigenvector
       !> vr(:, j) + i vr(:, j+1); info > 0: the QR algorithm failed.

@@ -3,7 +3,9 @@
 !>
 !> A method advances an internal state y(2n) of a `model_t` with n degrees of freedom:
 !> (q, q̇) for the explicit Runge–Kutta methods, (q, p) for the methods on canonical
-!> variables (`canonical()`, which need a Hamiltonian model). No method names a model:
+!> variables (`canonical()`) on a Hamiltonian model (`canonical_on(model)`). Most of
+!> them need the Hamiltonian (`needs_hamiltonian()`); the Gauss methods run on (q, q̇)
+!> when the model has none (damped, driven). No method names a model:
 !> it calls the model's vector field and, where it has them, its fast-path hooks.
 !> Drivers convert with `to_internal` / `to_physical` once at the start and when
 !> sampling; the methods never convert inside a step.
@@ -20,6 +22,7 @@ module dpend_integrator
    use dpend_limits, only: default_max_steps, diverged_bound
    use dpend_error, only: error_t, fatal_error
    use dpend_method_options, only: method_options_t
+   use dpend_method_registry, only: field_method_names
    implicit none
    private
    public :: integrator_t, integrator_configure
@@ -68,6 +71,7 @@ module dpend_integrator
       procedure :: canonical => false_property
       !> Whether the method needs a Hamiltonian model (default: `canonical()`).
       procedure :: needs_hamiltonian => canonical_property
+      procedure, non_overridable :: canonical_on
       !> Set the options a method has from one record (`dpend_method_options`);
       !> methods with more options override it and call `integrator_configure`.
       procedure :: configure => integrator_configure
@@ -128,6 +132,16 @@ contains
       class(integrator_t), intent(in) :: self  !! the method
       canonical_property = self%canonical()
    end function canonical_property
+
+   !> Whether the internal state on `model` is (q, p): a canonical method on a
+   !> Hamiltonian model; (q, q̇) otherwise.
+   pure logical function canonical_on(self, model)
+      class(integrator_t), intent(in) :: self  !! the method
+      class(model_t), intent(in) :: model      !! the system
+      canonical_on = self%canonical()
+      if (canonical_on) canonical_on = model%hamiltonian()
+   end function canonical_on
+
    !> The options every method has: `max_steps` (0 keeps the default).
    subroutine integrator_configure(self, options)
       class(integrator_t), intent(inout) :: self       !! the method
@@ -149,7 +163,7 @@ contains
       real(dp), intent(in) :: y(:)                !! internal state
       real(dp), intent(out) :: f(:)               !! its rate
       self%n_rhs = self%n_rhs + 1
-      if (self%canonical()) then
+      if (self%canonical_on(model)) then
          call model%canonical_field(t, y, f)
       else
          call model%field(t, y, f)
@@ -170,7 +184,7 @@ contains
       tt = 0.0_dp
       if (present(t)) tt = t
       y(1:n) = q
-      if (self%canonical()) then
+      if (self%canonical_on(model)) then
          call model%momenta(tt, [q, qd], y(n + 1:))
       else
          y(n + 1:) = qd
@@ -191,7 +205,7 @@ contains
       tt = 0.0_dp
       if (present(t)) tt = t
       q = y(1:n)
-      if (self%canonical()) then
+      if (self%canonical_on(model)) then
          call model%velocities(tt, y, qd)
       else
          qd = y(n + 1:2*n)
@@ -212,14 +226,16 @@ contains
    end function state_ok
 
    !> Refuse a model that lacks structure the method needs (one line, e.g.
-   !> "invalid method: gauss6 needs a Hamiltonian model; the damped pendulum is not").
+   !> "invalid method: verlet needs a Hamiltonian model; the damped chain of 2 links is
+   !> not (use rk4, dopri5, dop853, midpoint, gauss4, gauss6 or gauss8)").
    subroutine check_model(self, model, error)
       class(integrator_t), intent(in) :: self           !! the method
       class(model_t), intent(in) :: model               !! the system
       type(error_t), allocatable, intent(out) :: error  !! set if the method cannot run it
       if (self%needs_hamiltonian() .and. .not. model%hamiltonian()) then
          call fatal_error(error, 'invalid method: '//self%name()//' needs a Hamiltonian ' &
-                          //'model; the '//model%name()//' is not (use rk4, dopri5 or dop853)')
+                          //'model; the '//model%name()//' is not (use '// &
+                          field_method_names()//')')
       else if (model%n_state() > max_state) then
          call fatal_error(error, 'invalid model: the '//model%name()//' has too many degrees ' &
                           //'of freedom for the integrators (at most 32)')

@@ -15,7 +15,7 @@ module dpend_method_registry
    implicit none
    private
    public :: method_info_t, plot_group_t, method_table, plot_groups
-   public :: n_methods, method_index, method_names
+   public :: n_methods, method_index, method_names, field_method_names
 
    !> Everything dpend knows about one method besides its code.
    type :: method_info_t
@@ -25,9 +25,12 @@ module dpend_method_registry
       logical :: implicit = .false.      !! a step solves equations (else explicit)
       logical :: symplectic = .false.    !! symplectic map on (q, p)
       logical :: symmetric = .false.     !! time-symmetric (self-adjoint)
-      !> advances canonical (q, p) and so needs a model with a Hamiltonian structure
-      !> (`canonical()` of the built method)
+      !> needs a model with a Hamiltonian structure (`needs_hamiltonian()` of the built
+      !> method): refuses damped and driven models
       logical :: hamiltonian = .false.
+      !> advances canonical (q, p) on Hamiltonian models (`canonical()`), (q, q̇) on the
+      !> others if it accepts them (the Gauss methods)
+      logical :: canonical = .false.
       !> Kahan-compensated update that can be switched off (the roundoff experiment)
       logical :: compensated = .false.
       logical :: omega = .false.         !! has Tao's binding constant ω (--omega)
@@ -69,48 +72,51 @@ module dpend_method_registry
                     rtol_max=1.0e-8_dp, cost=1.2e-6_dp, group='rk', colour='#8c564b', &
                     description='Dormand-Prince 8(5,3), dense output of order 7'), &
       method_info_t(name='midpoint', order=2, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
+                    symmetric=.true., canonical=.true., compensated=.true., &
                     h_min=2.5e-3_dp, h_max=1.0e-2_dp, cost=1.2e-6_dp, group='gauss', &
                     colour='#9ecae1', description='implicit midpoint rule (Gauss, 1 stage)'), &
       method_info_t(name='gauss4', order=4, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
+                    symmetric=.true., canonical=.true., compensated=.true., &
                     h_min=5.0e-3_dp, h_max=2.0e-2_dp, cost=1.6e-6_dp, group='gauss', &
                     colour='#4292c6', description='Gauss-Legendre collocation, 2 stages'), &
       method_info_t(name='gauss6', order=6, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
+                    symmetric=.true., canonical=.true., compensated=.true., &
                     h_min=1.0e-2_dp, h_max=3.0e-2_dp, cost=2.0e-6_dp, group='gauss', &
                     colour='#08519c', description='Gauss-Legendre collocation, 3 stages'), &
       method_info_t(name='gauss8', order=8, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
+                    symmetric=.true., canonical=.true., compensated=.true., &
                     h_min=1.5e-2_dp, h_max=4.0e-2_dp, cost=2.8e-6_dp, group='gauss', &
                     colour='#08306b', description='Gauss-Legendre collocation, 4 stages'), &
       method_info_t(name='verlet', order=2, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
-                    h_min=2.5e-3_dp, h_max=1.0e-2_dp, cost=1.6e-6_dp, group='verlet', &
-                    colour='#a1d99b', &
+                    symmetric=.true., hamiltonian=.true., canonical=.true., &
+                    compensated=.true., h_min=2.5e-3_dp, h_max=1.0e-2_dp, cost=1.6e-6_dp, &
+                    group='verlet', colour='#a1d99b', &
                     description='generalised Stormer-Verlet (leapfrog), implicit in H'), &
       method_info_t(name='yoshida4', order=4, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
-                    h_min=5.0e-3_dp, h_max=2.0e-2_dp, cost=4.5e-6_dp, group='verlet', &
-                    colour='#41ab5d', description='triple jump of verlet (Yoshida)'), &
+                    symmetric=.true., hamiltonian=.true., canonical=.true., &
+                    compensated=.true., h_min=5.0e-3_dp, h_max=2.0e-2_dp, cost=4.5e-6_dp, &
+                    group='verlet', colour='#41ab5d', &
+                    description='triple jump of verlet (Yoshida)'), &
       method_info_t(name='comp6', order=6, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
-                    h_min=1.0e-2_dp, h_max=3.0e-2_dp, cost=12.0e-6_dp, group='verlet', &
-                    colour='#006d2c', description='9-stage composition of verlet (Kahan-Li)'), &
+                    symmetric=.true., hamiltonian=.true., canonical=.true., &
+                    compensated=.true., h_min=1.0e-2_dp, h_max=3.0e-2_dp, cost=12.0e-6_dp, &
+                    group='verlet', colour='#006d2c', &
+                    description='9-stage composition of verlet (Kahan-Li)'), &
       method_info_t(name='comp8', order=8, implicit=.true., symplectic=.true., &
-                    symmetric=.true., hamiltonian=.true., compensated=.true., &
-                    h_min=1.5e-2_dp, h_max=3.5e-2_dp, cost=22.0e-6_dp, group='verlet', &
-                    colour='#00441b', &
+                    symmetric=.true., hamiltonian=.true., canonical=.true., &
+                    compensated=.true., h_min=1.5e-2_dp, h_max=3.5e-2_dp, cost=22.0e-6_dp, &
+                    group='verlet', colour='#00441b', &
                     description='17-stage composition of verlet (Kahan-Li)'), &
       method_info_t(name='tao2', order=2, symplectic=.true., symmetric=.true., &
-                    hamiltonian=.true., compensated=.true., omega=.true., &
-                    h_min=1.0e-3_dp, h_max=4.0e-3_dp, cost=0.35e-6_dp, group='tao', &
-                    colour='#bc80bd', &
+                    hamiltonian=.true., canonical=.true., compensated=.true., &
+                    omega=.true., h_min=1.0e-3_dp, h_max=4.0e-3_dp, cost=0.35e-6_dp, &
+                    group='tao', colour='#bc80bd', &
                     description="Tao's explicit method in extended phase space"), &
       method_info_t(name='tao4', order=4, symplectic=.true., symmetric=.true., &
-                    hamiltonian=.true., compensated=.true., omega=.true., &
-                    h_min=1.0e-3_dp, h_max=4.0e-3_dp, cost=1.0e-6_dp, group='tao', &
-                    colour='#6a3d9a', description='triple jump of tao2')]
+                    hamiltonian=.true., canonical=.true., compensated=.true., &
+                    omega=.true., h_min=1.0e-3_dp, h_max=4.0e-3_dp, cost=1.0e-6_dp, &
+                    group='tao', colour='#6a3d9a', &
+                    description='triple jump of tao2')]
 
    !> The plot groups, in the order of the study's panels.
    type(plot_group_t), parameter :: plot_groups(4) = [ &
@@ -139,4 +145,27 @@ contains
          names = names//' '//trim(method_table(i)%name)
       end do
    end function method_names
+
+   !> The methods that accept models without a Hamiltonian (damped, driven), as
+   !> "rk4, dopri5, …, gauss6 or gauss8" for messages.
+   pure function field_method_names() result(names)
+      character(len=:), allocatable :: names
+      integer :: i, last
+      last = 0
+      do i = 1, n_methods
+         if (.not. method_table(i)%hamiltonian) last = i
+      end do
+      names = ''
+      do i = 1, n_methods
+         if (method_table(i)%hamiltonian) cycle
+         if (len(names) > 0) then
+            if (i == last) then
+               names = names//' or '
+            else
+               names = names//', '
+            end if
+         end if
+         names = names//trim(method_table(i)%name)
+      end do
+   end function field_method_names
 end module dpend_method_registry

@@ -10,7 +10,9 @@
 !> | `comp6`    | Kahan–Li s9odr6a, 9 substeps of `verlet`         | 6     |
 !> | `comp8`    | Kahan–Li s17odr8a, 17 substeps of `verlet`       | 8     |
 !>
-!> and Tao's explicit extended-phase-space methods in `dpend_tao`.
+!> and Tao's explicit extended-phase-space methods in `dpend_tao`. The Gauss methods
+!> also accept models without a Hamiltonian (damped, driven): they collocate the
+!> first-order field on (q, q̇) instead (`gauss_advance_field`); the others refuse them.
 !>
 !> All of them derive from `symplectic_t`, which owns the driver-facing `step`:
 !> it detects the start of a new trajectory, calls the method's `advance`, and
@@ -34,7 +36,9 @@
 !> step size of practical interest (contraction factor ≈ h ρ(A) ‖f'‖) and
 !> needs neither a Jacobian nor an LU factorization of the 4s×4s system of a
 !> simplified Newton iteration (gauss6 at h = 0.01 s: 8 iterations, 24
-!> evaluations of f, ≈ 5–6 rk4 steps of time).
+!> evaluations of f, ≈ 5–6 rk4 steps of time). Strong joint damping is stiff: on
+!> (q, q̇) the Gauss methods then fall back to a simplified Newton iteration with the
+!> model's Jacobian (`gauss_field_newton`).
 !>
 !> **Compensated summation** (Kahan; GNI §VIII.5) of
 !> y_{n+1} = y_n + δ_n keeps the rounding error of the update in `comp(4)`;
@@ -56,6 +60,7 @@ module dpend_symplectic
    use dpend_integrator, only: integrator_t, stat_ok, stat_no_convergence, stat_nonfinite, &
                                integrator_configure
    use dpend_method_options, only: method_options_t
+   use dpend_lapack, only: dgetrf, dgetrs
    implicit none
    private
    public :: symplectic_t, gauss_t, verlet_t, composition_t
@@ -118,6 +123,12 @@ module dpend_symplectic
    !> compensated summation; cf. Hairer, McLachlan, Razakarivony, "Achieving
    !> Brouwer's law with implicit Runge–Kutta methods", BIT 48, 231–243, 2008).
    !> The extra products cost a few flops per stage, nothing next to f.
+   !>
+   !> A model without a Hamiltonian (damped, driven: `hamiltonian()` false) is
+   !> integrated by the same collocation on its first-order field y' = f(t, y),
+   !> y = (q, q̇) (`gauss_advance_field`): order 2s, A-stable and symmetric, no
+   !> longer symplectic (there is no symplectic structure to keep); the work
+   !> integrals of `dpend_work` are then collocated with the state, to the same order.
    type, extends(symplectic_t) :: gauss_t
       integer :: s = 2             !! number of stages, 1..4
       real(dp) :: a(4, 4) = 0.0_dp !! Runge–Kutta matrix (leading s×s block)
@@ -139,6 +150,7 @@ module dpend_symplectic
       procedure :: order => gauss_order
       procedure :: implicit => gauss_implicit
       procedure :: reset => gauss_reset
+      procedure :: needs_hamiltonian => gauss_needs_hamiltonian
    end type gauss_t
 
    !> Generalized Störmer–Verlet method for non-separable H (GNI §VI.3, eq. 3.4),
@@ -285,6 +297,45 @@ contains
          verdict = it_continue
       end if
    end function iteration_verdict
+
+   !> Stopping rule of the Gauss iteration on (q, q̇) (`gauss_advance_field`): the
+   !> iteration error of a damped or driven system rotates between the components
+   !> over several iterations (complex eigenvalues of h A ⊗ f'), so that Δ_k is not
+   !> monotone over two iterations as `iteration_verdict` assumes. Progress is
+   !> judged by the smallest increment so far, Δ_min (updated here): iterate while
+   !> Δ_k sets a new minimum or did within the last `field_patience` iterations;
+   !> converged when Δ_k vanishes, or is at roundoff level (≤ `iter_tol`) and no
+   !> longer decreases; failed when no new minimum came for `field_patience`
+   !> iterations above roundoff (divergence, stagnation) or after `max_iter`.
+   pure subroutine field_verdict(dnew, dmin, k_min, k, verdict)
+      real(dp), intent(in) :: dnew       !! scaled increment Δ_k of iteration k
+      real(dp), intent(inout) :: dmin    !! smallest Δ so far (huge before the first)
+      integer, intent(inout) :: k_min    !! the iteration of dmin
+      integer, intent(in) :: k           !! iteration number
+      integer, intent(out) :: verdict    !! it_continue, it_converged or it_failed
+      integer, parameter :: field_patience = 4
+      logical :: improved
+      if (.not. (dnew <= huge(dnew))) then
+         verdict = it_failed
+         return
+      end if
+      improved = dnew < dmin
+      if (improved) then
+         dmin = dnew
+         k_min = k
+      end if
+      if (dnew == 0.0_dp .or. (dnew <= iter_tol .and. .not. improved)) then
+         verdict = it_converged
+      else if (k >= max_iter .or. k - k_min >= field_patience) then
+         if (dnew <= iter_tol) then
+            verdict = it_converged
+         else
+            verdict = it_failed
+         end if
+      else
+         verdict = it_continue
+      end if
+   end subroutine field_verdict
 
    !> Reciprocal scale of an increment of x: 1/(max|x| + max|dx|), 1 if both vanish.
    pure real(dp) function inv_scale(x, dx)
@@ -441,7 +492,8 @@ contains
    end subroutine gauss_reset
 
    !> One Gauss step; states of four components take the same statements compiled
-   !> with fixed sizes (dpend_gauss_body.inc), others the generic ones.
+   !> with fixed sizes (dpend_gauss_body.inc), others the generic ones; a model
+   !> without a Hamiltonian takes `gauss_advance_field` on (q, q̇).
    subroutine gauss_advance(self, model, t, y, e, h, stat)
       class(gauss_t), intent(inout) :: self  !! the method
       class(model_t), intent(in) :: model    !! the system (Hamiltonian)
@@ -450,7 +502,9 @@ contains
       real(dp), intent(inout) :: e(:)        !! compensation of y
       real(dp), intent(in) :: h              !! step [s]
       integer, intent(out) :: stat           !! status
-      if (size(y) == 4) then
+      if (.not. model%hamiltonian()) then
+         call gauss_advance_field(self, model, t, y, e, h, stat)
+      else if (size(y) == 4) then
          call gauss_advance_4(self, model, t, y, e, h, stat)
       else
          call gauss_advance_n(self, model, t, y, e, h, stat)
@@ -496,6 +550,179 @@ contains
       include 'dpend_gauss_body.inc'
       end associate
    end subroutine gauss_advance_n
+
+   !> One Gauss step on the first-order field y' = f(t, y), y = (q, q̇), of a model
+   !> without a Hamiltonian: the statements of dpend_gauss_body.inc with `field` at
+   !> the stage times t + c_j h in place of the canonical field (same starting guess,
+   !> fixed-point iteration and compensated update; stopping rule `field_verdict`).
+   !> Strong damping makes the problem stiff (h c/(m l²) of order 1 and more), where
+   !> the fixed-point iteration diverges: the step is then solved again from the same
+   !> starting guess by a simplified Newton iteration (`gauss_field_newton`).
+   subroutine gauss_advance_field(self, model, t, y, e, h, stat)
+      class(gauss_t), intent(inout) :: self  !! the method
+      class(model_t), intent(in) :: model    !! the system (damped, driven)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(inout) :: y(:)        !! state (q, q̇)
+      real(dp), intent(inout) :: e(:)        !! compensation of y
+      real(dp), intent(in) :: h              !! step [s]
+      integer, intent(out) :: stat           !! status
+      real(dp) :: z_(max_state, 4), f_(max_state, 4), zi_(max_state), zl_(max_state)
+      real(dp) :: f0_(max_state), delta_(max_state), yj_(max_state), z0_(max_state, 4)
+      real(dp) :: wq, wv, dnew, dmin
+      integer :: s, i, j, k, verdict, n, m, k_min
+      if (.not. self%ready) call gauss_setup(self)
+      s = self%s
+      n = size(y); m = n/2
+      associate (z => z_(:n, :s), f => f_(:n, :s), zi => zi_(:n), zl => zl_(:n), &
+                 f0 => f0_(:n), delta => delta_(:n), yj => yj_(:n), z0 => z0_(:n, :s))
+      ! starting guess: the last collocation polynomial, or c_i h f(t, y_n)
+      z = 0.0_dp
+      if (self%have_z .and. self%h_old /= 0.0_dp) then
+         if (.not. (self%have_w .and. self%r_w == h/self%h_old)) then
+            self%r_w = h/self%h_old
+            self%w = extrapolation_weights(s, self%c, self%r_w)
+            self%have_w = .true.
+         end if
+         do i = 1, s
+            do j = 1, s
+               z(:, i) = z(:, i) + self%w(i, j)*self%z_old(:n, j)
+            end do
+         end do
+      else
+         call model%field(t, y, f0)
+         self%n_rhs = self%n_rhs + 1
+         do i = 1, s
+            z(:, i) = (self%c(i)*h)*f0
+         end do
+      end if
+      wq = inv_scale(y(1:m), [maxval(abs(z(1:m, :)))])
+      wv = inv_scale(y(m + 1:n), [maxval(abs(z(m + 1:n, :)))])
+      ! a damped chain comes to rest: its rates vanish, and their increments are the
+      ! roundoff of accelerations whose terms are set by the angles; so the scale of
+      ! the rates is at least min(1, that of the angles)
+      wv = min(wv, max(1.0_dp, wq))
+      z0 = z
+      dmin = huge(1.0_dp)
+      k_min = 0
+      stat = stat_no_convergence
+      do k = 1, max_iter
+         do j = 1, s
+            yj = y + z(:, j)
+            call model%field(t + self%c(j)*h, yj, f(:, j))
+         end do
+         self%n_rhs = self%n_rhs + s
+         self%n_iter = self%n_iter + 1
+         dnew = 0.0_dp
+         do i = 1, s
+            zi = 0.0_dp
+            zl = 0.0_dp
+            do j = 1, s
+               zi = zi + self%a(i, j)*f(:, j)
+               zl = zl + self%a_lo(i, j)*f(:, j)
+            end do
+            zi = h*(zi + zl)
+            dnew = max(dnew, wq*maxval(abs(zi(1:m) - z(1:m, i))), &
+                       wv*maxval(abs(zi(m + 1:n) - z(m + 1:n, i))))
+            z(:, i) = zi
+         end do
+         call field_verdict(dnew, dmin, k_min, k, verdict)
+         if (verdict == it_converged) stat = stat_ok
+         if (verdict /= it_continue) exit
+      end do
+      if (stat /= stat_ok) then   ! stiff: simplified Newton from the same guess
+         z = z0
+         call gauss_field_newton(self, model, t, y, h, wq, wv, z, stat)
+      end if
+      if (stat /= stat_ok) return   ! (leaves the associate block)
+      delta = 0.0_dp
+      zl = 0.0_dp
+      do j = 1, s
+         delta = delta + self%d(j)*z(:, j)
+         zl = zl + self%d_lo(j)*z(:, j)
+      end do
+      delta = delta + zl
+      if (.not. all(ieee_is_finite(delta))) then
+         stat = stat_nonfinite
+         return
+      end if
+      self%z_old(:n, :s) = z
+      self%h_old = h
+      self%have_z = .true.
+      call accumulate(y, e, delta, self%compensated)
+      end associate
+   end subroutine gauss_advance_field
+
+   !> The stage increments Z (n, s) of a Gauss step on the field by a simplified
+   !> Newton iteration (Hairer, Wanner, Solving ODEs II, §IV.8): with J = ∂f/∂y at
+   !> (t, y) (the model's `jacobian`), factor I − h A ⊗ J once (LAPACK dgetrf) and
+   !> solve (I − h A ⊗ J) ΔZ = h (A ⊗ I) F(Z) − Z (dgetrs) until `field_verdict`
+   !> stops it; wq, wv scale the increments as in the fixed-point iteration. For
+   !> stiff damping, where the fixed-point iteration diverges.
+   subroutine gauss_field_newton(self, model, t, y, h, wq, wv, z, stat)
+      class(gauss_t), intent(inout) :: self  !! the method and its counters
+      class(model_t), intent(in) :: model    !! the system (damped, driven)
+      real(dp), intent(in) :: t              !! time at the start [s]
+      real(dp), intent(in) :: y(:)           !! state (q, q̇) at the start
+      real(dp), intent(in) :: h              !! step [s]
+      real(dp), intent(in) :: wq, wv         !! scales of the increments of q and q̇
+      real(dp), intent(inout) :: z(:, :)     !! (n, s): starting guess, then the solution
+      integer, intent(out) :: stat           !! stat_ok or stat_no_convergence
+      real(dp) :: jac(size(y), size(y)), mat(size(z), size(z)), g(size(z), 1)
+      real(dp) :: f(size(y), size(z, 2)), yj(size(y)), zi(size(y)), zl(size(y)), dnew, dmin
+      integer :: ipiv(size(z)), n, s, m, i, j, k, info, verdict, k_min, r
+      n = size(y); s = size(z, 2); m = n/2
+      stat = stat_no_convergence
+      call model%jacobian(t, y, jac)
+      do j = 1, s
+         do i = 1, s
+            mat((i - 1)*n + 1:i*n, (j - 1)*n + 1:j*n) = (-h*(self%a(i, j) + &
+                                                             self%a_lo(i, j)))*jac
+         end do
+      end do
+      do i = 1, s*n
+         mat(i, i) = mat(i, i) + 1.0_dp
+      end do
+      call dgetrf(s*n, s*n, mat, s*n, ipiv, info)
+      if (info /= 0) return
+      dmin = huge(1.0_dp)
+      k_min = 0
+      do k = 1, max_iter
+         do j = 1, s
+            yj = y + z(:, j)
+            call model%field(t + self%c(j)*h, yj, f(:, j))
+         end do
+         self%n_rhs = self%n_rhs + s
+         self%n_iter = self%n_iter + 1
+         do i = 1, s
+            zi = 0.0_dp
+            zl = 0.0_dp
+            do j = 1, s
+               zi = zi + self%a(i, j)*f(:, j)
+               zl = zl + self%a_lo(i, j)*f(:, j)
+            end do
+            g((i - 1)*n + 1:i*n, 1) = h*(zi + zl) - z(:, i)
+         end do
+         if (.not. all(ieee_is_finite(g))) return
+         call dgetrs('N', s*n, 1, mat, s*n, ipiv, g, s*n, info)
+         if (info /= 0) return
+         dnew = 0.0_dp
+         do i = 1, s
+            r = (i - 1)*n
+            dnew = max(dnew, wq*maxval(abs(g(r + 1:r + m, 1))), &
+                       wv*maxval(abs(g(r + m + 1:r + n, 1))))
+            z(:, i) = z(:, i) + g(r + 1:r + n, 1)
+         end do
+         call field_verdict(dnew, dmin, k_min, k, verdict)
+         if (verdict == it_converged) stat = stat_ok
+         if (verdict /= it_continue) exit
+      end do
+   end subroutine gauss_field_newton
+
+   !> The Gauss methods run on (q, q̇) when the model has no Hamiltonian.
+   pure logical function gauss_needs_hamiltonian(self)
+      class(gauss_t), intent(in) :: self
+      gauss_needs_hamiltonian = .false.
+   end function gauss_needs_hamiltonian
 
    pure function gauss_name(self) result(name)
       class(gauss_t), intent(in) :: self

@@ -8,8 +8,9 @@
 !> Structure a model may have, and says it has:
 !> - `hamiltonian()`: canonical variables z = (q, p) with p = ∂L/∂q̇, H(q, p), the
 !>   Hamiltonian vector field (∂H/∂p, −∂H/∂q) and its Jacobian. Methods on (q, p)
-!>   (Gauss collocation, Störmer–Verlet and its compositions, Tao's) need it, and
-!>   refuse a model without it (`dpend_methods`). A damped model is not Hamiltonian.
+!>   use it; Störmer–Verlet, its compositions and Tao's need it and refuse a model
+!>   without it (`check_model`), the Gauss methods then run on (q, q̇). A damped
+!>   model is not Hamiltonian.
 !> - `conservative()`: the energy is a constant of motion, so that energy-error
 !>   verdicts apply (false for damping or a moving support).
 !> - fast paths: `cache_size() > 0` means the model keeps quantities of the step start

@@ -8,9 +8,10 @@
 !>
 !> The augmented model has n = N + 1 "degrees of freedom" so that the integrators'
 !> state layout y = (y(1:n), y(n+1:2n)) holds unchanged: y = (q, W_friction, q̇,
-!> W_support), f = (q̇, P_friction, q̈, P_support). It is not Hamiltonian (the methods on
-!> (q, p) refuse it, as they refuse the damped chain itself); the explicit Runge–Kutta
-!> methods integrate it, and their dense output interpolates the works too. The work
+!> W_support), f = (q̇, P_friction, q̈, P_support). It is not Hamiltonian (the methods
+!> that need one refuse it, as they refuse the damped chain itself); the explicit
+!> Runge–Kutta methods integrate it, their dense output interpolating the works too,
+!> and the Gauss methods collocate it on (q, q̇) (the works to the same order). The work
 !> components take part in the adaptive error control (joules, with the run's rtol
 !> and atol), so the steps differ slightly from those of the chain alone.
 module dpend_work

@@ -34,7 +34,8 @@ refuse  lnk-poincare-3          poincare -- poincare --links 3 --ics 2 --t-end 2
 refuse  lnk-lya-vectors-7       vectors -- lyapunov --links 3 --t-end 1 --vectors 7 --output g.h5
 refuse  lnk-sweep-axis-theta4   axis1   -- sweep --links 3 --n 4 --t-end 1 --quiet --axis1 theta4 --output g.h5
 refuse  lnk-sweep-lyapunov      lyapunov -- sweep --links 3 --n 4 --t-end 1 --quiet --lyapunov --output g.h5
-refuse  lnk-gauss6-damped       method  -- "${S[@]}" --method gauss6 --damping 0.1,0.1
+refuse  lnk-verlet-damped        method  -- "${S[@]}" --method verlet --damping 0.1,0.1
+refuse  lnk-tao4-driven         method  -- "${S[@]}" --method tao4 --support-amplitude 0,0.01 --support-frequency 5
 # ---- damping and support
 refuse  lnk-damping-short       damping -- "${S[@]}" --links 3 --damping 0.1,0.1
 refuse  lnk-damping-negative    c1      -- "${S[@]}" --damping -0.1,0
@@ -58,6 +59,8 @@ succeed lnk-ok-one-link             -- "${S[@]}" --links 1
 succeed lnk-ok-32-links             -- simulate --links 32 --t-end 0.002 --output g.h5
 succeed lnk-ok-lists                -- "${S[@]}" --links 3 --m 1e-6,1e6,1 --l 1e6,1e-6,1 --q 0,0.5,-1 --w 0,1,0
 succeed lnk-ok-two-links-lists      -- "${S[@]}" --links 2 --m 1,2 --l 1,0.5 --q 0.1,0.2
+succeed lnk-ok-gauss6-damped-driven -- "${S[@]}" --dt 0.01 --method gauss6 --damping 0.1,0.1 --support-amplitude 0,0.01 --support-frequency 5
+succeed lnk-ok-midpoint-3-damped    -- "${S[@]}" --dt 0.01 --method midpoint --links 3 --damping 0.1,0,1e6
 succeed lnk-ok-damped-forced        -- "${S[@]}" --links 3 --damping 0.1,0,1e3 --support-amplitude 0.01,0.02 --support-frequency 10 --method dop853
 succeed lnk-ok-lya-3                -- lyapunov --links 3 --t-end 1 --output g.h5
 succeed lnk-ok-div-3                -- divergence --links 3 --t-end 1 --pairs 2 --lyapunov-t 0 --output g.h5
