@@ -310,7 +310,9 @@ contains
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
       integer :: i
       do i = 1, lane_width
-         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i), a1(i), a2(i))
+         ! velocities clamped to lane_bound (themselves unless the lane runs away)
+         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), min(max(w1(i), -lane_bound), lane_bound), &
+                         min(max(w2(i), -lane_bound), lane_bound), a1(i), a2(i))
       end do
    end subroutine accel_trig_lanes
 
@@ -320,13 +322,11 @@ contains
       real(dp), intent(in) :: s1, c1, s2, c2     !! sin q1, cos q1, sin q2, cos q2
       real(dp), intent(in) :: w1, w2             !! velocities [rad/s]
       real(dp), intent(out) :: a1, a2            !! accelerations [rad/s²]
-      real(dp) :: cd, sd, r1, r2, m12, rdet, v1, v2
-      v1 = min(max(w1, -lane_bound), lane_bound)   ! w1 itself unless runaway
-      v2 = min(max(w2, -lane_bound), lane_bound)
+      real(dp) :: cd, sd, r1, r2, m12, rdet
       cd = c1*c2 + s1*s2
       sd = s1*c2 - c1*s2
-      r1 = -c%ga*c1 - c%k*sd*v2**2
-      r2 = -c%gb*c2 + c%k*sd*v1**2
+      r1 = -c%ga*c1 - c%k*sd*w2**2
+      r2 = -c%gb*c2 + c%k*sd*w1**2
       m12 = c%k*cd
       rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
       a1 = (c%m22*r1 - m12*r2)*rdet
@@ -428,8 +428,9 @@ contains
       do i = 1, lane_width
          p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
       end do
-      ! (the offsets are clamped to d_max: a lane beyond takes the reference step, and
-      ! its discarded values here stay bounded)
+      ! (the offsets are clamped to d_max and the velocities to lane_bound: a lane
+      ! beyond takes the reference step or ends, and its discarded values here stay
+      ! bounded)
       ! lanes i and i + half side by side: two independent chains of stages in each
       ! vector iteration, so that one's divisions overlap the other's work
       do i = 1, half
@@ -445,7 +446,7 @@ contains
          sp_x = q2(i + half)
          include 'dpend_sincos_poly.inc'
          s2a_2 = sp_s; c2a_2 = sp_c
-         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i), ka1_1, ka2_1)
+         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, vclamp(w1(i)), vclamp(w2(i)), ka1_1, ka2_1)
          e(i) = energy_formula(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
          ! a count of the checks that fail (not a logical .or.: this form vectorizes)
          off(i) = merge(0.0_dp, 1.0_dp, abs(q1(i)) <= sincos_exact_max) &
@@ -453,7 +454,8 @@ contains
          x1_1 = q1(i) + hh*w1(i); x2_1 = q2(i) + hh*w2(i)
          vb1_1 = w1(i) + hh*ka1_1; vb2_1 = w2(i) + hh*ka2_1
          d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
-         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(i + half), w2(i + half), ka1_2, ka2_2)
+         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, vclamp(w1(i + half)), &
+                         vclamp(w2(i + half)), ka1_2, ka2_2)
          e(i + half) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(i + half), w2(i + half))
          ! a count of the checks that fail (not a logical .or.: this form vectorizes)
          off(i + half) = merge(0.0_dp, 1.0_dp, abs(q1(i + half)) <= sincos_exact_max) &
@@ -465,12 +467,12 @@ contains
                   + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
          call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
          call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vb1_1, vb2_1, kb1_1, kb2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vb1_1), vclamp(vb2_1), kb1_1, kb2_1)
          off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
                   + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
          call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
          call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vb1_2, vb2_2, kb1_2, kb2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vb1_2), vclamp(vb2_2), kb1_2, kb2_2)
          x1_1 = q1(i) + hh*vb1_1; x2_1 = q2(i) + hh*vb2_1
          vc1_1 = w1(i) + hh*kb1_1; vc2_1 = w2(i) + hh*kb2_1
          d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
@@ -478,7 +480,7 @@ contains
                   + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
          call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
          call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vc1_1, vc2_1, kc1_1, kc2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vc1_1), vclamp(vc2_1), kc1_1, kc2_1)
          x1_2 = q1(i + half) + hh*vb1_2; x2_2 = q2(i + half) + hh*vb2_2
          vc1_2 = w1(i + half) + hh*kb1_2; vc2_2 = w2(i + half) + hh*kb2_2
          d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
@@ -486,7 +488,7 @@ contains
                   + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
          call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
          call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vc1_2, vc2_2, kc1_2, kc2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vc1_2), vclamp(vc2_2), kc1_2, kc2_2)
          x1_1 = q1(i) + h*vc1_1; x2_1 = q2(i) + h*vc2_1
          vd1_1 = w1(i) + h*kc1_1; vd2_1 = w2(i) + h*kc2_1
          d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
@@ -494,7 +496,7 @@ contains
                   + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
          call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
          call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vd1_1, vd2_1, kd1_1, kd2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vd1_1), vclamp(vd2_1), kd1_1, kd2_1)
          x1_2 = q1(i + half) + h*vc1_2; x2_2 = q2(i + half) + h*vc2_2
          vd1_2 = w1(i + half) + h*kc1_2; vd2_2 = w2(i + half) + h*kc2_2
          d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
@@ -502,7 +504,7 @@ contains
                   + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
          call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
          call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vd1_2, vd2_2, kd1_2, kd2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vd1_2), vclamp(vd2_2), kd1_2, kd2_2)
          q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1_1 + vc1_1) + vd1_1)
          q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2_1 + vc2_1) + vd2_1)
          w1(i) = w1(i) + h6*(ka1_1 + 2.0_dp*(kb1_1 + kc1_1) + kd1_1)
@@ -965,6 +967,12 @@ contains
          if (info /= 0) res%gali2(jj) = nan
       end subroutine finish_indicators
    end subroutine integrate_batch
+
+   !> A velocity clamped to ±`lane_bound` [rad/s]: itself unless the lane runs away.
+   pure elemental real(dp) function vclamp(w)
+      real(dp), intent(in) :: w  !! velocity [rad/s]
+      vclamp = min(max(w, -lane_bound), lane_bound)
+   end function vclamp
 
    !> The lane's state is not finite or beyond `lane_bound` (no ordered comparison
    !> on NaN, which would raise IEEE invalid).
