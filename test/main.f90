@@ -22,6 +22,7 @@ program tester
    use test_files, only: collect_files
    use test_indicators, only: collect_indicators
    use test_damping, only: collect_damping
+   use test_estimate, only: collect_estimate
    implicit none
 
    type :: suite_t
@@ -34,7 +35,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(18))
+   allocate (suites(19))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -53,6 +54,7 @@ program tester
    suites(16)%name = 'files'; call collect_files(suites(16)%tests)
    suites(17)%name = 'indicators'; call collect_indicators(suites(17)%tests)
    suites(18)%name = 'damping'; call collect_damping(suites(18)%tests)
+   suites(19)%name = 'estimate'; call collect_estimate(suites(19)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
