@@ -317,7 +317,9 @@ contains
       call write_file(dir//'/ok.csv', 't,theta1'//achar(10)//'0,0'//achar(10)//'0.1,0.1'// &
                       achar(10)//'0.2,0.1'//achar(10)//'0.3,0.1')
       call expect_refused(dir//'/ok.csv', '--links 2', 'links')
-      call expect_refused(dir//'/ok.csv', '--fit-window 0', 'fit-window')
+      call expect_refused(dir//'/ok.csv', '--fit-window -1', 'invalid fit-window')
+      call expect_refused(dir//'/ok.csv', '--fit-window 0', '1 samples in the fit window')
+      call expect_refused(dir//'/ok.csv', '--starts 0', 'invalid starts')
       call expect_refused(dir//'/ok.csv', '--horizon-tolerance -1', 'horizon-tolerance')
       call expect_refused(dir//'/ok.csv', '--method leapfrog', 'method')
       call expect_refused(dir//'/missing.csv', '', 'no such file')

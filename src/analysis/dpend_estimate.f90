@@ -21,9 +21,15 @@
 !> The iteration: LM with Marquardt's scaling D = diag(JᵀJ),
 !> (JᵀJ + λ D) δ = −Jᵀ r, λ divided by 10 after a successful step and multiplied by 10
 !> after a failed one. A chaotic series is fitted by continuation: the window grows from
-!> the fewest samples that determine p, doubling the number of samples, each stage
-!> started from the previous estimate (a good guess at the start of the series is a poor
-!> one over a long window). Damping coefficients are kept ≥ 0 (projected).
+!> the fewest samples that determine p, each stage started from the previous estimate
+!> (a good guess at the start of the series is a poor one over a long window): the next
+!> window ends at the sample before the stage's model leaves the data by more than
+!> max(10 × its RMS residual, 0.01 rad), and is at least 1.25 times longer. The damping
+!> is held at its guess while the window is shorter than 2π sqrt(Σ L_i / g) (a fraction
+!> of a swing barely determines it, and a runaway value makes the model stiff), and kept
+!> ≥ 0 (projected). Optionally (`starts` > 1) the first stage is started from several
+!> rates, the lowest cost kept: samples far apart on a chaotic motion (the reference
+!> table, one per second) leave the finite-difference rates far from the basin.
 !>
 !> Statistics at the solution: σ² = Σ r²/(m − P) with m residuals and P parameters, the
 !> covariance σ² (JᵀJ)⁻¹, standard errors its diagonal's square roots, the correlation
@@ -402,6 +408,7 @@ contains
       real(dp), intent(in), optional :: guess(:)        !! first guess (default:
                                                         !! `initial_guess`)
       real(dp), allocatable :: r(:), jac(:, :), a(:, :)
+      real(dp) :: period, thr
       integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax
       logical :: conv
       n = size(q, 1)
@@ -434,17 +441,38 @@ contains
          res%iterations = it
          if (allocated(error)) return
       end if
+      period = huge(1.0_dp)
+      if (prob%fit_damping) then
+         if (prob%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(prob%l)/prob%g)
+      end if
+      allocate (r(n*res%k_fit))
       do
-         call levenberg_marquardt(prob, t, q, k_stage, res%p, it, conv, error)
+         ! the damping is held at its guess while the window is shorter than a swing
+         ! (a fraction of a swing barely determines it, and large values make the
+         ! model stiff)
+         call levenberg_marquardt(prob, t, q, k_stage, res%p, it, conv, error, &
+                                  hold_damping=t(k_stage) - t(1) < period .and. &
+                                  k_stage < res%k_fit)
          res%iterations = res%iterations + it
          res%stages = res%stages + 1
          if (allocated(error)) return
          if (k_stage == res%k_fit) exit
-         k_stage = min(res%k_fit, 2*k_stage)
+         ! the next window: up to the sample before the stage's model leaves the data
+         ! by max(10 RMS, 0.01 rad), at least 1.25 times longer
+         call evaluate_fit(prob, res%p, t, q, res%k_fit, r, error)
+         if (allocated(error)) return
+         thr = max(10.0_dp*sqrt(sum(r(:n*k_stage)**2)/real(n*k_stage, dp)), 0.01_dp)
+         j = k_stage + 1
+         do while (j <= res%k_fit)
+            if (maxval(abs(r(n*(j - 1) + 1:n*j))) > thr) exit
+            j = j + 1
+         end do
+         k_stage = min(res%k_fit, max(j - 1, k_stage + max(1, k_stage/4)))
       end do
       res%converged = conv
       ! statistics of the fit window
       kk = res%k_fit
+      deallocate (r)
       allocate (r(n*kk), jac(n*kk, np))
       call evaluate_fit(prob, res%p, t, q, kk, r, error, jac)
       if (allocated(error)) return
@@ -531,7 +559,7 @@ contains
             ps(n + i) = p(n + i) + spread*(2.0_dp*halton(s - 1, primes(i)) - 1.0_dp)
          end do
          if (s == 1) ps = p
-         call levenberg_marquardt(quick, t, q, k, ps, it, conv, err)
+         call levenberg_marquardt(quick, t, q, k, ps, it, conv, err, hold_damping=.true.)
          iterations = iterations + it
          if (allocated(err)) then
             deallocate (err)
@@ -571,7 +599,10 @@ contains
    end function halton
 
    !> Levenberg–Marquardt on the first k samples, from p (updated).
-   subroutine levenberg_marquardt(prob, t, q, k, p, iterations, converged, error)
+   !> With `hold_damping` the damping stays at its value (its rows and columns of the
+   !> normal equations are replaced by the identity's, its step is zero).
+   subroutine levenberg_marquardt(prob, t, q, k, p, iterations, converged, error, &
+                                  hold_damping)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: t(:), q(:, :)
       integer, intent(in) :: k
@@ -579,6 +610,7 @@ contains
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
       type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: hold_damping
       real(dp), allocatable :: r(:), jac(:, :), rn(:), jn(:, :), a(:, :), g(:), d(:)
       real(dp), allocatable :: pn(:), b(:, :)
       type(error_t), allocatable :: trial_error
@@ -598,6 +630,16 @@ contains
          iterations = it
          a = matmul(transpose(jac), jac)
          g = matmul(transpose(jac), r)
+         if (present(hold_damping) .and. prob%fit_damping) then
+            if (hold_damping) then
+               a(2*n + 1:, :) = 0.0_dp
+               a(:, 2*n + 1:) = 0.0_dp
+               do i = 2*n + 1, np
+                  a(i, i) = 1.0_dp
+               end do
+               g(2*n + 1:) = 0.0_dp
+            end if
+         end if
          do i = 1, np
             d(i) = a(i, i)
          end do
