@@ -388,11 +388,12 @@ contains
       n = res%n
       call parameter_names(n, fc%fit_damping, names, units)
       joined = trim(names(1))
-      units_text = trim(units(1))
       do i = 2, np
          joined = joined//','//trim(names(i))
-         units_text = units_text//','//trim(units(i))
       end do
+      ! by blocks of components (docs/hdf5-layout.md)
+      units_text = 'rad, rad/s'
+      if (fc%fit_damping) units_text = units_text//', N m s'
       allocate (interval(2, np))
       interval(1, :) = res%p - res%t95*res%se
       interval(2, :) = res%p + res%t95*res%se
@@ -416,7 +417,8 @@ contains
                     'standard errors: sqrt of the diagonal of sigma^2 (J^T J)^-1')
       call h5%write('/fit/interval95', interval, units=units_text, description='95 % ' &
                     //'intervals estimate -/+ t(0.975, dof) standard error (lower, upper)')
-      call h5%write('/fit/covariance', res%cov, units='products of the units', &
+      call h5%write('/fit/covariance', res%cov, units=units_text//' (row unit times ' &
+                    //'column unit)', &
                     description='covariance sigma^2 (J^T J)^-1 of the estimates')
       call h5%write('/fit/correlation', res%corr, units='1', description='correlation ' &
                     //'matrix of the estimates')
