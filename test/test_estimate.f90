@@ -40,6 +40,7 @@ contains
       tests = [new_unittest('reference_initial_state', test_reference), &
                new_unittest('sensitivities_finite_differences', test_sensitivities), &
                new_unittest('coverage_95', test_coverage), &
+               new_unittest('student_t_quantile', test_student), &
                new_unittest('csv_refusals', test_csv_refusals), &
                new_unittest('command_refusals', test_command_refusals), &
                new_unittest('command_writes_report', test_command)]
@@ -214,6 +215,17 @@ contains
                          to_str(hits(j))//'/50 below 90 %')
       end do
    end subroutine test_coverage
+
+   !> t_(0.975, ν) against tabulated values (R's qt(0.975, ν), 10 digits).
+   subroutine test_student(error)
+      type(error_t), allocatable, intent(out) :: error
+      call check(error, student_t95(1), 12.70620474_dp, 't(1)', rel=1e-9_dp)
+      call check(error, student_t95(8), 2.306004135_dp, 't(8)', rel=1e-9_dp)
+      call check(error, student_t95(9), 2.262157163_dp, 't(9)', rel=1e-5_dp)
+      call check(error, student_t95(10), 2.228138852_dp, 't(10)', rel=1e-5_dp)
+      call check(error, student_t95(30), 2.042272456_dp, 't(30)', rel=1e-6_dp)
+      call check(error, student_t95(1000), 1.962339081_dp, 't(1000)', rel=1e-8_dp)
+   end subroutine test_student
 
    !> Angles of the damped compound pendulum (q0, q̇0, c) = truth at times t, by
    !> dop853 at rtol 1e-12 (an integration independent of the fit's).

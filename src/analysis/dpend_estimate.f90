@@ -691,17 +691,19 @@ contains
       end do
    end subroutine levenberg_marquardt
 
-   !> Student's t quantile t_(0.975, ν) (Cornish–Fisher expansion about the normal
-   !> quantile; exact table values for ν ≤ 4; relative error below 1e-4 for ν ≥ 5).
+   !> Student's t quantile t_(0.975, ν): table values for ν ≤ 8, beyond the
+   !> Cornish–Fisher expansion about the normal quantile (relative error below 1e-5).
    pure real(dp) function student_t95(nu) result(tq)
       integer, intent(in) :: nu   !! degrees of freedom
       real(dp), parameter :: z = 1.959963984540054_dp
-      real(dp), parameter :: small(4) = [12.70620473617471_dp, 4.302652729911275_dp, &
-                                         3.182446305284263_dp, 2.776445105197799_dp]
+      real(dp), parameter :: small(8) = [12.70620473617471_dp, 4.302652729911275_dp, &
+                                         3.182446305284263_dp, 2.776445105197799_dp, &
+                                         2.570581835636314_dp, 2.446911851144969_dp, &
+                                         2.364624251592785_dp, 2.306004135204166_dp]
       real(dp) :: v
       if (nu <= 0) then
          tq = huge(1.0_dp)
-      else if (nu <= 4) then
+      else if (nu <= 8) then
          tq = small(nu)
       else
          v = real(nu, dp)
