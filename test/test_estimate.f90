@@ -41,6 +41,7 @@ contains
                new_unittest('sensitivities_finite_differences', test_sensitivities), &
                new_unittest('coverage_95', test_coverage), &
                new_unittest('student_t_quantile', test_student), &
+               new_unittest('positions_driven_damped', test_positions), &
                new_unittest('csv_refusals', test_csv_refusals), &
                new_unittest('command_refusals', test_command_refusals), &
                new_unittest('command_writes_report', test_command)]
@@ -216,6 +217,74 @@ contains
       end do
    end subroutine test_coverage
 
+   !> Positions of the link ends (cm in the file) of a damped chain (N = 2, unequal
+   !> links) on a moving support, exact (dop853 at rtol 1e-12): the fit of the state
+   !> and the damping recovers them to 1e-7.
+   subroutine test_positions(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(series_t) :: s
+      type(error_t), allocatable :: err
+      integer, parameter :: k = 101
+      real(dp) :: truth(6), y(4), tt, h, ra(2), va(2), aa(2), pos(2), xy(4, k), t(k)
+      character(len=:), allocatable :: text
+      character(len=160) :: buf
+      integer :: j, i, stat
+      truth = [-1.2_dp, -0.6_dp, 0.8_dp, -0.5_dp, 0.04_dp, 0.02_dp]
+      chain = chain_model([1.0_dp, 0.5_dp], [1.0_dp, 0.8_dp], 9.8_dp, error, &
+                          damping=truth(5:6), amplitude=[0.0_dp, 0.01_dp], frequency=5.0_dp, &
+                          phase=[0.0_dp, 0.3_dp])
+      if (allocated(error)) return
+      call new_integrator('dop853', integ, error, method_options_t(rtol=1e-12_dp, &
+                          atol=1e-14_dp))
+      if (allocated(error)) return
+      y = truth(1:4)
+      tt = 0.0_dp
+      h = 1e-3_dp
+      text = 't [s],x1 [cm],y1 [cm],x2 [cm],y2 [cm]'//achar(10)
+      do j = 1, k
+         t(j) = 0.02_dp*(j - 1)
+         if (j > 1) call advance_to(integ, chain, tt, y, t(j), h, stat)
+         call check_true(error, stat == stat_ok .or. j == 1, 'synthetic run')
+         if (allocated(error)) return
+         call chain%support(t(j), ra, va, aa)
+         pos = ra
+         do i = 1, 2
+            pos = pos + chain%l(i)*[cos(y(i)), sin(y(i))]
+            xy(2*i - 1:2*i, j) = pos
+         end do
+         write (buf, '(f0.2, 4(",", es24.16))') t(j), 100.0_dp*xy(:, j)
+         text = text//trim(buf)//achar(10)
+      end do
+      call parse_series(text, s, err)
+      call check_true(error, .not. allocated(err), 'positions file accepted')
+      if (allocated(error)) return
+      call check_true(error, s%positions .and. s%n == 2 .and. s%n_obs == 4, 'positions read')
+      call check(error, s%q(:, k), xy(:, k), 'cm -> m', rel=1e-15_dp)
+      if (allocated(error)) return
+      prob%fit_damping = .true.
+      prob%positions = .true.
+      prob%m = chain%m
+      prob%l = chain%l
+      prob%g = 9.8_dp
+      prob%sup_a = [0.0_dp, 0.01_dp]
+      prob%sup_w = 5.0_dp
+      prob%sup_phi = [0.0_dp, 0.3_dp]
+      prob%c0 = [0.0_dp, 0.0_dp]
+      prob%method = 'dop853'
+      prob%rtol = 1e-12_dp
+      prob%atol = 1e-14_dp
+      call fit_series(prob, s%t, s%q, huge(1.0_dp), 0.01_dp, res, error)
+      if (allocated(error)) return
+      call report('positions (cm) of a damped chain on a moving support, 2 s: |p - truth| = ' &
+                  //real_str(maxval(abs(res%p - truth)), 2)//', rms '//real_str(res%rms, 2) &
+                  //' m, '//to_str(res%iterations)//' iterations')
+      call check(error, res%p, truth, 'state and damping', abs=1e-7_dp)
+   end subroutine test_positions
+
    !> t_(0.975, ν) against tabulated values (R's qt(0.975, ν), 10 digits).
    subroutine test_student(error)
       type(error_t), allocatable, intent(out) :: error
@@ -284,12 +353,15 @@ contains
       call expect('t,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
                   'line 5: t = 0.1 s is not after')
       call expect('time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
-      call expect('t,x1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
+      call expect('t,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
       call expect('t,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
       call expect('t,theta1,q2'//lf//'0,0.1,0.2'//lf, "column 'q2' mixes theta and q")
       call expect('t [ms],theta1'//lf//'0,0.1'//lf, "column 't' has the unit '[ms]'")
       call expect('t,theta1'//lf, 'has no data rows')
       call expect('# only a comment'//lf, 'has no header line')
+      call expect('t,x1,y1,x2'//lf//'0,1,0,2'//lf, 'missing column y2')
+      call expect('t,x1 [in],y1'//lf//'0,1,0'//lf, "column 'x1' has the unit '[in]'")
+      call expect('t,x1,y1'//lf//'0,1,0'//lf//'1,1,zz'//lf, "line 3, column y1: 'zz'")
       ! accepted: CRLF, blanks, units, comments, q columns, ignored columns
       call parse_series('# c'//lf//' t [s] , q1 [rad], qdot1 '//achar(13)//lf// &
                         '0, -1.5, 9'//achar(13)//lf//'0.5,-1.4,x'//lf, s, err)

@@ -71,6 +71,9 @@ module dpend_estimate
       real(dp) :: atol = 1e-14_dp
       real(dp) :: dt = 1e-3_dp                !! first trial step [s]
       integer :: max_iter = 200               !! LM iterations per stage
+      !> the observations are the positions x_i, y_i of the link ends [m] (lengths `l`,
+      !> the support's motion from sup_*), not the angles
+      logical :: positions = .false.
       !> first-stage starts: the guess and starts-1 others whose rates spread over
       !> guess ± max(|guess rates|, 1 rad/s) (a Halton sequence); the lowest cost wins
       integer :: starts = 1
@@ -268,6 +271,7 @@ contains
       real(dp), intent(in) :: p(:)                      !! parameters
       real(dp), intent(in) :: t(:)                      !! sample times [s]
       real(dp), intent(in) :: q(:, :)                   !! measured angles (N, K) [rad]
+                                                        !! or positions (2N, K) [m]
       integer, intent(in) :: k                          !! samples used
       real(dp), intent(out) :: r(:)                     !! residuals (N k) [rad]
       type(error_t), allocatable, intent(out) :: error  !! the integration failed
@@ -276,11 +280,13 @@ contains
       class(integrator_t), allocatable :: integ
       type(tangent_t) :: tan
       type(march_t) :: march
-      real(dp), allocatable :: y(:), v0(:, :)
+      real(dp), allocatable :: y(:), v0(:, :), o(:), d(:, :)
       real(dp) :: tt, h
-      integer :: n, nc, np, ns, j, stat
-      n = size(q, 1)
+      integer :: n, nc, np, ns, j, stat, no
+      no = size(q, 1)
+      n = merge(no/2, no, prob%positions)
       np = size(p)
+      allocate (o(no), d(no, n))
       call model_for(prob, p, sm, error)
       if (allocated(error)) return
       nc = sm%nc
@@ -309,8 +315,9 @@ contains
          call tan%init(v0)
          tan%theta = 0.05_dp
       end if
-      r(1:n) = wrap(p(1:n) - q(:, 1))
-      if (present(jac)) jac(1:n, :) = v0(1:n, :)
+      call observe(prob, t(1), p(1:n), o, d)
+      r(1:no) = residual(prob, o, q(:, 1))
+      if (present(jac)) jac(1:no, :) = matmul(d, v0(1:n, :))
       tt = t(1)
       h = prob%dt
       call integ%clear_step()
@@ -333,8 +340,9 @@ contains
                end if
             end if
          end do
-         r(n*(j - 1) + 1:n*j) = wrap(y(1:n) - q(:, j))
-         if (present(jac)) jac(n*(j - 1) + 1:n*j, :) = tan%v(1:n, :)
+         call observe(prob, tt, y(1:n), o, d)
+         r(no*(j - 1) + 1:no*j) = residual(prob, o, q(:, j))
+         if (present(jac)) jac(no*(j - 1) + 1:no*j, :) = matmul(d, tan%v(1:n, :))
       end do
    end subroutine evaluate_fit
 
@@ -362,6 +370,62 @@ contains
       end if
    end subroutine model_for
 
+   !> The observations o at time t for the angles q, and ∂o/∂q: the angles themselves,
+   !> or the positions of the link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j).
+   pure subroutine observe(prob, t, q, o, d)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t, q(:)
+      real(dp), intent(out) :: o(:), d(:, :)
+      real(dp) :: pos(2)
+      integer :: i, j, n
+      n = size(q)
+      d = 0.0_dp
+      if (.not. prob%positions) then
+         o = q
+         do i = 1, n
+            d(i, i) = 1.0_dp
+         end do
+         return
+      end if
+      pos = prob%sup_a*cos(prob%sup_w*t + prob%sup_phi)
+      do i = 1, n
+         pos = pos + prob%l(i)*[cos(q(i)), sin(q(i))]
+         o(2*i - 1:2*i) = pos
+         do j = 1, i
+            d(2*i - 1, j) = -prob%l(j)*sin(q(j))
+            d(2*i, j) = prob%l(j)*cos(q(j))
+         end do
+      end do
+   end subroutine observe
+
+   !> Model minus data: angles wrapped into [−π, π), positions as they are.
+   pure function residual(prob, o, data) result(r)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: o(:), data(:)
+      real(dp) :: r(size(o))
+      if (prob%positions) then
+         r = o - data
+      else
+         r = wrap(o - data)
+      end if
+   end function residual
+
+   !> The angles of the link ends' positions xy (2N, K) at times t.
+   pure function angles_of(prob, t, xy) result(q)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t(:), xy(:, :)
+      real(dp) :: q(size(xy, 1)/2, size(t))
+      real(dp) :: prev(2)
+      integer :: i, j
+      do j = 1, size(t)
+         prev = prob%sup_a*cos(prob%sup_w*t(j) + prob%sup_phi)
+         do i = 1, size(q, 1)
+            q(i, j) = atan2(xy(2*i, j) - prev(2), xy(2*i - 1, j) - prev(1))
+            prev = xy(2*i - 1:2*i, j)
+         end do
+      end do
+   end function angles_of
+
    !> x wrapped into [−π, π).
    elemental real(dp) function wrap(x)
       real(dp), intent(in) :: x
@@ -372,13 +436,19 @@ contains
 
    !> The first guess: angles of the first sample, rates from the three-point
    !> (two-point for two samples) difference of the first samples; damping c0.
-   function initial_guess(prob, t, q) result(p)
+   function initial_guess(prob, t, obs) result(p)
       type(fit_problem_t), intent(in) :: prob   !! (c0 when the damping is fitted)
       real(dp), intent(in) :: t(:)              !! sample times [s]
-      real(dp), intent(in) :: q(:, :)           !! angles (N, K) [rad]
+      real(dp), intent(in) :: obs(:, :)         !! angles (N, K) [rad] or positions
       real(dp), allocatable :: p(:)
+      real(dp), allocatable :: q(:, :)
       integer :: n
       real(dp) :: h1, h2
+      if (prob%positions) then
+         q = angles_of(prob, t(:min(3, size(t))), obs(:, :min(3, size(t))))
+      else
+         q = obs(:, :min(3, size(t)))
+      end if
       n = size(q, 1)
       allocate (p(merge(3*n, 2*n, prob%fit_damping)))
       p(1:n) = q(:, 1)
@@ -386,9 +456,8 @@ contains
          ! derivative at t1 of the parabola through the first three samples
          h1 = t(2) - t(1)
          h2 = t(3) - t(1)
-         p(n + 1:2*n) = (-(h1 + h2)/(h1*h2))*0.0_dp + &
-                        (wrap(q(:, 2) - q(:, 1))*h2/(h1*(h2 - h1)) - &
-                         wrap(q(:, 3) - q(:, 1))*h1/(h2*(h2 - h1)))
+         p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))*h2/(h1*(h2 - h1)) - &
+                        wrap(q(:, 3) - q(:, 1))*h1/(h2*(h2 - h1))
       else
          p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))/(t(2) - t(1))
       end if
@@ -400,28 +469,30 @@ contains
    subroutine fit_series(prob, t, q, t_window, tolerance, res, error, guess)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
-      real(dp), intent(in) :: q(:, :)                   !! angles (N, K) [rad]
+      real(dp), intent(in) :: q(:, :)                   !! angles (N, K) [rad], or
+                                                        !! positions (2N, K) [m]
       real(dp), intent(in) :: t_window                  !! end T of the fit window [s]
-      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad]
+      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad or m]
       type(fit_result_t), intent(out) :: res            !! estimates and statistics
       type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
       real(dp), intent(in), optional :: guess(:)        !! first guess (default:
                                                         !! `initial_guess`)
       real(dp), allocatable :: r(:), jac(:, :), a(:, :)
       real(dp) :: period, thr
-      integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax
+      integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
       logical :: conv
-      n = size(q, 1)
+      no = size(q, 1)
+      n = merge(no/2, no, prob%positions)
       res%n = n
       np = merge(3*n, 2*n, prob%fit_damping)
       res%np = np
       res%tolerance = tolerance
       kmax = size(t)
       res%k_fit = count(t <= t_window)
-      if (n*res%k_fit <= np) then
+      if (no*res%k_fit <= np) then
          call fatal_error(error, to_str(res%k_fit)//' samples in the fit window give ' &
-                          //to_str(n*res%k_fit)//' residuals for '//to_str(np)// &
-                          ' parameters: at least '//to_str(np/n + 1)//' samples are needed')
+                          //to_str(no*res%k_fit)//' residuals for '//to_str(np)// &
+                          ' parameters: at least '//to_str(np/no + 1)//' samples are needed')
          return
       end if
       res%t_window = t(res%k_fit)
@@ -432,7 +503,7 @@ contains
       end if
       res%p = res%guess
       ! continuation: the window grows from the fewest samples that determine p
-      k_min = min(res%k_fit, max(3, np/n + 1))
+      k_min = min(res%k_fit, max(3, np/no + 1))
       k_stage = k_min
       res%iterations = 0
       res%stages = 0
@@ -445,7 +516,7 @@ contains
       if (prob%fit_damping) then
          if (prob%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(prob%l)/prob%g)
       end if
-      allocate (r(n*res%k_fit))
+      allocate (r(no*res%k_fit))
       do
          ! the damping is held at its guess while the window is shorter than a swing
          ! (a fraction of a swing barely determines it, and large values make the
@@ -458,13 +529,15 @@ contains
          if (allocated(error)) return
          if (k_stage == res%k_fit) exit
          ! the next window: up to the sample before the stage's model leaves the data
-         ! by max(10 RMS, 0.01 rad), at least 1.25 times longer
+         ! by max(10 RMS, 0.01 rad or 0.01 Σ L_i), at least 1.25 times longer
          call evaluate_fit(prob, res%p, t, q, res%k_fit, r, error)
          if (allocated(error)) return
-         thr = max(10.0_dp*sqrt(sum(r(:n*k_stage)**2)/real(n*k_stage, dp)), 0.01_dp)
+         thr = 0.01_dp   ! (rad; m per metre of chain for positions)
+         if (prob%positions) thr = 0.01_dp*sum(prob%l)
+         thr = max(10.0_dp*sqrt(sum(r(:no*k_stage)**2)/real(no*k_stage, dp)), thr)
          j = k_stage + 1
          do while (j <= res%k_fit)
-            if (maxval(abs(r(n*(j - 1) + 1:n*j))) > thr) exit
+            if (maxval(abs(r(no*(j - 1) + 1:no*j))) > thr) exit
             j = j + 1
          end do
          k_stage = min(res%k_fit, max(j - 1, k_stage + max(1, k_stage/4)))
@@ -473,11 +546,11 @@ contains
       ! statistics of the fit window
       kk = res%k_fit
       deallocate (r)
-      allocate (r(n*kk), jac(n*kk, np))
+      allocate (r(no*kk), jac(no*kk, np))
       call evaluate_fit(prob, res%p, t, q, kk, r, error, jac)
       if (allocated(error)) return
-      res%dof = n*kk - np
-      res%rms = sqrt(sum(r**2)/real(n*kk, dp))
+      res%dof = no*kk - np
+      res%rms = sqrt(sum(r**2)/real(no*kk, dp))
       res%sigma = sqrt(sum(r**2)/real(res%dof, dp))
       a = matmul(transpose(jac), jac)
       call dpotrf('L', np, a, np, info)
@@ -504,10 +577,10 @@ contains
       res%t95 = student_t95(res%dof)
       ! the whole series with the fitted model
       deallocate (r)
-      allocate (r(n*kmax))
+      allocate (r(no*kmax))
       call evaluate_fit(prob, res%p, t, q, kmax, r, error)
       if (allocated(error)) return
-      res%resid = -reshape(r, [n, kmax])
+      res%resid = -reshape(r, [no, kmax])
       res%q_model = q - res%resid
       res%has_after = kmax > kk
       res%horizon = 0.0_dp
@@ -542,8 +615,8 @@ contains
       logical :: conv
       integer, parameter :: primes(max_dof) = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, &
          41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127, 131]
-      n = size(q, 1)
-      allocate (r(n*k))
+      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      allocate (r(size(q, 1)*k))
       ! the starts only have to find the basin: looser tolerances, fewer iterations
       quick = prob
       quick%rtol = max(prob%rtol, 1e-8_dp)
@@ -616,8 +689,8 @@ contains
       type(error_t), allocatable :: trial_error
       real(dp) :: cost, cost_n, lambda
       integer :: m, np, it, tries, info, i, n
-      n = size(q, 1)
-      m = n*k
+      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      m = size(q, 1)*k
       np = size(p)
       allocate (r(m), jac(m, np), rn(m), jn(m, np), g(np), d(np), pn(np), b(np, 1))
       call evaluate_fit(prob, p, t, q, k, r, error, jac)

@@ -28,6 +28,8 @@ module dpend_fit_command
 
    !> Most starting points of the first stage (--starts).
    integer, parameter :: max_starts = 1000
+   !> Largest horizon tolerance for positions [m].
+   real(dp), parameter :: max_position_tol = 1e6_dp
 
    !> Everything `dpend fit` needs.
    type :: fit_config_t
@@ -177,11 +179,6 @@ contains
                           //'dpend fit --help)')
          return
       end if
-      if (.not. (fc%tolerance > 0.0_dp .and. fc%tolerance <= pi)) then
-         call fatal_error(error, 'invalid horizon-tolerance: '//real_str(fc%tolerance)// &
-                          ' rad is outside (0, pi] [--horizon-tolerance]')
-         return
-      end if
       if (fc%starts < 1 .or. fc%starts > max_starts) then
          call fatal_error(error, 'invalid starts: '//to_str(fc%starts)//' is outside [1, ' &
                           //to_str(max_starts)//'] [--starts]')
@@ -192,6 +189,19 @@ contains
       call read_series(fc%input, fc%series, error)
       if (allocated(error)) return
       associate (s => fc%series)
+         if (s%positions) then
+            if (.not. (fc%tolerance > 0.0_dp .and. fc%tolerance <= max_position_tol)) then
+               call fatal_error(error, 'invalid horizon-tolerance: '// &
+                                real_str(fc%tolerance)//' m (the data are positions) is ' &
+                                //'outside (0, '//real_str(max_position_tol)// &
+                                '] [--horizon-tolerance]')
+               return
+            end if
+         else if (.not. (fc%tolerance > 0.0_dp .and. fc%tolerance <= pi)) then
+            call fatal_error(error, 'invalid horizon-tolerance: '//real_str(fc%tolerance)// &
+                             ' rad is outside (0, pi] [--horizon-tolerance]')
+            return
+         end if
          if (links_given .and. fc%run%links /= s%n) then
             call fatal_error(error, 'invalid links: '//to_str(fc%run%links)//" given, the " &
                              //"data file '"//fc%input//"' has "//to_str(s%n)// &
@@ -226,11 +236,11 @@ contains
          end if
          np = merge(3*s%n, 2*s%n, fc%fit_damping)
          k_fit = count(s%t <= fc%fit_window)
-         if (s%n*k_fit <= np) then
+         if (s%n_obs*k_fit <= np) then
             call fatal_error(error, "invalid data file '"//fc%input//"': "//to_str(k_fit)// &
-                             ' samples in the fit window give '//to_str(s%n*k_fit)// &
+                             ' samples in the fit window give '//to_str(s%n_obs*k_fit)// &
                              ' residuals for '//to_str(np)//' parameters: at least '// &
-                             to_str(np/s%n + 1)//' samples are needed (lines '// &
+                             to_str(np/s%n_obs + 1)//' samples are needed (lines '// &
                              to_str(s%line(1))//' to '//to_str(s%line(k_fit))//')')
             return
          end if
@@ -251,6 +261,7 @@ contains
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
       prob%fit_damping = fc%fit_damping
+      prob%positions = fc%series%positions
       prob%m = fc%run%m(:n)
       prob%l = fc%run%l(:n)
       prob%g = fc%run%g
@@ -308,8 +319,9 @@ contains
       type(fit_config_t), intent(in) :: fc
       type(fit_result_t), intent(in) :: res
       character(len=16), allocatable :: names(:), units(:)
-      character(len=:), allocatable :: line
+      character(len=:), allocatable :: line, ou
       integer :: i, j, np
+      ou = trim(merge('m  ', 'rad', fc%series%positions))
       associate (s => fc%series)
          write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//to_str(s%n)// &
             merge(' link ', ' links', s%n == 1)//', '//to_str(s%k)//' samples, t1 = '// &
@@ -318,6 +330,8 @@ contains
             fc%run%method//' rtol '//real_str(fc%run%rtol)
          if (s%theta) write (output_unit, '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
+         if (s%positions) write (output_unit, '(a)') '  (the file gives the positions of ' &
+            //'the link ends: residuals and tolerance in m)'
       end associate
       call parameter_names(res%n, fc%fit_damping, names, units)
       np = res%np
@@ -337,8 +351,8 @@ contains
          end do
          write (output_unit, '(a)') line
       end do
-      write (output_unit, '(a)') '  RMS residual '//real_str(res%rms, 3)//' rad (sigma '// &
-         real_str(res%sigma, 3)//' rad, '//to_str(res%dof)//' degrees of freedom, t = '// &
+      write (output_unit, '(a)') '  RMS residual '//real_str(res%rms, 3)//' '//ou// &
+         ' (sigma '//real_str(res%sigma, 3)//' '//ou//', '//to_str(res%dof)//' degrees of freedom, t = '// &
          real_str(res%t95, 4)//'); '//to_str(res%iterations)//' iterations in '// &
          to_str(res%stages)//' stages, '//trim(merge('converged    ', 'not converged', &
          res%converged))
@@ -346,11 +360,11 @@ contains
          if (res%horizon_censored) then
             write (output_unit, '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: at least '//real_str(res%horizon, 4)// &
-               ' s (within '//real_str(res%tolerance)//' rad up to the last sample)'
+               ' s (within '//real_str(res%tolerance)//' '//ou//' up to the last sample)'
          else
             write (output_unit, '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: '//real_str(res%horizon, 4)//' s (tolerance ' &
-               //real_str(res%tolerance)//' rad)'
+               //real_str(res%tolerance)//' '//ou//')'
          end if
       else
          write (output_unit, '(a)') '  prediction horizon: none (no samples after the fit ' &
@@ -401,12 +415,22 @@ contains
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call h5%write('/fit/t', fc%series%t, units='s', description='sample times of the data')
-      call h5%write('/fit/q_data', fc%series%q, units='rad', description='measured angles ' &
-                    //'q_i from the horizontal x axis (theta - pi/2 for theta columns)')
-      call h5%write('/fit/q_model', res%q_model, units='rad', description='angles of the ' &
-                    //'fitted model at the sample times')
-      call h5%write('/fit/residual', res%resid, units='rad', description='data minus ' &
-                    //'model, wrapped to [-pi, pi)')
+      if (fc%series%positions) then
+         call h5%write('/fit/xy_data', fc%series%q, units='m', description='measured ' &
+                       //'positions x_i, y_i of the far ends of the links (origin: the pin)')
+         call h5%write('/fit/xy_model', res%q_model, units='m', description='positions ' &
+                       //'of the fitted model at the sample times')
+         call h5%write('/fit/residual', res%resid, units='m', description='data minus ' &
+                       //'model (x_1, y_1, ..., x_N, y_N)')
+      else
+         call h5%write('/fit/q_data', fc%series%q, units='rad', description='measured ' &
+                       //'angles q_i from the horizontal x axis (theta - pi/2 for theta ' &
+                       //'columns)')
+         call h5%write('/fit/q_model', res%q_model, units='rad', description='angles of ' &
+                       //'the fitted model at the sample times')
+         call h5%write('/fit/residual', res%resid, units='rad', description='data minus ' &
+                       //'model, wrapped to [-pi, pi)')
+      end if
       call h5%write('/fit/in_window', window, units='1', description='1 for the samples ' &
                     //'of the fit window (t <= T), 0 after it')
       call h5%write('/fit/estimate', res%p, units=units_text, description='estimates of '// &
@@ -439,7 +463,13 @@ contains
       call h5%writeattr('/fit', 'horizon_censored', merge(1, 0, res%horizon_censored))
       call h5%writeattr('/fit', 'has_after', merge(1, 0, res%has_after))
       call h5%writeattr('/fit', 'input', fc%input)
-      call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', fc%series%theta)))
+      if (fc%series%positions) then
+         call h5%writeattr('/fit', 'observations', 'positions')
+      else
+         call h5%writeattr('/fit', 'observations', 'angles')
+         call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &
+                           fc%series%theta)))
+      end if
       call h5%writeattr('/', 'command', 'fit')
       call h5%writeattr('/', 'version', version)
       call h5%writeattr('/', 'method', fc%run%method)

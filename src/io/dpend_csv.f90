@@ -11,8 +11,12 @@
 !>   (the project's angles from the horizontal x axis, as `dpend export --csv`
 !>   writes them); N is the number of angle columns. Columns with other names are
 !>   allowed and ignored (e.g. qdot1);
-!> - every data row has as many fields as the header; t and the angles are finite
-!>   numbers, and the times increase strictly.
+!> - or, without angle columns, the positions of the far ends of the links (joint i + 1,
+!>   the tip for i = N) in the project's frame (origin at the pin A, x to the right, y
+!>   up): `x1,y1, …, xN,yN`, each with a length unit [m], [cm] or [mm] (none: m),
+!>   converted to m;
+!> - every data row has as many fields as the header; t and the observed values are
+!>   finite numbers, and the times increase strictly.
 !> Everything else is refused with one line that names the file, the line number and
 !> the problem (`csv_refusal`).
 module dpend_csv
@@ -34,7 +38,11 @@ module dpend_csv
       integer :: n = 0                    !! links N (angle columns)
       integer :: k = 0                    !! samples (data rows)
       real(dp), allocatable :: t(:)       !! times (k) [s]
-      real(dp), allocatable :: q(:, :)    !! angles from the horizontal x axis (n, k) [rad]
+      !> the observations (n_obs, k): angles from the horizontal x axis [rad] (n_obs = n),
+      !> or the positions x1, y1, …, xN, yN of the link ends [m] (n_obs = 2n)
+      real(dp), allocatable :: q(:, :)
+      integer :: n_obs = 0                !! observations per sample
+      logical :: positions = .false.      !! the file gave positions, not angles
       integer, allocatable :: line(:)     !! line number of each row in the file (k)
       logical :: theta = .false.          !! the file gave θ (from hanging), not q
    end type series_t
@@ -94,15 +102,16 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! the first problem
       character(len=1), parameter :: lf = achar(10), cr = achar(13)
       integer :: start, eol, line, n_fields, col_t, cap
-      integer :: col_q(max_dof)
+      integer :: col_q(2*max_dof)
+      real(dp) :: scale(2*max_dof), offset(2*max_dof)
       logical :: header_seen
       character(len=:), allocatable :: row
       real(dp), allocatable :: tt(:), qq(:, :)
       integer, allocatable :: ll(:)
-      real(dp) :: values(0:max_dof)
+      real(dp) :: values(0:2*max_dof)
       header_seen = .false.
       cap = 256
-      allocate (series%t(cap), series%q(max_dof, cap), series%line(cap))
+      allocate (series%t(cap), series%q(2*max_dof, cap), series%line(cap))
       series%k = 0
       n_fields = 0
       col_t = 0
@@ -125,13 +134,15 @@ contains
          if (len_trim(row) == 0) cycle
          if (index(adjustl(row), '#') == 1) cycle
          if (.not. header_seen) then
-            call parse_header(row, line, n_fields, col_t, col_q, series, error)
+            call parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, &
+                              error)
             if (allocated(error)) return
             header_seen = .true.
             cycle
          end if
-         call parse_row(row, line, n_fields, col_t, col_q(:series%n), series%theta, &
-                        values(0:series%n), error)
+         call parse_row(row, line, n_fields, col_t, col_q(:series%n_obs), &
+                        scale(:series%n_obs), offset(:series%n_obs), &
+                        obs_names(series), values(0:series%n_obs), error)
          if (allocated(error)) return
          if (series%k > 0) then
             if (.not. (values(0) > series%t(series%k))) then
@@ -144,7 +155,7 @@ contains
          end if
          if (series%k == cap) then
             cap = 2*cap
-            allocate (tt(cap), qq(max_dof, cap), ll(cap))
+            allocate (tt(cap), qq(2*max_dof, cap), ll(cap))
             tt(:series%k) = series%t(:series%k)
             qq(:, :series%k) = series%q(:, :series%k)
             ll(:series%k) = series%line(:series%k)
@@ -154,7 +165,7 @@ contains
          end if
          series%k = series%k + 1
          series%t(series%k) = values(0)
-         series%q(:series%n, series%k) = values(1:series%n)
+         series%q(:series%n_obs, series%k) = values(1:series%n_obs)
          series%line(series%k) = line
       end do
       if (.not. header_seen) then
@@ -168,26 +179,34 @@ contains
       end if
       tt = series%t(:series%k)
       call move_alloc(tt, series%t)
-      qq = series%q(:series%n, :series%k)
+      qq = series%q(:series%n_obs, :series%k)
       call move_alloc(qq, series%q)
       ll = series%line(:series%k)
       call move_alloc(ll, series%line)
    end subroutine parse_series
 
-   !> The header: the column of t and those of the N angles.
-   subroutine parse_header(row, line, n_fields, col_t, col_q, series, error)
+   !> The header: the column of t and those of the N angles (or 2N positions), with
+   !> the scale and offset that convert each to q [rad] or to m.
+   subroutine parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, error)
       character(len=*), intent(in) :: row               !! the header line
       integer, intent(in) :: line                       !! its number
       integer, intent(out) :: n_fields                  !! fields per row
       integer, intent(out) :: col_t                     !! column of t
-      integer, intent(out) :: col_q(max_dof)            !! column of angle i
-      type(series_t), intent(inout) :: series           !! n and theta set
+      integer, intent(out) :: col_q(2*max_dof)          !! column of observation i
+      real(dp), intent(out) :: scale(2*max_dof)         !! value = scale × number + offset
+      real(dp), intent(out) :: offset(2*max_dof)
+      type(series_t), intent(inout) :: series           !! n, n_obs, theta, positions set
       type(error_t), allocatable, intent(out) :: error  !! missing or repeated columns
       character(len=:), allocatable :: field, name, unit, kind, pre, this
-      integer :: start, comma, col, idx, stat, br
+      integer :: start, comma, col, idx, stat, br, col_x(max_dof), col_y(max_dof)
+      real(dp) :: sx(max_dof), sy(max_dof), f
       pre = 'line '//to_str(line)//' (header): '
       col_t = 0
       col_q = 0
+      col_x = 0
+      col_y = 0
+      scale = 1.0_dp
+      offset = 0.0_dp
       kind = ''
       n_fields = 0
       start = 1
@@ -247,6 +266,41 @@ contains
                return
             end if
             col_q(idx) = col
+         else if (angle_name(name, 'x') .or. angle_name(name, 'y')) then
+            read (name(2:), *, iostat=stat) idx
+            if (stat /= 0) idx = 0
+            if (idx < 1 .or. idx > max_dof) then
+               call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
+                                ' is outside [1, '//to_str(max_dof)//']')
+               return
+            end if
+            select case (unit)
+            case ('', '[m]')
+               f = 1.0_dp
+            case ('[cm]')
+               f = 0.01_dp
+            case ('[mm]')
+               f = 0.001_dp
+            case default
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"//unit// &
+                                "' (accepted: [m], [cm], [mm] or none for m)")
+               return
+            end select
+            if (name(1:1) == 'x') then
+               if (col_x(idx) /= 0) then
+                  call fatal_error(error, pre//"column '"//name//"' appears twice")
+                  return
+               end if
+               col_x(idx) = col
+               sx(idx) = f
+            else
+               if (col_y(idx) /= 0) then
+                  call fatal_error(error, pre//"column '"//name//"' appears twice")
+                  return
+               end if
+               col_y(idx) = col
+               sy(idx) = f
+            end if
          end if
          if (comma == 0) exit
          start = start + comma
@@ -257,11 +311,33 @@ contains
          return
       end if
       series%n = count(col_q > 0)
-      if (series%n == 0) then
-         call fatal_error(error, pre//'no angle columns (theta1, theta2, ... from the ' &
-                          //'hanging position or q1, q2, ... from the horizontal, in rad)')
+      if (series%n == 0 .and. any(col_x > 0 .or. col_y > 0)) then
+         ! positions x_i, y_i of the link ends
+         series%n = count(col_x > 0 .or. col_y > 0)
+         do idx = 1, series%n
+            if (col_x(idx) == 0 .or. col_y(idx) == 0) then
+               call fatal_error(error, pre//'missing column '//trim(merge('x', 'y', &
+                                col_x(idx) == 0))//to_str(idx)//' ('//to_str(series%n)// &
+                                ' links need the columns x1,y1 to x'//to_str(series%n)//',y' &
+                                //to_str(series%n)//')')
+               return
+            end if
+            col_q(2*idx - 1) = col_x(idx)
+            col_q(2*idx) = col_y(idx)
+            scale(2*idx - 1) = sx(idx)
+            scale(2*idx) = sy(idx)
+         end do
+         series%positions = .true.
+         series%n_obs = 2*series%n
          return
       end if
+      if (series%n == 0) then
+         call fatal_error(error, pre//'no angle columns (theta1, theta2, ... from the ' &
+                          //'hanging position or q1, q2, ... from the horizontal, in rad) ' &
+                          //'and no positions (x1,y1, ...)')
+         return
+      end if
+      series%n_obs = series%n
       do idx = 1, series%n
          if (col_q(idx) == 0) then
             call fatal_error(error, pre//'missing column '//kind//to_str(idx)//' ('// &
@@ -271,17 +347,37 @@ contains
          end if
       end do
       series%theta = kind == 'theta'
+      if (series%theta) offset(:series%n) = -half_pi
    end subroutine parse_header
 
-   !> One data row: t and the angles (converted to q).
-   subroutine parse_row(row, line, n_fields, col_t, col_q, theta, values, error)
+   !> Column names of the observations, for messages.
+   function obs_names(series) result(names)
+      type(series_t), intent(in) :: series
+      character(len=8) :: names(series%n_obs)
+      integer :: i
+      do i = 1, series%n
+         if (series%positions) then
+            names(2*i - 1) = 'x'//to_str(i)
+            names(2*i) = 'y'//to_str(i)
+         else if (series%theta) then
+            names(i) = 'theta'//to_str(i)
+         else
+            names(i) = 'q'//to_str(i)
+         end if
+      end do
+   end function obs_names
+
+   !> One data row: t and the observations (converted to q or m).
+   subroutine parse_row(row, line, n_fields, col_t, col_q, scale, offset, names, values, &
+                        error)
       character(len=*), intent(in) :: row               !! the line
       integer, intent(in) :: line                       !! its number
       integer, intent(in) :: n_fields                   !! fields of the header
       integer, intent(in) :: col_t                      !! column of t
-      integer, intent(in) :: col_q(:)                   !! columns of the angles
-      logical, intent(in) :: theta                      !! angles from hanging
-      real(dp), intent(out) :: values(0:)               !! t, q_1 … q_N
+      integer, intent(in) :: col_q(:)                   !! columns of the observations
+      real(dp), intent(in) :: scale(:), offset(:)       !! their conversions
+      character(len=*), intent(in) :: names(:)          !! their names
+      real(dp), intent(out) :: values(0:)               !! t, observations
       type(error_t), allocatable, intent(out) :: error  !! wrong count, bad number
       integer :: start, comma, col, k
       character(len=:), allocatable :: field
@@ -303,10 +399,9 @@ contains
          else
             do k = 1, size(col_q)
                if (col_q(k) == col) then
-                  call parse_number(field, merge('theta', 'q    ', theta)// &
-                                    to_str(k), values(k), error)
+                  call parse_number(field, trim(names(k)), values(k), error)
                   if (allocated(error)) return
-                  if (theta) values(k) = values(k) - half_pi
+                  values(k) = scale(k)*values(k) + offset(k)
                end if
             end do
          end if

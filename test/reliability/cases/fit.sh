@@ -15,7 +15,11 @@ fx fit_repeat.csv     't,theta1\n0,0.1\n0.1,0.09\n0.1,0.06\n'
 fx fit_short_row.csv  't,theta1,theta2\n0,0.1,0.2\n0.1,0.09\n'
 fx fit_long_row.csv   't,theta1\n0,0.1\n0.1,0.09,7\n'
 fx fit_no_t.csv       'time,theta1\n0,0.1\n'
-fx fit_no_angle.csv   't,x1,y1\n0,0.1,0.2\n'
+fx fit_no_angle.csv   't,z1,w1\n0,0.1,0.2\n'
+fx fit_xy.csv         't,x1 [cm],y1 [cm]\n0,50,-86.6\n0.1,45,-89.3\n0.2,38,-92.5\n0.3,29,-95.7\n'
+fx fit_xy_gap.csv     't,x1,y1,x2\n0,0.5,-0.8,1\n'
+fx fit_xy_unit.csv    't,x1 [in],y1 [in]\n0,0.5,-0.8\n'
+fx fit_xy_word.csv    't,x1,y1\n0,0.5,-0.8\n0.1,0.4,minus\n'
 fx fit_gap.csv        't,theta1,theta3\n0,0.1,0.2\n'
 fx fit_mixed.csv      't,theta1,q2\n0,0.1,0.2\n'
 fx fit_dup.csv        't,theta1,theta1\n0,0.1,0.2\n'
@@ -52,6 +56,10 @@ refuse  fit-empty             'no header'       -- "${F[@]}" fit_empty.csv
 refuse  fit-too-few           'samples'         -- "${F[@]}" fit_two.csv
 refuse  fit-too-few-damping   'samples'         -- "${F[@]}" fit_ok.csv --fit-damping --fit-window 0.1
 refuse  fit-binary            'line 3'          -- "${F[@]}" fit_binary.csv
+refuse  fit-xy-gap            'y2'              -- "${F[@]}" fit_xy_gap.csv
+refuse  fit-xy-unit           'unit'            -- "${F[@]}" fit_xy_unit.csv
+refuse  fit-xy-word           'line 3'          -- "${F[@]}" fit_xy_word.csv
+refuse  fit-xy-tol-huge       horizon-tolerance -- "${F[@]}" fit_xy.csv --horizon-tolerance 1e7
 # ---- flags
 refuse  fit-links-mismatch    links             -- "${F[@]}" fit_ok.csv --links 2
 refuse  fit-window-before     fit-window        -- "${F[@]}" fit_ok.csv --fit-window -1
@@ -74,4 +82,5 @@ refuse  fit-existing-output   exists            -- fit fit_ok.csv --output exist
 succeed fit-ok-one-link             -- "${F[@]}" fit_ok.csv
 succeed fit-ok-damping              -- "${F[@]}" fit_ok.csv --fit-damping
 succeed fit-ok-q-columns-window     -- "${F[@]}" fit_q.csv --fit-window 0.2 --horizon-tolerance 3.14159
+succeed fit-ok-positions            -- "${F[@]}" fit_xy.csv --horizon-tolerance 5
 succeed fit-ok-starts               -- "${F[@]}" fit_ok.csv --starts 5 --method rk4 --dt 0.01
