@@ -1,8 +1,9 @@
 # Figures of `dpend fit`. Called by scripts/plot_fit.sh as
-#   gnuplot -c fit.gp fit DATAFILE OUTDIR TITLE LINKS TWINDOW TOL RMS
-#     DATAFILE: columns t q_data(1..N) q_model(1..N) residual(1..N) in_window (angles
-#     from the horizontal x axis, rad); TWINDOW: end of the fit window (s); TOL: the
-#     horizon tolerance (rad); RMS: the RMS residual of the window (rad)
+#   gnuplot -c fit.gp fit DATAFILE OUTDIR TITLE M TWINDOW TOL RMS KIND
+#     DATAFILE: columns t data(1..M) model(1..M) residual(1..M) in_window; KIND q: M = N
+#     angles from the horizontal x axis (rad), KIND xy: M = 2N positions x1 y1 ... of
+#     the link ends (m); TWINDOW: end of the fit window (s); TOL: the horizon
+#     tolerance, RMS: the RMS residual of the window (rad or m)
 #   gnuplot -c fit.gp horizon DATAFILE OUTDIR TITLE
 #     DATAFILE: columns t1 t_window horizon censored (s, s, s, 0/1)
 # TITLE: file name, enhanced text, escaped. The arguments are data: never pasted
@@ -36,6 +37,11 @@ N = int(real(ARG5))
 Tw = real(ARG6)
 tol = real(ARG7)
 rms = real(ARG8)
+xy = (ARG9 eq "xy")
+unit = xy ? "m" : "rad"
+# panel i: q_i, or x_k / y_k of link k = (i + 1)/2
+label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), (i + 1)/2) : sprintf("q_%d [rad]", i)
+colour(i) = xy ? lc((i + 1)/2) : lc(i)
 cin = 3*N + 2                  # column of in_window
 set arrow 1 from first Tw, graph 0 to first Tw, graph 1 nohead dt 2 lc rgb "#555555"
 
@@ -43,9 +49,9 @@ set output outdir."/fit_overlay.png"
 set multiplot layout N, 1 title "Data and fitted model (".title."); dashed: end of the fit window"
 set xlabel "t [s]"
 do for [i = 1:N] {
-  set ylabel sprintf("q_%d [rad]", i)
+  set ylabel label(i)
   plot datafile using 1:(column(cin) > 0.5 ? column(1 + i) : NaN) with points pt 7 ps 0.4 \
-         lc rgb lc(i) title "data (fit window)", \
+         lc rgb colour(i) title "data (fit window)", \
        datafile using 1:(column(cin) < 0.5 ? column(1 + i) : NaN) with points pt 6 ps 0.4 \
          lc rgb "#888888" title "data (after)", \
        datafile using 1:(column(1 + N + i)) with lines lw 1.5 lc rgb "#000000" title "model"
@@ -54,14 +60,14 @@ unset multiplot
 unset output
 
 set output outdir."/fit_residuals.png"
-set multiplot layout N, 1 title sprintf("Residuals data - model (%s); RMS in the window %.3g rad, band: tolerance %.3g rad", title, rms, tol)
+set multiplot layout N, 1 title sprintf("Residuals data - model (%s); RMS in the window %.3g %s, band: tolerance %.3g %s", title, rms, unit, tol, unit)
 do for [i = 1:N] {
-  set ylabel sprintf("r_%d [rad]", i)
+  set ylabel "residual ".label(i)
   set yrange [*:*]
   plot tol with lines dt 3 lc rgb "#e51e10" notitle, \
        -tol with lines dt 3 lc rgb "#e51e10" notitle, \
-       datafile using 1:(column(1 + 2*N + i)) with points pt 7 ps 0.4 lc rgb lc(i) \
-         title sprintf("link %d", i)
+       datafile using 1:(column(1 + 2*N + i)) with points pt 7 ps 0.4 lc rgb colour(i) \
+         notitle
 }
 unset multiplot
 unset output

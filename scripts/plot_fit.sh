@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Figures of `dpend fit` (issue 13):
 #   scripts/plot_fit.sh FIT.h5 [OUTDIR]
-#     fit_overlay.png (data and fitted model against t, one panel per link, the end of
-#     the fit window marked) and fit_residuals.png (data - model, the horizon tolerance
-#     as a band); OUTDIR defaults to FIT.h5's folder.
+#     fit_overlay.png (data and fitted model against t, one panel per link, or per
+#     coordinate x_i, y_i for positions, the end of the fit window marked) and
+#     fit_residuals.png (data - model, the horizon tolerance as a band); OUTDIR
+#     defaults to FIT.h5's folder.
 #   scripts/plot_fit.sh --horizon DATA.csv OUTDIR WINDOW... [-- FIT-OPTION...]
 #     runs `dpend fit DATA.csv --fit-window W FIT-OPTION...` for every WINDOW (s) and
 #     draws fit_horizon.png: the prediction horizon against the length of the fit
@@ -71,9 +72,19 @@ plot_dpend
 plot_tmpdir
 links=$(attr "" links "$h5")
 [[ $links =~ ^[1-9][0-9]*$ ]] || plot_fail 2 "'$1' is not a dpend fit file (no links)"
-# columns: t q_data(1..N) q_model(1..N) residual(1..N) in_window
-"$dpend" export "$h5" /fit/t /fit/q_data /fit/q_model /fit/residual /fit/in_window \
-  > "$tmp/fit.dat" || plot_fail 2 "'$1' is not a dpend fit file"
+# columns: t data(1..M) model(1..M) residual(1..M) in_window, M = N angles or 2N
+# positions (x1 y1 ... xN yN of the link ends)
+if [[ $(attr /fit observations "$h5") == positions ]]; then
+  kind=xy
+  cols=$((2 * links))
+  "$dpend" export "$h5" /fit/t /fit/xy_data /fit/xy_model /fit/residual /fit/in_window \
+    > "$tmp/fit.dat" || plot_fail 2 "'$1' is not a dpend fit file"
+else
+  kind=q
+  cols=$links
+  "$dpend" export "$h5" /fit/t /fit/q_data /fit/q_model /fit/residual /fit/in_window \
+    > "$tmp/fit.dat" || plot_fail 2 "'$1' is not a dpend fit file"
+fi
 tw=$("$dpend" export "$h5" /fit/t_window | tr -d ' ')
 tol=$(attr /fit horizon_tolerance "$h5")
 rms=$(attr /fit rms_residual "$h5")
@@ -83,6 +94,6 @@ plot_number rms "${rms:-0}" "the RMS residual of '$1'"
 plot_base name "$1"
 plot_enhanced title "$name"
 plot_begin "$out" fit_overlay.png fit_residuals.png
-plot_run gnuplot -c "$here/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$links" "$tw" \
-  "$tol" "$rms"
+plot_run gnuplot -c "$here/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$cols" "$tw" \
+  "$tol" "$rms" "$kind"
 printf 'plot_fit.sh: wrote %s/{fit_overlay,fit_residuals}.png\n' "$out"

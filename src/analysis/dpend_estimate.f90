@@ -5,7 +5,9 @@
 !> Parameters p = (q(t₁), q̇(t₁)[, c]) (2N or 3N): the state at the first sample time t₁
 !> and the damping coefficients c_i [N m s]. Residuals: r = q_model(t_k) − q_data(t_k)
 !> for every angle of every sample k of the fit window, each wrapped into [−π, π) (so
-!> that data given modulo 2π fit as well).
+!> that data given modulo 2π fit as well); or, with `positions`, the positions of the
+!> link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j) minus the measured ones [m]
+!> (A the pin, moving with the support), their sensitivities ∂P/∂q · ∂q/∂p.
 !>
 !> Sensitivities. The model is integrated by one of the explicit Runge–Kutta methods
 !> (default dop853) landing exactly on every sample time (no interpolation of the

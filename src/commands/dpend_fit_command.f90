@@ -1,5 +1,6 @@
 !> `dpend fit` (issue 13): estimate the initial state (and the joint damping) of the
-!> pendulum or chain from a measured series of angles (a CSV file, `dpend_csv`), by
+!> pendulum or chain from a measured series of angles or of the positions of the link
+!> ends (a CSV file, `dpend_csv`), by
 !> Levenberg–Marquardt with the sensitivities of the variational equations
 !> (`dpend_estimate`); print the estimates with standard errors, correlations, the RMS
 !> residual and the prediction horizon, and write them with the residual series to
@@ -82,6 +83,10 @@ contains
           nl//'                          units in brackets allowed (t [s], theta1 [rad]);'//nl// &
           '                          other columns are ignored, lines starting with # and'// &
           nl//'                          blank lines skipped. N = the number of angle columns.'// &
+          nl//'  t,x1,y1[,x2,y2,...]     or (no angle columns) the positions of the far ends of'// &
+          nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
+          nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
+          nl//'                          residuals and --horizon-tolerance are then in m.'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
           '  numbers that do not parse, NaN or Inf, times that do not increase, fewer'//nl// &
           '  samples in the fit window than the parameters need.'//nl//nl// &
@@ -92,7 +97,8 @@ contains
           nl//'                    prediction horizon; default: all samples'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
           nl//'                    angle differs from the model by more than R (rad, in'//nl// &
-          '                    (0, pi]); default '//real_str(fc%tolerance)//nl// &
+          '                    (0, pi]; positions: m, in (0, 1e6]); default '// &
+          real_str(fc%tolerance)//nl// &
           '  --starts K        first-stage starting points (1 to '//to_str(max_starts)// &
           '): the guess and'//nl// &
           '                    K-1 others spread over the rates (sparse samples of a chaotic'// &
