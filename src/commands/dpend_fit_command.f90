@@ -358,10 +358,10 @@ contains
          write (output_unit, '(a)') line
       end do
       write (output_unit, '(a)') '  RMS residual '//real_str(res%rms, 3)//' '//ou// &
-         ' (sigma '//real_str(res%sigma, 3)//' '//ou//', '//to_str(res%dof)//' degrees of freedom, t = '// &
-         real_str(res%t95, 4)//'); '//to_str(res%iterations)//' iterations in '// &
-         to_str(res%stages)//' stages, '//trim(merge('converged    ', 'not converged', &
-         res%converged))
+         ' (sigma '//real_str(res%sigma, 3)//' '//ou//', '//to_str(res%dof)// &
+         ' degrees of freedom, t = '//real_str(res%t95, 4)//'); '// &
+         to_str(res%iterations)//' iterations in '//to_str(res%stages)//' stages, '// &
+         trim(merge('converged    ', 'not converged', res%converged))
       if (res%has_after) then
          if (res%horizon_censored) then
             write (output_unit, '(a)') '  prediction horizon after t = '// &
