@@ -20,6 +20,7 @@ program dpend
    use dpend_study_config, only: study_config_t, parse_study, study_help
    use dpend_study_command, only: run_study_command
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
+   use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
    implicit none
 
    interface
@@ -59,6 +60,8 @@ program dpend
       call study(args(2:))
    case ('animate')
       call animate(args(2:))
+   case ('fit')
+      call fit(args(2:))
    case default
       call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
    end select
@@ -80,6 +83,8 @@ contains
           '  export     print HDF5 datasets as text columns, CSV or a matrix; --list'//nl// &
           '  study      energy-conservation study of every method: data, summary, figures'//nl// &
           '  animate    animated GIF of a simulate file (gnuplot): rods, tip trail, time'//nl// &
+          '  fit        estimate the initial state (and damping) from measured angles (CSV)' &
+          //nl// &
           '  methods    the integration methods: order, properties, commands'//nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
@@ -169,6 +174,25 @@ contains
       end if
       write (output_unit, '(a)') 'dpend animate: '//summary
    end subroutine animate
+
+   !> `dpend fit DATA.csv [options]`: estimates from a measured series.
+   subroutine fit(sub)
+      type(arg_t), intent(in) :: sub(:)
+      type(fit_config_t) :: cfg
+      type(error_t), allocatable :: error
+      logical :: help, failed
+      call parse_fit(sub, cfg, help, error)
+      if (allocated(error)) call fail(2, 'dpend fit: '//error%message)
+      if (help) then
+         write (output_unit, '(a)') fit_help()
+         return
+      end if
+      call run_fit(cfg, error, failed)
+      if (allocated(error)) then
+         if (failed) call fail(1, 'dpend fit: '//error%message)
+         call fail(2, 'dpend fit: '//error%message)
+      end if
+   end subroutine fit
 
    !> `dpend methods`: one row per method of the registry (dpend_method_registry):
    !> name, variables, order, properties, commands, then a line of description

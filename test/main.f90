@@ -24,6 +24,7 @@ program tester
    use test_damping, only: collect_damping
    use test_kapitza, only: collect_kapitza
    use test_gauss_damped, only: collect_gauss_damped
+   use test_estimate, only: collect_estimate
    implicit none
 
    type :: suite_t
@@ -36,7 +37,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(20))
+   allocate (suites(21))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -57,6 +58,7 @@ program tester
    suites(18)%name = 'damping'; call collect_damping(suites(18)%tests)
    suites(19)%name = 'kapitza'; call collect_kapitza(suites(19)%tests)
    suites(20)%name = 'gauss_damped'; call collect_gauss_damped(suites(20)%tests)
+   suites(21)%name = 'estimate'; call collect_estimate(suites(21)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -1,0 +1,73 @@
+# Figures of `dpend fit`. Called by scripts/plot_fit.sh as
+#   gnuplot -c fit.gp fit DATAFILE OUTDIR TITLE M TWINDOW TOL RMS KIND
+#     DATAFILE: columns t data(1..M) model(1..M) residual(1..M) in_window; KIND q: M = N
+#     angles from the horizontal x axis (rad), KIND xy: M = 2N positions x1 y1 ... of
+#     the link ends (m); TWINDOW: end of the fit window (s); TOL: the horizon
+#     tolerance, RMS: the RMS residual of the window (rad or m)
+#   gnuplot -c fit.gp horizon DATAFILE OUTDIR TITLE
+#     DATAFILE: columns t1 t_window horizon censored (s, s, s, 0/1)
+# TITLE: file name, enhanced text, escaped. The arguments are data: never pasted
+# into code.
+kind = ARG1
+datafile = ARG2
+outdir = ARG3
+title = ARG4
+array linkcol[8] = ["#9400d3", "#009e73", "#56b4e9", "#e69f00", "#0072b2", "#e51e10", \
+                    "#f0e442", "#000000"]
+lc(i) = linkcol[(i - 1)%8 + 1]
+set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+set grid
+set key outside right
+
+if (kind eq "horizon") {
+  set output outdir."/fit_horizon.png"
+  set title "Prediction horizon against the fit window (".title.")"
+  set xlabel "length of the fit window T - t_1 [s]"
+  set ylabel "horizon after T [s]"
+  set yrange [0:*]
+  plot datafile using ($2 - $1):($4 < 0.5 ? $3 : NaN) with linespoints pt 7 lc rgb "#0072b2" \
+         title "left the tolerance", \
+       datafile using ($2 - $1):($4 > 0.5 ? $3 : NaN) with points pt 6 ps 1.5 \
+         lc rgb "#e51e10" title "within it to the data's end (lower bound)"
+  unset output
+  exit
+}
+
+N = int(real(ARG5))
+Tw = real(ARG6)
+tol = real(ARG7)
+rms = real(ARG8)
+xy = (ARG9 eq "xy")
+unit = xy ? "m" : "rad"
+# panel i: q_i, or x_k / y_k of link k = (i + 1)/2
+label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), (i + 1)/2) : sprintf("q_%d [rad]", i)
+colour(i) = xy ? lc((i + 1)/2) : lc(i)
+cin = 3*N + 2                  # column of in_window
+set arrow 1 from first Tw, graph 0 to first Tw, graph 1 nohead dt 2 lc rgb "#555555"
+
+set output outdir."/fit_overlay.png"
+set multiplot layout N, 1 title "Data and fitted model (".title."); dashed: end of the fit window"
+set xlabel "t [s]"
+do for [i = 1:N] {
+  set ylabel label(i)
+  plot datafile using 1:(column(cin) > 0.5 ? column(1 + i) : NaN) with points pt 7 ps 0.4 \
+         lc rgb colour(i) title "data (fit window)", \
+       datafile using 1:(column(cin) < 0.5 ? column(1 + i) : NaN) with points pt 6 ps 0.4 \
+         lc rgb "#888888" title "data (after)", \
+       datafile using 1:(column(1 + N + i)) with lines lw 1.5 lc rgb "#000000" title "model"
+}
+unset multiplot
+unset output
+
+set output outdir."/fit_residuals.png"
+set multiplot layout N, 1 title sprintf("Residuals data - model (%s); RMS in the window %.3g %s, band: tolerance %.3g %s", title, rms, unit, tol, unit)
+do for [i = 1:N] {
+  set ylabel "residual ".label(i)
+  set yrange [*:*]
+  plot tol with lines dt 3 lc rgb "#e51e10" notitle, \
+       -tol with lines dt 3 lc rgb "#e51e10" notitle, \
+       datafile using 1:(column(1 + 2*N + i)) with points pt 7 ps 0.4 lc rgb colour(i) \
+         notitle
+}
+unset multiplot
+unset output

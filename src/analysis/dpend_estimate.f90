@@ -1,0 +1,791 @@
+!> Estimating the initial state and, on request, the joint damping of a chain from a
+!> measured series of angles (issue 13, `dpend fit`): nonlinear least squares by
+!> Levenberg–Marquardt with the sensitivities from the variational equations.
+!>
+!> Parameters p = (q(t₁), q̇(t₁)[, c]) (2N or 3N): the state at the first sample time t₁
+!> and the damping coefficients c_i [N m s]. Residuals: r = q_model(t_k) − q_data(t_k)
+!> for every angle of every sample k of the fit window, each wrapped into [−π, π) (so
+!> that data given modulo 2π fit as well); or, with `positions`, the positions of the
+!> link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j) minus the measured ones [m]
+!> (A the pin, moving with the support), their sensitivities ∂P/∂q · ∂q/∂p.
+!>
+!> Sensitivities. The model is integrated by one of the explicit Runge–Kutta methods
+!> (default dop853) landing exactly on every sample time (no interpolation of the
+!> data's instants), and the tangent propagation of `dpend_tangent` carries
+!> ∂y/∂p along each step. For the damping it is the augmented system: the
+!> coefficients are carried as constant state components (`sens_model_t`:
+!> y' = (q, c, q̇, 0) with rates (q̇, 0, q̈, 0)), so that the variational equation of
+!> the augmented field, whose Jacobian has the column block ∂q̈/∂c = M⁻¹ ∂Q/∂c
+!> (Q = −C q̇ the damping torques), gives the parameter sensitivities
+!> s' = J s + ∂f/∂c with the same RK4 substeps as those of the state — no finite
+!> differences (the test suite compares them with central differences).
+!>
+!> The iteration: LM with Marquardt's scaling D = diag(JᵀJ),
+!> (JᵀJ + λ D) δ = −Jᵀ r, λ divided by 10 after a successful step and multiplied by 10
+!> after a failed one. A chaotic series is fitted by continuation: the window grows from
+!> the fewest samples that determine p, each stage started from the previous estimate
+!> (a good guess at the start of the series is a poor one over a long window): the next
+!> window ends at the sample before the stage's model leaves the data by more than
+!> max(10 × its RMS residual, 0.01 rad), and is at least 1.25 times longer. The damping
+!> is held at its guess while the window is shorter than 2π sqrt(Σ L_i / g) (a fraction
+!> of a swing barely determines it, and a runaway value makes the model stiff), and kept
+!> ≥ 0 (projected). Optionally (`starts` > 1) the first stage is started from several
+!> rates, the lowest cost kept: samples far apart on a chaotic motion (the reference
+!> table, one per second) leave the finite-difference rates far from the basin.
+!>
+!> Statistics at the solution: σ² = Σ r²/(m − P) with m residuals and P parameters, the
+!> covariance σ² (JᵀJ)⁻¹, standard errors its diagonal's square roots, the correlation
+!> matrix, and 95 % intervals p ± t_(0.975, m−P) SE (Student's t). The prediction
+!> horizon: with the model of the fit window t ≤ T integrated over the whole series,
+!> the time after T until the first sample where some angle differs from the data by
+!> more than the tolerance.
+module dpend_estimate
+   use dpend_kinds, only: dp, pi
+   use dpend_error, only: error_t, fatal_error
+   use dpend_model, only: model_t, max_dof, max_state
+   use dpend_chain, only: chain_t, chain_model
+   use dpend_integrator, only: integrator_t, stat_ok, status_message
+   use dpend_methods, only: new_integrator, method_options_t
+   use dpend_propagate, only: march_t
+   use dpend_tangent, only: tangent_t
+   use dpend_lapack, only: dpotrf, dpotrs
+   use dpend_limits, only: max_damping
+   use dpend_cli, only: real_str, to_str
+   implicit none
+   private
+   public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
+   public :: initial_guess, student_t95
+
+   !> What is fitted and how the model is integrated.
+   type :: fit_problem_t
+      !> the model with fixed parameters (used when the damping is not fitted)
+      class(model_t), allocatable :: model
+      logical :: fit_damping = .false.        !! estimate c_i too
+      !> the chain's parameters when the damping is fitted (chain_model)
+      real(dp), allocatable :: m(:), l(:)     !! masses [kg], lengths [m]
+      real(dp) :: g = 9.8_dp                  !! [m/s²]
+      real(dp) :: sup_a(2) = 0.0_dp           !! support amplitudes [m]
+      real(dp) :: sup_w = 0.0_dp              !! support angular frequency [rad/s]
+      real(dp) :: sup_phi(2) = 0.0_dp         !! support phases [rad]
+      real(dp), allocatable :: c0(:)          !! first guess of c [N m s]
+      character(len=:), allocatable :: method !! explicit method (default dop853)
+      real(dp) :: rtol = 1e-12_dp             !! its tolerances
+      real(dp) :: atol = 1e-14_dp
+      real(dp) :: dt = 1e-3_dp                !! first trial step [s]
+      integer :: max_iter = 200               !! LM iterations per stage
+      !> the observations are the positions x_i, y_i of the link ends [m] (lengths `l`,
+      !> the support's motion from sup_*), not the angles
+      logical :: positions = .false.
+      !> first-stage starts: the guess and starts-1 others whose rates spread over
+      !> guess ± max(|guess rates|, 1 rad/s) (a Halton sequence); the lowest cost wins
+      integer :: starts = 1
+   end type fit_problem_t
+
+   !> The estimates and their statistics.
+   type :: fit_result_t
+      integer :: n = 0                      !! links N
+      integer :: np = 0                     !! parameters P
+      integer :: k_fit = 0                  !! samples in the fit window
+      integer :: dof = 0                    !! m − P
+      integer :: iterations = 0             !! LM iterations, all stages
+      integer :: stages = 0                 !! continuation stages
+      logical :: converged = .false.        !! the last stage met its criterion
+      real(dp), allocatable :: p(:)         !! estimates (P)
+      real(dp), allocatable :: guess(:)     !! the first guess (P)
+      real(dp), allocatable :: se(:)        !! standard errors (P)
+      real(dp), allocatable :: cov(:, :)    !! covariance (P, P)
+      real(dp), allocatable :: corr(:, :)   !! correlations (P, P)
+      real(dp) :: t95 = 0.0_dp              !! Student t quantile of the 95 % intervals
+      real(dp) :: rms = 0.0_dp              !! RMS residual of the fit window [rad]
+      real(dp) :: sigma = 0.0_dp            !! σ = sqrt(Σ r²/(m − P)) [rad]
+      real(dp), allocatable :: q_model(:, :)   !! model angles at every sample (N, K)
+      real(dp), allocatable :: resid(:, :)     !! data − model, wrapped (N, K) [rad]
+      real(dp) :: t_window = 0.0_dp         !! end T of the fit window [s]
+      logical :: has_after = .false.        !! samples after T exist
+      real(dp) :: horizon = 0.0_dp          !! prediction horizon after T [s]
+      logical :: horizon_censored = .false. !! never left the tolerance (a lower bound)
+      real(dp) :: tolerance = 0.1_dp        !! its tolerance [rad]
+   end type fit_result_t
+
+   !> A model with its damping carried as constant state components (see the notes).
+   type, extends(model_t) :: sens_model_t
+      class(model_t), allocatable :: base   !! the system (a chain_t when nc > 0)
+      integer :: n = 0                      !! its degrees of freedom N
+      integer :: nc = 0                     !! damping components (0 or N)
+   contains
+      procedure :: n_dof => sens_n_dof
+      procedure :: name => sens_name
+      procedure :: field => sens_field
+      procedure :: jacobian => sens_jacobian
+      procedure :: energy => sens_energy
+      procedure :: energy_scale => sens_energy_scale
+      procedure :: conservative => sens_false
+      procedure :: autonomous => sens_autonomous
+   end type sens_model_t
+
+contains
+
+   ! ------------------------------------------------------------ the augmented model
+
+   pure integer function sens_n_dof(self)
+      class(sens_model_t), intent(in) :: self
+      sens_n_dof = self%n + self%nc
+   end function sens_n_dof
+
+   pure function sens_name(self) result(name)
+      class(sens_model_t), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = self%base%name()//' with its parameters'
+   end function sens_name
+
+   pure logical function sens_false(self)
+      class(sens_model_t), intent(in) :: self
+      sens_false = .false.
+   end function sens_false
+
+   pure logical function sens_autonomous(self)
+      class(sens_model_t), intent(in) :: self
+      sens_autonomous = self%base%autonomous()
+   end function sens_autonomous
+
+   !> (q, q̇) of the augmented y = (q, c, q̇, z).
+   pure subroutine inner(n, nc, y, yb)
+      integer, intent(in) :: n, nc
+      real(dp), intent(in) :: y(*)
+      real(dp), intent(out) :: yb(2*n)
+      yb(1:n) = y(1:n)
+      yb(n + 1:2*n) = y(n + nc + 1:2*n + nc)
+   end subroutine inner
+
+   pure subroutine sens_field(self, t, y, f)
+      class(sens_model_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(out) :: f(*)
+      real(dp) :: yb(2*max_dof), fb(2*max_dof)
+      integer :: n, nc
+      n = self%n
+      nc = self%nc
+      call inner(n, nc, y, yb)
+      call self%base%field(t, yb, fb)
+      f(1:n) = fb(1:n)
+      f(n + 1:n + nc) = 0.0_dp
+      f(n + nc + 1:2*n + nc) = fb(n + 1:2*n)
+      f(2*n + nc + 1:2*n + 2*nc) = 0.0_dp
+   end subroutine sens_field
+
+   !> The base Jacobian and, for the damping, ∂q̈/∂c_i = M⁻¹ ∂Q/∂c_i with
+   !> ∂Q/∂c_i = −w_i e_i + w_i e_(i−1), w_i = q̇_i − q̇_(i−1) (q̇_0 = 0).
+   pure subroutine sens_jacobian(self, t, y, jac)
+      class(sens_model_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: jac(:, :)
+      real(dp) :: yb(2*self%n), jb(2*self%n, 2*self%n), mm(self%n, self%n), b(self%n)
+      real(dp) :: w
+      integer :: n, nc, i, j
+      integer :: map(2*self%n)
+      n = self%n
+      nc = self%nc
+      call inner(n, nc, y, yb)
+      call self%base%jacobian(t, yb, jb)
+      map = [(j, j=1, n), (j, j=n + nc + 1, 2*n + nc)]
+      jac = 0.0_dp
+      jac(map, map) = jb
+      if (nc == 0) return
+      select type (b_ => self%base)
+      type is (chain_t)
+         mm = b_%mass_matrix(yb(1:n))
+      class default
+         error stop 'internal error: fitted damping needs a chain'
+      end select
+      call cholesky_inplace(mm)
+      do i = 1, nc
+         w = yb(n + i)
+         if (i > 1) w = w - yb(n + i - 1)
+         b = 0.0_dp
+         b(i) = -w
+         if (i > 1) b(i - 1) = w
+         call cholesky_solve_small(mm, b)
+         jac(n + nc + 1:2*n + nc, n + i) = b
+      end do
+   end subroutine sens_jacobian
+
+   pure real(dp) function sens_energy(self, t, y)
+      class(sens_model_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp) :: yb(2*self%n)
+      call inner(self%n, self%nc, y, yb)
+      sens_energy = self%base%energy(t, yb)
+   end function sens_energy
+
+   pure real(dp) function sens_energy_scale(self, e0)
+      class(sens_model_t), intent(in) :: self
+      real(dp), intent(in) :: e0
+      sens_energy_scale = self%base%energy_scale(e0)
+   end function sens_energy_scale
+
+   !> a = L Lᵀ in place (lower triangle), a positive definite.
+   pure subroutine cholesky_inplace(a)
+      real(dp), intent(inout) :: a(:, :)
+      integer :: i, j, k
+      real(dp) :: s
+      do j = 1, size(a, 1)
+         s = a(j, j)
+         do k = 1, j - 1
+            s = s - a(j, k)**2
+         end do
+         a(j, j) = sqrt(max(s, tiny(1.0_dp)))
+         do i = j + 1, size(a, 1)
+            s = a(i, j)
+            do k = 1, j - 1
+               s = s - a(i, k)*a(j, k)
+            end do
+            a(i, j) = s/a(j, j)
+         end do
+      end do
+   end subroutine cholesky_inplace
+
+   !> Solve L Lᵀ x = b in place.
+   pure subroutine cholesky_solve_small(a, b)
+      real(dp), intent(in) :: a(:, :)
+      real(dp), intent(inout) :: b(:)
+      integer :: i, k, n
+      n = size(b)
+      do i = 1, n
+         do k = 1, i - 1
+            b(i) = b(i) - a(i, k)*b(k)
+         end do
+         b(i) = b(i)/a(i, i)
+      end do
+      do i = n, 1, -1
+         do k = i + 1, n
+            b(i) = b(i) - a(k, i)*b(k)
+         end do
+         b(i) = b(i)/a(i, i)
+      end do
+   end subroutine cholesky_solve_small
+
+   ! ------------------------------------------------------------ residuals, Jacobian
+
+   !> Residuals r (N k) of the first k samples for the parameters p and, if `jac` is
+   !> present, their Jacobian ∂r/∂p (N k, P). Residual (i, j) is r(i + N (j − 1)).
+   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: p(:)                      !! parameters
+      real(dp), intent(in) :: t(:)                      !! sample times [s]
+      real(dp), intent(in) :: q(:, :)                   !! measured angles (N, K) [rad]
+                                                        !! or positions (2N, K) [m]
+      integer, intent(in) :: k                          !! samples used
+      real(dp), intent(out) :: r(:)                     !! residuals (N k) [rad]
+      type(error_t), allocatable, intent(out) :: error  !! the integration failed
+      real(dp), intent(out), optional :: jac(:, :)      !! ∂r/∂p (N k, P)
+      type(sens_model_t) :: sm
+      class(integrator_t), allocatable :: integ
+      type(tangent_t) :: tan
+      type(march_t) :: march
+      real(dp), allocatable :: y(:), v0(:, :), o(:), d(:, :)
+      real(dp) :: tt, h
+      integer :: n, nc, np, ns, j, stat, no
+      no = size(q, 1)
+      n = merge(no/2, no, prob%positions)
+      np = size(p)
+      allocate (o(no), d(no, n))
+      call model_for(prob, p, sm, error)
+      if (allocated(error)) return
+      nc = sm%nc
+      ns = 2*(n + nc)
+      call new_integrator(prob%method, integ, error, method_options_t(rtol=prob%rtol, &
+                          atol=prob%atol))
+      if (allocated(error)) return
+      call integ%check_model(sm, error)
+      if (allocated(error)) return
+      allocate (y(ns))
+      y = 0.0_dp
+      y(1:n) = p(1:n)
+      y(n + nc + 1:2*n + nc) = p(n + 1:2*n)
+      if (nc > 0) y(n + 1:n + nc) = p(2*n + 1:2*n + nc)
+      y = integ%to_internal(sm, y(1:n + nc), y(n + nc + 1:ns), t(1))
+      if (present(jac)) then
+         allocate (v0(ns, np))
+         v0 = 0.0_dp
+         do j = 1, n
+            v0(j, j) = 1.0_dp
+            v0(n + nc + j, n + j) = 1.0_dp
+         end do
+         do j = 1, nc
+            v0(n + j, 2*n + j) = 1.0_dp
+         end do
+         call tan%init(v0)
+         tan%theta = 0.05_dp
+      end if
+      call observe(prob, t(1), p(1:n), o, d)
+      r(1:no) = residual(prob, o, q(:, 1))
+      if (present(jac)) jac(1:no, :) = matmul(d, v0(1:n, :))
+      tt = t(1)
+      h = prob%dt
+      call integ%clear_step()
+      do j = 2, k
+         call march%start(integ, tt, t(j), h)
+         do while (.not. march%finished)
+            call march%next(integ, sm, tt, y, h, stat)
+            if (stat /= stat_ok) then
+               call fatal_error(error, 'the model''s integration failed: '// &
+                                status_message(stat)//' after t = '//real_str(tt)//' s')
+               return
+            end if
+            if (present(jac)) then
+               call tan%propagate(integ, sm)
+               if (tan%too_stiff) then
+                  call fatal_error(error, 'the sensitivities could not be propagated ' &
+                                   //'(a step too long for the local frequency) after t = ' &
+                                   //real_str(tt)//' s')
+                  return
+               end if
+            end if
+         end do
+         call observe(prob, tt, y(1:n), o, d)
+         r(no*(j - 1) + 1:no*j) = residual(prob, o, q(:, j))
+         if (present(jac)) jac(no*(j - 1) + 1:no*j, :) = matmul(d, tan%v(1:n, :))
+      end do
+   end subroutine evaluate_fit
+
+   !> The augmented model for the parameters p.
+   subroutine model_for(prob, p, sm, error)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: p(:)
+      type(sens_model_t), intent(out) :: sm
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      integer :: n
+      if (prob%fit_damping) then
+         n = size(prob%m)
+         chain = chain_model(prob%m, prob%l, prob%g, error, &
+                             min(max(p(2*n + 1:3*n), 0.0_dp), max_damping), &
+                             prob%sup_a, prob%sup_w, prob%sup_phi)
+         if (allocated(error)) return
+         allocate (sm%base, source=chain)
+         sm%n = n
+         sm%nc = n
+      else
+         allocate (sm%base, source=prob%model)
+         sm%n = prob%model%n_dof()
+         sm%nc = 0
+      end if
+   end subroutine model_for
+
+   !> The observations o at time t for the angles q, and ∂o/∂q: the angles themselves,
+   !> or the positions of the link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j).
+   pure subroutine observe(prob, t, q, o, d)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t, q(:)
+      real(dp), intent(out) :: o(:), d(:, :)
+      real(dp) :: pos(2)
+      integer :: i, j, n
+      n = size(q)
+      d = 0.0_dp
+      if (.not. prob%positions) then
+         o = q
+         do i = 1, n
+            d(i, i) = 1.0_dp
+         end do
+         return
+      end if
+      pos = prob%sup_a*cos(prob%sup_w*t + prob%sup_phi)
+      do i = 1, n
+         pos = pos + prob%l(i)*[cos(q(i)), sin(q(i))]
+         o(2*i - 1:2*i) = pos
+         do j = 1, i
+            d(2*i - 1, j) = -prob%l(j)*sin(q(j))
+            d(2*i, j) = prob%l(j)*cos(q(j))
+         end do
+      end do
+   end subroutine observe
+
+   !> Model minus data: angles wrapped into [−π, π), positions as they are.
+   pure function residual(prob, o, data) result(r)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: o(:), data(:)
+      real(dp) :: r(size(o))
+      if (prob%positions) then
+         r = o - data
+      else
+         r = wrap(o - data)
+      end if
+   end function residual
+
+   !> The angles of the link ends' positions xy (2N, K) at times t.
+   pure function angles_of(prob, t, xy) result(q)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t(:), xy(:, :)
+      real(dp) :: q(size(xy, 1)/2, size(t))
+      real(dp) :: prev(2)
+      integer :: i, j
+      do j = 1, size(t)
+         prev = prob%sup_a*cos(prob%sup_w*t(j) + prob%sup_phi)
+         do i = 1, size(q, 1)
+            q(i, j) = atan2(xy(2*i, j) - prev(2), xy(2*i - 1, j) - prev(1))
+            prev = xy(2*i - 1:2*i, j)
+         end do
+      end do
+   end function angles_of
+
+   !> x wrapped into [−π, π).
+   elemental real(dp) function wrap(x)
+      real(dp), intent(in) :: x
+      wrap = modulo(x + pi, 2.0_dp*pi) - pi
+   end function wrap
+
+   ! ------------------------------------------------------------ the fit
+
+   !> The first guess: angles of the first sample, rates from the three-point
+   !> (two-point for two samples) difference of the first samples; damping c0.
+   function initial_guess(prob, t, obs) result(p)
+      type(fit_problem_t), intent(in) :: prob   !! (c0 when the damping is fitted)
+      real(dp), intent(in) :: t(:)              !! sample times [s]
+      real(dp), intent(in) :: obs(:, :)         !! angles (N, K) [rad] or positions
+      real(dp), allocatable :: p(:)
+      real(dp), allocatable :: q(:, :)
+      integer :: n
+      real(dp) :: h1, h2
+      if (prob%positions) then
+         q = angles_of(prob, t(:min(3, size(t))), obs(:, :min(3, size(t))))
+      else
+         q = obs(:, :min(3, size(t)))
+      end if
+      n = size(q, 1)
+      allocate (p(merge(3*n, 2*n, prob%fit_damping)))
+      p(1:n) = q(:, 1)
+      if (size(t) >= 3) then
+         ! derivative at t1 of the parabola through the first three samples
+         h1 = t(2) - t(1)
+         h2 = t(3) - t(1)
+         p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))*h2/(h1*(h2 - h1)) - &
+                        wrap(q(:, 3) - q(:, 1))*h1/(h2*(h2 - h1))
+      else
+         p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))/(t(2) - t(1))
+      end if
+      if (prob%fit_damping) p(2*n + 1:3*n) = prob%c0
+   end function initial_guess
+
+   !> Fit the samples with t ≤ t_window (all when t_window ≥ the last time), then
+   !> predict the whole series and measure the horizon with `tolerance` [rad].
+   subroutine fit_series(prob, t, q, t_window, tolerance, res, error, guess)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! angles (N, K) [rad], or
+                                                        !! positions (2N, K) [m]
+      real(dp), intent(in) :: t_window                  !! end T of the fit window [s]
+      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad or m]
+      type(fit_result_t), intent(out) :: res            !! estimates and statistics
+      type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
+      real(dp), intent(in), optional :: guess(:)        !! first guess (default:
+                                                        !! `initial_guess`)
+      real(dp), allocatable :: r(:), jac(:, :), a(:, :)
+      real(dp) :: period, thr
+      integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
+      logical :: conv
+      no = size(q, 1)
+      n = merge(no/2, no, prob%positions)
+      res%n = n
+      np = merge(3*n, 2*n, prob%fit_damping)
+      res%np = np
+      res%tolerance = tolerance
+      kmax = size(t)
+      res%k_fit = count(t <= t_window)
+      if (no*res%k_fit <= np) then
+         call fatal_error(error, to_str(res%k_fit)//' samples in the fit window give ' &
+                          //to_str(no*res%k_fit)//' residuals for '//to_str(np)// &
+                          ' parameters: at least '//to_str(np/no + 1)//' samples are needed')
+         return
+      end if
+      res%t_window = t(res%k_fit)
+      if (present(guess)) then
+         res%guess = guess
+      else
+         res%guess = initial_guess(prob, t(:res%k_fit), q(:, :res%k_fit))
+      end if
+      res%p = res%guess
+      ! continuation: the window grows from the fewest samples that determine p
+      k_min = min(res%k_fit, max(3, np/no + 1))
+      k_stage = k_min
+      res%iterations = 0
+      res%stages = 0
+      if (prob%starts > 1) then
+         call best_start(prob, t, q, k_stage, res%p, it, error)
+         res%iterations = it
+         if (allocated(error)) return
+      end if
+      period = huge(1.0_dp)
+      if (prob%fit_damping) then
+         if (prob%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(prob%l)/prob%g)
+      end if
+      allocate (r(no*res%k_fit))
+      do
+         ! the damping is held at its guess while the window is shorter than a swing
+         ! (a fraction of a swing barely determines it, and large values make the
+         ! model stiff)
+         call levenberg_marquardt(prob, t, q, k_stage, res%p, it, conv, error, &
+                                  hold_damping=t(k_stage) - t(1) < period .and. &
+                                  k_stage < res%k_fit)
+         res%iterations = res%iterations + it
+         res%stages = res%stages + 1
+         if (allocated(error)) return
+         if (k_stage == res%k_fit) exit
+         ! the next window: up to the sample before the stage's model leaves the data
+         ! by max(10 RMS, 0.01 rad or 0.01 Σ L_i), at least 1.25 times longer
+         call evaluate_fit(prob, res%p, t, q, res%k_fit, r, error)
+         if (allocated(error)) return
+         thr = 0.01_dp   ! (rad; m per metre of chain for positions)
+         if (prob%positions) thr = 0.01_dp*sum(prob%l)
+         thr = max(10.0_dp*sqrt(sum(r(:no*k_stage)**2)/real(no*k_stage, dp)), thr)
+         j = k_stage + 1
+         do while (j <= res%k_fit)
+            if (maxval(abs(r(no*(j - 1) + 1:no*j))) > thr) exit
+            j = j + 1
+         end do
+         k_stage = min(res%k_fit, max(j - 1, k_stage + max(1, k_stage/4)))
+      end do
+      res%converged = conv
+      ! statistics of the fit window
+      kk = res%k_fit
+      deallocate (r)
+      allocate (r(no*kk), jac(no*kk, np))
+      call evaluate_fit(prob, res%p, t, q, kk, r, error, jac)
+      if (allocated(error)) return
+      res%dof = no*kk - np
+      res%rms = sqrt(sum(r**2)/real(no*kk, dp))
+      res%sigma = sqrt(sum(r**2)/real(res%dof, dp))
+      a = matmul(transpose(jac), jac)
+      call dpotrf('L', np, a, np, info)
+      allocate (res%cov(np, np), res%corr(np, np), res%se(np))
+      if (info /= 0) then
+         call fatal_error(error, 'the parameters are not determined by the data (JᵀJ is ' &
+                          //'singular: parameter '//to_str(info)//' depends on the others)')
+         return
+      end if
+      res%cov = 0.0_dp
+      do i = 1, np
+         res%cov(i, i) = 1.0_dp
+      end do
+      call dpotrs('L', np, np, a, np, res%cov, np, info)
+      res%cov = res%sigma**2*res%cov
+      do i = 1, np
+         res%se(i) = sqrt(max(res%cov(i, i), 0.0_dp))
+      end do
+      do j = 1, np
+         do i = 1, np
+            res%corr(i, j) = res%cov(i, j)/max(res%se(i)*res%se(j), tiny(1.0_dp))
+         end do
+      end do
+      res%t95 = student_t95(res%dof)
+      ! the whole series with the fitted model
+      deallocate (r)
+      allocate (r(no*kmax))
+      call evaluate_fit(prob, res%p, t, q, kmax, r, error)
+      if (allocated(error)) return
+      res%resid = -reshape(r, [no, kmax])
+      res%q_model = q - res%resid
+      res%has_after = kmax > kk
+      res%horizon = 0.0_dp
+      res%horizon_censored = .false.
+      if (res%has_after) then
+         res%horizon_censored = .true.
+         res%horizon = t(kmax) - t(kk)
+         do j = kk + 1, kmax
+            if (maxval(abs(res%resid(:, j))) > tolerance) then
+               res%horizon = t(j) - t(kk)
+               res%horizon_censored = .false.
+               exit
+            end if
+         end do
+      end if
+   end subroutine fit_series
+
+   !> The first stage from `prob%starts` starting points (see `fit_problem_t`): p is
+   !> replaced by the estimate of lowest cost.
+   subroutine best_start(prob, t, q, k, p, iterations, error)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t(:), q(:, :)
+      integer, intent(in) :: k
+      real(dp), intent(inout) :: p(:)
+      integer, intent(out) :: iterations
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), allocatable :: ps(:), best(:), r(:)
+      type(error_t), allocatable :: err
+      type(fit_problem_t) :: quick
+      real(dp) :: spread, cost, best_cost
+      integer :: s, i, n, it
+      logical :: conv
+      integer, parameter :: primes(max_dof) = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, &
+         41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127, 131]
+      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      allocate (r(size(q, 1)*k))
+      ! the starts only have to find the basin: looser tolerances, fewer iterations
+      quick = prob
+      quick%rtol = max(prob%rtol, 1e-8_dp)
+      quick%atol = max(prob%atol, 1e-10_dp)
+      quick%max_iter = min(prob%max_iter, 30)
+      spread = max(maxval(abs(p(n + 1:2*n))), 1.0_dp)
+      best = p
+      best_cost = huge(1.0_dp)
+      iterations = 0
+      do s = 1, prob%starts
+         ps = p
+         do i = 1, n
+            ps(n + i) = p(n + i) + spread*(2.0_dp*halton(s - 1, primes(i)) - 1.0_dp)
+         end do
+         if (s == 1) ps = p
+         call levenberg_marquardt(quick, t, q, k, ps, it, conv, err, hold_damping=.true.)
+         iterations = iterations + it
+         if (allocated(err)) then
+            deallocate (err)
+            cycle
+         end if
+         call evaluate_fit(quick, ps, t, q, k, r, err)
+         if (allocated(err)) then
+            deallocate (err)
+            cycle
+         end if
+         cost = sum(r**2)
+         if (cost < best_cost) then
+            best_cost = cost
+            best = ps
+         end if
+      end do
+      if (best_cost == huge(1.0_dp)) then
+         call fatal_error(error, 'no starting point of the first stage could be integrated')
+         return
+      end if
+      p = best
+   end subroutine best_start
+
+   !> Element i of the van der Corput sequence in base b (Halton's coordinates).
+   pure real(dp) function halton(i, b) result(x)
+      integer, intent(in) :: i, b
+      integer :: j
+      real(dp) :: f
+      x = 0.0_dp
+      f = 1.0_dp
+      j = i
+      do while (j > 0)
+         f = f/real(b, dp)
+         x = x + f*real(mod(j, b), dp)
+         j = j/b
+      end do
+   end function halton
+
+   !> Levenberg–Marquardt on the first k samples, from p (updated).
+   !> With `hold_damping` the damping stays at its value (its rows and columns of the
+   !> normal equations are replaced by the identity's, its step is zero).
+   subroutine levenberg_marquardt(prob, t, q, k, p, iterations, converged, error, &
+                                  hold_damping)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t(:), q(:, :)
+      integer, intent(in) :: k
+      real(dp), intent(inout) :: p(:)
+      integer, intent(out) :: iterations
+      logical, intent(out) :: converged
+      type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: hold_damping
+      real(dp), allocatable :: r(:), jac(:, :), rn(:), jn(:, :), a(:, :), g(:), d(:)
+      real(dp), allocatable :: pn(:), b(:, :)
+      type(error_t), allocatable :: trial_error
+      real(dp) :: cost, cost_n, lambda
+      integer :: m, np, it, tries, info, i, n
+      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      m = size(q, 1)*k
+      np = size(p)
+      allocate (r(m), jac(m, np), rn(m), jn(m, np), g(np), d(np), pn(np), b(np, 1))
+      call evaluate_fit(prob, p, t, q, k, r, error, jac)
+      if (allocated(error)) return
+      cost = 0.5_dp*sum(r**2)
+      lambda = 1e-3_dp
+      converged = .false.
+      iterations = 0
+      do it = 1, prob%max_iter
+         iterations = it
+         a = matmul(transpose(jac), jac)
+         g = matmul(transpose(jac), r)
+         if (present(hold_damping) .and. prob%fit_damping) then
+            if (hold_damping) then
+               a(2*n + 1:, :) = 0.0_dp
+               a(:, 2*n + 1:) = 0.0_dp
+               do i = 2*n + 1, np
+                  a(i, i) = 1.0_dp
+               end do
+               g(2*n + 1:) = 0.0_dp
+            end if
+         end if
+         do i = 1, np
+            d(i) = a(i, i)
+         end do
+         d = max(d, 1e-12_dp*maxval(d), tiny(1.0_dp))
+         if (cost == 0.0_dp) then
+            converged = .true.
+            return
+         end if
+         do tries = 1, 30
+            b(:, 1) = -g
+            block
+               real(dp) :: am(np, np)
+               am = a
+               do i = 1, np
+                  am(i, i) = am(i, i) + lambda*d(i)
+               end do
+               call dpotrf('L', np, am, np, info)
+               if (info == 0) call dpotrs('L', np, 1, am, np, b, np, info)
+            end block
+            if (info /= 0) then
+               lambda = lambda*10.0_dp
+               cycle
+            end if
+            pn = p + b(:, 1)
+            if (prob%fit_damping) pn(2*n + 1:3*n) = min(max(pn(2*n + 1:3*n), 0.0_dp), &
+                                                        max_damping)
+            call evaluate_fit(prob, pn, t, q, k, rn, trial_error, jn)
+            if (allocated(trial_error)) then
+               deallocate (trial_error)
+               lambda = lambda*10.0_dp
+               cycle
+            end if
+            cost_n = 0.5_dp*sum(rn**2)
+            if (cost_n < cost) exit
+            lambda = lambda*10.0_dp
+         end do
+         if (tries > 30) then   ! no step lowers the cost: at the minimum's noise floor
+            converged = .true.
+            return
+         end if
+         converged = all(abs(pn - p) <= 1e-12_dp*(abs(p) + 1e-3_dp)) .or. &
+                     cost - cost_n <= 1e-14_dp*cost
+         p = pn
+         r = rn
+         jac = jn
+         cost = cost_n
+         lambda = max(lambda/10.0_dp, 1e-15_dp)
+         if (converged) return
+      end do
+   end subroutine levenberg_marquardt
+
+   !> Student's t quantile t_(0.975, ν): table values for ν ≤ 8, beyond the
+   !> Cornish–Fisher expansion about the normal quantile (relative error below 1e-5).
+   pure real(dp) function student_t95(nu) result(tq)
+      integer, intent(in) :: nu   !! degrees of freedom
+      real(dp), parameter :: z = 1.959963984540054_dp
+      real(dp), parameter :: small(8) = [12.70620473617471_dp, 4.302652729911275_dp, &
+                                         3.182446305284263_dp, 2.776445105197799_dp, &
+                                         2.570581835636314_dp, 2.446911851144969_dp, &
+                                         2.364624251592785_dp, 2.306004135204166_dp]
+      real(dp) :: v
+      if (nu <= 0) then
+         tq = huge(1.0_dp)
+      else if (nu <= 8) then
+         tq = small(nu)
+      else
+         v = real(nu, dp)
+         tq = z + (z**3 + z)/(4.0_dp*v) + (5.0_dp*z**5 + 16.0_dp*z**3 + 3.0_dp*z)/ &
+              (96.0_dp*v**2) + (3.0_dp*z**7 + 19.0_dp*z**5 + 17.0_dp*z**3 - 15.0_dp*z)/ &
+              (384.0_dp*v**3) + (79.0_dp*z**9 + 776.0_dp*z**7 + 1482.0_dp*z**5 - &
+              1920.0_dp*z**3 - 945.0_dp*z)/(92160.0_dp*v**4)
+      end if
+   end function student_t95
+end module dpend_estimate

@@ -1,0 +1,470 @@
+!> Reading a measured series for `dpend fit` (issue 13): a CSV text file with a
+!> header line of column names, then one row of numbers per sample.
+!>
+!> Format (docs in README, example data/fit_example.csv):
+!> - lines whose first non-blank character is '#' and blank lines are skipped;
+!> - the first other line is the header: comma-separated names, blanks around a name
+!>   ignored, case-insensitive, each optionally followed by a unit in brackets that
+!>   must be the expected one ('t [s]', 'theta1 [rad]');
+!> - the column `t` (s) and the angles of links 1 … N, either `theta1 … thetaN` (from
+!>   the hanging position, counter-clockwise, as --theta1: q = θ − π/2) or `q1 … qN`
+!>   (the project's angles from the horizontal x axis, as `dpend export --csv`
+!>   writes them); N is the number of angle columns. Columns with other names are
+!>   allowed and ignored (e.g. qdot1);
+!> - or, without angle columns, the positions of the far ends of the links (joint i + 1,
+!>   the tip for i = N) in the project's frame (origin at the pin A, x to the right, y
+!>   up): `x1,y1, …, xN,yN`, each with a length unit [m], [cm] or [mm] (none: m),
+!>   converted to m;
+!> - every data row has as many fields as the header; t and the observed values are
+!>   finite numbers, and the times increase strictly.
+!> Everything else is refused with one line that names the file, the line number and
+!> the problem (`csv_refusal`).
+module dpend_csv
+   use dpend_kinds, only: dp, i8, half_pi
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: to_str, real_str
+   use dpend_model, only: max_dof
+   use dpend_os, only: path_kind, path_missing, path_file, path_directory
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   implicit none
+   private
+   public :: series_t, read_series, parse_series
+
+   !> Largest series file read [bytes].
+   integer(i8), parameter :: max_csv_bytes = 268435456_i8
+
+   !> A measured series of angles, converted to the project's angles q.
+   type :: series_t
+      integer :: n = 0                    !! links N (angle columns)
+      integer :: k = 0                    !! samples (data rows)
+      real(dp), allocatable :: t(:)       !! times (k) [s]
+      !> the observations (n_obs, k): angles from the horizontal x axis [rad] (n_obs = n),
+      !> or the positions x1, y1, …, xN, yN of the link ends [m] (n_obs = 2n)
+      real(dp), allocatable :: q(:, :)
+      integer :: n_obs = 0                !! observations per sample
+      logical :: positions = .false.      !! the file gave positions, not angles
+      integer, allocatable :: line(:)     !! line number of each row in the file (k)
+      logical :: theta = .false.          !! the file gave θ (from hanging), not q
+   end type series_t
+
+contains
+
+   !> Read and check the series file `filename` (see the module's notes).
+   subroutine read_series(filename, series, error)
+      character(len=*), intent(in) :: filename          !! the CSV file
+      type(series_t), intent(out) :: series             !! the samples
+      type(error_t), allocatable, intent(out) :: error  !! the first problem, one line
+      character(len=:), allocatable :: text, pre
+      integer :: unit, stat
+      integer(i8) :: bytes
+      character(len=256) :: msg
+      pre = "invalid data file '"//filename//"': "
+      select case (path_kind(filename, follow=.true.))
+      case (path_file)
+      case (path_missing)
+         call fatal_error(error, pre//'no such file')
+      case (path_directory)
+         call fatal_error(error, pre//'is a directory, not a file')
+      case default
+         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
+      end select
+      if (allocated(error)) return
+      open (newunit=unit, file=filename, status='old', action='read', access='stream', &
+            form='unformatted', iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
+         return
+      end if
+      inquire (unit=unit, size=bytes)
+      if (bytes > max_csv_bytes) then
+         close (unit)
+         call fatal_error(error, pre//'is '//to_str(bytes)//' bytes; at most '// &
+                          to_str(max_csv_bytes)//' are read')
+         return
+      end if
+      allocate (character(len=int(max(bytes, 0_i8))) :: text)
+      if (bytes > 0) read (unit, iostat=stat, iomsg=msg) text
+      close (unit)
+      if (stat /= 0) then
+         call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
+         return
+      end if
+      call parse_series(text, series, error)
+      if (allocated(error)) error%message = "invalid data file '"//filename//"' "// &
+                                            error%message
+   end subroutine read_series
+
+   !> Parse the whole text of a series file; an error message starts with
+   !> 'line L: ' (or 'has ...' for a file without a header or rows).
+   subroutine parse_series(text, series, error)
+      character(len=*), intent(in) :: text              !! the file's contents
+      type(series_t), intent(out) :: series             !! the samples
+      type(error_t), allocatable, intent(out) :: error  !! the first problem
+      character(len=1), parameter :: lf = achar(10), cr = achar(13)
+      integer :: start, eol, line, n_fields, col_t, cap
+      integer :: col_q(2*max_dof)
+      real(dp) :: scale(2*max_dof), offset(2*max_dof)
+      logical :: header_seen
+      character(len=:), allocatable :: row
+      real(dp), allocatable :: tt(:), qq(:, :)
+      integer, allocatable :: ll(:)
+      real(dp) :: values(0:2*max_dof)
+      header_seen = .false.
+      cap = 256
+      allocate (series%t(cap), series%q(2*max_dof, cap), series%line(cap))
+      series%k = 0
+      n_fields = 0
+      col_t = 0
+      col_q = 0
+      line = 0
+      start = 1
+      do while (start <= len(text))
+         eol = index(text(start:), lf)
+         if (eol == 0) then
+            eol = len(text) + 1
+         else
+            eol = start + eol - 1
+         end if
+         line = line + 1
+         row = text(start:eol - 1)
+         start = eol + 1
+         if (len(row) > 0) then
+            if (row(len(row):len(row)) == cr) row = row(:len(row) - 1)
+         end if
+         if (len_trim(row) == 0) cycle
+         if (index(adjustl(row), '#') == 1) cycle
+         if (.not. header_seen) then
+            call parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, &
+                              error)
+            if (allocated(error)) return
+            header_seen = .true.
+            cycle
+         end if
+         call parse_row(row, line, n_fields, col_t, col_q(:series%n_obs), &
+                        scale(:series%n_obs), offset(:series%n_obs), &
+                        obs_names(series), values(0:series%n_obs), error)
+         if (allocated(error)) return
+         if (series%k > 0) then
+            if (.not. (values(0) > series%t(series%k))) then
+               call fatal_error(error, 'line '//to_str(line)//': t = '//real_str(values(0)) &
+                                //' s is not after t = '//real_str(series%t(series%k))// &
+                                ' s of line '//to_str(series%line(series%k))// &
+                                ' (times must increase)')
+               return
+            end if
+         end if
+         if (series%k == cap) then
+            cap = 2*cap
+            allocate (tt(cap), qq(2*max_dof, cap), ll(cap))
+            tt(:series%k) = series%t(:series%k)
+            qq(:, :series%k) = series%q(:, :series%k)
+            ll(:series%k) = series%line(:series%k)
+            call move_alloc(tt, series%t)
+            call move_alloc(qq, series%q)
+            call move_alloc(ll, series%line)
+         end if
+         series%k = series%k + 1
+         series%t(series%k) = values(0)
+         series%q(:series%n_obs, series%k) = values(1:series%n_obs)
+         series%line(series%k) = line
+      end do
+      if (.not. header_seen) then
+         call fatal_error(error, 'has no header line (expected e.g. t,theta1,theta2)')
+         return
+      end if
+      if (series%k == 0) then
+         call fatal_error(error, 'has no data rows after the header (line ' &
+                          //to_str(line)//' is the last)')
+         return
+      end if
+      tt = series%t(:series%k)
+      call move_alloc(tt, series%t)
+      qq = series%q(:series%n_obs, :series%k)
+      call move_alloc(qq, series%q)
+      ll = series%line(:series%k)
+      call move_alloc(ll, series%line)
+   end subroutine parse_series
+
+   !> The header: the column of t and those of the N angles (or 2N positions), with
+   !> the scale and offset that convert each to q [rad] or to m.
+   subroutine parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, error)
+      character(len=*), intent(in) :: row               !! the header line
+      integer, intent(in) :: line                       !! its number
+      integer, intent(out) :: n_fields                  !! fields per row
+      integer, intent(out) :: col_t                     !! column of t
+      integer, intent(out) :: col_q(2*max_dof)          !! column of observation i
+      real(dp), intent(out) :: scale(2*max_dof)         !! value = scale × number + offset
+      real(dp), intent(out) :: offset(2*max_dof)
+      type(series_t), intent(inout) :: series           !! n, n_obs, theta, positions set
+      type(error_t), allocatable, intent(out) :: error  !! missing or repeated columns
+      character(len=:), allocatable :: field, name, unit, kind, pre, this
+      integer :: start, comma, col, idx, stat, br, col_x(max_dof), col_y(max_dof)
+      real(dp) :: sx(max_dof), sy(max_dof), f
+      pre = 'line '//to_str(line)//' (header): '
+      col_t = 0
+      col_q = 0
+      col_x = 0
+      col_y = 0
+      scale = 1.0_dp
+      offset = 0.0_dp
+      kind = ''
+      n_fields = 0
+      start = 1
+      do
+         comma = index(row(start:), ',')
+         if (comma == 0) then
+            field = row(start:)
+         else
+            field = row(start:start + comma - 2)
+         end if
+         n_fields = n_fields + 1
+         col = n_fields
+         name = lower(trim(adjustl(field)))
+         unit = ''
+         br = index(name, '[')
+         if (br > 0) then
+            unit = trim(adjustl(name(br:)))
+            name = trim(name(:br - 1))
+         end if
+         if (name == 't') then
+            if (col_t /= 0) then
+               call fatal_error(error, pre//"column 't' appears twice")
+               return
+            end if
+            if (len(unit) > 0 .and. unit /= '[s]') then
+               call fatal_error(error, pre//"column 't' has the unit '"//unit// &
+                                "' (accepted: [s] or none)")
+               return
+            end if
+            col_t = col
+         else if (angle_name(name, 'theta') .or. angle_name(name, 'q')) then
+            if (angle_name(name, 'theta')) then
+               this = 'theta'
+            else
+               this = 'q'
+            end if
+            if (len(kind) == 0) kind = this
+            if (this /= kind) then
+               call fatal_error(error, pre//"column '"//name//"' mixes theta and q " &
+                                //'columns (give all angles one way)')
+               return
+            end if
+            read (name(len(this) + 1:), *, iostat=stat) idx
+            if (stat /= 0) idx = 0
+            if (idx < 1 .or. idx > max_dof) then
+               call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
+                                ' is outside [1, '//to_str(max_dof)//']')
+               return
+            end if
+            if (col_q(idx) /= 0) then
+               call fatal_error(error, pre//"column '"//name//"' appears twice")
+               return
+            end if
+            if (len(unit) > 0 .and. unit /= '[rad]') then
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"//unit// &
+                                "' (accepted: [rad] or none)")
+               return
+            end if
+            col_q(idx) = col
+         else if (angle_name(name, 'x') .or. angle_name(name, 'y')) then
+            read (name(2:), *, iostat=stat) idx
+            if (stat /= 0) idx = 0
+            if (idx < 1 .or. idx > max_dof) then
+               call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
+                                ' is outside [1, '//to_str(max_dof)//']')
+               return
+            end if
+            select case (unit)
+            case ('', '[m]')
+               f = 1.0_dp
+            case ('[cm]')
+               f = 0.01_dp
+            case ('[mm]')
+               f = 0.001_dp
+            case default
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"//unit// &
+                                "' (accepted: [m], [cm], [mm] or none for m)")
+               return
+            end select
+            if (name(1:1) == 'x') then
+               if (col_x(idx) /= 0) then
+                  call fatal_error(error, pre//"column '"//name//"' appears twice")
+                  return
+               end if
+               col_x(idx) = col
+               sx(idx) = f
+            else
+               if (col_y(idx) /= 0) then
+                  call fatal_error(error, pre//"column '"//name//"' appears twice")
+                  return
+               end if
+               col_y(idx) = col
+               sy(idx) = f
+            end if
+         end if
+         if (comma == 0) exit
+         start = start + comma
+      end do
+      if (col_t == 0) then
+         call fatal_error(error, pre//"no column 't' (expected a header such as " &
+                          //'t,theta1,theta2)')
+         return
+      end if
+      series%n = count(col_q > 0)
+      if (series%n == 0 .and. any(col_x > 0 .or. col_y > 0)) then
+         ! positions x_i, y_i of the link ends
+         series%n = count(col_x > 0 .or. col_y > 0)
+         do idx = 1, series%n
+            if (col_x(idx) == 0 .or. col_y(idx) == 0) then
+               call fatal_error(error, pre//'missing column '//trim(merge('x', 'y', &
+                                col_x(idx) == 0))//to_str(idx)//' ('//to_str(series%n)// &
+                                ' links need the columns x1,y1 to x'//to_str(series%n)//',y' &
+                                //to_str(series%n)//')')
+               return
+            end if
+            col_q(2*idx - 1) = col_x(idx)
+            col_q(2*idx) = col_y(idx)
+            scale(2*idx - 1) = sx(idx)
+            scale(2*idx) = sy(idx)
+         end do
+         series%positions = .true.
+         series%n_obs = 2*series%n
+         return
+      end if
+      if (series%n == 0) then
+         call fatal_error(error, pre//'no angle columns (theta1, theta2, ... from the ' &
+                          //'hanging position or q1, q2, ... from the horizontal, in rad) ' &
+                          //'and no positions (x1,y1, ...)')
+         return
+      end if
+      series%n_obs = series%n
+      do idx = 1, series%n
+         if (col_q(idx) == 0) then
+            call fatal_error(error, pre//'missing column '//kind//to_str(idx)//' ('// &
+                             to_str(series%n)//' angle columns must be '//kind//'1 to '// &
+                             kind//to_str(series%n)//')')
+            return
+         end if
+      end do
+      series%theta = kind == 'theta'
+      if (series%theta) offset(:series%n) = -half_pi
+   end subroutine parse_header
+
+   !> Column names of the observations, for messages.
+   function obs_names(series) result(names)
+      type(series_t), intent(in) :: series
+      character(len=8) :: names(series%n_obs)
+      integer :: i
+      do i = 1, series%n
+         if (series%positions) then
+            names(2*i - 1) = 'x'//to_str(i)
+            names(2*i) = 'y'//to_str(i)
+         else if (series%theta) then
+            names(i) = 'theta'//to_str(i)
+         else
+            names(i) = 'q'//to_str(i)
+         end if
+      end do
+   end function obs_names
+
+   !> One data row: t and the observations (converted to q or m).
+   subroutine parse_row(row, line, n_fields, col_t, col_q, scale, offset, names, values, &
+                        error)
+      character(len=*), intent(in) :: row               !! the line
+      integer, intent(in) :: line                       !! its number
+      integer, intent(in) :: n_fields                   !! fields of the header
+      integer, intent(in) :: col_t                      !! column of t
+      integer, intent(in) :: col_q(:)                   !! columns of the observations
+      real(dp), intent(in) :: scale(:), offset(:)       !! their conversions
+      character(len=*), intent(in) :: names(:)          !! their names
+      real(dp), intent(out) :: values(0:)               !! t, observations
+      type(error_t), allocatable, intent(out) :: error  !! wrong count, bad number
+      integer :: start, comma, col, k
+      character(len=:), allocatable :: field
+      values = 0.0_dp
+      col = 0
+      start = 1
+      do
+         comma = index(row(start:), ',')
+         if (comma == 0) then
+            field = row(start:)
+         else
+            field = row(start:start + comma - 2)
+         end if
+         col = col + 1
+         if (col > n_fields) exit
+         if (col == col_t) then
+            call parse_number(field, 't', values(0), error)
+            if (allocated(error)) return
+         else
+            do k = 1, size(col_q)
+               if (col_q(k) == col) then
+                  call parse_number(field, trim(names(k)), values(k), error)
+                  if (allocated(error)) return
+                  values(k) = scale(k)*values(k) + offset(k)
+               end if
+            end do
+         end if
+         if (comma == 0) exit
+         start = start + comma
+      end do
+      if (col /= n_fields) then
+         call fatal_error(error, 'line '//to_str(line)//': '//to_str(col)// &
+                          merge(' field ', ' fields', col == 1)//', the header has '// &
+                          to_str(n_fields)//' (every row has one value per column)')
+      end if
+   contains
+      subroutine parse_number(text, name, x, err)
+         character(len=*), intent(in) :: text, name
+         real(dp), intent(out) :: x
+         type(error_t), allocatable, intent(out) :: err
+         character(len=:), allocatable :: s
+         integer :: stat
+         s = trim(adjustl(text))
+         x = 0.0_dp
+         stat = 1
+         if (len(s) > 0 .and. len(s) <= 64 .and. scan(s, ' /*;:') == 0 .and. &
+             verify(s, '0123456789+-.eEdDnaNAiIfFtTyY') == 0) then
+            read (s, *, iostat=stat) x
+         end if
+         if (stat /= 0) then
+            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
+                             printable(s)//"' is not a number")
+         else if (.not. ieee_is_finite(x)) then
+            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
+                             printable(s)//"' is not finite (NaN and Inf are refused)")
+         end if
+      end subroutine parse_number
+   end subroutine parse_row
+
+   !> `name` is `prefix` followed by digits only.
+   pure logical function angle_name(name, prefix)
+      character(len=*), intent(in) :: name, prefix
+      angle_name = .false.
+      if (len(name) <= len(prefix)) return
+      if (name(:len(prefix)) /= prefix) return
+      angle_name = verify(name(len(prefix) + 1:), '0123456789') == 0
+   end function angle_name
+
+   pure function lower(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function lower
+
+   !> At most 40 characters of `s`, bytes outside printable ASCII as '?'.
+   pure function printable(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: t
+      integer :: i
+      t = s(:min(len(s), 40))
+      do i = 1, len(t)
+         if (iachar(t(i:i)) < 32 .or. iachar(t(i:i)) > 126) t(i:i) = '?'
+      end do
+      if (len(s) > 40) t = t//'...'
+   end function printable
+end module dpend_csv
