@@ -6,7 +6,8 @@
 # (qdot against wrapped q, one panel per link), energy_error.png, reactions.png (N = 2:
 # F01 and F21, the forces on link 1; other N: F_joint, the force of body i-1 on body i
 # at joint i, one panel per joint up to 4 links, the magnitudes beyond), tip_path.png
-# (the free end of link N) (each through a temporary file, moved into place once all
+# (the free end of link N), and for a damped or driven run balance.png (the energy
+# balance) (each through a temporary file, moved into place once all
 # are drawn: scripts/lib/output.sh). Attributes are read at full precision
 # (h5dump -m %.17g). DPEND: the dpend executable to use (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
@@ -39,7 +40,10 @@ links=$(attr links)
 links=${links:-2}
 [[ $links =~ ^[1-9][0-9]*$ ]] ||
   plot_fail 2 "the attribute links of '$1' is not a count: '$links'"
-if ((links == 2)); then
+# has NAME: the file holds the dataset /trajectory/NAME
+has() { grep -qx " *dataset */trajectory/$1" "$tmp/contents.txt"; }
+h5dump -n "$h5" > "$tmp/contents.txt" 2>/dev/null || plot_fail 1 "cannot list '$1'"
+if ((links == 2)) && has F01; then
   # the double pendulum (also its files from before --links): F01, F21 on link 1, and
   # the tip 2 rC2 - rB; columns t q1 q2 E qdot1 qdot2 F01 F21 rC2 rB
   "$dpend" export "$h5" /trajectory/t /trajectory/q /trajectory/energy /trajectory/qdot \
@@ -64,3 +68,12 @@ plot_begin "$out" angles.png angles_wrapped.png phase.png energy_error.png react
   tip_path.png
 plot_run gnuplot -c "$here/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$escale" "$links"
 printf 'plot_simulate.sh: wrote %s/{angles,angles_wrapped,phase,energy_error,reactions,tip_path}.png\n' "$out"
+if has balance_error; then
+  # a damped or driven run (issue 13): E(t) - E(0), the work of the friction and of the
+  # support, and the balance error E(t) - E(0) + W_friction - W_support
+  "$dpend" export "$h5" /trajectory/t /trajectory/energy /trajectory/W_friction \
+    /trajectory/W_support /trajectory/balance_error > "$tmp/balance.dat"
+  plot_begin "$out" balance.png
+  plot_run gnuplot -c "$here/balance.gp" "$tmp/balance.dat" "$figdir" "$title" "$escale"
+  printf 'plot_simulate.sh: wrote %s/balance.png\n' "$out"
+fi
