@@ -44,8 +44,14 @@ if [[ $1 == --horizon ]]; then
   plot_dpend
   plot_tmpdir
   : > "$tmp/horizon.dat"
+  for a in "$@"; do   # the script's own scratch file: never the user's
+    case $a in
+      -o | --output | --output=* | --force | --fit-window | --fit-window=*)
+        plot_fail 2 "fit option '$a' is set by the script (only model and fit options after --)" ;;
+    esac
+  done
   for w in "${windows[@]}"; do
-    "$dpend" fit "$csv" --fit-window "$w" --output "$tmp/w.h5" --force "$@" \
+    "$dpend" fit "$csv" "$@" --fit-window "$w" --output "$tmp/w.h5" --force \
       > "$tmp/fit.log" 2>&1 || plot_fail 1 "dpend fit --fit-window $w failed: $(tail -n1 "$tmp/fit.log")"
     t1=$("$dpend" export "$tmp/w.h5" /fit/t | awk 'NR == 1 { print $1 }')
     tw=$("$dpend" export "$tmp/w.h5" /fit/t_window | tr -d ' ')

@@ -479,7 +479,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
       real(dp), intent(in), optional :: guess(:)        !! first guess (default:
                                                         !! `initial_guess`)
-      real(dp), allocatable :: r(:), jac(:, :), a(:, :)
+      real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
       real(dp) :: period, thr
       integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
       logical :: conv
@@ -555,8 +555,29 @@ contains
       res%rms = sqrt(sum(r**2)/real(no*kk, dp))
       res%sigma = sqrt(sum(r**2)/real(res%dof, dp))
       a = matmul(transpose(jac), jac)
-      call dpotrf('L', np, a, np, info)
       allocate (res%cov(np, np), res%corr(np, np), res%se(np))
+      ! JᵀJ scaled to a unit diagonal (its condition then measures the parameters'
+      ! dependence, not their units); nearly singular means not determined
+      allocate (ds(np))
+      do i = 1, np
+         ds(i) = 0.0_dp
+         if (a(i, i) > tiny(1.0_dp)) ds(i) = 1.0_dp/sqrt(a(i, i))
+      end do
+      info = 0
+      if (any(.not. (ds > 0.0_dp))) then
+         info = minloc(ds, dim=1)
+      else
+         do j = 1, np
+            a(:, j) = a(:, j)*ds*ds(j)
+         end do
+         call dpotrf('L', np, a, np, info)
+         if (info == 0) then
+            do i = 1, np   ! a pivot below 1e-7: condition number above about 1e14
+               if (.not. (a(i, i) > 1e-7_dp)) info = i
+               if (info /= 0) exit
+            end do
+         end if
+      end if
       if (info /= 0) then
          call fatal_error(error, 'the parameters are not determined by the data (JᵀJ is ' &
                           //'singular: parameter '//to_str(info)//' depends on the others)')
@@ -567,6 +588,9 @@ contains
          res%cov(i, i) = 1.0_dp
       end do
       call dpotrs('L', np, np, a, np, res%cov, np, info)
+      do j = 1, np
+         res%cov(:, j) = res%cov(:, j)*ds*ds(j)
+      end do
       res%cov = res%sigma**2*res%cov
       do i = 1, np
          res%se(i) = sqrt(max(res%cov(i, i), 0.0_dp))

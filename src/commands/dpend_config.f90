@@ -15,7 +15,7 @@ module dpend_config
    use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_model, only: model_t, max_dof
-   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str
+   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, overflows_real
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
@@ -124,8 +124,65 @@ contains
       if (allocated(error)) return
       call check_text_bytes(text, pre, error)
       if (allocated(error)) return
+      call check_number_tokens(text, pre, error)
+      if (allocated(error)) return
       call check_group_structure(text, known, pre, error)
    end subroutine check_groups
+
+   !> Refuse a number beyond the largest double anywhere in the file (outside quotes
+   !> and comments): the namelist read would overflow on it, a trap in debug builds,
+   !> before its value could be checked.
+   subroutine check_number_tokens(text, pre, error)
+      character(len=*), intent(in) :: text              !! the file
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! the first such number
+      character(len=*), parameter :: delims = ' ,=/&()*;'//achar(9)//achar(10)//achar(13)
+      character :: quote
+      integer :: i, j, line
+      i = 1
+      line = 1
+      do while (i <= len(text))
+         select case (text(i:i))
+         case (achar(10))
+            line = line + 1
+            i = i + 1
+         case ("'", '"')                       ! a string: skip to its closing quote
+            quote = text(i:i)
+            i = i + 1
+            do while (i <= len(text))
+               if (text(i:i) == achar(10)) line = line + 1
+               if (text(i:i) == quote) exit
+               i = i + 1
+            end do
+            i = i + 1
+         case ('!')                            ! a comment: skip to the line end
+            do while (i <= len(text))
+               if (text(i:i) == achar(10)) exit
+               i = i + 1
+            end do
+         case default
+            if (index(delims, text(i:i)) > 0) then
+               i = i + 1
+               cycle
+            end if
+            j = i
+            do while (j < len(text))
+               if (index(delims, text(j + 1:j + 1)) > 0 .or. text(j + 1:j + 1) == '!' &
+                   .or. text(j + 1:j + 1) == "'" .or. text(j + 1:j + 1) == '"') exit
+               j = j + 1
+            end do
+            if (j - i < 64) then
+               if (overflows_real(text(i:j))) then
+                  call fatal_error(error, pre//'line '//to_str(line)//": '"// &
+                                   printable(text(i:j))// &
+                                   "' is beyond the largest double (1.797e308)")
+                  return
+               end if
+            end if
+            i = j + 1
+         end select
+      end do
+   end subroutine check_number_tokens
 
    !> Refuse an input path that is not (a link to) a regular file, before anything
    !> opens it (a FIFO would block the open); messages start with `pre`.

@@ -615,6 +615,12 @@ contains
             if (list(k + 1) == unset) exit
             k = k + 1
          end do
+         if (any(list(k + 1:) /= unset)) then   ! a value after a gap: never ignored
+            call fatal_error(error, 'invalid '//field//'(:, '//to_str(i)//'): values '// &
+                             'must be given for links 1 to '//to_str(links)// &
+                             ' without gaps '//where)
+            return
+         end if
          if (k /= 0 .and. k /= links) then
             call fatal_error(error, 'invalid '//field//'(:, '//to_str(i)//'): '//to_str(k)// &
                              ' values for '//to_str(links)//' links (one per link) '//where)

@@ -516,6 +516,10 @@ contains
          call fatal_error(error, 'invalid min'//c//', max'//c//': '//sci(lo)//' .. ' &
                           //sci(hi)//' is outside ['//sci(-bound)//', '//sci(bound)// &
                           '] ('//trim(unit)//')')
+      else if (hi > 1e12_dp) then   ! (the pixels' own limits are checked later; this
+         ! bound keeps their products, ratio times mass or length, far from overflow)
+         call fatal_error(error, 'invalid max'//c//': '//sci(hi)//' must be at most 1e12 '// &
+                          '(axis '//name//')')
       else if (lo > hi) then
          call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
                           //real_str(lo)//' > max'//c//' = '//real_str(hi))
@@ -548,6 +552,10 @@ contains
       else if (.not. (lo > 0.0_dp)) then
          call fatal_error(error, 'invalid min'//c//': '//sci(lo)//' must be > 0 (axis '// &
                           name//')')
+      else if (hi > 1e12_dp) then   ! (the pixels' own limits are checked later; this
+         ! bound keeps their products, ratio times mass or length, far from overflow)
+         call fatal_error(error, 'invalid max'//c//': '//sci(hi)//' must be at most 1e12 '// &
+                          '(axis '//name//')')
       else if (lo > hi) then
          call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
                           //real_str(lo)//' > max'//c//' = '//real_str(hi))

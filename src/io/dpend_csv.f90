@@ -22,13 +22,17 @@
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str
+   use dpend_cli, only: to_str, real_str, overflows_real
    use dpend_model, only: max_dof
+   use dpend_limits, only: max_time
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: series_t, read_series, parse_series
+
+   !> Largest accepted magnitude of a sample value (angle [rad] or position)
+   real(dp), parameter :: max_sample_value = 1e6_dp
 
    !> Largest series file read [bytes].
    integer(i8), parameter :: max_csv_bytes = 268435456_i8
@@ -138,24 +142,41 @@ contains
                               error)
             if (allocated(error)) return
             header_seen = .true.
+            deallocate (series%q)   ! one row per observed column, not the largest count
+            allocate (series%q(series%n_obs, cap))
             cycle
          end if
          call parse_row(row, line, n_fields, col_t, col_q(:series%n_obs), &
                         scale(:series%n_obs), offset(:series%n_obs), &
                         obs_names(series), values(0:series%n_obs), error)
          if (allocated(error)) return
+         ! magnitudes the fit can work with (beyond, its sums of squares and time
+         ! differences would overflow or vanish): |t| <= max_time, |value| <= 1e6
+         if (abs(values(0)) > max_time) then
+            call fatal_error(error, 'line '//to_str(line)//': t = '//real_str(values(0))// &
+                             ' s is beyond '//real_str(max_time)//' s')
+            return
+         end if
+         if (any(abs(values(1:series%n_obs)) > max_sample_value)) then
+            call fatal_error(error, 'line '//to_str(line)//': a value beyond '// &
+                             real_str(max_sample_value)//' (angles in rad, positions in '// &
+                             'the file''s unit)')
+            return
+         end if
          if (series%k > 0) then
-            if (.not. (values(0) > series%t(series%k))) then
-               call fatal_error(error, 'line '//to_str(line)//': t = '//real_str(values(0)) &
-                                //' s is not after t = '//real_str(series%t(series%k))// &
-                                ' s of line '//to_str(series%line(series%k))// &
-                                ' (times must increase)')
+            if (.not. (values(0) - series%t(series%k) >= &
+                       1e-9_dp*max(1.0_dp, abs(values(0))))) then
+               call fatal_error(error, 'line '//to_str(line)//': t = '// &
+                                real_str(values(0))//' s is not after t = '// &
+                                real_str(series%t(series%k))//' s of line '// &
+                                to_str(series%line(series%k))//' by at least 1e-9 max(1, |t|) s '// &
+                                '(times must increase)')
                return
             end if
          end if
          if (series%k == cap) then
             cap = 2*cap
-            allocate (tt(cap), qq(2*max_dof, cap), ll(cap))
+            allocate (tt(cap), qq(series%n_obs, cap), ll(cap))
             tt(:series%k) = series%t(:series%k)
             qq(:, :series%k) = series%q(:, :series%k)
             ll(:series%k) = series%line(:series%k)
@@ -425,6 +446,11 @@ contains
          stat = 1
          if (len(s) > 0 .and. len(s) <= 64 .and. scan(s, ' /*;:') == 0 .and. &
              verify(s, '0123456789+-.eEdDnaNAiIfFtTyY') == 0) then
+            if (overflows_real(s)) then   ! reading it would overflow (debug: a trap)
+               call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)// &
+                                ": '"//printable(s)//"' is beyond the largest double")
+               return
+            end if
             read (s, *, iostat=stat) x
          end if
          if (stat /= 0) then

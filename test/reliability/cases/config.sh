@@ -13,6 +13,8 @@ printf 'm1 = 2\n&pendulum m2 = 3 /\n' > "$_cfg_fx/cfg_keybefore.nml"
 printf '&pendulum m1 = 2 /\n&pendulum m1 = 3 /\n' > "$_cfg_fx/cfg_twice.nml"
 printf 'm1 = 5\n' > "$_cfg_fx/cfg_nogroup.nml"
 printf '! only a comment\n\n' > "$_cfg_fx/cfg_comment.nml"
+printf '&integration dt = 1e999 /\n' > "$_cfg_fx/cfg_huge.nml"
+printf "&integration dt = 1e-3, t_end = 0.01 /\n&output file = 'o1e999.h5' / ! 1e999\n" > "$_cfg_fx/cfg_huge_quoted.nml"
 : > "$_cfg_fx/cfg_empty.nml"
 printf '&pendulum m1 = 2 /\nabc\0def\n' > "$_cfg_fx/cfg_nul.nml"
 printf '&pendulum m1 = 2 /\n\001\n' > "$_cfg_fx/cfg_ctl.nml"
@@ -85,6 +87,8 @@ fi
 # ------------------------------------------------- strict config files: simulate ---
 refuse  cfg-sim-keybefore     'outside any namelist group' -- simulate --config cfg_keybefore.nml --output o.h5
 refuse  cfg-sim-twice         'appears twice'      -- simulate --config cfg_twice.nml --output o.h5
+refuse  cfg-sim-huge-number   'line 1'             -- simulate --config cfg_huge.nml --output o.h5
+succeed cfg-sim-huge-in-text  -- simulate --config cfg_huge_quoted.nml --output o.h5
 refuse  cfg-sim-nogroup       'outside any'        -- simulate --config cfg_nogroup.nml --output o.h5
 refuse  cfg-sim-comment       'no namelist group'  -- simulate --config cfg_comment.nml --output o.h5
 refuse  cfg-sim-empty         'no namelist group'  -- simulate --config cfg_empty.nml --output o.h5

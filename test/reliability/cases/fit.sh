@@ -29,6 +29,10 @@ fx fit_header_only.csv 't,theta1\n'
 fx fit_empty.csv      ''
 fx fit_two.csv        't,theta1\n0,0.1\n0.1,0.09\n'
 fx fit_binary.csv     't,theta1\n0,0.1\n\001\002,3\n'
+fx fit_huge.csv       't,theta1\n0,0.1\n0.1,1e999\n0.2,0.06\n'
+fx fit_big_value.csv  't,theta1\n0,0.1\n0.1,2e6\n0.2,0.06\n'
+fx fit_big_time.csv   't,theta1\n0,0.1\n1e300,0.09\n'
+fx fit_tiny_step.csv  't,theta1\n0,0.1\n1e-200,0.09\n2e-200,0.06\n'
 
 F=(fit --output g.h5)
 # ---- the data file
@@ -38,6 +42,10 @@ refuse  fit-directory         'directory'       -- "${F[@]}" dir
 refuse  fit-two-files         'unexpected'      -- "${F[@]}" fit_ok.csv fit_ok.csv
 refuse  fit-word              'line 3'          -- "${F[@]}" fit_word.csv
 refuse  fit-nan               'line 4'          -- "${F[@]}" fit_nan.csv
+refuse  fit-huge-number       'line 3'          -- "${F[@]}" fit_huge.csv
+refuse  fit-big-value         'line 3'          -- "${F[@]}" fit_big_value.csv
+refuse  fit-big-time          'line 3'          -- "${F[@]}" fit_big_time.csv
+refuse  fit-tiny-step         'line 3'          -- "${F[@]}" fit_tiny_step.csv
 refuse  fit-inf               'line 3'          -- "${F[@]}" fit_inf.csv
 refuse  fit-time-nan          'line 3'          -- "${F[@]}" fit_time_nan.csv
 refuse  fit-back              'line 4'          -- "${F[@]}" fit_back.csv

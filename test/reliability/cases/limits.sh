@@ -17,6 +17,9 @@ printf "&integration\n  method = 'dopri5', max_steps = 7, t_end = 5\n/\n" > "$FI
 
 # ---- simulate: counts derived from reals
 refuse  lim-sim-dt-1e-19        dt          -- simulate --t-end 1 --dt 1e-19
+refuse  lim-sim-dt-1e999        dt          -- simulate --t-end 1 --dt 1e999
+refuse  lim-sim-q1-neg-1e999    q1          -- simulate --t-end 1 --q1 -1e999
+refuse  lim-sweep-param-max     max1        -- sweep --axis1 m2/m1 --min1 1 --max1 1e13 --axis2 theta1 --n 4 --output o.h5
 refuse  lim-sim-dt-denormal     dt          -- simulate --dt 5e-324
 refuse  lim-sim-dt-huge         dt          -- simulate --dt 1e300
 refuse  lim-sim-outdt-1e-300    output_dt   -- simulate --t-end 1 --output-dt 1e-300
