@@ -420,7 +420,7 @@ contains
       character(len=:), allocatable :: name, value
       type(agreement_options_t) :: agree
       real(dp) :: rel
-      logical :: missing, agreement, matched
+      logical :: missing, agreement, matched, rel_given
       character(len=:), allocatable :: needs_agreement
       integer :: i
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
@@ -445,6 +445,7 @@ contains
       agreement = .false.
       agree%output = 'agreement.h5'
       needs_agreement = ''
+      rel_given = .false.
       allocate (files(0))
       i = 1
       do while (i <= size(sub))
@@ -463,7 +464,7 @@ contains
          call next_option(sub, i, name, value, .true., error, missing)
          matched = .true.
          select case (name)
-         case ('--rel'); call parse_real(value, name, rel, error)
+         case ('--rel'); call parse_real(value, name, rel, error); rel_given = .true.
          case ('--threshold-a')
             call parse_real(value, name, agree%threshold_a, error)
             agree%set_a = .true.
@@ -483,6 +484,9 @@ contains
       if (.not. agreement .and. len(needs_agreement) > 0) &
          call fail(2, 'dpend sweep-compare: invalid '//needs_agreement//': an option of '// &
                    '--agreement (dpend sweep-compare --help)')
+      if (agreement .and. rel_given) &
+         call fail(2, 'dpend sweep-compare: invalid --rel: not an option of --agreement '// &
+                   '(its thresholds: --threshold-a, --threshold-b)')
       if (agreement) then
          call sweep_agreement(files(1)%s, files(2)%s, agree, output_unit, error)
       else

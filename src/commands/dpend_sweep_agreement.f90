@@ -253,8 +253,16 @@ contains
                           to_str(size(done))//' blocks done; rerun the sweep to finish it)')
          return
       end if
-      if (.not. (ieee_is_finite(c%tau) .and. c%tau > 0.0_dp)) then
-         call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '//sci(c%tau))
+      ! the ranges a sweep can write (l1, g within [1e-6, 1e6]: sqrt(l1/g) within
+      ! [1e-6, 1e6] s; t_end at most 1e9 s): beyond, the file is damaged
+      if (.not. (c%tau >= 1e-6_dp .and. c%tau <= 1e6_dp)) then
+         call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '//sci(c%tau)// &
+                          ' s (a sweep writes 1e-6 to 1e6)')
+         return
+      end if
+      if (.not. (c%t_end >= 0.0_dp .and. c%t_end <= 1e9_dp)) then
+         call fatal_error(error, pre//'damaged: attribute t_end = '//sci(c%t_end)// &
+                          ' s (a sweep writes 0 to 1e9)')
          return
       end if
       allocate (c%cls(size(v)))
@@ -263,7 +271,7 @@ contains
             c%cls(j) = -1
             cycle
          end if
-         if (c%indicator == 'lambda1') v(j) = v(j)*c%tau
+         if (c%indicator == 'lambda1' .and. abs(v(j)) < 1e300_dp) v(j) = v(j)*c%tau
          if (c%above) then
             c%cls(j) = merge(1, 0, v(j) > c%threshold)
          else

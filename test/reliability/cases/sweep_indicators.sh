@@ -52,6 +52,7 @@ succeed swi-agr-ok              -- sweep-compare swi_megno.h5 swi_lambda1.h5 --a
 succeed swi-agr-thresholds      -- sweep-compare --agreement swi_megno.h5 swi_lambda1.h5 --threshold-a 3 --threshold-b=0.1 --output a.h5
 succeed swi-agr-fli             -- sweep-compare swi_fli.h5 swi_megno.h5 --agreement --threshold-a 2
 succeed swi-agr-help            -- sweep-compare --agreement --help
+refuse  swi-agr-rel             '--rel'      -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --rel 0.1
 refuse  swi-agr-flag-value      'takes no value'  -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement=1
 refuse  swi-agr-force-value     'takes no value'  -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --force=yes
 refuse  swi-agr-thr-nan         threshold-a       -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --threshold-a nan
