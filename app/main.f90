@@ -14,7 +14,7 @@ program dpend
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
-                        real_str
+                        real_str, pad
    use dpend_kinds, only: dp
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
@@ -272,14 +272,6 @@ contains
          end do
       end select
    end subroutine methods
-
-   !> `text` padded with blanks to `width` columns (at least one blank).
-   function pad(text, width) result(t)
-      character(len=*), intent(in) :: text
-      integer, intent(in) :: width
-      character(len=:), allocatable :: t
-      t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
-   end function pad
 
    !> `dpend export FILE [--csv] DATASET...`, `FILE --matrix DATASET [XAXIS YAXIS
    !> [SCALE]]` or `FILE --list`; options may stand anywhere. Every failure: one

@@ -15,7 +15,8 @@ module dpend_config
    use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_model, only: model_t, max_dof
-   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, overflows_real
+   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, overflows_real, &
+      to_lower, printable
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
@@ -425,17 +426,6 @@ contains
          end do
       end function join
    end subroutine check_group_structure
-
-   !> `s` with every byte that is not printable ASCII replaced by '?'.
-   pure function printable(s) result(t)
-      character(len=*), intent(in) :: s  !! any bytes
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) t(i:i) = '?'
-      end do
-   end function printable
 
    !> The message for a failed namelist read, naming the group and the offending key.
    function namelist_error(filename, group, iomsg) result(msg)
@@ -854,13 +844,4 @@ contains
       s = trim(buf)
    end function int8_text
 
-   pure function to_lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-      end do
-   end function to_lower
 end module dpend_config

@@ -10,7 +10,7 @@ module dpend_fit_command
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
-                        parse_int, real_str, to_str
+                        parse_int, real_str, to_str, pad
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
@@ -377,12 +377,6 @@ contains
             //'window; give --fit-window T)'
       end if
    contains
-      function pad(text, width) result(t)
-         character(len=*), intent(in) :: text
-         integer, intent(in) :: width
-         character(len=:), allocatable :: t
-         t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
-      end function pad
       function fixed(x) result(t)
          real(dp), intent(in) :: x
          character(len=:), allocatable :: t

@@ -8,7 +8,7 @@ module dpend_cli
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
-   public :: overflows_real
+   public :: overflows_real, to_lower, printable, pad
 
    !> Parse an integer (default or 64-bit) for a field.
    interface parse_int
@@ -195,6 +195,37 @@ contains
       read (t, *, iostat=stat) lead
       overflows_real = stat == 0 .and. lead > 1.7976931348623157_dp
    end function overflows_real
+
+   !> `s` with ASCII capitals in lower case.
+   pure function to_lower(s) result(t)
+      character(len=*), intent(in) :: s  !! text
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function to_lower
+
+   !> `s` with every byte that is not printable ASCII replaced by '?'.
+   pure function printable(s) result(t)
+      character(len=*), intent(in) :: s  !! any bytes
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) t(i:i) = '?'
+      end do
+   end function printable
+
+   !> `text` without trailing blanks, padded with blanks to `width` columns (at least
+   !> one blank).
+   pure function pad(text, width) result(t)
+      character(len=*), intent(in) :: text  !! text
+      integer, intent(in) :: width          !! columns
+      character(len=:), allocatable :: t
+      t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
+   end function pad
 
    !> Parse an integer for field `name`.
    subroutine parse_int_default(text, name, n, error)

@@ -22,7 +22,7 @@
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str, overflows_real
+   use dpend_cli, only: to_str, real_str, overflows_real, to_lower, printable
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
@@ -240,7 +240,7 @@ contains
          end if
          n_fields = n_fields + 1
          col = n_fields
-         name = lower(trim(adjustl(field)))
+         name = to_lower(trim(adjustl(field)))
          unit = ''
          br = index(name, '[')
          if (br > 0) then
@@ -448,17 +448,17 @@ contains
              verify(s, '0123456789+-.eEdDnaNAiIfFtTyY') == 0) then
             if (overflows_real(s)) then   ! reading it would overflow (debug: a trap)
                call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)// &
-                                ": '"//printable(s)//"' is beyond the largest double")
+                                ": '"//printable_40(s)//"' is beyond the largest double")
                return
             end if
             read (s, *, iostat=stat) x
          end if
          if (stat /= 0) then
             call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable(s)//"' is not a number")
+                             printable_40(s)//"' is not a number")
          else if (.not. ieee_is_finite(x)) then
             call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable(s)//"' is not finite (NaN and Inf are refused)")
+                             printable_40(s)//"' is not finite (NaN and Inf are refused)")
          end if
       end subroutine parse_number
    end subroutine parse_row
@@ -472,25 +472,11 @@ contains
       angle_name = verify(name(len(prefix) + 1:), '0123456789') == 0
    end function angle_name
 
-   pure function lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-      end do
-   end function lower
-
    !> At most 40 characters of `s`, bytes outside printable ASCII as '?'.
-   pure function printable(s) result(t)
+   pure function printable_40(s) result(t)
       character(len=*), intent(in) :: s
       character(len=:), allocatable :: t
-      integer :: i
-      t = s(:min(len(s), 40))
-      do i = 1, len(t)
-         if (iachar(t(i:i)) < 32 .or. iachar(t(i:i)) > 126) t(i:i) = '?'
-      end do
+      t = printable(s(:min(len(s), 40)))
       if (len(s) > 40) t = t//'...'
-   end function printable
+   end function printable_40
 end module dpend_csv

@@ -537,16 +537,31 @@ contains
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      real(dp) :: c(max_dof), s(max_dof)
       integer :: n
       logical :: runaway
       n = self%n
       call saturate(2*n, y, f, runaway)
       if (runaway) return
-      call solve_qdd(self, t, y(1:n), y(n + 1:2*n), qdd, a, c, s)
+      call trig(n, y, c, s)
+      call field_trig(self, t, c, s, y, f)
+   end subroutine chain_field
+
+   !> f = (q̇, q̈) at y = (q, q̇) from the cos and sin of q: the tail of `field`,
+   !> `fill_cache_field` and `field_near`.
+   pure subroutine field_trig(self, t, c, s, y, f)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t                       !! time [s]
+      real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
+      real(dp), intent(in) :: y(*)                    !! state (q, q̇)
+      real(dp), intent(out) :: f(*)                   !! (q̇, q̈)
+      real(dp) :: qdd(max_dof), a(max_dof, max_dof)
+      integer :: n
+      n = self%n
+      call solve_qdd_trig(self, t, c, s, y(n + 1:2*n), qdd, a)
       f(1:n) = y(n + 1:2*n)
       f(n + 1:2*n) = qdd(1:n)
-   end subroutine chain_field
+   end subroutine field_trig
 
    !> The accelerations q̈ [rad/s²] (n) at (q, q̇) and time t (default 0).
    pure function chain_accelerations(self, q, qd, t) result(qdd)
@@ -759,7 +774,7 @@ contains
       real(dp), intent(in) :: t, y(*)
       real(dp), intent(inout) :: cache(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      real(dp) :: c(max_dof), s(max_dof)
       integer :: n
       logical :: runaway
       n = self%n
@@ -768,9 +783,7 @@ contains
       cache(n + 1:2*n) = s(1:n)
       call saturate(2*n, y, f, runaway)
       if (runaway) return
-      call solve_qdd_trig(self, t, c, s, y(n + 1:2*n), qdd, a)
-      f(1:n) = y(n + 1:2*n)
-      f(n + 1:2*n) = qdd(1:n)
+      call field_trig(self, t, c, s, y, f)
    end subroutine chain_fill_cache_field
 
    !> `field` at y = (q0 + d, q̇) with the cos and sin of q0 from the cache.
@@ -778,16 +791,14 @@ contains
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(*), d(*), cache(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof)
+      real(dp) :: c(max_dof), s(max_dof)
       integer :: n
       logical :: runaway
       n = self%n
       call saturate(2*n, y, f, runaway)
       if (runaway) return
       call trig_near(n, cache(1:n), cache(n + 1:2*n), y(1:n), d(1:n), c, s)
-      call solve_qdd_trig(self, t, c, s, y(n + 1:2*n), qdd, a)
-      f(1:n) = y(n + 1:2*n)
-      f(n + 1:2*n) = qdd(1:n)
+      call field_trig(self, t, c, s, y, f)
    end subroutine chain_field_near
 
    !> `canonical_field` at z = (q0 + d, p) with the cos and sin of q0 from the cache.
