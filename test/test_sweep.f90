@@ -10,7 +10,8 @@ module test_sweep
    use dpend_pendulum, only: pendulum_model
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
-      batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, flip_energy_bounds, &
+      batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, lane_trig_t, set_lane_trig, &
+      resync_steps, flip_energy_bounds, &
       stop_either, stop_end, st_cannot_flip, st_nonfinite
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
@@ -44,6 +45,7 @@ contains
                new_unittest('batch_matches_rk4', test_batch_matches_rk4), &
                new_unittest('tangent_matches_finite_differences', test_tangent), &
                new_unittest('fallback_lanes_bitwise_and_accurate', test_fallback_lanes), &
+               new_unittest('carried_trig_drift', test_carried_trig), &
                new_unittest('runaway_lanes_end_without_overflow', test_runaway), &
                new_unittest('flip_time_single_link', test_flip_time), &
                new_unittest('energy_bound_brute_force', test_energy_bound), &
@@ -106,7 +108,8 @@ contains
    end subroutine test_batch_matches_rk4
 
    !> The kernel's fallback path: lanes with a stage offset |d| > 1/16 rad (fast
-   !> spin) or an angle beyond `sincos_exact_max` take `rk4_lanes`' reference step.
+   !> spin) take `rk4_lanes`' reference step; a lane at an angle beyond
+   !> `sincos_exact_max` (sin and cos set by the intrinsic) stays on the fast path.
    !> Each lane's result is bitwise the same whatever the other lanes hold and
    !> whichever position it has (alone among ordinary lanes, or every lane on the
    !> fallback), and it agrees with the library's rk4_t.
@@ -118,12 +121,13 @@ contains
       type(rk4_t) :: rk
       real(dp), dimension(w) :: q1, q2, w1, w2, e, r1, r2, rw1, rw2, q1x, q2x, w1x, w2x
       real(dp) :: special(4, n_special), plain(4, w), y(4), t, hh, worst
+      type(lane_trig_t) :: tr
       real(dp), parameter :: h = 1e-3_dp
       integer :: i, j, k, pos, stat
       logical :: same
       par = pendulum_t(m1=1.3_dp, m2=0.7_dp, l1=0.9_dp, l2=1.2_dp, g=9.81_dp)
       c = batch_coef(par)
-      ! ordinary lanes, and three that need the fallback: a fast spin of link 2
+      ! ordinary lanes, two that need the fallback: a fast spin of link 2
       ! (h/2 |q̇2| = 0.1 > 1/16), of link 1 in the fourth stage only (h |q̇1| = 0.07),
       ! and an angle beyond sincos_exact_max (2^20 π/2 = 1.6e6 rad)
       do i = 1, w
@@ -135,21 +139,24 @@ contains
       special(:, 3) = [2.0e6_dp, -0.7_dp, 0.4_dp, -0.3_dp]
       ! reference: the ordinary lanes alone, and each special lane on every lane
       q1 = plain(1, :); q2 = plain(2, :); w1 = plain(3, :); w2 = plain(4, :)
+      call set_lane_trig(q1, q2, tr)
       do k = 1, 10
-         call rk4_lanes(c, h, q1, q2, w1, w2, e)
+         call rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
       end do
       r1 = q1; r2 = q2; rw1 = w1; rw2 = w2
       worst = 0
       do j = 1, n_special
          q1 = special(1, j); q2 = special(2, j); w1 = special(3, j); w2 = special(4, j)
+         call set_lane_trig(q1, q2, tr)
          do k = 1, 10
-            call rk4_lanes(c, h, q1, q2, w1, w2, e)
+            call rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
          end do
          ! the same special lane at three positions among ordinary lanes
          do pos = 1, w, 7
             call load_mixed(j, pos)
+            call set_lane_trig(q1x, q2x, tr)
             do k = 1, 10
-               call rk4_lanes(c, h, q1x, q2x, w1x, w2x, e)
+               call rk4_lanes(c, h, q1x, q2x, w1x, w2x, e, tr)
             end do
             same = q1x(pos) == q1(1) .and. q2x(pos) == q2(1) .and. w1x(pos) == w1(1) &
                    .and. w2x(pos) == w2(1)
@@ -181,6 +188,39 @@ contains
          w1x(p) = special(3, jj); w2x(p) = special(4, jj)
       end subroutine load_mixed
    end subroutine test_fallback_lanes
+
+   !> `rk4_lanes` carries sin and cos of the angles from step to step: after
+   !> `resync_steps` steps (when integrate_batch sets them exactly again) of 16
+   !> chaotic and rotating trajectories they are still within 1e-14 of sin and cos
+   !> of the angles reached, and s² + c² within 1e-14 of 1.
+   subroutine test_carried_trig(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: w = lane_width
+      type(batch_coef_t) :: c
+      type(lane_trig_t) :: tr
+      real(dp), dimension(w) :: q1, q2, w1, w2, e
+      real(dp) :: worst, worst_norm
+      real(dp), parameter :: h = 5e-3_dp
+      integer :: i, k
+      c = batch_coef(pendulum_t())
+      do i = 1, w
+         q1(i) = -3.0_dp + 0.37_dp*i; q2(i) = 2.5_dp - 0.29_dp*i
+         w1(i) = 2.0_dp*sin(real(3*i, dp)); w2(i) = 4.0_dp*cos(real(i, dp))
+      end do
+      call set_lane_trig(q1, q2, tr)
+      do k = 1, resync_steps
+         call rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
+      end do
+      worst = max(maxval(abs(tr%s1 - sin(q1))), maxval(abs(tr%c1 - cos(q1))), &
+                  maxval(abs(tr%s2 - sin(q2))), maxval(abs(tr%c2 - cos(q2))))
+      worst_norm = max(maxval(abs(tr%s1**2 + tr%c1**2 - 1.0_dp)), &
+                       maxval(abs(tr%s2**2 + tr%c2**2 - 1.0_dp)))
+      write (*, '(a, i0, a, es9.2, a, es9.2, a, f0.1, a)') '    after ', resync_steps, &
+         ' carried steps: |sin, cos - exact| <= ', worst, ', |s² + c² - 1| <= ', &
+         worst_norm, ' (max |q| ', max(maxval(abs(q1)), maxval(abs(q2))), ' rad)'
+      call check_true(error, worst <= 1e-14_dp .and. worst_norm <= 1e-14_dp, &
+                      'carried sin and cos drifted')
+   end subroutine test_carried_trig
 
    !> An unstable step (0.5 s at 1e4 rad/s) makes every trajectory run away: each
    !> lane ends as st_nonfinite, with and without the tangent (λ1), and no step
@@ -215,6 +255,7 @@ contains
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e
       real(dp), dimension(w) :: p1, p2, pw1, pw2, m1, m2, mw1, mw2
       real(dp), parameter :: eps = 1e-6_dp, h = 2e-3_dp
+      type(lane_trig_t) :: trp, trm
       integer :: i, k
       c = batch_coef(pendulum_t())
       do i = 1, w
@@ -224,10 +265,12 @@ contains
       end do
       p1 = q1 + eps*u1; p2 = q2 + eps*u2; pw1 = w1 + eps*v1; pw2 = w2 + eps*v2
       m1 = q1 - eps*u1; m2 = q2 - eps*u2; mw1 = w1 - eps*v1; mw2 = w2 - eps*v2
+      call set_lane_trig(p1, p2, trp)
+      call set_lane_trig(m1, m2, trm)
       do k = 1, 100
          call rk4_tangent_lanes(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
-         call rk4_lanes(c, h, p1, p2, pw1, pw2, e)
-         call rk4_lanes(c, h, m1, m2, mw1, mw2, e)
+         call rk4_lanes(c, h, p1, p2, pw1, pw2, e, trp)
+         call rk4_lanes(c, h, m1, m2, mw1, mw2, e, trm)
       end do
       do i = 1, w
          call check(error, (p1(i) - m1(i))/(2*eps), u1(i), 'du1', abs=1e-6_dp, rel=1e-6_dp)

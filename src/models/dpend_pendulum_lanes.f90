@@ -33,7 +33,8 @@ module dpend_pendulum_lanes
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
-   public :: sincos_lanes, sincos_near_lanes, sincos_exact_max
+   public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact
+   public :: lane_trig_t, set_lane_trig, resync_steps
    public :: batch_options_t, batch_result_t, integrate_batch
    public :: stop_both, stop_either, stop_end
    public :: st_missing, st_end, st_flipped, st_cannot_flip, st_nonfinite
@@ -44,7 +45,7 @@ module dpend_pendulum_lanes
    real(dp), parameter :: half_pi = 0.5_dp*pi, two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
    !> |x| up to which `sincos_lanes` reduces exactly enough (2^20 π/2 rad)
    real(dp), parameter :: sincos_exact_max = 1048576.0_dp*half_pi
-   ! constants of `sincos_poly` (dpend_sincos_poly.inc)
+   ! constants of `sincos_poly`
    real(dp), parameter :: two_over_pi = 6.36619772367581382433e-01_dp
    real(dp), parameter :: round_magic = 6755399441055744.0_dp  ! 1.5·2^52
    real(dp), parameter :: pio2_1 = 1.57079632673412561417e+00_dp   ! first 33 bits
@@ -72,6 +73,10 @@ module dpend_pendulum_lanes
    real(dp), parameter :: window_margin = 1.0e-6_dp
    !> |d| up to which `sincos_near_lanes` uses the addition formulas [rad]
    real(dp), parameter :: d_max = 0.0625_dp
+   !> Steps of a lane after which `integrate_batch` sets its carried sin and cos
+   !> (`rk4_lanes`) exactly again: the carried values' rounding, a random walk of
+   !> about one ulp per step, stays near sqrt(1024) ulp
+   integer, parameter :: resync_steps = 1024
 
    ! stop rules: when a trajectory ends before t_end
    integer, parameter :: stop_both = 1    !! when every link that can flip has flipped
@@ -93,7 +98,22 @@ module dpend_pendulum_lanes
       real(dp) :: k = 0    !! m2 L1 L2/2 [kg m²]
       real(dp) :: ga = 0   !! A = (m1/2 + m2) g L1 [J]
       real(dp) :: gb = 0   !! B = (m2/2) g L2 [J]
+      ! the same divided by k (`accel_trig`'s form: M12/k = cos d, no product by k)
+      real(dp) :: m11k = 0  !! M11/k [1]
+      real(dp) :: m22k = 0  !! M22/k [1]
+      real(dp) :: detk = 0  !! M11 M22/k² [1]
+      real(dp) :: gak = 0   !! A/k [1/s²]
+      real(dp) :: gbk = 0   !! B/k [1/s²]
    end type batch_coef_t
+
+   !> sin and cos of both angles of every lane, carried by `rk4_lanes` from step to
+   !> step [1].
+   type :: lane_trig_t
+      real(dp) :: s1(lane_width) = 0  !! sin q1
+      real(dp) :: c1(lane_width) = 1  !! cos q1
+      real(dp) :: s2(lane_width) = 0  !! sin q2
+      real(dp) :: c2(lane_width) = 1  !! cos q2
+   end type lane_trig_t
 
    !> How to integrate a batch.
    type :: batch_options_t
@@ -143,6 +163,12 @@ contains
       c%k = 0.5_dp*par%m2*par%l1*par%l2
       c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
       c%gb = 0.5_dp*par%m2*par%g*par%l2
+      if (.not. (c%k > 0.0_dp)) return   ! (no accepted pendulum: m2, L1, L2 > 0)
+      c%m11k = c%m11/c%k
+      c%m22k = c%m22/c%k
+      c%detk = c%m11k*c%m22k
+      c%gak = c%ga/c%k
+      c%gbk = c%gb/c%k
    end function batch_coef
 
    !> Least energy with which link 1, resp. link 2, can reach the upward vertical [J]
@@ -209,17 +235,53 @@ contains
 
    !> One lane of `sincos_lanes` for |x| <= `sincos_exact_max` (clamped beyond): the
    !> reduction and polynomials described there. Elemental and private, so that gcc
-   !> inlines it into the vectorized loops that call it.
+   !> inlines it into the vectorized loop of `sincos_lanes`.
    pure elemental subroutine sincos_poly(x, s, c)
       real(dp), intent(in) :: x   !! angle [rad]
       real(dp), intent(out) :: s  !! sin x
       real(dp), intent(out) :: c  !! cos x
-      real(dp) :: sp_x, sp_s, sp_c, xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca
-      sp_x = x
-      include 'dpend_sincos_poly.inc'
-      s = sp_s
-      c = sp_c
+      real(dp) :: xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca
+      xi = min(max(x, -sincos_exact_max), sincos_exact_max)  ! far lanes: below
+      fn = (xi*two_over_pi + round_magic) - round_magic        ! nearest integer
+      r = ((xi - fn*pio2_1) - fn*pio2_2) - fn*pio2_2t          ! x - n π/2
+      ! quadrant by exact arithmetic, no compare (compares and merges would stop the
+      ! vectorizer without -fno-trapping-math): j = n mod 4, odd = j mod 2, hi = j >= 2
+      fq = fn - 4.0_dp*((0.25_dp*(fn - 1.5_dp) + round_magic) - round_magic)
+      fo = fq - 2.0_dp*((0.5_dp*(fq - 0.5_dp) + round_magic) - round_magic)
+      fh = 0.5_dp*(fq - fo)
+      z = r*r
+      sr = r + r*z*(sin_p1 + z*(sin_p2 + z*(sin_p3 + z*(sin_p4 + z*(sin_p5 + z*sin_p6)))))
+      hz = 0.5_dp*z
+      wc = 1.0_dp - hz
+      cr = wc + (((1.0_dp - wc) - hz) &
+                 + z*z*(cos_p1 + z*(cos_p2 + z*(cos_p3 + z*(cos_p4 + z*(cos_p5 + z*cos_p6))))))
+      ! j = 0: (sr, cr); 1: (cr, -sr); 2: (-sr, -cr); 3: (-cr, sr); exact products
+      sa = fo*cr + (1.0_dp - fo)*sr
+      ca = fo*sr + (1.0_dp - fo)*cr
+      s = (1.0_dp - 2.0_dp*fh)*sa
+      c = (1.0_dp - 2.0_dp*(fh - fo)**2)*ca
    end subroutine sincos_poly
+
+   !> sin x and cos x of one lane as `sincos_lanes` gives them: `sincos_poly` for
+   !> |x| <= `sincos_exact_max`, the intrinsic beyond (and for NaN).
+   pure elemental subroutine sincos_exact(x, s, c)
+      real(dp), intent(in) :: x   !! angle [rad]
+      real(dp), intent(out) :: s  !! sin x
+      real(dp), intent(out) :: c  !! cos x
+      if (abs(x) <= sincos_exact_max) then
+         call sincos_poly(x, s, c)
+      else
+         s = sin(x)
+         c = cos(x)
+      end if
+   end subroutine sincos_exact
+
+   !> The carried sin and cos of `rk4_lanes` set exactly (`sincos_lanes`).
+   pure subroutine set_lane_trig(q1, q2, tr)
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      type(lane_trig_t), intent(out) :: tr                    !! sin, cos of q1, q2
+      call trig_lanes(q1, q2, tr%s1, tr%c1, tr%s2, tr%c2)
+   end subroutine set_lane_trig
 
    !> The lanes' form of `sin_cos_near_impl` (dpend_pendulum), SIMD over the lanes:
    !> sin and cos of x = x0 + d from those of x0 by the addition formulas, with the
@@ -251,6 +313,28 @@ contains
       end do
    end subroutine sincos_near_lanes
 
+   !> `sincos_add` with shorter polynomials, for the RK4 stages of `rk4_lanes`, whose
+   !> values are not carried to the next step: sin d to d⁷ and cos d - 1 to d⁶,
+   !> Chebyshev-economized on |d| <= 1/16 (scripts/stage_poly.py), within 1.3e-18
+   !> and 1.8e-16 of sin d and cos d - 1 there (sincos_add: 3e-21 and 3e-19).
+   pure elemental subroutine sincos_add_stage(s0, c0, d, s, c)
+      real(dp), intent(in) :: s0, c0  !! sin x0, cos x0
+      real(dp), intent(in) :: d       !! offset [rad], |d| <= `d_max`
+      real(dp), intent(out) :: s, c   !! sin(x0 + d), cos(x0 + d)
+      real(dp), parameter :: a3 = -1.66666666666661522633e-01_dp, &
+                             a5 = 8.33333330968069607714e-03_dp, &
+                             a7 = -1.98396551545965599316e-04_dp, &
+                             b2 = -4.99999999999953814722e-01_dp, &
+                             b4 = 4.16666664537929387624e-02_dp, &
+                             b6 = -1.38874356708829365011e-03_dp
+      real(dp) :: d2, sd, cm1
+      d2 = d*d
+      sd = d + d*d2*(a3 + d2*(a5 + d2*a7))
+      cm1 = d2*(b2 + d2*(b4 + d2*b6))
+      s = s0 + (s0*cm1 + c0*sd)
+      c = c0 + (c0*cm1 - s0*sd)
+   end subroutine sincos_add_stage
+
    !> One lane of `sincos_near_lanes` without its check of |d|: sin and cos of x0 + d
    !> from s0 = sin x0, c0 = cos x0 by the addition formulas and the Taylor
    !> polynomials of sin d and cos d - 1 (accurate for |d| <= `d_max`).
@@ -269,10 +353,9 @@ contains
 
    !> sin and cos of the stage angles (x1, x2) from those of the step start (q1, q2)
    !> (`sincos_near_lanes`).
-   pure subroutine stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+   pure subroutine stage_trig_lanes(q1, q2, tr, x1, x2, s1, c1, s2, c2)
       real(dp), intent(in) :: q1(lane_width), q2(lane_width)    !! step start [rad]
-      real(dp), intent(in) :: s1a(lane_width), c1a(lane_width)  !! sin q1, cos q1
-      real(dp), intent(in) :: s2a(lane_width), c2a(lane_width)  !! sin q2, cos q2
+      type(lane_trig_t), intent(in) :: tr                       !! sin, cos of q1, q2
       real(dp), intent(in) :: x1(lane_width), x2(lane_width)    !! stage angles [rad]
       real(dp), intent(out) :: s1(lane_width), c1(lane_width)   !! sin x1, cos x1
       real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin x2, cos x2
@@ -282,8 +365,8 @@ contains
          d1(i) = x1(i) - q1(i)
          d2(i) = x2(i) - q2(i)
       end do
-      call sincos_near_lanes(s1a, c1a, x1, d1, s1, c1)
-      call sincos_near_lanes(s2a, c2a, x2, d2, s2, c2)
+      call sincos_near_lanes(tr%s1, tr%c1, x1, d1, s1, c1)
+      call sincos_near_lanes(tr%s2, tr%c2, x2, d2, s2, c2)
    end subroutine stage_trig_lanes
 
    !> Copy of `qddot_lagrange` (dpend_pendulum) for speed: SIMD over the lanes, with
@@ -322,15 +405,15 @@ contains
       real(dp), intent(in) :: s1, c1, s2, c2     !! sin q1, cos q1, sin q2, cos q2
       real(dp), intent(in) :: w1, w2             !! velocities [rad/s]
       real(dp), intent(out) :: a1, a2            !! accelerations [rad/s²]
-      real(dp) :: cd, sd, r1, r2, m12, rdet
+      real(dp) :: cd, sd, r1, r2, rdet
+      ! the equations divided by k: M12/k = cos d
       cd = c1*c2 + s1*s2
       sd = s1*c2 - c1*s2
-      r1 = -c%ga*c1 - c%k*sd*w2**2
-      r2 = -c%gb*c2 + c%k*sd*w1**2
-      m12 = c%k*cd
-      rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
-      a1 = (c%m22*r1 - m12*r2)*rdet
-      a2 = (c%m11*r2 - m12*r1)*rdet
+      r1 = -c%gak*c1 - sd*w2**2
+      r2 = -c%gbk*c2 + sd*w1**2
+      rdet = 1.0_dp/(c%detk - cd*cd)
+      a1 = (c%m22k*r1 - cd*r2)*rdet
+      a2 = (c%m11k*r2 - cd*r1)*rdet
    end subroutine accel_trig
 
    !> Copy of `jacobian_qqdot` (dpend_pendulum, rows of q̈, applied to a vector) for
@@ -397,176 +480,192 @@ contains
    !> One classical RK4 step of size h on every lane; `e` is the energy of the state
    !> before the step [J] (it costs no extra sin/cos).
    !>
+   !> Trigonometry: `tr` holds sin and cos of both angles of the state on entry, and
+   !> of the new state on return, so that a step needs no sin/cos of its own: the
+   !> three later stages' and the new state's come from the step start's by the
+   !> addition formulas (`sincos_add`, four per angle). The caller sets `tr` exactly
+   !> (`set_lane_trig`) when it loads a lane, and again every so often
+   !> (`integrate_batch`: every `resync_steps` steps of the lane): each carried step
+   !> adds about one ulp of rounding, a random walk (test sweep/carried_trig_drift).
+   !>
    !> The whole step of a lane is one loop body (the stages' values stay in vector
    !> registers; no lane array passes through memory between the stages): the
-   !> step-start sines and cosines by `sincos_poly`, the stages' by `sincos_add`, the
-   !> accelerations by `accel_trig`. A lane outside that path's range (an angle beyond
-   !> `sincos_exact_max`, or a stage offset |d| > `d_max`) takes instead the result
-   !> of `rk4_lanes_ref`, the same step through the lane routines with their exact
-   !> fallbacks. Which path a lane takes depends on its own values only, so the
-   !> results stay bitwise independent of the other lanes.
-   pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e)
+   !> stages' sines and cosines by `sincos_add`, the accelerations by `accel_trig`.
+   !> A lane outside that path's range (an offset |d| > `d_max` of a stage or of the
+   !> new state from the step start) takes instead the result of `rk4_lanes_ref`, the
+   !> same step through the lane routines with their exact fallbacks. Which path a
+   !> lane takes depends on its own values only, so the results stay bitwise
+   !> independent of the other lanes.
+   pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
       type(batch_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
       integer, parameter :: half = lane_width/2
       real(dp), dimension(lane_width) :: p1, p2, pw1, pw2, pe, off
-      real(dp) :: s1a_1, c1a_1, s2a_1, c2a_1, s1_1, c1_1, s2_1, c2_1, x1_1, x2_1, d1_1, d2_1
-      real(dp) :: s1a_2, c1a_2, s2a_2, c2a_2, s1_2, c1_2, s2_2, c2_2, x1_2, x2_2, d1_2, d2_2
-      real(dp) :: ka1_1, ka2_1, kb1_1, kb2_1, kc1_1, kc2_1, kd1_1, kd2_1
-      real(dp) :: ka1_2, ka2_2, kb1_2, kb2_2, kc1_2, kc2_2, kd1_2, kd2_2
-      real(dp) :: vb1_1, vb2_1, vc1_1, vc2_1, vd1_1, vd2_1
-      real(dp) :: vb1_2, vb2_2, vc1_2, vc2_2, vd1_2, vd2_2
+      type(lane_trig_t) :: ptr
+      real(dp) :: s1a_1, c1a_1, s2a_1, c2a_1, s1_1, c1_1, s2_1, c2_1, d1_1, d2_1, dc1_1, dc2_1
+      real(dp) :: s1a_2, c1a_2, s2a_2, c2a_2, s1_2, c1_2, s2_2, c2_2, d1_2, d2_2, dc1_2, dc2_2
+      real(dp) :: ka1_1, ka2_1, kb1_1, kb2_1, kc1_1, kc2_1, kd1_1, kd2_1, sk1_1, sk2_1
+      real(dp) :: ka1_2, ka2_2, kb1_2, kb2_2, kc1_2, kc2_2, kd1_2, kd2_2, sk1_2, sk2_2
+      real(dp) :: vb1_1, vb2_1, vc1_1, vc2_1, vd1_1, vd2_1, sv1_1, sv2_1
+      real(dp) :: vb1_2, vb2_2, vc1_2, vc2_2, vd1_2, vd2_2, sv1_2, sv2_2
       real(dp) :: hh, h6, n_off
-      real(dp) :: sp_x, sp_s, sp_c, xi, fn, fq, fo, fh, r, z, sr, cr, hz, wc, sa, ca
-      integer :: i
+      integer :: i, j
       hh = 0.5_dp*h
       h6 = h/6.0_dp
       n_off = 0
-      do i = 1, lane_width
-         p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
-      end do
       ! (the offsets are clamped to d_max and the velocities to lane_bound: a lane
       ! beyond takes the reference step or ends, and its discarded values here stay
-      ! bounded)
+      ! bounded; off counts |d - clamped d|, > 0 or NaN for a lane beyond)
       ! lanes i and i + half side by side: two independent chains of stages in each
       ! vector iteration, so that one's divisions overlap the other's work
       do i = 1, half
-         sp_x = q1(i)
-         include 'dpend_sincos_poly.inc'
-         s1a_1 = sp_s; c1a_1 = sp_c
-         sp_x = q2(i)
-         include 'dpend_sincos_poly.inc'
-         s2a_1 = sp_s; c2a_1 = sp_c
-         sp_x = q1(i + half)
-         include 'dpend_sincos_poly.inc'
-         s1a_2 = sp_s; c1a_2 = sp_c
-         sp_x = q2(i + half)
-         include 'dpend_sincos_poly.inc'
-         s2a_2 = sp_s; c2a_2 = sp_c
+         j = i + half
+         ! stage a: the step start
+         p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
+         s1a_1 = tr%s1(i); c1a_1 = tr%c1(i); s2a_1 = tr%s2(i); c2a_1 = tr%c2(i)
          call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, vclamp(w1(i)), vclamp(w2(i)), ka1_1, ka2_1)
          e(i) = energy_formula(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
-         ! a count of the checks that fail (not a logical .or.: this form vectorizes)
-         off(i) = merge(0.0_dp, 1.0_dp, abs(q1(i)) <= sincos_exact_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(q2(i)) <= sincos_exact_max)
-         x1_1 = q1(i) + hh*w1(i); x2_1 = q2(i) + hh*w2(i)
+         d1_1 = (q1(i) + hh*w1(i)) - q1(i); d2_1 = (q2(i) + hh*w2(i)) - q2(i)
          vb1_1 = w1(i) + hh*ka1_1; vb2_1 = w2(i) + hh*ka2_1
-         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
-         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, vclamp(w1(i + half)), &
-                         vclamp(w2(i + half)), ka1_2, ka2_2)
-         e(i + half) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(i + half), w2(i + half))
-         ! a count of the checks that fail (not a logical .or.: this form vectorizes)
-         off(i + half) = merge(0.0_dp, 1.0_dp, abs(q1(i + half)) <= sincos_exact_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(q2(i + half)) <= sincos_exact_max)
-         x1_2 = q1(i + half) + hh*w1(i + half); x2_2 = q2(i + half) + hh*w2(i + half)
-         vb1_2 = w1(i + half) + hh*ka1_2; vb2_2 = w2(i + half) + hh*ka2_2
-         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
-         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
-         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
-         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         p1(j) = q1(j); p2(j) = q2(j); pw1(j) = w1(j); pw2(j) = w2(j)
+         s1a_2 = tr%s1(j); c1a_2 = tr%c1(j); s2a_2 = tr%s2(j); c2a_2 = tr%c2(j)
+         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, vclamp(w1(j)), vclamp(w2(j)), ka1_2, ka2_2)
+         e(j) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(j), w2(j))
+         d1_2 = (q1(j) + hh*w1(j)) - q1(j); d2_2 = (q2(j) + hh*w2(j)) - q2(j)
+         vb1_2 = w1(j) + hh*ka1_2; vb2_2 = w2(j) + hh*ka2_2
+         ! stage b
+         dc1_1 = dclamp(d1_1); dc2_1 = dclamp(d2_1)
+         off(i) = abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1)
+         call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
+         call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
          call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vb1_1), vclamp(vb2_1), kb1_1, kb2_1)
-         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
-         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
-         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vb1_2), vclamp(vb2_2), kb1_2, kb2_2)
-         x1_1 = q1(i) + hh*vb1_1; x2_1 = q2(i) + hh*vb2_1
+         d1_1 = (q1(i) + hh*vb1_1) - q1(i); d2_1 = (q2(i) + hh*vb2_1) - q2(i)
          vc1_1 = w1(i) + hh*kb1_1; vc2_1 = w2(i) + hh*kb2_1
-         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
-         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
-         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
-         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         sv1_1 = vb1_1 + vc1_1; sv2_1 = vb2_1 + vc2_1
+         dc1_2 = dclamp(d1_2); dc2_2 = dclamp(d2_2)
+         off(j) = abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2)
+         call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
+         call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vb1_2), vclamp(vb2_2), kb1_2, kb2_2)
+         d1_2 = (q1(j) + hh*vb1_2) - q1(j); d2_2 = (q2(j) + hh*vb2_2) - q2(j)
+         vc1_2 = w1(j) + hh*kb1_2; vc2_2 = w2(j) + hh*kb2_2
+         sv1_2 = vb1_2 + vc1_2; sv2_2 = vb2_2 + vc2_2
+         ! stage c
+         dc1_1 = dclamp(d1_1); dc2_1 = dclamp(d2_1)
+         off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
+         call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
+         call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
          call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vc1_1), vclamp(vc2_1), kc1_1, kc2_1)
-         x1_2 = q1(i + half) + hh*vb1_2; x2_2 = q2(i + half) + hh*vb2_2
-         vc1_2 = w1(i + half) + hh*kb1_2; vc2_2 = w2(i + half) + hh*kb2_2
-         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
-         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
-         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
-         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vc1_2), vclamp(vc2_2), kc1_2, kc2_2)
-         x1_1 = q1(i) + h*vc1_1; x2_1 = q2(i) + h*vc2_1
+         d1_1 = (q1(i) + h*vc1_1) - q1(i); d2_1 = (q2(i) + h*vc2_1) - q2(i)
          vd1_1 = w1(i) + h*kc1_1; vd2_1 = w2(i) + h*kc2_1
-         d1_1 = x1_1 - q1(i); d2_1 = x2_1 - q2(i)
-         off(i) = off(i) + merge(0.0_dp, 1.0_dp, abs(d1_1) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_1) <= d_max)
-         call sincos_add(s1a_1, c1a_1, min(max(d1_1, -d_max), d_max), s1_1, c1_1)
-         call sincos_add(s2a_1, c2a_1, min(max(d2_1, -d_max), d_max), s2_1, c2_1)
+         sk1_1 = kb1_1 + kc1_1; sk2_1 = kb2_1 + kc2_1
+         sv1_1 = (w1(i) + 2.0_dp*sv1_1) + vd1_1; sv2_1 = (w2(i) + 2.0_dp*sv2_1) + vd2_1
+         dc1_2 = dclamp(d1_2); dc2_2 = dclamp(d2_2)
+         off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
+         call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
+         call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vc1_2), vclamp(vc2_2), kc1_2, kc2_2)
+         d1_2 = (q1(j) + h*vc1_2) - q1(j); d2_2 = (q2(j) + h*vc2_2) - q2(j)
+         vd1_2 = w1(j) + h*kc1_2; vd2_2 = w2(j) + h*kc2_2
+         sk1_2 = kb1_2 + kc1_2; sk2_2 = kb2_2 + kc2_2
+         sv1_2 = (w1(j) + 2.0_dp*sv1_2) + vd1_2; sv2_2 = (w2(j) + 2.0_dp*sv2_2) + vd2_2
+         ! stage d
+         dc1_1 = dclamp(d1_1); dc2_1 = dclamp(d2_1)
+         off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
+         call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
+         call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
          call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vd1_1), vclamp(vd2_1), kd1_1, kd2_1)
-         x1_2 = q1(i + half) + h*vc1_2; x2_2 = q2(i + half) + h*vc2_2
-         vd1_2 = w1(i + half) + h*kc1_2; vd2_2 = w2(i + half) + h*kc2_2
-         d1_2 = x1_2 - q1(i + half); d2_2 = x2_2 - q2(i + half)
-         off(i + half) = off(i + half) + merge(0.0_dp, 1.0_dp, abs(d1_2) <= d_max) &
-                  + merge(0.0_dp, 1.0_dp, abs(d2_2) <= d_max)
-         call sincos_add(s1a_2, c1a_2, min(max(d1_2, -d_max), d_max), s1_2, c1_2)
-         call sincos_add(s2a_2, c2a_2, min(max(d2_2, -d_max), d_max), s2_2, c2_2)
+         d1_1 = h6*sv1_1; d2_1 = h6*sv2_1
+         w1(i) = w1(i) + h6*((ka1_1 + 2.0_dp*sk1_1) + kd1_1)
+         w2(i) = w2(i) + h6*((ka2_1 + 2.0_dp*sk2_1) + kd2_1)
+         dc1_2 = dclamp(d1_2); dc2_2 = dclamp(d2_2)
+         off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
+         call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
+         call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
          call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vd1_2), vclamp(vd2_2), kd1_2, kd2_2)
-         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1_1 + vc1_1) + vd1_1)
-         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2_1 + vc2_1) + vd2_1)
-         w1(i) = w1(i) + h6*(ka1_1 + 2.0_dp*(kb1_1 + kc1_1) + kd1_1)
-         w2(i) = w2(i) + h6*(ka2_1 + 2.0_dp*(kb2_1 + kc2_1) + kd2_1)
-         q1(i + half) = q1(i + half) + h6*(w1(i + half) + 2.0_dp*(vb1_2 + vc1_2) + vd1_2)
-         q2(i + half) = q2(i + half) + h6*(w2(i + half) + 2.0_dp*(vb2_2 + vc2_2) + vd2_2)
-         w1(i + half) = w1(i + half) + h6*(ka1_2 + 2.0_dp*(kb1_2 + kc1_2) + kd1_2)
-         w2(i + half) = w2(i + half) + h6*(ka2_2 + 2.0_dp*(kb2_2 + kc2_2) + kd2_2)
-         n_off = n_off + (off(i) + off(i + half))
+         d1_2 = h6*sv1_2; d2_2 = h6*sv2_2
+         w1(j) = w1(j) + h6*((ka1_2 + 2.0_dp*sk1_2) + kd1_2)
+         w2(j) = w2(j) + h6*((ka2_2 + 2.0_dp*sk2_2) + kd2_2)
+         ! the new state and its sines and cosines
+         sv1_1 = q1(i) + d1_1; sv2_1 = q2(i) + d2_1
+         d1_1 = sv1_1 - q1(i); d2_1 = sv2_1 - q2(i)
+         q1(i) = sv1_1; q2(i) = sv2_1
+         dc1_1 = dclamp(d1_1); dc2_1 = dclamp(d2_1)
+         off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
+         call sincos_add(s1a_1, c1a_1, dc1_1, tr%s1(i), tr%c1(i))
+         call sincos_add(s2a_1, c2a_1, dc2_1, tr%s2(i), tr%c2(i))
+         sv1_2 = q1(j) + d1_2; sv2_2 = q2(j) + d2_2
+         d1_2 = sv1_2 - q1(j); d2_2 = sv2_2 - q2(j)
+         q1(j) = sv1_2; q2(j) = sv2_2
+         dc1_2 = dclamp(d1_2); dc2_2 = dclamp(d2_2)
+         off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
+         call sincos_add(s1a_2, c1a_2, dc1_2, tr%s1(j), tr%c1(j))
+         call sincos_add(s2a_2, c2a_2, dc2_2, tr%s2(j), tr%c2(j))
+         n_off = n_off + (off(i) + off(j))
       end do
-      if (n_off == 0.0_dp) return   ! (a NaN angle or offset fails its check)
-      call rk4_lanes_ref(c, h, p1, p2, pw1, pw2, pe)
+      if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
+      call set_lane_trig(p1, p2, ptr)   ! (a lane on the fallback starts from exact values)
+      call rk4_lanes_ref(c, h, p1, p2, pw1, pw2, pe, ptr)
       do i = 1, lane_width
          if (.not. (off(i) == 0.0_dp)) then
             q1(i) = p1(i); q2(i) = p2(i); w1(i) = pw1(i); w2(i) = pw2(i); e(i) = pe(i)
+            tr%s1(i) = ptr%s1(i); tr%c1(i) = ptr%c1(i)
+            tr%s2(i) = ptr%s2(i); tr%c2(i) = ptr%c2(i)
          end if
       end do
    end subroutine rk4_lanes
 
    !> The RK4 step of `rk4_lanes` through the lane routines, stage by stage, with the
-   !> exact fallbacks of `sincos_lanes` and `sincos_near_lanes`: the path of the lanes
-   !> that `rk4_lanes`' fused loop does not cover.
-   pure subroutine rk4_lanes_ref(c, h, q1, q2, w1, w2, e)
+   !> exact fallbacks of `sincos_near_lanes` (a lane whose offset exceeds `d_max`
+   !> takes the exact sin and cos of that angle): the path of the lanes that
+   !> `rk4_lanes`' fused loop does not cover. `tr` as in `rk4_lanes`.
+   pure subroutine rk4_lanes_ref(c, h, q1, q2, w1, w2, e, tr)
       type(batch_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
       real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
-      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
       real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
       real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
       real(dp) :: hh, h6
       integer :: i
       hh = 0.5_dp*h
       h6 = h/6.0_dp
-      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a)
+      call accel_trig_lanes(c, tr%s1, tr%c1, tr%s2, tr%c2, w1, w2, ka1, ka2)
       do i = 1, lane_width
-         e(i) = energy_formula(c, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
+         e(i) = energy_formula(c, tr%s1(i), tr%c1(i), tr%s2(i), tr%c2(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
          vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, tr, x1, x2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vb1, vb2, kb1, kb2)
       do i = 1, lane_width
          x1(i) = q1(i) + hh*vb1(i); x2(i) = q2(i) + hh*vb2(i)
          vc1(i) = w1(i) + hh*kb1(i); vc2(i) = w2(i) + hh*kb2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, tr, x1, x2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vc1, vc2, kc1, kc2)
       do i = 1, lane_width
          y1(i) = q1(i) + h*vc1(i); y2(i) = q2(i) + h*vc2(i)
          vd1(i) = w1(i) + h*kc1(i); vd2(i) = w2(i) + h*kc2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, y1, y2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, tr, y1, y2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vd1, vd2, kd1, kd2)
       do i = 1, lane_width
-         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
-         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
+         y1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
+         y2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
          w1(i) = w1(i) + h6*(ka1(i) + 2.0_dp*(kb1(i) + kc1(i)) + kd1(i))
          w2(i) = w2(i) + h6*(ka2(i) + 2.0_dp*(kb2(i) + kc2(i)) + kd2(i))
       end do
+      call stage_trig_lanes(q1, q2, tr, y1, y2, s1, c1, s2, c2)
+      q1 = y1; q2 = y2
+      tr%s1 = s1; tr%c1 = c1; tr%s2 = s2; tr%c2 = c2
    end subroutine rk4_lanes_ref
 
    !> One RK4 step of the state and of a tangent vector (u, v) of the variational
@@ -581,6 +680,7 @@ contains
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
       real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
       real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
+      type(lane_trig_t) :: ta
       real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
       real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
       real(dp), dimension(lane_width) :: xu1, xu2, ub1, ub2, uc1, uc2, ud1, ud2
@@ -591,6 +691,7 @@ contains
       h6 = h/6.0_dp
       call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a)
       call tangent_accel_lanes(c, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a, u1, u2, v1, v2, la1, la2)
+      ta = lane_trig_t(s1a, c1a, s2a, c2a)
       do i = 1, lane_width
          e(i) = energy_formula(c, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
@@ -598,7 +699,7 @@ contains
          xu1(i) = u1(i) + hh*v1(i); xu2(i) = u2(i) + hh*v2(i)
          ub1(i) = v1(i) + hh*la1(i); ub2(i) = v2(i) + hh*la2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, ta, x1, x2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vb1, vb2, kb1, kb2)
       call tangent_accel_lanes(c, vb1, vb2, kb1, kb2, s1, c1, s2, c2, xu1, xu2, ub1, ub2, &
                                lb1, lb2)
@@ -608,7 +709,7 @@ contains
          xu1(i) = u1(i) + hh*ub1(i); xu2(i) = u2(i) + hh*ub2(i)
          uc1(i) = v1(i) + hh*lb1(i); uc2(i) = v2(i) + hh*lb2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, x1, x2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, ta, x1, x2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vc1, vc2, kc1, kc2)
       call tangent_accel_lanes(c, vc1, vc2, kc1, kc2, s1, c1, s2, c2, xu1, xu2, uc1, uc2, &
                                lc1, lc2)
@@ -618,7 +719,7 @@ contains
          xu1(i) = u1(i) + h*uc1(i); xu2(i) = u2(i) + h*uc2(i)
          ud1(i) = v1(i) + h*lc1(i); ud2(i) = v2(i) + h*lc2(i)
       end do
-      call stage_trig_lanes(q1, q2, s1a, c1a, s2a, c2a, y1, y2, s1, c1, s2, c2)
+      call stage_trig_lanes(q1, q2, ta, y1, y2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, vd1, vd2, kd1, kd2)
       call tangent_accel_lanes(c, vd1, vd2, kd1, kd2, s1, c1, s2, c2, xu1, xu2, ud1, ud2, &
                                ld1, ld2)
@@ -719,6 +820,8 @@ contains
       real(dp), dimension(w) :: lo1, hi1, lo2, hi2
       real(dp), dimension(w) :: active, fresh  ! 1: lane holds an initial condition; just loaded
       real(dp), dimension(w) :: left           ! steps left to n_steps
+      real(dp), dimension(w) :: sync           ! steps left to the next exact sin/cos
+      type(lane_trig_t) :: tr                  ! sin, cos of the angles (rk4_lanes)
       integer(i8) :: ks(w)
       integer :: lane_ic(w)
       logical :: can1(w), can2(w), ended(w)
@@ -789,7 +892,7 @@ contains
                u1(i) = u1(i)*s; u2(i) = u2(i)*s; v1(i) = v1(i)*s; v2(i) = v2(i)*s
             end do
          else
-            call rk4_lanes(c, opt%h, q1, q2, w1, w2, e)
+            call rk4_lanes(c, opt%h, q1, q2, w1, w2, e, tr)
          end if
          ! vectorized: error, step count, and a count of the lanes with a possible
          ! event (an angle out of its window, the last step, a non-finite state, a fresh
@@ -800,6 +903,7 @@ contains
             ks(i) = ks(i) + 1
             s = abs(q1(i)) + abs(q2(i)) + abs(w1(i)) + abs(w2(i))
             left(i) = left(i) - 1.0_dp
+            sync(i) = sync(i) - 1.0_dp
             ! no compare (it would stop the vectorizer without -fno-trapping-math):
             ! every term >= 0, > 0 for an event; NaN (also an event) if s is not finite
             n_events = n_events + active(i)*(max(0.0_dp, lo1(i) - q1(i)) &
@@ -808,12 +912,13 @@ contains
                                              + max(0.0_dp, q2(i) - hi2(i)) &
                                              + 0.5_dp*(1.0_dp - sign(1.0_dp, left(i) - 0.5_dp)) &
                                              + abs(s - s) + max(0.0_dp, s - lane_bound) &
-                                             + fresh(i))
+                                             + max(0.0_dp, 0.5_dp - sync(i)) + fresh(i))
          end do
          if (n_events == 0.0_dp) cycle   ! false for NaN
          ! rare: flip times and the stop rule, lane by lane
          do i = 1, w
             fresh(i) = 0.0_dp
+            if (sync(i) < 0.5_dp) call resync(i)
             ! the index of the last upward vertical below each angle (π/2 + 2π n)
             m = floor_real((q1(i) - half_pi)*inv_two_pi)
             if (m /= n1(i)) then
@@ -918,7 +1023,16 @@ contains
          n1(l) = floor_real((q1(l) - half_pi)*inv_two_pi)
          n2(l) = floor_real((q2(l) - half_pi)*inv_two_pi)
          call set_windows(l)
+         call resync(l)
       end subroutine load
+
+      !> Set the sines and cosines that rk4_lanes carries for lane l exactly.
+      subroutine resync(l)
+         integer, intent(in) :: l
+         call sincos_exact(q1(l), tr%s1(l), tr%c1(l))
+         call sincos_exact(q2(l), tr%s2(l), tr%c2(l))
+         sync(l) = real(resync_steps, dp)
+      end subroutine resync
 
       !> The windows of lane l's angles from n1, n2: between two upward verticals,
       !> shrunk by window_margin so that rounding never hides a crossing.
@@ -967,6 +1081,12 @@ contains
          if (info /= 0) res%gali2(jj) = nan
       end subroutine finish_indicators
    end subroutine integrate_batch
+
+   !> An angle offset clamped to ±`d_max` [rad]: itself on `rk4_lanes`' fast path.
+   pure elemental real(dp) function dclamp(d)
+      real(dp), intent(in) :: d  !! offset [rad]
+      dclamp = min(max(d, -d_max), d_max)
+   end function dclamp
 
    !> A velocity clamped to ±`lane_bound` [rad/s]: itself unless the lane runs away.
    pure elemental real(dp) function vclamp(w)
