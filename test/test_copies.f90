@@ -40,7 +40,7 @@ module test_copies
    use dpend_pendulum_lanes, only: megno_step_lanes
    use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, accel_lanes, &
                                    tangent_accel_lanes, energy_lanes, sincos_lanes, &
-                                   sincos_near_lanes, sincos_exact_max
+                                   sincos_near_lanes, sincos_exact_max, sincos_stage_lanes
    use dpend_study, only: hamiltonian_qp
    use dpend_indicator_math, only: megno_step
    use testing, only: unittest_t, new_unittest, check_true, error_t
@@ -69,6 +69,7 @@ contains
          new_unittest('energy_lanes_vs_energy', test_energy), &
          new_unittest('sincos_lanes_vs_intrinsic', test_sincos), &
          new_unittest('sincos_near_lanes_vs_sin_cos_near', test_sincos_near), &
+         new_unittest('sincos_add_stage_vs_intrinsic', test_sincos_stage), &
          new_unittest('megno_step_lanes_vs_megno_step', test_megno_step), &
          new_unittest('hamiltonian_qp_vs_hamiltonian', test_hamiltonian_qp), &
          new_unittest('hamiltonian_qp_compensation_vs_gradient', test_compensation) &
@@ -358,6 +359,31 @@ contains
       write (output_unit, '(a, es9.2, a, es9.2)') '    sincos_near_lanes vs sin_cos_near: ', &
          worst(1), ', vs sin, cos: ', worst(2)
    end subroutine test_sincos_near
+
+   !> `sincos_stage_lanes` (the RK4 stages of `rk4_lanes`: economized polynomials,
+   !> within 1.8e-16 of cos d - 1 by scripts/stage_poly.py) against the intrinsic
+   !> at x = x0 + d, |x0| <= 1000, |d| <= 1/16, from `sincos_lanes`' values at x0.
+   subroutine test_sincos_stage(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), dimension(lane_width) :: x0, d, x, s0, c0, s, c, r
+      real(dp) :: worst
+      integer :: i
+      call seed()
+      worst = 0
+      do i = 1, 2000
+         call random_number(r)
+         x0 = 2000.0_dp*(r - 0.5_dp)
+         call random_number(r)
+         d = 0.125_dp*(r - 0.5_dp)
+         x = x0 + d
+         d = x - x0
+         call sincos_lanes(x0, s0, c0)
+         call sincos_stage_lanes(s0, c0, d, s, c)
+         worst = max(worst, maxval(abs(s - sin(x))), maxval(abs(c - cos(x))))
+      end do
+      call check_true(error, worst <= 8.0_dp*epsilon(1.0_dp), 'sincos_add_stage differs')
+      write (output_unit, '(a, es9.2)') '    sincos_add_stage vs sin, cos (|d| <= 1/16): ', worst
+   end subroutine test_sincos_stage
 
    !> Copy `hamiltonian_qp` (no compensation), rounded to double, against the
    !> source `hamiltonian` at (q, p = M(q) q̇).

@@ -6,10 +6,12 @@
 !> multiple of every vector width (2 doubles with SSE2, the default of fpm's release
 !> profile; 4 with AVX2; 8 with AVX-512), so no loop has a remainder.
 !>
-!> Trigonometry: one sin/cos of both angles per step, at the step start, by
-!> `sincos_lanes` (our own polynomial, no libm call, so it vectorizes without
-!> libmvec or -fno-math-errno); the three later RK4 stages take theirs from it by
-!> the addition formulas (`sincos_near_lanes`, as the scalar `sin_cos_near`).
+!> Trigonometry: `rk4_lanes` carries sin and cos of both angles from step to step
+!> (`lane_trig_t`); the RK4 stages and the new state take theirs from the step
+!> start's by the addition formulas (as the scalar `sin_cos_near`), so a step
+!> computes no sin/cos. Exact values, set when a lane is loaded and every
+!> `resync_steps` steps, come from `sincos_lanes` / `sincos_exact` (our own
+!> polynomial, no libm call, so it vectorizes without libmvec or -fno-math-errno).
 !>
 !> Reproducibility: every trajectory goes through exactly the same operations in
 !> the same order whatever its lane, its block or the thread: lanes never mix,
@@ -34,7 +36,7 @@ module dpend_pendulum_lanes
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
    public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact
-   public :: lane_trig_t, set_lane_trig, resync_steps
+   public :: lane_trig_t, set_lane_trig, resync_steps, sincos_stage_lanes
    public :: batch_options_t, batch_result_t, integrate_batch
    public :: stop_both, stop_either, stop_end
    public :: st_missing, st_end, st_flipped, st_cannot_flip, st_nonfinite
@@ -312,6 +314,19 @@ contains
          end if
       end do
    end subroutine sincos_near_lanes
+
+   !> `sincos_add_stage` over the lanes (for the tests: the elemental procedure
+   !> stays private, so that gcc inlines it into `rk4_lanes`' loop; a public one
+   !> compiled with -fPIC is not inlined, and a call stops the vectorizer).
+   pure subroutine sincos_stage_lanes(s0, c0, d, s, c)
+      real(dp), intent(in) :: s0(lane_width), c0(lane_width)  !! sin x0, cos x0
+      real(dp), intent(in) :: d(lane_width)                   !! offsets [rad], |d| <= d_max
+      real(dp), intent(out) :: s(lane_width), c(lane_width)   !! sin(x0 + d), cos(x0 + d)
+      integer :: i
+      do i = 1, lane_width
+         call sincos_add_stage(s0(i), c0(i), d(i), s(i), c(i))
+      end do
+   end subroutine sincos_stage_lanes
 
    !> `sincos_add` with shorter polynomials, for the RK4 stages of `rk4_lanes`, whose
    !> values are not carried to the next step: sin d to d⁷ and cos d - 1 to d⁶,
