@@ -497,15 +497,16 @@ contains
    !>
    !> Trigonometry: `tr` holds sin and cos of both angles of the state on entry, and
    !> of the new state on return, so that a step needs no sin/cos of its own: the
-   !> three later stages' and the new state's come from the step start's by the
-   !> addition formulas (`sincos_add`, four per angle). The caller sets `tr` exactly
+   !> three later stages' (`sincos_add_stage`) and the new state's (`sincos_add`)
+   !> come from the step start's by the addition formulas. The caller sets `tr` exactly
    !> (`set_lane_trig`) when it loads a lane, and again every so often
    !> (`integrate_batch`: every `resync_steps` steps of the lane): each carried step
    !> adds about one ulp of rounding, a random walk (test sweep/carried_trig_drift).
    !>
    !> The whole step of a lane is one loop body (the stages' values stay in vector
    !> registers; no lane array passes through memory between the stages): the
-   !> stages' sines and cosines by `sincos_add`, the accelerations by `accel_trig`.
+   !> stages' sines and cosines by `sincos_add_stage`, the accelerations by
+   !> `accel_trig`.
    !> A lane outside that path's range (an offset |d| > `d_max` of a stage or of the
    !> new state from the step start) takes instead the result of `rk4_lanes_ref`, the
    !> same step through the lane routines with their exact fallbacks. Which path a
