@@ -520,8 +520,7 @@ contains
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
       type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
       integer, parameter :: half = lane_width/2
-      real(dp), dimension(lane_width) :: p1, p2, pw1, pw2, pe, off
-      type(lane_trig_t) :: ptr
+      real(dp), dimension(lane_width) :: p1, p2, pw1, pw2, off
       real(dp) :: s1a_1, c1a_1, s2a_1, c2a_1, s1_1, c1_1, s2_1, c2_1, d1_1, d2_1, dc1_1, dc2_1
       real(dp) :: s1a_2, c1a_2, s2a_2, c2a_2, s1_2, c1_2, s2_2, c2_2, d1_2, d2_2, dc1_2, dc2_2
       real(dp) :: ka1_1, ka2_1, kb1_1, kb2_1, kc1_1, kc2_1, kd1_1, kd2_1, sk1_1, sk2_1
@@ -624,16 +623,36 @@ contains
          n_off = n_off + (off(i) + off(j))
       end do
       if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
-      call set_lane_trig(p1, p2, ptr)   ! (a lane on the fallback starts from exact values)
-      call rk4_lanes_ref(c, h, p1, p2, pw1, pw2, pe, ptr)
+      call rk4_lanes_fallback(c, h, off, p1, p2, pw1, pw2, q1, q2, w1, w2, e, tr)
+   end subroutine rk4_lanes
+
+   !> The lanes of `rk4_lanes` with off /= 0 take the step of `rk4_lanes_ref` from
+   !> (p1, p2, pw1, pw2), starting from exact sin and cos; the other lanes keep their
+   !> values. (Its own procedure: its locals are set up only when a lane needs it.)
+   pure subroutine rk4_lanes_fallback(c, h, off, p1, p2, pw1, pw2, q1, q2, w1, w2, e, tr)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(in) :: off(lane_width)                    !! 0: the lane's step holds
+      real(dp), intent(in) :: p1(lane_width), p2(lane_width)     !! step start [rad]
+      real(dp), intent(in) :: pw1(lane_width), pw2(lane_width)   !! step start [rad/s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! new angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! new velocities [rad/s]
+      real(dp), intent(inout) :: e(lane_width)                   !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
+      real(dp), dimension(lane_width) :: r1, r2, rw1, rw2, re
+      type(lane_trig_t) :: rtr
+      integer :: i
+      r1 = p1; r2 = p2; rw1 = pw1; rw2 = pw2
+      call set_lane_trig(r1, r2, rtr)
+      call rk4_lanes_ref(c, h, r1, r2, rw1, rw2, re, rtr)
       do i = 1, lane_width
          if (.not. (off(i) == 0.0_dp)) then
-            q1(i) = p1(i); q2(i) = p2(i); w1(i) = pw1(i); w2(i) = pw2(i); e(i) = pe(i)
-            tr%s1(i) = ptr%s1(i); tr%c1(i) = ptr%c1(i)
-            tr%s2(i) = ptr%s2(i); tr%c2(i) = ptr%c2(i)
+            q1(i) = r1(i); q2(i) = r2(i); w1(i) = rw1(i); w2(i) = rw2(i); e(i) = re(i)
+            tr%s1(i) = rtr%s1(i); tr%c1(i) = rtr%c1(i)
+            tr%s2(i) = rtr%s2(i); tr%c2(i) = rtr%c2(i)
          end if
       end do
-   end subroutine rk4_lanes
+   end subroutine rk4_lanes_fallback
 
    !> The RK4 step of `rk4_lanes` through the lane routines, stage by stage, with the
    !> exact fallbacks of `sincos_near_lanes` (a lane whose offset exceeds `d_max`
