@@ -66,9 +66,10 @@ module dpend_pendulum_lanes
                           cos_p5 = 2.08757232129817482790e-09_dp, &
                           cos_p6 = -1.13596475577881948265e-11_dp
    !> A lane whose |q1| + |q2| + |q̇1| + |q̇2| exceeds this has run away: it ends with
-   !> st_nonfinite, and the accelerations take velocities clamped to it, so that no
-   !> step of the kernel overflows (accepted inputs stay below 1e9; the scalar
-   !> integrators' bound, diverged_bound = 1e30, would let one RK4 step overflow here)
+   !> st_nonfinite, and the accelerations take the squares of the velocities clamped
+   !> to its square (`wsq`), so that no step of the kernel overflows (accepted inputs
+   !> stay below 1e9; the scalar integrators' bound, diverged_bound = 1e30, would let
+   !> one RK4 step overflow here)
    real(dp), parameter :: lane_bound = 1.0e15_dp
    !> Margin of the sweep's angle windows [rad]: far above the rounding of
    !> (q - π/2)/(2π) at the largest accepted angles (1e6 rad: ~1e-10)
@@ -408,24 +409,22 @@ contains
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
       integer :: i
       do i = 1, lane_width
-         ! velocities clamped to lane_bound (themselves unless the lane runs away)
-         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), min(max(w1(i), -lane_bound), lane_bound), &
-                         min(max(w2(i), -lane_bound), lane_bound), a1(i), a2(i))
+         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), wsq(w1(i)), wsq(w2(i)), a1(i), a2(i))
       end do
    end subroutine accel_trig_lanes
 
-   !> One lane of `accel_trig_lanes`.
-   pure elemental subroutine accel_trig(c, s1, c1, s2, c2, w1, w2, a1, a2)
+   !> One lane of `accel_trig_lanes`, from the squares of the velocities (`wsq`).
+   pure elemental subroutine accel_trig(c, s1, c1, s2, c2, w1sq, w2sq, a1, a2)
       type(batch_coef_t), intent(in) :: c        !! constants
       real(dp), intent(in) :: s1, c1, s2, c2     !! sin q1, cos q1, sin q2, cos q2
-      real(dp), intent(in) :: w1, w2             !! velocities [rad/s]
+      real(dp), intent(in) :: w1sq, w2sq         !! q̇1², q̇2² [rad²/s²]
       real(dp), intent(out) :: a1, a2            !! accelerations [rad/s²]
       real(dp) :: cd, sd, r1, r2, rdet
       ! the equations divided by k: M12/k = cos d
       cd = c1*c2 + s1*s2
       sd = s1*c2 - c1*s2
-      r1 = -c%gak*c1 - sd*w2**2
-      r2 = -c%gbk*c2 + sd*w1**2
+      r1 = -c%gak*c1 - sd*w2sq
+      r2 = -c%gbk*c2 + sd*w1sq
       rdet = 1.0_dp/(c%detk - cd*cd)
       a1 = (c%m22k*r1 - cd*r2)*rdet
       a2 = (c%m11k*r2 - cd*r1)*rdet
@@ -511,7 +510,8 @@ contains
    !> new state from the step start) takes instead the result of `rk4_lanes_ref`, the
    !> same step through the lane routines with their exact fallbacks. Which path a
    !> lane takes depends on its own values only, so the results stay bitwise
-   !> independent of the other lanes.
+   !> independent of the other lanes. On entry |q̇| <= `lane_bound` (`wsq`:
+   !> `integrate_batch` ends a lane beyond).
    pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
       type(batch_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: h                                  !! step [s]
@@ -532,7 +532,7 @@ contains
       hh = 0.5_dp*h
       h6 = h/6.0_dp
       n_off = 0
-      ! (the offsets are clamped to d_max and the velocities to lane_bound: a lane
+      ! (the offsets are clamped to d_max and the velocities' squares to lane_bound²: a lane
       ! beyond takes the reference step or ends, and its discarded values here stay
       ! bounded; off counts |d - clamped d|, > 0 or NaN for a lane beyond)
       ! lanes i and i + half side by side: two independent chains of stages in each
@@ -542,13 +542,13 @@ contains
          ! stage a: the step start
          p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
          s1a_1 = tr%s1(i); c1a_1 = tr%c1(i); s2a_1 = tr%s2(i); c2a_1 = tr%c2(i)
-         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, vclamp(w1(i)), vclamp(w2(i)), ka1_1, ka2_1)
+         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, wsq(w1(i)), wsq(w2(i)), ka1_1, ka2_1)
          e(i) = energy_formula(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
          d1_1 = (q1(i) + hh*w1(i)) - q1(i); d2_1 = (q2(i) + hh*w2(i)) - q2(i)
          vb1_1 = w1(i) + hh*ka1_1; vb2_1 = w2(i) + hh*ka2_1
          p1(j) = q1(j); p2(j) = q2(j); pw1(j) = w1(j); pw2(j) = w2(j)
          s1a_2 = tr%s1(j); c1a_2 = tr%c1(j); s2a_2 = tr%s2(j); c2a_2 = tr%c2(j)
-         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, vclamp(w1(j)), vclamp(w2(j)), ka1_2, ka2_2)
+         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, wsq(w1(j)), wsq(w2(j)), ka1_2, ka2_2)
          e(j) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(j), w2(j))
          d1_2 = (q1(j) + hh*w1(j)) - q1(j); d2_2 = (q2(j) + hh*w2(j)) - q2(j)
          vb1_2 = w1(j) + hh*ka1_2; vb2_2 = w2(j) + hh*ka2_2
@@ -557,7 +557,7 @@ contains
          off(i) = abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1)
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vb1_1), vclamp(vb2_1), kb1_1, kb2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vb1_1), wsq(vb2_1), kb1_1, kb2_1)
          d1_1 = (q1(i) + hh*vb1_1) - q1(i); d2_1 = (q2(i) + hh*vb2_1) - q2(i)
          vc1_1 = w1(i) + hh*kb1_1; vc2_1 = w2(i) + hh*kb2_1
          sv1_1 = vb1_1 + vc1_1; sv2_1 = vb2_1 + vc2_1
@@ -565,7 +565,7 @@ contains
          off(j) = abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2)
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vb1_2), vclamp(vb2_2), kb1_2, kb2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vb1_2), wsq(vb2_2), kb1_2, kb2_2)
          d1_2 = (q1(j) + hh*vb1_2) - q1(j); d2_2 = (q2(j) + hh*vb2_2) - q2(j)
          vc1_2 = w1(j) + hh*kb1_2; vc2_2 = w2(j) + hh*kb2_2
          sv1_2 = vb1_2 + vc1_2; sv2_2 = vb2_2 + vc2_2
@@ -574,7 +574,7 @@ contains
          off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vc1_1), vclamp(vc2_1), kc1_1, kc2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vc1_1), wsq(vc2_1), kc1_1, kc2_1)
          d1_1 = (q1(i) + h*vc1_1) - q1(i); d2_1 = (q2(i) + h*vc2_1) - q2(i)
          vd1_1 = w1(i) + h*kc1_1; vd2_1 = w2(i) + h*kc2_1
          sk1_1 = kb1_1 + kc1_1; sk2_1 = kb2_1 + kc2_1
@@ -583,7 +583,7 @@ contains
          off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vc1_2), vclamp(vc2_2), kc1_2, kc2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vc1_2), wsq(vc2_2), kc1_2, kc2_2)
          d1_2 = (q1(j) + h*vc1_2) - q1(j); d2_2 = (q2(j) + h*vc2_2) - q2(j)
          vd1_2 = w1(j) + h*kc1_2; vd2_2 = w2(j) + h*kc2_2
          sk1_2 = kb1_2 + kc1_2; sk2_2 = kb2_2 + kc2_2
@@ -593,7 +593,7 @@ contains
          off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, vclamp(vd1_1), vclamp(vd2_1), kd1_1, kd2_1)
+         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vd1_1), wsq(vd2_1), kd1_1, kd2_1)
          d1_1 = h6*sv1_1; d2_1 = h6*sv2_1
          w1(i) = w1(i) + h6*((ka1_1 + 2.0_dp*sk1_1) + kd1_1)
          w2(i) = w2(i) + h6*((ka2_1 + 2.0_dp*sk2_1) + kd2_1)
@@ -601,7 +601,7 @@ contains
          off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, vclamp(vd1_2), vclamp(vd2_2), kd1_2, kd2_2)
+         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vd1_2), wsq(vd2_2), kd1_2, kd2_2)
          d1_2 = h6*sv1_2; d2_2 = h6*sv2_2
          w1(j) = w1(j) + h6*((ka1_2 + 2.0_dp*sk1_2) + kd1_2)
          w2(j) = w2(j) + h6*((ka2_2 + 2.0_dp*sk2_2) + kd2_2)
@@ -1123,11 +1123,14 @@ contains
       dclamp = min(max(d, -d_max), d_max)
    end function dclamp
 
-   !> A velocity clamped to ±`lane_bound` [rad/s]: itself unless the lane runs away.
-   pure elemental real(dp) function vclamp(w)
+   !> The square of a velocity clamped to `lane_bound`² [rad²/s²]: w² unless the lane
+   !> runs away. (w² itself must not overflow: |w| < 1e154. A step that starts below
+   !> `lane_bound` keeps its stage velocities far below that, and `integrate_batch`
+   !> ends a lane beyond `lane_bound` before its next step.)
+   pure elemental real(dp) function wsq(w)
       real(dp), intent(in) :: w  !! velocity [rad/s]
-      vclamp = min(max(w, -lane_bound), lane_bound)
-   end function vclamp
+      wsq = min(w*w, lane_bound*lane_bound)
+   end function wsq
 
    !> The lane's state is not finite or beyond `lane_bound` (no ordered comparison
    !> on NaN, which would raise IEEE invalid).
