@@ -166,7 +166,9 @@ contains
       c%k = 0.5_dp*par%m2*par%l1*par%l2
       c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
       c%gb = 0.5_dp*par%m2*par%g*par%l2
-      if (.not. (c%k > 0.0_dp)) return   ! (no accepted pendulum: m2, L1, L2 > 0)
+      ! the form divided by k needs k > 0: every accepted pendulum (dpend_limits:
+      ! masses and lengths >= 1e-6)
+      if (.not. (c%k > 0.0_dp)) error stop 'internal error: batch_coef needs m2 L1 L2 > 0'
       c%m11k = c%m11/c%k
       c%m22k = c%m22/c%k
       c%detk = c%m11k*c%m22k
@@ -210,7 +212,7 @@ contains
    !> Cody–Waite with π/2 in three parts (33 + 33 + 53 bits: n p1 and n p2 exact for
    !> |n| < 2^20), the nearest integer n by the 1.5·2^52 rounding trick; then fdlibm's
    !> minimax polynomials of sin and cos on [-π/4, π/4] (error < 2^-58) and the
-   !> quadrant n mod 4 by merges. Accurate to about 1 ulp for |x| <= `sincos_exact_max`
+   !> quadrant n mod 4 by exact arithmetic. Accurate to 2-3 ulp for |x| <= `sincos_exact_max`
    !> (= 2^20 π/2, above dpend_limits' max_angle = 1e6 rad; test/test_sweep.f90
    !> checks it against the intrinsic); lanes beyond it (and NaN/Inf) take the
    !> intrinsic sin and cos, lane by lane.
@@ -498,8 +500,9 @@ contains
    !> of the new state on return, so that a step needs no sin/cos of its own: the
    !> three later stages' (`sincos_add_stage`) and the new state's (`sincos_add`)
    !> come from the step start's by the addition formulas. The caller sets `tr` exactly
-   !> (`set_lane_trig`) when it loads a lane, and again every so often
-   !> (`integrate_batch`: every `resync_steps` steps of the lane): each carried step
+   !> (`set_lane_trig`, or `sincos_exact` lane by lane) when it loads a lane, and again
+   !> every so often (`integrate_batch`: every `resync_steps` steps of the lane; a lane
+   !> on the fallback starts from exact values anyway): each carried step
    !> adds about one ulp of rounding, a random walk (test sweep/carried_trig_drift).
    !>
    !> The whole step of a lane is one loop body (the stages' values stay in vector
@@ -931,7 +934,8 @@ contains
          end if
          ! vectorized: error, step count, and a count of the lanes with a possible
          ! event (an angle out of its window, the last step, a non-finite state, a fresh
-         ! lane); the rare path below decides each one exactly
+         ! lane, carried sin and cos due to be set exactly); the rare path below decides
+         ! each one exactly
          n_events = 0
          do i = 1, w
             err(i) = max(err(i), abs(e(i) - e0(i)))
@@ -1067,6 +1071,8 @@ contains
          call sincos_exact(q1(l), tr%s1(l), tr%c1(l))
          call sincos_exact(q2(l), tr%s2(l), tr%c2(l))
          sync(l) = real(resync_steps, dp)
+         ! (the Lyapunov and indicator kernels compute their own sin and cos)
+         if (opt%lyapunov .or. opt%vectors > 0) sync(l) = huge(1.0_dp)
       end subroutine resync
 
       !> The windows of lane l's angles from n1, n2: between two upward verticals,
