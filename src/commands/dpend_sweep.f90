@@ -44,7 +44,7 @@ module dpend_sweep
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
-   public :: config_value
+   public :: config_value, open_sweep_file
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
@@ -1492,19 +1492,8 @@ contains
          character(len=:), allocatable :: pre
          pre = "sweep-compare: invalid sweep '"//file//"': "
          tau = 1; h = 0; complete = 0
-         call check_regular_file(file, pre, error)
+         call open_sweep_file(file, pre, h5, config, error)
          if (allocated(error)) return
-         if (.not. is_hdf5(file)) then
-            call fatal_error(error, pre//'not an HDF5 file')
-            return
-         end if
-         call h5%open(file, 'r', error)
-         if (.not. allocated(error)) call h5%readattr('/sweep', 'config', config, error)
-         if (allocated(error)) then
-            call h5%close()
-            call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
-            return
-         end if
          call h5%readattr('/sweep', 'complete', complete, error)
          if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
          if (.not. allocated(error)) call h5%shape('/sweep/t_flip', dims, error)
@@ -1552,6 +1541,29 @@ contains
          if (ieee_is_finite(x)) tau_ok = x >= min_tau .and. x <= max_tau
       end function tau_ok
    end subroutine compare_sweeps
+
+   !> Open an existing sweep file for reading and read its /sweep config attribute;
+   !> refused (with `pre` before the reason, h5 closed) unless it is a regular HDF5
+   !> file with that attribute. Shared by sweep-compare and --agreement.
+   subroutine open_sweep_file(file, pre, h5, config, error)
+      character(len=*), intent(in) :: file                 !! the file
+      character(len=*), intent(in) :: pre                  !! message prefix
+      type(h5file_t), intent(inout) :: h5                  !! opened on success
+      character(len=:), allocatable, intent(out) :: config !! /sweep@config
+      type(error_t), allocatable, intent(out) :: error     !! refused
+      call check_regular_file(file, pre, error)
+      if (allocated(error)) return
+      if (.not. is_hdf5(file)) then
+         call fatal_error(error, pre//'not an HDF5 file')
+         return
+      end if
+      call h5%open(file, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', config, error)
+      if (allocated(error)) then
+         call h5%close()
+         call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
+      end if
+   end subroutine open_sweep_file
 
    !> The value of `key` in a configuration text of "key = value" lines ('' if absent).
    function config_value(text, key) result(v)

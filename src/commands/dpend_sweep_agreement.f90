@@ -15,12 +15,11 @@ module dpend_sweep_agreement
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
-   use dpend_config, only: check_regular_file
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci
-   use dpend_sweep, only: config_value
+   use dpend_sweep, only: config_value, open_sweep_file
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
@@ -194,19 +193,8 @@ contains
       pre = "sweep-compare: invalid sweep '"//file//"': "
       c%file = file
       complete = 0
-      call check_regular_file(file, pre, error)
+      call open_sweep_file(file, pre, h5, c%config, error)
       if (allocated(error)) return
-      if (.not. is_hdf5(file)) then
-         call fatal_error(error, pre//'not an HDF5 file')
-         return
-      end if
-      call h5%open(file, 'r', error)
-      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', c%config, error)
-      if (allocated(error)) then
-         call h5%close()
-         call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
-         return
-      end if
       c%indicator = config_value(c%config, 'indicator')
       if (len(c%indicator) == 0 .and. config_value(c%config, 'lyapunov') == 'true') &
          c%indicator = 'lambda1'
