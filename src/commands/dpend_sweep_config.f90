@@ -516,16 +516,8 @@ contains
          call fatal_error(error, 'invalid min'//c//', max'//c//': '//sci(lo)//' .. ' &
                           //sci(hi)//' is outside ['//sci(-bound)//', '//sci(bound)// &
                           '] ('//trim(unit)//')')
-      else if (hi > 1e12_dp) then   ! (the pixels' own limits are checked later; this
-         ! bound keeps their products, ratio times mass or length, far from overflow)
-         call fatal_error(error, 'invalid max'//c//': '//sci(hi)//' must be at most 1e12 '// &
-                          '(axis '//name//')')
-      else if (lo > hi) then
-         call fatal_error(error, 'invalid min'//c//', max'//c//': min'//c//' = ' &
-                          //real_str(lo)//' > max'//c//' = '//real_str(hi))
-      else if (n > 1 .and. .not. (lo < hi)) then
-         call fatal_error(error, 'invalid min'//c//', max'//c//': the grid is empty, need min' &
-                          //c//' < max'//c//' when n'//c//' > 1')
+      else
+         call check_grid_range(name, c, n, lo, hi, error)
       end if
    end subroutine check_axis
 
@@ -552,8 +544,22 @@ contains
       else if (.not. (lo > 0.0_dp)) then
          call fatal_error(error, 'invalid min'//c//': '//sci(lo)//' must be > 0 (axis '// &
                           name//')')
-      else if (hi > 1e12_dp) then   ! (the pixels' own limits are checked later; this
-         ! bound keeps their products, ratio times mass or length, far from overflow)
+      else
+         call check_grid_range(name, c, n, lo, hi, error)
+      end if
+   end subroutine check_param_axis
+
+   !> The checks that every axis shares once its own range holds: max at most 1e12
+   !> (the pixels' own limits are checked later; this bound keeps their products,
+   !> ratio times mass or length, far from overflow), min <= max, and a non-empty
+   !> grid.
+   subroutine check_grid_range(name, c, n, lo, hi, error)
+      character(len=*), intent(in) :: name              !! axis name
+      character(len=1), intent(in) :: c                 !! '1' or '2'
+      integer, intent(in) :: n                          !! points
+      real(dp), intent(in) :: lo, hi                    !! range
+      type(error_t), allocatable, intent(out) :: error  !! what is wrong
+      if (hi > 1e12_dp) then
          call fatal_error(error, 'invalid max'//c//': '//sci(hi)//' must be at most 1e12 '// &
                           '(axis '//name//')')
       else if (lo > hi) then
@@ -563,7 +569,7 @@ contains
          call fatal_error(error, 'invalid min'//c//', max'//c//': the grid is empty, need min' &
                           //c//' < max'//c//' when n'//c//' > 1')
       end if
-   end subroutine check_param_axis
+   end subroutine check_grid_range
 
    !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
    pure function unit_name(cfg) result(u)
