@@ -31,7 +31,8 @@ export PKG_CONFIG_PATH="$gen${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
 cd "$root/mpi"
 if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then
   printf '%s\n' "$log" >&2
-  echo "build_mpi.sh: build failed" >&2
+  echo "build_mpi.sh: build failed (after sources moved or changed interfaces, fpm may" \
+    "keep stale objects: remove mpi/build and rerun)" >&2
   exit 1
 fi
 bin=$(fpm run dpend-mpi --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |

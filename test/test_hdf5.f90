@@ -258,7 +258,7 @@ contains
       type(error_t), allocatable :: err
       character(len=:), allocatable :: name
       real(dp) :: full(4, 10)
-      real(dp), allocatable :: back(:, :)
+      real(dp), allocatable :: back(:, :), vback(:)
       integer :: counts(3, 5), j
       integer, allocatable :: nback(:, :)
       name = temp_name('slab')
@@ -285,6 +285,18 @@ contains
       if (allocated(error)) return
       call h5%write_slab('/sweep/grid', full(:, 1:2), [1, 10], err)
       call check_true(error, allocated(err), 'slab outside the dataset must fail')
+      ! whole chunks ([4, 3] chunks of [4, 10]): columns 4-6, and 10 (the edge chunk)
+      call h5%write_slab('/sweep/grid', full(:, 4:6), [1, 4], error, whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/sweep/grid', full(:, 10:10), &
+         [1, 10], error, whole_chunks=.true.)
+      if (allocated(error)) return
+      call h5%write_slab('/sweep/grid', full(:, 4:5), [1, 4], err, whole_chunks=.true.)
+      call check_true(error, allocated(err), 'whole_chunks: part of a chunk must fail')
+      call h5%write_slab('/sweep/grid', full(:, 2:4), [1, 2], err, whole_chunks=.true.)
+      call check_true(error, allocated(err), 'whole_chunks: a block across chunks must fail')
+      call h5%write_slab('/sweep/grid', full(1:2, 4:6), [1, 4], err, whole_chunks=.true.)
+      call check_true(error, allocated(err), 'whole_chunks: half the rows must fail')
+      if (allocated(error)) return
       call h5%flush()
       call h5%close()
 
@@ -298,6 +310,20 @@ contains
       if (.not. allocated(error)) call h5%read('/sweep/unwritten', back, error)
       if (.not. allocated(error)) call check(error, pack(back, .true.), &
          [-7.0_dp, -7.0_dp, -7.0_dp, -7.0_dp, -7.0_dp, 1.0_dp], 'fill value and one element')
+      ! slab reads: blocks of both kinds, then a block outside and a wrong rank
+      if (.not. allocated(error)) call h5%read_slab('/sweep/grid', [2, 3], [2, 5], back, error)
+      if (.not. allocated(error)) call check(error, pack(back, .true.), &
+         pack(full(2:3, 3:7), .true.), 'read_slab of a real block')
+      if (.not. allocated(error)) call h5%read_slab('/sweep/count', [1, 4], [3, 2], nback, error)
+      if (.not. allocated(error)) call check_true(error, all(nback == counts(:, 4:5)), &
+         'read_slab of an integer block')
+      if (.not. allocated(error)) call h5%read_slab('/sweep/grid', [1, 10], [4, 0], back, error)
+      if (.not. allocated(error)) call check_true(error, size(back, 2) == 0, 'empty slab')
+      if (allocated(error)) return
+      call h5%read_slab('/sweep/grid', [1, 10], [4, 2], back, err)
+      call check_true(error, allocated(err), 'read_slab outside the dataset must fail')
+      call h5%read_slab('/sweep/grid', [1], [4], vback, err)
+      call check_true(error, allocated(err), 'read_slab of another rank must fail')
       call h5%close()
       call delete_file(name)
    end subroutine test_slabs

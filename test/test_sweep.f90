@@ -17,7 +17,8 @@ module test_sweep
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
+   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
+      write_block
    use dpend_trajectory_batch, only: link_flip_bounds
    use dpend_chain, only: chain_t, chain_model
    use dpend_indicators, only: indicators_result_t, chaos_indicators
@@ -55,6 +56,7 @@ contains
                new_unittest('list_matches_grid', test_list_matches_grid), &
                new_unittest('resume_after_kill', test_resume_after_kill), &
                new_unittest('resume_after_kill_parameters', test_resume_parameters), &
+               new_unittest('resume_torn_blocks', test_torn_blocks), &
                new_unittest('parameter_axes', test_parameter_axes), &
                new_unittest('agreement_megno_lambda1', test_agreement), &
                new_unittest('config_mismatch_refused', test_mismatch), &
@@ -603,6 +605,112 @@ contains
                       'rerun of a complete file: '//text)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine resume_case
+
+   !> A kill -9 during the write of a block's chunk leaves it torn: part new data,
+   !> part old, under a checksum that no longer matches (Linux lets a fatal signal
+   !> cut a write between pages). The block is not flagged done, so the resume
+   !> rewrites it: a working file with two such blocks (one of them the grid's last,
+   !> partial chunk) resumes to the uninterrupted run's result bit for bit.
+   subroutine test_torn_blocks(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=16), parameter :: words(14) = [character(len=16) :: 'sweep', '--quiet', &
+         '--n1', '10', '--n2', '7', '--block', '20', '--t-end', '3', '--stats', &
+         '--threads', '1', '--output']
+      type(arg_t), allocatable :: args(:)
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(batch_result_t) :: res
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: dir, line, text
+      integer, allocatable :: done(:)
+      integer :: j, b, complete, stat, n
+      logical :: help
+      integer, parameter :: torn(2) = [2, 4]
+      real(dp), allocatable :: e(:, :)
+      dir = scratch_dir('sweeptorn')
+      line = ''
+      do j = 1, size(words)
+         line = line//trim(words(j))//' '
+      end do
+      stat = run_command(dir, line//dir//'/ref.h5')
+      call check_true(error, stat == 0, 'uninterrupted run exits 0')
+      if (allocated(error)) return
+      ! the working file of run.h5 with every block written and flagged done
+      allocate (args(size(words)))
+      do j = 2, size(words)
+         args(j - 1)%s = trim(words(j))
+      end do
+      args(size(words))%s = dir//'/run.h5'
+      call parse_sweep(args, cfg, help, err)
+      if (.not. allocated(err)) call build_setup(cfg, setup, err)
+      if (.not. allocated(err)) call open_output(setup, h5, done, complete, err)
+      call check_true(error, .not. allocated(err) .and. setup%nblocks == 4, &
+                      'working file created, 4 blocks')
+      if (allocated(error)) return
+      do b = 1, setup%nblocks
+         call compute_block(setup, b, res)
+         if (.not. allocated(err)) call write_block(h5, setup, b, res, err)
+      end do
+      call h5%close()
+      call check_true(error, .not. allocated(err), 'blocks written')
+      if (allocated(error)) return
+      ! tear blocks 2 and 4 (row 7 of 7: a partial chunk) in final/q2 (energy0 is
+      ! symmetric in theta2 = -pi, pi: rows 1 and 7 hold the same values)
+      call h5%open(dir//'/run.h5.part', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/final/q2', e, error)
+      call h5%close()
+      if (allocated(error)) return
+      do j = 1, size(torn)
+         call tear(dir//'/run.h5.part', setup, torn(j))
+         if (allocated(error)) return
+      end do
+      stat = run_command(dir, line//dir//'/run.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'resume over torn blocks exits 0: '//text)
+      if (allocated(error)) return
+      call same_results(error, dir//'/ref.h5', dir//'/run.h5', .true.)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> Flag block b not done and flip a byte in the middle of its final/q2 chunk
+      !> (uncompressed: found in the file by its values).
+      subroutine tear(path, setup, b)
+         character(len=*), intent(in) :: path
+         type(sweep_setup_t), intent(in) :: setup
+         integer, intent(in) :: b
+         real(dp), allocatable :: v(:)
+         character(len=:), allocatable :: bytes, pattern
+         integer :: j0, nb, at, u, size_bytes
+         call h5%open(path, 'rw', error)
+         if (.not. allocated(error)) call h5%write_slab('/sweep/done', [0], [b], error)
+         call h5%close()
+         if (allocated(error)) return
+         call block_range(setup, b, j0, nb)
+         v = reshape(e, [size(e)])
+         v = v(j0:j0 + nb - 1)
+         pattern = transfer(v, repeat(' ', 8*nb))
+         open (newunit=u, file=path, access='stream', form='unformatted', status='old')
+         inquire (unit=u, size=size_bytes)
+         allocate (character(len=size_bytes) :: bytes)
+         read (u) bytes
+         at = index(bytes, pattern)
+         call check_true(error, at > 0 .and. index(bytes, pattern, back=.true.) == at, &
+                         'block '//str(b)//' found once in the file (at '//str(at)//')')
+         if (.not. allocated(error)) then
+            at = at + 8*nb/2 + 3
+            bytes(at:at) = achar(ieor(iachar(bytes(at:at)), 16))
+            write (u, pos=1) bytes
+         end if
+         close (u)
+      end subroutine tear
+      pure function str(i) result(s)
+         integer, intent(in) :: i
+         character(len=:), allocatable :: s
+         character(len=12) :: buf
+         write (buf, '(i0)') i
+         s = trim(buf)
+      end function str
+   end subroutine test_torn_blocks
 
    !> Another configuration against an existing file: exit 2, one line, file kept;
    !> --force overwrites.

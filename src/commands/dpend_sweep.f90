@@ -9,7 +9,9 @@
 !> block), uncompressed and allocated in full when the file is created, so writing
 !> a block changes raw data only, never the file's metadata: a kill at any moment
 !> leaves a valid file. A block's data are written and flushed before its flag in
-!> /sweep/done. When every block is done, the results are rewritten with
+!> /sweep/done. A kill during a block's write may tear its chunks (a checksum that
+!> no longer matches); the block is not flagged, so the resume neither reads it
+!> (`verify_blocks`) nor needs its old contents (`write_block`: whole chunks). When every block is done, the results are rewritten with
 !> compressed chunks through the one writer (dpend_output: temporary file, checked
 !> close, one-step move) into FILE, marked complete, and the working file is
 !> removed. FILE itself is never changed before the new result is complete.
@@ -902,6 +904,8 @@ contains
       if (allocated(error)) return
       if (sync) call h5%flush()
    contains
+      ! each block is whole chunks: a chunk torn by a kill during its write (its
+      ! block not flagged done) is replaced without its old checksum being checked
       subroutine put_r(name, v)
          character(len=*), intent(in) :: name
          real(dp), intent(in) :: v(:)
@@ -909,10 +913,11 @@ contains
          if (allocated(error)) return
          if (setup%grid) then
             a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
-            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
+                               whole_chunks=.true.)
          else
             a1 = v   ! contiguous copy
-            call h5%write_slab('/sweep/'//name, a1, [j0], error)
+            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
          end if
       end subroutine put_r
       subroutine put_i(name, v)
@@ -922,10 +927,11 @@ contains
          if (allocated(error)) return
          if (setup%grid) then
             a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
-            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error)
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
+                               whole_chunks=.true.)
          else
             a1 = v   ! contiguous copy
-            call h5%write_slab('/sweep/'//name, a1, [j0], error)
+            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
          end if
       end subroutine put_i
    end subroutine write_block
@@ -1204,10 +1210,12 @@ contains
    end subroutine open_output
 
    !> Check the results of an existing sweep file before it is resumed or reported
-   !> complete: every chunk reads back (its Fletcher-32 checksum matches; files
-   !> written before checksums are read in full all the same), every flag in
-   !> /sweep/done is 0 or 1, and every block flagged done has a status for each of
-   !> its initial conditions. A damaged file is refused, never finished or copied.
+   !> complete: every flag in /sweep/done is 0 or 1, and every block flagged done
+   !> reads back (the Fletcher-32 checksums of its chunks match; files written
+   !> before checksums are read all the same) and has a status for each of its
+   !> initial conditions. A damaged file is refused, never finished or copied.
+   !> Blocks not flagged done are not read: a kill during a block's write may
+   !> leave its chunks torn, and resuming rewrites them (`write_block`).
    subroutine verify_blocks(h5, path, setup, done, error)
       type(h5file_t), intent(inout) :: h5               !! the open file
       character(len=*), intent(in) :: path              !! its name, for messages
@@ -1215,8 +1223,7 @@ contains
       integer, intent(in) :: done(:)                    !! its block flags
       type(error_t), allocatable, intent(out) :: error  !! the first damage found
       character(len=32), allocatable :: reals(:), ints(:)
-      real(dp), allocatable :: r1(:), r2(:, :)
-      integer, allocatable :: i1(:), i2(:, :), status(:)
+      integer, allocatable :: status(:), start(:), count(:)
       character(len=:), allocatable :: damaged
       integer :: k, b, j0, nb
       damaged = "invalid --output: '"//path//"' is damaged ("
@@ -1225,44 +1232,52 @@ contains
                           'use --force to start again')
          return
       end if
-      call result_names(setup, reals, ints)
-      do k = 1, size(reals) + size(ints)
-         if (k <= size(reals)) then
-            if (setup%grid) then
-               call h5%read('/sweep/'//trim(reals(k)), r2, error)
-            else
-               call h5%read('/sweep/'//trim(reals(k)), r1, error)
-            end if
-         else if (setup%grid) then
-            call h5%read('/sweep/'//trim(ints(k - size(reals))), i2, error)
-            if (.not. allocated(error) .and. k == size(reals) + 1) &
-               status = reshape(i2, [size(i2)])
-         else
-            call h5%read('/sweep/'//trim(ints(k - size(reals))), i1, error)
-            if (.not. allocated(error) .and. k == size(reals) + 1) status = i1
-         end if
-         if (allocated(error)) then
-            error%message = damaged//'/sweep/'//trim(merge(reals(min(k, size(reals))), &
-                            ints(max(1, k - size(reals))), k <= size(reals)))// &
-                            ' does not read back: a checksum does not match or its chunk '// &
-                            'index is broken); use --force to start again'
-            return
-         end if
-      end do
-      if (size(status) /= setup%n) then
-         call fatal_error(error, damaged//'/sweep/status has '//to_str(size(status))// &
-                          ' values, not '//to_str(setup%n)//'); use --force to start again')
-         return
-      end if
+      call result_names(setup, reals, ints)   ! ints(1) is the status
       do b = 1, setup%nblocks
          if (done(b) /= 1) cycle
          call block_range(setup, b, j0, nb)
-         if (any(status(j0:j0 + nb - 1) == 0)) then
-            call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
-                             'but not written); use --force to start again')
-            return
+         if (setup%grid) then
+            start = [1, (j0 - 1)/setup%cfg%n1 + 1]
+            count = [setup%cfg%n1, nb/setup%cfg%n1]
+         else
+            start = [j0]
+            count = [nb]
          end if
+         do k = 1, size(ints)
+            call read_block(trim(ints(k)), .false.)
+            if (allocated(error)) return
+            if (k == 1 .and. any(status == 0)) then
+               call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
+                                'but not written); use --force to start again')
+               return
+            end if
+         end do
+         do k = 1, size(reals)
+            call read_block(trim(reals(k)), .true.)
+            if (allocated(error)) return
+         end do
       end do
+   contains
+      !> Read block b of dataset /sweep/name (integers into `status`).
+      subroutine read_block(name, real_values)
+         character(len=*), intent(in) :: name
+         logical, intent(in) :: real_values
+         real(dp), allocatable :: r1(:), r2(:, :)
+         integer, allocatable :: i2(:, :)
+         if (real_values .and. setup%grid) then
+            call h5%read_slab('/sweep/'//name, start, count, r2, error)
+         else if (real_values) then
+            call h5%read_slab('/sweep/'//name, start, count, r1, error)
+         else if (setup%grid) then
+            call h5%read_slab('/sweep/'//name, start, count, i2, error)
+            if (.not. allocated(error)) status = reshape(i2, [size(i2)])
+         else
+            call h5%read_slab('/sweep/'//name, start, count, status, error)
+         end if
+         if (allocated(error)) error%message = damaged//'/sweep/'//name// &
+            ' does not read back in block '//to_str(b)//': a checksum does not match '// &
+            'or its chunk index is broken); use --force to start again'
+      end subroutine read_block
    end subroutine verify_blocks
 
    !> Put a freshly written file in place: close it (the close checked unless an

@@ -65,6 +65,10 @@ module dpend_hdf5
          write_i0, write_i1, write_i2, write_i64_1, write_str
       procedure, private :: slab_r1, slab_r2, slab_i1, slab_i2
       generic :: write_slab => slab_r1, slab_r2, slab_i1, slab_i2
+      ! (not read_slab_r1...: those names gave gfortran 12 a vtable mismatch between
+      ! modules using this type, "expecting 'read_i64_1', but got 'read_i0'")
+      procedure, private :: slabread_r1, slabread_r2, slabread_i1, slabread_i2
+      generic :: read_slab => slabread_r1, slabread_r2, slabread_i1, slabread_i2
       procedure, private :: read_r0, read_r1, read_r2, read_r3
       procedure, private :: read_i0, read_i1, read_i2, read_i64_1, read_str
       generic :: read => read_r0, read_r1, read_r2, read_r3, &
@@ -495,47 +499,51 @@ contains
    end subroutine file_create_dataset
 
    !> Write a real(dp) 1-D block into dataset `path` from index `start`.
-   subroutine slab_r1(self, path, array, start, error)
+   subroutine slab_r1(self, path, array, start, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
       real(dp), intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                        !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error)
+         c_loc(array), error, whole_chunks)
    end subroutine slab_r1
 
    !> Write a real(dp) 2-D block into dataset `path` from index `start`.
-   subroutine slab_r2(self, path, array, start, error)
+   subroutine slab_r2(self, path, array, start, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                   !! the file object
       character(len=*), intent(in) :: path                     !! dataset path
       real(dp), intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                          !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error)
+         c_loc(array), error, whole_chunks)
    end subroutine slab_r2
 
    !> Write a default-integer 1-D block into dataset `path` from index `start`.
-   subroutine slab_i1(self, path, array, start, error)
+   subroutine slab_i1(self, path, array, start, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                !! the file object
       character(len=*), intent(in) :: path                  !! dataset path
       integer, intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                       !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error)
+         c_loc(array), error, whole_chunks)
    end subroutine slab_i1
 
    !> Write a default-integer 2-D block into dataset `path` from index `start`.
-   subroutine slab_i2(self, path, array, start, error)
+   subroutine slab_i2(self, path, array, start, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! dataset path
       integer, intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                         !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error)
+         c_loc(array), error, whole_chunks)
    end subroutine slab_i2
 
    !> Write a real(dp) scalar attribute on the group or dataset `path`.
@@ -701,6 +709,68 @@ contains
       allocate (value(dims(1), dims(2), dims(3)))
       call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
    end subroutine read_r3
+
+   !> Read the block of `count` values from index `start` (1-based) of the 1-D
+   !> numeric dataset `path` as real(dp). Only the chunks holding the block are
+   !> read (and their checksums checked).
+   subroutine slabread_r1(self, path, start, count, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer, intent(in) :: start(:)                             !! 1-based first index
+      integer, intent(in) :: count(:)                             !! shape of the block
+      real(dp), allocatable, intent(out), target :: value(:)      !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer :: n(1)
+      n = slab_shape(count, 1)
+      allocate (value(n(1)))
+      call read_slab_raw(self, path, 1, want_real, real_type(), start, count, c_loc(value), &
+         error)
+   end subroutine slabread_r1
+
+   !> `slabread_r1` for a 2-D numeric dataset.
+   subroutine slabread_r2(self, path, start, count, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer, intent(in) :: start(:)                             !! 1-based first index
+      integer, intent(in) :: count(:)                             !! shape of the block
+      real(dp), allocatable, intent(out), target :: value(:, :)   !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer :: n(2)
+      n = slab_shape(count, 2)
+      allocate (value(n(1), n(2)))
+      call read_slab_raw(self, path, 2, want_real, real_type(), start, count, c_loc(value), &
+         error)
+   end subroutine slabread_r2
+
+   !> `slabread_r1` for a 1-D integer dataset.
+   subroutine slabread_i1(self, path, start, count, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer, intent(in) :: start(:)                             !! 1-based first index
+      integer, intent(in) :: count(:)                             !! shape of the block
+      integer, allocatable, intent(out), target :: value(:)       !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer :: n(1)
+      n = slab_shape(count, 1)
+      allocate (value(n(1)))
+      call read_slab_raw(self, path, 1, want_int, int_type(), start, count, c_loc(value), &
+         error)
+   end subroutine slabread_i1
+
+   !> `slabread_r1` for a 2-D integer dataset.
+   subroutine slabread_i2(self, path, start, count, value, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer, intent(in) :: start(:)                             !! 1-based first index
+      integer, intent(in) :: count(:)                             !! shape of the block
+      integer, allocatable, intent(out), target :: value(:, :)    !! values read
+      type(error_t), allocatable, intent(out) :: error            !! set on failure
+      integer :: n(2)
+      n = slab_shape(count, 2)
+      allocate (value(n(1), n(2)))
+      call read_slab_raw(self, path, 2, want_int, int_type(), start, count, c_loc(value), &
+         error)
+   end subroutine slabread_i2
 
    !> Read a scalar (or one-element) integer dataset.
    subroutine read_i0(self, path, value, error)
@@ -1023,7 +1093,7 @@ contains
    end subroutine write_raw
 
    !> `slab_now` for the public writers, failures handled as by `write_raw`.
-   subroutine slab_raw(self, path, mem_type, mem_dims, start, buf, error)
+   subroutine slab_raw(self, path, mem_type, mem_dims, start, buf, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
@@ -1031,9 +1101,10 @@ contains
       integer, intent(in) :: start(:)                             !! 1-based first index
       type(c_ptr), intent(in) :: buf                              !! address of the block
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      logical, intent(in), optional :: whole_chunks               !! see `slab_now`
       type(error_t), allocatable :: err
       if (.not. present(error) .and. allocated(self%error)) return
-      call slab_now(self, path, mem_type, mem_dims, start, buf, err)
+      call slab_now(self, path, mem_type, mem_dims, start, buf, err, whole_chunks)
       call settle(self, err, error)
    end subroutine slab_raw
 
@@ -1117,7 +1188,7 @@ contains
 
    !> Write `buf` (shape `mem_dims`) into dataset `path` from 1-based `start`. Missing
    !> trailing dimensions of `mem_dims` count as 1, so a column goes in as 1-D.
-   subroutine slab_now(self, path, mem_type, mem_dims, start, buf, error)
+   subroutine slab_now(self, path, mem_type, mem_dims, start, buf, error, whole_chunks)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer(hid_t), intent(in) :: mem_type            !! type of `buf`
@@ -1125,10 +1196,18 @@ contains
       integer, intent(in) :: start(:)                   !! 1-based first index
       type(c_ptr), intent(in) :: buf                    !! address of the block
       type(error_t), allocatable, intent(out) :: error  !! set on failure
-      integer(hid_t) :: dset, fspace, mspace
+      !> The block covers whole chunks (the last ones up to the dataset's edge), all
+      !> of whose old values it replaces: refused otherwise. The old contents HDF5
+      !> reads to write a partial edge chunk are then not checked against their
+      !> checksum, so that a chunk torn by a kill during its write is rewritten.
+      logical, intent(in), optional :: whole_chunks
+      integer(hid_t) :: dset, fspace, mspace, dxpl
       integer(hsize_t), allocatable :: dims(:), maxdims(:), cnt(:), last(:)
       integer :: rank, hdferr, ierr
+      logical :: whole
       character(len=:), allocatable :: why
+      whole = .false.
+      if (present(whole_chunks)) whole = whole_chunks
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
       if (dset < 0) then
@@ -1150,6 +1229,9 @@ contains
          if (any(start < 1) .or. any(last > maxdims .and. maxdims /= H5S_UNLIMITED_F)) then
             why = 'block lies outside the dataset'
             hdferr = -1
+         else if (whole .and. .not. covers_chunks(dset, start, cnt, dims)) then
+            why = 'block does not cover whole chunks'
+            hdferr = -1
          else if (any(last > dims)) then
             why = 'cannot extend the dataset'
             call close_id(fspace)
@@ -1160,17 +1242,42 @@ contains
       if (hdferr == 0) then
          if (product(cnt) > 0) then
             why = 'HDF5 write failed'
+            call h5pcreate_f(H5P_DATASET_XFER_F, dxpl, ierr)
+            if (whole) call h5pset_edc_check_f(dxpl, H5Z_DISABLE_EDC_F, ierr)
             call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, int(start - 1, hsize_t), &
                cnt, hdferr)
             call h5screate_simple_f(size(mem_dims), mem_dims, mspace, ierr)
             if (hdferr == 0) call h5dwrite_f(dset, mem_type, buf, hdferr, &
-               mem_space_id=mspace, file_space_id=fspace)
+               mem_space_id=mspace, file_space_id=fspace, xfer_prp=dxpl)
             call close_id(mspace)
+            call close_id(dxpl)
          end if
       end if
       call close_id(fspace)
       call close_id(dset)
       if (hdferr /= 0) call fail(error, 'write a slab of', self, quoted(path), why)
+   contains
+      !> The block from `start` of shape `cnt` is a union of whole chunks of the
+      !> chunked dataset `dset` (of shape `dims`), the last ones cut at its edge.
+      logical function covers_chunks(dset, start, cnt, dims) result(ok)
+         integer(hid_t), intent(in) :: dset
+         integer, intent(in) :: start(:)
+         integer(hsize_t), intent(in) :: cnt(:), dims(:)
+         integer(hid_t) :: dcpl
+         integer(hsize_t) :: chunk(size(dims))
+         integer :: layout, n, ierr
+         ok = .false.
+         call h5dget_create_plist_f(dset, dcpl, ierr)
+         if (ierr /= 0) return
+         call h5pget_layout_f(dcpl, layout, ierr)
+         n = -1
+         if (ierr == 0 .and. layout == H5D_CHUNKED_F) &
+            call h5pget_chunk_f(dcpl, size(dims), chunk, n)
+         call close_id(dcpl)
+         if (n /= size(dims)) return
+         ok = all(mod(int(start - 1, hsize_t), chunk) == 0 .and. &
+                  (mod(cnt, chunk) == 0 .or. int(start - 1, hsize_t) + cnt == dims))
+      end function covers_chunks
    end subroutine slab_now
 
    !> Write attribute `name` on object `path`, replacing an existing one.
@@ -1285,6 +1392,59 @@ contains
       end if
       if (allocated(error)) call close_id(obj)
    end subroutine open_read
+
+   !> The shape a slab read allocates: `count` (negative counts as 0); a rank that
+   !> does not match gives an empty array, and `read_slab_raw` the error.
+   pure function slab_shape(count, rank) result(n)
+      integer, intent(in) :: count(:)  !! the requested shape
+      integer, intent(in) :: rank      !! the rank of the array read into
+      integer :: n(rank)
+      n = 0
+      if (size(count) == rank) n = max(count, 0)
+   end function slab_shape
+
+   !> Read the block of shape `count` from `start` of the dataset `path` of rank
+   !> `rank` into `buf`, checking that the block lies inside it.
+   subroutine read_slab_raw(self, path, rank, want, mem_type, start, count, buf, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer, intent(in) :: rank                       !! rank of the dataset and of `buf`
+      integer, intent(in) :: want                       !! want_real or want_int
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      integer, intent(in) :: start(:)                   !! 1-based first index
+      integer, intent(in) :: count(:)                   !! shape of the block
+      type(c_ptr), intent(in) :: buf                    !! where to put the values
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: obj, fspace, mspace
+      integer(hsize_t), allocatable :: dims(:)
+      type(c_ptr) :: ptr  ! the HDF5 interfaces take buf as intent(inout)
+      integer :: hdferr, ierr
+      call open_read(self, path, rank, want, obj, dims, error)
+      if (allocated(error)) return
+      if (size(start) /= rank .or. size(count) /= rank) then
+         call fail(error, 'read', self, quoted(path), 'start or count rank does not match '// &
+                   'the dataset')
+      else if (any(start < 1) .or. any(count < 0)) then
+         call fail(error, 'read', self, quoted(path), 'block lies outside the dataset')
+      else if (any(int(start, hsize_t) - 1 + int(count, hsize_t) > dims)) then
+         call fail(error, 'read', self, quoted(path), 'block lies outside the dataset')
+      end if
+      if (allocated(error) .or. product(count) == 0) then
+         call close_id(obj)
+         return
+      end if
+      ptr = buf
+      call h5dget_space_f(obj, fspace, ierr)
+      call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, int(start - 1, hsize_t), &
+         int(count, hsize_t), hdferr)
+      call h5screate_simple_f(size(count), int(count, hsize_t), mspace, ierr)
+      if (hdferr == 0) call h5dread_f(obj, mem_type, ptr, hdferr, mem_space_id=mspace, &
+         file_space_id=fspace)
+      call close_id(mspace)
+      call close_id(fspace)
+      call close_id(obj)
+      if (hdferr /= 0) call fail(error, 'read', self, quoted(path), 'HDF5 read failed')
+   end subroutine read_slab_raw
 
    !> Read all of the open dataset or attribute `obj` into `buf`, then close it.
    subroutine read_obj(self, what, obj, mem_type, buf, n, error)
