@@ -15,7 +15,7 @@ module test_sweep
       stop_either, stop_end, st_cannot_flip, st_nonfinite
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
-   use dpend_cli, only: arg_t
+   use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
       write_block
@@ -610,7 +610,8 @@ contains
    !> part old, under a checksum that no longer matches (Linux lets a fatal signal
    !> cut a write between pages). The block is not flagged done, so the resume
    !> rewrites it: a working file with two such blocks (one of them the grid's last,
-   !> partial chunk) resumes to the uninterrupted run's result bit for bit.
+   !> partial chunk) resumes to the uninterrupted run's result bit for bit. A torn
+   !> block flagged done (damage, not a kill) is refused.
    subroutine test_torn_blocks(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=16), parameter :: words(14) = [character(len=16) :: 'sweep', '--quiet', &
@@ -661,6 +662,16 @@ contains
       if (.not. allocated(error)) call h5%read('/sweep/final/q2', e, error)
       call h5%close()
       if (allocated(error)) return
+      ! a copy in which block 3, torn, is still flagged done: refused, naming it
+      call execute_command_line('cp '//dir//'/run.h5.part '//dir//'/bad.h5.part')
+      call tear(dir//'/bad.h5.part', setup, 3, flagged=.true.)
+      if (allocated(error)) return
+      stat = run_command(dir, line//dir//'/bad.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'damaged') > 0 .and. &
+                      index(text, '/sweep/final/q2 does not read back in block 3') > 0, &
+                      'a torn block flagged done is refused in one line: '//text)
+      if (allocated(error)) return
       do j = 1, size(torn)
          call tear(dir//'/run.h5.part', setup, torn(j))
          if (allocated(error)) return
@@ -672,30 +683,34 @@ contains
       call same_results(error, dir//'/ref.h5', dir//'/run.h5', .true.)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    contains
-      !> Flag block b not done and flip a byte in the middle of its final/q2 chunk
-      !> (uncompressed: found in the file by its values).
-      subroutine tear(path, setup, b)
+      !> Flip a byte in the middle of block b's final/q2 chunk (uncompressed: found
+      !> in the file by its values) and flag the block not done, unless `flagged`.
+      subroutine tear(path, setup, b, flagged)
          character(len=*), intent(in) :: path
          type(sweep_setup_t), intent(in) :: setup
          integer, intent(in) :: b
+         logical, intent(in), optional :: flagged
          real(dp), allocatable :: v(:)
          character(len=:), allocatable :: bytes, pattern
          integer :: j0, nb, at, u, size_bytes
-         call h5%open(path, 'rw', error)
-         if (.not. allocated(error)) call h5%write_slab('/sweep/done', [0], [b], error)
-         call h5%close()
-         if (allocated(error)) return
+         if (.not. present(flagged)) then
+            call h5%open(path, 'rw', error)
+            if (.not. allocated(error)) call h5%write_slab('/sweep/done', [0], [b], error)
+            call h5%close()
+            if (allocated(error)) return
+         end if
          call block_range(setup, b, j0, nb)
          v = reshape(e, [size(e)])
          v = v(j0:j0 + nb - 1)
          pattern = transfer(v, repeat(' ', 8*nb))
-         open (newunit=u, file=path, access='stream', form='unformatted', status='old')
+         open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
+               action='readwrite')
          inquire (unit=u, size=size_bytes)
          allocate (character(len=size_bytes) :: bytes)
          read (u) bytes
          at = index(bytes, pattern)
          call check_true(error, at > 0 .and. index(bytes, pattern, back=.true.) == at, &
-                         'block '//str(b)//' found once in the file (at '//str(at)//')')
+                         'block '//to_str(b)//' found once in the file')
          if (.not. allocated(error)) then
             at = at + 8*nb/2 + 3
             bytes(at:at) = achar(ieor(iachar(bytes(at:at)), 16))
@@ -703,13 +718,6 @@ contains
          end if
          close (u)
       end subroutine tear
-      pure function str(i) result(s)
-         integer, intent(in) :: i
-         character(len=:), allocatable :: s
-         character(len=12) :: buf
-         write (buf, '(i0)') i
-         s = trim(buf)
-      end function str
    end subroutine test_torn_blocks
 
    !> Another configuration against an existing file: exit 2, one line, file kept;

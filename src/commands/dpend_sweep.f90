@@ -9,14 +9,15 @@
 !> block), uncompressed and allocated in full when the file is created, so writing
 !> a block changes raw data only, never the file's metadata: a kill at any moment
 !> leaves a valid file. A block's data are written and flushed before its flag in
-!> /sweep/done. A kill during a block's write may tear its chunks (a checksum that
-!> no longer matches); the block is not flagged, so the resume neither reads it
-!> (`verify_blocks`) nor needs its old contents (`write_block`: whole chunks). When every block is done, the results are rewritten with
-!> compressed chunks through the one writer (dpend_output: temporary file, checked
-!> close, one-step move) into FILE, marked complete, and the working file is
-!> removed. FILE itself is never changed before the new result is complete.
-!> Rerunning the same command computes only the blocks not flagged done in
-!> FILE.part; another configuration is refused unless --force.
+!> /sweep/done. A kill during a block's write may tear its chunks (a checksum
+!> that no longer matches); the block is not flagged, so the resume does not check
+!> its checksums (`verify_blocks`) nor needs its old contents (`write_block`).
+!> When every block is done, the results are rewritten with compressed chunks
+!> through the one writer (dpend_output: temporary file, checked close, one-step
+!> move) into FILE, marked complete, and the working file is removed. FILE itself
+!> is never changed before the new result is complete. Rerunning the same command
+!> computes only the blocks not flagged done in FILE.part; another configuration
+!> is refused unless --force.
 module dpend_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       ieee_quiet_nan
@@ -1210,12 +1211,13 @@ contains
    end subroutine open_output
 
    !> Check the results of an existing sweep file before it is resumed or reported
-   !> complete: every flag in /sweep/done is 0 or 1, and every block flagged done
-   !> reads back (the Fletcher-32 checksums of its chunks match; files written
-   !> before checksums are read all the same) and has a status for each of its
-   !> initial conditions. A damaged file is refused, never finished or copied.
-   !> Blocks not flagged done are not read: a kill during a block's write may
-   !> leave its chunks torn, and resuming rewrites them (`write_block`).
+   !> complete: every flag in /sweep/done is 0 or 1; every result dataset has the
+   !> sweep's shape; every block flagged done reads back (the Fletcher-32 checksums
+   !> of its chunks match; files written before checksums are read all the same)
+   !> and has a status for each of its initial conditions; the chunk index of every
+   !> other block reads. Those other blocks' checksums are not checked: a kill
+   !> during a block's write may leave its chunks torn, and resuming rewrites them
+   !> whole (`write_block`). A damaged file is refused, never finished or copied.
    subroutine verify_blocks(h5, path, setup, done, error)
       type(h5file_t), intent(inout) :: h5               !! the open file
       character(len=*), intent(in) :: path              !! its name, for messages
@@ -1223,8 +1225,8 @@ contains
       integer, intent(in) :: done(:)                    !! its block flags
       type(error_t), allocatable, intent(out) :: error  !! the first damage found
       character(len=32), allocatable :: reals(:), ints(:)
-      integer, allocatable :: status(:), start(:), count(:)
-      character(len=:), allocatable :: damaged
+      integer, allocatable :: status(:), start(:), cnt(:), dims(:), want(:)
+      character(len=:), allocatable :: damaged, name
       integer :: k, b, j0, nb
       damaged = "invalid --output: '"//path//"' is damaged ("
       if (any(done /= 0 .and. done /= 1)) then
@@ -1233,20 +1235,41 @@ contains
          return
       end if
       call result_names(setup, reals, ints)   ! ints(1) is the status
+      if (setup%grid) then
+         want = [setup%cfg%n1, setup%cfg%n2]
+      else
+         want = [setup%n]
+      end if
+      do k = 1, size(reals) + size(ints)
+         name = '/sweep/'//trim(merge(reals(min(k, size(reals))), &
+                                      ints(max(1, k - size(reals))), k <= size(reals)))
+         call h5%shape(name, dims, error)
+         if (allocated(error)) then
+            error%message = damaged//error%message//'); use --force to start again'
+            return
+         end if
+         if (size(dims) /= size(want)) then
+            call fatal_error(error, damaged//name//' has rank '//to_str(size(dims))// &
+                             ', not '//to_str(size(want))//'); use --force to start again')
+         else if (any(dims /= want)) then
+            call fatal_error(error, damaged//name//' has shape '//shape_str(dims)// &
+                             ', not '//shape_str(want)//'); use --force to start again')
+         end if
+         if (allocated(error)) return
+      end do
       do b = 1, setup%nblocks
-         if (done(b) /= 1) cycle
          call block_range(setup, b, j0, nb)
          if (setup%grid) then
             start = [1, (j0 - 1)/setup%cfg%n1 + 1]
-            count = [setup%cfg%n1, nb/setup%cfg%n1]
+            cnt = [setup%cfg%n1, nb/setup%cfg%n1]
          else
             start = [j0]
-            count = [nb]
+            cnt = [nb]
          end if
          do k = 1, size(ints)
             call read_block(trim(ints(k)), .false.)
             if (allocated(error)) return
-            if (k == 1 .and. any(status == 0)) then
+            if (k == 1 .and. done(b) == 1 .and. any(status == 0)) then
                call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
                                 'but not written); use --force to start again')
                return
@@ -1258,26 +1281,47 @@ contains
          end do
       end do
    contains
-      !> Read block b of dataset /sweep/name (integers into `status`).
+      !> Read block b of dataset /sweep/name (integers into `status`), with its
+      !> checksums checked if the block is flagged done.
       subroutine read_block(name, real_values)
          character(len=*), intent(in) :: name
          logical, intent(in) :: real_values
          real(dp), allocatable :: r1(:), r2(:, :)
          integer, allocatable :: i2(:, :)
+         logical :: sums
+         sums = done(b) == 1
          if (real_values .and. setup%grid) then
-            call h5%read_slab('/sweep/'//name, start, count, r2, error)
+            call h5%read_slab('/sweep/'//name, start, cnt, r2, error, sums)
          else if (real_values) then
-            call h5%read_slab('/sweep/'//name, start, count, r1, error)
+            call h5%read_slab('/sweep/'//name, start, cnt, r1, error, sums)
          else if (setup%grid) then
-            call h5%read_slab('/sweep/'//name, start, count, i2, error)
+            call h5%read_slab('/sweep/'//name, start, cnt, i2, error, sums)
             if (.not. allocated(error)) status = reshape(i2, [size(i2)])
          else
-            call h5%read_slab('/sweep/'//name, start, count, status, error)
+            call h5%read_slab('/sweep/'//name, start, cnt, status, error, sums)
          end if
-         if (allocated(error)) error%message = damaged//'/sweep/'//name// &
-            ' does not read back in block '//to_str(b)//': a checksum does not match '// &
-            'or its chunk index is broken); use --force to start again'
+         if (.not. allocated(error)) return
+         if (sums) then
+            error%message = damaged//'/sweep/'//name//' does not read back in block '// &
+                            to_str(b)//': a checksum does not match or its chunk index '// &
+                            'is broken); use --force to start again'
+         else
+            error%message = damaged//'/sweep/'//name//' does not read back in block '// &
+                            to_str(b)//', not yet computed: its chunk index is broken); '// &
+                            'use --force to start again'
+         end if
       end subroutine read_block
+      !> '[n1, n2]' in Fortran order (h5py shows the reverse)
+      function shape_str(d) result(text)
+         integer, intent(in) :: d(:)
+         character(len=:), allocatable :: text
+         integer :: i
+         text = '['//to_str(d(1))
+         do i = 2, size(d)
+            text = text//', '//to_str(d(i))
+         end do
+         text = text//']'
+      end function shape_str
    end subroutine verify_blocks
 
    !> Put a freshly written file in place: close it (the close checked unless an

@@ -14,6 +14,13 @@
 !> object instead: the first failure is kept, later writes without `error` do
 !> nothing, and `close(error)` or `take_error` hands it over, so that a writer
 !> writes plainly and checks once at the end.
+!> `write_slab(..., whole_chunks=.true.)` writes a block made of whole chunks of a
+!> fixed-size chunked dataset (the last ones cut at its edge; anything else is
+!> refused): every value of those chunks is replaced, so the old contents HDF5
+!> reads to rewrite a partial edge chunk are not checked against their checksum,
+!> and a chunk torn by a kill during an earlier write is simply rewritten.
+!> `read_slab(..., check_sums=.false.)` reads a block without verifying checksums
+!> (the chunk index is still read): for blocks that will be rewritten so.
 !> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
 !> an `h5file_t` from one thread at a time.
 module dpend_hdf5
@@ -65,8 +72,6 @@ module dpend_hdf5
          write_i0, write_i1, write_i2, write_i64_1, write_str
       procedure, private :: slab_r1, slab_r2, slab_i1, slab_i2
       generic :: write_slab => slab_r1, slab_r2, slab_i1, slab_i2
-      ! (not read_slab_r1...: those names gave gfortran 12 a vtable mismatch between
-      ! modules using this type, "expecting 'read_i64_1', but got 'read_i0'")
       procedure, private :: slabread_r1, slabread_r2, slabread_i1, slabread_i2
       generic :: read_slab => slabread_r1, slabread_r2, slabread_i1, slabread_i2
       procedure, private :: read_r0, read_r1, read_r2, read_r3
@@ -505,7 +510,7 @@ contains
       real(dp), intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                        !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
+      logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
    end subroutine slab_r1
@@ -517,7 +522,7 @@ contains
       real(dp), intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                          !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
+      logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
    end subroutine slab_r2
@@ -529,7 +534,7 @@ contains
       integer, intent(in), target, contiguous :: array(:)   !! block to write
       integer, intent(in) :: start(:)                       !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
+      logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
    end subroutine slab_i1
@@ -541,7 +546,7 @@ contains
       integer, intent(in), target, contiguous :: array(:, :)  !! block to write
       integer, intent(in) :: start(:)                         !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see `slab_now`
+      logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
    end subroutine slab_i2
@@ -713,63 +718,67 @@ contains
    !> Read the block of `count` values from index `start` (1-based) of the 1-D
    !> numeric dataset `path` as real(dp). Only the chunks holding the block are
    !> read (and their checksums checked).
-   subroutine slabread_r1(self, path, start, count, value, error)
+   subroutine slabread_r1(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer, intent(in) :: start(:)                             !! 1-based first index
       integer, intent(in) :: count(:)                             !! shape of the block
       real(dp), allocatable, intent(out), target :: value(:)      !! values read
       type(error_t), allocatable, intent(out) :: error            !! set on failure
+      logical, intent(in), optional :: check_sums                 !! see the module's header
       integer :: n(1)
       n = slab_shape(count, 1)
       allocate (value(n(1)))
       call read_slab_raw(self, path, 1, want_real, real_type(), start, count, c_loc(value), &
-         error)
+         error, check_sums)
    end subroutine slabread_r1
 
    !> `slabread_r1` for a 2-D numeric dataset.
-   subroutine slabread_r2(self, path, start, count, value, error)
+   subroutine slabread_r2(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer, intent(in) :: start(:)                             !! 1-based first index
       integer, intent(in) :: count(:)                             !! shape of the block
       real(dp), allocatable, intent(out), target :: value(:, :)   !! values read
       type(error_t), allocatable, intent(out) :: error            !! set on failure
+      logical, intent(in), optional :: check_sums                 !! see the module's header
       integer :: n(2)
       n = slab_shape(count, 2)
       allocate (value(n(1), n(2)))
       call read_slab_raw(self, path, 2, want_real, real_type(), start, count, c_loc(value), &
-         error)
+         error, check_sums)
    end subroutine slabread_r2
 
    !> `slabread_r1` for a 1-D integer dataset.
-   subroutine slabread_i1(self, path, start, count, value, error)
+   subroutine slabread_i1(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer, intent(in) :: start(:)                             !! 1-based first index
       integer, intent(in) :: count(:)                             !! shape of the block
       integer, allocatable, intent(out), target :: value(:)       !! values read
       type(error_t), allocatable, intent(out) :: error            !! set on failure
+      logical, intent(in), optional :: check_sums                 !! see the module's header
       integer :: n(1)
       n = slab_shape(count, 1)
       allocate (value(n(1)))
       call read_slab_raw(self, path, 1, want_int, int_type(), start, count, c_loc(value), &
-         error)
+         error, check_sums)
    end subroutine slabread_i1
 
    !> `slabread_r1` for a 2-D integer dataset.
-   subroutine slabread_i2(self, path, start, count, value, error)
+   subroutine slabread_i2(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                      !! the file object
       character(len=*), intent(in) :: path                        !! dataset path
       integer, intent(in) :: start(:)                             !! 1-based first index
       integer, intent(in) :: count(:)                             !! shape of the block
       integer, allocatable, intent(out), target :: value(:, :)    !! values read
       type(error_t), allocatable, intent(out) :: error            !! set on failure
+      logical, intent(in), optional :: check_sums                 !! see the module's header
       integer :: n(2)
       n = slab_shape(count, 2)
       allocate (value(n(1), n(2)))
       call read_slab_raw(self, path, 2, want_int, int_type(), start, count, c_loc(value), &
-         error)
+         error, check_sums)
    end subroutine slabread_i2
 
    !> Read a scalar (or one-element) integer dataset.
@@ -1101,7 +1110,7 @@ contains
       integer, intent(in) :: start(:)                             !! 1-based first index
       type(c_ptr), intent(in) :: buf                              !! address of the block
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks               !! see `slab_now`
+      logical, intent(in), optional :: whole_chunks               !! see the module's header
       type(error_t), allocatable :: err
       if (.not. present(error) .and. allocated(self%error)) return
       call slab_now(self, path, mem_type, mem_dims, start, buf, err, whole_chunks)
@@ -1196,11 +1205,7 @@ contains
       integer, intent(in) :: start(:)                   !! 1-based first index
       type(c_ptr), intent(in) :: buf                    !! address of the block
       type(error_t), allocatable, intent(out) :: error  !! set on failure
-      !> The block covers whole chunks (the last ones up to the dataset's edge), all
-      !> of whose old values it replaces: refused otherwise. The old contents HDF5
-      !> reads to write a partial edge chunk are then not checked against their
-      !> checksum, so that a chunk torn by a kill during its write is rewritten.
-      logical, intent(in), optional :: whole_chunks
+      logical, intent(in), optional :: whole_chunks     !! see the module's header
       integer(hid_t) :: dset, fspace, mspace, dxpl
       integer(hsize_t), allocatable :: dims(:), maxdims(:), cnt(:), last(:)
       integer :: rank, hdferr, ierr
@@ -1229,7 +1234,7 @@ contains
          if (any(start < 1) .or. any(last > maxdims .and. maxdims /= H5S_UNLIMITED_F)) then
             why = 'block lies outside the dataset'
             hdferr = -1
-         else if (whole .and. .not. covers_chunks(dset, start, cnt, dims)) then
+         else if (whole .and. .not. covers_chunks(dset, start, cnt, dims, maxdims)) then
             why = 'block does not cover whole chunks'
             hdferr = -1
          else if (any(last > dims)) then
@@ -1258,11 +1263,12 @@ contains
       if (hdferr /= 0) call fail(error, 'write a slab of', self, quoted(path), why)
    contains
       !> The block from `start` of shape `cnt` is a union of whole chunks of the
-      !> chunked dataset `dset` (of shape `dims`), the last ones cut at its edge.
-      logical function covers_chunks(dset, start, cnt, dims) result(ok)
+      !> chunked, fixed-size dataset `dset` (of shape `dims`), the last ones cut at
+      !> its edge.
+      logical function covers_chunks(dset, start, cnt, dims, maxdims) result(ok)
          integer(hid_t), intent(in) :: dset
          integer, intent(in) :: start(:)
-         integer(hsize_t), intent(in) :: cnt(:), dims(:)
+         integer(hsize_t), intent(in) :: cnt(:), dims(:), maxdims(:)
          integer(hid_t) :: dcpl
          integer(hsize_t) :: chunk(size(dims))
          integer :: layout, n, ierr
@@ -1276,7 +1282,8 @@ contains
          call close_id(dcpl)
          if (n /= size(dims)) return
          ok = all(mod(int(start - 1, hsize_t), chunk) == 0 .and. &
-                  (mod(cnt, chunk) == 0 .or. int(start - 1, hsize_t) + cnt == dims))
+                  (mod(cnt, chunk) == 0 .or. int(start - 1, hsize_t) + cnt == dims)) .and. &
+              all(maxdims == dims)   ! fixed size: no padding of an edge chunk shows later
       end function covers_chunks
    end subroutine slab_now
 
@@ -1404,8 +1411,11 @@ contains
    end function slab_shape
 
    !> Read the block of shape `count` from `start` of the dataset `path` of rank
-   !> `rank` into `buf`, checking that the block lies inside it.
-   subroutine read_slab_raw(self, path, rank, want, mem_type, start, count, buf, error)
+   !> `rank` into `buf`, checking that the block lies inside it. With `check_sums`
+   !> false the chunks' checksums are not verified (the chunk index is still read):
+   !> for blocks whose values will be rewritten, which a kill may have torn.
+   subroutine read_slab_raw(self, path, rank, want, mem_type, start, count, buf, error, &
+                            check_sums)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer, intent(in) :: rank                       !! rank of the dataset and of `buf`
@@ -1415,10 +1425,14 @@ contains
       integer, intent(in) :: count(:)                   !! shape of the block
       type(c_ptr), intent(in) :: buf                    !! where to put the values
       type(error_t), allocatable, intent(out) :: error  !! set on failure
-      integer(hid_t) :: obj, fspace, mspace
+      logical, intent(in), optional :: check_sums       !! verify checksums (default true)
+      integer(hid_t) :: obj, fspace, mspace, dxpl
       integer(hsize_t), allocatable :: dims(:)
       type(c_ptr) :: ptr  ! the HDF5 interfaces take buf as intent(inout)
       integer :: hdferr, ierr
+      logical :: verify
+      verify = .true.
+      if (present(check_sums)) verify = check_sums
       call open_read(self, path, rank, want, obj, dims, error)
       if (allocated(error)) return
       if (size(start) /= rank .or. size(count) /= rank) then
@@ -1438,8 +1452,11 @@ contains
       call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, int(start - 1, hsize_t), &
          int(count, hsize_t), hdferr)
       call h5screate_simple_f(size(count), int(count, hsize_t), mspace, ierr)
+      call h5pcreate_f(H5P_DATASET_XFER_F, dxpl, ierr)
+      if (.not. verify) call h5pset_edc_check_f(dxpl, H5Z_DISABLE_EDC_F, ierr)
       if (hdferr == 0) call h5dread_f(obj, mem_type, ptr, hdferr, mem_space_id=mspace, &
-         file_space_id=fspace)
+         file_space_id=fspace, xfer_prp=dxpl)
+      call close_id(dxpl)
       call close_id(mspace)
       call close_id(fspace)
       call close_id(obj)
