@@ -1224,7 +1224,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup          !! setup
       integer, intent(in) :: done(:)                    !! its block flags
       type(error_t), allocatable, intent(out) :: error  !! the first damage found
-      character(len=32), allocatable :: reals(:), ints(:)
+      character(len=32), allocatable :: reals(:), ints(:), names(:)
       integer, allocatable :: status(:), start(:), cnt(:), dims(:), want(:)
       character(len=:), allocatable :: damaged, name
       integer :: k, b, j0, nb
@@ -1240,9 +1240,9 @@ contains
       else
          want = [setup%n]
       end if
-      do k = 1, size(reals) + size(ints)
-         name = '/sweep/'//trim(merge(reals(min(k, size(reals))), &
-                                      ints(max(1, k - size(reals))), k <= size(reals)))
+      names = [reals, ints]
+      do k = 1, size(names)
+         name = '/sweep/'//trim(names(k))
          call h5%shape(name, dims, error)
          if (allocated(error)) then
             error%message = damaged//error%message//'); use --force to start again'
