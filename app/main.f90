@@ -16,6 +16,7 @@ program dpend
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
                         real_str, pad
    use dpend_kinds, only: dp
+   use dpend_model_factory, only: describe_models
    use, intrinsic :: iso_c_binding, only: c_int
    use dpend_study_config, only: study_config_t, parse_study, study_help
    use dpend_study_command, only: run_study_command
@@ -46,6 +47,8 @@ program dpend
       write (output_unit, '(a)') 'dpend '//version
    case ('methods')
       call methods(args(2:))
+   case ('models')
+      call models(args(2:))
    case ('simulate')
       call simulate(args(2:))
    case ('export')
@@ -86,6 +89,8 @@ contains
           '  fit        estimate the initial state (and damping) from measured angles (CSV)' &
           //nl// &
           '  methods    the integration methods: order, properties, commands'//nl// &
+          '  models     the models: coordinates, parameters (units, ranges), capabilities' &
+          //nl// &
           '  version    print the version'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q1 = q2 = -pi/2).'//nl// &
@@ -193,6 +198,23 @@ contains
          call fail(2, 'dpend fit: '//error%message)
       end if
    end subroutine fit
+
+   !> `dpend models`: every model of the factory's catalogue with its coordinates,
+   !> parameters (units, ranges, defaults) and capabilities.
+   subroutine models(sub)
+      type(arg_t), intent(in) :: sub(:)
+      if (size(sub) > 0) then
+         if (sub(1)%s == '--help' .or. sub(1)%s == '-h') then
+            write (output_unit, '(a)') 'usage: dpend models'//nl//nl// &
+               'Lists every model dpend can build: its coordinates, its parameters (units,' &
+               //nl//'accepted ranges, defaults) and what it supports.'
+            return
+         end if
+         call fail(2, "dpend models: unexpected argument '"//sub(1)%s// &
+                   "' (dpend models takes no options)")
+      end if
+      write (output_unit, '(a)') describe_models()
+   end subroutine models
 
    !> `dpend methods`: one row per method of the registry (dpend_method_registry):
    !> name, variables, order, properties, commands, then a line of description

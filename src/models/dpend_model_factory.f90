@@ -1,0 +1,465 @@
+!> The model factory: the one place a model is built (docs/architecture.md).
+!>
+!> A model is asked for by a specification (`model_spec_t`): the model's name and
+!> its parameters by name, each a list of reals (a per-link parameter has one value
+!> per link). `new_model` checks the specification against the model's description
+!> (names, counts, ranges; every range comes from `dpend_limits`) and builds it.
+!> `model_catalogue` describes every model: its coordinates, its parameters (names,
+!> units, ranges, defaults) and what it supports; `dpend models` prints it, and the
+!> tests ask it what exists instead of naming models.
+!>
+!> Adding a model: its module under models/, one row in `model_catalogue` (its
+!> description) and one branch in `build` (its construction).
+module dpend_model_factory
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_model, only: model_t, max_dof
+   use dpend_pendulum, only: pendulum_t, validate, pendulum_model
+   use dpend_chain, only: chain_t, chain_model
+   use dpend_cli, only: to_str, real_str
+   use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
+                           max_damping, max_support_amplitude, max_support_frequency, &
+                           max_angle
+   implicit none
+   private
+   public :: model_spec_t, param_info_t, model_info_t
+   public :: model_spec, new_model, model_catalogue, find_model, default_model, describe_models
+
+   !> The model a specification without a name asks for: the chapter's pendulum.
+   character(len=*), parameter :: default_model = 'pendulum'
+
+   !> One named parameter of a specification.
+   type :: spec_item_t
+      character(len=:), allocatable :: name  !! parameter name, e.g. 'm'
+      real(dp), allocatable :: values(:)     !! its value(s) in the parameter's units
+   end type spec_item_t
+
+   !> What to build: a model name and parameters by name. Parameters not given take
+   !> the description's defaults.
+   type :: model_spec_t
+      character(len=:), allocatable :: name            !! model name (default_model if unset)
+      type(spec_item_t), allocatable :: items(:)       !! parameters given
+   contains
+      !> Set parameter `name` to `values` (replacing an earlier value).
+      procedure :: set => spec_set
+      !> Index of parameter `name` in `items`, 0 if not given.
+      procedure :: find => spec_find
+      !> The values of `name`, or `default` if not given.
+      procedure :: get => spec_get
+      !> The model name asked for (default_model if unset).
+      procedure :: model_name => spec_model_name
+   end type model_spec_t
+
+   !> The description of one parameter.
+   type :: param_info_t
+      character(len=:), allocatable :: name     !! e.g. 'm'
+      character(len=:), allocatable :: units    !! e.g. 'kg' ('' for a count)
+      character(len=:), allocatable :: meaning  !! one line for people
+      real(dp) :: lower = 0.0_dp                !! smallest accepted value
+      real(dp) :: upper = 0.0_dp                !! largest accepted value
+      real(dp) :: default = 0.0_dp              !! value when not given
+      !> How many values: 1 (a scalar), -1 (one per link), or a fixed count (2: x, y).
+      integer :: count = 1
+      logical :: integer_valued = .false.       !! a count (e.g. links)
+   end type param_info_t
+
+   !> The description of one model.
+   type :: model_info_t
+      character(len=:), allocatable :: name         !! the name --model takes
+      character(len=:), allocatable :: summary      !! one line
+      character(len=:), allocatable :: coordinates  !! names and units of q
+      character(len=:), allocatable :: supports     !! capabilities, one line
+      type(param_info_t), allocatable :: params(:)  !! its parameters
+   end type model_info_t
+
+contains
+
+   ! ------------------------------------------------------------- the catalogue
+
+   !> Every model dpend can build, described.
+   function model_catalogue() result(models)
+      type(model_info_t), allocatable :: models(:)
+      models = [pendulum_info()]
+   end function model_catalogue
+
+   !> The chapter's pendulum: N rigid uniform rods (N = 2: the double pendulum),
+   !> optional joint damping and a moving support.
+   function pendulum_info() result(info)
+      type(model_info_t) :: info
+      character(len=*), parameter :: keep = 'keeps every product of the model finite'
+      info%name = 'pendulum'
+      info%summary = 'N uniform rods hinged in a chain (N = 2: the chapter''s compound ' &
+                     //'double pendulum), optional joint damping and a moving support'
+      info%coordinates = 'q_i: angle of link i from the horizontal x axis, counter-' &
+                         //'clockwise (rad), i = 1..N; hanging: q_i = -pi/2'
+      info%supports = 'Hamiltonian structure (no damping, fixed support), damping, ' &
+                      //'driving (moving support), SIMD sweep lanes (2 links), ' &
+                      //'Poincare sections (2 links, conservative)'
+      info%params = [ &
+         param('links', '', 'number of links N', 1.0_dp, real(max_dof, dp), 2.0_dp, 1, &
+               .true.), &
+         param('m', 'kg', 'link masses m_i (one per link); '//keep, min_mass, max_mass, &
+               1.0_dp, -1), &
+         param('l', 'm', 'link lengths l_i (one per link)', min_length, max_length, &
+               1.0_dp, -1), &
+         param('g', 'm/s^2', 'gravitational acceleration (-y)', min_g, max_g, 9.8_dp, 1), &
+         param('damping', 'N m s', 'joint damping c_i (one per joint)', 0.0_dp, &
+               max_damping, 0.0_dp, -1), &
+         param('support_amplitude', 'm', 'support motion amplitudes a_x, a_y', &
+               -max_support_amplitude, max_support_amplitude, 0.0_dp, 2), &
+         param('support_frequency', 'rad/s', 'support motion angular frequency', 0.0_dp, &
+               max_support_frequency, 0.0_dp, 1), &
+         param('support_phase', 'rad', 'support motion phases phi_x, phi_y', -max_angle, &
+               max_angle, 0.0_dp, 2)]
+   end function pendulum_info
+
+   !> A parameter description.
+   pure function param(name, units, meaning, lower, upper, default, count, integer_valued) &
+      result(p)
+      character(len=*), intent(in) :: name, units, meaning  !! see param_info_t
+      real(dp), intent(in) :: lower, upper, default         !! range and default
+      integer, intent(in) :: count                          !! values (-1: per link)
+      logical, intent(in), optional :: integer_valued       !! a count
+      type(param_info_t) :: p
+      p%name = name; p%units = units; p%meaning = meaning
+      p%lower = lower; p%upper = upper; p%default = default; p%count = count
+      if (present(integer_valued)) p%integer_valued = integer_valued
+   end function param
+
+   !> Index of model `name` in the catalogue `models`, 0 if none.
+   pure integer function find_model(models, name) result(k)
+      type(model_info_t), intent(in) :: models(:)  !! the catalogue
+      character(len=*), intent(in) :: name         !! model name
+      do k = 1, size(models)
+         if (models(k)%name == name) return
+      end do
+      k = 0
+   end function find_model
+
+   ! ---------------------------------------------------------------- the factory
+
+   !> Build the model `spec` asks for, after checking every parameter given against
+   !> the model's description (a known name, the right number of values, each in
+   !> range). Refusals name the parameter, its value and the accepted range.
+   subroutine new_model(spec, model, error)
+      type(model_spec_t), intent(in) :: spec                 !! what to build
+      class(model_t), allocatable, intent(out) :: model      !! the model built
+      type(error_t), allocatable, intent(out) :: error       !! set when refused
+      type(model_info_t), allocatable :: models(:)
+      integer :: k
+      models = model_catalogue()
+      k = find_model(models, spec%model_name())
+      if (k == 0) then
+         call fatal_error(error, "invalid model: '"//spec%model_name()//"' is not a model " &
+                          //'(accepted: '//model_list(models)//'; dpend models describes them)')
+         return
+      end if
+      call check_spec(spec, models(k), error)
+      if (allocated(error)) return
+      call build(spec, models(k), model, error)
+   end subroutine new_model
+
+   !> The models' names, comma-separated.
+   function model_list(models) result(s)
+      type(model_info_t), intent(in) :: models(:)  !! the catalogue
+      character(len=:), allocatable :: s
+      integer :: k
+      s = models(1)%name
+      do k = 2, size(models)
+         s = s//', '//models(k)%name
+      end do
+   end function model_list
+
+   !> Every parameter given is one of the model's, with as many values as it takes,
+   !> each within its range (integers where a count is asked).
+   subroutine check_spec(spec, info, error)
+      type(model_spec_t), intent(in) :: spec            !! what to build
+      type(model_info_t), intent(in) :: info            !! the model's description
+      type(error_t), allocatable, intent(out) :: error  !! first violation
+      integer :: i, j, k, want
+      if (allocated(spec%items)) then
+         do i = 1, size(spec%items)
+            k = param_index(info, spec%items(i)%name)
+            if (k == 0) then
+               call fatal_error(error, 'invalid '//spec%items(i)%name//': not a parameter ' &
+                                //'of model '//info%name//' (its parameters: ' &
+                                //param_list(info)//')')
+               return
+            end if
+         end do
+      end if
+      do k = 1, size(info%params)
+         associate (p => info%params(k))
+            i = spec%find(p%name)
+            if (i == 0) cycle
+            associate (v => spec%items(i)%values)
+               want = p%count
+               if (want < 0) want = n_links(spec, info)  ! 'links' comes first: checked
+               if (size(v) /= want) then
+                  call fatal_error(error, 'invalid '//p%name//': '//to_str(size(v))// &
+                                   ' values, model '//info%name//' takes '//count_text(p, want))
+                  return
+               end if
+               do j = 1, size(v)
+                  call check_value(element_name(p, j, size(v)), v(j), p, error)
+                  if (allocated(error)) return
+               end do
+            end associate
+         end associate
+      end do
+   end subroutine check_spec
+
+   !> The name of value j of parameter p in messages: 'm2' for a per-link list,
+   !> 'support_amplitude 2' for a pair, the name for a scalar.
+   pure function element_name(p, j, n) result(s)
+      type(param_info_t), intent(in) :: p  !! the parameter
+      integer, intent(in) :: j, n          !! which value, of how many
+      character(len=:), allocatable :: s
+      if (p%count < 0) then
+         s = p%name//to_str(j)
+      else if (n > 1) then
+         s = p%name//' '//to_str(j)
+      else
+         s = p%name
+      end if
+   end function element_name
+
+   !> 'one per link (3)', '2 (x, y)' or '1'.
+   pure function count_text(p, want) result(s)
+      type(param_info_t), intent(in) :: p  !! the parameter
+      integer, intent(in) :: want          !! values expected
+      character(len=:), allocatable :: s
+      if (p%count < 0) then
+         s = 'one per link ('//to_str(want)//')'
+      else
+         s = to_str(want)
+      end if
+   end function count_text
+
+   !> `x` within p's range (and integer-valued for a count).
+   subroutine check_value(field, x, p, error)
+      character(len=*), intent(in) :: field             !! name in the message
+      real(dp), intent(in) :: x                         !! the value
+      type(param_info_t), intent(in) :: p               !! its description
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      character(len=:), allocatable :: u
+      u = ''
+      if (len(p%units) > 0) u = ' '//p%units
+      if (.not. (x >= p%lower .and. x <= p%upper)) then
+         call fatal_error(error, 'invalid '//field//': '//real_str(x)//u//' is outside [' &
+                          //real_str(p%lower)//', '//real_str(p%upper)//']')
+      else if (p%integer_valued .and. x /= aint(x)) then
+         call fatal_error(error, 'invalid '//field//': '//real_str(x)//' is not an integer')
+      end if
+   end subroutine check_value
+
+   !> Index of parameter `name` in `info`, 0 if none.
+   pure integer function param_index(info, name) result(k)
+      type(model_info_t), intent(in) :: info  !! the model's description
+      character(len=*), intent(in) :: name    !! parameter name
+      do k = 1, size(info%params)
+         if (info%params(k)%name == name) return
+      end do
+      k = 0
+   end function param_index
+
+   !> The parameters' names, comma-separated.
+   function param_list(info) result(s)
+      type(model_info_t), intent(in) :: info  !! the model's description
+      character(len=:), allocatable :: s
+      integer :: k
+      s = info%params(1)%name
+      do k = 2, size(info%params)
+         s = s//', '//info%params(k)%name
+      end do
+   end function param_list
+
+   !> The values of parameter `name` of the checked `spec`, or its default (repeated
+   !> per link or per component).
+   function value_of(spec, info, name, n) result(v)
+      type(model_spec_t), intent(in) :: spec    !! what to build (checked)
+      type(model_info_t), intent(in) :: info    !! the model's description
+      character(len=*), intent(in) :: name      !! parameter name
+      integer, intent(in) :: n                  !! number of links
+      real(dp), allocatable :: v(:)
+      integer :: k, want
+      k = param_index(info, name)
+      want = info%params(k)%count
+      if (want < 0) want = n
+      v = spec%get(name, spread(info%params(k)%default, 1, want))
+   end function value_of
+
+   !> The number of links of a model with a 'links' parameter (given or its
+   !> default), 1 for other models. `spec`'s links is checked before use.
+   function n_links(spec, info) result(n)
+      type(model_spec_t), intent(in) :: spec  !! what to build
+      type(model_info_t), intent(in) :: info  !! the model's description
+      integer :: n
+      real(dp), allocatable :: v(:)
+      n = 1
+      if (param_index(info, 'links') == 0) return
+      v = value_of(spec, info, 'links', 1)
+      n = nint(v(1))
+   end function n_links
+
+   !> Construct the checked model. One branch per model.
+   subroutine build(spec, info, model, error)
+      type(model_spec_t), intent(in) :: spec             !! what to build (checked)
+      type(model_info_t), intent(in) :: info             !! its description
+      class(model_t), allocatable, intent(out) :: model  !! the model built
+      type(error_t), allocatable, intent(out) :: error   !! set when refused
+      select case (info%name)
+      case ('pendulum')
+         call build_pendulum(spec, info, model, error)
+      case default
+         call fatal_error(error, 'internal error: model '//info%name//' has no constructor')
+      end select
+   end subroutine build
+
+   !> The chapter's pendulum: the double pendulum's own formulation for two links
+   !> without damping or support motion (the fast path of every method), the chain
+   !> otherwise.
+   subroutine build_pendulum(spec, info, model, error)
+      type(model_spec_t), intent(in) :: spec             !! what to build (checked)
+      type(model_info_t), intent(in) :: info             !! its description
+      class(model_t), allocatable, intent(out) :: model  !! the model built
+      type(error_t), allocatable, intent(out) :: error   !! set when refused
+      real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:)
+      integer :: n
+      n = n_links(spec, info)
+      m = value_of(spec, info, 'm', n)
+      l = value_of(spec, info, 'l', n)
+      g = value_of(spec, info, 'g', n)
+      c = value_of(spec, info, 'damping', n)
+      a = value_of(spec, info, 'support_amplitude', n)
+      w = value_of(spec, info, 'support_frequency', n)
+      phi = value_of(spec, info, 'support_phase', n)
+      if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp)) then
+         block
+            type(pendulum_t) :: par
+            par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
+            call validate(par, error)
+            if (allocated(error)) return
+            allocate (model, source=pendulum_model(par))
+         end block
+      else
+         block
+            type(chain_t) :: chain
+            chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
+            if (allocated(error)) return
+            allocate (model, source=chain)
+         end block
+      end if
+   end subroutine build_pendulum
+
+   ! ------------------------------------------------------------ the description
+
+   !> `dpend models`: every model with its coordinates, parameters and capabilities.
+   function describe_models() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      s = ''
+      do k = 1, size(models)
+         associate (m => models(k))
+            if (k > 1) s = s//nl
+            s = s//m%name//': '//m%summary//nl// &
+                '  coordinates: '//m%coordinates//nl// &
+                '  supports:    '//m%supports//nl// &
+                '  parameters (--NAME VALUE, or NAME = VALUE in &model):'//nl
+            do i = 1, size(m%params)
+               s = s//param_line(m%params(i))//nl
+            end do
+         end associate
+      end do
+      s = s(:len(s) - 1)
+   end function describe_models
+
+   !> '    m                  kg     [1e-6, 1e6]  default 1, one per link: meaning'.
+   function param_line(p) result(s)
+      type(param_info_t), intent(in) :: p  !! the parameter
+      character(len=:), allocatable :: s, count
+      select case (p%count)
+      case (-1); count = ', one per link'
+      case (1); count = ''
+      case default; count = ', '//to_str(p%count)//' values'
+      end select
+      s = '    '//pad_to(p%name, 19)//pad_to(p%units, 7)//pad_to('['//real_str(p%lower) &
+          //', '//real_str(p%upper)//']', 22)//'default '//real_str(p%default)//count &
+          //': '//p%meaning
+   end function param_line
+
+   !> `text` padded with blanks to `width` columns (at least one blank).
+   pure function pad_to(text, width) result(s)
+      character(len=*), intent(in) :: text  !! text
+      integer, intent(in) :: width          !! columns
+      character(len=:), allocatable :: s
+      s = text//repeat(' ', max(1, width - len(text)))
+   end function pad_to
+
+   ! ------------------------------------------------------ the specification type
+
+   !> A specification of model `name` with no parameter given (all defaults).
+   pure function model_spec(name) result(spec)
+      character(len=*), intent(in) :: name  !! model name
+      type(model_spec_t) :: spec
+      spec%name = name
+      allocate (spec%items(0))
+   end function model_spec
+
+   subroutine spec_set(self, name, values)
+      class(model_spec_t), intent(inout) :: self  !! specification
+      character(len=*), intent(in) :: name        !! parameter name
+      real(dp), intent(in) :: values(:)           !! its value(s)
+      type(spec_item_t), allocatable :: items(:)
+      integer :: i
+      i = self%find(name)
+      if (i > 0) then
+         self%items(i)%values = values
+         return
+      end if
+      if (.not. allocated(self%items)) allocate (self%items(0))
+      allocate (items(size(self%items) + 1))
+      items(:size(self%items)) = self%items
+      items(size(items))%name = name
+      items(size(items))%values = values
+      call move_alloc(items, self%items)
+   end subroutine spec_set
+
+   pure integer function spec_find(self, name) result(i)
+      class(model_spec_t), intent(in) :: self  !! specification
+      character(len=*), intent(in) :: name     !! parameter name
+      if (allocated(self%items)) then
+         do i = 1, size(self%items)
+            if (self%items(i)%name == name) return
+         end do
+      end if
+      i = 0
+   end function spec_find
+
+   pure function spec_get(self, name, default) result(v)
+      class(model_spec_t), intent(in) :: self  !! specification
+      character(len=*), intent(in) :: name     !! parameter name
+      real(dp), intent(in) :: default(:)       !! values when not given
+      real(dp), allocatable :: v(:)
+      integer :: i
+      i = self%find(name)
+      if (i > 0) then
+         v = self%items(i)%values
+      else
+         v = default
+      end if
+   end function spec_get
+
+   pure function spec_model_name(self) result(name)
+      class(model_spec_t), intent(in) :: self  !! specification
+      character(len=:), allocatable :: name
+      if (allocated(self%name)) then
+         name = self%name
+      else
+         name = default_model
+      end if
+   end function spec_model_name
+end module dpend_model_factory
