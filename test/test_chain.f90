@@ -17,6 +17,7 @@ module test_chain
    use dpend_error, only: error_t
    use dpend_model, only: model_t, max_dof
    use dpend_chain, only: chain_t, chain_model
+   use dpend_link_layout, only: n_link_out
    use dpend_pendulum, only: pendulum_t, double_pendulum_t, pendulum_model, reactions
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
@@ -146,7 +147,7 @@ contains
       model = chain_model([1.0_dp], [1.0_dp], 0.0_dp, err)
       call check_true(error, .not. allocated(err), 'g = 0 refused')
       if (allocated(error)) return
-      call check_true(error, model%n_parameters() == 3 .and. model%n_outputs() == 7, &
+      call check_true(error, model%n_parameters() == 3 .and. model%n_outputs() == n_link_out, &
                       'parameter or output count')
    end subroutine test_refuse
 
@@ -159,7 +160,7 @@ contains
       type(double_pendulum_t) :: pend
       type(pendulum_t) :: par
       real(dp) :: y(4), fc(4), fp(4), pc(2), pp(2), z(4), gc(4), gp(4), fj(2, 2)
-      real(dp) :: f01(2), f21(2), d(8), out(28), jc(4, 4), jp(4, 4)
+      real(dp) :: f01(2), f21(2), d(9), out(48), outp(48), jc(4, 4), jp(4, 4)
       type(error_t), allocatable :: err
       integer :: k
       d = 0.0_dp
@@ -179,6 +180,8 @@ contains
          d(2) = max(d(2), rel_diff([fj(:, 1), fj(:, 2)], [f01, -f21]))
          call chain%outputs(0.0_dp, y, fc, out)
          d(2) = max(d(2), rel_diff(out(1:4), [f01, -f21]))
+         call pend%outputs(0.0_dp, y, fp, outp)   ! one layout: every dataset alike
+         d(9) = max(d(9), rel_diff(out, outp))
          d(3) = max(d(3), rel_diff([chain%energy(0.0_dp, y)], [pend%energy(0.0_dp, y)]))
          call chain%momenta(0.0_dp, y, pc)
          call pend%momenta(0.0_dp, y, pp)
@@ -205,12 +208,33 @@ contains
                   ', reactions '//real_str(d(2), 2)//', energy '//real_str(d(3), 2)// &
                   ', momenta '//real_str(d(4), 2)//', canonical field '//real_str(d(5), 2)// &
                   ', H '//real_str(d(6), 2)//', jacobians '//real_str(d(7), 2)// &
-                  ', energy gradient '//real_str(d(8), 2))
+                  ', energy gradient '//real_str(d(8), 2)//', outputs '//real_str(d(9), 2))
       call check(error, maxval(d), 0.0_dp, 'N=2 vs double pendulum, max rel diff', &
                  abs=1e-13_dp)
       if (allocated(error)) return
+      call same_layout(chain, pend, error)
+      if (allocated(error)) return
       call same_trajectories(error)
    end subroutine test_n2
+
+   !> One double pendulum: the two-link chain and the double pendulum's own
+   !> formulation describe the same outputs (names, units, shapes, texts).
+   subroutine same_layout(chain, pend, error)
+      type(chain_t), intent(in) :: chain
+      type(double_pendulum_t), intent(in) :: pend
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: n1, u1, t1, n2, u2, t2
+      integer :: i, c1, c2, r1, r2
+      call check_true(error, chain%n_outputs() == pend%n_outputs(), 'output counts')
+      if (allocated(error)) return
+      do i = 1, chain%n_outputs()
+         call chain%output_info(i, n1, c1, u1, t1, r1)
+         call pend%output_info(i, n2, c2, u2, t2, r2)
+         call check_true(error, n1 == n2 .and. u1 == u2 .and. t1 == t2 .and. c1 == c2 &
+                         .and. r1 == r2, 'output '//n1//' vs '//n2)
+         if (allocated(error)) return
+      end do
+   end subroutine same_layout
 
    !> rk4, dop853 and gauss6 carry the two-link chain and the double pendulum along the
    !> same trajectory (1 s from q = (0.3, 1.2) at rest; the integrators' four-component
@@ -486,8 +510,8 @@ contains
             end do
             ! the outputs hold the same reactions and kinematics
             block
-               real(dp) :: out(70)
-               call chain%outputs(0.0_dp, y(1:2*n), fy(1:2*n), out(1:14*n))
+               real(dp) :: out(72)
+               call chain%outputs(0.0_dp, y(1:2*n), fy(1:2*n), out(1:14*n + 2))
                if (rel_diff(out(1:2*n), reshape(fm(:, 1:n), [2*n])) > 0.0_dp .or. &
                    rel_diff(out(6*n + 1:8*n), reshape(ac(:, 1:n), [2*n])) > 0.0_dp .or. &
                    rel_diff(out(8*n + 1:10*n), reshape(rj(:, 1:n), [2*n])) > 0.0_dp) &

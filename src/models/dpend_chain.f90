@@ -71,6 +71,9 @@ module dpend_chain
                            max_support_frequency, max_angle
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
+   use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
+                                link_out_rows, n_alias_out, alias_out_name, alias_out_units, &
+                                alias_out_text, two_link_aliases
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
    implicit none
    private
@@ -135,21 +138,6 @@ module dpend_chain
       !> Power dissipated by the joints and delivered by the support [W].
       procedure :: powers => chain_powers
    end type chain_t
-
-   !> The writer's per-sample outputs, 2N values (x, y per link or joint) each.
-   integer, parameter :: n_out = 7
-   character(len=7), parameter :: out_names(n_out) = &
-      [character(len=7) :: 'F_joint', 'rC', 'vC', 'aC', 'rJ', 'vJ', 'aJ']
-   character(len=5), parameter :: out_units(n_out) = &
-      [character(len=5) :: 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2']
-   character(len=80), parameter :: out_text(n_out) = [character(len=80) :: &
-      'force of body i-1 on body i at joint i (x, y), i = 1..N, body 0 the ground', &
-      'position of the centre of mass of link i (x, y)', &
-      'velocity of the centre of mass of link i (x, y)', &
-      'acceleration of the centre of mass of link i (x, y)', &
-      'position of the far end of link i: joint i+1, the tip for i = N (x, y)', &
-      'velocity of the far end of link i (x, y)', &
-      'acceleration of the far end of link i (x, y)']
 
 contains
 
@@ -1040,27 +1028,40 @@ contains
 
    pure integer function chain_n_outputs(self)
       class(chain_t), intent(in) :: self
-      chain_n_outputs = n_out
+      chain_n_outputs = n_link_out
+      if (self%n == 2) chain_n_outputs = n_link_out + n_alias_out
    end function chain_n_outputs
 
-   !> F_joint, rC, vC, aC, rJ, vJ, aJ: 2N values each, (x, y) per joint or link.
+   !> The pendulum layout of dpend_link_layout: F_joint rC vC aC rJ vJ aJ (N rows)
+   !> and rA; for two links also the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB.
    subroutine chain_output_info(self, i, name, n_comp, units, description, rows)
       class(chain_t), intent(in) :: self
       integer, intent(in) :: i
       character(len=:), allocatable, intent(out) :: name, units, description
       integer, intent(out) :: n_comp
       integer, intent(out), optional :: rows
-      name = trim(out_names(i)); n_comp = 2*self%n
-      if (present(rows)) rows = self%n   ! (samples, N, 2)
-      units = trim(out_units(i)); description = trim(out_text(i))
+      integer :: r
+      if (i <= n_link_out) then
+         name = trim(link_out_name(i)); units = trim(link_out_units(i))
+         description = trim(link_out_text(i))
+         r = merge(self%n, 0, link_out_rows(i))
+      else
+         name = trim(alias_out_name(i - n_link_out))
+         units = trim(alias_out_units(i - n_link_out))
+         description = trim(alias_out_text(i - n_link_out))
+         r = 0
+      end if
+      n_comp = 2*max(1, r)
+      if (present(rows)) rows = r
    end subroutine chain_output_info
 
-   !> The outputs of one sample (14 N values), q̈ taken from f = (q̇, q̈).
+   !> The outputs of one sample (14 N + 2 values, 20 more for two links), q̈ taken
+   !> from f = (q̇, q̈).
    pure subroutine chain_outputs(self, t, y, f, values)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:), f(:)
       real(dp), intent(out) :: values(:)
-      real(dp) :: w(2, max_dof, n_out)
+      real(dp) :: w(2, max_dof, n_link_out - 1), v(2), a(2)
       integer :: n, k
       n = self%n
       associate (q => y(1:n), qd => y(n + 1:2*n), qdd => f(n + 1:2*n))
@@ -1068,9 +1069,11 @@ contains
          call self%kinematics(q, qd, qdd, w(:, 1:n, 2), w(:, 1:n, 3), w(:, 1:n, 4), &
                               w(:, 1:n, 5), w(:, 1:n, 6), w(:, 1:n, 7), t)
       end associate
-      do k = 1, n_out
+      do k = 1, n_link_out - 1
          values(2*n*(k - 1) + 1:2*n*k) = reshape(w(:, 1:n, k), [2*n])
       end do
+      call self%support(t, values(14*n + 1:14*n + 2), v, a)
+      if (n == 2) call two_link_aliases(w(:, 1:2, :), values(31:48))
    end subroutine chain_outputs
 
    pure integer function chain_n_parameters(self)

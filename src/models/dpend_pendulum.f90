@@ -20,6 +20,9 @@ module dpend_pendulum
    use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, &
                            min_g, max_g
    use dpend_model, only: model_t
+   use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
+                                link_out_rows, n_alias_out, alias_out_name, alias_out_units, &
+                                alias_out_text, chain_from_aliases
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -86,25 +89,6 @@ module dpend_pendulum
       procedure :: n_parameters => dp_n_parameters
       procedure :: parameter => dp_parameter
    end type double_pendulum_t
-
-   !> The writer's per-sample outputs: joint reactions (chapter 6.16–6.26, corrected)
-   !> and kinematics (6.2–6.12), two components (x, y) each; then F_joint, the N-link
-   !> chain's layout of the reactions (force of body i-1 on body i at joint i: F01 and
-   !> F12 = -F21), so that scripts for any number of links read the same dataset.
-   integer, parameter :: n_out = 10
-   character(len=7), parameter :: out_names(n_out) = [character(len=7) :: &
-      'F01', 'F21', 'rC1', 'vC1', 'aC1', 'rC2', 'vC2', 'aC2', 'rB', 'F_joint']
-   character(len=5), parameter :: out_units(n_out) = &
-      [character(len=5) :: 'N', 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm', 'N']
-   character(len=74), parameter :: out_text(n_out) = [character(len=74) :: &
-      'force of the ground on link 1 at A (x, y)', &
-      'force of link 2 on link 1 at B (x, y)', &
-      'position of the centre of mass C1 (x, y)', &
-      'velocity of C1 (x, y)', 'acceleration of C1 (x, y)', &
-      'position of the centre of mass C2 (x, y)', &
-      'velocity of C2 (x, y)', 'acceleration of C2 (x, y)', &
-      'position of the joint B (x, y)', &
-      'force of body i-1 on body i at joint i (x, y): F01 and -F21 (body 0: ground)']
 
 contains
 
@@ -780,37 +764,49 @@ contains
 
    pure integer function dp_n_outputs(self)
       class(double_pendulum_t), intent(in) :: self
-      dp_n_outputs = n_out
+      dp_n_outputs = n_link_out + n_alias_out
    end function dp_n_outputs
 
+   !> The pendulum layout of dpend_link_layout: F_joint rC vC aC rJ vJ aJ (2 rows)
+   !> and rA, then the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB.
    subroutine dp_output_info(self, i, name, n_comp, units, description, rows)
       class(double_pendulum_t), intent(in) :: self
       integer, intent(in) :: i
       character(len=:), allocatable, intent(out) :: name, units, description
       integer, intent(out) :: n_comp
       integer, intent(out), optional :: rows
-      name = trim(out_names(i)); n_comp = 2
-      if (present(rows)) rows = 0
-      if (i == n_out) then    ! F_joint: (samples, 2 joints, 2)
-         n_comp = 4
-         if (present(rows)) rows = 2
+      integer :: r
+      if (i <= n_link_out) then
+         name = trim(link_out_name(i)); units = trim(link_out_units(i))
+         description = trim(link_out_text(i))
+         r = merge(2, 0, link_out_rows(i))
+      else
+         name = trim(alias_out_name(i - n_link_out))
+         units = trim(alias_out_units(i - n_link_out))
+         description = trim(alias_out_text(i - n_link_out))
+         r = 0
       end if
-      units = trim(out_units(i)); description = trim(out_text(i))
+      n_comp = 2*max(1, r)
+      if (present(rows)) rows = r
    end subroutine dp_output_info
 
-   !> F01, F21, rC1, vC1, aC1, rC2, vC2, aC2, rB, F_joint of one sample (22 values).
+   !> The outputs of one sample (48 values): the reactions (chapter 6.16–6.26,
+   !> corrected) and kinematics (6.2–6.12) in the chapter's names, and from them the
+   !> per-link layout (the pin A fixed at the origin).
    pure subroutine dp_outputs(self, t, y, f, values)
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:), f(:)
       real(dp), intent(out) :: values(:)
       type(kinematics_t) :: k
-      call reactions(self%par, y(1:2), y(3:4), f(3:4), values(1:2), values(3:4))
+      real(dp) :: alias(18)
+      call reactions(self%par, y(1:2), y(3:4), f(3:4), alias(1:2), alias(3:4))
       k = kinematics(self%par, y(1:2), y(3:4), f(3:4))
-      values(5:6) = k%rc1; values(7:8) = k%vc1; values(9:10) = k%ac1
-      values(11:12) = k%rc2; values(13:14) = k%vc2; values(15:16) = k%ac2
-      values(17:18) = k%rb
-      values(19:20) = values(1:2)       ! F_joint: F01, then F12 = -F21
-      values(21:22) = -values(3:4)
+      alias(5:6) = k%rc1; alias(7:8) = k%vc1; alias(9:10) = k%ac1
+      alias(11:12) = k%rc2; alias(13:14) = k%vc2; alias(15:16) = k%ac2
+      alias(17:18) = k%rb
+      call chain_from_aliases(alias, k%vb, k%ab, values(1:28))
+      values(29:30) = 0.0_dp
+      values(31:48) = alias
    end subroutine dp_outputs
 
    pure integer function dp_n_parameters(self)

@@ -1,0 +1,85 @@
+!> The one output layout of the pendulum of N links (docs/hdf5-layout.md), written
+!> alike by the double pendulum's own formulation and by the chain, damped, driven
+!> or not:
+!> - per link or joint i = 1..N, (x, y) each, as h5py shows them (samples, N, 2):
+!>   F_joint (the force of body i−1 on body i at joint i, body 0 the ground), rC, vC,
+!>   aC (the centre of mass of link i), rJ, vJ, aJ (the far end of link i: joint i+1,
+!>   the tip for i = N); and rA, the pin A (samples, 2);
+!> - for two links, the chapter's names (samples, 2) as aliases of the same values:
+!>   F01 = F_joint[1], F21 = −F_joint[2] (link 2 on link 1 at B), rC1 = rC[1], …,
+!>   rB = rJ[1].
+!> Both models fill the values through `two_link_aliases` or `chain_from_aliases`, so
+!> that each alias is the same number as its per-link value.
+module dpend_link_layout
+   use dpend_kinds, only: dp
+   implicit none
+   private
+   public :: n_link_out, link_out_name, link_out_units, link_out_text, link_out_rows
+   public :: n_alias_out, alias_out_name, alias_out_units, alias_out_text
+   public :: two_link_aliases, chain_from_aliases
+
+   !> Outputs of every pendulum of N links: F_joint rC vC aC rJ vJ aJ (2N values
+   !> each), then rA (2 values).
+   integer, parameter :: n_link_out = 8
+   character(len=7), parameter :: link_out_name(n_link_out) = &
+      [character(len=7) :: 'F_joint', 'rC', 'vC', 'aC', 'rJ', 'vJ', 'aJ', 'rA']
+   character(len=5), parameter :: link_out_units(n_link_out) = &
+      [character(len=5) :: 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm']
+   character(len=*), parameter :: link_out_text(n_link_out) = [character(len=80) :: &
+      'force of body i-1 on body i at joint i (x, y), i = 1..N, body 0 the ground', &
+      'position of the centre of mass of link i (x, y)', &
+      'velocity of the centre of mass of link i (x, y)', &
+      'acceleration of the centre of mass of link i (x, y)', &
+      'position of the far end of link i: joint i+1, the tip for i = N (x, y)', &
+      'velocity of the far end of link i (x, y)', &
+      'acceleration of the far end of link i (x, y)', &
+      'position of the pin A, the support (x, y)']
+   !> Rows of each output as h5py shows it: N rows (samples, N, 2), or none
+   !> (samples, 2) for rA.
+   logical, parameter :: link_out_rows(n_link_out) = [.true., .true., .true., .true., &
+                                                      .true., .true., .true., .false.]
+
+   !> The two-link aliases (2 values each), in this order.
+   integer, parameter :: n_alias_out = 9
+   character(len=3), parameter :: alias_out_name(n_alias_out) = [character(len=3) :: &
+      'F01', 'F21', 'rC1', 'vC1', 'aC1', 'rC2', 'vC2', 'aC2', 'rB']
+   character(len=5), parameter :: alias_out_units(n_alias_out) = &
+      [character(len=5) :: 'N', 'N', 'm', 'm/s', 'm/s^2', 'm', 'm/s', 'm/s^2', 'm']
+   character(len=*), parameter :: alias_out_text(n_alias_out) = [character(len=48) :: &
+      'force of the ground on link 1 at A (x, y)', &
+      'force of link 2 on link 1 at B (x, y)', &
+      'position of the centre of mass C1 (x, y)', &
+      'velocity of C1 (x, y)', 'acceleration of C1 (x, y)', &
+      'position of the centre of mass C2 (x, y)', &
+      'velocity of C2 (x, y)', 'acceleration of C2 (x, y)', &
+      'position of the joint B (x, y)']
+
+contains
+
+   !> The aliases (F01, F21, rC1, vC1, aC1, rC2, vC2, aC2, rB; 18 values) of a
+   !> two-link sample in the per-link layout `w(:, link, k)` (k: F_joint rC vC aC rJ).
+   pure subroutine two_link_aliases(w, alias)
+      real(dp), intent(in) :: w(:, :, :)   !! (2, 2, >= 5): F_joint, rC, vC, aC, rJ, ...
+      real(dp), intent(out) :: alias(18)   !! the aliases, 2 values each
+      alias(1:2) = w(:, 1, 1); alias(3:4) = -w(:, 2, 1)
+      alias(5:6) = w(:, 1, 2); alias(7:8) = w(:, 1, 3); alias(9:10) = w(:, 1, 4)
+      alias(11:12) = w(:, 2, 2); alias(13:14) = w(:, 2, 3); alias(15:16) = w(:, 2, 4)
+      alias(17:18) = w(:, 1, 5)
+   end subroutine two_link_aliases
+
+   !> The per-link layout (F_joint rC vC aC rJ vJ aJ, 28 values, (x, y) per link) of
+   !> a double pendulum of uniform rods with a fixed pin from its aliases and the
+   !> velocity and acceleration of B: the tip D is 2 C2 − B (C2 the rod's middle).
+   pure subroutine chain_from_aliases(alias, vb, ab, values)
+      real(dp), intent(in) :: alias(18)    !! F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB
+      real(dp), intent(in) :: vb(2), ab(2) !! velocity [m/s], acceleration [m/s²] of B
+      real(dp), intent(out) :: values(28)  !! F_joint rC vC aC rJ vJ aJ, 4 values each
+      values(1:2) = alias(1:2); values(3:4) = -alias(3:4)
+      values(5:6) = alias(5:6); values(7:8) = alias(11:12)
+      values(9:10) = alias(7:8); values(11:12) = alias(13:14)
+      values(13:14) = alias(9:10); values(15:16) = alias(15:16)
+      values(17:18) = alias(17:18); values(19:20) = 2.0_dp*alias(11:12) - alias(17:18)
+      values(21:22) = vb; values(23:24) = 2.0_dp*alias(13:14) - vb
+      values(25:26) = ab; values(27:28) = 2.0_dp*alias(15:16) - ab
+   end subroutine chain_from_aliases
+end module dpend_link_layout
