@@ -335,7 +335,8 @@ contains
       type(h5file_t) :: h5
       real(dp), allocatable :: qdd(:, :), p(:, :), e(:), out(:, :), y(:), f(:), slab(:, :)
       real(dp), allocatable :: e_w(:)
-      character(len=:), allocatable :: name, units, text
+      character(len=:), allocatable :: name, units, text, cols, q_units, rate_units, &
+                                       acc_units, p_units, anchor, points, style, forces
       integer :: i, n, nd, j, n_comp, off, n_out, rows
       logical :: canonical
       n = traj%n
@@ -360,15 +361,23 @@ contains
          call h5%open(filename, 'w', error)
          if (allocated(error)) return
          call h5%write('/trajectory/t', traj%t(:n), units='s', description='sample times')
-         call h5%write('/trajectory/q', traj%q(:, :n), units='rad', description= &
-            'angles from the horizontal x axis, counter-clockwise, unwrapped (q1 .. q' &
-            //to_str(nd)//', one column per link)')
-         call h5%write('/trajectory/qdot', traj%qd(:, :n), units='rad/s', &
-            description='angular velocities (qdot1 .. qdot'//to_str(nd)//')')
-         call h5%write('/trajectory/qddot', qdd, units='rad/s^2', &
-            description='angular accelerations (qddot1 .. qddot'//to_str(nd)//')')
-         if (canonical) call h5%write('/trajectory/p', p, units='kg m^2/s', &
+         call coordinate_labels(model, cols, q_units, rate_units, acc_units, p_units)
+         call h5%write('/trajectory/q', traj%q(:, :n), units=q_units, &
+                       description=model%coordinates_text(0))
+         call h5%write('/trajectory/qdot', traj%qd(:, :n), units=rate_units, &
+                       description=model%coordinates_text(1))
+         call h5%write('/trajectory/qddot', qdd, units=acc_units, &
+                       description=model%coordinates_text(2))
+         if (canonical) call h5%write('/trajectory/p', p, units=p_units, &
             description='canonical momenta p = M(q) qdot (p1 .. p'//to_str(nd)//')')
+         call h5%writeattr('/', 'coordinates', cols)
+         call model%figure(anchor, points, style, forces)
+         if (len(points) > 0) then
+            call h5%writeattr('/', 'draw_anchor', anchor)
+            call h5%writeattr('/', 'draw_points', points)
+            call h5%writeattr('/', 'draw_style', style)
+            call h5%writeattr('/', 'draw_forces', forces)
+         end if
          if (model%autonomous()) then
             call h5%write('/trajectory/energy', e, units='J', &
                description='total energy T + V (V = 0 with every link horizontal)')
@@ -430,5 +439,42 @@ contains
       call h5%writeattr('/', 'energy_scale', cfg%model%energy_scale(e(1)))
       call h5%close(error)   ! reports the first failed write, if any
    end subroutine write_trajectory
+
+   !> The labels of the coordinates' datasets from the model's description: the
+   !> names ('q1 q2', 'r phi'), and the units of q, q̇, q̈ and p: one unit when every
+   !> coordinate has the same, else one per column ('m, rad').
+   subroutine coordinate_labels(model, names, q_units, rate_units, acc_units, p_units)
+      class(model_t), intent(in) :: model                     !! the system
+      character(len=:), allocatable, intent(out) :: names     !! blank-separated
+      character(len=:), allocatable, intent(out) :: q_units, rate_units, acc_units, p_units
+      character(len=:), allocatable :: name, u, pu, u1, pu1
+      integer :: i
+      logical :: same
+      names = ''; q_units = ''; rate_units = ''; acc_units = ''; p_units = ''
+      same = .true.
+      do i = 1, model%n_dof()
+         call model%coordinate(i, name, u, pu)
+         if (i == 1) then
+            u1 = u; pu1 = pu
+         else
+            names = names//' '; q_units = q_units//', '; rate_units = rate_units//', '
+            acc_units = acc_units//', '; p_units = p_units//', '
+            same = same .and. u == u1 .and. pu == pu1
+         end if
+         names = names//name; q_units = q_units//u; rate_units = rate_units//per_s(u, 1)
+         acc_units = acc_units//per_s(u, 2); p_units = p_units//pu
+      end do
+      if (same) then
+         q_units = u1; rate_units = per_s(u1, 1); acc_units = per_s(u1, 2); p_units = pu1
+      end if
+   contains
+      pure function per_s(unit, k) result(t)
+         character(len=*), intent(in) :: unit
+         integer, intent(in) :: k
+         character(len=:), allocatable :: t
+         t = unit//'/s'
+         if (k == 2) t = unit//'/s^2'
+      end function per_s
+   end subroutine coordinate_labels
 
 end module dpend_simulate

@@ -72,7 +72,8 @@ module dpend_chain
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
-                                link_out_rows, n_alias_out, alias_out_name, alias_out_units, &
+                                link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
+                                n_alias_out, alias_out_name, alias_out_units, &
                                 alias_out_text, two_link_aliases
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
    implicit none
@@ -118,6 +119,9 @@ module dpend_chain
       procedure :: outputs => chain_outputs
       procedure :: n_parameters => chain_n_parameters
       procedure :: parameter => chain_parameter
+      procedure :: coordinate => chain_coordinate
+      procedure :: coordinates_text => chain_coordinates_text
+      procedure :: figure => chain_figure
       procedure :: cache_size => chain_cache_size
       procedure :: fill_cache => chain_fill_cache
       procedure :: fill_cache_field => chain_fill_cache_field
@@ -1121,4 +1125,24 @@ contains
          name = 'g'; value = self%g; units = 'm/s^2'
       end if
    end subroutine chain_parameter
+
+   subroutine chain_coordinate(self, i, name, units, momentum_units)
+      class(chain_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units, momentum_units
+      call rod_coordinate(i, name, units, momentum_units)
+   end subroutine chain_coordinate
+
+   function chain_coordinates_text(self, order) result(text)
+      class(chain_t), intent(in) :: self
+      integer, intent(in) :: order
+      character(len=:), allocatable :: text
+      text = rod_coordinates_text(self%n, order)
+   end function chain_coordinates_text
+
+   subroutine chain_figure(self, anchor, points, style, forces)
+      class(chain_t), intent(in) :: self
+      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      call rod_figure(anchor, points, style, forces)
+   end subroutine chain_figure
 end module dpend_chain

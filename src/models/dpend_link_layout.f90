@@ -16,7 +16,8 @@ module dpend_link_layout
    private
    public :: n_link_out, link_out_name, link_out_units, link_out_text, link_out_rows
    public :: n_alias_out, alias_out_name, alias_out_units, alias_out_text
-   public :: two_link_aliases, chain_from_aliases
+   public :: two_link_aliases, chain_from_aliases, rod_coordinate, rod_coordinates_text
+   public :: rod_figure
 
    !> Outputs of every pendulum of N links: F_joint rC vC aC rJ vJ aJ (2N values
    !> each), then rA (2 values).
@@ -82,4 +83,37 @@ contains
       values(21:22) = vb; values(23:24) = 2.0_dp*alias(13:14) - vb
       values(25:26) = ab; values(27:28) = 2.0_dp*alias(15:16) - ab
    end subroutine chain_from_aliases
+
+   !> Coordinate i of a chain of rods: the angle q_i [rad] of link i, its momentum
+   !> [kg m²/s].
+   pure subroutine rod_coordinate(i, name, units, momentum_units)
+      integer, intent(in) :: i                                     !! link
+      character(len=:), allocatable, intent(out) :: name, units, momentum_units
+      character(len=12) :: digits
+      write (digits, '(i0)') i
+      name = 'q'//trim(digits); units = 'rad'; momentum_units = 'kg m^2/s'
+   end subroutine rod_coordinate
+
+   !> What q, q̇, q̈ of a chain of n rods hold.
+   pure function rod_coordinates_text(n, order) result(text)
+      integer, intent(in) :: n                      !! links
+      integer, intent(in) :: order                  !! 0: q, 1: q̇, 2: q̈
+      character(len=:), allocatable :: text
+      character(len=12) :: digits
+      write (digits, '(i0)') n
+      select case (order)
+      case (0)
+         text = 'angles from the horizontal x axis, counter-clockwise, unwrapped (q1 .. q' &
+                //trim(digits)//', one column per link)'
+      case (1); text = 'angular velocities (qdot1 .. qdot'//trim(digits)//')'
+      case default; text = 'angular accelerations (qddot1 .. qddot'//trim(digits)//')'
+      end select
+   end function rod_coordinates_text
+
+   !> The figure of a chain of rods: from the pin rA through the link ends rJ, the
+   !> joint forces F_joint acting at the start of each link.
+   pure subroutine rod_figure(anchor, points, style, forces)
+      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      anchor = 'rA'; points = 'rJ'; style = 'rods'; forces = 'F_joint'
+   end subroutine rod_figure
 end module dpend_link_layout

@@ -19,6 +19,11 @@
 !>   addition. Integrators call these hooks without knowing what the cache holds;
 !>   the defaults ignore the cache and evaluate the field.
 !>
+!> Models describe themselves: `coordinate` names each q_i with its units (and the
+!> units of its momentum), `coordinates_text` says what q, q̇ and q̈ are, and
+!> `figure` names the outputs a figure or the animation draws (the anchor, the
+!> chain of points, the style, the forces), so that no consumer infers them.
+!>
 !> Writers ask for `n_outputs` named quantities per sample (kinematics, joint
 !> reactions, …, with units) and the model's named parameters, so that a writer never
 !> names a model's fields.
@@ -79,6 +84,10 @@ module dpend_model
       procedure :: outputs => model_outputs
       procedure :: n_parameters => model_none
       procedure :: parameter => model_parameter
+      ! what writers, figures and the animation need to know of the coordinates
+      procedure :: coordinate => model_coordinate
+      procedure :: coordinates_text => model_coordinates_text
+      procedure :: figure => model_figure
    end type model_t
 
    abstract interface
@@ -330,4 +339,40 @@ contains
       name = ''; value = 0.0_dp; units = ''
       call lacks(self, 'parameters')
    end subroutine model_parameter
+
+   !> Coordinate i: its name, its units and the units of its momentum. The default:
+   !> q_i [1] with momentum [J s]; every concrete model says what its q are.
+   subroutine model_coordinate(self, i, name, units, momentum_units)
+      class(model_t), intent(in) :: self
+      integer, intent(in) :: i                                     !! 1..n
+      character(len=:), allocatable, intent(out) :: name           !! e.g. 'q1', 'r'
+      character(len=:), allocatable, intent(out) :: units          !! e.g. 'rad', 'm'
+      character(len=:), allocatable, intent(out) :: momentum_units !! of p_i = dL/dq̇_i
+      character(len=12) :: digits
+      write (digits, '(i0)') i
+      name = 'q'//trim(digits); units = '1'; momentum_units = 'J s'
+   end subroutine model_coordinate
+
+   !> What the datasets of q (order 0), q̇ (1) and q̈ (2) hold, one line each.
+   function model_coordinates_text(self, order) result(text)
+      class(model_t), intent(in) :: self
+      integer, intent(in) :: order                  !! 0: q, 1: q̇, 2: q̈
+      character(len=:), allocatable :: text
+      select case (order)
+      case (0); text = 'generalized coordinates q'
+      case (1); text = 'their rates qdot'
+      case default; text = 'their second derivatives qddot'
+      end select
+   end function model_coordinates_text
+
+   !> What a figure draws, by output name: `anchor` (a point (x, y), the support),
+   !> `points` (a chain of points (rows, 2) drawn from the anchor on), `style`
+   !> ('rods': straight segments; 'spring': a coil from the anchor to each point) and
+   !> `forces` (one (x, y) per segment, acting at its start). Empty names: nothing to
+   !> draw (the default).
+   subroutine model_figure(self, anchor, points, style, forces)
+      class(model_t), intent(in) :: self
+      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      anchor = ''; points = ''; style = ''; forces = ''
+   end subroutine model_figure
 end module dpend_model

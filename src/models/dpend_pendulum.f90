@@ -21,7 +21,8 @@ module dpend_pendulum
                            min_g, max_g
    use dpend_model, only: model_t
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
-                                link_out_rows, n_alias_out, alias_out_name, alias_out_units, &
+                                link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
+                                n_alias_out, alias_out_name, alias_out_units, &
                                 alias_out_text, chain_from_aliases
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
@@ -88,6 +89,9 @@ module dpend_pendulum
       procedure :: outputs => dp_outputs
       procedure :: n_parameters => dp_n_parameters
       procedure :: parameter => dp_parameter
+      procedure :: coordinate => dp_coordinate
+      procedure :: coordinates_text => dp_coordinates_text
+      procedure :: figure => dp_figure
    end type double_pendulum_t
 
 contains
@@ -828,4 +832,24 @@ contains
       case default; name = 'g'; value = self%par%g; units = 'm/s^2'
       end select
    end subroutine dp_parameter
+
+   subroutine dp_coordinate(self, i, name, units, momentum_units)
+      class(double_pendulum_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units, momentum_units
+      call rod_coordinate(i, name, units, momentum_units)
+   end subroutine dp_coordinate
+
+   function dp_coordinates_text(self, order) result(text)
+      class(double_pendulum_t), intent(in) :: self
+      integer, intent(in) :: order
+      character(len=:), allocatable :: text
+      text = rod_coordinates_text(2, order)
+   end function dp_coordinates_text
+
+   subroutine dp_figure(self, anchor, points, style, forces)
+      class(double_pendulum_t), intent(in) :: self
+      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      call rod_figure(anchor, points, style, forces)
+   end subroutine dp_figure
 end module dpend_pendulum
