@@ -31,14 +31,18 @@
 !>
 !> The collapsed spring: the field divides by r (φ̈, φ̇ = p_φ/(m r²)), and the model is
 !> unphysical for r ≤ 0 (the spring's length would be |r|). A state with
-!> r < r_min = 1e-6 l0, or with a component beyond `diverged_bound`, gets every
-!> component of its fields (and its Jacobians' entries) set to `diverged_bound`, as the
-!> chain saturates its runaway states (dpend_chain `saturate`): the integrators then
-!> stop the run with a failure status (stat_nonfinite, or stat_no_convergence /
-!> stat_step_too_small for the implicit and adaptive methods) instead of dividing by
-!> zero or overflowing, so that the debug profile never traps. `velocities` and
-!> `hamiltonian_value` saturate the same way. `check_state` refuses such an initial
-!> state in one line before any work.
+!> r < r_min = 1e-6 l0, or with a component beyond `diverged_bound`, is outside the
+!> model: there `field` and `canonical_field` return `saturated_field` = 1e60 in every
+!> component instead of the dynamics — the chain's mechanism for runaway states
+!> (dpend_chain `saturate`), with a value large enough that the step that meets such a
+!> state (any step above 1e-29 s) ends beyond `diverged_bound`, where the integrators
+!> stop the run with a failure status (stat_nonfinite; an adaptive method may first
+!> shrink its step to stat_step_too_small). A saturation at diverged_bound itself
+!> would leave states of ~1e27 that integrate on as nonsense. The Jacobians saturate at
+!> diverged_bound (the tangent equations multiply three of them in one substep), and
+!> `velocities` and `hamiltonian_value` return diverged_bound. Nothing divides by
+!> r < r_min or overflows, so the debug profile never traps; `check_state` refuses
+!> such an initial state in one line before any work.
 !>
 !> Methods (dpend_method_registry): all 13 apply. The model is Hamiltonian and
 !> conservative, so the methods that need a Hamiltonian (`hamiltonian` in the
@@ -64,7 +68,7 @@ module dpend_elastic
    implicit none
    private
    public :: elastic_t, elastic_model, check_state, min_stiffness, max_stiffness
-   public :: r_min_ratio
+   public :: r_min_ratio, saturated_field
 
    !> Smallest and largest stiffness k [N/m]: as the masses and lengths (dpend_limits,
    !> [1e-6, 1e6]), so that every product of the model stays far from overflow
@@ -75,6 +79,10 @@ module dpend_elastic
    !> at most 1e12 /m (l0 ≥ 1e-6 m), and the largest term of the Jacobians,
    !> 3 p_φ²/(m r⁴) with p_φ ≤ 1e30, m ≥ 1e-6, stays below 1e120.
    real(dp), parameter :: r_min_ratio = 1e-6_dp
+   !> The fields of a state outside the model (see the module header): diverged_bound²,
+   !> so that h · saturated_field > diverged_bound for every step h > 1e-29 s, while
+   !> the squares of the adaptive methods' scaled errors stay below 1e300.
+   real(dp), parameter :: saturated_field = diverged_bound**2
 
    !> The elastic pendulum (SI units); build it with `elastic_model`. The defaults are
    !> those of the issue's example (`--m 1 --k 40 --l0 1 --g 9.8`).
@@ -218,7 +226,7 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: s, c
       if (self%collapsed(y)) then
-         f(1:4) = diverged_bound
+         f(1:4) = saturated_field
          return
       end if
       s = sin(y(2)); c = cos(y(2))
@@ -312,7 +320,7 @@ contains
       real(dp), intent(out) :: f(*)
       real(dp) :: w
       if (self%collapsed(z)) then
-         f(1:4) = diverged_bound
+         f(1:4) = saturated_field
          return
       end if
       w = z(4)/(self%m*z(1)**2)           ! φ̇
