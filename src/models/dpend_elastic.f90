@@ -171,7 +171,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set when refused
       if (size(q) /= 2 .or. size(qd) /= 2) then
          call fatal_error(error, 'invalid q: '//to_str(size(q))//' coordinates and ' &
-                          //to_str(size(qd))//' rates for the elastic pendulum''s 2 (r, phi)')
+                          //to_str(size(qd))//' rates given; the elastic pendulum has 2 ' &
+                          //'of each (r, phi)')
          return
       end if
       call check_range('q1', q(1), model%r_min, max_length, 'm', error, &
