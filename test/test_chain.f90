@@ -30,7 +30,7 @@ module test_chain
    use testing, only: unittest_t, new_unittest, check, check_true
    implicit none
    private
-   public :: collect_chain
+   public :: collect_chain, measured_period, rel_diff
 
    real(dp), parameter :: pi = acos(-1.0_dp)
 
