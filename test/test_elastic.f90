@@ -353,7 +353,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(elastic_t) :: model
       character(len=:), allocatable :: name, units, text, names
-      real(dp) :: y(4), f(4), v(10), vp(10), vm(10), d(4), dt, fn(2), scale
+      real(dp) :: y(4), f(4), v(12), vp(12), vm(12), d(4), dt, fn(2), scale
       integer :: i, k, n_comp, rows, total
       model = default_model()
       total = 0
@@ -366,8 +366,8 @@ contains
                          name//': description or rows')
          if (allocated(error)) return
       end do
-      call check_true(error, total == 10 .and. names == ' rC [m] vC [m/s] aC [m/s^2] ' &
-                      //'F_joint [N] tension [N] spring_length [m]', 'outputs:'//names)
+      call check_true(error, total == 12 .and. names == ' rC [m] vC [m/s] aC [m/s^2] ' &
+                      //'F_joint [N] tension [N] spring_length [m] rA [m]', 'outputs:'//names)
       if (allocated(error)) return
       d = 0.0_dp
       do k = 1, 100

@@ -111,6 +111,10 @@ module dpend_elastic
       procedure :: outputs => el_outputs
       procedure :: n_parameters => el_n_parameters
       procedure :: parameter => el_parameter
+      procedure :: coordinate => el_coordinate
+      procedure :: coordinates_text => el_coordinates_text
+      procedure :: figure => el_figure
+      procedure :: check_state => el_check_state
       !> Hanging equilibrium length r_eq = l0 + m g/k [m].
       procedure :: r_eq => el_r_eq
       !> Whether a state is outside the model's domain (see the module header).
@@ -119,20 +123,21 @@ module dpend_elastic
 
    !> The writer's per-sample outputs, in the chain's layout where the meaning is the
    !> same (body 1 = the spring with its bob, one row per body).
-   integer, parameter :: n_out = 6
+   integer, parameter :: n_out = 7
    character(len=13), parameter :: out_names(n_out) = [character(len=13) :: &
-      'rC', 'vC', 'aC', 'F_joint', 'tension', 'spring_length']
+      'rC', 'vC', 'aC', 'F_joint', 'tension', 'spring_length', 'rA']
    character(len=5), parameter :: out_units(n_out) = &
-      [character(len=5) :: 'm', 'm/s', 'm/s^2', 'N', 'N', 'm']
-   integer, parameter :: out_comp(n_out) = [2, 2, 2, 2, 1, 1]
-   integer, parameter :: out_rows(n_out) = [1, 1, 1, 1, 0, 0]
+      [character(len=5) :: 'm', 'm/s', 'm/s^2', 'N', 'N', 'm', 'm']
+   integer, parameter :: out_comp(n_out) = [2, 2, 2, 2, 1, 1, 2]
+   integer, parameter :: out_rows(n_out) = [1, 1, 1, 1, 0, 0, 0]
    character(len=96), parameter :: out_text(n_out) = [character(len=96) :: &
       'position of the bob C (x, y)', &
       'velocity of the bob C (x, y)', &
       'acceleration of the bob C (x, y)', &
       'force of the ground on the spring at A (x, y): F01 = -k (r - l0) u, also on the bob', &
       'spring tension k (r - l0), positive when stretched', &
-      'spring length r (the distance from the pin A to the bob)']
+      'spring length r (the distance from the pin A to the bob)', &
+      'position of the pin A, the support (x, y)']
 
 contains
 
@@ -402,6 +407,7 @@ contains
       values(7:8) = -tension*u
       values(9) = tension
       values(10) = y(1)
+      values(11:12) = 0.0_dp
    end subroutine el_outputs
 
    pure integer function el_n_parameters(self)
@@ -422,4 +428,44 @@ contains
       case default; name = 'g'; value = self%g; units = 'm/s^2'
       end select
    end subroutine el_parameter
+
+   !> q1 = r [m] (momentum m ṙ [kg m/s]), q2 = φ [rad] (momentum m r² φ̇ [kg m²/s]).
+   subroutine el_coordinate(self, i, name, units, momentum_units)
+      class(elastic_t), intent(in) :: self
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: name, units, momentum_units
+      if (i == 1) then
+         name = 'r'; units = 'm'; momentum_units = 'kg m/s'
+      else
+         name = 'phi'; units = 'rad'; momentum_units = 'kg m^2/s'
+      end if
+   end subroutine el_coordinate
+
+   function el_coordinates_text(self, order) result(text)
+      class(elastic_t), intent(in) :: self
+      integer, intent(in) :: order
+      character(len=:), allocatable :: text
+      select case (order)
+      case (0)
+         text = 'r, the spring length, and phi, its angle from the horizontal x axis, ' &
+                //'counter-clockwise, unwrapped (hanging: phi = -pi/2)'
+      case (1); text = 'rdot [m/s], phidot [rad/s]'
+      case default; text = 'rddot [m/s^2], phiddot [rad/s^2]'
+      end select
+   end function el_coordinates_text
+
+   !> A spring from the pin A to the bob C; the force of the ground on it at A.
+   subroutine el_figure(self, anchor, points, style, forces)
+      class(elastic_t), intent(in) :: self
+      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      anchor = 'rA'; points = 'rC'; style = 'spring'; forces = 'F_joint'
+   end subroutine el_figure
+
+   !> The model's check of an initial state (`check_state`): r above the collapse.
+   subroutine el_check_state(self, q, qd, error)
+      class(elastic_t), intent(in) :: self
+      real(dp), intent(in) :: q(:), qd(:)
+      type(error_t), allocatable, intent(out) :: error
+      call check_state(self, q, qd, error)
+   end subroutine el_check_state
 end module dpend_elastic

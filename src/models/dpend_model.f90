@@ -37,6 +37,8 @@
 !> check, with a message naming the model and the procedure).
 module dpend_model
    use dpend_kinds, only: dp
+   use dpend_error, only: error_t
+   use dpend_limits, only: check_range, max_angle, max_angular_velocity
    implicit none
    private
    public :: model_t, max_dof, max_state
@@ -88,6 +90,8 @@ module dpend_model
       procedure :: coordinate => model_coordinate
       procedure :: coordinates_text => model_coordinates_text
       procedure :: figure => model_figure
+      ! an initial state within the model (before any step)
+      procedure :: check_state => model_check_state
    end type model_t
 
    abstract interface
@@ -375,4 +379,30 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       anchor = ''; points = ''; style = ''; forces = ''
    end subroutine model_figure
+
+   !> Refuse an initial state (q, q̇) outside what the model accepts, in one line
+   !> naming the component (q1, w2, ...), its value and the range. The default: every
+   !> q_i an angle within ±1e6 rad (beyond, its rounding exceeds 1e-10 rad), every q̇_i
+   !> within ±1e6 rad/s (energies and momenta stay finite).
+   subroutine model_check_state(self, q, qd, error)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: q(:)                      !! coordinates
+      real(dp), intent(in) :: qd(:)                     !! their rates
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      character(len=12) :: digits
+      integer :: i
+      do i = 1, size(q)
+         write (digits, '(i0)') i
+         call check_range('q'//trim(digits), q(i), -max_angle, max_angle, 'rad', error, &
+                          'beyond, the rounding of the angle exceeds 1e-10 rad')
+         if (allocated(error)) return
+      end do
+      do i = 1, size(qd)
+         write (digits, '(i0)') i
+         call check_range('w'//trim(digits), qd(i), -max_angular_velocity, &
+                          max_angular_velocity, 'rad/s', error, &
+                          'keeps energies and momenta finite')
+         if (allocated(error)) return
+      end do
+   end subroutine model_check_state
 end module dpend_model

@@ -16,6 +16,7 @@ module dpend_model_factory
    use dpend_model, only: model_t, max_dof
    use dpend_pendulum, only: pendulum_t, validate, pendulum_model
    use dpend_chain, only: chain_t, chain_model
+   use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
                            max_damping, max_support_amplitude, max_support_frequency, &
@@ -79,7 +80,7 @@ contains
    !> Every model dpend can build, described.
    function model_catalogue() result(models)
       type(model_info_t), allocatable :: models(:)
-      models = [pendulum_info()]
+      models = [pendulum_info(), elastic_info()]
    end function model_catalogue
 
    !> The chapter's pendulum: N rigid uniform rods (N = 2: the double pendulum),
@@ -112,6 +113,24 @@ contains
          param('support_phase', 'rad', 'support motion phases phi_x, phi_y', -max_angle, &
                max_angle, 0.0_dp, 2)]
    end function pendulum_info
+
+   !> The elastic (spring) pendulum: a point mass on a massless spring.
+   function elastic_info() result(info)
+      type(model_info_t) :: info
+      info%name = 'elastic'
+      info%summary = 'a point mass m on a massless spring (stiffness k, rest length l0) ' &
+                     //'hung from the pin A (docs/elastic.md)'
+      info%coordinates = 'r: the spring length (m); phi: its angle from the horizontal x ' &
+                         //'axis, counter-clockwise (rad); hanging: phi = -pi/2'
+      info%supports = 'Hamiltonian structure (every method), no damping, no driving, ' &
+                      //'no SIMD lanes, no Poincare sections'
+      info%params = [ &
+         param('m', 'kg', 'mass of the bob', min_mass, max_mass, 1.0_dp, 1), &
+         param('k', 'N/m', 'stiffness of the spring', min_stiffness, max_stiffness, 40.0_dp, &
+               1), &
+         param('l0', 'm', 'rest length of the spring', min_length, max_length, 1.0_dp, 1), &
+         param('g', 'm/s^2', 'gravitational acceleration (-y)', min_g, max_g, 9.8_dp, 1)]
+   end function elastic_info
 
    !> A parameter description.
    pure function param(name, units, meaning, lower, upper, default, count, integer_valued) &
@@ -311,6 +330,15 @@ contains
       select case (info%name)
       case ('pendulum')
          call build_pendulum(spec, info, model, error)
+      case ('elastic')
+         block
+            type(elastic_t) :: elastic
+            real(dp), allocatable :: m(:), k(:), l0(:), g(:)
+            m = value_of(spec, info, 'm', 1); k = value_of(spec, info, 'k', 1)
+            l0 = value_of(spec, info, 'l0', 1); g = value_of(spec, info, 'g', 1)
+            elastic = elastic_model(m(1), k(1), l0(1), g(1), error)
+            if (.not. allocated(error)) allocate (model, source=elastic)
+         end block
       case default
          call fatal_error(error, 'internal error: model '//info%name//' has no constructor')
       end select
