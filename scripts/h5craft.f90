@@ -12,6 +12,7 @@
 !>   set PATH INDEX VALUE          set element INDEX (1-based, in storage order) of
 !>                                 the float64 dataset PATH to VALUE
 !>   attr-int OBJ NAME D1          an int32 attribute array 1..D1 of OBJ
+!>   attr-i0 OBJ NAME VALUE        a scalar int32 attribute of OBJ
 !>   attr-real OBJ NAME VALUE      a scalar float64 attribute of OBJ
 !>   attr-sub OBJ NAME OLD NEW     replace OLD by NEW in the string attribute NAME
 !> A dataset or attribute that exists is replaced.
@@ -51,6 +52,8 @@ program h5craft
       call set_one(a(1), int(real_of(a(2))), real_of(a(3)))
    case ('attr-int')
       call attr_int(a(1), a(2), int(real_of(a(3))))
+   case ('attr-i0')
+      call attr_int(a(1), a(2), int(real_of(a(3))), scalar=.true.)
    case ('attr-real')
       call attr_real(a(1), a(2), real_of(a(3)))
    case ('attr-sub')
@@ -166,15 +169,21 @@ contains
       call h5aexists_f(obj, trim(name), found, e)
       if (found) call h5adelete_f(obj, trim(name), e)
    end subroutine open_obj
-   subroutine attr_int(path, name, n)
+   subroutine attr_int(path, name, n, scalar)
       character(len=*), intent(in) :: path, name
       integer, intent(in) :: n
+      logical, intent(in), optional :: scalar
       integer(hid_t) :: obj, space, attr
       integer, allocatable, target :: buf(:)
       integer :: k
       call open_obj(path, obj, name)
-      buf = [(k, k=1, n)]
-      call h5screate_simple_f(1, [int(n, hsize_t)], space, ierr)
+      if (present(scalar)) then
+         buf = [n]
+         call h5screate_f(H5S_SCALAR_F, space, ierr)
+      else
+         buf = [(k, k=1, n)]
+         call h5screate_simple_f(1, [int(n, hsize_t)], space, ierr)
+      end if
       call h5acreate_f(obj, trim(name), H5T_STD_I32LE, space, attr, ierr)
       call h5awrite_f(attr, H5T_NATIVE_INTEGER, c_loc(buf), ierr)
       call h5aclose_f(attr, ierr)
