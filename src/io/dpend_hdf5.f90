@@ -1624,6 +1624,7 @@ contains
             exit
          end if
       end do
+      deallocate (value)
       allocate (character(len=n) :: value)
       do i = 1, n
          value(i:i) = buf(i)
