@@ -33,6 +33,7 @@ module dpend_hdf5
    use dpend_error, only: error_t, fatal_error
    use dpend_os, only: io_failure_reason
    use dpend_limits, only: check_memory, sci
+   use dpend_cli, only: to_str
    implicit none
    private
    public :: h5file_t, is_hdf5, max_read_values, max_string_bytes
@@ -260,7 +261,7 @@ contains
       if (allocated(error)) return
       if (any(hdims > int(huge(1), hsize_t))) then
          call fail(error, 'read', self, quoted(path), 'a dimension of '// &
-                   int_text(int(maxval(hdims), i8))//' exceeds '//int_text(max_read_values)// &
+                   to_str(int(maxval(hdims), i8))//' exceeds '//to_str(max_read_values)// &
                    ' (a size declared by the file is checked before reading)')
          return
       end if
@@ -1449,14 +1450,14 @@ contains
       shape_text = ''
       do i = size(dims), 1, -1   ! h5py order
          values = values*real(dims(i), dp)
-         shape_text = shape_text//int_text(int(dims(i), i8))
+         shape_text = shape_text//to_str(int(dims(i), i8))
          if (i > 1) shape_text = shape_text//' x '
       end do
       if (bytes > 8) then
          limit = real(max_string_bytes, dp)
          if (real(bytes, dp) > limit) then
-            call fail(error, 'read', self, what, 'its strings of '//int_text(bytes)// &
-                      ' bytes exceed '//int_text(max_string_bytes)// &
+            call fail(error, 'read', self, what, 'its strings of '//to_str(bytes)// &
+                      ' bytes exceed '//to_str(max_string_bytes)// &
                       ' bytes (a size declared by the file is checked before reading)')
             return
          end if
@@ -1470,15 +1471,6 @@ contains
                         quoted(self%filename), 'a size declared by the file', mem)
       if (allocated(mem)) call fatal_error(error, mem%message)
    end subroutine check_read_size
-
-   !> An integer as text without blanks.
-   pure function int_text(n) result(text)
-      integer(i8), intent(in) :: n  !! the number
-      character(len=:), allocatable :: text
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      text = trim(buf)
-   end function int_text
 
    !> `flag` is present and false.
    pure logical function present_false(flag)
