@@ -323,6 +323,7 @@ contains
             end do
          end if
          shapes(i) = shape_text//')'
+         if (allocated(err)) shapes(i) = '(too large to read)'   ! a dimension > 2^31 - 1
          units = '?'
          if (h5%attr_exists(trim(paths(i)), 'units')) &
             call h5%readattr(trim(paths(i)), 'units', units, error)
