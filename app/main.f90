@@ -22,6 +22,7 @@ program dpend
    use dpend_study_command, only: run_study_command
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
+   use dpend_output, only: track_inputs
    implicit none
 
    interface
@@ -35,6 +36,8 @@ program dpend
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
 
+   ! every input a command reads is registered: an output never replaces one
+   call track_inputs(.true.)
    call get_arguments(args)
    if (size(args) == 0) then
       write (output_unit, '(a)') main_help()

@@ -6,7 +6,8 @@
 module test_files
    use, intrinsic :: iso_c_binding, only: c_char, c_loc
    use dpend_kinds, only: dp
-   use dpend_hdf5, only: h5file_t
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_output, only: track_inputs, register_input, check_output_path
    use hdf5, only: hid_t, size_t, H5F_ACC_RDWR_F, H5T_NATIVE_CHARACTER, H5S_SCALAR_F, &
       H5T_STR_NULLPAD_F, h5open_f, h5fopen_f, h5fclose_f, h5tcopy_f, h5tset_size_f, &
       h5tset_strpad_f, h5tclose_f, h5screate_f, h5sclose_f, h5acreate_f, h5awrite_f, &
@@ -29,7 +30,9 @@ contains
          new_unittest('simulate_units', test_simulate_units), &
          new_unittest('sweep_units', test_sweep_units), &
          new_unittest('export_csv', test_export_csv), &
-         new_unittest('export_list_and_names', test_export_list)]
+         new_unittest('export_list_and_names', test_export_list), &
+         new_unittest('export_wide_csv', test_export_wide_csv), &
+         new_unittest('output_never_an_input', test_output_not_input)]
    end subroutine collect_files
 
    !> Fail unless every dataset of `filename` has the string attributes `units` and
@@ -251,6 +254,80 @@ contains
       close (unit)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_export_csv
+
+   !> `export --csv` of a (2, 3000) dataset (h5py order): a header of 3000 names
+   !> w1 [m] … w3000 [m] and two lines of 3000 fields (built in one buffer each).
+   subroutine test_export_wide_csv(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, line
+      character(len=200000) :: buf
+      type(h5file_t) :: h5
+      real(dp) :: w(3000, 2)
+      integer :: stat, unit, ios, lines, i
+      dir = scratch_dir('fileswide')
+      w(:, 1) = [(real(i, dp), i=1, 3000)]
+      w(:, 2) = -w(:, 1)
+      call h5%open(dir//'/wide.h5', 'w', error)
+      if (allocated(error)) return
+      call h5%write('/data/w', w, error, units='m', description='wide')
+      call h5%close()
+      if (allocated(error)) return
+      stat = run_command(dir, 'export '//dir//'/wide.h5 --csv w')
+      call check_true(error, stat == 0, 'export exits 0')
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/stdout', status='old', action='read')
+      lines = 0
+      do
+         read (unit, '(a)', iostat=ios) buf
+         if (ios /= 0) exit
+         lines = lines + 1
+         line = trim(buf)
+         call check_true(error, count([(line(i:i) == ',', i=1, len(line))]) == 2999, &
+                         '3000 fields in line '//to_str(lines))
+         if (lines == 1) call check_true(error, line(1:16) == 'w1 [m],w2 [m],w3' .and. &
+            line(len(line) - 15:) == 'w2999 [m],w3000 [m]'(4:), 'header: '//line(1:40))
+         if (lines == 3) call check_true(error, line(1:24) == &
+            '-1.0000000000000000E+000', 'second row: '//line(1:30))
+         if (allocated(error)) exit
+      end do
+      close (unit)
+      if (.not. allocated(error)) call check_true(error, lines == 3, 'three lines')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_export_wide_csv
+
+   !> An output never replaces an input: through the registry (library) and the
+   !> command line (animate onto its own trajectory, with --force), the file
+   !> unchanged.
+   subroutine test_output_not_input(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: dir, text
+      integer :: stat, n
+      dir = scratch_dir('filesinput')
+      stat = run_command(dir, 'simulate --t-end 0.1 --output '//dir//'/sim.h5')
+      call check_true(error, stat == 0, 'simulate exits 0')
+      if (allocated(error)) return
+      call check_output_path(dir//'/sim.h5', .true., err)
+      call check_true(error, .not. allocated(err), 'not tracked: replacing is allowed')
+      call track_inputs(.true.)
+      call register_input(dir//'/sim.h5')
+      call check_output_path(dir//'/./sim.h5', .true., err)
+      call track_inputs(.false.)
+      call check_true(error, allocated(err), 'a registered input is refused')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'is the input') > 0 .and. &
+                      index(err%message, '--output') > 0, err%message)
+      call check_output_path(dir//'/sim.h5', .true., err)
+      call check_true(error, .not. allocated(err), 'tracking off: the registry is empty')
+      stat = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir// &
+                         '/sim.h5 --force --fps 5 --size 64x64')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'is the input') > 0, &
+                      'animate onto its input: exit 2, one line, got '//to_str(stat)//': '// &
+                      text)
+      call check_true(error, is_hdf5(dir//'/sim.h5'), 'the trajectory is unchanged')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_output_not_input
 
    !> `export --list` lists every dataset with shape and units; an unknown name,
    !> --list with a dataset and two modes are refused with one line, exit 2.

@@ -5,7 +5,11 @@ module test_hdf5
    use dpend_kinds, only: dp, i8
    use dpend_hdf5, only: h5file_t, is_hdf5
    use hdf5, only: hid_t, size_t, H5P_FILE_ACCESS_F, h5open_f, h5pcreate_f, h5pclose_f, &
-      h5pset_fapl_core_f
+      h5pset_fapl_core_f, hsize_t, H5F_ACC_TRUNC_F, H5P_DATASET_CREATE_F, H5T_IEEE_F64LE, &
+      H5T_STD_I32LE, H5T_NATIVE_INTEGER, h5fcreate_f, h5fclose_f, h5screate_simple_f, &
+      h5sclose_f, h5pset_chunk_f, h5dcreate_f, h5dclose_f, h5acreate_f, h5awrite_f, &
+      h5aclose_f
+   use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -31,9 +35,111 @@ contains
          new_unittest('hdf5_kept_error', test_kept_error), &
          new_unittest('hdf5_is_hdf5', test_is_hdf5), &
          new_unittest('hdf5_finalizer', test_finalizer), &
-         new_unittest('hdf5_access_list', test_access_list) &
+         new_unittest('hdf5_access_list', test_access_list), &
+         new_unittest('hdf5_declared_sizes', test_declared_sizes), &
+         new_unittest('hdf5_attribute_types', test_attribute_types) &
          ]
    end subroutine collect_hdf5
+
+   !> Write a file as a hostile program could: a chunked dataset /big declared
+   !> (2^40, 2) in h5py order (nothing written: a few kB), a 1-D /small (3) with an
+   !> int32 array attribute 'units' (3 values) and a string 'description'.
+   subroutine craft_hostile(name, error)
+      character(len=*), intent(in) :: name              !! file to create
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(hid_t) :: fid, space, dcpl, dset, aspace, attr
+      integer, target :: units(3) = [1, 2, 3]
+      type(c_ptr) :: ptr
+      integer :: ierr, bad
+      call h5open_f(ierr)
+      call h5fcreate_f(name, H5F_ACC_TRUNC_F, fid, ierr)
+      bad = ierr
+      call h5screate_simple_f(2, [2_hsize_t, 2_hsize_t**40], space, ierr)
+      call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, ierr)
+      call h5pset_chunk_f(dcpl, 2, [2_hsize_t, 1_hsize_t], ierr)
+      call h5dcreate_f(fid, 'big', H5T_IEEE_F64LE, space, dset, ierr, dcpl)
+      bad = bad + abs(ierr)
+      call h5dclose_f(dset, ierr)
+      call h5pclose_f(dcpl, ierr)
+      call h5sclose_f(space, ierr)
+      call h5screate_simple_f(1, [3_hsize_t], space, ierr)
+      call h5dcreate_f(fid, 'small', H5T_IEEE_F64LE, space, dset, ierr)
+      bad = bad + abs(ierr)
+      call h5acreate_f(dset, 'units', H5T_STD_I32LE, space, attr, ierr)
+      ptr = c_loc(units)
+      call h5awrite_f(attr, H5T_NATIVE_INTEGER, ptr, ierr)
+      bad = bad + abs(ierr)
+      call h5aclose_f(attr, ierr)
+      call h5dclose_f(dset, ierr)
+      call h5sclose_f(space, ierr)
+      call h5fclose_f(fid, ierr)
+      if (bad /= 0) call fatal_error(error, 'could not craft '//name)
+   end subroutine craft_hostile
+
+   !> A size declared by the file is refused before anything is allocated, in
+   !> one line naming the file and the dataset; a small dataset still reads.
+   subroutine test_declared_sizes(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name
+      real(dp), allocatable :: v2(:, :), v1(:)
+      integer, allocatable :: dims(:)
+      name = temp_name('hostile')
+      call craft_hostile(name, error)
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%read('/big', v2, err)
+      call check_true(error, allocated(err), 'reading a 2^41-value dataset must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, "'/big'") > 0 .and. &
+                      index(err%message, name) > 0 .and. &
+                      index(err%message, '2199023255552 values') > 0 .and. &
+                      index(err%message, new_line('a')) == 0, 'message: '//err%message)
+      call check_true(error, .not. allocated(v2), 'nothing allocated')
+      if (allocated(error)) return
+      call h5%shape('/big', dims, err)
+      call check_true(error, allocated(err), 'shape beyond a default integer must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, '1099511627776') > 0, 'shape: '//err%message)
+      call h5%read('/big', v1, err)
+      call check_true(error, allocated(err), 'a rank-2 dataset read as 1-D must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'rank 2, expected 1') > 0, err%message)
+      call h5%read('/small', v1, error)
+      if (.not. allocated(error)) call check_true(error, size(v1) == 3, 'small read')
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_declared_sizes
+
+   !> An attribute of another type than the one read (an int32 array as 'units'):
+   !> refused in one line naming it, the string result is '' (no crash).
+   subroutine test_attribute_types(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: name, s
+      real(dp) :: x
+      name = temp_name('attrtype')
+      call craft_hostile(name, error)
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (allocated(error)) return
+      call h5%readattr('/small', 'units', s, err)
+      call check_true(error, allocated(err), 'an int array read as a string must fail')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, "attribute 'units' of '/small'") > 0 .and. &
+                      index(err%message, 'does not hold a string') > 0, err%message)
+      call check_true(error, allocated(s), 'the string is allocated')
+      if (.not. allocated(error)) call check_true(error, len(s) == 0, 'the string is empty')
+      call h5%readattr('/small', 'units', x, err)
+      call check_true(error, allocated(err), 'a 3-value attribute read as a scalar must fail')
+      if (.not. allocated(error)) call check_true(error, index(err%message, 'not a scalar') &
+                                                  > 0, err%message)
+      call h5%close()
+      call delete_file(name)
+   end subroutine test_attribute_types
 
    !> A file name in /tmp unique to this run and `tag`.
    function temp_name(tag) result(name)

@@ -13,8 +13,8 @@ module dpend_animate
    use dpend_cli, only: arg_t, next_option, option_outcome, parse_int, parse_real, to_str, &
                         is_long_option
    use dpend_hdf5, only: h5file_t, is_hdf5
-   use dpend_output, only: output_t, check_output_path
-   use dpend_limits, only: check_range, sci
+   use dpend_output, only: output_t, check_output_path, register_input
+   use dpend_limits, only: check_range, check_memory, sci, max_time, max_angle
    use dpend_os, only: find_script, run_program, make_temp_file, remove_file, &
                            directory_of, base_name, path_kind, path_directory, path_missing, &
                            move_noreplace, move_replace, sync_path, errno_text
@@ -32,6 +32,9 @@ module dpend_animate
    real(dp), parameter :: trail_span = 1.5_dp       !! tip trail: the last 1.5 s [s]
    real(dp), parameter :: trail_step = 0.01_dp      !! finest trail sampling [s]
    integer, parameter :: max_trail_rows = 400000    !! most trail samples in all
+   !> At most 1e6 rods drawn in all (frames × links of both files): gnuplot draws
+   !> each, a few µs each, so an animation takes seconds, not hours.
+   integer, parameter :: max_drawn_links = 1000000
 
    !> What to animate and how.
    type :: animate_config_t
@@ -267,6 +270,7 @@ contains
          call fatal_error(error, 'invalid '//field//": '"//path//"' is not an HDF5 file")
          return
       end if
+      call register_input(path)   ! the GIF or a frame never replaces it
       call h5%open(path, 'r', error)
       if (allocated(error)) then
          error%message = 'invalid '//field//': '//error%message
@@ -283,6 +287,7 @@ contains
       if (h5%attr_exists('/', 'links')) call h5%readattr('/', 'links', tr%links, error)
       if (.not. allocated(error) .and. (tr%links < 1 .or. tr%links > 1000)) &
          call fatal_error(error, 'links = '//to_str(tr%links)//' (accepted: 1..1000)')
+      if (.not. allocated(error)) call check_track_size(error)
       if (.not. allocated(error)) call h5%read('/trajectory/t', tr%t, error)
       if (.not. allocated(error)) call h5%read('/trajectory/q', tr%q, error)
       if (tr%links == 2) then
@@ -349,12 +354,26 @@ contains
          end if
       end do
       do k = 2, n
-         if (tr%t(k) < tr%t(k - 1)) then
-            call fatal_error(error, 'invalid '//field//": '"//path//"': times decrease at "// &
-                             'sample '//to_str(k))
+         if (.not. (tr%t(k) > tr%t(k - 1))) then
+            call fatal_error(error, 'invalid '//field//": '"//path//"': time does not "// &
+                             'increase at sample '//to_str(k)//' (t = '//sci(tr%t(k - 1))// &
+                             ', '//sci(tr%t(k))//' s; a trajectory has strictly increasing t)')
             return
          end if
       end do
+      ! the documented ranges: |t| <= 1e9 s, |q| <= 1e6 rad
+      if (maxval(abs(tr%t)) > max_time) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory/t holds "// &
+                          sci(maxval(abs(tr%t)))//' s (accepted: |t| <= '//sci(max_time)// &
+                          ' s)')
+         return
+      end if
+      if (maxval(abs(tr%q)) > max_angle) then
+         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory/q holds "// &
+                          sci(maxval(abs(tr%q)))//' rad (accepted: |q| <= '// &
+                          sci(max_angle)//' rad)')
+         return
+      end if
       ! forces beyond 1e100 N are not drawn to any sensible scale
       f = abs(tr%f)
       if (maxval(f) > 1e100_dp) then
@@ -366,6 +385,22 @@ contains
          real(dp), intent(in) :: l
          in = ieee_is_finite(l) .and. l >= 1e-6_dp .and. l <= 1e6_dp
       end function in
+      !> The samples and links the file declares, before anything is read: what
+      !> the track keeps (t, q and the reactions, a copy while reading) must fit
+      !> the available memory. Each read is also checked by dpend_hdf5.
+      subroutine check_track_size(err)
+         type(error_t), allocatable, intent(out) :: err
+         integer, allocatable :: dt(:)
+         call h5%shape('/trajectory/t', dt, err)
+         if (allocated(err)) return
+         if (size(dt) /= 1) then
+            call fatal_error(err, '/trajectory/t is not 1-D')
+            return
+         end if
+         call check_memory('input', 8.0_dp*real(dt(1), dp)*(1.0_dp + 10.0_dp* &
+                           real(tr%links, dp)), "the samples of '"//path//"'", &
+                           'animate a shorter trajectory', err)
+      end subroutine check_track_size
    end subroutine read_track
 
    !> State of a track at times `tt` (sorted), linear in the samples: angles and
@@ -481,6 +516,31 @@ contains
             call check_output_path(frame_name(cfg%frames, i), cfg%force, error, '--frames')
             if (allocated(error)) return
          end do
+      end if
+      ! the work (rods drawn) and memory, before anything is written
+      nb = 0
+      if (overlay) nb = b%links
+      if (real(nframes, dp)*real(a%links + nb, dp) > real(max_drawn_links, dp)) then
+         call fatal_error(error, 'invalid duration: '//to_str(nframes)//' frames of '// &
+                          to_str(a%links + nb)//' links draw '// &
+                          sci(real(nframes, dp)*real(a%links + nb, dp))//' rods; at most '// &
+                          sci(real(max_drawn_links, dp))//' (use --duration, a larger '// &
+                          '--speed or a smaller --fps)')
+         return
+      end if
+      call check_memory('duration', 8.0_dp*(real(nframes, dp)*6.0_dp*real(a%links + nb, dp) &
+                        + real(nrows, dp)*4.0_dp*real(a%links + nb, dp)), &
+                        'the frames and trail', 'use --duration or a smaller --fps', error)
+      if (allocated(error)) return
+      ! the --frames directory must take files (a read-only file system: refused)
+      if (len(cfg%frames) > 0) then
+         err = make_temp_file(cfg%frames//'/.dpend-frames-probe-', stem)
+         if (err /= 0) then
+            call fatal_error(error, "invalid frames: cannot write into '"//cfg%frames// &
+                             "' ("//errno_text(err)//')')
+            return
+         end if
+         err = remove_file(stem)
       end if
       script = find_script('animate.gp')
       if (len(script) == 0) then

@@ -17,6 +17,7 @@ module dpend_config
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, overflows_real, &
       to_lower, printable
+   use dpend_output, only: register_input
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_angular_velocity, &
@@ -199,6 +200,7 @@ contains
       kind = path_kind(filename, follow=.true.)
       select case (kind)
       case (path_file)
+         call register_input(filename)   ! an output never replaces it (dpend_output)
       case (path_missing)
          call fatal_error(error, pre//'no such file')
       case (path_directory)

@@ -7,21 +7,36 @@
 !> is relative to the command's group ('t' is '/trajectory/t' in a simulate file):
 !> it names the one dataset '/NAME' or '/GROUP/NAME' of the file.
 module dpend_export
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
    use dpend_config, only: check_regular_file
-   use dpend_limits, only: sci
+   use dpend_limits, only: sci, check_memory
    use dpend_cli, only: to_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: export_columns, export_matrix, export_list, csv_header
+   public :: export_columns, export_matrix, export_list, max_export_values
+
+   !> At most 1e9 values (columns x rows) in one export: the table is indexed with
+   !> default integers and printed as text of about 25 bytes a value (25 GB).
+   integer(i8), parameter :: max_export_values = 1000000000_i8
+
+   !> Text appended piece by piece into one buffer that doubles when full.
+   type :: text_buffer_t
+      character(len=:), allocatable :: text  !! the buffer (its first n characters used)
+      integer :: n = 0                       !! characters used
+   contains
+      procedure :: add => buffer_add
+   end type text_buffer_t
 
 contains
 
    !> Write the datasets `names` of `filename` as columns to `unit`: separated by
    !> blanks, or with `csv` by commas after a header line "name [units],...".
+   !> The table's size is bounded before anything is read (`max_export_values`
+   !> values, in the available memory), and every line is built in one buffer of
+   !> its final length, so the time is linear in the number of values.
    subroutine export_columns(filename, names, unit, error, csv)
       character(len=*), intent(in) :: filename          !! HDF5 file
       character(len=*), intent(in) :: names(:)          !! dataset paths or relative names
@@ -31,9 +46,11 @@ contains
       type(h5file_t) :: h5
       real(dp), allocatable :: table(:, :), v1(:), v2(:, :), v3(:, :, :)
       integer, allocatable :: dims(:)
-      integer :: i, j, n, ncol, col
-      character(len=:), allocatable :: fmt, header, line
+      integer :: i, j, n, ncol, col, pos
+      real(dp) :: cols, largest
+      character(len=:), allocatable :: fmt, line
       character(len=:), allocatable :: paths(:)
+      type(text_buffer_t) :: header
       character(len=32) :: field
       logical :: as_csv
       as_csv = .false.
@@ -47,77 +64,104 @@ contains
          call h5%close()
          return
       end if
-      ncol = 0
+      cols = 0.0_dp
+      largest = 0.0_dp
       n = -1
       do i = 1, size(paths)
          call h5%shape(trim(paths(i)), dims, error)
          if (allocated(error)) exit
          if (size(dims) == 1) then
-            ncol = ncol + 1
+            cols = cols + 1.0_dp
          else if (size(dims) == 2) then
-            ncol = ncol + dims(1)
+            cols = cols + real(dims(1), dp)
          else if (size(dims) == 3) then   ! (samples, N, 2): one column per component
-            ncol = ncol + dims(1)*dims(2)
+            cols = cols + real(dims(1), dp)*real(dims(2), dp)
          else
             call fatal_error(error, "export: '"//trim(paths(i))//"' is not 1-D, 2-D or 3-D")
             exit
          end if
+         largest = max(largest, product(real(dims, dp)))
          if (n >= 0 .and. dims(size(dims)) /= n) then
             call fatal_error(error, "export: '"//trim(paths(i))//"' has another length")
             exit
          end if
          n = dims(size(dims))
       end do
+      ! the work and memory, before anything is allocated: the table and the
+      ! largest dataset read into it
+      if (.not. allocated(error)) then
+         if (cols*real(max(n, 0), dp) > real(max_export_values, dp)) then
+            call fatal_error(error, "invalid DATASET: export of '"//filename//"' would "// &
+                             'print '//sci(cols)//' columns x '//to_str(max(n, 0))// &
+                             ' rows, at most '//sci(real(max_export_values, dp))// &
+                             ' values (export fewer datasets)')
+         else
+            call check_memory('DATASET', 8.0_dp*(cols*real(max(n, 0), dp) + largest), &
+                              "the export of '"//filename//"'", 'export fewer datasets', error)
+         end if
+      end if
       if (allocated(error)) then
          call h5%close()
          return
       end if
+      ncol = nint(cols)
       allocate (table(ncol, max(n, 0)))
-      header = ''
       if (as_csv) then
          do i = 1, size(paths)
             call h5%shape(trim(paths(i)), dims, error)
             if (allocated(error)) exit
-            if (i > 1) header = header//','
+            if (i > 1) call header%add(',')
             if (size(dims) == 3) then
-               header = header//csv_header(h5, trim(paths(i)), dims(1)*dims(2), dims(1))
+               call csv_header(h5, trim(paths(i)), dims(1)*dims(2), header, error, dims(1))
             else
-               header = header//csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2))
+               call csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2), &
+                               header, error)
             end if
+            if (allocated(error)) exit
          end do
       end if
       col = 0
-      do i = 1, size(paths)
-         call h5%shape(trim(paths(i)), dims, error)
-         if (size(dims) == 1) then
-            call h5%read(trim(paths(i)), v1, error)
+      if (.not. allocated(error)) then
+         do i = 1, size(paths)
+            call h5%shape(trim(paths(i)), dims, error)
             if (allocated(error)) exit
-            table(col + 1, :) = v1
-            col = col + 1
-         else if (size(dims) == 2) then
-            call h5%read(trim(paths(i)), v2, error)
-            if (allocated(error)) exit
-            table(col + 1:col + dims(1), :) = v2
-            col = col + dims(1)
-         else
-            call h5%read(trim(paths(i)), v3, error)
-            if (allocated(error)) exit
-            table(col + 1:col + dims(1)*dims(2), :) = reshape(v3, [dims(1)*dims(2), dims(3)])
-            col = col + dims(1)*dims(2)
-         end if
-      end do
+            if (size(dims) == 1) then
+               call h5%read(trim(paths(i)), v1, error)
+               if (allocated(error)) exit
+               table(col + 1, :) = v1
+               col = col + 1
+            else if (size(dims) == 2) then
+               call h5%read(trim(paths(i)), v2, error)
+               if (allocated(error)) exit
+               table(col + 1:col + dims(1), :) = v2
+               col = col + dims(1)
+            else
+               call h5%read(trim(paths(i)), v3, error)
+               if (allocated(error)) exit
+               table(col + 1:col + dims(1)*dims(2), :) = &
+                  reshape(v3, [dims(1)*dims(2), dims(3)])
+               col = col + dims(1)*dims(2)
+            end if
+         end do
+      end if
       call h5%close()
       if (allocated(error)) return
       if (as_csv) then
-         write (unit, '(a)') header
+         write (unit, '(a)') header%text(1:header%n)
+         allocate (character(len=25*max(ncol, 1)) :: line)
          do j = 1, n
-            line = ''
+            pos = 0
             do i = 1, ncol
                write (field, '(es24.16e3)') table(i, j)
-               if (i > 1) line = line//','
-               line = line//trim(adjustl(field))
+               if (i > 1) then
+                  line(pos + 1:pos + 1) = ','
+                  pos = pos + 1
+               end if
+               field = adjustl(field)
+               line(pos + 1:pos + len_trim(field)) = trim(field)
+               pos = pos + len_trim(field)
             end do
-            write (unit, '(a)') line
+            write (unit, '(a)') line(1:pos)
          end do
          return
       end if
@@ -127,27 +171,45 @@ contains
       end do
    end subroutine export_columns
 
-   !> CSV column names of dataset `path` with their units, comma-separated:
-   !> "t [s]" for a 1-D dataset, "q1 [rad],q2 [rad]" for k = 2 columns (name_j
-   !> when the name ends in a digit: "F01_1"). Units listed per block of columns
-   !> ('rad, rad/s' for 4 columns: rad, rad, rad/s, rad/s) are spread over them;
-   !> other commas become ';'. A dataset without units gets no brackets.
-   function csv_header(h5, path, k, inner) result(header)
+   !> Append `piece` to the buffer, doubling its capacity when full (linear time
+   !> over all appends).
+   subroutine buffer_add(self, piece)
+      class(text_buffer_t), intent(inout) :: self  !! the buffer
+      character(len=*), intent(in) :: piece        !! text to append
+      character(len=:), allocatable :: bigger
+      if (.not. allocated(self%text)) allocate (character(len=max(256, 2*len(piece))) :: &
+         self%text)
+      if (self%n + len(piece) > len(self%text)) then
+         allocate (character(len=max(2*len(self%text), self%n + len(piece))) :: bigger)
+         bigger(1:self%n) = self%text(1:self%n)
+         call move_alloc(bigger, self%text)
+      end if
+      self%text(self%n + 1:self%n + len(piece)) = piece
+      self%n = self%n + len(piece)
+   end subroutine buffer_add
+
+   !> Append the CSV column names of dataset `path` with their units, comma-separated,
+   !> to `header`: "t [s]" for a 1-D dataset, "q1 [rad],q2 [rad]" for k = 2 columns
+   !> (name_j when the name ends in a digit: "F01_1"). Units listed per block of
+   !> columns ('rad, rad/s' for 4 columns: rad, rad, rad/s, rad/s) are spread over
+   !> them; other commas become ';'. A dataset without units gets no brackets; a
+   !> `units` attribute that is not one string is refused.
+   subroutine csv_header(h5, path, k, header, error, inner)
       type(h5file_t), intent(inout) :: h5   !! open file
       character(len=*), intent(in) :: path  !! dataset path
       integer, intent(in) :: k              !! columns, 0 for a 1-D dataset
+      type(text_buffer_t), intent(inout) :: header      !! the header line so far
+      type(error_t), allocatable, intent(out) :: error  !! units not a string
       !> For a 3-D dataset (samples, N, inner): columns NAME_i_x, NAME_i_y (inner = 2)
       !> or NAME_i_j, i = 1 … N.
       integer, intent(in), optional :: inner
-      character(len=:), allocatable :: header
       character(len=:), allocatable :: name, units, unit_j
       character(len=64), allocatable :: parts(:)
-      type(error_t), allocatable :: err
       integer :: j, m, pos
       name = path(index(path, '/', back=.true.) + 1:)
       units = ''
-      if (h5%attr_exists(path, 'units')) call h5%readattr(path, 'units', units, err)
-      if (allocated(err)) units = ''
+      if (h5%attr_exists(path, 'units')) call h5%readattr(path, 'units', units, error)
+      if (allocated(error)) return
       ! split 'a, b, c' into its m parts
       m = 1 + count_commas(units)
       allocate (parts(m))
@@ -165,24 +227,23 @@ contains
          end do
       end block
       if (k == 0) then
-         header = name//bracket(replace_commas(units))
+         call header%add(name//bracket(replace_commas(units)))
          return
       end if
-      header = ''
       do j = 1, k
          if (m > 1 .and. mod(k, m) == 0) then
             unit_j = trim(parts((j - 1)/(k/m) + 1))
          else
             unit_j = replace_commas(units)
          end if
-         if (j > 1) header = header//','
+         if (j > 1) call header%add(',')
          if (present(inner)) then
-            header = header//name//'_'//to_str((j - 1)/inner + 1)//'_'// &
-                     component(mod(j - 1, inner) + 1, inner)//bracket(unit_j)
+            call header%add(name//'_'//to_str((j - 1)/inner + 1)//'_'// &
+                            component(mod(j - 1, inner) + 1, inner)//bracket(unit_j))
          else if (scan(name(len(name):len(name)), '0123456789') > 0) then
-            header = header//name//'_'//to_str(j)//bracket(unit_j)
+            call header%add(name//'_'//to_str(j)//bracket(unit_j))
          else
-            header = header//name//to_str(j)//bracket(unit_j)
+            call header%add(name//to_str(j)//bracket(unit_j))
          end if
       end do
    contains
@@ -225,7 +286,7 @@ contains
             t = ' ['//trim(u)//']'
          end if
       end function bracket
-   end function csv_header
+   end subroutine csv_header
 
    !> Write one line per dataset of `filename` to `unit`: path, shape as h5py shows
    !> it, units ('?' if none) and description.
@@ -262,17 +323,21 @@ contains
             end do
          end if
          shapes(i) = shape_text//')'
+         if (allocated(err)) shapes(i) = '(too large to read)'   ! a dimension > 2^31 - 1
          units = '?'
          if (h5%attr_exists(trim(paths(i)), 'units')) &
-            call h5%readattr(trim(paths(i)), 'units', units, err)
+            call h5%readattr(trim(paths(i)), 'units', units, error)
+         if (allocated(error)) exit
          if (len(units) == 0) units = "''"
          unit_list(i) = units
          text = ''
          if (h5%attr_exists(trim(paths(i)), 'description')) &
-            call h5%readattr(trim(paths(i)), 'description', text, err)
+            call h5%readattr(trim(paths(i)), 'description', text, error)
+         if (allocated(error)) exit
          texts(i) = text
       end do
       call h5%close()
+      if (allocated(error)) return
       wp = 4; ws = 5; wu = 5; wt = 0
       do i = 1, size(paths)
          wp = max(wp, len_trim(paths(i)))

@@ -19,7 +19,7 @@ module dpend_fit_command
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
-   use dpend_output, only: output_t, check_output_path
+   use dpend_output, only: output_t, check_output_path, register_input
    use dpend_version, only: version
    use dpend_limits, only: check_range, sci
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -190,6 +190,7 @@ contains
                           //to_str(max_starts)//'] [--starts]')
          return
       end if
+      call register_input(fc%input)   ! the output never replaces the data file
       call check_output_path(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
       call read_series(fc%input, fc%series, error)

@@ -23,7 +23,9 @@ module dpend_sweep
       ieee_quiet_nan
    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
    use dpend_limits, only: check_memory, check_disk, sci, max_sweep_points, max_angle, &
-                           max_angular_velocity
+                           max_angular_velocity, max_axis_points, max_run_time => max_time, &
+                           in_range
+   use dpend_model, only: max_dof
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t, check_output_path
@@ -47,7 +49,7 @@ module dpend_sweep
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
    public :: run_sweep, sweep_summary_t, compare_sweeps, summary_text
-   public :: config_value, open_sweep_file
+   public :: config_value, open_sweep_file, check_sweep_data
    ! the pieces of run_sweep, shared with the MPI sweep (mpi/, docs/mpi.md)
    public :: block_range, open_output, write_block, finalize_file, working_file
 
@@ -1553,9 +1555,13 @@ contains
          tau = 1; h = 0; complete = 0
          call open_sweep_file(file, pre, h5, config, error)
          if (allocated(error)) return
+         call check_sweep_data(h5, pre, config, '/sweep/t_flip', dims, error)
+         if (allocated(error)) then
+            call h5%close()
+            return
+         end if
          call h5%readattr('/sweep', 'complete', complete, error)
          if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
-         if (.not. allocated(error)) call h5%shape('/sweep/t_flip', dims, error)
          if (.not. allocated(error)) then
             if (size(dims) == 2) then
                call h5%read('/sweep/t_flip', t2, error)
@@ -1623,6 +1629,188 @@ contains
          call fatal_error(error, pre//'not a dpend sweep file (no /sweep config)')
       end if
    end subroutine open_sweep_file
+
+   !> Check the data of a sweep file from elsewhere against what sweep-compare
+   !> assumes, not only its config attribute (`pre` before the reason): the grid
+   !> (n1 × n2 with 1-D axes axis1, axis2 of n1 and n2 finite values) or list
+   !> (ic_count points) that the config names, with `ref` (t_flip or an indicator)
+   !> and status of that shape; status values 1 to 4 (0: not computed, left to the
+   !> caller's completeness check); the attributes a sweep writes within its ranges:
+   !> links 1..32 (and the config's links, if any), t_end finite within [0, 1e9] s
+   !> (also in the config), h finite within (0, 1e9] s. `dims` is the shape of `ref`
+   !> (Fortran order). The file stays open.
+   subroutine check_sweep_data(h5, pre, config, ref, dims, error)
+      type(h5file_t), intent(inout) :: h5               !! the open sweep file
+      character(len=*), intent(in) :: pre               !! message prefix
+      character(len=*), intent(in) :: config            !! its /sweep config attribute
+      character(len=*), intent(in) :: ref               !! the dataset compared
+      integer, allocatable, intent(out) :: dims(:)      !! shape of `ref`
+      type(error_t), allocatable, intent(out) :: error  !! damaged
+      integer, allocatable :: d(:), st(:), st2(:, :), want(:)
+      real(dp), allocatable :: ax(:)
+      real(dp) :: x
+      integer :: n1, n2, links, k
+      character(len=:), allocatable :: initial
+      logical :: ok
+      character(len=2), parameter :: axes(2) = ['1', '2']
+      call h5%shape(ref, dims, error)
+      if (allocated(error)) then
+         error%message = pre//error%message
+         return
+      end if
+      initial = config_value(config, 'initial')
+      select case (initial)
+      case ('grid')
+         call config_int('n1', max_axis_points, n1, ok)
+         if (ok) call config_int('n2', max_axis_points, n2, ok)
+         if (.not. ok) return
+         want = [n1, n2]
+         do k = 1, 2
+            call h5%shape('/sweep/axis'//trim(axes(k)), d, error)
+            if (allocated(error)) then
+               error%message = pre//'damaged: '//error%message
+               return
+            end if
+            if (size(d) /= 1) then
+               call damaged('/sweep/axis'//trim(axes(k))//' is not 1-D')
+               return
+            else if (d(1) /= want(k)) then
+               call damaged('/sweep/axis'//trim(axes(k))//' has '//to_str(d(1))// &
+                            ' values, the config n'//trim(axes(k))//' = '//to_str(want(k)))
+               return
+            end if
+            call h5%read('/sweep/axis'//trim(axes(k)), ax, error)
+            if (allocated(error)) then
+               error%message = pre//'damaged: '//error%message
+               return
+            end if
+            if (.not. all(ieee_is_finite(ax))) then
+               call damaged('/sweep/axis'//trim(axes(k))//' holds values that are not finite')
+               return
+            end if
+         end do
+      case ('list')
+         call config_int('ic_count', max_sweep_points, n1, ok)
+         if (.not. ok) return
+         want = [n1]
+      case default
+         call damaged("config initial = '"//initial//"' (a sweep writes grid or list)")
+         return
+      end select
+      if (size(dims) /= size(want)) then
+         call damaged(ref//' has rank '//to_str(size(dims))//', the config '//initial// &
+                      ' gives rank '//to_str(size(want)))
+         return
+      else if (any(dims /= want)) then
+         call damaged(ref//' does not have the shape of the config '//initial)
+         return
+      end if
+      call h5%shape('/sweep/status', d, error)
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (size(d) /= size(dims)) then
+         call damaged('/sweep/status does not have the shape of '//ref)
+         return
+      else if (any(d /= dims)) then
+         call damaged('/sweep/status does not have the shape of '//ref)
+         return
+      end if
+      if (size(dims) == 2) then
+         call h5%read('/sweep/status', st2, error)
+         if (.not. allocated(error)) st = reshape(st2, [size(st2)])
+      else
+         call h5%read('/sweep/status', st, error)
+      end if
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (any(st < 0 .or. st > 4)) then
+         call damaged('/sweep/status holds '//to_str(minval(st, st < 0 .or. st > 4))// &
+                      ' (a sweep writes 0 to 4)')
+         return
+      end if
+      links = 2
+      if (h5%attr_exists('/sweep', 'links')) call h5%readattr('/sweep', 'links', links, error)
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (links < 1 .or. links > max_dof) then
+         call damaged('attribute links = '//to_str(links)//' (a sweep writes 1 to '// &
+                      to_str(max_dof)//')')
+         return
+      end if
+      if (len(config_value(config, 'links')) > 0) then
+         if (config_value(config, 'links') /= to_str(links)) then
+            call damaged('config links = '//config_value(config, 'links')// &
+                         ', attribute links = '//to_str(links))
+            return
+         end if
+      end if
+      call real_attr('t_end', 0.0_dp, max_run_time, .true.)
+      if (.not. allocated(error)) call real_attr('h', tiny(1.0_dp), max_run_time, .true.)
+      if (allocated(error)) return
+      x = config_real('t_end')
+      if (allocated(error)) return
+      if (.not. in_range(x, 0.0_dp, max_run_time)) &
+         call damaged('config t_end = '//config_value(config, 't_end')// &
+                      ' (a sweep writes 0 to 1e9)')
+   contains
+      subroutine damaged(why)
+         character(len=*), intent(in) :: why
+         call fatal_error(error, pre//'damaged: '//why)
+      end subroutine damaged
+      !> A count of the config in [1, hi]; refused otherwise.
+      subroutine config_int(key, hi, n, good)
+         character(len=*), intent(in) :: key
+         integer, intent(in) :: hi
+         integer, intent(out) :: n
+         logical, intent(out) :: good
+         character(len=:), allocatable :: v
+         integer :: stat
+         n = 0
+         v = config_value(config, key)
+         good = len(v) > 0 .and. len(v) <= 10 .and. verify(v, '0123456789') == 0
+         if (good) then
+            read (v, *, iostat=stat) n
+            good = stat == 0 .and. n >= 1 .and. n <= hi
+         end if
+         if (.not. good) call damaged('config '//key//" = '"//v//"' (a sweep writes 1 to "// &
+                                      to_str(hi)//')')
+      end subroutine config_int
+      !> A real of the config (NaN when it is not a number).
+      real(dp) function config_real(key) result(v)
+         character(len=*), intent(in) :: key
+         integer :: stat
+         character(len=:), allocatable :: text
+         text = config_value(config, key)
+         v = ieee_value(v, ieee_quiet_nan)
+         if (len(text) == 0 .or. len(text) > 40 .or. &
+             verify(text, '0123456789+-.eE') /= 0) return
+         read (text, *, iostat=stat) v
+         if (stat /= 0) v = ieee_value(v, ieee_quiet_nan)
+      end function config_real
+      !> The scalar real attribute `name` of /sweep, finite within [lo, hi].
+      subroutine real_attr(name, lo, hi, required)
+         character(len=*), intent(in) :: name
+         real(dp), intent(in) :: lo, hi
+         logical, intent(in) :: required
+         real(dp) :: v
+         if (.not. required .and. .not. h5%attr_exists('/sweep', name)) return
+         call h5%readattr('/sweep', name, v, error)
+         if (allocated(error)) then
+            error%message = pre//'damaged: '//error%message
+            return
+         end if
+         if (.not. in_range(v, lo, hi)) &
+            call damaged('attribute '//name//' = '//sci(v)//' s (a sweep writes '// &
+                         trim(merge('0 to   ', 'above 0', lo <= 0.0_dp))//' ... '// &
+                         sci(hi)//' s)')
+      end subroutine real_attr
+   end subroutine check_sweep_data
 
    !> The value of `key` in a configuration text of "key = value" lines ('' if absent).
    function config_value(text, key) result(v)

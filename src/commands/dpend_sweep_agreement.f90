@@ -18,8 +18,8 @@ module dpend_sweep_agreement
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
-   use dpend_limits, only: sci
-   use dpend_sweep, only: config_value, open_sweep_file
+   use dpend_limits, only: sci, in_range
+   use dpend_sweep, only: config_value, open_sweep_file, check_sweep_data
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
@@ -217,11 +217,15 @@ contains
                           "threshold (it grows with t_end): give one for '"//file//"'")
          return
       end if
+      call check_sweep_data(h5, pre, c%config, c%dataset, c%dims, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
       call h5%readattr('/sweep', 'complete', complete, error)
       if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', c%tau, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 't_end', c%t_end, error)
-      if (.not. allocated(error)) call h5%shape(c%dataset, c%dims, error)
       if (.not. allocated(error)) then
          if (size(c%dims) == 2) then
             call h5%read(c%dataset, v2, error)
@@ -243,16 +247,18 @@ contains
       end if
       ! the ranges a sweep can write (l1, g within [1e-6, 1e6]: sqrt(l1/g) within
       ! [1e-6, 1e6] s; t_end at most 1e9 s): beyond, the file is damaged
-      if (.not. (c%tau >= 1e-6_dp .and. c%tau <= 1e6_dp)) then
+      if (.not. in_range(c%tau, 1e-6_dp, 1e6_dp)) then
          call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '//sci(c%tau)// &
                           ' s (a sweep writes 1e-6 to 1e6)')
          return
       end if
-      if (.not. (c%t_end >= 0.0_dp .and. c%t_end <= 1e9_dp)) then
+      if (.not. in_range(c%t_end, 0.0_dp, 1e9_dp)) then
          call fatal_error(error, pre//'damaged: attribute t_end = '//sci(c%t_end)// &
                           ' s (a sweep writes 0 to 1e9)')
          return
       end if
+      call check_values(error)
+      if (allocated(error)) return
       allocate (c%cls(size(v)))
       do j = 1, size(v)   ! element by element: an ordered comparison with NaN traps
          if (ieee_is_nan(v(j))) then
@@ -266,5 +272,48 @@ contains
             c%cls(j) = merge(1, 0, v(j) < c%threshold)
          end if
       end do
+   contains
+      !> The indicator's values: NaN (not computed or not finite) or finite within
+      !> what a sweep writes (SALI in [0, √2], GALI_2 in [0, 1]); at least one finite;
+      !> MEGNO not negative everywhere (<Y> of every orbit tends to 2 or grows).
+      subroutine check_values(err)
+         type(error_t), allocatable, intent(out) :: err
+         real(dp) :: hi, lo
+         integer :: k, n_finite, n_negative
+         lo = -huge(1.0_dp)
+         hi = huge(1.0_dp)
+         if (c%indicator == 'sali') then
+            lo = 0.0_dp
+            hi = sqrt(2.0_dp)*(1.0_dp + 1e-12_dp)
+         else if (c%indicator == 'gali2') then
+            lo = 0.0_dp
+            hi = 1.0_dp + 1e-12_dp
+         end if
+         n_finite = 0
+         n_negative = 0
+         do k = 1, size(v)
+            if (ieee_is_nan(v(k))) cycle
+            if (.not. ieee_is_finite(v(k))) then
+               call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
+                                ' (a sweep writes NaN or finite values)')
+               return
+            end if
+            if (v(k) < lo .or. v(k) > hi) then
+               call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
+                                ' (a sweep writes '//sci(lo)//' to '//sci(hi)//')')
+               return
+            end if
+            n_finite = n_finite + 1
+            if (v(k) < 0.0_dp) n_negative = n_negative + 1
+         end do
+         if (n_finite == 0) then
+            call fatal_error(err, pre//'damaged: '//c%dataset//' has no finite value '// &
+                             '(nothing to classify)')
+         else if (c%indicator == 'megno' .and. n_negative == n_finite) then
+            call fatal_error(err, pre//'damaged: '//c%dataset//' is negative at every '// &
+                             'pixel (MEGNO tends to 2 for regular orbits and grows for '// &
+                             'chaotic ones)')
+         end if
+      end subroutine check_values
    end subroutine classify
 end module dpend_sweep_agreement

@@ -32,9 +32,19 @@ module dpend_hdf5
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_os, only: io_failure_reason
+   use dpend_limits, only: check_memory, sci
+   use dpend_cli, only: to_str
    implicit none
    private
-   public :: h5file_t, is_hdf5
+   public :: h5file_t, is_hdf5, max_read_values, max_string_bytes
+
+   !> At most 2^31 − 1 values in one read of a whole dataset or attribute: arrays are
+   !> indexed with default integers. A file from elsewhere may declare any shape
+   !> (a few kB can declare 2^40 × 2 chunked values); it is refused before anything
+   !> is allocated, as is a read that would not fit the available memory.
+   integer(i8), parameter :: max_read_values = int(huge(1), i8)
+   !> At most 64 MiB in one fixed-length string (dataset or attribute).
+   integer(i8), parameter :: max_string_bytes = 67108864_i8
 
    !> What a read accepts in the file: anything, numbers, integers, a string.
    integer, parameter :: want_any = 0, want_real = 1, want_int = 2, want_str = 3
@@ -237,7 +247,8 @@ contains
       if (ierr /= 0) found = .false.
    end function file_attr_exists
 
-   !> Shape of dataset `path` in Fortran order (size 0 for a scalar).
+   !> Shape of dataset `path` in Fortran order (size 0 for a scalar). A dimension
+   !> beyond a default integer (a file from elsewhere may declare 2^40) is refused.
    subroutine file_shape(self, path, dims, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
@@ -247,7 +258,14 @@ contains
       integer(hsize_t), allocatable :: hdims(:)
       call open_read(self, path, -1, want_any, dset, hdims, error)
       call close_id(dset)
-      if (.not. allocated(error)) dims = int(hdims)
+      if (allocated(error)) return
+      if (any(hdims > int(huge(1), hsize_t))) then
+         call fail(error, 'read', self, quoted(path), 'a dimension of '// &
+                   to_str(int(maxval(hdims), i8))//' exceeds '//to_str(max_read_values)// &
+                   ' (a size declared by the file is checked before reading)')
+         return
+      end if
+      dims = int(hdims)
    end subroutine file_shape
 
    !> Number of filters (compression, shuffle, checksum) in the pipeline of dataset
@@ -877,7 +895,8 @@ contains
       call read_one(self, path, want_int, int_type(), c_loc(value), error, name)
    end subroutine readattr_i0
 
-   !> Read a fixed-length string attribute of the group or dataset `path`.
+   !> Read a string attribute (fixed- or variable-length, scalar) of the group or
+   !> dataset `path`; on failure (e.g. an attribute of another type) `value` is ''.
    subroutine readattr_str(self, path, name, value, error)
       class(h5file_t), intent(inout) :: self               !! the file object
       character(len=*), intent(in) :: path                 !! object path, '/' for the root
@@ -1324,8 +1343,13 @@ contains
    end subroutine writeattr_now
 
    !> Open dataset `path`, or with `name` its attribute, for reading; check that it
-   !> holds what `want` asks for, with rank `rank` (0: one element, -1: any).
-   subroutine open_read(self, path, rank, want, obj, dims, error, name, length, variable)
+   !> holds what `want` asks for, with rank `rank` (0: one element, -1: any), and,
+   !> unless `whole` is false (a block read: the caller sizes the block), that
+   !> reading all of it fits the limits before anything is allocated: at most
+   !> `max_read_values` values (`max_string_bytes` bytes for a string), in the
+   !> machine's available memory (`check_read_size`).
+   subroutine open_read(self, path, rank, want, obj, dims, error, name, length, variable, &
+                        whole)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset or object path
       integer, intent(in) :: rank                            !! expected rank
@@ -1336,6 +1360,7 @@ contains
       character(len=*), intent(in), optional :: name         !! attribute name
       integer, intent(out), optional :: length               !! string size in bytes
       logical, intent(out), optional :: variable             !! a variable-length string
+      logical, intent(in), optional :: whole                 !! all of it is read (default)
       character(len=*), parameter :: wanted(0:3) = [character(len=8) :: '', 'numbers', &
          'integers', 'a string']
       integer(hid_t) :: dtype, space
@@ -1396,9 +1421,63 @@ contains
       else if (rank > 0 .and. size(dims) /= rank) then
          write (msg, '("it has rank ", i0, ", expected ", i0)') size(dims), rank
          call fail(error, 'read', self, what, trim(msg))
+      else if (want /= want_any .and. .not. present_false(whole)) then
+         if (tclass == H5T_STRING_F .and. .not. vlen) then
+            call check_read_size(self, what, [integer(hsize_t) :: 1], int(tsize, i8), error)
+         else
+            call check_read_size(self, what, dims, 8_i8, error)
+         end if
       end if
       if (allocated(error)) call close_id(obj)
    end subroutine open_read
+
+   !> Refuse to read `what` (a quoted path or attribute label) of shape `dims` with
+   !> `bytes` bytes per value when it holds more than `max_read_values` values (a
+   !> string more than `max_string_bytes` bytes) or needs more memory than the
+   !> machine has available: a size declared by a file from elsewhere is checked
+   !> before anything is allocated. Counts are formed in real(dp) (no overflow).
+   subroutine check_read_size(self, what, dims, bytes, error)
+      class(h5file_t), intent(in) :: self               !! the file object
+      character(len=*), intent(in) :: what              !! quoted path or attr_label
+      integer(hsize_t), intent(in) :: dims(:)           !! shape (Fortran order)
+      integer(i8), intent(in) :: bytes                  !! bytes per value
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      type(error_t), allocatable :: mem
+      real(dp) :: values, limit
+      integer :: i
+      character(len=:), allocatable :: shape_text
+      values = 1.0_dp
+      shape_text = ''
+      do i = size(dims), 1, -1   ! h5py order
+         values = values*real(dims(i), dp)
+         shape_text = shape_text//to_str(int(dims(i), i8))
+         if (i > 1) shape_text = shape_text//' x '
+      end do
+      if (bytes > 8) then
+         limit = real(max_string_bytes, dp)
+         if (real(bytes, dp) > limit) then
+            call fail(error, 'read', self, what, 'its strings of '//to_str(bytes)// &
+                      ' bytes exceed '//to_str(max_string_bytes)// &
+                      ' bytes (a size declared by the file is checked before reading)')
+            return
+         end if
+      else if (values > real(max_read_values, dp)) then
+         call fail(error, 'read', self, what, 'its shape ('//shape_text//') holds '// &
+                   sci(values)//' values, at most '//sci(real(max_read_values, dp))// &
+                   ' are read at once (a size declared by the file is checked before reading)')
+         return
+      end if
+      call check_memory('FILE', values*real(bytes, dp), 'reading '//what//' of '// &
+                        quoted(self%filename), 'a size declared by the file', mem)
+      if (allocated(mem)) call fatal_error(error, mem%message)
+   end subroutine check_read_size
+
+   !> `flag` is present and false.
+   pure logical function present_false(flag)
+      logical, intent(in), optional :: flag  !! an optional switch
+      present_false = .false.
+      if (present(flag)) present_false = .not. flag
+   end function present_false
 
    !> The shape a slab read allocates: `count` (negative counts as 0); a rank that
    !> does not match gives an empty array, and `read_slab_raw` the error.
@@ -1433,7 +1512,7 @@ contains
       logical :: verify
       verify = .true.
       if (present(check_sums)) verify = check_sums
-      call open_read(self, path, rank, want, obj, dims, error)
+      call open_read(self, path, rank, want, obj, dims, error, whole=.false.)
       if (allocated(error)) return
       if (size(start) /= rank .or. size(count) /= rank) then
          call fail(error, 'read', self, quoted(path), 'start or count rank does not match '// &
@@ -1517,6 +1596,7 @@ contains
       integer(hsize_t), allocatable :: dims(:)
       integer :: i, n, length
       logical :: variable
+      value = ''   ! allocated even when the read fails
       call open_read(self, path, 0, want_str, obj, dims, error, name, length, variable)
       if (allocated(error)) return
       if (variable) then
@@ -1536,6 +1616,7 @@ contains
             exit
          end if
       end do
+      deallocate (value)
       allocate (character(len=n) :: value)
       do i = 1, n
          value(i:i) = buf(i)

@@ -16,7 +16,7 @@ module dpend_os
    public :: stderr_is_terminal, executable_path, make_directories, host_name, cpu_model
    public :: wall_clock, directory_of, base_name, find_script
    public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
-   public :: free_disk_bytes, available_memory_bytes, make_temp_file, sync_path
+   public :: free_disk_bytes, available_memory_bytes, file_id, make_temp_file, sync_path
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
    public :: errno_exists, errno_nospc, io_failure_reason
 
@@ -50,6 +50,11 @@ module dpend_os
          character(kind=c_char), intent(in) :: path(*)
          integer(c_int), value :: follow
       end function c_path_kind
+      integer(c_int) function c_file_id(path, dev, ino) bind(C, name='dpend_file_id')
+         import :: c_int, c_char, c_long_long
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_long_long), intent(out) :: dev, ino
+      end function c_file_id
       integer(c_long_long) function c_free_bytes(path) bind(C, name='dpend_free_bytes')
          import :: c_long_long, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -100,6 +105,17 @@ contains
       if (present(follow)) f = merge(1, 0, follow)
       path_kind = int(c_path_kind(path//c_null_char, f))
    end function path_kind
+
+   !> The device and inode of `path` (symbolic links followed) in `id`; false when
+   !> it cannot be examined (e.g. missing).
+   logical function file_id(path, id)
+      character(len=*), intent(in) :: path           !! file path
+      integer(int64), intent(out) :: id(2)           !! device, inode
+      integer(c_long_long) :: dev, ino
+      id = -1
+      file_id = c_file_id(path//c_null_char, dev, ino) == 0
+      if (file_id) id = [int(dev, int64), int(ino, int64)]
+   end function file_id
 
    !> Bytes free for an ordinary user on the file system holding `path`, or -1.
    integer(int64) function free_disk_bytes(path)

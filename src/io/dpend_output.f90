@@ -14,15 +14,35 @@
 !> keeps reading the old contents. A failure at any point removes the temporary
 !> file (`discard`); a killed process leaves at most a `.NAME.tmp-XXXXXX` file
 !> beside the target, never a damaged file at the target's name.
+!>
+!> An output never replaces an input. The command line program turns input
+!> tracking on (`track_inputs`); then every input file a command reads is
+!> registered (`register_input`, called where inputs are checked: config files,
+!> --ic-file, trajectories, sweep files, fit CSVs), and `check_output_path` (so also
+!> `begin`) refuses an output whose device and inode are those of a registered
+!> input, with or without --force, whatever name reaches it (a hard link,
+!> "./a.h5"). The library default is off, so that tests running many commands in
+!> one process do not see each other's inputs.
 module dpend_output
    use dpend_error, only: error_t, fatal_error
-   use dpend_os, only: path_kind, path_missing, path_file, path_directory, path_link, &
+   use, intrinsic :: iso_fortran_env, only: int64
+   use dpend_os, only: file_id, path_kind, path_missing, path_file, path_directory, path_link, &
                            directory_of, base_name, make_temp_file, sync_path, &
                            move_noreplace, move_replace, remove_file, errno_text, &
                            errno_exists
    implicit none
    private
-   public :: output_t, check_output_path
+   public :: output_t, check_output_path, track_inputs, register_input, clear_inputs
+
+   !> One input file of the running command: its name and identity.
+   type :: input_t
+      character(len=:), allocatable :: path  !! the name it was given by
+      integer(int64) :: id(2) = -1           !! device, inode
+   end type input_t
+
+   logical, save :: tracking = .false.            !! register_input records inputs
+   type(input_t), allocatable, save :: inputs(:)  !! the inputs registered so far
+   integer, save :: n_inputs = 0                  !! used entries of `inputs`
 
    !> One output file on its way into place.
    type :: output_t
@@ -42,8 +62,61 @@ module dpend_output
 
 contains
 
-   !> Check `target` without creating anything: not empty, not a directory or a
-   !> special file, not existing unless `force`, in an existing directory.
+   !> Turn the registry of inputs on or off (off: `register_input` does nothing and
+   !> the registry is emptied). The command line program turns it on.
+   subroutine track_inputs(on)
+      logical, intent(in) :: on  !! record inputs from now on
+      tracking = on
+      if (.not. on) call clear_inputs()
+   end subroutine track_inputs
+
+   !> Forget every registered input.
+   subroutine clear_inputs()
+      n_inputs = 0
+      if (allocated(inputs)) deallocate (inputs)
+   end subroutine clear_inputs
+
+   !> Record `path` as an input of the running command (when tracking is on and
+   !> the path can be examined; a missing input is refused by its reader).
+   subroutine register_input(path)
+      character(len=*), intent(in) :: path  !! an input file
+      type(input_t), allocatable :: more(:)
+      integer(int64) :: id(2)
+      if (.not. tracking) return
+      if (.not. file_id(path, id)) return
+      if (.not. allocated(inputs)) allocate (inputs(8))
+      if (n_inputs == size(inputs)) then
+         allocate (more(2*n_inputs))
+         more(1:n_inputs) = inputs
+         call move_alloc(more, inputs)
+      end if
+      n_inputs = n_inputs + 1
+      inputs(n_inputs)%path = path
+      inputs(n_inputs)%id = id
+   end subroutine register_input
+
+   !> Refuse `target` when it is (device and inode) a registered input.
+   subroutine check_not_input(target, opt, error)
+      character(len=*), intent(in) :: target            !! the output path
+      character(len=*), intent(in) :: opt               !! option, for the message
+      type(error_t), allocatable, intent(out) :: error  !! it is an input
+      integer(int64) :: id(2)
+      integer :: i
+      if (n_inputs == 0) return
+      if (.not. file_id(target, id)) return
+      do i = 1, n_inputs
+         if (all(inputs(i)%id == id)) then
+            call fatal_error(error, 'invalid '//opt//": '"//target//"' is the input '"// &
+                             inputs(i)%path//"' of this command (an output never "// &
+                             'replaces an input, with or without --force)')
+            return
+         end if
+      end do
+   end subroutine check_not_input
+
+   !> Check `target` without creating anything: not a registered input (see the
+   !> module's header), not empty, not a directory or a special file, not existing
+   !> unless `force`, in an existing directory.
    subroutine check_output_path(target, force, error, option)
       character(len=*), intent(in) :: target            !! final path
       logical, intent(in) :: force                      !! replacing allowed
@@ -62,6 +135,10 @@ contains
          return
       end if
       kind = path_kind(target)
+      if (kind == path_file .or. kind == path_link) then
+         call check_not_input(target, opt, error)
+         if (allocated(error)) return
+      end if
       select case (kind)
       case (path_missing)
       case (path_file)
@@ -141,6 +218,11 @@ contains
          return
       end if
       if (self%force) then
+         call check_not_input(self%target, self%option, error)   ! named since begin?
+         if (allocated(error)) then
+            call self%discard()
+            return
+         end if
          select case (path_kind(self%target))
          case (path_missing, path_file)
             err = move_replace(self%temp, self%target)

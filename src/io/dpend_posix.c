@@ -1,5 +1,5 @@
 /* POSIX services that Fortran cannot reach portably: the kind of a path (lstat),
- * free disk space (statvfs), unique temporary files (mkstemp), fsync, a move that
+ * a file's identity (device and inode), free disk space (statvfs), unique temporary files (mkstemp), fsync, a move that
  * never replaces (renameat2 RENAME_NOREPLACE, else link + unlink), errno texts,
  * and running a program with an argument vector and no shell (posix_spawnp).
  * Called from dpend_os through bind(C) interfaces. Every function returns 0
@@ -30,6 +30,17 @@ int dpend_path_kind(const char *path, int follow)
     if (S_ISDIR(st.st_mode)) return 2;
     if (S_ISLNK(st.st_mode)) return 3;
     return 4;
+}
+
+/* The device and inode of `path` (symbolic links followed): what identifies a
+ * file whatever name reaches it (hard links, "./a", "dir/../a"). 0 or errno. */
+int dpend_file_id(const char *path, long long *dev, long long *ino)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return errno;
+    *dev = (long long)st.st_dev;
+    *ino = (long long)st.st_ino;
+    return 0;
 }
 
 /* Bytes available to an unprivileged user on the file system of `path`, or -1. */
