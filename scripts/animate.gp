@@ -1,50 +1,70 @@
-# Animated GIF of a `dpend simulate` file. Called by `dpend animate` as
+# Animated GIF of a `dpend simulate` file, the figure as the file describes it. Called
+# by `dpend animate` as
 #   gnuplot -c animate.gp PARAMS FRAMES TRAIL GIF TITLE LABEL1 LABEL2 PNGSTEM
-# PARAMS  gnuplot assignments of numbers only, written by dpend: links, links2 (links
-#         of the input and of the overlay, 0 without), nframes, nrows, per_frame,
-#         ntrail, delay [1/100 s], width, height [px], overlay, reactions (0/1), lim [m],
-#         newtons_per_m [N/m], fmax [N]
-# FRAMES  one row per frame: t, the far end of every link x1 y1 .. xN yN, the reactions
-#         (N = 2: F01x F01y F21x F21y, the forces on link 1 at A and B; other N: the
-#         force of body i-1 on body i at joint i, i = 1..N), [the overlay's link ends]
-#         (two links: t xB yB xD yD F01x F01y F21x F21y [xB2 yB2 xD2 yD2])
-# TRAIL   the tip per_frame times per frame interval: t xD yD [xD2 yD2]
+# PARAMS  gnuplot assignments of numbers only, written by dpend: links, links2 (points
+#         of the input's and the overlay's figure, 0 without an overlay), nforces,
+#         spring, spring2 (1: the segments are springs, else rods), nframes, nrows,
+#         per_frame, ntrail, delay [1/100 s], width, height [px], overlay, reactions
+#         (0/1), lim [m], newtons_per_m [N/m], fmax [N]
+# FRAMES  one row per frame: t, the anchor xA yA, the points x1 y1 .. xP yP (the far
+#         end of each link; the bob), the forces (x, y of each: for rods the force of
+#         body i-1 on body i at joint i, acting at the start of segment i), then the
+#         overlay's anchor and points
+# TRAIL   the last point per_frame times per frame interval: t x y [x2 y2]
 #         (frame i, from 0, is trail row i*per_frame; the trail is ntrail rows long)
 # GIF     the animation to write; TITLE, LABEL1, LABEL2: text shown as it is
 # PNGSTEM if not empty: also PNGSTEM-0001.png, PNGSTEM-0002.png, ...
 # The arguments are data: never pasted into code (only PARAMS is loaded).
 load ARG1
+if (!exists("spring2")) { spring2 = 0 }
 framefile = ARG2
 trailfile = ARG3
 
-# frame k (1-based), link i: its far end (PX, PY)[(k-1)*links + i], the reaction at
-# joint i (FX, FY)[(k-1)*links + i]; the overlay's link ends (PX2, PY2)[(k-1)*links2 + i]
+# frame k (1-based): the anchor (AX, AY)[k]; point i (PX, PY)[(k-1)*links + i]; force
+# i (FX, FY)[(k-1)*nf + i]; the overlay's anchor (AX2, AY2)[k] and points (PX2, PY2)
 nl2 = (links2 > 0 ? links2 : 1)
-array T[nframes]
-array PX[nframes*links]; array PY[nframes*links]; array FX[nframes*links]
-array FY[nframes*links]; array PX2[nframes*nl2]; array PY2[nframes*nl2]
+nf = (nforces > 0 ? nforces : 1)
+array T[nframes]; array AX[nframes]; array AY[nframes]; array AX2[nframes]
+array AY2[nframes]
+array PX[nframes*links]; array PY[nframes*links]; array FX[nframes*nf]
+array FY[nframes*nf]; array PX2[nframes*nl2]; array PY2[nframes*nl2]
 array TX[nrows]; array TY[nrows]; array TX2[nrows]; array TY2[nrows]
-stats framefile using (r = int($0) + 1, T[r] = $1, 0) nooutput
+stats framefile using (r = int($0) + 1, T[r] = $1, AX[r] = $2, AY[r] = $3, 0) nooutput
 do for [i = 1:links] {
-  stats framefile using (r = int($0)*links + i, PX[r] = column(2*i), \
-    PY[r] = column(2*i + 1), FX[r] = column(2*links + 2*i), \
-    FY[r] = column(2*links + 2*i + 1), 0) nooutput
+  stats framefile using (r = int($0)*links + i, PX[r] = column(2 + 2*i), \
+    PY[r] = column(3 + 2*i), 0) nooutput
 }
+do for [i = 1:nforces] {
+  stats framefile using (r = int($0)*nf + i, FX[r] = column(2 + 2*links + 2*i), \
+    FY[r] = column(3 + 2*links + 2*i), 0) nooutput
+}
+c2 = 4 + 2*links + 2*nforces        # column of the overlay's anchor x
 if (overlay) {
+  stats framefile using (r = int($0) + 1, AX2[r] = column(c2), AY2[r] = column(c2 + 1), \
+    0) nooutput
   do for [i = 1:links2] {
-    stats framefile using (r = int($0)*links2 + i, PX2[r] = column(4*links + 2*i), \
-      PY2[r] = column(4*links + 2*i + 1), 0) nooutput
+    stats framefile using (r = int($0)*links2 + i, PX2[r] = column(c2 + 2*i), \
+      PY2[r] = column(c2 + 1 + 2*i), 0) nooutput
   }
   stats trailfile using (r = int($0) + 1, TX[r] = $2, TY[r] = $3, TX2[r] = $4, \
     TY2[r] = $5, 0) nooutput
 } else {
   stats trailfile using (r = int($0) + 1, TX[r] = $2, TY[r] = $3, 0) nooutput
 }
-# start (x, y) of link i in frame k: the pin A or the far end of link i - 1
-sx(k, i) = (i == 1 ? 0 : PX[(k - 1)*links + i - 1])
-sy(k, i) = (i == 1 ? 0 : PY[(k - 1)*links + i - 1])
-sx2(k, i) = (i == 1 ? 0 : PX2[(k - 1)*links2 + i - 1])
-sy2(k, i) = (i == 1 ? 0 : PY2[(k - 1)*links2 + i - 1])
+# start (x, y) of segment i in frame k: the anchor or point i - 1
+sx(k, i) = (i == 1 ? AX[k] : PX[(k - 1)*links + i - 1])
+sy(k, i) = (i == 1 ? AY[k] : PY[(k - 1)*links + i - 1])
+sx2(k, i) = (i == 1 ? AX2[k] : PX2[(k - 1)*links2 + i - 1])
+sy2(k, i) = (i == 1 ? AY2[k] : PY2[(k - 1)*links2 + i - 1])
+# a spring from (x0, y0) to (x1, y1): straight leads of 12 %, then ncoil zigzags of
+# half-width coil_w; vertex v = 0 .. ncoil + 2 along it
+ncoil = 12
+coil_w = 0.035*lim
+slen(x0, y0, x1, y1) = sqrt((x1 - x0)**2 + (y1 - y0)**2) + 1e-300
+vfrac(v) = (v == 0 ? 0 : (v >= ncoil + 2 ? 1 : 0.12 + 0.76*(v - 0.5)/ncoil))
+voff(v) = ((v == 0 || v >= ncoil + 1) ? 0 : (v % 2 ? 1 : -1)*coil_w)
+vx(x0, y0, x1, y1, v) = x0 + vfrac(v)*(x1 - x0) - voff(v)*(y1 - y0)/slen(x0, y0, x1, y1)
+vy(x0, y0, x1, y1, v) = y0 + vfrac(v)*(y1 - y0) + voff(v)*(x1 - x0)/slen(x0, y0, x1, y1)
 
 # colours: rods and their tip trail; the overlay in warm colours
 rod = "#1f3b73"; rod2 = "#b03a2e"; pin = "#111111"
@@ -92,35 +112,60 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
     if (overlay) {
       do for [i = 1:links2] {
         j = (k - 1)*links2 + i
-        set arrow 40 + i from sx2(k, i),sy2(k, i) to PX2[j],PY2[j] nohead lw 7*s \
-          lc rgb rod2 front
-        set object 40 + i circle at PX2[j],PY2[j] size r_pin \
+        if (spring2) {
+          do for [v = 0:ncoil + 1] {
+            set arrow 200 + 40*i + v from vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v), \
+              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v) to \
+              vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1), \
+              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1) nohead lw 2.5*s lc rgb rod2 front
+          }
+        } else {
+          set arrow 40 + i from sx2(k, i),sy2(k, i) to PX2[j],PY2[j] nohead lw 7*s \
+            lc rgb rod2 front
+        }
+        set object 40 + i circle at PX2[j],PY2[j] size (spring2 ? 2.5 : 1)*r_pin \
           fc rgb (i < links2 ? pin : rod2) front
       }
+      set object 39 circle at AX2[k],AY2[k] size 1.3*r_pin fc rgb pin front
     }
-    set object 1 circle at 0,0 size 1.3*r_pin fc rgb pin front
+    set object 1 circle at AX[k],AY[k] size 1.3*r_pin fc rgb pin front
     do for [i = 1:links] {
       j = (k - 1)*links + i
-      set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rod front
-      set object i + 1 circle at PX[j],PY[j] size r_pin fc rgb (i < links ? pin : rod) front
+      if (spring) {
+        do for [v = 0:ncoil + 1] {
+          set arrow 1000 + 40*i + v from vx(sx(k, i), sy(k, i), PX[j], PY[j], v), \
+            vy(sx(k, i), sy(k, i), PX[j], PY[j], v) to \
+            vx(sx(k, i), sy(k, i), PX[j], PY[j], v + 1), \
+            vy(sx(k, i), sy(k, i), PX[j], PY[j], v + 1) nohead lw 2.5*s lc rgb rod front
+        }
+      } else {
+        set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rod front
+      }
+      set object i + 1 circle at PX[j],PY[j] size (spring ? 2.5 : 1)*r_pin \
+        fc rgb (i < links ? pin : rod) front
     }
     if (reactions) {
-      do for [i = 1:links] {
-        j = (k - 1)*links + i
+      do for [i = 1:nforces] {
+        j = (k - 1)*nf + i
         set arrow 100 + i from sx(k, i),sy(k, i) rto FX[j]/newtons_per_m,FY[j]/newtons_per_m \
           head filled size screen 0.018,20 lw 3*s lc rgb rc(i) front
       }
       fsmall = sprintf(",%d", int(9*s + 0.5))
-      if (links == 2) {
-        set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
-          font fsmall tc rgb react1
-        set label 3 "F21: link 2 on link 1, at B" at screen 0.03, screen 0.03 left front \
-          font fsmall tc rgb react2
+      if (spring) {
+        set label 2 "F01: the ground on the spring, at A (the spring's pull on the bob)" \
+          at screen 0.03, screen 0.065 left front font fsmall tc rgb react1
       } else {
-        set label 2 "at joint i: the force of link i-1 on link i" at screen 0.03, \
-          screen 0.065 left front font fsmall tc rgb "#333333"
-        set label 3 "(link 0: the ground; joint 1: the pin A)" at screen 0.03, \
-          screen 0.03 left front font fsmall tc rgb "#333333"
+        if (links == 2) {
+          set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
+            font fsmall tc rgb react1
+          set label 3 "F12 = -F21: link 1 on link 2, at B" at screen 0.03, screen 0.03 left \
+            front font fsmall tc rgb react2
+        } else {
+          set label 2 "at joint i: the force of link i-1 on link i" at screen 0.03, \
+            screen 0.065 left front font fsmall tc rgb "#333333"
+          set label 3 "(link 0: the ground; joint 1: the pin A)" at screen 0.03, \
+            screen 0.03 left front font fsmall tc rgb "#333333"
+        }
       }
       set label 4 sprintf("arrows: 1 m = %g N\n(largest |F| shown %.3g N)", newtons_per_m, \
         fmax) at screen 0.97, screen 0.065 right front font fsmall tc rgb "#333333"

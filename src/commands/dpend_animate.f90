@@ -14,6 +14,7 @@ module dpend_animate
                         is_long_option
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_output, only: output_t, check_output_path, register_input
+   use dpend_trajectory_figure, only: figure_track_t, read_figure, resample_figure
    use dpend_limits, only: check_range, check_memory, sci, max_time, max_angle
    use dpend_os, only: find_script, run_program, make_temp_file, remove_file, &
                            directory_of, base_name, path_kind, path_directory, path_missing, &
@@ -53,12 +54,9 @@ module dpend_animate
    !> The samples of one simulate file that the animation needs.
    type :: track_t
       character(len=:), allocatable :: path, method
-      integer :: links = 2                          !! number of links N
-      real(dp), allocatable :: l(:)                 !! link lengths (N) [m]
-      real(dp), allocatable :: t(:), q(:, :)        !! times (n), angles (N, n)
-      !> reactions (2N, n): N = 2 F01, F21 (forces on link 1 at A and B); other N
-      !> F_joint, the force of body i-1 on body i at joint i (x, y for i = 1..N)
-      real(dp), allocatable :: f(:, :)
+      real(dp), allocatable :: t(:)                 !! sample times (n) [s]
+      !> the figure the file describes (anchor, points, forces; dpend_trajectory_figure)
+      type(figure_track_t) :: fig
    end type track_t
 
    character(len=*), parameter :: nl = new_line('a')
@@ -282,46 +280,12 @@ contains
                           'file (no /trajectory/q)')
          return
       end if
-      ! the number of links (files of the double pendulum from before --links: 2)
-      tr%links = 2
-      if (h5%attr_exists('/', 'links')) call h5%readattr('/', 'links', tr%links, error)
-      if (.not. allocated(error) .and. (tr%links < 1 .or. tr%links > 1000)) &
-         call fatal_error(error, 'links = '//to_str(tr%links)//' (accepted: 1..1000)')
-      if (.not. allocated(error)) call check_track_size(error)
+      ! the samples (t, q and the figure) must fit the memory before anything is read
+      call check_track_size(error)
       if (.not. allocated(error)) call h5%read('/trajectory/t', tr%t, error)
-      if (.not. allocated(error)) call h5%read('/trajectory/q', tr%q, error)
-      if (tr%links == 2) then
-         ! the double pendulum: F01, F21 and l1, l2
-         if (.not. allocated(error)) call h5%read('/trajectory/F01', f01, error)
-         if (.not. allocated(error)) call h5%read('/trajectory/F21', f21, error)
-         if (.not. allocated(error)) call h5%readattr('/', 'l1', l1, error)
-         if (.not. allocated(error)) call h5%readattr('/', 'l2', l2, error)
-         if (.not. allocated(error)) then
-            n = size(tr%t)
-            if (any(shape(f01) /= [2, n]) .or. any(shape(f21) /= [2, n])) then
-               call fatal_error(error, '/trajectory datasets of different lengths or none')
-            else
-               tr%l = [l1, l2]
-               allocate (tr%f(4, n))
-               tr%f(1:2, :) = f01
-               tr%f(3:4, :) = f21
-            end if
-         end if
-      else
-         ! the chain: F_joint (2, N, n) and the lengths l (N)
-         if (.not. allocated(error)) call h5%read('/trajectory/F_joint', fj, error)
-         if (.not. allocated(error)) call h5%readattr('/', 'l', tr%l, error)
-         if (.not. allocated(error)) then
-            n = size(tr%t)
-            nl2 = 2*tr%links
-            if (any(shape(fj) /= [2, tr%links, n]) .or. size(tr%l) /= tr%links) then
-               call fatal_error(error, '/trajectory/F_joint or the attribute l do not '// &
-                                'match links = '//to_str(tr%links)//' and the samples')
-            else
-               tr%f = reshape(fj, [nl2, n])
-            end if
-         end if
-      end if
+      if (.not. allocated(error)) call check_times(tr%t, error)
+      if (.not. allocated(error)) call check_coordinates(error)
+      if (.not. allocated(error)) call read_figure(h5, tr%t, tr%fig, error)
       if (.not. allocated(error)) then
          if (h5%attr_exists('/', 'method')) then
             call h5%readattr('/', 'method', tr%method, error)
@@ -330,111 +294,132 @@ contains
          end if
       end if
       call h5%close()
-      if (allocated(error)) then
-         error%message = 'invalid '//field//": '"//path//"': "//error%message
-         return
-      end if
-      n = size(tr%t)
-      if (n < 1 .or. any(shape(tr%q) /= [tr%links, n]) .or. &
-          any(shape(tr%f) /= [2*tr%links, n])) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory datasets of "// &
-                          'different lengths or none')
-         return
-      end if
-      if (.not. (all(ieee_is_finite(tr%t)) .and. all(ieee_is_finite(tr%q)) .and. &
-                 all(ieee_is_finite(tr%f)))) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': non-finite samples")
-         return
-      end if
-      do k = 1, tr%links
-         if (.not. in(tr%l(k))) then
-            call fatal_error(error, 'invalid '//field//": '"//path//"': link length l"// &
-                             to_str(k)//' = '//sci(tr%l(k))//' m (accepted: 1e-6..1e6 m)')
-            return
-         end if
-      end do
-      do k = 2, n
-         if (.not. (tr%t(k) > tr%t(k - 1))) then
-            call fatal_error(error, 'invalid '//field//": '"//path//"': time does not "// &
-                             'increase at sample '//to_str(k)//' (t = '//sci(tr%t(k - 1))// &
-                             ', '//sci(tr%t(k))//' s; a trajectory has strictly increasing t)')
-            return
-         end if
-      end do
-      ! the documented ranges: |t| <= 1e9 s, |q| <= 1e6 rad
-      if (maxval(abs(tr%t)) > max_time) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory/t holds "// &
-                          sci(maxval(abs(tr%t)))//' s (accepted: |t| <= '//sci(max_time)// &
-                          ' s)')
-         return
-      end if
-      if (maxval(abs(tr%q)) > max_angle) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': /trajectory/q holds "// &
-                          sci(maxval(abs(tr%q)))//' rad (accepted: |q| <= '// &
-                          sci(max_angle)//' rad)')
-         return
-      end if
-      ! forces beyond 1e100 N are not drawn to any sensible scale
-      f = abs(tr%f)
-      if (maxval(f) > 1e100_dp) then
-         call fatal_error(error, 'invalid '//field//": '"//path//"': reaction forces up to "// &
-                          sci(maxval(f))//' N')
-      end if
+      if (allocated(error)) error%message = 'invalid '//field//": '"//path//"': "// &
+                                            error%message
    contains
-      logical function in(l)
-         real(dp), intent(in) :: l
-         in = ieee_is_finite(l) .and. l >= 1e-6_dp .and. l <= 1e6_dp
-      end function in
-      !> The samples and links the file declares, before anything is read: what
-      !> the track keeps (t, q and the reactions, a copy while reading) must fit
-      !> the available memory. Each read is also checked by dpend_hdf5.
+      !> The samples the file declares, before anything is read: what the track
+      !> keeps (t, q and the figure, a copy while reading) must fit the available
+      !> memory. Each read is also checked by dpend_hdf5.
       subroutine check_track_size(err)
          type(error_t), allocatable, intent(out) :: err
-         integer, allocatable :: dt(:)
+         integer, allocatable :: dt(:), dq(:)
          call h5%shape('/trajectory/t', dt, err)
          if (allocated(err)) return
          if (size(dt) /= 1) then
             call fatal_error(err, '/trajectory/t is not 1-D')
             return
          end if
+         call h5%shape('/trajectory/q', dq, err)
+         if (allocated(err)) return
+         if (size(dq) /= 2) then
+            call fatal_error(err, '/trajectory/q is not (samples, coordinates)')
+            return
+         end if
          call check_memory('input', 8.0_dp*real(dt(1), dp)*(1.0_dp + 10.0_dp* &
-                           real(tr%links, dp)), "the samples of '"//path//"'", &
+                           real(dq(1), dp)), "the samples of '"//path//"'", &
                            'animate a shorter trajectory', err)
       end subroutine check_track_size
+      !> q: one column per coordinate, a row per sample, finite and within the
+      !> documented range (|q| <= 1e6); a `links` attribute, where the file has one,
+      !> counts its columns.
+      subroutine check_coordinates(err)
+         type(error_t), allocatable, intent(out) :: err
+         real(dp), allocatable :: q(:, :)
+         integer :: links
+         call h5%read('/trajectory/q', q, err)
+         if (allocated(err)) return
+         if (size(q, 2) /= size(tr%t) .or. size(q, 1) < 1) then
+            call fatal_error(err, '/trajectory/q and /trajectory/t differ in length')
+         else if (.not. all(ieee_is_finite(q))) then
+            call fatal_error(err, 'non-finite samples in /trajectory/q')
+         else if (maxval(abs(q)) > max_angle) then
+            call fatal_error(err, '/trajectory/q holds '//sci(maxval(abs(q)))// &
+                             ' (accepted: |q| <= '//sci(max_angle)//')')
+         else if (h5%attr_exists('/', 'links')) then
+            call h5%readattr('/', 'links', links, err)
+            if (.not. allocated(err) .and. links /= size(q, 1)) &
+               call fatal_error(err, 'links = '//to_str(links)//' does not match the '// &
+                                to_str(size(q, 1))//' columns of /trajectory/q')
+         end if
+      end subroutine check_coordinates
    end subroutine read_track
 
-   !> State of a track at times `tt` (sorted), linear in the samples: angles and
-   !> reactions; positions of the far ends of the links (B and D for two) from the
-   !> interpolated angles.
-   subroutine resample(tr, tt, pos, f)
-      type(track_t), intent(in) :: tr                      !! samples
-      real(dp), intent(in) :: tt(:)                        !! times, increasing [s]
-      real(dp), intent(out) :: pos(2*tr%links, size(tt))   !! x, y of the end of each link [m]
-      real(dp), intent(out) :: f(2*tr%links, size(tt))     !! reactions (as track_t%f) [N]
-      real(dp) :: w, q(tr%links)
-      integer :: i, j, k, n
-      n = size(tr%t)
-      k = 1
-      do i = 1, size(tt)
-         do while (k < n - 1 .and. tr%t(min(k + 1, n)) < tt(i))
-            k = k + 1
-         end do
-         if (n == 1) then
-            q = tr%q(:, 1)
-            f(:, i) = tr%f(:, 1)
-         else
-            w = 0.0_dp
-            if (tr%t(k + 1) > tr%t(k)) w = (tt(i) - tr%t(k))/(tr%t(k + 1) - tr%t(k))
-            w = min(1.0_dp, max(0.0_dp, w))
-            q = (1 - w)*tr%q(:, k) + w*tr%q(:, k + 1)
-            f(:, i) = (1 - w)*tr%f(:, k) + w*tr%f(:, k + 1)
+   !> Sample times: finite, strictly increasing, within the documented |t| <= 1e9 s.
+   subroutine check_times(t, error)
+      real(dp), intent(in) :: t(:)                      !! sample times [s]
+      type(error_t), allocatable, intent(out) :: error  !! what is wrong
+      integer :: k
+      if (size(t) < 1) then
+         call fatal_error(error, '/trajectory/t holds no sample')
+         return
+      end if
+      if (.not. all(ieee_is_finite(t))) then
+         call fatal_error(error, 'non-finite samples in /trajectory/t')
+         return
+      end if
+      do k = 2, size(t)
+         if (.not. (t(k) > t(k - 1))) then
+            call fatal_error(error, 'time does not increase at sample '//to_str(k)//' (t = ' &
+                             //sci(t(k - 1))//', '//sci(t(k))//' s; a trajectory has ' &
+                             //'strictly increasing t)')
+            return
          end if
-         pos(1:2, i) = tr%l(1)*[cos(q(1)), sin(q(1))]
-         do j = 2, tr%links
-            pos(2*j - 1:2*j, i) = pos(2*j - 3:2*j - 2, i) + tr%l(j)*[cos(q(j)), sin(q(j))]
-         end do
       end do
-   end subroutine resample
+      if (maxval(abs(t)) > max_time) call fatal_error(error, '/trajectory/t holds ' &
+         //sci(maxval(abs(t)))//' s (accepted: |t| <= '//sci(max_time)//' s)')
+   end subroutine check_times
+
+   !> The figure's reach: the largest |x| or |y| of its anchor and points [m].
+   pure real(dp) function reach(tr)
+      type(track_t), intent(in) :: tr  !! the track
+      reach = max(maxval(abs(tr%fig%anchor)), maxval(abs(tr%fig%points)))
+   end function reach
+
+   !> 'double pendulum', 'chain of 5 links', 'elastic pendulum': what the figure shows.
+   pure function figure_title(tr) result(s)
+      type(track_t), intent(in) :: tr  !! the track
+      character(len=:), allocatable :: s
+      if (tr%fig%style == 'spring') then
+         s = 'elastic pendulum'
+         return
+      end if
+      select case (tr%fig%n_points)
+      case (1); s = 'compound pendulum'
+      case (2); s = 'double pendulum'
+      case (3); s = 'triple pendulum'
+      case default; s = 'chain of '//to_str(tr%fig%n_points)//' links'
+      end select
+   end function figure_title
+
+   !> One column per frame: the anchor (x, y), the points (x, y each) and, with
+   !> `with_forces`, the forces (x, y each) at times `tf`.
+   subroutine frame_table(tr, tf, tab, with_forces)
+      type(track_t), intent(in) :: tr          !! the track
+      real(dp), intent(in) :: tf(:)            !! frame times [s]
+      real(dp), intent(out) :: tab(:, :)       !! (2 (1 + P [+ K]), frames)
+      logical, intent(in) :: with_forces       !! include the forces
+      real(dp), allocatable :: an(:, :), pts(:, :, :), fs(:, :, :)
+      integer :: p, k
+      p = tr%fig%n_points; k = tr%fig%n_forces
+      allocate (an(2, size(tf)), pts(2, p, size(tf)), fs(2, k, size(tf)))
+      call resample_figure(tr%fig, tf, an, pts, fs)
+      tab(1:2, :) = an
+      tab(3:2 + 2*p, :) = reshape(pts, [2*p, size(tf)])
+      if (with_forces) tab(3 + 2*p:2 + 2*p + 2*k, :) = reshape(fs, [2*k, size(tf)])
+   end subroutine frame_table
+
+   !> The last point of the figure (the tip, the bob) at times `tt`.
+   subroutine trail_table(tr, tt, tab)
+      type(track_t), intent(in) :: tr          !! the track
+      real(dp), intent(in) :: tt(:)            !! times [s]
+      real(dp), intent(out) :: tab(:, :)       !! (2, times)
+      real(dp), allocatable :: an(:, :), pts(:, :, :), fs(:, :, :)
+      integer :: p
+      p = tr%fig%n_points
+      allocate (an(2, size(tt)), pts(2, p, size(tt)), fs(2, tr%fig%n_forces, size(tt)))
+      call resample_figure(tr%fig, tt, an, pts, fs)
+      tab = pts(:, p, :)
+   end subroutine trail_table
 
    !> Name of PNG frame i in dir.
    pure function frame_name(dir, i) result(path)
@@ -457,8 +442,7 @@ contains
       type(track_t) :: a, b
       type(output_t) :: out
       real(dp) :: span, dtf, ht, lim, fmax, npm, e
-      real(dp), allocatable :: tf(:), ttr(:), pa(:, :), fa(:, :), pb(:, :), fb(:, :)
-      real(dp), allocatable :: qa(:, :), qb(:, :), ga(:, :), gb(:, :), tab(:, :)
+      real(dp), allocatable :: tf(:), ttr(:), pa(:, :), pb(:, :), qa(:, :), qb(:, :), tab(:, :)
       character(len=:), allocatable :: script, dir, params, frames_dat, trail_dat, stem, title
       character(len=:), allocatable :: label1, label2
       type(arg_t) :: argv(11)
@@ -519,17 +503,18 @@ contains
       end if
       ! the work (rods drawn) and memory, before anything is written
       nb = 0
-      if (overlay) nb = b%links
-      if (real(nframes, dp)*real(a%links + nb, dp) > real(max_drawn_links, dp)) then
+      if (overlay) nb = b%fig%n_points
+      na = a%fig%n_points + a%fig%n_forces
+      if (real(nframes, dp)*real(na + nb, dp) > real(max_drawn_links, dp)) then
          call fatal_error(error, 'invalid duration: '//to_str(nframes)//' frames of '// &
-                          to_str(a%links + nb)//' links draw '// &
-                          sci(real(nframes, dp)*real(a%links + nb, dp))//' rods; at most '// &
+                          to_str(na + nb)//' segments and arrows draw '// &
+                          sci(real(nframes, dp)*real(na + nb, dp))//'; at most '// &
                           sci(real(max_drawn_links, dp))//' (use --duration, a larger '// &
                           '--speed or a smaller --fps)')
          return
       end if
-      call check_memory('duration', 8.0_dp*(real(nframes, dp)*6.0_dp*real(a%links + nb, dp) &
-                        + real(nrows, dp)*4.0_dp*real(a%links + nb, dp)), &
+      call check_memory('duration', 8.0_dp*(real(nframes, dp)*6.0_dp*real(na + nb + 2, dp) &
+                        + real(nrows, dp)*4.0_dp*real(na + nb + 2, dp)), &
                         'the frames and trail', 'use --duration or a smaller --fps', error)
       if (allocated(error)) return
       ! the --frames directory must take files (a read-only file system: refused)
@@ -557,26 +542,29 @@ contains
       tf = a%t(1) + dtf*[(real(i, dp), i=0, nframes - 1)]
       ttr = a%t(1) + ht*[(real(i, dp), i=0, nrows - 1)]
       ttr = min(ttr, a%t(1) + span)
-      na = 2*a%links
+      ! the frames (anchor, points, forces) and the trail (the last point)
+      na = 2*(1 + a%fig%n_points + a%fig%n_forces)
       nb = 0
-      if (overlay) nb = 2*b%links
-      allocate (pa(na, nframes), fa(na, nframes), qa(na, nrows), ga(na, nrows))
-      call resample(a, tf, pa, fa)
-      call resample(a, ttr, qa, ga)
+      if (overlay) nb = 2*(1 + b%fig%n_points)
+      allocate (pa(na, nframes), qa(2, nrows))
+      call frame_table(a, tf, pa, .true.)
+      call trail_table(a, ttr, qa)
       if (overlay) then
-         allocate (pb(nb, nframes), fb(nb, nframes), qb(nb, nrows), gb(nb, nrows))
-         call resample(b, tf, pb, fb)
-         call resample(b, ttr, qb, gb)
+         allocate (pb(nb, nframes), qb(2, nrows))
+         call frame_table(b, tf, pb, .false.)
+         call trail_table(b, ttr, qb)
       end if
-      lim = sum(a%l)
-      if (overlay) lim = max(lim, sum(b%l))
+      lim = reach(a)
+      if (overlay) lim = max(lim, reach(b))
+      if (.not. (lim > 0.0_dp)) lim = 1.0_dp
       ! reaction arrows: the longest 0.3 to 0.6 (l1 + l2 + ...), the scale a round number of N/m
       fmax = 0.0_dp
       npm = 0.0_dp
       if (cfg%reactions) then
          do i = 1, nframes
-            do j = 1, a%links
-               fmax = max(fmax, hypot(fa(2*j - 1, i), fa(2*j, i)))
+            do j = 1, a%fig%n_forces
+               fmax = max(fmax, hypot(pa(2*(a%fig%n_points + j) + 1, i), &
+                                      pa(2*(a%fig%n_points + j) + 2, i)))
             end do
          end do
          if (fmax > 0.0_dp) then
@@ -612,8 +600,12 @@ contains
       ! numbers only: file names reach gnuplot as arguments
       open (newunit=u, file=params, status='replace', action='write', iostat=stat)
       if (stat == 0) then
-         write (u, '(a, i0)', iostat=stat) 'links = ', a%links
-         write (u, '(a, i0)', iostat=stat) 'links2 = ', nb/2
+         write (u, '(a, i0)', iostat=stat) 'links = ', a%fig%n_points
+         write (u, '(a, i0)', iostat=stat) 'links2 = ', max(0, nb/2 - 1)
+         write (u, '(a, i0)', iostat=stat) 'nforces = ', a%fig%n_forces
+         write (u, '(a, i0)', iostat=stat) 'spring = ', merge(1, 0, a%fig%style == 'spring')
+         if (overlay) write (u, '(a, i0)', iostat=stat) 'spring2 = ', &
+            merge(1, 0, b%fig%style == 'spring')
          write (u, '(a, i0)', iostat=stat) 'nframes = ', nframes
          write (u, '(a, i0)', iostat=stat) 'nrows = ', nrows
          write (u, '(a, i0)', iostat=stat) 'per_frame = ', m
@@ -631,17 +623,16 @@ contains
          if (err /= 0) stat = err
       end if
       if (stat == 0) then
-         allocate (tab(2*na + nb, nframes))
+         allocate (tab(na + nb, nframes))
          tab(1:na, :) = pa
-         tab(na + 1:2*na, :) = fa
-         if (overlay) tab(2*na + 1:2*na + nb, :) = pb
+         if (overlay) tab(na + 1:na + nb, :) = pb
          call write_table(frames_dat, tf, tab, stat)
          deallocate (tab)
       end if
       if (stat == 0) then
          allocate (tab(merge(4, 2, overlay), nrows))
-         tab(1:2, :) = qa(na - 1:na, :)
-         if (overlay) tab(3:4, :) = qb(nb - 1:nb, :)
+         tab(1:2, :) = qa
+         if (overlay) tab(3:4, :) = qb
          call write_table(trail_dat, ttr, tab, stat)
       end if
       if (stat /= 0) then
@@ -656,16 +647,7 @@ contains
          label2 = base_name(cfg%overlay)//' ('//b%method//')'
          title = label1//'  and  '//label2
       end if
-      select case (a%links)
-      case (1)
-         title = 'compound pendulum: '//title
-      case (2)
-         title = 'double pendulum: '//title
-      case (3)
-         title = 'triple pendulum: '//title
-      case default
-         title = 'chain of '//to_str(a%links)//' links: '//title
-      end select
+      title = figure_title(a)//': '//title
       ! component by component (gfortran 12 mangles an array constructor of
       ! structure constructors with deferred-length components)
       argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = params
