@@ -19,7 +19,8 @@ module test_estimate
    use dpend_chain, only: chain_t, chain_model
    use dpend_pendulum, only: pendulum_t, pendulum_model
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit, &
-                             student_t95
+                             student_t95, fit_work_t, estimate_fit_work
+   use dpend_limits, only: max_fit_work
    use dpend_csv, only: series_t, parse_series
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
@@ -44,6 +45,7 @@ contains
                new_unittest('positions_driven_damped', test_positions), &
                new_unittest('csv_refusals', test_csv_refusals), &
                new_unittest('command_refusals', test_command_refusals), &
+               new_unittest('work_bound', test_work), &
                new_unittest('command_writes_report', test_command)]
    end subroutine collect_estimate
 
@@ -406,6 +408,12 @@ contains
       call expect_refused(dir//'/ok.csv', '--starts 0', 'invalid starts')
       call expect_refused(dir//'/ok.csv', '--horizon-tolerance -1', 'horizon-tolerance')
       call expect_refused(dir//'/ok.csv', '--method leapfrog', 'method')
+      call expect_refused(dir//'/ok.csv', '--fit-window 1e300', &
+                          'invalid fit-window: 1e300 s is outside [-1e9, 1e9]')
+      ! issue 24: four samples 1e8 s apart, refused before any work
+      call write_file(dir//'/far.csv', 't,theta1'//achar(10)//'0,0'//achar(10)//'1e8,0.1'// &
+                      achar(10)//'2e8,0.1'//achar(10)//'3e8,0.1')
+      call expect_refused(dir//'/far.csv', '', 'invalid fit work: up to ')
       call expect_refused(dir//'/missing.csv', '', 'no such file')
       call expect_refused(dir, '', 'is a directory')
       call execute_command_line('rm -rf '//dir)
@@ -448,6 +456,68 @@ contains
                       index(text, '/fit/residual') > 0, 'datasets listed: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_command
+
+   !> The work bound (issue 24). rk4 with dt = 0.01 s over 11 samples 0.1 s apart: the
+   !> probe measures exactly 100 steps per second, one integration over the window
+   !> takes 100 steps plus one per sample interval (110), and the continuation from 3
+   !> samples growing by max(1, k/4) has the 8 stages 3, 4, 5, 6, 7, 8, 10, 11
+   !> (2 × 200 + 31 integrations each, one more between stages, 2 at the end).
+   !> Samples 1e8 s apart are beyond `max_fit_work`. A fit given a smaller work limit
+   !> than it needs stops with an error naming the limit; with the default it succeeds.
+   subroutine test_work(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(fit_problem_t) :: prob
+      type(fit_work_t) :: work
+      type(fit_result_t) :: res
+      type(chain_t) :: chain
+      real(dp) :: t(11), q(1, 11)
+      integer :: j
+      chain = chain_model([1.0_dp], [1.0_dp], 9.8_dp, error)
+      if (allocated(error)) return
+      allocate (prob%model, source=chain)
+      prob%method = 'rk4'
+      prob%dt = 0.01_dp
+      do j = 1, 11
+         t(j) = 0.1_dp*real(j - 1, dp)
+         q(1, j) = -pi/2 + 0.1_dp*cos(sqrt(9.8_dp)*t(j))
+      end do
+      call estimate_fit_work(prob, t, q, huge(1.0_dp), work, error)
+      if (allocated(error)) return
+      call report('rk4 dt 0.01 s over 1 s: '//real_str(work%rate)//' steps/s, '// &
+                  real_str(work%steps)//' steps, '//to_str(work%stages)//' stages, '// &
+                  real_str(work%evaluations)//' integrations, work '//real_str(work%work, 3))
+      call check(error, work%rate, 100.0_dp, 'probe rate', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check(error, work%steps, 110.0_dp, 'steps over the window', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check_true(error, work%stages == 8, 'stages: '//to_str(work%stages))
+      if (allocated(error)) return
+      call check(error, work%evaluations, 8.0_dp*431.0_dp + 7.0_dp + 2.0_dp, &
+                 'integrations', abs=0.0_dp)
+      if (allocated(error)) return
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, err)
+      call check_true(error, .not. allocated(err), 'fit within the default limit')
+      if (allocated(error)) return
+      prob%work_limit = 500.0_dp
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, err)
+      call check_true(error, allocated(err), 'fit beyond its work limit refused')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'work limit') > 0 .and. &
+                      index(err%message, 'at most 500') > 0, 'message: '//err%message)
+      if (allocated(error)) return
+      ! the reproducer: 4 samples 1e8 s apart, dop853
+      prob%method = 'dop853'
+      prob%rtol = 1e-10_dp
+      prob%atol = 1e-12_dp
+      prob%dt = 1e-3_dp
+      prob%work_limit = max_fit_work
+      call estimate_fit_work(prob, [0.0_dp, 1e8_dp, 2e8_dp, 3e8_dp], q(:, :4), &
+                             huge(1.0_dp), work, error)
+      if (allocated(error)) return
+      call report('samples 1e8 s apart: work '//real_str(work%work, 3))
+      call check_true(error, work%work > max_fit_work, 'beyond max_fit_work')
+   end subroutine test_work
 
    subroutine write_file(path, text)
       character(len=*), intent(in) :: path, text

@@ -15,13 +15,14 @@ module dpend_fit_command
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series
-   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series
+   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
+                             estimate_fit_work
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t, check_output_path
    use dpend_version, only: version
-   use dpend_limits, only: check_range, sci
+   use dpend_limits, only: check_range, check_memory, sci, max_time, max_fit_work
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -233,6 +234,9 @@ contains
          end if
          if (fc%window_given) then
             x = fc%fit_window
+            call check_range('fit-window', x, -max_time, max_time, 's', error, &
+                             'times are at most 1e9 s')
+            if (allocated(error)) return
             if (.not. (ieee_is_finite(x) .and. x >= s%t(1))) then
                call fatal_error(error, 'invalid fit-window: '//real_str(x)//' s is before ' &
                                 //'the first sample (t = '//real_str(s%t(1))// &
@@ -251,19 +255,40 @@ contains
             return
          end if
       end associate
+      call check_work(fc, error)
    end subroutine parse_fit
 
-   !> Fit, print the report, write the HDF5 file.
-   subroutine run_fit(fc, error, failed)
-      type(fit_config_t), intent(in) :: fc              !! validated configuration
-      type(error_t), allocatable, intent(out) :: error  !! what went wrong
-      logical, intent(out) :: failed                    !! the fit started and failed
+   !> Refuse a fit whose work or memory (`estimate_fit_work`) is beyond the limits:
+   !> at most `max_fit_work` step-equivalents, and the memory available.
+   subroutine check_work(fc, error)
+      type(fit_config_t), intent(in) :: fc              !! the configuration
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
       type(fit_problem_t) :: prob
-      type(fit_result_t) :: res
-      type(output_t) :: out
-      type(error_t), allocatable :: werr
+      type(fit_work_t) :: work
+      prob = fit_problem(fc)
+      call estimate_fit_work(prob, fc%series%t, fc%series%q, fc%fit_window, work, error)
+      if (allocated(error)) return
+      if (work%work > max_fit_work) then
+         call fatal_error(error, 'invalid fit work: up to '//sci(work%work, 3)// &
+                          ' integration steps ('//sci(work%steps, 3)//' per integration ' &
+                          //'over the fit window of '//sci(fc%series%t(count(fc%series%t <= &
+                          fc%fit_window)) - fc%series%t(1), 4)//' s, x'// &
+                          to_str(1 + merge(3, 2, fc%fit_damping)*fc%series%n)// &
+                          ' with sensitivities, up to '//sci(work%evaluations, 3)// &
+                          ' integrations in '//to_str(work%stages)//' stages); at most '// &
+                          sci(max_fit_work)//' (a shorter --fit-window or series, a ' &
+                          //'larger --dt for rk4, a looser --rtol)')
+         return
+      end if
+      call check_memory('fit work', work%bytes, 'the residuals and Jacobians of the ' &
+                        //'fit window', 'shorten the fit window: --fit-window', error)
+   end subroutine check_work
+
+   !> The estimation problem of the configuration.
+   function fit_problem(fc) result(prob)
+      type(fit_config_t), intent(in) :: fc   !! validated configuration
+      type(fit_problem_t) :: prob
       integer :: n
-      failed = .false.
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
       prob%fit_damping = fc%fit_damping
@@ -280,9 +305,24 @@ contains
       prob%atol = fc%run%atol
       prob%dt = fc%run%dt
       prob%starts = fc%starts
+      prob%max_steps = fc%run%max_steps
+   end function fit_problem
+
+   !> Fit, print the report, write the HDF5 file.
+   subroutine run_fit(fc, error, failed)
+      type(fit_config_t), intent(in) :: fc              !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the fit started and failed
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      type(output_t) :: out
+      type(error_t), allocatable :: werr
+      failed = .false.
+      prob = fit_problem(fc)
       call out%begin(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
-      call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, error)
+      call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
+                      error, progress=.true.)
       if (allocated(error)) then
          call out%discard()
          failed = .true.
