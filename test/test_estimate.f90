@@ -21,7 +21,7 @@ module test_estimate
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit, &
                              student_t95, fit_work_t, estimate_fit_work
    use dpend_limits, only: max_fit_work
-   use dpend_csv, only: series_t, parse_series
+   use dpend_csv, only: series_t, parse_series, csv_format
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
@@ -46,6 +46,8 @@ contains
                new_unittest('csv_refusals', test_csv_refusals), &
                new_unittest('command_refusals', test_command_refusals), &
                new_unittest('work_bound', test_work), &
+               new_unittest('csv_spreadsheet_forms', test_csv_forms), &
+               new_unittest('command_csv_forms', test_command_csv_forms), &
                new_unittest('command_writes_report', test_command)]
    end subroutine collect_estimate
 
@@ -518,6 +520,133 @@ contains
       call report('samples 1e8 s apart: work '//real_str(work%work, 3))
       call check_true(error, work%work > max_fit_work, 'beyond max_fit_work')
    end subroutine test_work
+
+   !> CSV as spreadsheets write it (issue 24): a UTF-8 BOM, quoted names and fields,
+   !> ';' or tab separators, CRLF, are read into exactly the series of the plain comma
+   !> file (abs 0), and say what they detected; a broken header is refused naming the
+   !> real cause, with control characters escaped.
+   subroutine test_csv_forms(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: lf = achar(10), tab = achar(9), cr = achar(13)
+      character(len=*), parameter :: bom = achar(239)//achar(187)//achar(191)
+      type(series_t) :: plain
+      type(error_t), allocatable :: err
+      call parse_series('t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, plain, &
+                        err)
+      call check_true(error, .not. allocated(err) .and. csv_format(plain) == '', 'plain file')
+      if (allocated(error)) return
+      call same(bom//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, &
+                'BOM removed')
+      call same('"t","theta1","theta2"'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, &
+                'quoted names')
+      call same('t'//tab//'theta1'//tab//'theta2'//lf//'0'//tab//'0.1'//tab//'0.2'//lf// &
+                '0.5'//tab//'-0.25'//tab//'1e-3'//lf, 'separator tab')
+      call same('t;theta1;theta2'//lf//'0;0.1;0.2'//lf//'0.5;-0.25;1e-3'//lf, &
+                "separator ';'")
+      call same(bom//'"t [s]";"theta1 [rad]"; "theta2"'//cr//lf//'# comment'//cr//lf// &
+                '0;"0.1";0.2'//cr//lf//'0.5 ; -0.25;"1e-3"'//cr//lf, &
+                "separator ';', BOM removed, quoted names")
+      call same('"t","theta1","the ""other""","theta2"'//lf//'0,0.1,"a,b",0.2'//lf// &
+                '0.5,-0.25,x,1e-3'//lf, 'quoted names')
+      call refused('t theta1'//lf//'0 0.1'//lf, &
+                   "line 1 (header): 1 field ('t theta1'); separators tried: , ; tab")
+      call refused(bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
+                   //"among the 2 fields 'time', 'theta1' (separator ';'")
+      call refused('"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
+                   //'character 1 is not closed')
+      call refused('"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
+                   //'character 3')
+      call refused(achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
+      call refused('t;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
+                   //'number (a decimal comma?')
+      call refused('t,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
+                   "line 2, column theta1: '0.?1' is not a number")
+      call refused('t,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
+      call refused('t,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
+   contains
+      subroutine same(text, format)
+         character(len=*), intent(in) :: text, format
+         type(series_t) :: ss
+         type(error_t), allocatable :: e
+         if (allocated(error)) return
+         call parse_series(text, ss, e)
+         if (allocated(e)) then
+            call check_true(error, .false., 'accepted ('//format//'): '//e%message)
+            return
+         end if
+         call check_true(error, csv_format(ss) == format .and. ss%k == plain%k .and. &
+                         ss%n == plain%n .and. all(ss%line == plain%line .or. &
+                         index(text, '# comment') > 0), 'format "'//csv_format(ss)// &
+                         '" is "'//format//'"')
+         if (allocated(error)) return
+         call check(error, ss%t, plain%t, 't ('//format//')', abs=0.0_dp)
+         if (allocated(error)) return
+         call check(error, reshape(ss%q, [size(ss%q)]), reshape(plain%q, [size(plain%q)]), &
+                    'q ('//format//')', abs=0.0_dp)
+      end subroutine same
+      subroutine refused(text, needle)
+         character(len=*), intent(in) :: text, needle
+         type(series_t) :: ss
+         type(error_t), allocatable :: e
+         integer :: i
+         if (allocated(error)) return
+         call parse_series(text, ss, e)
+         call check_true(error, allocated(e), 'refused: '//needle)
+         if (allocated(error)) return
+         call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
+                         '" names "'//needle//'"')
+         if (allocated(error)) return
+         do i = 1, len(e%message)
+            call check_true(error, iachar(e%message(i:i)) >= 32 .and. &
+                            iachar(e%message(i:i)) < 127, 'message printable: '//needle)
+            if (allocated(error)) return
+         end do
+      end subroutine refused
+   end subroutine test_csv_forms
+
+   !> The command on the same samples as a comma file and as a spreadsheet's file (BOM,
+   !> ';', quoted names, CRLF): the same report, but for the file's name and the line
+   !> stating the format.
+   subroutine test_command_csv_forms(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: lf = achar(10), crlf = achar(13)//achar(10)
+      character(len=:), allocatable :: dir, plain, sheet, fmt
+      integer :: stat, n
+      dir = scratch_dir('fitforms')
+      call write_bytes(dir//'/plain.csv', 't,theta1'//lf//'0,0.1'//lf//'0.1,0.09'//lf// &
+                       '0.2,0.06'//lf//'0.3,0.02'//lf//'0.4,-0.03'//lf)
+      call write_bytes(dir//'/sheet.csv', achar(239)//achar(187)//achar(191)// &
+                       '"t";"theta1"'//crlf//'0;0.1'//crlf//'0.1;0.09'//crlf//'0.2;0.06'// &
+                       crlf//'0.3;0.02'//crlf//'0.4;-0.03'//crlf)
+      stat = run_command(dir, 'fit '//dir//'/plain.csv --output '//dir//'/plain.h5')
+      call read_text(dir//'/stdout', plain, n)
+      call check_true(error, stat == 0, 'plain file fitted: '//plain)
+      if (allocated(error)) return
+      stat = run_command(dir, 'fit '//dir//'/sheet.csv --output '//dir//'/sheet.h5')
+      call read_text(dir//'/stdout', sheet, n)
+      call check_true(error, stat == 0, 'spreadsheet file fitted: '//sheet)
+      if (allocated(error)) return
+      fmt = "  csv: separator ';', BOM removed, quoted names"//lf
+      call check_true(error, index(sheet, fmt) > 0, 'format stated: '//sheet)
+      if (allocated(error)) return
+      plain = plain(index(plain, lf) + 1:)
+      sheet = sheet(index(sheet, lf) + 1:)
+      sheet = sheet(:index(sheet, fmt) - 1)//sheet(index(sheet, fmt) + len(fmt):)
+      plain = plain(:index(plain, "wrote '") - 1)
+      sheet = sheet(:index(sheet, "wrote '") - 1)
+      call check_true(error, plain == sheet, 'same report:'//lf//plain//lf//'and'//lf//sheet)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_command_csv_forms
+
+   !> Write the bytes of `text` (no record marker, no added new line).
+   subroutine write_bytes(path, text)
+      character(len=*), intent(in) :: path, text
+      integer :: unit
+      open (newunit=unit, file=path, status='replace', action='write', access='stream', &
+            form='unformatted')
+      write (unit) text
+      close (unit)
+   end subroutine write_bytes
 
    subroutine write_file(path, text)
       character(len=*), intent(in) :: path, text

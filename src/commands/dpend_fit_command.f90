@@ -10,11 +10,11 @@ module dpend_fit_command
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
-                        parse_int, real_str, to_str, pad
+                        parse_int, real_str, to_str, pad, printable
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
-   use dpend_csv, only: series_t, read_series
+   use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
                              estimate_fit_work
    use dpend_integrator, only: integrator_t
@@ -150,7 +150,7 @@ contains
          end if
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
             if (len(fc%input) > 0) then
-               call fatal_error(error, "unexpected argument '"//args(i)%s// &
+               call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                                 "' (one data file; dpend fit --help)")
                return
             end if
@@ -211,7 +211,7 @@ contains
          end if
          if (links_given .and. fc%run%links /= s%n) then
             call fatal_error(error, 'invalid links: '//to_str(fc%run%links)//" given, the " &
-                             //"data file '"//fc%input//"' has "//to_str(s%n)// &
+                             //"data file '"//printable(fc%input)//"' has "//to_str(s%n)// &
                              ' angle columns (N is the number of angle columns) [--links]')
             return
          end if
@@ -247,7 +247,8 @@ contains
          np = merge(3*s%n, 2*s%n, fc%fit_damping)
          k_fit = count(s%t <= fc%fit_window)
          if (s%n_obs*k_fit <= np) then
-            call fatal_error(error, "invalid data file '"//fc%input//"': "//to_str(k_fit)// &
+            call fatal_error(error, "invalid data file '"//printable(fc%input)//"': "// &
+                             to_str(k_fit)// &
                              ' samples in the fit window give '//to_str(s%n_obs*k_fit)// &
                              ' residuals for '//to_str(np)//' parameters: at least '// &
                              to_str(np/s%n_obs + 1)//' samples are needed (lines '// &
@@ -374,6 +375,7 @@ contains
             real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
             real_str(res%t_window)//' s ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
+         if (len(csv_format(s)) > 0) write (output_unit, '(a)') '  csv: '//csv_format(s)
          if (s%theta) write (output_unit, '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
          if (s%positions) write (output_unit, '(a)') '  (the file gives the positions of ' &
