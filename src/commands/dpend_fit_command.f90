@@ -88,9 +88,13 @@ contains
           nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
           nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
+          nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
+          nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
           '  numbers that do not parse, NaN or Inf, times that do not increase, fewer'//nl// &
-          '  samples in the fit window than the parameters need.'//nl//nl// &
+          '  samples in the fit window than the parameters need; a fit whose estimated'//nl// &
+          '  work exceeds '//sci(max_fit_work)//' integration steps (sensitivities counted).' &
+          //nl//nl// &
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
