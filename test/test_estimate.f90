@@ -345,27 +345,27 @@ contains
       character(len=*), parameter :: lf = achar(10)
       type(series_t) :: s
       type(error_t), allocatable :: err
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
                   //"'abc' is not a number")
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
                   //"'nan' is not finite")
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,Inf'//lf, "'Inf' is not finite")
-      call expect('# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,Inf'//lf, "'Inf' is not finite")
+      call csv_refused(error, '# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
                   'line 4: 2 fields, the header has 3')
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//'0.2,0.3'//lf, &
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//'0.2,0.3'//lf, &
                   'line 4: t = 0.2 s is not after t = 0.2 s of line 3')
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
                   'line 5: t = 0.1 s is not after')
-      call expect('time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
-      call expect('t,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
-      call expect('t,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
-      call expect('t,theta1,q2'//lf//'0,0.1,0.2'//lf, "column 'q2' mixes theta and q")
-      call expect('t [ms],theta1'//lf//'0,0.1'//lf, "column 't' has the unit '[ms]'")
-      call expect('t,theta1'//lf, 'has no data rows')
-      call expect('# only a comment'//lf, 'has no header line')
-      call expect('t,x1,y1,x2'//lf//'0,1,0,2'//lf, 'missing column y2')
-      call expect('t,x1 [in],y1'//lf//'0,1,0'//lf, "column 'x1' has the unit '[in]'")
-      call expect('t,x1,y1'//lf//'0,1,0'//lf//'1,1,zz'//lf, "line 3, column y1: 'zz'")
+      call csv_refused(error, 'time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
+      call csv_refused(error, 't,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
+      call csv_refused(error, 't,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
+      call csv_refused(error, 't,theta1,q2'//lf//'0,0.1,0.2'//lf, "column 'q2' mixes theta and q")
+      call csv_refused(error, 't [ms],theta1'//lf//'0,0.1'//lf, "column 't' has the unit '[ms]'")
+      call csv_refused(error, 't,theta1'//lf, 'has no data rows')
+      call csv_refused(error, '# only a comment'//lf, 'has no header line')
+      call csv_refused(error, 't,x1,y1,x2'//lf//'0,1,0,2'//lf, 'missing column y2')
+      call csv_refused(error, 't,x1 [in],y1'//lf//'0,1,0'//lf, "column 'x1' has the unit '[in]'")
+      call csv_refused(error, 't,x1,y1'//lf//'0,1,0'//lf//'1,1,zz'//lf, "line 3, column y1: 'zz'")
       ! accepted: CRLF, blanks, units, comments, q columns, ignored columns
       call parse_series('# c'//lf//' t [s] , q1 [rad], qdot1 '//achar(13)//lf// &
                         '0, -1.5, 9'//achar(13)//lf//'0.5,-1.4,x'//lf, s, err)
@@ -378,18 +378,6 @@ contains
       call check_true(error, .not. allocated(err) .and. s%theta, 'theta columns accepted')
       call check(error, s%q(:, 1), [0.25_dp - pi/2, 0.5_dp - pi/2], 'theta -> q', &
                  abs=1e-15_dp)
-   contains
-      subroutine expect(text, needle)
-         character(len=*), intent(in) :: text, needle
-         type(series_t) :: ss
-         type(error_t), allocatable :: e
-         if (allocated(error)) return
-         call parse_series(text, ss, e)
-         call check_true(error, allocated(e), 'refused: '//needle)
-         if (allocated(error)) return
-         call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
-                         '" names "'//needle//'"')
-      end subroutine expect
    end subroutine test_csv_refusals
 
    !> The command refuses bad files and too few samples: exit 2, one line, no output.
@@ -548,21 +536,21 @@ contains
                 "separator ';', BOM removed, quoted names")
       call same('"t","theta1","the ""other""","theta2"'//lf//'0,0.1,"a,b",0.2'//lf// &
                 '0.5,-0.25,x,1e-3'//lf, 'quoted names')
-      call refused('t theta1'//lf//'0 0.1'//lf, &
+      call csv_refused(error, 't theta1'//lf//'0 0.1'//lf, &
                    "line 1 (header): 1 field ('t theta1'); separators tried: , ; tab")
-      call refused(bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
+      call csv_refused(error, bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
                    //"among the 2 fields 'time', 'theta1' (separator ';'")
-      call refused('"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
+      call csv_refused(error, '"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
                    //'character 1 is not closed')
-      call refused('"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
+      call csv_refused(error, '"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
                    //'character 3')
-      call refused(achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
-      call refused('t;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
+      call csv_refused(error, achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
+      call csv_refused(error, 't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
                    //'number (a decimal comma?')
-      call refused('t,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
+      call csv_refused(error, 't,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
                    "line 2, column theta1: '0.?1' is not a number")
-      call refused('t,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
-      call refused('t,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
+      call csv_refused(error, 't,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
+      call csv_refused(error, 't,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
    contains
       subroutine same(text, format)
          character(len=*), intent(in) :: text, format
@@ -584,24 +572,6 @@ contains
          call check(error, reshape(ss%q, [size(ss%q)]), reshape(plain%q, [size(plain%q)]), &
                     'q ('//format//')', abs=0.0_dp)
       end subroutine same
-      subroutine refused(text, needle)
-         character(len=*), intent(in) :: text, needle
-         type(series_t) :: ss
-         type(error_t), allocatable :: e
-         integer :: i
-         if (allocated(error)) return
-         call parse_series(text, ss, e)
-         call check_true(error, allocated(e), 'refused: '//needle)
-         if (allocated(error)) return
-         call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
-                         '" names "'//needle//'"')
-         if (allocated(error)) return
-         do i = 1, len(e%message)
-            call check_true(error, iachar(e%message(i:i)) >= 32 .and. &
-                            iachar(e%message(i:i)) < 127, 'message printable: '//needle)
-            if (allocated(error)) return
-         end do
-      end subroutine refused
    end subroutine test_csv_forms
 
    !> The command on the same samples as a comma file and as a spreadsheet's file (BOM,
@@ -637,6 +607,27 @@ contains
       call check_true(error, plain == sheet, 'same report:'//lf//plain//lf//'and'//lf//sheet)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_command_csv_forms
+
+   !> `text` as a series file is refused, the one-line message containing `needle` and
+   !> only printable ASCII.
+   subroutine csv_refused(error, text, needle)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: text, needle
+      type(series_t) :: ss
+      type(error_t), allocatable :: e
+      integer :: i
+      if (allocated(error)) return
+      call parse_series(text, ss, e)
+      call check_true(error, allocated(e), 'refused: '//needle)
+      if (allocated(error)) return
+      call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
+                      '" names "'//needle//'"')
+      do i = 1, len(e%message)
+         if (allocated(error)) return
+         call check_true(error, iachar(e%message(i:i)) >= 32 .and. &
+                         iachar(e%message(i:i)) < 127, 'message printable: '//needle)
+      end do
+   end subroutine csv_refused
 
    !> Write the bytes of `text` (no record marker, no added new line).
    subroutine write_bytes(path, text)

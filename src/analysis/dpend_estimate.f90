@@ -315,7 +315,7 @@ contains
 
    !> Residuals r (N k) of the first k samples for the parameters p and, if `jac` is
    !> present, their Jacobian ∂r/∂p (N k, P). Residual (i, j) is r(i + N (j − 1)).
-   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac, steps)
+   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac, steps, budget)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: p(:)                      !! parameters
       real(dp), intent(in) :: t(:)                      !! sample times [s]
@@ -326,6 +326,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! the integration failed
       real(dp), intent(out), optional :: jac(:, :)      !! ∂r/∂p (N k, P)
       integer(i8), intent(out), optional :: steps       !! integration steps taken
+      !> with `steps`: stop with an error once more steps than this are taken
+      real(dp), intent(in), optional :: budget
       type(sens_model_t) :: sm
       class(integrator_t), allocatable :: integ
       type(tangent_t) :: tan
@@ -365,7 +367,16 @@ contains
          call march%start(integ, tt, t(j), h)
          do while (.not. march%finished)
             call march%next(integ, sm, tt, y, h, stat)
-            if (present(steps)) steps = steps + 1
+            if (present(steps)) then
+               steps = steps + 1
+               if (present(budget)) then
+                  if (real(steps, dp) > budget) then
+                     call fatal_error(error, 'the integration took more than '// &
+                                      real_str(budget, 3)//' steps')
+                     return
+                  end if
+               end if
+            end if
             if (stat /= stat_ok) then
                call fatal_error(error, 'the model''s integration failed: '// &
                                 status_message(stat)//' after t = '//real_str(tt)//' s')
@@ -907,12 +918,15 @@ contains
       real(dp), intent(out), optional :: jac(:, :)
       integer(i8) :: steps
       real(dp) :: factor
+      real(dp) :: budget
+      factor = 1.0_dp
+      if (present(jac)) factor = real(1 + size(p), dp)
+      ! the steps left (an integration stops once beyond them)
+      budget = max(counter%limit - counter%used, 0.0_dp)/factor
       if (present(jac)) then
-         call evaluate_fit(prob, p, t, q, k, r, error, jac, steps=steps)
-         factor = real(1 + size(p), dp)
+         call evaluate_fit(prob, p, t, q, k, r, error, jac, steps=steps, budget=budget)
       else
-         call evaluate_fit(prob, p, t, q, k, r, error, steps=steps)
-         factor = 1.0_dp
+         call evaluate_fit(prob, p, t, q, k, r, error, steps=steps, budget=budget)
       end if
       counter%used = counter%used + factor*real(steps, dp)
       if (counter%show) call counter%progress%update(1_i8)
