@@ -345,17 +345,20 @@ contains
       character(len=*), parameter :: lf = achar(10)
       type(series_t) :: s
       type(error_t), allocatable :: err
-      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
-                  //"'abc' is not a number")
-      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
-                  //"'nan' is not finite")
+      call csv_refused(error, &
+                       't,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
+                       //"'abc' is not a number")
+      call csv_refused(error, &
+                       't,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
+                       //"'nan' is not finite")
       call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,Inf'//lf, "'Inf' is not finite")
-      call csv_refused(error, '# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
-                  'line 4: 2 fields, the header has 3')
+      call csv_refused(error, &
+                       '# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
+                       'line 4: 2 fields, the header has 3')
       call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//'0.2,0.3'//lf, &
-                  'line 4: t = 0.2 s is not after t = 0.2 s of line 3')
+                       'line 4: t = 0.2 s is not after t = 0.2 s of line 3')
       call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
-                  'line 5: t = 0.1 s is not after')
+                       'line 5: t = 0.1 s is not after')
       call csv_refused(error, 'time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
       call csv_refused(error, 't,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
       call csv_refused(error, 't,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
@@ -537,18 +540,21 @@ contains
       call same('"t","theta1","the ""other""","theta2"'//lf//'0,0.1,"a,b",0.2'//lf// &
                 '0.5,-0.25,x,1e-3'//lf, 'quoted names')
       call csv_refused(error, 't theta1'//lf//'0 0.1'//lf, &
-                   "line 1 (header): 1 field ('t theta1'); separators tried: , ; tab")
-      call csv_refused(error, bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
-                   //"among the 2 fields 'time', 'theta1' (separator ';'")
-      call csv_refused(error, '"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
-                   //'character 1 is not closed')
+                       "line 1 (header): 1 field ('t theta1'); separators tried: , ; tab")
+      call csv_refused(error, &
+                       bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
+                       //"among the 2 fields 'time', 'theta1' (separator ';'")
+      call csv_refused(error, &
+                       '"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
+                       //'character 1 is not closed')
       call csv_refused(error, '"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
-                   //'character 3')
+                       //'character 3')
       call csv_refused(error, achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
-      call csv_refused(error, 't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
-                   //'number (a decimal comma?')
+      call csv_refused(error, &
+                       't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
+                       //'number (a decimal comma?')
       call csv_refused(error, 't,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
-                   "line 2, column theta1: '0.?1' is not a number")
+                       "line 2, column theta1: '0.?1' is not a number")
       call csv_refused(error, 't,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
       call csv_refused(error, 't,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
    contains

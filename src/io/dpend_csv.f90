@@ -202,7 +202,8 @@ contains
                call fatal_error(error, 'line '//to_str(line)//': t = '// &
                                 real_str(values(0))//' s is not after t = '// &
                                 real_str(series%t(series%k))//' s of line '// &
-                                to_str(series%line(series%k))//' by at least 1e-9 max(1, |t|) s '// &
+                                to_str(series%line(series%k))// &
+                                ' by at least 1e-9 max(1, |t|) s '// &
                                 '(times must increase)')
                return
             end if
@@ -321,7 +322,8 @@ contains
                return
             end if
             if (len(unit) > 0 .and. unit /= '[rad]') then
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"//printable_40(unit)// &
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                                printable_40(unit)// &
                                 "' (accepted: [rad] or none)")
                return
             end if
@@ -342,7 +344,8 @@ contains
             case ('[mm]')
                f = 0.001_dp
             case default
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"//printable_40(unit)// &
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                                printable_40(unit)// &
                                 "' (accepted: [m], [cm], [mm] or none for m)")
                return
             end select
