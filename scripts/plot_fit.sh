@@ -51,8 +51,13 @@ if [[ $1 == --horizon ]]; then
     esac
   done
   for w in "${windows[@]}"; do
+    # a refusal (exit 2: bad data, the fit's work beyond its limit) stays exit 2; the
+    # last line of the log is dpend's message (progress lines come before it)
+    st=0
     "$dpend" fit "$csv" "$@" --fit-window "$w" --output "$tmp/w.h5" --force \
-      > "$tmp/fit.log" 2>&1 || plot_fail 1 "dpend fit --fit-window $w failed: $(tail -n1 "$tmp/fit.log")"
+      > "$tmp/fit.log" 2>&1 || st=$?
+    ((st == 0)) || plot_fail $((st == 2 ? 2 : 1)) \
+      "dpend fit --fit-window $w failed: $(tail -n1 "$tmp/fit.log")"
     t1=$("$dpend" export "$tmp/w.h5" /fit/t | awk 'NR == 1 { print $1 }')
     tw=$("$dpend" export "$tmp/w.h5" /fit/t_window | tr -d ' ')
     hz=$("$dpend" export "$tmp/w.h5" /fit/horizon | tr -d ' ')

@@ -19,8 +19,9 @@ module test_estimate
    use dpend_chain, only: chain_t, chain_model
    use dpend_pendulum, only: pendulum_t, pendulum_model
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit, &
-                             student_t95
-   use dpend_csv, only: series_t, parse_series
+                             student_t95, fit_work_t, estimate_fit_work
+   use dpend_limits, only: max_fit_work
+   use dpend_csv, only: series_t, parse_series, csv_format
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
@@ -44,6 +45,9 @@ contains
                new_unittest('positions_driven_damped', test_positions), &
                new_unittest('csv_refusals', test_csv_refusals), &
                new_unittest('command_refusals', test_command_refusals), &
+               new_unittest('work_bound', test_work), &
+               new_unittest('csv_spreadsheet_forms', test_csv_forms), &
+               new_unittest('command_csv_forms', test_command_csv_forms), &
                new_unittest('command_writes_report', test_command)]
    end subroutine collect_estimate
 
@@ -341,27 +345,30 @@ contains
       character(len=*), parameter :: lf = achar(10)
       type(series_t) :: s
       type(error_t), allocatable :: err
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
-                  //"'abc' is not a number")
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
-                  //"'nan' is not finite")
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.1,Inf'//lf, "'Inf' is not finite")
-      call expect('# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
-                  'line 4: 2 fields, the header has 3')
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//'0.2,0.3'//lf, &
-                  'line 4: t = 0.2 s is not after t = 0.2 s of line 3')
-      call expect('t,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
-                  'line 5: t = 0.1 s is not after')
-      call expect('time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
-      call expect('t,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
-      call expect('t,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
-      call expect('t,theta1,q2'//lf//'0,0.1,0.2'//lf, "column 'q2' mixes theta and q")
-      call expect('t [ms],theta1'//lf//'0,0.1'//lf, "column 't' has the unit '[ms]'")
-      call expect('t,theta1'//lf, 'has no data rows')
-      call expect('# only a comment'//lf, 'has no header line')
-      call expect('t,x1,y1,x2'//lf//'0,1,0,2'//lf, 'missing column y2')
-      call expect('t,x1 [in],y1'//lf//'0,1,0'//lf, "column 'x1' has the unit '[in]'")
-      call expect('t,x1,y1'//lf//'0,1,0'//lf//'1,1,zz'//lf, "line 3, column y1: 'zz'")
+      call csv_refused(error, &
+                       't,theta1'//lf//'0,0.1'//lf//'0.1,abc'//lf, 'line 3, column theta1: ' &
+                       //"'abc' is not a number")
+      call csv_refused(error, &
+                       't,theta1'//lf//'0,0.1'//lf//'0.1,nan'//lf, 'line 3, column theta1: ' &
+                       //"'nan' is not finite")
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.1,Inf'//lf, "'Inf' is not finite")
+      call csv_refused(error, &
+                       '# a comment'//lf//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.1,0.2'//lf, &
+                       'line 4: 2 fields, the header has 3')
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//'0.2,0.3'//lf, &
+                       'line 4: t = 0.2 s is not after t = 0.2 s of line 3')
+      call csv_refused(error, 't,theta1'//lf//'0,0.1'//lf//'0.2,0.1'//lf//lf//'0.1,0.3'//lf, &
+                       'line 5: t = 0.1 s is not after')
+      call csv_refused(error, 'time,theta1'//lf//'0,0.1'//lf, "line 1 (header): no column 't'")
+      call csv_refused(error, 't,z1'//lf//'0,0.1'//lf, 'line 1 (header): no angle columns')
+      call csv_refused(error, 't,theta1,theta3'//lf//'0,0.1,0.2'//lf, 'missing column theta2')
+      call csv_refused(error, 't,theta1,q2'//lf//'0,0.1,0.2'//lf, "column 'q2' mixes theta and q")
+      call csv_refused(error, 't [ms],theta1'//lf//'0,0.1'//lf, "column 't' has the unit '[ms]'")
+      call csv_refused(error, 't,theta1'//lf, 'has no data rows')
+      call csv_refused(error, '# only a comment'//lf, 'has no header line')
+      call csv_refused(error, 't,x1,y1,x2'//lf//'0,1,0,2'//lf, 'missing column y2')
+      call csv_refused(error, 't,x1 [in],y1'//lf//'0,1,0'//lf, "column 'x1' has the unit '[in]'")
+      call csv_refused(error, 't,x1,y1'//lf//'0,1,0'//lf//'1,1,zz'//lf, "line 3, column y1: 'zz'")
       ! accepted: CRLF, blanks, units, comments, q columns, ignored columns
       call parse_series('# c'//lf//' t [s] , q1 [rad], qdot1 '//achar(13)//lf// &
                         '0, -1.5, 9'//achar(13)//lf//'0.5,-1.4,x'//lf, s, err)
@@ -374,18 +381,6 @@ contains
       call check_true(error, .not. allocated(err) .and. s%theta, 'theta columns accepted')
       call check(error, s%q(:, 1), [0.25_dp - pi/2, 0.5_dp - pi/2], 'theta -> q', &
                  abs=1e-15_dp)
-   contains
-      subroutine expect(text, needle)
-         character(len=*), intent(in) :: text, needle
-         type(series_t) :: ss
-         type(error_t), allocatable :: e
-         if (allocated(error)) return
-         call parse_series(text, ss, e)
-         call check_true(error, allocated(e), 'refused: '//needle)
-         if (allocated(error)) return
-         call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
-                         '" names "'//needle//'"')
-      end subroutine expect
    end subroutine test_csv_refusals
 
    !> The command refuses bad files and too few samples: exit 2, one line, no output.
@@ -406,6 +401,12 @@ contains
       call expect_refused(dir//'/ok.csv', '--starts 0', 'invalid starts')
       call expect_refused(dir//'/ok.csv', '--horizon-tolerance -1', 'horizon-tolerance')
       call expect_refused(dir//'/ok.csv', '--method leapfrog', 'method')
+      call expect_refused(dir//'/ok.csv', '--fit-window 1e300', &
+                          'invalid fit-window: 1e300 s is outside [-1e9, 1e9]')
+      ! issue 24: four samples 1e8 s apart, refused before any work
+      call write_file(dir//'/far.csv', 't,theta1'//achar(10)//'0,0'//achar(10)//'1e8,0.1'// &
+                      achar(10)//'2e8,0.1'//achar(10)//'3e8,0.1')
+      call expect_refused(dir//'/far.csv', '', 'invalid fit work: up to ')
       call expect_refused(dir//'/missing.csv', '', 'no such file')
       call expect_refused(dir, '', 'is a directory')
       call execute_command_line('rm -rf '//dir)
@@ -448,6 +449,201 @@ contains
                       index(text, '/fit/residual') > 0, 'datasets listed: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_command
+
+   !> The work bound (issue 24). rk4 with dt = 0.01 s over 11 samples 0.1 s apart: the
+   !> probe measures exactly 100 steps per second, one integration over the window
+   !> takes 100 steps plus one per sample interval (110), and the continuation from 3
+   !> samples growing by max(1, k/4) has the 8 stages 3, 4, 5, 6, 7, 8, 10, 11
+   !> (2 × 200 + 31 integrations each, one more between stages, 2 at the end).
+   !> Samples 1e8 s apart are beyond `max_fit_work`. A fit given a smaller work limit
+   !> than it needs stops with an error naming the limit; with the default it succeeds.
+   subroutine test_work(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(fit_problem_t) :: prob
+      type(fit_work_t) :: work
+      type(fit_result_t) :: res
+      type(chain_t) :: chain
+      real(dp) :: t(11), q(1, 11)
+      integer :: j
+      chain = chain_model([1.0_dp], [1.0_dp], 9.8_dp, error)
+      if (allocated(error)) return
+      allocate (prob%model, source=chain)
+      prob%method = 'rk4'
+      prob%dt = 0.01_dp
+      do j = 1, 11
+         t(j) = 0.1_dp*real(j - 1, dp)
+         q(1, j) = -pi/2 + 0.1_dp*cos(sqrt(9.8_dp)*t(j))
+      end do
+      call estimate_fit_work(prob, t, q, huge(1.0_dp), work, error)
+      if (allocated(error)) return
+      call report('rk4 dt 0.01 s over 1 s: '//real_str(work%rate)//' steps/s, '// &
+                  real_str(work%steps)//' steps, '//to_str(work%stages)//' stages, '// &
+                  real_str(work%evaluations)//' integrations, work '//real_str(work%work, 3))
+      call check(error, work%rate, 100.0_dp, 'probe rate', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check(error, work%steps, 110.0_dp, 'steps over the window', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check_true(error, work%stages == 8, 'stages: '//to_str(work%stages))
+      if (allocated(error)) return
+      call check(error, work%evaluations, 8.0_dp*431.0_dp + 7.0_dp + 2.0_dp, &
+                 'integrations', abs=0.0_dp)
+      if (allocated(error)) return
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, err)
+      call check_true(error, .not. allocated(err), 'fit within the default limit')
+      if (allocated(error)) return
+      prob%work_limit = 500.0_dp
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, err)
+      call check_true(error, allocated(err), 'fit beyond its work limit refused')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'work limit') > 0 .and. &
+                      index(err%message, 'at most 500') > 0, 'message: '//err%message)
+      if (allocated(error)) return
+      ! the reproducer: 4 samples 1e8 s apart, dop853
+      prob%method = 'dop853'
+      prob%rtol = 1e-10_dp
+      prob%atol = 1e-12_dp
+      prob%dt = 1e-3_dp
+      prob%work_limit = max_fit_work
+      call estimate_fit_work(prob, [0.0_dp, 1e8_dp, 2e8_dp, 3e8_dp], q(:, :4), &
+                             huge(1.0_dp), work, error)
+      if (allocated(error)) return
+      call report('samples 1e8 s apart: work '//real_str(work%work, 3))
+      call check_true(error, work%work > max_fit_work, 'beyond max_fit_work')
+   end subroutine test_work
+
+   !> CSV as spreadsheets write it (issue 24): a UTF-8 BOM, quoted names and fields,
+   !> ';' or tab separators, CRLF, are read into exactly the series of the plain comma
+   !> file (abs 0), and say what they detected; a broken header is refused naming the
+   !> real cause, with control characters escaped.
+   subroutine test_csv_forms(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: lf = achar(10), tab = achar(9), cr = achar(13)
+      character(len=*), parameter :: bom = achar(239)//achar(187)//achar(191)
+      type(series_t) :: plain
+      type(error_t), allocatable :: err
+      call parse_series('t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, plain, &
+                        err)
+      call check_true(error, .not. allocated(err) .and. csv_format(plain) == '', 'plain file')
+      if (allocated(error)) return
+      call same(bom//'t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, &
+                'BOM removed')
+      call same('"t","theta1","theta2"'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, &
+                'quoted names')
+      call same('t'//tab//'theta1'//tab//'theta2'//lf//'0'//tab//'0.1'//tab//'0.2'//lf// &
+                '0.5'//tab//'-0.25'//tab//'1e-3'//lf, 'separator tab')
+      call same('t;theta1;theta2'//lf//'0;0.1;0.2'//lf//'0.5;-0.25;1e-3'//lf, &
+                "separator ';'")
+      call same(bom//'"t [s]";"theta1 [rad]"; "theta2"'//cr//lf//'# comment'//cr//lf// &
+                '0;"0.1";0.2'//cr//lf//'0.5 ; -0.25;"1e-3"'//cr//lf, &
+                "separator ';', BOM removed, quoted names")
+      call same('"t","theta1","the ""other""","theta2"'//lf//'0,0.1,"a,b",0.2'//lf// &
+                '0.5,-0.25,x,1e-3'//lf, 'quoted names')
+      call csv_refused(error, 't theta1'//lf//'0 0.1'//lf, &
+                       "line 1 (header): 1 field ('t theta1'); separators tried: , ; tab")
+      call csv_refused(error, &
+                       bom//'time;theta1'//lf//'0;0.1'//lf, "line 1 (header): no column 't' " &
+                       //"among the 2 fields 'time', 'theta1' (separator ';'")
+      call csv_refused(error, &
+                       '"t,theta1'//lf//'0,0.1'//lf, 'line 1 (header): the quote opened at ' &
+                       //'character 1 is not closed')
+      call csv_refused(error, '"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
+                       //'character 3')
+      call csv_refused(error, achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
+      call csv_refused(error, &
+                       't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
+                       //'number (a decimal comma?')
+      call csv_refused(error, 't,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
+                       "line 2, column theta1: '0.?1' is not a number")
+      call csv_refused(error, 't,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
+      call csv_refused(error, 't,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
+   contains
+      subroutine same(text, format)
+         character(len=*), intent(in) :: text, format
+         type(series_t) :: ss
+         type(error_t), allocatable :: e
+         if (allocated(error)) return
+         call parse_series(text, ss, e)
+         if (allocated(e)) then
+            call check_true(error, .false., 'accepted ('//format//'): '//e%message)
+            return
+         end if
+         call check_true(error, csv_format(ss) == format .and. ss%k == plain%k .and. &
+                         ss%n == plain%n .and. all(ss%line == plain%line .or. &
+                         index(text, '# comment') > 0), 'format "'//csv_format(ss)// &
+                         '" is "'//format//'"')
+         if (allocated(error)) return
+         call check(error, ss%t, plain%t, 't ('//format//')', abs=0.0_dp)
+         if (allocated(error)) return
+         call check(error, reshape(ss%q, [size(ss%q)]), reshape(plain%q, [size(plain%q)]), &
+                    'q ('//format//')', abs=0.0_dp)
+      end subroutine same
+   end subroutine test_csv_forms
+
+   !> The command on the same samples as a comma file and as a spreadsheet's file (BOM,
+   !> ';', quoted names, CRLF): the same report, but for the file's name and the line
+   !> stating the format.
+   subroutine test_command_csv_forms(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: lf = achar(10), crlf = achar(13)//achar(10)
+      character(len=:), allocatable :: dir, plain, sheet, fmt
+      integer :: stat, n
+      dir = scratch_dir('fitforms')
+      call write_bytes(dir//'/plain.csv', 't,theta1'//lf//'0,0.1'//lf//'0.1,0.09'//lf// &
+                       '0.2,0.06'//lf//'0.3,0.02'//lf//'0.4,-0.03'//lf)
+      call write_bytes(dir//'/sheet.csv', achar(239)//achar(187)//achar(191)// &
+                       '"t";"theta1"'//crlf//'0;0.1'//crlf//'0.1;0.09'//crlf//'0.2;0.06'// &
+                       crlf//'0.3;0.02'//crlf//'0.4;-0.03'//crlf)
+      stat = run_command(dir, 'fit '//dir//'/plain.csv --output '//dir//'/plain.h5')
+      call read_text(dir//'/stdout', plain, n)
+      call check_true(error, stat == 0, 'plain file fitted: '//plain)
+      if (allocated(error)) return
+      stat = run_command(dir, 'fit '//dir//'/sheet.csv --output '//dir//'/sheet.h5')
+      call read_text(dir//'/stdout', sheet, n)
+      call check_true(error, stat == 0, 'spreadsheet file fitted: '//sheet)
+      if (allocated(error)) return
+      fmt = "  csv: separator ';', BOM removed, quoted names"//lf
+      call check_true(error, index(sheet, fmt) > 0, 'format stated: '//sheet)
+      if (allocated(error)) return
+      plain = plain(index(plain, lf) + 1:)
+      sheet = sheet(index(sheet, lf) + 1:)
+      sheet = sheet(:index(sheet, fmt) - 1)//sheet(index(sheet, fmt) + len(fmt):)
+      plain = plain(:index(plain, "wrote '") - 1)
+      sheet = sheet(:index(sheet, "wrote '") - 1)
+      call check_true(error, plain == sheet, 'same report:'//lf//plain//lf//'and'//lf//sheet)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_command_csv_forms
+
+   !> `text` as a series file is refused, the one-line message containing `needle` and
+   !> only printable ASCII.
+   subroutine csv_refused(error, text, needle)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: text, needle
+      type(series_t) :: ss
+      type(error_t), allocatable :: e
+      integer :: i
+      if (allocated(error)) return
+      call parse_series(text, ss, e)
+      call check_true(error, allocated(e), 'refused: '//needle)
+      if (allocated(error)) return
+      call check_true(error, index(e%message, needle) > 0, 'message "'//e%message// &
+                      '" names "'//needle//'"')
+      do i = 1, len(e%message)
+         if (allocated(error)) return
+         call check_true(error, iachar(e%message(i:i)) >= 32 .and. &
+                         iachar(e%message(i:i)) < 127, 'message printable: '//needle)
+      end do
+   end subroutine csv_refused
+
+   !> Write the bytes of `text` (no record marker, no added new line).
+   subroutine write_bytes(path, text)
+      character(len=*), intent(in) :: path, text
+      integer :: unit
+      open (newunit=unit, file=path, status='replace', action='write', access='stream', &
+            form='unformatted')
+      write (unit) text
+      close (unit)
+   end subroutine write_bytes
 
    subroutine write_file(path, text)
       character(len=*), intent(in) :: path, text

@@ -39,6 +39,20 @@
 !> horizon: with the model of the fit window t ≤ T integrated over the whole series,
 !> the time after T until the first sample where some angle differs from the data by
 !> more than the tolerance.
+!>
+!> Bounded work (issue 24). `estimate_fit_work` bounds, before any fitting, what
+!> `fit_series` can do: the integration steps over each span (the steps per second of
+!> model time measured by a short probe integration of the first guess, at most
+!> `probe_steps` steps, extrapolated to the span, plus one step per sample for landing
+!> on the sample times) × (1 + P) with the sensitivities (each of the P tangent
+!> columns costs about one more integration) × the integrations of the
+!> Levenberg–Marquardt calls (1 + 2 `max_iter` + 30 each: an accepted trial per
+!> iteration, at most as many rejected ones as accepted ones plus the 30 that end a
+!> call) × the continuation stages (the window growing by the least allowed, k/4) and
+!> the starts; and the memory of the residuals and Jacobians. `fit_series` counts the
+!> steps it really takes and stops with an error when they exceed `work_limit`, so the
+!> bound holds even where the probe's rate was too low (a chaotic series speeding
+!> up).
 module dpend_estimate
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
@@ -49,12 +63,21 @@ module dpend_estimate
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
    use dpend_lapack, only: dpotrf, dpotrs
-   use dpend_limits, only: max_damping
+   use dpend_limits, only: max_damping, max_fit_work, default_max_steps
    use dpend_cli, only: real_str, to_str
+   use dpend_kinds, only: i8
+   use dpend_progress, only: progress_t
    implicit none
    private
    public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
-   public :: initial_guess, student_t95
+   public :: initial_guess, student_t95, fit_work_t, estimate_fit_work
+
+   !> Most steps of the probe integration that measures the steps per second of model
+   !> time (`estimate_fit_work`): a few milliseconds.
+   integer, parameter :: probe_steps = 4096
+   !> Integrations of one Levenberg–Marquardt call beyond 2 per iteration (the first
+   !> evaluation and the 30 rejected trials that end a call).
+   integer, parameter :: lm_extra_evaluations = 31
 
    !> What is fitted and how the model is integrated.
    type :: fit_problem_t
@@ -79,7 +102,31 @@ module dpend_estimate
       !> first-stage starts: the guess and starts-1 others whose rates spread over
       !> guess ± max(|guess rates|, 1 rad/s) (a Halton sequence); the lowest cost wins
       integer :: starts = 1
+      !> most accepted steps of one adaptive integration between two samples
+      integer(i8) :: max_steps = default_max_steps
+      !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
+      !> `fit_series` stops with an error beyond
+      real(dp) :: work_limit = max_fit_work
    end type fit_problem_t
+
+   !> What a fit costs at most (`estimate_fit_work`), known before it starts.
+   type :: fit_work_t
+      real(dp) :: rate = 0.0_dp         !! integration steps per second of model time [1/s]
+      real(dp) :: steps = 0.0_dp        !! steps of one integration over the fit window
+      real(dp) :: evaluations = 0.0_dp  !! integrations of the model, at most
+      integer :: stages = 0             !! continuation stages, at most
+      real(dp) :: work = 0.0_dp         !! step-equivalents in all (steps × (1 + P))
+      real(dp) :: bytes = 0.0_dp        !! memory of residuals and Jacobians [B]
+   end type fit_work_t
+
+   !> The work a running fit has done, against its limit, and its progress report.
+   type :: fit_counter_t
+      real(dp) :: used = 0.0_dp            !! step-equivalents so far
+      real(dp) :: limit = huge(1.0_dp)     !! most step-equivalents
+      logical :: exceeded = .false.        !! `used` went beyond `limit`
+      logical :: show = .false.            !! report progress on stderr
+      type(progress_t) :: progress         !! integrations done of the bound
+   end type fit_counter_t
 
    !> The estimates and their statistics.
    type :: fit_result_t
@@ -268,7 +315,7 @@ contains
 
    !> Residuals r (N k) of the first k samples for the parameters p and, if `jac` is
    !> present, their Jacobian ∂r/∂p (N k, P). Residual (i, j) is r(i + N (j − 1)).
-   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac)
+   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac, steps, budget)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: p(:)                      !! parameters
       real(dp), intent(in) :: t(:)                      !! sample times [s]
@@ -278,6 +325,9 @@ contains
       real(dp), intent(out) :: r(:)                     !! residuals (N k) [rad]
       type(error_t), allocatable, intent(out) :: error  !! the integration failed
       real(dp), intent(out), optional :: jac(:, :)      !! ∂r/∂p (N k, P)
+      integer(i8), intent(out), optional :: steps       !! integration steps taken
+      !> with `steps`: stop with an error once more steps than this are taken
+      real(dp), intent(in), optional :: budget
       type(sens_model_t) :: sm
       class(integrator_t), allocatable :: integ
       type(tangent_t) :: tan
@@ -288,22 +338,12 @@ contains
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
       np = size(p)
+      if (present(steps)) steps = 0
       allocate (o(no), d(no, n))
-      call model_for(prob, p, sm, error)
+      call start_model(prob, p, t(1), sm, integ, y, error)
       if (allocated(error)) return
       nc = sm%nc
       ns = 2*(n + nc)
-      call new_integrator(prob%method, integ, error, method_options_t(rtol=prob%rtol, &
-                          atol=prob%atol))
-      if (allocated(error)) return
-      call integ%check_model(sm, error)
-      if (allocated(error)) return
-      allocate (y(ns))
-      y = 0.0_dp
-      y(1:n) = p(1:n)
-      y(n + nc + 1:2*n + nc) = p(n + 1:2*n)
-      if (nc > 0) y(n + 1:n + nc) = p(2*n + 1:2*n + nc)
-      y = integ%to_internal(sm, y(1:n + nc), y(n + nc + 1:ns), t(1))
       if (present(jac)) then
          allocate (v0(ns, np))
          v0 = 0.0_dp
@@ -327,6 +367,16 @@ contains
          call march%start(integ, tt, t(j), h)
          do while (.not. march%finished)
             call march%next(integ, sm, tt, y, h, stat)
+            if (present(steps)) then
+               steps = steps + 1
+               if (present(budget)) then
+                  if (real(steps, dp) > budget) then
+                     call fatal_error(error, 'the integration took more than '// &
+                                      real_str(budget, 3)//' steps')
+                     return
+                  end if
+               end if
+            end if
             if (stat /= stat_ok) then
                call fatal_error(error, 'the model''s integration failed: '// &
                                 status_message(stat)//' after t = '//real_str(tt)//' s')
@@ -347,6 +397,35 @@ contains
          if (present(jac)) jac(no*(j - 1) + 1:no*j, :) = matmul(d, tan%v(1:n, :))
       end do
    end subroutine evaluate_fit
+
+   !> The augmented model for the parameters p, the integrator (`prob%method`, its
+   !> tolerances and `max_steps`) and its internal state y at t1.
+   subroutine start_model(prob, p, t1, sm, integ, y, error)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: p(:)                             !! parameters
+      real(dp), intent(in) :: t1                               !! first sample time [s]
+      type(sens_model_t), intent(out) :: sm
+      class(integrator_t), allocatable, intent(out) :: integ
+      real(dp), allocatable, intent(out) :: y(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: n, nc, ns
+      call model_for(prob, p, sm, error)
+      if (allocated(error)) return
+      n = sm%n
+      nc = sm%nc
+      ns = 2*(n + nc)
+      call new_integrator(prob%method, integ, error, method_options_t(rtol=prob%rtol, &
+                          atol=prob%atol, max_steps=prob%max_steps))
+      if (allocated(error)) return
+      call integ%check_model(sm, error)
+      if (allocated(error)) return
+      allocate (y(ns))
+      y = 0.0_dp
+      y(1:n) = p(1:n)
+      y(n + nc + 1:2*n + nc) = p(n + 1:2*n)
+      if (nc > 0) y(n + 1:n + nc) = p(2*n + 1:2*n + nc)
+      y = integ%to_internal(sm, y(1:n + nc), y(n + nc + 1:ns), t1)
+   end subroutine start_model
 
    !> The augmented model for the parameters p.
    subroutine model_for(prob, p, sm, error)
@@ -466,9 +545,114 @@ contains
       if (prob%fit_damping) p(2*n + 1:3*n) = prob%c0
    end function initial_guess
 
+   !> The most work `fit_series` can do on these samples (see the module's notes):
+   !> integration steps, integrations, stages, step-equivalents and memory. Costs a
+   !> probe integration of at most `probe_steps` steps.
+   subroutine estimate_fit_work(prob, t, q, t_window, work, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      real(dp), intent(in) :: t_window                  !! end T of the fit window [s]
+      type(fit_work_t), intent(out) :: work             !! the bounds
+      type(error_t), allocatable, intent(out) :: error  !! too few samples
+      real(dp), allocatable :: p(:)
+      real(dp) :: lm, quick_lm, fac, m
+      integer :: no, n, np, k_fit, kmax, k, k_min
+      no = size(q, 1)
+      n = merge(no/2, no, prob%positions)
+      np = merge(3*n, 2*n, prob%fit_damping)
+      kmax = size(t)
+      k_fit = count(t <= t_window)
+      if (no*k_fit <= np) then
+         call fatal_error(error, to_str(k_fit)//' samples in the fit window give ' &
+                          //to_str(no*k_fit)//' residuals for '//to_str(np)// &
+                          ' parameters: at least '//to_str(np/no + 1)//' samples are needed')
+         return
+      end if
+      p = initial_guess(prob, t(:k_fit), q(:, :k_fit))
+      work%rate = probe_rate(prob, p, t(1), t(kmax))
+      work%steps = steps_to(k_fit)
+      fac = real(1 + np, dp)
+      lm = real(2*prob%max_iter + lm_extra_evaluations, dp)
+      quick_lm = real(2*min(prob%max_iter, 30) + lm_extra_evaluations, dp)
+      k_min = min(k_fit, max(3, np/no + 1))
+      work%evaluations = 0.0_dp
+      work%work = 0.0_dp
+      if (prob%starts > 1) then   ! the quick first stages and their costs
+         call add(real(prob%starts, dp)*quick_lm, fac, k_min)
+         call add(real(prob%starts, dp), 1.0_dp, k_min)
+      end if
+      k = k_min
+      work%stages = 0
+      do   ! the stages, the window growing by the least the continuation allows
+         call add(lm, fac, k)
+         work%stages = work%stages + 1
+         if (k == k_fit) exit
+         call add(1.0_dp, 1.0_dp, k_fit)
+         k = min(k_fit, k + max(1, k/4))
+      end do
+      call add(1.0_dp, fac, k_fit)   ! the statistics
+      call add(1.0_dp, 1.0_dp, kmax) ! the prediction of the whole series
+      ! residuals and Jacobians of the fit window (r, rn, jac, jn and the temporaries
+      ! of JᵀJ), the model and residual series (K), the normal equations
+      m = real(no, dp)*real(k_fit, dp)
+      work%bytes = 8.0_dp*(5.0_dp*m*real(np, dp) + 4.0_dp*m + &
+                           4.0_dp*real(no, dp)*real(kmax, dp) + 4.0_dp*real(np, dp)**2)
+   contains
+      !> Steps of one integration over the first k samples.
+      real(dp) function steps_to(k) result(st)
+         integer, intent(in) :: k
+         st = work%rate*(t(k) - t(1)) + real(k - 1, dp)
+      end function steps_to
+      !> `count` integrations over the first k samples, each step costing `cost`.
+      subroutine add(count, cost, k)
+         real(dp), intent(in) :: count, cost
+         integer, intent(in) :: k
+         work%evaluations = work%evaluations + count
+         work%work = work%work + count*cost*steps_to(k)
+      end subroutine add
+   end subroutine estimate_fit_work
+
+   !> Integration steps per second of model time [1/s] of the motion from p at t1,
+   !> measured over at most `probe_steps` steps towards t_end (an integration that
+   !> fails at once: 0, the fit itself then reports it). At most 1e100.
+   real(dp) function probe_rate(prob, p, t1, t_end) result(rate)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: p(:)        !! parameters
+      real(dp), intent(in) :: t1, t_end   !! the span [s]
+      type(sens_model_t) :: sm
+      class(integrator_t), allocatable :: integ
+      type(march_t) :: march
+      type(error_t), allocatable :: error
+      real(dp), allocatable :: y(:)
+      real(dp) :: tt, h
+      integer :: steps, stat
+      rate = 0.0_dp
+      call start_model(prob, p, t1, sm, integ, y, error)
+      if (allocated(error)) return
+      tt = t1
+      h = prob%dt
+      call integ%clear_step()
+      call march%start(integ, tt, t_end, h)
+      steps = 0
+      do while (.not. march%finished .and. steps < probe_steps)
+         call march%next(integ, sm, tt, y, h, stat)
+         if (stat /= stat_ok) exit
+         steps = steps + 1
+      end do
+      if (.not. (tt - t1 > 1e-100_dp*real(steps, dp))) then
+         if (steps > 0) rate = 1e100_dp
+         return
+      end if
+      rate = min(real(steps, dp)/(tt - t1), 1e100_dp)
+   end function probe_rate
+
    !> Fit the samples with t ≤ t_window (all when t_window ≥ the last time), then
-   !> predict the whole series and measure the horizon with `tolerance` [rad].
-   subroutine fit_series(prob, t, q, t_window, tolerance, res, error, guess)
+   !> predict the whole series and measure the horizon with `tolerance` [rad]. The
+   !> integration steps are counted: beyond `prob%work_limit` step-equivalents the fit
+   !> stops with an error. With `progress`, long fits report on stderr the integrations
+   !> done of the bound of `estimate_fit_work` (the time left is then an upper bound).
+   subroutine fit_series(prob, t, q, t_window, tolerance, res, error, guess, progress)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
       real(dp), intent(in) :: q(:, :)                   !! angles (N, K) [rad], or
@@ -479,6 +663,36 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
       real(dp), intent(in), optional :: guess(:)        !! first guess (default:
                                                         !! `initial_guess`)
+      logical, intent(in), optional :: progress         !! report progress on stderr
+      type(fit_counter_t) :: counter
+      type(fit_work_t) :: work
+      counter%limit = prob%work_limit
+      if (present(progress)) counter%show = progress
+      if (counter%show) then
+         call estimate_fit_work(prob, t, q, t_window, work, error)
+         if (allocated(error)) return
+         call counter%progress%start('dpend fit (integrations of at most '// &
+                                     real_str(work%evaluations)//')', &
+                                     int(min(work%evaluations, 1e15_dp), i8), 0_i8, .false.)
+         ! a line only once the fit has run for a while (none for a quick fit)
+         counter%progress%t_last = counter%progress%t_start
+         counter%progress%reported = 0
+      end if
+      call fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
+      if (counter%show .and. counter%progress%reported > 0) call counter%progress%finish()
+   end subroutine fit_series
+
+   !> `fit_series` with its work counter.
+   subroutine fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      real(dp), intent(in) :: t_window                  !! end T of the fit window [s]
+      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad or m]
+      type(fit_result_t), intent(out) :: res            !! estimates and statistics
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
+      real(dp), intent(in), optional :: guess(:)        !! first guess
       real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
       real(dp) :: period, thr
       integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
@@ -510,7 +724,7 @@ contains
       res%iterations = 0
       res%stages = 0
       if (prob%starts > 1) then
-         call best_start(prob, t, q, k_stage, res%p, it, error)
+         call best_start(prob, t, q, k_stage, res%p, it, counter, error)
          res%iterations = it
          if (allocated(error)) return
       end if
@@ -523,7 +737,7 @@ contains
          ! the damping is held at its guess while the window is shorter than a swing
          ! (a fraction of a swing barely determines it, and large values make the
          ! model stiff)
-         call levenberg_marquardt(prob, t, q, k_stage, res%p, it, conv, error, &
+         call levenberg_marquardt(prob, t, q, k_stage, res%p, it, conv, counter, error, &
                                   hold_damping=t(k_stage) - t(1) < period .and. &
                                   k_stage < res%k_fit)
          res%iterations = res%iterations + it
@@ -532,7 +746,7 @@ contains
          if (k_stage == res%k_fit) exit
          ! the next window: up to the sample before the stage's model leaves the data
          ! by max(10 RMS, 0.01 rad or 0.01 Σ L_i), at least 1.25 times longer
-         call evaluate_fit(prob, res%p, t, q, res%k_fit, r, error)
+         call counted_fit(prob, res%p, t, q, res%k_fit, r, counter, error)
          if (allocated(error)) return
          thr = 0.01_dp   ! (rad; m per metre of chain for positions)
          if (prob%positions) thr = 0.01_dp*sum(prob%l)
@@ -549,7 +763,7 @@ contains
       kk = res%k_fit
       deallocate (r)
       allocate (r(no*kk), jac(no*kk, np))
-      call evaluate_fit(prob, res%p, t, q, kk, r, error, jac)
+      call counted_fit(prob, res%p, t, q, kk, r, counter, error, jac)
       if (allocated(error)) return
       res%dof = no*kk - np
       res%rms = sqrt(sum(r**2)/real(no*kk, dp))
@@ -604,7 +818,7 @@ contains
       ! the whole series with the fitted model
       deallocate (r)
       allocate (r(no*kmax))
-      call evaluate_fit(prob, res%p, t, q, kmax, r, error)
+      call counted_fit(prob, res%p, t, q, kmax, r, counter, error)
       if (allocated(error)) return
       res%resid = -reshape(r, [no, kmax])
       res%q_model = q - res%resid
@@ -622,16 +836,17 @@ contains
             end if
          end do
       end if
-   end subroutine fit_series
+   end subroutine fit_stages
 
    !> The first stage from `prob%starts` starting points (see `fit_problem_t`): p is
    !> replaced by the estimate of lowest cost.
-   subroutine best_start(prob, t, q, k, p, iterations, error)
+   subroutine best_start(prob, t, q, k, p, iterations, counter, error)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: t(:), q(:, :)
       integer, intent(in) :: k
       real(dp), intent(inout) :: p(:)
       integer, intent(out) :: iterations
+      type(fit_counter_t), intent(inout) :: counter
       type(error_t), allocatable, intent(out) :: error
       real(dp), allocatable :: ps(:), best(:), r(:)
       type(error_t), allocatable :: err
@@ -658,14 +873,23 @@ contains
             ps(n + i) = p(n + i) + spread*(2.0_dp*halton(s - 1, primes(i)) - 1.0_dp)
          end do
          if (s == 1) ps = p
-         call levenberg_marquardt(quick, t, q, k, ps, it, conv, err, hold_damping=.true.)
+         call levenberg_marquardt(quick, t, q, k, ps, it, conv, counter, err, &
+                                  hold_damping=.true.)
          iterations = iterations + it
          if (allocated(err)) then
+            if (counter%exceeded) then
+               call move_alloc(err, error)
+               return
+            end if
             deallocate (err)
             cycle
          end if
-         call evaluate_fit(quick, ps, t, q, k, r, err)
+         call counted_fit(quick, ps, t, q, k, r, counter, err)
          if (allocated(err)) then
+            if (counter%exceeded) then
+               call move_alloc(err, error)
+               return
+            end if
             deallocate (err)
             cycle
          end if
@@ -681,6 +905,41 @@ contains
       end if
       p = best
    end subroutine best_start
+
+   !> `evaluate_fit` with its steps added to the counter (× (1 + P) with the
+   !> Jacobian); an error when the fit's work goes beyond the counter's limit.
+   subroutine counted_fit(prob, p, t, q, k, r, counter, error, jac)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: p(:), t(:), q(:, :)
+      integer, intent(in) :: k
+      real(dp), intent(out) :: r(:)
+      type(fit_counter_t), intent(inout) :: counter
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), intent(out), optional :: jac(:, :)
+      integer(i8) :: steps
+      real(dp) :: factor
+      real(dp) :: budget
+      factor = 1.0_dp
+      if (present(jac)) factor = real(1 + size(p), dp)
+      ! the steps left (an integration stops once beyond them)
+      budget = max(counter%limit - counter%used, 0.0_dp)/factor
+      if (present(jac)) then
+         call evaluate_fit(prob, p, t, q, k, r, error, jac, steps=steps, budget=budget)
+      else
+         call evaluate_fit(prob, p, t, q, k, r, error, steps=steps, budget=budget)
+      end if
+      counter%used = counter%used + factor*real(steps, dp)
+      if (counter%show) call counter%progress%update(1_i8)
+      if (counter%used > counter%limit) then
+         counter%exceeded = .true.
+         if (allocated(error)) deallocate (error)
+         call fatal_error(error, 'the fit stopped at its work limit: '// &
+                          real_str(counter%used, 3)//' integration steps (sensitivities ' &
+                          //'counted x(1 + P)) done, at most '//real_str(counter%limit)// &
+                          ' (the motion needed more steps than its first guess; shorten ' &
+                          //'the fit window)')
+      end if
+   end subroutine counted_fit
 
    !> Element i of the van der Corput sequence in base b (Halton's coordinates).
    pure real(dp) function halton(i, b) result(x)
@@ -700,7 +959,7 @@ contains
    !> Levenberg–Marquardt on the first k samples, from p (updated).
    !> With `hold_damping` the damping stays at its value (its rows and columns of the
    !> normal equations are replaced by the identity's, its step is zero).
-   subroutine levenberg_marquardt(prob, t, q, k, p, iterations, converged, error, &
+   subroutine levenberg_marquardt(prob, t, q, k, p, iterations, converged, counter, error, &
                                   hold_damping)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: t(:), q(:, :)
@@ -708,6 +967,7 @@ contains
       real(dp), intent(inout) :: p(:)
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
+      type(fit_counter_t), intent(inout) :: counter
       type(error_t), allocatable, intent(out) :: error
       logical, intent(in), optional :: hold_damping
       real(dp), allocatable :: r(:), jac(:, :), rn(:), jn(:, :), a(:, :), g(:), d(:)
@@ -719,7 +979,9 @@ contains
       m = size(q, 1)*k
       np = size(p)
       allocate (r(m), jac(m, np), rn(m), jn(m, np), g(np), d(np), pn(np), b(np, 1))
-      call evaluate_fit(prob, p, t, q, k, r, error, jac)
+      converged = .false.
+      iterations = 0
+      call counted_fit(prob, p, t, q, k, r, counter, error, jac)
       if (allocated(error)) return
       cost = 0.5_dp*sum(r**2)
       lambda = 1e-3_dp
@@ -765,8 +1027,12 @@ contains
             pn = p + b(:, 1)
             if (prob%fit_damping) pn(2*n + 1:3*n) = min(max(pn(2*n + 1:3*n), 0.0_dp), &
                                                         max_damping)
-            call evaluate_fit(prob, pn, t, q, k, rn, trial_error, jn)
+            call counted_fit(prob, pn, t, q, k, rn, counter, trial_error, jn)
             if (allocated(trial_error)) then
+               if (counter%exceeded) then
+                  call move_alloc(trial_error, error)
+                  return
+               end if
                deallocate (trial_error)
                lambda = lambda*10.0_dp
                cycle

@@ -10,18 +10,19 @@ module dpend_fit_command
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
-                        parse_int, real_str, to_str, pad
+                        parse_int, real_str, to_str, pad, printable
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
-   use dpend_csv, only: series_t, read_series
-   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series
+   use dpend_csv, only: series_t, read_series, csv_format
+   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
+                             estimate_fit_work
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t, check_output_path, register_input
    use dpend_version, only: version
-   use dpend_limits, only: check_range, sci
+   use dpend_limits, only: check_range, check_memory, sci, max_time, max_fit_work
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -87,9 +88,13 @@ contains
           nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
           nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
+          nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
+          nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
           '  numbers that do not parse, NaN or Inf, times that do not increase, fewer'//nl// &
-          '  samples in the fit window than the parameters need.'//nl//nl// &
+          '  samples in the fit window than the parameters need; a fit whose estimated'//nl// &
+          '  work exceeds '//sci(max_fit_work)//' integration steps (sensitivities counted).' &
+          //nl//nl// &
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
@@ -149,7 +154,7 @@ contains
          end if
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
             if (len(fc%input) > 0) then
-               call fatal_error(error, "unexpected argument '"//args(i)%s// &
+               call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                                 "' (one data file; dpend fit --help)")
                return
             end if
@@ -211,7 +216,7 @@ contains
          end if
          if (links_given .and. fc%run%links /= s%n) then
             call fatal_error(error, 'invalid links: '//to_str(fc%run%links)//" given, the " &
-                             //"data file '"//fc%input//"' has "//to_str(s%n)// &
+                             //"data file '"//printable(fc%input)//"' has "//to_str(s%n)// &
                              ' angle columns (N is the number of angle columns) [--links]')
             return
          end if
@@ -234,6 +239,9 @@ contains
          end if
          if (fc%window_given) then
             x = fc%fit_window
+            call check_range('fit-window', x, -max_time, max_time, 's', error, &
+                             'times are at most 1e9 s')
+            if (allocated(error)) return
             if (.not. (ieee_is_finite(x) .and. x >= s%t(1))) then
                call fatal_error(error, 'invalid fit-window: '//real_str(x)//' s is before ' &
                                 //'the first sample (t = '//real_str(s%t(1))// &
@@ -244,7 +252,8 @@ contains
          np = merge(3*s%n, 2*s%n, fc%fit_damping)
          k_fit = count(s%t <= fc%fit_window)
          if (s%n_obs*k_fit <= np) then
-            call fatal_error(error, "invalid data file '"//fc%input//"': "//to_str(k_fit)// &
+            call fatal_error(error, "invalid data file '"//printable(fc%input)//"': "// &
+                             to_str(k_fit)// &
                              ' samples in the fit window give '//to_str(s%n_obs*k_fit)// &
                              ' residuals for '//to_str(np)//' parameters: at least '// &
                              to_str(np/s%n_obs + 1)//' samples are needed (lines '// &
@@ -252,19 +261,40 @@ contains
             return
          end if
       end associate
+      call check_work(fc, error)
    end subroutine parse_fit
 
-   !> Fit, print the report, write the HDF5 file.
-   subroutine run_fit(fc, error, failed)
-      type(fit_config_t), intent(in) :: fc              !! validated configuration
-      type(error_t), allocatable, intent(out) :: error  !! what went wrong
-      logical, intent(out) :: failed                    !! the fit started and failed
+   !> Refuse a fit whose work or memory (`estimate_fit_work`) is beyond the limits:
+   !> at most `max_fit_work` step-equivalents, and the memory available.
+   subroutine check_work(fc, error)
+      type(fit_config_t), intent(in) :: fc              !! the configuration
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
       type(fit_problem_t) :: prob
-      type(fit_result_t) :: res
-      type(output_t) :: out
-      type(error_t), allocatable :: werr
+      type(fit_work_t) :: work
+      prob = fit_problem(fc)
+      call estimate_fit_work(prob, fc%series%t, fc%series%q, fc%fit_window, work, error)
+      if (allocated(error)) return
+      if (work%work > max_fit_work) then
+         call fatal_error(error, 'invalid fit work: up to '//sci(work%work, 3)// &
+                          ' integration steps ('//sci(work%steps, 3)//' per integration ' &
+                          //'over the fit window of '//sci(fc%series%t(count(fc%series%t <= &
+                          fc%fit_window)) - fc%series%t(1), 4)//' s, x'// &
+                          to_str(1 + merge(3, 2, fc%fit_damping)*fc%series%n)// &
+                          ' with sensitivities, up to '//sci(work%evaluations, 3)// &
+                          ' integrations in '//to_str(work%stages)//' stages); at most '// &
+                          sci(max_fit_work)//' (a shorter --fit-window or series, a ' &
+                          //'larger --dt for rk4, a looser --rtol)')
+         return
+      end if
+      call check_memory('fit work', work%bytes, 'the residuals and Jacobians of the ' &
+                        //'fit window', 'shorten the fit window: --fit-window', error)
+   end subroutine check_work
+
+   !> The estimation problem of the configuration.
+   function fit_problem(fc) result(prob)
+      type(fit_config_t), intent(in) :: fc   !! validated configuration
+      type(fit_problem_t) :: prob
       integer :: n
-      failed = .false.
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
       prob%fit_damping = fc%fit_damping
@@ -281,9 +311,24 @@ contains
       prob%atol = fc%run%atol
       prob%dt = fc%run%dt
       prob%starts = fc%starts
+      prob%max_steps = fc%run%max_steps
+   end function fit_problem
+
+   !> Fit, print the report, write the HDF5 file.
+   subroutine run_fit(fc, error, failed)
+      type(fit_config_t), intent(in) :: fc              !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(out) :: failed                    !! the fit started and failed
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      type(output_t) :: out
+      type(error_t), allocatable :: werr
+      failed = .false.
+      prob = fit_problem(fc)
       call out%begin(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
-      call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, error)
+      call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
+                      error, progress=.true.)
       if (allocated(error)) then
          call out%discard()
          failed = .true.
@@ -335,6 +380,7 @@ contains
             real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
             real_str(res%t_window)//' s ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
+         if (len(csv_format(s)) > 0) write (output_unit, '(a)') '  csv: '//csv_format(s)
          if (s%theta) write (output_unit, '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
          if (s%positions) write (output_unit, '(a)') '  (the file gives the positions of ' &

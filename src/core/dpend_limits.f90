@@ -102,6 +102,14 @@ module dpend_limits
    !> divergence: delta0 at least 1e-13 max(1, |state|): a smaller displacement is
    !> lost in the rounding of the state (the two trajectories would be equal).
    real(dp), parameter :: min_delta0_relative = 1e-13_dp
+   !> At most 1e10 step-equivalents in one `dpend fit` (issue 24): the integration
+   !> steps of all its integrations, a step with the P sensitivity columns counted
+   !> 1 + P times. Measured at about 1e6 step-equivalents per second (release build,
+   !> one core, dop853, 2 links), so a fit at the limit runs about 3 hours; the data
+   !> example (data/fit_example.csv) needs 1.4e7 by the estimate. `fit` refuses a
+   !> larger estimate before it starts and stops a fit that goes beyond it running.
+   real(dp), parameter :: max_fit_work = 1e10_dp
+   public :: max_fit_work
 
 contains
 

@@ -3,9 +3,16 @@
 !>
 !> Format (docs in README, example data/fit_example.csv):
 !> - lines whose first non-blank character is '#' and blank lines are skipped;
-!> - the first other line is the header: comma-separated names, blanks around a name
-!>   ignored, case-insensitive, each optionally followed by a unit in brackets that
+!> - the file may start with a UTF-8 byte order mark (removed; what spreadsheets
+!>   write); UTF-16 is refused naming it;
+!> - the first other line is the header: names separated by ',', ';' or a tab (the
+!>   separator is the one of these that occurs most often in the header, outside
+!>   quotes; ties in that order; it is the separator of every row), blanks around a
+!>   name ignored, case-insensitive, each optionally followed by a unit in brackets that
 !>   must be the expected one ('t [s]', 'theta1 [rad]');
+!> - any field, of the header or of a row, may be quoted ("t", "theta1 [rad]", "0.5"):
+!>   the quotes are removed, "" inside stands for one quote, and a separator inside
+!>   quotes belongs to the field;
 !> - the column `t` (s) and the angles of links 1 … N, either `theta1 … thetaN` (from
 !>   the hanging position, counter-clockwise, as --theta1: q = θ − π/2) or `q1 … qN`
 !>   (the project's angles from the horizontal x axis, as `dpend export --csv`
@@ -18,18 +25,25 @@
 !> - every data row has as many fields as the header; t and the observed values are
 !>   finite numbers, and the times increase strictly.
 !> Everything else is refused with one line that names the file, the line number and
-!> the problem (`csv_refusal`).
+!> the problem; a header with one field names the separators tried. Text of the file
+!> echoed in a message has its control characters replaced (`printable`). Numbers
+!> are read by `parse_real` (dpend_cli), after a check of their characters.
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str, overflows_real, to_lower, printable
+   use dpend_cli, only: to_str, real_str, to_lower, printable, parse_real
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: series_t, read_series, parse_series
+   public :: series_t, read_series, parse_series, csv_format
+
+   !> The separators tried, in the order that breaks ties.
+   character(len=1), parameter :: separators(3) = [',', ';', achar(9)]
+   !> The UTF-8 byte order mark.
+   character(len=3), parameter :: utf8_bom = achar(239)//achar(187)//achar(191)
 
    !> Largest accepted magnitude of a sample value (angle [rad] or position)
    real(dp), parameter :: max_sample_value = 1e6_dp
@@ -49,6 +63,9 @@ module dpend_csv
       logical :: positions = .false.      !! the file gave positions, not angles
       integer, allocatable :: line(:)     !! line number of each row in the file (k)
       logical :: theta = .false.          !! the file gave θ (from hanging), not q
+      character(len=1) :: separator = ',' !! field separator: ',', ';' or a tab
+      logical :: bom = .false.            !! a UTF-8 byte order mark was removed
+      logical :: quoted = .false.         !! some header names were quoted
    end type series_t
 
 contains
@@ -62,7 +79,7 @@ contains
       integer :: unit, stat
       integer(i8) :: bytes
       character(len=256) :: msg
-      pre = "invalid data file '"//filename//"': "
+      pre = "invalid data file '"//printable(filename)//"': "
       select case (path_kind(filename, follow=.true.))
       case (path_file)
       case (path_missing)
@@ -94,8 +111,8 @@ contains
          return
       end if
       call parse_series(text, series, error)
-      if (allocated(error)) error%message = "invalid data file '"//filename//"' "// &
-                                            error%message
+      if (allocated(error)) error%message = "invalid data file '"//printable(filename)// &
+                                            "' "//error%message
    end subroutine read_series
 
    !> Parse the whole text of a series file; an error message starts with
@@ -114,6 +131,22 @@ contains
       integer, allocatable :: ll(:)
       real(dp) :: values(0:2*max_dof)
       header_seen = .false.
+      start = 1
+      if (len(text) >= 3) then
+         if (text(1:3) == utf8_bom) then
+            series%bom = .true.
+            start = 4
+         end if
+      end if
+      if (len(text) >= 2) then
+         if (text(1:2) == achar(255)//achar(254) .or. text(1:2) == achar(254)//achar(255)) &
+            then
+            call fatal_error(error, 'is UTF-16 text (it starts with the byte order mark ' &
+                             //trim(merge('FF FE', 'FE FF', text(1:1) == achar(255)))// &
+                             '); save it as UTF-8 or ASCII CSV')
+            return
+         end if
+      end if
       cap = 256
       allocate (series%t(cap), series%q(2*max_dof, cap), series%line(cap))
       series%k = 0
@@ -121,7 +154,6 @@ contains
       col_t = 0
       col_q = 0
       line = 0
-      start = 1
       do while (start <= len(text))
          eol = index(text(start:), lf)
          if (eol == 0) then
@@ -138,6 +170,7 @@ contains
          if (len_trim(row) == 0) cycle
          if (index(adjustl(row), '#') == 1) cycle
          if (.not. header_seen) then
+            series%separator = detect_separator(row)
             call parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, &
                               error)
             if (allocated(error)) return
@@ -146,7 +179,7 @@ contains
             allocate (series%q(series%n_obs, cap))
             cycle
          end if
-         call parse_row(row, line, n_fields, col_t, col_q(:series%n_obs), &
+         call parse_row(row, line, series%separator, n_fields, col_t, col_q(:series%n_obs), &
                         scale(:series%n_obs), offset(:series%n_obs), &
                         obs_names(series), values(0:series%n_obs), error)
          if (allocated(error)) return
@@ -169,7 +202,8 @@ contains
                call fatal_error(error, 'line '//to_str(line)//': t = '// &
                                 real_str(values(0))//' s is not after t = '// &
                                 real_str(series%t(series%k))//' s of line '// &
-                                to_str(series%line(series%k))//' by at least 1e-9 max(1, |t|) s '// &
+                                to_str(series%line(series%k))// &
+                                ' by at least 1e-9 max(1, |t|) s '// &
                                 '(times must increase)')
                return
             end if
@@ -218,10 +252,12 @@ contains
       real(dp), intent(out) :: offset(2*max_dof)
       type(series_t), intent(inout) :: series           !! n, n_obs, theta, positions set
       type(error_t), allocatable, intent(out) :: error  !! missing or repeated columns
-      character(len=:), allocatable :: field, name, unit, kind, pre, this
-      integer :: start, comma, col, idx, stat, br, col_x(max_dof), col_y(max_dof)
+      character(len=:), allocatable :: field, name, unit, kind, pre, this, listing
+      integer :: start, col, idx, stat, br, col_x(max_dof), col_y(max_dof)
       real(dp) :: sx(max_dof), sy(max_dof), f
+      logical :: quoted
       pre = 'line '//to_str(line)//' (header): '
+      listing = ''
       col_t = 0
       col_q = 0
       col_x = 0
@@ -231,16 +267,20 @@ contains
       kind = ''
       n_fields = 0
       start = 1
-      do
-         comma = index(row(start:), ',')
-         if (comma == 0) then
-            field = row(start:)
-         else
-            field = row(start:start + comma - 2)
+      do while (start <= len(row) + 1)
+         call next_field(row, series%separator, start, field, quoted, error)
+         if (allocated(error)) then
+            error%message = pre//error%message
+            return
          end if
+         if (quoted) series%quoted = .true.
          n_fields = n_fields + 1
          col = n_fields
-         name = to_lower(trim(adjustl(field)))
+         if (n_fields <= 8) then
+            if (n_fields > 1) listing = listing//', '
+            listing = listing//"'"//printable_40(field)//"'"
+         end if
+         name = to_lower(field)
          unit = ''
          br = index(name, '[')
          if (br > 0) then
@@ -253,7 +293,7 @@ contains
                return
             end if
             if (len(unit) > 0 .and. unit /= '[s]') then
-               call fatal_error(error, pre//"column 't' has the unit '"//unit// &
+               call fatal_error(error, pre//"column 't' has the unit '"//printable_40(unit)// &
                                 "' (accepted: [s] or none)")
                return
             end if
@@ -282,7 +322,8 @@ contains
                return
             end if
             if (len(unit) > 0 .and. unit /= '[rad]') then
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"//unit// &
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                                printable_40(unit)// &
                                 "' (accepted: [rad] or none)")
                return
             end if
@@ -303,7 +344,8 @@ contains
             case ('[mm]')
                f = 0.001_dp
             case default
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"//unit// &
+               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                                printable_40(unit)// &
                                 "' (accepted: [m], [cm], [mm] or none for m)")
                return
             end select
@@ -323,12 +365,17 @@ contains
                sy(idx) = f
             end if
          end if
-         if (comma == 0) exit
-         start = start + comma
       end do
+      if (n_fields == 1) then
+         call fatal_error(error, pre//'1 field ('//listing//'); separators tried: , ; tab ' &
+                          //'(expected a header such as t,theta1,theta2)')
+         return
+      end if
       if (col_t == 0) then
-         call fatal_error(error, pre//"no column 't' (expected a header such as " &
-                          //'t,theta1,theta2)')
+         call fatal_error(error, pre//"no column 't' among the "//to_str(n_fields)// &
+                          ' fields '//listing//trim(merge(', ...', '     ', n_fields > 8))// &
+                          ' (separator '//separator_name(series%separator)// &
+                          '; expected a header such as t,theta1,theta2)')
          return
       end if
       series%n = count(col_q > 0)
@@ -389,10 +436,11 @@ contains
    end function obs_names
 
    !> One data row: t and the observations (converted to q or m).
-   subroutine parse_row(row, line, n_fields, col_t, col_q, scale, offset, names, values, &
-                        error)
+   subroutine parse_row(row, line, sep, n_fields, col_t, col_q, scale, offset, names, &
+                        values, error)
       character(len=*), intent(in) :: row               !! the line
       integer, intent(in) :: line                       !! its number
+      character(len=1), intent(in) :: sep               !! the field separator
       integer, intent(in) :: n_fields                   !! fields of the header
       integer, intent(in) :: col_t                      !! column of t
       integer, intent(in) :: col_q(:)                   !! columns of the observations
@@ -400,17 +448,17 @@ contains
       character(len=*), intent(in) :: names(:)          !! their names
       real(dp), intent(out) :: values(0:)               !! t, observations
       type(error_t), allocatable, intent(out) :: error  !! wrong count, bad number
-      integer :: start, comma, col, k
+      integer :: start, col, k
       character(len=:), allocatable :: field
+      logical :: quoted
       values = 0.0_dp
       col = 0
       start = 1
-      do
-         comma = index(row(start:), ',')
-         if (comma == 0) then
-            field = row(start:)
-         else
-            field = row(start:start + comma - 2)
+      do while (start <= len(row) + 1)
+         call next_field(row, sep, start, field, quoted, error)
+         if (allocated(error)) then
+            error%message = 'line '//to_str(line)//': '//error%message
+            return
          end if
          col = col + 1
          if (col > n_fields) exit
@@ -426,8 +474,6 @@ contains
                end if
             end do
          end if
-         if (comma == 0) exit
-         start = start + comma
       end do
       if (col /= n_fields) then
          call fatal_error(error, 'line '//to_str(line)//': '//to_str(col)// &
@@ -435,33 +481,164 @@ contains
                           to_str(n_fields)//' (every row has one value per column)')
       end if
    contains
+      !> A number by `parse_real`, after a check that the field holds only the
+      !> characters of a number (a message echoes it escaped, at most 40 characters).
       subroutine parse_number(text, name, x, err)
          character(len=*), intent(in) :: text, name
          real(dp), intent(out) :: x
          type(error_t), allocatable, intent(out) :: err
-         character(len=:), allocatable :: s
-         integer :: stat
-         s = trim(adjustl(text))
+         character(len=:), allocatable :: where
+         where = 'line '//to_str(line)//', column '//trim(name)
          x = 0.0_dp
-         stat = 1
-         if (len(s) > 0 .and. len(s) <= 64 .and. scan(s, ' /*;:') == 0 .and. &
-             verify(s, '0123456789+-.eEdDnaNAiIfFtTyY') == 0) then
-            if (overflows_real(s)) then   ! reading it would overflow (debug: a trap)
-               call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)// &
-                                ": '"//printable_40(s)//"' is beyond the largest double")
-               return
+         if (len(text) == 0 .or. len(text) > 64 .or. &
+             verify(text, '0123456789+-.eEdDnaNAiIfFtTyY') /= 0) then
+            if (index(text, ',') > 0) then
+               call fatal_error(err, where//": '"//printable_40(text)//"' is not a " &
+                                //'number (a decimal comma? write a point)')
+            else
+               call fatal_error(err, where//": '"//printable_40(text)//"' is not a number")
             end if
-            read (s, *, iostat=stat) x
+            return
          end if
-         if (stat /= 0) then
-            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable_40(s)//"' is not a number")
-         else if (.not. ieee_is_finite(x)) then
-            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable_40(s)//"' is not finite (NaN and Inf are refused)")
+         call parse_real(text, where, x, err)
+         if (allocated(err)) then   ! 'invalid WHERE: ...' as 'WHERE: ...'
+            if (index(err%message, 'invalid '//where) == 1) &
+               err%message = err%message(len('invalid ') + 1:)
          end if
       end subroutine parse_number
    end subroutine parse_row
+
+   !> The separator of a header line: the one of ',', ';', tab that occurs most often
+   !> outside quotes (ties in that order; none: ',').
+   pure function detect_separator(row) result(sep)
+      character(len=*), intent(in) :: row   !! the header line
+      character(len=1) :: sep
+      integer :: counts(size(separators)), i, k
+      logical :: inside
+      counts = 0
+      inside = .false.
+      do i = 1, len(row)
+         if (row(i:i) == '"') inside = .not. inside
+         if (inside) cycle
+         do k = 1, size(separators)
+            if (row(i:i) == separators(k)) counts(k) = counts(k) + 1
+         end do
+      end do
+      sep = separators(maxloc(counts, dim=1))
+   end function detect_separator
+
+   !> The next field of `row` from position `start` (updated to the start of the field
+   !> after; beyond len(row) + 1 after the last): blanks around it removed (and tabs,
+   !> unless the tab separates), a quoted field's quotes removed ("" inside: one quote).
+   pure subroutine next_field(row, sep, start, field, quoted, error)
+      character(len=*), intent(in) :: row               !! the line
+      character(len=1), intent(in) :: sep               !! the separator
+      integer, intent(inout) :: start                   !! where the field starts
+      character(len=:), allocatable, intent(out) :: field  !! its text
+      logical, intent(out) :: quoted                    !! it was quoted
+      type(error_t), allocatable, intent(out) :: error  !! an unclosed quote, text after one
+      character(len=:), allocatable :: blanks
+      integer :: i, j, next, open_at
+      blanks = ' '
+      if (sep /= achar(9)) blanks = ' '//achar(9)
+      quoted = .false.
+      i = start
+      do while (i <= len(row))
+         if (index(blanks, row(i:i)) == 0) exit
+         i = i + 1
+      end do
+      if (i <= len(row)) quoted = row(i:i) == '"'
+      if (.not. quoted) then
+         next = index(row(start:), sep)
+         if (next == 0) then
+            field = trim_blanks(row(start:))
+            start = len(row) + 2
+         else
+            field = trim_blanks(row(start:start + next - 2))
+            start = start + next
+         end if
+         return
+      end if
+      open_at = i
+      field = ''
+      j = i + 1
+      do
+         if (j > len(row)) then
+            call fatal_error(error, 'the quote opened at character '//to_str(open_at)// &
+                             ' is not closed')
+            return
+         end if
+         if (row(j:j) == '"') then
+            if (j < len(row)) then
+               if (row(j + 1:j + 1) == '"') then
+                  field = field//'"'
+                  j = j + 2
+                  cycle
+               end if
+            end if
+            exit
+         end if
+         next = index(row(j:), '"')
+         if (next == 0) next = len(row) - j + 2
+         field = field//row(j:j + next - 2)
+         j = j + next - 1
+      end do
+      i = j + 1   ! after the closing quote: blanks, then the separator or the end
+      do while (i <= len(row))
+         if (index(blanks, row(i:i)) == 0) exit
+         i = i + 1
+      end do
+      if (i > len(row)) then
+         start = len(row) + 2
+      else if (row(i:i) == sep) then
+         start = i + 1
+      else
+         call fatal_error(error, "text after the quote closed at character "//to_str(j)// &
+                          ' (a quoted field ends at the separator '//separator_name(sep)//')')
+      end if
+   contains
+      pure function trim_blanks(t) result(u)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: u
+         integer :: a, b
+         a = 1
+         b = len(t)
+         do while (a <= b)
+            if (index(blanks, t(a:a)) == 0) exit
+            a = a + 1
+         end do
+         do while (b >= a)
+            if (index(blanks, t(b:b)) == 0) exit
+            b = b - 1
+         end do
+         u = t(a:b)
+      end function trim_blanks
+   end subroutine next_field
+
+   !> ',' as "','", a tab as 'tab'.
+   pure function separator_name(sep) result(t)
+      character(len=1), intent(in) :: sep
+      character(len=:), allocatable :: t
+      if (sep == achar(9)) then
+         t = 'tab'
+      else
+         t = "'"//sep//"'"
+      end if
+   end function separator_name
+
+   !> What the reader detected that differs from a plain comma-separated file, e.g.
+   !> "separator ';', BOM removed, quoted names" ('' for a plain file).
+   function csv_format(series) result(t)
+      type(series_t), intent(in) :: series   !! as read
+      character(len=:), allocatable :: t
+      t = ''
+      if (series%separator /= ',') t = 'separator '//separator_name(series%separator)
+      if (series%bom) t = t//', BOM removed'
+      if (series%quoted) t = t//', quoted names'
+      if (len(t) > 0) then
+         if (t(1:1) == ',') t = t(3:)
+      end if
+   end function csv_format
 
    !> `name` is `prefix` followed by digits only.
    pure logical function angle_name(name, prefix)
