@@ -2,7 +2,7 @@
 !> Exit status: 0 success, 1 a run that started and failed, 2 invalid input.
 program dpend
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-   use dpend_error, only: error_t
+   use dpend_error, only: error_t, exit_status
    use dpend_cli, only: arg_t, get_arguments
    use dpend_config, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
@@ -104,7 +104,7 @@ contains
       type(arg_t), intent(in) :: sub(:)
       type(run_config_t) :: cfg
       type(error_t), allocatable :: error
-      logical :: help, failed
+      logical :: help
       character(len=:), allocatable :: summary
       call parse_simulate(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend simulate: '//error%message)
@@ -112,11 +112,8 @@ contains
          write (output_unit, '(a)') simulate_help()
          return
       end if
-      call run_simulate(cfg, error, failed, summary)
-      if (allocated(error)) then
-         if (failed) call fail(1, 'dpend simulate: '//error%message)
-         call fail(2, 'dpend simulate: '//error%message)
-      end if
+      call run_simulate(cfg, error, summary)
+      if (allocated(error)) call fail(exit_status(error), 'dpend simulate: '//error%message)
       write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
@@ -129,37 +126,31 @@ contains
       type(chaos_config_t) :: ch
       type(error_t), allocatable :: error
       character(len=:), allocatable :: summary
-      logical :: help, failed
+      logical :: help
       call parse_chaos(command, sub, cfg, ch, help, error)
       if (allocated(error)) call fail(2, 'dpend '//command//': '//error%message)
       if (help) then
          write (output_unit, '(a)') chaos_help(command)
          return
       end if
-      call run_chaos(cfg, ch, summary, error, failed)
+      call run_chaos(cfg, ch, summary, error)
       if (len(summary) > 0) write (output_unit, '(a)') summary
-      if (allocated(error)) then
-         if (failed) call fail(1, 'dpend '//command//': '//error%message)
-         call fail(2, 'dpend '//command//': '//error%message)
-      end if
+      if (allocated(error)) call fail(exit_status(error), 'dpend '//command//': '//error%message)
    end subroutine chaos
 
    subroutine study(sub)
       type(arg_t), intent(in) :: sub(:)
       type(study_config_t) :: cfg
       type(error_t), allocatable :: error
-      logical :: help, failed
+      logical :: help
       call parse_study(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend study: '//error%message)
       if (help) then
          write (output_unit, '(a)') study_help()
          return
       end if
-      call run_study_command(cfg, error, failed)
-      if (allocated(error)) then
-         if (failed) call fail(1, 'dpend study: '//error%message)
-         call fail(2, 'dpend study: '//error%message)
-      end if
+      call run_study_command(cfg, error)
+      if (allocated(error)) call fail(exit_status(error), 'dpend study: '//error%message)
    end subroutine study
 
    !> `dpend animate FILE.h5 [options]`: an animated GIF through gnuplot.
@@ -168,18 +159,15 @@ contains
       type(animate_config_t) :: cfg
       type(error_t), allocatable :: error
       character(len=:), allocatable :: summary
-      logical :: help, failed
+      logical :: help
       call parse_animate(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend animate: '//error%message)
       if (help) then
          write (output_unit, '(a)') animate_help()
          return
       end if
-      call run_animate(cfg, summary, error, failed)
-      if (allocated(error)) then
-         if (failed) call fail(1, 'dpend animate: '//error%message)
-         call fail(2, 'dpend animate: '//error%message)
-      end if
+      call run_animate(cfg, summary, error)
+      if (allocated(error)) call fail(exit_status(error), 'dpend animate: '//error%message)
       write (output_unit, '(a)') 'dpend animate: '//summary
    end subroutine animate
 
@@ -188,18 +176,15 @@ contains
       type(arg_t), intent(in) :: sub(:)
       type(fit_config_t) :: cfg
       type(error_t), allocatable :: error
-      logical :: help, failed
+      logical :: help
       call parse_fit(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend fit: '//error%message)
       if (help) then
          write (output_unit, '(a)') fit_help()
          return
       end if
-      call run_fit(cfg, error, failed)
-      if (allocated(error)) then
-         if (failed) call fail(1, 'dpend fit: '//error%message)
-         call fail(2, 'dpend fit: '//error%message)
-      end if
+      call run_fit(cfg, error)
+      if (allocated(error)) call fail(exit_status(error), 'dpend fit: '//error%message)
    end subroutine fit
 
    !> `dpend models`: every model of the factory's catalogue with its coordinates,
@@ -411,11 +396,8 @@ contains
          return
       end if
       call run_sweep(cfg, summary, error)
-      if (allocated(error)) then
-         ! refused input (found when the output is examined) or a run that failed
-         if (index(error%message, 'invalid ') == 1) call fail(2, 'dpend sweep: '//error%message)
-         call fail(1, 'dpend sweep: '//error%message)
-      end if
+      ! refused input (found when the output is examined) or a run that failed
+      if (allocated(error)) call fail(exit_status(error), 'dpend sweep: '//error%message)
       ! once, after a run that computed (a refusal stays one line); not with --quiet
       if (summary%blocks_computed > 0 .and. .not. cfg%quiet .and. len(slow_build_note()) > 0) &
          write (error_unit, '(a)') 'dpend sweep: '//slow_build_note()
@@ -509,11 +491,7 @@ contains
       else
          call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
       end if
-      if (allocated(error)) then
-         if (index(error%message, 'sweep-compare: invalid') == 1) &
-            call fail(2, 'dpend '//error%message)
-         call fail(merge(2, 1, .not. agreement), 'dpend '//error%message)
-      end if
+      if (allocated(error)) call fail(exit_status(error), 'dpend '//error%message)
    end subroutine sweep_compare
 
    !> One line on stderr, then exit with `code` (1 or 2) and no runtime noise. The

@@ -9,7 +9,7 @@
 !> only as arguments, never inside code; it runs without a shell.
 module dpend_animate
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, parse_int, parse_real, to_str, &
                         is_long_option
    use dpend_hdf5, only: h5file_t, is_hdf5
@@ -431,10 +431,22 @@ contains
       path = dir//'/frame_'//trim(buf)//'.png'
    end function frame_name
 
+   !> Read, check, resample, draw and write the animation.
+   !> The error's kind says whether the input was refused (nothing written) or
+   !> the run started and failed (exit status 1).
+   subroutine run_animate(cfg, summary, error)
+      type(animate_config_t), intent(in) :: cfg              !! the configuration
+      character(len=:), allocatable, intent(out) :: summary  !! what was written
+      type(error_t), allocatable, intent(out) :: error       !! what went wrong
+      logical :: failed
+      call run_animate_body(cfg, summary, error, failed)
+      if (allocated(error) .and. failed) call run_failure(error)
+   end subroutine run_animate
+
    !> Read, check, resample, draw and write. `error` with `failed` false: refused
    !> input, nothing written; with `failed` true: the run failed (nothing written
    !> either: temporary files are removed).
-   subroutine run_animate(cfg, summary, error, failed)
+   subroutine run_animate_body(cfg, summary, error, failed)
       type(animate_config_t), intent(in) :: cfg         !! the configuration
       character(len=:), allocatable, intent(out) :: summary  !! what was written
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
@@ -722,7 +734,7 @@ contains
          end if
          call out%discard()
       end subroutine cleanup
-   end subroutine run_animate
+   end subroutine run_animate_body
 
    !> Write rows t(i), cols(:, i).
    subroutine write_table(path, t, cols, stat)

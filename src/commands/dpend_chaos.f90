@@ -8,7 +8,7 @@
 !> whose last line is the result for scripts.
 module dpend_chaos
    use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure, error_bad_input, error_run_failed
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help, &
@@ -507,15 +507,15 @@ contains
    !> Run the command. `error` is set for invalid input (nothing written) or for
    !> a failed run (`failed`; the file holds what was computed before). `summary`
    !> is the text for standard output, its last line the scripting line.
-   subroutine run_chaos(cfg, ch, summary, error, failed)
+   subroutine run_chaos(cfg, ch, summary, error)
       type(run_config_t), intent(in) :: cfg             !! validated run configuration
       type(chaos_config_t), intent(in) :: ch            !! validated chaos settings
       character(len=:), allocatable, intent(out) :: summary  !! standard output
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
-      logical, intent(out) :: failed                    !! the run started but failed
       class(integrator_t), allocatable :: integ
       type(output_t) :: out
       type(error_t), allocatable :: werr
+      logical :: failed   ! the run stopped early: its file holds what was computed
       failed = .false.
       summary = ''
       call new_integrator(cfg%method, integ, error, method_options_t(rtol=cfg%rtol, &
@@ -541,11 +541,11 @@ contains
       end if
       call out%explain(error)
       call out%discard()
-      ! refused input found only now (e.g. an energy with no state on the section)
-      ! keeps exit status 2; any other error ends a run that had started
+      ! refused input found only now (made as error_bad_input: an energy with no state
+      ! on the section) keeps exit status 2; any other error ends a run that had started
       if (allocated(error)) then
-         if (index(error%message, 'invalid ') /= 1) failed = .true.
-         if (index(error%message, 'run stopped') /= 1) summary = ''
+         if (.not. failed) summary = ''
+         call run_failure(error)
       end if
    end subroutine run_chaos
 
@@ -823,7 +823,7 @@ contains
       if (n_found == 0) then
          call fatal_error(error, 'invalid energy: E = '//num(e)//' J has no state on the'// &
                           ' section q'//to_str(ch%section_link)//' = '//num(ch%section_angle) &
-                          //' (it lies below the potential energy there)')
+                          //' (it lies below the potential energy there)', error_bad_input)
          return
       end if
       section = angle_crossing_t(index=ch%section_link, angle=ch%section_angle, wrap=.true.)
@@ -935,7 +935,7 @@ contains
       logical, intent(inout) :: failed
       failed = .true.
       call fatal_error(error, 'run stopped: '//status//"; '"//output// &
-                       "' holds what was computed before the failure")
+                       "' holds what was computed before the failure", error_run_failed)
    end subroutine stopped
 
    !> " (x % of ref)" when ref /= 0.

@@ -8,7 +8,7 @@
 module dpend_fit_command
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp, pi
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, pad, printable
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
@@ -314,8 +314,19 @@ contains
       prob%max_steps = fc%run%max_steps
    end function fit_problem
 
+   !> Run the fit and write its report and file.
+   !> The error's kind says whether the input was refused (nothing written) or
+   !> the run started and failed (exit status 1).
+   subroutine run_fit(fc, error)
+      type(fit_config_t), intent(in) :: fc              !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical :: failed
+      call run_fit_body(fc, error, failed)
+      if (allocated(error) .and. failed) call run_failure(error)
+   end subroutine run_fit
+
    !> Fit, print the report, write the HDF5 file.
-   subroutine run_fit(fc, error, failed)
+   subroutine run_fit_body(fc, error, failed)
       type(fit_config_t), intent(in) :: fc              !! validated configuration
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the fit started and failed
@@ -345,7 +356,7 @@ contains
          return
       end if
       write (output_unit, '(a)') "dpend fit: wrote '"//fc%run%output//"'"
-   end subroutine run_fit
+   end subroutine run_fit_body
 
    !> Names and units of the parameters.
    subroutine parameter_names(n, damping, names, units)

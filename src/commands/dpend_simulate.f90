@@ -2,7 +2,7 @@
 !> into an HDF5 file (layout in docs/hdf5-layout.md).
 module dpend_simulate
    use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
@@ -168,17 +168,15 @@ contains
    !> `summary`: 'rk4: 10000 steps, 40000 f evaluations, relative energy error
    !> 3.2e-13, 0.05 s' (steps, right-hand-side evaluations, |E(t_end) − E(0)| over
    !> the energy scale, wall time), '' when nothing was integrated.
-   subroutine run_simulate(cfg, error, failed, summary)
+   subroutine run_simulate(cfg, error, summary)
       type(run_config_t), intent(in) :: cfg             !! validated configuration
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
-      logical, intent(out) :: failed                    !! the run started but stopped early
       character(len=:), allocatable, intent(out), optional :: summary  !! the closing line
       class(integrator_t), allocatable :: integ
       type(trajectory_t) :: traj
       type(error_t), allocatable :: werr
       type(output_t) :: out
       real(dp) :: t0, e0, e1
-      failed = .false.
       if (present(summary)) summary = ''
       t0 = wall_seconds()
       call new_integrator(cfg%method, integ, error, method_options_t(rtol=cfg%rtol, &
@@ -208,15 +206,13 @@ contains
       call out%explain(werr)
       call out%discard()
       if (allocated(werr)) then
-         failed = .true.
          call move_alloc(werr, error)
+         call run_failure(error)
          return
       end if
-      if (traj%status /= 'completed') then
-         failed = .true.
+      if (traj%status /= 'completed') &
          call fatal_error(error, 'run stopped: '//traj%status//"; '"//cfg%output// &
-                          "' holds the samples before the failure")
-      end if
+                          "' holds the samples before the failure", error_run_failed)
    end subroutine run_simulate
 
    !> Integrate from t = 0 to t_end with the configured method, keeping every

@@ -5,7 +5,7 @@ module dpend_study_command
    use, intrinsic :: iso_fortran_env, only: output_unit, compiler_version, compiler_options
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use dpend_fit, only: fit_t
@@ -13,7 +13,8 @@ module dpend_study_command
    use dpend_integrator, only: stat_ok
    use dpend_os, only: host_name, cpu_model, executable_path, make_directories, &
                            find_script, &
-                           directory_of, run_program, io_failure_reason
+                           directory_of, run_program, io_failure_reason, path_kind, &
+                           path_missing
    use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
    use dpend_cli, only: to_str, arg_t
@@ -52,11 +53,22 @@ contains
 
    ! ================================================================ command
 
+   !> Run the study, write the file and summary, draw the figures.
+   !> The error's kind says whether the input was refused (nothing written) or
+   !> the run started and failed (exit status 1).
+   subroutine run_study_command(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! validated configuration
+      type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical :: failed
+      call run_study_command_body(cfg, error, failed)
+      if (allocated(error) .and. failed) call run_failure(error)
+   end subroutine run_study_command
+
    !> Run the study of `cfg` (validated): write the HDF5 file and the summary,
    !> print the summary, draw the figures. `error` with `failed` false: invalid
    !> output (nothing written); with `failed` true: the study ran but a later
    !> stage (writing, figures) failed.
-   subroutine run_study_command(cfg, error, failed)
+   subroutine run_study_command_body(cfg, error, failed)
       type(study_config_t), intent(in) :: cfg           !! validated configuration
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the study ran, then failed
@@ -76,8 +88,10 @@ contains
       call check_output_path(cfg%output, cfg%force, error)
       if (.not. allocated(error)) call check_output_path(md, cfg%force, error, &
                                                           '--output (its summary)')
-      if (allocated(error)) then
-         if (index(error%message, 'does not exist') == 0) return
+      ! refused only because the directory is missing: the study makes it (out/study by
+      ! default)
+      if (allocated(error) .and. path_kind(directory_of(cfg%output), .true.) == path_missing) &
+         then
          deallocate (error)
          call make_directories(directory_of(cfg%output), error)
          if (allocated(error)) then
@@ -85,6 +99,7 @@ contains
             return
          end if
       end if
+      if (allocated(error)) return
       call h5_out%begin(cfg%output, cfg%force, error)
       if (.not. allocated(error)) call md_out%begin(md, cfg%force, error, &
                                                      '--output (its summary)')
@@ -144,7 +159,7 @@ contains
          return
       end if
       failed = .false.
-   end subroutine run_study_command
+   end subroutine run_study_command_body
 
    !> The summary file next to the HDF5 file: FILE.h5 → FILE.md.
    pure function summary_path(output) result(path)

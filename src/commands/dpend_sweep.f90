@@ -27,7 +27,7 @@ module dpend_sweep
                            in_range
    use dpend_model, only: max_dof
    use dpend_kinds, only: dp, i8, half_pi
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_output, only: output_t, check_output_path
    use dpend_os, only: path_kind, path_missing, path_file, remove_file
    use dpend_config, only: check_regular_file
@@ -1064,9 +1064,11 @@ contains
       if (failed) then
          error%message = error%message//"; '"//working_file(cfg%run%output)// &
                          "' holds the blocks done so far: rerun to resume"
+         call run_failure(error)
          return
       end if
       call finalize_file(cfg%run%output, setup, error)
+      if (allocated(error)) call run_failure(error)
 
    contains
 
@@ -1137,7 +1139,10 @@ contains
          call read_stored(part, done, complete, error)
          if (allocated(error)) return
          call h5%open(part, 'rw', error)
-         if (allocated(error)) error%message = error%message//' (use --force to start again)'
+         if (allocated(error)) then
+            error%message = error%message//' (use --force to start again)'
+            call run_failure(error)
+         end if
          if (.not. allocated(error) .and. .not. setup%checksum) call check_unfiltered()
          return
       end if
@@ -1148,6 +1153,7 @@ contains
       call install_file(h5, work, setup, error)
       if (allocated(error)) then
          error%message = 'cannot create the working file: '//error%message
+         call run_failure(error)
          return
       end if
       call h5%open(part, 'rw', error)

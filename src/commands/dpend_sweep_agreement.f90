@@ -14,7 +14,7 @@
 module dpend_sweep_agreement
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
@@ -123,7 +123,10 @@ contains
       if (.not. allocated(error)) call out%commit(error)
       call out%explain(error)
       call out%discard()
-      if (allocated(error)) error%message = 'sweep-compare: '//error%message
+      if (allocated(error)) then   ! writing the agreement file failed: a failed run
+         error%message = 'sweep-compare: '//error%message
+         call run_failure(error)
+      end if
    contains
       subroutine refuse(what)
          character(len=*), intent(in) :: what
