@@ -70,6 +70,9 @@ module dpend_config
                                                !! integration (adaptive methods)
       character(len=:), allocatable :: output  !! output file
       logical :: force = .false.               !! overwrite an existing output file
+      !> The per-link flags given so far (' --m1 --q '), so that two forms of one
+      !> quantity on the command line are refused (`apply_run_flag`).
+      character(len=:), allocatable :: flags_seen
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -695,6 +698,8 @@ contains
       logical, intent(out) :: matched                   !! whether it was a common flag
       type(error_t), allocatable, intent(out) :: error  !! invalid value
       matched = .true.
+      call check_forms(error)
+      if (allocated(error)) return
       select case (name)
       case ('--links'); call parse_int(value, name, cfg%links, error)
       case ('--m'); call parse_list(1, cfg%m)
@@ -730,6 +735,47 @@ contains
          matched = .false.
       end select
    contains
+      !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
+      !> `--q1` with `--theta1`): which one wins would depend on their order. The
+      !> same flag twice is the same form (the last wins, as before).
+      subroutine check_forms(err)
+         type(error_t), allocatable, intent(out) :: err
+         character(len=:), allocatable :: others
+         integer :: k
+         select case (name)
+         case ('--m', '--l', '--w')
+            others = name//'1 '//name//'2'
+         case ('--q')
+            others = '--q1 --q2 --theta1 --theta2'
+         case ('--m1', '--m2', '--l1', '--l2', '--w1', '--w2')
+            others = name(:3)
+         case ('--q1', '--q2')
+            others = '--q --theta'//name(4:4)
+         case ('--theta1', '--theta2')
+            others = '--q --q'//name(8:8)
+         case default
+            return
+         end select
+         if (.not. allocated(cfg%flags_seen)) cfg%flags_seen = ' '
+         others = ' '//others//' '
+         do k = 1, len(others) - 1
+            if (others(k:k) /= ' ' .or. others(k + 1:k + 1) == ' ') cycle
+            if (index(cfg%flags_seen, ' '//first_word(others(k + 1:))//' ') > 0) then
+               call fatal_error(err, 'invalid '//name//': '//first_word(others(k + 1:))// &
+                                ' was given too; they are two forms of one quantity ' &
+                                //'(--m, --l, --q, --w: one value per link; --m1 ... for ' &
+                                //'two links); give one of them')
+               return
+            end if
+         end do
+         if (index(cfg%flags_seen, ' '//name//' ') == 0) &
+            cfg%flags_seen = cfg%flags_seen//name//' '
+      end subroutine check_forms
+      pure function first_word(t) result(w)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: w
+         w = t(:index(t//' ', ' ') - 1)
+      end function first_word
       !> q_k = θ_k − π/2 (θ from the hanging position, counter-clockwise).
       subroutine parse_theta(k)
          integer, intent(in) :: k
