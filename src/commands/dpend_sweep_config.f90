@@ -35,7 +35,7 @@ module dpend_sweep_config
    use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
                            max_angle, max_angular_velocity, max_time
-   use dpend_limits, only: min_mass, max_mass, min_length, max_length
+   use dpend_limits, only: check_parameter, parameter_mass, parameter_length
    use dpend_chain, only: chain_t, chain_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
@@ -459,13 +459,13 @@ contains
             x1 = merge(cfg%min1, cfg%max1, i == 1)
             x2 = merge(cfg%min2, cfg%max2, j == 1)
             p = pixel_parameters(cfg, p1, x1, p2, x2)
-            call check_range(what//' (m1 of a pixel)', p(1), min_mass, max_mass, 'kg', error)
-            if (.not. allocated(error)) call check_range(what//' (m2 of a pixel)', p(2), &
-                                                         min_mass, max_mass, 'kg', error)
-            if (.not. allocated(error)) call check_range(what//' (l1 of a pixel)', p(3), &
-                                                         min_length, max_length, 'm', error)
-            if (.not. allocated(error)) call check_range(what//' (l2 of a pixel)', p(4), &
-                                                         min_length, max_length, 'm', error)
+            call check_parameter(parameter_mass, what//' (m1 of a pixel)', p(1), error)
+            if (.not. allocated(error)) call check_parameter(parameter_mass, &
+                                                             what//' (m2 of a pixel)', p(2), error)
+            if (.not. allocated(error)) call check_parameter(parameter_length, &
+                                                             what//' (l1 of a pixel)', p(3), error)
+            if (.not. allocated(error)) call check_parameter(parameter_length, &
+                                                             what//' (l2 of a pixel)', p(4), error)
             if (allocated(error)) return
             m = cfg%run%m(:cfg%run%links); l = cfg%run%l(:cfg%run%links)
             m(1:2) = p(1:2); l(1:2) = p(3:4)
