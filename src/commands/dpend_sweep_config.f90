@@ -72,6 +72,9 @@ module dpend_sweep_config
       character(len=:), allocatable :: ic_file     !! list of initial conditions ('' = grid)
       character(len=:), allocatable :: ic_dataset  !! dataset of an HDF5 list
       character(len=:), allocatable :: ic_angles   !! 'q' or 'theta'
+      !> Whether ic_dataset, ic_angles were given (flag or namelist): both describe the
+      !> list of --ic-file and are refused without it.
+      logical :: ic_dataset_given = .false., ic_angles_given = .false.
       character(len=:), allocatable :: time_unit   !! 's' or 'natural'
       character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
       integer :: block = 4096                      !! initial conditions per block
@@ -285,8 +288,8 @@ contains
          case ('--min2'); call parse_real(value, name, cfg%min2, error)
          case ('--max2'); call parse_real(value, name, cfg%max2, error)
          case ('--ic-file'); cfg%ic_file = value
-         case ('--ic-dataset'); cfg%ic_dataset = value
-         case ('--ic-angles'); cfg%ic_angles = value
+         case ('--ic-dataset'); cfg%ic_dataset = value; cfg%ic_dataset_given = .true.
+         case ('--ic-angles'); cfg%ic_angles = value; cfg%ic_angles_given = .true.
          case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value
          case ('--indicator'); cfg%indicator = value
@@ -324,7 +327,8 @@ contains
       axis1 = cfg%axis1; axis2 = cfg%axis2
       n1 = cfg%n1; n2 = cfg%n2
       min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
-      ic_file = cfg%ic_file; ic_dataset = cfg%ic_dataset; ic_angles = cfg%ic_angles
+      ! blank: not given in the file (then the current values stay)
+      ic_file = cfg%ic_file; ic_dataset = ''; ic_angles = ''
       time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
@@ -342,8 +346,13 @@ contains
       cfg%axis1 = trim(axis1); cfg%axis2 = trim(axis2)
       cfg%n1 = n1; cfg%n2 = n2
       cfg%min1 = min1; cfg%max1 = max1; cfg%min2 = min2; cfg%max2 = max2
-      cfg%ic_file = trim(ic_file); cfg%ic_dataset = trim(ic_dataset)
-      cfg%ic_angles = trim(ic_angles)
+      cfg%ic_file = trim(ic_file)
+      if (len_trim(ic_dataset) > 0) then
+         cfg%ic_dataset = trim(ic_dataset); cfg%ic_dataset_given = .true.
+      end if
+      if (len_trim(ic_angles) > 0) then
+         cfg%ic_angles = trim(ic_angles); cfg%ic_angles_given = .true.
+      end if
       cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
       cfg%indicator = trim(indicator)
       cfg%block = block; cfg%threads = threads
@@ -409,6 +418,12 @@ contains
                           ' s, above '//sci(max_time)//' s')
       end if
       if (allocated(error)) return
+      if (grid_mode(cfg) .and. (cfg%ic_angles_given .or. cfg%ic_dataset_given)) then
+         call fatal_error(error, 'invalid '//trim(merge('ic_angles ', 'ic_dataset', &
+                          cfg%ic_angles_given))//': given without ic_file (it describes ' &
+                          //'the list of --ic-file; a grid sweep has none) [--ic-file / &sweep]')
+         return
+      end if
       if (grid_mode(cfg)) then
          call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
          if (allocated(error)) return
