@@ -22,7 +22,8 @@
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str, overflows_real, to_lower, printable
+   use dpend_cli, only: to_str, real_str, to_lower, printable
+   use dpend_parse, only: read_real, quoted
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
@@ -439,27 +440,12 @@ contains
          character(len=*), intent(in) :: text, name
          real(dp), intent(out) :: x
          type(error_t), allocatable, intent(out) :: err
-         character(len=:), allocatable :: s
-         integer :: stat
-         s = trim(adjustl(text))
-         x = 0.0_dp
-         stat = 1
-         if (len(s) > 0 .and. len(s) <= 64 .and. scan(s, ' /*;:') == 0 .and. &
-             verify(s, '0123456789+-.eEdDnaNAiIfFtTyY') == 0) then
-            if (overflows_real(s)) then   ! reading it would overflow (debug: a trap)
-               call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)// &
-                                ": '"//printable_40(s)//"' is beyond the largest double")
-               return
-            end if
-            read (s, *, iostat=stat) x
-         end if
-         if (stat /= 0) then
-            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable_40(s)//"' is not a number")
-         else if (.not. ieee_is_finite(x)) then
-            call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//": '"// &
-                             printable_40(s)//"' is not finite (NaN and Inf are refused)")
-         end if
+         character(len=:), allocatable :: why
+         ! the one strict parser (dpend_parse): blanks around the field are allowed
+         call read_real(trim(adjustl(text)), x, why)
+         if (len(why) > 0) call fatal_error(err, 'line '//to_str(line)//', column '// &
+                                            trim(name)//': '//quoted(trim(adjustl(text)))// &
+                                            ' '//why)
       end subroutine parse_number
    end subroutine parse_row
 
