@@ -569,7 +569,7 @@ contains
       character(len=*), intent(in) :: group     !! group name
       character(len=*), intent(in) :: iomsg     !! the runtime's message
       character(len=:), allocatable :: msg
-      msg = "invalid config '"//filename//"' in &"//group//': '//trim(iomsg)
+      msg = "invalid config '"//printable(filename)//"' in &"//group//': '//trim(iomsg)
    end function namelist_error
 
    !> Read the groups of a run configuration present in `filename` into `cfg`.
@@ -625,7 +625,7 @@ contains
 
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=pendulum, iostat=stat, iomsg=msg)
@@ -826,7 +826,7 @@ contains
          integer :: comma
          comma = index(value, ',')
          if (comma == 0 .or. index(value(comma + 1:), ',') > 0) then
-            call fatal_error(error, 'invalid '//name//": '"//value//"' must be two " &
+            call fatal_error(error, 'invalid '//name//": '"//printable(value)//"' must be two " &
                              //'comma-separated numbers '//what)
             return
          end if

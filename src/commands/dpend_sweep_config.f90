@@ -40,7 +40,7 @@ module dpend_sweep_config
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
-   use dpend_cli, only: scan_help_config
+   use dpend_cli, only: scan_help_config, printable
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
@@ -268,7 +268,7 @@ contains
          case ('--stats'); cfg%stats = .true.; i = i + 1; cycle
          end select
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+            call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                              "' (dpend sweep --help lists the options)")
             return
          end if
@@ -334,7 +334,7 @@ contains
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=sweep, iostat=stat, iomsg=msg)
@@ -520,7 +520,7 @@ contains
          unit = 'rad/s'
       end if
       if (var == 0) then
-         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
+         call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
@@ -549,7 +549,7 @@ contains
       character(len=1) :: c
       c = achar(iachar('0') + k)
       if (links < 2) then
-         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: "// &
+         call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: "// &
                           accepted_axes(links)//'; parameter axes need 2 or more links)')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &

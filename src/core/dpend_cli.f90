@@ -102,7 +102,7 @@ contains
          call fatal_error(error, 'option '//name//' takes no value')
       else if (.not. matched) then
          if (allocated(error)) deallocate (error)
-         call fatal_error(error, "unknown option '"//name//"' (dpend "//command// &
+         call fatal_error(error, "unknown option '"//printable(name)//"' (dpend "//command// &
                           ' --help lists the options)')
       else if (missing) then
          if (allocated(error)) deallocate (error)

@@ -34,20 +34,36 @@ contains
 
    !> `s` with control characters escaped so that it prints on one line: tab `\t`,
    !> line feed `\n`, carriage return `\r`, a backslash `\\`, any other byte outside
-   !> printable ASCII (control bytes, DEL, bytes of UTF-8 sequences) `\xNN`.
-   pure function escaped(s) result(t)
-      character(len=*), intent(in) :: s  !! any bytes
+   !> printable ASCII (control bytes, DEL, bytes of UTF-8 sequences) `\xNN`. With
+   !> `controls_only` only control bytes and DEL are escaped (a backslash and UTF-8
+   !> stay): the last guard of a whole message, whose values are escaped already.
+   pure function escaped(s, controls_only) result(t)
+      character(len=*), intent(in) :: s              !! any bytes
+      logical, intent(in), optional :: controls_only !! leave '\' and bytes >= 128
       character(len=:), allocatable :: t
       character(len=*), parameter :: hex_digits = '0123456789ABCDEF'
       integer :: i, c, n
+      logical :: all_bytes
+      all_bytes = .true.
+      if (present(controls_only)) all_bytes = .not. controls_only
       n = 0
       do i = 1, len(s)
-         n = n + escaped_length(iachar(s(i:i)))
+         c = iachar(s(i:i))
+         if (.not. all_bytes .and. (c == 92 .or. c > 127)) then
+            n = n + 1
+         else
+            n = n + escaped_length(c)
+         end if
       end do
       allocate (character(len=n) :: t)
       n = 0
       do i = 1, len(s)
          c = iachar(s(i:i))
+         if (.not. all_bytes .and. (c == 92 .or. c > 127)) then
+            t(n + 1:n + 1) = s(i:i)
+            n = n + 1
+            cycle
+         end if
          select case (c)
          case (9); t(n + 1:n + 2) = '\t'
          case (10); t(n + 1:n + 2) = '\n'
