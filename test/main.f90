@@ -25,6 +25,7 @@ program tester
    use test_kapitza, only: collect_kapitza
    use test_gauss_damped, only: collect_gauss_damped
    use test_estimate, only: collect_estimate
+   use test_parse, only: collect_parse
    implicit none
 
    type :: suite_t
@@ -37,7 +38,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(21))
+   allocate (suites(22))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -59,6 +60,7 @@ program tester
    suites(19)%name = 'kapitza'; call collect_kapitza(suites(19)%tests)
    suites(20)%name = 'gauss_damped'; call collect_gauss_damped(suites(20)%tests)
    suites(21)%name = 'estimate'; call collect_estimate(suites(21)%tests)
+   suites(22)%name = 'parse'; call collect_parse(suites(22)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

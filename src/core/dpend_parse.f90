@@ -259,11 +259,12 @@ contains
          first = first + 1
       end do
       stat = 0
-      if (k - first + 1 <= 18) then   ! at most 18 digits: exact in integer(i8)
+      if (k - first + 1 <= 19) then   ! beyond 19 digits: beyond huge(1_i8); the read
+                                      ! refuses 19 digits above it (iostat, no trap)
          read (text(first:k), *, iostat=stat) n
          if (text(1:1) == '-') n = -n
       end if
-      if (k - first + 1 > 18 .or. stat /= 0 .or. n < lo .or. n > hi) then
+      if (k - first + 1 > 19 .or. stat /= 0 .or. n < lo .or. n > hi) then
          n = 0
          why = 'is beyond the integer range ['//int_text(lo)//', '//int_text(hi)//']'
       end if
