@@ -28,6 +28,10 @@ printf "&sweep ic_angles = 'theta' /\n" > "$_r2p/r2p_sweep_ic_angles.nml"
 printf '&study n_h = 3, n_h = 4 /\n' > "$_r2p/r2p_study_repeat.nml"
 printf '&pendulum m = 1, 1 /\n&integration t_end = 0.01 /\n' > "$_r2p/r2p_file_list.nml"
 printf "&pendulum m = 2*1.5, l(1) = 2, l(2) = 0.5 /\n&integration method = 'rk4',\tdt = .5e-3, t_end = 5e-3 /\n&output file = 'a%%b=c.h5' /\n" > "$_r2p/r2p_valid.nml"
+printf '0 0 0 1e400\n' > "$_r2p/r2p_list_huge.txt"
+printf '0;1 0 0 0\n' > "$_r2p/r2p_list_semicolon.txt"
+printf '0 0 0x1 0\n' > "$_r2p/r2p_list_hex.txt"
+printf '0\t0.1 0 0\n0.1, 0, 0,0 # a comment\n' > "$_r2p/r2p_list_ok.txt"
 printf 't,theta1\n0,0.1\n0.1,0.09x\n0.2,0.06\n' > "$_r2p/r2p_fit_junk.csv"
 printf 't,theta1\n0,0.1\n0.1,0.0 9\n0.2,0.06\n' > "$_r2p/r2p_fit_blank.csv"
 printf 't,theta1\n0,0.1\n0.1,0x1\n0.2,0.06\n' > "$_r2p/r2p_fit_hex.csv"
@@ -113,3 +117,8 @@ refuse  r2p-csv-hex           'line 3'      -- fit r2p_fit_hex.csv --output f.h5
 refuse  r2p-ic-angles-no-file ic_angles     -- sweep --output s.h5 --ic-angles theta
 refuse  r2p-ic-dataset-no-file ic_dataset   -- sweep --output s.h5 --ic-dataset /x
 refuse  r2p-ic-angles-nml     ic_angles     -- sweep --output s.h5 --config r2p_sweep_ic_angles.nml
+# ---- sweep: the text list of initial conditions through the strict parser
+refuse  r2p-list-huge         ic_file       -- sweep --output s.h5 --t-end 0.01 --ic-file r2p_list_huge.txt
+refuse  r2p-list-semicolon    ic_file       -- sweep --output s.h5 --t-end 0.01 --ic-file r2p_list_semicolon.txt
+refuse  r2p-list-hex          ic_file       -- sweep --output s.h5 --t-end 0.01 --ic-file r2p_list_hex.txt
+succeed r2p-list-ok              -- sweep --output s.h5 --t-end 0.01 --quiet --ic-file r2p_list_ok.txt
