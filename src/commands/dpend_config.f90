@@ -1012,15 +1012,7 @@ contains
           "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &
           nl//'  --max-steps N     most accepted steps of one integration of an adaptive'//nl// &
           '                    method (steps); reaching it stops the run; default ' &
-          //int8_text(cfg%max_steps)
+          //to_str(cfg%max_steps)
    end function run_flags_help
-
-   pure function int8_text(n) result(s)
-      integer(i8), intent(in) :: n
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      s = trim(buf)
-   end function int8_text
 
 end module dpend_config

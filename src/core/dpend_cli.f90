@@ -5,7 +5,8 @@ module dpend_cli
    use dpend_error, only: error_t, fatal_error
    !> the one strict parser and escaping helper; `printable` is `escaped` under the
    !> name the messages used before
-   use dpend_parse, only: read_real, read_int, quoted, overflows_real, printable => escaped
+   use dpend_parse, only: read_real, read_int, quoted, overflows_real, int_text, &
+                          printable => escaped
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
@@ -20,7 +21,8 @@ module dpend_cli
 
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
-      module procedure int_str, int8_str
+      module procedure int_str
+      procedure int_text   ! 64-bit: dpend_parse's
    end interface to_str
 
    !> One command-line argument.
@@ -294,18 +296,8 @@ contains
    pure function int_str(i) result(s)
       integer, intent(in) :: i  !! the number
       character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
+      s = int_text(int(i, i8))
    end function int_str
-
-   pure function int8_str(i) result(s)
-      integer(i8), intent(in) :: i  !! the number
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function int8_str
 
    !> The first pass of every command's parser: whether -h/--help was given and
    !> the file of the last `--config FILE` or `--config=FILE` ('' if none), so that

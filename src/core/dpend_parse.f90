@@ -20,7 +20,7 @@ module dpend_parse
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: read_real, read_int, escaped, quoted, overflows_real, number_end
+   public :: read_real, read_int, escaped, quoted, overflows_real, number_end, int_text
 
    !> Read a default or 64-bit integer token.
    interface read_int
