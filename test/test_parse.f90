@@ -183,8 +183,11 @@ contains
    !> The namelist pre-scan refuses what the namelist read would resolve silently.
    subroutine test_namelist(error)
       type(error_t), allocatable, intent(out) :: error
-      character(len=*), parameter :: file = '/tmp/dpend-test-parse.nml'
       character(len=1), parameter :: lf = achar(10)
+      character(len=64) :: file
+      integer :: clock
+      call system_clock(clock)   ! a name of its own: parallel test runs do not collide
+      write (file, '("/tmp/dpend-test-parse-", i0, ".nml")') clock
       call expect('&pendulum%m1 = 2 /', 'component syntax')
       call expect('&pendulum m1 = 2, g = 9.8, m1 = 3 /', "key 'm1' of &pendulum is given twice")
       call expect('&pendulum m = 1, 1, m1 = 5 /', "'m' (one value per link) and 'm1'")
@@ -204,11 +207,12 @@ contains
       call accept('&output file = "a%b=c.h5", force = .true. /')
       call accept('&initial q1 = -1.5 q2 = 0 w1 = 0, w2 = +0.0 /'//lf// &
                   '&pendulum m1 = 1, m2 = 2 /')
+      call execute_command_line('rm -f '//trim(file))
    contains
       subroutine write_file(text)
          character(len=*), intent(in) :: text
          integer :: unit
-         open (newunit=unit, file=file, status='replace', action='write')
+         open (newunit=unit, file=trim(file), status='replace', action='write')
          write (unit, '(a)') text
          close (unit)
       end subroutine write_file
@@ -217,7 +221,7 @@ contains
          type(error_t), allocatable :: err
          if (allocated(error)) return
          call write_file(text)
-         call check_groups(file, [character(len=16) :: 'pendulum', 'initial', &
+         call check_groups(trim(file), [character(len=16) :: 'pendulum', 'initial', &
                                   'integration', 'output'], err)
          call check_true(error, allocated(err), 'accepted: '//text)
          if (allocated(error)) return
@@ -229,7 +233,7 @@ contains
          type(error_t), allocatable :: err
          if (allocated(error)) return
          call write_file(text)
-         call check_groups(file, [character(len=16) :: 'pendulum', 'initial', &
+         call check_groups(trim(file), [character(len=16) :: 'pendulum', 'initial', &
                                   'integration', 'output'], err)
          if (allocated(err)) call fatal_error(error, 'refused: '//text//': '//err%message)
       end subroutine accept
