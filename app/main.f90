@@ -3,7 +3,7 @@
 program dpend
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use dpend_error, only: error_t, exit_status
-   use dpend_cli, only: arg_t, get_arguments
+   use dpend_cli, only: arg_t, get_arguments, printable
    use dpend_config, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
@@ -500,7 +500,9 @@ contains
    subroutine fail(code, message)
       integer, intent(in) :: code
       character(len=*), intent(in) :: message
-      write (error_unit, '(a)') message
+      ! one line whatever a value echoed in it holds (values are escaped where they
+      ! are echoed; this is the last guard): control bytes as \t \n \xNN
+      write (error_unit, '(a)') printable(message, controls_only=.true.)
       flush (error_unit)
       flush (output_unit)
       call c_exit(int(merge(1, 2, code == 1), c_int))

@@ -144,8 +144,11 @@ contains
       call check_true(error, index(err%message, 'invalid links: 0 is outside [1, ') == 1, &
                       err%message)
       if (allocated(error)) return
-      model = chain_model([1.0_dp], [1.0_dp], 0.0_dp, err)
-      call check_true(error, .not. allocated(err), 'g = 0 refused')
+      model = chain_model([1.0_dp], [1.0_dp], 0.0_dp, err)   ! the range table: g >= 1e-6
+      call check_true(error, allocated(err), 'g = 0 accepted')
+      if (allocated(error)) return
+      model = chain_model([1.0_dp], [1.0_dp], 9.8_dp, err)
+      call check_true(error, .not. allocated(err), 'g = 9.8 refused')
       if (allocated(error)) return
       call check_true(error, model%n_parameters() == 3 .and. model%n_outputs() == n_link_out, &
                       'parameter or output count')

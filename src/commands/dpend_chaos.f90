@@ -28,7 +28,7 @@ module dpend_chaos
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
-   use dpend_cli, only: scan_help_config, real_str
+   use dpend_cli, only: scan_help_config, real_str, printable
    use dpend_limits, only: in_range, check_range, check_count, check_memory, &
                            check_disk, &
                            sci, max_time, max_steps, max_samples, max_angle, &
@@ -220,7 +220,7 @@ contains
       section_direction = ch%section_direction
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=chaos, iostat=stat, iomsg=msg)
@@ -279,7 +279,7 @@ contains
             end if
          end select
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            call fatal_error(error, "unexpected argument '"//args(i)%s//"' (dpend "// &
+            call fatal_error(error, "unexpected argument '"//printable(args(i)%s)//"' (dpend "// &
                              command//' --help lists the options)')
             return
          end if

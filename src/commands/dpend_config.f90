@@ -15,8 +15,9 @@ module dpend_config
    use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_model, only: model_t, max_dof
-   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, overflows_real, &
-      to_lower, printable
+   use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, to_lower, printable, &
+      quoted
+   use dpend_parse, only: read_real, read_int
    use dpend_output, only: register_input
    use dpend_os, only: path_kind, path_missing, path_file, path_directory, &
       path_other, errno_text, directory_of
@@ -70,6 +71,9 @@ module dpend_config
                                                !! integration (adaptive methods)
       character(len=:), allocatable :: output  !! output file
       logical :: force = .false.               !! overwrite an existing output file
+      !> The per-link flags given so far (' --m1 --q '), so that two forms of one
+      !> quantity on the command line are refused (`apply_run_flag`).
+      character(len=:), allocatable :: flags_seen
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -126,64 +130,196 @@ contains
       if (allocated(error)) return
       call check_text_bytes(text, pre, error)
       if (allocated(error)) return
-      call check_number_tokens(text, pre, error)
-      if (allocated(error)) return
       call check_group_structure(text, known, pre, error)
+      if (allocated(error)) return
+      call check_number_tokens(text, pre, error)
    end subroutine check_groups
 
-   !> Refuse a number beyond the largest double anywhere in the file (outside quotes
-   !> and comments): the namelist read would overflow on it, a trap in debug builds,
-   !> before its value could be checked.
+   !> Read the keys and values of every group strictly, before the namelist read
+   !> (which resolves conflicts silently): refused, in one line naming the line, are
+   !> the component syntax '%' (`&pendulum%m1 = 2 /` is otherwise ignored), a key
+   !> given twice in one group (the last would win), two forms of one quantity in one
+   !> group (`m` with `m1`/`m2`, `l`, `q`, `w` alike: the list would win), and a value
+   !> that starts like a number but is not one of the strict grammar (`dpend_parse`:
+   !> '1;2', a 1,000-digit mantissa beyond the largest double, 'nan'; a repeat count
+   !> `r*value` is checked on both sides). Values that start with a letter (logicals,
+   !> names) and quoted strings are left to the namelist read.
    subroutine check_number_tokens(text, pre, error)
-      character(len=*), intent(in) :: text              !! the file
+      character(len=*), intent(in) :: text              !! the file (its groups checked)
       character(len=*), intent(in) :: pre               !! message prefix
-      type(error_t), allocatable, intent(out) :: error  !! the first such number
-      character(len=*), parameter :: delims = ' ,=/&()*;'//achar(9)//achar(10)//achar(13)
-      character :: quote
-      integer :: i, j, line
-      i = 1
+      type(error_t), allocatable, intent(out) :: error  !! the first problem
+      !> Pairs (list, scalar) of two forms of one quantity.
+      character(len=2), parameter :: forms(2, 8) = reshape([character(len=2) :: &
+         'm', 'm1', 'm', 'm2', 'l', 'l1', 'l', 'l2', 'q', 'q1', 'q', 'q2', 'w', 'w1', 'w', 'w2'], &
+         [2, 8])
+      character(len=*), parameter :: delims = ' ,=/'//achar(9)//achar(10)//achar(13)
+      integer, parameter :: max_keys = 1024   ! keys of one group compared (more: not)
+      character(len=64) :: keys(max_keys)
+      integer :: key_lines(max_keys)
+      character(len=:), allocatable :: group, tok, key, base
+      integer :: i, j, k, line, n_keys, depth
+      logical :: inside
+      n_keys = 0
+      inside = .false.
+      group = ''
       line = 1
+      i = 1
       do while (i <= len(text))
          select case (text(i:i))
          case (achar(10))
             line = line + 1
             i = i + 1
          case ("'", '"')                       ! a string: skip to its closing quote
-            quote = text(i:i)
-            i = i + 1
-            do while (i <= len(text))
-               if (text(i:i) == achar(10)) line = line + 1
-               if (text(i:i) == quote) exit
-               i = i + 1
-            end do
-            i = i + 1
+            j = index(text(i + 1:), text(i:i))
+            if (j == 0) j = len(text) - i + 1
+            line = line + count_lf(text(i:i + j))
+            i = i + j + 1
          case ('!')                            ! a comment: skip to the line end
-            do while (i <= len(text))
-               if (text(i:i) == achar(10)) exit
-               i = i + 1
+            j = index(text(i:), achar(10))
+            if (j == 0) exit
+            i = i + j - 1
+         case ('&', '$')
+            j = i + 1
+            do while (j <= len(text))
+               if (index(delims//'%!', text(j:j)) > 0) exit
+               j = j + 1
             end do
+            group = to_lower(text(i + 1:j - 1))
+            inside = group /= 'end'
+            n_keys = 0
+            i = j
+         case ('%')
+            call refuse("'%' (component syntax, as in &pendulum%m1) is not accepted; " &
+                        //'write the keys inside the group: &pendulum m1 = 2 /')
+            return
+         case ('/')
+            inside = .false.
+            i = i + 1
          case default
-            if (index(delims, text(i:i)) > 0) then
+            if (index(delims, text(i:i)) > 0 .or. .not. inside) then
                i = i + 1
                cycle
             end if
+            ! a token: up to a delimiter outside parentheses (subscripts 'q(1:3, 1)')
             j = i
-            do while (j < len(text))
-               if (index(delims, text(j + 1:j + 1)) > 0 .or. text(j + 1:j + 1) == '!' &
-                   .or. text(j + 1:j + 1) == "'" .or. text(j + 1:j + 1) == '"') exit
+            depth = 0
+            do while (j <= len(text))
+               if (text(j:j) == '(') depth = depth + 1
+               if (text(j:j) == ')') depth = depth - 1
+               if (depth <= 0 .and. index(delims//"!'"//'"%', text(j:j)) > 0) exit
+               if (text(j:j) == achar(10)) exit
                j = j + 1
             end do
-            if (j - i < 64) then
-               if (overflows_real(text(i:j))) then
-                  call fatal_error(error, pre//'line '//to_str(line)//": '"// &
-                                   printable(text(i:j))// &
-                                   "' is beyond the largest double (1.797e308)")
-                  return
+            tok = text(i:j - 1)
+            i = j
+            ! a key when the next character that is not a blank is '='
+            k = verify(text(j:), ' '//achar(9)//achar(13)//achar(10))
+            if (k > 0) k = j + k - 1
+            if (k > 0) then
+               if (text(k:k) == '=') then
+                  call add_key(to_lower(tok))
+                  if (allocated(error)) return
+                  cycle
                end if
             end if
-            i = j + 1
+            call check_value(tok)
+            if (allocated(error)) return
          end select
       end do
+   contains
+      !> Record key `k` of the current group; refuse a repeat or a second form.
+      subroutine add_key(k)
+         character(len=*), intent(in) :: k
+         integer :: n, p
+         character(len=:), allocatable :: b
+         key = ''
+         do n = 1, len(k)            ! without blanks: 'q (1:3, 1)' is 'q(1:3,1)'
+            if (index(' '//achar(9), k(n:n)) == 0) key = key//k(n:n)
+         end do
+         p = index(key, '(')
+         base = key
+         if (p > 0) base = key(:p - 1)
+         do n = 1, n_keys
+            b = trim(keys(n))
+            if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+            if (trim(keys(n)) == key .or. (b == base .and. (p == 0 .or. &
+                                                             index(keys(n), '(') == 0))) then
+               call refuse("key '"//printable(key)//"' of &"//printable(group)// &
+                           ' is given twice (also at line '//to_str(key_lines(n))// &
+                           '); give each key once')
+               return
+            end if
+            do p = 1, size(forms, 2)
+               if ((b == trim(forms(1, p)) .and. base == trim(forms(2, p))) .or. &
+                   (b == trim(forms(2, p)) .and. base == trim(forms(1, p)))) then
+                  call refuse("'"//trim(forms(1, p))//"' (one value per link) and '"// &
+                              trim(forms(2, p))//"' are two forms of one quantity in &"// &
+                              printable(group)//' (the other at line '// &
+                              to_str(key_lines(n))//'); give one of them')
+                  return
+               end if
+            end do
+         end do
+         if (n_keys == max_keys) return
+         n_keys = n_keys + 1
+         keys(n_keys) = key
+         key_lines(n_keys) = line
+      end subroutine add_key
+
+      !> Refuse a value that starts like a number but is not one (also r*value).
+      subroutine check_value(t)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: why, v
+         integer :: star, r
+         real(dp) :: x
+         v = t
+         star = index(t, '*')
+         if (star > 0) then
+            call read_int(t(:star - 1), r, why)
+            if (len(why) == 0 .and. r < 1) why = 'is not a repeat count >= 1'
+            if (len(why) > 0) then
+               call refuse(key_text()//quoted(t(:star - 1))//' (repeat count of '// &
+                           quoted(t)//') '//why)
+               return
+            end if
+            v = t(star + 1:)
+         end if
+         if (len(v) == 0) return                      ! 'r*': r null values
+         if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)) return
+         if (len(v) >= 2) then                        ! .true. / .false. / .t / .f
+            if (v(1:1) == '.' .and. index('tTfF', v(2:2)) > 0) return
+         end if
+         call read_real(v, x, why)
+         if (len(why) > 0) call refuse(key_text()//quoted(v)//' '//why)
+      end subroutine check_value
+
+      pure logical function non_finite(t)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: u
+         u = to_lower(t)
+         if (u(1:1) == '+' .or. u(1:1) == '-') u = u(2:)
+         non_finite = u == 'inf' .or. u == 'infinity' .or. u == 'nan'
+      end function non_finite
+
+      function key_text() result(s)
+         character(len=:), allocatable :: s
+         s = ''
+         if (allocated(key)) s = "key '"//printable(key)//"': "
+      end function key_text
+
+      subroutine refuse(msg)
+         character(len=*), intent(in) :: msg
+         call fatal_error(error, pre//'line '//to_str(line)//': '//msg)
+      end subroutine refuse
+
+      pure integer function count_lf(t)
+         character(len=*), intent(in) :: t
+         integer :: n
+         count_lf = 0
+         do n = 1, len(t)
+            if (t(n:n) == achar(10)) count_lf = count_lf + 1
+         end do
+      end function count_lf
    end subroutine check_number_tokens
 
    !> Refuse an input path that is not (a link to) a regular file, before anything
@@ -435,7 +571,7 @@ contains
       character(len=*), intent(in) :: group     !! group name
       character(len=*), intent(in) :: iomsg     !! the runtime's message
       character(len=:), allocatable :: msg
-      msg = "invalid config '"//filename//"' in &"//group//': '//trim(iomsg)
+      msg = "invalid config '"//printable(filename)//"' in &"//group//': '//trim(iomsg)
    end function namelist_error
 
    !> Read the groups of a run configuration present in `filename` into `cfg`.
@@ -491,7 +627,7 @@ contains
 
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=pendulum, iostat=stat, iomsg=msg)
@@ -564,6 +700,8 @@ contains
       logical, intent(out) :: matched                   !! whether it was a common flag
       type(error_t), allocatable, intent(out) :: error  !! invalid value
       matched = .true.
+      call check_forms(error)
+      if (allocated(error)) return
       select case (name)
       case ('--links'); call parse_int(value, name, cfg%links, error)
       case ('--m'); call parse_list(1, cfg%m)
@@ -599,6 +737,47 @@ contains
          matched = .false.
       end select
    contains
+      !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
+      !> `--q1` with `--theta1`): which one wins would depend on their order. The
+      !> same flag twice is the same form (the last wins, as before).
+      subroutine check_forms(err)
+         type(error_t), allocatable, intent(out) :: err
+         character(len=:), allocatable :: others
+         integer :: k
+         select case (name)
+         case ('--m', '--l', '--w')
+            others = name//'1 '//name//'2'
+         case ('--q')
+            others = '--q1 --q2 --theta1 --theta2'
+         case ('--m1', '--m2', '--l1', '--l2', '--w1', '--w2')
+            others = name(:3)
+         case ('--q1', '--q2')
+            others = '--q --theta'//name(4:4)
+         case ('--theta1', '--theta2')
+            others = '--q --q'//name(8:8)
+         case default
+            return
+         end select
+         if (.not. allocated(cfg%flags_seen)) cfg%flags_seen = ' '
+         others = ' '//others//' '
+         do k = 1, len(others) - 1
+            if (others(k:k) /= ' ' .or. others(k + 1:k + 1) == ' ') cycle
+            if (index(cfg%flags_seen, ' '//first_word(others(k + 1:))//' ') > 0) then
+               call fatal_error(err, 'invalid '//name//': '//first_word(others(k + 1:))// &
+                                ' was given too; they are two forms of one quantity ' &
+                                //'(--m, --l, --q, --w: one value per link; --m1 ... for ' &
+                                //'two links); give one of them')
+               return
+            end if
+         end do
+         if (index(cfg%flags_seen, ' '//name//' ') == 0) &
+            cfg%flags_seen = cfg%flags_seen//name//' '
+      end subroutine check_forms
+      pure function first_word(t) result(w)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: w
+         w = t(:index(t//' ', ' ') - 1)
+      end function first_word
       !> q_k = θ_k − π/2 (θ from the hanging position, counter-clockwise).
       subroutine parse_theta(k)
          integer, intent(in) :: k
@@ -649,7 +828,7 @@ contains
          integer :: comma
          comma = index(value, ',')
          if (comma == 0 .or. index(value(comma + 1:), ',') > 0) then
-            call fatal_error(error, 'invalid '//name//": '"//value//"' must be two " &
+            call fatal_error(error, 'invalid '//name//": '"//printable(value)//"' must be two " &
                              //'comma-separated numbers '//what)
             return
          end if
@@ -835,15 +1014,7 @@ contains
           "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &
           nl//'  --max-steps N     most accepted steps of one integration of an adaptive'//nl// &
           '                    method (steps); reaching it stops the run; default ' &
-          //int8_text(cfg%max_steps)
+          //to_str(cfg%max_steps)
    end function run_flags_help
-
-   pure function int8_text(n) result(s)
-      integer(i8), intent(in) :: n
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      s = trim(buf)
-   end function int8_text
 
 end module dpend_config

@@ -16,7 +16,7 @@ module dpend_simulate
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
-   use dpend_cli, only: scan_help_config
+   use dpend_cli, only: scan_help_config, printable
    use dpend_limits, only: check_count, check_memory, check_disk, &
                            max_samples, sci
    use dpend_os, only: available_memory_bytes
@@ -102,7 +102,7 @@ contains
             cycle
          end if
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+            call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                              "' (dpend simulate --help lists the options)")
             return
          end if

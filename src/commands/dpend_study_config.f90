@@ -27,7 +27,7 @@ module dpend_study_config
                            max_time, max_steps, min_rtol, min_atol, max_atol, max_omega, &
                            max_threads
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use dpend_cli, only: scan_help_config
+   use dpend_cli, only: scan_help_config, printable
    implicit none
    private
    public :: study_config_t, study_case_t, study_method_t
@@ -331,7 +331,7 @@ contains
             cfg%figures = .false.; i = i + 1; cycle
          end select
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+            call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                              "' (dpend study --help lists the options)")
             return
          end if
@@ -482,7 +482,8 @@ contains
       call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
       if (allocated(error)) return
       if (rcfg%links /= 2) then
-         call fatal_error(error, "invalid links in '"//filename//"': "//to_str(rcfg%links)// &
+         call fatal_error(error, "invalid links in '"//printable(filename)//"': "// &
+                          to_str(rcfg%links)// &
                           ' (the cases of the study carry their links: case_links(i); ' &
                           //'&pendulum gives the lists m, l, one value per link)')
          return
@@ -511,7 +512,7 @@ contains
 
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=study, iostat=stat, iomsg=msg)
@@ -524,7 +525,7 @@ contains
       n = count(len_trim(case_name) > 0)
       if (n > 0) then
          if (any(len_trim(case_name(1:n)) == 0)) then
-            call fatal_error(error, "invalid config '"//filename// &
+            call fatal_error(error, "invalid config '"//printable(filename)// &
                              "' in &study: case_name(1..n) must be set without gaps")
             return
          end if
@@ -551,7 +552,7 @@ contains
       n = count(len_trim(method) > 0)
       if (n > 0) then
          if (any(len_trim(method(1:n)) == 0)) then
-            call fatal_error(error, "invalid config '"//filename// &
+            call fatal_error(error, "invalid config '"//printable(filename)// &
                              "' in &study: method(1..n) must be set without gaps")
             return
          end if
@@ -604,7 +605,7 @@ contains
          integer :: links, k
          character(len=:), allocatable :: where
          links = merge(case_links(i), 2, case_links(i) /= 0)
-         where = "in '"//filename//"' (case '"//trim(case_name(i))//"')"
+         where = "in '"//printable(filename)//"' (case '"//printable(trim(case_name(i)))//"')"
          if (links < 1 .or. links > max_dof) then
             call fatal_error(error, 'invalid case_links('//to_str(i)//'): '//to_str(links)// &
                              ' is outside [1, '//to_str(max_dof)//'] '//where)
@@ -838,7 +839,7 @@ contains
          end if
          do j = 1, i - 1
             if (cfg%methods(j)%name == cfg%methods(i)%name) then
-               call fatal_error(error, "invalid method: '"//cfg%methods(i)%name// &
+               call fatal_error(error, "invalid method: '"//printable(cfg%methods(i)%name)// &
                                 "' appears twice")
                return
             end if

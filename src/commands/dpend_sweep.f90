@@ -44,7 +44,8 @@ module dpend_sweep
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_version, only: version
-   use dpend_cli, only: to_str, real_str, seconds_str
+   use dpend_cli, only: to_str, real_str, seconds_str, printable
+   use dpend_parse, only: read_real, quoted
    implicit none
    private
    public :: sweep_setup_t, build_setup, block_initial_conditions, compute_block
@@ -393,9 +394,9 @@ contains
       real(dp), allocatable :: tmp(:, :)
       real(dp) :: row(2*cfg%run%links)
       character(len=4096) :: line
-      character(len=:), allocatable :: what, cols, fields
+      character(len=:), allocatable :: what, cols, fields, why
       integer :: unit, stat, n, nline, hash, nl
-      what = "invalid ic_file '"//cfg%ic_file//"'"
+      what = "invalid ic_file '"//printable(cfg%ic_file)//"'"
       nl = cfg%run%links
       cols = to_str(2*nl)
       fields = '"q1 q2 w1 w2"'
@@ -445,10 +446,14 @@ contains
                exit
             end if
             if (len_trim(line) == 0) cycle
-            read (line, *, iostat=stat) row
-            if (stat /= 0 .or. count_fields(line) /= 2*nl) then
+            if (count_fields(line) /= 2*nl) then
                call fatal_error(error, what//': line '//to_str(nline)// &
                                 ' is not '//cols//' numbers '//fields)
+               exit
+            end if
+            call read_fields(line, row, why)   ! the one strict parser, field by field
+            if (len(why) > 0) then
+               call fatal_error(error, what//': line '//to_str(nline)//': '//why)
                exit
             end if
             if (n >= max_sweep_points) then
@@ -485,6 +490,36 @@ contains
    end subroutine read_list
 
    !> Number of blank-separated fields of a line.
+   !> The fields of `line` (separated by blanks, tabs or commas, as `count_fields`
+   !> counts them) read into `row` by the strict parser; `why` names the first field
+   !> that is not a number ('' when all are).
+   subroutine read_fields(line, row, why)
+      character(len=*), intent(in) :: line                !! text, count_fields(line) fields
+      real(dp), intent(out) :: row(:)                     !! the values
+      character(len=:), allocatable, intent(out) :: why   !! '' or the reason
+      character(len=*), parameter :: seps = ' ,'//achar(9)
+      integer :: i, j, k
+      why = ''
+      row = 0.0_dp
+      i = 1
+      do k = 1, size(row)
+         do while (index(seps, line(i:i)) > 0)
+            i = i + 1
+         end do
+         j = i
+         do while (j < len_trim(line))
+            if (index(seps, line(j + 1:j + 1)) > 0) exit
+            j = j + 1
+         end do
+         call read_real(line(i:j), row(k), why)
+         if (len(why) > 0) then
+            why = quoted(line(i:j))//' '//why
+            return
+         end if
+         i = j + 1
+      end do
+   end subroutine read_fields
+
    pure integer function count_fields(line)
       character(len=*), intent(in) :: line  !! text
       integer :: i

@@ -35,12 +35,12 @@ module dpend_sweep_config
    use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
                            max_angle, max_angular_velocity, max_time
-   use dpend_limits, only: min_mass, max_mass, min_length, max_length
+   use dpend_limits, only: check_parameter, parameter_mass, parameter_length
    use dpend_chain, only: chain_t, chain_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
-   use dpend_cli, only: scan_help_config
+   use dpend_cli, only: scan_help_config, printable
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
@@ -72,6 +72,9 @@ module dpend_sweep_config
       character(len=:), allocatable :: ic_file     !! list of initial conditions ('' = grid)
       character(len=:), allocatable :: ic_dataset  !! dataset of an HDF5 list
       character(len=:), allocatable :: ic_angles   !! 'q' or 'theta'
+      !> Whether ic_dataset, ic_angles were given (flag or namelist): both describe the
+      !> list of --ic-file and are refused without it.
+      logical :: ic_dataset_given = .false., ic_angles_given = .false.
       character(len=:), allocatable :: time_unit   !! 's' or 'natural'
       character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
       integer :: block = 4096                      !! initial conditions per block
@@ -265,7 +268,7 @@ contains
          case ('--stats'); cfg%stats = .true.; i = i + 1; cycle
          end select
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            call fatal_error(error, "unexpected argument '"//args(i)%s// &
+            call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
                              "' (dpend sweep --help lists the options)")
             return
          end if
@@ -285,8 +288,8 @@ contains
          case ('--min2'); call parse_real(value, name, cfg%min2, error)
          case ('--max2'); call parse_real(value, name, cfg%max2, error)
          case ('--ic-file'); cfg%ic_file = value
-         case ('--ic-dataset'); cfg%ic_dataset = value
-         case ('--ic-angles'); cfg%ic_angles = value
+         case ('--ic-dataset'); cfg%ic_dataset = value; cfg%ic_dataset_given = .true.
+         case ('--ic-angles'); cfg%ic_angles = value; cfg%ic_angles_given = .true.
          case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value
          case ('--indicator'); cfg%indicator = value
@@ -324,13 +327,14 @@ contains
       axis1 = cfg%axis1; axis2 = cfg%axis2
       n1 = cfg%n1; n2 = cfg%n2
       min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
-      ic_file = cfg%ic_file; ic_dataset = cfg%ic_dataset; ic_angles = cfg%ic_angles
+      ! blank: not given in the file (then the current values stay)
+      ic_file = cfg%ic_file; ic_dataset = ''; ic_angles = ''
       time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
-         call fatal_error(error, "invalid --config: cannot read '"//filename//"'")
+         call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
       read (unit, nml=sweep, iostat=stat, iomsg=msg)
@@ -342,8 +346,13 @@ contains
       cfg%axis1 = trim(axis1); cfg%axis2 = trim(axis2)
       cfg%n1 = n1; cfg%n2 = n2
       cfg%min1 = min1; cfg%max1 = max1; cfg%min2 = min2; cfg%max2 = max2
-      cfg%ic_file = trim(ic_file); cfg%ic_dataset = trim(ic_dataset)
-      cfg%ic_angles = trim(ic_angles)
+      cfg%ic_file = trim(ic_file)
+      if (len_trim(ic_dataset) > 0) then
+         cfg%ic_dataset = trim(ic_dataset); cfg%ic_dataset_given = .true.
+      end if
+      if (len_trim(ic_angles) > 0) then
+         cfg%ic_angles = trim(ic_angles); cfg%ic_angles_given = .true.
+      end if
       cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
       cfg%indicator = trim(indicator)
       cfg%block = block; cfg%threads = threads
@@ -409,6 +418,12 @@ contains
                           ' s, above '//sci(max_time)//' s')
       end if
       if (allocated(error)) return
+      if (grid_mode(cfg) .and. (cfg%ic_angles_given .or. cfg%ic_dataset_given)) then
+         call fatal_error(error, 'invalid '//trim(merge('ic_angles ', 'ic_dataset', &
+                          cfg%ic_angles_given))//': given without ic_file (it describes ' &
+                          //'the list of --ic-file; a grid sweep has none) [--ic-file / &sweep]')
+         return
+      end if
       if (grid_mode(cfg)) then
          call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
          if (allocated(error)) return
@@ -459,13 +474,13 @@ contains
             x1 = merge(cfg%min1, cfg%max1, i == 1)
             x2 = merge(cfg%min2, cfg%max2, j == 1)
             p = pixel_parameters(cfg, p1, x1, p2, x2)
-            call check_range(what//' (m1 of a pixel)', p(1), min_mass, max_mass, 'kg', error)
-            if (.not. allocated(error)) call check_range(what//' (m2 of a pixel)', p(2), &
-                                                         min_mass, max_mass, 'kg', error)
-            if (.not. allocated(error)) call check_range(what//' (l1 of a pixel)', p(3), &
-                                                         min_length, max_length, 'm', error)
-            if (.not. allocated(error)) call check_range(what//' (l2 of a pixel)', p(4), &
-                                                         min_length, max_length, 'm', error)
+            call check_parameter(parameter_mass, what//' (m1 of a pixel)', p(1), error)
+            if (.not. allocated(error)) call check_parameter(parameter_mass, &
+                                                             what//' (m2 of a pixel)', p(2), error)
+            if (.not. allocated(error)) call check_parameter(parameter_length, &
+                                                             what//' (l1 of a pixel)', p(3), error)
+            if (.not. allocated(error)) call check_parameter(parameter_length, &
+                                                             what//' (l2 of a pixel)', p(4), error)
             if (allocated(error)) return
             m = cfg%run%m(:cfg%run%links); l = cfg%run%l(:cfg%run%links)
             m(1:2) = p(1:2); l(1:2) = p(3:4)
@@ -505,7 +520,7 @@ contains
          unit = 'rad/s'
       end if
       if (var == 0) then
-         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: " &
+         call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
@@ -534,7 +549,7 @@ contains
       character(len=1) :: c
       c = achar(iachar('0') + k)
       if (links < 2) then
-         call fatal_error(error, 'invalid axis'//c//": '"//name//"' (accepted: "// &
+         call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: "// &
                           accepted_axes(links)//'; parameter axes need 2 or more links)')
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &

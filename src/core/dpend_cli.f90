@@ -3,12 +3,16 @@
 module dpend_cli
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
+   !> the one strict parser and escaping helper; `printable` is `escaped` under the
+   !> name the messages used before
+   use dpend_parse, only: read_real, read_int, quoted, overflows_real, int_text, &
+                          printable => escaped
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
-   public :: overflows_real, to_lower, printable, pad
+   public :: overflows_real, to_lower, printable, pad, quoted
 
    !> Parse an integer (default or 64-bit) for a field.
    interface parse_int
@@ -17,7 +21,8 @@ module dpend_cli
 
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
-      module procedure int_str, int8_str
+      module procedure int_str
+      procedure int_text   ! 64-bit: dpend_parse's
    end interface to_str
 
    !> One command-line argument.
@@ -99,7 +104,7 @@ contains
          call fatal_error(error, 'option '//name//' takes no value')
       else if (.not. matched) then
          if (allocated(error)) deallocate (error)
-         call fatal_error(error, "unknown option '"//name//"' (dpend "//command// &
+         call fatal_error(error, "unknown option '"//printable(name)//"' (dpend "//command// &
                           ' --help lists the options)')
       else if (missing) then
          if (allocated(error)) deallocate (error)
@@ -114,87 +119,19 @@ contains
       if (len(arg) >= 2) is_long_option = arg(1:2) == '--'
    end function is_long_option
 
-   !> Parse a finite real number for field `name`.
+   !> Parse a finite real number for field `name` with the one strict parser
+   !> (`dpend_parse`): the whole token must be the number; the refusal names the field,
+   !> the value (escaped) and the offending character.
    subroutine parse_real(text, name, x, error)
       character(len=*), intent(in) :: text              !! the text
       character(len=*), intent(in) :: name              !! field name for messages
       real(dp), intent(out) :: x                        !! the value
       type(error_t), allocatable, intent(out) :: error  !! not a finite number
-      integer :: stat
-      x = 0.0_dp
-      if (overflows_real(text)) then   ! reading it would overflow (a trap in debug builds)
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
-                          "' is beyond the largest double (1.797e308)")
-         return
-      end if
-      read (text, *, iostat=stat) x
-      if (stat /= 0 .or. len_trim(text) == 0 .or. scan(trim(text), ' ,/*') /= 0) then
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not a number")
-      else if (.not. ieee_is_finite(x)) then
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not finite (a finite number is required)")
-      end if
+      character(len=:), allocatable :: why
+      call read_real(text, x, why)
+      if (len(why) > 0) call fatal_error(error, 'invalid '//printable(name)//': '// &
+                                         quoted(trim(text))//' '//why)
    end subroutine parse_real
-
-   !> Whether the decimal text of a real number ([sign] digits [. digits] [e|d [sign]
-   !> digits]) is beyond huge(1.0_dp) in magnitude: reading it would overflow, which
-   !> glibc's strtod signals as an IEEE overflow (a trap under -ffpe-trap=overflow)
-   !> before the value can be checked. Text of another form gives .false. (the read
-   !> itself then refuses it, or it is Inf/NaN, checked after the read).
-   pure logical function overflows_real(text)
-      character(len=*), intent(in) :: text  !! the number's text
-      character(len=:), allocatable :: t, mant, digits
-      real(dp) :: lead
-      integer :: k, i, e, point, first, n_int, stat, e_sign
-      overflows_real = .false.
-      t = trim(adjustl(text))
-      if (len(t) == 0) return
-      if (t(1:1) == '+' .or. t(1:1) == '-') t = t(2:)
-      k = scan(t, 'eEdD')
-      mant = t
-      e = 0
-      if (k > 0) then
-         mant = t(:k - 1)
-         i = k + 1
-         e_sign = 1
-         if (i <= len(t)) then
-            if (t(i:i) == '+' .or. t(i:i) == '-') then
-               if (t(i:i) == '-') e_sign = -1
-               i = i + 1
-            end if
-         end if
-         if (i > len(t)) return
-         if (verify(t(i:), '0123456789') /= 0) return
-         do while (i < len(t) .and. t(i:i) == '0')   ! leading zeros of the exponent
-            i = i + 1
-         end do
-         if (len(t) - i + 1 > 6) then       ! |exponent| >= 10^6
-            overflows_real = e_sign > 0 .and. verify(mant, '0.') /= 0
-            return
-         end if
-         read (t(i:), *, iostat=stat) e
-         if (stat /= 0) return
-         e = e_sign*e
-      end if
-      if (len(mant) == 0 .or. verify(mant, '0123456789.') /= 0) return
-      point = index(mant, '.')
-      if (point > 0 .and. index(mant(point + 1:), '.') > 0) return
-      if (point == 0) point = len(mant) + 1
-      digits = mant(:point - 1)//mant(min(point + 1, len(mant) + 1):)
-      n_int = point - 1
-      first = verify(digits, '0')
-      if (first == 0) return                 ! zero
-      ! x = 0.d_first d_(first+1) ... 10^(n_int - first + 1 + e): the leading digit's
-      ! decimal exponent is n_int - first + e
-      if (n_int - first + e < 308) return
-      if (n_int - first + e > 308) then
-         overflows_real = .true.
-         return
-      end if
-      ! exponent 308: compare the leading digits with 1.7976931348623157
-      t = digits(first:first)//'.'//digits(first + 1:min(len(digits), first + 17))//'0'
-      read (t, *, iostat=stat) lead
-      overflows_real = stat == 0 .and. lead > 1.7976931348623157_dp
-   end function overflows_real
 
    !> `s` with ASCII capitals in lower case.
    pure function to_lower(s) result(t)
@@ -207,17 +144,6 @@ contains
       end do
    end function to_lower
 
-   !> `s` with every byte that is not printable ASCII replaced by '?'.
-   pure function printable(s) result(t)
-      character(len=*), intent(in) :: s  !! any bytes
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) t(i:i) = '?'
-      end do
-   end function printable
-
    !> `text` without trailing blanks, padded with blanks to `width` columns (at least
    !> one blank).
    pure function pad(text, width) result(t)
@@ -227,17 +153,16 @@ contains
       t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
    end function pad
 
-   !> Parse an integer for field `name`.
+   !> Parse an integer for field `name` (the strict parser of `dpend_parse`).
    subroutine parse_int_default(text, name, n, error)
       character(len=*), intent(in) :: text              !! the text
       character(len=*), intent(in) :: name              !! field name for messages
       integer, intent(out) :: n                         !! the value
       type(error_t), allocatable, intent(out) :: error  !! not an integer
-      integer :: stat
-      n = 0
-      read (text, *, iostat=stat) n
-      if (stat /= 0 .or. len_trim(text) == 0 .or. verify(trim(text), '0123456789+-') /= 0) &
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
+      character(len=:), allocatable :: why
+      call read_int(text, n, why)
+      if (len(why) > 0) call fatal_error(error, 'invalid '//printable(name)//': '// &
+                                         quoted(trim(text))//' '//why)
    end subroutine parse_int_default
 
    !> Parse a 64-bit integer for field `name` (counts up to 9.2e18).
@@ -246,16 +171,10 @@ contains
       character(len=*), intent(in) :: name              !! field name for messages
       integer(i8), intent(out) :: n                     !! the value
       type(error_t), allocatable, intent(out) :: error  !! not an integer
-      integer :: stat
-      n = 0
-      if (len_trim(text) == 0 .or. len_trim(text) > 19 .or. &
-          verify(trim(text), '0123456789+-') /= 0) then
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' is not an integer")
-         return
-      end if
-      read (text, *, iostat=stat) n
-      if (stat /= 0) call fatal_error(error, 'invalid '//name//": '"//trim(text)// &
-                                      "' is not an integer")
+      character(len=:), allocatable :: why
+      call read_int(text, n, why)
+      if (len(why) > 0) call fatal_error(error, 'invalid '//printable(name)//': '// &
+                                         quoted(trim(text))//' '//why)
    end subroutine parse_int_i8
 
    !> Parse a logical (true/false, yes/no, 1/0) for field `name`.
@@ -269,7 +188,8 @@ contains
       case ('false', 'no', '0', 'off', '.false.'); b = .false.
       case default
          b = .false.
-         call fatal_error(error, 'invalid '//name//": '"//trim(text)//"' (accepted: true, false)")
+         call fatal_error(error, 'invalid '//printable(name)//': '//quoted(trim(text))// &
+                          ' (accepted: true, false)')
       end select
    end subroutine parse_logical
 
@@ -376,18 +296,8 @@ contains
    pure function int_str(i) result(s)
       integer, intent(in) :: i  !! the number
       character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
+      s = int_text(int(i, i8))
    end function int_str
-
-   pure function int8_str(i) result(s)
-      integer(i8), intent(in) :: i  !! the number
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function int8_str
 
    !> The first pass of every command's parser: whether -h/--help was given and
    !> the file of the last `--config FILE` or `--config=FILE` ('' if none), so that

@@ -27,6 +27,7 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
+   public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
@@ -45,6 +46,21 @@ module dpend_limits
    real(dp), parameter :: max_length = 1e6_dp     !! largest l1, l2 [m]
    real(dp), parameter :: min_g = 1e-6_dp         !! smallest g [m/s²]
    real(dp), parameter :: max_g = 1e6_dp          !! largest g [m/s²]
+
+   !> The one range table of the physical parameters, shared by every command
+   !> (simulate, the chaos commands, sweep, study, fit) through `check_parameter`:
+   !> one row per kind, so that g = 0 (for example) is refused everywhere alike.
+   type :: parameter_range_t
+      character(len=5) :: unit   !! SI unit
+      real(dp) :: lo, hi         !! accepted range (inclusive)
+   end type parameter_range_t
+   integer, parameter :: parameter_mass = 1     !! m_i [kg]
+   integer, parameter :: parameter_length = 2   !! l_i [m]
+   integer, parameter :: parameter_gravity = 3  !! g [m/s²]
+   type(parameter_range_t), parameter :: parameter_ranges(3) = [ &
+      parameter_range_t('kg', min_mass, max_mass), &
+      parameter_range_t('m', min_length, max_length), &
+      parameter_range_t('m/s^2', min_g, max_g)]
 
    !> |q1|, |q2| (and angles of sweeps and sections) at most 1e6 rad (160 000 turns):
    !> beyond, the rounding of the angle itself exceeds 1e-10 rad.
@@ -144,6 +160,20 @@ contains
                           //sci(lo)//', '//sci(hi)//']'//r)
       end if
    end subroutine check_range
+
+   !> Refuse a physical parameter (`parameter_mass`, `parameter_length`,
+   !> `parameter_gravity`) outside its row of the range table: 'invalid FIELD: X UNIT
+   !> is outside [LO, HI] (keeps every product of the model finite)'.
+   subroutine check_parameter(which, field, x, error)
+      integer, intent(in) :: which                      !! row of the table
+      character(len=*), intent(in) :: field             !! e.g. 'm2', 'g'
+      real(dp), intent(in) :: x                         !! value (SI)
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      type(parameter_range_t) :: r
+      r = parameter_ranges(which)
+      call check_range(field, x, r%lo, r%hi, trim(r%unit), error, &
+                       'keeps every product of the model finite')
+   end subroutine check_parameter
 
    !> Refuse when span/step exceeds max_count, compared as step·max_count < span
    !> (no overflow: step and max_count are bounded). Message: 'invalid FIELD: STEP s

@@ -27,11 +27,12 @@
 !> Everything else is refused with one line that names the file, the line number and
 !> the problem; a header with one field names the separators tried. Text of the file
 !> echoed in a message has its control characters replaced (`printable`). Numbers
-!> are read by `parse_real` (dpend_cli), after a check of their characters.
+!> are read by the one strict parser (dpend_parse `read_real`).
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str, to_lower, printable, parse_real
+   use dpend_cli, only: to_str, real_str, to_lower, printable
+   use dpend_parse, only: read_real, quote_text => quoted
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
@@ -487,24 +488,14 @@ contains
          character(len=*), intent(in) :: text, name
          real(dp), intent(out) :: x
          type(error_t), allocatable, intent(out) :: err
-         character(len=:), allocatable :: where
-         where = 'line '//to_str(line)//', column '//trim(name)
-         x = 0.0_dp
-         if (len(text) == 0 .or. len(text) > 64 .or. &
-             verify(text, '0123456789+-.eEdDnaNAiIfFtTyY') /= 0) then
-            if (index(text, ',') > 0) then
-               call fatal_error(err, where//": '"//printable_40(text)//"' is not a " &
-                                //'number (a decimal comma? write a point)')
-            else
-               call fatal_error(err, where//": '"//printable_40(text)//"' is not a number")
-            end if
-            return
-         end if
-         call parse_real(text, where, x, err)
-         if (allocated(err)) then   ! 'invalid WHERE: ...' as 'WHERE: ...'
-            if (index(err%message, 'invalid '//where) == 1) &
-               err%message = err%message(len('invalid ') + 1:)
-         end if
+         character(len=:), allocatable :: why, field
+         ! the one strict parser (dpend_parse): blanks around the field are allowed
+         field = trim(adjustl(text))
+         call read_real(field, x, why)
+         if (len(why) == 0) return
+         if (index(field, ',') > 0) why = 'is not a number (a decimal comma? write a point)'
+         call fatal_error(err, 'line '//to_str(line)//', column '//trim(name)//': '// &
+                          quote_text(field)//' '//why)
       end subroutine parse_number
    end subroutine parse_row
 

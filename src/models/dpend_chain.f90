@@ -66,8 +66,8 @@
 module dpend_chain
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g, &
-                           diverged_bound, max_damping, max_support_amplitude, &
+   use dpend_limits, only: check_range, check_parameter, parameter_mass, parameter_length, &
+                           parameter_gravity, diverged_bound, max_damping, max_support_amplitude, &
                            max_support_frequency, max_angle
    use dpend_cli, only: to_str
    use dpend_model, only: model_t, max_dof
@@ -147,7 +147,8 @@ contains
 
    !> The chain with masses m [kg], lengths l [m] (one per link) and g [m/s²],
    !> checked: 1 ≤ N ≤ max_dof links, m and l of the same size, each within
-   !> dpend_limits' [min_mass, max_mass] and [min_length, max_length], g in [0, max_g].
+   !> dpend_limits' range table (`check_parameter`: masses, lengths and g each in
+   !> [1e-6, 1e6]).
    !> The error names the field (m3, l2, g, links), its value and the accepted range.
    !> Optional (issue 13): joint damping c [N m s] (one per link, each in
    !> [0, max_damping]) and the support motion: amplitudes (a_x, a_y) [m] (each in
@@ -179,14 +180,14 @@ contains
          return
       end if
       do i = 1, n
-         call check_range('m'//to_str(i), m(i), min_mass, max_mass, 'kg', error, reason)
+         call check_parameter(parameter_mass, 'm'//to_str(i), m(i), error)
          if (allocated(error)) return
       end do
       do i = 1, n
-         call check_range('l'//to_str(i), l(i), min_length, max_length, 'm', error, reason)
+         call check_parameter(parameter_length, 'l'//to_str(i), l(i), error)
          if (allocated(error)) return
       end do
-      call check_range('g', g, 0.0_dp, max_g, 'm/s^2', error, reason)
+      call check_parameter(parameter_gravity, 'g', g, error)   ! g >= 1e-6 as for N = 2
       if (allocated(error)) return
       allocate (model%c(n))
       model%c = 0.0_dp

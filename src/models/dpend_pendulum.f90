@@ -17,8 +17,8 @@
 module dpend_pendulum
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, &
-                           min_g, max_g
+   use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
+                           parameter_gravity
    use dpend_model, only: model_t
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
@@ -150,15 +150,13 @@ contains
       type(pendulum_t), intent(in) :: par               !! parameters to check
       type(error_t), allocatable, intent(out) :: error  !! set if a value is invalid
       character(len=*), parameter :: names(5) = ['m1', 'm2', 'l1', 'l2', 'g ']
-      character(len=*), parameter :: units(5) = ['kg   ', 'kg   ', 'm    ', 'm    ', 'm/s^2']
-      character(len=*), parameter :: reason = 'keeps every product of the model finite'
-      real(dp) :: x(5), lo(5), hi(5)
+      integer, parameter :: rows(5) = [parameter_mass, parameter_mass, parameter_length, &
+                                       parameter_length, parameter_gravity]
+      real(dp) :: x(5)
       integer :: i
       x = [par%m1, par%m2, par%l1, par%l2, par%g]
-      lo = [min_mass, min_mass, min_length, min_length, min_g]
-      hi = [max_mass, max_mass, max_length, max_length, max_g]
       do i = 1, 5
-         call check_range(trim(names(i)), x(i), lo(i), hi(i), trim(units(i)), error, reason)
+         call check_parameter(rows(i), trim(names(i)), x(i), error)
          if (allocated(error)) return
       end do
    end subroutine validate
