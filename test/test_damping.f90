@@ -25,6 +25,7 @@ module test_damping
    use dpend_work, only: work_model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
+   use dpend_method_registry, only: method_table, n_methods, field_method_names
    use dpend_propagate, only: advance_to
    use dpend_config, only: run_config_t, validate_run_config
    use dpend_lapack, only: dgesv, dgeev
@@ -356,42 +357,48 @@ contains
       call check(error, d(3), 0.0_dp, 'F01 . v_A = P_support', abs=1e-12_dp)
    end subroutine test_derivatives
 
-   !> The methods that need a Hamiltonian (verlet, its compositions, Tao's) refuse the
-   !> damped chain with one line naming it and the methods that accept it; the
-   !> explicit Runge–Kutta and the Gauss methods accept it (and the driven chain).
+   !> The methods that need a Hamiltonian (the registry's `hamiltonian` flag: verlet,
+   !> its compositions, Tao's) refuse the damped chain with one line naming it and the
+   !> methods that accept it; the others (the explicit Runge–Kutta and the Gauss
+   !> methods) accept it (and the driven chain).
    subroutine test_refuse(error)
       type(error_t), allocatable, intent(out) :: error
       type(error_t), allocatable :: err
       type(run_config_t) :: cfg
-      character(len=*), parameter :: refusing(6) = [character(len=8) :: 'verlet', &
-                                                    'yoshida4', 'comp6', 'comp8', 'tao2', 'tao4']
-      character(len=*), parameter :: accepting(7) = [character(len=8) :: 'rk4', 'dopri5', &
-                                                     'dop853', 'midpoint', 'gauss4', 'gauss6', &
-                                                     'gauss8']
-      character(len=*), parameter :: tail = ' needs a Hamiltonian model; the damped chain ' &
-         //'of 2 links is not (use rk4, dopri5, dop853, midpoint, gauss4, gauss6 or gauss8)'
+      character(len=:), allocatable :: name, tail
       integer :: i, k
-      do i = 1, size(refusing)
-         cfg%method = trim(refusing(i))
+      logical :: reported
+      call check_true(error, any(method_table%hamiltonian) .and. &
+                      .not. all(method_table%hamiltonian), 'methods that refuse and accept')
+      if (allocated(error)) return
+      tail = ' needs a Hamiltonian model; the damped chain of 2 links is not (use ' &
+             //field_method_names()//')'
+      reported = .false.
+      do i = 1, n_methods
+         name = trim(method_table(i)%name)
+         if (.not. method_table(i)%hamiltonian) cycle
+         cfg%method = name
          cfg%damping(1:2) = [0.1_dp, 0.05_dp]; cfg%damping_size = 2
          call validate_run_config(cfg, err)
-         call check_true(error, allocated(err), trim(refusing(i))//' accepted the damped chain')
+         call check_true(error, allocated(err), name//' accepted the damped chain')
          if (allocated(error)) return
-         if (i == 1) call report(trim(refusing(i))//': '//err%message)
-         call check_true(error, err%message == 'invalid method: '//trim(refusing(i))//tail, &
-                         err%message)
+         if (.not. reported) call report(name//': '//err%message)
+         reported = .true.
+         call check_true(error, err%message == 'invalid method: '//name//tail, err%message)
          if (allocated(error)) return
       end do
-      do i = 1, size(accepting)
+      do i = 1, n_methods
+         name = trim(method_table(i)%name)
+         if (method_table(i)%hamiltonian) cycle
          do k = 1, 2
-            cfg%method = trim(accepting(i))
+            cfg%method = name
             cfg%damping(1:2) = [0.1_dp, 0.05_dp]; cfg%damping_size = 2
             if (k == 2) then   ! driven, not damped
                cfg%damping(1:2) = 0.0_dp
                cfg%support_amplitude = [0.0_dp, 0.01_dp]; cfg%support_frequency = 30.0_dp
             end if
             call validate_run_config(cfg, err)
-            call check_true(error, .not. allocated(err), trim(accepting(i))// &
+            call check_true(error, .not. allocated(err), name// &
                             ' refused the damped or driven chain')
             if (allocated(error)) return
             cfg%support_amplitude = 0.0_dp
