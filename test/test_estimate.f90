@@ -554,9 +554,9 @@ contains
                        't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
                        //'number (a decimal comma?')
       call csv_refused(error, 't,theta1'//lf//'0,"0.'//tab//'1"'//lf, &
-                       "line 2, column theta1: '0.?1' is not a number")
+                       "line 2, column theta1: '0.\t1' is not a number")
       call csv_refused(error, 't,theta1 [r'//lf//'ad]'//lf//'0,1'//lf, "unit '[r'")
-      call csv_refused(error, 't,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r?ad]'")
+      call csv_refused(error, 't,theta1 [r'//achar(1)//'ad]'//lf//'0,1'//lf, "unit '[r\x01ad]'")
    contains
       subroutine same(text, format)
          character(len=*), intent(in) :: text, format
