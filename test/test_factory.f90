@@ -110,8 +110,8 @@ contains
          n = p%count
          if (n < 0) n = nint(info%params(1)%default)   ! per link: the default links
          bound = [p%lower, p%upper]
-         outside = [p%lower - max(1.0_dp, abs(p%lower))*1e-3_dp, &
-                    p%upper + max(1.0_dp, abs(p%upper))*1e-3_dp]
+         outside = [p%lower - max(abs(p%lower)*1e-3_dp, 1e-12_dp), &
+                    p%upper + max(abs(p%upper)*1e-3_dp, 1e-12_dp)]
          do j = 1, 2
             if (p%name == 'links' .and. j == 2) cycle  ! the most links builds below
             spec = model_spec(info%name)

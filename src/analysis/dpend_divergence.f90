@@ -28,7 +28,7 @@ module dpend_divergence
    use dpend_propagate, only: integrate_sampled
    implicit none
    private
-   public :: perturbed_state, phase_distance
+   public :: perturbed_state, phase_distance, angle_coordinates
    public :: divergence_result_t, divergence_pairs, line_fit_t, fit_exponential_phase
 
    real(dp), parameter :: pi = acos(-1.0_dp)
@@ -92,13 +92,20 @@ contains
       qb = z(1:m); qdb = z(m + 1:)
    end subroutine perturbed_state
 
-   !> Distance in (q, q̇) with angle differences wrapped to (-π, π] [mixed units].
-   pure real(dp) function phase_distance(qa, qda, qb, qdb)
+   !> Distance in (q, q̇) with angle differences wrapped to (-π, π] [mixed units]:
+   !> every coordinate is an angle, or those `angle` marks (the model's coordinates
+   !> in rad: `angle_coordinates`).
+   pure real(dp) function phase_distance(qa, qda, qb, qdb, angle)
       real(dp), intent(in) :: qa(:), qda(:)  !! first state [rad, rad/s]
       real(dp), intent(in) :: qb(:), qdb(:)  !! second state [rad, rad/s]
+      logical, intent(in), optional :: angle(:)  !! which coordinates are angles
       real(dp) :: dq(size(qa))
       dq = qb - qa
-      dq = dq - 2.0_dp*pi*anint(dq/(2.0_dp*pi))
+      if (present(angle)) then
+         where (angle) dq = dq - 2.0_dp*pi*anint(dq/(2.0_dp*pi))
+      else
+         dq = dq - 2.0_dp*pi*anint(dq/(2.0_dp*pi))
+      end if
       phase_distance = sqrt(sum(dq**2) + sum((qdb - qda)**2))
    end function phase_distance
 
@@ -123,7 +130,9 @@ contains
       real(dp), allocatable :: times(:), sa(:, :), sb(:, :), tref(:), sref(:, :)
       real(dp), dimension(size(q0)) :: qa, qda, qb, qdb
       real(dp) :: ya(2*size(q0)), yb(2*size(q0))
+      logical :: angle(size(q0))
       integer :: p, i, n_done
+      angle = angle_coordinates(model)
       allocate (res%start(2*size(q0), n_pairs), res%delta_start(n_pairs), &
                 res%energy_diff(n_pairs))
       ya = integ%to_internal(model, q0, qd0)
@@ -143,7 +152,7 @@ contains
          call integ%to_physical(model, sref(:, p), qa, qda)
          call perturbed_state(model, qa, qda, delta0, same_energy, qb, qdb)
          res%start(:, p) = [qa, qda]
-         res%delta_start(p) = phase_distance(qa, qda, qb, qdb)
+         res%delta_start(p) = phase_distance(qa, qda, qb, qdb, angle)
          res%energy_diff(p) = model%energy(0.0_dp, [qb, qdb]) - model%energy(0.0_dp, [qa, qda])
          ya = integ%to_internal(model, qa, qda)
          yb = integ%to_internal(model, qb, qdb)
@@ -158,7 +167,8 @@ contains
          do i = 1, size(times)
             call integ%to_physical(model, sa(:, i), qa, qda)
             call integ%to_physical(model, sb(:, i), qb, qdb)
-            res%log10_pairs(p, i) = log10(max(phase_distance(qa, qda, qb, qdb), tiny(1.0_dp)))
+            res%log10_pairs(p, i) = log10(max(phase_distance(qa, qda, qb, qdb, angle), &
+                                              tiny(1.0_dp)))
          end do
          n_done = p
       end do
@@ -268,4 +278,17 @@ contains
          median = 0.5_dp*(s(n/2) + s(n/2 + 1))
       end if
    end function median
+
+   !> Which coordinates of `model` are angles (in rad, wrapped by 2π in distances).
+   function angle_coordinates(model) result(angle)
+      class(model_t), intent(in) :: model  !! the system
+      logical, allocatable :: angle(:)
+      character(len=:), allocatable :: name, units, p_units
+      integer :: i
+      allocate (angle(model%n_dof()))
+      do i = 1, model%n_dof()
+         call model%coordinate(i, name, units, p_units)
+         angle(i) = units == 'rad'
+      end do
+   end function angle_coordinates
 end module dpend_divergence

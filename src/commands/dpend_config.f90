@@ -5,15 +5,17 @@
 !> output_dt omega), &output (file force). Commands with more settings read further
 !> groups through `check_groups` and their own namelists.
 !>
-!> The system is the chain of `links` uniform rods (issue 12): two links are the
-!> chapter's double pendulum (`double_pendulum_t`, with its fast paths), any other
-!> number the N-link chain (`chain_t`). `validate_run_config` checks the fields and
-!> builds `model`; before that, `model` is not allocated.
+!> The system is built by the model factory (dpend_model_factory) from a
+!> specification: the model --model names (default: the chapter's pendulum of `links`
+!> uniform rods), its parameters from the fields above and those given by name
+!> (--k 40 --l0 1 for the elastic pendulum). `validate_run_config` checks the fields
+!> and builds `model`; before that, `model` is not allocated.
 module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_pendulum, only: pendulum_t, finite_positive
+   use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
+                                  model_catalogue, find_model, default_model
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, parse_real, parse_int, real_str, to_str, to_lower, printable, &
       quoted
@@ -31,7 +33,7 @@ module dpend_config
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
    public :: check_groups, run_flags_help, namelist_error
-   public :: check_regular_file, set_pendulum
+   public :: check_regular_file, set_pendulum, require_default_model
 
    !> Largest configuration file read [bytes].
    integer(i8), parameter :: max_config_bytes = 1048576_i8
@@ -74,6 +76,12 @@ module dpend_config
       !> The per-link flags given so far (' --m1 --q '), so that two forms of one
       !> quantity on the command line are refused (`apply_run_flag`).
       character(len=:), allocatable :: flags_seen
+      !> The model (--model; unset: the factory's default, the chapter's pendulum),
+      !> the parameters of models other than the pendulum given by name (--k 40), and
+      !> the specification the model was built from (validate_run_config).
+      character(len=:), allocatable :: model_name
+      type(model_spec_t) :: extra
+      type(model_spec_t) :: spec
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -733,10 +741,43 @@ contains
       case ('--support-frequency'); call parse_real(value, name, cfg%support_frequency, error)
       case ('--support-phase'); call parse_pair(cfg%support_phase, 'phi_x,phi_y (rad)')
       case ('--output', '-o'); cfg%output = value
+      case ('--model'); cfg%model_name = value
       case default
          matched = .false.
+         ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum)
+         if (len(name) > 2) then
+            if (is_model_parameter(name(3:))) then
+               matched = .true.
+               call parse_named(name(3:))
+            end if
+         end if
       end select
    contains
+      !> A comma-separated list of numbers for the model parameter `key`.
+      subroutine parse_named(key)
+         character(len=*), intent(in) :: key
+         real(dp) :: values(max_dof)
+         integer :: n, start, comma
+         n = 0
+         start = 1
+         do
+            comma = index(value(start:), ',')
+            if (n == size(values)) then
+               call fatal_error(error, 'invalid '//name//': more than '//to_str(max_dof)// &
+                                ' values')
+               return
+            end if
+            n = n + 1
+            if (comma == 0) then
+               call parse_real(value(start:), name, values(n), error)
+               exit
+            end if
+            call parse_real(value(start:start + comma - 2), name, values(n), error)
+            if (allocated(error)) return
+            start = start + comma
+         end do
+         if (.not. allocated(error)) call cfg%extra%set(key, values(:n))
+      end subroutine parse_named
       !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
       !> `--q1` with `--theta1`): which one wins would depend on their order. The
       !> same flag twice is the same form (the last wins, as before).
@@ -852,7 +893,7 @@ contains
       call check_range('links', real(cfg%links, dp), 1.0_dp, real(max_dof, dp), '', error)
       if (allocated(error)) return
       n = cfg%links
-      do i = 1, size(list_names)
+      do i = 1, merge(2, 0, model_has(cfg, 'links'))   ! m and l: one per link
          if (cfg%list_size(i) /= 0 .and. cfg%list_size(i) /= n) then
             call fatal_error(error, 'invalid '//list_names(i)//': '// &
                              to_str(cfg%list_size(i))//' values for '//to_str(n)// &
@@ -875,45 +916,10 @@ contains
                           cfg%support_phase(i), -max_angle, max_angle, 'rad', error)
          if (allocated(error)) return
       end do
-      if (n == 2 .and. all(cfg%damping(:n) == 0.0_dp) .and. &
-          all(cfg%support_amplitude == 0.0_dp)) then
-         ! the conservative double pendulum (the chain carries damping and support)
-         call validate(cfg%pendulum(), error)
-         if (allocated(error)) then
-            error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
-            return
-         end if
-         allocate (cfg%model, source=pendulum_model(cfg%pendulum()))
-      else
-         block
-            type(chain_t) :: chain
-            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, cfg%damping(:n), &
-                                cfg%support_amplitude, cfg%support_frequency, cfg%support_phase)
-            if (allocated(error)) then
-               if (index(error%message, 'invalid damping') == 1) then
-                  error%message = error%message//' [--damping / &pendulum damping]'
-               else if (index(error%message, 'invalid support') == 1) then
-                  error%message = error%message//' [--support-amplitude --support-frequency' &
-                                  //' --support-phase / &pendulum]'
-               else
-                  error%message = error%message//' [--m --l --g / &pendulum]'
-               end if
-               return
-            end if
-            allocate (cfg%model, source=chain)
-         end block
-      end if
-      do i = 1, n
-         call check_range('q'//to_str(i), cfg%q(i), -max_angle, max_angle, 'rad', error, &
-                          'beyond, the rounding of the angle exceeds 1e-10 rad')
-         if (allocated(error)) return
-      end do
-      do i = 1, n
-         call check_range('w'//to_str(i), cfg%w(i), -max_angular_velocity, &
-                          max_angular_velocity, 'rad/s', error, &
-                          'keeps energies and momenta finite')
-         if (allocated(error)) return
-      end do
+      call build_model(cfg, error)
+      if (allocated(error)) return
+      call check_initial_state(cfg, error)
+      if (allocated(error)) return
       if (.not. allocated(cfg%method)) then
          call fatal_error(error, 'invalid method: none given')
          return
@@ -962,6 +968,169 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> Whether the model `cfg` asks for has the parameter `name` (the factory's
+   !> catalogue; an unknown model: none).
+   logical function model_has(cfg, name)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: name   !! parameter name
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      k = find_model(models, model_asked(cfg))
+      model_has = .false.
+      if (k == 0) return
+      model_has = any([(models(k)%params(i)%name == name, i=1, size(models(k)%params))])
+   end function model_has
+
+   !> The model name --model gave (or &model name), else the factory's default.
+   pure function model_asked(cfg) result(name)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      character(len=:), allocatable :: name
+      if (allocated(cfg%model_name)) then
+         name = cfg%model_name
+      else
+         name = default_model
+      end if
+   end function model_asked
+
+   !> Refuse a model other than the factory's default for a command that does not
+   !> handle others yet (sweep, study, fit: docs/architecture.md, what is missing).
+   subroutine require_default_model(cfg, command, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration
+      character(len=*), intent(in) :: command           !! e.g. 'dpend sweep'
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      if (model_asked(cfg) == default_model) return
+      call fatal_error(error, 'invalid model: '//command//' handles the model ' &
+                       //default_model//' only, not '//printable(model_asked(cfg)) &
+                       //' (simulate, lyapunov, divergence, indicators and animate take ' &
+                       //'every model)')
+   end subroutine require_default_model
+
+   !> Whether `name` is a parameter of any model of the catalogue (a flag --NAME).
+   logical function is_model_parameter(name)
+      character(len=*), intent(in) :: name  !! parameter name
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      is_model_parameter = .false.
+      do k = 1, size(models)
+         do i = 1, size(models(k)%params)
+            if (models(k)%params(i)%name == name) is_model_parameter = .true.
+         end do
+      end do
+   end function is_model_parameter
+
+   !> Build `cfg%model` through the factory (the one place a model is built): the
+   !> specification holds the model's parameters from the run's fields (links, m, l,
+   !> g, damping, support_*) and those given by name (--k); a field set for a model
+   !> that has no such parameter is refused.
+   subroutine build_model(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! configuration; model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i, n
+      character(len=:), allocatable :: given
+      models = model_catalogue()
+      cfg%spec = model_spec(model_asked(cfg))
+      k = find_model(models, model_asked(cfg))
+      if (k > 0) then
+         n = cfg%links
+         do i = 1, size(models(k)%params)
+            associate (p => models(k)%params(i))
+               select case (p%name)
+               case ('links'); call cfg%spec%set('links', [real(cfg%links, dp)])
+               case ('m'); call cfg%spec%set('m', per_link(cfg%m, 1))
+               case ('l'); call cfg%spec%set('l', per_link(cfg%l, 2))
+               case ('g'); call cfg%spec%set('g', [cfg%g])
+               case ('damping'); call cfg%spec%set('damping', cfg%damping(:n))
+               case ('support_amplitude')
+                  call cfg%spec%set('support_amplitude', cfg%support_amplitude)
+               case ('support_frequency')
+                  call cfg%spec%set('support_frequency', [cfg%support_frequency])
+               case ('support_phase'); call cfg%spec%set('support_phase', cfg%support_phase)
+               end select
+            end associate
+         end do
+         ! the pendulum's fields given to a model without them
+         given = ''
+         if (cfg%links /= 2) given = 'links'
+         if (cfg%list_size(2) > 0) given = 'l'
+         if (cfg%damping_size > 0) given = 'damping'
+         if (any(cfg%support_amplitude /= 0.0_dp)) given = 'support_amplitude'
+         if (len(given) > 0 .and. .not. model_has(cfg, given)) then
+            call fatal_error(error, 'invalid '//given//': not a parameter of model ' &
+                             //model_asked(cfg)//' (dpend models lists its parameters)')
+            return
+         end if
+      end if
+      if (allocated(cfg%extra%items)) then
+         do i = 1, size(cfg%extra%items)
+            call cfg%spec%set(cfg%extra%items(i)%name, cfg%extra%items(i)%values)
+         end do
+      end if
+      call new_model(cfg%spec, cfg%model, error)
+      if (allocated(error)) error%message = error%message//hint(error%message)
+   contains
+      !> The first n values of a per-link field, or its first value for a scalar
+      !> parameter (refused later by the factory if a list was given).
+      function per_link(values, list) result(v)
+         real(dp), intent(in) :: values(:)
+         integer, intent(in) :: list
+         real(dp), allocatable :: v(:)
+         if (model_has(cfg, 'links')) then
+            v = values(:n)
+         else
+            v = values(:max(1, cfg%list_size(list)))
+         end if
+      end function per_link
+      !> Where a refused parameter is set: its flags and namelist group.
+      function hint(message) result(s)
+         character(len=*), intent(in) :: message
+         character(len=:), allocatable :: s
+         if (index(message, 'invalid model') == 1 .or. &
+             index(message, 'not a parameter of model') > 0) then
+            s = ''
+         else if (.not. model_has(cfg, 'links')) then
+            s = ' [dpend models lists the parameters of '//model_asked(cfg)//']'
+         else if (index(message, 'invalid damping') == 1) then
+            s = ' [--damping / &pendulum damping]'
+         else if (index(message, 'invalid support') == 1) then
+            s = ' [--support-amplitude --support-frequency --support-phase / &pendulum]'
+         else if (n == 2) then
+            s = ' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         else
+            s = ' [--m --l --g / &pendulum]'
+         end if
+      end function hint
+   end subroutine build_model
+
+   !> The initial state: as many q and w as the model has coordinates, within what
+   !> the model accepts (`check_state`: angles and angular velocities within 1e6 for
+   !> the pendulum; the elastic pendulum's r above its collapse).
+   subroutine check_initial_state(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: i, nd
+      nd = cfg%model%n_dof()
+      do i = 3, 4
+         if (cfg%list_size(i) /= 0 .and. cfg%list_size(i) /= nd) then
+            if (model_has(cfg, 'links')) then
+               call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                                to_str(cfg%list_size(i))//' values for '//to_str(nd)// &
+                                ' links (one per link; --links N sets N) [--'// &
+                                list_names(i)//' / namelist '//list_names(i)//']')
+            else
+               call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                                to_str(cfg%list_size(i))//' values for the '//to_str(nd)// &
+                                ' coordinates of model '//model_asked(cfg)//' [--' &
+                                //list_names(i)//' / namelist '//list_names(i)//']')
+            end if
+            return
+         end if
+      end do
+      call cfg%model%check_state(cfg%q(:nd), cfg%w(:nd), error)
+   end subroutine check_initial_state
 
    !> Help lines for the common flags, with units and the defaults of `cfg`.
    function run_flags_help(cfg, t_end_text) result(s)

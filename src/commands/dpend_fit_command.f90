@@ -11,7 +11,7 @@ module dpend_fit_command
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, pad, printable
-   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
+   use dpend_config, only: require_default_model, run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
@@ -221,7 +221,8 @@ contains
             return
          end if
          fc%run%links = s%n
-         call validate_run_config(fc%run, error)
+         call require_default_model(fc%run, 'dpend fit', error)
+         if (.not. allocated(error)) call validate_run_config(fc%run, error)
          if (allocated(error)) return
          call new_integrator(fc%run%method, integ, error)
          if (allocated(error)) return

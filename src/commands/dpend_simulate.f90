@@ -420,9 +420,12 @@ contains
       call h5%writeattr('/', 'version', version)
       call h5%writeattr('/', 'q0', cfg%q0())
       call h5%writeattr('/', 'qdot0', cfg%w0())
-      call h5%writeattr('/', 'links', cfg%links)
-      call h5%writeattr('/', 'm', cfg%m(:cfg%links))
-      call h5%writeattr('/', 'l', cfg%l(:cfg%links))
+      call h5%writeattr('/', 'model', cfg%spec%model_name())
+      if (cfg%spec%find('links') > 0) then   ! a chain of links: its per-link arrays
+         call h5%writeattr('/', 'links', cfg%links)
+         call h5%writeattr('/', 'm', cfg%m(:cfg%links))
+         call h5%writeattr('/', 'l', cfg%l(:cfg%links))
+      end if
       call h5%writeattr('/', 'save_every', cfg%save_every)
       call h5%writeattr('/', 'order', integ%order())
       if (integ%adaptive()) then

@@ -30,7 +30,7 @@ module dpend_sweep_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str, option_outcome
-   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
+   use dpend_config, only: require_default_model, run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, namelist_error
    use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
@@ -364,7 +364,8 @@ contains
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       character(len=:), allocatable :: field
-      call validate_run_config(cfg%run, error)
+      call require_default_model(cfg%run, 'dpend sweep', error)
+      if (.not. allocated(error)) call validate_run_config(cfg%run, error)
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &

@@ -62,7 +62,8 @@ module dpend_elastic
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: to_str
-   use dpend_limits, only: check_range, min_mass, max_mass, min_length, max_length, max_g, &
+   use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
+                           parameter_gravity, check_range, min_mass, max_mass, min_length, max_length, max_g, &
                            diverged_bound, max_angle, max_angular_velocity
    use dpend_model, only: model_t
    implicit none
@@ -153,13 +154,13 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set when refused
       type(elastic_t) :: model                          !! the model (defaults when refused)
       character(len=*), parameter :: reason = 'keeps every product of the model finite'
-      call check_range('m', m, min_mass, max_mass, 'kg', error, reason)
+      call check_parameter(parameter_mass, 'm', m, error)
       if (allocated(error)) return
       call check_range('k', k, min_stiffness, max_stiffness, 'N/m', error, reason)
       if (allocated(error)) return
-      call check_range('l0', l0, min_length, max_length, 'm', error, reason)
+      call check_parameter(parameter_length, 'l0', l0, error)
       if (allocated(error)) return
-      call check_range('g', g, 0.0_dp, max_g, 'm/s^2', error, reason)
+      call check_parameter(parameter_gravity, 'g', g, error)
       if (allocated(error)) return
       model%m = m; model%k = k; model%l0 = l0; model%g = g
       model%r_min = r_min_ratio*l0

@@ -14,7 +14,7 @@ module dpend_model_factory
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: model_t, max_dof
-   use dpend_pendulum, only: pendulum_t, validate, pendulum_model
+   use dpend_pendulum, only: pendulum_t, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
    use dpend_cli, only: to_str, real_str
@@ -219,10 +219,14 @@ contains
                                    ' values, model '//info%name//' takes '//count_text(p, want))
                   return
                end if
-               do j = 1, size(v)
-                  call check_value(element_name(p, j, size(v)), v(j), p, error)
-                  if (allocated(error)) return
-               end do
+               ! a count here; every other value is checked by the model's constructor
+               ! (its messages name the element: m2, damping c1, support_amplitude a_x)
+               if (p%integer_valued) then
+                  do j = 1, size(v)
+                     call check_value(element_name(p, j, size(v)), v(j), p, error)
+                     if (allocated(error)) return
+                  end do
+               end if
             end associate
          end associate
       end do
@@ -362,22 +366,18 @@ contains
       a = value_of(spec, info, 'support_amplitude', n)
       w = value_of(spec, info, 'support_frequency', n)
       phi = value_of(spec, info, 'support_phase', n)
-      if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp)) then
-         block
-            type(pendulum_t) :: par
-            par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
-            call validate(par, error)
-            if (allocated(error)) return
-            allocate (model, source=pendulum_model(par))
-         end block
-      else
-         block
-            type(chain_t) :: chain
-            chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
-            if (allocated(error)) return
+      block
+         type(chain_t) :: chain
+         ! the chain checks every parameter (also those the two-link form ignores)
+         chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
+         if (allocated(error)) return
+         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp)) then
+            allocate (model, source=pendulum_model(pendulum_t(m1=m(1), m2=m(2), l1=l(1), &
+                                                              l2=l(2), g=g(1))))
+         else
             allocate (model, source=chain)
-         end block
-      end if
+         end if
+      end block
    end subroutine build_pendulum
 
    ! ------------------------------------------------------------ the description
