@@ -12,7 +12,7 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_model_factory, only: model_spec_t, model_spec, new_model
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
@@ -227,22 +227,36 @@ contains
       integer, intent(in) :: ic                           !! case index
       class(model_t), allocatable, intent(out) :: model   !! its system
       type(error_t), allocatable :: error
-      type(chain_t) :: chain
+      call new_model(case_spec(cfg, ic), model, error)
+      if (allocated(error)) error stop 'internal error: a validated study case: ' &
+         //error%message
+   end subroutine case_model
+
+   !> The factory's specification of case ic: the pendulum of the case's links with
+   !> the study's masses, lengths and g and the case's damping and support motion
+   !> (the factory gives the double pendulum's own form to two conservative links).
+   function case_spec(cfg, ic, conservative) result(spec)
+      type(study_config_t), intent(in) :: cfg        !! configuration
+      integer, intent(in) :: ic                      !! case index
+      logical, intent(in), optional :: conservative  !! without damping and support
+      type(model_spec_t) :: spec
       integer :: n
       n = size(cfg%cases(ic)%q0)
-      if (balance_case(cfg, ic)) then
-         associate (cs => cfg%cases(ic))
-            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, case_damping(cs, n), &
-                                cs%support_amplitude, cs%support_frequency, cs%support_phase)
-         end associate
-         allocate (model, source=chain)
-      else if (n == 2) then
-         allocate (model, source=pendulum_model(study_pendulum(cfg)))
-      else
-         chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)   ! checked by validation
-         allocate (model, source=chain)
+      spec = model_spec('pendulum')
+      call spec%set('links', [real(n, dp)])
+      call spec%set('m', cfg%m(:n))
+      call spec%set('l', cfg%l(:n))
+      call spec%set('g', [cfg%g])
+      if (present(conservative)) then
+         if (conservative) return
       end if
-   end subroutine case_model
+      associate (cs => cfg%cases(ic))
+         call spec%set('damping', case_damping(cs, n))
+         call spec%set('support_amplitude', cs%support_amplitude)
+         call spec%set('support_frequency', [cs%support_frequency])
+         call spec%set('support_phase', cs%support_phase)
+      end associate
+   end function case_spec
 
    !> The damping of a case of n links (0 when none is given).
    pure function case_damping(cs, n) result(c)
@@ -1026,7 +1040,7 @@ contains
       !> the moving support of a balance case (a chain of at most max_dof − 1 links).
       subroutine check_system(ic)
          integer, intent(in) :: ic
-         type(chain_t) :: chain
+         class(model_t), allocatable :: model
          integer :: n, k
          character(len=1), parameter :: names(2) = ['m', 'l']
          n = size(cfg%cases(ic)%q0)
@@ -1045,15 +1059,14 @@ contains
                return
             end if
          end do
-         if (n == 2) then
-            call validate(study_pendulum(cfg), error)
-            if (allocated(error)) error%message = error%message// &
-                                                  ' [--m1 --m2 --l1 --l2 --g / &pendulum]'
-         else
-            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error)
-            if (allocated(error)) error%message = error%message//" (case '"// &
-                                                  cfg%cases(ic)%name//"', "//to_str(n)// &
-                                                  ' links) [--m --l --g / &pendulum]'
+         call new_model(case_spec(cfg, ic, conservative=.true.), model, error)
+         if (allocated(error)) then
+            if (n == 2) then
+               error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+            else
+               error%message = error%message//" (case '"//cfg%cases(ic)%name//"', "// &
+                               to_str(n)//' links) [--m --l --g / &pendulum]'
+            end if
          end if
          if (allocated(error) .or. .not. balance_case(cfg, ic)) return
          if (n > max_dof - 1) then
@@ -1063,10 +1076,7 @@ contains
                              //'components)')
             return
          end if
-         associate (cs => cfg%cases(ic))
-            chain = chain_model(cfg%m(:n), cfg%l(:n), cfg%g, error, case_damping(cs, n), &
-                                cs%support_amplitude, cs%support_frequency, cs%support_phase)
-         end associate
+         call new_model(case_spec(cfg, ic), model, error)
          if (allocated(error)) error%message = error%message//" (case '"// &
                                                cfg%cases(ic)%name//"': case_damping, " &
                                                //'case_support_*)'
