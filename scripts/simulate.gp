@@ -38,10 +38,21 @@ lc(i) = linkcol[(i - 1)%8 + 1]
 set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
 set grid
 set key outside right
+isfinite(x) = (x == x && abs(x) < 1e308)
+finite_col(c) = isfinite(column(c))
 # Escale (J) comes from the file's energy_scale attribute: |E0|, or when E0 ~ 0
 # the potential energy with both links upright (docs/hdf5-layout.md)
 stats datafile using cE every ::0::0 nooutput
 E0 = STATS_min
+# every figure has data: each column it draws holds at least two finite values (a
+# figure without data is an error, not an empty picture)
+do for [c = 1:cT + 1] {
+  stats datafile using (finite_col(c) ? column(c) : NaN) nooutput
+  if (STATS_records < 2) {
+    print sprintf("simulate.gp: column %d of the data has fewer than 2 finite values", c)
+    exit status 1
+  }
+}
 
 # angle wrapped to (-pi, pi]
 wrap(a) = a - 2*pi*ceil((a - pi)/(2*pi))
