@@ -143,6 +143,152 @@ contains
       call check_number_tokens(text, pre, error)
    end subroutine check_groups
 
+   !> The group &model of a namelist file (checked by `check_groups`): `name = 'elastic'`
+   !> and the model's parameters by name (`k = 40, l0 = 1`), read by name since every
+   !> model has its own: the name into `cfg%model_name`, the parameters into
+   !> `cfg%extra` (the pendulum's keep their groups: &pendulum). The factory checks
+   !> them against the model (validate_run_config).
+   subroutine read_model_group(filename, cfg, error)
+      character(len=*), intent(in) :: filename          !! the namelist file
+      type(run_config_t), intent(inout) :: cfg          !! updated
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
+      character(len=:), allocatable :: text, body, key, pre
+      integer :: i, j, k, eq
+      pre = "invalid --config '"//printable(filename)//"': &model: "
+      call read_config_bytes(filename, pre, text, error)
+      if (allocated(error)) return
+      text = without_comments(text)
+      i = index(to_lower(text), '&model')
+      if (i == 0) return
+      j = index(text(i:), '/')
+      if (j == 0) return          ! check_groups refused an open group
+      body = text(i + 6:i + j - 2)
+      do   ! key = value[, value ...], up to the next key or the end
+         eq = index(body, '=')
+         if (eq == 0) exit
+         key = to_lower(stripped(body(:eq - 1)))
+         body = body(eq + 1:)
+         k = next_key(body)
+         if (key == 'name') then
+            cfg%model_name = unquoted(body(:k - 1))
+         else if (is_model_parameter(key)) then
+            call parse_values(key, body(:k - 1))
+            if (allocated(error)) return
+         else
+            call fatal_error(error, pre//"'"//printable(key)//"' is not a key (accepted: " &
+                             //'name and the parameters of the models: dpend models)')
+            return
+         end if
+         body = body(k:)
+      end do
+   contains
+      !> Where the next `key =` starts in `s` (len(s) + 1 if none).
+      integer function next_key(s)
+         character(len=*), intent(in) :: s
+         integer :: e, b
+         next_key = len(s) + 1
+         e = index(s, '=')
+         if (e == 0) return
+         b = e - 1
+         do while (b > 0)
+            if (s(b:b) /= ' ' .and. s(b:b) /= achar(9) .and. s(b:b) /= achar(10) .and. &
+                s(b:b) /= achar(13)) exit
+            b = b - 1
+         end do
+         do while (b > 0)
+            if (index(' ,'//achar(9)//achar(10)//achar(13), s(b:b)) > 0) exit
+            b = b - 1
+         end do
+         next_key = b + 1
+      end function next_key
+      !> Text between quotes (or the trimmed text).
+      function unquoted(s) result(t)
+         character(len=*), intent(in) :: s
+         character(len=:), allocatable :: t
+         t = stripped(s)
+         if (len(t) > 0) then
+            if (t(len(t):len(t)) == ',') t = stripped(t(:len(t) - 1))
+         end if
+         if (len(t) >= 2) then
+            if (index('''"', t(1:1)) > 0 .and. t(len(t):len(t)) == t(1:1)) t = t(2:len(t) - 1)
+         end if
+      end function unquoted
+      !> Numbers separated by commas or blanks, through the strict parser.
+      subroutine parse_values(name, s)
+         character(len=*), intent(in) :: name, s
+         real(dp) :: v(max_dof)
+         integer :: n, a, b
+         character(len=*), parameter :: seps = ' ,'//achar(9)//achar(10)//achar(13)
+         n = 0
+         a = 1
+         do
+            do while (a <= len(s))
+               if (index(seps, s(a:a)) == 0) exit
+               a = a + 1
+            end do
+            if (a > len(s)) exit
+            b = a
+            do while (b <= len(s))
+               if (index(seps, s(b:b)) > 0) exit
+               b = b + 1
+            end do
+            if (n == max_dof) then
+               call fatal_error(error, pre//name//': more than '//to_str(max_dof)//' values')
+               return
+            end if
+            n = n + 1
+            call parse_real(s(a:b - 1), '&model '//name, v(n), error)
+            if (allocated(error)) then
+               error%message = pre(:len(pre) - 8)//error%message
+               return
+            end if
+            a = b
+         end do
+         call cfg%extra%set(name, v(:n))
+      end subroutine parse_values
+   end subroutine read_model_group
+
+   !> `s` without leading and trailing blanks, tabs and line ends.
+   pure function stripped(s) result(t)
+      character(len=*), intent(in) :: s  !! text
+      character(len=:), allocatable :: t
+      character(len=*), parameter :: white = ' '//achar(9)//achar(10)//achar(13)
+      integer :: a, b
+      a = verify(s, white)
+      b = verify(s, white, back=.true.)
+      if (a == 0) then
+         t = ''
+      else
+         t = s(a:b)
+      end if
+   end function stripped
+
+   !> `text` with every '!' comment outside quotes removed (to the line end).
+   pure function without_comments(text) result(t)
+      character(len=*), intent(in) :: text  !! namelist text
+      character(len=:), allocatable :: t
+      character :: quote
+      integer :: i
+      t = ''
+      quote = ' '
+      i = 1
+      do while (i <= len(text))
+         if (quote /= ' ') then
+            if (text(i:i) == quote) quote = ' '
+         else if (text(i:i) == "'" .or. text(i:i) == '"') then
+            quote = text(i:i)
+         else if (text(i:i) == '!') then
+            do while (i <= len(text))
+               if (text(i:i) == achar(10)) exit
+               i = i + 1
+            end do
+            cycle
+         end if
+         t = t//text(i:i)
+         i = i + 1
+      end do
+   end function without_comments
+
    !> Read the keys and values of every group strictly, before the namelist read
    !> (which resolves conflicts silently): refused, in one line naming the line, are
    !> the component syntax '%' (`&pendulum%m1 = 2 /` is otherwise ignored), a key
@@ -608,14 +754,17 @@ contains
 
       n_extra = 0
       if (present(extra_groups)) n_extra = size(extra_groups)
-      allocate (known(4 + n_extra))
-      known(1:4) = [character(len=16) :: 'pendulum', 'initial', 'integration', 'output']
+      allocate (known(5 + n_extra))
+      known(1:5) = [character(len=16) :: 'pendulum', 'initial', 'integration', 'output', &
+                    'model']
       ! element by element: gfortran's -fcheck=all rejects a typed array constructor
       ! over an array of another character length
       do i = 1, n_extra
-         known(4 + i) = extra_groups(i)
+         known(5 + i) = extra_groups(i)
       end do
       call check_groups(filename, known, error)
+      if (allocated(error)) return
+      call read_model_group(filename, cfg, error)
       if (allocated(error)) return
 
       links = cfg%links
