@@ -87,7 +87,6 @@ contains
    !> optional joint damping and a moving support.
    function pendulum_info() result(info)
       type(model_info_t) :: info
-      character(len=*), parameter :: keep = 'keeps every product of the model finite'
       info%name = 'pendulum'
       info%summary = 'N uniform rods hinged in a chain (N = 2: the chapter''s compound ' &
                      //'double pendulum), optional joint damping and a moving support'
@@ -99,7 +98,7 @@ contains
       info%params = [ &
          param('links', '', 'number of links N', 1.0_dp, real(max_dof, dp), 2.0_dp, 1, &
                .true.), &
-         param('m', 'kg', 'link masses m_i (one per link); '//keep, min_mass, max_mass, &
+         param('m', 'kg', 'link masses m_i', min_mass, max_mass, &
                1.0_dp, -1), &
          param('l', 'm', 'link lengths l_i (one per link)', min_length, max_length, &
                1.0_dp, -1), &
@@ -122,8 +121,8 @@ contains
                      //'hung from the pin A (docs/elastic.md)'
       info%coordinates = 'r: the spring length (m); phi: its angle from the horizontal x ' &
                          //'axis, counter-clockwise (rad); hanging: phi = -pi/2'
-      info%supports = 'Hamiltonian structure (every method), no damping, no driving, ' &
-                      //'no SIMD lanes, no Poincare sections'
+      info%supports = 'Hamiltonian structure (every method applies); no damping, driving, ' &
+                      //'SIMD lanes or Poincare sections'
       info%params = [ &
          param('m', 'kg', 'mass of the bob', min_mass, max_mass, 1.0_dp, 1), &
          param('k', 'N/m', 'stiffness of the spring', min_stiffness, max_stiffness, 40.0_dp, &
@@ -396,7 +395,7 @@ contains
             s = s//m%name//': '//m%summary//nl// &
                 '  coordinates: '//m%coordinates//nl// &
                 '  supports:    '//m%supports//nl// &
-                '  parameters (--NAME VALUE, or NAME = VALUE in &model):'//nl
+                '  parameters (flag --NAME, namelist key NAME):'//nl
             do i = 1, size(m%params)
                s = s//param_line(m%params(i))//nl
             end do
