@@ -64,7 +64,7 @@ module dpend_estimate
    use dpend_tangent, only: tangent_t
    use dpend_lapack, only: dpotrf, dpotrs
    use dpend_limits, only: max_damping, max_fit_work, default_max_steps
-   use dpend_cli, only: real_str, to_str
+   use dpend_strings, only: real_str, to_str
    use dpend_kinds, only: i8
    use dpend_progress, only: progress_t
    implicit none

@@ -15,7 +15,8 @@ module dpend_animate
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_output, only: output_t, check_output_path, register_input
    use dpend_trajectory_figure, only: figure_track_t, read_figure, resample_figure
-   use dpend_limits, only: check_range, check_memory, sci, max_time, max_angle
+   use dpend_limits, only: check_range, sci, max_time, max_angle
+   use dpend_resources, only: check_memory
    use dpend_os, only: find_script, run_program, make_temp_file, remove_file, &
                            directory_of, base_name, path_kind, path_directory, path_missing, &
                            move_noreplace, move_replace, sync_path, errno_text

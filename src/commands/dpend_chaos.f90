@@ -29,10 +29,9 @@ module dpend_chaos
                                             ieee_quiet_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config, real_str, printable
-   use dpend_limits, only: in_range, check_range, check_count, check_memory, &
-                           check_disk, &
-                           sci, max_time, max_steps, max_samples, max_angle, &
-                           max_angular_velocity, min_delta0_relative
+   use dpend_limits, only: in_range, check_range, check_count, sci, max_time, max_steps, &
+                           max_samples, max_angle, max_angular_velocity, min_delta0_relative
+   use dpend_resources, only: check_memory, check_disk
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help

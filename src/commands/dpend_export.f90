@@ -11,7 +11,8 @@ module dpend_export
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
    use dpend_config, only: check_regular_file
-   use dpend_limits, only: sci, check_memory
+   use dpend_limits, only: sci
+   use dpend_resources, only: check_memory
    use dpend_cli, only: to_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none

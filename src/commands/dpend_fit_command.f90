@@ -22,7 +22,8 @@ module dpend_fit_command
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t, check_output_path, register_input
    use dpend_version, only: version
-   use dpend_limits, only: check_range, check_memory, sci, max_time, max_fit_work
+   use dpend_limits, only: check_range, sci, max_time, max_fit_work
+   use dpend_resources, only: check_memory
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private

@@ -17,8 +17,8 @@ module dpend_simulate
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config, printable
-   use dpend_limits, only: check_count, check_memory, check_disk, &
-                           max_samples, sci
+   use dpend_limits, only: check_count, max_samples, sci
+   use dpend_resources, only: check_memory, check_disk
    use dpend_os, only: available_memory_bytes
    use dpend_progress, only: wall_seconds
    use dpend_cli, only: real_str, seconds_str

@@ -22,9 +22,9 @@ module dpend_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       ieee_quiet_nan
    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
-   use dpend_limits, only: check_memory, check_disk, sci, max_sweep_points, max_angle, &
-                           max_angular_velocity, max_axis_points, max_run_time => max_time, &
-                           in_range
+   use dpend_limits, only: sci, max_sweep_points, max_angle, max_angular_velocity, &
+                           max_axis_points, max_run_time => max_time, in_range
+   use dpend_resources, only: check_memory, check_disk
    use dpend_model, only: max_dof
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error, run_failure

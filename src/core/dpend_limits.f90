@@ -16,9 +16,8 @@
 module dpend_limits
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_os, only: available_memory_bytes, free_disk_bytes, directory_of
    !> `sci` is the one number formatter of dpend_cli under the name the messages use
-   use dpend_cli, only: sci => real_str
+   use dpend_strings, only: sci => real_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -28,7 +27,7 @@ module dpend_limits
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
-   public :: in_range, check_range, check_count, check_memory, check_disk, sci, bytes_text
+   public :: in_range, check_range, check_count, sci, bytes_text
 
    !> Masses [kg], lengths [m] and g [m/s²] are each within [1e-6, 1e6]: every
    !> product of the model (m l² g … at most eight factors, with the angular
@@ -193,40 +192,7 @@ contains
                        //sci(span)//' s; at most '//sci(real(max_count, dp))//' ('//hint//')')
    end subroutine check_count
 
-   !> Refuse when `bytes` of memory are needed and less is available (unknown
-   !> availability: accepted). Message: 'invalid FIELD: WHAT needs B of memory,
-   !> A available (HINT)'.
-   subroutine check_memory(field, bytes, what, hint, error)
-      character(len=*), intent(in) :: field             !! field to change
-      real(dp), intent(in) :: bytes                     !! estimate [B]
-      character(len=*), intent(in) :: what              !! what is kept
-      character(len=*), intent(in) :: hint              !! what to do
-      type(error_t), allocatable, intent(out) :: error  !! set when refused
-      integer(i8) :: avail
-      avail = available_memory_bytes()
-      if (avail < 0) return
-      if (bytes <= real(avail, dp)) return
-      call fatal_error(error, 'invalid '//field//': '//what//' needs '//bytes_text(bytes)// &
-                       ' of memory, '//bytes_text(real(avail, dp))//' available ('//hint//')')
-   end subroutine check_memory
 
-   !> Refuse when a file of `bytes` does not fit the free space of the file system
-   !> of `path`. Unknown or zero free space (a pseudo file system such as /proc, or a
-   !> full disk) is left to the writer, which names the cause when it fails.
-   subroutine check_disk(field, bytes, path, hint, error)
-      character(len=*), intent(in) :: field             !! field to change
-      real(dp), intent(in) :: bytes                     !! estimated file size [B]
-      character(len=*), intent(in) :: path              !! the output file
-      character(len=*), intent(in) :: hint              !! what to do
-      type(error_t), allocatable, intent(out) :: error  !! set when refused
-      integer(i8) :: free
-      free = free_disk_bytes(directory_of(path))
-      if (free <= 0) return
-      if (bytes <= real(free, dp)) return
-      call fatal_error(error, 'invalid '//field//": the output '"//path//"' needs about " &
-                       //bytes_text(bytes)//', '//bytes_text(real(free, dp))// &
-                       ' free on its file system ('//hint//')')
-   end subroutine check_disk
 
    !> a/b for a, b > 0 as text (4 significant digits), without forming the quotient
    !> when it would overflow.

@@ -5,7 +5,7 @@ module dpend_progress
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
    use dpend_kinds, only: dp, i8
-   use dpend_cli, only: real_str
+   use dpend_strings, only: real_str
    implicit none
    private
    public :: progress_t, stderr_is_terminal, wall_seconds

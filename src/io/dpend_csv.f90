@@ -31,7 +31,7 @@
 module dpend_csv
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, real_str, to_lower, printable
+   use dpend_strings, only: to_str, real_str, to_lower, printable
    use dpend_parse, only: read_real, quote_text => quoted
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time

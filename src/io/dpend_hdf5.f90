@@ -32,8 +32,9 @@ module dpend_hdf5
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_os, only: io_failure_reason
-   use dpend_limits, only: check_memory, sci
-   use dpend_cli, only: to_str
+   use dpend_limits, only: sci
+   use dpend_resources, only: check_memory
+   use dpend_strings, only: to_str
    implicit none
    private
    public :: h5file_t, is_hdf5, max_read_values, max_string_bytes

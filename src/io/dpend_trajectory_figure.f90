@@ -15,7 +15,7 @@ module dpend_trajectory_figure
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
-   use dpend_cli, only: to_str, real_str
+   use dpend_strings, only: to_str, real_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private

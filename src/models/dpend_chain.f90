@@ -69,7 +69,7 @@ module dpend_chain
    use dpend_limits, only: check_range, check_parameter, parameter_mass, parameter_length, &
                            parameter_gravity, diverged_bound, max_damping, max_support_amplitude, &
                            max_support_frequency, max_angle
-   use dpend_cli, only: to_str
+   use dpend_strings, only: to_str
    use dpend_model, only: model_t, max_dof
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &

@@ -61,7 +61,7 @@
 module dpend_elastic
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str
+   use dpend_strings, only: to_str
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
                            parameter_gravity, check_range, min_mass, max_mass, min_length, max_length, max_g, &
                            diverged_bound, max_angle, max_angular_velocity

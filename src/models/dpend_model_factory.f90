@@ -17,7 +17,7 @@ module dpend_model_factory
    use dpend_pendulum, only: pendulum_t, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
-   use dpend_cli, only: to_str, real_str
+   use dpend_strings, only: to_str, real_str
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
                            max_damping, max_support_amplitude, max_support_frequency, &
                            max_angle

@@ -1,0 +1,146 @@
+!> Small text helpers for messages and reports: numbers as text (`real_str`, the one
+!> formatter of reals for people; `to_str` of integers; `seconds_str`), lower case,
+!> padding, and `printable` (the one escaping helper of dpend_parse: control bytes as
+!> \t, \n, \xNN, so that a message stays one line). Pure, no state; core/ only.
+module dpend_strings
+   use dpend_kinds, only: dp, i8
+   use dpend_parse, only: int_text, printable => escaped
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
+   implicit none
+   private
+   public :: to_lower, printable, pad, real_str, seconds_str, to_str
+
+   !> Text of an integer (default or 64-bit), without blanks.
+   interface to_str
+      module procedure int_str
+      procedure int_text   ! 64-bit: dpend_parse's
+   end interface to_str
+
+contains
+
+   !> `s` with ASCII capitals in lower case.
+   pure function to_lower(s) result(t)
+      character(len=*), intent(in) :: s  !! text
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function to_lower
+
+   !> `text` without trailing blanks, padded with blanks to `width` columns (at least
+   !> one blank).
+   pure function pad(text, width) result(t)
+      character(len=*), intent(in) :: text  !! text
+      integer, intent(in) :: width          !! columns
+      character(len=:), allocatable :: t
+      t = trim(text)//repeat(' ', max(1, width - len_trim(text)))
+   end function pad
+
+   !> The one formatter of real numbers for people: the shortest text that reads
+   !> back to the same bits (or, with `digits`, rounded to at most that many
+   !> significant digits, for measured or derived values). Plain decimals for
+   !> 1e-4 <= |x| < 1e6 and for integers up to 1e15 whose plain form is not longer,
+   !> else 'd.ddde-12' style: 0.001, 9.8, 20, 1234567, 1e-12, 2.5e6, -2.5e300,
+   !> 5e-324, 0.3333333333333333; '0', '-0', 'NaN', 'Infinity', '-Infinity'.
+   pure function real_str(x, digits) result(s)
+      real(dp), intent(in) :: x                 !! the number
+      integer, intent(in), optional :: digits   !! most significant digits (1 to 17)
+      character(len=:), allocatable :: s
+      character(len=40) :: buf
+      character(len=:), allocatable :: mant, plain, expo
+      integer :: p, p_max, e, stat, k
+      real(dp) :: y
+      if (ieee_is_nan(x)) then
+         s = 'NaN'
+         return
+      else if (.not. ieee_is_finite(x)) then
+         s = merge('Infinity ', '-Infinity', x > 0.0_dp)
+         s = trim(s)
+         return
+      else if (x == 0.0_dp) then
+         s = merge('-0', '0 ', ieee_is_negative(x))
+         s = trim(s)
+         return
+      end if
+      p_max = 17
+      if (present(digits)) p_max = max(1, min(17, digits))
+      do p = 1, p_max
+         write (buf, '(es'//int_str(p + 9)//'.'//int_str(p - 1)//'e4)') abs(x)
+         if (above_huge(buf)) cycle   ! reading it would overflow
+         read (buf, *, iostat=stat) y
+         if (stat == 0 .and. y == abs(x)) exit
+      end do
+      p = min(p, p_max)
+      write (buf, '(es'//int_str(p + 9)//'.'//int_str(p - 1)//'e4)') abs(x)
+      buf = adjustl(buf)
+      k = index(buf, 'E')
+      read (buf(k + 1:), *) e
+      ! the significant digits without the point and trailing zeros: x = d.ddd 10^e
+      mant = buf(1:1)//buf(3:k - 1)
+      do while (len(mant) > 1 .and. mant(len(mant):len(mant)) == '0')
+         mant = mant(:len(mant) - 1)
+      end do
+      expo = mant(1:1)
+      if (len(mant) > 1) expo = expo//'.'//mant(2:)
+      expo = expo//'e'//int_str(e)
+      if (e >= -4 .and. e < 6) then
+         s = decimal(mant, e)
+      else if (e >= 6 .and. e < 15 .and. len(mant) <= e + 1) then
+         plain = decimal(mant, e)
+         s = expo
+         if (len(plain) <= len(expo)) s = plain
+      else
+         s = expo
+      end if
+      if (x < 0.0_dp) s = '-'//s
+   contains
+      !> Whether the text 'd.dddE+eeee' of a positive number exceeds huge(1.0_dp).
+      pure logical function above_huge(t)
+         character(len=*), intent(in) :: t
+         real(dp) :: m
+         integer :: k, ee, stat
+         above_huge = .false.
+         k = index(t, 'E')
+         read (t(k + 1:), *, iostat=stat) ee
+         if (stat /= 0 .or. ee < 308) return
+         read (t(:k - 1), *, iostat=stat) m
+         above_huge = ee > 308 .or. m > 1.7976931348623157_dp
+      end function above_huge
+
+      !> Plain decimal text of the digits `m` times 10^(e - len(m) + 1).
+      pure function decimal(m, e) result(t)
+         character(len=*), intent(in) :: m
+         integer, intent(in) :: e
+         character(len=:), allocatable :: t
+         if (e < 0) then
+            t = '0.'//repeat('0', -e - 1)//m
+         else if (len(m) <= e + 1) then
+            t = m//repeat('0', e + 1 - len(m))
+         else
+            t = m(:e + 1)//'.'//m(e + 2:)
+         end if
+      end function decimal
+   end function real_str
+
+   !> A duration for people, from `real_str`: two significant digits below 1 s
+   !> (0.4, 0.043), one decimal above (2.5, 12.3, 1234.5); never '.4'.
+   pure function seconds_str(t) result(s)
+      real(dp), intent(in) :: t  !! seconds
+      character(len=:), allocatable :: s
+      if (.not. ieee_is_finite(t)) then
+         s = real_str(t)
+      else if (abs(t) < 1.0_dp) then
+         s = real_str(t, 2)
+      else
+         s = real_str(t, min(17, floor(log10(abs(t))) + 2))
+      end if
+   end function seconds_str
+
+   pure function int_str(i) result(s)
+      integer, intent(in) :: i  !! the number
+      character(len=:), allocatable :: s
+      s = int_text(int(i, i8))
+   end function int_str
+end module dpend_strings
