@@ -1291,8 +1291,12 @@ contains
       character(len=:), allocatable :: t_end_line
       t_end_line = 'end time'
       if (present(t_end_text)) t_end_line = t_end_text
-      s = '  --config FILE     Fortran namelist file (groups &pendulum &initial &integration' &
-          //nl//'                    &output; see data/*.nml); flags below override it'//nl// &
+      s = '  --config FILE     Fortran namelist file (groups &model &pendulum &initial' &
+          //nl//'                    &integration &output; see data/*.nml); flags below' &
+          //nl//'                    override it'//nl// &
+          '  --model NAME      the model (dpend models lists them, with their parameters);'//nl// &
+          '                    default pendulum. Parameters of other models by name, e.g.' &
+          //nl//'                    --model elastic --m 1 --k 40 --l0 1 --q 1.2,-1.0'//nl// &
           '  --links N         number of links (uniform rods), 1 to '//to_str(max_dof)// &
           '; default '//to_str(cfg%links)//nl// &
           '                    (2: the double pendulum; 3: the triple pendulum, ...)'//nl// &
