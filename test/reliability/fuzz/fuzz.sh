@@ -650,7 +650,7 @@ gen_h5() {
     0) objects "$src" D; pick "${OBJS[@]}"; read -ra o <<< "$P"; GENARGS=(delete "${o[1]}") ;;
     1) objects "$src" A; pick "${OBJS[@]}"; read -ra o <<< "$P"; GENARGS=(delete-attr "${o[1]}" "${o[2]}") ;;
     2|3) objects "$src" A; pick "${OBJS[@]}"; read -ra o <<< "$P"
-         pick "" 3 2 0 "1,1" 100000; local d=$P
+         pick "" 3 2 0 "1,1" 1000; local d=$P
          pick 0 1 -1 7 99 2147483647 -2147483648 nan inf -inf 1e300 -0.5 1e-300; local v=$P
          rnd 2
          if [ "$R" = 0 ]; then GENARGS=(attr-int "${o[1]}" "${o[2]}" "$d" "$v")
@@ -723,7 +723,7 @@ gen_h5() {
 
 # ------------------------------------------------------------------ one case
 TRAP_RE='Floating point exception|Fortran runtime error|Backtrace|Error termination|HDF5-DIAG'
-RE_WHERE='(In file .|at )\./+(src|app)/[A-Za-z0-9_./]+(:[0-9]+|., around line [0-9]+)'
+RE_WHERE='(In file .|at )(\./)+(src|app)/[A-Za-z0-9_./]+(:[0-9]+|., around line [0-9]+)'
 RUN_FAIL_CMDS=" simulate lyapunov divergence indicators poincare sweep study fit animate "
 
 # esc WORD...: ESC, the words escaped with printf %q, blank-separated (no fork)
@@ -742,7 +742,7 @@ show_file() {
 # run_case I DIR: generates and runs case I in DIR (created), appends one result
 # line to $RESULTS: "I ok refused|ran" or "I FAIL CLASS<TAB>details".
 run_case() {
-  local i=$1 d=$2
+  local i=$1 d=$2 t0=$EPOCHREALTIME
   mkdir -p "$d" && cd "$d" || return
   seed_case "$SEED" "$i"
   ARGS=() INPUTS=() NEEDS=() VERDICT=any WHAT="" TAG="" GENARGS=() GENFAIL=0 SRC=""
@@ -771,7 +771,14 @@ run_case() {
   local changed=0
   if [ ${#INPUTS[@]} -gt 0 ]; then sha256sum --quiet -c sums > /dev/null 2>&1 || changed=1; fi
   local cls="" cmd=${ARGS[0]}
-  if [ $rc = 124 ] || [ $rc = 137 ]; then cls="hang: $cmd over ${TIMEOUT} s ($TAG)"
+  local slow=0
+  if [ $rc = 124 ] || [ $rc = 137 ]; then
+    # A valid number that makes a run long (--t-end 1e6) is slow, not a hang: a
+    # note, not a failure. Over the limit on anything else is a hang.
+    if [ "$VERDICT" = any ] && [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* ||
+                                  $TAG == 'repeated flag' ]]; then slow=1
+    elif [ "$VERDICT" = refuse ]; then cls="invalid input accepted (ran over the limit): $TAG"
+    else cls="hang: $cmd over ${TIMEOUT} s ($TAG)"; fi
   elif [ $rc = 134 ] || [ $rc = 136 ] || [ $rc = 139 ] || [[ $err =~ $TRAP_RE ]]; then
     # the class of a trap: its first source line in the backtrace, else the command
     local where=""
@@ -804,8 +811,13 @@ run_case() {
                  h5) esc "${GENARGS[@]}"; echo "  file: case.h5 = dpend-fuzz-h5 $SRC case.h5 $ESC" ;; esac
     echo "  exit $rc; stderr ($nlines lines):"; head -n 20 stderr | sed 's/^/    /'
   fi
-  if [ -z "$cls" ]; then
-    if [ $rc = 2 ]; then echo "$i ok refused" >> "$RESULTS"; else echo "$i ok ran" >> "$RESULTS"; fi
+  if [ $slow = 1 ]; then
+    esc "${ARGS[@]}"
+    printf '%s slow %s\t%s; input: dpend %s\n' "$i" "$cmd ($TAG)" "${WHAT//$'\n'/\\n}" "$ESC" >> "$RESULTS"
+  elif [ -z "$cls" ]; then
+    local t1=$EPOCHREALTIME kind=ran
+    [ $rc = 2 ] && kind=refused
+    echo "$i ok $kind $cmd $fam $(( (${t1/./} - ${t0/./}) / 1000 ))" >> "$RESULTS"
   else
     FILETEXT=""
     case $fam in
@@ -813,11 +825,14 @@ run_case() {
       csv) show_file case.csv fit.csv ;;
       h5) esc "${GENARGS[@]}"; FILETEXT=" case.h5: dpend-fuzz-h5 $SRC case.h5 $ESC" ;;
     esac
-    local key=${cls//[0-9]/N} first=${errl[0]:-}
+    local key=${cls//[0-9]/N} first="" what l
+    [[ $cls == trap:* ]] && key=$cls  # a trap's source line is its class
+    for l in "${errl[@]}"; do [[ $l == *[![:space:]]* ]] && { first=$l; break; }; done
     esc "${ARGS[@]}"
     printf -v first '%q' "${first:0:200}"
+    printf -v what '%q' "${WHAT:0:200}"
     printf '%s FAIL %s\t%s; input: dpend %s;%s; exit %s; stderr: %s\n' "$i" "${key:0:140}" \
-      "$WHAT" "$ESC" "$FILETEXT" "$rc" "$first" >> "$RESULTS"
+      "$what" "$ESC" "$FILETEXT" "$rc" "$first" >> "$RESULTS"
   fi
 }
 
@@ -832,8 +847,9 @@ if [ ${#CASES[@]} -gt 0 ]; then
   RESULTS=$WORK/results.case
   : > "$RESULTS"
   for i in "${CASES[@]}"; do ( run_case "$i" "$RUNDIR/c$i" ) 2>> "$WORK/runner.err"; done
-  sed -n 's/^\([0-9]*\) FAIL /FAIL case \1: /p; s/^\([0-9]*\) ok \(.*\)/case \1: \2/p' "$RESULTS"
-  grep -q ' FAIL ' "$RESULTS" && exit 1
+  sed -n 's/^\([0-9]*\) FAIL /FAIL case \1: /p; s/^\([0-9]*\) ok \([a-z]*\).*/case \1: \2/p
+         s/^\([0-9]*\) slow /slow case \1: /p' "$RESULTS"
+  grep -q '^[0-9]* FAIL ' "$RESULTS" && exit 1
   exit 0
 fi
 
@@ -852,25 +868,33 @@ for ((w = 0; w < JOBS; w++)); do worker "$w" & done
 wait
 
 cat "$WORK"/results.[0-9]* | sort -n > "$WORK/results"
-refused=$(grep -c ' ok refused$' "$WORK/results")
-ran=$(grep -c ' ok ran$' "$WORK/results")
-failed=$(grep -c ' FAIL ' "$WORK/results")
-total=$((refused + ran + failed))
+refused=$(grep -c '^[0-9]* ok refused ' "$WORK/results")
+ran=$(grep -c '^[0-9]* ok ran ' "$WORK/results")
+failed=$(grep -c '^[0-9]* FAIL ' "$WORK/results")
+slow=$(grep -c '^[0-9]* slow ' "$WORK/results")
+total=$((refused + ran + failed + slow))
+# slow runs (valid numbers that make a run longer than --timeout): a note per class
+if [ "$slow" -gt 0 ]; then
+  awk -F'\t' '/^[0-9]* slow / { split($1, a, " slow "); c = a[2]; gsub(/[0-9]+/, "N", c); n[c]++
+                          if (n[c] == 1) { order[++k] = c; ex[c] = "case " a[1] ": " $2 } }
+    END { for (j = 1; j <= k; j++) printf "note: slow (killed after the per-input limit, a valid value): %s: %d case(s), e.g. %s\n", order[j], n[order[j]], substr(ex[order[j]], 1, 300) }' "$WORK/results"
+fi
 # every failure class once, with its count and its first three cases
 if [ "$failed" -gt 0 ]; then
   awk -F'\t' -v seed="$SEED" -v dp="$DPEND" '
-    / FAIL / { split($1, a, " FAIL "); c = a[2]; n[c]++
+    /^[0-9]* FAIL / { split($1, a, " FAIL "); c = a[2]; n[c]++
                if (n[c] == 1) order[++k] = c
-               if (n[c] <= 3) ex[c] = ex[c] sprintf("    case %s: %s\n      rerun: test/reliability/fuzz/fuzz.sh --dpend %s --seed %s --case %s\n", a[1], $2, dp, seed, a[1]) }
+               if (n[c] <= 3) ex[c] = ex[c] sprintf("    case %s: %s\n      rerun: scripts/reliability.sh --dpend %s --seed %s --fuzz-case %s\n", a[1], $2, dp, seed, a[1]) }
     END { for (j = 1; j <= k; j++) { c = order[j]
             printf "FAIL fuzz (seed %s): %s: %d case(s)\n%s", seed, c, n[c], ex[c] } }' \
     "$WORK/results"
 fi
 status=0
 [ "$failed" = 0 ] || status=1
-if grep -q ' budget$' "$WORK/results"; then
+if grep -q '^[0-9]* budget$' "$WORK/results"; then
   echo "FAIL fuzz: the budget of $BUDGET s ran out after $total of $COUNT inputs"; status=1
 fi
-echo "fuzz: $total inputs (seed $SEED): $refused refused, $ran ran, $failed failed" \
-     "($((SECONDS - START)) s)"
+closing="fuzz: $total inputs (seed $SEED): $refused refused, $ran ran, $failed failed"
+[ "$slow" = 0 ] || closing+=", $slow slow"
+echo "$closing ($((SECONDS - START)) s)"
 exit $status
