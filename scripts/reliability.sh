@@ -25,8 +25,10 @@ options:
   --cases FILE...   run only these case files (no special tests unless --special)
   --special NAME... run only these special tests (kill9_simulate or
                     kill9_simulate.sh or a path; no cases unless --cases)
-  --fuzz N          the fuzzing stage with N inputs (default 10000 when the whole
-                    suite runs, none with --cases or --special; 0: none)
+  --fuzz N          the fuzzing stage with N inputs: alone, or after --cases and
+                    --special if given (default 10000 when the whole suite
+                    runs, none with --cases or --special; --fuzz 0: the whole
+                    suite without it)
   --seed S          seed of the fuzzing stage; default today's date (YYYYMMDD,
                     UTC), so a day's runs are the same and every day differs
   --fuzz-case I     rerun case I of seed S alone, verbosely (repeatable; only
@@ -124,9 +126,13 @@ done
 
 # What to run: everything by default; with --cases, --special, --fuzz or
 # --fuzz-case, only those.
+# (--fuzz 0 alone: the cases and special tests without the fuzzing stage)
 if [ ${#FUZZ_CASES[@]} -gt 0 ] && [ -z "$FUZZ" ]; then FUZZ=0; fi
 if [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ] && [ -z "$FUZZ" ]; then
   RUN_CASES=1; RUN_SPECIALS=1; FUZZ=10000
+elif [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ] && [ "$FUZZ" = 0 ] &&
+     [ ${#FUZZ_CASES[@]} = 0 ]; then
+  RUN_CASES=1; RUN_SPECIALS=1
 elif [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ]; then
   RUN_CASES=0; RUN_SPECIALS=0
 else

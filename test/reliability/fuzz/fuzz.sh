@@ -309,10 +309,12 @@ gen_flag() {
     # a flag without its value, or an unknown flag
     pick "${ARGS[@]:1}"
     case $P in
-      --*) ARGS+=("$P"); WHAT="flag $P without a value at the end"; TAG="flag without its value"
+      --*) ARGS+=("$P"); VERDICT=refuse
            case $P in --force|--quiet|--no-figures|--quick|--reactions|--same-energy|--lyapunov|\
-                      --fit-damping|--stats|--agreement|--list|--csv) VERDICT=any ;;
-                      *) VERDICT=refuse ;; esac ;;
+                      --fit-damping|--stats|--agreement|--list|--csv|--matrix)
+                      WHAT="flag $P repeated"; TAG="repeated flag" ;;
+                      *) WHAT="flag $P without a value at the end"; TAG="flag without its value" ;;
+           esac ;;
       *) ARGS+=(--fuzz_x "1"); VERDICT=refuse; WHAT="unknown flag"; TAG="unknown flag" ;;
     esac
   else
@@ -490,6 +492,7 @@ gen_nml() {
     13) TAG="namelist string value" # a string value changed
       pick "${alines[@]}"; i=$P
       pick "'" "'rk4" "''" "'$(printf 'x%.0s' {1..300})'" '"rk4"' "rk4" "'r k4'" $'\'rk4\n\'' \
+           "'rk4'" "'dop853'" "'gauss8'" "'tao2'" "'verlet'" "'theta1'" "'w2'" "'m2/m1'" \
            "'../../etc/passwd'" "'/dev/null'" "'case.nml'"
       local v=$P
       if [[ ${lines[i]} =~ ^([^=]*=[[:space:]]*)([^,/!]*)(.*)$ ]]; then
@@ -859,7 +862,8 @@ worker() {  # worker W: cases W, W + JOBS, ... until COUNT or the budget
   : > "$RESULTS"
   for ((i = w; i < COUNT; i += JOBS)); do
     if [ $((SECONDS - START)) -ge "$BUDGET" ]; then echo "$i budget" >> "$RESULTS"; break; fi
-    ( run_case "$i" "$RUNDIR/w$w/c$i" ) 2>> "$WORK/runner.err"
+    run_case "$i" "$RUNDIR/w$w/c$i" 2>> "$WORK/runner.err"
+    cd "$RUNDIR" || exit 1
     (( i % (50 * JOBS) < JOBS )) && rm -rf "$RUNDIR/w$w"
   done
   rm -rf "$RUNDIR/w$w"
