@@ -279,6 +279,9 @@ contains
       integer(hssize_t) :: n
       integer :: e
       real(real64), allocatable, target :: buf(:)
+      integer, allocatable, target :: ibuf(:)
+      integer(hid_t) :: dtype
+      integer :: tclass
       type(c_ptr) :: p
       call h5dopen_f(loc, path, dset, e)
       call check(e, 'open '//path)
@@ -295,7 +298,15 @@ contains
       else
          buf(modulo(k, int(n, int64)) + 1) = v
       end if
-      call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, c_loc(buf), e)
+      call h5dget_type_f(dset, dtype, e)
+      call h5tget_class_f(dtype, tclass, e)
+      call h5tclose_f(dtype, e)
+      if (tclass == H5T_INTEGER_F) then  ! converted here: NaN -> 0, clamped
+         ibuf = clamp_int(buf)
+         call h5dwrite_f(dset, H5T_NATIVE_INTEGER, c_loc(ibuf), e)
+      else
+         call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, c_loc(buf), e)
+      end if
       call check(e, 'write '//path)
       call h5sclose_f(space, e)
       call h5dclose_f(dset, e)
