@@ -40,13 +40,14 @@ Outcomes: exit 2 with exactly one stderr line, inputs unchanged and no file
 created or removed (refused); exit 0 (ran), or exit 1 with a message from a
 command that documents run failures (not export or sweep-compare). A failure:
 a trap (exit 134/136/139, or stderr with "Floating point exception", "Fortran
-runtime error", "Backtrace", "Error termination", "HDF5-DIAG"), a hang (over
---timeout), another exit status, a changed or replaced input file, an invalid
-input accepted (a number with a tab, ';' or letters inside, a '%' key, a
-repeated key or flag, two forms of one quantity, NaN in a CSV, an edited file
-the command must refuse), or a valid one refused (a CSV with a BOM, quoted
-header, tab or ';' separators). Failures print the seed, the case, the
-mutation and the input escaped (printf %q), with the command that reruns it.
+runtime error", "Backtrace", "Error termination", "HDF5-DIAG"), "Fortran
+runtime warning" on stderr, a hang (over --timeout), another exit status, a
+changed or replaced input file, an invalid input accepted (a number with a
+tab, ';' or letters inside, a '%' key, a repeated key or flag, two forms of one
+quantity, NaN in a CSV, an edited file the command must refuse), or a valid
+one refused (a CSV with a BOM, quoted header, tab or ';' separators).
+Failures print the seed, the case, the mutation and the input escaped
+(printf %q), with the command that reruns it.
 EOF
 }
 
@@ -788,6 +789,10 @@ run_case() {
     [[ $err =~ $RE_WHERE ]] && where=${BASH_REMATCH[0]}
     [[ $err == *'Error allocating'* ]] && where="$where, Error allocating"
     cls="trap: $cmd exit $rc ${where:-(no backtrace; $TAG)}"
+  elif [[ $err == *'Fortran runtime warning'* ]]; then
+    # libgfortran's own warning (a namelist string truncated on read): not one line
+    # of dpend's, and the value was cut short
+    cls="Fortran runtime warning: $cmd ($TAG)"
   elif [ $changed = 1 ]; then cls="input changed or replaced: $cmd ($TAG)"
   else
     case $rc in
