@@ -700,7 +700,7 @@ gen_h5() {
             # "" (an empty DIMS, a scalar) is kept by splitting on two blanks
             local -a parts=(); local s=$P
             while [[ $s == *' '* ]]; do
-              if [[ $s == ' '* ]]; then parts+=(""); s=${s:2}
+              if [[ $s == ' '* ]]; then parts+=(""); s=${s:1}
               else parts+=("${s%% *}"); s=${s#* }; fi
             done
             parts+=("$s"); GENARGS=("${parts[@]}"); VERDICT=refuse ;;
