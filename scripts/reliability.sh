@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The reliability suite: table-driven bad-input cases (test/reliability/cases/*.sh)
-# and fault-injection tests (test/reliability/special/*.sh) against the dpend binary.
+# The reliability suite: table-driven bad-input cases (test/reliability/cases/*.sh),
+# fault-injection tests (test/reliability/special/*.sh) and the fuzzing stage
+# (test/reliability/fuzz/fuzz.sh) against the dpend binary.
 # Run scripts/reliability.sh --help for the usage and the row format.
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -13,9 +14,10 @@ usage: scripts/reliability.sh [options]
 
 Runs the reliability suite: every row of test/reliability/cases/*.sh (sorted),
 each in a fresh copy of the fixture directory as its cwd under `timeout 30`,
-then every executable test/reliability/special/*.sh. Prints one line per
-failure and closes with `reliability: N passed, M failed[, K skipped]`;
-exit status 1 on any failure.
+then every executable test/reliability/special/*.sh, then the fuzzing stage
+(10000 fuzzed inputs; it counts as one test). Prints one line per failure and
+closes with `reliability: N passed, M failed[, K skipped]`; exit status 1 on
+any failure.
 
 options:
   --dpend PATH      binary to test (default: $DPEND, else build the debug
@@ -23,6 +25,16 @@ options:
   --cases FILE...   run only these case files (no special tests unless --special)
   --special NAME... run only these special tests (kill9_simulate or
                     kill9_simulate.sh or a path; no cases unless --cases)
+  --fuzz N          the fuzzing stage with N inputs: alone, or after --cases and
+                    --special if given (default 10000 when the whole suite
+                    runs, none with --cases or --special; --fuzz 0: the whole
+                    suite without it)
+  --seed S          seed of the fuzzing stage; default today's date (YYYYMMDD,
+                    UTC), so a day's runs are the same and every day differs
+  --fuzz-case I     rerun case I of seed S alone, verbosely (repeatable; only
+                    the fuzzing stage runs): its input, exit status and stderr
+  --fuzz-budget SEC wall-clock budget of the fuzzing stage (default 540 s; no
+                    case starts after it, and a stage cut short fails)
   --list            list the rows (ID, kind, file) and the special tests; run nothing
   --jobs N          rows run in parallel; default 2
   --keep            keep the temporary directory (fixtures, scratch dirs, logs)
@@ -49,6 +61,19 @@ copies of data/*.nml (both as NAME.nml and data/NAME.nml), an empty dir/.
 Special tests get DPEND (absolute binary), ROOT (repo root) and SCRATCH (an
 empty temporary directory, also their cwd); exit 0 passes, 77 skips (its
 output is shown as the note), anything else fails (its output tail is shown).
+
+The fuzzing stage (test/reliability/fuzz/fuzz.sh --help for the details):
+seeded and reproducible, 2 jobs, `timeout 10` per input. Each input mutates a
+valid one: a number or list of a flag of every command, a namelist file
+(data/*.nml), a fit CSV (data/fit_example.csv) or an HDF5 file read by export,
+animate or sweep-compare (changed by the fpm example dpend-fuzz-h5: deleted
+objects, attributes of another type, NaN/Inf, other shapes and types, huge
+declared dimensions with chunked storage). Every outcome must be a one-line
+refusal (exit 2, nothing touched) or a run (exit 0; exit 1 with a message
+from a command that documents run failures), never a trap, a hang, a changed
+input file or an invalid input accepted. It prints every failure class with
+up to three cases (seed, case, input escaped, rerun command) and closes with
+`fuzz: N inputs (seed S): K refused, J ran, F failed`.
 EOF
 }
 
@@ -58,6 +83,10 @@ SPECIALS=()
 SELECT_CASES=0
 SELECT_SPECIALS=0
 LIST=0
+FUZZ=""
+FUZZ_SEED=""
+FUZZ_CASES=()
+FUZZ_BUDGET=540
 JOBS=2
 KEEP=0
 VERBOSE=0
@@ -70,6 +99,12 @@ while [ $# -gt 0 ]; do
     --dpend=*) DPEND_ARG=${1#--dpend=}; mode="" ;;
     --jobs) [ $# -ge 2 ] || { echo "reliability: --jobs needs a number" >&2; exit 2; }
             JOBS=$2; shift 2; mode=""; continue ;;
+    --fuzz|--seed|--fuzz-budget)
+      [ $# -ge 2 ] || { echo "reliability: $1 needs a number" >&2; exit 2; }
+      [[ $2 =~ ^[0-9]{1,15}$ ]] || { echo "reliability: $1 needs a non-negative integer" >&2; exit 2; }
+      case $1 in --fuzz) FUZZ=$2 ;; --seed) FUZZ_SEED=$2 ;; --fuzz-budget) FUZZ_BUDGET=$2 ;; esac
+      shift 2; mode=""; continue ;;
+    --fuzz-case) mode=fuzzcase ;;
     --cases) SELECT_CASES=1; mode=cases ;;
     --special) SELECT_SPECIALS=1; mode=special ;;
     --list) LIST=1; mode="" ;;
@@ -79,6 +114,9 @@ while [ $# -gt 0 ]; do
     *) case $mode in
          cases) CASE_FILES+=("$1") ;;
          special) SPECIALS+=("$1") ;;
+         fuzzcase) [[ $1 =~ ^[0-9]{1,15}$ ]] ||
+                     { echo "reliability: --fuzz-case needs case numbers" >&2; exit 2; }
+                   FUZZ_CASES+=("$1") ;;
          *) echo "reliability: unexpected argument '$1' (see --help)" >&2; exit 2 ;;
        esac ;;
   esac
@@ -86,12 +124,21 @@ while [ $# -gt 0 ]; do
 done
 [[ $JOBS =~ ^[1-9][0-9]*$ ]] || { echo "reliability: --jobs needs a positive integer" >&2; exit 2; }
 
-# What to run: everything by default; with --cases and/or --special, only those.
-if [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ]; then
+# What to run: everything by default; with --cases, --special, --fuzz or
+# --fuzz-case, only those.
+# (--fuzz 0 alone: the cases and special tests without the fuzzing stage)
+if [ ${#FUZZ_CASES[@]} -gt 0 ] && [ -z "$FUZZ" ]; then FUZZ=0; fi
+if [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ] && [ -z "$FUZZ" ]; then
+  RUN_CASES=1; RUN_SPECIALS=1; FUZZ=10000
+elif [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ] && [ "$FUZZ" = 0 ] &&
+     [ ${#FUZZ_CASES[@]} = 0 ]; then
   RUN_CASES=1; RUN_SPECIALS=1
+elif [ $SELECT_CASES = 0 ] && [ $SELECT_SPECIALS = 0 ]; then
+  RUN_CASES=0; RUN_SPECIALS=0
 else
   RUN_CASES=$SELECT_CASES; RUN_SPECIALS=$SELECT_SPECIALS
 fi
+[ -n "$FUZZ" ] || FUZZ=0
 if [ $RUN_CASES = 1 ] && [ ${#CASE_FILES[@]} = 0 ]; then
   shopt -s nullglob
   CASE_FILES=("$CASEDIR"/*.sh)
@@ -348,6 +395,24 @@ for s in "${SPECIALS[@]}"; do
        tail -n 30 "$WORK/special-$name.log" | sed 's/^/    /' ;;
   esac
 done
+
+# The fuzzing stage: N inputs (or the cases asked for), one test.
+if [ $LIST = 0 ] && { [ "$FUZZ" -gt 0 ] || [ ${#FUZZ_CASES[@]} -gt 0 ]; }; then
+  GEN=$(dirname "$DPEND")/../example/dpend-fuzz-h5
+  if [ ! -x "$GEN" ]; then  # a binary from elsewhere: the mutator of the debug build
+    (cd "$ROOT" && . scripts/flags.sh && fpm build --flag "$DEBUG_FLAGS") > "$WORK/build-fuzz.log" 2>&1
+    GEN=$ROOT/$(cd "$ROOT" && . scripts/flags.sh &&
+                fpm run --example dpend-fuzz-h5 --flag "$DEBUG_FLAGS" --runner echo 2>/dev/null |
+                tail -n 1)
+  fi
+  fuzz_args=(--dpend "$DPEND" --gen "$GEN" --count "$FUZZ" --budget "$FUZZ_BUDGET" --jobs "$JOBS")
+  [ -z "$FUZZ_SEED" ] || fuzz_args+=(--seed "$FUZZ_SEED")
+  for c in ${FUZZ_CASES[@]+"${FUZZ_CASES[@]}"}; do fuzz_args+=(--case "$c"); done
+  rc=0
+  "$ROOT/test/reliability/fuzz/fuzz.sh" "${fuzz_args[@]}" < /dev/null || rc=$?
+  if [ $rc = 0 ]; then passed=$((passed + 1))
+  else failed=$((failed + 1)); echo "FAIL fuzz: the fuzzing stage failed (exit $rc; lines above)"; fi
+fi
 
 # A safety net: a faulty --force must not have replaced the machine's /dev/null.
 if [ ! -c /dev/null ]; then
