@@ -390,6 +390,12 @@ contains
                                    //real_str(tt)//' s')
                   return
                end if
+               if (tan%too_large) then
+                  call fatal_error(error, 'the sensitivities grew beyond 1e100 by t = ' &
+                                   //real_str(tt)//' s: the trajectory is chaotic over ' &
+                                   //'the fit window (fit a shorter --fit-window or series)')
+                  return
+               end if
             end if
          end do
          call observe(prob, tt, y(1:n), o, d)

@@ -36,6 +36,10 @@ module dpend_tangent
    public :: tangent_t, internal_jacobian
 
    !> Tangent vectors carried along a trajectory, and the substep control.
+   !> Largest magnitude of a tangent vector's component: far above any renormalized
+   !> use (Lyapunov, indicators renormalize at O(1)) and far below overflow.
+   real(dp), parameter, public :: max_tangent_size = 1e100_dp
+
    type :: tangent_t
       !> tangent vectors (4, k) in the method's internal variables
       real(dp), allocatable :: v(:, :)
@@ -46,6 +50,11 @@ module dpend_tangent
       !> the last step needed more than `max_tangent_substeps` substeps: the vectors
       !> were not propagated (the step is far too long for the local frequency)
       logical :: too_stiff = .false.
+      !> a component of the vectors passed `max_tangent_size` (or is not finite): they
+      !> were not propagated further. Callers that renormalize (Lyapunov, indicators)
+      !> never meet it; the fit's sensitivities over a long chaotic window do, before
+      !> their growth could overflow (a trap in the debug build)
+      logical :: too_large = .false.
       logical :: cached = .false.         !! j_cache holds J(y_cache)
       real(dp), allocatable :: y_cache(:)     !! state of the cached Jacobian
       real(dp), allocatable :: j_cache(:, :)  !! cached Jacobian
@@ -62,6 +71,8 @@ contains
       real(dp), intent(in) :: v0(:, :)         !! initial tangent vectors (2n, k)
       self%v = v0
       self%cached = .false.
+      self%too_stiff = .false.
+      self%too_large = .false.
       self%n_jac = 0
       self%n_sub = 0
    end subroutine tangent_init
@@ -131,7 +142,11 @@ contains
             call mat_mul(jm, v + (0.5_dp*hs)*k2, k3)
             call mat_mul(jb, v + hs*k3, k4)
             v = v + (hs/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
+            ! one substep grows v by at most about e^theta: checking each one keeps
+            ! every stage of the next far from overflow
+            self%too_large = .not. all(abs(v) <= max_tangent_size)
          end associate
+         if (self%too_large) return
          ja = jb
       end do
       self%n_sub = self%n_sub + n

@@ -316,6 +316,7 @@ contains
       n_keys = 0
       inside = .false.
       group = ''
+      key = ''
       line = 1
       i = 1
       do while (i <= len(text))
@@ -326,6 +327,13 @@ contains
          case ("'", '"')                       ! a string: skip to its closing quote
             j = index(text(i + 1:), text(i:i))
             if (j == 0) j = len(text) - i + 1
+            ! longer than the key's variable: the namelist read would cut it short
+            ! silently (a warning of the runtime at most)
+            if (inside .and. j - 1 > string_length(group, key)) then
+               call refuse(key_text()//'a text of '//to_str(j - 1)// &
+                           ' characters; at most '//to_str(string_length(group, key)))
+               return
+            end if
             line = line + count_lf(text(i:i + j))
             i = i + j + 1
          case ('!')                            ! a comment: skip to the line end
@@ -381,6 +389,24 @@ contains
          end select
       end do
    contains
+      !> The length of the text variable read for `k` of group `g` (the namelists of
+      !> dpend_config, dpend_sweep_config, dpend_study_config; names 16 characters,
+      !> case names 32, method 64 in &integration, file names 1024).
+      pure integer function string_length(g, k) result(n)
+         character(len=*), intent(in) :: g, k
+         character(len=:), allocatable :: b
+         b = k
+         if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+         select case (b)
+         case ('file', 'ic_file', 'ic_dataset'); n = 1024
+         case ('name'); n = 1024                         ! &model: read by dpend itself
+         case ('case_name', 'order_case', 'drift_case', 'ro_case', 'tao_case'); n = 32
+         case ('method')
+            n = merge(64, 16, g == 'integration')
+         case default; n = 16
+         end select
+      end function string_length
+
       !> Record key `k` of the current group; refuse a repeat or a second form.
       subroutine add_key(k)
          character(len=*), intent(in) :: k
@@ -458,7 +484,9 @@ contains
       function key_text() result(s)
          character(len=:), allocatable :: s
          s = ''
-         if (allocated(key)) s = "key '"//printable(key)//"': "
+         if (allocated(key)) then
+            if (len(key) > 0) s = "key '"//printable(key)//"': "
+         end if
       end function key_text
 
       subroutine refuse(msg)

@@ -1009,7 +1009,10 @@ contains
       real(dp) :: gfloor
       do s = 1, size(res%sweeps)
          associate (sw => res%sweeps(s))
-            gfloor = max(global_floor, 10.0_dp*res%refs(sw%icase)%check_difference)
+            ! a failed check run leaves check_difference = huge: the floor saturates
+            ! (10*huge would overflow, a trap in the debug build)
+            gfloor = max(global_floor, 10.0_dp*min(res%refs(sw%icase)%check_difference, &
+                                                   huge(1.0_dp)/10.0_dp))
             if (sw%mode == mode_step) then
                sw%fit_global = loglog_fit(sw%x, ok_only(sw%global_error, sw%stat), y_min=gfloor)
                sw%fit_energy = loglog_fit(sw%x, ok_only(sw%energy_short, sw%stat), &

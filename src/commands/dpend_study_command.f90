@@ -14,7 +14,7 @@ module dpend_study_command
    use dpend_os, only: host_name, cpu_model, executable_path, make_directories, &
                            find_script, &
                            directory_of, run_program, io_failure_reason, path_kind, &
-                           path_missing
+                           path_missing, base_name
    use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
    use dpend_cli, only: to_str, arg_t
@@ -90,8 +90,8 @@ contains
                                                           '--output (its summary)')
       ! refused only because the directory is missing: the study makes it (out/study by
       ! default)
-      if (allocated(error) .and. path_kind(directory_of(cfg%output), .true.) == path_missing) &
-         then
+      if (allocated(error) .and. len(base_name(cfg%output)) > 0 .and. &
+          path_kind(directory_of(cfg%output), .true.) == path_missing) then
          deallocate (error)
          call make_directories(directory_of(cfg%output), error)
          if (allocated(error)) then

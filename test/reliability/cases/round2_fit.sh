@@ -50,6 +50,6 @@ refuse  fit2-csv-after-quote    'after the quote' -- "${F[@]}" fit2_after_quote.
 refuse  fit2-csv-utf16          'UTF-16'        -- "${F[@]}" fit2_utf16.csv
 refuse  fit2-csv-decimal-comma  'decimal comma' -- "${F[@]}" fit2_dec_comma.csv
 refuse  fit2-csv-newline-value  'not closed'    -- "${F[@]}" fit2_ctl_value.csv
-refuse  fit2-csv-control-unit   "'[r?ad]'"      -- "${F[@]}" fit2_ctl_unit.csv
+refuse  fit2-csv-control-unit   "'[r\\x01ad]'"  -- "${F[@]}" fit2_ctl_unit.csv
 refuse  fit2-csv-semicolon-value "'0.1;2' is not a number" -- "${F[@]}" fit2_semi_value.csv
 refuse  fit2-csv-newline-name   'file'          -- "${F[@]}" "$(printf 'a\nb.csv')"
