@@ -118,7 +118,6 @@ contains
       real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-9_dp, 1.0e-12_dp]
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(pendulum_t) :: par
       type(double_pendulum_t) :: model
       real(dp) :: ref(4), t, y(4), h, q(2), qd(2), err, start, elapsed
       integer :: m, j, stat, unit, reps, r
@@ -187,7 +186,6 @@ contains
       real(dp), intent(out), optional :: n_rhs_per_step
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(pendulum_t) :: par
       type(double_pendulum_t) :: model
       real(dp) :: t, y(4), hh, start, elapsed
       integer(i8) :: nsteps, i
@@ -318,7 +316,6 @@ contains
    !> ns per evaluation of rhs_qqdot along a slowly varying state.
    real(dp) function time_rhs() result(ns)
       type(pendulum_t) :: par
-      type(double_pendulum_t) :: model
       real(dp) :: y(4), f(4), start, elapsed
       integer(i8) :: n, i
       n = 100000

@@ -110,7 +110,6 @@ contains
    !> ns per step of the library's one-trajectory rk4_t (chapter parameters).
    real(dp) function single_trajectory_ns() result(ns)
       type(rk4_t) :: rk
-      type(pendulum_t) :: par
       type(double_pendulum_t) :: model
       real(dp) :: t, y(4), h, t0
       integer :: k, stat
@@ -146,7 +145,6 @@ contains
       integer, intent(in) :: nblocks  !! blocks of work
       real(dp), intent(out) :: cpu_ns !! process CPU time per trajectory-step [ns]
       type(pendulum_t) :: par
-      type(double_pendulum_t) :: model
       type(batch_options_t) :: opt
       integer, parameter :: nb = 1024, steps = 2000
       real(dp) :: t0, check, c0, c1

@@ -519,7 +519,7 @@ contains
    subroutine test_csv_forms(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=*), parameter :: lf = achar(10), tab = achar(9), cr = achar(13)
-      character(len=*), parameter :: bom = achar(239)//achar(187)//achar(191)
+      character(len=*), parameter :: bom = char(239)//char(187)//char(191)
       type(series_t) :: plain
       type(error_t), allocatable :: err
       call parse_series('t,theta1,theta2'//lf//'0,0.1,0.2'//lf//'0.5,-0.25,1e-3'//lf, plain, &
@@ -549,7 +549,7 @@ contains
                        //'character 1 is not closed')
       call csv_refused(error, '"t"x,theta1'//lf//'0,0.1'//lf, 'text after the quote closed at ' &
                        //'character 3')
-      call csv_refused(error, achar(255)//achar(254)//'t'//achar(0), 'is UTF-16 text')
+      call csv_refused(error, char(255)//char(254)//'t'//achar(0), 'is UTF-16 text')
       call csv_refused(error, &
                        't;theta1'//lf//'0;0,1'//lf, "line 2, column theta1: '0,1' is not a " &
                        //'number (a decimal comma?')
@@ -591,7 +591,7 @@ contains
       dir = scratch_dir('fitforms')
       call write_bytes(dir//'/plain.csv', 't,theta1'//lf//'0,0.1'//lf//'0.1,0.09'//lf// &
                        '0.2,0.06'//lf//'0.3,0.02'//lf//'0.4,-0.03'//lf)
-      call write_bytes(dir//'/sheet.csv', achar(239)//achar(187)//achar(191)// &
+      call write_bytes(dir//'/sheet.csv', char(239)//char(187)//char(191)// &
                        '"t";"theta1"'//crlf//'0;0.1'//crlf//'0.1;0.09'//crlf//'0.2;0.06'// &
                        crlf//'0.3;0.02'//crlf//'0.4;-0.03'//crlf)
       stat = run_command(dir, 'fit '//dir//'/plain.csv --output '//dir//'/plain.h5')

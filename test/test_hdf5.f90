@@ -47,7 +47,7 @@ contains
    subroutine craft_hostile(name, error)
       character(len=*), intent(in) :: name              !! file to create
       type(error_t), allocatable, intent(out) :: error  !! set on failure
-      integer(hid_t) :: fid, space, dcpl, dset, aspace, attr
+      integer(hid_t) :: fid, space, dcpl, dset, attr
       integer, target :: units(3) = [1, 2, 3]
       type(c_ptr) :: ptr
       integer :: ierr, bad

@@ -47,9 +47,9 @@ contains
    end subroutine random_state
 
    subroutine seed()
-      integer :: n
+      integer :: n, i
       call random_seed(size=n)
-      call random_seed(put=[(1234567 + 97*n, n=1, n)])
+      call random_seed(put=[(1234567 + 97*i, i=1, n)])
    end subroutine seed
 
    subroutine test_ne_lagrange(error)

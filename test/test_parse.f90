@@ -73,7 +73,7 @@ contains
       call expect('1e5.5', "character '.' at position 4")
       call expect('1.0_dp', "character '_' at position 4")
       call expect('1'//achar(0), "character '\x00' at position 2")
-      call expect('2'//achar(195)//achar(169), "character '\xC3' at position 2")
+      call expect('2'//char(195)//char(169), "character '\xC3' at position 2")
       call expect('abc', "character 'a' at position 1")
       call expect('', 'is not a number (empty)')
       call expect('1e', 'incomplete')
@@ -140,7 +140,7 @@ contains
       call check_true(error, escaped('a'//achar(9)//'b'//achar(10)//'c'//achar(13)) == &
                       'a\tb\nc\r', 'tab, line feed, carriage return')
       if (allocated(error)) return
-      call check_true(error, escaped(achar(0)//achar(27)//achar(127)//achar(200)) == &
+      call check_true(error, escaped(achar(0)//achar(27)//achar(127)//char(200)) == &
                       '\x00\x1B\x7F\xC8', 'other bytes as \xNN')
       if (allocated(error)) return
       call check_true(error, escaped('a\b') == 'a\\b', 'a backslash doubled')

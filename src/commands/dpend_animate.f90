@@ -253,9 +253,6 @@ contains
       type(track_t), intent(out) :: tr                  !! its samples
       type(error_t), allocatable, intent(out) :: error  !! refused
       type(h5file_t) :: h5
-      real(dp), allocatable :: f(:, :), f01(:, :), f21(:, :), fj(:, :, :)
-      real(dp) :: l1, l2
-      integer :: n, k, nl2
       tr%path = path
       select case (path_kind(path, .true.))
       case (path_missing)

@@ -577,7 +577,7 @@ contains
       character(len=*), intent(in) :: pre               !! message prefix
       type(error_t), allocatable, intent(out) :: error  !! the first non-text byte
       integer :: i, c, follow, k, line
-      character(len=*), parameter :: hdf5_signature = achar(137)//'HDF'//achar(13)//achar(10)
+      character(len=*), parameter :: hdf5_signature = char(137)//'HDF'//achar(13)//achar(10)
       if (len(text) >= len(hdf5_signature)) then
          if (text(:len(hdf5_signature)) == hdf5_signature) then
             call fatal_error(error, pre//'is an HDF5 file, not a namelist text file '// &

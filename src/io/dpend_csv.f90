@@ -44,7 +44,7 @@ module dpend_csv
    !> The separators tried, in the order that breaks ties.
    character(len=1), parameter :: separators(3) = [',', ';', achar(9)]
    !> The UTF-8 byte order mark.
-   character(len=3), parameter :: utf8_bom = achar(239)//achar(187)//achar(191)
+   character(len=3), parameter :: utf8_bom = char(239)//char(187)//char(191)
 
    !> Largest accepted magnitude of a sample value (angle [rad] or position)
    real(dp), parameter :: max_sample_value = 1e6_dp
@@ -140,10 +140,10 @@ contains
          end if
       end if
       if (len(text) >= 2) then
-         if (text(1:2) == achar(255)//achar(254) .or. text(1:2) == achar(254)//achar(255)) &
+         if (text(1:2) == char(255)//char(254) .or. text(1:2) == char(254)//char(255)) &
             then
             call fatal_error(error, 'is UTF-16 text (it starts with the byte order mark ' &
-                             //trim(merge('FF FE', 'FE FF', text(1:1) == achar(255)))// &
+                             //trim(merge('FF FE', 'FE FF', text(1:1) == char(255)))// &
                              '); save it as UTF-8 or ASCII CSV')
             return
          end if

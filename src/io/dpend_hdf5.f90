@@ -912,7 +912,7 @@ contains
    !> Start the HDF5 library once and silence its error-stack printing.
    subroutine init_library(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
-      integer :: hdferr, ierr
+      integer :: hdferr
       hdferr = 0
       !$omp critical (dpend_hdf5_init)
       if (.not. library_ready) then

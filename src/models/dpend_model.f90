@@ -157,8 +157,7 @@ contains
    end function model_true
 
    !> Unreachable default (the caller checks `hamiltonian()` first).
-   pure subroutine lacks(self, what)
-      class(model_t), intent(in) :: self  !! the model
+   pure subroutine lacks(what)
       character(len=*), intent(in) :: what  !! the missing procedure
       error stop 'internal error: the model has no '//what
    end subroutine lacks
@@ -170,7 +169,7 @@ contains
       real(dp), intent(in) :: y(:)     !! state (q, q̇)
       real(dp), intent(out) :: p(:)    !! momenta, size n
       p = 0.0_dp
-      call lacks(self, 'momenta (not a Hamiltonian model)')
+      call lacks('momenta (not a Hamiltonian model)')
    end subroutine model_momenta
 
    !> Rates q̇ = ∂H/∂p from z = (q, p).
@@ -180,7 +179,7 @@ contains
       real(dp), intent(in) :: z(:)     !! canonical state (q, p)
       real(dp), intent(out) :: qd(:)   !! q̇, size n
       qd = 0.0_dp
-      call lacks(self, 'velocities (not a Hamiltonian model)')
+      call lacks('velocities (not a Hamiltonian model)')
    end subroutine model_velocities
 
    !> H(t, z) [J].
@@ -189,7 +188,7 @@ contains
       real(dp), intent(in) :: t        !! time [s]
       real(dp), intent(in) :: z(:)     !! canonical state (q, p)
       h = 0.0_dp
-      call lacks(self, 'Hamiltonian')
+      call lacks('Hamiltonian')
    end function model_hamiltonian_value
 
    !> The Hamiltonian vector field (∂H/∂p, −∂H/∂q) at z = (q, p).
@@ -199,7 +198,7 @@ contains
       real(dp), intent(in) :: z(*)     !! canonical state (q, p)
       real(dp), intent(out) :: f(*)    !! (∂H/∂p, −∂H/∂q)
       f(:self%n_state()) = 0.0_dp
-      call lacks(self, 'Hamiltonian vector field')
+      call lacks('Hamiltonian vector field')
    end subroutine model_canonical_field
 
    !> Jacobian of `canonical_field`.
@@ -209,7 +208,7 @@ contains
       real(dp), intent(in) :: z(:)       !! canonical state (q, p)
       real(dp), intent(out) :: jac(:, :) !! ∂f/∂z
       jac = 0.0_dp
-      call lacks(self, 'Jacobian of the Hamiltonian vector field')
+      call lacks('Jacobian of the Hamiltonian vector field')
    end subroutine model_canonical_jacobian
 
    !> ∂E/∂y at y = (q, q̇). Default: central differences with steps scaled to each
@@ -239,7 +238,7 @@ contains
       real(dp), intent(out) :: q(:), qd(:)         !! the state
       logical, intent(out) :: found                !! (q_o, p_o) is inside the shell
       q = 0.0_dp; qd = 0.0_dp; found = .false.
-      call lacks(self, 'energy-shell sections')
+      call lacks('energy-shell sections')
    end subroutine model_section_state
 
    !> Largest |p_o| on the energy shell of the section (see `section_state`).
@@ -248,7 +247,7 @@ contains
       real(dp), intent(in) :: e, angle   !! energy [J], section angle [rad]
       integer, intent(in) :: link        !! section coordinate
       p = 0.0_dp
-      call lacks(self, 'energy-shell sections')
+      call lacks('energy-shell sections')
    end function model_section_p_max
 
    !> No fast path by default.
@@ -319,7 +318,7 @@ contains
       integer, intent(out), optional :: rows                     !! vectors per sample
       name = ''; n_comp = 0; units = ''; description = ''
       if (present(rows)) rows = 0
-      call lacks(self, 'outputs')
+      call lacks('outputs')
    end subroutine model_output_info
 
    !> All outputs of one sample, concatenated in the order of `output_info`, from the
@@ -341,7 +340,7 @@ contains
       real(dp), intent(out) :: value                        !! its value
       character(len=:), allocatable, intent(out) :: units   !! SI units
       name = ''; value = 0.0_dp; units = ''
-      call lacks(self, 'parameters')
+      call lacks('parameters')
    end subroutine model_parameter
 
    !> Coordinate i: its name, its units and the units of its momentum. The default:
