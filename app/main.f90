@@ -3,7 +3,7 @@
 program dpend
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use dpend_error, only: error_t, exit_status
-   use dpend_cli, only: arg_t, get_arguments, printable
+   use dpend_cli, only: arg_t, get_arguments, printable, check_repeated_options
    use dpend_config, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
@@ -43,6 +43,12 @@ program dpend
       write (output_unit, '(a)') main_help()
       stop 0, quiet=.true.
    end if
+   block   ! an option given twice is refused for every command, before any parsing
+      type(error_t), allocatable :: error
+      call check_repeated_options(args(2:), error)
+      if (allocated(error)) call fail(2, 'dpend '//printable(args(1)%s)//': '// &
+                                      error%message)
+   end block
    select case (args(1)%s)
    case ('-h', '--help', 'help')
       write (output_unit, '(a)') main_help()

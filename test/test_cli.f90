@@ -92,7 +92,7 @@ contains
       logical :: exists
       character(len=:), allocatable :: text
       if (allocated(error)) return
-      stat = run_command(dir, command//' --output '//dir//'/out.h5 '//args)
+      stat = run_command(dir, merged_options(command//' --output '//dir//'/out.h5', args))
       call read_text(dir//'/stderr', text, n)
       inquire (file=dir//'/out.h5', exist=exists)
       call check_true(error, stat == 2, '['//command//' '//args//'] exit status 2, got '// &
@@ -335,4 +335,53 @@ contains
       if (allocated(error)) return
       call check(error, cfg%q(2), -half, 'theta2 = 0 is hanging, q2 = -pi/2', rel=1e-15_dp)
    end subroutine test_theta
+
+   !> `fixed` and `args` as one command line, the options of `args` replacing those
+   !> of `fixed` (dpend refuses an option given twice, and --n with --n1 or --n2):
+   !> blank-separated tokens, an option's value the next token not starting '--'.
+   function merged_options(fixed, args) result(line)
+      character(len=*), intent(in) :: fixed, args
+      character(len=:), allocatable :: line, tok, nxt
+      integer :: i, j, k
+      line = ''
+      i = 1
+      do while (i <= len_trim(fixed))
+         call next_token(fixed, i, tok)
+         if (len(tok) == 0) exit
+         if (tok(1:min(2, len(tok))) == '--' .and. replaced(tok)) then
+            j = i
+            call next_token(fixed, j, nxt)
+            if (len(nxt) > 0) then
+               if (nxt(1:min(2, len(nxt))) /= '--') i = j   ! skip its value too
+            end if
+            cycle
+         end if
+         line = line//tok//' '
+      end do
+      line = line//args
+   contains
+      logical function replaced(opt)
+         character(len=*), intent(in) :: opt
+         replaced = index(' '//args//' ', ' '//opt//' ') > 0
+         if (opt == '--n') replaced = replaced .or. index(' '//args, ' --n1 ') > 0 .or. &
+                                      index(' '//args, ' --n2 ') > 0
+         if (opt == '--n1' .or. opt == '--n2') replaced = replaced .or. &
+                                                         index(' '//args//' ', ' --n ') > 0
+      end function replaced
+      subroutine next_token(s, pos, t)
+         character(len=*), intent(in) :: s
+         integer, intent(inout) :: pos
+         character(len=:), allocatable, intent(out) :: t
+         do while (pos <= len(s))
+            if (s(pos:pos) /= ' ') exit
+            pos = pos + 1
+         end do
+         k = pos
+         do while (pos <= len(s))
+            if (s(pos:pos) == ' ') exit
+            pos = pos + 1
+         end do
+         t = s(k:pos - 1)
+      end subroutine next_token
+   end function merged_options
 end module test_cli

@@ -728,8 +728,8 @@ contains
       type(h5file_t) :: h5
       integer :: stat, n
       dir = scratch_dir('sweepcfg')
-      args = 'sweep --quiet --n 8 --t-end 5 --output '//dir//'/s.h5'
-      stat = run_command(dir, args)
+      args = 'sweep --quiet --n 8 --output '//dir//'/s.h5'
+      stat = run_command(dir, args//' --t-end 5')
       call check_true(error, stat == 0, 'first run exits 0')
       stat = run_command(dir, args//' --t-end 6')
       call read_text(dir//'/stderr', text, n)

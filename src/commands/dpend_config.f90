@@ -307,12 +307,15 @@ contains
          'm', 'm1', 'm', 'm2', 'l', 'l1', 'l', 'l2', 'q', 'q1', 'q', 'q2', 'w', 'w1', 'w', 'w2'], &
          [2, 8])
       character(len=*), parameter :: delims = ' ,=/'//achar(9)//achar(10)//achar(13)
+      character(len=*), parameter :: printable_ascii = ' !"#$%&''()*+,-./0123456789:;<=>?@' &
+         //'ABCDEFGHIJKLMNOPQRSTUVWXYZ[\]^_`abcdefghijklmnopqrstuvwxyz{|}~'
       integer, parameter :: max_keys = 1024   ! keys of one group compared (more: not)
       character(len=64) :: keys(max_keys)
       integer :: key_lines(max_keys)
       character(len=:), allocatable :: group, tok, key, base
       integer :: i, j, k, line, n_keys, depth
-      logical :: inside
+      logical :: inside, wants_value
+      wants_value = .false.
       n_keys = 0
       inside = .false.
       group = ''
@@ -334,6 +337,7 @@ contains
                            ' characters; at most '//to_str(string_length(group, key)))
                return
             end if
+            wants_value = .false.
             line = line + count_lf(text(i:i + j))
             i = i + j + 1
          case ('!')                            ! a comment: skip to the line end
@@ -355,6 +359,11 @@ contains
                         //'write the keys inside the group: &pendulum m1 = 2 /')
             return
          case ('/')
+            if (inside .and. wants_value) then
+               call refuse(key_text()//'no value (a key needs one: the namelist read would ' &
+                           //'keep the default silently)')
+               return
+            end if
             inside = .false.
             i = i + 1
          case default
@@ -379,10 +388,27 @@ contains
             if (k > 0) k = j + k - 1
             if (k > 0) then
                if (text(k:k) == '=') then
+                  if (wants_value) then
+                     call refuse(key_text()//'no value (a key needs one: the namelist ' &
+                                 //'read would keep the default silently)')
+                     return
+                  end if
                   call add_key(to_lower(tok))
                   if (allocated(error)) return
+                  wants_value = .true.
                   cycle
                end if
+            end if
+            wants_value = .false.
+            if (verify(tok, printable_ascii) /= 0) then
+               call refuse(key_text()//quoted(tok)//' holds a byte that is not printable ' &
+                           //'ASCII (quote a text; a number is ASCII digits)')
+               return
+            end if
+            if (len(tok) > string_length(group, key) .and. is_string_key(key)) then
+               call refuse(key_text()//'a text of '//to_str(len(tok))// &
+                           ' characters; at most '//to_str(string_length(group, key)))
+               return
             end if
             call check_value(tok)
             if (allocated(error)) return
@@ -406,6 +432,23 @@ contains
          case default; n = 16
          end select
       end function string_length
+
+      !> Whether `k` is read into a text variable (string_length applies).
+      pure logical function is_string_key(k)
+         character(len=*), intent(in) :: k
+         character(len=:), allocatable :: b
+         b = k
+         if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+         select case (b)
+         case ('file', 'ic_file', 'ic_dataset', 'name', 'case_name', 'order_case', &
+               'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
+               'ro_method', 'tao_method', 'axis1', 'axis2', 'ic_angles', 'time_unit', &
+               'stop_at', 'indicator')
+            is_string_key = .true.
+         case default
+            is_string_key = .false.
+         end select
+      end function is_string_key
 
       !> Record key `k` of the current group; refuse a repeat or a second form.
       subroutine add_key(k)

@@ -32,7 +32,7 @@ module dpend_sweep
    use dpend_os, only: path_kind, path_missing, path_file, remove_file
    use dpend_config, only: check_regular_file
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
-      potential_range, flip_energy_bounds, st_cannot_flip
+      potential_range, flip_energy_bounds, st_cannot_flip, st_flipped
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
    use dpend_sweep_config, only: indicator_vectors, axis_parameter, pixel_parameters
    use dpend_pendulum, only: pendulum_t, pendulum_model
@@ -1631,6 +1631,14 @@ contains
                              sci(tau)//' (accepted: 1e-150 to 1e150 s)')
          else
             do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
+               ! the status says whether the pixel flipped: t_flip agrees with it
+               if ((st(j) == st_flipped .and. ieee_is_nan(t(j))) .or. &
+                   (st(j) == st_cannot_flip .and. .not. ieee_is_nan(t(j)))) then
+                  call fatal_error(error, pre//'damaged: /sweep/t_flip at pixel '// &
+                                   to_str(j)//' disagrees with its status '//to_str(st(j))// &
+                                   ' (2: flipped, a time; 3: cannot flip, NaN)')
+                  exit
+               end if
                if (ieee_is_nan(t(j))) cycle
                if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
                   call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &

@@ -259,6 +259,15 @@ contains
          call read_sweep_config(config, cfg, error)
          if (allocated(error)) return
       end if
+      ! --n sets n1 and n2: with --n1 or --n2 which one counts would depend on the order
+      if (any([(args(i)%s == '--n' .or. index(args(i)%s, '--n=') == 1, i=1, size(args))]) &
+          .and. any([(args(i)%s == '--n1' .or. args(i)%s == '--n2' .or. &
+                      index(args(i)%s, '--n1=') == 1 .or. index(args(i)%s, '--n2=') == 1, &
+                      i=1, size(args))])) then
+         call fatal_error(error, 'invalid --n: given with --n1 or --n2; they are two forms ' &
+                          //'of the grid size (give --n, or --n1 and --n2)')
+         return
+      end if
       i = 1
       do while (i <= size(args))
          select case (args(i)%s)

@@ -12,6 +12,7 @@ module dpend_cli
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
+   public :: check_repeated_options
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
    public :: overflows_real, to_lower, printable, pad, quoted
 
@@ -106,6 +107,37 @@ contains
          call fatal_error(error, 'option '//name//' needs a value')
       end if
    end subroutine option_outcome
+
+   !> Refuse an option given twice (`--t-end 1 ... --t-end 2`): which one counts
+   !> would depend on the order, as a repeated key of a namelist group would. Options
+   !> are the arguments that start with '--' (never a value), compared by their name
+   !> (before '=', for `--name=value`). Flags still override a --config file.
+   subroutine check_repeated_options(args, error)
+      type(arg_t), intent(in) :: args(:)                !! a command's arguments
+      type(error_t), allocatable, intent(out) :: error  !! the first repeated option
+      character(len=:), allocatable :: a, b
+      integer :: i, j
+      do i = 2, size(args)
+         if (.not. is_long_option(args(i)%s)) cycle
+         a = option_name(args(i)%s)
+         do j = 1, i - 1
+            if (.not. is_long_option(args(j)%s)) cycle
+            b = option_name(args(j)%s)
+            if (a == b) then
+               call fatal_error(error, 'invalid '//printable(a)//': given twice (give each ' &
+                                //'option once)')
+               return
+            end if
+         end do
+      end do
+   contains
+      pure function option_name(arg) result(name)
+         character(len=*), intent(in) :: arg
+         character(len=:), allocatable :: name
+         name = arg
+         if (index(arg, '=') > 0) name = arg(:index(arg, '=') - 1)
+      end function option_name
+   end subroutine check_repeated_options
 
    !> True if `arg` starts with '--' (an option, never a value).
    pure logical function is_long_option(arg)

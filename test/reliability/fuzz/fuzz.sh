@@ -394,7 +394,7 @@ gen_nml() {
           # the first number of the line (pre is greedy: the last one; either is fine)
           mutate_number "$val"
           # in a namelist, '!' starts a comment, ',' '/' and blanks separate values
-          case $N in *'!'*|*','*|*'/'*|*' '*|*$'\n'*|*$'\r'*|*'*'*|*"'"*|*$'\v'*|*$'\f'*)
+          case $N in *'!'*|*','*|*'/'*|*' '*|*$'\t'*|*$'\n'*|*$'\r'*|*'*'*|*"'"*|*$'\v'*|*$'\f'*)
             VERDICT=any ;; esac
           lines[i]="$pre$N$post$rest"; WHAT="value of line $((i + 1)): $val -> $N"; TAG="namelist value, $MKIND"
           break
