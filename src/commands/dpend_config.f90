@@ -433,6 +433,20 @@ contains
          end select
       end function string_length
 
+      !> A logical of a namelist: t, f, true, false, .t., .false., ... (any case).
+      pure logical function logical_word(w)
+         character(len=*), intent(in) :: w
+         character(len=:), allocatable :: u
+         u = to_lower(w)
+         if (len(u) > 0) then
+            if (u(1:1) == '.') u = u(2:)
+         end if
+         if (len(u) > 0) then
+            if (u(len(u):len(u)) == '.') u = u(:len(u) - 1)
+         end if
+         logical_word = u == 't' .or. u == 'f' .or. u == 'true' .or. u == 'false'
+      end function logical_word
+
       !> Whether `k` is read into a text variable (string_length applies).
       pure logical function is_string_key(k)
          character(len=*), intent(in) :: k
@@ -508,6 +522,15 @@ contains
             v = t(star + 1:)
          end if
          if (len(v) == 0) return                      ! 'r*': r null values
+         ! a word for a key that is not a text: a logical (t, f, .true., false, ...)
+         if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v) .and. &
+             .not. is_string_key(key)) then
+            if (.not. logical_word(v)) then
+               call refuse(key_text()//quoted(v)//' is not a number or a logical (quote ' &
+                           //'a text)')
+               return
+            end if
+         end if
          if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)) return
          if (len(v) >= 2) then                        ! .true. / .false. / .t / .f
             if (v(1:1) == '.' .and. index('tTfF', v(2:2)) > 0) return

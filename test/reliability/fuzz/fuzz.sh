@@ -396,6 +396,7 @@ gen_nml() {
           # in a namelist, '!' starts a comment, ',' '/' and blanks separate values
           case $N in *'!'*|*','*|*'/'*|*' '*|*$'\t'*|*$'\n'*|*$'\r'*|*'*'*|*"'"*|*$'\v'*|*$'\f'*)
             VERDICT=any ;; esac
+          [ "$N" = "$val" ] && VERDICT=any   # the mutation changed nothing
           lines[i]="$pre$N$post$rest"; WHAT="value of line $((i + 1)): $val -> $N"; TAG="namelist value, $MKIND"
           break
         fi
@@ -693,7 +694,8 @@ gen_h5() {
                    "delete /sweep/status" "delete /sweep/axis1" "replace /sweep/axis1 f64 7 0.5" \
                    "attr-real /sweep t_end  nan" "attr-int /sweep links  99"
             else
-              pick "fill /sweep/t_flip nan" "delete /sweep/status" "delete /sweep/axis1" \
+              # (t_flip NaN is "no flip": a valid value where the status allows it)
+              pick "fill /sweep/t_flip inf" "delete /sweep/status" "delete /sweep/axis1" \
                    "replace /sweep/axis1 f64 7 0.5" "attr-real /sweep t_end  nan" \
                    "attr-int /sweep links  99" "replace /sweep/status i32 2 0"
             fi
