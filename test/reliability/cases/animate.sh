@@ -61,7 +61,7 @@ refuse  ani-frames-exist   frames   -- "${A[@]}" --frames framedir "${T[@]}"
 
 succeed ani-tiny                    -- "${A[@]}" "${T[@]}"
 succeed ani-quotes-input            -- animate "it's \"q\" a.h5" "${T[@]}"
-succeed ani-quotes-output           -- "${A[@]}" --output "o'k \"x\" \$(y).gif" "${T[@]}"
+succeed ani-quotes-output           -- animate existing.h5 --output "o'k \"x\" \$(y).gif" "${T[@]}"
 succeed ani-quotes-overlay          -- "${A[@]}" --overlay "it's \"q\" a.h5" --reactions "${T[@]}"
 succeed ani-force                   -- animate sim1.h5 --output existing.gif --force \
                                        --duration 0.4 "${T[@]}"

@@ -43,7 +43,9 @@ chmod 000 "$_cfg_fx/cfg_unreadable.nml"
 # sweeps for sweep-compare (small: 8x8, t_end 3, debug build well under a second each)
 _cfg_sweep() {  # NAME ARGS...
     local name=$1; shift
-    (cd "$_cfg_fx" && "$_cfg_bin" sweep --quiet --t-end 3 "$@" --output "$name" >/dev/null 2>&1)
+    local t=(--t-end 3)   # unless ARGS give their own (an option given twice is refused)
+    [[ " $* " == *" --t-end "* ]] && t=()
+    (cd "$_cfg_fx" && "$_cfg_bin" sweep --quiet "${t[@]}" "$@" --output "$name" >/dev/null 2>&1)
 }
 _cfg_sweep cfg_ga.h5 --n 8 --dt 0.01
 _cfg_sweep cfg_gb.h5 --n 8 --dt 0.005

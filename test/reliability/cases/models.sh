@@ -2,6 +2,7 @@
 # the &model group, the model's own check of the initial state, and the commands that
 # do not take other models yet refusing in one line.
 E=(--model elastic --m 1 --k 40 --l0 1 --g 9.8 --q 1.2,-1.0 --w 0,0 --t-end 0.5)
+B=(--model elastic --l0 1 --w 0,0 --t-end 0.5)   # the rows below add what they test
 printf "&model\n name = 'elastic'\n k = 40, l0 = 1\n/\n&initial\n q = 1.2, -1.0\n/\n" \
   > "$FIXTURES/elastic_ok.nml"
 printf "&model\n name = 'elastic'\n kk = 3\n/\n" > "$FIXTURES/model_badkey.nml"
@@ -21,12 +22,13 @@ refuse  mod-unknown-nml     model     -- simulate --config model_unknown.nml --o
 refuse  mod-pendulum-k      k         -- simulate --k 3 --output x.h5
 refuse  mod-elastic-links   links     -- simulate "${E[@]}" --links 3 --output x.h5
 refuse  mod-elastic-damping damping   -- simulate "${E[@]}" --damping 0.1,0.1 --output x.h5
-refuse  mod-elastic-k0      k         -- simulate "${E[@]}" --k 0 --output x.h5
-refuse  mod-elastic-k-tab   k         -- simulate "${E[@]}" --k "$(printf '4\t0')" --output x.h5
-refuse  mod-elastic-g0      g         -- simulate "${E[@]}" --g 0 --output x.h5
-refuse  mod-elastic-m2      m         -- simulate "${E[@]}" --m 1,2 --output x.h5
-refuse  mod-elastic-r0      q1        -- simulate "${E[@]}" --q 0,-1 --output x.h5
-refuse  mod-elastic-q3      q         -- simulate "${E[@]}" --q 1,-1,0 --output x.h5
+refuse  mod-elastic-k0      k         -- simulate "${B[@]}" --q 1.2,-1 --k 0 --output x.h5
+refuse  mod-elastic-k-tab   k         -- simulate "${B[@]}" --q 1.2,-1 --k "$(printf '4\t0')" --output x.h5
+refuse  mod-elastic-g0      g         -- simulate "${B[@]}" --q 1.2,-1 --g 0 --output x.h5
+refuse  mod-elastic-m2      m         -- simulate "${B[@]}" --q 1.2,-1 --m 1,2 --output x.h5
+refuse  mod-elastic-r0      q1        -- simulate --model elastic --k 40 --l0 1 --q 0,-1 --output x.h5
+refuse  mod-repeated-k      k         -- simulate "${E[@]}" --k 30 --output x.h5
+refuse  mod-elastic-q3      q         -- simulate "${B[@]}" --q 1,-1,0 --output x.h5
 refuse  mod-elastic-badkey  config    -- simulate --config model_badkey.nml --output x.h5
 refuse  mod-elastic-badnum  config    -- simulate --config model_badnum.nml --output x.h5
 refuse  mod-elastic-twice   config    -- simulate --config model_twice.nml --output x.h5

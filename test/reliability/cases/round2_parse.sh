@@ -97,7 +97,7 @@ refuse  r2p-flags-l2-l        l             -- "${S[@]}" --l2 2 --l 1,1
 refuse  r2p-flags-w-w1        w1            -- "${S[@]}" --w 0,0 --w1 1
 refuse  r2p-flags-sweep-m-m1  m1            -- sweep --output s.h5 --m 1,2 --m1 3
 succeed r2p-flag-over-file       -- "${S[@]}" --force --config r2p_file_list.nml --m1 3
-succeed r2p-flag-repeated        -- "${S[@]}" --force --q1 1 --q1 2
+refuse  r2p-flag-repeated   q1   -- "${S[@]}" --force --q1 1 --q1 2
 # ---- one range table: g = 0 refused by every command
 refuse  r2p-g0-sweep-3        g             -- sweep --output s.h5 --links 3 --g 0
 refuse  r2p-g0-sweep-1-s      g             -- sweep --output s.h5 --links 1 --g 0 --time-unit s

@@ -33,14 +33,16 @@ succeed swi-ok-lambda1          -- "${W[@]}" --indicator lambda1
 succeed swi-ok-flip             -- "${W[@]}" --indicator flip
 succeed swi-ok-megno-list       -- sweep --ic-file "$FIXTURES/swi_list.txt" --t-end 1 --quiet --indicator megno --output g.h5
 succeed swi-ok-megno-3links     -- "${W[@]}" --links 3 --indicator megno
-succeed swi-ok-par-edges        -- "${W[@]}" --axis1 m2/m1 --min1 1e-6 --max1 1e6 --axis2 l2/l1 --min2 1e-6 --max2 1e6 --t-end 0.01
-succeed swi-ok-par-one-point    -- "${W[@]}" --axis1 m1 --n1 1 --min1 2 --max1 2 --axis2 l1 --min2 0.5 --max2 2
+succeed swi-ok-par-edges        -- sweep --n 4 --quiet --output g.h5 --axis1 m2/m1 --min1 1e-6 --max1 1e6 --axis2 l2/l1 --min2 1e-6 --max2 1e6 --t-end 0.01
+succeed swi-ok-par-one-point    -- sweep --n2 4 --t-end 1 --quiet --output g.h5 --axis1 m1 --n1 1 --min1 2 --max1 2 --axis2 l1 --min2 0.5 --max2 2
 succeed swi-ok-par-3links       -- "${W[@]}" --links 3 --axis1 m2/m1 --min1 0.5 --max1 2 --axis2 theta3 --indicator gali2
 succeed swi-ok-par-natural-l1   -- "${W[@]}" --axis1 l1 --min1 0.1 --max1 10 --time-unit natural --indicator fli
 # ---- sweep-compare --agreement (fixtures: 6 x 6 maps, debug build well under a second)
 _swi_sweep() {  # NAME ARGS...
   local name=$1; shift
-  (cd "$FIXTURES" && "$DPEND" sweep --quiet --n 6 "$@" --output "$name" > /dev/null 2>&1) ||
+  local n=(--n 6)   # unless ARGS give their own (an option given twice is refused)
+  [[ " $* " == *" --n "* ]] && n=()
+  (cd "$FIXTURES" && "$DPEND" sweep --quiet "${n[@]}" "$@" --output "$name" > /dev/null 2>&1) ||
     echo "sweep_indicators.sh: could not make $name" >&2
 }
 _swi_sweep swi_megno.h5 --t-end 3 --indicator megno
