@@ -1000,25 +1000,8 @@ contains
       subroutine parse_named(key)
          character(len=*), intent(in) :: key
          real(dp) :: values(max_dof)
-         integer :: n, start, comma
-         n = 0
-         start = 1
-         do
-            comma = index(value(start:), ',')
-            if (n == size(values)) then
-               call fatal_error(error, 'invalid '//name//': more than '//to_str(max_dof)// &
-                                ' values')
-               return
-            end if
-            n = n + 1
-            if (comma == 0) then
-               call parse_real(value(start:), name, values(n), error)
-               exit
-            end if
-            call parse_real(value(start:start + comma - 2), name, values(n), error)
-            if (allocated(error)) return
-            start = start + comma
-         end do
+         integer :: n
+         call parse_real_list(value, name, values, n, error)
          if (.not. allocated(error)) call cfg%extra%set(key, values(:n))
       end subroutine parse_named
       !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
@@ -1079,25 +1062,8 @@ contains
       subroutine parse_list(k, values)
          integer, intent(in) :: k
          real(dp), intent(inout) :: values(:)
-         integer :: n, start, comma
-         n = 0
-         start = 1
-         do
-            comma = index(value(start:), ',')
-            if (n == size(values)) then
-               call fatal_error(error, 'invalid '//name//': more than '//to_str(max_dof)// &
-                                ' values (at most '//to_str(max_dof)//' links)')
-               return
-            end if
-            n = n + 1
-            if (comma == 0) then
-               call parse_real(value(start:), name, values(n), error)
-               exit
-            end if
-            call parse_real(value(start:start + comma - 2), name, values(n), error)
-            if (allocated(error)) return
-            start = start + comma
-         end do
+         integer :: n
+         call parse_real_list(value, name, values, n, error)
          if (allocated(error)) return
          if (k > 0) then
             cfg%list_size(k) = n
@@ -1211,6 +1177,35 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> A comma-separated list of at most size(values) numbers (one per link for the
+   !> per-link fields), each through the strict parser; `n` values read.
+   subroutine parse_real_list(text, name, values, n, error)
+      character(len=*), intent(in) :: text              !! the flag's value
+      character(len=*), intent(in) :: name              !! the flag, for messages
+      real(dp), intent(inout) :: values(:)              !! the numbers
+      integer, intent(out) :: n                         !! how many
+      type(error_t), allocatable, intent(out) :: error  !! not numbers, too many
+      integer :: start, comma
+      n = 0
+      start = 1
+      do
+         comma = index(text(start:), ',')
+         if (n == size(values)) then
+            call fatal_error(error, 'invalid '//name//': more than '//to_str(size(values))// &
+                             ' values (at most '//to_str(size(values))//' links)')
+            return
+         end if
+         n = n + 1
+         if (comma == 0) then
+            call parse_real(text(start:), name, values(n), error)
+            exit
+         end if
+         call parse_real(text(start:start + comma - 2), name, values(n), error)
+         if (allocated(error)) return
+         start = start + comma
+      end do
+   end subroutine parse_real_list
 
    !> Whether the model `cfg` asks for has the parameter `name` (the factory's
    !> catalogue; an unknown model: none).
