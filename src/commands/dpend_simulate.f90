@@ -374,13 +374,7 @@ contains
             call h5%writeattr('/', 'draw_style', style)
             call h5%writeattr('/', 'draw_forces', forces)
          end if
-         if (model%autonomous()) then
-            call h5%write('/trajectory/energy', e, units='J', &
-               description='total energy T + V (V = 0 with every link horizontal)')
-         else   ! a moving support: the inertial energy
-            call h5%write('/trajectory/energy', e, units='J', description='total energy ' &
-               //'T + V in the fixed frame (V = 0 at y = 0, the mean height of the pin A)')
-         end if
+         call h5%write('/trajectory/energy', e, units='J', description=model%energy_text())
          if (allocated(traj%w)) then   ! the energy balance (dpend_work)
             e_w = traj%w(1, :n)   ! contiguous, for the HDF5 layer
             call h5%write('/trajectory/W_friction', e_w, units='J', description= &

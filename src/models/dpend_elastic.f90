@@ -115,6 +115,7 @@ module dpend_elastic
       procedure :: coordinate => el_coordinate
       procedure :: coordinates_text => el_coordinates_text
       procedure :: figure => el_figure
+      procedure :: energy_text => el_energy_text
       procedure :: check_state => el_check_state
       !> Hanging equilibrium length r_eq = l0 + m g/k [m].
       procedure :: r_eq => el_r_eq
@@ -469,4 +470,11 @@ contains
       type(error_t), allocatable, intent(out) :: error
       call check_state(self, q, qd, error)
    end subroutine el_check_state
+
+   function el_energy_text(self) result(text)
+      class(elastic_t), intent(in) :: self
+      character(len=:), allocatable :: text
+      text = 'total energy T + V (V = 0 with the bob at the pin''s height and the spring at ' &
+             //'its rest length)'
+   end function el_energy_text
 end module dpend_elastic

@@ -89,6 +89,7 @@ module dpend_model
       ! what writers, figures and the animation need to know of the coordinates
       procedure :: coordinate => model_coordinate
       procedure :: coordinates_text => model_coordinates_text
+      procedure :: energy_text => model_energy_text
       procedure :: figure => model_figure
       ! an initial state within the model (before any step)
       procedure :: check_state => model_check_state
@@ -404,4 +405,17 @@ contains
          if (allocated(error)) return
       end do
    end subroutine model_check_state
+
+   !> What the energy dataset holds: T + V and where V = 0 (the default: the chain of
+   !> rods' zero, every link horizontal, the pin at its mean height).
+   function model_energy_text(self) result(text)
+      class(model_t), intent(in) :: self
+      character(len=:), allocatable :: text
+      if (self%autonomous()) then
+         text = 'total energy T + V (V = 0 with every link horizontal)'
+      else
+         text = 'total energy T + V in the fixed frame (V = 0 at y = 0, the mean height of ' &
+                //'the pin A)'
+      end if
+   end function model_energy_text
 end module dpend_model
