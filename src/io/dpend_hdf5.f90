@@ -21,6 +21,10 @@
 !> and a chunk torn by a kill during an earlier write is simply rewritten.
 !> `read_slab(..., check_sums=.false.)` reads a block without verifying checksums
 !> (the chunk index is still read): for blocks that will be rewritten so.
+!> `write`, `write_slab` and `writeattr` take real(dp), default-integer and
+!> integer(i8) values of any rank (a scalar too); `read` and `read_slab` fill
+!> allocatable arrays of rank 1 to 3 (one body, dpend_hdf5_read.inc and
+!> dpend_hdf5_slabread.inc, included by each reader), and one-element scalars.
 !> HDF5 here is the serial library (the parallel one in the MPI build, mpi/): use
 !> an `h5file_t` from one thread at a time.
 module dpend_hdf5
@@ -77,26 +81,27 @@ module dpend_hdf5
       procedure :: create_dataset => file_create_dataset
       procedure :: describe => file_describe
       procedure :: datasets => file_datasets
-      procedure, private :: write_r0, write_r1, write_r2, write_r3
-      procedure, private :: write_i0, write_i1, write_i2, write_i64_1, write_str
-      generic :: write => write_r0, write_r1, write_r2, write_r3, &
-         write_i0, write_i1, write_i2, write_i64_1, write_str
-      procedure, private :: slab_r1, slab_r2, slab_i1, slab_i2
-      generic :: write_slab => slab_r1, slab_r2, slab_i1, slab_i2
+      procedure, private :: write_real, write_int, write_i64, write_str
+      generic :: write => write_real, write_int, write_i64, write_str
+      procedure, private :: slab_real, slab_int
+      generic :: write_slab => slab_real, slab_int
       procedure, private :: slabread_r1, slabread_r2, slabread_i1, slabread_i2
       generic :: read_slab => slabread_r1, slabread_r2, slabread_i1, slabread_i2
       procedure, private :: read_r0, read_r1, read_r2, read_r3
       procedure, private :: read_i0, read_i1, read_i2, read_i64_1, read_str
       generic :: read => read_r0, read_r1, read_r2, read_r3, &
          read_i0, read_i1, read_i2, read_i64_1, read_str
-      procedure, private :: writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0
-      procedure, private :: writeattr_str
-      generic :: writeattr => writeattr_r0, writeattr_r1, writeattr_i0, writeattr_i64_0, &
-         writeattr_str
+      procedure, private :: writeattr_real, writeattr_int, writeattr_i64, writeattr_str
+      generic :: writeattr => writeattr_real, writeattr_int, writeattr_i64, writeattr_str
       procedure, private :: readattr_r0, readattr_r1, readattr_i0, readattr_str
       generic :: readattr => readattr_r0, readattr_r1, readattr_i0, readattr_str
       final :: file_finalize
    end type h5file_t
+
+   !> The element type of a reader's array (dpend_hdf5_read.inc, ..._slabread.inc).
+   interface element
+      module procedure element_real, element_int, element_i64
+   end interface element
 
 contains
 
@@ -306,102 +311,45 @@ contains
    end function is_hdf5
 
    ! ------------------------------------------------------------- writing ---
+   ! One writer per element type; the value may have any rank (a scalar too), and
+   ! goes to the rank-agnostic cores (`write_raw`, `slab_raw`, `writeattr_raw`) as
+   ! its address, HDF5 type and shape.
 
-   !> Write a real(dp) scalar dataset.
-   subroutine write_r0(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self            !! the file object
-      character(len=*), intent(in) :: path              !! dataset path
-      real(dp), intent(in), target :: value             !! value to store
+   !> Write a real(dp) dataset of the value's shape (a scalar: a scalar dataset).
+   subroutine write_real(self, path, value, error, units, description)
+      class(h5file_t), intent(inout) :: self                       !! the file object
+      character(len=*), intent(in) :: path                         !! dataset path
+      real(dp), intent(in), target, contiguous :: value(..)        !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       character(len=*), intent(in), optional :: units        !! 'units' attribute
       character(len=*), intent(in), optional :: description  !! 'description' attribute
       call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
          units, description)
-   end subroutine write_r0
+   end subroutine write_real
 
-   !> Write a real(dp) 1-D dataset.
-   subroutine write_r1(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                 !! the file object
-      character(len=*), intent(in) :: path                   !! dataset path
-      real(dp), intent(in), target, contiguous :: value(:)   !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(len=*), intent(in), optional :: units        !! 'units' attribute
-      character(len=*), intent(in), optional :: description  !! 'description' attribute
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
-         units, description)
-   end subroutine write_r1
-
-   !> Write a real(dp) 2-D dataset.
-   subroutine write_r2(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                   !! the file object
-      character(len=*), intent(in) :: path                     !! dataset path
-      real(dp), intent(in), target, contiguous :: value(:, :)  !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(len=*), intent(in), optional :: units        !! 'units' attribute
-      character(len=*), intent(in), optional :: description  !! 'description' attribute
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
-         units, description)
-   end subroutine write_r2
-
-   !> Write a real(dp) 3-D dataset.
-   subroutine write_r3(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      real(dp), intent(in), target, contiguous :: value(:, :, :)  !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(len=*), intent(in), optional :: units        !! 'units' attribute
-      character(len=*), intent(in), optional :: description  !! 'description' attribute
-      call write_raw(self, path, real_type(), int(shape(value), hsize_t), c_loc(value), error, &
-         units, description)
-   end subroutine write_r3
-
-   !> Write a default-integer scalar dataset.
-   subroutine write_i0(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self            !! the file object
-      character(len=*), intent(in) :: path              !! dataset path
-      integer, intent(in), target :: value              !! value to store
+   !> Write a default-integer dataset of the value's shape.
+   subroutine write_int(self, path, value, error, units, description)
+      class(h5file_t), intent(inout) :: self                       !! the file object
+      character(len=*), intent(in) :: path                         !! dataset path
+      integer, intent(in), target, contiguous :: value(..)         !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       character(len=*), intent(in), optional :: units        !! 'units' attribute
       character(len=*), intent(in), optional :: description  !! 'description' attribute
       call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
          units, description)
-   end subroutine write_i0
+   end subroutine write_int
 
-   !> Write a default-integer 1-D dataset.
-   subroutine write_i1(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                !! the file object
-      character(len=*), intent(in) :: path                  !! dataset path
-      integer, intent(in), target, contiguous :: value(:)   !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(len=*), intent(in), optional :: units        !! 'units' attribute
-      character(len=*), intent(in), optional :: description  !! 'description' attribute
-      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
-         units, description)
-   end subroutine write_i1
-
-   !> Write a default-integer 2-D dataset.
-   subroutine write_i2(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                  !! the file object
-      character(len=*), intent(in) :: path                    !! dataset path
-      integer, intent(in), target, contiguous :: value(:, :)  !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      character(len=*), intent(in), optional :: units        !! 'units' attribute
-      character(len=*), intent(in), optional :: description  !! 'description' attribute
-      call write_raw(self, path, int_type(), int(shape(value), hsize_t), c_loc(value), error, &
-         units, description)
-   end subroutine write_i2
-
-   !> Write an integer(i8) 1-D dataset (stored as 64-bit integers).
-   subroutine write_i64_1(self, path, value, error, units, description)
-      class(h5file_t), intent(inout) :: self                     !! the file object
-      character(len=*), intent(in) :: path                       !! dataset path
-      integer(i8), intent(in), target, contiguous :: value(:)    !! values to store
+   !> Write an integer(i8) dataset of the value's shape (stored as 64-bit integers).
+   subroutine write_i64(self, path, value, error, units, description)
+      class(h5file_t), intent(inout) :: self                       !! the file object
+      character(len=*), intent(in) :: path                         !! dataset path
+      integer(i8), intent(in), target, contiguous :: value(..)     !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       character(len=*), intent(in), optional :: units        !! 'units' attribute
       character(len=*), intent(in), optional :: description  !! 'description' attribute
       call write_raw(self, path, i64_type(), int(shape(value), hsize_t), c_loc(value), error, &
          units, description)
-   end subroutine write_i64_1
+   end subroutine write_i64
 
    !> Write a scalar fixed-length string dataset (stored exactly, trailing blanks kept).
    subroutine write_str(self, path, value, error, units, description)
@@ -522,97 +470,63 @@ contains
       call describe_now(self, path, error, units, description)
    end subroutine file_create_dataset
 
-   !> Write a real(dp) 1-D block into dataset `path` from index `start`.
-   subroutine slab_r1(self, path, array, start, error, whole_chunks)
+   !> Write a real(dp) block (any rank, that of the dataset) into dataset `path`
+   !> from index `start`.
+   subroutine slab_real(self, path, array, start, error, whole_chunks)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
-      real(dp), intent(in), target, contiguous :: array(:)   !! block to write
+      real(dp), intent(in), target, contiguous :: array(..)  !! block to write
       integer, intent(in) :: start(:)                        !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
-   end subroutine slab_r1
+   end subroutine slab_real
 
-   !> Write a real(dp) 2-D block into dataset `path` from index `start`.
-   subroutine slab_r2(self, path, array, start, error, whole_chunks)
-      class(h5file_t), intent(inout) :: self                   !! the file object
-      character(len=*), intent(in) :: path                     !! dataset path
-      real(dp), intent(in), target, contiguous :: array(:, :)  !! block to write
-      integer, intent(in) :: start(:)                          !! 1-based first index
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see the module's header
-      call slab_raw(self, path, real_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error, whole_chunks)
-   end subroutine slab_r2
-
-   !> Write a default-integer 1-D block into dataset `path` from index `start`.
-   subroutine slab_i1(self, path, array, start, error, whole_chunks)
-      class(h5file_t), intent(inout) :: self                !! the file object
-      character(len=*), intent(in) :: path                  !! dataset path
-      integer, intent(in), target, contiguous :: array(:)   !! block to write
-      integer, intent(in) :: start(:)                       !! 1-based first index
+   !> `slab_real` for a default-integer block.
+   subroutine slab_int(self, path, array, start, error, whole_chunks)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      integer, intent(in), target, contiguous :: array(..)   !! block to write
+      integer, intent(in) :: start(:)                        !! 1-based first index
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       logical, intent(in), optional :: whole_chunks  !! see the module's header
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
-   end subroutine slab_i1
+   end subroutine slab_int
 
-   !> Write a default-integer 2-D block into dataset `path` from index `start`.
-   subroutine slab_i2(self, path, array, start, error, whole_chunks)
-      class(h5file_t), intent(inout) :: self                  !! the file object
-      character(len=*), intent(in) :: path                    !! dataset path
-      integer, intent(in), target, contiguous :: array(:, :)  !! block to write
-      integer, intent(in) :: start(:)                         !! 1-based first index
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      logical, intent(in), optional :: whole_chunks  !! see the module's header
-      call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
-         c_loc(array), error, whole_chunks)
-   end subroutine slab_i2
-
-   !> Write a real(dp) scalar attribute on the group or dataset `path`.
-   subroutine writeattr_r0(self, path, name, value, error)
-      class(h5file_t), intent(inout) :: self            !! the file object
-      character(len=*), intent(in) :: path              !! object path, '/' for the root
-      character(len=*), intent(in) :: name              !! attribute name
-      real(dp), intent(in), target :: value             !! value to store
+   !> Write a real(dp) attribute of the value's shape on the group or dataset `path`.
+   subroutine writeattr_real(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! object path, '/' for the root
+      character(len=*), intent(in) :: name                   !! attribute name
+      real(dp), intent(in), target, contiguous :: value(..)  !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
-   end subroutine writeattr_r0
+   end subroutine writeattr_real
 
-   !> Write a real(dp) 1-D attribute on the group or dataset `path`.
-   subroutine writeattr_r1(self, path, name, value, error)
-      class(h5file_t), intent(inout) :: self                !! the file object
-      character(len=*), intent(in) :: path                  !! object path, '/' for the root
-      character(len=*), intent(in) :: name                  !! attribute name
-      real(dp), intent(in), target, contiguous :: value(:)  !! values to store
-      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
-      call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
-         c_loc(value), error)
-   end subroutine writeattr_r1
-
-   !> Write a default-integer scalar attribute on the group or dataset `path`.
-   subroutine writeattr_i0(self, path, name, value, error)
-      class(h5file_t), intent(inout) :: self            !! the file object
-      character(len=*), intent(in) :: path              !! object path, '/' for the root
-      character(len=*), intent(in) :: name              !! attribute name
-      integer, intent(in), target :: value              !! value to store
+   !> Write a default-integer attribute of the value's shape on `path`.
+   subroutine writeattr_int(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! object path, '/' for the root
+      character(len=*), intent(in) :: name                   !! attribute name
+      integer, intent(in), target, contiguous :: value(..)   !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, int_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
-   end subroutine writeattr_i0
+   end subroutine writeattr_int
 
-   !> Write a 64-bit integer scalar attribute (counts that may pass 2^31 - 1).
-   subroutine writeattr_i64_0(self, path, name, value, error)
-      class(h5file_t), intent(inout) :: self            !! the file object
-      character(len=*), intent(in) :: path              !! object path, '/' for the root
-      character(len=*), intent(in) :: name              !! attribute name
-      integer(i8), intent(in), target :: value          !! value to store
+   !> Write a 64-bit integer attribute (counts that may pass 2^31 - 1) on `path`.
+   subroutine writeattr_i64(self, path, name, value, error)
+      class(h5file_t), intent(inout) :: self                     !! the file object
+      character(len=*), intent(in) :: path                       !! object path, '/' for the root
+      character(len=*), intent(in) :: name                       !! attribute name
+      integer(i8), intent(in), target, contiguous :: value(..)   !! value(s) to store
       type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       call writeattr_raw(self, path, name, i64_type(), int(shape(value), hsize_t), &
          c_loc(value), error)
-   end subroutine writeattr_i64_0
+   end subroutine writeattr_i64
 
    !> Write a string attribute on the group or dataset `path`: a variable-length
    !> UTF-8 string (h5py reads it as `str`).
@@ -682,6 +596,9 @@ contains
    end subroutine writeattr_vlen
 
    ! ------------------------------------------------------------- reading ---
+   ! The array readers declare their arguments and include one body each,
+   ! dpend_hdf5_read.inc (a whole dataset) or dpend_hdf5_slabread.inc (a block):
+   ! the element type and rank come from the declaration of `value` (`element`).
 
    !> Read a scalar (or one-element) numeric dataset as real(dp).
    subroutine read_r0(self, path, value, error)
@@ -694,30 +611,20 @@ contains
 
    !> Read a 1-D numeric dataset as real(dp); `value` takes the dataset's shape.
    subroutine read_r1(self, path, value, error)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      real(dp), allocatable, intent(out), target :: value(:)      !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 1, want_real, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1)))
-      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! dataset path
+      real(dp), allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      include 'dpend_hdf5_read.inc'
    end subroutine read_r1
 
    !> Read a 2-D numeric dataset as real(dp); `value` takes the dataset's shape.
    subroutine read_r2(self, path, value, error)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      real(dp), allocatable, intent(out), target :: value(:, :)   !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 2, want_real, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1), dims(2)))
-      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+      class(h5file_t), intent(inout) :: self                     !! the file object
+      character(len=*), intent(in) :: path                       !! dataset path
+      real(dp), allocatable, intent(out), target :: value(:, :)  !! values read
+      type(error_t), allocatable, intent(out) :: error           !! set on failure
+      include 'dpend_hdf5_read.inc'
    end subroutine read_r2
 
    !> Read a 3-D numeric dataset as real(dp); `value` takes the dataset's shape.
@@ -726,79 +633,8 @@ contains
       character(len=*), intent(in) :: path                          !! dataset path
       real(dp), allocatable, intent(out), target :: value(:, :, :)  !! values read
       type(error_t), allocatable, intent(out) :: error              !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 3, want_real, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1), dims(2), dims(3)))
-      call read_obj(self, quoted(path), obj, real_type(), c_loc(value), size(value), error)
+      include 'dpend_hdf5_read.inc'
    end subroutine read_r3
-
-   !> Read the block of `count` values from index `start` (1-based) of the 1-D
-   !> numeric dataset `path` as real(dp). Only the chunks holding the block are
-   !> read (and their checksums checked).
-   subroutine slabread_r1(self, path, start, count, value, error, check_sums)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      integer, intent(in) :: start(:)                             !! 1-based first index
-      integer, intent(in) :: count(:)                             !! shape of the block
-      real(dp), allocatable, intent(out), target :: value(:)      !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      logical, intent(in), optional :: check_sums                 !! see the module's header
-      integer :: n(1)
-      n = slab_shape(count, 1)
-      allocate (value(n(1)))
-      call read_slab_raw(self, path, 1, want_real, real_type(), start, count, c_loc(value), &
-         error, check_sums)
-   end subroutine slabread_r1
-
-   !> `slabread_r1` for a 2-D numeric dataset.
-   subroutine slabread_r2(self, path, start, count, value, error, check_sums)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      integer, intent(in) :: start(:)                             !! 1-based first index
-      integer, intent(in) :: count(:)                             !! shape of the block
-      real(dp), allocatable, intent(out), target :: value(:, :)   !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      logical, intent(in), optional :: check_sums                 !! see the module's header
-      integer :: n(2)
-      n = slab_shape(count, 2)
-      allocate (value(n(1), n(2)))
-      call read_slab_raw(self, path, 2, want_real, real_type(), start, count, c_loc(value), &
-         error, check_sums)
-   end subroutine slabread_r2
-
-   !> `slabread_r1` for a 1-D integer dataset.
-   subroutine slabread_i1(self, path, start, count, value, error, check_sums)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      integer, intent(in) :: start(:)                             !! 1-based first index
-      integer, intent(in) :: count(:)                             !! shape of the block
-      integer, allocatable, intent(out), target :: value(:)       !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      logical, intent(in), optional :: check_sums                 !! see the module's header
-      integer :: n(1)
-      n = slab_shape(count, 1)
-      allocate (value(n(1)))
-      call read_slab_raw(self, path, 1, want_int, int_type(), start, count, c_loc(value), &
-         error, check_sums)
-   end subroutine slabread_i1
-
-   !> `slabread_r1` for a 2-D integer dataset.
-   subroutine slabread_i2(self, path, start, count, value, error, check_sums)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      integer, intent(in) :: start(:)                             !! 1-based first index
-      integer, intent(in) :: count(:)                             !! shape of the block
-      integer, allocatable, intent(out), target :: value(:, :)    !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      logical, intent(in), optional :: check_sums                 !! see the module's header
-      integer :: n(2)
-      n = slab_shape(count, 2)
-      allocate (value(n(1), n(2)))
-      call read_slab_raw(self, path, 2, want_int, int_type(), start, count, c_loc(value), &
-         error, check_sums)
-   end subroutine slabread_i2
 
    !> Read a scalar (or one-element) integer dataset.
    subroutine read_i0(self, path, value, error)
@@ -811,16 +647,11 @@ contains
 
    !> Read a 1-D integer dataset; `value` takes the dataset's shape.
    subroutine read_i1(self, path, value, error)
-      class(h5file_t), intent(inout) :: self                  !! the file object
-      character(len=*), intent(in) :: path                    !! dataset path
-      integer, allocatable, intent(out), target :: value(:)   !! values read
-      type(error_t), allocatable, intent(out) :: error        !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 1, want_int, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1)))
-      call read_obj(self, quoted(path), obj, int_type(), c_loc(value), size(value), error)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      integer, allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      include 'dpend_hdf5_read.inc'
    end subroutine read_i1
 
    !> Read a 2-D integer dataset; `value` takes the dataset's shape.
@@ -829,26 +660,16 @@ contains
       character(len=*), intent(in) :: path                      !! dataset path
       integer, allocatable, intent(out), target :: value(:, :)  !! values read
       type(error_t), allocatable, intent(out) :: error          !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 2, want_int, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1), dims(2)))
-      call read_obj(self, quoted(path), obj, int_type(), c_loc(value), size(value), error)
+      include 'dpend_hdf5_read.inc'
    end subroutine read_i2
 
    !> Read a 1-D integer dataset as integer(i8); `value` takes the dataset's shape.
    subroutine read_i64_1(self, path, value, error)
-      class(h5file_t), intent(inout) :: self                      !! the file object
-      character(len=*), intent(in) :: path                        !! dataset path
-      integer(i8), allocatable, intent(out), target :: value(:)   !! values read
-      type(error_t), allocatable, intent(out) :: error            !! set on failure
-      integer(hid_t) :: obj
-      integer(hsize_t), allocatable :: dims(:)
-      call open_read(self, path, 1, want_int, obj, dims, error)
-      if (allocated(error)) return
-      allocate (value(dims(1)))
-      call read_obj(self, quoted(path), obj, i64_type(), c_loc(value), size(value), error)
+      class(h5file_t), intent(inout) :: self                     !! the file object
+      character(len=*), intent(in) :: path                       !! dataset path
+      integer(i8), allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error           !! set on failure
+      include 'dpend_hdf5_read.inc'
    end subroutine read_i64_1
 
    !> Read a scalar fixed-length string dataset (up to the first null byte).
@@ -859,6 +680,56 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! set on failure
       call read_string(self, path, value, error)
    end subroutine read_str
+
+   !> Read the block of `count` values from index `start` (1-based) of the 1-D
+   !> numeric dataset `path` as real(dp). Only the chunks holding the block are
+   !> read (and their checksums checked).
+   subroutine slabread_r1(self, path, start, count, value, error, check_sums)
+      class(h5file_t), intent(inout) :: self                  !! the file object
+      character(len=*), intent(in) :: path                    !! dataset path
+      integer, intent(in) :: start(:)                         !! 1-based first index
+      integer, intent(in) :: count(:)                         !! shape of the block
+      real(dp), allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error        !! set on failure
+      logical, intent(in), optional :: check_sums             !! see the module's header
+      include 'dpend_hdf5_slabread.inc'
+   end subroutine slabread_r1
+
+   !> `slabread_r1` for a 2-D numeric dataset.
+   subroutine slabread_r2(self, path, start, count, value, error, check_sums)
+      class(h5file_t), intent(inout) :: self                     !! the file object
+      character(len=*), intent(in) :: path                       !! dataset path
+      integer, intent(in) :: start(:)                            !! 1-based first index
+      integer, intent(in) :: count(:)                            !! shape of the block
+      real(dp), allocatable, intent(out), target :: value(:, :)  !! values read
+      type(error_t), allocatable, intent(out) :: error           !! set on failure
+      logical, intent(in), optional :: check_sums                !! see the module's header
+      include 'dpend_hdf5_slabread.inc'
+   end subroutine slabread_r2
+
+   !> `slabread_r1` for a 1-D integer dataset.
+   subroutine slabread_i1(self, path, start, count, value, error, check_sums)
+      class(h5file_t), intent(inout) :: self                 !! the file object
+      character(len=*), intent(in) :: path                   !! dataset path
+      integer, intent(in) :: start(:)                        !! 1-based first index
+      integer, intent(in) :: count(:)                        !! shape of the block
+      integer, allocatable, intent(out), target :: value(:)  !! values read
+      type(error_t), allocatable, intent(out) :: error       !! set on failure
+      logical, intent(in), optional :: check_sums            !! see the module's header
+      include 'dpend_hdf5_slabread.inc'
+   end subroutine slabread_i1
+
+   !> `slabread_r1` for a 2-D integer dataset.
+   subroutine slabread_i2(self, path, start, count, value, error, check_sums)
+      class(h5file_t), intent(inout) :: self                    !! the file object
+      character(len=*), intent(in) :: path                      !! dataset path
+      integer, intent(in) :: start(:)                           !! 1-based first index
+      integer, intent(in) :: count(:)                           !! shape of the block
+      integer, allocatable, intent(out), target :: value(:, :)  !! values read
+      type(error_t), allocatable, intent(out) :: error          !! set on failure
+      logical, intent(in), optional :: check_sums               !! see the module's header
+      include 'dpend_hdf5_slabread.inc'
+   end subroutine slabread_i2
 
    !> Read a real(dp) scalar attribute of the group or dataset `path`.
    subroutine readattr_r0(self, path, name, value, error)
@@ -906,6 +777,41 @@ contains
       type(error_t), allocatable, intent(out) :: error     !! set on failure
       call read_string(self, path, value, error, name)
    end subroutine readattr_str
+
+   !> The HDF5 memory type of real(dp) values and what a read accepts in the file
+   !> (numbers); with `dims`, `value` (rank 1 to 3, as the readers declare it) is
+   !> allocated to that shape.
+   subroutine element_real(value, mem_type, want, dims)
+      real(dp), allocatable, intent(inout) :: value(..)  !! the reader's array
+      integer(hid_t), intent(out) :: mem_type            !! HDF5 memory type
+      integer, intent(out) :: want                       !! want_real
+      integer(hsize_t), intent(in), optional :: dims(:)  !! shape to allocate
+      mem_type = real_type()
+      want = want_real
+      include 'dpend_hdf5_allocate.inc'
+   end subroutine element_real
+
+   !> `element_real` for default integers (the file holds integers).
+   subroutine element_int(value, mem_type, want, dims)
+      integer, allocatable, intent(inout) :: value(..)   !! the reader's array
+      integer(hid_t), intent(out) :: mem_type            !! HDF5 memory type
+      integer, intent(out) :: want                       !! want_int
+      integer(hsize_t), intent(in), optional :: dims(:)  !! shape to allocate
+      mem_type = int_type()
+      want = want_int
+      include 'dpend_hdf5_allocate.inc'
+   end subroutine element_int
+
+   !> `element_real` for integer(i8) (the file holds integers).
+   subroutine element_i64(value, mem_type, want, dims)
+      integer(i8), allocatable, intent(inout) :: value(..)  !! the reader's array
+      integer(hid_t), intent(out) :: mem_type               !! HDF5 memory type
+      integer, intent(out) :: want                          !! want_int
+      integer(hsize_t), intent(in), optional :: dims(:)     !! shape to allocate
+      mem_type = i64_type()
+      want = want_int
+      include 'dpend_hdf5_allocate.inc'
+   end subroutine element_i64
 
    ! ------------------------------------------------------------- helpers ---
 
