@@ -244,7 +244,7 @@ contains
          line = trim(buf)
          if (lines == 1) then
             call check_true(error, line == 't [s],q1 [rad],q2 [rad],energy [J],'// &
-                            'F01_1 [N],F01_2 [N]', 'header: '//line)
+                            'F01_x [N],F01_y [N]', 'header: '//line)
          else
             k = count([(line(stat:stat) == ',', stat=1, len(line))])
             call check_true(error, k == 5, 'six fields in line '//to_str(lines)//': '//line)

@@ -11,6 +11,8 @@ module test_hdf5
       h5aclose_f
    use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   use test_cli, only: run_command, scratch_dir
+   use dpend_export, only: export_columns
    implicit none
    private
    public :: collect_hdf5
@@ -37,7 +39,9 @@ contains
          new_unittest('hdf5_finalizer', test_finalizer), &
          new_unittest('hdf5_access_list', test_access_list), &
          new_unittest('hdf5_declared_sizes', test_declared_sizes), &
-         new_unittest('hdf5_attribute_types', test_attribute_types) &
+         new_unittest('hdf5_attribute_types', test_attribute_types), &
+         new_unittest('export_coordinate_names', test_export_coordinate_names), &
+         new_unittest('export_coordinates_refused', test_export_coordinates_refused) &
          ]
    end subroutine collect_hdf5
 
@@ -752,4 +756,120 @@ contains
       call h5%open(name, 'w', error)
       if (.not. allocated(error)) call h5%write('/x', 5.0_dp, error)
    end subroutine leave_open
+
+   !> `export --csv` names the columns of q, qdot, qddot and p from the file's
+   !> `coordinates` (the elastic pendulum: r, phi; the double pendulum keeps q1, qdot1,
+   !> …) and the vectors NAME_x, NAME_y; every value equals the file's (read here).
+   subroutine test_export_coordinate_names(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=:), allocatable :: dir
+      integer :: stat
+      dir = scratch_dir('hdf5names')
+      stat = run_command(dir, 'simulate --model elastic --m 1 --k 40 --l0 1 --g 9.8 '// &
+                         '--q 1.2,-1.0 --w 0.3,0.5 --t-end 0.1 --dt 0.01 --output '// &
+                         dir//'/elastic.h5')
+      call check_true(error, stat == 0, 'simulate --model elastic exits 0')
+      if (allocated(error)) return
+      call check_export(dir//'/elastic.h5', 'rA', 't [s],r [m],phi [rad],rdot [m/s],'// &
+                        'phidot [rad/s],rddot [m/s^2],phiddot [rad/s^2],p_r [kg m/s],'// &
+                        'p_phi [kg m^2/s],rA_x [m],rA_y [m]', error)
+      if (allocated(error)) return
+      stat = run_command(dir, 'simulate --t-end 0.1 --dt 0.01 --w 1,-2 --output '// &
+                         dir//'/pendulum.h5')
+      call check_true(error, stat == 0, 'simulate exits 0')
+      if (allocated(error)) return
+      call check_export(dir//'/pendulum.h5', 'rC2', 't [s],q1 [rad],q2 [rad],'// &
+                        'qdot1 [rad/s],qdot2 [rad/s],qddot1 [rad/s^2],qddot2 [rad/s^2],'// &
+                        'p1 [kg m^2/s],p2 [kg m^2/s],rC2_x [m],rC2_y [m]', error)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_export_coordinate_names
+
+   !> Export t q qdot qddot p VECTOR of `file` as CSV: the header is `header`, and
+   !> every line holds the values of the file (read here with h5file_t), exactly.
+   subroutine check_export(file, vector, header, error)
+      character(len=*), intent(in) :: file    !! a simulate file
+      character(len=*), intent(in) :: vector  !! a 2-D (x, y) dataset of /trajectory
+      character(len=*), intent(in) :: header  !! the header expected
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), p(:, :), r(:, :), row(:)
+      real(dp), allocatable :: want(:)
+      character(len=4096) :: line
+      integer :: unit, i, ios
+      call h5%open(file, 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/qdot', qd, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/qddot', qdd, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/p', p, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/'//vector, r, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=file//'.csv', status='replace', action='readwrite')
+      call export_columns(file, [character(len=8) :: 't', 'q', 'qdot', 'qddot', 'p', &
+                          vector], unit, error, csv=.true.)
+      if (allocated(error)) then
+         close (unit)
+         return
+      end if
+      rewind (unit)
+      read (unit, '(a)') line
+      call check_true(error, trim(line) == header, 'header: '//trim(line))
+      allocate (row(1 + 4*size(q, 1) + 2))
+      do i = 1, size(t)
+         if (allocated(error)) exit
+         read (unit, '(a)', iostat=ios) line
+         if (ios == 0) read (line, *, iostat=ios) row
+         call check_true(error, ios == 0, 'line '//trim(line))
+         if (allocated(error)) exit
+         want = [t(i), q(:, i), qd(:, i), qdd(:, i), p(:, i), r(:, i)]
+         call check_true(error, all(row == want), 'values of sample '//trim(line))
+      end do
+      if (.not. allocated(error)) then
+         read (unit, '(a)', iostat=ios) line
+         call check_true(error, is_iostat_end(ios), 'one line a sample, no more')
+      end if
+      close (unit)
+   end subroutine check_export
+
+   !> A `coordinates` attribute that is not one name a column (a comma, a count
+   !> that differs from the columns of q) is refused naming the attribute; a file
+   !> without it keeps the names q1, q2, ….
+   subroutine test_export_coordinates_refused(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=*), parameter :: file = 'test_export_coordinates.h5'
+      character(len=*), parameter :: bad(3) = [character(len=8) :: 'r,phi', 'r', 'r phi z']
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=256) :: line
+      integer :: unit, i
+      do i = 0, size(bad)
+         call h5%open(file, 'w', error)
+         if (allocated(error)) return
+         call h5%write('/trajectory/q', reshape([1.0_dp, 2.0_dp, 3.0_dp, 4.0_dp], [2, 2]), &
+                       units='m, rad')
+         if (i > 0) call h5%writeattr('/', 'coordinates', trim(bad(i)))
+         call h5%close(error)
+         if (allocated(error)) return
+         open (newunit=unit, status='scratch', action='readwrite')
+         call export_columns(file, ['q'], unit, err, csv=.true.)
+         if (i == 0) then
+            call check_true(error, .not. allocated(err), 'no coordinates: exported')
+            if (allocated(error)) exit
+            rewind (unit)
+            read (unit, '(a)') line
+            call check_true(error, trim(line) == 'q1 [m],q2 [rad]', 'old names: '//trim(line))
+         else
+            call check_true(error, allocated(err), "refused: '"//trim(bad(i))//"'")
+            if (allocated(error)) exit
+            call check_true(error, index(err%message, "'coordinates'") > 0 .and. &
+                            index(err%message, trim(bad(i))) > 0, 'names it: '//err%message)
+         end if
+         close (unit)
+         if (allocated(error)) exit
+      end do
+      open (newunit=unit, file=file)
+      close (unit, status='delete')
+   end subroutine test_export_coordinates_refused
+
 end module test_hdf5

@@ -14,6 +14,7 @@ module dpend_export
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory
    use dpend_cli, only: to_str
+   use dpend_strings, only: printable
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -22,6 +23,8 @@ module dpend_export
    !> At most 1e9 values (columns x rows) in one export: the table is indexed with
    !> default integers and printed as text of about 25 bytes a value (25 GB).
    integer(i8), parameter :: max_export_values = 1000000000_i8
+   !> At most 32 characters in a coordinate's name read from a file (`column_scheme`).
+   integer, parameter :: max_coordinate_len = 32
 
    !> Text appended piece by piece into one buffer that doubles when full.
    type :: text_buffer_t
@@ -113,9 +116,10 @@ contains
             if (allocated(error)) exit
             if (i > 1) call header%add(',')
             if (size(dims) == 3) then
-               call csv_header(h5, trim(paths(i)), dims(1)*dims(2), header, error, dims(1))
+               call csv_header(h5, filename, trim(paths(i)), dims(1)*dims(2), header, error, &
+                               dims(1))
             else
-               call csv_header(h5, trim(paths(i)), merge(dims(1), 0, size(dims) == 2), &
+               call csv_header(h5, filename, trim(paths(i)), merge(dims(1), 0, size(dims) == 2), &
                                header, error)
             end if
             if (allocated(error)) exit
@@ -191,12 +195,13 @@ contains
 
    !> Append the CSV column names of dataset `path` with their units, comma-separated,
    !> to `header`: "t [s]" for a 1-D dataset, "q1 [rad],q2 [rad]" for k = 2 columns
-   !> (name_j when the name ends in a digit: "F01_1"). Units listed per block of
-   !> columns ('rad, rad/s' for 4 columns: rad, rad, rad/s, rad/s) are spread over
-   !> them; other commas become ';'. A dataset without units gets no brackets; a
-   !> `units` attribute that is not one string is refused.
-   subroutine csv_header(h5, path, k, header, error, inner)
+   !> (names from `column_name`). Units listed per block of columns ('rad, rad/s'
+   !> for 4 columns: rad, rad, rad/s, rad/s) are spread over them; other commas
+   !> become ';'. A dataset without units gets no brackets; a `units` attribute
+   !> that is not one string is refused.
+   subroutine csv_header(h5, filename, path, k, header, error, inner)
       type(h5file_t), intent(inout) :: h5   !! open file
+      character(len=*), intent(in) :: filename  !! its name, for messages
       character(len=*), intent(in) :: path  !! dataset path
       integer, intent(in) :: k              !! columns, 0 for a 1-D dataset
       type(text_buffer_t), intent(inout) :: header      !! the header line so far
@@ -206,6 +211,8 @@ contains
       integer, intent(in), optional :: inner
       character(len=:), allocatable :: name, units, unit_j
       character(len=64), allocatable :: parts(:)
+      character(len=max_coordinate_len), allocatable :: coords(:)
+      logical :: vector
       integer :: j, m, pos
       name = path(index(path, '/', back=.true.) + 1:)
       units = ''
@@ -231,6 +238,11 @@ contains
          call header%add(name//bracket(replace_commas(units)))
          return
       end if
+      vector = .false.
+      if (.not. present(inner)) then
+         call column_scheme(h5, filename, path, name, k, vector, coords, error)
+         if (allocated(error)) return
+      end if
       do j = 1, k
          if (m > 1 .and. mod(k, m) == 0) then
             unit_j = trim(parts((j - 1)/(k/m) + 1))
@@ -241,10 +253,8 @@ contains
          if (present(inner)) then
             call header%add(name//'_'//to_str((j - 1)/inner + 1)//'_'// &
                             component(mod(j - 1, inner) + 1, inner)//bracket(unit_j))
-         else if (scan(name(len(name):len(name)), '0123456789') > 0) then
-            call header%add(name//'_'//to_str(j)//bracket(unit_j))
          else
-            call header%add(name//to_str(j)//bracket(unit_j))
+            call header%add(column_name(name, j, vector, coords)//bracket(unit_j))
          end if
       end do
    contains
@@ -288,6 +298,101 @@ contains
          end if
       end function bracket
    end subroutine csv_header
+
+   !> How the k columns of the 2-D dataset `path` (last name `name`) are named. A
+   !> vector, a dataset whose description ends in "(x, y)" (k = 2): NAME_x, NAME_y.
+   !> The coordinates q, qdot, qddot, p of a file with the root attribute
+   !> `coordinates` (k names, as simulate writes it): `coords`, the names given
+   !> there. Else neither (NAME1 … NAMEk, NAME_1 … when NAME ends in a digit). A
+   !> `description` or `coordinates` attribute that is not one string is refused, as
+   !> are coordinates that are not k names of letters, digits and '_' (a file from
+   !> elsewhere puts nothing else into a CSV header).
+   subroutine column_scheme(h5, filename, path, name, k, vector, coords, error)
+      type(h5file_t), intent(inout) :: h5     !! open file
+      character(len=*), intent(in) :: filename  !! its name, for messages
+      character(len=*), intent(in) :: path    !! dataset path
+      character(len=*), intent(in) :: name    !! its last name
+      integer, intent(in) :: k                !! its columns
+      logical, intent(out) :: vector          !! an (x, y) vector
+      !> the coordinates' names (allocated for q, qdot, qddot, p with `coordinates`)
+      character(len=max_coordinate_len), allocatable, intent(out) :: coords(:)
+      type(error_t), allocatable, intent(out) :: error  !! an attribute refused
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: word = 'abcdefghijklmnopqrstuvwxyz'// &
+         'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
+      integer :: i, n, pos
+      vector = .false.
+      text = ''
+      if (k == 2 .and. h5%attr_exists(path, 'description')) &
+         call h5%readattr(path, 'description', text, error)
+      if (allocated(error)) return
+      vector = k == 2 .and. len_trim(text) >= 6
+      if (vector) vector = text(len_trim(text) - 5:len_trim(text)) == '(x, y)'
+      if (vector) return
+      if (all(name /= [character(len=5) :: 'q', 'qdot', 'qddot', 'p'])) return
+      if (.not. h5%attr_exists('/', 'coordinates')) return
+      call h5%readattr('/', 'coordinates', text, error)
+      if (allocated(error)) return
+      allocate (coords(k))
+      n = 0
+      pos = 1
+      do while (pos <= len(text))
+         if (text(pos:pos) == ' ') then
+            pos = pos + 1
+            cycle
+         end if
+         i = scan(text(pos:), ' ')
+         if (i == 0) i = len(text) - pos + 2
+         n = n + 1
+         if (n > k .or. i - 1 > max_coordinate_len .or. &
+             verify(text(pos:pos + i - 2), word) > 0) exit
+         coords(n) = text(pos:pos + i - 2)
+         pos = pos + i
+      end do
+      if (n /= k .or. pos <= len(text)) call fatal_error(error, "invalid FILE '"// &
+         filename//"': the root attribute 'coordinates' ('"//printable(text(1:min(len(text), &
+         80)))//"') is not "//to_str(k)//" names of letters, digits and '_' (one per "// &
+         "column of '"//path//"')")
+   end subroutine column_scheme
+
+   !> The name of column j of a 2-D dataset NAME (`column_scheme`): NAME_x, NAME_y of
+   !> a vector; of a coordinate dataset, the coordinate's name c (q), c//'dot'
+   !> (qdot), c//'ddot' (qddot), 'p_'//c (p), or today's q1, qdot1, qddot1, p1 when
+   !> c is 'q' and the column number (the rods' angles); else NAMEj, or NAME_j when
+   !> NAME ends in a digit.
+   pure function column_name(name, j, vector, coords) result(t)
+      character(len=*), intent(in) :: name  !! the dataset's last name
+      integer, intent(in) :: j              !! the column
+      logical, intent(in) :: vector         !! an (x, y) vector
+      !> the coordinates' names, or unallocated
+      character(len=max_coordinate_len), allocatable, intent(in) :: coords(:)
+      character(len=:), allocatable :: t, c
+      if (vector) then
+         t = name//'_'//merge('x', 'y', j == 1)
+         return
+      end if
+      if (allocated(coords)) then
+         c = trim(coords(j))
+         if (c /= 'q'//to_str(j)) then
+            select case (name)
+            case ('q')
+               t = c
+            case ('qdot')
+               t = c//'dot'
+            case ('qddot')
+               t = c//'ddot'
+            case default
+               t = 'p_'//c
+            end select
+            return
+         end if
+      end if
+      if (scan(name(len(name):len(name)), '0123456789') > 0) then
+         t = name//'_'//to_str(j)
+      else
+         t = name//to_str(j)
+      end if
+   end function column_name
 
    !> Write one line per dataset of `filename` to `unit`: path, shape as h5py shows
    !> it, units ('?' if none) and description.
