@@ -60,6 +60,24 @@ module dpend_animate
       type(figure_track_t) :: fig
    end type track_t
 
+   !> The frames and the trail of one animation (`plan_frames`).
+   type :: plan_t
+      integer :: nframes = 1     !! frames
+      real(dp) :: dtf = 0.0_dp   !! time between frames [s]
+      integer :: m = 1           !! trail samples per frame interval
+      real(dp) :: ht = 0.0_dp    !! time between trail samples [s]
+      integer :: ntr = 1         !! trail length in samples
+      integer :: nrows = 1       !! trail samples in all
+   end type plan_t
+
+   !> The temporary files gnuplot reads and the stem of its PNG frames
+   !> (`make_temp_files`, `remove_temp_files`): names, and which were made.
+   type :: temp_files_t
+      character(len=:), allocatable :: params, frames_dat, trail_dat, stem
+      logical :: made_params = .false., made_frames = .false.
+      logical :: made_trail = .false., made_stem = .false.
+   end type temp_files_t
+
    character(len=*), parameter :: nl = new_line('a')
 
 contains
@@ -451,17 +469,17 @@ contains
       logical, intent(out) :: failed                    !! the run started and failed
       type(track_t) :: a, b
       type(output_t) :: out
-      real(dp) :: span, dtf, ht, lim, fmax, npm, e
-      real(dp), allocatable :: tf(:), ttr(:), pa(:, :), pb(:, :), qa(:, :), qb(:, :), tab(:, :)
-      character(len=:), allocatable :: script, dir, params, frames_dat, trail_dat, stem, title
-      character(len=:), allocatable :: label1, label2
+      type(plan_t) :: plan
+      type(temp_files_t) :: tmp
+      real(dp) :: span, lim, fmax, npm
+      real(dp), allocatable :: tf(:), ttr(:), pa(:, :), pb(:, :), qa(:, :), qb(:, :)
+      character(len=:), allocatable :: script, title, label1, label2
       type(arg_t) :: argv(11)
-      integer :: nframes, m, ntr, nrows, i, j, stat, err, u, na, nb
-      logical :: overlay, made_params, made_frames, made_trail, made_stem
+      integer :: i, stat, nb
+      logical :: overlay
       failed = .false.
       summary = ''
       overlay = len(cfg%overlay) > 0
-      made_params = .false.; made_frames = .false.; made_trail = .false.; made_stem = .false.
       call read_track(cfg%input, 'input', a, error)
       if (allocated(error)) return
       span = a%t(size(a%t)) - a%t(1)
@@ -475,16 +493,108 @@ contains
          end if
          span = min(span, b%t(size(b%t)) - a%t(1))
       end if
-      ! the frames
+      call plan_frames(cfg, a%t(1), span, overlay, plan, error)
+      if (allocated(error)) return
+      nb = 0
+      if (overlay) nb = b%fig%n_points
+      call check_work(cfg, plan, a%fig%n_points + a%fig%n_forces, nb, error)
+      if (allocated(error)) return
+      script = find_script('animate.gp')
+      if (len(script) == 0) then
+         failed = .true.
+         call fatal_error(error, 'scripts/animate.gp not found (set DPEND_ROOT to the dpend '// &
+                          'source tree)')
+         return
+      end if
+      call out%begin(cfg%output, cfg%force, error)
+      if (allocated(error)) return
+      ! from here on, a failure is a failed run
+      failed = .true.
+      allocate (tf(plan%nframes), ttr(plan%nrows))
+      tf = a%t(1) + plan%dtf*[(real(i, dp), i=0, plan%nframes - 1)]
+      ttr = a%t(1) + plan%ht*[(real(i, dp), i=0, plan%nrows - 1)]
+      ttr = min(ttr, a%t(1) + span)
+      ! the frames (anchor, points, forces) and the trail (the last point)
+      allocate (pa(2*(1 + a%fig%n_points + a%fig%n_forces), plan%nframes), qa(2, plan%nrows))
+      call frame_table(a, tf, pa, .true.)
+      call trail_table(a, ttr, qa)
+      if (overlay) then
+         allocate (pb(2*(1 + b%fig%n_points), plan%nframes), qb(2, plan%nrows))
+         call frame_table(b, tf, pb, .false.)
+         call trail_table(b, ttr, qb)
+      end if
+      lim = reach(a)
+      if (overlay) lim = max(lim, reach(b))
+      if (.not. (lim > 0.0_dp)) lim = 1.0_dp
+      fmax = 0.0_dp
+      npm = 0.0_dp
+      if (cfg%reactions) call reaction_scale(a, pa, lim, fmax, npm)
+      call make_temp_files(cfg, tmp, error)
+      if (.not. allocated(error)) then
+         ! numbers only: file names reach gnuplot as arguments
+         call write_params(tmp%params, cfg, a, b, overlay, plan, lim, fmax, npm, stat)
+         if (stat == 0) call write_frames(tmp%frames_dat, tf, pa, pb, overlay, stat)
+         if (stat == 0) call write_frames(tmp%trail_dat, ttr, qa, qb, overlay, stat)
+         if (stat /= 0) call fatal_error(error, "cannot write temporary files in '"// &
+                                         directory_of(cfg%output)//"'")
+      end if
+      if (allocated(error)) then
+         call remove_temp_files(tmp, plan%nframes)
+         call out%discard()
+         return
+      end if
+      title = base_name(cfg%input)//' ('//a%method//')'
+      label1 = title
+      label2 = ''
+      if (overlay) then
+         label2 = base_name(cfg%overlay)//' ('//b%method//')'
+         title = label1//'  and  '//label2
+      end if
+      title = figure_title(a)//': '//title
+      ! component by component (gfortran 12 mangles an array constructor of
+      ! structure constructors with deferred-length components)
+      argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = tmp%params
+      argv(5)%s = tmp%frames_dat; argv(6)%s = tmp%trail_dat; argv(7)%s = out%temp
+      argv(8)%s = title; argv(9)%s = label1; argv(10)%s = label2; argv(11)%s = tmp%stem
+      call run_program(argv, stat, error)
+      if (.not. allocated(error) .and. stat /= 0) &
+         call fatal_error(error, 'gnuplot failed (exit status '//to_str(stat)//', '//script//')')
+      if (.not. allocated(error)) call out%commit(error)
+      if (.not. allocated(error) .and. len(tmp%stem) > 0) &
+         call move_frames(cfg, tmp%stem, plan%nframes, error)
+      call out%explain(error)
+      call remove_temp_files(tmp, plan%nframes)
+      call out%discard()
+      if (allocated(error)) return
+      failed = .false.
+      summary = "wrote '"//cfg%output//"': "//to_str(plan%nframes)//' frames, '// &
+                sci(real(plan%nframes, dp)/real(cfg%fps, dp))//' s at '//to_str(cfg%fps)// &
+                ' fps, t = '//sci(tf(1))//' .. '//sci(tf(plan%nframes))//' s'
+      if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
+      if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &
+                                                 sci(npm)//' N'
+   end subroutine run_animate_body
+
+   !> The frames and the trail of an animation of `span` seconds from `t0`, or the
+   !> refusal of a --duration past the end (or of more than `max_frames` frames).
+   subroutine plan_frames(cfg, t0, span, overlay, plan, error)
+      type(animate_config_t), intent(in) :: cfg         !! the configuration
+      real(dp), intent(in) :: t0                        !! first sample time [s]
+      real(dp), intent(in) :: span                      !! time the files cover [s]
+      logical, intent(in) :: overlay                    !! two files
+      type(plan_t), intent(out) :: plan                 !! the frames and trail
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      real(dp) :: dtf
+      integer :: nframes
       dtf = cfg%speed/real(cfg%fps, dp)
       if (cfg%duration > 0.0_dp) then
          nframes = max(1, nint(cfg%duration*real(cfg%fps, dp)))
          if (real(nframes - 1, dp)*dtf > span*(1 + 1e-9_dp) + 1e-12_dp) then
             call fatal_error(error, 'invalid duration: '//sci(cfg%duration)//' s at speed '// &
                              sci(cfg%speed)//' shows t up to '// &
-                             sci(a%t(1) + real(nframes - 1, dp)*dtf)//' s; the trajectory'// &
+                             sci(t0 + real(nframes - 1, dp)*dtf)//' s; the trajectory'// &
                              trim(merge(' (both files)', '             ', overlay))// &
-                             ' ends at t = '//sci(a%t(1) + span)//' s (at most '// &
+                             ' ends at t = '//sci(t0 + span)//' s (at most '// &
                              sci(span/cfg%speed)//' s at this speed)')
             return
          end if
@@ -499,188 +609,109 @@ contains
          end if
          nframes = int(span/dtf + 1e-9_dp) + 1
       end if
+      plan%nframes = nframes
+      plan%dtf = dtf
       ! the trail: m samples per frame interval, ntr samples long
-      m = max(1, min(ceiling(dtf/trail_step), max_trail_rows/nframes))
-      ht = dtf/real(m, dp)
-      ntr = max(1, nint(min(trail_span/ht, real(max_trail_rows, dp))))
-      nrows = (nframes - 1)*m + 1
-      ! PNG frames: none may exist without --force
+      plan%m = max(1, min(ceiling(dtf/trail_step), max_trail_rows/nframes))
+      plan%ht = dtf/real(plan%m, dp)
+      plan%ntr = max(1, nint(min(trail_span/plan%ht, real(max_trail_rows, dp))))
+      plan%nrows = (nframes - 1)*plan%m + 1
+   end subroutine plan_frames
+
+   !> Before anything is written: no PNG frame may exist without --force, the rods
+   !> and arrows drawn (`na` + `nb` a frame) and the memory are bounded, and the
+   !> --frames directory must take files (a read-only file system: refused).
+   subroutine check_work(cfg, plan, na, nb, error)
+      type(animate_config_t), intent(in) :: cfg         !! the configuration
+      type(plan_t), intent(in) :: plan                  !! the frames and trail
+      integer, intent(in) :: na                         !! segments and arrows of the input
+      integer, intent(in) :: nb                         !! segments of the overlay
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: probe
+      integer :: i, err
       if (len(cfg%frames) > 0) then
-         do i = 1, nframes
+         do i = 1, plan%nframes
             call check_output_path(frame_name(cfg%frames, i), cfg%force, error, '--frames')
             if (allocated(error)) return
          end do
       end if
-      ! the work (rods drawn) and memory, before anything is written
-      nb = 0
-      if (overlay) nb = b%fig%n_points
-      na = a%fig%n_points + a%fig%n_forces
-      if (real(nframes, dp)*real(na + nb, dp) > real(max_drawn_links, dp)) then
-         call fatal_error(error, 'invalid duration: '//to_str(nframes)//' frames of '// &
+      if (real(plan%nframes, dp)*real(na + nb, dp) > real(max_drawn_links, dp)) then
+         call fatal_error(error, 'invalid duration: '//to_str(plan%nframes)//' frames of '// &
                           to_str(na + nb)//' segments and arrows draw '// &
-                          sci(real(nframes, dp)*real(na + nb, dp))//'; at most '// &
+                          sci(real(plan%nframes, dp)*real(na + nb, dp))//'; at most '// &
                           sci(real(max_drawn_links, dp))//' (use --duration, a larger '// &
                           '--speed or a smaller --fps)')
          return
       end if
-      call check_memory('duration', 8.0_dp*(real(nframes, dp)*6.0_dp*real(na + nb + 2, dp) &
-                        + real(nrows, dp)*4.0_dp*real(na + nb + 2, dp)), &
+      call check_memory('duration', 8.0_dp*(real(plan%nframes, dp)*6.0_dp* &
+                        real(na + nb + 2, dp) + real(plan%nrows, dp)*4.0_dp* &
+                        real(na + nb + 2, dp)), &
                         'the frames and trail', 'use --duration or a smaller --fps', error)
       if (allocated(error)) return
-      ! the --frames directory must take files (a read-only file system: refused)
       if (len(cfg%frames) > 0) then
-         err = make_temp_file(cfg%frames//'/.dpend-frames-probe-', stem)
+         err = make_temp_file(cfg%frames//'/.dpend-frames-probe-', probe)
          if (err /= 0) then
             call fatal_error(error, "invalid frames: cannot write into '"//cfg%frames// &
                              "' ("//errno_text(err)//')')
             return
          end if
-         err = remove_file(stem)
+         err = remove_file(probe)
       end if
-      script = find_script('animate.gp')
-      if (len(script) == 0) then
-         failed = .true.
-         call fatal_error(error, 'scripts/animate.gp not found (set DPEND_ROOT to the dpend '// &
-                          'source tree)')
-         return
-      end if
-      call out%begin(cfg%output, cfg%force, error)
-      if (allocated(error)) return
-      ! from here on, a failure is a failed run
-      failed = .true.
-      allocate (tf(nframes), ttr(nrows))
-      tf = a%t(1) + dtf*[(real(i, dp), i=0, nframes - 1)]
-      ttr = a%t(1) + ht*[(real(i, dp), i=0, nrows - 1)]
-      ttr = min(ttr, a%t(1) + span)
-      ! the frames (anchor, points, forces) and the trail (the last point)
-      na = 2*(1 + a%fig%n_points + a%fig%n_forces)
-      nb = 0
-      if (overlay) nb = 2*(1 + b%fig%n_points)
-      allocate (pa(na, nframes), qa(2, nrows))
-      call frame_table(a, tf, pa, .true.)
-      call trail_table(a, ttr, qa)
-      if (overlay) then
-         allocate (pb(nb, nframes), qb(2, nrows))
-         call frame_table(b, tf, pb, .false.)
-         call trail_table(b, ttr, qb)
-      end if
-      lim = reach(a)
-      if (overlay) lim = max(lim, reach(b))
-      if (.not. (lim > 0.0_dp)) lim = 1.0_dp
-      ! reaction arrows: the longest 0.3 to 0.6 (l1 + l2 + ...), the scale a round number of N/m
+   end subroutine check_work
+
+   !> Reaction arrows: the longest 0.3 to 0.6 `lim` (the figure's reach), the scale
+   !> `npm` a round number of N/m (0 without forces); `fmax` the largest force [N].
+   subroutine reaction_scale(a, pa, lim, fmax, npm)
+      type(track_t), intent(in) :: a         !! the input's track
+      real(dp), intent(in) :: pa(:, :)       !! its frame table (`frame_table`)
+      real(dp), intent(in) :: lim            !! the figure's reach [m]
+      real(dp), intent(out) :: fmax          !! largest force [N]
+      real(dp), intent(out) :: npm           !! arrow scale [N/m]
+      real(dp) :: e
+      integer :: i, j
       fmax = 0.0_dp
       npm = 0.0_dp
-      if (cfg%reactions) then
-         do i = 1, nframes
-            do j = 1, a%fig%n_forces
-               fmax = max(fmax, hypot(pa(2*(a%fig%n_points + j) + 1, i), &
-                                      pa(2*(a%fig%n_points + j) + 2, i)))
-            end do
+      do i = 1, size(pa, 2)
+         do j = 1, a%fig%n_forces
+            fmax = max(fmax, hypot(pa(2*(a%fig%n_points + j) + 1, i), &
+                                   pa(2*(a%fig%n_points + j) + 2, i)))
          end do
-         if (fmax > 0.0_dp) then
-            e = log10(fmax) - log10(0.6_dp*lim)
-            npm = 10.0_dp**floor(e)
-            if (fmax/npm > 5.0_dp*0.6_dp*lim) then
-               npm = 10*npm
-            else if (fmax/npm > 2.0_dp*0.6_dp*lim) then
-               npm = 5*npm
-            else if (fmax/npm > 0.6_dp*lim) then
-               npm = 2*npm
-            end if
+      end do
+      if (fmax > 0.0_dp) then
+         e = log10(fmax) - log10(0.6_dp*lim)
+         npm = 10.0_dp**floor(e)
+         if (fmax/npm > 5.0_dp*0.6_dp*lim) then
+            npm = 10*npm
+         else if (fmax/npm > 2.0_dp*0.6_dp*lim) then
+            npm = 5*npm
+         else if (fmax/npm > 0.6_dp*lim) then
+            npm = 2*npm
          end if
       end if
+   end subroutine reaction_scale
+
+   !> The temporary files gnuplot reads (parameters, frames, trail), beside the
+   !> output, and the stem of its PNG frames in the --frames directory.
+   subroutine make_temp_files(cfg, tmp, error)
+      type(animate_config_t), intent(in) :: cfg         !! the configuration
+      type(temp_files_t), intent(out) :: tmp            !! the files made
+      type(error_t), allocatable, intent(out) :: error  !! one could not be made
+      character(len=:), allocatable :: dir
       dir = directory_of(cfg%output)
-      params = new_temp(dir//'/.'//base_name(cfg%output)//'.params-', made_params)
-      if (made_params) frames_dat = new_temp(dir//'/.'//base_name(cfg%output)//'.frames-', &
-                                             made_frames)
-      if (made_frames) trail_dat = new_temp(dir//'/.'//base_name(cfg%output)//'.trail-', &
-                                            made_trail)
-      stem = ''
-      if (made_trail .and. len(cfg%frames) > 0) then
-         stem = new_temp(cfg%frames//'/.dpend-frames-', made_stem)
-         if (.not. made_stem) call fatal_error(error, "cannot write into '"//cfg%frames// &
-                                               "' (--frames)")
+      tmp%params = new_temp(dir//'/.'//base_name(cfg%output)//'.params-', tmp%made_params)
+      if (tmp%made_params) tmp%frames_dat = new_temp(dir//'/.'//base_name(cfg%output)// &
+                                                     '.frames-', tmp%made_frames)
+      if (tmp%made_frames) tmp%trail_dat = new_temp(dir//'/.'//base_name(cfg%output)// &
+                                                    '.trail-', tmp%made_trail)
+      tmp%stem = ''
+      if (tmp%made_trail .and. len(cfg%frames) > 0) then
+         tmp%stem = new_temp(cfg%frames//'/.dpend-frames-', tmp%made_stem)
+         if (.not. tmp%made_stem) call fatal_error(error, "cannot write into '"// &
+                                                   cfg%frames//"' (--frames)")
       end if
-      if (.not. made_trail .and. .not. allocated(error)) &
+      if (.not. tmp%made_trail .and. .not. allocated(error)) &
          call fatal_error(error, "cannot create temporary files in '"//dir//"'")
-      if (allocated(error)) then
-         call cleanup()
-         return
-      end if
-      ! numbers only: file names reach gnuplot as arguments
-      open (newunit=u, file=params, status='replace', action='write', iostat=stat)
-      if (stat == 0) then
-         write (u, '(a, i0)', iostat=stat) 'links = ', a%fig%n_points
-         write (u, '(a, i0)', iostat=stat) 'links2 = ', max(0, nb/2 - 1)
-         write (u, '(a, i0)', iostat=stat) 'nforces = ', a%fig%n_forces
-         write (u, '(a, i0)', iostat=stat) 'spring = ', merge(1, 0, a%fig%style == 'spring')
-         if (overlay) write (u, '(a, i0)', iostat=stat) 'spring2 = ', &
-            merge(1, 0, b%fig%style == 'spring')
-         write (u, '(a, i0)', iostat=stat) 'nframes = ', nframes
-         write (u, '(a, i0)', iostat=stat) 'nrows = ', nrows
-         write (u, '(a, i0)', iostat=stat) 'per_frame = ', m
-         write (u, '(a, i0)', iostat=stat) 'ntrail = ', ntr
-         write (u, '(a, i0)', iostat=stat) 'delay = ', max(1, nint(100.0_dp/real(cfg%fps, dp)))
-         write (u, '(a, i0)', iostat=stat) 'width = ', cfg%width
-         write (u, '(a, i0)', iostat=stat) 'height = ', cfg%height
-         write (u, '(a, i0)', iostat=stat) 'overlay = ', merge(1, 0, overlay)
-         write (u, '(a, i0)', iostat=stat) 'reactions = ', merge(1, 0, cfg%reactions .and. &
-                                                                  npm > 0)
-         write (u, '(a, es24.16e3)', iostat=stat) 'lim = ', 1.08_dp*lim
-         write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', max(npm, 1.0_dp)
-         write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
-         close (u, iostat=err)
-         if (err /= 0) stat = err
-      end if
-      if (stat == 0) then
-         allocate (tab(na + nb, nframes))
-         tab(1:na, :) = pa
-         if (overlay) tab(na + 1:na + nb, :) = pb
-         call write_table(frames_dat, tf, tab, stat)
-         deallocate (tab)
-      end if
-      if (stat == 0) then
-         allocate (tab(merge(4, 2, overlay), nrows))
-         tab(1:2, :) = qa
-         if (overlay) tab(3:4, :) = qb
-         call write_table(trail_dat, ttr, tab, stat)
-      end if
-      if (stat /= 0) then
-         call fatal_error(error, "cannot write temporary files in '"//dir//"'")
-         call cleanup()
-         return
-      end if
-      title = base_name(cfg%input)//' ('//a%method//')'
-      label1 = title
-      label2 = ''
-      if (overlay) then
-         label2 = base_name(cfg%overlay)//' ('//b%method//')'
-         title = label1//'  and  '//label2
-      end if
-      title = figure_title(a)//': '//title
-      ! component by component (gfortran 12 mangles an array constructor of
-      ! structure constructors with deferred-length components)
-      argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = params
-      argv(5)%s = frames_dat; argv(6)%s = trail_dat; argv(7)%s = out%temp
-      argv(8)%s = title; argv(9)%s = label1; argv(10)%s = label2; argv(11)%s = stem
-      call run_program(argv, stat, error)
-      if (.not. allocated(error) .and. stat /= 0) &
-         call fatal_error(error, 'gnuplot failed (exit status '//to_str(stat)//', '//script//')')
-      if (.not. allocated(error)) call out%commit(error)
-      if (.not. allocated(error) .and. len(stem) > 0) call move_frames()
-      call out%explain(error)
-      call cleanup()
-      if (allocated(error)) return
-      failed = .false.
-      summary = "wrote '"//cfg%output//"': "//to_str(nframes)//' frames, '// &
-                sci(real(nframes, dp)/real(cfg%fps, dp))//' s at '//to_str(cfg%fps)// &
-                ' fps, t = '//sci(tf(1))//' .. '//sci(tf(nframes))//' s'
-      if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
-      if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &
-                                                 sci(npm)//' N'
-
    contains
-
       !> A new empty temporary file named prefix + XXXXXX.
       function new_temp(prefix, made) result(path)
          character(len=*), intent(in) :: prefix
@@ -689,50 +720,113 @@ contains
          made = make_temp_file(prefix, path) == 0
          if (.not. made) path = ''
       end function new_temp
+   end subroutine make_temp_files
 
-      !> Move the PNG frames gnuplot wrote (STEM-0001.png …) into place.
-      subroutine move_frames()
-         character(len=:), allocatable :: from, to
-         character(len=8) :: buf
-         integer :: j, r
+   !> Remove the temporary files (and PNG frames not moved into place).
+   subroutine remove_temp_files(tmp, nframes)
+      type(temp_files_t), intent(in) :: tmp  !! the files made
+      integer, intent(in) :: nframes         !! frames gnuplot may have written
+      character(len=8) :: buf
+      integer :: j, r
+      if (tmp%made_params) r = remove_file(tmp%params)
+      if (tmp%made_frames) r = remove_file(tmp%frames_dat)
+      if (tmp%made_trail) r = remove_file(tmp%trail_dat)
+      if (tmp%made_stem) then
          do j = 1, nframes
             write (buf, '(i4.4)') j
-            from = stem//'-'//trim(buf)//'.png'
-            to = frame_name(cfg%frames, j)
-            r = sync_path(from)
-            if (r == 0) then
-               if (cfg%force) then
-                  r = move_replace(from, to)
-               else
-                  r = move_noreplace(from, to)
-               end if
-            end if
-            if (r /= 0) then
-               call fatal_error(error, "cannot write '"//to//"': "//errno_text(r)// &
-                                ' (the GIF is written)')
-               return
-            end if
+            if (path_kind(tmp%stem//'-'//trim(buf)//'.png') /= path_missing) &
+               r = remove_file(tmp%stem//'-'//trim(buf)//'.png')
          end do
-      end subroutine move_frames
+         r = remove_file(tmp%stem)
+      end if
+   end subroutine remove_temp_files
 
-      !> Remove the temporary files (and PNG frames not moved into place).
-      subroutine cleanup()
-         character(len=8) :: buf
-         integer :: j, r
-         if (made_params) r = remove_file(params)
-         if (made_frames) r = remove_file(frames_dat)
-         if (made_trail) r = remove_file(trail_dat)
-         if (made_stem) then
-            do j = 1, nframes
-               write (buf, '(i4.4)') j
-               if (path_kind(stem//'-'//trim(buf)//'.png') /= path_missing) &
-                  r = remove_file(stem//'-'//trim(buf)//'.png')
-            end do
-            r = remove_file(stem)
+   !> Move the PNG frames gnuplot wrote (STEM-0001.png …) into place.
+   subroutine move_frames(cfg, stem, nframes, error)
+      type(animate_config_t), intent(in) :: cfg           !! the configuration
+      character(len=*), intent(in) :: stem                !! their temporary stem
+      integer, intent(in) :: nframes                      !! frames written
+      type(error_t), allocatable, intent(inout) :: error  !! one could not be moved
+      character(len=:), allocatable :: from, to
+      character(len=8) :: buf
+      integer :: j, r
+      do j = 1, nframes
+         write (buf, '(i4.4)') j
+         from = stem//'-'//trim(buf)//'.png'
+         to = frame_name(cfg%frames, j)
+         r = sync_path(from)
+         if (r == 0) then
+            if (cfg%force) then
+               r = move_replace(from, to)
+            else
+               r = move_noreplace(from, to)
+            end if
          end if
-         call out%discard()
-      end subroutine cleanup
-   end subroutine run_animate_body
+         if (r /= 0) then
+            call fatal_error(error, "cannot write '"//to//"': "//errno_text(r)// &
+                             ' (the GIF is written)')
+            return
+         end if
+      end do
+   end subroutine move_frames
+
+   !> The parameters gnuplot reads (numbers only: file names reach it as arguments).
+   subroutine write_params(path, cfg, a, b, overlay, plan, lim, fmax, npm, stat)
+      character(len=*), intent(in) :: path           !! the parameters file
+      type(animate_config_t), intent(in) :: cfg      !! the configuration
+      type(track_t), intent(in) :: a, b              !! the input and the overlay's tracks
+      logical, intent(in) :: overlay                 !! b is drawn
+      type(plan_t), intent(in) :: plan               !! the frames and trail
+      real(dp), intent(in) :: lim                    !! the figure's reach [m]
+      real(dp), intent(in) :: fmax                   !! largest force [N]
+      real(dp), intent(in) :: npm                    !! arrow scale [N/m]
+      integer, intent(out) :: stat                   !! iostat
+      integer :: u, err, links2
+      links2 = 0
+      if (overlay) links2 = b%fig%n_points
+      open (newunit=u, file=path, status='replace', action='write', iostat=stat)
+      if (stat /= 0) return
+      write (u, '(a, i0)', iostat=stat) 'links = ', a%fig%n_points
+      write (u, '(a, i0)', iostat=stat) 'links2 = ', links2
+      write (u, '(a, i0)', iostat=stat) 'nforces = ', a%fig%n_forces
+      write (u, '(a, i0)', iostat=stat) 'spring = ', merge(1, 0, a%fig%style == 'spring')
+      if (overlay) write (u, '(a, i0)', iostat=stat) 'spring2 = ', &
+         merge(1, 0, b%fig%style == 'spring')
+      write (u, '(a, i0)', iostat=stat) 'nframes = ', plan%nframes
+      write (u, '(a, i0)', iostat=stat) 'nrows = ', plan%nrows
+      write (u, '(a, i0)', iostat=stat) 'per_frame = ', plan%m
+      write (u, '(a, i0)', iostat=stat) 'ntrail = ', plan%ntr
+      write (u, '(a, i0)', iostat=stat) 'delay = ', max(1, nint(100.0_dp/real(cfg%fps, dp)))
+      write (u, '(a, i0)', iostat=stat) 'width = ', cfg%width
+      write (u, '(a, i0)', iostat=stat) 'height = ', cfg%height
+      write (u, '(a, i0)', iostat=stat) 'overlay = ', merge(1, 0, overlay)
+      write (u, '(a, i0)', iostat=stat) 'reactions = ', merge(1, 0, cfg%reactions .and. &
+                                                               npm > 0)
+      write (u, '(a, es24.16e3)', iostat=stat) 'lim = ', 1.08_dp*lim
+      write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', max(npm, 1.0_dp)
+      write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
+      close (u, iostat=err)
+      if (err /= 0) stat = err
+   end subroutine write_params
+
+   !> Write rows t(i), pa(:, i) [, pb(:, i) with the overlay]: the frames or the trail.
+   subroutine write_frames(path, t, pa, pb, overlay, stat)
+      character(len=*), intent(in) :: path           !! file
+      real(dp), intent(in) :: t(:)                   !! times [s]
+      real(dp), intent(in) :: pa(:, :)               !! the input's columns
+      real(dp), allocatable, intent(in) :: pb(:, :)  !! the overlay's (allocated with it)
+      logical, intent(in) :: overlay                 !! pb is written too
+      integer, intent(out) :: stat                   !! iostat
+      real(dp), allocatable :: tab(:, :)
+      if (.not. overlay) then
+         call write_table(path, t, pa, stat)
+         return
+      end if
+      allocate (tab(size(pa, 1) + size(pb, 1), size(t)))
+      tab(1:size(pa, 1), :) = pa
+      tab(size(pa, 1) + 1:, :) = pb
+      call write_table(path, t, tab, stat)
+   end subroutine write_frames
 
    !> Write rows t(i), cols(:, i).
    subroutine write_table(path, t, cols, stat)
