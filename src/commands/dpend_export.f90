@@ -48,14 +48,11 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
       logical, intent(in), optional :: csv              !! CSV with a header line
       type(h5file_t) :: h5
-      real(dp), allocatable :: table(:, :), v1(:), v2(:, :), v3(:, :, :)
-      integer, allocatable :: dims(:)
-      integer :: i, j, n, ncol, col, pos
-      real(dp) :: cols, largest
-      character(len=:), allocatable :: fmt, line
+      real(dp), allocatable :: table(:, :)
       character(len=:), allocatable :: paths(:)
       type(text_buffer_t) :: header
-      character(len=32) :: field
+      real(dp) :: cols, largest
+      integer :: j, n
       logical :: as_csv
       as_csv = .false.
       if (present(csv)) as_csv = csv
@@ -64,10 +61,52 @@ contains
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
       call resolve_all(h5, names, paths, error)
+      if (.not. allocated(error)) call table_shape(h5, paths, cols, n, largest, error)
+      ! the work and memory, before anything is allocated: the table and the
+      ! largest dataset read into it
+      if (.not. allocated(error)) then
+         if (cols*real(max(n, 0), dp) > real(max_export_values, dp)) then
+            call fatal_error(error, "invalid DATASET: export of '"//filename//"' would "// &
+                             'print '//sci(cols)//' columns x '//to_str(max(n, 0))// &
+                             ' rows, at most '//sci(real(max_export_values, dp))// &
+                             ' values (export fewer datasets)')
+         else
+            call check_memory('DATASET', 8.0_dp*(cols*real(max(n, 0), dp) + largest), &
+                              "the export of '"//filename//"'", 'export fewer datasets', error)
+         end if
+      end if
       if (allocated(error)) then
          call h5%close()
          return
       end if
+      allocate (table(nint(cols), max(n, 0)))
+      if (as_csv) call csv_headers(h5, filename, paths, header, error)
+      if (.not. allocated(error)) call read_table(h5, paths, table, error)
+      call h5%close()
+      if (allocated(error)) return
+      if (as_csv) then
+         write (unit, '(a)') header%text(1:header%n)
+         call print_csv(unit, table)
+         return
+      end if
+      do j = 1, n
+         write (unit, '(*(es24.16e3, :, " "))') table(:, j)
+      end do
+   end subroutine export_columns
+
+   !> The columns (`cols`, counted in real(dp): no overflow) and rows `n` of the
+   !> datasets `paths`, and the values of the largest: one column for a 1-D
+   !> dataset, k for a 2-D (n, k) one, N k for a 3-D (n, N, k) one (h5py order).
+   !> A dataset of another rank, or of another length n, is refused.
+   subroutine table_shape(h5, paths, cols, n, largest, error)
+      type(h5file_t), intent(inout) :: h5               !! open file
+      character(len=*), intent(in) :: paths(:)          !! dataset paths
+      real(dp), intent(out) :: cols                     !! columns of the table
+      integer, intent(out) :: n                         !! rows (-1: no dataset)
+      real(dp), intent(out) :: largest                  !! values of the largest dataset
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer, allocatable :: dims(:)
+      integer :: i
       cols = 0.0_dp
       largest = 0.0_dp
       n = -1
@@ -91,90 +130,90 @@ contains
          end if
          n = dims(size(dims))
       end do
-      ! the work and memory, before anything is allocated: the table and the
-      ! largest dataset read into it
-      if (.not. allocated(error)) then
-         if (cols*real(max(n, 0), dp) > real(max_export_values, dp)) then
-            call fatal_error(error, "invalid DATASET: export of '"//filename//"' would "// &
-                             'print '//sci(cols)//' columns x '//to_str(max(n, 0))// &
-                             ' rows, at most '//sci(real(max_export_values, dp))// &
-                             ' values (export fewer datasets)')
+   end subroutine table_shape
+
+   !> The CSV header line of the datasets `paths` (`csv_header` for each).
+   subroutine csv_headers(h5, filename, paths, header, error)
+      type(h5file_t), intent(inout) :: h5               !! open file
+      character(len=*), intent(in) :: filename          !! its name, for messages
+      character(len=*), intent(in) :: paths(:)          !! dataset paths
+      type(text_buffer_t), intent(inout) :: header      !! the header line
+      type(error_t), allocatable, intent(out) :: error  !! an attribute refused
+      integer, allocatable :: dims(:)
+      integer :: i
+      do i = 1, size(paths)
+         call h5%shape(trim(paths(i)), dims, error)
+         if (allocated(error)) exit
+         if (i > 1) call header%add(',')
+         if (size(dims) == 3) then
+            call csv_header(h5, filename, trim(paths(i)), dims(1)*dims(2), header, error, &
+                            dims(1))
          else
-            call check_memory('DATASET', 8.0_dp*(cols*real(max(n, 0), dp) + largest), &
-                              "the export of '"//filename//"'", 'export fewer datasets', error)
+            call csv_header(h5, filename, trim(paths(i)), merge(dims(1), 0, &
+                            size(dims) == 2), header, error)
          end if
-      end if
-      if (allocated(error)) then
-         call h5%close()
-         return
-      end if
-      ncol = nint(cols)
-      allocate (table(ncol, max(n, 0)))
-      if (as_csv) then
-         do i = 1, size(paths)
-            call h5%shape(trim(paths(i)), dims, error)
-            if (allocated(error)) exit
-            if (i > 1) call header%add(',')
-            if (size(dims) == 3) then
-               call csv_header(h5, filename, trim(paths(i)), dims(1)*dims(2), header, error, &
-                               dims(1))
-            else
-               call csv_header(h5, filename, trim(paths(i)), merge(dims(1), 0, size(dims) == 2), &
-                               header, error)
-            end if
-            if (allocated(error)) exit
-         end do
-      end if
-      col = 0
-      if (.not. allocated(error)) then
-         do i = 1, size(paths)
-            call h5%shape(trim(paths(i)), dims, error)
-            if (allocated(error)) exit
-            if (size(dims) == 1) then
-               call h5%read(trim(paths(i)), v1, error)
-               if (allocated(error)) exit
-               table(col + 1, :) = v1
-               col = col + 1
-            else if (size(dims) == 2) then
-               call h5%read(trim(paths(i)), v2, error)
-               if (allocated(error)) exit
-               table(col + 1:col + dims(1), :) = v2
-               col = col + dims(1)
-            else
-               call h5%read(trim(paths(i)), v3, error)
-               if (allocated(error)) exit
-               table(col + 1:col + dims(1)*dims(2), :) = &
-                  reshape(v3, [dims(1)*dims(2), dims(3)])
-               col = col + dims(1)*dims(2)
-            end if
-         end do
-      end if
-      call h5%close()
-      if (allocated(error)) return
-      if (as_csv) then
-         write (unit, '(a)') header%text(1:header%n)
-         allocate (character(len=25*max(ncol, 1)) :: line)
-         do j = 1, n
-            pos = 0
-            do i = 1, ncol
-               write (field, '(es24.16e3)') table(i, j)
-               if (i > 1) then
-                  line(pos + 1:pos + 1) = ','
-                  pos = pos + 1
-               end if
-               field = adjustl(field)
-               line(pos + 1:pos + len_trim(field)) = trim(field)
-               pos = pos + len_trim(field)
-            end do
-            write (unit, '(a)') line(1:pos)
-         end do
-         return
-      end if
-      fmt = '(*(es24.16e3, :, " "))'
-      do j = 1, n
-         write (unit, fmt) table(:, j)
+         if (allocated(error)) exit
       end do
-   end subroutine export_columns
+   end subroutine csv_headers
+
+   !> Read the datasets `paths` into the columns of `table` (its shape from
+   !> `table_shape`), each dataset's columns after the previous one's.
+   subroutine read_table(h5, paths, table, error)
+      type(h5file_t), intent(inout) :: h5               !! open file
+      character(len=*), intent(in) :: paths(:)          !! dataset paths
+      real(dp), intent(inout) :: table(:, :)            !! (columns, rows)
+      type(error_t), allocatable, intent(out) :: error  !! a read failed
+      real(dp), allocatable :: v1(:), v2(:, :), v3(:, :, :)
+      integer, allocatable :: dims(:)
+      integer :: i, col
+      col = 0
+      do i = 1, size(paths)
+         call h5%shape(trim(paths(i)), dims, error)
+         if (allocated(error)) exit
+         if (size(dims) == 1) then
+            call h5%read(trim(paths(i)), v1, error)
+            if (allocated(error)) exit
+            table(col + 1, :) = v1
+            col = col + 1
+         else if (size(dims) == 2) then
+            call h5%read(trim(paths(i)), v2, error)
+            if (allocated(error)) exit
+            table(col + 1:col + dims(1), :) = v2
+            col = col + dims(1)
+         else
+            call h5%read(trim(paths(i)), v3, error)
+            if (allocated(error)) exit
+            table(col + 1:col + dims(1)*dims(2), :) = &
+               reshape(v3, [dims(1)*dims(2), dims(3)])
+            col = col + dims(1)*dims(2)
+         end if
+      end do
+   end subroutine read_table
+
+   !> Print the rows of `table` as comma-separated lines, each built in one buffer
+   !> of its final length (the time is linear in the number of values).
+   subroutine print_csv(unit, table)
+      integer, intent(in) :: unit           !! output unit
+      real(dp), intent(in) :: table(:, :)   !! (columns, rows)
+      character(len=:), allocatable :: line
+      character(len=32) :: field
+      integer :: i, j, pos
+      allocate (character(len=25*max(size(table, 1), 1)) :: line)
+      do j = 1, size(table, 2)
+         pos = 0
+         do i = 1, size(table, 1)
+            write (field, '(es24.16e3)') table(i, j)
+            if (i > 1) then
+               line(pos + 1:pos + 1) = ','
+               pos = pos + 1
+            end if
+            field = adjustl(field)
+            line(pos + 1:pos + len_trim(field)) = trim(field)
+            pos = pos + len_trim(field)
+         end do
+         write (unit, '(a)') line(1:pos)
+      end do
+   end subroutine print_csv
 
    !> Append `piece` to the buffer, doubling its capacity when full (linear time
    !> over all appends).
