@@ -5,13 +5,13 @@
 module test_study
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t, hamiltonian, dh_dq, dh_dp
+   use dpend_pendulum, only: pendulum_t, hamiltonian, dh_dq, dh_dp, hamiltonian_qp
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
                                  study_defaults, read_study_config, validate_study_config, &
                                  study_namelist, apply_quick, balance_case
-   use dpend_study, only: study_result_t, run_study, step_grid, time_bins, hamiltonian_qp
+   use dpend_study, only: study_result_t, run_study, step_grid, time_bins
    use dpend_study_command, only: write_study_h5, study_summary, study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
