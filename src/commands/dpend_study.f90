@@ -92,6 +92,8 @@ module dpend_study
       real(dp) :: e0 = 0.0_dp            !! initial energy [J]
       real(dp) :: e_scale = 1.0_dp       !! energy unit E_s [J]
       integer :: stat = stat_ok          !! status of the reference run
+      !> status of the check run alone (stat: the reference's own, else this)
+      integer :: check_stat = stat_ok
    end type reference_t
 
    !> One sweep: a method on a case, over steps or tolerances; arrays over points.
@@ -423,6 +425,7 @@ contains
             call new_integrator(cfg%check_method, integ, error, method_options_t( &
                                 rtol=cfg%check_rtol, atol=1.0e-2_dp*cfg%check_rtol))
             call checkpoints(integ, model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
+            ref%check_stat = k
             if (k == stat_ok .and. ref%stat == stat_ok) then
                ref%check_difference = maxval(abs(yc - ref%y))
             else

@@ -16,7 +16,10 @@ module dpend_study_command
                            directory_of, run_program, io_failure_reason, path_kind, &
                            path_missing, base_name
    use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
-   use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
+   use dpend_study_config, only: study_model_name, default_model_study, case_model
+   use dpend_model, only: model_t
+   use dpend_integrator, only: status_message
+   use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol, reference_t
    use dpend_cli, only: to_str, arg_t
    implicit none
    private
@@ -302,6 +305,10 @@ contains
          v%roundoff_text = 'not run for the N-link chain (case '//cfg%ro_case//', '// &
                            to_str(size(cfg%cases(max(i, 1))%q0))//' links): H in quadruple '// &
                            'precision is the double pendulum''s'
+      else if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0) then
+         v%roundoff_text = 'not run for model '//study_model_name(cfg)//' (case '// &
+                           cfg%ro_case//'): it has no Hamiltonian in quadruple precision ' &
+                           //'(the double pendulum''s alone)'
       else if (.not. v%roundoff_run) then
          v%roundoff_text = 'no roundoff method among the methods of this study'
       else if (v%roundoff) then
@@ -338,10 +345,20 @@ contains
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
       upright = 'both links'
       if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) upright = 'every link'
-      md = md//nl//nl// &
+      if (default_model_study(cfg)) then
+         upright = 'the potential energy with '//upright//' upright'
+      else
+         upright = 'the energy unit of model '//study_model_name(cfg)//' (its energy_scale)'
+      end if
+      md = md//nl//nl
+      if (.not. default_model_study(cfg)) md = md//'Model '//study_model_name(cfg)// &
+         ': q = ('//state_units(cfg, 'names')//') ['//state_units(cfg, 'q')//'], q̇ ['// &
+         state_units(cfg, 'qdot')//']. '
+      md = md// &
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
-           'the potential energy with '//upright//' upright (see the cases). Global error: '// &
-           'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
+           upright//' (see the cases). Global error: '// &
+           'max |Δq|, |Δq̇| ['//state_units(cfg, 'both')//'] over '//to_str(cfg%n_check)// &
+           ' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'
       if (any([(balance_case(cfg, ic), ic=1, size(cfg%cases))])) md = md//' In a damped or '// &
@@ -507,7 +524,8 @@ contains
       end if
       ! ---- cases
       md = md//nl//'## Cases'//nl//nl// &
-           '| case | q0 [rad] | q̇0 [rad/s] | H(0) [J] | E_s [J] | reference check |'//nl// &
+           '| case | q0 ['//state_units(cfg, 'q')//'] | q̇0 ['//state_units(cfg, 'qdot')// &
+           '] | H(0) [J] | E_s [J] | reference check |'//nl// &
            '|---|---|---|---|---|---|'//nl
       do ic = 1, size(cfg%cases)
          associate (cs => cfg%cases(ic), ref => res%refs(ic))
@@ -518,14 +536,60 @@ contains
                  num(ref%e_scale, 'f0.4')
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
                md = md//' = \|H(0)\|'
-            else
+            else if (default_model_study(cfg)) then
                md = md//' (V, links upright)'
+            else
+               md = md//' (energy_scale)'
             end if
-            md = md//' | '//cfg%check_method//': '//num(ref%check_difference, 'es8.2') &
-                 //' |'//nl
+            md = md//' | '//cfg%check_method//': '//check_text(ref)//' |'//nl
          end associate
       end do
    end function study_summary
+
+   !> The reference check of a case in words: the largest deviation of the check
+   !> method from the reference, or which of the two runs failed and why.
+   function check_text(ref) result(s)
+      type(reference_t), intent(in) :: ref  !! the case's reference
+      character(len=:), allocatable :: s
+      if (ref%stat == stat_ok) then
+         s = num(ref%check_difference, 'es8.2')
+      else if (ref%check_stat /= stat_ok .and. ref%stat == ref%check_stat) then
+         s = 'check run failed ('//status_message(ref%check_stat)//')'
+      else
+         s = 'reference run failed ('//status_message(ref%stat)//')'
+      end if
+   end function check_text
+
+   !> Units of the study's states, for the texts: 'q' (those of q, comma separated),
+   !> 'qdot', 'both' ('q, qdot') or 'names' (the coordinates' names); the double
+   !> pendulum's and the chain's: rad, rad/s.
+   function state_units(cfg, which) result(s)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: which    !! 'q', 'qdot', 'both' or 'names'
+      character(len=:), allocatable :: s
+      class(model_t), allocatable :: model
+      character(len=:), allocatable :: name, units, p_units, q, qd, names
+      integer :: i
+      if (default_model_study(cfg)) then
+         q = 'rad'; qd = 'rad/s'; names = 'q1, q2'
+      else
+         call case_model(cfg, 1, model)
+         q = ''; qd = ''; names = ''
+         do i = 1, model%n_dof()
+            call model%coordinate(i, name, units, p_units)
+            if (i > 1) then
+               q = q//', '; qd = qd//', '; names = names//', '
+            end if
+            q = q//units; qd = qd//units//'/s'; names = names//name
+         end do
+      end if
+      select case (which)
+      case ('q'); s = q
+      case ('qdot'); s = qd
+      case ('names'); s = names
+      case default; s = q//', '//qd
+      end select
+   end function state_units
 
    pure integer function best_index(v) result(k)
       real(dp), intent(in) :: v(:)
@@ -674,9 +738,16 @@ contains
       ! configuration
       call h5%write('/config/namelist', study_namelist(cfg), units='', description= &
          'the effective configuration as &pendulum and &study namelists')
-      call h5%writeattr('/config', 'm1', cfg%m(1)); call h5%writeattr('/config', 'm2', cfg%m(2))
-      call h5%writeattr('/config', 'l1', cfg%l(1)); call h5%writeattr('/config', 'l2', cfg%l(2))
-      call h5%writeattr('/config', 'g', cfg%g)
+      if (default_model_study(cfg)) then
+         call h5%writeattr('/config', 'm1', cfg%m(1))
+         call h5%writeattr('/config', 'm2', cfg%m(2))
+         call h5%writeattr('/config', 'l1', cfg%l(1))
+         call h5%writeattr('/config', 'l2', cfg%l(2))
+         call h5%writeattr('/config', 'g', cfg%g)
+      else   ! the model of the cases (&model) and its parameters, named by the model
+         call h5%writeattr('/config', 'model', study_model_name(cfg))
+         call write_model_parameters()
+      end if
       ! the per-link parameters when a case is a chain of other than two links
       n = 2
       do ic = 1, size(cfg%cases)
@@ -759,10 +830,10 @@ contains
                description='checkpoint times k t_short/K')
             n = size(cs%q0)
             if (n == 2) then
-               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
+               call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
                   description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
             else
-               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
+               call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
                   description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
                   ' of the reference at the checkpoints')
                call h5%writeattr(g, 'links', n)
@@ -847,7 +918,7 @@ contains
                description='largest relative energy error up to t_end')
             call h5%write(g//'/energy_final', ts%energy_final, units='1', &
                description='relative energy error at t_end')
-            call h5%write(g//'/global_error', ts%global_error, units='rad, rad/s', &
+            call h5%write(g//'/global_error', ts%global_error, units=state_units(cfg, 'both'), &
                description='global error up to t_short')
             call h5%write(g//'/status', ts%stat, units='1', &
                description='0 ok, else the failure code')
@@ -869,6 +940,20 @@ contains
                         merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
       call h5%writeattr('/summary', 'roundoff', v%roundoff_text)
       call h5%close(error)
+   contains
+      !> The model's parameters as attributes of /config (model of case 1: every
+      !> case has the same).
+      subroutine write_model_parameters()
+         class(model_t), allocatable :: model
+         character(len=:), allocatable :: name, units
+         real(dp) :: value
+         integer :: k
+         call case_model(cfg, 1, model)
+         do k = 1, model%n_parameters()
+            call model%parameter(k, name, value, units)
+            call h5%writeattr('/config', name, value)
+         end do
+      end subroutine write_model_parameters
    end subroutine write_study_h5
 
    !> One sweep under /cases/<case>/<method>/step or …/tol.
@@ -883,14 +968,14 @@ contains
          call h5%write(g//'/h', sw%x, units='s', description='step')
       else
          call h5%write(g//'/rtol', sw%x, units='1', description='relative tolerance')
-         call h5%write(g//'/atol', cfg%atol_ratio*sw%x, units='rad, rad/s', &
+         call h5%write(g//'/atol', cfg%atol_ratio*sw%x, units=state_units(cfg, 'both'), &
             description='absolute tolerance')
       end if
       call h5%write(g//'/mean_step_short', sw%h_mean_short, units='s', &
          description='t_short / accepted steps of the short run')
       call h5%write(g//'/mean_step_long', sw%h_mean_long, units='s', &
          description='t_long / accepted steps of the long run')
-      call h5%write(g//'/global_error', sw%global_error, units='rad, rad/s', &
+      call h5%write(g//'/global_error', sw%global_error, units=state_units(cfg, 'both'), &
          description='global error up to t_short')
       call h5%write(g//'/energy_max_short', sw%energy_short, units='1', &
          description='largest relative energy error up to t_short')

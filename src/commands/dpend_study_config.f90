@@ -12,7 +12,7 @@ module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
-   use dpend_model_factory, only: model_spec_t, model_spec, new_model
+   use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
@@ -34,7 +34,7 @@ module dpend_study_config
    public :: study_defaults, parse_study, read_study_config, validate_study_config
    public :: apply_quick, study_help, study_namelist, case_index, default_ranges
    public :: balance_case
-   public :: case_model, study_pendulum
+   public :: case_model, study_pendulum, study_model_name, default_model_study
    public :: max_cases, max_methods, max_extra
 
    integer, parameter :: max_cases = 8      !! most cases in &study
@@ -116,6 +116,10 @@ module dpend_study_config
       logical :: figures = .true.          !! run scripts/plot_study.sh at the end
       character(len=:), allocatable :: output  !! HDF5 file
       logical :: force = .false.               !! overwrite it
+      !> the model of every case: &model name (unallocated: the factory's default, the
+      !> pendulum of the case's links from m, l, g) and its parameters by name
+      character(len=:), allocatable :: model_name
+      type(model_spec_t) :: model_params
    end type study_config_t
 
 contains
@@ -208,6 +212,23 @@ contains
       par = pendulum_t(m1=cfg%m(1), m2=cfg%m(2), l1=cfg%l(1), l2=cfg%l(2), g=cfg%g)
    end function study_pendulum
 
+   !> The model of the study's cases (`&model name`, else the factory's default).
+   pure function study_model_name(cfg) result(name)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=:), allocatable :: name
+      if (allocated(cfg%model_name)) then
+         name = cfg%model_name
+      else
+         name = default_model
+      end if
+   end function study_model_name
+
+   !> The cases are the factory's default model (the pendulum of their links).
+   pure logical function default_model_study(cfg)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      default_model_study = study_model_name(cfg) == default_model
+   end function default_model_study
+
    !> Case ic is damped or driven (joint damping, a moving support): a balance case,
    !> whose energy error is the energy balance E(t) − E(0) + W_friction − W_support
    !> (dpend_work) and to which the drift verdicts are not applied.
@@ -240,8 +261,17 @@ contains
       integer, intent(in) :: ic                      !! case index
       logical, intent(in), optional :: conservative  !! without damping and support
       type(model_spec_t) :: spec
-      integer :: n
+      integer :: n, i
       n = size(cfg%cases(ic)%q0)
+      if (.not. default_model_study(cfg)) then   ! &model: its parameters by name
+         spec = model_spec(study_model_name(cfg))
+         if (allocated(cfg%model_params%items)) then
+            do i = 1, size(cfg%model_params%items)
+               call spec%set(cfg%model_params%items(i)%name, cfg%model_params%items(i)%values)
+            end do
+         end if
+         return
+      end if
       spec = model_spec('pendulum')
       call spec%set('links', [real(n, dp)])
       call spec%set('m', cfg%m(:n))
@@ -488,7 +518,8 @@ contains
          ro_runs, ro_case, ro_perturb, ro_fit_t_min, tao_method, tao_dt, tao_t_end, &
          omega_min, omega_max, n_omega, tao_case, quick
 
-      call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
+      call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study', &
+                                   'model'], error)
       if (allocated(error)) return
       rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
       rcfg%output = cfg%output
@@ -504,6 +535,8 @@ contains
       end if
       cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
       cfg%list_size = rcfg%list_size(1:2)
+      if (allocated(rcfg%model_name)) cfg%model_name = rcfg%model_name
+      cfg%model_params = rcfg%extra
       cfg%output = rcfg%output
       cfg%force = rcfg%force
 
@@ -674,7 +707,16 @@ contains
       do i = 1, size(cfg%cases)
          n = max(n, size(cfg%cases(i)%q0))
       end do
-      if (all([(size(cfg%cases(i)%q0) == 2, i=1, size(cfg%cases))])) then
+      if (.not. default_model_study(cfg)) then   ! &model: the parameters given by name
+         text = "&model name = '"//study_model_name(cfg)//"'"
+         if (allocated(cfg%model_params%items)) then
+            do i = 1, size(cfg%model_params%items)
+               text = text//', '//cfg%model_params%items(i)%name//' = '// &
+                      list(cfg%model_params%items(i)%values)
+            end do
+         end if
+         text = text//' /'//nl
+      else if (all([(size(cfg%cases(i)%q0) == 2, i=1, size(cfg%cases))])) then
          text = '&pendulum m1 = '//g(cfg%m(1))//', m2 = '//g(cfg%m(2))//', l1 = ' &
                 //g(cfg%l(1))//', l2 = '//g(cfg%l(2))//', g = '//g(cfg%g)//' /'//nl
       else
@@ -1044,6 +1086,10 @@ contains
          integer :: n, k
          character(len=1), parameter :: names(2) = ['m', 'l']
          n = size(cfg%cases(ic)%q0)
+         if (.not. default_model_study(cfg)) then
+            call check_model_case(ic)
+            return
+         end if
          if (n < 1 .or. n > max_dof .or. size(cfg%cases(ic)%w0) /= n) then
             call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
                              ' links, '//to_str(size(cfg%cases(ic)%w0))//' angular velocities' &
@@ -1081,6 +1127,43 @@ contains
                                                cfg%cases(ic)%name//"': case_damping, " &
                                                //'case_support_*)'
       end subroutine check_system
+
+      !> Case ic of a model given by &model (not the pendulum of m, l, g): the factory
+      !> builds it from the parameters by name; the case has its n_dof coordinates and
+      !> rates, a state the model accepts (`check_state`), no damping or moving support,
+      !> and no &pendulum or --m1 ... flags are given (they would be ignored).
+      subroutine check_model_case(ic)
+         integer, intent(in) :: ic
+         class(model_t), allocatable :: model
+         character(len=:), allocatable :: where
+         where = " (case '"//cfg%cases(ic)%name//"', model "//study_model_name(cfg)//')'
+         call new_model(case_spec(cfg, ic), model, error)
+         if (allocated(error)) then
+            error%message = error%message//' [&model]'
+            return
+         end if
+         if (any(cfg%list_size /= 0) .or. any(cfg%m(:2) /= 1.0_dp) .or. &
+             any(cfg%l(:2) /= 1.0_dp) .or. cfg%g /= 9.8_dp) then
+            call fatal_error(error, 'invalid &pendulum (or --m1, --m2, --l1, --l2, --g, --m, ' &
+                             //'--l): not read for model '//study_model_name(cfg)// &
+                             '; give its parameters by name in &model (dpend models)')
+         else if (size(cfg%cases(ic)%q0) /= model%n_dof() .or. &
+                  size(cfg%cases(ic)%w0) /= model%n_dof()) then
+            call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '// &
+                             to_str(size(cfg%cases(ic)%q0))//' coordinates, '// &
+                             to_str(size(cfg%cases(ic)%w0))//' rates; model '// &
+                             study_model_name(cfg)//' has '//to_str(model%n_dof())// &
+                             ' of each (case_q1, case_q2, case_w1, case_w2 for two)'//where)
+         else if (balance_case(cfg, ic)) then
+            call fatal_error(error, 'invalid case_damping, case_support_amplitude('// &
+                             to_str(ic)//'): model '//study_model_name(cfg)//' has no ' &
+                             //'damping or moving support'//where)
+         else
+            call model%check_state(cfg%cases(ic)%q0, cfg%cases(ic)%w0, error)
+            if (allocated(error)) error%message = error%message//where// &
+                                                  ' [case_q1, case_q2, case_w1, case_w2]'
+         end if
+      end subroutine check_model_case
 
       subroutine check_case_name(field, name)
          character(len=*), intent(in) :: field, name
