@@ -12,7 +12,8 @@ module test_study
                                  study_defaults, read_study_config, validate_study_config, &
                                  study_namelist, apply_quick, balance_case
    use dpend_study, only: study_result_t, run_study, step_grid, time_bins
-   use dpend_study_command, only: write_study_h5, study_summary, study_verdicts, verdicts_t
+   use dpend_study_command, only: write_study_h5, study_summary
+   use dpend_study_verdicts, only: study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    use dpend_cli, only: to_str
