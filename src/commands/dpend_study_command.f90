@@ -20,6 +20,7 @@ module dpend_study_command
    use dpend_model, only: model_t
    use dpend_integrator, only: status_message
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol, reference_t
+   use dpend_study, only: roundoff_t, tao_sweep_t
    use dpend_cli, only: to_str, arg_t
    use dpend_study_verdicts, only: verdicts_t, study_verdicts, sweep_index, order_ok, &
                                    drift_ok, drift_judged, brouwer_tol, fmt
@@ -162,15 +163,23 @@ contains
       type(study_config_t), intent(in) :: cfg
       type(study_result_t), intent(in) :: res
       character(len=:), allocatable :: md
+      md = summary_head(cfg, res)//summary_methods(cfg, res)//summary_orders(cfg, res)// &
+           summary_adaptive(cfg, res)//summary_roundoff(cfg, res)//summary_tao(cfg, res)// &
+           summary_cases(cfg, res)
+   end function study_summary
+
+   !> The summary's title line, what the errors are, and the verdicts.
+   function summary_head(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
       character(len=*), parameter :: nl = new_line('a')
       type(verdicts_t) :: v
-      integer :: im, ic, io, id, s, so, i, k
+      integer :: ic, id
       character(len=8) :: date
       character(len=10) :: time
       character(len=:), allocatable :: upright
-      real(dp) :: per_step
       v = study_verdicts(cfg, res)
-      io = case_index(cfg, cfg%order_case)
       id = case_index(cfg, cfg%drift_case)
       call date_and_time(date, time)
       md = '# dpend energy-conservation study'//nl//nl// &
@@ -209,8 +218,20 @@ contains
            ' '//v%drift_text//nl// &
            '- roundoff: '//verdict(v%roundoff, v%roundoff_run, 'not run:')//' '// &
            v%roundoff_text//nl//nl
+   end function summary_head
+
+   !> The main table: orders on the order case, drift and cost on the drift case.
+   function summary_methods(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: im, io, id, s, so, k
+      real(dp) :: per_step
+      io = case_index(cfg, cfg%order_case)
+      id = case_index(cfg, cfg%drift_case)
       ! ---- main table
-      md = md//'## Methods'//nl//nl// &
+      md = '## Methods'//nl//nl// &
            'Orders: slopes of the global error and of the maximum energy error up to '// &
            't_short against the step, fixed steps (dopri5, dop853 with the error control off), '// &
            'case `'//cfg%order_case//'`. Drift: exponent of the energy error in t over the '// &
@@ -243,7 +264,17 @@ contains
                                balance_case(cfg, id)))//' |'//nl
          end associate
       end do
-      ! ---- orders in every case
+   end function summary_methods
+
+   !> The orders of every method in every case, and the energy balance of the damped
+   !> and driven cases (when there are any).
+   function summary_orders(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: im, ic, s
+      md = ''
       md = md//nl//'## Orders in every case'//nl//nl// &
            'global / energy (fixed steps, t ≤ '//pretty(cfg%t_short)//' s); drift exponent '// &
            'at the middle step'//nl//nl//'| method | p |'
@@ -290,7 +321,16 @@ contains
             md = md//nl
          end do
       end if
-      ! ---- adaptive
+   end function summary_orders
+
+   !> The tolerance sweeps of the adaptive methods (when there are any).
+   function summary_adaptive(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: s
+      md = ''
       if (any(res%sweeps%mode == mode_tol)) then
          md = md//nl//'## Adaptive methods over tolerances'//nl//nl// &
               'atol = '//pretty(cfg%atol_ratio)//' rtol. Order against the mean accepted '// &
@@ -310,7 +350,16 @@ contains
             end associate
          end do
       end if
-      ! ---- roundoff
+   end function summary_adaptive
+
+   !> The roundoff runs (Brouwer's law; when made).
+   function summary_roundoff(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: i, k
+      md = ''
       if (size(res%roundoff) > 0) then
          md = md//nl//"## Roundoff (Brouwer's law)"//nl//nl// &
               'RMS over '//to_str(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
@@ -332,7 +381,16 @@ contains
             end associate
          end do
       end if
-      ! ---- Tao
+   end function summary_roundoff
+
+   !> Tao's binding constant (when run).
+   function summary_tao(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: i, k
+      md = ''
       if (size(res%tao) > 0) then
          md = md//nl//"## Tao's binding constant"//nl//nl// &
               'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//pretty(cfg%tao_t_end)// &
@@ -357,7 +415,16 @@ contains
             end associate
          end do
       end if
-      ! ---- cases
+   end function summary_tao
+
+   !> The cases: initial state, energy, its unit and the reference check.
+   function summary_cases(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: ic
+      md = ''
       md = md//nl//'## Cases'//nl//nl// &
            '| case | q0 ['//state_units(cfg, 'q')//'] | q̇0 ['//state_units(cfg, 'qdot')// &
            '] | H(0) [J] | E_s [J] | reference check |'//nl// &
@@ -379,7 +446,7 @@ contains
             md = md//' | '//cfg%check_method//': '//check_text(ref)//' |'//nl
          end associate
       end do
-   end function study_summary
+   end function summary_cases
 
    !> The reference check of a case in words: the largest deviation of the check
    !> method from the reference, or which of the two runs failed and why.
@@ -547,17 +614,34 @@ contains
       character(len=*), intent(in) :: filename
       type(error_t), allocatable, intent(out) :: error
       type(h5file_t) :: h5
-      type(verdicts_t) :: v
-      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
-      integer :: ic, s, i, n
-      character(len=:), allocatable :: g, names
-      character(len=8) :: date
-      character(len=10) :: time
+      integer :: ic, s, i
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       ! the writes below pass no `error`: h5 keeps the first failure, the later
       ! writes do nothing, and close hands it over
-      ! configuration
+      call write_h5_config(h5, cfg)
+      call write_h5_root(h5, cfg, res)
+      do ic = 1, size(cfg%cases)
+         call write_h5_case(h5, cfg, res, ic)
+      end do
+      do s = 1, size(res%sweeps)
+         call write_sweep(h5, cfg, res%sweeps(s))
+      end do
+      do i = 1, size(res%roundoff)
+         call write_h5_roundoff(h5, cfg, res%roundoff(i))
+      end do
+      do i = 1, size(res%tao)
+         call write_h5_tao(h5, cfg, res%tao(i))
+      end do
+      call write_h5_summary(h5, cfg, res)
+      call h5%close(error)
+   end subroutine write_study_h5
+
+   !> /config: the effective namelist, the model's parameters, the study's settings.
+   subroutine write_h5_config(h5, cfg)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      integer :: ic, n
       call h5%write('/config/namelist', study_namelist(cfg), units='', description= &
          'the effective configuration as &pendulum and &study namelists')
       if (default_model_study(cfg)) then
@@ -592,7 +676,32 @@ contains
       call h5%writeattr('/config', 'check_rtol', cfg%check_rtol)
       call h5%writeattr('/config', 'atol_ratio', cfg%atol_ratio)
       call h5%writeattr('/config', 'quick', merge(1, 0, cfg%quick))
-      ! root: provenance and the lists the plot script needs
+   contains
+      !> The model's parameters as attributes of /config (model of case 1: every
+      !> case has the same).
+      subroutine write_model_parameters()
+         class(model_t), allocatable :: model
+         character(len=:), allocatable :: name, units
+         real(dp) :: value
+         integer :: k
+         call case_model(cfg, 1, model)
+         do k = 1, model%n_parameters()
+            call model%parameter(k, name, value, units)
+            call h5%writeattr('/config', name, value)
+         end do
+      end subroutine write_model_parameters
+   end subroutine write_h5_config
+
+   !> Attributes of /: provenance, what the errors are, and the lists the plot
+   !> script needs.
+   subroutine write_h5_root(h5, cfg, res)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: names
+      character(len=8) :: date
+      character(len=10) :: time
+      integer :: ic, i
       call date_and_time(date, time)
       call h5%writeattr('/', 'program', 'dpend study')
       call h5%writeattr('/', 'version', version)
@@ -609,7 +718,8 @@ contains
                         'energy_scale); in a damped or driven case (balance = 1) the energy '// &
                         'balance |E(t) - E(0) + W_friction - W_support| / E_s')
       call h5%writeattr('/', 'global_error', 'max over the checkpoints of max(|dq1|, '// &
-                        '|dq2|, |dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
+                        '|dq2|, |dqdot1|, |dqdot2|) ['//state_units(cfg, 'both')// &
+                        '] against the reference')
       names = cfg%cases(1)%name
       do ic = 2, size(cfg%cases)
          names = names//' '//cfg%cases(ic)%name
@@ -644,112 +754,132 @@ contains
       end do
       if (len(names) == 0) names = 'none'
       call h5%writeattr('/', 'tao_methods', names)
-      ! cases and references
-      do ic = 1, size(cfg%cases)
-         g = '/cases/'//cfg%cases(ic)%name
-         associate (ref => res%refs(ic), cs => cfg%cases(ic))
-            call h5%write(g//'/reference/t', ref%t, units='s', &
-               description='checkpoint times k t_short/K')
-            n = size(cs%q0)
-            if (n == 2) then
-               call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
-                  description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+   end subroutine write_h5_root
+
+   !> /cases/<case>: the reference at the checkpoints, the initial state and energy.
+   subroutine write_h5_case(h5, cfg, res, ic)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      integer, intent(in) :: ic   !! case index
+      character(len=:), allocatable :: g
+      integer :: n, i
+      g = '/cases/'//cfg%cases(ic)%name
+      associate (ref => res%refs(ic), cs => cfg%cases(ic))
+         call h5%write(g//'/reference/t', ref%t, units='s', &
+            description='checkpoint times k t_short/K')
+         n = size(cs%q0)
+         if (n == 2) then
+            call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
+               description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+         else
+            call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
+               description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
+               ' of the reference at the checkpoints')
+            call h5%writeattr(g, 'links', n)
+         end if
+         call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
+         call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
+         call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
+         call h5%writeattr(g//'/reference', 'check_rtol', cfg%check_rtol)
+         call h5%writeattr(g//'/reference', 'check_difference', ref%check_difference)
+         call h5%writeattr(g, 'q0', cs%q0)
+         call h5%writeattr(g, 'qdot0', cs%w0)
+         call h5%writeattr(g, 'energy0', ref%e0)
+         call h5%writeattr(g, 'energy_scale', ref%e_scale)
+         if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
+            call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
+         else if (.not. default_model_study(cfg)) then
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'energy_scale of model '//study_model_name(cfg))
+         else if (n == 2) then
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'potential energy, both links upright')
+         else
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'potential energy, every link upright')
+         end if
+         call h5%writeattr(g, 'long_steps', cs%long_steps)
+         call h5%writeattr(g, 'balance', merge(1, 0, balance_case(cfg, ic)))
+         if (balance_case(cfg, ic)) then
+            if (allocated(cs%damping)) then
+               call h5%writeattr(g, 'damping', cs%damping)
             else
-               call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
-                  description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
-                  ' of the reference at the checkpoints')
-               call h5%writeattr(g, 'links', n)
+               call h5%writeattr(g, 'damping', [(0.0_dp, i=1, n)])
             end if
-            call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
-            call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
-            call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
-            call h5%writeattr(g//'/reference', 'check_rtol', cfg%check_rtol)
-            call h5%writeattr(g//'/reference', 'check_difference', ref%check_difference)
-            call h5%writeattr(g, 'q0', cs%q0)
-            call h5%writeattr(g, 'qdot0', cs%w0)
-            call h5%writeattr(g, 'energy0', ref%e0)
-            call h5%writeattr(g, 'energy_scale', ref%e_scale)
-            if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
-               call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
-            else if (n == 2) then
-               call h5%writeattr(g, 'energy_scale_definition', &
-                                 'potential energy, both links upright')
-            else
-               call h5%writeattr(g, 'energy_scale_definition', &
-                                 'potential energy, every link upright')
-            end if
-            call h5%writeattr(g, 'long_steps', cs%long_steps)
-            call h5%writeattr(g, 'balance', merge(1, 0, balance_case(cfg, ic)))
-            if (balance_case(cfg, ic)) then
-               if (allocated(cs%damping)) then
-                  call h5%writeattr(g, 'damping', cs%damping)
-               else
-                  call h5%writeattr(g, 'damping', [(0.0_dp, i=1, n)])
-               end if
-               call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
-               call h5%writeattr(g, 'support_frequency', cs%support_frequency)
-               call h5%writeattr(g, 'support_phase', cs%support_phase)
-            end if
-         end associate
-      end do
-      ! sweeps
-      do s = 1, size(res%sweeps)
-         call write_sweep(h5, cfg, res%sweeps(s))
-      end do
-      ! roundoff
-      do i = 1, size(res%roundoff)
-         associate (ro => res%roundoff(i))
-            g = '/roundoff/'//ro%method
-            call h5%write(g//'/steps', ro%steps, units='1', &
-               description='sample steps (logarithmic)')
-            call h5%write(g//'/t', ro%t, units='s', description='times of the sample steps')
-            call h5%write(g//'/rms_compensated', ro%rms(:, 1), units='1', description= &
-               'RMS over the runs of (H - H(0))/E_s, compensated summation')
-            call h5%write(g//'/rms_plain', ro%rms(:, 2), units='1', description= &
-               'RMS over the runs of (H - H(0))/E_s, plain summation')
-            table = transpose(ro%err(:, :, 1))
-            call h5%write(g//'/error_compensated', table, units='1', description= &
-               '(H - H(0))/E_s of every run, compensated summation')
-            table = transpose(ro%err(:, :, 2))
-            call h5%write(g//'/error_plain', table, units='1', description= &
-               '(H - H(0))/E_s of every run, plain summation')
-            call h5%write(g//'/status_compensated', ro%stat(:, 1), units='1', &
-               description='status of every run (0 ok), compensated summation')
-            call h5%write(g//'/status_plain', ro%stat(:, 2), units='1', &
-               description='status of every run (0 ok), plain summation')
-            call h5%write(g//'/wall_compensated', ro%wall(:, 1), units='s', &
-               description='wall time of every run, compensated summation')
-            call h5%write(g//'/wall_plain', ro%wall(:, 2), units='s', &
-               description='wall time of every run, plain summation')
-            call h5%writeattr(g, 'dt', ro%dt)
-            call h5%writeattr(g, 'runs', cfg%ro_runs)
-            call h5%writeattr(g, 'case', cfg%ro_case)
-            call h5%writeattr(g, 'perturbation', cfg%ro_perturb)
-            call h5%writeattr(g, 'fit_t_min', cfg%ro_fit_t_min)
-            call fit_attrs(h5, g, 'exponent_compensated', ro%fit(1))
-            call fit_attrs(h5, g, 'exponent_plain', ro%fit(2))
-         end associate
-      end do
-      ! Tao
-      do i = 1, size(res%tao)
-         associate (ts => res%tao(i))
-            g = '/tao/'//ts%method
-            call h5%write(g//'/omega', ts%omega, units='1/s', &
-               description='binding constants (geometric)')
-            call h5%write(g//'/energy_max', ts%energy_max, units='1', &
-               description='largest relative energy error up to t_end')
-            call h5%write(g//'/energy_final', ts%energy_final, units='1', &
-               description='relative energy error at t_end')
-            call h5%write(g//'/global_error', ts%global_error, units=state_units(cfg, 'both'), &
-               description='global error up to t_short')
-            call h5%write(g//'/status', ts%stat, units='1', &
-               description='0 ok, else the failure code')
-            call h5%writeattr(g, 'dt', cfg%tao_dt)
-            call h5%writeattr(g, 't_end', cfg%tao_t_end)
-            call h5%writeattr(g, 'case', cfg%tao_case)
-         end associate
-      end do
-      ! summary
+            call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
+            call h5%writeattr(g, 'support_frequency', cs%support_frequency)
+            call h5%writeattr(g, 'support_phase', cs%support_phase)
+         end if
+      end associate
+   end subroutine write_h5_case
+
+   !> /roundoff/<method>: the roundoff runs of one method.
+   subroutine write_h5_roundoff(h5, cfg, ro)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(roundoff_t), intent(in) :: ro
+      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
+      character(len=:), allocatable :: g
+      g = '/roundoff/'//ro%method
+      call h5%write(g//'/steps', ro%steps, units='1', &
+         description='sample steps (logarithmic)')
+      call h5%write(g//'/t', ro%t, units='s', description='times of the sample steps')
+      call h5%write(g//'/rms_compensated', ro%rms(:, 1), units='1', description= &
+         'RMS over the runs of (H - H(0))/E_s, compensated summation')
+      call h5%write(g//'/rms_plain', ro%rms(:, 2), units='1', description= &
+         'RMS over the runs of (H - H(0))/E_s, plain summation')
+      table = transpose(ro%err(:, :, 1))
+      call h5%write(g//'/error_compensated', table, units='1', description= &
+         '(H - H(0))/E_s of every run, compensated summation')
+      table = transpose(ro%err(:, :, 2))
+      call h5%write(g//'/error_plain', table, units='1', description= &
+         '(H - H(0))/E_s of every run, plain summation')
+      call h5%write(g//'/status_compensated', ro%stat(:, 1), units='1', &
+         description='status of every run (0 ok), compensated summation')
+      call h5%write(g//'/status_plain', ro%stat(:, 2), units='1', &
+         description='status of every run (0 ok), plain summation')
+      call h5%write(g//'/wall_compensated', ro%wall(:, 1), units='s', &
+         description='wall time of every run, compensated summation')
+      call h5%write(g//'/wall_plain', ro%wall(:, 2), units='s', &
+         description='wall time of every run, plain summation')
+      call h5%writeattr(g, 'dt', ro%dt)
+      call h5%writeattr(g, 'runs', cfg%ro_runs)
+      call h5%writeattr(g, 'case', cfg%ro_case)
+      call h5%writeattr(g, 'perturbation', cfg%ro_perturb)
+      call h5%writeattr(g, 'fit_t_min', cfg%ro_fit_t_min)
+      call fit_attrs(h5, g, 'exponent_compensated', ro%fit(1))
+      call fit_attrs(h5, g, 'exponent_plain', ro%fit(2))
+   end subroutine write_h5_roundoff
+
+   !> /tao/<method>: the Tao runs of one method over ω.
+   subroutine write_h5_tao(h5, cfg, ts)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(tao_sweep_t), intent(in) :: ts
+      character(len=:), allocatable :: g
+      g = '/tao/'//ts%method
+      call h5%write(g//'/omega', ts%omega, units='1/s', &
+         description='binding constants (geometric)')
+      call h5%write(g//'/energy_max', ts%energy_max, units='1', &
+         description='largest relative energy error up to t_end')
+      call h5%write(g//'/energy_final', ts%energy_final, units='1', &
+         description='relative energy error at t_end')
+      call h5%write(g//'/global_error', ts%global_error, units=state_units(cfg, 'both'), &
+         description='global error up to t_short')
+      call h5%write(g//'/status', ts%stat, units='1', &
+         description='0 ok, else the failure code')
+      call h5%writeattr(g, 'dt', cfg%tao_dt)
+      call h5%writeattr(g, 't_end', cfg%tao_t_end)
+      call h5%writeattr(g, 'case', cfg%tao_case)
+   end subroutine write_h5_tao
+
+   !> /summary: the Markdown summary and the verdicts.
+   subroutine write_h5_summary(h5, cfg, res)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      type(verdicts_t) :: v
       v = study_verdicts(cfg, res)
       call h5%write('/summary/markdown', study_summary(cfg, res), units='', &
          description='the Markdown summary')
@@ -761,22 +891,7 @@ contains
       call h5%writeattr('/summary', 'roundoff_ok', &
                         merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
       call h5%writeattr('/summary', 'roundoff', v%roundoff_text)
-      call h5%close(error)
-   contains
-      !> The model's parameters as attributes of /config (model of case 1: every
-      !> case has the same).
-      subroutine write_model_parameters()
-         class(model_t), allocatable :: model
-         character(len=:), allocatable :: name, units
-         real(dp) :: value
-         integer :: k
-         call case_model(cfg, 1, model)
-         do k = 1, model%n_parameters()
-            call model%parameter(k, name, value, units)
-            call h5%writeattr('/config', name, value)
-         end do
-      end subroutine write_model_parameters
-   end subroutine write_study_h5
+   end subroutine write_h5_summary
 
    !> One sweep under /cases/<case>/<method>/step or …/tol.
    subroutine write_sweep(h5, cfg, sw)
