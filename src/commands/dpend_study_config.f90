@@ -11,7 +11,7 @@
 module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
+   use dpend_pendulum, only: finite_positive
    use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
@@ -34,7 +34,7 @@ module dpend_study_config
    public :: study_defaults, parse_study, read_study_config, validate_study_config
    public :: apply_quick, study_help, study_namelist, case_index, default_ranges
    public :: balance_case
-   public :: case_model, study_pendulum, study_model_name, default_model_study
+   public :: case_model, study_model_name, default_model_study
    public :: max_cases, max_methods, max_extra
 
    integer, parameter :: max_cases = 8      !! most cases in &study
@@ -207,13 +207,6 @@ contains
       end do
    end function case_index
 
-   !> The double pendulum's parameters: links 1 and 2 of the study's parameters.
-   pure function study_pendulum(cfg) result(par)
-      type(study_config_t), intent(in) :: cfg  !! configuration
-      type(pendulum_t) :: par
-      par = pendulum_t(m1=cfg%m(1), m2=cfg%m(2), l1=cfg%l(1), l2=cfg%l(2), g=cfg%g)
-   end function study_pendulum
-
    !> The model of the study's cases (`&model name`, else the factory's default).
    pure function study_model_name(cfg) result(name)
       type(study_config_t), intent(in) :: cfg  !! configuration
@@ -313,11 +306,12 @@ contains
           '(docs/study-hdf5.md), a Markdown summary next to it (FILE with .md), prints'//nl// &
           'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
           'options:'//nl// &
-          '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
+          '  --config FILE     namelist file: &study, &pendulum, &output, &model (default:'//nl// &
           '                    data/study.nml, identical to the built-in defaults;'//nl// &
           '                    data/study_chain.nml: the triple pendulum, N-link chain;'//nl// &
           '                    data/study_damped.nml: damped and driven chains, whose'//nl// &
-          '                    energy error is the energy balance, no drift verdict)'//nl// &
+          '                    energy error is the energy balance, no drift verdict;'//nl// &
+          '                    data/elastic_study.nml: the elastic pendulum, &model)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
           '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
