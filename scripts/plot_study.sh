@@ -265,6 +265,11 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
   echo "unset multiplot; set autoscale x"
 }
 nattr ts /config/t_short
+# units of the global error: the reference state's, as the file labels them (the
+# chain's and double pendulum's rad, rad/s; another model's, e.g. m, rad, m/s,
+# rad/s); only letters, '/', ',' and blanks reach gnuplot, else the default
+su=$(attr "/cases/${cases[0]}/reference/state/units")
+[[ $su =~ ^[A-Za-z/,\ ]{1,40}$ ]] || su="rad, rad/s"
 ylab="max |H - H(0)| / E_s"; bnote=""
 if is_balance "$oc" || is_balance "$dc"; then
   ylab="max energy (balance) error / E_s"; bnote=" (damped or driven: the energy balance error)"
@@ -272,7 +277,7 @@ fi
 # shellcheck disable=SC2129
 panels error_vs_step.png \
   "\"Global error over t ≤ $ts s against the step, case \".OC.\"; legend: fitted slope; dashed: slope p$note\"" \
-  "$oi" 2 "max |Δq|, |Δq̇| [rad, rad/s]" order_global >> "$gp"
+  "$oi" 2 "max |Δq|, |Δq̇| [$su]" order_global >> "$gp"
 panels energy_vs_step.png \
   "\"Maximum energy error$bnote against the step: filled, t ≤ $ts s (case \".OC.\"); open, whole long run (case \".DC.\"); dashed: slope p$note\"" \
   "$oi" 3 "$ylab" order_energy "$di" 4 order_energy_long >> "$gp"
@@ -281,7 +286,7 @@ panels energy_vs_step.png \
 {
   echo "set output O.'/work_precision.png'"
   echo "set multiplot layout 1,2 title \"Work-precision, case \".OC.\": global error at t ≤ $ts s (fixed steps; dopri5, dop853 over tolerances)$note\" font ',13'"
-  echo "set ylabel 'max |Δq|, |Δq̇| [rad, rad/s]'; set key inside right top font ',9'"
+  echo "set ylabel 'max |Δq|, |Δq̇| [$su]'; set key inside right top font ',9'"
   for panel in wall rhs; do
     if [[ $panel == wall ]]; then
       echo "set title 'against wall time'; set xlabel 'wall time of one run [s]'"; col=6
@@ -315,6 +320,8 @@ panels energy_vs_step.png \
   ro_why="no roundoff method among the methods of this study"
   [[ "$(attr /summary/roundoff)" == "not run for the N-link chain"* ]] &&
     ro_why="not run for the N-link chain (H in quadruple precision: double pendulum only)"
+  [[ "$(attr /summary/roundoff)" == "not run for model "* ]] &&
+    ro_why="not run: the model has no H in quadruple precision (double pendulum only)"
   is_balance "$(attr /config/ro_case)" &&
     ro_why="the roundoff case is damped or driven (no conserved H)"
   # one y range for both panels, so that the two magnitudes compare
@@ -377,7 +384,7 @@ panels energy_vs_step.png \
     if [[ $panel == energy ]]; then
       echo "set title 'maximum energy error'; set ylabel 'max |H - H(0)| / E_s'"; col=2
     else
-      echo "set title 'global error at t ≤ $ts s'; set ylabel 'max |Δq|, |Δq̇| [rad, rad/s]'"; col=3
+      echo "set title 'global error at t ≤ $ts s'; set ylabel 'max |Δq|, |Δq̇| [$su]'"; col=3
     fi
     plot="plot"
     k=0

@@ -11,7 +11,7 @@
 !> | `sincos_lanes` (dpend_pendulum_lanes)        | the intrinsic `sin`, `cos`           |
 !> | `sincos_near_lanes` (dpend_pendulum_lanes)   | `sin_cos_near`                       |
 !> | `megno_step_lanes` (dpend_pendulum_lanes)    | `megno_step` (dpend_indicator_math)  |
-!> | `hamiltonian_qp` (dpend_study), quadruple    | `hamiltonian`, and with compensation |
+!> | `hamiltonian_qp` (dpend_pendulum), quadruple | `hamiltonian`, and with compensation |
 !> |                                             | e: `dh_dq`, `dh_dp` (first order)    |
 !>
 !> Draws: masses and lengths log-uniform in [0.1, 10], g in [1, 20], velocities in
@@ -41,7 +41,7 @@ module test_copies
    use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, accel_lanes, &
                                    tangent_accel_lanes, energy_lanes, sincos_lanes, &
                                    sincos_near_lanes, sincos_exact_max, sincos_stage_lanes
-   use dpend_study, only: hamiltonian_qp
+   use dpend_pendulum, only: hamiltonian_qp
    use dpend_indicator_math, only: megno_step
    use testing, only: unittest_t, new_unittest, check_true, error_t
    use dpend_cli, only: real_str

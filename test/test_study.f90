@@ -5,18 +5,22 @@
 module test_study
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t, hamiltonian, dh_dq, dh_dp
+   use dpend_pendulum, only: pendulum_t, hamiltonian, dh_dq, dh_dp, hamiltonian_qp
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
                                  study_defaults, read_study_config, validate_study_config, &
                                  study_namelist, apply_quick, balance_case
-   use dpend_study, only: study_result_t, run_study, step_grid, time_bins, hamiltonian_qp
-   use dpend_study_command, only: write_study_h5, study_summary, study_verdicts, verdicts_t
+   use dpend_study, only: study_result_t, run_study, step_grid, time_bins
+   use dpend_study_command, only: write_study_h5, study_summary
+   use dpend_study_verdicts, only: study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    use dpend_cli, only: to_str
-   use dpend_method_registry, only: method_table, field_method_names
+   use dpend_method_registry, only: method_table, field_method_names, method_index
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: model_spec, new_model
+   use dpend_study_config, only: case_model
    use dpend_limits, only: sci
    implicit none
    private
@@ -38,6 +42,8 @@ contains
               new_unittest('tiny_study_orders', test_tiny_study), &
               new_unittest('tiny_chain_study', test_tiny_chain_study), &
               new_unittest('tiny_damped_study', test_tiny_damped_study), &
+              new_unittest('tiny_elastic_study', test_tiny_elastic_study), &
+              new_unittest('quadruple_h_through_the_model', test_model_hamiltonian_qp), &
               new_unittest('damped_config_file', test_damped_config), &
               new_unittest('chain_config_file', test_chain_config), &
               new_unittest('default_config_file', test_default_config), &
@@ -400,6 +406,127 @@ contains
       call check_true(error, index(md, 'roundoff: not run: not run for the N-link chain') > 0, &
                       'summary names the roundoff experiment not run')
    end subroutine test_tiny_chain_study
+
+   !> A tiny study of the elastic pendulum from data/elastic_study.nml (&model): the
+   !> file reads and reads back (study_namelist); reduced to one case and three
+   !> methods (rk4 on (q, q̇), gauss4 on (q, p), verlet on the non-separable H), the
+   !> orders from the global and the energy error are the registry's (±0.3); H(0) is
+   !> the closed-form energy k/2 (r − l0)² + m g r sin φ of the bob at rest; the states
+   !> have 4 components; the roundoff experiment reads "not run for model elastic"
+   !> (no H in quadruple precision) while the Tao runs are made; the summary gives
+   !> the units m, rad; a failed check or reference run is named in words in the
+   !> summary (not the saturated difference 1.8E+308).
+   subroutine test_tiny_elastic_study(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg, back
+      type(study_result_t) :: res
+      type(verdicts_t) :: v
+      character(len=:), allocatable :: md, dir, text
+      real(dp) :: e0, r, phi
+      integer :: s
+      cfg = study_defaults()
+      call read_study_config('data/elastic_study.nml', cfg, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      dir = scratch_dir('study-elastic-config')
+      text = study_namelist(cfg)
+      call write_file(dir//'/back.nml', text)
+      back = study_defaults()
+      call read_study_config(dir//'/back.nml', back, error)
+      if (allocated(error)) return
+      call check_true(error, study_namelist(back) == text, 'elastic namelist reads back:'// &
+                      new_line('a')//text)
+      call execute_command_line('rm -rf '//dir)
+      if (allocated(error)) return
+      r = 1.3_dp; phi = -0.5_dp*pi + 0.2_dp
+      cfg%cases = [study_case_t('small', [r, phi], [0.0_dp, 0.0_dp], 300.0_dp)]
+      cfg%methods = [study_method_t('rk4', 1.0e-3_dp, 2.5e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('gauss4', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('verlet', 2.5e-3_dp, 1.0e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 4
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%ro_methods = [character(len=16) :: 'gauss4']
+      cfg%ro_dt = [1.0e-2_dp]
+      cfg%ro_steps = 300.0_dp
+      cfg%ro_runs = 2
+      cfg%tao_methods = [character(len=16) :: 'tao2']
+      cfg%n_omega = 2
+      cfg%tao_t_end = 0.5_dp
+      cfg%tao_dt = 1.0e-2_dp
+      cfg%threads = 2
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call run_study(cfg, res, quiet=.true.)
+      ! m = 1 kg, k = 40 N/m, l0 = 1 m, g = 9.8 m/s² (the file's &model)
+      e0 = 0.5_dp*40.0_dp*(r - 1.0_dp)**2 + 9.8_dp*r*sin(phi)
+      call check(error, res%refs(1)%e0, e0, 'H(0) of the elastic pendulum at rest', &
+                 rel=1e-13_dp)
+      call check_true(error, size(res%refs(1)%y, 1) == 4, 'states of 4 components')
+      call check_true(error, res%refs(1)%check_difference < 1e-11_dp, &
+                      'reference and check method agree: '//sci(res%refs(1)%check_difference))
+      if (allocated(error)) return
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            call check_true(error, all(sw%stat == 0), sw%method//': every run succeeded')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, &
+                       real(method_table(method_index(sw%method))%order, dp), &
+                       sw%method//' order from the global error (elastic)', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, &
+                       real(method_table(method_index(sw%method))%order, dp), &
+                       sw%method//' order from the energy error (elastic)', abs=0.3_dp)
+         end associate
+      end do
+      call check_true(error, size(res%roundoff) == 0 .and. size(res%tao) == 1, &
+                      'no roundoff runs on the elastic pendulum, Tao runs made')
+      call check_true(error, all(res%tao(1)%stat == 0), 'Tao runs succeeded')
+      v = study_verdicts(cfg, res)
+      call check_true(error, v%orders, 'order verdict: '//v%orders_text)
+      call check_true(error, .not. v%roundoff_run .and. &
+                      index(v%roundoff_text, 'not run for model elastic') > 0, &
+                      'roundoff verdict: '//v%roundoff_text)
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, 'q = (r, phi) [m, rad]') > 0 .and. &
+                      index(md, '1.8E+308') == 0 .and. index(md, 'links upright') == 0, &
+                      'summary in the model''s units')
+      ! a failed check run: the summary says so in words, not the saturated difference
+      res%refs(1)%stat = 2; res%refs(1)%check_stat = 2
+      res%refs(1)%check_difference = huge(1.0_dp)
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, 'check run failed (state became non-finite') > 0 &
+                      .and. index(md, 'E+308') == 0, 'failed check in words')
+      res%refs(1)%check_stat = 0
+      md = study_summary(cfg, res)
+      call check_true(error, index(md, 'reference run failed (state became non-finite') > 0 &
+                      .and. index(md, 'E+308') == 0, 'failed reference in words')
+   end subroutine test_tiny_elastic_study
+
+   !> The quadruple-precision H through the model: the double pendulum has it and
+   !> agrees with `hamiltonian_qp` of its parameters; the elastic pendulum and the
+   !> chain do not (the study makes no roundoff runs on them).
+   subroutine test_model_hamiltonian_qp(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      class(model_t), allocatable :: model
+      real(dp) :: y(4)
+      cfg = study_defaults()
+      call case_model(cfg, 1, model)
+      call check_true(error, model%has_hamiltonian_qp(), 'double pendulum has H in qp')
+      if (allocated(error)) return
+      y = [0.3_dp, -1.1_dp, 0.7_dp, -0.2_dp]
+      call check_true(error, model%hamiltonian_qp(y, 1e-17_dp*y) == &
+                      hamiltonian_qp(pendulum_t(), y, 1e-17_dp*y), 'the same H as hamiltonian_qp')
+      call new_model(model_spec('elastic'), model, error)
+      if (allocated(error)) return
+      call check_true(error, .not. model%has_hamiltonian_qp(), 'elastic: no H in qp')
+      cfg%cases = [study_case_t('triple', [0.1_dp, 0.2_dp, 0.3_dp], [0.0_dp, 0.0_dp, 0.0_dp], &
+                                300.0_dp)]
+      call case_model(cfg, 1, model)
+      call check_true(error, .not. model%has_hamiltonian_qp(), 'chain: no H in qp')
+   end subroutine test_model_hamiltonian_qp
 
    !> A tiny study of a damped double pendulum on a moving support (a balance case) in
    !> process: rk4 and gauss6 (on (q, q̇): the model has no Hamiltonian) keep their

@@ -16,38 +16,18 @@ module dpend_study_command
                            directory_of, run_program, io_failure_reason, path_kind, &
                            path_missing, base_name
    use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
-   use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol
+   use dpend_study_config, only: study_model_name, default_model_study, case_model
+   use dpend_model, only: model_t
+   use dpend_integrator, only: status_message
+   use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol, reference_t
+   use dpend_study, only: roundoff_t, tao_sweep_t
    use dpend_cli, only: to_str, arg_t
+   use dpend_study_verdicts, only: verdicts_t, study_verdicts, sweep_index, order_ok, &
+                                   drift_ok, drift_judged, brouwer_tol, fmt
    implicit none
    private
-   public :: run_study_command, write_study_h5, study_summary, verdicts_t, study_verdicts
-   public :: summary_path, order_tolerance
-
-   !> Measured orders must lie within this of the nominal order.
-   real(dp), parameter :: order_tolerance = 0.3_dp
-   !> Drift exponents: symplectic below `bounded_max`, explicit within `linear_tol` of 1.
-   real(dp), parameter :: bounded_max = 0.1_dp, linear_tol = 0.2_dp
-   !> Brouwer's law: exponent 0.5 within this.
-   real(dp), parameter :: brouwer_tol = 0.15_dp
-   !> The drift exponent is judged only when the long run at the middle step has at
-   !> least this many steps. The exponent is fitted over the last `drift_decades`
-   !> (default 2) decades of t, so a shorter run starts its fit window within its
-   !> first 1000 steps: for the study's steps (1e-3 to 4e-2 s) within the first
-   !> period or so of the motion (about 2 s for small oscillations), where the energy
-   !> error of a non-symplectic method still oscillates within each period instead
-   !> of growing secularly (rk4 on case small: exponent 0.51 with the 2e4 steps of
-   !> --quick, 1 expected). Shorter runs read "too short to judge", neither ✓ nor ✗.
-   integer(i8), parameter :: drift_min_steps = 100000_i8
-
-   !> The done-when checks of the study.
-   type :: verdicts_t
-      logical :: orders = .false.      !! every method's orders within ±0.3 (order case)
-      logical :: drift = .false.       !! bounded symplectic, linear explicit (drift case)
-      logical :: roundoff = .false.    !! compensated exponents 0.5 ± 0.15
-      logical :: drift_judged = .false.  !! some method's long run was long enough
-      logical :: roundoff_run = .false.  !! the study made roundoff runs
-      character(len=:), allocatable :: orders_text, drift_text, roundoff_text
-   end type verdicts_t
+   public :: run_study_command, write_study_h5, study_summary
+   public :: summary_path
 
 contains
 
@@ -176,143 +156,6 @@ contains
       path = trim(output)//'.md'
    end function summary_path
 
-   ! ================================================================ verdicts
-
-   !> Index of the fixed-step sweep of method `name` on case ic (0 if none).
-   pure integer function sweep_index(res, ic, name, mode) result(s)
-      type(study_result_t), intent(in) :: res
-      integer, intent(in) :: ic, mode
-      character(len=*), intent(in) :: name
-      integer :: i
-      s = 0
-      do i = 1, size(res%sweeps)
-         if (res%sweeps(i)%icase == ic .and. res%sweeps(i)%method == name .and. &
-             res%sweeps(i)%mode == mode) then
-            s = i
-            return
-         end if
-      end do
-   end function sweep_index
-
-   !> |fitted - nominal| <= tol for a successful fit.
-   pure logical function order_ok(fit, nominal)
-      type(fit_t), intent(in) :: fit
-      integer, intent(in) :: nominal
-      order_ok = .false.
-      if (fit%ok) order_ok = abs(fit%slope - nominal) <= order_tolerance
-   end function order_ok
-
-   !> The drift exponent of the middle point is as expected: below 0.1 for
-   !> symplectic methods, within 0.2 of 1 for the others.
-   pure logical function drift_ok(sw)
-      type(sweep_t), intent(in) :: sw
-      drift_ok = .false.
-      if (.not. ieee_is_finite(sw%drift(sw%mid))) return
-      if (sw%symplectic) then
-         drift_ok = sw%drift(sw%mid) < bounded_max
-      else
-         drift_ok = abs(sw%drift(sw%mid) - 1.0_dp) <= linear_tol
-      end if
-   end function drift_ok
-
-   !> The long run of `sw` at its middle step is long enough to judge its drift
-   !> exponent (at least `drift_min_steps` steps).
-   pure logical function drift_judged(sw)
-      type(sweep_t), intent(in) :: sw
-      drift_judged = sw%long_steps(sw%mid) >= drift_min_steps
-   end function drift_judged
-
-   !> Evaluate the done-when checks. An experiment that was not run reads "not run";
-   !> a drift exponent from too short a run reads "too short to judge"; neither is a
-   !> failure.
-   function study_verdicts(cfg, res) result(v)
-      type(study_config_t), intent(in) :: cfg
-      type(study_result_t), intent(in) :: res
-      type(verdicts_t) :: v
-      integer :: im, s, io, id, i
-      character(len=:), allocatable :: bad, short
-      io = case_index(cfg, cfg%order_case)
-      id = case_index(cfg, cfg%drift_case)
-      bad = ''
-      do im = 1, size(cfg%methods)
-         s = sweep_index(res, io, cfg%methods(im)%name, mode_step)
-         if (s == 0) cycle
-         if (.not. (order_ok(res%sweeps(s)%fit_global, res%sweeps(s)%order) .and. &
-                    order_ok(res%sweeps(s)%fit_energy, res%sweeps(s)%order))) &
-            bad = bad//' '//cfg%methods(im)%name
-      end do
-      v%orders = len(bad) == 0
-      if (v%orders) then
-         v%orders_text = 'every method within ±'//fmt(order_tolerance, 'f0.1')// &
-                         ' of its nominal order (case '//cfg%order_case//')'
-      else
-         v%orders_text = 'outside ±'//fmt(order_tolerance, 'f0.1')//' (case '// &
-                         cfg%order_case//'):'//bad
-      end if
-      bad = ''
-      short = ''
-      do im = 1, size(cfg%methods)
-         s = sweep_index(res, id, cfg%methods(im)%name, mode_step)
-         if (s == 0) cycle
-         if (balance_case(cfg, id)) cycle   ! no conserved energy: no drift verdict
-         if (.not. drift_judged(res%sweeps(s))) then
-            short = short//' '//cfg%methods(im)%name
-         else
-            v%drift_judged = .true.
-            if (.not. drift_ok(res%sweeps(s))) bad = bad//' '//cfg%methods(im)%name
-         end if
-      end do
-      v%drift = len(bad) == 0 .and. v%drift_judged
-      if (balance_case(cfg, id)) then
-         v%drift_text = 'case '//cfg%drift_case//' is damped or driven (its ' &
-                        //'energy balance error is shown instead; no conserved energy)'
-      else if (.not. v%drift_judged) then
-         v%drift_text = 'every long run has fewer than '//to_str(drift_min_steps)// &
-                        ' steps at the middle step (case '//cfg%drift_case//'):'//short
-      else
-         if (v%drift) then
-            v%drift_text = 'symplectic methods bounded (exponent < '// &
-                           fmt(bounded_max, 'f0.1')//'), the others linear (1 ± '// &
-                           fmt(linear_tol, 'f0.1')//') (case '//cfg%drift_case//', middle step)'
-         else
-            v%drift_text = 'unexpected drift exponent (case '//cfg%drift_case//'):'//bad
-         end if
-         if (len(short) > 0) v%drift_text = v%drift_text//'; too short to judge (fewer than '// &
-                                            to_str(drift_min_steps)//' steps):'//short
-      end if
-      bad = ''
-      do i = 1, size(res%roundoff)
-         associate (ro => res%roundoff(i))
-            if (.not. ro%fit(1)%ok) then
-               bad = bad//' '//ro%method
-            else if (abs(ro%fit(1)%slope - 0.5_dp) > brouwer_tol) then
-               bad = bad//' '//ro%method
-            end if
-         end associate
-      end do
-      v%roundoff_run = size(res%roundoff) > 0
-      v%roundoff = len(bad) == 0 .and. v%roundoff_run
-      i = case_index(cfg, cfg%ro_case)
-      if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0 .and. &
-          balance_case(cfg, max(i, 1))) then
-         v%roundoff_text = 'case '//cfg%ro_case//' is damped or driven (no ' &
-                           //'conserved H)'
-      else if (.not. v%roundoff_run .and. size(cfg%ro_methods) > 0 .and. &
-               size(cfg%cases(max(i, 1))%q0) /= 2) then
-         v%roundoff_text = 'not run for the N-link chain (case '//cfg%ro_case//', '// &
-                           to_str(size(cfg%cases(max(i, 1))%q0))//' links): H in quadruple '// &
-                           'precision is the double pendulum''s'
-      else if (.not. v%roundoff_run) then
-         v%roundoff_text = 'no roundoff method among the methods of this study'
-      else if (v%roundoff) then
-         v%roundoff_text = "Brouwer's law: compensated exponents within 0.5 ± " &
-                           //fmt(brouwer_tol, 'f0.2')
-      else
-         v%roundoff_text = 'compensated exponent outside 0.5 ± '//fmt(brouwer_tol, 'f0.2')// &
-                           ':'//bad
-      end if
-   end function study_verdicts
-
    ! ================================================================ summary
 
    !> The Markdown summary: verdicts and tables.
@@ -320,15 +163,23 @@ contains
       type(study_config_t), intent(in) :: cfg
       type(study_result_t), intent(in) :: res
       character(len=:), allocatable :: md
+      md = summary_head(cfg, res)//summary_methods(cfg, res)//summary_orders(cfg, res)// &
+           summary_adaptive(cfg, res)//summary_roundoff(cfg, res)//summary_tao(cfg, res)// &
+           summary_cases(cfg, res)
+   end function study_summary
+
+   !> The summary's title line, what the errors are, and the verdicts.
+   function summary_head(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
       character(len=*), parameter :: nl = new_line('a')
       type(verdicts_t) :: v
-      integer :: im, ic, io, id, s, so, i, k
+      integer :: ic, id
       character(len=8) :: date
       character(len=10) :: time
       character(len=:), allocatable :: upright
-      real(dp) :: per_step
       v = study_verdicts(cfg, res)
-      io = case_index(cfg, cfg%order_case)
       id = case_index(cfg, cfg%drift_case)
       call date_and_time(date, time)
       md = '# dpend energy-conservation study'//nl//nl// &
@@ -338,10 +189,20 @@ contains
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
       upright = 'both links'
       if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) upright = 'every link'
-      md = md//nl//nl// &
+      if (default_model_study(cfg)) then
+         upright = 'the potential energy with '//upright//' upright'
+      else
+         upright = 'the energy unit of model '//study_model_name(cfg)//' (its energy_scale)'
+      end if
+      md = md//nl//nl
+      if (.not. default_model_study(cfg)) md = md//'Model '//study_model_name(cfg)// &
+         ': q = ('//state_units(cfg, 'names')//') ['//state_units(cfg, 'q')//'], q̇ ['// &
+         state_units(cfg, 'qdot')//']. '
+      md = md// &
            'Relative energy error |H(t) − H(0)| / E_s with E_s = |H(0)|, or, when H(0) ≈ 0, '// &
-           'the potential energy with '//upright//' upright (see the cases). Global error: '// &
-           'max |Δq|, |Δq̇| [rad, rad/s] over '//to_str(cfg%n_check)//' checkpoints up to '// &
+           upright//' (see the cases). Global error: '// &
+           'max |Δq|, |Δq̇| ['//state_units(cfg, 'both')//'] over '//to_str(cfg%n_check)// &
+           ' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'
       if (any([(balance_case(cfg, ic), ic=1, size(cfg%cases))])) md = md//' In a damped or '// &
@@ -357,8 +218,20 @@ contains
            ' '//v%drift_text//nl// &
            '- roundoff: '//verdict(v%roundoff, v%roundoff_run, 'not run:')//' '// &
            v%roundoff_text//nl//nl
+   end function summary_head
+
+   !> The main table: orders on the order case, drift and cost on the drift case.
+   function summary_methods(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: im, io, id, s, so, k
+      real(dp) :: per_step
+      io = case_index(cfg, cfg%order_case)
+      id = case_index(cfg, cfg%drift_case)
       ! ---- main table
-      md = md//'## Methods'//nl//nl// &
+      md = '## Methods'//nl//nl// &
            'Orders: slopes of the global error and of the maximum energy error up to '// &
            't_short against the step, fixed steps (dopri5, dop853 with the error control off), '// &
            'case `'//cfg%order_case//'`. Drift: exponent of the energy error in t over the '// &
@@ -391,7 +264,17 @@ contains
                                balance_case(cfg, id)))//' |'//nl
          end associate
       end do
-      ! ---- orders in every case
+   end function summary_methods
+
+   !> The orders of every method in every case, and the energy balance of the damped
+   !> and driven cases (when there are any).
+   function summary_orders(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: im, ic, s
+      md = ''
       md = md//nl//'## Orders in every case'//nl//nl// &
            'global / energy (fixed steps, t ≤ '//pretty(cfg%t_short)//' s); drift exponent '// &
            'at the middle step'//nl//nl//'| method | p |'
@@ -438,7 +321,16 @@ contains
             md = md//nl
          end do
       end if
-      ! ---- adaptive
+   end function summary_orders
+
+   !> The tolerance sweeps of the adaptive methods (when there are any).
+   function summary_adaptive(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: s
+      md = ''
       if (any(res%sweeps%mode == mode_tol)) then
          md = md//nl//'## Adaptive methods over tolerances'//nl//nl// &
               'atol = '//pretty(cfg%atol_ratio)//' rtol. Order against the mean accepted '// &
@@ -458,7 +350,16 @@ contains
             end associate
          end do
       end if
-      ! ---- roundoff
+   end function summary_adaptive
+
+   !> The roundoff runs (Brouwer's law; when made).
+   function summary_roundoff(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: i, k
+      md = ''
       if (size(res%roundoff) > 0) then
          md = md//nl//"## Roundoff (Brouwer's law)"//nl//nl// &
               'RMS over '//to_str(cfg%ro_runs)//' runs (case `'//cfg%ro_case// &
@@ -480,7 +381,16 @@ contains
             end associate
          end do
       end if
-      ! ---- Tao
+   end function summary_roundoff
+
+   !> Tao's binding constant (when run).
+   function summary_tao(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: i, k
+      md = ''
       if (size(res%tao) > 0) then
          md = md//nl//"## Tao's binding constant"//nl//nl// &
               'h = '//fmt(cfg%tao_dt, 'es8.2')//' s to t = '//pretty(cfg%tao_t_end)// &
@@ -505,9 +415,19 @@ contains
             end associate
          end do
       end if
-      ! ---- cases
+   end function summary_tao
+
+   !> The cases: initial state, energy, its unit and the reference check.
+   function summary_cases(cfg, res) result(md)
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: md
+      character(len=*), parameter :: nl = new_line('a')
+      integer :: ic
+      md = ''
       md = md//nl//'## Cases'//nl//nl// &
-           '| case | q0 [rad] | q̇0 [rad/s] | H(0) [J] | E_s [J] | reference check |'//nl// &
+           '| case | q0 ['//state_units(cfg, 'q')//'] | q̇0 ['//state_units(cfg, 'qdot')// &
+           '] | H(0) [J] | E_s [J] | reference check |'//nl// &
            '|---|---|---|---|---|---|'//nl
       do ic = 1, size(cfg%cases)
          associate (cs => cfg%cases(ic), ref => res%refs(ic))
@@ -518,14 +438,60 @@ contains
                  num(ref%e_scale, 'f0.4')
             if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
                md = md//' = \|H(0)\|'
-            else
+            else if (default_model_study(cfg)) then
                md = md//' (V, links upright)'
+            else
+               md = md//' (energy_scale)'
             end if
-            md = md//' | '//cfg%check_method//': '//num(ref%check_difference, 'es8.2') &
-                 //' |'//nl
+            md = md//' | '//cfg%check_method//': '//check_text(ref)//' |'//nl
          end associate
       end do
-   end function study_summary
+   end function summary_cases
+
+   !> The reference check of a case in words: the largest deviation of the check
+   !> method from the reference, or which of the two runs failed and why.
+   function check_text(ref) result(s)
+      type(reference_t), intent(in) :: ref  !! the case's reference
+      character(len=:), allocatable :: s
+      if (ref%stat == stat_ok) then
+         s = num(ref%check_difference, 'es8.2')
+      else if (ref%check_stat /= stat_ok .and. ref%stat == ref%check_stat) then
+         s = 'check run failed ('//status_message(ref%check_stat)//')'
+      else
+         s = 'reference run failed ('//status_message(ref%stat)//')'
+      end if
+   end function check_text
+
+   !> Units of the study's states, for the texts: 'q' (those of q, comma separated),
+   !> 'qdot', 'both' ('q, qdot') or 'names' (the coordinates' names); the double
+   !> pendulum's and the chain's: rad, rad/s.
+   function state_units(cfg, which) result(s)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: which    !! 'q', 'qdot', 'both' or 'names'
+      character(len=:), allocatable :: s
+      class(model_t), allocatable :: model
+      character(len=:), allocatable :: name, units, p_units, q, qd, names
+      integer :: i
+      if (default_model_study(cfg)) then
+         q = 'rad'; qd = 'rad/s'; names = 'q1, q2'
+      else
+         call case_model(cfg, 1, model)
+         q = ''; qd = ''; names = ''
+         do i = 1, model%n_dof()
+            call model%coordinate(i, name, units, p_units)
+            if (i > 1) then
+               q = q//', '; qd = qd//', '; names = names//', '
+            end if
+            q = q//units; qd = qd//units//'/s'; names = names//name
+         end do
+      end if
+      select case (which)
+      case ('q'); s = q
+      case ('qdot'); s = qd
+      case ('names'); s = names
+      case default; s = q//', '//qd
+      end select
+   end function state_units
 
    pure integer function best_index(v) result(k)
       real(dp), intent(in) :: v(:)
@@ -597,19 +563,6 @@ contains
       end if
    end function num
 
-   function fmt(x, f) result(s)
-      real(dp), intent(in) :: x
-      character(len=*), intent(in) :: f
-      character(len=:), allocatable :: s
-      character(len=64) :: buf
-      write (buf, '('//f//')') x
-      s = trim(adjustl(buf))
-      if (len(s) > 1) then
-         if (s(1:1) == '.') s = '0'//s
-         if (s(1:2) == '-.') s = '-0'//s(2:)
-      end if
-   end function fmt
-
    !> Up to 4 significant digits without trailing zeros (1e-3 ≤ |x| < 1e5),
    !> else scientific notation.
    function pretty(x) result(s)
@@ -661,22 +614,46 @@ contains
       character(len=*), intent(in) :: filename
       type(error_t), allocatable, intent(out) :: error
       type(h5file_t) :: h5
-      type(verdicts_t) :: v
-      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
-      integer :: ic, s, i, n
-      character(len=:), allocatable :: g, names
-      character(len=8) :: date
-      character(len=10) :: time
+      integer :: ic, s, i
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       ! the writes below pass no `error`: h5 keeps the first failure, the later
       ! writes do nothing, and close hands it over
-      ! configuration
+      call write_h5_config(h5, cfg)
+      call write_h5_root(h5, cfg, res)
+      do ic = 1, size(cfg%cases)
+         call write_h5_case(h5, cfg, res, ic)
+      end do
+      do s = 1, size(res%sweeps)
+         call write_sweep(h5, cfg, res%sweeps(s))
+      end do
+      do i = 1, size(res%roundoff)
+         call write_h5_roundoff(h5, cfg, res%roundoff(i))
+      end do
+      do i = 1, size(res%tao)
+         call write_h5_tao(h5, cfg, res%tao(i))
+      end do
+      call write_h5_summary(h5, cfg, res)
+      call h5%close(error)
+   end subroutine write_study_h5
+
+   !> /config: the effective namelist, the model's parameters, the study's settings.
+   subroutine write_h5_config(h5, cfg)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      integer :: ic, n
       call h5%write('/config/namelist', study_namelist(cfg), units='', description= &
          'the effective configuration as &pendulum and &study namelists')
-      call h5%writeattr('/config', 'm1', cfg%m(1)); call h5%writeattr('/config', 'm2', cfg%m(2))
-      call h5%writeattr('/config', 'l1', cfg%l(1)); call h5%writeattr('/config', 'l2', cfg%l(2))
-      call h5%writeattr('/config', 'g', cfg%g)
+      if (default_model_study(cfg)) then
+         call h5%writeattr('/config', 'm1', cfg%m(1))
+         call h5%writeattr('/config', 'm2', cfg%m(2))
+         call h5%writeattr('/config', 'l1', cfg%l(1))
+         call h5%writeattr('/config', 'l2', cfg%l(2))
+         call h5%writeattr('/config', 'g', cfg%g)
+      else   ! the model of the cases (&model) and its parameters, named by the model
+         call h5%writeattr('/config', 'model', study_model_name(cfg))
+         call write_model_parameters()
+      end if
       ! the per-link parameters when a case is a chain of other than two links
       n = 2
       do ic = 1, size(cfg%cases)
@@ -699,7 +676,32 @@ contains
       call h5%writeattr('/config', 'check_rtol', cfg%check_rtol)
       call h5%writeattr('/config', 'atol_ratio', cfg%atol_ratio)
       call h5%writeattr('/config', 'quick', merge(1, 0, cfg%quick))
-      ! root: provenance and the lists the plot script needs
+   contains
+      !> The model's parameters as attributes of /config (model of case 1: every
+      !> case has the same).
+      subroutine write_model_parameters()
+         class(model_t), allocatable :: model
+         character(len=:), allocatable :: name, units
+         real(dp) :: value
+         integer :: k
+         call case_model(cfg, 1, model)
+         do k = 1, model%n_parameters()
+            call model%parameter(k, name, value, units)
+            call h5%writeattr('/config', name, value)
+         end do
+      end subroutine write_model_parameters
+   end subroutine write_h5_config
+
+   !> Attributes of /: provenance, what the errors are, and the lists the plot
+   !> script needs.
+   subroutine write_h5_root(h5, cfg, res)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      character(len=:), allocatable :: names
+      character(len=8) :: date
+      character(len=10) :: time
+      integer :: ic, i
       call date_and_time(date, time)
       call h5%writeattr('/', 'program', 'dpend study')
       call h5%writeattr('/', 'version', version)
@@ -716,7 +718,8 @@ contains
                         'energy_scale); in a damped or driven case (balance = 1) the energy '// &
                         'balance |E(t) - E(0) + W_friction - W_support| / E_s')
       call h5%writeattr('/', 'global_error', 'max over the checkpoints of max(|dq1|, '// &
-                        '|dq2|, |dqdot1|, |dqdot2|) [rad, rad/s] against the reference')
+                        '|dq2|, |dqdot1|, |dqdot2|) ['//state_units(cfg, 'both')// &
+                        '] against the reference')
       names = cfg%cases(1)%name
       do ic = 2, size(cfg%cases)
          names = names//' '//cfg%cases(ic)%name
@@ -751,112 +754,132 @@ contains
       end do
       if (len(names) == 0) names = 'none'
       call h5%writeattr('/', 'tao_methods', names)
-      ! cases and references
-      do ic = 1, size(cfg%cases)
-         g = '/cases/'//cfg%cases(ic)%name
-         associate (ref => res%refs(ic), cs => cfg%cases(ic))
-            call h5%write(g//'/reference/t', ref%t, units='s', &
-               description='checkpoint times k t_short/K')
-            n = size(cs%q0)
-            if (n == 2) then
-               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
-                  description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+   end subroutine write_h5_root
+
+   !> /cases/<case>: the reference at the checkpoints, the initial state and energy.
+   subroutine write_h5_case(h5, cfg, res, ic)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      integer, intent(in) :: ic   !! case index
+      character(len=:), allocatable :: g
+      integer :: n, i
+      g = '/cases/'//cfg%cases(ic)%name
+      associate (ref => res%refs(ic), cs => cfg%cases(ic))
+         call h5%write(g//'/reference/t', ref%t, units='s', &
+            description='checkpoint times k t_short/K')
+         n = size(cs%q0)
+         if (n == 2) then
+            call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
+               description='q1, q2, qdot1, qdot2 of the reference at the checkpoints')
+         else
+            call h5%write(g//'/reference/state', ref%y, units=state_units(cfg, 'both'), &
+               description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
+               ' of the reference at the checkpoints')
+            call h5%writeattr(g, 'links', n)
+         end if
+         call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
+         call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
+         call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
+         call h5%writeattr(g//'/reference', 'check_rtol', cfg%check_rtol)
+         call h5%writeattr(g//'/reference', 'check_difference', ref%check_difference)
+         call h5%writeattr(g, 'q0', cs%q0)
+         call h5%writeattr(g, 'qdot0', cs%w0)
+         call h5%writeattr(g, 'energy0', ref%e0)
+         call h5%writeattr(g, 'energy_scale', ref%e_scale)
+         if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
+            call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
+         else if (.not. default_model_study(cfg)) then
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'energy_scale of model '//study_model_name(cfg))
+         else if (n == 2) then
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'potential energy, both links upright')
+         else
+            call h5%writeattr(g, 'energy_scale_definition', &
+                              'potential energy, every link upright')
+         end if
+         call h5%writeattr(g, 'long_steps', cs%long_steps)
+         call h5%writeattr(g, 'balance', merge(1, 0, balance_case(cfg, ic)))
+         if (balance_case(cfg, ic)) then
+            if (allocated(cs%damping)) then
+               call h5%writeattr(g, 'damping', cs%damping)
             else
-               call h5%write(g//'/reference/state', ref%y, units='rad, rad/s', &
-                  description='q1 .. q'//to_str(n)//', qdot1 .. qdot'//to_str(n)// &
-                  ' of the reference at the checkpoints')
-               call h5%writeattr(g, 'links', n)
+               call h5%writeattr(g, 'damping', [(0.0_dp, i=1, n)])
             end if
-            call h5%writeattr(g//'/reference', 'method', cfg%ref_method)
-            call h5%writeattr(g//'/reference', 'dt', cfg%ref_dt)
-            call h5%writeattr(g//'/reference', 'check_method', cfg%check_method)
-            call h5%writeattr(g//'/reference', 'check_rtol', cfg%check_rtol)
-            call h5%writeattr(g//'/reference', 'check_difference', ref%check_difference)
-            call h5%writeattr(g, 'q0', cs%q0)
-            call h5%writeattr(g, 'qdot0', cs%w0)
-            call h5%writeattr(g, 'energy0', ref%e0)
-            call h5%writeattr(g, 'energy_scale', ref%e_scale)
-            if (abs(abs(ref%e0) - ref%e_scale) <= 1e-12_dp*ref%e_scale) then
-               call h5%writeattr(g, 'energy_scale_definition', '|H(0)|')
-            else if (n == 2) then
-               call h5%writeattr(g, 'energy_scale_definition', &
-                                 'potential energy, both links upright')
-            else
-               call h5%writeattr(g, 'energy_scale_definition', &
-                                 'potential energy, every link upright')
-            end if
-            call h5%writeattr(g, 'long_steps', cs%long_steps)
-            call h5%writeattr(g, 'balance', merge(1, 0, balance_case(cfg, ic)))
-            if (balance_case(cfg, ic)) then
-               if (allocated(cs%damping)) then
-                  call h5%writeattr(g, 'damping', cs%damping)
-               else
-                  call h5%writeattr(g, 'damping', [(0.0_dp, i=1, n)])
-               end if
-               call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
-               call h5%writeattr(g, 'support_frequency', cs%support_frequency)
-               call h5%writeattr(g, 'support_phase', cs%support_phase)
-            end if
-         end associate
-      end do
-      ! sweeps
-      do s = 1, size(res%sweeps)
-         call write_sweep(h5, cfg, res%sweeps(s))
-      end do
-      ! roundoff
-      do i = 1, size(res%roundoff)
-         associate (ro => res%roundoff(i))
-            g = '/roundoff/'//ro%method
-            call h5%write(g//'/steps', ro%steps, units='1', &
-               description='sample steps (logarithmic)')
-            call h5%write(g//'/t', ro%t, units='s', description='times of the sample steps')
-            call h5%write(g//'/rms_compensated', ro%rms(:, 1), units='1', description= &
-               'RMS over the runs of (H - H(0))/E_s, compensated summation')
-            call h5%write(g//'/rms_plain', ro%rms(:, 2), units='1', description= &
-               'RMS over the runs of (H - H(0))/E_s, plain summation')
-            table = transpose(ro%err(:, :, 1))
-            call h5%write(g//'/error_compensated', table, units='1', description= &
-               '(H - H(0))/E_s of every run, compensated summation')
-            table = transpose(ro%err(:, :, 2))
-            call h5%write(g//'/error_plain', table, units='1', description= &
-               '(H - H(0))/E_s of every run, plain summation')
-            call h5%write(g//'/status_compensated', ro%stat(:, 1), units='1', &
-               description='status of every run (0 ok), compensated summation')
-            call h5%write(g//'/status_plain', ro%stat(:, 2), units='1', &
-               description='status of every run (0 ok), plain summation')
-            call h5%write(g//'/wall_compensated', ro%wall(:, 1), units='s', &
-               description='wall time of every run, compensated summation')
-            call h5%write(g//'/wall_plain', ro%wall(:, 2), units='s', &
-               description='wall time of every run, plain summation')
-            call h5%writeattr(g, 'dt', ro%dt)
-            call h5%writeattr(g, 'runs', cfg%ro_runs)
-            call h5%writeattr(g, 'case', cfg%ro_case)
-            call h5%writeattr(g, 'perturbation', cfg%ro_perturb)
-            call h5%writeattr(g, 'fit_t_min', cfg%ro_fit_t_min)
-            call fit_attrs(h5, g, 'exponent_compensated', ro%fit(1))
-            call fit_attrs(h5, g, 'exponent_plain', ro%fit(2))
-         end associate
-      end do
-      ! Tao
-      do i = 1, size(res%tao)
-         associate (ts => res%tao(i))
-            g = '/tao/'//ts%method
-            call h5%write(g//'/omega', ts%omega, units='1/s', &
-               description='binding constants (geometric)')
-            call h5%write(g//'/energy_max', ts%energy_max, units='1', &
-               description='largest relative energy error up to t_end')
-            call h5%write(g//'/energy_final', ts%energy_final, units='1', &
-               description='relative energy error at t_end')
-            call h5%write(g//'/global_error', ts%global_error, units='rad, rad/s', &
-               description='global error up to t_short')
-            call h5%write(g//'/status', ts%stat, units='1', &
-               description='0 ok, else the failure code')
-            call h5%writeattr(g, 'dt', cfg%tao_dt)
-            call h5%writeattr(g, 't_end', cfg%tao_t_end)
-            call h5%writeattr(g, 'case', cfg%tao_case)
-         end associate
-      end do
-      ! summary
+            call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
+            call h5%writeattr(g, 'support_frequency', cs%support_frequency)
+            call h5%writeattr(g, 'support_phase', cs%support_phase)
+         end if
+      end associate
+   end subroutine write_h5_case
+
+   !> /roundoff/<method>: the roundoff runs of one method.
+   subroutine write_h5_roundoff(h5, cfg, ro)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(roundoff_t), intent(in) :: ro
+      real(dp), allocatable :: table(:, :)  ! a transposed copy (no array temporary)
+      character(len=:), allocatable :: g
+      g = '/roundoff/'//ro%method
+      call h5%write(g//'/steps', ro%steps, units='1', &
+         description='sample steps (logarithmic)')
+      call h5%write(g//'/t', ro%t, units='s', description='times of the sample steps')
+      call h5%write(g//'/rms_compensated', ro%rms(:, 1), units='1', description= &
+         'RMS over the runs of (H - H(0))/E_s, compensated summation')
+      call h5%write(g//'/rms_plain', ro%rms(:, 2), units='1', description= &
+         'RMS over the runs of (H - H(0))/E_s, plain summation')
+      table = transpose(ro%err(:, :, 1))
+      call h5%write(g//'/error_compensated', table, units='1', description= &
+         '(H - H(0))/E_s of every run, compensated summation')
+      table = transpose(ro%err(:, :, 2))
+      call h5%write(g//'/error_plain', table, units='1', description= &
+         '(H - H(0))/E_s of every run, plain summation')
+      call h5%write(g//'/status_compensated', ro%stat(:, 1), units='1', &
+         description='status of every run (0 ok), compensated summation')
+      call h5%write(g//'/status_plain', ro%stat(:, 2), units='1', &
+         description='status of every run (0 ok), plain summation')
+      call h5%write(g//'/wall_compensated', ro%wall(:, 1), units='s', &
+         description='wall time of every run, compensated summation')
+      call h5%write(g//'/wall_plain', ro%wall(:, 2), units='s', &
+         description='wall time of every run, plain summation')
+      call h5%writeattr(g, 'dt', ro%dt)
+      call h5%writeattr(g, 'runs', cfg%ro_runs)
+      call h5%writeattr(g, 'case', cfg%ro_case)
+      call h5%writeattr(g, 'perturbation', cfg%ro_perturb)
+      call h5%writeattr(g, 'fit_t_min', cfg%ro_fit_t_min)
+      call fit_attrs(h5, g, 'exponent_compensated', ro%fit(1))
+      call fit_attrs(h5, g, 'exponent_plain', ro%fit(2))
+   end subroutine write_h5_roundoff
+
+   !> /tao/<method>: the Tao runs of one method over ω.
+   subroutine write_h5_tao(h5, cfg, ts)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(tao_sweep_t), intent(in) :: ts
+      character(len=:), allocatable :: g
+      g = '/tao/'//ts%method
+      call h5%write(g//'/omega', ts%omega, units='1/s', &
+         description='binding constants (geometric)')
+      call h5%write(g//'/energy_max', ts%energy_max, units='1', &
+         description='largest relative energy error up to t_end')
+      call h5%write(g//'/energy_final', ts%energy_final, units='1', &
+         description='relative energy error at t_end')
+      call h5%write(g//'/global_error', ts%global_error, units=state_units(cfg, 'both'), &
+         description='global error up to t_short')
+      call h5%write(g//'/status', ts%stat, units='1', &
+         description='0 ok, else the failure code')
+      call h5%writeattr(g, 'dt', cfg%tao_dt)
+      call h5%writeattr(g, 't_end', cfg%tao_t_end)
+      call h5%writeattr(g, 'case', cfg%tao_case)
+   end subroutine write_h5_tao
+
+   !> /summary: the Markdown summary and the verdicts.
+   subroutine write_h5_summary(h5, cfg, res)
+      type(h5file_t), intent(inout) :: h5
+      type(study_config_t), intent(in) :: cfg
+      type(study_result_t), intent(in) :: res
+      type(verdicts_t) :: v
       v = study_verdicts(cfg, res)
       call h5%write('/summary/markdown', study_summary(cfg, res), units='', &
          description='the Markdown summary')
@@ -868,8 +891,7 @@ contains
       call h5%writeattr('/summary', 'roundoff_ok', &
                         merge(merge(1, 0, v%roundoff), -1, v%roundoff_run))
       call h5%writeattr('/summary', 'roundoff', v%roundoff_text)
-      call h5%close(error)
-   end subroutine write_study_h5
+   end subroutine write_h5_summary
 
    !> One sweep under /cases/<case>/<method>/step or …/tol.
    subroutine write_sweep(h5, cfg, sw)
@@ -883,14 +905,14 @@ contains
          call h5%write(g//'/h', sw%x, units='s', description='step')
       else
          call h5%write(g//'/rtol', sw%x, units='1', description='relative tolerance')
-         call h5%write(g//'/atol', cfg%atol_ratio*sw%x, units='rad, rad/s', &
+         call h5%write(g//'/atol', cfg%atol_ratio*sw%x, units=state_units(cfg, 'both'), &
             description='absolute tolerance')
       end if
       call h5%write(g//'/mean_step_short', sw%h_mean_short, units='s', &
          description='t_short / accepted steps of the short run')
       call h5%write(g//'/mean_step_long', sw%h_mean_long, units='s', &
          description='t_long / accepted steps of the long run')
-      call h5%write(g//'/global_error', sw%global_error, units='rad, rad/s', &
+      call h5%write(g//'/global_error', sw%global_error, units=state_units(cfg, 'both'), &
          description='global error up to t_short')
       call h5%write(g//'/energy_max_short', sw%energy_short, units='1', &
          description='largest relative energy error up to t_short')

@@ -11,8 +11,8 @@
 module dpend_study_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, validate, finite_positive, pendulum_model
-   use dpend_model_factory, only: model_spec_t, model_spec, new_model
+   use dpend_pendulum, only: finite_positive
+   use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: arg_t, next_option, parse_int, option_outcome, to_str
    use dpend_config, only: run_config_t, read_run_config, apply_run_flag, check_groups, &
@@ -34,13 +34,15 @@ module dpend_study_config
    public :: study_defaults, parse_study, read_study_config, validate_study_config
    public :: apply_quick, study_help, study_namelist, case_index, default_ranges
    public :: balance_case
-   public :: case_model, study_pendulum
+   public :: case_model, study_model_name, default_model_study
    public :: max_cases, max_methods, max_extra
 
    integer, parameter :: max_cases = 8      !! most cases in &study
    integer, parameter :: max_methods = 16   !! most methods in &study
    integer, parameter :: max_extra = 4      !! most roundoff / Tao methods
    real(dp), parameter :: pi = acos(-1.0_dp)
+   !> Marks the entries of the &study lists that the file does not give.
+   real(dp), parameter :: unset = -huge(1.0_dp)
 
    !> One initial condition (SI units, angles from the horizontal x axis) of the
    !> chain of N = size(q0) links: N = 2 is the double pendulum, any other N the
@@ -116,6 +118,10 @@ module dpend_study_config
       logical :: figures = .true.          !! run scripts/plot_study.sh at the end
       character(len=:), allocatable :: output  !! HDF5 file
       logical :: force = .false.               !! overwrite it
+      !> the model of every case: &model name (unallocated: the factory's default, the
+      !> pendulum of the case's links from m, l, g) and its parameters by name
+      character(len=:), allocatable :: model_name
+      type(model_spec_t) :: model_params
    end type study_config_t
 
 contains
@@ -201,12 +207,22 @@ contains
       end do
    end function case_index
 
-   !> The double pendulum's parameters: links 1 and 2 of the study's parameters.
-   pure function study_pendulum(cfg) result(par)
+   !> The model of the study's cases (`&model name`, else the factory's default).
+   pure function study_model_name(cfg) result(name)
       type(study_config_t), intent(in) :: cfg  !! configuration
-      type(pendulum_t) :: par
-      par = pendulum_t(m1=cfg%m(1), m2=cfg%m(2), l1=cfg%l(1), l2=cfg%l(2), g=cfg%g)
-   end function study_pendulum
+      character(len=:), allocatable :: name
+      if (allocated(cfg%model_name)) then
+         name = cfg%model_name
+      else
+         name = default_model
+      end if
+   end function study_model_name
+
+   !> The cases are the factory's default model (the pendulum of their links).
+   pure logical function default_model_study(cfg)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      default_model_study = study_model_name(cfg) == default_model
+   end function default_model_study
 
    !> Case ic is damped or driven (joint damping, a moving support): a balance case,
    !> whose energy error is the energy balance E(t) − E(0) + W_friction − W_support
@@ -240,8 +256,17 @@ contains
       integer, intent(in) :: ic                      !! case index
       logical, intent(in), optional :: conservative  !! without damping and support
       type(model_spec_t) :: spec
-      integer :: n
+      integer :: n, i
       n = size(cfg%cases(ic)%q0)
+      if (.not. default_model_study(cfg)) then   ! &model: its parameters by name
+         spec = model_spec(study_model_name(cfg))
+         if (allocated(cfg%model_params%items)) then
+            do i = 1, size(cfg%model_params%items)
+               call spec%set(cfg%model_params%items(i)%name, cfg%model_params%items(i)%values)
+            end do
+         end if
+         return
+      end if
       spec = model_spec('pendulum')
       call spec%set('links', [real(n, dp)])
       call spec%set('m', cfg%m(:n))
@@ -281,11 +306,12 @@ contains
           '(docs/study-hdf5.md), a Markdown summary next to it (FILE with .md), prints'//nl// &
           'the summary, and draws six figures with scripts/plot_study.sh (gnuplot).'//nl//nl// &
           'options:'//nl// &
-          '  --config FILE     namelist file: &study, &pendulum, &output (default study:'//nl// &
+          '  --config FILE     namelist file: &study, &pendulum, &output, &model (default:'//nl// &
           '                    data/study.nml, identical to the built-in defaults;'//nl// &
           '                    data/study_chain.nml: the triple pendulum, N-link chain;'//nl// &
           '                    data/study_damped.nml: damped and driven chains, whose'//nl// &
-          '                    energy error is the energy balance, no drift verdict)'//nl// &
+          '                    energy error is the energy balance, no drift verdict;'//nl// &
+          '                    data/elastic_study.nml: the elastic pendulum, &model)'//nl// &
           '  --quick           smoke test, ~50x cheaper: long runs at 2 % of their steps,'//nl// &
           '                    4 roundoff runs of <= 1e5 steps, Tao runs at 1/10 horizon'//nl// &
           '  --methods LIST    only these methods (comma separated, from the config), also'//nl// &
@@ -459,7 +485,6 @@ contains
       character(len=*), intent(in) :: filename           !! namelist file
       type(study_config_t), intent(inout) :: cfg         !! updated from the file
       type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
-      type(run_config_t) :: rcfg
       character(len=32) :: case_name(max_cases), order_case, drift_case, ro_case, tao_case
       real(dp) :: case_q1(max_cases), case_q2(max_cases), case_w1(max_cases), &
                   case_w2(max_cases), case_long_steps(max_cases)
@@ -467,7 +492,6 @@ contains
       real(dp) :: case_q(max_dof, max_cases), case_w(max_dof, max_cases)
       real(dp) :: case_damping(max_dof, max_cases), case_support_amplitude(2, max_cases), &
                   case_support_frequency(max_cases), case_support_phase(2, max_cases)
-      real(dp), parameter :: unset = -huge(1.0_dp)   ! marks entries not given
       character(len=16) :: method(max_methods), ref_method, check_method
       real(dp) :: h_min(max_methods), h_max(max_methods), rtol_min(max_methods), &
                   rtol_max(max_methods)
@@ -488,24 +512,8 @@ contains
          ro_runs, ro_case, ro_perturb, ro_fit_t_min, tao_method, tao_dt, tao_t_end, &
          omega_min, omega_max, n_omega, tao_case, quick
 
-      call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study'], error)
+      call read_study_groups(filename, cfg, error)
       if (allocated(error)) return
-      rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
-      rcfg%output = cfg%output
-      rcfg%force = cfg%force
-      call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
-      if (allocated(error)) return
-      if (rcfg%links /= 2) then
-         call fatal_error(error, "invalid links in '"//printable(filename)//"': "// &
-                          to_str(rcfg%links)// &
-                          ' (the cases of the study carry their links: case_links(i); ' &
-                          //'&pendulum gives the lists m, l, one value per link)')
-         return
-      end if
-      cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
-      cfg%list_size = rcfg%list_size(1:2)
-      cfg%output = rcfg%output
-      cfg%force = rcfg%force
 
       ! lists start empty (a set list replaces the default); scalars start at the defaults
       case_name = ''; case_q1 = unset; case_q2 = unset; case_w1 = unset; case_w2 = unset
@@ -536,6 +544,84 @@ contains
          return
       end if
 
+      call set_cases(filename, case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
+                     case_links, case_q, case_w, case_damping, case_support_amplitude, &
+                     case_support_frequency, case_support_phase, cfg, error)
+      if (allocated(error)) return
+      call set_methods(filename, method, h_min, h_max, rtol_min, rtol_max, cfg, error)
+      if (allocated(error)) return
+      n = count(len_trim(ro_method) > 0)
+      if (n > 0) then
+         cfg%ro_methods = ro_method(1:n)
+         cfg%ro_dt = merge(ro_dt(1:n), 1.0e-3_dp, ro_dt(1:n) /= 0.0_dp)
+      else if (any(ro_dt /= 0.0_dp)) then
+         do i = 1, min(size(cfg%ro_dt), max_extra)
+            if (ro_dt(i) /= 0.0_dp) cfg%ro_dt(i) = ro_dt(i)
+         end do
+      end if
+      n = count(len_trim(tao_method) > 0)
+      if (n > 0) cfg%tao_methods = tao_method(1:n)
+
+      cfg%n_h = n_h; cfg%n_rtol = n_rtol; cfg%atol_ratio = atol_ratio; cfg%t_short = t_short
+      cfg%n_check = n_check; cfg%order_case = trim(order_case)
+      cfg%drift_case = trim(drift_case); cfg%drift_decades = drift_decades
+      cfg%bins_per_decade = bins_per_decade; cfg%decades = decades
+      cfg%ref_method = trim(ref_method); cfg%ref_dt = ref_dt
+      cfg%check_method = trim(check_method); cfg%check_rtol = check_rtol
+      cfg%wall_min = wall_min; cfg%ro_steps = ro_steps; cfg%ro_runs = ro_runs
+      cfg%ro_case = trim(ro_case); cfg%ro_perturb = ro_perturb
+      cfg%ro_fit_t_min = ro_fit_t_min; cfg%tao_dt = tao_dt; cfg%tao_t_end = tao_t_end
+      cfg%omega_min = omega_min; cfg%omega_max = omega_max; cfg%n_omega = n_omega
+      cfg%tao_case = trim(tao_case); cfg%quick = quick
+   end subroutine read_study_config
+
+   !> &pendulum, &output and &model of the study's file (through read_run_config;
+   !> the groups the study accepts are checked first).
+   subroutine read_study_groups(filename, cfg, error)
+      character(len=*), intent(in) :: filename           !! namelist file
+      type(study_config_t), intent(inout) :: cfg         !! updated from the file
+      type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
+      type(run_config_t) :: rcfg
+      call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study', &
+                                   'model'], error)
+      if (allocated(error)) return
+      rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
+      rcfg%output = cfg%output
+      rcfg%force = cfg%force
+      call read_run_config(filename, rcfg, error, extra_groups=[character(len=16) :: 'study'])
+      if (allocated(error)) return
+      if (rcfg%links /= 2) then
+         call fatal_error(error, "invalid links in '"//printable(filename)//"': "// &
+                          to_str(rcfg%links)// &
+                          ' (the cases of the study carry their links: case_links(i); ' &
+                          //'&pendulum gives the lists m, l, one value per link)')
+         return
+      end if
+      cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
+      cfg%list_size = rcfg%list_size(1:2)
+      if (allocated(rcfg%model_name)) cfg%model_name = rcfg%model_name
+      cfg%model_params = rcfg%extra
+      cfg%output = rcfg%output
+      cfg%force = rcfg%force
+   end subroutine read_study_groups
+
+   !> The cases of &study (`case_*` arrays as read; entries not given are `unset`):
+   !> a list set in the file replaces the default cases.
+   subroutine set_cases(filename, case_name, case_q1, case_q2, case_w1, case_w2, &
+                        case_long_steps, case_links, case_q, case_w, case_damping, &
+                        case_support_amplitude, case_support_frequency, case_support_phase, &
+                        cfg, error)
+      character(len=*), intent(in) :: filename           !! namelist file (for messages)
+      character(len=*), intent(in) :: case_name(:)       !! names ('' not given)
+      real(dp), intent(in) :: case_q1(:), case_q2(:), case_w1(:), case_w2(:)
+      real(dp), intent(in) :: case_long_steps(:)         !! 0: the default
+      integer, intent(in) :: case_links(:)               !! 0: two
+      real(dp), intent(in) :: case_q(:, :), case_w(:, :), case_damping(:, :)
+      real(dp), intent(in) :: case_support_amplitude(:, :), case_support_frequency(:), &
+                              case_support_phase(:, :)
+      type(study_config_t), intent(inout) :: cfg         !! updated
+      type(error_t), allocatable, intent(out) :: error   !! invalid
+      integer :: i, n
       n = count(len_trim(case_name) > 0)
       if (n > 0) then
          if (any(len_trim(case_name(1:n)) == 0)) then
@@ -563,48 +649,6 @@ contains
             cfg%cases(i)%support_phase = case_support_phase(:, i)
          end do
       end if
-      n = count(len_trim(method) > 0)
-      if (n > 0) then
-         if (any(len_trim(method(1:n)) == 0)) then
-            call fatal_error(error, "invalid config '"//printable(filename)// &
-                             "' in &study: method(1..n) must be set without gaps")
-            return
-         end if
-         deallocate (cfg%methods)
-         allocate (cfg%methods(n))
-         do i = 1, n
-            cfg%methods(i)%name = trim(method(i))
-            call default_ranges(trim(method(i)), cfg%methods(i)%h_min, cfg%methods(i)%h_max, &
-                                cfg%methods(i)%rtol_min, cfg%methods(i)%rtol_max)
-            if (h_min(i) /= 0.0_dp) cfg%methods(i)%h_min = h_min(i)
-            if (h_max(i) /= 0.0_dp) cfg%methods(i)%h_max = h_max(i)
-            if (rtol_min(i) /= 0.0_dp) cfg%methods(i)%rtol_min = rtol_min(i)
-            if (rtol_max(i) /= 0.0_dp) cfg%methods(i)%rtol_max = rtol_max(i)
-         end do
-      end if
-      n = count(len_trim(ro_method) > 0)
-      if (n > 0) then
-         cfg%ro_methods = ro_method(1:n)
-         cfg%ro_dt = merge(ro_dt(1:n), 1.0e-3_dp, ro_dt(1:n) /= 0.0_dp)
-      else if (any(ro_dt /= 0.0_dp)) then
-         do i = 1, min(size(cfg%ro_dt), max_extra)
-            if (ro_dt(i) /= 0.0_dp) cfg%ro_dt(i) = ro_dt(i)
-         end do
-      end if
-      n = count(len_trim(tao_method) > 0)
-      if (n > 0) cfg%tao_methods = tao_method(1:n)
-
-      cfg%n_h = n_h; cfg%n_rtol = n_rtol; cfg%atol_ratio = atol_ratio; cfg%t_short = t_short
-      cfg%n_check = n_check; cfg%order_case = trim(order_case)
-      cfg%drift_case = trim(drift_case); cfg%drift_decades = drift_decades
-      cfg%bins_per_decade = bins_per_decade; cfg%decades = decades
-      cfg%ref_method = trim(ref_method); cfg%ref_dt = ref_dt
-      cfg%check_method = trim(check_method); cfg%check_rtol = check_rtol
-      cfg%wall_min = wall_min; cfg%ro_steps = ro_steps; cfg%ro_runs = ro_runs
-      cfg%ro_case = trim(ro_case); cfg%ro_perturb = ro_perturb
-      cfg%ro_fit_t_min = ro_fit_t_min; cfg%tao_dt = tao_dt; cfg%tao_t_end = tao_t_end
-      cfg%omega_min = omega_min; cfg%omega_max = omega_max; cfg%n_omega = n_omega
-      cfg%tao_case = trim(tao_case); cfg%quick = quick
    contains
       !> The initial values of case i (N = case_links(i) links, 2 when not given): the
       !> list case_q(1:N, i) (`field` 'case_q' or 'case_w'), or for two links
@@ -657,7 +701,37 @@ contains
             if (v2 /= unset) values(2) = v2
          end if
       end subroutine case_values
-   end subroutine read_study_config
+   end subroutine set_cases
+
+   !> The methods of &study (`method(i)` and their ranges as read): a list set in
+   !> the file replaces the default list; a range left at 0 takes the method's default.
+   subroutine set_methods(filename, method, h_min, h_max, rtol_min, rtol_max, cfg, error)
+      character(len=*), intent(in) :: filename           !! namelist file (for messages)
+      character(len=*), intent(in) :: method(:)          !! names ('' not given)
+      real(dp), intent(in) :: h_min(:), h_max(:), rtol_min(:), rtol_max(:)  !! 0: default
+      type(study_config_t), intent(inout) :: cfg         !! updated
+      type(error_t), allocatable, intent(out) :: error   !! invalid
+      integer :: i, n
+      n = count(len_trim(method) > 0)
+      if (n > 0) then
+         if (any(len_trim(method(1:n)) == 0)) then
+            call fatal_error(error, "invalid config '"//printable(filename)// &
+                             "' in &study: method(1..n) must be set without gaps")
+            return
+         end if
+         deallocate (cfg%methods)
+         allocate (cfg%methods(n))
+         do i = 1, n
+            cfg%methods(i)%name = trim(method(i))
+            call default_ranges(trim(method(i)), cfg%methods(i)%h_min, cfg%methods(i)%h_max, &
+                                cfg%methods(i)%rtol_min, cfg%methods(i)%rtol_max)
+            if (h_min(i) /= 0.0_dp) cfg%methods(i)%h_min = h_min(i)
+            if (h_max(i) /= 0.0_dp) cfg%methods(i)%h_max = h_max(i)
+            if (rtol_min(i) /= 0.0_dp) cfg%methods(i)%rtol_min = rtol_min(i)
+            if (rtol_max(i) /= 0.0_dp) cfg%methods(i)%rtol_max = rtol_max(i)
+         end do
+      end if
+   end subroutine set_methods
 
    !> The effective configuration as &pendulum and &study namelists (one string
    !> with new lines), for the output file: reading it back reproduces the study
@@ -674,7 +748,16 @@ contains
       do i = 1, size(cfg%cases)
          n = max(n, size(cfg%cases(i)%q0))
       end do
-      if (all([(size(cfg%cases(i)%q0) == 2, i=1, size(cfg%cases))])) then
+      if (.not. default_model_study(cfg)) then   ! &model: the parameters given by name
+         text = "&model name = '"//study_model_name(cfg)//"'"
+         if (allocated(cfg%model_params%items)) then
+            do i = 1, size(cfg%model_params%items)
+               text = text//', '//cfg%model_params%items(i)%name//' = '// &
+                      list(cfg%model_params%items(i)%values)
+            end do
+         end if
+         text = text//' /'//nl
+      else if (all([(size(cfg%cases(i)%q0) == 2, i=1, size(cfg%cases))])) then
          text = '&pendulum m1 = '//g(cfg%m(1))//', m2 = '//g(cfg%m(2))//', l1 = ' &
                 //g(cfg%l(1))//', l2 = '//g(cfg%l(2))//', g = '//g(cfg%g)//' /'//nl
       else
@@ -777,19 +860,19 @@ contains
    ! --------------------------------------------------------------- validation
 
    !> Check the whole configuration; messages name the field and the accepted range.
+   !> The order of the checks is the order of the first refusal: the cases' systems,
+   !> the horizon, the cases' values, the methods, the settings, the experiments.
    subroutine validate_study_config(cfg, error)
       type(study_config_t), intent(in) :: cfg           !! configuration
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
-      class(integrator_t), allocatable :: integ
-      integer :: i, j
-      character(len=16) :: idx
+      integer :: i
       if (size(cfg%cases) == 0) then
          call fatal_error(error, 'invalid case_name: at least one case is needed')
          return
       end if
       ! the parameters of every case's system
       do i = 1, size(cfg%cases)
-         call check_system(i)
+         call check_system(cfg, i, error)
          if (allocated(error)) return
       end do
       ! the scalars that later checks divide by, first (limits: dpend_limits)
@@ -801,6 +884,21 @@ contains
          call fatal_error(error, 'invalid n_check: must be an integer in 1..1000')
          return
       end if
+      call check_cases(cfg, error)
+      if (allocated(error)) return
+      call check_methods(cfg, error)
+      if (allocated(error)) return
+      call check_settings(cfg, error)
+      if (allocated(error)) return
+      call check_experiments(cfg, error)
+   end subroutine validate_study_config
+
+   !> The initial values, long-run steps and names of the cases.
+   subroutine check_cases(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      integer :: i, j
+      character(len=16) :: idx
       do i = 1, size(cfg%cases)
          write (idx, '("(", i0, ")")') i
          if (.not. all(ieee_is_finite([cfg%cases(i)%q0, cfg%cases(i)%w0]))) then
@@ -840,6 +938,16 @@ contains
             end if
          end do
       end do
+   end subroutine check_cases
+
+   !> The methods: known, once each, suited to every case, their step and tolerance
+   !> ranges.
+   subroutine check_methods(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      class(integrator_t), allocatable :: integ
+      integer :: i, j
+      character(len=16) :: idx
       if (size(cfg%methods) == 0) then
          call fatal_error(error, 'invalid method: at least one method is needed')
          return
@@ -858,7 +966,7 @@ contains
                return
             end if
          end do
-         call check_accepts('method'//trim(idx), integ)
+         call check_accepts(cfg, 'method'//trim(idx), integ, error)
          if (allocated(error)) return
          associate (m => cfg%methods(i))
             if (.not. (finite_positive(m%h_min) .and. finite_positive(m%h_max))) then
@@ -899,6 +1007,12 @@ contains
          end associate
          if (allocated(error)) return
       end do
+   end subroutine check_methods
+
+   !> The scalar settings: grids, horizons, the reference, the roundoff and Tao runs.
+   subroutine check_settings(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
       if (cfg%n_h < 2 .or. cfg%n_h > 64) then
          call fatal_error(error, 'invalid n_h: must be an integer in 2..64')
       else if (.not. (finite_positive(cfg%drift_decades) .and. &
@@ -962,11 +1076,20 @@ contains
       else if (cfg%threads < 0) then
          call fatal_error(error, 'invalid --threads: must be an integer >= 1')
       end if
-      if (allocated(error)) return
-      call check_case_name('order_case', cfg%order_case)
-      if (.not. allocated(error)) call check_case_name('drift_case', cfg%drift_case)
-      if (.not. allocated(error)) call check_case_name('ro_case', cfg%ro_case)
-      if (.not. allocated(error)) call check_case_name('tao_case', cfg%tao_case)
+   end subroutine check_settings
+
+   !> The cases named by the verdicts and experiments, the reference and check
+   !> methods, the roundoff and the Tao methods.
+   subroutine check_experiments(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      class(integrator_t), allocatable :: integ
+      integer :: i
+      character(len=16) :: idx
+      call check_case_name(cfg, 'order_case', cfg%order_case, error)
+      if (.not. allocated(error)) call check_case_name(cfg, 'drift_case', cfg%drift_case, error)
+      if (.not. allocated(error)) call check_case_name(cfg, 'ro_case', cfg%ro_case, error)
+      if (.not. allocated(error)) call check_case_name(cfg, 'tao_case', cfg%tao_case, error)
       if (allocated(error)) return
       call new_integrator(cfg%ref_method, integ, error)
       if (allocated(error)) then
@@ -978,14 +1101,14 @@ contains
                           "' must be a fixed-step method (e.g. gauss8)")
          return
       end if
-      call check_accepts('ref_method', integ)
+      call check_accepts(cfg, 'ref_method', integ, error)
       if (allocated(error)) return
       call new_integrator(cfg%check_method, integ, error)
       if (allocated(error)) then
          error%message = 'in &study check_method: '//error%message
          return
       end if
-      call check_accepts('check_method', integ)
+      call check_accepts(cfg, 'check_method', integ, error)
       if (allocated(error)) return
       do i = 1, size(cfg%ro_methods)
          write (idx, '("(", i0, ")")') i
@@ -1018,77 +1141,127 @@ contains
             return
          end if
       end do
-   contains
-      !> A method that needs a Hamiltonian model refuses a damped or driven case.
-      subroutine check_accepts(field, method)
-         character(len=*), intent(in) :: field
-         class(integrator_t), intent(in) :: method
-         integer :: ic
-         if (.not. method%needs_hamiltonian()) return
-         do ic = 1, size(cfg%cases)
-            if (balance_case(cfg, ic)) then
-               call fatal_error(error, 'invalid '//field//": '"//method%name()//"' needs a " &
-                                //"Hamiltonian model; case '"//cfg%cases(ic)%name// &
-                                "' is damped or driven (use "//field_method_names()//')')
-               return
-            end if
-         end do
-      end subroutine check_accepts
+   end subroutine check_experiments
 
-      !> The system of case ic: the double pendulum's parameters for two links, the
-      !> chain's otherwise; given lists m, l cover the case's links; the damping and
-      !> the moving support of a balance case (a chain of at most max_dof − 1 links).
-      subroutine check_system(ic)
-         integer, intent(in) :: ic
-         class(model_t), allocatable :: model
-         integer :: n, k
-         character(len=1), parameter :: names(2) = ['m', 'l']
-         n = size(cfg%cases(ic)%q0)
-         if (n < 1 .or. n > max_dof .or. size(cfg%cases(ic)%w0) /= n) then
-            call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
-                             ' links, '//to_str(size(cfg%cases(ic)%w0))//' angular velocities' &
-                             //' (1 to '//to_str(max_dof)//' links, one value per link)')
+   !> A method that needs a Hamiltonian model refuses a damped or driven case.
+   subroutine check_accepts(cfg, field, method, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      character(len=*), intent(in) :: field             !! e.g. 'method(3)'
+      class(integrator_t), intent(in) :: method         !! the method
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: ic
+      if (.not. method%needs_hamiltonian()) return
+      do ic = 1, size(cfg%cases)
+         if (balance_case(cfg, ic)) then
+            call fatal_error(error, 'invalid '//field//": '"//method%name()//"' needs a " &
+                             //"Hamiltonian model; case '"//cfg%cases(ic)%name// &
+                             "' is damped or driven (use "//field_method_names()//')')
             return
          end if
-         do k = 1, 2
-            if (cfg%list_size(k) /= 0 .and. cfg%list_size(k) < n) then
-               call fatal_error(error, 'invalid '//names(k)//': '//to_str(cfg%list_size(k))// &
-                                ' values for the '//to_str(n)//" links of case '"// &
-                                cfg%cases(ic)%name//"' (one per link) [--"//names(k)// &
-                                ' / &pendulum '//names(k)//']')
-               return
-            end if
-         end do
-         call new_model(case_spec(cfg, ic, conservative=.true.), model, error)
-         if (allocated(error)) then
-            if (n == 2) then
-               error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
-            else
-               error%message = error%message//" (case '"//cfg%cases(ic)%name//"', "// &
-                               to_str(n)//' links) [--m --l --g / &pendulum]'
-            end if
-         end if
-         if (allocated(error) .or. .not. balance_case(cfg, ic)) return
-         if (n > max_dof - 1) then
-            call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
-                             ' with damping or a moving support is outside [1, '// &
-                             to_str(max_dof - 1)//'] (the energy balance takes two state ' &
-                             //'components)')
+      end do
+   end subroutine check_accepts
+
+   !> The system of case ic: the double pendulum's parameters for two links, the
+   !> chain's otherwise; given lists m, l cover the case's links; the damping and
+   !> the moving support of a balance case (a chain of at most max_dof − 1 links).
+   subroutine check_system(cfg, ic, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      integer, intent(in) :: ic                         !! case index
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      class(model_t), allocatable :: model
+      integer :: n, k
+      character(len=1), parameter :: names(2) = ['m', 'l']
+      n = size(cfg%cases(ic)%q0)
+      if (.not. default_model_study(cfg)) then
+         call check_model_case(cfg, ic, error)
+         return
+      end if
+      if (n < 1 .or. n > max_dof .or. size(cfg%cases(ic)%w0) /= n) then
+         call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
+                          ' links, '//to_str(size(cfg%cases(ic)%w0))//' angular velocities' &
+                          //' (1 to '//to_str(max_dof)//' links, one value per link)')
+         return
+      end if
+      do k = 1, 2
+         if (cfg%list_size(k) /= 0 .and. cfg%list_size(k) < n) then
+            call fatal_error(error, 'invalid '//names(k)//': '//to_str(cfg%list_size(k))// &
+                             ' values for the '//to_str(n)//" links of case '"// &
+                             cfg%cases(ic)%name//"' (one per link) [--"//names(k)// &
+                             ' / &pendulum '//names(k)//']')
             return
          end if
-         call new_model(case_spec(cfg, ic), model, error)
-         if (allocated(error)) error%message = error%message//" (case '"// &
-                                               cfg%cases(ic)%name//"': case_damping, " &
-                                               //'case_support_*)'
-      end subroutine check_system
+      end do
+      call new_model(case_spec(cfg, ic, conservative=.true.), model, error)
+      if (allocated(error)) then
+         if (n == 2) then
+            error%message = error%message//' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         else
+            error%message = error%message//" (case '"//cfg%cases(ic)%name//"', "// &
+                            to_str(n)//' links) [--m --l --g / &pendulum]'
+         end if
+      end if
+      if (allocated(error) .or. .not. balance_case(cfg, ic)) return
+      if (n > max_dof - 1) then
+         call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
+                          ' with damping or a moving support is outside [1, '// &
+                          to_str(max_dof - 1)//'] (the energy balance takes two state ' &
+                          //'components)')
+         return
+      end if
+      call new_model(case_spec(cfg, ic), model, error)
+      if (allocated(error)) error%message = error%message//" (case '"// &
+                                            cfg%cases(ic)%name//"': case_damping, " &
+                                            //'case_support_*)'
+   end subroutine check_system
 
-      subroutine check_case_name(field, name)
-         character(len=*), intent(in) :: field, name
-         if (case_index(cfg, name) == 0) call fatal_error(error, 'invalid '//field//": '"// &
-                                                          name//"' is not a case (accepted: " &
-                                                          //case_list(cfg)//')')
-      end subroutine check_case_name
-   end subroutine validate_study_config
+   !> Case ic of a model given by &model (not the pendulum of m, l, g): the factory
+   !> builds it from the parameters by name; the case has its n_dof coordinates and
+   !> rates, a state the model accepts (`check_state`), no damping or moving support,
+   !> and no &pendulum or --m1 ... flags are given (they would be ignored).
+   subroutine check_model_case(cfg, ic, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      integer, intent(in) :: ic                         !! case index
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      class(model_t), allocatable :: model
+      character(len=:), allocatable :: where
+      where = " (case '"//cfg%cases(ic)%name//"', model "//study_model_name(cfg)//')'
+      call new_model(case_spec(cfg, ic), model, error)
+      if (allocated(error)) then
+         error%message = error%message//' [&model]'
+         return
+      end if
+      if (any(cfg%list_size /= 0) .or. any(cfg%m(:2) /= 1.0_dp) .or. &
+          any(cfg%l(:2) /= 1.0_dp) .or. cfg%g /= 9.8_dp) then
+         call fatal_error(error, 'invalid &pendulum (or --m1, --m2, --l1, --l2, --g, --m, ' &
+                          //'--l): not read for model '//study_model_name(cfg)// &
+                          '; give its parameters by name in &model (dpend models)')
+      else if (size(cfg%cases(ic)%q0) /= model%n_dof() .or. &
+               size(cfg%cases(ic)%w0) /= model%n_dof()) then
+         call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '// &
+                          to_str(size(cfg%cases(ic)%q0))//' coordinates, '// &
+                          to_str(size(cfg%cases(ic)%w0))//' rates; model '// &
+                          study_model_name(cfg)//' has '//to_str(model%n_dof())// &
+                          ' of each (case_q1, case_q2, case_w1, case_w2 for two)'//where)
+      else if (balance_case(cfg, ic)) then
+         call fatal_error(error, 'invalid case_damping, case_support_amplitude('// &
+                          to_str(ic)//'): model '//study_model_name(cfg)//' has no ' &
+                          //'damping or moving support'//where)
+      else
+         call model%check_state(cfg%cases(ic)%q0, cfg%cases(ic)%w0, error)
+         if (allocated(error)) error%message = error%message//where// &
+                                               ' [case_q1, case_q2, case_w1, case_w2]'
+      end if
+   end subroutine check_model_case
+
+   !> `name` (of the setting `field`) is a case of the study.
+   subroutine check_case_name(cfg, field, name, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      character(len=*), intent(in) :: field, name       !! e.g. 'ro_case', 'small'
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      if (case_index(cfg, name) == 0) call fatal_error(error, 'invalid '//field//": '"// &
+                                                       name//"' is not a case (accepted: " &
+                                                       //case_list(cfg)//')')
+   end subroutine check_case_name
 
    ! ------------------------------------------------------------------ helpers
 

@@ -36,6 +36,7 @@
 !> the factory refuses such a method before any step (they `error stop` as an internal
 !> check, with a message naming the model and the procedure).
 module dpend_model
+   use, intrinsic :: iso_fortran_env, only: real128
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_limits, only: check_range, max_angle, max_angular_velocity
@@ -93,6 +94,9 @@ module dpend_model
       procedure :: figure => model_figure
       ! an initial state within the model (before any step)
       procedure :: check_state => model_check_state
+      ! r3 study: H in quadruple precision for the study's roundoff runs (default: none)
+      procedure :: has_hamiltonian_qp => model_false
+      procedure :: hamiltonian_qp => model_hamiltonian_qp
    end type model_t
 
    abstract interface
@@ -418,4 +422,17 @@ contains
                 //'the pin A)'
       end if
    end function model_energy_text
+
+   !> H(z + e) in quadruple precision at the compensated canonical state [J], for
+   !> energy errors below the double-precision rounding of H (the study's roundoff
+   !> runs). Models with `has_hamiltonian_qp()` override it; the study makes no
+   !> roundoff runs on the others, so this default is never reached.
+   pure function model_hamiltonian_qp(self, z, e) result(h)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: z(:)     !! canonical state (q, p)
+      real(dp), intent(in) :: e(:)     !! its compensation (0 without)
+      real(real128) :: h
+      h = 0.0_real128
+      call lacks('Hamiltonian in quadruple precision')
+   end function model_hamiltonian_qp
 end module dpend_model

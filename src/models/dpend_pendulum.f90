@@ -25,6 +25,7 @@ module dpend_pendulum
                                 n_alias_out, alias_out_name, alias_out_units, &
                                 alias_out_text, chain_from_aliases
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only: qp => real128
    implicit none
    private
    public :: pendulum_t, validate, finite_positive, mass_matrix, generalized_forces
@@ -36,6 +37,7 @@ module dpend_pendulum
    public :: shell_state, shell_p_max, energy_limit
    public :: kinematics_t, kinematics, tip_position, reactions
    public :: double_pendulum_t, pendulum_model
+   public :: hamiltonian_qp
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -92,6 +94,9 @@ module dpend_pendulum
       procedure :: coordinate => dp_coordinate
       procedure :: coordinates_text => dp_coordinates_text
       procedure :: figure => dp_figure
+      ! r3 study: H in quadruple precision for the study's roundoff runs
+      procedure :: has_hamiltonian_qp => dp_true
+      procedure :: hamiltonian_qp => dp_hamiltonian_qp
    end type double_pendulum_t
 
 contains
@@ -850,4 +855,38 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       call rod_figure(anchor, points, style, forces)
    end subroutine dp_figure
+
+   ! ---- r3 study: the Hamiltonian in quadruple precision (the roundoff runs)
+
+   !> Copy of `hamiltonian` for precision: quadruple precision;
+   !> test/test_copies.f90 compares them.
+   !> H(q, p) in quadruple precision at the compensated state y + e (canonical
+   !> variables), for errors below the double-precision rounding of H [J].
+   pure function hamiltonian_qp(par, y, e) result(h)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state (q1, q2, p1, p2)
+      real(dp), intent(in) :: e(4)         !! its compensation (0 without)
+      real(qp) :: h
+      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g
+      z = real(y, qp) + real(e, qp)
+      m1 = real(par%m1, qp); m2 = real(par%m2, qp); l1 = real(par%l1, qp)
+      l2 = real(par%l2, qp); g = real(par%g, qp)
+      m11 = (m1/3.0_qp + m2)*l1**2
+      m12 = 0.5_qp*m2*l1*l2*cos(z(1) - z(2))
+      m22 = m2*l2**2/3.0_qp
+      det = m11*m22 - m12**2
+      qd1 = (m22*z(3) - m12*z(4))/det
+      qd2 = (m11*z(4) - m12*z(3))/det
+      h = 0.5_qp*(z(3)*qd1 + z(4)*qd2) + (0.5_qp*m1 + m2)*g*l1*sin(z(1)) &
+          + 0.5_qp*m2*g*l2*sin(z(2))
+   end function hamiltonian_qp
+
+   !> H(z + e) in quadruple precision [J] (`hamiltonian_qp`).
+   pure function dp_hamiltonian_qp(self, z, e) result(h)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: z(:)     !! canonical state (q1, q2, p1, p2)
+      real(dp), intent(in) :: e(:)     !! its compensation (0 without)
+      real(qp) :: h
+      h = hamiltonian_qp(self%par, z(1:4), e(1:4))
+   end function dp_hamiltonian_qp
 end module dpend_pendulum

@@ -29,8 +29,8 @@
 !> and monitor the energy balance E(t) − E(0) + W_friction − W_support in place of
 !> the energy error (same fields, same bins and fits); its methods are not
 !> symplectic on it, and the roundoff and Tao experiments are not run on it.
-!> Only the roundoff runs are the double pendulum's alone (H in quadruple precision):
-!> for a `ro_case` of other than two links they are not run.
+!> Only the roundoff runs need H in quadruple precision (`has_hamiltonian_qp`, the
+!> double pendulum's alone): for a `ro_case` of any other model they are not run.
 !>
 !> The adaptive methods are swept twice: at fixed steps with the error control
 !> off (`fixed_step`: the order of the underlying formula) and over tolerances
@@ -45,7 +45,8 @@
 !> The roundoff runs integrate `ro_runs` perturbed copies of `ro_case` for
 !> `ro_steps` steps with and without compensated summation, and evaluate the
 !> energy error at logarithmically spaced steps in quadruple precision from the
-!> compensated state y + comp (`hamiltonian_qp`), so that the error of the
+!> compensated state y + comp (the model's `hamiltonian_qp`, where it has one:
+!> `has_hamiltonian_qp`, the double pendulum), so that the error of the
 !> numerical solution is seen below the double-precision rounding of H itself.
 !>
 !> Jobs share nothing mutable: each creates its own integrator from the factory
@@ -56,7 +57,6 @@ module dpend_study
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
-   use dpend_pendulum, only: pendulum_t, double_pendulum_t
    use dpend_model, only: model_t, max_dof
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
@@ -71,7 +71,7 @@ module dpend_study
    implicit none
    private
    public :: study_result_t, reference_t, sweep_t, roundoff_t, tao_sweep_t
-   public :: run_study, hamiltonian_qp, step_grid, time_bins, fit_sweeps
+   public :: run_study, step_grid, time_bins, fit_sweeps
    public :: mode_step, mode_tol, global_floor, energy_floor, long_floor
 
    integer, parameter :: mode_step = 1  !! sweep over fixed steps
@@ -92,6 +92,8 @@ module dpend_study
       real(dp) :: e0 = 0.0_dp            !! initial energy [J]
       real(dp) :: e_scale = 1.0_dp       !! energy unit E_s [J]
       integer :: stat = stat_ok          !! status of the reference run
+      !> status of the check run alone (stat: the reference's own, else this)
+      integer :: check_stat = stat_ok
    end type reference_t
 
    !> One sweep: a method on a case, over steps or tolerances; arrays over points.
@@ -230,29 +232,6 @@ contains
    end function geometric
 
    ! ================================================================ energy
-
-   !> Copy of `hamiltonian` (dpend_pendulum) for precision: quadruple precision;
-   !> test/test_copies.f90 compares them.
-   !> H(q, p) in quadruple precision at the compensated state y + e (canonical
-   !> variables), for errors below the double-precision rounding of H [J].
-   pure function hamiltonian_qp(par, y, e) result(h)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(in) :: y(4)         !! state (q1, q2, p1, p2)
-      real(dp), intent(in) :: e(4)         !! its compensation (0 without)
-      real(qp) :: h
-      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g
-      z = real(y, qp) + real(e, qp)
-      m1 = real(par%m1, qp); m2 = real(par%m2, qp); l1 = real(par%l1, qp)
-      l2 = real(par%l2, qp); g = real(par%g, qp)
-      m11 = (m1/3.0_qp + m2)*l1**2
-      m12 = 0.5_qp*m2*l1*l2*cos(z(1) - z(2))
-      m22 = m2*l2**2/3.0_qp
-      det = m11*m22 - m12**2
-      qd1 = (m22*z(3) - m12*z(4))/det
-      qd2 = (m11*z(4) - m12*z(3))/det
-      h = 0.5_qp*(z(3)*qd1 + z(4)*qd2) + (0.5_qp*m1 + m2)*g*l1*sin(z(1)) &
-          + 0.5_qp*m2*g*l2*sin(z(2))
-   end function hamiltonian_qp
 
    !> Energy of the internal state: H(q, p) for canonical methods, T + V else [J].
    function energy_of(integ, model, y) result(e)
@@ -446,6 +425,7 @@ contains
             call new_integrator(cfg%check_method, integ, error, method_options_t( &
                                 rtol=cfg%check_rtol, atol=1.0e-2_dp*cfg%check_rtol))
             call checkpoints(integ, model, cs%q0, cs%w0, ref%t, 0.0_dp, yc, k)
+            ref%check_stat = k
             if (k == stat_ok .and. ref%stat == stat_ok) then
                ref%check_difference = maxval(abs(yc - ref%y))
             else
@@ -496,6 +476,7 @@ contains
       type(job_t), allocatable :: list(:)
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
+      class(model_t), allocatable :: ro_model
       integer :: ic, im, mode, n, k, s, nb, i, ns, c
       real(dp) :: interval, h_mid, nan, cps
       integer(i8) :: n_ro
@@ -556,11 +537,12 @@ contains
             end do
          end do
       end do
-      ! roundoff: H in quadruple precision is the double pendulum's; not run for a
-      ! case of other than two links (the verdict says so)
+      ! roundoff: only on a model with H in quadruple precision (the double pendulum;
+      ! not a chain of other than two links, nor a damped or driven case: the verdict
+      ! says so)
       n_ro = nint(cfg%ro_steps, i8)
-      if (size(cfg%cases(case_index(cfg, cfg%ro_case))%q0) == 2 .and. &
-          .not. balance_case(cfg, case_index(cfg, cfg%ro_case))) then
+      call case_model(cfg, case_index(cfg, cfg%ro_case), ro_model)
+      if (ro_model%has_hamiltonian_qp()) then
          allocate (res%roundoff(size(cfg%ro_methods)))
       else
          allocate (res%roundoff(0))
@@ -912,25 +894,19 @@ contains
       class(integrator_t), allocatable :: integ
       class(model_t), allocatable :: model
       type(error_t), allocatable :: error
-      type(pendulum_t) :: par
       real(dp) :: y(4), t, h, q0(2), es, comp(4), start
       real(qp) :: h0
       integer(i8) :: n
       integer :: stat, j
-      ! the quadruple-precision H is the double pendulum's: `plan` makes no roundoff
-      ! jobs for a case of other than two links
+      ! `plan` makes roundoff jobs only for a model with H in quadruple precision
+      ! (`has_hamiltonian_qp`: the double pendulum)
       call case_model(cfg, case_index(cfg, cfg%ro_case), model)
-      select type (model)
-      type is (double_pendulum_t)
-         par = model%par
-      class default
-         return
-      end select
+      if (.not. model%has_hamiltonian_qp()) return
       associate (cs => cfg%cases(case_index(cfg, cfg%ro_case)))
          call new_integrator(ro%method, integ, error, method_options_t(compensated=c == 1))
          q0 = cs%q0 + cfg%ro_perturb*real(r - 1, dp)*[1.0_dp, -0.7_dp]
          y = integ%to_internal(model, q0, cs%w0)
-         h0 = hamiltonian_qp(par, y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
+         h0 = model%hamiltonian_qp(y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
          es = model%energy_scale(real(h0, dp))
          t = 0.0_dp
          j = 1
@@ -946,7 +922,7 @@ contains
                class is (symplectic_t)
                   comp = integ%comp(:4)
                end select
-               ro%err(j, r, c) = real((hamiltonian_qp(par, y, comp) - h0)/real(es, qp), dp)
+               ro%err(j, r, c) = real((model%hamiltonian_qp(y, comp) - h0)/real(es, qp), dp)
                j = j + 1
             end if
          end do
