@@ -200,11 +200,19 @@ contains
       call expect('&pendulum m = x*1 /', 'repeat count')
       call expect('&pendulum m(1) = 2, m = 1, 1 /', 'given twice')
       call expect('&integration dt = 1e-3 /'//lf//'&pendulum g = 0x1 /', 'line 2')
+      ! a second value for a key that takes one (the read would keep the first)
+      call expect('&integration dt = 0.001 0.002 /', "key 'dt': 2 values for a key that")
+      call expect('&integration t_end = 2*5 /', "key 't_end': 2 values")
+      call expect('&pendulum g = 9.8,'//lf//' 9.81 /', 'line 2')
+      call expect("&integration method = 'rk4' 'dop853' /", "key 'method': 2 values")
+      call expect('&output force = T F /', "key 'force': 2 values")
       ! accepted: lists, repeat counts, subscripts, strings with '%' and '=' inside,
       ! comments, logicals, tabs between values
       call accept('&pendulum m = 2*1.5, l(1) = 2, l(2) = 0.5, g = 9.81 / ! m1 = 3')
       call accept('&integration method = ''rk4'', dt = .5e-3,'//achar(9)//'t_end = 5. /')
       call accept('&output file = "a%b=c.h5", force = .true. /')
+      call accept('&pendulum m = 1 2 3, damping = 0.1, 0.1, support_phase = 0 0 /')
+      call accept('&initial q = 1 2, w(2) = 3 4, /'//lf//'&integration dt = 1, /')
       call accept('&initial q1 = -1.5 q2 = 0 w1 = 0, w2 = +0.0 /'//lf// &
                   '&pendulum m1 = 1, m2 = 2 /')
       call execute_command_line('rm -f '//trim(file))

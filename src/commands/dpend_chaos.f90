@@ -795,7 +795,17 @@ contains
          call stopped(status, cfg%output, error, failed)
          return
       end if
-      summary = summary//nl//'divergence slope: '//es(fit%slope)
+      if (fit%ok) then
+         summary = summary//nl//'divergence slope: '//es(fit%slope)
+      else if (ch%fit_end > ch%fit_start) then
+         summary = summary//nl//'divergence slope: none (fewer than 3 samples in the fit ' &
+                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s; widen ' &
+                   //'--fit-start/--fit-end or lower --output-dt)'
+      else
+         summary = summary//nl//'divergence slope: none (no exponential phase: log10|delta| ' &
+                   //'did not rise one decade above its start within '//num(cfg%t_end) &
+                   //' s; a regular orbit, or try a longer --t-end)'
+      end if
    end subroutine run_divergence
 
    !> `dpend poincare`.

@@ -296,8 +296,10 @@ contains
    !> group (`m` with `m1`/`m2`, `l`, `q`, `w` alike: the list would win), and a value
    !> that starts like a number but is not one of the strict grammar (`dpend_parse`:
    !> '1;2', a 1,000-digit mantissa beyond the largest double, 'nan'; a repeat count
-   !> `r*value` is checked on both sides). Values that start with a letter (logicals,
-   !> names) and quoted strings are left to the namelist read.
+   !> `r*value` is checked on both sides), and a second value for a key that takes one
+   !> (`dt = 0.001 0.002`: the read would keep the first silently; `is_array_key`).
+   !> Values that start with a letter (logicals, names) and quoted strings are left to
+   !> the namelist read.
    subroutine check_number_tokens(text, pre, error)
       character(len=*), intent(in) :: text              !! the file (its groups checked)
       character(len=*), intent(in) :: pre               !! message prefix
@@ -313,9 +315,10 @@ contains
       character(len=64) :: keys(max_keys)
       integer :: key_lines(max_keys)
       character(len=:), allocatable :: group, tok, key, base
-      integer :: i, j, k, line, n_keys, depth
+      integer :: i, j, k, line, n_keys, depth, n_values
       logical :: inside, wants_value
       wants_value = .false.
+      n_values = 0
       n_keys = 0
       inside = .false.
       group = ''
@@ -337,6 +340,8 @@ contains
                            ' characters; at most '//to_str(string_length(group, key)))
                return
             end if
+            if (inside) call count_values(1)
+            if (allocated(error)) return
             wants_value = .false.
             line = line + count_lf(text(i:i + j))
             i = i + j + 1
@@ -353,6 +358,7 @@ contains
             group = to_lower(text(i + 1:j - 1))
             inside = group /= 'end'
             n_keys = 0
+            n_values = 0
             i = j
          case ('%')
             call refuse("'%' (component syntax, as in &pendulum%m1) is not accepted; " &
@@ -470,6 +476,7 @@ contains
          integer :: n, p
          character(len=:), allocatable :: b
          key = ''
+         n_values = 0
          do n = 1, len(k)            ! without blanks: 'q (1:3, 1)' is 'q(1:3,1)'
             if (index(' '//achar(9), k(n:n)) == 0) key = key//k(n:n)
          end do
@@ -520,7 +527,11 @@ contains
                return
             end if
             v = t(star + 1:)
+            call count_values(r)
+         else
+            call count_values(1)
          end if
+         if (allocated(error)) return
          if (len(v) == 0) return                      ! 'r*': r null values
          ! a word for a key that is not a text: a logical (t, f, .true., false, ...)
          if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v) .and. &
@@ -538,6 +549,17 @@ contains
          call read_real(v, x, why)
          if (len(why) > 0) call refuse(key_text()//quoted(v)//' '//why)
       end subroutine check_value
+
+      !> Count `r` more values of the current key; refuse a second one for a key that
+      !> takes one value (a scalar: the namelist read would keep the first silently).
+      subroutine count_values(r)
+         integer, intent(in) :: r
+         if (len(key) == 0) return
+         n_values = n_values + r
+         if (n_values > 1 .and. .not. is_array_key(group, key)) &
+            call refuse(key_text()//to_str(n_values)//' values for a key that takes one ' &
+                        //'(the namelist read would keep the first silently); give one value')
+      end subroutine count_values
 
       pure logical function non_finite(t)
          character(len=*), intent(in) :: t
@@ -569,6 +591,41 @@ contains
          end do
       end function count_lf
    end subroutine check_number_tokens
+
+   !> Whether key `k` of namelist group `g` takes several values: an array of the
+   !> namelists of dpend_config (&pendulum m l damping support_amplitude support_phase,
+   !> &initial q w), dpend_study_config (&study case_* and the method lists) or an
+   !> element with a subscript ('q(2) = 1 2' fills q(2) and q(3)). The parameters of
+   !> &model are checked by the factory (one value for a scalar parameter).
+   pure logical function is_array_key(g, k)
+      character(len=*), intent(in) :: g  !! group name, lower case
+      character(len=*), intent(in) :: k  !! key, lower case, without blanks
+      if (index(k, '(') > 0 .or. g == 'model') then
+         is_array_key = .true.
+         return
+      end if
+      select case (g)
+      case ('pendulum')
+         select case (k)
+         case ('m', 'l', 'damping', 'support_amplitude', 'support_phase')
+            is_array_key = .true.
+         case default
+            is_array_key = .false.
+         end select
+      case ('initial')
+         is_array_key = k == 'q' .or. k == 'w'
+      case ('study')
+         select case (k)
+         case ('method', 'h_min', 'h_max', 'rtol_min', 'rtol_max', 'ro_method', 'ro_dt', &
+               'tao_method')
+            is_array_key = .true.
+         case default
+            is_array_key = index(k, 'case_') == 1
+         end select
+      case default
+         is_array_key = .false.
+      end select
+   end function is_array_key
 
    !> Refuse an input path that is not (a link to) a regular file, before anything
    !> opens it (a FIFO would block the open); messages start with `pre`.
