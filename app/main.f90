@@ -14,7 +14,8 @@ program dpend
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
-                        real_str, pad
+                        real_str, pad, unknown_option_text
+   use dpend_strings, only: did_you_mean
    use dpend_kinds, only: dp
    use dpend_model_factory, only: describe_models
    use, intrinsic :: iso_c_binding, only: c_int
@@ -35,6 +36,9 @@ program dpend
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
+   !> The commands (for the suggestion on a mistyped one).
+   character(len=*), parameter :: command_names = 'simulate lyapunov indicators divergence ' &
+      //'poincare sweep sweep-compare export study animate fit methods models version help'
 
    ! every input a command reads is registered: an output never replaces one
    call track_inputs(.true.)
@@ -75,7 +79,13 @@ program dpend
    case ('fit')
       call fit(args(2:))
    case default
-      call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
+      block
+         character(len=:), allocatable :: hint
+         hint = did_you_mean(args(1)%s, command_names)
+         if (len(hint) > 0) hint = hint//' '
+         call fail(2, "dpend: unknown command '"//printable(args(1)%s)//"' ("//hint// &
+                   'dpend --help lists them)')
+      end block
    end select
 
 contains
@@ -240,8 +250,8 @@ contains
             mode = 'styles'
          case default
             if (is_long_option(sub(i)%s)) then
-               call fail(2, "dpend methods: unknown option '"//sub(i)%s// &
-                         "' (dpend methods --help lists the options)")
+               call fail(2, 'dpend methods: '//unknown_option_text('methods', sub(i)%s, &
+                                                                  '--names --plot-styles --help'))
             end if
             call fail(2, "dpend methods: unexpected argument '"//sub(i)%s// &
                       "' (dpend methods --help)")
@@ -340,8 +350,8 @@ contains
          else if (index(sub(i)%s, '--list=') == 1) then
             call fail(2, 'dpend export: option --list takes no value')
          else if (is_long_option(sub(i)%s)) then
-            call fail(2, "dpend export: unknown option '"//sub(i)%s// &
-                      "' (dpend export --help lists the options)")
+            call fail(2, 'dpend export: '//unknown_option_text('export', sub(i)%s, &
+                                                               '--matrix --csv --list --help'))
          else
             pos = [pos, sub(i)]
          end if
@@ -481,7 +491,8 @@ contains
          end select
          if (name /= '--rel' .and. matched) needs_agreement = name
          call option_outcome('sweep-compare', name, matched, missing, &
-                             [character(len=16) :: '--agreement', '--force'], error)
+                             [character(len=16) :: '--agreement', '--force'], error, &
+                             '--rel --agreement --threshold-a --threshold-b --output --force')
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
       end do
       if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &

@@ -290,10 +290,11 @@ contains
          if (.not. matched) call apply_chaos_flag(command, ch, name, value, matched, error)
          if (command == 'divergence') then
             call option_outcome(command, name, matched, missing, &
-                                [character(len=16) :: '--force', '--same-energy'], error)
+                                [character(len=16) :: '--force', '--same-energy'], error, &
+                                chaos_help(command))
          else
             call option_outcome(command, name, matched, missing, &
-                                [character(len=16) :: '--force'], error)
+                                [character(len=16) :: '--force'], error, chaos_help(command))
          end if
          if (allocated(error)) return
       end do

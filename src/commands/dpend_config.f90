@@ -27,7 +27,8 @@ module dpend_config
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
                            max_steps, default_max_steps, sci, max_support_frequency
    use dpend_integrator, only: integrator_t
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_names
+   use dpend_strings, only: canonical_name
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -195,7 +196,7 @@ contains
          body = body(eq + 1:)
          k = next_key(body)
          if (key == 'name') then
-            cfg%model_name = unquoted(body(:k - 1))
+            cfg%model_name = canonical_name(unquoted(body(:k - 1)), model_names())
          else if (is_model_parameter(key)) then
             call parse_values(key, body(:k - 1))
             if (allocated(error)) return
@@ -1022,7 +1023,7 @@ contains
       call take_list(0, damping, cfg%damping)
       cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
       cfg%support_phase = support_phase
-      if (len_trim(method) > 0) cfg%method = trim(method)
+      if (len_trim(method) > 0) cfg%method = canonical_name(trim(method), method_names())
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
       cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
       cfg%max_steps = max_steps
@@ -1078,7 +1079,7 @@ contains
       case ('--l1'); call parse_real(value, name, cfg%l(1), error)
       case ('--l2'); call parse_real(value, name, cfg%l(2), error)
       case ('--g'); call parse_real(value, name, cfg%g, error)
-      case ('--method'); cfg%method = value
+      case ('--method'); cfg%method = canonical_name(value, method_names())
       case ('--dt'); call parse_real(value, name, cfg%dt, error)
       case ('--t-end'); call parse_real(value, name, cfg%t_end, error)
       case ('--save-every'); call parse_int(value, name, cfg%save_every, error)
@@ -1094,7 +1095,7 @@ contains
       case ('--support-phase')
          call parse_pair(name, value, cfg%support_phase, 'phi_x,phi_y (rad)', error)
       case ('--output', '-o'); cfg%output = value
-      case ('--model'); cfg%model_name = value
+      case ('--model'); cfg%model_name = canonical_name(value, model_names())
       case default
          matched = .false.
          ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum)
@@ -1381,6 +1382,18 @@ contains
                        //' (simulate, lyapunov, divergence, indicators and animate take ' &
                        //'every model)')
    end subroutine require_default_model
+
+   !> The names of the factory's models, blank-separated (for `canonical_name`).
+   function model_names() result(s)
+      character(len=:), allocatable :: s
+      type(model_info_t), allocatable :: models(:)
+      integer :: k
+      models = model_catalogue()
+      s = ''
+      do k = 1, size(models)
+         s = s//' '//models(k)%name
+      end do
+   end function model_names
 
    !> Whether `name` is a parameter of any model of the catalogue (a flag --NAME).
    logical function is_model_parameter(name)

@@ -110,7 +110,7 @@ contains
          if (name == '--config') cycle
          call apply_run_flag(cfg, name, value, matched, error)
          call option_outcome('simulate', name, matched, missing, &
-                             [character(len=16) :: '--force'], error)
+                             [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
       end do
       call validate_run_config(cfg, error)

@@ -11,6 +11,7 @@ printf '&pendulum g = 9.8, 9.81 /\n' > "$_fr3/fr3_g_two.nml"
 printf '&integration t_end = 0.01 /\n&chaos tau = 0.5 0.6 /\n' > "$_fr3/fr3_chaos_two.nml"
 printf '&sweep n1 = 4 8 /\n' > "$_fr3/fr3_sweep_two.nml"
 printf '&study ref_dt = 1e-3 2e-3 /\n' > "$_fr3/fr3_study_two.nml"
+printf "&integration method = 'DOP853', t_end = 0.01 /\n" > "$_fr3/fr3_method_upper.nml"
 printf '&pendulum m = 1 1, damping = 0 0 /\n&initial q = 0.1 0.2, w(1) = 0 0 /\n&integration t_end = 0.01 /\n' \
    > "$_fr3/fr3_lists_ok.nml"
 
@@ -28,3 +29,28 @@ succeed fr3-nml-lists-ok         -- "${S[@]}" --config fr3_lists_ok.nml
 # ---- issue 23: divergence without an exponential phase (the line says why; see
 # test_messages divergence_without_slope)
 succeed fr3-divergence-no-slope  -- divergence --t-end 1 --q1 -1.5 --q2 -1.5 --pairs 2 --lyapunov-t 0 --output d.h5
+# ---- issue 25: a typo gets the nearest name (refusals name it; see test_parse
+# names_suggested for the texts)
+refuse  fr3-typo-t_end        'did you mean --t-end'  -- "${S[@]}" --t_end 1
+refuse  fr3-typo-tend         'did you mean --t-end'  -- "${S[@]}" --tend 1
+refuse  fr3-typo-sweep-t_end  'did you mean --t-end'  -- sweep --output s.h5 --t_end 1
+refuse  fr3-typo-lyapunov-tua 'did you mean --tau'    -- lyapunov --output o.h5 --tua 1
+refuse  fr3-typo-study-quik   'did you mean --quick'  -- study --output s.md --quik
+refuse  fr3-typo-animate-fsp  'did you mean --fps'    -- animate existing.h5 --output a.gif --fsp 10
+refuse  fr3-typo-fit          'did you mean --fit-damping' -- fit data/fit_example.csv --output f.h5 --fit_damping
+refuse  fr3-typo-export-cvs   'did you mean --csv'    -- export existing.h5 --cvs
+refuse  fr3-typo-methods      'did you mean --names'  -- methods --name
+refuse  fr3-typo-compare      'did you mean --threshold-a' -- sweep-compare sweep.h5 sweep.h5 --threshold_a 1
+refuse  fr3-typo-command      'did you mean simulate' -- simulat
+refuse  fr3-typo-method       'did you mean dopri5'   -- "${S[@]}" --method dopri
+refuse  fr3-typo-model        'did you mean elastic'  -- "${S[@]}" --model elastc
+refuse  fr3-typo-indicator    'did you mean megno'    -- sweep --output s.h5 --indicator mgeno
+refuse  fr3-typo-axis         'did you mean theta1'   -- sweep --output s.h5 --axis1 thta1
+refuse  fr3-typo-far          'unknown option'        -- "${S[@]}" --x 1
+# ---- issue 25: names without regard to case (results as the lower-case name)
+succeed fr3-case-method          -- "${S[@]}" --method RK4
+succeed fr3-case-method-nml      -- "${S[@]}" --config fr3_method_upper.nml
+succeed fr3-case-model           -- "${S[@]}" --model Elastic --k 40 --l0 1 --q 1.2,-1.0
+succeed fr3-case-indicator       -- sweep --output s.h5 --n 2 --t-end 0.5 --quiet --indicator MEGNO
+succeed fr3-case-axes            -- sweep --output s.h5 --n 2 --t-end 0.5 --quiet --axis1 Theta1 --axis2 W2
+succeed fr3-case-lyapunov        -- lyapunov --output o.h5 --t-end 0.5 --method Gauss4
