@@ -34,7 +34,8 @@ contains
                new_unittest('simulate_summary_line', test_simulate_summary), &
                new_unittest('sweep_closing_line', test_sweep_line), &
                new_unittest('methods_table', test_methods), &
-               new_unittest('divergence_without_slope', test_divergence_no_slope)]
+               new_unittest('divergence_without_slope', test_divergence_no_slope), &
+               new_unittest('quiet_last_line', test_quiet)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -286,6 +287,28 @@ contains
                       .and. index(to_lower(text), 'nan') == 0, 'no slope: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_divergence_no_slope
+
+   !> --quiet (every command, issue 25): simulate and lyapunov print only their last
+   !> line, nothing on stderr; the file is written as without it.
+   subroutine test_quiet(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('quiet')
+      stat = run_command(dir, 'simulate --t-end 0.1 --quiet --output '//dir//'/s.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 1 .and. index(text, 'dpend simulate: rk4: ') &
+                      == 1 .and. index(text, 'relative energy error') > 0, 'simulate: '//text)
+      if (allocated(error)) return
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, n == 0, 'simulate --quiet: stderr '//text)
+      if (allocated(error)) return
+      stat = run_command(dir, 'lyapunov --quiet --t-end 1 --output '//dir//'/l.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 1 .and. index(text, 'lyapunov: ') == 1, &
+                      'lyapunov: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_quiet
 
    ! ----------------------------------------------------------------- helpers
 

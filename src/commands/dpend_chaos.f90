@@ -182,6 +182,7 @@ contains
       end select
       s = s//'  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
+          '  --quiet           print only the last line (the result scripts read)'//nl// &
           '  -h, --help        this text'
    contains
       !> What --t-end means for the command.

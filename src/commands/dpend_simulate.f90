@@ -73,6 +73,7 @@ contains
           '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
           '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
+          '  --quiet           print only the summary line (standard output)'//nl// &
           '  -h, --help        this text'
    end function simulate_help
 

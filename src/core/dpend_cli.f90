@@ -158,23 +158,28 @@ contains
    !> Refuse an option given twice (`--t-end 1 ... --t-end 2`): which one counts
    !> would depend on the order, as a repeated key of a namelist group would. Options
    !> are the arguments that start with '--' (never a value), compared by their name
-   !> (before '=', for `--name=value`). Flags still override a --config file.
+   !> (before '=', for `--name=value`); `-o` is `--output` (the two set one file:
+   !> refused naming both, in either order). Flags still override a --config file.
    subroutine check_repeated_options(args, error)
       type(arg_t), intent(in) :: args(:)                !! a command's arguments
       type(error_t), allocatable, intent(out) :: error  !! the first repeated option
       character(len=:), allocatable :: a, b
       integer :: i, j
       do i = 2, size(args)
-         if (.not. is_long_option(args(i)%s)) cycle
+         if (.not. (is_long_option(args(i)%s) .or. args(i)%s == '-o')) cycle
          a = option_name(args(i)%s)
          do j = 1, i - 1
-            if (.not. is_long_option(args(j)%s)) cycle
+            if (.not. (is_long_option(args(j)%s) .or. args(j)%s == '-o')) cycle
             b = option_name(args(j)%s)
-            if (a == b) then
+            if (a /= b) cycle
+            if (args(i)%s == '-o' .neqv. args(j)%s == '-o') then
+               call fatal_error(error, 'invalid --output: -o and --output were both given ' &
+                                //'(-o is --output); give one of them')
+            else
                call fatal_error(error, 'invalid '//printable(a)//': given twice (give each ' &
                                 //'option once)')
-               return
             end if
+            return
          end do
       end do
    contains
@@ -183,6 +188,7 @@ contains
          character(len=:), allocatable :: name
          name = arg
          if (index(arg, '=') > 0) name = arg(:index(arg, '=') - 1)
+         if (name == '-o') name = '--output'
       end function option_name
    end subroutine check_repeated_options
 

@@ -37,7 +37,7 @@ refuse  fr3-typo-sweep-t_end  'did you mean --t-end'  -- sweep --output s.h5 --t
 refuse  fr3-typo-lyapunov-tua 'did you mean --tau'    -- lyapunov --output o.h5 --tua 1
 refuse  fr3-typo-study-quik   'did you mean --quick'  -- study --output s.md --quik
 refuse  fr3-typo-animate-fsp  'did you mean --fps'    -- animate existing.h5 --output a.gif --fsp 10
-refuse  fr3-typo-fit          'did you mean --fit-damping' -- fit data/fit_example.csv --output f.h5 --fit_damping
+refuse  fr3-typo-fit          'did you mean --fit-damping' -- fit "$ROOT/data/fit_example.csv" --output f.h5 --fit_damping
 refuse  fr3-typo-export-cvs   'did you mean --csv'    -- export existing.h5 --cvs
 refuse  fr3-typo-methods      'did you mean --names'  -- methods --name
 refuse  fr3-typo-compare      'did you mean --threshold-a' -- sweep-compare sweep.h5 sweep.h5 --threshold_a 1
@@ -54,3 +54,27 @@ succeed fr3-case-model           -- "${S[@]}" --model Elastic --k 40 --l0 1 --q 
 succeed fr3-case-indicator       -- sweep --output s.h5 --n 2 --t-end 0.5 --quiet --indicator MEGNO
 succeed fr3-case-axes            -- sweep --output s.h5 --n 2 --t-end 0.5 --quiet --axis1 Theta1 --axis2 W2
 succeed fr3-case-lyapunov        -- lyapunov --output o.h5 --t-end 0.5 --method Gauss4
+# ---- issue 25: contradictory flags refused naming both, in either order
+refuse  fr3-both-theta1-q1    theta1   -- "${S[@]}" --theta1 3.0 --q1 0.5
+refuse  fr3-both-q1-theta1    theta1   -- "${S[@]}" --q1 0.5 --theta1 3.0
+refuse  fr3-both-q-q1         q1       -- "${S[@]}" --q 1,2 --q1 0.5
+refuse  fr3-both-q1-q         q1       -- "${S[@]}" --q1 0.5 --q 1,2
+refuse  fr3-both-w-w1         w1       -- "${S[@]}" --w 0,0 --w1 1
+refuse  fr3-both-w1-w         w1       -- "${S[@]}" --w1 1 --w 0,0
+refuse  fr3-both-m2-m         m2       -- "${S[@]}" --m2 2 --m 1,1
+refuse  fr3-both-l-l1         l1       -- lyapunov --output o.h5 --l 1,1 --l1 2
+refuse  fr3-both-o-output     '-o and --output' -- simulate --t-end 0.01 -o a.h5 --output=b.h5
+refuse  fr3-both-output-o     '-o and --output' -- study --output a.md -o b.md
+# ---- issue 25: every command takes --quiet
+succeed fr3-quiet-simulate       -- "${S[@]}" --quiet
+succeed fr3-quiet-lyapunov       -- lyapunov --output o.h5 --t-end 0.5 --quiet
+succeed fr3-quiet-divergence     -- divergence --output d.h5 --t-end 1 --pairs 2 --lyapunov-t 0 --quiet
+succeed fr3-quiet-indicators     -- indicators --output i.h5 --t-end 0.5 --quiet
+succeed fr3-quiet-poincare       -- poincare --output p.h5 --t-end 1 --ics 1 --points 2 --quiet
+succeed fr3-quiet-export         -- export existing.h5 --list --quiet
+succeed fr3-quiet-methods        -- methods --quiet
+succeed fr3-quiet-models         -- models --quiet
+succeed fr3-quiet-compare        -- sweep-compare sweep.h5 sweep.h5 --quiet
+succeed fr3-quiet-fit            -- fit "$ROOT/data/fit_example.csv" --output f.h5 --quiet
+refuse  fr3-quiet-twice          quiet    -- "${S[@]}" --quiet --quiet
+succeed fr3-quiet-animate        -- animate existing.h5 --output a.gif --quiet
