@@ -14,6 +14,7 @@ printf '&study ref_dt = 1e-3 2e-3 /\n' > "$_fr3/fr3_study_two.nml"
 printf "&integration method = 'DOP853', t_end = 0.01 /\n" > "$_fr3/fr3_method_upper.nml"
 printf '&pendulum m = 1 1, damping = 0 0 /\n&initial q = 0.1 0.2, w(1) = 0 0 /\n&integration t_end = 0.01 /\n' \
    > "$_fr3/fr3_lists_ok.nml"
+printf 't,theta1\n0,0.1\n0.1,0.09\n0.2,0.06\n0.3,0.02\n0.4,-0.03\n' > "$_fr3/fr3_fit.csv"
 
 S=(simulate --t-end 0.01 --output o.h5)
 # ---- issue 23: one value for a key that takes one, in every pre-scan
@@ -37,7 +38,7 @@ refuse  fr3-typo-sweep-t_end  'did you mean --t-end'  -- sweep --output s.h5 --t
 refuse  fr3-typo-lyapunov-tua 'did you mean --tau'    -- lyapunov --output o.h5 --tua 1
 refuse  fr3-typo-study-quik   'did you mean --quick'  -- study --output s.md --quik
 refuse  fr3-typo-animate-fsp  'did you mean --fps'    -- animate existing.h5 --output a.gif --fsp 10
-refuse  fr3-typo-fit          'did you mean --fit-damping' -- fit "$ROOT/data/fit_example.csv" --output f.h5 --fit_damping
+refuse  fr3-typo-fit          'did you mean --fit-damping' -- fit fr3_fit.csv --output f.h5 --fit_damping
 refuse  fr3-typo-export-cvs   'did you mean --csv'    -- export existing.h5 --cvs
 refuse  fr3-typo-methods      'did you mean --names'  -- methods --name
 refuse  fr3-typo-compare      'did you mean --threshold-a' -- sweep-compare sweep.h5 sweep.h5 --threshold_a 1
@@ -75,6 +76,6 @@ succeed fr3-quiet-export         -- export existing.h5 --list --quiet
 succeed fr3-quiet-methods        -- methods --quiet
 succeed fr3-quiet-models         -- models --quiet
 succeed fr3-quiet-compare        -- sweep-compare sweep.h5 sweep.h5 --quiet
-succeed fr3-quiet-fit            -- fit "$ROOT/data/fit_example.csv" --output f.h5 --quiet
+succeed fr3-quiet-fit            -- fit fr3_fit.csv --output f.h5 --quiet
 refuse  fr3-quiet-twice          quiet    -- "${S[@]}" --quiet --quiet
 succeed fr3-quiet-animate        -- animate existing.h5 --output a.gif --quiet
