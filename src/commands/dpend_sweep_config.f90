@@ -389,7 +389,7 @@ contains
       case ('flip', 'lambda1', 'megno', 'fli', 'sali', 'gali2')
       case default
          call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' (accepted: "// &
-                          indicator_names//did_you_mean(cfg%indicator, indicator_names, '; ')//')')
+                          indicator_names//')'//did_you_mean(cfg%indicator, indicator_names, '; '))
          return
       end select
       if (cfg%indicator == 'lambda1') cfg%lyapunov = .true.
@@ -534,7 +534,7 @@ contains
       end if
       if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
-                          //accepted_axes(links)//did_you_mean(name, accepted_axes(2), '; ')//')')
+                          //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
                           //' to '//to_str(max_axis_points)//' (points on axis '//c//')')

@@ -245,8 +245,8 @@ contains
    end function nearest_name
 
    !> 'did you mean X?' for the word X of `words` nearest to `name` (`nearest_name`),
-   !> or '' when none is close. With `lead`, the text starts with it ('; ' to close
-   !> a list of accepted names, before the closing parenthesis).
+   !> or '' when none is close. With `lead`, the text starts with it ('; ' after the
+   !> parenthesis of the accepted names).
    pure function did_you_mean(name, words, lead) result(s)
       character(len=*), intent(in) :: name            !! what the user gave
       character(len=*), intent(in) :: words           !! the accepted names

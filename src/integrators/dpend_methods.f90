@@ -31,7 +31,7 @@ contains
       if (method_index(key) == 0) then
          hint = did_you_mean(trim(name), method_names(), '; ')
          call fatal_error(error, "invalid method: '"//printable(trim(name))//"' (accepted: " &
-                          //method_names()//hint//")")
+                          //method_names()//")"//hint)
          return
       end if
       select case (key)

@@ -172,7 +172,7 @@ contains
          hint = did_you_mean(spec%model_name(), model_list(models), '; ')
          call fatal_error(error, "invalid model: '"//spec%model_name()//"' is not a model " &
                           //'(accepted: '//model_list(models)//'; dpend models describes ' &
-                          //'them'//hint//')')
+                          //'them)'//hint)
          return
       end if
       call check_spec(spec, models(k), error)
