@@ -197,7 +197,6 @@ contains
       character(len=*), intent(in) :: name   !! what the user gave
       character(len=*), intent(in) :: words  !! the accepted names
       character(len=:), allocatable :: best
-      character(len=*), parameter :: seps = ' ,'//achar(9)//achar(10)
       integer :: a, b, d, d_best, n_core, limit
       best = ''
       n_core = len_trim(name) - (verify(name, '-') - 1)
@@ -206,16 +205,9 @@ contains
       limit = min(limit, n_core - 1)
       d_best = limit + 1
       a = 1
-      do while (a <= len(words))
-         if (index(seps, words(a:a)) > 0) then
-            a = a + 1
-            cycle
-         end if
-         b = a
-         do while (b <= len(words))
-            if (index(seps, words(b:b)) > 0) exit
-            b = b + 1
-         end do
+      do
+         call next_word(words, a, b)
+         if (a > len(words)) exit
          d = edit_distance(trim(name), words(a:b - 1))
          if (d == 0 .and. trim(name) == words(a:b - 1)) then
             best = ''
@@ -244,6 +236,24 @@ contains
       end function no_digits
    end function nearest_name
 
+   !> The next word of `words` (separated by blanks, commas, tabs or line ends) at or
+   !> after position `a`: words(a:b - 1); a > len(words) when there is none.
+   pure subroutine next_word(words, a, b)
+      character(len=*), intent(in) :: words  !! the list
+      integer, intent(inout) :: a            !! where to look; the word's start
+      integer, intent(out) :: b              !! one past the word's end
+      character(len=*), parameter :: seps = ' ,'//achar(9)//achar(10)
+      do while (a <= len(words))
+         if (index(seps, words(a:a)) == 0) exit
+         a = a + 1
+      end do
+      b = a
+      do while (b <= len(words))
+         if (index(seps, words(b:b)) > 0) exit
+         b = b + 1
+      end do
+   end subroutine next_word
+
    !> 'did you mean X?' for the word X of `words` nearest to `name` (`nearest_name`),
    !> or '' when none is close. With `lead`, the text starts with it ('; ' after the
    !> parenthesis of the accepted names).
@@ -264,20 +274,12 @@ contains
       character(len=*), intent(in) :: name   !! what the user gave
       character(len=*), intent(in) :: words  !! the accepted names
       character(len=:), allocatable :: s
-      character(len=*), parameter :: seps = ' ,'//achar(9)//achar(10)
       integer :: a, b
       s = name
       a = 1
-      do while (a <= len(words))
-         if (index(seps, words(a:a)) > 0) then
-            a = a + 1
-            cycle
-         end if
-         b = a
-         do while (b <= len(words))
-            if (index(seps, words(b:b)) > 0) exit
-            b = b + 1
-         end do
+      do
+         call next_word(words, a, b)
+         if (a > len(words)) exit
          if (to_lower(words(a:b - 1)) == to_lower(name)) then
             s = words(a:b - 1)
             return
