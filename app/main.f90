@@ -14,7 +14,8 @@ program dpend
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
-                        real_str, pad
+                        real_str, pad, unknown_option_text
+   use dpend_strings, only: did_you_mean
    use dpend_kinds, only: dp
    use dpend_model_factory, only: describe_models
    use, intrinsic :: iso_c_binding, only: c_int
@@ -23,6 +24,7 @@ program dpend
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
    use dpend_output, only: track_inputs
+   use dpend_progress, only: silence_progress
    implicit none
 
    interface
@@ -35,6 +37,12 @@ program dpend
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
+   !> --quiet was given: no progress report, and of a command's summary only its last
+   !> line (sweep reads its own --quiet).
+   logical :: quiet = .false.
+   !> The commands (for the suggestion on a mistyped one).
+   character(len=*), parameter :: command_names = 'simulate lyapunov indicators divergence ' &
+      //'poincare sweep sweep-compare export study animate fit methods models version help'
 
    ! every input a command reads is registered: an output never replaces one
    call track_inputs(.true.)
@@ -49,6 +57,7 @@ program dpend
       if (allocated(error)) call fail(2, 'dpend '//printable(args(1)%s)//': '// &
                                       error%message)
    end block
+   if (args(1)%s /= 'sweep') call take_quiet(args)
    select case (args(1)%s)
    case ('-h', '--help', 'help')
       write (output_unit, '(a)') main_help()
@@ -75,10 +84,41 @@ program dpend
    case ('fit')
       call fit(args(2:))
    case default
-      call fail(2, "dpend: unknown command '"//args(1)%s//"' (dpend --help lists them)")
+      block
+         character(len=:), allocatable :: hint
+         hint = did_you_mean(args(1)%s, command_names)
+         if (len(hint) > 0) hint = hint//' '
+         call fail(2, "dpend: unknown command '"//printable(args(1)%s)//"' ("//hint// &
+                   'dpend --help lists them)')
+      end block
    end select
 
 contains
+
+   !> Remove every `--quiet` from the arguments after the command (all commands
+   !> take it; values never start with '--'): `quiet` is set and every progress
+   !> report of the process silenced.
+   subroutine take_quiet(all)
+      type(arg_t), allocatable, intent(inout) :: all(:)
+      integer :: i
+      if (size(all) < 2) return
+      if (.not. any([(all(i)%s == '--quiet', i=2, size(all))])) return
+      quiet = .true.
+      call silence_progress()
+      all = [all(1), pack(all(2:), [(all(i)%s /= '--quiet', i=2, size(all))])]
+   end subroutine take_quiet
+
+   !> The last line of `text` (without a trailing line end).
+   pure function last_line(text) result(s)
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable :: s
+      integer :: n
+      n = len(text)
+      if (n > 0) then
+         if (text(n:n) == new_line('a')) n = n - 1
+      end if
+      s = text(index(text(:n), new_line('a'), back=.true.) + 1:n)
+   end function last_line
 
    function main_help() result(s)
       character(len=:), allocatable :: s
@@ -101,6 +141,8 @@ contains
           '  models     the models: coordinates, parameters (units, ranges), capabilities' &
           //nl// &
           '  version    print the version'//nl//nl// &
+          'Every command takes --quiet: no progress report, and of a summary only its'//nl// &
+          'last line (export, methods and models print their data as always).'//nl//nl// &
           'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q1 = q2 = -pi/2).'//nl// &
           'Defaults are the chapter''s: m1 = m2 = 1 kg, l1 = l2 = 1 m, g = 9.8 m/s^2.'
@@ -120,7 +162,8 @@ contains
       end if
       call run_simulate(cfg, error, summary)
       if (allocated(error)) call fail(exit_status(error), 'dpend simulate: '//error%message)
-      write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
+      if (.not. quiet .or. len(summary) == 0) &
+         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
@@ -140,6 +183,7 @@ contains
          return
       end if
       call run_chaos(cfg, ch, summary, error)
+      if (quiet .and. .not. allocated(error)) summary = last_line(summary)
       if (len(summary) > 0) write (output_unit, '(a)') summary
       if (allocated(error)) call fail(exit_status(error), 'dpend '//command//': '//error%message)
    end subroutine chaos
@@ -240,8 +284,8 @@ contains
             mode = 'styles'
          case default
             if (is_long_option(sub(i)%s)) then
-               call fail(2, "dpend methods: unknown option '"//sub(i)%s// &
-                         "' (dpend methods --help lists the options)")
+               call fail(2, 'dpend methods: '//unknown_option_text('methods', sub(i)%s, &
+                                                                  '--names --plot-styles --help'))
             end if
             call fail(2, "dpend methods: unexpected argument '"//sub(i)%s// &
                       "' (dpend methods --help)")
@@ -340,8 +384,8 @@ contains
          else if (index(sub(i)%s, '--list=') == 1) then
             call fail(2, 'dpend export: option --list takes no value')
          else if (is_long_option(sub(i)%s)) then
-            call fail(2, "dpend export: unknown option '"//sub(i)%s// &
-                      "' (dpend export --help lists the options)")
+            call fail(2, 'dpend export: '//unknown_option_text('export', sub(i)%s, &
+                                                               '--matrix --csv --list --help'))
          else
             pos = [pos, sub(i)]
          end if
@@ -481,7 +525,8 @@ contains
          end select
          if (name /= '--rel' .and. matched) needs_agreement = name
          call option_outcome('sweep-compare', name, matched, missing, &
-                             [character(len=16) :: '--agreement', '--force'], error)
+                             [character(len=16) :: '--agreement', '--force'], error, &
+                             '--rel --agreement --threshold-a --threshold-b --output --force')
          if (allocated(error)) call fail(2, 'dpend sweep-compare: '//error%message)
       end do
       if (size(files) /= 2) call fail(2, 'dpend sweep-compare: needs two files, got '// &

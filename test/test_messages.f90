@@ -4,7 +4,7 @@
 module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
-   use dpend_cli, only: real_str, seconds_str
+   use dpend_cli, only: real_str, seconds_str, to_lower
    use dpend_config, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
@@ -33,7 +33,9 @@ contains
                new_unittest('help_options_once', test_options_once), &
                new_unittest('simulate_summary_line', test_simulate_summary), &
                new_unittest('sweep_closing_line', test_sweep_line), &
-               new_unittest('methods_table', test_methods)]
+               new_unittest('methods_table', test_methods), &
+               new_unittest('divergence_without_slope', test_divergence_no_slope), &
+               new_unittest('quiet_last_line', test_quiet)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -269,6 +271,44 @@ contains
                       //text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_methods
+
+   !> A divergence curve without an exponential phase (a regular orbit, a short run)
+   !> ends with a line that says why there is no slope, not 'slope: nan' (issue 23).
+   subroutine test_divergence_no_slope(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('noslope')
+      stat = run_command(dir, 'divergence --t-end 1 --q1 -1.5 --q2 -1.5 --pairs 2 ' &
+                         //'--lyapunov-t 0 --output '//dir//'/d.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, nl//'divergence slope: none (no ' &
+                      //'exponential phase: ') > 0 .and. index(text, ' within 1 s;') > 0 &
+                      .and. index(to_lower(text), 'nan') == 0, 'no slope: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_divergence_no_slope
+
+   !> --quiet (every command, issue 25): simulate and lyapunov print only their last
+   !> line, nothing on stderr; the file is written as without it.
+   subroutine test_quiet(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n, stat
+      dir = scratch_dir('quiet')
+      stat = run_command(dir, 'simulate --t-end 0.1 --quiet --output '//dir//'/s.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 1 .and. index(text, 'dpend simulate: rk4: ') &
+                      == 1 .and. index(text, 'relative energy error') > 0, 'simulate: '//text)
+      if (allocated(error)) return
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, n == 0, 'simulate --quiet: stderr '//text)
+      if (allocated(error)) return
+      stat = run_command(dir, 'lyapunov --quiet --t-end 1 --output '//dir//'/l.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. n == 1 .and. index(text, 'lyapunov: ') == 1, &
+                      'lyapunov: '//text)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_quiet
 
    ! ----------------------------------------------------------------- helpers
 

@@ -10,6 +10,10 @@ module test_parse
    use dpend_parse, only: read_real, read_int, escaped, quoted
    use dpend_cli, only: parse_real, parse_int
    use dpend_config, only: run_config_t, check_groups, apply_run_flag
+   use dpend_strings, only: edit_distance, nearest_name, did_you_mean, canonical_name
+   use dpend_cli, only: help_options, unknown_option_text
+   use dpend_methods, only: new_integrator, method_names
+   use dpend_integrator, only: integrator_t
    use dpend_chain, only: chain_t, chain_model
    use dpend_limits, only: check_parameter, parameter_gravity, parameter_mass
    use testing, only: unittest_t, new_unittest, check_true, fatal_error
@@ -29,7 +33,9 @@ contains
               new_unittest('flag_messages', test_flag_messages), &
               new_unittest('namelist_prescan', test_namelist), &
               new_unittest('command_line_forms', test_forms), &
-              new_unittest('g_range_shared', test_g_range) &
+              new_unittest('g_range_shared', test_g_range), &
+              new_unittest('names_suggested', test_suggestions), &
+              new_unittest('names_any_case', test_any_case) &
               ]
    end subroutine collect_parse
 
@@ -200,11 +206,19 @@ contains
       call expect('&pendulum m = x*1 /', 'repeat count')
       call expect('&pendulum m(1) = 2, m = 1, 1 /', 'given twice')
       call expect('&integration dt = 1e-3 /'//lf//'&pendulum g = 0x1 /', 'line 2')
+      ! a second value for a key that takes one (the read would keep the first)
+      call expect('&integration dt = 0.001 0.002 /', "key 'dt': 2 values for a key that")
+      call expect('&integration t_end = 2*5 /', "key 't_end': 2 values")
+      call expect('&pendulum g = 9.8,'//lf//' 9.81 /', 'line 2')
+      call expect("&integration method = 'rk4' 'dop853' /", "key 'method': 2 values")
+      call expect('&output force = T F /', "key 'force': 2 values")
       ! accepted: lists, repeat counts, subscripts, strings with '%' and '=' inside,
       ! comments, logicals, tabs between values
       call accept('&pendulum m = 2*1.5, l(1) = 2, l(2) = 0.5, g = 9.81 / ! m1 = 3')
       call accept('&integration method = ''rk4'', dt = .5e-3,'//achar(9)//'t_end = 5. /')
       call accept('&output file = "a%b=c.h5", force = .true. /')
+      call accept('&pendulum m = 1 2 3, damping = 0.1, 0.1, support_phase = 0 0 /')
+      call accept('&initial q = 1 2, w(2) = 3 4, /'//lf//'&integration dt = 1, /')
       call accept('&initial q1 = -1.5 q2 = 0 w1 = 0, w2 = +0.0 /'//lf// &
                   '&pendulum m1 = 1, m2 = 2 /')
       call execute_command_line('rm -f '//trim(file))
@@ -296,4 +310,82 @@ contains
       call check_parameter(parameter_mass, 'm1', 1e6_dp, err)
       call check_true(error, .not. allocated(err), 'table: m1 = 1e6 refused')
    end subroutine test_g_range
+   !> Edit distances by hand (insertions, deletions, substitutions, swaps; case and
+   !> '_'/'-' ignored), the nearest name only when close, the options of a help text.
+   subroutine test_suggestions(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: opts = '--t-end --dt --theta1 --theta2 --q1 --q --method'
+      character(len=:), allocatable :: found
+      call check_true(error, edit_distance('kitten', 'sitting') == 3, 'kitten/sitting 3')
+      if (allocated(error)) return
+      call check_true(error, edit_distance('tend', 't-end') == 1 .and. &
+                      edit_distance('t_end', 'T-END') == 0 .and. &
+                      edit_distance('fsp', 'fps') == 1 .and. edit_distance('', 'abc') == 3, &
+                      'edit distances')
+      if (allocated(error)) return
+      call check_true(error, nearest_name('--t_end', opts) == '--t-end' .and. &
+                      nearest_name('--tend', opts) == '--t-end' .and. &
+                      nearest_name('--mehtod', opts) == '--method' .and. &
+                      nearest_name('--theta', opts) == '--theta1', 'typos find their option')
+      if (allocated(error)) return
+      ! not close, the name itself, another number: no suggestion
+      call check_true(error, nearest_name('--x', opts) == '' .and. &
+                      nearest_name('--dt', opts) == '' .and. &
+                      nearest_name('--q3', opts) == '' .and. &
+                      nearest_name('--output', opts) == '' .and. &
+                      nearest_name('rk5', method_names()) == '', 'no suggestion when far')
+      if (allocated(error)) return
+      call check_true(error, did_you_mean('mgeno', 'flip megno fli', '; ') == &
+                      '; did you mean megno?' .and. did_you_mean('zz', 'flip megno') == '', &
+                      did_you_mean('mgeno', 'flip megno fli', '; '))
+      if (allocated(error)) return
+      found = help_options('  --t-end S   end time (a--b is no option)'//new_line('a')// &
+                           '  --q1, --q2 RAD  angles; see --t-end')
+      call check_true(error, found == '--t-end --q1 --q2', 'help options: '//found)
+      if (allocated(error)) return
+      found = unknown_option_text('simulate', '--t_end', '--dt --t-end')
+      call check_true(error, found == "unknown option '--t_end' (did you mean --t-end? dpend " &
+                      //'simulate --help lists the options)', found)
+   end subroutine test_suggestions
+
+   !> Names of the registries without regard to case: every method of the registry
+   !> in capitals builds; a list's own spelling comes back.
+   subroutine test_any_case(error)
+      type(error_t), allocatable, intent(out) :: error
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      type(run_config_t) :: cfg
+      logical :: matched
+      character(len=:), allocatable :: names
+      integer :: a, b
+      call check_true(error, canonical_name('MEGNO', 'flip megno') == 'megno' .and. &
+                      canonical_name('Theta1', 'theta1,q1') == 'theta1' .and. &
+                      canonical_name('nope', 'flip megno') == 'nope', 'canonical names')
+      if (allocated(error)) return
+      names = method_names()//' '
+      a = 1
+      do while (a < len(names))
+         b = a + index(names(a:), ' ') - 1
+         call new_integrator(upper(names(a:b - 1)), integ, err)
+         call check_true(error, .not. allocated(err), 'method '//upper(names(a:b - 1)))
+         if (allocated(error)) return
+         call check_true(error, integ%name() == names(a:b - 1), 'name of '//names(a:b - 1))
+         if (allocated(error)) return
+         a = b + 1
+      end do
+      call apply_run_flag(cfg, '--method', 'DOP853', matched, err)
+      call check_true(error, matched .and. .not. allocated(err) .and. cfg%method == 'dop853', &
+                      '--method DOP853')
+   contains
+      pure function upper(w) result(t)
+         character(len=*), intent(in) :: w
+         character(len=len(w)) :: t
+         integer :: k
+         t = w
+         do k = 1, len(w)
+            if (w(k:k) >= 'a' .and. w(k:k) <= 'z') t(k:k) = achar(iachar(w(k:k)) - 32)
+         end do
+      end function upper
+   end subroutine test_any_case
+
 end module test_parse

@@ -192,7 +192,7 @@ contains
             matched = .false.
          end select
          call option_outcome('animate', name, matched, missing, &
-                             [character(len=16) :: '--force', '--reactions'], error)
+                             [character(len=16) :: '--force', '--reactions'], error, animate_help())
          if (allocated(error)) return
       end do
       if (len(cfg%input) == 0) then

@@ -182,6 +182,7 @@ contains
       end select
       s = s//'  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
+          '  --quiet           print only the last line (the result scripts read)'//nl// &
           '  -h, --help        this text'
    contains
       !> What --t-end means for the command.
@@ -290,10 +291,11 @@ contains
          if (.not. matched) call apply_chaos_flag(command, ch, name, value, matched, error)
          if (command == 'divergence') then
             call option_outcome(command, name, matched, missing, &
-                                [character(len=16) :: '--force', '--same-energy'], error)
+                                [character(len=16) :: '--force', '--same-energy'], error, &
+                                chaos_help(command))
          else
             call option_outcome(command, name, matched, missing, &
-                                [character(len=16) :: '--force'], error)
+                                [character(len=16) :: '--force'], error, chaos_help(command))
          end if
          if (allocated(error)) return
       end do
@@ -347,7 +349,6 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       class(integrator_t), allocatable :: integ
       logical :: fixed
-      real(dp) :: n, y_max, e_lim
       if (.not. finite_positive(cfg%t_end)) then
          call fatal_error(error, 'invalid t_end: must be finite and > 0 (s)')
          return
@@ -356,152 +357,189 @@ contains
       if (allocated(error)) return
       fixed = .not. integ%adaptive()
       select case (ch%command)
-      case ('lyapunov')
-         if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
-            call fatal_error(error, 'invalid tau: must be in (0, '//sci(max_time)//'] (s)')
-         else if (fixed .and. ch%tau < cfg%dt) then
-            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
-                             //sci(cfg%dt)//' s of '//cfg%method//' (renormalisations '// &
-                             'happen at step ends; use tau >= dt)')
-         else if (ch%vectors /= all_vectors .and. &
-                  (ch%vectors < 1 .or. ch%vectors > cfg%model%n_state())) then
-            call fatal_error(error, 'invalid vectors: '//to_str(ch%vectors)// &
-                             ' must be an integer from 1 to '//to_str(cfg%model%n_state())// &
-                             ' (2N for N links)')
-         else if (ch%batches < 1 .or. ch%batches > 100000) then
-            call fatal_error(error, 'invalid batches: must be an integer from 1 to 100000')
-         end if
-         if (allocated(error)) return
-         call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
-                          'renormalisations', 'use a larger --tau or a shorter --t-end', error)
-         if (allocated(error)) return
-         n = cfg%t_end/ch%tau + 2.0_dp
-         call check_resources('tau', n, 3.0_dp*8.0_dp*real(1 + n_vectors(ch, cfg), dp), &
-                              8.0_dp*real(1 + n_vectors(ch, cfg), dp), sci(n)// &
-                              ' renormalisations', &
-                              'use a larger --tau', error)
-      case ('indicators')
-         if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
-            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' must be in (0, '// &
-                             sci(max_time)//'] (s)')
-         else if (fixed .and. ch%tau < cfg%dt) then
-            call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
-                             //sci(cfg%dt)//' s of '//cfg%method//' (samples are taken '// &
-                             'at step ends; use tau >= dt)')
-         end if
-         if (allocated(error)) return
-         call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
-                          'samples', 'use a larger --tau or a shorter --t-end', error)
-         if (allocated(error)) return
-         n = cfg%t_end/ch%tau + 2.0_dp
-         ! per sample: time, FLI, SALI, 2N log-norms, 2N Y, 2N <Y>, 2N-1 GALI; copies
-         call check_resources('tau', n, 3.0_dp*8.0_dp*real(2 + 8*cfg%model%n_state(), dp), &
-                              8.0_dp*real(2 + 8*cfg%model%n_state(), dp), sci(n)// &
-                              ' samples', 'use a larger --tau', error)
-      case ('divergence')
-         y_max = max(1.0_dp, maxval(abs(cfg%q0())), maxval(abs(cfg%w0())))
-         if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
-            then
-            call fatal_error(error, 'invalid delta0: must be in (0, 0.1) (rad, rad/s)')
-         else if (ch%delta0 < min_delta0_relative*y_max) then
-            call fatal_error(error, 'invalid delta0: '//sci(ch%delta0)//' is below '// &
-                             sci(min_delta0_relative*y_max)//' = 1e-13 max(1, |state|): '// &
-                             'the displacement would be lost in the rounding of the state')
-         else if (ch%pairs < 1 .or. ch%pairs > 100000) then
-            call fatal_error(error, 'invalid pairs: must be an integer from 1 to 100000')
-         else if (.not. (finite_positive(ch%pair_spacing) .and. &
-                       in_range(ch%pair_spacing, 0.0_dp, max_time))) then
-            call fatal_error(error, 'invalid pair_spacing: must be in (0, '//sci(max_time)// &
-                             '] (s)')
-         else if (ch%pair_spacing*real(ch%pairs - 1, dp) > max_time) then
-            call fatal_error(error, 'invalid pair_spacing: (pairs - 1) * pair_spacing = ' &
-                             //sci(ch%pair_spacing*real(ch%pairs - 1, dp))//' s is above ' &
-                             //sci(max_time)//' s')
-         else if (.not. (in_range(ch%fit_start, 0.0_dp, max_time) .and. &
-                         in_range(ch%fit_end, 0.0_dp, max_time))) then
-            call fatal_error(error, 'invalid fit_start/fit_end: must be in [0, '// &
-                             sci(max_time)//'] (s)')
-         else if (ch%fit_end > 0.0_dp .and. ch%fit_end <= ch%fit_start) then
-            call fatal_error(error, 'invalid fit_end: must be > fit_start (s), or 0 (automatic)')
-         else if (.not. in_range(ch%lyapunov_t, 0.0_dp, max_time)) then
-            call fatal_error(error, 'invalid lyapunov_t: must be in [0, '//sci(max_time)// &
-                             '] (s; 0 = none)')
-         else if (.not. finite_positive(cfg%output_dt) .or. cfg%output_dt > cfg%t_end) then
-            call fatal_error(error, 'invalid output_dt: must be > 0 and <= t_end (s)')
-         end if
-         if (allocated(error)) return
-         if (fixed) then
-            call check_count('pair_spacing', cfg%dt, ch%pair_spacing*real(ch%pairs - 1, dp), &
-                             '(pairs - 1) * pair_spacing', max_steps, 'steps', &
-                             'use a larger --dt, fewer --pairs or a shorter --pair-spacing', &
-                             error)
-            if (allocated(error)) return
-            call check_count('lyapunov_t', cfg%dt, ch%lyapunov_t, 'lyapunov_t', max_steps, &
-                             'steps', 'use a larger --dt or a shorter --lyapunov-t', error)
-            if (allocated(error)) return
-         end if
-         call check_count('lyapunov_t', 0.5_dp, ch%lyapunov_t, 'lyapunov_t', max_samples, &
-                          'renormalisations', 'use a shorter --lyapunov-t', error)
-         if (allocated(error)) return
-         call check_count('output_dt', cfg%output_dt, cfg%t_end, 't_end', max_samples, &
-                          'samples', 'use a larger --output-dt or a shorter --t-end', error)
-         if (allocated(error)) return
-         n = cfg%t_end/cfg%output_dt + 2.0_dp
-         ! per sample: times, two (4, n) state arrays and their copies, the pairs' curves
-         call check_resources('output_dt', n, 8.0_dp*(20.0_dp + real(ch%pairs, dp)), &
-                              8.0_dp*(2.0_dp + real(ch%pairs, dp)), sci(n)//' samples of ' &
-                              //to_str(ch%pairs)//' pair(s)', &
-                              'use a larger --output-dt or fewer --pairs', error)
-         if (allocated(error)) return
-         n = ch%lyapunov_t/0.5_dp + 2.0_dp
-         call check_resources('lyapunov_t', n, 48.0_dp, 0.0_dp, sci(n)//' renormalisations', &
-                              'use a shorter --lyapunov-t', error)
-      case ('poincare')
-         e_lim = energy_limit(cfg%pendulum(), max_angular_velocity)
-         if (.not. cfg%model%energy_sections()) then
-            call fatal_error(error, 'invalid command: poincare needs a model with '// &
-                             'energy-shell sections; the '//cfg%model%name()//' has none')
-         else if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
-            call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
-         else if (ch%n_points < 1) then
-            call fatal_error(error, 'invalid n_points (--points): must be an integer >= 1')
-         else if (real(ch%n_points, dp)*real(ch%n_ics, dp) > real(max_samples, dp)) then
-            call fatal_error(error, 'invalid n_points (--points): '//to_str(ch%n_ics)// &
-                             ' orbits of '//to_str(ch%n_points)//' points keep more than ' &
-                             //sci(real(max_samples, dp))//' section points (fewer points)')
-         else if (ch%section_link /= 1 .and. ch%section_link /= 2) then
-            call fatal_error(error, 'invalid section_link: must be 1 or 2')
-         else if (abs(ch%section_direction) > 1) then
-            call fatal_error(error, 'invalid section_direction: must be -1, 0 or 1')
-         end if
-         if (allocated(error)) return
-         call check_range('section_angle', ch%section_angle, -max_angle, max_angle, 'rad', &
+      case ('lyapunov'); call validate_lyapunov(cfg, ch, fixed, error)
+      case ('indicators'); call validate_indicators(cfg, ch, fixed, error)
+      case ('divergence'); call validate_divergence(cfg, ch, fixed, error)
+      case ('poincare'); call validate_poincare(cfg, ch, error)
+      end select
+   end subroutine validate_chaos
+
+   !> `dpend lyapunov`: tau, vectors, batches; renormalisations kept.
+   subroutine validate_lyapunov(cfg, ch, fixed, error)
+      type(run_config_t), intent(in) :: cfg             !! run configuration (validated)
+      type(chaos_config_t), intent(in) :: ch            !! chaos settings
+      logical, intent(in) :: fixed                      !! a fixed-step method
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      real(dp) :: n
+      if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
+         call fatal_error(error, 'invalid tau: must be in (0, '//sci(max_time)//'] (s)')
+      else if (fixed .and. ch%tau < cfg%dt) then
+         call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
+                          //sci(cfg%dt)//' s of '//cfg%method//' (renormalisations '// &
+                          'happen at step ends; use tau >= dt)')
+      else if (ch%vectors /= all_vectors .and. &
+               (ch%vectors < 1 .or. ch%vectors > cfg%model%n_state())) then
+         call fatal_error(error, 'invalid vectors: '//to_str(ch%vectors)// &
+                          ' must be an integer from 1 to '//to_str(cfg%model%n_state())// &
+                          ' (2N for N links)')
+      else if (ch%batches < 1 .or. ch%batches > 100000) then
+         call fatal_error(error, 'invalid batches: must be an integer from 1 to 100000')
+      end if
+      if (allocated(error)) return
+      call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
+                       'renormalisations', 'use a larger --tau or a shorter --t-end', error)
+      if (allocated(error)) return
+      n = cfg%t_end/ch%tau + 2.0_dp
+      call check_resources(cfg%output, 'tau', n, 3.0_dp*8.0_dp*real(1 + n_vectors(ch, cfg), dp), &
+                           8.0_dp*real(1 + n_vectors(ch, cfg), dp), sci(n)// &
+                           ' renormalisations', &
+                           'use a larger --tau', error)
+   end subroutine validate_lyapunov
+
+   !> `dpend indicators`: tau; samples kept.
+   subroutine validate_indicators(cfg, ch, fixed, error)
+      type(run_config_t), intent(in) :: cfg             !! run configuration (validated)
+      type(chaos_config_t), intent(in) :: ch            !! chaos settings
+      logical, intent(in) :: fixed                      !! a fixed-step method
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      real(dp) :: n
+      if (.not. (finite_positive(ch%tau) .and. in_range(ch%tau, 0.0_dp, max_time))) then
+         call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' must be in (0, '// &
+                          sci(max_time)//'] (s)')
+      else if (fixed .and. ch%tau < cfg%dt) then
+         call fatal_error(error, 'invalid tau: '//sci(ch%tau)//' s is below the step dt = ' &
+                          //sci(cfg%dt)//' s of '//cfg%method//' (samples are taken '// &
+                          'at step ends; use tau >= dt)')
+      end if
+      if (allocated(error)) return
+      call check_count('tau', ch%tau, cfg%t_end, 't_end', max_samples, &
+                       'samples', 'use a larger --tau or a shorter --t-end', error)
+      if (allocated(error)) return
+      n = cfg%t_end/ch%tau + 2.0_dp
+      ! per sample: time, FLI, SALI, 2N log-norms, 2N Y, 2N <Y>, 2N-1 GALI; copies
+      call check_resources(cfg%output, 'tau', n, &
+                           3.0_dp*8.0_dp*real(2 + 8*cfg%model%n_state(), dp), &
+                           8.0_dp*real(2 + 8*cfg%model%n_state(), dp), sci(n)// &
+                           ' samples', 'use a larger --tau', error)
+   end subroutine validate_indicators
+
+   !> `dpend divergence`: delta0, the pairs, the fit window, lyapunov_t, output_dt;
+   !> steps, samples and renormalisations kept.
+   subroutine validate_divergence(cfg, ch, fixed, error)
+      type(run_config_t), intent(in) :: cfg             !! run configuration (validated)
+      type(chaos_config_t), intent(in) :: ch            !! chaos settings
+      logical, intent(in) :: fixed                      !! a fixed-step method
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      real(dp) :: n, y_max
+      y_max = max(1.0_dp, maxval(abs(cfg%q0())), maxval(abs(cfg%w0())))
+      if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
+         then
+         call fatal_error(error, 'invalid delta0: must be in (0, 0.1) (rad, rad/s)')
+      else if (ch%delta0 < min_delta0_relative*y_max) then
+         call fatal_error(error, 'invalid delta0: '//sci(ch%delta0)//' is below '// &
+                          sci(min_delta0_relative*y_max)//' = 1e-13 max(1, |state|): '// &
+                          'the displacement would be lost in the rounding of the state')
+      else if (ch%pairs < 1 .or. ch%pairs > 100000) then
+         call fatal_error(error, 'invalid pairs: must be an integer from 1 to 100000')
+      else if (.not. (finite_positive(ch%pair_spacing) .and. &
+                    in_range(ch%pair_spacing, 0.0_dp, max_time))) then
+         call fatal_error(error, 'invalid pair_spacing: must be in (0, '//sci(max_time)// &
+                          '] (s)')
+      else if (ch%pair_spacing*real(ch%pairs - 1, dp) > max_time) then
+         call fatal_error(error, 'invalid pair_spacing: (pairs - 1) * pair_spacing = ' &
+                          //sci(ch%pair_spacing*real(ch%pairs - 1, dp))//' s is above ' &
+                          //sci(max_time)//' s')
+      else if (.not. (in_range(ch%fit_start, 0.0_dp, max_time) .and. &
+                      in_range(ch%fit_end, 0.0_dp, max_time))) then
+         call fatal_error(error, 'invalid fit_start/fit_end: must be in [0, '// &
+                          sci(max_time)//'] (s)')
+      else if (ch%fit_end > 0.0_dp .and. ch%fit_end <= ch%fit_start) then
+         call fatal_error(error, 'invalid fit_end: must be > fit_start (s), or 0 (automatic)')
+      else if (.not. in_range(ch%lyapunov_t, 0.0_dp, max_time)) then
+         call fatal_error(error, 'invalid lyapunov_t: must be in [0, '//sci(max_time)// &
+                          '] (s; 0 = none)')
+      else if (.not. finite_positive(cfg%output_dt) .or. cfg%output_dt > cfg%t_end) then
+         call fatal_error(error, 'invalid output_dt: must be > 0 and <= t_end (s)')
+      end if
+      if (allocated(error)) return
+      if (fixed) then
+         call check_count('pair_spacing', cfg%dt, ch%pair_spacing*real(ch%pairs - 1, dp), &
+                          '(pairs - 1) * pair_spacing', max_steps, 'steps', &
+                          'use a larger --dt, fewer --pairs or a shorter --pair-spacing', &
                           error)
          if (allocated(error)) return
-         call check_range('energy', ch%energy, -e_lim, e_lim, 'J', error, 'the energy of '// &
-                          'angular velocities up to 1e6 rad/s with these parameters')
+         call check_count('lyapunov_t', cfg%dt, ch%lyapunov_t, 'lyapunov_t', max_steps, &
+                          'steps', 'use a larger --dt or a shorter --lyapunov-t', error)
          if (allocated(error)) return
-         n = real(ch%n_points, dp)*real(ch%n_ics, dp)
-         ! per point: the orbit's buffers (4 reals), the gathered result (5) and copies
-         call check_resources('n_points (--points)', n, 2.0_dp*8.0_dp*9.0_dp, 48.0_dp, &
-                              sci(n)//' section points', 'use fewer --points or --ics', error)
-      end select
-   contains
-      elemental logical function nonneg(x)
-         real(dp), intent(in) :: x
-         nonneg = finite_positive(x) .or. x == 0.0_dp
-      end function nonneg
+      end if
+      call check_count('lyapunov_t', 0.5_dp, ch%lyapunov_t, 'lyapunov_t', max_samples, &
+                       'renormalisations', 'use a shorter --lyapunov-t', error)
+      if (allocated(error)) return
+      call check_count('output_dt', cfg%output_dt, cfg%t_end, 't_end', max_samples, &
+                       'samples', 'use a larger --output-dt or a shorter --t-end', error)
+      if (allocated(error)) return
+      n = cfg%t_end/cfg%output_dt + 2.0_dp
+      ! per sample: times, two (4, n) state arrays and their copies, the pairs' curves
+      call check_resources(cfg%output, 'output_dt', n, 8.0_dp*(20.0_dp + real(ch%pairs, dp)), &
+                           8.0_dp*(2.0_dp + real(ch%pairs, dp)), sci(n)//' samples of ' &
+                           //to_str(ch%pairs)//' pair(s)', &
+                           'use a larger --output-dt or fewer --pairs', error)
+      if (allocated(error)) return
+      n = ch%lyapunov_t/0.5_dp + 2.0_dp
+      call check_resources(cfg%output, 'lyapunov_t', n, 48.0_dp, 0.0_dp, &
+                           sci(n)//' renormalisations', &
+                           'use a shorter --lyapunov-t', error)
+   end subroutine validate_divergence
 
-      !> Memory (n·per_memory) and file size (n·per_file) of n kept items.
-      subroutine check_resources(field, n, per_memory, per_file, what, hint, err)
-         character(len=*), intent(in) :: field, what, hint
-         real(dp), intent(in) :: n, per_memory, per_file
-         type(error_t), allocatable, intent(out) :: err
-         call check_memory(field, n*per_memory, what, hint, err)
-         if (allocated(err) .or. per_file <= 0.0_dp) return
-         call check_disk(field, n*per_file + 65536.0_dp, cfg%output, hint, err)
-      end subroutine check_resources
-   end subroutine validate_chaos
+   !> `dpend poincare`: a model with sections, the orbits, the section, the energy;
+   !> section points kept.
+   subroutine validate_poincare(cfg, ch, error)
+      type(run_config_t), intent(in) :: cfg             !! run configuration (validated)
+      type(chaos_config_t), intent(in) :: ch            !! chaos settings
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      real(dp) :: n, e_lim
+      e_lim = energy_limit(cfg%pendulum(), max_angular_velocity)
+      if (.not. cfg%model%energy_sections()) then
+         call fatal_error(error, 'invalid command: poincare needs a model with '// &
+                          'energy-shell sections; the '//cfg%model%name()//' has none')
+      else if (ch%n_ics < 1 .or. ch%n_ics > 1000000) then
+         call fatal_error(error, 'invalid n_ics (--ics): must be an integer from 1 to 1000000')
+      else if (ch%n_points < 1) then
+         call fatal_error(error, 'invalid n_points (--points): must be an integer >= 1')
+      else if (real(ch%n_points, dp)*real(ch%n_ics, dp) > real(max_samples, dp)) then
+         call fatal_error(error, 'invalid n_points (--points): '//to_str(ch%n_ics)// &
+                          ' orbits of '//to_str(ch%n_points)//' points keep more than ' &
+                          //sci(real(max_samples, dp))//' section points (fewer points)')
+      else if (ch%section_link /= 1 .and. ch%section_link /= 2) then
+         call fatal_error(error, 'invalid section_link: must be 1 or 2')
+      else if (abs(ch%section_direction) > 1) then
+         call fatal_error(error, 'invalid section_direction: must be -1, 0 or 1')
+      end if
+      if (allocated(error)) return
+      call check_range('section_angle', ch%section_angle, -max_angle, max_angle, 'rad', &
+                       error)
+      if (allocated(error)) return
+      call check_range('energy', ch%energy, -e_lim, e_lim, 'J', error, 'the energy of '// &
+                       'angular velocities up to 1e6 rad/s with these parameters')
+      if (allocated(error)) return
+      n = real(ch%n_points, dp)*real(ch%n_ics, dp)
+      ! per point: the orbit's buffers (4 reals), the gathered result (5) and copies
+      call check_resources(cfg%output, 'n_points (--points)', n, 2.0_dp*8.0_dp*9.0_dp, 48.0_dp, &
+                           sci(n)//' section points', 'use fewer --points or --ics', error)
+   end subroutine validate_poincare
+
+   !> Memory (n·per_memory) and file size (n·per_file, on the file system of `output`)
+   !> of n kept items.
+   subroutine check_resources(output, field, n, per_memory, per_file, what, hint, err)
+      character(len=*), intent(in) :: output            !! the output file
+      character(len=*), intent(in) :: field, what, hint !! for the message
+      real(dp), intent(in) :: n                         !! items kept
+      real(dp), intent(in) :: per_memory, per_file      !! bytes per item
+      type(error_t), allocatable, intent(out) :: err    !! does not fit
+      call check_memory(field, n*per_memory, what, hint, err)
+      if (allocated(err) .or. per_file <= 0.0_dp) return
+      call check_disk(field, n*per_file + 65536.0_dp, output, hint, err)
+   end subroutine check_resources
 
    !> Run the command. `error` is set for invalid input (nothing written) or for
    !> a failed run (`failed`; the file holds what was computed before). `summary`
@@ -795,7 +833,17 @@ contains
          call stopped(status, cfg%output, error, failed)
          return
       end if
-      summary = summary//nl//'divergence slope: '//es(fit%slope)
+      if (fit%ok) then
+         summary = summary//nl//'divergence slope: '//es(fit%slope)
+      else if (ch%fit_end > ch%fit_start) then
+         summary = summary//nl//'divergence slope: none (fewer than 3 samples in the fit ' &
+                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s; widen ' &
+                   //'--fit-start/--fit-end or lower --output-dt)'
+      else
+         summary = summary//nl//'divergence slope: none (no exponential phase: log10|delta| ' &
+                   //'did not rise one decade above its start within '//num(cfg%t_end) &
+                   //' s; a regular orbit, or try a longer --t-end)'
+      end if
    end subroutine run_divergence
 
    !> `dpend poincare`.

@@ -27,7 +27,8 @@ module dpend_config
                            max_time, max_dt, min_rtol, min_atol, max_atol, max_omega, &
                            max_steps, default_max_steps, sci, max_support_frequency
    use dpend_integrator, only: integrator_t
-   use dpend_methods, only: new_integrator
+   use dpend_methods, only: new_integrator, method_names
+   use dpend_strings, only: canonical_name
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -40,6 +41,31 @@ module dpend_config
 
    !> The lists a user may give (--m --l --q --w, namelist m l q w), in this order.
    character(len=1), parameter :: list_names(4) = ['m', 'l', 'q', 'w']
+
+   !> Pairs (list, scalar) of two forms of one quantity in a namelist group.
+   character(len=2), parameter :: scan_forms(2, 8) = reshape([character(len=2) :: &
+      'm', 'm1', 'm', 'm2', 'l', 'l1', 'l', 'l2', 'q', 'q1', 'q', 'q2', 'w', 'w1', 'w', 'w2'], &
+      [2, 8])
+   !> What ends a token of a namelist (besides quotes, '!' and '%').
+   character(len=*), parameter :: scan_delims = ' ,=/'//achar(9)//achar(10)//achar(13)
+   character(len=*), parameter :: printable_ascii = ' !"#$%&''()*+,-./0123456789:;<=>?@' &
+      //'ABCDEFGHIJKLMNOPQRSTUVWXYZ[\]^_`abcdefghijklmnopqrstuvwxyz{|}~'
+   !> Keys of one group compared for repeats (more: not compared).
+   integer, parameter :: max_scan_keys = 1024
+
+   !> Where the strict scan of a namelist file stands (`check_number_tokens`).
+   type :: nml_scan_t
+      character(len=:), allocatable :: pre    !! message prefix
+      character(len=:), allocatable :: group  !! the current group, lower case
+      character(len=:), allocatable :: key    !! the current key, without blanks
+      integer :: line = 1                     !! the current line
+      logical :: inside = .false.             !! within a group
+      logical :: wants_value = .false.        !! a key was read, its value not yet
+      integer :: n_values = 0                 !! values of the current key so far
+      integer :: n_keys = 0                   !! keys of the current group so far
+      character(len=64) :: keys(max_scan_keys) = ''   !! them
+      integer :: key_lines(max_scan_keys) = 0         !! and their lines
+   end type nml_scan_t
 
    !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
    !> Per-link values are kept for max_dof links; the first `links` are used.
@@ -170,7 +196,7 @@ contains
          body = body(eq + 1:)
          k = next_key(body)
          if (key == 'name') then
-            cfg%model_name = unquoted(body(:k - 1))
+            cfg%model_name = canonical_name(unquoted(body(:k - 1)), model_names())
          else if (is_model_parameter(key)) then
             call parse_values(key, body(:k - 1))
             if (allocated(error)) return
@@ -296,50 +322,28 @@ contains
    !> group (`m` with `m1`/`m2`, `l`, `q`, `w` alike: the list would win), and a value
    !> that starts like a number but is not one of the strict grammar (`dpend_parse`:
    !> '1;2', a 1,000-digit mantissa beyond the largest double, 'nan'; a repeat count
-   !> `r*value` is checked on both sides). Values that start with a letter (logicals,
-   !> names) and quoted strings are left to the namelist read.
+   !> `r*value` is checked on both sides), and a second value for a key that takes one
+   !> (`dt = 0.001 0.002`: the read would keep the first silently; `is_array_key`).
+   !> Values that start with a letter (logicals, names) and quoted strings are left to
+   !> the namelist read.
    subroutine check_number_tokens(text, pre, error)
       character(len=*), intent(in) :: text              !! the file (its groups checked)
       character(len=*), intent(in) :: pre               !! message prefix
       type(error_t), allocatable, intent(out) :: error  !! the first problem
-      !> Pairs (list, scalar) of two forms of one quantity.
-      character(len=2), parameter :: forms(2, 8) = reshape([character(len=2) :: &
-         'm', 'm1', 'm', 'm2', 'l', 'l1', 'l', 'l2', 'q', 'q1', 'q', 'q2', 'w', 'w1', 'w', 'w2'], &
-         [2, 8])
-      character(len=*), parameter :: delims = ' ,=/'//achar(9)//achar(10)//achar(13)
-      character(len=*), parameter :: printable_ascii = ' !"#$%&''()*+,-./0123456789:;<=>?@' &
-         //'ABCDEFGHIJKLMNOPQRSTUVWXYZ[\]^_`abcdefghijklmnopqrstuvwxyz{|}~'
-      integer, parameter :: max_keys = 1024   ! keys of one group compared (more: not)
-      character(len=64) :: keys(max_keys)
-      integer :: key_lines(max_keys)
-      character(len=:), allocatable :: group, tok, key, base
-      integer :: i, j, k, line, n_keys, depth
-      logical :: inside, wants_value
-      wants_value = .false.
-      n_keys = 0
-      inside = .false.
-      group = ''
-      key = ''
-      line = 1
+      type(nml_scan_t) :: s
+      integer :: i, j
+      s%pre = pre
+      s%group = ''
+      s%key = ''
       i = 1
       do while (i <= len(text))
          select case (text(i:i))
          case (achar(10))
-            line = line + 1
+            s%line = s%line + 1
             i = i + 1
          case ("'", '"')                       ! a string: skip to its closing quote
-            j = index(text(i + 1:), text(i:i))
-            if (j == 0) j = len(text) - i + 1
-            ! longer than the key's variable: the namelist read would cut it short
-            ! silently (a warning of the runtime at most)
-            if (inside .and. j - 1 > string_length(group, key)) then
-               call refuse(key_text()//'a text of '//to_str(j - 1)// &
-                           ' characters; at most '//to_str(string_length(group, key)))
-               return
-            end if
-            wants_value = .false.
-            line = line + count_lf(text(i:i + j))
-            i = i + j + 1
+            call scan_string(s, text, i, error)
+            if (allocated(error)) return
          case ('!')                            ! a comment: skip to the line end
             j = index(text(i:), achar(10))
             if (j == 0) exit
@@ -347,228 +351,333 @@ contains
          case ('&', '$')
             j = i + 1
             do while (j <= len(text))
-               if (index(delims//'%!', text(j:j)) > 0) exit
+               if (index(scan_delims//'%!', text(j:j)) > 0) exit
                j = j + 1
             end do
-            group = to_lower(text(i + 1:j - 1))
-            inside = group /= 'end'
-            n_keys = 0
+            s%group = to_lower(text(i + 1:j - 1))
+            s%inside = s%group /= 'end'
+            s%n_keys = 0
+            s%n_values = 0
             i = j
          case ('%')
-            call refuse("'%' (component syntax, as in &pendulum%m1) is not accepted; " &
-                        //'write the keys inside the group: &pendulum m1 = 2 /')
+            call scan_refuse(s, "'%' (component syntax, as in &pendulum%m1) is not " &
+                             //'accepted; write the keys inside the group: &pendulum m1 = 2 /', &
+                             error)
             return
          case ('/')
-            if (inside .and. wants_value) then
-               call refuse(key_text()//'no value (a key needs one: the namelist read would ' &
-                           //'keep the default silently)')
+            if (s%inside .and. s%wants_value) then
+               call scan_refuse(s, scan_key_text(s)//'no value (a key needs one: the ' &
+                                //'namelist read would keep the default silently)', error)
                return
             end if
-            inside = .false.
+            s%inside = .false.
             i = i + 1
          case default
-            if (index(delims, text(i:i)) > 0 .or. .not. inside) then
+            if (index(scan_delims, text(i:i)) > 0 .or. .not. s%inside) then
                i = i + 1
                cycle
             end if
-            ! a token: up to a delimiter outside parentheses (subscripts 'q(1:3, 1)')
-            j = i
-            depth = 0
-            do while (j <= len(text))
-               if (text(j:j) == '(') depth = depth + 1
-               if (text(j:j) == ')') depth = depth - 1
-               if (depth <= 0 .and. index(delims//"!'"//'"%', text(j:j)) > 0) exit
-               if (text(j:j) == achar(10)) exit
-               j = j + 1
-            end do
-            tok = text(i:j - 1)
-            i = j
-            ! a key when the next character that is not a blank is '='
-            k = verify(text(j:), ' '//achar(9)//achar(13)//achar(10))
-            if (k > 0) k = j + k - 1
-            if (k > 0) then
-               if (text(k:k) == '=') then
-                  if (wants_value) then
-                     call refuse(key_text()//'no value (a key needs one: the namelist ' &
-                                 //'read would keep the default silently)')
-                     return
-                  end if
-                  call add_key(to_lower(tok))
-                  if (allocated(error)) return
-                  wants_value = .true.
-                  cycle
-               end if
-            end if
-            wants_value = .false.
-            if (verify(tok, printable_ascii) /= 0) then
-               call refuse(key_text()//quoted(tok)//' holds a byte that is not printable ' &
-                           //'ASCII (quote a text; a number is ASCII digits)')
-               return
-            end if
-            if (len(tok) > string_length(group, key) .and. is_string_key(key)) then
-               call refuse(key_text()//'a text of '//to_str(len(tok))// &
-                           ' characters; at most '//to_str(string_length(group, key)))
-               return
-            end if
-            call check_value(tok)
+            call scan_token(s, text, i, error)
             if (allocated(error)) return
          end select
       end do
-   contains
-      !> The length of the text variable read for `k` of group `g` (the namelists of
-      !> dpend_config, dpend_sweep_config, dpend_study_config; names 16 characters,
-      !> case names 32, method 64 in &integration, file names 1024).
-      pure integer function string_length(g, k) result(n)
-         character(len=*), intent(in) :: g, k
-         character(len=:), allocatable :: b
-         b = k
-         if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
-         select case (b)
-         case ('file', 'ic_file', 'ic_dataset'); n = 1024
-         case ('name'); n = 1024                         ! &model: read by dpend itself
-         case ('case_name', 'order_case', 'drift_case', 'ro_case', 'tao_case'); n = 32
-         case ('method')
-            n = merge(64, 16, g == 'integration')
-         case default; n = 16
-         end select
-      end function string_length
-
-      !> A logical of a namelist: t, f, true, false, .t., .false., ... (any case).
-      pure logical function logical_word(w)
-         character(len=*), intent(in) :: w
-         character(len=:), allocatable :: u
-         u = to_lower(w)
-         if (len(u) > 0) then
-            if (u(1:1) == '.') u = u(2:)
-         end if
-         if (len(u) > 0) then
-            if (u(len(u):len(u)) == '.') u = u(:len(u) - 1)
-         end if
-         logical_word = u == 't' .or. u == 'f' .or. u == 'true' .or. u == 'false'
-      end function logical_word
-
-      !> Whether `k` is read into a text variable (string_length applies).
-      pure logical function is_string_key(k)
-         character(len=*), intent(in) :: k
-         character(len=:), allocatable :: b
-         b = k
-         if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
-         select case (b)
-         case ('file', 'ic_file', 'ic_dataset', 'name', 'case_name', 'order_case', &
-               'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
-               'ro_method', 'tao_method', 'axis1', 'axis2', 'ic_angles', 'time_unit', &
-               'stop_at', 'indicator')
-            is_string_key = .true.
-         case default
-            is_string_key = .false.
-         end select
-      end function is_string_key
-
-      !> Record key `k` of the current group; refuse a repeat or a second form.
-      subroutine add_key(k)
-         character(len=*), intent(in) :: k
-         integer :: n, p
-         character(len=:), allocatable :: b
-         key = ''
-         do n = 1, len(k)            ! without blanks: 'q (1:3, 1)' is 'q(1:3,1)'
-            if (index(' '//achar(9), k(n:n)) == 0) key = key//k(n:n)
-         end do
-         p = index(key, '(')
-         base = key
-         if (p > 0) base = key(:p - 1)
-         do n = 1, n_keys
-            b = trim(keys(n))
-            if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
-            if (trim(keys(n)) == key .or. (b == base .and. (p == 0 .or. &
-                                                             index(keys(n), '(') == 0))) then
-               call refuse("key '"//printable(key)//"' of &"//printable(group)// &
-                           ' is given twice (also at line '//to_str(key_lines(n))// &
-                           '); give each key once')
-               return
-            end if
-            do p = 1, size(forms, 2)
-               if ((b == trim(forms(1, p)) .and. base == trim(forms(2, p))) .or. &
-                   (b == trim(forms(2, p)) .and. base == trim(forms(1, p)))) then
-                  call refuse("'"//trim(forms(1, p))//"' (one value per link) and '"// &
-                              trim(forms(2, p))//"' are two forms of one quantity in &"// &
-                              printable(group)//' (the other at line '// &
-                              to_str(key_lines(n))//'); give one of them')
-                  return
-               end if
-            end do
-         end do
-         if (n_keys == max_keys) return
-         n_keys = n_keys + 1
-         keys(n_keys) = key
-         key_lines(n_keys) = line
-      end subroutine add_key
-
-      !> Refuse a value that starts like a number but is not one (also r*value).
-      subroutine check_value(t)
-         character(len=*), intent(in) :: t
-         character(len=:), allocatable :: why, v
-         integer :: star, r
-         real(dp) :: x
-         v = t
-         star = index(t, '*')
-         if (star > 0) then
-            call read_int(t(:star - 1), r, why)
-            if (len(why) == 0 .and. r < 1) why = 'is not a repeat count >= 1'
-            if (len(why) > 0) then
-               call refuse(key_text()//quoted(t(:star - 1))//' (repeat count of '// &
-                           quoted(t)//') '//why)
-               return
-            end if
-            v = t(star + 1:)
-         end if
-         if (len(v) == 0) return                      ! 'r*': r null values
-         ! a word for a key that is not a text: a logical (t, f, .true., false, ...)
-         if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v) .and. &
-             .not. is_string_key(key)) then
-            if (.not. logical_word(v)) then
-               call refuse(key_text()//quoted(v)//' is not a number or a logical (quote ' &
-                           //'a text)')
-               return
-            end if
-         end if
-         if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)) return
-         if (len(v) >= 2) then                        ! .true. / .false. / .t / .f
-            if (v(1:1) == '.' .and. index('tTfF', v(2:2)) > 0) return
-         end if
-         call read_real(v, x, why)
-         if (len(why) > 0) call refuse(key_text()//quoted(v)//' '//why)
-      end subroutine check_value
-
-      pure logical function non_finite(t)
-         character(len=*), intent(in) :: t
-         character(len=:), allocatable :: u
-         u = to_lower(t)
-         if (u(1:1) == '+' .or. u(1:1) == '-') u = u(2:)
-         non_finite = u == 'inf' .or. u == 'infinity' .or. u == 'nan'
-      end function non_finite
-
-      function key_text() result(s)
-         character(len=:), allocatable :: s
-         s = ''
-         if (allocated(key)) then
-            if (len(key) > 0) s = "key '"//printable(key)//"': "
-         end if
-      end function key_text
-
-      subroutine refuse(msg)
-         character(len=*), intent(in) :: msg
-         call fatal_error(error, pre//'line '//to_str(line)//': '//msg)
-      end subroutine refuse
-
-      pure integer function count_lf(t)
-         character(len=*), intent(in) :: t
-         integer :: n
-         count_lf = 0
-         do n = 1, len(t)
-            if (t(n:n) == achar(10)) count_lf = count_lf + 1
-         end do
-      end function count_lf
    end subroutine check_number_tokens
+
+   !> The quoted string at text(i:) (`check_number_tokens`): not longer than its key's
+   !> variable (the read would cut it short silently), one value of the key; `i` moves
+   !> past its closing quote.
+   subroutine scan_string(s, text, i, error)
+      type(nml_scan_t), intent(inout) :: s              !! scan state
+      character(len=*), intent(in) :: text              !! the file
+      integer, intent(inout) :: i                       !! the opening quote; then past
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: j
+      j = index(text(i + 1:), text(i:i))
+      if (j == 0) j = len(text) - i + 1
+      ! longer than the key's variable: the namelist read would cut it short
+      ! silently (a warning of the runtime at most)
+      if (s%inside .and. j - 1 > string_length(s%group, s%key)) then
+         call scan_refuse(s, scan_key_text(s)//'a text of '//to_str(j - 1)// &
+                          ' characters; at most '//to_str(string_length(s%group, s%key)), error)
+         return
+      end if
+      if (s%inside) call scan_count_values(s, 1, error)
+      if (allocated(error)) return
+      s%wants_value = .false.
+      s%line = s%line + count_lf(text(i:i + j))
+      i = i + j + 1
+   end subroutine scan_string
+
+   !> The token at text(i:) inside a group (`check_number_tokens`): a key (followed
+   !> by '=') or a value of the current key; `i` moves past it.
+   subroutine scan_token(s, text, i, error)
+      type(nml_scan_t), intent(inout) :: s              !! scan state
+      character(len=*), intent(in) :: text              !! the file
+      integer, intent(inout) :: i                       !! the token's start; then past
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: tok
+      integer :: j, k, depth
+      ! a token: up to a delimiter outside parentheses (subscripts 'q(1:3, 1)')
+      j = i
+      depth = 0
+      do while (j <= len(text))
+         if (text(j:j) == '(') depth = depth + 1
+         if (text(j:j) == ')') depth = depth - 1
+         if (depth <= 0 .and. index(scan_delims//"!'"//'"%', text(j:j)) > 0) exit
+         if (text(j:j) == achar(10)) exit
+         j = j + 1
+      end do
+      tok = text(i:j - 1)
+      i = j
+      ! a key when the next character that is not a blank is '='
+      k = verify(text(j:), ' '//achar(9)//achar(13)//achar(10))
+      if (k > 0) k = j + k - 1
+      if (k > 0) then
+         if (text(k:k) == '=') then
+            if (s%wants_value) then
+               call scan_refuse(s, scan_key_text(s)//'no value (a key needs one: the ' &
+                                //'namelist read would keep the default silently)', error)
+               return
+            end if
+            call scan_add_key(s, to_lower(tok), error)
+            if (allocated(error)) return
+            s%wants_value = .true.
+            return
+         end if
+      end if
+      s%wants_value = .false.
+      if (verify(tok, printable_ascii) /= 0) then
+         call scan_refuse(s, scan_key_text(s)//quoted(tok)//' holds a byte that is not ' &
+                          //'printable ASCII (quote a text; a number is ASCII digits)', error)
+         return
+      end if
+      if (len(tok) > string_length(s%group, s%key) .and. is_string_key(s%key)) then
+         call scan_refuse(s, scan_key_text(s)//'a text of '//to_str(len(tok))// &
+                          ' characters; at most '//to_str(string_length(s%group, s%key)), error)
+         return
+      end if
+      call scan_check_value(s, tok, error)
+   end subroutine scan_token
+
+   !> Record key `k` of the current group; refuse a repeat or a second form of one
+   !> quantity (`scan_forms`).
+   subroutine scan_add_key(s, k, error)
+      type(nml_scan_t), intent(inout) :: s              !! scan state
+      character(len=*), intent(in) :: k                 !! the key, lower case
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: n, p
+      character(len=:), allocatable :: b, base
+      s%key = ''
+      s%n_values = 0
+      do n = 1, len(k)            ! without blanks: 'q (1:3, 1)' is 'q(1:3,1)'
+         if (index(' '//achar(9), k(n:n)) == 0) s%key = s%key//k(n:n)
+      end do
+      p = index(s%key, '(')
+      base = s%key
+      if (p > 0) base = s%key(:p - 1)
+      do n = 1, s%n_keys
+         b = trim(s%keys(n))
+         if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+         if (trim(s%keys(n)) == s%key .or. (b == base .and. (p == 0 .or. &
+                                                           index(s%keys(n), '(') == 0))) then
+            call scan_refuse(s, "key '"//printable(s%key)//"' of &"//printable(s%group)// &
+                             ' is given twice (also at line '//to_str(s%key_lines(n))// &
+                             '); give each key once', error)
+            return
+         end if
+         do p = 1, size(scan_forms, 2)
+            if ((b == trim(scan_forms(1, p)) .and. base == trim(scan_forms(2, p))) .or. &
+                (b == trim(scan_forms(2, p)) .and. base == trim(scan_forms(1, p)))) then
+               call scan_refuse(s, "'"//trim(scan_forms(1, p))//"' (one value per link) and '" &
+                                //trim(scan_forms(2, p))//"' are two forms of one quantity " &
+                                //'in &'//printable(s%group)//' (the other at line '// &
+                                to_str(s%key_lines(n))//'); give one of them', error)
+               return
+            end if
+         end do
+      end do
+      if (s%n_keys == max_scan_keys) return
+      s%n_keys = s%n_keys + 1
+      s%keys(s%n_keys) = s%key
+      s%key_lines(s%n_keys) = s%line
+   end subroutine scan_add_key
+
+   !> Refuse a value that starts like a number but is not one (also r*value), or a
+   !> word that is not a logical for a key that is not a text.
+   subroutine scan_check_value(s, t, error)
+      type(nml_scan_t), intent(inout) :: s              !! scan state
+      character(len=*), intent(in) :: t                 !! the value's token
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: why, v
+      integer :: star, r
+      real(dp) :: x
+      v = t
+      star = index(t, '*')
+      if (star > 0) then
+         call read_int(t(:star - 1), r, why)
+         if (len(why) == 0 .and. r < 1) why = 'is not a repeat count >= 1'
+         if (len(why) > 0) then
+            call scan_refuse(s, scan_key_text(s)//quoted(t(:star - 1))//' (repeat count of ' &
+                             //quoted(t)//') '//why, error)
+            return
+         end if
+         v = t(star + 1:)
+         call scan_count_values(s, r, error)
+      else
+         call scan_count_values(s, 1, error)
+      end if
+      if (allocated(error)) return
+      if (len(v) == 0) return                      ! 'r*': r null values
+      ! a word for a key that is not a text: a logical (t, f, .true., false, ...)
+      if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v) .and. &
+          .not. is_string_key(s%key)) then
+         if (.not. logical_word(v)) then
+            call scan_refuse(s, scan_key_text(s)//quoted(v)//' is not a number or a ' &
+                             //'logical (quote a text)', error)
+            return
+         end if
+      end if
+      if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)) return
+      if (len(v) >= 2) then                        ! .true. / .false. / .t / .f
+         if (v(1:1) == '.' .and. index('tTfF', v(2:2)) > 0) return
+      end if
+      call read_real(v, x, why)
+      if (len(why) > 0) call scan_refuse(s, scan_key_text(s)//quoted(v)//' '//why, error)
+   end subroutine scan_check_value
+
+   !> Count `r` more values of the current key; refuse a second one for a key that
+   !> takes one value (a scalar: the namelist read would keep the first silently).
+   subroutine scan_count_values(s, r, error)
+      type(nml_scan_t), intent(inout) :: s              !! scan state
+      integer, intent(in) :: r                          !! values
+      type(error_t), allocatable, intent(out) :: error  !! a second value for a scalar
+      if (len(s%key) == 0) return
+      s%n_values = s%n_values + r
+      if (s%n_values > 1 .and. .not. is_array_key(s%group, s%key)) &
+         call scan_refuse(s, scan_key_text(s)//to_str(s%n_values)//' values for a key that ' &
+                          //'takes one (the namelist read would keep the first silently); ' &
+                          //'give one value', error)
+   end subroutine scan_count_values
+
+   !> "key 'dt': " for the current key ('' before the first key).
+   function scan_key_text(s) result(t)
+      type(nml_scan_t), intent(in) :: s  !! scan state
+      character(len=:), allocatable :: t
+      t = ''
+      if (len(s%key) > 0) t = "key '"//printable(s%key)//"': "
+   end function scan_key_text
+
+   !> The refusal: the file, the line, `msg`.
+   subroutine scan_refuse(s, msg, error)
+      type(nml_scan_t), intent(in) :: s                 !! scan state
+      character(len=*), intent(in) :: msg               !! what is wrong
+      type(error_t), allocatable, intent(out) :: error  !! the refusal
+      call fatal_error(error, s%pre//'line '//to_str(s%line)//': '//msg)
+   end subroutine scan_refuse
+
+   !> The length of the text variable read for `k` of group `g` (the namelists of
+   !> dpend_config, dpend_sweep_config, dpend_study_config; names 16 characters,
+   !> case names 32, method 64 in &integration, file names 1024).
+   pure integer function string_length(g, k) result(n)
+      character(len=*), intent(in) :: g  !! group
+      character(len=*), intent(in) :: k  !! key
+      character(len=:), allocatable :: b
+      b = k
+      if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+      select case (b)
+      case ('file', 'ic_file', 'ic_dataset'); n = 1024
+      case ('name'); n = 1024                         ! &model: read by dpend itself
+      case ('case_name', 'order_case', 'drift_case', 'ro_case', 'tao_case'); n = 32
+      case ('method')
+         n = merge(64, 16, g == 'integration')
+      case default; n = 16
+      end select
+   end function string_length
+
+   !> A logical of a namelist: t, f, true, false, .t., .false., ... (any case).
+   pure logical function logical_word(w)
+      character(len=*), intent(in) :: w  !! a word
+      character(len=:), allocatable :: u
+      u = to_lower(w)
+      if (len(u) > 0) then
+         if (u(1:1) == '.') u = u(2:)
+      end if
+      if (len(u) > 0) then
+         if (u(len(u):len(u)) == '.') u = u(:len(u) - 1)
+      end if
+      logical_word = u == 't' .or. u == 'f' .or. u == 'true' .or. u == 'false'
+   end function logical_word
+
+   !> Whether `k` is read into a text variable (string_length applies).
+   pure logical function is_string_key(k)
+      character(len=*), intent(in) :: k  !! key
+      character(len=:), allocatable :: b
+      b = k
+      if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
+      select case (b)
+      case ('file', 'ic_file', 'ic_dataset', 'name', 'case_name', 'order_case', &
+            'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
+            'ro_method', 'tao_method', 'axis1', 'axis2', 'ic_angles', 'time_unit', &
+            'stop_at', 'indicator')
+         is_string_key = .true.
+      case default
+         is_string_key = .false.
+      end select
+   end function is_string_key
+
+   !> inf, infinity, nan (any case, signed): a word the number check still reads.
+   pure logical function non_finite(t)
+      character(len=*), intent(in) :: t  !! a token
+      character(len=:), allocatable :: u
+      u = to_lower(t)
+      if (u(1:1) == '+' .or. u(1:1) == '-') u = u(2:)
+      non_finite = u == 'inf' .or. u == 'infinity' .or. u == 'nan'
+   end function non_finite
+
+   !> Line ends in `t`.
+   pure integer function count_lf(t)
+      character(len=*), intent(in) :: t  !! text
+      integer :: n
+      count_lf = 0
+      do n = 1, len(t)
+         if (t(n:n) == achar(10)) count_lf = count_lf + 1
+      end do
+   end function count_lf
+
+   !> Whether key `k` of namelist group `g` takes several values: an array of the
+   !> namelists of dpend_config (&pendulum m l damping support_amplitude support_phase,
+   !> &initial q w), dpend_study_config (&study case_* and the method lists) or an
+   !> element with a subscript ('q(2) = 1 2' fills q(2) and q(3)). The parameters of
+   !> &model are checked by the factory (one value for a scalar parameter).
+   pure logical function is_array_key(g, k)
+      character(len=*), intent(in) :: g  !! group name, lower case
+      character(len=*), intent(in) :: k  !! key, lower case, without blanks
+      if (index(k, '(') > 0 .or. g == 'model') then
+         is_array_key = .true.
+         return
+      end if
+      select case (g)
+      case ('pendulum')
+         select case (k)
+         case ('m', 'l', 'damping', 'support_amplitude', 'support_phase')
+            is_array_key = .true.
+         case default
+            is_array_key = .false.
+         end select
+      case ('initial')
+         is_array_key = k == 'q' .or. k == 'w'
+      case ('study')
+         select case (k)
+         case ('method', 'h_min', 'h_max', 'rtol_min', 'rtol_max', 'ro_method', 'ro_dt', &
+               'tao_method')
+            is_array_key = .true.
+         case default
+            is_array_key = index(k, 'case_') == 1
+         end select
+      case default
+         is_array_key = .false.
+      end select
+   end function is_array_key
 
    !> Refuse an input path that is not (a link to) a regular file, before anything
    !> opens it (a FIFO would block the open); messages start with `pre`.
@@ -914,7 +1023,7 @@ contains
       call take_list(0, damping, cfg%damping)
       cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
       cfg%support_phase = support_phase
-      if (len_trim(method) > 0) cfg%method = trim(method)
+      if (len_trim(method) > 0) cfg%method = canonical_name(trim(method), method_names())
       cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
       cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
       cfg%max_steps = max_steps
@@ -951,18 +1060,18 @@ contains
       logical, intent(out) :: matched                   !! whether it was a common flag
       type(error_t), allocatable, intent(out) :: error  !! invalid value
       matched = .true.
-      call check_forms(error)
+      call check_flag_forms(cfg, name, error)
       if (allocated(error)) return
       select case (name)
       case ('--links'); call parse_int(value, name, cfg%links, error)
-      case ('--m'); call parse_list(1, cfg%m)
-      case ('--l'); call parse_list(2, cfg%l)
-      case ('--q'); call parse_list(3, cfg%q)
-      case ('--w'); call parse_list(4, cfg%w)
+      case ('--m'); call set_list(cfg, 1, name, value, error)
+      case ('--l'); call set_list(cfg, 2, name, value, error)
+      case ('--q'); call set_list(cfg, 3, name, value, error)
+      case ('--w'); call set_list(cfg, 4, name, value, error)
       case ('--q1'); call parse_real(value, name, cfg%q(1), error)
       case ('--q2'); call parse_real(value, name, cfg%q(2), error)
       case ('--theta1', '--theta2')   ! from the hanging position, as the sweep's axes
-         call parse_theta(merge(1, 2, name == '--theta1'))
+         call set_theta(cfg, merge(1, 2, name == '--theta1'), name, value, error)
       case ('--w1'); call parse_real(value, name, cfg%w(1), error)
       case ('--w2'); call parse_real(value, name, cfg%w(2), error)
       case ('--m1'); call parse_real(value, name, cfg%m(1), error)
@@ -970,7 +1079,7 @@ contains
       case ('--l1'); call parse_real(value, name, cfg%l(1), error)
       case ('--l2'); call parse_real(value, name, cfg%l(2), error)
       case ('--g'); call parse_real(value, name, cfg%g, error)
-      case ('--method'); cfg%method = value
+      case ('--method'); cfg%method = canonical_name(value, method_names())
       case ('--dt'); call parse_real(value, name, cfg%dt, error)
       case ('--t-end'); call parse_real(value, name, cfg%t_end, error)
       case ('--save-every'); call parse_int(value, name, cfg%save_every, error)
@@ -979,114 +1088,143 @@ contains
       case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
       case ('--omega'); call parse_real(value, name, cfg%omega, error)
       case ('--max-steps'); call parse_int(value, name, cfg%max_steps, error)
-      case ('--damping'); call parse_list(0, cfg%damping)
-      case ('--support-amplitude'); call parse_pair(cfg%support_amplitude, 'a_x,a_y (m)')
+      case ('--damping'); call set_list(cfg, 0, name, value, error)
+      case ('--support-amplitude')
+         call parse_pair(name, value, cfg%support_amplitude, 'a_x,a_y (m)', error)
       case ('--support-frequency'); call parse_real(value, name, cfg%support_frequency, error)
-      case ('--support-phase'); call parse_pair(cfg%support_phase, 'phi_x,phi_y (rad)')
+      case ('--support-phase')
+         call parse_pair(name, value, cfg%support_phase, 'phi_x,phi_y (rad)', error)
       case ('--output', '-o'); cfg%output = value
-      case ('--model'); cfg%model_name = value
+      case ('--model'); cfg%model_name = canonical_name(value, model_names())
       case default
          matched = .false.
          ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum)
          if (len(name) > 2) then
             if (is_model_parameter(name(3:))) then
                matched = .true.
-               call parse_named(name(3:))
+               call set_named(cfg, name(3:), name, value, error)
             end if
          end if
       end select
-   contains
-      !> A comma-separated list of numbers for the model parameter `key`.
-      subroutine parse_named(key)
-         character(len=*), intent(in) :: key
-         real(dp) :: values(max_dof)
-         integer :: n
-         call parse_real_list(value, name, values, n, error)
-         if (.not. allocated(error)) call cfg%extra%set(key, values(:n))
-      end subroutine parse_named
-      !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
-      !> `--q1` with `--theta1`): which one wins would depend on their order. The
-      !> same flag twice is the same form (the last wins, as before).
-      subroutine check_forms(err)
-         type(error_t), allocatable, intent(out) :: err
-         character(len=:), allocatable :: others
-         integer :: k
-         select case (name)
-         case ('--m', '--l', '--w')
-            others = name//'1 '//name//'2'
-         case ('--q')
-            others = '--q1 --q2 --theta1 --theta2'
-         case ('--m1', '--m2', '--l1', '--l2', '--w1', '--w2')
-            others = name(:3)
-         case ('--q1', '--q2')
-            others = '--q --theta'//name(4:4)
-         case ('--theta1', '--theta2')
-            others = '--q --q'//name(8:8)
-         case default
-            return
-         end select
-         if (.not. allocated(cfg%flags_seen)) cfg%flags_seen = ' '
-         others = ' '//others//' '
-         do k = 1, len(others) - 1
-            if (others(k:k) /= ' ' .or. others(k + 1:k + 1) == ' ') cycle
-            if (index(cfg%flags_seen, ' '//first_word(others(k + 1:))//' ') > 0) then
-               call fatal_error(err, 'invalid '//name//': '//first_word(others(k + 1:))// &
-                                ' was given too; they are two forms of one quantity ' &
-                                //'(--m, --l, --q, --w: one value per link; --m1 ... for ' &
-                                //'two links); give one of them')
-               return
-            end if
-         end do
-         if (index(cfg%flags_seen, ' '//name//' ') == 0) &
-            cfg%flags_seen = cfg%flags_seen//name//' '
-      end subroutine check_forms
-      pure function first_word(t) result(w)
-         character(len=*), intent(in) :: t
-         character(len=:), allocatable :: w
-         w = t(:index(t//' ', ' ') - 1)
-      end function first_word
-      !> q_k = θ_k − π/2 (θ from the hanging position, counter-clockwise).
-      subroutine parse_theta(k)
-         integer, intent(in) :: k
-         real(dp) :: theta
-         call parse_real(value, name, theta, error)
-         if (allocated(error)) return
-         if (.not. in_range(theta, -max_angle, max_angle)) then
-            call fatal_error(error, 'invalid '//name//': '//real_str(theta)// &
-                             ' rad is outside [-1e6, 1e6]')
-            return
-         end if
-         cfg%q(k) = theta - half_pi
-      end subroutine parse_theta
-      !> A comma-separated list of at most max_dof numbers, one per link.
-      subroutine parse_list(k, values)
-         integer, intent(in) :: k
-         real(dp), intent(inout) :: values(:)
-         integer :: n
-         call parse_real_list(value, name, values, n, error)
-         if (allocated(error)) return
-         if (k > 0) then
-            cfg%list_size(k) = n
-         else
-            cfg%damping_size = n
-         end if
-      end subroutine parse_list
-      !> Two comma-separated numbers.
-      subroutine parse_pair(values, what)
-         real(dp), intent(inout) :: values(2)
-         character(len=*), intent(in) :: what
-         integer :: comma
-         comma = index(value, ',')
-         if (comma == 0 .or. index(value(comma + 1:), ',') > 0) then
-            call fatal_error(error, 'invalid '//name//": '"//printable(value)//"' must be two " &
-                             //'comma-separated numbers '//what)
-            return
-         end if
-         call parse_real(value(:comma - 1), name, values(1), error)
-         if (allocated(error)) return
-         call parse_real(value(comma + 1:), name, values(2), error)
-      end subroutine parse_pair
    end subroutine apply_run_flag
+
+   !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
+   !> `--q1` with `--theta1`): which one wins would depend on their order. The
+   !> same flag twice is the same form (refused by check_repeated_options). Records
+   !> `name` in cfg%flags_seen.
+   subroutine check_flag_forms(cfg, name, error)
+      type(run_config_t), intent(inout) :: cfg          !! flags_seen updated
+      character(len=*), intent(in) :: name              !! the option
+      type(error_t), allocatable, intent(out) :: error  !! a second form
+      character(len=:), allocatable :: others
+      integer :: k
+      select case (name)
+      case ('--m', '--l', '--w')
+         others = name//'1 '//name//'2'
+      case ('--q')
+         others = '--q1 --q2 --theta1 --theta2'
+      case ('--m1', '--m2', '--l1', '--l2', '--w1', '--w2')
+         others = name(:3)
+      case ('--q1', '--q2')
+         others = '--q --theta'//name(4:4)
+      case ('--theta1', '--theta2')
+         others = '--q --q'//name(8:8)
+      case default
+         return
+      end select
+      if (.not. allocated(cfg%flags_seen)) cfg%flags_seen = ' '
+      others = ' '//others//' '
+      do k = 1, len(others) - 1
+         if (others(k:k) /= ' ' .or. others(k + 1:k + 1) == ' ') cycle
+         if (index(cfg%flags_seen, ' '//first_word(others(k + 1:))//' ') > 0) then
+            call fatal_error(error, 'invalid '//name//': '//first_word(others(k + 1:))// &
+                             ' was given too; they are two forms of one quantity ' &
+                             //'(--m, --l, --q, --w: one value per link; --m1 ... for ' &
+                             //'two links); give one of them')
+            return
+         end if
+      end do
+      if (index(cfg%flags_seen, ' '//name//' ') == 0) &
+         cfg%flags_seen = cfg%flags_seen//name//' '
+   end subroutine check_flag_forms
+
+   !> The first blank-separated word of `t`.
+   pure function first_word(t) result(w)
+      character(len=*), intent(in) :: t  !! text
+      character(len=:), allocatable :: w
+      w = t(:index(t//' ', ' ') - 1)
+   end function first_word
+
+   !> q_k = θ_k − π/2 from --theta1/--theta2 (θ from the hanging position,
+   !> counter-clockwise) [rad].
+   subroutine set_theta(cfg, k, name, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! q(k) set
+      integer, intent(in) :: k                          !! the link, 1 or 2
+      character(len=*), intent(in) :: name, value       !! the option and its value
+      type(error_t), allocatable, intent(out) :: error  !! not a number, out of range
+      real(dp) :: theta
+      call parse_real(value, name, theta, error)
+      if (allocated(error)) return
+      if (.not. in_range(theta, -max_angle, max_angle)) then
+         call fatal_error(error, 'invalid '//name//': '//real_str(theta)// &
+                          ' rad is outside [-1e6, 1e6]')
+         return
+      end if
+      cfg%q(k) = theta - half_pi
+   end subroutine set_theta
+
+   !> A comma-separated list of at most max_dof numbers, one per link: list k of
+   !> `list_names` (m, l, q, w), or the damping for k = 0.
+   subroutine set_list(cfg, k, name, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! the list and its size set
+      integer, intent(in) :: k                          !! which list
+      character(len=*), intent(in) :: name, value       !! the option and its value
+      type(error_t), allocatable, intent(out) :: error  !! not numbers, too many
+      integer :: n
+      select case (k)
+      case (0); call parse_real_list(value, name, cfg%damping, n, error)
+      case (1); call parse_real_list(value, name, cfg%m, n, error)
+      case (2); call parse_real_list(value, name, cfg%l, n, error)
+      case (3); call parse_real_list(value, name, cfg%q, n, error)
+      case default; call parse_real_list(value, name, cfg%w, n, error)
+      end select
+      if (allocated(error)) return
+      if (k > 0) then
+         cfg%list_size(k) = n
+      else
+         cfg%damping_size = n
+      end if
+   end subroutine set_list
+
+   !> A comma-separated list of numbers for the model parameter `key` (--k 40).
+   subroutine set_named(cfg, key, name, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%extra updated
+      character(len=*), intent(in) :: key               !! the parameter
+      character(len=*), intent(in) :: name, value       !! the option and its value
+      type(error_t), allocatable, intent(out) :: error  !! not numbers, too many
+      real(dp) :: values(max_dof)
+      integer :: n
+      call parse_real_list(value, name, values, n, error)
+      if (.not. allocated(error)) call cfg%extra%set(key, values(:n))
+   end subroutine set_named
+
+   !> Two comma-separated numbers (`what` names them in the message).
+   subroutine parse_pair(name, value, values, what, error)
+      character(len=*), intent(in) :: name, value       !! the option and its value
+      real(dp), intent(inout) :: values(2)              !! the numbers
+      character(len=*), intent(in) :: what              !! e.g. 'a_x,a_y (m)'
+      type(error_t), allocatable, intent(out) :: error  !! not two numbers
+      integer :: comma
+      comma = index(value, ',')
+      if (comma == 0 .or. index(value(comma + 1:), ',') > 0) then
+         call fatal_error(error, 'invalid '//name//": '"//printable(value)//"' must be two " &
+                          //'comma-separated numbers '//what)
+         return
+      end if
+      call parse_real(value(:comma - 1), name, values(1), error)
+      if (allocated(error)) return
+      call parse_real(value(comma + 1:), name, values(2), error)
+   end subroutine parse_pair
 
    !> Check the whole configuration; messages name the field and the accepted range
    !> (the limits and their reasons are in `dpend_limits`). For a fixed-step method
@@ -1244,6 +1382,18 @@ contains
                        //' (simulate, lyapunov, divergence, indicators and animate take ' &
                        //'every model)')
    end subroutine require_default_model
+
+   !> The names of the factory's models, blank-separated (for `canonical_name`).
+   function model_names() result(s)
+      character(len=:), allocatable :: s
+      type(model_info_t), allocatable :: models(:)
+      integer :: k
+      models = model_catalogue()
+      s = ''
+      do k = 1, size(models)
+         s = s//' '//models(k)%name
+      end do
+   end function model_names
 
    !> Whether `name` is a parameter of any model of the catalogue (a flag --NAME).
    logical function is_model_parameter(name)

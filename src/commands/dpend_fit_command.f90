@@ -183,7 +183,7 @@ contains
             end if
          end select
          call option_outcome('fit', name, matched, missing, &
-                             [character(len=16) :: '--force', '--fit-damping'], error)
+                             [character(len=16) :: '--force', '--fit-damping'], error, fit_help())
          if (allocated(error)) return
       end do
       if (len(fc%input) == 0) then

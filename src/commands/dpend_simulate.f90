@@ -73,6 +73,7 @@ contains
           '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
           '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
+          '  --quiet           print only the summary line (standard output)'//nl// &
           '  -h, --help        this text'
    end function simulate_help
 
@@ -110,7 +111,7 @@ contains
          if (name == '--config') cycle
          call apply_run_flag(cfg, name, value, matched, error)
          call option_outcome('simulate', name, matched, missing, &
-                             [character(len=16) :: '--force'], error)
+                             [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
       end do
       call validate_run_config(cfg, error)

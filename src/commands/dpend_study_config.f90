@@ -400,7 +400,7 @@ contains
             matched = .false.
          end select
          call option_outcome('study', name, matched, missing, [character(len=16) :: &
-                             '--force', '--quick', '--no-figures'], error)
+                             '--force', '--quick', '--no-figures'], error, study_help())
          if (allocated(error)) return
       end do
       if (methods_given) call select_methods(cfg, only_methods, error)

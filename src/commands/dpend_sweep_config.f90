@@ -41,6 +41,7 @@ module dpend_sweep_config
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
    use dpend_cli, only: scan_help_config, printable
+   use dpend_strings, only: to_lower, did_you_mean
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
@@ -310,7 +311,7 @@ contains
             call apply_run_flag(cfg%run, name, value, matched, error)
          end select
          call option_outcome('sweep', name, matched, missing, [character(len=16) :: &
-                             '--force', '--quiet', '--lyapunov', '--stats'], error)
+                             '--force', '--quiet', '--lyapunov', '--stats'], error, sweep_help())
          if (allocated(error)) return
       end do
       call validate_sweep(cfg, error)
@@ -382,11 +383,13 @@ contains
                           //'must be 0; dpend simulate takes them)')
          return
       end if
+      cfg%indicator = to_lower(cfg%indicator); cfg%axis1 = to_lower(cfg%axis1)
+      cfg%axis2 = to_lower(cfg%axis2)   ! names without regard to case (issue 25)
       select case (cfg%indicator)
       case ('flip', 'lambda1', 'megno', 'fli', 'sali', 'gali2')
       case default
          call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' (accepted: "// &
-                          indicator_names//')')
+                          indicator_names//')'//did_you_mean(cfg%indicator, indicator_names, '; '))
          return
       end select
       if (cfg%indicator == 'lambda1') cfg%lyapunov = .true.
@@ -531,7 +534,7 @@ contains
       end if
       if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
-                          //accepted_axes(links)//')')
+                          //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))
       else if (n < 1 .or. n > max_axis_points) then
          call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer from 1' &
                           //' to '//to_str(max_axis_points)//' (points on axis '//c//')')

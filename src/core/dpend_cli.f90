@@ -7,12 +7,13 @@ module dpend_cli
    !> name the messages used before
    use dpend_parse, only: read_real, read_int, quoted, overflows_real
    !> the text helpers, re-exported for the commands that import them from here
-   use dpend_strings, only: to_lower, printable, pad, real_str, seconds_str, to_str
+   use dpend_strings, only: to_lower, printable, pad, real_str, seconds_str, to_str, &
+                            did_you_mean
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
    public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
-   public :: check_repeated_options
+   public :: check_repeated_options, help_options, unknown_option_text
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
    public :: overflows_real, to_lower, printable, pad, quoted
 
@@ -87,47 +88,98 @@ contains
    !> The one error after a command has tried to apply option `name` (`matched`:
    !> it is one of its options; `error`: its value was refused): an unknown
    !> option, a flag (one of `flags`) given a value with '=', a missing value, or
-   !> the value's own error, in that order.
-   subroutine option_outcome(command, name, matched, missing, flags, error)
+   !> the value's own error, in that order. With the command's `help` text, an
+   !> unknown option names the nearest one it lists ("did you mean --t-end?").
+   subroutine option_outcome(command, name, matched, missing, flags, error, help)
       character(len=*), intent(in) :: command             !! e.g. 'simulate'
       character(len=*), intent(in) :: name                !! the option
       logical, intent(in) :: matched                      !! a valued option of the command
       logical, intent(in) :: missing                      !! its value was missing
       character(len=*), intent(in) :: flags(:)            !! the command's flags
       type(error_t), allocatable, intent(inout) :: error  !! the value's error, if any
+      character(len=*), intent(in), optional :: help      !! the command's --help text
       if (any(flags == name)) then
          if (allocated(error)) deallocate (error)
          call fatal_error(error, 'option '//name//' takes no value')
       else if (.not. matched) then
          if (allocated(error)) deallocate (error)
-         call fatal_error(error, "unknown option '"//printable(name)//"' (dpend "//command// &
-                          ' --help lists the options)')
+         if (present(help)) then
+            call fatal_error(error, unknown_option_text(command, name, help_options(help)))
+         else
+            call fatal_error(error, unknown_option_text(command, name, ''))
+         end if
       else if (missing) then
          if (allocated(error)) deallocate (error)
          call fatal_error(error, 'option '//name//' needs a value')
       end if
    end subroutine option_outcome
 
+   !> The refusal of the unknown option `name` of `command`, with the nearest of
+   !> `options` (blank-separated) when one is close: "unknown option '--t_end' (did
+   !> you mean --t-end? dpend simulate --help lists the options)".
+   pure function unknown_option_text(command, name, options) result(s)
+      character(len=*), intent(in) :: command  !! e.g. 'simulate'
+      character(len=*), intent(in) :: name     !! the option given
+      character(len=*), intent(in) :: options  !! the command's options
+      character(len=:), allocatable :: s, hint
+      hint = did_you_mean(name, options)
+      if (len(hint) > 0) hint = hint//' '
+      s = "unknown option '"//printable(name)//"' ("//hint//'dpend '//command// &
+          ' --help lists the options)'
+   end function unknown_option_text
+
+   !> The long options a --help text names ('--t-end', '--q1', ...), each once,
+   !> blank-separated, in the order of their first mention.
+   pure function help_options(help) result(s)
+      character(len=*), intent(in) :: help  !! a command's --help text
+      character(len=:), allocatable :: s, word
+      character(len=*), parameter :: name_chars = 'abcdefghijklmnopqrstuvwxyz0123456789-'
+      integer :: i, j
+      s = ' '
+      i = index(help, '--')
+      do while (i > 0)
+         j = i + 2
+         do while (j <= len(help))
+            if (index(name_chars, help(j:j)) == 0) exit
+            j = j + 1
+         end do
+         word = help(i:j - 1)
+         if (i > 1) then          ! '--' inside a word ('a--b') names no option
+            if (index(name_chars(:36), to_lower(help(i - 1:i - 1))) > 0) word = '--'
+         end if
+         if (len(word) > 2 .and. index(s, ' '//word//' ') == 0) s = s//word//' '
+         if (j > len(help)) exit
+         i = index(help(j:), '--')
+         if (i > 0) i = i + j - 1
+      end do
+      s = trim(adjustl(s))
+   end function help_options
+
    !> Refuse an option given twice (`--t-end 1 ... --t-end 2`): which one counts
    !> would depend on the order, as a repeated key of a namelist group would. Options
    !> are the arguments that start with '--' (never a value), compared by their name
-   !> (before '=', for `--name=value`). Flags still override a --config file.
+   !> (before '=', for `--name=value`); `-o` is `--output` (the two set one file:
+   !> refused naming both, in either order). Flags still override a --config file.
    subroutine check_repeated_options(args, error)
       type(arg_t), intent(in) :: args(:)                !! a command's arguments
       type(error_t), allocatable, intent(out) :: error  !! the first repeated option
       character(len=:), allocatable :: a, b
       integer :: i, j
       do i = 2, size(args)
-         if (.not. is_long_option(args(i)%s)) cycle
+         if (.not. (is_long_option(args(i)%s) .or. args(i)%s == '-o')) cycle
          a = option_name(args(i)%s)
          do j = 1, i - 1
-            if (.not. is_long_option(args(j)%s)) cycle
+            if (.not. (is_long_option(args(j)%s) .or. args(j)%s == '-o')) cycle
             b = option_name(args(j)%s)
-            if (a == b) then
+            if (a /= b) cycle
+            if (args(i)%s == '-o' .neqv. args(j)%s == '-o') then
+               call fatal_error(error, 'invalid --output: -o and --output were both given ' &
+                                //'(-o is --output); give one of them')
+            else
                call fatal_error(error, 'invalid '//printable(a)//': given twice (give each ' &
                                 //'option once)')
-               return
             end if
+            return
          end do
       end do
    contains
@@ -136,6 +188,7 @@ contains
          character(len=:), allocatable :: name
          name = arg
          if (index(arg, '=') > 0) name = arg(:index(arg, '=') - 1)
+         if (name == '-o') name = '--output'
       end function option_name
    end subroutine check_repeated_options
 

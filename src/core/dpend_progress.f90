@@ -1,6 +1,7 @@
 !> Progress report of long runs on stderr: a bar redrawn in place (percent,
 !> trajectories per second, time left) when stderr is a terminal, a plain line
-!> every `interval` seconds otherwise (logs, CI), nothing when quiet.
+!> every `interval` seconds otherwise (logs, CI), nothing when quiet. `--quiet` of
+!> any command silences every report of the process (`silence_progress`).
 module dpend_progress
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
@@ -8,7 +9,10 @@ module dpend_progress
    use dpend_strings, only: real_str
    implicit none
    private
-   public :: progress_t, stderr_is_terminal, wall_seconds
+   public :: progress_t, stderr_is_terminal, wall_seconds, silence_progress, progress_silenced
+
+   !> Every report of this process is quiet (a command's --quiet: `silence_progress`).
+   logical, save :: silenced = .false.
 
    interface
       !> POSIX isatty(3): 1 if the file descriptor is a terminal.
@@ -38,6 +42,16 @@ module dpend_progress
 
 contains
 
+   !> Make every progress report of this process quiet (a command's --quiet).
+   subroutine silence_progress()
+      silenced = .true.
+   end subroutine silence_progress
+
+   !> Whether `silence_progress` was called (reports of their own stay quiet then).
+   logical function progress_silenced()
+      progress_silenced = silenced
+   end function progress_silenced
+
    !> True if stderr (file descriptor 2) is a terminal.
    logical function stderr_is_terminal()
       stderr_is_terminal = c_isatty(2_c_int) == 1
@@ -61,7 +75,7 @@ contains
       self%total = total
       self%done = done
       self%done_start = done
-      self%quiet = quiet
+      self%quiet = quiet .or. silenced
       self%tty = stderr_is_terminal()
       self%t_start = wall_seconds()
       self%t_last = -1e30_dp

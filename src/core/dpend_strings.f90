@@ -1,7 +1,9 @@
 !> Small text helpers for messages and reports: numbers as text (`real_str`, the one
 !> formatter of reals for people; `to_str` of integers; `seconds_str`), lower case,
 !> padding, and `printable` (the one escaping helper of dpend_parse: control bytes as
-!> \t, \n, \xNN, so that a message stays one line). Pure, no state; core/ only.
+!> \t, \n, \xNN, so that a message stays one line), and the names a user may mistype
+!> (`nearest_name`, `did_you_mean`: the closest of a list by edit distance, only when
+!> close; `canonical_name`: a name of a list whatever its case). Pure, no state.
 module dpend_strings
    use dpend_kinds, only: dp, i8
    use dpend_parse, only: int_text, printable => escaped
@@ -9,6 +11,7 @@ module dpend_strings
    implicit none
    private
    public :: to_lower, printable, pad, real_str, seconds_str, to_str
+   public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
    interface to_str
@@ -143,4 +146,145 @@ contains
       character(len=:), allocatable :: s
       s = int_text(int(i, i8))
    end function int_str
+
+   !> The edit distance of `a` and `b` (optimal string alignment: insertions,
+   !> deletions, substitutions and swaps of two neighbours count 1), comparing
+   !> without case and with '_' and '-' alike (`--t_end` is `--t-end`).
+   pure integer function edit_distance(a, b) result(d)
+      character(len=*), intent(in) :: a  !! one word
+      character(len=*), intent(in) :: b  !! the other
+      character(len=len(a)) :: x
+      character(len=len(b)) :: y
+      integer :: t(0:len(a), 0:len(b)), i, j, cost
+      x = folded(a)
+      y = folded(b)
+      do i = 0, len(x)
+         t(i, 0) = i
+      end do
+      do j = 0, len(y)
+         t(0, j) = j
+      end do
+      do i = 1, len(x)
+         do j = 1, len(y)
+            cost = merge(0, 1, x(i:i) == y(j:j))
+            t(i, j) = min(t(i - 1, j) + 1, t(i, j - 1) + 1, t(i - 1, j - 1) + cost)
+            if (i > 1 .and. j > 1) then
+               if (x(i:i) == y(j - 1:j - 1) .and. x(i - 1:i - 1) == y(j:j)) &
+                  t(i, j) = min(t(i, j), t(i - 2, j - 2) + 1)
+            end if
+         end do
+      end do
+      d = t(len(x), len(y))
+   contains
+      pure function folded(s) result(f)
+         character(len=*), intent(in) :: s
+         character(len=len(s)) :: f
+         integer :: k
+         f = to_lower(s)
+         do k = 1, len(f)
+            if (f(k:k) == '_') f(k:k) = '-'
+         end do
+      end function folded
+   end function edit_distance
+
+   !> The word of `words` (separated by blanks or commas) nearest to `name` by
+   !> `edit_distance`, if it is close: at most 1 edit for names of up to 4
+   !> characters (without leading dashes), 2 for longer ones, and fewer edits than
+   !> the name has characters, and not only in its digits (theta4, rk5: another
+   !> number, not a typo); '' if none is (or `name` is one of them). The first of
+   !> equally near words wins.
+   pure function nearest_name(name, words) result(best)
+      character(len=*), intent(in) :: name   !! what the user gave
+      character(len=*), intent(in) :: words  !! the accepted names
+      character(len=:), allocatable :: best
+      integer :: a, b, d, d_best, n_core, limit
+      best = ''
+      n_core = len_trim(name) - (verify(name, '-') - 1)
+      if (verify(name, '-') == 0) return
+      limit = merge(1, 2, n_core <= 4)
+      limit = min(limit, n_core - 1)
+      d_best = limit + 1
+      a = 1
+      do
+         call next_word(words, a, b)
+         if (a > len(words)) exit
+         d = edit_distance(trim(name), words(a:b - 1))
+         if (d == 0 .and. trim(name) == words(a:b - 1)) then
+            best = ''
+            return
+         end if
+         ! another number is no typo (theta4 for 3 links, rk5): no suggestion
+         if (d > 0 .and. scan(name, '0123456789') > 0) then
+            if (edit_distance(no_digits(trim(name)), no_digits(words(a:b - 1))) == 0) &
+               d = d_best
+         end if
+         if (d < d_best) then
+            d_best = d
+            best = words(a:b - 1)
+         end if
+         a = b
+      end do
+   contains
+      pure function no_digits(w) result(t)
+         character(len=*), intent(in) :: w
+         character(len=:), allocatable :: t
+         integer :: k
+         t = ''
+         do k = 1, len(w)
+            if (index('0123456789', w(k:k)) == 0) t = t//w(k:k)
+         end do
+      end function no_digits
+   end function nearest_name
+
+   !> The next word of `words` (separated by blanks, commas, tabs or line ends) at or
+   !> after position `a`: words(a:b - 1); a > len(words) when there is none.
+   pure subroutine next_word(words, a, b)
+      character(len=*), intent(in) :: words  !! the list
+      integer, intent(inout) :: a            !! where to look; the word's start
+      integer, intent(out) :: b              !! one past the word's end
+      character(len=*), parameter :: seps = ' ,'//achar(9)//achar(10)
+      do while (a <= len(words))
+         if (index(seps, words(a:a)) == 0) exit
+         a = a + 1
+      end do
+      b = a
+      do while (b <= len(words))
+         if (index(seps, words(b:b)) > 0) exit
+         b = b + 1
+      end do
+   end subroutine next_word
+
+   !> 'did you mean X?' for the word X of `words` nearest to `name` (`nearest_name`),
+   !> or '' when none is close. With `lead`, the text starts with it ('; ' after the
+   !> parenthesis of the accepted names).
+   pure function did_you_mean(name, words, lead) result(s)
+      character(len=*), intent(in) :: name            !! what the user gave
+      character(len=*), intent(in) :: words           !! the accepted names
+      character(len=*), intent(in), optional :: lead  !! text before it
+      character(len=:), allocatable :: s
+      s = nearest_name(name, words)
+      if (len(s) == 0) return
+      s = 'did you mean '//s//'?'
+      if (present(lead)) s = lead//s
+   end function did_you_mean
+
+   !> The word of `words` (separated by blanks or commas) equal to `name` without
+   !> regard to case (`RK4` is `rk4`), or `name` itself if there is none.
+   pure function canonical_name(name, words) result(s)
+      character(len=*), intent(in) :: name   !! what the user gave
+      character(len=*), intent(in) :: words  !! the accepted names
+      character(len=:), allocatable :: s
+      integer :: a, b
+      s = name
+      a = 1
+      do
+         call next_word(words, a, b)
+         if (a > len(words)) exit
+         if (to_lower(words(a:b - 1)) == to_lower(name)) then
+            s = words(a:b - 1)
+            return
+         end if
+         a = b
+      end do
+   end function canonical_name
 end module dpend_strings

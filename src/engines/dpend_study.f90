@@ -65,6 +65,7 @@ module dpend_study
    use dpend_propagate, only: march_t
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock, stderr_is_terminal
+   use dpend_progress, only: progress_silenced
    use dpend_study_config, only: study_config_t, case_index, case_model, balance_case
    use dpend_work, only: needs_work, work_model, is_work_model
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
@@ -277,7 +278,7 @@ contains
       real(dp) :: start, cost_total, cost_done
       integer :: j, n_done
       logical :: show, tty
-      show = .true.
+      show = .not. progress_silenced()   ! --quiet (issue 25)
       if (present(quiet)) show = .not. quiet
       tty = show .and. stderr_is_terminal()
       start = wall_clock()

@@ -6,6 +6,7 @@ module dpend_methods
    use dpend_integrator, only: integrator_t
    use dpend_method_options, only: method_options_t
    use dpend_method_registry, only: method_index, method_names
+   use dpend_strings, only: canonical_name, did_you_mean, printable
    use dpend_rk_explicit, only: rk4_t, dopri5_t, dop853_t
    use dpend_symplectic, only: gauss, verlet_t, composition, triple_jump, kahan_li_6, kahan_li_8
    use dpend_tao, only: tao_t
@@ -18,18 +19,22 @@ contains
    !> Allocate the method called `name` (a name of the registry) and set its
    !> options (`integ%configure`): tolerances of the adaptive methods, Tao's ω,
    !> the most accepted steps of one adaptive integration, ... Without `options`
-   !> every method has its defaults.
+   !> every method has its defaults. The name is taken without regard to case
+   !> (`RK4` is rk4); an unknown one is refused with the nearest name, if close.
    subroutine new_integrator(name, integ, error, options)
       character(len=*), intent(in) :: name                        !! method name
       class(integrator_t), allocatable, intent(out) :: integ      !! the method
       type(error_t), allocatable, intent(out) :: error            !! unknown name
       type(method_options_t), intent(in), optional :: options     !! its options
-      if (method_index(name) == 0) then
-         call fatal_error(error, "invalid method: '"//trim(name)//"' (accepted: " &
-                          //method_names()//")")
+      character(len=:), allocatable :: key, hint
+      key = canonical_name(trim(name), method_names())
+      if (method_index(key) == 0) then
+         hint = did_you_mean(trim(name), method_names(), '; ')
+         call fatal_error(error, "invalid method: '"//printable(trim(name))//"' (accepted: " &
+                          //method_names()//")"//hint)
          return
       end if
-      select case (name)
+      select case (key)
       case ('rk4')
          allocate (rk4_t :: integ)
       case ('dopri5')

@@ -17,7 +17,7 @@ module dpend_model_factory
    use dpend_pendulum, only: pendulum_t, pendulum_model
    use dpend_chain, only: chain_t, chain_model
    use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
-   use dpend_strings, only: to_str, real_str
+   use dpend_strings, only: to_str, real_str, did_you_mean
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
                            max_damping, max_support_amplitude, max_support_frequency, &
                            max_angle
@@ -165,11 +165,14 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! set when refused
       type(model_info_t), allocatable :: models(:)
       integer :: k
+      character(len=:), allocatable :: hint
       models = model_catalogue()
       k = find_model(models, spec%model_name())
       if (k == 0) then
+         hint = did_you_mean(spec%model_name(), model_list(models), '; ')
          call fatal_error(error, "invalid model: '"//spec%model_name()//"' is not a model " &
-                          //'(accepted: '//model_list(models)//'; dpend models describes them)')
+                          //'(accepted: '//model_list(models)//'; dpend models describes ' &
+                          //'them)'//hint)
          return
       end if
       call check_spec(spec, models(k), error)
