@@ -18,7 +18,8 @@ module test_estimate
    use dpend_model, only: model_t
    use dpend_chain, only: chain_t, chain_model
    use dpend_pendulum, only: pendulum_t, pendulum_model
-   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit, &
+   use dpend_model_factory, only: model_spec
+   use dpend_estimate, only: set_fitted, fit_problem_t, fit_result_t, fit_series, evaluate_fit, &
                              student_t95, fit_work_t, estimate_fit_work
    use dpend_limits, only: max_fit_work
    use dpend_csv, only: series_t, parse_series, csv_format
@@ -130,10 +131,9 @@ contains
       integer :: n, k, j, np, i
       worst = 0.0_dp
       do n = 2, 3
-         prob%fit_damping = .true.
-         prob%m = [(1.0_dp + 0.2_dp*i, i=1, n)]
-         prob%l = [(1.0_dp - 0.1_dp*i, i=1, n)]
-         prob%g = 9.8_dp
+         call damping_problem(prob, [(1.0_dp + 0.2_dp*i, i=1, n)], &
+                              [(1.0_dp - 0.1_dp*i, i=1, n)], error)
+         if (allocated(error)) return
          prob%method = 'dop853'
          prob%rtol = 1e-13_dp
          prob%atol = 1e-15_dp
@@ -186,11 +186,8 @@ contains
       hits = 0
       all_hits = 0
       t = [(0.05_dp*j, j=0, k - 1)]
-      prob%fit_damping = .true.
-      prob%m = [1.0_dp]
-      prob%l = [1.0_dp]
-      prob%g = 9.8_dp
-      prob%c0 = [0.0_dp]
+      call damping_problem(prob, [1.0_dp], [1.0_dp], error)
+      if (allocated(error)) return
       prob%method = 'dop853'
       prob%rtol = 1e-10_dp
       prob%atol = 1e-12_dp
@@ -269,15 +266,13 @@ contains
       call check_true(error, s%positions .and. s%n == 2 .and. s%n_obs == 4, 'positions read')
       call check(error, s%q(:, k), xy(:, k), 'cm -> m', rel=1e-15_dp)
       if (allocated(error)) return
-      prob%fit_damping = .true.
+      call damping_problem(prob, chain%m, chain%l, error, [0.0_dp, 0.01_dp], 5.0_dp, &
+                           [0.0_dp, 0.3_dp])
+      if (allocated(error)) return
       prob%positions = .true.
-      prob%m = chain%m
-      prob%l = chain%l
-      prob%g = 9.8_dp
       prob%sup_a = [0.0_dp, 0.01_dp]
       prob%sup_w = 5.0_dp
       prob%sup_phi = [0.0_dp, 0.3_dp]
-      prob%c0 = [0.0_dp, 0.0_dp]
       prob%method = 'dop853'
       prob%rtol = 1e-12_dp
       prob%atol = 1e-14_dp
@@ -288,6 +283,27 @@ contains
                   //' m, '//to_str(res%iterations)//' iterations')
       call check(error, res%p, truth, 'state and damping', abs=1e-7_dp)
    end subroutine test_positions
+
+   !> A fit of the state and the joint damping (first guess 0) of the chain of these
+   !> masses and lengths (g = 9.8 m/s²), the support moving as given; the damping
+   !> held while the window is shorter than 2 pi sqrt(sum l / g), as in dpend fit.
+   subroutine damping_problem(prob, m, l, error, amplitude, frequency, phase)
+      type(fit_problem_t), intent(out) :: prob
+      real(dp), intent(in) :: m(:), l(:)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), intent(in), optional :: amplitude(2), frequency, phase(2)
+      prob%spec = model_spec('pendulum')
+      call prob%spec%set('links', [real(size(m), dp)])
+      call prob%spec%set('m', m)
+      call prob%spec%set('l', l)
+      call prob%spec%set('g', [9.8_dp])
+      if (present(amplitude)) call prob%spec%set('support_amplitude', amplitude)
+      if (present(frequency)) call prob%spec%set('support_frequency', [frequency])
+      if (present(phase)) call prob%spec%set('support_phase', phase)
+      call set_fitted(prob, [character(len=8) :: 'damping'], error)
+      prob%hold_period = 2.0_dp*pi*sqrt(sum(l)/9.8_dp)
+      prob%l = l
+   end subroutine damping_problem
 
    !> t_(0.975, ν) against tabulated values (R's qt(0.975, ν), 10 digits).
    subroutine test_student(error)

@@ -11,12 +11,12 @@ module dpend_fit_command
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, pad, printable
-   use dpend_config, only: require_default_model, run_config_t, read_run_config, apply_run_flag, &
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
-                             estimate_fit_work
+                             estimate_fit_work, set_fitted
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
@@ -222,8 +222,7 @@ contains
             return
          end if
          fc%run%links = s%n
-         call require_default_model(fc%run, 'dpend fit', error)
-         if (.not. allocated(error)) call validate_run_config(fc%run, error)
+         call validate_run_config(fc%run, error)
          if (allocated(error)) return
          call new_integrator(fc%run%method, integ, error)
          if (allocated(error)) return
@@ -273,7 +272,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set when refused
       type(fit_problem_t) :: prob
       type(fit_work_t) :: work
-      prob = fit_problem(fc)
+      call fit_problem(fc, prob, error)
+      if (allocated(error)) return
       call estimate_fit_work(prob, fc%series%t, fc%series%q, fc%fit_window, work, error)
       if (allocated(error)) return
       if (work%work > max_fit_work) then
@@ -292,29 +292,34 @@ contains
                         //'fit window', 'shorten the fit window: --fit-window', error)
    end subroutine check_work
 
-   !> The estimation problem of the configuration.
-   function fit_problem(fc) result(prob)
-      type(fit_config_t), intent(in) :: fc   !! validated configuration
-      type(fit_problem_t) :: prob
+   !> The estimation problem of the configuration: the run's model and its
+   !> specification, the model parameters fitted (the damping with --fit-damping,
+   !> held at its guess while the window is shorter than 2 pi sqrt(sum l / g)).
+   subroutine fit_problem(fc, prob, error)
+      type(fit_config_t), intent(in) :: fc              !! validated configuration
+      type(fit_problem_t), intent(out) :: prob          !! the problem
+      type(error_t), allocatable, intent(out) :: error  !! a parameter not fittable
       integer :: n
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
-      prob%fit_damping = fc%fit_damping
+      prob%spec = fc%run%spec
+      if (fc%fit_damping) then
+         call set_fitted(prob, [character(len=8) :: 'damping'], error)
+         if (allocated(error)) return
+         if (fc%run%g > 0.0_dp) prob%hold_period = 2.0_dp*pi*sqrt(sum(fc%run%l(:n))/fc%run%g)
+      end if
       prob%positions = fc%series%positions
-      prob%m = fc%run%m(:n)
       prob%l = fc%run%l(:n)
-      prob%g = fc%run%g
       prob%sup_a = fc%run%support_amplitude
       prob%sup_w = fc%run%support_frequency
       prob%sup_phi = fc%run%support_phase
-      prob%c0 = fc%run%damping(:n)
       prob%method = fc%run%method
       prob%rtol = fc%run%rtol
       prob%atol = fc%run%atol
       prob%dt = fc%run%dt
       prob%starts = fc%starts
       prob%max_steps = fc%run%max_steps
-   end function fit_problem
+   end subroutine fit_problem
 
    !> Run the fit and write its report and file.
    !> The error's kind says whether the input was refused (nothing written) or
@@ -337,7 +342,8 @@ contains
       type(output_t) :: out
       type(error_t), allocatable :: werr
       failed = .false.
-      prob = fit_problem(fc)
+      call fit_problem(fc, prob, error)
+      if (allocated(error)) return
       call out%begin(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
       call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &

@@ -37,11 +37,12 @@
 !> check, with a message naming the model and the procedure).
 module dpend_model
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t
+   use dpend_error, only: error_t, fatal_error, error_bad_input
    use dpend_limits, only: check_range, max_angle, max_angular_velocity
    implicit none
    private
    public :: model_t, max_dof, max_state
+   public :: model_check_parameter_rates  ! r3 fit: the refusal models extend
 
    !> Most degrees of freedom of any model: integrators keep their stage vectors on
    !> the stack in arrays of this size (no allocation per step).
@@ -93,6 +94,9 @@ module dpend_model
       procedure :: figure => model_figure
       ! an initial state within the model (before any step)
       procedure :: check_state => model_check_state
+      ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+      procedure :: check_parameter_rates => model_check_parameter_rates
+      procedure :: parameter_rates => model_parameter_rates
    end type model_t
 
    abstract interface
@@ -418,4 +422,28 @@ contains
                 //'the pin A)'
       end if
    end function model_energy_text
+
+   ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+
+   !> Refuse a fit of parameter `name` when the model cannot give `parameter_rates`
+   !> for it (the default: no parameter; a refusal of kind bad input).
+   subroutine model_check_parameter_rates(self, name, error)
+      class(model_t), intent(in) :: self
+      character(len=*), intent(in) :: name              !! parameter name, e.g. 'damping'
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      call fatal_error(error, 'invalid fit parameter: '//name//' (model '//self%name()// &
+                       ' gives no sensitivity of its motion to it)', error_bad_input)
+   end subroutine model_check_parameter_rates
+
+   !> ∂q̈/∂θ_j at y = (q, q̇) for the components θ_j of parameter `name` (column j
+   !> of `d`, size (n, components)), the other parameters and q, q̇ held. Reached only
+   !> for a parameter `check_parameter_rates` accepted; the default gives zeros.
+   pure subroutine model_parameter_rates(self, t, y, name, d)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(:)         !! state (q, q̇)
+      character(len=*), intent(in) :: name !! parameter name
+      real(dp), intent(out) :: d(:, :)     !! ∂q̈/∂θ (n, components)
+      d = 0.0_dp
+   end subroutine model_parameter_rates
 end module dpend_model
