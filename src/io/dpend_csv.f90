@@ -67,15 +67,22 @@ module dpend_csv
       character(len=1) :: separator = ',' !! field separator: ',', ';' or a tab
       logical :: bom = .false.            !! a UTF-8 byte order mark was removed
       logical :: quoted = .false.         !! some header names were quoted
+      !> a model's own coordinates as columns (`coords` of `read_series`): their names
+      !> and units, in the model's order; `coords_found` when the file gave them
+      character(len=16), allocatable :: coord_names(:), coord_units(:)
+      logical :: coords_found = .false.
    end type series_t
 
 contains
 
    !> Read and check the series file `filename` (see the module's notes).
-   subroutine read_series(filename, series, error)
+   subroutine read_series(filename, series, error, coords, units)
       character(len=*), intent(in) :: filename          !! the CSV file
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem, one line
+      !> a model's coordinates (names, units): columns of these names are its q
+      !> (instead of theta or q columns), e.g. r [m], phi [rad]
+      character(len=*), intent(in), optional :: coords(:), units(:)
       character(len=:), allocatable :: text, pre
       integer :: unit, stat
       integer(i8) :: bytes
@@ -111,17 +118,19 @@ contains
          call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
          return
       end if
-      call parse_series(text, series, error)
+      call parse_series(text, series, error, coords, units)
       if (allocated(error)) error%message = "invalid data file '"//printable(filename)// &
                                             "' "//error%message
    end subroutine read_series
 
    !> Parse the whole text of a series file; an error message starts with
    !> 'line L: ' (or 'has ...' for a file without a header or rows).
-   subroutine parse_series(text, series, error)
+   subroutine parse_series(text, series, error, coords, units)
       character(len=*), intent(in) :: text              !! the file's contents
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem
+      !> a model's coordinates (names, units; see `read_series`)
+      character(len=*), intent(in), optional :: coords(:), units(:)
       character(len=1), parameter :: lf = achar(10), cr = achar(13)
       integer :: start, eol, line, n_fields, col_t, cap
       integer :: col_q(2*max_dof)
@@ -132,6 +141,10 @@ contains
       integer, allocatable :: ll(:)
       real(dp) :: values(0:2*max_dof)
       header_seen = .false.
+      if (present(coords) .and. present(units)) then
+         series%coord_names = coords
+         series%coord_units = units
+      end if
       start = 1
       if (len(text) >= 3) then
          if (text(1:3) == utf8_bom) then
@@ -299,6 +312,12 @@ contains
                return
             end if
             col_t = col
+         else if (coordinate_index(series, name) > 0) then
+            call coordinate_column(series, name, unit, col, pre, col_q, error)
+            if (allocated(error)) return
+            kind = 'model'
+         else if (allocated(series%coord_names)) then
+            continue   ! theta and q columns name the pendulum's angles only
          else if (angle_name(name, 'theta') .or. angle_name(name, 'q')) then
             if (angle_name(name, 'theta')) then
                this = 'theta'
@@ -379,6 +398,10 @@ contains
                           '; expected a header such as t,theta1,theta2)')
          return
       end if
+      if (kind == 'model') then
+         call coordinates_complete(series, col_q, pre, error)
+         return
+      end if
       series%n = count(col_q > 0)
       if (series%n == 0 .and. any(col_x > 0 .or. col_y > 0)) then
          ! positions x_i, y_i of the link ends
@@ -398,6 +421,11 @@ contains
          end do
          series%positions = .true.
          series%n_obs = 2*series%n
+         return
+      end if
+      if (series%n == 0 .and. allocated(series%coord_names)) then
+         call fatal_error(error, pre//'no columns '//coordinate_list(series)// &
+                          " (the model's coordinates) and no positions (x1,y1)")
          return
       end if
       if (series%n == 0) then
@@ -425,7 +453,9 @@ contains
       character(len=8) :: names(series%n_obs)
       integer :: i
       do i = 1, series%n
-         if (series%positions) then
+         if (series%coords_found) then
+            names(i) = series%coord_names(i)
+         else if (series%positions) then
             names(2*i - 1) = 'x'//to_str(i)
             names(2*i) = 'y'//to_str(i)
          else if (series%theta) then
@@ -647,4 +677,70 @@ contains
       t = printable(s(:min(len(s), 40)))
       if (len(s) > 40) t = t//'...'
    end function printable_40
+
+   ! ---------------------------------------------- a model's coordinates as columns
+
+   !> Index of `name` among the model's coordinates (0: none or not given).
+   pure integer function coordinate_index(series, name) result(i)
+      type(series_t), intent(in) :: series  !! with coord_names
+      character(len=*), intent(in) :: name  !! a column name, lower case
+      if (allocated(series%coord_names)) then
+         do i = 1, size(series%coord_names)
+            if (to_lower(trim(series%coord_names(i))) == name) return
+         end do
+      end if
+      i = 0
+   end function coordinate_index
+
+   !> Column `col`, named `name` with `unit` ('' or '[...]'), is coordinate i: its
+   !> unit must be the coordinate's (or none), and it must not repeat.
+   subroutine coordinate_column(series, name, unit, col, pre, col_q, error)
+      type(series_t), intent(in) :: series              !! with coord_names, _units
+      character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
+      integer, intent(in) :: col                        !! its column
+      integer, intent(inout) :: col_q(:)                !! column of each coordinate
+      type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
+      integer :: i
+      i = coordinate_index(series, name)
+      if (col_q(i) /= 0) then
+         call fatal_error(error, pre//"column '"//name//"' appears twice")
+      else if (len(unit) > 0 .and. unit /= '['//trim(series%coord_units(i))//']') then
+         call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                          printable_40(unit)//"' (accepted: ["// &
+                          trim(series%coord_units(i))//'] or none)')
+      else
+         col_q(i) = col
+      end if
+   end subroutine coordinate_column
+
+   !> Every coordinate has its column: the series observes the model's q.
+   subroutine coordinates_complete(series, col_q, pre, error)
+      type(series_t), intent(inout) :: series           !! n, n_obs set
+      integer, intent(in) :: col_q(:)                   !! column of each coordinate
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! a coordinate missing
+      integer :: i
+      do i = 1, size(series%coord_names)
+         if (col_q(i) == 0) then
+            call fatal_error(error, pre//'missing column '//trim(series%coord_names(i))// &
+                             ' (the columns must be '//coordinate_list(series)//')')
+            return
+         end if
+      end do
+      series%n = size(series%coord_names)
+      series%n_obs = series%n
+      series%coords_found = .true.
+   end subroutine coordinates_complete
+
+   !> 'r [m], phi [rad]'.
+   function coordinate_list(series) result(s)
+      type(series_t), intent(in) :: series  !! with coord_names, _units
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(series%coord_names)
+         if (i > 1) s = s//', '
+         s = s//trim(series%coord_names(i))//' ['//trim(series%coord_units(i))//']'
+      end do
+   end function coordinate_list
 end module dpend_csv
