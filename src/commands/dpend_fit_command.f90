@@ -477,8 +477,7 @@ contains
       integer :: i, j, np
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       call parameter_names(fc, names, units)
-      if (fc%model_coords) ou = '('//units_blocks(fc, units(:2*fc%series%n))//')'
-      if (fc%model_coords) ou = ou(:index(ou, ',') - 1)//')'
+      if (fc%model_coords) ou = '('//coordinates_in_units(fc)//')'
       associate (s => fc%series)
          write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
             ', '//to_str(s%k)//' samples, t1 = '// &
@@ -695,6 +694,21 @@ contains
       end do
       s = s//')'
    end function model_text
+
+   !> 'r in m, phi in rad'.
+   function coordinates_in_units(fc) result(s)
+      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      character(len=:), allocatable :: s
+      character(len=16), allocatable :: cn(:), cu(:)
+      integer :: i
+      cn = coordinate_units(fc, -1)
+      cu = coordinate_units(fc, 0)
+      s = ''
+      do i = 1, size(cn)
+         if (i > 1) s = s//', '
+         s = s//trim(cn(i))//' in '//trim(cu(i))
+      end do
+   end function coordinates_in_units
 
    !> 'k,l0'.
    function joined_names(names) result(s)
