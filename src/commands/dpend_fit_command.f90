@@ -95,6 +95,9 @@ contains
           nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
           nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
+          nl//'  t,r,phi                 with --model elastic: the model''s coordinates'// &
+          nl//'                          (dpend models), r in m, phi in rad from the'// &
+          nl//'                          horizontal x axis (units [m], [rad] or none).'// &
           nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
           nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
@@ -105,6 +108,11 @@ contains
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
+          '  --fit-parameters NAMES  fit these model parameters too, comma-separated:'// &
+          nl//'                    damping (the pendulum: as --fit-damping); k,l0 (the'// &
+          nl//'                    elastic pendulum: with g known the motion depends on'// &
+          nl//'                    k/m and l0 only, so k is fitted at the given --m);'// &
+          nl//'                    their first guess: the values given (--k, --l0)'//nl// &
           '  --fit-window T    fit only the samples with t <= T (s); the rest measures the'// &
           nl//'                    prediction horizon; default: all samples'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
@@ -120,7 +128,8 @@ contains
           'model and integration (the initial state comes from the data; the links from'// &
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
-          '  --support-amplitude, --support-frequency, --support-phase, --method (default '// &
+          '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
+          '  --model and its parameters (--model elastic --m --k --l0), --method (default '// &
           fc%run%method//'),'//nl//'  --dt, --rtol (default '//real_str(fc%run%rtol)// &
           '), --atol (default '//real_str(fc%run%atol)//'), --max-steps'//nl// &
           '  as for dpend simulate (dpend simulate --help).'//nl// &
@@ -626,6 +635,8 @@ contains
       call h5%writeattr('/fit', 'input', fc%input)
       if (fc%model_coords) then
          call h5%writeattr('/fit', 'observations', 'coordinates')
+         call h5%writeattr('/fit', 'n_coordinates', fc%series%n)
+         call h5%writeattr('/fit', 'coordinate_labels', coordinate_labels(fc))
       else if (fc%series%positions) then
          call h5%writeattr('/fit', 'observations', 'positions')
       else
@@ -694,6 +705,21 @@ contains
       end do
       s = s//')'
    end function model_text
+
+   !> 'r:m phi:rad' (scripts/plot_fit.sh labels its panels with them).
+   function coordinate_labels(fc) result(s)
+      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      character(len=:), allocatable :: s
+      character(len=16), allocatable :: cn(:), cu(:)
+      integer :: i
+      cn = coordinate_units(fc, -1)
+      cu = coordinate_units(fc, 0)
+      s = ''
+      do i = 1, size(cn)
+         if (i > 1) s = s//' '
+         s = s//trim(cn(i))//':'//trim(cu(i))
+      end do
+   end function coordinate_labels
 
    !> 'r in m, phi in rad'.
    function coordinates_in_units(fc) result(s)
