@@ -677,7 +677,8 @@ contains
       if (counter%show .and. counter%progress%reported > 0) call counter%progress%finish()
    end subroutine fit_series
 
-   !> `fit_series` with its work counter.
+   !> `fit_series` with its work counter: the continuation stages, the statistics of
+   !> the fit window, the prediction of the whole series.
    subroutine fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
@@ -688,17 +689,13 @@ contains
       type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
       type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
       real(dp), intent(in), optional :: guess(:)        !! first guess
-      real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
-      real(dp) :: period, thr
-      integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
-      logical :: conv
+      integer :: n, np, no
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
       res%n = n
       np = 2*n + n_fitted(prob)
       res%np = np
       res%tolerance = tolerance
-      kmax = size(t)
       res%k_fit = count(t <= t_window)
       if (no*res%k_fit <= np) then
          call fatal_error(error, to_str(res%k_fit)//' samples in the fit window give ' &
@@ -713,6 +710,29 @@ contains
          res%guess = initial_guess(prob, t(:res%k_fit), q(:, :res%k_fit))
       end if
       res%p = res%guess
+      call continuation(prob, t, q, res, counter, error)
+      if (allocated(error)) return
+      call window_statistics(prob, t, q, res, counter, error)
+      if (allocated(error)) return
+      call predict_series(prob, t, q, tolerance, res, counter, error)
+   end subroutine fit_stages
+
+   !> The continuation stages: the window grows from the fewest samples that determine
+   !> p to the fit window (see the module's notes); res%p, iterations, stages and
+   !> converged updated.
+   subroutine continuation(prob, t, q, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      type(fit_result_t), intent(inout) :: res          !! p from the guess, k_fit set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! failed runs
+      real(dp), allocatable :: r(:)
+      real(dp) :: period, thr
+      integer :: np, k_min, k_stage, it, j, no
+      logical :: conv
+      no = size(q, 1)
+      np = res%np
       ! continuation: the window grows from the fewest samples that determine p
       k_min = min(res%k_fit, max(3, np/no + 1))
       k_stage = k_min
@@ -751,9 +771,22 @@ contains
          k_stage = min(res%k_fit, max(j - 1, k_stage + max(1, k_stage/4)))
       end do
       res%converged = conv
-      ! statistics of the fit window
+   end subroutine continuation
+
+   !> The statistics of the fit window at res%p: RMS, σ, the covariance σ² (JᵀJ)⁻¹,
+   !> standard errors, correlations and Student's t; refused when JᵀJ is singular.
+   subroutine window_statistics(prob, t, q, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      type(fit_result_t), intent(inout) :: res          !! estimates; statistics set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! failed run, singular JᵀJ
+      real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
+      integer :: np, kk, info, i, j, no
+      no = size(q, 1)
+      np = res%np
       kk = res%k_fit
-      deallocate (r)
       allocate (r(no*kk), jac(no*kk, np))
       call counted_fit(prob, res%p, t, q, kk, r, counter, error, jac)
       if (allocated(error)) return
@@ -807,8 +840,23 @@ contains
          end do
       end do
       res%t95 = student_t95(res%dof)
-      ! the whole series with the fitted model
-      deallocate (r)
+   end subroutine window_statistics
+
+   !> The whole series with the fitted model: the model's values and the residuals at
+   !> every sample, and the prediction horizon after the fit window.
+   subroutine predict_series(prob, t, q, tolerance, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad or m]
+      type(fit_result_t), intent(inout) :: res          !! estimates; series, horizon set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! the integration failed
+      real(dp), allocatable :: r(:)
+      integer :: j, kmax, kk, no
+      no = size(q, 1)
+      kmax = size(t)
+      kk = res%k_fit
       allocate (r(no*kmax))
       call counted_fit(prob, res%p, t, q, kmax, r, counter, error)
       if (allocated(error)) return
@@ -828,7 +876,7 @@ contains
             end if
          end do
       end if
-   end subroutine fit_stages
+   end subroutine predict_series
 
    !> The first stage from `prob%starts` starting points (see `fit_problem_t`): p is
    !> replaced by the estimate of lowest cost.

@@ -142,21 +142,57 @@ contains
       type(fit_config_t), intent(out) :: fc             !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value, config
-      class(integrator_t), allocatable :: integ
-      type(fit_problem_t) :: prob
-      logical :: matched, missing, links_given
-      integer :: i, np, k_fit
-      real(dp) :: x
+      character(len=:), allocatable :: config
+      logical :: links_given
       fc = fit_defaults()
       help = .false.
-      links_given = .false.
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
       if (len(config) > 0) then
          call read_run_config(config, fc%run, error)
          if (allocated(error)) return
       end if
+      call parse_fit_args(args, fc, links_given, error)
+      if (allocated(error)) return
+      if (len(fc%input) == 0) then
+         call fatal_error(error, 'no data file given (usage: dpend fit DATA.csv [options]; ' &
+                          //'dpend fit --help)')
+         return
+      end if
+      if (fc%starts < 1 .or. fc%starts > max_starts) then
+         call fatal_error(error, 'invalid starts: '//to_str(fc%starts)//' is outside [1, ' &
+                          //to_str(max_starts)//'] [--starts]')
+         return
+      end if
+      if (fc%fit_damping .and. .not. any(fc%fit_names == 'damping')) &
+         fc%fit_names = [character(len=32) :: fc%fit_names, 'damping']
+      fc%fit_damping = any(fc%fit_names == 'damping')
+      call register_input(fc%input)   ! the output never replaces the data file
+      call check_output_path(fc%run%output, fc%run%force, error)
+      if (allocated(error)) return
+      if (allocated(fc%run%model_name)) fc%model_coords = fc%run%model_name /= default_model
+      if (fc%model_coords) then
+         call read_model_series(fc, error)
+      else
+         call read_series(fc%input, fc%series, error)
+      end if
+      if (allocated(error)) return
+      call check_fit_data(fc, links_given, error)
+      if (allocated(error)) return
+      call check_work(fc, error)
+   end subroutine parse_fit
+
+
+   !> The arguments: the data file, the fit's options and the run's flags.
+   subroutine parse_fit_args(args, fc, links_given, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'fit'
+      type(fit_config_t), intent(inout) :: fc           !! the configuration
+      logical, intent(out) :: links_given               !! --links was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value
+      logical :: matched, missing
+      integer :: i
+      links_given = .false.
       i = 1
       do while (i <= size(args))
          if (args(i)%s == '--force') then
@@ -204,29 +240,19 @@ contains
                              [character(len=16) :: '--force', '--fit-damping'], error)
          if (allocated(error)) return
       end do
-      if (len(fc%input) == 0) then
-         call fatal_error(error, 'no data file given (usage: dpend fit DATA.csv [options]; ' &
-                          //'dpend fit --help)')
-         return
-      end if
-      if (fc%starts < 1 .or. fc%starts > max_starts) then
-         call fatal_error(error, 'invalid starts: '//to_str(fc%starts)//' is outside [1, ' &
-                          //to_str(max_starts)//'] [--starts]')
-         return
-      end if
-      if (fc%fit_damping .and. .not. any(fc%fit_names == 'damping')) &
-         fc%fit_names = [character(len=32) :: fc%fit_names, 'damping']
-      fc%fit_damping = any(fc%fit_names == 'damping')
-      call register_input(fc%input)   ! the output never replaces the data file
-      call check_output_path(fc%run%output, fc%run%force, error)
-      if (allocated(error)) return
-      if (allocated(fc%run%model_name)) fc%model_coords = fc%run%model_name /= default_model
-      if (fc%model_coords) then
-         call read_model_series(fc, error)
-      else
-         call read_series(fc%input, fc%series, error)
-      end if
-      if (allocated(error)) return
+   end subroutine parse_fit_args
+
+
+   !> The configuration against the data read: the tolerance's units, the links, the
+   !> model, the method, the fit window and the samples it holds.
+   subroutine check_fit_data(fc, links_given, error)
+      type(fit_config_t), intent(inout) :: fc           !! configuration; model built
+      logical, intent(in) :: links_given                !! --links was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      class(integrator_t), allocatable :: integ
+      type(fit_problem_t) :: prob
+      integer :: np, k_fit
+      real(dp) :: x
       associate (s => fc%series)
          if (s%positions) then
             if (.not. (fc%tolerance > 0.0_dp .and. fc%tolerance <= max_position_tol)) then
@@ -292,8 +318,7 @@ contains
             return
          end if
       end associate
-      call check_work(fc, error)
-   end subroutine parse_fit
+   end subroutine check_fit_data
 
    !> Refuse a fit whose work or memory (`estimate_fit_work`) is beyond the limits:
    !> at most `max_fit_work` step-equivalents, and the memory available.
@@ -621,6 +646,18 @@ contains
                     //'tolerance (0 without samples after the window)')
       call h5%write('/fit/t_window', [res%t_window], units='s', description='end T of ' &
                     //'the fit window (its last sample time)')
+      call write_fit_attributes(h5, fc, res, joined)
+      call h5%close(error)
+   end subroutine write_fit
+
+   !> The attributes of /fit and of the root: the fit's statistics, the model.
+   subroutine write_fit_attributes(h5, fc, res, joined)
+      type(h5file_t), intent(inout) :: h5           !! the open file
+      type(fit_config_t), intent(in) :: fc          !! configuration
+      type(fit_result_t), intent(in) :: res         !! estimates and statistics
+      character(len=*), intent(in) :: joined        !! the parameters' names
+      integer :: i, n
+      n = res%n
       call h5%writeattr('/fit', 'parameters', joined)
       call h5%writeattr('/fit', 'rms_residual', res%rms)
       call h5%writeattr('/fit', 'sigma', res%sigma)
@@ -668,8 +705,7 @@ contains
          call h5%writeattr('/', 'damping', fc%run%damping(:n))
          call h5%writeattr('/', 'fit_damping', merge(1, 0, fc%fit_damping))
       end if
-      call h5%close(error)
-   end subroutine write_fit
+   end subroutine write_fit_attributes
 
    ! ------------------------------------------------ models other than the pendulum
 
