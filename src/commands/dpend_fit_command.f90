@@ -511,7 +511,7 @@ contains
       integer :: i, j, np
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       call parameter_names(fc, names, units)
-      if (fc%model_coords) ou = '('//coordinates_in_units(fc)//')'
+      if (fc%model_coords) ou = '('//coordinates_joined(fc, ' in ', ', ')//')'
       associate (s => fc%series)
          write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
             ', '//to_str(s%k)//' samples, t1 = '// &
@@ -673,7 +673,7 @@ contains
       if (fc%model_coords) then
          call h5%writeattr('/fit', 'observations', 'coordinates')
          call h5%writeattr('/fit', 'n_coordinates', fc%series%n)
-         call h5%writeattr('/fit', 'coordinate_labels', coordinate_labels(fc))
+         call h5%writeattr('/fit', 'coordinate_labels', coordinates_joined(fc, ':', ' '))
       else if (fc%series%positions) then
          call h5%writeattr('/fit', 'observations', 'positions')
       else
@@ -742,9 +742,11 @@ contains
       s = s//')'
    end function model_text
 
-   !> 'r:m phi:rad' (scripts/plot_fit.sh labels its panels with them).
-   function coordinate_labels(fc) result(s)
+   !> The model's coordinates with their units: 'r:m phi:rad' with (':', ' ') (the
+   !> labels of scripts/plot_fit.sh), 'r in m, phi in rad' with (' in ', ', ').
+   function coordinates_joined(fc, between, sep) result(s)
       type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      character(len=*), intent(in) :: between, sep  !! name-unit, coordinate separators
       character(len=:), allocatable :: s
       character(len=16), allocatable :: cn(:), cu(:)
       integer :: i
@@ -752,25 +754,10 @@ contains
       cu = coordinate_units(fc, 0)
       s = ''
       do i = 1, size(cn)
-         if (i > 1) s = s//' '
-         s = s//trim(cn(i))//':'//trim(cu(i))
+         if (i > 1) s = s//sep
+         s = s//trim(cn(i))//between//trim(cu(i))
       end do
-   end function coordinate_labels
-
-   !> 'r in m, phi in rad'.
-   function coordinates_in_units(fc) result(s)
-      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
-      character(len=:), allocatable :: s
-      character(len=16), allocatable :: cn(:), cu(:)
-      integer :: i
-      cn = coordinate_units(fc, -1)
-      cu = coordinate_units(fc, 0)
-      s = ''
-      do i = 1, size(cn)
-         if (i > 1) s = s//', '
-         s = s//trim(cn(i))//' in '//trim(cu(i))
-      end do
-   end function coordinates_in_units
+   end function coordinates_joined
 
    !> 'k,l0'.
    function joined_names(names) result(s)

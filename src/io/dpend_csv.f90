@@ -410,7 +410,7 @@ contains
       integer, intent(inout) :: col_q(:)                !! column of angle i
       type(error_t), allocatable, intent(out) :: error  !! mixed, repeated, wrong unit
       character(len=:), allocatable :: this
-      integer :: idx, stat
+      integer :: idx
       if (angle_name(name, 'theta')) then
          this = 'theta'
       else
@@ -422,13 +422,8 @@ contains
                           //'columns (give all angles one way)')
          return
       end if
-      read (name(len(this) + 1:), *, iostat=stat) idx
-      if (stat /= 0) idx = 0
-      if (idx < 1 .or. idx > max_dof) then
-         call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
-                          ' is outside [1, '//to_str(max_dof)//']')
-         return
-      end if
+      call link_index(name, len(this) + 1, pre, idx, error)
+      if (allocated(error)) return
       if (col_q(idx) /= 0) then
          call fatal_error(error, pre//"column '"//name//"' appears twice")
          return
@@ -442,6 +437,23 @@ contains
       col_q(idx) = col
    end subroutine angle_column
 
+   !> The link I of a column named PREFIX I (its digits from `first` on), in
+   !> [1, max_dof].
+   subroutine link_index(name, first, pre, idx, error)
+      character(len=*), intent(in) :: name, pre         !! column, message prefix
+      integer, intent(in) :: first                      !! position of the digits
+      integer, intent(out) :: idx                       !! the link
+      type(error_t), allocatable, intent(out) :: error  !! outside [1, max_dof]
+      integer :: stat
+      read (name(first:), *, iostat=stat) idx
+      if (stat /= 0) idx = 0
+      if (idx < 1 .or. idx > max_dof) then
+         call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
+                          ' is outside [1, '//to_str(max_dof)//']')
+         return
+      end if
+   end subroutine link_index
+
    !> A position column xI or yI: I in [1, max_dof], once, in m, cm or mm.
    subroutine position_column(name, unit, col, pre, col_x, col_y, sx, sy, error)
       character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
@@ -449,15 +461,10 @@ contains
       integer, intent(inout) :: col_x(:), col_y(:)      !! columns of x_i and y_i
       real(dp), intent(inout) :: sx(:), sy(:)           !! their scales to m
       type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
-      integer :: idx, stat
+      integer :: idx
       real(dp) :: f
-      read (name(2:), *, iostat=stat) idx
-      if (stat /= 0) idx = 0
-      if (idx < 1 .or. idx > max_dof) then
-         call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
-                          ' is outside [1, '//to_str(max_dof)//']')
-         return
-      end if
+      call link_index(name, 2, pre, idx, error)
+      if (allocated(error)) return
       select case (unit)
       case ('', '[m]')
          f = 1.0_dp

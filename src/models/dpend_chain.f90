@@ -1168,62 +1168,22 @@ contains
       real(dp), intent(in) :: y(:)         !! state (q, q̇)
       character(len=*), intent(in) :: name !! 'damping'
       real(dp), intent(out) :: d(:, :)     !! ∂q̈/∂c (n, n)
-      real(dp) :: mm(self%n, self%n), b(self%n), w
+      real(dp) :: a(max_dof, max_dof), c(max_dof), sn(max_dof), b(max_dof), w
       integer :: i, n
       n = self%n
       d = 0.0_dp
       if (name /= 'damping') return
-      mm = self%mass_matrix(y(1:n))
-      call cholesky_inplace(mm)
+      call trig(n, y(1:n), c, sn)
+      call fill_mass(self, c, sn, a)
+      call cholesky(n, a)
       do i = 1, n
          w = y(n + i)
          if (i > 1) w = w - y(n + i - 1)
          b = 0.0_dp
          b(i) = -w
          if (i > 1) b(i - 1) = w
-         call cholesky_solve_small(mm, b)
-         d(:, i) = b
+         call cholesky_solve(n, a, b)
+         d(:, i) = b(1:n)
       end do
    end subroutine chain_parameter_rates
-
-   !> a = L Lᵀ in place (lower triangle), a positive definite.
-   pure subroutine cholesky_inplace(a)
-      real(dp), intent(inout) :: a(:, :)  !! the matrix; L on return
-      integer :: i, j, k
-      real(dp) :: s
-      do j = 1, size(a, 1)
-         s = a(j, j)
-         do k = 1, j - 1
-            s = s - a(j, k)**2
-         end do
-         a(j, j) = sqrt(max(s, tiny(1.0_dp)))
-         do i = j + 1, size(a, 1)
-            s = a(i, j)
-            do k = 1, j - 1
-               s = s - a(i, k)*a(j, k)
-            end do
-            a(i, j) = s/a(j, j)
-         end do
-      end do
-   end subroutine cholesky_inplace
-
-   !> Solve L Lᵀ x = b in place.
-   pure subroutine cholesky_solve_small(a, b)
-      real(dp), intent(in) :: a(:, :)     !! L from `cholesky_inplace`
-      real(dp), intent(inout) :: b(:)     !! right-hand side; x on return
-      integer :: i, k, n
-      n = size(b)
-      do i = 1, n
-         do k = 1, i - 1
-            b(i) = b(i) - a(i, k)*b(k)
-         end do
-         b(i) = b(i)/a(i, i)
-      end do
-      do i = n, 1, -1
-         do k = i + 1, n
-            b(i) = b(i) - a(k, i)*b(k)
-         end do
-         b(i) = b(i)/a(i, i)
-      end do
-   end subroutine cholesky_solve_small
 end module dpend_chain
