@@ -526,7 +526,7 @@ contains
    !> Column names of the observations, for messages.
    function obs_names(series) result(names)
       type(series_t), intent(in) :: series
-      character(len=8) :: names(series%n_obs)
+      character(len=16) :: names(series%n_obs)
       integer :: i
       do i = 1, series%n
          if (series%coords_found) then
