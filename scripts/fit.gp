@@ -3,7 +3,8 @@
 #     DATAFILE: columns t data(1..M) model(1..M) residual(1..M) in_window; KIND q: M = N
 #     angles from the horizontal x axis (rad), KIND xy: M = 2N positions x1 y1 ... of
 #     the link ends (m); TWINDOW: end of the fit window (s); TOL: the horizon
-#     tolerance, RMS: the RMS residual of the window (rad or m)
+#     tolerance, RMS: the RMS residual of the window (rad or m); KIND model NAME:UNIT ...:
+#     M = the model's coordinates, named with their units ("model r:m phi:rad")
 #   gnuplot -c fit.gp horizon DATAFILE OUTDIR TITLE
 #     DATAFILE: columns t1 t_window horizon censored (s, s, s, 0/1)
 # TITLE: file name, enhanced text, escaped. The arguments are data: never pasted
@@ -38,9 +39,13 @@ Tw = real(ARG6)
 tol = real(ARG7)
 rms = real(ARG8)
 xy = (ARG9 eq "xy")
-unit = xy ? "m" : "rad"
-# panel i: q_i, or x_k / y_k of link k = (i + 1)/2
-label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), (i + 1)/2) : sprintf("q_%d [rad]", i)
+model = (word(ARG9, 1) eq "model")
+unit = xy ? "m" : (model ? "(units of each panel)" : "rad")
+labels = model ? ARG9[7:] : ""
+# panel i: q_i, or x_k / y_k of link k = (i + 1)/2, or the model's coordinate i
+wlabel(w) = sprintf("%s [%s]", w[1:strstrt(w, ":") - 1], w[strstrt(w, ":") + 1:])
+label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), (i + 1)/2) : \
+           (model ? wlabel(word(labels, i)) : sprintf("q_%d [rad]", i))
 colour(i) = xy ? lc((i + 1)/2) : lc(i)
 cin = 3*N + 2                  # column of in_window
 set arrow 1 from first Tw, graph 0 to first Tw, graph 1 nohead dt 2 lc rgb "#555555"

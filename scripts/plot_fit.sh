@@ -82,10 +82,23 @@ if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
 plot_dpend
 plot_tmpdir
 links=$(attr "" links "$h5")
+labels=
+if [[ $(attr /fit observations "$h5") == coordinates ]]; then
+  # a model's coordinates (dpend fit --model): their count, names and units
+  links=$(attr /fit n_coordinates "$h5")
+  labels=$(attr /fit coordinate_labels "$h5")
+  [[ $labels =~ ^[A-Za-z0-9_]+:[A-Za-z0-9/^_]+( [A-Za-z0-9_]+:[A-Za-z0-9/^_]+)*$ ]] ||
+    plot_fail 2 "'$1' is not a dpend fit file (coordinate_labels)"
+fi
 [[ $links =~ ^[1-9][0-9]*$ ]] || plot_fail 2 "'$1' is not a dpend fit file (no links)"
 # columns: t data(1..M) model(1..M) residual(1..M) in_window, M = N angles or 2N
-# positions (x1 y1 ... xN yN of the link ends)
-if [[ $(attr /fit observations "$h5") == positions ]]; then
+# positions (x1 y1 ... xN yN of the link ends) or the model's coordinates
+if [[ -n $labels ]]; then
+  kind=model
+  cols=$links
+  "$dpend" export "$h5" /fit/t /fit/q_data /fit/q_model /fit/residual /fit/in_window \
+    > "$tmp/fit.dat" || plot_fail 2 "'$1' is not a dpend fit file"
+elif [[ $(attr /fit observations "$h5") == positions ]]; then
   kind=xy
   cols=$((2 * links))
   "$dpend" export "$h5" /fit/t /fit/xy_data /fit/xy_model /fit/residual /fit/in_window \
@@ -106,5 +119,5 @@ plot_base name "$1"
 plot_enhanced title "$name"
 plot_begin "$out" fit_overlay.png fit_residuals.png
 plot_run gnuplot -c "$here/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$cols" "$tw" \
-  "$tol" "$rms" "$kind"
+  "$tol" "$rms" "$kind${labels:+ $labels}"
 printf 'plot_fit.sh: wrote %s/{fit_overlay,fit_residuals}.png\n' "$out"

@@ -55,22 +55,23 @@
 !> up).
 module dpend_estimate
    use dpend_kinds, only: dp, pi
-   use dpend_error, only: error_t, fatal_error
+   use dpend_error, only: error_t, fatal_error, error_bad_input
    use dpend_model, only: model_t, max_dof, max_state
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_model_factory, only: model_spec_t, new_model, model_catalogue, find_model, &
+                                  model_info_t
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t
    use dpend_tangent, only: tangent_t
    use dpend_lapack, only: dpotrf, dpotrs
-   use dpend_limits, only: max_damping, max_fit_work, default_max_steps
+   use dpend_limits, only: max_fit_work, default_max_steps
    use dpend_strings, only: real_str, to_str
    use dpend_kinds, only: i8
    use dpend_progress, only: progress_t
    implicit none
    private
    public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
-   public :: initial_guess, student_t95, fit_work_t, estimate_fit_work
+   public :: initial_guess, student_t95, fit_work_t, estimate_fit_work, set_fitted, n_fitted
 
    !> Most steps of the probe integration that measures the steps per second of model
    !> time (`estimate_fit_work`): a few milliseconds.
@@ -81,16 +82,27 @@ module dpend_estimate
 
    !> What is fitted and how the model is integrated.
    type :: fit_problem_t
-      !> the model with fixed parameters (used when the damping is not fitted)
+      !> the model with fixed parameters (used when no model parameter is fitted)
       class(model_t), allocatable :: model
-      logical :: fit_damping = .false.        !! estimate c_i too
-      !> the chain's parameters when the damping is fitted (chain_model)
-      real(dp), allocatable :: m(:), l(:)     !! masses [kg], lengths [m]
-      real(dp) :: g = 9.8_dp                  !! [m/s²]
+      !> the model's specification: a fit of model parameters builds the model from it
+      !> (`new_model`, the general form) with the fitted values set by name
+      type(model_spec_t) :: spec
+      !> the model parameters fitted (`set_fitted`), e.g. 'damping': their names, the
+      !> components of each, and per component the first guess and the accepted range
+      character(len=32), allocatable :: fit_names(:)
+      integer, allocatable :: fit_counts(:)
+      real(dp), allocatable :: theta0(:), theta_lower(:), theta_upper(:)
+      !> the fitted model parameters are held at their guess while the window is
+      !> shorter than this [s] (a fraction of a swing barely determines them)
+      real(dp) :: hold_period = huge(1.0_dp)
+      !> which observed coordinates are angles (residuals wrapped into [−π, π));
+      !> unallocated: all
+      logical, allocatable :: angular(:)
+      !> the geometry of observed positions: link lengths [m] and the support's motion
+      real(dp), allocatable :: l(:)           !! lengths [m]
       real(dp) :: sup_a(2) = 0.0_dp           !! support amplitudes [m]
       real(dp) :: sup_w = 0.0_dp              !! support angular frequency [rad/s]
       real(dp) :: sup_phi(2) = 0.0_dp         !! support phases [rad]
-      real(dp), allocatable :: c0(:)          !! first guess of c [N m s]
       character(len=:), allocatable :: method !! explicit method (default dop853)
       real(dp) :: rtol = 1e-12_dp             !! its tolerances
       real(dp) :: atol = 1e-14_dp
@@ -156,9 +168,11 @@ module dpend_estimate
 
    !> A model with its damping carried as constant state components (see the notes).
    type, extends(model_t) :: sens_model_t
-      class(model_t), allocatable :: base   !! the system (a chain_t when nc > 0)
+      class(model_t), allocatable :: base   !! the system
       integer :: n = 0                      !! its degrees of freedom N
-      integer :: nc = 0                     !! damping components (0 or N)
+      integer :: nc = 0                     !! fitted parameter components
+      character(len=32), allocatable :: names(:)  !! the fitted parameters
+      integer, allocatable :: counts(:)           !! their components
    contains
       procedure :: n_dof => sens_n_dof
       procedure :: name => sens_name
@@ -220,15 +234,14 @@ contains
       f(2*n + nc + 1:2*n + 2*nc) = 0.0_dp
    end subroutine sens_field
 
-   !> The base Jacobian and, for the damping, ∂q̈/∂c_i = M⁻¹ ∂Q/∂c_i with
-   !> ∂Q/∂c_i = −w_i e_i + w_i e_(i−1), w_i = q̇_i − q̇_(i−1) (q̇_0 = 0).
+   !> The base Jacobian and, for the fitted parameters θ, ∂q̈/∂θ from the model
+   !> (`parameter_rates`).
    pure subroutine sens_jacobian(self, t, y, jac)
       class(sens_model_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)
       real(dp), intent(out) :: jac(:, :)
-      real(dp) :: yb(2*self%n), jb(2*self%n, 2*self%n), mm(self%n, self%n), b(self%n)
-      real(dp) :: w
-      integer :: n, nc, i, j
+      real(dp) :: yb(2*self%n), jb(2*self%n, 2*self%n), d(self%n, self%nc)
+      integer :: n, nc, i, j, c
       integer :: map(2*self%n)
       n = self%n
       nc = self%nc
@@ -238,22 +251,13 @@ contains
       jac = 0.0_dp
       jac(map, map) = jb
       if (nc == 0) return
-      select type (b_ => self%base)
-      type is (chain_t)
-         mm = b_%mass_matrix(yb(1:n))
-      class default
-         error stop 'internal error: fitted damping needs a chain'
-      end select
-      call cholesky_inplace(mm)
-      do i = 1, nc
-         w = yb(n + i)
-         if (i > 1) w = w - yb(n + i - 1)
-         b = 0.0_dp
-         b(i) = -w
-         if (i > 1) b(i - 1) = w
-         call cholesky_solve_small(mm, b)
-         jac(n + nc + 1:2*n + nc, n + i) = b
+      c = 0
+      do i = 1, size(self%names)
+         call self%base%parameter_rates(t, yb, trim(self%names(i)), &
+                                        d(:, c + 1:c + self%counts(i)))
+         c = c + self%counts(i)
       end do
+      jac(n + nc + 1:2*n + nc, n + 1:n + nc) = d
    end subroutine sens_jacobian
 
    pure real(dp) function sens_energy(self, t, y)
@@ -269,47 +273,6 @@ contains
       real(dp), intent(in) :: e0
       sens_energy_scale = self%base%energy_scale(e0)
    end function sens_energy_scale
-
-   !> a = L Lᵀ in place (lower triangle), a positive definite.
-   pure subroutine cholesky_inplace(a)
-      real(dp), intent(inout) :: a(:, :)
-      integer :: i, j, k
-      real(dp) :: s
-      do j = 1, size(a, 1)
-         s = a(j, j)
-         do k = 1, j - 1
-            s = s - a(j, k)**2
-         end do
-         a(j, j) = sqrt(max(s, tiny(1.0_dp)))
-         do i = j + 1, size(a, 1)
-            s = a(i, j)
-            do k = 1, j - 1
-               s = s - a(i, k)*a(j, k)
-            end do
-            a(i, j) = s/a(j, j)
-         end do
-      end do
-   end subroutine cholesky_inplace
-
-   !> Solve L Lᵀ x = b in place.
-   pure subroutine cholesky_solve_small(a, b)
-      real(dp), intent(in) :: a(:, :)
-      real(dp), intent(inout) :: b(:)
-      integer :: i, k, n
-      n = size(b)
-      do i = 1, n
-         do k = 1, i - 1
-            b(i) = b(i) - a(i, k)*b(k)
-         end do
-         b(i) = b(i)/a(i, i)
-      end do
-      do i = n, 1, -1
-         do k = i + 1, n
-            b(i) = b(i) - a(k, i)*b(k)
-         end do
-         b(i) = b(i)/a(i, i)
-      end do
-   end subroutine cholesky_solve_small
 
    ! ------------------------------------------------------------ residuals, Jacobian
 
@@ -433,23 +396,35 @@ contains
       y = integ%to_internal(sm, y(1:n + nc), y(n + nc + 1:ns), t1)
    end subroutine start_model
 
-   !> The augmented model for the parameters p.
+   !> The augmented model for the parameters p: with fitted model parameters, the
+   !> model of the specification with their values (kept in range) set by name.
    subroutine model_for(prob, p, sm, error)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: p(:)
       type(sens_model_t), intent(out) :: sm
       type(error_t), allocatable, intent(out) :: error
-      type(chain_t) :: chain
-      integer :: n
-      if (prob%fit_damping) then
-         n = size(prob%m)
-         chain = chain_model(prob%m, prob%l, prob%g, error, &
-                             min(max(p(2*n + 1:3*n), 0.0_dp), max_damping), &
-                             prob%sup_a, prob%sup_w, prob%sup_phi)
+      type(model_spec_t) :: spec
+      integer :: n, nc, i, c
+      nc = n_fitted(prob)
+      if (nc > 0) then
+         n = (size(p) - nc)/2
+         spec = prob%spec
+         spec%general = .true.
+         c = 2*n
+         do i = 1, size(prob%fit_names)
+            associate (lo => prob%theta_lower(c - 2*n + 1:c - 2*n + prob%fit_counts(i)), &
+                       up => prob%theta_upper(c - 2*n + 1:c - 2*n + prob%fit_counts(i)))
+               call spec%set(trim(prob%fit_names(i)), &
+                             min(max(p(c + 1:c + prob%fit_counts(i)), lo), up))
+            end associate
+            c = c + prob%fit_counts(i)
+         end do
+         call new_model(spec, sm%base, error)
          if (allocated(error)) return
-         allocate (sm%base, source=chain)
          sm%n = n
-         sm%nc = n
+         sm%nc = nc
+         sm%names = prob%fit_names
+         sm%counts = prob%fit_counts
       else
          allocate (sm%base, source=prob%model)
          sm%n = prob%model%n_dof()
@@ -493,9 +468,22 @@ contains
       if (prob%positions) then
          r = o - data
       else
-         r = wrap(o - data)
+         r = wrap_angles(prob, o - data)
       end if
    end function residual
+
+   !> The components of x that are angles (`prob%angular`; all if unset) wrapped into
+   !> [−π, π), the others as they are.
+   pure function wrap_angles(prob, x) result(w)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: x(:)
+      real(dp) :: w(size(x))
+      if (allocated(prob%angular)) then
+         w = merge(wrap(x), x, prob%angular)
+      else
+         w = wrap(x)
+      end if
+   end function wrap_angles
 
    !> The angles of the link ends' positions xy (2N, K) at times t.
    pure function angles_of(prob, t, xy) result(q)
@@ -522,9 +510,10 @@ contains
    ! ------------------------------------------------------------ the fit
 
    !> The first guess: angles of the first sample, rates from the three-point
-   !> (two-point for two samples) difference of the first samples; damping c0.
+   !> (two-point for two samples) difference of the first samples; the fitted model
+   !> parameters at `theta0`.
    function initial_guess(prob, t, obs) result(p)
-      type(fit_problem_t), intent(in) :: prob   !! (c0 when the damping is fitted)
+      type(fit_problem_t), intent(in) :: prob   !! the problem
       real(dp), intent(in) :: t(:)              !! sample times [s]
       real(dp), intent(in) :: obs(:, :)         !! angles (N, K) [rad] or positions
       real(dp), allocatable :: p(:)
@@ -537,18 +526,18 @@ contains
          q = obs(:, :min(3, size(t)))
       end if
       n = size(q, 1)
-      allocate (p(merge(3*n, 2*n, prob%fit_damping)))
+      allocate (p(2*n + n_fitted(prob)))
       p(1:n) = q(:, 1)
       if (size(t) >= 3) then
          ! derivative at t1 of the parabola through the first three samples
          h1 = t(2) - t(1)
          h2 = t(3) - t(1)
-         p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))*h2/(h1*(h2 - h1)) - &
-                        wrap(q(:, 3) - q(:, 1))*h1/(h2*(h2 - h1))
+         p(n + 1:2*n) = wrap_angles(prob, q(:, 2) - q(:, 1))*h2/(h1*(h2 - h1)) - &
+                        wrap_angles(prob, q(:, 3) - q(:, 1))*h1/(h2*(h2 - h1))
       else
-         p(n + 1:2*n) = wrap(q(:, 2) - q(:, 1))/(t(2) - t(1))
+         p(n + 1:2*n) = wrap_angles(prob, q(:, 2) - q(:, 1))/(t(2) - t(1))
       end if
-      if (prob%fit_damping) p(2*n + 1:3*n) = prob%c0
+      if (n_fitted(prob) > 0) p(2*n + 1:) = prob%theta0
    end function initial_guess
 
    !> The most work `fit_series` can do on these samples (see the module's notes):
@@ -566,7 +555,7 @@ contains
       integer :: no, n, np, k_fit, kmax, k, k_min
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
-      np = merge(3*n, 2*n, prob%fit_damping)
+      np = 2*n + n_fitted(prob)
       kmax = size(t)
       k_fit = count(t <= t_window)
       if (no*k_fit <= np) then
@@ -688,7 +677,8 @@ contains
       if (counter%show .and. counter%progress%reported > 0) call counter%progress%finish()
    end subroutine fit_series
 
-   !> `fit_series` with its work counter.
+   !> `fit_series` with its work counter: the continuation stages, the statistics of
+   !> the fit window, the prediction of the whole series.
    subroutine fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
@@ -699,17 +689,13 @@ contains
       type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
       type(error_t), allocatable, intent(out) :: error  !! too few samples, failed runs
       real(dp), intent(in), optional :: guess(:)        !! first guess
-      real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
-      real(dp) :: period, thr
-      integer :: n, np, kk, k_min, k_stage, it, info, i, j, kmax, no
-      logical :: conv
+      integer :: n, np, no
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
       res%n = n
-      np = merge(3*n, 2*n, prob%fit_damping)
+      np = 2*n + n_fitted(prob)
       res%np = np
       res%tolerance = tolerance
-      kmax = size(t)
       res%k_fit = count(t <= t_window)
       if (no*res%k_fit <= np) then
          call fatal_error(error, to_str(res%k_fit)//' samples in the fit window give ' &
@@ -724,6 +710,29 @@ contains
          res%guess = initial_guess(prob, t(:res%k_fit), q(:, :res%k_fit))
       end if
       res%p = res%guess
+      call continuation(prob, t, q, res, counter, error)
+      if (allocated(error)) return
+      call window_statistics(prob, t, q, res, counter, error)
+      if (allocated(error)) return
+      call predict_series(prob, t, q, tolerance, res, counter, error)
+   end subroutine fit_stages
+
+   !> The continuation stages: the window grows from the fewest samples that determine
+   !> p to the fit window (see the module's notes); res%p, iterations, stages and
+   !> converged updated.
+   subroutine continuation(prob, t, q, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      type(fit_result_t), intent(inout) :: res          !! p from the guess, k_fit set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! failed runs
+      real(dp), allocatable :: r(:)
+      real(dp) :: period, thr
+      integer :: np, k_min, k_stage, it, j, no
+      logical :: conv
+      no = size(q, 1)
+      np = res%np
       ! continuation: the window grows from the fewest samples that determine p
       k_min = min(res%k_fit, max(3, np/no + 1))
       k_stage = k_min
@@ -734,10 +743,7 @@ contains
          res%iterations = it
          if (allocated(error)) return
       end if
-      period = huge(1.0_dp)
-      if (prob%fit_damping) then
-         if (prob%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(prob%l)/prob%g)
-      end if
+      period = prob%hold_period
       allocate (r(no*res%k_fit))
       do
          ! the damping is held at its guess while the window is shorter than a swing
@@ -765,9 +771,22 @@ contains
          k_stage = min(res%k_fit, max(j - 1, k_stage + max(1, k_stage/4)))
       end do
       res%converged = conv
-      ! statistics of the fit window
+   end subroutine continuation
+
+   !> The statistics of the fit window at res%p: RMS, σ, the covariance σ² (JᵀJ)⁻¹,
+   !> standard errors, correlations and Student's t; refused when JᵀJ is singular.
+   subroutine window_statistics(prob, t, q, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      type(fit_result_t), intent(inout) :: res          !! estimates; statistics set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! failed run, singular JᵀJ
+      real(dp), allocatable :: r(:), jac(:, :), a(:, :), ds(:)
+      integer :: np, kk, info, i, j, no
+      no = size(q, 1)
+      np = res%np
       kk = res%k_fit
-      deallocate (r)
       allocate (r(no*kk), jac(no*kk, np))
       call counted_fit(prob, res%p, t, q, kk, r, counter, error, jac)
       if (allocated(error)) return
@@ -821,8 +840,23 @@ contains
          end do
       end do
       res%t95 = student_t95(res%dof)
-      ! the whole series with the fitted model
-      deallocate (r)
+   end subroutine window_statistics
+
+   !> The whole series with the fitted model: the model's values and the residuals at
+   !> every sample, and the prediction horizon after the fit window.
+   subroutine predict_series(prob, t, q, tolerance, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      real(dp), intent(in) :: tolerance                 !! horizon tolerance [rad or m]
+      type(fit_result_t), intent(inout) :: res          !! estimates; series, horizon set
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! the integration failed
+      real(dp), allocatable :: r(:)
+      integer :: j, kmax, kk, no
+      no = size(q, 1)
+      kmax = size(t)
+      kk = res%k_fit
       allocate (r(no*kmax))
       call counted_fit(prob, res%p, t, q, kmax, r, counter, error)
       if (allocated(error)) return
@@ -842,7 +876,7 @@ contains
             end if
          end do
       end if
-   end subroutine fit_stages
+   end subroutine predict_series
 
    !> The first stage from `prob%starts` starting points (see `fit_problem_t`): p is
    !> replaced by the estimate of lowest cost.
@@ -862,7 +896,7 @@ contains
       logical :: conv
       integer, parameter :: primes(max_dof) = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, &
          41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127, 131]
-      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      n = (size(p) - n_fitted(prob))/2
       allocate (r(size(q, 1)*k))
       ! the starts only have to find the basin: looser tolerances, fewer iterations
       quick = prob
@@ -981,7 +1015,7 @@ contains
       type(error_t), allocatable :: trial_error
       real(dp) :: cost, cost_n, lambda
       integer :: m, np, it, tries, info, i, n
-      n = merge(size(p)/3, size(p)/2, prob%fit_damping)
+      n = (size(p) - n_fitted(prob))/2
       m = size(q, 1)*k
       np = size(p)
       allocate (r(m), jac(m, np), rn(m), jn(m, np), g(np), d(np), pn(np), b(np, 1))
@@ -997,7 +1031,7 @@ contains
          iterations = it
          a = matmul(transpose(jac), jac)
          g = matmul(transpose(jac), r)
-         if (present(hold_damping) .and. prob%fit_damping) then
+         if (present(hold_damping) .and. n_fitted(prob) > 0) then
             if (hold_damping) then
                a(2*n + 1:, :) = 0.0_dp
                a(:, 2*n + 1:) = 0.0_dp
@@ -1031,8 +1065,8 @@ contains
                cycle
             end if
             pn = p + b(:, 1)
-            if (prob%fit_damping) pn(2*n + 1:3*n) = min(max(pn(2*n + 1:3*n), 0.0_dp), &
-                                                        max_damping)
+            if (n_fitted(prob) > 0) pn(2*n + 1:) = min(max(pn(2*n + 1:), &
+                                                           prob%theta_lower), prob%theta_upper)
             call counted_fit(prob, pn, t, q, k, rn, counter, trial_error, jn)
             if (allocated(trial_error)) then
                if (counter%exceeded) then
@@ -1084,4 +1118,56 @@ contains
               1920.0_dp*z**3 - 945.0_dp*z)/(92160.0_dp*v**4)
       end if
    end function student_t95
+
+   !> Components of the fitted model parameters (0: only the state is fitted).
+   pure integer function n_fitted(prob)
+      type(fit_problem_t), intent(in) :: prob  !! the problem
+      n_fitted = 0
+      if (allocated(prob%theta0)) n_fitted = size(prob%theta0)
+   end function n_fitted
+
+   !> Fit the model parameters `names` of `prob%spec` too: each must be one the model
+   !> gives the sensitivities to (`check_parameter_rates`); their first guess is the
+   !> value of the specification (or the default), their range the catalogue's.
+   subroutine set_fitted(prob, names, error)
+      type(fit_problem_t), intent(inout) :: prob        !! the problem (spec set)
+      character(len=*), intent(in) :: names(:)          !! parameter names
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(model_info_t), allocatable :: models(:)
+      class(model_t), allocatable :: model
+      type(model_spec_t) :: spec
+      real(dp), allocatable :: v(:)
+      integer :: i, j, k, cnt
+      spec = prob%spec
+      spec%general = .true.
+      call new_model(spec, model, error)
+      if (allocated(error)) return
+      models = model_catalogue()
+      k = find_model(models, spec%model_name())
+      allocate (prob%fit_names(size(names)), prob%fit_counts(size(names)))
+      allocate (prob%theta0(0), prob%theta_lower(0), prob%theta_upper(0))
+      do i = 1, size(names)
+         call model%check_parameter_rates(trim(names(i)), error)
+         if (allocated(error)) return
+         do j = 1, size(models(k)%params)
+            if (models(k)%params(j)%name == trim(names(i))) exit
+         end do
+         associate (par => models(k)%params(j))
+            cnt = par%count
+            if (cnt < 0) cnt = model%n_dof()
+            v = spec%get(trim(names(i)), spread(par%default, 1, cnt))
+            prob%theta0 = [prob%theta0, v]
+            prob%theta_lower = [prob%theta_lower, spread(par%lower, 1, cnt)]
+            prob%theta_upper = [prob%theta_upper, spread(par%upper, 1, cnt)]
+         end associate
+         prob%fit_names(i) = names(i)
+         prob%fit_counts(i) = cnt
+      end do
+      if (model%n_dof() + size(prob%theta0) > max_dof) then
+         call fatal_error(error, 'invalid fit parameters: '//to_str(model%n_dof())// &
+                          ' coordinates and '//to_str(size(prob%theta0))//' fitted ' &
+                          //'components are more than the '//to_str(max_dof)//' the ' &
+                          //'sensitivity system holds', error_bad_input)
+      end if
+   end subroutine set_fitted
 end module dpend_estimate

@@ -11,12 +11,13 @@ module dpend_fit_command
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, pad, printable
-   use dpend_config, only: require_default_model, run_config_t, read_run_config, apply_run_flag, &
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, run_flags_help
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
-                             estimate_fit_work
+                             estimate_fit_work, set_fitted, n_fitted
+   use dpend_model_factory, only: default_model, model_catalogue, find_model, model_info_t
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
@@ -44,6 +45,10 @@ module dpend_fit_command
       logical :: window_given = .false.
       real(dp) :: tolerance = 0.1_dp             !! horizon tolerance [rad]
       integer :: starts = 1                      !! first-stage starting points
+      !> model parameters fitted by name (--fit-parameters; --fit-damping: damping)
+      character(len=32), allocatable :: fit_names(:)
+      !> a model other than the pendulum: the CSV columns are its coordinates
+      logical :: model_coords = .false.
    end type fit_config_t
 
    !> The run flags that make sense for a fit (the initial state comes from the data).
@@ -63,6 +68,7 @@ contains
       fc%run%dt = 1e-3_dp
       fc%run%output = 'fit.h5'
       fc%input = ''
+      allocate (fc%fit_names(0))
    end function fit_defaults
 
    !> Help text of `dpend fit`.
@@ -89,6 +95,9 @@ contains
           nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
           nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
+          nl//'  t,r,phi                 with --model elastic: the model''s coordinates'// &
+          nl//'                          (dpend models), r in m, phi in rad from the'// &
+          nl//'                          horizontal x axis (units [m], [rad] or none).'// &
           nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
           nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
@@ -99,6 +108,11 @@ contains
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
+          '  --fit-parameters NAMES  fit these model parameters too, comma-separated:'// &
+          nl//'                    damping (the pendulum: as --fit-damping); k,l0 (the'// &
+          nl//'                    elastic pendulum: with g known the motion depends on'// &
+          nl//'                    k/m and l0 only, so k is fitted at the given --m);'// &
+          nl//'                    their first guess: the values given (--k, --l0)'//nl// &
           '  --fit-window T    fit only the samples with t <= T (s); the rest measures the'// &
           nl//'                    prediction horizon; default: all samples'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
@@ -114,7 +128,8 @@ contains
           'model and integration (the initial state comes from the data; the links from'// &
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
-          '  --support-amplitude, --support-frequency, --support-phase, --method (default '// &
+          '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
+          '  --model and its parameters (--model elastic --m --k --l0), --method (default '// &
           fc%run%method//'),'//nl//'  --dt, --rtol (default '//real_str(fc%run%rtol)// &
           '), --atol (default '//real_str(fc%run%atol)//'), --max-steps'//nl// &
           '  as for dpend simulate (dpend simulate --help).'//nl// &
@@ -127,20 +142,57 @@ contains
       type(fit_config_t), intent(out) :: fc             !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
-      character(len=:), allocatable :: name, value, config
-      class(integrator_t), allocatable :: integ
-      logical :: matched, missing, links_given
-      integer :: i, np, k_fit
-      real(dp) :: x
+      character(len=:), allocatable :: config
+      logical :: links_given
       fc = fit_defaults()
       help = .false.
-      links_given = .false.
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
       if (len(config) > 0) then
          call read_run_config(config, fc%run, error)
          if (allocated(error)) return
       end if
+      call parse_fit_args(args, fc, links_given, error)
+      if (allocated(error)) return
+      if (len(fc%input) == 0) then
+         call fatal_error(error, 'no data file given (usage: dpend fit DATA.csv [options]; ' &
+                          //'dpend fit --help)')
+         return
+      end if
+      if (fc%starts < 1 .or. fc%starts > max_starts) then
+         call fatal_error(error, 'invalid starts: '//to_str(fc%starts)//' is outside [1, ' &
+                          //to_str(max_starts)//'] [--starts]')
+         return
+      end if
+      if (fc%fit_damping .and. .not. any(fc%fit_names == 'damping')) &
+         fc%fit_names = [character(len=32) :: fc%fit_names, 'damping']
+      fc%fit_damping = any(fc%fit_names == 'damping')
+      call register_input(fc%input)   ! the output never replaces the data file
+      call check_output_path(fc%run%output, fc%run%force, error)
+      if (allocated(error)) return
+      if (allocated(fc%run%model_name)) fc%model_coords = fc%run%model_name /= default_model
+      if (fc%model_coords) then
+         call read_model_series(fc, error)
+      else
+         call read_series(fc%input, fc%series, error)
+      end if
+      if (allocated(error)) return
+      call check_fit_data(fc, links_given, error)
+      if (allocated(error)) return
+      call check_work(fc, error)
+   end subroutine parse_fit
+
+
+   !> The arguments: the data file, the fit's options and the run's flags.
+   subroutine parse_fit_args(args, fc, links_given, error)
+      type(arg_t), intent(in) :: args(:)                !! arguments after 'fit'
+      type(fit_config_t), intent(inout) :: fc           !! the configuration
+      logical, intent(out) :: links_given               !! --links was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=:), allocatable :: name, value
+      logical :: matched, missing
+      integer :: i
+      links_given = .false.
       i = 1
       do while (i <= size(args))
          if (args(i)%s == '--force') then
@@ -174,8 +226,10 @@ contains
             call parse_real(value, name, fc%tolerance, error)
          case ('--starts')
             call parse_int(value, name, fc%starts, error)
+         case ('--fit-parameters')
+            call parse_names(value, fc%fit_names, error)
          case default
-            if (any(run_flags == name)) then
+            if (any(run_flags == name) .or. model_flag(name)) then
                if (name == '--links') links_given = .true.
                call apply_run_flag(fc%run, name, value, matched, error)
             else
@@ -186,21 +240,19 @@ contains
                              [character(len=16) :: '--force', '--fit-damping'], error, fit_help())
          if (allocated(error)) return
       end do
-      if (len(fc%input) == 0) then
-         call fatal_error(error, 'no data file given (usage: dpend fit DATA.csv [options]; ' &
-                          //'dpend fit --help)')
-         return
-      end if
-      if (fc%starts < 1 .or. fc%starts > max_starts) then
-         call fatal_error(error, 'invalid starts: '//to_str(fc%starts)//' is outside [1, ' &
-                          //to_str(max_starts)//'] [--starts]')
-         return
-      end if
-      call register_input(fc%input)   ! the output never replaces the data file
-      call check_output_path(fc%run%output, fc%run%force, error)
-      if (allocated(error)) return
-      call read_series(fc%input, fc%series, error)
-      if (allocated(error)) return
+   end subroutine parse_fit_args
+
+
+   !> The configuration against the data read: the tolerance's units, the links, the
+   !> model, the method, the fit window and the samples it holds.
+   subroutine check_fit_data(fc, links_given, error)
+      type(fit_config_t), intent(inout) :: fc           !! configuration; model built
+      logical, intent(in) :: links_given                !! --links was given
+      type(error_t), allocatable, intent(out) :: error  !! invalid input
+      class(integrator_t), allocatable :: integ
+      type(fit_problem_t) :: prob
+      integer :: np, k_fit
+      real(dp) :: x
       associate (s => fc%series)
          if (s%positions) then
             if (.not. (fc%tolerance > 0.0_dp .and. fc%tolerance <= max_position_tol)) then
@@ -221,10 +273,11 @@ contains
                              ' angle columns (N is the number of angle columns) [--links]')
             return
          end if
-         fc%run%links = s%n
-         call require_default_model(fc%run, 'dpend fit', error)
-         if (.not. allocated(error)) call validate_run_config(fc%run, error)
-         if (allocated(error)) return
+         if (.not. fc%model_coords) then
+            fc%run%links = s%n
+            call validate_run_config(fc%run, error)
+            if (allocated(error)) return
+         end if
          call new_integrator(fc%run%method, integ, error)
          if (allocated(error)) return
          if (integ%canonical()) then
@@ -251,7 +304,9 @@ contains
                return
             end if
          end if
-         np = merge(3*s%n, 2*s%n, fc%fit_damping)
+         call fit_problem(fc, prob, error)
+         if (allocated(error)) return
+         np = 2*s%n + n_fitted(prob)
          k_fit = count(s%t <= fc%fit_window)
          if (s%n_obs*k_fit <= np) then
             call fatal_error(error, "invalid data file '"//printable(fc%input)//"': "// &
@@ -263,8 +318,7 @@ contains
             return
          end if
       end associate
-      call check_work(fc, error)
-   end subroutine parse_fit
+   end subroutine check_fit_data
 
    !> Refuse a fit whose work or memory (`estimate_fit_work`) is beyond the limits:
    !> at most `max_fit_work` step-equivalents, and the memory available.
@@ -273,7 +327,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! set when refused
       type(fit_problem_t) :: prob
       type(fit_work_t) :: work
-      prob = fit_problem(fc)
+      call fit_problem(fc, prob, error)
+      if (allocated(error)) return
       call estimate_fit_work(prob, fc%series%t, fc%series%q, fc%fit_window, work, error)
       if (allocated(error)) return
       if (work%work > max_fit_work) then
@@ -281,7 +336,7 @@ contains
                           ' integration steps ('//sci(work%steps, 3)//' per integration ' &
                           //'over the fit window of '//sci(fc%series%t(count(fc%series%t <= &
                           fc%fit_window)) - fc%series%t(1), 4)//' s, x'// &
-                          to_str(1 + merge(3, 2, fc%fit_damping)*fc%series%n)// &
+                          to_str(1 + 2*fc%series%n + n_fitted(prob))// &
                           ' with sensitivities, up to '//sci(work%evaluations, 3)// &
                           ' integrations in '//to_str(work%stages)//' stages); at most '// &
                           sci(max_fit_work)//' (a shorter --fit-window or series, a ' &
@@ -292,29 +347,35 @@ contains
                         //'fit window', 'shorten the fit window: --fit-window', error)
    end subroutine check_work
 
-   !> The estimation problem of the configuration.
-   function fit_problem(fc) result(prob)
-      type(fit_config_t), intent(in) :: fc   !! validated configuration
-      type(fit_problem_t) :: prob
+   !> The estimation problem of the configuration: the run's model and its
+   !> specification, the model parameters fitted (the damping with --fit-damping,
+   !> held at its guess while the window is shorter than 2 pi sqrt(sum l / g)).
+   subroutine fit_problem(fc, prob, error)
+      type(fit_config_t), intent(in) :: fc              !! validated configuration
+      type(fit_problem_t), intent(out) :: prob          !! the problem
+      type(error_t), allocatable, intent(out) :: error  !! a parameter not fittable
       integer :: n
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
-      prob%fit_damping = fc%fit_damping
+      prob%spec = fc%run%spec
+      if (size(fc%fit_names) > 0) then
+         call set_fitted(prob, fc%fit_names, error)
+         if (allocated(error)) return
+         prob%hold_period = hold_period(fc)
+      end if
+      if (fc%model_coords) prob%angular = coordinate_units(fc, 0) == 'rad'
       prob%positions = fc%series%positions
-      prob%m = fc%run%m(:n)
       prob%l = fc%run%l(:n)
-      prob%g = fc%run%g
       prob%sup_a = fc%run%support_amplitude
       prob%sup_w = fc%run%support_frequency
       prob%sup_phi = fc%run%support_phase
-      prob%c0 = fc%run%damping(:n)
       prob%method = fc%run%method
       prob%rtol = fc%run%rtol
       prob%atol = fc%run%atol
       prob%dt = fc%run%dt
       prob%starts = fc%starts
       prob%max_steps = fc%run%max_steps
-   end function fit_problem
+   end subroutine fit_problem
 
    !> Run the fit and write its report and file.
    !> The error's kind says whether the input was refused (nothing written) or
@@ -337,7 +398,8 @@ contains
       type(output_t) :: out
       type(error_t), allocatable :: werr
       failed = .false.
-      prob = fit_problem(fc)
+      call fit_problem(fc, prob, error)
+      if (allocated(error)) return
       call out%begin(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
       call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
@@ -360,25 +422,86 @@ contains
       write (output_unit, '(a)') "dpend fit: wrote '"//fc%run%output//"'"
    end subroutine run_fit_body
 
-   !> Names and units of the parameters.
-   subroutine parameter_names(n, damping, names, units)
-      integer, intent(in) :: n
-      logical, intent(in) :: damping
+   !> Names and units of the parameters: the state at t1 (q_i, qdot_i for the
+   !> pendulum; the model's coordinates and their rates otherwise), then the fitted
+   !> model parameters (c_i for the damping).
+   subroutine parameter_names(fc, names, units)
+      type(fit_config_t), intent(in) :: fc
       character(len=16), allocatable, intent(out) :: names(:), units(:)
-      integer :: i, np
-      np = merge(3*n, 2*n, damping)
-      allocate (names(np), units(np))
-      do i = 1, n
-         names(i) = 'q'//to_str(i)//'(t1)'
-         units(i) = 'rad'
-         names(n + i) = 'qdot'//to_str(i)//'(t1)'
-         units(n + i) = 'rad/s'
-         if (damping) then
-            names(2*n + i) = 'c'//to_str(i)
-            units(2*n + i) = 'N m s'
-         end if
+      character(len=16), allocatable :: cn(:), cu(:), ru(:)
+      type(model_info_t), allocatable :: models(:)
+      integer :: i, j, k, n, cnt
+      n = fc%series%n
+      allocate (names(2*n), units(2*n))
+      if (fc%model_coords) then
+         cn = coordinate_units(fc, -1)
+         cu = coordinate_units(fc, 0)
+         ru = coordinate_units(fc, 1)
+         do i = 1, n
+            names(i) = trim(cn(i))//'(t1)'
+            units(i) = cu(i)
+            names(n + i) = trim(cn(i))//'dot(t1)'
+            units(n + i) = ru(i)
+         end do
+      else
+         do i = 1, n
+            names(i) = 'q'//to_str(i)//'(t1)'
+            units(i) = 'rad'
+            names(n + i) = 'qdot'//to_str(i)//'(t1)'
+            units(n + i) = 'rad/s'
+         end do
+      end if
+      models = model_catalogue()
+      k = find_model(models, fc%run%spec%model_name())
+      do j = 1, size(fc%fit_names)
+         associate (par => models(k)%params(param_at(models(k), fc%fit_names(j))))
+            cnt = par%count
+            if (cnt < 0) cnt = n
+            do i = 1, cnt
+               if (par%name == 'damping') then
+                  names = [character(len=16) :: names, 'c'//to_str(i)]
+               else if (cnt > 1) then
+                  names = [character(len=16) :: names, par%name//to_str(i)]
+               else
+                  names = [character(len=16) :: names, par%name]
+               end if
+               units = [character(len=16) :: units, par%units]
+            end do
+         end associate
       end do
+   contains
+      integer function param_at(info, name) result(i)
+         type(model_info_t), intent(in) :: info
+         character(len=*), intent(in) :: name
+         do i = 1, size(info%params)
+            if (info%params(i)%name == trim(name)) return
+         end do
+         i = 1
+      end function param_at
    end subroutine parameter_names
+
+   !> The units of the parameters by blocks ('rad, rad/s, N m s'; a block of
+   !> mixed units lists each: 'm rad, m/s rad/s, N/m m').
+   function units_blocks(fc, units) result(s)
+      type(fit_config_t), intent(in) :: fc
+      character(len=16), intent(in) :: units(:)
+      character(len=:), allocatable :: s
+      integer :: n
+      n = fc%series%n
+      s = block(units(1:n))//', '//block(units(n + 1:2*n))
+      if (size(units) > 2*n) s = s//', '//block(units(2*n + 1:))
+   contains
+      function block(u) result(b)
+         character(len=16), intent(in) :: u(:)
+         character(len=:), allocatable :: b
+         integer :: i
+         b = trim(u(1))
+         if (all(u == u(1))) return
+         do i = 2, size(u)
+            b = b//' '//trim(u(i))
+         end do
+      end function block
+   end function units_blocks
 
    subroutine print_report(fc, res)
       type(fit_config_t), intent(in) :: fc
@@ -387,9 +510,11 @@ contains
       character(len=:), allocatable :: line, ou
       integer :: i, j, np
       ou = trim(merge('m  ', 'rad', fc%series%positions))
+      call parameter_names(fc, names, units)
+      if (fc%model_coords) ou = '('//coordinates_joined(fc, ' in ', ', ')//')'
       associate (s => fc%series)
-         write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//to_str(s%n)// &
-            merge(' link ', ' links', s%n == 1)//', '//to_str(s%k)//' samples, t1 = '// &
+         write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
+            ', '//to_str(s%k)//' samples, t1 = '// &
             real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
             real_str(res%t_window)//' s ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
@@ -399,7 +524,7 @@ contains
          if (s%positions) write (output_unit, '(a)') '  (the file gives the positions of ' &
             //'the link ends: residuals and tolerance in m)'
       end associate
-      call parameter_names(res%n, fc%fit_damping, names, units)
+      call parameter_names(fc, names, units)
       np = res%np
       write (output_unit, '(a)') '  parameter    estimate                     standard error' &
          //'   95 % interval'
@@ -454,28 +579,38 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(h5file_t) :: h5
       character(len=16), allocatable :: names(:), units(:)
-      character(len=:), allocatable :: joined, units_text
+      character(len=:), allocatable :: joined, units_text, coord_text, coord_names
       real(dp), allocatable :: interval(:, :)
       integer :: i, np, n
       integer, allocatable :: window(:)
       np = res%np
       n = res%n
-      call parameter_names(n, fc%fit_damping, names, units)
+      call parameter_names(fc, names, units)
       joined = trim(names(1))
       do i = 2, np
          joined = joined//','//trim(names(i))
       end do
       ! by blocks of components (docs/hdf5-layout.md)
-      units_text = 'rad, rad/s'
-      if (fc%fit_damping) units_text = units_text//', N m s'
+      units_text = units_blocks(fc, units)
       allocate (interval(2, np))
       interval(1, :) = res%p - res%t95*res%se
       interval(2, :) = res%p + res%t95*res%se
       window = merge(1, 0, fc%series%t <= res%t_window)
+      coord_text = units_blocks(fc, units)
+      coord_text = coord_text(:index(coord_text, ',') - 1)
+      coord_names = ''
+      if (fc%model_coords) coord_names = model_text(fc)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call h5%write('/fit/t', fc%series%t, units='s', description='sample times of the data')
-      if (fc%series%positions) then
+      if (fc%model_coords) then
+         call h5%write('/fit/q_data', fc%series%q, units=coord_text, description='measured ' &
+                       //'coordinates '//coord_names//' of the model '//fc%run%model_name)
+         call h5%write('/fit/q_model', res%q_model, units=coord_text, description= &
+                       'coordinates of the fitted model at the sample times')
+         call h5%write('/fit/residual', res%resid, units=coord_text, description='data ' &
+                       //'minus model (angles wrapped to [-pi, pi))')
+      else if (fc%series%positions) then
          call h5%write('/fit/xy_data', fc%series%q, units='m', description='measured ' &
                        //'positions x_i, y_i of the far ends of the links (origin: the pin)')
          call h5%write('/fit/xy_model', res%q_model, units='m', description='positions ' &
@@ -511,6 +646,18 @@ contains
                     //'tolerance (0 without samples after the window)')
       call h5%write('/fit/t_window', [res%t_window], units='s', description='end T of ' &
                     //'the fit window (its last sample time)')
+      call write_fit_attributes(h5, fc, res, joined)
+      call h5%close(error)
+   end subroutine write_fit
+
+   !> The attributes of /fit and of the root: the fit's statistics, the model.
+   subroutine write_fit_attributes(h5, fc, res, joined)
+      type(h5file_t), intent(inout) :: h5           !! the open file
+      type(fit_config_t), intent(in) :: fc          !! configuration
+      type(fit_result_t), intent(in) :: res         !! estimates and statistics
+      character(len=*), intent(in) :: joined        !! the parameters' names
+      integer :: i, n
+      n = res%n
       call h5%writeattr('/fit', 'parameters', joined)
       call h5%writeattr('/fit', 'rms_residual', res%rms)
       call h5%writeattr('/fit', 'sigma', res%sigma)
@@ -523,7 +670,11 @@ contains
       call h5%writeattr('/fit', 'horizon_censored', merge(1, 0, res%horizon_censored))
       call h5%writeattr('/fit', 'has_after', merge(1, 0, res%has_after))
       call h5%writeattr('/fit', 'input', fc%input)
-      if (fc%series%positions) then
+      if (fc%model_coords) then
+         call h5%writeattr('/fit', 'observations', 'coordinates')
+         call h5%writeattr('/fit', 'n_coordinates', fc%series%n)
+         call h5%writeattr('/fit', 'coordinate_labels', coordinates_joined(fc, ':', ' '))
+      else if (fc%series%positions) then
          call h5%writeattr('/fit', 'observations', 'positions')
       else
          call h5%writeattr('/fit', 'observations', 'angles')
@@ -535,12 +686,174 @@ contains
       call h5%writeattr('/', 'method', fc%run%method)
       call h5%writeattr('/', 'rtol', fc%run%rtol)
       call h5%writeattr('/', 'atol', fc%run%atol)
-      call h5%writeattr('/', 'links', n)
-      call h5%writeattr('/', 'm', fc%run%m(:n))
-      call h5%writeattr('/', 'l', fc%run%l(:n))
-      call h5%writeattr('/', 'g', fc%run%g)
-      call h5%writeattr('/', 'damping', fc%run%damping(:n))
-      call h5%writeattr('/', 'fit_damping', merge(1, 0, fc%fit_damping))
-      call h5%close(error)
-   end subroutine write_fit
+      if (fc%model_coords) then
+         call h5%writeattr('/', 'model', fc%run%model_name)
+         do i = 1, fc%run%model%n_parameters()
+            block
+               character(len=:), allocatable :: pname, punits
+               real(dp) :: pvalue
+               call fc%run%model%parameter(i, pname, pvalue, punits)
+               call h5%writeattr('/', pname, pvalue)
+            end block
+         end do
+         call h5%writeattr('/', 'fit_parameters', joined_names(fc%fit_names))
+      else
+         call h5%writeattr('/', 'links', n)
+         call h5%writeattr('/', 'm', fc%run%m(:n))
+         call h5%writeattr('/', 'l', fc%run%l(:n))
+         call h5%writeattr('/', 'g', fc%run%g)
+         call h5%writeattr('/', 'damping', fc%run%damping(:n))
+         call h5%writeattr('/', 'fit_damping', merge(1, 0, fc%fit_damping))
+      end if
+   end subroutine write_fit_attributes
+
+   ! ------------------------------------------------ models other than the pendulum
+
+   !> --model, or --NAME for a parameter NAME of some model (--k, --l0).
+   logical function model_flag(name)
+      character(len=*), intent(in) :: name  !! the option
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      model_flag = name == '--model'
+      if (model_flag .or. len(name) < 3) return
+      models = model_catalogue()
+      do k = 1, size(models)
+         do i = 1, size(models(k)%params)
+            if (models(k)%params(i)%name == name(3:)) model_flag = .true.
+         end do
+      end do
+   end function model_flag
+
+   !> '2 links' for the pendulum, 'model elastic (r, phi)' for others.
+   function model_text(fc) result(s)
+      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      character(len=:), allocatable :: s
+      character(len=16), allocatable :: cn(:)
+      integer :: i
+      if (.not. fc%model_coords) then
+         s = to_str(fc%series%n)//merge(' link ', ' links', fc%series%n == 1)
+         return
+      end if
+      cn = coordinate_units(fc, -1)
+      s = 'model '//fc%run%model_name//' ('//trim(cn(1))
+      do i = 2, size(cn)
+         s = s//', '//trim(cn(i))
+      end do
+      s = s//')'
+   end function model_text
+
+   !> The model's coordinates with their units: 'r:m phi:rad' with (':', ' ') (the
+   !> labels of scripts/plot_fit.sh), 'r in m, phi in rad' with (' in ', ', ').
+   function coordinates_joined(fc, between, sep) result(s)
+      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      character(len=*), intent(in) :: between, sep  !! name-unit, coordinate separators
+      character(len=:), allocatable :: s
+      character(len=16), allocatable :: cn(:), cu(:)
+      integer :: i
+      cn = coordinate_units(fc, -1)
+      cu = coordinate_units(fc, 0)
+      s = ''
+      do i = 1, size(cn)
+         if (i > 1) s = s//sep
+         s = s//trim(cn(i))//between//trim(cu(i))
+      end do
+   end function coordinates_joined
+
+   !> 'k,l0'.
+   function joined_names(names) result(s)
+      character(len=32), intent(in) :: names(:)  !! names
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(names)
+         if (i > 1) s = s//','
+         s = s//trim(names(i))
+      end do
+   end function joined_names
+
+   !> The fitted model parameters are held at their guess while the fit window is
+   !> shorter than the slowest small oscillation: 2 pi sqrt(sum l / g) for the
+   !> pendulum, 2 pi sqrt(r_eq / g) with r_eq = l0 + m g / k for the elastic one.
+   real(dp) function hold_period(fc) result(period)
+      type(fit_config_t), intent(in) :: fc  !! validated configuration
+      real(dp), allocatable :: m(:), k(:), l0(:)
+      period = huge(1.0_dp)
+      if (.not. fc%model_coords) then
+         if (fc%run%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(fc%run%l(:fc%series%n))/fc%run%g)
+      else if (fc%run%model_name == 'elastic') then
+         m = fc%run%spec%get('m', [1.0_dp])
+         k = fc%run%spec%get('k', [40.0_dp])
+         l0 = fc%run%spec%get('l0', [1.0_dp])
+         period = 2.0_dp*pi*sqrt((l0(1) + m(1)*fc%run%g/k(1))/fc%run%g)
+      end if
+   end function hold_period
+
+   !> The model of a fit with --model (built before the data: the CSV columns are
+   !> named after its coordinates, e.g. t, r [m], phi [rad]) and the series.
+   subroutine read_model_series(fc, error)
+      type(fit_config_t), intent(inout) :: fc           !! configuration; series read
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=16), allocatable :: names(:), units(:)
+      ! the initial state comes from the data: a state every model accepts meanwhile
+      fc%run%q = 0.0_dp
+      fc%run%q(1) = 1.0_dp
+      fc%run%w = 0.0_dp
+      call validate_run_config(fc%run, error)
+      if (allocated(error)) return
+      names = coordinate_units(fc, -1)
+      units = coordinate_units(fc, 0)
+      call read_series(fc%input, fc%series, error, names, units)
+   end subroutine read_model_series
+
+   !> The model's coordinate names (order -1) or the units of its coordinates
+   !> (order 0) or of their rates (order 1).
+   function coordinate_units(fc, order) result(u)
+      type(fit_config_t), intent(in) :: fc  !! configuration with the model built
+      integer, intent(in) :: order          !! -1: names, 0: units, 1: rate units
+      character(len=16), allocatable :: u(:)
+      character(len=:), allocatable :: name, units, momentum_units
+      integer :: i
+      allocate (u(fc%run%model%n_dof()))
+      do i = 1, size(u)
+         call fc%run%model%coordinate(i, name, units, momentum_units)
+         select case (order)
+         case (-1); u(i) = name
+         case (0); u(i) = units
+         case default; u(i) = units//'/s'
+         end select
+      end do
+   end function coordinate_units
+
+   !> A comma-separated list of parameter names (--fit-parameters k,l0), appended.
+   subroutine parse_names(value, names, error)
+      character(len=*), intent(in) :: value                   !! the list
+      character(len=32), allocatable, intent(inout) :: names(:) !! names so far
+      type(error_t), allocatable, intent(out) :: error        !! an empty or long name
+      integer :: start, comma
+      character(len=:), allocatable :: item
+      start = 1
+      do
+         comma = index(value(start:), ',')
+         if (comma == 0) then
+            item = value(start:)
+         else
+            item = value(start:start + comma - 2)
+         end if
+         if (len(item) == 0 .or. len(item) > 32 .or. verify(item, &
+             'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0) then
+            call fatal_error(error, "invalid fit-parameters: '"//printable(value)// &
+                             "' (parameter names separated by commas, e.g. k,l0; dpend " &
+                             //'models lists them) [--fit-parameters]')
+            return
+         end if
+         if (any(names == item)) then
+            call fatal_error(error, "invalid fit-parameters: '"//item//"' given twice " &
+                             //'[--fit-parameters]')
+            return
+         end if
+         names = [character(len=32) :: names, item]
+         if (comma == 0) exit
+         start = start + comma
+      end do
+   end subroutine parse_names
 end module dpend_fit_command

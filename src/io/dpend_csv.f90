@@ -67,15 +67,22 @@ module dpend_csv
       character(len=1) :: separator = ',' !! field separator: ',', ';' or a tab
       logical :: bom = .false.            !! a UTF-8 byte order mark was removed
       logical :: quoted = .false.         !! some header names were quoted
+      !> a model's own coordinates as columns (`coords` of `read_series`): their names
+      !> and units, in the model's order; `coords_found` when the file gave them
+      character(len=16), allocatable :: coord_names(:), coord_units(:)
+      logical :: coords_found = .false.
    end type series_t
 
 contains
 
    !> Read and check the series file `filename` (see the module's notes).
-   subroutine read_series(filename, series, error)
+   subroutine read_series(filename, series, error, coords, units)
       character(len=*), intent(in) :: filename          !! the CSV file
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem, one line
+      !> a model's coordinates (names, units): columns of these names are its q
+      !> (instead of theta or q columns), e.g. r [m], phi [rad]
+      character(len=*), intent(in), optional :: coords(:), units(:)
       character(len=:), allocatable :: text, pre
       integer :: unit, stat
       integer(i8) :: bytes
@@ -111,17 +118,19 @@ contains
          call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
          return
       end if
-      call parse_series(text, series, error)
+      call parse_series(text, series, error, coords, units)
       if (allocated(error)) error%message = "invalid data file '"//printable(filename)// &
                                             "' "//error%message
    end subroutine read_series
 
    !> Parse the whole text of a series file; an error message starts with
    !> 'line L: ' (or 'has ...' for a file without a header or rows).
-   subroutine parse_series(text, series, error)
+   subroutine parse_series(text, series, error, coords, units)
       character(len=*), intent(in) :: text              !! the file's contents
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem
+      !> a model's coordinates (names, units; see `read_series`)
+      character(len=*), intent(in), optional :: coords(:), units(:)
       character(len=1), parameter :: lf = achar(10), cr = achar(13)
       integer :: start, eol, line, n_fields, col_t, cap
       integer :: col_q(2*max_dof)
@@ -132,6 +141,10 @@ contains
       integer, allocatable :: ll(:)
       real(dp) :: values(0:2*max_dof)
       header_seen = .false.
+      if (present(coords) .and. present(units)) then
+         series%coord_names = coords
+         series%coord_units = units
+      end if
       start = 1
       if (len(text) >= 3) then
          if (text(1:3) == utf8_bom) then
@@ -184,45 +197,9 @@ contains
                         scale(:series%n_obs), offset(:series%n_obs), &
                         obs_names(series), values(0:series%n_obs), error)
          if (allocated(error)) return
-         ! magnitudes the fit can work with (beyond, its sums of squares and time
-         ! differences would overflow or vanish): |t| <= max_time, |value| <= 1e6
-         if (abs(values(0)) > max_time) then
-            call fatal_error(error, 'line '//to_str(line)//': t = '//real_str(values(0))// &
-                             ' s is beyond '//real_str(max_time)//' s')
-            return
-         end if
-         if (any(abs(values(1:series%n_obs)) > max_sample_value)) then
-            call fatal_error(error, 'line '//to_str(line)//': a value beyond '// &
-                             real_str(max_sample_value)//' (angles in rad, positions in '// &
-                             'the file''s unit)')
-            return
-         end if
-         if (series%k > 0) then
-            if (.not. (values(0) - series%t(series%k) >= &
-                       1e-9_dp*max(1.0_dp, abs(values(0))))) then
-               call fatal_error(error, 'line '//to_str(line)//': t = '// &
-                                real_str(values(0))//' s is not after t = '// &
-                                real_str(series%t(series%k))//' s of line '// &
-                                to_str(series%line(series%k))// &
-                                ' by at least 1e-9 max(1, |t|) s '// &
-                                '(times must increase)')
-               return
-            end if
-         end if
-         if (series%k == cap) then
-            cap = 2*cap
-            allocate (tt(cap), qq(series%n_obs, cap), ll(cap))
-            tt(:series%k) = series%t(:series%k)
-            qq(:, :series%k) = series%q(:, :series%k)
-            ll(:series%k) = series%line(:series%k)
-            call move_alloc(tt, series%t)
-            call move_alloc(qq, series%q)
-            call move_alloc(ll, series%line)
-         end if
-         series%k = series%k + 1
-         series%t(series%k) = values(0)
-         series%q(:series%n_obs, series%k) = values(1:series%n_obs)
-         series%line(series%k) = line
+         call check_row(series, line, values(0:series%n_obs), error)
+         if (allocated(error)) return
+         call append_row(series, cap, line, values(0:series%n_obs))
       end do
       if (.not. header_seen) then
          call fatal_error(error, 'has no header line (expected e.g. t,theta1,theta2)')
@@ -241,6 +218,63 @@ contains
       call move_alloc(ll, series%line)
    end subroutine parse_series
 
+   !> A row's values are ones the fit can work with (beyond, its sums of squares and
+   !> time differences would overflow or vanish): |t| <= max_time, |value| <= 1e6,
+   !> and its time is after the previous row's.
+   subroutine check_row(series, line, values, error)
+      type(series_t), intent(in) :: series              !! the rows so far
+      integer, intent(in) :: line                       !! the row's line number
+      real(dp), intent(in) :: values(0:)                !! t, observations
+      type(error_t), allocatable, intent(out) :: error  !! out of range, not after
+      if (abs(values(0)) > max_time) then
+         call fatal_error(error, 'line '//to_str(line)//': t = '//real_str(values(0))// &
+                          ' s is beyond '//real_str(max_time)//' s')
+         return
+      end if
+      if (any(abs(values(1:series%n_obs)) > max_sample_value)) then
+         call fatal_error(error, 'line '//to_str(line)//': a value beyond '// &
+                          real_str(max_sample_value)//' (angles in rad, positions in '// &
+                          'the file''s unit)')
+         return
+      end if
+      if (series%k > 0) then
+         if (.not. (values(0) - series%t(series%k) >= &
+                    1e-9_dp*max(1.0_dp, abs(values(0))))) then
+            call fatal_error(error, 'line '//to_str(line)//': t = '// &
+                             real_str(values(0))//' s is not after t = '// &
+                             real_str(series%t(series%k))//' s of line '// &
+                             to_str(series%line(series%k))// &
+                             ' by at least 1e-9 max(1, |t|) s '// &
+                             '(times must increase)')
+            return
+         end if
+      end if
+   end subroutine check_row
+
+   !> Append a row (the arrays doubled when full, `cap` their size).
+   subroutine append_row(series, cap, line, values)
+      type(series_t), intent(inout) :: series  !! the rows so far
+      integer, intent(inout) :: cap            !! rows allocated
+      integer, intent(in) :: line              !! the row's line number
+      real(dp), intent(in) :: values(0:)       !! t, observations
+      real(dp), allocatable :: tt(:), qq(:, :)
+      integer, allocatable :: ll(:)
+      if (series%k == cap) then
+         cap = 2*cap
+         allocate (tt(cap), qq(series%n_obs, cap), ll(cap))
+         tt(:series%k) = series%t(:series%k)
+         qq(:, :series%k) = series%q(:, :series%k)
+         ll(:series%k) = series%line(:series%k)
+         call move_alloc(tt, series%t)
+         call move_alloc(qq, series%q)
+         call move_alloc(ll, series%line)
+      end if
+      series%k = series%k + 1
+      series%t(series%k) = values(0)
+      series%q(:series%n_obs, series%k) = values(1:series%n_obs)
+      series%line(series%k) = line
+   end subroutine append_row
+
    !> The header: the column of t and those of the N angles (or 2N positions), with
    !> the scale and offset that convert each to q [rad] or to m.
    subroutine parse_header(row, line, n_fields, col_t, col_q, scale, offset, series, error)
@@ -253,9 +287,9 @@ contains
       real(dp), intent(out) :: offset(2*max_dof)
       type(series_t), intent(inout) :: series           !! n, n_obs, theta, positions set
       type(error_t), allocatable, intent(out) :: error  !! missing or repeated columns
-      character(len=:), allocatable :: field, name, unit, kind, pre, this, listing
-      integer :: start, col, idx, stat, br, col_x(max_dof), col_y(max_dof)
-      real(dp) :: sx(max_dof), sy(max_dof), f
+      character(len=:), allocatable :: field, name, unit, kind, pre, listing
+      integer :: start, col, idx, br, col_x(max_dof), col_y(max_dof)
+      real(dp) :: sx(max_dof), sy(max_dof)
       logical :: quoted
       pre = 'line '//to_str(line)//' (header): '
       listing = ''
@@ -289,82 +323,20 @@ contains
             name = trim(name(:br - 1))
          end if
          if (name == 't') then
-            if (col_t /= 0) then
-               call fatal_error(error, pre//"column 't' appears twice")
-               return
-            end if
-            if (len(unit) > 0 .and. unit /= '[s]') then
-               call fatal_error(error, pre//"column 't' has the unit '"//printable_40(unit)// &
-                                "' (accepted: [s] or none)")
-               return
-            end if
-            col_t = col
+            call time_column(unit, col, pre, col_t, error)
+            if (allocated(error)) return
+         else if (coordinate_index(series, name) > 0) then
+            call coordinate_column(series, name, unit, col, pre, col_q, error)
+            if (allocated(error)) return
+            kind = 'model'
+         else if (allocated(series%coord_names)) then
+            continue   ! theta and q columns name the pendulum's angles only
          else if (angle_name(name, 'theta') .or. angle_name(name, 'q')) then
-            if (angle_name(name, 'theta')) then
-               this = 'theta'
-            else
-               this = 'q'
-            end if
-            if (len(kind) == 0) kind = this
-            if (this /= kind) then
-               call fatal_error(error, pre//"column '"//name//"' mixes theta and q " &
-                                //'columns (give all angles one way)')
-               return
-            end if
-            read (name(len(this) + 1:), *, iostat=stat) idx
-            if (stat /= 0) idx = 0
-            if (idx < 1 .or. idx > max_dof) then
-               call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
-                                ' is outside [1, '//to_str(max_dof)//']')
-               return
-            end if
-            if (col_q(idx) /= 0) then
-               call fatal_error(error, pre//"column '"//name//"' appears twice")
-               return
-            end if
-            if (len(unit) > 0 .and. unit /= '[rad]') then
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
-                                printable_40(unit)// &
-                                "' (accepted: [rad] or none)")
-               return
-            end if
-            col_q(idx) = col
+            call angle_column(name, unit, col, pre, kind, col_q, error)
+            if (allocated(error)) return
          else if (angle_name(name, 'x') .or. angle_name(name, 'y')) then
-            read (name(2:), *, iostat=stat) idx
-            if (stat /= 0) idx = 0
-            if (idx < 1 .or. idx > max_dof) then
-               call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
-                                ' is outside [1, '//to_str(max_dof)//']')
-               return
-            end if
-            select case (unit)
-            case ('', '[m]')
-               f = 1.0_dp
-            case ('[cm]')
-               f = 0.01_dp
-            case ('[mm]')
-               f = 0.001_dp
-            case default
-               call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
-                                printable_40(unit)// &
-                                "' (accepted: [m], [cm], [mm] or none for m)")
-               return
-            end select
-            if (name(1:1) == 'x') then
-               if (col_x(idx) /= 0) then
-                  call fatal_error(error, pre//"column '"//name//"' appears twice")
-                  return
-               end if
-               col_x(idx) = col
-               sx(idx) = f
-            else
-               if (col_y(idx) /= 0) then
-                  call fatal_error(error, pre//"column '"//name//"' appears twice")
-                  return
-               end if
-               col_y(idx) = col
-               sy(idx) = f
-            end if
+            call position_column(name, unit, col, pre, col_x, col_y, sx, sy, error)
+            if (allocated(error)) return
          end if
       end do
       if (n_fields == 1) then
@@ -379,25 +351,18 @@ contains
                           '; expected a header such as t,theta1,theta2)')
          return
       end if
+      if (kind == 'model') then
+         call coordinates_complete(series, col_q, pre, error)
+         return
+      end if
       series%n = count(col_q > 0)
       if (series%n == 0 .and. any(col_x > 0 .or. col_y > 0)) then
-         ! positions x_i, y_i of the link ends
-         series%n = count(col_x > 0 .or. col_y > 0)
-         do idx = 1, series%n
-            if (col_x(idx) == 0 .or. col_y(idx) == 0) then
-               call fatal_error(error, pre//'missing column '//trim(merge('x', 'y', &
-                                col_x(idx) == 0))//to_str(idx)//' ('//to_str(series%n)// &
-                                ' links need the columns x1,y1 to x'//to_str(series%n)//',y' &
-                                //to_str(series%n)//')')
-               return
-            end if
-            col_q(2*idx - 1) = col_x(idx)
-            col_q(2*idx) = col_y(idx)
-            scale(2*idx - 1) = sx(idx)
-            scale(2*idx) = sy(idx)
-         end do
-         series%positions = .true.
-         series%n_obs = 2*series%n
+         call positions_complete(pre, col_x, col_y, sx, sy, col_q, scale, series, error)
+         return
+      end if
+      if (series%n == 0 .and. allocated(series%coord_names)) then
+         call fatal_error(error, pre//'no columns '//coordinate_list(series)// &
+                          " (the model's coordinates) and no positions (x1,y1)")
          return
       end if
       if (series%n == 0) then
@@ -419,13 +384,154 @@ contains
       if (series%theta) offset(:series%n) = -half_pi
    end subroutine parse_header
 
+   !> The column t: once, in s.
+   subroutine time_column(unit, col, pre, col_t, error)
+      character(len=*), intent(in) :: unit, pre         !! its unit, message prefix
+      integer, intent(in) :: col                        !! its column
+      integer, intent(inout) :: col_t                   !! column of t (0: none yet)
+      type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
+      if (col_t /= 0) then
+         call fatal_error(error, pre//"column 't' appears twice")
+         return
+      end if
+      if (len(unit) > 0 .and. unit /= '[s]') then
+         call fatal_error(error, pre//"column 't' has the unit '"//printable_40(unit)// &
+                          "' (accepted: [s] or none)")
+         return
+      end if
+      col_t = col
+   end subroutine time_column
+
+   !> An angle column thetaI or qI: all of one kind, I in [1, max_dof], once, in rad.
+   subroutine angle_column(name, unit, col, pre, kind, col_q, error)
+      character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
+      integer, intent(in) :: col                        !! its column
+      character(len=:), allocatable, intent(inout) :: kind  !! 'theta', 'q' or ''
+      integer, intent(inout) :: col_q(:)                !! column of angle i
+      type(error_t), allocatable, intent(out) :: error  !! mixed, repeated, wrong unit
+      character(len=:), allocatable :: this
+      integer :: idx
+      if (angle_name(name, 'theta')) then
+         this = 'theta'
+      else
+         this = 'q'
+      end if
+      if (len(kind) == 0) kind = this
+      if (this /= kind) then
+         call fatal_error(error, pre//"column '"//name//"' mixes theta and q " &
+                          //'columns (give all angles one way)')
+         return
+      end if
+      call link_index(name, len(this) + 1, pre, idx, error)
+      if (allocated(error)) return
+      if (col_q(idx) /= 0) then
+         call fatal_error(error, pre//"column '"//name//"' appears twice")
+         return
+      end if
+      if (len(unit) > 0 .and. unit /= '[rad]') then
+         call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                          printable_40(unit)// &
+                          "' (accepted: [rad] or none)")
+         return
+      end if
+      col_q(idx) = col
+   end subroutine angle_column
+
+   !> The link I of a column named PREFIX I (its digits from `first` on), in
+   !> [1, max_dof].
+   subroutine link_index(name, first, pre, idx, error)
+      character(len=*), intent(in) :: name, pre         !! column, message prefix
+      integer, intent(in) :: first                      !! position of the digits
+      integer, intent(out) :: idx                       !! the link
+      type(error_t), allocatable, intent(out) :: error  !! outside [1, max_dof]
+      integer :: stat
+      read (name(first:), *, iostat=stat) idx
+      if (stat /= 0) idx = 0
+      if (idx < 1 .or. idx > max_dof) then
+         call fatal_error(error, pre//"column '"//name//"': link "//to_str(idx)// &
+                          ' is outside [1, '//to_str(max_dof)//']')
+         return
+      end if
+   end subroutine link_index
+
+   !> A position column xI or yI: I in [1, max_dof], once, in m, cm or mm.
+   subroutine position_column(name, unit, col, pre, col_x, col_y, sx, sy, error)
+      character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
+      integer, intent(in) :: col                        !! its column
+      integer, intent(inout) :: col_x(:), col_y(:)      !! columns of x_i and y_i
+      real(dp), intent(inout) :: sx(:), sy(:)           !! their scales to m
+      type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
+      integer :: idx
+      real(dp) :: f
+      call link_index(name, 2, pre, idx, error)
+      if (allocated(error)) return
+      select case (unit)
+      case ('', '[m]')
+         f = 1.0_dp
+      case ('[cm]')
+         f = 0.01_dp
+      case ('[mm]')
+         f = 0.001_dp
+      case default
+         call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                          printable_40(unit)// &
+                          "' (accepted: [m], [cm], [mm] or none for m)")
+         return
+      end select
+      if (name(1:1) == 'x') then
+         if (col_x(idx) /= 0) then
+            call fatal_error(error, pre//"column '"//name//"' appears twice")
+            return
+         end if
+         col_x(idx) = col
+         sx(idx) = f
+      else
+         if (col_y(idx) /= 0) then
+            call fatal_error(error, pre//"column '"//name//"' appears twice")
+            return
+         end if
+         col_y(idx) = col
+         sy(idx) = f
+      end if
+   end subroutine position_column
+
+   !> Positions x_i, y_i of the link ends: every link 1..N has both columns.
+   subroutine positions_complete(pre, col_x, col_y, sx, sy, col_q, scale, series, error)
+      character(len=*), intent(in) :: pre               !! message prefix
+      integer, intent(in) :: col_x(:), col_y(:)         !! columns of x_i and y_i
+      real(dp), intent(in) :: sx(:), sy(:)              !! their scales to m
+      integer, intent(inout) :: col_q(:)                !! column of observation i
+      real(dp), intent(inout) :: scale(:)               !! value = scale × number
+      type(series_t), intent(inout) :: series           !! n, n_obs, positions set
+      type(error_t), allocatable, intent(out) :: error  !! a column missing
+      integer :: idx
+      series%n = count(col_x > 0 .or. col_y > 0)
+      do idx = 1, series%n
+         if (col_x(idx) == 0 .or. col_y(idx) == 0) then
+            call fatal_error(error, pre//'missing column '//trim(merge('x', 'y', &
+                             col_x(idx) == 0))//to_str(idx)//' ('//to_str(series%n)// &
+                             ' links need the columns x1,y1 to x'//to_str(series%n)//',y' &
+                             //to_str(series%n)//')')
+            return
+         end if
+         col_q(2*idx - 1) = col_x(idx)
+         col_q(2*idx) = col_y(idx)
+         scale(2*idx - 1) = sx(idx)
+         scale(2*idx) = sy(idx)
+      end do
+      series%positions = .true.
+      series%n_obs = 2*series%n
+   end subroutine positions_complete
+
    !> Column names of the observations, for messages.
    function obs_names(series) result(names)
       type(series_t), intent(in) :: series
-      character(len=8) :: names(series%n_obs)
+      character(len=16) :: names(series%n_obs)
       integer :: i
       do i = 1, series%n
-         if (series%positions) then
+         if (series%coords_found) then
+            names(i) = series%coord_names(i)
+         else if (series%positions) then
             names(2*i - 1) = 'x'//to_str(i)
             names(2*i) = 'y'//to_str(i)
          else if (series%theta) then
@@ -647,4 +753,70 @@ contains
       t = printable(s(:min(len(s), 40)))
       if (len(s) > 40) t = t//'...'
    end function printable_40
+
+   ! ---------------------------------------------- a model's coordinates as columns
+
+   !> Index of `name` among the model's coordinates (0: none or not given).
+   pure integer function coordinate_index(series, name) result(i)
+      type(series_t), intent(in) :: series  !! with coord_names
+      character(len=*), intent(in) :: name  !! a column name, lower case
+      if (allocated(series%coord_names)) then
+         do i = 1, size(series%coord_names)
+            if (to_lower(trim(series%coord_names(i))) == name) return
+         end do
+      end if
+      i = 0
+   end function coordinate_index
+
+   !> Column `col`, named `name` with `unit` ('' or '[...]'), is coordinate i: its
+   !> unit must be the coordinate's (or none), and it must not repeat.
+   subroutine coordinate_column(series, name, unit, col, pre, col_q, error)
+      type(series_t), intent(in) :: series              !! with coord_names, _units
+      character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
+      integer, intent(in) :: col                        !! its column
+      integer, intent(inout) :: col_q(:)                !! column of each coordinate
+      type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
+      integer :: i
+      i = coordinate_index(series, name)
+      if (col_q(i) /= 0) then
+         call fatal_error(error, pre//"column '"//name//"' appears twice")
+      else if (len(unit) > 0 .and. unit /= '['//trim(series%coord_units(i))//']') then
+         call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
+                          printable_40(unit)//"' (accepted: ["// &
+                          trim(series%coord_units(i))//'] or none)')
+      else
+         col_q(i) = col
+      end if
+   end subroutine coordinate_column
+
+   !> Every coordinate has its column: the series observes the model's q.
+   subroutine coordinates_complete(series, col_q, pre, error)
+      type(series_t), intent(inout) :: series           !! n, n_obs set
+      integer, intent(in) :: col_q(:)                   !! column of each coordinate
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! a coordinate missing
+      integer :: i
+      do i = 1, size(series%coord_names)
+         if (col_q(i) == 0) then
+            call fatal_error(error, pre//'missing column '//trim(series%coord_names(i))// &
+                             ' (the columns must be '//coordinate_list(series)//')')
+            return
+         end if
+      end do
+      series%n = size(series%coord_names)
+      series%n_obs = series%n
+      series%coords_found = .true.
+   end subroutine coordinates_complete
+
+   !> 'r [m], phi [rad]'.
+   function coordinate_list(series) result(s)
+      type(series_t), intent(in) :: series  !! with coord_names, _units
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(series%coord_names)
+         if (i > 1) s = s//', '
+         s = s//trim(series%coord_names(i))//' ['//trim(series%coord_units(i))//']'
+      end do
+   end function coordinate_list
 end module dpend_csv

@@ -70,7 +70,7 @@ module dpend_chain
                            parameter_gravity, diverged_bound, max_damping, max_support_amplitude, &
                            max_support_frequency, max_angle
    use dpend_strings, only: to_str
-   use dpend_model, only: model_t, max_dof
+   use dpend_model, only: model_t, max_dof, model_check_parameter_rates
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
@@ -141,6 +141,9 @@ module dpend_chain
       procedure :: support => chain_support
       !> Power dissipated by the joints and delivered by the support [W].
       procedure :: powers => chain_powers
+      ! r3 fit: the sensitivities of the motion to the damping (dpend fit --fit-damping)
+      procedure :: check_parameter_rates => chain_check_parameter_rates
+      procedure :: parameter_rates => chain_parameter_rates
    end type chain_t
 
 contains
@@ -1146,4 +1149,41 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       call rod_figure(anchor, points, style, forces)
    end subroutine chain_figure
+
+   ! r3 fit: the sensitivities of the motion to the damping (dpend fit --fit-damping)
+
+   !> The chain gives the sensitivities to its joint damping.
+   subroutine chain_check_parameter_rates(self, name, error)
+      class(chain_t), intent(in) :: self
+      character(len=*), intent(in) :: name              !! parameter name
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      if (name /= 'damping') call model_check_parameter_rates(self, name, error)
+   end subroutine chain_check_parameter_rates
+
+   !> ∂q̈/∂c_i = M⁻¹ ∂Q/∂c_i with ∂Q/∂c_i = −w_i e_i + w_i e_(i−1),
+   !> w_i = q̇_i − q̇_(i−1) (q̇_0 = 0): one column per joint.
+   pure subroutine chain_parameter_rates(self, t, y, name, d)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(:)         !! state (q, q̇)
+      character(len=*), intent(in) :: name !! 'damping'
+      real(dp), intent(out) :: d(:, :)     !! ∂q̈/∂c (n, n)
+      real(dp) :: a(max_dof, max_dof), c(max_dof), sn(max_dof), b(max_dof), w
+      integer :: i, n
+      n = self%n
+      d = 0.0_dp
+      if (name /= 'damping') return
+      call trig(n, y(1:n), c, sn)
+      call fill_mass(self, c, sn, a)
+      call cholesky(n, a)
+      do i = 1, n
+         w = y(n + i)
+         if (i > 1) w = w - y(n + i - 1)
+         b = 0.0_dp
+         b(i) = -w
+         if (i > 1) b(i - 1) = w
+         call cholesky_solve(n, a, b)
+         d(:, i) = b(1:n)
+      end do
+   end subroutine chain_parameter_rates
 end module dpend_chain

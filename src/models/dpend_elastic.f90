@@ -65,7 +65,7 @@ module dpend_elastic
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
                            parameter_gravity, check_range, min_mass, max_mass, min_length, max_length, max_g, &
                            diverged_bound, max_angle, max_angular_velocity
-   use dpend_model, only: model_t
+   use dpend_model, only: model_t, model_check_parameter_rates
    implicit none
    private
    public :: elastic_t, elastic_model, check_state, min_stiffness, max_stiffness
@@ -121,6 +121,9 @@ module dpend_elastic
       procedure :: r_eq => el_r_eq
       !> Whether a state is outside the model's domain (see the module header).
       procedure :: collapsed => el_collapsed
+      ! r3 fit: the sensitivities of the motion to k and l0 (dpend fit)
+      procedure :: check_parameter_rates => el_check_parameter_rates
+      procedure :: parameter_rates => el_parameter_rates
    end type elastic_t
 
    !> The writer's per-sample outputs, in the chain's layout where the meaning is the
@@ -477,4 +480,31 @@ contains
       text = 'total energy T + V (V = 0 with the bob at the pin''s height and the spring at ' &
              //'its rest length)'
    end function el_energy_text
+
+   ! r3 fit: the sensitivities of the motion to k and l0 (dpend fit)
+
+   !> The elastic pendulum gives the sensitivities to k and l0 (with g known, the
+   !> motion depends on k/m and l0 only: m is held, k is fitted at the given m).
+   subroutine el_check_parameter_rates(self, name, error)
+      class(elastic_t), intent(in) :: self
+      character(len=*), intent(in) :: name              !! parameter name
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      if (name /= 'k' .and. name /= 'l0') call model_check_parameter_rates(self, name, error)
+   end subroutine el_check_parameter_rates
+
+   !> ∂r̈/∂k = −(r − l0)/m, ∂r̈/∂l0 = k/m; φ̈ depends on neither (zeros where the
+   !> spring has collapsed: the field is saturated there).
+   pure subroutine el_parameter_rates(self, t, y, name, d)
+      class(elastic_t), intent(in) :: self
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(:)         !! state (r, φ, ṙ, φ̇)
+      character(len=*), intent(in) :: name !! 'k' or 'l0'
+      real(dp), intent(out) :: d(:, :)     !! (∂r̈/∂θ, ∂φ̈/∂θ), (2, 1)
+      d = 0.0_dp
+      if (self%collapsed(y)) return
+      select case (name)
+      case ('k'); d(1, 1) = -(y(1) - self%l0)/self%m
+      case ('l0'); d(1, 1) = self%k/self%m
+      end select
+   end subroutine el_parameter_rates
 end module dpend_elastic

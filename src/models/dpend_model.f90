@@ -38,11 +38,12 @@
 module dpend_model
    use, intrinsic :: iso_fortran_env, only: real128
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t
+   use dpend_error, only: error_t, fatal_error, error_bad_input
    use dpend_limits, only: check_range, max_angle, max_angular_velocity
    implicit none
    private
    public :: model_t, max_dof, max_state
+   public :: model_check_parameter_rates  ! r3 fit: the refusal models extend
 
    !> Most degrees of freedom of any model: integrators keep their stage vectors on
    !> the stack in arrays of this size (no allocation per step).
@@ -97,6 +98,9 @@ module dpend_model
       ! r3 study: H in quadruple precision for the study's roundoff runs (default: none)
       procedure :: has_hamiltonian_qp => model_false
       procedure :: hamiltonian_qp => model_hamiltonian_qp
+      ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+      procedure :: check_parameter_rates => model_check_parameter_rates
+      procedure :: parameter_rates => model_parameter_rates
    end type model_t
 
    abstract interface
@@ -435,4 +439,28 @@ contains
       h = 0.0_real128
       call lacks('Hamiltonian in quadruple precision')
    end function model_hamiltonian_qp
+
+   ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+
+   !> Refuse a fit of parameter `name` when the model cannot give `parameter_rates`
+   !> for it (the default: no parameter; a refusal of kind bad input).
+   subroutine model_check_parameter_rates(self, name, error)
+      class(model_t), intent(in) :: self
+      character(len=*), intent(in) :: name              !! parameter name, e.g. 'damping'
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      call fatal_error(error, 'invalid fit parameter: '//name//' (model '//self%name()// &
+                       ' gives no sensitivity of its motion to it)', error_bad_input)
+   end subroutine model_check_parameter_rates
+
+   !> ∂q̈/∂θ_j at y = (q, q̇) for the components θ_j of parameter `name` (column j
+   !> of `d`, size (n, components)), the other parameters and q, q̇ held. Reached only
+   !> for a parameter `check_parameter_rates` accepted; the default gives zeros.
+   pure subroutine model_parameter_rates(self, t, y, name, d)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(:)         !! state (q, q̇)
+      character(len=*), intent(in) :: name !! parameter name
+      real(dp), intent(out) :: d(:, :)     !! ∂q̈/∂θ (n, components)
+      d = 0.0_dp
+   end subroutine model_parameter_rates
 end module dpend_model

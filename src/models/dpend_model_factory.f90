@@ -40,6 +40,9 @@ module dpend_model_factory
    type :: model_spec_t
       character(len=:), allocatable :: name            !! model name (default_model if unset)
       type(spec_item_t), allocatable :: items(:)       !! parameters given
+      !> r3 fit: build the general form (the chain, also for two links without damping),
+      !> whose parameters a fit varies continuously
+      logical :: general = .false.
    contains
       !> Set parameter `name` to `values` (replacing an earlier value).
       procedure :: set => spec_set
@@ -373,7 +376,7 @@ contains
          ! the chain checks every parameter (also those the two-link form ignores)
          chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
          if (allocated(error)) return
-         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp)) then
+         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. .not. spec%general) then
             allocate (model, source=pendulum_model(pendulum_t(m1=m(1), m2=m(2), l1=l(1), &
                                                               l2=l(2), g=g(1))))
          else

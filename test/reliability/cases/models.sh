@@ -33,5 +33,5 @@ refuse  mod-elastic-badkey  config    -- simulate --config model_badkey.nml --ou
 refuse  mod-elastic-badnum  config    -- simulate --config model_badnum.nml --output x.h5
 refuse  mod-elastic-twice   config    -- simulate --config model_twice.nml --output x.h5
 refuse  mod-elastic-sweep   model     -- sweep "${E[@]}" --n 4 --output x.h5
-refuse  mod-elastic-fit     model     -- fit data/fit_example.csv --model elastic --output x.h5
+# (mod-elastic-fit: dpend fit takes the elastic pendulum since round 3; its rows: fit_models.sh)
 refuse  mod-elastic-poinc   poincare  -- poincare "${E[@]}" --output x.h5
