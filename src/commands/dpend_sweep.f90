@@ -34,13 +34,13 @@ module dpend_sweep
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, &
       potential_range, flip_energy_bounds, st_cannot_flip, st_flipped
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
-   use dpend_sweep_config, only: indicator_vectors, axis_parameter, pixel_parameters
-   use dpend_pendulum, only: pendulum_t, pendulum_model
+   use dpend_sweep_config, only: indicator_vectors, axis_parameter, pixel_parameters, &
+                                 pixel_model
+   use dpend_pendulum, only: pendulum_t
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories, link_flip_bounds
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
-   use dpend_chain, only: chain_t, chain_model
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_version, only: version
@@ -128,13 +128,7 @@ contains
       setup%per_trajectory = setup%links /= 2
       call new_integrator(cfg%run%method, setup%integ, error)
       if (allocated(error)) return
-      block
-         type(chain_t) :: chain   ! its potential's weights G_i (any N, also 2)
-         chain = chain_model(cfg%run%m(:setup%links), cfg%run%l(:setup%links), cfg%run%g, &
-                             error)
-         if (allocated(error)) return
-         setup%gl = chain%gl
-      end block
+      setup%gl = cfg%run%model%potential_weights()   ! G_i (any N, also 2)
       setup%tau = sqrt(cfg%run%l(1)/cfg%run%g)
       scale = time_scale(cfg)
       t_end = cfg%run%t_end*scale
@@ -314,12 +308,12 @@ contains
       integer, intent(in) :: b                    !! block, 1-based
       real(dp), intent(in) :: y0(:, :)            !! (2N, nb) its initial states
       type(batch_result_t), intent(out) :: res    !! its results
-      real(dp), allocatable :: p(:, :), m(:), l(:)
+      real(dp), allocatable :: p(:, :)
       integer, allocatable :: key(:, :), idx(:)
       logical, allocatable :: todo(:)
       type(batch_result_t) :: sub
       type(pendulum_t) :: par
-      type(chain_t) :: chain
+      class(model_t), allocatable :: model
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: err
       integer :: j, k, nb, j0, jj
@@ -337,20 +331,15 @@ contains
          if (.not. todo(j)) cycle
          idx = pack([(k, k=1, nb)], key(1, :) == key(1, j) .and. key(2, :) == key(2, j))
          todo(idx) = .false.
-         par = setup%cfg%run%pendulum()
-         par%m1 = p(1, j); par%m2 = p(2, j); par%l1 = p(3, j); par%l2 = p(4, j)
          if (setup%per_trajectory) then
-            m = setup%cfg%run%m(:setup%links); l = setup%cfg%run%l(:setup%links)
-            m(1:2) = p(1:2, j); l(1:2) = p(3:4, j)
-            chain = chain_model(m, l, setup%cfg%run%g, err)   ! checked by validate_sweep
+            call pixel_model(setup%cfg, p(:, j), model, err)   ! checked by validate_sweep
             if (.not. allocated(integ)) allocate (integ, source=setup%integ)
-            if (setup%links == 2) then
-               call integrate_trajectories(pendulum_model(par), integ, chain%gl, setup%opt, &
-                                           y0(:, idx), sub)
-            else
-               call integrate_trajectories(chain, integ, chain%gl, setup%opt, y0(:, idx), sub)
-            end if
+            call integrate_trajectories(model, integ, model%potential_weights(), setup%opt, &
+                                        y0(:, idx), sub)
          else
+            ! the lanes' constant record (the kernel's own parameters, not a model)
+            par = setup%cfg%run%pendulum()
+            par%m1 = p(1, j); par%m2 = p(2, j); par%l1 = p(3, j); par%l2 = p(4, j)
             call integrate_batch(par, setup%opt, y0(:, idx), sub)
          end if
          call place_results(sub, idx, nb, res)

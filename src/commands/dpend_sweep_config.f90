@@ -36,7 +36,8 @@ module dpend_sweep_config
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
                            max_angle, max_angular_velocity, max_time
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: model_spec_t, new_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
@@ -46,7 +47,7 @@ module dpend_sweep_config
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
    public :: indicator_names, indicator_vectors, axis_parameter, param_axis_names
-   public :: pixel_parameters
+   public :: pixel_parameters, pixel_model
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -174,6 +175,25 @@ contains
       if (p1 == 6) p(4) = x1*p(3)
       if (p2 == 6) p(4) = x2*p(3)
    end function pixel_parameters
+
+   !> The model of a pixel of a parameter sweep, from the factory: a copy of the run's
+   !> specification (`cfg%run%spec`) with the masses and lengths of links 1 and 2 set
+   !> by name to p = (m1, m2, l1, l2) of `pixel_parameters`.
+   subroutine pixel_model(cfg, p, model, error)
+      type(sweep_config_t), intent(in) :: cfg            !! configuration, model built
+      real(dp), intent(in) :: p(4)                       !! (m1, m2, l1, l2) [kg, kg, m, m]
+      class(model_t), allocatable, intent(out) :: model  !! the pixel's model
+      type(error_t), allocatable, intent(out) :: error   !! refused by the factory
+      type(model_spec_t) :: spec
+      real(dp), allocatable :: m(:), l(:)
+      spec = cfg%run%spec
+      m = spec%get('m', cfg%run%m(:cfg%run%links))
+      l = spec%get('l', cfg%run%l(:cfg%run%links))
+      m(1:2) = p(1:2); l(1:2) = p(3:4)
+      call spec%set('m', m)
+      call spec%set('l', l)
+      call new_model(spec, model, error)
+   end subroutine pixel_model
 
    !> Help text of `dpend sweep`.
    function sweep_help() result(s)
@@ -474,9 +494,9 @@ contains
       type(sweep_config_t), intent(in) :: cfg           !! configuration, axes checked
       type(error_t), allocatable, intent(out) :: error  !! a corner out of range
       integer :: p1, p2, i, j
-      real(dp) :: p(4), x1, x2, m(cfg%run%links), l(cfg%run%links)
+      real(dp) :: p(4), x1, x2
       character(len=*), parameter :: what = 'min1, max1, min2, max2'
-      type(chain_t) :: chain
+      class(model_t), allocatable :: model
       p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
       if (p1 == 0 .and. p2 == 0) return
       do j = 1, 2
@@ -492,9 +512,7 @@ contains
             if (.not. allocated(error)) call check_parameter(parameter_length, &
                                                              what//' (l2 of a pixel)', p(4), error)
             if (allocated(error)) return
-            m = cfg%run%m(:cfg%run%links); l = cfg%run%l(:cfg%run%links)
-            m(1:2) = p(1:2); l(1:2) = p(3:4)
-            chain = chain_model(m, l, cfg%run%g, error)
+            call pixel_model(cfg, p, model, error)
             if (allocated(error)) then
                error%message = 'invalid '//what//': the pixel at ('//real_str(x1)//', '// &
                                real_str(x2)//') is refused: '//error%message

@@ -141,6 +141,8 @@ module dpend_chain
       procedure :: support => chain_support
       !> Power dissipated by the joints and delivered by the support [W].
       procedure :: powers => chain_powers
+      ! sweep (issue 23, one construction site): the G_i of its potential
+      procedure :: potential_weights => chain_potential_weights
    end type chain_t
 
 contains
@@ -1146,4 +1148,10 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       call rod_figure(anchor, points, style, forces)
    end subroutine chain_figure
+   !> G_i of V = Σ G_i sin q_i [J] (n).
+   pure function chain_potential_weights(self) result(gl)
+      class(chain_t), intent(in) :: self  !! the chain
+      real(dp), allocatable :: gl(:)
+      gl = self%gl
+   end function chain_potential_weights
 end module dpend_chain

@@ -93,6 +93,8 @@ module dpend_model
       procedure :: figure => model_figure
       ! an initial state within the model (before any step)
       procedure :: check_state => model_check_state
+      ! sweep (issue 23, one construction site): G_i of V = Σ G_i sin q_i, if V has that form
+      procedure :: potential_weights => model_potential_weights
    end type model_t
 
    abstract interface
@@ -418,4 +420,12 @@ contains
                 //'the pin A)'
       end if
    end function model_energy_text
+   !> The weights G_i [J] of a potential V = Σ G_i sin q_i (rods' angles q_i): the
+   !> sweep's flip energy bounds and energy-error unit. Default: none (size 0), the
+   !> potential has another form.
+   pure function model_potential_weights(self) result(gl)
+      class(model_t), intent(in) :: self  !! the model
+      real(dp), allocatable :: gl(:)
+      allocate (gl(0))
+   end function model_potential_weights
 end module dpend_model

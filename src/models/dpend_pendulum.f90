@@ -92,6 +92,8 @@ module dpend_pendulum
       procedure :: coordinate => dp_coordinate
       procedure :: coordinates_text => dp_coordinates_text
       procedure :: figure => dp_figure
+      ! sweep (issue 23, one construction site): the G_i of its potential
+      procedure :: potential_weights => dp_potential_weights
    end type double_pendulum_t
 
 contains
@@ -850,4 +852,18 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       call rod_figure(anchor, points, style, forces)
    end subroutine dp_figure
+   !> G_i of V = G_1 sin q1 + G_2 sin q2 [J]: G_i = g l_i (m_i/2 + Σ_(k>i) m_k), the
+   !> expressions (and roundings) of the N-link chain's (dpend_chain).
+   pure function dp_potential_weights(self) result(gl)
+      class(double_pendulum_t), intent(in) :: self  !! the double pendulum
+      real(dp), allocatable :: gl(:)
+      real(dp) :: tail
+      associate (p => self%par)
+         tail = 0.0_dp
+         allocate (gl(2))
+         gl(2) = p%g*p%l2*(0.5_dp*p%m2 + tail)
+         tail = tail + p%m2
+         gl(1) = p%g*p%l1*(0.5_dp*p%m1 + tail)
+      end associate
+   end function dp_potential_weights
 end module dpend_pendulum
