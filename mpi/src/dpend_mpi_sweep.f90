@@ -101,6 +101,7 @@ contains
       call agree(comm, error)
       if (allocated(error)) return
       report%summary%n = setup%n
+      report%summary%flips = setup%flips
 
       ! rank 0: resume, refuse or create, exactly as the serial sweep
       complete = 0

@@ -18,6 +18,12 @@
 !>   bound (less a margin of 1e-12 Σ G_i for the rounding of E(0)) cannot flip and is
 !>   not integrated (st_cannot_flip), unless opt%skip_cannot_flip is false.
 !>
+!> A model whose potential is not of that form (no G_i: `potential_weights` of size 0,
+!> e.g. the elastic pendulum, whose coordinates are not rod angles) has no flips and no
+!> flip bound: every initial condition is integrated to t_end (t_flip NaN, status
+!> st_end or st_nonfinite), and its energy error is divided by the model's own
+!> `energy_scale(E(0))`.
+!>
 !> Difference from the kernel: a step whose result is not finite (or beyond the
 !> integrators' `diverged_bound`) is not taken; the trajectory ends there with
 !> st_nonfinite, its final state the last finite one and t_stop the time reached.
@@ -65,24 +71,28 @@ contains
    !> trajectory runs to t_end and its fast indicators come from `chaos_indicators`
    !> (dpend_indicators, the 2N vectors of `initial_vectors`, one sample at t_end),
    !> vector 1 for MEGNO and FLI, vectors 1 and 2 for SALI and GALI_2, as the kernel.
+   !> `gl` of size 0: a model without flips (see the module header).
    subroutine integrate_trajectories(model, integ, gl, opt, y0, res)
       class(model_t), intent(in) :: model            !! the system, N degrees of freedom
       class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
-      real(dp), intent(in) :: gl(:)                  !! G_i of V = Σ G_i sin q_i [J] (N)
+      real(dp), intent(in) :: gl(:)                  !! G_i of V = Σ G_i sin q_i [J] (N or 0)
       type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
       type(batch_result_t), intent(out) :: res       !! results
       real(dp), allocatable :: y(:)
-      real(dp) :: bounds(size(gl)), tf(size(gl)), p(size(gl)), nk(size(gl))
+      real(dp) :: bounds(size(y0, 1)/2), tf(size(y0, 1)/2), p(size(y0, 1)/2)
+      real(dp) :: nk(size(y0, 1)/2)
       real(dp) :: escale, nan, margin, t, hs, err, mk, qc
-      logical :: can(size(gl)), ended
+      logical :: can(size(y0, 1)/2), ended, flips
       integer(i8) :: ks
       integer :: n, nl, j, i, stat
 
-      nl = size(gl)
+      nl = size(y0, 1)/2
       n = size(y0, 2)
+      flips = size(gl) == nl
       nan = ieee_value(nan, ieee_quiet_nan)
-      bounds = link_flip_bounds(gl)
+      bounds = 0.0_dp
+      if (flips) bounds = link_flip_bounds(gl)
       margin = bound_margin*sum(gl)
       escale = 2.0_dp*sum(gl)
       res%n = n
@@ -98,6 +108,10 @@ contains
          do i = 1, nl
             can(i) = .not. (res%energy0(j) < bounds(i) - margin)
          end do
+         if (.not. flips) then   ! no flips: integrated in full, the model's energy unit
+            can = .true.
+            escale = model%energy_scale(res%energy0(j))
+         end if
          res%final(:, j) = y0(:, j)
          res%t_stop(j) = 0.0_dp
          res%steps(j) = 0
@@ -133,7 +147,7 @@ contains
             t = real(ks, dp)*opt%h
             err = max(err, abs(model%energy(t, y) - res%energy0(j)))
             ! link i: index of the last upward vertical below q_i, π/2 + 2π k
-            do i = 1, nl
+            do i = 1, merge(nl, 0, flips)
                mk = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
                if (mk /= nk(i)) then
                   if (tf(i) < 0.0_dp) then

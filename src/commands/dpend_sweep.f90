@@ -35,7 +35,8 @@ module dpend_sweep
       potential_range, flip_energy_bounds, st_cannot_flip, st_flipped
    use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, axis_variable
    use dpend_sweep_config, only: indicator_vectors, axis_parameter, pixel_parameters, &
-                                 pixel_model
+                                 pixel_model, flip_model, sweep_variable, &
+                                 natural_time
    use dpend_pendulum, only: pendulum_t
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories, link_flip_bounds
@@ -77,6 +78,9 @@ module dpend_sweep
       !> Integrate one trajectory at a time (dpend_trajectory_batch) instead of the
       !> batch kernel: every N but 2; tests set it for N = 2 to compare the paths.
       logical :: per_trajectory = .false.
+      !> The model has rods that flip (the pendulum): t_flip, the flip stop rules and
+      !> bounds apply. False for the elastic pendulum (docs/sweep.md).
+      logical :: flips = .true.
       real(dp), allocatable :: gl(:)            !! G_i of V = Σ G_i sin q_i [J] (N)
       !> The method of the per-trajectory path (rk4 from the registry), copied for
       !> every block in flight.
@@ -97,6 +101,7 @@ module dpend_sweep
       integer(i8) :: computed = 0        !! initial conditions computed by this run
       integer(i8) :: skipped = 0         !! of those: below the flip energy bound
       real(dp) :: seconds = 0            !! wall time of the computation [s]
+      logical :: flips = .true.          !! the model has flips (the closing line's bound)
    end type sweep_summary_t
 
 
@@ -107,9 +112,9 @@ contains
    function summary_text(summary) result(s)
       type(sweep_summary_t), intent(in) :: summary  !! what the run did
       character(len=:), allocatable :: s
-      s = to_str(summary%computed)//' initial conditions computed ('// &
-          to_str(summary%skipped)//' below the flip energy bound) in '// &
-          seconds_str(summary%seconds)//' s, '// &
+      s = to_str(summary%computed)//' initial conditions computed'
+      if (summary%flips) s = s//' ('//to_str(summary%skipped)//' below the flip energy bound)'
+      s = s//' in '//seconds_str(summary%seconds)//' s, '// &
           real_str(real(summary%computed, dp)/max(summary%seconds, 1e-9_dp), 3)//' per second'
    end function summary_text
 
@@ -124,12 +129,13 @@ contains
       integer :: i
       setup%cfg = cfg
       setup%grid = grid_mode(cfg)
-      setup%links = cfg%run%links
-      setup%per_trajectory = setup%links /= 2
+      setup%links = cfg%run%model%n_dof()   ! N links; the elastic pendulum's 2
+      setup%flips = flip_model(cfg)
+      setup%per_trajectory = setup%links /= 2 .or. .not. setup%flips
       call new_integrator(cfg%run%method, setup%integ, error)
       if (allocated(error)) return
       setup%gl = cfg%run%model%potential_weights()   ! G_i (any N, also 2)
-      setup%tau = sqrt(cfg%run%l(1)/cfg%run%g)
+      setup%tau = natural_time(cfg)   ! √(L1/g), the elastic pendulum's √(l0/g)
       scale = time_scale(cfg)
       t_end = cfg%run%t_end*scale
       setup%opt%n_steps = max(1_i8, ceiling(cfg%run%t_end/cfg%run%dt*(1.0_dp - 1e-12_dp), i8))
@@ -138,8 +144,8 @@ contains
       setup%opt%lyapunov = cfg%lyapunov
       setup%opt%vectors = indicator_vectors(cfg)
       if (setup%grid) then
-         setup%var1 = axis_variable(cfg%axis1, setup%links)
-         setup%var2 = axis_variable(cfg%axis2, setup%links)
+         setup%var1 = sweep_variable(cfg, cfg%axis1)
+         setup%var2 = sweep_variable(cfg, cfg%axis2)
          setup%par1 = axis_parameter(cfg%axis1)
          setup%par2 = axis_parameter(cfg%axis2)
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
@@ -156,12 +162,32 @@ contains
       else
          call read_list(cfg, setup%list, error)
          if (allocated(error)) return
+         if (.not. setup%flips) call check_list_states(cfg, setup%list, error)
+         if (allocated(error)) return
          setup%n = size(setup%list, 2)
          setup%block = min(cfg%block, setup%n)
          setup%nblocks = (setup%n + setup%block - 1)/setup%block
       end if
       setup%config = canonical_config(setup)
    end subroutine build_setup
+
+   !> Every state of a list within the model (`check_state`: the elastic pendulum's r
+   !> above its collapse), for a model without flips.
+   subroutine check_list_states(cfg, list, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, model built
+      real(dp), intent(in) :: list(:, :)                !! (2n, count) states
+      type(error_t), allocatable, intent(out) :: error  !! the first state refused
+      integer :: j, n
+      n = size(list, 1)/2
+      do j = 1, size(list, 2)
+         call cfg%run%model%check_state(list(:n, j), list(n + 1:, j), error)
+         if (allocated(error)) then
+            error%message = "invalid ic_file '"//printable(cfg%ic_file)//"': initial " &
+                            //'condition '//to_str(j)//' is refused: '//error%message
+            return
+         end if
+      end do
+   end subroutine check_list_states
 
    !> Refuse a sweep whose blocks in flight do not fit the available memory or whose
    !> file does not fit the free space of the output's file system. Memory: one block
@@ -532,7 +558,12 @@ contains
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
       associate (c => setup%cfg, p => setup%cfg%run%pendulum())
-         if (setup%links == 2) then   ! as before issue 12: older files resume
+         if (.not. setup%flips) then   ! a model without rods: its parameters by name
+            s = 'program = dpend '//version//nl//'command = sweep'//nl// &
+                'method = '//c%run%method//nl//'kernel = per trajectory'//nl// &
+                'model = '//c%run%spec%model_name()//nl//model_lines()// &
+                'q = '//rl(c%run%q0())//nl//'w = '//rl(c%run%w0())//nl
+         else if (setup%links == 2) then   ! as before issue 12: older files resume
             s = 'program = dpend '//version//nl//'command = sweep'//nl// &
                 'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
                 'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
@@ -568,6 +599,17 @@ contains
          end if
       end associate
    contains
+      !> 'k = 4.0e+001' lines of the model's parameters, in its order.
+      function model_lines() result(t)
+         character(len=:), allocatable :: t, name, units
+         real(dp) :: x
+         integer :: i
+         t = ''
+         do i = 1, setup%cfg%run%model%n_parameters()
+            call setup%cfg%run%model%parameter(i, name, x, units)
+            t = t//name//' = '//r(x)//nl
+         end do
+      end function model_lines
       !> 'indicator = megno' for the indicators of the kernel's deviation vectors;
       !> nothing for flip and lambda1 (files from before the indicators resume).
       function indicator_line() result(t)
@@ -631,7 +673,14 @@ contains
       character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
       character(len=32) :: name
       integer :: i
-      if (setup%links == 2) then
+      if (.not. setup%flips) then   ! no t_flip: final/q1 .. final/qn, final/w1 .. final/wn
+         allocate (reals(2*setup%links + 3))
+         reals(1:3) = [character(len=32) :: 'energy0', 'energy_error', 't_stop']
+         do i = 1, setup%links
+            reals(3 + i) = 'final/q'//to_str(i)
+            reals(setup%links + 3 + i) = 'final/w'//to_str(i)
+         end do
+      else if (setup%links == 2) then
          reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
                   'energy_error', 't_stop', 'final/q1', 'final/q2', 'final/w1', 'final/w2']
       else   ! N links: t_flip1 .. t_flipN, final/q1 .. final/qN, final/w1 .. final/wN
@@ -799,6 +848,7 @@ contains
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
          call dataset_info(trim(reals(i)), '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, trim(reals(i)), units, text)
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
                                 checksum=final .or. setup%checksum, units=units, &
@@ -807,6 +857,7 @@ contains
       end do
       do i = 1, size(ints)
          call dataset_info(trim(ints(i)), '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, trim(ints(i)), units, text)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
                                 fill=0.0_dp, compress=final, alloc_early=.not. final, &
                                 checksum=final .or. setup%checksum, units=units, &
@@ -819,16 +870,23 @@ contains
       if (allocated(error)) return
       if (setup%grid) then
          call dataset_info('axis1', axis_units(setup%cfg%axis1), units, text)
+         if (.not. setup%flips) call model_dataset_info(setup, 'axis1', units, text)
          call h5%write('/sweep/axis1', setup%axis1, error, units, text)
          call dataset_info('axis2', axis_units(setup%cfg%axis2), units, text)
+         if (.not. setup%flips) call model_dataset_info(setup, 'axis2', units, text)
          if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error, &
                                                    units, text)
       else
          call dataset_info('initial', '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, 'initial', units, text)
          call h5%write('/sweep/initial', setup%list, error, units, text)
       end if
       if (allocated(error)) return
-      if (setup%links == 2) then
+      if (.not. setup%flips) then
+         call model_attributes(h5, setup, final)
+         call h5%take_error(error)
+         return
+      else if (setup%links == 2) then
          bounds = flip_energy_bounds(setup%cfg%run%pendulum())
          range = potential_range(setup%cfg%run%pendulum())
       else
@@ -871,6 +929,101 @@ contains
       call h5%take_error(error)
    end subroutine create_layout
 
+   !> Units and description of dataset `name` of a sweep of a model without flips
+   !> (the elastic pendulum), from the model's coordinates: q_k and w_k, the axes and
+   !> the initial states in the model's units; the energy error in its energy_scale.
+   !> Other names keep what `dataset_info` gave.
+   subroutine model_dataset_info(setup, name, units, text)
+      type(sweep_setup_t), intent(in) :: setup                  !! setup, flips false
+      character(len=*), intent(in) :: name                      !! dataset below /sweep
+      character(len=:), allocatable, intent(inout) :: units     !! SI units
+      character(len=:), allocatable, intent(inout) :: text      !! one-line description
+      character(len=:), allocatable :: cname, cunits, punits, all_names, all_units
+      integer :: k, n, var
+      n = setup%links
+      k = 0
+      if (index(name, 'final/') == 1) then
+         read (name(8:), *) k
+         if (name(7:7) == 'w') k = n + k
+      end if
+      select case (name)
+      case ('energy0')
+         units = 'J'; text = 'initial energy E(0) ('//setup%cfg%run%model%energy_text()//')'
+      case ('energy_error')
+         units = '1'; text = 'max |E(t) - E(0)| / energy_scale(E(0)) of the model (NaN: ' &
+                             //'not finite)'
+      case ('status')
+         units = '1'; text = '0 not computed, 1 integrated to t_end, 4 a step was not finite'
+      case ('axis1', 'axis2')
+         var = setup%var1
+         if (name == 'axis2') var = setup%var2
+         call state_info(var, units, cname)
+         text = 'grid values on '//name(1:4)//' '//name(5:5)//': initial '//cname
+      case ('initial')
+         all_names = ''; all_units = ''
+         do var = 1, 2*n
+            call state_info(var, cunits, cname)
+            all_names = all_names//merge(', ', '  ', var > 1)//cname
+            all_units = all_units//merge(', ', '  ', var > 1)//cunits
+         end do
+         units = all_units(3:); text = 'initial states ('//all_names(3:)//')'
+      case default
+         if (k > 0) then
+            call state_info(k, units, cname)
+            text = cname//' at t_stop'
+         end if
+      end select
+   contains
+      !> Units and name of state component var: q_k = its coordinate, w_k its rate.
+      subroutine state_info(var, u, nm)
+         integer, intent(in) :: var
+         character(len=:), allocatable, intent(out) :: u, nm
+         if (var <= n) then
+            call setup%cfg%run%model%coordinate(var, nm, u, punits)
+         else
+            call setup%cfg%run%model%coordinate(var - n, nm, u, punits)
+            nm = nm//'dot'; u = u//'/s'
+         end if
+      end subroutine state_info
+   end subroutine model_dataset_info
+
+   !> The /sweep attributes of a model without flips: the model, its parameters by
+   !> name, the fixed initial values, the step and the end time, the natural time unit
+   !> √(l0/g) [s], the stop rule, the blocks and the axes (no flip bounds).
+   subroutine model_attributes(h5, setup, final)
+      type(h5file_t), intent(inout) :: h5        !! open file (keeps the first failure)
+      type(sweep_setup_t), intent(in) :: setup   !! setup, flips false
+      logical, intent(in) :: final               !! the final file (complete)
+      character(len=:), allocatable :: name, units
+      real(dp) :: x
+      integer :: i
+      associate (c => setup%cfg)
+         call h5%writeattr('/', 'program', 'dpend sweep')
+         call h5%writeattr('/', 'version', version)
+         call h5%writeattr('/', 'method', c%run%method)
+         call h5%writeattr('/sweep', 'config', setup%config)
+         call h5%writeattr('/sweep', 'complete', merge(1, 0, final))
+         call h5%writeattr('/sweep', 'model', c%run%spec%model_name())
+         do i = 1, c%run%model%n_parameters()
+            call c%run%model%parameter(i, name, x, units)
+            call h5%writeattr('/sweep', name, x)
+         end do
+         call h5%writeattr('/sweep', 'q0', c%run%q0())
+         call h5%writeattr('/sweep', 'qdot0', c%run%w0())
+         call h5%writeattr('/sweep', 'h', setup%opt%h)
+         call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'sqrt_l0_over_g', setup%tau)
+         call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
+         call h5%writeattr('/sweep', 'block', setup%block)
+         call h5%writeattr('/sweep', 'initial', merge('grid', 'list', setup%grid))
+         if (setup%grid) then
+            call h5%writeattr('/sweep', 'axis1', c%axis1)
+            call h5%writeattr('/sweep', 'axis2', c%axis2)
+         end if
+      end associate
+   end subroutine model_attributes
+
    !> Write the results of block b, flush, then flag it done and flush again.
    !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
    !> flush is collective and the independent raw-data writes of allocated,
@@ -889,8 +1042,9 @@ contains
       sync = .true.
       if (present(flush)) sync = flush
       call block_range(setup, b, j0, nb)
-      call put_r('t_flip', res%t_flip)
-      if (setup%links == 2) then
+      if (setup%flips) call put_r('t_flip', res%t_flip)
+      if (.not. setup%flips) then
+      else if (setup%links == 2) then
          call put_r('t_flip1', res%t_flip1)
          call put_r('t_flip2', res%t_flip2)
       else
@@ -1060,6 +1214,7 @@ contains
       call check_sweep_resources(setup, error)
       if (allocated(error)) return
       summary%n = setup%n
+      summary%flips = setup%flips
       call open_output(setup, h5, done, complete, error)
       if (allocated(error)) return
       summary%blocks_before = count(done == 1)
