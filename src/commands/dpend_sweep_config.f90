@@ -306,6 +306,8 @@ contains
           '  --links N         number of links, 1 to '//to_str(max_dof)// &
           ' (default 2); --m, --l, --q, --w LIST'//nl// &
           '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
+          '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
+          '                    (or q1 q2 w1 w2), --indicator megno|fli|sali|gali2 only'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
           '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
           //nl//nl// &
@@ -583,9 +585,11 @@ contains
          axis = cfg%axis1
          if (k == 2) axis = cfg%axis2
          if (var(k) == 0) then
+            ! theta1, theta2 are also the defaults: the pendulum's, no ranges to keep
             call fatal_error(error, 'invalid axis'//c//": '"//printable(axis)// &
-                             "' (accepted for model "// &
-                             cfg%run%spec%model_name()//': '//names//')')
+                             "' (accepted for model "//cfg%run%spec%model_name()//': '// &
+                             names//'; it has no default axes: give --axis1 --axis2 and ' &
+                             //'their ranges)')
          else if (n(k) < 1 .or. n(k) > max_axis_points) then
             call fatal_error(error, 'invalid n'//c//': '//to_str(n(k))//' must be an ' &
                              //'integer from 1 to '//to_str(max_axis_points)// &
