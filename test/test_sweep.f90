@@ -17,7 +17,7 @@ module test_sweep
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
-   use dpend_sweep, only: block_initial_conditions
+   use dpend_sweep_setup, only: block_initial_conditions
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
       write_block
    use dpend_trajectory_batch, only: link_flip_bounds

@@ -32,8 +32,10 @@ module dpend_mpi_sweep
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum_lanes, only: batch_result_t, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t
-   use dpend_sweep, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
-      compute_block, open_output, write_block, finalize_file, working_file
+   use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range
+   use dpend_sweep_engine, only: compute_block
+   use dpend_sweep_resume, only: open_output
+   use dpend_sweep_layout, only: write_block, finalize_file, working_file
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
    use dpend_os, only: io_failure_reason

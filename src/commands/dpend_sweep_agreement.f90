@@ -19,7 +19,7 @@ module dpend_sweep_agreement
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci, in_range
-   use dpend_sweep, only: config_value, open_sweep_file, check_sweep_data
+   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
