@@ -37,15 +37,11 @@ contains
       real(dp), intent(in) :: rel                       !! relative tolerance
       integer, intent(in) :: unit                       !! where to print
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
-      type(h5file_t) :: h5
       real(dp), allocatable :: ta(:), tb(:)
-      real(dp) :: tau, tau_b, ha, hb, bands(5)
+      real(dp) :: tau, tau_b, ha, hb
       integer, allocatable :: sa(:), dims_a(:), dims_b(:)
       character(len=:), allocatable :: cfg_a, cfg_b, va, vb
-      integer :: i, k, n_changed, n_flip, band_n(4), band_c(4), n_noflip_changed
-      logical :: fa, fb, changed, in_band
-      character(len=*), parameter :: band_names(4) = [character(len=12) :: 'lt_10', &
-                                                      '10_to_100', '100_to_1000', 'ge_1000']
+      integer :: k
       ! what must be equal for two sweeps to hold the same initial conditions
       character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
@@ -56,9 +52,9 @@ contains
                           ' (accepted: > 0 and <= 1000)')
          return
       end if
-      call read_times(file_a, ta, sa, tau, ha, dims_a, cfg_a, error)
+      call read_flip_times(file_a, ta, sa, tau, ha, dims_a, cfg_a, error)
       if (allocated(error)) return
-      call read_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
+      call read_flip_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
       if (allocated(error)) return
       do k = 1, size(same)
          va = config_value(cfg_a, trim(same(k)))
@@ -84,6 +80,118 @@ contains
                      sci(tau_b)//" s in '"//file_b//"' (another time unit)")
          return
       end if
+      call report_changes(ta, tb, tau, rel, ha, hb, unit)
+   contains
+      subroutine refuse(what)
+         character(len=*), intent(in) :: what
+         call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
+                          what//' (compare sweeps of the same initial conditions)')
+      end subroutine refuse
+      function shape_text(d) result(s)
+         integer, intent(in) :: d(:)
+         character(len=:), allocatable :: s
+         integer :: j
+         s = to_str(d(1))
+         do j = 2, size(d)
+            s = s//'x'//to_str(d(j))
+         end do
+         if (size(d) == 1) s = s//' (a list)'
+      end function shape_text
+   end subroutine compare_sweeps
+
+   !> sweep-compare: the flip times, statuses, time unit sqrt(l1/g) and step of a
+   !> complete sweep file, its shape and configuration, checked (`check_sweep_data`,
+   !> then completeness, statuses against the flip times, values in range).
+   subroutine read_flip_times(file, t, st, tau, h, dims, config, error)
+      character(len=*), intent(in) :: file                     !! the sweep file
+      real(dp), allocatable, intent(out) :: t(:)               !! t_flip, flattened [s]
+      integer, allocatable, intent(out) :: st(:)               !! status, flattened
+      real(dp), intent(out) :: tau, h                          !! sqrt(l1/g), step [s]
+      integer, allocatable, intent(out) :: dims(:)             !! shape of t_flip
+      character(len=:), allocatable, intent(out) :: config     !! its configuration
+      type(error_t), allocatable, intent(out) :: error         !! refused
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t2(:, :)
+      integer, allocatable :: s2(:, :), done(:)
+      integer :: complete, j
+      character(len=:), allocatable :: pre
+      pre = "sweep-compare: invalid sweep '"//file//"': "
+      tau = 1; h = 0; complete = 0
+      call open_sweep_file(file, pre, h5, config, error)
+      if (allocated(error)) return
+      call check_sweep_data(h5, pre, config, '/sweep/t_flip', dims, error)
+      if (allocated(error)) then
+         call h5%close()
+         return
+      end if
+      call h5%readattr('/sweep', 'complete', complete, error)
+      if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+      if (.not. allocated(error)) then
+         if (size(dims) == 2) then
+            call h5%read('/sweep/t_flip', t2, error)
+            if (.not. allocated(error)) call h5%read('/sweep/status', s2, error)
+            if (.not. allocated(error)) t = reshape(t2, [size(t2)])
+            if (.not. allocated(error)) st = reshape(s2, [size(s2)])
+         else
+            call h5%read('/sweep/t_flip', t, error)
+            if (.not. allocated(error)) call h5%read('/sweep/status', st, error)
+         end if
+      end if
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', tau, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'h', h, error)
+      call h5%close()
+      if (allocated(error)) then
+         error%message = pre//error%message
+      else if (complete /= 1 .or. any(done /= 1) .or. any(st == 0)) then
+         call fatal_error(error, pre//'not complete ('//to_str(count(done == 1))// &
+                          ' of '//to_str(size(done))//' blocks done; rerun the sweep '// &
+                          'to finish it)')
+      else if (size(st) /= size(t)) then
+         call fatal_error(error, pre//'damaged: /sweep/status and /sweep/t_flip '// &
+                          'differ in size')
+      else if (.not. tau_ok(tau)) then
+         call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '// &
+                          sci(tau)//' (accepted: 1e-150 to 1e150 s)')
+      else
+         do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
+            ! the status says whether the pixel flipped: t_flip agrees with it
+            if ((st(j) == st_flipped .and. ieee_is_nan(t(j))) .or. &
+                (st(j) == st_cannot_flip .and. .not. ieee_is_nan(t(j)))) then
+               call fatal_error(error, pre//'damaged: /sweep/t_flip at pixel '// &
+                                to_str(j)//' disagrees with its status '//to_str(st(j))// &
+                                ' (2: flipped, a time; 3: cannot flip, NaN)')
+               exit
+            end if
+            if (ieee_is_nan(t(j))) cycle
+            if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
+               call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &
+                                sci(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
+               exit
+            end if
+         end do
+      end if
+   end subroutine read_flip_times
+
+   !> Finite and in [min_tau, max_tau] (no ordered comparison with NaN: it traps).
+   logical function tau_ok(x)
+      real(dp), intent(in) :: x
+      tau_ok = .false.
+      if (ieee_is_finite(x)) tau_ok = x >= min_tau .and. x <= max_tau
+   end function tau_ok
+
+   !> sweep-compare's report: the pixels whose flip changes (|t_B - t_A| > rel t_A, or
+   !> a flip in one only), in all and by band of t_A / sqrt(l1/g), as `key: value`.
+   subroutine report_changes(ta, tb, tau, rel, ha, hb, unit)
+      real(dp), intent(in) :: ta(:), tb(:)   !! flip times of A and B [s] (NaN: none)
+      real(dp), intent(in) :: tau            !! sqrt(l1/g) [s]
+      real(dp), intent(in) :: rel            !! relative tolerance
+      real(dp), intent(in) :: ha, hb         !! the two steps [s]
+      integer, intent(in) :: unit            !! where to print
+      real(dp) :: bands(5)
+      integer :: i, k, n_changed, n_flip, band_n(4), band_c(4), n_noflip_changed
+      logical :: fa, fb, changed, in_band
+      character(len=*), parameter :: band_names(4) = [character(len=12) :: 'lt_10', &
+                                                      '10_to_100', '100_to_1000', 'ge_1000']
       bands = [0.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp, huge(1.0_dp)]
       n_changed = 0; n_flip = 0; band_n = 0; band_c = 0; n_noflip_changed = 0
       do i = 1, size(ta)
@@ -131,96 +239,7 @@ contains
          t = '0'
          if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
       end function pct
-      subroutine refuse(what)
-         character(len=*), intent(in) :: what
-         call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
-                          what//' (compare sweeps of the same initial conditions)')
-      end subroutine refuse
-      function shape_text(d) result(s)
-         integer, intent(in) :: d(:)
-         character(len=:), allocatable :: s
-         integer :: j
-         s = to_str(d(1))
-         do j = 2, size(d)
-            s = s//'x'//to_str(d(j))
-         end do
-         if (size(d) == 1) s = s//' (a list)'
-      end function shape_text
-      subroutine read_times(file, t, st, tau, h, dims, config, error)
-         character(len=*), intent(in) :: file
-         real(dp), allocatable, intent(out) :: t(:)
-         integer, allocatable, intent(out) :: st(:)
-         real(dp), intent(out) :: tau, h
-         integer, allocatable, intent(out) :: dims(:)
-         character(len=:), allocatable, intent(out) :: config
-         type(error_t), allocatable, intent(out) :: error
-         real(dp), allocatable :: t2(:, :)
-         integer, allocatable :: s2(:, :), done(:)
-         integer :: complete, j
-         character(len=:), allocatable :: pre
-         pre = "sweep-compare: invalid sweep '"//file//"': "
-         tau = 1; h = 0; complete = 0
-         call open_sweep_file(file, pre, h5, config, error)
-         if (allocated(error)) return
-         call check_sweep_data(h5, pre, config, '/sweep/t_flip', dims, error)
-         if (allocated(error)) then
-            call h5%close()
-            return
-         end if
-         call h5%readattr('/sweep', 'complete', complete, error)
-         if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
-         if (.not. allocated(error)) then
-            if (size(dims) == 2) then
-               call h5%read('/sweep/t_flip', t2, error)
-               if (.not. allocated(error)) call h5%read('/sweep/status', s2, error)
-               if (.not. allocated(error)) t = reshape(t2, [size(t2)])
-               if (.not. allocated(error)) st = reshape(s2, [size(s2)])
-            else
-               call h5%read('/sweep/t_flip', t, error)
-               if (.not. allocated(error)) call h5%read('/sweep/status', st, error)
-            end if
-         end if
-         if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', tau, error)
-         if (.not. allocated(error)) call h5%readattr('/sweep', 'h', h, error)
-         call h5%close()
-         if (allocated(error)) then
-            error%message = pre//error%message
-         else if (complete /= 1 .or. any(done /= 1) .or. any(st == 0)) then
-            call fatal_error(error, pre//'not complete ('//to_str(count(done == 1))// &
-                             ' of '//to_str(size(done))//' blocks done; rerun the sweep '// &
-                             'to finish it)')
-         else if (size(st) /= size(t)) then
-            call fatal_error(error, pre//'damaged: /sweep/status and /sweep/t_flip '// &
-                             'differ in size')
-         else if (.not. tau_ok(tau)) then
-            call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '// &
-                             sci(tau)//' (accepted: 1e-150 to 1e150 s)')
-         else
-            do j = 1, size(t)   ! element by element: an ordered comparison with NaN traps
-               ! the status says whether the pixel flipped: t_flip agrees with it
-               if ((st(j) == st_flipped .and. ieee_is_nan(t(j))) .or. &
-                   (st(j) == st_cannot_flip .and. .not. ieee_is_nan(t(j)))) then
-                  call fatal_error(error, pre//'damaged: /sweep/t_flip at pixel '// &
-                                   to_str(j)//' disagrees with its status '//to_str(st(j))// &
-                                   ' (2: flipped, a time; 3: cannot flip, NaN)')
-                  exit
-               end if
-               if (ieee_is_nan(t(j))) cycle
-               if (.not. (ieee_is_finite(t(j)) .and. abs(t(j)) <= max_time)) then
-                  call fatal_error(error, pre//'damaged: /sweep/t_flip holds '// &
-                                   sci(t(j))//' (accepted: NaN or finite, |t| <= 1e300 s)')
-                  exit
-               end if
-            end do
-         end if
-      end subroutine read_times
-      !> Finite and in [min_tau, max_tau] (no ordered comparison with NaN: it traps).
-      logical function tau_ok(x)
-         real(dp), intent(in) :: x
-         tau_ok = .false.
-         if (ieee_is_finite(x)) tau_ok = x >= min_tau .and. x <= max_tau
-      end function tau_ok
-   end subroutine compare_sweeps
+   end subroutine report_changes
 
    !> Open an existing sweep file for reading and read its /sweep config attribute;
    !> refused (with `pre` before the reason, h5 closed) unless it is a regular HDF5
@@ -261,10 +280,9 @@ contains
       character(len=*), intent(in) :: ref               !! the dataset compared
       integer, allocatable, intent(out) :: dims(:)      !! shape of `ref`
       type(error_t), allocatable, intent(out) :: error  !! damaged
-      integer, allocatable :: d(:), st(:), st2(:, :), want(:)
+      integer, allocatable :: d(:), want(:)
       real(dp), allocatable :: ax(:)
-      real(dp) :: x
-      integer :: n1, n2, links, k
+      integer :: n1, n2, k
       character(len=:), allocatable :: initial
       logical :: ok
       character(len=2), parameter :: axes(2) = ['1', '2']
@@ -320,59 +338,8 @@ contains
          call damaged(ref//' does not have the shape of the config '//initial)
          return
       end if
-      call h5%shape('/sweep/status', d, error)
-      if (allocated(error)) then
-         error%message = pre//'damaged: '//error%message
-         return
-      end if
-      if (size(d) /= size(dims)) then
-         call damaged('/sweep/status does not have the shape of '//ref)
-         return
-      else if (any(d /= dims)) then
-         call damaged('/sweep/status does not have the shape of '//ref)
-         return
-      end if
-      if (size(dims) == 2) then
-         call h5%read('/sweep/status', st2, error)
-         if (.not. allocated(error)) st = reshape(st2, [size(st2)])
-      else
-         call h5%read('/sweep/status', st, error)
-      end if
-      if (allocated(error)) then
-         error%message = pre//'damaged: '//error%message
-         return
-      end if
-      if (any(st < 0 .or. st > 4)) then
-         call damaged('/sweep/status holds '//to_str(minval(st, st < 0 .or. st > 4))// &
-                      ' (a sweep writes 0 to 4)')
-         return
-      end if
-      links = 2
-      if (h5%attr_exists('/sweep', 'links')) call h5%readattr('/sweep', 'links', links, error)
-      if (allocated(error)) then
-         error%message = pre//'damaged: '//error%message
-         return
-      end if
-      if (links < 1 .or. links > max_dof) then
-         call damaged('attribute links = '//to_str(links)//' (a sweep writes 1 to '// &
-                      to_str(max_dof)//')')
-         return
-      end if
-      if (len(config_value(config, 'links')) > 0) then
-         if (config_value(config, 'links') /= to_str(links)) then
-            call damaged('config links = '//config_value(config, 'links')// &
-                         ', attribute links = '//to_str(links))
-            return
-         end if
-      end if
-      call real_attr('t_end', 0.0_dp, max_run_time, .true.)
-      if (.not. allocated(error)) call real_attr('h', tiny(1.0_dp), max_run_time, .true.)
-      if (allocated(error)) return
-      x = config_real('t_end')
-      if (allocated(error)) return
-      if (.not. in_range(x, 0.0_dp, max_run_time)) &
-         call damaged('config t_end = '//config_value(config, 't_end')// &
-                      ' (a sweep writes 0 to 1e9)')
+      call check_status_data(h5, pre, ref, dims, error)
+      if (.not. allocated(error)) call check_sweep_attributes(h5, pre, config, error)
    contains
       subroutine damaged(why)
          character(len=*), intent(in) :: why
@@ -396,6 +363,82 @@ contains
          if (.not. good) call damaged('config '//key//" = '"//v//"' (a sweep writes 1 to "// &
                                       to_str(hi)//')')
       end subroutine config_int
+   end subroutine check_sweep_data
+
+   !> `check_sweep_data`: /sweep/status has the shape `dims` of `ref` and holds 0 to 4.
+   subroutine check_status_data(h5, pre, ref, dims, error)
+      type(h5file_t), intent(inout) :: h5               !! the open sweep file
+      character(len=*), intent(in) :: pre               !! message prefix
+      character(len=*), intent(in) :: ref               !! the dataset compared
+      integer, intent(in) :: dims(:)                    !! shape of `ref`
+      type(error_t), allocatable, intent(out) :: error  !! damaged
+      integer, allocatable :: d(:), st(:), st2(:, :)
+      call h5%shape('/sweep/status', d, error)
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (size(d) /= size(dims)) then
+         call fatal_error(error, pre//'damaged: '//'/sweep/status does not have the shape of '//ref)
+         return
+      else if (any(d /= dims)) then
+         call fatal_error(error, pre//'damaged: '//'/sweep/status does not have the shape of '//ref)
+         return
+      end if
+      if (size(dims) == 2) then
+         call h5%read('/sweep/status', st2, error)
+         if (.not. allocated(error)) st = reshape(st2, [size(st2)])
+      else
+         call h5%read('/sweep/status', st, error)
+      end if
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (any(st < 0 .or. st > 4)) then
+         call fatal_error(error, pre//'damaged: '//'/sweep/status holds '//to_str(minval(st, st < 0 .or. st > 4))// &
+                      ' (a sweep writes 0 to 4)')
+         return
+      end if
+   end subroutine check_status_data
+
+   !> `check_sweep_data`: the attributes a sweep writes within its ranges: links
+   !> 1..32 (and the config's links, if any), t_end finite within [0, 1e9] s (also in
+   !> the config), h finite within (0, 1e9] s.
+   subroutine check_sweep_attributes(h5, pre, config, error)
+      type(h5file_t), intent(inout) :: h5               !! the open sweep file
+      character(len=*), intent(in) :: pre               !! message prefix
+      character(len=*), intent(in) :: config            !! its /sweep config attribute
+      type(error_t), allocatable, intent(out) :: error  !! damaged
+      real(dp) :: x
+      integer :: links
+      links = 2
+      if (h5%attr_exists('/sweep', 'links')) call h5%readattr('/sweep', 'links', links, error)
+      if (allocated(error)) then
+         error%message = pre//'damaged: '//error%message
+         return
+      end if
+      if (links < 1 .or. links > max_dof) then
+         call fatal_error(error, pre//'damaged: '//'attribute links = '//to_str(links)//' (a sweep writes 1 to '// &
+                      to_str(max_dof)//')')
+         return
+      end if
+      if (len(config_value(config, 'links')) > 0) then
+         if (config_value(config, 'links') /= to_str(links)) then
+            call fatal_error(error, pre//'damaged: '//'config links = '//config_value(config, 'links')// &
+                         ', attribute links = '//to_str(links))
+            return
+         end if
+      end if
+      call real_attr('t_end', 0.0_dp, max_run_time, .true.)
+      if (.not. allocated(error)) call real_attr('h', tiny(1.0_dp), max_run_time, .true.)
+      if (allocated(error)) return
+      x = config_real('t_end')
+      if (allocated(error)) return
+      if (.not. in_range(x, 0.0_dp, max_run_time)) &
+         call fatal_error(error, pre//'damaged: '//'config t_end = '//config_value(config, 't_end')// &
+                      ' (a sweep writes 0 to 1e9)')
+   contains
       !> A real of the config (NaN when it is not a number).
       real(dp) function config_real(key) result(v)
          character(len=*), intent(in) :: key
@@ -421,11 +464,11 @@ contains
             return
          end if
          if (.not. in_range(v, lo, hi)) &
-            call damaged('attribute '//name//' = '//sci(v)//' s (a sweep writes '// &
+            call fatal_error(error, pre//'damaged: '//'attribute '//name//' = '//sci(v)//' s (a sweep writes '// &
                          trim(merge('0 to   ', 'above 0', lo <= 0.0_dp))//' ... '// &
                          sci(hi)//' s)')
       end subroutine real_attr
-   end subroutine check_sweep_data
+   end subroutine check_sweep_attributes
 
    !> The value of `key` in a configuration text of "key = value" lines ('' if absent).
    function config_value(text, key) result(v)
