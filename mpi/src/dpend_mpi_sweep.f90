@@ -84,15 +84,10 @@ contains
       type(error_t), allocatable :: cerr
       integer, allocatable :: done(:), missing(:)
       integer(i8) :: n_before, written
-      integer(hid_t) :: fapl
-      integer :: me, np, complete, b, j0, nb, nmissing, ierr
+      integer :: me, np, complete, b, nmissing
       logical :: failed
       real(dp) :: t0, mine(n_fields)
       real :: cpu0, cpu1
-      real(dp), allocatable :: all_ranks(:, :)
-      integer :: ignored_i(1)
-      integer(i8) :: ignored_i8(1)
-      real(dp) :: ignored_r(1)
 
       call MPI_Comm_rank(comm, me)
       call MPI_Comm_size(comm, np)
@@ -105,30 +100,8 @@ contains
       report%summary%n = setup%n
       report%summary%flips = setup%flips
 
-      ! rank 0: resume, refuse or create, exactly as the serial sweep
-      complete = 0
-      if (me == 0) then
-         call open_output(setup, h5, done, complete, error)
-         if (allocated(error)) then
-            call h5%close()
-         else
-            call h5%close(error)
-         end if
-      end if
-      call agree(comm, error)
+      call share_resume(setup, comm, me, report, done, complete, error)
       if (allocated(error)) return
-      call MPI_Bcast(complete, 1, MPI_INTEGER, 0, comm)
-      if (me /= 0) allocate (done(setup%nblocks))
-      call MPI_Bcast(done, setup%nblocks, MPI_INTEGER, 0, comm)
-      report%summary%blocks_before = count(done == 1)
-      allocate (report%block_rank(setup%nblocks), report%block_size(setup%nblocks), &
-                report%block_steps(setup%nblocks), report%block_seconds(setup%nblocks))
-      report%block_rank = -1
-      report%block_steps = 0
-      report%block_seconds = 0
-      do b = 1, setup%nblocks
-         call block_range(setup, b, j0, report%block_size(b))
-      end do
       if (complete == 1) return
 
       missing = pack([(b, b=1, setup%nblocks)], done /= 1)
@@ -136,11 +109,7 @@ contains
       n_before = sum(report%block_size, mask=done == 1)
 
       ! every rank: the working file through MPI-IO (collective open)
-      call h5open_f(ierr)
-      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
-      call h5pset_fapl_mpio_f(fapl, comm%MPI_VAL, MPI_INFO_NULL%MPI_VAL, ierr)
-      call h5%open(working_file(cfg%run%output), 'rw', error, access=fapl)
-      call h5pclose_f(fapl, ierr)
+      call open_parallel(h5, working_file(cfg%run%output), comm, error)
       call agree(comm, error)
       if (allocated(error)) then
          call h5%close()
@@ -173,36 +142,10 @@ contains
          return
       end if
 
-      ! the report on rank 0
-      allocate (all_ranks(n_fields, np))
-      call MPI_Gather(mine, n_fields, MPI_DOUBLE_PRECISION, all_ranks, n_fields, &
-                      MPI_DOUBLE_PRECISION, 0, comm)
-      report%block_rank = report%block_rank + 1   ! 0: not computed, for the sum
-      if (me == 0) then
-         call MPI_Reduce(MPI_IN_PLACE, report%block_rank, setup%nblocks, MPI_INTEGER, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(MPI_IN_PLACE, report%block_steps, setup%nblocks, MPI_INTEGER8, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(MPI_IN_PLACE, report%block_seconds, setup%nblocks, &
-                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
-      else   ! the receive buffers are not used on the other ranks
-         call MPI_Reduce(report%block_rank, ignored_i, setup%nblocks, MPI_INTEGER, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(report%block_steps, ignored_i8, setup%nblocks, MPI_INTEGER8, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(report%block_seconds, ignored_r, setup%nblocks, &
-                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
-      end if
-      report%block_rank = report%block_rank - 1
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%blocks_computed, 1, MPI_INTEGER, &
-                         MPI_SUM, comm)
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%computed, 1, MPI_INTEGER8, MPI_SUM, &
-                         comm)
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%skipped, 1, MPI_INTEGER8, MPI_SUM, comm)
+      call gather_report(comm, me, np, setup%nblocks, mine, report)
       call progress%update(n_before + report%summary%computed - progress%done)
       call progress%finish()
       report%summary%seconds = report%wall
-      if (me == 0) call move_alloc(all_ranks, report%ranks)
 
       ! rank 0 alone: the compressed rewrite (serial open of the closed file)
       if (me == 0) then
@@ -260,6 +203,100 @@ contains
          end do
       end subroutine work
    end subroutine run_mpi_sweep
+
+   !> Rank 0 resumes, refuses or creates the working file exactly as the serial sweep
+   !> (`open_output`) and closes it; every rank gets its `complete` attribute and the
+   !> blocks' done flags, and `report`'s per-block arrays (collective).
+   subroutine share_resume(setup, comm, me, report, done, complete, error)
+      type(sweep_setup_t), intent(in) :: setup           !! setup
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      integer, intent(in) :: me                          !! this rank
+      type(mpi_report_t), intent(inout) :: report        !! per-block arrays allocated
+      integer, allocatable, intent(out) :: done(:)       !! 1 for every block done
+      integer, intent(out) :: complete                   !! the file is complete
+      type(error_t), allocatable, intent(out) :: error   !! refused (all ranks)
+      type(h5file_t) :: h5
+      integer :: b, j0
+      complete = 0
+      if (me == 0) then
+         call open_output(setup, h5, done, complete, error)
+         if (allocated(error)) then
+            call h5%close()
+         else
+            call h5%close(error)
+         end if
+      end if
+      call agree(comm, error)
+      if (allocated(error)) return
+      call MPI_Bcast(complete, 1, MPI_INTEGER, 0, comm)
+      if (me /= 0) allocate (done(setup%nblocks))
+      call MPI_Bcast(done, setup%nblocks, MPI_INTEGER, 0, comm)
+      report%summary%blocks_before = count(done == 1)
+      allocate (report%block_rank(setup%nblocks), report%block_size(setup%nblocks), &
+                report%block_steps(setup%nblocks), report%block_seconds(setup%nblocks))
+      report%block_rank = -1
+      report%block_steps = 0
+      report%block_seconds = 0
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, report%block_size(b))
+      end do
+   end subroutine share_resume
+
+   !> Open the working file `path` on every rank through MPI-IO (collective).
+   subroutine open_parallel(h5, path, comm, error)
+      type(h5file_t), intent(inout) :: h5                !! the file, opened 'rw'
+      character(len=*), intent(in) :: path               !! the working file
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      type(error_t), allocatable, intent(out) :: error   !! this rank's failure
+      integer(hid_t) :: fapl
+      integer :: ierr
+      call h5open_f(ierr)
+      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
+      call h5pset_fapl_mpio_f(fapl, comm%MPI_VAL, MPI_INFO_NULL%MPI_VAL, ierr)
+      call h5%open(path, 'rw', error, access=fapl)
+      call h5pclose_f(fapl, ierr)
+   end subroutine open_parallel
+
+   !> The report on rank 0: every rank's figures `mine` (report%ranks), the rank,
+   !> steps and time of every block, and on every rank the summary's sums
+   !> (collective).
+   subroutine gather_report(comm, me, np, nblocks, mine, report)
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      integer, intent(in) :: me, np                      !! this rank, ranks
+      integer, intent(in) :: nblocks                     !! blocks
+      real(dp), intent(in) :: mine(n_fields)             !! this rank's figures
+      type(mpi_report_t), intent(inout) :: report        !! completed
+      real(dp), allocatable :: all_ranks(:, :)
+      integer :: ignored_i(1)
+      integer(i8) :: ignored_i8(1)
+      real(dp) :: ignored_r(1)
+      allocate (all_ranks(n_fields, np))
+      call MPI_Gather(mine, n_fields, MPI_DOUBLE_PRECISION, all_ranks, n_fields, &
+                      MPI_DOUBLE_PRECISION, 0, comm)
+      report%block_rank = report%block_rank + 1   ! 0: not computed, for the sum
+      if (me == 0) then
+         call MPI_Reduce(MPI_IN_PLACE, report%block_rank, nblocks, MPI_INTEGER, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(MPI_IN_PLACE, report%block_steps, nblocks, MPI_INTEGER8, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(MPI_IN_PLACE, report%block_seconds, nblocks, &
+                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
+      else   ! the receive buffers are not used on the other ranks
+         call MPI_Reduce(report%block_rank, ignored_i, nblocks, MPI_INTEGER, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(report%block_steps, ignored_i8, nblocks, MPI_INTEGER8, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(report%block_seconds, ignored_r, nblocks, &
+                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
+      end if
+      report%block_rank = report%block_rank - 1
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%blocks_computed, 1, MPI_INTEGER, &
+                         MPI_SUM, comm)
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%computed, 1, MPI_INTEGER8, MPI_SUM, &
+                         comm)
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%skipped, 1, MPI_INTEGER8, MPI_SUM, comm)
+      if (me == 0) call move_alloc(all_ranks, report%ranks)
+   end subroutine gather_report
 
    !> Give every rank the error of the lowest rank that has one (collective).
    subroutine agree(comm, error)
