@@ -183,18 +183,7 @@ contains
                   failed = .true.
                   old = counter%swap(0, int(nmissing, i8))   ! every rank stops
                else
-                  mine(f_blocks) = mine(f_blocks) + 1
-                  mine(f_traj) = mine(f_traj) + nnb
-                  mine(f_steps) = mine(f_steps) + sum(int(res%steps, i8))
-                  mine(f_busy) = mine(f_busy) + tb
-                  mine(f_io) = mine(f_io) + (MPI_Wtime() - tw)
-                  report%block_rank(bb) = me
-                  report%block_steps(bb) = sum(int(res%steps, i8))
-                  report%block_seconds(bb) = tb
-                  report%summary%blocks_computed = report%summary%blocks_computed + 1
-                  report%summary%computed = report%summary%computed + nnb
-                  report%summary%skipped = report%summary%skipped + &
-                                           count(res%status == st_cannot_flip)
+                  call record_block(report, mine, me, bb, nnb, res, tb, MPI_Wtime() - tw)
                   written = counter%fetch_add(1, int(nnb, i8)) + nnb
                   if (me == 0) call progress%update(n_before + written - progress%done)
                end if
@@ -203,6 +192,27 @@ contains
          end do
       end subroutine work
    end subroutine run_mpi_sweep
+
+   !> Count block bb of nnb initial conditions, computed by rank `me` in `tb` s and
+   !> written in `io` s, in the rank's figures and the report.
+   subroutine record_block(report, mine, me, bb, nnb, res, tb, io)
+      type(mpi_report_t), intent(inout) :: report   !! the report
+      real(dp), intent(inout) :: mine(n_fields)     !! this rank's figures
+      integer, intent(in) :: me, bb, nnb            !! rank, block, its size
+      type(batch_result_t), intent(in) :: res       !! its results
+      real(dp), intent(in) :: tb, io                !! kernel and write time [s]
+      mine(f_blocks) = mine(f_blocks) + 1
+      mine(f_traj) = mine(f_traj) + nnb
+      mine(f_steps) = mine(f_steps) + sum(int(res%steps, i8))
+      mine(f_busy) = mine(f_busy) + tb
+      mine(f_io) = mine(f_io) + io
+      report%block_rank(bb) = me
+      report%block_steps(bb) = sum(int(res%steps, i8))
+      report%block_seconds(bb) = tb
+      report%summary%blocks_computed = report%summary%blocks_computed + 1
+      report%summary%computed = report%summary%computed + nnb
+      report%summary%skipped = report%summary%skipped + count(res%status == st_cannot_flip)
+   end subroutine record_block
 
    !> Rank 0 resumes, refuses or creates the working file exactly as the serial sweep
    !> (`open_output`) and closes it; every rank gets its `complete` attribute and the
