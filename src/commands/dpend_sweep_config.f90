@@ -307,7 +307,7 @@ contains
           ' (default 2); --m, --l, --q, --w LIST'//nl// &
           '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
           '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
-          '                    (or q1 q2 w1 w2), --indicator megno|fli|sali|gali2 only'//nl// &
+          '                    (or q1 q2 w1 w2); indicator maps only: megno fli sali gali2'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
           '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
           //nl//nl// &
