@@ -17,6 +17,7 @@ module test_sweep
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_setup, only: block_initial_conditions
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
       write_block
    use dpend_trajectory_batch, only: link_flip_bounds
@@ -24,6 +25,8 @@ module test_sweep
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: model_spec_t, model_spec, new_model
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -68,7 +71,8 @@ contains
                new_unittest('links_bound_brute_force', test_links_bound), &
                new_unittest('links3_list_matches_grid', test_links3_list), &
                new_unittest('indicators_kernel_match_one_orbit', test_indicators_kernel), &
-               new_unittest('indicators_per_trajectory_match_kernel', test_indicators_paths)]
+               new_unittest('indicators_per_trajectory_match_kernel', test_indicators_paths), &
+               new_unittest('elastic_pixels_match_single_runs', test_elastic_pixels)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -1547,5 +1551,94 @@ contains
       call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_agreement
+
+   !> The elastic pendulum in the sweep (issue 23 item 9): an indicator map over
+   !> (r, phi) computed in process; four pixels against separate runs of the same
+   !> initial conditions (a model from the factory, rk4 of the registry stepped by
+   !> hand, the energy error in the model's energy_scale, MEGNO from
+   !> chaos_indicators); the pixel at the hanging equilibrium r_eq = l0 + m g/k stays
+   !> there.
+   subroutine test_elastic_pixels(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(arg_t), allocatable :: args(:)
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(batch_result_t) :: res
+      type(error_t), allocatable :: err
+      type(model_spec_t) :: spec
+      class(model_t), allocatable :: model
+      class(integrator_t), allocatable :: integ
+      type(indicators_result_t) :: ind
+      real(dp), allocatable :: y0(:, :)
+      real(dp) :: y(4), t, hs, e0, emax, r_eq, t_end
+      integer :: j, k, stat, jj(4)
+      integer(i8) :: ks
+      logical :: help
+      character(len=24), parameter :: words(33) = [character(len=24) :: '--model', &
+         'elastic', '--k', '50', '--m', '1.2', '--q', '1.3,-1.2', '--axis1', 'r', '--axis2', &
+         'phi', '--n1', '3', '--n2', '2', '--min1', '1.0', '--max1', '1.2352', '--min2', &
+         '-1.5707963267948966', '--max2', '-0.9', '--indicator', 'megno', '--t-end', '4', &
+         '--time-unit', 's', '--quiet', '--dt', '0.01']
+      allocate (args(size(words)))
+      do j = 1, size(words)
+         args(j)%s = trim(words(j))
+      end do
+      call parse_sweep(args, cfg, help, err)
+      if (.not. allocated(err)) call build_setup(cfg, setup, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'elastic sweep refused: '//err%message)
+         return
+      end if
+      call check_true(error, setup%per_trajectory .and. .not. setup%flips .and. &
+                      setup%nblocks == 1 .and. setup%n == 6, 'per-trajectory, no flips')
+      if (allocated(error)) return
+      call compute_block(setup, 1, res)
+      call block_initial_conditions(setup, 1, y0)
+      spec = model_spec('elastic')
+      call spec%set('m', [1.2_dp]); call spec%set('k', [50.0_dp])
+      call new_model(spec, model, err)
+      if (.not. allocated(err)) call new_integrator('rk4', integ, err)
+      if (allocated(err)) then
+         call fatal_error(error, err%message)
+         return
+      end if
+      r_eq = 1.0_dp + 1.2_dp*9.8_dp/50.0_dp   ! 1.2352 m, axis 1's last value
+      t_end = real(setup%opt%n_steps, dp)*setup%opt%h
+      call check(error, t_end, 4.0_dp, 't_end in s', rel=1e-14_dp)
+      jj = [1, 3, 4, 6]   ! (r, phi) = (1, -pi/2), (r_eq, -pi/2), (1, -0.9), (r_eq, -0.9)
+      do k = 1, size(jj)
+         j = jj(k)
+         call check_true(error, res%status(j) == 1 .and. res%steps(j) == setup%opt%n_steps &
+                         .and. ieee_is_nan(res%t_flip(j)), 'runs to t_end, no flip')
+         if (allocated(error)) return
+         y = y0(:, j)
+         e0 = model%energy(0.0_dp, y)
+         emax = 0.0_dp
+         t = 0.0_dp
+         call integ%clear_step()
+         do ks = 1, setup%opt%n_steps
+            hs = setup%opt%h
+            call integ%step(model, t, y, hs, stat)
+            t = real(ks, dp)*setup%opt%h
+            emax = max(emax, abs(model%energy(t, y) - e0))
+         end do
+         call check(error, res%final(:, j), y, 'final state as a single run', rel=0.0_dp, &
+                    abs=0.0_dp)
+         call check(error, res%energy0(j), e0, 'energy0', rel=0.0_dp, abs=0.0_dp)
+         call check(error, res%energy_error(j), emax/model%energy_scale(e0), &
+                    'energy error in the model''s energy_scale', rel=0.0_dp, abs=0.0_dp)
+         call chaos_indicators(integ, model, 0.0_dp, y0(:, j), t_end, setup%opt%h, t_end, &
+                               ind, stat)
+         call check_true(error, stat == stat_ok, 'indicators of a single run')
+         if (allocated(error)) return
+         call check(error, res%megno(j), ind%mean_all(1, ind%n), 'MEGNO as a single run', &
+                    rel=0.0_dp, abs=0.0_dp)
+         call check_true(error, res%energy_error(j) < 1e-6_dp, 'rk4 conserves E to 1e-6')
+         if (allocated(error)) return
+      end do
+      ! the hanging equilibrium (pixel 3) does not move
+      call check(error, res%final(:, 3), [r_eq, -half_pi, 0.0_dp, 0.0_dp], &
+                 'equilibrium stays', abs=1e-12_dp)
+   end subroutine test_elastic_pixels
 
 end module test_sweep

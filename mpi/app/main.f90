@@ -18,7 +18,7 @@ program dpend_mpi
    use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
-   use dpend_sweep, only: summary_text
+   use dpend_sweep_setup, only: summary_text
    implicit none
 
    interface

@@ -32,8 +32,10 @@ module dpend_mpi_sweep
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum_lanes, only: batch_result_t, st_cannot_flip
    use dpend_sweep_config, only: sweep_config_t
-   use dpend_sweep, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
-      compute_block, open_output, write_block, finalize_file, working_file
+   use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range
+   use dpend_sweep_engine, only: compute_block
+   use dpend_sweep_resume, only: open_output
+   use dpend_sweep_layout, only: write_block, finalize_file, working_file
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
    use dpend_os, only: io_failure_reason
@@ -82,15 +84,10 @@ contains
       type(error_t), allocatable :: cerr
       integer, allocatable :: done(:), missing(:)
       integer(i8) :: n_before, written
-      integer(hid_t) :: fapl
-      integer :: me, np, complete, b, j0, nb, nmissing, ierr
+      integer :: me, np, complete, b, nmissing
       logical :: failed
       real(dp) :: t0, mine(n_fields)
       real :: cpu0, cpu1
-      real(dp), allocatable :: all_ranks(:, :)
-      integer :: ignored_i(1)
-      integer(i8) :: ignored_i8(1)
-      real(dp) :: ignored_r(1)
 
       call MPI_Comm_rank(comm, me)
       call MPI_Comm_size(comm, np)
@@ -101,31 +98,10 @@ contains
       call agree(comm, error)
       if (allocated(error)) return
       report%summary%n = setup%n
+      report%summary%flips = setup%flips
 
-      ! rank 0: resume, refuse or create, exactly as the serial sweep
-      complete = 0
-      if (me == 0) then
-         call open_output(setup, h5, done, complete, error)
-         if (allocated(error)) then
-            call h5%close()
-         else
-            call h5%close(error)
-         end if
-      end if
-      call agree(comm, error)
+      call share_resume(setup, comm, me, report, done, complete, error)
       if (allocated(error)) return
-      call MPI_Bcast(complete, 1, MPI_INTEGER, 0, comm)
-      if (me /= 0) allocate (done(setup%nblocks))
-      call MPI_Bcast(done, setup%nblocks, MPI_INTEGER, 0, comm)
-      report%summary%blocks_before = count(done == 1)
-      allocate (report%block_rank(setup%nblocks), report%block_size(setup%nblocks), &
-                report%block_steps(setup%nblocks), report%block_seconds(setup%nblocks))
-      report%block_rank = -1
-      report%block_steps = 0
-      report%block_seconds = 0
-      do b = 1, setup%nblocks
-         call block_range(setup, b, j0, report%block_size(b))
-      end do
       if (complete == 1) return
 
       missing = pack([(b, b=1, setup%nblocks)], done /= 1)
@@ -133,11 +109,7 @@ contains
       n_before = sum(report%block_size, mask=done == 1)
 
       ! every rank: the working file through MPI-IO (collective open)
-      call h5open_f(ierr)
-      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
-      call h5pset_fapl_mpio_f(fapl, comm%MPI_VAL, MPI_INFO_NULL%MPI_VAL, ierr)
-      call h5%open(working_file(cfg%run%output), 'rw', error, access=fapl)
-      call h5pclose_f(fapl, ierr)
+      call open_parallel(h5, working_file(cfg%run%output), comm, error)
       call agree(comm, error)
       if (allocated(error)) then
          call h5%close()
@@ -170,36 +142,10 @@ contains
          return
       end if
 
-      ! the report on rank 0
-      allocate (all_ranks(n_fields, np))
-      call MPI_Gather(mine, n_fields, MPI_DOUBLE_PRECISION, all_ranks, n_fields, &
-                      MPI_DOUBLE_PRECISION, 0, comm)
-      report%block_rank = report%block_rank + 1   ! 0: not computed, for the sum
-      if (me == 0) then
-         call MPI_Reduce(MPI_IN_PLACE, report%block_rank, setup%nblocks, MPI_INTEGER, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(MPI_IN_PLACE, report%block_steps, setup%nblocks, MPI_INTEGER8, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(MPI_IN_PLACE, report%block_seconds, setup%nblocks, &
-                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
-      else   ! the receive buffers are not used on the other ranks
-         call MPI_Reduce(report%block_rank, ignored_i, setup%nblocks, MPI_INTEGER, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(report%block_steps, ignored_i8, setup%nblocks, MPI_INTEGER8, &
-                         MPI_SUM, 0, comm)
-         call MPI_Reduce(report%block_seconds, ignored_r, setup%nblocks, &
-                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
-      end if
-      report%block_rank = report%block_rank - 1
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%blocks_computed, 1, MPI_INTEGER, &
-                         MPI_SUM, comm)
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%computed, 1, MPI_INTEGER8, MPI_SUM, &
-                         comm)
-      call MPI_Allreduce(MPI_IN_PLACE, report%summary%skipped, 1, MPI_INTEGER8, MPI_SUM, comm)
+      call gather_report(comm, me, np, setup%nblocks, mine, report)
       call progress%update(n_before + report%summary%computed - progress%done)
       call progress%finish()
       report%summary%seconds = report%wall
-      if (me == 0) call move_alloc(all_ranks, report%ranks)
 
       ! rank 0 alone: the compressed rewrite (serial open of the closed file)
       if (me == 0) then
@@ -237,18 +183,7 @@ contains
                   failed = .true.
                   old = counter%swap(0, int(nmissing, i8))   ! every rank stops
                else
-                  mine(f_blocks) = mine(f_blocks) + 1
-                  mine(f_traj) = mine(f_traj) + nnb
-                  mine(f_steps) = mine(f_steps) + sum(int(res%steps, i8))
-                  mine(f_busy) = mine(f_busy) + tb
-                  mine(f_io) = mine(f_io) + (MPI_Wtime() - tw)
-                  report%block_rank(bb) = me
-                  report%block_steps(bb) = sum(int(res%steps, i8))
-                  report%block_seconds(bb) = tb
-                  report%summary%blocks_computed = report%summary%blocks_computed + 1
-                  report%summary%computed = report%summary%computed + nnb
-                  report%summary%skipped = report%summary%skipped + &
-                                           count(res%status == st_cannot_flip)
+                  call record_block(report, mine, me, bb, nnb, res, tb, MPI_Wtime() - tw)
                   written = counter%fetch_add(1, int(nnb, i8)) + nnb
                   if (me == 0) call progress%update(n_before + written - progress%done)
                end if
@@ -257,6 +192,121 @@ contains
          end do
       end subroutine work
    end subroutine run_mpi_sweep
+
+   !> Count block bb of nnb initial conditions, computed by rank `me` in `tb` s and
+   !> written in `io` s, in the rank's figures and the report.
+   subroutine record_block(report, mine, me, bb, nnb, res, tb, io)
+      type(mpi_report_t), intent(inout) :: report   !! the report
+      real(dp), intent(inout) :: mine(n_fields)     !! this rank's figures
+      integer, intent(in) :: me, bb, nnb            !! rank, block, its size
+      type(batch_result_t), intent(in) :: res       !! its results
+      real(dp), intent(in) :: tb, io                !! kernel and write time [s]
+      mine(f_blocks) = mine(f_blocks) + 1
+      mine(f_traj) = mine(f_traj) + nnb
+      mine(f_steps) = mine(f_steps) + sum(int(res%steps, i8))
+      mine(f_busy) = mine(f_busy) + tb
+      mine(f_io) = mine(f_io) + io
+      report%block_rank(bb) = me
+      report%block_steps(bb) = sum(int(res%steps, i8))
+      report%block_seconds(bb) = tb
+      report%summary%blocks_computed = report%summary%blocks_computed + 1
+      report%summary%computed = report%summary%computed + nnb
+      report%summary%skipped = report%summary%skipped + count(res%status == st_cannot_flip)
+   end subroutine record_block
+
+   !> Rank 0 resumes, refuses or creates the working file exactly as the serial sweep
+   !> (`open_output`) and closes it; every rank gets its `complete` attribute and the
+   !> blocks' done flags, and `report`'s per-block arrays (collective).
+   subroutine share_resume(setup, comm, me, report, done, complete, error)
+      type(sweep_setup_t), intent(in) :: setup           !! setup
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      integer, intent(in) :: me                          !! this rank
+      type(mpi_report_t), intent(inout) :: report        !! per-block arrays allocated
+      integer, allocatable, intent(out) :: done(:)       !! 1 for every block done
+      integer, intent(out) :: complete                   !! the file is complete
+      type(error_t), allocatable, intent(out) :: error   !! refused (all ranks)
+      type(h5file_t) :: h5
+      integer :: b, j0
+      complete = 0
+      if (me == 0) then
+         call open_output(setup, h5, done, complete, error)
+         if (allocated(error)) then
+            call h5%close()
+         else
+            call h5%close(error)
+         end if
+      end if
+      call agree(comm, error)
+      if (allocated(error)) return
+      call MPI_Bcast(complete, 1, MPI_INTEGER, 0, comm)
+      if (me /= 0) allocate (done(setup%nblocks))
+      call MPI_Bcast(done, setup%nblocks, MPI_INTEGER, 0, comm)
+      report%summary%blocks_before = count(done == 1)
+      allocate (report%block_rank(setup%nblocks), report%block_size(setup%nblocks), &
+                report%block_steps(setup%nblocks), report%block_seconds(setup%nblocks))
+      report%block_rank = -1
+      report%block_steps = 0
+      report%block_seconds = 0
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, report%block_size(b))
+      end do
+   end subroutine share_resume
+
+   !> Open the working file `path` on every rank through MPI-IO (collective).
+   subroutine open_parallel(h5, path, comm, error)
+      type(h5file_t), intent(inout) :: h5                !! the file, opened 'rw'
+      character(len=*), intent(in) :: path               !! the working file
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      type(error_t), allocatable, intent(out) :: error   !! this rank's failure
+      integer(hid_t) :: fapl
+      integer :: ierr
+      call h5open_f(ierr)
+      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, ierr)
+      call h5pset_fapl_mpio_f(fapl, comm%MPI_VAL, MPI_INFO_NULL%MPI_VAL, ierr)
+      call h5%open(path, 'rw', error, access=fapl)
+      call h5pclose_f(fapl, ierr)
+   end subroutine open_parallel
+
+   !> The report on rank 0: every rank's figures `mine` (report%ranks), the rank,
+   !> steps and time of every block, and on every rank the summary's sums
+   !> (collective).
+   subroutine gather_report(comm, me, np, nblocks, mine, report)
+      type(MPI_Comm), intent(in) :: comm                 !! the ranks
+      integer, intent(in) :: me, np                      !! this rank, ranks
+      integer, intent(in) :: nblocks                     !! blocks
+      real(dp), intent(in) :: mine(n_fields)             !! this rank's figures
+      type(mpi_report_t), intent(inout) :: report        !! completed
+      real(dp), allocatable :: all_ranks(:, :)
+      integer :: ignored_i(1)
+      integer(i8) :: ignored_i8(1)
+      real(dp) :: ignored_r(1)
+      allocate (all_ranks(n_fields, np))
+      call MPI_Gather(mine, n_fields, MPI_DOUBLE_PRECISION, all_ranks, n_fields, &
+                      MPI_DOUBLE_PRECISION, 0, comm)
+      report%block_rank = report%block_rank + 1   ! 0: not computed, for the sum
+      if (me == 0) then
+         call MPI_Reduce(MPI_IN_PLACE, report%block_rank, nblocks, MPI_INTEGER, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(MPI_IN_PLACE, report%block_steps, nblocks, MPI_INTEGER8, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(MPI_IN_PLACE, report%block_seconds, nblocks, &
+                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
+      else   ! the receive buffers are not used on the other ranks
+         call MPI_Reduce(report%block_rank, ignored_i, nblocks, MPI_INTEGER, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(report%block_steps, ignored_i8, nblocks, MPI_INTEGER8, &
+                         MPI_SUM, 0, comm)
+         call MPI_Reduce(report%block_seconds, ignored_r, nblocks, &
+                         MPI_DOUBLE_PRECISION, MPI_SUM, 0, comm)
+      end if
+      report%block_rank = report%block_rank - 1
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%blocks_computed, 1, MPI_INTEGER, &
+                         MPI_SUM, comm)
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%computed, 1, MPI_INTEGER8, MPI_SUM, &
+                         comm)
+      call MPI_Allreduce(MPI_IN_PLACE, report%summary%skipped, 1, MPI_INTEGER8, MPI_SUM, comm)
+      if (me == 0) call move_alloc(all_ranks, report%ranks)
+   end subroutine gather_report
 
    !> Give every rank the error of the lowest rank that has one (collective).
    subroutine agree(comm, error)

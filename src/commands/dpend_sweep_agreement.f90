@@ -19,7 +19,7 @@ module dpend_sweep_agreement
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci, in_range
-   use dpend_sweep, only: config_value, open_sweep_file, check_sweep_data
+   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
@@ -58,7 +58,6 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
       type(classified_t) :: a, b
       type(output_t) :: out
-      type(h5file_t) :: h5
       character(len=:), allocatable :: va, vb
       integer :: k, n_cls, both_reg, both_cha, only_a, only_b, n_agree
       real(dp) :: fraction
@@ -100,26 +99,10 @@ contains
       n_agree = both_reg + both_cha
       fraction = 0.0_dp
       if (n_cls > 0) fraction = real(n_agree, dp)/real(n_cls, dp)
-      call report(unit)
-      call h5%open(out%temp, 'w', error)
-      if (.not. allocated(error)) then
-         call store(a, 'a')
-         call store(b, 'b')
-         call h5%writeattr('/', 'program', 'dpend sweep-compare --agreement')
-         call h5%writeattr('/agreement', 'pixels', size(a%cls))
-         call h5%writeattr('/agreement', 'pixels_classified', n_cls)
-         call h5%writeattr('/agreement', 'both_regular', both_reg)
-         call h5%writeattr('/agreement', 'both_chaotic', both_cha)
-         call h5%writeattr('/agreement', 'chaotic_only_a', only_a)
-         call h5%writeattr('/agreement', 'chaotic_only_b', only_b)
-         call h5%writeattr('/agreement', 'agreement', fraction)
-         call h5%take_error(error)
-         if (allocated(error)) then
-            call h5%close()
-         else
-            call h5%close(error)
-         end if
-      end if
+      call print_agreement(unit, a, b, [n_cls, both_reg, both_cha, only_a, only_b], &
+                           fraction, opt%output)
+      call store_agreement(out%temp, a, b, [n_cls, both_reg, both_cha, only_a, only_b], &
+                           fraction, error)
       if (.not. allocated(error)) call out%commit(error)
       call out%explain(error)
       call out%discard()
@@ -133,30 +116,68 @@ contains
          call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
                           what//' (classify sweeps of the same initial conditions)')
       end subroutine refuse
-      subroutine report(u)
-         integer, intent(in) :: u
-         call line(a, 'a')
-         call line(b, 'b')
-         write (u, '(a, i0)') 'pixels: ', size(a%cls)
-         write (u, '(a, i0)') 'pixels_classified: ', n_cls
-         write (u, '(a, i0)') 'both_regular: ', both_reg
-         write (u, '(a, i0)') 'both_chaotic: ', both_cha
-         write (u, '(a, i0)') 'chaotic_only_a: ', only_a
-         write (u, '(a, i0)') 'chaotic_only_b: ', only_b
-         write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
-         write (u, '(a)') 'stored: '//opt%output
-      end subroutine report
+   end subroutine sweep_agreement
+
+   !> The agreement report as `key: value` lines on unit u; counts = (pixels
+   !> classified, both regular, both chaotic, chaotic only in A, only in B).
+   subroutine print_agreement(u, a, b, counts, fraction, output)
+      integer, intent(in) :: u                     !! where to print
+      type(classified_t), intent(in) :: a, b       !! the two classifications
+      integer, intent(in) :: counts(5)             !! see above
+      real(dp), intent(in) :: fraction             !! (both regular + both chaotic)/classified
+      character(len=*), intent(in) :: output       !! the report's HDF5 file
+      call line(a, 'a')
+      call line(b, 'b')
+      write (u, '(a, i0)') 'pixels: ', size(a%cls)
+      write (u, '(a, i0)') 'pixels_classified: ', counts(1)
+      write (u, '(a, i0)') 'both_regular: ', counts(2)
+      write (u, '(a, i0)') 'both_chaotic: ', counts(3)
+      write (u, '(a, i0)') 'chaotic_only_a: ', counts(4)
+      write (u, '(a, i0)') 'chaotic_only_b: ', counts(5)
+      write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+      write (u, '(a)') 'stored: '//output
+   contains
       subroutine line(c, s)
          type(classified_t), intent(in) :: c
          character(len=1), intent(in) :: s
          character(len=:), allocatable :: per
          per = ''
          if (c%indicator == 'lambda1') per = ' per sqrt(l1/g)'
-         write (unit, '(a)') 'indicator_'//s//': '//c%indicator//' (chaotic '// &
+         write (u, '(a)') 'indicator_'//s//': '//c%indicator//' (chaotic '// &
             trim(merge('above', 'below', c%above))//' '//real_str(c%threshold)//per//')'
-         write (unit, '(a)') 't_end_'//s//': '//real_str(c%t_end, 6)//' s = '// &
+         write (u, '(a)') 't_end_'//s//': '//real_str(c%t_end, 6)//' s = '// &
             real_str(c%t_end/c%tau, 6)//' sqrt(l1/g)'
       end subroutine line
+   end subroutine print_agreement
+
+   !> Write the agreement file `path` (the writer's temporary file): both
+   !> classifications (/agreement/class_a, class_b) and the counts as attributes.
+   subroutine store_agreement(path, a, b, counts, fraction, error)
+      character(len=*), intent(in) :: path              !! file to create
+      type(classified_t), intent(in) :: a, b            !! the two classifications
+      integer, intent(in) :: counts(5)                  !! as print_agreement
+      real(dp), intent(in) :: fraction                  !! the agreement
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      type(h5file_t) :: h5
+      call h5%open(path, 'w', error)
+      if (allocated(error)) return
+      call store(a, 'a')
+      call store(b, 'b')
+      call h5%writeattr('/', 'program', 'dpend sweep-compare --agreement')
+      call h5%writeattr('/agreement', 'pixels', size(a%cls))
+      call h5%writeattr('/agreement', 'pixels_classified', counts(1))
+      call h5%writeattr('/agreement', 'both_regular', counts(2))
+      call h5%writeattr('/agreement', 'both_chaotic', counts(3))
+      call h5%writeattr('/agreement', 'chaotic_only_a', counts(4))
+      call h5%writeattr('/agreement', 'chaotic_only_b', counts(5))
+      call h5%writeattr('/agreement', 'agreement', fraction)
+      call h5%take_error(error)
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+   contains
       subroutine store(c, s)
          type(classified_t), intent(in) :: c
          character(len=1), intent(in) :: s
@@ -179,7 +200,7 @@ contains
          call h5%writeattr('/agreement', 't_end_natural_'//s, c%t_end/c%tau)
          call h5%writeattr('/agreement', 'sqrt_l1_over_g_'//s, c%tau)
       end subroutine store
-   end subroutine sweep_agreement
+   end subroutine store_agreement
 
    !> Read a complete sweep file and classify its pixels by its indicator.
    subroutine classify(file, set, threshold, c, error)
@@ -198,26 +219,9 @@ contains
       complete = 0
       call open_sweep_file(file, pre, h5, c%config, error)
       if (allocated(error)) return
-      c%indicator = config_value(c%config, 'indicator')
-      if (len(c%indicator) == 0 .and. config_value(c%config, 'lyapunov') == 'true') &
-         c%indicator = 'lambda1'
-      select case (c%indicator)
-      case ('megno'); c%dataset = '/sweep/megno'; c%threshold = 2.5_dp
-      case ('lambda1'); c%dataset = '/sweep/lyapunov'; c%threshold = 0.05_dp
-      case ('fli'); c%dataset = '/sweep/fli'
-      case ('sali', 'gali2'); c%dataset = '/sweep/'//c%indicator; c%threshold = 1e-8_dp
-         c%above = .false.
-      case default
+      call choose_indicator(file, pre, set, threshold, c, error)
+      if (allocated(error)) then
          call h5%close()
-         call fatal_error(error, pre//'it has no indicator (run the sweep with --indicator '// &
-                          'megno, lambda1, fli, sali or gali2)')
-         return
-      end select
-      if (set) c%threshold = threshold
-      if (c%indicator == 'fli' .and. .not. set) then
-         call h5%close()
-         call fatal_error(error, 'sweep-compare: invalid --threshold: FLI has no default '// &
-                          "threshold (it grows with t_end): give one for '"//file//"'")
          return
       end if
       call check_sweep_data(h5, pre, c%config, c%dataset, c%dims, error)
@@ -260,7 +264,7 @@ contains
                           ' s (a sweep writes 0 to 1e9)')
          return
       end if
-      call check_values(error)
+      call check_values(c, v, pre, error)
       if (allocated(error)) return
       allocate (c%cls(size(v)))
       do j = 1, size(v)   ! element by element: an ordered comparison with NaN traps
@@ -275,48 +279,83 @@ contains
             c%cls(j) = merge(1, 0, v(j) < c%threshold)
          end if
       end do
-   contains
-      !> The indicator's values: NaN (not computed or not finite) or finite within
-      !> what a sweep writes (SALI in [0, √2], GALI_2 in [0, 1]); at least one finite;
-      !> MEGNO not negative everywhere (<Y> of every orbit tends to 2 or grows).
-      subroutine check_values(err)
-         type(error_t), allocatable, intent(out) :: err
-         real(dp) :: hi, lo
-         integer :: k, n_finite, n_negative
-         lo = -huge(1.0_dp)
-         hi = huge(1.0_dp)
-         if (c%indicator == 'sali') then
-            lo = 0.0_dp
-            hi = sqrt(2.0_dp)*(1.0_dp + 1e-12_dp)
-         else if (c%indicator == 'gali2') then
-            lo = 0.0_dp
-            hi = 1.0_dp + 1e-12_dp
-         end if
-         n_finite = 0
-         n_negative = 0
-         do k = 1, size(v)
-            if (ieee_is_nan(v(k))) cycle
-            if (.not. ieee_is_finite(v(k))) then
-               call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
-                                ' (a sweep writes NaN or finite values)')
-               return
-            end if
-            if (v(k) < lo .or. v(k) > hi) then
-               call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
-                                ' (a sweep writes '//sci(lo)//' to '//sci(hi)//')')
-               return
-            end if
-            n_finite = n_finite + 1
-            if (v(k) < 0.0_dp) n_negative = n_negative + 1
-         end do
-         if (n_finite == 0) then
-            call fatal_error(err, pre//'damaged: '//c%dataset//' has no finite value '// &
-                             '(nothing to classify)')
-         else if (c%indicator == 'megno' .and. n_negative == n_finite) then
-            call fatal_error(err, pre//'damaged: '//c%dataset//' is negative at every '// &
-                             'pixel (MEGNO tends to 2 for regular orbits and grows for '// &
-                             'chaotic ones)')
-         end if
-      end subroutine check_values
    end subroutine classify
+
+   !> The indicator of a sweep's configuration (lambda1 for lyapunov = true), its
+   !> dataset, its default threshold and sense, or the given `threshold`; a file
+   !> without an indicator, and FLI without a threshold, are refused.
+   subroutine choose_indicator(file, pre, set, threshold, c, error)
+      character(len=*), intent(in) :: file              !! sweep file
+      character(len=*), intent(in) :: pre               !! message prefix
+      logical, intent(in) :: set                        !! threshold given
+      real(dp), intent(in) :: threshold                 !! the given threshold
+      type(classified_t), intent(inout) :: c            !! config in, indicator out
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      c%indicator = config_value(c%config, 'indicator')
+      if (len(c%indicator) == 0 .and. config_value(c%config, 'lyapunov') == 'true') &
+         c%indicator = 'lambda1'
+      select case (c%indicator)
+      case ('megno'); c%dataset = '/sweep/megno'; c%threshold = 2.5_dp
+      case ('lambda1'); c%dataset = '/sweep/lyapunov'; c%threshold = 0.05_dp
+      case ('fli'); c%dataset = '/sweep/fli'
+      case ('sali', 'gali2'); c%dataset = '/sweep/'//c%indicator; c%threshold = 1e-8_dp
+         c%above = .false.
+      case default
+         call fatal_error(error, pre//'it has no indicator (run the sweep with --indicator '// &
+                          'megno, lambda1, fli, sali or gali2)')
+         return
+      end select
+      if (set) c%threshold = threshold
+      if (c%indicator == 'fli' .and. .not. set) then
+         call fatal_error(error, 'sweep-compare: invalid --threshold: FLI has no default '// &
+                          "threshold (it grows with t_end): give one for '"//file//"'")
+         return
+      end if
+   end subroutine choose_indicator
+
+   !> The indicator's values: NaN (not computed or not finite) or finite within
+   !> what a sweep writes (SALI in [0, √2], GALI_2 in [0, 1]); at least one finite;
+   !> MEGNO not negative everywhere (<Y> of every orbit tends to 2 or grows).
+   subroutine check_values(c, v, pre, err)
+      type(classified_t), intent(in) :: c                !! indicator and dataset
+      real(dp), intent(in) :: v(:)                       !! its values
+      character(len=*), intent(in) :: pre                !! message prefix
+      type(error_t), allocatable, intent(out) :: err     !! damaged
+      real(dp) :: hi, lo
+      integer :: k, n_finite, n_negative
+      lo = -huge(1.0_dp)
+      hi = huge(1.0_dp)
+      if (c%indicator == 'sali') then
+         lo = 0.0_dp
+         hi = sqrt(2.0_dp)*(1.0_dp + 1e-12_dp)
+      else if (c%indicator == 'gali2') then
+         lo = 0.0_dp
+         hi = 1.0_dp + 1e-12_dp
+      end if
+      n_finite = 0
+      n_negative = 0
+      do k = 1, size(v)
+         if (ieee_is_nan(v(k))) cycle
+         if (.not. ieee_is_finite(v(k))) then
+            call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
+                             ' (a sweep writes NaN or finite values)')
+            return
+         end if
+         if (v(k) < lo .or. v(k) > hi) then
+            call fatal_error(err, pre//'damaged: '//c%dataset//' holds '//sci(v(k))// &
+                             ' (a sweep writes '//sci(lo)//' to '//sci(hi)//')')
+            return
+         end if
+         n_finite = n_finite + 1
+         if (v(k) < 0.0_dp) n_negative = n_negative + 1
+      end do
+      if (n_finite == 0) then
+         call fatal_error(err, pre//'damaged: '//c%dataset//' has no finite value '// &
+                          '(nothing to classify)')
+      else if (c%indicator == 'megno' .and. n_negative == n_finite) then
+         call fatal_error(err, pre//'damaged: '//c%dataset//' is negative at every '// &
+                          'pixel (MEGNO tends to 2 for regular orbits and grows for '// &
+                          'chaotic ones)')
+      end if
+   end subroutine check_values
 end module dpend_sweep_agreement

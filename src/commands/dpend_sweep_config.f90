@@ -30,13 +30,14 @@ module dpend_sweep_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str, option_outcome
-   use dpend_config, only: require_default_model, run_config_t, read_run_config, apply_run_flag, &
+   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
                            validate_run_config, namelist_error
    use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
    use dpend_limits, only: check_range, sci, max_threads, max_axis_points, max_sweep_points, &
                            max_angle, max_angular_velocity, max_time
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: model_spec_t, new_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_cli, only: to_str
    use dpend_model, only: max_dof
@@ -47,7 +48,7 @@ module dpend_sweep_config
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
    public :: indicator_names, indicator_vectors, axis_parameter, param_axis_names
-   public :: pixel_parameters
+   public :: pixel_parameters, pixel_model, flip_model, sweep_variable, natural_time
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -126,12 +127,69 @@ contains
       grid_mode = len_trim(cfg%ic_file) == 0
    end function grid_mode
 
-   !> Seconds per unit of dt and t_end: 1 or √(L1/g).
-   pure real(dp) function time_scale(cfg)
+   !> Seconds per unit of dt and t_end: 1 or the natural unit (`natural_time`).
+   real(dp) function time_scale(cfg)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       time_scale = 1.0_dp
-      if (cfg%time_unit == 'natural') time_scale = sqrt(cfg%run%l(1)/cfg%run%g)
+      if (cfg%time_unit == 'natural') time_scale = natural_time(cfg)
    end function time_scale
+
+   !> The natural time unit [s]: √(L1/g); for a model without rods (the elastic
+   !> pendulum) √(l0/g) of its parameters l0 and g.
+   real(dp) function natural_time(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      if (allocated(cfg%run%model)) then
+         if (.not. flip_model(cfg)) then
+            natural_time = sqrt(model_parameter(cfg, 'l0')/model_parameter(cfg, 'g'))
+            return
+         end if
+      end if
+      natural_time = sqrt(cfg%run%l(1)/cfg%run%g)
+   end function natural_time
+
+   !> The value of the model's parameter `name` (0 if it has none of that name).
+   real(dp) function model_parameter(cfg, name) result(v)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=*), intent(in) :: name     !! parameter name
+      character(len=:), allocatable :: pname, units
+      real(dp) :: x
+      integer :: i
+      v = 0.0_dp
+      do i = 1, cfg%run%model%n_parameters()
+         call cfg%run%model%parameter(i, pname, x, units)
+         if (pname == name) v = x
+      end do
+   end function model_parameter
+
+   !> True if the run's model has rods that flip (a potential V = Σ G_i sin q_i of
+   !> its angles: the pendulum of any N): the flip map, its stop rules, t_flip and the
+   !> flip energy bounds apply. False for the elastic pendulum.
+   logical function flip_model(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      flip_model = size(cfg%run%model%potential_weights()) == cfg%run%model%n_dof()
+   end function flip_model
+
+   !> Index in the state (q, q̇) of the initial value an axis sweeps, 0 for an unknown
+   !> name: `axis_variable` for the pendulum; for another model qk and wk, or its
+   !> coordinate names (k) and those names followed by 'dot' (n + k).
+   integer function sweep_variable(cfg, name) result(var)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=*), intent(in) :: name     !! axis name
+      character(len=:), allocatable :: cname, units, punits
+      integer :: k, n
+      if (flip_model(cfg)) then
+         var = axis_variable(name, cfg%run%links)
+         return
+      end if
+      n = cfg%run%model%n_dof()
+      var = 0
+      if (index(name, 'theta') /= 1) var = axis_variable(name, n)
+      do k = 1, n
+         call cfg%run%model%coordinate(k, cname, units, punits)
+         if (name == cname) var = k
+         if (name == cname//'dot') var = n + k
+      end do
+   end function sweep_variable
 
    !> The stop rule of the kernel (stop_end with the Lyapunov exponent).
    pure integer function stop_rule(cfg)
@@ -175,6 +233,25 @@ contains
       if (p1 == 6) p(4) = x1*p(3)
       if (p2 == 6) p(4) = x2*p(3)
    end function pixel_parameters
+
+   !> The model of a pixel of a parameter sweep, from the factory: a copy of the run's
+   !> specification (`cfg%run%spec`) with the masses and lengths of links 1 and 2 set
+   !> by name to p = (m1, m2, l1, l2) of `pixel_parameters`.
+   subroutine pixel_model(cfg, p, model, error)
+      type(sweep_config_t), intent(in) :: cfg            !! configuration, model built
+      real(dp), intent(in) :: p(4)                       !! (m1, m2, l1, l2) [kg, kg, m, m]
+      class(model_t), allocatable, intent(out) :: model  !! the pixel's model
+      type(error_t), allocatable, intent(out) :: error   !! refused by the factory
+      type(model_spec_t) :: spec
+      real(dp), allocatable :: m(:), l(:)
+      spec = cfg%run%spec
+      m = spec%get('m', cfg%run%m(:cfg%run%links))
+      l = spec%get('l', cfg%run%l(:cfg%run%links))
+      m(1:2) = p(1:2); l(1:2) = p(3:4)
+      call spec%set('m', m)
+      call spec%set('l', l)
+      call new_model(spec, model, error)
+   end subroutine pixel_model
 
    !> Help text of `dpend sweep`.
    function sweep_help() result(s)
@@ -230,6 +307,8 @@ contains
           '  --links N         number of links, 1 to '//to_str(max_dof)// &
           ' (default 2); --m, --l, --q, --w LIST'//nl// &
           '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
+          '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
+          '                    (or q1 q2 w1 w2); indicator maps only: megno fli sali gali2'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &
           '                    &sweep (keys as the long options, e.g. n1, min1, stop_at)' &
           //nl//nl// &
@@ -374,8 +453,7 @@ contains
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       character(len=:), allocatable :: field
-      call require_default_model(cfg%run, 'dpend sweep', error)
-      if (.not. allocated(error)) call validate_run_config(cfg%run, error)
+      call validate_run_config(cfg%run, error)
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
@@ -393,6 +471,10 @@ contains
          return
       end select
       if (cfg%indicator == 'lambda1') cfg%lyapunov = .true.
+      if (.not. flip_model(cfg)) then
+         call check_model_sweep(cfg, error)
+         if (allocated(error)) return
+      end if
       if (cfg%lyapunov .and. indicator_vectors(cfg) > 0) then
          call fatal_error(error, "invalid indicator: '"//cfg%indicator//"' with lyapunov "// &
                           '= true (one indicator per sweep; lambda1 is the Lyapunov exponent)')
@@ -437,7 +519,9 @@ contains
                           //'the list of --ic-file; a grid sweep has none) [--ic-file / &sweep]')
          return
       end if
-      if (grid_mode(cfg)) then
+      if (grid_mode(cfg) .and. .not. flip_model(cfg)) then
+         call check_model_axes(cfg, error)
+      else if (grid_mode(cfg)) then
          call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
          if (allocated(error)) return
          call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error)
@@ -458,6 +542,110 @@ contains
       end if
    end subroutine validate_sweep
 
+   !> What a sweep of a model without flips (the elastic pendulum) refuses: the flip
+   !> map (indicator flip, the default), the Lyapunov exponent of the batch kernel and
+   !> angles of a list measured as theta.
+   subroutine check_model_sweep(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: name
+      name = cfg%run%spec%model_name()
+      if (cfg%indicator == 'flip') then
+         call fatal_error(error, "invalid indicator: 'flip' does not apply to model " &
+                          //name//' (no rods to flip: no flip stop rules, t_flip or flip ' &
+                          //'energy bound; use --indicator megno, fli, sali or gali2)')
+      else if (cfg%lyapunov) then
+         call fatal_error(error, 'invalid '//trim(merge('indicator: lambda1', &
+                          'lyapunov: true    ', cfg%indicator == 'lambda1'))// &
+                          ' with model '//name//' (dpend sweep computes it for the ' &
+                          //'pendulum only; use --indicator megno, fli, sali or gali2, ' &
+                          //'or dpend lyapunov)')
+      else if (cfg%ic_angles_given .and. cfg%ic_angles /= 'q') then
+         call fatal_error(error, "invalid ic_angles: '"//printable(cfg%ic_angles)// &
+                          "' with model "//name//' (accepted: q; a list holds its ' &
+                          //'coordinates and rates)')
+      end if
+   end subroutine check_model_sweep
+
+   !> The axes of a model without flips: known names (`sweep_variable`), two
+   !> different values, n and the range as every axis, and the grid's four corners
+   !> (the extremes of each swept value) within the model (`check_state`).
+   subroutine check_model_axes(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: names
+      real(dp), allocatable :: y(:)
+      integer :: k, i, j, var(2), n(2)
+      real(dp) :: lo(2), hi(2), x1, x2
+      character(len=1) :: c
+      character(len=:), allocatable :: axis
+      var = [sweep_variable(cfg, cfg%axis1), sweep_variable(cfg, cfg%axis2)]
+      n = [cfg%n1, cfg%n2]; lo = [cfg%min1, cfg%min2]; hi = [cfg%max1, cfg%max2]
+      names = 'q1..q'//to_str(cfg%run%model%n_dof())//', w1..w'// &
+              to_str(cfg%run%model%n_dof())//', '//coordinate_names()
+      do k = 1, 2
+         c = achar(iachar('0') + k)
+         axis = cfg%axis1
+         if (k == 2) axis = cfg%axis2
+         if (var(k) == 0) then
+            ! theta1, theta2 are also the defaults: the pendulum's, no ranges to keep
+            call fatal_error(error, 'invalid axis'//c//": '"//printable(axis)// &
+                             "' (accepted for model "//cfg%run%spec%model_name()//': '// &
+                             names//'; it has no default axes: give --axis1 --axis2 and ' &
+                             //'their ranges)')
+         else if (n(k) < 1 .or. n(k) > max_axis_points) then
+            call fatal_error(error, 'invalid n'//c//': '//to_str(n(k))//' must be an ' &
+                             //'integer from 1 to '//to_str(max_axis_points)// &
+                             ' (points on axis '//c//')')
+         else if (.not. (ieee_is_finite(lo(k)) .and. ieee_is_finite(hi(k)))) then
+            call fatal_error(error, 'invalid min'//c//', max'//c//': must be finite')
+         else
+            call check_grid_range(axis, c, n(k), lo(k), hi(k), error)
+         end if
+         if (allocated(error)) return
+      end do
+      if (var(1) == var(2)) then
+         call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
+                          "initial value as axis1 '"//cfg%axis1//"'")
+         return
+      else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
+         call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
+                          sci(real(cfg%n1, dp)*real(cfg%n2, dp))//' points, at most '// &
+                          sci(real(max_sweep_points, dp))//' (fewer points)')
+         return
+      end if
+      do j = 1, 2
+         do i = 1, 2
+            x1 = merge(lo(1), hi(1), i == 1); x2 = merge(lo(2), hi(2), j == 1)
+            y = [cfg%run%q0(), cfg%run%w0()]
+            y(var(1)) = x1; y(var(2)) = x2
+            call cfg%run%model%check_state(y(:size(y)/2), y(size(y)/2 + 1:), error)
+            if (allocated(error)) then
+               error%message = 'invalid min1, max1, min2, max2: the pixel at ('// &
+                               real_str(x1)//', '//real_str(x2)//') is refused: '// &
+                               error%message
+               return
+            end if
+         end do
+      end do
+   contains
+      !> 'r phi rdot phidot'.
+      function coordinate_names() result(t)
+         character(len=:), allocatable :: t, cname, units, punits
+         integer :: i
+         t = ''
+         do i = 1, cfg%run%model%n_dof()
+            call cfg%run%model%coordinate(i, cname, units, punits)
+            t = t//cname//' '
+         end do
+         do i = 1, cfg%run%model%n_dof()
+            call cfg%run%model%coordinate(i, cname, units, punits)
+            t = t//cname//'dot '
+         end do
+         t = trim(t)
+      end function coordinate_names
+   end subroutine check_model_axes
+
    !> True if two axes set the same value: the same initial value, the same
    !> parameter, or m2 and m2/m1, l2 and l2/l1.
    pure logical function same_value(a1, a2, links)
@@ -477,9 +665,9 @@ contains
       type(sweep_config_t), intent(in) :: cfg           !! configuration, axes checked
       type(error_t), allocatable, intent(out) :: error  !! a corner out of range
       integer :: p1, p2, i, j
-      real(dp) :: p(4), x1, x2, m(cfg%run%links), l(cfg%run%links)
+      real(dp) :: p(4), x1, x2
       character(len=*), parameter :: what = 'min1, max1, min2, max2'
-      type(chain_t) :: chain
+      class(model_t), allocatable :: model
       p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
       if (p1 == 0 .and. p2 == 0) return
       do j = 1, 2
@@ -495,9 +683,7 @@ contains
             if (.not. allocated(error)) call check_parameter(parameter_length, &
                                                              what//' (l2 of a pixel)', p(4), error)
             if (allocated(error)) return
-            m = cfg%run%m(:cfg%run%links); l = cfg%run%l(:cfg%run%links)
-            m(1:2) = p(1:2); l(1:2) = p(3:4)
-            chain = chain_model(m, l, cfg%run%g, error)
+            call pixel_model(cfg, p, model, error)
             if (allocated(error)) then
                error%message = 'invalid '//what//': the pixel at ('//real_str(x1)//', '// &
                                real_str(x2)//') is refused: '//error%message
@@ -600,11 +786,12 @@ contains
    end subroutine check_grid_range
 
    !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
-   pure function unit_name(cfg) result(u)
+   function unit_name(cfg) result(u)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       character(len=16) :: u
       u = 's'
       if (cfg%time_unit == 'natural') u = 'sqrt(l1/g)'
+      if (cfg%time_unit == 'natural' .and. .not. flip_model(cfg)) u = 'sqrt(l0/g)'
    end function unit_name
 
    !> Index in the state (q1 .. qN, w1 .. wN) of the initial value an axis sweeps:

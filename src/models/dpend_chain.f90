@@ -144,6 +144,8 @@ module dpend_chain
       ! r3 fit: the sensitivities of the motion to the damping (dpend fit --fit-damping)
       procedure :: check_parameter_rates => chain_check_parameter_rates
       procedure :: parameter_rates => chain_parameter_rates
+      ! sweep (issue 23, one construction site): the G_i of its potential
+      procedure :: potential_weights => chain_potential_weights
    end type chain_t
 
 contains
@@ -1186,4 +1188,11 @@ contains
          d(:, i) = b(1:n)
       end do
    end subroutine chain_parameter_rates
+
+   !> G_i of V = Σ G_i sin q_i [J] (n).
+   pure function chain_potential_weights(self) result(gl)
+      class(chain_t), intent(in) :: self  !! the chain
+      real(dp), allocatable :: gl(:)
+      gl = self%gl
+   end function chain_potential_weights
 end module dpend_chain

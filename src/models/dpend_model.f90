@@ -101,6 +101,8 @@ module dpend_model
       ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
       procedure :: check_parameter_rates => model_check_parameter_rates
       procedure :: parameter_rates => model_parameter_rates
+      ! sweep (issue 23, one construction site): G_i of V = Σ G_i sin q_i, if V has that form
+      procedure :: potential_weights => model_potential_weights
    end type model_t
 
    abstract interface
@@ -463,4 +465,13 @@ contains
       real(dp), intent(out) :: d(:, :)     !! ∂q̈/∂θ (n, components)
       d = 0.0_dp
    end subroutine model_parameter_rates
+
+   !> The weights G_i [J] of a potential V = Σ G_i sin q_i (rods' angles q_i): the
+   !> sweep's flip energy bounds and energy-error unit. Default: none (size 0), the
+   !> potential has another form.
+   pure function model_potential_weights(self) result(gl)
+      class(model_t), intent(in) :: self  !! the model
+      real(dp), allocatable :: gl(:)
+      allocate (gl(0))
+   end function model_potential_weights
 end module dpend_model

@@ -97,6 +97,8 @@ module dpend_pendulum
       ! r3 study: H in quadruple precision for the study's roundoff runs
       procedure :: has_hamiltonian_qp => dp_true
       procedure :: hamiltonian_qp => dp_hamiltonian_qp
+      ! sweep (issue 23, one construction site): the G_i of its potential
+      procedure :: potential_weights => dp_potential_weights
    end type double_pendulum_t
 
 contains
@@ -889,4 +891,19 @@ contains
       real(qp) :: h
       h = hamiltonian_qp(self%par, z(1:4), e(1:4))
    end function dp_hamiltonian_qp
+
+   !> G_i of V = G_1 sin q1 + G_2 sin q2 [J]: G_i = g l_i (m_i/2 + Σ_(k>i) m_k), the
+   !> expressions (and roundings) of the N-link chain's (dpend_chain).
+   pure function dp_potential_weights(self) result(gl)
+      class(double_pendulum_t), intent(in) :: self  !! the double pendulum
+      real(dp), allocatable :: gl(:)
+      real(dp) :: tail
+      associate (p => self%par)
+         tail = 0.0_dp
+         allocate (gl(2))
+         gl(2) = p%g*p%l2*(0.5_dp*p%m2 + tail)
+         tail = tail + p%m2
+         gl(1) = p%g*p%l1*(0.5_dp*p%m1 + tail)
+      end associate
+   end function dp_potential_weights
 end module dpend_pendulum

@@ -18,6 +18,12 @@
 !>   bound (less a margin of 1e-12 Σ G_i for the rounding of E(0)) cannot flip and is
 !>   not integrated (st_cannot_flip), unless opt%skip_cannot_flip is false.
 !>
+!> A model whose potential is not of that form (no G_i: `potential_weights` of size 0,
+!> e.g. the elastic pendulum, whose coordinates are not rod angles) has no flips and no
+!> flip bound: every initial condition is integrated to t_end (t_flip NaN, status
+!> st_end or st_nonfinite), and its energy error is divided by the model's own
+!> `energy_scale(E(0))`.
+!>
 !> Difference from the kernel: a step whose result is not finite (or beyond the
 !> integrators' `diverged_bound`) is not taken; the trajectory ends there with
 !> st_nonfinite, its final state the last finite one and t_stop the time reached.
@@ -65,24 +71,27 @@ contains
    !> trajectory runs to t_end and its fast indicators come from `chaos_indicators`
    !> (dpend_indicators, the 2N vectors of `initial_vectors`, one sample at t_end),
    !> vector 1 for MEGNO and FLI, vectors 1 and 2 for SALI and GALI_2, as the kernel.
+   !> `gl` of size 0: a model without flips (see the module header).
    subroutine integrate_trajectories(model, integ, gl, opt, y0, res)
       class(model_t), intent(in) :: model            !! the system, N degrees of freedom
       class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
-      real(dp), intent(in) :: gl(:)                  !! G_i of V = Σ G_i sin q_i [J] (N)
+      real(dp), intent(in) :: gl(:)                  !! G_i of V = Σ G_i sin q_i [J] (N or 0)
       type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
       type(batch_result_t), intent(out) :: res       !! results
       real(dp), allocatable :: y(:)
-      real(dp) :: bounds(size(gl)), tf(size(gl)), p(size(gl)), nk(size(gl))
-      real(dp) :: escale, nan, margin, t, hs, err, mk, qc
-      logical :: can(size(gl)), ended
+      real(dp) :: bounds(size(y0, 1)/2), tf(size(y0, 1)/2)
+      real(dp) :: escale, nan, margin, err
+      logical :: can(size(y0, 1)/2), flips, nonfinite
       integer(i8) :: ks
       integer :: n, nl, j, i, stat
 
-      nl = size(gl)
+      nl = size(y0, 1)/2
       n = size(y0, 2)
+      flips = size(gl) == nl
       nan = ieee_value(nan, ieee_quiet_nan)
-      bounds = link_flip_bounds(gl)
+      bounds = 0.0_dp
+      if (flips) bounds = link_flip_bounds(gl)
       margin = bound_margin*sum(gl)
       escale = 2.0_dp*sum(gl)
       res%n = n
@@ -98,6 +107,10 @@ contains
          do i = 1, nl
             can(i) = .not. (res%energy0(j) < bounds(i) - margin)
          end do
+         if (.not. flips) then   ! no flips: integrated in full, the model's energy unit
+            can = .true.
+            escale = model%energy_scale(res%energy0(j))
+         end if
          res%final(:, j) = y0(:, j)
          res%t_stop(j) = 0.0_dp
          res%steps(j) = 0
@@ -113,46 +126,8 @@ contains
             cycle
          end if
          y = y0(:, j)
-         t = 0.0_dp
-         ks = 0
-         err = 0.0_dp
-         tf = -1.0_dp
-         do i = 1, nl
-            nk(i) = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
-         end do
-         call integ%clear_step()
-         do
-            p = y(1:nl)
-            hs = opt%h
-            call integ%step(model, t, y, hs, stat)
-            if (stat /= stat_ok) then
-               res%status(j) = st_nonfinite
-               exit
-            end if
-            ks = ks + 1
-            t = real(ks, dp)*opt%h
-            err = max(err, abs(model%energy(t, y) - res%energy0(j)))
-            ! link i: index of the last upward vertical below q_i, π/2 + 2π k
-            do i = 1, nl
-               mk = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
-               if (mk /= nk(i)) then
-                  if (tf(i) < 0.0_dp) then
-                     qc = half_pi + two_pi*max(mk, nk(i))
-                     tf(i) = (real(ks - 1, dp) + (qc - p(i))/(y(i) - p(i)))*opt%h
-                  end if
-                  nk(i) = mk
-               end if
-            end do
-            ended = ks >= opt%n_steps
-            select case (opt%stop_rule)
-            case (stop_both)
-               ended = ended .or. all(tf >= 0.0_dp .or. .not. can)
-            case (stop_either)
-               ended = ended .or. any(tf >= 0.0_dp)
-            case (stop_end)
-            end select
-            if (ended) exit
-         end do
+         call march(model, integ, opt, flips, can, res%energy0(j), y, ks, tf, err, nonfinite)
+         if (nonfinite) res%status(j) = st_nonfinite
          res%final(:, j) = y
          res%t_stop(j) = real(ks, dp)*opt%h
          res%steps(j) = int(ks)
@@ -165,19 +140,7 @@ contains
          end if
          if (opt%vectors > 0) call indicators(j)
       end do
-      do j = 1, n
-         if (any(res%t_flip_link(:, j) >= 0.0_dp)) then
-            res%t_flip(j) = minval(res%t_flip_link(:, j), mask=res%t_flip_link(:, j) >= 0.0_dp)
-         else
-            res%t_flip(j) = nan
-         end if
-         do i = 1, nl
-            if (.not. (res%t_flip_link(i, j) >= 0.0_dp)) res%t_flip_link(i, j) = nan
-         end do
-         res%t_flip1(j) = res%t_flip_link(1, j)
-         res%t_flip2(j) = nan
-         if (nl >= 2) res%t_flip2(j) = res%t_flip_link(2, j)
-      end do
+      call first_flips(res, nl)
    contains
 
       !> The fast indicators of trajectory j, integrated again with its tangents.
@@ -197,5 +160,91 @@ contains
          res%gali2(j) = ind%gali(1, m)
       end subroutine indicators
    end subroutine integrate_trajectories
+
+   !> One trajectory from y at t = 0 by steps of opt%h: at most opt%n_steps, ended by
+   !> the stop rule; the first flip time of every link (`flips` true: its q_i passes
+   !> π/2 + 2π k, interpolated linearly in q_i within the step; -1 if none) and the
+   !> largest |E(t_k) − E(0)|. A step that fails (not finite) is not taken.
+   subroutine march(model, integ, opt, flips, can, e0, y, ks, tf, err, nonfinite)
+      class(model_t), intent(in) :: model            !! the system, N degrees of freedom
+      class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
+      type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
+      logical, intent(in) :: flips                   !! the model's links flip
+      logical, intent(in) :: can(:)                  !! link i can flip (by energy), N
+      real(dp), intent(in) :: e0                     !! E(0) [J]
+      real(dp), intent(inout) :: y(:)                !! state (q, q̇): initial, then final
+      integer(i8), intent(out) :: ks                 !! steps taken
+      real(dp), intent(out) :: tf(:)                 !! first flip of each link [s], -1: none
+      real(dp), intent(out) :: err                   !! max |E(t_k) − E(0)| [J]
+      logical, intent(out) :: nonfinite              !! a step was not finite
+      real(dp) :: p(size(tf)), nk(size(tf)), t, hs, mk, qc
+      logical :: ended
+      integer :: i, nl, stat
+      nl = size(tf)
+      nonfinite = .false.
+      t = 0.0_dp
+      ks = 0
+      err = 0.0_dp
+      tf = -1.0_dp
+      do i = 1, nl
+         nk(i) = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
+      end do
+      call integ%clear_step()
+      do
+         p = y(1:nl)
+         hs = opt%h
+         call integ%step(model, t, y, hs, stat)
+         if (stat /= stat_ok) then
+            nonfinite = .true.
+            exit
+         end if
+         ks = ks + 1
+         t = real(ks, dp)*opt%h
+         err = max(err, abs(model%energy(t, y) - e0))
+         ! link i: index of the last upward vertical below q_i, π/2 + 2π k
+         do i = 1, merge(nl, 0, flips)
+            mk = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)
+            if (mk /= nk(i)) then
+               if (tf(i) < 0.0_dp) then
+                  qc = half_pi + two_pi*max(mk, nk(i))
+                  tf(i) = (real(ks - 1, dp) + (qc - p(i))/(y(i) - p(i)))*opt%h
+               end if
+               nk(i) = mk
+            end if
+         end do
+         ended = ks >= opt%n_steps
+         select case (opt%stop_rule)
+         case (stop_both)
+            ended = ended .or. all(tf >= 0.0_dp .or. .not. can)
+         case (stop_either)
+            ended = ended .or. any(tf >= 0.0_dp)
+         case (stop_end)
+         end select
+         if (ended) exit
+      end do
+   end subroutine march
+
+   !> res%t_flip (the first flip of any link), NaN for every link that did not flip,
+   !> and t_flip1, t_flip2 (links 1 and 2; NaN if absent) from res%t_flip_link (-1: none).
+   subroutine first_flips(res, nl)
+      type(batch_result_t), intent(inout) :: res   !! results, t_flip_link set
+      integer, intent(in) :: nl                    !! links N
+      real(dp) :: nan
+      integer :: i, j
+      nan = ieee_value(nan, ieee_quiet_nan)
+      do j = 1, res%n
+         if (any(res%t_flip_link(:, j) >= 0.0_dp)) then
+            res%t_flip(j) = minval(res%t_flip_link(:, j), mask=res%t_flip_link(:, j) >= 0.0_dp)
+         else
+            res%t_flip(j) = nan
+         end if
+         do i = 1, nl
+            if (.not. (res%t_flip_link(i, j) >= 0.0_dp)) res%t_flip_link(i, j) = nan
+         end do
+         res%t_flip1(j) = res%t_flip_link(1, j)
+         res%t_flip2(j) = nan
+         if (nl >= 2) res%t_flip2(j) = res%t_flip_link(2, j)
+      end do
+   end subroutine first_flips
 
 end module dpend_trajectory_batch

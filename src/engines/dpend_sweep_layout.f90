@@ -1,0 +1,587 @@
+!> The sweep's file layout (docs/hdf5-layout.md): the names, units and descriptions
+!> of the result datasets, the working and the final file's datasets and attributes,
+!> writing one block, and the final file installed through the one writer.
+module dpend_sweep_layout
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error
+   use dpend_output, only: output_t
+   use dpend_os, only: remove_file
+   use dpend_pendulum_lanes, only: batch_result_t, potential_range, flip_energy_bounds
+   use dpend_sweep_config, only: stop_rule, axis_parameter
+   use dpend_trajectory_batch, only: link_flip_bounds
+   use dpend_hdf5, only: h5file_t
+   use dpend_version, only: version
+   use dpend_cli, only: to_str
+   use dpend_sweep_setup, only: sweep_setup_t, block_range, parameter_axes, block_parameters, &
+      stop_name
+   implicit none
+   private
+   public :: result_names, create_layout, write_block, working_file, finalize_file, install_file
+
+contains
+
+   ! ------------------------------------------------------------ layout ---
+
+   !> Names of the result datasets under /sweep (reals, then integers).
+   subroutine result_names(setup, reals, ints)
+      type(sweep_setup_t), intent(in) :: setup                     !! setup
+      character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
+      character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
+      character(len=32) :: name
+      integer :: i
+      if (.not. setup%flips) then   ! no t_flip: final/q1 .. final/qn, final/w1 .. final/wn
+         allocate (reals(2*setup%links + 3))
+         reals(1:3) = [character(len=32) :: 'energy0', 'energy_error', 't_stop']
+         do i = 1, setup%links
+            reals(3 + i) = 'final/q'//to_str(i)
+            reals(setup%links + 3 + i) = 'final/w'//to_str(i)
+         end do
+      else if (setup%links == 2) then
+         reals = [character(len=32) :: 't_flip', 't_flip1', 't_flip2', 'energy0', &
+                  'energy_error', 't_stop', 'final/q1', 'final/q2', 'final/w1', 'final/w2']
+      else   ! N links: t_flip1 .. t_flipN, final/q1 .. final/qN, final/w1 .. final/wN
+         allocate (reals(3*setup%links + 4))
+         reals(1) = 't_flip'
+         do i = 1, setup%links
+            reals(1 + i) = 't_flip'//to_str(i)
+            reals(setup%links + 4 + i) = 'final/q'//to_str(i)
+            reals(2*setup%links + 4 + i) = 'final/w'//to_str(i)
+         end do
+         reals(setup%links + 2) = 'energy0'
+         reals(setup%links + 3) = 'energy_error'
+         reals(setup%links + 4) = 't_stop'
+      end if
+      if (setup%cfg%lyapunov) reals = [reals, [character(len=32) :: 'lyapunov']]
+      select case (setup%cfg%indicator)
+      case ('megno'); reals = [reals, [character(len=32) :: 'megno', 'megno_y']]
+      case ('fli', 'sali', 'gali2')
+         name = setup%cfg%indicator   ! (one length in the constructor under -fcheck)
+         reals = [reals, name]
+      end select
+      if (parameter_axes(setup)) reals = [reals, [character(len=32) :: 'param/m1', &
+                                          'param/m2', 'param/l1', 'param/l2']]
+      ints = [character(len=32) :: 'status']
+      if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
+   end subroutine result_names
+
+   !> Units of a swept variable: 'rad' for an angle, 'rad/s' for a velocity.
+   pure function axis_units(axis) result(units)
+      character(len=*), intent(in) :: axis  !! theta1, theta2, q1, q2, w1, w2, m1, ...
+      character(len=:), allocatable :: units
+      select case (axis_parameter(axis))
+      case (1, 2); units = 'kg'
+      case (3, 4); units = 'm'
+      case (5, 6); units = '1'
+      case default
+         if (index(axis, 'w') == 1) then
+            units = 'rad/s'
+         else
+            units = 'rad'
+         end if
+      end select
+   end function axis_units
+
+   !> Units and description of the sweep dataset `name` (below /sweep).
+   subroutine dataset_info(name, axis_units, units, text, links)
+      character(len=*), intent(in) :: name                 !! e.g. 't_flip', 'final/q1'
+      character(len=*), intent(in) :: axis_units           !! units of the swept axis
+      character(len=:), allocatable, intent(out) :: units  !! SI units, '1' dimensionless
+      character(len=:), allocatable, intent(out) :: text   !! one-line description
+      integer, intent(in), optional :: links               !! number of links (default 2)
+      integer :: nl
+      nl = 2
+      if (present(links)) nl = links
+      if (nl /= 2) then   ! the names and texts of N links; two links as before
+         if (name == 't_flip') then
+            units = 's'; text = 'first flip of any link (NaN: none before t_stop); '// &
+               'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+            return
+         else if (index(name, 't_flip') == 1) then
+            units = 's'; text = 'first flip of link '//name(7:)//' (NaN: none before '// &
+               't_stop); divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+            return
+         else if (index(name, 'final/q') == 1) then
+            units = 'rad'; text = 'angle at t_stop from the horizontal x axis'
+            return
+         else if (index(name, 'final/w') == 1) then
+            units = 'rad/s'; text = 'angular velocity at t_stop'
+            return
+         else if (name == 'energy0') then
+            units = 'J'; text = 'initial energy E(0) (V = 0 with every link horizontal)'
+            return
+         else if (name == 'status') then
+            units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after '// &
+               'a flip, 3 below every flip bound, 4 a step was not finite'
+            return
+         else if (name == 'initial') then
+            units = 'rad, rad/s'; text = 'initial states (q1 .. qN, qdot1 .. qdotN), '// &
+               'angles from the horizontal x axis'
+            return
+         end if
+      end if
+      select case (name)
+      case ('t_flip')
+         units = 's'; text = 'first flip of either link (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('t_flip1')
+         units = 's'; text = 'first flip of link 1 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('t_flip2')
+         units = 's'; text = 'first flip of link 2 (NaN: none before t_stop); '// &
+            'divide by /sweep@sqrt_l1_over_g for the natural unit sqrt(l1/g)'
+      case ('energy0')
+         units = 'J'; text = 'initial energy E(0) (V = 0 with both links horizontal)'
+      case ('energy_error')
+         units = '1'; text = 'max |E(t) - E(0)| / potential_range (NaN: not integrated)'
+      case ('t_stop')
+         units = 's'; text = 'time the trajectory was integrated to (0: not integrated)'
+      case ('final/q1', 'final/q2')
+         units = 'rad'; text = 'angle at t_stop from the horizontal x axis'
+      case ('final/w1', 'final/w2')
+         units = 'rad/s'; text = 'angular velocity at t_stop'
+      case ('lyapunov')
+         units = '1/s'; text = 'largest Lyapunov exponent'
+      case ('param/m1', 'param/m2')
+         units = 'kg'; text = 'mass of link '//name(8:8)//' of the pixel (parameter axes)'
+      case ('param/l1', 'param/l2')
+         units = 'm'; text = 'length of link '//name(8:8)//' of the pixel (parameter axes)'
+      case ('megno')
+         units = '1'; text = 'MEGNO running mean <Y>(t_stop) of one deviation vector '// &
+            '(regular orbits -> 2, chaotic ~ lambda1 t/2; NaN: not finite)'
+      case ('megno_y')
+         units = '1'; text = 'MEGNO Y(t_stop) = 2/t int s (ddot.d)/(d.d) ds of one '// &
+            'deviation vector (NaN: not finite)'
+      case ('fli')
+         units = '1'; text = 'fast Lyapunov indicator ln |d(t_stop)| of one deviation '// &
+            'vector, |d(0)| = 1 (regular ~ ln t, chaotic ~ lambda1 t; NaN: not finite)'
+      case ('sali')
+         units = '1'; text = 'SALI of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
+      case ('gali2')
+         units = '1'; text = 'GALI_2 of two deviation vectors at t_stop (chaotic -> 0 '// &
+            'as exp(-(lambda1 - lambda2) t), regular stays away from 0; NaN: not finite)'
+      case ('status')
+         units = '1'; text = '0 not computed, 1 integrated to t_end, 2 stopped after a '// &
+            'flip, 3 below both flip bounds, 4 state became non-finite'
+      case ('steps')
+         units = '1'; text = 'RK4 steps taken (4 right-hand-side evaluations each)'
+      case ('done')
+         units = '1'; text = '1 for every block written (resume flags)'
+      case ('axis1', 'axis2')
+         units = axis_units; text = 'grid values on '//name(1:4)//' '//name(5:5)
+      case ('initial')
+         units = 'rad, rad/s'; text = 'initial states (q1, q2, qdot1, qdot2), angles '// &
+            'from the horizontal x axis'
+      case default
+         units = '1'; text = name
+      end select
+   end subroutine dataset_info
+
+   !> Create the file with every dataset and attribute: the working layout
+   !> (uncompressed, allocated now) or the final one (compressed).
+   subroutine create_layout(h5, filename, setup, final, error)
+      type(h5file_t), intent(inout) :: h5               !! file object, left open
+      character(len=*), intent(in) :: filename          !! file to create (truncated)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      logical, intent(in) :: final                      !! compressed, complete
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      character(len=32), allocatable :: reals(:), ints(:)
+      character(len=:), allocatable :: units, text
+      integer, allocatable :: dims(:), chunk(:)
+      real(dp) :: nan, range
+      real(dp), allocatable :: bounds(:)
+      integer :: i
+      nan = ieee_value(nan, ieee_quiet_nan)
+      call h5%open(filename, 'w', error)
+      if (allocated(error)) return
+      if (setup%grid) then
+         dims = [setup%cfg%n1, setup%cfg%n2]
+         chunk = [setup%cfg%n1, setup%rows]
+      else
+         dims = [setup%n]
+         chunk = [setup%block]
+      end if
+      call result_names(setup, reals, ints)
+      do i = 1, size(reals)
+         call dataset_info(trim(reals(i)), '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, trim(reals(i)), units, text)
+         call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
+                                fill=nan, compress=final, alloc_early=.not. final, &
+                                checksum=final .or. setup%checksum, units=units, &
+                                description=text)
+         if (allocated(error)) return
+      end do
+      do i = 1, size(ints)
+         call dataset_info(trim(ints(i)), '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, trim(ints(i)), units, text)
+         call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
+                                fill=0.0_dp, compress=final, alloc_early=.not. final, &
+                                checksum=final .or. setup%checksum, units=units, &
+                                description=text)
+         if (allocated(error)) return
+      end do
+      call dataset_info('done', '', units, text)
+      call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error, &
+                    units, text)
+      if (allocated(error)) return
+      if (setup%grid) then
+         call dataset_info('axis1', axis_units(setup%cfg%axis1), units, text)
+         if (.not. setup%flips) call model_dataset_info(setup, 'axis1', units, text)
+         call h5%write('/sweep/axis1', setup%axis1, error, units, text)
+         call dataset_info('axis2', axis_units(setup%cfg%axis2), units, text)
+         if (.not. setup%flips) call model_dataset_info(setup, 'axis2', units, text)
+         if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error, &
+                                                   units, text)
+      else
+         call dataset_info('initial', '', units, text, setup%links)
+         if (.not. setup%flips) call model_dataset_info(setup, 'initial', units, text)
+         call h5%write('/sweep/initial', setup%list, error, units, text)
+      end if
+      if (allocated(error)) return
+      if (.not. setup%flips) then
+         call model_attributes(h5, setup, final)
+         call h5%take_error(error)
+         return
+      else if (setup%links == 2) then
+         bounds = flip_energy_bounds(setup%cfg%run%pendulum())
+         range = potential_range(setup%cfg%run%pendulum())
+      else
+         bounds = link_flip_bounds(setup%gl)
+         range = 2.0_dp*sum(setup%gl)
+      end if
+      ! the attributes pass no `error`: h5 keeps the first failure (take_error below)
+      associate (c => setup%cfg, p => setup%cfg%run%pendulum())
+         call h5%writeattr('/', 'program', 'dpend sweep')
+         call h5%writeattr('/', 'version', version)
+         call h5%writeattr('/', 'method', c%run%method)
+         call h5%writeattr('/sweep', 'config', setup%config)
+         call h5%writeattr('/sweep', 'complete', merge(1, 0, final))
+         if (setup%links == 2) then
+            call h5%writeattr('/sweep', 'm1', p%m1)
+            call h5%writeattr('/sweep', 'm2', p%m2)
+            call h5%writeattr('/sweep', 'l1', p%l1)
+            call h5%writeattr('/sweep', 'l2', p%l2)
+         end if
+         call h5%writeattr('/sweep', 'links', setup%links)
+         call h5%writeattr('/sweep', 'm', c%run%m(:setup%links))
+         call h5%writeattr('/sweep', 'l', c%run%l(:setup%links))
+         call h5%writeattr('/sweep', 'g', c%run%g)
+         call h5%writeattr('/sweep', 'q0', c%run%q0())
+         call h5%writeattr('/sweep', 'qdot0', c%run%w0())
+         call h5%writeattr('/sweep', 'h', setup%opt%h)
+         call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau)
+         call h5%writeattr('/sweep', 'potential_range', range)
+         call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
+         call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
+         call h5%writeattr('/sweep', 'block', setup%block)
+         call h5%writeattr('/sweep', 'initial', merge('grid', 'list', setup%grid))
+         if (setup%grid) then
+            call h5%writeattr('/sweep', 'axis1', c%axis1)
+            call h5%writeattr('/sweep', 'axis2', c%axis2)
+         end if
+      end associate
+      call h5%take_error(error)
+   end subroutine create_layout
+
+   !> Units and description of dataset `name` of a sweep of a model without flips
+   !> (the elastic pendulum), from the model's coordinates: q_k and w_k, the axes and
+   !> the initial states in the model's units; the energy error in its energy_scale.
+   !> Other names keep what `dataset_info` gave.
+   subroutine model_dataset_info(setup, name, units, text)
+      type(sweep_setup_t), intent(in) :: setup                  !! setup, flips false
+      character(len=*), intent(in) :: name                      !! dataset below /sweep
+      character(len=:), allocatable, intent(inout) :: units     !! SI units
+      character(len=:), allocatable, intent(inout) :: text      !! one-line description
+      character(len=:), allocatable :: cname, cunits, punits, all_names, all_units
+      integer :: k, n, var
+      n = setup%links
+      k = 0
+      if (index(name, 'final/') == 1) then
+         read (name(8:), *) k
+         if (name(7:7) == 'w') k = n + k
+      end if
+      select case (name)
+      case ('energy0')
+         units = 'J'; text = 'initial energy E(0) ('//setup%cfg%run%model%energy_text()//')'
+      case ('energy_error')
+         units = '1'; text = 'max |E(t) - E(0)| / energy_scale(E(0)) of the model (NaN: ' &
+                             //'not finite)'
+      case ('status')
+         units = '1'; text = '0 not computed, 1 integrated to t_end, 4 a step was not finite'
+      case ('axis1', 'axis2')
+         var = setup%var1
+         if (name == 'axis2') var = setup%var2
+         call state_info(var, units, cname)
+         text = 'grid values on '//name(1:4)//' '//name(5:5)//': initial '//cname
+      case ('initial')
+         all_names = ''; all_units = ''
+         do var = 1, 2*n
+            call state_info(var, cunits, cname)
+            all_names = all_names//merge(', ', '  ', var > 1)//cname
+            all_units = all_units//merge(', ', '  ', var > 1)//cunits
+         end do
+         units = all_units(3:); text = 'initial states ('//all_names(3:)//')'
+      case default
+         if (k > 0) then
+            call state_info(k, units, cname)
+            text = cname//' at t_stop'
+         end if
+      end select
+   contains
+      !> Units and name of state component var: q_k = its coordinate, w_k its rate.
+      subroutine state_info(var, u, nm)
+         integer, intent(in) :: var
+         character(len=:), allocatable, intent(out) :: u, nm
+         if (var <= n) then
+            call setup%cfg%run%model%coordinate(var, nm, u, punits)
+         else
+            call setup%cfg%run%model%coordinate(var - n, nm, u, punits)
+            nm = nm//'dot'; u = u//'/s'
+         end if
+      end subroutine state_info
+   end subroutine model_dataset_info
+
+   !> The /sweep attributes of a model without flips: the model, its parameters by
+   !> name, the fixed initial values, the step and the end time, the natural time unit
+   !> √(l0/g) [s], the stop rule, the blocks and the axes (no flip bounds).
+   subroutine model_attributes(h5, setup, final)
+      type(h5file_t), intent(inout) :: h5        !! open file (keeps the first failure)
+      type(sweep_setup_t), intent(in) :: setup   !! setup, flips false
+      logical, intent(in) :: final               !! the final file (complete)
+      character(len=:), allocatable :: name, units
+      real(dp) :: x
+      integer :: i
+      associate (c => setup%cfg)
+         call h5%writeattr('/', 'program', 'dpend sweep')
+         call h5%writeattr('/', 'version', version)
+         call h5%writeattr('/', 'method', c%run%method)
+         call h5%writeattr('/sweep', 'config', setup%config)
+         call h5%writeattr('/sweep', 'complete', merge(1, 0, final))
+         call h5%writeattr('/sweep', 'model', c%run%spec%model_name())
+         do i = 1, c%run%model%n_parameters()
+            call c%run%model%parameter(i, name, x, units)
+            call h5%writeattr('/sweep', name, x)
+         end do
+         call h5%writeattr('/sweep', 'q0', c%run%q0())
+         call h5%writeattr('/sweep', 'qdot0', c%run%w0())
+         call h5%writeattr('/sweep', 'h', setup%opt%h)
+         call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
+         call h5%writeattr('/sweep', 'sqrt_l0_over_g', setup%tau)
+         call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
+         call h5%writeattr('/sweep', 'block', setup%block)
+         call h5%writeattr('/sweep', 'initial', merge('grid', 'list', setup%grid))
+         if (setup%grid) then
+            call h5%writeattr('/sweep', 'axis1', c%axis1)
+            call h5%writeattr('/sweep', 'axis2', c%axis2)
+         end if
+      end associate
+   end subroutine model_attributes
+
+   !> Write the results of block b, flush, then flag it done and flush again.
+   !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
+   !> flush is collective and the independent raw-data writes of allocated,
+   !> unfiltered chunks bypass HDF5's caches (they reach the file, in order, before
+   !> the write returns).
+   subroutine write_block(h5, setup, b, res, error, flush)
+      type(h5file_t), intent(inout) :: h5               !! open working file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: b                          !! block, 1-based
+      type(batch_result_t), intent(in) :: res           !! its results
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      logical, intent(in), optional :: flush            !! flush the file (default true)
+      real(dp), allocatable :: p(:, :)
+      integer :: j0, nb, i
+      logical :: sync
+      sync = .true.
+      if (present(flush)) sync = flush
+      call block_range(setup, b, j0, nb)
+      if (setup%flips) call put_r('t_flip', res%t_flip)
+      if (.not. setup%flips) then
+      else if (setup%links == 2) then
+         call put_r('t_flip1', res%t_flip1)
+         call put_r('t_flip2', res%t_flip2)
+      else
+         do i = 1, setup%links
+            call put_r('t_flip'//to_str(i), res%t_flip_link(i, :))
+         end do
+      end if
+      call put_r('energy0', res%energy0)
+      call put_r('energy_error', res%energy_error)
+      call put_r('t_stop', res%t_stop)
+      do i = 1, setup%links
+         call put_r('final/q'//to_str(i), res%final(i, :))
+      end do
+      do i = 1, setup%links
+         call put_r('final/w'//to_str(i), res%final(setup%links + i, :))
+      end do
+      if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
+      select case (setup%cfg%indicator)
+      case ('megno')
+         call put_r('megno', res%megno)
+         call put_r('megno_y', res%megno_y)
+      case ('fli'); call put_r('fli', res%fli)
+      case ('sali'); call put_r('sali', res%sali)
+      case ('gali2'); call put_r('gali2', res%gali2)
+      end select
+      if (parameter_axes(setup)) then
+         call block_parameters(setup, b, p)
+         call put_r('param/m1', p(1, :))
+         call put_r('param/m2', p(2, :))
+         call put_r('param/l1', p(3, :))
+         call put_r('param/l2', p(4, :))
+      end if
+      call put_i('status', res%status)
+      if (setup%cfg%stats) call put_i('steps', res%steps)
+      if (allocated(error)) return
+      if (sync) call h5%flush()
+      call h5%write_slab('/sweep/done', [1], [b], error)
+      if (allocated(error)) return
+      if (sync) call h5%flush()
+   contains
+      ! each block is whole chunks: a chunk torn by a kill during its write (its
+      ! block not flagged done) is replaced without its old checksum being checked
+      subroutine put_r(name, v)
+         character(len=*), intent(in) :: name
+         real(dp), intent(in) :: v(:)
+         real(dp), allocatable :: a2(:, :), a1(:)
+         if (allocated(error)) return
+         if (setup%grid) then
+            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
+                               whole_chunks=.true.)
+         else
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
+         end if
+      end subroutine put_r
+      subroutine put_i(name, v)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: v(:)
+         integer, allocatable :: a2(:, :), a1(:)
+         if (allocated(error)) return
+         if (setup%grid) then
+            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
+            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
+                               whole_chunks=.true.)
+         else
+            a1 = v   ! contiguous copy
+            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
+         end if
+      end subroutine put_i
+   end subroutine write_block
+
+   !> The working file of the sweep whose output is `output`: FILE.part.
+   pure function working_file(output) result(path)
+      character(len=*), intent(in) :: output  !! the output file
+      character(len=:), allocatable :: path
+      path = output//'.part'
+   end function working_file
+
+   !> Rewrite the complete working file of `filename` with compressed chunks into
+   !> `filename` (through the one writer), then remove the working file.
+   subroutine finalize_file(filename, setup, error)
+      character(len=*), intent(in) :: filename          !! the output file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      type(h5file_t) :: src, dst
+      type(output_t) :: out
+      character(len=32), allocatable :: reals(:), ints(:)
+      character(len=:), allocatable :: path, part
+      real(dp), allocatable :: r1(:), r2(:, :)
+      integer, allocatable :: i1(:), i2(:, :)
+      integer :: k, err
+      logical :: unreadable
+      unreadable = .false.
+      part = working_file(filename)
+      call out%begin(filename, setup%cfg%run%force, error)
+      if (allocated(error)) return
+      call src%open(part, 'r', error)
+      if (allocated(error)) then
+         call out%discard()
+         return
+      end if
+      call create_layout(dst, out%temp, setup, .true., error)
+      call result_names(setup, reals, ints)
+      do k = 1, size(reals)
+         if (allocated(error)) exit
+         path = '/sweep/'//trim(reals(k))
+         if (setup%grid) then
+            call src%read(path, r2, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, r2, [1, 1], error)
+         else
+            call src%read(path, r1, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, r1, [1], error)
+         end if
+      end do
+      do k = 1, size(ints)
+         if (allocated(error)) exit
+         path = '/sweep/'//trim(ints(k))
+         if (setup%grid) then
+            call src%read(path, i2, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, i2, [1, 1], error)
+         else
+            call src%read(path, i1, error)
+            unreadable = unreadable .or. allocated(error)
+            if (.not. allocated(error)) call dst%write_slab(path, i1, [1], error)
+         end if
+      end do
+      call src%close()
+      call install_file(dst, out, setup, error)
+      if (unreadable) then
+         ! a checksum failed: nothing was installed and the working file is damaged
+         error%message = "'"//part//"' is damaged: "//error%message// &
+                         ' (a checksum does not match); use --force to start again'
+         return
+      else if (allocated(error)) then
+         error%message = 'cannot write the final file: '//error%message// &
+                         "; the working file '"//part//"' is complete and valid: "// &
+                         'rerun to finish'
+         return
+      end if
+      err = remove_file(part)
+   end subroutine finalize_file
+
+   !> Put a freshly written file in place: close it (the close checked unless an
+   !> error is already set), verify it, and commit it through the one writer; on
+   !> any failure the temporary file is removed and the target is as it was.
+   subroutine install_file(h5, out, setup, error)
+      type(h5file_t), intent(inout) :: h5                 !! the new file, open on out%temp
+      type(output_t), intent(inout) :: out                !! its output
+      type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
+      type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
+      if (allocated(error)) then
+         call h5%close()
+      else
+         call h5%close(error)
+      end if
+      if (.not. allocated(error)) call verify_file(out%temp, setup, error)
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+   end subroutine install_file
+
+   !> Check that a freshly written file opens and holds this configuration.
+   subroutine verify_file(filename, setup, error)
+      character(len=*), intent(in) :: filename          !! file to check
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(error_t), allocatable, intent(out) :: error  !! unreadable
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: stored
+      integer, allocatable :: done(:)
+      call h5%open(filename, 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'config', stored, error)
+      if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
+      call h5%close()
+      if (allocated(error)) return
+      if (stored /= setup%config .or. size(done) /= setup%nblocks) &
+         call fatal_error(error, "'"//filename//"' did not read back as written")
+   end subroutine verify_file
+
+end module dpend_sweep_layout

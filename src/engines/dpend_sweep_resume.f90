@@ -1,0 +1,320 @@
+!> The sweep's resume (docs/sweep.md, "Output, crash safety and resume"): opening or
+!> creating the working file, refusing another configuration, and verifying the
+!> blocks an earlier run flagged done before they are trusted.
+!>
+!> Crash safety and resume. While it runs, the results go to a *working* file,
+!> FILE.part beside the output FILE, whose datasets are chunked (one chunk per
+!> block), uncompressed and allocated in full when the file is created, so writing
+!> a block changes raw data only, never the file's metadata: a kill at any moment
+!> leaves a valid file. A block's data are written and flushed before its flag in
+!> /sweep/done. A kill during a block's write may tear its chunks (a checksum
+!> that no longer matches); the block is not flagged, so the resume does not check
+!> its checksums (`verify_blocks`) nor needs its old contents (`write_block`).
+!> When every block is done, the results are rewritten with compressed chunks
+!> through the one writer (dpend_output: temporary file, checked close, one-step
+!> move) into FILE, marked complete, and the working file is removed. FILE itself
+!> is never changed before the new result is complete. Rerunning the same command
+!> computes only the blocks not flagged done in FILE.part; another configuration
+!> is refused unless --force.
+module dpend_sweep_resume
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error, run_failure
+   use dpend_output, only: output_t, check_output_path
+   use dpend_os, only: path_kind, path_file
+   use dpend_hdf5, only: h5file_t, is_hdf5
+   use dpend_cli, only: to_str, real_str
+   use dpend_sweep_setup, only: sweep_setup_t, block_range
+   use dpend_sweep_layout, only: result_names, create_layout, write_block, working_file, &
+      install_file
+   implicit none
+   private
+   public :: open_output
+
+contains
+
+   !> Open the working file for writing: resume FILE.part of the same configuration,
+   !> refuse another unless --force, else create a new working file. A complete FILE
+   !> of the same configuration needs nothing (`complete` = 1); another FILE is
+   !> refused unless --force, and with --force it is replaced only at the end.
+   subroutine open_output(setup, h5, done, complete, error)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(h5file_t), intent(inout) :: h5               !! the working file, opened 'rw'
+      integer, allocatable, intent(out) :: done(:)      !! block flags
+      integer, intent(out) :: complete                  !! 1 if already complete
+      type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
+      type(output_t) :: probe, work
+      character(len=:), allocatable :: file, part
+      logical :: force
+      file = setup%cfg%run%output
+      part = working_file(file)
+      force = setup%cfg%run%force
+      complete = 0
+      ! the output and the working file: regular files or missing, in a writable
+      ! directory (a real temporary file, removed at once)
+      call check_output_path(file, .true., error)
+      if (.not. allocated(error)) call check_output_path(part, .true., error, &
+                                                          '--output (its working file)')
+      if (.not. allocated(error)) call probe%begin(file, .true., error)
+      call probe%discard()
+      if (allocated(error)) return
+      if (path_kind(file) == path_file .and. .not. force) then
+         call read_stored(file, done, complete, error)
+         if (allocated(error)) return
+         if (complete /= 1) then
+            call fatal_error(error, "invalid --output: '"//file//"' holds an unfinished "// &
+                             'sweep written by an older dpend (use --force to start again)')
+         end if
+         return
+      end if
+      if (path_kind(part) == path_file .and. .not. force) then
+         call read_stored(part, done, complete, error)
+         if (allocated(error)) return
+         call h5%open(part, 'rw', error)
+         if (allocated(error)) then
+            error%message = error%message//' (use --force to start again)'
+            call run_failure(error)
+         end if
+         if (.not. allocated(error) .and. .not. setup%checksum) call check_unfiltered()
+         return
+      end if
+      ! a new working file, complete before it gets its name
+      call work%begin(part, .true., error, '--output (its working file)')
+      if (allocated(error)) return
+      call create_layout(h5, work%temp, setup, .false., error)
+      call install_file(h5, work, setup, error)
+      if (allocated(error)) then
+         error%message = 'cannot create the working file: '//error%message
+         call run_failure(error)
+         return
+      end if
+      call h5%open(part, 'rw', error)
+      allocate (done(setup%nblocks))
+      done = 0
+   contains
+      !> A program that writes blocks without filters (the MPI sweep) cannot resume a
+      !> working file whose datasets carry checksums (one started by `dpend sweep`).
+      subroutine check_unfiltered()
+         character(len=32), allocatable :: reals(:), ints(:)
+         integer :: n
+         call result_names(setup, reals, ints)
+         call h5%filters('/sweep/'//trim(reals(1)), n, error)
+         if (allocated(error) .or. n == 0) return
+         call h5%close()
+         call fatal_error(error, "invalid --output: '"//part//"' was started by dpend "// &
+                          'sweep, whose checksummed blocks parallel HDF5 cannot write one '// &
+                          'by one: finish it with dpend sweep, or use --force to start again')
+      end subroutine check_unfiltered
+      !> The block flags and the completeness of an existing sweep file of this
+      !> configuration; refused when it is another file or another configuration.
+      subroutine read_stored(path, done, complete, error)
+         character(len=*), intent(in) :: path
+         integer, allocatable, intent(out) :: done(:)
+         integer, intent(out) :: complete
+         type(error_t), allocatable, intent(out) :: error
+         type(h5file_t) :: f
+         character(len=:), allocatable :: stored
+         complete = 0
+         if (.not. is_hdf5(path)) then
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'an HDF5 file (use --force to overwrite)')
+            return
+         end if
+         call f%open(path, 'r', error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'config', stored, error)
+         if (allocated(error)) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' exists and is not "// &
+                             'a dpend sweep file (use --force to overwrite)')
+            return
+         end if
+         if (stored /= setup%config) then
+            call f%close()
+            call fatal_error(error, "invalid --output: '"//path//"' holds a sweep with "// &
+                             'another configuration ('//first_difference(setup%config, &
+                             stored)//'); use --force to overwrite it')
+            return
+         end if
+         call f%read('/sweep/done', done, error)
+         if (.not. allocated(error)) call f%readattr('/sweep', 'complete', complete, error)
+         if (allocated(error)) then
+            error%message = "invalid --output: '"//path//"' is damaged ("//error%message// &
+                            '); use --force to start again'
+         else if (size(done) /= setup%nblocks) then
+            call fatal_error(error, "invalid --output: '"//path//"' has a damaged block "// &
+                             'list (use --force to start again)')
+         else
+            call verify_blocks(f, path, setup, done, error)
+         end if
+         call f%close()
+      end subroutine read_stored
+   end subroutine open_output
+
+   !> Check the results of an existing sweep file before it is resumed or reported
+   !> complete: every flag in /sweep/done is 0 or 1; every result dataset has the
+   !> sweep's shape; every block flagged done reads back (the Fletcher-32 checksums
+   !> of its chunks match; files written before checksums are read all the same)
+   !> and has a status for each of its initial conditions; the chunk index of every
+   !> other block reads. Those other blocks' checksums are not checked: a kill
+   !> during a block's write may leave its chunks torn, and resuming rewrites them
+   !> whole (`write_block`). A damaged file is refused, never finished or copied.
+   subroutine verify_blocks(h5, path, setup, done, error)
+      type(h5file_t), intent(inout) :: h5               !! the open file
+      character(len=*), intent(in) :: path              !! its name, for messages
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: done(:)                    !! its block flags
+      type(error_t), allocatable, intent(out) :: error  !! the first damage found
+      character(len=32), allocatable :: reals(:), ints(:), names(:)
+      integer, allocatable :: status(:), start(:), cnt(:), dims(:), want(:)
+      character(len=:), allocatable :: damaged, name
+      integer :: k, b, j0, nb
+      damaged = "invalid --output: '"//path//"' is damaged ("
+      if (any(done /= 0 .and. done /= 1)) then
+         call fatal_error(error, damaged//'/sweep/done holds flags other than 0 and 1); '// &
+                          'use --force to start again')
+         return
+      end if
+      call result_names(setup, reals, ints)   ! ints(1) is the status
+      if (setup%grid) then
+         want = [setup%cfg%n1, setup%cfg%n2]
+      else
+         want = [setup%n]
+      end if
+      names = [reals, ints]
+      do k = 1, size(names)
+         name = '/sweep/'//trim(names(k))
+         call h5%shape(name, dims, error)
+         if (allocated(error)) then
+            error%message = damaged//error%message//'); use --force to start again'
+            return
+         end if
+         if (size(dims) /= size(want)) then
+            call fatal_error(error, damaged//name//' has rank '//to_str(size(dims))// &
+                             ', not '//to_str(size(want))//'); use --force to start again')
+         else if (any(dims /= want)) then
+            call fatal_error(error, damaged//name//' has shape '//shape_str(dims)// &
+                             ', not '//shape_str(want)//'); use --force to start again')
+         end if
+         if (allocated(error)) return
+      end do
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, nb)
+         if (setup%grid) then
+            start = [1, (j0 - 1)/setup%cfg%n1 + 1]
+            cnt = [setup%cfg%n1, nb/setup%cfg%n1]
+         else
+            start = [j0]
+            cnt = [nb]
+         end if
+         do k = 1, size(ints)
+            call read_block(trim(ints(k)), .false.)
+            if (allocated(error)) return
+            if (k == 1 .and. done(b) == 1 .and. any(status == 0)) then
+               call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
+                                'but not written); use --force to start again')
+               return
+            end if
+         end do
+         do k = 1, size(reals)
+            call read_block(trim(reals(k)), .true.)
+            if (allocated(error)) return
+         end do
+      end do
+   contains
+      !> Read block b of dataset /sweep/name (integers into `status`), with its
+      !> checksums checked if the block is flagged done.
+      subroutine read_block(name, real_values)
+         character(len=*), intent(in) :: name
+         logical, intent(in) :: real_values
+         real(dp), allocatable :: r1(:), r2(:, :)
+         integer, allocatable :: i2(:, :)
+         logical :: sums
+         sums = done(b) == 1
+         if (real_values .and. setup%grid) then
+            call h5%read_slab('/sweep/'//name, start, cnt, r2, error, sums)
+         else if (real_values) then
+            call h5%read_slab('/sweep/'//name, start, cnt, r1, error, sums)
+         else if (setup%grid) then
+            call h5%read_slab('/sweep/'//name, start, cnt, i2, error, sums)
+            if (.not. allocated(error)) status = reshape(i2, [size(i2)])
+         else
+            call h5%read_slab('/sweep/'//name, start, cnt, status, error, sums)
+         end if
+         if (.not. allocated(error)) return
+         if (sums) then
+            error%message = damaged//'/sweep/'//name//' does not read back in block '// &
+                            to_str(b)//': a checksum does not match or its chunk index '// &
+                            'is broken); use --force to start again'
+         else
+            error%message = damaged//'/sweep/'//name//' does not read back in block '// &
+                            to_str(b)//', not yet computed: its chunk index is broken); '// &
+                            'use --force to start again'
+         end if
+      end subroutine read_block
+      !> '[n1, n2]' in Fortran order (h5py shows the reverse)
+      function shape_str(d) result(text)
+         integer, intent(in) :: d(:)
+         character(len=:), allocatable :: text
+         integer :: i
+         text = '['//to_str(d(1))
+         do i = 2, size(d)
+            text = text//', '//to_str(d(i))
+         end do
+         text = text//']'
+      end function shape_str
+   end subroutine verify_blocks
+
+   !> "key: a here, b in the file" for the first line where two configurations differ.
+   function first_difference(new, old) result(s)
+      character(len=*), intent(in) :: new, old  !! configuration texts
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: a, b, ra, rb
+      integer :: ia, ib
+      character(len=1), parameter :: nl = new_line('a')
+      ra = new//nl
+      rb = old//nl
+      do
+         ia = index(ra, nl)
+         ib = index(rb, nl)
+         if (ia == 0 .or. ib == 0) exit
+         a = ra(:ia - 1)
+         b = rb(:ib - 1)
+         if (a /= b) then
+            s = readable(a)//' here, '//readable(b)//' in the file'
+            return
+         end if
+         ra = ra(ia + 1:)
+         rb = rb(ib + 1:)
+      end do
+      s = 'the configurations differ'
+   contains
+      !> 'key = value' with a stored real (es24.16e3, kept so that older files still
+      !> compare equal) shown as real_str shows it: 't_end = 6'.
+      function readable(line) result(t)
+         character(len=*), intent(in) :: line
+         character(len=:), allocatable :: t
+         real(dp) :: x
+         integer :: eq, stat, comma
+         character(len=:), allocatable :: rest, u
+         t = line
+         eq = index(line, ' = ')
+         if (eq == 0) return
+         if (index(line(eq + 3:), 'E') == 0) return
+         if (verify(trim(line(eq + 3:)), '0123456789.E+-, ') /= 0) return
+         ! one real, or a list of reals 'a, b, c' (N links: m, l, q, w)
+         rest = line(eq + 3:)
+         u = ''
+         do
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            read (rest(:comma - 1), *, iostat=stat) x
+            if (stat /= 0) return
+            u = u//real_str(x)
+            if (comma > len(rest)) exit
+            u = u//', '
+            rest = rest(comma + 1:)
+         end do
+         t = line(:eq + 2)//u
+      end function readable
+   end function first_difference
+
+end module dpend_sweep_resume
