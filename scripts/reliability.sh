@@ -68,7 +68,9 @@ wall_time and its .md; fit: /fit converged; agreement: /agreement) and one
 dataset of it finite (e.g. /trajectory/t, /sweep/energy0, /fit/estimate). A fail
 row's partial file (when the command writes a status) must exist, be HDF5, and
 hold a status other than "completed" that stderr repeats. Files outside the
-scratch directory (/dev/null, absolute paths) are not checked.
+scratch directory (/dev/null, absolute paths) are not checked. A succeed row
+whose command writes no file (export, sweep-compare's report, methods, --help)
+must print something on stdout.
 IDs are unique across all files. A case file may add fixtures with plain bash
 at its top into "$FIXTURES" (also "$DPEND", "$ROOT" are set).
 Fixtures: existing.h5 (simulate output), sweep.h5 (complete 8x8 grid sweep),
@@ -526,6 +528,10 @@ run_row() {
     succeed)
       [ $rc = 0 ] || reasons+=("exit $rc, expected 0") ;;
   esac
+  # a succeed row that writes no file prints its result (a report, a table, help)
+  if [ "$kind" = succeed ] && [ -z "$out" ] && [ ${#reasons[@]} = 0 ] && [ ! -s "$r/stdout" ]; then
+    reasons+=("nothing on stdout (a command that writes no file prints its result)")
+  fi
   if [ -n "$out" ] && [ ${#reasons[@]} = 0 ]; then
     local line
     while IFS= read -r line; do
