@@ -1,7 +1,10 @@
 !> dpend-bench: cost of the integrators on the chapter's pendulum, one figure a line
 !> as `key: value unit`. Each figure is timed (wall clock, system_clock int64) over
 !> at least 0.3 s; a checksum of the final states defeats dead-code elimination.
-!> Run in release: fpm run dpend-bench --profile release --flag "-O3 -march=native"
+!> Run in release (dpend-bench is an fpm example; flags from scripts/flags.sh):
+!>   . scripts/flags.sh
+!>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS"
+!>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --batch
 !> The methods come from the registry (dpend_method_registry): every fixed-step
 !> method is timed at h = 0.01 s, every method enters the work-precision table.
 !> The batch kernel of the sweep (and the single-trajectory rk4_ns_per_step) is timed

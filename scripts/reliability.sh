@@ -16,8 +16,11 @@ Runs the reliability suite: every row of test/reliability/cases/*.sh (sorted),
 each in a fresh copy of the fixture directory as its cwd under `timeout 30`,
 then every executable test/reliability/special/*.sh, then the fuzzing stage
 (10000 fuzzed inputs; it counts as one test). Prints one line per failure and
-closes with `reliability: N passed, M failed[, K skipped]`; exit status 1 on
-any failure.
+closes with `reliability: N passed, M failed, K skipped`; exit status 1 on
+any failure. With DPEND_TEST_NO_SKIP=1 in the environment (set by CI) a skipped
+special test is a failure, unless its name is in DPEND_TEST_MAY_SKIP (a
+space-separated list of special tests whose skip depends on privileges or timing,
+not on a missing tool: CI names full_disk, device_output, corrupt_block).
 
 options:
   --dpend PATH      binary to test (default: $DPEND, else build the debug
@@ -49,14 +52,34 @@ arguments of dpend, run with the scratch directory as cwd):
                                   ones, sha256 of every file), no trap
   fail    ID  TEXT   -- ARGS...   exit 1, stderr contains TEXT (case-insensitive),
                                   no trap
-  succeed ID         -- ARGS...   exit 0, no trap
+  succeed ID         -- ARGS...   exit 0, no trap; and the result checked (below)
 A trap: exit 134, 136 or 139, or stderr with "Floating point exception",
 "Fortran runtime error", "Backtrace", "Error termination" or "HDF5-DIAG".
+The result of a succeed or fail row whose command writes a file (simulate,
+lyapunov, indicators, divergence, poincare, sweep, fit, study, animate,
+sweep-compare --agreement; not with --help): the file is the --output/-o
+value, else the namelist's &output file of --config, else the command's default
+(simulate.h5, ..., out/study/study.h5, agreement.h5; animate: a new .gif). A
+succeed row's file must have been written by the run (created or modified; a
+complete sweep resumed says 'is complete (nothing to compute)' instead), be
+HDF5 (a GIF for animate), complete as docs/hdf5-layout.md records it (root
+attribute status = "completed"; a sweep's /sweep complete = 1; a study's
+wall_time and its .md; fit: /fit converged; agreement: /agreement) and one
+dataset of it finite (e.g. /trajectory/t, /sweep/energy0, /fit/estimate). A fail
+row's partial file (when the command writes a status) must exist, be HDF5, and
+hold a status other than "completed" that stderr repeats. Files outside the
+scratch directory (/dev/null, absolute paths) are not checked. A succeed row
+whose command writes no file (export, sweep-compare's report, methods, --help)
+must print something on stdout.
 IDs are unique across all files. A case file may add fixtures with plain bash
 at its top into "$FIXTURES" (also "$DPEND", "$ROOT" are set).
 Fixtures: existing.h5 (simulate output), sweep.h5 (complete 8x8 grid sweep),
 sweep_list.h5 (complete 3-point list sweep), list.txt (its 3-line list),
 copies of data/*.nml (both as NAME.nml and data/NAME.nml), an empty dir/.
+They are verified (complete, finite values) before any row runs.
+  --fixture-dpend PATH  build the fixtures (and source the case files) with this
+                    binary, run the rows with --dpend: e.g. to count the rows a
+                    binary that only exits 0 passes (none that expects a file)
 
 Special tests get DPEND (absolute binary), ROOT (repo root) and SCRATCH (an
 empty temporary directory, also their cwd); exit 0 passes, 77 skips (its
@@ -78,6 +101,7 @@ EOF
 }
 
 DPEND_ARG=""
+FIXTURE_DPEND=""
 CASE_FILES=()
 SPECIALS=()
 SELECT_CASES=0
@@ -97,6 +121,8 @@ while [ $# -gt 0 ]; do
     --dpend) [ $# -ge 2 ] || { echo "reliability: --dpend needs a path" >&2; exit 2; }
              DPEND_ARG=$2; shift 2; mode=""; continue ;;
     --dpend=*) DPEND_ARG=${1#--dpend=}; mode="" ;;
+    --fixture-dpend) [ $# -ge 2 ] || { echo "reliability: --fixture-dpend needs a path" >&2; exit 2; }
+             FIXTURE_DPEND=$2; shift 2; mode=""; continue ;;
     --jobs) [ $# -ge 2 ] || { echo "reliability: --jobs needs a number" >&2; exit 2; }
             JOBS=$2; shift 2; mode=""; continue ;;
     --fuzz|--seed|--fuzz-budget)
@@ -186,7 +212,146 @@ case $DPEND in /*) ;; */*) DPEND=$(pwd)/$DPEND ;; *) DPEND=$(command -v "$DPEND"
 if [ $LIST = 0 ] && [ ! -x "$DPEND" ]; then
   echo "reliability: '$DPEND' is not an executable" >&2; exit 2
 fi
+# The binary of the fixtures (and of the case files' own fixtures): --fixture-dpend,
+# else the tested one.
+ROW_DPEND=$DPEND
+if [ -n "$FIXTURE_DPEND" ]; then
+  case $FIXTURE_DPEND in /*) ;; *) FIXTURE_DPEND=$(pwd)/$FIXTURE_DPEND ;; esac
+  [ -x "$FIXTURE_DPEND" ] || { echo "reliability: '$FIXTURE_DPEND' is not an executable" >&2; exit 2; }
+  DPEND=$FIXTURE_DPEND
+fi
 export DPEND ROOT
+
+# h5_finite FILE DATASET: the dataset exists, holds at least one value, all finite.
+h5_finite() {
+  local dump
+  dump=$(h5dump -d "$2" -y -w 0 "$1" 2>/dev/null) || return 1
+  dump=$(printf '%s\n' "$dump" | sed -n '/DATA {/,/}/p' | sed '1d;$d')
+  printf '%s' "$dump" | grep -qE '[0-9]' || return 1
+  ! printf '%s' "$dump" | grep -qiE 'nan|inf'
+}
+# h5_attr FILE PATH: the first value of the attribute PATH (/status, /sweep/complete),
+# quotes removed ("" when absent or unreadable).
+h5_attr() {
+  h5dump -a "$2" "$1" 2>/dev/null | sed -n 's/^ *(0): *//p' | head -n 1 | sed 's/^"\(.*\)"$/\1/'
+}
+# check_h5 KIND FILE: a complete file of the command KIND with one dataset finite;
+# prints why not (nothing when it is).
+check_h5() {
+  local kind=$1 f=$2 st
+  head -c 8 "$f" 2>/dev/null | cmp -s - <(printf '\211HDF\r\n\032\n') ||
+    { echo "not an HDF5 file"; return; }
+  h5dump -A "$f" > /dev/null 2>&1 || { echo "HDF5 file unreadable (h5dump -A)"; return; }
+  case $kind in
+    simulate|lyapunov|indicators|divergence|poincare)
+      st=$(h5_attr "$f" /status)
+      [ "$st" = completed ] || { echo "status '$st', expected 'completed'"; return; } ;;
+    sweep)
+      [ "$(h5_attr "$f" /sweep/complete)" = 1 ] || { echo "/sweep complete is not 1"; return; } ;;
+    study)
+      h5dump -a /wall_time "$f" > /dev/null 2>&1 || { echo "no /wall_time (incomplete study)"; return; }
+      [ -s "${f%.h5}.md" ] || { echo "no summary ${f%.h5}.md"; return; } ;;
+    fit)
+      [[ $(h5_attr "$f" /fit/converged) =~ ^[01]$ ]] || { echo "no /fit converged attribute"; return; } ;;
+  esac
+  local ds
+  case $kind in
+    simulate) ds=/trajectory/t ;;
+    lyapunov) ds=/lyapunov/t ;;
+    indicators) ds=/indicators/t ;;
+    divergence) ds=/divergence/t ;;
+    poincare) ds=/poincare/energy ;;
+    sweep) ds=/sweep/energy0 ;;
+    study) ds=$(h5ls -r "$f" 2>/dev/null | awk '$1 ~ /^\/cases\/.*\/step\/h$/ { print $1; exit }') ;;
+    fit) ds=/fit/estimate ;;
+    sweep-compare) ds=/agreement/class_a ;;
+  esac
+  [ -n "$ds" ] || { echo "no dataset to check"; return; }
+  h5_finite "$f" "$ds" || echo "dataset $ds missing, empty or not finite"
+}
+# row_output ARGS...: the file the command writes, relative to the cwd ("" when it
+# writes none; "*.gif" for animate without --output: some new .gif).
+row_output() {
+  local cmd=${1:-} a prev="" out="" cfg="" help=0 agreement=0
+  shift || true
+  for a in "$@"; do
+    if [ -n "$prev" ]; then
+      case $prev in output) out=$a ;; config) cfg=$a ;; esac
+      prev=""; continue
+    fi
+    case $a in
+      -h|--help) help=1 ;;
+      --output|-o) prev=output ;;
+      --output=*) out=${a#--output=} ;;
+      --config) prev=config ;;
+      --config=*) cfg=${a#--config=} ;;
+      --agreement) agreement=1 ;;
+    esac
+  done
+  [ $help = 0 ] || return 0
+  case $cmd in
+    simulate|lyapunov|indicators|divergence|poincare|sweep|fit|study|animate) ;;
+    sweep-compare) [ $agreement = 1 ] || return 0 ;;
+    *) return 0 ;;
+  esac
+  if [ -z "$out" ] && [ -n "$cfg" ] && [ -f "$cfg" ]; then
+    out=$(sed -n "/^[[:space:]]*&[oO][uU][tT][pP][uU][tT]/,/\//{
+                  s/.*[fF][iI][lL][eE][[:space:]]*=[[:space:]]*['\"]\([^'\"]*\)['\"].*/\1/p
+                }" "$cfg" 2>/dev/null | head -n 1)
+  fi
+  if [ -z "$out" ]; then
+    case $cmd in
+      study) out=out/study/study.h5 ;;
+      sweep-compare) out=agreement.h5 ;;
+      animate) out='*.gif' ;;
+      *) out=$cmd.h5 ;;
+    esac
+  fi
+  printf '%s' "$out"
+}
+# check_result KIND RC OUT MARKER STDERR: the result of a succeed (KIND succeed) or
+# fail row whose command writes OUT; prints the reasons it is wrong, one a line.
+check_result() {
+  local kind=$1 cmd=$2 out=$3 marker=$4 err=$5 f why st
+  case $out in /*|*/../*|../*) return ;; esac   # outside the scratch directory
+  if [ "$out" = '*.gif' ]; then
+    f=$(find . -name '*.gif' -type f -newer "$marker" 2>/dev/null | head -n 1)
+    if [ "$kind" = succeed ]; then
+      [ -n "$f" ] || { echo "no new .gif written"; return; }
+      out=$f
+    else
+      return
+    fi
+  fi
+  if [ "$kind" = succeed ]; then
+    [ -e "$out" ] || { echo "output $out not written"; return; }
+    [ -f "$out" ] || return   # a device or a fifo given as the output
+    # a complete sweep resumed: nothing to compute, the file stays as it was
+    if [ ! "$out" -nt "$marker" ] && ! { [ "$cmd" = sweep ] &&
+         grep -qF "is complete (nothing to compute)" "$err" "${err%/stderr}/stdout"; }; then
+      echo "output $out not written by this run (older)"; return
+    fi
+    if [ "$cmd" = animate ]; then
+      head -c 6 "$out" | grep -qE '^GIF8[79]a$' || { echo "output $out is not a GIF"; return; }
+      [ "$(tail -c 1 "$out" | od -An -tx1 | tr -d ' ')" = 3b ] ||
+        { echo "output $out: GIF without its trailer"; return; }
+      return
+    fi
+    why=$(check_h5 "$cmd" "$out")
+    [ -z "$why" ] || { echo "output $out: $why"; return; }
+    if [ "$cmd" = study ]; then
+      h5dump "$out" > /dev/null 2>&1 || echo "output $out: not every byte readable (h5dump)"
+    fi
+  else
+    case $cmd in simulate|lyapunov|indicators|divergence|poincare) ;; *) return ;; esac
+    [ -f "$out" ] || { echo "no partial file $out"; return; }
+    h5dump -A "$out" > /dev/null 2>&1 || { echo "partial file $out unreadable"; return; }
+    st=$(h5_attr "$out" /status)
+    [ -n "$st" ] && [ "$st" != completed ] ||
+      { echo "partial file $out: status '$st', expected why the run stopped"; return; }
+    grep -qF -- "$st" "$err" || echo "partial file $out: status '$st' not the message on stderr"
+  fi
+}
 
 # Fixtures, built once.
 FIXTURES=$WORK/fixtures
@@ -204,6 +369,20 @@ if [ $LIST = 0 ] && [ $RUN_CASES = 1 ]; then
     "$DPEND" sweep --ic-file list.txt --t-end 1 --output sweep_list.h5 --quiet
   ) > "$WORK/fixtures.log" 2>&1 ||
     { cat "$WORK/fixtures.log"; echo "reliability: building the fixtures failed" >&2; exit 1; }
+  # verified before use: complete files with finite values, the list of 3 lines
+  fx_bad=""
+  for fx in existing.h5:simulate sweep.h5:sweep sweep_list.h5:sweep; do
+    why=$(check_h5 "${fx#*:}" "$FIXTURES/${fx%%:*}")
+    [ -z "$why" ] || fx_bad+=" ${fx%%:*}: $why;"
+  done
+  [ "$(h5_attr "$FIXTURES/sweep.h5" /sweep/initial)" = grid ] || fx_bad+=" sweep.h5: not a grid;"
+  [ "$(h5_attr "$FIXTURES/sweep_list.h5" /sweep/initial)" = list ] ||
+    fx_bad+=" sweep_list.h5: not a list;"
+  [ "$(grep -c '' "$FIXTURES/list.txt")" = 3 ] || fx_bad+=" list.txt: not 3 lines;"
+  if [ -n "$fx_bad" ]; then
+    cat "$WORK/fixtures.log"
+    echo "reliability: the fixtures are wrong:$fx_bad" >&2; exit 1
+  fi
 fi
 
 # Rows: registered by the case files, stored one per directory entry.
@@ -271,6 +450,9 @@ if [ $RUN_CASES = 1 ]; then
   done
 fi
 
+DPEND=$ROW_DPEND   # the rows run the tested binary (--fixture-dpend built the fixtures)
+export DPEND
+
 if [ $LIST = 1 ]; then
   for r in "$ROWS"/*; do
     [ -d "$r" ] || continue
@@ -303,6 +485,12 @@ run_row() {
   local s=$r/scratch
   mkdir "$s" && cp -a "$FIXTURES/." "$s/"
   [ "$kind" = refuse ] && snapshot "$s" > "$r/before"
+  local out=""
+  if [ "$kind" != refuse ]; then
+    out=$(cd "$s" && row_output "${args[@]}")
+    # files written by the run are newer (50 ms back: file times lag the clock)
+    touch -d "$(date -d '-0.05 seconds' '+%Y-%m-%d %H:%M:%S.%N')" "$r/marker"
+  fi
   local rc=0
   ( cd "$s" && exec timeout -k 5 30 "$DPEND" "${args[@]}" ) > "$r/stdout" 2> "$r/stderr" < /dev/null ||
     rc=$?
@@ -340,6 +528,17 @@ run_row() {
     succeed)
       [ $rc = 0 ] || reasons+=("exit $rc, expected 0") ;;
   esac
+  # a succeed row that writes no file prints its result (a report, a table, help)
+  if [ "$kind" = succeed ] && [ -z "$out" ] && [ ${#reasons[@]} = 0 ] && [ ! -s "$r/stdout" ]; then
+    reasons+=("nothing on stdout (a command that writes no file prints its result)")
+  fi
+  if [ -n "$out" ] && [ ${#reasons[@]} = 0 ]; then
+    local line
+    while IFS= read -r line; do
+      [ -z "$line" ] || reasons+=("$line")
+    done < <(cd "$s" && check_result "$kind" "${args[0]}" "$out" "$r/marker" "$r/stderr")
+    echo "$out" > "$r/output"
+  fi
   if [ ${#reasons[@]} = 0 ]; then
     echo "pass" > "$r/result"
   else
@@ -369,7 +568,10 @@ if [ $NROWS -gt 0 ]; then
     res=$(cat "$r/result" 2>/dev/null || echo "FAIL $(cat "$r/id"): the runner lost this row")
     if [ "$res" = pass ]; then
       passed=$((passed + 1))
-      [ $VERBOSE = 0 ] || echo "pass $(cat "$r/id")"
+      if [ $VERBOSE = 1 ]; then
+        if [ -f "$r/output" ]; then echo "pass $(cat "$r/id") (checked $(cat "$r/output"))"
+        else echo "pass $(cat "$r/id")"; fi
+      fi
     else
       failed=$((failed + 1)); echo "$res"
     fi
@@ -388,8 +590,14 @@ for s in "${SPECIALS[@]}"; do
   dt=$((SECONDS - t0))
   case $rc in
     0) passed=$((passed + 1)); [ $VERBOSE = 0 ] || echo "pass special $name (${dt} s)" ;;
-    77) skipped=$((skipped + 1))
-        echo "skip special $name: $(tail -n 3 "$WORK/special-$name.log" | tr '\n' ' ')" ;;
+    77) note=$(tail -n 3 "$WORK/special-$name.log" | tr '\n' ' ')
+        if [ "${DPEND_TEST_NO_SKIP:-}" = 1 ] && [[ " ${DPEND_TEST_MAY_SKIP:-} " != *" $name "* ]]
+        then
+          failed=$((failed + 1))
+          echo "FAIL special $name: skipped, and DPEND_TEST_NO_SKIP=1 expects it to run: $note"
+        else
+          skipped=$((skipped + 1)); echo "skip special $name: $note"
+        fi ;;
     *) failed=$((failed + 1))
        echo "FAIL special $name: exit $rc after ${dt} s; command: $s"
        tail -n 30 "$WORK/special-$name.log" | sed 's/^/    /' ;;
@@ -420,7 +628,5 @@ if [ ! -c /dev/null ]; then
   failed=$((failed + 1))
 fi
 [ $VERBOSE = 0 ] || echo "reliability: $((SECONDS - START)) s"
-closing="reliability: $passed passed, $failed failed"
-[ $skipped = 0 ] || closing+=", $skipped skipped"
-echo "$closing"
+echo "reliability: $passed passed, $failed failed, $skipped skipped"
 [ $failed = 0 ]

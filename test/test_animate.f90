@@ -2,7 +2,8 @@
 !> (header, logical screen, extensions, image descriptors, trailer) and its frame
 !> count and size are checked against the options. Skipped when gnuplot is missing.
 module test_animate
-   use testing, only: unittest_t, new_unittest, check_true, error_t, fatal_error
+   use testing, only: unittest_t, new_unittest, check_true, error_t, fatal_error, &
+                      skip_test, have_tool
    use test_cli, only: run_command, scratch_dir, read_text
    use dpend_cli, only: to_str
    implicit none
@@ -102,12 +103,6 @@ contains
       end function hex
    end subroutine gif_info
 
-   logical function have_gnuplot()
-      integer :: stat
-      call execute_command_line('command -v gnuplot > /dev/null 2>&1', exitstat=stat)
-      have_gnuplot = stat == 0
-   end function have_gnuplot
-
    !> Run animate on dir/sim.h5 (or dir/INPUT) with options and check the GIF's frame
    !> count and size.
    subroutine expect_gif(error, dir, options, name, frames, width, height, input)
@@ -138,8 +133,8 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir
       integer :: stat
-      if (.not. have_gnuplot()) then
-         print '(a)', '       note: gnuplot not found, animate/gif_frames_and_size skipped'
+      if (.not. have_tool('gnuplot')) then
+         call skip_test('gnuplot not found')
          return
       end if
       dir = scratch_dir('animate')
@@ -176,8 +171,8 @@ contains
       character(len=:), allocatable :: dir
       integer :: stat
       logical :: exists
-      if (.not. have_gnuplot()) then
-         print '(a)', '       note: gnuplot not found, animate/three_links skipped'
+      if (.not. have_tool('gnuplot')) then
+         call skip_test('gnuplot not found')
          return
       end if
       dir = scratch_dir('animate-3')

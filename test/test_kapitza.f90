@@ -4,8 +4,12 @@
 !> - the transition curve of Mathieu's equation x'' + (δ + ε cos τ) x = 0 through
 !>   δ = 0, quoted in docs/kapitza.md from DLMF 28.6.1 (a_0(q) with a = 4δ, q = −2ε):
 !>   δ_c = −ε²/2 + 7ε⁴/32 − 29ε⁶/144 + 68687ε⁸/294912 + …, against the δ at which the
-!>   trace of the monodromy matrix (two fundamental solutions over τ ∈ [0, 2π], a
-!>   plain RK4 of this file) is 2;
+!>   trace of dpend's monodromy matrix is 2: the rod upright on the pin vibrating
+!>   with ω = 1 rad/s is Mathieu's equation in τ = t with δ = −k g, ε = k a
+!>   (k = 3/(2L)); dpend's chain model, dop853 run and tangent propagation
+!>   (`dpend_tangent`, the Lyapunov machinery) give the monodromy matrix over one
+!>   period. Two independent checks of that trace: a plain RK4 of Mathieu's
+!>   equation in this file, and central differences of dpend's nonlinear runs;
 !> - the threshold amplitude of the inverted position, located by bisection on
 !>   simulated runs of the chain (rk4, 64 steps per period of the pin; stable: the
 !>   angle from the upward vertical stays below 0.5 rad for 60 s) against the derived
@@ -19,7 +23,8 @@ module test_kapitza
    use dpend_chain, only: chain_t, chain_model
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
-   use dpend_propagate, only: advance_to
+   use dpend_propagate, only: advance_to, march_t
+   use dpend_tangent, only: tangent_t
    use dpend_cli, only: real_str, to_str
    use testing, only: unittest_t, new_unittest, check, check_true
    implicit none
@@ -62,8 +67,86 @@ contains
       end do
    end function delta_series
 
+   !> Trace of the monodromy matrix of x'' + (δ + ε cos τ) x = 0 over [0, 2π] from
+   !> dpend: the compound rod (m = 1 kg, L = len_rod) upright on the pin
+   !> y_A = a cos t (ω = 1 rad/s) with g = −δ/k, a = ε/k, k = 3/(2L), run by dop853
+   !> (rtol 1e-13) from the upright state, its tangent vectors (identity at t = 0)
+   !> propagated by `tangent_t` with RK4 substeps of about 2π/4096 s (θ = 5e-4).
+   function dpend_trace(delta, eps) result(tr)
+      real(dp), intent(in) :: delta, eps
+      real(dp) :: tr
+      type(chain_t) :: chain
+      type(march_t) :: march
+      type(tangent_t) :: tan
+      class(integrator_t), allocatable :: integ
+      real(dp) :: y(2), t, h, eye(2, 2)
+      integer :: stat
+      call dpend_setup(delta, eps, chain, integ)
+      eye = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
+      tan%theta = 5e-4_dp
+      call tan%init(eye)
+      y = [0.5_dp*pi, 0.0_dp]
+      t = 0.0_dp; h = 0.0_dp
+      call integ%clear_step()
+      call march%start(integ, t, 2.0_dp*pi, h)
+      do while (.not. march%finished)
+         call march%next(integ, chain, t, y, h, stat)
+         if (stat /= stat_ok) error stop 'test_kapitza: dop853 failed'
+         call tan%propagate(integ, chain)
+         if (tan%too_stiff .or. tan%too_large) error stop 'test_kapitza: tangent failed'
+      end do
+      tr = tan%v(1, 1) + tan%v(2, 2)
+   end function dpend_trace
+
+   !> The same trace from dpend's nonlinear runs alone: the monodromy matrix by
+   !> central differences (±s = 1e-5 rad or rad/s about upright) of four dop853 runs
+   !> over [0, 2π] s (error O(s²) ≈ 1e-10, roundoff ≈ rtol/s ≈ 1e-8).
+   function dpend_trace_runs(delta, eps) result(tr)
+      real(dp), intent(in) :: delta, eps
+      real(dp) :: tr
+      real(dp), parameter :: s = 1e-5_dp
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      real(dp) :: yp(2), ym(2), d(2)
+      integer :: i
+      call dpend_setup(delta, eps, chain, integ)
+      tr = 0.0_dp
+      do i = 1, 2
+         d = 0.0_dp; d(i) = s
+         yp = run(d); ym = run(-d)
+         tr = tr + (yp(i) - ym(i))/(2.0_dp*s)
+      end do
+   contains
+      function run(dy) result(y)
+         real(dp), intent(in) :: dy(2)
+         real(dp) :: y(2), t, h
+         integer :: stat
+         y = [0.5_dp*pi, 0.0_dp] + dy
+         t = 0.0_dp; h = 0.0_dp
+         call integ%clear_step()
+         call advance_to(integ, chain, t, y, 2.0_dp*pi, h, stat)
+         if (stat /= stat_ok) error stop 'test_kapitza: dop853 run failed'
+      end function run
+   end function dpend_trace_runs
+
+   !> dpend's chain for Mathieu's (δ, ε) (see `dpend_trace`) and dop853.
+   subroutine dpend_setup(delta, eps, chain, integ)
+      real(dp), intent(in) :: delta, eps
+      type(chain_t), intent(out) :: chain
+      class(integrator_t), allocatable, intent(out) :: integ
+      type(error_t), allocatable :: err
+      real(dp) :: k
+      k = 1.5_dp/len_rod
+      chain = chain_model([1.0_dp], [len_rod], -delta/k, err, amplitude=[0.0_dp, eps/k], &
+                          frequency=1.0_dp)
+      if (allocated(err)) error stop 'test_kapitza: chain refused'
+      call new_integrator('dop853', integ, err, &
+                          method_options_t(rtol=1e-13_dp, atol=1e-15_dp))
+      if (allocated(err)) error stop 'test_kapitza: method refused'
+   end subroutine dpend_setup
+
    !> Trace of the monodromy matrix of x'' + (δ + ε cos τ) x = 0 over [0, 2π]
-   !> (classical RK4, nstep steps).
+   !> (classical RK4, nstep steps): this file's own, independent of dpend.
    pure function mathieu_trace(delta, eps, nstep) result(tr)
       real(dp), intent(in) :: delta, eps
       integer, intent(in) :: nstep
@@ -90,28 +173,41 @@ contains
       end function rhs
    end function mathieu_trace
 
-   !> The transition curve through δ = 0 by bisection on trace = 2 (unstable below,
-   !> trace > 2; stable above) for ε = 0.1 and 0.2: the series with n = 1 … 4 terms
-   !> differs from it by O(ε^(2n+2)) if its coefficients are right (a wrong n-th
-   !> coefficient leaves O(ε^(2n))), so that log2 of the ratio of the differences at
-   !> ε = 0.2 and 0.1 must be 2n + 2 (within 0.2).
+   !> The transition curve through δ = 0 by bisection on dpend's trace = 2 (unstable
+   !> below, trace > 2; stable above; g >= 1e-6 m/s² keeps δ <= −1.5e-6) for ε = 0.1
+   !> and 0.2: the series with n = 1 … 4 terms differs from it by O(ε^(2n+2)) if its
+   !> coefficients are right and dpend's model and runs are (a wrong n-th coefficient,
+   !> or a wrong support term, leaves O(ε^(2n)) or worse), so that log2 of the ratio
+   !> of the differences at ε = 0.2 and 0.1 must be 2n + 2 (within 0.2). dpend's
+   !> trace is checked first against this file's RK4 of Mathieu's equation (measured
+   !> difference 3.2e-14 at δ = −0.004, ε = 0.1, debug and release; bound 3e-13), and at
+   !> δ_c(0.2) against dpend's nonlinear runs (measured |trace − 2| 1.6e-9 debug,
+   !> 1.7e-9 release; bound 1e-8).
    subroutine test_mathieu(error)
       type(error_t), allocatable, intent(out) :: error
       real(dp), parameter :: epss(2) = [0.1_dp, 0.2_dp]
-      real(dp) :: eps, lo, hi, mid, dnum(2), diff(4, 2), order(4)
+      real(dp) :: eps, lo, hi, mid, dnum(2), diff(4, 2), order(4), tr_dpend, tr_rk4, tr_runs
       character(len=:), allocatable :: text
       integer :: j, it, nt
       text = ''
+      tr_dpend = dpend_trace(-0.004_dp, 0.1_dp)
+      tr_rk4 = mathieu_trace(-0.004_dp, 0.1_dp, 4096)
+      call report('monodromy trace at delta -0.004, eps 0.1: dpend '// &
+                  real_str(tr_dpend, 15)//', RK4 of Mathieu '//real_str(tr_rk4, 15)// &
+                  ', diff '//real_str(tr_dpend - tr_rk4, 2))
+      call check(error, tr_dpend, tr_rk4, 'dpend monodromy trace vs RK4 of Mathieu', &
+                 abs=3e-13_dp)
+      if (allocated(error)) return
       do j = 1, size(epss)
          eps = epss(j)
-         lo = -eps**2; hi = 0.0_dp        ! trace > 2 at lo, < 2 at hi
-         call check_true(error, mathieu_trace(lo, eps, 4096) > 2.0_dp .and. &
-                         mathieu_trace(hi, eps, 4096) < 2.0_dp, 'no bracket at eps = '// &
+         lo = -eps**2; hi = -1e-5_dp      ! trace > 2 at lo, < 2 at hi
+         call check_true(error, dpend_trace(lo, eps) > 2.0_dp .and. &
+                         dpend_trace(hi, eps) < 2.0_dp, 'no bracket at eps = '// &
                          real_str(eps))
          if (allocated(error)) return
-         do it = 1, 60
+         do it = 1, 50
             mid = 0.5_dp*(lo + hi)
-            if (mathieu_trace(mid, eps, 4096) > 2.0_dp) then
+            if (dpend_trace(mid, eps) > 2.0_dp) then
                lo = mid
             else
                hi = mid
@@ -126,8 +222,12 @@ contains
                 real_str(diff(2, j), 2)//' '//real_str(diff(3, j), 2)//' '// &
                 real_str(diff(4, j), 2)//';'
       end do
+      tr_runs = dpend_trace_runs(dnum(2), epss(2))
+      call report('trace from nonlinear runs at delta_c(0.2): '//real_str(tr_runs, 12)// &
+                  ', minus 2: '//real_str(tr_runs - 2.0_dp, 2))
+      call check(error, tr_runs, 2.0_dp, 'trace of the runs at delta_c(0.2)', abs=1e-8_dp)
       order = log(diff(:, 2)/diff(:, 1))/log(2.0_dp)
-      call report('Mathieu transition curve (RK4 monodromy, bisection):'//text// &
+      call report('Mathieu transition curve (dpend monodromy, bisection):'//text// &
                   ' orders of the remainders '//real_str(order(1), 3)//' '// &
                   real_str(order(2), 3)//' '//real_str(order(3), 3)//' '//real_str(order(4), 3))
       call check(error, order, [4.0_dp, 6.0_dp, 8.0_dp, 10.0_dp], &

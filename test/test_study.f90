@@ -325,8 +325,34 @@ contains
       ! while the roundoff experiment ran (0 or 1)
       call check_true(error, drift_ok == -1 .and. .not. v%drift_judged, &
                       'drift_ok = -1 when no long run is long enough: '//to_str(drift_ok))
-      call check_true(error, roundoff_ok == 0 .or. roundoff_ok == 1, &
-                      'roundoff_ok 0 or 1 when the experiment ran: '//to_str(roundoff_ok))
+      ! the roundoff verdict recomputed here from the runs' errors: the RMS over the
+      ! runs of the compensated (H - H0)/E_s, its least-squares slope in ln t against
+      ! ln t over t >= ro_fit_t_min, Brouwer's law 0.5 ± 0.15 (brouwer_tol): roundoff_ok
+      ! must be that verdict, not merely 0 or 1
+      block
+         use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+         real(dp), allocatable :: rms(:), lt(:), lr(:)
+         logical, allocatable :: usable(:)
+         real(dp) :: slope
+         integer :: expected
+         character(len=12) :: slope_text
+         associate (ro => res%roundoff(1))
+            rms = sqrt(sum(ro%err(:, :, 1)**2, dim=2)/real(size(ro%err, 2), dp))
+            usable = ieee_is_finite(rms) .and. ro%t >= cfg%ro_fit_t_min
+            usable = usable .and. merge(rms, 0.0_dp, usable) > 0.0_dp
+            lt = log(pack(ro%t, usable)); lr = log(pack(rms, usable))
+            lt = lt - sum(lt)/size(lt); lr = lr - sum(lr)/size(lr)
+            slope = sum(lt*lr)/sum(lt**2)
+            expected = merge(1, 0, abs(slope - 0.5_dp) <= 0.15_dp)
+            call check_true(error, size(lt) >= 10, 'roundoff: usable samples '// &
+                            to_str(size(lt)))
+            call check(error, ro%fit(1)%slope, slope, 'roundoff exponent', abs=1e-12_dp)
+         end associate
+         write (slope_text, '(f12.4)') slope
+         call check_true(error, roundoff_ok == expected, 'roundoff_ok '// &
+                         to_str(roundoff_ok)//', the exponent '//trim(adjustl(slope_text))// &
+                         ' gives '//to_str(expected))
+      end block
       call check_true(error, size(h) == 4 .and. size(ge) == 4, 'sweep arrays of 4 points')
       call check(error, order, 4.0_dp, 'order attribute', abs=0.3_dp)
       call check_true(error, text == 'rk4 dopri5 gauss4 verlet', 'methods attribute: '//text)

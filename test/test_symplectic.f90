@@ -107,31 +107,38 @@ contains
       call integrate(integ, z, t_end/800, 800, stat)
    end function reference
 
-   !> B(2s) and C(s) to 1e-15; closed forms for s = 1, 2, 3 (GNI Table II.1.1);
-   !> symmetric nodes; dᵀA = bᵀ.
+   !> B(2s) and C(s), symmetric nodes and dᵀA = bᵀ for s = 1 … 4, and closed forms
+   !> for s = 1, 2, 3 (GNI Table II.1.1). Each bound is about 10× the largest residual
+   !> measured over s = 1 … 4 (debug and release profiles, AMD EPYC, AVX-512 and
+   !> -march=haswell code): B(2s) 5.6e-17, C(s) 5.6e-17, dᵀA − bᵀ 1.1e-16; the nodes
+   !> sum to 1 exactly (measured 0; bound one ulp of 1), the closed forms to an ulp.
    subroutine test_tableau(error)
       type(error_t), allocatable, intent(out) :: error
-      real(dp) :: a(4, 4), b(4), c(4), d(4), r3, r15
+      real(dp) :: a(4, 4), b(4), c(4), d(4), r3, r15, worst(4)
       integer :: s, i, k
-      character(len=40) :: what
+      character(len=120) :: text
+      worst = 0.0_dp
       do s = 1, 4
          call gauss_tableau(s, a, b, c, d)
          do k = 1, 2*s
-            write (what, '("B(", i0, ") k = ", i0)') 2*s, k
-            call check(error, sum(b(1:s)*c(1:s)**(k - 1)), 1.0_dp/k, trim(what), abs=1e-15_dp)
+            worst(1) = max(worst(1), abs(sum(b(1:s)*c(1:s)**(k - 1)) - 1.0_dp/k))
          end do
          do k = 1, s
             do i = 1, s
-               write (what, '("C(", i0, ") k = ", i0, " i = ", i0)') s, k, i
-               call check(error, sum(a(i, 1:s)*c(1:s)**(k - 1)), c(i)**k/k, trim(what), &
-                          abs=1e-15_dp)
+               worst(2) = max(worst(2), abs(sum(a(i, 1:s)*c(1:s)**(k - 1)) - c(i)**k/k))
             end do
          end do
-         call check(error, c(1:s) + c(s:1:-1), [(1.0_dp, i=1, s)], 'symmetric nodes', &
-                    abs=2e-16_dp)
-         call check(error, matmul(d(1:s), a(1:s, 1:s)), b(1:s), 'd^T A = b^T', abs=1e-15_dp)
-         if (allocated(error)) return
+         worst(3) = max(worst(3), maxval(abs(c(1:s) + c(s:1:-1) - 1.0_dp)))
+         worst(4) = max(worst(4), maxval(abs(matmul(d(1:s), a(1:s, 1:s)) - b(1:s))))
       end do
+      write (text, '("max residuals, s = 1..4: B(2s) ", es9.2, ", C(s) ", es9.2, ' // &
+         '", nodes ", es9.2, ", d^T A - b^T ", es9.2)') worst
+      print '(a)', '    symplectic: '//trim(text)
+      call check(error, worst(1), 0.0_dp, 'B(2s) residual', abs=6e-16_dp)
+      call check(error, worst(2), 0.0_dp, 'C(s) residual', abs=6e-16_dp)
+      call check(error, worst(3), 0.0_dp, 'symmetric nodes', abs=epsilon(1.0_dp))
+      call check(error, worst(4), 0.0_dp, 'd^T A = b^T residual', abs=1.2e-15_dp)
+      if (allocated(error)) return
       call gauss_tableau(1, a, b, c, d)
       call check(error, [a(1, 1), b(1), c(1), d(1)], [0.5_dp, 1.0_dp, 0.5_dp, 2.0_dp], &
                  'midpoint', abs=0.0_dp)
@@ -303,8 +310,12 @@ contains
       symplectic_defect = maxval(abs(matmul(transpose(jac), matmul(om, jac)) - om))
    end function symplectic_defect
 
-   !> The one-step map is symplectic on (q, p) to 1e-10 at h = 0.05 for the implicit
-   !> methods and their compositions, while rk4 (on (q, q̇), converted) is not.
+   !> The one-step map is symplectic on (q, p) at h = 0.05 for the implicit methods
+   !> and their compositions, while rk4 (on (q, q̇), converted) is not. The defect is
+   !> the floor of the fourth-order differences of `step_jacobian` (δ = 1e-3): measured
+   !> 2.2e-13 (comp6) to 3.6e-13 (comp8) in the debug and release profiles (AMD EPYC,
+   !> AVX-512 and -march=haswell code); bound 3.5e-12, 10× the largest. rk4: 7.4e-6
+   !> measured, required above 7e-7.
    !> Tao's methods are symplectic only in the extended phase space (next test):
    !> with the copy restarted at (q, p) the reduced map's defect is ~1e-4 at
    !> h = 0.01 and ~1e-2 at h = 0.05, so they are left out here.
@@ -321,15 +332,17 @@ contains
          if (allocated(error)) return
          def = symplectic_defect(step_jacobian(integ, start(), h, .false.))
          write (msg, '(a, ": |JtOJ - O| = ", es9.2)') trim(names(i)), def
-         call check_true(error, def <= 1e-10_dp, trim(msg))
+         print '(a)', '    symplectic: '//trim(msg)
+         call check_true(error, def <= 3.5e-12_dp, trim(msg))
          if (allocated(error)) return
          deallocate (integ)
       end do
       call make('rk4', integ, error)
       if (allocated(error)) return
       def = symplectic_defect(step_jacobian(integ, start(), h, .true.))
-      write (msg, '("rk4: |JtOJ - O| = ", es9.2, " should be > 1e-8")') def
-      call check_true(error, def > 1e-8_dp, trim(msg))
+      write (msg, '("rk4: |JtOJ - O| = ", es9.2, " should be > 7e-7")') def
+      print '(a)', '    symplectic: '//trim(msg)
+      call check_true(error, def > 7e-7_dp, trim(msg))   ! measured 7.4e-6
    end subroutine test_symplecticity
 
    !> A tao2 step is symplectic as a map of the extended phase space

@@ -1,12 +1,15 @@
 !> A small test harness in the spirit of test-drive: each suite exposes
 !> `collect_<suite>(tests)` returning named tests; a test reports failure by
 !> allocating its `error_t`. `check` compares with absolute/relative tolerance.
+!> A test that cannot run here (a tool it needs is missing) calls `skip_test` and
+!> returns: the driver reports it as skipped, never as passed.
 module testing
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    implicit none
    private
    public :: unittest_t, test_proc, new_unittest, check, check_true, error_t, fatal_error
+   public :: skip_test, take_skip, have_tool
 
    abstract interface
       subroutine test_proc(error)
@@ -20,6 +23,9 @@ module testing
       character(len=:), allocatable :: name      !! name used on the command line
       procedure(test_proc), pointer, nopass :: run => null()  !! the test body
    end type unittest_t
+
+   !> Why the running test was skipped (set by `skip_test`, read by `take_skip`).
+   character(len=:), allocatable :: skip_reason
 
    interface check
       module procedure check_real, check_real_array
@@ -86,4 +92,31 @@ contains
       if (allocated(error)) return
       if (.not. condition) call fatal_error(error, what)
    end subroutine check_true
+
+   !> Mark the running test as skipped for `reason` (e.g. "gnuplot not found"); the
+   !> test then returns without setting its error.
+   subroutine skip_test(reason)
+      character(len=*), intent(in) :: reason  !! why it cannot run here
+      skip_reason = reason
+   end subroutine skip_test
+
+   !> True (and `reason` set) when the test just run called `skip_test`; clears it.
+   logical function take_skip(reason)
+      character(len=:), allocatable, intent(out) :: reason  !! why it was skipped
+      take_skip = allocated(skip_reason)
+      if (take_skip) then
+         call move_alloc(skip_reason, reason)
+      else
+         reason = ''
+      end if
+   end function take_skip
+
+   !> Whether the program `name` is on the PATH.
+   logical function have_tool(name)
+      character(len=*), intent(in) :: name  !! program name (a fixed word, never user input)
+      integer :: stat, cmdstat
+      call execute_command_line('command -v '//name//' > /dev/null 2>&1', exitstat=stat, &
+                                cmdstat=cmdstat)
+      have_tool = cmdstat == 0 .and. stat == 0
+   end function have_tool
 end module testing
