@@ -23,8 +23,8 @@ program bench
    use bench_indicators, only: run_indicator_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
-   use dpend_pendulum, only: double_pendulum_t
-   use dpend_chain, only: chain_t, chain_model
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: new_model, model_spec, model_spec_t
    use dpend_cli, only: to_str
    use dpend_error, only: error_t
    use dpend_integrator, only: integrator_t, stat_ok
@@ -121,7 +121,7 @@ contains
       real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-9_dp, 1.0e-12_dp]
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(double_pendulum_t) :: model
+      class(model_t), allocatable :: model  ! the chapter's pendulum (factory defaults)
       real(dp) :: ref(4), t, y(4), h, q(2), qd(2), err, start, elapsed
       integer :: m, j, stat, unit, reps, r
       character(len=256) :: line
@@ -137,6 +137,8 @@ contains
       end do
       read (line, *) t, ref
       close (unit)
+      call new_model(model_spec('pendulum'), model, error)
+      if (allocated(error)) error stop 'the factory refused the pendulum'
       write (*, '(a)') 'wp: method step_or_rtol error_at_1s n_rhs microseconds'
       do m = 1, n_methods
          do j = 1, 3
@@ -189,10 +191,12 @@ contains
       real(dp), intent(out), optional :: n_rhs_per_step
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(double_pendulum_t) :: model
+      class(model_t), allocatable :: model  ! the chapter's pendulum (factory defaults)
       real(dp) :: t, y(4), hh, start, elapsed
       integer(i8) :: nsteps, i
       integer :: stat
+      call new_model(model_spec('pendulum'), model, error)
+      if (allocated(error)) error stop 'the factory refused the pendulum'
       call new_integrator(name, integ, error)
       if (allocated(error)) error stop 'unknown method'
       nsteps = 1000
@@ -219,12 +223,19 @@ contains
    !> links at q_i = −π/2 + 0.8 sin(1.7 i) (rad) with q̇_i = 0.5 cos(2.3 i) (rad/s).
    subroutine chain_start(n, chain, q, qd)
       integer, intent(in) :: n                       !! links
-      type(chain_t), intent(out) :: chain            !! the chain
+      class(model_t), allocatable, intent(out) :: chain  !! the chain (from the factory)
       real(dp), intent(out) :: q(n), qd(n)           !! its initial angles, rates
       type(error_t), allocatable :: error
+      type(model_spec_t) :: spec
       integer :: i
-      chain = chain_model([(1.0_dp, i=1, n)], [(1.0_dp, i=1, n)], 9.8_dp, error)
-      if (allocated(error)) error stop 'chain_model refused the bench chain'
+      spec = model_spec('pendulum')
+      call spec%set('links', [real(n, dp)])
+      call spec%set('m', [(1.0_dp, i=1, n)])
+      call spec%set('l', [(1.0_dp, i=1, n)])
+      call spec%set('g', [9.8_dp])
+      spec%general = .true.   ! the chain's formulation for every n (also 2)
+      call new_model(spec, chain, error)
+      if (allocated(error)) error stop 'the factory refused the bench chain'
       do i = 1, n
          q(i) = -0.5_dp*pi + 0.8_dp*sin(1.7_dp*i)
          qd(i) = 0.5_dp*cos(2.3_dp*i)
@@ -241,7 +252,7 @@ contains
       real(dp), intent(out) :: n_rhs_per_step
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(chain_t) :: chain
+      class(model_t), allocatable :: chain
       real(dp) :: t, y(2*n), y0(2*n), q(n), qd(n), hh, start, elapsed
       integer(i8) :: nsteps, i
       integer :: stat
@@ -279,7 +290,7 @@ contains
       integer, parameter :: nsteps = 1000000, part = nsteps/10
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: error
-      type(chain_t) :: chain
+      class(model_t), allocatable :: chain
       real(dp) :: t, y(2*n), q(n), qd(n), hh, e0, scale, de, de_first, de_all, de_last, &
                   start
       integer :: k, stat
