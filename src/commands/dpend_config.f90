@@ -34,7 +34,7 @@ module dpend_config
    private
    public :: run_config_t, read_run_config, apply_run_flag, validate_run_config
    public :: check_groups, run_flags_help, namelist_error
-   public :: check_regular_file, set_pendulum, require_default_model
+   public :: check_regular_file, set_pendulum
 
    !> Largest configuration file read [bytes].
    integer(i8), parameter :: max_config_bytes = 1048576_i8
@@ -1369,19 +1369,6 @@ contains
          name = default_model
       end if
    end function model_asked
-
-   !> Refuse a model other than the factory's default for a command that does not
-   !> handle others yet (sweep, study, fit: docs/architecture.md, what is missing).
-   subroutine require_default_model(cfg, command, error)
-      type(run_config_t), intent(in) :: cfg             !! configuration
-      character(len=*), intent(in) :: command           !! e.g. 'dpend sweep'
-      type(error_t), allocatable, intent(out) :: error  !! refused
-      if (model_asked(cfg) == default_model) return
-      call fatal_error(error, 'invalid model: '//command//' handles the model ' &
-                       //default_model//' only, not '//printable(model_asked(cfg)) &
-                       //' (simulate, lyapunov, divergence, indicators and animate take ' &
-                       //'every model)')
-   end subroutine require_default_model
 
    !> The names of the factory's models, blank-separated (for `canonical_name`).
    function model_names() result(s)
