@@ -141,7 +141,7 @@ module dpend_chain
       procedure :: support => chain_support
       !> Power dissipated by the joints and delivered by the support [W].
       procedure :: powers => chain_powers
-      ! r3 fit: the sensitivities of the motion to the damping (dpend fit --fit-damping)
+      ! the sensitivities of the motion to the damping (dpend fit --fit-damping)
       procedure :: check_parameter_rates => chain_check_parameter_rates
       procedure :: parameter_rates => chain_parameter_rates
       ! sweep (issue 23, one construction site): the G_i of its potential
@@ -1152,7 +1152,7 @@ contains
       call rod_figure(anchor, points, style, forces)
    end subroutine chain_figure
 
-   ! r3 fit: the sensitivities of the motion to the damping (dpend fit --fit-damping)
+   ! the sensitivities of the motion to the damping (dpend fit --fit-damping)
 
    !> The chain gives the sensitivities to its joint damping.
    subroutine chain_check_parameter_rates(self, name, error)

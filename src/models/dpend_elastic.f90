@@ -121,7 +121,7 @@ module dpend_elastic
       procedure :: r_eq => el_r_eq
       !> Whether a state is outside the model's domain (see the module header).
       procedure :: collapsed => el_collapsed
-      ! r3 fit: the sensitivities of the motion to k and l0 (dpend fit)
+      ! the sensitivities of the motion to k and l0 (dpend fit)
       procedure :: check_parameter_rates => el_check_parameter_rates
       procedure :: parameter_rates => el_parameter_rates
    end type elastic_t
@@ -481,7 +481,7 @@ contains
              //'its rest length)'
    end function el_energy_text
 
-   ! r3 fit: the sensitivities of the motion to k and l0 (dpend fit)
+   ! the sensitivities of the motion to k and l0 (dpend fit)
 
    !> The elastic pendulum gives the sensitivities to k and l0 (with g known, the
    !> motion depends on k/m and l0 only: m is held, k is fitted at the given m).

@@ -43,7 +43,7 @@ module dpend_model
    implicit none
    private
    public :: model_t, max_dof, max_state
-   public :: model_check_parameter_rates  ! r3 fit: the refusal models extend
+   public :: model_check_parameter_rates  ! the refusal models extend
 
    !> Most degrees of freedom of any model: integrators keep their stage vectors on
    !> the stack in arrays of this size (no allocation per step).
@@ -95,10 +95,10 @@ module dpend_model
       procedure :: figure => model_figure
       ! an initial state within the model (before any step)
       procedure :: check_state => model_check_state
-      ! r3 study: H in quadruple precision for the study's roundoff runs (default: none)
+      ! H in quadruple precision for the study's roundoff runs (default: none)
       procedure :: has_hamiltonian_qp => model_false
       procedure :: hamiltonian_qp => model_hamiltonian_qp
-      ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+      ! the sensitivities of the motion to a model parameter (dpend fit)
       procedure :: check_parameter_rates => model_check_parameter_rates
       procedure :: parameter_rates => model_parameter_rates
       ! sweep (issue 23, one construction site): G_i of V = Σ G_i sin q_i, if V has that form
@@ -442,7 +442,7 @@ contains
       call lacks('Hamiltonian in quadruple precision')
    end function model_hamiltonian_qp
 
-   ! r3 fit: the sensitivities of the motion to a model parameter (dpend fit)
+   ! the sensitivities of the motion to a model parameter (dpend fit)
 
    !> Refuse a fit of parameter `name` when the model cannot give `parameter_rates`
    !> for it (the default: no parameter; a refusal of kind bad input).

@@ -40,7 +40,7 @@ module dpend_model_factory
    type :: model_spec_t
       character(len=:), allocatable :: name            !! model name (default_model if unset)
       type(spec_item_t), allocatable :: items(:)       !! parameters given
-      !> r3 fit: build the general form (the chain, also for two links without damping),
+      !> build the general form (the chain, also for two links without damping),
       !> whose parameters a fit varies continuously
       logical :: general = .false.
    contains

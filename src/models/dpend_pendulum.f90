@@ -94,7 +94,7 @@ module dpend_pendulum
       procedure :: coordinate => dp_coordinate
       procedure :: coordinates_text => dp_coordinates_text
       procedure :: figure => dp_figure
-      ! r3 study: H in quadruple precision for the study's roundoff runs
+      ! H in quadruple precision for the study's roundoff runs
       procedure :: has_hamiltonian_qp => dp_true
       procedure :: hamiltonian_qp => dp_hamiltonian_qp
       ! sweep (issue 23, one construction site): the G_i of its potential
@@ -858,7 +858,7 @@ contains
       call rod_figure(anchor, points, style, forces)
    end subroutine dp_figure
 
-   ! ---- r3 study: the Hamiltonian in quadruple precision (the roundoff runs)
+   ! ---- the Hamiltonian in quadruple precision (the roundoff runs)
 
    !> Copy of `hamiltonian` for precision: quadruple precision;
    !> test/test_copies.f90 compares them.
