@@ -149,6 +149,8 @@ echo "mutate: ${#sel[@]} of ${#ids[@]} mutants (${MODE}${SEED:+, seed $SEED}); s
 # ---------------------------------------------------------------- the scratch copy
 . "$ROOT/scripts/flags.sh"
 mkdir -p "$SCRATCH" || exit 2
+inc_sum() { find "$SCRATCH/src" -name '*.inc' -type f 2>/dev/null | sort | xargs -r cat | cksum; }
+old_inc=$(inc_sum)
 rm -rf "$SCRATCH/src" "$SCRATCH/app" "$SCRATCH/test"
 # tracked and untracked-but-not-ignored files, mtimes kept (unchanged files are not
 # rebuilt); build/ of earlier runs stays
@@ -156,6 +158,9 @@ rm -rf "$SCRATCH/src" "$SCRATCH/app" "$SCRATCH/test"
   tar --null -T - -cf -) | (cd "$SCRATCH" && tar -xpf -) ||
   { echo "mutate.sh: cannot copy the tree to $SCRATCH" >&2; exit 2; }
 cd "$SCRATCH" || exit 2
+# fpm tracks a source by its digest, not by the files it includes: a changed include
+# file would leave a stale object, so the build starts over
+[ "$old_inc" = "$(inc_sum)" ] || rm -rf "$SCRATCH/build"
 LOG=$SCRATCH/mutate-logs
 rm -rf "$LOG"; mkdir -p "$LOG"
 
@@ -239,14 +244,29 @@ for i in "${sel[@]}"; do
   fi
   orig=$(cat "$target"; printf x); orig=${orig%x}
   printf '%s' "${orig/"$find"/"$repl"}" > "$target"
-  if ! build "$LOG/$id-build.log"; then
+  # fpm does not see a change of an include file: mark the files that include it
+  incs=(); inc_orig=()
+  if [[ $target == *.inc ]]; then
+    mapfile -t incs < <(grep -rlE "^[[:space:]]*include[[:space:]]+['\"]([^'\"]*/)?${target##*/}['\"]" \
+      src --include='*.f90')
+    for f in "${incs[@]}"; do
+      c=$(cat "$f"; printf x); inc_orig+=("${c%x}")
+      printf '%s\n! mutant %s\n' "${c%x}" "$id" > "$f"
+    done
+  fi
+  revert() {   # new mtimes and digests: the next build recompiles them
+    local j
     printf '%s' "$orig" > "$target"
+    for j in "${!incs[@]}"; do printf '%s' "${inc_orig[$j]}" > "${incs[$j]}"; done
+  }
+  if ! build "$LOG/$id-build.log"; then
+    revert
     printf '%-28s did not build (%s; log %s)\n' "$id" "$target" "$LOG/$id-build.log"
     n_nobuild=$((n_nobuild + 1)); bad_ids+=("$id"); continue
   fi
   BIN=$(test_bin)
   if [ "$BUILD_ONLY" = 1 ]; then
-    printf '%s' "$orig" > "$target"
+    revert
     printf '%-28s applies and builds (%s) %s\n' "$id" "$target" "$note"
     continue
   fi
@@ -276,12 +296,13 @@ for i in "${sel[@]}"; do
       [ -n "$own" ] && note="$note (failing without the mutant too:$own)"
     fi
   fi
-  printf '%s' "$orig" > "$target"   # revert (a new mtime: rebuilt next time)
+  revert
   case $verdict in
     killed*) n_kill=$((n_kill + 1)) ;;
     SURVIVED) n_surv=$((n_surv + 1)); bad_ids+=("$id") ;;
     *) n_noapply=$((n_noapply + 1)); bad_ids+=("$id") ;;
   esac
+  [ ${#incs[@]} -gt 0 ] && note="$note (included by ${incs[*]})"
   printf '%-28s %s (%s, %d s) %s\n' "$id" "$verdict" "$target" $((SECONDS - t1)) "$note"
   [ "$verdict" = SURVIVED ] && printf '%-28s   models: %s\n' "" "${bugs[$i]}"
 done
