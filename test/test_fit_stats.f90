@@ -11,6 +11,9 @@
 !> deterministic disturbance of 0.01 rad, so that the residuals are not small.
 !> Measured: σ, RMS equal; covariance entries within 5e-8 (relative to the
 !> largest), the tolerance 1e-6; printed on one line ('    fit_stats: …').
+!> Also the fit's input: angles given from the hanging position (theta1, theta2) reach
+!> the fit as q = θ − π/2, angles q1, q2 unchanged (a conversion with the wrong sign
+!> passed every other test).
 module test_fit_stats
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
@@ -20,6 +23,7 @@ module test_fit_stats
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
    use dpend_lapack, only: dgesv
+   use dpend_csv, only: series_t, parse_series
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private
@@ -31,7 +35,8 @@ contains
 
    subroutine collect_fit_stats(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
-      tests = [new_unittest('sigma_covariance_from_definitions', test_statistics)]
+      tests = [new_unittest('sigma_covariance_from_definitions', test_statistics), &
+               new_unittest('csv_theta_to_q', test_csv_angles)]
    end subroutine collect_fit_stats
 
    subroutine test_statistics(error)
@@ -94,6 +99,27 @@ contains
                  'covariance sigma^2 (J^T J)^-1', abs=1e-6_dp*maxval(abs(cov)))
       call check(error, res%se, [(sqrt(cov(j, j)), j=1, np)], 'standard errors', rel=1e-6_dp)
    end subroutine test_statistics
+
+   !> theta columns are converted to q = θ − π/2, q columns kept, times as written.
+   subroutine test_csv_angles(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=1), parameter :: lf = achar(10)
+      type(series_t) :: s
+      call parse_series('t,theta1,theta2'//lf//'0,0.1,-0.2'//lf//'0.5,3,1e-3'//lf, s, error)
+      if (allocated(error)) return
+      call check_true(error, s%n == 2 .and. s%k == 2 .and. s%theta, 'theta: 2 links, 2 rows')
+      if (allocated(error)) return
+      call check(error, s%t, [0.0_dp, 0.5_dp], 'times [s]', abs=0.0_dp)
+      call check(error, reshape(s%q, [4]), [0.1_dp, -0.2_dp, 3.0_dp, 1e-3_dp] - 0.5_dp*pi, &
+                 'q = theta - pi/2 [rad]', abs=4.0_dp*epsilon(1.0_dp))
+      if (allocated(error)) return
+      call parse_series('t,q1,q2'//lf//'0,0.1,-0.2'//lf//'0.5,3,1e-3'//lf, s, error)
+      if (allocated(error)) return
+      call check_true(error, s%n == 2 .and. s%k == 2 .and. .not. s%theta, 'q: 2 links, 2 rows')
+      if (allocated(error)) return
+      call check(error, reshape(s%q, [4]), [0.1_dp, -0.2_dp, 3.0_dp, 1e-3_dp], 'q [rad]', &
+                 abs=0.0_dp)
+   end subroutine test_csv_angles
 
    !> Angles of the damped compound pendulum from the state (q0, q̇0) and damping c at
    !> the times t (dop853 at rtol 1e-13).
