@@ -39,15 +39,15 @@ options:
   --build-only      apply and build each mutant, run no test (checks the list)
   --no-baseline     skip the baseline (by default the selected mutants' killer
                     tests must pass on the unmutated copy first)
-  --timeout SEC     limit of one killer test run (default 300; the whole suite
-                    gets 4x); a run past it counts as killed (timeout)
+  --timeout SEC     limit of one killer test run (default 120; the whole suite
+                    gets 12x); a run past it counts as killed (timeout)
   --ids             print the ids of the list (with --sample/--seed: the draw)
   -h, --help        this text
 EOF
 }
 
 LIST=$ROOT/test/mutants.txt
-MODE=all; SAMPLE=0; SEED=; ONLY=; BUILD_ONLY=0; BASELINE=1; TIMEOUT=300; PRINT_IDS=0
+MODE=all; SAMPLE=0; SEED=; ONLY=; BUILD_ONLY=0; BASELINE=1; TIMEOUT=120; PRINT_IDS=0
 SCRATCH=${MUTATE_SCRATCH:-${TMPDIR:-/tmp}/dpend-mutate-$(id -u)}
 n_mode=0
 while [ $# -gt 0 ]; do
@@ -206,7 +206,7 @@ if [ "$BUILD_ONLY" = 0 ] && [ "$BASELINE" = 1 ]; then
       [ -n "${seen[$k]:-}" ] && continue
       seen[$k]=1
       t1=$SECONDS
-      if ! run_tests "$LOG/baseline-$(echo "$k" | tr / _).log" $((4 * TIMEOUT)) "$k"; then
+      if ! run_tests "$LOG/baseline-$(echo "$k" | tr / _).log" $((12 * TIMEOUT)) "$k"; then
         echo "mutate.sh: baseline: '$k' fails on the unmutated copy: $why" >&2; exit 2
       fi
       echo "mutate: baseline $k passes ($((SECONDS - t1)) s)"
@@ -280,7 +280,7 @@ for i in "${sel[@]}"; do
     esac
   done
   if [ -z "$verdict" ]; then
-    if run_tests "$LOG/$id-all.log" $((4 * TIMEOUT)); then verdict=SURVIVED
+    if run_tests "$LOG/$id-all.log" $((12 * TIMEOUT)); then verdict=SURVIVED
     else
       # failures that the unmutated tree has too are not kills
       verdict=SURVIVED; own=
