@@ -32,6 +32,7 @@ program tester
    use test_balance, only: collect_balance
    use test_sweep_values, only: collect_sweep_values
    use test_fit_stats, only: collect_fit_stats
+   use test_mutant_gaps, only: collect_mutant_gaps
    implicit none
 
    type :: suite_t
@@ -44,7 +45,7 @@ program tester
    character(len=:), allocatable :: filter, full
    integer :: i, j, n_pass, n_fail, n_arg, length
 
-   allocate (suites(28))
+   allocate (suites(29))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -73,6 +74,7 @@ program tester
    suites(26)%name = 'balance'; call collect_balance(suites(26)%tests)
    suites(27)%name = 'sweep_values'; call collect_sweep_values(suites(27)%tests)
    suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
+   suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
