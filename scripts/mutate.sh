@@ -173,7 +173,7 @@ test_bin() { ls -t build/gfortran_*/test/dpend-tests 2>/dev/null | head -n 1; }
 # run_tests LOGFILE LIMIT [FILTER]: 0 when every test passed; else sets $why
 run_tests() {
   local log=$1 limit=$2 filter=${3:-} rc
-  timeout "$limit" "$BIN" $filter > "$log" 2>&1
+  { timeout "$limit" "$BIN" $filter > "$log" 2>&1; } 2> /dev/null   # (no job notice)
   rc=$?
   [ $rc -eq 0 ] && grep -q ' passed, 0 failed' "$log" && return 0
   why=$(grep -m 1 '^  FAIL ' "$log" | sed -e 's/^  FAIL \([^:]*\):.*/\1/')
