@@ -31,6 +31,11 @@ program tester
    use test_factory, only: collect_factory
    use test_elastic, only: collect_elastic
    use test_parse, only: collect_parse
+   use test_dense, only: collect_dense
+   use test_balance, only: collect_balance
+   use test_sweep_values, only: collect_sweep_values
+   use test_fit_stats, only: collect_fit_stats
+   use test_mutant_gaps, only: collect_mutant_gaps
    implicit none
 
    type :: suite_t
@@ -45,7 +50,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(24))
+   allocate (suites(29))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -70,6 +75,11 @@ program tester
    suites(22)%name = 'factory'; call collect_factory(suites(22)%tests)
    suites(23)%name = 'elastic'; call collect_elastic(suites(23)%tests)
    suites(24)%name = 'parse'; call collect_parse(suites(24)%tests)
+   suites(25)%name = 'dense'; call collect_dense(suites(25)%tests)
+   suites(26)%name = 'balance'; call collect_balance(suites(26)%tests)
+   suites(27)%name = 'sweep_values'; call collect_sweep_values(suites(27)%tests)
+   suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
+   suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
