@@ -18,7 +18,8 @@ module test_fit_stats
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_chain, only: chain_t, chain_model
-   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit
+   use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, evaluate_fit, set_fitted
+   use dpend_model_factory, only: model_spec
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
@@ -54,8 +55,17 @@ contains
       do j = 1, k
          q(1, j) = q(1, j) + 0.01_dp*sin(37.0_dp*j)
       end do
-      prob%fit_damping = .true.
-      prob%m = [1.0_dp]; prob%l = [1.0_dp]; prob%g = 9.8_dp; prob%c0 = [0.0_dp]
+      ! one rod (1 kg, 1 m, g = 9.8), its damping fitted from the guess 0 and held
+      ! while the window is shorter than a swing, as `dpend fit --fit-damping`
+      prob%spec = model_spec('pendulum')
+      call prob%spec%set('links', [1.0_dp])
+      call prob%spec%set('m', [1.0_dp])
+      call prob%spec%set('l', [1.0_dp])
+      call prob%spec%set('g', [9.8_dp])
+      call set_fitted(prob, [character(len=8) :: 'damping'], error)
+      if (allocated(error)) return
+      prob%hold_period = 2.0_dp*pi*sqrt(1.0_dp/9.8_dp)
+      prob%l = [1.0_dp]
       prob%method = 'dop853'; prob%rtol = 1e-12_dp; prob%atol = 1e-14_dp
       call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, error)
       if (allocated(error)) return
