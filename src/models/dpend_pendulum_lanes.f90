@@ -866,7 +866,7 @@ contains
       logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
       real(dp) :: bounds(2), escale, nan, m, qc, nrm, s, n_events
       real(dp) :: dv(w, 4, 2), acc(w, 4), v0(4, 4)   ! indicators' vectors and sums
-      integer :: n, i, j, next, n_active, rule
+      integer :: n, i, next, n_active, rule
       logical :: any_ended
 
       n = size(y0, 2)
@@ -878,36 +878,9 @@ contains
       if (opt%lyapunov .or. opt%vectors > 0) rule = stop_end
       v0 = initial_vectors(4)
       dv = 1.0_dp; acc = 0.0_dp
-      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
-      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
-      res%n = n
-      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%energy0(n), &
-                res%energy_error(n), res%t_stop(n), res%final(4, n), res%lyapunov(n), &
-                res%status(n), res%steps(n))
       allocate (can_flip1(n), can_flip2(n), todo(n))
-      if (opt%n_steps < 1) then   ! t_end = 0: nothing to integrate
-         call energies(c, y0, res%energy0)
-         res%t_flip1 = nan; res%t_flip2 = nan; res%t_flip = nan; res%lyapunov = nan
-         res%energy_error = 0.0_dp; res%t_stop = 0.0_dp; res%final = y0
-         res%status = st_end; res%steps = 0
-         return
-      end if
-
-      ! initial energies, W at a time (padding lanes hold the hanging state)
-      call energies(c, y0, res%energy0)
-      do j = 1, n
-         can_flip1(j) = .not. (res%energy0(j) < bounds(1))
-         can_flip2(j) = .not. (res%energy0(j) < bounds(2))
-         todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
-                   .not. opt%skip_cannot_flip .or. opt%vectors > 0
-         res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
-         res%energy_error(j) = 0.0_dp
-         res%t_stop(j) = 0.0_dp
-         res%final(:, j) = y0(:, j)
-         res%lyapunov(j) = 0.0_dp
-         res%steps(j) = 0
-         res%status(j) = merge(st_end, st_cannot_flip, can_flip1(j) .or. can_flip2(j))
-      end do
+      call start_results(c, bounds, opt, y0, res, can_flip1, can_flip2, todo)
+      if (opt%n_steps < 1) return   ! t_end = 0: nothing to integrate
 
       ! fill the lanes
       next = 1
@@ -999,31 +972,7 @@ contains
          end do
       end do
 
-      ! the energy of the final states enters the maximum error
-      call energies(c, res%final, e_final=res%t_flip)   ! t_flip used as scratch
-      do j = 1, n
-         if (todo(j) .and. res%status(j) /= st_nonfinite) then
-            res%energy_error(j) = max(res%energy_error(j), abs(res%t_flip(j) - res%energy0(j)))
-            res%energy_error(j) = res%energy_error(j)/escale
-         else
-            res%energy_error(j) = nan
-         end if
-      end do
-      do j = 1, n
-         if (res%t_flip1(j) >= 0.0_dp .and. res%t_flip2(j) >= 0.0_dp) then
-            res%t_flip(j) = min(res%t_flip1(j), res%t_flip2(j))
-         else if (res%t_flip1(j) >= 0.0_dp) then
-            res%t_flip(j) = res%t_flip1(j)
-         else if (res%t_flip2(j) >= 0.0_dp) then
-            res%t_flip(j) = res%t_flip2(j)
-         else
-            res%t_flip(j) = nan
-         end if
-         if (.not. (res%t_flip1(j) >= 0.0_dp)) res%t_flip1(j) = nan
-         if (.not. (res%t_flip2(j) >= 0.0_dp)) res%t_flip2(j) = nan
-         if (.not. opt%lyapunov .or. .not. todo(j)) res%lyapunov(j) = nan
-         if (.not. todo(j)) res%final(:, j) = y0(:, j)
-      end do
+      call close_results(c, escale, opt, y0, todo, res)
 
    contains
 
@@ -1122,6 +1071,94 @@ contains
          if (info /= 0) res%gali2(jj) = nan
       end subroutine finish_indicators
    end subroutine integrate_batch
+
+   !> The batch kernel's set-up (outside the step loop): allocate the results of the
+   !> n initial conditions y0, their initial energies and which of them can flip
+   !> (energy at or above a link's flip bound) or must be integrated anyway (`todo`);
+   !> with opt%n_steps < 1 (t_end = 0) the results are final here.
+   subroutine start_results(c, bounds, opt, y0, res, can_flip1, can_flip2, todo)
+      type(batch_coef_t), intent(in) :: c                 !! constants
+      real(dp), intent(in) :: bounds(2)                   !! flip energy bounds [J]
+      type(batch_options_t), intent(in) :: opt            !! step, length, stop rule
+      real(dp), intent(in) :: y0(:, :)                    !! (4, n) initial states
+      type(batch_result_t), intent(inout) :: res          !! results (allocated here)
+      logical, intent(out) :: can_flip1(:), can_flip2(:), todo(:)  !! (n)
+      real(dp) :: nan
+      integer :: n, j
+      n = size(y0, 2)
+      nan = ieee_value(nan, ieee_quiet_nan)
+      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
+      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
+      res%n = n
+      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%energy0(n), &
+                res%energy_error(n), res%t_stop(n), res%final(4, n), res%lyapunov(n), &
+                res%status(n), res%steps(n))
+      if (opt%n_steps < 1) then   ! t_end = 0: nothing to integrate
+         call energies(c, y0, res%energy0)
+         res%t_flip1 = nan; res%t_flip2 = nan; res%t_flip = nan; res%lyapunov = nan
+         res%energy_error = 0.0_dp; res%t_stop = 0.0_dp; res%final = y0
+         res%status = st_end; res%steps = 0
+         return
+      end if
+
+      ! initial energies, W at a time (padding lanes hold the hanging state)
+      call energies(c, y0, res%energy0)
+      do j = 1, n
+         can_flip1(j) = .not. (res%energy0(j) < bounds(1))
+         can_flip2(j) = .not. (res%energy0(j) < bounds(2))
+         todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
+                   .not. opt%skip_cannot_flip .or. opt%vectors > 0
+         res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
+         res%energy_error(j) = 0.0_dp
+         res%t_stop(j) = 0.0_dp
+         res%final(:, j) = y0(:, j)
+         res%lyapunov(j) = 0.0_dp
+         res%steps(j) = 0
+         res%status(j) = merge(st_end, st_cannot_flip, can_flip1(j) .or. can_flip2(j))
+      end do
+   end subroutine start_results
+
+   !> The batch kernel's closing pass: the largest energy error (the final states'
+   !> energies included) relative to the potential's range `escale`, the first flip
+   !> of either link, NaN for what was not computed, and the initial state as the
+   !> final one of a condition that was not integrated.
+   subroutine close_results(c, escale, opt, y0, todo, res)
+      type(batch_coef_t), intent(in) :: c                 !! constants
+      real(dp), intent(in) :: escale                      !! V_max - V_min [J]
+      type(batch_options_t), intent(in) :: opt            !! options
+      real(dp), intent(in) :: y0(:, :)                    !! (4, n) initial states
+      logical, intent(in) :: todo(:)                      !! integrated (n)
+      type(batch_result_t), intent(inout) :: res          !! results
+      real(dp) :: nan
+      integer :: n, j
+      n = size(y0, 2)
+      nan = ieee_value(nan, ieee_quiet_nan)
+      ! the energy of the final states enters the maximum error
+      call energies(c, res%final, e_final=res%t_flip)   ! t_flip used as scratch
+      do j = 1, n
+         if (todo(j) .and. res%status(j) /= st_nonfinite) then
+            res%energy_error(j) = max(res%energy_error(j), abs(res%t_flip(j) - res%energy0(j)))
+            res%energy_error(j) = res%energy_error(j)/escale
+         else
+            res%energy_error(j) = nan
+         end if
+      end do
+      do j = 1, n
+         if (res%t_flip1(j) >= 0.0_dp .and. res%t_flip2(j) >= 0.0_dp) then
+            res%t_flip(j) = min(res%t_flip1(j), res%t_flip2(j))
+         else if (res%t_flip1(j) >= 0.0_dp) then
+            res%t_flip(j) = res%t_flip1(j)
+         else if (res%t_flip2(j) >= 0.0_dp) then
+            res%t_flip(j) = res%t_flip2(j)
+         else
+            res%t_flip(j) = nan
+         end if
+         if (.not. (res%t_flip1(j) >= 0.0_dp)) res%t_flip1(j) = nan
+         if (.not. (res%t_flip2(j) >= 0.0_dp)) res%t_flip2(j) = nan
+         if (.not. opt%lyapunov .or. .not. todo(j)) res%lyapunov(j) = nan
+         if (.not. todo(j)) res%final(:, j) = y0(:, j)
+      end do
+   end subroutine close_results
 
    !> An angle offset clamped to ±`d_max` [rad]: itself on `rk4_lanes`' fast path.
    pure elemental real(dp) function dclamp(d)
