@@ -10,7 +10,7 @@ module bench_indicators
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
-   use dpend_sweep_config, only: sweep_config_t, sweep_defaults
+   use dpend_sweep_config, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
    use dpend_progress, only: wall_seconds
    implicit none
@@ -117,6 +117,11 @@ contains
       cfg%run%dt = 0.01_dp
       cfg%run%t_end = 1.0_dp
       cfg%block = 256
+      call validate_sweep(cfg, error)   ! builds the model (the factory)
+      if (allocated(error)) then
+         ns = -1.0_dp
+         return
+      end if
       do
          call build_setup(cfg, setup, error)
          if (allocated(error)) then
