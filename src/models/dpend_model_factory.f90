@@ -124,8 +124,9 @@ contains
                      //'hung from the pin A (docs/elastic.md)'
       info%coordinates = 'r: the spring length (m); phi: its angle from the horizontal x ' &
                          //'axis, counter-clockwise (rad); hanging: phi = -pi/2'
-      info%supports = 'Hamiltonian structure (every method applies); no damping, driving, ' &
-                      //'SIMD lanes or Poincare sections'
+      info%supports = 'Hamiltonian structure (every method applies); sweep indicator maps ' &
+                      //'(no flip map: no rods to flip); fit of k and l0; no damping, ' &
+                      //'driving, SIMD lanes or Poincare sections'
       info%params = [ &
          param('m', 'kg', 'mass of the bob', min_mass, max_mass, 1.0_dp, 1), &
          param('k', 'N/m', 'stiffness of the spring', min_stiffness, max_stiffness, 40.0_dp, &
