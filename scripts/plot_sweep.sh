@@ -25,6 +25,10 @@ if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
 # a scalar attribute of /sweep, numbers at full precision, strings without quotes
 attr() { h5dump -m %.17g -a "/sweep/$1" "$h5" 2>/dev/null | sed -n 's/^ *(0): *"\{0,1\}\([^"]*\)"\{0,1\}.*/\1/p' | head -n1; }
 [[ "$(attr initial)" == grid ]] || plot_fail 2 "'$1' is not a grid sweep"
+# a model without flips (the elastic pendulum) has no t_flip maps to draw here
+if [[ -n "$(attr model)" && -z "$(attr sqrt_l1_over_g)" ]]; then
+  plot_fail 2 "'$1' is a sweep of model $(attr model), which has no flip maps; this script draws the pendulum's (export its indicator map with dpend export FILE --matrix /sweep/megno /sweep/axis1 /sweep/axis2)"
+fi
 plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
 ax1=$(attr axis1); ax2=$(attr axis2)
