@@ -193,8 +193,11 @@ if ((do_quick)); then
   done
   if ((status == 0)); then
     for f in "${promised[@]}"; do
-      if [[ -s "$scratch/$f" ]]; then echo "check_readme.sh: ok    $f ($(stat -c %s "$scratch/$f") B)"
-      else echo "check_readme.sh: FAIL  $f: missing or empty"; status=1; fi
+      if [[ -s "$scratch/$f" ]]; then
+        echo "check_readme.sh: ok    $f ($(stat -c %s "$scratch/$f") B)"
+      else
+        echo "check_readme.sh: FAIL  $f: missing or empty"; status=1
+      fi
     done
   fi
   after=$(cd "$root" && git status --porcelain)
