@@ -12,10 +12,15 @@ checks with h5py, numpy and pandas that
     pandas.read_csv as written, with the values of the file;
   * `dpend export --list` lists every dataset with its units;
   * a file written with fixed-length string attributes (the old form) still
-    reads with `dpend export --list` and `--csv`.
+    reads with `dpend export --list` and `--csv`;
+  * the recipes of docs/python.md run (issue 25): its fenced `sh` blocks, whose
+    lines are `scripts/dpend ARGS` (run with the dpend under test, ARGS split as
+    the shell would), write the files, then every `python` block runs in a fresh
+    interpreter (this one) in that directory and must exit 0.
 
-Offline; needs h5py and pandas (pip install h5py pandas), which the tests do
-not. Usage:
+Offline; needs h5py, pandas and xarray (scripts/setup.sh installs Debian's
+python3-h5py, python3-pandas, python3-xarray for /usr/bin/python3), which the
+tests do not. Usage:
 
     python3 scripts/check_python.py [--dpend PATH]
 
@@ -26,6 +31,8 @@ check and "N checks, M failed"; exit status 1 if any failed.
 import argparse
 import io
 import os
+import re
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -179,7 +186,7 @@ def check_file(c, dpend, label, path, datasets):
         c.check(got.shape == expect.shape and np.array_equal(got, expect, equal_nan=True),
                 f"{label}: export --csv {' '.join(datasets)} -> numpy.genfromtxt(names=True)"
                 f" {got.shape}, columns {list(arr.dtype.names)[:4]}..., values as in the file")
-        df = pd.read_csv(io.StringIO(text))
+        df = pd.read_csv(io.StringIO(text), float_precision="round_trip")  # exact on pandas 1.x
         c.check(df.shape == expect.shape
                 and np.array_equal(df.to_numpy(dtype=float), expect, equal_nan=True),
                 f"{label}: pandas.read_csv {df.shape}, columns {list(df.columns)[:3]}...")
@@ -200,19 +207,78 @@ def check_old_form(c, dpend, tmp):
     c.check(text.splitlines()[0] == "t [s]", "old form: export --csv header 't [s]'")
 
 
+def doc_blocks(path):
+    """Fenced blocks of a Markdown file: [(language, first line number, text)]."""
+    blocks, lang, start, lines = [], None, 0, []
+    with open(path, encoding="utf-8") as f:
+        for no, line in enumerate(f, 1):
+            fence = re.match(r"^```\s*([A-Za-z0-9_+-]*)\s*$", line.rstrip("\n"))
+            if fence and lang is None:
+                lang, start, lines = fence.group(1) or "text", no + 1, []
+            elif fence and line.strip() == "```":
+                blocks.append((lang, start, "".join(lines)))
+                lang = None
+            elif lang is not None:
+                lines.append(line)
+    if lang is not None:
+        raise RuntimeError(f"{path}:{start - 1}: fenced block not closed")
+    return blocks
+
+
+def check_recipes(c, dpend, tmp):
+    """Run docs/python.md: its sh lines write the files, its python blocks read them."""
+    doc = os.path.join(ROOT, "docs", "python.md")
+    rel = os.path.relpath(doc, ROOT)
+    work = os.path.join(tmp, "recipes")
+    os.mkdir(work)
+    blocks = doc_blocks(doc)
+    n_python = 0
+    for lang, line, text in blocks:
+        if lang == "sh":
+            joined = text.replace("\\\n", " ")
+            for k, cmd in enumerate(joined.splitlines()):
+                words = shlex.split(cmd, comments=True)
+                if not words:
+                    continue
+                ok = words[0] == "scripts/dpend"
+                if ok:
+                    res = subprocess.run([dpend] + words[1:], cwd=work,
+                                         capture_output=True, text=True)
+                    ok = res.returncode == 0
+                    err = res.stderr.strip().splitlines()[-1:] if not ok else []
+                else:
+                    err = ["only scripts/dpend lines are run"]
+                c.check(ok, f"{rel}:{line + k}: {cmd.strip()}"
+                        + (f" ({err[0]})" if err else ""))
+        elif lang == "python":
+            n_python += 1
+            res = subprocess.run([sys.executable, "-c", text], cwd=work,
+                                 capture_output=True, text=True)
+            tail = (res.stderr.strip().splitlines() or ["?"])[-1]
+            c.check(res.returncode == 0, f"{rel}:{line}: python recipe {n_python} runs"
+                    + (f" (exit {res.returncode}: {tail})" if res.returncode else ""))
+            if res.returncode:
+                print(res.stdout[-2000:] + res.stderr[-2000:])
+    c.check(n_python >= 3, f"{rel}: {n_python} python recipes found (at least 3)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--dpend", help="dpend binary")
+    ap.add_argument("--recipes-only", action="store_true",
+                    help="run only the recipes of docs/python.md")
     args = ap.parse_args()
     dpend = find_dpend(args.dpend)
     c = Checks()
     print(f"dpend: {dpend}; h5py {h5py.__version__}, numpy {np.__version__}, "
           f"pandas {pd.__version__}")
     with tempfile.TemporaryDirectory(prefix="dpend-check-") as tmp:
-        files = make_files(dpend, tmp)
-        for label, (path, datasets) in files.items():
-            check_file(c, dpend, label, path, datasets)
-        check_old_form(c, dpend, tmp)
+        if not args.recipes_only:
+            files = make_files(dpend, tmp)
+            for label, (path, datasets) in files.items():
+                check_file(c, dpend, label, path, datasets)
+            check_old_form(c, dpend, tmp)
+        check_recipes(c, dpend, tmp)
     print(f"{c.n} checks, {c.failed} failed")
     return 1 if c.failed else 0
 

@@ -4,6 +4,8 @@
 set -euo pipefail
 
 packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools)
+# Python: the recipes of docs/python.md and scripts/check_python.py (h5py, pandas, xarray).
+packages+=(python3 python3-h5py python3-pandas python3-xarray)
 if [[ "${1:-}" == "--mpi" ]]; then
   packages+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 fi
