@@ -551,6 +551,7 @@ contains
          if (allocated(error)) return
          call check(error, t, [(out_dt*real(i - 1, dp), i=1, n)], tag//'t = (i-1) output_dt', &
                     abs=1e-12_dp)
+         if (allocated(error)) return   ! new_integrator's error is intent(out)
          call make_model(links, model)
          call new_integrator('rk4', integ, error)
          if (allocated(error)) return
@@ -661,6 +662,7 @@ contains
       ! the section energy: that of the horizontal release at rest, in closed form
       call check(error, e_attr, energy_cf([0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp]), &
                  'energy of the initial state', abs=1e-14_dp)
+      if (allocated(error)) return   ! new_integrator's error is intent(out)
       call make_model(2, model)
       call new_integrator('rk4', integ, error)
       if (allocated(error)) return
