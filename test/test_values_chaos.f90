@@ -517,7 +517,7 @@ contains
          type(h5file_t) :: h5
          real(dp), allocatable :: t(:), log10_delta(:), log10_delta_pairs(:, :), start(:, :)
          real(dp), allocatable :: delta_start(:), energy_difference(:), q0(:)
-         real(dp), allocatable :: ref(:), ya(:), yb(:), lcf(:, :), za(:), zb(:), dq(:)
+         real(dp), allocatable :: ref(:), ya(:), yb(:), lcf(:, :)
          character(len=:), allocatable :: file, tag, extra
          integer :: m, n, i, p, s, stat, per
          real(dp) :: tt, h
