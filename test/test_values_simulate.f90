@@ -26,7 +26,8 @@ module test_values_simulate
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t
    use dpend_cli, only: to_str
-   use test_cli, only: run_command, scratch_dir, read_text
+   use test_cli, only: run_command, scratch_dir
+   use test_balance, only: boole
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -434,23 +435,6 @@ contains
          dz(ch%n + 1:) = accelerations(ch, t, z(:ch%n), z(ch%n + 1:))
       end function f
    end function rk4_run
-
-   !> Cumulative composite Boole integral of y over equally spaced x (size 4k + 1) at
-   !> the samples 1, 5, 9, …: S_h + (S_h − S_2h)/15 with S Simpson's rule (error O(h⁶)).
-   pure function boole(x, y) result(s)
-      real(dp), intent(in) :: x(:), y(:)  !! abscissae, ordinates
-      real(dp) :: s((size(x) - 1)/4 + 1)
-      real(dp) :: s1, s2
-      integer :: k, i
-      s(1) = 0.0_dp
-      do k = 2, size(s)
-         i = 4*(k - 1) + 1
-         s1 = (x(i) - x(i - 4))/12.0_dp*(y(i - 4) + 4.0_dp*y(i - 3) + 2.0_dp*y(i - 2) &
-                                          + 4.0_dp*y(i - 1) + y(i))
-         s2 = (x(i) - x(i - 4))/6.0_dp*(y(i - 4) + 4.0_dp*y(i - 2) + y(i))
-         s(k) = s(k - 1) + s1 + (s1 - s2)/15.0_dp
-      end do
-   end function boole
 
    ! ---------------------------------------------------------------- elastic
 
