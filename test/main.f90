@@ -38,6 +38,8 @@ program tester
    use test_mutant_gaps, only: collect_mutant_gaps
    use test_inventory, only: collect_inventory
    use test_values_simulate, only: collect_values_simulate
+   use test_values_chaos, only: collect_values_chaos
+   use test_values_study, only: collect_values_study
    implicit none
 
    type :: suite_t
@@ -52,7 +54,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(31))
+   allocate (suites(33))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -84,6 +86,8 @@ program tester
    suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
    suites(30)%name = 'inventory'; call collect_inventory(suites(30)%tests)
    suites(31)%name = 'values_simulate'; call collect_values_simulate(suites(31)%tests)
+   suites(32)%name = 'values_chaos'; call collect_values_chaos(suites(32)%tests)
+   suites(33)%name = 'values_study'; call collect_values_study(suites(33)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
