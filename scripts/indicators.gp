@@ -84,6 +84,7 @@ plot dat u 1:2 w l lw 0.6 lc rgb "#a0c4e8" t tt(npts[1], "Y(t)"), \
        t (chaotic ? "chaotic: {/Symbol l}_1 t/2" : "")
 
 set title "Fast Lyapunov indicator"
+set key maxcols 1 maxrows auto
 set ylabel "FLI = max_i ln|{/Symbol d}_i|"
 print keyline("indicators.png", "FLI(t)", npts[3])
 print keyline("indicators.png", "regular: ln t + c", npts[3])
@@ -95,6 +96,7 @@ plot dat u 1:4 w l lw 2 lc rgb "#2ca02c" t tt(npts[3], "FLI(t)"), \
        t (chaotic ? "chaotic: {/Symbol l}_1 t" : "")
 
 set title "SALI and GALI_k (log-log)"
+set key maxcols auto maxrows 2
 set ylabel "GALI_k, SALI"
 set logscale xy; set format x "10^{%L}"; set format y "10^{%L}"
 set xrange [t0:tend]
