@@ -5,7 +5,8 @@
 # energy scale ESCALE [J], as simulate writes it); OUTDIR: where balance.png goes;
 # TITLE: run description (enhanced text, escaped). The arguments are data: never
 # pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "balance.gp") - 1]."style.gp"  # text scales with the canvas
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
 load style_gp
 datafile = ARG1
 outdir = ARG2

@@ -5,7 +5,8 @@
 # lambda1 spread index); OUTFILE: the PNG; N: number of files; LABELS: the N key
 # entries (enhanced text, escaped), one per line; LAMBDAS: the N final lambda1.
 # The arguments are data: the plot command built below holds only numbers.
-style_gp = ARG0[1:strstrt(ARG0, "compare.gp") - 1]."style.gp"  # text scales with the canvas
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
 load style_gp
 dir = ARG1
 n = int(real(ARG3))

@@ -5,7 +5,8 @@
 # argument of numbers: SLOPE [1/s, natural log], B (log10 intercept), T0, T1 (fit
 # window), SAT (saturation, log10), LAM (Benettin lambda1, 0 if not computed),
 # NPAIRS, DELTA0. The arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "divergence.gp") - 1]."style.gp"  # text scales with the canvas
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
 load style_gp
 dat = ARG1
 outfile = ARG2."/divergence.png"

@@ -10,7 +10,8 @@
 # TITLE: file name, enhanced text, escaped. Panels share one left margin (the plot
 # areas line up); angle panels of the overlay are ticked in multiples of pi; text
 # scales with the canvas (style.gp). The arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "fit.gp") - 1]."style.gp"
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
 load style_gp
 kind = ARG1
 datafile = ARG2

@@ -14,7 +14,8 @@
 # where FLI still grows slowly). The power laws of GALI_k (k > N) are fitted to the
 # second half of the run (their amplitude; the exponent is the theory's). Log axes span the data only. Keys sit below the
 # panels. The arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "indicators.gp") - 1]."style.gp"
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
 load style_gp
 dat = ARG1
 outfile = ARG2."/indicators.png"

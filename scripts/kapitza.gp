@@ -7,7 +7,8 @@
 # angle from upright counted as fallen [rad]; OMEGA: the pin's angular frequency
 # [rad/s]; G, L: gravity [m/s^2] and the rod's length [m]. The arguments are data:
 # never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "kapitza.gp") - 1]."style.gp"  # text scales with the canvas
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
 load style_gp
 above = ARG1
 below = ARG2

@@ -5,7 +5,8 @@
 # LINKS: the number of links N. With the full spectrum (K = 2N) the pairing defects
 # |lambda_i + lambda_(2N+1-i)|, i = 1..N, are drawn beside the spectrum.
 # The arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "lyapunov.gp") - 1]."style.gp"  # text scales with the canvas
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
 load style_gp
 run = ARG1
 spec = ARG2

@@ -5,7 +5,8 @@
 # OTHER, ANGLE (section angle), DIR (direction), NORB (orbits). The angle axis is
 # ticked in multiples of pi (style.gp), the section angle printed as one (−π/2). The
 # arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "poincare.gp") - 1]."style.gp"
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
 load style_gp
 dat = ARG1
 outfile = ARG2."/poincare.png"

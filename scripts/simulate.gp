@@ -13,7 +13,8 @@
 # damped or driven run: the figure is the energy's change). Coordinates in rad are wrapped; others are drawn as they are. Axes
 # of angles are ticked in multiples of pi, text scales with the canvas (style.gp). The
 # arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "simulate.gp") - 1]."style.gp"
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
 load style_gp
 datafile = ARG1
 outdir = ARG2

@@ -11,7 +11,8 @@
 # perceptual palette viridis (style.gp); angle axes are ticked in multiples of pi; the
 # grey "not integrated" key entry is drawn only when a pixel is grey (the key entries
 # drawn go to OUTDIR/keys.txt). The arguments are data: never pasted into code.
-style_gp = ARG0[1:strstrt(ARG0, "sweep.gp") - 1]."style.gp"
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
 load style_gp
 dir = ARG1
 outdir = ARG2
