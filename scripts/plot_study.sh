@@ -245,6 +245,8 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
            # [$7 case index of the second curve, $8 its column, $9 its fit attribute]
   local c1=${cases[$3 - 1]} c2=""
   [[ -z "${7:-}" ]] || c2=${cases[$7 - 1]}
+  # taller than the others: each panel's key sits below it
+  echo "set terminal pngcairo size 1400,1100 enhanced font sprintf('DejaVu Sans,%.3g', 11*fk)"
   echo "set output O.'/$1'"
   echo "set multiplot layout $(((${#group_ids[@]} + 1) / 2)),2 title $2 font F13"
   echo "set xlabel 'step h [s]'; set ylabel '$5'; set key below left Left reverse maxrows 2 font F10"
@@ -286,6 +288,7 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
     if [[ $n -eq 0 ]]; then empty_panel "no method of this family among the methods of this study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; set autoscale x"
+  echo "set terminal pngcairo size 1400,900 enhanced font sprintf('DejaVu Sans,%.3g', 11*fk)"
 }
 nattr ts /config/t_short
 # units of the global error: the reference state's, as the file labels them (the
