@@ -10,8 +10,8 @@
 # exp(-(lambda1 - lambda2) t) with lambda2 ~ 0. Only the references of the orbit's
 # kind are drawn: chaotic when <Y>(TEND) > 4 or GALI_2(TEND) < 1e-8 (then lambda1 is
 # estimated as FLIEND/TEND), else regular (the power laws go through the final
-# GALI_k; ln t + c is fitted to the whole run, on a chaotic orbit to its first tenth,
-# where FLI still grows slowly). The power laws of GALI_k (k > N) are fitted to the
+# GALI_k; ln t + c is fitted to the whole run, on a chaotic orbit to its first two
+# Lyapunov times, where FLI still grows slowly). The power laws of GALI_k (k > N) are fitted to the
 # second half of the run (their amplitude; the exponent is the theory's). Log axes span the data only. Keys sit below the
 # panels. The arguments are data: never pasted into code.
 sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
@@ -34,8 +34,10 @@ do for [i = 5:4 + k] {
   stats dat u (ymin = (pos(column(i)) < ymin ? column(i) : ymin), 0) nooutput
 }
 ylo = 10**floor(log10(ymin) - 0.01)
-# ln t + c: c the mean of FLI - ln t over the whole run (regular) or its first tenth
-tfit = (chaotic ? tend/10 : tend)
+# ln t + c: c the mean of FLI - ln t over the whole run (regular) or, on a chaotic
+# orbit, over its first two Lyapunov times 2/lambda1 (at least the first sample),
+# while |delta| has not yet grown exponentially
+tfit = (chaotic ? (2/lam > t0 ? 2/lam : t0) : tend)
 STATS_records = 0
 stats dat u (($1 > 0 && $1 <= tfit && has($4)) ? $4 - log($1) : NaN) nooutput
 c = (STATS_records > 0 ? STATS_mean : fliend - log(tend))
