@@ -94,7 +94,7 @@ print keyline("indicators.png", "regular: ln t + c", npts[3])
 if (chaotic) { print keyline("indicators.png", "chaotic: λ1 t", npts[3]) }
 plot dat u 1:4 w l lw 2 lc rgb "#2ca02c" t tt(npts[3], "FLI(t)"), \
      [t0:tend] log(x) + c w l dt 2 lw 1.5 lc rgb "black" \
-       t sprintf("regular: ln t + c, c fitted over t ≤ %.3g s", tfit), \
+       t sprintf("regular: ln t + c, c fitted over t ≤ %.4g s", tfit), \
      [t0:tend] (chaotic ? lam*x : NaN) w l dt 3 lw 1.5 lc rgb "#d62728" \
        t (chaotic ? "chaotic: {/Symbol l}_1 t" : "")
 
