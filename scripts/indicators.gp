@@ -87,14 +87,14 @@ plot dat u 1:2 w l lw 0.6 lc rgb "#a0c4e8" t tt(npts[1], "Y(t)"), \
        t (chaotic ? "chaotic: {/Symbol l}_1 t/2" : "")
 
 set title "Fast Lyapunov indicator"
-set key maxcols 1 maxrows auto
+set key maxcols auto maxrows 2
 set ylabel "FLI = max_i ln|{/Symbol d}_i|"
 print keyline("indicators.png", "FLI(t)", npts[3])
 print keyline("indicators.png", "regular: ln t + c", npts[3])
 if (chaotic) { print keyline("indicators.png", "chaotic: λ1 t", npts[3]) }
 plot dat u 1:4 w l lw 2 lc rgb "#2ca02c" t tt(npts[3], "FLI(t)"), \
      [t0:tend] log(x) + c w l dt 2 lw 1.5 lc rgb "black" \
-       t sprintf("regular: ln t + c, c fitted over t ≤ %.4g s", tfit), \
+       t sprintf("regular: ln t + c (fit: t ≤ %.4g s)", tfit), \
      [t0:tend] (chaotic ? lam*x : NaN) w l dt 3 lw 1.5 lc rgb "#d62728" \
        t (chaotic ? "chaotic: {/Symbol l}_1 t" : "")
 
