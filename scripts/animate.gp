@@ -66,8 +66,13 @@ voff(v) = ((v == 0 || v >= ncoil + 1) ? 0 : (v % 2 ? 1 : -1)*coil_w)
 vx(x0, y0, x1, y1, v) = x0 + vfrac(v)*(x1 - x0) - voff(v)*(y1 - y0)/slen(x0, y0, x1, y1)
 vy(x0, y0, x1, y1, v) = y0 + vfrac(v)*(y1 - y0) + voff(v)*(x1 - x0)/slen(x0, y0, x1, y1)
 
-# colours: rods and their tip trail; the overlay in warm colours
-rod = "#1f3b73"; rod2 = "#b03a2e"; pin = "#111111"
+# colours: one per link (link 1 navy, link 2 amber, ...) and the tip trail; the
+# overlay's links in another set (red, slate, ...)
+array rodc[6] = ["#1f3b73", "#d98e04", "#2a9d8f", "#6c3483", "#7f8c8d", "#c0392b"]
+array rodc2[6] = ["#b03a2e", "#5d6d7e", "#e67e22", "#117864", "#a04000", "#2e4053"]
+rc1(i) = rodc[(i - 1)%6 + 1]
+rc2(i) = rodc2[(i - 1)%6 + 1]
+rod = rc1(1); rod2 = rc2(1); pin = "#111111"
 trail_rgb = 0x2e86de; trail2_rgb = 0xe67e22
 react1 = "#1e8449"; react2 = "#8e44ad"
 # reaction arrows at joints 1, 2, ... (two links: react1, react2)
@@ -78,6 +83,10 @@ mix(c, s, age) = int(((c >> s) & 255) + (255 - ((c >> s) & 255))*age**0.7)
 fade(c, age) = (mix(c, 16, age) << 16) + (mix(c, 8, age) << 8) + mix(c, 0, age)
 s = (height < width ? height : width)/640.0      # line widths follow the image size
 s = (s < 0.5 ? 0.5 : s)
+# text follows the image size too: 2.4 % of its smaller side (8.6 pt at 360 px, 15 pt
+# at 640 px), at least 7
+fpt = 0.024*(height < width ? height : width)
+fpt = (fpt < 7 ? 7 : fpt)
 
 unset key
 set size ratio -1
@@ -95,7 +104,7 @@ set style fill solid 1.0 noborder
 r_pin = 0.025*lim
 
 do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
-  fsize = sprintf(",%d", int(11*s + 0.5))
+  fsize = sprintf(",%.3g", fpt)
   if (pass == 1) {
     set terminal gif animate delay delay loop 0 size width,height font "DejaVuSans".fsize
     set output ARG4
@@ -117,14 +126,14 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
             set arrow 200 + 40*i + v from vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v), \
               vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v) to \
               vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1), \
-              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1) nohead lw 2.5*s lc rgb rod2 front
+              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1) nohead lw 2.5*s lc rgb rc2(i) front
           }
         } else {
           set arrow 40 + i from sx2(k, i),sy2(k, i) to PX2[j],PY2[j] nohead lw 7*s \
-            lc rgb rod2 front
+            lc rgb rc2(i) front
         }
         set object 40 + i circle at PX2[j],PY2[j] size (spring2 ? 2.5 : 1)*r_pin \
-          fc rgb (i < links2 ? pin : rod2) front
+          fc rgb (i < links2 ? pin : rc2(i)) front
       }
       set object 39 circle at AX2[k],AY2[k] size 1.3*r_pin fc rgb pin front
     }
@@ -136,13 +145,13 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
           set arrow 1000 + 40*i + v from vx(sx(k, i), sy(k, i), PX[j], PY[j], v), \
             vy(sx(k, i), sy(k, i), PX[j], PY[j], v) to \
             vx(sx(k, i), sy(k, i), PX[j], PY[j], v + 1), \
-            vy(sx(k, i), sy(k, i), PX[j], PY[j], v + 1) nohead lw 2.5*s lc rgb rod front
+            vy(sx(k, i), sy(k, i), PX[j], PY[j], v + 1) nohead lw 2.5*s lc rgb rc1(i) front
         }
       } else {
-        set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rod front
+        set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rc1(i) front
       }
       set object i + 1 circle at PX[j],PY[j] size (spring ? 2.5 : 1)*r_pin \
-        fc rgb (i < links ? pin : rod) front
+        fc rgb (i < links ? pin : rc1(i)) front
     }
     if (reactions) {
       do for [i = 1:nforces] {
@@ -150,7 +159,7 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
         set arrow 100 + i from sx(k, i),sy(k, i) rto FX[j]/newtons_per_m,FY[j]/newtons_per_m \
           head filled size screen 0.018,20 lw 3*s lc rgb rc(i) front
       }
-      fsmall = sprintf(",%d", int(9*s + 0.5))
+      fsmall = sprintf(",%.3g", (0.8*fpt > 7 ? 0.8*fpt : 7))
       if (spring) {
         set label 2 "F01: the ground on the spring, at A (the spring's pull on the bob)" \
           at screen 0.03, screen 0.065 left front font fsmall tc rgb react1

@@ -5,11 +5,14 @@
 # energy scale ESCALE [J], as simulate writes it); OUTDIR: where balance.png goes;
 # TITLE: run description (enhanced text, escaped). The arguments are data: never
 # pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
+load style_gp
 datafile = ARG1
 outdir = ARG2
 title = ARG3
 Escale = real(ARG4)
-set terminal pngcairo size 1000,750 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,750 enhanced font fontspec(1000)
 set output outdir."/balance.png"
 set grid
 set key outside right

@@ -5,6 +5,9 @@
 # lambda1 spread index); OUTFILE: the PNG; N: number of files; LABELS: the N key
 # entries (enhanced text, escaped), one per line; LAMBDAS: the N final lambda1.
 # The arguments are data: the plot command built below holds only numbers.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
+load style_gp
 dir = ARG1
 n = int(real(ARG3))
 labels = ARG4
@@ -14,7 +17,7 @@ field(s, i) = (i <= 1) ? (strstrt(s, "\n") > 0 ? s[1:strstrt(s, "\n") - 1] : s) 
               field(s[strstrt(s, "\n") + 1:*], i - 1)
 label(i) = field(labels, i)
 lam(i) = real(word(lambdas, i))
-set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,600 enhanced font fontspec(1000)
 set output ARG2
 set title "Largest Lyapunov exponent: running estimates of several methods / steps"
 set xlabel "t [s]"; set ylabel "{/Symbol l}_1(t) [1/s]"

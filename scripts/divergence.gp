@@ -5,13 +5,16 @@
 # argument of numbers: SLOPE [1/s, natural log], B (log10 intercept), T0, T1 (fit
 # window), SAT (saturation, log10), LAM (Benettin lambda1, 0 if not computed),
 # NPAIRS, DELTA0. The arguments are data: never pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
+load style_gp
 dat = ARG1
 outfile = ARG2."/divergence.png"
 title = ARG3
 slope = real(word(ARG4, 1)); b = real(word(ARG4, 2))
 t0 = real(word(ARG4, 3)); t1 = real(word(ARG4, 4)); sat = real(word(ARG4, 5))
 lam = real(word(ARG4, 6)); npairs = int(real(word(ARG4, 7))); delta0 = real(word(ARG4, 8))
-set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,600 enhanced font fontspec(1000)
 set output outfile
 set grid
 set title sprintf("Divergence of nearby trajectories, {/Symbol d}_0 = %g, %d pair(s) (%s)", delta0, npairs, title)

@@ -7,6 +7,9 @@
 # angle from upright counted as fallen [rad]; OMEGA: the pin's angular frequency
 # [rad/s]; G, L: gravity [m/s^2] and the rod's length [m]. The arguments are data:
 # never pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
+load style_gp
 above = ARG1
 below = ARG2
 sweep = ARG3
@@ -19,7 +22,7 @@ L = real(ARG9)
 k = 3/(2*L)                    # m (L/2) / I_A of the uniform rod
 # Kapitza's slow frequency about upright: Omega^2 = k g ((a/a_c)^2 - 1)
 slow(a) = (a > a_c ? sqrt(k*g*((a/a_c)**2 - 1)) : NaN)
-set terminal pngcairo size 1000,1050 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,1050 enhanced font fontspec(1000)
 set output outfile
 set grid
 set multiplot layout 3,1 title sprintf("Kapitza's pendulum: one uniform rod (L = %g m) on a pin y_A = a cos({/Symbol w} t), {/Symbol w} = %.2f rad/s", L, omega)
@@ -28,15 +31,21 @@ set multiplot layout 3,1 title sprintf("Kapitza's pendulum: one uniform rod (L =
 set title "Angle from the upward vertical, started 0.05 rad off upright at rest"
 set xlabel "t [s]"; set ylabel "{/Symbol f} [rad]"
 set key top right
-set ytics ("-{/Symbol p}" -pi, "-{/Symbol p}/2" -pi/2, "0" 0, "{/Symbol p}/2" pi/2, \
-           "{/Symbol p}" pi, "3{/Symbol p}/2" 3*pi/2, "2{/Symbol p}" 2*pi)
+# tics in multiples of pi over the angles reached (style.gp)
+alo = 0; ahi = 0
+stats above u (alo = ($2 - pi/2 < alo ? $2 - pi/2 : alo), ahi = ($2 - pi/2 > ahi ? $2 - pi/2 : ahi), 0) nooutput
+stats below u (alo = ($2 - pi/2 < alo ? $2 - pi/2 : alo), ahi = ($2 - pi/2 > ahi ? $2 - pi/2 : ahi), 0) nooutput
+if (ahi > alo) { eval "set ytics (".pitics(alo, ahi).")" }
 plot above u 1:($2 - pi/2) w l lw 1.5 lc rgb "#009e73" \
        t sprintf("a = 0.012 m = %.1f a_c: stays up", 0.012/a_c), \
      below u 1:($2 - pi/2) w l lw 1.5 lc rgb "#e51e10" \
        t sprintf("a = 0.008 m = %.1f a_c: falls", 0.008/a_c)
 
 set title "The one that stays up, magnified: the slow oscillation and the fast ripple k a sin{/Symbol f} cos({/Symbol w} t)"
+alo = 1e308; ahi = -1e308
+stats above u (alo = ($2 - pi/2 < alo ? $2 - pi/2 : alo), ahi = ($2 - pi/2 > ahi ? $2 - pi/2 : ahi), 0) nooutput
 set ytics auto
+if (ahi > alo) { eval "set ytics (".pitics(alo, ahi).")" }
 set key top right
 plot above u 1:($2 - pi/2) w l lw 1 lc rgb "#009e73" \
        t sprintf("a = 0.012 m = %.1f a_c", 0.012/a_c)

@@ -5,6 +5,9 @@
 # LINKS: the number of links N. With the full spectrum (K = 2N) the pairing defects
 # |lambda_i + lambda_(2N+1-i)|, i = 1..N, are drawn beside the spectrum.
 # The arguments are data: never pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"  # text scales with the canvas
+load style_gp
 run = ARG1
 spec = ARG2
 outdir = ARG3
@@ -12,7 +15,7 @@ title = ARG4
 k = int(real(ARG5))
 N = int(real(ARG6))
 pairs = (k == 2*N)
-set terminal pngcairo size 1000,800 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,800 enhanced font fontspec(1000)
 set grid
 array cols[10] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", \
                    "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"]

@@ -11,7 +11,10 @@
 #                 Benettin's lambda1 for comparison, saturation level)
 #   poincare   -> poincare.png (the section points, one colour per orbit)
 #   indicators -> indicators.png (MEGNO Y and <Y>, FLI, SALI and GALI_k against t,
-#                 with the regular and chaotic reference behaviours drawn in)
+#                 with the reference behaviours of the orbit's kind, regular or
+#                 chaotic, drawn in: scripts/indicators.gp)
+# Every figure: text scaled with the canvas, pi tics on angle axes (scripts/style.gp);
+# the key entries drawn go to $DPEND_PLOT_KEYS when set (the figure test).
 # Several lyapunov files (same vectors): scripts/plot_chaos.sh --compare OUT.png F1.h5 F2.h5 ...
 # overlays their running lambda1 with the batch-means spread of each.
 # Figures are written through temporary files and moved into place once drawn

@@ -152,20 +152,26 @@ anchor() { awk -v cx="$2" -v cy="$3" -v r="$4" 'NR == r + 1 { print $cx, $cy }' 
 # a panel with nothing to show (a family or experiment absent from the study): a grey
 # "not run" and the reason in its middle
 empty_panel() {
-  echo "set label 10 'not run' at graph 0.5, graph 0.56 center font ',20' tc rgb 'gray40'"
+  echo "set label 10 'not run' at graph 0.5, graph 0.56 center font F20 tc rgb 'gray40'"
   echo "set label 11 '$1' at graph 0.5, graph 0.46 center tc rgb 'gray40'; unset logscale; unset key"
   echo "unset xtics; unset ytics; set xrange [0:1]; set yrange [0:1]; plot -1 notitle"
   echo "unset label 10; unset label 11; set logscale xy; set xtics; set ytics; set key; set autoscale"
 }
 
-# the generated script: gnuplot -c study.gp DATADIR FIGDIR ORDER_CASE DRIFT_CASE
+# the generated script: gnuplot -c study.gp DATADIR FIGDIR ORDER_CASE DRIFT_CASE STYLE_GP
 gp="$tmp/study.gp"
 cat > "$gp" <<'EOF'
 D = ARG1
 O = ARG2
 OC = ARG3
 DC = ARG4
-set terminal pngcairo size 1400,900 enhanced font "DejaVu Sans,11"
+load ARG5
+# text scales with the canvas (style.gp), the study's 1400 px at 0.75 of the rule
+fk = 0.75*font_pt(1400)/11.0
+F9 = sprintf(",%.3g", 9*fk); F10 = sprintf(",%.3g", 10*fk); F13 = sprintf(",%.3g", 13*fk)
+F20 = sprintf(",%.3g", 20*fk)
+set terminal pngcairo size 1400,900 enhanced font sprintf("DejaVu Sans,%.3g", 11*fk)
+set print O.'/keys.txt' append
 set logscale xy
 set format x "10^{%L}"; set format y "10^{%L}"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
@@ -173,17 +179,34 @@ set key outside right top spacing 1.1
 set datafile missing NaN
 EOF
 
-# ---- figure 1: energy error against time at the middle step
+# ---- figure 1: energy error against time at the middle step, the methods grouped by
+# family (the registry's plot groups, in its order; a method it does not know last):
+# one colour each (the registry's, shades of the family's hue) and, within a family,
+# one dash type each (solid, dashed, dash-dot, dash-dot-dot, dotted), a key line naming
+# each family above its members; the key lists only curves with data (keys.txt)
 ms=" ${methods[*]} "   # the method list, for in_list
+dts=(1 2 4 5 3)
 {
   echo "set output O.'/energy_vs_time.png'"
   en=$(e_name "$dc")
-  echo "set title \"${en^} against time, case \".DC.\", each method at its middle step (maximum per logarithmic time bin)$note\""
+  echo "set title \"${en^} against time, case \".DC.\",\\neach method at its middle step (maximum per logarithmic time bin)$note\""
   echo "set xlabel 't [s]'; set ylabel '${en#* error }'"
-  echo "set key outside right top"
+  echo "set key outside right top Left reverse samplen 4"
   plot="plot"
   guide=""
-  for m in "${methods[@]}"; do
+  ordered=()
+  for i in "${!group_ids[@]}"; do
+    for m in $(group_members "${group_ids[$i]}"); do in_list "$m" "$ms" && ordered+=("$m:$i"); done
+  done
+  for m in "${methods[@]}"; do [[ -n "${group_of[$m]:-}" ]] || ordered+=("$m:-1"); done
+  last=-2; j=0; n=0
+  for mi in "${ordered[@]}"; do
+    m=${mi%%:*}; gi=${mi##*:}
+    if [[ $gi != "$last" ]]; then
+      j=0; last=$gi
+      if ((gi >= 0)); then gt=${titles[$gi]}; else gt="other methods"; fi
+      plot="$plot keyentry w l lc rgb 'white' t '{/:Bold $gt}',"
+    fi
     f="c${di}_${m}"
     mode=step; [[ -f "$tmp/${f}_tol.dat" ]] && mode=tol
     index mid "/cases/$dc/$m/$mode/mid"
@@ -195,18 +218,18 @@ ms=" ${methods[*]} "   # the method list, for in_list
       number rt "$(ex "/cases/$dc/$m/tol/rtol" | awk -v r="$mid" 'NR == r + 1 {print $1}')"
       lab="$m, rtol = $(printf '%.0e' "$rt")"
     fi
-    dash=1; lw=2
-    if dashed "$m"; then
-      dash=2; lw=2.5
+    dash=${dts[$((j % ${#dts[@]}))]}; lw=2.2
+    j=$((j + 1)); n=$((n + 1))
+    if dashed "$m" && [[ -z "$guide" ]]; then
       # a t^1 guide 3 decades long, a factor 3 below the end of the first explicit method
-      if [[ -z "$guide" ]]; then
-        read -r gx gy < <(awk -v c="$col" '$c != "NaN" { x = $1; y = $c } END { print x, y }' \
-          "$tmp/${f}_${mode}_bins.dat")
-        number gx "$gx"; number gy "$gy"
-        guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 2 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
-      fi
+      read -r gx gy < <(awk -v c="$col" '$c != "NaN" { x = $1; y = $c } END { print x, y }' \
+        "$tmp/${f}_${mode}_bins.dat")
+      number gx "$gx"; number gy "$gy"
+      guide="(x >= $gx/1000 && x <= $gx ? $gy/3*(x/$gx) : NaN) w l lw 2 dt 3 lc rgb 'black' t 'slope 1: linear drift',"
     fi
-    plot="$plot $(df "${f}_${mode}_bins.dat") u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t '$lab',"
+    echo "stats $(df "${f}_${mode}_bins.dat") u (has(column($col)) && column($col) > 0 ? 1 : 0) nooutput; n$n = STATS_sum"
+    echo "print keyline('energy_vs_time.png', '$lab', n$n)"
+    plot="$plot $(df "${f}_${mode}_bins.dat") u 1:$col w l lw $lw dt $dash lc rgb '$(color "$m")' t (n$n > 0 ? '$lab' : ''),"
   done
   # no drift guide for a damped or driven case (no conserved energy to drift)
   if is_balance "$dc"; then guide=""; fi
@@ -222,18 +245,20 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
            # [$7 case index of the second curve, $8 its column, $9 its fit attribute]
   local c1=${cases[$3 - 1]} c2=""
   [[ -z "${7:-}" ]] || c2=${cases[$7 - 1]}
+  # taller than the others: each panel's key sits below it
+  echo "set terminal pngcairo size 1400,1100 enhanced font sprintf('DejaVu Sans,%.3g', 11*fk)"
   echo "set output O.'/$1'"
-  echo "set multiplot layout $(((${#group_ids[@]} + 1) / 2)),2 title $2 font ',13'"
-  echo "set xlabel 'step h [s]'; set ylabel '$5'; set key inside right bottom font ',10'"
+  echo "set multiplot layout $(((${#group_ids[@]} + 1) / 2)),2 title $2 font F13"
+  echo "set xlabel 'step h [s]'; set ylabel '$5'; set key below left Left reverse maxrows 2 font F10"
   for i in "${!group_ids[@]}"; do
     members=$(group_members "${group_ids[$i]}")
     echo "set title '${titles[$i]}'"
-    # room on the right for the key: x from the smallest step / 1.5 to the largest × 6
+    # x from the smallest step / 1.5 to the largest × 1.5 (the key sits below)
     files=()
     for m in $members; do in_list "$m" "$ms" && files+=("$tmp/c${3}_${m}_step.dat"); done
     if [[ ${#files[@]} -gt 0 ]]; then
       number lo "$(cat "${files[@]}" | awk 'NR == 1 || $1 < m { m = $1 } END { print m/1.5 }')"
-      number hi "$(cat "${files[@]}" | awk 'NR == 1 || $1 > m { m = $1 } END { print m*6 }')"
+      number hi "$(cat "${files[@]}" | awk 'NR == 1 || $1 > m { m = $1 } END { print m*1.5 }')"
       echo "set xrange [$lo:$hi]"
     fi
     plot="plot"
@@ -263,6 +288,7 @@ panels() { # $1 output, $2 title (a gnuplot string expression), $3 case index, $
     if [[ $n -eq 0 ]]; then empty_panel "no method of this family among the methods of this study"; else echo "${plot%,}"; fi
   done
   echo "unset multiplot; set autoscale x"
+  echo "set terminal pngcairo size 1400,900 enhanced font sprintf('DejaVu Sans,%.3g', 11*fk)"
 }
 nattr ts /config/t_short
 # units of the global error: the reference state's, as the file labels them (the
@@ -285,8 +311,8 @@ panels energy_vs_step.png \
 # ---- figure 4: work-precision
 {
   echo "set output O.'/work_precision.png'"
-  echo "set multiplot layout 1,2 title \"Work-precision, case \".OC.\": global error at t ≤ $ts s (fixed steps; dopri5, dop853 over tolerances)$note\" font ',13'"
-  echo "set ylabel 'max |Δq|, |Δq̇| [$su]'; set key inside right top font ',9'"
+  echo "set multiplot layout 1,2 title \"Work-precision, case \".OC.\": global error at t ≤ $ts s (fixed steps; dopri5, dop853 over tolerances)$note\" font F13"
+  echo "set ylabel 'max |Δq|, |Δq̇| [$su]'; set key inside right top font F9"
   for panel in wall rhs; do
     if [[ $panel == wall ]]; then
       echo "set title 'against wall time'; set xlabel 'wall time of one run [s]'"; col=6
@@ -333,11 +359,11 @@ panels energy_vs_step.png \
   echo "set output O.'/roundoff.png'"
   if ((${#ro[@]})); then
     # shellcheck disable=SC2028  # the \n is gnuplot's, inside its string
-    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state;\ndotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font ',13'"
+    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s, H in quadruple precision at the compensated state;\ndotted: √t (Brouwer's law) over the fit window t ≥ $fit_t s, offset below the data$note\" font F13"
   else
-    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s (Brouwer's law)$note\" font ',13'"
+    echo "set multiplot layout 1,2 title \"Roundoff: RMS over runs of (H - H(0))/E_s (Brouwer's law)$note\" font F13"
   fi
-  echo "set xlabel 't [s]'; set ylabel 'RMS of (H - H(0)) / E_s'; set key inside left top font ',10'"
+  echo "set xlabel 't [s]'; set ylabel 'RMS of (H - H(0)) / E_s'; set key inside left top font F10"
   echo "$yr"
   [[ -n "$fit_t" ]] && echo "set arrow 2 from $fit_t, graph 0 to $fit_t, graph 1 nohead dt 2 lc rgb 'gray50'"
   for mode in compensated plain; do
@@ -367,11 +393,11 @@ panels energy_vs_step.png \
   for m in "${tao_methods[@]}"; do [[ "$m" == none ]] || tao+=("$m"); done
   echo "set output O.'/tao_omega.png'"
   if ((${#tao[@]})); then
-    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font ',13'"
+    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω (gray dashed: default ω = 20/s; red dotted: 2ωh = 2πk)$note\" font F13"
   else
-    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω$note\" font ',13'"
+    echo "set multiplot layout 1,2 title \"Tao's methods against the binding constant ω$note\" font F13"
   fi
-  echo "set xlabel 'ω [1/s]'; set key inside left top font ',10'"
+  echo "set xlabel 'ω [1/s]'; set key inside left top font F10"
   echo "set arrow 1 from 20, graph 0 to 20, graph 1 nohead dt 2 lc rgb 'gray40'"
   # resonances 2 ω h = 2π k: the binding rotation is the identity
   if ((${#tao[@]})); then
@@ -415,9 +441,9 @@ if ((${#balance_cases[@]})); then
   {
     nb=${#balance_cases[@]}
     echo "set output O.'/balance.png'"
-    echo "set terminal pngcairo size 1400,$((150 + 380 * nb)) enhanced font 'DejaVu Sans,11'"
-    echo "set multiplot layout $nb,2 title \"Energy balance |E(t) - E(0) + W_{friction}(t) - W_{support}(t)| / E_s of the damped and driven cases (fixed steps)$note\" font ',13'"
-    echo "set key outside right top font ',9'"
+    echo "set terminal pngcairo size 1400,$((150 + 380 * nb)) enhanced font sprintf('DejaVu Sans,%.3g', 11*fk)"
+    echo "set multiplot layout $nb,2 title \"Energy balance |E(t) - E(0) + W_{friction}(t) - W_{support}(t)| / E_s of the damped and driven cases (fixed steps)$note\" font F13"
+    echo "set key outside right top font F9"
     for bc in "${balance_cases[@]}"; do
       bi=0
       for i in "${!cases[@]}"; do [[ "${cases[$i]}" == "$bc" ]] && bi=$((i + 1)); done
@@ -457,6 +483,6 @@ if ((${#balance_cases[@]})); then
 fi
 
 plot_begin "$out" "${figures[@]}"
-plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text"
+plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text" "$here/style.gp"
 fig_list=$(IFS=,; echo "${figures[*]%.png}")
 printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"

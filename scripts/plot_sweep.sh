@@ -5,11 +5,13 @@
 # white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
 # attribute /sweep@links, 2 for files without it),
 # energy_error.png and, if the sweep has them, lyapunov.png and the map of its
-# indicator (dpend sweep --indicator): megno.png (<Y>, a diverging scale around 2,
-# the value of regular orbits), fli.png, sali.png or gali2.png (log scales, 0 for
-# chaos); parameter axes (m1 .. l2/l1) are labelled in kg, m or as ratios; on every map the initial
+# indicator (dpend sweep --indicator): megno.png (<Y> over [0, 4], 2 the value of
+# regular orbits), fli.png, sali.png or gali2.png (log scales, 0 for
+# chaos); every map in viridis (scripts/style.gp); angle axes ticked in multiples of
+# pi; parameter axes (m1 .. l2/l1) are labelled in kg, m or as ratios; on every map the initial
 # conditions not integrated (status 0 or 4: a partial file, a non-finite state) are
-# grey, with a key entry, a colour none of the palettes holds. Figures are written
+# grey, a colour viridis does not hold, with a key entry only when a pixel is grey
+# (the key entries drawn: $DPEND_PLOT_KEYS, scripts/lib/output.sh). Figures are written
 # through temporary files and moved into place once drawn (scripts/lib/output.sh).
 # DPEND: the dpend executable (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh

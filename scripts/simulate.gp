@@ -10,8 +10,12 @@
 # coordinates; NAMES, UNITS: their names and units, blank-separated ("q1 q2",
 # "rad rad"; "r phi", "m rad"); K: number of force rows; STYLE: the figure's style
 # (rods, spring) and CONSERVED, in one argument: 1 when the energy is a constant of motion, else 0 (a
-# damped or driven run: the figure is the energy's change). Coordinates in rad are wrapped; others are drawn as they are. The
+# damped or driven run: the figure is the energy's change). Coordinates in rad are wrapped; others are drawn as they are. Axes
+# of angles are ticked in multiples of pi, text scales with the canvas (style.gp). The
 # arguments are data: never pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
+load style_gp
 datafile = ARG1
 outdir = ARG2
 title = ARG3
@@ -35,7 +39,7 @@ do for [i=1:N] { if (!isrod(i)) { allrad = 0 } }
 array linkcol[8] = ["#9400d3", "#009e73", "#56b4e9", "#e69f00", "#0072b2", "#e51e10", \
                     "#f0e442", "#000000"]
 lc(i) = linkcol[(i - 1)%8 + 1]
-set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,600 enhanced font fontspec(1000)
 set grid
 set key outside right
 isfinite(x) = (x == x && abs(x) < 1e308)
@@ -62,23 +66,29 @@ wrap(a) = a - 2*pi*ceil((a - pi)/(2*pi))
 array prevw[N]
 gap(c, i) = (w = wrap(column(c)), j = ($0 > 0 && abs(w - prevw[i]) > pi), prevw[i] = w, \
              j ? NaN : w)
-pitics = "(\"-{/Symbol p}\" -pi, \"-{/Symbol p}/2\" -pi/2, \"0\" 0, \"{/Symbol p}/2\" pi/2, \"{/Symbol p}\" pi)"
+wraptics = "(".pitics(-pi, pi).")"
+# the extent [alo, ahi] of the unwrapped angle columns (all, or column c alone)
+alo = 0; ahi = 0
+arange(c) = (alo = (column(c) < alo ? column(c) : alo), ahi = (column(c) > ahi ? column(c) : ahi), 0)
 
 # one plot when every coordinate is an angle, else one panel per coordinate
 if (allrad) {
   set output outdir."/angles.png"
   set title "Angles from the horizontal x axis, unwrapped (".title.")"
   set xlabel "t [s]"; set ylabel "angle [rad]"
+  alo = 1e308; ahi = -1e308
+  do for [i=1:N] { stats datafile u (arange(i + 1)) nooutput }
+  if (ahi > alo) { eval "set ytics (".pitics(alo, ahi).")" }
   plot for [i=1:N] datafile u 1:(column(i + 1)) w l lw 1.5 t nm(i)
 
   set output outdir."/angles_wrapped.png"
   set title "Angles from the horizontal x axis, wrapped to (-{/Symbol p}, {/Symbol p}] (".title.")"
   set yrange [-pi*1.05:pi*1.05]
-  eval "set ytics ".pitics
+  eval "set ytics ".wraptics
   plot for [i=1:N] datafile u 1:(gap(i + 1, i)) w l lw 1.5 t nm(i)
   set autoscale y; set ytics auto
 } else {
-  set terminal pngcairo size 1000,130 + 250*N enhanced font "DejaVu Sans,11"
+  set terminal pngcairo size 1000,130 + 250*N enhanced font fontspec(1000)
   do for [w=0:1] {
     set output outdir.(w ? "/angles_wrapped.png" : "/angles.png")
     set multiplot layout N,1 title "Coordinates".(w ? ", angles wrapped to (-{/Symbol p}, {/Symbol p}]" : "")." (".title.")"
@@ -86,6 +96,13 @@ if (allrad) {
     do for [i=1:N] {
       set title nm(i); set ylabel nm(i)." [".un(i)."]"
       if (i < N) { set xlabel "" } else { set xlabel "t [s]" }
+      set ytics auto
+      if (isrod(i) && !w) {
+        alo = 1e308; ahi = -1e308
+        stats datafile u (arange(i + 1)) nooutput
+        if (ahi > alo) { eval "set ytics (".pitics(alo, ahi).")" }
+      }
+      if (isrod(i) && w) { eval "set ytics ".wraptics }
       if (w && isrod(i)) {
         plot datafile u 1:(gap(i + 1, i)) w l lw 1.5 lc rgb lc(i)
       } else {
@@ -94,14 +111,15 @@ if (allrad) {
     }
     unset multiplot
   }
-  set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+  set ytics auto
+  set terminal pngcairo size 1000,600 enhanced font fontspec(1000)
   set key outside right
 }
 
 # panels: one row up to 3 links, then a near-square grid
 pcols = (N <= 3 ? N : ceil(sqrt(N)))
 prows = ceil(real(N)/pcols)
-if (prows > 1) { set terminal pngcairo size 1000,350*prows enhanced font "DejaVu Sans,11" }
+if (prows > 1) { set terminal pngcairo size 1000,350*prows enhanced font fontspec(1000) }
 set output outdir."/phase.png"
 set multiplot layout prows,pcols title "Phase portraits".(allrad ? ", angles wrapped to (-{/Symbol p}, {/Symbol p}]" : "")." (".title.")"
 set key off
@@ -110,7 +128,7 @@ do for [i=1:N] {
   set title (rods ? sprintf("link %d", i) : nm(i))
   if (isrod(i)) {
     set xrange [-pi*1.05:pi*1.05]
-    eval "set xtics ".pitics
+    eval "set xtics ".wraptics
     plot datafile u (gap(i + 1, i)):(column(cqd + i - 1)) w l lw 0.8 lc rgb lc(i)
   } else {
     set autoscale x; set xtics auto
@@ -118,7 +136,7 @@ do for [i=1:N] {
   }
 }
 unset multiplot
-set terminal pngcairo size 1000,600 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 1000,600 enhanced font fontspec(1000)
 set autoscale x; set xtics auto; set key outside right
 
 set output outdir."/energy_error.png"
@@ -143,7 +161,7 @@ ftitle(i) = rods ? (i == 1 ? "joint 1 (pin A): F01, ground on link 1" : \
   (K == 1 ? "force of the support on the body at A" : sprintf("force %d", i))
 if (K <= 4) {
   # one panel per force: its x and y
-  set terminal pngcairo size 1000,130 + 250*K enhanced font "DejaVu Sans,11"
+  set terminal pngcairo size 1000,130 + 250*K enhanced font fontspec(1000)
   set output outdir."/reactions.png"
   set multiplot layout K,1 title (rods ? "Joint reactions F_{i-1,i}: force of body i-1 on body i at joint i, body 0 the ground" : "Forces")." (".title.")"
   do for [i=1:K] {
@@ -162,7 +180,7 @@ if (K <= 4) {
 }
 
 set output outdir."/tip_path.png"
-set terminal pngcairo size 800,800 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 800,800 enhanced font fontspec(800)
 set title sprintf("Path of %s (y up, pin A at the origin)\n(%s)", \
   rods ? sprintf("the tip of link %d", N) : "the mass", title)
 set xlabel "x [m]"; set ylabel "y [m]"

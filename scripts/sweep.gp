@@ -7,8 +7,13 @@
 # drawn grey as "not integrated"). DIR/links holds the number of links N (a file:
 # gnuplot -c takes nine arguments at most): one map flip_map_linkK.png per link from
 # DIR/flipK.dat; DIR/indicator the code of the sweep's fast indicator (0 none,
-# 1 megno, 2 fli, 3 sali, 4 gali2), its matrix DIR/ind.dat. The arguments are
-# data: never pasted into code.
+# 1 megno, 2 fli, 3 sali, 4 gali2), its matrix DIR/ind.dat. Every map uses the
+# perceptual palette viridis (style.gp); angle axes are ticked in multiples of pi; the
+# grey "not integrated" key entry is drawn only when a pixel is grey (the key entries
+# drawn go to OUTDIR/keys.txt). The arguments are data: never pasted into code.
+sdir(s, i) = (i < 1 ? "" : (s[i:i] eq "/" ? s[1:i] : sdir(s, i - 1)))
+style_gp = sdir(ARG0, strlen(ARG0))."style.gp"
+load style_gp
 dir = ARG1
 outdir = ARG2
 tau = real(ARG4)
@@ -22,17 +27,24 @@ stats dir.'/links' using 1 nooutput
 links = int(STATS_max)
 stats dir.'/indicator' using 1 nooutput
 ind = int(STATS_max)
-# "not integrated": grey, which none of the palettes below holds (their ends are
-# white, red and near-white), drawn over the map from the status matrix, with a key
-# entry; without a status matrix the NaN pixels of the energy and Lyapunov maps show
-# the grey background instead
+# "not integrated": grey, which viridis does not hold, drawn over the map from the
+# status matrix; without a status matrix the NaN pixels of the energy, Lyapunov and
+# indicator maps show the grey background instead. The key entry only when a pixel is
+# grey: nst pixels of the status matrix, or without one, the map's NaN pixels
 grey = "#8c8c8c"
 ni(s) = (s == 0 || s == 4)
-notint = (strlen(status) > 0) ? \
+nst = 0
+if (strlen(status) > 0) {
+  stats status nonuniform matrix u (ni($3) ? 1 : 0) nooutput
+  nst = STATS_sum
+}
+overlay = (nst > 0) ? \
   "status nonuniform matrix u 1:2:(140):(140):(140):(ni($3) ? 255 : 0) w rgbalpha notitle, " : ""
-notint = notint."NaN w boxes fs solid 1.0 noborder fc rgb grey t 'not integrated'"
+notint(n) = overlay.(n > 0 ? "NaN w boxes fs solid 1.0 noborder fc rgb grey t 'not integrated'" \
+                            : "NaN notitle")
+set print ARG2."/keys.txt" append
 set key outside bottom center horizontal
-set terminal pngcairo size 900,800 enhanced font "DejaVu Sans,11"
+set terminal pngcairo size 900,800 enhanced font fontspec(900)
 set size ratio -1
 set tics out
 set border lw 1
@@ -43,23 +55,32 @@ axlabel(a) = (a eq "m1" || a eq "m2") ? a." [kg]" : (a eq "l1" || a eq "l2") ? a
 set xlabel axlabel(ax1)
 set ylabel axlabel(ax2)
 set autoscale xfix; set autoscale yfix
+# angle axes (theta*, q*, the angles from horizontal): tics in multiples of pi over
+# the grid's extent
+isangle(a) = (a[1:5] eq "theta" || a eq "q1" || a eq "q2" || a[1:1] eq "q")
+stats dir.'/flip.dat' nonuniform matrix u 1 nooutput
+if (isangle(ax1) && STATS_max > STATS_min) { eval "set xtics (".pitics(STATS_min, STATS_max).")" }
+stats dir.'/flip.dat' nonuniform matrix u 2 nooutput
+if (isangle(ax2) && STATS_max > STATS_min) { eval "set ytics (".pitics(STATS_min, STATS_max).")" }
 set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb "white" fs solid noborder
 # flip times: log scale, white = no flip before t_end (NaN pixels are not drawn)
 set logscale cb
 set cbrange [0.3:tend]
 set format cb "10^{%L}"
-set palette defined (0 "#1a9850", 1 "#fee08b", 2 "#d73027", 3 "#762a83", 4 "#2166ac")
+eval "set palette ".viridis
 set cblabel "time of the first flip [{/Symbol \326}(L/g)]"
 
 set output outdir."/flip_map.png"
 which = (links == 2) ? "either" : "any"
 set title "First flip of ".which." link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
-eval "plot dir.'/flip.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
+if (nst > 0) { print keyline("flip_map.png", "not integrated", nst) }
+eval "plot dir.'/flip.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint(nst)
 
 do for [k = 1:links] {
   set output outdir."/flip_map_link".k.".png"
   set title "First flip of link ".k." (white: none)\n".name
-  eval "plot dir.'/flip".k.".dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
+  if (nst > 0) { print keyline("flip_map_link".k.".png", "not integrated", nst) }
+  eval "plot dir.'/flip".k.".dat' nonuniform matrix using 1:2:3 with image notitle, ".notint(nst)
 }
 
 # NaN here means not integrated: the background is the grey of the key entry
@@ -68,8 +89,10 @@ set output outdir."/energy_error.png"
 set title "Maximum energy error |E(t) - E(0)| / (V_{max} - V_{min})\n".name
 set autoscale cb
 set cblabel "relative energy error"
-set palette rgb 33,13,10
-eval "plot dir.'/eerr.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint
+ng = nst
+if (strlen(status) == 0) { stats dir.'/eerr.dat' nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput; ng = STATS_sum }
+if (ng > 0) { print keyline("energy_error.png", "not integrated", ng) }
+eval "plot dir.'/eerr.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint(ng)
 
 if (strlen(lyap) > 0) {
   set output outdir."/lyapunov.png"
@@ -78,14 +101,22 @@ if (strlen(lyap) > 0) {
   set format cb "%g"
   set autoscale cb
   set cblabel "{/Symbol l} [1/{/Symbol \326}(L/g)]"
-  set palette rgb 21,22,23
-  eval "plot lyap nonuniform matrix using 1:2:($3*tau) with image notitle, ".notint
+  ng = nst
+  if (strlen(status) == 0) { stats lyap nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput; ng = STATS_sum }
+  if (ng > 0) { print keyline("lyapunov.png", "not integrated", ng) }
+  eval "plot lyap nonuniform matrix using 1:2:($3*tau) with image notitle, ".notint(ng)
 }
 
 # the fast indicator: a scale for each (NaN, not finite: the grey background)
+ng = nst
+if (ind > 0 && strlen(status) == 0) {
+  stats dir.'/ind.dat' nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput; ng = STATS_sum
+}
+indfig = (ind == 1 ? "megno.png" : (ind == 2 ? "fli.png" : (ind == 3 ? "sali.png" : "gali2.png")))
+if (ind > 0 && ng > 0) { print keyline(indfig, "not integrated", ng) }
 if (ind == 1) {
-  # MEGNO <Y>: diverging around 2, the limit of regular orbits (white); blue below
-  # (isochronous, stable), red above (chaotic: <Y> ~ lambda1 t/2), saturated at 4
+  # MEGNO <Y>: 2 is the limit of regular orbits (the middle of the scale); below:
+  # isochronous, stable; above: chaotic (<Y> ~ lambda1 t/2), saturated at 4
   set output outdir."/megno.png"
   set title "MEGNO <Y> at t_{end} (2: regular; > 2: chaotic)\n".name
   unset logscale cb
@@ -93,8 +124,7 @@ if (ind == 1) {
   set cbrange [0:4]
   set cbtics ("0" 0, "1" 1, "2" 2, "3" 3, "{/Symbol \263} 4" 4)
   set cblabel "<Y>"
-  set palette defined (0 "#2166ac", 1 "#92c5de", 2 "#f7f7f7", 3 "#f4a582", 4 "#b2182b")
-  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 4 ? 4 : ($3 < 0 ? 0 : $3))) with image notitle, ".notint
+  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 4 ? 4 : ($3 < 0 ? 0 : $3))) with image notitle, ".notint(ng)
 }
 if (ind == 2) {
   # FLI = ln |delta|: grows like ln t (regular) or lambda1 t (chaotic); linear scale
@@ -104,8 +134,7 @@ if (ind == 2) {
   set format cb "%g"
   set autoscale cb
   set cblabel "FLI"
-  set palette defined (0 "#fde725", 1 "#35b779", 2 "#31688e", 3 "#440154")
-  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint
+  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint(ng)
 }
 if (ind == 3 || ind == 4) {
   # SALI in [0, sqrt 2], GALI_2 in [0, 1]: log scale, near 0 (dark) for chaos, the
@@ -117,6 +146,6 @@ if (ind == 3 || ind == 4) {
   set cbrange [1e-16:((ind == 3) ? sqrt(2) : 1)]
   set format cb "10^{%L}"
   set cblabel (ind == 3) ? "SALI" : "GALI_2"
-  set palette defined (0 "#000004", 1 "#57106e", 2 "#bc3754", 3 "#f98e09", 4 "#fcffa4")
-  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint
+  eval "plot dir.'/ind.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint(ng)
 }
+set print

@@ -40,6 +40,7 @@ program tester
    use test_values_simulate, only: collect_values_simulate
    use test_values_chaos, only: collect_values_chaos
    use test_values_study, only: collect_values_study
+   use test_figures, only: collect_figures
    implicit none
 
    type :: suite_t
@@ -54,7 +55,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(33))
+   allocate (suites(34))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -88,6 +89,7 @@ program tester
    suites(31)%name = 'values_simulate'; call collect_values_simulate(suites(31)%tests)
    suites(32)%name = 'values_chaos'; call collect_values_chaos(suites(32)%tests)
    suites(33)%name = 'values_study'; call collect_values_study(suites(33)%tests)
+   suites(34)%name = 'figures'; call collect_figures(suites(34)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -4,7 +4,7 @@
 module test_animate
    use testing, only: unittest_t, new_unittest, check_true, error_t, fatal_error, &
                       skip_test, have_tool
-   use test_cli, only: run_command, scratch_dir, read_text
+   use test_cli, only: run_command, scratch_dir, read_text, dpend_binary
    use dpend_cli, only: to_str
    implicit none
    private
@@ -16,7 +16,8 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('gif_frames_and_size', test_gif), &
                new_unittest('three_links', test_three_links), &
-               new_unittest('refused_options', test_refused)]
+               new_unittest('refused_options', test_refused), &
+               new_unittest('tidy_summary_quiet_gnuplot', test_tidy_summary)]
    end subroutine collect_animate
 
    !> Parse the GIF file `path`: logical screen width and height, the number of
@@ -227,4 +228,48 @@ contains
                          to_str(st)//' '//text)
       end subroutine refused
    end subroutine test_refused
+
+   !> Issue 25: the summary prints times to 4 significant digits (the whole 1 s at
+   !> 30 fps: 31 frames playing 31/30 s, "1.033 s", not 1.0333333333333334), and gnuplot's messages ("N frames
+   !> in animation sequence") stay off stderr on success; a failing gnuplot script
+   !> (a copy of animate.gp with a bad last line, through DPEND_ROOT) shows them.
+   subroutine test_tidy_summary(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, root
+      integer :: stat, n, b
+      if (.not. have_tool('gnuplot')) then
+         call skip_test('gnuplot not found')
+         return
+      end if
+      dir = scratch_dir('animate-tidy')
+      stat = run_command(dir, 'simulate --t-end 1 --dt 1e-3 --save-every 10 --output '// &
+                         dir//'/sim.h5')
+      call check_true(error, stat == 0, 'simulate for animate')
+      if (allocated(error)) return
+      stat = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir//'/a.gif '// &
+                         '--fps 30 --size 64x64')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'animate --fps 30: exit status 0')
+      call check_true(error, index(text, '31 frames, 1.033 s at 30 fps, t = 0 .. 1 s') > 0, &
+                      'summary with times to 4 digits: '//text)
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, n == 0, 'nothing on stderr on success, got: '//text)
+      if (allocated(error)) return
+      ! a broken copy of scripts/animate.gp: gnuplot fails, its message is shown
+      root = dpend_binary()
+      b = index(root, '/build/', back=.true.)
+      if (b == 0) return
+      root = root(:b - 1)
+      call execute_command_line('mkdir -p '//dir//'/root/scripts && cp '//root// &
+                                '/scripts/animate.gp '//dir//'/root/scripts/ && echo '// &
+                                'no_such_command_25 >> '//dir//'/root/scripts/animate.gp')
+      call execute_command_line('DPEND_ROOT='//dir//'/root '//dpend_binary()//' animate '// &
+                                dir//'/sim.h5 --output '//dir//'/b.gif --fps 5 --size 64x64'// &
+                                ' > '//dir//'/stdout 2> '//dir//'/stderr', exitstat=stat)
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 1, 'broken animate.gp: exit status 1, got '//to_str(stat))
+      call check_true(error, index(text, 'no_such_command_25') > 0 .and. &
+                      index(text, 'gnuplot failed') > 0, &
+                      "broken animate.gp: gnuplot's message and the failure shown: "//text)
+   end subroutine test_tidy_summary
 end module test_animate

@@ -30,6 +30,8 @@
 #   plot_run COMMAND...            run COMMAND (gnuplot -c ...); on success move every
 #                                  figdir/NAME to DIR/NAME, else remove figdir, keep the
 #                                  old figures and exit 1
+#                                  (and append figdir/keys.txt, the key entries drawn,
+#                                  to $DPEND_PLOT_KEYS if set: the figure test)
 #   plot_discard                   remove figdir (also done at exit)
 
 plot_name=plot
@@ -159,6 +161,13 @@ plot_run() {
     mv -f -T -- "$figdir/$name" "$fig_target/$name" ||
       { plot_discard; plot_fail 1 "cannot move the new $name into '$fig_target'"; }
   done
+  # the key entries the figures drew (figdir/keys.txt, scripts/style.gp), for the
+  # figure test: appended to $DPEND_PLOT_KEYS when it names a file
+  if [[ -n "${DPEND_PLOT_KEYS:-}" && -f "$figdir/keys.txt" ]]; then
+    cat -- "$figdir/keys.txt" >> "$DPEND_PLOT_KEYS" ||
+      { plot_discard; plot_fail 1 "cannot append the key entries to '$DPEND_PLOT_KEYS'"; }
+  fi
+  rm -f -- "$figdir/keys.txt"
   rmdir -- "$figdir" 2>/dev/null || rm -rf -- "$figdir"
   figdir=""
 }

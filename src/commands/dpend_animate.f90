@@ -17,7 +17,7 @@ module dpend_animate
    use dpend_trajectory_figure, only: figure_track_t, read_figure, resample_figure
    use dpend_limits, only: check_range, sci, max_time, max_angle
    use dpend_resources, only: check_memory
-   use dpend_os, only: find_script, run_program, make_temp_file, remove_file, &
+   use dpend_os, only: find_script, run_program, make_temp_file, remove_file, echo_to_stderr, &
                            directory_of, base_name, path_kind, path_directory, path_missing, &
                            move_noreplace, move_replace, sync_path, errno_text
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -473,7 +473,7 @@ contains
       type(temp_files_t) :: tmp
       real(dp) :: span, lim, fmax, npm
       real(dp), allocatable :: tf(:), ttr(:), pa(:, :), pb(:, :), qa(:, :), qb(:, :)
-      character(len=:), allocatable :: script, title, label1, label2
+      character(len=:), allocatable :: script, title, label1, label2, errlog
       type(arg_t) :: argv(11)
       integer :: i, stat, nb
       logical :: overlay
@@ -556,9 +556,19 @@ contains
       argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = tmp%params
       argv(5)%s = tmp%frames_dat; argv(6)%s = tmp%trail_dat; argv(7)%s = out%temp
       argv(8)%s = title; argv(9)%s = label1; argv(10)%s = label2; argv(11)%s = tmp%stem
-      call run_program(argv, stat, error)
-      if (.not. allocated(error) .and. stat /= 0) &
+      ! gnuplot's messages go to a file, shown only when it fails
+      if (make_temp_file(directory_of(cfg%output)//'/.'//base_name(cfg%output)// &
+                         '.gnuplot-', errlog) /= 0) errlog = ''
+      if (len(errlog) > 0) then
+         call run_program(argv, stat, error, stderr_path=errlog)
+      else
+         call run_program(argv, stat, error)
+      end if
+      if (.not. allocated(error) .and. stat /= 0) then
+         if (len(errlog) > 0) call echo_to_stderr(errlog, 65536)
          call fatal_error(error, 'gnuplot failed (exit status '//to_str(stat)//', '//script//')')
+      end if
+      if (len(errlog) > 0) nb = remove_file(errlog)
       if (.not. allocated(error)) call out%commit(error)
       if (.not. allocated(error) .and. len(tmp%stem) > 0) &
          call move_frames(cfg, tmp%stem, plan%nframes, error)
@@ -568,11 +578,11 @@ contains
       if (allocated(error)) return
       failed = .false.
       summary = "wrote '"//cfg%output//"': "//to_str(plan%nframes)//' frames, '// &
-                sci(real(plan%nframes, dp)/real(cfg%fps, dp))//' s at '//to_str(cfg%fps)// &
-                ' fps, t = '//sci(tf(1))//' .. '//sci(tf(plan%nframes))//' s'
+                sci(real(plan%nframes, dp)/real(cfg%fps, dp), 4)//' s at '//to_str(cfg%fps)// &
+                ' fps, t = '//sci(tf(1), 4)//' .. '//sci(tf(plan%nframes), 4)//' s'
       if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
       if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &
-                                                 sci(npm)//' N'
+                                                 sci(npm, 4)//' N'
    end subroutine run_animate_body
 
    !> The frames and the trail of an animation of `span` seconds from `t0`, or the

@@ -14,7 +14,7 @@ module dpend_study_command
    use dpend_os, only: host_name, cpu_model, executable_path, make_directories, &
                            find_script, &
                            directory_of, run_program, io_failure_reason, path_kind, &
-                           path_missing, base_name
+                           path_missing, base_name, make_temp_file, remove_file, echo_to_stderr
    use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
    use dpend_study_config, only: study_model_name, default_model_study, case_model
    use dpend_model, only: model_t
@@ -54,7 +54,8 @@ contains
       logical, intent(out) :: failed                    !! the study ran, then failed
       type(study_result_t) :: res
       type(output_t) :: h5_out, md_out
-      character(len=:), allocatable :: text, md, script, fig_dir, exe
+      character(len=:), allocatable :: text, md, script, fig_dir, exe, errlog
+      integer :: gone
       type(arg_t) :: argv(6)
       integer :: unit, stat
       character(len=512) :: msg
@@ -130,7 +131,16 @@ contains
       ! structure constructors with deferred-length components)
       argv(1)%s = 'env'; argv(2)%s = 'DPEND='//exe; argv(3)%s = 'bash'
       argv(4)%s = script; argv(5)%s = cfg%output; argv(6)%s = fig_dir
-      call run_program(argv, stat, error)
+      ! gnuplot's messages go to a file, shown only when the figures fail
+      if (make_temp_file(fig_dir//'/.'//base_name(cfg%output)//'.plot-', errlog) /= 0) &
+         errlog = ''
+      if (len(errlog) > 0) then
+         call run_program(argv, stat, error, stderr_path=errlog)
+         if (stat /= 0) call echo_to_stderr(errlog, 65536)
+         gone = remove_file(errlog)
+      else
+         call run_program(argv, stat, error)
+      end if
       if (allocated(error)) return
       if (stat /= 0) then
          call fatal_error(error, 'figures failed ('//script//', exit status '//to_str(stat)// &

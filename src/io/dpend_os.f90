@@ -7,7 +7,7 @@
 module dpend_os
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_long_long, c_size_t, &
       c_null_char, c_ptr, c_loc, c_null_ptr
-   use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: iso_fortran_env, only: int64, error_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t
@@ -18,6 +18,7 @@ module dpend_os
    public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
    public :: free_disk_bytes, available_memory_bytes, file_id, make_temp_file, sync_path
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
+   public :: echo_to_stderr  ! issue 25 (figures)
    public :: errno_exists, errno_nospc, io_failure_reason
 
    !> What `path_kind` finds at a path.
@@ -89,6 +90,13 @@ module dpend_os
          type(c_ptr), intent(in) :: argv(*)
          integer(c_int), intent(out) :: status
       end function c_spawn_wait
+      integer(c_int) function c_spawn_wait_err(argv, status, errpath) &
+         bind(C, name='dpend_spawn_wait_err')
+         import :: c_int, c_ptr, c_char
+         type(c_ptr), intent(in) :: argv(*)
+         integer(c_int), intent(out) :: status
+         character(kind=c_char), intent(in) :: errpath(*)
+      end function c_spawn_wait_err
    end interface
 
 contains
@@ -210,11 +218,13 @@ contains
    !> Run the program argv(1)%s (searched on PATH) with arguments argv(2:), each
    !> passed exactly as it is (no trimming, no splitting), without a shell, and
    !> wait for it. `status` is its exit status (128 + N when signal N ended it);
-   !> `error` is set when it could not be started.
-   subroutine run_program(argv, status, error)
+   !> `error` is set when it could not be started. With `stderr_path`, its standard
+   !> error goes to that file (created or truncated) instead of dpend's.
+   subroutine run_program(argv, status, error, stderr_path)
       type(arg_t), intent(in) :: argv(:)                !! program and arguments
       integer, intent(out) :: status                    !! its exit status
       type(error_t), allocatable, intent(out) :: error  !! could not start it
+      character(len=*), intent(in), optional :: stderr_path  !! file for its stderr
       type :: c_string_t
          character(kind=c_char), allocatable :: s(:)
       end type c_string_t
@@ -235,7 +245,11 @@ contains
       ptrs(size(argv) + 1) = c_null_ptr
       status = -1
       cstatus = -1
-      err = c_spawn_wait(ptrs, cstatus)
+      if (present(stderr_path)) then
+         err = c_spawn_wait_err(ptrs, cstatus, stderr_path//c_null_char)
+      else
+         err = c_spawn_wait(ptrs, cstatus)
+      end if
       if (err /= 0) then
          call fatal_error(error, "cannot run '"//argv(1)%s//"': "//errno_text(int(err)))
          return
@@ -412,4 +426,26 @@ contains
          reason = fallback
       end if
    end function io_failure_reason
+
+   ! issue 25 (figures): a program's captured stderr, shown only when it failed
+   !> Copy the file `path` (a program's captured standard error) to dpend's standard
+   !> error, at most its last `max_bytes` bytes; nothing if it is missing or empty.
+   subroutine echo_to_stderr(path, max_bytes)
+      character(len=*), intent(in) :: path   !! the captured text
+      integer, intent(in) :: max_bytes       !! most bytes shown (the end of the file)
+      character(len=:), allocatable :: text
+      integer :: unit, stat, size_bytes, first
+      open (newunit=unit, file=path, status='old', action='read', access='stream', &
+            form='unformatted', iostat=stat)
+      if (stat /= 0) return
+      inquire (unit=unit, size=size_bytes)
+      if (size_bytes > 0 .and. max_bytes > 0) then
+         first = max(1, size_bytes - max_bytes + 1)
+         allocate (character(len=size_bytes - first + 1) :: text)
+         read (unit, pos=first, iostat=stat) text
+         if (stat == 0) write (error_unit, '(a)', advance='no') text
+         flush (error_unit)
+      end if
+      close (unit)
+   end subroutine echo_to_stderr
 end module dpend_os

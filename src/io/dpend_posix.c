@@ -106,13 +106,33 @@ void dpend_error_text(int err, char *buf, int len)
     snprintf(buf, (size_t)len, "%s", strerror(err));
 }
 
+int dpend_spawn_wait_err(char *const argv[], int *status, const char *errpath);
+
 /* Run argv[0] (searched on PATH) with the argument vector `argv` (NULL-ended),
  * no shell, and wait for it. `status` is its exit status, or 128 + the signal
  * that ended it. Returns 0, or the errno of a failed start. */
 int dpend_spawn_wait(char *const argv[], int *status)
 {
+    return dpend_spawn_wait_err(argv, status, NULL);
+}
+
+/* As dpend_spawn_wait, with the program's standard error written to the file
+ * `errpath` (created or truncated, mode 0600) unless `errpath` is NULL or "". */
+int dpend_spawn_wait_err(char *const argv[], int *status, const char *errpath)
+{
     pid_t pid;
-    int err = posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ);
+    int err;
+    if (errpath != NULL && errpath[0] != '\0') {
+        posix_spawn_file_actions_t fa;
+        err = posix_spawn_file_actions_init(&fa);
+        if (err != 0) return err;
+        err = posix_spawn_file_actions_addopen(&fa, 2, errpath,
+                                               O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        if (err == 0) err = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+        posix_spawn_file_actions_destroy(&fa);
+    } else {
+        err = posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ);
+    }
     if (err != 0) return err;
     int ws;
     while (waitpid(pid, &ws, 0) < 0) {
