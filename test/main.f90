@@ -37,6 +37,7 @@ program tester
    use test_fit_stats, only: collect_fit_stats
    use test_mutant_gaps, only: collect_mutant_gaps
    use test_values_sweep2, only: collect_values_sweep2
+   use test_values_fit, only: collect_values_fit
    implicit none
 
    type :: suite_t
@@ -51,7 +52,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(30))
+   allocate (suites(31))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -82,6 +83,7 @@ program tester
    suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
    suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
    suites(30)%name = 'values_sweep2'; call collect_values_sweep2(suites(30)%tests)
+   suites(31)%name = 'values_fit'; call collect_values_fit(suites(31)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
