@@ -206,6 +206,9 @@ contains
    !> (--indicator lambda1: the kernel renormalizes the deviation (1, 1, 1, 1)/2 at
    !> every step) against ln(|y(T; y0 + ε d) − y(T; y0 − ε d)|/(2ε))/T of two reruns,
    !> ε = 1e-6 (the derivative of the rk4 map; tolerance 1e-8 relative, measured 1.2e-9).
+   !> The MEGNO map's other datasets (t_flip, t_flip1, t_flip2, the final state,
+   !> t_stop, status, energy0, energy_error) against reruns to t_end: every pixel is
+   !> integrated, and one below every flip bound keeps status 3.
    subroutine test_indicators(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       character(len=*), parameter :: base = 'sweep --quiet --w1 0.5 --n1 3 --n2 2 '// &
@@ -216,6 +219,9 @@ contains
       real(dp), allocatable :: ax1(:), ax2(:), megno(:), megno_y(:), fli(:), sali(:), &
                                gali2(:), lyapunov(:)
       real(dp) :: y0(4), d(4), ya(4), yb(4), worst(6), x(5), r(5), lam, t_end
+      real(dp), allocatable :: yy(:, :)
+      type(map_t) :: map
+      type(energy_t) :: en
       type(indicators_result_t) :: ind
       class(model_t), allocatable :: model
       class(integrator_t), allocatable :: integ
@@ -230,12 +236,26 @@ contains
       stat = stat + run_command(dir, base//dir//'/l.h5 --indicator lambda1')
       call check_true(error, stat == 0, 'the five indicator sweeps exit 0')
       if (allocated(error)) return
+      allocate (map%tf(2, 6), map%y(4, 6))
       call h5%open(dir//'/m.h5', 'r', error)
       if (.not. allocated(error)) call h5%read('/sweep/axis1', ax1, error)
       if (.not. allocated(error)) call h5%read('/sweep/axis2', ax2, error)
       call read_px(h5, '/sweep/megno', megno, error)
       call read_px(h5, '/sweep/megno_y', megno_y, error)
+      ! the flip datasets of an indicator map (every pixel run to t_end)
+      call read_px(h5, '/sweep/t_flip', map%t_any, error)
+      call read_row(h5, '/sweep/t_flip1', map%tf, 1, error)
+      call read_row(h5, '/sweep/t_flip2', map%tf, 2, error)
+      call read_px(h5, '/sweep/energy0', map%e0, error)
+      call read_px(h5, '/sweep/energy_error', map%err, error)
+      call read_px(h5, '/sweep/t_stop', map%t_stop, error)
+      call read_row(h5, '/sweep/final/q1', map%y, 1, error)
+      call read_row(h5, '/sweep/final/q2', map%y, 2, error)
+      call read_row(h5, '/sweep/final/w1', map%y, 3, error)
+      call read_row(h5, '/sweep/final/w2', map%y, 4, error)
+      call read_ipx(h5, '/sweep/status', map%status, error)
       call h5%close()
+      map%n = 6
       call read_one(dir//'/f.h5', '/sweep/fli', fli)
       call read_one(dir//'/s.h5', '/sweep/sali', sali)
       call read_one(dir//'/g.h5', '/sweep/gali2', gali2)
@@ -249,6 +269,16 @@ contains
          call fatal_error(error, err%message)
          return
       end if
+      allocate (yy(4, 6))
+      do i2 = 1, 2
+         do i1 = 1, 3
+            yy(:, i1 + 3*(i2 - 1)) = [ax1(i1) - half_pi, ax2(i2) - half_pi, 0.5_dp, 0.0_dp]
+         end do
+      end do
+      en%m = [1.0_dp, 1.0_dp]; en%l = [1.0_dp, 1.0_dp]; en%g = 9.8_dp
+      call compare_map(error, 'indicator_maps_two_links', map, en, yy, 0.005_dp, 400_i8, &
+                       rule_end, tol=1e-11_dp, kinds=[1, 3], all_run=.true.)
+      if (allocated(error)) return
       t_end = 2.0_dp
       worst = 0
       d = 0.5_dp
@@ -493,7 +523,7 @@ contains
    !> model (rods of en%m, en%l or the spring) by rk4 at step h for at most n_steps
    !> steps, stop rule `rule`. tol: relative tolerance of the final state, the flip
    !> times and the energy error; `kinds` lists statuses that must occur.
-   subroutine compare_map(error, what, map, en, y0, h, n_steps, rule, tol, kinds)
+   subroutine compare_map(error, what, map, en, y0, h, n_steps, rule, tol, kinds, all_run)
       type(error_t), allocatable, intent(inout) :: error  !! set on failure
       character(len=*), intent(in) :: what                !! test name, for the printout
       type(map_t), intent(in) :: map                      !! the file's datasets
@@ -504,6 +534,8 @@ contains
       integer, intent(in) :: rule                         !! stop rule
       real(dp), intent(in) :: tol                         !! relative tolerance
       integer, intent(in), optional :: kinds(:)           !! statuses that must occur
+      logical, intent(in), optional :: all_run            !! indicator map: every pixel
+                                                          !! runs to t_end (default false)
       class(model_t), allocatable :: model
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: err
@@ -512,7 +544,10 @@ contains
       real(dp) :: worst(4)
       character(len=16) :: px
       integer :: j, k
+      logical :: every
       if (allocated(error)) return
+      every = .false.
+      if (present(all_run)) every = all_run
       if (en%spring) then
          spec = model_spec('elastic')
          call spec%set('m', en%m); call spec%set('k', [en%k]); call spec%set('l0', [en%l0])
@@ -529,7 +564,7 @@ contains
       worst = 0
       do j = 1, map%n
          write (px, '("pixel ", i0)') j
-         call rerun(model, integ, en, y0(:, j), h, n_steps, rule, r)
+         call rerun(model, integ, en, y0(:, j), h, n_steps, rule, every, r)
          call check_true(error, map%status(j) == r%status, trim(px)//': status '// &
                          str(map%status(j))//', rerun '//str(r%status))
          if (allocated(map%steps)) call check_true(error, map%steps(j) == r%steps, &
@@ -599,15 +634,17 @@ contains
    end function pixel
 
    !> Run y0 again: rk4 steps of h through `integ%step`, the flips, the stop rule,
-   !> the flip energy bounds (a pixel below every bound is not integrated) and the
-   !> largest |E(t_k) − E(0)| over the steps, in the test's own code.
-   subroutine rerun(model, integ, en, y0, h, n_steps, rule, r)
+   !> the flip energy bounds (a pixel below every bound has status 3 and is not
+   !> integrated unless `every`) and the largest |E(t_k) − E(0)| over the steps, in
+   !> the test's own code.
+   subroutine rerun(model, integ, en, y0, h, n_steps, rule, every, r)
       class(model_t), intent(in) :: model
       class(integrator_t), intent(inout) :: integ
       type(energy_t), intent(in) :: en
       real(dp), intent(in) :: y0(:), h
       integer(i8), intent(in) :: n_steps
       integer, intent(in) :: rule
+      logical, intent(in) :: every
       type(ref_t), intent(out) :: r
       real(dp), allocatable :: gl(:), bound(:), p(:), y(:)
       logical, allocatable :: can(:)
@@ -640,7 +677,7 @@ contains
             can(i) = .not. (r%e0 < bound(i) - 1e-12_dp*sum(gl))
          end do
          scale = 2.0_dp*sum(gl)
-         if (.not. any(can) .and. rule /= rule_end) then
+         if (.not. any(can) .and. .not. every) then
             r%status = 3; r%err = nan; r%t_stop = 0; r%steps = 0
             return
          end if
@@ -681,6 +718,7 @@ contains
       r%y = y
       if (r%status /= 4) then
          r%status = merge(1, 2, r%steps == n_steps)
+         if (.not. (en%spring .or. any(can))) r%status = 3
          r%err = r%err/scale
       end if
       if (any(.not. ieee_is_nan(r%tf))) r%t_any = minval(r%tf, mask=.not. ieee_is_nan(r%tf))
