@@ -33,7 +33,7 @@ module test_values_fit
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
-   public :: collect_values_fit
+   public :: collect_values_fit, read_csv
 
    real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
 
@@ -336,21 +336,24 @@ contains
       end function f
    end function t975
 
-   !> The numeric rows of a CSV file (first line a header, '#' lines skipped): the
-   !> first `ncol` fields of each, (ncol, rows).
-   subroutine read_csv(path, ncol, rows, error)
+   !> The numeric rows of a CSV or text file (a header line unless `header` is false;
+   !> blank lines and lines starting with '#' skipped): the first `ncol` fields of
+   !> each row, (ncol, rows).
+   subroutine read_csv(path, ncol, rows, error, header)
       character(len=*), intent(in) :: path
       integer, intent(in) :: ncol
       real(dp), allocatable, intent(out) :: rows(:, :)
       type(error_t), allocatable, intent(inout) :: error
+      logical, intent(in), optional :: header
       character(len=512) :: line
       real(dp), allocatable :: vals(:)
       real(dp) :: v(ncol)
       integer :: unit, stat, nr
-      logical :: header
+      logical :: skip
       allocate (vals(0))
       nr = 0
-      header = .true.
+      skip = .true.
+      if (present(header)) skip = header
       open (newunit=unit, file=path, status='old', action='read', iostat=stat)
       if (stat /= 0) then
          call fatal_error(error, 'cannot open '//path)
@@ -360,8 +363,8 @@ contains
          read (unit, '(a)', iostat=stat) line
          if (stat /= 0) exit
          if (line(1:1) == '#' .or. len_trim(line) == 0) cycle
-         if (header) then
-            header = .false.
+         if (skip) then
+            skip = .false.
             cycle
          end if
          read (line, *, iostat=stat) v

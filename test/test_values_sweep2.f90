@@ -25,7 +25,9 @@ module test_values_sweep2
    use dpend_model, only: model_t
    use dpend_model_factory, only: model_spec_t, model_spec, new_model
    use dpend_indicators, only: indicators_result_t, chaos_indicators
+   use dpend_cli, only: to_str
    use test_cli, only: run_command, scratch_dir
+   use test_values_fit, only: read_csv
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -339,7 +341,7 @@ contains
                          '--dt 0.01 --t-end 3 --block 3 --threads 1 --output '//dir//'/s.h5')
       call check_true(error, stat == 0, 'sweep of data/sweep_list.nml exits 0')
       if (allocated(error)) return
-      call read_rows('data/sweep_list.txt', rows, error)
+      call read_csv('data/sweep_list.txt', 4, rows, error, header=.false.)
       if (allocated(error)) return
       n = size(rows, 2)
       call check_true(error, n == 5, 'data/sweep_list.txt holds 5 rows')
@@ -568,10 +570,10 @@ contains
          write (px, '("pixel ", i0)') j
          call rerun(model, integ, en, y0(:, j), h, n_steps, rule, every, r)
          call check_true(error, map%status(j) == r%status, trim(px)//': status '// &
-                         str(map%status(j))//', rerun '//str(r%status))
+                         to_str(map%status(j))//', rerun '//to_str(r%status))
          if (allocated(map%steps)) call check_true(error, map%steps(j) == r%steps, &
-                                                    trim(px)//': steps '//str(map%steps(j)) &
-                                                    //', rerun '//str(r%steps))
+                                                    trim(px)//': steps '//to_str(map%steps(j)) &
+                                                    //', rerun '//to_str(r%steps))
          call check(error, map%t_stop(j), r%t_stop, trim(px)//': t_stop', rel=1e-14_dp)
          call check(error, map%e0(j), r%e0, trim(px)//': energy0 (closed form)', &
                     rel=1e-13_dp, abs=1e-13_dp)
@@ -587,7 +589,7 @@ contains
          end if
          if (allocated(map%tf)) then
             do k = 1, size(map%tf, 1)
-               call same_time(map%tf(k, j), r%tf(k), trim(px)//': t_flip'//str(k))
+               call same_time(map%tf(k, j), r%tf(k), trim(px)//': t_flip'//to_str(k))
             end do
             call same_time(map%t_any(j), r%t_any, trim(px)//': t_flip')
             worst(2) = max(worst(2), maxval(abs(map%tf(:, j) - r%tf), &
@@ -600,7 +602,7 @@ contains
       if (present(kinds)) then
          do k = 1, size(kinds)
             call check_true(error, any(map%status == kinds(k)), 'a pixel of status '// &
-                            str(kinds(k))//' (the test covers it)')
+                            to_str(kinds(k))//' (the test covers it)')
          end do
       end if
       if (map%n > 1) write (output_unit, '(a, 4es9.2)') '    '//what//': largest '// &
@@ -841,8 +843,8 @@ contains
       call read_px(h5, name, v, error)
       if (allocated(error)) return
       if (size(v) /= size(a, 2)) then
-         call fatal_error(error, name//': '//str(size(v))//' pixels, expected '// &
-                          str(size(a, 2)))
+         call fatal_error(error, name//': '//to_str(size(v))//' pixels, expected '// &
+                          to_str(size(a, 2)))
          return
       end if
       a(row, :) = v
@@ -866,44 +868,5 @@ contains
       end if
       if (allocated(error)) error%message = name//': '//error%message
    end subroutine read_ipx
-
-   !> The numeric rows of a text file of initial states ('#' starts a comment):
-   !> (4, rows).
-   subroutine read_rows(path, rows, error)
-      character(len=*), intent(in) :: path
-      real(dp), allocatable, intent(out) :: rows(:, :)
-      type(error_t), allocatable, intent(inout) :: error
-      character(len=512) :: line
-      real(dp) :: v(4)
-      integer :: unit, stat, c
-      allocate (rows(4, 0))
-      open (newunit=unit, file=path, status='old', action='read', iostat=stat)
-      if (stat /= 0) then
-         call fatal_error(error, 'cannot open '//path)
-         return
-      end if
-      do
-         read (unit, '(a)', iostat=stat) line
-         if (stat /= 0) exit
-         c = index(line, '#')
-         if (c > 0) line(c:) = ' '
-         if (len_trim(line) == 0) cycle
-         read (line, *, iostat=stat) v
-         if (stat /= 0) then
-            call fatal_error(error, path//': unreadable row '//trim(line))
-            exit
-         end if
-         rows = reshape([reshape(rows, [size(rows)]), v], [4, size(rows, 2) + 1])
-      end do
-      close (unit)
-   end subroutine read_rows
-
-   pure function str(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function str
 
 end module test_values_sweep2
