@@ -37,6 +37,7 @@ program tester
    use test_fit_stats, only: collect_fit_stats
    use test_mutant_gaps, only: collect_mutant_gaps
    use test_inventory, only: collect_inventory
+   use test_values_simulate, only: collect_values_simulate
    use test_values_sweep2, only: collect_values_sweep2
    use test_values_fit, only: collect_values_fit
    implicit none
@@ -53,7 +54,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(32))
+   allocate (suites(33))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -84,8 +85,9 @@ program tester
    suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
    suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
    suites(30)%name = 'inventory'; call collect_inventory(suites(30)%tests)
-   suites(31)%name = 'values_sweep2'; call collect_values_sweep2(suites(31)%tests)
-   suites(32)%name = 'values_fit'; call collect_values_fit(suites(32)%tests)
+   suites(31)%name = 'values_simulate'; call collect_values_simulate(suites(31)%tests)
+   suites(32)%name = 'values_sweep2'; call collect_values_sweep2(suites(32)%tests)
+   suites(33)%name = 'values_fit'; call collect_values_fit(suites(33)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -27,6 +27,7 @@ module test_balance
    implicit none
    private
    public :: collect_balance
+   public :: boole   ! r4-invcore: also used by test_values_simulate
 
    real(dp), parameter :: g = 9.8_dp      !! gravity [m/s²] (the default)
    real(dp), parameter :: m = 1.0_dp      !! link mass [kg] (the default)

@@ -198,6 +198,7 @@ contains
       if (allocated(error)) return
       call check_inventory(error, 'study', [character(len=10) :: 'tiny_study'], &
                            [dir//'/tiny_study.h5'])
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_study
 
    !> fit: angles (data/fit_example.csv, with and without --fit-damping; a short fit
@@ -250,6 +251,7 @@ contains
                       'files other than its GIF: '//listing)
       if (allocated(error)) return
       call check_inventory(error, 'animate', [character(len=1) ::], [character(len=1) ::])
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_animate
 
    ! ----------------------------------------------------------------- helpers
@@ -294,6 +296,7 @@ contains
          end if
       end do
       call check_inventory(error, kind, labels, files)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine produce_and_check
 
    !> Check the inventory of `kind` against the datasets of `files` (variant `labels`).
@@ -570,6 +573,7 @@ contains
          call read_text(name, text, n)
          sources = [sources, source_t(name, text)]
       end do
+      call execute_command_line('rm -rf '//dir)
    end subroutine read_sources
 
    !> The source of the procedure of test `name` (suite/test), with the procedures it
