@@ -41,6 +41,8 @@ program tester
    use test_values_chaos, only: collect_values_chaos
    use test_values_study, only: collect_values_study
    use test_figures, only: collect_figures
+   use test_values_sweep2, only: collect_values_sweep2
+   use test_values_fit, only: collect_values_fit
    implicit none
 
    type :: suite_t
@@ -55,7 +57,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(34))
+   allocate (suites(36))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -90,6 +92,8 @@ program tester
    suites(32)%name = 'values_chaos'; call collect_values_chaos(suites(32)%tests)
    suites(33)%name = 'values_study'; call collect_values_study(suites(33)%tests)
    suites(34)%name = 'figures'; call collect_figures(suites(34)%tests)
+   suites(35)%name = 'values_sweep2'; call collect_values_sweep2(suites(35)%tests)
+   suites(36)%name = 'values_fit'; call collect_values_fit(suites(36)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -1,0 +1,391 @@
+!> Every dataset a `dpend fit` file holds, read back from the file and checked
+!> against an independent computation (issue 29, item 1: the dataset inventory,
+!> test/inventory/fit.txt):
+!> - the data (t, q_data, xy_data) against the CSV rows read here (θ − π/2 for theta
+!>   columns);
+!> - the model series (q_model, xy_model) against `dpend simulate` of the fitted
+!>   initial state (dop853 at rtol 1e-12, sampled at the data's times), the positions
+!>   by the closed-form kinematics of the far ends of the links;
+!> - residual = data − model recomputed (angles wrapped to [−π, π));
+!> - in_window and t_window from the CSV's times and --fit-window;
+!> - guess: the first sample's angles, rates by the three-point difference;
+!> - estimate: within 4 standard errors of the state that generated the data, and
+!>   a stationary point of the cost (Jᵀ r ≈ 0);
+!> - covariance = σ² (JᵀJ)⁻¹, σ² = Σ r²/(m − P), with J by central differences of
+!>   `dpend simulate` runs (not the fit's variational equations); standard_error =
+!>   sqrt(diag C); correlation = C_ij / sqrt(C_ii C_jj);
+!> - interval95 = estimate ∓ t q, q the 0.975 quantile of Student's t with m − P
+!>   degrees of freedom by quadrature of its density and bisection;
+!> - horizon: the first sample after the window whose recomputed residual exceeds
+!>   --horizon-tolerance.
+!> Measured (printed, '    fit_example_file: …'): q_model within 3.8e-9 rad of
+!> simulate (tolerance 4e-8), covariance within 6.5e-8 of the largest entry
+!> (tolerance 1e-6), standard errors 6.1e-8 relative (1e-6), correlations 3.6e-8
+!> (4e-7), the intervals' ends 5.6e-14 standard errors from estimate ∓ t se (1e-11),
+!> the estimate 1.3 standard errors from the generating state;
+!> xy_model within 5.4e-11 m (tolerance 5e-10).
+module test_values_fit
+   use, intrinsic :: iso_fortran_env, only: output_unit
+   use dpend_kinds, only: dp
+   use dpend_hdf5, only: h5file_t
+   use dpend_lapack, only: dgesv
+   use test_cli, only: run_command, scratch_dir
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   implicit none
+   private
+   public :: collect_values_fit, read_csv
+
+   real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+
+contains
+
+   subroutine collect_values_fit(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [new_unittest('fit_example_file', test_example), &
+               new_unittest('positions_file', test_positions)]
+   end subroutine collect_values_fit
+
+   !> data/fit_example.csv (two links, damping 0.05, 0.03 N m s known, the state
+   !> fitted on t <= 3 s, horizon tolerance 0.03 rad): every dataset of the file.
+   subroutine test_example(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=*), parameter :: model = '--damping 0.05,0.03'
+      character(len=:), allocatable :: dir
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q_data(:, :), q_model(:, :), residual(:, :), &
+                               estimate(:), guess(:), standard_error(:), interval95(:, :), &
+                               covariance(:, :), correlation(:, :), horizon(:), t_window(:)
+      real(dp), allocatable :: rows(:, :), qsim(:, :), qd(:, :), jac(:, :), r(:), a(:, :), &
+                               cov(:, :), qp(:, :), qm(:, :), b(:)
+      integer, allocatable :: in_window(:), ipiv(:)
+      real(dp) :: truth(4), sigma2, tq, h1, h2, worst(4), hz, eps
+      integer :: stat, n, k, kk, i, j, m, info
+      dir = scratch_dir('values-fit')
+      stat = run_command(dir, 'fit data/fit_example.csv '//model//' --fit-window 3 '// &
+                         '--horizon-tolerance 0.03 --output '//dir//'/f.h5')
+      call check_true(error, stat == 0, 'fit of data/fit_example.csv exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/f.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/t', t, error)
+      if (.not. allocated(error)) call h5%read('/fit/q_data', q_data, error)
+      if (.not. allocated(error)) call h5%read('/fit/q_model', q_model, error)
+      if (.not. allocated(error)) call h5%read('/fit/residual', residual, error)
+      if (.not. allocated(error)) call h5%read('/fit/in_window', in_window, error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', estimate, error)
+      if (.not. allocated(error)) call h5%read('/fit/guess', guess, error)
+      if (.not. allocated(error)) call h5%read('/fit/standard_error', standard_error, error)
+      if (.not. allocated(error)) call h5%read('/fit/interval95', interval95, error)
+      if (.not. allocated(error)) call h5%read('/fit/covariance', covariance, error)
+      if (.not. allocated(error)) call h5%read('/fit/correlation', correlation, error)
+      if (.not. allocated(error)) call h5%read('/fit/horizon', horizon, error)
+      if (.not. allocated(error)) call h5%read('/fit/t_window', t_window, error)
+      call h5%close()
+      if (allocated(error)) return
+      ! the data: the CSV rows (t, theta1, theta2), q = theta - pi/2
+      call read_csv('data/fit_example.csv', 3, rows, error)
+      if (allocated(error)) return
+      n = size(rows, 2)
+      call check_true(error, n == 501 .and. size(t) == n .and. all(shape(q_data) == [2, n]) &
+                      .and. all(shape(q_model) == [2, n]) .and. all(shape(residual) == [2, n]), &
+                      '501 samples of two angles')
+      if (allocated(error)) return
+      call check(error, t, rows(1, :), 't: the CSV times', rel=1e-15_dp)
+      call check(error, reshape(q_data, [2*n]), reshape(rows(2:3, :) - pi/2, [2*n]), &
+                 'q_data: theta - pi/2 of the CSV', rel=1e-15_dp, abs=1e-15_dp)
+      ! the window: t <= 3 s
+      kk = count(rows(1, :) <= 3.0_dp)
+      call check_true(error, kk == 151, '151 samples in t <= 3 s')
+      call check_true(error, all(in_window == merge(1, 0, rows(1, :) <= 3.0_dp)), &
+                      'in_window: 1 for t <= 3 s')
+      call check(error, t_window(1), rows(1, kk), 't_window: the last sample time <= 3 s', &
+                 rel=0.0_dp, abs=0.0_dp)
+      ! the first guess: first angles, rates by the parabola through three samples
+      h1 = rows(1, 2) - rows(1, 1); h2 = rows(1, 3) - rows(1, 1)
+      call check(error, guess, [rows(2:3, 1) - pi/2, (rows(2:3, 2) - rows(2:3, 1))*h2/ &
+                 (h1*(h2 - h1)) - (rows(2:3, 3) - rows(2:3, 1))*h1/(h2*(h2 - h1))], &
+                 'guess: first angles, three-point rates', rel=1e-12_dp, abs=1e-12_dp)
+      if (allocated(error)) return
+      ! the model: simulate the fitted state
+      call simulate(estimate, rows(1, n), qsim, qd)
+      if (allocated(error)) return
+      worst = 0
+      worst(1) = maxval(abs(q_model - qsim))
+      call check(error, reshape(q_model, [2*n]), reshape(qsim, [2*n]), &
+                 'q_model: simulate of the estimate', abs=4e-8_dp)
+      call check(error, reshape(residual, [2*n]), reshape(wrap(q_data - q_model), [2*n]), &
+                 'residual: q_data - q_model wrapped', abs=1e-15_dp)
+      if (allocated(error)) return
+      ! the horizon: first sample after the window off by more than 0.03 rad
+      hz = rows(1, n) - rows(1, kk)
+      do k = kk + 1, n
+         if (maxval(abs(wrap(rows(2:3, k) - pi/2 - qsim(:, k)))) > 0.03_dp) then
+            hz = rows(1, k) - rows(1, kk)
+            exit
+         end if
+      end do
+      call check(error, horizon(1), hz, 'horizon: first sample beyond 0.03 rad', &
+                 rel=1e-12_dp)
+      call check_true(error, hz < rows(1, n) - rows(1, kk), 'the horizon ends in the data')
+      ! the Jacobian of the window's residuals by central differences of simulate
+      m = 2*kk
+      allocate (jac(m, 4))
+      do i = 1, 4
+         eps = 1e-5_dp
+         b = estimate
+         b(i) = b(i) + eps
+         call simulate(b, rows(1, kk), qp, qd)
+         b(i) = b(i) - 2*eps
+         call simulate(b, rows(1, kk), qm, qd)
+         if (allocated(error)) return
+         jac(:, i) = reshape(qp(:, :kk) - qm(:, :kk), [m])/(2*eps)
+      end do
+      r = reshape(wrap(rows(2:3, :kk) - pi/2 - qsim(:, :kk)), [m])
+      sigma2 = sum(r**2)/real(m - 4, dp)
+      ! stationary: J^T r small against |J| |r|
+      call check_true(error, maxval(abs(matmul(r, jac)))/(norm2(r)*maxval(norm2(jac, 1))) &
+                      < 1e-4_dp, 'estimate: J^T r = 0 (a least-squares minimum)')
+      a = matmul(transpose(jac), jac)
+      cov = reshape([((merge(1.0_dp, 0.0_dp, i == j), i=1, 4), j=1, 4)], [4, 4])
+      allocate (ipiv(4))
+      call dgesv(4, 4, a, 4, ipiv, cov, 4, info)
+      call check_true(error, info == 0, 'J^T J invertible')
+      if (allocated(error)) return
+      cov = sigma2*cov
+      worst(2) = maxval(abs(covariance - cov))/maxval(abs(cov))
+      call check(error, reshape(covariance, [16]), reshape(cov, [16]), &
+                 'covariance: sigma^2 (J^T J)^-1', abs=1e-6_dp*maxval(abs(cov)))
+      call check(error, standard_error, [(sqrt(cov(i, i)), i=1, 4)], &
+                 'standard_error: sqrt of the diagonal', rel=1e-6_dp)
+      call check(error, reshape(correlation, [16]), &
+                 [((cov(i, j)/sqrt(cov(i, i)*cov(j, j)), i=1, 4), j=1, 4)], &
+                 'correlation: C_ij / sqrt(C_ii C_jj)', abs=4e-7_dp)
+      if (allocated(error)) return
+      ! the estimate against the state that generated the data (1.8, 2.4) rad at rest
+      truth = [1.8_dp - pi/2, 2.4_dp - pi/2, 0.0_dp, 0.0_dp]
+      worst(3) = maxval(abs(estimate - truth)/standard_error)
+      call check_true(error, all(abs(estimate - truth) < 4*standard_error), &
+                      'estimate within 4 standard errors of the generating state')
+      ! the 95 % intervals with Student's t quantile of m - 4 degrees of freedom
+      tq = t975(m - 4)
+      worst(4) = maxval(abs([interval95(1, :) - estimate + tq*standard_error, &
+                             interval95(2, :) - estimate - tq*standard_error])/ &
+                        [standard_error, standard_error])
+      write (output_unit, '(a, 3es10.2)') '    fit_example_file: standard_error (relative), '// &
+         'correlation', maxval(abs(standard_error/[(sqrt(cov(i, i)), i=1, 4)] - 1)), &
+         maxval(abs(correlation - reshape([((cov(i, j)/sqrt(cov(i, i)*cov(j, j)), i=1, 4), &
+                                              j=1, 4)], [4, 4])))
+      call check(error, interval95(1, :), estimate - tq*standard_error, &
+                 'interval95: lower ends estimate - t se', rel=0.0_dp, &
+                 abs=1e-11_dp*minval(standard_error))
+      call check(error, interval95(2, :), estimate + tq*standard_error, &
+                 'interval95: upper ends estimate + t se', rel=0.0_dp, &
+                 abs=1e-11_dp*minval(standard_error))
+      write (output_unit, '(a, 4es10.2)') '    fit_example_file: |q_model - simulate| '// &
+         '[rad], covariance (relative), |estimate - truth|/se, interval95 [se]', worst
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> Angles q(:, k) at the data's times of `dpend simulate` from p = (q, qdot).
+      subroutine simulate(p, t_end, q, qdot)
+         real(dp), intent(in) :: p(:), t_end
+         real(dp), allocatable, intent(out) :: q(:, :), qdot(:, :)
+         character(len=200) :: args
+         integer :: st
+         write (args, '("--q1 ", es24.16e3, " --q2 ", es24.16e3, " --w1 ", es24.16e3, ' &
+                //'" --w2 ", es24.16e3)') p(1:4)
+         st = run_command(dir, 'simulate '//model//' '//trim(args)//' --method dop853 '// &
+                          '--rtol 1e-12 --atol 1e-14 --t-end '//real_text(t_end)// &
+                          ' --output-dt 0.02 --output '//dir//'/s.h5 --force')
+         call check_true(error, st == 0, 'simulate exits 0: '//trim(args))
+         if (allocated(error)) return
+         call h5%open(dir//'/s.h5', 'r', error)
+         if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+         if (.not. allocated(error)) call h5%read('/trajectory/qdot', qdot, error)
+         call h5%close()
+      end subroutine simulate
+   end subroutine test_example
+
+   !> Positions (t, x1, y1, x2, y2) of two links written here from `dpend simulate`
+   !> (the far ends of the links by the closed-form kinematics, plus a deterministic
+   !> disturbance of 1 mm): xy_data against the CSV, xy_model against the positions
+   !> of `dpend simulate` of the estimate, residual = xy_data − xy_model; the
+   !> estimate near the generating state.
+   subroutine test_positions(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=:), allocatable :: dir
+      type(h5file_t) :: h5
+      real(dp), allocatable :: xy_data(:, :), xy_model(:, :), residual(:, :), estimate(:), &
+                               t(:), q(:, :), ts(:), xy(:, :), rows(:, :)
+      real(dp) :: y0(4), noise
+      integer :: stat, k, n, unit
+      character(len=200) :: args
+      dir = scratch_dir('values-fitxy')
+      y0 = [0.3_dp, -0.2_dp, 0.5_dp, -1.0_dp]
+      write (args, '("--q1 ", es24.16e3, " --q2 ", es24.16e3, " --w1 ", es24.16e3, ' &
+             //'" --w2 ", es24.16e3)') y0
+      stat = run_command(dir, 'simulate --l1 1.2 --l2 0.7 '//trim(args)//' --method dop853 '// &
+                         '--rtol 1e-12 --atol 1e-14 --t-end 2 --output-dt 0.05 --output '// &
+                         dir//'/g.h5')
+      call check_true(error, stat == 0, 'simulate of the generating state exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/g.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', ts, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      call h5%close()
+      if (allocated(error)) return
+      n = size(ts)
+      xy = tips(q)
+      open (newunit=unit, file=dir//'/xy.csv', status='replace', action='write')
+      write (unit, '(a)') 't,x1,y1,x2,y2'
+      do k = 1, n
+         noise = 1e-3_dp*sin(7.3_dp*k)
+         write (unit, '(f0.4, 4(",", es22.14e3))') ts(k), xy(:, k) + [noise, -noise, &
+            0.5_dp*noise, noise]
+      end do
+      close (unit)
+      stat = run_command(dir, 'fit '//dir//'/xy.csv --l1 1.2 --l2 0.7 --output '//dir//'/f.h5')
+      call check_true(error, stat == 0, 'fit of the positions exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/f.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/t', t, error)
+      if (.not. allocated(error)) call h5%read('/fit/xy_data', xy_data, error)
+      if (.not. allocated(error)) call h5%read('/fit/xy_model', xy_model, error)
+      if (.not. allocated(error)) call h5%read('/fit/residual', residual, error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', estimate, error)
+      call h5%close()
+      if (allocated(error)) return
+      call read_csv(dir//'/xy.csv', 5, rows, error)
+      if (allocated(error)) return
+      call check_true(error, all(shape(xy_data) == [4, n]) .and. all(shape(xy_model) == &
+                      [4, n]) .and. all(shape(residual) == [4, n]), 'four coordinates')
+      if (allocated(error)) return
+      call check(error, t, rows(1, :), 't: the CSV times', rel=1e-15_dp)
+      call check(error, reshape(xy_data, [4*n]), reshape(rows(2:5, :), [4*n]), &
+                 'xy_data: the CSV positions', rel=1e-15_dp, abs=1e-15_dp)
+      call check(error, estimate, y0, 'estimate near the generating state', abs=1e-2_dp)
+      write (args, '("--q1 ", es24.16e3, " --q2 ", es24.16e3, " --w1 ", es24.16e3, ' &
+             //'" --w2 ", es24.16e3)') estimate(1:4)
+      stat = run_command(dir, 'simulate --l1 1.2 --l2 0.7 '//trim(args)//' --method dop853 '// &
+                         '--rtol 1e-12 --atol 1e-14 --t-end 2 --output-dt 0.05 --output '// &
+                         dir//'/m.h5')
+      call check_true(error, stat == 0, 'simulate of the estimate exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/m.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      call h5%close()
+      if (allocated(error)) return
+      xy = tips(q)
+      write (output_unit, '(a, es10.2)') '    positions_file: |xy_model - kinematics of '// &
+         'simulate| [m]', maxval(abs(xy_model - xy))
+      call check(error, reshape(xy_model, [4*n]), reshape(xy, [4*n]), &
+                 'xy_model: far ends of the links of simulate of the estimate', abs=5e-10_dp)
+      call check(error, reshape(residual, [4*n]), reshape(xy_data - xy_model, [4*n]), &
+                 'residual: xy_data - xy_model', abs=1e-15_dp)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> (x1, y1, x2, y2) of the far ends of links of 1.2 m and 0.7 m.
+      function tips(qq) result(p)
+         real(dp), intent(in) :: qq(:, :)
+         real(dp), allocatable :: p(:, :)
+         allocate (p(4, size(qq, 2)))
+         p(1, :) = 1.2_dp*cos(qq(1, :)); p(2, :) = 1.2_dp*sin(qq(1, :))
+         p(3, :) = p(1, :) + 0.7_dp*cos(qq(2, :)); p(4, :) = p(2, :) + 0.7_dp*sin(qq(2, :))
+      end function tips
+   end subroutine test_positions
+
+   ! ---------------------------------------------------------------- helpers ---
+
+   !> x wrapped to [−π, π).
+   elemental real(dp) function wrap(x)
+      real(dp), intent(in) :: x
+      wrap = x - 2*pi*floor((x + pi)/(2*pi))
+   end function wrap
+
+   !> Student's t quantile t_(0.975, ν): the density integrated by Simpson's rule
+   !> (2000 panels on [0, x]) and bisection on CDF(x) = 0.975.
+   real(dp) function t975(nu) result(x)
+      integer, intent(in) :: nu
+      real(dp) :: lo, hi, v, c
+      integer :: it
+      v = real(nu, dp)
+      c = exp(log_gamma((v + 1)/2) - log_gamma(v/2))/sqrt(v*pi)
+      lo = 1.0_dp; hi = 20.0_dp
+      do it = 1, 60
+         x = 0.5_dp*(lo + hi)
+         if (0.5_dp + area(x) < 0.975_dp) then
+            lo = x
+         else
+            hi = x
+         end if
+      end do
+   contains
+      real(dp) function area(b)
+         real(dp), intent(in) :: b
+         integer, parameter :: np = 2000
+         real(dp) :: hh
+         integer :: i
+         hh = b/np
+         area = f(0.0_dp) + f(b)
+         do i = 1, np - 1
+            area = area + merge(4.0_dp, 2.0_dp, mod(i, 2) == 1)*f(i*hh)
+         end do
+         area = area*hh/3
+      end function area
+      real(dp) function f(s)
+         real(dp), intent(in) :: s
+         f = c*(1 + s*s/v)**(-(v + 1)/2)
+      end function f
+   end function t975
+
+   !> The numeric rows of a CSV or text file (a header line unless `header` is false;
+   !> blank lines and lines starting with '#' skipped): the first `ncol` fields of
+   !> each row, (ncol, rows).
+   subroutine read_csv(path, ncol, rows, error, header)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: ncol
+      real(dp), allocatable, intent(out) :: rows(:, :)
+      type(error_t), allocatable, intent(inout) :: error
+      logical, intent(in), optional :: header
+      character(len=512) :: line
+      real(dp), allocatable :: vals(:)
+      real(dp) :: v(ncol)
+      integer :: unit, stat, nr
+      logical :: skip
+      allocate (vals(0))
+      nr = 0
+      skip = .true.
+      if (present(header)) skip = header
+      open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, 'cannot open '//path)
+         return
+      end if
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         if (line(1:1) == '#' .or. len_trim(line) == 0) cycle
+         if (skip) then
+            skip = .false.
+            cycle
+         end if
+         read (line, *, iostat=stat) v
+         if (stat /= 0) then
+            call fatal_error(error, path//': unreadable row '//trim(line))
+            exit
+         end if
+         vals = [vals, v]
+         nr = nr + 1
+      end do
+      close (unit)
+      rows = reshape(vals, [ncol, nr])
+   end subroutine read_csv
+
+   !> A time as text for the command line.
+   function real_text(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es24.16e3)') x
+      s = trim(adjustl(buf))
+   end function real_text
+
+end module test_values_fit
