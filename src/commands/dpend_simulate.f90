@@ -84,10 +84,10 @@ contains
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, config
-      logical :: matched, missing
+      logical :: matched, missing, save_every_given, output_dt_given
       integer :: i
       cfg = simulate_defaults()
-      help = .false.
+      help = .false.; save_every_given = .false.; output_dt_given = .false.
       ! first pass: help and the config file, so that flags override the file
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
@@ -113,7 +113,11 @@ contains
          call option_outcome('simulate', name, matched, missing, &
                              [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
+         if (name == '--save-every') save_every_given = .true.
+         if (name == '--output-dt') output_dt_given = .true.
       end do
+      call check_sampling_forms(cfg, save_every_given, output_dt_given, error)
+      if (allocated(error)) return
       call validate_run_config(cfg, error)
       if (allocated(error)) return
       if (needs_work(cfg%model) .and. cfg%links >= max_dof) then
@@ -124,6 +128,28 @@ contains
       end if
       call check_simulate_resources(cfg, error)
    end subroutine parse_simulate
+
+   !> Refuse save_every with output_dt (issue 25): two forms of the output sampling,
+   !> of which output_dt > 0 would win whatever their order. Each may come from the
+   !> command line or the namelist file (`run_config_t%nml_given`).
+   subroutine check_sampling_forms(cfg, save_every_flag, output_dt_flag, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration read
+      logical, intent(in) :: save_every_flag            !! --save-every given
+      logical, intent(in) :: output_dt_flag             !! --output-dt given
+      type(error_t), allocatable, intent(out) :: error  !! both given
+      character(len=:), allocatable :: a, b
+      a = ''; b = ''
+      if (allocated(cfg%nml_given)) then
+         if (index(cfg%nml_given, ' save_every ') > 0) a = 'save_every [&integration]'
+         if (index(cfg%nml_given, ' output_dt ') > 0) b = 'output_dt [&integration]'
+      end if
+      if (save_every_flag) a = '--save-every'
+      if (output_dt_flag) b = '--output-dt'
+      if (len(a) == 0 .or. len(b) == 0) return
+      call fatal_error(error, 'invalid '//b//': given with '//a//'; they are two forms of ' &
+                       //'the output sampling (output_dt: samples at k*output_dt [s]; ' &
+                       //'save_every: every N-th step); give one of them')
+   end subroutine check_sampling_forms
 
    !> Refuse a run whose kept samples exceed `max_samples`, the available memory or
    !> the free space of the output's file system. The count is known for a
