@@ -6,11 +6,12 @@ program dpend
    use dpend_cli, only: arg_t, get_arguments, printable, check_repeated_options
    use dpend_config, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
+   use dpend_simulate, only: natural_text
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix, export_list
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help, horizon_text
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
@@ -24,7 +25,7 @@ program dpend
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
    use dpend_output, only: track_inputs
-   use dpend_progress, only: silence_progress
+   use dpend_progress, only: silence_progress, progress_header
    implicit none
 
    interface
@@ -163,7 +164,8 @@ contains
       call run_simulate(cfg, error, summary)
       if (allocated(error)) call fail(exit_status(error), 'dpend simulate: '//error%message)
       if (.not. quiet .or. len(summary) == 0) &
-         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
+         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"': t = 0 .. " &
+         //real_str(cfg%t_end)//' s = '//natural_text(cfg, cfg%t_end)
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
@@ -445,6 +447,8 @@ contains
          write (output_unit, '(a)') sweep_help()
          return
       end if
+      ! the horizon in both units, printed when the run starts (issue 25)
+      if (.not. cfg%quiet) call progress_header('dpend sweep: '//horizon_text(cfg))
       call run_sweep(cfg, summary, error)
       ! refused input (found when the output is examined) or a run that failed
       if (allocated(error)) call fail(exit_status(error), 'dpend sweep: '//error%message)

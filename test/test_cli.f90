@@ -12,6 +12,7 @@ module test_cli
    implicit none
    private
    public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text, expect_rejected
+   public :: args_of
 
 contains
 

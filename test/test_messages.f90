@@ -10,7 +10,11 @@ module test_messages
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
    use dpend_sweep_config, only: sweep_help, sweep_config_t, sweep_defaults
    use dpend_methods, only: method_names
-   use test_cli, only: run_command, scratch_dir, read_text
+   use test_cli, only: run_command, scratch_dir, read_text, args_of
+   use dpend_sweep_config, only: parse_sweep, horizon_text
+   use dpend_hdf5, only: h5file_t
+   use dpend_progress, only: progress_t, progress_header
+   use dpend_kinds, only: i8
    implicit none
    private
    public :: collect_messages
@@ -35,7 +39,10 @@ contains
                new_unittest('sweep_closing_line', test_sweep_line), &
                new_unittest('methods_table', test_methods), &
                new_unittest('divergence_without_slope', test_divergence_no_slope), &
-               new_unittest('quiet_last_line', test_quiet)]
+               new_unittest('quiet_last_line', test_quiet), &
+               new_unittest('simulate_largest_error', test_largest_error), &
+               new_unittest('progress_rate_limited', test_progress_rate), &
+               new_unittest('sweep_horizon', test_sweep_horizon)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -228,8 +235,12 @@ contains
       call check_true(error, stat == 0 .and. n == 2, 'simulate: two lines: '//text)
       if (allocated(error)) return
       call check_true(error, index(text, 'dpend simulate: rk4: 1000 steps, 4000 f evaluations,' &
-                                   //' relative energy error ') > 0 .and. &
+                                   //' relative energy error largest ') > 0 .and. &
+                      index(text, ' s), final ') > 0 .and. &
                       index(text, ' s'//nl) > 0, 'simulate summary: '//text)
+      ! the horizon in seconds and in the natural unit sqrt(l1/g) = sqrt(1/9.8) s
+      call check_true(error, index(text, "wrote '"//dir//"/s.h5': t = 0 .. 1 s = 3.13 " &
+                                   //'sqrt(l1/g)'//nl) > 0, 'simulate horizon: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_simulate_summary
 
@@ -450,4 +461,166 @@ contains
       real(dp) :: x
       x = ieee_value(x, ieee_positive_inf)
    end function ieee_inf
+   !> The summary's largest relative energy error (issue 25) is the largest over
+   !> the file's energy dataset, |E(t_k) - E(0)| / energy_scale, recomputed here from
+   !> /trajectory/energy and the root attribute energy_scale: the chapter's run with
+   !> the README's settings (data/simulate.nml: rk4, dt = 1e-4 s, t = 10 s; about
+   !> 8e-13), a short one, and a damped run (the balance: E(t) - E(0) + W_friction
+   !> - W_support from /trajectory/W_friction and W_support).
+   subroutine test_largest_error(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('simlargest')
+      call one('--dt 1e-4 --t-end 10 --save-every 10', .false., 5e-13_dp, 2e-12_dp)
+      call one('--t-end 3 --q1 0.5 --method gauss4', .false., 0.0_dp, 1.0_dp)
+      call one('--t-end 3 --damping 0.2,0.1', .true., 0.0_dp, 1.0_dp)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine one(flags, balance, lo, hi)
+         character(len=*), intent(in) :: flags
+         logical, intent(in) :: balance
+         real(dp), intent(in) :: lo, hi   ! bounds of the largest error
+         character(len=:), allocatable :: text
+         type(h5file_t) :: h5
+         type(error_t), allocatable :: err
+         real(dp), allocatable :: e(:), wf(:), ws(:), r(:)
+         real(dp) :: scale, printed, final
+         integer :: n, stat, at, k
+         if (allocated(error)) return
+         stat = run_command(dir, 'simulate --force '//flags//' --output '//dir//'/s.h5')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0, flags//': exit 0: '//text)
+         if (allocated(error)) return
+         call h5%open(dir//'/s.h5', 'r', err)
+         if (.not. allocated(err)) call h5%read('/trajectory/energy', e, err)
+         if (.not. allocated(err)) call h5%readattr('/', 'energy_scale', scale, err)
+         if (.not. allocated(err) .and. balance) call h5%read('/trajectory/W_friction', wf, err)
+         if (.not. allocated(err) .and. balance) call h5%read('/trajectory/W_support', ws, err)
+         call h5%close()
+         if (allocated(err)) then
+            call check_true(error, .false., flags//': '//err%message)
+            return
+         end if
+         r = abs(e - e(1))
+         if (balance) r = abs(e - e(1) + wf - ws)
+         r = r/scale
+         at = index(text, 'largest ') + 8
+         read (text(at:), *, iostat=stat) printed
+         k = index(text, 'final ') + 6
+         if (stat == 0) read (text(k:index(text(k:), ',') + k - 2), *, iostat=stat) final
+         call check_true(error, stat == 0 .and. at > 8 .and. k > 6, flags// &
+                         ': largest and final in the summary: '//text)
+         if (allocated(error)) return
+         ! printed with 2 significant digits
+         call check_true(error, abs(printed - maxval(r)) <= 0.051_dp*maxval(r), flags// &
+                         ': largest '//real_str(printed)//' vs the file '//real_str(maxval(r)))
+         call check_true(error, abs(final - r(size(r))) <= 0.051_dp*r(size(r)) + tiny(1.0_dp), &
+                         flags//': final '//real_str(final)//' vs the file '// &
+                         real_str(r(size(r))))
+         call check_true(error, printed >= lo .and. printed <= hi, flags//': largest '// &
+                         real_str(printed)//' within ['//real_str(lo)//', '//real_str(hi)//']')
+         call check_true(error, (index(text, 'balance error largest') > 0) .eqv. balance, &
+                         flags//': names the balance for a damped run: '//text)
+      end subroutine one
+   end subroutine test_largest_error
+   !> The progress report's rate limiter with an injected clock (issue 25): without
+   !> a terminal, at most one line every 10 s and none in the first 10 s, whatever
+   !> the rate of updates; none when quiet; a queued header printed once at the
+   !> start. The lines go to a scratch file, counted and read back.
+   subroutine test_progress_rate(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n
+      dir = scratch_dir('progress')
+      ! 0.5 s between updates for 100 s: lines at 10, 20, ... 100 s
+      call run(200, 0.5_dp, .false., 10, 10)
+      ! a short run (9.5 s) writes none; nor does the end of the run by itself
+      call run(19, 0.5_dp, .false., 0, 0)
+      ! irregular updates (every 3.3 s for 99 s): at 13.2, 26.4, ... at most 1 per 10 s
+      call run(30, 3.3_dp, .false., 7, 7)
+      ! one update per 25 s: each is due
+      call run(4, 25.0_dp, .false., 4, 4)
+      call run(200, 0.5_dp, .true., 0, 0)   ! quiet
+      call progress_header('dpend test: header')
+      call run(3, 1.0_dp, .false., 0, 1)
+      if (allocated(error)) return
+      call read_text(dir//'/p.txt', text, n)
+      call check_true(error, text == 'dpend test: header'//nl, 'header printed once: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine run(updates, step, quiet, expected, file_lines)
+         integer, intent(in) :: updates, expected, file_lines
+         real(dp), intent(in) :: step
+         logical, intent(in) :: quiet
+         type(progress_t) :: p
+         real(dp) :: now, last
+         integer :: k, unit, before
+         open (newunit=unit, file=dir//'/p.txt', status='replace', action='write')
+         p%unit = unit
+         call p%start('dpend test', int(updates, i8)*5, 0_i8, quiet, now=0.0_dp)
+         ! as without a terminal, whatever this test's stderr is
+         p%tty = .false.
+         p%t_last = p%t_start
+         last = -huge(1.0_dp)
+         do k = 1, updates
+            now = k*step
+            before = p%lines
+            call p%update(5_i8, now=now)
+            if (p%lines > before) then
+               call check_true(error, now - last >= 10.0_dp, 'a line at '//real_str(now)// &
+                               ' s only '//real_str(now - last)//' s after the last')
+               last = now
+            end if
+         end do
+         call p%finish()
+         close (unit)
+         call check_true(error, p%lines == expected, real_str(step)//' s x '// &
+                         to_str_i(updates)//': '//to_str_i(p%lines)//' lines, expected '// &
+                         to_str_i(expected))
+         call read_text(dir//'/p.txt', text, n)
+         call check_true(error, n == file_lines, 'lines in the file: '//to_str_i(n)//': '//text)
+      end subroutine run
+      function to_str_i(i) result(t)
+         integer, intent(in) :: i
+         character(len=:), allocatable :: t
+         character(len=16) :: b
+         write (b, '(i0)') i
+         t = trim(b)
+      end function to_str_i
+   end subroutine test_progress_rate
+   !> The sweep's horizon and step in both units (issue 25), against the natural
+   !> unit computed here: sqrt(l1/g) = sqrt(1/9.8) s = 0.31943828... s, so 100 of it
+   !> is 31.94 s (4 digits); in seconds, 30 s is 93.91 of it; sqrt(l0/g) of the
+   !> elastic pendulum with l0 = 2 m.
+   subroutine test_sweep_horizon(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: tn
+      tn = sqrt(1.0_dp/9.8_dp)
+      call check_true(error, abs(100*tn - 31.94_dp) < 0.005_dp .and. &
+                      abs(0.01_dp*tn - 0.003194_dp) < 5e-7_dp .and. &
+                      abs(30/tn - 93.91_dp) < 0.005_dp, 'the natural unit')
+      call one('--n 2', 't_end = 100 sqrt(l1/g) = 31.94 s, dt = 0.01 sqrt(l1/g) = 0.003194 s')
+      call one('--n 2 --time-unit s --t-end 30 --dt 0.001', &
+               't_end = 30 s = 93.91 sqrt(l1/g), dt = 0.001 s = 0.00313 sqrt(l1/g)')
+      call one('--n 2 --l1 4 --g 9.8', 't_end = 100 sqrt(l1/g) = 63.89 s')
+      call one('--n 2 --model elastic --k 40 --l0 2 --q 1.2,-1.0 --axis1 r --axis2 phi ' &
+               //'--min1 1 --max1 1.5 --indicator megno', 't_end = 100 sqrt(l0/g) = 45.18 s')
+      call one('--n 2 --axis1 l1 --min1 0.5 --max1 2', 'of the configured l1 = 1 m; l1 is swept')
+   contains
+      subroutine one(line, expected)
+         character(len=*), intent(in) :: line, expected
+         type(sweep_config_t) :: cfg
+         type(error_t), allocatable :: err
+         logical :: help
+         character(len=:), allocatable :: text
+         if (allocated(error)) return
+         call parse_sweep(args_of(line), cfg, help, err)
+         if (allocated(err)) then
+            call check_true(error, .false., line//': '//err%message)
+            return
+         end if
+         text = horizon_text(cfg)
+         call check_true(error, index(text, expected) > 0, line//': '//text//' lacks '//expected)
+      end subroutine one
+   end subroutine test_sweep_horizon
 end module test_messages

@@ -49,6 +49,7 @@ module dpend_sweep_config
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
    public :: indicator_names, indicator_vectors, axis_parameter, param_axis_names
    public :: pixel_parameters, pixel_model, flip_model, sweep_variable, natural_time
+   public :: horizon_text
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -932,6 +933,34 @@ contains
    end subroutine check_grid_range
 
    !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
+   !> The horizon and the step in both units (issue 25): 't_end = 100 sqrt(l1/g) =
+   !> 31.94 s, dt = 0.01 sqrt(l1/g) = 0.003194 s' (time_unit natural) or 't_end =
+   !> 30 s = 93.91 sqrt(l1/g), ...' (s); with an l1 axis the natural unit is the
+   !> configured l1's.
+   function horizon_text(cfg) result(s)
+      type(sweep_config_t), intent(in) :: cfg  !! validated configuration
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: nat
+      real(dp) :: tn
+      tn = natural_time(cfg)
+      nat = 'sqrt(l1/g)'
+      if (.not. flip_model(cfg)) nat = 'sqrt(l0/g)'
+      s = 't_end = '//both(cfg%run%t_end)//', dt = '//both(cfg%run%dt)
+      if (axis_parameter(cfg%axis1) == 3 .or. axis_parameter(cfg%axis2) == 3) &
+         s = s//' ('//nat//' of the configured l1 = '//real_str(cfg%run%l(1))// &
+             ' m; l1 is swept)'
+   contains
+      function both(t) result(b)
+         real(dp), intent(in) :: t
+         character(len=:), allocatable :: b
+         if (cfg%time_unit == 'natural') then
+            b = real_str(t)//' '//nat//' = '//real_str(t*tn, 4)//' s'
+         else
+            b = real_str(t)//' s = '//real_str(t/tn, 4)//' '//nat
+         end if
+      end function both
+   end function horizon_text
+
    function unit_name(cfg) result(u)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       character(len=16) :: u

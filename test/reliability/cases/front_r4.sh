@@ -59,3 +59,16 @@ refuse  fr4-stop-lyapunov     '--stop-at'         -- "${W[@]}" --lyapunov --stop
 refuse  fr4-nml-stop-fli      'stop_at [&sweep]'  -- "${W[@]}" --config fr4_stop.nml --indicator fli
 succeed fr4-stop-end-megno-ok    -- "${W[@]}" --indicator megno --stop-at end
 succeed fr4-stop-flip-ok         -- "${W[@]}" --stop-at either
+# the shipped parameter maps no longer give the m2/l2 their axes replace
+succeed fr4-data-mass-length     -- sweep --config sweep_mass_length_megno.nml --n 2 --t-end 0.5 --output s.h5 --quiet
+succeed fr4-data-theta1-ratio    -- sweep --config sweep_theta1_mass_ratio.nml --n 2 --t-end 0.5 --output s.h5 --quiet
+# ---- horizons in both units (texts: test_messages simulate_summary_line, sweep_horizon)
+succeed fr4-horizon-sweep-natural -- sweep --output s.h5 --n 2 --t-end 0.5
+succeed fr4-horizon-sweep-s      -- sweep --output s.h5 --n 2 --t-end 0.5 --time-unit s
+succeed fr4-horizon-sweep-l1     -- sweep --output s.h5 --n 2 --t-end 0.5 --axis1 l1 --min1 0.5 --max1 2
+succeed fr4-horizon-sweep-elastic -- sweep --output s.h5 --n 2 --t-end 0.5 --model elastic --k 40 --l0 1 --q 1.2,-1.0 --axis1 r --axis2 phi --min1 1 --max1 1.5 --indicator megno
+succeed fr4-horizon-simulate-elastic -- simulate --output o.h5 --t-end 0.1 --model elastic --k 40 --l0 1 --q 1.2,-1.0
+# ---- summaries: the largest energy (balance) error and the final one
+succeed fr4-summary-damped       -- simulate --output o.h5 --t-end 0.1 --damping 0.1,0.1
+succeed fr4-summary-driven       -- simulate --output o.h5 --t-end 0.1 --support-amplitude 0,0.01 --support-frequency 30
+succeed fr4-summary-quiet        -- simulate --output o.h5 --t-end 0.1 --quiet
