@@ -12,6 +12,7 @@ module test_messages
    use dpend_methods, only: method_names
    use test_cli, only: run_command, scratch_dir, read_text, args_of
    use dpend_sweep_config, only: parse_sweep, horizon_text
+   use dpend_chaos, only: indicator_verdict
    use dpend_hdf5, only: h5file_t
    use dpend_progress, only: progress_t, progress_header
    use dpend_kinds, only: i8
@@ -42,7 +43,8 @@ contains
                new_unittest('quiet_last_line', test_quiet), &
                new_unittest('simulate_largest_error', test_largest_error), &
                new_unittest('progress_rate_limited', test_progress_rate), &
-               new_unittest('sweep_horizon', test_sweep_horizon)]
+               new_unittest('sweep_horizon', test_sweep_horizon), &
+               new_unittest('indicators_verdict', test_verdict)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -623,4 +625,55 @@ contains
          call check_true(error, index(text, expected) > 0, line//': '//text//' lacks '//expected)
       end subroutine one
    end subroutine test_sweep_horizon
+   !> `dpend indicators` ends its summary (before the line scripts read) with a
+   !> verdict (issue 25): chaotic on the horizontal release (lambda1 = 1.18 1/s:
+   !> <Y> ~ lambda1 t/2 ~ 23 at 40 s), regular on the orbit 1 rad from hanging
+   !> (docs/chaos.md: <Y> -> 2, SALI bounded), undecided on a run too short to
+   !> tell; and the criterion's edges on given values.
+   subroutine test_verdict(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      real(dp), parameter :: tn = 0.3194382824999699_dp
+      dir = scratch_dir('verdict')
+      call run('--t-end 40', 'verdict: chaotic (')
+      call run('--t-end 40 --theta1 1 --theta2 1 --dt 1e-2', 'verdict: regular (')
+      call run('--t-end 5 --theta1 1 --theta2 1 --dt 1e-2', 'verdict: undecided (')
+      call given(4.01_dp, 0.99e-4_dp, 1.0_dp, 'verdict: chaotic (')
+      call given(4.0_dp, 1e-8_dp, 1.0_dp, 'verdict: undecided (')
+      call given(30.0_dp, 1e-4_dp, 1000.0_dp, 'verdict: undecided (')
+      call given(2.1_dp, 1e-4_dp, 100*tn, 'verdict: regular (')
+      call given(0.0_dp, 0.5_dp, 1000.0_dp, 'verdict: regular (')
+      call given(2.11_dp, 0.5_dp, 1000.0_dp, 'verdict: undecided (')
+      call given(1.9_dp, 0.5_dp, 99*tn, 'verdict: undecided (')
+      call given(1.9_dp, 0.99e-4_dp, 1000.0_dp, 'verdict: undecided (')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine run(flags, expected)
+         character(len=*), intent(in) :: flags, expected
+         character(len=:), allocatable :: text, last
+         integer :: n, stat, k
+         if (allocated(error)) return
+         stat = run_command(dir, 'indicators --force '//flags//' --output '//dir//'/i.h5')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0, flags//': exit 0: '//text)
+         k = index(text, nl//'verdict: ')
+         call check_true(error, k > 0, flags//': a verdict: '//text)
+         if (allocated(error)) return
+         call check_true(error, index(text(k + 1:), expected) == 1 .and. &
+                         index(text(k + 1:), 'criterion: ') > 0, flags//': '//text(k + 1:))
+         ! the line scripts read stays the last
+         last = text(k + 1:)
+         last = last(index(last, nl) + 1:)
+         call check_true(error, index(last, 'indicators: ') == 1, flags//': last line: '//last)
+      end subroutine run
+      subroutine given(y, sali, t, expected)
+         real(dp), intent(in) :: y, sali, t
+         character(len=*), intent(in) :: expected
+         character(len=:), allocatable :: v
+         if (allocated(error)) return
+         v = indicator_verdict(y, sali, t, tn, 'sqrt(l1/g)')
+         call check_true(error, index(v, expected) == 1, real_str(y)//' '//real_str(sali)// &
+                         ' '//real_str(t)//': '//v)
+      end subroutine given
+   end subroutine test_verdict
 end module test_messages

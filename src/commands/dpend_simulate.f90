@@ -26,7 +26,7 @@ module dpend_simulate
    private
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
    public :: trajectory_t, write_trajectory, check_simulate_resources
-   public :: natural_text, largest_error
+   public :: natural_text, largest_error, natural_time_of
 
    !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
    !> and the derived quantities written beside them (23 reals) [B].
@@ -269,21 +269,31 @@ contains
       type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
       real(dp), intent(in) :: t              !! time [s]
       character(len=:), allocatable :: s
-      character(len=:), allocatable :: name, units
+      character(len=:), allocatable :: name
+      s = real_str(t/natural_time_of(cfg, name), 4)//' '//name
+   end function natural_text
+
+   !> The natural time unit [s]: sqrt(l1/g), or sqrt(l0/g) for a model with a
+   !> parameter l0 (the elastic pendulum); `name` says which.
+   real(dp) function natural_time_of(cfg, name) result(tn)
+      type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
+      character(len=:), allocatable, intent(out), optional :: name  !! 'sqrt(l1/g)' ...
+      character(len=:), allocatable :: pname, units, which
       real(dp) :: x, l, g
       integer :: i
       l = cfg%l(1); g = cfg%g
-      s = 'sqrt(l1/g)'
+      which = 'sqrt(l1/g)'
       do i = 1, cfg%model%n_parameters()
-         call cfg%model%parameter(i, name, x, units)
-         if (name == 'l0') then
-            l = x; s = 'sqrt(l0/g)'
-         else if (name == 'g') then
+         call cfg%model%parameter(i, pname, x, units)
+         if (pname == 'l0') then
+            l = x; which = 'sqrt(l0/g)'
+         else if (pname == 'g') then
             g = x
          end if
       end do
-      s = real_str(t/sqrt(l/g), 4)//' '//s
-   end function natural_text
+      tn = sqrt(l/g)
+      if (present(name)) name = which
+   end function natural_time_of
 
    !> Integrate from t = 0 to t_end with the configured method, keeping every
    !> save_every-th step and the last one, or, with output_dt > 0, the states at

@@ -72,3 +72,8 @@ succeed fr4-horizon-simulate-elastic -- simulate --output o.h5 --t-end 0.1 --mod
 succeed fr4-summary-damped       -- simulate --output o.h5 --t-end 0.1 --damping 0.1,0.1
 succeed fr4-summary-driven       -- simulate --output o.h5 --t-end 0.1 --support-amplitude 0,0.01 --support-frequency 30
 succeed fr4-summary-quiet        -- simulate --output o.h5 --t-end 0.1 --quiet
+# ---- indicators end with a verdict (texts: test_messages indicators_verdict)
+succeed fr4-verdict-chaotic      -- indicators --output i.h5 --t-end 40
+succeed fr4-verdict-regular      -- indicators --output i.h5 --t-end 40 --theta1 1 --theta2 1 --dt 1e-2
+succeed fr4-verdict-short        -- indicators --output i.h5 --t-end 1
+succeed fr4-verdict-elastic      -- indicators --output i.h5 --t-end 1 --model elastic --k 40 --l0 1 --q 1.2,-1
