@@ -13,6 +13,7 @@ module test_messages
    use test_cli, only: run_command, scratch_dir, read_text, args_of
    use dpend_sweep_config, only: parse_sweep, horizon_text
    use dpend_chaos, only: indicator_verdict
+   use dpend_export, only: export_columns
    use dpend_hdf5, only: h5file_t
    use dpend_progress, only: progress_t, progress_header
    use dpend_kinds, only: i8
@@ -44,7 +45,8 @@ contains
                new_unittest('simulate_largest_error', test_largest_error), &
                new_unittest('progress_rate_limited', test_progress_rate), &
                new_unittest('sweep_horizon', test_sweep_horizon), &
-               new_unittest('indicators_verdict', test_verdict)]
+               new_unittest('indicators_verdict', test_verdict), &
+               new_unittest('export_sweep_long_form', test_export_long)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -676,4 +678,81 @@ contains
                          ' '//real_str(t)//': '//v)
       end subroutine given
    end subroutine test_verdict
+   !> `export --csv` of a grid sweep's maps is long form (issue 25): a header
+   !> 'theta1 [rad],w2 [rad/s],t_flip [s],energy_error [1]', then one row per pixel,
+   !> axis 1 fastest, each row's axis values and map values equal to the file's
+   !> /sweep/axis1(j1), /sweep/axis2(j2) and map(j1, j2) read here; names given
+   !> as 't_flip,energy_error' or as two words give the same text; a 1-D dataset
+   !> keeps the column form.
+   subroutine test_export_long(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, file, line
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: a1(:), a2(:), tf(:, :), ee(:, :)
+      real(dp) :: row(4)
+      integer :: n, stat, unit, j1, j2, pos, k
+      character(len=:), allocatable :: text2
+      dir = scratch_dir('exportlong')
+      file = dir//'/s.h5'
+      stat = run_command(dir, 'sweep --n1 3 --n2 2 --t-end 5 --quiet --axis2 w2 --min2 -1 ' &
+                         //'--max2 2 --output '//file)
+      call check_true(error, stat == 0, 'sweep exits 0')
+      if (allocated(error)) return
+      call h5%open(file, 'r', err)
+      if (.not. allocated(err)) call h5%read('/sweep/axis1', a1, err)
+      if (.not. allocated(err)) call h5%read('/sweep/axis2', a2, err)
+      if (.not. allocated(err)) call h5%read('/sweep/t_flip', tf, err)
+      if (.not. allocated(err)) call h5%read('/sweep/energy_error', ee, err)
+      call h5%close()
+      call check_true(error, .not. allocated(err), 'read the sweep file')
+      if (allocated(error)) return
+      call check_true(error, size(a1) == 3 .and. size(a2) == 2 .and. size(tf, 1) == 3 .and. &
+                      size(tf, 2) == 2, 'shapes (h5py (2, 3))')
+      if (allocated(error)) return
+      call export_to(['t_flip,energy_error'], text)
+      call export_to([character(len=12) :: 't_flip', 'energy_error'], text2)
+      if (allocated(error)) return
+      call check_true(error, text == text2, 'comma-separated names give the same text')
+      pos = index(text, nl)
+      call check_true(error, text(:pos - 1) == 'theta1 [rad],w2 [rad/s],t_flip [s],' &
+                      //'energy_error [1]', 'header: '//text(:pos - 1))
+      k = 0
+      do j2 = 1, 2
+         do j1 = 1, 3
+            if (allocated(error)) return
+            text = text(pos + 1:)
+            pos = index(text, nl)
+            line = text(:pos - 1)
+            read (line, *, iostat=stat) row
+            k = k + 1
+            call check_true(error, stat == 0, 'row '//real_str(real(k, dp))//': '//line)
+            if (allocated(error)) return
+            call check_true(error, row(1) == a1(j1) .and. row(2) == a2(j2) .and. &
+                            same(row(3), tf(j1, j2)) .and. same(row(4), ee(j1, j2)), &
+                            'row '//real_str(real(k, dp))//' = the file''s pixel: '//line)
+         end do
+      end do
+      call check_true(error, len(text) == pos, 'six rows, nothing after: '//text(pos + 1:))
+      call export_to(['axis1'], text)
+      call check_true(error, index(text, 'axis1 [rad]'//nl) == 1, '1-D: column form: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine export_to(names, out)
+         character(len=*), intent(in) :: names(:)
+         character(len=:), allocatable, intent(out) :: out
+         integer :: m
+         out = ''
+         open (newunit=unit, file=dir//'/e.csv', status='replace', action='write')
+         call export_columns(file, names, unit, err, csv=.true.)
+         close (unit)
+         call check_true(error, .not. allocated(err), 'export_columns')
+         if (allocated(error)) return
+         call read_text(dir//'/e.csv', out, m)
+      end subroutine export_to
+      logical function same(a, b)
+         real(dp), intent(in) :: a, b
+         same = a == b .or. (a /= a .and. b /= b)
+      end function same
+   end subroutine test_export_long
 end module test_messages

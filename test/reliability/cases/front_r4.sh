@@ -77,3 +77,10 @@ succeed fr4-verdict-chaotic      -- indicators --output i.h5 --t-end 40
 succeed fr4-verdict-regular      -- indicators --output i.h5 --t-end 40 --theta1 1 --theta2 1 --dt 1e-2
 succeed fr4-verdict-short        -- indicators --output i.h5 --t-end 1
 succeed fr4-verdict-elastic      -- indicators --output i.h5 --t-end 1 --model elastic --k 40 --l0 1 --q 1.2,-1
+# ---- export: a sweep's maps in long form (values: test_messages export_sweep_long_form)
+succeed fr4-export-long          -- export sweep.h5 --csv t_flip,energy_error
+succeed fr4-export-long-words    -- export sweep.h5 --csv t_flip final/q1 status
+succeed fr4-export-long-1d       -- export sweep.h5 --csv axis1
+succeed fr4-export-wide-plain    -- export sweep.h5 t_flip
+refuse  fr4-export-empty-name    DATASET -- export sweep.h5 --csv ,
+succeed fr4-export-mixed-columns -- export sweep.h5 --csv t_flip axis1
