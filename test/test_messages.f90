@@ -46,7 +46,8 @@ contains
                new_unittest('progress_rate_limited', test_progress_rate), &
                new_unittest('sweep_horizon', test_sweep_horizon), &
                new_unittest('indicators_verdict', test_verdict), &
-               new_unittest('export_sweep_long_form', test_export_long)]
+               new_unittest('export_sweep_long_form', test_export_long), &
+               new_unittest('help_mentions_quiet', test_help_quiet)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -279,7 +280,10 @@ contains
                       index(text, nl//'verlet    (q, p)     2      implicit, symplectic, ' &
                             //'symmetric') > 0 .and. &
                       index(text, nl//'dopri5    (q, qdot)  5      explicit, adaptive ') > 0 &
-                      .and. index(text, 'study sweep') > 0, 'methods table: '//text)
+                      .and. index(text, nl//'rk4       (q, qdot)  4      explicit                          ' &
+                      //'simulate lyapunov indicators divergence poincare study fit sweep'//nl) &
+                      > 0 .and. index(text, 'poincare study'//nl//'gauss6 ') > 0, &
+                      'methods table (indicators everywhere, fit on (q, qdot)): '//text)
       stat = run_command(dir, 'methods --names')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. text == method_names()//nl, 'methods --names: ' &
@@ -755,4 +759,28 @@ contains
          same = a == b .or. (a /= a .and. b /= b)
       end function same
    end subroutine test_export_long
+   !> Every command's --help names --quiet, and dpend --help every model (issue 25).
+   subroutine test_help_quiet(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      character(len=16), parameter :: all(13) = [character(len=16) :: 'simulate', &
+         'lyapunov', 'divergence', 'poincare', 'indicators', 'sweep', 'sweep-compare', &
+         'export', 'study', 'animate', 'fit', 'methods', 'models']
+      integer :: i, n, stat
+      dir = scratch_dir('helpquiet')
+      do i = 1, size(all)
+         stat = run_command(dir, trim(all(i))//' --help')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0 .and. index(text, '--quiet') > 0, &
+                         trim(all(i))//' --help names --quiet: '//text)
+         if (allocated(error)) return
+      end do
+      stat = run_command(dir, '--help')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, index(text, nl//'  pendulum ') > 0 .and. &
+                      index(text, nl//'  elastic ') > 0 .and. index(text, '--damping') > 0 &
+                      .and. index(text, '--support-amplitude') > 0 .and. &
+                      index(text, '--links N') > 0, 'dpend --help: the models: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_help_quiet
 end module test_messages

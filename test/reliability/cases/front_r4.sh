@@ -84,3 +84,10 @@ succeed fr4-export-long-1d       -- export sweep.h5 --csv axis1
 succeed fr4-export-wide-plain    -- export sweep.h5 t_flip
 refuse  fr4-export-empty-name    DATASET -- export sweep.h5 --csv ,
 succeed fr4-export-mixed-columns -- export sweep.h5 --csv t_flip axis1
+# ---- texts: every command's --help mentions --quiet (test_messages help_mentions_quiet)
+succeed fr4-help-main            -- --help
+succeed fr4-help-methods         -- methods --help
+succeed fr4-help-models          -- models --help
+succeed fr4-help-export          -- export --help
+succeed fr4-help-compare         -- sweep-compare --help
+succeed fr4-methods-table        -- methods
