@@ -4,7 +4,7 @@
 module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
-   use dpend_cli, only: real_str, seconds_str, to_lower
+   use dpend_cli, only: real_str, seconds_str, to_lower, to_str
    use dpend_config, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
@@ -280,8 +280,9 @@ contains
                       index(text, nl//'verlet    (q, p)     2      implicit, symplectic, ' &
                             //'symmetric') > 0 .and. &
                       index(text, nl//'dopri5    (q, qdot)  5      explicit, adaptive ') > 0 &
-                      .and. index(text, nl//'rk4       (q, qdot)  4      explicit                          ' &
-                      //'simulate lyapunov indicators divergence poincare study fit sweep'//nl) &
+                      .and. index(text, nl//'rk4       (q, qdot)  4      explicit' &
+                      //repeat(' ', 26)//'simulate lyapunov indicators divergence ' &
+                      //'poincare study fit sweep'//nl) &
                       > 0 .and. index(text, 'poincare study'//nl//'gauss6 ') > 0, &
                       'methods table (indicators everywhere, fit on (q, qdot)): '//text)
       stat = run_command(dir, 'methods --names')
@@ -531,6 +532,7 @@ contains
                          flags//': names the balance for a damped run: '//text)
       end subroutine one
    end subroutine test_largest_error
+
    !> The progress report's rate limiter with an injected clock (issue 25): without
    !> a terminal, at most one line every 10 s and none in the first 10 s, whatever
    !> the rate of updates; none when quiet; a queued header printed once at the
@@ -583,19 +585,13 @@ contains
          call p%finish()
          close (unit)
          call check_true(error, p%lines == expected, real_str(step)//' s x '// &
-                         to_str_i(updates)//': '//to_str_i(p%lines)//' lines, expected '// &
-                         to_str_i(expected))
+                         to_str(updates)//': '//to_str(p%lines)//' lines, expected '// &
+                         to_str(expected))
          call read_text(dir//'/p.txt', text, n)
-         call check_true(error, n == file_lines, 'lines in the file: '//to_str_i(n)//': '//text)
+         call check_true(error, n == file_lines, 'lines in the file: '//to_str(n)//': '//text)
       end subroutine run
-      function to_str_i(i) result(t)
-         integer, intent(in) :: i
-         character(len=:), allocatable :: t
-         character(len=16) :: b
-         write (b, '(i0)') i
-         t = trim(b)
-      end function to_str_i
    end subroutine test_progress_rate
+
    !> The sweep's horizon and step in both units (issue 25), against the natural
    !> unit computed here: sqrt(l1/g) = sqrt(1/9.8) s = 0.31943828... s, so 100 of it
    !> is 31.94 s (4 digits); in seconds, 30 s is 93.91 of it; sqrt(l0/g) of the
@@ -631,6 +627,7 @@ contains
          call check_true(error, index(text, expected) > 0, line//': '//text//' lacks '//expected)
       end subroutine one
    end subroutine test_sweep_horizon
+
    !> `dpend indicators` ends its summary (before the line scripts read) with a
    !> verdict (issue 25): chaotic on the horizontal release (lambda1 = 1.18 1/s:
    !> <Y> ~ lambda1 t/2 ~ 23 at 40 s), regular on the orbit 1 rad from hanging
@@ -682,6 +679,7 @@ contains
                          ' '//real_str(t)//': '//v)
       end subroutine given
    end subroutine test_verdict
+
    !> `export --csv` of a grid sweep's maps is long form (issue 25): a header
    !> 'theta1 [rad],w2 [rad/s],t_flip [s],energy_error [1]', then one row per pixel,
    !> axis 1 fastest, each row's axis values and map values equal to the file's
@@ -759,6 +757,7 @@ contains
          same = a == b .or. (a /= a .and. b /= b)
       end function same
    end subroutine test_export_long
+
    !> Every command's --help names --quiet, and dpend --help every model (issue 25).
    subroutine test_help_quiet(error)
       type(error_t), allocatable, intent(out) :: error

@@ -24,7 +24,7 @@ module dpend_chaos
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
-   use dpend_simulate, only: natural_time_of
+   use dpend_simulate, only: natural_time_of, natural_text
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
@@ -639,7 +639,8 @@ contains
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
+                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
+                //num(ch%tau)//' s, ' &
                 //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
                 //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
                 //to_str(size(res%batches, 2))//' batch means)'//nl
@@ -719,7 +720,8 @@ contains
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend indicators: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, '//to_str(n) &
+                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
+                //num(ch%tau)//' s, '//to_str(n) &
                 //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
                 //' deviation vectors'//nl
       if (n > 0) then
@@ -818,7 +820,7 @@ contains
       if (allocated(error)) return
       summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
                 //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
-                //' s, delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
+                //' s ('//natural_text(cfg, cfg%t_end)//'), delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl
       if (fit%ok) then
          summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &

@@ -349,8 +349,8 @@ contains
             call march%next(integ, model, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
-            if (iand(k, 4095_i8) == 0) call bar%update(min(1000_i8, &
-                                                          int(1000.0_dp*t/cfg%t_end, i8)) - bar%done)
+            if (iand(k, 4095_i8) == 0) &
+               call bar%update(min(1000_i8, int(1000.0_dp*t/cfg%t_end, i8)) - bar%done)
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
                if (traj%n >= cap) then
                   traj%status = 'kept samples reached '//sci(real(cap, dp))// &
