@@ -6,11 +6,12 @@ program dpend
    use dpend_cli, only: arg_t, get_arguments, printable, check_repeated_options
    use dpend_config, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
+   use dpend_simulate, only: natural_text
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix, export_list
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help, horizon_text
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
@@ -24,7 +25,7 @@ program dpend
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
    use dpend_output, only: track_inputs
-   use dpend_progress, only: silence_progress
+   use dpend_progress, only: silence_progress, progress_header
    implicit none
 
    interface
@@ -37,6 +38,12 @@ program dpend
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
+   !> The --quiet line of the help texts that lack one (issue 25: every command's
+   !> --help mentions it).
+   character(len=*), parameter :: summary_quiet = '  --quiet           no progress ' &
+      //'report; of the summary only its last line'
+   character(len=*), parameter :: data_quiet = '  --quiet           accepted (every ' &
+      //'command takes it); the data print as always'
    !> --quiet was given: no progress report, and of a command's summary only its last
    !> line (sweep reads its own --quiet).
    logical :: quiet = .false.
@@ -120,9 +127,19 @@ contains
       s = text(index(text(:n), new_line('a'), back=.true.) + 1:n)
    end function last_line
 
+   !> `help` with the --quiet line `line` appended where it does not mention --quiet.
+   function with_quiet(help, line) result(s)
+      character(len=*), intent(in) :: help  !! a command's help text
+      character(len=*), intent(in) :: line  !! the --quiet line
+      character(len=:), allocatable :: s
+      s = help
+      if (index(help, '--quiet') == 0) s = help//nl//line
+   end function with_quiet
+
    function main_help() result(s)
       character(len=:), allocatable :: s
-      s = 'dpend '//version//' - the compound double pendulum'//nl//nl// &
+      s = 'dpend '//version//' - the compound double pendulum, chains of N rods and the'// &
+          nl//'elastic pendulum: trajectories, chaos, maps, accuracy studies, fits'//nl//nl// &
           'usage: dpend COMMAND [options]     (dpend COMMAND --help for its options)'//nl//nl// &
           'commands:'//nl// &
           '  simulate   integrate one trajectory and write it to HDF5'//nl// &
@@ -141,10 +158,20 @@ contains
           '  models     the models: coordinates, parameters (units, ranges), capabilities' &
           //nl// &
           '  version    print the version'//nl//nl// &
+          'models (--model NAME; dpend models lists parameters, ranges, capabilities):'//nl// &
+          '  pendulum   N uniform rods hinged in a chain (--links N, default 2: the'//nl// &
+          '             chapter''s compound double pendulum; --m, --l: one value per link)'// &
+          nl//'             with optional joint damping (--damping c1,c2,...) and a moving'// &
+          nl//'             support (--support-amplitude ax,ay --support-frequency w'//nl// &
+          '             --support-phase px,py): simulate, lyapunov, indicators,'//nl// &
+          '             divergence and fit take them, study as cases of &study; sweep'// &
+          nl//'             and poincare need the conservative chain'//nl// &
+          '  elastic    a point mass on a spring (--k, --l0, --m; coordinates r, phi)'//nl//nl// &
           'Every command takes --quiet: no progress report, and of a summary only its'//nl// &
           'last line (export, methods and models print their data as always).'//nl//nl// &
-          'Conventions: SI units; angles q1, q2 in rad from the horizontal x axis,'//nl// &
-          'counter-clockwise positive, y up (hanging equilibrium q1 = q2 = -pi/2).'//nl// &
+          'Conventions: SI units; angles q1 .. qN in rad from the horizontal x axis,'//nl// &
+          'counter-clockwise positive, y up (hanging equilibrium q_i = -pi/2); --theta1'//nl// &
+          'and the sweep''s theta axes from the hanging position.'//nl// &
           'Defaults are the chapter''s: m1 = m2 = 1 kg, l1 = l2 = 1 m, g = 9.8 m/s^2.'
    end function main_help
 
@@ -163,7 +190,8 @@ contains
       call run_simulate(cfg, error, summary)
       if (allocated(error)) call fail(exit_status(error), 'dpend simulate: '//error%message)
       if (.not. quiet .or. len(summary) == 0) &
-         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"'"
+         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"': t = 0 .. " &
+         //real_str(cfg%t_end)//' s = '//natural_text(cfg, cfg%t_end)
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate
 
@@ -196,7 +224,7 @@ contains
       call parse_study(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend study: '//error%message)
       if (help) then
-         write (output_unit, '(a)') study_help()
+         write (output_unit, '(a)') with_quiet(study_help(), summary_quiet)
          return
       end if
       call run_study_command(cfg, error)
@@ -213,7 +241,7 @@ contains
       call parse_animate(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend animate: '//error%message)
       if (help) then
-         write (output_unit, '(a)') animate_help()
+         write (output_unit, '(a)') with_quiet(animate_help(), summary_quiet)
          return
       end if
       call run_animate(cfg, summary, error)
@@ -230,7 +258,7 @@ contains
       call parse_fit(sub, cfg, help, error)
       if (allocated(error)) call fail(2, 'dpend fit: '//error%message)
       if (help) then
-         write (output_unit, '(a)') fit_help()
+         write (output_unit, '(a)') with_quiet(fit_help(), summary_quiet)
          return
       end if
       call run_fit(cfg, error)
@@ -245,7 +273,7 @@ contains
          if (sub(1)%s == '--help' .or. sub(1)%s == '-h') then
             write (output_unit, '(a)') 'usage: dpend models'//nl//nl// &
                'Lists every model dpend can build: its coordinates, its parameters (units,' &
-               //nl//'accepted ranges, defaults) and what it supports.'
+               //nl//'accepted ranges, defaults) and what it supports.'//nl//data_quiet
             return
          end if
          call fail(2, "dpend models: unexpected argument '"//sub(1)%s// &
@@ -261,7 +289,8 @@ contains
    subroutine methods(sub)
       type(arg_t), intent(in) :: sub(:)
       character(len=:), allocatable :: props, commands, mode, variables
-      character(len=*), parameter :: all = 'simulate lyapunov divergence poincare study'
+      character(len=*), parameter :: all = 'simulate lyapunov indicators divergence ' &
+                                           //'poincare study'
       integer :: i
       mode = 'table'
       do i = 1, size(sub)
@@ -276,7 +305,7 @@ contains
                //'--plot-styles prints the study''s plot styles (for scripts), one record a' &
                //nl//'line, words separated by one blank:'//nl &
                //'  group ID TITLE...       a panel of the figures, in panel order'//nl &
-               //'  method NAME #RRGGBB ID  a method, its colour and its group'
+               //'  method NAME #RRGGBB ID  a method, its colour and its group'//nl//data_quiet
             return
          case ('--names')
             mode = 'names'
@@ -315,7 +344,9 @@ contains
                if (m%symplectic) props = props//', symplectic'
                if (m%symmetric) props = props//', symmetric'
                commands = all
-               if (m%name == 'rk4') commands = all//' sweep'
+               ! fit integrates (q, qdot) (dpend_fit_command); sweep its batch rk4
+               if (.not. m%canonical) commands = commands//' fit'
+               if (m%name == 'rk4') commands = commands//' sweep'
                variables = '(q, qdot)'
                if (m%canonical) variables = trim(merge('(q, p) ', '(q, p)*', m%hamiltonian))
                write (output_unit, '(a)') m%name//pad(variables, 11)// &
@@ -361,7 +392,7 @@ contains
               '            the 1-D datasets XAXIS (nx) and YAXIS (ny) as coordinates,'//nl// &
               '            values / SCALE (SCALE > 0, at least '// &
               real_str(tiny(1.0_dp))//')'//nl// &
-              '  -h, --help  this text'
+              '  -h, --help  this text'//nl//data_quiet
       if (any([(sub(i)%s == '--help' .or. sub(i)%s == '-h', i=1, size(sub))])) then
          write (output_unit, '(a)') usage
          return
@@ -445,6 +476,8 @@ contains
          write (output_unit, '(a)') sweep_help()
          return
       end if
+      ! the horizon in both units, printed when the run starts (issue 25)
+      if (.not. cfg%quiet) call progress_header('dpend sweep: '//horizon_text(cfg))
       call run_sweep(cfg, summary, error)
       ! refused input (found when the output is examined) or a run that failed
       if (allocated(error)) call fail(exit_status(error), 'dpend sweep: '//error%message)
@@ -487,7 +520,8 @@ contains
             'the fraction of pixels where the two agree, with both times; stored in FILE'//nl// &
             '(default agreement.h5). Chaotic: megno <Y> > X (default 2.5); lambda1'//nl// &
             'lambda1 sqrt(l1/g) > X (default 0.05); fli > X (no default); sali, gali2'//nl// &
-            '< X (default 1e-8). --threshold-a, --threshold-b: X of file A, B.'
+            '< X (default 1e-8). --threshold-a, --threshold-b: X of file A, B.'//nl// &
+            summary_quiet
          return
       end if
       rel = 0.01_dp

@@ -5,10 +5,14 @@ module test_cli
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t, is_hdf5
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
-   use dpend_cli, only: to_str
+   use dpend_cli, only: to_str, arg_t
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_simulate, only: parse_simulate
+   use dpend_config, only: run_config_t
    implicit none
    private
    public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text, expect_rejected
+   public :: args_of
 
 contains
 
@@ -23,7 +27,8 @@ contains
                new_unittest('config_file_and_flags', test_config_run), &
                new_unittest('trajectory_matches_reference', test_reference), &
                new_unittest('dense_output_matches_reference', test_reference_dense), &
-               new_unittest('theta_is_q_from_hanging', test_theta)]
+               new_unittest('theta_is_q_from_hanging', test_theta), &
+               new_unittest('contradictions_name_both', test_contradictions)]
    end subroutine collect_cli
 
    !> Path of the dpend executable built with the same flags as this test program:
@@ -384,4 +389,70 @@ contains
          t = s(k:pos - 1)
       end subroutine next_token
    end function merged_options
+   !> Two settings of one quantity (issue 25) are refused by the parsers, in either
+   !> order, in one message naming both; the valid neighbours parse.
+   subroutine test_contradictions(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: w = '--n 2 --t-end 0.5 --quiet '
+      call sweep_case(w//'--theta1 3 --axis1 theta1', '--theta1: axis1')
+      call sweep_case(w//'--axis1 theta1 --theta1 3', '--theta1: axis1')
+      call sweep_case(w//'--axis1 q1 --q1 3', '--q1: axis1')
+      call sweep_case(w//'--q2 1', '--q2: axis2')
+      call sweep_case(w//'--axis1 w1 --axis2 w2 --w2 1', '--w2: axis2')
+      call sweep_case(w//'--axis2 m2/m1 --min2 1 --max2 2 --m2 3', '--m2: axis2')
+      call sweep_case('--quiet --ic-file x.csv --min1 3', '--min1: given with ic_file')
+      call sweep_case('--quiet --ic-file x.csv --theta1 1', '--theta1: given with ic_file')
+      call sweep_case(w//'--stop-at both --indicator fli', '--stop-at')
+      call sweep_case(w//'--axis1 w1 --axis2 w2 --q1 1 --q2 0.5', '')
+      call sweep_case(w//'--axis1 m2/m1 --min1 1 --max1 2 --m1 3', '')
+      call sweep_case(w//'--indicator sali --stop-at end', '')
+      call simulate_case('--save-every 3 --output-dt 0.1', '--output-dt: given with --save-every')
+      call simulate_case('--output-dt 0.1 --save-every 3', '--output-dt: given with --save-every')
+      call simulate_case('--output-dt 0.1', '')
+   contains
+      subroutine sweep_case(line, expected)
+         character(len=*), intent(in) :: line, expected
+         type(sweep_config_t) :: cfg
+         type(error_t), allocatable :: err
+         logical :: help
+         if (allocated(error)) return
+         call parse_sweep(args_of(line), cfg, help, err)
+         call judge(line, err, expected)
+      end subroutine sweep_case
+      subroutine simulate_case(line, expected)
+         character(len=*), intent(in) :: line, expected
+         type(run_config_t) :: cfg
+         type(error_t), allocatable :: err
+         logical :: help
+         if (allocated(error)) return
+         call parse_simulate(args_of('--t-end 0.1 '//line), cfg, help, err)
+         call judge(line, err, expected)
+      end subroutine simulate_case
+      subroutine judge(line, err, expected)
+         character(len=*), intent(in) :: line, expected
+         type(error_t), allocatable, intent(in) :: err
+         if (len(expected) == 0) then
+            if (allocated(err)) call fatal_error(error, "'"//line//"' refused: "//err%message)
+         else if (.not. allocated(err)) then
+            call fatal_error(error, "'"//line//"' accepted, expected a refusal")
+         else if (index(err%message, expected) == 0) then
+            call fatal_error(error, "'"//line//"': '"//err%message//"' lacks '"//expected//"'")
+         end if
+      end subroutine judge
+   end subroutine test_contradictions
+
+   !> The blank-separated words of `line` as command-line arguments.
+   function args_of(line) result(args)
+      character(len=*), intent(in) :: line  !! e.g. '--n 2 --quiet'
+      type(arg_t), allocatable :: args(:)
+      character(len=:), allocatable :: rest
+      integer :: k
+      allocate (args(0))
+      rest = trim(adjustl(line))
+      do while (len(rest) > 0)
+         k = index(rest//' ', ' ')
+         args = [args, arg_t(rest(:k - 1))]
+         rest = trim(adjustl(rest(k:)))
+      end do
+   end function args_of
 end module test_cli

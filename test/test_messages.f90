@@ -4,13 +4,19 @@
 module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
-   use dpend_cli, only: real_str, seconds_str, to_lower
+   use dpend_cli, only: real_str, seconds_str, to_lower, to_str
    use dpend_config, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
    use dpend_sweep_config, only: sweep_help, sweep_config_t, sweep_defaults
    use dpend_methods, only: method_names
-   use test_cli, only: run_command, scratch_dir, read_text
+   use test_cli, only: run_command, scratch_dir, read_text, args_of
+   use dpend_sweep_config, only: parse_sweep, horizon_text
+   use dpend_chaos, only: indicator_verdict
+   use dpend_export, only: export_columns
+   use dpend_hdf5, only: h5file_t
+   use dpend_progress, only: progress_t, progress_header
+   use dpend_kinds, only: i8
    implicit none
    private
    public :: collect_messages
@@ -35,7 +41,13 @@ contains
                new_unittest('sweep_closing_line', test_sweep_line), &
                new_unittest('methods_table', test_methods), &
                new_unittest('divergence_without_slope', test_divergence_no_slope), &
-               new_unittest('quiet_last_line', test_quiet)]
+               new_unittest('quiet_last_line', test_quiet), &
+               new_unittest('simulate_largest_error', test_largest_error), &
+               new_unittest('progress_rate_limited', test_progress_rate), &
+               new_unittest('sweep_horizon', test_sweep_horizon), &
+               new_unittest('indicators_verdict', test_verdict), &
+               new_unittest('export_sweep_long_form', test_export_long), &
+               new_unittest('help_mentions_quiet', test_help_quiet)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -228,8 +240,12 @@ contains
       call check_true(error, stat == 0 .and. n == 2, 'simulate: two lines: '//text)
       if (allocated(error)) return
       call check_true(error, index(text, 'dpend simulate: rk4: 1000 steps, 4000 f evaluations,' &
-                                   //' relative energy error ') > 0 .and. &
+                                   //' relative energy error largest ') > 0 .and. &
+                      index(text, ' s), final ') > 0 .and. &
                       index(text, ' s'//nl) > 0, 'simulate summary: '//text)
+      ! the horizon in seconds and in the natural unit sqrt(l1/g) = sqrt(1/9.8) s
+      call check_true(error, index(text, "wrote '"//dir//"/s.h5': t = 0 .. 1 s = 3.13 " &
+                                   //'sqrt(l1/g)'//nl) > 0, 'simulate horizon: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_simulate_summary
 
@@ -264,7 +280,11 @@ contains
                       index(text, nl//'verlet    (q, p)     2      implicit, symplectic, ' &
                             //'symmetric') > 0 .and. &
                       index(text, nl//'dopri5    (q, qdot)  5      explicit, adaptive ') > 0 &
-                      .and. index(text, 'study sweep') > 0, 'methods table: '//text)
+                      .and. index(text, nl//'rk4       (q, qdot)  4      explicit' &
+                      //repeat(' ', 26)//'simulate lyapunov indicators divergence ' &
+                      //'poincare study fit sweep'//nl) &
+                      > 0 .and. index(text, 'poincare study'//nl//'gauss6 ') > 0, &
+                      'methods table (indicators everywhere, fit on (q, qdot)): '//text)
       stat = run_command(dir, 'methods --names')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. text == method_names()//nl, 'methods --names: ' &
@@ -450,4 +470,316 @@ contains
       real(dp) :: x
       x = ieee_value(x, ieee_positive_inf)
    end function ieee_inf
+   !> The summary's largest relative energy error (issue 25) is the largest over
+   !> the file's energy dataset, |E(t_k) - E(0)| / energy_scale, recomputed here from
+   !> /trajectory/energy and the root attribute energy_scale: the chapter's run with
+   !> the README's settings (data/simulate.nml: rk4, dt = 1e-4 s, t = 10 s; about
+   !> 8e-13), a short one, and a damped run (the balance: E(t) - E(0) + W_friction
+   !> - W_support from /trajectory/W_friction and W_support).
+   subroutine test_largest_error(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('simlargest')
+      call one('--dt 1e-4 --t-end 10 --save-every 10', .false., 5e-13_dp, 2e-12_dp)
+      call one('--t-end 3 --q1 0.5 --method gauss4', .false., 0.0_dp, 1.0_dp)
+      call one('--t-end 3 --damping 0.2,0.1', .true., 0.0_dp, 1.0_dp)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine one(flags, balance, lo, hi)
+         character(len=*), intent(in) :: flags
+         logical, intent(in) :: balance
+         real(dp), intent(in) :: lo, hi   ! bounds of the largest error
+         character(len=:), allocatable :: text
+         type(h5file_t) :: h5
+         type(error_t), allocatable :: err
+         real(dp), allocatable :: e(:), wf(:), ws(:), r(:)
+         real(dp) :: scale, printed, final
+         integer :: n, stat, at, k
+         if (allocated(error)) return
+         stat = run_command(dir, 'simulate --force '//flags//' --output '//dir//'/s.h5')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0, flags//': exit 0: '//text)
+         if (allocated(error)) return
+         call h5%open(dir//'/s.h5', 'r', err)
+         if (.not. allocated(err)) call h5%read('/trajectory/energy', e, err)
+         if (.not. allocated(err)) call h5%readattr('/', 'energy_scale', scale, err)
+         if (.not. allocated(err) .and. balance) call h5%read('/trajectory/W_friction', wf, err)
+         if (.not. allocated(err) .and. balance) call h5%read('/trajectory/W_support', ws, err)
+         call h5%close()
+         if (allocated(err)) then
+            call check_true(error, .false., flags//': '//err%message)
+            return
+         end if
+         r = abs(e - e(1))
+         if (balance) r = abs(e - e(1) + wf - ws)
+         r = r/scale
+         at = index(text, 'largest ') + 8
+         read (text(at:), *, iostat=stat) printed
+         k = index(text, 'final ') + 6
+         if (stat == 0) read (text(k:index(text(k:), ',') + k - 2), *, iostat=stat) final
+         call check_true(error, stat == 0 .and. at > 8 .and. k > 6, flags// &
+                         ': largest and final in the summary: '//text)
+         if (allocated(error)) return
+         ! printed with 2 significant digits
+         call check_true(error, abs(printed - maxval(r)) <= 0.051_dp*maxval(r), flags// &
+                         ': largest '//real_str(printed)//' vs the file '//real_str(maxval(r)))
+         call check_true(error, abs(final - r(size(r))) <= 0.051_dp*r(size(r)) + tiny(1.0_dp), &
+                         flags//': final '//real_str(final)//' vs the file '// &
+                         real_str(r(size(r))))
+         call check_true(error, printed >= lo .and. printed <= hi, flags//': largest '// &
+                         real_str(printed)//' within ['//real_str(lo)//', '//real_str(hi)//']')
+         call check_true(error, (index(text, 'balance error largest') > 0) .eqv. balance, &
+                         flags//': names the balance for a damped run: '//text)
+      end subroutine one
+   end subroutine test_largest_error
+
+   !> The progress report's rate limiter with an injected clock (issue 25): without
+   !> a terminal, at most one line every 10 s and none in the first 10 s, whatever
+   !> the rate of updates; none when quiet; a queued header printed once at the
+   !> start. The lines go to a scratch file, counted and read back.
+   subroutine test_progress_rate(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: n
+      dir = scratch_dir('progress')
+      ! 0.5 s between updates for 100 s: lines at 10, 20, ... 100 s
+      call run(200, 0.5_dp, .false., 10, 10)
+      ! a short run (9.5 s) writes none; nor does the end of the run by itself
+      call run(19, 0.5_dp, .false., 0, 0)
+      ! irregular updates (every 3.3 s for 99 s): at 13.2, 26.4, ... at most 1 per 10 s
+      call run(30, 3.3_dp, .false., 7, 7)
+      ! one update per 25 s: each is due
+      call run(4, 25.0_dp, .false., 4, 4)
+      call run(200, 0.5_dp, .true., 0, 0)   ! quiet
+      call progress_header('dpend test: header')
+      call run(3, 1.0_dp, .false., 0, 1)
+      if (allocated(error)) return
+      call read_text(dir//'/p.txt', text, n)
+      call check_true(error, text == 'dpend test: header'//nl, 'header printed once: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine run(updates, step, quiet, expected, file_lines)
+         integer, intent(in) :: updates, expected, file_lines
+         real(dp), intent(in) :: step
+         logical, intent(in) :: quiet
+         type(progress_t) :: p
+         real(dp) :: now, last
+         integer :: k, unit, before
+         open (newunit=unit, file=dir//'/p.txt', status='replace', action='write')
+         p%unit = unit
+         call p%start('dpend test', int(updates, i8)*5, 0_i8, quiet, now=0.0_dp)
+         ! as without a terminal, whatever this test's stderr is
+         p%tty = .false.
+         p%t_last = p%t_start
+         last = -huge(1.0_dp)
+         do k = 1, updates
+            now = k*step
+            before = p%lines
+            call p%update(5_i8, now=now)
+            if (p%lines > before) then
+               call check_true(error, now - last >= 10.0_dp, 'a line at '//real_str(now)// &
+                               ' s only '//real_str(now - last)//' s after the last')
+               last = now
+            end if
+         end do
+         call p%finish()
+         close (unit)
+         call check_true(error, p%lines == expected, real_str(step)//' s x '// &
+                         to_str(updates)//': '//to_str(p%lines)//' lines, expected '// &
+                         to_str(expected))
+         call read_text(dir//'/p.txt', text, n)
+         call check_true(error, n == file_lines, 'lines in the file: '//to_str(n)//': '//text)
+      end subroutine run
+   end subroutine test_progress_rate
+
+   !> The sweep's horizon and step in both units (issue 25), against the natural
+   !> unit computed here: sqrt(l1/g) = sqrt(1/9.8) s = 0.31943828... s, so 100 of it
+   !> is 31.94 s (4 digits); in seconds, 30 s is 93.91 of it; sqrt(l0/g) of the
+   !> elastic pendulum with l0 = 2 m.
+   subroutine test_sweep_horizon(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: tn
+      tn = sqrt(1.0_dp/9.8_dp)
+      call check_true(error, abs(100*tn - 31.94_dp) < 0.005_dp .and. &
+                      abs(0.01_dp*tn - 0.003194_dp) < 5e-7_dp .and. &
+                      abs(30/tn - 93.91_dp) < 0.005_dp, 'the natural unit')
+      call one('--n 2', 't_end = 100 sqrt(l1/g) = 31.94 s, dt = 0.01 sqrt(l1/g) = 0.003194 s')
+      call one('--n 2 --time-unit s --t-end 30 --dt 0.001', &
+               't_end = 30 s = 93.91 sqrt(l1/g), dt = 0.001 s = 0.00313 sqrt(l1/g)')
+      call one('--n 2 --l1 4 --g 9.8', 't_end = 100 sqrt(l1/g) = 63.89 s')
+      call one('--n 2 --model elastic --k 40 --l0 2 --q 1.2,-1.0 --axis1 r --axis2 phi ' &
+               //'--min1 1 --max1 1.5 --indicator megno', 't_end = 100 sqrt(l0/g) = 45.18 s')
+      call one('--n 2 --axis1 l1 --min1 0.5 --max1 2', 'of the configured l1 = 1 m; l1 is swept')
+   contains
+      subroutine one(line, expected)
+         character(len=*), intent(in) :: line, expected
+         type(sweep_config_t) :: cfg
+         type(error_t), allocatable :: err
+         logical :: help
+         character(len=:), allocatable :: text
+         if (allocated(error)) return
+         call parse_sweep(args_of(line), cfg, help, err)
+         if (allocated(err)) then
+            call check_true(error, .false., line//': '//err%message)
+            return
+         end if
+         text = horizon_text(cfg)
+         call check_true(error, index(text, expected) > 0, line//': '//text//' lacks '//expected)
+      end subroutine one
+   end subroutine test_sweep_horizon
+
+   !> `dpend indicators` ends its summary (before the line scripts read) with a
+   !> verdict (issue 25): chaotic on the horizontal release (lambda1 = 1.18 1/s:
+   !> <Y> ~ lambda1 t/2 ~ 23 at 40 s), regular on the orbit 1 rad from hanging
+   !> (docs/chaos.md: <Y> -> 2, SALI bounded), undecided on a run too short to
+   !> tell; and the criterion's edges on given values.
+   subroutine test_verdict(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      real(dp), parameter :: tn = 0.3194382824999699_dp
+      dir = scratch_dir('verdict')
+      call run('--t-end 40', 'verdict: chaotic (')
+      call run('--t-end 40 --theta1 1 --theta2 1 --dt 1e-2', 'verdict: regular (')
+      call run('--t-end 5 --theta1 1 --theta2 1 --dt 1e-2', 'verdict: undecided (')
+      call given(4.01_dp, 0.99e-4_dp, 1.0_dp, 'verdict: chaotic (')
+      call given(4.0_dp, 1e-8_dp, 1.0_dp, 'verdict: undecided (')
+      call given(30.0_dp, 1e-4_dp, 1000.0_dp, 'verdict: undecided (')
+      call given(2.1_dp, 1e-4_dp, 100*tn, 'verdict: regular (')
+      call given(0.0_dp, 0.5_dp, 1000.0_dp, 'verdict: regular (')
+      call given(2.11_dp, 0.5_dp, 1000.0_dp, 'verdict: undecided (')
+      call given(1.9_dp, 0.5_dp, 99*tn, 'verdict: undecided (')
+      call given(1.9_dp, 0.99e-4_dp, 1000.0_dp, 'verdict: undecided (')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine run(flags, expected)
+         character(len=*), intent(in) :: flags, expected
+         character(len=:), allocatable :: text, last
+         integer :: n, stat, k
+         if (allocated(error)) return
+         stat = run_command(dir, 'indicators --force '//flags//' --output '//dir//'/i.h5')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0, flags//': exit 0: '//text)
+         k = index(text, nl//'verdict: ')
+         call check_true(error, k > 0, flags//': a verdict: '//text)
+         if (allocated(error)) return
+         call check_true(error, index(text(k + 1:), expected) == 1 .and. &
+                         index(text(k + 1:), 'criterion: ') > 0, flags//': '//text(k + 1:))
+         ! the line scripts read stays the last
+         last = text(k + 1:)
+         last = last(index(last, nl) + 1:)
+         call check_true(error, index(last, 'indicators: ') == 1, flags//': last line: '//last)
+      end subroutine run
+      subroutine given(y, sali, t, expected)
+         real(dp), intent(in) :: y, sali, t
+         character(len=*), intent(in) :: expected
+         character(len=:), allocatable :: v
+         if (allocated(error)) return
+         v = indicator_verdict(y, sali, t, tn, 'sqrt(l1/g)')
+         call check_true(error, index(v, expected) == 1, real_str(y)//' '//real_str(sali)// &
+                         ' '//real_str(t)//': '//v)
+      end subroutine given
+   end subroutine test_verdict
+
+   !> `export --csv` of a grid sweep's maps is long form (issue 25): a header
+   !> 'theta1 [rad],w2 [rad/s],t_flip [s],energy_error [1]', then one row per pixel,
+   !> axis 1 fastest, each row's axis values and map values equal to the file's
+   !> /sweep/axis1(j1), /sweep/axis2(j2) and map(j1, j2) read here; names given
+   !> as 't_flip,energy_error' or as two words give the same text; a 1-D dataset
+   !> keeps the column form.
+   subroutine test_export_long(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, file, line
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: a1(:), a2(:), tf(:, :), ee(:, :)
+      real(dp) :: row(4)
+      integer :: n, stat, unit, j1, j2, pos, k
+      character(len=:), allocatable :: text2
+      dir = scratch_dir('exportlong')
+      file = dir//'/s.h5'
+      stat = run_command(dir, 'sweep --n1 3 --n2 2 --t-end 5 --quiet --axis2 w2 --min2 -1 ' &
+                         //'--max2 2 --output '//file)
+      call check_true(error, stat == 0, 'sweep exits 0')
+      if (allocated(error)) return
+      call h5%open(file, 'r', err)
+      if (.not. allocated(err)) call h5%read('/sweep/axis1', a1, err)
+      if (.not. allocated(err)) call h5%read('/sweep/axis2', a2, err)
+      if (.not. allocated(err)) call h5%read('/sweep/t_flip', tf, err)
+      if (.not. allocated(err)) call h5%read('/sweep/energy_error', ee, err)
+      call h5%close()
+      call check_true(error, .not. allocated(err), 'read the sweep file')
+      if (allocated(error)) return
+      call check_true(error, size(a1) == 3 .and. size(a2) == 2 .and. size(tf, 1) == 3 .and. &
+                      size(tf, 2) == 2, 'shapes (h5py (2, 3))')
+      if (allocated(error)) return
+      call export_to(['t_flip,energy_error'], text)
+      call export_to([character(len=12) :: 't_flip', 'energy_error'], text2)
+      if (allocated(error)) return
+      call check_true(error, text == text2, 'comma-separated names give the same text')
+      pos = index(text, nl)
+      call check_true(error, text(:pos - 1) == 'theta1 [rad],w2 [rad/s],t_flip [s],' &
+                      //'energy_error [1]', 'header: '//text(:pos - 1))
+      k = 0
+      do j2 = 1, 2
+         do j1 = 1, 3
+            if (allocated(error)) return
+            text = text(pos + 1:)
+            pos = index(text, nl)
+            line = text(:pos - 1)
+            read (line, *, iostat=stat) row
+            k = k + 1
+            call check_true(error, stat == 0, 'row '//real_str(real(k, dp))//': '//line)
+            if (allocated(error)) return
+            call check_true(error, row(1) == a1(j1) .and. row(2) == a2(j2) .and. &
+                            same(row(3), tf(j1, j2)) .and. same(row(4), ee(j1, j2)), &
+                            'row '//real_str(real(k, dp))//' = the file''s pixel: '//line)
+         end do
+      end do
+      call check_true(error, len(text) == pos, 'six rows, nothing after: '//text(pos + 1:))
+      call export_to(['axis1'], text)
+      call check_true(error, index(text, 'axis1 [rad]'//nl) == 1, '1-D: column form: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine export_to(names, out)
+         character(len=*), intent(in) :: names(:)
+         character(len=:), allocatable, intent(out) :: out
+         integer :: m
+         out = ''
+         open (newunit=unit, file=dir//'/e.csv', status='replace', action='write')
+         call export_columns(file, names, unit, err, csv=.true.)
+         close (unit)
+         call check_true(error, .not. allocated(err), 'export_columns')
+         if (allocated(error)) return
+         call read_text(dir//'/e.csv', out, m)
+      end subroutine export_to
+      logical function same(a, b)
+         real(dp), intent(in) :: a, b
+         same = a == b .or. (a /= a .and. b /= b)
+      end function same
+   end subroutine test_export_long
+
+   !> Every command's --help names --quiet, and dpend --help every model (issue 25).
+   subroutine test_help_quiet(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      character(len=16), parameter :: all(13) = [character(len=16) :: 'simulate', &
+         'lyapunov', 'divergence', 'poincare', 'indicators', 'sweep', 'sweep-compare', &
+         'export', 'study', 'animate', 'fit', 'methods', 'models']
+      integer :: i, n, stat
+      dir = scratch_dir('helpquiet')
+      do i = 1, size(all)
+         stat = run_command(dir, trim(all(i))//' --help')
+         call read_text(dir//'/stdout', text, n)
+         call check_true(error, stat == 0 .and. index(text, '--quiet') > 0, &
+                         trim(all(i))//' --help names --quiet: '//text)
+         if (allocated(error)) return
+      end do
+      stat = run_command(dir, '--help')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, index(text, nl//'  pendulum ') > 0 .and. &
+                      index(text, nl//'  elastic ') > 0 .and. index(text, '--damping') > 0 &
+                      .and. index(text, '--support-amplitude') > 0 .and. &
+                      index(text, '--links N') > 0, 'dpend --help: the models: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_help_quiet
 end module test_messages

@@ -1404,7 +1404,9 @@ contains
       stat = run_command(dir, pmap//'--threads 1 --block 100 --output '//dir//'/p2.h5')
       call check_true(error, stat == 0, 'parameter map, other blocks, exits 0')
       do k = 1, 2
-         stat = run_command(dir, common//'--n1 8 --n2 1 --axis1 theta1 --axis2 q2 ' &
+         ! q2 = -1 from the one-point axis (a fixed --q2 with axis q2 is refused)
+         stat = run_command(dir, common(:index(common, '--q2') - 1)//'--n1 8 --n2 1 ' &
+                            //'--axis1 theta1 --axis2 q2 ' &
                             //'--min2 -1 --max2 -1 --threads 1 --m2 '// &
                             trim(merge('0.5', '2  ', k == 1))//' --output '//dir//'/r'// &
                             achar(iachar('0') + k)//'.h5')

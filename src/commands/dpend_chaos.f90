@@ -24,6 +24,7 @@ module dpend_chaos
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
    use dpend_output, only: output_t
+   use dpend_simulate, only: natural_time_of, natural_text
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
                                             ieee_quiet_nan
@@ -36,6 +37,7 @@ module dpend_chaos
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
    public :: read_chaos_config, validate_chaos, run_chaos
+   public :: indicator_verdict
 
    real(dp), parameter :: pi = acos(-1.0_dp)
    character(len=*), parameter :: nl = new_line('a')
@@ -637,7 +639,8 @@ contains
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, ' &
+                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
+                //num(ch%tau)//' s, ' &
                 //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
                 //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
                 //to_str(size(res%batches, 2))//' batch means)'//nl
@@ -674,7 +677,8 @@ contains
       logical, intent(inout) :: failed
       type(indicators_result_t) :: res
       type(h5file_t) :: h5
-      character(len=:), allocatable :: status, line
+      character(len=:), allocatable :: status, line, unit
+      real(dp) :: tn
       integer :: stat, j, n
       call chaos_indicators(integ, cfg%model, 0.0_dp, &
                             integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
@@ -716,7 +720,8 @@ contains
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
       summary = 'dpend indicators: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s, tau = '//num(ch%tau)//' s, '//to_str(n) &
+                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
+                //num(ch%tau)//' s, '//to_str(n) &
                 //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
                 //' deviation vectors'//nl
       if (n > 0) then
@@ -729,6 +734,11 @@ contains
          end do
       end if
       summary = summary//"dpend indicators: wrote '"//cfg%output//"'"
+      if (n > 0) then
+         tn = natural_time_of(cfg, unit)
+         summary = summary//nl//indicator_verdict(res%mean_all(1, n), res%sali(n), res%t(n), &
+                                                  tn, unit)
+      end if
       if (stat /= stat_ok .or. n == 0) then
          call stopped(status, cfg%output, error, failed)
          return
@@ -810,7 +820,7 @@ contains
       if (allocated(error)) return
       summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
                 //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
-                //' s, delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
+                //' s ('//natural_text(cfg, cfg%t_end)//'), delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl
       if (fit%ok) then
          summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &
@@ -1003,6 +1013,42 @@ contains
    end function pct
 
    !> Compact text of a number for summaries: up to 6 significant digits.
+   !> The verdict of `dpend indicators` (issue 25; docs/chaos.md, "Verdict"):
+   !> 'verdict: chaotic' when MEGNO's mean <Y> > 4 (twice the regular limit 2; it
+   !> grows as lambda1 t/2) and SALI < 1e-4 (it falls as exp(-(lambda1 - lambda2) t));
+   !> 'verdict: regular' when <Y> <= 2.1 (2 with shear, 0 without), SALI >= 1e-4
+   !> and the run lasted at least 100 natural time units (before, a chaotic orbit
+   !> can still look regular); 'verdict: undecided' otherwise. The line names the
+   !> criterion and the values.
+   function indicator_verdict(mean_y, sali, t, t_nat, unit) result(s)
+      real(dp), intent(in) :: mean_y  !! MEGNO's running mean <Y> at the end
+      real(dp), intent(in) :: sali    !! SALI at the end
+      real(dp), intent(in) :: t       !! the time reached [s]
+      real(dp), intent(in) :: t_nat   !! the natural time unit [s] (sqrt(l1/g))
+      character(len=*), intent(in) :: unit  !! its name: 'sqrt(l1/g)' or 'sqrt(l0/g)'
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: values
+      values = 'MEGNO <Y> = '//real_str(mean_y, 4)//', SALI = '//real_str(sali, 3)
+      if (.not. (mean_y == mean_y .and. sali == sali)) then
+         s = 'verdict: undecided ('//values//': not finite)'
+      else if (mean_y > 4.0_dp .and. sali < 1e-4_dp) then
+         s = 'verdict: chaotic ('//values//'; criterion: <Y> > 4 and SALI < 1e-4)'
+      else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp .and. t >= 100.0_dp*t_nat) then
+         s = 'verdict: regular ('//values//' at t = '//real_str(t, 4)//' s; criterion: ' &
+             //'<Y> <= 2.1 and SALI >= 1e-4 after at least 100 '//unit//' = '// &
+             real_str(100.0_dp*t_nat, 4)//' s)'
+      else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp) then
+         s = 'verdict: undecided ('//values//' look regular, but t = '//real_str(t, 4)// &
+             ' s is below 100 '//unit//' = '//real_str(100.0_dp*t_nat, 4)// &
+             ' s; criterion: chaotic <Y> > 4 and SALI < 1e-4, regular <Y> <= 2.1 and ' &
+             //'SALI >= 1e-4 after 100 '//unit//'; a longer --t-end)'
+      else
+         s = 'verdict: undecided ('//values//'; criterion: chaotic <Y> > 4 and SALI < ' &
+             //'1e-4, regular <Y> <= 2.1 and SALI >= 1e-4 after 100 '//unit//'; a ' &
+             //'longer --t-end)'
+      end if
+   end function indicator_verdict
+
    pure function num(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s

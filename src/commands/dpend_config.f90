@@ -108,6 +108,9 @@ module dpend_config
       character(len=:), allocatable :: model_name
       type(model_spec_t) :: extra
       type(model_spec_t) :: spec
+      !> Issue 25 (front end): the scalar keys a namelist file gave (' q1 save_every '),
+      !> so that a command refuses a fixed value it sweeps or two forms of one setting.
+      character(len=:), allocatable :: nml_given
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -984,6 +987,10 @@ contains
       file = ''
       if (allocated(cfg%output)) file = cfg%output
       force = cfg%force
+      ! issue 25: these scalars start unset so that the file's own are known (nml_given)
+      m1 = unset; m2 = unset; l1 = unset; l2 = unset
+      q1 = unset; q2 = unset; w1 = unset; w2 = unset
+      output_dt = unset; save_every = -huge(1)
 
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
@@ -1011,6 +1018,17 @@ contains
          call fatal_error(error, namelist_error(filename, 'output', msg)); close (unit); return
       end if
       close (unit)
+      if (.not. allocated(cfg%nml_given)) cfg%nml_given = ' '
+      call note_given('m1', m1, cfg%m(1)); call note_given('m2', m2, cfg%m(2))
+      call note_given('l1', l1, cfg%l(1)); call note_given('l2', l2, cfg%l(2))
+      call note_given('q1', q1, cfg%q(1)); call note_given('q2', q2, cfg%q(2))
+      call note_given('w1', w1, cfg%w(1)); call note_given('w2', w2, cfg%w(2))
+      call note_given('output_dt', output_dt, cfg%output_dt)
+      if (save_every == -huge(1)) then
+         save_every = cfg%save_every
+      else
+         cfg%nml_given = cfg%nml_given//'save_every '
+      end if
 
       cfg%links = links
       cfg%m(1:2) = [m1, m2]; cfg%l(1:2) = [l1, l2]; cfg%g = g
@@ -1030,6 +1048,18 @@ contains
       if (len_trim(file) > 0) cfg%output = trim(file)
       cfg%force = force
    contains
+      !> A scalar the file did not give takes its current value; one it gave is
+      !> recorded in cfg%nml_given.
+      subroutine note_given(key, x, current)
+         character(len=*), intent(in) :: key
+         real(dp), intent(inout) :: x
+         real(dp), intent(in) :: current
+         if (x == unset) then
+            x = current
+         else
+            cfg%nml_given = cfg%nml_given//key//' '
+         end if
+      end subroutine note_given
       !> Keep the given leading entries of a namelist list (its size is checked
       !> against the number of links by validate_run_config).
       subroutine take_list(k, given, values)

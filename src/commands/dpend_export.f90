@@ -60,7 +60,15 @@ contains
       if (allocated(error)) return
       call h5%open(filename, 'r', error)
       if (allocated(error)) return
-      call resolve_all(h5, names, paths, error)
+      call resolve_all(h5, split_commas(names), paths, error)
+      if (.not. allocated(error) .and. as_csv) then
+         ! a sweep's maps (n2, n1) in long form: one row per pixel (issue 25)
+         if (grid_maps(h5, paths)) then
+            call export_long(h5, filename, paths, unit, error)
+            call h5%close()
+            return
+         end if
+      end if
       if (.not. allocated(error)) call table_shape(h5, paths, cols, n, largest, error)
       ! the work and memory, before anything is allocated: the table and the
       ! largest dataset read into it
@@ -93,6 +101,148 @@ contains
          write (unit, '(*(es24.16e3, :, " "))') table(:, j)
       end do
    end subroutine export_columns
+
+   !> The names of `names`, those given as 'a,b' split at the commas (`--csv
+   !> t_flip,energy_error`); empty parts are dropped.
+   function split_commas(names) result(out)
+      character(len=*), intent(in) :: names(:)  !! names as given
+      character(len=:), allocatable :: out(:)
+      integer :: i, k, n, start, pass
+      if (all(index(names, ',') == 0)) then
+         out = names   ! as given
+         return
+      end if
+      n = 0
+      do pass = 1, 2   ! count the parts, then store them
+         if (pass == 2) allocate (character(len=len(names)) :: out(max(n, 1)))
+         if (pass == 2 .and. n == 0) out(1) = ''   ! refused by resolve_all, as before
+         n = 0
+         do i = 1, size(names)
+            start = 1
+            do k = 1, len_trim(names(i)) + 1
+               if (k <= len_trim(names(i))) then
+                  if (names(i)(k:k) /= ',') cycle
+               end if
+               if (k > start) then
+                  n = n + 1
+                  if (pass == 2) out(n) = names(i)(start:k - 1)
+               end if
+               start = k + 1
+            end do
+         end do
+      end do
+   end function split_commas
+
+   !> True if every dataset of `paths` is a map of a grid sweep: 2-D (n2, n1) in h5py
+   !> order, with /sweep/axis1 (n1) and /sweep/axis2 (n2) in the file.
+   logical function grid_maps(h5, paths)
+      type(h5file_t), intent(inout) :: h5       !! open file
+      character(len=*), intent(in) :: paths(:)  !! dataset paths
+      integer, allocatable :: dims(:), d1(:), d2(:)
+      type(error_t), allocatable :: err
+      integer :: i
+      grid_maps = .false.
+      if (.not. (h5%exists('/sweep/axis1') .and. h5%exists('/sweep/axis2'))) return
+      call h5%shape('/sweep/axis1', d1, err)
+      if (.not. allocated(err)) call h5%shape('/sweep/axis2', d2, err)
+      if (allocated(err)) return
+      if (size(d1) /= 1 .or. size(d2) /= 1) return
+      do i = 1, size(paths)
+         call h5%shape(trim(paths(i)), dims, err)
+         if (allocated(err)) return
+         if (size(dims) /= 2) return
+         if (dims(1) /= d1(1) .or. dims(2) /= d2(1)) return
+      end do
+      grid_maps = .true.
+   end function grid_maps
+
+   !> A sweep's maps `paths` as CSV in long form (issue 25): a header of the axes,
+   !> named by the file's /sweep attributes axis1, axis2 ('theta1 [rad]'), and one
+   !> column per map ('t_flip [s]'), then one row per pixel, axis 1 fastest. The
+   !> axis names are checked (letters, digits, '_', '/'; at most 32 characters), and
+   !> the table's size and memory before anything is read.
+   subroutine export_long(h5, filename, paths, unit, error)
+      type(h5file_t), intent(inout) :: h5               !! open file
+      character(len=*), intent(in) :: filename          !! its name, for messages
+      character(len=*), intent(in) :: paths(:)          !! the maps (`grid_maps`)
+      integer, intent(in) :: unit                       !! output unit
+      type(error_t), allocatable, intent(out) :: error  !! refused or unreadable
+      type(text_buffer_t) :: header
+      real(dp), allocatable :: table(:, :), a1(:), a2(:), v2(:, :)
+      integer, allocatable :: dims(:)
+      real(dp) :: values
+      integer :: i, j1, j2, n1, n2
+      call h5%shape(trim(paths(1)), dims, error)
+      if (allocated(error)) return
+      n1 = dims(1); n2 = dims(2)
+      values = real(2 + size(paths), dp)*real(n1, dp)*real(n2, dp)
+      if (values > real(max_export_values, dp)) then
+         call fatal_error(error, "invalid DATASET: export of '"//filename//"' would print "// &
+                          sci(values)//' values, at most '// &
+                          sci(real(max_export_values, dp))//' (export fewer datasets)')
+         return
+      end if
+      call check_memory('DATASET', 8.0_dp*(values + real(n1, dp)*real(n2, dp)), &
+                        "the export of '"//filename//"'", 'export fewer datasets', error)
+      if (allocated(error)) return
+      do i = 1, 2
+         if (i > 1) call header%add(',')
+         call axis_header(i)
+         if (allocated(error)) return
+      end do
+      do i = 1, size(paths)
+         call header%add(',')
+         call csv_header(h5, filename, trim(paths(i)), 0, header, error)
+         if (allocated(error)) return
+      end do
+      call h5%read('/sweep/axis1', a1, error)
+      if (.not. allocated(error)) call h5%read('/sweep/axis2', a2, error)
+      if (allocated(error)) return
+      allocate (table(2 + size(paths), n1*n2))
+      do j2 = 1, n2
+         do j1 = 1, n1
+            table(1, j1 + (j2 - 1)*n1) = a1(j1)
+            table(2, j1 + (j2 - 1)*n1) = a2(j2)
+         end do
+      end do
+      do i = 1, size(paths)
+         call h5%read(trim(paths(i)), v2, error)
+         if (allocated(error)) return
+         table(2 + i, :) = reshape(v2, [n1*n2])
+      end do
+      write (unit, '(a)') header%text(1:header%n)
+      call print_csv(unit, table)
+   contains
+      !> 'theta1 [rad]': the axis name from the /sweep attribute, the units of the
+      !> axis dataset ('axis1' when the attribute is missing).
+      subroutine axis_header(k)
+         integer, intent(in) :: k
+         character(len=:), allocatable :: name, units
+         character(len=*), parameter :: allowed = 'abcdefghijklmnopqrstuvwxyz'// &
+            'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/'
+         character(len=5) :: key
+         key = 'axis'//achar(iachar('0') + k)
+         name = key
+         if (h5%attr_exists('/sweep', key)) call h5%readattr('/sweep', key, name, error)
+         if (allocated(error)) return
+         if (len(name) == 0 .or. len(name) > 32 .or. verify(name, allowed) > 0) then
+            call fatal_error(error, "invalid FILE '"//filename//"': the /sweep attribute "// &
+                             key//" ('"//printable(name(1:min(len(name), 40)))//"') is not "// &
+                             "an axis name (letters, digits, '_', '/'; 1 to 32 characters)")
+            return
+         end if
+         units = ''
+         if (h5%attr_exists('/sweep/'//key, 'units')) &
+            call h5%readattr('/sweep/'//key, 'units', units, error)
+         if (allocated(error)) return
+         if (index(units, ',') > 0) units = ''   ! a CSV field holds no comma
+         if (len_trim(units) > 0) then
+            call header%add(name//' ['//trim(units)//']')
+         else
+            call header%add(name)
+         end if
+      end subroutine axis_header
+   end subroutine export_long
 
    !> The columns (`cols`, counted in real(dp): no overflow) and rows `n` of the
    !> datasets `paths`, and the values of the largest: one column for a 1-D

@@ -20,12 +20,13 @@ module dpend_simulate
    use dpend_limits, only: check_count, max_samples, sci
    use dpend_resources, only: check_memory, check_disk
    use dpend_os, only: available_memory_bytes
-   use dpend_progress, only: wall_seconds
+   use dpend_progress, only: wall_seconds, progress_t
    use dpend_cli, only: real_str, seconds_str
    implicit none
    private
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
    public :: trajectory_t, write_trajectory, check_simulate_resources
+   public :: natural_text, largest_error, natural_time_of
 
    !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
    !> and the derived quantities written beside them (23 reals) [B].
@@ -84,10 +85,10 @@ contains
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
       character(len=:), allocatable :: name, value, config
-      logical :: matched, missing
+      logical :: matched, missing, save_every_given, output_dt_given
       integer :: i
       cfg = simulate_defaults()
-      help = .false.
+      help = .false.; save_every_given = .false.; output_dt_given = .false.
       ! first pass: help and the config file, so that flags override the file
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
@@ -113,7 +114,11 @@ contains
          call option_outcome('simulate', name, matched, missing, &
                              [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
+         if (name == '--save-every') save_every_given = .true.
+         if (name == '--output-dt') output_dt_given = .true.
       end do
+      call check_sampling_forms(cfg, save_every_given, output_dt_given, error)
+      if (allocated(error)) return
       call validate_run_config(cfg, error)
       if (allocated(error)) return
       if (needs_work(cfg%model) .and. cfg%links >= max_dof) then
@@ -124,6 +129,28 @@ contains
       end if
       call check_simulate_resources(cfg, error)
    end subroutine parse_simulate
+
+   !> Refuse save_every with output_dt (issue 25): two forms of the output sampling,
+   !> of which output_dt > 0 would win whatever their order. Each may come from the
+   !> command line or the namelist file (`run_config_t%nml_given`).
+   subroutine check_sampling_forms(cfg, save_every_flag, output_dt_flag, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration read
+      logical, intent(in) :: save_every_flag            !! --save-every given
+      logical, intent(in) :: output_dt_flag             !! --output-dt given
+      type(error_t), allocatable, intent(out) :: error  !! both given
+      character(len=:), allocatable :: a, b
+      a = ''; b = ''
+      if (allocated(cfg%nml_given)) then
+         if (index(cfg%nml_given, ' save_every ') > 0) a = 'save_every [&integration]'
+         if (index(cfg%nml_given, ' output_dt ') > 0) b = 'output_dt [&integration]'
+      end if
+      if (save_every_flag) a = '--save-every'
+      if (output_dt_flag) b = '--output-dt'
+      if (len(a) == 0 .or. len(b) == 0) return
+      call fatal_error(error, 'invalid '//b//': given with '//a//'; they are two forms of ' &
+                       //'the output sampling (output_dt: samples at k*output_dt [s]; ' &
+                       //'save_every: every N-th step); give one of them')
+   end subroutine check_sampling_forms
 
    !> Refuse a run whose kept samples exceed `max_samples`, the available memory or
    !> the free space of the output's file system. The count is known for a
@@ -177,7 +204,7 @@ contains
       type(trajectory_t) :: traj
       type(error_t), allocatable :: werr
       type(output_t) :: out
-      real(dp) :: t0, e0, e1
+      real(dp) :: t0, e_max, t_max, e_fin
       if (present(summary)) summary = ''
       t0 = wall_seconds()
       call new_integrator(cfg%method, integ, error, method_options_t(rtol=cfg%rtol, &
@@ -188,20 +215,14 @@ contains
       call integrate_trajectory(cfg, integ, traj)
       call write_trajectory(out%temp, cfg, integ, traj, werr)
       if (present(summary) .and. traj%n > 0) then
-         e0 = cfg%model%energy(traj%t(1), [traj%q(:, 1), traj%qd(:, 1)])
-         e1 = cfg%model%energy(traj%t(traj%n), [traj%q(:, traj%n), traj%qd(:, traj%n)])
-         if (allocated(traj%w)) then   ! E(t) − E(0) + W_friction − W_support
-            summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
-                      to_str(integ%n_rhs)//' f evaluations, relative energy balance ' &
-                      //'error '//real_str(abs(e1 - e0 + traj%w(1, traj%n) - &
-                      traj%w(2, traj%n))/cfg%model%energy_scale(e0), 2)//', '// &
-                      seconds_str(wall_seconds() - t0)//' s'
-         else
-            summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
-                      to_str(integ%n_rhs)//' f evaluations, relative energy error '// &
-                      real_str(abs(e1 - e0)/cfg%model%energy_scale(e0), 2)//', '// &
-                      seconds_str(wall_seconds() - t0)//' s'
-         end if
+         ! the largest over the kept samples (the file's energy dataset) and the final
+         call largest_error(cfg%model, traj, e_max, t_max, e_fin)
+         summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
+                   to_str(integ%n_rhs)//' f evaluations, relative energy '// &
+                   trim(merge('balance error', 'error        ', allocated(traj%w)))// &
+                   ' largest '//real_str(e_max, 2)//' (t = '//real_str(t_max, 4)// &
+                   ' s), final '//real_str(e_fin, 2)//', '// &
+                   seconds_str(wall_seconds() - t0)//' s'
       end if
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -216,6 +237,64 @@ contains
                           "' holds the samples before the failure", error_run_failed)
    end subroutine run_simulate
 
+   !> The relative energy error |E(t) − E(0)| / energy_scale, or for a damped or
+   !> driven run the balance error |E(t) − E(0) + W_friction − W_support| /
+   !> energy_scale, over the kept samples: its largest value `e_max` (first at
+   !> `t_max` [s]) and its final one `e_fin` (issue 25: the summary quotes both).
+   subroutine largest_error(model, traj, e_max, t_max, e_fin)
+      class(model_t), intent(in) :: model         !! the system (without its works)
+      type(trajectory_t), intent(in) :: traj      !! the samples (n >= 1)
+      real(dp), intent(out) :: e_max, t_max, e_fin  !! largest, its time [s], final
+      real(dp) :: e0, scale, e
+      integer :: k
+      e0 = model%energy(traj%t(1), [traj%q(:, 1), traj%qd(:, 1)])
+      scale = model%energy_scale(e0)
+      e_max = -1.0_dp
+      t_max = traj%t(1)
+      do k = 1, traj%n
+         e = model%energy(traj%t(k), [traj%q(:, k), traj%qd(:, k)]) - e0
+         if (allocated(traj%w)) e = e + traj%w(1, k) - traj%w(2, k)
+         e = abs(e)/scale
+         if (e > e_max) then
+            e_max = e
+            t_max = traj%t(k)
+         end if
+         e_fin = e
+      end do
+   end subroutine largest_error
+
+   !> A time in the natural unit: '31.94 sqrt(l1/g)' (the elastic pendulum:
+   !> sqrt(l0/g)), for the lines that quote seconds (issue 25).
+   function natural_text(cfg, t) result(s)
+      type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
+      real(dp), intent(in) :: t              !! time [s]
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: name
+      s = real_str(t/natural_time_of(cfg, name), 4)//' '//name
+   end function natural_text
+
+   !> The natural time unit [s]: sqrt(l1/g), or sqrt(l0/g) for a model with a
+   !> parameter l0 (the elastic pendulum); `name` says which.
+   real(dp) function natural_time_of(cfg, name) result(tn)
+      type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
+      character(len=:), allocatable, intent(out), optional :: name  !! 'sqrt(l1/g)' ...
+      character(len=:), allocatable :: pname, units, which
+      real(dp) :: x, l, g
+      integer :: i
+      l = cfg%l(1); g = cfg%g
+      which = 'sqrt(l1/g)'
+      do i = 1, cfg%model%n_parameters()
+         call cfg%model%parameter(i, pname, x, units)
+         if (pname == 'l0') then
+            l = x; which = 'sqrt(l0/g)'
+         else if (pname == 'g') then
+            g = x
+         end if
+      end do
+      tn = sqrt(l/g)
+      if (present(name)) name = which
+   end function natural_time_of
+
    !> Integrate from t = 0 to t_end with the configured method, keeping every
    !> save_every-th step and the last one, or, with output_dt > 0, the states at
    !> exactly k·output_dt and t_end from the method's continuous extension.
@@ -224,6 +303,7 @@ contains
       class(integrator_t), intent(inout) :: integ         !! the method
       type(trajectory_t), intent(out) :: traj             !! the samples
       type(march_t) :: march
+      type(progress_t) :: bar
       real(dp) :: t, h
       real(dp), allocatable :: times(:), states(:, :), y(:)
       class(model_t), allocatable :: model   ! the system integrated
@@ -260,11 +340,17 @@ contains
          call append(traj, integ, model, t, y)
          call integ%clear_step()
          call march%start(integ, t, cfg%t_end, h)
+         ! progress in per mille of t_end (issue 25): a bar after 1 s on a terminal,
+         ! else a line at most every 10 s (none for a run shorter than that)
+         call bar%start('dpend simulate', 1000_i8, 0_i8, .false., what='')
+         if (bar%tty) bar%t_last = bar%t_start + 0.8_dp
          k = 0
          do while (.not. march%finished)
             call march%next(integ, model, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
+            if (iand(k, 4095_i8) == 0) &
+               call bar%update(min(1000_i8, int(1000.0_dp*t/cfg%t_end, i8)) - bar%done)
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
                if (traj%n >= cap) then
                   traj%status = 'kept samples reached '//sci(real(cap, dp))// &
@@ -276,6 +362,7 @@ contains
             end if
          end do
       end if
+      if (bar%lines > 0) call bar%finish()
       if (stat /= stat_ok) then
          traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
       end if

@@ -49,6 +49,7 @@ module dpend_sweep_config
    public :: axis_names, time_scale, stop_rule, grid_mode, axis_variable
    public :: indicator_names, indicator_vectors, axis_parameter, param_axis_names
    public :: pixel_parameters, pixel_model, flip_model, sweep_variable, natural_time
+   public :: horizon_text
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -86,6 +87,12 @@ module dpend_sweep_config
       logical :: stats = .false.                   !! steps per trajectory
       integer :: threads = 0                       !! OpenMP threads, 0: all
       logical :: quiet = .false.                   !! no progress report
+      !> The grid's axes and ranges given (' --axis1 min1 ': flags, namelist keys), refused
+      !> with a list (--ic-file) that they would not describe (`check_sweep_forms`).
+      character(len=:), allocatable :: grid_given
+      !> The stop rule as given ('' if not given): refused with an indicator or the
+      !> Lyapunov exponent, which integrate every trajectory to t_end.
+      character(len=:), allocatable :: stop_at_given
    end type sweep_config_t
 
 contains
@@ -108,6 +115,8 @@ contains
       cfg%time_unit = 'natural'
       cfg%stop_at = 'both'
       cfg%indicator = 'flip'
+      cfg%grid_given = ' '
+      cfg%stop_at_given = ''
    end function sweep_defaults
 
    !> Deviation vectors of the batch kernel for the indicator: 0 (flip, lambda1: the
@@ -364,6 +373,10 @@ contains
          call next_option(args, i, name, value, .true., error, missing)
          matched = .true.
          select case (name)
+         case ('--axis1', '--axis2', '--min1', '--max1', '--min2', '--max2')
+            cfg%grid_given = cfg%grid_given//name//' '
+         end select
+         select case (name)
          case ('--config')
          case ('--axis1'); cfg%axis1 = value
          case ('--axis2'); cfg%axis2 = value
@@ -380,7 +393,7 @@ contains
          case ('--ic-dataset'); cfg%ic_dataset = value; cfg%ic_dataset_given = .true.
          case ('--ic-angles'); cfg%ic_angles = value; cfg%ic_angles_given = .true.
          case ('--time-unit'); cfg%time_unit = value
-         case ('--stop-at'); cfg%stop_at = value
+         case ('--stop-at'); cfg%stop_at = value; cfg%stop_at_given = '--stop-at'
          case ('--indicator'); cfg%indicator = value
          case ('--block'); call parse_int(value, name, cfg%block, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
@@ -426,11 +439,26 @@ contains
          call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
+      ! the grid's keys and stop_at start unset so that the file's own are known
+      axis1 = achar(0); axis2 = achar(0)
+      min1 = -huge(1.0_dp); max1 = -huge(1.0_dp); min2 = -huge(1.0_dp)
+      max2 = -huge(1.0_dp); stop_at = achar(0)
       read (unit, nml=sweep, iostat=stat, iomsg=msg)
       close (unit)
       if (stat > 0) then
          call fatal_error(error, namelist_error(filename, 'sweep', msg))
          return
+      end if
+      if (axis1 == achar(0)) then; axis1 = cfg%axis1; else; call grid_key('axis1'); end if
+      if (axis2 == achar(0)) then; axis2 = cfg%axis2; else; call grid_key('axis2'); end if
+      if (min1 == -huge(1.0_dp)) then; min1 = cfg%min1; else; call grid_key('min1'); end if
+      if (max1 == -huge(1.0_dp)) then; max1 = cfg%max1; else; call grid_key('max1'); end if
+      if (min2 == -huge(1.0_dp)) then; min2 = cfg%min2; else; call grid_key('min2'); end if
+      if (max2 == -huge(1.0_dp)) then; max2 = cfg%max2; else; call grid_key('max2'); end if
+      if (stop_at == achar(0)) then
+         stop_at = cfg%stop_at
+      else
+         cfg%stop_at_given = 'stop_at [&sweep]'
       end if
       cfg%axis1 = trim(axis1); cfg%axis2 = trim(axis2)
       cfg%n1 = n1; cfg%n2 = n2
@@ -446,6 +474,11 @@ contains
       cfg%indicator = trim(indicator)
       cfg%block = block; cfg%threads = threads
       cfg%lyapunov = lyapunov; cfg%stats = stats; cfg%quiet = quiet
+   contains
+      subroutine grid_key(key)
+         character(len=*), intent(in) :: key
+         cfg%grid_given = cfg%grid_given//key//' '
+      end subroutine grid_key
    end subroutine read_sweep_config
 
    !> Check the configuration; messages name the field and the accepted range.
@@ -540,7 +573,121 @@ contains
          call fatal_error(error, "invalid ic_angles: '"//cfg%ic_angles// &
                           "' (accepted: q, theta)")
       end if
+      if (.not. allocated(error)) call check_sweep_forms(cfg, error)
    end subroutine validate_sweep
+
+   !> Refuse two settings of one quantity (issue 25), from flags or the namelist
+   !> file: a fixed initial value or parameter and a grid axis that sweeps it (q1 or
+   !> theta1 with axis theta1 or q1, m2 with axis m2/m1, ...); the grid's axes and
+   !> ranges or fixed initial values with a list (ic_file), which gives every
+   !> initial state; a stop rule with an indicator or the Lyapunov exponent, which
+   !> integrate every trajectory to t_end. Lists (--q, --m) may hold the swept entry:
+   !> of more than two links they are the only way to fix the others.
+   subroutine check_sweep_forms(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, validated
+      type(error_t), allocatable, intent(out) :: error  !! two forms of one quantity
+      character(len=:), allocatable :: axis, fixed, c
+      character(len=*), parameter :: initial = 'q1 q2 w1 w2'
+      integer :: k
+      if (len_trim(cfg%stop_at_given) > 0 .and. cfg%stop_at /= 'end' .and. &
+          (cfg%lyapunov .or. indicator_vectors(cfg) > 0)) then
+         fixed = 'lyapunov'
+         if (cfg%indicator /= 'flip') fixed = "indicator '"//cfg%indicator//"'"
+         call fatal_error(error, 'invalid '//cfg%stop_at_given//": '"//cfg%stop_at// &
+                          "' given with "//fixed//' (it integrates every trajectory to ' &
+                          //'t_end: stop_at end); give one of them')
+         return
+      end if
+      if (.not. grid_mode(cfg)) then
+         if (len_trim(cfg%grid_given) > 0) then
+            fixed = first_word(adjustl(cfg%grid_given))
+            call fatal_error(error, 'invalid '//fixed//': given with ic_file (a list ' &
+                             //'sweep integrates the initial states of --ic-file; axes and ' &
+                             //'ranges describe a grid); give one of them')
+            return
+         end if
+         do k = 1, 4
+            fixed = given_form(word(initial, k))
+            if (len(fixed) > 0) then
+               call fatal_error(error, 'invalid '//fixed//': given with ic_file (the ' &
+                                //'list gives every initial state; ' &
+                                //'the fixed value would be ignored); give one of them')
+               return
+            end if
+         end do
+         return
+      end if
+      do k = 1, 2
+         axis = cfg%axis1
+         if (k == 2) axis = cfg%axis2
+         c = achar(iachar('0') + k)
+         fixed = given_form(fixed_key(axis))
+         if (len(fixed) > 0) then
+            call fatal_error(error, 'invalid '//fixed//": axis"//c//" '"//axis// &
+                             "' sweeps the value it fixes (the axis would replace it); " &
+                             //'give one of them')
+            return
+         end if
+      end do
+   contains
+      !> The scalar key (q1 q2 w1 w2 m1 m2 l1 l2) whose value `axis` sweeps, '' if none.
+      function fixed_key(axis) result(key)
+         character(len=*), intent(in) :: axis
+         character(len=:), allocatable :: key
+         integer :: var, n
+         key = ''
+         select case (axis_parameter(axis))
+         case (1); key = 'm1'
+         case (2, 5); key = 'm2'
+         case (3); key = 'l1'
+         case (4, 6); key = 'l2'
+         case default
+            n = cfg%run%links
+            if (.not. flip_model(cfg)) n = cfg%run%model%n_dof()
+            var = sweep_variable(cfg, axis)
+            if (var == 1 .or. var == 2) key = 'q'//achar(iachar('0') + var)
+            if (var == n + 1 .or. var == n + 2) key = 'w'//achar(iachar('0') + var - n)
+         end select
+      end function fixed_key
+      !> How `key` was given: '--q1' or '--theta1' (flags), 'q1 [&initial]' (the
+      !> file), '' if not given.
+      function given_form(key) result(form)
+         character(len=*), intent(in) :: key
+         character(len=:), allocatable :: form
+         character(len=:), allocatable :: seen
+         form = ''
+         if (len(key) == 0) return
+         seen = ' '
+         if (allocated(cfg%run%flags_seen)) seen = cfg%run%flags_seen
+         if (index(seen, ' --'//key//' ') > 0) then
+            form = '--'//key
+         else if (key(1:1) == 'q' .and. index(seen, ' --theta'//key(2:2)//' ') > 0) then
+            form = '--theta'//key(2:2)
+         else if (allocated(cfg%run%nml_given)) then
+            if (index(cfg%run%nml_given, ' '//key//' ') > 0) then
+               form = key//' [&initial]'
+               if (key(1:1) == 'm' .or. key(1:1) == 'l') form = key//' [&pendulum]'
+            end if
+         end if
+      end function given_form
+      !> The k-th blank-separated word of `t`.
+      function word(t, k) result(w)
+         character(len=*), intent(in) :: t
+         integer, intent(in) :: k
+         character(len=:), allocatable :: w
+         integer :: j
+         w = adjustl(t)
+         do j = 2, k
+            w = adjustl(w(index(w, ' ') + 1:))
+         end do
+         w = first_word(w)
+      end function word
+      pure function first_word(t) result(w)
+         character(len=*), intent(in) :: t
+         character(len=:), allocatable :: w
+         w = t(:index(t//' ', ' ') - 1)
+      end function first_word
+   end subroutine check_sweep_forms
 
    !> What a sweep of a model without flips (the elastic pendulum) refuses: the flip
    !> map (indicator flip, the default), the Lyapunov exponent of the batch kernel and
@@ -786,6 +933,34 @@ contains
    end subroutine check_grid_range
 
    !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
+   !> The horizon and the step in both units (issue 25): 't_end = 100 sqrt(l1/g) =
+   !> 31.94 s, dt = 0.01 sqrt(l1/g) = 0.003194 s' (time_unit natural) or 't_end =
+   !> 30 s = 93.91 sqrt(l1/g), ...' (s); with an l1 axis the natural unit is the
+   !> configured l1's.
+   function horizon_text(cfg) result(s)
+      type(sweep_config_t), intent(in) :: cfg  !! validated configuration
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: nat
+      real(dp) :: tn
+      tn = natural_time(cfg)
+      nat = 'sqrt(l1/g)'
+      if (.not. flip_model(cfg)) nat = 'sqrt(l0/g)'
+      s = 't_end = '//both(cfg%run%t_end)//', dt = '//both(cfg%run%dt)
+      if (axis_parameter(cfg%axis1) == 3 .or. axis_parameter(cfg%axis2) == 3) &
+         s = s//' ('//nat//' of the configured l1 = '//real_str(cfg%run%l(1))// &
+             ' m; l1 is swept)'
+   contains
+      function both(t) result(b)
+         real(dp), intent(in) :: t
+         character(len=:), allocatable :: b
+         if (cfg%time_unit == 'natural') then
+            b = real_str(t)//' '//nat//' = '//real_str(t*tn, 4)//' s'
+         else
+            b = real_str(t)//' s = '//real_str(t/tn, 4)//' '//nat
+         end if
+      end function both
+   end function horizon_text
+
    function unit_name(cfg) result(u)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       character(len=16) :: u

@@ -1,15 +1,24 @@
 !> Progress report of long runs on stderr: a bar redrawn in place (percent,
-!> trajectories per second, time left) when stderr is a terminal, a plain line
-!> every `interval` seconds otherwise (logs, CI), nothing when quiet. `--quiet` of
-!> any command silences every report of the process (`silence_progress`).
+!> trajectories per second, time left) when stderr is a terminal, otherwise (logs,
+!> CI) a plain line at most every `interval` seconds (10 s), the first one only
+!> after `interval` (a short run writes none), nothing when quiet. This is the one
+!> mechanism of every long command (sweep, study, simulate, fit; issue 25); the
+!> clock can be injected (`update`'s `now`) to test the rate. `--quiet` of any
+!> command silences every report of the process (`silence_progress`). A command may
+!> queue one line (`progress_header`: the horizon of a sweep) that the next report
+!> prints when it starts, so that a run refused before it starts stays one line.
 module dpend_progress
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
    use dpend_kinds, only: dp, i8
-   use dpend_strings, only: real_str
+   use dpend_strings, only: real_str, to_str
    implicit none
    private
    public :: progress_t, stderr_is_terminal, wall_seconds, silence_progress, progress_silenced
+   public :: progress_header
+
+   !> A line the next `progress_start` prints first (unless quiet); '' none.
+   character(len=:), allocatable, save :: pending_header
 
    !> Every report of this process is quiet (a command's --quiet: `silence_progress`).
    logical, save :: silenced = .false.
@@ -34,6 +43,10 @@ module dpend_progress
       real(dp) :: interval = 10.0_dp   !! seconds between plain lines
       integer(i8) :: reported = -1     !! `done` at the last report
       character(len=:), allocatable :: label  !! prefix of every line
+      !> What a unit is ('traj': 'traj/s' in the line; '': no rate shown).
+      character(len=:), allocatable :: what
+      integer :: unit = error_unit     !! where the lines go (tests: a scratch file)
+      integer :: lines = 0             !! lines written (plain) or bars drawn (tty)
    contains
       procedure :: start => progress_start
       procedure :: update => progress_update
@@ -46,6 +59,12 @@ contains
    subroutine silence_progress()
       silenced = .true.
    end subroutine silence_progress
+
+   !> Queue `line` for the next report's start (printed unless that report is quiet).
+   subroutine progress_header(line)
+      character(len=*), intent(in) :: line  !! e.g. 'dpend sweep: t_end = ...'
+      pending_header = line
+   end subroutine progress_header
 
    !> Whether `silence_progress` was called (reports of their own stay quiet then).
    logical function progress_silenced()
@@ -65,46 +84,72 @@ contains
    end function wall_seconds
 
    !> Begin a report of `total` units of which `done` are already done.
-   subroutine progress_start(self, label, total, done, quiet)
+   subroutine progress_start(self, label, total, done, quiet, what, now)
       class(progress_t), intent(inout) :: self  !! the report
       character(len=*), intent(in) :: label     !! e.g. 'dpend sweep'
       integer(i8), intent(in) :: total          !! all units of work
       integer(i8), intent(in) :: done           !! units done before this run
       logical, intent(in) :: quiet              !! print nothing
+      character(len=*), intent(in), optional :: what  !! a unit ('traj'; '' no rate)
+      real(dp), intent(in), optional :: now     !! the clock [s] (default wall_seconds)
       self%label = label
+      self%what = 'traj'
+      if (present(what)) self%what = what
       self%total = total
       self%done = done
       self%done_start = done
       self%quiet = quiet .or. silenced
       self%tty = stderr_is_terminal()
-      self%t_start = wall_seconds()
+      if (present(now)) then
+         self%t_start = now
+      else
+         self%t_start = wall_seconds()
+      end if
       self%t_last = -1e30_dp
+      ! a plain line only after `interval` (a short run writes none)
+      if (.not. self%tty) self%t_last = self%t_start
+      self%lines = 0
+      if (allocated(pending_header)) then
+         if (.not. self%quiet .and. len(pending_header) > 0) then
+            write (self%unit, '(a)') pending_header
+            flush (self%unit)
+         end if
+         deallocate (pending_header)
+      end if
    end subroutine progress_start
 
-   !> Add `units` done and report if it is time to.
-   subroutine progress_update(self, units)
+   !> Add `units` done and report if it is time to: a bar at most every 0.2 s (and
+   !> at the end) on a terminal, a plain line at most every `interval` seconds
+   !> otherwise (never at the end by itself: the command's closing line says it).
+   subroutine progress_update(self, units, now)
       class(progress_t), intent(inout) :: self  !! the report
       integer(i8), intent(in) :: units          !! units just completed
-      real(dp) :: now
+      real(dp), intent(in), optional :: now     !! the clock [s] (default wall_seconds)
+      real(dp) :: t
       self%done = self%done + units
       if (self%quiet) return
-      now = wall_seconds()
-      if (self%tty) then
-         if (now - self%t_last < 0.2_dp .and. self%done < self%total) return
+      if (present(now)) then
+         t = now
       else
-         if (now - self%t_last < self%interval .and. self%done < self%total) return
+         t = wall_seconds()
       end if
-      self%t_last = now
-      call report(self, now)
+      if (self%tty) then
+         if (t - self%t_last < 0.2_dp .and. self%done < self%total) return
+      else
+         if (t - self%t_last < self%interval) return
+      end if
+      self%t_last = t
+      call report(self, t)
    end subroutine progress_update
 
-   !> End the report (a new line after the bar).
+   !> End the report: the bar at 100 % and a new line on a terminal; nothing more
+   !> in a log (its lines stay at most one every `interval`).
    subroutine progress_finish(self)
       class(progress_t), intent(inout) :: self  !! the report
-      if (self%quiet) return
+      if (self%quiet .or. .not. self%tty) return
       if (self%reported /= self%done) call report(self, wall_seconds())
-      if (self%tty) write (error_unit, '(a)') ''
-      flush (error_unit)
+      write (self%unit, '(a)') ''
+      flush (self%unit)
    end subroutine progress_finish
 
    subroutine report(self, now)
@@ -116,6 +161,7 @@ contains
       character(len=200) :: line
       character(len=width) :: bar
       self%reported = self%done
+      self%lines = self%lines + 1
       elapsed = max(now - self%t_start, 1e-9_dp)
       frac = 1.0_dp
       if (self%total > 0) frac = real(self%done, dp)/real(self%total, dp)
@@ -125,17 +171,31 @@ contains
       if (self%tty) then
          filled = min(width, int(frac*width))
          bar = repeat('#', filled)//repeat('.', width - filled)
-         write (line, '(a, " [", a, "] ", f5.1, "%  ", a, " traj/s  ETA ", a)') &
-            self%label, bar, 100.0_dp*frac, real_str(rate, 3), clock(eta)
-         write (error_unit, '(a)', advance='no') achar(13)//trim(line)//'   '
+         write (line, '(a, " [", a, "] ", f5.1, "%  ", a, "ETA ", a)') &
+            self%label, bar, 100.0_dp*frac, rate_text(' '), clock(eta)
+         write (self%unit, '(a)', advance='no') achar(13)//trim(line)//'   '
       else
-         write (line, '(a, ": ", a, "% (", i0, "/", i0, "), ", a, &
-            &" traj/s, elapsed ", a, ", ETA ", a)') self%label, &
-            real_str(anint(1000.0_dp*frac)/10.0_dp), self%done, &
-            self%total, real_str(rate, 3), clock(elapsed), clock(eta)
-         write (error_unit, '(a)') trim(line)
+         write (line, '(a, ": ", a, "%", a, ", ", a, "elapsed ", a, ", ETA ", a)') &
+            self%label, real_str(anint(1000.0_dp*frac)/10.0_dp), count_text(), &
+            rate_text(', '), clock(elapsed), clock(eta)
+         write (self%unit, '(a)') trim(line)
       end if
-      flush (error_unit)
+      flush (self%unit)
+   contains
+      !> ' (12/100)', or '' without a unit (a fraction of a horizon).
+      function count_text() result(t)
+         character(len=:), allocatable :: t
+         t = ''
+         if (len(self%what) > 0) t = ' ('//to_str(self%done)//'/'//to_str(self%total)//')'
+      end function count_text
+      !> '1.2e3 traj/s' and `sep`, or '' without a unit.
+      function rate_text(sep) result(t)
+         character(len=*), intent(in) :: sep
+         character(len=:), allocatable :: t
+         t = ''
+         if (len(self%what) > 0) t = real_str(rate, 3)//' '//self%what//'/s'//sep
+         if (self%tty .and. len(t) > 0) t = t//' '
+      end function rate_text
    end subroutine report
 
    !> Seconds as h:mm:ss ('--' if unknown).

@@ -64,8 +64,8 @@ module dpend_study
    use dpend_symplectic, only: symplectic_t
    use dpend_propagate, only: march_t
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
-   use dpend_os, only: wall_clock, stderr_is_terminal
-   use dpend_progress, only: progress_silenced
+   use dpend_os, only: wall_clock
+   use dpend_progress, only: progress_silenced, progress_t
    use dpend_study_config, only: study_config_t, case_index, case_model, balance_case
    use dpend_work, only: needs_work, work_model, is_work_model
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
@@ -275,12 +275,12 @@ contains
       logical, intent(in), optional :: quiet         !! no progress display
       type(job_t), allocatable :: jobs(:)
       integer, allocatable :: order(:)
-      real(dp) :: start, cost_total, cost_done
-      integer :: j, n_done
-      logical :: show, tty
+      real(dp) :: start
+      integer :: j
+      logical :: show
+      type(progress_t) :: bar
       show = .not. progress_silenced()   ! --quiet (issue 25)
       if (present(quiet)) show = .not. quiet
-      tty = show .and. stderr_is_terminal()
       start = wall_clock()
       res%threads = 1
       !$ if (cfg%threads > 0) call omp_set_num_threads(cfg%threads)
@@ -288,74 +288,28 @@ contains
       call compute_references(cfg, res)
       call plan(cfg, res, jobs)
       order = sort_by_cost(jobs)
-      cost_total = sum(jobs%cost)
-      cost_done = 0.0_dp
-      n_done = 0
       if (show) then
          write (error_unit, '(a, i0, a, i0, a)') 'dpend study: ', size(jobs), ' runs on ', &
             res%threads, ' threads'
          flush (error_unit)
       end if
+      ! the one progress report (issue 25): a bar on a terminal, else a line at most
+      ! every 10 s
+      call bar%start('dpend study', int(size(jobs), i8), 0_i8, .not. show, what='runs')
       !$omp parallel do schedule(dynamic, 1) default(shared) private(j)
       do j = 1, size(jobs)
          call run_job(cfg, res, jobs(order(j)))
          !$omp critical (study_progress)
-         n_done = n_done + 1
-         cost_done = cost_done + jobs(order(j))%cost
-         if (show) call progress(jobs(order(j)), n_done, size(jobs), cost_done, cost_total, &
-                                 wall_clock() - start, tty)
+         call bar%update(1_i8)
          !$omp end critical (study_progress)
       end do
       !$omp end parallel do
-      if (tty) write (error_unit, '(a)') ''
+      call bar%finish()
       call time_short_runs(cfg, res, show)
       call fit_sweeps(res)
       call fit_roundoff(cfg, res)
       res%wall_total = wall_clock() - start
-   contains
-      subroutine progress(job, k, n, done, total, elapsed, bar)
-         type(job_t), intent(in) :: job
-         integer, intent(in) :: k, n
-         real(dp), intent(in) :: done, total, elapsed
-         logical, intent(in) :: bar
-         character(len=200) :: what
-         character(len=40) :: eta
-         integer :: filled
-         what = describe(cfg, res, job)
-         if (done > 0.0_dp) then
-            eta = clock(elapsed*max(total - done, 0.0_dp)/done)
-         else
-            eta = '?'
-         end if
-         if (bar) then
-            filled = nint(30.0_dp*done/max(total, tiny(total)))
-            write (error_unit, '(a, "[", a, a, "] ", i0, "/", i0, "  ", a, " elapsed, ETA ", a, &
-               & "  ", a)', advance='no') achar(13), repeat('#', filled), &
-               repeat('.', 30 - filled), k, n, trim(clock(elapsed)), trim(eta), &
-               trim(what(:min(len_trim(what), 40)))//repeat(' ', 10)
-            flush (error_unit)
-         else
-            write (error_unit, '("[", i0, "/", i0, "] ", a, "  elapsed ", a, ", ETA ", a)') &
-               k, n, trim(what), trim(clock(elapsed)), trim(eta)
-            flush (error_unit)
-         end if
-      end subroutine progress
    end subroutine run_study
-
-   !> m:ss or h:mm:ss.
-   function clock(seconds) result(s)
-      real(dp), intent(in) :: seconds
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      integer :: sec
-      sec = nint(max(seconds, 0.0_dp))
-      if (sec >= 3600) then
-         write (buf, '(i0, ":", i2.2, ":", i2.2)') sec/3600, mod(sec, 3600)/60, mod(sec, 60)
-      else
-         write (buf, '(i0, ":", i2.2)') sec/60, mod(sec, 60)
-      end if
-      s = trim(buf)
-   end function clock
 
    !> Seconds with two decimals, e.g. '0.04'.
    function seconds(x) result(s)
@@ -366,38 +320,6 @@ contains
       s = trim(adjustl(buf))
       if (s(1:1) == '.') s = '0'//s
    end function seconds
-
-   !> One line describing a job.
-   function describe(cfg, res, job) result(s)
-      type(study_config_t), intent(in) :: cfg
-      type(study_result_t), intent(in) :: res
-      type(job_t), intent(in) :: job
-      character(len=200) :: s
-      select case (job%kind)
-      case (job_sweep)
-         associate (sw => res%sweeps(job%i))
-            if (sw%mode == mode_step) then
-               write (s, '(a, " ", a, " h=", es9.3, " to t=", es8.2, " s (", a, " s)")') &
-                  cfg%cases(sw%icase)%name, sw%method, sw%x(job%k), sw%t_long, &
-                  seconds(sw%wall_long(job%k))
-            else
-               write (s, '(a, " ", a, " rtol=", es8.2, " to t=", es8.2, " s (", a, " s)")') &
-                  cfg%cases(sw%icase)%name, sw%method, sw%x(job%k), sw%t_long, &
-                  seconds(sw%wall_long(job%k))
-            end if
-         end associate
-      case (job_roundoff)
-         associate (ro => res%roundoff(job%i))
-            write (s, '("roundoff ", a, " ", a, " run ", i0, " (", a, " s)")') ro%method, &
-               trim(merge('compensated', 'plain      ', job%c == 1)), job%k, &
-               seconds(ro%wall(job%k, job%c))
-         end associate
-      case default
-         associate (ts => res%tao(job%i))
-            write (s, '("tao ", a, " omega=", es9.3)') ts%method, ts%omega(job%k)
-         end associate
-      end select
-   end function describe
 
    ! ============================================================= references
 
