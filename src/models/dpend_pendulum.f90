@@ -18,8 +18,9 @@ module dpend_pendulum
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
-                           parameter_gravity
+                           parameter_gravity, check_range, max_length, max_mass
    use dpend_model, only: model_t
+   use dpend_strings, only: real_str
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
@@ -38,6 +39,16 @@ module dpend_pendulum
    public :: kinematics_t, kinematics, tip_position, reactions
    public :: double_pendulum_t, pendulum_model
    public :: hamiltonian_qp
+   ! links of any mass distribution (issue 26)
+   public :: body_rod, body_general, check_bodies, body_constants, body_kind_name
+
+   !> The body kind of `pendulum_t`: uniform rods (the chapter's; d_i = l_i/2,
+   !> I_i = m_i l_i²/12, the fields d1 … i2 unused) or links of any mass distribution
+   !> (d1, d2, i1, i2 given). The rod's formulas keep their own arithmetic (results
+   !> bit for bit as before issue 26); the general ones reduce to them for rod values
+   !> (test/test_bodies.f90 compares them).
+   integer, parameter :: body_rod = 0
+   integer, parameter :: body_general = 1
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -46,6 +57,11 @@ module dpend_pendulum
       real(dp) :: l1 = 1.0_dp   !! length of link 1 [m]
       real(dp) :: l2 = 1.0_dp   !! length of link 2 [m]
       real(dp) :: g = 9.8_dp    !! gravitational acceleration [m/s²]
+      integer :: body = body_rod   !! body_rod (uniform rods) or body_general
+      real(dp) :: d1 = 0.5_dp   !! joint A to the centre of mass C1 (body_general) [m]
+      real(dp) :: d2 = 0.5_dp   !! joint B to the centre of mass C2 (body_general) [m]
+      real(dp) :: i1 = 1.0_dp/12.0_dp  !! inertia of link 1 about C1 (body_general) [kg m²]
+      real(dp) :: i2 = 1.0_dp/12.0_dp  !! inertia of link 2 about C2 (body_general) [kg m²]
    end type pendulum_t
 
    !> Positions [m], velocities [m/s] and accelerations [m/s²] of C1, C2 and B.
@@ -166,7 +182,122 @@ contains
          call check_parameter(rows(i), trim(names(i)), x(i), error)
          if (allocated(error)) return
       end do
+      if (par%body /= body_rod) call check_bodies([par%m1, par%m2], [par%l1, par%l2], &
+                                                  [par%d1, par%d2], [par%i1, par%i2], error)
    end subroutine validate
+
+   !> Check the mass distribution of links with masses m and lengths l (checked
+   !> before): d_i (joint i to the centre of mass C_i, along the link) in
+   !> [0, max_length] m, I_i (about C_i) in [0, max_mass max_length²] kg m², and each
+   !> link's inertia about its own joint, I_i + m_i d_i², at least 1e-12 m_i l_i²:
+   !> without it the link (a point mass on its own pin) has no inertia to turn, and
+   !> the mass matrix is singular (for the last link everywhere, for another where the
+   !> links align). d_i > l_i is accepted (a bob beyond the next pin or the tip);
+   !> d_i < 0 (a counterweight behind the pin) is not: d is measured from the joint
+   !> towards the link's far end.
+   subroutine check_bodies(m, l, d, inertia, error)
+      real(dp), intent(in) :: m(:)                      !! masses [kg]
+      real(dp), intent(in) :: l(:)                      !! lengths [m]
+      real(dp), intent(in) :: d(:)                      !! joint to centre of mass [m]
+      real(dp), intent(in) :: inertia(:)                !! inertia about C_i [kg m²]
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      character(len=20) :: k
+      integer :: i
+      do i = 1, size(m)
+         write (k, '(i0)') i
+         call check_range('com'//trim(k), d(i), 0.0_dp, max_length, 'm', error, &
+                          'the distance from joint '//trim(k)//' to the centre of mass ' &
+                          //'of link '//trim(k)//' along the link')
+         if (allocated(error)) return
+         call check_range('inertia'//trim(k), inertia(i), 0.0_dp, max_mass*max_length**2, &
+                          'kg m^2', error, 'the moment of inertia of link '//trim(k) &
+                          //' about its centre of mass')
+         if (allocated(error)) return
+         if (.not. inertia(i) + m(i)*d(i)**2 >= 1e-12_dp*m(i)*l(i)**2) then
+            call fatal_error(error, 'invalid com'//trim(k)//', inertia'//trim(k)//': com' &
+                             //trim(k)//' = '//real_str(d(i))//' m with inertia'//trim(k)//' = ' &
+                             //real_str(inertia(i))//' kg m^2 leaves link '//trim(k) &
+                             //' no inertia about its joint (inertia + m com^2 must be at ' &
+                             //'least 1e-12 m l^2, else the mass matrix is singular)')
+            return
+         end if
+      end do
+   end subroutine check_bodies
+
+   !> The constants of a general two-link body (`body_general`): M11 = I1 + m1 d1² +
+   !> m2 l1², M22 = I2 + m2 d2² [kg m²], k = m2 l1 d2 (M12 = k cos(q1 − q2)) [kg m²],
+   !> and V = ga sin q1 + gb sin q2 with ga = g (m1 d1 + m2 l1), gb = g m2 d2 [J].
+   !> The rod's formulas keep their own arithmetic; for rod values these agree with
+   !> them to rounding.
+   pure function body_constants(par) result(c)
+      type(pendulum_t), intent(in) :: par  !! parameters (any body kind: d, I used)
+      real(dp) :: c(5)                     !! (M11, M22, k, ga, gb)
+      c(1) = par%i1 + par%m1*par%d1**2 + par%m2*par%l1**2
+      c(2) = par%i2 + par%m2*par%d2**2
+      c(3) = par%m2*par%l1*par%d2
+      c(4) = par%g*(par%m1*par%d1 + par%m2*par%l1)
+      c(5) = par%g*par%m2*par%d2
+   end function body_constants
+
+   !> 'rod', 'point' (d_i = l_i, I_i = 0) or 'general': the body of a parameter set.
+   pure function body_kind_name(par) result(name)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      character(len=:), allocatable :: name
+      if (par%body == body_rod) then
+         name = 'rod'
+      else if (par%d1 == par%l1 .and. par%d2 == par%l2 .and. par%i1 == 0.0_dp &
+               .and. par%i2 == 0.0_dp) then
+         name = 'point'
+      else
+         name = 'general'
+      end if
+   end function body_kind_name
+
+   ! ---- the rod's constants with the rod's own arithmetic, or the general body's
+   pure real(dp) function coef_m11(par) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      if (par%body == body_rod) then
+         x = (par%m1/3.0_dp + par%m2)*par%l1**2
+      else
+         x = par%i1 + par%m1*par%d1**2 + par%m2*par%l1**2
+      end if
+   end function coef_m11
+
+   pure real(dp) function coef_m22(par) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      if (par%body == body_rod) then
+         x = par%m2*par%l2**2/3.0_dp
+      else
+         x = par%i2 + par%m2*par%d2**2
+      end if
+   end function coef_m22
+
+   pure real(dp) function coef_k(par) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      if (par%body == body_rod) then
+         x = 0.5_dp*par%m2*par%l1*par%l2
+      else
+         x = par%m2*par%l1*par%d2
+      end if
+   end function coef_k
+
+   pure real(dp) function coef_ga(par) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      if (par%body == body_rod) then
+         x = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
+      else
+         x = par%g*(par%m1*par%d1 + par%m2*par%l1)
+      end if
+   end function coef_ga
+
+   pure real(dp) function coef_gb(par) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      if (par%body == body_rod) then
+         x = 0.5_dp*par%m2*par%g*par%l2
+      else
+         x = par%g*par%m2*par%d2
+      end if
+   end function coef_gb
 
    !> x is finite and > 0, tested without an ordered comparison on NaN (which
    !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
@@ -181,10 +312,10 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: m(2, 2)
-      m(1, 1) = (par%m1/3.0_dp + par%m2)*par%l1**2
-      m(1, 2) = 0.5_dp*par%m2*par%l1*par%l2*cos(q(1) - q(2))
+      m(1, 1) = coef_m11(par)
+      m(1, 2) = coef_k(par)*cos(q(1) - q(2))
       m(2, 1) = m(1, 2)
-      m(2, 2) = par%m2*par%l2**2/3.0_dp
+      m(2, 2) = coef_m22(par)
    end function mass_matrix
 
    !> Generalized gravity forces Q = -dV/dq [N m].
@@ -192,8 +323,8 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: f(2)
-      f(1) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*cos(q(1))
-      f(2) = -0.5_dp*par%m2*par%g*par%l2*cos(q(2))
+      f(1) = -coef_ga(par)*cos(q(1))
+      f(2) = -coef_gb(par)*cos(q(2))
    end function generalized_forces
 
    !> Angular accelerations from the corrected Newton–Euler equations [rad/s²].
@@ -224,6 +355,32 @@ contains
       real(dp) :: c1, s1, c2, s2, h2, m2l1, m2h2, a0x, a0y, a11, a12, a22, b1, b2, rdet
       include 'dpend_qddot_trig_body.inc'
    end function qddot_trig_impl
+
+   !> `qddot_trig_impl` for links of any mass distribution (issue 26): the same
+   !> corrected Newton–Euler equations with C_i at d_i along link i and I_Ci = I_i,
+   !>   I_A1 q̈1 = −m1 g d1 cos q1 + L1 (F21y cos q1 − F21x sin q1),  I_A1 = I1 + m1 d1²,
+   !>   I2 q̈2 = d2 (F21y cos q2 − F21x sin q2),  F21 = −m2 (a_C2 + g j),
+   !> a_C2 = a0 + q̈1 L1 n1 + q̈2 d2 n2 (a0 the centripetal part), solved by Cramer's rule.
+   pure function qddot_trig_general(par, sc, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters (body_general)
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: c1, s1, c2, s2, m2l1, m2d2, a0x, a0y, a11, a12, a22, b1, b2, rdet
+      s1 = sc(1); s2 = sc(2); c1 = sc(3); c2 = sc(4)
+      m2l1 = par%m2*par%l1
+      m2d2 = par%m2*par%d2
+      a0x = -par%l1*qd(1)**2*c1 - par%d2*qd(2)**2*c2
+      a0y = -par%l1*qd(1)**2*s1 - par%d2*qd(2)**2*s2
+      a11 = par%i1 + par%m1*par%d1**2 + m2l1*par%l1
+      a12 = m2l1*par%d2*(c1*c2 + s1*s2)
+      b1 = -par%m1*par%g*par%d1*c1 - m2l1*((a0y + par%g)*c1 - a0x*s1)
+      a22 = par%i2 + m2d2*par%d2
+      b2 = -m2d2*((a0y + par%g)*c2 - a0x*s2)
+      rdet = 1.0_dp/(a11*a22 - a12*a12)
+      qdd(1) = (b1*a22 - a12*b2)*rdet
+      qdd(2) = (a11*b2 - a12*b1)*rdet
+   end function qddot_trig_general
 
    !> (sin q1, sin q2, cos q1, cos q2) as one 4-wide sine, cos q = sin(q + π/2), so that
    !> the release build calls glibc's vector sine (libmvec) once instead of two scalar
@@ -277,7 +434,7 @@ contains
       real(dp) :: qdd(2)
       real(dp) :: m(2, 2), r(2), k, sd, det
       m = mass_matrix(par, q)
-      k = 0.5_dp*par%m2*par%l1*par%l2
+      k = coef_k(par)
       sd = sin(q(1) - q(2))
       r = generalized_forces(par, q) - [k*sd*qd(2)**2, -k*sd*qd(1)**2]
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
@@ -309,8 +466,7 @@ contains
    pure real(dp) function potential_energy(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
-      potential_energy = (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(q(1)) &
-                         + 0.5_dp*par%m2*par%g*par%l2*sin(q(2))
+      potential_energy = coef_ga(par)*sin(q(1)) + coef_gb(par)*sin(q(2))
    end function potential_energy
 
    !> Total mechanical energy T + V [J].
@@ -328,7 +484,7 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: e0           !! initial energy [J]
       real(dp) :: e_ref
-      e_ref = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2
+      e_ref = coef_ga(par) + coef_gb(par)
       energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
    end function energy_scale
 
@@ -382,7 +538,7 @@ contains
       real(dp) :: g(2)
       real(dp) :: qd(2), t
       qd = velocities(par, q, p)
-      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
+      t = coef_k(par)*sin(q(1) - q(2))*qd(1)*qd(2)
       g = [t, -t] - generalized_forces(par, q)
    end function dh_dq
 
@@ -446,10 +602,10 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
       real(dp) :: m11, m22, k
-      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
-      m22 = par%m2*par%l2**2/3.0_dp
-      k = 0.5_dp*par%m2*par%l1*par%l2
-      energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
+      m11 = coef_m11(par)
+      m22 = coef_m22(par)
+      k = coef_k(par)
+      energy_limit = coef_ga(par) + coef_gb(par) &
                      + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
    end function energy_limit
 
@@ -461,7 +617,7 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: g(4)
       real(dp) :: t
-      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
+      t = coef_k(par)*sin(q(1) - q(2))*qd(1)*qd(2)
       g(1:2) = -generalized_forces(par, q) + [-t, t]
       g(3:4) = momenta(par, q, qd)
    end function energy_gradient
@@ -492,18 +648,18 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
       real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
-      k = 0.5_dp*par%m2*par%l1*par%l2
+      k = coef_k(par)
       cd = sc(3)*sc(4) + sc(1)*sc(2)
       sd = sc(1)*sc(4) - sc(3)*sc(2)
-      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m11 = coef_m11(par)
       m12 = k*cd
-      m22 = par%m2*par%l2**2/3.0_dp
+      m22 = coef_m22(par)
       rdet = 1.0_dp/(m11*m22 - m12*m12)
       f(1) = (m22*z(3) - m12*z(4))*rdet
       f(2) = (m11*z(4) - m12*z(3))*rdet
       t = k*sd*f(1)*f(2)
-      f(3) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sc(3) - t
-      f(4) = -0.5_dp*par%m2*par%g*par%l2*sc(4) + t
+      f(3) = -coef_ga(par)*sc(3) - t
+      f(4) = -coef_gb(par)*sc(4) + t
    end function rhs_qp_trig_impl
 
    !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
@@ -517,12 +673,12 @@ contains
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
       a = qddot_lagrange(par, y(1:2), y(3:4))
-      k = 0.5_dp*par%m2*par%l1*par%l2
+      k = coef_k(par)
       sd = sin(y(1) - y(2)); cd = cos(y(1) - y(2))
       ! ∂r/∂(q1, q2, q̇1, q̇2)
-      dr(1, :) = [(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(y(1)) - k*cd*y(4)**2, &
+      dr(1, :) = [coef_ga(par)*sin(y(1)) - k*cd*y(4)**2, &
                   k*cd*y(4)**2, 0.0_dp, -2.0_dp*k*sd*y(4)]
-      dr(2, :) = [k*cd*y(3)**2, 0.5_dp*par%m2*par%g*par%l2*sin(y(2)) - k*cd*y(3)**2, &
+      dr(2, :) = [k*cd*y(3)**2, coef_gb(par)*sin(y(2)) - k*cd*y(3)**2, &
                   2.0_dp*k*sd*y(3), 0.0_dp]
       ! (∂M/∂x) q̈: only M12 = k cos(q1 - q2) depends on q
       dma = 0.0_dp
@@ -546,7 +702,7 @@ contains
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
       qd = matmul(minv, z(3:4))
-      k = 0.5_dp*par%m2*par%l1*par%l2
+      k = coef_k(par)
       sd = sin(z(1) - z(2)); cd = cos(z(1) - z(2))
       ! ∂q̇/∂(q1, q2, p1, p2); (∂M/∂q1) q̇ = -k sd (q̇2, q̇1), (∂M/∂q2) q̇ = +k sd (q̇2, q̇1)
       dqd(:, 1) = matmul(minv, k*sd*[qd(2), qd(1)])
@@ -558,8 +714,8 @@ contains
       jac(1:2, :) = dqd
       jac(3, :) = -dphi
       jac(4, :) = dphi
-      jac(3, 1) = jac(3, 1) + (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(z(1))
-      jac(4, 2) = jac(4, 2) + 0.5_dp*par%m2*par%g*par%l2*sin(z(2))
+      jac(3, 1) = jac(3, 1) + coef_ga(par)*sin(z(1))
+      jac(4, 2) = jac(4, 2) + coef_gb(par)*sin(z(2))
    end function jacobian_qp
 
    ! ---------------------------------------------------------------- kinematics
@@ -580,6 +736,15 @@ contains
       k%rb = par%l1*u1
       k%vb = par%l1*qd(1)*n1
       k%ab = par%l1*(qdd(1)*n1 - qd(1)**2*u1)
+      if (par%body /= body_rod) then   ! C_i at d_i along link i
+         k%rc1 = par%d1*u1
+         k%vc1 = par%d1*qd(1)*n1
+         k%ac1 = par%d1*(qdd(1)*n1 - qd(1)**2*u1)
+         k%rc2 = k%rb + par%d2*u2
+         k%vc2 = k%vb + par%d2*qd(2)*n2
+         k%ac2 = k%ab + par%d2*(qdd(2)*n2 - qd(2)**2*u2)
+         return
+      end if
       k%rc1 = 0.5_dp*k%rb
       k%vc1 = 0.5_dp*k%vb
       k%ac1 = 0.5_dp*k%ab
@@ -634,7 +799,20 @@ contains
       class(double_pendulum_t), intent(in) :: self
       character(len=:), allocatable :: name
       name = 'double pendulum'
+      if (self%par%body /= body_rod) name = name//' of '//body_text(self%par)
    end function dp_name
+
+   !> 'point masses on massless rods' or 'general bodies (d, I given)': the body of a
+   !> non-rod parameter set, for names and summaries.
+   pure function body_text(par) result(s)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      character(len=:), allocatable :: s
+      if (body_kind_name(par) == 'point') then
+         s = 'point masses on massless rods'
+      else
+         s = 'general bodies (com d_i, inertia I_i)'
+      end if
+   end function body_text
 
    pure logical function dp_true(self)
       class(double_pendulum_t), intent(in) :: self
@@ -821,9 +999,11 @@ contains
    pure integer function dp_n_parameters(self)
       class(double_pendulum_t), intent(in) :: self
       dp_n_parameters = 5
+      if (self%par%body /= body_rod) dp_n_parameters = 9
    end function dp_n_parameters
 
-   !> m1, m2 [kg], l1, l2 [m], g [m/s²], in that order.
+   !> m1, m2 [kg], l1, l2 [m], g [m/s²], in that order; for a body other than the
+   !> uniform rod also com1, com2 [m] (d_i) and inertia1, inertia2 [kg m^2] (I_i).
    subroutine dp_parameter(self, i, name, value, units)
       class(double_pendulum_t), intent(in) :: self
       integer, intent(in) :: i
@@ -834,6 +1014,10 @@ contains
       case (2); name = 'm2'; value = self%par%m2; units = 'kg'
       case (3); name = 'l1'; value = self%par%l1; units = 'm'
       case (4); name = 'l2'; value = self%par%l2; units = 'm'
+      case (6); name = 'com1'; value = self%par%d1; units = 'm'
+      case (7); name = 'com2'; value = self%par%d2; units = 'm'
+      case (8); name = 'inertia1'; value = self%par%i1; units = 'kg m^2'
+      case (9); name = 'inertia2'; value = self%par%i2; units = 'kg m^2'
       case default; name = 'g'; value = self%par%g; units = 'm/s^2'
       end select
    end subroutine dp_parameter
@@ -869,10 +1053,21 @@ contains
       real(dp), intent(in) :: y(4)         !! state (q1, q2, p1, p2)
       real(dp), intent(in) :: e(4)         !! its compensation (0 without)
       real(qp) :: h
-      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g
+      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g, d1, d2
       z = real(y, qp) + real(e, qp)
       m1 = real(par%m1, qp); m2 = real(par%m2, qp); l1 = real(par%l1, qp)
       l2 = real(par%l2, qp); g = real(par%g, qp)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         d1 = real(par%d1, qp); d2 = real(par%d2, qp)
+         m11 = real(par%i1, qp) + m1*d1**2 + m2*l1**2
+         m12 = m2*l1*d2*cos(z(1) - z(2))
+         m22 = real(par%i2, qp) + m2*d2**2
+         det = m11*m22 - m12**2
+         qd1 = (m22*z(3) - m12*z(4))/det
+         qd2 = (m11*z(4) - m12*z(3))/det
+         h = 0.5_qp*(z(3)*qd1 + z(4)*qd2) + g*(m1*d1 + m2*l1)*sin(z(1)) + g*m2*d2*sin(z(2))
+         return
+      end if
       m11 = (m1/3.0_qp + m2)*l1**2
       m12 = 0.5_qp*m2*l1*l2*cos(z(1) - z(2))
       m22 = m2*l2**2/3.0_qp
@@ -899,6 +1094,10 @@ contains
       real(dp), allocatable :: gl(:)
       real(dp) :: tail
       associate (p => self%par)
+         if (p%body /= body_rod) then   ! G_i = g (m_i d_i + l_i Σ_(k>i) m_k), as the chain's
+            gl = [p%g*(p%m1*p%d1 + p%l1*p%m2), p%g*(p%m2*p%d2)]
+            return
+         end if
          tail = 0.0_dp
          allocate (gl(2))
          gl(2) = p%g*p%l2*(0.5_dp*p%m2 + tail)
