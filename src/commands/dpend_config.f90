@@ -13,7 +13,7 @@
 module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, finite_positive
+   use dpend_pendulum, only: pendulum_t, finite_positive, body_general
    use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
                                   model_catalogue, find_model, default_model
    use dpend_model, only: model_t, max_dof
@@ -138,6 +138,18 @@ contains
       class(run_config_t), intent(in) :: self  !! configuration
       type(pendulum_t) :: par
       par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+      ! links other than uniform rods (issue 26): com and inertia as the model was built
+      if (self%spec%find('com') > 0 .or. self%spec%find('inertia') > 0) then
+         block
+            real(dp), allocatable :: d(:), ic(:)
+            d = self%spec%get('com', 0.5_dp*self%l(1:2))
+            ic = self%spec%get('inertia', self%m(1:2)*self%l(1:2)**2/12.0_dp)
+            if (size(d) == 2 .and. size(ic) == 2) then
+               par%body = body_general
+               par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)
+            end if
+         end block
+      end if
    end function run_pendulum
 
    !> Set the parameters of the double pendulum (two links) from `par`.

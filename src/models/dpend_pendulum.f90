@@ -992,6 +992,13 @@ contains
       alias(11:12) = k%rc2; alias(13:14) = k%vc2; alias(15:16) = k%ac2
       alias(17:18) = k%rb
       call chain_from_aliases(alias, k%vb, k%ab, values(1:28))
+      if (self%par%body /= body_rod) then   ! the tip is not 2 C2 − B: at l2 along link 2
+         associate (u2 => [cos(y(2)), sin(y(2))], n2 => [-sin(y(2)), cos(y(2))])
+            values(19:20) = k%rb + self%par%l2*u2
+            values(23:24) = k%vb + self%par%l2*y(4)*n2
+            values(27:28) = k%ab + self%par%l2*(f(4)*n2 - y(4)**2*u2)
+         end associate
+      end if
       values(29:30) = 0.0_dp
       values(31:48) = alias
    end subroutine dp_outputs
