@@ -34,3 +34,5 @@ refuse  bod-chain-no-inert  com2       -- simulate --links 3 --com 0.5,0,1 --ine
 refuse  bod-elastic         body       -- simulate --model elastic --body point --output x.h5
 refuse  bod-elastic-com     com        -- simulate --model elastic --com 0.5 --output x.h5
 refuse  bod-repeated        body       -- simulate "${P[@]}" --body point --body rod --output x.h5
+succeed bod-sweep-point                -- sweep --body point --n1 4 --n2 4 --t-end 1 --quiet --output s.h5
+refuse  bod-sweep-axis      axis       -- sweep --body point --axis1 l2 --min1 0.5 --max1 1 --n1 4 --n2 4 --t-end 1 --output s.h5
