@@ -304,6 +304,15 @@ contains
       if (allocated(error)) return
       call check_true(error, model%n_parameters() == 5 .and. model%name() == &
                       'double pendulum', 'the default: 5 parameters, named double pendulum')
+      call check_true(error, len(model%body_description()) == 0, 'no body text for rods')
+      call spec%set('links', [3.0_dp])
+      call spec%set('com', [1.0_dp, 1.0_dp, 1.0_dp])
+      call spec%set('inertia', [0.0_dp, 0.0_dp, 0.0_dp])
+      call new_model(spec, model, err)
+      call check_true(error, .not. allocated(err), 'point-mass chain of 3 built')
+      if (allocated(error)) return
+      call check_true(error, index(model%body_description(), 'point masses') == 1 .and. &
+                      index(model%name(), 'point masses') > 0, 'point masses named')
       d = 0.0_dp
       do k = 1, 300
          rod = pendulum_t(m1=uniform(rng, 0.2_dp, 5.0_dp), m2=uniform(rng, 0.2_dp, 5.0_dp), &
@@ -442,6 +451,11 @@ contains
                          'parameter '//n2//' the same in both forms')
       end do
       call check_true(error, index(two%name(), 'general bodies') > 0, 'name says the body')
+      ! the 'body' attribute and summary text: d_i, I_i with units, the same in both forms
+      call check_true(error, two%body_description() == 'general bodies: com = 0.7, 1.2 m; ' &
+                      //'inertia = 0.04, 0 kg m^2', 'body text: '//two%body_description())
+      call check_true(error, chain%body_description() == two%body_description(), &
+                      'body text of the chain: '//chain%body_description())
       d = 0.0_dp
       do k = 1, 200
          call random_state(rng, 2, y)

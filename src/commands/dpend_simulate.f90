@@ -202,6 +202,9 @@ contains
                       real_str(abs(e1 - e0)/cfg%model%energy_scale(e0), 2)//', '// &
                       seconds_str(wall_seconds() - t0)//' s'
          end if
+         ! issue 26: a body other than the uniform rod
+         if (len(cfg%model%body_description()) > 0) &
+            summary = summary//'; links: '//cfg%model%body_description()
       end if
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -408,6 +411,9 @@ contains
                call h5%writeattr('/', name, value)
             end block
          end do
+         ! issue 26: links other than uniform rods say so, with units
+         if (len(model%body_description()) > 0) &
+            call h5%writeattr('/', 'body', model%body_description())
       end associate
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'dt', cfg%dt)

@@ -86,7 +86,7 @@ module dpend_chain
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, two_link_aliases
+                                alias_out_text, two_link_aliases, body_text
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max, body_rod, body_general, &
                              check_bodies
    implicit none
@@ -163,6 +163,8 @@ module dpend_chain
       procedure :: parameter_rates => chain_parameter_rates
       ! sweep (issue 23, one construction site): the G_i of its potential
       procedure :: potential_weights => chain_potential_weights
+      ! issue 26: the links' mass distribution
+      procedure :: body_description => chain_body_description
    end type chain_t
 
 contains
@@ -1281,6 +1283,13 @@ contains
          d(:, i) = b(1:n)
       end do
    end subroutine chain_parameter_rates
+
+   !> The links' mass distribution with units ('' for uniform rods).
+   function chain_body_description(self) result(text)
+      class(chain_t), intent(in) :: self  !! the chain
+      character(len=:), allocatable :: text
+      text = body_text(self%rod, self%l, self%d, self%ic)
+   end function chain_body_description
 
    !> G_i of V = Σ G_i sin q_i [J] (n).
    pure function chain_potential_weights(self) result(gl)

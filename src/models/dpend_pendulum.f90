@@ -24,7 +24,7 @@ module dpend_pendulum
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, chain_from_aliases
+                                alias_out_text, chain_from_aliases, body_text
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: qp => real128
    implicit none
@@ -115,6 +115,8 @@ module dpend_pendulum
       procedure :: hamiltonian_qp => dp_hamiltonian_qp
       ! sweep (issue 23, one construction site): the G_i of its potential
       procedure :: potential_weights => dp_potential_weights
+      ! issue 26: the links' mass distribution
+      procedure :: body_description => dp_body_description
    end type double_pendulum_t
 
 contains
@@ -799,12 +801,21 @@ contains
       class(double_pendulum_t), intent(in) :: self
       character(len=:), allocatable :: name
       name = 'double pendulum'
-      if (self%par%body /= body_rod) name = name//' of '//body_text(self%par)
+      if (self%par%body /= body_rod) name = name//' of '//body_name_text(self%par)
    end function dp_name
+
+   !> The links' mass distribution with units ('' for uniform rods).
+   function dp_body_description(self) result(text)
+      class(double_pendulum_t), intent(in) :: self  !! the model
+      character(len=:), allocatable :: text
+      associate (p => self%par)
+         text = body_text(p%body == body_rod, [p%l1, p%l2], [p%d1, p%d2], [p%i1, p%i2])
+      end associate
+   end function dp_body_description
 
    !> 'point masses on massless rods' or 'general bodies (d, I given)': the body of a
    !> non-rod parameter set, for names and summaries.
-   pure function body_text(par) result(s)
+   pure function body_name_text(par) result(s)
       type(pendulum_t), intent(in) :: par  !! parameters
       character(len=:), allocatable :: s
       if (body_kind_name(par) == 'point') then
@@ -812,7 +823,7 @@ contains
       else
          s = 'general bodies (com d_i, inertia I_i)'
       end if
-   end function body_text
+   end function body_name_text
 
    pure logical function dp_true(self)
       class(double_pendulum_t), intent(in) :: self
