@@ -268,10 +268,14 @@ contains
             call fatal_error(error, 'internal error: chain_model needs both com and inertia')
             return
          end if
-         if (size(com) /= n .or. size(inertia) /= n) then
-            call fatal_error(error, 'invalid '//trim(merge('com    ', 'inertia', &
-                             size(com) /= n))//': '//to_str(merge(size(com), size(inertia), size(com) /= n)) &
-                             //' values for '//to_str(n)//' links (one per link)')
+         if (size(com) /= n) then
+            call fatal_error(error, 'invalid com: '//to_str(size(com))//' values for ' &
+                             //to_str(n)//' links (one per link)')
+            return
+         end if
+         if (size(inertia) /= n) then
+            call fatal_error(error, 'invalid inertia: '//to_str(size(inertia))//' values for ' &
+                             //to_str(n)//' links (one per link)')
             return
          end if
          call check_bodies(m, l, com, inertia, error)

@@ -255,51 +255,187 @@ contains
       end if
    end function body_kind_name
 
-   ! ---- the rod's constants with the rod's own arithmetic, or the general body's
-   pure real(dp) function coef_m11(par) result(x)
+   !> Constant i of `body_constants` (M11, M22, k, ga, gb).
+   pure real(dp) function body_constant(par, i) result(x)
       type(pendulum_t), intent(in) :: par  !! parameters
-      if (par%body == body_rod) then
-         x = (par%m1/3.0_dp + par%m2)*par%l1**2
-      else
-         x = par%i1 + par%m1*par%d1**2 + par%m2*par%l1**2
-      end if
-   end function coef_m11
+      integer, intent(in) :: i             !! which
+      real(dp) :: c(5)
+      c = body_constants(par)
+      x = c(i)
+   end function body_constant
 
-   pure real(dp) function coef_m22(par) result(x)
+   !> `mass_matrix` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function mass_matrix_general(par, q) result(m)
       type(pendulum_t), intent(in) :: par  !! parameters
-      if (par%body == body_rod) then
-         x = par%m2*par%l2**2/3.0_dp
-      else
-         x = par%i2 + par%m2*par%d2**2
-      end if
-   end function coef_m22
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: m(2, 2)
+      m(1, 1) = body_constant(par, 1)
+      m(1, 2) = body_constant(par, 3)*cos(q(1) - q(2))
+      m(2, 1) = m(1, 2)
+      m(2, 2) = body_constant(par, 2)
+   end function mass_matrix_general
 
-   pure real(dp) function coef_k(par) result(x)
+   !> `generalized_forces` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function generalized_forces_general(par, q) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
-      if (par%body == body_rod) then
-         x = 0.5_dp*par%m2*par%l1*par%l2
-      else
-         x = par%m2*par%l1*par%d2
-      end if
-   end function coef_k
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: f(2)
+      f(1) = -body_constant(par, 4)*cos(q(1))
+      f(2) = -body_constant(par, 5)*cos(q(2))
+   end function generalized_forces_general
 
-   pure real(dp) function coef_ga(par) result(x)
+   !> `qddot_lagrange` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function qddot_lagrange_general(par, q, qd) result(qdd)
       type(pendulum_t), intent(in) :: par  !! parameters
-      if (par%body == body_rod) then
-         x = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
-      else
-         x = par%g*(par%m1*par%d1 + par%m2*par%l1)
-      end if
-   end function coef_ga
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: m(2, 2), r(2), k, sd, det
+      m = mass_matrix(par, q)
+      k = body_constant(par, 3)
+      sd = sin(q(1) - q(2))
+      r = generalized_forces(par, q) - [k*sd*qd(2)**2, -k*sd*qd(1)**2]
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      qdd(1) = (m(2, 2)*r(1) - m(1, 2)*r(2))/det
+      qdd(2) = (m(1, 1)*r(2) - m(1, 2)*r(1))/det
+   end function qddot_lagrange_general
 
-   pure real(dp) function coef_gb(par) result(x)
+   !> `potential_energy` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function potential_energy_general(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
-      if (par%body == body_rod) then
-         x = 0.5_dp*par%m2*par%g*par%l2
-      else
-         x = par%g*par%m2*par%d2
-      end if
-   end function coef_gb
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      potential_energy_general = body_constant(par, 4)*sin(q(1)) + body_constant(par, 5)*sin(q(2))
+   end function potential_energy_general
+
+   !> `energy_scale` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function energy_scale_general(par, e0)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: e0           !! initial energy [J]
+      real(dp) :: e_ref
+      e_ref = body_constant(par, 4) + body_constant(par, 5)
+      energy_scale_general = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
+   end function energy_scale_general
+
+   !> `dh_dq` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function dh_dq_general(par, q, p) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: g(2)
+      real(dp) :: qd(2), t
+      qd = velocities(par, q, p)
+      t = body_constant(par, 3)*sin(q(1) - q(2))*qd(1)*qd(2)
+      g = [t, -t] - generalized_forces(par, q)
+   end function dh_dq_general
+
+   !> `energy_limit` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function energy_limit_general(par, w_max)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
+      real(dp) :: m11, m22, k
+      m11 = body_constant(par, 1)
+      m22 = body_constant(par, 2)
+      k = body_constant(par, 3)
+      energy_limit_general = body_constant(par, 4) + body_constant(par, 5) &
+                     + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
+   end function energy_limit_general
+
+   !> `energy_gradient` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function energy_gradient_general(par, q, qd) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: g(4)
+      real(dp) :: t
+      t = body_constant(par, 3)*sin(q(1) - q(2))*qd(1)*qd(2)
+      g(1:2) = -generalized_forces(par, q) + [-t, t]
+      g(3:4) = momenta(par, q, qd)
+   end function energy_gradient_general
+
+   !> `rhs_qp_trig_impl` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function rhs_qp_trig_impl_general(par, sc, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
+      real(dp) :: f(4)
+      real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
+      k = body_constant(par, 3)
+      cd = sc(3)*sc(4) + sc(1)*sc(2)
+      sd = sc(1)*sc(4) - sc(3)*sc(2)
+      m11 = body_constant(par, 1)
+      m12 = k*cd
+      m22 = body_constant(par, 2)
+      rdet = 1.0_dp/(m11*m22 - m12*m12)
+      f(1) = (m22*z(3) - m12*z(4))*rdet
+      f(2) = (m11*z(4) - m12*z(3))*rdet
+      t = k*sd*f(1)*f(2)
+      f(3) = -body_constant(par, 4)*sc(3) - t
+      f(4) = -body_constant(par, 5)*sc(4) + t
+   end function rhs_qp_trig_impl_general
+
+   !> `jacobian_qqdot` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function jacobian_qqdot_general(par, y) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state (q, q̇)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
+      m = mass_matrix(par, y(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      a = qddot_lagrange(par, y(1:2), y(3:4))
+      k = body_constant(par, 3)
+      sd = sin(y(1) - y(2)); cd = cos(y(1) - y(2))
+      ! ∂r/∂(q1, q2, q̇1, q̇2)
+      dr(1, :) = [body_constant(par, 4)*sin(y(1)) - k*cd*y(4)**2, &
+                  k*cd*y(4)**2, 0.0_dp, -2.0_dp*k*sd*y(4)]
+      dr(2, :) = [k*cd*y(3)**2, body_constant(par, 5)*sin(y(2)) - k*cd*y(3)**2, &
+                  2.0_dp*k*sd*y(3), 0.0_dp]
+      ! (∂M/∂x) q̈: only M12 = k cos(q1 - q2) depends on q
+      dma = 0.0_dp
+      dma(:, 1) = -k*sd*[a(2), a(1)]
+      dma(:, 2) = k*sd*[a(2), a(1)]
+      jac = 0.0_dp
+      jac(1, 3) = 1.0_dp
+      jac(2, 4) = 1.0_dp
+      jac(3:4, :) = matmul(minv, dr - dma)
+   end function jacobian_qqdot_general
+
+   !> `jacobian_qp` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function jacobian_qp_general(par, z) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: z(4)         !! canonical state (q, p)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
+      m = mass_matrix(par, z(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      qd = matmul(minv, z(3:4))
+      k = body_constant(par, 3)
+      sd = sin(z(1) - z(2)); cd = cos(z(1) - z(2))
+      ! ∂q̇/∂(q1, q2, p1, p2); (∂M/∂q1) q̇ = -k sd (q̇2, q̇1), (∂M/∂q2) q̇ = +k sd (q̇2, q̇1)
+      dqd(:, 1) = matmul(minv, k*sd*[qd(2), qd(1)])
+      dqd(:, 2) = -dqd(:, 1)
+      dqd(:, 3:4) = minv
+      dphi = k*sd*(dqd(1, :)*qd(2) + qd(1)*dqd(2, :))
+      dphi(1) = dphi(1) + k*cd*qd(1)*qd(2)
+      dphi(2) = dphi(2) - k*cd*qd(1)*qd(2)
+      jac(1:2, :) = dqd
+      jac(3, :) = -dphi
+      jac(4, :) = dphi
+      jac(3, 1) = jac(3, 1) + body_constant(par, 4)*sin(z(1))
+      jac(4, 2) = jac(4, 2) + body_constant(par, 5)*sin(z(2))
+   end function jacobian_qp_general
 
    !> x is finite and > 0, tested without an ordered comparison on NaN (which
    !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
@@ -309,24 +445,34 @@ contains
       if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
    end function finite_positive
 
+
    !> Mass matrix M(q) of Lagrange's equations [kg m²].
    pure function mass_matrix(par, q) result(m)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: m(2, 2)
-      m(1, 1) = coef_m11(par)
-      m(1, 2) = coef_k(par)*cos(q(1) - q(2))
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         m = mass_matrix_general(par, q)
+         return
+      end if
+      m(1, 1) = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m(1, 2) = 0.5_dp*par%m2*par%l1*par%l2*cos(q(1) - q(2))
       m(2, 1) = m(1, 2)
-      m(2, 2) = coef_m22(par)
+      m(2, 2) = par%m2*par%l2**2/3.0_dp
    end function mass_matrix
+
 
    !> Generalized gravity forces Q = -dV/dq [N m].
    pure function generalized_forces(par, q) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: f(2)
-      f(1) = -coef_ga(par)*cos(q(1))
-      f(2) = -coef_gb(par)*cos(q(2))
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f = generalized_forces_general(par, q)
+         return
+      end if
+      f(1) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*cos(q(1))
+      f(2) = -0.5_dp*par%m2*par%g*par%l2*cos(q(2))
    end function generalized_forces
 
    !> Angular accelerations from the corrected Newton–Euler equations [rad/s²].
@@ -427,6 +573,7 @@ contains
       sc(3:4) = sc0(3:4) + (sc0(3:4)*cm1 - sc0(1:2)*sd)
    end function sin_cos_near_impl
 
+
    !> Angular accelerations from Lagrange's equations M(q) q̈ = Q(q) - c(q, q̇) [rad/s²],
    !> with c1 = k sin(q1-q2) q̇2², c2 = -k sin(q1-q2) q̇1², k = m2 L1 L2/2.
    pure function qddot_lagrange(par, q, qd) result(qdd)
@@ -435,8 +582,12 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
       real(dp) :: m(2, 2), r(2), k, sd, det
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         qdd = qddot_lagrange_general(par, q, qd)
+         return
+      end if
       m = mass_matrix(par, q)
-      k = coef_k(par)
+      k = 0.5_dp*par%m2*par%l1*par%l2
       sd = sin(q(1) - q(2))
       r = generalized_forces(par, q) - [k*sd*qd(2)**2, -k*sd*qd(1)**2]
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
@@ -464,11 +615,17 @@ contains
                                + m(2, 2)*qd(2)**2)
    end function kinetic_energy
 
+
    !> Potential energy V(q), zero with both links horizontal (y = 0 at the pin A) [J].
    pure real(dp) function potential_energy(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
-      potential_energy = coef_ga(par)*sin(q(1)) + coef_gb(par)*sin(q(2))
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         potential_energy = potential_energy_general(par, q)
+         return
+      end if
+      potential_energy = (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(q(1)) &
+                         + 0.5_dp*par%m2*par%g*par%l2*sin(q(2))
    end function potential_energy
 
    !> Total mechanical energy T + V [J].
@@ -479,6 +636,7 @@ contains
       energy = kinetic_energy(par, q, qd) + potential_energy(par, q)
    end function energy
 
+
    !> Energy unit for relative energy errors [J]: |E0| when it is at least 1e-3 of
    !> E_ref = V(π/2, π/2) = (m1/2 + m2) g L1 + (m2/2) g L2 (both links upright),
    !> and E_ref itself when E0 ≈ 0 (e.g. both links released horizontally).
@@ -486,7 +644,11 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: e0           !! initial energy [J]
       real(dp) :: e_ref
-      e_ref = coef_ga(par) + coef_gb(par)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         energy_scale = energy_scale_general(par, e0)
+         return
+      end if
+      e_ref = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2
       energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
    end function energy_scale
 
@@ -531,6 +693,7 @@ contains
       g = velocities(par, q, p)
    end function dh_dp
 
+
    !> ∂H/∂q [J/rad]. Only M12 depends on q (through d = q1 - q2):
    !> ∂/∂d (½ pᵀM⁻¹p) = -½ q̇ᵀ (∂M/∂d) q̇ = k sin d q̇1 q̇2.
    pure function dh_dq(par, q, p) result(g)
@@ -539,8 +702,12 @@ contains
       real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
       real(dp) :: g(2)
       real(dp) :: qd(2), t
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         g = dh_dq_general(par, q, p)
+         return
+      end if
       qd = velocities(par, q, p)
-      t = coef_k(par)*sin(q(1) - q(2))*qd(1)*qd(2)
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
       g = [t, -t] - generalized_forces(par, q)
    end function dh_dq
 
@@ -598,18 +765,24 @@ contains
       shell_p_max = 1.02_dp*shell_p_max
    end function shell_p_max
 
+
    !> Largest |energy| accepted for a Poincaré section: both links upright plus the
    !> kinetic energy of angular velocities w_max [J].
    pure real(dp) function energy_limit(par, w_max)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
       real(dp) :: m11, m22, k
-      m11 = coef_m11(par)
-      m22 = coef_m22(par)
-      k = coef_k(par)
-      energy_limit = coef_ga(par) + coef_gb(par) &
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         energy_limit = energy_limit_general(par, w_max)
+         return
+      end if
+      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+      m22 = par%m2*par%l2**2/3.0_dp
+      k = 0.5_dp*par%m2*par%l1*par%l2
+      energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
                      + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
    end function energy_limit
+
 
    !> Gradient of the energy in (q, q̇): ∂E/∂q = -Q(q) + ∂T/∂q with
    !> ∂T/∂q1 = -k sin(q1 - q2) q̇1 q̇2 = -∂T/∂q2, and ∂E/∂q̇ = M(q) q̇ = p.
@@ -619,7 +792,11 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: g(4)
       real(dp) :: t
-      t = coef_k(par)*sin(q(1) - q(2))*qd(1)*qd(2)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         g = energy_gradient_general(par, q, qd)
+         return
+      end if
+      t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
       g(1:2) = -generalized_forces(par, q) + [-t, t]
       g(3:4) = momenta(par, q, qd)
    end function energy_gradient
@@ -641,6 +818,7 @@ contains
       f = rhs_qp_trig_impl(par, sin_cos_impl(z(1:2)), z)
    end function rhs_qp_impl
 
+
    !> `rhs_qp` from sc = (sin q1, sin q2, cos q1, cos q2), for callers that have them
    !> (the implicit stages of the symplectic methods, via `sin_cos_near`):
    !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas.
@@ -650,19 +828,24 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
       real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
-      k = coef_k(par)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f = rhs_qp_trig_impl_general(par, sc, z)
+         return
+      end if
+      k = 0.5_dp*par%m2*par%l1*par%l2
       cd = sc(3)*sc(4) + sc(1)*sc(2)
       sd = sc(1)*sc(4) - sc(3)*sc(2)
-      m11 = coef_m11(par)
+      m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
       m12 = k*cd
-      m22 = coef_m22(par)
+      m22 = par%m2*par%l2**2/3.0_dp
       rdet = 1.0_dp/(m11*m22 - m12*m12)
       f(1) = (m22*z(3) - m12*z(4))*rdet
       f(2) = (m11*z(4) - m12*z(3))*rdet
       t = k*sd*f(1)*f(2)
-      f(3) = -coef_ga(par)*sc(3) - t
-      f(4) = -coef_gb(par)*sc(4) + t
+      f(3) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sc(3) - t
+      f(4) = -0.5_dp*par%m2*par%g*par%l2*sc(4) + t
    end function rhs_qp_trig_impl
+
 
    !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
    !> with q̈ = M⁻¹ r, r = Q(q) - c(q, q̇), ∂q̈/∂x = M⁻¹ (∂r/∂x - (∂M/∂x) q̈).
@@ -671,16 +854,20 @@ contains
       real(dp), intent(in) :: y(4)         !! state (q, q̇)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         jac = jacobian_qqdot_general(par, y)
+         return
+      end if
       m = mass_matrix(par, y(1:2))
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
       a = qddot_lagrange(par, y(1:2), y(3:4))
-      k = coef_k(par)
+      k = 0.5_dp*par%m2*par%l1*par%l2
       sd = sin(y(1) - y(2)); cd = cos(y(1) - y(2))
       ! ∂r/∂(q1, q2, q̇1, q̇2)
-      dr(1, :) = [coef_ga(par)*sin(y(1)) - k*cd*y(4)**2, &
+      dr(1, :) = [(0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(y(1)) - k*cd*y(4)**2, &
                   k*cd*y(4)**2, 0.0_dp, -2.0_dp*k*sd*y(4)]
-      dr(2, :) = [k*cd*y(3)**2, coef_gb(par)*sin(y(2)) - k*cd*y(3)**2, &
+      dr(2, :) = [k*cd*y(3)**2, 0.5_dp*par%m2*par%g*par%l2*sin(y(2)) - k*cd*y(3)**2, &
                   2.0_dp*k*sd*y(3), 0.0_dp]
       ! (∂M/∂x) q̈: only M12 = k cos(q1 - q2) depends on q
       dma = 0.0_dp
@@ -692,6 +879,7 @@ contains
       jac(3:4, :) = matmul(minv, dr - dma)
    end function jacobian_qqdot
 
+
    !> Jacobian ∂f/∂z of `rhs_qp` for z = (q, p), written analytically:
    !> f = (q̇, -∂H/∂q) with q̇ = M⁻¹p, ∂q̇/∂q_j = -M⁻¹ (∂M/∂q_j) q̇, ∂q̇/∂p = M⁻¹, and
    !> -∂H/∂q = (-φ - V_1, φ - V_2), φ = k sin(q1 - q2) q̇1 q̇2.
@@ -700,11 +888,15 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state (q, p)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         jac = jacobian_qp_general(par, z)
+         return
+      end if
       m = mass_matrix(par, z(1:2))
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
       qd = matmul(minv, z(3:4))
-      k = coef_k(par)
+      k = 0.5_dp*par%m2*par%l1*par%l2
       sd = sin(z(1) - z(2)); cd = cos(z(1) - z(2))
       ! ∂q̇/∂(q1, q2, p1, p2); (∂M/∂q1) q̇ = -k sd (q̇2, q̇1), (∂M/∂q2) q̇ = +k sd (q̇2, q̇1)
       dqd(:, 1) = matmul(minv, k*sd*[qd(2), qd(1)])
@@ -716,8 +908,8 @@ contains
       jac(1:2, :) = dqd
       jac(3, :) = -dphi
       jac(4, :) = dphi
-      jac(3, 1) = jac(3, 1) + coef_ga(par)*sin(z(1))
-      jac(4, 2) = jac(4, 2) + coef_gb(par)*sin(z(2))
+      jac(3, 1) = jac(3, 1) + (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(z(1))
+      jac(4, 2) = jac(4, 2) + 0.5_dp*par%m2*par%g*par%l2*sin(z(2))
    end function jacobian_qp
 
    ! ---------------------------------------------------------------- kinematics
