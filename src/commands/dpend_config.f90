@@ -142,8 +142,14 @@ contains
       if (self%spec%find('com') > 0 .or. self%spec%find('inertia') > 0) then
          block
             real(dp), allocatable :: d(:), ic(:)
-            d = self%spec%get('com', 0.5_dp*self%l(1:2))
-            ic = self%spec%get('inertia', self%m(1:2)*self%l(1:2)**2/12.0_dp)
+            d = 0.5_dp*self%l(1:2)
+            if (self%spec%find('com') > 0) d = self%spec%get('com', d)
+            ic = [0.0_dp, 0.0_dp]
+            if (self%spec%find('inertia') > 0) then
+               ic = self%spec%get('inertia', ic)
+            else   ! the model was built: l is within its range, m l²/12 finite
+               ic = self%m(1:2)*self%l(1:2)**2/12.0_dp
+            end if
             if (size(d) == 2 .and. size(ic) == 2) then
                par%body = body_general
                par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)

@@ -382,18 +382,26 @@ contains
       ! the mass distribution (issue 26): uniform rods unless com or inertia is given;
       ! then the one not given takes the rod's value (d_i = l_i/2, I_i = m_i l_i²/12)
       rod = spec%find('com') == 0 .and. spec%find('inertia') == 0
-      d = spec%get('com', 0.5_dp*l)
-      ic = spec%get('inertia', m*l**2/12.0_dp)
       block
          type(chain_t) :: chain
          type(pendulum_t) :: par
          ! the chain checks every parameter (also those the two-link form ignores)
-         if (rod) then
-            chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
-         else
-            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic)
-         end if
+         chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
          if (allocated(error)) return
+         if (.not. rod) then   ! m and l checked: the defaults m l²/12 are finite
+            if (spec%find('com') > 0) then
+               d = spec%get('com', [0.0_dp])
+            else
+               d = 0.5_dp*l
+            end if
+            if (spec%find('inertia') > 0) then
+               ic = spec%get('inertia', [0.0_dp])
+            else
+               ic = m*l**2/12.0_dp
+            end if
+            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic)
+            if (allocated(error)) return
+         end if
          if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. .not. spec%general) then
             par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
             if (.not. rod) then
