@@ -13,6 +13,7 @@
 !> - the two-link model and the 2-link chain (`general`) agree for general bodies;
 !> - the SIMD lanes' constants for a point-mass pendulum against the scalar model;
 !> - the power balance dE/dt = P_support − P_friction of a damped, driven chain of bodies;
+!> - the general two-link Jacobians and energy gradient against central differences;
 !> - refusals of invalid bodies.
 module test_bodies
    use dpend_kinds, only: dp, i8
@@ -54,6 +55,7 @@ contains
                new_unittest('two_link_equals_chain', test_two_link_chain), &
                new_unittest('lanes_point_mass', test_lanes), &
                new_unittest('damped_driven_power_balance', test_power), &
+               new_unittest('general_jacobians_finite_differences', test_jacobians), &
                new_unittest('refuses_bad_bodies', test_refuse)]
    end subroutine collect_bodies
 
@@ -557,6 +559,48 @@ contains
          //'P_friction, max rel diff ', worst
       call check(error, worst, 0.0_dp, 'power balance of general bodies', abs=1e-6_dp)
    end subroutine test_power
+
+   !> The two-link model of general bodies: its Jacobians of (q, q̇) and of the
+   !> canonical (q, p) field and its energy gradient against central differences
+   !> (step 1e-6), relative to the largest entry, at 100 random states: 1e-7.
+   subroutine test_jacobians(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(rng_t) :: rng
+      type(pendulum_t) :: par
+      type(double_pendulum_t) :: model
+      real(dp) :: m(2), l(2), d(2), ic(2), g, y(4), yp(4), ym(4), fp(4), fm(4)
+      real(dp) :: jac(4, 4), jfd(4, 4), cj(4, 4), cfd(4, 4), gr(4), gfd(4), worst
+      real(dp), parameter :: h = 1e-6_dp
+      integer :: k, j
+      worst = 0.0_dp
+      do k = 1, 100
+         call random_bodies(rng, 2, m, l, d, ic, g)
+         par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g)
+         par%body = body_general
+         par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)
+         model = pendulum_model(par)
+         call random_state(rng, 2, y)
+         call model%jacobian(0.0_dp, y, jac)
+         call model%canonical_jacobian(0.0_dp, y, cj)
+         call model%energy_gradient(0.0_dp, y, gr)
+         do j = 1, 4
+            yp = y; ym = y
+            yp(j) = y(j) + h; ym(j) = y(j) - h
+            call model%field(0.0_dp, yp, fp)
+            call model%field(0.0_dp, ym, fm)
+            jfd(:, j) = (fp - fm)/(2*h)
+            call model%canonical_field(0.0_dp, yp, fp)
+            call model%canonical_field(0.0_dp, ym, fm)
+            cfd(:, j) = (fp - fm)/(2*h)
+            gfd(j) = (model%energy(0.0_dp, yp) - model%energy(0.0_dp, ym))/(2*h)
+         end do
+         worst = max(worst, maxval(abs(jac - jfd))/maxval(abs(jfd)), &
+                     maxval(abs(cj - cfd))/maxval(abs(cfd)), maxval(abs(gr - gfd))/maxval(abs(gfd)))
+      end do
+      write (*, '(a, es9.2)') '    bodies: general Jacobians and energy gradient vs central ' &
+         //'differences, max rel diff ', worst
+      call check(error, worst, 0.0_dp, 'general Jacobians vs differences', abs=1e-7_dp)
+   end subroutine test_jacobians
 
    !> Invalid bodies are refused with the field named: d < 0, I < 0, a link
    !> without inertia about its joint (d = 0, I = 0), a wrong count; valid point
