@@ -490,6 +490,9 @@ contains
       else
          write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "// &
             summary_text(summary)
+         ! issue 26: a body other than the uniform rod
+         if (len(cfg%run%model%body_description()) > 0) write (output_unit, '(a)') &
+            'dpend sweep: links: '//cfg%run%model%body_description()
       end if
    end subroutine sweep
 

@@ -572,6 +572,10 @@ contains
       case default
          call run_poincare(cfg, ch, integ, out%temp, summary, error, failed)
       end select
+      ! issue 26: the summary's first line names a body other than the uniform rod
+      if (len(summary) > 0 .and. len(cfg%model%body_description()) > 0) &
+         summary = 'dpend '//ch%command//': links: '//cfg%model%body_description() &
+                   //new_line('a')//summary
       ! a complete file (also of a run that stopped early) goes into place; a file
       ! whose writing failed is removed and the old output stays as it was
       if (.not. allocated(error) .or. failed) then
@@ -953,6 +957,9 @@ contains
          call cfg%model%parameter(j, name, value, units)
          call h5%writeattr('/', name, value)
       end do
+      ! issue 26: links other than uniform rods say so, with units
+      if (len(cfg%model%body_description()) > 0) &
+         call h5%writeattr('/', 'body', cfg%model%body_description())
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'order', integ%order())
       call h5%writeattr('/', 'dt', cfg%dt)

@@ -13,7 +13,7 @@
 module dpend_config
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum, only: pendulum_t, finite_positive
+   use dpend_pendulum, only: pendulum_t, finite_positive, body_general
    use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
                                   model_catalogue, find_model, default_model
    use dpend_model, only: model_t, max_dof
@@ -111,6 +111,9 @@ module dpend_config
       !> Issue 25 (front end): the scalar keys a namelist file gave (' q1 save_every '),
       !> so that a command refuses a fixed value it sweeps or two forms of one setting.
       character(len=:), allocatable :: nml_given
+      !> The links' body (issue 26): '' (not given: uniform rods unless --com or
+      !> --inertia), 'rod' or 'point' (--body / &pendulum body)
+      character(len=:), allocatable :: body
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -138,6 +141,24 @@ contains
       class(run_config_t), intent(in) :: self  !! configuration
       type(pendulum_t) :: par
       par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+      ! links other than uniform rods (issue 26): com and inertia as the model was built
+      if (self%spec%find('com') > 0 .or. self%spec%find('inertia') > 0) then
+         block
+            real(dp), allocatable :: d(:), ic(:)
+            d = 0.5_dp*self%l(1:2)
+            if (self%spec%find('com') > 0) d = self%spec%get('com', d)
+            ic = [0.0_dp, 0.0_dp]
+            if (self%spec%find('inertia') > 0) then
+               ic = self%spec%get('inertia', ic)
+            else   ! the model was built: l is within its range, m l²/12 finite
+               ic = self%m(1:2)*self%l(1:2)**2/12.0_dp
+            end if
+            if (size(d) == 2 .and. size(ic) == 2) then
+               par%body = body_general
+               par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)
+            end if
+         end block
+      end if
    end function run_pendulum
 
    !> Set the parameters of the double pendulum (two links) from `par`.
@@ -662,7 +683,7 @@ contains
       select case (g)
       case ('pendulum')
          select case (k)
-         case ('m', 'l', 'damping', 'support_amplitude', 'support_phase')
+         case ('m', 'l', 'damping', 'support_amplitude', 'support_phase', 'com', 'inertia')
             is_array_key = .true.
          case default
             is_array_key = .false.
@@ -943,6 +964,8 @@ contains
       real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
       real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof), damping(max_dof)
       real(dp) :: support_amplitude(2), support_frequency, support_phase(2)
+      real(dp) :: com(max_dof), inertia(max_dof)
+      character(len=16) :: body
       real(dp), parameter :: unset = -huge(1.0_dp)   ! marks list entries not given
       integer :: save_every, unit, stat, n_extra, i, links
       integer(i8) :: max_steps
@@ -952,7 +975,7 @@ contains
       logical :: force
       character(len=16), allocatable :: known(:)
       namelist /pendulum/ links, m, l, m1, m2, l1, l2, g, damping, support_amplitude, &
-         support_frequency, support_phase
+         support_frequency, support_phase, body, com, inertia
       namelist /initial/ q, w, q1, q2, w1, w2
       namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
          max_steps
@@ -977,6 +1000,7 @@ contains
       m1 = cfg%m(1); m2 = cfg%m(2); l1 = cfg%l(1); l2 = cfg%l(2); g = cfg%g
       q1 = cfg%q(1); q2 = cfg%q(2); w1 = cfg%w(1); w2 = cfg%w(2)
       m = unset; l = unset; q = unset; w = unset; damping = unset
+      com = unset; inertia = unset; body = ''
       support_amplitude = cfg%support_amplitude; support_frequency = cfg%support_frequency
       support_phase = cfg%support_phase
       method = ''
@@ -1039,6 +1063,8 @@ contains
       call take_list(3, q, cfg%q)
       call take_list(4, w, cfg%w)
       call take_list(0, damping, cfg%damping)
+      call take_body(body, com, inertia)
+      if (allocated(error)) return
       cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
       cfg%support_phase = support_phase
       if (len_trim(method) > 0) cfg%method = canonical_name(trim(method), method_names())
@@ -1060,6 +1086,27 @@ contains
             cfg%nml_given = cfg%nml_given//key//' '
          end if
       end subroutine note_given
+      !> The mass distribution of &pendulum (issue 26): body = 'rod' | 'point', the lists
+      !> com and inertia (as --com and --inertia: checked by the factory).
+      subroutine take_body(kind, d, ic)
+         character(len=*), intent(in) :: kind
+         real(dp), intent(in) :: d(:), ic(:)
+         integer :: n
+         if (len_trim(kind) > 0) call set_body(cfg, trim(kind), error)
+         if (allocated(error)) return
+         n = count_given(d)
+         if (n > 0) call cfg%extra%set('com', d(:n))
+         n = count_given(ic)
+         if (n > 0) call cfg%extra%set('inertia', ic(:n))
+      end subroutine take_body
+      integer function count_given(given) result(n)
+         real(dp), intent(in) :: given(:)
+         n = 0
+         do while (n < size(given))
+            if (given(n + 1) == unset) exit
+            n = n + 1
+         end do
+      end function count_given
       !> Keep the given leading entries of a namelist list (its size is checked
       !> against the number of links by validate_run_config).
       subroutine take_list(k, given, values)
@@ -1126,6 +1173,7 @@ contains
          call parse_pair(name, value, cfg%support_phase, 'phi_x,phi_y (rad)', error)
       case ('--output', '-o'); cfg%output = value
       case ('--model'); cfg%model_name = canonical_name(value, model_names())
+      case ('--body'); call set_body(cfg, value, error)
       case default
          matched = .false.
          ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum)
@@ -1474,6 +1522,8 @@ contains
             call cfg%spec%set(cfg%extra%items(i)%name, cfg%extra%items(i)%values)
          end do
       end if
+      call apply_body(cfg, error)
+      if (allocated(error)) return
       call new_model(cfg%spec, cfg%model, error)
       if (allocated(error)) error%message = error%message//hint(error%message)
    contains
@@ -1500,6 +1550,9 @@ contains
             s = ' [dpend models lists the parameters of '//model_asked(cfg)//']'
          else if (index(message, 'invalid damping') == 1) then
             s = ' [--damping / &pendulum damping]'
+         else if (index(message, 'invalid com') == 1 .or. index(message, 'invalid inertia') &
+                  == 1) then
+            s = ' [--com --inertia --body / &pendulum com inertia body]'
          else if (index(message, 'invalid support') == 1) then
             s = ' [--support-amplitude --support-frequency --support-phase / &pendulum]'
          else if (n == 2) then
@@ -1573,6 +1626,13 @@ contains
           '  --l1, --l2 M      link lengths; default '//real_str(cfg%l(1))//', ' &
           //real_str(cfg%l(2))//nl// &
           '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%g)//nl// &
+          '  --body rod|point  the links: uniform rods (default; com l_i/2, inertia'//nl// &
+          '                    m_i l_i^2/12) or point masses on massless rods (com l_i,'//nl// &
+          '                    inertia 0: the textbook double pendulum)'//nl// &
+          '  --com LIST        joint i to the centre of mass of link i along the link (m,'//nl// &
+          '                    one per link, >= 0; default l_i/2)'//nl// &
+          '  --inertia LIST    moment of inertia of link i about its centre of mass'//nl// &
+          '                    (kg m^2, one per link, >= 0; default m_i l_i^2/12)'//nl// &
           '  --damping LIST    joint damping c_i (N m s, one per joint, each in [0, 1e6]):'//nl// &
           '                    torque -c_i (qdot_i - qdot_(i-1)) at joint i; default 0'//nl// &
           '  --support-amplitude AX,AY  moving pin: x_A = AX cos(w t + PX),'//nl// &
@@ -1594,5 +1654,60 @@ contains
           '                    method (steps); reaching it stops the run; default ' &
           //to_str(cfg%max_steps)
    end function run_flags_help
+
+   ! ---- links of any mass distribution (issue 26): --body, &pendulum body
+
+   !> `--body NAME` / `&pendulum body = 'NAME'`: rod or point, else refused.
+   subroutine set_body(cfg, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%body set
+      character(len=*), intent(in) :: value             !! the name given
+      type(error_t), allocatable, intent(out) :: error  !! not a body
+      select case (to_lower(value))
+      case ('rod', 'point')
+         cfg%body = to_lower(value)
+      case default
+         call fatal_error(error, "invalid body: '"//printable(value)//"' is not a body " &
+                          //'(accepted: rod, point; --com and --inertia give any other) ' &
+                          //'[--body / &pendulum body]')
+      end select
+   end subroutine set_body
+
+   !> The body asked for into cfg%spec: 'point' sets com = l and inertia = 0, 'rod'
+   !> leaves the rod's defaults; either is refused beside com or inertia (the two
+   !> would contradict each other), and for a model without links' bodies.
+   subroutine apply_body(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%spec updated
+      type(error_t), allocatable, intent(out) :: error  !! a contradiction
+      real(dp), allocatable :: l(:)
+      character(len=:), allocatable :: given, sets
+      if (.not. allocated(cfg%body)) return
+      if (.not. model_has(cfg, 'com')) then
+         call fatal_error(error, 'invalid body: not a parameter of model '//model_asked(cfg) &
+                          //' (dpend models lists its parameters)')
+         return
+      end if
+      given = ''
+      if (cfg%spec%find('com') > 0) given = 'com'
+      if (cfg%spec%find('inertia') > 0) then
+         if (len(given) > 0) given = given//' and '
+         given = given//'inertia'
+      end if
+      if (len(given) > 0) then
+         if (cfg%body == 'rod') then
+            sets = 'com = l_i/2 and inertia = m_i l_i^2/12'
+         else
+            sets = 'com = l_i and inertia = 0'
+         end if
+         call fatal_error(error, 'invalid body: '//cfg%body//' contradicts the '//given &
+                          //' given (--body '//cfg%body//' sets '//sets//'; give either ' &
+                          //'the body or com and inertia) [--body --com --inertia / &pendulum]')
+         return
+      end if
+      if (cfg%body == 'point') then
+         l = cfg%spec%get('l', [1.0_dp])
+         call cfg%spec%set('com', l)
+         call cfg%spec%set('inertia', spread(0.0_dp, 1, size(l)))
+      end if
+   end subroutine apply_body
 
 end module dpend_config

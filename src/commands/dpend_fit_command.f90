@@ -696,6 +696,9 @@ contains
                call h5%writeattr('/', pname, pvalue)
             end block
          end do
+         ! issue 26: links other than uniform rods say so, with units
+         if (len(fc%run%model%body_description()) > 0) &
+            call h5%writeattr('/', 'body', fc%run%model%body_description())
          call h5%writeattr('/', 'fit_parameters', joined_names(fc%fit_names))
       else
          call h5%writeattr('/', 'links', n)

@@ -223,6 +223,9 @@ contains
                    ' largest '//real_str(e_max, 2)//' (t = '//real_str(t_max, 4)// &
                    ' s), final '//real_str(e_fin, 2)//', '// &
                    seconds_str(wall_seconds() - t0)//' s'
+         ! issue 26: a body other than the uniform rod
+         if (len(cfg%model%body_description()) > 0) &
+            summary = summary//'; links: '//cfg%model%body_description()
       end if
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -495,6 +498,9 @@ contains
                call h5%writeattr('/', name, value)
             end block
          end do
+         ! issue 26: links other than uniform rods say so, with units
+         if (len(model%body_description()) > 0) &
+            call h5%writeattr('/', 'body', model%body_description())
       end associate
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'dt', cfg%dt)

@@ -699,6 +699,9 @@ contains
             call model%parameter(k, name, value, units)
             call h5%writeattr('/config', name, value)
          end do
+         ! issue 26: links other than uniform rods say so, with units
+         if (len(model%body_description()) > 0) &
+            call h5%writeattr('/config', 'body', model%body_description())
       end subroutine write_model_parameters
    end subroutine write_h5_config
 

@@ -817,6 +817,13 @@ contains
       class(model_t), allocatable :: model
       p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
       if (p1 == 0 .and. p2 == 0) return
+      ! issue 26: the com and inertia given would not follow a swept mass or length
+      if (cfg%run%spec%find('com') > 0 .or. cfg%run%spec%find('inertia') > 0) then
+         call fatal_error(error, 'invalid axis1, axis2: a mass or length axis sweeps ' &
+                          //'uniform rods only (the com and inertia given, or --body ' &
+                          //'point, would not follow it); sweep the initial values instead')
+         return
+      end if
       do j = 1, 2
          do i = 1, 2
             x1 = merge(cfg%min1, cfg%max1, i == 1)

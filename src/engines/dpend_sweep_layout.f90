@@ -264,6 +264,9 @@ contains
             call h5%writeattr('/sweep', 'l2', p%l2)
          end if
          call h5%writeattr('/sweep', 'links', setup%links)
+         ! issue 26: links other than uniform rods say so, with d_i and I_i and units
+         if (len(c%run%model%body_description()) > 0) &
+            call h5%writeattr('/sweep', 'body', c%run%model%body_description())
          call h5%writeattr('/sweep', 'm', c%run%m(:setup%links))
          call h5%writeattr('/sweep', 'l', c%run%l(:setup%links))
          call h5%writeattr('/sweep', 'g', c%run%g)

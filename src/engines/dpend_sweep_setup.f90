@@ -415,6 +415,7 @@ contains
                 nl//'g = '//r(c%run%g)//nl//'q = '//rl(c%run%q0())//nl// &
                 'w = '//rl(c%run%w0())//nl
          end if
+         if (setup%flips) s = s//body_lines()   ! issue 26: '' for uniform rods
          s = s//'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
@@ -436,6 +437,19 @@ contains
          end if
       end associate
    contains
+      !> 'com1 = …' and 'inertia1 = …' lines of links other than uniform rods (issue 26:
+      !> a sweep of another body never resumes one of rods); none for rods.
+      function body_lines() result(t)
+         character(len=:), allocatable :: t, pname, units
+         real(dp) :: x
+         integer :: i
+         t = ''
+         do i = 1, setup%cfg%run%model%n_parameters()
+            call setup%cfg%run%model%parameter(i, pname, x, units)
+            if (index(pname, 'com') == 1 .or. index(pname, 'inertia') == 1) &
+               t = t//pname//' = '//r(x)//nl
+         end do
+      end function body_lines
       !> 'k = 4.0e+001' lines of the model's parameters, in its order.
       function model_lines() result(t)
          character(len=:), allocatable :: t, name, units

@@ -63,6 +63,18 @@
 !>   P_friction = Σ c_i (q̇_i − q̇_(i−1))² ≥ 0,
 !>   P_support = F_(0,1) · v_A,  F_(0,1) = m (a_A + g ĵ) + Σ μ_i (q̈_i n_i − q̇_i² u_i)
 !> (`powers`; `dpend_work` integrates both along the solution).
+!>
+!> Links of any mass distribution (issue 26): link i may carry its centre of mass at
+!> d_i from joint i along the link and have the inertia I_i about it (`chain_model`'s
+!> com and inertia; a point mass at the end of a massless rod: d_i = L_i, I_i = 0).
+!> The recursion places C_i at d_i, the moment equation about C_i becomes
+!>   I_i q̈_i = −d_i u_i × F_(i−1,i) − (L_i − d_i) u_i × F_(i,i+1)
+!> (F_(i−1,i) at distance d_i behind C_i, F_(i,i+1) at L_i − d_i ahead), and
+!>   K_ii = I_i + m_i d_i² + L_i² Σ_(k>i) m_k,
+!>   K_ij = L_i (m_j d_j + L_j Σ_(k>j) m_k) (i < j),
+!>   G_i = g (m_i d_i + L_i Σ_(k>i) m_k),  μ_i = m_i d_i + L_i Σ_(k>i) m_k,
+!> which are the rod's for d_i = L_i/2, I_i = m_i L_i²/12. Without com and inertia the
+!> chain is of uniform rods and keeps the rod's arithmetic (results bit for bit).
 module dpend_chain
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
@@ -74,8 +86,9 @@ module dpend_chain
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, two_link_aliases
-   use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max
+                                alias_out_text, two_link_aliases, body_text
+   use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max, body_rod, body_general, &
+                             check_bodies
    implicit none
    private
    public :: chain_t, chain_model
@@ -90,6 +103,10 @@ module dpend_chain
       real(dp), allocatable :: gl(:)         !! G_i of V = Σ G_i sin q_i [J]
       real(dp), allocatable :: mu(:)         !! μ_i = L_i (m_i/2 + Σ_(k>i) m_k) [kg m]
       real(dp), allocatable :: c(:)          !! joint damping c_i [N m s] (N)
+      !> uniform rods (d_i = L_i/2, I_i = m_i L_i²/12, the rod's arithmetic) or not
+      logical :: rod = .true.
+      real(dp), allocatable :: d(:)          !! joint i to the centre of mass C_i [m] (N)
+      real(dp), allocatable :: ic(:)         !! inertia of link i about C_i [kg m²] (N)
       logical :: damped = .false.            !! some c_i > 0
       logical :: driven = .false.            !! the support moves
       real(dp) :: sup_a(2) = 0.0_dp          !! support amplitudes (a_x, a_y) [m]
@@ -146,6 +163,8 @@ module dpend_chain
       procedure :: parameter_rates => chain_parameter_rates
       ! sweep (issue 23, one construction site): the G_i of its potential
       procedure :: potential_weights => chain_potential_weights
+      ! issue 26: the links' mass distribution
+      procedure :: body_description => chain_body_description
    end type chain_t
 
 contains
@@ -160,7 +179,10 @@ contains
    !> [−max_support_amplitude, max_support_amplitude]), angular frequency ω [rad/s]
    !> (in [0, max_support_frequency]), phases (φ_x, φ_y) [rad] (|φ| ≤ max_angle).
    !> All zero (the default) is the conservative chain.
-   function chain_model(m, l, g, error, damping, amplitude, frequency, phase) result(model)
+   !> Optional (issue 26): the mass distribution, com d_i [m] and inertia I_i [kg m²]
+   !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
+   function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
+                        inertia) result(model)
       real(dp), intent(in) :: m(:)                      !! masses [kg]
       real(dp), intent(in) :: l(:)                      !! lengths [m]
       real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
@@ -169,6 +191,8 @@ contains
       real(dp), intent(in), optional :: amplitude(2)    !! (a_x, a_y) [m]
       real(dp), intent(in), optional :: frequency       !! ω [rad/s]
       real(dp), intent(in), optional :: phase(2)        !! (φ_x, φ_y) [rad]
+      real(dp), intent(in), optional :: com(:)          !! d_i [m] (N)
+      real(dp), intent(in), optional :: inertia(:)      !! I_i [kg m²] (N)
       type(chain_t) :: model                            !! the chain (n = 0 when refused)
       character(len=*), parameter :: reason = 'keeps every product of the model finite'
       integer :: i, j, n
@@ -235,6 +259,30 @@ contains
       end if
       ! a nonzero amplitude moves the pin (with ω = 0 it only offsets it)
       model%driven = any(model%sup_a /= 0.0_dp)
+      model%rod = .not. (present(com) .or. present(inertia))
+      if (model%rod) then
+         model%d = 0.5_dp*l
+         model%ic = m*l**2/12.0_dp
+      else
+         if (.not. (present(com) .and. present(inertia))) then
+            call fatal_error(error, 'internal error: chain_model needs both com and inertia')
+            return
+         end if
+         if (size(com) /= n) then
+            call fatal_error(error, 'invalid com: '//to_str(size(com))//' values for ' &
+                             //to_str(n)//' links (one per link)')
+            return
+         end if
+         if (size(inertia) /= n) then
+            call fatal_error(error, 'invalid inertia: '//to_str(size(inertia))//' values for ' &
+                             //to_str(n)//' links (one per link)')
+            return
+         end if
+         call check_bodies(m, l, com, inertia, error)
+         if (allocated(error)) return
+         model%d = com
+         model%ic = inertia
+      end if
       model%n = n
       model%m = m
       model%l = l
@@ -242,6 +290,19 @@ contains
       allocate (model%k(n, n), model%gl(n), model%mu(n))
       ! tail = Σ_(k>i) m_k, from the tip
       tail = 0.0_dp
+      if (.not. model%rod) then
+         do i = n, 1, -1
+            model%k(i, i) = model%ic(i) + m(i)*model%d(i)**2 + tail*l(i)**2
+            do j = i + 1, n
+               model%k(i, j) = l(i)*(m(j)*model%d(j) + l(j)*sum(m(j + 1:n)))
+               model%k(j, i) = model%k(i, j)
+            end do
+            model%gl(i) = g*(m(i)*model%d(i) + l(i)*tail)
+            model%mu(i) = m(i)*model%d(i) + l(i)*tail
+            tail = tail + m(i)
+         end do
+         return
+      end if
       do i = n, 1, -1
          model%k(i, i) = (m(i)/3.0_dp + tail)*l(i)**2
          do j = i + 1, n
@@ -347,13 +408,23 @@ contains
       px = a0(1); py = a0(2)              ! a⁰ of the near end of link i
       do i = 1, n
          w2 = qd(i)**2
-         h = 0.5_dp*self%l(i)
+         h = self%d(i)          ! L_i/2 for rods (chain_model: 0.5 L_i, the same bits)
          acx(i) = px - h*w2*c(i)
          acy(i) = py - h*w2*s(i)
          px = px - self%l(i)*w2*c(i)
          py = py - self%l(i)*w2*s(i)
       end do
       fx = 0.0_dp; fy = 0.0_dp            ! F⁰_(i,i+1), zero beyond the tip
+      if (.not. self%rod) then   ! −d_i u_i × F⁰_(i−1,i) − (L_i − d_i) u_i × F⁰_(i,i+1)
+         do i = n, 1, -1
+            gx = fx + self%m(i)*acx(i)
+            gy = fy + self%m(i)*(acy(i) + self%g)
+            f(i) = -(self%d(i)*(c(i)*gy - s(i)*gx) &
+                     + (self%l(i) - self%d(i))*(c(i)*fy - s(i)*fx))
+            fx = gx; fy = gy
+         end do
+         return
+      end if
       do i = n, 1, -1
          gx = fx + self%m(i)*acx(i)                 ! F⁰_(i−1,i)
          gy = fy + self%m(i)*(acy(i) + self%g)
@@ -514,6 +585,14 @@ contains
       class(chain_t), intent(in) :: self
       character(len=:), allocatable :: name
       name = 'chain of '//to_str(self%n)//' links'
+      if (.not. self%rod) then
+         if (all(self%d(1:self%n) == self%l(1:self%n)) .and. all(self%ic(1:self%n) == 0.0_dp)) &
+            then
+            name = name//' of point masses on massless rods'
+         else
+            name = name//' of general bodies (com d_i, inertia I_i)'
+         end if
+      end if
       if (self%damped) name = 'damped '//name
       if (self%driven) name = name//' on a moving support'
    end function chain_name
@@ -959,6 +1038,10 @@ contains
       class(chain_t), intent(in) :: self
       type(pendulum_t) :: par
       par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+      if (.not. self%rod) then
+         par%body = body_general
+         par%d1 = self%d(1); par%d2 = self%d(2); par%i1 = self%ic(1); par%i2 = self%ic(2)
+      end if
    end function as_pendulum
 
    !> N = 2 only (`energy_sections`): the double pendulum's `shell_state`.
@@ -1004,7 +1087,7 @@ contains
       do i = 1, self%n
          u = [cos(q(i)), sin(q(i))]
          nv = [-u(2), u(1)]
-         h = 0.5_dp*self%l(i)
+         h = self%d(i)          ! L_i/2 for rods (the same bits as 0.5 L_i)
          rc(:, i) = r0 + h*u
          vc(:, i) = v0 + h*qd(i)*nv
          ac(:, i) = a0 + h*(qdd(i)*nv - qd(i)**2*u)
@@ -1091,10 +1174,13 @@ contains
       chain_n_parameters = 2*self%n + 1
       if (self%damped) chain_n_parameters = chain_n_parameters + self%n
       if (self%driven) chain_n_parameters = chain_n_parameters + 5
+      if (.not. self%rod) chain_n_parameters = chain_n_parameters + 2*self%n
    end function chain_n_parameters
 
    !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order; then, when present, the
-   !> damping c1 … cN [N m s] and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad].
+   !> damping c1 … cN [N m s] and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
+   !> last, for links other than uniform rods, com1 … comN [m] and inertia1 … inertiaN
+   !> [kg m^2].
    subroutine chain_parameter(self, i, name, value, units)
       class(chain_t), intent(in) :: self
       integer, intent(in) :: i
@@ -1107,6 +1193,19 @@ contains
       character(len=*), parameter :: sup_units(5) = &
          [character(len=5) :: 'm', 'm', 'rad/s', 'rad', 'rad']
       j = i - (2*self%n + 1)
+      if (j > 0 .and. .not. self%rod) then   ! the last: com1 … comN, inertia1 … inertiaN
+         j = i - (chain_n_parameters(self) - 2*self%n)
+         if (j > 0) then
+            if (j <= self%n) then
+               name = 'com'//to_str(j); value = self%d(j); units = 'm'
+            else
+               name = 'inertia'//to_str(j - self%n); value = self%ic(j - self%n)
+               units = 'kg m^2'
+            end if
+            return
+         end if
+         j = i - (2*self%n + 1)
+      end if
       if (j > 0 .and. self%damped) then
          if (j <= self%n) then
             name = 'c'//to_str(j); value = self%c(j); units = 'N m s'
@@ -1188,6 +1287,13 @@ contains
          d(:, i) = b(1:n)
       end do
    end subroutine chain_parameter_rates
+
+   !> The links' mass distribution with units ('' for uniform rods).
+   function chain_body_description(self) result(text)
+      class(chain_t), intent(in) :: self  !! the chain
+      character(len=:), allocatable :: text
+      text = body_text(self%rod, self%l, self%d, self%ic)
+   end function chain_body_description
 
    !> G_i of V = Σ G_i sin q_i [J] (n).
    pure function chain_potential_weights(self) result(gl)

@@ -12,12 +12,13 @@
 !> that each alias is the same number as its per-link value.
 module dpend_link_layout
    use dpend_kinds, only: dp
+   use dpend_strings, only: real_str
    implicit none
    private
    public :: n_link_out, link_out_name, link_out_units, link_out_text, link_out_rows
    public :: n_alias_out, alias_out_name, alias_out_units, alias_out_text
    public :: two_link_aliases, chain_from_aliases, rod_coordinate, rod_coordinates_text
-   public :: rod_figure
+   public :: rod_figure, body_text
 
    !> Outputs of every pendulum of N links: F_joint rC vC aC rJ vJ aJ (2N values
    !> each), then rA (2 values).
@@ -71,6 +72,34 @@ contains
    !> The per-link layout (F_joint rC vC aC rJ vJ aJ, 28 values, (x, y) per link) of
    !> a double pendulum of uniform rods with a fixed pin from its aliases and the
    !> velocity and acceleration of B: the tip D is 2 C2 − B (C2 the rod's middle).
+   !> The 'body' text of links other than uniform rods (issue 26): 'point masses on
+   !> massless rods (com_i = l_i [m], inertia_i = 0 [kg m^2])', or 'general bodies: com
+   !> = 0.6, 0.8 m; inertia = 0.05, 0 kg m^2'; '' for rods.
+   function body_text(rod, l, d, ic) result(text)
+      logical, intent(in) :: rod          !! uniform rods
+      real(dp), intent(in) :: l(:)        !! lengths [m]
+      real(dp), intent(in) :: d(:)        !! joint to centre of mass [m]
+      real(dp), intent(in) :: ic(:)       !! inertia about the centre of mass [kg m²]
+      character(len=:), allocatable :: text
+      integer :: i
+      text = ''
+      if (rod) return
+      if (all(d == l) .and. all(ic == 0.0_dp)) then
+         text = 'point masses on massless rods (com_i = l_i [m], inertia_i = 0 [kg m^2])'
+         return
+      end if
+      text = 'general bodies: com = '
+      do i = 1, size(d)
+         text = text//real_str(d(i))//merge(', ', ' m', i < size(d))
+      end do
+      text = text//'; inertia = '
+      do i = 1, size(ic)
+         text = text//real_str(ic(i))
+         if (i < size(ic)) text = text//', '
+      end do
+      text = text//' kg m^2'
+   end function body_text
+
    pure subroutine chain_from_aliases(alias, vb, ab, values)
       real(dp), intent(in) :: alias(18)    !! F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB
       real(dp), intent(in) :: vb(2), ab(2) !! velocity [m/s], acceleration [m/s²] of B

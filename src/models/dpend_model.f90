@@ -103,6 +103,8 @@ module dpend_model
       procedure :: parameter_rates => model_parameter_rates
       ! sweep (issue 23, one construction site): G_i of V = Σ G_i sin q_i, if V has that form
       procedure :: potential_weights => model_potential_weights
+      ! issue 26 (bodies): the links' mass distribution for files and summaries
+      procedure :: body_description => model_body_description
    end type model_t
 
    abstract interface
@@ -474,4 +476,13 @@ contains
       real(dp), allocatable :: gl(:)
       allocate (gl(0))
    end function model_potential_weights
+
+   !> The links' mass distribution in words with units, for the 'body' attribute of
+   !> output files and the summaries (issue 26); '' (the default) for uniform rods and
+   !> models without links.
+   function model_body_description(self) result(text)
+      class(model_t), intent(in) :: self  !! the model
+      character(len=:), allocatable :: text
+      text = ''
+   end function model_body_description
 end module dpend_model

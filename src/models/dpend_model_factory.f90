@@ -14,7 +14,7 @@ module dpend_model_factory
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: model_t, max_dof
-   use dpend_pendulum, only: pendulum_t, pendulum_model
+   use dpend_pendulum, only: pendulum_t, pendulum_model, body_general
    use dpend_chain, only: chain_t, chain_model
    use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
    use dpend_strings, only: to_str, real_str, did_you_mean
@@ -113,7 +113,13 @@ contains
          param('support_frequency', 'rad/s', 'support motion angular frequency', 0.0_dp, &
                max_support_frequency, 0.0_dp, 1), &
          param('support_phase', 'rad', 'support motion phases phi_x, phi_y', -max_angle, &
-               max_angle, 0.0_dp, 2)]
+               max_angle, 0.0_dp, 2), &
+         param('com', 'm', 'distance d_i from joint i to the centre of mass of link i, ' &
+               //'along the link (default l_i/2: a uniform rod; d_i > l_i: a bob beyond ' &
+               //'the next pin)', 0.0_dp, max_length, 0.5_dp, -1), &
+         param('inertia', 'kg m^2', 'moment of inertia I_i of link i about its centre of ' &
+               //'mass (default m_i l_i^2/12: a uniform rod; 0: a point mass)', 0.0_dp, &
+               max_mass*max_length**2, 1.0_dp/12.0_dp, -1)]
    end function pendulum_info
 
    !> The elastic (spring) pendulum: a point mass on a massless spring.
@@ -362,8 +368,9 @@ contains
       type(model_info_t), intent(in) :: info             !! its description
       class(model_t), allocatable, intent(out) :: model  !! the model built
       type(error_t), allocatable, intent(out) :: error   !! set when refused
-      real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:)
+      real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:), d(:), ic(:)
       integer :: n
+      logical :: rod
       n = n_links(spec, info)
       m = value_of(spec, info, 'm', n)
       l = value_of(spec, info, 'l', n)
@@ -372,14 +379,36 @@ contains
       a = value_of(spec, info, 'support_amplitude', n)
       w = value_of(spec, info, 'support_frequency', n)
       phi = value_of(spec, info, 'support_phase', n)
+      ! the mass distribution (issue 26): uniform rods unless com or inertia is given;
+      ! then the one not given takes the rod's value (d_i = l_i/2, I_i = m_i l_i²/12)
+      rod = spec%find('com') == 0 .and. spec%find('inertia') == 0
       block
          type(chain_t) :: chain
+         type(pendulum_t) :: par
          ! the chain checks every parameter (also those the two-link form ignores)
          chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
          if (allocated(error)) return
+         if (.not. rod) then   ! m and l checked: the defaults m l²/12 are finite
+            if (spec%find('com') > 0) then
+               d = spec%get('com', [0.0_dp])
+            else
+               d = 0.5_dp*l
+            end if
+            if (spec%find('inertia') > 0) then
+               ic = spec%get('inertia', [0.0_dp])
+            else
+               ic = m*l**2/12.0_dp
+            end if
+            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic)
+            if (allocated(error)) return
+         end if
          if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. .not. spec%general) then
-            allocate (model, source=pendulum_model(pendulum_t(m1=m(1), m2=m(2), l1=l(1), &
-                                                              l2=l(2), g=g(1))))
+            par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
+            if (.not. rod) then
+               par%body = body_general
+               par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)
+            end if
+            allocate (model, source=pendulum_model(par))
          else
             allocate (model, source=chain)
          end if

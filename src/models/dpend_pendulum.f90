@@ -18,12 +18,13 @@ module dpend_pendulum
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
-                           parameter_gravity
+                           parameter_gravity, check_range, max_length, max_mass
    use dpend_model, only: model_t
+   use dpend_strings, only: real_str
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, chain_from_aliases
+                                alias_out_text, chain_from_aliases, body_text
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: qp => real128
    implicit none
@@ -38,6 +39,16 @@ module dpend_pendulum
    public :: kinematics_t, kinematics, tip_position, reactions
    public :: double_pendulum_t, pendulum_model
    public :: hamiltonian_qp
+   ! links of any mass distribution (issue 26)
+   public :: body_rod, body_general, check_bodies, body_constants, body_kind_name
+
+   !> The body kind of `pendulum_t`: uniform rods (the chapter's; d_i = l_i/2,
+   !> I_i = m_i l_i²/12, the fields d1 … i2 unused) or links of any mass distribution
+   !> (d1, d2, i1, i2 given). The rod's formulas keep their own arithmetic (results
+   !> bit for bit as before issue 26); the general ones reduce to them for rod values
+   !> (test/test_bodies.f90 compares them).
+   integer, parameter :: body_rod = 0
+   integer, parameter :: body_general = 1
 
    !> Physical parameters (SI units). Defaults are the chapter's numerical application.
    type :: pendulum_t
@@ -46,6 +57,11 @@ module dpend_pendulum
       real(dp) :: l1 = 1.0_dp   !! length of link 1 [m]
       real(dp) :: l2 = 1.0_dp   !! length of link 2 [m]
       real(dp) :: g = 9.8_dp    !! gravitational acceleration [m/s²]
+      integer :: body = body_rod   !! body_rod (uniform rods) or body_general
+      real(dp) :: d1 = 0.5_dp   !! joint A to the centre of mass C1 (body_general) [m]
+      real(dp) :: d2 = 0.5_dp   !! joint B to the centre of mass C2 (body_general) [m]
+      real(dp) :: i1 = 1.0_dp/12.0_dp  !! inertia of link 1 about C1 (body_general) [kg m²]
+      real(dp) :: i2 = 1.0_dp/12.0_dp  !! inertia of link 2 about C2 (body_general) [kg m²]
    end type pendulum_t
 
    !> Positions [m], velocities [m/s] and accelerations [m/s²] of C1, C2 and B.
@@ -99,6 +115,8 @@ module dpend_pendulum
       procedure :: hamiltonian_qp => dp_hamiltonian_qp
       ! sweep (issue 23, one construction site): the G_i of its potential
       procedure :: potential_weights => dp_potential_weights
+      ! issue 26: the links' mass distribution
+      procedure :: body_description => dp_body_description
    end type double_pendulum_t
 
 contains
@@ -166,7 +184,258 @@ contains
          call check_parameter(rows(i), trim(names(i)), x(i), error)
          if (allocated(error)) return
       end do
+      if (par%body /= body_rod) call check_bodies([par%m1, par%m2], [par%l1, par%l2], &
+                                                  [par%d1, par%d2], [par%i1, par%i2], error)
    end subroutine validate
+
+   !> Check the mass distribution of links with masses m and lengths l (checked
+   !> before): d_i (joint i to the centre of mass C_i, along the link) in
+   !> [0, max_length] m, I_i (about C_i) in [0, max_mass max_length²] kg m², and each
+   !> link's inertia about its own joint, I_i + m_i d_i², at least 1e-12 m_i l_i²:
+   !> without it the link (a point mass on its own pin) has no inertia to turn, and
+   !> the mass matrix is singular (for the last link everywhere, for another where the
+   !> links align). d_i > l_i is accepted (a bob beyond the next pin or the tip);
+   !> d_i < 0 (a counterweight behind the pin) is not: d is measured from the joint
+   !> towards the link's far end.
+   subroutine check_bodies(m, l, d, inertia, error)
+      real(dp), intent(in) :: m(:)                      !! masses [kg]
+      real(dp), intent(in) :: l(:)                      !! lengths [m]
+      real(dp), intent(in) :: d(:)                      !! joint to centre of mass [m]
+      real(dp), intent(in) :: inertia(:)                !! inertia about C_i [kg m²]
+      type(error_t), allocatable, intent(out) :: error  !! set when refused
+      character(len=20) :: k
+      integer :: i
+      do i = 1, size(m)
+         write (k, '(i0)') i
+         call check_range('com'//trim(k), d(i), 0.0_dp, max_length, 'm', error, &
+                          'the distance from joint '//trim(k)//' to the centre of mass ' &
+                          //'of link '//trim(k)//' along the link')
+         if (allocated(error)) return
+         call check_range('inertia'//trim(k), inertia(i), 0.0_dp, max_mass*max_length**2, &
+                          'kg m^2', error, 'the moment of inertia of link '//trim(k) &
+                          //' about its centre of mass')
+         if (allocated(error)) return
+         if (.not. inertia(i) + m(i)*d(i)**2 >= 1e-12_dp*m(i)*l(i)**2) then
+            call fatal_error(error, 'invalid com'//trim(k)//', inertia'//trim(k)//': com' &
+                             //trim(k)//' = '//real_str(d(i))//' m with inertia'//trim(k)//' = ' &
+                             //real_str(inertia(i))//' kg m^2 leaves link '//trim(k) &
+                             //' no inertia about its joint (inertia + m com^2 must be at ' &
+                             //'least 1e-12 m l^2, else the mass matrix is singular)')
+            return
+         end if
+      end do
+   end subroutine check_bodies
+
+   !> The constants of a general two-link body (`body_general`): M11 = I1 + m1 d1² +
+   !> m2 l1², M22 = I2 + m2 d2² [kg m²], k = m2 l1 d2 (M12 = k cos(q1 − q2)) [kg m²],
+   !> and V = ga sin q1 + gb sin q2 with ga = g (m1 d1 + m2 l1), gb = g m2 d2 [J].
+   !> The rod's formulas keep their own arithmetic; for rod values these agree with
+   !> them to rounding.
+   pure function body_constants(par) result(c)
+      type(pendulum_t), intent(in) :: par  !! parameters (any body kind: d, I used)
+      real(dp) :: c(5)                     !! (M11, M22, k, ga, gb)
+      c(1) = par%i1 + par%m1*par%d1**2 + par%m2*par%l1**2
+      c(2) = par%i2 + par%m2*par%d2**2
+      c(3) = par%m2*par%l1*par%d2
+      c(4) = par%g*(par%m1*par%d1 + par%m2*par%l1)
+      c(5) = par%g*par%m2*par%d2
+   end function body_constants
+
+   !> 'rod', 'point' (d_i = l_i, I_i = 0) or 'general': the body of a parameter set.
+   pure function body_kind_name(par) result(name)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      character(len=:), allocatable :: name
+      if (par%body == body_rod) then
+         name = 'rod'
+      else if (par%d1 == par%l1 .and. par%d2 == par%l2 .and. par%i1 == 0.0_dp &
+               .and. par%i2 == 0.0_dp) then
+         name = 'point'
+      else
+         name = 'general'
+      end if
+   end function body_kind_name
+
+   !> Constant i of `body_constants` (M11, M22, k, ga, gb).
+   pure real(dp) function body_constant(par, i) result(x)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      integer, intent(in) :: i             !! which
+      real(dp) :: c(5)
+      c = body_constants(par)
+      x = c(i)
+   end function body_constant
+
+   !> `mass_matrix` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function mass_matrix_general(par, q) result(m)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: m(2, 2)
+      m(1, 1) = body_constant(par, 1)
+      m(1, 2) = body_constant(par, 3)*cos(q(1) - q(2))
+      m(2, 1) = m(1, 2)
+      m(2, 2) = body_constant(par, 2)
+   end function mass_matrix_general
+
+   !> `generalized_forces` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function generalized_forces_general(par, q) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp) :: f(2)
+      f(1) = -body_constant(par, 4)*cos(q(1))
+      f(2) = -body_constant(par, 5)*cos(q(2))
+   end function generalized_forces_general
+
+   !> `qddot_lagrange` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function qddot_lagrange_general(par, q, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: m(2, 2), r(2), k, sd, det
+      m = mass_matrix(par, q)
+      k = body_constant(par, 3)
+      sd = sin(q(1) - q(2))
+      r = generalized_forces(par, q) - [k*sd*qd(2)**2, -k*sd*qd(1)**2]
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      qdd(1) = (m(2, 2)*r(1) - m(1, 2)*r(2))/det
+      qdd(2) = (m(1, 1)*r(2) - m(1, 2)*r(1))/det
+   end function qddot_lagrange_general
+
+   !> `potential_energy` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function potential_energy_general(par, q)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      potential_energy_general = body_constant(par, 4)*sin(q(1)) + body_constant(par, 5)*sin(q(2))
+   end function potential_energy_general
+
+   !> `energy_scale` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function energy_scale_general(par, e0)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: e0           !! initial energy [J]
+      real(dp) :: e_ref
+      e_ref = body_constant(par, 4) + body_constant(par, 5)
+      energy_scale_general = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
+   end function energy_scale_general
+
+   !> `dh_dq` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function dh_dq_general(par, q, p) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
+      real(dp) :: g(2)
+      real(dp) :: qd(2), t
+      qd = velocities(par, q, p)
+      t = body_constant(par, 3)*sin(q(1) - q(2))*qd(1)*qd(2)
+      g = [t, -t] - generalized_forces(par, q)
+   end function dh_dq_general
+
+   !> `energy_limit` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure real(dp) function energy_limit_general(par, w_max)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
+      real(dp) :: m11, m22, k
+      m11 = body_constant(par, 1)
+      m22 = body_constant(par, 2)
+      k = body_constant(par, 3)
+      energy_limit_general = body_constant(par, 4) + body_constant(par, 5) &
+                     + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
+   end function energy_limit_general
+
+   !> `energy_gradient` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function energy_gradient_general(par, q, qd) result(g)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: q(2)         !! angles [rad]
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: g(4)
+      real(dp) :: t
+      t = body_constant(par, 3)*sin(q(1) - q(2))*qd(1)*qd(2)
+      g(1:2) = -generalized_forces(par, q) + [-t, t]
+      g(3:4) = momenta(par, q, qd)
+   end function energy_gradient_general
+
+   !> `rhs_qp_trig_impl` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function rhs_qp_trig_impl_general(par, sc, z) result(f)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
+      real(dp) :: f(4)
+      real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
+      k = body_constant(par, 3)
+      cd = sc(3)*sc(4) + sc(1)*sc(2)
+      sd = sc(1)*sc(4) - sc(3)*sc(2)
+      m11 = body_constant(par, 1)
+      m12 = k*cd
+      m22 = body_constant(par, 2)
+      rdet = 1.0_dp/(m11*m22 - m12*m12)
+      f(1) = (m22*z(3) - m12*z(4))*rdet
+      f(2) = (m11*z(4) - m12*z(3))*rdet
+      t = k*sd*f(1)*f(2)
+      f(3) = -body_constant(par, 4)*sc(3) - t
+      f(4) = -body_constant(par, 5)*sc(4) + t
+   end function rhs_qp_trig_impl_general
+
+   !> `jacobian_qqdot` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function jacobian_qqdot_general(par, y) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: y(4)         !! state (q, q̇)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
+      m = mass_matrix(par, y(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      a = qddot_lagrange(par, y(1:2), y(3:4))
+      k = body_constant(par, 3)
+      sd = sin(y(1) - y(2)); cd = cos(y(1) - y(2))
+      ! ∂r/∂(q1, q2, q̇1, q̇2)
+      dr(1, :) = [body_constant(par, 4)*sin(y(1)) - k*cd*y(4)**2, &
+                  k*cd*y(4)**2, 0.0_dp, -2.0_dp*k*sd*y(4)]
+      dr(2, :) = [k*cd*y(3)**2, body_constant(par, 5)*sin(y(2)) - k*cd*y(3)**2, &
+                  2.0_dp*k*sd*y(3), 0.0_dp]
+      ! (∂M/∂x) q̈: only M12 = k cos(q1 - q2) depends on q
+      dma = 0.0_dp
+      dma(:, 1) = -k*sd*[a(2), a(1)]
+      dma(:, 2) = k*sd*[a(2), a(1)]
+      jac = 0.0_dp
+      jac(1, 3) = 1.0_dp
+      jac(2, 4) = 1.0_dp
+      jac(3:4, :) = matmul(minv, dr - dma)
+   end function jacobian_qqdot_general
+
+   !> `jacobian_qp` for links of any mass distribution (issue 26): the same formula
+   !> with the constants of `body_constants`.
+   pure function jacobian_qp_general(par, z) result(jac)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      real(dp), intent(in) :: z(4)         !! canonical state (q, p)
+      real(dp) :: jac(4, 4)
+      real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
+      m = mass_matrix(par, z(1:2))
+      det = m(1, 1)*m(2, 2) - m(1, 2)**2
+      minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
+      qd = matmul(minv, z(3:4))
+      k = body_constant(par, 3)
+      sd = sin(z(1) - z(2)); cd = cos(z(1) - z(2))
+      ! ∂q̇/∂(q1, q2, p1, p2); (∂M/∂q1) q̇ = -k sd (q̇2, q̇1), (∂M/∂q2) q̇ = +k sd (q̇2, q̇1)
+      dqd(:, 1) = matmul(minv, k*sd*[qd(2), qd(1)])
+      dqd(:, 2) = -dqd(:, 1)
+      dqd(:, 3:4) = minv
+      dphi = k*sd*(dqd(1, :)*qd(2) + qd(1)*dqd(2, :))
+      dphi(1) = dphi(1) + k*cd*qd(1)*qd(2)
+      dphi(2) = dphi(2) - k*cd*qd(1)*qd(2)
+      jac(1:2, :) = dqd
+      jac(3, :) = -dphi
+      jac(4, :) = dphi
+      jac(3, 1) = jac(3, 1) + body_constant(par, 4)*sin(z(1))
+      jac(4, 2) = jac(4, 2) + body_constant(par, 5)*sin(z(2))
+   end function jacobian_qp_general
 
    !> x is finite and > 0, tested without an ordered comparison on NaN (which
    !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
@@ -176,22 +445,32 @@ contains
       if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
    end function finite_positive
 
+
    !> Mass matrix M(q) of Lagrange's equations [kg m²].
    pure function mass_matrix(par, q) result(m)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: m(2, 2)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         m = mass_matrix_general(par, q)
+         return
+      end if
       m(1, 1) = (par%m1/3.0_dp + par%m2)*par%l1**2
       m(1, 2) = 0.5_dp*par%m2*par%l1*par%l2*cos(q(1) - q(2))
       m(2, 1) = m(1, 2)
       m(2, 2) = par%m2*par%l2**2/3.0_dp
    end function mass_matrix
 
+
    !> Generalized gravity forces Q = -dV/dq [N m].
    pure function generalized_forces(par, q) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: f(2)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f = generalized_forces_general(par, q)
+         return
+      end if
       f(1) = -(0.5_dp*par%m1 + par%m2)*par%g*par%l1*cos(q(1))
       f(2) = -0.5_dp*par%m2*par%g*par%l2*cos(q(2))
    end function generalized_forces
@@ -224,6 +503,32 @@ contains
       real(dp) :: c1, s1, c2, s2, h2, m2l1, m2h2, a0x, a0y, a11, a12, a22, b1, b2, rdet
       include 'dpend_qddot_trig_body.inc'
    end function qddot_trig_impl
+
+   !> `qddot_trig_impl` for links of any mass distribution (issue 26): the same
+   !> corrected Newton–Euler equations with C_i at d_i along link i and I_Ci = I_i,
+   !>   I_A1 q̈1 = −m1 g d1 cos q1 + L1 (F21y cos q1 − F21x sin q1),  I_A1 = I1 + m1 d1²,
+   !>   I2 q̈2 = d2 (F21y cos q2 − F21x sin q2),  F21 = −m2 (a_C2 + g j),
+   !> a_C2 = a0 + q̈1 L1 n1 + q̈2 d2 n2 (a0 the centripetal part), solved by Cramer's rule.
+   pure function qddot_trig_general(par, sc, qd) result(qdd)
+      type(pendulum_t), intent(in) :: par  !! parameters (body_general)
+      real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
+      real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
+      real(dp) :: qdd(2)
+      real(dp) :: c1, s1, c2, s2, m2l1, m2d2, a0x, a0y, a11, a12, a22, b1, b2, rdet
+      s1 = sc(1); s2 = sc(2); c1 = sc(3); c2 = sc(4)
+      m2l1 = par%m2*par%l1
+      m2d2 = par%m2*par%d2
+      a0x = -par%l1*qd(1)**2*c1 - par%d2*qd(2)**2*c2
+      a0y = -par%l1*qd(1)**2*s1 - par%d2*qd(2)**2*s2
+      a11 = par%i1 + par%m1*par%d1**2 + m2l1*par%l1
+      a12 = m2l1*par%d2*(c1*c2 + s1*s2)
+      b1 = -par%m1*par%g*par%d1*c1 - m2l1*((a0y + par%g)*c1 - a0x*s1)
+      a22 = par%i2 + m2d2*par%d2
+      b2 = -m2d2*((a0y + par%g)*c2 - a0x*s2)
+      rdet = 1.0_dp/(a11*a22 - a12*a12)
+      qdd(1) = (b1*a22 - a12*b2)*rdet
+      qdd(2) = (a11*b2 - a12*b1)*rdet
+   end function qddot_trig_general
 
    !> (sin q1, sin q2, cos q1, cos q2) as one 4-wide sine, cos q = sin(q + π/2), so that
    !> the release build calls glibc's vector sine (libmvec) once instead of two scalar
@@ -268,6 +573,7 @@ contains
       sc(3:4) = sc0(3:4) + (sc0(3:4)*cm1 - sc0(1:2)*sd)
    end function sin_cos_near_impl
 
+
    !> Angular accelerations from Lagrange's equations M(q) q̈ = Q(q) - c(q, q̇) [rad/s²],
    !> with c1 = k sin(q1-q2) q̇2², c2 = -k sin(q1-q2) q̇1², k = m2 L1 L2/2.
    pure function qddot_lagrange(par, q, qd) result(qdd)
@@ -276,6 +582,10 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
       real(dp) :: m(2, 2), r(2), k, sd, det
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         qdd = qddot_lagrange_general(par, q, qd)
+         return
+      end if
       m = mass_matrix(par, q)
       k = 0.5_dp*par%m2*par%l1*par%l2
       sd = sin(q(1) - q(2))
@@ -305,10 +615,15 @@ contains
                                + m(2, 2)*qd(2)**2)
    end function kinetic_energy
 
+
    !> Potential energy V(q), zero with both links horizontal (y = 0 at the pin A) [J].
    pure real(dp) function potential_energy(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         potential_energy = potential_energy_general(par, q)
+         return
+      end if
       potential_energy = (0.5_dp*par%m1 + par%m2)*par%g*par%l1*sin(q(1)) &
                          + 0.5_dp*par%m2*par%g*par%l2*sin(q(2))
    end function potential_energy
@@ -321,6 +636,7 @@ contains
       energy = kinetic_energy(par, q, qd) + potential_energy(par, q)
    end function energy
 
+
    !> Energy unit for relative energy errors [J]: |E0| when it is at least 1e-3 of
    !> E_ref = V(π/2, π/2) = (m1/2 + m2) g L1 + (m2/2) g L2 (both links upright),
    !> and E_ref itself when E0 ≈ 0 (e.g. both links released horizontally).
@@ -328,6 +644,10 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: e0           !! initial energy [J]
       real(dp) :: e_ref
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         energy_scale = energy_scale_general(par, e0)
+         return
+      end if
       e_ref = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2
       energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
    end function energy_scale
@@ -373,6 +693,7 @@ contains
       g = velocities(par, q, p)
    end function dh_dp
 
+
    !> ∂H/∂q [J/rad]. Only M12 depends on q (through d = q1 - q2):
    !> ∂/∂d (½ pᵀM⁻¹p) = -½ q̇ᵀ (∂M/∂d) q̇ = k sin d q̇1 q̇2.
    pure function dh_dq(par, q, p) result(g)
@@ -381,6 +702,10 @@ contains
       real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
       real(dp) :: g(2)
       real(dp) :: qd(2), t
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         g = dh_dq_general(par, q, p)
+         return
+      end if
       qd = velocities(par, q, p)
       t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
       g = [t, -t] - generalized_forces(par, q)
@@ -440,18 +765,24 @@ contains
       shell_p_max = 1.02_dp*shell_p_max
    end function shell_p_max
 
+
    !> Largest |energy| accepted for a Poincaré section: both links upright plus the
    !> kinetic energy of angular velocities w_max [J].
    pure real(dp) function energy_limit(par, w_max)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
       real(dp) :: m11, m22, k
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         energy_limit = energy_limit_general(par, w_max)
+         return
+      end if
       m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
       m22 = par%m2*par%l2**2/3.0_dp
       k = 0.5_dp*par%m2*par%l1*par%l2
       energy_limit = (0.5_dp*par%m1 + par%m2)*par%g*par%l1 + 0.5_dp*par%m2*par%g*par%l2 &
                      + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
    end function energy_limit
+
 
    !> Gradient of the energy in (q, q̇): ∂E/∂q = -Q(q) + ∂T/∂q with
    !> ∂T/∂q1 = -k sin(q1 - q2) q̇1 q̇2 = -∂T/∂q2, and ∂E/∂q̇ = M(q) q̇ = p.
@@ -461,6 +792,10 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: g(4)
       real(dp) :: t
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         g = energy_gradient_general(par, q, qd)
+         return
+      end if
       t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
       g(1:2) = -generalized_forces(par, q) + [-t, t]
       g(3:4) = momenta(par, q, qd)
@@ -483,6 +818,7 @@ contains
       f = rhs_qp_trig_impl(par, sin_cos_impl(z(1:2)), z)
    end function rhs_qp_impl
 
+
    !> `rhs_qp` from sc = (sin q1, sin q2, cos q1, cos q2), for callers that have them
    !> (the implicit stages of the symplectic methods, via `sin_cos_near`):
    !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas.
@@ -492,6 +828,10 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
       real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f = rhs_qp_trig_impl_general(par, sc, z)
+         return
+      end if
       k = 0.5_dp*par%m2*par%l1*par%l2
       cd = sc(3)*sc(4) + sc(1)*sc(2)
       sd = sc(1)*sc(4) - sc(3)*sc(2)
@@ -506,6 +846,7 @@ contains
       f(4) = -0.5_dp*par%m2*par%g*par%l2*sc(4) + t
    end function rhs_qp_trig_impl
 
+
    !> Jacobian ∂f/∂y of `rhs_qqdot` for y = (q, q̇), written analytically:
    !> with q̈ = M⁻¹ r, r = Q(q) - c(q, q̇), ∂q̈/∂x = M⁻¹ (∂r/∂x - (∂M/∂x) q̈).
    pure function jacobian_qqdot(par, y) result(jac)
@@ -513,6 +854,10 @@ contains
       real(dp), intent(in) :: y(4)         !! state (q, q̇)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         jac = jacobian_qqdot_general(par, y)
+         return
+      end if
       m = mass_matrix(par, y(1:2))
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
@@ -534,6 +879,7 @@ contains
       jac(3:4, :) = matmul(minv, dr - dma)
    end function jacobian_qqdot
 
+
    !> Jacobian ∂f/∂z of `rhs_qp` for z = (q, p), written analytically:
    !> f = (q̇, -∂H/∂q) with q̇ = M⁻¹p, ∂q̇/∂q_j = -M⁻¹ (∂M/∂q_j) q̇, ∂q̇/∂p = M⁻¹, and
    !> -∂H/∂q = (-φ - V_1, φ - V_2), φ = k sin(q1 - q2) q̇1 q̇2.
@@ -542,6 +888,10 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state (q, p)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         jac = jacobian_qp_general(par, z)
+         return
+      end if
       m = mass_matrix(par, z(1:2))
       det = m(1, 1)*m(2, 2) - m(1, 2)**2
       minv = reshape([m(2, 2), -m(1, 2), -m(1, 2), m(1, 1)], [2, 2])/det
@@ -580,6 +930,15 @@ contains
       k%rb = par%l1*u1
       k%vb = par%l1*qd(1)*n1
       k%ab = par%l1*(qdd(1)*n1 - qd(1)**2*u1)
+      if (par%body /= body_rod) then   ! C_i at d_i along link i
+         k%rc1 = par%d1*u1
+         k%vc1 = par%d1*qd(1)*n1
+         k%ac1 = par%d1*(qdd(1)*n1 - qd(1)**2*u1)
+         k%rc2 = k%rb + par%d2*u2
+         k%vc2 = k%vb + par%d2*qd(2)*n2
+         k%ac2 = k%ab + par%d2*(qdd(2)*n2 - qd(2)**2*u2)
+         return
+      end if
       k%rc1 = 0.5_dp*k%rb
       k%vc1 = 0.5_dp*k%vb
       k%ac1 = 0.5_dp*k%ab
@@ -634,7 +993,29 @@ contains
       class(double_pendulum_t), intent(in) :: self
       character(len=:), allocatable :: name
       name = 'double pendulum'
+      if (self%par%body /= body_rod) name = name//' of '//body_name_text(self%par)
    end function dp_name
+
+   !> The links' mass distribution with units ('' for uniform rods).
+   function dp_body_description(self) result(text)
+      class(double_pendulum_t), intent(in) :: self  !! the model
+      character(len=:), allocatable :: text
+      associate (p => self%par)
+         text = body_text(p%body == body_rod, [p%l1, p%l2], [p%d1, p%d2], [p%i1, p%i2])
+      end associate
+   end function dp_body_description
+
+   !> 'point masses on massless rods' or 'general bodies (d, I given)': the body of a
+   !> non-rod parameter set, for names and summaries.
+   pure function body_name_text(par) result(s)
+      type(pendulum_t), intent(in) :: par  !! parameters
+      character(len=:), allocatable :: s
+      if (body_kind_name(par) == 'point') then
+         s = 'point masses on massless rods'
+      else
+         s = 'general bodies (com d_i, inertia I_i)'
+      end if
+   end function body_name_text
 
    pure logical function dp_true(self)
       class(double_pendulum_t), intent(in) :: self
@@ -814,6 +1195,13 @@ contains
       alias(11:12) = k%rc2; alias(13:14) = k%vc2; alias(15:16) = k%ac2
       alias(17:18) = k%rb
       call chain_from_aliases(alias, k%vb, k%ab, values(1:28))
+      if (self%par%body /= body_rod) then   ! the tip is not 2 C2 − B: at l2 along link 2
+         associate (u2 => [cos(y(2)), sin(y(2))], n2 => [-sin(y(2)), cos(y(2))])
+            values(19:20) = k%rb + self%par%l2*u2
+            values(23:24) = k%vb + self%par%l2*y(4)*n2
+            values(27:28) = k%ab + self%par%l2*(f(4)*n2 - y(4)**2*u2)
+         end associate
+      end if
       values(29:30) = 0.0_dp
       values(31:48) = alias
    end subroutine dp_outputs
@@ -821,9 +1209,11 @@ contains
    pure integer function dp_n_parameters(self)
       class(double_pendulum_t), intent(in) :: self
       dp_n_parameters = 5
+      if (self%par%body /= body_rod) dp_n_parameters = 9
    end function dp_n_parameters
 
-   !> m1, m2 [kg], l1, l2 [m], g [m/s²], in that order.
+   !> m1, m2 [kg], l1, l2 [m], g [m/s²], in that order; for a body other than the
+   !> uniform rod also com1, com2 [m] (d_i) and inertia1, inertia2 [kg m^2] (I_i).
    subroutine dp_parameter(self, i, name, value, units)
       class(double_pendulum_t), intent(in) :: self
       integer, intent(in) :: i
@@ -834,6 +1224,10 @@ contains
       case (2); name = 'm2'; value = self%par%m2; units = 'kg'
       case (3); name = 'l1'; value = self%par%l1; units = 'm'
       case (4); name = 'l2'; value = self%par%l2; units = 'm'
+      case (6); name = 'com1'; value = self%par%d1; units = 'm'
+      case (7); name = 'com2'; value = self%par%d2; units = 'm'
+      case (8); name = 'inertia1'; value = self%par%i1; units = 'kg m^2'
+      case (9); name = 'inertia2'; value = self%par%i2; units = 'kg m^2'
       case default; name = 'g'; value = self%par%g; units = 'm/s^2'
       end select
    end subroutine dp_parameter
@@ -869,10 +1263,21 @@ contains
       real(dp), intent(in) :: y(4)         !! state (q1, q2, p1, p2)
       real(dp), intent(in) :: e(4)         !! its compensation (0 without)
       real(qp) :: h
-      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g
+      real(qp) :: z(4), m11, m12, m22, det, qd1, qd2, m1, m2, l1, l2, g, d1, d2
       z = real(y, qp) + real(e, qp)
       m1 = real(par%m1, qp); m2 = real(par%m2, qp); l1 = real(par%l1, qp)
       l2 = real(par%l2, qp); g = real(par%g, qp)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         d1 = real(par%d1, qp); d2 = real(par%d2, qp)
+         m11 = real(par%i1, qp) + m1*d1**2 + m2*l1**2
+         m12 = m2*l1*d2*cos(z(1) - z(2))
+         m22 = real(par%i2, qp) + m2*d2**2
+         det = m11*m22 - m12**2
+         qd1 = (m22*z(3) - m12*z(4))/det
+         qd2 = (m11*z(4) - m12*z(3))/det
+         h = 0.5_qp*(z(3)*qd1 + z(4)*qd2) + g*(m1*d1 + m2*l1)*sin(z(1)) + g*m2*d2*sin(z(2))
+         return
+      end if
       m11 = (m1/3.0_qp + m2)*l1**2
       m12 = 0.5_qp*m2*l1*l2*cos(z(1) - z(2))
       m22 = m2*l2**2/3.0_qp
@@ -899,6 +1304,10 @@ contains
       real(dp), allocatable :: gl(:)
       real(dp) :: tail
       associate (p => self%par)
+         if (p%body /= body_rod) then   ! G_i = g (m_i d_i + l_i Σ_(k>i) m_k), as the chain's
+            gl = [p%g*(p%m1*p%d1 + p%l1*p%m2), p%g*(p%m2*p%d2)]
+            return
+         end if
          tail = 0.0_dp
          allocate (gl(2))
          gl(2) = p%g*p%l2*(0.5_dp*p%m2 + tail)

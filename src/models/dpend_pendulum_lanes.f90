@@ -27,7 +27,7 @@
 !> A = (m1/2 + m2) g L1, B = (m2/2) g L2.
 module dpend_pendulum_lanes
    use dpend_kinds, only: dp, i8
-   use dpend_pendulum, only: pendulum_t
+   use dpend_pendulum, only: pendulum_t, body_rod, body_constants
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use dpend_indicator_math, only: initial_vectors, sali, gali
    implicit none
@@ -161,11 +161,17 @@ contains
    pure function batch_coef(par) result(c)
       type(pendulum_t), intent(in) :: par  !! parameters
       type(batch_coef_t) :: c
-      c%m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
-      c%m22 = par%m2*par%l2**2/3.0_dp
-      c%k = 0.5_dp*par%m2*par%l1*par%l2
-      c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
-      c%gb = 0.5_dp*par%m2*par%g*par%l2
+      real(dp) :: b(5)
+      if (par%body == body_rod) then
+         c%m11 = (par%m1/3.0_dp + par%m2)*par%l1**2
+         c%m22 = par%m2*par%l2**2/3.0_dp
+         c%k = 0.5_dp*par%m2*par%l1*par%l2
+         c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
+         c%gb = 0.5_dp*par%m2*par%g*par%l2
+      else   ! links of any mass distribution (issue 26): the same kernels, other constants
+         b = body_constants(par)
+         c%m11 = b(1); c%m22 = b(2); c%k = b(3); c%ga = b(4); c%gb = b(5)
+      end if
       ! the form divided by k needs k > 0: every accepted pendulum (dpend_limits:
       ! masses and lengths >= 1e-6)
       if (.not. (c%k > 0.0_dp)) error stop 'internal error: batch_coef needs m2 L1 L2 > 0'
