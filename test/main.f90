@@ -36,6 +36,7 @@ program tester
    use test_sweep_values, only: collect_sweep_values
    use test_fit_stats, only: collect_fit_stats
    use test_mutant_gaps, only: collect_mutant_gaps
+   use test_fit_params, only: collect_fit_params   ! issue 26 (r4-fit)
    implicit none
 
    type :: suite_t
@@ -50,7 +51,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(29))
+   allocate (suites(30))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -80,6 +81,7 @@ program tester
    suites(27)%name = 'sweep_values'; call collect_sweep_values(suites(27)%tests)
    suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
    suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
+   suites(30)%name = 'fit_params'; call collect_fit_params(suites(30)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

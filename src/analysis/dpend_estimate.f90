@@ -72,7 +72,7 @@ module dpend_estimate
    private
    public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
    public :: initial_guess, student_t95, fit_work_t, estimate_fit_work, set_fitted, n_fitted
-   public :: noise_estimate, misfit_suspects, misfit_factor, suspect_t
+   public :: noise_estimate, misfit_suspects, misfit_factor, suspect_t, condition_text
 
    !> Most steps of the probe integration that measures the steps per second of model
    !> time (`estimate_fit_work`): a few milliseconds.
@@ -950,7 +950,8 @@ contains
          call fatal_error(error, 'invalid fit parameters: '//undetermined(prob, res, ds)// &
                           ' (singular values of the scaled sensitivities '// &
                           singular_text(res)//'; condition number '// &
-                          real_str(res%condition, 3)//' > '//real_str(max_condition)//')', &
+                          condition_text(res%condition)//' > '//real_str(max_condition)// &
+                          ')', &
                           error_bad_input)
          return
       end if
@@ -1037,6 +1038,17 @@ contains
       end if
    end subroutine identifiability
 
+   !> A condition number, 3 digits ('infinite' for a zero singular value).
+   function condition_text(x) result(s)
+      real(dp), intent(in) :: x  !! condition number
+      character(len=:), allocatable :: s
+      if (x >= huge(1.0_dp)) then
+         s = 'infinite'
+      else
+         s = real_str(x, 3)
+      end if
+   end function condition_text
+
    !> The singular values, 3 digits each, comma-separated.
    function singular_text(res) result(s)
       type(fit_result_t), intent(in) :: res  !! with singular set
@@ -1049,14 +1061,20 @@ contains
       end do
    end function singular_text
 
-   !> Label of parameter i (`prob%labels`, else p<i>).
-   function label_of(prob, i) result(s)
+   !> Label of parameter i (`prob%labels`; else the component's label for a model
+   !> parameter, 'state <i>' for the state).
+   function label_of(prob, i, np) result(s)
       type(fit_problem_t), intent(in) :: prob  !! the problem
       integer, intent(in) :: i                 !! parameter
+      integer, intent(in) :: np                !! parameters P
       character(len=:), allocatable :: s
-      s = 'p'//to_str(i)
+      integer :: c
+      s = 'state '//to_str(i)
+      c = i - (np - n_fitted(prob))
       if (allocated(prob%labels)) then
          if (i <= size(prob%labels)) s = trim(prob%labels(i))
+      else if (c >= 1) then
+         s = trim(prob%comp_labels(c))
       end if
    end function label_of
 
@@ -1083,10 +1101,10 @@ contains
       do i = 1, np
          if (abs(v(i)) <= 0.05_dp) cycle
          if (len(names) > 0) names = names//','
-         names = names//label_of(prob, i)
+         names = names//label_of(prob, i, np)
          if (len(comb) > 0) comb = comb//merge(' + ', ' - ', v(i) > 0.0_dp)
          if (len(comb) == 0 .and. v(i) < 0.0_dp) comb = '-'
-         comb = comb//real_str(abs(v(i)), 3)//' '//label_of(prob, i)
+         comb = comb//real_str(abs(v(i)), 3)//' '//label_of(prob, i, np)
          c = i - 2*n
          if (c < 1) then
             scale_only = .false.
@@ -1157,7 +1175,7 @@ contains
       type(fit_problem_t) :: ext
       type(model_info_t), allocatable :: models(:)
       character(len=32), allocatable :: names(:)
-      real(dp), allocatable :: r(:), jac(:, :), qm(:, :), p(:), c(:), pred(:)
+      real(dp), allocatable :: r(:), jac(:, :), qm(:, :), p(:), c(:), pred(:), effect(:)
       real(dp) :: cost, cc, nq
       integer :: k, j, i, m, np, nfit, n, free, ncand, o, idx
       allocate (suspects(0))
@@ -1168,9 +1186,6 @@ contains
       allocate (names(0))
       if (allocated(prob%fit_names)) names = prob%fit_names
       ext = prob
-      if (allocated(ext%fit_names)) deallocate (ext%fit_names, ext%fit_counts, ext%theta0, &
-         ext%theta_lower, ext%theta_upper, ext%comp_names, ext%comp_index, ext%comp_count, &
-         ext%comp_labels, ext%comp_scale, ext%comp_generic)
       ! every component of every continuous parameter, the fitted ones first
       do j = 1, size(models(k)%params)
          associate (par => models(k)%params(j))
@@ -1188,7 +1203,8 @@ contains
             end do
          end associate
       end do
-      call set_fitted(ext, names, error)
+      ! one at a time with the fitted ones: a scale all of them leave free is no matter
+      call set_fitted(ext, names, error, scale_check=.false.)
       if (allocated(error)) return
       ext%labels = [character(len=24) :: ext%comp_labels]
       nfit = res%np
@@ -1217,10 +1233,16 @@ contains
          qm(:, o) = c/sqrt(sum(c**2))
       end do
       cost = sum(r**2)
-      allocate (pred(ncand))
+      allocate (pred(ncand), effect(ncand))
+      ! a candidate's effect: the residuals' change for a change of it by its size
+      do j = 1, ncand
+         effect(j) = sqrt(sum(jac(:, nfit + j)**2))*max(abs(p(nfit + j)), &
+                                                         ext%comp_scale(n_fitted(prob) + j))
+      end do
       do j = 1, ncand
          c = jac(:, nfit + j)
          nq = sqrt(sum(c**2))
+         if (.not. (effect(j) > 1e-6_dp*maxval(effect))) nq = 0.0_dp   ! none (rounding)
          do i = 1, o
             c = c - qm(:, i)*sum(qm(:, i)*c)
          end do
@@ -1539,10 +1561,12 @@ contains
    !> `parameter_rates` where `check_parameter_rates` accepts the name, central
    !> differences of the field otherwise. The first guess is the value of the
    !> specification (or the default), the range the description's.
-   subroutine set_fitted(prob, names, error)
+   subroutine set_fitted(prob, names, error, scale_check)
       type(fit_problem_t), intent(inout) :: prob        !! the problem (spec set)
       character(len=*), intent(in) :: names(:)          !! parameter names
       type(error_t), allocatable, intent(out) :: error  !! refused
+      !> refuse a set that leaves the mass scale free (`mass_scale`; default: yes)
+      logical, intent(in), optional :: scale_check
       type(model_info_t), allocatable :: models(:)
       class(model_t), allocatable :: model
       type(model_spec_t) :: spec
@@ -1556,6 +1580,10 @@ contains
       if (allocated(error)) return
       models = model_catalogue()
       k = find_model(models, spec%model_name())
+      if (allocated(prob%fit_names)) deallocate (prob%fit_names, prob%fit_counts, &
+         prob%theta0, prob%theta_lower, prob%theta_upper, prob%comp_names, &
+         prob%comp_index, prob%comp_count, prob%comp_labels, prob%comp_scale, &
+         prob%comp_generic)
       allocate (prob%fit_names(size(names)), prob%fit_counts(size(names)))
       allocate (prob%theta0(0), prob%theta_lower(0), prob%theta_upper(0))
       allocate (prob%comp_names(0), prob%comp_index(0), prob%comp_count(0), &
@@ -1597,7 +1625,11 @@ contains
          prob%fit_names(i) = names(i)
          prob%fit_counts(i) = last - first + 1
       end do
-      call mass_scale(prob, models(k), model%n_dof(), error)
+      if (.not. present(scale_check)) then
+         call mass_scale(prob, models(k), model%n_dof(), error)
+      else if (scale_check) then
+         call mass_scale(prob, models(k), model%n_dof(), error)
+      end if
       if (allocated(error)) return
       if (model%n_dof() + size(prob%theta0) > max_dof) then
          call fatal_error(error, 'invalid fit parameters: '//to_str(model%n_dof())// &
@@ -1630,7 +1662,7 @@ contains
             cnt = par%count
             if (cnt < 0) cnt = n_dof
             v = prob%spec%get(par%name, spread(par%default, 1, cnt))
-            do i = 1, size(v)
+            do i = 1, min(size(v), cnt)
                if (any(prob%comp_names == par%name .and. prob%comp_index == i)) then
                   any_fitted = .true.
                   if (len(names) > 0) names = names//','

@@ -17,7 +17,7 @@ module dpend_fit_command
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
                              estimate_fit_work, set_fitted, n_fitted, noise_estimate, &
-                             misfit_suspects, misfit_factor, suspect_t
+                             misfit_suspects, misfit_factor, suspect_t, condition_text
    use dpend_model_factory, only: default_model, model_catalogue, find_model, model_info_t
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
@@ -612,7 +612,7 @@ contains
       end do
       write (output_unit, '(a)') '  identifiability: singular values of the sensitivities ' &
          //'(columns scaled to 1) '//line//'; condition number '// &
-         real_str(res%condition, 3)
+         condition_text(res%condition)
       if (res%has_after) then
          if (res%horizon_censored) then
             write (output_unit, '(a)') '  prediction horizon after t = '// &
