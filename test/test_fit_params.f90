@@ -13,7 +13,8 @@
 !>   0.01 within 20 %) and the parameters ranked as suspects include l2; the fit of m2,
 !>   l2 covers the truth;
 !> - sets the data cannot determine refused: every mass (the mass scale), m with k for
-!>   the elastic pendulum, a parameter with no effect (support phase without motion);
+!>   the elastic pendulum, a parameter with no effect (support phase without motion),
+!>   the lengths with g (only g/l matters);
 !> - CSV columns in degrees converted by π/180.
 module test_fit_params
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -355,6 +356,14 @@ contains
       if (allocated(error)) return
       call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, error)
       call refused('support_phase2', 'support_phase2 is not determined')
+      if (allocated(error)) return
+      ! lengths and g together: the angles depend on g/l only (uniform rods)
+      call pendulum_problem(prob, true_m, [1.0_dp, 1.0_dp], [character(len=1) :: 'l', &
+                            'g'], error)
+      if (allocated(error)) return
+      call fit_series(prob, t(:60), q(:, :60), huge(1.0_dp), 0.1_dp, res, error)
+      call refused('l,g', 'l1,l2,g together are not determined by the data: their ' &
+                   //'common scale')
    contains
       !> The error was set and holds `needle`; cleared, or set to a failure.
       subroutine refused(what, needle)

@@ -1108,10 +1108,7 @@ contains
          c = i - 2*n
          if (c < 1) then
             scale_only = .false.
-         else if (prob%comp_names(c) /= 'm' .and. prob%comp_names(c) /= 'damping' .and. &
-                  prob%comp_names(c) /= 'I') then
-            scale_only = .false.
-         else if (prob%theta0(c) == 0.0_dp) then
+         else if (res%p(i) == 0.0_dp) then
             scale_only = .false.
          else
             rel = [rel, ds(i)*v(i)/res%p(i)]   ! δθ_i = ds_i v_i ∝ θ_i for a scale
@@ -1120,10 +1117,10 @@ contains
       if (scale_only .and. size(rel) > 1) &
          scale_only = maxval(rel) - minval(rel) <= 1e-3_dp*maxval(abs(rel))
       if (scale_only .and. size(rel) > 1) then
-         s = names//' together are not determined by the data: the absolute mass scale ' &
-             //'(multiplying them all by one factor leaves the motion unchanged; only ' &
-             //'their ratios are determined: fit all but one, e.g. '//names(index(names, &
-             ',') + 1:)//')'
+         s = names//' together are not determined by the data: their common scale ' &
+             //'(multiplying them all by one factor leaves the motion unchanged: the ' &
+             //'absolute mass scale for masses, g/l for lengths with g; only their ratios ' &
+             //'are determined: fit all but one, e.g. '//names(index(names, ',') + 1:)//')'
       else
          s = names//trim(merge(' is ', ' are', index(names, ',') == 0))//' not determined ' &
              //'by the data: the combination '//comb//' (each parameter in units of its ' &

@@ -92,7 +92,8 @@ contains
           nl//'  t,theta1,theta2[,...]   t in s; angles in rad from the hanging position'//nl// &
           '                          (counter-clockwise; as --theta1), or q1,q2,... from'//nl// &
           "                          the horizontal x axis (as dpend export --csv writes);"// &
-          nl//'                          units in brackets allowed (t [s], theta1 [rad]);'//nl// &
+          nl//'                          units in brackets allowed (t [s], theta1 [rad],'// &
+          nl//'                          theta1 [deg]: converted by pi/180);'//nl// &
           '                          other columns are ignored, lines starting with # and'// &
           nl//'                          blank lines skipped. N = the number of angle columns.'// &
           nl//'  t,x1,y1[,x2,y2,...]     or (no angle columns) the positions of the far ends of'// &
@@ -101,7 +102,7 @@ contains
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
           nl//'  t,r,phi                 with --model elastic: the model''s coordinates'// &
           nl//'                          (dpend models), r in m, phi in rad from the'// &
-          nl//'                          horizontal x axis (units [m], [rad] or none).'// &
+          nl//'                          horizontal x axis (units [m], [rad], [deg], none).'// &
           nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
           nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
@@ -112,11 +113,17 @@ contains
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
-          '  --fit-parameters NAMES  fit these model parameters too, comma-separated:'// &
-          nl//'                    damping (the pendulum: as --fit-damping); k,l0 (the'// &
-          nl//'                    elastic pendulum: with g known the motion depends on'// &
-          nl//'                    k/m and l0 only, so k is fitted at the given --m);'// &
-          nl//'                    their first guess: the values given (--k, --l0)'//nl// &
+          '  --fit-param NAMES fit these model parameters too (also --fit-parameters),'// &
+          nl//'                    comma-separated, any the model describes (dpend'// &
+          nl//'                    models): m, l, g, damping, support_amplitude, ... (all'// &
+          nl//'                    components) or one component: m2, l1, c2 (damping 2);'// &
+          nl//'                    the elastic pendulum: k, l0, m, g. First guess: the'// &
+          nl//'                    values given (--m2, --l2, --k). A set the data cannot'// &
+          nl//'                    determine is refused naming the combination (angles'// &
+          nl//'                    never fix the absolute mass scale: fit m2, not m1,m2)'// &
+          nl//'  --sigma S         the noise of the observations (rad or m): a fit whose RMS'// &
+          nl//'                    residual exceeds 3 S warns and names the parameters'// &
+          nl//'                    that may be wrong; default: estimated from the data'//nl// &
           '  --fit-window T    fit only the samples with t <= T (s); the rest measures the'// &
           nl//'                    prediction horizon; default: all samples'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &

@@ -34,6 +34,7 @@ refuse  fitr4-mass-scale     'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-para
 refuse  fitr4-mass-all       'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m
 refuse  fitr4-mass-damping   'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m,damping --damping 0.1,0.1
 refuse  fitr4-elastic-m-k    'fit parameters'  -- "${E[@]}" r4_el_deg.csv --fit-param m,k
+refuse  fitr4-length-scale  'fit parameters'  -- "${F[@]}" r4_deg.csv --fit-param l,g
 refuse  fitr4-no-effect      'fit parameters'  -- "${F[@]}" r4_qdeg.csv --fit-param support_phase1
 refuse  fitr4-links          'fit parameter'   -- "${F[@]}" r4_qdeg.csv --fit-param links
 refuse  fitr4-unknown        'fit parameter'   -- "${F[@]}" r4_qdeg.csv --fit-param mass
