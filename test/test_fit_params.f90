@@ -31,6 +31,7 @@ module test_fit_params
    use dpend_propagate, only: advance_to
    use dpend_cli, only: real_str, to_str
    use testing, only: unittest_t, new_unittest, check, check_true
+   use test_estimate, only: gaussian
    implicit none
    private
    public :: collect_fit_params
@@ -448,16 +449,4 @@ contains
          q(:, j) = y(1:2)
       end do
    end subroutine simulate
-
-   !> A standard normal deviate (Box–Muller on the Park–Miller minimal standard).
-   subroutine gaussian(seed, z)
-      integer(8), intent(inout) :: seed
-      real(dp), intent(out) :: z
-      real(dp) :: u1, u2
-      seed = mod(16807_8*seed, 2147483647_8)
-      u1 = real(seed, dp)/2147483647.0_dp
-      seed = mod(16807_8*seed, 2147483647_8)
-      u2 = real(seed, dp)/2147483647.0_dp
-      z = sqrt(-2.0_dp*log(u1))*cos(2.0_dp*pi*u2)
-   end subroutine gaussian
 end module test_fit_params

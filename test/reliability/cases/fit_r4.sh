@@ -8,7 +8,8 @@
 fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
 cp "$ROOT/data/fit_mass_length.csv" "$FIXTURES/r4_ml.csv"
 # the first 100 samples of it, as theta in degrees (x 180/pi, 9 digits) with a rate column
-awk -F, 'BEGIN { OFS = ","; print "t [s],theta1 [deg],theta2 [deg],thetadot1 [deg/s]" }
+awk -F, 'BEGIN { OFS = ","
+   print "t [s],theta1 [deg],theta2 [deg],thetadot1 [deg/s]" }
    /^[0-9]/ && n < 100 { n++; printf "%s,%.9f,%.9f,0\n", $1, $2 * 57.29577951308232,
    $3 * 57.29577951308232 }' "$ROOT/data/fit_mass_length.csv" > "$FIXTURES/r4_deg.csv"
 fx r4_qdeg.csv   't,q1 [deg],q2 [deg]\n0,-30,-60\n0.1,-31,-59\n0.2,-33,-57\n0.3,-36,-55\n0.4,-40,-52\n'
@@ -32,7 +33,8 @@ succeed fitr4-elastic-m             -- "${E[@]}" r4_el_deg.csv --fit-param m
 # ---- refusals: what the data cannot determine, names, --sigma, units
 refuse  fitr4-mass-scale     'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m1,m2
 refuse  fitr4-mass-all       'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m
-refuse  fitr4-mass-damping   'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m,damping --damping 0.1,0.1
+refuse  fitr4-mass-damping   'fit parameters'  -- "${F[@]}" r4_ml.csv --fit-param m,damping \
+    --damping 0.1,0.1
 refuse  fitr4-elastic-m-k    'fit parameters'  -- "${E[@]}" r4_el_deg.csv --fit-param m,k
 refuse  fitr4-length-scale  'fit parameters'  -- "${F[@]}" r4_deg.csv --fit-param l,g
 refuse  fitr4-no-effect      'fit parameters'  -- "${F[@]}" r4_qdeg.csv --fit-param support_phase1
