@@ -281,8 +281,8 @@ contains
    !> The base Jacobian and, for the fitted parameters θ, ∂q̈/∂θ from the model
    !> (`parameter_rates`).
    !> A component without `parameter_rates` (`generic`): the weighted field of the
-   !> stencil's models, w_0 f(θ) + w_1 f(θ + h_1) + w_2 f(θ + h_2) (central differences,
-   !> or one-sided of second order at an end of the parameter's range).
+   !> stencil's models, w_1 (f(θ + h_1) − f(θ)) + w_2 (f(θ + h_2) − f(θ)) (central
+   !> differences, or one-sided of second order at an end of the parameter's range).
    pure subroutine sens_jacobian(self, t, y, jac)
       class(sens_model_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)
@@ -307,8 +307,10 @@ contains
             have_f0 = .true.
             call self%fd(1, c)%m%field(t, yb, f1)
             call self%fd(2, c)%m%field(t, yb, f2)
-            d(:, c) = self%fw(1, c)*f0(n + 1:2*n) + self%fw(2, c)*f1(n + 1:2*n) + &
-                      self%fw(3, c)*f2(n + 1:2*n)
+            ! the weights sum to 0: differences first, so that a parameter without
+            ! effect gives exactly 0 (whatever the compiler contracts into FMAs)
+            d(:, c) = self%fw(2, c)*(f1(n + 1:2*n) - f0(n + 1:2*n)) + &
+                      self%fw(3, c)*(f2(n + 1:2*n) - f0(n + 1:2*n))
          else
             ! the model's rates of the whole parameter, once per parameter
             if (c == 1) then
