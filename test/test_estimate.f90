@@ -32,6 +32,7 @@ module test_estimate
    implicit none
    private
    public :: collect_estimate
+   public :: gaussian   ! also test_fit_params (issue 26)
 
    real(dp), parameter :: pi = acos(-1.0_dp)
 

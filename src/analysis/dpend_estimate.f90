@@ -72,6 +72,7 @@ module dpend_estimate
    private
    public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
    public :: initial_guess, student_t95, fit_work_t, estimate_fit_work, set_fitted, n_fitted
+   public :: noise_estimate, misfit_suspects, misfit_factor, suspect_t, condition_text
 
    !> Most steps of the probe integration that measures the steps per second of model
    !> time (`estimate_fit_work`): a few milliseconds.
@@ -79,6 +80,10 @@ module dpend_estimate
    !> Integrations of one Levenberg–Marquardt call beyond 2 per iteration (the first
    !> evaluation and the 30 rejected trials that end a call).
    integer, parameter :: lm_extra_evaluations = 31
+   !> Largest condition number of the sensitivity matrix with unit columns that a fit
+   !> accepts: beyond, some combination of the parameters is not determined (its
+   !> standard error would exceed 1e8 times the others').
+   real(dp), parameter :: max_condition = 1e8_dp
 
    !> What is fitted and how the model is integrated.
    type :: fit_problem_t
@@ -92,6 +97,18 @@ module dpend_estimate
       character(len=32), allocatable :: fit_names(:)
       integer, allocatable :: fit_counts(:)
       real(dp), allocatable :: theta0(:), theta_lower(:), theta_upper(:)
+      !> per fitted component (issue 26): its parameter's name, which of its `comp_count`
+      !> components it is, its label ('c1', 'm2', 'g'), the scale of its
+      !> finite-difference step, and whether its sensitivity comes from central
+      !> differences of the field (`comp_generic`: the model gives no `parameter_rates`)
+      character(len=32), allocatable :: comp_names(:)
+      integer, allocatable :: comp_index(:), comp_count(:)
+      character(len=24), allocatable :: comp_labels(:)
+      real(dp), allocatable :: comp_scale(:)
+      logical, allocatable :: comp_generic(:)
+      !> labels of all P parameters (the state's, then the components'), for messages;
+      !> unallocated: p1, p2, ...
+      character(len=24), allocatable :: labels(:)
       !> the fitted model parameters are held at their guess while the window is
       !> shorter than this [s] (a fraction of a swing barely determines them)
       real(dp) :: hold_period = huge(1.0_dp)
@@ -164,15 +181,42 @@ module dpend_estimate
       real(dp) :: horizon = 0.0_dp          !! prediction horizon after T [s]
       logical :: horizon_censored = .false. !! never left the tolerance (a lower bound)
       real(dp) :: tolerance = 0.1_dp        !! its tolerance [rad]
+      !> singular values of the sensitivity matrix with unit columns, largest first
+      real(dp), allocatable :: singular(:)
+      real(dp) :: condition = 0.0_dp        !! their ratio largest / smallest
+      !> right singular vectors (P, P), columns in the order of `singular` (scaled
+      !> parameters: each parameter in units of its column's norm)
+      real(dp), allocatable :: directions(:, :)
    end type fit_result_t
+
+   !> An unfitted parameter component that may be wrong (`misfit_suspects`).
+   type :: suspect_t
+      character(len=24) :: label = ''   !! e.g. 'l2'
+      real(dp) :: rms = 0.0_dp          !! RMS residual with it fitted too (linearized)
+   end type suspect_t
+
+   !> A fit whose RMS residual exceeds this factor times the noise (given or estimated)
+   !> does not describe the data (`misfit_suspects`).
+   real(dp), parameter :: misfit_factor = 3.0_dp
+
+   !> A model held by an array element (the finite-difference models).
+   type :: model_box_t
+      class(model_t), allocatable :: m
+   end type model_box_t
 
    !> A model with its damping carried as constant state components (see the notes).
    type, extends(model_t) :: sens_model_t
       class(model_t), allocatable :: base   !! the system
       integer :: n = 0                      !! its degrees of freedom N
       integer :: nc = 0                     !! fitted parameter components
-      character(len=32), allocatable :: names(:)  !! the fitted parameters
-      integer, allocatable :: counts(:)           !! their components
+      !> per component: its parameter's name, that parameter's components, which one
+      character(len=32), allocatable :: names(:)
+      integer, allocatable :: counts(:), index(:)
+      !> per component: central differences of the field (no `parameter_rates`), the
+      !> two models of its stencil and the weights of base, fd(1), fd(2) [1/unit]
+      logical, allocatable :: generic(:)
+      type(model_box_t), allocatable :: fd(:, :)
+      real(dp), allocatable :: fw(:, :)
    contains
       procedure :: n_dof => sens_n_dof
       procedure :: name => sens_name
@@ -236,13 +280,18 @@ contains
 
    !> The base Jacobian and, for the fitted parameters θ, ∂q̈/∂θ from the model
    !> (`parameter_rates`).
+   !> A component without `parameter_rates` (`generic`): the weighted field of the
+   !> stencil's models, w_1 (f(θ + h_1) − f(θ)) + w_2 (f(θ + h_2) − f(θ)) (central
+   !> differences, or one-sided of second order at an end of the parameter's range).
    pure subroutine sens_jacobian(self, t, y, jac)
       class(sens_model_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)
       real(dp), intent(out) :: jac(:, :)
       real(dp) :: yb(2*self%n), jb(2*self%n, 2*self%n), d(self%n, self%nc)
-      integer :: n, nc, i, j, c
+      real(dp) :: dall(self%n, max_dof), f0(2*max_dof), f1(2*max_dof), f2(2*max_dof)
+      integer :: n, nc, j, c
       integer :: map(2*self%n)
+      logical :: have_f0
       n = self%n
       nc = self%nc
       call inner(n, nc, y, yb)
@@ -251,11 +300,28 @@ contains
       jac = 0.0_dp
       jac(map, map) = jb
       if (nc == 0) return
-      c = 0
-      do i = 1, size(self%names)
-         call self%base%parameter_rates(t, yb, trim(self%names(i)), &
-                                        d(:, c + 1:c + self%counts(i)))
-         c = c + self%counts(i)
+      have_f0 = .false.
+      do c = 1, nc
+         if (self%generic(c)) then
+            if (.not. have_f0) call self%base%field(t, yb, f0)
+            have_f0 = .true.
+            call self%fd(1, c)%m%field(t, yb, f1)
+            call self%fd(2, c)%m%field(t, yb, f2)
+            ! the weights sum to 0: differences first, so that a parameter without
+            ! effect gives exactly 0 (whatever the compiler contracts into FMAs)
+            d(:, c) = self%fw(2, c)*(f1(n + 1:2*n) - f0(n + 1:2*n)) + &
+                      self%fw(3, c)*(f2(n + 1:2*n) - f0(n + 1:2*n))
+         else
+            ! the model's rates of the whole parameter, once per parameter
+            if (c == 1) then
+               call self%base%parameter_rates(t, yb, trim(self%names(c)), &
+                                              dall(:, :self%counts(c)))
+            else if (self%names(c) /= self%names(c - 1) .or. self%generic(c - 1)) then
+               call self%base%parameter_rates(t, yb, trim(self%names(c)), &
+                                              dall(:, :self%counts(c)))
+            end if
+            d(:, c) = dall(:, self%index(c))
+         end if
       end do
       jac(n + nc + 1:2*n + nc, n + 1:n + nc) = d
    end subroutine sens_jacobian
@@ -404,33 +470,97 @@ contains
       type(sens_model_t), intent(out) :: sm
       type(error_t), allocatable, intent(out) :: error
       type(model_spec_t) :: spec
-      integer :: n, nc, i, c
+      real(dp), allocatable :: theta(:)
+      integer :: n, nc, c
       nc = n_fitted(prob)
       if (nc > 0) then
          n = (size(p) - nc)/2
-         spec = prob%spec
-         spec%general = .true.
-         c = 2*n
-         do i = 1, size(prob%fit_names)
-            associate (lo => prob%theta_lower(c - 2*n + 1:c - 2*n + prob%fit_counts(i)), &
-                       up => prob%theta_upper(c - 2*n + 1:c - 2*n + prob%fit_counts(i)))
-               call spec%set(trim(prob%fit_names(i)), &
-                             min(max(p(c + 1:c + prob%fit_counts(i)), lo), up))
-            end associate
-            c = c + prob%fit_counts(i)
-         end do
+         theta = min(max(p(2*n + 1:), prob%theta_lower), prob%theta_upper)
+         spec = spec_with(prob, theta)
          call new_model(spec, sm%base, error)
          if (allocated(error)) return
          sm%n = n
          sm%nc = nc
-         sm%names = prob%fit_names
-         sm%counts = prob%fit_counts
+         sm%names = prob%comp_names
+         sm%counts = prob%comp_count
+         sm%index = prob%comp_index
+         sm%generic = prob%comp_generic
+         allocate (sm%fd(2, nc), sm%fw(3, nc))
+         sm%fw = 0.0_dp
+         do c = 1, nc
+            if (prob%comp_generic(c)) call stencil(c)
+            if (allocated(error)) return
+         end do
       else
          allocate (sm%base, source=prob%model)
          sm%n = prob%model%n_dof()
          sm%nc = 0
       end if
+   contains
+      !> The stencil of component c: steps h = 6e-6 max(|θ|, scale) (about the cube root
+      !> of the rounding unit, relative), central where θ ± h lie in the range, else
+      !> one-sided of second order (θ, θ ± h, θ ± 2h).
+      subroutine stencil(c)
+         integer, intent(in) :: c
+         real(dp) :: h
+         integer :: sg
+         h = 6e-6_dp*max(abs(theta(c)), prob%comp_scale(c))
+         if (theta(c) - h >= prob%theta_lower(c) .and. theta(c) + h <= prob%theta_upper(c)) &
+            then
+            sm%fw(:, c) = [0.0_dp, 0.5_dp/h, -0.5_dp/h]
+            call build_fd(c, [h, -h])
+         else
+            sg = merge(1, -1, theta(c) + 2.0_dp*h <= prob%theta_upper(c))
+            sm%fw(:, c) = [-1.5_dp, 2.0_dp, -0.5_dp]/(real(sg, dp)*h)
+            call build_fd(c, [real(sg, dp)*h, real(2*sg, dp)*h])
+         end if
+      end subroutine stencil
+      !> The two models of component c's stencil, θ_c + steps(k).
+      subroutine build_fd(c, steps)
+         integer, intent(in) :: c
+         real(dp), intent(in) :: steps(2)
+         real(dp) :: th(size(theta))
+         integer :: k
+         do k = 1, 2
+            th = theta
+            th(c) = theta(c) + steps(k)
+            call new_model(spec_with(prob, th), sm%fd(k, c)%m, error)
+            if (allocated(error)) return
+         end do
+      end subroutine build_fd
    end subroutine model_for
+
+   !> The problem's specification, general form, with the fitted components set to
+   !> theta (by name; a component replaces its value in the parameter's list).
+   function spec_with(prob, theta) result(spec)
+      type(fit_problem_t), intent(in) :: prob   !! the problem
+      real(dp), intent(in) :: theta(:)          !! values of the fitted components
+      type(model_spec_t) :: spec
+      type(model_info_t), allocatable :: models(:)
+      real(dp), allocatable :: v(:)
+      integer :: c, k, j
+      spec = prob%spec
+      spec%general = .true.
+      models = model_catalogue()
+      k = find_model(models, spec%model_name())
+      do c = 1, size(theta)
+         j = param_index(models(k), prob%comp_names(c))
+         v = spec%get(trim(prob%comp_names(c)), spread(models(k)%params(j)%default, 1, &
+                      prob%comp_count(c)))
+         v(prob%comp_index(c)) = theta(c)
+         call spec%set(trim(prob%comp_names(c)), v)
+      end do
+   end function spec_with
+
+   !> Index of parameter `name` in the description `info` (0: none).
+   pure integer function param_index(info, name) result(j)
+      type(model_info_t), intent(in) :: info  !! a model's description
+      character(len=*), intent(in) :: name    !! parameter name
+      do j = 1, size(info%params)
+         if (info%params(j)%name == trim(name)) return
+      end do
+      j = 0
+   end function param_index
 
    !> The observations o at time t for the angles q, and ∂o/∂q: the angles themselves,
    !> or the positions of the link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j).
@@ -802,6 +932,7 @@ contains
          ds(i) = 0.0_dp
          if (a(i, i) > tiny(1.0_dp)) ds(i) = 1.0_dp/sqrt(a(i, i))
       end do
+      call identifiability(jac, ds, res)
       info = 0
       if (any(.not. (ds > 0.0_dp))) then
          info = minloc(ds, dim=1)
@@ -817,9 +948,13 @@ contains
             end do
          end if
       end if
-      if (info /= 0) then
-         call fatal_error(error, 'the parameters are not determined by the data (JᵀJ is ' &
-                          //'singular: parameter '//to_str(info)//' depends on the others)')
+      if (info /= 0 .or. res%condition > max_condition) then
+         call fatal_error(error, 'invalid fit parameters: '//undetermined(prob, res, ds)// &
+                          ' (singular values of the scaled sensitivities '// &
+                          singular_text(res)//'; condition number '// &
+                          condition_text(res%condition)//' > '//real_str(max_condition)// &
+                          ')', &
+                          error_bad_input)
          return
       end if
       res%cov = 0.0_dp
@@ -841,6 +976,298 @@ contains
       end do
       res%t95 = student_t95(res%dof)
    end subroutine window_statistics
+
+   !> The singular values and right singular vectors of the sensitivity matrix J with
+   !> its columns scaled to unit norm (`ds`: 1/norm, 0 for a zero column), by one-sided
+   !> Jacobi rotations (Hestenes; accurate for the small singular values, which JᵀJ
+   !> would square below the rounding unit).
+   subroutine identifiability(jac, ds, res)
+      real(dp), intent(in) :: jac(:, :)        !! ∂r/∂p (m, P)
+      real(dp), intent(in) :: ds(:)            !! column scales (P)
+      type(fit_result_t), intent(inout) :: res !! singular, condition, directions set
+      real(dp), allocatable :: u(:, :), v(:, :), sv(:), col(:)
+      real(dp) :: alpha, beta, gamma, zeta, tt, cs, sn
+      integer :: np, i, j, sweep, order(size(ds))
+      logical :: rotated
+      np = size(ds)
+      u = jac
+      do j = 1, np
+         u(:, j) = u(:, j)*ds(j)
+      end do
+      allocate (v(np, np))
+      v = 0.0_dp
+      do j = 1, np
+         v(j, j) = 1.0_dp
+      end do
+      do sweep = 1, 60
+         rotated = .false.
+         do i = 1, np - 1
+            do j = i + 1, np
+               alpha = sum(u(:, i)**2)
+               beta = sum(u(:, j)**2)
+               gamma = sum(u(:, i)*u(:, j))
+               if (abs(gamma) <= 1e-15_dp*sqrt(alpha*beta) .or. gamma == 0.0_dp) cycle
+               rotated = .true.
+               zeta = (beta - alpha)/(2.0_dp*gamma)
+               tt = sign(1.0_dp, zeta)/(abs(zeta) + sqrt(1.0_dp + zeta**2))
+               cs = 1.0_dp/sqrt(1.0_dp + tt**2)
+               sn = cs*tt
+               col = u(:, i)
+               u(:, i) = cs*col - sn*u(:, j)
+               u(:, j) = sn*col + cs*u(:, j)
+               col = v(:, i)
+               v(:, i) = cs*col - sn*v(:, j)
+               v(:, j) = sn*col + cs*v(:, j)
+            end do
+         end do
+         if (.not. rotated) exit
+      end do
+      allocate (sv(np))
+      do j = 1, np
+         sv(j) = sqrt(sum(u(:, j)**2))
+      end do
+      do i = 1, np   ! largest first
+         order(i) = maxloc(sv, dim=1)
+         sv(order(i)) = -sv(order(i)) - 1.0_dp
+      end do
+      sv = -sv - 1.0_dp
+      res%singular = sv(order)
+      res%directions = v(:, order)
+      if (res%singular(np) > 0.0_dp) then
+         res%condition = res%singular(1)/res%singular(np)
+      else
+         res%condition = huge(1.0_dp)
+      end if
+   end subroutine identifiability
+
+   !> A condition number, 3 digits ('infinite' for a zero singular value).
+   function condition_text(x) result(s)
+      real(dp), intent(in) :: x  !! condition number
+      character(len=:), allocatable :: s
+      if (x >= huge(1.0_dp)) then
+         s = 'infinite'
+      else
+         s = real_str(x, 3)
+      end if
+   end function condition_text
+
+   !> The singular values, 3 digits each, comma-separated.
+   function singular_text(res) result(s)
+      type(fit_result_t), intent(in) :: res  !! with singular set
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(res%singular)
+         if (i > 1) s = s//', '
+         s = s//real_str(res%singular(i), 3)
+      end do
+   end function singular_text
+
+   !> Label of parameter i (`prob%labels`; else the component's label for a model
+   !> parameter, 'state <i>' for the state).
+   function label_of(prob, i, np) result(s)
+      type(fit_problem_t), intent(in) :: prob  !! the problem
+      integer, intent(in) :: i                 !! parameter
+      integer, intent(in) :: np                !! parameters P
+      character(len=:), allocatable :: s
+      integer :: c
+      s = 'state '//to_str(i)
+      c = i - (np - n_fitted(prob))
+      if (allocated(prob%labels)) then
+         if (i <= size(prob%labels)) s = trim(prob%labels(i))
+      else if (c >= 1) then
+         s = trim(prob%comp_labels(c))
+      end if
+   end function label_of
+
+   !> The combination the data do not determine: the right singular vector of the
+   !> smallest singular value, its components above 0.05 named. When they are all
+   !> fitted masses (and damping) changed by one common factor, it is the absolute
+   !> mass scale; otherwise the combination in scaled parameters.
+   function undetermined(prob, res, ds) result(s)
+      type(fit_problem_t), intent(in) :: prob  !! the problem
+      type(fit_result_t), intent(in) :: res    !! with directions set
+      real(dp), intent(in) :: ds(:)            !! the columns' scales (1/norm)
+      character(len=:), allocatable :: s, names, comb
+      real(dp), allocatable :: v(:), rel(:)
+      integer :: i, np, n, c
+      logical :: scale_only
+      np = size(res%singular)
+      v = res%directions(:, np)
+      if (maxval(abs(v)) > 0.0_dp) v = v/v(maxloc(abs(v), dim=1))
+      n = (np - n_fitted(prob))/2
+      names = ''
+      comb = ''
+      scale_only = n_fitted(prob) > 0
+      allocate (rel(0))
+      do i = 1, np
+         if (abs(v(i)) <= 0.05_dp) cycle
+         if (len(names) > 0) names = names//','
+         names = names//label_of(prob, i, np)
+         if (len(comb) > 0) comb = comb//merge(' + ', ' - ', v(i) > 0.0_dp)
+         if (len(comb) == 0 .and. v(i) < 0.0_dp) comb = '-'
+         comb = comb//real_str(abs(v(i)), 3)//' '//label_of(prob, i, np)
+         c = i - 2*n
+         if (c < 1) then
+            scale_only = .false.
+         else if (res%p(i) == 0.0_dp) then
+            scale_only = .false.
+         else
+            rel = [rel, ds(i)*v(i)/res%p(i)]   ! δθ_i = ds_i v_i ∝ θ_i for a scale
+         end if
+      end do
+      if (scale_only .and. size(rel) > 1) &
+         scale_only = maxval(rel) - minval(rel) <= 1e-3_dp*maxval(abs(rel))
+      if (scale_only .and. size(rel) > 1) then
+         s = names//' together are not determined by the data: their common scale ' &
+             //'(multiplying them all by one factor leaves the motion unchanged: the ' &
+             //'absolute mass scale for masses, g/l for lengths with g; only their ratios ' &
+             //'are determined: fit all but one, e.g. '//names(index(names, ',') + 1:)//')'
+      else
+         s = names//trim(merge(' is ', ' are', index(names, ',') == 0))//' not determined ' &
+             //'by the data: the combination '//comb//' (each parameter in units of its ' &
+             //'sensitivity) leaves the residuals unchanged'
+      end if
+   end function undetermined
+
+   !> The noise of the observations of the first k samples, estimated from the data
+   !> alone: third differences of a smooth signal sampled densely are small, those of
+   !> independent noise of standard deviation σ have variance 20 σ², so
+   !> σ ≈ sqrt(Σ (Δ³x)² / (20 count)) over all coordinates (angle steps wrapped into
+   !> [−π, π)). An upper bound where the motion is fast against the sampling; 0 for
+   !> fewer than 4 samples.
+   function noise_estimate(prob, q, k) result(sigma)
+      type(fit_problem_t), intent(in) :: prob  !! the problem (which coordinates wrap)
+      real(dp), intent(in) :: q(:, :)          !! observations (N or 2N, K)
+      integer, intent(in) :: k                 !! samples used
+      real(dp) :: sigma
+      real(dp), allocatable :: d1(:, :), d3(:, :)
+      integer :: j
+      sigma = 0.0_dp
+      if (k < 4) return
+      allocate (d1(size(q, 1), k - 1))
+      do j = 1, k - 1
+         if (prob%positions) then
+            d1(:, j) = q(:, j + 1) - q(:, j)
+         else
+            d1(:, j) = wrap_angles(prob, q(:, j + 1) - q(:, j))
+         end if
+      end do
+      d3 = d1(:, 3:) - 2.0_dp*d1(:, 2:k - 2) + d1(:, 1:k - 3)
+      sigma = sqrt(sum(d3**2)/(20.0_dp*real(size(d3), dp)))
+   end function noise_estimate
+
+   !> The unfitted parameter components that may be wrong when the fit at res%p leaves
+   !> residuals far above the noise: every continuous parameter of the model's
+   !> description not fitted, each component ranked by the score test (the cost
+   !> reduction a step in it alone would give once the fitted parameters are
+   !> re-adjusted, to first order): with the fitted sensitivities' columns Q
+   !> orthonormal and J_j the candidate's, c = J_j − Q Qᵀ J_j, the cost falls by
+   !> (cᵀ r)²/(cᵀ c). Returned by predicted RMS, lowest first (components the data do
+   !> not see left out).
+   subroutine misfit_suspects(prob, t, q, res, suspects, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem as fitted
+      real(dp), intent(in) :: t(:), q(:, :)             !! the series
+      type(fit_result_t), intent(in) :: res             !! the fit
+      type(suspect_t), allocatable, intent(out) :: suspects(:)  !! ranked
+      type(error_t), allocatable, intent(out) :: error  !! an integration failed
+      type(fit_problem_t) :: ext
+      type(model_info_t), allocatable :: models(:)
+      character(len=32), allocatable :: names(:)
+      real(dp), allocatable :: r(:), jac(:, :), qm(:, :), p(:), c(:), pred(:), effect(:)
+      real(dp) :: cost, cc, nq
+      integer :: k, j, i, m, np, nfit, n, free, ncand, o, idx
+      allocate (suspects(0))
+      models = model_catalogue()
+      k = find_model(models, prob%spec%model_name())
+      n = (res%np - n_fitted(prob))/2
+      free = max_dof - n - n_fitted(prob)
+      allocate (names(0))
+      if (allocated(prob%fit_names)) names = prob%fit_names
+      ext = prob
+      ! every component of every continuous parameter, the fitted ones first
+      do j = 1, size(models(k)%params)
+         associate (par => models(k)%params(j))
+            if (par%integer_valued) cycle
+            if (par%count < 0) then
+               idx = n
+            else
+               idx = par%count
+            end if
+            do i = 1, idx
+               if (fitted(par%name, i)) cycle
+               if (free <= 0) exit
+               names = [character(len=32) :: names, component_label(par%name, i, idx)]
+               free = free - 1
+            end do
+         end associate
+      end do
+      ! one at a time with the fitted ones: a scale all of them leave free is no matter
+      call set_fitted(ext, names, error, scale_check=.false.)
+      if (allocated(error)) return
+      ext%labels = [character(len=24) :: ext%comp_labels]
+      nfit = res%np
+      np = 2*n + n_fitted(ext)
+      ncand = np - nfit
+      if (ncand == 0) return
+      p = [res%p, ext%theta0(n_fitted(prob) + 1:)]
+      m = size(q, 1)*res%k_fit
+      allocate (r(m), jac(m, np))
+      call evaluate_fit(ext, p, t, q, res%k_fit, r, error, jac)
+      if (allocated(error)) return
+      ! Q: the fitted columns orthonormalized (modified Gram–Schmidt, twice)
+      allocate (qm(m, nfit))
+      o = 0
+      do j = 1, nfit
+         c = jac(:, j)
+         nq = sqrt(sum(c**2))
+         do i = 1, o
+            c = c - qm(:, i)*sum(qm(:, i)*c)
+         end do
+         do i = 1, o
+            c = c - qm(:, i)*sum(qm(:, i)*c)
+         end do
+         if (.not. (sqrt(sum(c**2)) > 1e-10_dp*nq)) cycle
+         o = o + 1
+         qm(:, o) = c/sqrt(sum(c**2))
+      end do
+      cost = sum(r**2)
+      allocate (pred(ncand), effect(ncand))
+      ! a candidate's effect: the residuals' change for a change of it by its size
+      do j = 1, ncand
+         effect(j) = sqrt(sum(jac(:, nfit + j)**2))*max(abs(p(nfit + j)), &
+                                                         ext%comp_scale(n_fitted(prob) + j))
+      end do
+      do j = 1, ncand
+         c = jac(:, nfit + j)
+         nq = sqrt(sum(c**2))
+         if (.not. (effect(j) > 1e-6_dp*maxval(effect))) nq = 0.0_dp   ! none (rounding)
+         do i = 1, o
+            c = c - qm(:, i)*sum(qm(:, i)*c)
+         end do
+         cc = sum(c**2)
+         if (.not. (sqrt(cc) > 1e-8_dp*max(nq, tiny(1.0_dp))) .or. nq == 0.0_dp) then
+            pred(j) = huge(1.0_dp)   ! the data do not see it
+         else
+            pred(j) = sqrt(max(cost - sum(c*r)**2/cc, 0.0_dp)/real(m, dp))
+         end if
+      end do
+      do i = 1, ncand
+         j = minloc(pred, dim=1)
+         if (pred(j) == huge(1.0_dp)) exit
+         suspects = [suspects, suspect_t(ext%comp_labels(n_fitted(prob) + j), pred(j))]
+         pred(j) = huge(1.0_dp)
+      end do
+   contains
+      !> Component i of parameter `name` is fitted already.
+      logical function fitted(name, i)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: i
+         fitted = .false.
+         if (n_fitted(prob) == 0) return
+         fitted = any(prob%comp_names == name .and. prob%comp_index == i)
+      end function fitted
+   end subroutine misfit_suspects
 
    !> The whole series with the fitted model: the model's values and the residuals at
    !> every sample, and the prediction horizon after the fit window.
@@ -1126,43 +1553,83 @@ contains
       if (allocated(prob%theta0)) n_fitted = size(prob%theta0)
    end function n_fitted
 
-   !> Fit the model parameters `names` of `prob%spec` too: each must be one the model
-   !> gives the sensitivities to (`check_parameter_rates`); their first guess is the
-   !> value of the specification (or the default), their range the catalogue's.
-   subroutine set_fitted(prob, names, error)
+   !> Fit the model parameters `names` of `prob%spec` too (issue 26): each is a
+   !> parameter of the model's description (all its components: 'damping', 'm') or one
+   !> component of a parameter of several, the name followed by its number ('m2', 'l1',
+   !> 'support_amplitude1'); not a count ('links'). Their sensitivities: the model's
+   !> `parameter_rates` where `check_parameter_rates` accepts the name, central
+   !> differences of the field otherwise. The first guess is the value of the
+   !> specification (or the default), the range the description's.
+   subroutine set_fitted(prob, names, error, scale_check)
       type(fit_problem_t), intent(inout) :: prob        !! the problem (spec set)
       character(len=*), intent(in) :: names(:)          !! parameter names
       type(error_t), allocatable, intent(out) :: error  !! refused
+      !> refuse a set that leaves the mass scale free (`mass_scale`; default: yes)
+      logical, intent(in), optional :: scale_check
       type(model_info_t), allocatable :: models(:)
       class(model_t), allocatable :: model
       type(model_spec_t) :: spec
+      type(error_t), allocatable :: no_rates
       real(dp), allocatable :: v(:)
-      integer :: i, j, k, cnt
+      integer :: i, j, k, cnt, first, last, c
+      character(len=:), allocatable :: base
       spec = prob%spec
       spec%general = .true.
       call new_model(spec, model, error)
       if (allocated(error)) return
       models = model_catalogue()
       k = find_model(models, spec%model_name())
+      if (allocated(prob%fit_names)) deallocate (prob%fit_names, prob%fit_counts, &
+         prob%theta0, prob%theta_lower, prob%theta_upper, prob%comp_names, &
+         prob%comp_index, prob%comp_count, prob%comp_labels, prob%comp_scale, &
+         prob%comp_generic)
       allocate (prob%fit_names(size(names)), prob%fit_counts(size(names)))
       allocate (prob%theta0(0), prob%theta_lower(0), prob%theta_upper(0))
+      allocate (prob%comp_names(0), prob%comp_index(0), prob%comp_count(0), &
+                prob%comp_labels(0), prob%comp_scale(0), prob%comp_generic(0))
       do i = 1, size(names)
-         call model%check_parameter_rates(trim(names(i)), error)
+         call parse_component(models(k), model%n_dof(), trim(names(i)), j, first, last, error)
          if (allocated(error)) return
-         do j = 1, size(models(k)%params)
-            if (models(k)%params(j)%name == trim(names(i))) exit
-         end do
          associate (par => models(k)%params(j))
+            base = par%name
             cnt = par%count
             if (cnt < 0) cnt = model%n_dof()
-            v = spec%get(trim(names(i)), spread(par%default, 1, cnt))
-            prob%theta0 = [prob%theta0, v]
-            prob%theta_lower = [prob%theta_lower, spread(par%lower, 1, cnt)]
-            prob%theta_upper = [prob%theta_upper, spread(par%upper, 1, cnt)]
+            call model%check_parameter_rates(base, no_rates)
+            v = spec%get(base, spread(par%default, 1, cnt))
+            if (size(v) /= cnt) then
+               call fatal_error(error, 'invalid fit parameter: '//trim(names(i))//' (the ' &
+                                //'model has '//to_str(size(v))//' values of '//base// &
+                                ' for '//to_str(cnt)//' components)', error_bad_input)
+               return
+            end if
+            do c = first, last
+               if (any(prob%comp_names == base .and. prob%comp_index == c)) then
+                  call fatal_error(error, 'invalid fit parameters: '//trim(names(i))// &
+                                   ' names a component given already (' &
+                                   //component_label(base, c, cnt)//')', error_bad_input)
+                  return
+               end if
+               prob%theta0 = [prob%theta0, v(c)]
+               prob%theta_lower = [prob%theta_lower, par%lower]
+               prob%theta_upper = [prob%theta_upper, par%upper]
+               prob%comp_names = [character(len=32) :: prob%comp_names, base]
+               prob%comp_index = [prob%comp_index, c]
+               prob%comp_count = [prob%comp_count, cnt]
+               prob%comp_labels = [character(len=24) :: prob%comp_labels, &
+                                   component_label(base, c, cnt)]
+               prob%comp_scale = [prob%comp_scale, max(abs(par%default), 1e-2_dp)]
+               prob%comp_generic = [prob%comp_generic, allocated(no_rates)]
+            end do
          end associate
          prob%fit_names(i) = names(i)
-         prob%fit_counts(i) = cnt
+         prob%fit_counts(i) = last - first + 1
       end do
+      if (.not. present(scale_check)) then
+         call mass_scale(prob, models(k), model%n_dof(), error)
+      else if (scale_check) then
+         call mass_scale(prob, models(k), model%n_dof(), error)
+      end if
+      if (allocated(error)) return
       if (model%n_dof() + size(prob%theta0) > max_dof) then
          call fatal_error(error, 'invalid fit parameters: '//to_str(model%n_dof())// &
                           ' coordinates and '//to_str(size(prob%theta0))//' fitted ' &
@@ -1170,4 +1637,125 @@ contains
                           //'sensitivity system holds', error_bad_input)
       end if
    end subroutine set_fitted
+
+   !> Refuse, before any work, a fit of every parameter that carries mass: the
+   !> equations of motion are homogeneous of degree 1 in the masses, the inertias, the
+   !> damping and the stiffnesses (every parameter whose units hold kg or N), so
+   !> multiplying them all by one factor leaves the motion, hence the observed
+   !> coordinates, unchanged. The symmetry holds when every such parameter is either
+   !> fitted in all its components or zero (a damping of 0 fixes no scale).
+   subroutine mass_scale(prob, info, n_dof, error)
+      type(fit_problem_t), intent(in) :: prob           !! components set
+      type(model_info_t), intent(in) :: info            !! the model's description
+      integer, intent(in) :: n_dof                      !! its degrees of freedom
+      type(error_t), allocatable, intent(out) :: error  !! the scale is not determined
+      real(dp), allocatable :: v(:)
+      character(len=:), allocatable :: names, rest
+      integer :: j, i, cnt
+      logical :: any_fitted
+      any_fitted = .false.
+      names = ''
+      do j = 1, size(info%params)
+         associate (par => info%params(j))
+            if (index(par%units, 'kg') == 0 .and. index(par%units, 'N') == 0) cycle
+            cnt = par%count
+            if (cnt < 0) cnt = n_dof
+            v = prob%spec%get(par%name, spread(par%default, 1, cnt))
+            do i = 1, min(size(v), cnt)
+               if (any(prob%comp_names == par%name .and. prob%comp_index == i)) then
+                  any_fitted = .true.
+                  if (len(names) > 0) names = names//','
+                  names = names//component_label(par%name, i, cnt)
+               else if (v(i) /= 0.0_dp) then
+                  return   ! a fixed nonzero mass, inertia or stiffness sets the scale
+               end if
+            end do
+         end associate
+      end do
+      if (.not. any_fitted) return
+      rest = names(index(names, ',') + 1:)
+      call fatal_error(error, 'invalid fit parameters: '//names//' together are not ' &
+                       //'determined by the data: the absolute mass scale (multiplying them ' &
+                       //'all by one factor leaves the motion unchanged: only their ratios ' &
+                       //'are determined; fit all but one, e.g. '//rest//')', error_bad_input)
+   end subroutine mass_scale
+
+   !> The label of component c of parameter `name` with `cnt` components: 'c2' for the
+   !> damping, 'm2' for a parameter of several, the name for a scalar.
+   pure function component_label(name, c, cnt) result(label)
+      character(len=*), intent(in) :: name  !! parameter name
+      integer, intent(in) :: c, cnt         !! the component, the parameter's components
+      character(len=:), allocatable :: label
+      if (name == 'damping') then
+         label = 'c'//to_str(c)
+      else if (cnt > 1) then
+         label = name//to_str(c)
+      else
+         label = name
+      end if
+   end function component_label
+
+   !> The parameter j of the description `info` named by `name` and its components
+   !> first..last: the parameter's name (all), or the name and a component number
+   !> ('m2'; 'c2' for the damping), or a refusal naming the model's parameters.
+   subroutine parse_component(info, n_dof, name, j, first, last, error)
+      type(model_info_t), intent(in) :: info            !! the model's description
+      integer, intent(in) :: n_dof                      !! its degrees of freedom
+      character(len=*), intent(in) :: name              !! as given
+      integer, intent(out) :: j, first, last            !! parameter, components
+      type(error_t), allocatable, intent(out) :: error  !! not a parameter
+      integer :: digits, cnt, idx, stat
+      character(len=:), allocatable :: base, known
+      j = param_index(info, name)
+      first = 1
+      last = 0
+      if (j == 0) then
+         digits = len(name) + 1
+         do while (digits > 1)
+            if (verify(name(digits - 1:digits - 1), '0123456789') /= 0) exit
+            digits = digits - 1
+         end do
+         if (digits > 1 .and. digits <= len(name)) then
+            base = name(:digits - 1)
+            if (base == 'c') base = 'damping'
+            j = param_index(info, base)
+            idx = 0
+            read (name(digits:), *, iostat=stat) idx
+            if (stat /= 0) idx = 0
+            if (j > 0) then
+               cnt = info%params(j)%count
+               if (cnt < 0) cnt = n_dof
+               if (cnt == 1) then
+                  j = 0
+               else if (idx < 1 .or. idx > cnt) then
+                  call fatal_error(error, 'invalid fit parameter: '//name//' (component ' &
+                                   //to_str(idx)//' of '//info%params(j)%name// &
+                                   ' is outside [1, '//to_str(cnt)//'])', error_bad_input)
+                  return
+               end if
+               first = idx
+               last = idx
+            end if
+         end if
+      end if
+      if (j > 0) then
+         if (info%params(j)%integer_valued) j = 0
+      end if
+      if (j == 0) then
+         known = ''
+         do idx = 1, size(info%params)
+            if (info%params(idx)%integer_valued) cycle
+            if (len(known) > 0) known = known//', '
+            known = known//info%params(idx)%name
+         end do
+         call fatal_error(error, 'invalid fit parameter: '//name//' (model '//info%name// &
+                          ' fits '//known//'; a component as m2, l1, c1)', error_bad_input)
+         return
+      end if
+      if (last == 0) then
+         cnt = info%params(j)%count
+         if (cnt < 0) cnt = n_dof
+         last = cnt
+      end if
+   end subroutine parse_component
 end module dpend_estimate

@@ -16,7 +16,8 @@ module dpend_fit_command
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
-                             estimate_fit_work, set_fitted, n_fitted
+                             estimate_fit_work, set_fitted, n_fitted, noise_estimate, &
+                             misfit_suspects, misfit_factor, suspect_t, condition_text
    use dpend_model_factory, only: default_model, model_catalogue, find_model, model_info_t
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
@@ -49,6 +50,9 @@ module dpend_fit_command
       character(len=32), allocatable :: fit_names(:)
       !> a model other than the pendulum: the CSV columns are its coordinates
       logical :: model_coords = .false.
+      !> the noise of the observations given (--sigma) [rad or m]; 0: estimated from
+      !> the data (`noise_estimate`)
+      real(dp) :: sigma = 0.0_dp
    end type fit_config_t
 
    !> The run flags that make sense for a fit (the initial state comes from the data).
@@ -88,7 +92,8 @@ contains
           nl//'  t,theta1,theta2[,...]   t in s; angles in rad from the hanging position'//nl// &
           '                          (counter-clockwise; as --theta1), or q1,q2,... from'//nl// &
           "                          the horizontal x axis (as dpend export --csv writes);"// &
-          nl//'                          units in brackets allowed (t [s], theta1 [rad]);'//nl// &
+          nl//'                          units in brackets allowed (t [s], theta1 [rad],'// &
+          nl//'                          theta1 [deg]: converted by pi/180);'//nl// &
           '                          other columns are ignored, lines starting with # and'// &
           nl//'                          blank lines skipped. N = the number of angle columns.'// &
           nl//'  t,x1,y1[,x2,y2,...]     or (no angle columns) the positions of the far ends of'// &
@@ -97,7 +102,7 @@ contains
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
           nl//'  t,r,phi                 with --model elastic: the model''s coordinates'// &
           nl//'                          (dpend models), r in m, phi in rad from the'// &
-          nl//'                          horizontal x axis (units [m], [rad] or none).'// &
+          nl//'                          horizontal x axis (units [m], [rad], [deg], none).'// &
           nl//'  Separated by , or ; or tabs (detected from the header), a UTF-8 BOM and'// &
           nl//'  quoted names and fields allowed (as spreadsheets write them).'// &
           nl//'  Refused with the line number: missing columns, a wrong number of fields,'//nl// &
@@ -108,11 +113,17 @@ contains
           'fit options:'//nl// &
           '  --fit-damping     estimate c_1..c_N too (N m s; the --damping values are the'// &
           nl//'                    first guess, default 0)'//nl// &
-          '  --fit-parameters NAMES  fit these model parameters too, comma-separated:'// &
-          nl//'                    damping (the pendulum: as --fit-damping); k,l0 (the'// &
-          nl//'                    elastic pendulum: with g known the motion depends on'// &
-          nl//'                    k/m and l0 only, so k is fitted at the given --m);'// &
-          nl//'                    their first guess: the values given (--k, --l0)'//nl// &
+          '  --fit-param NAMES fit these model parameters too (also --fit-parameters),'// &
+          nl//'                    comma-separated, any the model describes (dpend'// &
+          nl//'                    models): m, l, g, damping, support_amplitude, ... (all'// &
+          nl//'                    components) or one component: m2, l1, c2 (damping 2);'// &
+          nl//'                    the elastic pendulum: k, l0, m, g. First guess: the'// &
+          nl//'                    values given (--m2, --l2, --k). A set the data cannot'// &
+          nl//'                    determine is refused naming the combination (angles'// &
+          nl//'                    never fix the absolute mass scale: fit m2, not m1,m2)'// &
+          nl//'  --sigma S         the noise of the observations (rad or m): a fit whose RMS'// &
+          nl//'                    residual exceeds 3 S warns and names the parameters'// &
+          nl//'                    that may be wrong; default: estimated from the data'//nl// &
           '  --fit-window T    fit only the samples with t <= T (s); the rest measures the'// &
           nl//'                    prediction horizon; default: all samples'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
@@ -226,8 +237,13 @@ contains
             call parse_real(value, name, fc%tolerance, error)
          case ('--starts')
             call parse_int(value, name, fc%starts, error)
-         case ('--fit-parameters')
+         case ('--fit-parameters', '--fit-param')
             call parse_names(value, fc%fit_names, error)
+         case ('--sigma')
+            call parse_real(value, name, fc%sigma, error)
+            if (.not. allocated(error)) call check_range('sigma', fc%sigma, 1e-12_dp, &
+                                                         max_position_tol, '', error, &
+                                                         'the noise of the observations')
          case default
             if (any(run_flags == name) .or. model_flag(name)) then
                if (name == '--links') links_given = .true.
@@ -364,6 +380,13 @@ contains
          prob%hold_period = hold_period(fc)
       end if
       if (fc%model_coords) prob%angular = coordinate_units(fc, 0) == 'rad'
+      block
+         character(len=16), allocatable :: names(:), units(:)
+         call state_names(fc, names, units)
+         prob%labels = [character(len=24) :: names]
+         if (n_fitted(prob) > 0) prob%labels = [character(len=24) :: prob%labels, &
+                                                prob%comp_labels]
+      end block
       prob%positions = fc%series%positions
       prob%l = fc%run%l(:n)
       prob%sup_a = fc%run%support_amplitude
@@ -410,6 +433,7 @@ contains
          return
       end if
       call print_report(fc, res)
+      call misfit_warning(fc, prob, res)
       call write_fit(out%temp, fc, res, werr)
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -422,15 +446,83 @@ contains
       write (output_unit, '(a)') "dpend fit: wrote '"//fc%run%output//"'"
    end subroutine run_fit_body
 
+   !> A fit whose RMS residual exceeds `misfit_factor` times the noise (--sigma, or
+   !> estimated from the data's third differences) says so on stdout and names the
+   !> unfitted parameters whose fit would lower it most (`misfit_suspects`).
+   subroutine misfit_warning(fc, prob, res)
+      type(fit_config_t), intent(in) :: fc      !! configuration
+      type(fit_problem_t), intent(in) :: prob   !! the problem fitted
+      type(fit_result_t), intent(in) :: res     !! the fit
+      type(suspect_t), allocatable :: sus(:)
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: ou, how, line
+      real(dp) :: noise
+      integer :: i
+      ou = trim(merge('m  ', 'rad', fc%series%positions))
+      if (fc%model_coords) ou = '(in the coordinates'' units)'
+      if (fc%sigma > 0.0_dp) then
+         noise = fc%sigma
+         how = 'given by --sigma'
+      else
+         noise = noise_estimate(prob, fc%series%q, res%k_fit)
+         how = 'estimated from the third differences of the data; --sigma gives it'
+      end if
+      if (.not. (res%rms > misfit_factor*noise)) return
+      write (output_unit, '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
+         //ou//' is '//real_str(res%rms/max(noise, tiny(1.0_dp)), 3)//' times the noise ' &
+         //real_str(noise, 3)//' '//ou//' ('//how//'), more than '//real_str(misfit_factor)// &
+         ': the model does not describe the data (the residuals are model error: a ' &
+         //'fixed parameter is wrong, or the model is not the system)'
+      call misfit_suspects(prob, fc%series%t, fc%series%q, res, sus, error)
+      if (allocated(error)) then
+         write (output_unit, '(a)') '  (the parameters that may be wrong could not be ' &
+            //'ranked: '//error%message//')'
+         return
+      end if
+      if (size(sus) == 0) return
+      line = ''
+      do i = 1, min(size(sus), 4)
+         if (i > 1) line = line//', '
+         line = line//trim(sus(i)%label)//' ('//real_str(sus(i)%rms, 3)//')'
+      end do
+      write (output_unit, '(a)') '  parameters that may be wrong, by the RMS residual ' &
+         //'fitting each too would leave (linearized): '//line//'; fit them with ' &
+         //'--fit-param '//trim(sus(1)%label)
+   end subroutine misfit_warning
+
    !> Names and units of the parameters: the state at t1 (q_i, qdot_i for the
    !> pendulum; the model's coordinates and their rates otherwise), then the fitted
-   !> model parameters (c_i for the damping).
+   !> model parameters' components (c_i for the damping, m2, g, ...).
    subroutine parameter_names(fc, names, units)
       type(fit_config_t), intent(in) :: fc
       character(len=16), allocatable, intent(out) :: names(:), units(:)
-      character(len=16), allocatable :: cn(:), cu(:), ru(:)
       type(model_info_t), allocatable :: models(:)
-      integer :: i, j, k, n, cnt
+      type(fit_problem_t) :: prob
+      type(error_t), allocatable :: error
+      integer :: i, j, k
+      call state_names(fc, names, units)
+      if (size(fc%fit_names) == 0) return
+      prob%spec = fc%run%spec
+      call set_fitted(prob, fc%fit_names, error)   ! accepted by check_fit_data
+      if (allocated(error)) return
+      models = model_catalogue()
+      k = find_model(models, fc%run%spec%model_name())
+      do i = 1, n_fitted(prob)
+         names = [character(len=16) :: names, prob%comp_labels(i)]
+         do j = 1, size(models(k)%params)
+            if (models(k)%params(j)%name == trim(prob%comp_names(i))) &
+               units = [character(len=16) :: units, models(k)%params(j)%units]
+         end do
+      end do
+   end subroutine parameter_names
+
+   !> Names and units of the state at t1: q_i(t1), qdot_i(t1) for the pendulum, the
+   !> model's coordinates and their rates otherwise.
+   subroutine state_names(fc, names, units)
+      type(fit_config_t), intent(in) :: fc
+      character(len=16), allocatable, intent(out) :: names(:), units(:)
+      character(len=16), allocatable :: cn(:), cu(:), ru(:)
+      integer :: i, n
       n = fc%series%n
       allocate (names(2*n), units(2*n))
       if (fc%model_coords) then
@@ -451,34 +543,7 @@ contains
             units(n + i) = 'rad/s'
          end do
       end if
-      models = model_catalogue()
-      k = find_model(models, fc%run%spec%model_name())
-      do j = 1, size(fc%fit_names)
-         associate (par => models(k)%params(param_at(models(k), fc%fit_names(j))))
-            cnt = par%count
-            if (cnt < 0) cnt = n
-            do i = 1, cnt
-               if (par%name == 'damping') then
-                  names = [character(len=16) :: names, 'c'//to_str(i)]
-               else if (cnt > 1) then
-                  names = [character(len=16) :: names, par%name//to_str(i)]
-               else
-                  names = [character(len=16) :: names, par%name]
-               end if
-               units = [character(len=16) :: units, par%units]
-            end do
-         end associate
-      end do
-   contains
-      integer function param_at(info, name) result(i)
-         type(model_info_t), intent(in) :: info
-         character(len=*), intent(in) :: name
-         do i = 1, size(info%params)
-            if (info%params(i)%name == trim(name)) return
-         end do
-         i = 1
-      end function param_at
-   end subroutine parameter_names
+   end subroutine state_names
 
    !> The units of the parameters by blocks ('rad, rad/s, N m s'; a block of
    !> mixed units lists each: 'm rad, m/s rad/s, N/m m').
@@ -547,6 +612,14 @@ contains
          ' degrees of freedom, t = '//real_str(res%t95, 4)//'); '// &
          to_str(res%iterations)//' iterations in '//to_str(res%stages)//' stages, '// &
          trim(merge('converged    ', 'not converged', res%converged))
+      line = ''
+      do i = 1, size(res%singular)
+         if (i > 1) line = line//', '
+         line = line//real_str(res%singular(i), 3)
+      end do
+      write (output_unit, '(a)') '  identifiability: singular values of the sensitivities ' &
+         //'(columns scaled to 1) '//line//'; condition number '// &
+         condition_text(res%condition)
       if (res%has_after) then
          if (res%horizon_censored) then
             write (output_unit, '(a)') '  prediction horizon after t = '// &

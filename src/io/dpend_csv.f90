@@ -29,7 +29,7 @@
 !> echoed in a message has its control characters replaced (`printable`). Numbers
 !> are read by the one strict parser (dpend_parse `read_real`).
 module dpend_csv
-   use dpend_kinds, only: dp, i8, half_pi
+   use dpend_kinds, only: dp, i8, half_pi, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_strings, only: to_str, real_str, to_lower, printable
    use dpend_parse, only: read_real, quote_text => quoted
@@ -71,7 +71,12 @@ module dpend_csv
       !> and units, in the model's order; `coords_found` when the file gave them
       character(len=16), allocatable :: coord_names(:), coord_units(:)
       logical :: coords_found = .false.
+      !> some angle columns were in degrees ([deg]), converted to rad (× π/180)
+      logical :: degrees = .false.
    end type series_t
+
+   !> Radians per degree: a column in [deg] is converted by this factor.
+   real(dp), parameter :: rad_per_deg = pi/180.0_dp
 
 contains
 
@@ -326,13 +331,15 @@ contains
             call time_column(unit, col, pre, col_t, error)
             if (allocated(error)) return
          else if (coordinate_index(series, name) > 0) then
-            call coordinate_column(series, name, unit, col, pre, col_q, error)
+            call coordinate_column(series, name, unit, col, pre, col_q, scale, error)
             if (allocated(error)) return
             kind = 'model'
          else if (allocated(series%coord_names)) then
             continue   ! theta and q columns name the pendulum's angles only
          else if (angle_name(name, 'theta') .or. angle_name(name, 'q')) then
-            call angle_column(name, unit, col, pre, kind, col_q, error)
+            call angle_column(name, unit, col, pre, kind, col_q, scale, error)
+            if (allocated(error)) return
+            if (unit == '[deg]') series%degrees = .true.
             if (allocated(error)) return
          else if (angle_name(name, 'x') .or. angle_name(name, 'y')) then
             call position_column(name, unit, col, pre, col_x, col_y, sx, sy, error)
@@ -402,12 +409,14 @@ contains
       col_t = col
    end subroutine time_column
 
-   !> An angle column thetaI or qI: all of one kind, I in [1, max_dof], once, in rad.
-   subroutine angle_column(name, unit, col, pre, kind, col_q, error)
+   !> An angle column thetaI or qI: all of one kind, I in [1, max_dof], once, in rad
+   !> or deg (then its scale is π/180).
+   subroutine angle_column(name, unit, col, pre, kind, col_q, scale, error)
       character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
       integer, intent(in) :: col                        !! its column
       character(len=:), allocatable, intent(inout) :: kind  !! 'theta', 'q' or ''
       integer, intent(inout) :: col_q(:)                !! column of angle i
+      real(dp), intent(inout) :: scale(:)               !! value = scale × number
       type(error_t), allocatable, intent(out) :: error  !! mixed, repeated, wrong unit
       character(len=:), allocatable :: this
       integer :: idx
@@ -428,13 +437,14 @@ contains
          call fatal_error(error, pre//"column '"//name//"' appears twice")
          return
       end if
-      if (len(unit) > 0 .and. unit /= '[rad]') then
+      if (len(unit) > 0 .and. unit /= '[rad]' .and. unit /= '[deg]') then
          call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
                           printable_40(unit)// &
-                          "' (accepted: [rad] or none)")
+                          "' (accepted: [rad], [deg] or none for rad)")
          return
       end if
       col_q(idx) = col
+      if (unit == '[deg]') scale(idx) = rad_per_deg
    end subroutine angle_column
 
    !> The link I of a column named PREFIX I (its digits from `first` on), in
@@ -732,6 +742,7 @@ contains
       if (series%separator /= ',') t = 'separator '//separator_name(series%separator)
       if (series%bom) t = t//', BOM removed'
       if (series%quoted) t = t//', quoted names'
+      if (series%degrees) t = t//', angles in deg converted to rad'
       if (len(t) > 0) then
          if (t(1:1) == ',') t = t(3:)
       end if
@@ -770,22 +781,33 @@ contains
 
    !> Column `col`, named `name` with `unit` ('' or '[...]'), is coordinate i: its
    !> unit must be the coordinate's (or none), and it must not repeat.
-   subroutine coordinate_column(series, name, unit, col, pre, col_q, error)
-      type(series_t), intent(in) :: series              !! with coord_names, _units
+   !> A coordinate in rad may be given in deg (its scale then π/180).
+   subroutine coordinate_column(series, name, unit, col, pre, col_q, scale, error)
+      type(series_t), intent(inout) :: series           !! with coord_names, _units
       character(len=*), intent(in) :: name, unit, pre   !! column, unit, message prefix
       integer, intent(in) :: col                        !! its column
       integer, intent(inout) :: col_q(:)                !! column of each coordinate
+      real(dp), intent(inout) :: scale(:)               !! value = scale × number
       type(error_t), allocatable, intent(out) :: error  !! repeated, wrong unit
       integer :: i
+      logical :: deg
       i = coordinate_index(series, name)
+      deg = trim(series%coord_units(i)) == 'rad' .and. unit == '[deg]'
       if (col_q(i) /= 0) then
          call fatal_error(error, pre//"column '"//name//"' appears twice")
-      else if (len(unit) > 0 .and. unit /= '['//trim(series%coord_units(i))//']') then
+      else if (len(unit) > 0 .and. unit /= '['//trim(series%coord_units(i))//']' .and. &
+               .not. deg) then
          call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
                           printable_40(unit)//"' (accepted: ["// &
-                          trim(series%coord_units(i))//'] or none)')
+                          trim(series%coord_units(i))//']'// &
+                          trim(merge(', [deg]', '       ', &
+                                     trim(series%coord_units(i)) == 'rad'))//' or none)')
       else
          col_q(i) = col
+         if (deg) then
+            scale(i) = rad_per_deg
+            series%degrees = .true.
+         end if
       end if
    end subroutine coordinate_column
 

@@ -25,7 +25,7 @@ succeed fitm-pendulum-params-damping -- "${F[@]}" pend_ok.csv --fit-parameters d
 refuse  fitm-elastic-collapsed 'fit work'  -- "${E[@]}" el_zero.csv
 # ---- refusals: the model, its columns, the parameters
 refuse  fitm-elastic-damping  'fit parameter'   -- "${E[@]}" el_ok.csv --fit-damping
-refuse  fitm-elastic-m        'fit parameter'   -- "${E[@]}" el_ok.csv --fit-parameters m
+refuse  fitm-elastic-m        'fit parameter'   -- "${E[@]}" el_ok.csv --fit-parameters m,k
 refuse  fitm-pendulum-k       'fit parameter'   -- "${F[@]}" pend_ok.csv --fit-parameters m
 refuse  fitm-params-empty     'fit-parameters'  -- "${E[@]}" el_ok.csv --fit-parameters k,,l0
 refuse  fitm-params-twice     'fit-parameters'  -- "${E[@]}" el_ok.csv --fit-parameters k,k
