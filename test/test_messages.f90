@@ -693,7 +693,7 @@ contains
       type(error_t), allocatable :: err
       real(dp), allocatable :: a1(:), a2(:), tf(:, :), ee(:, :)
       real(dp) :: row(4)
-      integer :: n, stat, unit, j1, j2, pos, k
+      integer :: stat, unit, j1, j2, pos, k
       character(len=:), allocatable :: text2
       dir = scratch_dir('exportlong')
       file = dir//'/s.h5'

@@ -58,6 +58,7 @@ module dpend_estimate
    use dpend_error, only: error_t, fatal_error, error_bad_input
    use dpend_model, only: model_t, max_dof, max_state
    use dpend_model_factory, only: model_spec_t, new_model, model_catalogue, find_model, &
+                                  spec_values, derived_default, &
                                   model_info_t
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
@@ -536,17 +537,12 @@ contains
       type(fit_problem_t), intent(in) :: prob   !! the problem
       real(dp), intent(in) :: theta(:)          !! values of the fitted components
       type(model_spec_t) :: spec
-      type(model_info_t), allocatable :: models(:)
       real(dp), allocatable :: v(:)
-      integer :: c, k, j
+      integer :: c
       spec = prob%spec
       spec%general = .true.
-      models = model_catalogue()
-      k = find_model(models, spec%model_name())
       do c = 1, size(theta)
-         j = param_index(models(k), prob%comp_names(c))
-         v = spec%get(trim(prob%comp_names(c)), spread(models(k)%params(j)%default, 1, &
-                      prob%comp_count(c)))
+         v = spec_values(spec, trim(prob%comp_names(c)), prob%comp_count(c))
          v(prob%comp_index(c)) = theta(c)
          call spec%set(trim(prob%comp_names(c)), v)
       end do
@@ -1595,7 +1591,7 @@ contains
             cnt = par%count
             if (cnt < 0) cnt = model%n_dof()
             call model%check_parameter_rates(base, no_rates)
-            v = spec%get(base, spread(par%default, 1, cnt))
+            v = spec_values(spec, base, cnt)
             if (size(v) /= cnt) then
                call fatal_error(error, 'invalid fit parameter: '//trim(names(i))//' (the ' &
                                 //'model has '//to_str(size(v))//' values of '//base// &
@@ -1658,9 +1654,12 @@ contains
       do j = 1, size(info%params)
          associate (par => info%params(j))
             if (index(par%units, 'kg') == 0 .and. index(par%units, 'N') == 0) cycle
+            ! a rod's inertia m l²/12 follows its mass: it scales with the masses
+            if (derived_default(prob%spec, par%name) .and. .not. any(prob%comp_names == &
+                par%name)) cycle
             cnt = par%count
             if (cnt < 0) cnt = n_dof
-            v = prob%spec%get(par%name, spread(par%default, 1, cnt))
+            v = spec_values(prob%spec, par%name, cnt)
             do i = 1, min(size(v), cnt)
                if (any(prob%comp_names == par%name .and. prob%comp_index == i)) then
                   any_fitted = .true.

@@ -25,6 +25,7 @@ module dpend_model_factory
    private
    public :: model_spec_t, param_info_t, model_info_t
    public :: model_spec, new_model, model_catalogue, find_model, default_model, describe_models
+   public :: spec_values, derived_default
 
    !> The model a specification without a name asks for: the chapter's pendulum.
    character(len=*), parameter :: default_model = 'pendulum'
@@ -525,4 +526,43 @@ contains
          name = default_model
       end if
    end function spec_model_name
+   ! ------------------------------------------ values a spec stands for (the fit)
+
+   !> Whether parameter `name` is absent from `spec` and its value then follows other
+   !> parameters (the pendulum's com = l_i/2 and inertia = m_i l_i²/12 of a uniform
+   !> rod), so that its catalogue default is not its value.
+   logical function derived_default(spec, name)
+      type(model_spec_t), intent(in) :: spec  !! what to build
+      character(len=*), intent(in) :: name    !! parameter name
+      derived_default = spec%model_name() == 'pendulum' .and. spec%find(name) == 0 .and. &
+                        (name == 'com' .or. name == 'inertia')
+   end function derived_default
+
+   !> The n values of parameter `name` that the model built from `spec` uses: the
+   !> spec's, else the derived ones (`derived_default`), else the catalogue default.
+   !> `spec` and `name` must be valid (a fit's checked spec and catalogue name).
+   function spec_values(spec, name, n) result(v)
+      type(model_spec_t), intent(in) :: spec  !! what to build
+      character(len=*), intent(in) :: name    !! parameter name
+      integer, intent(in) :: n                !! components wanted (links for lists)
+      real(dp), allocatable :: v(:)
+      type(model_info_t), allocatable :: models(:)
+      real(dp), allocatable :: m(:), l(:)
+      integer :: k, links
+      models = model_catalogue()
+      k = find_model(models, spec%model_name())
+      if (derived_default(spec, name)) then
+         links = n_links(spec, models(k))
+         l = value_of(spec, models(k), 'l', links)
+         if (name == 'com') then
+            v = 0.5_dp*l
+         else
+            m = value_of(spec, models(k), 'm', links)
+            v = m*l**2/12.0_dp
+         end if
+      else
+         v = spec%get(name, spread(models(k)%params(param_index(models(k), name))%default, &
+                                   1, n))
+      end if
+   end function spec_values
 end module dpend_model_factory
