@@ -288,7 +288,8 @@ contains
       call report('default fit: RMS '//real_str(res%rms, 3)//' rad, noise estimate '// &
                   real_str(noise, 3)//' rad; suspects:'//listing)
       ! link 2's geometry: l2, or com2, which for a rod is l2/2 and moves with it
-      ! (ranked: g 0.128, com2 0.156, l1 0.156, m1 0.24 after the bodies landed)
+      ! (ranked l1 0.118, g 0.128, l2 0.185, m1 0.285: com and inertia of rods are not
+      ! candidates, they follow l and m)
       call check_true(error, any(sus(:min(4, size(sus)))%label == 'l2' .or. &
                                  sus(:min(4, size(sus)))%label == 'com2'), &
                       'l2 or com2 among the first four suspects')
