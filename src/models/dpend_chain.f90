@@ -427,7 +427,7 @@ contains
       end if
       do i = n, 1, -1
          gx = fx + self%m(i)*acx(i)                 ! F⁰_(i−1,i)
-         gy = fy + self%m(i)*(acy(i) + self%g)
+         gy = fy + self%m(i)*(acy(i) + self%g)      ! and gravity
          f(i) = -0.5_dp*self%l(i)*(c(i)*(gy + fy) - s(i)*(gx + fx))
          fx = gx; fy = gy
       end do

@@ -708,7 +708,7 @@ contains
       end if
       qd = velocities(par, q, p)
       t = 0.5_dp*par%m2*par%l1*par%l2*sin(q(1) - q(2))*qd(1)*qd(2)
-      g = [t, -t] - generalized_forces(par, q)
+      g = [t, -t] - generalized_forces(par, q)   ! dH/dq of the rods
    end function dh_dq
 
    !> The state on the section with q_s = angle, q_o, p_o given and H = E (see dpend_poincare); `found` is false outside the energy shell. direction: sign
