@@ -478,6 +478,8 @@ contains
       end if
       ! the horizon in both units, printed when the run starts (issue 25)
       if (.not. cfg%quiet) call progress_header('dpend sweep: '//horizon_text(cfg))
+      if (.not. cfg%quiet .and. len(cfg%device_note) > 0) &
+         write (error_unit, '(a)') 'dpend sweep: '//cfg%device_note   ! issue 28
       call run_sweep(cfg, summary, error)
       ! refused input (found when the output is examined) or a run that failed
       if (allocated(error)) call fail(exit_status(error), 'dpend sweep: '//error%message)

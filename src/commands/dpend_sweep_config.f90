@@ -43,6 +43,7 @@ module dpend_sweep_config
    use dpend_model, only: max_dof
    use dpend_cli, only: scan_help_config, printable
    use dpend_strings, only: to_lower, did_you_mean
+   use dpend_sweep_gpu, only: gpu_open, gpu_ready
    implicit none
    private
    public :: sweep_config_t, sweep_defaults, parse_sweep, validate_sweep, sweep_help
@@ -93,6 +94,12 @@ module dpend_sweep_config
       !> The stop rule as given ('' if not given): refused with an indicator or the
       !> Lyapunov exponent, which integrate every trajectory to t_end.
       character(len=:), allocatable :: stop_at_given
+      ! issue 28 (docs/gpu.md): the device; not part of the stored configuration
+      character(len=:), allocatable :: device       !! 'cpu', 'gpu', 'auto' ('auto' resolved)
+      character(len=:), allocatable :: device_name  !! the GPU's name when device = 'gpu'
+      character(len=:), allocatable :: device_note  !! one line for stderr ('' : none)
+      integer :: gpu_repack = 2048                  !! GPU: steps per launch, 0: one launch
+      logical :: block_given = .false.              !! --block or block given
    end type sweep_config_t
 
 contains
@@ -117,6 +124,7 @@ contains
       cfg%indicator = 'flip'
       cfg%grid_given = ' '
       cfg%stop_at_given = ''
+      cfg%device = 'cpu'; cfg%device_name = ''; cfg%device_note = ''
    end function sweep_defaults
 
    !> Deviation vectors of the batch kernel for the indicator: 0 (flip, lambda1: the
@@ -327,6 +335,11 @@ contains
           '  --block N         initial conditions per block (whole rows of axis 1 in a'//nl// &
           '                    grid); default '//to_str(cfg%block)//nl// &
           '  --threads N       OpenMP threads, 0 (all) to 1024; default all'//nl// &
+          '  --device D        cpu, gpu (NVIDIA, two-link flip maps: docs/gpu.md) or'//nl// &
+          '                    auto (the GPU if it can); default '//cfg%device//nl// &
+          '  --gpu-repack K    GPU: steps per kernel launch, the unfinished trajectories'//nl// &
+          '                    re-packed between launches; 0: one launch; default ' &
+          //to_str(cfg%gpu_repack)//nl// &
           '  --quiet           no progress report on stderr'//nl// &
           '  -h, --help        this text'
    end function sweep_help
@@ -395,7 +408,10 @@ contains
          case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value; cfg%stop_at_given = '--stop-at'
          case ('--indicator'); cfg%indicator = value
-         case ('--block'); call parse_int(value, name, cfg%block, error)
+         case ('--block')
+            call parse_int(value, name, cfg%block, error); cfg%block_given = .true.
+         case ('--device'); cfg%device = value
+         case ('--gpu-repack'); call parse_int(value, name, cfg%gpu_repack, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
          case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
             matched = .false.
@@ -414,14 +430,15 @@ contains
       character(len=*), intent(in) :: filename          !! namelist file
       type(sweep_config_t), intent(inout) :: cfg        !! updated from the file
       type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
-      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at, indicator
+      character(len=16) :: axis1, axis2, ic_angles, time_unit, stop_at, indicator, device
       character(len=1024) :: ic_file, ic_dataset
       character(len=512) :: msg
-      integer :: n1, n2, block, threads, unit, stat
+      integer :: n1, n2, block, threads, unit, stat, gpu_repack
       real(dp) :: min1, max1, min2, max2
       logical :: lyapunov, stats, quiet
       namelist /sweep/ axis1, axis2, n1, n2, min1, max1, min2, max2, ic_file, ic_dataset, &
-         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet, indicator
+         ic_angles, time_unit, stop_at, block, lyapunov, stats, threads, quiet, indicator, &
+         device, gpu_repack
       ! length 16 as read_run_config's own list (-fcheck=all checks constructors)
       call read_run_config(filename, cfg%run, error, &
                            extra_groups=[character(len=16) :: 'sweep'])
@@ -434,6 +451,7 @@ contains
       time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
+      device = cfg%device; gpu_repack = cfg%gpu_repack
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
          call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
@@ -443,6 +461,7 @@ contains
       axis1 = achar(0); axis2 = achar(0)
       min1 = -huge(1.0_dp); max1 = -huge(1.0_dp); min2 = -huge(1.0_dp)
       max2 = -huge(1.0_dp); stop_at = achar(0)
+      block = -huge(1)   ! unset: known as not given
       read (unit, nml=sweep, iostat=stat, iomsg=msg)
       close (unit)
       if (stat > 0) then
@@ -472,8 +491,14 @@ contains
       end if
       cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
       cfg%indicator = trim(indicator)
+      if (block == -huge(1)) then
+         block = cfg%block
+      else
+         cfg%block_given = .true.
+      end if
       cfg%block = block; cfg%threads = threads
       cfg%lyapunov = lyapunov; cfg%stats = stats; cfg%quiet = quiet
+      cfg%device = trim(device); cfg%gpu_repack = gpu_repack
    contains
       subroutine grid_key(key)
          character(len=*), intent(in) :: key
@@ -574,7 +599,57 @@ contains
                           "' (accepted: q, theta)")
       end if
       if (.not. allocated(error)) call check_sweep_forms(cfg, error)
+      if (.not. allocated(error)) call resolve_device(cfg, error)
    end subroutine validate_sweep
+
+   !> Check --device and --gpu-repack and resolve 'auto' (issue 28, docs/gpu.md): the
+   !> GPU computes the two-link flip map over initial values; 'gpu' is refused for
+   !> anything else, without the library or without a GPU (saying which); 'auto'
+   !> takes the GPU when it can, else the CPU, with a note. With the GPU and no
+   !> block given, a block is 2^20 initial conditions (a kernel launch).
+   subroutine resolve_device(cfg, error)
+      type(sweep_config_t), intent(inout) :: cfg        !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: why, name
+      integer :: state
+      cfg%device = to_lower(cfg%device)
+      if (cfg%device /= 'cpu' .and. cfg%device /= 'gpu' .and. cfg%device /= 'auto') then
+         call fatal_error(error, "invalid device: '"//printable(cfg%device)// &
+                          "' (accepted: cpu, gpu, auto)")
+         return
+      else if (cfg%gpu_repack < 0) then
+         call fatal_error(error, 'invalid gpu_repack: '//to_str(cfg%gpu_repack)// &
+                          ' must be an integer from 0 (one launch) to '//to_str(huge(1)))
+         return
+      end if
+      if (cfg%device == 'cpu') return
+      why = ''
+      if (cfg%run%links /= 2 .or. .not. flip_model(cfg)) then
+         why = 'the GPU computes the two-link pendulum only'
+      else if (cfg%lyapunov .or. cfg%indicator /= 'flip') then
+         why = 'the GPU computes flip maps only (--lyapunov and --indicator run on the CPU)'
+      else if (grid_mode(cfg)) then
+         if (axis_parameter(cfg%axis1) > 0 .or. axis_parameter(cfg%axis2) > 0) &
+            why = 'the GPU computes maps over initial values only (parameter axes run on ' &
+                  //'the CPU)'
+      end if
+      if (len(why) == 0) then
+         call gpu_open(state, name, why)
+         if (state == gpu_ready) then
+            cfg%device = 'gpu'
+            cfg%device_name = name
+            if (.not. cfg%block_given) cfg%block = 1048576
+            cfg%device_note = "computing on the GPU '"//name//"'"
+            return
+         end if
+      end if
+      if (cfg%device == 'gpu') then
+         call fatal_error(error, 'invalid device: gpu: '//why//' (--device cpu or auto)')
+      else
+         cfg%device = 'cpu'
+         cfg%device_note = '--device auto: '//why//'; computing on the CPU'
+      end if
+   end subroutine resolve_device
 
    !> Refuse two settings of one quantity (issue 25), from flags or the namelist
    !> file: a fixed initial value or parameter and a grid axis that sweeps it (q1 or

@@ -22,6 +22,7 @@ module dpend_sweep_engine
       block_initial_conditions, parameter_axes, block_parameters
    use dpend_sweep_layout, only: result_names, write_block, working_file, finalize_file
    use dpend_sweep_resume, only: open_output
+   use dpend_sweep_gpu, only: gpu_integrate_block
    implicit none
    private
    public :: compute_block, run_sweep
@@ -69,7 +70,10 @@ contains
       real(dp), allocatable :: y0(:, :)
       class(integrator_t), allocatable :: integ
       call block_initial_conditions(setup, b, y0)
-      if (parameter_axes(setup)) then
+      if (setup%cfg%device == 'gpu') then   ! issue 28: the flip map on the GPU
+         call gpu_integrate_block(setup%cfg%run%pendulum(), setup%opt, &
+                                  int(setup%cfg%gpu_repack, i8), y0, res)
+      else if (parameter_axes(setup)) then
          call compute_parameter_block(setup, b, y0, res)
       else if (setup%per_trajectory) then
          allocate (integ, source=setup%integ)

@@ -285,6 +285,12 @@ contains
             call h5%writeattr('/sweep', 'axis1', c%axis1)
             call h5%writeattr('/sweep', 'axis2', c%axis2)
          end if
+         ! issue 28: the device of the run that created (or completed) the file
+         if (c%device == 'gpu') then
+            call h5%writeattr('/sweep', 'device', 'gpu: '//c%device_name)
+         else
+            call h5%writeattr('/sweep', 'device', 'cpu')
+         end if
       end associate
       call h5%take_error(error)
    end subroutine create_layout

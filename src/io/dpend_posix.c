@@ -141,3 +141,70 @@ int dpend_spawn_wait_err(char *const argv[], int *status, const char *errpath)
     *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + (WIFSIGNALED(ws) ? WTERMSIG(ws) : 0);
     return 0;
 }
+
+/* ---- The optional GPU library (issue 28, docs/gpu.md): loaded at run time with
+ * dlopen, never linked, so that dpend builds and runs without CUDA. */
+#include <dlfcn.h>
+
+typedef int (*dpend_gpu_abi_fn)(void);
+typedef int (*dpend_gpu_probe_fn)(int *, char *, int, int *, int *, char *, int);
+typedef int (*dpend_gpu_run_fn)(const double *, const double *, double, double, long long,
+                                int, long long, int, const double *, double *, double *,
+                                double *, double *, double *, double *, double *, int *,
+                                int *, double *, int *, char *, int);
+static void *dpend_gpu_handle = NULL;
+static dpend_gpu_probe_fn dpend_gpu_probe_ptr = NULL;
+static dpend_gpu_run_fn dpend_gpu_run_ptr = NULL;
+
+/* Load the library at `path` (once; later calls return 0 at once). 0, or 1 when it
+ * cannot be loaded, 2 when it lacks a function or has another interface version;
+ * `msg` (msg_len bytes) says why. */
+int dpend_gpu_load(const char *path, char *msg, int msg_len)
+{
+    void *h;
+    dpend_gpu_abi_fn abi;
+    const char *e;
+    if (msg_len > 0) msg[0] = '\0';
+    if (dpend_gpu_handle != NULL) return 0;
+    h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (h == NULL) {
+        e = dlerror();
+        if (msg_len > 0) snprintf(msg, (size_t)msg_len, "%s", e ? e : "dlopen failed");
+        return 1;
+    }
+    abi = (dpend_gpu_abi_fn)dlsym(h, "dpend_gpu_abi");
+    dpend_gpu_probe_ptr = (dpend_gpu_probe_fn)dlsym(h, "dpend_gpu_probe");
+    dpend_gpu_run_ptr = (dpend_gpu_run_fn)dlsym(h, "dpend_gpu_run_block");
+    if (abi == NULL || dpend_gpu_probe_ptr == NULL || dpend_gpu_run_ptr == NULL || abi() != 1) {
+        if (msg_len > 0) snprintf(msg, (size_t)msg_len, "not a dpend GPU library of interface 1");
+        dpend_gpu_probe_ptr = NULL;
+        dpend_gpu_run_ptr = NULL;
+        dlclose(h);
+        return 2;
+    }
+    dpend_gpu_handle = h;
+    return 0;
+}
+
+/* The loaded library's dpend_gpu_probe; -1 if none is loaded. */
+int dpend_gpu_call_probe(int *count, char *name, int name_len, int *driver, int *runtime,
+                         char *msg, int msg_len)
+{
+    if (dpend_gpu_probe_ptr == NULL) return -1;
+    return dpend_gpu_probe_ptr(count, name, name_len, driver, runtime, msg, msg_len);
+}
+
+/* The loaded library's dpend_gpu_run_block (gpu/dpend_sweep_kernel.cu); -1 if none
+ * is loaded. */
+int dpend_gpu_call_run(const double *coef, const double *bounds, double escale, double h,
+                       long long n_steps, int stop_rule, long long steps_per_launch, int n,
+                       const double *y0, double *t_flip1, double *t_flip2, double *t_flip,
+                       double *energy0, double *energy_error, double *t_stop, double *fin,
+                       int *status, int *steps, double *kernel_ms, int *launches, char *msg,
+                       int msg_len)
+{
+    if (dpend_gpu_run_ptr == NULL) return -1;
+    return dpend_gpu_run_ptr(coef, bounds, escale, h, n_steps, stop_rule, steps_per_launch, n,
+                             y0, t_flip1, t_flip2, t_flip, energy0, energy_error, t_stop, fin,
+                             status, steps, kernel_ms, launches, msg, msg_len);
+}
