@@ -97,7 +97,11 @@ extern "C" int dpend_gpu_probe(int *count, char *name, int name_len, int *driver
     e = cudaGetDeviceCount(count);
     if (e == cudaErrorNoDevice || e == cudaErrorInsufficientDriver) {
         *count = 0;
-        set_msg(msg, msg_len, "cudaGetDeviceCount", e);
+        if (*driver == 0 && msg && msg_len > 0) {
+            snprintf(msg, (size_t)msg_len, "no NVIDIA driver: libcuda.so.1 not found");
+        } else {
+            set_msg(msg, msg_len, "cudaGetDeviceCount", e);
+        }
         return 0;
     }
     if (e != cudaSuccess) {
