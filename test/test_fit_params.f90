@@ -31,6 +31,7 @@ module test_fit_params
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
    use dpend_cli, only: real_str, to_str
+   use dpend_model, only: model_t
    use testing, only: unittest_t, new_unittest, check, check_true
    use test_estimate, only: gaussian
    implicit none
@@ -54,7 +55,8 @@ contains
                new_unittest('data_file_misfit', test_data_file), &
                new_unittest('undetermined_refused', test_undetermined), &
                new_unittest('csv_degrees', test_degrees), &
-               new_unittest('body_values_follow_rods', test_body_values)]
+               new_unittest('body_values_follow_rods', test_body_values), &
+               new_unittest('bob_coverage', test_bob_coverage)]
    end subroutine collect_fit_params
 
    subroutine report(text)
@@ -484,4 +486,158 @@ contains
       v = spec_values(spec, 'com', 2)
       call check(error, v(2), 0.9_dp, 'com2 as given', rel=0.0_dp)
    end subroutine test_body_values
+
+   !> The issue's done-when fit: a two-link pendulum with bobs (general bodies, the
+   !> lab pendulum of data/bob_pendulum.nml: m = (1.2, 0.8) kg, l = (1, 0.7) m,
+   !> d = (0.62, 0.55) m, I = (0.06, 0.02) kg m², g = 9.81 m/s², damping
+   !> c = (0.05, 0.02) N m s), released at rest from q = (−0.6, −1.1) rad, 300 samples
+   !> over 5.98 s simulated in-process (dop853, rtol 1e-12). Fitted: d2, I2, g, c1, c2
+   !> (l2 does not enter the motion once d2 and I2 are given: it only places the tip;
+   !> the masses fix the scale), from the guess d2 = 0.45, I2 = 0.03, g = 9.6,
+   !> c = (0.01, 0.01). Noise-free: every parameter within 1e-7 of the truth. With
+   !> Gaussian noise σ = 0.01 rad on `series` seeded series (DPEND_FIT_SERIES, default
+   !> 1; scripts/fit_coverage.sh runs 50): the coverage of the 95 % intervals per
+   !> parameter, at least 90 % when series ≥ 20; and the RMS over the series of
+   !> (estimate − truth)/SE within [0.5, 1.6] per parameter (≥ 20 series) or over all
+   !> estimates (fewer).
+   subroutine test_bob_coverage(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      character(len=8), parameter :: names(5) = [character(len=8) :: 'com2', 'inertia2', &
+                                                  'g', 'c1', 'c2']
+      real(dp), parameter :: truth(5) = [0.55_dp, 0.02_dp, 9.81_dp, 0.05_dp, 0.02_dp]
+      type(model_spec_t) :: spec
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      real(dp), allocatable :: t(:), q(:, :), qn(:, :)
+      real(dp) :: z, z2(5), worst
+      integer(8) :: seed, c0, c1, rate
+      integer :: series, s, i, j, cover(5)
+      character(len=32) :: value
+      call get_environment_variable('DPEND_FIT_SERIES', value, status=i)
+      series = 1
+      if (i == 0) then
+         read (value, *, iostat=i) series
+      else
+         i = 0   ! unset: the default
+      end if
+      call check_true(error, i == 0 .and. series >= 1 .and. series <= 1000, &
+                      'DPEND_FIT_SERIES: '//trim(value)//' is not a count in [1, 1000]')
+      if (allocated(error)) return
+      call system_clock(c0, rate)
+      spec = model_spec('pendulum')
+      call spec%set('m', [1.2_dp, 0.8_dp])
+      call spec%set('l', [1.0_dp, 0.7_dp])
+      call spec%set('com', [0.62_dp, truth(1)])
+      call spec%set('inertia', [0.06_dp, truth(2)])
+      call spec%set('g', [truth(3)])
+      call spec%set('damping', truth(4:5))
+      t = [(0.02_dp*j, j=0, samples - 1)]
+      call simulate_spec(spec, [-0.6_dp, -1.1_dp], t, q, error)
+      if (allocated(error)) return
+      ! the fit starts from other values of the fitted parameters
+      call spec%set('com', [0.62_dp, 0.45_dp])
+      call spec%set('inertia', [0.06_dp, 0.03_dp])
+      call spec%set('g', [9.6_dp])
+      call spec%set('damping', [0.01_dp, 0.01_dp])
+      prob%spec = spec
+      prob%method = 'dop853'
+      call set_fitted(prob, names, error)
+      if (allocated(error)) return
+      prob%hold_period = 2.0_dp*pi*sqrt(1.7_dp/9.6_dp)
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, error)
+      if (allocated(error)) return
+      worst = maxval(abs(res%p(5:9) - truth))
+      call report('bobs, noise-free: d2, I2, g, c1, c2 = '//values(res%p(5:9))// &
+                  '; largest error '//real_str(worst, 2)//'; condition number '// &
+                  real_str(res%condition, 3))
+      call check(error, res%p(5:9), truth, 'bobs, noise-free d2, I2, g, c1, c2', abs=1e-7_dp)
+      if (allocated(error)) return
+      seed = 20261127_8
+      cover = 0
+      z2 = 0.0_dp
+      allocate (qn(2, samples))
+      do s = 1, series
+         do j = 1, samples
+            do i = 1, 2
+               call gaussian(seed, z)
+               qn(i, j) = q(i, j) + 0.01_dp*z
+            end do
+         end do
+         call fit_series(prob, t, qn, huge(1.0_dp), 0.1_dp, res, error)
+         if (allocated(error)) then
+            error%message = 'noisy series '//to_str(s)//': '//error%message
+            return
+         end if
+         do i = 1, 5
+            z = (res%p(4 + i) - truth(i))/res%se(4 + i)
+            z2(i) = z2(i) + z**2
+            if (abs(z) <= res%t95) cover(i) = cover(i) + 1
+         end do
+      end do
+      call system_clock(c1)
+      call report('bobs, '//to_str(series)//' noisy series (sigma 0.01 rad): 95 % intervals ' &
+                  //'cover d2 '//to_str(cover(1))//', I2 '//to_str(cover(2))//', g '// &
+                  to_str(cover(3))//', c1 '//to_str(cover(4))//', c2 '//to_str(cover(5))// &
+                  ' times; RMS (estimate - truth)/SE '//values(sqrt(z2/real(series, dp)))// &
+                  '; '//real_str(real(c1 - c0, dp)/real(rate, dp), 3)//' s')
+      if (series >= 20) then
+         do i = 1, 5
+            call check_true(error, real(cover(i), dp) >= 0.9_dp*real(series, dp), &
+                            trim(names(i))//': coverage '//to_str(cover(i))//' of '// &
+                            to_str(series)//' < 90 %')
+            if (allocated(error)) return
+            z = sqrt(z2(i)/real(series, dp))
+            call check_true(error, z >= 0.5_dp .and. z <= 1.6_dp, trim(names(i))// &
+                            ': RMS (estimate - truth)/SE = '//real_str(z, 3))
+            if (allocated(error)) return
+         end do
+      else
+         z = sqrt(sum(z2)/real(5*series, dp))
+         call check_true(error, z >= 0.3_dp .and. z <= 2.0_dp, 'RMS (estimate - ' &
+                         //'truth)/SE over all estimates = '//real_str(z, 3))
+      end if
+   contains
+      !> The values, blank-separated.
+      function values(v) result(text)
+         real(dp), intent(in) :: v(:)
+         character(len=:), allocatable :: text
+         integer :: k
+         text = real_str(v(1), 10)
+         do k = 2, size(v)
+            text = text//' '//real_str(v(k), 10)
+         end do
+      end function values
+   end subroutine test_bob_coverage
+
+   !> Angles q of the model of `spec` released at rest from q0 [rad], at times t:
+   !> dop853 at rtol 1e-12.
+   subroutine simulate_spec(spec, q0, t, q, error)
+      type(model_spec_t), intent(in) :: spec            !! the model
+      real(dp), intent(in) :: q0(:)                     !! initial angles [rad]
+      real(dp), intent(in) :: t(:)                      !! sample times [s]
+      real(dp), allocatable, intent(out) :: q(:, :)     !! angles (N, K) [rad]
+      type(error_t), allocatable, intent(inout) :: error
+      class(model_t), allocatable :: model
+      class(integrator_t), allocatable :: integ
+      real(dp), allocatable :: y(:)
+      real(dp) :: tt, h
+      integer :: j, n, stat
+      call new_model(spec, model, error)
+      if (allocated(error)) return
+      call new_integrator('dop853', integ, error, method_options_t(rtol=1e-12_dp, &
+                          atol=1e-14_dp))
+      if (allocated(error)) return
+      n = size(q0)
+      allocate (q(n, size(t)))
+      y = integ%to_internal(model, q0, 0.0_dp*q0, t(1))
+      tt = t(1)
+      h = 1e-3_dp
+      q(:, 1) = q0
+      do j = 2, size(t)
+         call advance_to(integ, model, tt, y, t(j), h, stat)
+         call check_true(error, stat == stat_ok, 'synthetic run')
+         if (allocated(error)) return
+         q(:, j) = y(1:n)
+      end do
+   end subroutine simulate_spec
 end module test_fit_params
