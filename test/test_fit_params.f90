@@ -56,7 +56,8 @@ contains
                new_unittest('undetermined_refused', test_undetermined), &
                new_unittest('csv_degrees', test_degrees), &
                new_unittest('body_values_follow_rods', test_body_values), &
-               new_unittest('bob_coverage', test_bob_coverage)]
+               new_unittest('bob_coverage', test_bob_coverage), &
+               new_unittest('positions_fitted_length', test_positions_length)]
    end subroutine collect_fit_params
 
    subroutine report(text)
@@ -608,6 +609,75 @@ contains
          end do
       end function values
    end subroutine test_bob_coverage
+
+   !> Positions with a fitted length (the lab pendulum of data/fit_bob.csv: one link
+   !> with a bob, m = 1 kg, l = 0.8 m, d = 0.65 m, I = 0.01 kg m², c = 0.02 N m s,
+   !> released at rest from theta = 1.2 rad, the tip's positions observed): the fitted
+   !> l places the observed tip, so ∂r/∂l holds ∂P/∂l besides the motion's change
+   !> (here none: d and I are given). The Jacobian of l, com and damping against
+   !> central differences of the residuals; noise-free, l, d and c recovered to 1e-7
+   !> from l = 0.75, d = 0.5, c = 0.
+   subroutine test_positions_length(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      real(dp), parameter :: truth(3) = [0.8_dp, 0.65_dp, 0.02_dp]
+      type(model_spec_t) :: spec
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      real(dp), allocatable :: t(:), q(:, :), xy(:, :), p(:), r(:), rp(:), rm(:), &
+                               jac(:, :), fd(:, :)
+      real(dp) :: d, worst
+      integer :: j, k
+      spec = model_spec('pendulum')
+      call spec%set('links', [1.0_dp])
+      call spec%set('m', [1.0_dp])
+      call spec%set('l', [truth(1)])
+      call spec%set('com', [truth(2)])
+      call spec%set('inertia', [0.01_dp])
+      call spec%set('damping', [truth(3)])
+      k = 200
+      t = [(0.02_dp*j, j=0, k - 1)]
+      call simulate_spec(spec, [1.2_dp - 0.5_dp*pi], t, q, error)
+      if (allocated(error)) return
+      xy = reshape([(truth(1)*[cos(q(1, j)), sin(q(1, j))], j=1, k)], [2, k])
+      call spec%set('l', [0.75_dp])
+      call spec%set('com', [0.5_dp])
+      call spec%set('damping', [0.0_dp])
+      prob%spec = spec
+      prob%method = 'dop853'
+      prob%positions = .true.
+      prob%l = [0.75_dp]
+      call set_fitted(prob, [character(len=7) :: 'l', 'com', 'damping'], error)
+      if (allocated(error)) return
+      prob%hold_period = 2.0_dp*pi*sqrt(0.75_dp/9.8_dp)
+      ! the Jacobian against differences of the residuals, inside the ranges
+      p = [-0.3_dp, 0.2_dp, 0.78_dp, 0.6_dp, 0.03_dp]
+      allocate (r(2*k), rp(2*k), rm(2*k), jac(2*k, 5), fd(2*k, 3))
+      call evaluate_fit(prob, p, t, xy, k, r, error, jac)
+      if (allocated(error)) return
+      do j = 3, 5
+         d = 1e-5_dp*abs(p(j))
+         p(j) = p(j) + d
+         call evaluate_fit(prob, p, t, xy, k, rp, error)
+         if (allocated(error)) return
+         p(j) = p(j) - 2.0_dp*d
+         call evaluate_fit(prob, p, t, xy, k, rm, error)
+         if (allocated(error)) return
+         p(j) = p(j) + d
+         fd(:, j - 2) = (rp - rm)/(2.0_dp*d)
+      end do
+      worst = maxval(abs(jac(:, 3:) - fd))/maxval(abs(fd))
+      call report('positions: dr/d(l, com, c1) against differences of the residuals: ' &
+                  //'largest difference '//real_str(worst, 2)//' of the largest entry')
+      call check(error, reshape(jac(:, 3:), [6*k]), reshape(fd, [6*k]), &
+                 'dr/d(l, com, c1) from positions', abs=1e-6_dp*maxval(abs(fd)))
+      if (allocated(error)) return
+      call fit_series(prob, t, xy, huge(1.0_dp), 0.1_dp, res, error)
+      if (allocated(error)) return
+      call report('positions, noise-free: l, com, c1 = '//real_str(res%p(3), 12)//', '// &
+                  real_str(res%p(4), 12)//', '//real_str(res%p(5), 12))
+      call check(error, res%p(3:5), truth, 'noise-free l, com, c1 from positions', &
+                 abs=1e-7_dp)
+   end subroutine test_positions_length
 
    !> Angles q of the model of `spec` released at rest from q0 [rad], at times t:
    !> dop853 at rtol 1e-12.
