@@ -57,7 +57,9 @@ contains
                new_unittest('csv_degrees', test_degrees), &
                new_unittest('body_values_follow_rods', test_body_values), &
                new_unittest('bob_coverage', test_bob_coverage), &
-               new_unittest('positions_fitted_length', test_positions_length)]
+               new_unittest('positions_fitted_length', test_positions_length), &
+               new_unittest('bodies_determined', test_bodies_determined), &
+               new_unittest('wrong_fixed_length', test_wrong_length)]
    end subroutine collect_fit_params
 
    subroutine report(text)
@@ -678,6 +680,147 @@ contains
       call check(error, res%p(3:5), truth, 'noise-free l, com, c1 from positions', &
                  abs=1e-7_dp)
    end subroutine test_positions_length
+
+   !> What the data determine for links that are not rods: point masses (`--body point`:
+   !> com = l, inertia = 0) fitting m1, m2 refused naming the mass scale (no inertia
+   !> fixes it); their l2 fitted moves the mass at the tip with it (`com_at_tip`):
+   !> m2 = 0.5 kg, l2 = 0.7 m recovered to 1e-7 from 1 kg, 1 m, noise-free; without
+   !> it the fitted l2 would only place the tip, which angles do not see: refused naming
+   !> l2. Bobs (com and inertia given): l2 from angles refused naming l2.
+   subroutine test_bodies_determined(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(model_spec_t) :: spec
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      real(dp), allocatable :: t(:), q(:, :)
+      integer :: j
+      spec = model_spec('pendulum')
+      call spec%set('m', true_m)
+      call spec%set('l', true_l)
+      call spec%set('com', true_l)
+      call spec%set('inertia', [0.0_dp, 0.0_dp])
+      call spec%set('g', [9.8_dp])
+      t = [(0.02_dp*j, j=0, 149)]
+      call simulate_spec(spec, theta0 - 0.5_dp*pi, t, q, error)
+      if (allocated(error)) return
+      call spec%set('m', [1.0_dp, 1.0_dp])
+      call spec%set('l', [1.0_dp, 1.0_dp])
+      call spec%set('com', [1.0_dp, 1.0_dp])
+      prob%spec = spec
+      prob%method = 'dop853'
+      prob%com_at_tip = .true.
+      prob%hold_period = 2.0_dp*pi*sqrt(2.0_dp/9.8_dp)
+      call set_fitted(prob, [character(len=2) :: 'm1', 'm2'], error)
+      call refused('point m1,m2', 'm1,m2 together are not determined by the data: the ' &
+                   //'absolute mass scale')
+      if (allocated(error)) return
+      call set_fitted(prob, [character(len=2) :: 'm2', 'l2'], error)
+      if (allocated(error)) return
+      call fit_series(prob, t, q, huge(1.0_dp), 0.1_dp, res, error)
+      if (allocated(error)) return
+      call report('point masses, noise-free: m2 = '//real_str(res%p(5), 12)//', l2 = '// &
+                  real_str(res%p(6), 12))
+      call check(error, res%p(5:6), [true_m(2), true_l(2)], 'point masses: m2, l2', &
+                 abs=1e-7_dp)
+      if (allocated(error)) return
+      prob%com_at_tip = .false.
+      call fit_series(prob, t(:60), q(:, :60), huge(1.0_dp), 0.1_dp, res, error)
+      call refused('point l2 not moving the mass', 'l2 is not determined')
+      if (allocated(error)) return
+      call prob%spec%set('com', [0.62_dp, 0.55_dp])
+      call prob%spec%set('inertia', [0.06_dp, 0.02_dp])
+      call set_fitted(prob, [character(len=2) :: 'l2'], error)
+      if (allocated(error)) return
+      call fit_series(prob, t(:60), q(:, :60), huge(1.0_dp), 0.1_dp, res, error)
+      call refused('bobs l2 from angles', 'l2 is not determined')
+   contains
+      !> The error was set and holds `needle`; cleared, or set to a failure.
+      subroutine refused(what, needle)
+         character(len=*), intent(in) :: what, needle
+         character(len=:), allocatable :: message
+         if (.not. allocated(error)) then
+            call check_true(error, .false., what//' was accepted, expected refused')
+            return
+         end if
+         message = error%message
+         deallocate (error)
+         call report(what//': '//message)
+         call check_true(error, index(message, needle) > 0, what//': "'//needle// &
+                         '" not in: '//message)
+      end subroutine refused
+   end subroutine test_bodies_determined
+
+   !> A wrong fixed length: the tip positions of data/fit_bob.csv's pendulum
+   !> (l = 0.8 m; Gaussian noise 0.002 m, seeded) fitted for com and damping with
+   !> l fixed at 0.7 m: the RMS residual exceeds misfit_factor times the noise
+   !> estimated from the data (which is 0.002 within 20 %), and l is the first suspect,
+   !> its predicted RMS within 20 % of the noise; the same data with l = 0.8 m leave
+   !> the RMS at the noise (no warning).
+   subroutine test_wrong_length(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(model_spec_t) :: spec
+      type(fit_problem_t) :: prob
+      type(fit_result_t) :: res
+      type(suspect_t), allocatable :: sus(:)
+      real(dp), allocatable :: t(:), q(:, :), xy(:, :)
+      real(dp) :: noise, z
+      integer(8) :: seed
+      integer :: j, i, k
+      spec = model_spec('pendulum')
+      call spec%set('links', [1.0_dp])
+      call spec%set('m', [1.0_dp])
+      call spec%set('l', [0.8_dp])
+      call spec%set('com', [0.65_dp])
+      call spec%set('inertia', [0.01_dp])
+      call spec%set('damping', [0.02_dp])
+      k = 300
+      t = [(0.02_dp*j, j=0, k - 1)]
+      call simulate_spec(spec, [1.2_dp - 0.5_dp*pi], t, q, error)
+      if (allocated(error)) return
+      seed = 26_8
+      allocate (xy(2, k))
+      do j = 1, k
+         xy(:, j) = 0.8_dp*[cos(q(1, j)), sin(q(1, j))]
+         do i = 1, 2
+            call gaussian(seed, z)
+            xy(i, j) = xy(i, j) + 0.002_dp*z
+         end do
+      end do
+      do i = 1, 2
+         call spec%set('l', [merge(0.7_dp, 0.8_dp, i == 1)])
+         call spec%set('com', [0.5_dp])
+         call spec%set('damping', [0.0_dp])
+         prob%spec = spec
+         prob%method = 'dop853'
+         prob%positions = .true.
+         prob%l = [merge(0.7_dp, 0.8_dp, i == 1)]
+         call set_fitted(prob, [character(len=7) :: 'com', 'damping'], error)
+         if (allocated(error)) return
+         prob%hold_period = 2.0_dp*pi*sqrt(0.7_dp/9.8_dp)
+         call fit_series(prob, t, xy, huge(1.0_dp), 0.1_dp, res, error)
+         if (allocated(error)) return
+         noise = noise_estimate(prob, xy, res%k_fit)
+         if (i == 2) exit
+         call check(error, noise, 0.002_dp, 'noise estimated from the positions', rel=0.2_dp)
+         if (allocated(error)) return
+         call misfit_suspects(prob, t, xy, res, sus, error)
+         if (allocated(error)) return
+         call report('l fixed at 0.7 m (truth 0.8): RMS '//real_str(res%rms, 3)// &
+                     ' m, noise estimate '//real_str(noise, 3)//' m; first suspect '// &
+                     trim(sus(1)%label)//' ('//real_str(sus(1)%rms, 3)//' m)')
+         call check_true(error, res%rms > misfit_factor*noise, 'a wrong l: RMS '// &
+                         real_str(res%rms, 3)//' not above '//real_str(misfit_factor)// &
+                         ' times the noise '//real_str(noise, 3))
+         if (allocated(error)) return
+         call check_true(error, sus(1)%label == 'l', 'first suspect l, not '//sus(1)%label)
+         if (allocated(error)) return
+         call check(error, sus(1)%rms, 0.002_dp, 'RMS predicted with l fitted', rel=0.2_dp)
+         if (allocated(error)) return
+      end do
+      call report('l at 0.8 m: RMS '//real_str(res%rms, 3)//' m')
+      call check_true(error, res%rms <= misfit_factor*noise, 'the right l: RMS '// &
+                      real_str(res%rms, 3)//' at the noise '//real_str(noise, 3))
+   end subroutine test_wrong_length
 
    !> Angles q of the model of `spec` released at rest from q0 [rad], at times t:
    !> dop853 at rtol 1e-12.

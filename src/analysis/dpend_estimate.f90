@@ -134,6 +134,9 @@ module dpend_estimate
       integer :: starts = 1
       !> most accepted steps of one adaptive integration between two samples
       integer(i8) :: max_steps = default_max_steps
+      !> the links are point masses at their ends (`--body point`, issue 26): a fitted
+      !> length l_i moves the centre of mass com_i = l_i with it
+      logical :: com_at_tip = .false.
       !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
       !> `fit_series` stops with an error beyond
       real(dp) :: work_limit = max_fit_work
@@ -590,6 +593,11 @@ contains
          v = spec_values(spec, trim(prob%comp_names(c)), prob%comp_count(c))
          v(prob%comp_index(c)) = theta(c)
          call spec%set(trim(prob%comp_names(c)), v)
+         if (prob%com_at_tip .and. prob%comp_names(c) == 'l') then
+            v = spec_values(spec, 'com', prob%comp_count(c))
+            v(prob%comp_index(c)) = theta(c)
+            call spec%set('com', v)
+         end if
       end do
    end function spec_with
 
