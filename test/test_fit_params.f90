@@ -179,8 +179,8 @@ contains
    subroutine test_generic_differences(error)
       type(error_t), allocatable, intent(out) :: error
       type(fit_problem_t) :: prob
-      real(dp), allocatable :: p(:), t(:), q(:, :), r(:), rp(:), rm(:), jac(:, :), fd(:, :)
-      real(dp) :: d, worst
+      real(dp), allocatable :: p(:), t(:), q(:, :), r(:), jac(:, :), fd(:, :)
+      real(dp) :: worst
       integer :: k, j, np
       call pendulum_problem(prob, [1.0_dp, 0.6_dp], [1.0_dp, 0.8_dp], &
                             [character(len=2) :: 'l2', 'g', 'm2'], error)
@@ -198,23 +198,14 @@ contains
       q = 0.0_dp
       p = [-0.4_dp, -1.2_dp, 0.3_dp, -0.5_dp, 0.8_dp, 9.8_dp, 0.6_dp]
       np = size(p)
-      allocate (r(2*k), rp(2*k), rm(2*k), jac(2*k, np), fd(2*k, np))
+      allocate (r(2*k), jac(2*k, np), fd(2*k, np - 4))
       call evaluate_fit(prob, p, t, q, k, r, error, jac)
       if (allocated(error)) return
-      do j = 5, np
-         d = 1e-5_dp*abs(p(j))
-         p(j) = p(j) + d
-         call evaluate_fit(prob, p, t, q, k, rp, error)
-         if (allocated(error)) return
-         p(j) = p(j) - 2.0_dp*d
-         call evaluate_fit(prob, p, t, q, k, rm, error)
-         if (allocated(error)) return
-         p(j) = p(j) + d
-         fd(:, j) = (rp - rm)/(2.0_dp*d)
-      end do
-      worst = maxval(abs(jac(:, 5:) - fd(:, 5:)))/maxval(abs(fd(:, 5:)))
-      call check(error, reshape(jac(:, 5:), [2*k*3]), reshape(fd(:, 5:), [2*k*3]), &
-                 'dr/d(l2, g, m2)', abs=1e-6_dp*maxval(abs(fd(:, 5:))))
+      call residual_differences(prob, p, t, q, k, 5, fd, error)
+      if (allocated(error)) return
+      worst = maxval(abs(jac(:, 5:) - fd))/maxval(abs(fd))
+      call check(error, reshape(jac(:, 5:), [2*k*3]), reshape(fd, [2*k*3]), &
+                 'dr/d(l2, g, m2)', abs=1e-6_dp*maxval(abs(fd)))
       if (allocated(error)) return
       call report('sensitivities to l2, g, m2 against differences of the residuals: '// &
                   'largest difference '//real_str(worst, 2)//' of the largest entry')
@@ -230,10 +221,9 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(fit_problem_t) :: prob
       type(fit_result_t) :: res
-      real(dp), allocatable :: t(:), q(:, :), qn(:, :)
-      real(dp) :: z2, z
-      integer(8) :: seed
-      integer :: s, i, j, cover(2)
+      real(dp), allocatable :: t(:), q(:, :)
+      real(dp) :: z2s(2), z
+      integer :: j, cover(2)
       t = [(0.02_dp*j, j=0, samples - 1)]
       call simulate(true_m, true_l, t, q, error)
       if (allocated(error)) return
@@ -248,26 +238,9 @@ contains
       call report('noise-free: m2 = '//real_str(res%p(5), 12)//', l2 = '// &
                   real_str(res%p(6), 12)//' (truth 0.5, 0.7); condition number '// &
                   real_str(res%condition, 3))
-      seed = 20261127_8
-      cover = 0
-      z2 = 0.0_dp
-      allocate (qn(2, samples))
-      do s = 1, 6
-         do j = 1, samples
-            do i = 1, 2
-               call gaussian(seed, z)
-               qn(i, j) = q(i, j) + 0.01_dp*z
-            end do
-         end do
-         call fit_series(prob, t, qn, huge(1.0_dp), 0.1_dp, res, error)
-         if (allocated(error)) return
-         do i = 1, 2
-            z = (res%p(4 + i) - merge(true_m(2), true_l(2), i == 1))/res%se(4 + i)
-            z2 = z2 + z**2
-            if (abs(z) <= res%t95) cover(i) = cover(i) + 1
-         end do
-      end do
-      z = sqrt(z2/12.0_dp)
+      call noisy_coverage(prob, t, q, [true_m(2), true_l(2)], 6, cover, z2s, error)
+      if (allocated(error)) return
+      z = sqrt(sum(z2s)/12.0_dp)
       call report('6 noisy series: 95 % intervals cover m2 in '//to_str(cover(1))// &
                   ', l2 in '//to_str(cover(2))//' of 6; RMS (estimate - truth)/SE = '// &
                   real_str(z, 3))
@@ -520,10 +493,10 @@ contains
       type(model_spec_t) :: spec
       type(fit_problem_t) :: prob
       type(fit_result_t) :: res
-      real(dp), allocatable :: t(:), q(:, :), qn(:, :)
+      real(dp), allocatable :: t(:), q(:, :)
       real(dp) :: z, z2(5), worst
-      integer(8) :: seed, c0, c1, rate
-      integer :: series, s, i, j, cover(5)
+      integer(8) :: c0, c1, rate
+      integer :: series, i, j, cover(5)
       character(len=32) :: value
       call get_environment_variable('DPEND_FIT_SERIES', value, status=i)
       series = 1
@@ -564,28 +537,8 @@ contains
                   real_str(res%condition, 3))
       call check(error, res%p(5:9), truth, 'bobs, noise-free d2, I2, g, c1, c2', abs=1e-7_dp)
       if (allocated(error)) return
-      seed = 20261127_8
-      cover = 0
-      z2 = 0.0_dp
-      allocate (qn(2, samples))
-      do s = 1, series
-         do j = 1, samples
-            do i = 1, 2
-               call gaussian(seed, z)
-               qn(i, j) = q(i, j) + 0.01_dp*z
-            end do
-         end do
-         call fit_series(prob, t, qn, huge(1.0_dp), 0.1_dp, res, error)
-         if (allocated(error)) then
-            error%message = 'noisy series '//to_str(s)//': '//error%message
-            return
-         end if
-         do i = 1, 5
-            z = (res%p(4 + i) - truth(i))/res%se(4 + i)
-            z2(i) = z2(i) + z**2
-            if (abs(z) <= res%t95) cover(i) = cover(i) + 1
-         end do
-      end do
+      call noisy_coverage(prob, t, q, truth, series, cover, z2, error)
+      if (allocated(error)) return
       call system_clock(c1)
       call report('bobs, '//to_str(series)//' noisy series (sigma 0.01 rad): 95 % intervals ' &
                   //'cover d2 '//to_str(cover(1))//', I2 '//to_str(cover(2))//', g '// &
@@ -634,9 +587,8 @@ contains
       type(model_spec_t) :: spec
       type(fit_problem_t) :: prob
       type(fit_result_t) :: res
-      real(dp), allocatable :: t(:), q(:, :), xy(:, :), p(:), r(:), rp(:), rm(:), &
-                               jac(:, :), fd(:, :)
-      real(dp) :: d, worst
+      real(dp), allocatable :: t(:), q(:, :), xy(:, :), p(:), r(:), jac(:, :), fd(:, :)
+      real(dp) :: worst
       integer :: j, k
       spec = model_spec('pendulum')
       call spec%set('links', [1.0_dp])
@@ -662,20 +614,11 @@ contains
       prob%hold_period = 2.0_dp*pi*sqrt(0.75_dp/9.8_dp)
       ! the Jacobian against differences of the residuals, inside the ranges
       p = [-0.3_dp, 0.2_dp, 0.78_dp, 0.6_dp, 0.03_dp]
-      allocate (r(2*k), rp(2*k), rm(2*k), jac(2*k, 5), fd(2*k, 3))
+      allocate (r(2*k), jac(2*k, 5), fd(2*k, 3))
       call evaluate_fit(prob, p, t, xy, k, r, error, jac)
       if (allocated(error)) return
-      do j = 3, 5
-         d = 1e-5_dp*abs(p(j))
-         p(j) = p(j) + d
-         call evaluate_fit(prob, p, t, xy, k, rp, error)
-         if (allocated(error)) return
-         p(j) = p(j) - 2.0_dp*d
-         call evaluate_fit(prob, p, t, xy, k, rm, error)
-         if (allocated(error)) return
-         p(j) = p(j) + d
-         fd(:, j - 2) = (rp - rm)/(2.0_dp*d)
-      end do
+      call residual_differences(prob, p, t, xy, k, 3, fd, error)
+      if (allocated(error)) return
       worst = maxval(abs(jac(:, 3:) - fd))/maxval(abs(fd))
       call report('positions: dr/d(l, com, c1) against differences of the residuals: ' &
                   //'largest difference '//real_str(worst, 2)//' of the largest entry')
@@ -815,6 +758,70 @@ contains
       call check_true(error, res%rms <= misfit_factor*noise, 'the right l: RMS '// &
                       real_str(res%rms, 3)//' at the noise '//real_str(noise, 3))
    end subroutine test_wrong_length
+
+   !> Fit `series` noisy copies of the angles q (Gaussian noise 0.01 rad, the seeded
+   !> generator from 20261127) and count, per fitted model parameter, the 95 %
+   !> intervals that contain `truth` (cover) and the sum of (estimate − truth)²/SE² (z2).
+   subroutine noisy_coverage(prob, t, q, truth, series, cover, z2, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: t(:), q(:, :)             !! times [s], angles (N, K) [rad]
+      real(dp), intent(in) :: truth(:)                  !! the fitted parameters' truth
+      integer, intent(in) :: series                     !! noisy series
+      integer, intent(out) :: cover(size(truth))        !! intervals containing it
+      real(dp), intent(out) :: z2(size(truth))          !! sums of squared z
+      type(error_t), allocatable, intent(inout) :: error  !! a fit failed
+      type(fit_result_t) :: res
+      real(dp) :: qn(size(q, 1), size(q, 2)), z
+      integer(8) :: seed
+      integer :: s, i, j, off
+      seed = 20261127_8
+      cover = 0
+      z2 = 0.0_dp
+      off = 2*size(q, 1)
+      do s = 1, series
+         do j = 1, size(q, 2)
+            do i = 1, size(q, 1)
+               call gaussian(seed, z)
+               qn(i, j) = q(i, j) + 0.01_dp*z
+            end do
+         end do
+         call fit_series(prob, t, qn, huge(1.0_dp), 0.1_dp, res, error)
+         if (allocated(error)) then
+            error%message = 'noisy series '//to_str(s)//': '//error%message
+            return
+         end if
+         do i = 1, size(truth)
+            z = (res%p(off + i) - truth(i))/res%se(off + i)
+            z2(i) = z2(i) + z**2
+            if (abs(z) <= res%t95) cover(i) = cover(i) + 1
+         end do
+      end do
+   end subroutine noisy_coverage
+
+   !> Central differences of the residuals of the first k samples in the parameters
+   !> p(first:) (steps 1e-5 |p_j|): column j − first + 1 of fd.
+   subroutine residual_differences(prob, p, t, obs, k, first, fd, error)
+      type(fit_problem_t), intent(in) :: prob             !! the problem
+      real(dp), intent(in) :: p(:)                        !! parameters
+      real(dp), intent(in) :: t(:), obs(:, :)             !! times [s], observations
+      integer, intent(in) :: k                            !! samples used
+      integer, intent(in) :: first                        !! first parameter differenced
+      real(dp), intent(out) :: fd(:, :)                   !! ∂r/∂p_j (rows, columns)
+      type(error_t), allocatable, intent(inout) :: error  !! an integration failed
+      real(dp) :: pp(size(p)), rp(size(fd, 1)), rm(size(fd, 1)), d
+      integer :: j
+      do j = first, size(p)
+         pp = p
+         d = 1e-5_dp*abs(p(j))
+         pp(j) = p(j) + d
+         call evaluate_fit(prob, pp, t, obs, k, rp, error)
+         if (allocated(error)) return
+         pp(j) = p(j) - d
+         call evaluate_fit(prob, pp, t, obs, k, rm, error)
+         if (allocated(error)) return
+         fd(:, j - first + 1) = (rp - rm)/(2.0_dp*d)
+      end do
+   end subroutine residual_differences
 
    !> Angles q of the model of `spec` released at rest from q0 [rad], at times t:
    !> dop853 at rtol 1e-12.
