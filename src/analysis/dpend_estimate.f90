@@ -134,6 +134,9 @@ module dpend_estimate
       integer :: starts = 1
       !> most accepted steps of one adaptive integration between two samples
       integer(i8) :: max_steps = default_max_steps
+      !> the links are point masses at their ends (`--body point`, issue 26): a fitted
+      !> length l_i moves the centre of mass com_i = l_i with it
+      logical :: com_at_tip = .false.
       !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
       !> `fit_series` stops with an error beyond
       real(dp) :: work_limit = max_fit_work
@@ -362,14 +365,16 @@ contains
       class(integrator_t), allocatable :: integ
       type(tangent_t) :: tan
       type(march_t) :: march
-      real(dp), allocatable :: y(:), v0(:, :), o(:), d(:, :)
+      real(dp), allocatable :: y(:), v0(:, :), o(:), d(:, :), lv(:), dl(:, :)
+      integer, allocatable :: lc(:)
       real(dp) :: tt, h
       integer :: n, nc, np, ns, j, stat, no
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
       np = size(p)
       if (present(steps)) steps = 0
-      allocate (o(no), d(no, n))
+      allocate (o(no), d(no, n), dl(no, n))
+      call observed_lengths(prob, p, n, lv, lc)
       call start_model(prob, p, t(1), sm, integ, y, error)
       if (allocated(error)) return
       nc = sm%nc
@@ -387,9 +392,12 @@ contains
          call tan%init(v0)
          tan%theta = 0.05_dp
       end if
-      call observe(prob, t(1), p(1:n), o, d)
+      call observe(prob, t(1), p(1:n), o, d, lv, dl)
       r(1:no) = residual(prob, o, q(:, 1))
-      if (present(jac)) jac(1:no, :) = matmul(d, v0(1:n, :))
+      if (present(jac)) then
+         jac(1:no, :) = matmul(d, v0(1:n, :))
+         call add_length_columns(1)
+      end if
       tt = t(1)
       h = prob%dt
       call integ%clear_step()
@@ -428,11 +436,51 @@ contains
                end if
             end if
          end do
-         call observe(prob, tt, y(1:n), o, d)
+         call observe(prob, tt, y(1:n), o, d, lv, dl)
          r(no*(j - 1) + 1:no*j) = residual(prob, o, q(:, j))
-         if (present(jac)) jac(no*(j - 1) + 1:no*j, :) = matmul(d, tan%v(1:n, :))
+         if (present(jac)) then
+            jac(no*(j - 1) + 1:no*j, :) = matmul(d, tan%v(1:n, :))
+            call add_length_columns(j)
+         end if
       end do
+   contains
+      !> Positions with fitted lengths: ∂P/∂l_i added to the columns of the lengths
+      !> (besides their effect on the motion, carried by the tangents), sample jj.
+      subroutine add_length_columns(jj)
+         integer, intent(in) :: jj
+         integer :: i
+         do i = 1, size(lc)
+            if (lc(i) > 0) jac(no*(jj - 1) + 1:no*jj, 2*n + lc(i)) = &
+               jac(no*(jj - 1) + 1:no*jj, 2*n + lc(i)) + dl(:, i)
+         end do
+      end subroutine add_length_columns
    end subroutine evaluate_fit
+
+   !> The link lengths that place observed positions (issue 26): `prob%l`, with the
+   !> fitted components of `l` at their values in p (kept in range, as the model
+   !> takes them); lc(i) the fitted component that is l_i (0: fixed). No positions:
+   !> empty.
+   pure subroutine observed_lengths(prob, p, n, lv, lc)
+      type(fit_problem_t), intent(in) :: prob
+      real(dp), intent(in) :: p(:)                    !! parameters
+      integer, intent(in) :: n                        !! links
+      real(dp), allocatable, intent(out) :: lv(:)     !! lengths [m]
+      integer, allocatable, intent(out) :: lc(:)      !! fitted component per link
+      integer :: c
+      if (.not. prob%positions) then
+         allocate (lv(0), lc(0))
+         return
+      end if
+      lv = prob%l(:n)
+      allocate (lc(n))
+      lc = 0
+      do c = 1, n_fitted(prob)
+         if (prob%comp_names(c) /= 'l') cycle
+         lc(prob%comp_index(c)) = c
+         lv(prob%comp_index(c)) = min(max(p(2*n + c), prob%theta_lower(c)), &
+                                      prob%theta_upper(c))
+      end do
+   end subroutine observed_lengths
 
    !> The augmented model for the parameters p, the integrator (`prob%method`, its
    !> tolerances and `max_steps`) and its internal state y at t1.
@@ -545,6 +593,11 @@ contains
          v = spec_values(spec, trim(prob%comp_names(c)), prob%comp_count(c))
          v(prob%comp_index(c)) = theta(c)
          call spec%set(trim(prob%comp_names(c)), v)
+         if (prob%com_at_tip .and. prob%comp_names(c) == 'l') then
+            v = spec_values(spec, 'com', prob%comp_count(c))
+            v(prob%comp_index(c)) = theta(c)
+            call spec%set('com', v)
+         end if
       end do
    end function spec_with
 
@@ -559,15 +612,19 @@ contains
    end function param_index
 
    !> The observations o at time t for the angles q, and ∂o/∂q: the angles themselves,
-   !> or the positions of the link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j).
-   pure subroutine observe(prob, t, q, o, d)
+   !> or the positions of the link ends P_i = A(t) + Σ_(j≤i) L_j (cos q_j, sin q_j)
+   !> (lengths lv), and then ∂o/∂L (dl).
+   pure subroutine observe(prob, t, q, o, d, lv, dl)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: t, q(:)
       real(dp), intent(out) :: o(:), d(:, :)
+      real(dp), intent(in) :: lv(:)          !! lengths [m] (positions)
+      real(dp), intent(out) :: dl(:, :)      !! ∂o/∂L (positions)
       real(dp) :: pos(2)
       integer :: i, j, n
       n = size(q)
       d = 0.0_dp
+      dl = 0.0_dp
       if (.not. prob%positions) then
          o = q
          do i = 1, n
@@ -577,11 +634,12 @@ contains
       end if
       pos = prob%sup_a*cos(prob%sup_w*t + prob%sup_phi)
       do i = 1, n
-         pos = pos + prob%l(i)*[cos(q(i)), sin(q(i))]
+         pos = pos + lv(i)*[cos(q(i)), sin(q(i))]
          o(2*i - 1:2*i) = pos
          do j = 1, i
-            d(2*i - 1, j) = -prob%l(j)*sin(q(j))
-            d(2*i, j) = prob%l(j)*cos(q(j))
+            d(2*i - 1, j) = -lv(j)*sin(q(j))
+            d(2*i, j) = lv(j)*cos(q(j))
+            dl(2*i - 1:2*i, j) = [cos(q(j)), sin(q(j))]
          end do
       end do
    end subroutine observe

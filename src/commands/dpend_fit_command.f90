@@ -56,10 +56,10 @@ module dpend_fit_command
    end type fit_config_t
 
    !> The run flags that make sense for a fit (the initial state comes from the data).
-   character(len=20), parameter :: run_flags(19) = [character(len=20) :: '--links', '--m', &
+   character(len=20), parameter :: run_flags(20) = [character(len=20) :: '--links', '--m', &
       '--l', '--g', '--m1', '--m2', '--l1', '--l2', '--damping', '--support-amplitude', &
       '--support-frequency', '--support-phase', '--method', '--dt', '--rtol', '--atol', &
-      '--max-steps', '--output', '-o']
+      '--max-steps', '--output', '-o', '--body']
 
 contains
 
@@ -140,6 +140,8 @@ contains
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
+          '  --body rod|point, --com LIST, --inertia LIST (links of any mass distribution),'// &
+          nl// &
           '  --model and its parameters (--model elastic --m --k --l0), --method (default '// &
           fc%run%method//'),'//nl//'  --dt, --rtol (default '//real_str(fc%run%rtol)// &
           '), --atol (default '//real_str(fc%run%atol)//'), --max-steps'//nl// &
@@ -374,6 +376,8 @@ contains
       n = fc%series%n
       allocate (prob%model, source=fc%run%model)
       prob%spec = fc%run%spec
+      ! --body point: the mass at the tip, a fitted length moves it
+      if (allocated(fc%run%body)) prob%com_at_tip = fc%run%body == 'point'
       if (size(fc%fit_names) > 0) then
          call set_fitted(prob, fc%fit_names, error)
          if (allocated(error)) return

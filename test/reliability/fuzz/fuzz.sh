@@ -238,6 +238,10 @@ FLAG_BASES=(
   "study --config study_tiny.nml --no-figures --quick --m #1,1 --l #1,1 --output st.h5"
   "fit fit.csv --fit-window #0.3 --horizon-tolerance #0.1 --starts #1 --dt #0.01 --rtol #1e-6 --atol #1e-9 --max-steps #10000 --m1 #1 --g #9.8 --output out.h5"
   "fit fit.csv --fit-damping --damping #0.05,0.03 --l #1,1 --output out.h5"
+  "fit fit.csv --fit-param com2,c2 --com #0.6,0.5 --inertia #0.08,0.03 --sigma #0.005 --output out.h5"
+  "fit fit.csv --body point --fit-param m2,l2 --sigma #0.01 --m #1,1 --output out.h5"
+  "simulate --body point --q #0.5,1 --t-end #0.02 --output out.h5"
+  "simulate --com #0.6,0.8 --inertia #0.05,0 --damping #0.1,0 --t-end #0.02 --output out.h5"
   "animate sim.h5 --fps #25 --duration #0.04 --speed #1 --size @64x64 --output a.gif"
   "animate sim.h5 --overlay sim.h5 --reactions --fps #10 --duration #0.1 --size @64x64 --output a.gif"
   "export sw_a.h5 --matrix t_flip axis1 axis2 #2"
@@ -296,7 +300,8 @@ gen_flag() {
         pick "--m 1,2 --m1 3" "--m1 3 --m 1,2" "--q 0.1,0.2 --q1 0.5" "--q1 0.5 --theta1 1" \
              "--w 0,0 --w2 1" "--l 1,1 --l2 2" "--theta2 1 --q2 0.5" "--q 0.1,0.2 --theta1 1" ;;
       sweep) pick "--m 1,1 --m1 2" "--q 0,0 --q1 0.5" "--n 2 --n1 3" "--l 1,1 --l1 2" ;;
-      fit) pick "--m 1,1 --m1 2" "--l 1,1 --l2 2" ;;
+      fit) pick "--m 1,1 --m1 2" "--l 1,1 --l2 2" "--body point --com 1,1" \
+                "--body rod --inertia 0.1,0.1" ;;
       study) pick "--m 1,1 --m1 2" "--l 1,1 --l2 2" ;;
       *) pick "" ;;
     esac
