@@ -111,14 +111,13 @@ contains
                           'more than 32 characters (accepted: lanes, trajectory)')
          return
       end if
-      select case (value(1:length))
-      case ('lanes')
-      case ('trajectory')
+      ! the whole value, no blanks around it
+      if (length == len('trajectory') .and. value(1:length) == 'trajectory') then
          lanes = .false.
-      case default
+      else if (.not. (length == len('lanes') .and. value(1:length) == 'lanes')) then
          call fatal_error(error, "invalid DPEND_SWEEP_KERNEL: '"//printable(value(1:length)) &
                           //"' (accepted: lanes, trajectory)")
-      end select
+      end if
    end subroutine chain_kernel_choice
 
    !> q̈ [rad/s²] of every lane at (q, q̇) from s = sin q, c = cos q; with `e`, also the
