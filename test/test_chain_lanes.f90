@@ -210,8 +210,10 @@ contains
                call same_time(a%t_flip1(j), b%t_flip1(j), 't_flip1')
                call same_time(a%t_flip2(j), b%t_flip2(j), 't_flip2')
                call check(error, a%t_stop(j), b%t_stop(j), 't_stop', abs=0.0_dp)
-               call check(error, a%final(:, j), b%final(:, j), 'final state', rel=1e-9_dp, &
-                          abs=1e-9_dp)
+               ! (the rounding of the two paths, ~1e-15 a step, grows in the chaotic
+               ! trajectories: up to ~1e-8 after 300 steps)
+               call check(error, a%final(:, j), b%final(:, j), 'final state', rel=1e-6_dp, &
+                          abs=1e-6_dp)
                if (ieee_is_nan(b%energy_error(j))) then
                   call check_true(error, ieee_is_nan(a%energy_error(j)), 'energy_error NaN')
                   nskip = nskip + 1
