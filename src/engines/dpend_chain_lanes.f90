@@ -22,9 +22,10 @@
 !> step the lanes differ from the registry's rk4 only by rounding: the stages' sin and
 !> cos come from the step start's by the addition formulas (`sincos_near_lanes`, exact
 !> beyond its offset), and the carried sin and cos are set exactly every
-!> `resync_steps` steps (as the two-link kernel). A lane whose state is not finite or
-!> beyond `chain_lane_bound` ends with st_nonfinite, its final state the last one
-!> before (the per-trajectory path's rule, whose bound is 1e30).
+!> `resync_steps` steps (as the two-link kernel). A step whose result is not finite or
+!> not below the integrators' bound (Σ |y_i| < 1e30, `state_ok`) is not taken: the
+!> lane ends with st_nonfinite, its final state the last one before (the
+!> per-trajectory path's rule).
 !>
 !> Served: flip maps over initial values (indicator flip, no Lyapunov exponent) of the
 !> undamped, undriven chain (the sweep refuses the others). Parameter maps and the
@@ -37,6 +38,7 @@
 module dpend_chain_lanes
    use dpend_kinds, only: dp, i8, pi, half_pi
    use dpend_error, only: error_t, fatal_error
+   use dpend_limits, only: diverged_bound
    use dpend_strings, only: printable
    use dpend_model, only: model_t
    use dpend_chain, only: chain_t
@@ -55,9 +57,11 @@ module dpend_chain_lanes
    integer, parameter :: w = lane_width
    integer, parameter :: nm = max_lane_links
    real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
-   !> A lane whose Σ |q_i| + |q̇_i| exceeds this has run away (st_nonfinite); the forces
-   !> take the velocities' squares clamped to its square, so that no stage overflows
-   real(dp), parameter :: chain_lane_bound = 1.0e15_dp
+   !> A lane whose Σ |q_i| + |q̇_i| is not below this has run away (st_nonfinite): the
+   !> integrators' bound (`state_ok`), so that the lanes end a trajectory where the
+   !> per-trajectory path does. The forces take the velocities' squares clamped to its
+   !> square (1e60), so that no stage of a step that starts below it overflows
+   real(dp), parameter :: chain_lane_bound = diverged_bound
    !> Margin of the angle windows [rad] (as the two-link kernel's)
    real(dp), parameter :: window_margin = 1.0e-6_dp
 
@@ -315,10 +319,10 @@ contains
       type(chain_coef_t) :: cf
       real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
       logical :: can(nm, size(y0, 2)), lane_can(w, nm), todo(size(y0, 2)), ended(w)
-      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync
+      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync, tot
       integer(i8) :: ks(w)
       integer :: lane_ic(w)
-      real(dp) :: bounds(model%n), escale, margin, nan, mk, qc, sm, n_events
+      real(dp) :: bounds(model%n), escale, margin, nan, mk, qc, n_events
       integer :: n, nl, i, j, l, next, n_active
       logical :: any_ended
 
@@ -377,14 +381,19 @@ contains
             n_events = n_events + active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, left(l) - 0.5_dp)) &
                                              + max(0.0_dp, 0.5_dp - sync(l)) + fresh(l))
          end do
+         do l = 1, w
+            tot(l) = 0.0_dp
+         end do
          do i = 1, nl
             do l = 1, w
-               sm = abs(q(l, i)) + abs(qd(l, i))
+               tot(l) = tot(l) + (abs(q(l, i)) + abs(qd(l, i)))
                n_events = n_events + active(l)*(max(0.0_dp, lo(l, i) - q(l, i)) &
-                                                + max(0.0_dp, q(l, i) - hi(l, i)) &
-                                                + abs(sm - sm) &
-                                                + max(0.0_dp, sm - chain_lane_bound))
+                                                + max(0.0_dp, q(l, i) - hi(l, i)))
             end do
+         end do
+         do l = 1, w   ! (half the bound: the rare path decides exactly)
+            n_events = n_events + active(l)*(abs(tot(l) - tot(l)) &
+                                             + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
          end do
          if (n_events == 0.0_dp) cycle   ! false for NaN
          do l = 1, w   ! rare: flips, resync, stop rules, lane by lane
@@ -486,14 +495,14 @@ contains
          hi(ll, ii) = half_pi + two_pi*(nk(ll, ii) + 1.0_dp) - window_margin
       end subroutine set_window
 
-      !> Lane ll's state is not finite or beyond `chain_lane_bound` (no ordered
-      !> comparison on NaN).
+      !> Lane ll's state is not finite or not below `chain_lane_bound` (the
+      !> integrators' `state_ok`; no ordered comparison on NaN).
       logical function runaway(ll)
          integer, intent(in) :: ll
          real(dp) :: ss
          ss = sum(abs(q(ll, 1:nl))) + sum(abs(qd(ll, 1:nl)))
          runaway = .true.
-         if (ss - ss == 0.0_dp) runaway = ss > chain_lane_bound
+         if (ss - ss == 0.0_dp) runaway = .not. (ss < chain_lane_bound)
       end function runaway
 
       !> Store the results of the trajectory in lane ll.
