@@ -405,7 +405,7 @@ contains
             end if
             if (sync(l) < 0.5_dp) call resync(l)
             do i = 1, nl
-               mk = real(floor((q(l, i) - half_pi)*inv_two_pi, i8), dp)
+               mk = turn(q(l, i))
                if (mk /= nk(l, i)) then
                   if (tf(l, i) < 0.0_dp) then
                      qc = half_pi + two_pi*max(mk, nk(l, i))
@@ -471,7 +471,7 @@ contains
             fresh(ll) = 0.0_dp
          end if
          do ii = 1, nl
-            nk(ll, ii) = real(floor((q(ll, ii) - half_pi)*inv_two_pi, i8), dp)
+            nk(ll, ii) = turn(q(ll, ii))
             call set_window(ll, ii)
          end do
          call resync(ll)
@@ -494,6 +494,15 @@ contains
          lo(ll, ii) = half_pi + two_pi*nk(ll, ii) + window_margin
          hi(ll, ii) = half_pi + two_pi*(nk(ll, ii) + 1.0_dp) - window_margin
       end subroutine set_window
+
+      !> The index k of the last upward vertical π/2 + 2π k at or below the angle x
+      !> [rad], as a real (the per-trajectory path's floor, clamped to ±2^52 so that no
+      !> conversion to integer overflows for a state near the runaway bound).
+      real(dp) function turn(x)
+         real(dp), intent(in) :: x
+         real(dp), parameter :: big = 4503599627370496.0_dp   ! 2^52
+         turn = real(floor(min(max((x - half_pi)*inv_two_pi, -big), big), i8), dp)
+      end function turn
 
       !> Lane ll's state is not finite or not below `chain_lane_bound` (the
       !> integrators' `state_ok`; no ordered comparison on NaN).
