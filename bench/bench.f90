@@ -13,7 +13,8 @@
 !> growth with N shows.
 !> `dpend-bench --chain-energy` prints instead only the energy figures of gauss6 over
 !> 10⁶ steps of the chains of 3 and 5 links (some seconds each, release);
-!> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`);
+!> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`) and of
+!> the chain lanes of N = 3, 5, 8 links (`bench_chain`);
 !> `dpend-bench --indicators` only the cost of the sweep's per-pixel indicators and
 !> parameter axes (`bench_indicators`).
 program bench
@@ -21,6 +22,7 @@ program bench
                                             output_unit, error_unit
    use bench_batch, only: run_batch_benchmarks
    use bench_indicators, only: run_indicator_benchmarks
+   use bench_chain, only: run_chain_lane_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
    use dpend_model, only: model_t
@@ -62,6 +64,7 @@ program bench
          write (*, '(a)') 'compiler: '//compiler_version()
          write (*, '(a)') 'flags: '//compiler_options()
          call run_batch_benchmarks(output_unit)
+         call run_chain_lane_benchmarks(output_unit)   ! issue 27: the chain lanes
          stop
       end if
       call chain_energy(3)

@@ -13,8 +13,9 @@
 !> neighbouring runs, the parameter datasets from the parameter axis.
 !>
 !> Two links: the sweep's vectorized kernel (Lagrange's form in lanes) against the
-!> model's own field (they differ by rounding); three links and the elastic pendulum:
-!> the sweep's per-trajectory path against the same model and method stepped here.
+!> model's own field (they differ by rounding); three links: the chain lanes (issue 27,
+!> the mass-matrix system solved in lanes; they differ by rounding); the elastic
+!> pendulum: the sweep's per-trajectory path against the same model and method.
 module test_values_sweep2
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -196,8 +197,9 @@ contains
          end do
       end do
       en%m = [1.0_dp, 0.8_dp, 1.2_dp]; en%l = [1.0_dp, 0.7_dp, 0.9_dp]; en%g = 9.81_dp
+      ! (the chain lanes, issue 27: rounding only, measured 4.5e-12 after 200 steps)
       call compare_map(error, 'flip_map_three_links', map, en, y0, 0.01_dp, 200_i8, &
-                       rule_both, tol=1e-12_dp, kinds=[1, 2, 3])
+                       rule_both, tol=1e-10_dp, kinds=[1, 2, 3])
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_flip_three
 

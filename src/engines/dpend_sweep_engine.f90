@@ -14,6 +14,7 @@ module dpend_sweep_engine
    use dpend_pendulum, only: pendulum_t
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories
+   use dpend_chain_lanes, only: integrate_chain_lanes
    use dpend_integrator, only: integrator_t
    use dpend_hdf5, only: h5file_t
    use dpend_progress, only: progress_t, wall_seconds
@@ -61,8 +62,9 @@ contains
                       'use fewer points or another --output directory', error)
    end subroutine check_sweep_resources
 
-   !> Integrate block b: the batch kernel for two links, else one trajectory at a
-   !> time with this block's own copy of the method.
+   !> Integrate block b: the batch kernel for two links, the chain lanes for flip maps
+   !> of 3 to 8 links (dpend_chain_lanes), else one trajectory at a time with this
+   !> block's own copy of the method.
    subroutine compute_block(setup, b, res)
       type(sweep_setup_t), intent(in) :: setup    !! setup
       integer, intent(in) :: b                    !! block, 1-based
@@ -75,6 +77,8 @@ contains
                                   int(setup%cfg%gpu_repack, i8), y0, res)
       else if (parameter_axes(setup)) then
          call compute_parameter_block(setup, b, y0, res)
+      else if (setup%chain_lanes) then   ! issue 27: chains of 3 to 8 links
+         call integrate_chain_lanes(setup%cfg%run%model, setup%opt, y0, res)
       else if (setup%per_trajectory) then
          allocate (integ, source=setup%integ)
          call integrate_trajectories(setup%cfg%run%model, integ, setup%gl, setup%opt, y0, res)

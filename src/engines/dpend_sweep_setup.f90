@@ -14,6 +14,7 @@ module dpend_sweep_setup
       natural_time
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
+   use dpend_chain_lanes, only: chain_kernel_choice
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_version, only: version
    use dpend_cli, only: to_str, real_str, seconds_str, printable
@@ -55,6 +56,8 @@ module dpend_sweep_setup
       !> has them). The MPI sweep turns them off: parallel HDF5 writes filtered
       !> datasets only collectively, and its blocks arrive in any order.
       logical :: checksum = .true.
+      ! issue 27 (chain lanes): flip maps of 3 to 8 links through dpend_chain_lanes
+      logical :: chain_lanes = .false.  !! the blocks go through the chain lanes
    end type sweep_setup_t
 
    !> What a run did, for the closing line.
@@ -131,6 +134,10 @@ contains
          setup%block = min(cfg%block, setup%n)
          setup%nblocks = (setup%n + setup%block - 1)/setup%block
       end if
+      ! issue 27: the chain lanes (not for parameter maps; DPEND_SWEEP_KERNEL checked)
+      call chain_kernel_choice(cfg%run%model, setup%opt, setup%chain_lanes, error)
+      if (allocated(error)) return
+      setup%chain_lanes = setup%chain_lanes .and. .not. parameter_axes(setup)
       setup%config = canonical_config(setup)
    end subroutine build_setup
 
@@ -409,7 +416,8 @@ contains
                 'w1 = '//r(c%run%w(1))//nl//'w2 = '//r(c%run%w(2))//nl
          else
             s = 'program = dpend '//version//nl//'command = sweep'//nl// &
-                'method = '//c%run%method//nl//'kernel = per trajectory'//nl// &
+                'method = '//c%run%method//nl//'kernel = '// &
+                trim(merge('chain lanes   ', 'per trajectory', setup%chain_lanes))//nl// &
                 'links = '//to_str(setup%links)//nl// &
                 'm = '//rl(c%run%m(:setup%links))//nl//'l = '//rl(c%run%l(:setup%links))// &
                 nl//'g = '//r(c%run%g)//nl//'q = '//rl(c%run%q0())//nl// &

@@ -38,6 +38,8 @@ module dpend_trajectory_batch
    implicit none
    private
    public :: integrate_trajectories, link_flip_bounds
+   ! issue 27: shared with the chain lanes (dpend_chain_lanes)
+   public :: bound_margin, first_flips
 
    real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
 

@@ -1,0 +1,546 @@
+!> The chain lanes (issue 27): the sweep's flip maps of the conservative chain of
+!> N = 3 … `max_lane_links` links (`dpend_chain`: uniform rods or general bodies),
+!> `lane_width` trajectories at a time in structure-of-arrays form, every loop over the
+!> lanes innermost so that gfortran vectorizes it. Each lane assembles and solves its
+!> own N × N mass-matrix system at every RK4 stage.
+!>
+!> Physics: the chain model's own constants K_ij and G_i (`chain_t`'s k and gl, built
+!> once by `chain_model`: one source for the mass distribution), with the written-out
+!> form of its equations of motion (dpend_chain's module notes)
+!>   M_ij = K_ij cos(q_i − q_j),  f_i = −Σ_j K_ij sin(q_i − q_j) q̇_j² − G_i cos q_i,
+!>   M q̈ = f,  E = ½ q̇ᵀ M q̇ + Σ G_i sin q_i.
+!> The model evaluates f by its Newton–Euler recursion and solves by Cholesky; this is a
+!> copy for speed (LDLᵀ without square roots, cos and sin of q_i − q_j by the
+!> subtraction formulas), which test chain_lanes/accelerations_match_model compares with
+!> `chain_t%accelerations` and `chain_t%energy`.
+!>
+!> The results are those of the per-trajectory path (`dpend_trajectory_batch`): the
+!> first flip of every link (crossing of q_i = π/2 + 2π k, interpolated linearly in q_i
+!> within the step), the same flip energy bounds (`link_flip_bounds`, `bound_margin`),
+!> stop rules, energy error (max |E(t_k) − E(0)| / 2 Σ G_i), final state, steps and
+!> statuses; E(0) and the final state's energy come from the model itself. Within a
+!> step the lanes differ from the registry's rk4 only by rounding: the stages' sin and
+!> cos come from the step start's by the addition formulas (`sincos_near_lanes`, exact
+!> beyond its offset), and the carried sin and cos are set exactly every
+!> `resync_steps` steps (as the two-link kernel). A step whose result is not finite or
+!> not below the integrators' bound (Σ |y_i| < 1e30, `state_ok`) is not taken: the
+!> lane ends with st_nonfinite, its final state the last one before (the
+!> per-trajectory path's rule).
+!>
+!> Served: flip maps over initial values (indicator flip, no Lyapunov exponent) of the
+!> undamped, undriven chain (the sweep refuses the others). Parameter maps and the
+!> indicators MEGNO, FLI, SALI and GALI_2 of chains stay on the per-trajectory path.
+!> DPEND_SWEEP_KERNEL=trajectory in the environment sends every chain to the
+!> per-trajectory path (`chain_kernel_choice`); two links are not affected.
+!>
+!> Reproducibility: lanes never mix and every loop runs the full width (idle lanes
+!> hang at rest), so results are bitwise independent of threads and blocks.
+module dpend_chain_lanes
+   use dpend_kinds, only: dp, i8, pi, half_pi
+   use dpend_error, only: error_t, fatal_error
+   use dpend_limits, only: diverged_bound
+   use dpend_strings, only: printable
+   use dpend_model, only: model_t
+   use dpend_chain, only: chain_t
+   use dpend_pendulum_lanes, only: lane_width, batch_options_t, batch_result_t, &
+      sincos_near_lanes, sincos_exact, resync_steps, stop_both, stop_either, st_end, &
+      st_flipped, st_cannot_flip, st_nonfinite
+   use dpend_trajectory_batch, only: link_flip_bounds, first_flips, bound_margin
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   implicit none
+   private
+   public :: max_lane_links, chain_coef_t, chain_coef, chain_lanes_serve, chain_kernel_choice
+   public :: chain_accel_lanes, chain_rk4_lanes, integrate_chain_lanes
+
+   integer, parameter :: min_lane_links = 3  !! fewest links of the chain lanes
+   integer, parameter :: max_lane_links = 8  !! most links of the chain lanes
+   integer, parameter :: w = lane_width
+   integer, parameter :: nm = max_lane_links
+   real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
+   !> A lane whose Σ |q_i| + |q̇_i| is not below this has run away (st_nonfinite): the
+   !> integrators' bound (`state_ok`), so that the lanes end a trajectory where the
+   !> per-trajectory path does. The forces take the velocities' squares clamped to its
+   !> square (1e60), so that no stage of a step that starts below it overflows
+   real(dp), parameter :: chain_lane_bound = diverged_bound
+   !> Margin of the angle windows [rad] (as the two-link kernel's)
+   real(dp), parameter :: window_margin = 1.0e-6_dp
+
+   !> The chain's constants for the lanes [SI].
+   type :: chain_coef_t
+      integer :: n = 0                     !! links N
+      real(dp) :: k(nm, nm) = 0.0_dp       !! K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²]
+      real(dp) :: gl(nm) = 0.0_dp          !! G_i of V = Σ G_i sin q_i [J]
+   end type chain_coef_t
+
+contains
+
+   !> The lanes' constants of a chain of at most `max_lane_links` links.
+   pure function chain_coef(model) result(cf)
+      type(chain_t), intent(in) :: model  !! the chain
+      type(chain_coef_t) :: cf
+      cf%n = model%n
+      cf%k(1:model%n, 1:model%n) = model%k
+      cf%gl(1:model%n) = model%gl
+   end function chain_coef
+
+   !> Whether the chain lanes can serve a sweep of `model` with options `opt`: a
+   !> conservative chain of 3 to `max_lane_links` links, a flip map (no indicator
+   !> vectors, no Lyapunov exponent).
+   pure logical function chain_lanes_serve(model, opt) result(ok)
+      class(model_t), intent(in) :: model         !! the run's model
+      type(batch_options_t), intent(in) :: opt    !! the sweep's kernel options
+      ok = .false.
+      select type (model)
+      type is (chain_t)
+         ok = model%n >= min_lane_links .and. model%n <= max_lane_links .and. &
+              model%hamiltonian() .and. opt%vectors == 0 .and. .not. opt%lyapunov
+      end select
+   end function chain_lanes_serve
+
+   !> The chain lanes serve the sweep (`chain_lanes_serve`) unless the environment
+   !> variable DPEND_SWEEP_KERNEL is 'trajectory' (unset, empty or 'lanes': the lanes).
+   !> Any other value is refused, naming the variable, its value and the accepted ones.
+   subroutine chain_kernel_choice(model, opt, lanes, error)
+      class(model_t), intent(in) :: model               !! the run's model
+      type(batch_options_t), intent(in) :: opt          !! the sweep's kernel options
+      logical, intent(out) :: lanes                     !! integrate with the chain lanes
+      type(error_t), allocatable, intent(out) :: error  !! refused value
+      character(len=32) :: value
+      integer :: length, stat
+      lanes = chain_lanes_serve(model, opt)
+      call get_environment_variable('DPEND_SWEEP_KERNEL', value, length, stat)
+      if (stat == 1 .or. length == 0) return   ! unset or empty
+      if (stat /= 0 .or. length > len(value)) then
+         call fatal_error(error, 'invalid DPEND_SWEEP_KERNEL: a value of '// &
+                          'more than 32 characters (accepted: lanes, trajectory)')
+         return
+      end if
+      ! the whole value, no blanks around it
+      if (length == len('trajectory') .and. value(1:length) == 'trajectory') then
+         lanes = .false.
+      else if (.not. (length == len('lanes') .and. value(1:length) == 'lanes')) then
+         call fatal_error(error, "invalid DPEND_SWEEP_KERNEL: '"//printable(value(1:length)) &
+                          //"' (accepted: lanes, trajectory)")
+      end if
+   end subroutine chain_kernel_choice
+
+   !> q̈ [rad/s²] of every lane at (q, q̇) from s = sin q, c = cos q; with `e`, also the
+   !> energy E = ½ q̇ᵀ M q̇ + Σ G_i sin q_i [J]. The velocities' squares are clamped to
+   !> `chain_lane_bound`² (a lane beyond has run away; its values stay finite).
+   pure subroutine chain_accel_lanes(cf, s, c, qd, a, e)
+      type(chain_coef_t), intent(in) :: cf          !! constants
+      real(dp), intent(in) :: s(w, nm), c(w, nm)    !! sin q_i, cos q_i
+      real(dp), intent(in) :: qd(w, nm)             !! q̇ [rad/s]
+      real(dp), intent(out) :: a(w, nm)             !! q̈ [rad/s²]
+      real(dp), intent(out), optional :: e(w)       !! energy [J]
+      real(dp) :: mm(w, nm, nm), u(w, nm, nm), wq(w, nm), dinv(w, nm), t(w)
+      real(dp) :: kij, sij
+      integer :: n, i, j, k, l
+      n = cf%n
+      do i = 1, n
+         do l = 1, w
+            wq(l, i) = min(qd(l, i)*qd(l, i), chain_lane_bound*chain_lane_bound)
+            a(l, i) = -cf%gl(i)*c(l, i)
+         end do
+      end do
+      ! M below the diagonal and f: sin(q_i − q_j) enters f_i and f_j with opposite signs
+      do j = 1, n
+         do i = j + 1, n
+            kij = cf%k(i, j)
+            do l = 1, w
+               mm(l, i, j) = kij*(c(l, i)*c(l, j) + s(l, i)*s(l, j))
+               sij = kij*(s(l, i)*c(l, j) - c(l, i)*s(l, j))
+               a(l, i) = a(l, i) - sij*wq(l, j)
+               a(l, j) = a(l, j) + sij*wq(l, i)
+            end do
+         end do
+      end do
+      if (present(e)) then
+         do l = 1, w
+            e(l) = 0.0_dp
+         end do
+         do i = 1, n
+            do l = 1, w
+               t(l) = 0.5_dp*cf%k(i, i)*qd(l, i)
+            end do
+            do j = 1, i - 1
+               do l = 1, w
+                  t(l) = t(l) + mm(l, i, j)*qd(l, j)
+               end do
+            end do
+            do l = 1, w
+               e(l) = e(l) + (t(l)*qd(l, i) + cf%gl(i)*s(l, i))
+            end do
+         end do
+      end if
+      ! M = L D Lᵀ (L unit lower, in mm below the diagonal; u_ik = L_ik D_k): D_j ≥ the
+      ! least eigenvalue of M > 0 (clamped at tiny, as dpend_chain's cholesky)
+      do j = 1, n
+         do l = 1, w
+            t(l) = cf%k(j, j)
+         end do
+         do k = 1, j - 1
+            do l = 1, w
+               t(l) = t(l) - mm(l, j, k)*u(l, j, k)
+            end do
+         end do
+         do l = 1, w
+            dinv(l, j) = 1.0_dp/max(t(l), tiny(1.0_dp))
+         end do
+         do i = j + 1, n
+            do k = 1, j - 1
+               do l = 1, w
+                  mm(l, i, j) = mm(l, i, j) - mm(l, i, k)*u(l, j, k)
+               end do
+            end do
+            do l = 1, w
+               u(l, i, j) = mm(l, i, j)
+               mm(l, i, j) = mm(l, i, j)*dinv(l, j)
+            end do
+         end do
+      end do
+      ! L z = f, then Lᵀ q̈ = D⁻¹ z
+      do i = 2, n
+         do k = 1, i - 1
+            do l = 1, w
+               a(l, i) = a(l, i) - mm(l, i, k)*a(l, k)
+            end do
+         end do
+      end do
+      do i = n, 1, -1
+         do l = 1, w
+            a(l, i) = a(l, i)*dinv(l, i)
+         end do
+         do k = i + 1, n
+            do l = 1, w
+               a(l, i) = a(l, i) - mm(l, k, i)*a(l, k)
+            end do
+         end do
+      end do
+   end subroutine chain_accel_lanes
+
+   !> One classical RK4 step of size h on every lane; `e` is the energy of the state
+   !> before the step [J]. `ts`, `tc` hold sin and cos of the angles on entry and of
+   !> the new angles on return (the stages' and the new state's from the step start's
+   !> by `sincos_near_lanes`, exact for a lane whose offset exceeds its range).
+   pure subroutine chain_rk4_lanes(cf, h, q, qd, e, ts, tc)
+      type(chain_coef_t), intent(in) :: cf           !! constants
+      real(dp), intent(in) :: h                      !! step [s]
+      real(dp), intent(inout) :: q(w, nm)            !! angles [rad]
+      real(dp), intent(inout) :: qd(w, nm)           !! rates [rad/s]
+      real(dp), intent(out) :: e(w)                  !! energy before the step [J]
+      real(dp), intent(inout) :: ts(w, nm), tc(w, nm)  !! sin q, cos q
+      real(dp), dimension(w, nm) :: ka, kb, kc, kd, vb, vc, vd, x, d, s, c
+      real(dp) :: hh, h6
+      integer :: n, i, l
+      n = cf%n
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      call chain_accel_lanes(cf, ts, tc, qd, ka, e)
+      do i = 1, n
+         do l = 1, w
+            x(l, i) = q(l, i) + hh*qd(l, i)
+            d(l, i) = x(l, i) - q(l, i)
+            vb(l, i) = qd(l, i) + hh*ka(l, i)
+         end do
+      end do
+      call stage_trig(n, ts, tc, x, d, s, c)
+      call chain_accel_lanes(cf, s, c, vb, kb)
+      do i = 1, n
+         do l = 1, w
+            x(l, i) = q(l, i) + hh*vb(l, i)
+            d(l, i) = x(l, i) - q(l, i)
+            vc(l, i) = qd(l, i) + hh*kb(l, i)
+         end do
+      end do
+      call stage_trig(n, ts, tc, x, d, s, c)
+      call chain_accel_lanes(cf, s, c, vc, kc)
+      do i = 1, n
+         do l = 1, w
+            x(l, i) = q(l, i) + h*vc(l, i)
+            d(l, i) = x(l, i) - q(l, i)
+            vd(l, i) = qd(l, i) + h*kc(l, i)
+         end do
+      end do
+      call stage_trig(n, ts, tc, x, d, s, c)
+      call chain_accel_lanes(cf, s, c, vd, kd)
+      do i = 1, n
+         do l = 1, w
+            x(l, i) = q(l, i) + h6*((qd(l, i) + 2.0_dp*(vb(l, i) + vc(l, i))) + vd(l, i))
+            d(l, i) = x(l, i) - q(l, i)
+            qd(l, i) = qd(l, i) + h6*((ka(l, i) + 2.0_dp*(kb(l, i) + kc(l, i))) + kd(l, i))
+         end do
+      end do
+      call stage_trig(n, ts, tc, x, d, s, c)
+      do i = 1, n
+         do l = 1, w
+            q(l, i) = x(l, i)
+            ts(l, i) = s(l, i)
+            tc(l, i) = c(l, i)
+         end do
+      end do
+   end subroutine chain_rk4_lanes
+
+   !> s, c of the angles x = q + d of links 1 … n from the step start's (ts, tc).
+   pure subroutine stage_trig(n, ts, tc, x, d, s, c)
+      integer, intent(in) :: n                        !! links
+      real(dp), intent(in) :: ts(w, nm), tc(w, nm)    !! sin q, cos q
+      real(dp), intent(in) :: x(w, nm), d(w, nm)      !! angles, offsets [rad]
+      real(dp), intent(inout) :: s(w, nm), c(w, nm)   !! sin x, cos x
+      integer :: j
+      do j = 1, n
+         call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), d(:, j), s(:, j), c(:, j))
+      end do
+   end subroutine stage_trig
+
+   !> Integrate the initial conditions y0(:, j) = (q, q̇) of the chain `model` (served:
+   !> `chain_lanes_serve`) with RK4 of step opt%h for at most opt%n_steps steps each,
+   !> with the stop rule opt%stop_rule, `lane_width` at a time, a lane refilled as soon as
+   !> its trajectory ends. Results as `integrate_trajectories` (dpend_trajectory_batch).
+   subroutine integrate_chain_lanes(model, opt, y0, res)
+      class(model_t), intent(in) :: model            !! the chain
+      type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
+      real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
+      type(batch_result_t), intent(out) :: res       !! results
+      select type (model)
+      type is (chain_t)
+         call integrate_chain(model, opt, y0, res)
+      class default
+         error stop 'internal error: integrate_chain_lanes needs a chain'
+      end select
+   end subroutine integrate_chain_lanes
+
+   !> `integrate_chain_lanes` for the chain itself.
+   subroutine integrate_chain(model, opt, y0, res)
+      type(chain_t), intent(in) :: model             !! the chain
+      type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
+      real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
+      type(batch_result_t), intent(out) :: res       !! results
+      type(chain_coef_t) :: cf
+      real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
+      logical :: can(nm, size(y0, 2)), lane_can(w, nm), todo(size(y0, 2)), ended(w)
+      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync, tot
+      integer(i8) :: ks(w)
+      integer :: lane_ic(w)
+      real(dp) :: bounds(model%n), escale, margin, nan, mk, qc, n_events
+      integer :: n, nl, i, j, l, next, n_active
+      logical :: any_ended
+
+      nl = model%n
+      n = size(y0, 2)
+      cf = chain_coef(model)
+      nan = ieee_value(nan, ieee_quiet_nan)
+      bounds = link_flip_bounds(model%gl)
+      margin = bound_margin*sum(model%gl)
+      escale = 2.0_dp*sum(model%gl)
+      res%n = n
+      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
+                res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
+                res%lyapunov(n), res%status(n), res%steps(n))
+      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
+      res%lyapunov = nan
+      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
+      do j = 1, n   ! as integrate_trajectories
+         res%energy0(j) = model%energy(0.0_dp, y0(:, j))
+         do i = 1, nl
+            can(i, j) = .not. (res%energy0(j) < bounds(i) - margin)
+         end do
+         res%final(:, j) = y0(:, j)
+         res%t_stop(j) = 0.0_dp
+         res%steps(j) = 0
+         res%energy_error(j) = 0.0_dp
+         res%t_flip_link(:, j) = -1.0_dp
+         res%status(j) = merge(st_end, st_cannot_flip, any(can(1:nl, j)))
+         todo(j) = opt%n_steps >= 1
+         if (opt%n_steps < 1) then
+            res%status(j) = st_end
+         else if (.not. (any(can(1:nl, j)) .or. .not. opt%skip_cannot_flip)) then
+            res%energy_error(j) = nan
+            todo(j) = .false.
+         end if
+      end do
+
+      next = 1
+      n_active = 0
+      do l = 1, w
+         call load(l)
+      end do
+      do while (n_active > 0)
+         p = q
+         pd = qd
+         call chain_rk4_lanes(cf, opt%h, q, qd, e, ts, tc)
+         ! vectorized: the error, the step count and a count of the lanes with a
+         ! possible event (an angle out of its window, the last step, a state not
+         ! finite or beyond the bound, carried sin and cos due, a fresh lane)
+         n_events = 0.0_dp
+         do l = 1, w
+            err(l) = max(err(l), abs(e(l) - e0(l)))
+            ks(l) = ks(l) + 1
+            left(l) = left(l) - 1.0_dp
+            sync(l) = sync(l) - 1.0_dp
+            n_events = n_events + active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, left(l) - 0.5_dp)) &
+                                             + max(0.0_dp, 0.5_dp - sync(l)) + fresh(l))
+         end do
+         do l = 1, w
+            tot(l) = 0.0_dp
+         end do
+         do i = 1, nl
+            do l = 1, w
+               tot(l) = tot(l) + (abs(q(l, i)) + abs(qd(l, i)))
+               n_events = n_events + active(l)*(max(0.0_dp, lo(l, i) - q(l, i)) &
+                                                + max(0.0_dp, q(l, i) - hi(l, i)))
+            end do
+         end do
+         do l = 1, w   ! (half the bound: the rare path decides exactly)
+            n_events = n_events + active(l)*(abs(tot(l) - tot(l)) &
+                                             + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
+         end do
+         if (n_events == 0.0_dp) cycle   ! false for NaN
+         do l = 1, w   ! rare: flips, resync, stop rules, lane by lane
+            if (lane_ic(l) == 0) cycle
+            fresh(l) = 0.0_dp
+            if (runaway(l)) then
+               ended(l) = .true.
+               cycle
+            end if
+            if (sync(l) < 0.5_dp) call resync(l)
+            do i = 1, nl
+               mk = turn(q(l, i))
+               if (mk /= nk(l, i)) then
+                  if (tf(l, i) < 0.0_dp) then
+                     qc = half_pi + two_pi*max(mk, nk(l, i))
+                     tf(l, i) = (real(ks(l) - 1, dp) + (qc - p(l, i))/(q(l, i) - p(l, i)))*opt%h
+                  end if
+                  nk(l, i) = mk
+                  call set_window(l, i)
+               end if
+            end do
+            ended(l) = ks(l) >= opt%n_steps
+            select case (opt%stop_rule)
+            case (stop_both)
+               ended(l) = ended(l) .or. all(tf(l, 1:nl) >= 0.0_dp .or. .not. lane_can(l, 1:nl))
+            case (stop_either)
+               ended(l) = ended(l) .or. any(tf(l, 1:nl) >= 0.0_dp)
+            end select
+         end do
+         any_ended = .false.
+         do l = 1, w
+            any_ended = any_ended .or. (ended(l) .and. lane_ic(l) > 0)
+         end do
+         if (.not. any_ended) cycle
+         do l = 1, w
+            if (.not. (ended(l) .and. lane_ic(l) > 0)) cycle
+            call finish(l)
+            call load(l)
+         end do
+      end do
+      call first_flips(res, nl)
+
+   contains
+
+      !> Put the next initial condition to integrate into lane ll, or the idle state.
+      subroutine load(ll)
+         integer, intent(in) :: ll
+         integer :: ii
+         do while (next <= n)
+            if (todo(next)) exit
+            next = next + 1
+         end do
+         ks(ll) = 0
+         left(ll) = real(opt%n_steps, dp)
+         err(ll) = 0.0_dp
+         ended(ll) = .false.
+         tf(ll, :) = -1.0_dp
+         if (next <= n) then
+            lane_ic(ll) = next
+            q(ll, 1:nl) = y0(1:nl, next)
+            qd(ll, 1:nl) = y0(nl + 1:2*nl, next)
+            e0(ll) = res%energy0(next)
+            lane_can(ll, 1:nl) = can(1:nl, next)
+            next = next + 1
+            n_active = n_active + 1
+            active(ll) = 1.0_dp
+            fresh(ll) = 1.0_dp
+         else
+            lane_ic(ll) = 0
+            q(ll, :) = -half_pi
+            qd(ll, :) = 0.0_dp
+            e0(ll) = 0.0_dp
+            lane_can(ll, :) = .false.
+            active(ll) = 0.0_dp
+            fresh(ll) = 0.0_dp
+         end if
+         do ii = 1, nl
+            nk(ll, ii) = turn(q(ll, ii))
+            call set_window(ll, ii)
+         end do
+         call resync(ll)
+      end subroutine load
+
+      !> Set the carried sines and cosines of lane ll exactly.
+      subroutine resync(ll)
+         integer, intent(in) :: ll
+         integer :: ii
+         do ii = 1, nl
+            call sincos_exact(q(ll, ii), ts(ll, ii), tc(ll, ii))
+         end do
+         sync(ll) = real(resync_steps, dp)
+      end subroutine resync
+
+      !> The window of link ii's angle in lane ll: between two upward verticals, shrunk
+      !> by window_margin so that rounding never hides a crossing.
+      subroutine set_window(ll, ii)
+         integer, intent(in) :: ll, ii
+         lo(ll, ii) = half_pi + two_pi*nk(ll, ii) + window_margin
+         hi(ll, ii) = half_pi + two_pi*(nk(ll, ii) + 1.0_dp) - window_margin
+      end subroutine set_window
+
+      !> The index k of the last upward vertical π/2 + 2π k at or below the angle x
+      !> [rad], as a real (the per-trajectory path's floor, clamped to ±2^52 so that no
+      !> conversion to integer overflows for a state near the runaway bound).
+      real(dp) function turn(x)
+         real(dp), intent(in) :: x
+         real(dp), parameter :: big = 4503599627370496.0_dp   ! 2^52
+         turn = real(floor(min(max((x - half_pi)*inv_two_pi, -big), big), i8), dp)
+      end function turn
+
+      !> Lane ll's state is not finite or not below `chain_lane_bound` (the
+      !> integrators' `state_ok`; no ordered comparison on NaN).
+      logical function runaway(ll)
+         integer, intent(in) :: ll
+         real(dp) :: ss
+         ss = sum(abs(q(ll, 1:nl))) + sum(abs(qd(ll, 1:nl)))
+         runaway = .true.
+         if (ss - ss == 0.0_dp) runaway = .not. (ss < chain_lane_bound)
+      end function runaway
+
+      !> Store the results of the trajectory in lane ll.
+      subroutine finish(ll)
+         integer, intent(in) :: ll
+         integer :: jj
+         integer(i8) :: kk
+         real(dp) :: y(2*nl)
+         jj = lane_ic(ll)
+         kk = ks(ll)
+         if (runaway(ll)) then   ! the step is not taken: the last state before it
+            kk = kk - 1
+            res%final(1:nl, jj) = p(ll, 1:nl)
+            res%final(nl + 1:2*nl, jj) = pd(ll, 1:nl)
+            res%status(jj) = st_nonfinite
+            res%energy_error(jj) = nan
+         else
+            res%final(1:nl, jj) = q(ll, 1:nl)
+            res%final(nl + 1:2*nl, jj) = qd(ll, 1:nl)
+            y = res%final(:, jj)
+            err(ll) = max(err(ll), abs(model%energy(real(kk, dp)*opt%h, y) - e0(ll)))
+            res%energy_error(jj) = err(ll)/escale
+            if (kk < opt%n_steps) res%status(jj) = st_flipped
+         end if
+         res%t_stop(jj) = real(kk, dp)*opt%h
+         res%steps(jj) = int(kk)
+         res%t_flip_link(:, jj) = tf(ll, 1:nl)
+         n_active = n_active - 1
+      end subroutine finish
+   end subroutine integrate_chain
+
+end module dpend_chain_lanes
