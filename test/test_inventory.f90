@@ -21,13 +21,12 @@ module test_inventory
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t
    use dpend_cli, only: to_str
-   use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
-                                 study_defaults, validate_study_config
+   use dpend_study_config, only: study_config_t, validate_study_config
    use dpend_study, only: study_result_t, run_study
    use dpend_study_command, only: write_study_h5
    use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check_true, error_t, fatal_error, &
-                      skip_test, have_tool
+                      skip_test, have_tool, tiny_study_config
    implicit none
    private
    public :: collect_inventory, check_inventory, variant_t
@@ -164,32 +163,8 @@ contains
       type(study_config_t) :: cfg
       type(study_result_t) :: res
       character(len=:), allocatable :: dir
-      real(dp), parameter :: pi = acos(-1.0_dp)
       if (.not. have_sources()) return
-      cfg = study_defaults()
-      cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
-                                [0.0_dp, 0.0_dp], 300.0_dp), &
-                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 30.0_dp)]
-      cfg%methods = [study_method_t('rk4', 2.0e-3_dp, 5.0e-3_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('dopri5', 3.0e-3_dp, 8.0e-3_dp, 1.0e-10_dp, 1.0e-8_dp), &
-                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('verlet', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp)]
-      cfg%n_h = 3
-      cfg%n_rtol = 2
-      cfg%order_case = 'small'
-      cfg%drift_case = 'small'
-      cfg%decades = 2
-      cfg%wall_min = 0.0_dp
-      cfg%ro_methods = [character(len=16) :: 'gauss4']
-      cfg%ro_dt = [1.0e-2_dp]
-      cfg%ro_steps = 100.0_dp
-      cfg%ro_runs = 2
-      cfg%ro_fit_t_min = 0.1_dp
-      cfg%tao_methods = [character(len=16) :: 'tao2']
-      cfg%n_omega = 2
-      cfg%tao_t_end = 0.2_dp
-      cfg%tao_dt = 1.0e-2_dp
-      cfg%threads = 1
+      cfg = tiny_study_config(300.0_dp, 30.0_dp)
       call validate_study_config(cfg, error)
       if (allocated(error)) return
       call run_study(cfg, res, quiet=.true.)

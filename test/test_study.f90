@@ -15,7 +15,7 @@ module test_study
    use dpend_study_command, only: write_study_h5, study_summary
    use dpend_study_verdicts, only: study_verdicts, verdicts_t
    use test_cli, only: run_command, scratch_dir, read_text
-   use testing, only: unittest_t, new_unittest, check, check_true, error_t
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, tiny_study_config
    use dpend_cli, only: to_str
    use dpend_method_registry, only: method_table, field_method_names, method_index
    use dpend_model, only: model_t
@@ -244,29 +244,13 @@ contains
       real(dp), allocatable :: h(:), ge(:)
       real(dp) :: order
       integer :: s, drift_ok, roundoff_ok
-      cfg = study_defaults()
-      cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
-                                [0.0_dp, 0.0_dp], 3000.0_dp), &
-                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 300.0_dp)]
-      cfg%methods = [study_method_t('rk4', 2.0e-3_dp, 5.0e-3_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('dopri5', 3.0e-3_dp, 8.0e-3_dp, 1.0e-10_dp, 1.0e-8_dp), &
-                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('verlet', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp)]
+      ! the shared tiny study, longer: four steps, three tolerances, 300 roundoff steps,
+      ! Tao's runs over 0.5 s, two threads
+      cfg = tiny_study_config(3000.0_dp, 300.0_dp)
       cfg%n_h = 4
       cfg%n_rtol = 3
-      cfg%order_case = 'small'
-      cfg%drift_case = 'small'
-      cfg%decades = 2
-      cfg%wall_min = 0.0_dp
-      cfg%ro_methods = [character(len=16) :: 'gauss4']
-      cfg%ro_dt = [1.0e-2_dp]
       cfg%ro_steps = 300.0_dp
-      cfg%ro_runs = 2
-      cfg%ro_fit_t_min = 0.1_dp
-      cfg%tao_methods = [character(len=16) :: 'tao2']
-      cfg%n_omega = 2
       cfg%tao_t_end = 0.5_dp
-      cfg%tao_dt = 1.0e-2_dp
       cfg%threads = 2
       call validate_study_config(cfg, error)
       if (allocated(error)) return

@@ -25,11 +25,11 @@ module test_values_study
    use dpend_propagate, only: march_t
    use dpend_hdf5, only: h5file_t
    use dpend_cli, only: to_str
-   use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
-                                 study_defaults, validate_study_config, read_study_config
+   use dpend_study_config, only: study_config_t, study_defaults, validate_study_config, &
+                                 read_study_config
    use dpend_study, only: study_result_t, run_study
    use dpend_study_command, only: write_study_h5
-   use testing, only: unittest_t, new_unittest, check, check_true, error_t
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, tiny_study_config
    use test_cli, only: scratch_dir
    use test_values_chaos, only: energy_cf, momenta_cf, make_model
    implicit none
@@ -141,7 +141,7 @@ contains
       integer(i8) :: c0, c1, rate
       real(dp) :: elapsed, par(5)
       integer :: ic, i
-      cfg = tiny_config()
+      cfg = tiny_study_config(1000.0_dp, 200.0_dp)
       call validate_study_config(cfg, error)
       if (allocated(error)) return
       call system_clock(c0, rate)
@@ -747,34 +747,4 @@ contains
       use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
       x = ieee_value(1.0_dp, ieee_quiet_nan)
    end function ieee_value_nan
-
-   !> The tiny study: two cases, four methods (one adaptive with a tolerance sweep),
-   !> short long runs, two roundoff runs, two values of ω; one thread.
-   function tiny_config() result(cfg)
-      type(study_config_t) :: cfg
-      cfg = study_defaults()
-      cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
-                                [0.0_dp, 0.0_dp], 1000.0_dp), &
-                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], 200.0_dp)]
-      cfg%methods = [study_method_t('rk4', 2.0e-3_dp, 5.0e-3_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('dopri5', 3.0e-3_dp, 8.0e-3_dp, 1.0e-10_dp, 1.0e-8_dp), &
-                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp), &
-                     study_method_t('verlet', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp)]
-      cfg%n_h = 3
-      cfg%n_rtol = 2
-      cfg%order_case = 'small'
-      cfg%drift_case = 'small'
-      cfg%decades = 2
-      cfg%wall_min = 0.0_dp
-      cfg%ro_methods = [character(len=16) :: 'gauss4']
-      cfg%ro_dt = [1.0e-2_dp]
-      cfg%ro_steps = 100.0_dp
-      cfg%ro_runs = 2
-      cfg%ro_fit_t_min = 0.1_dp
-      cfg%tao_methods = [character(len=16) :: 'tao2']
-      cfg%n_omega = 2
-      cfg%tao_t_end = 0.2_dp
-      cfg%tao_dt = 1.0e-2_dp
-      cfg%threads = 1
-   end function tiny_config
 end module test_values_study

@@ -10,6 +10,7 @@ module testing
    private
    public :: unittest_t, test_proc, new_unittest, check, check_true, error_t, fatal_error
    public :: skip_test, take_skip, have_tool
+   public :: tiny_study_config   ! the tiny study of three suites (review follow-up)
 
    abstract interface
       subroutine test_proc(error)
@@ -119,4 +120,43 @@ contains
                                 cmdstat=cmdstat)
       have_tool = cmdstat == 0 .and. stat == 0
    end function have_tool
+
+   !> The tiny study of the study, values_study and inventory suites: two cases (a small
+   !> swing and the horizontal release, lasting t_small and t_horizontal), four methods
+   !> (rk4, dopri5 with a tolerance sweep, gauss4, verlet) of three steps, two decades
+   !> of long runs, two gauss4 roundoff runs of 100 steps, two values of Tao's ω over
+   !> 0.2 s; one thread. A suite sets what it needs differently after the call.
+   function tiny_study_config(t_small, t_horizontal) result(cfg)
+      use dpend_kinds, only: pi
+      use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
+                                    study_defaults
+      real(dp), intent(in) :: t_small       !! duration of the small swing's long runs [s]
+      real(dp), intent(in) :: t_horizontal  !! duration of the horizontal release's [s]
+      type(study_config_t) :: cfg
+      cfg = study_defaults()
+      cfg%cases = [study_case_t('small', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
+                                [0.0_dp, 0.0_dp], t_small), &
+                   study_case_t('horizontal', [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], &
+                                t_horizontal)]
+      cfg%methods = [study_method_t('rk4', 2.0e-3_dp, 5.0e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('dopri5', 3.0e-3_dp, 8.0e-3_dp, 1.0e-10_dp, 1.0e-8_dp), &
+                     study_method_t('gauss4', 1.0e-2_dp, 2.5e-2_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('verlet', 5.0e-3_dp, 1.25e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 3
+      cfg%n_rtol = 2
+      cfg%order_case = 'small'
+      cfg%drift_case = 'small'
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%ro_methods = [character(len=16) :: 'gauss4']
+      cfg%ro_dt = [1.0e-2_dp]
+      cfg%ro_steps = 100.0_dp
+      cfg%ro_runs = 2
+      cfg%ro_fit_t_min = 0.1_dp
+      cfg%tao_methods = [character(len=16) :: 'tao2']
+      cfg%n_omega = 2
+      cfg%tao_t_end = 0.2_dp
+      cfg%tao_dt = 1.0e-2_dp
+      cfg%threads = 1
+   end function tiny_study_config
 end module testing

@@ -41,6 +41,7 @@ module dpend_pendulum
    public :: hamiltonian_qp
    ! links of any mass distribution (issue 26)
    public :: body_rod, body_general, check_bodies, body_constants, body_kind_name
+   public :: rhs_qp_trig_general
 
    !> The body kind of `pendulum_t`: uniform rods (the chapter's; d_i = l_i/2,
    !> I_i = m_i l_i²/12, the fields d1 … i2 unused) or links of any mass distribution
@@ -152,6 +153,10 @@ contains
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: z(4)         !! canonical state
       real(dp) :: f(4)
+      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f = rhs_qp_trig_general(par, sc, z)
+         return
+      end if
       f = rhs_qp_trig_impl(par, sc, z)
    end function rhs_qp_trig
 
@@ -166,7 +171,7 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: z(4)         !! canonical state
       real(dp) :: f(4)
-      f = rhs_qp_impl(par, z)
+      f = rhs_qp_trig(par, sin_cos(z(1:2)), z)
    end function rhs_qp
 
    !> Check that every parameter is finite and within its accepted range
@@ -361,8 +366,9 @@ contains
    end function energy_gradient_general
 
    !> `rhs_qp_trig_impl` for links of any mass distribution (issue 26): the same formula
-   !> with the constants of `body_constants`.
-   pure function rhs_qp_trig_impl_general(par, sc, z) result(f)
+   !> with the constants of `body_constants`. Public, so that gcc (-fPIC) keeps it out of
+   !> line: the canonical field bindings branch to it before the rods' inlined formula.
+   pure function rhs_qp_trig_general(par, sc, z) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
@@ -380,7 +386,7 @@ contains
       t = k*sd*f(1)*f(2)
       f(3) = -body_constant(par, 4)*sc(3) - t
       f(4) = -body_constant(par, 5)*sc(4) + t
-   end function rhs_qp_trig_impl_general
+   end function rhs_qp_trig_general
 
    !> `jacobian_qqdot` for links of any mass distribution (issue 26): the same formula
    !> with the constants of `body_constants`.
@@ -810,28 +816,20 @@ contains
       f(3:4) = qddot(par, y(1:2), y(3:4))
    end function rhs_qqdot_impl
 
-   !> Hamiltonian vector field for z = (q1, q2, p1, p2): (∂H/∂p, -∂H/∂q).
-   pure function rhs_qp_impl(par, z) result(f)
-      type(pendulum_t), intent(in) :: par  !! parameters
-      real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
-      real(dp) :: f(4)
-      f = rhs_qp_trig_impl(par, sin_cos_impl(z(1:2)), z)
-   end function rhs_qp_impl
-
-
    !> `rhs_qp` from sc = (sin q1, sin q2, cos q1, cos q2), for callers that have them
    !> (the implicit stages of the symplectic methods, via `sin_cos_near`):
-   !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas.
+   !> cos(q1 - q2) and sin(q1 - q2) by the subtraction formulas. Uniform rods only: its
+   !> callers (`rhs_qp_trig`, `dp_canonical_field`, `dp_canonical_field_near`) send other
+   !> bodies to `rhs_qp_trig_general` first. Kept to these three call sites and free of
+   !> that branch so that gcc inlines it into the two bindings, the implicit methods' hot
+   !> path (a branch here, issue 26, kept gcc from it: implicit midpoint 519 → 610 ns per
+   !> step; docs/performance.md).
    pure function rhs_qp_trig_impl(par, sc, z) result(f)
-      type(pendulum_t), intent(in) :: par  !! parameters
+      type(pendulum_t), intent(in) :: par  !! parameters (body_rod)
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: z(4)         !! canonical state [rad, rad, kg m²/s, kg m²/s]
       real(dp) :: f(4)
       real(dp) :: k, cd, sd, m11, m12, m22, rdet, t
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
-         f = rhs_qp_trig_impl_general(par, sc, z)
-         return
-      end if
       k = 0.5_dp*par%m2*par%l1*par%l2
       cd = sc(3)*sc(4) + sc(1)*sc(2)
       sd = sc(1)*sc(4) - sc(3)*sc(2)
@@ -1072,7 +1070,11 @@ contains
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, z(*)
       real(dp), intent(out) :: f(*)
-      f(1:4) = rhs_qp_impl(self%par, z(1:4))
+      if (self%par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f(1:4) = rhs_qp_trig_general(self%par, sin_cos(z(1:2)), z(1:4))
+         return
+      end if
+      f(1:4) = rhs_qp_trig_impl(self%par, sin_cos_impl(z(1:2)), z(1:4))
    end subroutine dp_canonical_field
 
    pure subroutine dp_canonical_jacobian(self, t, z, jac)
@@ -1149,6 +1151,11 @@ contains
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, z(*), d(*), cache(*)
       real(dp), intent(out) :: f(*)
+      if (self%par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+         f(1:4) = rhs_qp_trig_general(self%par, sin_cos_near(cache(1:4), z(1:2), d(1:2)), &
+                                      z(1:4))
+         return
+      end if
       f(1:4) = rhs_qp_trig_impl(self%par, sin_cos_near_impl(cache(1:4), z(1:2), d(1:2)), z(1:4))
    end subroutine dp_canonical_field_near
 
