@@ -124,6 +124,9 @@ module dpend_pendulum_lanes
       real(dp) :: detk(lane_width)  !! M11 M22/k² [1]
       real(dp) :: gak(lane_width)   !! A/k [1/s²]
       real(dp) :: gbk(lane_width)   !! B/k [1/s²]
+      !> M11 M22 [kg² m⁴] (a product of its own, as it was when the constants were
+      !> scalars and the product a loop invariant: det M = det - M12² rounds the same)
+      real(dp) :: det(lane_width)
    end type lane_coef_t
 
    !> sin and cos of both angles of every lane, carried by `rk4_lanes` from step to
@@ -263,6 +266,7 @@ contains
       lc%m11(l) = c%m11; lc%m22(l) = c%m22; lc%k(l) = c%k; lc%ga(l) = c%ga; lc%gb(l) = c%gb
       lc%m11k(l) = c%m11k; lc%m22k(l) = c%m22k; lc%detk(l) = c%detk
       lc%gak(l) = c%gak; lc%gbk(l) = c%gbk
+      lc%det(l) = c%m11*c%m22
    end subroutine set_lane_coef
 
    !> `rk4_lanes` with the constants `c` in every lane.
@@ -598,13 +602,24 @@ contains
       real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
       real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
       real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
-      real(dp) :: cd, sd, m12, rdet, wc1, wc2
+      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet, wc1, wc2
       integer :: i
       do i = 1, lane_width
-         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
-                             m12, rdet)
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
-                             u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
+         cd = c1(i)*c2(i) + s1(i)*s2(i)
+         sd = s1(i)*c2(i) - c1(i)*s2(i)
+         ud = u1(i) - u2(i)
+         dcd = -sd*ud
+         dsd = cd*ud
+         wc1 = min(max(w1(i), -lane_bound), lane_bound)   ! as in accel_trig
+         wc2 = min(max(w2(i), -lane_bound), lane_bound)
+         dr1 = c%ga(i)*s1(i)*u1(i) - c%k(i)*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2(i))
+         dr2 = c%gb(i)*s2(i)*u2(i) + c%k(i)*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1(i))
+         m12 = c%k(i)*cd
+         dm12 = c%k(i)*dcd
+         ddet = -2.0_dp*m12*dm12
+         rdet = 1.0_dp/(c%det(i) - m12*m12)
+         b1(i) = (c%m22(i)*dr1 - dm12*(a2(i)*c%m22(i) + a1(i)*m12) - m12*dr2 - a1(i)*ddet)*rdet
+         b2(i) = (c%m11(i)*dr2 - dm12*(a1(i)*c%m11(i) + a2(i)*m12) - m12*dr1 - a2(i)*ddet)*rdet
       end do
    end subroutine tangent_accel_lanes_lc
 
@@ -650,7 +665,7 @@ contains
       wc1 = min(max(w1, -lane_bound), lane_bound)   ! as in accel_trig
       wc2 = min(max(w2, -lane_bound), lane_bound)
       m12 = c%k(l)*cd
-      rdet = 1.0_dp/(c%m11(l)*c%m22(l) - m12*m12)
+      rdet = 1.0_dp/(c%det(l) - m12*m12)
    end subroutine tangent_shared
 
    !> Lane l's derivative (b1, b2) of the accelerations (a1, a2) along (u1, u2, v1,
