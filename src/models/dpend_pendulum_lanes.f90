@@ -1001,7 +1001,7 @@ contains
    !> v1, v2) (SALI, GALI_2; issue 27): the state's stages, sines and cosines once, one
    !> Jacobian per stage for both vectors (`tangent_accel2_lanes`). Every value (state,
    !> each vector, `e`) equals that of `rk4_tangent_lanes` on that vector bit for bit
-   !> (the same operations; test sweep/tangent2_matches_tangent).
+   !> (the same operations; test lanes/tangent2_matches_tangent).
    pure subroutine rk4_tangent2_lanes(c, h, q1, q2, w1, w2, d, e)
       type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
