@@ -602,24 +602,13 @@ contains
       real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
       real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
       real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
-      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet, wc1, wc2
+      real(dp) :: cd, sd, m12, rdet, wc1, wc2
       integer :: i
       do i = 1, lane_width
-         cd = c1(i)*c2(i) + s1(i)*s2(i)
-         sd = s1(i)*c2(i) - c1(i)*s2(i)
-         ud = u1(i) - u2(i)
-         dcd = -sd*ud
-         dsd = cd*ud
-         wc1 = min(max(w1(i), -lane_bound), lane_bound)   ! as in accel_trig
-         wc2 = min(max(w2(i), -lane_bound), lane_bound)
-         dr1 = c%ga(i)*s1(i)*u1(i) - c%k(i)*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2(i))
-         dr2 = c%gb(i)*s2(i)*u2(i) + c%k(i)*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1(i))
-         m12 = c%k(i)*cd
-         dm12 = c%k(i)*dcd
-         ddet = -2.0_dp*m12*dm12
-         rdet = 1.0_dp/(c%det(i) - m12*m12)
-         b1(i) = (c%m22(i)*dr1 - dm12*(a2(i)*c%m22(i) + a1(i)*m12) - m12*dr2 - a1(i)*ddet)*rdet
-         b2(i) = (c%m11(i)*dr2 - dm12*(a1(i)*c%m11(i) + a2(i)*m12) - m12*dr1 - a2(i)*ddet)*rdet
+         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
+                             m12, rdet)
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+                             u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
       end do
    end subroutine tangent_accel_lanes_lc
 
