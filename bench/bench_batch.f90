@@ -18,7 +18,7 @@ module bench_batch
    use dpend_progress, only: wall_seconds
    implicit none
    private
-   public :: run_batch_benchmarks, instruction_set
+   public :: run_batch_benchmarks, instruction_set, load_average
 
 contains
 

@@ -1,7 +1,9 @@
-!> Benchmarks of the sweep's per-pixel indicators (issue 14): the cost per
-!> trajectory-step of the batch kernel with each indicator against the flip time
-!> alone, one thread, and of a sweep over parameters (each pixel its own constants)
-!> against one over initial values. Printed one per line as `key: value unit`.
+!> Benchmarks of the sweep's per-pixel indicators (issue 14, figures of issue 27): the
+!> cost per trajectory-step of the batch kernel with each indicator against the flip
+!> time alone, one thread, and of a sweep over parameters (m2/m1, l2/l1: each pixel
+!> its own constants, `lane_coef_t`) against one over initial values (theta1,
+!> theta2), flip maps on one thread and on all threads, MEGNO maps on one thread.
+!> Printed one per line as `key: value unit`, with the CPU and the load average.
 !> Run in the release profile:
 !>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --indicators
 module bench_indicators
@@ -13,6 +15,7 @@ module bench_indicators
    use dpend_sweep_config, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
    use dpend_progress, only: wall_seconds
+   use bench_batch, only: load_average
    implicit none
    private
    public :: run_indicator_benchmarks
@@ -22,47 +25,68 @@ module bench_indicators
 
 contains
 
-   !> Print the figures to `unit`.
+   !> Print the figures to `unit`: each as wall-clock ns and as process CPU ns (which
+   !> other processes on a shared machine do not inflate), ratios from both.
    subroutine run_indicator_benchmarks(unit)
       integer, intent(in) :: unit  !! where to print
       character(len=8), parameter :: names(6) = [character(len=8) :: 'flip', 'lambda1', &
                                                  'megno', 'fli', 'sali', 'gali2']
-      real(dp) :: base, ns, ns_ic, ns_par
-      integer :: k, nthreads
+      real(dp) :: base(2), ns(2), ic(2), par(2)
+      integer :: k, nthreads, t
+      character(len=:), allocatable :: tag
       nthreads = omp_get_max_threads()
+      write (unit, '(a, a)') 'cpu: ', cpu_model()
+      write (unit, '(a, a)') 'load_average_1min_at_start: ', load_average()
       call omp_set_num_threads(1)
-      base = 0.0_dp
+      base = 1.0_dp
       do k = 1, size(names)
          ns = indicator_ns(trim(names(k)))
          if (k == 1) base = ns
-         write (unit, '(a, f0.2, a)') 'indicator_'//trim(names(k))// &
-            '_ns_per_traj_step_1thread: ', ns, ' ns'
-         if (k > 1) write (unit, '(a, f0.2, a)') 'indicator_'//trim(names(k))// &
-            '_cost_vs_flip: ', ns/base, ' x'
+         call put('indicator_'//trim(names(k)), '_ns_per_traj_step_1thread', ns, ' ns')
+         if (k > 1) call put('indicator_'//trim(names(k)), '_cost_vs_flip', ns/base, ' x')
       end do
-      ! a MEGNO map over initial values against one over (m2/m1, l2/l1): there every
-      ! pixel has its own parameters, a lane set per pixel
-      ns_ic = map_ns('theta1', 'theta2')
-      ns_par = map_ns('m2/m1', 'l2/l1')
-      write (unit, '(a, f0.2, a)') 'megno_map_initial_values_ns_per_traj_step_1thread: ', &
-         ns_ic, ' ns'
-      write (unit, '(a, f0.2, a)') 'megno_map_parameters_ns_per_traj_step_1thread: ', &
-         ns_par, ' ns'
-      write (unit, '(a, f0.2, a)') 'megno_map_parameters_cost_vs_initial_values: ', &
-         ns_par/ns_ic, ' x'
+      ! flip maps (run to t_end) over initial values and over (m2/m1, l2/l1), where
+      ! every pixel has its own parameters: one thread, then all threads
+      do t = 1, 2
+         call omp_set_num_threads(merge(1, nthreads, t == 1))
+         tag = trim(merge('1thread    ', 'all_threads', t == 1))
+         ic = map_ns('theta1', 'theta2', 'flip')
+         par = map_ns('m2/m1', 'l2/l1', 'flip')
+         call put('flip_map_initial_values', '_ns_per_traj_step_'//tag, ic, ' ns')
+         call put('flip_map_parameters', '_ns_per_traj_step_'//tag, par, ' ns')
+         call put('flip_map_parameters', '_cost_vs_initial_values_'//tag, par/ic, ' x')
+      end do
+      write (unit, '(a, i0)') 'threads: ', nthreads
+      call omp_set_num_threads(1)
+      ! the same with MEGNO, one thread
+      ic = map_ns('theta1', 'theta2', 'megno')
+      par = map_ns('m2/m1', 'l2/l1', 'megno')
+      call put('megno_map_initial_values', '_ns_per_traj_step_1thread', ic, ' ns')
+      call put('megno_map_parameters', '_ns_per_traj_step_1thread', par, ' ns')
+      call put('megno_map_parameters', '_cost_vs_initial_values', par/ic, ' x')
       call omp_set_num_threads(nthreads)
+   contains
+      !> Print `key` + `tail` with the wall figure v(1), then `key`_cpu + `tail` with
+      !> the CPU figure v(2).
+      subroutine put(key, tail, v, unit_name)
+         character(len=*), intent(in) :: key, tail, unit_name
+         real(dp), intent(in) :: v(2)
+         write (unit, '(a, f0.2, a)') key//tail//': ', v(1), unit_name
+         write (unit, '(a, f0.2, a)') key//'_cpu'//tail//': ', v(2), unit_name
+      end subroutine put
    end subroutine run_indicator_benchmarks
 
    !> Least ns per trajectory-step of three runs of integrate_batch with the
    !> indicator `name` (256 chaotic trajectories run to the end, step 1e-3 s, the
-   !> steps doubled until a run takes min_seconds).
-   real(dp) function indicator_ns(name) result(ns)
+   !> steps doubled until a run takes min_seconds): (wall clock, process CPU time).
+   function indicator_ns(name) result(ns)
       character(len=*), intent(in) :: name  !! flip, lambda1, megno, fli, sali, gali2
+      real(dp) :: ns(2)
       type(pendulum_t) :: par
       type(batch_options_t) :: opt
       type(batch_result_t) :: res
       integer, parameter :: nb = 256
-      real(dp) :: y0(4, nb), t0, secs, check
+      real(dp) :: y0(4, nb), t0, c0, c1, secs, check
       integer :: j, k
       do j = 1, nb   ! angles well above the flip bound: full-length chaotic runs
          y0(:, j) = [1.0_dp + 1e-3_dp*j, 1.5_dp, 0.0_dp, 0.0_dp]
@@ -77,65 +101,114 @@ contains
       opt%n_steps = 250
       check = 0.0_dp
       do
+         call cpu_time(c0)
          t0 = wall_seconds()
          call integrate_batch(par, opt, y0, res)
          secs = wall_seconds() - t0
+         call cpu_time(c1)
          check = check + sum(res%final(1, :))
          if (secs >= min_seconds) exit
          opt%n_steps = 2*opt%n_steps
       end do
-      ns = secs
+      ns = [secs, c1 - c0]
       do k = 1, 2
+         call cpu_time(c0)
          t0 = wall_seconds()
          call integrate_batch(par, opt, y0, res)
-         ns = min(ns, wall_seconds() - t0)
+         secs = wall_seconds() - t0
+         call cpu_time(c1)
+         ns = min(ns, [secs, c1 - c0])
          check = check + sum(res%final(1, :))
       end do
       ns = ns/(real(nb, dp)*real(opt%n_steps, dp))*1e9_dp
       if (.not. (check > -1e300_dp)) ns = -1.0_dp   ! keep the results alive
    end function indicator_ns
 
-   !> ns per trajectory-step of a 32 x 32 MEGNO map over the axes ax1, ax2 computed
-   !> block by block in memory (runs to t_end; the time doubled until it takes
-   !> min_seconds).
-   real(dp) function map_ns(ax1, ax2) result(ns)
-      character(len=*), intent(in) :: ax1, ax2  !! axes
+   !> ns per trajectory-step of a 32 x 32 map of `indicator` (flip or megno) over the
+   !> axes ax1, ax2 computed in memory, blocks of 64 over the threads (runs to t_end;
+   !> the time doubled until it takes min_seconds; the steps counted are those the
+   !> trajectories took, `res%steps`): least of three runs, (wall clock, process CPU
+   !> time summed over the threads).
+   function map_ns(ax1, ax2, indicator) result(ns)
+      character(len=*), intent(in) :: ax1, ax2   !! axes
+      character(len=*), intent(in) :: indicator  !! flip or megno
+      real(dp) :: ns(2)
       type(sweep_config_t) :: cfg
       type(sweep_setup_t) :: setup
-      type(batch_result_t) :: res
       type(error_t), allocatable :: error
-      real(dp) :: t0, secs
-      integer :: b
+      real(dp) :: t(2)
+      integer(i8) :: steps
+      integer :: k
       cfg = sweep_defaults()
       cfg%n1 = 32; cfg%n2 = 32
       cfg%axis1 = ax1; cfg%axis2 = ax2
+      cfg%stop_at = 'end'
       if (ax1 == 'm2/m1') then
          cfg%min1 = 0.2_dp; cfg%max1 = 4.0_dp; cfg%min2 = 0.2_dp; cfg%max2 = 4.0_dp
          cfg%run%q(1:2) = 0.0_dp
       end if
-      cfg%indicator = 'megno'
+      cfg%indicator = indicator
       cfg%run%dt = 0.01_dp
       cfg%run%t_end = 1.0_dp
-      cfg%block = 256
+      cfg%block = 64
+      ns = -1.0_dp
       call validate_sweep(cfg, error)   ! builds the model (the factory)
-      if (allocated(error)) then
-         ns = -1.0_dp
-         return
-      end if
+      if (allocated(error)) return
       do
          call build_setup(cfg, setup, error)
-         if (allocated(error)) then
-            ns = -1.0_dp
-            return
-         end if
-         t0 = wall_seconds()
-         do b = 1, setup%nblocks
-            call compute_block(setup, b, res)
-         end do
-         secs = wall_seconds() - t0
-         if (secs >= min_seconds) exit
+         if (allocated(error)) return
+         t = timed_map()
+         if (t(1) >= min_seconds) exit
          cfg%run%t_end = 2.0_dp*cfg%run%t_end
       end do
-      ns = secs/(real(setup%n, dp)*real(setup%opt%n_steps, dp))*1e9_dp
+      ns = t
+      do k = 1, 2
+         ns = min(ns, timed_map())
+      end do
+      ns = ns/real(max(steps, 1_i8), dp)*1e9_dp
+   contains
+      !> One run of the map: (wall, CPU) seconds; its steps in `steps`.
+      function timed_map() result(tt)
+         real(dp) :: tt(2), t0, c0, c1
+         integer :: b
+         steps = 0
+         call cpu_time(c0)
+         t0 = wall_seconds()
+         !$omp parallel do schedule(dynamic, 1) reduction(+:steps)
+         do b = 1, setup%nblocks
+            steps = steps + block_steps(b)
+         end do
+         !$omp end parallel do
+         tt(1) = wall_seconds() - t0
+         call cpu_time(c1)
+         tt(2) = c1 - c0
+      end function timed_map
+
+      !> The RK4 steps of block b's trajectories.
+      integer(i8) function block_steps(b)
+         integer, intent(in) :: b
+         type(batch_result_t) :: res
+         call compute_block(setup, b, res)
+         block_steps = sum(int(res%steps, i8))
+      end function block_steps
    end function map_ns
+
+   !> The CPU's model name from /proc/cpuinfo ('?' if unreadable).
+   function cpu_model() result(s)
+      character(len=:), allocatable :: s
+      character(len=256) :: line
+      integer :: u, stat
+      s = '?'
+      open (newunit=u, file='/proc/cpuinfo', status='old', action='read', iostat=stat)
+      if (stat /= 0) return
+      do
+         read (u, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         if (index(line, 'model name') == 1) then
+            s = trim(adjustl(line(index(line, ':') + 1:)))
+            exit
+         end if
+      end do
+      close (u)
+   end function cpu_model
 end module bench_indicators

@@ -87,55 +87,76 @@ contains
       end if
    end subroutine compute_block
 
-   !> Integrate block b of a sweep over parameters: its pixels in groups of equal
-   !> parameters (the pixels of one value of each parameter axis: with one
-   !> parameter axis, a whole row (axis 2) or a column of the block's rows (axis 1)),
-   !> each group by the batch kernel with its own constants (or the per-trajectory
-   !> path with its own model). The lanes never mix, so a pixel's results do not
-   !> depend on its group, block or thread. With both axes parameters every group is
-   !> one pixel and the kernel's other lanes idle.
+   !> Integrate block b of a sweep over parameters. Two links: the whole block by the
+   !> batch kernel, every pixel with its own constants in its lane (issue 27:
+   !> `integrate_batch`'s `pars`), so that the lanes fill whatever the axes. Other
+   !> models: the pixels in groups of equal parameters (`parameter_groups`), each
+   !> group by the per-trajectory path with its own model. The lanes never mix, so a
+   !> pixel's results do not depend on its block or thread, and equal those of a
+   !> direct run with its parameters.
    subroutine compute_parameter_block(setup, b, y0, res)
       type(sweep_setup_t), intent(in) :: setup    !! setup
       integer, intent(in) :: b                    !! block, 1-based
       real(dp), intent(in) :: y0(:, :)            !! (2N, nb) its initial states
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: p(:, :)
-      integer, allocatable :: key(:, :), idx(:)
-      logical, allocatable :: todo(:)
+      integer, allocatable :: idx(:)
+      type(pendulum_t), allocatable :: pars(:)
       type(batch_result_t) :: sub
-      type(pendulum_t) :: par
       class(model_t), allocatable :: model
       class(integrator_t), allocatable :: integ
       type(error_t), allocatable :: err
-      integer :: j, k, nb, j0, jj
+      integer :: j, g, nb, j0
+      integer, allocatable :: group(:)
       call block_parameters(setup, b, p)
       call block_range(setup, b, j0, nb)
-      ! the group of a pixel: its index on each parameter axis (0: not a parameter)
-      allocate (key(2, nb), todo(nb))
+      if (.not. setup%per_trajectory) then
+         ! the lanes' constant records (the kernel's own parameters, not models)
+         allocate (pars(nb))
+         do j = 1, nb
+            pars(j) = setup%cfg%run%pendulum()
+            pars(j)%m1 = p(1, j); pars(j)%m2 = p(2, j); pars(j)%l1 = p(3, j); pars(j)%l2 = p(4, j)
+         end do
+         call integrate_batch(pars(1), setup%opt, y0, res, pars)
+         return
+      end if
+      call parameter_groups(setup, j0, nb, group)
+      do g = 1, maxval(group)
+         idx = pack([(j, j=1, nb)], group == g)
+         call pixel_model(setup%cfg, p(:, idx(1)), model, err)   ! checked by validate_sweep
+         if (.not. allocated(integ)) allocate (integ, source=setup%integ)
+         call integrate_trajectories(model, integ, model%potential_weights(), setup%opt, &
+                                     y0(:, idx), sub)
+         call place_results(sub, idx, nb, res)
+      end do
+   end subroutine compute_parameter_block
+
+   !> The group of each of the nb pixels from j0 on of a sweep over parameters: pixels
+   !> of one group have equal parameters (the same index on each parameter axis; with
+   !> one parameter axis, a whole row (axis 2) or a column of the block's rows (axis
+   !> 1)), numbered 1, 2, ... in the order of their first pixel.
+   subroutine parameter_groups(setup, j0, nb, group)
+      type(sweep_setup_t), intent(in) :: setup      !! setup
+      integer, intent(in) :: j0                     !! first pixel
+      integer, intent(in) :: nb                     !! pixels
+      integer, allocatable, intent(out) :: group(:) !! (nb) group of each pixel
+      integer :: key(2, nb), j, jj, k, ng
       do j = 1, nb
          jj = j0 + j - 1
          key(1, j) = merge(mod(jj - 1, setup%cfg%n1) + 1, 0, setup%par1 > 0)
          key(2, j) = merge((jj - 1)/setup%cfg%n1 + 1, 0, setup%par2 > 0)
       end do
-      todo = .true.
+      allocate (group(nb))
+      group = 0
+      ng = 0
       do j = 1, nb
-         if (.not. todo(j)) cycle
-         idx = pack([(k, k=1, nb)], key(1, :) == key(1, j) .and. key(2, :) == key(2, j))
-         todo(idx) = .false.
-         if (setup%per_trajectory) then
-            call pixel_model(setup%cfg, p(:, j), model, err)   ! checked by validate_sweep
-            if (.not. allocated(integ)) allocate (integ, source=setup%integ)
-            call integrate_trajectories(model, integ, model%potential_weights(), setup%opt, &
-                                        y0(:, idx), sub)
-         else
-            ! the lanes' constant record (the kernel's own parameters, not a model)
-            par = setup%cfg%run%pendulum()
-            par%m1 = p(1, j); par%m2 = p(2, j); par%l1 = p(3, j); par%l2 = p(4, j)
-            call integrate_batch(par, setup%opt, y0(:, idx), sub)
-         end if
-         call place_results(sub, idx, nb, res)
+         if (group(j) > 0) cycle
+         ng = ng + 1
+         do k = j, nb
+            if (key(1, k) == key(1, j) .and. key(2, k) == key(2, j)) group(k) = ng
+         end do
       end do
-   end subroutine compute_parameter_block
+   end subroutine parameter_groups
 
    !> Copy the results `sub` of a group into `res` at the indices idx (`res`
    !> allocated for nb initial conditions on the first call).

@@ -33,6 +33,7 @@ module dpend_pendulum_lanes
    implicit none
    private
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
+   public :: lane_coef_t, lane_coef, set_lane_coef, rk4_tangent2_lanes
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
    public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact
@@ -109,6 +110,25 @@ module dpend_pendulum_lanes
       real(dp) :: gbk = 0   !! B/k [1/s²]
    end type batch_coef_t
 
+   !> The constants of `batch_coef_t` lane by lane (structure of arrays, issue 27):
+   !> every lane its own pendulum, so that a sweep over parameters fills all lanes.
+   !> The kernels take this form; those of `batch_coef_t` copy it into every lane.
+   type :: lane_coef_t
+      real(dp) :: m11(lane_width)   !! (m1/3 + m2) L1² [kg m²]
+      real(dp) :: m22(lane_width)   !! m2 L2²/3 [kg m²]
+      real(dp) :: k(lane_width)     !! m2 L1 L2/2 [kg m²]
+      real(dp) :: ga(lane_width)    !! A [J]
+      real(dp) :: gb(lane_width)    !! B [J]
+      real(dp) :: m11k(lane_width)  !! M11/k [1]
+      real(dp) :: m22k(lane_width)  !! M22/k [1]
+      real(dp) :: detk(lane_width)  !! M11 M22/k² [1]
+      real(dp) :: gak(lane_width)   !! A/k [1/s²]
+      real(dp) :: gbk(lane_width)   !! B/k [1/s²]
+      !> M11 M22 [kg² m⁴] (a product of its own, as it was when the constants were
+      !> scalars and the product a loop invariant: det M = det - M12² rounds the same)
+      real(dp) :: det(lane_width)
+   end type lane_coef_t
+
    !> sin and cos of both angles of every lane, carried by `rk4_lanes` from step to
    !> step [1].
    type :: lane_trig_t
@@ -154,6 +174,31 @@ module dpend_pendulum_lanes
       !> GALI_2 [1]
       real(dp), allocatable :: megno(:), megno_y(:), fli(:), sali(:), gali2(:)
    end type batch_result_t
+
+   ! The kernels with each lane's own constants (`lane_coef_t`) or one pendulum in
+   ! every lane (`batch_coef_t`, copied into the lanes: for the tests and callers of
+   ! one pendulum)
+   interface rk4_lanes
+      module procedure rk4_lanes_lc, rk4_lanes_one
+   end interface rk4_lanes
+   interface rk4_tangent_lanes
+      module procedure rk4_tangent_lanes_lc, rk4_tangent_lanes_one
+   end interface rk4_tangent_lanes
+   interface indicator_step_lanes
+      module procedure indicator_step_lanes_lc, indicator_step_lanes_one
+   end interface indicator_step_lanes
+   interface accel_lanes
+      module procedure accel_lanes_lc, accel_lanes_one
+   end interface accel_lanes
+   interface accel_trig_lanes
+      module procedure accel_trig_lanes_lc, accel_trig_lanes_one
+   end interface accel_trig_lanes
+   interface tangent_accel_lanes
+      module procedure tangent_accel_lanes_lc, tangent_accel_lanes_one
+   end interface tangent_accel_lanes
+   interface energy_lanes
+      module procedure energy_lanes_lc, energy_lanes_one
+   end interface energy_lanes
 
 contains
 
@@ -202,6 +247,109 @@ contains
       c = batch_coef(par)
       potential_range = 2.0_dp*(c%ga + c%gb)
    end function potential_range
+
+   !> The constants `c` in every lane.
+   pure function lane_coef(c) result(lc)
+      type(batch_coef_t), intent(in) :: c  !! constants
+      type(lane_coef_t) :: lc
+      integer :: l
+      do l = 1, lane_width
+         call set_lane_coef(lc, l, c)
+      end do
+   end function lane_coef
+
+   !> Set lane l's constants to `c`.
+   pure subroutine set_lane_coef(lc, l, c)
+      type(lane_coef_t), intent(inout) :: lc  !! the lanes' constants
+      integer, intent(in) :: l                !! lane
+      type(batch_coef_t), intent(in) :: c     !! its constants
+      lc%m11(l) = c%m11; lc%m22(l) = c%m22; lc%k(l) = c%k; lc%ga(l) = c%ga; lc%gb(l) = c%gb
+      lc%m11k(l) = c%m11k; lc%m22k(l) = c%m22k; lc%detk(l) = c%detk
+      lc%gak(l) = c%gak; lc%gbk(l) = c%gbk
+      lc%det(l) = c%m11*c%m22
+   end subroutine set_lane_coef
+
+   !> `rk4_lanes` with the constants `c` in every lane.
+   pure subroutine rk4_lanes_one(c, h, q1, q2, w1, w2, e, tr)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
+      call rk4_lanes_lc(lane_coef(c), h, q1, q2, w1, w2, e, tr)
+   end subroutine rk4_lanes_one
+
+   !> `rk4_tangent_lanes` with the constants `c` in every lane.
+   pure subroutine rk4_tangent_lanes_one(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+      type(batch_coef_t), intent(in) :: c                        !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(inout) :: u1(lane_width), u2(lane_width)  !! tangent, angles
+      real(dp), intent(inout) :: v1(lane_width), v2(lane_width)  !! tangent, velocities
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      call rk4_tangent_lanes_lc(lane_coef(c), h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+   end subroutine rk4_tangent_lanes_one
+
+   !> `indicator_step_lanes` with the constants `c` in every lane.
+   pure subroutine indicator_step_lanes_one(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
+      type(batch_coef_t), intent(in) :: c                          !! constants
+      real(dp), intent(in) :: h                                    !! step [s]
+      integer(i8), intent(in) :: ks(lane_width)                    !! steps done before
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)    !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      integer, intent(in) :: nv                                    !! vectors, 1 or 2
+      real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
+      real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
+      real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
+      call indicator_step_lanes_lc(lane_coef(c), h, ks, q1, q2, w1, w2, nv, d, acc, e)
+   end subroutine indicator_step_lanes_one
+
+   !> `accel_lanes` with the constants `c` in every lane.
+   pure subroutine accel_lanes_one(c, q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
+      type(batch_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)    !! angles [rad]
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
+      real(dp), intent(out) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
+      real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      call accel_lanes_lc(lane_coef(c), q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
+   end subroutine accel_lanes_one
+
+   !> `accel_trig_lanes` with the constants `c` in every lane.
+   pure subroutine accel_trig_lanes_one(c, s1, c1, s2, c2, w1, w2, a1, a2)
+      type(batch_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: s1(lane_width), c1(lane_width)    !! sin q1, cos q1
+      real(dp), intent(in) :: s2(lane_width), c2(lane_width)    !! sin q2, cos q2
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
+      real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
+      call accel_trig_lanes_lc(lane_coef(c), s1, c1, s2, c2, w1, w2, a1, a2)
+   end subroutine accel_trig_lanes_one
+
+   !> `tangent_accel_lanes` with the constants `c` in every lane.
+   pure subroutine tangent_accel_lanes_one(c, w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
+                                           b1, b2)
+      type(batch_coef_t), intent(in) :: c                      !! constants
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)   !! velocities [rad/s]
+      real(dp), intent(in) :: a1(lane_width), a2(lane_width)   !! accelerations there
+      real(dp), intent(in) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
+      real(dp), intent(in) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
+      real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
+      real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
+      call tangent_accel_lanes_lc(lane_coef(c), w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
+                                  b1, b2)
+   end subroutine tangent_accel_lanes_one
+
+   !> `energy_lanes` with the constants `c` in every lane.
+   pure subroutine energy_lanes_one(c, q1, q2, w1, w2, e)
+      type(batch_coef_t), intent(in) :: c                     !! constants
+      real(dp), intent(in) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(out) :: e(lane_width)                  !! energy [J]
+      call energy_lanes_lc(lane_coef(c), q1, q2, w1, w2, e)
+   end subroutine energy_lanes_one
 
    !> sin and cos of both angles (`sincos_lanes`).
    pure subroutine trig_lanes(q1, q2, s1, c1, s2, c2)
@@ -397,8 +545,8 @@ contains
    !> cos and sin of q1 - q2 by the subtraction formulas; test/test_copies.f90
    !> compares them.
    !> Angular accelerations at (q, q̇) and the trigonometric values used [rad/s²].
-   pure subroutine accel_lanes(c, q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
-      type(batch_coef_t), intent(in) :: c                       !! constants
+   pure subroutine accel_lanes_lc(c, q1, q2, w1, w2, a1, a2, s1, c1, s2, c2)
+      type(lane_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: q1(lane_width), q2(lane_width)    !! angles [rad]
       real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
@@ -406,24 +554,25 @@ contains
       real(dp), intent(out) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
       call trig_lanes(q1, q2, s1, c1, s2, c2)
       call accel_trig_lanes(c, s1, c1, s2, c2, w1, w2, a1, a2)
-   end subroutine accel_lanes
+   end subroutine accel_lanes_lc
 
    !> The accelerations of `accel_lanes` from given sin and cos of the angles.
-   pure subroutine accel_trig_lanes(c, s1, c1, s2, c2, w1, w2, a1, a2)
-      type(batch_coef_t), intent(in) :: c                       !! constants
+   pure subroutine accel_trig_lanes_lc(c, s1, c1, s2, c2, w1, w2, a1, a2)
+      type(lane_coef_t), intent(in) :: c                        !! constants
       real(dp), intent(in) :: s1(lane_width), c1(lane_width)    !! sin q1, cos q1
       real(dp), intent(in) :: s2(lane_width), c2(lane_width)    !! sin q2, cos q2
       real(dp), intent(in) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
       real(dp), intent(out) :: a1(lane_width), a2(lane_width)   !! accelerations [rad/s²]
       integer :: i
       do i = 1, lane_width
-         call accel_trig(c, s1(i), c1(i), s2(i), c2(i), wsq(w1(i)), wsq(w2(i)), a1(i), a2(i))
+         call accel_trig(c, i, s1(i), c1(i), s2(i), c2(i), wsq(w1(i)), wsq(w2(i)), a1(i), a2(i))
       end do
-   end subroutine accel_trig_lanes
+   end subroutine accel_trig_lanes_lc
 
-   !> One lane of `accel_trig_lanes`, from the squares of the velocities (`wsq`).
-   pure elemental subroutine accel_trig(c, s1, c1, s2, c2, w1sq, w2sq, a1, a2)
-      type(batch_coef_t), intent(in) :: c        !! constants
+   !> Lane l of `accel_trig_lanes`, from the squares of the velocities (`wsq`).
+   pure subroutine accel_trig(c, l, s1, c1, s2, c2, w1sq, w2sq, a1, a2)
+      type(lane_coef_t), intent(in) :: c         !! constants
+      integer, intent(in) :: l                   !! lane
       real(dp), intent(in) :: s1, c1, s2, c2     !! sin q1, cos q1, sin q2, cos q2
       real(dp), intent(in) :: w1sq, w2sq         !! q̇1², q̇2² [rad²/s²]
       real(dp), intent(out) :: a1, a2            !! accelerations [rad/s²]
@@ -431,11 +580,11 @@ contains
       ! the equations divided by k: M12/k = cos d
       cd = c1*c2 + s1*s2
       sd = s1*c2 - c1*s2
-      r1 = -c%gak*c1 - sd*w2sq
-      r2 = -c%gbk*c2 + sd*w1sq
-      rdet = 1.0_dp/(c%detk - cd*cd)
-      a1 = (c%m22k*r1 - cd*r2)*rdet
-      a2 = (c%m11k*r2 - cd*r1)*rdet
+      r1 = -c%gak(l)*c1 - sd*w2sq
+      r2 = -c%gbk(l)*c2 + sd*w1sq
+      rdet = 1.0_dp/(c%detk(l) - cd*cd)
+      a1 = (c%m22k(l)*r1 - cd*r2)*rdet
+      a2 = (c%m11k(l)*r2 - cd*r1)*rdet
    end subroutine accel_trig
 
    !> Copy of `jacobian_qqdot` (dpend_pendulum, rows of q̈, applied to a vector) for
@@ -443,9 +592,9 @@ contains
    !> test/test_copies.f90 compares them.
    !> Directional derivative of the accelerations at (q, q̇) along (u, v) [rad/s²],
    !> from the values of `accel_lanes` at the same point (no further sin/cos).
-   pure subroutine tangent_accel_lanes(c, w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
-                                       b1, b2)
-      type(batch_coef_t), intent(in) :: c                      !! constants
+   pure subroutine tangent_accel_lanes_lc(c, w1, w2, a1, a2, s1, c1, s2, c2, u1, u2, v1, v2, &
+                                          b1, b2)
+      type(lane_coef_t), intent(in) :: c                       !! constants
       real(dp), intent(in) :: w1(lane_width), w2(lane_width)   !! velocities [rad/s]
       real(dp), intent(in) :: a1(lane_width), a2(lane_width)   !! accelerations there
       real(dp), intent(in) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
@@ -453,32 +602,89 @@ contains
       real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
       real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
       real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
-      real(dp) :: cd, sd, ud, dcd, dsd, dr1, dr2, m12, dm12, ddet, rdet, wc1, wc2
+      real(dp) :: cd, sd, m12, rdet, wc1, wc2
       integer :: i
       do i = 1, lane_width
-         cd = c1(i)*c2(i) + s1(i)*s2(i)
-         sd = s1(i)*c2(i) - c1(i)*s2(i)
-         ud = u1(i) - u2(i)
-         dcd = -sd*ud
-         dsd = cd*ud
-         wc1 = min(max(w1(i), -lane_bound), lane_bound)   ! as in accel_trig
-         wc2 = min(max(w2(i), -lane_bound), lane_bound)
-         dr1 = c%ga*s1(i)*u1(i) - c%k*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2(i))
-         dr2 = c%gb*s2(i)*u2(i) + c%k*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1(i))
-         m12 = c%k*cd
-         dm12 = c%k*dcd
-         ddet = -2.0_dp*m12*dm12
-         rdet = 1.0_dp/(c%m11*c%m22 - m12*m12)
-         b1(i) = (c%m22*dr1 - dm12*(a2(i)*c%m22 + a1(i)*m12) - m12*dr2 - a1(i)*ddet)*rdet
-         b2(i) = (c%m11*dr2 - dm12*(a1(i)*c%m11 + a2(i)*m12) - m12*dr1 - a2(i)*ddet)*rdet
+         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
+                             m12, rdet)
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+                             u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
       end do
-   end subroutine tangent_accel_lanes
+   end subroutine tangent_accel_lanes_lc
+
+   !> `tangent_accel_lanes` for the two deviation vectors x(:, :, 1) and x(:, :, 2)
+   !> = (u1, u2, v1, v2) of SALI and GALI_2 at once (issue 27): the terms that do not
+   !> depend on the vector (the Jacobian's: cos d, sin d, M12, 1/det) once per lane,
+   !> then each vector by the same operations as `tangent_accel_lanes`, so that
+   !> each result equals that of `tangent_accel_lanes` bit for bit.
+   pure subroutine tangent_accel2_lanes(c, w1, w2, a1, a2, s1, c1, s2, c2, x, b)
+      type(lane_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: w1(lane_width), w2(lane_width)   !! velocities [rad/s]
+      real(dp), intent(in) :: a1(lane_width), a2(lane_width)   !! accelerations there
+      real(dp), intent(in) :: s1(lane_width), c1(lane_width)   !! sin q1, cos q1
+      real(dp), intent(in) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
+      real(dp), intent(in) :: x(lane_width, 4, 2)              !! the vectors (u1, u2, v1, v2)
+      real(dp), intent(out) :: b(lane_width, 2, 2)             !! their derivatives of (a1, a2)
+      real(dp) :: cd, sd, m12, rdet, wc1, wc2
+      integer :: i
+      do i = 1, lane_width
+         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
+                             m12, rdet)
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+                             x(i, 1, 1), x(i, 2, 1), x(i, 3, 1), x(i, 4, 1), b(i, 1, 1), b(i, 2, 1))
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+                             x(i, 1, 2), x(i, 2, 2), x(i, 3, 2), x(i, 4, 2), b(i, 1, 2), b(i, 2, 2))
+      end do
+   end subroutine tangent_accel2_lanes
+
+   !> The terms of lane l's tangent accelerations that do not depend on the vector:
+   !> cos d, sin d (d = q1 - q2), the clamped velocities (as in `accel_trig`), M12
+   !> and 1/det M.
+   pure subroutine tangent_shared(c, l, w1, w2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      type(lane_coef_t), intent(in) :: c       !! constants
+      integer, intent(in) :: l                 !! lane
+      real(dp), intent(in) :: w1, w2           !! velocities [rad/s]
+      real(dp), intent(in) :: s1, c1, s2, c2   !! sin q1, cos q1, sin q2, cos q2
+      real(dp), intent(out) :: cd, sd          !! cos d, sin d
+      real(dp), intent(out) :: wc1, wc2        !! clamped velocities [rad/s]
+      real(dp), intent(out) :: m12             !! M12 [kg m²]
+      real(dp), intent(out) :: rdet            !! 1/det M [1/(kg² m⁴)]
+      cd = c1*c2 + s1*s2
+      sd = s1*c2 - c1*s2
+      wc1 = min(max(w1, -lane_bound), lane_bound)   ! as in accel_trig
+      wc2 = min(max(w2, -lane_bound), lane_bound)
+      m12 = c%k(l)*cd
+      rdet = 1.0_dp/(c%det(l) - m12*m12)
+   end subroutine tangent_shared
+
+   !> Lane l's derivative (b1, b2) of the accelerations (a1, a2) along (u1, u2, v1,
+   !> v2), from the terms of `tangent_shared` [rad/s²].
+   pure subroutine tangent_vector(c, l, a1, a2, s1, s2, cd, sd, wc1, wc2, m12, rdet, &
+                                  u1, u2, v1, v2, b1, b2)
+      type(lane_coef_t), intent(in) :: c        !! constants
+      integer, intent(in) :: l                  !! lane
+      real(dp), intent(in) :: a1, a2            !! accelerations [rad/s²]
+      real(dp), intent(in) :: s1, s2            !! sin q1, sin q2
+      real(dp), intent(in) :: cd, sd, wc1, wc2, m12, rdet  !! from `tangent_shared`
+      real(dp), intent(in) :: u1, u2, v1, v2    !! the vector [rad, rad/s]
+      real(dp), intent(out) :: b1, b2           !! derivative of (a1, a2) [rad/s²]
+      real(dp) :: ud, dcd, dsd, dr1, dr2, dm12, ddet
+      ud = u1 - u2
+      dcd = -sd*ud
+      dsd = cd*ud
+      dr1 = c%ga(l)*s1*u1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2)
+      dr2 = c%gb(l)*s2*u2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1)
+      dm12 = c%k(l)*dcd
+      ddet = -2.0_dp*m12*dm12
+      b1 = (c%m22(l)*dr1 - dm12*(a2*c%m22(l) + a1*m12) - m12*dr2 - a1*ddet)*rdet
+      b2 = (c%m11(l)*dr2 - dm12*(a1*c%m11(l) + a2*m12) - m12*dr1 - a2*ddet)*rdet
+   end subroutine tangent_vector
 
    !> Copy of `energy` (dpend_pendulum) for speed: SIMD over the lanes, through
    !> `energy_formula`, also used by the RK4 steps; test/test_copies.f90 compares them.
    !> Energy T + V of each lane [J].
-   pure subroutine energy_lanes(c, q1, q2, w1, w2, e)
-      type(batch_coef_t), intent(in) :: c                     !! constants
+   pure subroutine energy_lanes_lc(c, q1, q2, w1, w2, e)
+      type(lane_coef_t), intent(in) :: c                      !! constants
       real(dp), intent(in) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(in) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
       real(dp), intent(out) :: e(lane_width)                  !! energy [J]
@@ -486,17 +692,18 @@ contains
       integer :: i
       call trig_lanes(q1, q2, s1, c1, s2, c2)
       do i = 1, lane_width
-         e(i) = energy_formula(c, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
+         e(i) = energy_formula(c, i, s1(i), c1(i), s2(i), c2(i), w1(i), w2(i))
       end do
-   end subroutine energy_lanes
+   end subroutine energy_lanes_lc
 
-   !> T + V from the trigonometric values [J].
-   pure elemental real(dp) function energy_formula(c, s1, c1, s2, c2, w1, w2) result(e)
-      type(batch_coef_t), intent(in) :: c         !! constants
+   !> T + V of lane l from the trigonometric values [J].
+   pure real(dp) function energy_formula(c, l, s1, c1, s2, c2, w1, w2) result(e)
+      type(lane_coef_t), intent(in) :: c          !! constants
+      integer, intent(in) :: l                    !! lane
       real(dp), intent(in) :: s1, c1, s2, c2      !! sin q1, cos q1, sin q2, cos q2
       real(dp), intent(in) :: w1, w2              !! velocities [rad/s]
-      e = 0.5_dp*(c%m11*w1*w1 + 2.0_dp*c%k*(c1*c2 + s1*s2)*w1*w2 + c%m22*w2*w2) &
-          + (c%ga*s1 + c%gb*s2)
+      e = 0.5_dp*(c%m11(l)*w1*w1 + 2.0_dp*c%k(l)*(c1*c2 + s1*s2)*w1*w2 + c%m22(l)*w2*w2) &
+          + (c%ga(l)*s1 + c%gb(l)*s2)
    end function energy_formula
 
    !> One classical RK4 step of size h on every lane; `e` is the energy of the state
@@ -521,8 +728,8 @@ contains
    !> lane takes depends on its own values only, so the results stay bitwise
    !> independent of the other lanes. On entry |q̇| <= `lane_bound` (`wsq`:
    !> `integrate_batch` ends a lane beyond).
-   pure subroutine rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
-      type(batch_coef_t), intent(in) :: c                        !! constants
+   pure subroutine rk4_lanes_lc(c, h, q1, q2, w1, w2, e, tr)
+      type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
@@ -551,14 +758,14 @@ contains
          ! stage a: the step start
          p1(i) = q1(i); p2(i) = q2(i); pw1(i) = w1(i); pw2(i) = w2(i)
          s1a_1 = tr%s1(i); c1a_1 = tr%c1(i); s2a_1 = tr%s2(i); c2a_1 = tr%c2(i)
-         call accel_trig(c, s1a_1, c1a_1, s2a_1, c2a_1, wsq(w1(i)), wsq(w2(i)), ka1_1, ka2_1)
-         e(i) = energy_formula(c, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
+         call accel_trig(c, i, s1a_1, c1a_1, s2a_1, c2a_1, wsq(w1(i)), wsq(w2(i)), ka1_1, ka2_1)
+         e(i) = energy_formula(c, i, s1a_1, c1a_1, s2a_1, c2a_1, w1(i), w2(i))
          d1_1 = (q1(i) + hh*w1(i)) - q1(i); d2_1 = (q2(i) + hh*w2(i)) - q2(i)
          vb1_1 = w1(i) + hh*ka1_1; vb2_1 = w2(i) + hh*ka2_1
          p1(j) = q1(j); p2(j) = q2(j); pw1(j) = w1(j); pw2(j) = w2(j)
          s1a_2 = tr%s1(j); c1a_2 = tr%c1(j); s2a_2 = tr%s2(j); c2a_2 = tr%c2(j)
-         call accel_trig(c, s1a_2, c1a_2, s2a_2, c2a_2, wsq(w1(j)), wsq(w2(j)), ka1_2, ka2_2)
-         e(j) = energy_formula(c, s1a_2, c1a_2, s2a_2, c2a_2, w1(j), w2(j))
+         call accel_trig(c, j, s1a_2, c1a_2, s2a_2, c2a_2, wsq(w1(j)), wsq(w2(j)), ka1_2, ka2_2)
+         e(j) = energy_formula(c, j, s1a_2, c1a_2, s2a_2, c2a_2, w1(j), w2(j))
          d1_2 = (q1(j) + hh*w1(j)) - q1(j); d2_2 = (q2(j) + hh*w2(j)) - q2(j)
          vb1_2 = w1(j) + hh*ka1_2; vb2_2 = w2(j) + hh*ka2_2
          ! stage b
@@ -566,7 +773,7 @@ contains
          off(i) = abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1)
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vb1_1), wsq(vb2_1), kb1_1, kb2_1)
+         call accel_trig(c, i, s1_1, c1_1, s2_1, c2_1, wsq(vb1_1), wsq(vb2_1), kb1_1, kb2_1)
          d1_1 = (q1(i) + hh*vb1_1) - q1(i); d2_1 = (q2(i) + hh*vb2_1) - q2(i)
          vc1_1 = w1(i) + hh*kb1_1; vc2_1 = w2(i) + hh*kb2_1
          sv1_1 = vb1_1 + vc1_1; sv2_1 = vb2_1 + vc2_1
@@ -574,7 +781,7 @@ contains
          off(j) = abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2)
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vb1_2), wsq(vb2_2), kb1_2, kb2_2)
+         call accel_trig(c, j, s1_2, c1_2, s2_2, c2_2, wsq(vb1_2), wsq(vb2_2), kb1_2, kb2_2)
          d1_2 = (q1(j) + hh*vb1_2) - q1(j); d2_2 = (q2(j) + hh*vb2_2) - q2(j)
          vc1_2 = w1(j) + hh*kb1_2; vc2_2 = w2(j) + hh*kb2_2
          sv1_2 = vb1_2 + vc1_2; sv2_2 = vb2_2 + vc2_2
@@ -583,7 +790,7 @@ contains
          off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vc1_1), wsq(vc2_1), kc1_1, kc2_1)
+         call accel_trig(c, i, s1_1, c1_1, s2_1, c2_1, wsq(vc1_1), wsq(vc2_1), kc1_1, kc2_1)
          d1_1 = (q1(i) + h*vc1_1) - q1(i); d2_1 = (q2(i) + h*vc2_1) - q2(i)
          vd1_1 = w1(i) + h*kc1_1; vd2_1 = w2(i) + h*kc2_1
          sk1_1 = kb1_1 + kc1_1; sk2_1 = kb2_1 + kc2_1
@@ -592,7 +799,7 @@ contains
          off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vc1_2), wsq(vc2_2), kc1_2, kc2_2)
+         call accel_trig(c, j, s1_2, c1_2, s2_2, c2_2, wsq(vc1_2), wsq(vc2_2), kc1_2, kc2_2)
          d1_2 = (q1(j) + h*vc1_2) - q1(j); d2_2 = (q2(j) + h*vc2_2) - q2(j)
          vd1_2 = w1(j) + h*kc1_2; vd2_2 = w2(j) + h*kc2_2
          sk1_2 = kb1_2 + kc1_2; sk2_2 = kb2_2 + kc2_2
@@ -602,7 +809,7 @@ contains
          off(i) = off(i) + (abs(d1_1 - dc1_1) + abs(d2_1 - dc2_1))
          call sincos_add_stage(s1a_1, c1a_1, dc1_1, s1_1, c1_1)
          call sincos_add_stage(s2a_1, c2a_1, dc2_1, s2_1, c2_1)
-         call accel_trig(c, s1_1, c1_1, s2_1, c2_1, wsq(vd1_1), wsq(vd2_1), kd1_1, kd2_1)
+         call accel_trig(c, i, s1_1, c1_1, s2_1, c2_1, wsq(vd1_1), wsq(vd2_1), kd1_1, kd2_1)
          d1_1 = h6*sv1_1; d2_1 = h6*sv2_1
          w1(i) = w1(i) + h6*((ka1_1 + 2.0_dp*sk1_1) + kd1_1)
          w2(i) = w2(i) + h6*((ka2_1 + 2.0_dp*sk2_1) + kd2_1)
@@ -610,7 +817,7 @@ contains
          off(j) = off(j) + (abs(d1_2 - dc1_2) + abs(d2_2 - dc2_2))
          call sincos_add_stage(s1a_2, c1a_2, dc1_2, s1_2, c1_2)
          call sincos_add_stage(s2a_2, c2a_2, dc2_2, s2_2, c2_2)
-         call accel_trig(c, s1_2, c1_2, s2_2, c2_2, wsq(vd1_2), wsq(vd2_2), kd1_2, kd2_2)
+         call accel_trig(c, j, s1_2, c1_2, s2_2, c2_2, wsq(vd1_2), wsq(vd2_2), kd1_2, kd2_2)
          d1_2 = h6*sv1_2; d2_2 = h6*sv2_2
          w1(j) = w1(j) + h6*((ka1_2 + 2.0_dp*sk1_2) + kd1_2)
          w2(j) = w2(j) + h6*((ka2_2 + 2.0_dp*sk2_2) + kd2_2)
@@ -633,13 +840,13 @@ contains
       end do
       if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
       call rk4_lanes_fallback(c, h, off, p1, p2, pw1, pw2, q1, q2, w1, w2, e, tr)
-   end subroutine rk4_lanes
+   end subroutine rk4_lanes_lc
 
    !> The lanes of `rk4_lanes` with off /= 0 take the step of `rk4_lanes_ref` from
    !> (p1, p2, pw1, pw2), starting from exact sin and cos; the other lanes keep their
    !> values. (Its own procedure: its locals are set up only when a lane needs it.)
    pure subroutine rk4_lanes_fallback(c, h, off, p1, p2, pw1, pw2, q1, q2, w1, w2, e, tr)
-      type(batch_coef_t), intent(in) :: c                        !! constants
+      type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(in) :: off(lane_width)                    !! 0: the lane's step holds
       real(dp), intent(in) :: p1(lane_width), p2(lane_width)     !! step start [rad]
@@ -668,7 +875,7 @@ contains
    !> takes the exact sin and cos of that angle): the path of the lanes that
    !> `rk4_lanes`' fused loop does not cover. `tr` as in `rk4_lanes`.
    pure subroutine rk4_lanes_ref(c, h, q1, q2, w1, w2, e, tr)
-      type(batch_coef_t), intent(in) :: c                        !! constants
+      type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
@@ -683,7 +890,7 @@ contains
       h6 = h/6.0_dp
       call accel_trig_lanes(c, tr%s1, tr%c1, tr%s2, tr%c2, w1, w2, ka1, ka2)
       do i = 1, lane_width
-         e(i) = energy_formula(c, tr%s1(i), tr%c1(i), tr%s2(i), tr%c2(i), w1(i), w2(i))
+         e(i) = energy_formula(c, i, tr%s1(i), tr%c1(i), tr%s2(i), tr%c2(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
          vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
       end do
@@ -714,8 +921,8 @@ contains
 
    !> One RK4 step of the state and of a tangent vector (u, v) of the variational
    !> equations, the same RK4 applied to the extended system; `e` as in `rk4_lanes`.
-   pure subroutine rk4_tangent_lanes(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
-      type(batch_coef_t), intent(in) :: c                        !! constants
+   pure subroutine rk4_tangent_lanes_lc(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+      type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
@@ -737,7 +944,7 @@ contains
       call tangent_accel_lanes(c, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a, u1, u2, v1, v2, la1, la2)
       ta = lane_trig_t(s1a, c1a, s2a, c2a)
       do i = 1, lane_width
-         e(i) = energy_formula(c, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
+         e(i) = energy_formula(c, i, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
          x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
          vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
          xu1(i) = u1(i) + hh*v1(i); xu2(i) = u2(i) + hh*v2(i)
@@ -777,17 +984,105 @@ contains
          v1(i) = v1(i) + h6*(la1(i) + 2.0_dp*(lb1(i) + lc1(i)) + ld1(i))
          v2(i) = v2(i) + h6*(la2(i) + 2.0_dp*(lb2(i) + lc2(i)) + ld2(i))
       end do
-   end subroutine rk4_tangent_lanes
+   end subroutine rk4_tangent_lanes_lc
+
+   !> `rk4_tangent_lanes` with two tangent vectors d(:, :, 1) and d(:, :, 2) = (u1, u2,
+   !> v1, v2) (SALI, GALI_2; issue 27): the state's stages, sines and cosines once, one
+   !> Jacobian per stage for both vectors (`tangent_accel2_lanes`). Every value (state,
+   !> each vector, `e`) equals that of `rk4_tangent_lanes` on that vector bit for bit
+   !> (the same operations; test lanes/tangent2_matches_tangent).
+   pure subroutine rk4_tangent2_lanes(c, h, q1, q2, w1, w2, d, e)
+      type(lane_coef_t), intent(in) :: c                         !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      real(dp), intent(inout) :: d(lane_width, 4, 2)             !! tangent vectors
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      real(dp), dimension(lane_width) :: s1, c1, s2, c2, x1, x2, y1, y2
+      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
+      type(lane_trig_t) :: ta
+      real(dp), dimension(lane_width) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2
+      real(dp), dimension(lane_width) :: vb1, vb2, vc1, vc2, vd1, vd2
+      ! the vectors at stages b, c, d (δq1, δq2, δq̇1, δq̇2) and their δq̈ at stages a to d
+      real(dp), dimension(lane_width, 4, 2) :: xb, xc, xd
+      real(dp), dimension(lane_width, 2, 2) :: la, lb, lc, ld
+      real(dp) :: hh, h6
+      integer :: i, k
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      call accel_lanes(c, q1, q2, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a)
+      call tangent_accel2_lanes(c, w1, w2, ka1, ka2, s1a, c1a, s2a, c2a, d, la)
+      ta = lane_trig_t(s1a, c1a, s2a, c2a)
+      do i = 1, lane_width
+         e(i) = energy_formula(c, i, s1a(i), c1a(i), s2a(i), c2a(i), w1(i), w2(i))
+         x1(i) = q1(i) + hh*w1(i); x2(i) = q2(i) + hh*w2(i)
+         vb1(i) = w1(i) + hh*ka1(i); vb2(i) = w2(i) + hh*ka2(i)
+      end do
+      do k = 1, 2
+         do i = 1, lane_width
+            xb(i, 1, k) = d(i, 1, k) + hh*d(i, 3, k); xb(i, 2, k) = d(i, 2, k) + hh*d(i, 4, k)
+            xb(i, 3, k) = d(i, 3, k) + hh*la(i, 1, k); xb(i, 4, k) = d(i, 4, k) + hh*la(i, 2, k)
+         end do
+      end do
+      call stage_trig_lanes(q1, q2, ta, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vb1, vb2, kb1, kb2)
+      call tangent_accel2_lanes(c, vb1, vb2, kb1, kb2, s1, c1, s2, c2, xb, lb)
+      do i = 1, lane_width
+         x1(i) = q1(i) + hh*vb1(i); x2(i) = q2(i) + hh*vb2(i)
+         vc1(i) = w1(i) + hh*kb1(i); vc2(i) = w2(i) + hh*kb2(i)
+      end do
+      do k = 1, 2
+         do i = 1, lane_width
+            xc(i, 1, k) = d(i, 1, k) + hh*xb(i, 3, k); xc(i, 2, k) = d(i, 2, k) + hh*xb(i, 4, k)
+            xc(i, 3, k) = d(i, 3, k) + hh*lb(i, 1, k); xc(i, 4, k) = d(i, 4, k) + hh*lb(i, 2, k)
+         end do
+      end do
+      call stage_trig_lanes(q1, q2, ta, x1, x2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vc1, vc2, kc1, kc2)
+      call tangent_accel2_lanes(c, vc1, vc2, kc1, kc2, s1, c1, s2, c2, xc, lc)
+      do i = 1, lane_width
+         y1(i) = q1(i) + h*vc1(i); y2(i) = q2(i) + h*vc2(i)
+         vd1(i) = w1(i) + h*kc1(i); vd2(i) = w2(i) + h*kc2(i)
+      end do
+      do k = 1, 2
+         do i = 1, lane_width
+            xd(i, 1, k) = d(i, 1, k) + h*xc(i, 3, k); xd(i, 2, k) = d(i, 2, k) + h*xc(i, 4, k)
+            xd(i, 3, k) = d(i, 3, k) + h*lc(i, 1, k); xd(i, 4, k) = d(i, 4, k) + h*lc(i, 2, k)
+         end do
+      end do
+      call stage_trig_lanes(q1, q2, ta, y1, y2, s1, c1, s2, c2)
+      call accel_trig_lanes(c, s1, c1, s2, c2, vd1, vd2, kd1, kd2)
+      call tangent_accel2_lanes(c, vd1, vd2, kd1, kd2, s1, c1, s2, c2, xd, ld)
+      do i = 1, lane_width
+         q1(i) = q1(i) + h6*(w1(i) + 2.0_dp*(vb1(i) + vc1(i)) + vd1(i))
+         q2(i) = q2(i) + h6*(w2(i) + 2.0_dp*(vb2(i) + vc2(i)) + vd2(i))
+         w1(i) = w1(i) + h6*(ka1(i) + 2.0_dp*(kb1(i) + kc1(i)) + kd1(i))
+         w2(i) = w2(i) + h6*(ka2(i) + 2.0_dp*(kb2(i) + kc2(i)) + kd2(i))
+      end do
+      do k = 1, 2
+         do i = 1, lane_width
+            d(i, 1, k) = d(i, 1, k) + h6*(d(i, 3, k) + 2.0_dp*(xb(i, 3, k) + xc(i, 3, k)) &
+                                          + xd(i, 3, k))
+            d(i, 2, k) = d(i, 2, k) + h6*(d(i, 4, k) + 2.0_dp*(xb(i, 4, k) + xc(i, 4, k)) &
+                                          + xd(i, 4, k))
+            d(i, 3, k) = d(i, 3, k) + h6*(la(i, 1, k) + 2.0_dp*(lb(i, 1, k) + lc(i, 1, k)) &
+                                          + ld(i, 1, k))
+            d(i, 4, k) = d(i, 4, k) + h6*(la(i, 2, k) + 2.0_dp*(lb(i, 2, k) + lc(i, 2, k)) &
+                                          + ld(i, 2, k))
+         end do
+      end do
+   end subroutine rk4_tangent2_lanes
 
    !> One RK4 step of the state with nv (1 or 2) deviation vectors d(:, :, k) =
-   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math), each through
-   !> `rk4_tangent_lanes` (vector 2 with a copy of the state, whose step is the same
-   !> bit for bit), then renormalised to length 1 (directions kept, never
+   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math): one vector
+   !> through `rk4_tangent_lanes`, two through `rk4_tangent2_lanes` (the state's
+   !> stages once; each vector's step the same bit for bit as `rk4_tangent_lanes`'),
+   !> then renormalised to length 1 (directions kept, never
    !> orthogonalised); vector 1's growth enters the sums acc(:, 1:4) = (ln |δ|,
    !> MEGNO's integral, Y, ∫ Y ds) of the step [ks h, (ks + 1) h] (`megno_step`,
    !> t0 = 0, `megno_step_lanes`). `e` as in `rk4_lanes`.
-   pure subroutine indicator_step_lanes(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
-      type(batch_coef_t), intent(in) :: c                          !! constants
+   pure subroutine indicator_step_lanes_lc(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
+      type(lane_coef_t), intent(in) :: c                           !! constants
       real(dp), intent(in) :: h                                    !! step [s]
       integer(i8), intent(in) :: ks(lane_width)                    !! steps done before
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)    !! angles [rad]
@@ -796,15 +1091,14 @@ contains
       real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
       real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
-      real(dp), dimension(lane_width) :: p1, p2, r1, r2, e2, nrm, dl, ta, tb
+      real(dp), dimension(lane_width) :: nrm, dl, ta, tb
       integer :: i, j, k
       if (nv > 1) then
-         p1 = q1; p2 = q2; r1 = w1; r2 = w2
-         call rk4_tangent_lanes(c, h, p1, p2, r1, r2, d(:, 1, 2), d(:, 2, 2), d(:, 3, 2), &
-                                d(:, 4, 2), e2)
+         call rk4_tangent2_lanes(c, h, q1, q2, w1, w2, d, e)
+      else
+         call rk4_tangent_lanes(c, h, q1, q2, w1, w2, d(:, 1, 1), d(:, 2, 1), d(:, 3, 1), &
+                                d(:, 4, 1), e)
       end if
-      call rk4_tangent_lanes(c, h, q1, q2, w1, w2, d(:, 1, 1), d(:, 2, 1), d(:, 3, 1), &
-                             d(:, 4, 1), e)
       do k = 1, nv
          do i = 1, lane_width
             nrm(i) = sqrt(d(i, 1, k)**2 + d(i, 2, k)**2 + d(i, 3, k)**2 + d(i, 4, k)**2)
@@ -823,7 +1117,7 @@ contains
             call megno_step_lanes(dl, ta, tb, acc(:, 1), acc(:, 2), acc(:, 3), acc(:, 4))
          end if
       end do
-   end subroutine indicator_step_lanes
+   end subroutine indicator_step_lanes_lc
 
    !> Copy of `megno_step` (dpend_indicator_math) for speed, t0 = 0: SIMD over the
    !> lanes (a call of the elemental in another module would not be inlined);
@@ -850,13 +1144,20 @@ contains
    !> opt%h up to opt%n_steps steps, lanes refilled with the next initial condition as
    !> soon as a trajectory ends. Initial conditions whose energy is below both flip
    !> bounds are not integrated (status st_cannot_flip) unless opt%lyapunov.
-   subroutine integrate_batch(par, opt, y0, res)
-      type(pendulum_t), intent(in) :: par             !! parameters
+   !> With `pars`, initial condition j has the pendulum pars(j) (a sweep over
+   !> parameters, issue 27): each lane takes the constants of the trajectory it
+   !> holds (`lane_coef_t`), so that its results are those of a call with par =
+   !> pars(j) bit for bit, and the lanes fill whatever the parameters.
+   subroutine integrate_batch(par, opt, y0, res, pars)
+      type(pendulum_t), intent(in) :: par             !! parameters (of all, without pars)
       type(batch_options_t), intent(in) :: opt        !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)                !! (4, n) initial states
       type(batch_result_t), intent(out) :: res        !! results
+      type(pendulum_t), intent(in), optional :: pars(:)  !! (n) each one's own parameters
       integer, parameter :: w = lane_width
-      type(batch_coef_t) :: c
+      type(lane_coef_t) :: c                   ! the constants of each lane's trajectory
+      type(batch_coef_t), allocatable :: coefs(:)  ! (1), or (n) with pars
+      real(dp), allocatable :: bounds(:, :), escale(:)  ! (2, size(coefs)), (size(coefs))
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
       real(dp), dimension(w) :: p1, p2, n1, n2, lacc
       ! the angles between lo and hi cannot have crossed an upward vertical since the last
@@ -870,22 +1171,33 @@ contains
       integer :: lane_ic(w)
       logical :: can1(w), can2(w), ended(w)
       logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
-      real(dp) :: bounds(2), escale, nan, m, qc, nrm, s, n_events
+      real(dp) :: nan, m, qc, nrm, s, n_events
       real(dp) :: dv(w, 4, 2), acc(w, 4), v0(4, 4)   ! indicators' vectors and sums
       integer :: n, i, next, n_active, rule
       logical :: any_ended
 
       n = size(y0, 2)
-      c = batch_coef(par)
-      escale = potential_range(par)
-      bounds = flip_energy_bounds(par)
+      if (present(pars)) then
+         if (size(pars) /= n) error stop 'internal error: integrate_batch needs size(pars) = n'
+         coefs = [(batch_coef(pars(i)), i=1, n)]
+         escale = [(potential_range(pars(i)), i=1, n)]
+         allocate (bounds(2, n))
+         do i = 1, n
+            bounds(:, i) = flip_energy_bounds(pars(i))
+         end do
+      else
+         coefs = [batch_coef(par)]
+         escale = [potential_range(par)]
+         bounds = reshape(flip_energy_bounds(par), [2, 1])
+      end if
+      c = lane_coef(batch_coef(par))   ! idle lanes keep valid constants
       nan = ieee_value(nan, ieee_quiet_nan)
       rule = opt%stop_rule
       if (opt%lyapunov .or. opt%vectors > 0) rule = stop_end
       v0 = initial_vectors(4)
       dv = 1.0_dp; acc = 0.0_dp
       allocate (can_flip1(n), can_flip2(n), todo(n))
-      call start_results(c, bounds, opt, y0, res, can_flip1, can_flip2, todo)
+      call start_results(coefs, bounds, opt, y0, res, can_flip1, can_flip2, todo)
       if (opt%n_steps < 1) return   ! t_end = 0: nothing to integrate
 
       ! fill the lanes
@@ -978,7 +1290,7 @@ contains
          end do
       end do
 
-      call close_results(c, escale, opt, y0, todo, res)
+      call close_results(coefs, escale, opt, y0, todo, res)
 
    contains
 
@@ -998,6 +1310,7 @@ contains
          dv(l, :, 1) = v0(:, 1); dv(l, :, 2) = v0(:, 2); acc(l, :) = 0.0_dp
          if (next <= n) then
             lane_ic(l) = next
+            if (size(coefs) > 1) call set_lane_coef(c, l, coefs(next))
             q1(l) = y0(1, next); q2(l) = y0(2, next)
             w1(l) = y0(3, next); w2(l) = y0(4, next)
             e0(l) = res%energy0(next)
@@ -1081,16 +1394,17 @@ contains
    !> The batch kernel's set-up (outside the step loop): allocate the results of the
    !> n initial conditions y0, their initial energies and which of them can flip
    !> (energy at or above a link's flip bound) or must be integrated anyway (`todo`);
-   !> with opt%n_steps < 1 (t_end = 0) the results are final here.
+   !> with opt%n_steps < 1 (t_end = 0) the results are final here. Constants and
+   !> bounds: one column for all, or column j for initial condition j.
    subroutine start_results(c, bounds, opt, y0, res, can_flip1, can_flip2, todo)
-      type(batch_coef_t), intent(in) :: c                 !! constants
-      real(dp), intent(in) :: bounds(2)                   !! flip energy bounds [J]
+      type(batch_coef_t), intent(in) :: c(:)              !! constants (1 or n)
+      real(dp), intent(in) :: bounds(:, :)                !! (2, 1 or n) flip bounds [J]
       type(batch_options_t), intent(in) :: opt            !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)                    !! (4, n) initial states
       type(batch_result_t), intent(inout) :: res          !! results (allocated here)
       logical, intent(out) :: can_flip1(:), can_flip2(:), todo(:)  !! (n)
       real(dp) :: nan
-      integer :: n, j
+      integer :: n, j, jc
       n = size(y0, 2)
       nan = ieee_value(nan, ieee_quiet_nan)
       allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
@@ -1110,8 +1424,9 @@ contains
       ! initial energies, W at a time (padding lanes hold the hanging state)
       call energies(c, y0, res%energy0)
       do j = 1, n
-         can_flip1(j) = .not. (res%energy0(j) < bounds(1))
-         can_flip2(j) = .not. (res%energy0(j) < bounds(2))
+         jc = min(j, size(bounds, 2))
+         can_flip1(j) = .not. (res%energy0(j) < bounds(1, jc))
+         can_flip2(j) = .not. (res%energy0(j) < bounds(2, jc))
          todo(j) = can_flip1(j) .or. can_flip2(j) .or. opt%lyapunov .or. &
                    .not. opt%skip_cannot_flip .or. opt%vectors > 0
          res%t_flip1(j) = -1.0_dp; res%t_flip2(j) = -1.0_dp
@@ -1129,8 +1444,8 @@ contains
    !> of either link, NaN for what was not computed, and the initial state as the
    !> final one of a condition that was not integrated.
    subroutine close_results(c, escale, opt, y0, todo, res)
-      type(batch_coef_t), intent(in) :: c                 !! constants
-      real(dp), intent(in) :: escale                      !! V_max - V_min [J]
+      type(batch_coef_t), intent(in) :: c(:)              !! constants (1 or n)
+      real(dp), intent(in) :: escale(:)                   !! V_max - V_min (1 or n) [J]
       type(batch_options_t), intent(in) :: opt            !! options
       real(dp), intent(in) :: y0(:, :)                    !! (4, n) initial states
       logical, intent(in) :: todo(:)                      !! integrated (n)
@@ -1144,7 +1459,7 @@ contains
       do j = 1, n
          if (todo(j) .and. res%status(j) /= st_nonfinite) then
             res%energy_error(j) = max(res%energy_error(j), abs(res%t_flip(j) - res%energy0(j)))
-            res%energy_error(j) = res%energy_error(j)/escale
+            res%energy_error(j) = res%energy_error(j)/escale(min(j, size(escale)))
          else
             res%energy_error(j) = nan
          end if
@@ -1205,22 +1520,31 @@ contains
       f = f - 0.5_dp*(1.0_dp - sign(1.0_dp, yc - f))   ! - 1 if f > yc, without a compare
    end function floor_real
 
-   !> Energies of the states y(:, j), computed W at a time with the lane kernel.
+   !> Energies of the states y(:, j), computed W at a time with the lane kernel, with
+   !> the constants c(1) for all, or c(j) for state j.
    subroutine energies(c, y, e_final)
-      type(batch_coef_t), intent(in) :: c     !! constants
+      type(batch_coef_t), intent(in) :: c(:)  !! constants (1 or n)
       real(dp), intent(in) :: y(:, :)         !! (4, n) states
       real(dp), intent(out) :: e_final(:)     !! (n) energies [J]
       real(dp), dimension(lane_width) :: q1, q2, w1, w2, e
+      type(lane_coef_t) :: lc
       integer :: j0, i, n, m
       n = size(y, 2)
+      if (n < 1) return
+      lc = lane_coef(c(1))
       do j0 = 1, n, lane_width
          m = min(lane_width, n - j0 + 1)
          q1 = -half_pi; q2 = -half_pi; w1 = 0.0_dp; w2 = 0.0_dp
+         if (size(c) > 1) then
+            do i = 1, m
+               call set_lane_coef(lc, i, c(j0 + i - 1))
+            end do
+         end if
          do i = 1, m
             q1(i) = y(1, j0 + i - 1); q2(i) = y(2, j0 + i - 1)
             w1(i) = y(3, j0 + i - 1); w2(i) = y(4, j0 + i - 1)
          end do
-         call energy_lanes(c, q1, q2, w1, w2, e)
+         call energy_lanes(lc, q1, q2, w1, w2, e)
          e_final(j0:j0 + m - 1) = e(:m)
       end do
    end subroutine energies
