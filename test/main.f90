@@ -45,6 +45,7 @@ program tester
    use test_values_fit, only: collect_values_fit
    use test_bodies, only: collect_bodies
    use test_fit_params, only: collect_fit_params   ! issue 26 (r4-fit)
+   use test_gpu, only: collect_gpu   ! issue 28 (r5-gpu)
    implicit none
 
    type :: suite_t
@@ -59,7 +60,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(38))
+   allocate (suites(39))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -98,6 +99,7 @@ program tester
    suites(36)%name = 'values_fit'; call collect_values_fit(suites(36)%tests)
    suites(37)%name = 'bodies'; call collect_bodies(suites(37)%tests)
    suites(38)%name = 'fit_params'; call collect_fit_params(suites(38)%tests)
+   suites(39)%name = 'gpu'; call collect_gpu(suites(39)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -1,0 +1,233 @@
+!> The GPU path of `dpend sweep` without a GPU (issue 28, docs/gpu.md): the CUDA
+!> kernel's per-trajectory code (src/gpu/dpend_gpu_step.h) compiled for the host
+!> (src/gpu/dpend_gpu_host.c) against the Fortran batch kernel
+!> (dpend_pendulum_lanes), and the refusals of --device that need no library.
+!>
+!> - `step_vs_rk4_lanes`: one RK4 step from the same state and the same carried sin
+!>   and cos, the header's against `rk4_lanes`' lane, along trajectories of the
+!>   classic map (chaotic, and one fast enough for the fallback path of |d| > 1/16);
+!>   the Fortran trajectory drives both, so the comparison stays a one-step one.
+!> - `flip_map_vs_integrate_batch`: a 24 x 24 map of the classic pendulum to 10
+!>   sqrt(L/g) under each stop rule, the header's whole trajectory logic (flip rule,
+!>   energy skip, resynchronised sin and cos, statuses, closing pass) against
+!>   `integrate_batch`: the same statuses and step counts, flip times and every other
+!>   result within 1e-9 (the debug profile agrees bit for bit; the release profile's
+!>   fused multiply-adds change the last bits, which 10 sqrt(L/g) amplifies to far
+!>   less than that).
+!> - `device_refusals`: --device and --gpu-repack values, and the maps the GPU does
+!>   not compute, refused before any library is looked for.
+module test_gpu
+   use, intrinsic :: iso_c_binding, only: c_double, c_int, c_long_long
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use dpend_kinds, only: dp, half_pi
+   use dpend_pendulum, only: pendulum_t
+   use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, rk4_lanes, &
+      lane_trig_t, set_lane_trig, sincos_exact, batch_options_t, batch_result_t, &
+      integrate_batch, flip_energy_bounds, potential_range, stop_both, stop_either, stop_end
+   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_cli, only: arg_t
+   use testing, only: unittest_t, new_unittest, check_true, error_t
+   implicit none
+   private
+   public :: collect_gpu
+
+   interface
+      subroutine host_step(coef, h, y, trig, e) bind(C, name='dpend_gpu_host_step')
+         import :: c_double
+         real(c_double), intent(in) :: coef(*)
+         real(c_double), value :: h
+         real(c_double), intent(inout) :: y(*), trig(*)
+         real(c_double), intent(out) :: e
+      end subroutine host_step
+      subroutine host_block(coef, bounds, escale, h, n_steps, stop_rule, n, y0, t_flip1, &
+                            t_flip2, t_flip, energy0, energy_error, t_stop, fin, status, &
+                            steps) bind(C, name='dpend_gpu_host_block')
+         import :: c_double, c_int, c_long_long
+         real(c_double), intent(in) :: coef(*), bounds(*), y0(*)
+         real(c_double), value :: escale, h
+         integer(c_long_long), value :: n_steps
+         integer(c_int), value :: stop_rule, n
+         real(c_double), intent(out) :: t_flip1(*), t_flip2(*), t_flip(*), energy0(*)
+         real(c_double), intent(out) :: energy_error(*), t_stop(*), fin(*)
+         integer(c_int), intent(out) :: status(*), steps(*)
+      end subroutine host_block
+   end interface
+
+contains
+
+   !> The gpu suite.
+   subroutine collect_gpu(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)  !! the tests
+      tests = [ &
+         new_unittest('step_vs_rk4_lanes', test_step), &
+         new_unittest('flip_map_vs_integrate_batch', test_flip_map), &
+         new_unittest('device_refusals', test_refusals) &
+         ]
+   end subroutine collect_gpu
+
+   !> batch_coef_t's ten constants in the order of the header's struct.
+   function coef_array(c) result(a)
+      type(batch_coef_t), intent(in) :: c  !! constants
+      real(dp) :: a(10)
+      a = [c%m11, c%m22, c%k, c%ga, c%gb, c%m11k, c%m22k, c%detk, c%gak, c%gbk]
+   end function coef_array
+
+   !> One step of the header against one step of `rk4_lanes` (lane 1; the other lanes
+   !> hold the hanging state), from the Fortran trajectory's state and carried sin and
+   !> cos, for 3000 steps of five trajectories of the classic pendulum (h = 0.005
+   !> sqrt(L/g)); the sin and cos set exactly every 1024 steps as integrate_batch does.
+   !> The state, the new sin and cos and the energy within 1e-14 (1 + |value|).
+   subroutine test_step(error)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), parameter :: starts(4, 5) = reshape([ &
+         2.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, &      ! chaotic
+         2.9_dp, -2.5_dp, 0.0_dp, 0.0_dp, &     ! chaotic, flips early
+         -1.0_dp, 2.5_dp, 0.5_dp, -0.3_dp, &
+         0.1_dp, -0.2_dp, 0.0_dp, 0.0_dp, &     ! near the bottom (small angles)
+         0.3_dp, 0.7_dp, 150.0_dp, -90.0_dp], & ! fast: |d| > 1/16, the fallback step
+         [4, 5])
+      type(pendulum_t) :: par
+      type(batch_coef_t) :: c
+      type(lane_trig_t) :: tr
+      real(dp), dimension(lane_width) :: q1, q2, w1, w2, e
+      real(dp) :: coef(10), y(4), trig(4), ec, h, worst, d
+      integer :: k, s
+      par = pendulum_t(m1=1.0_dp, m2=1.0_dp, l1=1.0_dp, l2=1.0_dp, g=9.8_dp)
+      c = batch_coef(par)
+      coef = coef_array(c)
+      h = 0.005_dp*sqrt(1.0_dp/9.8_dp)
+      worst = 0
+      do k = 1, size(starts, 2)
+         q1 = -half_pi; q2 = -half_pi; w1 = 0; w2 = 0
+         q1(1) = starts(1, k) - half_pi; q2(1) = starts(2, k) - half_pi
+         w1(1) = starts(3, k); w2(1) = starts(4, k)
+         call set_lane_trig(q1, q2, tr)
+         do s = 1, 3000
+            y = [q1(1), q2(1), w1(1), w2(1)]
+            trig = [tr%s1(1), tr%c1(1), tr%s2(1), tr%c2(1)]
+            call host_step(coef, h, y, trig, ec)
+            call rk4_lanes(c, h, q1, q2, w1, w2, e, tr)
+            d = maxval(abs(y - [q1(1), q2(1), w1(1), w2(1)]) &
+                       /(1.0_dp + abs([q1(1), q2(1), w1(1), w2(1)])))
+            d = max(d, maxval(abs(trig - [tr%s1(1), tr%c1(1), tr%s2(1), tr%c2(1)])))
+            d = max(d, abs(ec - e(1))/(1.0_dp + abs(e(1))))
+            worst = max(worst, d)
+            call check_true(error, d <= 1e-14_dp, 'header step differs from rk4_lanes '// &
+                            'beyond 1e-14 (trajectory '//achar(48 + k)//')')
+            if (allocated(error)) return
+            if (mod(s, 1024) == 0) then
+               call sincos_exact(q1(1), tr%s1(1), tr%c1(1))
+               call sincos_exact(q2(1), tr%s2(1), tr%c2(1))
+            end if
+         end do
+      end do
+      write (*, '(a, es9.2)') '       largest one-step difference: ', worst
+   end subroutine test_step
+
+   !> The header's whole flip map against integrate_batch, each stop rule.
+   subroutine test_flip_map(error)
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: n1 = 24, n = n1*n1
+      type(pendulum_t) :: par
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: ref
+      real(dp) :: y0(4, n), coef(10), bounds(2), th
+      real(dp) :: tf1(n), tf2(n), tf(n), e0(n), err(n), ts(n), fin(4, n)
+      integer(c_int) :: st(n), steps(n)
+      integer :: i, j, r
+      integer, parameter :: rules(3) = [stop_both, stop_either, stop_end]
+      par = pendulum_t(m1=1.0_dp, m2=1.0_dp, l1=1.0_dp, l2=1.0_dp, g=9.8_dp)
+      do j = 1, n1
+         do i = 1, n1
+            th = -3.0_dp + 6.0_dp*real(i - 1, dp)/real(n1 - 1, dp)
+            y0(1, i + n1*(j - 1)) = th - half_pi
+            th = -3.0_dp + 6.0_dp*real(j - 1, dp)/real(n1 - 1, dp)
+            y0(2, i + n1*(j - 1)) = th - half_pi
+         end do
+      end do
+      y0(3:4, :) = 0
+      y0(3, 7) = 40.0_dp   ! a fast one
+      coef = coef_array(batch_coef(par))
+      bounds = flip_energy_bounds(par)
+      opt%n_steps = 2000
+      opt%h = 10.0_dp*sqrt(1.0_dp/9.8_dp)/real(opt%n_steps, dp)
+      do r = 1, size(rules)
+         opt%stop_rule = rules(r)
+         call integrate_batch(par, opt, y0, ref)
+         call host_block(coef, bounds, potential_range(par), opt%h, &
+                         int(opt%n_steps, c_long_long), int(opt%stop_rule, c_int), &
+                         int(n, c_int), y0, tf1, tf2, tf, e0, err, ts, fin, st, steps)
+         call check_true(error, all(st == ref%status), 'statuses differ (rule '// &
+                         achar(48 + r)//')')
+         if (.not. allocated(error)) call check_true(error, all(steps == ref%steps), &
+                                                     'steps differ')
+         if (.not. allocated(error)) call check_true(error, &
+            close(tf1, ref%t_flip1) .and. close(tf2, ref%t_flip2) .and. &
+            close(tf, ref%t_flip), 't_flip1, t_flip2, t_flip differ beyond 1e-9')
+         if (.not. allocated(error)) call check_true(error, &
+            close(e0, ref%energy0) .and. close(ts, ref%t_stop) .and. &
+            close(reshape(fin, [4*n]), reshape(ref%final, [4*n])), &
+            'energy0, t_stop or final differ beyond 1e-9')
+         if (.not. allocated(error)) call check_true(error, close(err, ref%energy_error), &
+                                                     'energy_error differs')
+         if (.not. allocated(error)) call check_true(error, &
+            count(st == 3) > 0 .and. count(st == 2) > 0 .eqv. r /= 3, &
+            'the map has no skipped or no stopped pixels')
+         if (allocated(error)) return
+      end do
+   contains
+      !> Equal within 1e-9 (1 + |b|), NaN where the other is NaN.
+      logical function close(a, b)
+         real(dp), intent(in) :: a(:), b(:)
+         integer :: k
+         close = .true.
+         do k = 1, size(a)
+            if (ieee_is_nan(a(k)) .or. ieee_is_nan(b(k))) then
+               close = close .and. (ieee_is_nan(a(k)) .eqv. ieee_is_nan(b(k)))
+            else
+               close = close .and. abs(a(k) - b(k)) <= 1e-9_dp*(1.0_dp + abs(b(k)))
+            end if
+         end do
+      end function close
+   end subroutine test_flip_map
+
+   !> --device and --gpu-repack refused by value, and the GPU refused for what it
+   !> does not compute (these refusals come before any library is looked for).
+   subroutine test_refusals(error)
+      type(error_t), allocatable, intent(out) :: error
+      call refused('--device xpu', "invalid device: 'xpu' (accepted: cpu, gpu, auto)")
+      if (.not. allocated(error)) call refused('--device gpu --gpu-repack -1', &
+                                               'invalid gpu_repack: -1')
+      if (.not. allocated(error)) call refused('--device gpu --lyapunov', &
+                                               'invalid device: gpu: the GPU computes flip maps')
+      if (.not. allocated(error)) call refused('--device gpu --indicator megno', &
+                                               'invalid device: gpu: the GPU computes flip maps')
+      if (.not. allocated(error)) call refused('--device gpu --links 3', &
+                                               'invalid device: gpu: the GPU computes the two-link')
+      if (.not. allocated(error)) call refused('--device gpu --axis1 m2/m1 --min1 0.5 --max1 2', &
+                                               'invalid device: gpu: the GPU computes maps over')
+   contains
+      subroutine refused(line, expected)
+         character(len=*), intent(in) :: line, expected
+         type(arg_t), allocatable :: args(:)
+         type(sweep_config_t) :: cfg
+         type(error_t), allocatable :: err
+         logical :: help
+         integer :: i, j, k
+         allocate (args(0))
+         i = 1
+         do while (i <= len(line))
+            j = index(line(i:), ' ')
+            k = merge(len(line), i + j - 2, j == 0)
+            args = [args, arg_t(line(i:k))]
+            i = k + 2
+         end do
+         args = [args, arg_t('--n'), arg_t('4'), arg_t('--output'), arg_t('never.h5')]
+         call parse_sweep(args, cfg, help, err)
+         call check_true(error, allocated(err), "'"//line//"' is refused")
+         if (allocated(error)) return
+         call check_true(error, index(err%message, expected) == 1, "'"//line// &
+                         "' refused with: "//err%message)
+      end subroutine refused
+   end subroutine test_refusals
+end module test_gpu
