@@ -16,6 +16,9 @@
 !>   less than that).
 !> - `device_refusals`: --device and --gpu-repack values, and the maps the GPU does
 !>   not compute, refused before any library is looked for.
+!> - `device_attribute`: a CPU sweep's file says device = 'cpu'.
+!> - `gpu_failure_falls_back_to_cpu`: a block meant for the GPU whose library call
+!>   fails (here: none loaded) is computed by the CPU kernel, the same results.
 module test_gpu
    use, intrinsic :: iso_c_binding, only: c_double, c_int, c_long_long
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
@@ -25,7 +28,9 @@ module test_gpu
       lane_trig_t, set_lane_trig, sincos_exact, batch_options_t, batch_result_t, &
       integrate_batch, flip_energy_bounds, potential_range, stop_both, stop_either, stop_end
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
-   use dpend_cli, only: arg_t
+   use dpend_sweep, only: run_sweep, sweep_summary_t, sweep_setup_t, build_setup, compute_block
+   use dpend_hdf5, only: h5file_t
+   use test_cli, only: scratch_dir, args_of
    use testing, only: unittest_t, new_unittest, check_true, error_t
    implicit none
    private
@@ -61,7 +66,9 @@ contains
       tests = [ &
          new_unittest('step_vs_rk4_lanes', test_step), &
          new_unittest('flip_map_vs_integrate_batch', test_flip_map), &
-         new_unittest('device_refusals', test_refusals) &
+         new_unittest('device_refusals', test_refusals), &
+         new_unittest('device_attribute', test_device_attribute), &
+         new_unittest('gpu_failure_falls_back_to_cpu', test_fallback) &
          ]
    end subroutine collect_gpu
 
@@ -209,25 +216,57 @@ contains
    contains
       subroutine refused(line, expected)
          character(len=*), intent(in) :: line, expected
-         type(arg_t), allocatable :: args(:)
          type(sweep_config_t) :: cfg
          type(error_t), allocatable :: err
          logical :: help
-         integer :: i, j, k
-         allocate (args(0))
-         i = 1
-         do while (i <= len(line))
-            j = index(line(i:), ' ')
-            k = merge(len(line), i + j - 2, j == 0)
-            args = [args, arg_t(line(i:k))]
-            i = k + 2
-         end do
-         args = [args, arg_t('--n'), arg_t('4'), arg_t('--output'), arg_t('never.h5')]
-         call parse_sweep(args, cfg, help, err)
+         call parse_sweep(args_of(line//' --n 4 --output never.h5'), cfg, help, err)
          call check_true(error, allocated(err), "'"//line//"' is refused")
          if (allocated(error)) return
          call check_true(error, index(err%message, expected) == 1, "'"//line// &
                          "' refused with: "//err%message)
       end subroutine refused
    end subroutine test_refusals
+
+   !> The /sweep attribute device of a sweep computed on the CPU: 'cpu'.
+   subroutine test_device_attribute(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(sweep_config_t) :: cfg
+      type(sweep_summary_t) :: summary
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: dir, device
+      logical :: help
+      dir = scratch_dir('gpuattr')
+      call parse_sweep(args_of('--n 4 --t-end 1 --quiet --device cpu --output '//dir// &
+                               '/d.h5'), cfg, help, err)
+      if (.not. allocated(err)) call run_sweep(cfg, summary, err)
+      if (.not. allocated(err)) call h5%open(dir//'/d.h5', 'r', err)
+      if (.not. allocated(err)) call h5%readattr('/sweep', 'device', device, err)
+      call h5%close()
+      call check_true(error, .not. allocated(err), 'sweep written and its device read')
+      if (allocated(error)) return
+      call check_true(error, device == 'cpu', "device = '"//device//"', expected 'cpu'")
+   end subroutine test_device_attribute
+
+   !> compute_block with device = 'gpu' and no library loaded: the CPU kernel's
+   !> results (one line on stderr says so).
+   subroutine test_fallback(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(sweep_config_t) :: cfg
+      type(sweep_setup_t) :: setup
+      type(batch_result_t) :: cpu, gpu
+      type(error_t), allocatable :: err
+      logical :: help
+      call parse_sweep(args_of('--n 6 --t-end 5 --stop-at either --output never.h5'), cfg, &
+                       help, err)
+      if (.not. allocated(err)) call build_setup(cfg, setup, err)
+      call check_true(error, .not. allocated(err), 'configuration accepted')
+      if (allocated(error)) return
+      call compute_block(setup, 1, cpu)
+      setup%cfg%device = 'gpu'
+      call compute_block(setup, 1, gpu)
+      call check_true(error, all(gpu%status == cpu%status) .and. all(gpu%steps == cpu%steps) &
+                      .and. all(gpu%t_stop == cpu%t_stop) .and. &
+                      all(gpu%energy0 == cpu%energy0), 'fallback results differ from the CPU''s')
+   end subroutine test_fallback
 end module test_gpu
