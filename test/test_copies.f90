@@ -485,9 +485,9 @@ contains
       type(error_t), allocatable, intent(out) :: error
       interface
          subroutine host_accel(coef, y, a, e) bind(C, name='dpend_gpu_host_accel')
-            import :: dp
-            real(dp), intent(in) :: coef(*), y(*)
-            real(dp), intent(out) :: a(*), e
+            use, intrinsic :: iso_c_binding, only: c_double
+            real(c_double), intent(in) :: coef(*), y(*)
+            real(c_double), intent(out) :: a(*), e
          end subroutine host_accel
       end interface
       type(pendulum_t) :: par
