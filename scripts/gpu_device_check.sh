@@ -62,12 +62,15 @@ elif [[ -n "$NVCC" ]] && { NVCC="$NVCC" timeout 120 scripts/build_gpu.sh --out "
        NVCC="$NVCC" NVCC_FLAGS=-allow-unsupported-compiler timeout 120 scripts/build_gpu.sh \
          --out "$LIBGPU" >>"$LOG" 2>&1; }; }; then
   fig "build: ok in $(since "$t") s ($LIBGPU)"
-  { ldd "$LIBGPU"; echo "glibc versions needed:"
-    objdump -T "$LIBGPU" 2>/dev/null | grep -o 'GLIBC_[0-9.]*' | sort -uV | tr '\n' ' '; echo; } \
-    >"$OUT/lib_deps.txt" 2>&1
-  fig "library needs: $(tail -n 1 "$OUT/lib_deps.txt")"
 else
   fig "build: FAILED after $(since "$t") s (see gpu_check.log)"
+fi
+if [[ -f "$LIBGPU" ]]; then
+  { ldd "$LIBGPU"; echo "glibc versions needed:"
+    objdump -T "$LIBGPU" 2>/dev/null | grep -o 'GLIBC_[0-9.]*' | sort -uV | tr '\n' ' '; echo
+    objdump -T "$LIBGPU" 2>/dev/null | grep -E 'GLIBC_2\.(3[7-9]|[4-9][0-9])'; } \
+    >"$OUT/lib_deps.txt" 2>&1
+  fig "library needs: $(sed -n '/glibc versions needed/{n;p}' "$OUT/lib_deps.txt")"
 fi
 
 # ---- dpend: the carried build through its loader; falls back to the system loader
@@ -132,13 +135,6 @@ else
   fig "kernel_check: skipped (no numpy or no library)"
 fi
 
-# ---- refusals and auto (small, fast)
-log "refusals"
-"${DP[@]}" sweep --n 8 --device gpu --lyapunov --output "$WORK/r.h5" --force >"$OUT/refusal.txt" 2>&1
-fig "refusal (--lyapunov on gpu): rc=$? $(head -n 1 "$OUT/refusal.txt")"
-"${DP[@]}" sweep --n 8 --device auto --output "$WORK/auto.h5" --force >"$OUT/auto.txt" 2>&1
-fig "auto: rc=$? $(grep -m1 'GPU\|CPU' "$OUT/auto.txt")"
-
 # ---- the classic map
 sweep gpu_repack2048 --device gpu --block 1048576 --gpu-repack 2048
 sweep gpu_norepack --device gpu --block 1048576 --gpu-repack 0
@@ -147,6 +143,13 @@ sweep gpu_repack8192 --device gpu --block 1048576 --gpu-repack 8192
 sweep cpu --device cpu --threads "$THREADS"
 sweep gpu_half --device gpu --block 1048576 --gpu-repack 2048 --dt 0.0025
 sweep cpu_half --device cpu --threads "$THREADS" --dt 0.0025
+
+# ---- refusals and auto (small, fast)
+log "refusals"
+"${DP[@]}" sweep --n 8 --device gpu --lyapunov --output "$WORK/r.h5" --force >"$OUT/refusal.txt" 2>&1
+fig "refusal (--lyapunov on gpu): rc=$? $(head -n 1 "$OUT/refusal.txt")"
+"${DP[@]}" sweep --n 8 --device auto --output "$WORK/auto.h5" --force >"$OUT/auto.txt" 2>&1
+fig "auto: rc=$? $(grep -m1 'GPU\|CPU' "$OUT/auto.txt")"
 
 # compare A B: dpend sweep-compare, the whole report in $OUT, its key lines in the summary
 compare() {

@@ -1,13 +1,28 @@
 #!/usr/bin/env bash
 # Install what dpend needs on a fresh Debian/Ubuntu machine. Idempotent: skips
-# what is already there. Usage: scripts/setup.sh [--mpi]
+# what is already there. Usage: scripts/setup.sh [--mpi] [--gpu]
+#   --mpi  the MPI build's packages (docs/mpi.md)
+#   --gpu  nvcc for the optional GPU library (docs/gpu.md, scripts/build_gpu.sh): the
+#          system's if present, else NVIDIA's CUDA compiler wheels from PyPI into
+#          build/cuda/ (about 350 MB; no GPU needed to compile)
 set -euo pipefail
+mpi=0; gpu=0
+for a in "$@"; do
+  case "$a" in
+    --mpi) mpi=1 ;;
+    --gpu) gpu=1 ;;
+    *) echo "setup.sh: unknown option '$a' (--mpi, --gpu)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools)
 # Python: the recipes of docs/python.md and scripts/check_python.py (h5py, pandas, xarray).
 packages+=(python3 python3-h5py python3-pandas python3-xarray)
-if [[ "${1:-}" == "--mpi" ]]; then
+if ((mpi)); then
   packages+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
+fi
+if ((gpu)); then
+  packages+=(g++)   # nvcc's host compiler
 fi
 
 sudo=()
@@ -55,3 +70,22 @@ if ! command -v fpm >/dev/null 2>&1; then
 fi
 command -v fpm >/dev/null 2>&1 || { echo "setup.sh: fpm not on PATH after install" >&2; exit 1; }
 echo "setup.sh: ready: $(gfortran --version | head -n1); fpm $(fpm --version | head -n1 | awk '{print $2}')"
+
+# --gpu: nvcc (issue 28). The CUDA 13 wheels: the cu12 ones ship ptxas but no nvcc.
+if ((gpu)); then
+  cd "$(dirname "$0")/.."   # build/cuda/ of this checkout
+  nvcc=$(command -v nvcc 2>/dev/null || true)
+  [[ -z "$nvcc" && -x /usr/local/cuda/bin/nvcc ]] && nvcc=/usr/local/cuda/bin/nvcc
+  [[ -z "$nvcc" && -x build/cuda/nvidia/cu13/bin/nvcc ]] && nvcc=build/cuda/nvidia/cu13/bin/nvcc
+  if [[ -z "$nvcc" ]]; then
+    echo "setup.sh: installing nvcc from PyPI into build/cuda/"
+    wheels=(nvidia-cuda-nvcc nvidia-cuda-crt nvidia-nvvm nvidia-cuda-runtime nvidia-cuda-cccl)
+    python3 -m pip install --quiet --target build/cuda "${wheels[@]}" 2>/dev/null ||
+      python3 -m pip install --quiet --break-system-packages --target build/cuda "${wheels[@]}" ||
+      { echo "setup.sh: nvcc did not install from PyPI (the GPU library needs the CUDA toolkit)" >&2
+        exit 1; }
+    nvcc=build/cuda/nvidia/cu13/bin/nvcc
+  fi
+  "$nvcc" --version >/dev/null 2>&1 || { echo "setup.sh: $nvcc does not run" >&2; exit 1; }
+  echo "setup.sh: nvcc: $nvcc ($("$nvcc" --version | grep -o 'release [0-9.]*'))"
+fi

@@ -47,6 +47,7 @@ program tester
    use test_fit_params, only: collect_fit_params   ! issue 26 (r4-fit)
    use test_chain_lanes, only: collect_chain_lanes   ! issue 27 (r5-chain)
    use test_lanes, only: collect_lanes   ! issue 27 (r5-lanes)
+   use test_gpu, only: collect_gpu   ! issue 28 (r5-gpu)
    implicit none
 
    type :: suite_t
@@ -61,7 +62,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(40))
+   allocate (suites(41))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -102,6 +103,7 @@ program tester
    suites(38)%name = 'fit_params'; call collect_fit_params(suites(38)%tests)
    suites(39)%name = 'chain_lanes'; call collect_chain_lanes(suites(39)%tests)
    suites(40)%name = 'lanes'; call collect_lanes(suites(40)%tests)
+   suites(41)%name = 'gpu'; call collect_gpu(suites(41)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

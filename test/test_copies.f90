@@ -13,6 +13,8 @@
 !> | `megno_step_lanes` (dpend_pendulum_lanes)    | `megno_step` (dpend_indicator_math)  |
 !> | `hamiltonian_qp` (dpend_pendulum), quadruple | `hamiltonian`, and with compensation |
 !> |                                             | e: `dh_dq`, `dh_dp` (first order)    |
+!> | src/gpu/dpend_gpu_step.h (the CUDA kernel's  | `qddot_trig`, `qddot_lagrange`,      |
+!> | accelerations and energy, issue 28)          | `energy`                             |
 !>
 !> Draws: masses and lengths log-uniform in [0.1, 10], g in [1, 20], velocities in
 !> [-10, 10] rad/s; angles in [-π, π], and in every fifth state in [-1000, 1000] rad.
@@ -72,7 +74,8 @@ contains
          new_unittest('sincos_add_stage_vs_sincos_lanes', test_sincos_stage), &
          new_unittest('megno_step_lanes_vs_megno_step', test_megno_step), &
          new_unittest('hamiltonian_qp_vs_hamiltonian', test_hamiltonian_qp), &
-         new_unittest('hamiltonian_qp_compensation_vs_gradient', test_compensation) &
+         new_unittest('hamiltonian_qp_compensation_vs_gradient', test_compensation), &
+         new_unittest('gpu_header_vs_qddot_energy', test_gpu_header) &
          ]
    end subroutine collect_copies
 
@@ -474,4 +477,42 @@ contains
          '       hamiltonian_qp compensation vs dh_dq, dh_dp: max error ', worst, &
          ' (tolerance ', tol_first_order, ')'
    end subroutine test_compensation
+
+   !> Copy src/gpu/dpend_gpu_step.h (the per-trajectory formulas of the CUDA kernel,
+   !> issue 28; compiled for the host by src/gpu/dpend_gpu_host.c) against the sources
+   !> `qddot_trig`, `qddot_lagrange` and `energy`, as `test_accel` and `test_energy`.
+   subroutine test_gpu_header(error)
+      type(error_t), allocatable, intent(out) :: error
+      interface
+         subroutine host_accel(coef, y, a, e) bind(C, name='dpend_gpu_host_accel')
+            use, intrinsic :: iso_c_binding, only: c_double
+            real(c_double), intent(in) :: coef(*), y(*)
+            real(c_double), intent(out) :: a(*), e
+         end subroutine host_accel
+      end interface
+      type(pendulum_t) :: par
+      type(batch_coef_t) :: c
+      real(dp) :: q(2), qd(2), a(2), e, s(2), worst_ne(2), worst_lg(2), worst_e(2)
+      logical :: ok
+      integer :: i
+      call seed()
+      worst_ne = 0; worst_lg = 0; worst_e = 0
+      do i = 0, n_draws - 1
+         if (mod(i, lane_width) == 0) par = random_pendulum()
+         c = batch_coef(par)
+         call random_state(i + 1, q, qd)
+         call host_accel([c%m11, c%m22, c%k, c%ga, c%gb, c%m11k, c%m22k, c%detk, c%gak, &
+                          c%gbk], [q, qd], a, e)
+         s = lane_scale(c, q, qd)
+         ok = within(worst_ne, maxval(abs(a - qddot_trig(par, sin_cos(q), qd))/s), i + 1, q)
+         ok = within(worst_lg, maxval(abs(a - qddot_lagrange(par, q, qd))/s), i + 1, q) .and. ok
+         ok = within(worst_e, abs(e - energy(par, q, qd))/energy_abs(c, q, qd), i + 1, q) .and. ok
+         call check_true(error, ok, 'src/gpu/dpend_gpu_step.h differs from qddot_trig / ' &
+                         //'qddot_lagrange / energy')
+         if (allocated(error)) return
+      end do
+      call report('dpend_gpu_step.h accelerations vs qddot_trig', worst_ne)
+      call report('dpend_gpu_step.h accelerations vs qddot_lagrange', worst_lg)
+      call report('dpend_gpu_step.h energy vs energy', worst_e)
+   end subroutine test_gpu_header
 end module test_copies

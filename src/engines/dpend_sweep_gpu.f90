@@ -182,6 +182,8 @@ contains
       if (rc == 0) kernel_seconds = kernel_seconds + kernel_ms/1000.0_dp
       !$omp end critical (dpend_sweep_gpu)
       if (rc == 0 .or. n == 0) return
+      if (rc == -1 .and. len(c_text(msg)) == 0) msg(:18) = transfer('no library loaded' &
+                                                                     //c_null_char, msg(:18))
       write (error_unit, '(a)') 'dpend sweep: the GPU failed ('//c_text(msg)// &
          '); this block is computed on the CPU'
       call integrate_batch(par, opt, y0, res)
