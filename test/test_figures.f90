@@ -47,9 +47,13 @@ contains
    !> (dir/keys.txt); output in dir/plot.out. Returns the exit status.
    integer function run_plot(dir, script, args) result(stat)
       character(len=*), intent(in) :: dir, script, args
+      integer :: cstat
+      ! cmdstat: a script that exits 127 (a command not found) fails the test with its
+      ! plot.out instead of stopping the test program
       call execute_command_line('DPEND='//dpend_binary()//' DPEND_PLOT_KEYS='//dir// &
                                 '/keys.txt bash '//scripts_dir()//'/'//script//' '//args// &
-                                ' > '//dir//'/plot.out 2>&1', exitstat=stat)
+                                ' > '//dir//'/plot.out 2>&1', exitstat=stat, cmdstat=cstat)
+      if (cstat /= 0 .and. stat == 0) stat = 127
    end function run_plot
 
    !> Expect the PNG `path` to exist and hold more than a PNG header.
