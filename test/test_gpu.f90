@@ -19,7 +19,8 @@
 !>   not compute, refused before any library is looked for.
 !> - `device_attribute`: a CPU sweep's file says device = 'cpu'.
 !> - `gpu_failure_falls_back_to_cpu`: a block meant for the GPU whose library call
-!>   fails (here: none loaded) is computed by the CPU kernel, the same results.
+!>   fails (here: none loaded) is computed by the CPU kernel, the same results, and
+!>   counted for the file's `device` attribute.
 module test_gpu
    use, intrinsic :: iso_c_binding, only: c_double, c_int, c_long_long
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
@@ -31,6 +32,7 @@ module test_gpu
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
    use dpend_sweep, only: run_sweep, sweep_summary_t, sweep_setup_t, build_setup, compute_block
    use dpend_hdf5, only: h5file_t
+   use dpend_sweep_gpu, only: gpu_fallback_blocks
    use test_cli, only: scratch_dir, args_of
    use testing, only: unittest_t, new_unittest, check_true, error_t
    implicit none
@@ -273,6 +275,7 @@ contains
       type(batch_result_t) :: cpu, gpu
       type(error_t), allocatable :: err
       logical :: help
+      integer :: before
       call parse_sweep(args_of('--n 6 --t-end 5 --stop-at either --output never.h5'), cfg, &
                        help, err)
       if (.not. allocated(err)) call build_setup(cfg, setup, err)
@@ -280,7 +283,11 @@ contains
       if (allocated(error)) return
       call compute_block(setup, 1, cpu)
       setup%cfg%device = 'gpu'
+      before = gpu_fallback_blocks()
       call compute_block(setup, 1, gpu)
+      ! the file's device attribute counts these blocks (create_layout)
+      call check_true(error, gpu_fallback_blocks() == before + 1, 'the fallback is counted')
+      if (allocated(error)) return
       call check_true(error, all(gpu%status == cpu%status) .and. all(gpu%steps == cpu%steps) &
                       .and. all(gpu%t_stop == cpu%t_stop) .and. &
                       all(gpu%energy0 == cpu%energy0), 'fallback results differ from the CPU''s')

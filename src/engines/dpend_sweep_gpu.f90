@@ -20,6 +20,7 @@ module dpend_sweep_gpu
    implicit none
    private
    public :: gpu_open, gpu_library_path, gpu_integrate_block, gpu_kernel_seconds
+   public :: gpu_fallback_blocks
    public :: gpu_no_library, gpu_no_device, gpu_ready
 
    integer, parameter :: gpu_ready = 0       !! loaded and a device found
@@ -31,6 +32,8 @@ module dpend_sweep_gpu
    character(len=:), allocatable, save :: probed_name, probed_why
    !> Kernel time of the blocks computed so far [s] (cudaEvent timing of the library).
    real(dp), save :: kernel_seconds = 0
+   !> Blocks computed on the CPU after the library failed in this run (the file says so).
+   integer, save :: fallback_blocks = 0
 
    interface
       integer(c_int) function c_gpu_load(path, msg, msg_len) bind(C, name='dpend_gpu_load')
@@ -186,8 +189,16 @@ contains
                                                                      //c_null_char, msg(:18))
       write (error_unit, '(a)') 'dpend sweep: the GPU failed ('//c_text(msg)// &
          '); this block is computed on the CPU'
+      !$omp atomic
+      fallback_blocks = fallback_blocks + 1
       call integrate_batch(par, opt, y0, res)
    end subroutine gpu_integrate_block
+
+   !> Blocks of this run computed on the CPU after a failure of the GPU library.
+   integer function gpu_fallback_blocks() result(n)
+      !$omp atomic read
+      n = fallback_blocks
+   end function gpu_fallback_blocks
 
    !> The text of a NUL-terminated C string.
    function c_text(buf) result(s)

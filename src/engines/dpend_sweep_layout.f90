@@ -13,6 +13,7 @@ module dpend_sweep_layout
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use dpend_cli, only: to_str
+   use dpend_sweep_gpu, only: gpu_fallback_blocks
    use dpend_sweep_setup, only: sweep_setup_t, block_range, parameter_axes, block_parameters, &
       stop_name
    implicit none
@@ -287,7 +288,13 @@ contains
          end if
          ! issue 28: the device of the run that created (or completed) the file
          if (c%device == 'gpu') then
-            call h5%writeattr('/sweep', 'device', 'gpu: '//c%device_name)
+            if (gpu_fallback_blocks() > 0) then
+               call h5%writeattr('/sweep', 'device', 'gpu: '//c%device_name//'; '// &
+                                 to_str(gpu_fallback_blocks())// &
+                                 ' block(s) computed on the CPU after a GPU failure')
+            else
+               call h5%writeattr('/sweep', 'device', 'gpu: '//c%device_name)
+            end if
          else
             call h5%writeattr('/sweep', 'device', 'cpu')
          end if
