@@ -41,7 +41,8 @@ contains
                new_unittest('independent_of_lane_order', test_order), &
                new_unittest('sweep_dispatch', test_dispatch), &
                new_unittest('tangent_matches_model', test_tangent), &
-               new_unittest('indicators_match_per_trajectory', test_indicators)]
+               new_unittest('indicators_match_per_trajectory', test_indicators), &
+               new_unittest('runaway_to_t_end', test_runaway)]
    end subroutine collect_chain_lanes
 
    !> A fixed seed: the same draws on every run (each test starts from it).
@@ -455,6 +456,46 @@ contains
          call check(error, x, y, 'indicator', abs=tol*max(1.0_dp, abs(y)))
       end subroutine near
    end subroutine test_indicators
+
+   !> Rates of 1e3 rad/s run away within a few steps (the velocities' squares reach the
+   !> lanes' clamp, the stages' offsets far beyond 1): run to t_end without a trap in
+   !> the debug build, for the flip map and the indicators, the same statuses, steps
+   !> and NaN indicators as the per-trajectory path.
+   subroutine test_runaway(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: a, b
+      real(dp) :: y0(6, 20)
+      integer :: j, nv
+      call seed()
+      call new_integrator('rk4', integ, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'rk4: '//err%message)
+         return
+      end if
+      call draw_chain(3, .false., chain)
+      do j = 1, 20
+         y0(:, j) = [0.1_dp*j, -0.2_dp*j, 0.3_dp, 1e3_dp, -1e3_dp*j, 1e3_dp]
+      end do
+      opt%h = 0.01_dp
+      opt%n_steps = 200
+      opt%stop_rule = stop_end
+      do nv = 0, 2
+         opt%vectors = nv
+         call integrate_chain_lanes(chain, opt, y0, a)
+         call integrate_trajectories(chain, integ, chain%gl, opt, y0, b)
+         do j = 1, 20
+            call check_true(error, a%status(j) == b%status(j) .and. a%steps(j) == b%steps(j) &
+                            .and. a%steps(j) < 200, 'runaway: same status and steps')
+            call check_true(error, ieee_is_nan(a%megno(j)) .and. ieee_is_nan(a%sali(j)), &
+                            'runaway: NaN indicators')
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_runaway
 
    !> The setup of `dpend sweep` on a small grid with the given extra words.
    subroutine setup_of(extra, setup, error)

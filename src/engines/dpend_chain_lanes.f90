@@ -62,6 +62,7 @@ module dpend_chain_lanes
    use dpend_trajectory_batch, only: link_flip_bounds, first_flips, bound_margin
    use dpend_limits, only: max_tangent_substeps
    use dpend_indicator_math, only: initial_vectors, sali, gali, megno_step
+   use dpend_tangent, only: max_tangent_size
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    implicit none
    private
@@ -306,9 +307,15 @@ contains
       real(dp), intent(in) :: ts(w, nm), tc(w, nm)    !! sin q, cos q
       real(dp), intent(in) :: x(w, nm), d(w, nm)      !! angles, offsets [rad]
       real(dp), intent(inout) :: s(w, nm), c(w, nm)   !! sin x, cos x
-      integer :: j
+      real(dp) :: dc(w)
+      integer :: j, l
       do j = 1, n
-         call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), d(:, j), s(:, j), c(:, j))
+         ! d clamped to ±1: the same values (an offset beyond 1/16 takes sin x, cos x
+         ! themselves), and no overflow in the Taylor terms of a lane that runs away
+         do l = 1, w
+            dc(l) = min(max(d(l, j), -1.0_dp), 1.0_dp)
+         end do
+         call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), dc, s(:, j), c(:, j))
       end do
    end subroutine stage_trig
 
@@ -319,7 +326,8 @@ contains
    !> cubic Hermite interpolant of the step (`integrator_t%interpolate`), n = ⌈h ω/θ⌉
    !> substeps (ω = ‖J²‖∞^½, θ = 0.1), classical RK4 for the linear system. ja holds J
    !> at yo on entry, J at yn on return. stiff: more than `max_tangent_substeps`
-   !> substeps were needed; v is left unchanged.
+   !> substeps were needed (v is left unchanged), or a component of v passed
+   !> `max_tangent_size` (v is not propagated further).
    subroutine chain_tangent_lane(model, t_a, h, yo, yn, fo, fn, ja, v, stiff)
       type(chain_t), intent(in) :: model             !! the chain, N links
       real(dp), intent(in) :: t_a                    !! start of the step [s]
@@ -360,6 +368,12 @@ contains
          call mat_mul(jm, v + (0.5_dp*hs)*k2, k3)
          call mat_mul(jb, v + hs*k3, k4)
          v = v + (hs/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
+         ! as `tangent_propagate`: a substep grows v by about e^θ at most, so checking
+         ! each one keeps the next far from overflow (the lane's indicators fail)
+         if (.not. all(abs(v) <= max_tangent_size)) then
+            stiff = .true.
+            return
+         end if
          ja = jb
       end do
    end subroutine chain_tangent_lane
