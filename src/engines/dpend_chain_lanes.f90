@@ -62,7 +62,7 @@ module dpend_chain_lanes
    use dpend_trajectory_batch, only: link_flip_bounds, first_flips, bound_margin
    use dpend_limits, only: max_tangent_substeps
    use dpend_indicator_math, only: initial_vectors, sali, gali, megno_step
-   use dpend_tangent, only: max_tangent_size
+   use dpend_tangent, only: max_tangent_size, mat_mul
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    implicit none
    private
@@ -377,22 +377,6 @@ contains
          ja = jb
       end do
    end subroutine chain_tangent_lane
-
-   !> c = a b by the plain triple loop, summing in ascending order (dpend_tangent's).
-   pure subroutine mat_mul(a, b, c)
-      real(dp), intent(in) :: a(:, :)   !! (m, k)
-      real(dp), intent(in) :: b(:, :)   !! (k, p)
-      real(dp), intent(out) :: c(:, :)  !! (m, p)
-      integer :: i, j, l
-      do j = 1, size(b, 2)
-         do i = 1, size(a, 1)
-            c(i, j) = 0.0_dp
-            do l = 1, size(a, 2)
-               c(i, j) = c(i, j) + a(i, l)*b(l, j)
-            end do
-         end do
-      end do
-   end subroutine mat_mul
 
    !> Integrate the initial conditions y0(:, j) = (q, q̇) of the chain `model` (served:
    !> `chain_lanes_serve`) with RK4 of step opt%h for at most opt%n_steps steps each,
