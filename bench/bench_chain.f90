@@ -3,7 +3,9 @@
 !> one thread, and as ratios to the two-link batch kernel (dpend_pendulum_lanes) timed
 !> in the same rounds (the machine may be shared: ratios of one run are the comparable
 !> figures); the per-trajectory path (the registry's rk4, dpend_trajectory_batch) of
-!> N = 3 for reference. One figure a line as `key: value unit`. Run in the release profile:
+!> N = 3 for reference; the triple pendulum's indicator maps (MEGNO: one deviation
+!> vector, SALI: two) in the lanes and on the per-trajectory path, and their ratios to
+!> the lanes' flip map and to each other. One figure a line as `key: value unit`. Run in the release profile:
 !>   . scripts/flags.sh
 !>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --batch
 module bench_chain
@@ -34,7 +36,8 @@ contains
    subroutine run_chain_lane_benchmarks(unit)
       integer, intent(in) :: unit  !! where to print
       integer, parameter :: links(3) = [3, 5, 8], rounds = 5
-      real(dp) :: two, ns(size(links)), traj
+      real(dp) :: two, ns(size(links)), traj, ind_lanes(2), ind_traj(2)
+      character(len=5), parameter :: ind_name(2) = ['megno', 'sali ']
       integer :: nthreads, k, r
       nthreads = omp_get_max_threads()
       call omp_set_num_threads(1)
@@ -46,6 +49,15 @@ contains
          end do
       end do
       traj = trajectory_ns(3)
+      ind_lanes = huge(1.0_dp)
+      do r = 1, 3
+         do k = 1, 2
+            ind_lanes(k) = min(ind_lanes(k), indicator_ns(3, k, .true.))
+         end do
+      end do
+      do k = 1, 2
+         ind_traj(k) = indicator_ns(3, k, .false.)
+      end do
       write (unit, '(a, f0.2, a)') 'chain_lanes_two_link_kernel_cpu_ns_per_traj_step: ', two, &
          ' ns'
       do k = 1, size(links)
@@ -57,6 +69,16 @@ contains
       write (unit, '(a, f0.2, a)') 'chain_per_trajectory_n3_cpu_ns_per_traj_step: ', traj, ' ns'
       write (unit, '(a, f0.2, a)') 'chain_per_trajectory_n3_over_two_link_kernel: ', &
          traj/two, ' x'
+      do k = 1, 2
+         write (unit, '(a, f0.2, a)') 'chain_lanes_n3_'//trim(ind_name(k))// &
+            '_cpu_ns_per_traj_step: ', ind_lanes(k), ' ns'
+         write (unit, '(a, f0.2, a)') 'chain_lanes_n3_'//trim(ind_name(k))// &
+            '_over_lanes_flip: ', ind_lanes(k)/ns(1), ' x'
+         write (unit, '(a, f0.2, a)') 'chain_per_trajectory_n3_'//trim(ind_name(k))// &
+            '_cpu_ns_per_traj_step: ', ind_traj(k), ' ns'
+         write (unit, '(a, f0.2, a)') 'chain_per_trajectory_n3_'//trim(ind_name(k))// &
+            '_over_lanes: ', ind_traj(k)/ind_lanes(k), ' x'
+      end do
       call omp_set_num_threads(nthreads)
       flush (unit)
    end subroutine run_chain_lane_benchmarks
@@ -140,5 +162,38 @@ contains
       ns = (t1 - t0)/(real(m, dp)*steps)*1e9_dp
       if (.not. (sum(res%final(1, :)) > -1e300_dp)) ns = -1.0_dp
    end function trajectory_ns
+
+   !> CPU ns per trajectory-step of an indicator map (nv deviation vectors: 1 MEGNO,
+   !> 2 SALI) of the chain of n unit rods, in the chain lanes (nb trajectories) or on
+   !> the per-trajectory path (nb/16: it is slow; it integrates each trajectory twice,
+   !> the second time with its 2n vectors).
+   real(dp) function indicator_ns(n, nv, lanes) result(ns)
+      integer, intent(in) :: n      !! links
+      integer, intent(in) :: nv     !! deviation vectors, 1 or 2
+      logical, intent(in) :: lanes  !! the chain lanes (else the per-trajectory path)
+      type(chain_t) :: chain
+      type(batch_result_t) :: res
+      type(batch_options_t) :: opt
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: error
+      real(dp), allocatable :: y0(:, :)
+      real(dp) :: t0, t1
+      integer :: m
+      call chain_start(n, chain, y0)
+      opt = options()
+      opt%vectors = nv
+      m = merge(nb, nb/16, lanes)
+      call cpu_time(t0)
+      if (lanes) then
+         call integrate_chain_lanes(chain, opt, y0(:, 1:m), res)
+      else
+         call new_integrator('rk4', integ, error)
+         if (allocated(error)) error stop 'bench_chain: no rk4'
+         call integrate_trajectories(chain, integ, chain%gl, opt, y0(:, 1:m), res)
+      end if
+      call cpu_time(t1)
+      ns = (t1 - t0)/(real(m, dp)*steps)*1e9_dp
+      if (.not. (sum(res%megno) > -1e300_dp)) ns = -1.0_dp
+   end function indicator_ns
 
 end module bench_chain

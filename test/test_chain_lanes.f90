@@ -18,7 +18,8 @@ module test_chain_lanes
    use dpend_pendulum_lanes, only: lane_width, batch_options_t, batch_result_t, stop_both, &
       stop_either, stop_end, sincos_exact
    use dpend_chain_lanes, only: chain_coef_t, chain_coef, chain_accel_lanes, chain_rk4_lanes, &
-      integrate_chain_lanes, max_lane_links
+      integrate_chain_lanes, max_lane_links, chain_tangent_lane
+   use dpend_tangent, only: tangent_t
    use dpend_trajectory_batch, only: integrate_trajectories
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
@@ -38,7 +39,10 @@ contains
                new_unittest('steps_match_rk4', test_steps), &
                new_unittest('lanes_match_per_trajectory', test_paths), &
                new_unittest('independent_of_lane_order', test_order), &
-               new_unittest('sweep_dispatch', test_dispatch)]
+               new_unittest('sweep_dispatch', test_dispatch), &
+               new_unittest('tangent_matches_model', test_tangent), &
+               new_unittest('indicators_match_per_trajectory', test_indicators), &
+               new_unittest('runaway_to_t_end', test_runaway)]
    end subroutine collect_chain_lanes
 
    !> A fixed seed: the same draws on every run (each test starts from it).
@@ -317,11 +321,181 @@ contains
       call setup_of([character(len=16) :: '--links', '2'], setup, error)
       call check_true(error, .not. setup%chain_lanes, 'N = 2: the two-link kernel')
       call setup_of([character(len=16) :: '--links', '3', '--indicator', 'megno'], setup, error)
-      call check_true(error, .not. setup%chain_lanes, 'indicators: per trajectory')
+      call check_true(error, setup%chain_lanes, 'MEGNO: chain lanes')
+      call setup_of([character(len=16) :: '--links', '4', '--indicator', 'gali2'], setup, error)
+      call check_true(error, setup%chain_lanes, 'GALI_2: chain lanes')
       call setup_of([character(len=16) :: '--links', '3', '--axis1', 'm1', '--min1', '0.5', &
                      '--max1', '2'], setup, error)
       call check_true(error, .not. setup%chain_lanes, 'parameter maps: per trajectory')
    end subroutine test_dispatch
+
+   !> One tangent step of `chain_tangent_lane` against the per-trajectory path's
+   !> `tangent_t%propagate` after the registry's rk4 step on the chain model (the same
+   !> Jacobian, interpolant, substeps and RK4): 12 random states of chains of 3 to 8
+   !> links, steps of 0.01 s (one substep) and 0.2 s (several), two vectors; the lane
+   !> gets f at the ends from the model's own `field`. Agreement 1e-10 relative.
+   subroutine test_tangent(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      type(tangent_t) :: tan
+      real(dp), allocatable :: y(:), yo(:), fo(:), fn(:), ja(:, :), v(:, :), v0(:, :)
+      real(dp) :: t, h, r(2*nm + 2*nm*2), dmax
+      integer :: n, k, stat, ih
+      logical :: stiff
+      call seed()
+      call new_integrator('rk4', integ, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'rk4: '//err%message)
+         return
+      end if
+      dmax = 0.0_dp
+      do k = 1, 12
+         n = 3 + mod(k, 6)
+         call draw_chain(n, mod(k, 2) == 0, chain)
+         call random_number(r)
+         do ih = 1, 2
+            h = merge(0.01_dp, 0.2_dp, ih == 1)
+            y = [2.0_dp*pi*r(1:n), 3.0_dp*(2.0_dp*r(n + 1:2*n) - 1.0_dp)]
+            v0 = reshape(2.0_dp*r(2*nm + 1:2*nm + 4*n) - 1.0_dp, [2*n, 2])
+            yo = y
+            t = 0.0_dp
+            call integ%clear_step()
+            call tan%init(v0)
+            call integ%step(chain, t, y, h, stat)
+            if (stat /= stat_ok) call fatal_error(error, 'rk4 step failed')
+            if (allocated(error)) return
+            call tan%propagate(integ, chain)
+            allocate (fo(2*n), fn(2*n), ja(2*n, 2*n))
+            call chain%field(0.0_dp, yo, fo)
+            call chain%field(h, y, fn)
+            call chain%jacobian(0.0_dp, yo, ja)
+            v = v0
+            call chain_tangent_lane(chain, 0.0_dp, h, yo, y, fo, fn, ja, v, stiff)
+            call check_true(error, .not. (stiff .or. tan%too_stiff), 'not stiff')
+            call check(error, pack(v, .true.), pack(tan%v, .true.), 'tangent vectors', rel=1e-10_dp, abs=1e-10_dp)
+            call check(error, pack(ja, .true.), pack(tan%j_cache, .true.), 'Jacobian at the end', &
+                       rel=1e-12_dp, abs=1e-12_dp)
+            dmax = max(dmax, maxval(abs(v - tan%v))/maxval(abs(tan%v)))
+            deallocate (fo, fn, ja)
+            if (allocated(error)) return
+         end do
+      end do
+      print '(a, es9.2)', '    max tangent difference ', dmax
+   end subroutine test_tangent
+
+   !> The indicators of the chain lanes against the per-trajectory path
+   !> (`integrate_trajectories`, `chaos_indicators`): N = 3 rods and N = 5 bodies,
+   !> 1 and 2 vectors, 100 steps of 0.01 s (a short window: the paths' rounding,
+   !> ~1e-15 a step, has not grown; tight, 1e-9), and 600 steps (chaotic growth:
+   !> MEGNO to 1e-4 absolute on the regular orbits, and every value finite where the
+   !> path's is); flips, steps and statuses as well.
+   subroutine test_indicators(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: a, b
+      real(dp), allocatable :: y0(:, :)
+      real(dp) :: tol, dmax(5)
+      integer :: k, n, j, nv, il
+      call seed()
+      call new_integrator('rk4', integ, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'rk4: '//err%message)
+         return
+      end if
+      opt%h = 0.01_dp
+      opt%stop_rule = stop_end
+      do k = 1, 2
+         n = merge(3, 5, k == 1)
+         call draw_chain(n, k == 2, chain)
+         call draw_states(n, y0)
+         do il = 1, 2
+            opt%n_steps = merge(100, 600, il == 1)
+            tol = merge(1e-9_dp, 1e-3_dp, il == 1)
+            do nv = 1, 2
+               opt%vectors = nv
+               dmax = 0.0_dp
+               call integrate_chain_lanes(chain, opt, y0, a)
+               call integrate_trajectories(chain, integ, chain%gl, opt, y0, b)
+               do j = 1, size(y0, 2)
+                  call check_true(error, a%status(j) == b%status(j) .and. &
+                                  a%steps(j) == b%steps(j), 'indicators: same status, steps')
+                  call near(a%megno(j), b%megno(j), 1)
+                  call near(a%megno_y(j), b%megno_y(j), 2)
+                  call near(a%fli(j), b%fli(j), 3)
+                  if (nv == 2) then
+                     call near(a%sali(j), b%sali(j), 4)
+                     call near(a%gali2(j), b%gali2(j), 5)
+                  else
+                     call check_true(error, ieee_is_nan(a%sali(j)) .and. &
+                                     ieee_is_nan(a%gali2(j)), 'one vector: no SALI, GALI_2')
+                  end if
+                  if (allocated(error)) return
+               end do
+               print '(a, i0, a, i0, a, i0, a, 5es9.2)', '    N = ', n, ', ', opt%n_steps, &
+                  ' steps, ', nv, ' vectors: max rel. difference ', dmax
+            end do
+         end do
+      end do
+   contains
+      !> x against the path's y within tol relative (to max(1, |y|)), NaN in both.
+      subroutine near(x, y, slot)
+         real(dp), intent(in) :: x, y
+         integer, intent(in) :: slot
+         if (ieee_is_nan(y)) then
+            call check_true(error, ieee_is_nan(x), 'indicator NaN in both')
+            return
+         end if
+         call check_true(error, .not. ieee_is_nan(x), 'indicator finite in both')
+         if (allocated(error)) return
+         dmax(slot) = max(dmax(slot), abs(x - y)/max(1.0_dp, abs(y)))
+         call check(error, x, y, 'indicator', abs=tol*max(1.0_dp, abs(y)))
+      end subroutine near
+   end subroutine test_indicators
+
+   !> Rates of 1e3 rad/s run away within a few steps (the velocities' squares reach the
+   !> lanes' clamp, the stages' offsets far beyond 1): run to t_end without a trap in
+   !> the debug build, for the flip map and the indicators, the same statuses, steps
+   !> and NaN indicators as the per-trajectory path.
+   subroutine test_runaway(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      type(error_t), allocatable :: err
+      type(batch_options_t) :: opt
+      type(batch_result_t) :: a, b
+      real(dp) :: y0(6, 20)
+      integer :: j, nv
+      call seed()
+      call new_integrator('rk4', integ, err)
+      if (allocated(err)) then
+         call fatal_error(error, 'rk4: '//err%message)
+         return
+      end if
+      call draw_chain(3, .false., chain)
+      do j = 1, 20
+         y0(:, j) = [0.1_dp*j, -0.2_dp*j, 0.3_dp, 1e3_dp, -1e3_dp*j, 1e3_dp]
+      end do
+      opt%h = 0.01_dp
+      opt%n_steps = 200
+      opt%stop_rule = stop_end
+      do nv = 0, 2
+         opt%vectors = nv
+         call integrate_chain_lanes(chain, opt, y0, a)
+         call integrate_trajectories(chain, integ, chain%gl, opt, y0, b)
+         do j = 1, 20
+            call check_true(error, a%status(j) == b%status(j) .and. a%steps(j) == b%steps(j) &
+                            .and. a%steps(j) < 200, 'runaway: same status and steps')
+            call check_true(error, ieee_is_nan(a%megno(j)) .and. ieee_is_nan(a%sali(j)), &
+                            'runaway: NaN indicators')
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_runaway
 
    !> The setup of `dpend sweep` on a small grid with the given extra words.
    subroutine setup_of(extra, setup, error)

@@ -27,9 +27,23 @@
 !> lane ends with st_nonfinite, its final state the last one before (the
 !> per-trajectory path's rule).
 !>
-!> Served: flip maps over initial values (indicator flip, no Lyapunov exponent) of the
-!> undamped, undriven chain (the sweep refuses the others). Parameter maps and the
-!> indicators MEGNO, FLI, SALI and GALI_2 of chains stay on the per-trajectory path.
+!> Served: maps over initial values of the undamped, undriven chain (the sweep refuses
+!> the others): the flip map and the indicators MEGNO, FLI (one deviation vector), SALI
+!> and GALI_2 (two). Parameter maps stay on the per-trajectory path (and the sweep
+!> refuses a Lyapunov exponent for chains).
+!>
+!> Indicators: the definitions, vectors, renormalisation and sample of the
+!> per-trajectory path (`integrate_trajectories` → `chaos_indicators`: vectors 1 and 2
+!> of `initial_vectors(2N)`, renormalised to length 1 after every step, `megno_step`
+!> on vector 1, one sample at t_end; every trajectory runs to t_end, those below the
+!> flip bounds too). The state steps in the lanes; each lane's vectors step by
+!> `chain_tangent_lane`, the per-trajectory path's tangent step (`tangent_t%propagate`:
+!> the chain model's own Jacobian on the step's cubic Hermite interpolant, ⌈hω/θ⌉
+!> substeps of RK4), which test chain_lanes/tangent_matches_model compares with it.
+!> Only the vectors the indicator needs are carried (the path carries 2N): a
+!> trajectory whose state runs away, or whose vectors fail (not finite, too many
+!> substeps), has NaN indicators, as on the path (the path also fails when one of its
+!> other vectors does: not met in practice, all grow at most like vector 1).
 !> DPEND_SWEEP_KERNEL=trajectory in the environment sends every chain to the
 !> per-trajectory path (`chain_kernel_choice`); two links are not affected.
 !>
@@ -46,11 +60,14 @@ module dpend_chain_lanes
       sincos_near_lanes, sincos_exact, resync_steps, stop_both, stop_either, st_end, &
       st_flipped, st_cannot_flip, st_nonfinite
    use dpend_trajectory_batch, only: link_flip_bounds, first_flips, bound_margin
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use dpend_limits, only: max_tangent_substeps
+   use dpend_indicator_math, only: initial_vectors, sali, gali, megno_step
+   use dpend_tangent, only: max_tangent_size, mat_mul
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    implicit none
    private
    public :: max_lane_links, chain_coef_t, chain_coef, chain_lanes_serve, chain_kernel_choice
-   public :: chain_accel_lanes, chain_rk4_lanes, integrate_chain_lanes
+   public :: chain_accel_lanes, chain_rk4_lanes, integrate_chain_lanes, chain_tangent_lane
 
    integer, parameter :: min_lane_links = 3  !! fewest links of the chain lanes
    integer, parameter :: max_lane_links = 8  !! most links of the chain lanes
@@ -64,6 +81,8 @@ module dpend_chain_lanes
    real(dp), parameter :: chain_lane_bound = diverged_bound
    !> Margin of the angle windows [rad] (as the two-link kernel's)
    real(dp), parameter :: window_margin = 1.0e-6_dp
+   !> Largest ω·h per tangent substep [1] (`tangent_t`'s theta, dpend_tangent)
+   real(dp), parameter :: tangent_theta = 0.1_dp
 
    !> The chain's constants for the lanes [SI].
    type :: chain_coef_t
@@ -93,7 +112,8 @@ contains
       select type (model)
       type is (chain_t)
          ok = model%n >= min_lane_links .and. model%n <= max_lane_links .and. &
-              model%hamiltonian() .and. opt%vectors == 0 .and. .not. opt%lyapunov
+              model%hamiltonian() .and. opt%vectors >= 0 .and. opt%vectors <= 2 .and. &
+              .not. opt%lyapunov
       end select
    end function chain_lanes_serve
 
@@ -287,11 +307,76 @@ contains
       real(dp), intent(in) :: ts(w, nm), tc(w, nm)    !! sin q, cos q
       real(dp), intent(in) :: x(w, nm), d(w, nm)      !! angles, offsets [rad]
       real(dp), intent(inout) :: s(w, nm), c(w, nm)   !! sin x, cos x
-      integer :: j
+      real(dp) :: dc(w)
+      integer :: j, l
       do j = 1, n
-         call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), d(:, j), s(:, j), c(:, j))
+         ! d clamped to ±1: the same values (an offset beyond 1/16 takes sin x, cos x
+         ! themselves), and no overflow in the Taylor terms of a lane that runs away
+         do l = 1, w
+            dc(l) = min(max(d(l, j), -1.0_dp), 1.0_dp)
+         end do
+         call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), dc, s(:, j), c(:, j))
       end do
    end subroutine stage_trig
+
+   !> One lane's tangent step: the vectors v (2N, nv) carried over the RK4 step [t_a,
+   !> t_a + h] from state yo to yn (vector fields fo, fn at its ends) as
+   !> `tangent_t%propagate` (dpend_tangent) does for the per-trajectory path: the chain
+   !> model's own Jacobian (`chain_t%jacobian`) at the substep ends and midpoints on the
+   !> cubic Hermite interpolant of the step (`integrator_t%interpolate`), n = ⌈h ω/θ⌉
+   !> substeps (ω = ‖J²‖∞^½, θ = 0.1), classical RK4 for the linear system. ja holds J
+   !> at yo on entry, J at yn on return. stiff: more than `max_tangent_substeps`
+   !> substeps were needed (v is left unchanged), or a component of v passed
+   !> `max_tangent_size` (v is not propagated further).
+   subroutine chain_tangent_lane(model, t_a, h, yo, yn, fo, fn, ja, v, stiff)
+      type(chain_t), intent(in) :: model             !! the chain, N links
+      real(dp), intent(in) :: t_a                    !! start of the step [s]
+      real(dp), intent(in) :: h                      !! step [s]
+      real(dp), intent(in) :: yo(:), yn(:)           !! states (q, q̇) at the ends (2N)
+      real(dp), intent(in) :: fo(:), fn(:)           !! vector fields there (2N)
+      real(dp), intent(inout) :: ja(:, :)            !! Jacobian at yo in, at yn out
+      real(dp), intent(inout) :: v(:, :)             !! tangent vectors (2N, nv)
+      logical, intent(out) :: stiff                  !! too many substeps
+      real(dp), dimension(size(yo), size(yo)) :: jm, jb, ja2
+      real(dp), dimension(size(yo)) :: ym, dy
+      real(dp), dimension(size(yo), size(v, 2)) :: k1, k2, k3, k4
+      real(dp) :: hs, ta, omega, th
+      integer :: n, i
+      call mat_mul(ja, ja, ja2)
+      omega = sqrt(maxval(sum(abs(ja2), dim=2)))
+      stiff = .not. (abs(h)*omega <= tangent_theta*real(max_tangent_substeps, dp))
+      if (stiff) return
+      n = max(1, ceiling(abs(h)*omega/tangent_theta))
+      hs = h/real(n, dp)
+      dy = yn - yo
+      do i = 1, n
+         ta = t_a + real(i - 1, dp)*hs
+         th = ((ta + 0.5_dp*hs) - t_a)/h
+         ym = (1.0_dp - th)*yo + th*yn + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
+              + (th - 1.0_dp)*h*fo + th*h*fn)
+         call model%jacobian(ta + 0.5_dp*hs, ym, jm)
+         if (i == n) then
+            call model%jacobian(ta + hs, yn, jb)
+         else
+            th = ((ta + hs) - t_a)/h
+            ym = (1.0_dp - th)*yo + th*yn + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
+                 + (th - 1.0_dp)*h*fo + th*h*fn)
+            call model%jacobian(ta + hs, ym, jb)
+         end if
+         call mat_mul(ja, v, k1)
+         call mat_mul(jm, v + (0.5_dp*hs)*k1, k2)
+         call mat_mul(jm, v + (0.5_dp*hs)*k2, k3)
+         call mat_mul(jb, v + hs*k3, k4)
+         v = v + (hs/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
+         ! as `tangent_propagate`: a substep grows v by about e^θ at most, so checking
+         ! each one keeps the next far from overflow (the lane's indicators fail)
+         if (.not. all(abs(v) <= max_tangent_size)) then
+            stiff = .true.
+            return
+         end if
+         ja = jb
+      end do
+   end subroutine chain_tangent_lane
 
    !> Integrate the initial conditions y0(:, j) = (q, q̇) of the chain `model` (served:
    !> `chain_lanes_serve`) with RK4 of step opt%h for at most opt%n_steps steps each,
@@ -325,6 +410,13 @@ contains
       real(dp) :: bounds(model%n), escale, margin, nan, mk, qc, n_events
       integer :: n, nl, i, j, l, next, n_active
       logical :: any_ended
+      ! the indicators (opt%vectors 1 or 2): vectors, Jacobians at the step start,
+      ! vector fields at the step ends, running sums of vector 1 (dpend_indicators)
+      real(dp), allocatable :: dv(:, :, :), jl(:, :, :), v0(:, :)
+      real(dp), dimension(w, nm) :: fa, fb
+      real(dp), dimension(w) :: lg, ig, yy, sy
+      logical :: ind_ok(w), jfresh(w), stale
+      integer :: nv
 
       nl = model%n
       n = size(y0, 2)
@@ -333,6 +425,14 @@ contains
       bounds = link_flip_bounds(model%gl)
       margin = bound_margin*sum(model%gl)
       escale = 2.0_dp*sum(model%gl)
+      nv = opt%vectors
+      if (nv > 0) then
+         allocate (dv(2*nl, nv, w), jl(2*nl, 2*nl, w))
+         v0 = initial_vectors(2*nl)
+         fa = 0.0_dp
+         fb = 0.0_dp
+      end if
+      stale = .true.
       res%n = n
       allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
                 res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
@@ -354,7 +454,7 @@ contains
          todo(j) = opt%n_steps >= 1
          if (opt%n_steps < 1) then
             res%status(j) = st_end
-         else if (.not. (any(can(1:nl, j)) .or. .not. opt%skip_cannot_flip)) then
+         else if (.not. (any(can(1:nl, j)) .or. .not. opt%skip_cannot_flip .or. nv > 0)) then
             res%energy_error(j) = nan
             todo(j) = .false.
          end if
@@ -368,7 +468,12 @@ contains
       do while (n_active > 0)
          p = q
          pd = qd
+         if (nv > 0 .and. stale) then   ! a lane loaded or resynced: f at the start anew
+            call chain_accel_lanes(cf, ts, tc, qd, fa)
+            stale = .false.
+         end if
          call chain_rk4_lanes(cf, opt%h, q, qd, e, ts, tc)
+         if (nv > 0) call tangent_step()
          ! vectorized: the error, the step count and a count of the lanes with a
          ! possible event (an angle out of its window, the last step, a state not
          ! finite or beyond the bound, carried sin and cos due, a fresh lane)
@@ -438,6 +543,49 @@ contains
 
    contains
 
+      !> The indicators' step of every lane with a trajectory (after the state's): the
+      !> vectors by `chain_tangent_lane`, renormalised to length 1, the running sums
+      !> by `megno_step` (as `chaos_indicators`, vector 1). A lane whose state ran away
+      !> or whose vectors fail is left to the rare path (indicators NaN).
+      subroutine tangent_step()
+         real(dp) :: yo(2*nl), yn(2*nl), fo(2*nl), fn(2*nl), nrm, dl(nv), t_b, t_a
+         logical :: stiff
+         integer :: ll, kv
+         call chain_accel_lanes(cf, ts, tc, qd, fb)
+         do ll = 1, w
+            if (lane_ic(ll) == 0 .or. .not. ind_ok(ll)) cycle
+            if (runaway(ll)) cycle
+            yo(1:nl) = p(ll, 1:nl); yo(nl + 1:) = pd(ll, 1:nl)
+            yn(1:nl) = q(ll, 1:nl); yn(nl + 1:) = qd(ll, 1:nl)
+            fo(1:nl) = pd(ll, 1:nl); fo(nl + 1:) = fa(ll, 1:nl)
+            fn(1:nl) = qd(ll, 1:nl); fn(nl + 1:) = fb(ll, 1:nl)
+            t_a = real(ks(ll), dp)*opt%h   ! (ks counts the step just after)
+            t_b = real(ks(ll) + 1, dp)*opt%h
+            if (jfresh(ll)) then
+               call model%jacobian(t_a, yo, jl(:, :, ll))
+               jfresh(ll) = .false.
+            end if
+            call chain_tangent_lane(model, t_a, opt%h, yo, yn, fo, fn, jl(:, :, ll), &
+                                    dv(:, :, ll), stiff)
+            if (stiff .or. .not. all(ieee_is_finite(dv(:, :, ll)))) then
+               ind_ok(ll) = .false.
+               cycle
+            end if
+            do kv = 1, nv
+               nrm = norm2(dv(:, kv, ll))
+               if (.not. (nrm > 0.0_dp .and. nrm < diverged_bound)) then
+                  ind_ok(ll) = .false.
+                  exit
+               end if
+               dv(:, kv, ll) = dv(:, kv, ll)/nrm
+               dl(kv) = log(nrm)
+            end do
+            if (.not. ind_ok(ll)) cycle
+            call megno_step(dl(1), t_a, t_b, 0.0_dp, lg(ll), ig(ll), yy(ll), sy(ll))
+         end do
+         fa = fb
+      end subroutine tangent_step
+
       !> Put the next initial condition to integrate into lane ll, or the idle state.
       subroutine load(ll)
          integer, intent(in) :: ll
@@ -475,6 +623,12 @@ contains
             call set_window(ll, ii)
          end do
          call resync(ll)
+         if (nv > 0) then
+            dv(:, :, ll) = v0(:, 1:nv)
+            lg(ll) = 0.0_dp; ig(ll) = 0.0_dp; yy(ll) = 0.0_dp; sy(ll) = 0.0_dp
+            ind_ok(ll) = .true.
+            jfresh(ll) = .true.
+         end if
       end subroutine load
 
       !> Set the carried sines and cosines of lane ll exactly.
@@ -485,6 +639,7 @@ contains
             call sincos_exact(q(ll, ii), ts(ll, ii), tc(ll, ii))
          end do
          sync(ll) = real(resync_steps, dp)
+         stale = .true.
       end subroutine resync
 
       !> The window of link ii's angle in lane ll: between two upward verticals, shrunk
@@ -539,8 +694,26 @@ contains
          res%t_stop(jj) = real(kk, dp)*opt%h
          res%steps(jj) = int(kk)
          res%t_flip_link(:, jj) = tf(ll, 1:nl)
+         if (nv > 0 .and. res%status(jj) /= st_nonfinite .and. kk >= 1) then
+            if (ind_ok(ll)) call finish_indicators(jj, ll, res%t_stop(jj))
+         end if
          n_active = n_active - 1
       end subroutine finish
+
+      !> The indicators of trajectory jj from lane ll at its end time t_b [s]
+      !> (`integrate_trajectories`' choice of `chaos_indicators`' sample).
+      subroutine finish_indicators(jj, ll, t_b)
+         integer, intent(in) :: jj, ll
+         real(dp), intent(in) :: t_b
+         integer :: info
+         res%fli(jj) = lg(ll)
+         res%megno_y(jj) = yy(ll)
+         res%megno(jj) = sy(ll)/t_b
+         if (nv < 2) return
+         res%sali(jj) = sali(dv(:, 1, ll), dv(:, 2, ll))
+         call gali(dv(:, 1:2, ll), res%gali2(jj), info)
+         if (info /= 0) res%gali2(jj) = nan
+      end subroutine finish_indicators
    end subroutine integrate_chain
 
 end module dpend_chain_lanes

@@ -20,7 +20,8 @@ succeed chl-n3-point            -- "${C[@]}" --links 3 --body point
 succeed chl-n3-list             -- sweep --links 3 --ic-file chl_list.txt --t-end 2 --quiet --output c.h5
 succeed chl-n3-fast             -- "${C[@]}" --links 3 --w 1e3,-1e3,1e3
 succeed chl-n3-big-angles       -- "${C[@]}" --links 3 --axis1 q1 --min1 -1e6 --max1 1e6
-# beside the lanes: the per-trajectory path
+# beside the lanes: the per-trajectory path (chl-n3-megno: the lanes since the
+# indicators joined them, chainind_r5.sh)
 succeed chl-n9                  -- "${C[@]}" --links 9
 succeed chl-n3-megno            -- "${C[@]}" --links 3 --indicator megno
 succeed chl-n3-param            -- "${C[@]}" --links 3 --axis1 m1 --min1 0.5 --max1 2
