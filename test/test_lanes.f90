@@ -8,6 +8,7 @@ module test_lanes
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum_lanes, only: lane_width, batch_coef, batch_coef_t, lane_coef_t, lane_coef, &
       set_lane_coef, rk4_lanes, rk4_tangent_lanes, rk4_tangent2_lanes, energy_lanes, &
+      rk4_tangent_fused_lanes, &
       lane_trig_t, set_lane_trig, batch_options_t, batch_result_t, integrate_batch
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
@@ -27,7 +28,8 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)  !! the tests
       tests = [new_unittest('lane_constants_bitwise', test_lane_constants), &
                new_unittest('tangent2_matches_tangent', test_tangent2), &
-               new_unittest('ratio_axes_pixels_equal_direct_runs', test_ratio_axes)]
+               new_unittest('ratio_axes_pixels_equal_direct_runs', test_ratio_axes), &
+               new_unittest('tangent_fused_matches', test_tangent_fused)]
    end subroutine collect_lanes
 
    !> Lane l's pendulum of the tests: masses and lengths from 0.3 to 2.7.
@@ -162,6 +164,48 @@ contains
          call check_true(error, same, 'rk4_tangent2_lanes: vector 2 = rk4_tangent_lanes')
       end subroutine second_vector
    end subroutine test_tangent2
+
+   !> 200 steps of `rk4_tangent_fused_lanes` (issue 27: the tangent step fused into one
+   !> loop body) against `rk4_tangent_lanes` (one vector) and `rk4_tangent2_lanes`
+   !> (two): state, vectors and energy equal bit for bit, every lane its own pendulum;
+   !> lane 3 starts fast (stage offsets beyond d_max) and lane 5 beyond
+   !> sincos_exact_max (2e6 rad), so that the fallback to those routines runs too.
+   subroutine test_tangent_fused(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(lane_coef_t) :: lc
+      real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
+      real(dp) :: d(w, 4, 2), dr(w, 4, 2)
+      real(dp), parameter :: h = 0.01_dp
+      integer :: l, k, j, nv
+      logical :: same
+      same = .true.
+      do nv = 1, 2
+         do l = 1, w
+            call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
+            q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
+            do j = 1, 4
+               d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
+               d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
+            end do
+         end do
+         w1(3) = 20.0_dp
+         q2(5) = 2.0e6_dp
+         p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; dr = d
+         do k = 1, 200
+            call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, nv, d, e)
+            if (nv == 1) then
+               call rk4_tangent_lanes(lc, h, p1, p2, pw1, pw2, dr(:, 1, 1), dr(:, 2, 1), &
+                                      dr(:, 3, 1), dr(:, 4, 1), pe)
+            else
+               call rk4_tangent2_lanes(lc, h, p1, p2, pw1, pw2, dr, pe)
+            end if
+            same = same .and. all(e == pe) .and. all(q1 == p1) .and. all(q2 == p2) .and. &
+                   all(w1 == pw1) .and. all(w2 == pw2) .and. all(d(:, :, 1:nv) == dr(:, :, 1:nv))
+         end do
+      end do
+      call check_true(error, same, 'rk4_tangent_fused_lanes = rk4_tangent_lanes (1 vector), '// &
+                      'rk4_tangent2_lanes (2 vectors)')
+   end subroutine test_tangent_fused
 
    !> A sweep over (m2/m1, l2/l1), 5 × 5 pixels in blocks of 7 (lanes refilled with
    !> other parameters), flip map and SALI map: every pixel equals, bit for bit, the
