@@ -1287,13 +1287,13 @@ contains
    end subroutine tangent_lane_step
 
    !> One RK4 step of the state with nv (1 or 2) deviation vectors d(:, :, k) =
-   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math): one vector
-   !> through `rk4_tangent_lanes`, two through `rk4_tangent2_lanes` (the state's
-   !> stages once; each vector's step the same bit for bit as `rk4_tangent_lanes`'),
-   !> then renormalised to length 1 (directions kept, never
-   !> orthogonalised); vector 1's growth enters the sums acc(:, 1:4) = (ln |δ|,
-   !> MEGNO's integral, Y, ∫ Y ds) of the step [ks h, (ks + 1) h] (`megno_step`,
-   !> t0 = 0, `megno_step_lanes`). `e` as in `rk4_lanes`.
+   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math) through
+   !> `rk4_tangent_fused_lanes` (the state's stages once; the operations of
+   !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`), then renormalised to length 1
+   !> (directions kept, never orthogonalised); vector 1's growth enters the sums
+   !> acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
+   !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_step_lanes`). `e` as in
+   !> `rk4_lanes`.
    pure subroutine indicator_step_lanes_lc(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
       type(lane_coef_t), intent(in) :: c                           !! constants
       real(dp), intent(in) :: h                                    !! step [s]
