@@ -1079,9 +1079,9 @@ contains
    !> (`tangent_lane_step`: the stages' values stay in registers, the Jacobian's
    !> terms once per stage for both vectors). The same operations in the same order,
    !> so every value equals theirs bit for bit (test lanes/tangent_fused_matches).
-   !> A lane outside the fused path's range (|q| > `sincos_exact_max` or a stage
-   !> offset |d| > `d_max`, where those routines take exact sin and cos) sends the
-   !> whole lane set through them from the saved start (the lanes never mix).
+   !> A lane outside the fused path's range (a stage offset |d| > `d_max`, where
+   !> those routines take exact sin and cos) takes their step from the saved start
+   !> (`tangent_fallback`: that lane only, so that the lanes never mix).
    pure subroutine rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e)
       type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
@@ -1106,14 +1106,43 @@ contains
          n_off = n_off + off(i)
       end do
       if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
-      q1 = p1; q2 = p2; w1 = pw1; w2 = pw2; d = pd
-      if (nv > 1) then
-         call rk4_tangent2_lanes(c, h, q1, q2, w1, w2, d, e)
-      else
-         call rk4_tangent_lanes_lc(c, h, q1, q2, w1, w2, d(:, 1, 1), d(:, 2, 1), d(:, 3, 1), &
-                                   d(:, 4, 1), e)
-      end if
+      call tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
    end subroutine rk4_tangent_fused_lanes
+
+   !> The lanes of `rk4_tangent_fused_lanes` with off /= 0 take the step of
+   !> `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes` (nv = 2) from the saved
+   !> start (p1, p2, pw1, pw2, pd); the other lanes keep their fused values, so that
+   !> each lane's result depends on its own values only (the two paths may differ by
+   !> rounding: FMA contraction in the release profile).
+   pure subroutine tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
+      type(lane_coef_t), intent(in) :: c                         !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      integer, intent(in) :: nv                                  !! vectors, 1 or 2
+      real(dp), intent(in) :: off(lane_width)                    !! 0: the lane's step holds
+      real(dp), intent(in) :: p1(lane_width), p2(lane_width)     !! step start [rad]
+      real(dp), intent(in) :: pw1(lane_width), pw2(lane_width)   !! step start [rad/s]
+      real(dp), intent(in) :: pd(lane_width, 4, 2)               !! vectors at the start
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! new angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! new velocities [rad/s]
+      real(dp), intent(inout) :: d(lane_width, 4, 2)             !! new vectors
+      real(dp), intent(inout) :: e(lane_width)                   !! energy before [J]
+      real(dp), dimension(lane_width) :: r1, r2, rw1, rw2, re
+      real(dp) :: rd(lane_width, 4, 2)
+      integer :: i
+      r1 = p1; r2 = p2; rw1 = pw1; rw2 = pw2; rd = pd
+      if (nv > 1) then
+         call rk4_tangent2_lanes(c, h, r1, r2, rw1, rw2, rd, re)
+      else
+         call rk4_tangent_lanes_lc(c, h, r1, r2, rw1, rw2, rd(:, 1, 1), rd(:, 2, 1), &
+                                   rd(:, 3, 1), rd(:, 4, 1), re)
+      end if
+      do i = 1, lane_width
+         if (.not. (off(i) == 0.0_dp)) then
+            q1(i) = r1(i); q2(i) = r2(i); w1(i) = rw1(i); w2(i) = rw2(i); e(i) = re(i)
+            d(i, :, 1:nv) = rd(i, :, 1:nv)
+         end if
+      end do
+   end subroutine tangent_fallback
 
    !> Lane l's step of `rk4_tangent_fused_lanes` with nv vectors (x1 .. x4: vector 1,
    !> y1 .. y4: vector 2, untouched for nv = 1); off > 0 (or NaN) where the lane
