@@ -167,7 +167,9 @@ contains
 
    !> 200 steps of `rk4_tangent_fused_lanes` (issue 27: the tangent step fused into one
    !> loop body) against `rk4_tangent_lanes` (one vector) and `rk4_tangent2_lanes`
-   !> (two): state, vectors and energy equal bit for bit, every lane its own pendulum;
+   !> (two): state, vectors and energy equal to 1e-9 relative (bit for bit without
+   !> FMA contraction, as in the debug profile; with -march=native GCC contracts
+   !> other products in the fused body), every lane its own pendulum;
    !> lane 3 starts fast (stage offsets beyond d_max) and lane 5 beyond
    !> sincos_exact_max (2e6 rad), so that the fallback to those routines runs too.
    subroutine test_tangent_fused(error)
@@ -178,7 +180,9 @@ contains
       real(dp), parameter :: h = 0.01_dp
       integer :: l, k, j, nv
       logical :: same
+      real(dp) :: worst
       same = .true.
+      worst = 0
       do nv = 1, 2
          do l = 1, w
             call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
@@ -199,12 +203,15 @@ contains
             else
                call rk4_tangent2_lanes(lc, h, p1, p2, pw1, pw2, dr, pe)
             end if
-            same = same .and. all(e == pe) .and. all(q1 == p1) .and. all(q2 == p2) .and. &
-                   all(w1 == pw1) .and. all(w2 == pw2) .and. all(d(:, :, 1:nv) == dr(:, :, 1:nv))
+            worst = max(worst, rel(e, pe), rel(q1, p1), rel(q2, p2), rel(w1, pw1), &
+                        rel(w2, pw2), rel(reshape(d(:, :, 1:nv), [4*w*nv]), &
+                                          reshape(dr(:, :, 1:nv), [4*w*nv])))
          end do
       end do
-      call check_true(error, same, 'rk4_tangent_fused_lanes = rk4_tangent_lanes (1 vector), '// &
-                      'rk4_tangent2_lanes (2 vectors)')
+      write (*, '(4x, a, es10.3)') 'rk4_tangent_fused_lanes vs rk4_tangent_lanes, '// &
+         'rk4_tangent2_lanes: largest relative difference ', worst
+      call check_true(error, worst <= 1e-9_dp, 'rk4_tangent_fused_lanes = rk4_tangent_lanes '// &
+                      '(1 vector), rk4_tangent2_lanes (2 vectors) to 1e-9 relative')
       if (allocated(error)) return
       call lanes_independent(error)
    contains
@@ -241,6 +248,12 @@ contains
          call check_true(error, same, 'rk4_tangent_fused_lanes: a lane on the fallback '// &
                          'leaves the other lanes unchanged')
       end subroutine lanes_independent
+
+      !> Largest |a - b| / max(|b|, 1e-300) [1].
+      pure real(dp) function rel(a, b)
+         real(dp), intent(in) :: a(:), b(:)
+         rel = maxval(abs(a - b)/max(abs(b), 1e-300_dp))
+      end function rel
    end subroutine test_tangent_fused
 
    !> A sweep over (m2/m1, l2/l1), 5 × 5 pixels in blocks of 7 (lanes refilled with
