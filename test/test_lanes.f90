@@ -118,16 +118,12 @@ contains
       real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
       real(dp) :: d(w, 4, 2), d1(w, 4), d2(w, 4)
       real(dp), parameter :: h = 0.01_dp
-      integer :: l, k, j
+      integer :: l, k
       logical :: same
       do l = 1, w
          call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
-         q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-         do j = 1, 4
-            d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-            d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-         end do
       end do
+      call tangent_start(q1, q2, w1, w2, d)
       p1 = q1; p2 = q2; pw1 = w1; pw2 = w2
       d1 = d(:, :, 1); d2 = d(:, :, 2)
       same = .true.
@@ -146,13 +142,7 @@ contains
       subroutine second_vector(error)
          type(error_t), allocatable, intent(out) :: error
          real(dp) :: dd(w, 4, 2)
-         do l = 1, w
-            q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-            do j = 1, 4
-               dd(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-               dd(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-            end do
-         end do
+         call tangent_start(q1, q2, w1, w2, dd)
          p1 = q1; p2 = q2; pw1 = w1; pw2 = w2
          d2 = dd(:, :, 2)
          do k = 1, 300
@@ -178,7 +168,7 @@ contains
       real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
       real(dp) :: d(w, 4, 2), dr(w, 4, 2)
       real(dp), parameter :: h = 0.01_dp
-      integer :: l, k, j, nv
+      integer :: l, k, nv
       logical :: same
       real(dp) :: worst
       same = .true.
@@ -186,12 +176,8 @@ contains
       do nv = 1, 2
          do l = 1, w
             call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
-            q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-            do j = 1, 4
-               d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-               d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-            end do
          end do
+         call tangent_start(q1, q2, w1, w2, d)
          w1(3) = 20.0_dp
          q2(5) = 2.0e6_dp
          p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; dr = d
@@ -222,13 +208,7 @@ contains
          real(dp) :: da(w, 4, 2), qa(w, 4), ea(w)
          integer :: run
          do run = 1, 2
-            do l = 1, w
-               q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-               do j = 1, 4
-                  d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-                  d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-               end do
-            end do
+            call tangent_start(q1, q2, w1, w2, d)
             if (run == 2) w1(3) = 20.0_dp
             do k = 1, 50
                call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, 2, d, e)
@@ -255,6 +235,22 @@ contains
          rel = maxval(abs(a - b)/max(abs(b), 1e-300_dp))
       end function rel
    end subroutine test_tangent_fused
+
+   !> The start of the tangent tests: lane l at q = (0.1 l, -0.2 l) rad, q̇ = (1 - 0.1 l,
+   !> 0.05 l) rad/s, vectors d(l, j, 1) = 0.5^j + 0.01 l, d(l, j, 2) = (-0.7)^j - 0.02 l.
+   pure subroutine tangent_start(q1, q2, w1, w2, d)
+      real(dp), dimension(w), intent(out) :: q1, q2  !! angles [rad]
+      real(dp), dimension(w), intent(out) :: w1, w2  !! velocities [rad/s]
+      real(dp), intent(out) :: d(w, 4, 2)            !! deviation vectors
+      integer :: l, j
+      do l = 1, w
+         q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
+         do j = 1, 4
+            d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
+            d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
+         end do
+      end do
+   end subroutine tangent_start
 
    !> A sweep over (m2/m1, l2/l1), 5 × 5 pixels in blocks of 7 (lanes refilled with
    !> other parameters), flip map and SALI map: every pixel equals, bit for bit, the

@@ -1144,6 +1144,9 @@ contains
       end do
    end subroutine tangent_fallback
 
+   !> Copy of `tangent_vector`'s formula, written out for each stage and vector (GCC
+   !> 12 does not inline eight calls of it into one loop body, and a call stops the
+   !> vectorizer); test lanes/tangent_fused_matches compares them.
    !> Lane l's step of `rk4_tangent_fused_lanes` with nv vectors (x1 .. x4: vector 1,
    !> y1 .. y4: vector 2, untouched for nv = 1); off > 0 (or NaN) where the lane
    !> leaves the fused path (its values are then discarded, but stay bounded).
