@@ -8,6 +8,7 @@ module test_lanes
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum_lanes, only: lane_width, batch_coef, batch_coef_t, lane_coef_t, lane_coef, &
       set_lane_coef, rk4_lanes, rk4_tangent_lanes, rk4_tangent2_lanes, energy_lanes, &
+      rk4_tangent_fused_lanes, &
       lane_trig_t, set_lane_trig, batch_options_t, batch_result_t, integrate_batch
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
@@ -27,7 +28,8 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)  !! the tests
       tests = [new_unittest('lane_constants_bitwise', test_lane_constants), &
                new_unittest('tangent2_matches_tangent', test_tangent2), &
-               new_unittest('ratio_axes_pixels_equal_direct_runs', test_ratio_axes)]
+               new_unittest('ratio_axes_pixels_equal_direct_runs', test_ratio_axes), &
+               new_unittest('tangent_fused_matches', test_tangent_fused)]
    end subroutine collect_lanes
 
    !> Lane l's pendulum of the tests: masses and lengths from 0.3 to 2.7.
@@ -116,16 +118,12 @@ contains
       real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
       real(dp) :: d(w, 4, 2), d1(w, 4), d2(w, 4)
       real(dp), parameter :: h = 0.01_dp
-      integer :: l, k, j
+      integer :: l, k
       logical :: same
       do l = 1, w
          call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
-         q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-         do j = 1, 4
-            d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-            d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-         end do
       end do
+      call tangent_start(q1, q2, w1, w2, d)
       p1 = q1; p2 = q2; pw1 = w1; pw2 = w2
       d1 = d(:, :, 1); d2 = d(:, :, 2)
       same = .true.
@@ -144,13 +142,7 @@ contains
       subroutine second_vector(error)
          type(error_t), allocatable, intent(out) :: error
          real(dp) :: dd(w, 4, 2)
-         do l = 1, w
-            q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
-            do j = 1, 4
-               dd(l, j, 1) = 0.5_dp**j + 0.01_dp*l
-               dd(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
-            end do
-         end do
+         call tangent_start(q1, q2, w1, w2, dd)
          p1 = q1; p2 = q2; pw1 = w1; pw2 = w2
          d2 = dd(:, :, 2)
          do k = 1, 300
@@ -162,6 +154,103 @@ contains
          call check_true(error, same, 'rk4_tangent2_lanes: vector 2 = rk4_tangent_lanes')
       end subroutine second_vector
    end subroutine test_tangent2
+
+   !> 200 steps of `rk4_tangent_fused_lanes` (issue 27: the tangent step fused into one
+   !> loop body) against `rk4_tangent_lanes` (one vector) and `rk4_tangent2_lanes`
+   !> (two): state, vectors and energy equal to 1e-9 relative (bit for bit without
+   !> FMA contraction, as in the debug profile; with -march=native GCC contracts
+   !> other products in the fused body), every lane its own pendulum;
+   !> lane 3 starts fast (stage offsets beyond d_max) and lane 5 beyond
+   !> sincos_exact_max (2e6 rad), so that the fallback to those routines runs too.
+   subroutine test_tangent_fused(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(lane_coef_t) :: lc
+      real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
+      real(dp) :: d(w, 4, 2), dr(w, 4, 2)
+      real(dp), parameter :: h = 0.01_dp
+      integer :: l, k, nv
+      logical :: same
+      real(dp) :: worst
+      same = .true.
+      worst = 0
+      do nv = 1, 2
+         do l = 1, w
+            call set_lane_coef(lc, l, batch_coef(lane_pendulum(l)))
+         end do
+         call tangent_start(q1, q2, w1, w2, d)
+         w1(3) = 20.0_dp
+         q2(5) = 2.0e6_dp
+         p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; dr = d
+         do k = 1, 200
+            call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, nv, d, e)
+            if (nv == 1) then
+               call rk4_tangent_lanes(lc, h, p1, p2, pw1, pw2, dr(:, 1, 1), dr(:, 2, 1), &
+                                      dr(:, 3, 1), dr(:, 4, 1), pe)
+            else
+               call rk4_tangent2_lanes(lc, h, p1, p2, pw1, pw2, dr, pe)
+            end if
+            worst = max(worst, rel(e, pe), rel(q1, p1), rel(q2, p2), rel(w1, pw1), &
+                        rel(w2, pw2), rel(reshape(d(:, :, 1:nv), [4*w*nv]), &
+                                          reshape(dr(:, :, 1:nv), [4*w*nv])))
+         end do
+      end do
+      write (*, '(4x, a, es10.3)') 'rk4_tangent_fused_lanes vs rk4_tangent_lanes, '// &
+         'rk4_tangent2_lanes: largest relative difference ', worst
+      call check_true(error, worst <= 1e-9_dp, 'rk4_tangent_fused_lanes = rk4_tangent_lanes '// &
+                      '(1 vector), rk4_tangent2_lanes (2 vectors) to 1e-9 relative')
+      if (allocated(error)) return
+      call lanes_independent(error)
+   contains
+      !> Lane 3 on the fallback or not: the other lanes' values are the same bit for
+      !> bit (also in the release profile, where the two paths may differ by rounding).
+      subroutine lanes_independent(error)
+         type(error_t), allocatable, intent(out) :: error
+         real(dp) :: da(w, 4, 2), qa(w, 4), ea(w)
+         integer :: run
+         do run = 1, 2
+            call tangent_start(q1, q2, w1, w2, d)
+            if (run == 2) w1(3) = 20.0_dp
+            do k = 1, 50
+               call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, 2, d, e)
+            end do
+            if (run == 1) then
+               da = d; ea = e
+               qa(:, 1) = q1; qa(:, 2) = q2; qa(:, 3) = w1; qa(:, 4) = w2
+            end if
+         end do
+         same = .true.
+         do l = 1, w
+            if (l == 3) cycle
+            same = same .and. all(d(l, :, :) == da(l, :, :)) .and. e(l) == ea(l) .and. &
+                   q1(l) == qa(l, 1) .and. q2(l) == qa(l, 2) .and. w1(l) == qa(l, 3) .and. &
+                   w2(l) == qa(l, 4)
+         end do
+         call check_true(error, same, 'rk4_tangent_fused_lanes: a lane on the fallback '// &
+                         'leaves the other lanes unchanged')
+      end subroutine lanes_independent
+
+      !> Largest |a - b| / max(|b|, 1e-300) [1].
+      pure real(dp) function rel(a, b)
+         real(dp), intent(in) :: a(:), b(:)
+         rel = maxval(abs(a - b)/max(abs(b), 1e-300_dp))
+      end function rel
+   end subroutine test_tangent_fused
+
+   !> The start of the tangent tests: lane l at q = (0.1 l, -0.2 l) rad, q̇ = (1 - 0.1 l,
+   !> 0.05 l) rad/s, vectors d(l, j, 1) = 0.5^j + 0.01 l, d(l, j, 2) = (-0.7)^j - 0.02 l.
+   pure subroutine tangent_start(q1, q2, w1, w2, d)
+      real(dp), dimension(w), intent(out) :: q1, q2  !! angles [rad]
+      real(dp), dimension(w), intent(out) :: w1, w2  !! velocities [rad/s]
+      real(dp), intent(out) :: d(w, 4, 2)            !! deviation vectors
+      integer :: l, j
+      do l = 1, w
+         q1(l) = 0.1_dp*l; q2(l) = -0.2_dp*l; w1(l) = 1.0_dp - 0.1_dp*l; w2(l) = 0.05_dp*l
+         do j = 1, 4
+            d(l, j, 1) = 0.5_dp**j + 0.01_dp*l
+            d(l, j, 2) = (-0.7_dp)**j - 0.02_dp*l
+         end do
+      end do
+   end subroutine tangent_start
 
    !> A sweep over (m2/m1, l2/l1), 5 × 5 pixels in blocks of 7 (lanes refilled with
    !> other parameters), flip map and SALI map: every pixel equals, bit for bit, the

@@ -33,7 +33,7 @@ module dpend_pendulum_lanes
    implicit none
    private
    public :: lane_width, batch_coef_t, batch_coef, flip_energy_bounds, potential_range
-   public :: lane_coef_t, lane_coef, set_lane_coef, rk4_tangent2_lanes
+   public :: lane_coef_t, lane_coef, set_lane_coef, rk4_tangent2_lanes, rk4_tangent_fused_lanes
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
    public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact
@@ -1073,14 +1073,259 @@ contains
       end do
    end subroutine rk4_tangent2_lanes
 
+   !> One RK4 step of the state and of nv (1 or 2) deviation vectors d(:, :, k) = (u1,
+   !> u2, v1, v2) (issue 27): `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes`
+   !> (nv = 2) fused the way `rk4_lanes` is, the whole step of a lane one loop body
+   !> (`tangent_lane_step`: the stages' values stay in registers, the Jacobian's
+   !> terms once per stage for both vectors). The same operations in the same order,
+   !> so every value equals theirs bit for bit (test lanes/tangent_fused_matches).
+   !> A lane outside the fused path's range (a stage offset |d| > `d_max`, where
+   !> those routines take exact sin and cos) takes their step from the saved start
+   !> (`tangent_fallback`: that lane only, so that the lanes never mix).
+   pure subroutine rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e)
+      type(lane_coef_t), intent(in) :: c                         !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! velocities [rad/s]
+      integer, intent(in) :: nv                                  !! vectors, 1 or 2
+      real(dp), intent(inout) :: d(lane_width, 4, 2)             !! tangent vectors
+      real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      real(dp), dimension(lane_width) :: p1, p2, pw1, pw2
+      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
+      real(dp) :: pd(lane_width, 4, 2), off(lane_width), n_off
+      integer :: i
+      p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; pd = d
+      call trig_lanes(q1, q2, s1a, c1a, s2a, c2a)
+      n_off = 0
+      ! (one call: gcc inlines it, then unswitches the loop on nv and vectorizes both)
+      do i = 1, lane_width
+         call tangent_lane_step(c, i, h, nv, s1a(i), c1a(i), s2a(i), c2a(i), &
+                                q1(i), q2(i), w1(i), w2(i), &
+                                d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), d(i, 4, 1), &
+                                d(i, 1, 2), d(i, 2, 2), d(i, 3, 2), d(i, 4, 2), e(i), off(i))
+         n_off = n_off + off(i)
+      end do
+      if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
+      call tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
+   end subroutine rk4_tangent_fused_lanes
+
+   !> The lanes of `rk4_tangent_fused_lanes` with off /= 0 take the step of
+   !> `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes` (nv = 2) from the saved
+   !> start (p1, p2, pw1, pw2, pd); the other lanes keep their fused values, so that
+   !> each lane's result depends on its own values only (the two paths may differ by
+   !> rounding: FMA contraction in the release profile).
+   pure subroutine tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
+      type(lane_coef_t), intent(in) :: c                         !! constants
+      real(dp), intent(in) :: h                                  !! step [s]
+      integer, intent(in) :: nv                                  !! vectors, 1 or 2
+      real(dp), intent(in) :: off(lane_width)                    !! 0: the lane's step holds
+      real(dp), intent(in) :: p1(lane_width), p2(lane_width)     !! step start [rad]
+      real(dp), intent(in) :: pw1(lane_width), pw2(lane_width)   !! step start [rad/s]
+      real(dp), intent(in) :: pd(lane_width, 4, 2)               !! vectors at the start
+      real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! new angles [rad]
+      real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! new velocities [rad/s]
+      real(dp), intent(inout) :: d(lane_width, 4, 2)             !! new vectors
+      real(dp), intent(inout) :: e(lane_width)                   !! energy before [J]
+      real(dp), dimension(lane_width) :: r1, r2, rw1, rw2, re
+      real(dp) :: rd(lane_width, 4, 2)
+      integer :: i
+      r1 = p1; r2 = p2; rw1 = pw1; rw2 = pw2; rd = pd
+      if (nv > 1) then
+         call rk4_tangent2_lanes(c, h, r1, r2, rw1, rw2, rd, re)
+      else
+         call rk4_tangent_lanes_lc(c, h, r1, r2, rw1, rw2, rd(:, 1, 1), rd(:, 2, 1), &
+                                   rd(:, 3, 1), rd(:, 4, 1), re)
+      end if
+      do i = 1, lane_width
+         if (.not. (off(i) == 0.0_dp)) then
+            q1(i) = r1(i); q2(i) = r2(i); w1(i) = rw1(i); w2(i) = rw2(i); e(i) = re(i)
+            d(i, :, 1:nv) = rd(i, :, 1:nv)
+         end if
+      end do
+   end subroutine tangent_fallback
+
+   !> Copy of `tangent_vector`'s formula, written out for each stage and vector (GCC
+   !> 12 does not inline eight calls of it into one loop body, and a call stops the
+   !> vectorizer); test lanes/tangent_fused_matches compares them.
+   !> Lane l's step of `rk4_tangent_fused_lanes` with nv vectors (x1 .. x4: vector 1,
+   !> y1 .. y4: vector 2, untouched for nv = 1); off > 0 (or NaN) where the lane
+   !> leaves the fused path (its values are then discarded, but stay bounded).
+   pure subroutine tangent_lane_step(c, l, h, nv, s1a, c1a, s2a, c2a, q1, q2, w1, w2, &
+                                     x1, x2, x3, x4, y1, y2, y3, y4, e, off)
+      type(lane_coef_t), intent(in) :: c         !! constants
+      integer, intent(in) :: l                   !! lane
+      real(dp), intent(in) :: h                  !! step [s]
+      integer, intent(in) :: nv                  !! vectors, 1 or 2
+      real(dp), intent(in) :: s1a, c1a, s2a, c2a !! sin q1, cos q1, sin q2, cos q2
+      real(dp), intent(inout) :: q1, q2          !! angles [rad]
+      real(dp), intent(inout) :: w1, w2          !! velocities [rad/s]
+      real(dp), intent(inout) :: x1, x2, x3, x4  !! vector 1 (u1, u2, v1, v2)
+      real(dp), intent(inout) :: y1, y2, y3, y4  !! vector 2
+      real(dp), intent(out) :: e                 !! energy before [J]
+      real(dp), intent(out) :: off               !! 0 on the fused path
+      real(dp) :: hh, h6, s1, c1, s2, c2, o1, o2
+      real(dp) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2, vb1, vb2, vc1, vc2, vd1, vd2
+      real(dp) :: sa1, sa2, sb1, sb2, sc1, sc2, sd1, sd2
+      real(dp) :: cd, sd, wc1, wc2, m12, rdet, ud, dcd, dsd, dr1, dr2, dm12, ddet
+      ! vector 1 (x) and 2 (y) at stages b, c, d and their δq̈ at stages a to d
+      real(dp) :: xb1, xb2, xb3, xb4, xc1, xc2, xc3, xc4, xd1, xd2, xd3, xd4
+      real(dp) :: la1, la2, lb1, lb2, lc1, lc2, ld1, ld2
+      real(dp) :: yb1, yb2, yb3, yb4, yc1, yc2, yc3, yc4, yd1, yd2, yd3, yd4
+      real(dp) :: ma1, ma2, mb1, mb2, mc1, mc2, md1, md2
+      hh = 0.5_dp*h
+      h6 = h/6.0_dp
+      ! stage a: sin and cos of the step start as given (`trig_lanes`)
+      off = 0
+      call accel_trig(c, l, s1a, c1a, s2a, c2a, wsq(w1), wsq(w2), ka1, ka2)
+      call tangent_shared(c, l, w1, w2, s1a, c1a, s2a, c2a, cd, sd, wc1, wc2, m12, rdet)
+      ud = x1 - x2
+      dcd = -sd*ud
+      dsd = cd*ud
+      dr1 = c%ga(l)*s1a*x1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*x4)
+      dr2 = c%gb(l)*s2a*x2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*x3)
+      dm12 = c%k(l)*dcd
+      ddet = -2.0_dp*m12*dm12
+      la1 = (c%m22(l)*dr1 - dm12*(ka2*c%m22(l) + ka1*m12) - m12*dr2 - ka1*ddet)*rdet
+      la2 = (c%m11(l)*dr2 - dm12*(ka1*c%m11(l) + ka2*m12) - m12*dr1 - ka2*ddet)*rdet
+      if (nv > 1) then
+         ud = y1 - y2
+         dcd = -sd*ud
+         dsd = cd*ud
+         dr1 = c%ga(l)*s1a*y1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*y4)
+         dr2 = c%gb(l)*s2a*y2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*y3)
+         dm12 = c%k(l)*dcd
+         ddet = -2.0_dp*m12*dm12
+         ma1 = (c%m22(l)*dr1 - dm12*(ka2*c%m22(l) + ka1*m12) - m12*dr2 - ka1*ddet)*rdet
+         ma2 = (c%m11(l)*dr2 - dm12*(ka1*c%m11(l) + ka2*m12) - m12*dr1 - ka2*ddet)*rdet
+      end if
+      e = energy_formula(c, l, s1a, c1a, s2a, c2a, w1, w2)
+      sa1 = q1 + hh*w1; sa2 = q2 + hh*w2
+      vb1 = w1 + hh*ka1; vb2 = w2 + hh*ka2
+      xb1 = x1 + hh*x3; xb2 = x2 + hh*x4; xb3 = x3 + hh*la1; xb4 = x4 + hh*la2
+      if (nv > 1) then
+         yb1 = y1 + hh*y3; yb2 = y2 + hh*y4; yb3 = y3 + hh*ma1; yb4 = y4 + hh*ma2
+      end if
+      ! stage b
+      sb1 = sa1 - q1; sb2 = sa2 - q2
+      o1 = dclamp(sb1); o2 = dclamp(sb2)
+      off = off + (abs(sb1 - o1) + abs(sb2 - o2))
+      call sincos_add(s1a, c1a, o1, s1, c1)
+      call sincos_add(s2a, c2a, o2, s2, c2)
+      call accel_trig(c, l, s1, c1, s2, c2, wsq(vb1), wsq(vb2), kb1, kb2)
+      call tangent_shared(c, l, vb1, vb2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      ud = xb1 - xb2
+      dcd = -sd*ud
+      dsd = cd*ud
+      dr1 = c%ga(l)*s1*xb1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xb4)
+      dr2 = c%gb(l)*s2*xb2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xb3)
+      dm12 = c%k(l)*dcd
+      ddet = -2.0_dp*m12*dm12
+      lb1 = (c%m22(l)*dr1 - dm12*(kb2*c%m22(l) + kb1*m12) - m12*dr2 - kb1*ddet)*rdet
+      lb2 = (c%m11(l)*dr2 - dm12*(kb1*c%m11(l) + kb2*m12) - m12*dr1 - kb2*ddet)*rdet
+      if (nv > 1) then
+         ud = yb1 - yb2
+         dcd = -sd*ud
+         dsd = cd*ud
+         dr1 = c%ga(l)*s1*yb1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yb4)
+         dr2 = c%gb(l)*s2*yb2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yb3)
+         dm12 = c%k(l)*dcd
+         ddet = -2.0_dp*m12*dm12
+         mb1 = (c%m22(l)*dr1 - dm12*(kb2*c%m22(l) + kb1*m12) - m12*dr2 - kb1*ddet)*rdet
+         mb2 = (c%m11(l)*dr2 - dm12*(kb1*c%m11(l) + kb2*m12) - m12*dr1 - kb2*ddet)*rdet
+      end if
+      sa1 = q1 + hh*vb1; sa2 = q2 + hh*vb2
+      vc1 = w1 + hh*kb1; vc2 = w2 + hh*kb2
+      xc1 = x1 + hh*xb3; xc2 = x2 + hh*xb4; xc3 = x3 + hh*lb1; xc4 = x4 + hh*lb2
+      if (nv > 1) then
+         yc1 = y1 + hh*yb3; yc2 = y2 + hh*yb4; yc3 = y3 + hh*mb1; yc4 = y4 + hh*mb2
+      end if
+      ! stage c
+      sc1 = sa1 - q1; sc2 = sa2 - q2
+      o1 = dclamp(sc1); o2 = dclamp(sc2)
+      off = off + (abs(sc1 - o1) + abs(sc2 - o2))
+      call sincos_add(s1a, c1a, o1, s1, c1)
+      call sincos_add(s2a, c2a, o2, s2, c2)
+      call accel_trig(c, l, s1, c1, s2, c2, wsq(vc1), wsq(vc2), kc1, kc2)
+      call tangent_shared(c, l, vc1, vc2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      ud = xc1 - xc2
+      dcd = -sd*ud
+      dsd = cd*ud
+      dr1 = c%ga(l)*s1*xc1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xc4)
+      dr2 = c%gb(l)*s2*xc2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xc3)
+      dm12 = c%k(l)*dcd
+      ddet = -2.0_dp*m12*dm12
+      lc1 = (c%m22(l)*dr1 - dm12*(kc2*c%m22(l) + kc1*m12) - m12*dr2 - kc1*ddet)*rdet
+      lc2 = (c%m11(l)*dr2 - dm12*(kc1*c%m11(l) + kc2*m12) - m12*dr1 - kc2*ddet)*rdet
+      if (nv > 1) then
+         ud = yc1 - yc2
+         dcd = -sd*ud
+         dsd = cd*ud
+         dr1 = c%ga(l)*s1*yc1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yc4)
+         dr2 = c%gb(l)*s2*yc2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yc3)
+         dm12 = c%k(l)*dcd
+         ddet = -2.0_dp*m12*dm12
+         mc1 = (c%m22(l)*dr1 - dm12*(kc2*c%m22(l) + kc1*m12) - m12*dr2 - kc1*ddet)*rdet
+         mc2 = (c%m11(l)*dr2 - dm12*(kc1*c%m11(l) + kc2*m12) - m12*dr1 - kc2*ddet)*rdet
+      end if
+      sa1 = q1 + h*vc1; sa2 = q2 + h*vc2
+      vd1 = w1 + h*kc1; vd2 = w2 + h*kc2
+      xd1 = x1 + h*xc3; xd2 = x2 + h*xc4; xd3 = x3 + h*lc1; xd4 = x4 + h*lc2
+      if (nv > 1) then
+         yd1 = y1 + h*yc3; yd2 = y2 + h*yc4; yd3 = y3 + h*mc1; yd4 = y4 + h*mc2
+      end if
+      ! stage d
+      sd1 = sa1 - q1; sd2 = sa2 - q2
+      o1 = dclamp(sd1); o2 = dclamp(sd2)
+      off = off + (abs(sd1 - o1) + abs(sd2 - o2))
+      call sincos_add(s1a, c1a, o1, s1, c1)
+      call sincos_add(s2a, c2a, o2, s2, c2)
+      call accel_trig(c, l, s1, c1, s2, c2, wsq(vd1), wsq(vd2), kd1, kd2)
+      call tangent_shared(c, l, vd1, vd2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      ud = xd1 - xd2
+      dcd = -sd*ud
+      dsd = cd*ud
+      dr1 = c%ga(l)*s1*xd1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xd4)
+      dr2 = c%gb(l)*s2*xd2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xd3)
+      dm12 = c%k(l)*dcd
+      ddet = -2.0_dp*m12*dm12
+      ld1 = (c%m22(l)*dr1 - dm12*(kd2*c%m22(l) + kd1*m12) - m12*dr2 - kd1*ddet)*rdet
+      ld2 = (c%m11(l)*dr2 - dm12*(kd1*c%m11(l) + kd2*m12) - m12*dr1 - kd2*ddet)*rdet
+      if (nv > 1) then
+         ud = yd1 - yd2
+         dcd = -sd*ud
+         dsd = cd*ud
+         dr1 = c%ga(l)*s1*yd1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yd4)
+         dr2 = c%gb(l)*s2*yd2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yd3)
+         dm12 = c%k(l)*dcd
+         ddet = -2.0_dp*m12*dm12
+         md1 = (c%m22(l)*dr1 - dm12*(kd2*c%m22(l) + kd1*m12) - m12*dr2 - kd1*ddet)*rdet
+         md2 = (c%m11(l)*dr2 - dm12*(kd1*c%m11(l) + kd2*m12) - m12*dr1 - kd2*ddet)*rdet
+      end if
+      ! the new state and vectors (the sums as in `rk4_tangent_lanes`)
+      q1 = q1 + h6*(w1 + 2.0_dp*(vb1 + vc1) + vd1)
+      q2 = q2 + h6*(w2 + 2.0_dp*(vb2 + vc2) + vd2)
+      w1 = w1 + h6*(ka1 + 2.0_dp*(kb1 + kc1) + kd1)
+      w2 = w2 + h6*(ka2 + 2.0_dp*(kb2 + kc2) + kd2)
+      x1 = x1 + h6*(x3 + 2.0_dp*(xb3 + xc3) + xd3)
+      x2 = x2 + h6*(x4 + 2.0_dp*(xb4 + xc4) + xd4)
+      x3 = x3 + h6*(la1 + 2.0_dp*(lb1 + lc1) + ld1)
+      x4 = x4 + h6*(la2 + 2.0_dp*(lb2 + lc2) + ld2)
+      if (nv > 1) then
+         y1 = y1 + h6*(y3 + 2.0_dp*(yb3 + yc3) + yd3)
+         y2 = y2 + h6*(y4 + 2.0_dp*(yb4 + yc4) + yd4)
+         y3 = y3 + h6*(ma1 + 2.0_dp*(mb1 + mc1) + md1)
+         y4 = y4 + h6*(ma2 + 2.0_dp*(mb2 + mc2) + md2)
+      end if
+   end subroutine tangent_lane_step
+
    !> One RK4 step of the state with nv (1 or 2) deviation vectors d(:, :, k) =
-   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math): one vector
-   !> through `rk4_tangent_lanes`, two through `rk4_tangent2_lanes` (the state's
-   !> stages once; each vector's step the same bit for bit as `rk4_tangent_lanes`'),
-   !> then renormalised to length 1 (directions kept, never
-   !> orthogonalised); vector 1's growth enters the sums acc(:, 1:4) = (ln |δ|,
-   !> MEGNO's integral, Y, ∫ Y ds) of the step [ks h, (ks + 1) h] (`megno_step`,
-   !> t0 = 0, `megno_step_lanes`). `e` as in `rk4_lanes`.
+   !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math) through
+   !> `rk4_tangent_fused_lanes` (the state's stages once; the operations of
+   !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`), then renormalised to length 1
+   !> (directions kept, never orthogonalised); vector 1's growth enters the sums
+   !> acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
+   !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_step_lanes`). `e` as in
+   !> `rk4_lanes`.
    pure subroutine indicator_step_lanes_lc(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
       type(lane_coef_t), intent(in) :: c                           !! constants
       real(dp), intent(in) :: h                                    !! step [s]
@@ -1093,12 +1338,7 @@ contains
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
       real(dp), dimension(lane_width) :: nrm, dl, ta, tb
       integer :: i, j, k
-      if (nv > 1) then
-         call rk4_tangent2_lanes(c, h, q1, q2, w1, w2, d, e)
-      else
-         call rk4_tangent_lanes(c, h, q1, q2, w1, w2, d(:, 1, 1), d(:, 2, 1), d(:, 3, 1), &
-                                d(:, 4, 1), e)
-      end if
+      call rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e)
       do k = 1, nv
          do i = 1, lane_width
             nrm(i) = sqrt(d(i, 1, k)**2 + d(i, 2, k)**2 + d(i, 3, k)**2 + d(i, 4, k)**2)
