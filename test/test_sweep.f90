@@ -27,7 +27,7 @@ module test_sweep
    use dpend_methods, only: new_integrator
    use dpend_model, only: model_t
    use dpend_model_factory, only: model_spec_t, model_spec, new_model
-   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
+   use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error, check_same_time
    implicit none
    private
    public :: collect_sweep
@@ -1104,9 +1104,9 @@ contains
                             'same status and steps')
             call check(error, b%energy0(j), a%energy0(j), 'energy0', rel=1e-13_dp, &
                        abs=1e-13_dp)
-            call same_time(b%t_flip(j), a%t_flip(j), 't_flip')
-            call same_time(b%t_flip1(j), a%t_flip1(j), 't_flip1')
-            call same_time(b%t_flip2(j), a%t_flip2(j), 't_flip2')
+            call check_same_time(error, b%t_flip(j), a%t_flip(j), 't_flip', 1e-9_dp)
+            call check_same_time(error, b%t_flip1(j), a%t_flip1(j), 't_flip1', 1e-9_dp)
+            call check_same_time(error, b%t_flip2(j), a%t_flip2(j), 't_flip2', 1e-9_dp)
             call check(error, b%final(:, j), a%final(:, j), 'final state', rel=1e-9_dp, &
                        abs=1e-9_dp)
             if (.not. ieee_is_nan(a%t_flip(j))) nflip = nflip + 1
@@ -1114,17 +1114,6 @@ contains
          end do
       end do
       call check_true(error, nflip > 10, 'some pixels flip')
-   contains
-      subroutine same_time(x, y, what)
-         real(dp), intent(in) :: x, y
-         character(len=*), intent(in) :: what
-         if (ieee_is_nan(y)) then
-            call check_true(error, ieee_is_nan(x), what//': NaN in both')
-         else
-            call check_true(error, .not. ieee_is_nan(x), what//': a flip in both')
-            if (.not. allocated(error)) call check(error, x, y, what, rel=1e-9_dp)
-         end if
-      end subroutine same_time
    end subroutine test_per_trajectory_n2
 
    !> Axes and options that do not exist for N links are refused naming the field and

@@ -11,6 +11,7 @@ module testing
    public :: unittest_t, test_proc, new_unittest, check, check_true, error_t, fatal_error
    public :: skip_test, take_skip, have_tool
    public :: tiny_study_config   ! the tiny study of three suites (review follow-up)
+   public :: check_same_time     ! flip times of two sweep paths (test_sweep, test_chain_lanes)
 
    abstract interface
       subroutine test_proc(error)
@@ -159,4 +160,21 @@ contains
       cfg%tao_dt = 1.0e-2_dp
       cfg%threads = 1
    end function tiny_study_config
+
+   !> Two flip times agree: NaN (no flip) in both, or a flip in both within `rel`.
+   subroutine check_same_time(error, x, y, what, rel)
+      use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+      type(error_t), allocatable, intent(inout) :: error  !! failure
+      real(dp), intent(in) :: x                          !! the tested path's time [s]
+      real(dp), intent(in) :: y                          !! the reference time [s]
+      character(len=*), intent(in) :: what               !! name in the message
+      real(dp), intent(in) :: rel                        !! relative tolerance
+      if (allocated(error)) return
+      if (ieee_is_nan(y)) then
+         call check_true(error, ieee_is_nan(x), what//': NaN in both')
+      else
+         call check_true(error, .not. ieee_is_nan(x), what//': a flip in both')
+         if (.not. allocated(error)) call check(error, x, y, what, rel=rel)
+      end if
+   end subroutine check_same_time
 end module testing
