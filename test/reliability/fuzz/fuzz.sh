@@ -234,6 +234,7 @@ FLAG_BASES=(
   "sweep --links #3 --n #2 --axis1 theta1 --axis2 theta3 --t-end #0.3 --time-unit s --dt #0.05 --g #9.8 --threads #1 --output out.h5 --quiet"
   "sweep --links #1 --n #2 --axis1 theta1 --axis2 w1 --t-end #0.3 --time-unit s --dt #0.05 --threads #1 --output out.h5 --quiet"
   "sweep --ic-file list.txt --t-end #0.5 --m1 #1 --threads #1 --lyapunov --output out.h5 --quiet"
+  "sweep --n #2 --t-end #0.5 --dt #0.05 --device auto --gpu-repack #2048 --block #4 --threads #1 --output out.h5 --quiet"
   "study --config study_tiny.nml --no-figures --threads #1 --m1 #1 --l2 #1 --g #9.8 --output st.h5"
   "study --config study_tiny.nml --no-figures --quick --m #1,1 --l #1,1 --output st.h5"
   "fit fit.csv --fit-window #0.3 --horizon-tolerance #0.1 --starts #1 --dt #0.01 --rtol #1e-6 --atol #1e-9 --max-steps #10000 --m1 #1 --g #9.8 --output out.h5"
