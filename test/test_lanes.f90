@@ -8,7 +8,7 @@ module test_lanes
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum_lanes, only: lane_width, batch_coef, batch_coef_t, lane_coef_t, lane_coef, &
       set_lane_coef, rk4_lanes, rk4_tangent_lanes, rk4_tangent2_lanes, energy_lanes, &
-      rk4_tangent_fused_lanes, &
+      rk4_tangent_fused_lanes, log_lanes, &
       lane_trig_t, set_lane_trig, batch_options_t, batch_result_t, integrate_batch
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_config, only: sweep_config_t, parse_sweep
@@ -29,7 +29,8 @@ contains
       tests = [new_unittest('lane_constants_bitwise', test_lane_constants), &
                new_unittest('tangent2_matches_tangent', test_tangent2), &
                new_unittest('ratio_axes_pixels_equal_direct_runs', test_ratio_axes), &
-               new_unittest('tangent_fused_matches', test_tangent_fused)]
+               new_unittest('tangent_fused_matches', test_tangent_fused), &
+               new_unittest('log_lanes_vs_intrinsic', test_log_lanes)]
    end subroutine collect_lanes
 
    !> Lane l's pendulum of the tests: masses and lengths from 0.3 to 2.7.
@@ -156,15 +157,17 @@ contains
    end subroutine test_tangent2
 
    !> 200 steps of `rk4_tangent_fused_lanes` (issue 27: the tangent step fused into one
-   !> loop body) against `rk4_tangent_lanes` (one vector) and `rk4_tangent2_lanes`
-   !> (two): state, vectors and energy equal to 1e-9 relative (bit for bit without
-   !> FMA contraction, as in the debug profile; with -march=native GCC contracts
-   !> other products in the fused body), every lane its own pendulum;
+   !> loop body, sin and cos carried from step to step) against `rk4_tangent_lanes`
+   !> (one vector) and `rk4_tangent2_lanes` (two), which take exact sin and cos at
+   !> every step start: state, vectors and energy equal to 1e-9 relative (they differ
+   !> by rounding: the carried sines, the stages' shorter polynomials, FMA contraction
+   !> in the release profile), every lane its own pendulum;
    !> lane 3 starts fast (stage offsets beyond d_max) and lane 5 beyond
    !> sincos_exact_max (2e6 rad), so that the fallback to those routines runs too.
    subroutine test_tangent_fused(error)
       type(error_t), allocatable, intent(out) :: error
       type(lane_coef_t) :: lc
+      type(lane_trig_t) :: tr
       real(dp), dimension(w) :: q1, q2, w1, w2, e, p1, p2, pw1, pw2, pe
       real(dp) :: d(w, 4, 2), dr(w, 4, 2)
       real(dp), parameter :: h = 0.01_dp
@@ -180,9 +183,10 @@ contains
          call tangent_start(q1, q2, w1, w2, d)
          w1(3) = 20.0_dp
          q2(5) = 2.0e6_dp
+         call set_lane_trig(q1, q2, tr)
          p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; dr = d
          do k = 1, 200
-            call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, nv, d, e)
+            call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, nv, d, e, tr)
             if (nv == 1) then
                call rk4_tangent_lanes(lc, h, p1, p2, pw1, pw2, dr(:, 1, 1), dr(:, 2, 1), &
                                       dr(:, 3, 1), dr(:, 4, 1), pe)
@@ -210,8 +214,9 @@ contains
          do run = 1, 2
             call tangent_start(q1, q2, w1, w2, d)
             if (run == 2) w1(3) = 20.0_dp
+            call set_lane_trig(q1, q2, tr)
             do k = 1, 50
-               call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, 2, d, e)
+               call rk4_tangent_fused_lanes(lc, h, q1, q2, w1, w2, 2, d, e, tr)
             end do
             if (run == 1) then
                da = d; ea = e
@@ -333,4 +338,50 @@ contains
          eq = transfer(x, 1_i8) == transfer(y, 1_i8) .or. (x /= x .and. y /= y)
       end function eq
    end subroutine one_map
+
+   !> `log_lanes` (the indicators' vectorizable ln) against the intrinsic log: within
+   !> 1 ulp of it over 2^-1000 .. 2^1000 (random exponents and mantissas, and
+   !> arguments next to 1, where the result is small), and equal to it on the lanes
+   !> it hands to the intrinsic (subnormal, Inf, NaN; not 0 or negative, whose log
+   !> traps in the debug profile, and which a norm never is but by underflow).
+   subroutine test_log_lanes(error)
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
+         ieee_is_nan
+      type(error_t), allocatable, intent(out) :: error
+      real(dp) :: x(w), r(w), u(w), worst, special(7)
+      integer :: k, i
+      logical :: same
+      worst = 0
+      do k = 1, 2000
+         call random_number(u)
+         if (mod(k, 2) == 0) then
+            x = exp((u - 0.5_dp)*1386.0_dp)            ! e^±693: 2^±1000
+         else
+            x = 1.0_dp + (u - 0.5_dp)*2.0_dp**(-mod(k, 50))  ! next to 1
+         end if
+         call log_lanes(x, r)
+         do i = 1, w
+            worst = max(worst, abs(r(i) - log(x(i)))/spacing(max(abs(log(x(i))), tiny(1.0_dp))))
+         end do
+      end do
+      write (*, '(4x, a, f0.3, a)') 'log_lanes vs log: largest difference ', worst, ' ulp'
+      call check_true(error, worst <= 1.0_dp, 'log_lanes within 1 ulp of the intrinsic log')
+      if (allocated(error)) return
+      special = [tiny(1.0_dp)/8, tiny(1.0_dp)*2.0_dp**(-40), ieee_value(1.0_dp, ieee_positive_inf), &
+                 ieee_value(1.0_dp, ieee_quiet_nan), huge(1.0_dp), tiny(1.0_dp), 1.0_dp]
+      x = 2.0_dp
+      x(1:7) = special
+      call log_lanes(x, r)
+      same = .true.
+      do i = 1, w
+         if (ieee_is_nan(log(x(i)))) then
+            same = same .and. ieee_is_nan(r(i))
+         else if (x(i) > huge(1.0_dp)) then
+            same = same .and. r(i) == log(x(i))
+         else
+            same = same .and. abs(r(i) - log(x(i))) <= spacing(abs(log(x(i))))
+         end if
+      end do
+      call check_true(error, same, 'log_lanes = log (1 ulp) at subnormals, Inf, NaN, huge, tiny, 1')
+   end subroutine test_log_lanes
 end module test_lanes

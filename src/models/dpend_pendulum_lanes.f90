@@ -36,7 +36,7 @@ module dpend_pendulum_lanes
    public :: lane_coef_t, lane_coef, set_lane_coef, rk4_tangent2_lanes, rk4_tangent_fused_lanes
    public :: rk4_lanes, rk4_tangent_lanes, energy_lanes, indicator_step_lanes, megno_step_lanes
    public :: accel_lanes, tangent_accel_lanes, accel_trig_lanes
-   public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact
+   public :: sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_exact, log_lanes
    public :: lane_trig_t, set_lane_trig, resync_steps, sincos_stage_lanes
    public :: batch_options_t, batch_result_t, integrate_batch
    public :: stop_both, stop_either, stop_end
@@ -293,7 +293,7 @@ contains
    end subroutine rk4_tangent_lanes_one
 
    !> `indicator_step_lanes` with the constants `c` in every lane.
-   pure subroutine indicator_step_lanes_one(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
+   pure subroutine indicator_step_lanes_one(c, h, ks, q1, q2, w1, w2, nv, d, acc, e, tr)
       type(batch_coef_t), intent(in) :: c                          !! constants
       real(dp), intent(in) :: h                                    !! step [s]
       integer(i8), intent(in) :: ks(lane_width)                    !! steps done before
@@ -301,9 +301,10 @@ contains
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
       integer, intent(in) :: nv                                    !! vectors, 1 or 2
       real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
-      real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
+      real(dp), intent(inout) :: acc(lane_width, 5)                !! vector 1's sums, ln |d|
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
-      call indicator_step_lanes_lc(lane_coef(c), h, ks, q1, q2, w1, w2, nv, d, acc, e)
+      type(lane_trig_t), intent(inout) :: tr                       !! sin, cos of q1, q2
+      call indicator_step_lanes_lc(lane_coef(c), h, ks, q1, q2, w1, w2, nv, d, acc, e, tr)
    end subroutine indicator_step_lanes_one
 
    !> `accel_lanes` with the constants `c` in every lane.
@@ -602,12 +603,12 @@ contains
       real(dp), intent(in) :: u1(lane_width), u2(lane_width)   !! angle perturbation
       real(dp), intent(in) :: v1(lane_width), v2(lane_width)   !! velocity perturbation
       real(dp), intent(out) :: b1(lane_width), b2(lane_width)  !! derivative of (a1, a2)
-      real(dp) :: cd, sd, m12, rdet, wc1, wc2
+      real(dp) :: cd, sd, rdet, w1sq, w2sq
       integer :: i
       do i = 1, lane_width
-         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
-                             m12, rdet)
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, w1sq, w2sq, &
+                             rdet)
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
                              u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
       end do
    end subroutine tangent_accel_lanes_lc
@@ -625,59 +626,61 @@ contains
       real(dp), intent(in) :: s2(lane_width), c2(lane_width)   !! sin q2, cos q2
       real(dp), intent(in) :: x(lane_width, 4, 2)              !! the vectors (u1, u2, v1, v2)
       real(dp), intent(out) :: b(lane_width, 2, 2)             !! their derivatives of (a1, a2)
-      real(dp) :: cd, sd, m12, rdet, wc1, wc2
+      real(dp) :: cd, sd, rdet, w1sq, w2sq
       integer :: i
       do i = 1, lane_width
-         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, wc1, wc2, &
-                             m12, rdet)
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+         call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, w1sq, w2sq, &
+                             rdet)
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
                              x(i, 1, 1), x(i, 2, 1), x(i, 3, 1), x(i, 4, 1), b(i, 1, 1), b(i, 2, 1))
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, wc1, wc2, m12, rdet, &
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
                              x(i, 1, 2), x(i, 2, 2), x(i, 3, 2), x(i, 4, 2), b(i, 1, 2), b(i, 2, 2))
       end do
    end subroutine tangent_accel2_lanes
 
    !> The terms of lane l's tangent accelerations that do not depend on the vector:
-   !> cos d, sin d (d = q1 - q2), the clamped velocities (as in `accel_trig`), M12
-   !> and 1/det M.
-   pure subroutine tangent_shared(c, l, w1, w2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+   !> cos d, sin d (d = q1 - q2), the squared velocities as `accel_trig` takes them
+   !> (`wsq`) and 1/det(M/k), the same expression as `accel_trig`'s (in a fused step
+   !> gcc computes both once).
+   pure subroutine tangent_shared(c, l, w1, w2, s1, c1, s2, c2, cd, sd, w1sq, w2sq, rdet)
       type(lane_coef_t), intent(in) :: c       !! constants
       integer, intent(in) :: l                 !! lane
       real(dp), intent(in) :: w1, w2           !! velocities [rad/s]
       real(dp), intent(in) :: s1, c1, s2, c2   !! sin q1, cos q1, sin q2, cos q2
       real(dp), intent(out) :: cd, sd          !! cos d, sin d
-      real(dp), intent(out) :: wc1, wc2        !! clamped velocities [rad/s]
-      real(dp), intent(out) :: m12             !! M12 [kg m²]
-      real(dp), intent(out) :: rdet            !! 1/det M [1/(kg² m⁴)]
+      real(dp), intent(out) :: w1sq, w2sq      !! `wsq` of the velocities [rad²/s²]
+      real(dp), intent(out) :: rdet            !! 1/det(M/k) [1]
       cd = c1*c2 + s1*s2
       sd = s1*c2 - c1*s2
-      wc1 = min(max(w1, -lane_bound), lane_bound)   ! as in accel_trig
-      wc2 = min(max(w2, -lane_bound), lane_bound)
-      m12 = c%k(l)*cd
-      rdet = 1.0_dp/(c%det(l) - m12*m12)
+      w1sq = wsq(w1)
+      w2sq = wsq(w2)
+      rdet = 1.0_dp/(c%detk(l) - cd*cd)
    end subroutine tangent_shared
 
    !> Lane l's derivative (b1, b2) of the accelerations (a1, a2) along (u1, u2, v1,
-   !> v2), from the terms of `tangent_shared` [rad/s²].
-   pure subroutine tangent_vector(c, l, a1, a2, s1, s2, cd, sd, wc1, wc2, m12, rdet, &
+   !> v2), from the terms of `tangent_shared` [rad/s²]: the equations divided by k,
+   !> as in `accel_trig` (M/k = [m11k, cos d; cos d, m22k], r/k), differentiated:
+   !> (M/k) δa = δr/k - δ(M/k) a, δ(M/k) = [0, δcos d; δcos d, 0]. (A lane beyond
+   !> `lane_bound`, which `integrate_batch` ends, keeps its values finite: the
+   !> squares are `wsq`'s, the velocities themselves stay far below 1e100.)
+   pure subroutine tangent_vector(c, l, a1, a2, s1, s2, cd, sd, w1, w2, w1sq, w2sq, rdet, &
                                   u1, u2, v1, v2, b1, b2)
       type(lane_coef_t), intent(in) :: c        !! constants
       integer, intent(in) :: l                  !! lane
       real(dp), intent(in) :: a1, a2            !! accelerations [rad/s²]
       real(dp), intent(in) :: s1, s2            !! sin q1, sin q2
-      real(dp), intent(in) :: cd, sd, wc1, wc2, m12, rdet  !! from `tangent_shared`
+      real(dp), intent(in) :: cd, sd, w1sq, w2sq, rdet  !! from `tangent_shared`
+      real(dp), intent(in) :: w1, w2            !! velocities [rad/s]
       real(dp), intent(in) :: u1, u2, v1, v2    !! the vector [rad, rad/s]
       real(dp), intent(out) :: b1, b2           !! derivative of (a1, a2) [rad/s²]
-      real(dp) :: ud, dcd, dsd, dr1, dr2, dm12, ddet
+      real(dp) :: ud, dcd, dsd, e1, e2
       ud = u1 - u2
       dcd = -sd*ud
       dsd = cd*ud
-      dr1 = c%ga(l)*s1*u1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*v2)
-      dr2 = c%gb(l)*s2*u2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*v1)
-      dm12 = c%k(l)*dcd
-      ddet = -2.0_dp*m12*dm12
-      b1 = (c%m22(l)*dr1 - dm12*(a2*c%m22(l) + a1*m12) - m12*dr2 - a1*ddet)*rdet
-      b2 = (c%m11(l)*dr2 - dm12*(a1*c%m11(l) + a2*m12) - m12*dr1 - a2*ddet)*rdet
+      e1 = c%gak(l)*s1*u1 - (dsd*w2sq + 2.0_dp*sd*w2*v2) - dcd*a2
+      e2 = c%gbk(l)*s2*u2 + (dsd*w1sq + 2.0_dp*sd*w1*v1) - dcd*a1
+      b1 = (c%m22k(l)*e1 - cd*e2)*rdet
+      b2 = (c%m11k(l)*e2 - cd*e1)*rdet
    end subroutine tangent_vector
 
    !> Copy of `energy` (dpend_pendulum) for speed: SIMD over the lanes, through
@@ -1077,12 +1080,18 @@ contains
    !> u2, v1, v2) (issue 27): `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes`
    !> (nv = 2) fused the way `rk4_lanes` is, the whole step of a lane one loop body
    !> (`tangent_lane_step`: the stages' values stay in registers, the Jacobian's
-   !> terms once per stage for both vectors). The same operations in the same order,
-   !> so every value equals theirs bit for bit (test lanes/tangent_fused_matches).
+   !> terms once per stage for both vectors, one division per stage for the state
+   !> and the vectors). `tr` as in `rk4_lanes`: the sines and cosines of the step
+   !> start on entry, of the new state on return, carried by the addition formulas
+   !> (the caller sets them exactly every so often). The values equal those of
+   !> `rk4_tangent_lanes` and `rk4_tangent2_lanes` to rounding: those take exact sin
+   !> and cos at each step start and the longer polynomials at the stages (test
+   !> lanes/tangent_fused_matches).
    !> A lane outside the fused path's range (a stage offset |d| > `d_max`, where
    !> those routines take exact sin and cos) takes their step from the saved start
-   !> (`tangent_fallback`: that lane only, so that the lanes never mix).
-   pure subroutine rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e)
+   !> (`tangent_fallback`: that lane only, so that the lanes never mix), and exact sin
+   !> and cos of its new state.
+   pure subroutine rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e, tr)
       type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! angles [rad]
@@ -1090,16 +1099,15 @@ contains
       integer, intent(in) :: nv                                  !! vectors, 1 or 2
       real(dp), intent(inout) :: d(lane_width, 4, 2)             !! tangent vectors
       real(dp), intent(out) :: e(lane_width)                     !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
       real(dp), dimension(lane_width) :: p1, p2, pw1, pw2
-      real(dp), dimension(lane_width) :: s1a, c1a, s2a, c2a
       real(dp) :: pd(lane_width, 4, 2), off(lane_width), n_off
       integer :: i
-      p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; pd = d
-      call trig_lanes(q1, q2, s1a, c1a, s2a, c2a)
+      p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; pd(:, :, 1:nv) = d(:, :, 1:nv)
       n_off = 0
-      ! (one call: gcc inlines it, then unswitches the loop on nv and vectorizes both)
+      ! (one call: gcc inlines it, then vectorizes the loop)
       do i = 1, lane_width
-         call tangent_lane_step(c, i, h, nv, s1a(i), c1a(i), s2a(i), c2a(i), &
+         call tangent_lane_step(c, i, h, nv, tr%s1(i), tr%c1(i), tr%s2(i), tr%c2(i), &
                                 q1(i), q2(i), w1(i), w2(i), &
                                 d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), d(i, 4, 1), &
                                 d(i, 1, 2), d(i, 2, 2), d(i, 3, 2), d(i, 4, 2), e(i), off(i))
@@ -1107,6 +1115,12 @@ contains
       end do
       if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
       call tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
+      do i = 1, lane_width
+         if (.not. (off(i) == 0.0_dp)) then
+            call sincos_exact(q1(i), tr%s1(i), tr%c1(i))
+            call sincos_exact(q2(i), tr%s2(i), tr%c2(i))
+         end if
+      end do
    end subroutine rk4_tangent_fused_lanes
 
    !> The lanes of `rk4_tangent_fused_lanes` with off /= 0 take the step of
@@ -1144,29 +1158,32 @@ contains
       end do
    end subroutine tangent_fallback
 
-   !> Copy of `tangent_vector`'s formula, written out for each stage and vector (GCC
-   !> 12 does not inline eight calls of it into one loop body, and a call stops the
-   !> vectorizer); test lanes/tangent_fused_matches compares them.
    !> Lane l's step of `rk4_tangent_fused_lanes` with nv vectors (x1 .. x4: vector 1,
-   !> y1 .. y4: vector 2, untouched for nv = 1); off > 0 (or NaN) where the lane
-   !> leaves the fused path (its values are then discarded, but stay bounded).
+   !> y1 .. y4: vector 2, untouched for nv = 1), from the carried sin and cos of the
+   !> step start (s1 .. c2; on return those of the new state, by `sincos_add`);
+   !> off > 0 (or NaN) where the lane leaves the fused path (its values are then
+   !> discarded, but stay bounded). The vectors' δq̈ are `tangent_vector`'s formula,
+   !> written out for each stage and vector (GCC 12 does not inline eight calls of it
+   !> into one loop body, and a call stops the vectorizer); test
+   !> lanes/tangent_fused_matches compares them. The stages' sines and cosines are
+   !> `sincos_add_stage`'s, as in `rk4_lanes`.
    pure subroutine tangent_lane_step(c, l, h, nv, s1a, c1a, s2a, c2a, q1, q2, w1, w2, &
                                      x1, x2, x3, x4, y1, y2, y3, y4, e, off)
-      type(lane_coef_t), intent(in) :: c         !! constants
-      integer, intent(in) :: l                   !! lane
-      real(dp), intent(in) :: h                  !! step [s]
-      integer, intent(in) :: nv                  !! vectors, 1 or 2
-      real(dp), intent(in) :: s1a, c1a, s2a, c2a !! sin q1, cos q1, sin q2, cos q2
-      real(dp), intent(inout) :: q1, q2          !! angles [rad]
-      real(dp), intent(inout) :: w1, w2          !! velocities [rad/s]
-      real(dp), intent(inout) :: x1, x2, x3, x4  !! vector 1 (u1, u2, v1, v2)
-      real(dp), intent(inout) :: y1, y2, y3, y4  !! vector 2
-      real(dp), intent(out) :: e                 !! energy before [J]
-      real(dp), intent(out) :: off               !! 0 on the fused path
+      type(lane_coef_t), intent(in) :: c             !! constants
+      integer, intent(in) :: l                       !! lane
+      real(dp), intent(in) :: h                      !! step [s]
+      integer, intent(in) :: nv                      !! vectors, 1 or 2
+      real(dp), intent(inout) :: s1a, c1a, s2a, c2a  !! sin q1, cos q1, sin q2, cos q2
+      real(dp), intent(inout) :: q1, q2              !! angles [rad]
+      real(dp), intent(inout) :: w1, w2              !! velocities [rad/s]
+      real(dp), intent(inout) :: x1, x2, x3, x4      !! vector 1 (u1, u2, v1, v2)
+      real(dp), intent(inout) :: y1, y2, y3, y4      !! vector 2
+      real(dp), intent(out) :: e                     !! energy before [J]
+      real(dp), intent(out) :: off                   !! 0 on the fused path
       real(dp) :: hh, h6, s1, c1, s2, c2, o1, o2
       real(dp) :: ka1, ka2, kb1, kb2, kc1, kc2, kd1, kd2, vb1, vb2, vc1, vc2, vd1, vd2
       real(dp) :: sa1, sa2, sb1, sb2, sc1, sc2, sd1, sd2
-      real(dp) :: cd, sd, wc1, wc2, m12, rdet, ud, dcd, dsd, dr1, dr2, dm12, ddet
+      real(dp) :: cd, sd, w1sq, w2sq, rdet, ud, dcd, dsd, e1, e2
       ! vector 1 (x) and 2 (y) at stages b, c, d and their δq̈ at stages a to d
       real(dp) :: xb1, xb2, xb3, xb4, xc1, xc2, xc3, xc4, xd1, xd2, xd3, xd4
       real(dp) :: la1, la2, lb1, lb2, lc1, lc2, ld1, ld2
@@ -1174,29 +1191,25 @@ contains
       real(dp) :: ma1, ma2, mb1, mb2, mc1, mc2, md1, md2
       hh = 0.5_dp*h
       h6 = h/6.0_dp
-      ! stage a: sin and cos of the step start as given (`trig_lanes`)
+      ! stage a: the carried sin and cos of the step start
       off = 0
       call accel_trig(c, l, s1a, c1a, s2a, c2a, wsq(w1), wsq(w2), ka1, ka2)
-      call tangent_shared(c, l, w1, w2, s1a, c1a, s2a, c2a, cd, sd, wc1, wc2, m12, rdet)
+      call tangent_shared(c, l, w1, w2, s1a, c1a, s2a, c2a, cd, sd, w1sq, w2sq, rdet)
       ud = x1 - x2
       dcd = -sd*ud
       dsd = cd*ud
-      dr1 = c%ga(l)*s1a*x1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*x4)
-      dr2 = c%gb(l)*s2a*x2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*x3)
-      dm12 = c%k(l)*dcd
-      ddet = -2.0_dp*m12*dm12
-      la1 = (c%m22(l)*dr1 - dm12*(ka2*c%m22(l) + ka1*m12) - m12*dr2 - ka1*ddet)*rdet
-      la2 = (c%m11(l)*dr2 - dm12*(ka1*c%m11(l) + ka2*m12) - m12*dr1 - ka2*ddet)*rdet
+      e1 = c%gak(l)*s1a*x1 - (dsd*w2sq + 2.0_dp*sd*w2*x4) - dcd*ka2
+      e2 = c%gbk(l)*s2a*x2 + (dsd*w1sq + 2.0_dp*sd*w1*x3) - dcd*ka1
+      la1 = (c%m22k(l)*e1 - cd*e2)*rdet
+      la2 = (c%m11k(l)*e2 - cd*e1)*rdet
       if (nv > 1) then
          ud = y1 - y2
          dcd = -sd*ud
          dsd = cd*ud
-         dr1 = c%ga(l)*s1a*y1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*y4)
-         dr2 = c%gb(l)*s2a*y2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*y3)
-         dm12 = c%k(l)*dcd
-         ddet = -2.0_dp*m12*dm12
-         ma1 = (c%m22(l)*dr1 - dm12*(ka2*c%m22(l) + ka1*m12) - m12*dr2 - ka1*ddet)*rdet
-         ma2 = (c%m11(l)*dr2 - dm12*(ka1*c%m11(l) + ka2*m12) - m12*dr1 - ka2*ddet)*rdet
+         e1 = c%gak(l)*s1a*y1 - (dsd*w2sq + 2.0_dp*sd*w2*y4) - dcd*ka2
+         e2 = c%gbk(l)*s2a*y2 + (dsd*w1sq + 2.0_dp*sd*w1*y3) - dcd*ka1
+         ma1 = (c%m22k(l)*e1 - cd*e2)*rdet
+         ma2 = (c%m11k(l)*e2 - cd*e1)*rdet
       end if
       e = energy_formula(c, l, s1a, c1a, s2a, c2a, w1, w2)
       sa1 = q1 + hh*w1; sa2 = q2 + hh*w2
@@ -1209,29 +1222,25 @@ contains
       sb1 = sa1 - q1; sb2 = sa2 - q2
       o1 = dclamp(sb1); o2 = dclamp(sb2)
       off = off + (abs(sb1 - o1) + abs(sb2 - o2))
-      call sincos_add(s1a, c1a, o1, s1, c1)
-      call sincos_add(s2a, c2a, o2, s2, c2)
+      call sincos_add_stage(s1a, c1a, o1, s1, c1)
+      call sincos_add_stage(s2a, c2a, o2, s2, c2)
       call accel_trig(c, l, s1, c1, s2, c2, wsq(vb1), wsq(vb2), kb1, kb2)
-      call tangent_shared(c, l, vb1, vb2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      call tangent_shared(c, l, vb1, vb2, s1, c1, s2, c2, cd, sd, w1sq, w2sq, rdet)
       ud = xb1 - xb2
       dcd = -sd*ud
       dsd = cd*ud
-      dr1 = c%ga(l)*s1*xb1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xb4)
-      dr2 = c%gb(l)*s2*xb2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xb3)
-      dm12 = c%k(l)*dcd
-      ddet = -2.0_dp*m12*dm12
-      lb1 = (c%m22(l)*dr1 - dm12*(kb2*c%m22(l) + kb1*m12) - m12*dr2 - kb1*ddet)*rdet
-      lb2 = (c%m11(l)*dr2 - dm12*(kb1*c%m11(l) + kb2*m12) - m12*dr1 - kb2*ddet)*rdet
+      e1 = c%gak(l)*s1*xb1 - (dsd*w2sq + 2.0_dp*sd*vb2*xb4) - dcd*kb2
+      e2 = c%gbk(l)*s2*xb2 + (dsd*w1sq + 2.0_dp*sd*vb1*xb3) - dcd*kb1
+      lb1 = (c%m22k(l)*e1 - cd*e2)*rdet
+      lb2 = (c%m11k(l)*e2 - cd*e1)*rdet
       if (nv > 1) then
          ud = yb1 - yb2
          dcd = -sd*ud
          dsd = cd*ud
-         dr1 = c%ga(l)*s1*yb1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yb4)
-         dr2 = c%gb(l)*s2*yb2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yb3)
-         dm12 = c%k(l)*dcd
-         ddet = -2.0_dp*m12*dm12
-         mb1 = (c%m22(l)*dr1 - dm12*(kb2*c%m22(l) + kb1*m12) - m12*dr2 - kb1*ddet)*rdet
-         mb2 = (c%m11(l)*dr2 - dm12*(kb1*c%m11(l) + kb2*m12) - m12*dr1 - kb2*ddet)*rdet
+         e1 = c%gak(l)*s1*yb1 - (dsd*w2sq + 2.0_dp*sd*vb2*yb4) - dcd*kb2
+         e2 = c%gbk(l)*s2*yb2 + (dsd*w1sq + 2.0_dp*sd*vb1*yb3) - dcd*kb1
+         mb1 = (c%m22k(l)*e1 - cd*e2)*rdet
+         mb2 = (c%m11k(l)*e2 - cd*e1)*rdet
       end if
       sa1 = q1 + hh*vb1; sa2 = q2 + hh*vb2
       vc1 = w1 + hh*kb1; vc2 = w2 + hh*kb2
@@ -1243,29 +1252,25 @@ contains
       sc1 = sa1 - q1; sc2 = sa2 - q2
       o1 = dclamp(sc1); o2 = dclamp(sc2)
       off = off + (abs(sc1 - o1) + abs(sc2 - o2))
-      call sincos_add(s1a, c1a, o1, s1, c1)
-      call sincos_add(s2a, c2a, o2, s2, c2)
+      call sincos_add_stage(s1a, c1a, o1, s1, c1)
+      call sincos_add_stage(s2a, c2a, o2, s2, c2)
       call accel_trig(c, l, s1, c1, s2, c2, wsq(vc1), wsq(vc2), kc1, kc2)
-      call tangent_shared(c, l, vc1, vc2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      call tangent_shared(c, l, vc1, vc2, s1, c1, s2, c2, cd, sd, w1sq, w2sq, rdet)
       ud = xc1 - xc2
       dcd = -sd*ud
       dsd = cd*ud
-      dr1 = c%ga(l)*s1*xc1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xc4)
-      dr2 = c%gb(l)*s2*xc2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xc3)
-      dm12 = c%k(l)*dcd
-      ddet = -2.0_dp*m12*dm12
-      lc1 = (c%m22(l)*dr1 - dm12*(kc2*c%m22(l) + kc1*m12) - m12*dr2 - kc1*ddet)*rdet
-      lc2 = (c%m11(l)*dr2 - dm12*(kc1*c%m11(l) + kc2*m12) - m12*dr1 - kc2*ddet)*rdet
+      e1 = c%gak(l)*s1*xc1 - (dsd*w2sq + 2.0_dp*sd*vc2*xc4) - dcd*kc2
+      e2 = c%gbk(l)*s2*xc2 + (dsd*w1sq + 2.0_dp*sd*vc1*xc3) - dcd*kc1
+      lc1 = (c%m22k(l)*e1 - cd*e2)*rdet
+      lc2 = (c%m11k(l)*e2 - cd*e1)*rdet
       if (nv > 1) then
          ud = yc1 - yc2
          dcd = -sd*ud
          dsd = cd*ud
-         dr1 = c%ga(l)*s1*yc1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yc4)
-         dr2 = c%gb(l)*s2*yc2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yc3)
-         dm12 = c%k(l)*dcd
-         ddet = -2.0_dp*m12*dm12
-         mc1 = (c%m22(l)*dr1 - dm12*(kc2*c%m22(l) + kc1*m12) - m12*dr2 - kc1*ddet)*rdet
-         mc2 = (c%m11(l)*dr2 - dm12*(kc1*c%m11(l) + kc2*m12) - m12*dr1 - kc2*ddet)*rdet
+         e1 = c%gak(l)*s1*yc1 - (dsd*w2sq + 2.0_dp*sd*vc2*yc4) - dcd*kc2
+         e2 = c%gbk(l)*s2*yc2 + (dsd*w1sq + 2.0_dp*sd*vc1*yc3) - dcd*kc1
+         mc1 = (c%m22k(l)*e1 - cd*e2)*rdet
+         mc2 = (c%m11k(l)*e2 - cd*e1)*rdet
       end if
       sa1 = q1 + h*vc1; sa2 = q2 + h*vc2
       vd1 = w1 + h*kc1; vd2 = w2 + h*kc2
@@ -1277,33 +1282,30 @@ contains
       sd1 = sa1 - q1; sd2 = sa2 - q2
       o1 = dclamp(sd1); o2 = dclamp(sd2)
       off = off + (abs(sd1 - o1) + abs(sd2 - o2))
-      call sincos_add(s1a, c1a, o1, s1, c1)
-      call sincos_add(s2a, c2a, o2, s2, c2)
+      call sincos_add_stage(s1a, c1a, o1, s1, c1)
+      call sincos_add_stage(s2a, c2a, o2, s2, c2)
       call accel_trig(c, l, s1, c1, s2, c2, wsq(vd1), wsq(vd2), kd1, kd2)
-      call tangent_shared(c, l, vd1, vd2, s1, c1, s2, c2, cd, sd, wc1, wc2, m12, rdet)
+      call tangent_shared(c, l, vd1, vd2, s1, c1, s2, c2, cd, sd, w1sq, w2sq, rdet)
       ud = xd1 - xd2
       dcd = -sd*ud
       dsd = cd*ud
-      dr1 = c%ga(l)*s1*xd1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*xd4)
-      dr2 = c%gb(l)*s2*xd2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*xd3)
-      dm12 = c%k(l)*dcd
-      ddet = -2.0_dp*m12*dm12
-      ld1 = (c%m22(l)*dr1 - dm12*(kd2*c%m22(l) + kd1*m12) - m12*dr2 - kd1*ddet)*rdet
-      ld2 = (c%m11(l)*dr2 - dm12*(kd1*c%m11(l) + kd2*m12) - m12*dr1 - kd2*ddet)*rdet
+      e1 = c%gak(l)*s1*xd1 - (dsd*w2sq + 2.0_dp*sd*vd2*xd4) - dcd*kd2
+      e2 = c%gbk(l)*s2*xd2 + (dsd*w1sq + 2.0_dp*sd*vd1*xd3) - dcd*kd1
+      ld1 = (c%m22k(l)*e1 - cd*e2)*rdet
+      ld2 = (c%m11k(l)*e2 - cd*e1)*rdet
       if (nv > 1) then
          ud = yd1 - yd2
          dcd = -sd*ud
          dsd = cd*ud
-         dr1 = c%ga(l)*s1*yd1 - c%k(l)*(dsd*wc2**2 + 2.0_dp*sd*wc2*yd4)
-         dr2 = c%gb(l)*s2*yd2 + c%k(l)*(dsd*wc1**2 + 2.0_dp*sd*wc1*yd3)
-         dm12 = c%k(l)*dcd
-         ddet = -2.0_dp*m12*dm12
-         md1 = (c%m22(l)*dr1 - dm12*(kd2*c%m22(l) + kd1*m12) - m12*dr2 - kd1*ddet)*rdet
-         md2 = (c%m11(l)*dr2 - dm12*(kd1*c%m11(l) + kd2*m12) - m12*dr1 - kd2*ddet)*rdet
+         e1 = c%gak(l)*s1*yd1 - (dsd*w2sq + 2.0_dp*sd*vd2*yd4) - dcd*kd2
+         e2 = c%gbk(l)*s2*yd2 + (dsd*w1sq + 2.0_dp*sd*vd1*yd3) - dcd*kd1
+         md1 = (c%m22k(l)*e1 - cd*e2)*rdet
+         md2 = (c%m11k(l)*e2 - cd*e1)*rdet
       end if
-      ! the new state and vectors (the sums as in `rk4_tangent_lanes`)
-      q1 = q1 + h6*(w1 + 2.0_dp*(vb1 + vc1) + vd1)
-      q2 = q2 + h6*(w2 + 2.0_dp*(vb2 + vc2) + vd2)
+      ! the new state and vectors (the sums as in `rk4_tangent_lanes`), and the new
+      ! state's sin and cos from the step start's
+      sa1 = q1 + h6*(w1 + 2.0_dp*(vb1 + vc1) + vd1)
+      sa2 = q2 + h6*(w2 + 2.0_dp*(vb2 + vc2) + vd2)
       w1 = w1 + h6*(ka1 + 2.0_dp*(kb1 + kc1) + kd1)
       w2 = w2 + h6*(ka2 + 2.0_dp*(kb2 + kc2) + kd2)
       x1 = x1 + h6*(x3 + 2.0_dp*(xb3 + xc3) + xd3)
@@ -1316,17 +1318,27 @@ contains
          y3 = y3 + h6*(ma1 + 2.0_dp*(mb1 + mc1) + md1)
          y4 = y4 + h6*(ma2 + 2.0_dp*(mb2 + mc2) + md2)
       end if
+      sb1 = sa1 - q1; sb2 = sa2 - q2
+      q1 = sa1; q2 = sa2
+      o1 = dclamp(sb1); o2 = dclamp(sb2)
+      off = off + (abs(sb1 - o1) + abs(sb2 - o2))
+      call sincos_add(s1a, c1a, o1, s1, c1)
+      call sincos_add(s2a, c2a, o2, s2, c2)
+      s1a = s1; c1a = c1; s2a = s2; c2a = c2
    end subroutine tangent_lane_step
 
    !> One RK4 step of the state with nv (1 or 2) deviation vectors d(:, :, k) =
    !> (u1, u2, v1, v2) of the fast indicators (dpend_indicator_math) through
    !> `rk4_tangent_fused_lanes` (the state's stages once; the operations of
-   !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`), then renormalised to length 1
-   !> (directions kept, never orthogonalised); vector 1's growth enters the sums
-   !> acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
-   !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_step_lanes`). `e` as in
-   !> `rk4_lanes`.
-   pure subroutine indicator_step_lanes_lc(c, h, ks, q1, q2, w1, w2, nv, d, acc, e)
+   !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`). Vector 1's growth enters the
+   !> sums acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
+   !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_lane`): ln |δ| after the
+   !> step is ln(|d|²)/2 (`log_lanes`), less acc(:, 5) = ln |d| before it. Each vector is
+   !> then scaled by the power of two 2^-m that brings |d|² into [1, 4)
+   !> (`pow2_scale`: exact, so directions and ratios are untouched, with no square
+   !> root or division; SALI and GALI_2 normalise the vectors themselves), and
+   !> acc(:, 5) = ln |d| - m ln 2. `e` and `tr` as in `rk4_lanes`.
+   pure subroutine indicator_step_lanes_lc(c, h, ks, q1, q2, w1, w2, nv, d, acc, e, tr)
       type(lane_coef_t), intent(in) :: c                           !! constants
       real(dp), intent(in) :: h                                    !! step [s]
       integer(i8), intent(in) :: ks(lane_width)                    !! steps done before
@@ -1334,30 +1346,129 @@ contains
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)    !! velocities [rad/s]
       integer, intent(in) :: nv                                    !! vectors, 1 or 2
       real(dp), intent(inout) :: d(lane_width, 4, 2)               !! deviation vectors
-      real(dp), intent(inout) :: acc(lane_width, 4)                !! vector 1's sums
+      real(dp), intent(inout) :: acc(lane_width, 5)                !! vector 1's sums, ln |d|
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
-      real(dp), dimension(lane_width) :: nrm, dl, ta, tb
-      integer :: i, j, k
-      call rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e)
-      do k = 1, nv
-         do i = 1, lane_width
-            nrm(i) = sqrt(d(i, 1, k)**2 + d(i, 2, k)**2 + d(i, 3, k)**2 + d(i, 4, k)**2)
+      type(lane_trig_t), intent(inout) :: tr                       !! sin, cos of q1, q2
+      real(dp), dimension(lane_width) :: n2, lnn2
+      real(dp) :: sc, dm
+      integer :: i, j
+      call rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e, tr)
+      do i = 1, lane_width
+         n2(i) = d(i, 1, 1)**2 + d(i, 2, 1)**2 + d(i, 3, 1)**2 + d(i, 4, 1)**2
+      end do
+      call log_lanes(n2, lnn2)
+      do i = 1, lane_width
+         call vector1_update(h, ks(i), n2(i), lnn2(i), d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), &
+                             d(i, 4, 1), acc(i, 1), acc(i, 2), acc(i, 3), acc(i, 4), acc(i, 5))
+      end do
+      if (nv < 2) return
+      do i = 1, lane_width
+         n2(i) = d(i, 1, 2)**2 + d(i, 2, 2)**2 + d(i, 3, 2)**2 + d(i, 4, 2)**2
+         call pow2_scale(n2(i), sc, dm)
+         do j = 1, 4
+            d(i, j, 2) = d(i, j, 2)*sc
          end do
-         do j = 1, 4   ! loops over the lanes, innermost: they vectorize
-            do i = 1, lane_width
-               d(i, j, k) = d(i, j, k)/nrm(i)
-            end do
-         end do
-         if (k == 1) then
-            do i = 1, lane_width
-               dl(i) = log(nrm(i))
-               ta(i) = real(ks(i), dp)*h
-               tb(i) = real(ks(i) + 1, dp)*h
-            end do
-            call megno_step_lanes(dl, ta, tb, acc(:, 1), acc(:, 2), acc(:, 3), acc(:, 4))
-         end if
       end do
    end subroutine indicator_step_lanes_lc
+
+   !> One lane's update of vector 1 after a step (`indicator_step_lanes`): from
+   !> n2 = |d|² and lnn2 = ln n2, MEGNO's sums of the step [ks h, (ks + 1) h] and
+   !> ln |d| (lg, ig, yy, sy, ld = acc(:, 1:5)); d scaled by `pow2_scale`.
+   pure elemental subroutine vector1_update(h, ks, n2, lnn2, d1, d2, d3, d4, lg, ig, yy, &
+                                            sy, ld)
+      real(dp), intent(in) :: h                    !! step [s]
+      integer(i8), intent(in) :: ks                !! steps done before
+      real(dp), intent(in) :: n2, lnn2             !! |d|², ln |d|²
+      real(dp), intent(inout) :: d1, d2, d3, d4    !! vector 1
+      real(dp), intent(inout) :: lg, ig, yy, sy    !! MEGNO's sums (`megno_lane`)
+      real(dp), intent(inout) :: ld                !! ln |d| of the carried vector
+      real(dp), parameter :: ln2 = log(2.0_dp)
+      real(dp) :: sc, dm, dl
+      call pow2_scale(n2, sc, dm)
+      d1 = d1*sc; d2 = d2*sc; d3 = d3*sc; d4 = d4*sc
+      dl = 0.5_dp*lnn2 - ld
+      ld = 0.5_dp*lnn2 - dm*ln2
+      call megno_lane(dl, real(ks, dp)*h, real(ks + 1, dp)*h, lg, ig, yy, sy)
+   end subroutine vector1_update
+
+   !> The power of two sc = 2^-m, m = floor(e/2) for the exponent e of x (x = |d|²):
+   !> x sc² lies in [1, 4) for a positive normal x; m as a real in dm. From the bits
+   !> of x, without a compare (NaN and Inf give some power of two within range).
+   pure elemental subroutine pow2_scale(x, sc, dm)
+      real(dp), intent(in) :: x    !! |d|²
+      real(dp), intent(out) :: sc  !! 2^-m
+      real(dp), intent(out) :: dm  !! m
+      integer(i8) :: m
+      m = shifta(shiftr(transfer(x, 0_i8), 52) - 1023_i8, 1)   ! floor((e + 1023 - 1023)/2)
+      m = min(max(m, -511_i8), 511_i8)
+      sc = transfer(shiftl(1023_i8 - m, 52), 1.0_dp)
+      dm = real(m, dp)
+   end subroutine pow2_scale
+
+   !> ln x of every lane, our own vectorizable implementation (gfortran calls libm's
+   !> log lane by lane, which stops the vectorizer): fdlibm's e_log.c. x = 2^k (1 + f)
+   !> with sqrt(2)/2 <= 1 + f < sqrt(2) from the bits of x, s = f/(2 + f), ln(1 + f) =
+   !> f - s (f - R(s²)) with fdlibm's minimax R (error < 2^-58), + k ln 2 in two parts.
+   !> Within 1 ulp of the intrinsic log (test lanes/log_lanes_vs_intrinsic). Lanes
+   !> outside the positive normal numbers (0, subnormal, negative, Inf, NaN) take the
+   !> intrinsic log, lane by lane.
+   pure subroutine log_lanes(x, r)
+      real(dp), intent(in) :: x(lane_width)   !! argument
+      real(dp), intent(out) :: r(lane_width)  !! ln x
+      integer(i8) :: bad
+      integer :: i
+      bad = 0
+      do i = 1, lane_width
+         r(i) = log_poly(x(i))
+         bad = bad + not_normal(x(i))
+      end do
+      if (bad == 0) return
+      do i = 1, lane_width
+         if (not_normal(x(i)) > 0) r(i) = log(x(i))
+      end do
+   end subroutine log_lanes
+
+   !> 1 if x is not a positive normal finite number (0, subnormal, negative, Inf, NaN),
+   !> else 0: from the sign and exponent bits (no floating-point compare, which would
+   !> raise IEEE invalid on NaN).
+   pure elemental integer(i8) function not_normal(x)
+      real(dp), intent(in) :: x  !! argument
+      integer(i8) :: ex
+      ex = shiftr(transfer(x, 0_i8), 52)   ! sign and exponent: 1 .. 2046 for those
+      not_normal = min(1_i8, max(0_i8, 1_i8 - ex) + max(0_i8, ex - 2046_i8))
+   end function not_normal
+
+   !> One lane of `log_lanes` for a positive normal finite x (other x give a finite
+   !> value of no meaning). Elemental and private, so that gcc inlines it into the
+   !> vectorized loop.
+   pure elemental real(dp) function log_poly(x) result(r)
+      real(dp), intent(in) :: x  !! argument
+      real(dp), parameter :: ln2_hi = 6.93147180369123816490e-01_dp   ! 0x3fe62e42fee00000
+      real(dp), parameter :: ln2_lo = 1.90821492927058770002e-10_dp   ! 0x3dea39ef35793c76
+      real(dp), parameter :: lg1 = 6.666666666666735130e-01_dp, lg2 = 3.999999999940941908e-01_dp, &
+                             lg3 = 2.857142874366239149e-01_dp, lg4 = 2.222219843214978396e-01_dp, &
+                             lg5 = 1.818357216161805012e-01_dp, lg6 = 1.531383769920937332e-01_dp, &
+                             lg7 = 1.479819860511658591e-01_dp
+      ! the high word of sqrt(2)/2, and the mantissa and exponent masks of a double
+      integer(i8), parameter :: rt2_hi = int(z'3FE6A09E00000000', i8)
+      integer(i8), parameter :: one_hi = int(z'3FF0000000000000', i8)
+      integer(i8), parameter :: mant = int(z'000FFFFFFFFFFFFF', i8)
+      integer(i8) :: ix, k
+      real(dp) :: f, s, z, w, t1, t2, hfsq, dk
+      ! shift x's bits so that the exponent field steps up where the mantissa passes
+      ! that of sqrt(2)/2: then 1 + f = the mantissa with the exponent of sqrt(2)/2 or 1
+      ix = transfer(x, 0_i8) + (one_hi - rt2_hi)
+      k = shiftr(ix, 52) - 1023
+      f = transfer(iand(ix, mant) + rt2_hi, 1.0_dp) - 1.0_dp
+      dk = real(k, dp)
+      hfsq = 0.5_dp*f*f
+      s = f/(2.0_dp + f)
+      z = s*s
+      w = z*z
+      t1 = w*(lg2 + w*(lg4 + w*lg6))
+      t2 = z*(lg1 + w*(lg3 + w*(lg5 + w*lg7)))
+      r = s*(hfsq + (t2 + t1)) + dk*ln2_lo - hfsq + f + dk*ln2_hi
+   end function log_poly
 
    !> Copy of `megno_step` (dpend_indicator_math) for speed, t0 = 0: SIMD over the
    !> lanes (a call of the elemental in another module would not be inlined);
@@ -1369,16 +1480,27 @@ contains
       real(dp), intent(inout) :: ig(lane_width)               !! ∫ s d ln|δ| [s]
       real(dp), intent(inout) :: yy(lane_width)               !! Y(t_prev) in, Y(t) out [1]
       real(dp), intent(inout) :: sy(lane_width)               !! ∫ Y ds [s]
-      real(dp) :: y_new
       integer :: i
       do i = 1, lane_width
-         lg(i) = lg(i) + dl(i)
-         ig(i) = ig(i) + (0.5_dp*(t_prev(i) + t(i)))*dl(i)   ! s - t0 = s exactly
-         y_new = 2.0_dp*ig(i)/t(i)
-         sy(i) = sy(i) + 0.5_dp*(t(i) - t_prev(i))*(yy(i) + y_new)
-         yy(i) = y_new
+         call megno_lane(dl(i), t_prev(i), t(i), lg(i), ig(i), yy(i), sy(i))
       end do
    end subroutine megno_step_lanes
+
+   !> One lane of `megno_step_lanes`.
+   pure elemental subroutine megno_lane(dl, t_prev, t, lg, ig, yy, sy)
+      real(dp), intent(in) :: dl           !! ln of the growth of |δ|
+      real(dp), intent(in) :: t_prev, t    !! step start, end [s]
+      real(dp), intent(inout) :: lg        !! ln |δ(t)| [1]
+      real(dp), intent(inout) :: ig        !! ∫ s d ln|δ| [s]
+      real(dp), intent(inout) :: yy        !! Y(t_prev) in, Y(t) out [1]
+      real(dp), intent(inout) :: sy        !! ∫ Y ds [s]
+      real(dp) :: y_new
+      lg = lg + dl
+      ig = ig + (0.5_dp*(t_prev + t))*dl   ! s - t0 = s exactly
+      y_new = 2.0_dp*ig/t
+      sy = sy + 0.5_dp*(t - t_prev)*(yy + y_new)
+      yy = y_new
+   end subroutine megno_lane
 
    !> Integrate the initial conditions y0(:, j) = (q1, q2, q̇1, q̇2) with RK4 of step
    !> opt%h up to opt%n_steps steps, lanes refilled with the next initial condition as
@@ -1399,7 +1521,7 @@ contains
       type(batch_coef_t), allocatable :: coefs(:)  ! (1), or (n) with pars
       real(dp), allocatable :: bounds(:, :), escale(:)  ! (2, size(coefs)), (size(coefs))
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
-      real(dp), dimension(w) :: p1, p2, n1, n2, lacc
+      real(dp), dimension(w) :: p1, p2, n1, n2, lacc, nrm, lnrm
       ! the angles between lo and hi cannot have crossed an upward vertical since the last
       ! check: (π/2 + 2π n, π/2 + 2π (n + 1)) shrunk by window_margin
       real(dp), dimension(w) :: lo1, hi1, lo2, hi2
@@ -1411,8 +1533,8 @@ contains
       integer :: lane_ic(w)
       logical :: can1(w), can2(w), ended(w)
       logical, allocatable :: can_flip1(:), can_flip2(:), todo(:)
-      real(dp) :: nan, m, qc, nrm, s, n_events
-      real(dp) :: dv(w, 4, 2), acc(w, 4), v0(4, 4)   ! indicators' vectors and sums
+      real(dp) :: nan, m, qc, s, n_events
+      real(dp) :: dv(w, 4, 2), acc(w, 5), v0(4, 4)   ! indicators' vectors and sums
       integer :: n, i, next, n_active, rule
       logical :: any_ended
 
@@ -1451,15 +1573,16 @@ contains
          p1 = q1
          p2 = q2
          if (opt%vectors > 0) then
-            call indicator_step_lanes(c, opt%h, ks, q1, q2, w1, w2, opt%vectors, dv, acc, e)
+            call indicator_step_lanes(c, opt%h, ks, q1, q2, w1, w2, opt%vectors, dv, acc, e, tr)
          else if (opt%lyapunov) then
             call rk4_tangent_lanes(c, opt%h, q1, q2, w1, w2, u1, u2, v1, v2, e)
             do i = 1, w
-               nrm = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
-               lacc(i) = lacc(i) + log(nrm)
-               s = 1.0_dp/nrm
+               nrm(i) = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
+               s = 1.0_dp/nrm(i)
                u1(i) = u1(i)*s; u2(i) = u2(i)*s; v1(i) = v1(i)*s; v2(i) = v2(i)*s
             end do
+            call log_lanes(nrm, lnrm)
+            lacc = lacc + lnrm
          else
             call rk4_lanes(c, opt%h, q1, q2, w1, w2, e, tr)
          end if
@@ -1579,8 +1702,8 @@ contains
          call sincos_exact(q1(l), tr%s1(l), tr%c1(l))
          call sincos_exact(q2(l), tr%s2(l), tr%c2(l))
          sync(l) = real(resync_steps, dp)
-         ! (the Lyapunov and indicator kernels compute their own sin and cos)
-         if (opt%lyapunov .or. opt%vectors > 0) sync(l) = huge(1.0_dp)
+         ! (the Lyapunov kernel computes its own sin and cos)
+         if (opt%lyapunov .and. opt%vectors == 0) sync(l) = huge(1.0_dp)
       end subroutine resync
 
       !> The windows of lane l's angles from n1, n2: between two upward verticals,
@@ -1618,7 +1741,7 @@ contains
          integer, intent(in) :: jj, l
          real(dp) :: d(4, 2), a(4)
          integer :: info
-         d = dv(l, :, :); a = acc(l, :)
+         d = dv(l, :, :); a = acc(l, 1:4)
          if (.not. (all(ieee_is_finite(d(:, 1:opt%vectors))) .and. &
                     all(ieee_is_finite(a)))) return   ! NaN: not finite
          res%fli(jj) = a(1)
