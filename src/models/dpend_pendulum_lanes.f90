@@ -1333,7 +1333,8 @@ contains
    !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`). Vector 1's growth enters the
    !> sums acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
    !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_lane`): ln |δ| after the
-   !> step is ln(|d|²)/2 (`log_lanes`), less acc(:, 5) = ln |d| before it. Each vector is
+   !> step is ln(|d|²)/2 (`log_poly`; `log_lanes` if some |d|² is not a positive
+   !> normal number), less acc(:, 5) = ln |d| before it. Each vector is
    !> then scaled by the power of two 2^-m that brings |d|² into [1, 4)
    !> (`pow2_scale`: exact, so directions and ratios are untouched, with no square
    !> root or division; SALI and GALI_2 normalise the vectors themselves), and
@@ -1350,15 +1351,20 @@ contains
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
       type(lane_trig_t), intent(inout) :: tr                       !! sin, cos of q1, q2
       real(dp), dimension(lane_width) :: n2, lnn2
-      real(dp) :: sc, dm
+      real(dp) :: sc, dm, ln
+      integer(i8) :: bad
       integer :: i, j
       call rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e, tr)
+      bad = 0
       do i = 1, lane_width
          n2(i) = d(i, 1, 1)**2 + d(i, 2, 1)**2 + d(i, 3, 1)**2 + d(i, 4, 1)**2
+         bad = bad + not_normal(n2(i))
       end do
-      call log_lanes(n2, lnn2)
+      if (bad > 0) call log_lanes(n2, lnn2)   ! rare: a lane's |d|² not a positive normal
       do i = 1, lane_width
-         call vector1_update(h, ks(i), n2(i), lnn2(i), d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), &
+         ln = log_poly(n2(i))
+         if (bad > 0) ln = lnn2(i)
+         call vector1_update(h, ks(i), n2(i), ln, d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), &
                              d(i, 4, 1), acc(i, 1), acc(i, 2), acc(i, 3), acc(i, 4), acc(i, 5))
       end do
       if (nv < 2) return
