@@ -367,8 +367,9 @@ contains
       write (*, '(4x, a, f0.3, a)') 'log_lanes vs log: largest difference ', worst, ' ulp'
       call check_true(error, worst <= 1.0_dp, 'log_lanes within 1 ulp of the intrinsic log')
       if (allocated(error)) return
-      special = [tiny(1.0_dp)/8, tiny(1.0_dp)*2.0_dp**(-40), ieee_value(1.0_dp, ieee_positive_inf), &
-                 ieee_value(1.0_dp, ieee_quiet_nan), huge(1.0_dp), tiny(1.0_dp), 1.0_dp]
+      special = [tiny(1.0_dp)/8, tiny(1.0_dp)*2.0_dp**(-40), &
+                 ieee_value(1.0_dp, ieee_positive_inf), ieee_value(1.0_dp, ieee_quiet_nan), &
+                 huge(1.0_dp), tiny(1.0_dp), 1.0_dp]
       x = 2.0_dp
       x(1:7) = special
       call log_lanes(x, r)

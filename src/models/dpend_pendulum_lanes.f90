@@ -608,8 +608,8 @@ contains
       do i = 1, lane_width
          call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, w1sq, w2sq, &
                              rdet)
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
-                             u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, &
+                             w2sq, rdet, u1(i), u2(i), v1(i), v2(i), b1(i), b2(i))
       end do
    end subroutine tangent_accel_lanes_lc
 
@@ -631,10 +631,12 @@ contains
       do i = 1, lane_width
          call tangent_shared(c, i, w1(i), w2(i), s1(i), c1(i), s2(i), c2(i), cd, sd, w1sq, w2sq, &
                              rdet)
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
-                             x(i, 1, 1), x(i, 2, 1), x(i, 3, 1), x(i, 4, 1), b(i, 1, 1), b(i, 2, 1))
-         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, w2sq, rdet, &
-                             x(i, 1, 2), x(i, 2, 2), x(i, 3, 2), x(i, 4, 2), b(i, 1, 2), b(i, 2, 2))
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, &
+                             w2sq, rdet, x(i, 1, 1), x(i, 2, 1), x(i, 3, 1), x(i, 4, 1), &
+                             b(i, 1, 1), b(i, 2, 1))
+         call tangent_vector(c, i, a1(i), a2(i), s1(i), s2(i), cd, sd, w1(i), w2(i), w1sq, &
+                             w2sq, rdet, x(i, 1, 2), x(i, 2, 2), x(i, 3, 2), x(i, 4, 2), &
+                             b(i, 1, 2), b(i, 2, 2))
       end do
    end subroutine tangent_accel2_lanes
 
