@@ -1105,7 +1105,8 @@ contains
       real(dp), dimension(lane_width) :: p1, p2, pw1, pw2
       real(dp) :: pd(lane_width, 4, 2), off(lane_width), n_off
       integer :: i
-      p1 = q1; p2 = q2; pw1 = w1; pw2 = w2; pd(:, :, 1:nv) = d(:, :, 1:nv)
+      p1 = q1; p2 = q2; pw1 = w1; pw2 = w2
+      pd(:, :, 1:nv) = d(:, :, 1:nv)   ! (the vectors in use only: a copy every step)
       n_off = 0
       ! (one call: gcc inlines it, then vectorizes the loop)
       do i = 1, lane_width
@@ -1137,7 +1138,7 @@ contains
       real(dp), intent(in) :: off(lane_width)                    !! 0: the lane's step holds
       real(dp), intent(in) :: p1(lane_width), p2(lane_width)     !! step start [rad]
       real(dp), intent(in) :: pw1(lane_width), pw2(lane_width)   !! step start [rad/s]
-      real(dp), intent(in) :: pd(lane_width, 4, 2)               !! vectors at the start
+      real(dp), intent(in) :: pd(lane_width, 4, 2)               !! vectors at the start (1:nv)
       real(dp), intent(inout) :: q1(lane_width), q2(lane_width)  !! new angles [rad]
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! new velocities [rad/s]
       real(dp), intent(inout) :: d(lane_width, 4, 2)             !! new vectors
@@ -1145,7 +1146,9 @@ contains
       real(dp), dimension(lane_width) :: r1, r2, rw1, rw2, re
       real(dp) :: rd(lane_width, 4, 2)
       integer :: i
-      r1 = p1; r2 = p2; rw1 = pw1; rw2 = pw2; rd = pd
+      r1 = p1; r2 = p2; rw1 = pw1; rw2 = pw2
+      rd = 0
+      rd(:, :, 1:nv) = pd(:, :, 1:nv)
       if (nv > 1) then
          call rk4_tangent2_lanes(c, h, r1, r2, rw1, rw2, rd, re)
       else
