@@ -124,9 +124,6 @@ module dpend_pendulum_lanes
       real(dp) :: detk(lane_width)  !! M11 M22/k² [1]
       real(dp) :: gak(lane_width)   !! A/k [1/s²]
       real(dp) :: gbk(lane_width)   !! B/k [1/s²]
-      !> M11 M22 [kg² m⁴] (a product of its own, as it was when the constants were
-      !> scalars and the product a loop invariant: det M = det - M12² rounds the same)
-      real(dp) :: det(lane_width)
    end type lane_coef_t
 
    !> sin and cos of both angles of every lane, carried by `rk4_lanes` from step to
@@ -266,7 +263,6 @@ contains
       lc%m11(l) = c%m11; lc%m22(l) = c%m22; lc%k(l) = c%k; lc%ga(l) = c%ga; lc%gb(l) = c%gb
       lc%m11k(l) = c%m11k; lc%m22k(l) = c%m22k; lc%detk(l) = c%detk
       lc%gak(l) = c%gak; lc%gbk(l) = c%gbk
-      lc%det(l) = c%m11*c%m22
    end subroutine set_lane_coef
 
    !> `rk4_lanes` with the constants `c` in every lane.
@@ -615,7 +611,7 @@ contains
 
    !> `tangent_accel_lanes` for the two deviation vectors x(:, :, 1) and x(:, :, 2)
    !> = (u1, u2, v1, v2) of SALI and GALI_2 at once (issue 27): the terms that do not
-   !> depend on the vector (the Jacobian's: cos d, sin d, M12, 1/det) once per lane,
+   !> depend on the vector (the Jacobian's: cos d, sin d, 1/det(M/k)) once per lane,
    !> then each vector by the same operations as `tangent_accel_lanes`, so that
    !> each result equals that of `tangent_accel_lanes` bit for bit.
    pure subroutine tangent_accel2_lanes(c, w1, w2, a1, a2, s1, c1, s2, c2, x, b)
