@@ -106,6 +106,7 @@ contains
       n_steps = 250
       do
          ns = indicator_ns(name, n_steps)
+         if (.not. (ns(1) > 0.0_dp)) exit   ! results not finite: -1 ns (printed)
          if (ns(1)*1e-9_dp*real(n_steps, dp)*real(batch_size, dp) >= round_seconds) exit
          n_steps = 2*n_steps
       end do

@@ -162,8 +162,9 @@ contains
    !> every step start: state, vectors and energy equal to 1e-9 relative (they differ
    !> by rounding: the carried sines, the stages' shorter polynomials, FMA contraction
    !> in the release profile), every lane its own pendulum;
-   !> lane 3 starts fast (stage offsets beyond d_max) and lane 5 beyond
-   !> sincos_exact_max (2e6 rad), so that the fallback to those routines runs too.
+   !> lane 3 starts fast (stage offsets beyond d_max), so that the fallback to those
+   !> routines runs too, and lane 5 beyond sincos_exact_max (2e6 rad), where the
+   !> carried sines start from the intrinsic's.
    subroutine test_tangent_fused(error)
       type(error_t), allocatable, intent(out) :: error
       type(lane_coef_t) :: lc

@@ -1471,8 +1471,9 @@ contains
    !> (t_end 200) of the same 6 x 6 pixels: exit 0, both times and the agreement
    !> printed; the stored classes are the thresholds applied to the maps by hand
    !> (MEGNO > 2.5, lambda1 sqrt(l1/g) > 0.05), the stored agreement their match;
-   !> other pixels, a sweep without an indicator, FLI without a threshold, and an
-   !> existing output without --force are refused.
+   !> other pixels, a sweep without an indicator, FLI without a threshold, an
+   !> existing output without --force, and the same pixels of other bodies (point
+   !> masses against rods: also by the flip-time comparison) are refused.
    subroutine test_agreement(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text, common
@@ -1543,6 +1544,21 @@ contains
       call read_text(dir//'/stderr', text, n)
       call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'threshold-a') > 0, &
                       'a NaN threshold refused: '//text)
+      call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
+      if (allocated(error)) return
+      ! the same pixels of point masses: other bodies, refused by both comparisons
+      stat = run_command(dir, common//'--t-end 20 --indicator megno --body point --output '// &
+                         dir//'/mp.h5')
+      call check_true(error, stat == 0, 'point-mass MEGNO map exits 0')
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/mp.h5 --agreement '// &
+                         '--output '//dir//'/b.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'com1 = ') > 0, &
+                      'rods against point masses refused (agreement): '//text)
+      stat = run_command(dir, 'sweep-compare '//dir//'/m.h5 '//dir//'/mp.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. n == 1 .and. index(text, 'com1 = ') > 0, &
+                      'rods against point masses refused (flip times): '//text)
       call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_agreement

@@ -19,7 +19,7 @@ module dpend_sweep_agreement
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci, in_range
-   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data
+   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data, body_difference
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
@@ -80,6 +80,11 @@ contains
             return
          end if
       end do
+      va = body_difference(a%config, b%config, file_a, file_b)
+      if (len(va) > 0) then
+         call refuse(va)
+         return
+      end if
       if (size(a%dims) /= size(b%dims)) then
          call refuse('the datasets have other shapes')
       else if (any(a%dims /= b%dims)) then

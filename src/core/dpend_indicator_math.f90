@@ -3,8 +3,10 @@
 !> sweep's batch kernel (`dpend_pendulum_lanes`, one or two vectors per lane). The
 !> definitions and references are in dpend_indicators' header.
 !>
-!> Deviation vectors are renormalised to length 1 after every step, the logarithm
-!> of the growth dl = ln(|δ(b)|/|δ(a)|) over the step [a, b] entering `megno_step`.
+!> Deviation vectors are renormalised to length 1 after every step (the two-link
+!> batch kernel rescales them by a power of two instead, exactly, and carries
+!> ln |δ|), the logarithm of the growth dl = ln(|δ(b)|/|δ(a)|) over the step [a, b]
+!> entering `megno_step`.
 module dpend_indicator_math
    use dpend_kinds, only: dp
    use dpend_lapack, only: dgeqrf

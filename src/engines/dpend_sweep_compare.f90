@@ -15,7 +15,7 @@ module dpend_sweep_compare
    use dpend_cli, only: to_str, real_str
    implicit none
    private
-   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value
+   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, body_difference
 
    !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
    real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
@@ -75,6 +75,11 @@ contains
             if (allocated(error)) return
          end if
       end do
+      va = body_difference(cfg_a, cfg_b, file_a, file_b)
+      if (len(va) > 0) then
+         call refuse(va)
+         return
+      end if
       if (abs(tau - tau_b) > 1e-12_dp*tau) then
          call refuse('sqrt_l1_over_g = '//sci(tau)//" s in '"//file_a//"', "// &
                      sci(tau_b)//" s in '"//file_b//"' (another time unit)")
@@ -490,5 +495,37 @@ contains
          v = probe(at:at + eol - 2)
       end if
    end function config_value
+
+   !> Whether two sweeps' configurations (their /sweep config attributes) describe
+   !> the same bodies: the model and every link's centre of mass and moment of
+   !> inertia (com1 .., inertia1 .., written for links other than uniform rods,
+   !> issue 26) agree. The first difference, as "KEY = VA in 'FILE_A', VB in
+   !> 'FILE_B'" ('(none)' for a key one file lacks), or '' if they agree. Shared by
+   !> the comparison and the agreement.
+   function body_difference(cfg_a, cfg_b, file_a, file_b) result(what)
+      character(len=*), intent(in) :: cfg_a, cfg_b     !! the config attributes
+      character(len=*), intent(in) :: file_a, file_b    !! their files (for the text)
+      character(len=:), allocatable :: what
+      integer :: i
+      what = ''
+      if (differs('model')) return
+      do i = 1, max_dof   ! (two tests: Fortran's .or. may evaluate both)
+         if (differs('com'//to_str(i))) return
+         if (differs('inertia'//to_str(i))) return
+      end do
+   contains
+      !> Whether `key` differs; then its text in `what`.
+      logical function differs(key)
+         character(len=*), intent(in) :: key
+         character(len=:), allocatable :: va, vb
+         va = config_value(cfg_a, key)
+         vb = config_value(cfg_b, key)
+         differs = va /= vb
+         if (.not. differs) return
+         if (len(va) == 0) va = '(none)'
+         if (len(vb) == 0) vb = '(none)'
+         what = key//' = '//va//" in '"//file_a//"', "//vb//" in '"//file_b//"'"
+      end function differs
+   end function body_difference
 
 end module dpend_sweep_compare

@@ -6,7 +6,8 @@
 !> multiple of every vector width (2 doubles with SSE2, the default of fpm's release
 !> profile; 4 with AVX2; 8 with AVX-512), so no loop has a remainder.
 !>
-!> Trigonometry: `rk4_lanes` carries sin and cos of both angles from step to step
+!> Trigonometry: `rk4_lanes` and `rk4_tangent_fused_lanes` (the indicators' step)
+!> carry sin and cos of both angles from step to step
 !> (`lane_trig_t`); the RK4 stages and the new state take theirs from the step
 !> start's by the addition formulas (as the scalar `sin_cos_near`), so a step
 !> computes no sin/cos. Exact values, set when a lane is loaded and every
@@ -78,8 +79,8 @@ module dpend_pendulum_lanes
    !> |d| up to which `sincos_near_lanes` uses the addition formulas [rad]
    real(dp), parameter :: d_max = 0.0625_dp
    !> Steps of a lane after which `integrate_batch` sets its carried sin and cos
-   !> (`rk4_lanes`) exactly again: the carried values' rounding, a random walk of
-   !> about one ulp per step, stays near sqrt(1024) ulp
+   !> (`rk4_lanes`, `rk4_tangent_fused_lanes`) exactly again: the carried values'
+   !> rounding, a random walk of about one ulp per step, stays near sqrt(1024) ulp
    integer, parameter :: resync_steps = 1024
 
    ! stop rules: when a trajectory ends before t_end
@@ -126,8 +127,8 @@ module dpend_pendulum_lanes
       real(dp) :: gbk(lane_width)   !! B/k [1/s²]
    end type lane_coef_t
 
-   !> sin and cos of both angles of every lane, carried by `rk4_lanes` from step to
-   !> step [1].
+   !> sin and cos of both angles of every lane, carried by `rk4_lanes` and
+   !> `rk4_tangent_fused_lanes` from step to step [1].
    type :: lane_trig_t
       real(dp) :: s1(lane_width) = 0  !! sin q1
       real(dp) :: c1(lane_width) = 1  !! cos q1
@@ -1085,8 +1086,9 @@ contains
    !> `rk4_tangent_lanes` and `rk4_tangent2_lanes` to rounding: those take exact sin
    !> and cos at each step start and the longer polynomials at the stages (test
    !> lanes/tangent_fused_matches).
-   !> A lane outside the fused path's range (a stage offset |d| > `d_max`, where
-   !> those routines take exact sin and cos) takes their step from the saved start
+   !> A lane outside the fused path's range (an offset |d| > `d_max` of a stage or of
+   !> the new state from the step start, where those routines take exact sin and cos)
+   !> takes their step from the saved start
    !> (`tangent_fallback`: that lane only, so that the lanes never mix), and exact sin
    !> and cos of its new state.
    pure subroutine rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e, tr)
@@ -1364,7 +1366,9 @@ contains
       if (bad > 0) call log_lanes(n2, lnn2)   ! rare: a lane's |d|² not a positive normal
       do i = 1, lane_width
          ln = log_poly(n2(i))
-         if (bad > 0) ln = lnn2(i)
+         if (bad > 0) then   ! (only the lanes log_lanes hands to the intrinsic)
+            if (not_normal(n2(i)) > 0) ln = lnn2(i)
+         end if
          call vector1_update(h, ks(i), n2(i), ln, d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), &
                              d(i, 4, 1), acc(i, 1), acc(i, 2), acc(i, 3), acc(i, 4), acc(i, 5))
       end do
@@ -1464,7 +1468,8 @@ contains
       real(dp) :: f, s, z, w, t1, t2, hfsq, dk
       ! shift x's bits so that the exponent field steps up where the mantissa passes
       ! that of sqrt(2)/2: then 1 + f = the mantissa with the exponent of sqrt(2)/2 or 1
-      ix = transfer(x, 0_i8) + (one_hi - rt2_hi)
+      ! (the bits clamped to those of huge: NaN's would overflow the integer sum)
+      ix = min(transfer(x, 0_i8), int(z'7FEFFFFFFFFFFFFF', i8)) + (one_hi - rt2_hi)
       k = shiftr(ix, 52) - 1023
       f = transfer(iand(ix, mant) + rt2_hi, 1.0_dp) - 1.0_dp
       dk = real(k, dp)
@@ -1709,7 +1714,7 @@ contains
          call sincos_exact(q1(l), tr%s1(l), tr%c1(l))
          call sincos_exact(q2(l), tr%s2(l), tr%c2(l))
          sync(l) = real(resync_steps, dp)
-         ! (the Lyapunov kernel computes its own sin and cos)
+         ! (the Lyapunov kernel, `rk4_tangent_lanes`, computes its own sin and cos)
          if (opt%lyapunov .and. opt%vectors == 0) sync(l) = huge(1.0_dp)
       end subroutine resync
 
