@@ -1336,8 +1336,8 @@ contains
    !> `rk4_tangent_lanes` and `rk4_tangent2_lanes`). Vector 1's growth enters the
    !> sums acc(:, 1:4) = (ln |δ|, MEGNO's integral, Y, ∫ Y ds) of the step
    !> [ks h, (ks + 1) h] (`megno_step`, t0 = 0, `megno_lane`): ln |δ| after the
-   !> step is ln(|d|²)/2 (`log_poly`; `log_lanes` if some |d|² is not a positive
-   !> normal number), less acc(:, 5) = ln |d| before it. Each vector is
+   !> step is ln(|d|²)/2 (`log_poly`), less acc(:, 5) = ln |d| before it; a lane
+   !> whose |d|² is not a positive normal number gets NaN sums. Each vector is
    !> then scaled by the power of two 2^-m that brings |d|² into [1, 4)
    !> (`pow2_scale`: exact, so directions and ratios are untouched, with no square
    !> root or division; SALI and GALI_2 normalise the vectors themselves), and
@@ -1353,8 +1353,8 @@ contains
       real(dp), intent(inout) :: acc(lane_width, 5)                !! vector 1's sums, ln |d|
       real(dp), intent(out) :: e(lane_width)                       !! energy before [J]
       type(lane_trig_t), intent(inout) :: tr                       !! sin, cos of q1, q2
-      real(dp), dimension(lane_width) :: n2, lnn2
-      real(dp) :: sc, dm, ln
+      real(dp), dimension(lane_width) :: n2
+      real(dp) :: sc, dm
       integer(i8) :: bad
       integer :: i, j
       call rk4_tangent_fused_lanes(c, h, q1, q2, w1, w2, nv, d, e, tr)
@@ -1363,15 +1363,19 @@ contains
          n2(i) = d(i, 1, 1)**2 + d(i, 2, 1)**2 + d(i, 3, 1)**2 + d(i, 4, 1)**2
          bad = bad + not_normal(n2(i))
       end do
-      if (bad > 0) call log_lanes(n2, lnn2)   ! rare: a lane's |d|² not a positive normal
       do i = 1, lane_width
-         ln = log_poly(n2(i))
-         if (bad > 0) then   ! (only the lanes log_lanes hands to the intrinsic)
-            if (not_normal(n2(i)) > 0) ln = lnn2(i)
-         end if
-         call vector1_update(h, ks(i), n2(i), ln, d(i, 1, 1), d(i, 2, 1), d(i, 3, 1), &
-                             d(i, 4, 1), acc(i, 1), acc(i, 2), acc(i, 3), acc(i, 4), acc(i, 5))
+         call vector1_update(h, ks(i), n2(i), log_poly(n2(i)), d(i, 1, 1), d(i, 2, 1), &
+                             d(i, 3, 1), d(i, 4, 1), acc(i, 1), acc(i, 2), acc(i, 3), &
+                             acc(i, 4), acc(i, 5))
       end do
+      ! rare: a lane whose |d|² is 0, subnormal, Inf or NaN (a vector collapsed or
+      ! overflowed in one step: its indicators have no meaning) gets NaN sums, so
+      ! that its pixel has none (`integrate_batch` stores NaN for a non-finite sum)
+      if (bad > 0) then
+         do i = 1, lane_width
+            if (not_normal(n2(i)) > 0) acc(i, :) = ieee_value(1.0_dp, ieee_quiet_nan)
+         end do
+      end if
       if (nv < 2) return
       do i = 1, lane_width
          n2(i) = d(i, 1, 2)**2 + d(i, 2, 2)**2 + d(i, 3, 2)**2 + d(i, 4, 2)**2
