@@ -608,20 +608,44 @@ contains
       end select
    end subroutine run_job
 
-   !> A new integrator for point k of the sweep (error control off in mode_step).
-   subroutine make_method(cfg, sw, k, integ)
+   !> A new integrator for point k of the sweep (error control off in mode_step), and
+   !> with `model` the model of the sweep's case.
+   subroutine make_method(cfg, sw, k, integ, model)
       type(study_config_t), intent(in) :: cfg
       type(sweep_t), intent(in) :: sw
       integer, intent(in) :: k
       class(integrator_t), allocatable, intent(out) :: integ
-      type(error_t), allocatable :: error
+      class(model_t), allocatable, intent(out), optional :: model
       if (sw%mode == mode_tol) then
-         call new_integrator(sw%method, integ, error, method_options_t(rtol=sw%x(k), &
-                             atol=cfg%atol_ratio*sw%x(k)))
+         call build_in_turn(cfg, sw%method, method_options_t(rtol=sw%x(k), &
+                            atol=cfg%atol_ratio*sw%x(k)), integ, sw%icase, model)
       else
-         call new_integrator(sw%method, integ, error, method_options_t(fixed_step=.true.))
+         call build_in_turn(cfg, sw%method, method_options_t(fixed_step=.true.), integ, &
+                            sw%icase, model)
       end if
    end subroutine make_method
+
+   !> The method `name` with `options` and, with `model`, the model of case ic, for a
+   !> job run by one of the study's threads: built by one thread at a time (the
+   !> critical section dpend_build), because the factories are not reentrant under
+   !> gfortran 12, which keeps the length of a deferred-length character function
+   !> result in a static variable (docs/architecture.md, "Threads"). A validated
+   !> study names only methods that build.
+   subroutine build_in_turn(cfg, name, options, integ, ic, model)
+      type(study_config_t), intent(in) :: cfg                      !! configuration
+      character(len=*), intent(in) :: name                         !! method name
+      type(method_options_t), intent(in) :: options                !! its options
+      class(integrator_t), allocatable, intent(out) :: integ       !! the method
+      integer, intent(in) :: ic                                    !! case index
+      class(model_t), allocatable, intent(out), optional :: model  !! case ic's model
+      type(error_t), allocatable :: error
+      !$omp critical (dpend_build)
+      call new_integrator(name, integ, error, options)
+      if (present(model)) call case_model(cfg, ic, model)
+      !$omp end critical (dpend_build)
+      if (allocated(error)) error stop 'internal error: a validated study method: ' &
+         //error%message
+   end subroutine build_in_turn
 
    !> Short and long run of point k of sweep sw.
    subroutine sweep_point(cfg, ref, sw, k)
@@ -639,9 +663,8 @@ contains
       type(fit_t) :: fit
       logical :: works
       associate (cs => cfg%cases(sw%icase))
-         call case_model(cfg, sw%icase, model)
+         call make_method(cfg, sw, k, integ, model)
          n = size(cs%q0)
-         call make_method(cfg, sw, k, integ)
          ! a damped or driven case: the chain with its works, the energy balance
          works = needs_work(model)
          if (works) then
@@ -816,17 +839,16 @@ contains
       integer, intent(in) :: r, c
       class(integrator_t), allocatable :: integ
       class(model_t), allocatable :: model
-      type(error_t), allocatable :: error
       real(dp) :: y(4), t, h, q0(2), es, comp(4), start
       real(qp) :: h0
       integer(i8) :: n
       integer :: stat, j
       ! `plan` makes roundoff jobs only for a model with H in quadruple precision
       ! (`has_hamiltonian_qp`: the double pendulum)
-      call case_model(cfg, case_index(cfg, cfg%ro_case), model)
+      call build_in_turn(cfg, ro%method, method_options_t(compensated=c == 1), integ, &
+                         case_index(cfg, cfg%ro_case), model)
       if (.not. model%has_hamiltonian_qp()) return
       associate (cs => cfg%cases(case_index(cfg, cfg%ro_case)))
-         call new_integrator(ro%method, integ, error, method_options_t(compensated=c == 1))
          q0 = cs%q0 + cfg%ro_perturb*real(r - 1, dp)*[1.0_dp, -0.7_dp]
          y = integ%to_internal(model, q0, cs%w0)
          h0 = model%hamiltonian_qp(y, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
@@ -862,18 +884,18 @@ contains
       integer, intent(in) :: k
       class(integrator_t), allocatable :: integ
       class(model_t), allocatable :: model
-      type(error_t), allocatable :: error
       type(march_t) :: march
       real(dp) :: t, hh, e0, es, e
       real(dp), allocatable :: y(:), yc(:, :)
       integer :: stat
       associate (cs => cfg%cases(case_index(cfg, cfg%tao_case)))
-         call case_model(cfg, case_index(cfg, cfg%tao_case), model)
+         call build_in_turn(cfg, ts%method, method_options_t(omega=ts%omega(k)), integ, &
+                            case_index(cfg, cfg%tao_case), model)
          allocate (yc(2*size(cs%q0), cfg%n_check))
-         call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
          call checkpoints(integ, model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
          if (stat == stat_ok) ts%global_error(k) = maxval(abs(yc - ref%y))
-         call new_integrator(ts%method, integ, error, method_options_t(omega=ts%omega(k)))
+         call build_in_turn(cfg, ts%method, method_options_t(omega=ts%omega(k)), integ, &
+                            case_index(cfg, cfg%tao_case))
          y = integ%to_internal(model, cs%q0, cs%w0)
          e0 = energy_of(integ, model, y)
          es = model%energy_scale(e0)

@@ -123,7 +123,13 @@ contains
       call parameter_groups(setup, j0, nb, group)
       do g = 1, maxval(group)
          idx = pack([(j, j=1, nb)], group == g)
-         call pixel_model(setup%cfg, p(:, idx(1)), model, err)   ! checked by validate_sweep
+         ! one thread at a time: the factory is not reentrant under gfortran 12
+         ! (docs/architecture.md, "Threads")
+         !$omp critical (dpend_build)
+         call pixel_model(setup%cfg, p(:, idx(1)), model, err)
+         !$omp end critical (dpend_build)
+         if (allocated(err)) error stop 'internal error: a pixel model refused after ' &
+            //'validate_sweep: '//err%message
          if (.not. allocated(integ)) allocate (integ, source=setup%integ)
          call integrate_trajectories(model, integ, model%potential_weights(), setup%opt, &
                                      y0(:, idx), sub)

@@ -185,10 +185,14 @@ contains
       if (rc == 0) kernel_seconds = kernel_seconds + kernel_ms/1000.0_dp
       !$omp end critical (dpend_sweep_gpu)
       if (rc == 0 .or. n == 0) return
+      ! c_text's result has a deferred length: one thread at a time (docs/architecture.md,
+      ! "Threads")
+      !$omp critical (dpend_sweep_gpu)
       if (rc == -1 .and. len(c_text(msg)) == 0) msg(:18) = transfer('no library loaded' &
                                                                      //c_null_char, msg(:18))
       write (error_unit, '(a)') 'dpend sweep: the GPU failed ('//c_text(msg)// &
          '); this block is computed on the CPU'
+      !$omp end critical (dpend_sweep_gpu)
       !$omp atomic
       fallback_blocks = fallback_blocks + 1
       call integrate_batch(par, opt, y0, res)
