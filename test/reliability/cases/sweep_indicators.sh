@@ -50,6 +50,8 @@ _swi_sweep swi_lambda1.h5 --t-end 30 --indicator lambda1
 _swi_sweep swi_fli.h5 --t-end 3 --indicator fli
 _swi_sweep swi_flip.h5 --t-end 3
 _swi_sweep swi_megno5.h5 --t-end 3 --indicator megno --n 5
+_swi_sweep swi_megno_pt.h5 --t-end 3 --indicator megno --body point
+_swi_sweep swi_flip_pt.h5 --t-end 3 --body point
 succeed swi-agr-ok              -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement
 succeed swi-agr-thresholds      -- sweep-compare --agreement swi_megno.h5 swi_lambda1.h5 --threshold-a 3 --threshold-b=0.1 --output a.h5
 succeed swi-agr-fli             -- sweep-compare swi_fli.h5 swi_megno.h5 --agreement --threshold-a 2
@@ -64,6 +66,9 @@ refuse  swi-agr-unknown         'unknown option'  -- sweep-compare swi_megno.h5 
 refuse  swi-agr-no-indicator    'no indicator'    -- sweep-compare swi_megno.h5 swi_flip.h5 --agreement
 refuse  swi-agr-fli-no-thr      threshold         -- sweep-compare swi_fli.h5 swi_megno.h5 --agreement
 refuse  swi-agr-other-pixels    n1                -- sweep-compare swi_megno.h5 swi_megno5.h5 --agreement
+refuse  swi-agr-other-bodies    'com1 = '         -- sweep-compare swi_megno.h5 swi_megno_pt.h5 --agreement
+refuse  swi-cmp-other-bodies    'com1 = '         -- sweep-compare swi_flip.h5 swi_flip_pt.h5
+succeed swi-agr-same-bodies     -- sweep-compare swi_megno_pt.h5 swi_megno_pt.h5 --agreement --threshold-a 2
 refuse  swi-agr-one-file        'two files'       -- sweep-compare swi_megno.h5 --agreement
 refuse  swi-agr-not-hdf5        'not an HDF5'     -- sweep-compare swi_list.txt swi_megno.h5 --agreement
 refuse  swi-agr-output-dir      directory         -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --output no/dir/a.h5
