@@ -11,9 +11,12 @@
 # those made inside a critical section (between GOMP_critical*_start and _end in a
 # function's code), and fails if it reaches a function that refers to an slen
 # variable outside a critical section. It prints the chain of calls to each one.
-# Calls through a procedure pointer or a type-bound procedure (vtable) are not
+# Calls through a procedure pointer or a type-bound procedure (vtable), and the
+# hidden _copy and _final calls of allocate(source=) and intent(out), are not
 # followed: the models' and methods' numerical code reached that way must not call
-# such functions either (the review of a change to it checks).
+# such functions either (the review of a change to it checks). Any critical section
+# counts, whatever its name. A binary with no OpenMP region or no visible slen
+# reference fails (exit 2): the check would have nothing to see.
 #
 # Usage: scripts/check_threads.sh [binary]   (default: the release build of dpend)
 set -euo pipefail
@@ -34,7 +37,7 @@ objdump -d --no-show-raw-insn "$bin" | awk '
   # after the end call of the section, but inside it, counts as inside).
   function base(s) { sub(/\+0x[0-9a-f]+$/, "", s); return s }
   function noreturn(t) {
-    return t ~ /^(_gfortran_(error_stop|stop|runtime_error|os_error|generate_error)|abort|exit|__stack_chk_fail)/
+    return t ~ /^(_gfortran_(error_stop_string|error_stop_numeric|stop_string|stop_numeric|runtime_error|runtime_error_at|os_error|os_error_at)|abort|exit|__stack_chk_fail)(@plt)?$/
   }
   function walk(   i, d, top, k, cold) {
     cold = (fn ~ /\.cold$/)
@@ -88,6 +91,7 @@ objdump -d --no-show-raw-insn "$bin" | awk '
     a = $1; sub(/:$/, "", a)
     ni++; addr[ni] = a; at[a] = ni; kind[ni] = "other"; target[ni] = ""
     has_slen[ni] = ($0 ~ /<slen\./)
+    if (has_slen[ni]) n_slen++
     line = $0; sub(/^ +[0-9a-f]+:\t/, "", line)
     sub(/^(notrack|bnd|repz|rep) +/, "", line)
     split(line, w, / +/)
@@ -101,14 +105,21 @@ objdump -d --no-show-raw-insn "$bin" | awk '
       else if (t ~ /^GOMP_critical(_name)?_end/) kind[ni] = "end"
       else { kind[ni] = "call"; target[ni] = t }
     } else if (op ~ /^j/) {
-      if (line ~ /\*/) { kind[ni] = (op == "jmp") ? "ijmp" : "other"; next }
-      if (base(t) != fn) { kind[ni] = (op == "jmp") ? "tail" : "tailcc"; target[ni] = base(t); next }
-      kind[ni] = (op == "jmp") ? "jmp" : "jcc"; target[ni] = w[2]
+      jmp = (op == "jmp" || op == "jmpq")
+      if (line ~ /\*/) { kind[ni] = jmp ? "ijmp" : "other"; next }
+      if (base(t) != fn) { kind[ni] = jmp ? "tail" : "tailcc"; target[ni] = base(t); next }
+      kind[ni] = jmp ? "jmp" : "jcc"; target[ni] = w[2]
     } else if (op ~ /^ret/ || op == "ud2" || op == "hlt") kind[ni] = "ret"
     next
   }
   END {
     finish()
+    # nothing to check is a failure: a binary without OpenMP, stripped, or whose
+    # references objdump does not name (then no slen is seen at all)
+    if (length(root) == 0 || n_slen == 0) {
+      printf "check_threads: nothing to check: %d OpenMP regions, %d references to slen variables (a release build with -fopenmp, not stripped, is needed)\n", length(root), n_slen
+      exit 2
+    }
     n = 0
     for (r in root) { queue[++n] = r; from[r] = "" }
     for (i = 1; i <= n; i++) {
@@ -125,6 +136,6 @@ objdump -d --no-show-raw-insn "$bin" | awk '
       for (g = from[f]; g != ""; g = from[g]) path = g " -> " path
       print "check_threads: " f " (slen at " slen[f] ") runs in threads: " path
     }
-    printf "check_threads: %d functions reached from %d OpenMP regions, %d with a static string length\n", n, length(root), bad
+    printf "check_threads: %d functions reached from %d OpenMP regions, %d with a static string length (%d slen references in the binary)\n", n, length(root), bad, n_slen
     exit bad > 0
   }'
