@@ -27,6 +27,8 @@ serial=$(fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo 2
   tail -n 1)
 case "$serial" in /*) ;; *) serial="$root/$serial" ;; esac
 mpibin=$(scripts/build_mpi.sh | tail -n 1)
+# its OpenMP regions too share no static string length (docs/architecture.md, "Threads")
+bash scripts/check_threads.sh "$mpibin"
 
 mpiflags=(--oversubscribe -np 2)
 [[ $(id -u) -eq 0 ]] && mpiflags=(--allow-run-as-root "${mpiflags[@]}")
