@@ -1115,21 +1115,17 @@ contains
          n_off = n_off + off(i)
       end do
       if (n_off == 0.0_dp) return   ! (a NaN offset fails its check)
-      call tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
-      do i = 1, lane_width
-         if (.not. (off(i) == 0.0_dp)) then
-            call sincos_exact(q1(i), tr%s1(i), tr%c1(i))
-            call sincos_exact(q2(i), tr%s2(i), tr%c2(i))
-         end if
-      end do
+      call tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e, tr)
    end subroutine rk4_tangent_fused_lanes
 
    !> The lanes of `rk4_tangent_fused_lanes` with off /= 0 take the step of
    !> `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes` (nv = 2) from the saved
    !> start (p1, p2, pw1, pw2, pd); the other lanes keep their fused values, so that
    !> each lane's result depends on its own values only (the two paths may differ by
-   !> rounding: FMA contraction in the release profile).
-   pure subroutine tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e)
+   !> rounding: FMA contraction in the release profile); their carried sines and
+   !> cosines are set exactly (`sincos_exact`), as in `rk4_lanes_fallback`.
+   pure subroutine tangent_fallback(c, h, nv, off, p1, p2, pw1, pw2, pd, q1, q2, w1, w2, d, e, &
+                                    tr)
       type(lane_coef_t), intent(in) :: c                         !! constants
       real(dp), intent(in) :: h                                  !! step [s]
       integer, intent(in) :: nv                                  !! vectors, 1 or 2
@@ -1141,6 +1137,7 @@ contains
       real(dp), intent(inout) :: w1(lane_width), w2(lane_width)  !! new velocities [rad/s]
       real(dp), intent(inout) :: d(lane_width, 4, 2)             !! new vectors
       real(dp), intent(inout) :: e(lane_width)                   !! energy before [J]
+      type(lane_trig_t), intent(inout) :: tr                     !! sin, cos of q1, q2
       real(dp), dimension(lane_width) :: r1, r2, rw1, rw2, re
       real(dp) :: rd(lane_width, 4, 2)
       integer :: i
@@ -1157,6 +1154,8 @@ contains
          if (.not. (off(i) == 0.0_dp)) then
             q1(i) = r1(i); q2(i) = r2(i); w1(i) = rw1(i); w2(i) = rw2(i); e(i) = re(i)
             d(i, :, 1:nv) = rd(i, :, 1:nv)
+            call sincos_exact(q1(i), tr%s1(i), tr%c1(i))
+            call sincos_exact(q2(i), tr%s2(i), tr%c2(i))
          end if
       end do
    end subroutine tangent_fallback
@@ -1488,7 +1487,10 @@ contains
 
    !> Copy of `megno_step` (dpend_indicator_math) for speed, t0 = 0: SIMD over the
    !> lanes (a call of the elemental in another module would not be inlined);
-   !> test/test_copies.f90 compares them.
+   !> test/test_copies.f90 compares them. The kernel calls `megno_lane` itself
+   !> (`vector1_update`); this loop is the test's entry, so that `megno_lane` stays
+   !> private: made public, gcc 12 no longer inlined it into the kernel and MEGNO
+   !> cost 2.6x the flip map instead of 1.7x (measured 2026-11-27).
    pure subroutine megno_step_lanes(dl, t_prev, t, lg, ig, yy, sy)
       real(dp), intent(in) :: dl(lane_width)                  !! ln of the growth of |δ|
       real(dp), intent(in) :: t_prev(lane_width), t(lane_width)  !! step start, end [s]
@@ -1712,7 +1714,8 @@ contains
          call resync(l)
       end subroutine load
 
-      !> Set the sines and cosines that rk4_lanes carries for lane l exactly.
+      !> Set the sines and cosines that rk4_lanes and rk4_tangent_fused_lanes carry,
+      !> for lane l, exactly.
       subroutine resync(l)
          integer, intent(in) :: l
          call sincos_exact(q1(l), tr%s1(l), tr%c1(l))
