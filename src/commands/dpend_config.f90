@@ -348,8 +348,9 @@ contains
    !> '1;2', a 1,000-digit mantissa beyond the largest double, 'nan'; a repeat count
    !> `r*value` is checked on both sides), and a second value for a key that takes one
    !> (`dt = 0.001 0.002`: the read would keep the first silently; `is_array_key`).
-   !> Values that start with a letter (logicals, names) and quoted strings are left to
-   !> the namelist read.
+   !> A word (or '.word.') for a key that is not a text must be a whole logical
+   !> (`logical_word`: 'false.' would read as .false.). Names and quoted strings are
+   !> left to the namelist read.
    subroutine check_number_tokens(text, pre, error)
       character(len=*), intent(in) :: text              !! the file (its groups checked)
       character(len=*), intent(in) :: pre               !! message prefix
@@ -535,6 +536,7 @@ contains
       character(len=:), allocatable :: why, v
       integer :: star, r
       real(dp) :: x
+      logical :: word
       v = t
       star = index(t, '*')
       if (star > 0) then
@@ -552,18 +554,16 @@ contains
       end if
       if (allocated(error)) return
       if (len(v) == 0) return                      ! 'r*': r null values
-      ! a word for a key that is not a text: a logical (t, f, .true., false, ...)
-      if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v) .and. &
-          .not. is_string_key(s%key)) then
-         if (.not. logical_word(v)) then
+      ! a word (also '.word.') for a key that is not a text: a logical, the whole token
+      ! (t, f, .true., false, ...; 'false.' or '.tx' would read as a logical too)
+      word = index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)
+      if (len(v) >= 2) word = word .or. (v(1:1) == '.' .and. index('0123456789', v(2:2)) == 0)
+      if (word) then
+         if (.not. is_string_key(s%key) .and. .not. logical_word(v)) &
             call scan_refuse(s, scan_key_text(s)//quoted(v)//' is not a number or a ' &
-                             //'logical (quote a text)', error)
-            return
-         end if
-      end if
-      if (index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)) return
-      if (len(v) >= 2) then                        ! .true. / .false. / .t / .f
-         if (v(1:1) == '.' .and. index('tTfF', v(2:2)) > 0) return
+                             //'logical (t, f, true, false, .t., .f., .true., .false.; ' &
+                             //'quote a text)', error)
+         return
       end if
       call read_real(v, x, why)
       if (len(why) > 0) call scan_refuse(s, scan_key_text(s)//quoted(v)//' '//why, error)
@@ -618,16 +618,14 @@ contains
       end select
    end function string_length
 
-   !> A logical of a namelist: t, f, true, false, .t., .false., ... (any case).
+   !> A logical of a namelist, the whole word: t, f, true, false, or one of them between
+   !> two periods (.t., .false.; any case). 'false.' or '.true' is not one.
    pure logical function logical_word(w)
       character(len=*), intent(in) :: w  !! a word
       character(len=:), allocatable :: u
       u = to_lower(w)
-      if (len(u) > 0) then
-         if (u(1:1) == '.') u = u(2:)
-      end if
-      if (len(u) > 0) then
-         if (u(len(u):len(u)) == '.') u = u(:len(u) - 1)
+      if (len(u) >= 3) then
+         if (u(1:1) == '.' .and. u(len(u):len(u)) == '.') u = u(2:len(u) - 1)
       end if
       logical_word = u == 't' .or. u == 'f' .or. u == 'true' .or. u == 'false'
    end function logical_word

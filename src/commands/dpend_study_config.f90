@@ -550,11 +550,24 @@ contains
       if (allocated(error)) return
       call set_methods(filename, method, h_min, h_max, rtol_min, rtol_max, cfg, error)
       if (allocated(error)) return
+      call check_list(filename, 'ro_method', ro_method, error)
+      if (allocated(error)) return
+      call check_list(filename, 'tao_method', tao_method, error)
+      if (allocated(error)) return
       n = count(len_trim(ro_method) > 0)
-      if (n > 0) then
+      if (n == 0) n = size(cfg%ro_methods)   ! ro_dt(i) then sets the default method i's step
+      do i = n + 1, max_extra
+         if (ro_dt(i) /= 0.0_dp) then
+            call fatal_error(error, 'invalid ro_dt('//to_str(i)//'): '//sci(ro_dt(i))// &
+                             " in '"//printable(filename)//"', but there is no ro_method(" &
+                             //to_str(i)//') (&study: one step per roundoff method)')
+            return
+         end if
+      end do
+      if (count(len_trim(ro_method) > 0) > 0) then
          cfg%ro_methods = ro_method(1:n)
          cfg%ro_dt = merge(ro_dt(1:n), 1.0e-3_dp, ro_dt(1:n) /= 0.0_dp)
-      else if (any(ro_dt /= 0.0_dp)) then
+      else
          do i = 1, min(size(cfg%ro_dt), max_extra)
             if (ro_dt(i) /= 0.0_dp) cfg%ro_dt(i) = ro_dt(i)
          end do
@@ -622,13 +635,19 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! updated
       type(error_t), allocatable, intent(out) :: error   !! invalid
       integer :: i, n
+      call check_list(filename, 'case_name', case_name, error)
+      if (allocated(error)) return
       n = count(len_trim(case_name) > 0)
-      if (n > 0) then
-         if (any(len_trim(case_name(1:n)) == 0)) then
-            call fatal_error(error, "invalid config '"//printable(filename)// &
-                             "' in &study: case_name(1..n) must be set without gaps")
+      do i = n + 1, size(case_name)   ! a value of a case without a name: never ignored
+         if (case_given(i)) then
+            call fatal_error(error, 'invalid case_name('//to_str(i)//"): '' in '"// &
+                             printable(filename)//"', but values of case "//to_str(i)// &
+                             ' are given (&study: name every case, case_name(1..n) ' &
+                             //'without gaps)')
             return
          end if
+      end do
+      if (n > 0) then
          deallocate (cfg%cases)
          allocate (cfg%cases(n))
          do i = 1, n
@@ -650,6 +669,19 @@ contains
          end do
       end if
    contains
+      !> Whether any value of case i is given (differs from its not-given mark).
+      logical function case_given(i)
+         integer, intent(in) :: i
+         case_given = case_q1(i) /= unset .or. case_q2(i) /= unset .or. &
+                      case_w1(i) /= unset .or. case_w2(i) /= unset .or. &
+                      case_long_steps(i) /= 0.0_dp .or. case_links(i) /= 0 .or. &
+                      any(case_q(:, i) /= unset) .or. any(case_w(:, i) /= unset) .or. &
+                      any(case_damping(:, i) /= unset) .or. &
+                      any(case_support_amplitude(:, i) /= 0.0_dp) .or. &
+                      case_support_frequency(i) /= 0.0_dp .or. &
+                      any(case_support_phase(:, i) /= 0.0_dp)
+      end function case_given
+
       !> The initial values of case i (N = case_links(i) links, 2 when not given): the
       !> list case_q(1:N, i) (`field` 'case_q' or 'case_w'), or for two links
       !> case_q1(i), case_q2(i); values not given are 0 (with `none_given`: `values`
@@ -703,6 +735,20 @@ contains
       end subroutine case_values
    end subroutine set_cases
 
+   !> Refuse a list of names `field` of &study set with gaps (names 1..n, the rest
+   !> blank).
+   subroutine check_list(filename, field, names, error)
+      character(len=*), intent(in) :: filename           !! namelist file (for messages)
+      character(len=*), intent(in) :: field              !! the list's key
+      character(len=*), intent(in) :: names(:)           !! as read ('' not given)
+      type(error_t), allocatable, intent(out) :: error   !! a gap
+      integer :: n
+      n = count(len_trim(names) > 0)
+      if (n == 0) return
+      if (any(len_trim(names(1:n)) == 0)) call fatal_error(error, "invalid config '"// &
+         printable(filename)//"' in &study: "//field//'(1..n) must be set without gaps')
+   end subroutine check_list
+
    !> The methods of &study (`method(i)` and their ranges as read): a list set in
    !> the file replaces the default list; a range left at 0 takes the method's default.
    subroutine set_methods(filename, method, h_min, h_max, rtol_min, rtol_max, cfg, error)
@@ -712,13 +758,20 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! updated
       type(error_t), allocatable, intent(out) :: error   !! invalid
       integer :: i, n
+      call check_list(filename, 'method', method, error)
+      if (allocated(error)) return
       n = count(len_trim(method) > 0)
-      if (n > 0) then
-         if (any(len_trim(method(1:n)) == 0)) then
-            call fatal_error(error, "invalid config '"//printable(filename)// &
-                             "' in &study: method(1..n) must be set without gaps")
+      do i = n + 1, size(method)   ! a range without its method: never ignored
+         if (h_min(i) /= 0.0_dp .or. h_max(i) /= 0.0_dp .or. rtol_min(i) /= 0.0_dp .or. &
+             rtol_max(i) /= 0.0_dp) then
+            call fatal_error(error, 'invalid method('//to_str(i)//"): '' in '"// &
+                             printable(filename)//"', but its range (h_min, h_max, " &
+                             //'rtol_min, rtol_max) is given (&study: name every method, ' &
+                             //'method(1..n) without gaps)')
             return
          end if
+      end do
+      if (n > 0) then
          deallocate (cfg%methods)
          allocate (cfg%methods(n))
          do i = 1, n

@@ -26,6 +26,19 @@ printf '&integration t_end = 0.01 /\n&chaos tau = 1;2 /\n' > "$_r2p/r2p_chaos_se
 printf '&sweep n1 = 4, n2 = 4, n1 = 8 /\n' > "$_r2p/r2p_sweep_repeat.nml"
 printf "&sweep ic_angles = 'theta' /\n" > "$_r2p/r2p_sweep_ic_angles.nml"
 printf '&study n_h = 3, n_h = 4 /\n' > "$_r2p/r2p_study_repeat.nml"
+# logicals: the whole word (fuzz seed 20261128 case 8416: 'false.' was read as .false.)
+for _v in false. .true .tx. t. yes; do
+  printf '&integration t_end = 0.01 /\n&chaos same_energy = %s /\n' "$_v" > "$_r2p/r2p_logical_$_v.nml"
+done
+printf '&integration t_end = 0.01 /\n&chaos same_energy = .T., tau = 5e-3 /\n' > "$_r2p/r2p_logical_ok1.nml"
+printf '&integration t_end = 0.01 /\n&chaos same_energy = False, tau = 5e-3 /\n' > "$_r2p/r2p_logical_ok2.nml"
+# study values without their name (fuzz seed 20261128 case 1531: case 1 without a name
+# fell back to the three default cases and ran for minutes)
+printf "&study case_name(1) = '', case_q1(1) = -1.27, case_q2(1) = -1.77 /\n" > "$_r2p/r2p_study_noname.nml"
+printf "&study case_name(1) = 'a', case_q1(1) = 0.1, case_q2(2) = 0.1 /\n" > "$_r2p/r2p_study_noname2.nml"
+printf "&study method(1) = 'rk4', h_max(2) = 1e-2 /\n" > "$_r2p/r2p_study_range.nml"
+printf "&study ro_dt(3) = 1e-3 /\n" > "$_r2p/r2p_study_ro_dt.nml"
+printf "&study tao_method(2) = 'tao2' /\n" > "$_r2p/r2p_study_tao_gap.nml"
 printf '&pendulum m = 1, 1 /\n&integration t_end = 0.01 /\n' > "$_r2p/r2p_file_list.nml"
 printf "&pendulum m = 2*1.5, l(1) = 2, l(2) = 0.5 /\n&integration method = 'rk4',\tdt = .5e-3, t_end = 5e-3 /\n&output file = 'a%%b=c.h5' /\n" > "$_r2p/r2p_valid.nml"
 printf '0 0 0 1e400\n' > "$_r2p/r2p_list_huge.txt"
@@ -88,6 +101,16 @@ refuse  r2p-nml-sweep-repeat  'given twice'      -- sweep --config r2p_sweep_rep
 refuse  r2p-nml-study-repeat  'given twice'      -- study --config r2p_study_repeat.nml --output s.md
 succeed r2p-nml-long-ok          -- "${S[@]}" --config r2p_long_ok.nml --force
 succeed r2p-nml-valid            -- simulate --config r2p_valid.nml
+for _v in false. .true .tx. t. yes; do
+  refuse "r2p-nml-logical-$_v" 'same_energy' -- lyapunov --config "r2p_logical_$_v.nml" --tau 5e-3 --output o.h5
+done
+succeed r2p-nml-logical-dots     -- lyapunov --config r2p_logical_ok1.nml --output o1.h5
+succeed r2p-nml-logical-word     -- lyapunov --config r2p_logical_ok2.nml --output o2.h5
+refuse  r2p-study-case-noname  'case_name(1)' -- study --config r2p_study_noname.nml --output s.md
+refuse  r2p-study-case-noname2 'case_name(2)' -- study --config r2p_study_noname2.nml --output s.md
+refuse  r2p-study-range-nomethod 'method(2)'  -- study --config r2p_study_range.nml --output s.md
+refuse  r2p-study-ro-dt-nomethod 'ro_dt(3)'   -- study --config r2p_study_ro_dt.nml --output s.md
+refuse  r2p-study-tao-gap      'tao_method'   -- study --config r2p_study_tao_gap.nml --output s.md
 # ---- two forms of one quantity on the command line (a flag over a file stays)
 refuse  r2p-flags-m-m1        m1            -- "${S[@]}" --m 1,2 --m1 3
 refuse  r2p-flags-m1-m        m             -- "${S[@]}" --m1 3 --m 1,2
