@@ -19,7 +19,8 @@ module dpend_sweep_agreement
    use dpend_output, only: output_t
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci, in_range
-   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data, body_difference
+   use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data, &
+                                  config_difference
    implicit none
    private
    public :: agreement_options_t, sweep_agreement
@@ -58,8 +59,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
       type(classified_t) :: a, b
       type(output_t) :: out
-      character(len=:), allocatable :: va, vb
-      integer :: k, n_cls, both_reg, both_cha, only_a, only_b, n_agree
+      character(len=:), allocatable :: va
+      integer :: n_cls, both_reg, both_cha, only_a, only_b, n_agree
       real(dp) :: fraction
       ! what must be equal for two sweeps to hold the same pixels (t_end, the step
       ! and the stop rule may differ)
@@ -71,16 +72,7 @@ contains
       if (allocated(error)) return
       call classify(file_b, opt%set_b, opt%threshold_b, b, error)
       if (allocated(error)) return
-      do k = 1, size(same)
-         va = config_value(a%config, trim(same(k)))
-         vb = config_value(b%config, trim(same(k)))
-         if (va /= vb) then
-            call refuse(trim(same(k))//' = '//va//" in '"//file_a//"', "//vb//" in '"// &
-                        file_b//"'")
-            return
-         end if
-      end do
-      va = body_difference(a%config, b%config, file_a, file_b)
+      va = config_difference(a%config, b%config, file_a, file_b, same)
       if (len(va) > 0) then
          call refuse(va)
          return

@@ -15,7 +15,7 @@ module dpend_sweep_compare
    use dpend_cli, only: to_str, real_str
    implicit none
    private
-   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, body_difference
+   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, config_difference
 
    !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
    real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
@@ -40,8 +40,7 @@ contains
       real(dp), allocatable :: ta(:), tb(:)
       real(dp) :: tau, tau_b, ha, hb
       integer, allocatable :: sa(:), dims_a(:), dims_b(:)
-      character(len=:), allocatable :: cfg_a, cfg_b, va, vb
-      integer :: k
+      character(len=:), allocatable :: cfg_a, cfg_b, va
       ! what must be equal for two sweeps to hold the same initial conditions
       character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
@@ -56,30 +55,19 @@ contains
       if (allocated(error)) return
       call read_flip_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
       if (allocated(error)) return
-      do k = 1, size(same)
-         va = config_value(cfg_a, trim(same(k)))
-         vb = config_value(cfg_b, trim(same(k)))
-         if (va /= vb) then
-            call refuse(trim(same(k))//' = '//va//" in '"//file_a//"', "//vb//" in '"// &
-                        file_b//"'")
-            return
-         end if
-         if (same(k) == 'initial') then   ! then the shapes, in the file's terms
-            if (size(dims_a) /= size(dims_b)) then
-               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
-                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
-            else if (any(dims_a /= dims_b)) then
-               call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
-                           "', "//shape_text(dims_b)//" in '"//file_b//"'")
-            end if
-            if (allocated(error)) return
-         end if
-      end do
-      va = body_difference(cfg_a, cfg_b, file_a, file_b)
+      va = config_difference(cfg_a, cfg_b, file_a, file_b, same)
       if (len(va) > 0) then
          call refuse(va)
          return
       end if
+      if (size(dims_a) /= size(dims_b)) then   ! the same initial states: the shapes too
+         call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                     "', "//shape_text(dims_b)//" in '"//file_b//"'")
+      else if (any(dims_a /= dims_b)) then
+         call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                     "', "//shape_text(dims_b)//" in '"//file_b//"'")
+      end if
+      if (allocated(error)) return
       if (abs(tau - tau_b) > 1e-12_dp*tau) then
          call refuse('sqrt_l1_over_g = '//sci(tau)//" s in '"//file_a//"', "// &
                      sci(tau_b)//" s in '"//file_b//"' (another time unit)")
@@ -496,18 +484,22 @@ contains
       end if
    end function config_value
 
-   !> Whether two sweeps' configurations (their /sweep config attributes) describe
-   !> the same bodies: the model and every link's centre of mass and moment of
-   !> inertia (com1 .., inertia1 .., written for links other than uniform rods,
-   !> issue 26) agree. The first difference, as "KEY = VA in 'FILE_A', VB in
+   !> The first difference between two sweeps' configurations (their /sweep config
+   !> attributes): of the keys `keys`, then of the bodies, the model and every
+   !> link's centre of mass and moment of inertia (com1 .., inertia1 .., written for
+   !> links other than uniform rods, issue 26). As "KEY = VA in 'FILE_A', VB in
    !> 'FILE_B'" ('(none)' for a key one file lacks), or '' if they agree. Shared by
    !> the comparison and the agreement.
-   function body_difference(cfg_a, cfg_b, file_a, file_b) result(what)
+   function config_difference(cfg_a, cfg_b, file_a, file_b, keys) result(what)
       character(len=*), intent(in) :: cfg_a, cfg_b     !! the config attributes
       character(len=*), intent(in) :: file_a, file_b    !! their files (for the text)
+      character(len=*), intent(in) :: keys(:)           !! keys that must agree
       character(len=:), allocatable :: what
       integer :: i
       what = ''
+      do i = 1, size(keys)
+         if (differs(trim(keys(i)))) return
+      end do
       if (differs('model')) return
       do i = 1, max_dof   ! (two tests: Fortran's .or. may evaluate both)
          if (differs('com'//to_str(i))) return
@@ -526,6 +518,6 @@ contains
          if (len(vb) == 0) vb = '(none)'
          what = key//' = '//va//" in '"//file_a//"', "//vb//" in '"//file_b//"'"
       end function differs
-   end function body_difference
+   end function config_difference
 
 end module dpend_sweep_compare
