@@ -689,7 +689,8 @@ contains
       end do
       if (fmax > 0.0_dp) then
          e = log10(fmax) - log10(0.6_dp*lim)
-         npm = 10.0_dp**floor(e)
+         ! (a power of ten within range: forces of 1e-310 N would make it 0, 1/10^311)
+         npm = 10.0_dp**min(max(floor(e), -300), 300)
          if (fmax/npm > 5.0_dp*0.6_dp*lim) then
             npm = 10*npm
          else if (fmax/npm > 2.0_dp*0.6_dp*lim) then

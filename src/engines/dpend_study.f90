@@ -625,7 +625,7 @@ contains
       end if
    end subroutine make_method
 
-   !> The method `name` with `options` and, with `model`, the model of case ic, for a
+   !> The method `name` with `options` and, with `ic` and `model`, the model of case ic, for a
    !> job run by one of the study's threads: built by one thread at a time (the
    !> critical section dpend_build), because the factories are not reentrant under
    !> gfortran 12, which keeps the length of a deferred-length character function
@@ -636,12 +636,12 @@ contains
       character(len=*), intent(in) :: name                         !! method name
       type(method_options_t), intent(in) :: options                !! its options
       class(integrator_t), allocatable, intent(out) :: integ       !! the method
-      integer, intent(in) :: ic                                    !! case index
+      integer, intent(in), optional :: ic                          !! case index (with model)
       class(model_t), allocatable, intent(out), optional :: model  !! case ic's model
       type(error_t), allocatable :: error
       !$omp critical (dpend_build)
       call new_integrator(name, integ, error, options)
-      if (present(model)) call case_model(cfg, ic, model)
+      if (present(model) .and. present(ic)) call case_model(cfg, ic, model)
       !$omp end critical (dpend_build)
       if (allocated(error)) error stop 'internal error: a validated study method: ' &
          //error%message
@@ -894,8 +894,7 @@ contains
          allocate (yc(2*size(cs%q0), cfg%n_check))
          call checkpoints(integ, model, cs%q0, cs%w0, ref%t, cfg%tao_dt, yc, stat)
          if (stat == stat_ok) ts%global_error(k) = maxval(abs(yc - ref%y))
-         call build_in_turn(cfg, ts%method, method_options_t(omega=ts%omega(k)), integ, &
-                            case_index(cfg, cfg%tao_case))
+         call build_in_turn(cfg, ts%method, method_options_t(omega=ts%omega(k)), integ)
          y = integ%to_internal(model, cs%q0, cs%w0)
          e0 = energy_of(integ, model, y)
          es = model%energy_scale(e0)

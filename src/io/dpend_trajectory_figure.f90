@@ -25,6 +25,10 @@ module dpend_trajectory_figure
    !> Largest |x|, |y| of a point accepted [m]: far beyond any pendulum (1e6 links of
    !> 1e6 m), small enough that the figure's arithmetic stays finite.
    real(dp), parameter :: max_figure_coordinate = 1e12_dp
+   !> Smallest reach of a figure (largest |x|, |y| of its anchor and points) [m]: a
+   !> link is at least 1e-6 m; a figure within 1e-9 m of the origin is damaged data
+   !> (its scale of force arrows, N per m of the reach, would overflow).
+   real(dp), parameter :: min_figure_reach = 1e-9_dp
    !> Largest force component drawn [N]: beyond, no arrow has a sensible scale.
    real(dp), parameter :: max_figure_force = 1e100_dp
    !> Most points or forces of one figure.
@@ -219,6 +223,10 @@ contains
                any(abs(tr%points) > max_figure_coordinate)) then
          call fatal_error(error, 'the figure''s points reach beyond ' &
                           //real_str(max_figure_coordinate)//' m')
+      else if (max(maxval(abs(tr%anchor)), maxval(abs(tr%points))) < min_figure_reach) then
+         call fatal_error(error, 'the figure''s points all lie within ' &
+                          //real_str(min_figure_reach)//' m of the origin (a link is ' &
+                          //'at least 1e-6 m)')
       else if (.not. all(ieee_is_finite(tr%forces))) then
          call fatal_error(error, 'the figure''s forces are not all finite')
       else if (any(abs(tr%forces) > max_figure_force)) then

@@ -11,11 +11,17 @@
   printf 'GIF89a' > existing.gif &&
   mkdir framedir "fr'a \"m\" \$(b)" && printf 'x' > framedir/frame_0001.png
 ) > /dev/null 2>&1 || echo "animate.sh: could not make the fixtures" >&2
+# a figure within 1e-310 m of the origin (fuzz seed 20261130 case 2239: the arrow
+# scale, N per m of the reach, overflowed; SIGFPE in the debug build)
+( cd "$FIXTURES" && "$(dirname "$DPEND")/../example/dpend-fuzz-h5" sim1.h5 tiny_figure.h5 \
+    fill /trajectory/rJ 1e-310 ) > /dev/null 2>&1 ||
+  echo "animate.sh: could not make tiny_figure.h5 (dpend-fuzz-h5 beside the binary)" >&2
 
 A=(animate existing.h5 --output a.gif)
 T=(--fps 5 --size 64x64)   # tiny successful runs
 
 refuse  ani-fps-zero       fps      -- "${A[@]}" --fps 0
+refuse  ani-figure-at-origin 'points all lie' -- animate tiny_figure.h5 --output t.gif --reactions "${T[@]}"
 refuse  ani-fps-big        fps      -- "${A[@]}" --fps 101
 refuse  ani-fps-real       fps      -- "${A[@]}" --fps 2.5
 refuse  ani-fps-nan        fps      -- "${A[@]}" --fps nan

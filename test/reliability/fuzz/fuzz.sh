@@ -42,8 +42,9 @@ command that documents run failures (not export or sweep-compare). A failure:
 a trap (exit 134/136/139, or stderr with "Floating point exception", "Fortran
 runtime error", "Backtrace", "Error termination", "HDF5-DIAG"), "Fortran
 runtime warning" on stderr, a hang (over --timeout; a valid number of a flag
-or a namelist that makes the run long is a note, "slow", instead, as is a CSV
-case that ends within ten times the limit when run again), another exit status, a
+or a namelist that makes the run long is a note, "slow", instead, as is another
+input dpend may accept that, run again with six times the limit, ends or reports
+bounded progress), another exit status, a
 changed or replaced input file, an invalid input accepted (a number with a
 tab, ';' or letters inside, a '%' key, a repeated key or flag, two forms of one
 quantity, NaN in a CSV, an edited file the command must refuse), or a valid
@@ -788,14 +789,19 @@ run_case() {
   local rc=0
   timeout -k 2 "$TIMEOUT" "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
   local long=0
-  if { [ $rc = 124 ] || [ $rc = 137 ]; } && [ $fam = csv ] && [ "$VERDICT" != refuse ]; then
-    # A CSV whose data are valid numbers can make the fit long (an angle of 1e-300
-    # sends its trial trajectories to hundreds of rad/s): run it again with ten times
-    # the limit; a run that ends there is slow (a note) if nothing else is wrong, and
-    # one that does not is a hang.
+  if { [ $rc = 124 ] || [ $rc = 137 ]; } && [ "$VERDICT" != refuse ] &&
+     ! [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* || $TAG == 'repeated flag' ]]; then
+    # A valid input can make a run long (a CSV angle of 1e-300 sends the fit's trial
+    # trajectories to hundreds of rad/s; a namelist cut after &pendulum is the default
+    # study): run it again with six times the limit. A run that ends there, or that
+    # reports bounded work on stderr (a progress line "12.5% (6/48) ... ETA" of
+    # dpend_progress, or the study's "N runs on T threads", its longest runs first),
+    # is slow (a note) if nothing else is wrong; one that does neither is a hang.
     rc=0
-    timeout -k 2 $((10 * TIMEOUT)) "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
-    [ $rc = 124 ] || [ $rc = 137 ] || long=1
+    timeout -k 2 $((6 * TIMEOUT)) "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
+    if [ $rc != 124 ] && [ $rc != 137 ]; then long=1
+    elif grep -Eq '[0-9.]+% \([0-9]+/[0-9]+\).*ETA|^dpend study: [0-9]+ runs on [0-9]+ threads$' \
+           stderr; then long=1; rc=0; fi
   fi
   local -a errl; mapfile -t errl < stderr
   local nlines=${#errl[@]} err=""
@@ -847,7 +853,7 @@ run_case() {
                  h5) esc "${GENARGS[@]}"; echo "  file: case.h5 = dpend-fuzz-h5 $SRC case.h5 $ESC" ;; esac
     echo "  exit $rc; stderr ($nlines lines):"; head -n 20 stderr | sed 's/^/    /'
   fi
-  [ $long = 1 ] && [ -z "$cls" ] && slow=1   # a CSV's fit that ended after the limit
+  [ $long = 1 ] && [ -z "$cls" ] && slow=1   # ended after the limit, or progressing
   if [ $slow = 1 ]; then
     esc "${ARGS[@]}"
     printf '%s slow %s\t%s; input: dpend %s\n' "$i" "$cmd ($TAG)" "${WHAT//$'\n'/\\n}" "$ESC" >> "$RESULTS"
