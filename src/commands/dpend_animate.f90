@@ -814,7 +814,8 @@ contains
       write (u, '(a, i0)', iostat=stat) 'reactions = ', merge(1, 0, cfg%reactions .and. &
                                                                npm > 0)
       write (u, '(a, es24.16e3)', iostat=stat) 'lim = ', 1.08_dp*lim
-      write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', max(npm, 1.0_dp)
+      ! the scale the summary reports (below 1 N/m for light pendulums); 1 without arrows
+      write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', merge(npm, 1.0_dp, npm > 0)
       write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
       close (u, iostat=err)
       if (err /= 0) stat = err

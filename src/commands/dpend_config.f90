@@ -1056,12 +1056,12 @@ contains
       cfg%m(1:2) = [m1, m2]; cfg%l(1:2) = [l1, l2]; cfg%g = g
       cfg%q(1:2) = [q1, q2]; cfg%w(1:2) = [w1, w2]
       ! the lists, where given, override the two-link names
-      call take_list(1, m, cfg%m)
-      call take_list(2, l, cfg%l)
-      call take_list(3, q, cfg%q)
-      call take_list(4, w, cfg%w)
-      call take_list(0, damping, cfg%damping)
-      call take_body(body, com, inertia)
+      call take_list(1, 'm', m, cfg%m)
+      if (.not. allocated(error)) call take_list(2, 'l', l, cfg%l)
+      if (.not. allocated(error)) call take_list(3, 'q', q, cfg%q)
+      if (.not. allocated(error)) call take_list(4, 'w', w, cfg%w)
+      if (.not. allocated(error)) call take_list(0, 'damping', damping, cfg%damping)
+      if (.not. allocated(error)) call take_body(body, com, inertia)
       if (allocated(error)) return
       cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
       cfg%support_phase = support_phase
@@ -1092,31 +1092,44 @@ contains
          integer :: n
          if (len_trim(kind) > 0) call set_body(cfg, trim(kind), error)
          if (allocated(error)) return
-         n = count_given(d)
+         n = count_given('com', d)
+         if (allocated(error)) return
          if (n > 0) call cfg%extra%set('com', d(:n))
-         n = count_given(ic)
+         n = count_given('inertia', ic)
+         if (allocated(error)) return
          if (n > 0) call cfg%extra%set('inertia', ic(:n))
       end subroutine take_body
-      integer function count_given(given) result(n)
+      !> The leading entries given of the list `key`; an entry given after one that
+      !> is not (`m(2) = 3` without m(1)) is refused, never ignored.
+      integer function count_given(key, given) result(n)
+         character(len=*), intent(in) :: key
          real(dp), intent(in) :: given(:)
+         integer :: k
          n = 0
          do while (n < size(given))
             if (given(n + 1) == unset) exit
             n = n + 1
+         end do
+         do k = n + 2, size(given)
+            if (given(k) /= unset) then
+               call fatal_error(error, 'invalid '//key//'('//to_str(k)//'): '// &
+                                real_str(given(k))//" in '"//printable(filename)// &
+                                "' is given without "//key//'('//to_str(n + 1)// &
+                                ') (a list is given from its first entry, without gaps)')
+               return
+            end if
          end do
       end function count_given
       !> Keep the given leading entries of a namelist list (its size is checked
       !> against the number of links by validate_run_config).
-      subroutine take_list(k, given, values)
+      subroutine take_list(k, key, given, values)
          integer, intent(in) :: k
+         character(len=*), intent(in) :: key
          real(dp), intent(in) :: given(:)
          real(dp), intent(inout) :: values(:)
          integer :: n
-         n = 0
-         do while (n < size(given))
-            if (given(n + 1) == unset) exit
-            n = n + 1
-         end do
+         n = count_given(key, given)
+         if (allocated(error)) return
          if (n == 0) return
          values(:n) = given(:n)
          if (k > 0) then

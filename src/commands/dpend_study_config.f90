@@ -560,7 +560,8 @@ contains
          if (ro_dt(i) /= 0.0_dp) then
             call fatal_error(error, 'invalid ro_dt('//to_str(i)//'): '//sci(ro_dt(i))// &
                              " in '"//printable(filename)//"', but there is no ro_method(" &
-                             //to_str(i)//') (&study: one step per roundoff method)')
+                             //to_str(i)//') (&study: one step per roundoff method, ' &
+                             //'ro_method(1..'//to_str(n)//')'//default_ro()//')')
             return
          end if
       end do
@@ -586,6 +587,18 @@ contains
       cfg%ro_fit_t_min = ro_fit_t_min; cfg%tao_dt = tao_dt; cfg%tao_t_end = tao_t_end
       cfg%omega_min = omega_min; cfg%omega_max = omega_max; cfg%n_omega = n_omega
       cfg%tao_case = trim(tao_case); cfg%quick = quick
+   contains
+      !> ': the default methods A B' when &study sets no ro_method, else ''.
+      function default_ro() result(t)
+         character(len=:), allocatable :: t
+         integer :: j
+         t = ''
+         if (count(len_trim(ro_method) > 0) > 0) return
+         t = ': the default methods'
+         do j = 1, size(cfg%ro_methods)
+            t = t//' '//trim(cfg%ro_methods(j))
+         end do
+      end function default_ro
    end subroutine read_study_config
 
    !> &pendulum, &output and &model of the study's file (through read_run_config;
@@ -639,11 +652,10 @@ contains
       if (allocated(error)) return
       n = count(len_trim(case_name) > 0)
       do i = n + 1, size(case_name)   ! a value of a case without a name: never ignored
-         if (case_given(i)) then
+         if (len(case_key(i)) > 0) then
             call fatal_error(error, 'invalid case_name('//to_str(i)//"): '' in '"// &
-                             printable(filename)//"', but values of case "//to_str(i)// &
-                             ' are given (&study: name every case, case_name(1..n) ' &
-                             //'without gaps)')
+                             printable(filename)//"', but "//case_key(i)//' is given ' &
+                             //'(&study: name every case, case_name(1..n) without gaps)')
             return
          end if
       end do
@@ -669,18 +681,28 @@ contains
          end do
       end if
    contains
-      !> Whether any value of case i is given (differs from its not-given mark).
-      logical function case_given(i)
+      !> A key of case i given (its value differs from the not-given mark), the first
+      !> in the order case_q1, case_q2, ... of the namelist, e.g. 'case_q1(2)'; or ''.
+      function case_key(i) result(key)
          integer, intent(in) :: i
-         case_given = case_q1(i) /= unset .or. case_q2(i) /= unset .or. &
-                      case_w1(i) /= unset .or. case_w2(i) /= unset .or. &
-                      case_long_steps(i) /= 0.0_dp .or. case_links(i) /= 0 .or. &
-                      any(case_q(:, i) /= unset) .or. any(case_w(:, i) /= unset) .or. &
-                      any(case_damping(:, i) /= unset) .or. &
-                      any(case_support_amplitude(:, i) /= 0.0_dp) .or. &
-                      case_support_frequency(i) /= 0.0_dp .or. &
-                      any(case_support_phase(:, i) /= 0.0_dp)
-      end function case_given
+         character(len=:), allocatable :: key
+         character(len=:), allocatable :: a, b
+         a = '('//to_str(i)//')'      ! a value per case
+         b = '(:, '//to_str(i)//')'   ! a list per case
+         key = ''
+         if (any(case_support_phase(:, i) /= 0.0_dp)) key = 'case_support_phase'//b
+         if (case_support_frequency(i) /= 0.0_dp) key = 'case_support_frequency'//a
+         if (any(case_support_amplitude(:, i) /= 0.0_dp)) key = 'case_support_amplitude'//b
+         if (any(case_damping(:, i) /= unset)) key = 'case_damping'//b
+         if (any(case_w(:, i) /= unset)) key = 'case_w'//b
+         if (any(case_q(:, i) /= unset)) key = 'case_q'//b
+         if (case_links(i) /= 0) key = 'case_links'//a
+         if (case_long_steps(i) /= 0.0_dp) key = 'case_long_steps'//a
+         if (case_w2(i) /= unset) key = 'case_w2'//a
+         if (case_w1(i) /= unset) key = 'case_w1'//a
+         if (case_q2(i) /= unset) key = 'case_q2'//a
+         if (case_q1(i) /= unset) key = 'case_q1'//a
+      end function case_key
 
       !> The initial values of case i (N = case_links(i) links, 2 when not given): the
       !> list case_q(1:N, i) (`field` 'case_q' or 'case_w'), or for two links
@@ -742,11 +764,16 @@ contains
       character(len=*), intent(in) :: field              !! the list's key
       character(len=*), intent(in) :: names(:)           !! as read ('' not given)
       type(error_t), allocatable, intent(out) :: error   !! a gap
-      integer :: n
+      integer :: n, k
       n = count(len_trim(names) > 0)
-      if (n == 0) return
-      if (any(len_trim(names(1:n)) == 0)) call fatal_error(error, "invalid config '"// &
-         printable(filename)//"' in &study: "//field//'(1..n) must be set without gaps')
+      do k = 1, n
+         if (len_trim(names(k)) == 0) then
+            call fatal_error(error, 'invalid '//field//'('//to_str(k)//"): '' in '"// &
+                             printable(filename)//"', but later entries are given (&study: " &
+                             //field//'(1..n) without gaps)')
+            return
+         end if
+      end do
    end subroutine check_list
 
    !> The methods of &study (`method(i)` and their ranges as read): a list set in
@@ -758,16 +785,21 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! updated
       type(error_t), allocatable, intent(out) :: error   !! invalid
       integer :: i, n
+      character(len=:), allocatable :: key
       call check_list(filename, 'method', method, error)
       if (allocated(error)) return
       n = count(len_trim(method) > 0)
       do i = n + 1, size(method)   ! a range without its method: never ignored
-         if (h_min(i) /= 0.0_dp .or. h_max(i) /= 0.0_dp .or. rtol_min(i) /= 0.0_dp .or. &
-             rtol_max(i) /= 0.0_dp) then
+         key = ''
+         if (rtol_max(i) /= 0.0_dp) key = 'rtol_max'   ! (the first given wins)
+         if (rtol_min(i) /= 0.0_dp) key = 'rtol_min'
+         if (h_max(i) /= 0.0_dp) key = 'h_max'
+         if (h_min(i) /= 0.0_dp) key = 'h_min'
+         if (len(key) > 0) then
             call fatal_error(error, 'invalid method('//to_str(i)//"): '' in '"// &
-                             printable(filename)//"', but its range (h_min, h_max, " &
-                             //'rtol_min, rtol_max) is given (&study: name every method, ' &
-                             //'method(1..n) without gaps)')
+                             printable(filename)//"', but "//key//'('//to_str(i)// &
+                             ') is given (&study: name every method, method(1..n) ' &
+                             //'without gaps)')
             return
          end if
       end do

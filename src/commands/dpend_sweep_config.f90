@@ -569,6 +569,11 @@ contains
          call fatal_error(error, 'invalid t_end: '//sci(cfg%run%t_end)//' '// &
                           trim(unit_name(cfg))//' is '//sci(cfg%run%t_end*time_scale(cfg))// &
                           ' s, above '//sci(max_time)//' s')
+      else if (.not. (cfg%run%t_end*time_scale(cfg) >= tiny(1.0_dp))) then
+         ! (4.9e-324 in natural units is 0 s: a step of 0 s, MEGNO's 2 ∫/t divided by 0)
+         call fatal_error(error, 'invalid t_end: '//sci(cfg%run%t_end)//' '// &
+                          trim(unit_name(cfg))//' is '//sci(cfg%run%t_end*time_scale(cfg))// &
+                          ' s, below '//sci(tiny(1.0_dp))//' s (the smallest normal double)')
       end if
       if (allocated(error)) return
       if (grid_mode(cfg) .and. (cfg%ic_angles_given .or. cfg%ic_dataset_given)) then

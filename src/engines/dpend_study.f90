@@ -639,9 +639,11 @@ contains
       integer, intent(in), optional :: ic                          !! case index (with model)
       class(model_t), allocatable, intent(out), optional :: model  !! case ic's model
       type(error_t), allocatable :: error
+      if (present(model) .neqv. present(ic)) error stop 'internal error: build_in_turn ' &
+         //'builds a model from a case index: both or neither'
       !$omp critical (dpend_build)
       call new_integrator(name, integ, error, options)
-      if (present(model) .and. present(ic)) call case_model(cfg, ic, model)
+      if (present(model)) call case_model(cfg, ic, model)
       !$omp end critical (dpend_build)
       if (allocated(error)) error stop 'internal error: a validated study method: ' &
          //error%message

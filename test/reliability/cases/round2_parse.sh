@@ -39,6 +39,13 @@ printf "&study case_name(1) = 'a', case_q1(1) = 0.1, case_q2(2) = 0.1 /\n" > "$_
 printf "&study method(1) = 'rk4', h_max(2) = 1e-2 /\n" > "$_r2p/r2p_study_range.nml"
 printf "&study ro_dt(3) = 1e-3 /\n" > "$_r2p/r2p_study_ro_dt.nml"
 printf "&study tao_method(2) = 'tao2' /\n" > "$_r2p/r2p_study_tao_gap.nml"
+# a list entry without the ones before it (the namelist read kept the leading entries
+# given: m(2) alone was ignored)
+printf '&pendulum m(2) = 3 /\n' > "$_r2p/r2p_gap_m.nml"
+printf '&pendulum links = 3 /\n&initial q(3) = 0.5 /\n' > "$_r2p/r2p_gap_q.nml"
+printf '&pendulum links = 3, damping(2) = 0.1 /\n' > "$_r2p/r2p_gap_damping.nml"
+printf "&pendulum body = 'point', com(2) = 0.5 /\n" > "$_r2p/r2p_gap_com.nml"
+printf '&pendulum links = 3, m = 1, 2, 3, damping(1) = 0.1, damping(2) = 0, 0 /\n' > "$_r2p/r2p_gap_ok.nml"
 printf '&pendulum m = 1, 1 /\n&integration t_end = 0.01 /\n' > "$_r2p/r2p_file_list.nml"
 printf "&pendulum m = 2*1.5, l(1) = 2, l(2) = 0.5 /\n&integration method = 'rk4',\tdt = .5e-3, t_end = 5e-3 /\n&output file = 'a%%b=c.h5' /\n" > "$_r2p/r2p_valid.nml"
 printf '0 0 0 1e400\n' > "$_r2p/r2p_list_huge.txt"
@@ -110,7 +117,12 @@ refuse  r2p-study-case-noname  'case_name(1)' -- study --config r2p_study_noname
 refuse  r2p-study-case-noname2 'case_name(2)' -- study --config r2p_study_noname2.nml --output s.md
 refuse  r2p-study-range-nomethod 'method(2)'  -- study --config r2p_study_range.nml --output s.md
 refuse  r2p-study-ro-dt-nomethod 'ro_dt(3)'   -- study --config r2p_study_ro_dt.nml --output s.md
-refuse  r2p-study-tao-gap      'tao_method'   -- study --config r2p_study_tao_gap.nml --output s.md
+refuse  r2p-study-tao-gap      'tao_method(1)' -- study --config r2p_study_tao_gap.nml --output s.md
+refuse  r2p-nml-gap-m          'm(2)'         -- "${S[@]}" --config r2p_gap_m.nml
+refuse  r2p-nml-gap-q          'q(3)'         -- "${S[@]}" --config r2p_gap_q.nml
+refuse  r2p-nml-gap-damping    'damping(2)'   -- "${S[@]}" --config r2p_gap_damping.nml
+refuse  r2p-nml-gap-com        'com(2)'       -- "${S[@]}" --config r2p_gap_com.nml
+succeed r2p-nml-gap-ok            -- "${S[@]}" --force --config r2p_gap_ok.nml
 # ---- two forms of one quantity on the command line (a flag over a file stays)
 refuse  r2p-flags-m-m1        m1            -- "${S[@]}" --m 1,2 --m1 3
 refuse  r2p-flags-m1-m        m             -- "${S[@]}" --m1 3 --m 1,2
