@@ -639,8 +639,8 @@ contains
       integer, intent(in), optional :: ic                          !! case index (with model)
       class(model_t), allocatable, intent(out), optional :: model  !! case ic's model
       type(error_t), allocatable :: error
-      if (present(model) .neqv. present(ic)) error stop 'internal error: build_in_turn ' &
-         //'builds a model from a case index: both or neither'
+      if (present(model) .and. .not. present(ic)) error stop 'internal error: ' &
+         //'build_in_turn builds the model from a case index'
       !$omp critical (dpend_build)
       call new_integrator(name, integ, error, options)
       if (present(model)) call case_model(cfg, ic, model)
