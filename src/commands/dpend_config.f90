@@ -426,6 +426,16 @@ contains
                           ' characters; at most '//to_str(string_length(s%group, s%key)), error)
          return
       end if
+      ! a quoted value for a key that takes a number or a logical: gfortran reads
+      ! block = "1" as 1; the whole token must be the value
+      if (s%inside .and. len(s%key) > 0) then
+         if (.not. is_string_key(s%key)) then
+            call scan_refuse(s, scan_key_text(s)//'a quoted text ('//printable(text(i:min(i + j, i + 40, len(text)))) &
+                             //') for a key that takes a number or a logical (remove the ' &
+                             //'quotes)', error)
+            return
+         end if
+      end if
       if (s%inside) call scan_count_values(s, 1, error)
       if (allocated(error)) return
       s%wants_value = .false.
@@ -640,7 +650,7 @@ contains
       case ('file', 'ic_file', 'ic_dataset', 'name', 'case_name', 'order_case', &
             'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
             'ro_method', 'tao_method', 'axis1', 'axis2', 'ic_angles', 'time_unit', &
-            'stop_at', 'indicator')
+            'stop_at', 'indicator', 'device', 'body')
          is_string_key = .true.
       case default
          is_string_key = .false.

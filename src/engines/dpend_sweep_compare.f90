@@ -55,19 +55,23 @@ contains
       if (allocated(error)) return
       call read_flip_times(file_b, tb, sa, tau_b, hb, dims_b, cfg_b, error)
       if (allocated(error)) return
-      va = config_difference(cfg_a, cfg_b, file_a, file_b, same)
+      ! grid or list first (same(1)), then the shapes in the file's terms, then the rest
+      va = config_difference(cfg_a, cfg_b, file_a, file_b, same(1:1))
+      if (len(va) == 0) then
+         if (size(dims_a) /= size(dims_b)) then
+            call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                        "', "//shape_text(dims_b)//" in '"//file_b//"'")
+         else if (any(dims_a /= dims_b)) then
+            call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
+                        "', "//shape_text(dims_b)//" in '"//file_b//"'")
+         end if
+         if (allocated(error)) return
+         va = config_difference(cfg_a, cfg_b, file_a, file_b, same)
+      end if
       if (len(va) > 0) then
          call refuse(va)
          return
       end if
-      if (size(dims_a) /= size(dims_b)) then   ! the same initial states: the shapes too
-         call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
-                     "', "//shape_text(dims_b)//" in '"//file_b//"'")
-      else if (any(dims_a /= dims_b)) then
-         call refuse('t_flip has shape '//shape_text(dims_a)//" in '"//file_a// &
-                     "', "//shape_text(dims_b)//" in '"//file_b//"'")
-      end if
-      if (allocated(error)) return
       if (abs(tau - tau_b) > 1e-12_dp*tau) then
          call refuse('sqrt_l1_over_g = '//sci(tau)//" s in '"//file_a//"', "// &
                      sci(tau_b)//" s in '"//file_b//"' (another time unit)")

@@ -42,6 +42,10 @@ printf "&study tao_method(2) = 'tao2' /\n" > "$_r2p/r2p_study_tao_gap.nml"
 # a list entry without the ones before it (the namelist read kept the leading entries
 # given: m(2) alone was ignored)
 printf '&pendulum m(2) = 3 /\n' > "$_r2p/r2p_gap_m.nml"
+# a quoted number for a key that takes a number (fuzz seed 20261205 case 5130:
+# block = "1" was read as 1)
+printf "&integration t_end = '0.01' /\n" > "$_r2p/r2p_quoted_number.nml"
+printf "&pendulum body = 'point' /\n&integration t_end = 0.01 /\n" > "$_r2p/r2p_quoted_body.nml"
 printf '&pendulum links = 3 /\n&initial q(3) = 0.5 /\n' > "$_r2p/r2p_gap_q.nml"
 printf '&pendulum links = 3, damping(2) = 0.1 /\n' > "$_r2p/r2p_gap_damping.nml"
 printf "&pendulum body = 'point', com(2) = 0.5 /\n" > "$_r2p/r2p_gap_com.nml"
@@ -123,6 +127,8 @@ refuse  r2p-nml-gap-q          'q(3)'         -- "${S[@]}" --config r2p_gap_q.nm
 refuse  r2p-nml-gap-damping    'damping(2)'   -- "${S[@]}" --config r2p_gap_damping.nml
 refuse  r2p-nml-gap-com        'com(2)'       -- "${S[@]}" --config r2p_gap_com.nml
 succeed r2p-nml-gap-ok            -- "${S[@]}" --force --config r2p_gap_ok.nml
+refuse  r2p-nml-quoted-number  't_end'        -- simulate --config r2p_quoted_number.nml --output o.h5
+succeed r2p-nml-quoted-body       -- simulate --config r2p_quoted_body.nml --output o4.h5
 # ---- two forms of one quantity on the command line (a flag over a file stays)
 refuse  r2p-flags-m-m1        m1            -- "${S[@]}" --m 1,2 --m1 3
 refuse  r2p-flags-m1-m        m             -- "${S[@]}" --m1 3 --m 1,2

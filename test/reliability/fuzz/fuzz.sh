@@ -804,7 +804,8 @@ run_case() {
   timeout -k 2 "$TIMEOUT" "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
   local long=0
   if { [ $rc = 124 ] || [ $rc = 137 ]; } && [ "$VERDICT" != refuse ] &&
-     ! [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* || $TAG == 'repeated flag' ]]; then
+     ! [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* || $TAG == 'repeated flag' ||
+          $TAG == 'namelist value huge'* ]]; then
     # A valid input can make a run long (a CSV angle of 1e-300 sends the fit's trial
     # trajectories to hundreds of rad/s; a namelist cut after &pendulum is the default
     # study): run it again with six times the limit. A run that ends there, or that
@@ -828,6 +829,7 @@ run_case() {
     # A valid number that makes a run long (--t-end 1e6) is slow, not a hang: a
     # note, not a failure. Over the limit on anything else is a hang.
     if [ "$VERDICT" = any ] && [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* ||
+                                  $TAG == 'namelist value huge'* ||
                                   $TAG == 'repeated flag' ]]; then slow=1
     elif [ "$VERDICT" = refuse ]; then cls="invalid input accepted (ran over the limit): $TAG"
     else cls="hang: $cmd over ${TIMEOUT} s ($TAG)"; fi
@@ -844,7 +846,11 @@ run_case() {
   elif [ $changed = 1 ]; then cls="input changed or replaced: $cmd ($TAG)"
   else
     case $rc in
-      2) if [ "$nlines" != 1 ]; then cls="refusal of $nlines stderr lines: $cmd ($TAG)"
+      2) # the refusal is one line; progress lines before it do not count (a fit that
+         # finds its parameters not determined by the data refuses after its work)
+         local nref
+         nref=$(grep -cvE '% \([0-9]+/[0-9]+\), .*elapsed' stderr)
+         if [ "$nref" != 1 ]; then cls="refusal of $nref stderr lines: $cmd ($TAG)"
          elif [ "$VERDICT" = accept ]; then cls="valid input refused: $TAG"
          else
            after_names=(* .*)
