@@ -430,7 +430,8 @@ contains
       ! block = "1" as 1; the whole token must be the value
       if (s%inside .and. len(s%key) > 0) then
          if (.not. is_string_key(s%key)) then
-            call scan_refuse(s, scan_key_text(s)//'a quoted text ('//printable(text(i:min(i + j, i + 40, len(text)))) &
+            call scan_refuse(s, scan_key_text(s)//'a quoted text (' &
+                             //printable(text(i:min(i + j, i + 40, len(text)))) &
                              //') for a key that takes a number or a logical (remove the ' &
                              //'quotes)', error)
             return

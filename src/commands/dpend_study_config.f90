@@ -648,13 +648,15 @@ contains
       type(study_config_t), intent(inout) :: cfg         !! updated
       type(error_t), allocatable, intent(out) :: error   !! invalid
       integer :: i, n
+      character(len=:), allocatable :: given
       call check_list(filename, 'case_name', case_name, error)
       if (allocated(error)) return
       n = count(len_trim(case_name) > 0)
       do i = n + 1, size(case_name)   ! a value of a case without a name: never ignored
-         if (len(case_key(i)) > 0) then
+         given = case_key(i)
+         if (len(given) > 0) then
             call fatal_error(error, 'invalid case_name('//to_str(i)//"): '' in '"// &
-                             printable(filename)//"', but "//case_key(i)//' is given ' &
+                             printable(filename)//"', but "//given//' is given ' &
                              //'(&study: name every case, case_name(1..n) without gaps)')
             return
          end if
