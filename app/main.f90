@@ -4,14 +4,15 @@ program dpend
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use dpend_error, only: error_t, exit_status
    use dpend_cli, only: arg_t, get_arguments, printable, check_repeated_options
-   use dpend_config, only: run_config_t
+   use dpend_run_settings, only: run_config_t
    use dpend_method_registry, only: method_names, method_table, n_methods, plot_groups
    use dpend_simulate, only: natural_text
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix, export_list
    use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help, horizon_text
+   use dpend_sweep_settings, only: sweep_config_t, horizon_text
+   use dpend_sweep_config, only: parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
    use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
    use dpend_cli, only: parse_real, is_long_option, next_option, option_outcome, to_str, &
@@ -20,7 +21,8 @@ program dpend
    use dpend_kinds, only: dp
    use dpend_model_factory, only: describe_models
    use, intrinsic :: iso_c_binding, only: c_int
-   use dpend_study_config, only: study_config_t, parse_study, study_help
+   use dpend_study_settings, only: study_config_t
+   use dpend_study_config, only: parse_study, study_help
    use dpend_study_command, only: run_study_command
    use dpend_animate, only: animate_config_t, parse_animate, run_animate, animate_help
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
@@ -38,7 +40,7 @@ program dpend
 
    type(arg_t), allocatable :: args(:)
    character(len=*), parameter :: nl = new_line('a')
-   !> The --quiet line of the help texts that lack one (issue 25: every command's
+   !> The --quiet line of the help texts that lack one (every command's
    !> --help mentions it).
    character(len=*), parameter :: summary_quiet = '  --quiet           no progress ' &
       //'report; of the summary only its last line'
@@ -476,10 +478,10 @@ contains
          write (output_unit, '(a)') sweep_help()
          return
       end if
-      ! the horizon in both units, printed when the run starts (issue 25)
+      ! the horizon in both units, printed when the run starts
       if (.not. cfg%quiet) call progress_header('dpend sweep: '//horizon_text(cfg))
       if (.not. cfg%quiet .and. len(cfg%device_note) > 0) &
-         write (error_unit, '(a)') 'dpend sweep: '//cfg%device_note   ! issue 28
+         write (error_unit, '(a)') 'dpend sweep: '//cfg%device_note
       call run_sweep(cfg, summary, error)
       ! refused input (found when the output is examined) or a run that failed
       if (allocated(error)) call fail(exit_status(error), 'dpend sweep: '//error%message)
@@ -492,7 +494,7 @@ contains
       else
          write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "// &
             summary_text(summary)
-         ! issue 26: a body other than the uniform rod
+         ! a body other than the uniform rod
          if (len(cfg%run%model%body_description()) > 0) write (output_unit, '(a)') &
             'dpend sweep: links: '//cfg%run%model%body_description()
       end if

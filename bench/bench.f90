@@ -64,7 +64,7 @@ program bench
          write (*, '(a)') 'compiler: '//compiler_version()
          write (*, '(a)') 'flags: '//compiler_options()
          call run_batch_benchmarks(output_unit)
-         call run_chain_lane_benchmarks(output_unit)   ! issue 27: the chain lanes
+         call run_chain_lane_benchmarks(output_unit)   ! the chain lanes
          stop
       end if
       call chain_energy(3)

@@ -13,7 +13,8 @@ module bench_batch
    use dpend_rk_explicit, only: rk4_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
       stop_end, st_cannot_flip
-   use dpend_sweep_config, only: sweep_config_t, sweep_defaults, validate_sweep
+   use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
+   use dpend_sweep_gpu, only: resolve_device
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
    use dpend_progress, only: wall_seconds
    implicit none
@@ -204,6 +205,7 @@ contains
       cfg%stats = .true.
       cfg%block = 512
       call validate_sweep(cfg, error)   ! builds the model (the factory)
+      if (.not. allocated(error)) call resolve_device(cfg, error)
       if (.not. allocated(error)) call build_setup(cfg, setup, error)
       if (allocated(error)) then
          write (unit, '(a)') 'classic_map: '//error%message

@@ -1,4 +1,4 @@
-!> Benchmarks of the chain lanes (issue 27, dpend_chain_lanes): process CPU ns per
+!> Benchmarks of the chain lanes (dpend_chain_lanes): process CPU ns per
 !> trajectory-step of the flip-map kernel of the chain of N = 3, 5 and 8 unit rods, on
 !> one thread, and as ratios to the two-link batch kernel (dpend_pendulum_lanes) timed
 !> in the same rounds (the machine may be shared: ratios of one run are the comparable

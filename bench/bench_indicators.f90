@@ -1,4 +1,4 @@
-!> Benchmarks of the sweep's per-pixel indicators (issue 14, figures of issue 27): the
+!> Benchmarks of the sweep's per-pixel indicators (figures in docs/performance.md): the
 !> cost per trajectory-step of the batch kernel with each indicator against the flip
 !> time alone, one thread, and of a sweep over parameters (m2/m1, l2/l1: each pixel
 !> its own constants, `lane_coef_t`) against one over initial values (theta1,
@@ -15,7 +15,8 @@ module bench_indicators
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
-   use dpend_sweep_config, only: sweep_config_t, sweep_defaults, validate_sweep
+   use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
+   use dpend_sweep_gpu, only: resolve_device
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
    use dpend_progress, only: wall_seconds
    use bench_batch, only: load_average
@@ -174,6 +175,7 @@ contains
       cfg%block = 64
       ns = -1.0_dp
       call validate_sweep(cfg, error)   ! builds the model (the factory)
+      if (.not. allocated(error)) call resolve_device(cfg, error)
       if (allocated(error)) return
       do
          call build_setup(cfg, setup, error)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Build the optional GPU library of `dpend sweep --device gpu` (issue 28, docs/gpu.md):
+# Build the optional GPU library of `dpend sweep --device gpu` (docs/gpu.md):
 # gpu/dpend_sweep_kernel.cu -> build/gpu/libdpend_gpu.so, with nvcc, fp64, the CUDA
 # runtime linked statically (at run time only the driver's libcuda.so.1 is needed).
 # dpend loads it at run time: $DPEND_GPU_LIB, else libdpend_gpu.so next to the

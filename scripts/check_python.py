@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Check that dpend's files explain themselves to a Python user (issue 15).
+"""Check that dpend's files explain themselves to a Python user.
 
 Runs every command that writes HDF5 on a small case (simulate, lyapunov,
 divergence, poincare, sweep grid and list, study) in a temporary directory and
@@ -13,7 +13,7 @@ checks with h5py, numpy and pandas that
   * `dpend export --list` lists every dataset with its units;
   * a file written with fixed-length string attributes (the old form) still
     reads with `dpend export --list` and `--csv`;
-  * the recipes of docs/python.md run (issue 25): its fenced `sh` blocks, whose
+  * the recipes of docs/python.md run: its fenced `sh` blocks, whose
     lines are `scripts/dpend ARGS` (run with the dpend under test, ARGS split as
     the shell would), write the files, then every `python` block runs in a fresh
     interpreter (this one) in that directory and must exit 0.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Check the README as a newcomer would use it (issue 25):
+# Check the README as a newcomer would use it:
 #  (a) the quick start: the fenced blocks between the marker comments
 #      <!-- quickstart --> and <!-- /quickstart --> of README.md are run as they are
 #      shown, in a scratch copy of the working tree (its tracked and untracked,

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The done-when fit of issue 26 (docs/fit.md, "A pendulum with bobs"): a two-link
-# pendulum with bobs (general bodies), sigma = 0.01 rad, 300 samples over 6 s; the fit
-# of d2, I2, g, c1, c2 on 50 seeded noisy series and on the noise-free series. Prints
-# the noise-free error and the coverage of the 95 % intervals per parameter, and fails
-# when a coverage is below 90 % or the noise-free error above 1e-7.
+# The coverage fit of bodies (docs/fit.md, "A pendulum with bobs: the coverage
+# fit"): a two-link pendulum with bobs (general bodies), sigma = 0.01 rad, 300
+# samples over 6 s; the fit of d2, I2, g, c1, c2 on 50 seeded noisy series and on
+# the noise-free series. Prints the noise-free error and the coverage of the 95 %
+# intervals per parameter, and fails when a coverage is below 90 % or the
+# noise-free error above 1e-7.
 #   scripts/fit_coverage.sh [SERIES]     (SERIES: noisy series, default 50, 1..1000)
 # Runs the test fit_params/bob_coverage of the release build (CI runs it with one
 # noisy series in the debug suite).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The GPU measurements of issue 28 (docs/gpu.md), one script for a machine with an
+# The GPU measurements (docs/gpu.md), one script for a machine with an
 # NVIDIA GPU and nvcc but possibly no Fortran compiler nor HDF5: run from the
 # repository root with carry/dpend (a release build) and carry/lib/ (its ldd
 # libraries and ld-linux-x86-64.so.2). Writes logs and small figures under $OUT

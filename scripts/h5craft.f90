@@ -1,5 +1,6 @@
 !> h5craft: edit an HDF5 file into a hostile one, for the reliability suite's
-!> fixtures (test/reliability/cases/round2_files.sh). Not part of dpend.
+!> fixtures (test/reliability/cases/external_files.sh, io_coordinates.sh). Not part of
+!> dpend.
 !> Build: h5fc -o h5craft scripts/h5craft.f90 (h5fc comes with libhdf5-dev).
 !>
 !> usage: h5craft FILE OP ARGS...   (FILE must exist; shapes in h5py order)

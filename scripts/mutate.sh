@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The mutation stage (issue 29): apply source mutants (test/mutants.txt) one at a
+# The mutation stage: apply source mutants (test/mutants.txt) one at a
 # time in a scratch copy of the tree, build the debug profile, run the tests, and
 # report which mutants the test suite kills. Run scripts/mutate.sh --help for usage.
 set -uo pipefail

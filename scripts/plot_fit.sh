@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures of `dpend fit` (issue 13):
+# Figures of `dpend fit`:
 #   scripts/plot_fit.sh FIT.h5 [OUTDIR]
 #     fit_overlay.png (data and fitted model against t, one panel per link, or per
 #     coordinate x_i, y_i for positions, the end of the fit window marked) and

@@ -124,7 +124,7 @@ plot_run gnuplot -c "$here/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$esca
   "${cnames[*]}" "${ulist[*]}" "$k" "${style:-rods} $conserved"
 printf 'plot_simulate.sh: wrote %s/{angles,angles_wrapped,phase,energy_error,reactions,tip_path}.png\n' "$out"
 if ((conserved == 0)); then
-  # a damped or driven run (issue 13): E(t) - E(0), the work of the friction and of the
+  # a damped or driven run: E(t) - E(0), the work of the friction and of the
   # support, and the balance error E(t) - E(0) + W_friction - W_support
   "$dpend" export "$h5" /trajectory/t /trajectory/energy /trajectory/W_friction \
     /trajectory/W_support /trajectory/balance_error > "$tmp/balance.dat"

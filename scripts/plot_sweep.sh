@@ -35,7 +35,7 @@ plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
 ax1=$(attr axis1); ax2=$(attr axis2)
 links=$(attr links)
-[[ -z "$links" ]] && links=2   # files written before issue 12: the double pendulum
+[[ -z "$links" ]] && links=2   # files written before the N-link chain: the double pendulum
 [[ "$links" =~ ^[1-9][0-9]?$ ]] || plot_fail 2 "the attribute links of '$1' is not 1 to 99"
 plot_dpend
 plot_tmpdir

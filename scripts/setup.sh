@@ -71,7 +71,7 @@ fi
 command -v fpm >/dev/null 2>&1 || { echo "setup.sh: fpm not on PATH after install" >&2; exit 1; }
 echo "setup.sh: ready: $(gfortran --version | head -n1); fpm $(fpm --version | head -n1 | awk '{print $2}')"
 
-# --gpu: nvcc (issue 28). The CUDA 13 wheels: the cu12 ones ship ptxas but no nvcc.
+# --gpu: nvcc. The CUDA 13 wheels: the cu12 ones ship ptxas but no nvcc.
 if ((gpu)); then
   cd "$(dirname "$0")/.."   # build/cuda/ of this checkout
   nvcc=$(command -v nvcc 2>/dev/null || true)

@@ -1,4 +1,4 @@
-# The look shared by the figure scripts (issue 25), loaded first by each of them as
+# The look shared by the figure scripts, loaded first by each of them as
 #   load style_gp   (style_gp: this file, found beside the script from ARG0)
 # Defines, all from numbers only (nothing here reads an argument):
 #   fontspec(w)        "DejaVu Sans,S" with S proportional to the canvas width w [px]

@@ -35,19 +35,19 @@ program tester
    use test_balance, only: collect_balance
    use test_sweep_values, only: collect_sweep_values
    use test_fit_stats, only: collect_fit_stats
-   use test_mutant_gaps, only: collect_mutant_gaps
+   use test_phase_distance, only: collect_phase_distance
    use test_inventory, only: collect_inventory
    use test_values_simulate, only: collect_values_simulate
    use test_values_chaos, only: collect_values_chaos
    use test_values_study, only: collect_values_study
    use test_figures, only: collect_figures
-   use test_values_sweep2, only: collect_values_sweep2
+   use test_values_sweep, only: collect_values_sweep
    use test_values_fit, only: collect_values_fit
    use test_bodies, only: collect_bodies
-   use test_fit_params, only: collect_fit_params   ! issue 26 (r4-fit)
-   use test_chain_lanes, only: collect_chain_lanes   ! issue 27 (r5-chain)
-   use test_lanes, only: collect_lanes   ! issue 27 (r5-lanes)
-   use test_gpu, only: collect_gpu   ! issue 28 (r5-gpu)
+   use test_fit_params, only: collect_fit_params
+   use test_chain_lanes, only: collect_chain_lanes
+   use test_lanes, only: collect_lanes
+   use test_gpu, only: collect_gpu
    implicit none
 
    type :: suite_t
@@ -91,13 +91,13 @@ program tester
    suites(26)%name = 'balance'; call collect_balance(suites(26)%tests)
    suites(27)%name = 'sweep_values'; call collect_sweep_values(suites(27)%tests)
    suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
-   suites(29)%name = 'mutant_gaps'; call collect_mutant_gaps(suites(29)%tests)
+   suites(29)%name = 'phase_distance'; call collect_phase_distance(suites(29)%tests)
    suites(30)%name = 'inventory'; call collect_inventory(suites(30)%tests)
    suites(31)%name = 'values_simulate'; call collect_values_simulate(suites(31)%tests)
    suites(32)%name = 'values_chaos'; call collect_values_chaos(suites(32)%tests)
    suites(33)%name = 'values_study'; call collect_values_study(suites(33)%tests)
    suites(34)%name = 'figures'; call collect_figures(suites(34)%tests)
-   suites(35)%name = 'values_sweep2'; call collect_values_sweep2(suites(35)%tests)
+   suites(35)%name = 'values_sweep'; call collect_values_sweep(suites(35)%tests)
    suites(36)%name = 'values_fit'; call collect_values_fit(suites(36)%tests)
    suites(37)%name = 'bodies'; call collect_bodies(suites(37)%tests)
    suites(38)%name = 'fit_params'; call collect_fit_params(suites(38)%tests)

@@ -229,7 +229,7 @@ contains
       end subroutine refused
    end subroutine test_refused
 
-   !> Issue 25: the summary prints times to 4 significant digits (the whole 1 s at
+   !> The summary prints times to 4 significant digits (the whole 1 s at
    !> 30 fps: 31 frames playing 31/30 s, "1.033 s", not 1.0333333333333334), and gnuplot's messages ("N frames
    !> in animation sequence") stay off stderr on success; a failing gnuplot script
    !> (a copy of animate.gp with a bad last line, through DPEND_ROOT) shows them.

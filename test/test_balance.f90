@@ -1,6 +1,7 @@
 !> The energy balance that simulate writes (`/trajectory/W_friction`, `W_support`,
 !> `balance_error`, and `energy`) against an independent recomputation from the stored
-!> states (issue 29, survivor 2: the balance written without the friction term).
+!> states (a mutant that survived the earlier suite: the balance written without the
+!> friction term).
 !>
 !> The two-link chain of uniform rods (m = 1 kg, L = 1 m, g = 9.8 m/s²) is written
 !> out here in closed form, from the chain's conventions (dpend_chain's notes) but
@@ -27,7 +28,7 @@ module test_balance
    implicit none
    private
    public :: collect_balance
-   public :: boole   ! r4-invcore: also used by test_values_simulate
+   public :: boole   ! also used by test_values_simulate
 
    real(dp), parameter :: g = 9.8_dp      !! gravity [m/s²] (the default)
    real(dp), parameter :: m = 1.0_dp      !! link mass [kg] (the default)

@@ -1,4 +1,4 @@
-!> Links of any mass distribution (issue 26) against independently known values:
+!> Links of any mass distribution against independently known values:
 !> - the point-mass double pendulum (`--body point`) against the textbook equations
 !>   written out here (matplotlib's double-pendulum example, angles from the downward
 !>   vertical, converted to the chapter's convention q = theta − π/2): accelerations at

@@ -1,4 +1,4 @@
-!> The chain of N uniform rods (dpend_chain, issue 12) against independently known
+!> The chain of N uniform rods (dpend_chain) against independently known
 !> values:
 !> - N = 2 against the double pendulum (its own formulas, Cramer's rule);
 !> - N = 1 against the compound pendulum's closed forms (pin reaction, period);

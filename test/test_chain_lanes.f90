@@ -1,4 +1,4 @@
-!> The chain lanes (issue 27, dpend_chain_lanes), compared with their sources:
+!> The chain lanes (dpend_chain_lanes), compared with their sources:
 !> - `chain_accel_lanes` is a copy of the chain model's equations of motion (M q̈ = f
 !>   from K_ij and G_i, LDLᵀ) and of its energy: compared with `chain_t%accelerations`
 !>   (Newton–Euler recursion and Cholesky) and `chain_t%energy` at random states of
@@ -21,7 +21,8 @@ module test_chain_lanes
       integrate_chain_lanes, max_lane_links, chain_tangent_lane
    use dpend_tangent, only: tangent_t
    use dpend_trajectory_batch, only: integrate_trajectories
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
    use dpend_cli, only: arg_t
    use testing, only: unittest_t, new_unittest, check, check_true, fatal_error, check_same_time

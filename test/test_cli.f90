@@ -6,9 +6,10 @@ module test_cli
    use dpend_hdf5, only: h5file_t, is_hdf5
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    use dpend_cli, only: to_str, arg_t
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep
    use dpend_simulate, only: parse_simulate
-   use dpend_config, only: run_config_t
+   use dpend_run_settings, only: run_config_t
    implicit none
    private
    public :: collect_cli, dpend_binary, run_command, scratch_dir, read_text, expect_rejected
@@ -325,7 +326,8 @@ contains
    !> compared with π from acos(-1) (independent of dpend's constant), and the
    !> hanging position θ = 0 is q = -π/2 for both links.
    subroutine test_theta(error)
-      use dpend_config, only: run_config_t, apply_run_flag
+      use dpend_run_settings, only: run_config_t
+      use dpend_run_flags, only: apply_run_flag
       type(error_t), allocatable, intent(out) :: error
       type(run_config_t) :: cfg
       logical :: matched
@@ -389,7 +391,7 @@ contains
          t = s(k:pos - 1)
       end subroutine next_token
    end function merged_options
-   !> Two settings of one quantity (issue 25) are refused by the parsers, in either
+   !> Two settings of one quantity are refused by the parsers, in either
    !> order, in one message naming both; the valid neighbours parse.
    subroutine test_contradictions(error)
       type(error_t), allocatable, intent(out) :: error

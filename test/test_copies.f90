@@ -1,7 +1,7 @@
 !> The copies of the double pendulum's formulas that remain for speed or precision,
 !> each compared with its source of truth in `dpend_pendulum` at 1000 random states
-!> and parameters (issue 11: "where a copy must remain, a test names each copy and
-!> compares it with the source"):
+!> and parameters (where a copy must remain, a test names each copy and compares it
+!> with the source):
 !>
 !> | copy                                        | source                               |
 !> |---------------------------------------------|--------------------------------------|
@@ -14,7 +14,7 @@
 !> | `hamiltonian_qp` (dpend_pendulum), quadruple | `hamiltonian`, and with compensation |
 !> |                                             | e: `dh_dq`, `dh_dp` (first order)    |
 !> | src/gpu/dpend_gpu_step.h (the CUDA kernel's  | `qddot_trig`, `qddot_lagrange`,      |
-!> | accelerations and energy, issue 28)          | `energy`                             |
+!> | accelerations and energy)                    | `energy`                             |
 !>
 !> Draws: masses and lengths log-uniform in [0.1, 10], g in [1, 20], velocities in
 !> [-10, 10] rad/s; angles in [-π, π], and in every fifth state in [-1000, 1000] rad.
@@ -479,7 +479,7 @@ contains
    end subroutine test_compensation
 
    !> Copy src/gpu/dpend_gpu_step.h (the per-trajectory formulas of the CUDA kernel,
-   !> issue 28; compiled for the host by src/gpu/dpend_gpu_host.c) against the sources
+   !> compiled for the host by src/gpu/dpend_gpu_host.c) against the sources
    !> `qddot_trig`, `qddot_lagrange` and `energy`, as `test_accel` and `test_energy`.
    subroutine test_gpu_header(error)
       type(error_t), allocatable, intent(out) :: error

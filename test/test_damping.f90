@@ -1,4 +1,4 @@
-!> Joint damping, the moving support and the energy balance (issue 13), against
+!> Joint damping, the moving support and the energy balance, against
 !> independently known values:
 !> - zero damping and no support: the chain and the double pendulum unchanged, bitwise
 !>   (fields of the chain built with and without the zero options; the config still
@@ -27,7 +27,7 @@ module test_damping
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_method_registry, only: method_table, n_methods, field_method_names
    use dpend_propagate, only: advance_to
-   use dpend_config, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_lapack, only: dgesv, dgeev
    use dpend_cli, only: real_str, to_str
    use testing, only: unittest_t, new_unittest, check, check_true

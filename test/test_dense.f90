@@ -1,12 +1,13 @@
 !> The local order of the continuous extensions of dopri5 and dop853, measured by
-!> h-scaling (issue 29): one fixed step of size h from a generic large-amplitude state,
+!> h-scaling: one fixed step of size h from a generic large-amplitude state,
 !> the dense output at θ = 1/4, 1/2, 3/4 of the step against the solution through the same start
 !> (dop853 at rtol = 1e-14 to each interior time: step ends only, no interpolation).
 !> The local error of an extension of order p scales as h^(p+1); the fitted slope of
 !> log(error) against log(h) must lie within ±0.5 of it: 5 for dopri5's 4th-order
 !> extension (Hairer, Nørsett & Wanner I, II.6), 8 for dop853's 7th-order one (ibid.,
 !> and DOP853 of Hairer & Wanner). A wrong digit in one dense-output coefficient makes
-!> the error O(h) for small h and collapses the slope (issue 29, survivor 1).
+!> the error O(h) for small h and collapses the slope (a mutant that survived the
+!> earlier suite).
 !> Measured: dopri5 slope 4.61 over h = 0.1 … 0.00625 (consecutive 4.2, 4.5, 4.8, 4.9);
 !> dop853 slope 7.52 over h = 0.2 … 0.025 (7.9, 7.1, 7.6). d413 of dop853 changed in its
 !> 8th digit: slope 5.6, the last halving 1.3 (fails both windows).

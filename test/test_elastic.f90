@@ -1,4 +1,4 @@
-!> The elastic (spring) pendulum (dpend_elastic, issue 23 item 9) against independently
+!> The elastic (spring) pendulum (dpend_elastic) against independently
 !> known values:
 !> - the field against Newton's law for the bob in Cartesian coordinates and against
 !>   Lagrange's equations evaluated by finite differences of the Lagrangian;
@@ -108,7 +108,7 @@ contains
       is_all = maxval(abs(x - value)) <= 0.0_dp
    end function is_all
 
-   !> The default model of the issue's example: m = 1, k = 40, l0 = 1, g = 9.8.
+   !> The default model of the reference example: m = 1, k = 40, l0 = 1, g = 9.8.
    function default_model() result(model)
       type(elastic_t) :: model
       type(error_t), allocatable :: err
@@ -165,7 +165,7 @@ contains
       call expect_refusal(error, err, 'invalid q: 3 coordinates')
       if (allocated(error)) return
       call check_state(model, [1.2_dp, -1.0_dp], [0.0_dp, 0.0_dp], err)
-      call check_true(error, .not. allocated(err), 'the issue''s state (1.2, -1) refused')
+      call check_true(error, .not. allocated(err), 'the reference state (1.2, -1) refused')
       if (allocated(error)) return
       model = default_model()
       call check_true(error, model%n_parameters() == 4 .and. model%n_dof() == 2 .and. &
@@ -188,7 +188,7 @@ contains
    ! ------------------------------------------------------------------ equations
 
    !> The Lagrangian m/2 (ṙ² + r² φ̇²) − k/2 (r − l0)² − m g r sin φ [J], written here
-   !> from the issue's statement (not taken from the module).
+   !> from the model's statement (not taken from the module).
    pure real(dp) function lagrangian(model, q, qd)
       type(elastic_t), intent(in) :: model
       real(dp), intent(in) :: q(2), qd(2)
@@ -396,7 +396,7 @@ contains
 
    ! ------------------------------------------------------------------ dynamics
 
-   !> Small oscillations about (r_eq, −π/2), r_eq = l0 + m g/k, of the issue's model
+   !> Small oscillations about (r_eq, −π/2), r_eq = l0 + m g/k, of the reference model
    !> (m 1, k 40, l0 1, g 9.8) and of a sample model: the radial period from r − r_eq =
    !> 1e-3 r_eq (the motion along φ = −π/2 is linear: exact at any amplitude) and the
    !> swing period from φ + π/2 = 1e-4 rad (frequency shifts O(1e-8)), by event location

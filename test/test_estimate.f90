@@ -1,4 +1,4 @@
-!> `dpend fit` (issue 13): reading a measured series and estimating the initial state
+!> `dpend fit`: reading a measured series and estimating the initial state
 !> and the joint damping, against independently known values:
 !> - the 40-digit reference table data/reference/release_horizontal.txt (mpmath) read
 !>   as measured angles: the fit recovers the initial state q(0) = q̇(0) = 0 (rows
@@ -32,7 +32,7 @@ module test_estimate
    implicit none
    private
    public :: collect_estimate
-   public :: gaussian   ! also test_fit_params (issue 26)
+   public :: gaussian   ! also test_fit_params
 
    real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -553,7 +553,7 @@ contains
       call expect_refused(dir//'/ok.csv', '--method leapfrog', 'method')
       call expect_refused(dir//'/ok.csv', '--fit-window 1e300', &
                           'invalid fit-window: 1e300 s is outside [-1e9, 1e9]')
-      ! issue 24: four samples 1e8 s apart, refused before any work
+      ! four samples 1e8 s apart, refused before any work
       call write_file(dir//'/far.csv', 't,theta1'//achar(10)//'0,0'//achar(10)//'1e8,0.1'// &
                       achar(10)//'2e8,0.1'//achar(10)//'3e8,0.1')
       call expect_refused(dir//'/far.csv', '', 'invalid fit work: up to ')
@@ -600,7 +600,7 @@ contains
       call execute_command_line('rm -rf '//dir)
    end subroutine test_command
 
-   !> The work bound (issue 24). rk4 with dt = 0.01 s over 11 samples 0.1 s apart: the
+   !> The work bound. rk4 with dt = 0.01 s over 11 samples 0.1 s apart: the
    !> probe measures exactly 100 steps per second, one integration over the window
    !> takes 100 steps plus one per sample interval (110), and the continuation from 3
    !> samples growing by max(1, k/4) has the 8 stages 3, 4, 5, 6, 7, 8, 10, 11
@@ -662,7 +662,7 @@ contains
       call check_true(error, work%work > max_fit_work, 'beyond max_fit_work')
    end subroutine test_work
 
-   !> CSV as spreadsheets write it (issue 24): a UTF-8 BOM, quoted names and fields,
+   !> CSV as spreadsheets write it: a UTF-8 BOM, quoted names and fields,
    !> ';' or tab separators, CRLF, are read into exactly the series of the plain comma
    !> file (abs 0), and say what they detected; a broken header is refused naming the
    !> real cause, with control characters escaped.

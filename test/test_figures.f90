@@ -1,4 +1,4 @@
-!> The figure scripts (scripts/plot_*.sh, issue 25) run on tiny files: every PNG they
+!> The figure scripts (scripts/plot_*.sh) run on tiny files: every PNG they
 !> name exists and is not empty, and their keys list only what is drawn. Each script
 !> appends the key entries it draws, `FIGURE<TAB>TITLE<TAB>N` with N the points of
 !> that series holding data, to $DPEND_PLOT_KEYS (scripts/style.gp,

@@ -1,4 +1,4 @@
-!> Files that explain themselves (issue 15): every dataset of a simulate and a
+!> Files that explain themselves: every dataset of a simulate and a
 !> sweep file (grid and list) carries `units` and `description`, string attributes
 !> are variable-length UTF-8 and the old fixed-length ones still read, and
 !> `dpend export` gives CSV with a header of names and units, lists the datasets

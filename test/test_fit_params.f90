@@ -1,9 +1,9 @@
-!> `dpend fit` of physical parameters (issue 26), against independently known values:
+!> `dpend fit` of physical parameters, against independently known values:
 !> - the central-difference sensitivities (a model without `parameter_rates` for the
 !>   parameter) against the models' analytic rates (the chain's damping, the elastic
 !>   pendulum's k and l0), and those of l2 and g against central differences of the
 !>   residuals;
-!> - the issue's case: series simulated in-process (dop853, rtol 1e-12, a run
+!> - the reference case: series simulated in-process (dop853, rtol 1e-12, a run
 !>   independent of the fit's) with m2 = 0.5 kg and l2 = 0.7 m: noise-free, the fit of
 !>   m2, l2 from the defaults recovers them to 1e-7; with seeded Gaussian noise
 !>   σ = 0.01 rad the 95 % intervals cover the truth and the scatter of the estimates
@@ -16,7 +16,7 @@
 !>   the elastic pendulum, a parameter with no effect (support phase without motion),
 !>   the lengths with g (only g/l matters);
 !> - CSV columns in degrees converted by π/180;
-!> - the issue's done-when fit: a two-link pendulum with bobs, d2, I2, g, c1, c2 from
+!> - the coverage fit: a two-link pendulum with bobs, d2, I2, g, c1, c2 from
 !>   angles (noise-free to 1e-7; the coverage of the 95 % intervals over seeded noisy
 !>   series, 50 with scripts/fit_coverage.sh);
 !> - a fitted length placing observed tip positions (Jacobian against differences of
@@ -45,7 +45,7 @@ module test_fit_params
    public :: collect_fit_params
 
    real(dp), parameter :: pi = acos(-1.0_dp)
-   !> the issue's pendulum: m = (1, 0.5) kg, l = (1, 0.7) m, released at rest from
+   !> the reference pendulum: m = (1, 0.5) kg, l = (1, 0.7) m, released at rest from
    !> theta = (1.0, 0.6) rad; 300 samples over 5.98 s
    real(dp), parameter :: true_m(2) = [1.0_dp, 0.5_dp], true_l(2) = [1.0_dp, 0.7_dp]
    real(dp), parameter :: theta0(2) = [1.0_dp, 0.6_dp]
@@ -211,7 +211,7 @@ contains
                   'largest difference '//real_str(worst, 2)//' of the largest entry')
    end subroutine test_generic_differences
 
-   !> The issue's case simulated in-process: noise-free, the fit of m2 and l2 from the
+   !> The reference case simulated in-process: noise-free, the fit of m2 and l2 from the
    !> defaults (1 kg, 1 m) recovers 0.5 kg and 0.7 m to 1e-7; with Gaussian noise
    !> σ = 0.01 rad on 6 series (fixed seed) the 95 % intervals of m2 and l2 contain the
    !> truth in at least 5 of 6, and the RMS of (estimate − truth)/SE over the 12
@@ -472,7 +472,7 @@ contains
       call check(error, v(2), 0.9_dp, 'com2 as given', rel=0.0_dp)
    end subroutine test_body_values
 
-   !> The issue's done-when fit: a two-link pendulum with bobs (general bodies, the
+   !> The coverage fit: a two-link pendulum with bobs (general bodies, the
    !> lab pendulum of data/bob_pendulum.nml: m = (1.2, 0.8) kg, l = (1, 0.7) m,
    !> d = (0.62, 0.55) m, I = (0.06, 0.02) kg m², g = 9.81 m/s², damping
    !> c = (0.05, 0.02) N m s), released at rest from q = (−0.6, −1.1) rad, 300 samples

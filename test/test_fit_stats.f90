@@ -1,6 +1,6 @@
 !> The statistics that a fit reports (`fit_series`: σ, the RMS, the degrees of freedom,
 !> the covariance and the standard errors) against an independent computation from
-!> the definitions (issue 29, mutation stage: a residual scale divided by the number
+!> the definitions (mutation stage: a residual scale divided by the number
 !> of observations instead of the degrees of freedom, or a covariance scaled by σ
 !> instead of σ², passed every other test):
 !>   σ² = Σ r²/(m − P),  RMS² = Σ r²/m,  C = σ² (JᵀJ)⁻¹,  SE_i = sqrt(C_ii),

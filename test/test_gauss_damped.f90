@@ -1,4 +1,4 @@
-!> The Gauss methods on damped and driven models (issue 13), where they collocate the
+!> The Gauss methods on damped and driven models, where they collocate the
 !> first-order field on (q, q̇) at the stage times t + c_i h, against independently
 !> known values:
 !> - measured orders of gauss4, gauss6, gauss8 on a damped chain on a moving support
@@ -27,7 +27,7 @@ module test_gauss_damped
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
-   use dpend_config, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_cli, only: real_str, to_str
    use testing, only: unittest_t, new_unittest, check, check_true
    implicit none

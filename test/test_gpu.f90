@@ -1,4 +1,4 @@
-!> The GPU path of `dpend sweep` without a GPU (issue 28, docs/gpu.md): the CUDA
+!> The GPU path of `dpend sweep` without a GPU (docs/gpu.md): the CUDA
 !> kernel's per-trajectory code (src/gpu/dpend_gpu_step.h) compiled for the host
 !> (src/gpu/dpend_gpu_host.c) against the Fortran batch kernel
 !> (dpend_pendulum_lanes), and the refusals of --device that need no library.
@@ -29,7 +29,8 @@ module test_gpu
    use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, rk4_lanes, &
       lane_trig_t, set_lane_trig, sincos_exact, batch_options_t, batch_result_t, &
       integrate_batch, flip_energy_bounds, potential_range, stop_both, stop_either, stop_end
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep
    use dpend_sweep, only: run_sweep, sweep_summary_t, sweep_setup_t, build_setup, compute_block
    use dpend_hdf5, only: h5file_t
    use dpend_sweep_gpu, only: gpu_fallback_blocks

@@ -1,4 +1,4 @@
-!> The dataset inventory (issue 29): every dataset that a kind of output file holds is
+!> The dataset inventory: every dataset that a kind of output file holds is
 !> named in `test/inventory/<kind>.txt` together with the tests that check its values
 !> against an independent computation. One test per kind produces the files of that
 !> kind in a scratch directory (every variant that writes different datasets), lists
@@ -21,7 +21,7 @@ module test_inventory
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t
    use dpend_cli, only: to_str
-   use dpend_study_config, only: study_config_t, validate_study_config
+   use dpend_study_settings, only: study_config_t, validate_study_config
    use dpend_study, only: study_result_t, run_study
    use dpend_study_command, only: write_study_h5
    use test_cli, only: run_command, scratch_dir, read_text

@@ -1,4 +1,4 @@
-!> Kapitza's pendulum (issue 13, docs/kapitza.md): the compound pendulum (one uniform
+!> Kapitza's pendulum (docs/kapitza.md): the compound pendulum (one uniform
 !> rod, N = 1) upside down on a vertically vibrating pin y_A = a cos ω t, against
 !> independently known values:
 !> - the transition curve of Mathieu's equation x'' + (δ + ε cos τ) x = 0 through
@@ -269,7 +269,7 @@ contains
 
    !> The threshold amplitude by bisection on [0.005, 0.02] m down to 1e-4
    !> relative, against Kapitza's a_c = sqrt(4 g L/3)/ω = 0.01 m (within 5 %, the
-   !> issue's bound) and the corrected a_c of docs/kapitza.md (Mathieu's ε⁴ term and
+   !> required bound) and the corrected a_c of docs/kapitza.md (Mathieu's ε⁴ term and
    !> the start angle: a_c (1 + 7Δ/16) (1 + φ0²/4), Δ = k g/ω², k = 3/(2L)).
    subroutine test_threshold(error)
       type(error_t), allocatable, intent(out) :: error

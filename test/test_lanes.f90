@@ -1,4 +1,4 @@
-!> Per-lane constants and the shared tangent step of the batch kernel (issue 27):
+!> Per-lane constants and the shared tangent step of the batch kernel:
 !> a lane with its own pendulum gives, bit for bit, what a kernel with that pendulum
 !> in every lane gives; the two-vector tangent step equals two one-vector steps bit
 !> for bit; the pixels of a sweep over (m2/m1, l2/l1) equal direct runs of the
@@ -11,7 +11,8 @@ module test_lanes
       rk4_tangent_fused_lanes, log_lanes, &
       lane_trig_t, set_lane_trig, batch_options_t, batch_result_t, integrate_batch
    use dpend_cli, only: arg_t, to_str
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep
    use dpend_sweep_setup, only: block_initial_conditions, block_parameters
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
@@ -156,7 +157,7 @@ contains
       end subroutine second_vector
    end subroutine test_tangent2
 
-   !> 200 steps of `rk4_tangent_fused_lanes` (issue 27: the tangent step fused into one
+   !> 200 steps of `rk4_tangent_fused_lanes` (the tangent step fused into one
    !> loop body, sin and cos carried from step to step) against `rk4_tangent_lanes`
    !> (one vector) and `rk4_tangent2_lanes` (two), which take exact sin and cos at
    !> every step start: state, vectors and energy equal to 1e-9 relative (they differ

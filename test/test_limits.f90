@@ -5,7 +5,7 @@ module test_limits
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
    use dpend_limits, only: in_range, check_count, check_range, max_steps, sci
-   use dpend_config, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_pendulum, only: pendulum_t
    use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok, stat_max_steps, stat_count_limit

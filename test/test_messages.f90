@@ -5,13 +5,15 @@ module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
    use dpend_cli, only: real_str, seconds_str, to_lower, to_str
-   use dpend_config, only: run_config_t
+   use dpend_run_settings, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
-   use dpend_sweep_config, only: sweep_help, sweep_config_t, sweep_defaults
+   use dpend_sweep_config, only: sweep_help
+   use dpend_sweep_settings, only: sweep_config_t, sweep_defaults
    use dpend_methods, only: method_names
    use test_cli, only: run_command, scratch_dir, read_text, args_of
-   use dpend_sweep_config, only: parse_sweep, horizon_text
+   use dpend_sweep_config, only: parse_sweep
+   use dpend_sweep_settings, only: horizon_text
    use dpend_chaos, only: indicator_verdict
    use dpend_export, only: export_columns
    use dpend_hdf5, only: h5file_t
@@ -293,7 +295,7 @@ contains
    end subroutine test_methods
 
    !> A divergence curve without an exponential phase (a regular orbit, a short run)
-   !> ends with a line that says why there is no slope, not 'slope: nan' (issue 23).
+   !> ends with a line that says why there is no slope, not 'slope: nan'.
    subroutine test_divergence_no_slope(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text
@@ -308,7 +310,7 @@ contains
       call execute_command_line('rm -rf '//dir)
    end subroutine test_divergence_no_slope
 
-   !> --quiet (every command, issue 25): simulate and lyapunov print only their last
+   !> --quiet (every command): simulate and lyapunov print only their last
    !> line, nothing on stderr; the file is written as without it.
    subroutine test_quiet(error)
       type(error_t), allocatable, intent(out) :: error
@@ -470,7 +472,7 @@ contains
       real(dp) :: x
       x = ieee_value(x, ieee_positive_inf)
    end function ieee_inf
-   !> The summary's largest relative energy error (issue 25) is the largest over
+   !> The summary's largest relative energy error is the largest over
    !> the file's energy dataset, |E(t_k) - E(0)| / energy_scale, recomputed here from
    !> /trajectory/energy and the root attribute energy_scale: the chapter's run with
    !> the README's settings (data/simulate.nml: rk4, dt = 1e-4 s, t = 10 s; about
@@ -533,7 +535,7 @@ contains
       end subroutine one
    end subroutine test_largest_error
 
-   !> The progress report's rate limiter with an injected clock (issue 25): without
+   !> The progress report's rate limiter with an injected clock: without
    !> a terminal, at most one line every 10 s and none in the first 10 s, whatever
    !> the rate of updates; none when quiet; a queued header printed once at the
    !> start. The lines go to a scratch file, counted and read back.
@@ -592,7 +594,7 @@ contains
       end subroutine run
    end subroutine test_progress_rate
 
-   !> The sweep's horizon and step in both units (issue 25), against the natural
+   !> The sweep's horizon and step in both units, against the natural
    !> unit computed here: sqrt(l1/g) = sqrt(1/9.8) s = 0.31943828... s, so 100 of it
    !> is 31.94 s (4 digits); in seconds, 30 s is 93.91 of it; sqrt(l0/g) of the
    !> elastic pendulum with l0 = 2 m.
@@ -629,7 +631,7 @@ contains
    end subroutine test_sweep_horizon
 
    !> `dpend indicators` ends its summary (before the line scripts read) with a
-   !> verdict (issue 25): chaotic on the horizontal release (lambda1 = 1.18 1/s:
+   !> verdict: chaotic on the horizontal release (lambda1 = 1.18 1/s:
    !> <Y> ~ lambda1 t/2 ~ 23 at 40 s), regular on the orbit 1 rad from hanging
    !> (docs/chaos.md: <Y> -> 2, SALI bounded), undecided on a run too short to
    !> tell; and the criterion's edges on given values.
@@ -680,7 +682,7 @@ contains
       end subroutine given
    end subroutine test_verdict
 
-   !> `export --csv` of a grid sweep's maps is long form (issue 25): a header
+   !> `export --csv` of a grid sweep's maps is long form: a header
    !> 'theta1 [rad],w2 [rad/s],t_flip [s],energy_error [1]', then one row per pixel,
    !> axis 1 fastest, each row's axis values and map values equal to the file's
    !> /sweep/axis1(j1), /sweep/axis2(j2) and map(j1, j2) read here; names given
@@ -758,7 +760,7 @@ contains
       end function same
    end subroutine test_export_long
 
-   !> Every command's --help names --quiet, and dpend --help every model (issue 25).
+   !> Every command's --help names --quiet, and dpend --help every model.
    subroutine test_help_quiet(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text

@@ -1,4 +1,4 @@
-!> The one strict scalar parser (dpend_parse, issue 24): valid tokens read back to
+!> The one strict scalar parser (dpend_parse): valid tokens read back to
 !> the bits of the compiler's own literals, every kind of invalid token refused with
 !> the offending character named and escaped; the escaping helper; the namelist
 !> pre-scan (check_groups) refusing '%', repeated keys, two forms of one quantity
@@ -9,7 +9,9 @@ module test_parse
    use dpend_error, only: error_t
    use dpend_parse, only: read_real, read_int, escaped, quoted
    use dpend_cli, only: parse_real, parse_int
-   use dpend_config, only: run_config_t, check_groups, apply_run_flag
+   use dpend_run_settings, only: run_config_t
+   use dpend_namelist, only: check_groups
+   use dpend_run_flags, only: apply_run_flag
    use dpend_strings, only: edit_distance, nearest_name, did_you_mean, canonical_name
    use dpend_cli, only: help_options, unknown_option_text
    use dpend_methods, only: new_integrator, method_names

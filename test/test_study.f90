@@ -8,9 +8,9 @@ module test_study
    use dpend_pendulum, only: pendulum_t, hamiltonian, dh_dq, dh_dp, hamiltonian_qp
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_hdf5, only: h5file_t, is_hdf5
-   use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
-                                 study_defaults, read_study_config, validate_study_config, &
-                                 study_namelist, apply_quick, balance_case
+   use dpend_study_settings, only: study_config_t, study_case_t, study_method_t, &
+      study_defaults, validate_study_config, study_namelist, apply_quick, balance_case
+   use dpend_study_config, only: read_study_config
    use dpend_study, only: study_result_t, run_study, step_grid, time_bins
    use dpend_study_command, only: write_study_h5, study_summary
    use dpend_study_verdicts, only: study_verdicts, verdicts_t
@@ -20,7 +20,7 @@ module test_study
    use dpend_method_registry, only: method_table, field_method_names, method_index
    use dpend_model, only: model_t
    use dpend_model_factory, only: model_spec, new_model
-   use dpend_study_config, only: case_model
+   use dpend_study_settings, only: case_model
    use dpend_limits, only: sci
    implicit none
    private

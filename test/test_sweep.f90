@@ -16,7 +16,8 @@ module test_sweep
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t, to_str
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep
    use dpend_sweep_setup, only: block_initial_conditions
    use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
       write_block
@@ -963,7 +964,7 @@ contains
       real(dp) :: tmax
       character(len=1) :: c
       dir = scratch_dir('sweepn3')
-      ! issue 27: the per-trajectory path (three links go through the chain lanes unless
+      ! the per-trajectory path (three links go through the chain lanes unless
       ! DPEND_SWEEP_KERNEL=trajectory; the lanes are compared in suite chain_lanes)
       call execute_command_line('DPEND_SWEEP_KERNEL=trajectory '//dpend_binary()// &
                                 ' sweep --quiet '//par//' --n 8 --min1 -3 --max1 3 --min2 -3 '// &
@@ -1563,7 +1564,7 @@ contains
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_agreement
 
-   !> The elastic pendulum in the sweep (issue 23 item 9): an indicator map over
+   !> The elastic pendulum in the sweep: an indicator map over
    !> (r, phi) computed in process; four pixels against separate runs of the same
    !> initial conditions (a model from the factory, rk4 of the registry stepped by
    !> hand, the energy error in the model's energy_scale, MEGNO from

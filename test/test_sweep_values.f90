@@ -1,6 +1,6 @@
 !> The values a two-link sweep writes (the vectorized batch kernel and the sweep's
-!> writer) against independent per-trajectory runs (issue 29, survivor 3: the two
-!> links' final angles written swapped): every pixel of a 4 × 4 grid (asymmetric
+!> writer) against independent per-trajectory runs (a mutant that survived the
+!> earlier suite: the two links' final angles written swapped): every pixel of a 4 × 4 grid (asymmetric
 !> links, w1 ≠ 0, run to t_end) is simulated again with `dpend simulate` (the double
 !> pendulum model, rk4 at the same step, every step sampled), and the file's
 !> `final/q1`, `final/q2`, `final/w1`, `final/w2` and `energy0` must equal the

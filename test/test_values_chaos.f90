@@ -1,4 +1,4 @@
-!> Values of the chaos files (issue 29, the dataset inventory): every dataset that
+!> Values of the chaos files (the dataset inventory): every dataset that
 !> `dpend lyapunov`, `indicators`, `divergence` and `poincare` write is compared
 !> with an independent computation made here, for two links and (where the command
 !> takes it) a chain of 3 links:

@@ -1,5 +1,5 @@
 !> Every dataset a `dpend fit` file holds, read back from the file and checked
-!> against an independent computation (issue 29, item 1: the dataset inventory,
+!> against an independent computation (the dataset inventory,
 !> test/inventory/fit.txt):
 !> - the data (t, q_data, xy_data) against the CSV rows read here (θ − π/2 for theta
 !>   columns);

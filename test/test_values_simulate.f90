@@ -1,5 +1,5 @@
 !> Every dataset of a simulate file checked against an independent computation written
-!> here (issue 29, the inventory test/inventory/simulate.txt). None of dpend's model
+!> here (the inventory test/inventory/simulate.txt). None of dpend's model
 !> code is used: the chain of N uniform rods on pin joints (two rods, three) and the
 !> elastic pendulum are written out from their definitions.
 !>

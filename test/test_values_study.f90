@@ -1,4 +1,4 @@
-!> Values of the study file (issue 29, the dataset inventory): a tiny study is run
+!> Values of the study file (the dataset inventory): a tiny study is run
 !> in process and written by the study command's writer, and every dataset of the
 !> file is compared with an independent computation made here:
 !>
@@ -25,8 +25,8 @@ module test_values_study
    use dpend_propagate, only: march_t
    use dpend_hdf5, only: h5file_t
    use dpend_cli, only: to_str
-   use dpend_study_config, only: study_config_t, study_defaults, validate_study_config, &
-                                 read_study_config
+   use dpend_study_settings, only: study_config_t, study_defaults, validate_study_config
+   use dpend_study_config, only: read_study_config
    use dpend_study, only: study_result_t, run_study
    use dpend_study_command, only: write_study_h5
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, tiny_study_config

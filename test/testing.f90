@@ -129,8 +129,8 @@ contains
    !> 0.2 s; one thread. A suite sets what it needs differently after the call.
    function tiny_study_config(t_small, t_horizontal) result(cfg)
       use dpend_kinds, only: pi
-      use dpend_study_config, only: study_config_t, study_case_t, study_method_t, &
-                                    study_defaults
+      use dpend_study_settings, only: study_config_t, study_case_t, study_method_t, &
+         study_defaults
       real(dp), intent(in) :: t_small       !! duration of the small swing's long runs [s]
       real(dp), intent(in) :: t_horizontal  !! duration of the horizontal release's [s]
       type(study_config_t) :: cfg

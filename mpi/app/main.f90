@@ -15,7 +15,8 @@ program dpend_mpi
    use dpend_cli, only: arg_t, get_arguments
    use dpend_version, only: version
    use dpend_output, only: check_output_path
-   use dpend_sweep_config, only: sweep_config_t, parse_sweep, sweep_help
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep, sweep_help
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
    use dpend_sweep_setup, only: summary_text

@@ -31,7 +31,7 @@ module dpend_mpi_sweep
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_pendulum_lanes, only: batch_result_t, st_cannot_flip
-   use dpend_sweep_config, only: sweep_config_t
+   use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range
    use dpend_sweep_engine, only: compute_block
    use dpend_sweep_resume, only: open_output

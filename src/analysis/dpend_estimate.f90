@@ -1,5 +1,5 @@
 !> Estimating the initial state and, on request, the joint damping of a chain from a
-!> measured series of angles (issue 13, `dpend fit`): nonlinear least squares by
+!> measured series of angles (`dpend fit`): nonlinear least squares by
 !> Levenberg–Marquardt with the sensitivities from the variational equations.
 !>
 !> Parameters p = (q(t₁), q̇(t₁)[, c]) (2N or 3N): the state at the first sample time t₁
@@ -40,7 +40,7 @@
 !> the time after T until the first sample where some angle differs from the data by
 !> more than the tolerance.
 !>
-!> Bounded work (issue 24). `estimate_fit_work` bounds, before any fitting, what
+!> Bounded work. `estimate_fit_work` bounds, before any fitting, what
 !> `fit_series` can do: the integration steps over each span (the steps per second of
 !> model time measured by a short probe integration of the first guess, at most
 !> `probe_steps` steps, extrapolated to the span, plus one step per sample for landing
@@ -98,7 +98,7 @@ module dpend_estimate
       character(len=32), allocatable :: fit_names(:)
       integer, allocatable :: fit_counts(:)
       real(dp), allocatable :: theta0(:), theta_lower(:), theta_upper(:)
-      !> per fitted component (issue 26): its parameter's name, which of its `comp_count`
+      !> per fitted component: its parameter's name, which of its `comp_count`
       !> components it is, its label ('c1', 'm2', 'g'), the scale of its
       !> finite-difference step, and whether its sensitivity comes from central
       !> differences of the field (`comp_generic`: the model gives no `parameter_rates`)
@@ -134,7 +134,7 @@ module dpend_estimate
       integer :: starts = 1
       !> most accepted steps of one adaptive integration between two samples
       integer(i8) :: max_steps = default_max_steps
-      !> the links are point masses at their ends (`--body point`, issue 26): a fitted
+      !> the links are point masses at their ends (`--body point`): a fitted
       !> length l_i moves the centre of mass com_i = l_i with it
       logical :: com_at_tip = .false.
       !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
@@ -456,7 +456,7 @@ contains
       end subroutine add_length_columns
    end subroutine evaluate_fit
 
-   !> The link lengths that place observed positions (issue 26): `prob%l`, with the
+   !> The link lengths that place observed positions: `prob%l`, with the
    !> fitted components of `l` at their values in p (kept in range, as the model
    !> takes them); lc(i) the fitted component that is l_i (0: fixed). No positions:
    !> empty.
@@ -1661,7 +1661,7 @@ contains
       if (allocated(prob%theta0)) n_fitted = size(prob%theta0)
    end function n_fitted
 
-   !> Fit the model parameters `names` of `prob%spec` too (issue 26): each is a
+   !> Fit the model parameters `names` of `prob%spec` too: each is a
    !> parameter of the model's description (all its components: 'damping', 'm') or one
    !> component of a parameter of several, the name followed by its number ('m2', 'l1',
    !> 'support_amplitude1'); not a count ('links'). Their sensitivities: the model's

@@ -34,7 +34,7 @@ module dpend_tangent
    implicit none
    private
    public :: tangent_t, internal_jacobian
-   ! issue 27 (chain lanes' indicators): the tangent step of dpend_chain_lanes
+   ! the chain lanes' indicators: the tangent step of dpend_chain_lanes
    public :: mat_mul
 
    !> Tangent vectors carried along a trajectory, and the substep control.

@@ -10,10 +10,11 @@ module dpend_chaos
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure, error_bad_input, error_run_failed
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
-   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, run_flags_help, &
-                           namelist_error
-   use dpend_pendulum, only: finite_positive, energy_limit
+   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_namelist, only: read_run_config, namelist_error
+   use dpend_run_flags, only: apply_run_flag, run_flags_help
+   use dpend_pendulum, only: energy_limit
+   use dpend_limits, only: finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_events, only: angle_crossing_t
@@ -572,7 +573,7 @@ contains
       case default
          call run_poincare(cfg, ch, integ, out%temp, summary, error, failed)
       end select
-      ! issue 26: the summary's first line names a body other than the uniform rod
+      ! the summary's first line names a body other than the uniform rod
       if (len(summary) > 0 .and. len(cfg%model%body_description()) > 0) &
          summary = 'dpend '//ch%command//': links: '//cfg%model%body_description() &
                    //new_line('a')//summary
@@ -957,7 +958,7 @@ contains
          call cfg%model%parameter(j, name, value, units)
          call h5%writeattr('/', name, value)
       end do
-      ! issue 26: links other than uniform rods say so, with units
+      ! links other than uniform rods say so, with units
       if (len(cfg%model%body_description()) > 0) &
          call h5%writeattr('/', 'body', cfg%model%body_description())
       call h5%writeattr('/', 'method', integ%name())
@@ -1020,7 +1021,7 @@ contains
    end function pct
 
    !> Compact text of a number for summaries: up to 6 significant digits.
-   !> The verdict of `dpend indicators` (issue 25; docs/chaos.md, "Verdict"):
+   !> The verdict of `dpend indicators` (docs/chaos.md, "Verdict"):
    !> 'verdict: chaotic' when MEGNO's mean <Y> > 4 (twice the regular limit 2; it
    !> grows as lambda1 t/2) and SALI < 1e-4 (it falls as exp(-(lambda1 - lambda2) t));
    !> 'verdict: regular' when <Y> <= 2.1 (2 with shear, 0 without), SALI >= 1e-4

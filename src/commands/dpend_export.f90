@@ -10,7 +10,7 @@ module dpend_export
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_hdf5, only: h5file_t
-   use dpend_config, only: check_regular_file
+   use dpend_output, only: check_regular_file
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory
    use dpend_cli, only: to_str
@@ -62,7 +62,7 @@ contains
       if (allocated(error)) return
       call resolve_all(h5, split_commas(names), paths, error)
       if (.not. allocated(error) .and. as_csv) then
-         ! a sweep's maps (n2, n1) in long form: one row per pixel (issue 25)
+         ! a sweep's maps (n2, n1) in long form: one row per pixel
          if (grid_maps(h5, paths)) then
             call export_long(h5, filename, paths, unit, error)
             call h5%close()
@@ -156,7 +156,7 @@ contains
       grid_maps = .true.
    end function grid_maps
 
-   !> A sweep's maps `paths` as CSV in long form (issue 25): a header of the axes,
+   !> A sweep's maps `paths` as CSV in long form: a header of the axes,
    !> named by the file's /sweep attributes axis1, axis2 ('theta1 [rad]'), and one
    !> column per map ('t_flip [s]'), then one row per pixel, axis 1 fastest. The
    !> axis names are checked (letters, digits, '_', '/'; at most 32 characters), and

@@ -1,4 +1,4 @@
-!> `dpend fit` (issue 13): estimate the initial state (and the joint damping) of the
+!> `dpend fit`: estimate the initial state (and the joint damping) of the
 !> pendulum or chain from a measured series of angles or of the positions of the link
 !> ends (a CSV file, `dpend_csv`), by
 !> Levenberg–Marquardt with the sensitivities of the variational equations
@@ -11,8 +11,9 @@ module dpend_fit_command
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, pad, printable
-   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, run_flags_help
+   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_namelist, only: read_run_config
+   use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
@@ -773,7 +774,7 @@ contains
                call h5%writeattr('/', pname, pvalue)
             end block
          end do
-         ! issue 26: links other than uniform rods say so, with units
+         ! links other than uniform rods say so, with units
          if (len(fc%run%model%body_description()) > 0) &
             call h5%writeattr('/', 'body', fc%run%model%body_description())
          call h5%writeattr('/', 'fit_parameters', joined_names(fc%fit_names))

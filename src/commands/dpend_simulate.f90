@@ -4,8 +4,9 @@ module dpend_simulate
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, option_outcome
-   use dpend_config, only: run_config_t, read_run_config, apply_run_flag, &
-                           validate_run_config, run_flags_help
+   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_namelist, only: read_run_config
+   use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: model_t, max_dof
    use dpend_work, only: needs_work, work_model, split_work, is_work_model
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -130,7 +131,7 @@ contains
       call check_simulate_resources(cfg, error)
    end subroutine parse_simulate
 
-   !> Refuse save_every with output_dt (issue 25): two forms of the output sampling,
+   !> Refuse save_every with output_dt: two forms of the output sampling,
    !> of which output_dt > 0 would win whatever their order. Each may come from the
    !> command line or the namelist file (`run_config_t%nml_given`).
    subroutine check_sampling_forms(cfg, save_every_flag, output_dt_flag, error)
@@ -223,7 +224,7 @@ contains
                    ' largest '//real_str(e_max, 2)//' (t = '//real_str(t_max, 4)// &
                    ' s), final '//real_str(e_fin, 2)//', '// &
                    seconds_str(wall_seconds() - t0)//' s'
-         ! issue 26: a body other than the uniform rod
+         ! a body other than the uniform rod
          if (len(cfg%model%body_description()) > 0) &
             summary = summary//'; links: '//cfg%model%body_description()
       end if
@@ -243,7 +244,7 @@ contains
    !> The relative energy error |E(t) − E(0)| / energy_scale, or for a damped or
    !> driven run the balance error |E(t) − E(0) + W_friction − W_support| /
    !> energy_scale, over the kept samples: its largest value `e_max` (first at
-   !> `t_max` [s]) and its final one `e_fin` (issue 25: the summary quotes both).
+   !> `t_max` [s]) and its final one `e_fin` (the summary quotes both).
    subroutine largest_error(model, traj, e_max, t_max, e_fin)
       class(model_t), intent(in) :: model         !! the system (without its works)
       type(trajectory_t), intent(in) :: traj      !! the samples (n >= 1)
@@ -267,7 +268,7 @@ contains
    end subroutine largest_error
 
    !> A time in the natural unit: '31.94 sqrt(l1/g)' (the elastic pendulum:
-   !> sqrt(l0/g)), for the lines that quote seconds (issue 25).
+   !> sqrt(l0/g)), for the lines that quote seconds.
    function natural_text(cfg, t) result(s)
       type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
       real(dp), intent(in) :: t              !! time [s]
@@ -276,25 +277,13 @@ contains
       s = real_str(t/natural_time_of(cfg, name), 4)//' '//name
    end function natural_text
 
-   !> The natural time unit [s]: sqrt(l1/g), or sqrt(l0/g) for a model with a
-   !> parameter l0 (the elastic pendulum); `name` says which.
+   !> The natural time unit [s] of the run's model (`time_unit`: sqrt(l1/g) for the
+   !> pendulum, sqrt(l0/g) for the elastic pendulum); `name` says which.
    real(dp) function natural_time_of(cfg, name) result(tn)
       type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
       character(len=:), allocatable, intent(out), optional :: name  !! 'sqrt(l1/g)' ...
-      character(len=:), allocatable :: pname, units, which
-      real(dp) :: x, l, g
-      integer :: i
-      l = cfg%l(1); g = cfg%g
-      which = 'sqrt(l1/g)'
-      do i = 1, cfg%model%n_parameters()
-         call cfg%model%parameter(i, pname, x, units)
-         if (pname == 'l0') then
-            l = x; which = 'sqrt(l0/g)'
-         else if (pname == 'g') then
-            g = x
-         end if
-      end do
-      tn = sqrt(l/g)
+      character(len=:), allocatable :: which
+      call cfg%model%time_unit(tn, which)
       if (present(name)) name = which
    end function natural_time_of
 
@@ -343,7 +332,7 @@ contains
          call append(traj, integ, model, t, y)
          call integ%clear_step()
          call march%start(integ, t, cfg%t_end, h)
-         ! progress in per mille of t_end (issue 25): a bar after 1 s on a terminal,
+         ! progress in per mille of t_end: a bar after 1 s on a terminal,
          ! else a line at most every 10 s (none for a run shorter than that)
          call bar%start('dpend simulate', 1000_i8, 0_i8, .false., what='')
          if (bar%tty) bar%t_last = bar%t_start + 0.8_dp
@@ -498,7 +487,7 @@ contains
                call h5%writeattr('/', name, value)
             end block
          end do
-         ! issue 26: links other than uniform rods say so, with units
+         ! links other than uniform rods say so, with units
          if (len(model%body_description()) > 0) &
             call h5%writeattr('/', 'body', model%body_description())
       end associate

@@ -15,8 +15,8 @@ module dpend_study_command
                            find_script, &
                            directory_of, run_program, io_failure_reason, path_kind, &
                            path_missing, base_name, make_temp_file, remove_file, echo_to_stderr
-   use dpend_study_config, only: study_config_t, case_index, study_namelist, balance_case
-   use dpend_study_config, only: study_model_name, default_model_study, case_model
+   use dpend_study_settings, only: study_config_t, case_index, study_namelist, balance_case
+   use dpend_study_settings, only: study_model_name, default_model_study, case_model
    use dpend_model, only: model_t
    use dpend_integrator, only: status_message
    use dpend_study, only: study_result_t, sweep_t, run_study, mode_step, mode_tol, reference_t
@@ -699,7 +699,7 @@ contains
             call model%parameter(k, name, value, units)
             call h5%writeattr('/config', name, value)
          end do
-         ! issue 26: links other than uniform rods say so, with units
+         ! links other than uniform rods say so, with units
          if (len(model%body_description()) > 0) &
             call h5%writeattr('/config', 'body', model%body_description())
       end subroutine write_model_parameters

@@ -26,6 +26,7 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
+   public :: finite_positive
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, sci, bytes_text
 
@@ -86,9 +87,9 @@ module dpend_limits
    real(dp), parameter :: max_atol = 1.0_dp
    !> Tao's binding constant ω at most 1e9 1/s: ω h stays finite for every step.
    real(dp), parameter :: max_omega = 1e9_dp
-   !> Largest joint damping coefficient c_i [N m s] (issue 13).
+   !> Largest joint damping coefficient c_i [N m s].
    real(dp), parameter :: max_damping = 1e6_dp
-   !> Largest support amplitude |a_x|, |a_y| [m] and frequency ω [rad/s] (issue 13).
+   !> Largest support amplitude |a_x|, |a_y| [m] and frequency ω [rad/s].
    real(dp), parameter :: max_support_amplitude = 1e6_dp
    real(dp), parameter :: max_support_frequency = 1e6_dp
 
@@ -117,7 +118,7 @@ module dpend_limits
    !> divergence: delta0 at least 1e-13 max(1, |state|): a smaller displacement is
    !> lost in the rounding of the state (the two trajectories would be equal).
    real(dp), parameter :: min_delta0_relative = 1e-13_dp
-   !> At most 1e10 step-equivalents in one `dpend fit` (issue 24): the integration
+   !> At most 1e10 step-equivalents in one `dpend fit`: the integration
    !> steps of all its integrations, a step with the P sensitivity columns counted
    !> 1 + P times. Measured at about 1e6 step-equivalents per second (release build,
    !> one core, dop853, 2 links), so a fit at the limit runs about 3 hours; the data
@@ -229,4 +230,13 @@ contains
       end do
       s = sci(x, 3)//' '//trim(units(i))
    end function bytes_text
+
+   !> x is finite and > 0, tested without an ordered comparison on NaN (which
+   !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
+   elemental logical function finite_positive(x)
+      real(dp), intent(in) :: x  !! value to test
+      finite_positive = .false.
+      if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
+   end function finite_positive
+
 end module dpend_limits

@@ -1,4 +1,4 @@
-!> The one strict scalar parser of dpend (issue 24): every number a user gives
+!> The one strict scalar parser of dpend: every number a user gives
 !> (flags, comma lists, namelist files, CSV fields) is read here. The whole token
 !> must be a number of the grammar
 !>

@@ -2,7 +2,7 @@
 !> trajectories per second, time left) when stderr is a terminal, otherwise (logs,
 !> CI) a plain line at most every `interval` seconds (10 s), the first one only
 !> after `interval` (a short run writes none), nothing when quiet. This is the one
-!> mechanism of every long command (sweep, study, simulate, fit; issue 25); the
+!> mechanism of every long command (sweep, study, simulate, fit); the
 !> clock can be injected (`update`'s `now`) to test the rate. `--quiet` of any
 !> command silences every report of the process (`silence_progress`). A command may
 !> queue one line (`progress_header`: the horizon of a sweep) that the next report

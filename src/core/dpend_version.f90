@@ -11,7 +11,7 @@ module dpend_version
 contains
 
    !> '' when this binary was built for a target ISA (`-march=...` other than the
-   !> baseline x86-64): the sweep kernel vectorizes with any flags (issue 16), but
+   !> baseline x86-64): the sweep kernel vectorizes with any flags, but
    !> the baseline has only 2-wide SSE2 vectors and no FMA; otherwise one line
    !> saying so and how to build the fast binary. Read from `compiler_options()`.
    function slow_build_note() result(note)

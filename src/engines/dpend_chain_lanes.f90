@@ -1,4 +1,4 @@
-!> The chain lanes (issue 27): the sweep's flip maps of the conservative chain of
+!> The chain lanes: the sweep's flip maps of the conservative chain of
 !> N = 3 … `max_lane_links` links (`dpend_chain`: uniform rods or general bodies),
 !> `lane_width` trajectories at a time in structure-of-arrays form, every loop over the
 !> lanes innermost so that gfortran vectorizes it. Each lane assembles and solves its

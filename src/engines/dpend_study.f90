@@ -24,7 +24,7 @@
 !>
 !> A case of N links runs the double pendulum for N = 2 and the N-link chain
 !> otherwise (`case_model`), through the model interface; states have 2N values.
-!> A damped or driven case (a balance case, issue 13) is the chain with its damping
+!> A damped or driven case (a balance case) is the chain with its damping
 !> and moving support; its sweeps integrate it with its work integrals (dpend_work)
 !> and monitor the energy balance E(t) − E(0) + W_friction − W_support in place of
 !> the energy error (same fields, same bins and fits); its methods are not
@@ -66,7 +66,7 @@ module dpend_study
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock
    use dpend_progress, only: progress_silenced, progress_t
-   use dpend_study_config, only: study_config_t, case_index, case_model, balance_case
+   use dpend_study_settings, only: study_config_t, case_index, case_model, balance_case
    use dpend_work, only: needs_work, work_model, is_work_model
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
@@ -279,7 +279,7 @@ contains
       integer :: j
       logical :: show
       type(progress_t) :: bar
-      show = .not. progress_silenced()   ! --quiet (issue 25)
+      show = .not. progress_silenced()   ! --quiet
       if (present(quiet)) show = .not. quiet
       start = wall_clock()
       res%threads = 1
@@ -293,7 +293,7 @@ contains
             res%threads, ' threads'
          flush (error_unit)
       end if
-      ! the one progress report (issue 25): a bar on a terminal, else a line at most
+      ! the one progress report: a bar on a terminal, else a line at most
       ! every 10 s
       call bar%start('dpend study', int(size(jobs), i8), 0_i8, .not. show, what='runs')
       !$omp parallel do schedule(dynamic, 1) default(shared) private(j)

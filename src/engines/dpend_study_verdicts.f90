@@ -7,7 +7,8 @@ module dpend_study_verdicts
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_kinds, only: dp, i8
    use dpend_fit, only: fit_t
-   use dpend_study_config, only: study_config_t, case_index, balance_case, study_model_name
+   use dpend_study_settings, only: study_config_t, case_index, balance_case, &
+      study_model_name
    use dpend_study, only: study_result_t, sweep_t, mode_step
    use dpend_cli, only: to_str
    implicit none

@@ -9,7 +9,7 @@ module dpend_sweep_compare
    use dpend_model, only: max_dof
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_config, only: check_regular_file
+   use dpend_output, only: check_regular_file
    use dpend_pendulum_lanes, only: st_cannot_flip, st_flipped
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_cli, only: to_str, real_str
@@ -491,7 +491,7 @@ contains
    !> The first difference between two sweeps' configurations (their /sweep config
    !> attributes): of the keys `keys`, then of the bodies, the model and every
    !> link's centre of mass and moment of inertia (com1 .., inertia1 .., written for
-   !> links other than uniform rods, issue 26). As "KEY = VA in 'FILE_A', VB in
+   !> links other than uniform rods). As "KEY = VA in 'FILE_A', VB in
    !> 'FILE_B'" ('(none)' for a key one file lacks), or '' if they agree. Shared by
    !> the comparison and the agreement.
    function config_difference(cfg_a, cfg_b, file_a, file_b, keys) result(what)

@@ -10,7 +10,7 @@ module dpend_sweep_engine
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, run_failure
    use dpend_pendulum_lanes, only: batch_result_t, integrate_batch, st_cannot_flip
-   use dpend_sweep_config, only: sweep_config_t, pixel_model
+   use dpend_sweep_settings, only: sweep_config_t, pixel_model
    use dpend_pendulum, only: pendulum_t
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories
@@ -72,12 +72,12 @@ contains
       real(dp), allocatable :: y0(:, :)
       class(integrator_t), allocatable :: integ
       call block_initial_conditions(setup, b, y0)
-      if (setup%cfg%device == 'gpu') then   ! issue 28: the flip map on the GPU
+      if (setup%cfg%device == 'gpu') then   ! the flip map on the GPU
          call gpu_integrate_block(setup%cfg%run%pendulum(), setup%opt, &
                                   int(setup%cfg%gpu_repack, i8), y0, res)
       else if (parameter_axes(setup)) then
          call compute_parameter_block(setup, b, y0, res)
-      else if (setup%chain_lanes) then   ! issue 27: chains of 3 to 8 links
+      else if (setup%chain_lanes) then   ! chains of 3 to 8 links
          call integrate_chain_lanes(setup%cfg%run%model, setup%opt, y0, res)
       else if (setup%per_trajectory) then
          allocate (integ, source=setup%integ)
@@ -88,8 +88,8 @@ contains
    end subroutine compute_block
 
    !> Integrate block b of a sweep over parameters. Two links: the whole block by the
-   !> batch kernel, every pixel with its own constants in its lane (issue 27:
-   !> `integrate_batch`'s `pars`), so that the lanes fill whatever the axes. Other
+   !> batch kernel, every pixel with its own constants in its lane
+   !> (`integrate_batch`'s `pars`), so that the lanes fill whatever the axes. Other
    !> models: the pixels in groups of equal parameters (`parameter_groups`), each
    !> group by the per-trajectory path with its own model. The lanes never mix, so a
    !> pixel's results do not depend on its block or thread, and equal those of a

@@ -1,4 +1,4 @@
-!> The GPU path of `dpend sweep` (issue 28, docs/gpu.md): the two-link flip map of
+!> The GPU path of `dpend sweep` (docs/gpu.md): the two-link flip map of
 !> a block on an NVIDIA GPU through the optional library libdpend_gpu.so
 !> (gpu/dpend_sweep_kernel.cu, built by scripts/build_gpu.sh), loaded at run time
 !> with dlopen by the C glue (src/io/dpend_posix.c): dpend never links CUDA.
@@ -17,8 +17,13 @@ module dpend_sweep_gpu
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, batch_coef_t, batch_coef, &
       flip_energy_bounds, potential_range, integrate_batch, stop_end
    use dpend_os, only: executable_path
+   use dpend_error, only: error_t, fatal_error
+   use dpend_cli, only: to_str, printable
+   use dpend_strings, only: to_lower
+   use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter
    implicit none
    private
+   public :: resolve_device
    public :: gpu_open, gpu_library_path, gpu_integrate_block, gpu_kernel_seconds
    public :: gpu_fallback_blocks
    public :: gpu_no_library, gpu_no_device, gpu_ready
@@ -215,4 +220,53 @@ contains
          s = s//buf(i)
       end do
    end function c_text
+   !> Check --device and --gpu-repack and resolve 'auto' (docs/gpu.md): the
+   !> GPU computes the two-link flip map over initial values; 'gpu' is refused for
+   !> anything else, without the library or without a GPU (saying which); 'auto'
+   !> takes the GPU when it can, else the CPU, with a note. With the GPU and no
+   !> block given, a block is 2^20 initial conditions (a kernel launch).
+   subroutine resolve_device(cfg, error)
+      type(sweep_config_t), intent(inout) :: cfg        !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: why, name
+      integer :: state
+      cfg%device = to_lower(cfg%device)
+      if (cfg%device /= 'cpu' .and. cfg%device /= 'gpu' .and. cfg%device /= 'auto') then
+         call fatal_error(error, "invalid device: '"//printable(cfg%device)// &
+                          "' (accepted: cpu, gpu, auto)")
+         return
+      else if (cfg%gpu_repack < 0) then
+         call fatal_error(error, 'invalid gpu_repack: '//to_str(cfg%gpu_repack)// &
+                          ' must be an integer from 0 (one launch) to '//to_str(huge(1)))
+         return
+      end if
+      if (cfg%device == 'cpu') return
+      why = ''
+      if (cfg%run%links /= 2 .or. .not. flip_model(cfg)) then
+         why = 'the GPU computes the two-link pendulum only'
+      else if (cfg%lyapunov .or. cfg%indicator /= 'flip') then
+         why = 'the GPU computes flip maps only (--lyapunov and --indicator run on the CPU)'
+      else if (grid_mode(cfg)) then
+         if (axis_parameter(cfg%axis1) > 0 .or. axis_parameter(cfg%axis2) > 0) &
+            why = 'the GPU computes maps over initial values only (parameter axes run on ' &
+                  //'the CPU)'
+      end if
+      if (len(why) == 0) then
+         call gpu_open(state, name, why)
+         if (state == gpu_ready) then
+            cfg%device = 'gpu'
+            cfg%device_name = name
+            if (.not. cfg%block_given) cfg%block = 1048576
+            cfg%device_note = "computing on the GPU '"//name//"'"
+            return
+         end if
+      end if
+      if (cfg%device == 'gpu') then
+         call fatal_error(error, 'invalid device: gpu: '//why//' (--device cpu or auto)')
+      else
+         cfg%device = 'cpu'
+         cfg%device_note = '--device auto: '//why//'; computing on the CPU'
+      end if
+   end subroutine resolve_device
+
 end module dpend_sweep_gpu

@@ -8,7 +8,7 @@ module dpend_sweep_layout
    use dpend_output, only: output_t
    use dpend_os, only: remove_file
    use dpend_pendulum_lanes, only: batch_result_t, potential_range, flip_energy_bounds
-   use dpend_sweep_config, only: stop_rule, axis_parameter
+   use dpend_sweep_settings, only: stop_rule, axis_parameter
    use dpend_trajectory_batch, only: link_flip_bounds
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
@@ -265,7 +265,7 @@ contains
             call h5%writeattr('/sweep', 'l2', p%l2)
          end if
          call h5%writeattr('/sweep', 'links', setup%links)
-         ! issue 26: links other than uniform rods say so, with d_i and I_i and units
+         ! links other than uniform rods say so, with d_i and I_i and units
          if (len(c%run%model%body_description()) > 0) &
             call h5%writeattr('/sweep', 'body', c%run%model%body_description())
          call h5%writeattr('/sweep', 'm', c%run%m(:setup%links))
@@ -286,7 +286,7 @@ contains
             call h5%writeattr('/sweep', 'axis1', c%axis1)
             call h5%writeattr('/sweep', 'axis2', c%axis2)
          end if
-         ! issue 28: the device of the run that created (or completed) the file
+         ! the device of the run that created (or completed) the file
          if (c%device == 'gpu') then
             if (gpu_fallback_blocks() > 0) then
                call h5%writeattr('/sweep', 'device', 'gpu: '//c%device_name//'; '// &

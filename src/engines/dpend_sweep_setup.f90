@@ -7,9 +7,9 @@ module dpend_sweep_setup
    use dpend_limits, only: sci, max_sweep_points, max_angle, max_angular_velocity
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_config, only: check_regular_file
+   use dpend_output, only: check_regular_file
    use dpend_pendulum_lanes, only: batch_options_t
-   use dpend_sweep_config, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
+   use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
       natural_time
    use dpend_integrator, only: integrator_t
@@ -56,7 +56,7 @@ module dpend_sweep_setup
       !> has them). The MPI sweep turns them off: parallel HDF5 writes filtered
       !> datasets only collectively, and its blocks arrive in any order.
       logical :: checksum = .true.
-      ! issue 27 (chain lanes): flip maps of 3 to 8 links through dpend_chain_lanes
+      ! the chain lanes: flip maps of 3 to 8 links through dpend_chain_lanes
       logical :: chain_lanes = .false.  !! the blocks go through the chain lanes
    end type sweep_setup_t
 
@@ -134,7 +134,7 @@ contains
          setup%block = min(cfg%block, setup%n)
          setup%nblocks = (setup%n + setup%block - 1)/setup%block
       end if
-      ! issue 27: the chain lanes (not for parameter maps; DPEND_SWEEP_KERNEL checked)
+      ! the chain lanes (not for parameter maps; DPEND_SWEEP_KERNEL checked)
       call chain_kernel_choice(cfg%run%model, setup%opt, setup%chain_lanes, error)
       if (allocated(error)) return
       setup%chain_lanes = setup%chain_lanes .and. .not. parameter_axes(setup)
@@ -407,7 +407,7 @@ contains
                 'method = '//c%run%method//nl//'kernel = per trajectory'//nl// &
                 'model = '//c%run%spec%model_name()//nl//model_lines()// &
                 'q = '//rl(c%run%q0())//nl//'w = '//rl(c%run%w0())//nl
-         else if (setup%links == 2) then   ! as before issue 12: older files resume
+         else if (setup%links == 2) then   ! two-link files of every version resume
             s = 'program = dpend '//version//nl//'command = sweep'//nl// &
                 'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
                 'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
@@ -423,7 +423,7 @@ contains
                 nl//'g = '//r(c%run%g)//nl//'q = '//rl(c%run%q0())//nl// &
                 'w = '//rl(c%run%w0())//nl
          end if
-         if (setup%flips) s = s//body_lines()   ! issue 26: '' for uniform rods
+         if (setup%flips) s = s//body_lines()   ! '' for uniform rods
          s = s//'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
@@ -445,8 +445,8 @@ contains
          end if
       end associate
    contains
-      !> 'com1 = …' and 'inertia1 = …' lines of links other than uniform rods (issue 26:
-      !> a sweep of another body never resumes one of rods); none for rods.
+      !> 'com1 = …' and 'inertia1 = …' lines of links other than uniform rods
+      !> (a sweep of another body never resumes one of rods); none for rods.
       function body_lines() result(t)
          character(len=:), allocatable :: t, pname, units
          real(dp) :: x

@@ -1,4 +1,4 @@
-!> The sweep's per-trajectory path (issue 12): initial conditions of any model with
+!> The sweep's per-trajectory path: initial conditions of any model with
 !> n degrees of freedom integrated one at a time by a fixed-step method of the
 !> registry (the sweep uses rk4), each reduced to what the batch kernel
 !> (`dpend_pendulum_lanes`, the double pendulum only) computes: the first flip of
@@ -38,7 +38,7 @@ module dpend_trajectory_batch
    implicit none
    private
    public :: integrate_trajectories, link_flip_bounds
-   ! issue 27: shared with the chain lanes (dpend_chain_lanes)
+   ! shared with the chain lanes (dpend_chain_lanes)
    public :: bound_margin, first_flips
 
    real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi

@@ -1,4 +1,4 @@
-!> Reading a measured series for `dpend fit` (issue 13): a CSV text file with a
+!> Reading a measured series for `dpend fit`: a CSV text file with a
 !> header line of column names, then one row of numbers per sample.
 !>
 !> Format (docs in README, example data/fit_example.csv):

@@ -85,16 +85,21 @@ module dpend_hdf5
       generic :: write => write_real, write_int, write_i64, write_str
       procedure, private :: slab_real, slab_int
       generic :: write_slab => slab_real, slab_int
-      procedure, private :: slabread_r1, slabread_r2, slabread_i1, slabread_i2
-      generic :: read_slab => slabread_r1, slabread_r2, slabread_i1, slabread_i2
-      procedure, private :: read_r0, read_r1, read_r2, read_r3
-      procedure, private :: read_i0, read_i1, read_i2, read_i64_1, read_str
-      generic :: read => read_r0, read_r1, read_r2, read_r3, &
-         read_i0, read_i1, read_i2, read_i64_1, read_str
+      procedure, private :: slabread_real_rank1, slabread_real_rank2, &
+         slabread_int_rank1, slabread_int_rank2
+      generic :: read_slab => slabread_real_rank1, slabread_real_rank2, &
+         slabread_int_rank1, slabread_int_rank2
+      procedure, private :: read_real_rank0, read_real_rank1, read_real_rank2, read_real_rank3
+      procedure, private :: read_int_rank0, read_int_rank1, read_int_rank2, read_i64_rank1, &
+         read_str
+      generic :: read => read_real_rank0, read_real_rank1, read_real_rank2, read_real_rank3, &
+         read_int_rank0, read_int_rank1, read_int_rank2, read_i64_rank1, read_str
       procedure, private :: writeattr_real, writeattr_int, writeattr_i64, writeattr_str
       generic :: writeattr => writeattr_real, writeattr_int, writeattr_i64, writeattr_str
-      procedure, private :: readattr_r0, readattr_r1, readattr_i0, readattr_str
-      generic :: readattr => readattr_r0, readattr_r1, readattr_i0, readattr_str
+      procedure, private :: readattr_real_rank0, readattr_real_rank1, readattr_int_rank0, &
+         readattr_str
+      generic :: readattr => readattr_real_rank0, readattr_real_rank1, readattr_int_rank0, &
+         readattr_str
       final :: file_finalize
    end type h5file_t
 
@@ -601,76 +606,76 @@ contains
    ! the element type and rank come from the declaration of `value` (`element`).
 
    !> Read a scalar (or one-element) numeric dataset as real(dp).
-   subroutine read_r0(self, path, value, error)
+   subroutine read_real_rank0(self, path, value, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       real(dp), intent(out), target :: value            !! value read
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       call read_one(self, path, want_real, real_type(), c_loc(value), error)
-   end subroutine read_r0
+   end subroutine read_real_rank0
 
    !> Read a 1-D numeric dataset as real(dp); `value` takes the dataset's shape.
-   subroutine read_r1(self, path, value, error)
+   subroutine read_real_rank1(self, path, value, error)
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! dataset path
       real(dp), allocatable, intent(out), target :: value(:)  !! values read
       type(error_t), allocatable, intent(out) :: error        !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_r1
+   end subroutine read_real_rank1
 
    !> Read a 2-D numeric dataset as real(dp); `value` takes the dataset's shape.
-   subroutine read_r2(self, path, value, error)
+   subroutine read_real_rank2(self, path, value, error)
       class(h5file_t), intent(inout) :: self                     !! the file object
       character(len=*), intent(in) :: path                       !! dataset path
       real(dp), allocatable, intent(out), target :: value(:, :)  !! values read
       type(error_t), allocatable, intent(out) :: error           !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_r2
+   end subroutine read_real_rank2
 
    !> Read a 3-D numeric dataset as real(dp); `value` takes the dataset's shape.
-   subroutine read_r3(self, path, value, error)
+   subroutine read_real_rank3(self, path, value, error)
       class(h5file_t), intent(inout) :: self                        !! the file object
       character(len=*), intent(in) :: path                          !! dataset path
       real(dp), allocatable, intent(out), target :: value(:, :, :)  !! values read
       type(error_t), allocatable, intent(out) :: error              !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_r3
+   end subroutine read_real_rank3
 
    !> Read a scalar (or one-element) integer dataset.
-   subroutine read_i0(self, path, value, error)
+   subroutine read_int_rank0(self, path, value, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! dataset path
       integer, intent(out), target :: value             !! value read
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       call read_one(self, path, want_int, int_type(), c_loc(value), error)
-   end subroutine read_i0
+   end subroutine read_int_rank0
 
    !> Read a 1-D integer dataset; `value` takes the dataset's shape.
-   subroutine read_i1(self, path, value, error)
+   subroutine read_int_rank1(self, path, value, error)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
       integer, allocatable, intent(out), target :: value(:)  !! values read
       type(error_t), allocatable, intent(out) :: error       !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_i1
+   end subroutine read_int_rank1
 
    !> Read a 2-D integer dataset; `value` takes the dataset's shape.
-   subroutine read_i2(self, path, value, error)
+   subroutine read_int_rank2(self, path, value, error)
       class(h5file_t), intent(inout) :: self                    !! the file object
       character(len=*), intent(in) :: path                      !! dataset path
       integer, allocatable, intent(out), target :: value(:, :)  !! values read
       type(error_t), allocatable, intent(out) :: error          !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_i2
+   end subroutine read_int_rank2
 
    !> Read a 1-D integer dataset as integer(i8); `value` takes the dataset's shape.
-   subroutine read_i64_1(self, path, value, error)
+   subroutine read_i64_rank1(self, path, value, error)
       class(h5file_t), intent(inout) :: self                     !! the file object
       character(len=*), intent(in) :: path                       !! dataset path
       integer(i8), allocatable, intent(out), target :: value(:)  !! values read
       type(error_t), allocatable, intent(out) :: error           !! set on failure
       include 'dpend_hdf5_read.inc'
-   end subroutine read_i64_1
+   end subroutine read_i64_rank1
 
    !> Read a scalar fixed-length string dataset (up to the first null byte).
    subroutine read_str(self, path, value, error)
@@ -684,7 +689,7 @@ contains
    !> Read the block of `count` values from index `start` (1-based) of the 1-D
    !> numeric dataset `path` as real(dp). Only the chunks holding the block are
    !> read (and their checksums checked).
-   subroutine slabread_r1(self, path, start, count, value, error, check_sums)
+   subroutine slabread_real_rank1(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! dataset path
       integer, intent(in) :: start(:)                         !! 1-based first index
@@ -693,10 +698,10 @@ contains
       type(error_t), allocatable, intent(out) :: error        !! set on failure
       logical, intent(in), optional :: check_sums             !! see the module's header
       include 'dpend_hdf5_slabread.inc'
-   end subroutine slabread_r1
+   end subroutine slabread_real_rank1
 
-   !> `slabread_r1` for a 2-D numeric dataset.
-   subroutine slabread_r2(self, path, start, count, value, error, check_sums)
+   !> `slabread_real_rank1` for a 2-D numeric dataset.
+   subroutine slabread_real_rank2(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                     !! the file object
       character(len=*), intent(in) :: path                       !! dataset path
       integer, intent(in) :: start(:)                            !! 1-based first index
@@ -705,10 +710,10 @@ contains
       type(error_t), allocatable, intent(out) :: error           !! set on failure
       logical, intent(in), optional :: check_sums                !! see the module's header
       include 'dpend_hdf5_slabread.inc'
-   end subroutine slabread_r2
+   end subroutine slabread_real_rank2
 
-   !> `slabread_r1` for a 1-D integer dataset.
-   subroutine slabread_i1(self, path, start, count, value, error, check_sums)
+   !> `slabread_real_rank1` for a 1-D integer dataset.
+   subroutine slabread_int_rank1(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                 !! the file object
       character(len=*), intent(in) :: path                   !! dataset path
       integer, intent(in) :: start(:)                        !! 1-based first index
@@ -717,10 +722,10 @@ contains
       type(error_t), allocatable, intent(out) :: error       !! set on failure
       logical, intent(in), optional :: check_sums            !! see the module's header
       include 'dpend_hdf5_slabread.inc'
-   end subroutine slabread_i1
+   end subroutine slabread_int_rank1
 
-   !> `slabread_r1` for a 2-D integer dataset.
-   subroutine slabread_i2(self, path, start, count, value, error, check_sums)
+   !> `slabread_real_rank1` for a 2-D integer dataset.
+   subroutine slabread_int_rank2(self, path, start, count, value, error, check_sums)
       class(h5file_t), intent(inout) :: self                    !! the file object
       character(len=*), intent(in) :: path                      !! dataset path
       integer, intent(in) :: start(:)                           !! 1-based first index
@@ -729,20 +734,20 @@ contains
       type(error_t), allocatable, intent(out) :: error          !! set on failure
       logical, intent(in), optional :: check_sums               !! see the module's header
       include 'dpend_hdf5_slabread.inc'
-   end subroutine slabread_i2
+   end subroutine slabread_int_rank2
 
    !> Read a real(dp) scalar attribute of the group or dataset `path`.
-   subroutine readattr_r0(self, path, name, value, error)
+   subroutine readattr_real_rank0(self, path, name, value, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       real(dp), intent(out), target :: value            !! value read
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       call read_one(self, path, want_real, real_type(), c_loc(value), error, name)
-   end subroutine readattr_r0
+   end subroutine readattr_real_rank0
 
    !> Read a real(dp) 1-D attribute of the group or dataset `path`.
-   subroutine readattr_r1(self, path, name, value, error)
+   subroutine readattr_real_rank1(self, path, name, value, error)
       class(h5file_t), intent(inout) :: self                  !! the file object
       character(len=*), intent(in) :: path                    !! object path, '/' for the root
       character(len=*), intent(in) :: name                    !! attribute name
@@ -755,17 +760,17 @@ contains
       allocate (value(dims(1)))
       call read_obj(self, attr_label(path, name), obj, real_type(), c_loc(value), &
          size(value), error)
-   end subroutine readattr_r1
+   end subroutine readattr_real_rank1
 
    !> Read an integer scalar attribute of the group or dataset `path`.
-   subroutine readattr_i0(self, path, name, value, error)
+   subroutine readattr_int_rank0(self, path, name, value, error)
       class(h5file_t), intent(inout) :: self            !! the file object
       character(len=*), intent(in) :: path              !! object path, '/' for the root
       character(len=*), intent(in) :: name              !! attribute name
       integer, intent(out), target :: value             !! value read
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       call read_one(self, path, want_int, int_type(), c_loc(value), error, name)
-   end subroutine readattr_i0
+   end subroutine readattr_int_rank0
 
    !> Read a string attribute (fixed- or variable-length, scalar) of the group or
    !> dataset `path`; on failure (e.g. an attribute of another type) `value` is ''.

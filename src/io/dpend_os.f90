@@ -18,7 +18,7 @@ module dpend_os
    public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
    public :: free_disk_bytes, available_memory_bytes, file_id, make_temp_file, sync_path
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
-   public :: echo_to_stderr  ! issue 25 (figures)
+   public :: echo_to_stderr  ! for the figure scripts
    public :: errno_exists, errno_nospc, io_failure_reason
 
    !> What `path_kind` finds at a path.
@@ -427,7 +427,7 @@ contains
       end if
    end function io_failure_reason
 
-   ! issue 25 (figures): a program's captured stderr, shown only when it failed
+   ! for the figure scripts: a program's captured stderr, shown only when it failed
    !> Copy the file `path` (a program's captured standard error) to dpend's standard
    !> error, at most its last `max_bytes` bytes; nothing if it is missing or empty.
    subroutine echo_to_stderr(path, max_bytes)

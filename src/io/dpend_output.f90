@@ -29,10 +29,11 @@ module dpend_output
    use dpend_os, only: file_id, path_kind, path_missing, path_file, path_directory, path_link, &
                            directory_of, base_name, make_temp_file, sync_path, &
                            move_noreplace, move_replace, remove_file, errno_text, &
-                           errno_exists
+                           errno_exists, path_other
    implicit none
    private
    public :: output_t, check_output_path, track_inputs, register_input, clear_inputs
+   public :: check_regular_file
 
    !> One input file of the running command: its name and identity.
    type :: input_t
@@ -275,4 +276,31 @@ contains
                          error%message(k + len(self%temp):)
       end do
    end subroutine output_explain
+
+   !> Refuse an input path that is not (a link to) a regular file, before anything
+   !> opens it (a FIFO would block the open); messages start with `pre`.
+   subroutine check_regular_file(filename, pre, error)
+      character(len=*), intent(in) :: filename          !! the path
+      character(len=*), intent(in) :: pre               !! message prefix
+      type(error_t), allocatable, intent(out) :: error  !! not a regular file
+      integer :: kind
+      if (len_trim(filename) == 0) then
+         call fatal_error(error, pre//'empty file name')
+         return
+      end if
+      kind = path_kind(filename, follow=.true.)
+      select case (kind)
+      case (path_file)
+         call register_input(filename)   ! an output never replaces it (dpend_output)
+      case (path_missing)
+         call fatal_error(error, pre//'no such file')
+      case (path_directory)
+         call fatal_error(error, pre//'is a directory, not a file')
+      case (path_other)
+         call fatal_error(error, pre//'is not a regular file (a FIFO, socket or device)')
+      case default
+         call fatal_error(error, pre//'cannot be examined: '//errno_text(-kind))
+      end select
+   end subroutine check_regular_file
+
 end module dpend_output

@@ -142,7 +142,7 @@ int dpend_spawn_wait_err(char *const argv[], int *status, const char *errpath)
     return 0;
 }
 
-/* ---- The optional GPU library (issue 28, docs/gpu.md): loaded at run time with
+/* ---- The optional GPU library (docs/gpu.md): loaded at run time with
  * dlopen, never linked, so that dpend builds and runs without CUDA. */
 #include <dlfcn.h>
 

@@ -1,4 +1,4 @@
-!> The chain of N uniform rods on pin joints (issue 12): the chapter's Newton–Euler
+!> The chain of N uniform rods on pin joints: the chapter's Newton–Euler
 !> method for any number of links, with every joint's reaction.
 !>
 !> Link i (1 … N) has mass m_i, length L_i, centre of mass C_i at its middle and
@@ -45,7 +45,7 @@
 !> Hamiltonian form: p = M(q) q̇, H = ½ pᵀ M⁻¹ p + V, ∂H/∂p = q̇ and
 !>   ∂H/∂q_i = −τ_i + G_i cos q_i,  τ_i = ∂T/∂q_i|_q̇ = −q̇_i Σ_j K_ij sin(q_i − q_j) q̇_j.
 !>
-!> Joint damping and a moving support (issue 13), both off by default (the
+!> Joint damping and a moving support, both off by default (the
 !> conservative chain above, its arithmetic unchanged):
 !> - joint i exerts the viscous torque −c_i (q̇_i − q̇_(i−1)) on body i and its
 !>   opposite on body i − 1 (q̇_0 = 0, joint 1 the pin A). The moment equation of link
@@ -64,7 +64,7 @@
 !>   P_support = F_(0,1) · v_A,  F_(0,1) = m (a_A + g ĵ) + Σ μ_i (q̈_i n_i − q̇_i² u_i)
 !> (`powers`; `dpend_work` integrates both along the solution).
 !>
-!> Links of any mass distribution (issue 26): link i may carry its centre of mass at
+!> Links of any mass distribution: link i may carry its centre of mass at
 !> d_i from joint i along the link and have the inertia I_i about it (`chain_model`'s
 !> com and inertia; a point mass at the end of a massless rod: d_i = L_i, I_i = 0).
 !> The recursion places C_i at d_i, the moment equation about C_i becomes
@@ -161,10 +161,11 @@ module dpend_chain
       ! the sensitivities of the motion to the damping (dpend fit --fit-damping)
       procedure :: check_parameter_rates => chain_check_parameter_rates
       procedure :: parameter_rates => chain_parameter_rates
-      ! sweep (issue 23, one construction site): the G_i of its potential
+      ! sweep (one construction site): the G_i of its potential
       procedure :: potential_weights => chain_potential_weights
-      ! issue 26: the links' mass distribution
+      ! the links' mass distribution
       procedure :: body_description => chain_body_description
+      procedure :: time_unit => chain_time_unit
    end type chain_t
 
 contains
@@ -174,12 +175,12 @@ contains
    !> dpend_limits' range table (`check_parameter`: masses, lengths and g each in
    !> [1e-6, 1e6]).
    !> The error names the field (m3, l2, g, links), its value and the accepted range.
-   !> Optional (issue 13): joint damping c [N m s] (one per link, each in
+   !> Optional: joint damping c [N m s] (one per link, each in
    !> [0, max_damping]) and the support motion: amplitudes (a_x, a_y) [m] (each in
    !> [−max_support_amplitude, max_support_amplitude]), angular frequency ω [rad/s]
    !> (in [0, max_support_frequency]), phases (φ_x, φ_y) [rad] (|φ| ≤ max_angle).
    !> All zero (the default) is the conservative chain.
-   !> Optional (issue 26): the mass distribution, com d_i [m] and inertia I_i [kg m²]
+   !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
    !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
    function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
                         inertia) result(model)
@@ -1289,6 +1290,15 @@ contains
    end subroutine chain_parameter_rates
 
    !> The links' mass distribution with units ('' for uniform rods).
+   !> The natural time unit sqrt(l1/g) of the first link [s].
+   pure subroutine chain_time_unit(self, seconds, name)
+      class(chain_t), intent(in) :: self                  !! the model
+      real(dp), intent(out) :: seconds                    !! the unit [s]
+      character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
+      seconds = sqrt(self%l(1)/self%g)
+      name = 'sqrt(l1/g)'
+   end subroutine chain_time_unit
+
    function chain_body_description(self) result(text)
       class(chain_t), intent(in) :: self  !! the chain
       character(len=:), allocatable :: text

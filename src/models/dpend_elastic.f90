@@ -1,4 +1,4 @@
-!> The elastic (spring) pendulum (issue 23, item 9; docs/elastic.md): a point mass m on
+!> The elastic (spring) pendulum (docs/elastic.md): a point mass m on
 !> a massless spring of stiffness k and rest length l0, hung from the pin A at the
 !> origin, gravity g along −y (the chapter's conventions: y up, SI units).
 !>
@@ -86,7 +86,7 @@ module dpend_elastic
    real(dp), parameter :: saturated_field = diverged_bound**2
 
    !> The elastic pendulum (SI units); build it with `elastic_model`. The defaults are
-   !> those of the issue's example (`--m 1 --k 40 --l0 1 --g 9.8`).
+   !> those of the reference example (`--m 1 --k 40 --l0 1 --g 9.8`).
    type, extends(model_t) :: elastic_t
       real(dp) :: m = 1.0_dp       !! mass of the bob [kg]
       real(dp) :: k = 40.0_dp      !! stiffness of the spring [N/m]
@@ -115,6 +115,7 @@ module dpend_elastic
       procedure :: coordinate => el_coordinate
       procedure :: coordinates_text => el_coordinates_text
       procedure :: figure => el_figure
+      procedure :: time_unit => el_time_unit
       procedure :: energy_text => el_energy_text
       procedure :: check_state => el_check_state
       !> Hanging equilibrium length r_eq = l0 + m g/k [m].
@@ -465,6 +466,15 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       anchor = 'rA'; points = 'rC'; style = 'spring'; forces = 'F_joint'
    end subroutine el_figure
+
+   !> The natural time unit sqrt(l0/g) of the spring's rest length [s].
+   pure subroutine el_time_unit(self, seconds, name)
+      class(elastic_t), intent(in) :: self                !! the model
+      real(dp), intent(out) :: seconds                    !! the unit [s]
+      character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l0/g)'
+      seconds = sqrt(self%l0/self%g)
+      name = 'sqrt(l0/g)'
+   end subroutine el_time_unit
 
    !> The model's check of an initial state (`check_state`): r above the collapse.
    subroutine el_check_state(self, q, qd, error)

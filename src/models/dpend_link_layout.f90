@@ -72,7 +72,7 @@ contains
    !> The per-link layout (F_joint rC vC aC rJ vJ aJ, 28 values, (x, y) per link) of
    !> a double pendulum of uniform rods with a fixed pin from its aliases and the
    !> velocity and acceleration of B: the tip D is 2 C2 − B (C2 the rod's middle).
-   !> The 'body' text of links other than uniform rods (issue 26): 'point masses on
+   !> The 'body' text of links other than uniform rods: 'point masses on
    !> massless rods (com_i = l_i [m], inertia_i = 0 [kg m^2])', or 'general bodies: com
    !> = 0.6, 0.8 m; inertia = 0.05, 0 kg m^2'; '' for rods.
    function body_text(rod, l, d, ic) result(text)

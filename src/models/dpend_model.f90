@@ -101,10 +101,12 @@ module dpend_model
       ! the sensitivities of the motion to a model parameter (dpend fit)
       procedure :: check_parameter_rates => model_check_parameter_rates
       procedure :: parameter_rates => model_parameter_rates
-      ! sweep (issue 23, one construction site): G_i of V = Σ G_i sin q_i, if V has that form
+      ! sweep (one construction site): G_i of V = Σ G_i sin q_i, if V has that form
       procedure :: potential_weights => model_potential_weights
-      ! issue 26 (bodies): the links' mass distribution for files and summaries
+      ! the links' mass distribution for files and summaries
       procedure :: body_description => model_body_description
+      ! the natural time unit of the motion (sweeps and summaries count time in it)
+      procedure :: time_unit => model_time_unit
    end type model_t
 
    abstract interface
@@ -478,11 +480,22 @@ contains
    end function model_potential_weights
 
    !> The links' mass distribution in words with units, for the 'body' attribute of
-   !> output files and the summaries (issue 26); '' (the default) for uniform rods and
+   !> output files and the summaries; '' (the default) for uniform rods and
    !> models without links.
    function model_body_description(self) result(text)
       class(model_t), intent(in) :: self  !! the model
       character(len=:), allocatable :: text
       text = ''
    end function model_body_description
+
+   !> The natural time unit of the motion [s] and its name, e.g. 'sqrt(l1/g)': sweeps
+   !> count time in it (`--time-unit natural`) and summaries quote it. Default: the
+   !> second, named 's', for a model that states no natural unit.
+   pure subroutine model_time_unit(self, seconds, name)
+      class(model_t), intent(in) :: self                  !! the model
+      real(dp), intent(out) :: seconds                    !! the unit [s]
+      character(len=:), allocatable, intent(out) :: name  !! its name
+      seconds = 1.0_dp
+      name = 's'
+   end subroutine model_time_unit
 end module dpend_model

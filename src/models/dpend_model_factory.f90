@@ -380,7 +380,7 @@ contains
       a = value_of(spec, info, 'support_amplitude', n)
       w = value_of(spec, info, 'support_frequency', n)
       phi = value_of(spec, info, 'support_phase', n)
-      ! the mass distribution (issue 26): uniform rods unless com or inertia is given;
+      ! the mass distribution: uniform rods unless com or inertia is given;
       ! then the one not given takes the rod's value (d_i = l_i/2, I_i = m_i l_i²/12)
       rod = spec%find('com') == 0 .and. spec%find('inertia') == 0
       block

@@ -18,7 +18,8 @@ module dpend_pendulum
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
-                           parameter_gravity, check_range, max_length, max_mass
+                           parameter_gravity, check_range, max_length, max_mass, &
+                           finite_positive
    use dpend_model, only: model_t
    use dpend_strings, only: real_str
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
@@ -29,7 +30,7 @@ module dpend_pendulum
    use, intrinsic :: iso_fortran_env, only: qp => real128
    implicit none
    private
-   public :: pendulum_t, validate, finite_positive, mass_matrix, generalized_forces
+   public :: pendulum_t, validate, mass_matrix, generalized_forces
    public :: qddot_newton_euler, qddot_lagrange, qddot
    public :: kinetic_energy, potential_energy, energy
    public :: momenta, velocities, hamiltonian, dh_dq, dh_dp
@@ -39,14 +40,14 @@ module dpend_pendulum
    public :: kinematics_t, kinematics, tip_position, reactions
    public :: double_pendulum_t, pendulum_model
    public :: hamiltonian_qp
-   ! links of any mass distribution (issue 26)
+   ! links of any mass distribution
    public :: body_rod, body_general, check_bodies, body_constants, body_kind_name
    public :: rhs_qp_trig_general
 
    !> The body kind of `pendulum_t`: uniform rods (the chapter's; d_i = l_i/2,
    !> I_i = m_i l_i²/12, the fields d1 … i2 unused) or links of any mass distribution
    !> (d1, d2, i1, i2 given). The rod's formulas keep their own arithmetic (results
-   !> bit for bit as before issue 26); the general ones reduce to them for rod values
+   !> bit for bit unchanged by the general bodies); the general ones reduce to them for rod values
    !> (test/test_bodies.f90 compares them).
    integer, parameter :: body_rod = 0
    integer, parameter :: body_general = 1
@@ -114,10 +115,11 @@ module dpend_pendulum
       ! H in quadruple precision for the study's roundoff runs
       procedure :: has_hamiltonian_qp => dp_true
       procedure :: hamiltonian_qp => dp_hamiltonian_qp
-      ! sweep (issue 23, one construction site): the G_i of its potential
+      ! sweep (one construction site): the G_i of its potential
       procedure :: potential_weights => dp_potential_weights
-      ! issue 26: the links' mass distribution
+      ! the links' mass distribution
       procedure :: body_description => dp_body_description
+      procedure :: time_unit => dp_time_unit
    end type double_pendulum_t
 
 contains
@@ -153,7 +155,7 @@ contains
       real(dp), intent(in) :: sc(4)        !! (sin q1, sin q2, cos q1, cos q2)
       real(dp), intent(in) :: z(4)         !! canonical state
       real(dp) :: f(4)
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          f = rhs_qp_trig_general(par, sc, z)
          return
       end if
@@ -269,7 +271,7 @@ contains
       x = c(i)
    end function body_constant
 
-   !> `mass_matrix` for links of any mass distribution (issue 26): the same formula
+   !> `mass_matrix` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function mass_matrix_general(par, q) result(m)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -281,7 +283,7 @@ contains
       m(2, 2) = body_constant(par, 2)
    end function mass_matrix_general
 
-   !> `generalized_forces` for links of any mass distribution (issue 26): the same formula
+   !> `generalized_forces` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function generalized_forces_general(par, q) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -291,7 +293,7 @@ contains
       f(2) = -body_constant(par, 5)*cos(q(2))
    end function generalized_forces_general
 
-   !> `qddot_lagrange` for links of any mass distribution (issue 26): the same formula
+   !> `qddot_lagrange` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function qddot_lagrange_general(par, q, qd) result(qdd)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -308,7 +310,7 @@ contains
       qdd(2) = (m(1, 1)*r(2) - m(1, 2)*r(1))/det
    end function qddot_lagrange_general
 
-   !> `potential_energy` for links of any mass distribution (issue 26): the same formula
+   !> `potential_energy` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure real(dp) function potential_energy_general(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -316,7 +318,7 @@ contains
       potential_energy_general = body_constant(par, 4)*sin(q(1)) + body_constant(par, 5)*sin(q(2))
    end function potential_energy_general
 
-   !> `energy_scale` for links of any mass distribution (issue 26): the same formula
+   !> `energy_scale` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure real(dp) function energy_scale_general(par, e0)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -326,7 +328,7 @@ contains
       energy_scale_general = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
    end function energy_scale_general
 
-   !> `dh_dq` for links of any mass distribution (issue 26): the same formula
+   !> `dh_dq` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function dh_dq_general(par, q, p) result(g)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -339,7 +341,7 @@ contains
       g = [t, -t] - generalized_forces(par, q)
    end function dh_dq_general
 
-   !> `energy_limit` for links of any mass distribution (issue 26): the same formula
+   !> `energy_limit` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure real(dp) function energy_limit_general(par, w_max)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -352,7 +354,7 @@ contains
                      + 0.5_dp*w_max**2*(m11 + m22 + 2.0_dp*k)
    end function energy_limit_general
 
-   !> `energy_gradient` for links of any mass distribution (issue 26): the same formula
+   !> `energy_gradient` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function energy_gradient_general(par, q, qd) result(g)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -365,7 +367,7 @@ contains
       g(3:4) = momenta(par, q, qd)
    end function energy_gradient_general
 
-   !> `rhs_qp_trig_impl` for links of any mass distribution (issue 26): the same formula
+   !> `rhs_qp_trig_impl` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`. Public, so that gcc (-fPIC) keeps it out of
    !> line: the canonical field bindings branch to it before the rods' inlined formula.
    pure function rhs_qp_trig_general(par, sc, z) result(f)
@@ -388,7 +390,7 @@ contains
       f(4) = -body_constant(par, 5)*sc(4) + t
    end function rhs_qp_trig_general
 
-   !> `jacobian_qqdot` for links of any mass distribution (issue 26): the same formula
+   !> `jacobian_qqdot` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function jacobian_qqdot_general(par, y) result(jac)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -416,7 +418,7 @@ contains
       jac(3:4, :) = matmul(minv, dr - dma)
    end function jacobian_qqdot_general
 
-   !> `jacobian_qp` for links of any mass distribution (issue 26): the same formula
+   !> `jacobian_qp` for links of any mass distribution: the same formula
    !> with the constants of `body_constants`.
    pure function jacobian_qp_general(par, z) result(jac)
       type(pendulum_t), intent(in) :: par  !! parameters
@@ -443,21 +445,12 @@ contains
       jac(4, 2) = jac(4, 2) + body_constant(par, 5)*sin(z(2))
    end function jacobian_qp_general
 
-   !> x is finite and > 0, tested without an ordered comparison on NaN (which
-   !> would raise IEEE invalid and trap under -ffpe-trap=invalid).
-   elemental logical function finite_positive(x)
-      real(dp), intent(in) :: x  !! value to test
-      finite_positive = .false.
-      if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
-   end function finite_positive
-
-
    !> Mass matrix M(q) of Lagrange's equations [kg m²].
    pure function mass_matrix(par, q) result(m)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: m(2, 2)
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          m = mass_matrix_general(par, q)
          return
       end if
@@ -473,7 +466,7 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
       real(dp) :: f(2)
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          f = generalized_forces_general(par, q)
          return
       end if
@@ -510,7 +503,7 @@ contains
       include 'dpend_qddot_trig_body.inc'
    end function qddot_trig_impl
 
-   !> `qddot_trig_impl` for links of any mass distribution (issue 26): the same
+   !> `qddot_trig_impl` for links of any mass distribution: the same
    !> corrected Newton–Euler equations with C_i at d_i along link i and I_Ci = I_i,
    !>   I_A1 q̈1 = −m1 g d1 cos q1 + L1 (F21y cos q1 − F21x sin q1),  I_A1 = I1 + m1 d1²,
    !>   I2 q̈2 = d2 (F21y cos q2 − F21x sin q2),  F21 = −m2 (a_C2 + g j),
@@ -588,7 +581,7 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: qdd(2)
       real(dp) :: m(2, 2), r(2), k, sd, det
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          qdd = qddot_lagrange_general(par, q, qd)
          return
       end if
@@ -626,7 +619,7 @@ contains
    pure real(dp) function potential_energy(par, q)
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: q(2)         !! angles [rad]
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          potential_energy = potential_energy_general(par, q)
          return
       end if
@@ -650,7 +643,7 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: e0           !! initial energy [J]
       real(dp) :: e_ref
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          energy_scale = energy_scale_general(par, e0)
          return
       end if
@@ -708,7 +701,7 @@ contains
       real(dp), intent(in) :: p(2)         !! canonical momenta [kg m²/s]
       real(dp) :: g(2)
       real(dp) :: qd(2), t
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          g = dh_dq_general(par, q, p)
          return
       end if
@@ -778,7 +771,7 @@ contains
       type(pendulum_t), intent(in) :: par  !! parameters
       real(dp), intent(in) :: w_max        !! angular velocity [rad/s]
       real(dp) :: m11, m22, k
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          energy_limit = energy_limit_general(par, w_max)
          return
       end if
@@ -798,7 +791,7 @@ contains
       real(dp), intent(in) :: qd(2)        !! angular velocities [rad/s]
       real(dp) :: g(4)
       real(dp) :: t
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          g = energy_gradient_general(par, q, qd)
          return
       end if
@@ -822,7 +815,7 @@ contains
    !> callers (`rhs_qp_trig`, `dp_canonical_field`, `dp_canonical_field_near`) send other
    !> bodies to `rhs_qp_trig_general` first. Kept to these three call sites and free of
    !> that branch so that gcc inlines it into the two bindings, the implicit methods' hot
-   !> path (a branch here, issue 26, kept gcc from it: implicit midpoint 519 → 610 ns per
+   !> path (a branch here kept gcc from it: implicit midpoint 519 → 610 ns per
    !> step; docs/performance.md).
    pure function rhs_qp_trig_impl(par, sc, z) result(f)
       type(pendulum_t), intent(in) :: par  !! parameters (body_rod)
@@ -852,7 +845,7 @@ contains
       real(dp), intent(in) :: y(4)         !! state (q, q̇)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), a(2), k, sd, cd, dr(2, 4), dma(2, 4), det
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          jac = jacobian_qqdot_general(par, y)
          return
       end if
@@ -886,7 +879,7 @@ contains
       real(dp), intent(in) :: z(4)         !! canonical state (q, p)
       real(dp) :: jac(4, 4)
       real(dp) :: m(2, 2), minv(2, 2), qd(2), k, sd, cd, det, dqd(2, 4), dphi(4)
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          jac = jacobian_qp_general(par, z)
          return
       end if
@@ -995,6 +988,15 @@ contains
    end function dp_name
 
    !> The links' mass distribution with units ('' for uniform rods).
+   !> The natural time unit sqrt(l1/g) [s].
+   pure subroutine dp_time_unit(self, seconds, name)
+      class(double_pendulum_t), intent(in) :: self        !! the model
+      real(dp), intent(out) :: seconds                    !! the unit [s]
+      character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
+      seconds = sqrt(self%par%l1/self%par%g)
+      name = 'sqrt(l1/g)'
+   end subroutine dp_time_unit
+
    function dp_body_description(self) result(text)
       class(double_pendulum_t), intent(in) :: self  !! the model
       character(len=:), allocatable :: text
@@ -1070,7 +1072,7 @@ contains
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, z(*)
       real(dp), intent(out) :: f(*)
-      if (self%par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (self%par%body /= body_rod) then   ! links of any mass distribution
          f(1:4) = rhs_qp_trig_general(self%par, sin_cos(z(1:2)), z(1:4))
          return
       end if
@@ -1151,7 +1153,7 @@ contains
       class(double_pendulum_t), intent(in) :: self
       real(dp), intent(in) :: t, z(*), d(*), cache(*)
       real(dp), intent(out) :: f(*)
-      if (self%par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (self%par%body /= body_rod) then   ! links of any mass distribution
          f(1:4) = rhs_qp_trig_general(self%par, sin_cos_near(cache(1:4), z(1:2), d(1:2)), &
                                       z(1:4))
          return
@@ -1274,7 +1276,7 @@ contains
       z = real(y, qp) + real(e, qp)
       m1 = real(par%m1, qp); m2 = real(par%m2, qp); l1 = real(par%l1, qp)
       l2 = real(par%l2, qp); g = real(par%g, qp)
-      if (par%body /= body_rod) then   ! links of any mass distribution (issue 26)
+      if (par%body /= body_rod) then   ! links of any mass distribution
          d1 = real(par%d1, qp); d2 = real(par%d2, qp)
          m11 = real(par%i1, qp) + m1*d1**2 + m2*l1**2
          m12 = m2*l1*d2*cos(z(1) - z(2))

@@ -111,7 +111,7 @@ module dpend_pendulum_lanes
       real(dp) :: gbk = 0   !! B/k [1/s²]
    end type batch_coef_t
 
-   !> The constants of `batch_coef_t` lane by lane (structure of arrays, issue 27):
+   !> The constants of `batch_coef_t` lane by lane (structure of arrays):
    !> every lane its own pendulum, so that a sweep over parameters fills all lanes.
    !> The kernels take this form; those of `batch_coef_t` copy it into every lane.
    type :: lane_coef_t
@@ -211,7 +211,7 @@ contains
          c%k = 0.5_dp*par%m2*par%l1*par%l2
          c%ga = (0.5_dp*par%m1 + par%m2)*par%g*par%l1
          c%gb = 0.5_dp*par%m2*par%g*par%l2
-      else   ! links of any mass distribution (issue 26): the same kernels, other constants
+      else   ! links of any mass distribution: the same kernels, other constants
          b = body_constants(par)
          c%m11 = b(1); c%m22 = b(2); c%k = b(3); c%ga = b(4); c%gb = b(5)
       end if
@@ -611,7 +611,7 @@ contains
    end subroutine tangent_accel_lanes_lc
 
    !> `tangent_accel_lanes` for the two deviation vectors x(:, :, 1) and x(:, :, 2)
-   !> = (u1, u2, v1, v2) of SALI and GALI_2 at once (issue 27): the terms that do not
+   !> = (u1, u2, v1, v2) of SALI and GALI_2 at once: the terms that do not
    !> depend on the vector (the Jacobian's: cos d, sin d, 1/det(M/k)) once per lane,
    !> then each vector by the same operations as `tangent_accel_lanes`, so that
    !> each result equals that of `tangent_accel_lanes` bit for bit.
@@ -989,7 +989,7 @@ contains
    end subroutine rk4_tangent_lanes_lc
 
    !> `rk4_tangent_lanes` with two tangent vectors d(:, :, 1) and d(:, :, 2) = (u1, u2,
-   !> v1, v2) (SALI, GALI_2; issue 27): the state's stages, sines and cosines once, one
+   !> v1, v2) (SALI, GALI_2): the state's stages, sines and cosines once, one
    !> Jacobian per stage for both vectors (`tangent_accel2_lanes`). Every value (state,
    !> each vector, `e`) equals that of `rk4_tangent_lanes` on that vector bit for bit
    !> (the same operations; test lanes/tangent2_matches_tangent).
@@ -1076,7 +1076,7 @@ contains
    end subroutine rk4_tangent2_lanes
 
    !> One RK4 step of the state and of nv (1 or 2) deviation vectors d(:, :, k) = (u1,
-   !> u2, v1, v2) (issue 27): `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes`
+   !> u2, v1, v2): `rk4_tangent_lanes` (nv = 1) or `rk4_tangent2_lanes`
    !> (nv = 2) fused the way `rk4_lanes` is, the whole step of a lane one loop body
    !> (`tangent_lane_step`: the stages' values stay in registers, the Jacobian's
    !> terms once per stage for both vectors, one division per stage for the state
@@ -1525,7 +1525,7 @@ contains
    !> soon as a trajectory ends. Initial conditions whose energy is below both flip
    !> bounds are not integrated (status st_cannot_flip) unless opt%lyapunov.
    !> With `pars`, initial condition j has the pendulum pars(j) (a sweep over
-   !> parameters, issue 27): each lane takes the constants of the trajectory it
+   !> parameters): each lane takes the constants of the trajectory it
    !> holds (`lane_coef_t`), so that its results are those of a call with par =
    !> pars(j) bit for bit, and the lanes fill whatever the parameters.
    subroutine integrate_batch(par, opt, y0, res, pars)

@@ -1,4 +1,4 @@
-!> The energy balance of a damped or driven chain (issue 13): the chain with the work
+!> The energy balance of a damped or driven chain: the chain with the work
 !> of its joint friction and of its support as two extra quadrature components,
 !> integrated along the solution by the same method, to its order.
 !>
@@ -34,6 +34,7 @@ module dpend_work
       procedure :: energy_scale => work_energy_scale
       procedure :: conservative => work_false
       procedure :: autonomous => work_autonomous
+      procedure :: time_unit => work_time_unit
    end type work_model_t
 
 contains
@@ -103,6 +104,14 @@ contains
       class(work_model_t), intent(in) :: self
       work_autonomous = self%chain%autonomous()
    end function work_autonomous
+
+   !> The chain's natural time unit.
+   pure subroutine work_time_unit(self, seconds, name)
+      class(work_model_t), intent(in) :: self             !! the model
+      real(dp), intent(out) :: seconds                    !! the unit [s]
+      character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
+      call self%chain%time_unit(seconds, name)
+   end subroutine work_time_unit
 
    !> The chain's state (q, q̇) of the augmented y.
    pure subroutine inner(n, y, yc)

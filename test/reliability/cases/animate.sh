@@ -1,4 +1,4 @@
-# dpend animate (issue 15): bad frame rates, sizes, speeds and durations, the frame
+# dpend animate: bad frame rates, sizes, speeds and durations, the frame
 # cap, missing or non-simulate inputs and overlays, an existing GIF without --force,
 # device outputs, a missing --frames directory or existing frames; names with
 # quotes and blanks work. Refused input: one line naming the field, exit 2, nothing

@@ -1,5 +1,5 @@
-# Reliability cases: strict --config files, option parsing, export, sweep-compare
-# (issue 10, causes 3 (config FIFOs, directories, binary files), 4, 6, 8, 9, 10).
+# Reliability cases: strict --config files (FIFOs, directories, binary files), option
+# parsing, export, sweep-compare.
 # Sourced by scripts/reliability.sh; FIXTURES is the fixture directory, DPEND the
 # binary. Row forms: refuse ID FIELD -- ARGS / fail ID TEXT -- ARGS / succeed ID -- ARGS.
 

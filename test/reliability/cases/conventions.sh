@@ -1,5 +1,5 @@
 # Angles from the hanging position (--theta1, --theta2; q = theta - pi/2), accepted
-# wherever --q1, --q2 are (issue 15, "one set of conventions").
+# wherever --q1, --q2 are (one set of conventions).
 succeed cnv-sim-theta              -- simulate --theta1 0.3 --theta2 -0.2 --t-end 0.01 --output th.h5
 succeed cnv-lya-theta              -- lyapunov --theta1 0.3 --t-end 0.1 --output th.h5
 succeed cnv-div-theta              -- divergence --theta2 1 --t-end 0.5 --pairs 2 --lyapunov-t 0 --output th.h5

@@ -1,4 +1,4 @@
-# `dpend fit` (issue 13): measured series refused with their line numbers, bad flags
+# `dpend fit`: measured series refused with their line numbers, bad flags
 # refused before any work (one line naming the field, exit 2, no file touched), and
 # edge values that must succeed without a trap in the debug build.
 

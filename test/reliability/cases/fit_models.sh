@@ -1,4 +1,4 @@
-# `dpend fit` with a model other than the pendulum (issue 23 item 9, round 3): the
+# `dpend fit` with a model other than the pendulum: the
 # elastic pendulum fitted from its coordinates (t, r [m], phi [rad]), its spring by
 # --fit-parameters k,l0; what the model cannot fit, columns of the wrong model and
 # bad parameter lists refused in one line naming the field, before any work.

@@ -1,6 +1,6 @@
 # Common bad input on every command: bad numbers (nan, inf, negative, zero, junk
 # like 1e or 0x10, an option as the value, a missing value), unknown commands and
-# options, and --help of every command. Issue 10, causes 4 and 10 and the general
+# options, and --help of every command. The general
 # promise: refused input ends with one line naming the field, exit 2, nothing
 # created or changed; --help succeeds. Runs are tiny in case a value is accepted.
 
@@ -107,7 +107,7 @@ refuse gen-stu-methods-bogus methods   -- study --quick --methods bogus --cases 
 refuse gen-stu-methods-comma method    -- study --quick --methods , --cases small --no-figures --output g.h5
 refuse gen-stu-m1-nan        m1        -- "${STU[@]}" --m1 nan
 
-# sweep-compare (issue 10, cause 8: options in any order, incomparable sweeps refused)
+# sweep-compare (options in any order, incomparable sweeps refused)
 refuse  gen-cmp-one-file     files     -- sweep-compare sweep.h5
 refuse  gen-cmp-no-file      nothere   -- sweep-compare sweep.h5 nothere.h5
 refuse  gen-cmp-not-sweep    existing  -- sweep-compare sweep.h5 existing.h5
@@ -134,7 +134,7 @@ refuse  gen-exp-scale-zero   scale     -- export sweep.h5 --matrix /sweep/t_flip
 refuse  gen-exp-scale-nan    scale     -- export sweep.h5 --matrix /sweep/t_flip /sweep/axis1 /sweep/axis2 nan
 refuse  gen-exp-unknown      bogus     -- export existing.h5 --bogus
 
-# unknown commands and options (issue 10, cause 10: an unknown flag at the end is
+# unknown commands and options (an unknown flag at the end is
 # not "needs a value"; --force=yes is not an unknown option --force)
 refuse  gen-cmd-unknown      bogus     -- bogus
 refuse  gen-cmd-empty        command   -- ''
@@ -149,7 +149,7 @@ refuse  gen-poi-unknown-end  bogus     -- "${POI[@]}" --bogus
 refuse  gen-swp-unknown-end  bogus     -- "${SWP[@]}" --bogus
 refuse  gen-stu-unknown-end  bogus     -- "${STU[@]}" --bogus
 
-# --help of every command succeeds (issue 10, cause 10: export --help exited 2)
+# --help of every command succeeds (export --help once exited 2)
 succeed gen-help             -- --help
 succeed gen-help-short       -- -h
 succeed gen-version          -- version

@@ -1,5 +1,5 @@
-# Inputs added with the N-link chain (issue 12), damping and the moving support
-# (issue 13), the chaos indicators (issue 14) and export --csv/--list (issue 15):
+# Inputs of the N-link chain, damping and the moving support, the chaos indicators
+# and export --csv/--list:
 # refused before any work (one line naming the field, exit 2, no file touched),
 # and their edge values succeed without a trap in the debug build.
 

@@ -1,4 +1,4 @@
-# Help and messages (issue 15): `dpend methods` with its one option, refused
+# Help and messages: `dpend methods` with its one option, refused
 # arguments of it, and the closing lines of simulate and sweep (also --quiet),
 # which must never trap whatever the numbers they print.
 

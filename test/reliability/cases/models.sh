@@ -1,4 +1,4 @@
-# The model factory and the elastic pendulum (issue 23): --model, parameters by name,
+# The model factory and the elastic pendulum: --model, parameters by name,
 # the &model group, the model's own check of the initial state, and the commands that
 # do not take other models yet refusing in one line.
 E=(--model elastic --m 1 --k 40 --l0 1 --g 9.8 --q 1.2,-1.0 --w 0,0 --t-end 0.5)
@@ -33,5 +33,5 @@ refuse  mod-elastic-badkey  config    -- simulate --config model_badkey.nml --ou
 refuse  mod-elastic-badnum  config    -- simulate --config model_badnum.nml --output x.h5
 refuse  mod-elastic-twice   config    -- simulate --config model_twice.nml --output x.h5
 refuse  mod-elastic-sweep   model     -- sweep "${E[@]}" --n 4 --output x.h5
-# (mod-elastic-fit: dpend fit takes the elastic pendulum since round 3; its rows: fit_models.sh)
+# (mod-elastic-fit: dpend fit takes the elastic pendulum; its rows: fit_models.sh)
 refuse  mod-elastic-poinc   poincare  -- poincare "${E[@]}" --output x.h5

@@ -1,4 +1,4 @@
-# Output-path problems for every command that writes (issue 10, cause 2): an
+# Output-path problems for every command that writes: an
 # existing file without --force, directories, missing directories, unwritable
 # directories, empty names, trailing slashes, symbolic links, device nodes, FIFOs,
 # a file used as a directory. All are refused before any work: exit 2, one line

@@ -1,4 +1,4 @@
-# dpend study on a model other than the pendulum (issue 23 item 9, r3 study): the
+# dpend study on a model other than the pendulum: the
 # elastic pendulum through &model (data/elastic_study.nml), and the refusals of what
 # such a case cannot have. The study's roundoff runs need H in quadruple precision
 # (the double pendulum's alone): on the elastic pendulum they are left out.
@@ -9,7 +9,7 @@ printf "$M&study case_name(1) = 'a', case_q1(1) = 1.3, case_q2(1) = -1.4,\n case
 printf "$M&pendulum m1 = 2 /\n&study case_name(1) = 'a', case_q1(1) = 1.3 /\n" \
   > "$FIXTURES/study_el_pendulum.nml"
 printf "$M&study case_name(1) = 'a', case_q1(1) = 0, case_q2(1) = -1.4 /\n" \
-  > "$FIXTURES/study_el_r0.nml"
+  > "$FIXTURES/study_el_r_zero.nml"
 printf "$M&study case_name(1) = 'a', case_links(1) = 3, case_q(1:3, 1) = 1.3, -1.4, 0 /\n" \
   > "$FIXTURES/study_el_links.nml"
 printf "&model\n name = 'elastic', k = -4\n/\n&study case_name(1) = 'a', case_q1(1) = 1.3 /\n" \
@@ -19,6 +19,6 @@ succeed std-elastic                    -- study --config data/elastic_study.nml 
 refuse  std-elastic-damped  case_damping -- study --config study_el_damped.nml --output o/s.h5
 refuse  std-elastic-pendulum pendulum  -- study --config study_el_pendulum.nml --output o/s.h5
 refuse  std-elastic-flag    pendulum   -- study --config data/elastic_study.nml --m1 2 --output o/s.h5
-refuse  std-elastic-r0      q1         -- study --config study_el_r0.nml --output o/s.h5
+refuse  std-elastic-r-zero  q1         -- study --config study_el_r_zero.nml --output o/s.h5
 refuse  std-elastic-links   case_links -- study --config study_el_links.nml --output o/s.h5
 refuse  std-elastic-k       k          -- study --config study_el_k.nml --output o/s.h5

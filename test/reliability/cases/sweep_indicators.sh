@@ -1,6 +1,6 @@
-# Inputs of the per-pixel indicators and the parameter axes of dpend sweep (issue
-# 14): refused before any work (one line naming the field, exit 2, no file
-# touched), and their edge values succeed without a trap in the debug build.
+# Inputs of the per-pixel indicators and the parameter axes of dpend sweep: refused
+# before any work (one line naming the field, exit 2, no file touched), and their
+# edge values succeed without a trap in the debug build.
 
 printf '0 0 0 0\n0.5 0.5 0 0\n1 1 0 0\n' > "$FIXTURES/swi_list.txt"
 W=(sweep --n 4 --t-end 1 --quiet --output g.h5)

@@ -1,4 +1,4 @@
-# dpend sweep and the model factory (issue 23): models only from new_model, and the
+# dpend sweep and the model factory: models only from new_model, and the
 # elastic pendulum on the per-trajectory path (docs/sweep.md, "Other models"). Its
 # flip map does not apply and is refused in one line; an indicator map over (r, phi)
 # and a list of states succeed without a trap in the debug build.

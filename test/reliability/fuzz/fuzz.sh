@@ -168,7 +168,7 @@ mutate_number() {
   case $R in
     0|1|2) pick "${VALID_POOL[@]}"; N=$P; MKIND="number from the pool" ;;
     3|4) pick "${BAD_POOL[@]}"; N=$P; VERDICT=refuse; MKIND="malformed token" ;;
-    5|6) # a separator or control byte inside, then more digits (issue 24 item 1)
+    5|6) # a separator or control byte inside, then more digits
          pick "${CTRL[@]}"; local c=$P; rnd 3; MKIND="separator or control byte in a number"
          case $R in 0) N=$t$c'1' ;; 1) N=$t$c ;; 2) N=$c$t ;; esac
          # a leading or trailing blank may be trimmed; everything else is refused
@@ -298,7 +298,7 @@ gen_flag() {
     ARGS+=("${ARGS[k-1]}" "$N")
     VERDICT=refuse; WHAT="repeated flag ${ARGS[k-1]}"; TAG="repeated flag"
   elif [ "$R" -lt 17 ]; then
-    # two forms of one quantity (issue 24 item 5)
+    # two forms of one quantity
     case $cmd in
       simulate|lyapunov|divergence|indicators|poincare)
         pick "--m 1,2 --m1 3" "--m1 3 --m 1,2" "--q 0.1,0.2 --q1 0.5" "--q1 0.5 --theta1 1" \
@@ -328,7 +328,7 @@ gen_flag() {
       *) ARGS+=(--fuzz_x "1"); VERDICT=refuse; WHAT="unknown flag"; TAG="unknown flag" ;;
     esac
   else
-    # the output names an input (issue 24 item 8), with or without --force
+    # the output names an input, with or without --force
     local out=""
     for w in "${ARGS[@]:1}"; do
       case $w in *.h5|*.nml|*.csv|*.txt) [ -f "$F/$w" ] && { out=$w; break; } ;; esac
@@ -427,7 +427,7 @@ gen_nml() {
       else
         WHAT="repeated key: none found"
       fi ;;
-    5) # a '%' component (issue 24 item 5)
+    5) # a '%' component
       pick "${alines[@]}"; i=$P
       if [[ ${lines[i]} =~ ([A-Za-z_][A-Za-z0-9_]*)[[:space:]]*= ]]; then
         local key=${BASH_REMATCH[1]}
@@ -714,7 +714,7 @@ gen_h5() {
           group) GENARGS=(group "${o[1]}") ;;
           softlink) GENARGS=(softlink "${o[1]}" /nowhere) ;;
           softlink2) GENARGS=(softlink "${o[1]}" "${o[1]}") ;; esac ;;
-    12) # what the command must refuse (issue 24 items 9 and 11)
+    12) # what the command must refuse
         case ${ARGS[0]} in
           animate) pick "fill /trajectory/t 0" "poke /trajectory/q 3 1e300" \
                         "poke /trajectory/t 2 -1" "fill /trajectory/q nan"
@@ -745,7 +745,7 @@ gen_h5() {
               GENARGS=(attr-int "${o[1]}" units 3 7)
             fi ;;
         esac ;;
-    13) # a wide dataset for export --csv (issue 24 item 10: linear time)
+    13) # a wide dataset for export --csv (linear time)
         objects "$src" D; pick "${OBJS[@]}"; read -ra o <<< "$P"
         pick "2,20000" "2,50000" "3,10000"
         GENARGS=(replace "${o[1]}" f64 "$P" 0.25)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Special reliability test (issue 25): `dpend animate` keeps gnuplot's messages off
+# Special reliability test: `dpend animate` keeps gnuplot's messages off
 # stderr when gnuplot succeeds ("N frames in animation sequence" and the like), shows
 # them when it fails (a copy of scripts/animate.gp with an invalid last line, through
 # DPEND_ROOT: exit 1, gnuplot's error and "gnuplot failed" on stderr), and prints

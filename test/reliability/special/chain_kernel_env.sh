@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# DPEND_SWEEP_KERNEL (issue 27): 'trajectory' sends a chain's flip map through the
+# DPEND_SWEEP_KERNEL: 'trajectory' sends a chain's flip map through the
 # per-trajectory path, 'lanes' or empty through the chain lanes, both succeed; any
 # other value (a typo, too long, a quote) is refused in one stderr line naming the
 # variable, exit 2, before any file is written.

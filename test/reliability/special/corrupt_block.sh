@@ -1,5 +1,5 @@
 #!/bin/bash
-# Special reliability test (issue 10, cause 9): a byte flipped in a finished block
+# Special reliability test: a byte flipped in a finished block
 # of a sweep's working file, and a damaged chunk index, are detected when the sweep
 # is resumed: exit 2 (or 1), one line on stderr saying the file is damaged, no HDF5
 # error stack, and no final file marked complete.

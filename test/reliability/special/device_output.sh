@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A device node or a FIFO as --output, with and without --force, for every command
 # that writes: refused with exit 2 and one line, the node untouched, nothing left
-# beside it (issue 10, cause 2: sweep --force renamed its file over a device node).
+# beside it (sweep --force once renamed its file over a device node).
 . "$ROOT/test/reliability/lib.sh"
 mkfifo fifo || die "mkfifo failed"
 # As root, never the real /dev/null (a faulty --force would replace it for the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Special reliability test (issue 23): every kind of simulate file draws and animates.
+# Special reliability test: every kind of simulate file draws and animates.
 # Environment (set by the reliability runner): DPEND (the dpend binary), ROOT (the
 # repository root), SCRATCH (an empty temporary directory, the cwd). Exit 0: pass,
 # 77: skipped (printed note), other: fail. One line per check.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Special reliability test (issue 26): a fit with a wrong fixed length warns that the
+# Special reliability test: a fit with a wrong fixed length warns that the
 # residuals are model error and names the length as the first suspect; the right
 # length gives no warning. Environment (set by the reliability runner): DPEND (the
 # dpend binary), ROOT (the repository root), SCRATCH (an empty temporary directory,

@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # --force while another process holds the old file open (as h5py in a notebook
 # would): the holder still reads the old bytes, the new file is complete, nothing
-# else is left (issue 10, cause 2: the old file was truncated to 0 bytes, then the
-# run failed). For every command that writes.
+# else is left (once the old file was truncated to 0 bytes, then the run failed). For every command that writes.
 . "$ROOT/test/reliability/lib.sh"
 printf '%s\n' '0.1 0.2 0 0' '-1.5 -1.5 0 0' > list.txt
 # old run | new run (each then gets --output FILE; the new one also --force)

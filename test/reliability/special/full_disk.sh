@@ -2,8 +2,8 @@
 # A full disk (a 300 kB tmpfs, filled up) with and without --force, for every
 # command that writes: exit 1 with a message naming "no space left on device" (or
 # exit 2 with one line about the space, when the run is refused before any work),
-# the old file byte-identical, no temporary file left (issue 10, cause 2: --force
-# destroyed the previous result; lyapunov left a `completed` file holding only
+# the old file byte-identical, no temporary file left (once --force destroyed the
+# previous result; lyapunov left a `completed` file holding only
 # /lyapunov/t; poincare printed "wrote" and crashed). Needs root (mount); else skipped.
 . "$ROOT/test/reliability/lib.sh"
 [ "$(id -u)" = 0 ] || skip "not root: cannot mount a tmpfs (run as root to test a full disk)"

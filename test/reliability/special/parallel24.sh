@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # 24 runs of mixed commands in parallel in one directory, each with its own output:
 # all succeed, every file is complete, nothing else is left behind, and a user file
-# named .dpend-write-probe is untouched (issue 10, cause 2: the fixed-name probe).
+# named .dpend-write-probe is untouched (dpend's write probe once had that fixed name).
 . "$ROOT/test/reliability/lib.sh"
 printf 'my own file, keep me\n' > .dpend-write-probe
 probe_sha=$(sha .dpend-write-probe)

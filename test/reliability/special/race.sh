@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Two runs racing for one new output without --force, 20 times over the writing
 # commands: never both succeed, the file is complete, the loser exits non-zero with
-# a clear message (issue 10, cause 2: the check came before the computation, the
-# write after, so both could exit 0). The sweep is left out: rerunning it on its own
+# a clear message (once the check came before the computation, the write after, so
+# both could exit 0). The sweep is left out: rerunning it on its own
 # complete file is a documented success (resume).
 . "$ROOT/test/reliability/lib.sh"
 commands=(

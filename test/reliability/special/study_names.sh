@@ -2,8 +2,8 @@
 # The study with output paths whose directory and file names hold a single quote, a
 # double quote, a space, `$` and non-ASCII letters, and an injection attempt: the
 # study succeeds, writes its .h5 and .md (and its six figures when gnuplot exists),
-# and no command hidden in a name runs (issue 10, cause 7: the plot script ran
-# through a shell string with the path inside single quotes).
+# and no command hidden in a name runs (once the plot script ran through a shell
+# string with the path inside single quotes).
 . "$ROOT/test/reliability/lib.sh"
 study=(study --quick --methods rk4 --cases small --threads 1)
 figures=(energy_vs_time energy_vs_step error_vs_step work_precision roundoff tao_omega)

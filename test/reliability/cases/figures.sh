@@ -1,4 +1,4 @@
-# Figures (issue 25, round 4): animate at the sizes whose text now scales with the
+# Figures: animate at the sizes whose text now scales with the
 # image (360 px and 800 px, with the reaction labels), an overlay (the overlay's
 # links in their own colours), a three-link figure (a colour per link). The summary's
 # tidy times and gnuplot's quiet stderr: test/reliability/special/animate_quiet.sh

@@ -1,5 +1,5 @@
 !> Every dataset a `dpend sweep` file holds, read back from the file and checked
-!> against an independent computation (issue 29, item 1: the dataset inventory,
+!> against an independent computation (the dataset inventory,
 !> test/inventory/sweep.txt). Each pixel is run again here, one trajectory at a time:
 !> the model from the factory (the double pendulum's own formulation for two links,
 !> the chain for three, the elastic pendulum) stepped by the registry's rk4 through
@@ -13,10 +13,10 @@
 !> neighbouring runs, the parameter datasets from the parameter axis.
 !>
 !> Two links: the sweep's vectorized kernel (Lagrange's form in lanes) against the
-!> model's own field (they differ by rounding); three links: the chain lanes (issue 27,
-!> the mass-matrix system solved in lanes; they differ by rounding); the elastic
+!> model's own field (they differ by rounding); three links: the chain lanes (the
+!> mass-matrix system solved in lanes; they differ by rounding); the elastic
 !> pendulum: the sweep's per-trajectory path against the same model and method.
-module test_values_sweep2
+module test_values_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp, i8
@@ -32,7 +32,7 @@ module test_values_sweep2
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
-   public :: collect_values_sweep2
+   public :: collect_values_sweep
 
    real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
    real(dp), parameter :: half_pi = 0.5_dp*pi, two_pi = 2.0_dp*pi
@@ -66,7 +66,7 @@ module test_values_sweep2
 
 contains
 
-   subroutine collect_values_sweep2(tests)
+   subroutine collect_values_sweep(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('flip_map_two_links', test_flip_two), &
                new_unittest('flip_map_three_links', test_flip_three), &
@@ -74,7 +74,7 @@ contains
                new_unittest('list_sweep', test_list), &
                new_unittest('parameter_axis_map', test_parameters), &
                new_unittest('elastic_map', test_elastic)]
-   end subroutine collect_values_sweep2
+   end subroutine collect_values_sweep
 
    ! ------------------------------------------------------------------ tests ---
 
@@ -197,7 +197,7 @@ contains
          end do
       end do
       en%m = [1.0_dp, 0.8_dp, 1.2_dp]; en%l = [1.0_dp, 0.7_dp, 0.9_dp]; en%g = 9.81_dp
-      ! (the chain lanes, issue 27: rounding only, measured 4.5e-12 after 200 steps)
+      ! (the chain lanes: rounding only, measured 4.5e-12 after 200 steps)
       call compare_map(error, 'flip_map_three_links', map, en, y0, 0.01_dp, 200_i8, &
                        rule_both, tol=1e-10_dp, kinds=[1, 2, 3])
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
@@ -871,4 +871,4 @@ contains
       if (allocated(error)) error%message = name//': '//error%message
    end subroutine read_ipx
 
-end module test_values_sweep2
+end module test_values_sweep

@@ -1,4 +1,4 @@
-# dpend sweep --device (issue 28, docs/gpu.md): the values of --device and
+# dpend sweep --device (docs/gpu.md): the values of --device and
 # --gpu-repack, --device gpu without the library (none in the scratch directory,
 # none next to the debug binary, $DPEND_GPU_LIB unset by CI) and for what the GPU
 # does not compute (indicators, the Lyapunov exponent, parameter axes, N links, the

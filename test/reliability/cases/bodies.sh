@@ -1,4 +1,4 @@
-# Links of any mass distribution (issue 26): --body rod|point, --com, --inertia and
+# Links of any mass distribution: --body rod|point, --com, --inertia and
 # &pendulum body/com/inertia; contradictions and invalid bodies refused in one line.
 P=(--t-end 0.2 --q 0.5,1.0)
 printf "&pendulum\n body = 'point'\n/\n" > "$FIXTURES/body_point.nml"

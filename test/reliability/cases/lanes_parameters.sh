@@ -1,4 +1,4 @@
-# Sweeps over parameters with every lane its own pendulum (issue 27, r5-lanes): the
+# Sweeps over parameters with every lane its own pendulum: the
 # lanes of one block hold pixels of very different constants (ratios 1e-5 to 1e5,
 # fast spins on the fallback path, runaway lanes, blocks that are no multiple of
 # the lane width) and must finish without a trap in the debug build, with every

@@ -1,25 +1,26 @@
-!> Tests written for mutants of the mutation stage (scripts/mutate.sh, docs/testing.md)
-!> that passed every earlier test; each compares with an independently known value.
+!> The phase-space distance of the divergence command (`phase_distance`) against an
+!> independently known value (written for a mutant of the mutation stage,
+!> scripts/mutate.sh, docs/testing.md, that passed every earlier test).
 !> - divergence_mixed_coordinates: the phase-space distance of the elastic pendulum
 !>   (r in m, φ in rad: `angle_coordinates`) wraps the angle difference to (−π, π]
 !>   and never the length (mutant divergence-no-wrap: the angles left unwrapped).
-module test_mutant_gaps
+module test_phase_distance
    use dpend_kinds, only: dp
    use dpend_elastic, only: elastic_t, elastic_model
    use dpend_divergence, only: phase_distance, angle_coordinates
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private
-   public :: collect_mutant_gaps
+   public :: collect_phase_distance
 
    real(dp), parameter :: pi = acos(-1.0_dp)
 
 contains
 
-   subroutine collect_mutant_gaps(tests)
+   subroutine collect_phase_distance(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('divergence_mixed_coordinates', test_mixed_wrap)]
-   end subroutine collect_mutant_gaps
+   end subroutine collect_phase_distance
 
    !> States of the elastic pendulum 2π + 0.1 rad apart in φ and 7 m apart in r:
    !> distance sqrt(7² + 0.1² + |Δrates|²), by the model's own angle mask.
@@ -46,4 +47,4 @@ contains
                  'distance with both wrapped', rel=1e-14_dp)
    end subroutine test_mixed_wrap
 
-end module test_mutant_gaps
+end module test_phase_distance

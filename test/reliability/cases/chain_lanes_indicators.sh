@@ -1,4 +1,4 @@
-# The chain lanes' indicators (issue 27, item 2): MEGNO, FLI, SALI and GALI_2 maps of
+# The chain lanes' indicators: MEGNO, FLI, SALI and GALI_2 maps of
 # chains of 3 to 8 links go through the chain lanes (dpend_chain_lanes; docs/sweep.md,
 # "Chain lanes"). Every row succeeds without a trap in the debug build: each indicator,
 # the lanes' edges (3 and 8 links), general bodies, a list, initial states far above

@@ -1,4 +1,4 @@
-# The chain lanes (issue 27): flip maps of chains of 3 to 8 links go through the
+# The chain lanes: flip maps of chains of 3 to 8 links go through the
 # SIMD lanes (dpend_chain_lanes), others stay on the per-trajectory path (docs/sweep.md,
 # "Chain lanes"). Every row succeeds without a trap in the debug build: rods and
 # general bodies, every stop rule, grid and list, the lanes' edges (3 and 8 links), the
@@ -21,7 +21,7 @@ succeed chl-n3-list             -- sweep --links 3 --ic-file chl_list.txt --t-en
 succeed chl-n3-fast             -- "${C[@]}" --links 3 --w 1e3,-1e3,1e3
 succeed chl-n3-big-angles       -- "${C[@]}" --links 3 --axis1 q1 --min1 -1e6 --max1 1e6
 # beside the lanes: the per-trajectory path (chl-n3-megno: the lanes since the
-# indicators joined them, chainind_r5.sh)
+# indicators joined them, chain_lanes_indicators.sh)
 succeed chl-n9                  -- "${C[@]}" --links 9
 succeed chl-n3-megno            -- "${C[@]}" --links 3 --indicator megno
 succeed chl-n3-param            -- "${C[@]}" --links 3 --axis1 m1 --min1 0.5 --max1 2

@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# The floors of dpend use only the floors below them (docs/architecture.md, "Layers"):
+#
+#   core < models < integrators < analysis < io < settings < engines < commands
+#        < front ends (app/, bench/, mpi/)
+#
+# This check reads every `use` statement of the Fortran sources in src/, app/, bench/
+# and mpi/, finds the folder of the module each one names, and fails on any edge
+# from a floor to a higher one (a module of the same floor is allowed). A folder of
+# src/ that is not in the order fails too: a new floor needs its place here and in
+# docs/architecture.md. Modules not defined in the tree (intrinsic modules, hdf5,
+# omp_lib, mpi) are outside the order. test/ may use any floor.
+#
+# Usage: scripts/check_layers.sh [--self-test] [ROOT]
+#   ROOT         the tree to read (default: this repository)
+#   --self-test  also plant a reverse edge (core using an engine) in a scratch copy
+#                and show that the check fails on it
+# Exit status: 0 no edge against the order; 1 edges against it; 2 usage or no sources.
+set -euo pipefail
+self_test=0
+root=""
+for arg in "$@"; do
+  case "$arg" in
+    --self-test) self_test=1 ;;
+    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -*) echo "check_layers: unknown option '$arg' (--self-test, --help)" >&2; exit 2 ;;
+    *) root=$arg ;;
+  esac
+done
+[[ -n "$root" ]] || root=$(cd "$(dirname "$0")/.." && pwd)
+
+# The floor of a source file by its folder; -1 for a folder outside the order.
+check_tree() {
+  local tree=$1
+  local -a files
+  mapfile -t files < <(cd "$tree" && find src app bench mpi -type f \
+    \( -name '*.f90' -o -name '*.F90' -o -name '*.inc' \) 2> /dev/null | LC_ALL=C sort)
+  if ((${#files[@]} == 0)); then
+    echo "check_layers: no Fortran sources under $tree" >&2
+    return 2
+  fi
+  (cd "$tree" && LC_ALL=C awk '
+    function floor_of(path,   parts, n) {
+      n = split(path, parts, "/")
+      if (parts[1] != "src") return 8          # app/, bench/, mpi/: front ends
+      if (parts[2] == "core") return 0
+      if (parts[2] == "models") return 1
+      if (parts[2] == "integrators") return 2
+      if (parts[2] == "analysis") return 3
+      if (parts[2] == "io") return 4
+      if (parts[2] == "settings") return 5
+      if (parts[2] == "engines") return 6
+      if (parts[2] == "commands") return 7
+      return -1
+    }
+    BEGIN {
+      split("core models integrators analysis io settings engines commands front-ends", name, " ")
+      for (i = 1; i <= 9; i++) floor_name[i - 1] = name[i]
+    }
+    # pass 1: where each module is defined
+    FNR == 1 { file = FILENAME }
+    {
+      line = tolower($0)
+      sub(/!.*/, "", line)
+      if (match(line, /^[ \t]*module[ \t]+[a-z0-9_]+[ \t]*$/) && line !~ /procedure/) {
+        mod = line
+        sub(/^[ \t]*module[ \t]+/, "", mod); sub(/[ \t]*$/, "", mod)
+        if (pass == 1) home[mod] = file
+      }
+      if (pass == 2 && match(line, /^[ \t]*use[ \t]*(,[ \t]*(non_)?intrinsic[ \t]*::)?[ \t]*[a-z0-9_]+/)) {
+        used = substr(line, RSTART, RLENGTH)
+        sub(/^[ \t]*use[ \t]*(,[ \t]*(non_)?intrinsic[ \t]*::)?[ \t]*/, "", used)
+        uses++
+        if (!(used in home)) next
+        from = floor_of(file); to = floor_of(home[used])
+        if (from < 0) { unknown[file] = 1; next }
+        if (to < 0) { unknown[home[used]] = 1; next }
+        if (to > from) {
+          printf "check_layers: %s:%d (%s) uses %s of %s (%s): against the order\n", \
+            file, FNR, floor_name[from], used, home[used], floor_name[to]
+          bad++
+        }
+        edges++
+      }
+    }
+    END {
+      for (f in unknown) {
+        printf "check_layers: %s is in no floor of the order (docs/architecture.md)\n", f
+        bad++
+      }
+      printf "check_layers: %d use statements, %d between modules of the tree, %d against the order\n", \
+        uses, edges, bad
+      exit bad > 0 ? 1 : 0
+    }
+  ' pass=1 "${files[@]}" pass=2 "${files[@]}")
+}
+
+status=0
+check_tree "$root" || status=$?
+if ((self_test)); then
+  scratch=$(mktemp -d)
+  trap 'rm -rf "$scratch"' EXIT
+  (cd "$root" && cp -r src app bench mpi "$scratch"/)
+  kinds="$scratch/src/core/dpend_kinds.f90"
+  sed -i '0,/^module dpend_kinds/s//&\n   use dpend_sweep_engine, only: run_sweep/' "$kinds"
+  echo "check_layers: self-test: a planted 'use dpend_sweep_engine' in src/core/dpend_kinds.f90"
+  planted=0
+  check_tree "$scratch" || planted=$?
+  if ((planted != 1)); then
+    echo "check_layers: self-test FAILED: the planted reverse edge was not caught" >&2
+    exit 1
+  fi
+  echo "check_layers: self-test: the planted edge is caught (exit 1, as it should)"
+fi
+exit "$status"

@@ -1,0 +1,440 @@
+!> The settings of one run, shared by every command and by library callers: the
+!> model's parameters (per link, or by name for other models), the initial state,
+!> the method and its options, the output file. `validate_run_config` checks every
+!> field against its range (dpend_limits) and builds the model through the factory
+!> (dpend_model_factory); before that, `model` is not allocated. The command line
+!> fills these records through dpend_namelist (--config FILE) and dpend_run_flags.
+module dpend_run_settings
+   use dpend_kinds, only: dp, i8
+   use dpend_error, only: error_t, fatal_error
+   use dpend_pendulum, only: pendulum_t, body_general
+   use dpend_limits, only: finite_positive
+   use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
+      model_catalogue, find_model, default_model
+   use dpend_model, only: model_t, max_dof
+   use dpend_cli, only: to_str, to_lower, printable
+   use dpend_limits, only: in_range, check_range, check_count, max_angle, max_time, max_dt, &
+      min_rtol, min_atol, max_atol, max_omega, max_steps, default_max_steps, sci, &
+      max_support_frequency
+   use dpend_integrator, only: integrator_t
+   use dpend_methods, only: new_integrator
+   implicit none
+   private
+   public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
+      is_model_parameter, list_names
+
+   !> The lists a user may give (--m --l --q --w, namelist m l q w), in this order.
+   character(len=1), parameter :: list_names(4) = ['m', 'l', 'q', 'w']
+
+   !> Everything a single run needs (SI units, angles in rad from the horizontal x axis).
+   !> Per-link values are kept for max_dof links; the first `links` are used.
+   type :: run_config_t
+      integer :: links = 2                     !! number of links N
+      real(dp) :: m(max_dof) = 1.0_dp          !! link masses [kg]
+      real(dp) :: l(max_dof) = 1.0_dp          !! link lengths [m]
+      real(dp) :: g = 9.8_dp                   !! gravitational acceleration [m/s²]
+      real(dp) :: q(max_dof) = 0.0_dp          !! initial angles [rad]
+      real(dp) :: w(max_dof) = 0.0_dp          !! initial angular velocities [rad/s]
+      !> Lengths of the lists given for m, l, q, w (0: none given); each must be N.
+      integer :: list_size(4) = 0
+      !> Joint damping c_i [N m s] and the number of values given (0: none).
+      real(dp) :: damping(max_dof) = 0.0_dp
+      integer :: damping_size = 0
+      !> The support's motion x_A = a_x cos(ω t + φ_x), y_A = a_y cos(ω t + φ_y):
+      !> amplitudes (a_x, a_y) [m], ω [rad/s], phases (φ_x, φ_y) [rad]; zero: fixed pin.
+      real(dp) :: support_amplitude(2) = 0.0_dp
+      real(dp) :: support_frequency = 0.0_dp
+      real(dp) :: support_phase(2) = 0.0_dp
+      class(model_t), allocatable :: model     !! the system, built by validate_run_config
+      character(len=:), allocatable :: method  !! integrator name
+      real(dp) :: dt = 1e-3_dp                 !! step (initial step for adaptive) [s]
+      real(dp) :: t_end = 10.0_dp              !! end time [s]
+      integer :: save_every = 10               !! keep every N-th step
+      real(dp) :: rtol = 1e-9_dp               !! relative tolerance (adaptive methods)
+      real(dp) :: atol = 1e-12_dp              !! absolute tolerance (adaptive methods)
+      real(dp) :: output_dt = 0.0_dp           !! sample at k·output_dt (0: every save_every steps) [s]
+      real(dp) :: omega = 20.0_dp              !! Tao's binding constant [1/s]
+      integer(i8) :: max_steps = default_max_steps !! most accepted steps of one
+                                               !! integration (adaptive methods)
+      character(len=:), allocatable :: output  !! output file
+      logical :: force = .false.               !! overwrite an existing output file
+      !> The per-link flags given so far (' --m1 --q '), so that two forms of one
+      !> quantity on the command line are refused (`apply_run_flag`).
+      character(len=:), allocatable :: flags_seen
+      !> The model (--model; unset: the factory's default, the chapter's pendulum),
+      !> the parameters of models other than the pendulum given by name (--k 40), and
+      !> the specification the model was built from (validate_run_config).
+      character(len=:), allocatable :: model_name
+      type(model_spec_t) :: extra
+      type(model_spec_t) :: spec
+      !> The scalar keys a namelist file gave (' q1 save_every '),
+      !> so that a command refuses a fixed value it sweeps or two forms of one setting.
+      character(len=:), allocatable :: nml_given
+      !> The links' body: '' (not given: uniform rods unless --com or
+      !> --inertia), 'rod' or 'point' (--body / &pendulum body)
+      character(len=:), allocatable :: body
+   contains
+      !> Initial angles q(1:N) [rad].
+      procedure :: q0 => run_q0
+      !> Initial angular velocities w(1:N) [rad/s].
+      procedure :: w0 => run_w0
+      !> The double pendulum's parameters (links 1 and 2, g).
+      procedure :: pendulum => run_pendulum
+   end type run_config_t
+
+contains
+
+   pure function run_q0(self) result(q)
+      class(run_config_t), intent(in) :: self  !! configuration
+      real(dp), allocatable :: q(:)
+      q = self%q(:self%links)
+   end function run_q0
+
+   pure function run_w0(self) result(w)
+      class(run_config_t), intent(in) :: self  !! configuration
+      real(dp), allocatable :: w(:)
+      w = self%w(:self%links)
+   end function run_w0
+
+   pure function run_pendulum(self) result(par)
+      class(run_config_t), intent(in) :: self  !! configuration
+      type(pendulum_t) :: par
+      par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
+      ! links other than uniform rods: com and inertia as the model was built
+      if (self%spec%find('com') > 0 .or. self%spec%find('inertia') > 0) then
+         block
+            real(dp), allocatable :: d(:), ic(:)
+            d = 0.5_dp*self%l(1:2)
+            if (self%spec%find('com') > 0) d = self%spec%get('com', d)
+            ic = [0.0_dp, 0.0_dp]
+            if (self%spec%find('inertia') > 0) then
+               ic = self%spec%get('inertia', ic)
+            else   ! the model was built: l is within its range, m l²/12 finite
+               ic = self%m(1:2)*self%l(1:2)**2/12.0_dp
+            end if
+            if (size(d) == 2 .and. size(ic) == 2) then
+               par%body = body_general
+               par%d1 = d(1); par%d2 = d(2); par%i1 = ic(1); par%i2 = ic(2)
+            end if
+         end block
+      end if
+   end function run_pendulum
+
+   !> Set the parameters of the double pendulum (two links) from `par`.
+   pure subroutine set_pendulum(cfg, par)
+      type(run_config_t), intent(inout) :: cfg  !! configuration
+      type(pendulum_t), intent(in) :: par       !! parameters
+      cfg%m(1:2) = [par%m1, par%m2]; cfg%l(1:2) = [par%l1, par%l2]; cfg%g = par%g
+   end subroutine set_pendulum
+
+   !> Check the whole configuration; messages name the field and the accepted range
+   !> (the limits and their reasons are in `dpend_limits`). For a fixed-step method
+   !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
+   !> after `max_steps` accepted steps instead (`--max-steps`).
+   !> Builds `cfg%model` (the double pendulum for two links, the chain otherwise).
+   subroutine validate_run_config(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! configuration; model built
+      type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      class(integrator_t), allocatable :: integ
+      integer :: i, n
+      if (allocated(cfg%model)) deallocate (cfg%model)
+      call check_range('links', real(cfg%links, dp), 1.0_dp, real(max_dof, dp), '', error)
+      if (allocated(error)) return
+      n = cfg%links
+      do i = 1, merge(2, 0, model_has(cfg, 'links'))   ! m and l: one per link
+         if (cfg%list_size(i) /= 0 .and. cfg%list_size(i) /= n) then
+            call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                             to_str(cfg%list_size(i))//' values for '//to_str(n)// &
+                             ' links (one per link; --links N sets N) [--'//list_names(i)// &
+                             ' / namelist '//list_names(i)//']')
+            return
+         end if
+      end do
+      if (cfg%damping_size /= 0 .and. cfg%damping_size /= n) then
+         call fatal_error(error, 'invalid damping: '//to_str(cfg%damping_size)// &
+                          ' values for '//to_str(n)//' links (one per joint; --links N ' &
+                          //'sets N) [--damping / namelist damping]')
+         return
+      end if
+      call check_range('support_frequency', cfg%support_frequency, 0.0_dp, &
+                       max_support_frequency, 'rad/s', error)
+      if (allocated(error)) return
+      do i = 1, 2
+         call check_range('support_phase '//merge('phi_x', 'phi_y', i == 1), &
+                          cfg%support_phase(i), -max_angle, max_angle, 'rad', error)
+         if (allocated(error)) return
+      end do
+      call build_model(cfg, error)
+      if (allocated(error)) return
+      call check_initial_state(cfg, error)
+      if (allocated(error)) return
+      if (.not. allocated(cfg%method)) then
+         call fatal_error(error, 'invalid method: none given')
+         return
+      end if
+      call new_integrator(cfg%method, integ, error)
+      if (allocated(error)) return
+      call integ%check_model(cfg%model, error)   ! e.g. a canonical method, no Hamiltonian
+      if (allocated(error)) return
+      if (.not. finite_positive(cfg%dt)) then
+         call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
+                          //' s')
+         return
+      end if
+      call check_range('dt', cfg%dt, 0.0_dp, max_dt, 's', error)
+      if (allocated(error)) return
+      call check_range('t_end', cfg%t_end, 0.0_dp, max_time, 's', error)
+      if (allocated(error)) return
+      if (.not. integ%adaptive()) then
+         call check_count('dt', cfg%dt, cfg%t_end, 't_end', max_steps, 'steps', &
+                          'use a larger --dt or a shorter --t-end', error)
+         if (allocated(error)) return
+      end if
+      if (cfg%save_every < 1) then
+         call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
+                          ' must be an integer >= 1')
+      else if (.not. finite_positive(cfg%rtol) .or. .not. finite_positive(1.0_dp - cfg%rtol)) &
+         then
+         call fatal_error(error, 'invalid rtol: must be in ['//sci(min_rtol)//', 1)')
+      else if (cfg%rtol < min_rtol) then
+         call fatal_error(error, 'invalid rtol: '//sci(cfg%rtol)//' is below '//sci(min_rtol) &
+                          //' (double precision cannot honour it: the error estimate is '// &
+                          'dominated by rounding and the step shrinks until it stalls)')
+      else if (.not. in_range(cfg%atol, min_atol, max_atol)) then
+         call fatal_error(error, 'invalid atol: must be in ['//sci(min_atol)//', ' &
+                          //sci(max_atol)//'] (rad, rad/s)')
+      else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
+         call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
+      else if (cfg%output_dt > max_time) then
+         call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
+                          //sci(max_time)//' s')
+      else if (.not. (finite_positive(cfg%omega) .and. in_range(cfg%omega, 0.0_dp, max_omega))) &
+         then
+         call fatal_error(error, 'invalid omega: must be in (0, '//sci(max_omega)//'] (1/s)')
+      else if (cfg%max_steps < 1 .or. cfg%max_steps > max_steps) then
+         call fatal_error(error, 'invalid max_steps: must be an integer from 1 to ' &
+                          //sci(real(max_steps, dp))//' (steps)')
+      end if
+   end subroutine validate_run_config
+
+   !> Whether the model `cfg` asks for has the parameter `name` (the factory's
+   !> catalogue; an unknown model: none).
+   logical function model_has(cfg, name)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: name   !! parameter name
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      k = find_model(models, model_asked(cfg))
+      model_has = .false.
+      if (k == 0) return
+      model_has = any([(models(k)%params(i)%name == name, i=1, size(models(k)%params))])
+   end function model_has
+
+   !> The model name --model gave (or &model name), else the factory's default.
+   pure function model_asked(cfg) result(name)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      character(len=:), allocatable :: name
+      if (allocated(cfg%model_name)) then
+         name = cfg%model_name
+      else
+         name = default_model
+      end if
+   end function model_asked
+
+   !> The names of the factory's models, blank-separated (for `canonical_name`).
+   function model_names() result(s)
+      character(len=:), allocatable :: s
+      type(model_info_t), allocatable :: models(:)
+      integer :: k
+      models = model_catalogue()
+      s = ''
+      do k = 1, size(models)
+         s = s//' '//models(k)%name
+      end do
+   end function model_names
+
+   !> Whether `name` is a parameter of any model of the catalogue (a flag --NAME).
+   logical function is_model_parameter(name)
+      character(len=*), intent(in) :: name  !! parameter name
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      is_model_parameter = .false.
+      do k = 1, size(models)
+         do i = 1, size(models(k)%params)
+            if (models(k)%params(i)%name == name) is_model_parameter = .true.
+         end do
+      end do
+   end function is_model_parameter
+
+   !> Build `cfg%model` through the factory (the one place a model is built): the
+   !> specification holds the model's parameters from the run's fields (links, m, l,
+   !> g, damping, support_*) and those given by name (--k); a field set for a model
+   !> that has no such parameter is refused.
+   subroutine build_model(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! configuration; model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i, n
+      character(len=:), allocatable :: given
+      models = model_catalogue()
+      cfg%spec = model_spec(model_asked(cfg))
+      k = find_model(models, model_asked(cfg))
+      if (k > 0) then
+         n = cfg%links
+         do i = 1, size(models(k)%params)
+            associate (p => models(k)%params(i))
+               select case (p%name)
+               case ('links'); call cfg%spec%set('links', [real(cfg%links, dp)])
+               case ('m'); call cfg%spec%set('m', per_link(cfg%m, 1))
+               case ('l'); call cfg%spec%set('l', per_link(cfg%l, 2))
+               case ('g'); call cfg%spec%set('g', [cfg%g])
+               case ('damping'); call cfg%spec%set('damping', cfg%damping(:n))
+               case ('support_amplitude')
+                  call cfg%spec%set('support_amplitude', cfg%support_amplitude)
+               case ('support_frequency')
+                  call cfg%spec%set('support_frequency', [cfg%support_frequency])
+               case ('support_phase'); call cfg%spec%set('support_phase', cfg%support_phase)
+               end select
+            end associate
+         end do
+         ! the pendulum's fields given to a model without them
+         given = ''
+         if (cfg%links /= 2) given = 'links'
+         if (cfg%list_size(2) > 0) given = 'l'
+         if (cfg%damping_size > 0) given = 'damping'
+         if (any(cfg%support_amplitude /= 0.0_dp)) given = 'support_amplitude'
+         if (len(given) > 0 .and. .not. model_has(cfg, given)) then
+            call fatal_error(error, 'invalid '//given//': not a parameter of model ' &
+                             //model_asked(cfg)//' (dpend models lists its parameters)')
+            return
+         end if
+      end if
+      if (allocated(cfg%extra%items)) then
+         do i = 1, size(cfg%extra%items)
+            call cfg%spec%set(cfg%extra%items(i)%name, cfg%extra%items(i)%values)
+         end do
+      end if
+      call apply_body(cfg, error)
+      if (allocated(error)) return
+      call new_model(cfg%spec, cfg%model, error)
+      if (allocated(error)) error%message = error%message//hint(error%message)
+   contains
+      !> The first n values of a per-link field, or its first value for a scalar
+      !> parameter (refused later by the factory if a list was given).
+      function per_link(values, list) result(v)
+         real(dp), intent(in) :: values(:)
+         integer, intent(in) :: list
+         real(dp), allocatable :: v(:)
+         if (model_has(cfg, 'links')) then
+            v = values(:n)
+         else
+            v = values(:max(1, cfg%list_size(list)))
+         end if
+      end function per_link
+      !> Where a refused parameter is set: its flags and namelist group.
+      function hint(message) result(s)
+         character(len=*), intent(in) :: message
+         character(len=:), allocatable :: s
+         if (index(message, 'invalid model') == 1 .or. &
+             index(message, 'not a parameter of model') > 0) then
+            s = ''
+         else if (.not. model_has(cfg, 'links')) then
+            s = ' [dpend models lists the parameters of '//model_asked(cfg)//']'
+         else if (index(message, 'invalid damping') == 1) then
+            s = ' [--damping / &pendulum damping]'
+         else if (index(message, 'invalid com') == 1 .or. index(message, 'invalid inertia') &
+                  == 1) then
+            s = ' [--com --inertia --body / &pendulum com inertia body]'
+         else if (index(message, 'invalid support') == 1) then
+            s = ' [--support-amplitude --support-frequency --support-phase / &pendulum]'
+         else if (n == 2) then
+            s = ' [--m1 --m2 --l1 --l2 --g / &pendulum]'
+         else
+            s = ' [--m --l --g / &pendulum]'
+         end if
+      end function hint
+   end subroutine build_model
+
+   !> The initial state: as many q and w as the model has coordinates, within what
+   !> the model accepts (`check_state`: angles and angular velocities within 1e6 for
+   !> the pendulum; the elastic pendulum's r above its collapse).
+   subroutine check_initial_state(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      integer :: i, nd
+      nd = cfg%model%n_dof()
+      do i = 3, 4
+         if (cfg%list_size(i) /= 0 .and. cfg%list_size(i) /= nd) then
+            if (model_has(cfg, 'links')) then
+               call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                                to_str(cfg%list_size(i))//' values for '//to_str(nd)// &
+                                ' links (one per link; --links N sets N) [--'// &
+                                list_names(i)//' / namelist '//list_names(i)//']')
+            else
+               call fatal_error(error, 'invalid '//list_names(i)//': '// &
+                                to_str(cfg%list_size(i))//' values for the '//to_str(nd)// &
+                                ' coordinates of model '//model_asked(cfg)//' [--' &
+                                //list_names(i)//' / namelist '//list_names(i)//']')
+            end if
+            return
+         end if
+      end do
+      call cfg%model%check_state(cfg%q(:nd), cfg%w(:nd), error)
+   end subroutine check_initial_state
+
+   !> `--body NAME` / `&pendulum body = 'NAME'`: rod or point, else refused.
+   subroutine set_body(cfg, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%body set
+      character(len=*), intent(in) :: value             !! the name given
+      type(error_t), allocatable, intent(out) :: error  !! not a body
+      select case (to_lower(value))
+      case ('rod', 'point')
+         cfg%body = to_lower(value)
+      case default
+         call fatal_error(error, "invalid body: '"//printable(value)//"' is not a body " &
+                          //'(accepted: rod, point; --com and --inertia give any other) ' &
+                          //'[--body / &pendulum body]')
+      end select
+   end subroutine set_body
+
+   !> The body asked for into cfg%spec: 'point' sets com = l and inertia = 0, 'rod'
+   !> leaves the rod's defaults; either is refused beside com or inertia (the two
+   !> would contradict each other), and for a model without links' bodies.
+   subroutine apply_body(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%spec updated
+      type(error_t), allocatable, intent(out) :: error  !! a contradiction
+      real(dp), allocatable :: l(:)
+      character(len=:), allocatable :: given, sets
+      if (.not. allocated(cfg%body)) return
+      if (.not. model_has(cfg, 'com')) then
+         call fatal_error(error, 'invalid body: not a parameter of model '//model_asked(cfg) &
+                          //' (dpend models lists its parameters)')
+         return
+      end if
+      given = ''
+      if (cfg%spec%find('com') > 0) given = 'com'
+      if (cfg%spec%find('inertia') > 0) then
+         if (len(given) > 0) given = given//' and '
+         given = given//'inertia'
+      end if
+      if (len(given) > 0) then
+         if (cfg%body == 'rod') then
+            sets = 'com = l_i/2 and inertia = m_i l_i^2/12'
+         else
+            sets = 'com = l_i and inertia = 0'
+         end if
+         call fatal_error(error, 'invalid body: '//cfg%body//' contradicts the '//given &
+                          //' given (--body '//cfg%body//' sets '//sets//'; give either ' &
+                          //'the body or com and inertia) [--body --com --inertia / &pendulum]')
+         return
+      end if
+      if (cfg%body == 'point') then
+         l = cfg%spec%get('l', [1.0_dp])
+         call cfg%spec%set('com', l)
+         call cfg%spec%set('inertia', spread(0.0_dp, 1, size(l)))
+      end if
+   end subroutine apply_body
+
+end module dpend_run_settings
