@@ -48,6 +48,7 @@ program tester
    use test_chain_lanes, only: collect_chain_lanes
    use test_lanes, only: collect_lanes
    use test_gpu, only: collect_gpu
+   use test_run_settings, only: collect_run_settings
    implicit none
 
    type :: suite_t
@@ -62,7 +63,7 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(41))
+   allocate (suites(42))
    suites(1)%name = 'model'; call collect_model(suites(1)%tests)
    suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
    suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
@@ -104,6 +105,7 @@ program tester
    suites(39)%name = 'chain_lanes'; call collect_chain_lanes(suites(39)%tests)
    suites(40)%name = 'lanes'; call collect_lanes(suites(40)%tests)
    suites(41)%name = 'gpu'; call collect_gpu(suites(41)%tests)
+   suites(42)%name = 'run_settings'; call collect_run_settings(suites(42)%tests)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then

@@ -24,7 +24,8 @@ contains
               new_unittest('defaults_build', test_defaults_build), &
               new_unittest('ranges_enforced', test_ranges), &
               new_unittest('refusals', test_refusals), &
-              new_unittest('pendulum_forms', test_pendulum_forms)]
+              new_unittest('pendulum_forms', test_pendulum_forms), &
+              new_unittest('energy_split', test_energy_split)]
    end subroutine collect_factory
 
    !> Names unique, the default model listed, every parameter's default within its
@@ -81,6 +82,46 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_defaults_build
+
+   !> Every model splits its energy E = T + V (`kinetic_energy`, `potential_energy`):
+   !> T + V equals E to rounding, T is 0 at rest (V = E), and T is quadratic in the
+   !> rates, T(q, 2 q̇) = 4 T(q, q̇), at states spread over the coordinates.
+   subroutine test_energy_split(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(model_info_t), allocatable :: models(:)
+      class(model_t), allocatable :: model
+      real(dp), allocatable :: y(:), y2(:)
+      real(dp) :: e, t, v, worst_sum, worst_scale
+      integer :: i, k, s, n
+      models = model_catalogue()
+      worst_sum = 0; worst_scale = 0
+      do k = 1, size(models)
+         call new_model(model_spec(models(k)%name), model, error)
+         if (allocated(error)) return
+         n = model%n_dof()
+         do s = 1, 5
+            y = [(1.0_dp + 0.3_dp*s - 0.2_dp*i, i=1, n), (0.7_dp*s - 1.3_dp*i, i=1, n)]
+            e = model%energy(0.0_dp, y)
+            t = model%kinetic_energy(0.0_dp, y)
+            v = model%potential_energy(0.0_dp, y)
+            worst_sum = max(worst_sum, abs(t + v - e)/max(1.0_dp, abs(t), abs(v)))
+            y2 = y
+            y2(n + 1:) = 2.0_dp*y(n + 1:)
+            worst_scale = max(worst_scale, abs(model%kinetic_energy(0.0_dp, y2) - 4.0_dp*t) &
+                              /max(1.0_dp, abs(t)))
+            y(n + 1:) = 0.0_dp
+            call check_true(error, model%kinetic_energy(0.0_dp, y) == 0.0_dp .and. &
+                            abs(model%potential_energy(0.0_dp, y) - model%energy(0.0_dp, y)) &
+                            <= 1e-15_dp*max(1.0_dp, abs(model%energy(0.0_dp, y))), &
+                            models(k)%name//': T = 0 and V = E at rest')
+            if (allocated(error)) return
+         end do
+      end do
+      print '(4x,a,es9.2,a,es9.2)', 'energy split: largest |T + V - E| (relative) ', &
+         worst_sum, ', |T(q, 2 qdot) - 4 T| ', worst_scale
+      call check_true(error, worst_sum <= 1e-14_dp .and. worst_scale <= 1e-14_dp, &
+                      'T + V = E and T quadratic in the rates, every model')
+   end subroutine test_energy_split
 
    !> Each parameter of each model: its bounds are accepted, just outside them
    !> refused with a message naming it.

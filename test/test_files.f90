@@ -168,8 +168,9 @@ contains
       dir = scratch_dir('filessim')
       stat = run_command(dir, 'simulate --t-end 0.2 --output '//dir//'/sim.h5')
       call check_true(error, stat == 0, 'simulate exits 0')
-      ! t q qdot qddot p energy and the default model's outputs (F_joint among them)
-      call check_all_described(error, dir//'/sim.h5', 6 + default_outputs())
+      ! t q qdot qddot p energy kinetic potential and the default model's outputs
+      ! (F_joint among them)
+      call check_all_described(error, dir//'/sim.h5', 8 + default_outputs())
       if (allocated(error)) return
       call h5%open(dir//'/sim.h5', 'r', error)
       if (allocated(error)) return
@@ -178,6 +179,8 @@ contains
       call check_attr(error, h5, '/trajectory/qdot', 'units', 'rad/s')
       call check_attr(error, h5, '/trajectory/p', 'units', 'kg m^2/s')
       call check_attr(error, h5, '/trajectory/energy', 'units', 'J')
+      call check_attr(error, h5, '/trajectory/kinetic', 'units', 'J')
+      call check_attr(error, h5, '/trajectory/potential', 'units', 'J')
       call check_attr(error, h5, '/trajectory/F01', 'units', 'N')
       call check_attr(error, h5, '/trajectory/aC2', 'units', 'm/s^2')
       call check_attr(error, h5, '/', 'method', 'rk4')
@@ -343,8 +346,8 @@ contains
       call check_true(error, stat == 0, 'simulate exits 0')
       stat = run_command(dir, 'export '//dir//'/sim.h5 --list')
       call read_text(dir//'/stdout', text, n)
-      call check_true(error, stat == 0 .and. n == 7 + default_outputs(), 'a header and ' &
-                      //to_str(6 + default_outputs())//' datasets, got '//to_str(n)//': '//text)
+      call check_true(error, stat == 0 .and. n == 9 + default_outputs(), 'a header and ' &
+                      //to_str(8 + default_outputs())//' datasets, got '//to_str(n)//': '//text)
       call check_true(error, index(text, '/trajectory/q ') > 0 .and. &
                       index(text, '(11, 2)') > 0 .and. index(text, ' rad/s ') > 0, &
                       'path, shape (h5py order) and units: '//text)

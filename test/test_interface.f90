@@ -29,6 +29,7 @@ module test_interface
       procedure :: jacobian => osc_jacobian
       procedure :: energy => osc_energy
       procedure :: energy_scale => osc_energy_scale
+      procedure :: potential_energy => osc_potential_energy
       procedure :: conservative => osc_false
    end type oscillator_t
 
@@ -72,6 +73,12 @@ contains
       real(dp), intent(in) :: t, y(:)
       osc_energy = 0.5_dp*(y(2)**2 + omega**2*y(1)**2)
    end function osc_energy
+
+   pure real(dp) function osc_potential_energy(self, t, y)
+      class(oscillator_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      osc_potential_energy = 0.5_dp*omega**2*y(1)**2
+   end function osc_potential_energy
 
    pure real(dp) function osc_energy_scale(self, e0)
       class(oscillator_t), intent(in) :: self

@@ -64,8 +64,8 @@ contains
       ch%g = 9.7_dp
       call check_chain(error, 'two_rods', ch, '--m 1.3,0.7 --l 0.9,1.2 --g 9.7 ' &
                        //'--q 0.3,-0.4 --w 1.5,-2', [character(len=nl) :: &
-                       't', 'q', 'qdot', 'qddot', 'p', 'energy', 'rA', 'rB', 'rC', 'rC1', &
-                       'rC2', 'rJ', 'vC', 'vC1', 'vC2', 'vJ', 'aC', 'aC1', 'aC2', 'aJ', &
+                       't', 'q', 'qdot', 'qddot', 'p', 'energy', 'kinetic', 'potential', 'rA', 'rB', &
+                       'rC', 'rC1', 'rC2', 'rJ', 'vC', 'vC1', 'vC2', 'vJ', 'aC', 'aC1', 'aC2', 'aJ', &
                        'F01', 'F21', 'F_joint'])
    end subroutine test_two_rods
 
@@ -81,7 +81,7 @@ contains
                        //'--q 0.3,-0.4 --w 1.5,-2 --damping 0.3,0.2 --support-amplitude ' &
                        //'0.04,0.07 --support-frequency 5 --support-phase 0.3,-0.2', &
                        [character(len=nl) :: 't', 'q', 'qdot', 'qddot', 'energy', &
-                       'W_friction', 'W_support', 'balance_error', 'rA', 'rB', 'rC', 'rC1', &
+                       'kinetic', 'potential', 'W_friction', 'W_support', 'balance_error', 'rA', 'rB', 'rC', 'rC1', &
                        'rC2', 'rJ', 'vC', 'vC1', 'vC2', 'vJ', 'aC', 'aC1', 'aC2', 'aJ', &
                        'F01', 'F21', 'F_joint'])
    end subroutine test_damped_support
@@ -95,16 +95,16 @@ contains
       ch%c = [0.0_dp, 0.0_dp, 0.0_dp]
       call check_chain(error, 'chain3', ch, '--links 3 --m 1.1,0.8,1.4 --l 1,0.7,1.2 ' &
                        //'--q 0.1,0.5,-1 --w 0,1,0', [character(len=nl) :: 't', 'q', &
-                       'qdot', 'qddot', 'p', 'energy', 'rA', 'rC', 'rJ', 'vC', 'vJ', 'aC', &
-                       'aJ', 'F_joint'])
+                       'qdot', 'qddot', 'p', 'energy', 'kinetic', 'potential', 'rA', 'rC', 'rJ', &
+                       'vC', 'vJ', 'aC', 'aJ', 'F_joint'])
    end subroutine test_chain3
 
    !> The elastic pendulum (m = 1.2 kg, k = 40 N/m, l0 = 0.9 m, g = 9.8 m/s²).
    subroutine test_elastic(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       call check_elastic(error, [character(len=nl) :: 't', 'q', 'qdot', 'qddot', 'p', &
-                         'energy', 'rA', 'rC', 'vC', 'aC', 'F_joint', 'spring_length', &
-                         'tension'])
+                         'energy', 'kinetic', 'potential', 'rA', 'rC', 'vC', 'aC', 'F_joint', &
+                         'spring_length', 'tension'])
    end subroutine test_elastic
 
    ! ------------------------------------------------------------------ chain
@@ -122,7 +122,7 @@ contains
       real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), x2(:, :), x3(:, :, :), x1(:)
       real(dp), allocatable :: rc(:, :, :), vc(:, :, :), ac(:, :, :), rj(:, :, :), vj(:, :, :)
       real(dp), allocatable :: aj(:, :, :), fj(:, :, :), ra(:, :), va(:, :), e(:), p(:, :)
-      real(dp), allocatable :: qddx(:, :), pf(:), ps(:), wf(:), ws(:), y(:, :)
+      real(dp), allocatable :: qddx(:, :), pf(:), ps(:), wf(:), ws(:), y(:, :), tk(:), vp(:)
       real(dp) :: e_s
       integer :: stat, n, i, k
       dir = scratch_dir('values-'//tag)
@@ -144,7 +144,7 @@ contains
       ! closed forms from the stored q, qdot, qddot
       allocate (rc(2, ch%n, n), vc(2, ch%n, n), ac(2, ch%n, n), rj(2, ch%n, n), &
                 vj(2, ch%n, n), aj(2, ch%n, n), fj(2, ch%n, n), ra(2, n), va(2, n), e(n), &
-                p(ch%n, n), qddx(ch%n, n), pf(n), ps(n))
+                p(ch%n, n), qddx(ch%n, n), pf(n), ps(n), tk(n), vp(n))
       do i = 1, n
          call kinematics(ch, t(i), q(:, i), qd(:, i), qdd(:, i), ra(:, i), va(:, i), &
                          rc(:, :, i), vc(:, :, i), ac(:, :, i), rj(:, :, i), vj(:, :, i), &
@@ -155,6 +155,9 @@ contains
          end do
          e(i) = sum(0.5_dp*ch%m*sum(vc(:, :, i)**2, dim=1) &
                     + 0.5_dp*ch%m*ch%l**2/12.0_dp*qd(:, i)**2 + ch%m*ch%g*rc(2, :, i))
+         tk(i) = sum(0.5_dp*ch%m*sum(vc(:, :, i)**2, dim=1) &
+                     + 0.5_dp*ch%m*ch%l**2/12.0_dp*qd(:, i)**2)
+         vp(i) = sum(ch%m*ch%g*rc(2, :, i))
          p(:, i) = matmul(mass_matrix(ch, q(:, i)), qd(:, i))
          qddx(:, i) = accelerations(ch, t(i), q(:, i), qd(:, i))
          pf(i) = sum(ch%c*(qd(:, i) - eoshift(qd(:, i), -1))**2)
@@ -190,6 +193,12 @@ contains
          case ('energy')
             call h5%read('/trajectory/energy', x1, error)
             call compare(error, tag, 'energy', x1, e, 1.0e-13_dp)   ! measured 1.6e-14 / 2.1
+         case ('kinetic')   ! sum of 1/2 m |v_C|^2 + 1/2 I qdot^2 from the kinematics here
+            call h5%read('/trajectory/kinetic', x1, error)
+            call compare(error, tag, 'kinetic', x1, tk, 1.0e-13_dp)
+         case ('potential')   ! sum of m g y_C
+            call h5%read('/trajectory/potential', x1, error)
+            call compare(error, tag, 'potential', x1, vp, 1.0e-13_dp)
          case ('W_friction')   ! Boole over the samples at every 4th
             call h5%read('/trajectory/W_friction', x1, error)
             wf = boole(t, pf)
@@ -448,6 +457,7 @@ contains
       character(len=:), allocatable :: dir
       real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), x1(:), x2(:, :), x3(:, :, :)
       real(dp), allocatable :: y(:, :), rc(:, :), vc(:, :), ac(:, :), e(:), p(:, :), qddx(:, :)
+      real(dp), allocatable :: tk(:), vp(:)
       real(dp) :: u(2), nn(2), z(4), k1(4), k2(4), k3(4), k4(4)
       integer :: stat, n, i, k
       dir = scratch_dir('values-elastic')
@@ -465,7 +475,7 @@ contains
       n = size(t)
       call check_true(error, n == 501 .and. all(shape(q) == [2, n]), 'elastic: 501 samples')
       if (allocated(error)) return
-      allocate (rc(2, n), vc(2, n), ac(2, n), e(n), p(2, n), qddx(2, n), y(4, n))
+      allocate (rc(2, n), vc(2, n), ac(2, n), e(n), p(2, n), qddx(2, n), y(4, n), tk(n), vp(n))
       do i = 1, n
          associate (r => q(1, i), ph => q(2, i), rd => qd(1, i), phd => qd(2, i))
             u = [cos(ph), sin(ph)]; nn = [-sin(ph), cos(ph)]
@@ -473,6 +483,8 @@ contains
             vc(:, i) = rd*u + r*phd*nn
             ac(:, i) = (qdd(1, i) - r*phd**2)*u + (r*qdd(2, i) + 2.0_dp*rd*phd)*nn
             e(i) = 0.5_dp*m*(rd**2 + r**2*phd**2) + 0.5_dp*kk*(r - l0)**2 + m*g*r*sin(ph)
+            tk(i) = 0.5_dp*m*sum(vc(:, i)**2)   ! from the bob's velocity
+            vp(i) = 0.5_dp*kk*(norm2(rc(:, i)) - l0)**2 + m*g*rc(2, i)
             p(:, i) = [m*rd, m*r**2*phd]
             qddx(:, i) = field([r, ph, rd, phd])
          end associate
@@ -509,6 +521,12 @@ contains
          case ('energy')
             call h5%read('/trajectory/energy', x1, error)
             call compare(error, tag, 'energy', x1, e, 1.0e-13_dp)
+         case ('kinetic')
+            call h5%read('/trajectory/kinetic', x1, error)
+            call compare(error, tag, 'kinetic', x1, tk, 1.0e-13_dp)
+         case ('potential')
+            call h5%read('/trajectory/potential', x1, error)
+            call compare(error, tag, 'potential', x1, vp, 1.0e-13_dp)
          case ('rA')
             call h5%read('/trajectory/rA', x2, error)
             call compare(error, tag, 'rA', pack(x2, .true.), [(0.0_dp, i=1, 2*n)], 0.0_dp)

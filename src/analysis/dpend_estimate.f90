@@ -228,6 +228,7 @@ module dpend_estimate
       procedure :: jacobian => sens_jacobian
       procedure :: energy => sens_energy
       procedure :: energy_scale => sens_energy_scale
+      procedure :: potential_energy => sens_potential_energy
       procedure :: conservative => sens_false
       procedure :: autonomous => sens_autonomous
    end type sens_model_t
@@ -337,6 +338,14 @@ contains
       call inner(self%n, self%nc, y, yb)
       sens_energy = self%base%energy(t, yb)
    end function sens_energy
+
+   pure real(dp) function sens_potential_energy(self, t, y)
+      class(sens_model_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp) :: yb(2*self%n)
+      call inner(self%n, self%nc, y, yb)
+      sens_potential_energy = self%base%potential_energy(t, yb)
+   end function sens_potential_energy
 
    pure real(dp) function sens_energy_scale(self, e0)
       class(sens_model_t), intent(in) :: self

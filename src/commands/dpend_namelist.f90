@@ -9,11 +9,13 @@ module dpend_namelist
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: max_dof
+   use dpend_model_factory, only: spec_item_t
    use dpend_cli, only: parse_real, real_str, to_str, to_lower, printable
    use dpend_limits, only: max_steps
    use dpend_methods, only: method_names
    use dpend_strings, only: canonical_name
-   use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter
+   use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
+      mark_given, list_names
    use dpend_namelist_scan, only: check_groups, read_config_bytes, stripped, &
       without_comments
    implicit none
@@ -87,10 +89,12 @@ contains
       file = ''
       if (allocated(cfg%output)) file = cfg%output
       force = cfg%force
-      ! these scalars start unset so that the file's own are known (nml_given)
+      ! these scalars start unset so that the file's own are known (nml_given, given)
       m1 = unset; m2 = unset; l1 = unset; l2 = unset
       q1 = unset; q2 = unset; w1 = unset; w2 = unset
       output_dt = unset; save_every = -huge(1)
+      links = -huge(1); g = unset
+      support_amplitude = unset; support_frequency = unset; support_phase = unset
 
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
@@ -118,6 +122,9 @@ contains
          call fatal_error(error, namelist_error(filename, 'output', msg)); close (unit); return
       end if
       close (unit)
+      call check_two_groups()
+      if (allocated(error)) return
+      call note_pendulum_given()
       if (.not. allocated(cfg%nml_given)) cfg%nml_given = ' '
       call note_given('m1', m1, cfg%m(1)); call note_given('m2', m2, cfg%m(2))
       call note_given('l1', l1, cfg%l(1)); call note_given('l2', l2, cfg%l(2))
@@ -149,7 +156,141 @@ contains
       cfg%max_steps = max_steps
       if (len_trim(file) > 0) cfg%output = trim(file)
       cfg%force = force
+      call take_model_fields()
    contains
+      !> A quantity given in &model and in &pendulum (m and m1, g and g, com and com)
+      !> is refused naming both: which one holds would depend on a rule of the reader.
+      subroutine check_two_groups()
+         character(len=:), allocatable :: key, also
+         integer :: k
+         if (.not. allocated(cfg%extra%items)) return
+         do k = 1, size(cfg%extra%items)
+            key = cfg%extra%items(k)%name
+            also = ''
+            select case (key)
+            case ('links'); if (links /= -huge(1)) also = 'links'
+            case ('m'); also = list_or_pair('m', m, m1, m2)
+            case ('l'); also = list_or_pair('l', l, l1, l2)
+            case ('g'); if (g /= unset) also = 'g'
+            case ('damping'); if (any(damping /= unset)) also = 'damping'
+            case ('support_amplitude')
+               if (any(support_amplitude /= unset)) also = key
+            case ('support_frequency'); if (support_frequency /= unset) also = key
+            case ('support_phase'); if (any(support_phase /= unset)) also = key
+            case ('com'); if (any(com /= unset)) also = 'com'
+            case ('inertia'); if (any(inertia /= unset)) also = 'inertia'
+            end select
+            if (len(also) > 0) then
+               call fatal_error(error, "invalid --config '"//printable(filename)//"': "// &
+                                key//' is given in &model and as '//also//' in &pendulum; ' &
+                                //'give it in one group')
+               return
+            end if
+         end do
+      end subroutine check_two_groups
+      !> Which form of a per-link quantity &pendulum gave ('' for none).
+      function list_or_pair(key, list, x1, x2) result(form)
+         character(len=*), intent(in) :: key
+         real(dp), intent(in) :: list(:), x1, x2
+         character(len=:), allocatable :: form
+         form = ''
+         if (x2 /= unset) form = key//'2'
+         if (x1 /= unset) form = key//'1'
+         if (any(list /= unset)) form = key
+      end function list_or_pair
+      !> The settings of &pendulum and &initial the file gave, into cfg%given; the
+      !> sentinels of those not given take the current values.
+      subroutine note_pendulum_given()
+         integer :: k
+         if (links == -huge(1)) then
+            links = cfg%links
+         else
+            call mark_given(cfg, 'links')
+         end if
+         if (g == unset) then
+            g = cfg%g
+         else
+            call mark_given(cfg, 'g')
+         end if
+         if (support_frequency == unset) then
+            support_frequency = cfg%support_frequency
+         else
+            call mark_given(cfg, 'support_frequency')
+         end if
+         if (any(support_amplitude /= unset)) call mark_given(cfg, 'support_amplitude')
+         where (support_amplitude == unset) support_amplitude = cfg%support_amplitude
+         if (any(support_phase /= unset)) call mark_given(cfg, 'support_phase')
+         where (support_phase == unset) support_phase = cfg%support_phase
+         if (m1 /= unset) call mark_given(cfg, 'm1')
+         if (m2 /= unset) call mark_given(cfg, 'm2')
+         if (l1 /= unset) call mark_given(cfg, 'l1')
+         if (l2 /= unset) call mark_given(cfg, 'l2')
+         if (q1 /= unset) call mark_given(cfg, 'q1')
+         if (q2 /= unset) call mark_given(cfg, 'q2')
+         if (w1 /= unset) call mark_given(cfg, 'w1')
+         if (w2 /= unset) call mark_given(cfg, 'w2')
+         do k = 1, 4
+            if (any(lists(k) /= unset)) call mark_given(cfg, list_names(k))
+         end do
+         if (any(damping /= unset)) call mark_given(cfg, 'damping')
+      end subroutine note_pendulum_given
+      !> The namelist list of `list_names(k)` (m, l, q, w).
+      function lists(k) result(v)
+         integer, intent(in) :: k
+         real(dp) :: v(max_dof)
+         select case (k)
+         case (1); v = m
+         case (2); v = l
+         case (3); v = q
+         case default; v = w
+         end select
+      end function lists
+      !> The parameters &model gives that the run holds as fields (links, m, l, g,
+      !> damping, the support's motion) go into those fields, as &pendulum's do, so
+      !> that a flag overrides either the same way (flags over the file) and the file
+      !> records the values the run used. A value of the wrong count or kind stays a
+      !> named parameter, for the factory's refusal.
+      subroutine take_model_fields()
+         type(spec_item_t), allocatable :: kept(:)
+         logical :: moved
+         integer :: k, n
+         if (.not. allocated(cfg%extra%items)) return
+         allocate (kept(0))
+         do k = 1, size(cfg%extra%items)
+            associate (v => cfg%extra%items(k)%values, key => cfg%extra%items(k)%name)
+               n = size(v)
+               moved = .true.
+               select case (key)
+               case ('links')
+                  moved = n == 1 .and. v(1) == aint(v(1)) .and. abs(v(1)) <= real(max_dof, dp)
+                  if (moved) cfg%links = nint(v(1))
+               case ('m'); cfg%m(:n) = v; cfg%list_size(1) = n
+               case ('l'); cfg%l(:n) = v; cfg%list_size(2) = n
+               case ('g')
+                  moved = n == 1
+                  if (moved) cfg%g = v(1)
+               case ('damping'); cfg%damping(:n) = v; cfg%damping_size = n
+               case ('support_amplitude')
+                  moved = n == 2
+                  if (moved) cfg%support_amplitude = v
+               case ('support_frequency')
+                  moved = n == 1
+                  if (moved) cfg%support_frequency = v(1)
+               case ('support_phase')
+                  moved = n == 2
+                  if (moved) cfg%support_phase = v
+               case default
+                  moved = .false.
+               end select
+               if (moved) then
+                  call mark_given(cfg, key)
+               else
+                  kept = [kept, cfg%extra%items(k)]
+               end if
+            end associate
+         end do
+         call move_alloc(kept, cfg%extra%items)
+      end subroutine take_model_fields
       !> A scalar the file did not give takes its current value; one it gave is
       !> recorded in cfg%nml_given.
       subroutine note_given(key, x, current)

@@ -9,7 +9,8 @@ module dpend_run_flags
    use dpend_limits, only: in_range, max_angle
    use dpend_methods, only: method_names
    use dpend_strings, only: canonical_name
-   use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter
+   use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
+      mark_given
    implicit none
    private
    public :: apply_run_flag, run_flags_help
@@ -71,7 +72,24 @@ contains
             end if
          end if
       end select
+      if (matched .and. .not. allocated(error)) call mark_given(cfg, setting_key(name))
    end subroutine apply_run_flag
+
+   !> The setting a flag gives, by its namelist key: '--support-frequency' is
+   !> 'support_frequency', '-o' is 'output'.
+   pure function setting_key(flag) result(key)
+      character(len=*), intent(in) :: flag  !! the option
+      character(len=:), allocatable :: key
+      integer :: i
+      if (flag == '-o') then
+         key = 'output'
+         return
+      end if
+      key = flag(3:)
+      do i = 1, len(key)
+         if (key(i:i) == '-') key(i:i) = '_'
+      end do
+   end function setting_key
 
    !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,
    !> `--q1` with `--theta1`): which one wins would depend on their order. The

@@ -30,10 +30,10 @@ module dpend_simulate
    public :: natural_text, largest_error, natural_time_of
 
    !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
-   !> and the derived quantities written beside them (23 reals) [B].
-   real(dp), parameter :: sample_memory = 272.0_dp
-   !> File size per kept sample: 28 reals [B], and the fixed part of a file [B].
-   real(dp), parameter :: sample_file = 224.0_dp, file_overhead = 65536.0_dp
+   !> and the derived quantities written beside them (25 reals) [B].
+   real(dp), parameter :: sample_memory = 288.0_dp
+   !> File size per kept sample: 30 reals [B], and the fixed part of a file [B].
+   real(dp), parameter :: sample_file = 240.0_dp, file_overhead = 65536.0_dp
 
    !> Sampled states of a run: internal variables converted to (q, q̇).
    type :: trajectory_t
@@ -410,7 +410,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       type(h5file_t) :: h5
       real(dp), allocatable :: qdd(:, :), p(:, :), e(:), out(:, :), y(:), f(:), slab(:, :)
-      real(dp), allocatable :: e_w(:)
+      real(dp), allocatable :: e_w(:), kinetic(:), potential(:)
       character(len=:), allocatable :: name, units, text, cols, q_units, rate_units, &
                                        acc_units, p_units, anchor, points, style, forces
       integer :: i, n, nd, j, n_comp, off, n_out, rows
@@ -425,6 +425,7 @@ contains
             n_out = n_out + n_comp
          end do
          allocate (qdd(nd, n), p(nd, n), e(n), out(n_out, n), y(2*nd), f(2*nd))
+         allocate (kinetic(n), potential(n))
          p = 0.0_dp
          do i = 1, n
             y(1:nd) = traj%q(:, i); y(nd + 1:) = traj%qd(:, i)
@@ -432,6 +433,8 @@ contains
             qdd(:, i) = f(nd + 1:)
             if (canonical) call model%momenta(traj%t(i), y, p(:, i))
             e(i) = model%energy(traj%t(i), y)
+            kinetic(i) = model%kinetic_energy(traj%t(i), y)
+            potential(i) = model%potential_energy(traj%t(i), y)
             call model%outputs(traj%t(i), y, f, out(:, i))
          end do
          call h5%open(filename, 'w', error)
@@ -455,6 +458,10 @@ contains
             call h5%writeattr('/', 'draw_forces', forces)
          end if
          call h5%write('/trajectory/energy', e, units='J', description=model%energy_text())
+         call h5%write('/trajectory/kinetic', kinetic, units='J', description='kinetic ' &
+                       //'energy T of the total energy T + V')
+         call h5%write('/trajectory/potential', potential, units='J', description= &
+                       'potential energy V of the total energy T + V')
          if (allocated(traj%w)) then   ! the energy balance (dpend_work)
             e_w = traj%w(1, :n)   ! contiguous, for the HDF5 layer
             call h5%write('/trajectory/W_friction', e_w, units='J', description= &

@@ -15,6 +15,7 @@ module dpend_study_config
    use dpend_method_registry, only: method_names
    use dpend_limits, only: sci
    use dpend_run_settings, only: run_config_t
+   use dpend_model_factory, only: default_model
    use dpend_namelist, only: read_run_config, check_groups, namelist_error
    use dpend_run_flags, only: apply_run_flag
    use dpend_study_settings, only: study_config_t, study_defaults, validate_study_config, &
@@ -351,12 +352,49 @@ contains
                           //'&pendulum gives the lists m, l, one value per link)')
          return
       end if
+      call refuse_unused(error)
+      if (allocated(error)) return
       cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
       cfg%list_size = rcfg%list_size(1:2)
       if (allocated(rcfg%model_name)) cfg%model_name = rcfg%model_name
       cfg%model_params = rcfg%extra
       cfg%output = rcfg%output
       cfg%force = rcfg%force
+   contains
+      !> The settings of a run the study has no use for are refused, never dropped:
+      !> the links' body (its cases are uniform rods, or the &model's), the damping and
+      !> the support's motion (each case carries its own: case_damping,
+      !> case_support_*), and a named parameter of the pendulum other than m, l, g.
+      subroutine refuse_unused(error)
+         type(error_t), allocatable, intent(out) :: error
+         character(len=*), parameter :: per_case(4) = [character(len=17) :: 'damping', &
+            'support_amplitude', 'support_frequency', 'support_phase']
+         character(len=:), allocatable :: pre
+         integer :: k
+         pre = "invalid --config '"//printable(filename)//"': "
+         if (allocated(rcfg%body)) then
+            call fatal_error(error, pre//'body is not a setting of dpend study (its cases ' &
+                             //'are the uniform rods of &pendulum m, l, g, or the model ' &
+                             //'of &model)')
+            return
+         end if
+         do k = 1, size(per_case)
+            if (.not. allocated(rcfg%given)) exit
+            if (index(rcfg%given, ' '//trim(per_case(k))//' ') == 0) cycle
+            call fatal_error(error, pre//trim(per_case(k))//' is not a setting of &pendulum ' &
+                             //'in dpend study: each case carries its own (case_'// &
+                             trim(per_case(k))//'(i) in &study)')
+            return
+         end do
+         if (.not. allocated(rcfg%extra%items)) return
+         if (allocated(rcfg%model_name)) then
+            if (rcfg%model_name /= default_model) return
+         end if
+         if (size(rcfg%extra%items) > 0) then
+            call fatal_error(error, pre//rcfg%extra%items(1)%name//' is not a setting of ' &
+                             //"dpend study's pendulum (its cases are uniform rods of m, l, g)")
+         end if
+      end subroutine refuse_unused
    end subroutine read_study_groups
 
    !> The cases of &study (`case_*` arrays as read; entries not given are `unset`):

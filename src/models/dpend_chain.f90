@@ -119,6 +119,7 @@ module dpend_chain
       procedure :: jacobian => chain_jacobian
       procedure :: energy => chain_energy
       procedure :: energy_scale => chain_energy_scale
+      procedure :: potential_energy => chain_potential_energy
       procedure :: hamiltonian => chain_hamiltonian
       procedure :: conservative => chain_hamiltonian
       procedure :: autonomous => chain_autonomous
@@ -732,6 +733,19 @@ contains
    !> ½ q̇ᵀ M q̇ + V [J].
    !> On a moving support, the inertial energy (module notes): plus
    !> v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A.
+   !> V = Σ G_i sin q_i, and with a moving support the height of the whole mass at
+   !> the pin, M g y_A(t) [J] (the potential part of `chain_energy`).
+   pure real(dp) function chain_potential_energy(self, t, y)
+      class(chain_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp) :: ra(2), va(2), aa(2)
+      chain_potential_energy = self%potential(y(1:self%n))
+      if (self%driven) then
+         call self%support(t, ra, va, aa)
+         chain_potential_energy = chain_potential_energy + sum(self%m)*self%g*ra(2)
+      end if
+   end function chain_potential_energy
+
    pure real(dp) function chain_energy(self, t, y)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)

@@ -100,6 +100,8 @@ module dpend_elastic
       procedure :: jacobian => el_jacobian
       procedure :: energy => el_energy
       procedure :: energy_scale => el_energy_scale
+      procedure :: potential_energy => el_potential_energy
+      procedure :: kinetic_energy => el_kinetic_energy
       procedure :: hamiltonian => el_true
       procedure :: momenta => el_momenta
       procedure :: velocities => el_velocities
@@ -282,6 +284,20 @@ contains
    !> E_ref = m g l0 + k l0²/2 (the bob lifted by l0, plus the spring compressed to
    !> zero length; positive for every accepted parameter, g = 0 included), E_ref
    !> itself when E0 ≈ 0 — the rule of the double pendulum and the chain.
+   !> V = k/2 (r − l0)² + m g r sin φ: the spring's and gravity's [J].
+   pure real(dp) function el_potential_energy(self, t, y)
+      class(elastic_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      el_potential_energy = 0.5_dp*self%k*(y(1) - self%l0)**2 + self%m*self%g*y(1)*sin(y(2))
+   end function el_potential_energy
+
+   !> T = m/2 (ṙ² + r² φ̇²) [J].
+   pure real(dp) function el_kinetic_energy(self, t, y)
+      class(elastic_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      el_kinetic_energy = 0.5_dp*self%m*(y(3)**2 + (y(1)*y(4))**2)
+   end function el_kinetic_energy
+
    pure real(dp) function el_energy_scale(self, e0)
       class(elastic_t), intent(in) :: self
       real(dp), intent(in) :: e0

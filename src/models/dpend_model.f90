@@ -59,6 +59,10 @@ module dpend_model
       procedure(jacobian_i), deferred :: jacobian
       procedure(energy_i), deferred :: energy
       procedure(energy_scale_i), deferred :: energy_scale
+      !> The energy split E = T + V: the potential part V(t, y), and the kinetic part
+      !> T (default E − V; a model with its own formula for T overrides it).
+      procedure(energy_i), deferred :: potential_energy
+      procedure :: kinetic_energy => model_kinetic_energy
       !> Size 2n of the state vector.
       procedure, non_overridable :: n_state
       procedure :: hamiltonian => model_false
@@ -422,6 +426,14 @@ contains
 
    !> What the energy dataset holds: T + V and where V = 0 (the default: the chain of
    !> rods' zero, every link horizontal, the pin at its mean height).
+   !> The kinetic energy T = E − V [J] (models with their own formula override it).
+   pure real(dp) function model_kinetic_energy(self, t, y)
+      class(model_t), intent(in) :: self
+      real(dp), intent(in) :: t      !! time [s]
+      real(dp), intent(in) :: y(:)   !! state (q, q̇)
+      model_kinetic_energy = self%energy(t, y) - self%potential_energy(t, y)
+   end function model_kinetic_energy
+
    function model_energy_text(self) result(text)
       class(model_t), intent(in) :: self
       character(len=:), allocatable :: text

@@ -23,9 +23,9 @@ module dpend_model_factory
                            max_angle
    implicit none
    private
-   public :: model_spec_t, param_info_t, model_info_t
+   public :: model_spec_t, spec_item_t, param_info_t, model_info_t
    public :: model_spec, new_model, model_catalogue, find_model, default_model, describe_models
-   public :: spec_values, derived_default
+   public :: spec_values, derived_default, has_parameter
 
    !> The model a specification without a name asks for: the chapter's pendulum.
    character(len=*), parameter :: default_model = 'pendulum'
@@ -164,6 +164,20 @@ contains
       end do
       k = 0
    end function find_model
+
+   !> Whether the catalogue's model `model` has the parameter `name` (an unknown
+   !> model: none).
+   logical function has_parameter(model, name)
+      character(len=*), intent(in) :: model  !! model name
+      character(len=*), intent(in) :: name   !! parameter name
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      models = model_catalogue()
+      k = find_model(models, model)
+      has_parameter = .false.
+      if (k == 0) return
+      has_parameter = any([(models(k)%params(i)%name == name, i=1, size(models(k)%params))])
+   end function has_parameter
 
    ! ---------------------------------------------------------------- the factory
 

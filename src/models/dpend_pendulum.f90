@@ -89,6 +89,8 @@ module dpend_pendulum
       procedure :: jacobian => dp_jacobian
       procedure :: energy => dp_energy
       procedure :: energy_scale => dp_energy_scale
+      procedure :: potential_energy => dp_potential_energy
+      procedure :: kinetic_energy => dp_kinetic_energy
       procedure :: hamiltonian => dp_true
       procedure :: momenta => dp_momenta
       procedure :: velocities => dp_velocities
@@ -1041,6 +1043,21 @@ contains
       real(dp), intent(in) :: t, y(:)
       dp_energy = energy(self%par, y(1:2), y(3:4))
    end function dp_energy
+
+   !> V = (m1/2 + m2) g L1 sin q1 + m2 g (L2/2) sin q2 (rods; any body: the same form
+   !> with the centres of mass) [J].
+   pure real(dp) function dp_potential_energy(self, t, y)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      dp_potential_energy = potential_energy(self%par, y(1:2))
+   end function dp_potential_energy
+
+   !> T = ½ q̇ᵀ M(q) q̇ [J].
+   pure real(dp) function dp_kinetic_energy(self, t, y)
+      class(double_pendulum_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      dp_kinetic_energy = kinetic_energy(self%par, y(1:2), y(3:4))
+   end function dp_kinetic_energy
 
    pure real(dp) function dp_energy_scale(self, e0)
       class(double_pendulum_t), intent(in) :: self

@@ -32,6 +32,7 @@ module dpend_work
       procedure :: jacobian => work_jacobian
       procedure :: energy => work_energy
       procedure :: energy_scale => work_energy_scale
+      procedure :: potential_energy => work_potential_energy
       procedure :: conservative => work_false
       procedure :: autonomous => work_autonomous
       procedure :: time_unit => work_time_unit
@@ -178,6 +179,17 @@ contains
       call inner(n, y, yc)
       work_energy = self%chain%energy(t, yc(1:2*n))
    end function work_energy
+
+   !> The chain's potential energy (the works are not part of it).
+   pure real(dp) function work_potential_energy(self, t, y)
+      class(work_model_t), intent(in) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp) :: yc(2*max_dof)
+      integer :: n
+      n = self%chain%n
+      call inner(n, y, yc)
+      work_potential_energy = self%chain%potential_energy(t, yc(1:2*n))
+   end function work_potential_energy
 
    pure real(dp) function work_energy_scale(self, e0)
       class(work_model_t), intent(in) :: self

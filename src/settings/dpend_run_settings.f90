@@ -10,7 +10,7 @@ module dpend_run_settings
    use dpend_pendulum, only: pendulum_t, body_general
    use dpend_limits, only: finite_positive
    use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
-      model_catalogue, find_model, default_model
+      model_catalogue, find_model, default_model, has_parameter
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: to_str, to_lower, printable
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_time, max_dt, &
@@ -21,7 +21,15 @@ module dpend_run_settings
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
-      is_model_parameter, list_names
+      is_model_parameter, list_names, mark_given
+
+   !> Settings of the pendulum's links and their parameter in the model catalogue: a
+   !> setting given for a model without that parameter is refused. The second link's
+   !> values and the angles from the hanging position need links.
+   character(len=*), parameter :: link_settings(2, 11) = reshape([character(len=17) :: &
+      'links', 'links', 'l', 'l', 'l1', 'l', 'l2', 'l', 'm2', 'links', 'theta1', 'links', &
+      'theta2', 'links', 'damping', 'damping', 'support_amplitude', 'support_amplitude', &
+      'support_frequency', 'support_frequency', 'support_phase', 'support_phase'], [2, 11])
 
    !> The lists a user may give (--m --l --q --w, namelist m l q w), in this order.
    character(len=1), parameter :: list_names(4) = ['m', 'l', 'q', 'w']
@@ -73,6 +81,10 @@ module dpend_run_settings
       !> The links' body: '' (not given: uniform rods unless --com or
       !> --inertia), 'rod' or 'point' (--body / &pendulum body)
       character(len=:), allocatable :: body
+      !> Every setting given by a flag or the namelist file, by its key (' m2 l1
+      !> theta1 support_frequency '): one the model has no parameter for is refused
+      !> (`build_model`), never dropped.
+      character(len=:), allocatable :: given
    contains
       !> Initial angles q(1:N) [rad].
       procedure :: q0 => run_q0
@@ -222,13 +234,7 @@ contains
    logical function model_has(cfg, name)
       type(run_config_t), intent(in) :: cfg  !! configuration
       character(len=*), intent(in) :: name   !! parameter name
-      type(model_info_t), allocatable :: models(:)
-      integer :: k, i
-      models = model_catalogue()
-      k = find_model(models, model_asked(cfg))
-      model_has = .false.
-      if (k == 0) return
-      model_has = any([(models(k)%params(i)%name == name, i=1, size(models(k)%params))])
+      model_has = has_parameter(model_asked(cfg), name)
    end function model_has
 
    !> The model name --model gave (or &model name), else the factory's default.
@@ -268,6 +274,14 @@ contains
       end do
    end function is_model_parameter
 
+   !> Record that the setting `key` was given (by a flag or the namelist file).
+   pure subroutine mark_given(cfg, key)
+      type(run_config_t), intent(inout) :: cfg  !! cfg%given updated
+      character(len=*), intent(in) :: key       !! e.g. 'support_frequency'
+      if (.not. allocated(cfg%given)) cfg%given = ' '
+      if (index(cfg%given, ' '//key//' ') == 0) cfg%given = cfg%given//key//' '
+   end subroutine mark_given
+
    !> Build `cfg%model` through the factory (the one place a model is built): the
    !> specification holds the model's parameters from the run's fields (links, m, l,
    !> g, damping, support_*) and those given by name (--k); a field set for a model
@@ -299,13 +313,24 @@ contains
                end select
             end associate
          end do
-         ! the pendulum's fields given to a model without them
+         ! the pendulum's settings given to a model without them
          given = ''
          if (cfg%links /= 2) given = 'links'
          if (cfg%list_size(2) > 0) given = 'l'
          if (cfg%damping_size > 0) given = 'damping'
          if (any(cfg%support_amplitude /= 0.0_dp)) given = 'support_amplitude'
-         if (len(given) > 0 .and. .not. model_has(cfg, given)) then
+         if (len(given) > 0) then
+            if (model_has(cfg, given)) given = ''
+         end if
+         if (len(given) == 0 .and. allocated(cfg%given)) then
+            do i = 1, size(link_settings, 2)
+               if (index(cfg%given, ' '//trim(link_settings(1, i))//' ') == 0) cycle
+               if (model_has(cfg, trim(link_settings(2, i)))) cycle
+               given = trim(link_settings(1, i))
+               exit
+            end do
+         end if
+         if (len(given) > 0) then
             call fatal_error(error, 'invalid '//given//': not a parameter of model ' &
                              //model_asked(cfg)//' (dpend models lists its parameters)')
             return

@@ -12,7 +12,8 @@ module dpend_study_settings
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_limits, only: finite_positive
-   use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model
+   use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model, &
+      has_parameter
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: to_str, printable
    use dpend_integrator, only: integrator_t
@@ -250,6 +251,9 @@ contains
       n = size(cfg%cases(ic)%q0)
       if (.not. default_model_study(cfg)) then   ! &model: its parameters by name
          spec = model_spec(study_model_name(cfg))
+         ! the masses and g the study holds, where the model has them (as a run's)
+         if (model_takes(cfg, 'm')) call spec%set('m', cfg%m(:max(1, cfg%list_size(1))))
+         if (model_takes(cfg, 'g')) call spec%set('g', [cfg%g])
          if (allocated(cfg%model_params%items)) then
             do i = 1, size(cfg%model_params%items)
                call spec%set(cfg%model_params%items(i)%name, cfg%model_params%items(i)%values)
@@ -272,6 +276,13 @@ contains
          call spec%set('support_phase', cs%support_phase)
       end associate
    end function case_spec
+
+   !> Whether the study's model has the parameter `name` (its catalogue row).
+   logical function model_takes(cfg, name)
+      type(study_config_t), intent(in) :: cfg  !! configuration
+      character(len=*), intent(in) :: name     !! parameter name
+      model_takes = has_parameter(study_model_name(cfg), name)
+   end function model_takes
 
    !> The damping of a case of n links (0 when none is given).
    pure function case_damping(cs, n) result(c)
@@ -299,6 +310,8 @@ contains
       end do
       if (.not. default_model_study(cfg)) then   ! &model: the parameters given by name
          text = "&model name = '"//study_model_name(cfg)//"'"
+         if (model_takes(cfg, 'm')) text = text//', m = '//list(cfg%m(:max(1, cfg%list_size(1))))
+         if (model_takes(cfg, 'g')) text = text//', g = '//g(cfg%g)
          if (allocated(cfg%model_params%items)) then
             do i = 1, size(cfg%model_params%items)
                text = text//', '//cfg%model_params%items(i)%name//' = '// &
@@ -789,8 +802,7 @@ contains
          error%message = error%message//' [&model]'
          return
       end if
-      if (any(cfg%list_size /= 0) .or. any(cfg%m(:2) /= 1.0_dp) .or. &
-          any(cfg%l(:2) /= 1.0_dp) .or. cfg%g /= 9.8_dp) then
+      if (unread()) then
          call fatal_error(error, 'invalid &pendulum (or --m1, --m2, --l1, --l2, --g, --m, ' &
                           //'--l): not read for model '//study_model_name(cfg)// &
                           '; give its parameters by name in &model (dpend models)')
@@ -810,6 +822,22 @@ contains
          if (allocated(error)) error%message = error%message//where// &
                                                ' [case_q1, case_q2, case_w1, case_w2]'
       end if
+   contains
+      !> The study holds masses, lengths or g that the model has no parameter for
+      !> (the masses and g it has are read: `case_spec`).
+      logical function unread()
+         logical :: per_link
+         per_link = model_takes(cfg, 'links')
+         unread = .false.
+         if (.not. model_takes(cfg, 'l')) unread = cfg%list_size(2) /= 0 .or. &
+                                                   any(cfg%l(:2) /= 1.0_dp)
+         if (.not. model_takes(cfg, 'm')) then
+            unread = unread .or. cfg%list_size(1) /= 0 .or. any(cfg%m(:2) /= 1.0_dp)
+         else if (.not. per_link) then
+            unread = unread .or. cfg%list_size(1) > 1 .or. cfg%m(2) /= 1.0_dp
+         end if
+         if (.not. model_takes(cfg, 'g')) unread = unread .or. cfg%g /= 9.8_dp
+      end function unread
    end subroutine check_model_case
 
    !> `name` (of the setting `field`) is a case of the study.
