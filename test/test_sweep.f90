@@ -73,7 +73,8 @@ contains
                new_unittest('links3_list_matches_grid', test_links3_list), &
                new_unittest('indicators_kernel_match_one_orbit', test_indicators_kernel), &
                new_unittest('indicators_per_trajectory_match_kernel', test_indicators_paths), &
-               new_unittest('elastic_pixels_match_single_runs', test_elastic_pixels)]
+               new_unittest('elastic_pixels_match_single_runs', test_elastic_pixels), &
+               new_unittest('parameter_maps_of_other_bodies', test_parameter_bodies)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -1652,5 +1653,94 @@ contains
       call check(error, res%final(:, 3), [r_eq, -half_pi, 0.0_dp, 0.0_dp], &
                  'equilibrium stays', abs=1e-12_dp)
    end subroutine test_elastic_pixels
+
+   !> Parameter axes beyond the uniform rods: point masses over (m2/m1, l2/l1) (the
+   !> lane kernel, the bodies' centres following the swept lengths) and the elastic
+   !> pendulum over its own parameters (k, l0) and over (r, k): every pixel equals, bit
+   !> for bit, a one-pixel map of the same initial state run with its parameters given.
+   subroutine test_parameter_bodies(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common
+      character(len=16), parameter :: lane_sets(4) = [character(len=16) :: 't_flip', &
+         'sali', 'energy0', 'final/q1']
+      character(len=16), parameter :: elastic_sets(4) = [character(len=16) :: 'megno', &
+         'megno_y', 'energy0', 'final/q1']
+      dir = scratch_dir('sweepbodies')
+      ! point masses: m2/m1 in {0.5, 2}, l2/l1 in {0.5, 2}
+      common = 'sweep --quiet --body point --t-end 5 --dt 0.01 --time-unit s ' &
+               //'--indicator sali '
+      call map_and_pixels(common//'--q1 0.3 --q2 -0.2 --axis1 m2/m1 --axis2 l2/l1 ' &
+                          //'--min1 0.5 --max1 2 --min2 0.5 --max2 2 --n 2', &
+                          [character(len=8) :: '0.5', '2'], [character(len=8) :: '0.5', '2'], &
+                          common//'--axis1 q1 --axis2 q2 --min1 0.3 --max1 0.3 --min2 -0.2 ' &
+                          //'--max2 -0.2 --n 1 --m2 X1 --l2 X2', lane_sets, 'point')
+      if (allocated(error)) return
+      ! the elastic pendulum over (k, l0), then over (r, k)
+      common = 'sweep --quiet --model elastic --t-end 3 --dt 0.01 --time-unit s ' &
+               //'--indicator megno --q 1.2,-1 '
+      call map_and_pixels(common//'--axis1 k --axis2 l0 --min1 20 --max1 60 --min2 0.5 ' &
+                          //'--max2 1.5 --n1 3 --n2 2 --threads 2 --block 2', &
+                          [character(len=8) :: '20', '40', '60'], &
+                          [character(len=8) :: '0.5', '1.5'], common//'--axis1 r --axis2 ' &
+                          //'phi --min1 1.2 --max1 1.2 --min2 -1 --max2 -1 --n 1 --k X1 ' &
+                          //'--l0 X2', elastic_sets, 'elastic')
+      if (allocated(error)) return
+      call map_and_pixels(common//'--axis1 r --axis2 k --min1 1 --max1 1.5 --min2 30 ' &
+                          //'--max2 50 --n 2', [character(len=8) :: '1', '1.5'], &
+                          [character(len=8) :: '30', '50'], common//'--axis1 r --axis2 ' &
+                          //'phi --min1 X1 --max1 X1 --min2 -1 --max2 -1 --n 1 --k X2', &
+                          elastic_sets, 'elastic (r, k)')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> The map `map_args`, then for each pixel (x1(i), x2(j)) the one-pixel map
+      !> `template` with X1 and X2 replaced by them; the datasets `sets` agree bit for
+      !> bit.
+      subroutine map_and_pixels(map_args, x1, x2, template, sets, what)
+         character(len=*), intent(in) :: map_args, x1(:), x2(:), template, sets(:), what
+         real(dp), allocatable :: a(:, :), b(:, :)
+         character(len=:), allocatable :: pixel
+         integer :: i, j, k, stat
+         stat = run_command(dir, map_args//' --force --output '//dir//'/map.h5')
+         call check_true(error, stat == 0, what//': the parameter map exits 0')
+         if (allocated(error)) return
+         do j = 1, size(x2)
+            do i = 1, size(x1)
+               pixel = replaced(replaced(template, 'X1', trim(x1(i))), 'X2', trim(x2(j)))
+               stat = run_command(dir, pixel//' --force --output '//dir//'/px.h5')
+               call check_true(error, stat == 0, what//': the one-pixel map exits 0')
+               do k = 1, size(sets)
+                  if (allocated(error)) return
+                  call read2(dir//'/map.h5', '/sweep/'//trim(sets(k)), a)
+                  call read2(dir//'/px.h5', '/sweep/'//trim(sets(k)), b)
+                  if (allocated(error)) return
+                  call check_true(error, bits(a(i, j)) == bits(b(1, 1)), what//': '// &
+                                  trim(sets(k))//' of pixel ('//trim(x1(i))//', '// &
+                                  trim(x2(j))//') equals the direct run')
+               end do
+            end do
+         end do
+      end subroutine map_and_pixels
+      !> `s` with every `key` replaced by `value`.
+      function replaced(s, key, value) result(r)
+         character(len=*), intent(in) :: s, key, value
+         character(len=:), allocatable :: r
+         integer :: k
+         r = s
+         do
+            k = index(r, key)
+            if (k == 0) exit
+            r = r(:k - 1)//value//r(k + len(key):)
+         end do
+      end function replaced
+      subroutine read2(file, path, v)
+         character(len=*), intent(in) :: file, path
+         real(dp), allocatable, intent(out) :: v(:, :)
+         type(h5file_t) :: h5
+         if (allocated(error)) return
+         call h5%open(file, 'r', error)
+         if (.not. allocated(error)) call h5%read(path, v, error)
+         call h5%close()
+      end subroutine read2
+   end subroutine test_parameter_bodies
 
 end module test_sweep

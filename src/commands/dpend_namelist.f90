@@ -282,11 +282,8 @@ contains
                case default
                   moved = .false.
                end select
-               if (moved) then
-                  call mark_given(cfg, key)
-               else
-                  kept = [kept, cfg%extra%items(k)]
-               end if
+               call mark_given(cfg, key)
+               if (.not. moved) kept = [kept, cfg%extra%items(k)]
             end associate
          end do
          call move_alloc(kept, cfg%extra%items)

@@ -37,7 +37,10 @@ contains
           '                    w1..wN; or a parameter (2 or more links): m1 m2 (kg),'//nl// &
           '                    l1 l2 (m), m2/m1 (m2 = value m1), l2/l1 (l2 = value l1),'//nl// &
           '                    stored per pixel in /sweep/param (--time-unit natural'//nl// &
-          '                    uses --l1); default '//cfg%axis1//', '//cfg%axis2//nl// &
+          '                    uses --l1); rods and point masses (--body point); a'//nl// &
+          '                    model without flips: its own parameters by name (the'//nl// &
+          '                    elastic pendulum: m k l0 g); default '//cfg%axis1//', ' &
+          //cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &
           '                    1e9 in all); default '//to_str(cfg%n1)//nl// &
           '  --min1, --max1, --min2, --max2 X  axis ranges; default '//real_str(cfg%min1)// &

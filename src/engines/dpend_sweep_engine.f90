@@ -10,7 +10,8 @@ module dpend_sweep_engine
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, run_failure
    use dpend_pendulum_lanes, only: batch_result_t, integrate_batch, st_cannot_flip
-   use dpend_sweep_settings, only: sweep_config_t, pixel_model
+   use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
+      pixel_pendulum
    use dpend_pendulum, only: pendulum_t
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories
@@ -114,8 +115,7 @@ contains
          ! the lanes' constant records (the kernel's own parameters, not models)
          allocate (pars(nb))
          do j = 1, nb
-            pars(j) = setup%cfg%run%pendulum()
-            pars(j)%m1 = p(1, j); pars(j)%m2 = p(2, j); pars(j)%l1 = p(3, j); pars(j)%l2 = p(4, j)
+            pars(j) = pixel_pendulum(setup%cfg, p(:, j))
          end do
          call integrate_batch(pars(1), setup%opt, y0, res, pars)
          return
@@ -126,7 +126,11 @@ contains
          ! one thread at a time: the factory is not reentrant under gfortran 12
          ! (docs/architecture.md, "Threads")
          !$omp critical (dpend_build)
-         call pixel_model(setup%cfg, p(:, idx(1)), model, err)
+         if (setup%flips) then
+            call pixel_model(setup%cfg, p(:, idx(1)), model, err)
+         else
+            call pixel_model_named(setup%cfg, p(1, idx(1)), p(2, idx(1)), model, err)
+         end if
          !$omp end critical (dpend_build)
          if (allocated(err)) error stop 'internal error: a pixel model refused after ' &
             //'validate_sweep: '//err%message

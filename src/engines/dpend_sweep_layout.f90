@@ -15,7 +15,7 @@ module dpend_sweep_layout
    use dpend_cli, only: to_str
    use dpend_sweep_gpu, only: gpu_fallback_blocks
    use dpend_sweep_setup, only: sweep_setup_t, block_range, parameter_axes, block_parameters, &
-      stop_name
+      parameter_names, stop_name
    implicit none
    private
    public :: result_names, create_layout, write_block, working_file, finalize_file, install_file
@@ -30,7 +30,8 @@ contains
       character(len=32), allocatable, intent(out) :: reals(:)      !! real datasets
       character(len=32), allocatable, intent(out) :: ints(:)       !! integer datasets
       character(len=32) :: name
-      integer :: i
+      character(len=32), allocatable :: names(:)
+      integer :: i, k
       if (.not. setup%flips) then   ! no t_flip: final/q1 .. final/qn, final/w1 .. final/wn
          allocate (reals(2*setup%links + 3))
          reals(1:3) = [character(len=32) :: 'energy0', 'energy_error', 't_stop']
@@ -60,8 +61,14 @@ contains
          name = setup%cfg%indicator   ! (one length in the constructor under -fcheck)
          reals = [reals, name]
       end select
-      if (parameter_axes(setup)) reals = [reals, [character(len=32) :: 'param/m1', &
-                                          'param/m2', 'param/l1', 'param/l2']]
+      if (parameter_axes(setup)) then
+         names = parameter_names(setup)
+         do k = 1, size(names)
+            if (len_trim(names(k)) == 0) cycle
+            name = 'param/'//trim(names(k))   ! (one length in the constructor)
+            reals = [reals, name]
+         end do
+      end if
       ints = [character(len=32) :: 'status']
       if (setup%cfg%stats) ints = [ints, [character(len=32) :: 'steps']]
    end subroutine result_names
@@ -330,8 +337,15 @@ contains
       case ('axis1', 'axis2')
          var = setup%var1
          if (name == 'axis2') var = setup%var2
-         call state_info(var, units, cname)
-         text = 'grid values on '//name(1:4)//' '//name(5:5)//': initial '//cname
+         if (var > 0) then
+            call state_info(var, units, cname)
+            text = 'grid values on '//name(1:4)//' '//name(5:5)//': initial '//cname
+         else   ! a parameter axis
+            cname = setup%cfg%axis1
+            if (name == 'axis2') cname = setup%cfg%axis2
+            units = parameter_units(cname)
+            text = 'grid values on '//name(1:4)//' '//name(5:5)//': parameter '//cname
+         end if
       case ('initial')
          all_names = ''; all_units = ''
          do var = 1, 2*n
@@ -344,9 +358,24 @@ contains
          if (k > 0) then
             call state_info(k, units, cname)
             text = cname//' at t_stop'
+         else if (index(name, 'param/') == 1) then
+            units = parameter_units(name(7:))
+            text = 'parameter '//name(7:)//' of the pixel (parameter axes)'
          end if
       end select
    contains
+      !> The units of the run's model's parameter `pname`.
+      function parameter_units(pname) result(u)
+         character(len=*), intent(in) :: pname
+         character(len=:), allocatable :: u, other, other_units
+         real(dp) :: x
+         integer :: i
+         u = '1'
+         do i = 1, setup%cfg%run%model%n_parameters()
+            call setup%cfg%run%model%parameter(i, other, x, other_units)
+            if (other == pname) u = other_units
+         end do
+      end function parameter_units
       !> Units and name of state component var: q_k = its coordinate, w_k its rate.
       subroutine state_info(var, u, nm)
          integer, intent(in) :: var
@@ -410,7 +439,8 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
       real(dp), allocatable :: p(:, :)
-      integer :: j0, nb, i
+      character(len=32), allocatable :: names(:)
+      integer :: j0, nb, i, k
       logical :: sync
       sync = .true.
       if (present(flush)) sync = flush
@@ -445,10 +475,10 @@ contains
       end select
       if (parameter_axes(setup)) then
          call block_parameters(setup, b, p)
-         call put_r('param/m1', p(1, :))
-         call put_r('param/m2', p(2, :))
-         call put_r('param/l1', p(3, :))
-         call put_r('param/l2', p(4, :))
+         names = parameter_names(setup)
+         do k = 1, size(names)
+            if (len_trim(names(k)) > 0) call put_r('param/'//trim(names(k)), p(k, :))
+         end do
       end if
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)

@@ -11,7 +11,7 @@ module dpend_sweep_setup
    use dpend_pendulum_lanes, only: batch_options_t
    use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
-      natural_time
+      natural_time, model_axis
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_chain_lanes, only: chain_kernel_choice
@@ -22,7 +22,12 @@ module dpend_sweep_setup
    implicit none
    private
    public :: sweep_setup_t, sweep_summary_t, summary_text, build_setup, block_range, &
-      block_initial_conditions, parameter_axes, block_parameters, stop_name
+      block_initial_conditions, parameter_axes, block_parameters, stop_name, parameter_names
+   public :: named_parameter
+
+   !> The code of a parameter axis of a model without flips (its parameter by name;
+   !> the pendulum's axes are coded 1 to 6 by `axis_parameter`).
+   integer, parameter :: named_parameter = 7
 
    !> Everything derived from a configuration that the blocks need.
    type :: sweep_setup_t
@@ -114,6 +119,8 @@ contains
          setup%var2 = sweep_variable(cfg, cfg%axis2)
          setup%par1 = axis_parameter(cfg%axis1)
          setup%par2 = axis_parameter(cfg%axis2)
+         if (model_axis(cfg, cfg%axis1)) setup%par1 = named_parameter
+         if (model_axis(cfg, cfg%axis2)) setup%par2 = named_parameter
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
          do i = 1, cfg%n1
             setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
@@ -214,18 +221,46 @@ contains
    end subroutine block_initial_conditions
 
    !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1).
+   !> The names of the parameters of `block_parameters`: m1 m2 l1 l2 of a model with
+   !> flips, the swept parameters of another model ('' for an axis of initial values).
+   function parameter_names(setup) result(names)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      character(len=32), allocatable :: names(:)
+      if (setup%flips) then
+         names = [character(len=32) :: 'm1', 'm2', 'l1', 'l2']
+      else
+         names = [character(len=32) :: '', '']
+         if (setup%par1 == named_parameter) names(1) = setup%cfg%axis1
+         if (setup%par2 == named_parameter) names(2) = setup%cfg%axis2
+      end if
+   end function parameter_names
+
    pure logical function parameter_axes(setup)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       parameter_axes = setup%par1 > 0 .or. setup%par2 > 0
    end function parameter_axes
 
-   !> The parameters (m1, m2, l1, l2) of the pixels of block b (4, nb).
+   !> The parameters of the pixels of block b: (m1, m2, l1, l2) (4, nb) of a model
+   !> with flips; of another model the values of its parameter axes (2, nb), 0 for
+   !> an axis of initial values (`parameter_names`).
    subroutine block_parameters(setup, b, p)
       type(sweep_setup_t), intent(in) :: setup      !! setup
       integer, intent(in) :: b                      !! block, 1-based
-      real(dp), allocatable, intent(out) :: p(:, :) !! (4, nb) [kg, kg, m, m]
+      real(dp), allocatable, intent(out) :: p(:, :) !! (4, nb) [kg, kg, m, m] or (2, nb)
       integer :: j0, nb, j, jj, i1, i2
       call block_range(setup, b, j0, nb)
+      if (.not. setup%flips) then
+         allocate (p(2, nb))
+         p = 0.0_dp
+         do j = 1, nb
+            jj = j0 + j - 1
+            i1 = mod(jj - 1, setup%cfg%n1) + 1
+            i2 = (jj - 1)/setup%cfg%n1 + 1
+            if (setup%par1 == named_parameter) p(1, j) = setup%axis1(i1)
+            if (setup%par2 == named_parameter) p(2, j) = setup%axis2(i2)
+         end do
+         return
+      end if
       allocate (p(4, nb))
       do j = 1, nb
          jj = j0 + j - 1

@@ -10,8 +10,10 @@
 !>                  'w1' 'w2' (angular velocities) [rad, rad/s]; for N links any of
 !>                  theta1..thetaN, q1..qN, w1..wN; or a parameter (grids of 2 or
 !>                  more links): 'm1' 'm2' [kg], 'l1' 'l2' [m] of links 1 and 2, or the
-!>                  ratios 'm2/m1' (m2 = value m1), 'l2/l1' (l2 = value l1) [1]; the
-!>                  natural time unit stays √(l1/g) of the configured l1
+!>                  ratios 'm2/m1' (m2 = value m1), 'l2/l1' (l2 = value l1) [1] (rods
+!>                  and point masses); the natural time unit stays √(l1/g) of the
+!>                  configured l1; a model without flips: its real scalar parameters
+!>                  by name (`model_axis`: the elastic pendulum's m, k, l0, g)
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
 !>                  rows "q1 q2 w1 w2" or an HDF5 file (dataset ic_dataset, (n, 4));
@@ -36,7 +38,9 @@ module dpend_sweep_settings
    use dpend_limits, only: sci, max_threads, max_axis_points, max_sweep_points, max_angle, &
       max_angular_velocity, max_time, check_parameter, parameter_mass, parameter_length
    use dpend_model, only: model_t
-   use dpend_model_factory, only: model_spec_t, new_model
+   use dpend_pendulum, only: pendulum_t
+   use dpend_model_factory, only: model_spec_t, new_model, model_info_t, model_catalogue, &
+      find_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_strings, only: to_lower, did_you_mean
    use dpend_run_settings, only: run_config_t, validate_run_config
@@ -46,6 +50,7 @@ module dpend_sweep_settings
       stop_rule, grid_mode, axis_variable, indicator_names, indicator_vectors, &
       axis_parameter, param_axis_names, pixel_parameters, pixel_model, flip_model, &
       sweep_variable, natural_time, horizon_text
+   public :: model_axis, model_axis_names, pixel_model_named, pixel_pendulum
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -252,8 +257,80 @@ contains
       m(1:2) = p(1:2); l(1:2) = p(3:4)
       call spec%set('m', m)
       call spec%set('l', l)
+      if (point_masses(cfg)) then   ! the body follows the pixel's lengths
+         call spec%set('com', l)
+         call spec%set('inertia', spread(0.0_dp, 1, size(l)))
+      end if
       call new_model(spec, model, error)
    end subroutine pixel_model
+
+   !> The double pendulum's constant record of a pixel of a parameter sweep (the lane
+   !> kernel's parameters, not a model): the run's with (m1, m2, l1, l2) = p; point
+   !> masses sit at the pixel's link ends.
+   pure function pixel_pendulum(cfg, p) result(par)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: p(4)             !! (m1, m2, l1, l2) [kg, kg, m, m]
+      type(pendulum_t) :: par
+      par = cfg%run%pendulum()
+      par%m1 = p(1); par%m2 = p(2); par%l1 = p(3); par%l2 = p(4)
+      if (point_masses(cfg)) then
+         par%d1 = p(3); par%d2 = p(4)
+      end if
+   end function pixel_pendulum
+
+   !> The links are point masses (--body point): their centres follow a swept length.
+   pure logical function point_masses(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      point_masses = .false.
+      if (allocated(cfg%run%body)) point_masses = cfg%run%body == 'point'
+   end function point_masses
+
+   !> Whether `axis` sweeps a parameter of a model without flips: a real scalar
+   !> parameter of its catalogue row (the elastic pendulum's m, k, l0, g).
+   logical function model_axis(cfg, axis)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=*), intent(in) :: axis     !! axis name
+      model_axis = .false.
+      if (flip_model(cfg)) return
+      model_axis = index(' '//model_axis_names(cfg)//' ', ' '//axis//' ') > 0 .and. &
+                   len_trim(axis) > 0
+   end function model_axis
+
+   !> The parameters a map of a model without flips may sweep, blank-separated: the
+   !> real scalar parameters of its catalogue row.
+   function model_axis_names(cfg) result(names)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=:), allocatable :: names
+      type(model_info_t), allocatable :: models(:)
+      integer :: k, i
+      names = ''
+      models = model_catalogue()
+      k = find_model(models, cfg%run%spec%model_name())
+      if (k == 0) return
+      do i = 1, size(models(k)%params)
+         associate (p => models(k)%params(i))
+            if (p%count == 1 .and. .not. p%integer_valued) then
+               if (len(names) > 0) names = names//' '
+               names = names//p%name
+            end if
+         end associate
+      end do
+   end function model_axis_names
+
+   !> The model of a pixel of a map of a model without flips whose axes sweep its
+   !> parameters: a copy of the run's specification with the parameter of each
+   !> parameter axis set by name to that axis' value (x1, x2).
+   subroutine pixel_model_named(cfg, x1, x2, model, error)
+      type(sweep_config_t), intent(in) :: cfg            !! configuration, model built
+      real(dp), intent(in) :: x1, x2                     !! the pixel's axis values
+      class(model_t), allocatable, intent(out) :: model  !! the pixel's model
+      type(error_t), allocatable, intent(out) :: error   !! refused by the factory
+      type(model_spec_t) :: spec
+      spec = cfg%run%spec
+      if (model_axis(cfg, cfg%axis1)) call spec%set(cfg%axis1, [x1])
+      if (model_axis(cfg, cfg%axis2)) call spec%set(cfg%axis2, [x2])
+      call new_model(spec, model, error)
+   end subroutine pixel_model_named
 
    !> Check the configuration; messages name the field and the accepted range.
    subroutine validate_sweep(cfg, error)
@@ -401,6 +478,11 @@ contains
          if (k == 2) axis = cfg%axis2
          c = achar(iachar('0') + k)
          fixed = given_form(fixed_key(axis))
+         if (len(fixed) == 0 .and. model_axis(cfg, axis)) then   ! a parameter by name
+            if (allocated(cfg%run%given)) then
+               if (index(cfg%run%given, ' '//axis//' ') > 0) fixed = axis
+            end if
+         end if
          if (len(fixed) > 0) then
             call fatal_error(error, 'invalid '//fixed//": axis"//c//" '"//axis// &
                              "' sweeps the value it fixes (the axis would replace it); " &
@@ -505,14 +587,17 @@ contains
       real(dp) :: lo(2), hi(2), x1, x2
       character(len=1) :: c
       character(len=:), allocatable :: axis
+      class(model_t), allocatable :: model
       var = [sweep_variable(cfg, cfg%axis1), sweep_variable(cfg, cfg%axis2)]
       n = [cfg%n1, cfg%n2]; lo = [cfg%min1, cfg%min2]; hi = [cfg%max1, cfg%max2]
       names = 'q1..q'//to_str(cfg%run%model%n_dof())//', w1..w'// &
-              to_str(cfg%run%model%n_dof())//', '//coordinate_names()
+              to_str(cfg%run%model%n_dof())//', '//coordinate_names()//', '// &
+              model_axis_names(cfg)
       do k = 1, 2
          c = achar(iachar('0') + k)
          axis = cfg%axis1
          if (k == 2) axis = cfg%axis2
+         if (var(k) == 0 .and. model_axis(cfg, axis)) var(k) = -k   ! a parameter axis
          if (var(k) == 0) then
             ! theta1, theta2 are also the defaults: the pendulum's, no ranges to keep
             call fatal_error(error, 'invalid axis'//c//": '"//printable(axis)// &
@@ -530,9 +615,9 @@ contains
          end if
          if (allocated(error)) return
       end do
-      if (var(1) == var(2)) then
+      if (var(1) == var(2) .or. cfg%axis1 == cfg%axis2) then
          call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
-                          "initial value as axis1 '"//cfg%axis1//"'")
+                          "value as axis1 '"//cfg%axis1//"'")
          return
       else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
          call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
@@ -544,8 +629,15 @@ contains
          do i = 1, 2
             x1 = merge(lo(1), hi(1), i == 1); x2 = merge(lo(2), hi(2), j == 1)
             y = [cfg%run%q0(), cfg%run%w0()]
-            y(var(1)) = x1; y(var(2)) = x2
-            call cfg%run%model%check_state(y(:size(y)/2), y(size(y)/2 + 1:), error)
+            if (var(1) > 0) y(var(1)) = x1
+            if (var(2) > 0) y(var(2)) = x2
+            if (any(var < 0)) then   ! the pixel's model (the parameters' ranges)
+               call pixel_model_named(cfg, x1, x2, model, error)
+               if (.not. allocated(error)) &
+                  call model%check_state(y(:size(y)/2), y(size(y)/2 + 1:), error)
+            else
+               call cfg%run%model%check_state(y(:size(y)/2), y(size(y)/2 + 1:), error)
+            end if
             if (allocated(error)) then
                error%message = 'invalid min1, max1, min2, max2: the pixel at ('// &
                                real_str(x1)//', '//real_str(x2)//') is refused: '// &
@@ -596,11 +688,12 @@ contains
       class(model_t), allocatable :: model
       p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
       if (p1 == 0 .and. p2 == 0) return
-      ! the com and inertia given would not follow a swept mass or length
-      if (cfg%run%spec%find('com') > 0 .or. cfg%run%spec%find('inertia') > 0) then
+      ! the com and inertia given would not follow a swept mass or length (the
+      ! bodies --body rod and point do)
+      if (cfg%run%extra%find('com') > 0 .or. cfg%run%extra%find('inertia') > 0) then
          call fatal_error(error, 'invalid axis1, axis2: a mass or length axis sweeps ' &
-                          //'uniform rods only (the com and inertia given, or --body ' &
-                          //'point, would not follow it); sweep the initial values instead')
+                          //'uniform rods or point masses only (the com and inertia ' &
+                          //'given would not follow it); sweep the initial values instead')
          return
       end if
       do j = 1, 2
@@ -718,7 +811,6 @@ contains
       end if
    end subroutine check_grid_range
 
-   !> Unit of dt and t_end: 's' or 'sqrt(l1/g)'.
    !> The horizon and the step in both units: 't_end = 100 sqrt(l1/g) =
    !> 31.94 s, dt = 0.01 sqrt(l1/g) = 0.003194 s' (time_unit natural) or 't_end =
    !> 30 s = 93.91 sqrt(l1/g), ...' (s); with an l1 axis the natural unit is the

@@ -6,7 +6,9 @@ S=(--quick --no-figures --cases small --methods rk4,verlet,gauss8 --threads 1)
 M="&model\n name = 'elastic', k = 40, l0 = 1\n/\n"
 printf "$M&study case_name(1) = 'a', case_q1(1) = 1.3, case_q2(1) = -1.4,\n case_damping(1:2, 1) = 0.1, 0.1 /\n" \
   > "$FIXTURES/study_el_damped.nml"
-printf "$M&pendulum m1 = 2 /\n&study case_name(1) = 'a', case_q1(1) = 1.3 /\n" \
+# the pendulum's lengths are no parameter of the elastic pendulum (its mass and g
+# are: &pendulum m1 or --m1 is the bob's mass, as in simulate)
+printf "$M&pendulum l1 = 2 /\n&study case_name(1) = 'a', case_q1(1) = 1.3 /\n" \
   > "$FIXTURES/study_el_pendulum.nml"
 printf "$M&study case_name(1) = 'a', case_q1(1) = 0, case_q2(1) = -1.4 /\n" \
   > "$FIXTURES/study_el_r_zero.nml"
@@ -18,7 +20,7 @@ printf "&model\n name = 'elastic', k = -4\n/\n&study case_name(1) = 'a', case_q1
 succeed std-elastic                    -- study --config data/elastic_study.nml "${S[@]}" --output o/s.h5
 refuse  std-elastic-damped  case_damping -- study --config study_el_damped.nml --output o/s.h5
 refuse  std-elastic-pendulum pendulum  -- study --config study_el_pendulum.nml --output o/s.h5
-refuse  std-elastic-flag    pendulum   -- study --config data/elastic_study.nml --m1 2 --output o/s.h5
+refuse  std-elastic-flag    pendulum   -- study --config data/elastic_study.nml --l1 2 --output o/s.h5
 refuse  std-elastic-r-zero  q1         -- study --config study_el_r_zero.nml --output o/s.h5
 refuse  std-elastic-links   case_links -- study --config study_el_links.nml --output o/s.h5
 refuse  std-elastic-k       k          -- study --config study_el_k.nml --output o/s.h5

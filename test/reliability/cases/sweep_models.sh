@@ -30,3 +30,12 @@ succeed swm-el-sali-q-w         -- "${E[@]}" --indicator sali --axis1 q1 --min1 
 succeed swm-el-gali2-seconds    -- "${E[@]}" --indicator gali2 --time-unit s --stats --axis1 phi --min1 -2 --max1 -1 --axis2 w1
 succeed swm-el-list             -- "${E[@]}" --indicator megno --ic-file swm_list.txt
 succeed swm-el-config           -- sweep --config elastic_sweep.nml --n 3 --t-end 1 --quiet --output e.h5
+# ---- parameter axes of other bodies and models: point masses over the mass and
+# length axes, the elastic pendulum over its own parameters (and beside r)
+succeed swm-point-ratios-ok   -- sweep --output s.h5 --quiet --body point --axis1 m2/m1 --axis2 l2/l1 --min1 0.5 --max1 2 --min2 0.5 --max2 2 --n 3 --t-end 1 --q1 0.3
+succeed swm-elastic-k-l0-ok   -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 k --axis2 l0 --min1 20 --max1 60 --min2 0.5 --max2 1.5 --n 3 --t-end 1 --indicator megno
+succeed swm-elastic-r-k-ok    -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 r --axis2 k --min1 1 --max1 1.5 --min2 20 --max2 60 --n 3 --t-end 1 --indicator fli
+refuse  swm-elastic-k-fixed   "invalid k: axis1 'k' sweeps the value it fixes" -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --k 30 --axis1 k --axis2 l0 --min1 20 --max1 60 --min2 0.5 --max2 1.5 --n 3 --t-end 1 --indicator megno
+refuse  swm-elastic-k-range   'invalid min1, max1, min2, max2: the pixel at' -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 k --axis2 l0 --min1 -5 --max1 60 --min2 0.5 --max2 1.5 --n 3 --t-end 1 --indicator megno
+refuse  swm-elastic-same-axis "invalid axis2: 'k' sweeps the same value" -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 k --axis2 k --min1 20 --max1 60 --min2 20 --max2 60 --n 3 --t-end 1 --indicator megno
+refuse  swm-com-ratio         'invalid axis1, axis2: a mass or length axis sweeps uniform rods or point masses only' -- sweep --output s.h5 --quiet --com 0.4,0.4 --axis1 m2/m1 --axis2 l2/l1 --min1 0.5 --max1 2 --min2 0.5 --max2 2 --n 3 --t-end 1
