@@ -167,6 +167,7 @@ module dpend_chain
       ! the links' mass distribution
       procedure :: body_description => chain_body_description
       procedure :: time_unit => chain_time_unit
+      procedure :: rest_state => chain_rest_state
    end type chain_t
 
 contains
@@ -1312,6 +1313,13 @@ contains
       seconds = sqrt(self%l(1)/self%g)
       name = 'sqrt(l1/g)'
    end subroutine chain_time_unit
+
+   !> Every link hanging: q_i = −π/2 (the support's mean position if it moves).
+   pure subroutine chain_rest_state(self, q)
+      class(chain_t), intent(in) :: self  !! the model
+      real(dp), intent(out) :: q(:)       !! angles at rest [rad]
+      q = -0.5_dp*acos(-1.0_dp)
+   end subroutine chain_rest_state
 
    function chain_body_description(self) result(text)
       class(chain_t), intent(in) :: self  !! the chain

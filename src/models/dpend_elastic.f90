@@ -118,6 +118,7 @@ module dpend_elastic
       procedure :: coordinates_text => el_coordinates_text
       procedure :: figure => el_figure
       procedure :: time_unit => el_time_unit
+      procedure :: rest_state => el_rest_state
       procedure :: energy_text => el_energy_text
       procedure :: check_state => el_check_state
       !> Hanging equilibrium length r_eq = l0 + m g/k [m].
@@ -491,6 +492,13 @@ contains
       seconds = sqrt(self%l0/self%g)
       name = 'sqrt(l0/g)'
    end subroutine el_time_unit
+
+   !> Hanging at the stretched length: r = l0 + m g/k, φ = −π/2.
+   pure subroutine el_rest_state(self, q)
+      class(elastic_t), intent(in) :: self  !! the model
+      real(dp), intent(out) :: q(:)         !! (r [m], φ [rad]) at rest
+      q = [self%l0 + self%m*self%g/self%k, -0.5_dp*acos(-1.0_dp)]
+   end subroutine el_rest_state
 
    !> The model's check of an initial state (`check_state`): r above the collapse.
    subroutine el_check_state(self, q, qd, error)

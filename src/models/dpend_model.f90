@@ -111,6 +111,8 @@ module dpend_model
       procedure :: body_description => model_body_description
       ! the natural time unit of the motion (sweeps and summaries count time in it)
       procedure :: time_unit => model_time_unit
+      ! the state of rest (hanging): where a tiny run or a test may start near
+      procedure :: rest_state => model_rest_state
    end type model_t
 
    abstract interface
@@ -510,4 +512,12 @@ contains
       seconds = 1.0_dp
       name = 's'
    end subroutine model_time_unit
+
+   !> The coordinates q of the model at rest (its stable equilibrium, q̇ = 0).
+   !> Default: q = 0, for a model that states none.
+   pure subroutine model_rest_state(self, q)
+      class(model_t), intent(in) :: self  !! the model
+      real(dp), intent(out) :: q(:)       !! coordinates at rest (n_dof)
+      q = 0.0_dp
+   end subroutine model_rest_state
 end module dpend_model

@@ -445,6 +445,7 @@ contains
             if (k > 1) s = s//nl
             s = s//m%name//': '//m%summary//nl// &
                 '  coordinates: '//m%coordinates//nl// &
+                '  at rest:     '//rest_text(m%name)//nl// &
                 '  supports:    '//m%supports//nl// &
                 '  parameters (flag --NAME, namelist key NAME):'//nl
             do i = 1, size(m%params)
@@ -454,6 +455,28 @@ contains
       end do
       s = s(:len(s) - 1)
    end function describe_models
+
+   !> 'q = -1.5707963267948966, -1.5707963267948966 (the defaults' rest state)'.
+   function rest_text(name) result(s)
+      character(len=*), intent(in) :: name  !! model name
+      character(len=:), allocatable :: s
+      class(model_t), allocatable :: model
+      type(error_t), allocatable :: error
+      real(dp), allocatable :: q(:)
+      integer :: i
+      call new_model(model_spec(name), model, error)
+      if (allocated(error)) then
+         s = '(its defaults are refused: '//error%message//')'
+         return
+      end if
+      allocate (q(model%n_dof()))
+      call model%rest_state(q)
+      s = 'q = '
+      do i = 1, size(q)
+         s = s//real_str(q(i))//merge(', ', '  ', i < size(q))
+      end do
+      s = trim(s)//" (--q of the defaults' state of rest)"
+   end function rest_text
 
    !> '    m                  kg     [1e-6, 1e6]  default 1, one per link: meaning'.
    function param_line(p) result(s)

@@ -122,6 +122,7 @@ module dpend_pendulum
       ! the links' mass distribution
       procedure :: body_description => dp_body_description
       procedure :: time_unit => dp_time_unit
+      procedure :: rest_state => dp_rest_state
    end type double_pendulum_t
 
 contains
@@ -998,6 +999,13 @@ contains
       seconds = sqrt(self%par%l1/self%par%g)
       name = 'sqrt(l1/g)'
    end subroutine dp_time_unit
+
+   !> Both links hanging: q = (−π/2, −π/2).
+   pure subroutine dp_rest_state(self, q)
+      class(double_pendulum_t), intent(in) :: self  !! the model
+      real(dp), intent(out) :: q(:)                 !! angles at rest [rad]
+      q = -0.5_dp*acos(-1.0_dp)
+   end subroutine dp_rest_state
 
    function dp_body_description(self) result(text)
       class(double_pendulum_t), intent(in) :: self  !! the model

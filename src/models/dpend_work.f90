@@ -36,6 +36,7 @@ module dpend_work
       procedure :: conservative => work_false
       procedure :: autonomous => work_autonomous
       procedure :: time_unit => work_time_unit
+      procedure :: rest_state => work_rest_state
    end type work_model_t
 
 contains
@@ -113,6 +114,14 @@ contains
       character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
       call self%chain%time_unit(seconds, name)
    end subroutine work_time_unit
+
+   !> The chain's rest state, with no work done.
+   pure subroutine work_rest_state(self, q)
+      class(work_model_t), intent(in) :: self  !! the model
+      real(dp), intent(out) :: q(:)            !! (q, W_friction) at rest
+      call self%chain%rest_state(q(1:self%chain%n))
+      q(self%chain%n + 1:) = 0.0_dp
+   end subroutine work_rest_state
 
    !> The chain's state (q, q̇) of the augmented y.
    pure subroutine inner(n, y, yc)
