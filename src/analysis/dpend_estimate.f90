@@ -1365,7 +1365,7 @@ contains
          character(len=*), intent(in) :: name
          real(dp), allocatable :: a(:), w(:)
          no_effect = .false.
-         if (index(name, 'support_') /= 1 .or. prob%spec%model_name() /= 'pendulum') return
+         if (index(name, 'support_') /= 1) return   ! (a model that has the support)
          a = spec_values(prob%spec, 'support_amplitude', 2)
          w = spec_values(prob%spec, 'support_frequency', 1)
          if (name == 'support_amplitude') then

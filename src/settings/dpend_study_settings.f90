@@ -261,7 +261,7 @@ contains
          end if
          return
       end if
-      spec = model_spec('pendulum')
+      spec = model_spec(default_model)
       call spec%set('links', [real(n, dp)])
       call spec%set('m', cfg%m(:n))
       call spec%set('l', cfg%l(:n))
