@@ -53,35 +53,51 @@ check_tree() {
       if (parts[2] == "commands") return 7
       return -1
     }
+    # One statement: a module definition (pass 1) or a use (pass 2).
+    function statement(st,   mod, used, from, to) {
+      sub(/^[ \t]*&?[ \t]*/, "", st)
+      if (pass == 1 && st ~ /^module[ \t]+[a-z0-9_]+[ \t]*$/) {
+        mod = st
+        sub(/^module[ \t]+/, "", mod); sub(/[ \t]*$/, "", mod)
+        home[mod] = file
+        return
+      }
+      if (pass != 2) return
+      if (!match(st, /^use([ \t]*,[ \t]*(non_)?intrinsic)?[ \t]*(::)?[ \t]*[a-z0-9_]+/)) return
+      used = substr(st, RSTART, RLENGTH)
+      sub(/^use([ \t]*,[ \t]*(non_)?intrinsic)?[ \t]*(::)?[ \t]*/, "", used)
+      uses++
+      if (!(used in home)) return
+      from = floor_of(file); to = floor_of(home[used])
+      if (from < 0) { unknown[file] = 1; return }
+      if (to < 0) { unknown[home[used]] = 1; return }
+      if (to > from) {
+        printf "check_layers: %s:%d (%s) uses %s of %s (%s): against the order\n", \
+          file, FNR, floor_name[from], used, home[used], floor_name[to]
+        bad++
+      }
+      edges++
+    }
     BEGIN {
       split("core models integrators analysis io settings engines commands front-ends", name, " ")
       for (i = 1; i <= 9; i++) floor_name[i - 1] = name[i]
     }
-    # pass 1: where each module is defined
-    FNR == 1 { file = FILENAME }
+    # Each physical line: no CR, lower case, "!$" (OpenMP conditional) kept as code,
+    # comments cut, "&" continuations joined; then each ";"-separated statement.
+    FNR == 1 {
+      file = FILENAME; held = ""
+      if (pass == 2 && floor_of(file) < 0) unknown[file] = 1   # a folder in no floor
+    }
     {
       line = tolower($0)
+      sub(/\r$/, "", line)
+      sub(/^[ \t]*!\$/, "", line)
       sub(/!.*/, "", line)
-      if (match(line, /^[ \t]*module[ \t]+[a-z0-9_]+[ \t]*$/) && line !~ /procedure/) {
-        mod = line
-        sub(/^[ \t]*module[ \t]+/, "", mod); sub(/[ \t]*$/, "", mod)
-        if (pass == 1) home[mod] = file
-      }
-      if (pass == 2 && match(line, /^[ \t]*use[ \t]*(,[ \t]*(non_)?intrinsic[ \t]*::)?[ \t]*[a-z0-9_]+/)) {
-        used = substr(line, RSTART, RLENGTH)
-        sub(/^[ \t]*use[ \t]*(,[ \t]*(non_)?intrinsic[ \t]*::)?[ \t]*/, "", used)
-        uses++
-        if (!(used in home)) next
-        from = floor_of(file); to = floor_of(home[used])
-        if (from < 0) { unknown[file] = 1; next }
-        if (to < 0) { unknown[home[used]] = 1; next }
-        if (to > from) {
-          printf "check_layers: %s:%d (%s) uses %s of %s (%s): against the order\n", \
-            file, FNR, floor_name[from], used, home[used], floor_name[to]
-          bad++
-        }
-        edges++
-      }
+      if (line ~ /&[ \t]*$/) { sub(/&[ \t]*$/, "", line); held = held line; next }
+      line = held line
+      held = ""
+      n = split(line, part, ";")
+      for (s = 1; s <= n; s++) statement(part[s])
     }
     END {
       for (f in unknown) {

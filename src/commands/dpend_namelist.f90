@@ -9,9 +9,8 @@ module dpend_namelist
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: max_dof
-   use dpend_model_factory, only: spec_item_t
+   use dpend_model_factory, only: spec_item_t, default_model, has_parameter
    use dpend_cli, only: parse_real, real_str, to_str, to_lower, printable
-   use dpend_limits, only: max_steps
    use dpend_methods, only: method_names
    use dpend_strings, only: canonical_name
    use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
@@ -252,36 +251,43 @@ contains
       !> named parameter, for the factory's refusal.
       subroutine take_model_fields()
          type(spec_item_t), allocatable :: kept(:)
+         character(len=:), allocatable :: model
          logical :: moved
          integer :: k, n
          if (.not. allocated(cfg%extra%items)) return
+         model = default_model
+         if (allocated(cfg%model_name)) model = cfg%model_name
          allocate (kept(0))
          do k = 1, size(cfg%extra%items)
             associate (v => cfg%extra%items(k)%values, key => cfg%extra%items(k)%name)
                n = size(v)
-               moved = .true.
-               select case (key)
-               case ('links')
-                  moved = n == 1 .and. v(1) == aint(v(1)) .and. abs(v(1)) <= real(max_dof, dp)
-                  if (moved) cfg%links = nint(v(1))
-               case ('m'); cfg%m(:n) = v; cfg%list_size(1) = n
-               case ('l'); cfg%l(:n) = v; cfg%list_size(2) = n
-               case ('g')
-                  moved = n == 1
-                  if (moved) cfg%g = v(1)
-               case ('damping'); cfg%damping(:n) = v; cfg%damping_size = n
-               case ('support_amplitude')
-                  moved = n == 2
-                  if (moved) cfg%support_amplitude = v
-               case ('support_frequency')
-                  moved = n == 1
-                  if (moved) cfg%support_frequency = v(1)
-               case ('support_phase')
-                  moved = n == 2
-                  if (moved) cfg%support_phase = v
-               case default
-                  moved = .false.
-               end select
+               ! a parameter the model has, with one value or one per link
+               moved = has_parameter(model, key) .and. &
+                       (n == 1 .or. has_parameter(model, 'links'))
+               if (moved) then
+                  select case (key)
+                  case ('links')
+                     moved = n == 1 .and. v(1) == aint(v(1)) .and. abs(v(1)) <= real(max_dof, dp)
+                     if (moved) cfg%links = nint(v(1))
+                  case ('m'); cfg%m(:n) = v; cfg%list_size(1) = n
+                  case ('l'); cfg%l(:n) = v; cfg%list_size(2) = n
+                  case ('g')
+                     moved = n == 1
+                     if (moved) cfg%g = v(1)
+                  case ('damping'); cfg%damping(:n) = v; cfg%damping_size = n
+                  case ('support_amplitude')
+                     moved = n == 2
+                     if (moved) cfg%support_amplitude = v
+                  case ('support_frequency')
+                     moved = n == 1
+                     if (moved) cfg%support_frequency = v(1)
+                  case ('support_phase')
+                     moved = n == 2
+                     if (moved) cfg%support_phase = v
+                  case default
+                     moved = .false.
+                  end select
+               end if
                call mark_given(cfg, key)
                if (.not. moved) kept = [kept, cfg%extra%items(k)]
             end associate

@@ -14,7 +14,7 @@ module dpend_study_config
       scan_help_config, printable
    use dpend_method_registry, only: method_names
    use dpend_limits, only: sci
-   use dpend_run_settings, only: run_config_t
+   use dpend_run_settings, only: run_config_t, unused_setting
    use dpend_model_factory, only: default_model
    use dpend_namelist, only: read_run_config, check_groups, namelist_error
    use dpend_run_flags, only: apply_run_flag
@@ -386,6 +386,12 @@ contains
                              trim(per_case(k))//'(i) in &study)')
             return
          end do
+         if (len(unused_setting(rcfg)) > 0) then
+            call fatal_error(error, pre//unused_setting(rcfg)//' is not a parameter of ' &
+                             //'model '//rcfg%model_name//' (dpend models lists its ' &
+                             //'parameters)')
+            return
+         end if
          if (.not. allocated(rcfg%extra%items)) return
          if (allocated(rcfg%model_name)) then
             if (rcfg%model_name /= default_model) return

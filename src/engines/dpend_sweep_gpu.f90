@@ -18,8 +18,6 @@ module dpend_sweep_gpu
       flip_energy_bounds, potential_range, integrate_batch, stop_end
    use dpend_os, only: executable_path
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: to_str, printable
-   use dpend_strings, only: to_lower
    use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter
    implicit none
    private
@@ -220,7 +218,8 @@ contains
          s = s//buf(i)
       end do
    end function c_text
-   !> Check --device and --gpu-repack and resolve 'auto' (docs/gpu.md): the
+
+   !> Resolve the device of a validated sweep (docs/gpu.md): the
    !> GPU computes the two-link flip map over initial values; 'gpu' is refused for
    !> anything else, without the library or without a GPU (saying which); 'auto'
    !> takes the GPU when it can, else the CPU, with a note. With the GPU and no
@@ -230,17 +229,7 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused
       character(len=:), allocatable :: why, name
       integer :: state
-      cfg%device = to_lower(cfg%device)
-      if (cfg%device /= 'cpu' .and. cfg%device /= 'gpu' .and. cfg%device /= 'auto') then
-         call fatal_error(error, "invalid device: '"//printable(cfg%device)// &
-                          "' (accepted: cpu, gpu, auto)")
-         return
-      else if (cfg%gpu_repack < 0) then
-         call fatal_error(error, 'invalid gpu_repack: '//to_str(cfg%gpu_repack)// &
-                          ' must be an integer from 0 (one launch) to '//to_str(huge(1)))
-         return
-      end if
-      if (cfg%device == 'cpu') return
+      if (cfg%device == 'cpu') return   ! (its name and gpu_repack: validate_sweep)
       why = ''
       if (cfg%run%links /= 2 .or. .not. flip_model(cfg)) then
          why = 'the GPU computes the two-link pendulum only'

@@ -98,6 +98,12 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! unreadable list
       real(dp) :: scale, t_end
       integer :: i
+      if (cfg%device == 'auto' .or. (cfg%device == 'gpu' .and. len(cfg%device_name) == 0)) &
+         then   ! a library caller's: resolve_device opens the GPU after validate_sweep
+         call fatal_error(error, "invalid device: '"//cfg%device//"' is not resolved " &
+                          //'(resolve_device after validate_sweep)')
+         return
+      end if
       setup%cfg = cfg
       setup%grid = grid_mode(cfg)
       setup%links = cfg%run%model%n_dof()   ! N links; the elastic pendulum's 2
@@ -220,7 +226,6 @@ contains
       end do
    end subroutine block_initial_conditions
 
-   !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1).
    !> The names of the parameters of `block_parameters`: m1 m2 l1 l2 of a model with
    !> flips, the swept parameters of another model ('' for an axis of initial values).
    function parameter_names(setup) result(names)
@@ -235,6 +240,7 @@ contains
       end if
    end function parameter_names
 
+   !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1).
    pure logical function parameter_axes(setup)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       parameter_axes = setup%par1 > 0 .or. setup%par2 > 0

@@ -731,9 +731,6 @@ contains
       end do
    end function chain_potential
 
-   !> ½ q̇ᵀ M q̇ + V [J].
-   !> On a moving support, the inertial energy (module notes): plus
-   !> v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A.
    !> V = Σ G_i sin q_i, and with a moving support the height of the whole mass at
    !> the pin, M g y_A(t) [J] (the potential part of `chain_energy`).
    pure real(dp) function chain_potential_energy(self, t, y)
@@ -747,6 +744,9 @@ contains
       end if
    end function chain_potential_energy
 
+   !> ½ q̇ᵀ M q̇ + V [J].
+   !> On a moving support, the inertial energy (module notes): plus
+   !> v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A.
    pure real(dp) function chain_energy(self, t, y)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: t, y(:)
@@ -1304,7 +1304,6 @@ contains
       end do
    end subroutine chain_parameter_rates
 
-   !> The links' mass distribution with units ('' for uniform rods).
    !> The natural time unit sqrt(l1/g) of the first link [s].
    pure subroutine chain_time_unit(self, seconds, name)
       class(chain_t), intent(in) :: self                  !! the model
@@ -1321,6 +1320,7 @@ contains
       q = -0.5_dp*acos(-1.0_dp)
    end subroutine chain_rest_state
 
+   !> The links' mass distribution with units ('' for uniform rods).
    function chain_body_description(self) result(text)
       class(chain_t), intent(in) :: self  !! the chain
       character(len=:), allocatable :: text

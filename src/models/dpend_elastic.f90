@@ -281,10 +281,6 @@ contains
                   + 0.5_dp*self%k*(y(1) - self%l0)**2 + self%m*self%g*y(1)*sin(y(2))
    end function el_energy
 
-   !> Energy unit for relative energy errors [J]: |E0| when it is at least 1e-3 of
-   !> E_ref = m g l0 + k l0²/2 (the bob lifted by l0, plus the spring compressed to
-   !> zero length; positive for every accepted parameter, g = 0 included), E_ref
-   !> itself when E0 ≈ 0 — the rule of the double pendulum and the chain.
    !> V = k/2 (r − l0)² + m g r sin φ: the spring's and gravity's [J].
    pure real(dp) function el_potential_energy(self, t, y)
       class(elastic_t), intent(in) :: self
@@ -299,6 +295,10 @@ contains
       el_kinetic_energy = 0.5_dp*self%m*(y(3)**2 + (y(1)*y(4))**2)
    end function el_kinetic_energy
 
+   !> Energy unit for relative energy errors [J]: |E0| when it is at least 1e-3 of
+   !> E_ref = m g l0 + k l0²/2 (the bob lifted by l0, plus the spring compressed to
+   !> zero length; positive for every accepted parameter, g = 0 included), E_ref
+   !> itself when E0 ≈ 0 — the rule of the double pendulum and the chain.
    pure real(dp) function el_energy_scale(self, e0)
       class(elastic_t), intent(in) :: self
       real(dp), intent(in) :: e0

@@ -426,8 +426,6 @@ contains
       end do
    end subroutine model_check_state
 
-   !> What the energy dataset holds: T + V and where V = 0 (the default: the chain of
-   !> rods' zero, every link horizontal, the pin at its mean height).
    !> The kinetic energy T = E − V [J] (models with their own formula override it).
    pure real(dp) function model_kinetic_energy(self, t, y)
       class(model_t), intent(in) :: self
@@ -436,6 +434,8 @@ contains
       model_kinetic_energy = self%energy(t, y) - self%potential_energy(t, y)
    end function model_kinetic_energy
 
+   !> What the energy dataset holds: T + V and where V = 0 (the default: the chain of
+   !> rods' zero, every link horizontal, the pin at its mean height).
    function model_energy_text(self) result(text)
       class(model_t), intent(in) :: self
       character(len=:), allocatable :: text

@@ -456,7 +456,8 @@ contains
       s = s(:len(s) - 1)
    end function describe_models
 
-   !> 'q = -1.5707963267948966, -1.5707963267948966 (the defaults' rest state)'.
+   !> The state of rest of the model's defaults: 'q = -1.5707963267948966,
+   !> -1.5707963267948966 (--q of the defaults' state of rest)'.
    function rest_text(name) result(s)
       character(len=*), intent(in) :: name  !! model name
       character(len=:), allocatable :: s

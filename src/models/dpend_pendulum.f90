@@ -990,7 +990,6 @@ contains
       if (self%par%body /= body_rod) name = name//' of '//body_name_text(self%par)
    end function dp_name
 
-   !> The links' mass distribution with units ('' for uniform rods).
    !> The natural time unit sqrt(l1/g) [s].
    pure subroutine dp_time_unit(self, seconds, name)
       class(double_pendulum_t), intent(in) :: self        !! the model
@@ -1007,6 +1006,7 @@ contains
       q = -0.5_dp*acos(-1.0_dp)
    end subroutine dp_rest_state
 
+   !> The links' mass distribution with units ('' for uniform rods).
    function dp_body_description(self) result(text)
       class(double_pendulum_t), intent(in) :: self  !! the model
       character(len=:), allocatable :: text

@@ -21,7 +21,7 @@ module dpend_run_settings
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
-      is_model_parameter, list_names, mark_given
+      is_model_parameter, list_names, mark_given, unused_setting
 
    !> Settings of the pendulum's links and their parameter in the model catalogue: a
    !> setting given for a model without that parameter is refused. The second link's
@@ -274,6 +274,23 @@ contains
       end do
    end function is_model_parameter
 
+   !> The first setting given (`cfg%given`) that the model asked for has no parameter
+   !> for ('' if none): the pendulum's links, lengths, second link, angles from the
+   !> hanging position, damping and support motion (`link_settings`).
+   function unused_setting(cfg) result(key)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      character(len=:), allocatable :: key
+      integer :: i
+      key = ''
+      if (.not. allocated(cfg%given)) return
+      do i = 1, size(link_settings, 2)
+         if (index(cfg%given, ' '//trim(link_settings(1, i))//' ') == 0) cycle
+         if (model_has(cfg, trim(link_settings(2, i)))) cycle
+         key = trim(link_settings(1, i))
+         return
+      end do
+   end function unused_setting
+
    !> Record that the setting `key` was given (by a flag or the namelist file).
    pure subroutine mark_given(cfg, key)
       type(run_config_t), intent(inout) :: cfg  !! cfg%given updated
@@ -322,14 +339,7 @@ contains
          if (len(given) > 0) then
             if (model_has(cfg, given)) given = ''
          end if
-         if (len(given) == 0 .and. allocated(cfg%given)) then
-            do i = 1, size(link_settings, 2)
-               if (index(cfg%given, ' '//trim(link_settings(1, i))//' ') == 0) cycle
-               if (model_has(cfg, trim(link_settings(2, i)))) cycle
-               given = trim(link_settings(1, i))
-               exit
-            end do
-         end if
+         if (len(given) == 0) given = unused_setting(cfg)
          if (len(given) > 0) then
             call fatal_error(error, 'invalid '//given//': not a parameter of model ' &
                              //model_asked(cfg)//' (dpend models lists its parameters)')

@@ -430,6 +430,16 @@ contains
                           "' (accepted: q, theta)")
       end if
       if (.not. allocated(error)) call check_sweep_forms(cfg, error)
+      if (allocated(error)) return
+      ! the device's name and the GPU's repacking (the GPU itself: resolve_device)
+      cfg%device = to_lower(cfg%device)
+      if (cfg%device /= 'cpu' .and. cfg%device /= 'gpu' .and. cfg%device /= 'auto') then
+         call fatal_error(error, "invalid device: '"//printable(cfg%device)// &
+                          "' (accepted: cpu, gpu, auto)")
+      else if (cfg%gpu_repack < 0) then
+         call fatal_error(error, 'invalid gpu_repack: '//to_str(cfg%gpu_repack)// &
+                          ' must be an integer from 0 (one launch) to '//to_str(huge(1)))
+      end if
    end subroutine validate_sweep
 
    !> Refuse two settings of one quantity, from flags or the namelist
@@ -480,7 +490,9 @@ contains
          fixed = given_form(fixed_key(axis))
          if (len(fixed) == 0 .and. model_axis(cfg, axis)) then   ! a parameter by name
             if (allocated(cfg%run%given)) then
-               if (index(cfg%run%given, ' '//axis//' ') > 0) fixed = axis
+               ! the name, or the first link's form of a mass (m1 for m)
+               if (index(cfg%run%given, ' '//axis//' ') > 0 .or. &
+                   index(cfg%run%given, ' '//axis//'1 ') > 0) fixed = axis
             end if
          end if
          if (len(fixed) > 0) then

@@ -45,3 +45,9 @@ refuse  set-study-damping     'damping is not a setting of &pendulum in dpend st
 refuse  set-study-com         "com is not a setting of dpend study's pendulum" -- "${T[@]}" --config set_st_com.nml
 refuse  set-study-model-com   "com is not a setting of dpend study's pendulum" -- "${T[@]}" --config set_st_model_com.nml
 refuse  set-study-support     'support_amplitude is not a setting of &pendulum in dpend study' -- "${T[@]}" --config set_st_support.nml
+# ---- &model values the model cannot take stay the factory's to refuse, named
+printf "&model name='elastic', links = 2 /\n&study case_name(1)='a', case_q1(1)=1.3, case_q2(1)=-1.4, order_case='a', drift_case='a', ro_case='a', tao_case='a' /\n" > "$_set/set_st_el_links.nml"
+printf "&model name='elastic', m = 1, 2 /\n&initial q = 1.2, -1 /\n" > "$_set/set_el_m2.nml"
+refuse  set-study-el-links    'links is not a parameter of model elastic'  -- "${T[@]}" --config set_st_el_links.nml
+refuse  set-el-model-m-count  'invalid m'                                    -- "${S[@]}" --config set_el_m2.nml
+refuse  set-el-axis-m-given   "invalid m: axis2 'm' sweeps the value it fixes" -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --m1 2 --axis1 r --axis2 m --min1 1 --max1 1.4 --min2 0.5 --max2 2 --n 2 --t-end 0.5 --indicator megno
