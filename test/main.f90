@@ -56,6 +56,14 @@ program tester
       type(unittest_t), allocatable :: tests(:)
    end type suite_t
 
+   abstract interface
+      !> A suite's collector: its tests.
+      subroutine collector(tests)
+         import :: unittest_t
+         type(unittest_t), allocatable, intent(out) :: tests(:)
+      end subroutine collector
+   end interface
+
    type(suite_t), allocatable :: suites(:)
    type(error_t), allocatable :: error
    character(len=:), allocatable :: filter, full, reason
@@ -63,49 +71,49 @@ program tester
    logical :: no_skip, skipped
    character(len=8) :: value
 
-   allocate (suites(42))
-   suites(1)%name = 'model'; call collect_model(suites(1)%tests)
-   suites(2)%name = 'hdf5'; call collect_hdf5(suites(2)%tests)
-   suites(3)%name = 'cli'; call collect_cli(suites(3)%tests)
-   suites(4)%name = 'integrators'; call collect_integrators(suites(4)%tests)
-   suites(5)%name = 'symplectic'; call collect_symplectic(suites(5)%tests)
-   suites(6)%name = 'chaos'; call collect_chaos(suites(6)%tests)
-   suites(7)%name = 'sweep'; call collect_sweep(suites(7)%tests)
-   suites(8)%name = 'study'; call collect_study(suites(8)%tests)
-   suites(9)%name = 'limits'; call collect_limits(suites(9)%tests)
-   suites(10)%name = 'animate'; call collect_animate(suites(10)%tests)
-   suites(11)%name = 'messages'; call collect_messages(suites(11)%tests)
-   suites(12)%name = 'copies'; call collect_copies(suites(12)%tests)
-   suites(13)%name = 'registry'; call collect_registry(suites(13)%tests)
-   suites(14)%name = 'interface'; call collect_interface(suites(14)%tests)
-   suites(15)%name = 'chain'; call collect_chain(suites(15)%tests)
-   suites(16)%name = 'files'; call collect_files(suites(16)%tests)
-   suites(17)%name = 'indicators'; call collect_indicators(suites(17)%tests)
-   suites(18)%name = 'damping'; call collect_damping(suites(18)%tests)
-   suites(19)%name = 'kapitza'; call collect_kapitza(suites(19)%tests)
-   suites(20)%name = 'gauss_damped'; call collect_gauss_damped(suites(20)%tests)
-   suites(21)%name = 'estimate'; call collect_estimate(suites(21)%tests)
-   suites(22)%name = 'factory'; call collect_factory(suites(22)%tests)
-   suites(23)%name = 'elastic'; call collect_elastic(suites(23)%tests)
-   suites(24)%name = 'parse'; call collect_parse(suites(24)%tests)
-   suites(25)%name = 'dense'; call collect_dense(suites(25)%tests)
-   suites(26)%name = 'balance'; call collect_balance(suites(26)%tests)
-   suites(27)%name = 'sweep_values'; call collect_sweep_values(suites(27)%tests)
-   suites(28)%name = 'fit_stats'; call collect_fit_stats(suites(28)%tests)
-   suites(29)%name = 'phase_distance'; call collect_phase_distance(suites(29)%tests)
-   suites(30)%name = 'inventory'; call collect_inventory(suites(30)%tests)
-   suites(31)%name = 'values_simulate'; call collect_values_simulate(suites(31)%tests)
-   suites(32)%name = 'values_chaos'; call collect_values_chaos(suites(32)%tests)
-   suites(33)%name = 'values_study'; call collect_values_study(suites(33)%tests)
-   suites(34)%name = 'figures'; call collect_figures(suites(34)%tests)
-   suites(35)%name = 'values_sweep'; call collect_values_sweep(suites(35)%tests)
-   suites(36)%name = 'values_fit'; call collect_values_fit(suites(36)%tests)
-   suites(37)%name = 'bodies'; call collect_bodies(suites(37)%tests)
-   suites(38)%name = 'fit_params'; call collect_fit_params(suites(38)%tests)
-   suites(39)%name = 'chain_lanes'; call collect_chain_lanes(suites(39)%tests)
-   suites(40)%name = 'lanes'; call collect_lanes(suites(40)%tests)
-   suites(41)%name = 'gpu'; call collect_gpu(suites(41)%tests)
-   suites(42)%name = 'run_settings'; call collect_run_settings(suites(42)%tests)
+   allocate (suites(0))   ! a suite a line below: no count to keep
+   call add('model', collect_model)
+   call add('hdf5', collect_hdf5)
+   call add('cli', collect_cli)
+   call add('integrators', collect_integrators)
+   call add('symplectic', collect_symplectic)
+   call add('chaos', collect_chaos)
+   call add('sweep', collect_sweep)
+   call add('study', collect_study)
+   call add('limits', collect_limits)
+   call add('animate', collect_animate)
+   call add('messages', collect_messages)
+   call add('copies', collect_copies)
+   call add('registry', collect_registry)
+   call add('interface', collect_interface)
+   call add('chain', collect_chain)
+   call add('files', collect_files)
+   call add('indicators', collect_indicators)
+   call add('damping', collect_damping)
+   call add('kapitza', collect_kapitza)
+   call add('gauss_damped', collect_gauss_damped)
+   call add('estimate', collect_estimate)
+   call add('factory', collect_factory)
+   call add('elastic', collect_elastic)
+   call add('parse', collect_parse)
+   call add('dense', collect_dense)
+   call add('balance', collect_balance)
+   call add('sweep_values', collect_sweep_values)
+   call add('fit_stats', collect_fit_stats)
+   call add('phase_distance', collect_phase_distance)
+   call add('inventory', collect_inventory)
+   call add('values_simulate', collect_values_simulate)
+   call add('values_chaos', collect_values_chaos)
+   call add('values_study', collect_values_study)
+   call add('figures', collect_figures)
+   call add('values_sweep', collect_values_sweep)
+   call add('values_fit', collect_values_fit)
+   call add('bodies', collect_bodies)
+   call add('fit_params', collect_fit_params)
+   call add('chain_lanes', collect_chain_lanes)
+   call add('lanes', collect_lanes)
+   call add('gpu', collect_gpu)
+   call add('run_settings', collect_run_settings)
 
    n_arg = command_argument_count()
    if (n_arg >= 1) then
@@ -151,4 +159,14 @@ program tester
    write (output_unit, '(i0, " passed, ", i0, " failed, ", i0, " skipped")') &
       n_pass, n_fail, n_skip
    if (n_fail > 0 .or. n_pass == 0) error stop 1
+contains
+   !> Register the suite `name` with the tests its collector gives.
+   subroutine add(name, collect)
+      character(len=*), intent(in) :: name
+      procedure(collector) :: collect
+      type(suite_t) :: suite
+      suite%name = name
+      call collect(suite%tests)
+      suites = [suites, suite]
+   end subroutine add
 end program tester

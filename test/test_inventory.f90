@@ -565,12 +565,12 @@ contains
       slash = index(name, '/')
       suite = name(:slash - 1)
       test = name(slash + 1:)
-      k = index(main, "%name = '"//suite//"'; call collect_")
+      k = index(main, "call add('"//suite//"', collect_")
       if (slash <= 1 .or. k == 0) then
          reason = 'test '//name//': no suite '''//suite//''' in test/main.f90'
          return
       end if
-      collect = identifier_at(main, k + len("%name = '"//suite//"'; call "))
+      collect = identifier_at(main, k + len("call add('"//suite//"', "))
       do i = 1, size(sources)
          cbody = procedure_text(sources(i)%text, collect)
          if (len(cbody) == 0) cycle
