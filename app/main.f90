@@ -28,6 +28,7 @@ program dpend
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
    use dpend_output, only: track_inputs
    use dpend_progress, only: silence_progress, progress_header
+   use dpend_limits, only: bound_threads
    implicit none
 
    interface
@@ -56,6 +57,11 @@ program dpend
    ! every input a command reads is registered: an output never replaces one
    call track_inputs(.true.)
    call get_arguments(args)
+   block   ! the OpenMP runtime's threads from the environment, bounded as --threads
+      character(len=:), allocatable :: note
+      call bound_threads(note)
+      if (len(note) > 0) write (error_unit, '(a)') 'dpend: '//note
+   end block
    if (size(args) == 0) then
       write (output_unit, '(a)') main_help()
       stop 0, quiet=.true.

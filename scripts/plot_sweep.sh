@@ -16,6 +16,9 @@
 # DPEND: the dpend executable (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
 set -euo pipefail
+# numbers are read and printed in the C locale whatever the user's (a German
+# locale made printf refuse "2.0E-003" and the figures fail)
+export LC_ALL=C
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 # shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"

@@ -15,7 +15,7 @@ for a in "$@"; do
   esac
 done
 
-packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools)
+packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools locales)
 # Python: the recipes of docs/python.md and scripts/check_python.py (h5py, pandas, xarray).
 packages+=(python3 python3-h5py python3-pandas python3-xarray)
 if ((mpi)); then
@@ -45,6 +45,13 @@ if ((${#missing[@]})); then
     "${missing[@]}" >/dev/null
 else
   echo "setup.sh: Debian packages already installed"
+fi
+
+# A German locale (decimal comma) for CI's check that the figures do not depend on
+# the user's locale (.ci/run); generated once.
+if [[ -w /etc/locale.gen ]] && ! locale -a 2>/dev/null | grep -qi '^de_DE.utf8$'; then
+  "${sudo[@]}" sed -i 's/^# *de_DE.UTF-8 UTF-8/de_DE.UTF-8 UTF-8/' /etc/locale.gen
+  "${sudo[@]}" locale-gen > /dev/null 2>&1 || echo "setup.sh: locale-gen failed (de_DE.UTF-8)"
 fi
 
 # Debian's libhdf5-openmpi-dev (setup.sh --mpi) takes over the hdf5.pc alternative,

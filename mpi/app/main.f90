@@ -20,6 +20,7 @@ program dpend_mpi
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
    use dpend_sweep_setup, only: summary_text
+   use dpend_limits, only: bound_threads
    implicit none
 
    interface
@@ -42,6 +43,11 @@ program dpend_mpi
    call MPI_Comm_rank(MPI_COMM_WORLD, me)
    call MPI_Comm_size(MPI_COMM_WORLD, np)
    call get_arguments(args)
+   block   ! the OpenMP runtime's threads from the environment, bounded as --threads
+      character(len=:), allocatable :: note
+      call bound_threads(note)
+      if (len(note) > 0 .and. me == 0) write (error_unit, '(a)') 'dpend-mpi: '//note
+   end block
    if (size(args) == 0) then
       call say(main_help())
       call finish(0)

@@ -19,6 +19,7 @@ module dpend_limits
    !> `sci` is the one number formatter of dpend_cli under the name the messages use
    use dpend_strings, only: sci => real_str
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
    private
    public :: min_mass, max_mass, min_length, max_length, min_g, max_g
@@ -26,7 +27,7 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
-   public :: finite_positive
+   public :: finite_positive, bound_threads
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, sci, bytes_text
 
@@ -238,5 +239,26 @@ contains
       finite_positive = .false.
       if (ieee_is_finite(x)) finite_positive = x > 0.0_dp
    end function finite_positive
+
+   !> Bound the threads the OpenMP runtime takes from its environment
+   !> (OMP_NUM_THREADS) by max_threads, as --threads is bounded: beyond it, max_threads
+   !> are used and `note` says so ('' otherwise; 100000 threads crashed the runtime).
+   subroutine bound_threads(note)
+      character(len=:), allocatable, intent(out) :: note  !! one line, or ''
+      integer :: n
+      note = ''
+      n = 1
+      !$ n = omp_get_max_threads()
+      if (n <= max_threads) return
+      !$ call omp_set_num_threads(max_threads)
+      note = 'OMP_NUM_THREADS asks for '//trim(int_text(n))//' threads, above '// &
+             trim(int_text(max_threads))//': using '//trim(int_text(max_threads))
+   contains
+      pure function int_text(i) result(s)
+         integer, intent(in) :: i
+         character(len=16) :: s
+         write (s, '(i0)') i
+      end function int_text
+   end subroutine bound_threads
 
 end module dpend_limits

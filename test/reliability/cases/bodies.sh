@@ -35,7 +35,8 @@ refuse  bod-elastic         body       -- simulate --model elastic --body point 
 refuse  bod-elastic-com     com        -- simulate --model elastic --com 0.5 --output x.h5
 refuse  bod-repeated        body       -- simulate "${P[@]}" --body point --body rod --output x.h5
 succeed bod-sweep-point                -- sweep --body point --n1 4 --n2 4 --t-end 1 --quiet --output s.h5
-refuse  bod-sweep-axis      axis       -- sweep --body point --axis1 l2 --min1 0.5 --max1 1 --n1 4 --n2 4 --t-end 1 --output s.h5
+succeed bod-sweep-axis-ok             -- sweep --body point --axis1 l2 --min1 0.5 --max1 1 --n1 4 --n2 4 --t-end 1 --output s.h5
+refuse  bod-sweep-axis-com  axis       -- sweep --com 0.4,0.4 --axis1 l2 --min1 0.5 --max1 1 --n1 4 --n2 4 --t-end 1 --output s.h5
 refuse  bod-huge-l-com      l2         -- simulate "${P[@]}" --l2 1e200 --com 1,1 --output x.h5
 refuse  bod-huge-l-point    l2         -- simulate "${P[@]}" --l2 1e200 --body point --output x.h5
 refuse  bod-huge-l-chain    l1         -- simulate --links 3 --l 1e300,1,1 --inertia 0,0,0 --output x.h5
