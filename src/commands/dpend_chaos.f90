@@ -693,24 +693,8 @@ contains
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'indicators', status)
-      call h5%write('/indicators/t', res%t, units='s', description= &
-         'sample times (every tau, at step ends, and t_end)')
-      call h5%write('/indicators/megno', res%megno(), units='1', description= &
-         'MEGNO Y(t) = (2/t) int_0^t s (d ln|delta_1|/ds) ds of deviation vector 1')
-      call h5%write('/indicators/megno_mean', res%megno_mean(), units='1', description= &
-         'running mean <Y>(t) = (1/t) int_0^t Y ds of vector 1: 2 regular, lambda1 t/2 chaotic')
-      call h5%write('/indicators/fli', res%fli, units='1', description= &
-         'fast Lyapunov indicator FLI(t) = max_i ln|delta_i(t)|, |delta_i(0)| = 1')
-      call h5%write('/indicators/sali', res%sali, units='1', description= &
-         'SALI = min(|u1 + u2|, |u1 - u2|) of the unit deviation vectors 1 and 2')
-      call h5%write('/indicators/gali', res%gali, units='1', description= &
-         'GALI_k(t), column k-2 for k = 2 .. 2N: volume spanned by unit vectors 1 .. k')
-      call h5%write('/indicators/log_norm', res%log_norm, units='1', description= &
-         'ln|delta_i(t)| of each deviation vector, column i-1 for vector i')
-      call h5%write('/indicators/megno_vectors', res%megno_all, units='1', description= &
-         'MEGNO Y(t) of each deviation vector, column i-1 for vector i')
-      call h5%write('/indicators/megno_mean_vectors', res%mean_all, units='1', description= &
-         'running mean <Y>(t) of each deviation vector, column i-1 for vector i')
+      if (n > 0) call write_series()   ! a run that failed before its first sample: the
+      ! file holds its status and settings, no series (as lyapunov's and divergence's)
       call h5%writeattr('/', 'tau', ch%tau)
       call h5%writeattr('/', 'vectors', res%k)
       call h5%writeattr('/', 't_reached', res%t_reached)
@@ -753,6 +737,28 @@ contains
          line = line//' '//es(res%gali(j, n))
       end do
       summary = summary//nl//line
+   contains
+      !> The sampled series of the indicators.
+      subroutine write_series()
+         call h5%write('/indicators/t', res%t, units='s', description= &
+            'sample times (every tau, at step ends, and t_end)')
+         call h5%write('/indicators/megno', res%megno(), units='1', description= &
+            'MEGNO Y(t) = (2/t) int_0^t s (d ln|delta_1|/ds) ds of deviation vector 1')
+         call h5%write('/indicators/megno_mean', res%megno_mean(), units='1', description= &
+            'running mean <Y>(t) = (1/t) int_0^t Y ds of vector 1: 2 regular, lambda1 t/2 chaotic')
+         call h5%write('/indicators/fli', res%fli, units='1', description= &
+            'fast Lyapunov indicator FLI(t) = max_i ln|delta_i(t)|, |delta_i(0)| = 1')
+         call h5%write('/indicators/sali', res%sali, units='1', description= &
+            'SALI = min(|u1 + u2|, |u1 - u2|) of the unit deviation vectors 1 and 2')
+         call h5%write('/indicators/gali', res%gali, units='1', description= &
+            'GALI_k(t), column k-2 for k = 2 .. 2N: volume spanned by unit vectors 1 .. k')
+         call h5%write('/indicators/log_norm', res%log_norm, units='1', description= &
+            'ln|delta_i(t)| of each deviation vector, column i-1 for vector i')
+         call h5%write('/indicators/megno_vectors', res%megno_all, units='1', description= &
+            'MEGNO Y(t) of each deviation vector, column i-1 for vector i')
+         call h5%write('/indicators/megno_mean_vectors', res%mean_all, units='1', description= &
+            'running mean <Y>(t) of each deviation vector, column i-1 for vector i')
+      end subroutine write_series
    end subroutine run_indicators
 
    !> `dpend divergence`.

@@ -139,3 +139,6 @@ refuse  lim-stu-refdt           ref_dt      -- study --config lim_study_refdt.nm
 refuse  lim-stu-case-w          case_w1     -- study --config lim_study_w.nml
 refuse  lim-stu-atol-ratio      atol_ratio  -- study --config lim_study_atol.nml
 refuse  lim-stu-taodt           tao_dt      -- study --config lim_study_taodt.nml
+# a run that fails before its first sample still writes its file with its status
+fail    lim-ind-first-sample    'run stopped'  -- indicators --w1 1e6 --w2 -1e6 --dt 0.1 --t-end 20 --output lim_ind0.h5
+fail    lim-lya-first-sample    'run stopped'  -- lyapunov --w1 1e6 --w2 -1e6 --dt 0.1 --t-end 20 --output lim_lya0.h5
