@@ -144,9 +144,12 @@ contains
    !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
    !> after `max_steps` accepted steps instead (`--max-steps`).
    !> Builds `cfg%model` (the double pendulum for two links, the chain otherwise).
-   subroutine validate_run_config(cfg, error)
+   subroutine validate_run_config(cfg, error, initial_state)
       type(run_config_t), intent(inout) :: cfg          !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
+      !> whether the run starts from the configured state (default true; false for a
+      !> sweep of a list, whose rows give every initial state)
+      logical, intent(in), optional :: initial_state
       class(integrator_t), allocatable :: integ
       integer :: i, n
       if (allocated(cfg%model)) deallocate (cfg%model)
@@ -178,7 +181,11 @@ contains
       end do
       call build_model(cfg, error)
       if (allocated(error)) return
-      call check_initial_state(cfg, error)
+      if (.not. present(initial_state)) then
+         call check_initial_state(cfg, error)
+      else if (initial_state) then
+         call check_initial_state(cfg, error)
+      end if
       if (allocated(error)) return
       if (.not. allocated(cfg%method)) then
          call fatal_error(error, 'invalid method: none given')

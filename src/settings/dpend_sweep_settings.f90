@@ -337,7 +337,7 @@ contains
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       character(len=:), allocatable :: field
-      call validate_run_config(cfg%run, error)
+      call validate_run_config(cfg%run, error, initial_state=grid_mode(cfg))
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
@@ -480,6 +480,13 @@ contains
                                 //'the fixed value would be ignored); give one of them')
                return
             end if
+         end do
+         do k = 3, 4   ! the lists q and w (--q, --w, namelist q w) likewise
+            if (cfg%run%list_size(k) == 0) cycle
+            call fatal_error(error, 'invalid '//trim(merge('q', 'w', k == 3))//': given ' &
+                             //'with ic_file (the list gives every initial state; the ' &
+                             //'fixed values would be ignored); give one of them')
+            return
          end do
          return
       end if

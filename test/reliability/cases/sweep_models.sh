@@ -6,6 +6,8 @@
 printf '1.2 -1.0 0 0\n1.3 -1.5 0.1 0\n' > "$FIXTURES/swm_list.txt"
 printf '1.2 -1.0 0 0\n0 -1.5 0 0\n' > "$FIXTURES/swm_list_collapsed.txt"
 E=(sweep --model elastic --q 1.2,-1.0 --n 3 --t-end 1 --quiet --output e.h5)
+# a list gives every initial state: no --q beside it (a dummy one was needed before)
+EL=(sweep --model elastic --n 3 --t-end 1 --quiet --output e.h5)
 # ---- what the elastic pendulum refuses
 refuse  swm-el-flip-map         indicator     -- "${E[@]}"
 refuse  swm-el-flip-explicit    indicator     -- "${E[@]}" --indicator flip
@@ -19,8 +21,8 @@ refuse  swm-el-same-axis        axis2         -- "${E[@]}" --indicator megno --a
 refuse  swm-el-r-collapsed      'min1, max1'  -- "${E[@]}" --indicator megno --axis1 r --min1 0 --max1 1.5 --axis2 phi
 refuse  swm-el-r-nan            min1          -- "${E[@]}" --indicator megno --axis1 r --min1 nan --max1 1.5 --axis2 phi
 refuse  swm-el-fixed-r-zero     q1            -- sweep --model elastic --indicator megno --n 3 --t-end 1 --quiet --output e.h5
-refuse  swm-el-ic-theta         ic_angles     -- "${E[@]}" --indicator megno --ic-file swm_list.txt --ic-angles theta
-refuse  swm-el-ic-collapsed     ic_file       -- "${E[@]}" --indicator megno --ic-file swm_list_collapsed.txt
+refuse  swm-el-ic-theta         ic_angles     -- "${EL[@]}" --indicator megno --ic-file swm_list.txt --ic-angles theta
+refuse  swm-el-ic-collapsed     ic_file       -- "${EL[@]}" --indicator megno --ic-file swm_list_collapsed.txt
 refuse  swm-el-links            links         -- "${E[@]}" --indicator megno --links 3
 refuse  swm-el-method           method        -- "${E[@]}" --indicator megno --method verlet
 # ---- edge values that must succeed
@@ -28,7 +30,7 @@ succeed swm-el-megno-r-phi      -- "${E[@]}" --indicator megno --axis1 r --min1 
 succeed swm-el-fli-rates        -- "${E[@]}" --indicator fli --axis1 rdot --axis2 phidot
 succeed swm-el-sali-q-w         -- "${E[@]}" --indicator sali --axis1 q1 --min1 1 --max1 1.4 --axis2 w2
 succeed swm-el-gali2-seconds    -- "${E[@]}" --indicator gali2 --time-unit s --stats --axis1 phi --min1 -2 --max1 -1 --axis2 w1
-succeed swm-el-list             -- "${E[@]}" --indicator megno --ic-file swm_list.txt
+succeed swm-el-list             -- "${EL[@]}" --indicator megno --ic-file swm_list.txt
 succeed swm-el-config           -- sweep --config elastic_sweep.nml --n 3 --t-end 1 --quiet --output e.h5
 # ---- parameter axes of other bodies and models: point masses over the mass and
 # length axes, the elastic pendulum over its own parameters (and beside r)
@@ -39,3 +41,5 @@ refuse  swm-elastic-k-fixed   "invalid k: axis1 'k' sweeps the value it fixes" -
 refuse  swm-elastic-k-range   'invalid min1, max1, min2, max2: the pixel at' -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 k --axis2 l0 --min1 -5 --max1 60 --min2 0.5 --max2 1.5 --n 3 --t-end 1 --indicator megno
 refuse  swm-elastic-same-axis "invalid axis2: 'k' sweeps the same value" -- sweep --output s.h5 --quiet --model elastic --q 1.2,-1 --axis1 k --axis2 k --min1 20 --max1 60 --min2 20 --max2 60 --n 3 --t-end 1 --indicator megno
 refuse  swm-com-ratio         'invalid axis1, axis2: a mass or length axis sweeps uniform rods or point masses only' -- sweep --output s.h5 --quiet --com 0.4,0.4 --axis1 m2/m1 --axis2 l2/l1 --min1 0.5 --max1 2 --min2 0.5 --max2 2 --n 3 --t-end 1
+refuse  swm-list-with-q       'invalid q: given with ic_file' -- "${EL[@]}" --indicator megno --ic-file swm_list.txt --q 1.2,-1
+refuse  swm-pend-list-with-q  'invalid q: given with ic_file' -- sweep --ic-file swm_list.txt --q 1,1 --t-end 1 --quiet --output p.h5
