@@ -1219,8 +1219,9 @@ contains
          write (unit, '(a)') trim(line)
       end do
       close (unit)
-      stat = run_command(dir, 'sweep '//common//' --ic-file '//dir//'/ics.txt '// &
-                         '--ic-angles theta --output '//dir//'/list.h5')
+      ! the list gives every state: no --q, --w beside it
+      stat = run_command(dir, 'sweep --quiet --links 3 --t-end 4 --stats --ic-file '//dir// &
+                         '/ics.txt --ic-angles theta --output '//dir//'/list.h5')
       call check_true(error, stat == 0, 'list run exits 0')
       if (allocated(error)) return
       call h5%open(dir//'/list.h5', 'r', error)
