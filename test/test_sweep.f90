@@ -1388,7 +1388,6 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, common, pmap
       real(dp), allocatable :: a(:, :), b(:, :)
-      type(h5file_t) :: h5
       integer :: stat, k, row
       character(len=16), parameter :: sets(4) = [character(len=16) :: '/sweep/t_flip', &
          '/sweep/megno', '/sweep/final/q1', '/sweep/energy0']
@@ -1413,8 +1412,8 @@ contains
       call same_dataset(error, dir//'/p.h5', dir//'/p2.h5', '/sweep/megno')
       do k = 1, size(sets)
          do row = 1, 2
-            call read2(dir//'/p.h5', trim(sets(k)), a)
-            call read2(dir//'/r'//achar(iachar('0') + row)//'.h5', trim(sets(k)), b)
+            call read_map(error, dir//'/p.h5', trim(sets(k)), a)
+            call read_map(error, dir//'/r'//achar(iachar('0') + row)//'.h5', trim(sets(k)), b)
             if (allocated(error)) return
             call check_true(error, all(bits(a(:, row)) == bits(b(:, 1))), &
                             trim(sets(k))//': row of the parameter map equals the fixed map')
@@ -1425,14 +1424,14 @@ contains
                          //'--min1 0.5 --max1 2 --threads 2 --block 8 --output '//dir//'/t.h5')
       call check_true(error, stat == 0, 'transposed parameter map exits 0')
       do k = 1, size(sets)
-         call read2(dir//'/p.h5', trim(sets(k)), a)
-         call read2(dir//'/t.h5', trim(sets(k)), b)
+         call read_map(error, dir//'/p.h5', trim(sets(k)), a)
+         call read_map(error, dir//'/t.h5', trim(sets(k)), b)
          if (allocated(error)) return
          call check_true(error, all(bits(transpose(a)) == bits(b)), &
                          trim(sets(k))//': the transposed map is the transpose')
       end do
-      call read2(dir//'/p.h5', '/sweep/param/m2', a)
-      call read2(dir//'/p.h5', '/sweep/param/m1', b)
+      call read_map(error, dir//'/p.h5', '/sweep/param/m2', a)
+      call read_map(error, dir//'/p.h5', '/sweep/param/m1', b)
       if (allocated(error)) return
       call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 2) == 2.0_dp) .and. &
                       all(b == 1.0_dp), 'per-pixel masses stored')
@@ -1452,22 +1451,13 @@ contains
                          //'--axis1 theta1 --axis2 l2/l1 --min2 0.5 --max2 2 --indicator fli ' &
                          //'--output '//dir//'/c.h5')
       call check_true(error, stat == 0, 'three links over (theta1, l2/l1) exits 0')
-      call read2(dir//'/c.h5', '/sweep/param/l2', a)
-      call read2(dir//'/c.h5', '/sweep/fli', b)
+      call read_map(error, dir//'/c.h5', '/sweep/param/l2', a)
+      call read_map(error, dir//'/c.h5', '/sweep/fli', b)
       if (allocated(error)) return
       call check_true(error, all(a(:, 1) == 0.5_dp) .and. all(a(:, 3) == 2.0_dp), &
                       'three links: per-pixel l2 stored')
       call check_true(error, all(b == b), 'three links: FLI of every pixel')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
-   contains
-      subroutine read2(file, path, v)
-         character(len=*), intent(in) :: file, path
-         real(dp), allocatable, intent(out) :: v(:, :)
-         if (allocated(error)) return
-         call h5%open(file, 'r', error)
-         if (.not. allocated(error)) call h5%read(path, v, error)
-         call h5%close()
-      end subroutine read2
    end subroutine test_parameter_axes
 
    !> `sweep-compare --agreement` of a MEGNO map (t_end 20) and a lambda1 map
@@ -1711,8 +1701,8 @@ contains
                call check_true(error, stat == 0, what//': the one-pixel map exits 0')
                do k = 1, size(sets)
                   if (allocated(error)) return
-                  call read2(dir//'/map.h5', '/sweep/'//trim(sets(k)), a)
-                  call read2(dir//'/px.h5', '/sweep/'//trim(sets(k)), b)
+                  call read_map(error, dir//'/map.h5', '/sweep/'//trim(sets(k)), a)
+                  call read_map(error, dir//'/px.h5', '/sweep/'//trim(sets(k)), b)
                   if (allocated(error)) return
                   call check_true(error, bits(a(i, j)) == bits(b(1, 1)), what//': '// &
                                   trim(sets(k))//' of pixel ('//trim(x1(i))//', '// &
@@ -1733,15 +1723,18 @@ contains
             r = r(:k - 1)//value//r(k + len(key):)
          end do
       end function replaced
-      subroutine read2(file, path, v)
-         character(len=*), intent(in) :: file, path
-         real(dp), allocatable, intent(out) :: v(:, :)
-         type(h5file_t) :: h5
-         if (allocated(error)) return
-         call h5%open(file, 'r', error)
-         if (.not. allocated(error)) call h5%read(path, v, error)
-         call h5%close()
-      end subroutine read2
    end subroutine test_parameter_bodies
+
+   !> The 2-D dataset `path` of `file` (nothing if `error` is set already).
+   subroutine read_map(error, file, path, v)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: file, path
+      real(dp), allocatable, intent(out) :: v(:, :)
+      type(h5file_t) :: h5
+      if (allocated(error)) return
+      call h5%open(file, 'r', error)
+      if (.not. allocated(error)) call h5%read(path, v, error)
+      call h5%close()
+   end subroutine read_map
 
 end module test_sweep

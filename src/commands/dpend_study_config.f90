@@ -369,7 +369,7 @@ contains
          type(error_t), allocatable, intent(out) :: error
          character(len=*), parameter :: per_case(4) = [character(len=17) :: 'damping', &
             'support_amplitude', 'support_frequency', 'support_phase']
-         character(len=:), allocatable :: pre
+         character(len=:), allocatable :: pre, unused
          integer :: k
          pre = "invalid --config '"//printable(filename)//"': "
          if (allocated(rcfg%body)) then
@@ -386,8 +386,9 @@ contains
                              trim(per_case(k))//'(i) in &study)')
             return
          end do
-         if (len(unused_setting(rcfg)) > 0) then
-            call fatal_error(error, pre//unused_setting(rcfg)//' is not a parameter of ' &
+         unused = unused_setting(rcfg)
+         if (len(unused) > 0) then
+            call fatal_error(error, pre//unused//' is not a parameter of ' &
                              //'model '//rcfg%model_name//' (dpend models lists its ' &
                              //'parameters)')
             return

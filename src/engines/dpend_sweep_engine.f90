@@ -21,7 +21,7 @@ module dpend_sweep_engine
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_cli, only: to_str
    use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
-      block_initial_conditions, parameter_axes, block_parameters
+      block_initial_conditions, parameter_axes, block_parameters, parameter_names
    use dpend_sweep_layout, only: result_names, write_block, working_file, finalize_file
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_gpu, only: gpu_integrate_block
@@ -109,6 +109,7 @@ contains
       type(error_t), allocatable :: err
       integer :: j, g, nb, j0
       integer, allocatable :: group(:)
+      character(len=32), allocatable :: names(:)
       call block_parameters(setup, b, p)
       call block_range(setup, b, j0, nb)
       if (.not. setup%per_trajectory) then
@@ -129,7 +130,8 @@ contains
          if (setup%flips) then
             call pixel_model(setup%cfg, p(:, idx(1)), model, err)
          else
-            call pixel_model_named(setup%cfg, p(1, idx(1)), p(2, idx(1)), model, err)
+            names = parameter_names(setup)
+            call pixel_model_named(setup%cfg, names, p(:, idx(1)), model, err)
          end if
          !$omp end critical (dpend_build)
          if (allocated(err)) error stop 'internal error: a pixel model refused after ' &

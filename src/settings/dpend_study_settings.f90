@@ -606,8 +606,10 @@ contains
       else if (.not. finite_positive(cfg%ref_dt) .or. cfg%ref_dt > cfg%t_short/cfg%n_check) &
          then
          call fatal_error(error, 'invalid ref_dt: must be in (0, t_short/n_check] (s)')
-      else if (.not. (finite_positive(cfg%check_rtol) .and. cfg%check_rtol < 1.0_dp)) then
-         call fatal_error(error, 'invalid check_rtol: must be in (0, 1)')
+      else if (.not. (in_range(cfg%check_rtol, min_rtol, 1.0_dp) .and. cfg%check_rtol < 1.0_dp)) &
+         then   ! (below min_rtol the step of the check shrinks until it traps)
+         call fatal_error(error, 'invalid check_rtol: must be in ['//sci(min_rtol)//', 1) ' &
+                          //'(double precision cannot honour a smaller tolerance)')
       else if (.not. (finite_positive(cfg%wall_min) .or. cfg%wall_min == 0.0_dp)) then
          call fatal_error(error, 'invalid wall_min: must be finite and >= 0 (s)')
       else if (.not. finite_positive(cfg%ro_steps - 0.5_dp) .or. cfg%ro_steps > 1e10_dp) then

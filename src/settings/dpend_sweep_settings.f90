@@ -318,17 +318,20 @@ contains
    end function model_axis_names
 
    !> The model of a pixel of a map of a model without flips whose axes sweep its
-   !> parameters: a copy of the run's specification with the parameter of each
-   !> parameter axis set by name to that axis' value (x1, x2).
-   subroutine pixel_model_named(cfg, x1, x2, model, error)
+   !> parameters: a copy of the run's specification with each parameter names(k)
+   !> set to x(k) ('': axis k sweeps an initial value).
+   subroutine pixel_model_named(cfg, names, x, model, error)
       type(sweep_config_t), intent(in) :: cfg            !! configuration, model built
-      real(dp), intent(in) :: x1, x2                     !! the pixel's axis values
+      character(len=*), intent(in) :: names(2)           !! the axes' parameters or ''
+      real(dp), intent(in) :: x(2)                       !! the pixel's axis values
       class(model_t), allocatable, intent(out) :: model  !! the pixel's model
       type(error_t), allocatable, intent(out) :: error   !! refused by the factory
       type(model_spec_t) :: spec
+      integer :: k
       spec = cfg%run%spec
-      if (model_axis(cfg, cfg%axis1)) call spec%set(cfg%axis1, [x1])
-      if (model_axis(cfg, cfg%axis2)) call spec%set(cfg%axis2, [x2])
+      do k = 1, 2
+         if (len_trim(names(k)) > 0) call spec%set(trim(names(k)), [x(k)])
+      end do
       call new_model(spec, model, error)
    end subroutine pixel_model_named
 
@@ -606,6 +609,7 @@ contains
       real(dp) :: lo(2), hi(2), x1, x2
       character(len=1) :: c
       character(len=:), allocatable :: axis
+      character(len=32) :: pnames(2)   ! the parameter of each parameter axis, else ''
       class(model_t), allocatable :: model
       var = [sweep_variable(cfg, cfg%axis1), sweep_variable(cfg, cfg%axis2)]
       n = [cfg%n1, cfg%n2]; lo = [cfg%min1, cfg%min2]; hi = [cfg%max1, cfg%max2]
@@ -644,6 +648,9 @@ contains
                           sci(real(max_sweep_points, dp))//' (fewer points)')
          return
       end if
+      pnames = ''
+      if (var(1) < 0) pnames(1) = cfg%axis1
+      if (var(2) < 0) pnames(2) = cfg%axis2
       do j = 1, 2
          do i = 1, 2
             x1 = merge(lo(1), hi(1), i == 1); x2 = merge(lo(2), hi(2), j == 1)
@@ -651,7 +658,7 @@ contains
             if (var(1) > 0) y(var(1)) = x1
             if (var(2) > 0) y(var(2)) = x2
             if (any(var < 0)) then   ! the pixel's model (the parameters' ranges)
-               call pixel_model_named(cfg, x1, x2, model, error)
+               call pixel_model_named(cfg, pnames, [x1, x2], model, error)
                if (.not. allocated(error)) &
                   call model%check_state(y(:size(y)/2), y(size(y)/2 + 1:), error)
             else

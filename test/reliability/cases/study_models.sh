@@ -24,3 +24,7 @@ refuse  std-elastic-flag    pendulum   -- study --config data/elastic_study.nml 
 refuse  std-elastic-r-zero  q1         -- study --config study_el_r_zero.nml --output o/s.h5
 refuse  std-elastic-links   case_links -- study --config study_el_links.nml --output o/s.h5
 refuse  std-elastic-k       k          -- study --config study_el_k.nml --output o/s.h5
+# the study's check tolerance within what double precision honours (1e-300 trapped in
+# dop853: fuzz seed 20261129)
+printf "&study case_name(1)='a', case_q1(1)=0.1, case_q2(1)=0.1, order_case='a', drift_case='a', ro_case='a', tao_case='a', check_rtol = 1e-300 /\n" > "$FIXTURES/std_check_rtol.nml"
+refuse  std-check-rtol      check_rtol -- study --config std_check_rtol.nml --no-figures --output o/s.h5
