@@ -73,7 +73,7 @@ module dpend_estimate
    private
    public :: fit_problem_t, fit_result_t, fit_series, evaluate_fit, sens_model_t
    public :: initial_guess, student_t95, fit_work_t, estimate_fit_work, set_fitted, n_fitted
-   public :: noise_estimate, misfit_suspects, misfit_factor, suspect_t, condition_text
+   public :: noise_estimate, observation_noise, misfit_suspects, misfit_factor, suspect_t, condition_text
 
    !> Most steps of the probe integration that measures the steps per second of model
    !> time (`estimate_fit_work`): a few milliseconds.
@@ -105,6 +105,7 @@ module dpend_estimate
       character(len=32), allocatable :: comp_names(:)
       integer, allocatable :: comp_index(:), comp_count(:)
       character(len=24), allocatable :: comp_labels(:)
+      character(len=16), allocatable :: comp_units(:)   !! each component's units
       real(dp), allocatable :: comp_scale(:)
       logical, allocatable :: comp_generic(:)
       !> labels of all P parameters (the state's, then the components'), for messages;
@@ -140,6 +141,9 @@ module dpend_estimate
       !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
       !> `fit_series` stops with an error beyond
       real(dp) :: work_limit = max_fit_work
+      !> the noise of the observations [rad or m] (`--sigma`); 0: estimated from the
+      !> data (`observation_noise`)
+      real(dp) :: noise = 0.0_dp
    end type fit_problem_t
 
    !> What a fit costs at most (`estimate_fit_work`), known before it starts.
@@ -995,6 +999,8 @@ contains
          ds(i) = 0.0_dp
          if (a(i, i) > tiny(1.0_dp)) ds(i) = 1.0_dp/sqrt(a(i, i))
       end do
+      call check_visible(prob, q, res, jac, error)
+      if (allocated(error)) return
       call identifiability(jac, ds, res)
       info = 0
       if (any(.not. (ds > 0.0_dp))) then
@@ -1039,6 +1045,81 @@ contains
       end do
       res%t95 = student_t95(res%dof)
    end subroutine window_statistics
+
+   !> Refuse a fitted model parameter the data cannot see, judged before any
+   !> normalisation: fitted alone, its standard error would be σ/‖J_j‖ (σ the noise of
+   !> the observations, `observation_noise`; J_j its column of sensitivities); when that
+   !> exceeds the parameter's own scale s_j (its guess, at least the catalogue's default
+   !> or 0.01 in its units), changing it by s_j moves the predicted series by less than
+   !> the noise, and no interval the fit could give would mean anything. (Scaling the
+   !> columns to unit length first, as `identifiability` does, hides this: a column of
+   !> rounding errors scales to 1 like any other.)
+   subroutine check_visible(prob, q, res, jac, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem
+      real(dp), intent(in) :: q(:, :)                   !! observations (N or 2N, K)
+      type(fit_result_t), intent(in) :: res             !! the fit (np, k_fit, p)
+      real(dp), intent(in) :: jac(:, :)                 !! ∂r/∂p over the fit window
+      type(error_t), allocatable, intent(out) :: error  !! a parameter not seen
+      character(len=:), allocatable :: how, names, detail, ou
+      real(dp) :: sigma, scale, norm
+      integer :: c, j, n_state
+      if (n_fitted(prob) == 0) return
+      ou = 'rad'
+      if (prob%positions) ou = 'm'
+      if (allocated(prob%angular)) then
+         if (.not. all(prob%angular)) ou = '(in the observations'' units)'
+      end if
+      sigma = observation_noise(prob, q, res%k_fit, how)
+      n_state = res%np - n_fitted(prob)
+      names = ''
+      detail = ''
+      do c = 1, n_fitted(prob)
+         j = n_state + c
+         scale = max(abs(res%p(j)), abs(prob%theta0(c)), prob%comp_scale(c))
+         norm = sqrt(sum(jac(:, j)**2))
+         if (norm*scale > sigma) cycle
+         if (len(names) > 0) names = names//', '
+         names = names//trim(prob%comp_labels(c))
+         if (len(detail) == 0) detail = trim(prob%comp_labels(c))//' by '// &
+            real_str(scale, 3)//' '//trim(prob%comp_units(c))//' moves the fitted series '// &
+            'by '//real_str(norm*scale, 3)//' '//ou//' (root sum of squares over the window)'
+      end do
+      if (len(names) == 0) return
+      call fatal_error(error, 'invalid fit parameters: '//names//trim(merge(' is ', ' are', &
+                       index(names, ',') == 0))//' not determined by the data: changing ' &
+                       //detail//', less than the noise '//real_str(sigma, 3)//' '//ou// &
+                       ' ('//how// &
+                       ') (fitted alone, its standard error would exceed its own scale); fix each ' &
+                       //'at a known value, or fit data in which it acts', &
+                       error_bad_input)
+   end subroutine check_visible
+
+   !> The noise of the observations of the first k samples: the value given (`noise`,
+   !> --sigma), else `noise_estimate`; never below what the fit can resolve, 10 × rtol
+   !> × the observations' magnitude (data at rest, or exact, would otherwise have
+   !> noise 0 and make rounding errors look significant). `how` says which.
+   function observation_noise(prob, q, k, how) result(sigma)
+      type(fit_problem_t), intent(in) :: prob            !! the problem
+      real(dp), intent(in) :: q(:, :)                    !! observations (N or 2N, K)
+      integer, intent(in) :: k                           !! samples used
+      character(len=:), allocatable, intent(out) :: how  !! where σ comes from
+      real(dp) :: sigma
+      real(dp) :: floor
+      floor = 10.0_dp*max(prob%rtol, epsilon(1.0_dp))*max(maxval(abs(q(:, :k))), &
+                                                          tiny(1.0_dp))
+      if (prob%noise > 0.0_dp) then
+         sigma = prob%noise
+         how = 'given by --sigma'
+      else
+         sigma = noise_estimate(prob, q, k)
+         how = 'estimated from the third differences of the data; --sigma gives it'
+      end if
+      if (sigma < floor) then
+         sigma = floor
+         how = 'the resolution of the fit, 10 rtol times the largest observation: '// &
+               'the data show less noise'
+      end if
+   end function observation_noise
 
    !> The singular values and right singular vectors of the sensitivity matrix J with
    !> its columns scaled to unit norm (`ds`: 1/norm, 0 for a zero column), by one-sided
@@ -1699,11 +1780,12 @@ contains
       if (allocated(prob%fit_names)) deallocate (prob%fit_names, prob%fit_counts, &
          prob%theta0, prob%theta_lower, prob%theta_upper, prob%comp_names, &
          prob%comp_index, prob%comp_count, prob%comp_labels, prob%comp_scale, &
-         prob%comp_generic)
+         prob%comp_generic, prob%comp_units)
       allocate (prob%fit_names(size(names)), prob%fit_counts(size(names)))
       allocate (prob%theta0(0), prob%theta_lower(0), prob%theta_upper(0))
       allocate (prob%comp_names(0), prob%comp_index(0), prob%comp_count(0), &
-                prob%comp_labels(0), prob%comp_scale(0), prob%comp_generic(0))
+                prob%comp_labels(0), prob%comp_scale(0), prob%comp_generic(0), &
+                prob%comp_units(0))
       do i = 1, size(names)
          call parse_component(models(k), model%n_dof(), trim(names(i)), j, first, last, error)
          if (allocated(error)) return
@@ -1735,6 +1817,7 @@ contains
                prob%comp_labels = [character(len=24) :: prob%comp_labels, &
                                    component_label(base, c, cnt)]
                prob%comp_scale = [prob%comp_scale, max(abs(par%default), 1e-2_dp)]
+               prob%comp_units = [character(len=16) :: prob%comp_units, par%units]
                prob%comp_generic = [prob%comp_generic, allocated(no_rates)]
             end do
          end associate

@@ -24,6 +24,7 @@ module dpend_chaos
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
+   use dpend_model_record, only: record_model
    use dpend_output, only: output_t
    use dpend_simulate, only: natural_time_of, natural_text
    use dpend_version, only: version
@@ -956,17 +957,8 @@ contains
       type(run_config_t), intent(in) :: cfg
       class(integrator_t), intent(in) :: integ
       character(len=*), intent(in) :: command, status
-      character(len=:), allocatable :: name, units
-      real(dp) :: value
-      integer :: j
       call h5%writeattr('/', 'command', command)
-      do j = 1, cfg%model%n_parameters()   ! the model's parameters, by name
-         call cfg%model%parameter(j, name, value, units)
-         call h5%writeattr('/', name, value)
-      end do
-      ! links other than uniform rods say so, with units
-      if (len(cfg%model%body_description()) > 0) &
-         call h5%writeattr('/', 'body', cfg%model%body_description())
+      call record_model(h5, cfg%model)
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'order', integ%order())
       call h5%writeattr('/', 'dt', cfg%dt)

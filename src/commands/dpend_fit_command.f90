@@ -17,12 +17,13 @@ module dpend_fit_command
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series, csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, fit_work_t, &
-                             estimate_fit_work, set_fitted, n_fitted, noise_estimate, &
+                             estimate_fit_work, set_fitted, n_fitted, observation_noise, &
                              misfit_suspects, misfit_factor, suspect_t, condition_text
    use dpend_model_factory, only: default_model, model_catalogue, find_model, model_info_t
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_hdf5, only: h5file_t
+   use dpend_model_record, only: record_model
    use dpend_output, only: output_t, check_output_path, register_input
    use dpend_version, only: version
    use dpend_limits, only: check_range, sci, max_time, max_fit_work
@@ -296,6 +297,8 @@ contains
             fc%run%links = s%n
             call validate_run_config(fc%run, error)
             if (allocated(error)) return
+            call check_body_fit(fc, error)
+            if (allocated(error)) return
          end if
          call new_integrator(fc%run%method, integ, error)
          if (allocated(error)) return
@@ -338,6 +341,30 @@ contains
          end if
       end associate
    end subroutine check_fit_data
+
+   !> A body named by --body fixes every link's com and inertia ('point': com_i = l_i,
+   !> inertia_i = 0; 'rod': com_i = l_i/2, inertia_i = m_i l_i^2/12): fitting one of them
+   !> would fit a model the body contradicts (simulate refuses the same pair).
+   subroutine check_body_fit(fc, error)
+      type(fit_config_t), intent(in) :: fc              !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! a fixed quantity fitted
+      character(len=:), allocatable :: name, sets
+      integer :: i
+      if (.not. allocated(fc%run%body)) return
+      if (fc%run%body == 'rod') then
+         sets = 'com_i = l_i/2 and inertia_i = m_i l_i^2/12'
+      else
+         sets = 'com_i = l_i and inertia_i = 0'
+      end if
+      do i = 1, size(fc%fit_names)
+         name = trim(fc%fit_names(i))
+         if (index(name, 'com') /= 1 .and. index(name, 'inertia') /= 1) cycle
+         call fatal_error(error, 'invalid fit-param: '//name//' is fixed by --body '// &
+                          fc%run%body//' ('//sets//'); to fit it give --com and --inertia ' &
+                          //'(their first guesses) instead of --body [--fit-param --body]')
+         return
+      end do
+   end subroutine check_body_fit
 
    !> Refuse a fit whose work or memory (`estimate_fit_work`) is beyond the limits:
    !> at most `max_fit_work` step-equivalents, and the memory available.
@@ -402,6 +429,7 @@ contains
       prob%atol = fc%run%atol
       prob%dt = fc%run%dt
       prob%starts = fc%starts
+      prob%noise = fc%sigma
       prob%max_steps = fc%run%max_steps
    end subroutine fit_problem
 
@@ -465,13 +493,7 @@ contains
       integer :: i
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       if (fc%model_coords) ou = '(in the coordinates'' units)'
-      if (fc%sigma > 0.0_dp) then
-         noise = fc%sigma
-         how = 'given by --sigma'
-      else
-         noise = noise_estimate(prob, fc%series%q, res%k_fit)
-         how = 'estimated from the third differences of the data; --sigma gives it'
-      end if
+      noise = observation_noise(prob, fc%series%q, res%k_fit, how)
       if (.not. (res%rms > misfit_factor*noise)) return
       write (output_unit, '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
          //ou//' is '//real_str(res%rms/max(noise, tiny(1.0_dp)), 3)//' times the noise ' &
@@ -734,7 +756,7 @@ contains
       type(fit_config_t), intent(in) :: fc          !! configuration
       type(fit_result_t), intent(in) :: res         !! estimates and statistics
       character(len=*), intent(in) :: joined        !! the parameters' names
-      integer :: i, n
+      integer :: n
       n = res%n
       call h5%writeattr('/fit', 'parameters', joined)
       call h5%writeattr('/fit', 'rms_residual', res%rms)
@@ -764,25 +786,16 @@ contains
       call h5%writeattr('/', 'method', fc%run%method)
       call h5%writeattr('/', 'rtol', fc%run%rtol)
       call h5%writeattr('/', 'atol', fc%run%atol)
+      ! the model with its fixed values (the fitted ones at their first guess; the
+      ! estimates are in /fit/estimate)
+      call h5%writeattr('/', 'model', fc%run%spec%model_name())
+      call record_model(h5, fc%run%model)
       if (fc%model_coords) then
-         call h5%writeattr('/', 'model', fc%run%model_name)
-         do i = 1, fc%run%model%n_parameters()
-            block
-               character(len=:), allocatable :: pname, punits
-               real(dp) :: pvalue
-               call fc%run%model%parameter(i, pname, pvalue, punits)
-               call h5%writeattr('/', pname, pvalue)
-            end block
-         end do
-         ! links other than uniform rods say so, with units
-         if (len(fc%run%model%body_description()) > 0) &
-            call h5%writeattr('/', 'body', fc%run%model%body_description())
          call h5%writeattr('/', 'fit_parameters', joined_names(fc%fit_names))
       else
          call h5%writeattr('/', 'links', n)
          call h5%writeattr('/', 'm', fc%run%m(:n))
          call h5%writeattr('/', 'l', fc%run%l(:n))
-         call h5%writeattr('/', 'g', fc%run%g)
          call h5%writeattr('/', 'damping', fc%run%damping(:n))
          call h5%writeattr('/', 'fit_damping', merge(1, 0, fc%fit_damping))
       end if

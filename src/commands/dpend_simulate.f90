@@ -13,6 +13,7 @@ module dpend_simulate
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled
    use dpend_hdf5, only: h5file_t
+   use dpend_model_record, only: record_model
    use dpend_output, only: output_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -487,16 +488,7 @@ contains
             end if
             off = off + n_comp
          end do
-         do j = 1, model%n_parameters()
-            block
-               real(dp) :: value
-               call model%parameter(j, name, value, units)
-               call h5%writeattr('/', name, value)
-            end block
-         end do
-         ! links other than uniform rods say so, with units
-         if (len(model%body_description()) > 0) &
-            call h5%writeattr('/', 'body', model%body_description())
+         call record_model(h5, model)
       end associate
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'dt', cfg%dt)

@@ -7,6 +7,7 @@ module dpend_study_command
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_hdf5, only: h5file_t
+   use dpend_model_record, only: record_model
    use dpend_version, only: version
    use dpend_fit, only: fit_t
    use dpend_output, only: output_t, check_output_path
@@ -691,17 +692,8 @@ contains
       !> case has the same).
       subroutine write_model_parameters()
          class(model_t), allocatable :: model
-         character(len=:), allocatable :: name, units
-         real(dp) :: value
-         integer :: k
          call case_model(cfg, 1, model)
-         do k = 1, model%n_parameters()
-            call model%parameter(k, name, value, units)
-            call h5%writeattr('/config', name, value)
-         end do
-         ! links other than uniform rods say so, with units
-         if (len(model%body_description()) > 0) &
-            call h5%writeattr('/config', 'body', model%body_description())
+         call record_model(h5, model, '/config')
       end subroutine write_model_parameters
    end subroutine write_h5_config
 

@@ -39,3 +39,12 @@ refuse  fitb-com-nan          com       -- "${F[@]}" fitb_ml80.csv --com nan,0.5
 refuse  fitb-inertia-text     inertia   -- "${F[@]}" fitb_ml80.csv --inertia 0.1,abc
 refuse  fitb-inertia-negative inertia2  -- "${F[@]}" fitb_ml80.csv --inertia 0.1,-1
 refuse  fitb-bob-l-zero       l1        -- "${B[@]}" --l 0 --fit-param l
+# ---- a body named by --body fixes com and inertia: fitting them is refused
+refuse  fitb-point-fit-com2     'com2 is fixed by --body point'   -- "${F[@]}" fitb_ml80.csv \
+    --body point --fit-param com2
+refuse  fitb-point-fit-inertia2 'inertia2 is fixed by --body point' -- "${F[@]}" fitb_ml80.csv \
+    --body point --fit-param inertia2
+refuse  fitb-rod-fit-com2       'com2 is fixed by --body rod'     -- "${F[@]}" fitb_ml80.csv \
+    --body rod --fit-param com2
+refuse  fitb-rod-fit-com        'com is fixed by --body rod'      -- "${F[@]}" fitb_ml80.csv \
+    --body rod --fit-param l2,com

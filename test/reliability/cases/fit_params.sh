@@ -53,3 +53,19 @@ refuse  fitp-sigma-nan      'sigma'           -- "${F[@]}" fitp_qdeg.csv --sigma
 refuse  fitp-sigma-huge     'sigma'           -- "${F[@]}" fitp_qdeg.csv --sigma 1e300
 refuse  fitp-deg-grad       'unit'            -- "${F[@]}" fitp_grad.csv
 refuse  fitp-deg-r          'unit'            -- "${E[@]}" fitp_el_rdeg.csv
+# ---- data that cannot see a parameter: at rest in the hanging position, no
+# parameter acts (each column of sensitivities is rounding error, which scaling the
+# columns to unit length made look determined: m2 = 1 ± 0.27 kg, condition 2.7)
+printf 't,q1,q2\n' > "$FIXTURES/fitp_rest.csv"
+for i in 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+  printf '%s,-1.5707963267948966,-1.5707963267948966\n' "$(awk -v i=$i 'BEGIN { printf "%.1f", i / 10 }')" \
+    >> "$FIXTURES/fitp_rest.csv"
+done
+R=(fit fitp_rest.csv --output r.h5)
+refuse  fitp-rest-m2        'm2 is not determined by the data'       -- "${R[@]}" --fit-param m2
+refuse  fitp-rest-l2        'l2 is not determined by the data'       -- "${R[@]}" --fit-param l2
+refuse  fitp-rest-g         'g is not determined by the data'        -- "${R[@]}" --fit-param g
+refuse  fitp-rest-damping   'c1, c2 are not determined by the data'  -- "${R[@]}" --fit-param damping
+refuse  fitp-rest-sigma     'less than the noise 0.01 rad (given by --sigma)' -- "${R[@]}" \
+    --fit-param m2 --sigma 0.01
+succeed fitp-rest-state     -- "${R[@]}"
