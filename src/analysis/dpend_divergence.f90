@@ -25,7 +25,7 @@ module dpend_divergence
    use dpend_kinds, only: dp
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_propagate, only: integrate_sampled
+   use dpend_propagate, only: integrate_sampled, march_progress_t
    implicit none
    private
    public :: perturbed_state, phase_distance, angle_coordinates
@@ -113,7 +113,7 @@ contains
    !> (see the module header). h: fixed step or initial proposal of `integ`.
    !> On failure `stat` says why and `res` holds the pairs completed before.
    subroutine divergence_pairs(integ, model, q0, qd0, t_span, sample_dt, delta0, same_energy, &
-                               n_pairs, spacing, h, res, stat)
+                               n_pairs, spacing, h, res, stat, progress)
       class(integrator_t), intent(inout) :: integ  !! the method
       class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: q0(:)                !! initial angles [rad]
@@ -127,6 +127,8 @@ contains
       real(dp), intent(in) :: h                    !! step or proposal [s]
       type(divergence_result_t), intent(out) :: res !! curves
       integer, intent(out) :: stat                 !! stat_ok or a failure code
+      !> the command's progress (span: (n_pairs − 1) spacing + 2 n_pairs t_span)
+      type(march_progress_t), intent(inout), optional :: progress
       real(dp), allocatable :: times(:), sa(:, :), sb(:, :), tref(:), sref(:, :)
       real(dp), dimension(size(q0)) :: qa, qda, qb, qdb
       real(dp) :: ya(2*size(q0)), yb(2*size(q0))
@@ -138,7 +140,7 @@ contains
       ya = integ%to_internal(model, q0, qd0)
       if (n_pairs > 1) then
          call integrate_sampled(integ, model, 0.0_dp, ya, real(n_pairs - 1, dp)*spacing, h, &
-                                spacing, tref, sref, stat)
+                                spacing, tref, sref, stat, progress)
          if (stat /= stat_ok) then
             allocate (res%t(0), res%log10_pairs(0, 0), res%log10_mean(0))
             return
@@ -156,9 +158,11 @@ contains
          res%energy_diff(p) = model%energy(0.0_dp, [qb, qdb]) - model%energy(0.0_dp, [qa, qda])
          ya = integ%to_internal(model, qa, qda)
          yb = integ%to_internal(model, qb, qdb)
-         call integrate_sampled(integ, model, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat)
+         call integrate_sampled(integ, model, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat, &
+                                progress)
          if (stat /= stat_ok) exit
-         call integrate_sampled(integ, model, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat)
+         call integrate_sampled(integ, model, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat, &
+                                progress)
          if (stat /= stat_ok) exit
          if (p == 1) then
             res%t = times

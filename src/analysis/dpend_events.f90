@@ -23,7 +23,7 @@ module dpend_events
    use dpend_kinds, only: dp
    use dpend_model, only: model_t, max_state
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_propagate, only: march_t
+   use dpend_propagate, only: march_t, march_progress_t
    implicit none
    private
    public :: event_t, angle_crossing_t, crossing_t, locate_crossing, find_crossings
@@ -230,7 +230,7 @@ contains
    !> step end, so that a further call continues the same discrete trajectory.
    !> h: fixed step or initial proposal (0: auto), returned as the next proposal.
    !> The method's step memory is cleared first.
-   subroutine find_crossings(event, integ, model, t, y, t_end, h, hits, stat, max_hits)
+   subroutine find_crossings(event, integ, model, t, y, t_end, h, hits, stat, max_hits, progress)
       class(event_t), intent(in) :: event               !! the event
       class(integrator_t), intent(inout) :: integ       !! the method
       class(model_t), intent(in) :: model  !! the system
@@ -241,6 +241,8 @@ contains
       type(crossing_t), allocatable, intent(out) :: hits(:) !! the crossings, in order
       integer, intent(out) :: stat                      !! stat_ok or a failure code
       integer, intent(in), optional :: max_hits         !! stop after this many
+      !> the command's progress, which the march adds to
+      type(march_progress_t), intent(inout), target, optional :: progress
       type(march_t) :: march
       type(crossing_t) :: hit
       type(crossing_t), allocatable :: tmp(:)
@@ -252,6 +254,7 @@ contains
       n = 0
       stat = stat_ok
       call integ%clear_step()
+      if (present(progress)) march%progress => progress
       call march%start(integ, t, t_end, h)
       do while (.not. march%finished .and. n < limit)
          call march%next(integ, model, t, y, h, stat)

@@ -45,7 +45,7 @@ module dpend_indicators
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok, &
                                stat_tangent_substeps
-   use dpend_propagate, only: march_t
+   use dpend_propagate, only: march_t, march_progress_t
    use dpend_tangent, only: tangent_t
    use dpend_indicator_math, only: gali, sali, initial_vectors, megno_step
    use dpend_lyapunov, only: next_multiple
@@ -94,7 +94,7 @@ contains
    !> sampled: FLI = 0, Y = <Y> = 0, SALI = √2, GALI_j = 1 there). On failure
    !> `stat` says why (a step failure, stat_tangent_substeps, or stat_nonfinite)
    !> and `res` holds the samples up to `res%t_reached`.
-   subroutine chaos_indicators(integ, model, t0, y0, t_end, h, tau, res, stat)
+   subroutine chaos_indicators(integ, model, t0, y0, t_end, h, tau, res, stat, progress)
       class(integrator_t), intent(inout) :: integ  !! the method
       class(model_t), intent(in) :: model          !! the system
       real(dp), intent(in) :: t0                   !! start time [s]
@@ -104,6 +104,8 @@ contains
       real(dp), intent(in) :: tau                  !! sampling interval [s], > 0
       type(indicators_result_t), intent(out) :: res  !! the time series
       integer, intent(out) :: stat                 !! stat_ok or a failure code
+      !> the command's progress, which the march adds to
+      type(march_progress_t), intent(inout), target, optional :: progress
       type(march_t) :: march
       type(tangent_t) :: tan
       real(dp) :: t, t_prev, y(size(y0)), hh, t_next, nrm
@@ -124,6 +126,7 @@ contains
       t_next = t0 + tau
       stat = stat_ok
       call integ%clear_step()
+      if (present(progress)) march%progress => progress
       call march%start(integ, t, t_end, hh)
       do while (.not. march%finished)
          t_prev = t

@@ -23,7 +23,7 @@ module dpend_lyapunov
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok, stat_nonfinite, state_ok, &
                                stat_tangent_substeps
-   use dpend_propagate, only: march_t
+   use dpend_propagate, only: march_t, march_progress_t
    use dpend_tangent, only: tangent_t
    use dpend_lapack, only: dgeqrf, dorgqr
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -213,7 +213,8 @@ contains
    !> step that reaches t0 + j τ, and at t_end. On failure `stat` says why
    !> (a step failure, or stat_nonfinite for non-finite tangent vectors) and
    !> `res` holds what was computed up to `res%t_reached`.
-   subroutine lyapunov_spectrum(integ, model, t0, y0, t_end, h, tau, k, n_batches, res, stat)
+   subroutine lyapunov_spectrum(integ, model, t0, y0, t_end, h, tau, k, n_batches, res, stat, &
+                                progress)
       class(integrator_t), intent(inout) :: integ  !! the method
       class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t0                   !! start time [s]
@@ -225,6 +226,8 @@ contains
       integer, intent(in) :: n_batches             !! batches for the spread
       type(lyapunov_result_t), intent(out) :: res  !! exponents and running estimates
       integer, intent(out) :: stat                 !! stat_ok or a failure code
+      !> the command's progress, which the march adds to
+      type(march_progress_t), intent(inout), target, optional :: progress
       type(march_t) :: march
       type(tangent_t) :: tan
       type(lyapunov_acc_t) :: acc
@@ -242,6 +245,7 @@ contains
       t_next = t0 + tau
       stat = stat_ok
       call integ%clear_step()
+      if (present(progress)) march%progress => progress
       call march%start(integ, t, t_end, hh)
       do while (.not. march%finished)
          call march%next(integ, model, t, y, hh, stat)

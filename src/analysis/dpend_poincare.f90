@@ -23,6 +23,7 @@ module dpend_poincare
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_events, only: angle_crossing_t, crossing_t, find_crossings
+   use dpend_propagate, only: march_progress_t
    implicit none
    private
    public :: shell_samples, halton
@@ -95,7 +96,7 @@ contains
    !> crossings of `section` before t_end, located by `find_crossings`.
    !> h: fixed step or initial proposal. Returns the points found before a failure.
    subroutine section_orbit(integ, model, section, q0, qd0, t_end, h, max_points, &
-                            qo, po, t, e, stat)
+                            qo, po, t, e, stat, progress)
       class(integrator_t), intent(inout) :: integ        !! the method
       class(model_t), intent(in) :: model  !! the system
       type(angle_crossing_t), intent(in) :: section      !! the section
@@ -109,6 +110,9 @@ contains
       real(dp), allocatable, intent(out) :: t(:)         !! times [s]
       real(dp), allocatable, intent(out) :: e(:)         !! energies [J]
       integer, intent(out) :: stat                       !! stat_ok or a failure code
+      !> the command's progress (this orbit's share: t_end, all of it counted when the
+      !> orbit ends early at max_points or a failure)
+      type(march_progress_t), intent(inout), optional :: progress
       type(crossing_t), allocatable :: hits(:)
       real(dp) :: y(2*size(q0)), tt, hh, p(size(q0))
       integer :: o, i, n0, n
@@ -122,7 +126,8 @@ contains
       y = integ%to_internal(model, q0, qd0)
       tt = 0.0_dp; hh = h
       call find_crossings(section, integ, model, tt, y, t_end, hh, hits, stat, &
-                          max_hits=max(max_points - n0, 0))
+                          max_hits=max(max_points - n0, 0), progress=progress)
+      if (present(progress)) call progress%advance(abs(t_end - tt))
       n = n0 + size(hits)
       allocate (qo(n), po(n), t(n), e(n))
       if (on_section) then
@@ -146,7 +151,8 @@ contains
 
    !> Section points of the orbits from q0(:, j), q̇0(:, j), each integrated by
    !> its own copy of `proto` (in parallel), concatenated in orbit order.
-   subroutine poincare_sections(proto, model, section, q0, qd0, t_end, h, max_points, res)
+   subroutine poincare_sections(proto, model, section, q0, qd0, t_end, h, max_points, res, &
+                                progress)
       class(integrator_t), intent(in) :: proto           !! the method (copied per orbit)
       class(model_t), intent(in) :: model  !! the system
       type(angle_crossing_t), intent(in) :: section      !! the section
@@ -156,6 +162,8 @@ contains
       real(dp), intent(in) :: h                          !! step or proposal [s]
       integer, intent(in) :: max_points                  !! most points per orbit
       type(poincare_result_t), intent(out) :: res        !! the points
+      !> the command's progress (span: the orbits × t_end)
+      type(march_progress_t), intent(inout), optional :: progress
       type :: orbit_points_t
          real(dp), allocatable :: qo(:), po(:), t(:), e(:)
       end type orbit_points_t
@@ -189,7 +197,8 @@ contains
          allocate (work, source=proto)
          call work%reset_counters()
          call section_orbit(work, model, section, q0(:, jj), qd0(:, jj), t_end, h, max_points, &
-                            orb(jj)%qo, orb(jj)%po, orb(jj)%t, orb(jj)%e, res%status(jj))
+                            orb(jj)%qo, orb(jj)%po, orb(jj)%t, orb(jj)%e, res%status(jj), &
+                            progress)
          res%count(jj) = size(orb(jj)%qo)
          steps(jj) = work%n_steps
       end subroutine one_orbit

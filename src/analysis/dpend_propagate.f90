@@ -9,15 +9,37 @@
 !> by up to 1 % to avoid a tiny last step (as in DOPRI5/DOP853). Both directions
 !> of time are supported: the sign of t_end - t decides, h is taken as |h|.
 !> A fixed-step method given h = 0 fails with stat_step_too_small.
+!>
+!> Progress: a command whose work is one or more marches (lyapunov, indicators,
+!> divergence, poincare, simulate) reports it in model time through one
+!> `march_progress_t` shared by all of them (the span they cover in all, known before
+!> they start): each march given it adds the model time it covered every 256 steps
+!> and at its end, so the report (`dpend_progress`: a bar on a terminal, a line at
+!> most every 10 s in a log) moves however the work is split into marches or threads.
 module dpend_propagate
    use dpend_kinds, only: dp, i8
    use dpend_model, only: model_t, max_state
    use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small, stat_max_steps, &
                                stat_count_limit
    use dpend_limits, only: max_steps, max_samples
+   use dpend_progress, only: progress_t
    implicit none
    private
-   public :: march_t, advance_fixed, advance_to, integrate_sampled
+   public :: march_t, advance_fixed, advance_to, integrate_sampled, march_progress_t
+
+   !> The units of a `march_progress_t` report: its span in parts per 1e9.
+   integer(i8), parameter :: parts = 1000000000_i8
+
+   !> The progress of a command's marches in model time (see the module header).
+   type :: march_progress_t
+      type(progress_t) :: bar          !! the report, in units of 1e-9 `span`
+      real(dp) :: span = 0.0_dp        !! model time all the marches cover [s]
+      real(dp) :: covered = 0.0_dp     !! model time covered so far [s]
+   contains
+      procedure :: begin => march_progress_begin
+      procedure :: advance => march_progress_advance
+      procedure :: end => march_progress_end
+   end type march_progress_t
 
    !> A march from t0 to t_end, one step per `next` call. Use it to write custom
    !> loops (streaming output, events) that share the stepping rules above:
@@ -37,6 +59,11 @@ module dpend_propagate
       logical :: adaptive = .false.    !! the method controls its step
       logical :: finished = .true.     !! t_end has been reached
       logical :: too_many = .false.    !! fixed steps above max_steps: `next` refuses
+      !> the command's progress this march adds to (none: not associated), the time
+      !> up to which it has added, and the steps since
+      type(march_progress_t), pointer :: progress => null()
+      real(dp) :: t_reported = 0.0_dp
+      integer :: since_report = 0
       integer(i8) :: n_adaptive = 0    !! accepted steps so far (adaptive methods)
    contains
       procedure :: start => march_start
@@ -66,6 +93,8 @@ contains
       self%shortened = .false.
       self%too_many = .false.
       self%n_adaptive = 0
+      self%t_reported = t
+      self%since_report = 0
       if (self%adaptive) then
          h = self%dir*abs(h)
          if (h == 0.0_dp .and. self%dir < 0.0_dp) h = -1.0e-3_dp*abs(t_end - t)
@@ -92,7 +121,26 @@ contains
 
    !> Take the next step of the march; sets `finished` after the last one, which
    !> ends exactly on t_end. h: the fixed step, or the adaptive proposal (updated).
+   !> With a progress, the model time covered is added every 256 steps and at the end.
    subroutine march_next(self, integ, model, t, y, h, stat)
+      class(march_t), intent(inout) :: self        !! the march
+      class(integrator_t), intent(inout) :: integ  !! the method
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(inout) :: t                 !! time [s]
+      real(dp), intent(inout) :: y(:)              !! internal state
+      real(dp), intent(inout) :: h                 !! step or proposal [s]
+      integer, intent(out) :: stat                 !! stat_ok or a failure code
+      call march_step(self, integ, model, t, y, h, stat)
+      if (.not. associated(self%progress)) return
+      self%since_report = self%since_report + 1
+      if (self%since_report < 256 .and. .not. self%finished .and. stat == stat_ok) return
+      self%since_report = 0
+      call self%progress%advance(abs(t - self%t_reported))
+      self%t_reported = t
+   end subroutine march_next
+
+   !> One step of `march_next`.
+   subroutine march_step(self, integ, model, t, y, h, stat)
       class(march_t), intent(inout) :: self        !! the march
       class(integrator_t), intent(inout) :: integ  !! the method
       class(model_t), intent(in) :: model  !! the system
@@ -166,7 +214,42 @@ contains
          t = self%t_end
          self%finished = .true.
       end if
-   end subroutine march_next
+   end subroutine march_step
+
+   !> Begin the report of marches that cover `span` seconds of model time in all (a
+   !> bar after 1 s on a terminal, else a line at most every 10 s, none for a run
+   !> shorter than that; nothing when the process is quiet).
+   subroutine march_progress_begin(self, label, span)
+      class(march_progress_t), intent(inout) :: self  !! the progress
+      character(len=*), intent(in) :: label           !! e.g. 'dpend lyapunov'
+      real(dp), intent(in) :: span                    !! model time in all [s]
+      self%span = abs(span)
+      self%covered = 0.0_dp
+      ! parts per 1e9: a rate (and so a time left) even when a long run has covered
+      ! a millionth of its span
+      call self%bar%start(label, parts, 0_i8, .false., what='')
+      if (self%bar%tty) self%bar%t_last = self%bar%t_start + 0.8_dp
+   end subroutine march_progress_begin
+
+   !> Add `dt` seconds of model time covered (from any thread).
+   subroutine march_progress_advance(self, dt)
+      class(march_progress_t), intent(inout) :: self  !! the progress
+      real(dp), intent(in) :: dt                      !! model time just covered [s]
+      integer(i8) :: done
+      !$omp critical (dpend_march_progress)
+      self%covered = self%covered + dt
+      done = parts
+      if (self%span > 0.0_dp) &
+         done = int(min(real(parts, dp), real(parts, dp)*self%covered/self%span), i8)
+      call self%bar%update(max(0_i8, done - self%bar%done))
+      !$omp end critical (dpend_march_progress)
+   end subroutine march_progress_advance
+
+   !> End the report (the bar's closing line on a terminal, if one was drawn).
+   subroutine march_progress_end(self)
+      class(march_progress_t), intent(inout) :: self  !! the progress
+      if (self%bar%lines > 0) call self%bar%finish()
+   end subroutine march_progress_end
 
    !> Take exactly `nsteps` calls of `step` with h, from (t, y). For fixed-step
    !> methods t advances to t0 + nsteps h (computed without drift); adaptive
@@ -223,7 +306,8 @@ contains
    !> h: the fixed step, or the initial proposal of an adaptive method (0: auto).
    !> The method's step memory is cleared at the start. On failure `stat` says
    !> why and the arrays hold the samples computed so far.
-   subroutine integrate_sampled(integ, model, t0, y0, t_end, h, output_dt, times, states, stat)
+   subroutine integrate_sampled(integ, model, t0, y0, t_end, h, output_dt, times, states, stat, &
+                                progress)
       class(integrator_t), intent(inout) :: integ        !! the method
       class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: t0                         !! start time [s]
@@ -234,6 +318,8 @@ contains
       real(dp), allocatable, intent(out) :: times(:)     !! sample times [s]
       real(dp), allocatable, intent(out) :: states(:, :) !! internal states, (2n, samples)
       integer, intent(out) :: stat                       !! stat_ok or a failure code
+      !> the command's progress, which this march adds to
+      type(march_progress_t), intent(inout), target, optional :: progress
       type(march_t) :: march
       real(dp) :: t, y(size(y0)), hh, d, tk, tol, r
       integer(i8) :: k, n_grid, n
@@ -265,6 +351,7 @@ contains
       n = 1
       times(1) = t0; states(:, 1) = y0
       k = 1
+      if (present(progress)) march%progress => progress
       call march%start(integ, t, t_end, hh)
       do while (.not. march%finished)
          call march%next(integ, model, t, y, hh, stat)

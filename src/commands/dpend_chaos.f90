@@ -19,6 +19,7 @@ module dpend_chaos
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_events, only: angle_crossing_t
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
+   use dpend_propagate, only: march_progress_t
    use dpend_divergence, only: divergence_result_t, divergence_pairs, line_fit_t, &
                                fit_exponential_phase
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
@@ -608,9 +609,12 @@ contains
       character(len=:), allocatable :: status, line
       integer :: stat, i, k
       real(dp), allocatable :: defects(:)
+      type(march_progress_t) :: prog   ! the report in model time
+      call prog%begin('dpend lyapunov', cfg%t_end)
       call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
                              integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
-                             cfg%dt, ch%tau, n_vectors(ch, cfg), ch%batches, res, stat)
+                             cfg%dt, ch%tau, n_vectors(ch, cfg), ch%batches, res, stat, prog)
+      call prog%end()
       status = run_status(stat, res%t_reached)
       ! a Hamiltonian spectrum comes in pairs: lambda_i + lambda_(2N+1-i) = 0 (a damped
       ! or driven model has no such pairing: no defects are reported)
@@ -686,9 +690,12 @@ contains
       character(len=:), allocatable :: status, line, unit
       real(dp) :: tn
       integer :: stat, j, n
+      type(march_progress_t) :: prog   ! the report in model time
+      call prog%begin('dpend indicators', cfg%t_end)
       call chaos_indicators(integ, cfg%model, 0.0_dp, &
                             integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
-                            cfg%dt, ch%tau, res, stat)
+                            cfg%dt, ch%tau, res, stat, prog)
+      call prog%end()
       status = run_status(stat, res%t_reached)
       n = res%n
       call h5%open(filename, 'w', error)
@@ -778,9 +785,13 @@ contains
       character(len=:), allocatable :: status
       integer :: stat, lstat
       real(dp) :: lam, lam_spread
+      type(march_progress_t) :: prog   ! the report in model time
+      ! the pairs' reference orbit, the pairs, the Benettin run beside
+      call prog%begin('dpend divergence', real(ch%pairs - 1, dp)*ch%pair_spacing + &
+                      2.0_dp*real(ch%pairs, dp)*cfg%t_end + max(ch%lyapunov_t, 0.0_dp))
       call divergence_pairs(integ, cfg%model, cfg%q0(), cfg%w0(), cfg%t_end, cfg%output_dt, &
                             ch%delta0, ch%same_energy, ch%pairs, ch%pair_spacing, cfg%dt, &
-                            res, stat)
+                            res, stat, prog)
       status = run_status(stat, -1.0_dp)
       call fit_exponential_phase(res%t, res%log10_mean, ch%fit_start, ch%fit_end, fit)
       if (.not. fit%ok) then   ! no exponential phase to fit: no slope
@@ -791,10 +802,11 @@ contains
       if (ch%lyapunov_t > 0.0_dp .and. stat == stat_ok) then
          call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
                                 integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), ch%lyapunov_t, &
-                                cfg%dt, 0.5_dp, 1, 10, lres, lstat)
+                                cfg%dt, 0.5_dp, 1, 10, lres, lstat, prog)
          lam = lres%exponents(1); lam_spread = lres%spread(1)
          if (lstat /= stat_ok) status = run_status(lstat, lres%t_reached)
       end if
+      call prog%end()
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
       call write_common(h5, cfg, integ, 'divergence', status)
@@ -884,6 +896,7 @@ contains
       real(dp) :: e, es_
       integer :: n_found, n_failed
       character(len=:), allocatable :: status
+      type(march_progress_t) :: prog   ! the report in model time
       e = ch%energy
       if (.not. ch%energy_given) e = cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()])
       allocate (q0(2, ch%n_ics), qd0(2, ch%n_ics))
@@ -897,8 +910,10 @@ contains
       end if
       section = angle_crossing_t(index=ch%section_link, angle=ch%section_angle, wrap=.true.)
       section%direction = ch%section_direction
+      call prog%begin('dpend poincare', real(n_found, dp)*cfg%t_end)
       call poincare_sections(integ, cfg%model, section, q0(:, 1:n_found), qd0(:, 1:n_found), &
-                             cfg%t_end, cfg%dt, ch%n_points, res)
+                             cfg%t_end, cfg%dt, ch%n_points, res, prog)
+      call prog%end()
       n_failed = count(res%status /= stat_ok)
       status = 'completed'
       if (n_failed > 0) status = to_str(n_failed)//' orbit(s) stopped early: '// &

@@ -11,7 +11,7 @@ module dpend_simulate
    use dpend_work, only: needs_work, work_model, split_work, is_work_model
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
-   use dpend_propagate, only: march_t, integrate_sampled
+   use dpend_propagate, only: march_t, integrate_sampled, march_progress_t
    use dpend_hdf5, only: h5file_t
    use dpend_model_record, only: record_model
    use dpend_output, only: output_t
@@ -22,7 +22,7 @@ module dpend_simulate
    use dpend_limits, only: check_count, max_samples, sci
    use dpend_resources, only: check_memory, check_disk
    use dpend_os, only: available_memory_bytes
-   use dpend_progress, only: wall_seconds, progress_t
+   use dpend_progress, only: wall_seconds
    use dpend_cli, only: real_str, seconds_str
    implicit none
    private
@@ -296,7 +296,7 @@ contains
       class(integrator_t), intent(inout) :: integ         !! the method
       type(trajectory_t), intent(out) :: traj             !! the samples
       type(march_t) :: march
-      type(progress_t) :: bar
+      type(march_progress_t), target :: prog
       real(dp) :: t, h
       real(dp), allocatable :: times(:), states(:, :), y(:)
       class(model_t), allocatable :: model   ! the system integrated
@@ -322,9 +322,12 @@ contains
       h = cfg%dt
       traj%status = 'completed'
       stat = stat_ok
+      ! progress in model time: a bar after 1 s on a terminal, else a line at most
+      ! every 10 s (none for a run shorter than that)
+      call prog%begin('dpend simulate', cfg%t_end)
       if (cfg%output_dt > 0.0_dp) then
          call integrate_sampled(integ, model, t, y, cfg%t_end, h, cfg%output_dt, times, &
-                                states, stat)
+                                states, stat, prog)
          do i = 1, size(times)
             call append(traj, integ, model, times(i), states(:, i))
          end do
@@ -332,18 +335,13 @@ contains
       else
          call append(traj, integ, model, t, y)
          call integ%clear_step()
+         march%progress => prog
          call march%start(integ, t, cfg%t_end, h)
-         ! progress in per mille of t_end: a bar after 1 s on a terminal,
-         ! else a line at most every 10 s (none for a run shorter than that)
-         call bar%start('dpend simulate', 1000_i8, 0_i8, .false., what='')
-         if (bar%tty) bar%t_last = bar%t_start + 0.8_dp
          k = 0
          do while (.not. march%finished)
             call march%next(integ, model, t, y, h, stat)
             if (stat /= stat_ok) exit
             k = k + 1
-            if (iand(k, 4095_i8) == 0) &
-               call bar%update(min(1000_i8, int(1000.0_dp*t/cfg%t_end, i8)) - bar%done)
             if (mod(k, int(cfg%save_every, i8)) == 0 .or. march%finished) then
                if (traj%n >= cap) then
                   traj%status = 'kept samples reached '//sci(real(cap, dp))// &
@@ -355,7 +353,7 @@ contains
             end if
          end do
       end if
-      if (bar%lines > 0) call bar%finish()
+      call prog%end()
       if (stat /= stat_ok) then
          traj%status = status_message(stat)//' after t = '//sci(t, 6)//' s'
       end if

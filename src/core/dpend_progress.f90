@@ -1,5 +1,6 @@
 !> Progress report of long runs on stderr: a bar redrawn in place (percent,
-!> trajectories per second, time left) when stderr is a terminal, otherwise (logs,
+!> trajectories per second, time left: `ETA ~h:mm:ss`, an estimate at the rate so far,
+!> not a bound) when stderr is a terminal, otherwise (logs,
 !> CI) a plain line at most every `interval` seconds (10 s), the first one only
 !> after `interval` (a short run writes none), nothing when quiet. This is the one
 !> mechanism of every long command (sweep, study, simulate, fit); the
@@ -171,11 +172,11 @@ contains
       if (self%tty) then
          filled = min(width, int(frac*width))
          bar = repeat('#', filled)//repeat('.', width - filled)
-         write (line, '(a, " [", a, "] ", f5.1, "%  ", a, "ETA ", a)') &
+         write (line, '(a, " [", a, "] ", f5.1, "%  ", a, "ETA ~", a)') &
             self%label, bar, 100.0_dp*frac, rate_text(' '), clock(eta)
          write (self%unit, '(a)', advance='no') achar(13)//trim(line)//'   '
       else
-         write (line, '(a, ": ", a, "%", a, ", ", a, "elapsed ", a, ", ETA ", a)') &
+         write (line, '(a, ": ", a, "%", a, ", ", a, "elapsed ", a, ", ETA ~", a)') &
             self%label, real_str(anint(1000.0_dp*frac)/10.0_dp), count_text(), &
             rate_text(', '), clock(elapsed), clock(eta)
          write (self%unit, '(a)') trim(line)
