@@ -16,6 +16,7 @@
 !>   attr-i0 OBJ NAME VALUE        a scalar int32 attribute of OBJ
 !>   attr-real OBJ NAME VALUE      a scalar float64 attribute of OBJ
 !>   attr-sub OBJ NAME OLD NEW     replace OLD by NEW in the string attribute NAME
+!>   attr-del OBJ NAME             delete the attribute NAME of OBJ
 !> A dataset or attribute that exists is replaced.
 program h5craft
    use hdf5
@@ -59,6 +60,8 @@ program h5craft
       call attr_real(a(1), a(2), real_of(a(3)))
    case ('attr-sub')
       call attr_sub(a(1), a(2), a(3), a(4))
+   case ('attr-del')
+      call h5adelete_by_name_f(fid, trim(a(1)), trim(a(2)), ierr)
    case default
       call die('unknown op '//trim(op))
    end select

@@ -74,9 +74,14 @@ for w in "${cnames[@]}"; do
     plot_fail 2 "coordinate name '$w' of '$1' is not a plain name"
 done
 # the units of q: one for all ("rad") or one per coordinate ("m, rad")
-qunits=$(h5dump -a /trajectory/q/units "$h5" 2>/dev/null |
+qunits=$( (h5dump -a /trajectory/q/units "$h5" 2>/dev/null || true) |
   sed -n 's/^ *(0): *"\(.*\)"$/\1/p' | head -n1)
-IFS=', ' read -r -a ulist <<< "${qunits:-rad}"
+if [[ -z $qunits ]]; then
+  # a file from before the units (the pendulum's angles), or one that lost them
+  echo "plot_simulate.sh: note: /trajectory/q of '$1' gives no units; taken as rad" >&2
+  qunits=rad
+fi
+IFS=', ' read -r -a ulist <<< "$qunits"
 if ((${#ulist[@]} == 1)); then
   for ((i = 1; i < n; i++)); do ulist+=("${ulist[0]}"); done
 fi

@@ -25,7 +25,7 @@ module dpend_chaos
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
-   use dpend_model_record, only: record_model
+   use dpend_model_record, only: record_model, coordinate_labels
    use dpend_output, only: output_t
    use dpend_simulate, only: natural_time_of, natural_text
    use dpend_version, only: version
@@ -783,6 +783,7 @@ contains
       type(line_fit_t) :: fit
       type(h5file_t) :: h5
       character(len=:), allocatable :: status
+      character(len=:), allocatable :: names, q_units, rate_units, acc_units, p_units
       integer :: stat, lstat
       real(dp) :: lam, lam_spread
       type(march_progress_t) :: prog   ! the report in model time
@@ -816,10 +817,12 @@ contains
          'mean over the pairs of log10 |delta(t)| (|delta| in the units of the state)')
       call h5%write('/divergence/log10_delta_pairs', res%log10_pairs, units='1', &
          description='log10 |delta(t)| of each pair')
-      call h5%write('/divergence/start', res%start, units='rad, rad/s', description= &
-         "(q1, q2, qdot1, qdot2) of each pair's reference at its start")
+      call coordinate_labels(cfg%model, names, q_units, rate_units, acc_units, p_units)
+      call h5%write('/divergence/start', res%start, units=q_units//', '//rate_units, &
+         description='('//state_names(names)//") of each pair's reference at its start")
       call h5%write('/divergence/delta_start', res%delta_start, units='1', description= &
-         "|delta(0)| of each pair (norm in (q1, q2, qdot1, qdot2), rad and rad/s)")
+         '|delta(0)| of each pair (norm in ('//state_names(names)//'), '//q_units// &
+         ' and '//rate_units//')')
       call h5%write('/divergence/energy_difference', res%energy_diff, units='J', &
          description='E(partner) - E(reference) at the start')
       call h5%writeattr('/', 'delta0', ch%delta0)
@@ -878,6 +881,32 @@ contains
                    //'did not rise one decade above its start within '//num(cfg%t_end) &
                    //' s; a regular orbit, or try a longer --t-end)'
       end if
+   contains
+      !> 'q1, q2, qdot1, qdot2' or 'r, phi, rdot, phidot': the state's components.
+      function state_names(blank_separated) result(t)
+         character(len=*), intent(in) :: blank_separated
+         character(len=:), allocatable :: t, rest, w, rates
+         integer :: b
+         t = ''; rates = ''
+         rest = trim(adjustl(blank_separated))
+         do while (len(rest) > 0)
+            b = index(rest, ' ')
+            if (b == 0) b = len(rest) + 1
+            w = rest(:b - 1)
+            rest = trim(adjustl(rest(min(b, len(rest)) + 1:)))
+            if (b > len(rest) + len(w)) rest = ''
+            if (len(t) > 0) then
+               t = t//', '; rates = rates//', '
+            end if
+            t = t//w
+            if (w(1:1) == 'q' .and. len(w) > 1 .and. verify(w(2:), '0123456789') == 0) then
+               rates = rates//'qdot'//w(2:)   ! the generalised coordinates' q̇_i
+            else
+               rates = rates//w//'dot'
+            end if
+         end do
+         t = t//', '//rates
+      end function state_names
    end subroutine run_divergence
 
    !> `dpend poincare`.

@@ -897,7 +897,31 @@ contains
       names = coordinate_units(fc, -1)
       units = coordinate_units(fc, 0)
       call read_series(fc%input, fc%series, error, names, units)
+      if (allocated(error)) return
+      call check_model_states(fc, error)
    end subroutine read_model_series
+
+   !> Every sample's coordinates a state the model accepts (at rest: `check_state`,
+   !> e.g. the elastic pendulum's r above its collapse), refused with its line: the fit
+   !> starts from the first sample and passes near the others, so a sample no state
+   !> of the model can reach is an error in the data, not a fit to attempt.
+   subroutine check_model_states(fc, error)
+      type(fit_config_t), intent(in) :: fc              !! configuration; series read
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      real(dp), allocatable :: rest(:)
+      integer :: k, nd
+      nd = fc%run%model%n_dof()
+      allocate (rest(nd))
+      rest = 0.0_dp
+      do k = 1, fc%series%k
+         call fc%run%model%check_state(fc%series%q(:nd, k), rest, error)
+         if (.not. allocated(error)) cycle
+         error%message = "invalid data file '"//printable(fc%input)//"' line "// &
+                         to_str(fc%series%line(k))//': not a state of model '// &
+                         fc%run%model_name//' ('//error%message//')'
+         return
+      end do
+   end subroutine check_model_states
 
    !> The model's coordinate names (order -1) or the units of its coordinates
    !> (order 0) or of their rates (order 1).

@@ -29,7 +29,48 @@ contains
       character(len=*), intent(in) :: group     !! group name
       character(len=*), intent(in) :: iomsg     !! the runtime's message
       character(len=:), allocatable :: msg
+      character(len=*), parameter :: unmatched = 'Cannot match namelist object name '
+      character(len=:), allocatable :: text, tok, key
+      type(error_t), allocatable :: err
+      integer :: at
       msg = "invalid config '"//printable(filename)//"' in &"//group//': '//trim(iomsg)
+      ! the runtime reads '1.5' for a whole-number key as 1 and then '.5' as a key:
+      ! name the key whose value it was, and say what it takes
+      at = index(iomsg, unmatched)
+      if (at == 0) return
+      tok = trim(iomsg(at + len(unmatched):))
+      if (len(tok) == 0) return
+      if (scan(tok(1:1), '.eEdD0123456789') == 0) return
+      call read_config_bytes(filename, '', text, err)
+      if (allocated(err)) return
+      key = key_before(without_comments(text), tok)
+      if (len(key) == 0) return
+      msg = "invalid config '"//printable(filename)//"' in &"//group//': invalid '//key// &
+            ": its value ends in '"//printable(tok)//"', which is not part of a whole " &
+            //'number ('//key//' takes an integer: no fraction, no exponent)'
+   contains
+      !> The key of the assignment in `t` whose value is directly followed by `tk`
+      !> (e.g. 'gpu_repack' in 'gpu_repack = 1.5' for '.5'); '' if not found.
+      function key_before(t, tk) result(k)
+         character(len=*), intent(in) :: t, tk
+         character(len=:), allocatable :: k
+         integer :: p, e, b, q
+         k = ''
+         p = index(t, tk)
+         do while (p > 1)
+            if (scan(t(p - 1:p - 1), '0123456789') /= 0) exit
+            q = index(t(p + 1:), tk)
+            if (q == 0) return
+            p = p + q
+         end do
+         if (p <= 1) return
+         e = index(t(:p - 1), '=', back=.true.)
+         if (e <= 1) return
+         b = verify(t(:e - 1), ' '//achar(9)//achar(10)//achar(13), back=.true.)
+         if (b == 0) return
+         q = scan(t(:b), ' '//achar(9)//achar(10)//achar(13)//',/&', back=.true.)
+         k = to_lower(t(q + 1:b))
+      end function key_before
    end function namelist_error
 
    !> Read the groups of a run configuration present in `filename` into `cfg`.

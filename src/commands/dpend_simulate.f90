@@ -13,7 +13,7 @@ module dpend_simulate
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled, march_progress_t
    use dpend_hdf5, only: h5file_t
-   use dpend_model_record, only: record_model
+   use dpend_model_record, only: record_model, coordinate_labels
    use dpend_output, only: output_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -512,42 +512,5 @@ contains
       call h5%writeattr('/', 'energy_scale', cfg%model%energy_scale(e(1)))
       call h5%close(error)   ! reports the first failed write, if any
    end subroutine write_trajectory
-
-   !> The labels of the coordinates' datasets from the model's description: the
-   !> names ('q1 q2', 'r phi'), and the units of q, q̇, q̈ and p: one unit when every
-   !> coordinate has the same, else one per column ('m, rad').
-   subroutine coordinate_labels(model, names, q_units, rate_units, acc_units, p_units)
-      class(model_t), intent(in) :: model                     !! the system
-      character(len=:), allocatable, intent(out) :: names     !! blank-separated
-      character(len=:), allocatable, intent(out) :: q_units, rate_units, acc_units, p_units
-      character(len=:), allocatable :: name, u, pu, u1, pu1
-      integer :: i
-      logical :: same
-      names = ''; q_units = ''; rate_units = ''; acc_units = ''; p_units = ''
-      same = .true.
-      do i = 1, model%n_dof()
-         call model%coordinate(i, name, u, pu)
-         if (i == 1) then
-            u1 = u; pu1 = pu
-         else
-            names = names//' '; q_units = q_units//', '; rate_units = rate_units//', '
-            acc_units = acc_units//', '; p_units = p_units//', '
-            same = same .and. u == u1 .and. pu == pu1
-         end if
-         names = names//name; q_units = q_units//u; rate_units = rate_units//per_s(u, 1)
-         acc_units = acc_units//per_s(u, 2); p_units = p_units//pu
-      end do
-      if (same) then
-         q_units = u1; rate_units = per_s(u1, 1); acc_units = per_s(u1, 2); p_units = pu1
-      end if
-   contains
-      pure function per_s(unit, k) result(t)
-         character(len=*), intent(in) :: unit
-         integer, intent(in) :: k
-         character(len=:), allocatable :: t
-         t = unit//'/s'
-         if (k == 2) t = unit//'/s^2'
-      end function per_s
-   end subroutine coordinate_labels
 
 end module dpend_simulate

@@ -24,7 +24,7 @@ module dpend_study_command
    use dpend_study, only: roundoff_t, tao_sweep_t
    use dpend_cli, only: to_str, arg_t
    use dpend_study_verdicts, only: verdicts_t, study_verdicts, sweep_index, order_ok, &
-                                   drift_ok, drift_judged, brouwer_tol, fmt
+                                   drift_ok, drift_judged, drift_failed, brouwer_tol, fmt
    implicit none
    private
    public :: run_study_command, write_study_h5, study_summary
@@ -189,7 +189,7 @@ contains
       integer :: ic, id
       character(len=8) :: date
       character(len=10) :: time
-      character(len=:), allocatable :: upright
+      character(len=:), allocatable :: upright, unjudged
       v = study_verdicts(cfg, res)
       id = case_index(cfg, cfg%drift_case)
       call date_and_time(date, time)
@@ -221,11 +221,12 @@ contains
          'W_friction − W_support| / E_s, the works integrated along the solution by the '// &
          'same method (section Energy balance); the drift verdict is not applied to it.'
       md = md//nl//nl
+      unjudged = 'too short to judge:'
+      if (balance_case(cfg, id)) unjudged = 'not applied:'
+      if (index(v%drift_text, 'failed (case') > 0) unjudged = 'not judged:'
       md = md//'## Verdicts'//nl//nl// &
            '- orders: '//mark(v%orders)//' '//v%orders_text//nl// &
-           '- drift: '//verdict(v%drift, v%drift_judged, &
-                                trim(merge('not applied:       ', 'too short to judge:', &
-                                           balance_case(cfg, id))))// &
+           '- drift: '//verdict(v%drift, v%drift_judged, unjudged)// &
            ' '//v%drift_text//nl// &
            '- roundoff: '//verdict(v%roundoff, v%roundoff_run, 'not run:')//' '// &
            v%roundoff_text//nl//nl
@@ -262,7 +263,8 @@ contains
             md = md//'| '//d%method//' | '//to_str(d%order)//' | '//slope(o%fit_global)//' | ' &
                  //slope(o%fit_energy)//' | '//num(d%drift(k), 'f0.2') &
                  //trim(merge('                     ', ' (too short to judge)', drift_judged(d) &
-                              .or. balance_case(cfg, id))) &
+                              .or. drift_failed(d) .or. balance_case(cfg, id))) &
+                 //trim(merge(' (the run failed)', '                 ', drift_failed(d))) &
                  //trim(merge(' (not applied)', '              ', balance_case(cfg, id))) &
                  //' | ' &
                  //slope(d%fit_energy_long)//' | '//num(d%x(k), 'es8.2')//' | ' &

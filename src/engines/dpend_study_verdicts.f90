@@ -10,10 +10,11 @@ module dpend_study_verdicts
    use dpend_study_settings, only: study_config_t, case_index, balance_case, &
       study_model_name
    use dpend_study, only: study_result_t, sweep_t, mode_step
+   use dpend_integrator, only: stat_ok
    use dpend_cli, only: to_str
    implicit none
    private
-   public :: verdicts_t, study_verdicts, sweep_index, order_ok, drift_ok, drift_judged
+   public :: verdicts_t, study_verdicts, sweep_index, order_ok, drift_ok, drift_judged, drift_failed
    public :: order_tolerance, bounded_max, linear_tol, brouwer_tol, drift_min_steps, fmt
 
    !> Measured orders must lie within this of the nominal order.
@@ -85,8 +86,16 @@ contains
    !> exponent (at least `drift_min_steps` steps).
    pure logical function drift_judged(sw)
       type(sweep_t), intent(in) :: sw
-      drift_judged = sw%long_steps(sw%mid) >= drift_min_steps
+      drift_judged = sw%long_steps(sw%mid) >= drift_min_steps .and. .not. drift_failed(sw)
    end function drift_judged
+
+   !> The long run at the middle step failed (a step failure, non-finite values):
+   !> its drift is not judged, and says so rather than "too short".
+   pure logical function drift_failed(sw)
+      type(sweep_t), intent(in) :: sw
+      drift_failed = .false.
+      if (allocated(sw%stat)) drift_failed = sw%stat(sw%mid) /= stat_ok
+   end function drift_failed
 
    !> Evaluate the done-when checks. An experiment that was not run reads "not run";
    !> a drift exponent from too short a run reads "too short to judge"; neither is a
@@ -96,7 +105,7 @@ contains
       type(study_result_t), intent(in) :: res
       type(verdicts_t) :: v
       integer :: im, s, io, id, i
-      character(len=:), allocatable :: bad, short
+      character(len=:), allocatable :: bad, short, failed
       io = case_index(cfg, cfg%order_case)
       id = case_index(cfg, cfg%drift_case)
       bad = ''
@@ -117,11 +126,14 @@ contains
       end if
       bad = ''
       short = ''
+      failed = ''
       do im = 1, size(cfg%methods)
          s = sweep_index(res, id, cfg%methods(im)%name, mode_step)
          if (s == 0) cycle
          if (balance_case(cfg, id)) cycle   ! no conserved energy: no drift verdict
-         if (.not. drift_judged(res%sweeps(s))) then
+         if (drift_failed(res%sweeps(s))) then
+            failed = failed//' '//cfg%methods(im)%name
+         else if (.not. drift_judged(res%sweeps(s))) then
             short = short//' '//cfg%methods(im)%name
          else
             v%drift_judged = .true.
@@ -132,9 +144,13 @@ contains
       if (balance_case(cfg, id)) then
          v%drift_text = 'case '//cfg%drift_case//' is damped or driven (its ' &
                         //'energy balance error is shown instead; no conserved energy)'
+      else if (.not. v%drift_judged .and. len(short) == 0 .and. len(failed) > 0) then
+         v%drift_text = 'every long run at the middle step failed (case '// &
+                        cfg%drift_case//'; the file has each run''s status):'//failed
       else if (.not. v%drift_judged) then
          v%drift_text = 'every long run has fewer than '//to_str(drift_min_steps)// &
                         ' steps at the middle step (case '//cfg%drift_case//'):'//short
+         if (len(failed) > 0) v%drift_text = v%drift_text//'; failed:'//failed
       else
          if (v%drift) then
             v%drift_text = 'symplectic methods bounded (exponent < '// &
@@ -145,6 +161,7 @@ contains
          end if
          if (len(short) > 0) v%drift_text = v%drift_text//'; too short to judge (fewer than '// &
                                             to_str(drift_min_steps)//' steps):'//short
+         if (len(failed) > 0) v%drift_text = v%drift_text//'; the long run failed:'//failed
       end if
       bad = ''
       do i = 1, size(res%roundoff)

@@ -12,7 +12,7 @@ module dpend_sweep_compare
    use dpend_output, only: check_regular_file
    use dpend_pendulum_lanes, only: st_cannot_flip, st_flipped
    use dpend_hdf5, only: h5file_t, is_hdf5
-   use dpend_cli, only: to_str, real_str
+   use dpend_cli, only: to_str, real_str, printable
    implicit none
    private
    public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, config_difference
@@ -116,6 +116,13 @@ contains
       tau = 1; h = 0; complete = 0
       call open_sweep_file(file, pre, h5, config, error)
       if (allocated(error)) return
+      if (.not. h5%exists('/sweep/t_flip')) then   ! an indicator map, another model
+         call h5%close()
+         call fatal_error(error, pre//'it holds no flip-time map (/sweep/t_flip; '// &
+                          'it is a map of '//map_kind(file)//'): sweep-compare compares ' &
+                          //'two flip-time maps')
+         return
+      end if
       call check_sweep_data(h5, pre, config, '/sweep/t_flip', dims, error)
       if (allocated(error)) then
          call h5%close()
@@ -237,6 +244,35 @@ contains
          if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
       end function pct
    end subroutine report_changes
+
+   !> What a sweep file without flip times maps: its indicator (/sweep/megno, ...)
+   !> and the model, as far as the file says ('unknown quantities' otherwise).
+   function map_kind(file) result(s)
+      character(len=*), intent(in) :: file  !! a sweep file, open-able
+      character(len=:), allocatable :: s
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: model
+      character(len=*), parameter :: maps(4) = [character(len=5) :: 'megno', 'fli', &
+                                                'sali', 'gali']
+      integer :: i
+      s = ''
+      call h5%open(file, 'r', error)
+      if (allocated(error)) then
+         s = 'unknown quantities'
+         return
+      end if
+      do i = 1, size(maps)
+         if (h5%exists('/sweep/'//trim(maps(i)))) s = trim(maps(i))
+         if (len(s) > 0) exit
+      end do
+      if (len(s) == 0) s = 'unknown quantities'
+      if (h5%attr_exists('/sweep', 'model')) then
+         call h5%readattr('/sweep', 'model', model, error)
+         if (.not. allocated(error)) s = s//' of model '//printable(model)
+      end if
+      call h5%close()
+   end function map_kind
 
    !> Open an existing sweep file for reading and read its /sweep config attribute;
    !> refused (with `pre` before the reason, h5 closed) unless it is a regular HDF5

@@ -23,6 +23,7 @@ module dpend_sweep_resume
    use dpend_os, only: path_kind, path_file
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_cli, only: to_str, real_str
+   use dpend_sweep_compare, only: config_value
    use dpend_sweep_setup, only: sweep_setup_t, block_range
    use dpend_sweep_layout, only: result_names, create_layout, write_block, working_file, &
       install_file
@@ -263,30 +264,68 @@ contains
       end function shape_str
    end subroutine verify_blocks
 
-   !> "key: a here, b in the file" for the first line where two configurations differ.
+   !> "key = a here, key = b in the file" for the first key whose value differs
+   !> between two configurations ("key (none)" where one of them lacks it).
    function first_difference(new, old) result(s)
       character(len=*), intent(in) :: new, old  !! configuration texts
       character(len=:), allocatable :: s
-      character(len=:), allocatable :: a, b, ra, rb
-      integer :: ia, ib
+      character(len=:), allocatable :: line, key
       character(len=1), parameter :: nl = new_line('a')
-      ra = new//nl
-      rb = old//nl
-      do
-         ia = index(ra, nl)
-         ib = index(rb, nl)
-         if (ia == 0 .or. ib == 0) exit
-         a = ra(:ia - 1)
-         b = rb(:ib - 1)
-         if (a /= b) then
-            s = readable(a)//' here, '//readable(b)//' in the file'
-            return
+      integer :: pass, eol, eq
+      ! by key, not by position: the new run's keys in its order, then the keys only
+      ! the file has (a line missing in one text must not pair the others wrongly)
+      do pass = 1, 2
+         if (pass == 1) then
+            call walk(new, old)
+         else
+            call walk(old, new)
          end if
-         ra = ra(ia + 1:)
-         rb = rb(ib + 1:)
+         if (allocated(s)) return
       end do
       s = 'the configurations differ'
    contains
+      !> The first line of `text` whose key has another value (or none) in `other`.
+      subroutine walk(text, other)
+         character(len=*), intent(in) :: text, other
+         character(len=:), allocatable :: rest, va, vb
+         rest = text//nl
+         do
+            eol = index(rest, nl)
+            if (eol == 0) exit
+            line = rest(:eol - 1)
+            rest = rest(eol + 1:)
+            eq = index(line, ' = ')
+            if (eq == 0) cycle
+            key = line(:eq - 1)
+            va = line(eq + 3:)
+            if (.not. has_key(other, key)) then
+               vb = '(none)'
+            else
+               vb = config_value(other, key)
+            end if
+            if (va == vb) cycle
+            if (pass == 1) then
+               s = shown(key, va)//' here, '//shown(key, vb)//' in the file'
+            else
+               s = shown(key, vb)//' here, '//shown(key, va)//' in the file'
+            end if
+            return
+         end do
+      end subroutine walk
+      !> 'key = value' (`readable`), or 'key (none)' for a key a text lacks.
+      function shown(k, v) result(t)
+         character(len=*), intent(in) :: k, v
+         character(len=:), allocatable :: t
+         if (v == '(none)') then
+            t = k//' (none)'
+         else
+            t = readable(k//' = '//v)
+         end if
+      end function shown
+      logical function has_key(text, k)
+         character(len=*), intent(in) :: text, k
+         has_key = index(nl//text, nl//k//' = ') > 0
+      end function has_key
       !> 'key = value' with a stored real (es24.16e3, kept so that older files still
       !> compare equal) shown as real_str shows it: 't_end = 6'.
       function readable(line) result(t)

@@ -165,7 +165,8 @@ contains
             return
          end if
       end do
-      if (cfg%damping_size /= 0 .and. cfg%damping_size /= n) then
+      ! (a model without links refuses the damping by name, in build_model)
+      if (model_has(cfg, 'links') .and. cfg%damping_size /= 0 .and. cfg%damping_size /= n) then
          call fatal_error(error, 'invalid damping: '//to_str(cfg%damping_size)// &
                           ' values for '//to_str(n)//' links (one per joint; --links N ' &
                           //'sets N) [--damping / namelist damping]')
