@@ -373,6 +373,23 @@ contains
       call fit_series(prob, t(:60), q(:, :60), huge(1.0_dp), 0.1_dp, res, error)
       call expect_refused(error, 'l,g', 'l1,l2,g together are not determined by the ' &
                           //'data: their common scale')
+      if (allocated(error)) return
+      ! at rest in the hanging position no parameter acts: each column of
+      ! sensitivities is rounding error, judged against the noise before any scaling
+      ! (scaled to unit length it once gave m2 = 1 ± 0.27 kg, condition number 2.7)
+      q = spread([-0.5_dp*pi, -0.5_dp*pi], 2, 21)
+      call pendulum_problem(prob, true_m, true_l, [character(len=2) :: 'm2', 'g', 'l2'], &
+                            error)
+      if (allocated(error)) return
+      call fit_series(prob, t(:21), q, huge(1.0_dp), 0.1_dp, res, error)
+      call expect_refused(error, 'at rest m2,g,l2', 'm2, g, l2 are not determined by the ' &
+                          //'data: changing m2 by')
+      if (allocated(error)) return
+      ! the same with a given noise of 0.01 rad: named as given
+      prob%noise = 0.01_dp
+      call fit_series(prob, t(:21), q, huge(1.0_dp), 0.1_dp, res, error)
+      call expect_refused(error, 'at rest, sigma 0.01', 'less than the noise 0.01 rad ' &
+                          //'(given by --sigma)')
    end subroutine test_undetermined
 
    !> Columns in degrees: theta [deg] (q = θ π/180 − π/2), q [deg] (q = value π/180),
