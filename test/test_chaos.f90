@@ -4,12 +4,14 @@
 !> divergence of nearby trajectories, energy-shell sampling and Poincaré
 !> sections (a normal mode's period), and the three commands run as processes.
 module test_chaos
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
+   use dpend_cli, only: real_str, to_str
    use dpend_pendulum, only: pendulum_t, energy, hamiltonian, momenta, velocities
    use dpend_pendulum, only: pendulum_model
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_names, method_options_t
-   use dpend_propagate, only: march_t, advance_to
+   use dpend_propagate, only: march_t, advance_to, march_progress_t
+   use dpend_poincare, only: poincare_sections, poincare_result_t
    use dpend_tangent, only: tangent_t
    use dpend_lyapunov, only: qr_positive, lyapunov_acc_t, renormalize, batch_exponents, &
                              lyapunov_result_t, lyapunov_spectrum
@@ -47,6 +49,7 @@ contains
               new_unittest('perturbation_on_energy_surface', test_perturbation), &
               new_unittest('fit_synthetic_divergence', test_fit_synthetic), &
               new_unittest('divergence_slope_vs_lyapunov', test_divergence_slope), &
+              new_unittest('progress_covers_span', test_progress_span), &
               new_unittest('halton_sequence', test_halton), &
               new_unittest('shell_sampling_on_energy', test_shell), &
               new_unittest('section_points_on_section', test_section_points), &
@@ -537,6 +540,58 @@ contains
       call check(error, fit%slope, lres%exponents(1), 'slope vs lambda1', &
                  rel=0.2_dp)
    end subroutine test_divergence_slope
+
+   !> A command's progress in model time covers exactly the span it announced, however
+   !> the work is split into marches: the divergence's reference orbit and its pairs
+   !> ((n − 1) spacing + 2 n t), poincare's orbits run in parallel (n t_end, an orbit
+   !> ended early at its points counted whole), a Lyapunov run (t_end); the report
+   !> then stands at its whole (1e9 parts). Quiet: no line is written.
+   subroutine test_progress_span(error)
+      type(error_t), allocatable, intent(out) :: error
+      class(integrator_t), allocatable :: integ
+      type(pendulum_t) :: par
+      type(march_progress_t) :: prog
+      type(divergence_result_t) :: dres
+      type(lyapunov_result_t) :: lres
+      type(poincare_result_t) :: pres
+      type(angle_crossing_t) :: section
+      real(dp) :: q0(2, 3), qd0(2, 3)
+      integer :: stat
+      call new_integrator('dop853', integ, error)
+      if (allocated(error)) return
+      call prog%begin('test divergence', 2.0_dp*0.25_dp + 2.0_dp*3.0_dp*0.5_dp)
+      prog%bar%quiet = .true.
+      call divergence_pairs(integ, pendulum_model(par), [0.3_dp, 0.2_dp], [0.0_dp, 0.0_dp], 0.5_dp, 0.1_dp, &
+                            1e-9_dp, .false., 3, 0.25_dp, 1e-3_dp, dres, stat, prog)
+      call check_covered('divergence')
+      if (allocated(error)) return
+      call prog%begin('test lyapunov', 2.0_dp)
+      prog%bar%quiet = .true.
+      call lyapunov_spectrum(integ, pendulum_model(par), 0.0_dp, [0.3_dp, 0.2_dp, 0.0_dp, 0.0_dp], 2.0_dp, &
+                             1e-3_dp, 0.5_dp, 2, 2, lres, stat, prog)
+      call check_covered('lyapunov')
+      if (allocated(error)) return
+      section = angle_crossing_t(index=1, angle=-0.5_dp*pi, wrap=.true.)
+      section%direction = 1
+      q0 = reshape([-1.0_dp, -1.2_dp, -1.5_dp, -1.0_dp, -2.0_dp, -1.4_dp], [2, 3])
+      qd0 = 0.0_dp
+      call prog%begin('test poincare', 3.0_dp*20.0_dp)
+      prog%bar%quiet = .true.
+      call poincare_sections(integ, pendulum_model(par), section, q0, qd0, 20.0_dp, 1e-3_dp, 5, pres, prog)
+      call check_covered('poincare (3 orbits, ended at 5 points)')
+   contains
+      subroutine check_covered(what)
+         character(len=*), intent(in) :: what
+         call check_true(error, stat == stat_ok, what//': the run failed')
+         if (allocated(error)) return
+         call check_true(error, abs(prog%covered - prog%span) <= 1e-12_dp*prog%span, what// &
+                         ': covered '//real_str(prog%covered)//' s of '//real_str(prog%span)//' s')
+         if (allocated(error)) return
+         call check_true(error, prog%bar%done == 1000000000_i8, what//': the report at '// &
+                         to_str(prog%bar%done)//' of 1e9 parts')
+         call prog%end()
+      end subroutine check_covered
+   end subroutine test_progress_span
 
    subroutine test_halton(error)
       type(error_t), allocatable, intent(out) :: error

@@ -270,6 +270,9 @@ contains
          n = n + 1
          hits(n) = hit
       end do
+      ! stopped early at its crossings: the steps since the march's last report count
+      if (associated(march%progress) .and. .not. march%finished) &
+         call march%progress%advance(abs(t - march%t_reported))
       hits = hits(1:n)
    end subroutine find_crossings
 end module dpend_events

@@ -177,12 +177,22 @@ contains
          write (self%unit, '(a)', advance='no') achar(13)//trim(line)//'   '
       else
          write (line, '(a, ": ", a, "%", a, ", ", a, "elapsed ", a, ", ETA ~", a)') &
-            self%label, real_str(anint(1000.0_dp*frac)/10.0_dp), count_text(), &
+            self%label, percent_text(), count_text(), &
             rate_text(', '), clock(elapsed), clock(eta)
          write (self%unit, '(a)') trim(line)
       end if
       flush (self%unit)
    contains
+      !> The percentage done to 0.1, or to 2 digits below 0.1 % (a run of days moves
+      !> visibly between two lines: '0.0012').
+      function percent_text() result(t)
+         character(len=:), allocatable :: t
+         if (frac >= 0.001_dp .or. frac <= 0.0_dp) then
+            t = real_str(anint(1000.0_dp*frac)/10.0_dp)
+         else
+            t = real_str(100.0_dp*frac, 2)
+         end if
+      end function percent_text
       !> ' (12/100)', or '' without a unit (a fraction of a horizon).
       function count_text() result(t)
          character(len=:), allocatable :: t
