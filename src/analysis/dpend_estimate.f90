@@ -1049,9 +1049,11 @@ contains
    !> Refuse a fitted model parameter the data cannot see, judged before any
    !> normalisation: fitted alone, its standard error would be σ/‖J_j‖ (σ the noise of
    !> the observations, `observation_noise`; J_j its column of sensitivities); when that
-   !> exceeds the parameter's own scale s_j (its guess, at least the catalogue's default
-   !> or 0.01 in its units), changing it by s_j moves the predicted series by less than
-   !> the noise, and no interval the fit could give would mean anything. (Scaling the
+   !> exceeds the parameter's own scale s_j (the value given, or the model's default),
+   !> changing it by s_j moves the predicted series by less than the noise, and no
+   !> interval the fit could give would mean anything. A parameter at 0 (no damping,
+   !> no support motion) has no scale of its own: it is refused only when its column,
+   !> times 0.01 in its units, stays below what the fit resolves. (Scaling the
    !> columns to unit length first, as `identifiability` does, hides this: a column of
    !> rounding errors scales to 1 like any other.)
    subroutine check_visible(prob, q, res, jac, error)
@@ -1060,8 +1062,8 @@ contains
       type(fit_result_t), intent(in) :: res             !! the fit (np, k_fit, p)
       real(dp), intent(in) :: jac(:, :)                 !! ∂r/∂p over the fit window
       type(error_t), allocatable, intent(out) :: error  !! a parameter not seen
-      character(len=:), allocatable :: how, names, detail, ou
-      real(dp) :: sigma, scale, norm
+      character(len=:), allocatable :: how, names, detail, ou, against
+      real(dp) :: sigma, scale, norm, floor, level
       integer :: c, j, n_state
       if (n_fitted(prob) == 0) return
       ou = 'rad'
@@ -1069,28 +1071,39 @@ contains
       if (allocated(prob%angular)) then
          if (.not. all(prob%angular)) ou = '(in the observations'' units)'
       end if
-      sigma = observation_noise(prob, q, res%k_fit, how)
+      sigma = observation_noise(prob, q, res%k_fit, how, floor)
       n_state = res%np - n_fitted(prob)
       names = ''
       detail = ''
       do c = 1, n_fitted(prob)
          j = n_state + c
-         scale = max(abs(res%p(j)), abs(prob%theta0(c)), prob%comp_scale(c))
          norm = sqrt(sum(jac(:, j)**2))
-         if (norm*scale > sigma) cycle
+         ! its own scale: the value given (or the model's default); a parameter at 0
+         ! (no damping, no support motion) has none, and is judged only on whether the
+         ! data see it at all: its column above the fit's resolution
+         scale = abs(prob%theta0(c))
+         level = sigma
+         if (.not. (scale > 0.0_dp)) then
+            scale = prob%comp_scale(c)
+            level = floor
+         end if
+         if (norm*scale > level) cycle
          if (len(names) > 0) names = names//', '
          names = names//trim(prob%comp_labels(c))
-         if (len(detail) == 0) detail = trim(prob%comp_labels(c))//' by '// &
-            real_str(scale, 3)//' '//trim(prob%comp_units(c))//' moves the fitted series '// &
-            'by '//real_str(norm*scale, 3)//' '//ou//' (root sum of squares over the window)'
+         if (len(detail) == 0) then
+            detail = trim(prob%comp_labels(c))//' by '// &
+               real_str(scale, 3)//' '//trim(prob%comp_units(c))//' moves the fitted series '// &
+               'by '//real_str(norm*scale, 3)//' '//ou//' (root sum of squares over the window)'
+            against = 'the noise '//real_str(sigma, 3)//' '//ou//' ('//how//')'
+            if (level < sigma) against = 'what the fit resolves, '//real_str(level, 3)//' '// &
+                                         ou//' (10 rtol times the largest observation)'
+         end if
       end do
       if (len(names) == 0) return
       call fatal_error(error, 'invalid fit parameters: '//names//trim(merge(' is ', ' are', &
                        index(names, ',') == 0))//' not determined by the data: changing ' &
-                       //detail//', less than the noise '//real_str(sigma, 3)//' '//ou// &
-                       ' ('//how// &
-                       ') (fitted alone, its standard error would exceed its own scale); fix each ' &
-                       //'at a known value, or fit data in which it acts', &
+                       //detail//', less than '//against// &
+                       '; fix each at a known value, or fit data in which it acts', &
                        error_bad_input)
    end subroutine check_visible
 
@@ -1098,11 +1111,12 @@ contains
    !> --sigma), else `noise_estimate`; never below what the fit can resolve, 10 × rtol
    !> × the observations' magnitude (data at rest, or exact, would otherwise have
    !> noise 0 and make rounding errors look significant). `how` says which.
-   function observation_noise(prob, q, k, how) result(sigma)
+   function observation_noise(prob, q, k, how, resolution) result(sigma)
       type(fit_problem_t), intent(in) :: prob            !! the problem
       real(dp), intent(in) :: q(:, :)                    !! observations (N or 2N, K)
       integer, intent(in) :: k                           !! samples used
       character(len=:), allocatable, intent(out) :: how  !! where σ comes from
+      real(dp), intent(out), optional :: resolution      !! the floor alone
       real(dp) :: sigma
       real(dp) :: floor
       floor = 10.0_dp*max(prob%rtol, epsilon(1.0_dp))*max(maxval(abs(q(:, :k))), &
@@ -1114,6 +1128,7 @@ contains
          sigma = noise_estimate(prob, q, k)
          how = 'estimated from the third differences of the data; --sigma gives it'
       end if
+      if (present(resolution)) resolution = floor
       if (sigma < floor) then
          sigma = floor
          how = 'the resolution of the fit, 10 rtol times the largest observation: '// &

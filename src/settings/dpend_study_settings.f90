@@ -498,7 +498,31 @@ contains
             end if
          end do
       end do
+      call check_lists_used(cfg, error)
    end subroutine check_cases
+
+   !> A list m or l serves the cases of up to as many links as it has values (a
+   !> case of n links takes the first n); values beyond the most links of any case
+   !> would be dropped without a word: refused.
+   subroutine check_lists_used(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! configuration
+      type(error_t), allocatable, intent(out) :: error  !! a list longer than used
+      character(len=1), parameter :: names(2) = ['m', 'l']
+      integer :: k, most, i
+      if (.not. default_model_study(cfg)) return   ! the factory checks a model's lists
+      most = 0
+      do i = 1, size(cfg%cases)
+         most = max(most, size(cfg%cases(i)%q0))
+      end do
+      do k = 1, 2
+         if (cfg%list_size(k) <= most) cycle
+         call fatal_error(error, 'invalid '//names(k)//': '//to_str(cfg%list_size(k))// &
+                          ' values, but the cases have at most '//to_str(most)//' links ' &
+                          //'(a case of n links takes the first n values) [--'//names(k)// &
+                          ' / &pendulum '//names(k)//']')
+         return
+      end do
+   end subroutine check_lists_used
 
    !> The methods: known, once each, suited to every case, their step and tolerance
    !> ranges.

@@ -22,7 +22,7 @@ succeed fitm-elastic-state          -- "${E[@]}" el_ok.csv
 succeed fitm-elastic-spring         -- "${E[@]}" el_ok.csv --fit-parameters k,l0 --k 35 --l0 1.1
 succeed fitm-elastic-window         -- "${E[@]}" el_ok.csv --fit-parameters l0 --fit-window 0.3
 succeed fitm-pendulum-params-damping -- "${F[@]}" pend_ok.csv --fit-parameters damping
-refuse  fitm-elastic-collapsed 'fit work'  -- "${E[@]}" el_zero.csv
+refuse  fitm-elastic-collapsed 'not a state of model elastic'  -- "${E[@]}" el_zero.csv
 # ---- refusals: the model, its columns, the parameters
 refuse  fitm-elastic-damping  'fit parameter'   -- "${E[@]}" el_ok.csv --fit-damping
 refuse  fitm-elastic-m        'fit parameter'   -- "${E[@]}" el_ok.csv --fit-parameters m,k

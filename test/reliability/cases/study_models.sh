@@ -28,3 +28,6 @@ refuse  std-elastic-k       k          -- study --config study_el_k.nml --output
 # dop853: fuzz seed 20261129)
 printf "&study case_name(1)='a', case_q1(1)=0.1, case_q2(1)=0.1, order_case='a', drift_case='a', ro_case='a', tao_case='a', check_rtol = 1e-300 /\n" > "$FIXTURES/std_check_rtol.nml"
 refuse  std-check-rtol      check_rtol -- study --config std_check_rtol.nml --no-figures --output o/s.h5
+# a list longer than any case's links would be dropped without a word: refused
+refuse  study-list-longer-than-cases 'invalid l: 3 values, but the cases have at most 2 links' -- \
+    study --quick --no-figures --output st.h5 --l 1,1,1

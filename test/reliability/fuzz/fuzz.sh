@@ -31,7 +31,7 @@ options:
   --case I        run only case I of seed S (repeatable), verbosely: its input,
                   exit status and stderr; keeps its directory
   --jobs J        cases run in parallel; default 2
-  --budget SEC    wall-clock budget: no case starts after it; default 540
+  --budget SEC    wall-clock budget: no case starts after it; default 900
   --timeout SEC   per-input limit (a case running longer is a hang); default 10
   --keep          keep the work directory
   -h, --help      this text
@@ -54,7 +54,7 @@ Failures print the seed, the case, the mutation and the input escaped
 EOF
 }
 
-DPEND="" GEN="" COUNT=10000 SEED="" JOBS=2 BUDGET=540 TIMEOUT=10 KEEP=0
+DPEND="" GEN="" COUNT=10000 SEED="" JOBS=2 BUDGET=900 TIMEOUT=10 KEEP=0
 CASES=()
 while [ $# -gt 0 ]; do
   case $1 in
@@ -249,6 +249,9 @@ FLAG_BASES=(
   "fit fit.csv --body point --fit-param m2,l2 --sigma #0.01 --m #1,1 --output out.h5"
   "simulate --body point --q #0.5,1 --t-end #0.02 --output out.h5"
   "simulate --com #0.6,0.8 --inertia #0.05,0 --damping #0.1,0 --t-end #0.02 --output out.h5"
+  "lyapunov --model elastic --q #1.2,-1 --k #40 --l0 #1 --t-end #0.3 --tau #0.1 --batches #2 --output out.h5"
+  "indicators --body point --q1 #0.3 --m2 #0.5 --l2 #0.8 --t-end #0.2 --tau #0.05 --output out.h5"
+  "divergence --com #0.6,0.5 --inertia #0.08,0.03 --g #9.8 --t-end #0.3 --pairs #2 --pair-spacing #0.1 --output-dt #0.05 --lyapunov-t #0 --output out.h5"
   "animate sim.h5 --fps #25 --duration #0.04 --speed #1 --size @64x64 --output a.gif"
   "animate sim.h5 --overlay sim.h5 --reactions --fps #10 --duration #0.1 --size @64x64 --output a.gif"
   "export sw_a.h5 --matrix t_flip axis1 axis2 #2"
@@ -300,6 +303,8 @@ gen_flag() {
     mutate_value "${ARGS[k]}"
     ARGS+=("${ARGS[k-1]}" "$N")
     VERDICT=refuse; WHAT="repeated flag ${ARGS[k-1]}"; TAG="repeated flag"
+  elif [ "$R" -lt 17 ] && two_places "$cmd"; then
+    :   # the same quantity in a flag and in the file, or in two groups of the file
   elif [ "$R" -lt 17 ]; then
     # two forms of one quantity
     case $cmd in
@@ -345,6 +350,36 @@ gen_flag() {
     fi
   fi
   needs_of
+  [ -f two.nml ] && NEEDS+=(two.nml)
+  return 0
+}
+
+# two_places CMD: (half the time, for a command that reads --config and has none yet)
+# a namelist two.nml giving a quantity the flags give too (VERDICT any: the flag
+# wins, which the provenance check sees) or giving one quantity in two groups
+# (refused naming both). False when not done.
+two_places() {
+  rnd 2; [ "$R" = 0 ] && return 1
+  case $1 in simulate|lyapunov|divergence|indicators|poincare|sweep|fit) ;; *) return 1 ;; esac
+  [[ " ${ARGS[*]} " == *" --config "* ]] && return 1
+  local key="" k
+  for k in --m1 --m2 --l1 --l2 --g --k --l0; do
+    [[ " ${ARGS[*]} " == *" $k "* ]] && { key=${k#--}; break; }
+  done
+  rnd 2
+  if [ -n "$key" ] && [ "$R" = 0 ]; then
+    local grp=pendulum
+    [[ $key == k || $key == l0 ]] && grp=model
+    printf '&%s %s = 7.25 /\n' "$grp" "$key" > two.nml
+    VERDICT=any; WHAT="$key as a flag and in &$grp of the file (the flag wins)"
+    TAG="quantity as a flag and in the file"
+  elif [[ " ${ARGS[*]} " != *" elastic "* ]]; then
+    printf '&model m = 1.5, 2.5 /\n&pendulum m1 = 3 /\n' > two.nml
+    VERDICT=refuse; WHAT="m in &model and m1 in &pendulum"; TAG="namelist two groups give one quantity"
+  else
+    return 1
+  fi
+  ARGS+=(--config two.nml)
 }
 
 # ------------------------------------------------------------ namelist family
@@ -366,6 +401,12 @@ NML_SEEDS=(
   "sweep_triple.nml|sweep --n1 2 --n2 2 --t-end 0.5 --dt 0.05 --threads 1 --output out.h5 --quiet"
   "sweep_velocities.nml|sweep --n1 2 --n2 2 --t-end 0.5 --dt 0.05 --threads 1 --output out.h5 --quiet"
   "study_tiny.nml|study --no-figures --threads 1 --output st.h5"
+  "bob_pendulum.nml|simulate --t-end 0.02 --output out.h5"
+  "elastic_sweep.nml|sweep --n1 2 --n2 2 --t-end 0.5 --dt 0.05 --threads 1 --output out.h5 --quiet"
+  "study.nml|study --quick --no-figures --methods rk4 --threads 1 --output st.h5"
+  "study_chain.nml|study --quick --no-figures --methods rk4 --threads 1 --output st.h5"
+  "study_damped.nml|study --quick --no-figures --methods rk4 --threads 1 --output st.h5"
+  "elastic_study.nml|study --quick --no-figures --methods rk4 --threads 1 --output st.h5"
 )
 declare -A SEED_TEXT=()
 RE_ASSIGN='[A-Za-z_][A-Za-z0-9_]*(\([0-9]+\))?[[:space:]]*='
@@ -461,8 +502,14 @@ gen_nml() {
       pick "${alines[@]}"; i=$P
       if [[ ${lines[i]} =~ ([A-Za-z_][A-Za-z0-9_]*)[[:space:]]*= ]]; then
         local key=${BASH_REMATCH[1]}
-        rnd 3
+        rnd 4
         case $R in
+          3) if [[ ${lines[i]} != *'&'* && ${lines[i]} != *'/'* ]]; then
+               lines[i]="! removed: ${lines[i]}"; WHAT="assignment of $key removed (line $((i + 1)))"
+             else
+               lines[i]=${lines[i]/$key/${key}x}; VERDICT=refuse; WHAT="unknown key ${key}x"
+             fi
+             TAG="namelist key removed or renamed" ;;
           0) lines[i]=${lines[i]/$key/${key}x}; VERDICT=refuse; WHAT="unknown key ${key}x"; TAG="namelist unknown key" ;;
           1) lines[i]=${lines[i]/$key/${key^^}}; WHAT="key in capitals ${key^^}"; TAG="namelist key in capitals" ;;
           2) lines[i]=${lines[i]/$key/${key}(99999)}; WHAT="key $key(99999)"; TAG="namelist key index 99999" ;;
@@ -643,7 +690,11 @@ gen_csv() {
 progressing() {
   local -a k
   mapfile -t k < <(grep -Eo '% \([0-9]+/[0-9]+\).*ETA' "$1" | sed -E 's/^% \(([0-9]+)\/.*/\1/')
-  [ ${#k[@]} -ge 2 ] && [ "${k[${#k[@]} - 1]}" -gt "${k[0]}" ]
+  if [ ${#k[@]} -ge 2 ]; then [ "${k[${#k[@]} - 1]}" -gt "${k[0]}" ]; return; fi
+  # a fraction of a horizon ("dpend lyapunov: 0.0017%, elapsed 0:00:10, ETA ~...")
+  mapfile -t k < <(grep -E '^dpend [a-z-]+: [0-9.e+-]+%, .*elapsed .*ETA' "$1" |
+                   sed -E 's/^dpend [a-z-]+: ([0-9.e+-]+)%.*/\1/')
+  [ ${#k[@]} -ge 2 ] && awk -v a="${k[0]}" -v b="${k[${#k[@]} - 1]}" 'BEGIN { exit !(b + 0 > a + 0) }'
 }
 
 # ------------------------------------------------------------- HDF5 family
@@ -783,17 +834,105 @@ show_file() {
 
 # run_case I DIR: generates and runs case I in DIR (created), appends one result
 # line to $RESULTS: "I ok refused|ran" or "I FAIL CLASS<TAB>details".
+# ---------------------------------------------------------------- results read
+# The output of a run that exits 0 is read back: the settings the case gave (the
+# model's quantities PROV_KEYS, from the flags, else from the namelist file) must be
+# those the file records (an attribute of /, /sweep or /config under the model's
+# name for it: m1, l2, g, k, ...; a list given as --m a,b as m1, m2 or as m).
+PROV_KEYS=" m1 m2 l1 l2 g k l0 m l com inertia "
+# h5num FILE NAME: the numeric attribute NAME of /, /sweep or /config, comma-separated
+h5num() {
+  local g v
+  for g in / /sweep /config; do
+    v=$(h5dump -m %.17g -a "${g%/}/$2" "$1" 2>/dev/null | sed -n '/DATA {/,/}/p' |
+        sed -n 's/^ *([0-9,]*): *//p' | tr -d ' \n')
+    [[ $v =~ ^[-+0-9.eE,]+$ ]] && { printf '%s' "$v"; return; }
+  done
+}
+# same_numbers A B: comma lists of equal length, each within 1e-12 (relative); A
+# may hold Fortran's d exponents
+same_numbers() {
+  awk -v a="${1//[dD]/e}" -v b="$2" 'BEGIN { n = split(a, x, ","); m = split(b, y, ",")
+    if (n != m) exit 1
+    for (i = 1; i <= n; i++) { d = x[i] - y[i]; if (d < 0) d = -d
+      s = (x[i] < 0 ? -x[i] : x[i]); if (d > 1e-12 * (s > 1 ? s : 1)) exit 1 }
+    exit 0 }'
+}
+# provenance OUT: PROVOK=1 when some setting was compared; PROVFAIL the first
+# disagreement ('' if none)
+provenance() {
+  local out=$1 i k v got
+  PROVOK=0 PROVFAIL=""
+  local -A given=()
+  for ((i = 1; i < ${#ARGS[@]} - 1; i++)); do
+    case ${ARGS[i]} in --*) k=${ARGS[i]#--}; [[ $PROV_KEYS == *" $k "* ]] && given[$k]=${ARGS[i+1]} ;; esac
+  done
+  local f
+  for f in case.nml two.nml; do
+    [ -f "$f" ] || continue
+    [[ " ${ARGS[*]} " == *" $f "* ]] || continue
+    local line code rest re='(^|[^A-Za-z0-9_%(])(m1|m2|l1|l2|g|k|l0)[[:space:]]*=[[:space:]]*([-+]?[0-9]*\.?[0-9]+([eEdD][-+]?[0-9]+)?|[-+]?[0-9]+\.)[[:space:]]*(,|/|$)(.*)'
+    while IFS= read -r line; do
+      code=${line%%!*}
+      while [[ $code =~ $re ]]; do
+        k=${BASH_REMATCH[2]} v=${BASH_REMATCH[3]} rest=${BASH_REMATCH[6]}
+        [ -n "${given[$k]+x}" ] || given[$k]=$v
+        code=$rest
+      done
+    done < "$f"
+  done
+  for k in "${!given[@]}"; do
+    v=${given[$k]}
+    [[ $v =~ ^[-+0-9.eEdD,]+$ ]] || continue
+    if [[ $v == *,* ]] || [ -z "$(h5num "$out" "$k")" ]; then
+      got=$(h5num "$out" "${k}1")
+      if [ -n "$got" ]; then   # a list as its components k1, k2, ...
+        local -a el; IFS=, read -ra el <<< "$v"
+        got=""
+        for ((i = 1; i <= ${#el[@]}; i++)); do got+="${got:+,}$(h5num "$out" "$k$i")"; done
+      else
+        got=$(h5num "$out" "$k")
+      fi
+    else
+      got=$(h5num "$out" "$k")
+    fi
+    [ -n "$got" ] || continue   # the file has no such attribute: not compared
+    PROVOK=1
+    if ! same_numbers "$v" "$got"; then PROVFAIL="records $k = $got, given $v"; return; fi
+  done
+}
+# has_status OUT: the file exists and its root attribute status says why the run
+# stopped (not 'completed')
+has_status() {
+  local st
+  st=$(h5dump -a /status "$1" 2>/dev/null | sed -n 's/^ *(0): *"\(.*\)"$/\1/p' | head -n 1)
+  [ -n "$st" ] && [ "$st" != completed ]
+}
+# output_of: the value of --output in ARGS ('' if none)
+output_of() {
+  local i; OUTFILE=""
+  for ((i = 1; i < ${#ARGS[@]} - 1; i++)); do [ "${ARGS[i]}" = --output ] && OUTFILE=${ARGS[i+1]}; done
+}
+HAS_DE=0
+locale -a 2> /dev/null | grep -qi '^de_DE.utf8$' && HAS_DE=1
+
 run_case() {
   local i=$1 d=$2 t0=$EPOCHREALTIME
   mkdir -p "$d" && cd "$d" || return
   seed_case "$SEED" "$i"
-  ARGS=() INPUTS=() NEEDS=() VERDICT=any WHAT="" TAG="" GENARGS=() GENFAIL=0 SRC=""
+  ARGS=() INPUTS=() NEEDS=() VERDICT=any WHAT="" TAG="" GENARGS=() GENFAIL=0 SRC="" PROVOK=0 PROVFAIL=""
   local fam
   rnd 100
   if [ "$R" -lt 40 ]; then fam=flag; gen_flag; INPUTS=("${NEEDS[@]}")
   elif [ "$R" -lt 62 ]; then fam=nml; gen_nml
   elif [ "$R" -lt 75 ]; then fam=csv; gen_csv
   else fam=h5; gen_h5; fi
+  # threads and the locale vary (the results must not)
+  local -a CASE_ENV
+  pick 1 1 2 3; CASE_ENV=(OMP_NUM_THREADS=$P)
+  if [ $HAS_DE = 1 ]; then pick C C.UTF-8 de_DE.UTF-8; else pick C C.UTF-8; fi
+  CASE_ENV+=(LC_ALL=$P)
+  WHAT="$WHAT [${CASE_ENV[*]}]"
   local f
   for f in "${NEEDS[@]}"; do [ -e "$f" ] || cp "$F/$f" "$f"; done
   if [ "$GENFAIL" = 1 ]; then
@@ -806,22 +945,35 @@ run_case() {
   local -a before_names=(* .*) after_names
   [ ${#INPUTS[@]} = 0 ] || sha256sum -- "${INPUTS[@]}" > sums 2>&1
   local rc=0
-  timeout -k 2 "$TIMEOUT" "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
-  local long=0
-  if { [ $rc = 124 ] || [ $rc = 137 ]; } && [ "$VERDICT" != refuse ] &&
-     ! [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* || $TAG == 'repeated flag' ||
-          $TAG == 'namelist value huge'* ]]; then
+  timeout -k 2 "$TIMEOUT" env "${CASE_ENV[@]}" "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
+  local long=0 progressed=0
+  if { [ $rc = 124 ] || [ $rc = 137 ]; } && [ "$VERDICT" != refuse ]; then
     # A valid input can make a run long (a CSV angle of 1e-300 sends the fit's trial
     # trajectories to hundreds of rad/s; a namelist cut after &pendulum is the default
     # study): run it again with six times the limit. A run that ends there, or that
     # reports bounded work advancing on stderr (`progressing`), is slow (a note) if
     # nothing else is wrong; one that does neither is a hang. (The killed run's
     # temporary files stay: the rerun's refusal is judged against what it found.)
+    # A changed number (--t-end 1e6) gets three times the limit: its progress must
+    # show up and advance (lines every 10 s), else it is a hang.
     before_names=(* .*)
     rc=0
-    timeout -k 2 $((6 * TIMEOUT)) "$DPEND" "${ARGS[@]}" > stdout 2> stderr < /dev/null || rc=$?
+    local factor=6
+    [[ $TAG == 'flag value'* || $TAG == 'namelist value'* ]] && factor=3
+    # (without --quiet: the progress is what the rerun looks at)
+    local -a rerun=()
+    local w
+    for w in "${ARGS[@]}"; do [ "$w" = --quiet ] || rerun+=("$w"); done
+    timeout -k 2 $((factor * TIMEOUT)) env "${CASE_ENV[@]}" "$DPEND" "${rerun[@]}" > stdout \
+      2> stderr < /dev/null || rc=$?
     if [ $rc != 124 ] && [ $rc != 137 ]; then long=1
-    elif progressing stderr; then long=1; rc=0; fi
+    elif progressing stderr; then long=1; progressed=1; rc=0
+    elif [ "${ARGS[0]}" = sweep ] && grep -q '^dpend sweep: t_end = .*, dt = ' stderr; then
+      # a sweep reports progress per block of trajectories, which may be one block
+      # of days: its work was bounded before it started (the horizon line, after
+      # the checks of work and memory)
+      long=1; progressed=1; rc=0
+    fi
   fi
   local -a errl; mapfile -t errl < stderr
   local nlines=${#errl[@]} err=""
@@ -833,10 +985,8 @@ run_case() {
   if [ $rc = 124 ] || [ $rc = 137 ]; then
     # A valid number that makes a run long (--t-end 1e6) is slow, not a hang: a
     # note, not a failure. Over the limit on anything else is a hang.
-    if [ "$VERDICT" = any ] && [[ $TAG == 'flag value'* || $TAG == 'namelist value,'* ||
-                                  $TAG == 'namelist value huge'* ||
-                                  $TAG == 'repeated flag' ]]; then slow=1
-    elif [ "$VERDICT" = refuse ]; then cls="invalid input accepted (ran over the limit): $TAG"
+    # (a changed number ran three times the limit without advancing progress)
+    if [ "$VERDICT" = refuse ]; then cls="invalid input accepted (ran over the limit): $TAG"
     else cls="hang: $cmd over ${TIMEOUT} s ($TAG)"; fi
   elif [ $rc = 134 ] || [ $rc = 136 ] || [ $rc = 139 ] || [[ $err =~ $TRAP_RE ]]; then
     # the class of a trap: its first source line in the backtrace, else the command
@@ -862,10 +1012,22 @@ run_case() {
            [ "${before_names[*]}" = "${after_names[*]}" ] ||
              cls="refusal created or removed a file: $cmd ($TAG)"
          fi ;;
-      0) [ "$VERDICT" = refuse ] && cls="invalid input accepted (exit 0): $TAG" ;;
+      0) if [ "$VERDICT" = refuse ]; then cls="invalid input accepted (exit 0): $TAG"
+         elif [ $progressed = 0 ]; then
+           # the output read back: the settings given are those it records
+           output_of
+           if [[ $OUTFILE == *.h5 && -f $OUTFILE ]]; then
+             provenance "$OUTFILE"
+             [ -n "$PROVFAIL" ] && cls="provenance: $cmd $PROVFAIL ($TAG)"
+           fi
+         fi ;;
       1) if [[ $RUN_FAIL_CMDS != *" $cmd "* ]]; then cls="exit 1 from $cmd ($TAG)"
          elif [ "$nlines" = 0 ]; then cls="exit 1 without a message: $cmd ($TAG)"
          elif [ "$VERDICT" = refuse ]; then cls="invalid input ran and failed (exit 1): $TAG"
+         elif [[ " simulate lyapunov divergence indicators poincare " == *" $cmd "* ]]; then
+           # a run that failed partway says why in its file
+           output_of
+           has_status "$OUTFILE" || cls="exit 1 without its file's status: $cmd ($TAG)"
          fi ;;
       *) cls="exit $rc: $cmd ($TAG)" ;;
     esac
@@ -883,9 +1045,10 @@ run_case() {
     esc "${ARGS[@]}"
     printf '%s slow %s\t%s; input: dpend %s\n' "$i" "$cmd ($TAG)" "${WHAT//$'\n'/\\n}" "$ESC" >> "$RESULTS"
   elif [ -z "$cls" ]; then
-    local t1=$EPOCHREALTIME kind=ran
+    local t1=$EPOCHREALTIME kind=ran prov=""
     [ $rc = 2 ] && kind=refused
-    echo "$i ok $kind $cmd $fam $(( (${t1/./} - ${t0/./}) / 1000 ))" >> "$RESULTS"
+    [ "${PROVOK:-0}" = 1 ] && prov=" provenance"
+    echo "$i ok $kind $cmd $fam $(( (${t1/./} - ${t0/./}) / 1000 ))$prov" >> "$RESULTS"
   else
     FILETEXT=""
     case $fam in
@@ -963,7 +1126,9 @@ status=0
 if grep -q '^[0-9]* budget$' "$WORK/results"; then
   echo "FAIL fuzz: the budget of $BUDGET s ran out after $total of $COUNT inputs"; status=1
 fi
+prov=$(grep -c '^[0-9]* ok ran .* provenance$' "$WORK/results")
 closing="fuzz: $total inputs (seed $SEED): $refused refused, $ran ran, $failed failed"
 [ "$slow" = 0 ] || closing+=", $slow slow"
+closing+="; $prov outputs checked for provenance"
 echo "$closing ($((SECONDS - START)) s)"
 exit $status

@@ -20,7 +20,7 @@ fail() { failures=$((failures + 1)); printf 'FAIL %s\n' "$1"; }
 attr() {
   local g v
   for g in / /sweep /config; do
-    v=$(h5dump -a "${g%/}/$2" "$1" 2>/dev/null | sed -n '/DATA {/,/}/p' | sed -n 's/^ *([0-9,]*): *//p' |
+    v=$(h5dump -m %.17g -a "${g%/}/$2" "$1" 2>/dev/null | sed -n '/DATA {/,/}/p' | sed -n 's/^ *([0-9,]*): *//p' |
         tr -d ' \n')
     [[ -n $v ]] && { printf '%s' "$v"; return; }
   done
