@@ -10,7 +10,11 @@ program dpend
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_version, only: version, slow_build_note
    use dpend_export, only: export_columns, export_matrix, export_list
-   use dpend_chaos, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
+   use dpend_chaos_common, only: chaos_config_t, parse_chaos, run_chaos, chaos_help
+   use dpend_lyapunov_command, only: run_lyapunov
+   use dpend_divergence_command, only: run_divergence
+   use dpend_poincare_command, only: run_poincare
+   use dpend_indicators_command, only: run_indicators
    use dpend_sweep_settings, only: sweep_config_t, horizon_text
    use dpend_sweep_config, only: parse_sweep, sweep_help
    use dpend_sweep, only: run_sweep, sweep_summary_t, compare_sweeps, summary_text
@@ -218,7 +222,16 @@ contains
          write (output_unit, '(a)') chaos_help(command)
          return
       end if
-      call run_chaos(cfg, ch, summary, error)
+      select case (command)
+      case ('lyapunov')
+         call run_chaos(cfg, ch, run_lyapunov, summary, error)
+      case ('indicators')
+         call run_chaos(cfg, ch, run_indicators, summary, error)
+      case ('divergence')
+         call run_chaos(cfg, ch, run_divergence, summary, error)
+      case default
+         call run_chaos(cfg, ch, run_poincare, summary, error)
+      end select
       if (quiet .and. .not. allocated(error)) summary = last_line(summary)
       if (len(summary) > 0) write (output_unit, '(a)') summary
       if (allocated(error)) call fail(exit_status(error), 'dpend '//command//': '//error%message)

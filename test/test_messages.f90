@@ -7,14 +7,14 @@ module test_messages
    use dpend_cli, only: real_str, seconds_str, to_lower, to_str
    use dpend_run_settings, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
-   use dpend_chaos, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
+   use dpend_chaos_common, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
    use dpend_sweep_config, only: sweep_help
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults
    use dpend_methods, only: method_names
    use test_cli, only: run_command, scratch_dir, read_text, args_of
    use dpend_sweep_config, only: parse_sweep
    use dpend_sweep_settings, only: horizon_text
-   use dpend_chaos, only: indicator_verdict
+   use dpend_indicators_command, only: indicator_verdict
    use dpend_export, only: export_columns
    use dpend_hdf5, only: h5file_t
    use dpend_progress, only: progress_t, progress_header

@@ -1,14 +1,17 @@
-!> The chaos commands: `dpend lyapunov`, `dpend divergence`, `dpend poincare`,
-!> `dpend indicators`.
-!> Each builds a run configuration (the common flags and namelist groups of
-!> `dpend_config`, plus the group &chaos and its own flags), validates it, runs
-!> the numerics of `dpend_lyapunov`, `dpend_divergence`, `dpend_poincare` or
-!> `dpend_indicators` and
-!> writes an HDF5 file (docs/hdf5-layout.md) and a summary on standard output
-!> whose last line is the result for scripts.
-module dpend_chaos
-   use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, fatal_error, run_failure, error_bad_input, error_run_failed
+!> What the chaos commands `dpend lyapunov`, `dpend divergence`, `dpend poincare`
+!> and `dpend indicators` share: their settings (the group &chaos) with the
+!> defaults of each command, the reading of the common flags and namelist groups of
+!> `dpend_config`, of the group &chaos and of each command's flags, the validation
+!> of the settings, the --help texts, and the run around a command's own work
+!> (`run_chaos`: the method, the output file written through `dpend_output`, the
+!> exit status of a failure); for the commands' writers, the root attributes of
+!> every chaos file (`write_common`), the run status and the number formats of the
+!> summaries. Each command's run and file writing is in its own module:
+!> `dpend_lyapunov_command`, `dpend_divergence_command`, `dpend_poincare_command`,
+!> `dpend_indicators_command`.
+module dpend_chaos_common
+   use dpend_kinds, only: dp
+   use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_namelist, only: read_run_config, namelist_error
@@ -17,20 +20,11 @@ module dpend_chaos
    use dpend_limits, only: finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
-   use dpend_events, only: angle_crossing_t
-   use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
-   use dpend_propagate, only: march_progress_t
-   use dpend_divergence, only: divergence_result_t, divergence_pairs, line_fit_t, &
-                               fit_exponential_phase
-   use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
-   use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_hdf5, only: h5file_t
-   use dpend_model_record, only: record_model, coordinate_labels
+   use dpend_model_record, only: record_model
    use dpend_output, only: output_t
-   use dpend_simulate, only: natural_time_of, natural_text
    use dpend_version, only: version
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
-                                            ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_cli, only: to_str
    use dpend_cli, only: scan_help_config, real_str, printable
    use dpend_limits, only: in_range, check_range, check_count, sci, max_time, max_steps, &
@@ -39,8 +33,8 @@ module dpend_chaos
    implicit none
    private
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
-   public :: read_chaos_config, validate_chaos, run_chaos
-   public :: indicator_verdict
+   public :: read_chaos_config, validate_chaos, run_chaos, chaos_run_body
+   public :: write_common, run_status, stopped, n_vectors, num, es, fixed
 
    real(dp), parameter :: pi = acos(-1.0_dp)
    character(len=*), parameter :: nl = new_line('a')
@@ -76,6 +70,24 @@ module dpend_chaos
       real(dp) :: section_angle = -0.5_dp*pi  !! section angle [rad] (modulo 2π)
       integer :: section_direction = 1   !! +1: q̇ > 0 at the crossing, -1: < 0, 0: both
    end type chaos_config_t
+
+   abstract interface
+      !> The run and file writing of one chaos command: integrate with `integ`,
+      !> write the HDF5 file `filename`, and set `summary` (standard output, its
+      !> last line the result for scripts). `error` is set when the file cannot be
+      !> written, or for a run that stopped early (`failed`: the file holds what
+      !> was computed before).
+      subroutine chaos_run_body(cfg, ch, integ, filename, summary, error, failed)
+         import :: run_config_t, chaos_config_t, integrator_t, error_t
+         type(run_config_t), intent(in) :: cfg
+         type(chaos_config_t), intent(in) :: ch
+         class(integrator_t), intent(inout) :: integ
+         character(len=*), intent(in) :: filename  !! the file to write
+         character(len=:), allocatable, intent(inout) :: summary
+         type(error_t), allocatable, intent(out) :: error
+         logical, intent(inout) :: failed
+      end subroutine chaos_run_body
+   end interface
 
 contains
 
@@ -546,12 +558,15 @@ contains
       call check_disk(field, n*per_file + 65536.0_dp, output, hint, err)
    end subroutine check_resources
 
-   !> Run the command. `error` is set for invalid input (nothing written) or for
-   !> a failed run (`failed`; the file holds what was computed before). `summary`
-   !> is the text for standard output, its last line the scripting line.
-   subroutine run_chaos(cfg, ch, summary, error)
+   !> Run the command: `run_command`, the run and file writing of `ch%command`,
+   !> between the making of the method and the installing of the file. `error` is
+   !> set for invalid input (nothing written) or for a failed run (`failed`; the
+   !> file holds what was computed before). `summary` is the text for standard
+   !> output, its last line the scripting line.
+   subroutine run_chaos(cfg, ch, run_command, summary, error)
       type(run_config_t), intent(in) :: cfg             !! validated run configuration
       type(chaos_config_t), intent(in) :: ch            !! validated chaos settings
+      procedure(chaos_run_body) :: run_command          !! the command's run and writing
       character(len=:), allocatable, intent(out) :: summary  !! standard output
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       class(integrator_t), allocatable :: integ
@@ -565,16 +580,7 @@ contains
       if (allocated(error)) return
       call out%begin(cfg%output, cfg%force, error)
       if (allocated(error)) return
-      select case (ch%command)
-      case ('lyapunov')
-         call run_lyapunov(cfg, ch, integ, out%temp, summary, error, failed)
-      case ('indicators')
-         call run_indicators(cfg, ch, integ, out%temp, summary, error, failed)
-      case ('divergence')
-         call run_divergence(cfg, ch, integ, out%temp, summary, error, failed)
-      case default
-         call run_poincare(cfg, ch, integ, out%temp, summary, error, failed)
-      end select
+      call run_command(cfg, ch, integ, out%temp, summary, error, failed)
       ! the summary's first line names a body other than the uniform rod
       if (len(summary) > 0 .and. len(cfg%model%body_description()) > 0) &
          summary = 'dpend '//ch%command//': links: '//cfg%model%body_description() &
@@ -594,406 +600,6 @@ contains
          call run_failure(error)
       end if
    end subroutine run_chaos
-
-   !> `dpend lyapunov`.
-   subroutine run_lyapunov(cfg, ch, integ, filename, summary, error, failed)
-      type(run_config_t), intent(in) :: cfg
-      type(chaos_config_t), intent(in) :: ch
-      class(integrator_t), intent(inout) :: integ
-      character(len=*), intent(in) :: filename  !! the file to write
-      character(len=:), allocatable, intent(inout) :: summary
-      type(error_t), allocatable, intent(out) :: error
-      logical, intent(inout) :: failed
-      type(lyapunov_result_t) :: res
-      type(h5file_t) :: h5
-      character(len=:), allocatable :: status, line
-      integer :: stat, i, k
-      real(dp), allocatable :: defects(:)
-      type(march_progress_t) :: prog   ! the report in model time
-      call prog%begin('dpend lyapunov', cfg%t_end)
-      call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
-                             integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
-                             cfg%dt, ch%tau, n_vectors(ch, cfg), ch%batches, res, stat, prog)
-      call prog%end()
-      status = run_status(stat, res%t_reached)
-      ! a Hamiltonian spectrum comes in pairs: lambda_i + lambda_(2N+1-i) = 0 (a damped
-      ! or driven model has no such pairing: no defects are reported)
-      k = res%k
-      allocate (defects(0))
-      if (k == cfg%model%n_state() .and. cfg%model%hamiltonian()) &
-         defects = res%exponents(:k/2) + res%exponents(k:k/2 + 1:-1)
-      call h5%open(filename, 'w', error)
-      if (allocated(error)) return
-      call write_common(h5, cfg, integ, 'lyapunov', status)
-      call h5%write('/lyapunov/t', res%t, units='s', description= &
-         'times of the renormalisations (every tau, and t_end)')
-      call h5%write('/lyapunov/running', res%running, units='1/s', description= &
-         'running estimates lambda_i(t) = (1/t) sum ln R_ii, column i-1 for lambda_i')
-      call h5%write('/lyapunov/exponents', res%exponents, units='1/s', description= &
-         'Lyapunov exponents lambda_1 >= ... >= lambda_k at the end')
-      call h5%write('/lyapunov/spread', res%spread, units='1/s', description= &
-         'standard error of the mean of the batch exponents (NaN with one batch)')
-      call h5%write('/lyapunov/batches', res%batches, units='1/s', description= &
-         'exponents of the equal time segments')
-      call h5%writeattr('/', 'tau', ch%tau)
-      call h5%writeattr('/', 'vectors', k)
-      call h5%writeattr('/', 'batches', size(res%batches, 2))
-      call h5%writeattr('/', 't_reached', res%t_reached)
-      call h5%writeattr('/', 'n_renormalisations', size(res%t))
-      call h5%writeattr('/', 'n_tangent_substeps', res%n_sub)
-      if (size(defects) > 0) then
-         call h5%writeattr('/', 'pairing_defects', defects)
-         call h5%writeattr('/', 'pairing_defect', defects(1))
-         if (k == 4) call h5%writeattr('/', 'zero_pair_sum', defects(2))
-      end if
-      call h5%close(error)   ! reports the first failed write, if any
-      if (allocated(error)) return
-      summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
-                //num(ch%tau)//' s, ' &
-                //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
-                //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
-                //to_str(size(res%batches, 2))//' batch means)'//nl
-      do i = 1, res%k
-         summary = summary//'  '//to_str(i)//'  '//es(res%exponents(i))//'  '// &
-                   es(res%spread(i))//nl
-      end do
-      do i = 1, size(defects)
-         summary = summary//'pairing defect: lambda'//to_str(i)//' + lambda'// &
-                   to_str(k + 1 - i)//' = '//es(defects(i))//' 1/s'// &
-                   pct(defects(i), res%exponents(1))//nl
-      end do
-      summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"
-      if (stat /= stat_ok) then
-         ! no scripting line: a failed run has no exponents to report
-         call stopped(status, cfg%output, error, failed)
-         return
-      end if
-      line = 'lyapunov:'
-      do i = 1, res%k
-         line = line//' '//es(res%exponents(i))
-      end do
-      summary = summary//nl//line
-   end subroutine run_lyapunov
-
-   !> `dpend indicators`.
-   subroutine run_indicators(cfg, ch, integ, filename, summary, error, failed)
-      type(run_config_t), intent(in) :: cfg
-      type(chaos_config_t), intent(in) :: ch
-      class(integrator_t), intent(inout) :: integ
-      character(len=:), allocatable, intent(inout) :: summary
-      character(len=*), intent(in) :: filename  !! the file to write
-      type(error_t), allocatable, intent(out) :: error
-      logical, intent(inout) :: failed
-      type(indicators_result_t) :: res
-      type(h5file_t) :: h5
-      character(len=:), allocatable :: status, line, unit
-      real(dp) :: tn
-      integer :: stat, j, n
-      type(march_progress_t) :: prog   ! the report in model time
-      call prog%begin('dpend indicators', cfg%t_end)
-      call chaos_indicators(integ, cfg%model, 0.0_dp, &
-                            integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), cfg%t_end, &
-                            cfg%dt, ch%tau, res, stat, prog)
-      call prog%end()
-      status = run_status(stat, res%t_reached)
-      n = res%n
-      call h5%open(filename, 'w', error)
-      if (allocated(error)) return
-      call write_common(h5, cfg, integ, 'indicators', status)
-      if (n > 0) call write_series()   ! a run that failed before its first sample: the
-      ! file holds its status and settings, no series (as lyapunov's and divergence's)
-      call h5%writeattr('/', 'tau', ch%tau)
-      call h5%writeattr('/', 'vectors', res%k)
-      call h5%writeattr('/', 't_reached', res%t_reached)
-      call h5%writeattr('/', 'n_samples', n)
-      call h5%writeattr('/', 'n_tangent_substeps', res%n_sub)
-      if (n > 0) then
-         call h5%writeattr('/', 'megno_mean_final', res%mean_all(1, n))
-         call h5%writeattr('/', 'fli_final', res%fli(n))
-         call h5%writeattr('/', 'sali_final', res%sali(n))
-         call h5%writeattr('/', 'gali_final', res%gali(:, n))
-      end if
-      call h5%close(error)   ! reports the first failed write, if any
-      if (allocated(error)) return
-      summary = 'dpend indicators: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
-                //num(ch%tau)//' s, '//to_str(n) &
-                //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
-                //' deviation vectors'//nl
-      if (n > 0) then
-         summary = summary//'MEGNO <Y> = '//es(res%mean_all(1, n))//' (Y = '// &
-                   es(res%megno_all(1, n))//'; 2: regular, ~ lambda1 t/2: chaotic)'//nl// &
-                   'FLI = '//es(res%fli(n))//' (ln t = '//es(log(res%t(n)))// &
-                   ': regular ~ ln t + c)'//nl//'SALI = '//es(res%sali(n))//nl
-         do j = 2, res%k
-            summary = summary//'GALI_'//to_str(j)//' = '//es(res%gali(j - 1, n))//nl
-         end do
-      end if
-      summary = summary//"dpend indicators: wrote '"//cfg%output//"'"
-      if (n > 0) then
-         tn = natural_time_of(cfg, unit)
-         summary = summary//nl//indicator_verdict(res%mean_all(1, n), res%sali(n), res%t(n), &
-                                                  tn, unit)
-      end if
-      if (stat /= stat_ok .or. n == 0) then
-         call stopped(status, cfg%output, error, failed)
-         return
-      end if
-      line = 'indicators: '//es(res%mean_all(1, n))//' '//es(res%fli(n))//' '//es(res%sali(n))
-      do j = 1, res%k - 1
-         line = line//' '//es(res%gali(j, n))
-      end do
-      summary = summary//nl//line
-   contains
-      !> The sampled series of the indicators.
-      subroutine write_series()
-         call h5%write('/indicators/t', res%t, units='s', description= &
-            'sample times (every tau, at step ends, and t_end)')
-         call h5%write('/indicators/megno', res%megno(), units='1', description= &
-            'MEGNO Y(t) = (2/t) int_0^t s (d ln|delta_1|/ds) ds of deviation vector 1')
-         call h5%write('/indicators/megno_mean', res%megno_mean(), units='1', description= &
-            'running mean <Y>(t) = (1/t) int_0^t Y ds of vector 1: 2 regular, lambda1 t/2 chaotic')
-         call h5%write('/indicators/fli', res%fli, units='1', description= &
-            'fast Lyapunov indicator FLI(t) = max_i ln|delta_i(t)|, |delta_i(0)| = 1')
-         call h5%write('/indicators/sali', res%sali, units='1', description= &
-            'SALI = min(|u1 + u2|, |u1 - u2|) of the unit deviation vectors 1 and 2')
-         call h5%write('/indicators/gali', res%gali, units='1', description= &
-            'GALI_k(t), column k-2 for k = 2 .. 2N: volume spanned by unit vectors 1 .. k')
-         call h5%write('/indicators/log_norm', res%log_norm, units='1', description= &
-            'ln|delta_i(t)| of each deviation vector, column i-1 for vector i')
-         call h5%write('/indicators/megno_vectors', res%megno_all, units='1', description= &
-            'MEGNO Y(t) of each deviation vector, column i-1 for vector i')
-         call h5%write('/indicators/megno_mean_vectors', res%mean_all, units='1', description= &
-            'running mean <Y>(t) of each deviation vector, column i-1 for vector i')
-      end subroutine write_series
-   end subroutine run_indicators
-
-   !> `dpend divergence`.
-   subroutine run_divergence(cfg, ch, integ, filename, summary, error, failed)
-      type(run_config_t), intent(in) :: cfg
-      type(chaos_config_t), intent(in) :: ch
-      class(integrator_t), intent(inout) :: integ
-      character(len=*), intent(in) :: filename  !! the file to write
-      character(len=:), allocatable, intent(inout) :: summary
-      type(error_t), allocatable, intent(out) :: error
-      logical, intent(inout) :: failed
-      type(divergence_result_t) :: res
-      type(lyapunov_result_t) :: lres
-      type(line_fit_t) :: fit
-      type(h5file_t) :: h5
-      character(len=:), allocatable :: status
-      character(len=:), allocatable :: names, q_units, rate_units, acc_units, p_units
-      integer :: stat, lstat
-      real(dp) :: lam, lam_spread
-      type(march_progress_t) :: prog   ! the report in model time
-      ! the pairs' reference orbit, the pairs, the Benettin run beside
-      call prog%begin('dpend divergence', real(ch%pairs - 1, dp)*ch%pair_spacing + &
-                      2.0_dp*real(ch%pairs, dp)*cfg%t_end + max(ch%lyapunov_t, 0.0_dp))
-      call divergence_pairs(integ, cfg%model, cfg%q0(), cfg%w0(), cfg%t_end, cfg%output_dt, &
-                            ch%delta0, ch%same_energy, ch%pairs, ch%pair_spacing, cfg%dt, &
-                            res, stat, prog)
-      status = run_status(stat, -1.0_dp)
-      call fit_exponential_phase(res%t, res%log10_mean, ch%fit_start, ch%fit_end, fit)
-      if (.not. fit%ok) then   ! no exponential phase to fit: no slope
-         fit%slope = ieee_value(1.0_dp, ieee_quiet_nan)
-         fit%slope_stderr = fit%slope
-      end if
-      lam = 0.0_dp; lam_spread = 0.0_dp; lstat = stat_ok
-      if (ch%lyapunov_t > 0.0_dp .and. stat == stat_ok) then
-         call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
-                                integ%to_internal(cfg%model, cfg%q0(), cfg%w0()), ch%lyapunov_t, &
-                                cfg%dt, 0.5_dp, 1, 10, lres, lstat, prog)
-         lam = lres%exponents(1); lam_spread = lres%spread(1)
-         if (lstat /= stat_ok) status = run_status(lstat, lres%t_reached)
-      end if
-      call prog%end()
-      call h5%open(filename, 'w', error)
-      if (allocated(error)) return
-      call write_common(h5, cfg, integ, 'divergence', status)
-      call h5%write('/divergence/t', res%t, units='s', description= &
-         "sample times from each pair's start")
-      call h5%write('/divergence/log10_delta', res%log10_mean, units='1', description= &
-         'mean over the pairs of log10 |delta(t)| (|delta| in the units of the state)')
-      call h5%write('/divergence/log10_delta_pairs', res%log10_pairs, units='1', &
-         description='log10 |delta(t)| of each pair')
-      call coordinate_labels(cfg%model, names, q_units, rate_units, acc_units, p_units)
-      call h5%write('/divergence/start', res%start, units=q_units//', '//rate_units, &
-         description='('//state_names(names)//") of each pair's reference at its start")
-      call h5%write('/divergence/delta_start', res%delta_start, units='1', description= &
-         '|delta(0)| of each pair (norm in ('//state_names(names)//'), '//q_units// &
-         ' and '//rate_units//')')
-      call h5%write('/divergence/energy_difference', res%energy_diff, units='J', &
-         description='E(partner) - E(reference) at the start')
-      call h5%writeattr('/', 'delta0', ch%delta0)
-      call h5%writeattr('/', 'same_energy', merge(1, 0, ch%same_energy))
-      call h5%writeattr('/', 'pairs', size(res%delta_start))
-      call h5%writeattr('/', 'pair_spacing', ch%pair_spacing)
-      call h5%writeattr('/', 'output_dt', cfg%output_dt)
-      call h5%writeattr('/', 'slope', fit%slope)
-      call h5%writeattr('/', 'slope_stderr', fit%slope_stderr)
-      call h5%writeattr('/', 'fit_intercept', fit%intercept)
-      call h5%writeattr('/', 'fit_start', fit%t_start)
-      call h5%writeattr('/', 'fit_end', fit%t_end)
-      call h5%writeattr('/', 'fit_points', fit%n_points)
-      call h5%writeattr('/', 'saturation', fit%saturation)
-      call h5%writeattr('/', 'saturated', merge(1, 0, fit%saturated))
-      call h5%writeattr('/', 'lyapunov_t', ch%lyapunov_t)
-      if (ch%lyapunov_t > 0.0_dp) then
-         call h5%writeattr('/', 'lyapunov', lam)
-         call h5%writeattr('/', 'lyapunov_spread', lam_spread)
-      end if
-      call h5%close(error)   ! reports the first failed write, if any
-      if (allocated(error)) return
-      summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
-                //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
-                //' s ('//natural_text(cfg, cfg%t_end)//'), delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
-                                                               ' on the energy surface', '')//nl
-      if (fit%ok) then
-         summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &
-                   //to_str(fit%n_points)//' samples); saturation at log10|delta| = ' &
-                   //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
-                   'slope: '//es(fit%slope)//' +- '//es(fit%slope_stderr)//' 1/s'//nl
-      else
-         summary = summary//'fit: fewer than 3 samples in the window (no rise of one decade'// &
-                   ' above delta0?)'//nl
-      end if
-      if (ch%lyapunov_t > 0.0_dp .and. lstat == stat_ok .and. stat == stat_ok) then
-         summary = summary//'Benettin lambda1 over t = 0 .. '//num(ch%lyapunov_t)//' s: ' &
-                   //es(lam)//' +- '//es(lam_spread)//' 1/s'
-         if (lam > 0.0_dp .and. fit%ok) summary = summary//'; slope / lambda1 = '// &
-                                                  fixed(fit%slope/lam)
-         summary = summary//nl
-      end if
-      summary = summary//"dpend divergence: wrote '"//cfg%output//"'"
-      if (stat /= stat_ok .or. lstat /= stat_ok) then
-         call stopped(status, cfg%output, error, failed)
-         return
-      end if
-      if (fit%ok) then
-         summary = summary//nl//'divergence slope: '//es(fit%slope)
-      else if (ch%fit_end > ch%fit_start) then
-         summary = summary//nl//'divergence slope: none (fewer than 3 samples in the fit ' &
-                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s; widen ' &
-                   //'--fit-start/--fit-end or lower --output-dt)'
-      else
-         summary = summary//nl//'divergence slope: none (no exponential phase: log10|delta| ' &
-                   //'did not rise one decade above its start within '//num(cfg%t_end) &
-                   //' s; a regular orbit, or try a longer --t-end)'
-      end if
-   contains
-      !> 'q1, q2, qdot1, qdot2' or 'r, phi, rdot, phidot': the state's components.
-      function state_names(blank_separated) result(t)
-         character(len=*), intent(in) :: blank_separated
-         character(len=:), allocatable :: t, rest, w, rates
-         integer :: b
-         t = ''; rates = ''
-         rest = trim(adjustl(blank_separated))
-         do while (len(rest) > 0)
-            b = index(rest, ' ')
-            if (b == 0) b = len(rest) + 1
-            w = rest(:b - 1)
-            rest = trim(adjustl(rest(min(b, len(rest)) + 1:)))
-            if (b > len(rest) + len(w)) rest = ''
-            if (len(t) > 0) then
-               t = t//', '; rates = rates//', '
-            end if
-            t = t//w
-            if (w(1:1) == 'q' .and. len(w) > 1 .and. verify(w(2:), '0123456789') == 0) then
-               rates = rates//'qdot'//w(2:)   ! the generalised coordinates' q̇_i
-            else
-               rates = rates//w//'dot'
-            end if
-         end do
-         t = t//', '//rates
-      end function state_names
-   end subroutine run_divergence
-
-   !> `dpend poincare`.
-   subroutine run_poincare(cfg, ch, integ, filename, summary, error, failed)
-      type(run_config_t), intent(in) :: cfg
-      type(chaos_config_t), intent(in) :: ch
-      class(integrator_t), intent(inout) :: integ
-      character(len=*), intent(in) :: filename  !! the file to write
-      character(len=:), allocatable, intent(inout) :: summary
-      type(error_t), allocatable, intent(out) :: error
-      logical, intent(inout) :: failed
-      type(poincare_result_t) :: res
-      type(angle_crossing_t) :: section
-      type(h5file_t) :: h5
-      real(dp), allocatable :: q0(:, :), qd0(:, :)
-      real(dp) :: e, es_
-      integer :: n_found, n_failed
-      character(len=:), allocatable :: status
-      type(march_progress_t) :: prog   ! the report in model time
-      e = ch%energy
-      if (.not. ch%energy_given) e = cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()])
-      allocate (q0(2, ch%n_ics), qd0(2, ch%n_ics))
-      call shell_samples(cfg%model, e, ch%section_link, ch%section_angle, ch%section_direction, &
-                         ch%n_ics, q0, qd0, n_found)
-      if (n_found == 0) then
-         call fatal_error(error, 'invalid energy: E = '//num(e)//' J has no state on the'// &
-                          ' section q'//to_str(ch%section_link)//' = '//num(ch%section_angle) &
-                          //' (it lies below the potential energy there)', error_bad_input)
-         return
-      end if
-      section = angle_crossing_t(index=ch%section_link, angle=ch%section_angle, wrap=.true.)
-      section%direction = ch%section_direction
-      call prog%begin('dpend poincare', real(n_found, dp)*cfg%t_end)
-      call poincare_sections(integ, cfg%model, section, q0(:, 1:n_found), qd0(:, 1:n_found), &
-                             cfg%t_end, cfg%dt, ch%n_points, res, prog)
-      call prog%end()
-      n_failed = count(res%status /= stat_ok)
-      status = 'completed'
-      if (n_failed > 0) status = to_str(n_failed)//' orbit(s) stopped early: '// &
-                                 status_message(res%status(findloc(res%status /= stat_ok, &
-                                                                   .true., dim=1)))
-      es_ = cfg%model%energy_scale(e)
-      call h5%open(filename, 'w', error)
-      if (allocated(error)) return
-      integ%n_steps = res%n_steps
-      call write_common(h5, cfg, integ, 'poincare', status)
-      call h5%write('/poincare/q', res%q, units='rad', description= &
-         'angle of the other link at each crossing, wrapped to (-pi, pi]')
-      call h5%write('/poincare/p', res%p, units='kg m^2/s', description= &
-         'canonical momentum of the other link at each crossing')
-      call h5%write('/poincare/t', res%t, units='s', description= &
-         "crossing time from the orbit's start")
-      call h5%write('/poincare/energy', res%energy, units='J', &
-         description='energy at the crossing')
-      call h5%write('/poincare/orbit', res%orbit, units='1', &
-         description='orbit number (1-based) of each point')
-      call h5%write('/poincare/initial_q', q0(:, 1:n_found), units='rad', &
-         description='initial angles of each orbit (q1, q2)')
-      call h5%write('/poincare/initial_qdot', qd0(:, 1:n_found), units='rad/s', &
-         description='initial angular velocities of each orbit (qdot1, qdot2)')
-      call h5%write('/poincare/count', res%count, units='1', &
-         description='points of each orbit')
-      call h5%write('/poincare/orbit_status', res%status, units='1', &
-         description='0, or the step failure code of the orbit')
-      call h5%writeattr('/', 'energy', e)
-      call h5%writeattr('/', 'energy_scale', es_)
-      call h5%writeattr('/', 'section_link', ch%section_link)
-      call h5%writeattr('/', 'section_angle', ch%section_angle)
-      call h5%writeattr('/', 'section_direction', ch%section_direction)
-      call h5%writeattr('/', 'other_link', 3 - ch%section_link)
-      call h5%writeattr('/', 'n_orbits', n_found)
-      call h5%writeattr('/', 'max_points', ch%n_points)
-      call h5%close(error)   ! reports the first failed write, if any
-      if (allocated(error)) return
-      summary = 'dpend poincare: '//integ%name()//', dt = '//num(cfg%dt)//' s, E = ' &
-                //num(e)//' J, section q'//to_str(ch%section_link)//' = ' &
-                //num(ch%section_angle)//' (mod 2 pi), direction '// &
-                to_str(ch%section_direction)//nl//to_str(n_found)//' orbits'
-      if (n_found < ch%n_ics) summary = summary//' (of '//to_str(ch%n_ics)// &
-                                        ' requested: the shell is thin)'
-      summary = summary//', '//to_str(size(res%q))//' section points, '// &
-                to_str(res%n_steps)//' steps'
-      if (size(res%q) > 0) summary = summary//'; max |E - E0| / E_s = '// &
-                                     es(maxval(abs(res%energy - e))/es_)
-      summary = summary//nl//"dpend poincare: wrote '"//cfg%output//"'"
-      if (n_failed > 0) call stopped(status, cfg%output, error, failed)
-   end subroutine run_poincare
 
    !> Root attributes shared by the chaos commands.
    subroutine write_common(h5, cfg, integ, command, status)
@@ -1036,6 +642,8 @@ contains
       end if
    end function run_status
 
+   !> Mark the run as failed: `error` names the failure and the file that holds
+   !> what was computed before it.
    subroutine stopped(status, output, error, failed)
       character(len=*), intent(in) :: status, output
       type(error_t), allocatable, intent(inout) :: error
@@ -1045,7 +653,6 @@ contains
                        "' holds what was computed before the failure", error_run_failed)
    end subroutine stopped
 
-   !> " (x % of ref)" when ref /= 0.
    !> Tangent vectors of `dpend lyapunov`: --vectors, or all 2N when not given.
    pure integer function n_vectors(ch, cfg)
       type(chaos_config_t), intent(in) :: ch  !! chaos settings
@@ -1054,68 +661,15 @@ contains
       if (n_vectors == all_vectors) n_vectors = cfg%model%n_state()
    end function n_vectors
 
-   function pct(x, ref) result(s)
-      real(dp), intent(in) :: x, ref
-      character(len=:), allocatable :: s
-      s = ''
-      if (ref == 0.0_dp) return
-      s = ' ('//fixed(100.0_dp*abs(x/ref))//' % of |lambda1|)'
-   end function pct
-
    !> Compact text of a number for summaries: up to 6 significant digits.
-   !> The verdict of `dpend indicators` (docs/chaos.md, "Verdict"):
-   !> 'verdict: chaotic' when MEGNO's mean <Y> > 4 (twice the regular limit 2; it
-   !> grows as lambda1 t/2) and SALI < 1e-4 (it falls as exp(-(lambda1 - lambda2) t));
-   !> 'verdict: regular' when <Y> <= 2.1 (2 with shear, 0 without), SALI >= 1e-4
-   !> and the run lasted at least 100 natural time units (before, a chaotic orbit
-   !> can still look regular); 'verdict: undecided' otherwise. The line names the
-   !> criterion and the values.
-   function indicator_verdict(mean_y, sali, t, t_nat, unit) result(s)
-      real(dp), intent(in) :: mean_y  !! MEGNO's running mean <Y> at the end
-      real(dp), intent(in) :: sali    !! SALI at the end
-      real(dp), intent(in) :: t       !! the time reached [s]
-      real(dp), intent(in) :: t_nat   !! the natural time unit [s] (sqrt(l1/g))
-      character(len=*), intent(in) :: unit  !! its name: 'sqrt(l1/g)' or 'sqrt(l0/g)'
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: values
-      values = 'MEGNO <Y> = '//real_str(mean_y, 4)//', SALI = '//real_str(sali, 3)
-      if (.not. (mean_y == mean_y .and. sali == sali)) then
-         s = 'verdict: undecided ('//values//': not finite)'
-      else if (mean_y > 4.0_dp .and. sali < 1e-4_dp) then
-         s = 'verdict: chaotic ('//values//'; criterion: <Y> > 4 and SALI < 1e-4)'
-      else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp .and. t >= 100.0_dp*t_nat) then
-         s = 'verdict: regular ('//values//' at t = '//real_str(t, 4)//' s; criterion: ' &
-             //'<Y> <= 2.1 and SALI >= 1e-4 after at least 100 '//unit//' = '// &
-             real_str(100.0_dp*t_nat, 4)//' s)'
-      else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp) then
-         s = 'verdict: undecided ('//values//' look regular, but t = '//real_str(t, 4)// &
-             ' s is below 100 '//unit//' = '//real_str(100.0_dp*t_nat, 4)// &
-             ' s; criterion: chaotic <Y> > 4 and SALI < 1e-4, regular <Y> <= 2.1 and ' &
-             //'SALI >= 1e-4 after 100 '//unit//'; a longer --t-end)'
-      else
-         s = 'verdict: undecided ('//values//'; criterion: chaotic <Y> > 4 and SALI < ' &
-             //'1e-4, regular <Y> <= 2.1 and SALI >= 1e-4 after 100 '//unit//'; a ' &
-             //'longer --t-end)'
-      end if
-   end function indicator_verdict
-
    pure function num(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
       s = real_str(x, 6)
    end function num
 
-   pure function pick(cond, a, b) result(s)
-      logical, intent(in) :: cond
-      character(len=*), intent(in) :: a, b
-      character(len=:), allocatable :: s
-      if (cond) then
-         s = a
-      else
-         s = b
-      end if
-   end function pick
-
+   !> A number in exponent form with 8 significant digits (es15.7, no blanks);
+   !> 'nan' for NaN.
    pure function es(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
@@ -1128,6 +682,7 @@ contains
       s = trim(adjustl(buf))
    end function es
 
+   !> A number with 3 decimals (f0.3), with its leading 0 below 1.
    pure function fixed(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
@@ -1140,4 +695,4 @@ contains
       end if
    end function fixed
 
-end module dpend_chaos
+end module dpend_chaos_common
