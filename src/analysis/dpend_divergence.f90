@@ -22,6 +22,7 @@
 !> difference of their truncation errors is O(h^p δ); adaptive methods choose
 !> different steps for each, and their tolerances must be far below δ0.
 module dpend_divergence
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
@@ -137,6 +138,11 @@ contains
       angle = angle_coordinates(model)
       allocate (res%start(2*size(q0), n_pairs), res%delta_start(n_pairs), &
                 res%energy_diff(n_pairs))
+      ! a pair the run does not reach (it failed before) has no start: NaN, never
+      ! the memory's leftovers
+      res%start = ieee_value(1.0_dp, ieee_quiet_nan)
+      res%delta_start = res%start(1, 1)
+      res%energy_diff = res%start(1, 1)
       ya = integ%to_internal(model, q0, qd0)
       if (n_pairs > 1) then
          call integrate_sampled(integ, model, 0.0_dp, ya, real(n_pairs - 1, dp)*spacing, h, &
