@@ -36,7 +36,7 @@ options:
                     UTC), so a day's runs are the same and every day differs
   --fuzz-case I     rerun case I of seed S alone, verbosely (repeatable; only
                     the fuzzing stage runs): its input, exit status and stderr
-  --fuzz-budget SEC wall-clock budget of the fuzzing stage (default 900 s; no
+  --fuzz-budget SEC wall-clock budget of the fuzzing stage (default 1500 s; no
                     case starts after it, and a stage cut short fails)
   --list            list the rows (ID, kind, file) and the special tests; run nothing
   --jobs N          rows run in parallel; default 2
@@ -110,7 +110,7 @@ LIST=0
 FUZZ=""
 FUZZ_SEED=""
 FUZZ_CASES=()
-FUZZ_BUDGET=900
+FUZZ_BUDGET=1500
 JOBS=2
 KEEP=0
 VERBOSE=0

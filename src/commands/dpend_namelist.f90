@@ -21,6 +21,25 @@ module dpend_namelist
    private
    public :: read_run_config, check_groups, namelist_error
 
+   !> Marks a value of the run groups the file did not give.
+   real(dp), parameter :: unset = -huge(1.0_dp)
+
+   !> The groups &pendulum, &initial, &integration and &output as read
+   !> (`read_run_groups`), for the steps that resolve them into the run settings.
+   type :: run_groups_t
+      integer :: links = 0, save_every = 0
+      integer(i8) :: max_steps = 0
+      real(dp) :: m1 = 0, m2 = 0, l1 = 0, l2 = 0, g = 0, q1 = 0, q2 = 0, w1 = 0, w2 = 0
+      real(dp) :: dt = 0, t_end = 0, rtol = 0, atol = 0, output_dt = 0, omega = 0
+      real(dp) :: m(max_dof) = 0, l(max_dof) = 0, q(max_dof) = 0, w(max_dof) = 0
+      real(dp) :: damping(max_dof) = 0, com(max_dof) = 0, inertia(max_dof) = 0
+      real(dp) :: support_amplitude(2) = 0, support_frequency = 0, support_phase(2) = 0
+      character(len=16) :: body = ''
+      character(len=64) :: method = ''
+      character(len=1024) :: file = ''
+      logical :: force = .false.
+   end type run_groups_t
+
 contains
 
    !> The message for a failed namelist read, naming the group and the offending key.
@@ -79,26 +98,9 @@ contains
       type(run_config_t), intent(inout) :: cfg               !! updated from the file
       type(error_t), allocatable, intent(out) :: error       !! unreadable or invalid
       character(len=*), intent(in), optional :: extra_groups(:) !! groups of the command
-      real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
-      real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof), damping(max_dof)
-      real(dp) :: support_amplitude(2), support_frequency, support_phase(2)
-      real(dp) :: com(max_dof), inertia(max_dof)
-      character(len=16) :: body
-      real(dp), parameter :: unset = -huge(1.0_dp)   ! marks list entries not given
-      integer :: save_every, unit, stat, n_extra, i, links
-      integer(i8) :: max_steps
-      character(len=64) :: method
-      character(len=1024) :: file
-      character(len=512) :: msg
-      logical :: force
+      type(run_groups_t) :: r
       character(len=16), allocatable :: known(:)
-      namelist /pendulum/ links, m, l, m1, m2, l1, l2, g, damping, support_amplitude, &
-         support_frequency, support_phase, body, com, inertia
-      namelist /initial/ q, w, q1, q2, w1, w2
-      namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
-         max_steps
-      namelist /output/ file, force
-
+      integer :: i, n_extra
       n_extra = 0
       if (present(extra_groups)) n_extra = size(extra_groups)
       allocate (known(5 + n_extra))
@@ -113,18 +115,49 @@ contains
       if (allocated(error)) return
       call read_model_group(filename, cfg, error)
       if (allocated(error)) return
+      call read_run_groups(filename, cfg, r, error)
+      if (allocated(error)) return
+      call check_two_groups(filename, r, cfg, error)
+      if (allocated(error)) return
+      call note_pendulum_given(r, cfg)
+      call take_run_groups(filename, r, cfg, error)
+      if (allocated(error)) return
+      call take_model_fields(cfg)
+   end subroutine read_run_config
 
-      links = cfg%links
-      m1 = cfg%m(1); m2 = cfg%m(2); l1 = cfg%l(1); l2 = cfg%l(2); g = cfg%g
-      q1 = cfg%q(1); q2 = cfg%q(2); w1 = cfg%w(1); w2 = cfg%w(2)
+   !> The groups &pendulum, &initial, &integration and &output of `filename`, as read:
+   !> the scalars whose giving matters (links, m1 … w2, g, output_dt, save_every, the
+   !> support's motion) and every list entry `unset` where the file gave none, the
+   !> others the current values of `cfg`.
+   subroutine read_run_groups(filename, cfg, r, error)
+      character(len=*), intent(in) :: filename          !! namelist file
+      type(run_config_t), intent(in) :: cfg             !! the current values
+      type(run_groups_t), intent(out) :: r              !! the groups as read
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or invalid
+      real(dp) :: m1, m2, l1, l2, g, q1, q2, w1, w2, dt, t_end, rtol, atol, output_dt, omega
+      real(dp) :: m(max_dof), l(max_dof), q(max_dof), w(max_dof), damping(max_dof)
+      real(dp) :: support_amplitude(2), support_frequency, support_phase(2)
+      real(dp) :: com(max_dof), inertia(max_dof)
+      character(len=16) :: body
+      integer :: save_every, unit, stat, links
+      integer(i8) :: max_steps
+      character(len=64) :: method
+      character(len=1024) :: file
+      character(len=512) :: msg
+      character(len=16) :: group
+      logical :: force
+      namelist /pendulum/ links, m, l, m1, m2, l1, l2, g, damping, support_amplitude, &
+         support_frequency, support_phase, body, com, inertia
+      namelist /initial/ q, w, q1, q2, w1, w2
+      namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
+         max_steps
+      namelist /output/ file, force
       m = unset; l = unset; q = unset; w = unset; damping = unset
       com = unset; inertia = unset; body = ''
-      support_amplitude = cfg%support_amplitude; support_frequency = cfg%support_frequency
-      support_phase = cfg%support_phase
       method = ''
       if (allocated(cfg%method)) method = cfg%method
-      dt = cfg%dt; t_end = cfg%t_end; save_every = cfg%save_every
-      rtol = cfg%rtol; atol = cfg%atol; output_dt = cfg%output_dt; omega = cfg%omega
+      dt = cfg%dt; t_end = cfg%t_end
+      rtol = cfg%rtol; atol = cfg%atol; omega = cfg%omega
       max_steps = cfg%max_steps
       file = ''
       if (allocated(cfg%output)) file = cfg%output
@@ -135,273 +168,314 @@ contains
       output_dt = unset; save_every = -huge(1)
       links = -huge(1); g = unset
       support_amplitude = unset; support_frequency = unset; support_phase = unset
-
       open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
       if (stat /= 0) then
          call fatal_error(error, "invalid --config: cannot read '"//printable(filename)//"'")
          return
       end if
+      group = 'pendulum'
       read (unit, nml=pendulum, iostat=stat, iomsg=msg)
-      if (stat > 0) then
-         call fatal_error(error, namelist_error(filename, 'pendulum', msg)); close (unit); return
+      if (stat <= 0) then
+         group = 'initial'
+         rewind (unit)
+         read (unit, nml=initial, iostat=stat, iomsg=msg)
       end if
-      rewind (unit)
-      read (unit, nml=initial, iostat=stat, iomsg=msg)
-      if (stat > 0) then
-         call fatal_error(error, namelist_error(filename, 'initial', msg)); close (unit); return
+      if (stat <= 0) then
+         group = 'integration'
+         rewind (unit)
+         read (unit, nml=integration, iostat=stat, iomsg=msg)
       end if
-      rewind (unit)
-      read (unit, nml=integration, iostat=stat, iomsg=msg)
-      if (stat > 0) then
-         call fatal_error(error, namelist_error(filename, 'integration', msg)); close (unit)
-         return
-      end if
-      rewind (unit)
-      read (unit, nml=output, iostat=stat, iomsg=msg)
-      if (stat > 0) then
-         call fatal_error(error, namelist_error(filename, 'output', msg)); close (unit); return
+      if (stat <= 0) then
+         group = 'output'
+         rewind (unit)
+         read (unit, nml=output, iostat=stat, iomsg=msg)
       end if
       close (unit)
-      call check_two_groups()
-      if (allocated(error)) return
-      call note_pendulum_given()
+      if (stat > 0) then
+         call fatal_error(error, namelist_error(filename, trim(group), msg))
+         return
+      end if
+      r%links = links; r%save_every = save_every; r%max_steps = max_steps
+      r%m1 = m1; r%m2 = m2; r%l1 = l1; r%l2 = l2; r%g = g
+      r%q1 = q1; r%q2 = q2; r%w1 = w1; r%w2 = w2
+      r%dt = dt; r%t_end = t_end; r%rtol = rtol; r%atol = atol
+      r%output_dt = output_dt; r%omega = omega
+      r%m = m; r%l = l; r%q = q; r%w = w; r%damping = damping
+      r%support_amplitude = support_amplitude; r%support_frequency = support_frequency
+      r%support_phase = support_phase
+      r%com = com; r%inertia = inertia; r%body = body
+      r%method = method; r%file = file; r%force = force
+   end subroutine read_run_groups
+
+   !> A quantity given in &model and in &pendulum (m and m1, g and g, com and com)
+   !> is refused naming both: which one holds would depend on a rule of the reader.
+   subroutine check_two_groups(filename, r, cfg, error)
+      character(len=*), intent(in) :: filename          !! namelist file
+      type(run_groups_t), intent(in) :: r               !! &pendulum as read
+      type(run_config_t), intent(in) :: cfg             !! cfg%extra: &model's
+      type(error_t), allocatable, intent(out) :: error  !! a quantity given twice
+      character(len=:), allocatable :: key, also
+      integer :: k
+      if (.not. allocated(cfg%extra%items)) return
+      do k = 1, size(cfg%extra%items)
+         key = cfg%extra%items(k)%name
+         also = ''
+         select case (key)
+         case ('links'); if (r%links /= -huge(1)) also = 'links'
+         case ('m'); also = list_or_pair('m', r%m, r%m1, r%m2)
+         case ('l'); also = list_or_pair('l', r%l, r%l1, r%l2)
+         case ('g'); if (r%g /= unset) also = 'g'
+         case ('damping'); if (any(r%damping /= unset)) also = 'damping'
+         case ('support_amplitude')
+            if (any(r%support_amplitude /= unset)) also = key
+         case ('support_frequency'); if (r%support_frequency /= unset) also = key
+         case ('support_phase'); if (any(r%support_phase /= unset)) also = key
+         case ('com'); if (any(r%com /= unset)) also = 'com'
+         case ('inertia'); if (any(r%inertia /= unset)) also = 'inertia'
+         end select
+         if (len(also) > 0) then
+            call fatal_error(error, "invalid --config '"//printable(filename)//"': "// &
+                             key//' is given in &model and as '//also//' in &pendulum; ' &
+                             //'give it in one group')
+            return
+         end if
+      end do
+   end subroutine check_two_groups
+
+   !> Which form of a per-link quantity &pendulum gave ('' for none).
+   function list_or_pair(key, list, x1, x2) result(form)
+      character(len=*), intent(in) :: key
+      real(dp), intent(in) :: list(:), x1, x2
+      character(len=:), allocatable :: form
+      form = ''
+      if (x2 /= unset) form = key//'2'
+      if (x1 /= unset) form = key//'1'
+      if (any(list /= unset)) form = key
+   end function list_or_pair
+
+   !> The settings of &pendulum and &initial the file gave, into cfg%given; the
+   !> `unset` scalars of those not given take the current values.
+   subroutine note_pendulum_given(r, cfg)
+      type(run_groups_t), intent(inout) :: r   !! the groups as read
+      type(run_config_t), intent(inout) :: cfg !! cfg%given updated
+      integer :: k
+      if (r%links == -huge(1)) then
+         r%links = cfg%links
+      else
+         call mark_given(cfg, 'links')
+      end if
+      if (r%g == unset) then
+         r%g = cfg%g
+      else
+         call mark_given(cfg, 'g')
+      end if
+      if (r%support_frequency == unset) then
+         r%support_frequency = cfg%support_frequency
+      else
+         call mark_given(cfg, 'support_frequency')
+      end if
+      if (any(r%support_amplitude /= unset)) call mark_given(cfg, 'support_amplitude')
+      where (r%support_amplitude == unset) r%support_amplitude = cfg%support_amplitude
+      if (any(r%support_phase /= unset)) call mark_given(cfg, 'support_phase')
+      where (r%support_phase == unset) r%support_phase = cfg%support_phase
+      if (r%m1 /= unset) call mark_given(cfg, 'm1')
+      if (r%m2 /= unset) call mark_given(cfg, 'm2')
+      if (r%l1 /= unset) call mark_given(cfg, 'l1')
+      if (r%l2 /= unset) call mark_given(cfg, 'l2')
+      if (r%q1 /= unset) call mark_given(cfg, 'q1')
+      if (r%q2 /= unset) call mark_given(cfg, 'q2')
+      if (r%w1 /= unset) call mark_given(cfg, 'w1')
+      if (r%w2 /= unset) call mark_given(cfg, 'w2')
+      do k = 1, 4
+         if (any(list_of(r, k) /= unset)) call mark_given(cfg, list_names(k))
+      end do
+      if (any(r%damping /= unset)) call mark_given(cfg, 'damping')
+   end subroutine note_pendulum_given
+
+   !> The namelist list of `list_names(k)` (m, l, q, w).
+   function list_of(r, k) result(v)
+      type(run_groups_t), intent(in) :: r
+      integer, intent(in) :: k
+      real(dp) :: v(max_dof)
+      select case (k)
+      case (1); v = r%m
+      case (2); v = r%l
+      case (3); v = r%q
+      case default; v = r%w
+      end select
+   end function list_of
+
+   !> The groups as read into the run settings: the scalars the file did not give keep
+   !> their values (those it gave are recorded in cfg%nml_given); the lists, where
+   !> given, override the two-link names; the body, the method, the output.
+   subroutine take_run_groups(filename, r, cfg, error)
+      character(len=*), intent(in) :: filename          !! namelist file
+      type(run_groups_t), intent(inout) :: r            !! the groups as read
+      type(run_config_t), intent(inout) :: cfg          !! updated
+      type(error_t), allocatable, intent(out) :: error  !! a list with a gap
       if (.not. allocated(cfg%nml_given)) cfg%nml_given = ' '
-      call note_given('m1', m1, cfg%m(1)); call note_given('m2', m2, cfg%m(2))
-      call note_given('l1', l1, cfg%l(1)); call note_given('l2', l2, cfg%l(2))
-      call note_given('q1', q1, cfg%q(1)); call note_given('q2', q2, cfg%q(2))
-      call note_given('w1', w1, cfg%w(1)); call note_given('w2', w2, cfg%w(2))
-      call note_given('output_dt', output_dt, cfg%output_dt)
-      if (save_every == -huge(1)) then
-         save_every = cfg%save_every
+      call note_given(cfg, 'm1', r%m1, cfg%m(1)); call note_given(cfg, 'm2', r%m2, cfg%m(2))
+      call note_given(cfg, 'l1', r%l1, cfg%l(1)); call note_given(cfg, 'l2', r%l2, cfg%l(2))
+      call note_given(cfg, 'q1', r%q1, cfg%q(1)); call note_given(cfg, 'q2', r%q2, cfg%q(2))
+      call note_given(cfg, 'w1', r%w1, cfg%w(1)); call note_given(cfg, 'w2', r%w2, cfg%w(2))
+      call note_given(cfg, 'output_dt', r%output_dt, cfg%output_dt)
+      if (r%save_every == -huge(1)) then
+         r%save_every = cfg%save_every
       else
          cfg%nml_given = cfg%nml_given//'save_every '
       end if
-
-      cfg%links = links
-      cfg%m(1:2) = [m1, m2]; cfg%l(1:2) = [l1, l2]; cfg%g = g
-      cfg%q(1:2) = [q1, q2]; cfg%w(1:2) = [w1, w2]
+      cfg%links = r%links
+      cfg%m(1:2) = [r%m1, r%m2]; cfg%l(1:2) = [r%l1, r%l2]; cfg%g = r%g
+      cfg%q(1:2) = [r%q1, r%q2]; cfg%w(1:2) = [r%w1, r%w2]
       ! the lists, where given, override the two-link names
-      call take_list(1, 'm', m, cfg%m)
-      if (.not. allocated(error)) call take_list(2, 'l', l, cfg%l)
-      if (.not. allocated(error)) call take_list(3, 'q', q, cfg%q)
-      if (.not. allocated(error)) call take_list(4, 'w', w, cfg%w)
-      if (.not. allocated(error)) call take_list(0, 'damping', damping, cfg%damping)
-      if (.not. allocated(error)) call take_body(body, com, inertia)
+      call take_list(filename, cfg, 1, 'm', r%m, cfg%m, error)
+      if (.not. allocated(error)) call take_list(filename, cfg, 2, 'l', r%l, cfg%l, error)
+      if (.not. allocated(error)) call take_list(filename, cfg, 3, 'q', r%q, cfg%q, error)
+      if (.not. allocated(error)) call take_list(filename, cfg, 4, 'w', r%w, cfg%w, error)
+      if (.not. allocated(error)) call take_list(filename, cfg, 0, 'damping', r%damping, &
+                                                 cfg%damping, error)
+      if (.not. allocated(error)) call take_body(filename, cfg, r%body, r%com, r%inertia, &
+                                                 error)
       if (allocated(error)) return
-      cfg%support_amplitude = support_amplitude; cfg%support_frequency = support_frequency
-      cfg%support_phase = support_phase
-      if (len_trim(method) > 0) cfg%method = canonical_name(trim(method), method_names())
-      cfg%dt = dt; cfg%t_end = t_end; cfg%save_every = save_every
-      cfg%rtol = rtol; cfg%atol = atol; cfg%output_dt = output_dt; cfg%omega = omega
-      cfg%max_steps = max_steps
-      if (len_trim(file) > 0) cfg%output = trim(file)
-      cfg%force = force
-      call take_model_fields()
-   contains
-      !> A quantity given in &model and in &pendulum (m and m1, g and g, com and com)
-      !> is refused naming both: which one holds would depend on a rule of the reader.
-      subroutine check_two_groups()
-         character(len=:), allocatable :: key, also
-         integer :: k
-         if (.not. allocated(cfg%extra%items)) return
-         do k = 1, size(cfg%extra%items)
-            key = cfg%extra%items(k)%name
-            also = ''
-            select case (key)
-            case ('links'); if (links /= -huge(1)) also = 'links'
-            case ('m'); also = list_or_pair('m', m, m1, m2)
-            case ('l'); also = list_or_pair('l', l, l1, l2)
-            case ('g'); if (g /= unset) also = 'g'
-            case ('damping'); if (any(damping /= unset)) also = 'damping'
-            case ('support_amplitude')
-               if (any(support_amplitude /= unset)) also = key
-            case ('support_frequency'); if (support_frequency /= unset) also = key
-            case ('support_phase'); if (any(support_phase /= unset)) also = key
-            case ('com'); if (any(com /= unset)) also = 'com'
-            case ('inertia'); if (any(inertia /= unset)) also = 'inertia'
-            end select
-            if (len(also) > 0) then
-               call fatal_error(error, "invalid --config '"//printable(filename)//"': "// &
-                                key//' is given in &model and as '//also//' in &pendulum; ' &
-                                //'give it in one group')
-               return
+      cfg%support_amplitude = r%support_amplitude; cfg%support_frequency = r%support_frequency
+      cfg%support_phase = r%support_phase
+      if (len_trim(r%method) > 0) cfg%method = canonical_name(trim(r%method), method_names())
+      cfg%dt = r%dt; cfg%t_end = r%t_end; cfg%save_every = r%save_every
+      cfg%rtol = r%rtol; cfg%atol = r%atol; cfg%output_dt = r%output_dt; cfg%omega = r%omega
+      cfg%max_steps = r%max_steps
+      if (len_trim(r%file) > 0) cfg%output = trim(r%file)
+      cfg%force = r%force
+   end subroutine take_run_groups
+
+   !> The parameters &model gives that the run holds as fields (links, m, l, g,
+   !> damping, the support's motion) go into those fields, as &pendulum's do, so
+   !> that a flag overrides either the same way (flags over the file) and the file
+   !> records the values the run used. A value of the wrong count or kind stays a
+   !> named parameter, for the factory's refusal.
+   subroutine take_model_fields(cfg)
+      type(run_config_t), intent(inout) :: cfg  !! cfg%extra: &model's parameters
+      type(spec_item_t), allocatable :: kept(:)
+      character(len=:), allocatable :: model
+      logical :: moved
+      integer :: k, n
+      if (.not. allocated(cfg%extra%items)) return
+      model = default_model
+      if (allocated(cfg%model_name)) model = cfg%model_name
+      allocate (kept(0))
+      do k = 1, size(cfg%extra%items)
+         associate (v => cfg%extra%items(k)%values, key => cfg%extra%items(k)%name)
+            n = size(v)
+            ! a parameter the model has, with one value or one per link
+            moved = has_parameter(model, key) .and. &
+                    (n == 1 .or. has_parameter(model, 'links'))
+            if (moved) then
+               select case (key)
+               case ('links')
+                  moved = n == 1 .and. v(1) == aint(v(1)) .and. abs(v(1)) <= real(max_dof, dp)
+                  if (moved) cfg%links = nint(v(1))
+               case ('m'); cfg%m(:n) = v; cfg%list_size(1) = n
+               case ('l'); cfg%l(:n) = v; cfg%list_size(2) = n
+               case ('g')
+                  moved = n == 1
+                  if (moved) cfg%g = v(1)
+               case ('damping'); cfg%damping(:n) = v; cfg%damping_size = n
+               case ('support_amplitude')
+                  moved = n == 2
+                  if (moved) cfg%support_amplitude = v
+               case ('support_frequency')
+                  moved = n == 1
+                  if (moved) cfg%support_frequency = v(1)
+               case ('support_phase')
+                  moved = n == 2
+                  if (moved) cfg%support_phase = v
+               case default
+                  moved = .false.
+               end select
             end if
-         end do
-      end subroutine check_two_groups
-      !> Which form of a per-link quantity &pendulum gave ('' for none).
-      function list_or_pair(key, list, x1, x2) result(form)
-         character(len=*), intent(in) :: key
-         real(dp), intent(in) :: list(:), x1, x2
-         character(len=:), allocatable :: form
-         form = ''
-         if (x2 /= unset) form = key//'2'
-         if (x1 /= unset) form = key//'1'
-         if (any(list /= unset)) form = key
-      end function list_or_pair
-      !> The settings of &pendulum and &initial the file gave, into cfg%given; the
-      !> sentinels of those not given take the current values.
-      subroutine note_pendulum_given()
-         integer :: k
-         if (links == -huge(1)) then
-            links = cfg%links
-         else
-            call mark_given(cfg, 'links')
+            call mark_given(cfg, key)
+            if (.not. moved) kept = [kept, cfg%extra%items(k)]
+         end associate
+      end do
+      call move_alloc(kept, cfg%extra%items)
+   end subroutine take_model_fields
+
+   !> A scalar the file did not give takes its current value; one it gave is
+   !> recorded in cfg%nml_given.
+   subroutine note_given(cfg, key, x, current)
+      type(run_config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: key
+      real(dp), intent(inout) :: x
+      real(dp), intent(in) :: current
+      if (x == unset) then
+         x = current
+      else
+         cfg%nml_given = cfg%nml_given//key//' '
+      end if
+   end subroutine note_given
+
+   !> The mass distribution of &pendulum: body = 'rod' | 'point', the lists
+   !> com and inertia (as --com and --inertia: checked by the factory).
+   subroutine take_body(filename, cfg, kind, d, ic, error)
+      character(len=*), intent(in) :: filename
+      type(run_config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: kind
+      real(dp), intent(in) :: d(:), ic(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: n
+      if (len_trim(kind) > 0) call set_body(cfg, trim(kind), error)
+      if (allocated(error)) return
+      n = count_given(filename, 'com', d, error)
+      if (allocated(error)) return
+      if (n > 0) call cfg%extra%set('com', d(:n))
+      n = count_given(filename, 'inertia', ic, error)
+      if (allocated(error)) return
+      if (n > 0) call cfg%extra%set('inertia', ic(:n))
+   end subroutine take_body
+
+   !> The leading entries given of the list `key`; an entry given after one that
+   !> is not (`m(2) = 3` without m(1)) is refused, never ignored.
+   integer function count_given(filename, key, given, error) result(n)
+      character(len=*), intent(in) :: filename, key
+      real(dp), intent(in) :: given(:)
+      type(error_t), allocatable, intent(inout) :: error
+      integer :: k
+      n = 0
+      do while (n < size(given))
+         if (given(n + 1) == unset) exit
+         n = n + 1
+      end do
+      do k = n + 2, size(given)
+         if (given(k) /= unset) then
+            call fatal_error(error, 'invalid '//key//'('//to_str(k)//'): '// &
+                             real_str(given(k))//" in '"//printable(filename)// &
+                             "' is given without "//key//'('//to_str(n + 1)// &
+                             ') (a list is given from its first entry, without gaps)')
+            return
          end if
-         if (g == unset) then
-            g = cfg%g
-         else
-            call mark_given(cfg, 'g')
-         end if
-         if (support_frequency == unset) then
-            support_frequency = cfg%support_frequency
-         else
-            call mark_given(cfg, 'support_frequency')
-         end if
-         if (any(support_amplitude /= unset)) call mark_given(cfg, 'support_amplitude')
-         where (support_amplitude == unset) support_amplitude = cfg%support_amplitude
-         if (any(support_phase /= unset)) call mark_given(cfg, 'support_phase')
-         where (support_phase == unset) support_phase = cfg%support_phase
-         if (m1 /= unset) call mark_given(cfg, 'm1')
-         if (m2 /= unset) call mark_given(cfg, 'm2')
-         if (l1 /= unset) call mark_given(cfg, 'l1')
-         if (l2 /= unset) call mark_given(cfg, 'l2')
-         if (q1 /= unset) call mark_given(cfg, 'q1')
-         if (q2 /= unset) call mark_given(cfg, 'q2')
-         if (w1 /= unset) call mark_given(cfg, 'w1')
-         if (w2 /= unset) call mark_given(cfg, 'w2')
-         do k = 1, 4
-            if (any(lists(k) /= unset)) call mark_given(cfg, list_names(k))
-         end do
-         if (any(damping /= unset)) call mark_given(cfg, 'damping')
-      end subroutine note_pendulum_given
-      !> The namelist list of `list_names(k)` (m, l, q, w).
-      function lists(k) result(v)
-         integer, intent(in) :: k
-         real(dp) :: v(max_dof)
-         select case (k)
-         case (1); v = m
-         case (2); v = l
-         case (3); v = q
-         case default; v = w
-         end select
-      end function lists
-      !> The parameters &model gives that the run holds as fields (links, m, l, g,
-      !> damping, the support's motion) go into those fields, as &pendulum's do, so
-      !> that a flag overrides either the same way (flags over the file) and the file
-      !> records the values the run used. A value of the wrong count or kind stays a
-      !> named parameter, for the factory's refusal.
-      subroutine take_model_fields()
-         type(spec_item_t), allocatable :: kept(:)
-         character(len=:), allocatable :: model
-         logical :: moved
-         integer :: k, n
-         if (.not. allocated(cfg%extra%items)) return
-         model = default_model
-         if (allocated(cfg%model_name)) model = cfg%model_name
-         allocate (kept(0))
-         do k = 1, size(cfg%extra%items)
-            associate (v => cfg%extra%items(k)%values, key => cfg%extra%items(k)%name)
-               n = size(v)
-               ! a parameter the model has, with one value or one per link
-               moved = has_parameter(model, key) .and. &
-                       (n == 1 .or. has_parameter(model, 'links'))
-               if (moved) then
-                  select case (key)
-                  case ('links')
-                     moved = n == 1 .and. v(1) == aint(v(1)) .and. abs(v(1)) <= real(max_dof, dp)
-                     if (moved) cfg%links = nint(v(1))
-                  case ('m'); cfg%m(:n) = v; cfg%list_size(1) = n
-                  case ('l'); cfg%l(:n) = v; cfg%list_size(2) = n
-                  case ('g')
-                     moved = n == 1
-                     if (moved) cfg%g = v(1)
-                  case ('damping'); cfg%damping(:n) = v; cfg%damping_size = n
-                  case ('support_amplitude')
-                     moved = n == 2
-                     if (moved) cfg%support_amplitude = v
-                  case ('support_frequency')
-                     moved = n == 1
-                     if (moved) cfg%support_frequency = v(1)
-                  case ('support_phase')
-                     moved = n == 2
-                     if (moved) cfg%support_phase = v
-                  case default
-                     moved = .false.
-                  end select
-               end if
-               call mark_given(cfg, key)
-               if (.not. moved) kept = [kept, cfg%extra%items(k)]
-            end associate
-         end do
-         call move_alloc(kept, cfg%extra%items)
-      end subroutine take_model_fields
-      !> A scalar the file did not give takes its current value; one it gave is
-      !> recorded in cfg%nml_given.
-      subroutine note_given(key, x, current)
-         character(len=*), intent(in) :: key
-         real(dp), intent(inout) :: x
-         real(dp), intent(in) :: current
-         if (x == unset) then
-            x = current
-         else
-            cfg%nml_given = cfg%nml_given//key//' '
-         end if
-      end subroutine note_given
-      !> The mass distribution of &pendulum: body = 'rod' | 'point', the lists
-      !> com and inertia (as --com and --inertia: checked by the factory).
-      subroutine take_body(kind, d, ic)
-         character(len=*), intent(in) :: kind
-         real(dp), intent(in) :: d(:), ic(:)
-         integer :: n
-         if (len_trim(kind) > 0) call set_body(cfg, trim(kind), error)
-         if (allocated(error)) return
-         n = count_given('com', d)
-         if (allocated(error)) return
-         if (n > 0) call cfg%extra%set('com', d(:n))
-         n = count_given('inertia', ic)
-         if (allocated(error)) return
-         if (n > 0) call cfg%extra%set('inertia', ic(:n))
-      end subroutine take_body
-      !> The leading entries given of the list `key`; an entry given after one that
-      !> is not (`m(2) = 3` without m(1)) is refused, never ignored.
-      integer function count_given(key, given) result(n)
-         character(len=*), intent(in) :: key
-         real(dp), intent(in) :: given(:)
-         integer :: k
-         n = 0
-         do while (n < size(given))
-            if (given(n + 1) == unset) exit
-            n = n + 1
-         end do
-         do k = n + 2, size(given)
-            if (given(k) /= unset) then
-               call fatal_error(error, 'invalid '//key//'('//to_str(k)//'): '// &
-                                real_str(given(k))//" in '"//printable(filename)// &
-                                "' is given without "//key//'('//to_str(n + 1)// &
-                                ') (a list is given from its first entry, without gaps)')
-               return
-            end if
-         end do
-      end function count_given
-      !> Keep the given leading entries of a namelist list (its size is checked
-      !> against the number of links by validate_run_config).
-      subroutine take_list(k, key, given, values)
-         integer, intent(in) :: k
-         character(len=*), intent(in) :: key
-         real(dp), intent(in) :: given(:)
-         real(dp), intent(inout) :: values(:)
-         integer :: n
-         n = count_given(key, given)
-         if (allocated(error)) return
-         if (n == 0) return
-         values(:n) = given(:n)
-         if (k > 0) then
-            cfg%list_size(k) = n
-         else
-            cfg%damping_size = n
-         end if
-      end subroutine take_list
-   end subroutine read_run_config
+      end do
+   end function count_given
+
+   !> Keep the given leading entries of a namelist list (its size is checked
+   !> against the number of links by validate_run_config).
+   subroutine take_list(filename, cfg, k, key, given, values, error)
+      character(len=*), intent(in) :: filename
+      type(run_config_t), intent(inout) :: cfg
+      integer, intent(in) :: k
+      character(len=*), intent(in) :: key
+      real(dp), intent(in) :: given(:)
+      real(dp), intent(inout) :: values(:)
+      type(error_t), allocatable, intent(inout) :: error
+      integer :: n
+      n = count_given(filename, key, given, error)
+      if (allocated(error)) return
+      if (n == 0) return
+      values(:n) = given(:n)
+      if (k > 0) then
+         cfg%list_size(k) = n
+      else
+         cfg%damping_size = n
+      end if
+   end subroutine take_list
 
    !> The group &model of a namelist file (checked by `check_groups`): `name = 'elastic'`
    !> and the model's parameters by name (`k = 40, l0 = 1`), read by name since every

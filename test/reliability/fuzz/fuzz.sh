@@ -31,7 +31,7 @@ options:
   --case I        run only case I of seed S (repeatable), verbosely: its input,
                   exit status and stderr; keeps its directory
   --jobs J        cases run in parallel; default 2
-  --budget SEC    wall-clock budget: no case starts after it; default 900
+  --budget SEC    wall-clock budget: no case starts after it; default 1500
   --timeout SEC   per-input limit (a case running longer is a hang); default 10
   --keep          keep the work directory
   -h, --help      this text
@@ -54,7 +54,7 @@ Failures print the seed, the case, the mutation and the input escaped
 EOF
 }
 
-DPEND="" GEN="" COUNT=10000 SEED="" JOBS=2 BUDGET=900 TIMEOUT=10 KEEP=0
+DPEND="" GEN="" COUNT=10000 SEED="" JOBS=2 BUDGET=1500 TIMEOUT=10 KEEP=0
 CASES=()
 while [ $# -gt 0 ]; do
   case $1 in
