@@ -15,7 +15,8 @@ module bench_batch
       stop_end, st_cannot_flip
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
+   use dpend_sweep_setup, only: sweep_setup_t, build_setup
+   use dpend_sweep_engine, only: compute_block
    use dpend_progress, only: wall_seconds
    implicit none
    private

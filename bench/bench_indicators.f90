@@ -17,7 +17,8 @@ module bench_indicators
    use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
+   use dpend_sweep_setup, only: sweep_setup_t, build_setup
+   use dpend_sweep_engine, only: compute_block
    use dpend_progress, only: wall_seconds
    use bench_batch, only: load_average
    implicit none

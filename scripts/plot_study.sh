@@ -94,8 +94,8 @@ e_name() {
 
 # the colour and plot group of each method and the panel of each group, from the
 # method registry: `dpend methods --plot-styles` prints `group ID TITLE...` and
-# `method NAME #RRGGBB ID` lines (app/main.f90). Checked word by word: they become
-# part of the gnuplot code.
+# `method NAME #RRGGBB ID` lines (src/commands/dpend_methods_command.f90). Checked
+# word by word: they become part of the gnuplot code.
 declare -A colour_of=() group_of=()
 group_ids=(); titles=(); registry_methods=()
 while read -r kind a b c; do

@@ -23,7 +23,8 @@ module test_chain_lanes
    use dpend_trajectory_batch, only: integrate_trajectories
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block
+   use dpend_sweep_setup, only: sweep_setup_t, build_setup
+   use dpend_sweep_engine, only: compute_block
    use dpend_cli, only: arg_t
    use testing, only: unittest_t, new_unittest, check, check_true, fatal_error, check_same_time
    implicit none

@@ -31,7 +31,8 @@ module test_gpu
       integrate_batch, flip_energy_bounds, potential_range, stop_both, stop_either, stop_end
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
-   use dpend_sweep, only: run_sweep, sweep_summary_t, sweep_setup_t, build_setup, compute_block
+   use dpend_sweep_setup, only: sweep_summary_t, sweep_setup_t, build_setup
+   use dpend_sweep_engine, only: run_sweep, compute_block
    use dpend_hdf5, only: h5file_t
    use dpend_sweep_gpu, only: gpu_fallback_blocks
    use test_cli, only: scratch_dir, args_of

@@ -13,8 +13,9 @@ module test_lanes
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
-   use dpend_sweep_setup, only: block_initial_conditions, block_parameters
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range
+   use dpend_sweep_setup, only: block_initial_conditions, block_parameters, sweep_setup_t, &
+      build_setup, block_range
+   use dpend_sweep_engine, only: compute_block
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private

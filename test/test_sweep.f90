@@ -18,9 +18,10 @@ module test_sweep
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
-   use dpend_sweep_setup, only: block_initial_conditions
-   use dpend_sweep, only: sweep_setup_t, build_setup, compute_block, block_range, open_output, &
-      write_block
+   use dpend_sweep_setup, only: block_initial_conditions, sweep_setup_t, build_setup, block_range
+   use dpend_sweep_engine, only: compute_block
+   use dpend_sweep_resume, only: open_output
+   use dpend_sweep_layout, only: write_block
    use dpend_trajectory_batch, only: link_flip_bounds
    use dpend_chain, only: chain_t, chain_model
    use dpend_indicators, only: indicators_result_t, chaos_indicators

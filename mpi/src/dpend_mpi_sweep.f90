@@ -1,4 +1,4 @@
-!> `dpend-mpi sweep`: the sweep of dpend_sweep over MPI ranks (docs/mpi.md).
+!> `dpend-mpi sweep`: the engine of the serial sweep (src/engines/) over MPI ranks (docs/mpi.md).
 !>
 !> Same configuration, blocks, kernel and file layout as the serial sweep, whose
 !> pieces it calls (build_setup, open_output, compute_block, write_block,

@@ -6,8 +6,10 @@
 !> trajectory, N = floor(span × fps / speed) + 1; frame k (k = 0 … N−1) shows the
 !> state at t = t(1) + k·speed/fps, interpolated linearly in the angles between
 !> the stored samples (the rods keep their lengths). gnuplot receives file names
-!> only as arguments, never inside code; it runs without a shell.
+!> only as arguments, never inside code; it runs without a shell. The entry point
+!> of the command is `animate_command`.
 module dpend_animate
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, parse_int, parse_real, to_str, &
@@ -21,8 +23,11 @@ module dpend_animate
                            directory_of, base_name, path_kind, path_directory, path_missing, &
                            move_noreplace, move_replace, sync_path, errno_text
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_command_common, only: take_quiet, with_quiet, summary_quiet, refusal_line, &
+      error_line
    implicit none
    private
+   public :: animate_command
    public :: animate_config_t, parse_animate, run_animate, animate_help
    public :: max_frames
 
@@ -81,6 +86,33 @@ module dpend_animate
    character(len=*), parameter :: nl = new_line('a')
 
 contains
+
+   !> The entry point of `dpend animate FILE.h5 [options]` (app/main.f90): parse →
+   !> settings → `run_animate` (the GIF through gnuplot) → its closing line. A refusal
+   !> or a failed run comes back as `error`, its message the one line 'dpend animate:
+   !> ...'.
+   subroutine animate_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `animate`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      type(arg_t), allocatable :: rest(:)
+      type(animate_config_t) :: cfg
+      character(len=:), allocatable :: summary
+      logical :: help
+      call take_quiet(args, rest)
+      call parse_animate(rest, cfg, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'animate')
+      else if (help) then
+         write (output_unit, '(a)') with_quiet(animate_help(), summary_quiet)
+      else
+         call run_animate(cfg, summary, error)
+         if (allocated(error)) then
+            call error_line(error, 'animate')
+         else
+            write (output_unit, '(a)') 'dpend animate: '//summary
+         end if
+      end if
+   end subroutine animate_command
 
    !> Help text of `dpend animate`.
    function animate_help() result(s)

@@ -6,10 +6,12 @@
 !> (`run_chaos`: the method, the output file written through `dpend_output`, the
 !> exit status of a failure); for the commands' writers, the root attributes of
 !> every chaos file (`write_common`), the run status and the number formats of the
-!> summaries. Each command's run and file writing is in its own module:
-!> `dpend_lyapunov_command`, `dpend_divergence_command`, `dpend_poincare_command`,
-!> `dpend_indicators_command`.
+!> summaries; and the shape of every chaos command from its arguments to its summary
+!> (`chaos_command`). Each command's run and file writing, and its entry point, is in
+!> its own module: `dpend_lyapunov_command`, `dpend_divergence_command`,
+!> `dpend_poincare_command`, `dpend_indicators_command`.
 module dpend_chaos_common
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
@@ -30,8 +32,10 @@ module dpend_chaos_common
    use dpend_limits, only: in_range, check_range, check_count, sci, max_time, max_steps, &
                            max_samples, max_angle, max_angular_velocity, min_delta0_relative
    use dpend_resources, only: check_memory, check_disk
+   use dpend_command_common, only: take_quiet, last_line, refusal_line, error_line
    implicit none
    private
+   public :: chaos_command
    public :: chaos_config_t, chaos_defaults, chaos_run_defaults, parse_chaos, chaos_help
    public :: read_chaos_config, validate_chaos, run_chaos, chaos_run_body
    public :: write_common, run_status, stopped, n_vectors, num, es, fixed
@@ -557,6 +561,37 @@ contains
       if (allocated(err) .or. per_file <= 0.0_dp) return
       call check_disk(field, n*per_file + 65536.0_dp, output, hint, err)
    end subroutine check_resources
+
+   !> A chaos command `command` from its arguments (after the command's name) to its
+   !> summary: parse → settings → `run_command` (the command's run and file, through
+   !> `run_chaos`) → the summary on standard output (with --quiet its last line). A
+   !> refusal or a failed run comes back as `error`, its message the one line 'dpend
+   !> COMMAND: ...'; the summary of a run that stopped early is printed before.
+   subroutine chaos_command(command, args, run_command, error)
+      character(len=*), intent(in) :: command           !! 'lyapunov', 'divergence', ...
+      type(arg_t), intent(in) :: args(:)                !! the arguments after the command
+      procedure(chaos_run_body) :: run_command          !! the command's run and writing
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      type(arg_t), allocatable :: rest(:)
+      type(run_config_t) :: cfg
+      type(chaos_config_t) :: ch
+      character(len=:), allocatable :: summary
+      logical :: help, quiet
+      call take_quiet(args, rest, quiet)
+      call parse_chaos(command, rest, cfg, ch, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, command)
+         return
+      end if
+      if (help) then
+         write (output_unit, '(a)') chaos_help(command)
+         return
+      end if
+      call run_chaos(cfg, ch, run_command, summary, error)
+      if (quiet .and. .not. allocated(error)) summary = last_line(summary)
+      if (len(summary) > 0) write (output_unit, '(a)') summary
+      if (allocated(error)) call error_line(error, command)
+   end subroutine chaos_command
 
    !> Run the command: `run_command`, the run and file writing of `ch%command`,
    !> between the making of the method and the installing of the file. `error` is

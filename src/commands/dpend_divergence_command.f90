@@ -8,7 +8,7 @@
 module dpend_divergence_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
-   use dpend_cli, only: to_str
+   use dpend_cli, only: arg_t, to_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
@@ -21,13 +21,23 @@ module dpend_divergence_command
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, num, &
                                  es, fixed
+   use dpend_chaos_common, only: chaos_command
    implicit none
    private
-   public :: run_divergence
+   public :: divergence_command, run_divergence
 
    character(len=*), parameter :: nl = new_line('a')
 
 contains
+
+   !> The entry point of `dpend divergence [options]` (app/main.f90): the arguments after
+   !> the command, run through `chaos_command` with `run_divergence`; a refusal or a
+   !> failed run comes back as `error`.
+   subroutine divergence_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `divergence`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      call chaos_command('divergence', args, run_divergence, error)
+   end subroutine divergence_command
 
    !> `dpend divergence`.
    subroutine run_divergence(cfg, ch, integ, filename, summary, error, failed)

@@ -29,9 +29,10 @@ module dpend_fit_command
    use dpend_limits, only: check_range, sci, max_time, max_fit_work
    use dpend_resources, only: check_memory
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use dpend_command_common, only: take_quiet, with_quiet, summary_quiet, refusal_line, error_line
    implicit none
    private
-   public :: fit_config_t, parse_fit, run_fit, fit_help
+   public :: fit_command, fit_config_t, parse_fit, run_fit, fit_help
 
    !> Most starting points of the first stage (--starts).
    integer, parameter :: max_starts = 1000
@@ -64,6 +65,26 @@ module dpend_fit_command
       '--max-steps', '--output', '-o', '--body']
 
 contains
+
+   !> The entry point of `dpend fit DATA.csv [options]` (app/main.f90): parse → `run_fit`;
+   !> a refusal or a failed run comes back as `error`, its one line 'dpend fit: ...'.
+   subroutine fit_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `fit`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      type(arg_t), allocatable :: rest(:)
+      type(fit_config_t) :: fc
+      logical :: help
+      call take_quiet(args, rest)
+      call parse_fit(rest, fc, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'fit')
+      else if (help) then
+         write (output_unit, '(a)') with_quiet(fit_help(), summary_quiet)
+      else
+         call run_fit(fc, error)
+         if (allocated(error)) call error_line(error, 'fit')
+      end if
+   end subroutine fit_command
 
    !> Defaults: dop853 at rtol 1e-10, atol 1e-12; output fit.h5.
    function fit_defaults() result(fc)

@@ -7,7 +7,7 @@
 module dpend_indicators_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
-   use dpend_cli, only: to_str, real_str
+   use dpend_cli, only: arg_t, to_str, real_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_indicators, only: indicators_result_t, chaos_indicators
@@ -15,13 +15,23 @@ module dpend_indicators_command
    use dpend_hdf5, only: h5file_t
    use dpend_simulate, only: natural_time_of, natural_text
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, num, es
+   use dpend_chaos_common, only: chaos_command
    implicit none
    private
-   public :: run_indicators, indicator_verdict
+   public :: indicators_command, run_indicators, indicator_verdict
 
    character(len=*), parameter :: nl = new_line('a')
 
 contains
+
+   !> The entry point of `dpend indicators [options]` (app/main.f90): the arguments after
+   !> the command, run through `chaos_command` with `run_indicators`; a refusal or a
+   !> failed run comes back as `error`.
+   subroutine indicators_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `indicators`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      call chaos_command('indicators', args, run_indicators, error)
+   end subroutine indicators_command
 
    !> `dpend indicators`.
    subroutine run_indicators(cfg, ch, integ, filename, summary, error, failed)

@@ -6,7 +6,7 @@
 module dpend_lyapunov_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
-   use dpend_cli, only: to_str
+   use dpend_cli, only: arg_t, to_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
@@ -15,13 +15,23 @@ module dpend_lyapunov_command
    use dpend_simulate, only: natural_text
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, &
                                  n_vectors, num, es, fixed
+   use dpend_chaos_common, only: chaos_command
    implicit none
    private
-   public :: run_lyapunov
+   public :: lyapunov_command, run_lyapunov
 
    character(len=*), parameter :: nl = new_line('a')
 
 contains
+
+   !> The entry point of `dpend lyapunov [options]` (app/main.f90): the arguments after
+   !> the command, run through `chaos_command` with `run_lyapunov`; a refusal or a
+   !> failed run comes back as `error`.
+   subroutine lyapunov_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `lyapunov`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      call chaos_command('lyapunov', args, run_lyapunov, error)
+   end subroutine lyapunov_command
 
    !> `dpend lyapunov`.
    subroutine run_lyapunov(cfg, ch, integ, filename, summary, error, failed)

@@ -6,7 +6,7 @@
 module dpend_poincare_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error, error_bad_input
-   use dpend_cli, only: to_str
+   use dpend_cli, only: arg_t, to_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_events, only: angle_crossing_t
@@ -14,13 +14,23 @@ module dpend_poincare_command
    use dpend_poincare, only: poincare_result_t, poincare_sections, shell_samples
    use dpend_hdf5, only: h5file_t
    use dpend_chaos_common, only: chaos_config_t, write_common, stopped, num, es
+   use dpend_chaos_common, only: chaos_command
    implicit none
    private
-   public :: run_poincare
+   public :: poincare_command, run_poincare
 
    character(len=*), parameter :: nl = new_line('a')
 
 contains
+
+   !> The entry point of `dpend poincare [options]` (app/main.f90): the arguments after
+   !> the command, run through `chaos_command` with `run_poincare`; a refusal or a
+   !> failed run comes back as `error`.
+   subroutine poincare_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `poincare`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      call chaos_command('poincare', args, run_poincare, error)
+   end subroutine poincare_command
 
    !> `dpend poincare`.
    subroutine run_poincare(cfg, ch, integ, filename, summary, error, failed)

@@ -1,6 +1,8 @@
 !> `dpend simulate`: one trajectory from the command line through an integrator
-!> into an HDF5 file (layout in docs/hdf5-layout.md).
+!> into an HDF5 file (layout in docs/hdf5-layout.md). The entry point of the
+!> command is `simulate_command`.
 module dpend_simulate
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, option_outcome
@@ -24,8 +26,10 @@ module dpend_simulate
    use dpend_os, only: available_memory_bytes
    use dpend_progress, only: wall_seconds
    use dpend_cli, only: real_str, seconds_str
+   use dpend_command_common, only: take_quiet, refusal_line, error_line
    implicit none
    private
+   public :: simulate_command
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
    public :: trajectory_t, write_trajectory, check_simulate_resources
    public :: natural_text, largest_error, natural_time_of
@@ -48,6 +52,38 @@ module dpend_simulate
    end type trajectory_t
 
 contains
+
+   !> The entry point of `dpend simulate [options]` (app/main.f90): parse → settings
+   !> → run → file, then the closing lines on standard output (with --quiet only the
+   !> last). A refusal or a failed run comes back as `error`, its message the one
+   !> line 'dpend simulate: ...'.
+   subroutine simulate_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `simulate`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      type(arg_t), allocatable :: rest(:)
+      type(run_config_t) :: cfg
+      character(len=:), allocatable :: summary
+      logical :: help, quiet
+      call take_quiet(args, rest, quiet)
+      call parse_simulate(rest, cfg, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'simulate')
+         return
+      end if
+      if (help) then
+         write (output_unit, '(a)') simulate_help()
+         return
+      end if
+      call run_simulate(cfg, error, summary)
+      if (allocated(error)) then
+         call error_line(error, 'simulate')
+         return
+      end if
+      if (.not. quiet .or. len(summary) == 0) &
+         write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"': t = 0 .. " &
+         //real_str(cfg%t_end)//' s = '//natural_text(cfg, cfg%t_end)
+      if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
+   end subroutine simulate_command
 
    !> Defaults of simulate: the chapter's parameters, both links horizontal at rest.
    function simulate_defaults() result(cfg)

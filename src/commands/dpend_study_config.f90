@@ -6,7 +6,11 @@
 !> A list that the file does not set keeps its default; a list that it sets
 !> replaces the default list entirely, and a range left at 0 for a listed
 !> method takes that method's default range.
+!>
+!> The entry point of the command, `study_command`, reads the command line here and
+!> hands the settings to the run of `dpend_study_command`.
 module dpend_study_config
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_model, only: max_dof
@@ -21,11 +25,36 @@ module dpend_study_config
    use dpend_study_settings, only: study_config_t, study_defaults, validate_study_config, &
       apply_quick, case_index, default_ranges, max_cases, max_methods, max_extra, &
       case_list, split_list, unset
+   use dpend_study_command, only: run_study_command
+   use dpend_command_common, only: take_quiet, with_quiet, summary_quiet, refusal_line, &
+      error_line
    implicit none
    private
+   public :: study_command
    public :: parse_study, read_study_config, study_help
 
 contains
+
+   !> The entry point of `dpend study [options]` (app/main.f90): parse → settings →
+   !> the run of `run_study_command` (engine, file, summary, figures). A refusal or a
+   !> failed run comes back as `error`, its message the one line 'dpend study: ...'.
+   subroutine study_command(args, error)
+      type(arg_t), intent(in) :: args(:)                !! the arguments after `study`
+      type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
+      type(arg_t), allocatable :: rest(:)
+      type(study_config_t) :: cfg
+      logical :: help
+      call take_quiet(args, rest)
+      call parse_study(rest, cfg, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'study')
+      else if (help) then
+         write (output_unit, '(a)') with_quiet(study_help(), summary_quiet)
+      else
+         call run_study_command(cfg, error)
+         if (allocated(error)) call error_line(error, 'study')
+      end if
+   end subroutine study_command
 
    !> Help text of `dpend study`.
    function study_help() result(s)
