@@ -6,15 +6,18 @@
 #
 # This check reads every `use` statement of the Fortran sources in src/, app/, bench/
 # and mpi/, finds the folder of the module each one names, and fails on any edge
-# from a floor to a higher one (a module of the same floor is allowed). A folder of
-# src/ that is not in the order fails too: a new floor needs its place here and in
-# docs/architecture.md. Modules not defined in the tree (intrinsic modules, hdf5,
-# omp_lib, mpi) are outside the order. test/ may use any floor.
+# from a floor to a higher one (a module of the same floor is allowed). A submodule
+# (`submodule (parent) name`) counts as the floor of its ancestor module, wherever
+# its file lies. A folder of src/ that is not in the order fails too: a new floor
+# needs its place here and in docs/architecture.md. Modules not defined in the tree
+# (intrinsic modules, hdf5, omp_lib, mpi) are outside the order. test/ may use any
+# floor.
 #
 # Usage: scripts/check_layers.sh [--self-test] [ROOT]
 #   ROOT         the tree to read (default: this repository)
-#   --self-test  also plant a reverse edge (core using an engine) in a scratch copy
-#                and show that the check fails on it
+#   --self-test  also plant reverse edges in a scratch copy (core using an engine;
+#                a submodule of a core module, in src/commands/, using an engine)
+#                and show that the check fails on each
 # Exit status: 0 no edge against the order; 1 edges against it; 2 usage or no sources.
 set -euo pipefail
 self_test=0
@@ -22,7 +25,7 @@ root=""
 for arg in "$@"; do
   case "$arg" in
     --self-test) self_test=1 ;;
-    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "check_layers: unknown option '$arg' (--self-test, --help)" >&2; exit 2 ;;
     *) root=$arg ;;
   esac
@@ -53,13 +56,24 @@ check_tree() {
       if (parts[2] == "commands") return 7
       return -1
     }
-    # One statement: a module definition (pass 1) or a use (pass 2).
-    function statement(st,   mod, used, from, to) {
+    # The floor of the code in `path`: that of its ancestor module for a submodule.
+    function file_floor(path) {
+      if ((path in ancestor) && (ancestor[path] in home)) return floor_of(home[ancestor[path]])
+      return floor_of(path)
+    }
+    # One statement: a module or submodule definition (pass 1) or a use (pass 2).
+    function statement(st,   mod, used, from, to, what) {
       sub(/^[ \t]*&?[ \t]*/, "", st)
       if (pass == 1 && st ~ /^module[ \t]+[a-z0-9_]+[ \t]*$/) {
         mod = st
         sub(/^module[ \t]+/, "", mod); sub(/[ \t]*$/, "", mod)
         home[mod] = file
+        return
+      }
+      if (pass == 1 && match(st, /^submodule[ \t]*\([ \t]*[a-z0-9_]+/)) {
+        mod = substr(st, RSTART, RLENGTH)
+        sub(/^submodule[ \t]*\([ \t]*/, "", mod)
+        ancestor[file] = mod
         return
       }
       if (pass != 2) return
@@ -68,12 +82,14 @@ check_tree() {
       sub(/^use([ \t]*,[ \t]*(non_)?intrinsic)?[ \t]*(::)?[ \t]*/, "", used)
       uses++
       if (!(used in home)) return
-      from = floor_of(file); to = floor_of(home[used])
+      from = file_floor(file); to = floor_of(home[used])
       if (from < 0) { unknown[file] = 1; return }
       if (to < 0) { unknown[home[used]] = 1; return }
       if (to > from) {
+        what = floor_name[from]
+        if (file in ancestor) what = what ", submodule of " ancestor[file]
         printf "check_layers: %s:%d (%s) uses %s of %s (%s): against the order\n", \
-          file, FNR, floor_name[from], used, home[used], floor_name[to]
+          file, FNR, what, used, home[used], floor_name[to]
         bad++
       }
       edges++
@@ -127,5 +143,21 @@ if ((self_test)); then
     exit 1
   fi
   echo "check_layers: self-test: the planted edge is caught (exit 1, as it should)"
+  cp "$root/src/core/dpend_kinds.f90" "$kinds"
+  planted_sub="$scratch/src/commands/dpend_kinds_planted.f90"
+  printf '%s\n' 'submodule (dpend_kinds) dpend_kinds_planted' \
+    '   use dpend_sweep_engine, only: run_sweep' 'end submodule dpend_kinds_planted' \
+    > "$planted_sub"
+  echo "check_layers: self-test: a planted submodule of dpend_kinds in src/commands/" \
+    "using dpend_sweep_engine"
+  planted=0
+  check_tree "$scratch" || planted=$?
+  if ((planted != 1)); then
+    echo "check_layers: self-test FAILED: the planted submodule's reverse edge was not" \
+      "caught" >&2
+    exit 1
+  fi
+  echo "check_layers: self-test: the planted submodule's edge is caught (exit 1, as it" \
+    "should)"
 fi
 exit "$status"
