@@ -69,7 +69,8 @@ contains
          if (allocated(error)) return
          call counter%progress%start('dpend fit (integrations of at most '// &
                                      real_str(work%evaluations)//')', &
-                                     int(min(work%evaluations, 1e15_dp), i8), 0_i8, .false.)
+                                     int(min(work%evaluations, 1e15_dp), i8), 0_i8, .false., &
+                                     what='integrations')
          ! a line only once the fit has run for a while (none for a quick fit)
          counter%progress%t_last = counter%progress%t_start
          counter%progress%reported = 0

@@ -67,7 +67,10 @@ KINDS=(
   "point masses m2|--q1 0.3 --body point|m2|--m2 0.5|m2 = 0.5|name='pendulum', m = 1, 0.5|m2=0.5 com2=1 inertia2=0"
   "bodies com2|--q1 0.3 --inertia 0.08,0.03|com|--com 0.5,0.4|com = 0.5, 0.4|name='pendulum', com = 0.5, 0.4|com1=0.5 com2=0.4 inertia2=0.03"
   "chain of 3 m|--links 3 --q 0.3,0.2,0.1|m|--m 1,2,3|m = 1, 2, 3|name='pendulum', links = 3, m = 1, 2, 3|m=1,2,3"
+  "rods damping|--q1 0.3|damping|--damping 0.1,0.05|damping = 0.1, 0.05|name='pendulum', damping = 0.1, 0.05|c1=0.1 c2=0.05"
+  "bodies inertia|--q1 0.3 --com 0.5,0.4|inertia|--inertia 0.08,0.03|inertia = 0.08, 0.03|name='pendulum', inertia = 0.08, 0.03|inertia1=0.08 inertia2=0.03 com2=0.4"
   "elastic k|--model elastic --q 1.2,-1|k|--k 30||name='elastic', k = 30|k=30"
+  "elastic g|--model elastic --q 1.2,-1|g|--g 9.5|g = 9.5|name='elastic', g = 9.5|g=9.5"
   "elastic l0|--model elastic --q 1.2,-1|l0|--l0 0.9||name='elastic', l0 = 0.9|l0=0.9"
 )
 for kind in "${KINDS[@]}"; do
