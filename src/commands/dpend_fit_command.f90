@@ -4,12 +4,13 @@
 !> Levenberg–Marquardt with the sensitivities of the variational equations
 !> (`dpend_estimate`); print the estimates with standard errors, correlations, the RMS
 !> residual and the prediction horizon, and write them with the residual series to
-!> HDF5 (group /fit, docs/hdf5-layout.md) through the one writer (`dpend_output`).
+!> HDF5 (group /fit, docs/hdf5-layout.md) through the one writer (`dpend_output`);
+!> a fit that fails partway writes its settings and why it stopped (`status`).
 !> The command line, the data and their checks: `dpend_fit_config`.
 module dpend_fit_command
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t, run_failure
+   use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
    use dpend_csv, only: csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, set_fitted, n_fitted, &
@@ -60,7 +61,9 @@ contains
       if (allocated(error) .and. failed) call run_failure(error)
    end subroutine run_fit
 
-   !> Fit, print the report, write the HDF5 file.
+   !> Fit, print the report, write the HDF5 file. A fit that fails partway (any
+   !> error but refused input, `error_bad_input`) still writes its file, holding the
+   !> settings and the failure as its status (`write_fit_failure`).
    subroutine run_fit_body(fc, error, failed)
       type(fit_config_t), intent(in) :: fc              !! validated configuration
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
@@ -77,6 +80,7 @@ contains
       call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
                       error, progress=.true.)
       if (allocated(error)) then
+         if (error%kind /= error_bad_input) call write_fit_failure(out, fc, error)
          call out%discard()
          failed = .true.
          return
@@ -94,6 +98,31 @@ contains
       end if
       write (output_unit, '(a)') "dpend fit: wrote '"//fc%run%output//"'"
    end subroutine run_fit_body
+
+   !> The file of a fit that failed partway: the root attributes of the settings and
+   !> `status` = the failure's message, no /fit group; `error` then names the file
+   !> too (or, when the file could not be written, why not).
+   subroutine write_fit_failure(out, fc, error)
+      type(output_t), intent(inout) :: out                !! the output, begun
+      type(fit_config_t), intent(in) :: fc                !! validated configuration
+      type(error_t), allocatable, intent(inout) :: error  !! the fit's failure
+      type(error_t), allocatable :: werr
+      type(h5file_t) :: h5
+      call h5%open(out%temp, 'w', werr)
+      if (.not. allocated(werr)) then
+         call write_fit_root(h5, fc, error%message)
+         call h5%writeattr('/', 'input', fc%input)
+         call h5%close(werr)
+      end if
+      if (.not. allocated(werr)) call out%commit(werr)
+      call out%explain(werr)
+      if (allocated(werr)) then
+         error%message = error%message//'; its file was not written: '//werr%message
+      else
+         error%message = error%message//"; '"//fc%run%output// &
+                         "' holds the settings and this status"
+      end if
+   end subroutine write_fit_failure
 
    !> A fit whose RMS residual exceeds `misfit_factor` times the noise (--sigma, or
    !> estimated from the data's third differences) says so on stdout and names the
@@ -370,15 +399,7 @@ contains
          call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &
                            fc%series%theta)))
       end if
-      call h5%writeattr('/', 'command', 'fit')
-      call h5%writeattr('/', 'version', version)
-      call h5%writeattr('/', 'method', fc%run%method)
-      call h5%writeattr('/', 'rtol', fc%run%rtol)
-      call h5%writeattr('/', 'atol', fc%run%atol)
-      ! the model with its fixed values (the fitted ones at their first guess; the
-      ! estimates are in /fit/estimate)
-      call h5%writeattr('/', 'model', fc%run%spec%model_name())
-      call record_model(h5, fc%run%model)
+      call write_fit_root(h5, fc, 'completed')
       if (fc%model_coords) then
          call h5%writeattr('/', 'fit_parameters', joined_names(fc%fit_names))
       else
@@ -389,6 +410,25 @@ contains
          call h5%writeattr('/', 'fit_damping', merge(1, 0, fc%fit_damping))
       end if
    end subroutine write_fit_attributes
+
+   !> The root attributes of every fit file: the command, the version, the method
+   !> and its tolerances, the model with its parameters and body, and `status`
+   !> ('completed', or why the fit stopped).
+   subroutine write_fit_root(h5, fc, status)
+      type(h5file_t), intent(inout) :: h5           !! the open file
+      type(fit_config_t), intent(in) :: fc          !! configuration
+      character(len=*), intent(in) :: status        !! 'completed' or the failure
+      call h5%writeattr('/', 'command', 'fit')
+      call h5%writeattr('/', 'version', version)
+      call h5%writeattr('/', 'method', fc%run%method)
+      call h5%writeattr('/', 'rtol', fc%run%rtol)
+      call h5%writeattr('/', 'atol', fc%run%atol)
+      ! the model with its fixed values (the fitted ones at their first guess; a
+      ! completed fit's estimates are in /fit/estimate)
+      call h5%writeattr('/', 'model', fc%run%spec%model_name())
+      call record_model(h5, fc%run%model)
+      call h5%writeattr('/', 'status', status)
+   end subroutine write_fit_root
 
    !> '2 links' for the pendulum, 'model elastic (r, phi)' for others.
    function model_text(fc) result(s)
