@@ -64,10 +64,11 @@ succeed row's file must have been written by the run (created or modified; a
 complete sweep resumed says 'is complete (nothing to compute)' instead), be
 HDF5 (a GIF for animate), complete as docs/hdf5-layout.md records it (root
 attribute status = "completed"; a sweep's /sweep complete = 1; a study's
-wall_time and its .md; fit: /fit converged; agreement: /agreement) and one
-dataset of it finite (e.g. /trajectory/t, /sweep/energy0, /fit/estimate). A fail
-row's partial file (when the command writes a status) must exist, be HDF5, and
-hold a status other than "completed" that stderr repeats. Files outside the
+wall_time and its .md; fit: status "completed" and /fit converged; agreement:
+/agreement) and one dataset of it finite (e.g. /trajectory/t, /sweep/energy0,
+/fit/estimate). A fail row's partial file (of the commands that write a status:
+simulate, lyapunov, indicators, divergence, poincare, fit) must exist, be HDF5,
+and hold a status other than "completed" that stderr repeats. Files outside the
 scratch directory (/dev/null, absolute paths) are not checked. A succeed row
 whose command writes no file (export, sweep-compare's report, methods, --help)
 must print something on stdout.
@@ -255,6 +256,8 @@ check_h5() {
       h5dump -a /wall_time "$f" > /dev/null 2>&1 || { echo "no /wall_time (incomplete study)"; return; }
       [ -s "${f%.h5}.md" ] || { echo "no summary ${f%.h5}.md"; return; } ;;
     fit)
+      st=$(h5_attr "$f" /status)
+      [ "$st" = completed ] || { echo "status '$st', expected 'completed'"; return; }
       [[ $(h5_attr "$f" /fit/converged) =~ ^[01]$ ]] || { echo "no /fit converged attribute"; return; } ;;
   esac
   local ds
@@ -346,7 +349,7 @@ check_result() {
       h5dump "$out" > /dev/null 2>&1 || echo "output $out: not every byte readable (h5dump)"
     fi
   else
-    case $cmd in simulate|lyapunov|indicators|divergence|poincare) ;; *) return ;; esac
+    case $cmd in simulate|lyapunov|indicators|divergence|poincare|fit) ;; *) return ;; esac
     [ -f "$out" ] || { echo "no partial file $out"; return; }
     h5dump -A "$out" > /dev/null 2>&1 || { echo "partial file $out unreadable"; return; }
     st=$(h5_attr "$out" /status)

@@ -106,7 +106,7 @@ contains
             if (m%symplectic) props = props//', symplectic'
             if (m%symmetric) props = props//', symmetric'
             commands = all
-            ! fit integrates (q, qdot) (dpend_fit_command); sweep its batch rk4
+            ! fit integrates (q, qdot) (dpend_fit_config); sweep its batch rk4
             if (.not. m%canonical) commands = commands//' fit'
             if (m%name == 'rk4') commands = commands//' sweep'
             variables = '(q, qdot)'

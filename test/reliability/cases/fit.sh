@@ -1,6 +1,7 @@
 # `dpend fit`: measured series refused with their line numbers, bad flags
-# refused before any work (one line naming the field, exit 2, no file touched), and
-# edge values that must succeed without a trap in the debug build.
+# refused before any work (one line naming the field, exit 2, no file touched), edge
+# values that must succeed without a trap in the debug build, and a fit that fails
+# partway (exit 1, its file with the status).
 
 # fixtures: CSV files, good and bad (each row's problem in its name)
 fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
@@ -33,6 +34,7 @@ fx fit_huge.csv       't,theta1\n0,0.1\n0.1,1e999\n0.2,0.06\n'
 fx fit_big_value.csv  't,theta1\n0,0.1\n0.1,2e6\n0.2,0.06\n'
 fx fit_big_time.csv   't,theta1\n0,0.1\n1e300,0.09\n'
 fx fit_tiny_step.csv  't,theta1\n0,0.1\n1e-200,0.09\n2e-200,0.06\n'
+cp "$ROOT/data/fit_example.csv" "$FIXTURES/fit_example.csv"
 
 F=(fit --output g.h5)
 # ---- the data file
@@ -92,3 +94,6 @@ succeed fit-ok-damping              -- "${F[@]}" fit_ok.csv --fit-damping
 succeed fit-ok-q-columns-window     -- "${F[@]}" fit_q.csv --fit-window 0.2 --horizon-tolerance 3.14159
 succeed fit-ok-positions            -- "${F[@]}" fit_xy.csv --horizon-tolerance 5
 succeed fit-ok-starts               -- "${F[@]}" fit_ok.csv --starts 5 --method rk4 --dt 0.01
+
+# a fit that fails partway: exit 1, and its file holds the settings and the status
+fail    fit-fails-partway  'max-steps'  -- "${F[@]}" fit_example.csv --method dopri5 --max-steps 10

@@ -1024,7 +1024,7 @@ run_case() {
       1) if [[ $RUN_FAIL_CMDS != *" $cmd "* ]]; then cls="exit 1 from $cmd ($TAG)"
          elif [ "$nlines" = 0 ]; then cls="exit 1 without a message: $cmd ($TAG)"
          elif [ "$VERDICT" = refuse ]; then cls="invalid input ran and failed (exit 1): $TAG"
-         elif [[ " simulate lyapunov divergence indicators poincare " == *" $cmd "* ]]; then
+         elif [[ " simulate lyapunov divergence indicators poincare fit " == *" $cmd "* ]]; then
            # a run that failed partway says why in its file
            output_of
            has_status "$OUTFILE" || cls="exit 1 without its file's status: $cmd ($TAG)"
