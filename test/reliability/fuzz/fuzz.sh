@@ -968,9 +968,11 @@ run_case() {
       2> stderr < /dev/null || rc=$?
     if [ $rc != 124 ] && [ $rc != 137 ]; then long=1
     elif progressing stderr; then long=1; progressed=1; rc=0
-    elif [ "${ARGS[0]}" = sweep ] && grep -q '^dpend sweep: t_end = .*, dt = ' stderr; then
-      # a sweep reports progress per block of trajectories, which may be one block
-      # of days: its work was bounded before it started (the horizon line, after
+    elif { [ "${ARGS[0]}" = sweep ] && grep -q '^dpend sweep: t_end = .*, dt = ' stderr; } ||
+         { [ "${ARGS[0]}" = study ] && grep -q '^dpend study: [0-9]* runs on [0-9]* threads' stderr; }; then
+      # a sweep reports progress per block of trajectories, a study per run (its
+      # longest first), either of which may take days: their work was bounded
+      # before they started (the sweep's horizon line, the study's run count, after
       # the checks of work and memory)
       long=1; progressed=1; rc=0
     fi
