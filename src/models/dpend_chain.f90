@@ -164,6 +164,7 @@ module dpend_chain
       procedure :: parameter_rates => chain_parameter_rates
       ! sweep (one construction site): the G_i of its potential
       procedure :: potential_weights => chain_potential_weights
+      procedure :: mass_weights => chain_mass_weights
       ! the links' mass distribution
       procedure :: body_description => chain_body_description
       procedure :: time_unit => chain_time_unit
@@ -1333,4 +1334,16 @@ contains
       real(dp), allocatable :: gl(:)
       gl = self%gl
    end function chain_potential_weights
+
+   !> K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²] (n × n); none (0 × 0) when the
+   !> support moves (the mass matrix is that, but the forces have more terms).
+   pure function chain_mass_weights(self) result(k)
+      class(chain_t), intent(in) :: self  !! the chain
+      real(dp), allocatable :: k(:, :)
+      if (self%driven) then
+         allocate (k(0, 0))
+      else
+         k = self%k
+      end if
+   end function chain_mass_weights
 end module dpend_chain

@@ -107,6 +107,8 @@ module dpend_model
       procedure :: parameter_rates => model_parameter_rates
       ! sweep (one construction site): G_i of V = Σ G_i sin q_i, if V has that form
       procedure :: potential_weights => model_potential_weights
+      ! the chain lanes: K_ij of M_ij = K_ij cos(q_i − q_j), if T has that form
+      procedure :: mass_weights => model_mass_weights
       ! the links' mass distribution for files and summaries
       procedure :: body_description => model_body_description
       ! the natural time unit of the motion (sweeps and summaries count time in it)
@@ -492,6 +494,16 @@ contains
       real(dp), allocatable :: gl(:)
       allocate (gl(0))
    end function model_potential_weights
+
+   !> The weights K_ij [kg m²] of a mass matrix M_ij = K_ij cos(q_i − q_j) (rods'
+   !> angles q_i, a fixed pin): with `potential_weights`, the constants of the chain
+   !> lanes' equations of motion. Default: none (size 0 × 0), the kinetic energy has
+   !> another form or the lanes do not serve the model.
+   pure function model_mass_weights(self) result(k)
+      class(model_t), intent(in) :: self  !! the model
+      real(dp), allocatable :: k(:, :)
+      allocate (k(0, 0))
+   end function model_mass_weights
 
    !> The links' mass distribution in words with units, for the 'body' attribute of
    !> output files and the summaries; '' (the default) for uniform rods and
