@@ -11,8 +11,9 @@ module bench_batch
    use dpend_model, only: model_t
    use dpend_model_factory, only: new_model, model_spec
    use dpend_rk_explicit, only: rk4_t
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
-      stop_end, st_cannot_flip
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, lane_width, stop_end, &
+      st_cannot_flip
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
    use dpend_sweep_setup, only: sweep_setup_t, build_setup

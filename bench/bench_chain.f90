@@ -14,7 +14,8 @@ module bench_chain
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
    use dpend_chain, only: chain_t, chain_model
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, stop_end
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_chain_lanes, only: integrate_chain_lanes
    use dpend_trajectory_batch, only: integrate_trajectories
    use dpend_methods, only: new_integrator

@@ -14,7 +14,8 @@ module bench_indicators
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t
    use dpend_pendulum, only: pendulum_t
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, stop_end
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, stop_end
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
    use dpend_sweep_setup, only: sweep_setup_t, build_setup

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The floors of dpend use only the floors below them (docs/architecture.md, "Layers"):
 #
-#   core < models < integrators < analysis < io < settings < engines < commands
-#        < front ends (app/, bench/, mpi/)
+#   core < models < integrators < analysis < lanes < io < settings < engines
+#        < commands < front ends (app/, bench/, mpi/)
 #
 # This check reads every `use` statement of the Fortran sources in src/, app/, bench/
 # and mpi/, finds the folder of the module each one names, and fails on any edge
@@ -45,15 +45,16 @@ check_tree() {
   (cd "$tree" && LC_ALL=C awk '
     function floor_of(path,   parts, n) {
       n = split(path, parts, "/")
-      if (parts[1] != "src") return 8          # app/, bench/, mpi/: front ends
+      if (parts[1] != "src") return 9          # app/, bench/, mpi/: front ends
       if (parts[2] == "core") return 0
       if (parts[2] == "models") return 1
       if (parts[2] == "integrators") return 2
       if (parts[2] == "analysis") return 3
-      if (parts[2] == "io") return 4
-      if (parts[2] == "settings") return 5
-      if (parts[2] == "engines") return 6
-      if (parts[2] == "commands") return 7
+      if (parts[2] == "lanes") return 4
+      if (parts[2] == "io") return 5
+      if (parts[2] == "settings") return 6
+      if (parts[2] == "engines") return 7
+      if (parts[2] == "commands") return 8
       return -1
     }
     # The floor of the code in `path`: that of its ancestor module for a submodule.
@@ -95,8 +96,8 @@ check_tree() {
       edges++
     }
     BEGIN {
-      split("core models integrators analysis io settings engines commands front-ends", name, " ")
-      for (i = 1; i <= 9; i++) floor_name[i - 1] = name[i]
+      split("core models integrators analysis lanes io settings engines commands front-ends", name, " ")
+      for (i = 1; i <= 10; i++) floor_name[i - 1] = name[i]
     }
     # Each physical line: no CR, lower case, "!$" (OpenMP conditional) kept as code,
     # comments cut, "&" continuations joined; then each ";"-separated statement.

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Offline reference: the coefficients of `sincos_add_stage`
-(src/models/dpend_pendulum_lanes.f90) and their error bounds.
+(src/lanes/dpend_pendulum_lane_math.inc) and their error bounds.
 
 sin d = d + d^3 P(d^2) and cos d - 1 = d^2 Q(d^2) on |d| <= 1/16 (d_max): the
 Taylor series of P and Q to z^3 (z = d^2), whose z^3 term is replaced by its best

@@ -28,8 +28,9 @@ module test_bodies
                              double_pendulum_t
    use dpend_chain, only: chain_t, chain_model
    use dpend_model_factory, only: model_spec_t, model_spec, new_model
-   use dpend_pendulum_lanes, only: lane_width, batch_coef, accel_lanes, batch_options_t, &
-                                   batch_result_t, integrate_batch, stop_end
+   use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t, stop_end
+   use dpend_pendulum_kernel, only: batch_coef, accel_lanes
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_fixed

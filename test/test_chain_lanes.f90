@@ -15,8 +15,9 @@ module test_chain_lanes
    use dpend_chain, only: chain_t, chain_model
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_methods, only: new_integrator
-   use dpend_pendulum_lanes, only: lane_width, batch_options_t, batch_result_t, stop_both, &
-      stop_either, stop_end, sincos_exact
+   use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t, stop_both, &
+      stop_either, stop_end
+   use dpend_pendulum_kernel, only: sincos_exact
    use dpend_chain_lanes, only: chain_coef_t, chain_coef, chain_accel_lanes, chain_rk4_lanes, &
       integrate_chain_lanes, max_lane_links, chain_tangent_lane
    use dpend_tangent, only: tangent_t

@@ -39,10 +39,11 @@ module test_copies
                              sin_cos_near, &
                              momenta, hamiltonian, dh_dq, dh_dp, jacobian_qqdot, &
                              velocities
-   use dpend_pendulum_lanes, only: megno_step_lanes
-   use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, accel_lanes, &
-                                   tangent_accel_lanes, energy_lanes, sincos_lanes, &
-                                   sincos_near_lanes, sincos_exact_max, sincos_stage_lanes
+   use dpend_pendulum_tangent_lanes, only: megno_step_lanes
+   use dpend_lane_batch, only: lane_width
+   use dpend_pendulum_kernel, only: batch_coef_t, batch_coef, accel_lanes, energy_lanes, &
+      sincos_lanes, sincos_near_lanes, sincos_exact_max, sincos_stage_lanes
+   use dpend_pendulum_tangent_lanes, only: tangent_accel_lanes
    use dpend_pendulum, only: hamiltonian_qp
    use dpend_indicator_math, only: megno_step
    use testing, only: unittest_t, new_unittest, check_true, error_t

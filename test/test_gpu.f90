@@ -26,9 +26,11 @@ module test_gpu
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_kinds, only: dp, half_pi
    use dpend_pendulum, only: pendulum_t
-   use dpend_pendulum_lanes, only: lane_width, batch_coef_t, batch_coef, rk4_lanes, &
-      lane_trig_t, set_lane_trig, sincos_exact, batch_options_t, batch_result_t, &
-      integrate_batch, flip_energy_bounds, potential_range, stop_both, stop_either, stop_end
+   use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t, stop_both, &
+      stop_either, stop_end
+   use dpend_pendulum_kernel, only: batch_coef_t, batch_coef, rk4_lanes, lane_trig_t, &
+      set_lane_trig, sincos_exact, flip_energy_bounds, potential_range
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
    use dpend_sweep_setup, only: sweep_summary_t, sweep_setup_t, build_setup

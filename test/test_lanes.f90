@@ -6,10 +6,12 @@
 module test_lanes
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t
-   use dpend_pendulum_lanes, only: lane_width, batch_coef, batch_coef_t, lane_coef_t, lane_coef, &
-      set_lane_coef, rk4_lanes, rk4_tangent_lanes, rk4_tangent2_lanes, energy_lanes, &
-      rk4_tangent_fused_lanes, log_lanes, &
-      lane_trig_t, set_lane_trig, batch_options_t, batch_result_t, integrate_batch
+   use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t
+   use dpend_pendulum_kernel, only: batch_coef, batch_coef_t, lane_coef_t, lane_coef, &
+      set_lane_coef, rk4_lanes, energy_lanes, lane_trig_t, set_lane_trig
+   use dpend_pendulum_tangent_lanes, only: rk4_tangent_lanes, rk4_tangent2_lanes, &
+      rk4_tangent_fused_lanes, log_lanes
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep

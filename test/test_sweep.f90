@@ -9,10 +9,12 @@ module test_sweep
    use dpend_pendulum, only: pendulum_t, energy, potential_energy
    use dpend_pendulum, only: pendulum_model
    use dpend_rk_explicit, only: rk4_t
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, integrate_batch, lane_width, &
-      batch_coef_t, batch_coef, rk4_lanes, rk4_tangent_lanes, lane_trig_t, set_lane_trig, &
-      resync_steps, sincos_exact, flip_energy_bounds, &
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, lane_width, resync_steps, &
       stop_either, stop_end, st_cannot_flip, st_nonfinite
+   use dpend_pendulum_lanes, only: integrate_batch
+   use dpend_pendulum_kernel, only: batch_coef_t, batch_coef, rk4_lanes, lane_trig_t, &
+      set_lane_trig, sincos_exact, flip_energy_bounds
+   use dpend_pendulum_tangent_lanes, only: rk4_tangent_lanes
    use dpend_hdf5, only: h5file_t, is_hdf5
    use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
    use dpend_cli, only: arg_t, to_str
@@ -22,7 +24,7 @@ module test_sweep
    use dpend_sweep_engine, only: compute_block
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_layout, only: write_block
-   use dpend_trajectory_batch, only: link_flip_bounds
+   use dpend_lane_batch, only: link_flip_bounds
    use dpend_chain, only: chain_t, chain_model
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_integrator, only: integrator_t, stat_ok

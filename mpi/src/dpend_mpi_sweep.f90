@@ -30,7 +30,7 @@ module dpend_mpi_sweep
    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_pendulum_lanes, only: batch_result_t, st_cannot_flip
+   use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range
    use dpend_sweep_engine, only: compute_block

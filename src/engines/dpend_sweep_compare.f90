@@ -10,7 +10,7 @@ module dpend_sweep_compare
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: check_regular_file
-   use dpend_pendulum_lanes, only: st_cannot_flip, st_flipped
+   use dpend_lane_batch, only: st_cannot_flip, st_flipped
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_cli, only: to_str, real_str, printable
    implicit none

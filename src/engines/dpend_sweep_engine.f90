@@ -9,7 +9,8 @@ module dpend_sweep_engine
    use dpend_resources, only: check_memory, check_disk
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, run_failure
-   use dpend_pendulum_lanes, only: batch_result_t, integrate_batch, st_cannot_flip
+   use dpend_lane_batch, only: batch_result_t, st_cannot_flip
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
       pixel_pendulum
    use dpend_pendulum, only: pendulum_t

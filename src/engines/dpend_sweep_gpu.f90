@@ -14,8 +14,10 @@ module dpend_sweep_gpu
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, batch_coef_t, batch_coef, &
-      flip_energy_bounds, potential_range, integrate_batch, stop_end
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, stop_end
+   use dpend_pendulum_kernel, only: batch_coef_t, batch_coef, flip_energy_bounds, &
+      potential_range
+   use dpend_pendulum_lanes, only: integrate_batch
    use dpend_os, only: executable_path
    use dpend_error, only: error_t, fatal_error
    use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter

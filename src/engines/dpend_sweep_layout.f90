@@ -7,9 +7,10 @@ module dpend_sweep_layout
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t
    use dpend_os, only: remove_file
-   use dpend_pendulum_lanes, only: batch_result_t, potential_range, flip_energy_bounds
+   use dpend_lane_batch, only: batch_result_t
+   use dpend_pendulum_kernel, only: potential_range, flip_energy_bounds
    use dpend_sweep_settings, only: stop_rule, axis_parameter
-   use dpend_trajectory_batch, only: link_flip_bounds
+   use dpend_lane_batch, only: link_flip_bounds
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
    use dpend_cli, only: to_str

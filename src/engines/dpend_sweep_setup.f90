@@ -8,7 +8,7 @@ module dpend_sweep_setup
    use dpend_kinds, only: dp, i8, half_pi
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: check_regular_file
-   use dpend_pendulum_lanes, only: batch_options_t
+   use dpend_lane_batch, only: batch_options_t
    use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
       natural_time, model_axis

@@ -3,7 +3,7 @@
  * (src/gpu/dpend_gpu_host.c, compiled by fpm, compared with the Fortran kernel in
  * test/test_gpu.f90).
  *
- * Copy of the formulas of src/models/dpend_pendulum_lanes.f90 for one lane, in the
+ * Copy of the formulas of src/lanes/dpend_pendulum_kernel.f90 for one lane, in the
  * same operation order: `sincos_poly`, `sincos_exact`, `sincos_add`,
  * `sincos_add_stage`, `accel_trig`, `energy_formula`, `rk4_lanes` (its fast path
  * with carried sin and cos, and `rk4_lanes_ref` through `rk4_lanes_fallback` for a

@@ -34,7 +34,7 @@ module dpend_sweep_settings
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: real_str, to_str, printable
-   use dpend_pendulum_lanes, only: stop_both, stop_either, stop_end
+   use dpend_lane_batch, only: stop_both, stop_either, stop_end
    use dpend_limits, only: sci, max_threads, max_axis_points, max_sweep_points, max_angle, &
       max_angular_velocity, max_time, check_parameter, parameter_mass, parameter_length
    use dpend_model, only: model_t

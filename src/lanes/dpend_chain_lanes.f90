@@ -55,11 +55,10 @@ module dpend_chain_lanes
    use dpend_limits, only: diverged_bound
    use dpend_strings, only: printable
    use dpend_model, only: model_t
-   use dpend_chain, only: chain_t
-   use dpend_pendulum_lanes, only: lane_width, batch_options_t, batch_result_t, &
-      sincos_near_lanes, sincos_exact, resync_steps, stop_both, stop_either, st_end, &
-      st_flipped, st_cannot_flip, st_nonfinite
-   use dpend_trajectory_batch, only: link_flip_bounds, first_flips, bound_margin
+   use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t, lane_kernel_t, &
+      refill_lanes, resync_steps, stop_both, stop_either, st_end, st_flipped, st_cannot_flip, &
+      st_nonfinite, link_flip_bounds, first_flips, bound_margin
+   use dpend_pendulum_kernel, only: sincos_near_lanes, sincos_exact
    use dpend_limits, only: max_tangent_substeps
    use dpend_indicator_math, only: initial_vectors, sali, gali, megno_step
    use dpend_tangent, only: max_tangent_size, mat_mul
@@ -91,30 +90,69 @@ module dpend_chain_lanes
       real(dp) :: gl(nm) = 0.0_dp          !! G_i of V = Σ G_i sin q_i [J]
    end type chain_coef_t
 
+   !> The lanes of a batch of chains: the batch, its results, and every lane's
+   !> state, flips and indicator sums (structure of arrays).
+   type, extends(lane_kernel_t) :: chain_lanes_t
+      class(model_t), allocatable :: model           !! the chain
+      type(chain_coef_t) :: cf                       !! its constants
+      integer :: nl = 0                              !! links N
+      type(batch_options_t) :: opt                   !! step, length, stop rule
+      real(dp), allocatable :: y0(:, :)              !! (2N, n) initial states
+      logical, allocatable :: can(:, :)              !! (N, n) links that can flip
+      type(batch_result_t) :: res                    !! the results
+      real(dp) :: escale = 1.0_dp                    !! unit of the energy error [J]
+      real(dp) :: nan
+      real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
+      logical :: lane_can(w, nm)
+      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync
+      integer(i8) :: ks(w)                           !! steps taken
+      integer :: lane_ic(w)                          !! trajectory held, 0: none
+      ! the indicators (opt%vectors 1 or 2): vectors, Jacobians at the step start,
+      ! vector fields at the step ends, running sums of vector 1 (dpend_indicators)
+      integer :: nv = 0
+      real(dp), allocatable :: dv(:, :, :), jl(:, :, :), v0(:, :)
+      real(dp), dimension(w, nm) :: fa, fb
+      real(dp), dimension(w) :: lg, ig, yy, sy
+      logical :: ind_ok(w), jfresh(w)
+      logical :: stale = .true.   !! f at the step start to be computed anew
+   contains
+      procedure :: step => chain_step
+      procedure :: load => chain_load
+      procedure :: check => chain_check
+      procedure :: finish => chain_finish
+   end type chain_lanes_t
+
 contains
 
-   !> The lanes' constants of a chain of at most `max_lane_links` links.
+   !> The lanes' constants of a chain of at most `max_lane_links` links (served:
+   !> `chain_lanes_serve`): the model's own K_ij and G_i (`mass_weights`,
+   !> `potential_weights`).
    pure function chain_coef(model) result(cf)
-      type(chain_t), intent(in) :: model  !! the chain
+      class(model_t), intent(in) :: model  !! the chain
       type(chain_coef_t) :: cf
-      cf%n = model%n
-      cf%k(1:model%n, 1:model%n) = model%k
-      cf%gl(1:model%n) = model%gl
+      real(dp), allocatable :: k(:, :), gl(:)
+      k = model%mass_weights()
+      gl = model%potential_weights()
+      cf%n = size(gl)
+      cf%k(1:cf%n, 1:cf%n) = k
+      cf%gl(1:cf%n) = gl
    end function chain_coef
 
    !> Whether the chain lanes can serve a sweep of `model` with options `opt`: a
-   !> conservative chain of 3 to `max_lane_links` links, a flip map (no indicator
-   !> vectors, no Lyapunov exponent).
+   !> conservative model of 3 to `max_lane_links` links whose equations have the
+   !> chain's form (`mass_weights` and `potential_weights` given: M_ij = K_ij cos(q_i −
+   !> q_j), V = Σ G_i sin q_i), a flip map or indicators (no Lyapunov exponent).
    pure logical function chain_lanes_serve(model, opt) result(ok)
       class(model_t), intent(in) :: model         !! the run's model
       type(batch_options_t), intent(in) :: opt    !! the sweep's kernel options
-      ok = .false.
-      select type (model)
-      type is (chain_t)
-         ok = model%n >= min_lane_links .and. model%n <= max_lane_links .and. &
-              model%hamiltonian() .and. opt%vectors >= 0 .and. opt%vectors <= 2 .and. &
-              .not. opt%lyapunov
-      end select
+      integer :: n
+      real(dp), allocatable :: k(:, :), gl(:)
+      n = model%n_dof()
+      k = model%mass_weights()
+      gl = model%potential_weights()
+      ok = n >= min_lane_links .and. n <= max_lane_links .and. size(gl) == n .and. &
+           size(k, 1) == n .and. size(k, 2) == n .and. model%hamiltonian() .and. &
+           opt%vectors >= 0 .and. opt%vectors <= 2 .and. .not. opt%lyapunov
    end function chain_lanes_serve
 
    !> The chain lanes serve the sweep (`chain_lanes_serve`) unless the environment
@@ -329,7 +367,7 @@ contains
    !> substeps were needed (v is left unchanged), or a component of v passed
    !> `max_tangent_size` (v is not propagated further).
    subroutine chain_tangent_lane(model, t_a, h, yo, yn, fo, fn, ja, v, stiff)
-      type(chain_t), intent(in) :: model             !! the chain, N links
+      class(model_t), intent(in) :: model            !! the chain, N links
       real(dp), intent(in) :: t_a                    !! start of the step [s]
       real(dp), intent(in) :: h                      !! step [s]
       real(dp), intent(in) :: yo(:), yn(:)           !! states (q, q̇) at the ends (2N)
@@ -387,333 +425,325 @@ contains
       type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
       type(batch_result_t), intent(out) :: res       !! results
-      select type (model)
-      type is (chain_t)
-         call integrate_chain(model, opt, y0, res)
-      class default
-         error stop 'internal error: integrate_chain_lanes needs a chain'
-      end select
+      type(chain_lanes_t) :: k
+      logical :: todo(size(y0, 2))
+      real(dp) :: bounds(model%n_dof()), margin
+      integer :: n, nl, i, j
+      if (.not. chain_lanes_serve(model, opt)) &
+         error stop 'internal error: integrate_chain_lanes needs a chain it serves'
+      allocate (k%model, source=model)
+      k%cf = chain_coef(model)
+      nl = k%cf%n
+      n = size(y0, 2)
+      k%nl = nl
+      k%opt = opt
+      k%nan = ieee_value(k%nan, ieee_quiet_nan)
+      bounds = link_flip_bounds(k%cf%gl(1:nl))
+      margin = bound_margin*sum(k%cf%gl(1:nl))
+      k%escale = 2.0_dp*sum(k%cf%gl(1:nl))
+      k%nv = opt%vectors
+      if (k%nv > 0) then
+         allocate (k%dv(2*nl, k%nv, w), k%jl(2*nl, 2*nl, w))
+         k%v0 = initial_vectors(2*nl)
+         k%fa = 0.0_dp
+         k%fb = 0.0_dp
+      end if
+      k%stale = .true.
+      allocate (k%can(nl, n))
+      associate (res => k%res)
+         res%n = n
+         allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
+                   res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
+                   res%lyapunov(n), res%status(n), res%steps(n))
+         allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
+         res%lyapunov = k%nan
+         res%megno = k%nan; res%megno_y = k%nan; res%fli = k%nan; res%sali = k%nan
+         res%gali2 = k%nan
+         do j = 1, n   ! as integrate_trajectories
+            res%energy0(j) = model%energy(0.0_dp, y0(:, j))
+            do i = 1, nl
+               k%can(i, j) = .not. (res%energy0(j) < bounds(i) - margin)
+            end do
+            res%final(:, j) = y0(:, j)
+            res%t_stop(j) = 0.0_dp
+            res%steps(j) = 0
+            res%energy_error(j) = 0.0_dp
+            res%t_flip_link(:, j) = -1.0_dp
+            res%status(j) = merge(st_end, st_cannot_flip, any(k%can(1:nl, j)))
+            todo(j) = opt%n_steps >= 1
+            if (opt%n_steps < 1) then
+               res%status(j) = st_end
+            else if (.not. (any(k%can(1:nl, j)) .or. .not. opt%skip_cannot_flip .or. &
+                            k%nv > 0)) then
+               res%energy_error(j) = k%nan
+               todo(j) = .false.
+            end if
+         end do
+      end associate
+      k%y0 = y0
+      call refill_lanes(k, todo)
+      call first_flips(k%res, nl)
+      res = k%res
    end subroutine integrate_chain_lanes
 
-   !> `integrate_chain_lanes` for the chain itself.
-   subroutine integrate_chain(model, opt, y0, res)
-      type(chain_t), intent(in) :: model             !! the chain
-      type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
-      real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
-      type(batch_result_t), intent(out) :: res       !! results
-      type(chain_coef_t) :: cf
-      real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
-      logical :: can(nm, size(y0, 2)), lane_can(w, nm), todo(size(y0, 2)), ended(w)
-      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync, tot
-      integer(i8) :: ks(w)
-      integer :: lane_ic(w)
-      real(dp) :: bounds(model%n), escale, margin, nan, mk, qc, n_events
-      integer :: n, nl, i, j, l, next, n_active
-      logical :: any_ended
-      ! the indicators (opt%vectors 1 or 2): vectors, Jacobians at the step start,
-      ! vector fields at the step ends, running sums of vector 1 (dpend_indicators)
-      real(dp), allocatable :: dv(:, :, :), jl(:, :, :), v0(:, :)
-      real(dp), dimension(w, nm) :: fa, fb
-      real(dp), dimension(w) :: lg, ig, yy, sy
-      logical :: ind_ok(w), jfresh(w), stale
-      integer :: nv
-
-      nl = model%n
-      n = size(y0, 2)
-      cf = chain_coef(model)
-      nan = ieee_value(nan, ieee_quiet_nan)
-      bounds = link_flip_bounds(model%gl)
-      margin = bound_margin*sum(model%gl)
-      escale = 2.0_dp*sum(model%gl)
-      nv = opt%vectors
-      if (nv > 0) then
-         allocate (dv(2*nl, nv, w), jl(2*nl, 2*nl, w))
-         v0 = initial_vectors(2*nl)
-         fa = 0.0_dp
-         fb = 0.0_dp
+   !> One RK4 step of every lane (and of the indicators' vectors), then a vectorized
+   !> count of the lanes with a possible event: an angle out of its window, the last
+   !> step, a state not finite or beyond the bound, carried sin and cos due, a fresh
+   !> lane.
+   subroutine chain_step(self, events)
+      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+      logical, intent(out) :: events               !! some lane may hold an event
+      real(dp) :: tot(w), n_events
+      integer :: i, l
+      self%p = self%q
+      self%pd = self%qd
+      if (self%nv > 0 .and. self%stale) then   ! a lane loaded or resynced: f at the start anew
+         call chain_accel_lanes(self%cf, self%ts, self%tc, self%qd, self%fa)
+         self%stale = .false.
       end if
-      stale = .true.
-      res%n = n
-      allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
-                res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
-                res%lyapunov(n), res%status(n), res%steps(n))
-      allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
-      res%lyapunov = nan
-      res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
-      do j = 1, n   ! as integrate_trajectories
-         res%energy0(j) = model%energy(0.0_dp, y0(:, j))
-         do i = 1, nl
-            can(i, j) = .not. (res%energy0(j) < bounds(i) - margin)
-         end do
-         res%final(:, j) = y0(:, j)
-         res%t_stop(j) = 0.0_dp
-         res%steps(j) = 0
-         res%energy_error(j) = 0.0_dp
-         res%t_flip_link(:, j) = -1.0_dp
-         res%status(j) = merge(st_end, st_cannot_flip, any(can(1:nl, j)))
-         todo(j) = opt%n_steps >= 1
-         if (opt%n_steps < 1) then
-            res%status(j) = st_end
-         else if (.not. (any(can(1:nl, j)) .or. .not. opt%skip_cannot_flip .or. nv > 0)) then
-            res%energy_error(j) = nan
-            todo(j) = .false.
-         end if
-      end do
-
-      next = 1
-      n_active = 0
+      call chain_rk4_lanes(self%cf, self%opt%h, self%q, self%qd, self%e, self%ts, self%tc)
+      if (self%nv > 0) call tangent_step(self)
+      n_events = 0.0_dp
       do l = 1, w
-         call load(l)
+         self%err(l) = max(self%err(l), abs(self%e(l) - self%e0(l)))
+         self%ks(l) = self%ks(l) + 1
+         self%left(l) = self%left(l) - 1.0_dp
+         self%sync(l) = self%sync(l) - 1.0_dp
+         n_events = n_events + self%active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, self%left(l) - 0.5_dp)) &
+                                               + max(0.0_dp, 0.5_dp - self%sync(l)) + self%fresh(l))
       end do
-      do while (n_active > 0)
-         p = q
-         pd = qd
-         if (nv > 0 .and. stale) then   ! a lane loaded or resynced: f at the start anew
-            call chain_accel_lanes(cf, ts, tc, qd, fa)
-            stale = .false.
-         end if
-         call chain_rk4_lanes(cf, opt%h, q, qd, e, ts, tc)
-         if (nv > 0) call tangent_step()
-         ! vectorized: the error, the step count and a count of the lanes with a
-         ! possible event (an angle out of its window, the last step, a state not
-         ! finite or beyond the bound, carried sin and cos due, a fresh lane)
-         n_events = 0.0_dp
+      do l = 1, w
+         tot(l) = 0.0_dp
+      end do
+      do i = 1, self%nl
          do l = 1, w
-            err(l) = max(err(l), abs(e(l) - e0(l)))
-            ks(l) = ks(l) + 1
-            left(l) = left(l) - 1.0_dp
-            sync(l) = sync(l) - 1.0_dp
-            n_events = n_events + active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, left(l) - 0.5_dp)) &
-                                             + max(0.0_dp, 0.5_dp - sync(l)) + fresh(l))
-         end do
-         do l = 1, w
-            tot(l) = 0.0_dp
-         end do
-         do i = 1, nl
-            do l = 1, w
-               tot(l) = tot(l) + (abs(q(l, i)) + abs(qd(l, i)))
-               n_events = n_events + active(l)*(max(0.0_dp, lo(l, i) - q(l, i)) &
-                                                + max(0.0_dp, q(l, i) - hi(l, i)))
-            end do
-         end do
-         do l = 1, w   ! (half the bound: the rare path decides exactly)
-            n_events = n_events + active(l)*(abs(tot(l) - tot(l)) &
-                                             + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
-         end do
-         if (n_events == 0.0_dp) cycle   ! false for NaN
-         do l = 1, w   ! rare: flips, resync, stop rules, lane by lane
-            if (lane_ic(l) == 0) cycle
-            fresh(l) = 0.0_dp
-            if (runaway(l)) then
-               ended(l) = .true.
-               cycle
-            end if
-            if (sync(l) < 0.5_dp) call resync(l)
-            do i = 1, nl
-               mk = turn(q(l, i))
-               if (mk /= nk(l, i)) then
-                  if (tf(l, i) < 0.0_dp) then
-                     qc = half_pi + two_pi*max(mk, nk(l, i))
-                     tf(l, i) = (real(ks(l) - 1, dp) + (qc - p(l, i))/(q(l, i) - p(l, i)))*opt%h
-                  end if
-                  nk(l, i) = mk
-                  call set_window(l, i)
-               end if
-            end do
-            ended(l) = ks(l) >= opt%n_steps
-            select case (opt%stop_rule)
-            case (stop_both)
-               ended(l) = ended(l) .or. all(tf(l, 1:nl) >= 0.0_dp .or. .not. lane_can(l, 1:nl))
-            case (stop_either)
-               ended(l) = ended(l) .or. any(tf(l, 1:nl) >= 0.0_dp)
-            end select
-         end do
-         any_ended = .false.
-         do l = 1, w
-            any_ended = any_ended .or. (ended(l) .and. lane_ic(l) > 0)
-         end do
-         if (.not. any_ended) cycle
-         do l = 1, w
-            if (.not. (ended(l) .and. lane_ic(l) > 0)) cycle
-            call finish(l)
-            call load(l)
+            tot(l) = tot(l) + (abs(self%q(l, i)) + abs(self%qd(l, i)))
+            n_events = n_events + self%active(l)*(max(0.0_dp, self%lo(l, i) - self%q(l, i)) &
+                                                  + max(0.0_dp, self%q(l, i) - self%hi(l, i)))
          end do
       end do
-      call first_flips(res, nl)
+      do l = 1, w   ! (half the bound: the rare path decides exactly)
+         n_events = n_events + self%active(l)*(abs(tot(l) - tot(l)) &
+                                               + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
+      end do
+      events = .not. (n_events == 0.0_dp)   ! true for NaN
+   end subroutine chain_step
 
-   contains
-
-      !> The indicators' step of every lane with a trajectory (after the state's): the
-      !> vectors by `chain_tangent_lane`, renormalised to length 1, the running sums
-      !> by `megno_step` (as `chaos_indicators`, vector 1). A lane whose state ran away
-      !> or whose vectors fail is left to the rare path (indicators NaN).
-      subroutine tangent_step()
-         real(dp) :: yo(2*nl), yn(2*nl), fo(2*nl), fn(2*nl), nrm, dl(nv), t_b, t_a
-         logical :: stiff
-         integer :: ll, kv
-         call chain_accel_lanes(cf, ts, tc, qd, fb)
-         do ll = 1, w
-            if (lane_ic(ll) == 0 .or. .not. ind_ok(ll)) cycle
-            if (runaway(ll)) cycle
-            yo(1:nl) = p(ll, 1:nl); yo(nl + 1:) = pd(ll, 1:nl)
-            yn(1:nl) = q(ll, 1:nl); yn(nl + 1:) = qd(ll, 1:nl)
-            fo(1:nl) = pd(ll, 1:nl); fo(nl + 1:) = fa(ll, 1:nl)
-            fn(1:nl) = qd(ll, 1:nl); fn(nl + 1:) = fb(ll, 1:nl)
-            t_a = real(ks(ll), dp)*opt%h   ! (ks counts the step just after)
-            t_b = real(ks(ll) + 1, dp)*opt%h
-            if (jfresh(ll)) then
-               call model%jacobian(t_a, yo, jl(:, :, ll))
-               jfresh(ll) = .false.
-            end if
-            call chain_tangent_lane(model, t_a, opt%h, yo, yn, fo, fn, jl(:, :, ll), &
-                                    dv(:, :, ll), stiff)
-            if (stiff .or. .not. all(ieee_is_finite(dv(:, :, ll)))) then
-               ind_ok(ll) = .false.
-               cycle
-            end if
-            do kv = 1, nv
-               nrm = norm2(dv(:, kv, ll))
-               if (.not. (nrm > 0.0_dp .and. nrm < diverged_bound)) then
-                  ind_ok(ll) = .false.
-                  exit
-               end if
-               dv(:, kv, ll) = dv(:, kv, ll)/nrm
-               dl(kv) = log(nrm)
-            end do
-            if (.not. ind_ok(ll)) cycle
-            call megno_step(dl(1), t_a, t_b, 0.0_dp, lg(ll), ig(ll), yy(ll), sy(ll))
-         end do
-         fa = fb
-      end subroutine tangent_step
-
-      !> Put the next initial condition to integrate into lane ll, or the idle state.
-      subroutine load(ll)
-         integer, intent(in) :: ll
-         integer :: ii
-         do while (next <= n)
-            if (todo(next)) exit
-            next = next + 1
-         end do
-         ks(ll) = 0
-         left(ll) = real(opt%n_steps, dp)
-         err(ll) = 0.0_dp
-         ended(ll) = .false.
-         tf(ll, :) = -1.0_dp
-         if (next <= n) then
-            lane_ic(ll) = next
-            q(ll, 1:nl) = y0(1:nl, next)
-            qd(ll, 1:nl) = y0(nl + 1:2*nl, next)
-            e0(ll) = res%energy0(next)
-            lane_can(ll, 1:nl) = can(1:nl, next)
-            next = next + 1
-            n_active = n_active + 1
-            active(ll) = 1.0_dp
-            fresh(ll) = 1.0_dp
-         else
-            lane_ic(ll) = 0
-            q(ll, :) = -half_pi
-            qd(ll, :) = 0.0_dp
-            e0(ll) = 0.0_dp
-            lane_can(ll, :) = .false.
-            active(ll) = 0.0_dp
-            fresh(ll) = 0.0_dp
+   !> The indicators' step of every lane with a trajectory (after the state's): the
+   !> vectors by `chain_tangent_lane`, renormalised to length 1, the running sums
+   !> by `megno_step` (as `chaos_indicators`, vector 1). A lane whose state ran away
+   !> or whose vectors fail is left to the rare path (indicators NaN).
+   subroutine tangent_step(self)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      real(dp) :: yo(2*self%nl), yn(2*self%nl), fo(2*self%nl), fn(2*self%nl)
+      real(dp) :: nrm, dl(self%nv), t_b, t_a
+      logical :: stiff
+      integer :: ll, kv, nl
+      nl = self%nl
+      call chain_accel_lanes(self%cf, self%ts, self%tc, self%qd, self%fb)
+      do ll = 1, w
+         if (self%lane_ic(ll) == 0 .or. .not. self%ind_ok(ll)) cycle
+         if (runaway(self, ll)) cycle
+         yo(1:nl) = self%p(ll, 1:nl); yo(nl + 1:) = self%pd(ll, 1:nl)
+         yn(1:nl) = self%q(ll, 1:nl); yn(nl + 1:) = self%qd(ll, 1:nl)
+         fo(1:nl) = self%pd(ll, 1:nl); fo(nl + 1:) = self%fa(ll, 1:nl)
+         fn(1:nl) = self%qd(ll, 1:nl); fn(nl + 1:) = self%fb(ll, 1:nl)
+         t_a = real(self%ks(ll), dp)*self%opt%h   ! (ks counts the step just after)
+         t_b = real(self%ks(ll) + 1, dp)*self%opt%h
+         if (self%jfresh(ll)) then
+            call self%model%jacobian(t_a, yo, self%jl(:, :, ll))
+            self%jfresh(ll) = .false.
          end if
-         do ii = 1, nl
-            nk(ll, ii) = turn(q(ll, ii))
-            call set_window(ll, ii)
-         end do
-         call resync(ll)
-         if (nv > 0) then
-            dv(:, :, ll) = v0(:, 1:nv)
-            lg(ll) = 0.0_dp; ig(ll) = 0.0_dp; yy(ll) = 0.0_dp; sy(ll) = 0.0_dp
-            ind_ok(ll) = .true.
-            jfresh(ll) = .true.
+         call chain_tangent_lane(self%model, t_a, self%opt%h, yo, yn, fo, fn, &
+                                 self%jl(:, :, ll), self%dv(:, :, ll), stiff)
+         if (stiff .or. .not. all(ieee_is_finite(self%dv(:, :, ll)))) then
+            self%ind_ok(ll) = .false.
+            cycle
          end if
-      end subroutine load
-
-      !> Set the carried sines and cosines of lane ll exactly.
-      subroutine resync(ll)
-         integer, intent(in) :: ll
-         integer :: ii
-         do ii = 1, nl
-            call sincos_exact(q(ll, ii), ts(ll, ii), tc(ll, ii))
+         do kv = 1, self%nv
+            nrm = norm2(self%dv(:, kv, ll))
+            if (.not. (nrm > 0.0_dp .and. nrm < diverged_bound)) then
+               self%ind_ok(ll) = .false.
+               exit
+            end if
+            self%dv(:, kv, ll) = self%dv(:, kv, ll)/nrm
+            dl(kv) = log(nrm)
          end do
-         sync(ll) = real(resync_steps, dp)
-         stale = .true.
-      end subroutine resync
+         if (.not. self%ind_ok(ll)) cycle
+         call megno_step(dl(1), t_a, t_b, 0.0_dp, self%lg(ll), self%ig(ll), self%yy(ll), &
+                         self%sy(ll))
+      end do
+      self%fa = self%fb
+   end subroutine tangent_step
 
-      !> The window of link ii's angle in lane ll: between two upward verticals, shrunk
-      !> by window_margin so that rounding never hides a crossing.
-      subroutine set_window(ll, ii)
-         integer, intent(in) :: ll, ii
-         lo(ll, ii) = half_pi + two_pi*nk(ll, ii) + window_margin
-         hi(ll, ii) = half_pi + two_pi*(nk(ll, ii) + 1.0_dp) - window_margin
-      end subroutine set_window
+   !> Lane l's events, decided exactly: a runaway state, a due resync, the flips of
+   !> its links (interpolated within the step), the stop rule. An idle lane has none.
+   subroutine chain_check(self, l, ended)
+      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: l                     !! lane
+      logical, intent(out) :: ended                !! its trajectory is done
+      real(dp) :: mk, qc
+      integer :: i, nl
+      ended = .false.
+      if (self%lane_ic(l) == 0) return
+      nl = self%nl
+      self%fresh(l) = 0.0_dp
+      if (runaway(self, l)) then
+         ended = .true.
+         return
+      end if
+      if (self%sync(l) < 0.5_dp) call resync(self, l)
+      do i = 1, nl
+         mk = turn(self%q(l, i))
+         if (mk /= self%nk(l, i)) then
+            if (self%tf(l, i) < 0.0_dp) then
+               qc = half_pi + two_pi*max(mk, self%nk(l, i))
+               self%tf(l, i) = (real(self%ks(l) - 1, dp) + (qc - self%p(l, i)) &
+                                /(self%q(l, i) - self%p(l, i)))*self%opt%h
+            end if
+            self%nk(l, i) = mk
+            call set_window(self, l, i)
+         end if
+      end do
+      ended = self%ks(l) >= self%opt%n_steps
+      select case (self%opt%stop_rule)
+      case (stop_both)
+         ended = ended .or. all(self%tf(l, 1:nl) >= 0.0_dp .or. .not. self%lane_can(l, 1:nl))
+      case (stop_either)
+         ended = ended .or. any(self%tf(l, 1:nl) >= 0.0_dp)
+      end select
+   end subroutine chain_check
 
-      !> The index k of the last upward vertical π/2 + 2π k at or below the angle x
-      !> [rad], as a real (the per-trajectory path's floor, clamped to ±2^52 so that no
-      !> conversion to integer overflows for a state near the runaway bound).
-      real(dp) function turn(x)
-         real(dp), intent(in) :: x
-         real(dp), parameter :: big = 4503599627370496.0_dp   ! 2^52
-         turn = real(floor(min(max((x - half_pi)*inv_two_pi, -big), big), i8), dp)
-      end function turn
+   !> Put initial condition j into lane l, or the idle state (j = 0).
+   subroutine chain_load(self, l, j)
+      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: l                    !! lane
+      integer, intent(in) :: j                     !! initial condition, 0: none
+      integer :: ii, nl
+      nl = self%nl
+      self%ks(l) = 0
+      self%left(l) = real(self%opt%n_steps, dp)
+      self%err(l) = 0.0_dp
+      self%tf(l, :) = -1.0_dp
+      self%lane_ic(l) = j
+      if (j > 0) then
+         self%q(l, 1:nl) = self%y0(1:nl, j)
+         self%qd(l, 1:nl) = self%y0(nl + 1:2*nl, j)
+         self%e0(l) = self%res%energy0(j)
+         self%lane_can(l, 1:nl) = self%can(1:nl, j)
+         self%active(l) = 1.0_dp
+         self%fresh(l) = 1.0_dp
+      else
+         self%q(l, :) = -half_pi
+         self%qd(l, :) = 0.0_dp
+         self%e0(l) = 0.0_dp
+         self%lane_can(l, :) = .false.
+         self%active(l) = 0.0_dp
+         self%fresh(l) = 0.0_dp
+      end if
+      do ii = 1, nl
+         self%nk(l, ii) = turn(self%q(l, ii))
+         call set_window(self, l, ii)
+      end do
+      call resync(self, l)
+      if (self%nv > 0) then
+         self%dv(:, :, l) = self%v0(:, 1:self%nv)
+         self%lg(l) = 0.0_dp; self%ig(l) = 0.0_dp; self%yy(l) = 0.0_dp; self%sy(l) = 0.0_dp
+         self%ind_ok(l) = .true.
+         self%jfresh(l) = .true.
+      end if
+   end subroutine chain_load
 
-      !> Lane ll's state is not finite or not below `chain_lane_bound` (the
-      !> integrators' `state_ok`; no ordered comparison on NaN).
-      logical function runaway(ll)
-         integer, intent(in) :: ll
-         real(dp) :: ss
-         ss = sum(abs(q(ll, 1:nl))) + sum(abs(qd(ll, 1:nl)))
-         runaway = .true.
-         if (ss - ss == 0.0_dp) runaway = .not. (ss < chain_lane_bound)
-      end function runaway
+   !> Set the carried sines and cosines of lane ll exactly.
+   subroutine resync(self, ll)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: ll                   !! lane
+      integer :: ii
+      do ii = 1, self%nl
+         call sincos_exact(self%q(ll, ii), self%ts(ll, ii), self%tc(ll, ii))
+      end do
+      self%sync(ll) = real(resync_steps, dp)
+      self%stale = .true.
+   end subroutine resync
 
-      !> Store the results of the trajectory in lane ll.
-      subroutine finish(ll)
-         integer, intent(in) :: ll
-         integer :: jj
-         integer(i8) :: kk
-         real(dp) :: y(2*nl)
-         jj = lane_ic(ll)
-         kk = ks(ll)
-         if (runaway(ll)) then   ! the step is not taken: the last state before it
+   !> The window of link ii's angle in lane ll: between two upward verticals, shrunk
+   !> by window_margin so that rounding never hides a crossing.
+   subroutine set_window(self, ll, ii)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: ll, ii               !! lane, link
+      self%lo(ll, ii) = half_pi + two_pi*self%nk(ll, ii) + window_margin
+      self%hi(ll, ii) = half_pi + two_pi*(self%nk(ll, ii) + 1.0_dp) - window_margin
+   end subroutine set_window
+
+   !> The index k of the last upward vertical π/2 + 2π k at or below the angle x
+   !> [rad], as a real (the per-trajectory path's floor, clamped to ±2^52 so that no
+   !> conversion to integer overflows for a state near the runaway bound).
+   pure real(dp) function turn(x)
+      real(dp), intent(in) :: x  !! angle [rad]
+      real(dp), parameter :: big = 4503599627370496.0_dp   ! 2^52
+      turn = real(floor(min(max((x - half_pi)*inv_two_pi, -big), big), i8), dp)
+   end function turn
+
+   !> Lane ll's state is not finite or not below `chain_lane_bound` (the
+   !> integrators' `state_ok`; no ordered comparison on NaN).
+   logical function runaway(self, ll)
+      type(chain_lanes_t), intent(in) :: self  !! the lanes
+      integer, intent(in) :: ll                !! lane
+      real(dp) :: ss
+      ss = sum(abs(self%q(ll, 1:self%nl))) + sum(abs(self%qd(ll, 1:self%nl)))
+      runaway = .true.
+      if (ss - ss == 0.0_dp) runaway = .not. (ss < chain_lane_bound)
+   end function runaway
+
+   !> Store the results of the trajectory in lane l as those of initial condition j.
+   subroutine chain_finish(self, l, j)
+      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: l                    !! lane
+      integer, intent(in) :: j                    !! its initial condition
+      integer(i8) :: kk
+      real(dp) :: y(2*self%nl)
+      integer :: nl
+      nl = self%nl
+      kk = self%ks(l)
+      associate (res => self%res)
+         if (runaway(self, l)) then   ! the step is not taken: the last state before it
             kk = kk - 1
-            res%final(1:nl, jj) = p(ll, 1:nl)
-            res%final(nl + 1:2*nl, jj) = pd(ll, 1:nl)
-            res%status(jj) = st_nonfinite
-            res%energy_error(jj) = nan
+            res%final(1:nl, j) = self%p(l, 1:nl)
+            res%final(nl + 1:2*nl, j) = self%pd(l, 1:nl)
+            res%status(j) = st_nonfinite
+            res%energy_error(j) = self%nan
          else
-            res%final(1:nl, jj) = q(ll, 1:nl)
-            res%final(nl + 1:2*nl, jj) = qd(ll, 1:nl)
-            y = res%final(:, jj)
-            err(ll) = max(err(ll), abs(model%energy(real(kk, dp)*opt%h, y) - e0(ll)))
-            res%energy_error(jj) = err(ll)/escale
-            if (kk < opt%n_steps) res%status(jj) = st_flipped
+            res%final(1:nl, j) = self%q(l, 1:nl)
+            res%final(nl + 1:2*nl, j) = self%qd(l, 1:nl)
+            y = res%final(:, j)
+            self%err(l) = max(self%err(l), &
+                               abs(self%model%energy(real(kk, dp)*self%opt%h, y) - self%e0(l)))
+            res%energy_error(j) = self%err(l)/self%escale
+            if (kk < self%opt%n_steps) res%status(j) = st_flipped
          end if
-         res%t_stop(jj) = real(kk, dp)*opt%h
-         res%steps(jj) = int(kk)
-         res%t_flip_link(:, jj) = tf(ll, 1:nl)
-         if (nv > 0 .and. res%status(jj) /= st_nonfinite .and. kk >= 1) then
-            if (ind_ok(ll)) call finish_indicators(jj, ll, res%t_stop(jj))
+         res%t_stop(j) = real(kk, dp)*self%opt%h
+         res%steps(j) = int(kk)
+         res%t_flip_link(:, j) = self%tf(l, 1:nl)
+         if (self%nv > 0 .and. res%status(j) /= st_nonfinite .and. kk >= 1) then
+            if (self%ind_ok(l)) call finish_indicators(self, j, l, res%t_stop(j))
          end if
-         n_active = n_active - 1
-      end subroutine finish
+      end associate
+   end subroutine chain_finish
 
-      !> The indicators of trajectory jj from lane ll at its end time t_b [s]
-      !> (`integrate_trajectories`' choice of `chaos_indicators`' sample).
-      subroutine finish_indicators(jj, ll, t_b)
-         integer, intent(in) :: jj, ll
-         real(dp), intent(in) :: t_b
-         integer :: info
-         res%fli(jj) = lg(ll)
-         res%megno_y(jj) = yy(ll)
-         res%megno(jj) = sy(ll)/t_b
-         if (nv < 2) return
-         res%sali(jj) = sali(dv(:, 1, ll), dv(:, 2, ll))
-         call gali(dv(:, 1:2, ll), res%gali2(jj), info)
-         if (info /= 0) res%gali2(jj) = nan
-      end subroutine finish_indicators
-   end subroutine integrate_chain
+   !> The indicators of trajectory jj from lane ll at its end time t_b [s]
+   !> (`integrate_trajectories`' choice of `chaos_indicators`' sample).
+   subroutine finish_indicators(self, jj, ll, t_b)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: jj, ll               !! trajectory, lane
+      real(dp), intent(in) :: t_b                 !! end time [s]
+      integer :: info
+      self%res%fli(jj) = self%lg(ll)
+      self%res%megno_y(jj) = self%yy(ll)
+      self%res%megno(jj) = self%sy(ll)/t_b
+      if (self%nv < 2) return
+      self%res%sali(jj) = sali(self%dv(:, 1, ll), self%dv(:, 2, ll))
+      call gali(self%dv(:, 1:2, ll), self%res%gali2(jj), info)
+      if (info /= 0) self%res%gali2(jj) = self%nan
+   end subroutine finish_indicators
 
 end module dpend_chain_lanes

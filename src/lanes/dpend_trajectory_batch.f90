@@ -1,7 +1,7 @@
 !> The sweep's per-trajectory path: initial conditions of any model with
 !> n degrees of freedom integrated one at a time by a fixed-step method of the
 !> registry (the sweep uses rk4), each reduced to what the batch kernel
-!> (`dpend_pendulum_lanes`, the double pendulum only) computes: the first flip of
+!> (`dpend_pendulum_lanes`, the double pendulum; `dpend_chain_lanes`, chains) computes: the first flip of
 !> every link, the initial energy, the largest energy error, the final state and a
 !> status (the kernel's st_* codes and stop rules). `dpend sweep` calls it for every
 !> number of links other than 2, one block per call, so that the blocks of a sweep
@@ -31,39 +31,18 @@ module dpend_trajectory_batch
    use dpend_kinds, only: dp, i8, pi, half_pi
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
-   use dpend_pendulum_lanes, only: batch_options_t, batch_result_t, stop_both, stop_either, &
-      stop_end, st_end, st_flipped, st_cannot_flip, st_nonfinite
+   use dpend_lane_batch, only: batch_options_t, batch_result_t, stop_both, stop_either, &
+      stop_end, st_end, st_flipped, st_cannot_flip, st_nonfinite, link_flip_bounds, &
+      first_flips, bound_margin
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    implicit none
    private
-   public :: integrate_trajectories, link_flip_bounds
-   ! shared with the chain lanes (dpend_chain_lanes)
-   public :: bound_margin, first_flips
+   public :: integrate_trajectories
 
    real(dp), parameter :: two_pi = 2.0_dp*pi, inv_two_pi = 1.0_dp/two_pi
 
-   !> Margin of the flip energy bounds, relative to Σ G_i (rounding of E(0)).
-   real(dp), parameter :: bound_margin = 1e-12_dp
-
 contains
-
-   !> Least energy with which link i can reach the upward vertical [J], for a
-   !> potential V = Σ G_i sin q_i with G_i ≥ 0: G_i − Σ_(j≠i) G_j (for two links the
-   !> kernel's `flip_energy_bounds`, A − B and B − A).
-   pure function link_flip_bounds(gl) result(e)
-      real(dp), intent(in) :: gl(:)  !! G_i [J]
-      real(dp) :: e(size(gl))
-      real(dp) :: others
-      integer :: i, j
-      do i = 1, size(gl)
-         others = 0.0_dp
-         do j = 1, size(gl)
-            if (j /= i) others = others + gl(j)
-         end do
-         e(i) = gl(i) - others
-      end do
-   end function link_flip_bounds
 
    !> Integrate the initial conditions y0(:, j) = (q, q̇) of `model` with `integ`
    !> (a fixed-step method) of step opt%h for at most opt%n_steps steps each, with
@@ -225,28 +204,4 @@ contains
          if (ended) exit
       end do
    end subroutine march
-
-   !> res%t_flip (the first flip of any link), NaN for every link that did not flip,
-   !> and t_flip1, t_flip2 (links 1 and 2; NaN if absent) from res%t_flip_link (-1: none).
-   subroutine first_flips(res, nl)
-      type(batch_result_t), intent(inout) :: res   !! results, t_flip_link set
-      integer, intent(in) :: nl                    !! links N
-      real(dp) :: nan
-      integer :: i, j
-      nan = ieee_value(nan, ieee_quiet_nan)
-      do j = 1, res%n
-         if (any(res%t_flip_link(:, j) >= 0.0_dp)) then
-            res%t_flip(j) = minval(res%t_flip_link(:, j), mask=res%t_flip_link(:, j) >= 0.0_dp)
-         else
-            res%t_flip(j) = nan
-         end if
-         do i = 1, nl
-            if (.not. (res%t_flip_link(i, j) >= 0.0_dp)) res%t_flip_link(i, j) = nan
-         end do
-         res%t_flip1(j) = res%t_flip_link(1, j)
-         res%t_flip2(j) = nan
-         if (nl >= 2) res%t_flip2(j) = res%t_flip_link(2, j)
-      end do
-   end subroutine first_flips
-
 end module dpend_trajectory_batch
