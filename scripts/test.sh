@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Run the test suites in the debug profile (all runtime checks, FP traps) and in
-# the release profile. Usage: scripts/test.sh [suite or suite/test]
+# the release profile. Usage: scripts/test.sh [SUITE or SUITE/TEST ...] (any number;
+# docs/testing.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/flags.sh

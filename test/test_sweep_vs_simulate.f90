@@ -6,8 +6,8 @@
 !> `final/q1`, `final/q2`, `final/w1`, `final/w2` and `energy0` must equal the
 !> simulated end state and initial energy (Lagrange's form in lanes against the
 !> model's field: they differ by rounding only; measured largest difference 1.3e-13 (tolerance 1e-12), printed,
-!> '    sweep_values: …'), and `status` must be 1 (integrated to t_end).
-module test_sweep_values
+!> '    sweep_vs_simulate: …'), and `status` must be 1 (integrated to t_end).
+module test_sweep_vs_simulate
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t
@@ -15,16 +15,16 @@ module test_sweep_values
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    implicit none
    private
-   public :: collect_sweep_values
+   public :: collect_sweep_vs_simulate
 
    real(dp), parameter :: half_pi = 0.5_dp*acos(-1.0_dp)
 
 contains
 
-   subroutine collect_sweep_values(tests)
+   subroutine collect_sweep_vs_simulate(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('final_state_matches_simulate', test_final_states)]
-   end subroutine collect_sweep_values
+   end subroutine collect_sweep_vs_simulate
 
    !> A 4 × 4 theta1 × theta2 sweep against 16 simulate runs of its pixels.
    subroutine test_final_states(error)
@@ -89,9 +89,9 @@ contains
             if (allocated(error)) return
          end do
       end do
-      write (output_unit, '(a, es9.2, a, es9.2)') '    sweep_values: final state, largest '// &
+      write (output_unit, '(a, es9.2, a, es9.2)') '    sweep_vs_simulate: final state, largest '// &
          'relative difference', worst, '; energy0', worst_e
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_final_states
 
-end module test_sweep_values
+end module test_sweep_vs_simulate
