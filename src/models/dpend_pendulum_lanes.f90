@@ -485,7 +485,7 @@ contains
 
    !> `sincos_add` with shorter polynomials, for the RK4 stages of `rk4_lanes`, whose
    !> values are not carried to the next step: sin d to d⁷ and cos d - 1 to d⁶,
-   !> Chebyshev-economized on |d| <= 1/16 (scripts/stage_poly.py), within 1.3e-18
+   !> Chebyshev-economized on |d| <= 1/16 (scripts/reference/stage_poly.py), within 1.3e-18
    !> and 1.8e-16 of sin d and cos d - 1 there (sincos_add: 3e-21 and 3e-19).
    pure elemental subroutine sincos_add_stage(s0, c0, d, s, c)
       real(dp), intent(in) :: s0, c0  !! sin x0, cos x0
