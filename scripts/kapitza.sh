@@ -69,7 +69,7 @@ for k in $(seq 0 29); do
 done
 
 plot_begin "$out" kapitza.png
-plot_run gnuplot -c "$here/kapitza.gp" "$tmp/above.dat" "$tmp/below.dat" "$tmp/sweep.dat" \
+plot_run gnuplot -c "$here/plot/kapitza.gp" "$tmp/above.dat" "$tmp/below.dat" "$tmp/sweep.dat" \
   "$figdir/kapitza.png" "$a_c" "$fall" "$w" 9.81 1
 printf '# a [m], largest |phi| [rad], stays up (1) or falls (0), slow frequency [rad/s]\n'
 cat -- "$tmp/sweep.dat"

@@ -26,7 +26,7 @@ fi
 serial=$(fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |
   tail -n 1)
 case "$serial" in /*) ;; *) serial="$root/$serial" ;; esac
-mpibin=$(scripts/build_mpi.sh | tail -n 1)
+mpibin=$(scripts/mpi/build_mpi.sh | tail -n 1)
 # its OpenMP regions too share no static string length (docs/architecture.md, "Threads")
 bash scripts/check_threads.sh "$mpibin"
 

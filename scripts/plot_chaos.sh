@@ -12,8 +12,8 @@
 #   poincare   -> poincare.png (the section points, one colour per orbit)
 #   indicators -> indicators.png (MEGNO Y and <Y>, FLI, SALI and GALI_k against t,
 #                 with the reference behaviours of the orbit's kind, regular or
-#                 chaotic, drawn in: scripts/indicators.gp)
-# Every figure: text scaled with the canvas, pi tics on angle axes (scripts/style.gp);
+#                 chaotic, drawn in: scripts/plot/indicators.gp)
+# Every figure: text scaled with the canvas, pi tics on angle axes (scripts/plot/style.gp);
 # the key entries drawn go to $DPEND_PLOT_KEYS when set (the figure test).
 # Several lyapunov files (same vectors): scripts/plot_chaos.sh --compare OUT.png F1.h5 F2.h5 ...
 # overlays their running lambda1 with the batch-means spread of each.
@@ -77,7 +77,7 @@ if [[ "$1" == "--compare" ]]; then
     echo "$lam $spr $i" >> "$tmp/final.dat"
   done
   plot_begin "$outdir" "$outname"
-  plot_run gnuplot -c "$here/compare.gp" "$tmp" "$figdir/$outname" "$i" "$labels" "$lams"
+  plot_run gnuplot -c "$here/plot/compare.gp" "$tmp" "$figdir/$outname" "$i" "$labels" "$lams"
   printf 'plot_chaos.sh: wrote %s\n' "$out"
   exit 0
 fi
@@ -98,7 +98,7 @@ case "$cmd" in
     num k "$h5" vectors
     num links "$h5" links 2   # files from before --links: the double pendulum
     plot_begin "$out" lyapunov_convergence.png lyapunov_spectrum.png
-    plot_run gnuplot -c "$here/lyapunov.gp" "$tmp/run.dat" "$tmp/spec.dat" "$figdir" \
+    plot_run gnuplot -c "$here/plot/lyapunov.gp" "$tmp/run.dat" "$tmp/spec.dat" "$figdir" \
       "$title" "$k" "$links"
     printf 'plot_chaos.sh: wrote %s/lyapunov_convergence.png %s/lyapunov_spectrum.png\n' \
       "$out" "$out"
@@ -110,7 +110,7 @@ case "$cmd" in
     num t1 "$h5" fit_end; num sat "$h5" saturation; num lam "$h5" lyapunov 0
     num npairs "$h5" pairs; num delta0 "$h5" delta0
     plot_begin "$out" divergence.png
-    plot_run gnuplot -c "$here/divergence.gp" "$tmp/div.dat" "$figdir" "$title" \
+    plot_run gnuplot -c "$here/plot/divergence.gp" "$tmp/div.dat" "$figdir" "$title" \
       "$slope $b $t0 $t1 $sat $lam $npairs $delta0"
     printf 'plot_chaos.sh: wrote %s/divergence.png\n' "$out"
     ;;
@@ -120,7 +120,7 @@ case "$cmd" in
     num angle "$h5" section_angle; num dir "$h5" section_direction
     num norb "$h5" n_orbits
     plot_begin "$out" poincare.png
-    plot_run gnuplot -c "$here/poincare.gp" "$tmp/sec.dat" "$figdir" "$title" \
+    plot_run gnuplot -c "$here/plot/poincare.gp" "$tmp/sec.dat" "$figdir" "$title" \
       "$E $link $other $angle $dir $norb"
     printf 'plot_chaos.sh: wrote %s/poincare.png\n' "$out"
     ;;
@@ -140,7 +140,7 @@ case "$cmd" in
       gal+=" $g"
     done
     plot_begin "$out" indicators.png
-    plot_run gnuplot -c "$here/indicators.gp" "$tmp/ind.dat" "$figdir" "$title" \
+    plot_run gnuplot -c "$here/plot/indicators.gp" "$tmp/ind.dat" "$figdir" "$title" \
       "$k $links $tend $fli$gal"
     printf 'plot_chaos.sh: wrote %s/indicators.png\n' "$out"
     ;;

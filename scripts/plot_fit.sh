@@ -73,7 +73,7 @@ if [[ $1 == --horizon ]]; then
   plot_base name "$csv"
   plot_enhanced title "$name"
   plot_begin "$out" fit_horizon.png
-  plot_run gnuplot -c "$here/fit.gp" horizon "$tmp/horizon.dat" "$figdir" "$title"
+  plot_run gnuplot -c "$here/plot/fit.gp" horizon "$tmp/horizon.dat" "$figdir" "$title"
   printf 'plot_fit.sh: wrote %s/fit_horizon.png\n' "$out"
   exit 0
 fi
@@ -121,6 +121,6 @@ plot_number rms "${rms:-0}" "the RMS residual of '$1'"
 plot_base name "$1"
 plot_enhanced title "$name"
 plot_begin "$out" fit_overlay.png fit_residuals.png
-plot_run gnuplot -c "$here/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$cols" "$tw" \
+plot_run gnuplot -c "$here/plot/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$cols" "$tw" \
   "$tol" "$rms" "$kind${labels:+ $labels}"
 printf 'plot_fit.sh: wrote %s/{fit_overlay,fit_residuals}.png\n' "$out"

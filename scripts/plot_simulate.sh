@@ -128,7 +128,7 @@ plot_base name "$1"
 plot_enhanced title "${method:-dpend}, $name"
 plot_begin "$out" angles.png angles_wrapped.png phase.png energy_error.png reactions.png \
   tip_path.png
-plot_run gnuplot -c "$here/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$escale" "$n" \
+plot_run gnuplot -c "$here/plot/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "$escale" "$n" \
   "${cnames[*]}" "${ulist[*]}" "$k" "${style:-rods} $conserved"
 printf 'plot_simulate.sh: wrote %s/{angles,angles_wrapped,phase,energy_error,reactions,tip_path}.png\n' "$out"
 if ((conserved == 0)); then
@@ -137,6 +137,6 @@ if ((conserved == 0)); then
   "$dpend" export "$h5" /trajectory/t /trajectory/energy /trajectory/W_friction \
     /trajectory/W_support /trajectory/balance_error > "$tmp/balance.dat"
   plot_begin "$out" balance.png
-  plot_run gnuplot -c "$here/balance.gp" "$tmp/balance.dat" "$figdir" "$title" "$escale"
+  plot_run gnuplot -c "$here/plot/balance.gp" "$tmp/balance.dat" "$figdir" "$title" "$escale"
   printf 'plot_simulate.sh: wrote %s/balance.png\n' "$out"
 fi

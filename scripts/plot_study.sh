@@ -486,6 +486,6 @@ if ((${#balance_cases[@]})); then
 fi
 
 plot_begin "$out" "${figures[@]}"
-plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text" "$here/style.gp"
+plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text" "$here/plot/style.gp"
 fig_list=$(IFS=,; echo "${figures[*]%.png}")
 printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"

@@ -7,7 +7,7 @@
 # energy_error.png and, if the sweep has them, lyapunov.png and the map of its
 # indicator (dpend sweep --indicator): megno.png (<Y> over [0, 4], 2 the value of
 # regular orbits), fli.png, sali.png or gali2.png (log scales, 0 for
-# chaos); every map in viridis (scripts/style.gp); angle axes ticked in multiples of
+# chaos); every map in viridis (scripts/plot/style.gp); angle axes ticked in multiples of
 # pi; parameter axes (m1 .. l2/l1) are labelled in kg, m or as ratios; on every map the initial
 # conditions not integrated (status 0 or 4: a partial file, a non-finite state) are
 # grey, a colour viridis does not hold, with a key entry only when a pixel is grey
@@ -82,7 +82,7 @@ plot_base name "$1"
 plot_enhanced name "$name"
 plot_begin "$out" "${figures[@]}"
 # (no-flip pixels are NaN on purpose: gnuplot leaves them white and warns)
-plot_run gnuplot -c "$here/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$ax2" \
+plot_run gnuplot -c "$here/plot/sweep.gp" "$tmp" "$figdir" "$t_end" "$tau" "$ax1" "$ax2" \
   "$lyap" "$name" "$status" 2> >(grep -v -e 'matrix contains missing or undefined values' >&2)
 if [[ $links == 2 ]]; then
   printf 'plot_sweep.sh: wrote %s/{flip_map,flip_map_link1,flip_map_link2,energy_error}.png%s\n' \

@@ -2,7 +2,7 @@
 # Install what dpend needs on a fresh Debian/Ubuntu machine. Idempotent: skips
 # what is already there. Usage: scripts/setup.sh [--mpi] [--gpu]
 #   --mpi  the MPI build's packages (docs/mpi.md)
-#   --gpu  nvcc for the optional GPU library (docs/gpu.md, scripts/build_gpu.sh): the
+#   --gpu  nvcc for the optional GPU library (docs/gpu.md, scripts/gpu/build_gpu.sh): the
 #          system's if present, else NVIDIA's CUDA compiler wheels from PyPI into
 #          build/cuda/ (about 350 MB; no GPU needed to compile)
 set -euo pipefail

@@ -255,14 +255,14 @@ contains
       call read_text(dir//'/stderr', text, n)
       call check_true(error, n == 0, 'nothing on stderr on success, got: '//text)
       if (allocated(error)) return
-      ! a broken copy of scripts/animate.gp: gnuplot fails, its message is shown
+      ! a broken copy of scripts/plot/animate.gp: gnuplot fails, its message is shown
       root = dpend_binary()
       b = index(root, '/build/', back=.true.)
       if (b == 0) return
       root = root(:b - 1)
-      call execute_command_line('mkdir -p '//dir//'/root/scripts && cp '//root// &
-                                '/scripts/animate.gp '//dir//'/root/scripts/ && echo '// &
-                                'no_such_command_25 >> '//dir//'/root/scripts/animate.gp')
+      call execute_command_line('mkdir -p '//dir//'/root/scripts/plot && cp '//root// &
+                                '/scripts/plot/animate.gp '//dir//'/root/scripts/plot/ && echo '// &
+                                'no_such_command_25 >> '//dir//'/root/scripts/plot/animate.gp')
       call execute_command_line('DPEND_ROOT='//dir//'/root '//dpend_binary()//' animate '// &
                                 dir//'/sim.h5 --output '//dir//'/b.gif --fps 5 --size 64x64'// &
                                 ' > '//dir//'/stdout 2> '//dir//'/stderr', exitstat=stat)

@@ -365,7 +365,7 @@ contains
    end subroutine test_sincos_near
 
    !> `sincos_stage_lanes` (the RK4 stages of `rk4_lanes`: economized polynomials,
-   !> within 1.8e-16 of cos d - 1 by scripts/stage_poly.py) against `sincos_lanes`
+   !> within 1.8e-16 of cos d - 1 by scripts/reference/stage_poly.py) against `sincos_lanes`
    !> at x = x0 + d, |x0| <= 1000, |d| <= 1/16, from `sincos_lanes`' values at x0.
    subroutine test_sincos_stage(error)
       type(error_t), allocatable, intent(out) :: error

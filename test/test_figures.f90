@@ -1,7 +1,7 @@
 !> The figure scripts (scripts/plot_*.sh) run on tiny files: every PNG they
 !> name exists and is not empty, and their keys list only what is drawn. Each script
 !> appends the key entries it draws, `FIGURE<TAB>TITLE<TAB>N` with N the points of
-!> that series holding data, to $DPEND_PLOT_KEYS (scripts/style.gp,
+!> that series holding data, to $DPEND_PLOT_KEYS (scripts/plot/style.gp,
 !> scripts/lib/output.sh); the tests read that file: every entry has data, and the
 !> entries that do not belong to the run are absent (no "chaotic" reference on a
 !> regular orbit, no power laws on a chaotic one, no grey "not integrated" on a sweep

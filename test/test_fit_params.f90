@@ -18,7 +18,7 @@
 !> - CSV columns in degrees converted by π/180;
 !> - the coverage fit: a two-link pendulum with bobs, d2, I2, g, c1, c2 from
 !>   angles (noise-free to 1e-7; the coverage of the 95 % intervals over seeded noisy
-!>   series, 50 with scripts/fit_coverage.sh);
+!>   series, 50 with scripts/check/fit_coverage.sh);
 !> - a fitted length placing observed tip positions (Jacobian against differences of
 !>   the residuals), point masses whose fitted length moves the mass, the sets bodies
 !>   leave undetermined, and a wrong fixed length's misfit warning.
@@ -498,7 +498,7 @@ contains
    !> the masses fix the scale), from the guess d2 = 0.45, I2 = 0.03, g = 9.6,
    !> c = (0.01, 0.01). Noise-free: every parameter within 1e-7 of the truth. With
    !> Gaussian noise σ = 0.01 rad on `series` seeded series (DPEND_FIT_SERIES, default
-   !> 1; scripts/fit_coverage.sh runs 50): the coverage of the 95 % intervals per
+   !> 1; scripts/check/fit_coverage.sh runs 50): the coverage of the 95 % intervals per
    !> parameter, at least 90 % when series ≥ 20; and the RMS over the series of
    !> (estimate − truth)/SE within [0.5, 1.6] per parameter (≥ 20 series) or over all
    !> estimates (fewer).

@@ -1,6 +1,6 @@
 !> The phase-space distance of the divergence command (`phase_distance`) against an
 !> independently known value (written for a mutant of the mutation stage,
-!> scripts/mutate.sh, docs/testing.md, that passed every earlier test).
+!> scripts/check/mutate.sh, docs/testing.md, that passed every earlier test).
 !> - divergence_mixed_coordinates: the phase-space distance of the elastic pendulum
 !>   (r in m, φ in rad: `angle_coordinates`) wraps the angle difference to (−π, π]
 !>   and never the length (mutant divergence-no-wrap: the angles left unwrapped).

@@ -161,7 +161,7 @@ plot_run() {
     mv -f -T -- "$figdir/$name" "$fig_target/$name" ||
       { plot_discard; plot_fail 1 "cannot move the new $name into '$fig_target'"; }
   done
-  # the key entries the figures drew (figdir/keys.txt, scripts/style.gp), for the
+  # the key entries the figures drew (figdir/keys.txt, scripts/plot/style.gp), for the
   # figure test: appended to $DPEND_PLOT_KEYS when it names a file
   if [[ -n "${DPEND_PLOT_KEYS:-}" && -f "$figdir/keys.txt" ]]; then
     cat -- "$figdir/keys.txt" >> "$DPEND_PLOT_KEYS" ||

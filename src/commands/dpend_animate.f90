@@ -1,5 +1,5 @@
 !> `dpend animate`: an animated GIF of the double pendulum (or the chain of N links)
-!> from a `dpend simulate` file, drawn by gnuplot (scripts/animate.gp) from a data
+!> from a `dpend simulate` file, drawn by gnuplot (scripts/plot/animate.gp) from a data
 !> file written here.
 !>
 !> Frames: N = round(duration × fps) (at least 1) without --duration the whole
@@ -150,8 +150,8 @@ contains
           '                  frames (e.g. two nearby initial conditions separating)'//nl// &
           '  --frames DIR    also write frame_0001.png, ... into the existing directory DIR'//nl// &
           '  -h, --help      this text'//nl//nl// &
-          'Needs gnuplot (5.4 or later) on PATH and scripts/animate.gp of the source tree'//nl// &
-          '(found beside the build, or under $DPEND_ROOT).'
+          'Needs gnuplot (5.4 or later) on PATH and scripts/plot/animate.gp of the source'//nl// &
+          'tree (found beside the build, or under $DPEND_ROOT).'
    end function animate_help
 
    !> Read the command line: one input file and the options, each value checked.
@@ -531,11 +531,11 @@ contains
       if (overlay) nb = b%fig%n_points
       call check_work(cfg, plan, a%fig%n_points + a%fig%n_forces, nb, error)
       if (allocated(error)) return
-      script = find_script('animate.gp')
+      script = find_script('plot/animate.gp')
       if (len(script) == 0) then
          failed = .true.
-         call fatal_error(error, 'scripts/animate.gp not found (set DPEND_ROOT to the dpend '// &
-                          'source tree)')
+         call fatal_error(error, 'scripts/plot/animate.gp not found (set DPEND_ROOT to the '// &
+                          'dpend source tree)')
          return
       end if
       call out%begin(cfg%output, cfg%force, error)

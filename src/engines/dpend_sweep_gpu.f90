@@ -1,6 +1,6 @@
 !> The GPU path of `dpend sweep` (docs/gpu.md): the two-link flip map of
 !> a block on an NVIDIA GPU through the optional library libdpend_gpu.so
-!> (gpu/dpend_sweep_kernel.cu, built by scripts/build_gpu.sh), loaded at run time
+!> (src/gpu/dpend_sweep_kernel.cu, built by scripts/gpu/build_gpu.sh), loaded at run time
 !> with dlopen by the C glue (src/io/dpend_posix.c): dpend never links CUDA.
 !>
 !> `gpu_open` finds, loads and probes the library once (before any work);
@@ -74,7 +74,7 @@ module dpend_sweep_gpu
 contains
 
    !> The library to load: $DPEND_GPU_LIB if set, else libdpend_gpu.so next to the
-   !> running executable if there, else build/gpu/libdpend_gpu.so (scripts/build_gpu.sh's
+   !> running executable if there, else build/gpu/libdpend_gpu.so (scripts/gpu/build_gpu.sh's
    !> default) under the current directory.
    function gpu_library_path() result(path)
       character(len=:), allocatable :: path
@@ -115,7 +115,7 @@ contains
          inquire (file=path, exist=exists)
          if (.not. exists) then
             probed = gpu_no_library
-            probed_why = "no GPU library '"//path//"' (scripts/build_gpu.sh builds it; " &
+            probed_why = "no GPU library '"//path//"' (scripts/gpu/build_gpu.sh builds it; " &
                          //'$DPEND_GPU_LIB names another)'
          else
             rc = c_gpu_load(path//c_null_char, msg, int(size(msg), c_int))

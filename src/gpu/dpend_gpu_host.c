@@ -24,7 +24,7 @@ void dpend_gpu_host_step(const double *coef, double h, double *y, double *trig, 
 }
 
 /* The flip map of n initial states y0 (4, n) on the host, as the CUDA kernel
- * computes it (arguments as dpend_gpu_run_block of gpu/dpend_sweep_kernel.cu). */
+ * computes it (arguments as dpend_gpu_run_block of src/gpu/dpend_sweep_kernel.cu). */
 void dpend_gpu_host_block(const double *coef, const double *bounds, double escale, double h,
                           long long n_steps, int stop_rule, int n, const double *y0,
                           double *t_flip1, double *t_flip2, double *t_flip, double *energy0,

@@ -1,5 +1,5 @@
 /* The two-link flip map, one trajectory at a time, for the CUDA kernel
- * (gpu/dpend_sweep_kernel.cu, one thread per trajectory) and for the host
+ * (src/gpu/dpend_sweep_kernel.cu, one thread per trajectory) and for the host
  * (src/gpu/dpend_gpu_host.c, compiled by fpm, compared with the Fortran kernel in
  * test/test_gpu.f90).
  *

@@ -194,7 +194,7 @@ int dpend_gpu_call_probe(int *count, char *name, int name_len, int *driver, int 
     return dpend_gpu_probe_ptr(count, name, name_len, driver, runtime, msg, msg_len);
 }
 
-/* The loaded library's dpend_gpu_run_block (gpu/dpend_sweep_kernel.cu); -1 if none
+/* The loaded library's dpend_gpu_run_block (src/gpu/dpend_sweep_kernel.cu); -1 if none
  * is loaded. */
 int dpend_gpu_call_run(const double *coef, const double *bounds, double escale, double h,
                        long long n_steps, int stop_rule, long long steps_per_launch, int n,

@@ -4,14 +4,14 @@
 # reaches it); export is linear in the columns and bounded; animate draws only
 # trajectories; an unwritable --frames directory is bad input (exit 2).
 #
-# Fixtures: copies of dpend's own files edited by scripts/h5craft.f90, built here
+# Fixtures: copies of dpend's own files edited by scripts/check/h5craft.f90, built here
 # with h5fc (libhdf5-dev, which scripts/setup.sh installs). ext_*.h5 names.
 
 _ext_tool=$(mktemp -d "${TMPDIR:-/tmp}/ext-h5craft.XXXXXX")
 (
   set -e
   cd "$_ext_tool"
-  h5fc -o h5craft "$ROOT/scripts/h5craft.f90" > build.log 2>&1
+  h5fc -o h5craft "$ROOT/scripts/check/h5craft.f90" > build.log 2>&1
   H=$_ext_tool/h5craft
   cd "$FIXTURES"
   # edit COPY OF: copy OF to COPY, then apply one h5craft edit

@@ -5,13 +5,13 @@
 # reaches a CSV header: one string of as many names (letters, digits, '_') as the
 # columns, else a one-line refusal naming it; a file without it keeps the old names.
 #
-# Fixtures: ioc_*.h5, dpend's own files edited by scripts/h5craft.f90 (h5fc).
+# Fixtures: ioc_*.h5, dpend's own files edited by scripts/check/h5craft.f90 (h5fc).
 
 _ioc_tool=$(mktemp -d "${TMPDIR:-/tmp}/ioc-h5craft.XXXXXX")
 (
   set -e
   cd "$_ioc_tool"
-  h5fc -o h5craft "$ROOT/scripts/h5craft.f90" > build.log 2>&1
+  h5fc -o h5craft "$ROOT/scripts/check/h5craft.f90" > build.log 2>&1
   H=$_ioc_tool/h5craft
   cd "$FIXTURES"
   edit() { local to=$1 from=$2; shift 2; cp "$from" "$to"; "$H" "$to" "$@"; }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Special reliability test: `dpend animate` keeps gnuplot's messages off
 # stderr when gnuplot succeeds ("N frames in animation sequence" and the like), shows
-# them when it fails (a copy of scripts/animate.gp with an invalid last line, through
+# them when it fails (a copy of scripts/plot/animate.gp with an invalid last line, through
 # DPEND_ROOT: exit 1, gnuplot's error and "gnuplot failed" on stderr), and prints
 # the summary's times to 4 significant digits (no 0.9666666666666667).
 # Environment (set by the reliability runner): DPEND, ROOT, SCRATCH (the cwd).
@@ -27,8 +27,8 @@ if grep -q '31 frames, 1.033 s at 30 fps, t = 0 .. 1 s' out.txt; then
 else
   fail "summary: $(cat out.txt)"
 fi
-mkdir -p root/scripts && cp "$ROOT/scripts/animate.gp" root/scripts/ &&
-  echo 'no_such_command_25' >> root/scripts/animate.gp
+mkdir -p root/scripts/plot && cp "$ROOT/scripts/plot/animate.gp" root/scripts/plot/ &&
+  echo 'no_such_command_25' >> root/scripts/plot/animate.gp
 DPEND_ROOT="$SCRATCH/root" "$DPEND" animate sim.h5 --output b.gif --fps 5 --size 64x64 \
   > out2.txt 2> err2.txt
 st=$?

@@ -43,7 +43,7 @@ else
   fail 'resume-key-added: the sweep left no r.h5.part after 2 s'
 fi
 # plot_simulate.sh on a file without the units of q: a note, the figures
-if h5fc -o h5craft "$ROOT/scripts/h5craft.f90" > h5craft.log 2>&1; then
+if h5fc -o h5craft "$ROOT/scripts/check/h5craft.f90" > h5craft.log 2>&1; then
   "$DPEND" simulate --t-end 0.5 --output nu.h5 > /dev/null 2>&1
   ./h5craft nu.h5 attr-del /trajectory/q units
   if DPEND=$DPEND bash "$ROOT/scripts/plot_simulate.sh" nu.h5 > plot.out 2>&1 &&

@@ -6,13 +6,13 @@
 # (default out/gpu_check), the summary in $OUT/gpu_figures.txt; the maps go to
 # $WORK (default /tmp/dpend_gpu_check). Every step logs and continues: the script
 # never stops half-way, and finishes in well under 300 s on an H100.
-#   the GPU, driver and nvcc; build the library (scripts/build_gpu.sh);
-#   the library alone on the classic map (gpu/kernel_check.py, python3 + numpy);
+#   the GPU, driver and nvcc; build the library (scripts/gpu/build_gpu.sh);
+#   the library alone on the classic map (scripts/gpu/kernel_check.py, python3 + numpy);
 #   the classic 1024^2 map (data/sweep_classic.nml) through dpend on the GPU, with
 #   and without re-packing (end-to-end wall time and the library's kernel time),
 #   on the CPU (16 threads), both at dt/2; sweep-compare GPU vs CPU, dt vs dt/2.
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 OUT="${OUT:-out/gpu_check}"
 WORK="${WORK:-/tmp/dpend_gpu_check}"
 mkdir -p "$OUT" "$WORK"
@@ -28,11 +28,11 @@ fig() { echo "$*" | tee -a "$FIG" >>"$LOG"; }
 THREADS="${THREADS:-16}"
 CONFIG=data/sweep_classic.nml
 LIBGPU="${LIBGPU:-$PWD/build/gpu/libdpend_gpu.so}"
-# for a dry run without a GPU: SKIP_BUILD=1 LIBGPU=<scripts/build_gpu.sh --emulate's library>
+# for a dry run without a GPU: SKIP_BUILD=1 LIBGPU=<scripts/gpu/build_gpu.sh --emulate's library>
 # and CHECK_EXTRA="--n 16 --t-end 20" (appended to every map), KCHECK_N=16
 read -r -a EXTRA <<<"${CHECK_EXTRA:-}"
 
-fig "# dpend GPU check (scripts/gpu_device_check.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')"
+fig "# dpend GPU check (scripts/gpu/gpu_device_check.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')"
 
 # ---- the machine
 log "nvidia-smi"
@@ -53,13 +53,13 @@ else
 fi
 
 # ---- build the library
-log "build: scripts/build_gpu.sh"
+log "build: scripts/gpu/build_gpu.sh"
 t=$(date +%s.%N)
 if [[ -n "${SKIP_BUILD:-}" ]]; then
   fig "build: skipped (SKIP_BUILD), library $LIBGPU"
-elif [[ -n "$NVCC" ]] && { NVCC="$NVCC" timeout 120 scripts/build_gpu.sh --out "$LIBGPU" >>"$LOG" 2>&1 ||
+elif [[ -n "$NVCC" ]] && { NVCC="$NVCC" timeout 120 scripts/gpu/build_gpu.sh --out "$LIBGPU" >>"$LOG" 2>&1 ||
      { log "build failed; again with -allow-unsupported-compiler";
-       NVCC="$NVCC" NVCC_FLAGS=-allow-unsupported-compiler timeout 120 scripts/build_gpu.sh \
+       NVCC="$NVCC" NVCC_FLAGS=-allow-unsupported-compiler timeout 120 scripts/gpu/build_gpu.sh \
          --out "$LIBGPU" >>"$LOG" 2>&1; }; }; then
   fig "build: ok in $(since "$t") s ($LIBGPU)"
 else
@@ -128,7 +128,7 @@ sweep() {
 # ---- the library alone (python3 + numpy; no dpend)
 log "kernel_check.py"
 if python3 -c 'import numpy' 2>/dev/null && [[ -f "$LIBGPU" ]]; then
-  timeout 120 python3 gpu/kernel_check.py "$LIBGPU" --n "${KCHECK_N:-1024}" --repack 2048 0 --json "$OUT/kernel_check.json" \
+  timeout 120 python3 scripts/gpu/kernel_check.py "$LIBGPU" --n "${KCHECK_N:-1024}" --repack 2048 0 --json "$OUT/kernel_check.json" \
     >"$OUT/kernel_check.txt" 2>&1 || log "kernel_check.py failed: $(tail -c 300 "$OUT/kernel_check.txt")"
   while read -r line; do fig "kernel_check: $line"; done <"$OUT/kernel_check.txt"
 else
@@ -189,7 +189,7 @@ for n in names:
 PY
   while read -r line; do fig "repack identity: $line"; done <"$OUT/repack_identity.txt"
   if [[ -f "$WORK/cpu.h5" && -f "$LIBGPU" ]]; then
-    timeout 60 python3 gpu/kernel_check.py "$LIBGPU" --n "${KCHECK_N:-1024}" --repack 2048 --compare "$WORK/cpu.h5" \
+    timeout 60 python3 scripts/gpu/kernel_check.py "$LIBGPU" --n "${KCHECK_N:-1024}" --repack 2048 --compare "$WORK/cpu.h5" \
       >"$OUT/kernel_vs_cpu.txt" 2>&1
     fig "kernel_check vs cpu map: $(tail -n 1 "$OUT/kernel_vs_cpu.txt")"
   fi

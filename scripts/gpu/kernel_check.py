@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""The GPU library alone, without dpend (scripts/gpu_device_check.sh): the
+"""The GPU library alone, without dpend (scripts/gpu/gpu_device_check.sh): the
 classic 1024^2 flip map (data/sweep_classic.nml) through dpend_gpu_run_block via
 ctypes, its kernel time (cudaEvent) and wall time, with and without re-packing, and
 optionally the agreement of its flip times with a dpend sweep file (h5py).
 
-usage: gpu/kernel_check.py LIB [--n N] [--repack K ...] [--compare FILE.h5] [--json OUT]
+usage: scripts/gpu/kernel_check.py LIB [--n N] [--repack K ...] [--compare FILE.h5] [--json OUT]
 """
 import argparse
 import ctypes as C

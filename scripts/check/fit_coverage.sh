@@ -5,11 +5,11 @@
 # the noise-free series. Prints the noise-free error and the coverage of the 95 %
 # intervals per parameter, and fails when a coverage is below 90 % or the
 # noise-free error above 1e-7.
-#   scripts/fit_coverage.sh [SERIES]     (SERIES: noisy series, default 50, 1..1000)
+#   scripts/check/fit_coverage.sh [SERIES]     (SERIES: noisy series, default 50, 1..1000)
 # Runs the test fit_params/bob_coverage of the release build (CI runs it with one
 # noisy series in the debug suite).
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 series="${1:-50}"
 [[ $# -le 1 && "$series" =~ ^[0-9]{1,4}$ ]] && ((series >= 1 && series <= 1000)) ||
   { echo "usage: $0 [SERIES]  (SERIES: a count in [1, 1000], got '${1:-}')" >&2; exit 2; }

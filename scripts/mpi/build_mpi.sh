@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Build the MPI variant of the sweep (the fpm package in mpi/, release profile) and
-# print the path of the dpend-mpi binary on the last line. Usage: scripts/build_mpi.sh
+# print the path of the dpend-mpi binary on the last line. Usage: scripts/mpi/build_mpi.sh
 #
 # The package needs the MPI compiler wrapper and parallel HDF5. fpm's hdf5
 # metapackage reads the pkg-config package `hdf5`, which on Debian is the serial
@@ -10,7 +10,7 @@
 #                  on a cluster, whatever its HDF5 module provides, e.g. hdf5)
 #   FPM_FC         MPI Fortran compiler wrapper (default mpif90)
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 . "$root/scripts/flags.sh"
 pcname="${DPEND_HDF5_PC:-hdf5-openmpi}"
 [[ $pcname =~ ^[A-Za-z0-9_][A-Za-z0-9_.+-]*$ ]] ||

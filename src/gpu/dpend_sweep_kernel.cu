@@ -1,7 +1,7 @@
 // The two-link flip map on an NVIDIA GPU: one thread per trajectory, fp64, the
 // per-trajectory step of src/gpu/dpend_gpu_step.h (the same formulas, operation
 // order, flip rule, energy skip and stop rules as the CPU kernel). Built by
-// scripts/build_gpu.sh into libdpend_gpu.so, which dpend loads at run time
+// scripts/gpu/build_gpu.sh into libdpend_gpu.so, which dpend loads at run time
 // (dlopen, src/io/dpend_posix.c; docs/gpu.md); dpend never links CUDA.
 //
 // Exports (extern "C"; every one returns 0 or a CUDA error code, fills `msg`):
@@ -20,7 +20,7 @@
 #include <cstring>
 #include <exception>
 
-#include "../src/gpu/dpend_gpu_step.h"
+#include "dpend_gpu_step.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Per-block cost distribution of a sweep and its predicted behaviour on more ranks.
 
-Usage: scripts/mpi_scaling.py BLOCKS.txt [--groups 1,4,16] [--workers 1,2,4,...]
+Usage: scripts/mpi/mpi_scaling.py BLOCKS.txt [--groups 1,4,16] [--workers 1,2,4,...]
                               [--cost seconds|steps]
 
 BLOCKS.txt is written by `dpend-mpi sweep --block-times FILE` (columns: block, rank,

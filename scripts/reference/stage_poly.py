@@ -8,7 +8,7 @@ quadratic on [0, Z] (Z = 1/256: Chebyshev economization, z^3 ~ 1.5 Z z^2 -
 0.5625 Z^2 z + Z^3/32). Prints the coefficients rounded to double and the largest
 errors on a grid of 2001 points, in 40-digit arithmetic (mpmath).
 
-    python3 scripts/stage_poly.py
+    python3 scripts/reference/stage_poly.py
 """
 from mpmath import mp, mpf, sin, cos, fac
 

@@ -2,8 +2,8 @@
 # Example Slurm batch script: the classic flip map over 4 nodes, 2 MPI ranks per
 # node (one per socket), 16 OpenMP threads per rank. Adapt the #SBATCH lines, the
 # modules and the options to your cluster and submit from the dpend directory:
-#   sbatch scripts/slurm_sweep.sh [dpend sweep options]
-#   sbatch scripts/slurm_sweep.sh --config data/sweep_classic.nml --n 4096 --block 4096
+#   sbatch scripts/mpi/slurm_sweep.sh [dpend sweep options]
+#   sbatch scripts/mpi/slurm_sweep.sh --config data/sweep_classic.nml --n 4096 --block 4096
 # Resubmitting the same command after a time-out or a node failure resumes: only the
 # blocks not yet flagged in the file are computed (docs/mpi.md).
 #SBATCH --job-name=dpend-sweep
@@ -23,7 +23,7 @@ set -euo pipefail
 cd "${SLURM_SUBMIT_DIR:-.}"
 # Build once, on the first node, before the ranks start (the build directory is on
 # the shared file system).
-bin=$(scripts/build_mpi.sh | tail -n 1)
+bin=$(scripts/mpi/build_mpi.sh | tail -n 1)
 
 export OMP_NUM_THREADS="${SLURM_CPUS_PER_TASK:-1}"
 export OMP_PLACES=cores OMP_PROC_BIND=close    # threads pinned inside the rank's cores

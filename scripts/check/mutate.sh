@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The mutation stage: apply source mutants (test/mutants.txt) one at a
 # time in a scratch copy of the tree, build the debug profile, run the tests, and
-# report which mutants the test suite kills. Run scripts/mutate.sh --help for usage.
+# report which mutants the test suite kills. Run scripts/check/mutate.sh --help for usage.
 set -uo pipefail
-ROOT=$(cd "$(dirname "$0")/.." && pwd)
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 
 usage() {
   cat <<'EOF'
-usage: scripts/mutate.sh [--all | --sample K --seed S | --only ID[,ID...]] [options]
+usage: scripts/check/mutate.sh [--all | --sample K --seed S | --only ID[,ID...]] [options]
 
 Applies each selected mutant of the list (default test/mutants.txt; its header
 describes the format) alone to a scratch copy of the working tree, rebuilds the

@@ -1,13 +1,19 @@
 /* A stand-in for libdpend_gpu.so without CUDA: the same exports as
- * gpu/dpend_sweep_kernel.cu, computed on the host with the same per-trajectory
+ * src/gpu/dpend_sweep_kernel.cu, computed on the host with the same per-trajectory
  * functions (src/gpu/dpend_gpu_step.h). It exercises dpend's GPU path (dlopen,
- * the calls, the file) on machines without a GPU: scripts/build_gpu.sh --emulate.
- * Its probe reports one device named "host emulation (no GPU)". */
+ * the calls, the file) on machines without a GPU: scripts/gpu/build_gpu.sh --emulate.
+ * Its probe reports one device named "host emulation (no GPU)".
+ *
+ * A library of its own, not part of dpend: fpm compiles every .c file under src/
+ * into dpend's library, so the code below is compiled only with
+ * -DDPEND_GPU_EMULATE, which scripts/gpu/build_gpu.sh --emulate passes; under fpm
+ * this file compiles to an object without code or symbols. */
+#ifdef DPEND_GPU_EMULATE
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
-#include "../src/gpu/dpend_gpu_step.h"
+#include "dpend_gpu_step.h"
 
 int dpend_gpu_abi(void) { return 1; }
 
@@ -54,3 +60,8 @@ int dpend_gpu_run_block(const double *coef, const double *bounds, double escale,
     if (msg_len > 0) msg[0] = '\0';
     return 0;
 }
+
+#else
+/* ISO C wants a declaration in every file; this one emits nothing. */
+typedef int dpend_gpu_emulate_not_built;
+#endif

@@ -1,7 +1,7 @@
 !> h5craft: edit an HDF5 file into a hostile one, for the reliability suite's
 !> fixtures (test/reliability/cases/external_files.sh, io_coordinates.sh). Not part of
 !> dpend.
-!> Build: h5fc -o h5craft scripts/h5craft.f90 (h5fc comes with libhdf5-dev).
+!> Build: h5fc -o h5craft scripts/check/h5craft.f90 (h5fc comes with libhdf5-dev).
 !>
 !> usage: h5craft FILE OP ARGS...   (FILE must exist; shapes in h5py order)
 !>   del PATH                      delete the link PATH

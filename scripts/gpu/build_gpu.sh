@@ -1,22 +1,22 @@
 #!/usr/bin/env bash
 # Build the optional GPU library of `dpend sweep --device gpu` (docs/gpu.md):
-# gpu/dpend_sweep_kernel.cu -> build/gpu/libdpend_gpu.so, with nvcc, fp64, the CUDA
+# src/gpu/dpend_sweep_kernel.cu -> build/gpu/libdpend_gpu.so, with nvcc, fp64, the CUDA
 # runtime linked statically (at run time only the driver's libcuda.so.1 is needed).
 # dpend loads it at run time: $DPEND_GPU_LIB, else libdpend_gpu.so next to the
 # executable, else build/gpu/libdpend_gpu.so under the current directory.
 #
-# usage: scripts/build_gpu.sh [--out FILE] [--arch sm_NN] [--emulate] [--check]
+# usage: scripts/gpu/build_gpu.sh [--out FILE] [--arch sm_NN] [--emulate] [--check]
 #   --out FILE   the library to write (default build/gpu/libdpend_gpu.so)
 #   --arch A     the GPU architecture of the machine code (default sm_90: H100, H200);
 #                PTX of the same architecture is embedded too, for newer GPUs
-#   --emulate    no CUDA: build gpu/dpend_gpu_emulate.c with cc instead, a stand-in
+#   --emulate    no CUDA: build src/gpu/dpend_gpu_emulate.c with cc instead, a stand-in
 #                that runs the same per-trajectory code on the host (tests, no GPU)
 #   --check      compile only (no library written): the CI's nvcc check
 # $NVCC_FLAGS: more nvcc options (e.g. -allow-unsupported-compiler).
 # nvcc: $NVCC, else nvcc on PATH, else /usr/local/cuda/bin/nvcc, else the PyPI
 # wheels of scripts/setup.sh --gpu (build/cuda/).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 out=build/gpu/libdpend_gpu.so
 arch=sm_90
 emulate=0
@@ -38,7 +38,8 @@ mkdir -p "$(dirname "$out")"
 
 if ((emulate)); then
   cc="${CC:-cc}"
-  "$cc" -O2 -fPIC -shared -Wall -Wextra gpu/dpend_gpu_emulate.c -o "$out" -lm
+  "$cc" -O2 -fPIC -shared -Wall -Wextra -DDPEND_GPU_EMULATE src/gpu/dpend_gpu_emulate.c \
+    -o "$out" -lm
   echo "build_gpu.sh: wrote $out (host emulation, no GPU)"
   exit 0
 fi
@@ -64,9 +65,9 @@ flags+=("${extra[@]}")
 if ((check)); then
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
-  "$nvcc" "${flags[@]}" gpu/dpend_sweep_kernel.cu -o "$tmp/libdpend_gpu.so"
-  echo "build_gpu.sh: gpu/dpend_sweep_kernel.cu compiles ($("$nvcc" --version | tail -n 2 | head -n 1))"
+  "$nvcc" "${flags[@]}" src/gpu/dpend_sweep_kernel.cu -o "$tmp/libdpend_gpu.so"
+  echo "build_gpu.sh: src/gpu/dpend_sweep_kernel.cu compiles ($("$nvcc" --version | tail -n 2 | head -n 1))"
   exit 0
 fi
-"$nvcc" "${flags[@]}" gpu/dpend_sweep_kernel.cu -o "$out"
+"$nvcc" "${flags[@]}" src/gpu/dpend_sweep_kernel.cu -o "$out"
 echo "build_gpu.sh: wrote $out ($nvcc, $arch)"

@@ -5,10 +5,10 @@
 # fit), draws every figure and checks that each PNG is written. A plot script that
 # formats a number in the user's locale (bash printf refused "2.0E-003" under de_DE)
 # fails here.
-# Usage: scripts/check_locale.sh OUTDIR   (the release build, through scripts/dpend)
+# Usage: scripts/check/check_locale.sh OUTDIR   (the release build, through scripts/dpend)
 set -euo pipefail
-[[ $# -eq 1 ]] || { echo "usage: scripts/check_locale.sh OUTDIR" >&2; exit 2; }
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[[ $# -eq 1 ]] || { echo "usage: scripts/check/check_locale.sh OUTDIR" >&2; exit 2; }
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 out=$1
 mkdir -p "$out"/{study,sim,lyapunov,divergence,poincare,sweep,fit}
 dpend=("$root/scripts/dpend")

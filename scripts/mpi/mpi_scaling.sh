@@ -3,11 +3,11 @@
 # (docs/mpi.md): the same map with dpend sweep (1 and 2 threads) and dpend-mpi
 # (1 rank x 1 thread, 2 ranks x 1 thread, 1 rank x 2 threads), best of REPEAT runs
 # each, then the per-rank load balance and the per-block costs, and the predicted
-# behaviour on more ranks (scripts/mpi_scaling.py).
-#   scripts/mpi_scaling.sh [OUTDIR]        (default out/mpi_scaling; REPEAT=2)
+# behaviour on more ranks (scripts/mpi/mpi_scaling.py).
+#   scripts/mpi/mpi_scaling.sh [OUTDIR]        (default out/mpi_scaling; REPEAT=2)
 # Map: MAP="..." overrides the options (default: classic map, 512 x 512, t_end 100).
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
 . scripts/flags.sh
 out="${1:-out/mpi_scaling}"
@@ -18,7 +18,7 @@ mkdir -p -- "$out"
 fpm build --profile release --flag "$RELEASE_FLAGS" >/dev/null 2>&1
 serial=$(fpm run dpend --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |
   tail -n 1)
-mpibin=$(scripts/build_mpi.sh | tail -n 1)
+mpibin=$(scripts/mpi/build_mpi.sh | tail -n 1)
 asroot=()
 [[ $(id -u) -eq 0 ]] && asroot=(--allow-run-as-root)
 
@@ -71,4 +71,4 @@ for f in mpi_1r_1t mpi_2r_1t mpi_1r_2t; do
   sed -n '/^rank /,$p' "$out/$f.txt"
 done
 echo
-python3 scripts/mpi_scaling.py "$out/mpi_1r_1t.blocks.txt"
+python3 scripts/mpi/mpi_scaling.py "$out/mpi_1r_1t.blocks.txt"
