@@ -493,8 +493,7 @@ contains
    subroutine chain_step(self, events)
       class(chain_lanes_t), intent(inout) :: self  !! the lanes
       logical, intent(out) :: events               !! some lane may hold an event
-      real(dp) :: tot(w), n_events
-      integer :: i, l
+      real(dp) :: n_events
       self%p = self%q
       self%pd = self%qd
       if (self%nv > 0 .and. self%stale) then   ! a lane loaded or resynced: f at the start anew
@@ -503,31 +502,53 @@ contains
       end if
       call chain_rk4_lanes(self%cf, self%opt%h, self%q, self%qd, self%e, self%ts, self%tc)
       if (self%nv > 0) call tangent_step(self)
+      call count_events(self%nl, self%q, self%qd, self%e, self%e0, self%active, self%fresh, &
+                        self%lo, self%hi, self%err, self%ks, self%left, self%sync, n_events)
+      events = .not. (n_events == 0.0_dp)   ! true for NaN
+   end subroutine chain_step
+
+   !> After a step: each lane's largest energy error, step count and steps left, and
+   !> a count of the lanes with a possible event: an angle out of its window, the last
+   !> step, a state not finite or beyond half the bound, carried sin and cos due, a
+   !> fresh lane (arrays of the lanes as arguments, so that gcc sees that they do not
+   !> overlap and vectorizes the loops).
+   pure subroutine count_events(nl, q, qd, e, e0, active, fresh, lo, hi, err, ks, left, &
+                                sync, n_events)
+      integer, intent(in) :: nl                               !! links N
+      real(dp), intent(in), dimension(w, nm) :: q, qd         !! state [rad, rad/s]
+      real(dp), intent(in), dimension(w) :: e, e0             !! energy before the step, E(0) [J]
+      real(dp), intent(in), dimension(w) :: active, fresh     !! 1: holds a trajectory; just loaded
+      real(dp), intent(in), dimension(w, nm) :: lo, hi        !! the angles' windows [rad]
+      real(dp), intent(inout) :: err(w)                       !! largest |E - E(0)| [J]
+      integer(i8), intent(inout) :: ks(w)                     !! steps taken
+      real(dp), intent(inout) :: left(w), sync(w)             !! steps left, to the next resync
+      real(dp), intent(out) :: n_events                       !! > 0 or NaN: some event
+      real(dp) :: tot(w)
+      integer :: i, l
       n_events = 0.0_dp
       do l = 1, w
-         self%err(l) = max(self%err(l), abs(self%e(l) - self%e0(l)))
-         self%ks(l) = self%ks(l) + 1
-         self%left(l) = self%left(l) - 1.0_dp
-         self%sync(l) = self%sync(l) - 1.0_dp
-         n_events = n_events + self%active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, self%left(l) - 0.5_dp)) &
-                                               + max(0.0_dp, 0.5_dp - self%sync(l)) + self%fresh(l))
+         err(l) = max(err(l), abs(e(l) - e0(l)))
+         ks(l) = ks(l) + 1
+         left(l) = left(l) - 1.0_dp
+         sync(l) = sync(l) - 1.0_dp
+         n_events = n_events + active(l)*(0.5_dp*(1.0_dp - sign(1.0_dp, left(l) - 0.5_dp)) &
+                                          + max(0.0_dp, 0.5_dp - sync(l)) + fresh(l))
       end do
       do l = 1, w
          tot(l) = 0.0_dp
       end do
-      do i = 1, self%nl
+      do i = 1, nl
          do l = 1, w
-            tot(l) = tot(l) + (abs(self%q(l, i)) + abs(self%qd(l, i)))
-            n_events = n_events + self%active(l)*(max(0.0_dp, self%lo(l, i) - self%q(l, i)) &
-                                                  + max(0.0_dp, self%q(l, i) - self%hi(l, i)))
+            tot(l) = tot(l) + (abs(q(l, i)) + abs(qd(l, i)))
+            n_events = n_events + active(l)*(max(0.0_dp, lo(l, i) - q(l, i)) &
+                                             + max(0.0_dp, q(l, i) - hi(l, i)))
          end do
       end do
       do l = 1, w   ! (half the bound: the rare path decides exactly)
-         n_events = n_events + self%active(l)*(abs(tot(l) - tot(l)) &
-                                               + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
+         n_events = n_events + active(l)*(abs(tot(l) - tot(l)) &
+                                          + max(0.0_dp, tot(l) - 0.5_dp*chain_lane_bound))
       end do
-      events = .not. (n_events == 0.0_dp)   ! true for NaN
-   end subroutine chain_step
+   end subroutine count_events
 
    !> The indicators' step of every lane with a trajectory (after the state's): the
    !> vectors by `chain_tangent_lane`, renormalised to length 1, the running sums
@@ -576,10 +597,20 @@ contains
       self%fa = self%fb
    end subroutine tangent_step
 
+   !> Every lane's events, decided exactly (`chain_check_lane`).
+   subroutine chain_check(self, ended)
+      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+      logical, intent(out) :: ended(w)    !! each lane's trajectory is done
+      integer :: l
+      do l = 1, w
+         call chain_check_lane(self, l, ended(l))
+      end do
+   end subroutine chain_check
+
    !> Lane l's events, decided exactly: a runaway state, a due resync, the flips of
    !> its links (interpolated within the step), the stop rule. An idle lane has none.
-   subroutine chain_check(self, l, ended)
-      class(chain_lanes_t), intent(inout) :: self  !! the lanes
+   subroutine chain_check_lane(self, l, ended)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
       integer, intent(in) :: l                     !! lane
       logical, intent(out) :: ended                !! its trajectory is done
       real(dp) :: mk, qc
@@ -612,7 +643,7 @@ contains
       case (stop_either)
          ended = ended .or. any(self%tf(l, 1:nl) >= 0.0_dp)
       end select
-   end subroutine chain_check
+   end subroutine chain_check_lane
 
    !> Put initial condition j into lane l, or the idle state (j = 0).
    subroutine chain_load(self, l, j)

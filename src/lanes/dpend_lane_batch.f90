@@ -96,8 +96,8 @@ module dpend_lane_batch
       procedure(kernel_step_i), deferred :: step
       !> Put trajectory j into lane l (j = 0: the lane idles at a harmless state).
       procedure(kernel_load_i), deferred :: load
-      !> Decide lane l's possible events exactly; `ended`: its trajectory (if any)
-      !> is done.
+      !> Decide every lane's possible events exactly; `ended(l)`: lane l's
+      !> trajectory (if any) is done.
       procedure(kernel_check_i), deferred :: check
       !> Store lane l's results as those of trajectory j.
       procedure(kernel_load_i), deferred :: finish
@@ -115,11 +115,10 @@ module dpend_lane_batch
          integer, intent(in) :: l                     !! lane
          integer, intent(in) :: j                     !! trajectory (0: none)
       end subroutine kernel_load_i
-      subroutine kernel_check_i(self, l, ended)
-         import :: lane_kernel_t
+      subroutine kernel_check_i(self, ended)
+         import :: lane_kernel_t, lane_width
          class(lane_kernel_t), intent(inout) :: self  !! the kernel
-         integer, intent(in) :: l                     !! lane
-         logical, intent(out) :: ended                !! its trajectory is done
+         logical, intent(out) :: ended(lane_width)    !! each lane's trajectory is done
       end subroutine kernel_check_i
    end interface
 
@@ -140,8 +139,8 @@ contains
       do while (n_active > 0)
          call kernel%step(events)
          if (.not. events) cycle
-         do l = 1, lane_width   ! rare: lane by lane
-            call kernel%check(l, ended(l))
+         call kernel%check(ended)   ! rare: lane by lane
+         do l = 1, lane_width
             ended(l) = ended(l) .and. lane_ic(l) > 0
          end do
          any_ended = .false.

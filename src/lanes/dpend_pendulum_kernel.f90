@@ -489,5 +489,19 @@ contains
       tr%s1 = s1; tr%c1 = c1; tr%s2 = s2; tr%c2 = c2
    end subroutine rk4_lanes_ref
 
+   !> sin x and cos x of one lane as `sincos_lanes` gives them: `sincos_poly` for
+   !> |x| <= `sincos_exact_max`, the intrinsic beyond (and for NaN).
+   pure elemental subroutine sincos_exact(x, s, c)
+      real(dp), intent(in) :: x   !! angle [rad]
+      real(dp), intent(out) :: s  !! sin x
+      real(dp), intent(out) :: c  !! cos x
+      if (abs(x) <= sincos_exact_max) then
+         call sincos_poly(x, s, c)
+      else
+         s = sin(x)
+         c = cos(x)
+      end if
+   end subroutine sincos_exact
+
    include 'dpend_pendulum_lane_math.inc'
 end module dpend_pendulum_kernel

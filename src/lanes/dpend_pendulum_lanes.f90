@@ -17,7 +17,7 @@ module dpend_pendulum_lanes
    use dpend_pendulum_kernel, only: batch_coef_t, batch_coef, lane_coef_t, lane_coef, &
       set_lane_coef, lane_trig_t, rk4_lanes, energy_lanes, sincos_exact, flip_energy_bounds, &
       potential_range, half_pi, two_pi, inv_two_pi, lane_bound
-   use dpend_pendulum_tangent_lanes, only: rk4_tangent_lanes, indicator_step_lanes, log_lanes
+   use dpend_pendulum_tangent_lanes, only: lyapunov_step_lanes, indicator_step_lanes
    implicit none
    private
    public :: integrate_batch
@@ -112,59 +112,79 @@ contains
 
    !> One step of every lane (RK4, with the tangent vectors of the Lyapunov exponent
    !> or of the indicators), then a vectorized count of the lanes with a possible
-   !> event: an angle out of its window, the last step, a non-finite state, a fresh
-   !> lane, carried sin and cos due to be set exactly.
+   !> event (`count_events`).
    subroutine pendulum_step(self, events)
       class(pendulum_lanes_t), intent(inout) :: self  !! the lanes
       logical, intent(out) :: events                  !! some lane may hold an event
-      real(dp), dimension(w) :: nrm, lnrm
-      real(dp) :: s, n_events
-      integer :: i
-      associate (opt => self%opt, q1 => self%q1, q2 => self%q2, w1 => self%w1, &
-                 w2 => self%w2, u1 => self%u1, u2 => self%u2, v1 => self%v1, v2 => self%v2)
-         self%p1 = q1
-         self%p2 = q2
-         if (opt%vectors > 0) then
-            call indicator_step_lanes(self%c, opt%h, self%ks, q1, q2, w1, w2, opt%vectors, &
-                                      self%dv, self%acc, self%e, self%tr)
-         else if (opt%lyapunov) then
-            call rk4_tangent_lanes(self%c, opt%h, q1, q2, w1, w2, u1, u2, v1, v2, self%e)
-            do i = 1, w
-               nrm(i) = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
-               s = 1.0_dp/nrm(i)
-               u1(i) = u1(i)*s; u2(i) = u2(i)*s; v1(i) = v1(i)*s; v2(i) = v2(i)*s
-            end do
-            call log_lanes(nrm, lnrm)
-            self%lacc = self%lacc + lnrm
-         else
-            call rk4_lanes(self%c, opt%h, q1, q2, w1, w2, self%e, self%tr)
-         end if
-         n_events = 0
-         do i = 1, w
-            self%err(i) = max(self%err(i), abs(self%e(i) - self%e0(i)))
-            self%ks(i) = self%ks(i) + 1
-            s = abs(q1(i)) + abs(q2(i)) + abs(w1(i)) + abs(w2(i))
-            self%left(i) = self%left(i) - 1.0_dp
-            self%sync(i) = self%sync(i) - 1.0_dp
-            ! no compare (it would stop the vectorizer without -fno-trapping-math):
-            ! every term >= 0, > 0 for an event; NaN (also an event) if s is not finite
-            n_events = n_events + self%active(i)*(max(0.0_dp, self%lo1(i) - q1(i)) &
-                                        + max(0.0_dp, q1(i) - self%hi1(i)) &
-                                        + max(0.0_dp, self%lo2(i) - q2(i)) &
-                                        + max(0.0_dp, q2(i) - self%hi2(i)) &
-                                        + 0.5_dp*(1.0_dp - sign(1.0_dp, self%left(i) - 0.5_dp)) &
-                                        + abs(s - s) + max(0.0_dp, s - lane_bound) &
-                                        + max(0.0_dp, 0.5_dp - self%sync(i)) + self%fresh(i))
-         end do
-         events = .not. (n_events == 0.0_dp)   ! true for NaN
-      end associate
+      real(dp) :: n_events
+      self%p1 = self%q1
+      self%p2 = self%q2
+      if (self%opt%vectors > 0) then
+         call indicator_step_lanes(self%c, self%opt%h, self%ks, self%q1, self%q2, self%w1, &
+                                   self%w2, self%opt%vectors, self%dv, self%acc, self%e, self%tr)
+      else if (self%opt%lyapunov) then
+         call lyapunov_step_lanes(self%c, self%opt%h, self%q1, self%q2, self%w1, self%w2, &
+                                  self%u1, self%u2, self%v1, self%v2, self%e, self%lacc)
+      else
+         call rk4_lanes(self%c, self%opt%h, self%q1, self%q2, self%w1, self%w2, self%e, self%tr)
+      end if
+      call count_events(self%q1, self%q2, self%w1, self%w2, self%e, self%e0, self%active, &
+                        self%fresh, self%lo1, self%hi1, self%lo2, self%hi2, self%err, &
+                        self%ks, self%left, self%sync, n_events)
+      events = .not. (n_events == 0.0_dp)   ! true for NaN
    end subroutine pendulum_step
+
+   !> After a step: each lane's largest energy error, step count and steps left, and
+   !> a count of the lanes with a possible event: an angle out of its window, the
+   !> last step, a non-finite state, a fresh lane, carried sin and cos due to be set
+   !> exactly (arrays of the lanes as arguments, so that gcc sees that they do not
+   !> overlap and vectorizes the loop).
+   pure subroutine count_events(q1, q2, w1, w2, e, e0, active, fresh, lo1, hi1, lo2, hi2, &
+                                err, ks, left, sync, n_events)
+      real(dp), intent(in), dimension(w) :: q1, q2, w1, w2   !! state [rad, rad/s]
+      real(dp), intent(in), dimension(w) :: e, e0            !! energy before the step, E(0) [J]
+      real(dp), intent(in), dimension(w) :: active, fresh    !! 1: holds a trajectory; just loaded
+      real(dp), intent(in), dimension(w) :: lo1, hi1, lo2, hi2  !! the angles' windows [rad]
+      real(dp), intent(inout) :: err(w)                      !! largest |E - E(0)| [J]
+      integer(i8), intent(inout) :: ks(w)                    !! steps taken
+      real(dp), intent(inout) :: left(w), sync(w)            !! steps left, to the next resync
+      real(dp), intent(out) :: n_events                      !! > 0 or NaN: some event
+      real(dp) :: s
+      integer :: i
+      n_events = 0
+      do i = 1, w
+         err(i) = max(err(i), abs(e(i) - e0(i)))
+         ks(i) = ks(i) + 1
+         s = abs(q1(i)) + abs(q2(i)) + abs(w1(i)) + abs(w2(i))
+         left(i) = left(i) - 1.0_dp
+         sync(i) = sync(i) - 1.0_dp
+         ! no compare (it would stop the vectorizer without -fno-trapping-math):
+         ! every term >= 0, > 0 for an event; NaN (also an event) if s is not finite
+         n_events = n_events + active(i)*(max(0.0_dp, lo1(i) - q1(i)) &
+                                          + max(0.0_dp, q1(i) - hi1(i)) &
+                                          + max(0.0_dp, lo2(i) - q2(i)) &
+                                          + max(0.0_dp, q2(i) - hi2(i)) &
+                                          + 0.5_dp*(1.0_dp - sign(1.0_dp, left(i) - 0.5_dp)) &
+                                          + abs(s - s) + max(0.0_dp, s - lane_bound) &
+                                          + max(0.0_dp, 0.5_dp - sync(i)) + fresh(i))
+      end do
+   end subroutine count_events
+
+   !> Every lane's events, decided exactly (`pendulum_check_lane`).
+   subroutine pendulum_check(self, ended)
+      class(pendulum_lanes_t), intent(inout) :: self  !! the lanes
+      logical, intent(out) :: ended(w)    !! each lane's trajectory is done
+      integer :: l
+      do l = 1, w
+         call pendulum_check_lane(self, l, ended(l))
+      end do
+   end subroutine pendulum_check
 
    !> Lane l's events, decided exactly: the flip times (the index of the last upward
    !> vertical below each angle, π/2 + 2π n, interpolated within the step), a due
    !> resync, and the stop rule.
-   subroutine pendulum_check(self, l, ended)
-      class(pendulum_lanes_t), intent(inout) :: self  !! the lanes
+   subroutine pendulum_check_lane(self, l, ended)
+      type(pendulum_lanes_t), intent(inout) :: self  !! the lanes
       integer, intent(in) :: l                        !! lane
       logical, intent(out) :: ended                   !! its trajectory is done
       real(dp) :: m, qc
@@ -199,7 +219,7 @@ contains
       case (stop_either)
          ended = ended .or. self%tf1(l) >= 0.0_dp .or. self%tf2(l) >= 0.0_dp
       end select
-   end subroutine pendulum_check
+   end subroutine pendulum_check_lane
 
    !> Put initial condition j into lane l, or the idle state (j = 0).
    subroutine pendulum_load(self, l, j)

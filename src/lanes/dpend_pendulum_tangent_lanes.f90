@@ -14,11 +14,13 @@ module dpend_pendulum_tangent_lanes
    use dpend_pendulum_kernel, only: batch_coef_t, lane_coef_t, lane_trig_t, lane_coef, &
       pi, half_pi, two_pi, inv_two_pi, two_over_pi, round_magic, pio2_1, pio2_2, pio2_2t, &
       sin_p1, sin_p2, sin_p3, sin_p4, sin_p5, sin_p6, &
-      cos_p1, cos_p2, cos_p3, cos_p4, cos_p5, cos_p6, lane_bound, d_max, sincos_exact_max
+      cos_p1, cos_p2, cos_p3, cos_p4, cos_p5, cos_p6, lane_bound, d_max, sincos_exact_max, &
+      sincos_exact
    implicit none
    private
    public :: rk4_tangent_lanes, rk4_tangent2_lanes, rk4_tangent_fused_lanes
    public :: indicator_step_lanes, tangent_accel_lanes, megno_step_lanes, log_lanes
+   public :: lyapunov_step_lanes
 
    ! The kernels with each lane's own constants (`lane_coef_t`) or one pendulum in
    ! every lane (`batch_coef_t`)
@@ -778,6 +780,30 @@ contains
       sy = sy + 0.5_dp*(t - t_prev)*(yy + y_new)
       yy = y_new
    end subroutine megno_lane
+
+   !> One step of the largest Lyapunov exponent's kernel: `rk4_tangent_lanes` on the
+   !> state and the deviation vector (u1, u2, v1, v2), the vector renormalised to
+   !> length 1 and ln of its growth added to each lane's sum `lacc`; `e` the energy
+   !> before the step [J].
+   pure subroutine lyapunov_step_lanes(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e, lacc)
+      type(lane_coef_t), intent(in) :: c                       !! constants
+      real(dp), intent(in) :: h                                !! step [s]
+      real(dp), dimension(lane_width), intent(inout) :: q1, q2, w1, w2  !! state
+      real(dp), dimension(lane_width), intent(inout) :: u1, u2, v1, v2  !! deviation
+      real(dp), intent(out) :: e(lane_width)                   !! energy [J]
+      real(dp), intent(inout) :: lacc(lane_width)              !! sum of ln growth [1]
+      real(dp), dimension(lane_width) :: nrm, lnrm
+      real(dp) :: s
+      integer :: i
+      call rk4_tangent_lanes_lc(c, h, q1, q2, w1, w2, u1, u2, v1, v2, e)
+      do i = 1, lane_width
+         nrm(i) = sqrt(u1(i)**2 + u2(i)**2 + v1(i)**2 + v2(i)**2)
+         s = 1.0_dp/nrm(i)
+         u1(i) = u1(i)*s; u2(i) = u2(i)*s; v1(i) = v1(i)*s; v2(i) = v2(i)*s
+      end do
+      call log_lanes(nrm, lnrm)
+      lacc = lacc + lnrm
+   end subroutine lyapunov_step_lanes
 
    include 'dpend_pendulum_lane_math.inc'
 end module dpend_pendulum_tangent_lanes
