@@ -24,7 +24,6 @@ program tester
    use test_factory, only: collect_factory
    use test_elastic, only: collect_elastic
    use test_bodies, only: collect_bodies
-   use test_lanes, only: collect_lanes
    ! src/integrators/
    use test_integrators, only: collect_integrators
    use test_symplectic, only: collect_symplectic
@@ -38,6 +37,9 @@ program tester
    use test_fit_stats, only: collect_fit_stats
    use test_phase_distance, only: collect_phase_distance
    use test_fit_params, only: collect_fit_params
+   ! src/lanes/
+   use test_lanes, only: collect_lanes
+   use test_chain_lanes, only: collect_chain_lanes
    ! src/io/
    use test_hdf5, only: collect_hdf5
    use test_files, only: collect_files
@@ -46,7 +48,6 @@ program tester
    ! src/engines/
    use test_sweep, only: collect_sweep
    use test_study, only: collect_study
-   use test_chain_lanes, only: collect_chain_lanes
    use test_gpu, only: collect_gpu
    ! src/commands/
    use test_cli, only: collect_cli
@@ -93,7 +94,7 @@ program tester
    ! src/core/: limits before work, the strict parser
    call add('limits', collect_limits)
    call add('parse', collect_parse)
-   ! src/models/: the models, their factory, the batch kernels and their copies
+   ! src/models/: the models, their factory, the copies of their formulas
    call add('model', collect_model)
    call add('copies', collect_copies)
    call add('interface', collect_interface)
@@ -103,7 +104,6 @@ program tester
    call add('factory', collect_factory)
    call add('elastic', collect_elastic)
    call add('bodies', collect_bodies)
-   call add('lanes', collect_lanes)
    ! src/integrators/: the methods, their registry, dense output
    call add('integrators', collect_integrators)
    call add('symplectic', collect_symplectic)
@@ -117,15 +117,17 @@ program tester
    call add('fit_stats', collect_fit_stats)
    call add('phase_distance', collect_phase_distance)
    call add('fit_params', collect_fit_params)
+   ! src/lanes/: the lane kernels and their driver
+   call add('lanes', collect_lanes)
+   call add('chain_lanes', collect_chain_lanes)
    ! src/io/: HDF5 and the files that describe themselves
    call add('hdf5', collect_hdf5)
    call add('files', collect_files)
    ! src/settings/: one resolution of every setting
    call add('run_settings', collect_run_settings)
-   ! src/engines/: sweeps, studies, the chain lanes, the GPU path
+   ! src/engines/: sweeps, studies, the GPU path
    call add('sweep', collect_sweep)
    call add('study', collect_study)
-   call add('chain_lanes', collect_chain_lanes)
    call add('gpu', collect_gpu)
    ! src/commands/: the commands end to end, run as processes, and the values they write
    call add('cli', collect_cli)
