@@ -470,18 +470,14 @@ contains
 
    !> The fitted model parameters are held at their guess while the fit window is
    !> shorter than the slowest small oscillation: 2 pi sqrt(sum l / g) for the
-   !> pendulum, 2 pi sqrt(r_eq / g) with r_eq = l0 + m g / k for the elastic one.
+   !> pendulum's rods, the model's own `swing_period` for another model.
    real(dp) function hold_period(fc) result(period)
       type(fit_config_t), intent(in) :: fc  !! validated configuration
-      real(dp), allocatable :: m(:), k(:), l0(:)
       period = huge(1.0_dp)
       if (.not. fc%model_coords) then
          if (fc%run%g > 0.0_dp) period = 2.0_dp*pi*sqrt(sum(fc%run%l(:fc%series%n))/fc%run%g)
-      else if (fc%run%model_name == 'elastic') then
-         m = fc%run%spec%get('m', [1.0_dp])
-         k = fc%run%spec%get('k', [40.0_dp])
-         l0 = fc%run%spec%get('l0', [1.0_dp])
-         period = 2.0_dp*pi*sqrt((l0(1) + m(1)*fc%run%g/k(1))/fc%run%g)
+      else
+         period = fc%run%model%swing_period()
       end if
    end function hold_period
 

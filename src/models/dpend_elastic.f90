@@ -59,7 +59,7 @@
 !> and units, drawable points and forces, parameter ranges, a state-domain check) is
 !> listed in docs/elastic.md.
 module dpend_elastic
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
    use dpend_strings, only: to_str
    use dpend_limits, only: check_parameter, parameter_mass, parameter_length, &
@@ -118,6 +118,7 @@ module dpend_elastic
       procedure :: coordinates_text => el_coordinates_text
       procedure :: figure => el_figure
       procedure :: time_unit => el_time_unit
+      procedure :: swing_period => el_swing_period
       procedure :: rest_state => el_rest_state
       procedure :: energy_text => el_energy_text
       procedure :: check_state => el_check_state
@@ -201,6 +202,13 @@ contains
       call check_range('w2', qd(2), -max_angular_velocity, max_angular_velocity, 'rad/s', &
                        error, 'keeps energies and momenta finite')
    end subroutine check_state
+
+   !> The swing's small-oscillation period about the hanging equilibrium, 2 π √(r_eq/g)
+   !> [s] (the spring's own period is shorter for every k/m > g/r_eq).
+   pure real(dp) function el_swing_period(self) result(period)
+      class(elastic_t), intent(in) :: self  !! the elastic pendulum
+      period = 2.0_dp*pi*sqrt(self%r_eq()/self%g)
+   end function el_swing_period
 
    pure real(dp) function el_r_eq(self)
       class(elastic_t), intent(in) :: self

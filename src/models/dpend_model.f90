@@ -113,6 +113,8 @@ module dpend_model
       procedure :: body_description => model_body_description
       ! the natural time unit of the motion (sweeps and summaries count time in it)
       procedure :: time_unit => model_time_unit
+      ! the period of the slowest small oscillation about rest (the fit's hold window)
+      procedure :: swing_period => model_swing_period
       ! the state of rest (hanging): where a tiny run or a test may start near
       procedure :: rest_state => model_rest_state
    end type model_t
@@ -517,6 +519,14 @@ contains
    !> The natural time unit of the motion [s] and its name, e.g. 'sqrt(l1/g)': sweeps
    !> count time in it (`--time-unit natural`) and summaries quote it. Default: the
    !> second, named 's', for a model that states no natural unit.
+   !> The period of the slowest small oscillation about the state of rest [s]: while a
+   !> fit's window is shorter, its model parameters are held at their guess. Default:
+   !> none (huge: never held).
+   pure real(dp) function model_swing_period(self) result(period)
+      class(model_t), intent(in) :: self  !! the model
+      period = huge(1.0_dp)
+   end function model_swing_period
+
    pure subroutine model_time_unit(self, seconds, name)
       class(model_t), intent(in) :: self                  !! the model
       real(dp), intent(out) :: seconds                    !! the unit [s]
