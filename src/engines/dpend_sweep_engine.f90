@@ -12,8 +12,7 @@ module dpend_sweep_engine
    use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
-      pixel_pendulum
-   use dpend_pendulum, only: pendulum_t
+      pixel_pendulums
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories
    use dpend_chain_lanes, only: integrate_chain_lanes
@@ -103,7 +102,6 @@ contains
       type(batch_result_t), intent(out) :: res    !! its results
       real(dp), allocatable :: p(:, :)
       integer, allocatable :: idx(:)
-      type(pendulum_t), allocatable :: pars(:)
       type(batch_result_t) :: sub
       class(model_t), allocatable :: model
       class(integrator_t), allocatable :: integ
@@ -115,11 +113,8 @@ contains
       call block_range(setup, b, j0, nb)
       if (.not. setup%per_trajectory) then
          ! the lanes' constant records (the kernel's own parameters, not models)
-         allocate (pars(nb))
-         do j = 1, nb
-            pars(j) = pixel_pendulum(setup%cfg, p(:, j))
-         end do
-         call integrate_batch(pars(1), setup%opt, y0, res, pars)
+         call integrate_batch(setup%cfg%run%pendulum(), setup%opt, y0, res, &
+                              pixel_pendulums(setup%cfg, p(:, 1:nb)))
          return
       end if
       call parameter_groups(setup, j0, nb, group)

@@ -50,7 +50,7 @@ module dpend_sweep_settings
       stop_rule, grid_mode, axis_variable, indicator_names, indicator_vectors, &
       axis_parameter, param_axis_names, pixel_parameters, pixel_model, flip_model, &
       sweep_variable, natural_time, horizon_text
-   public :: model_axis, model_axis_names, pixel_model_named, pixel_pendulum
+   public :: model_axis, model_axis_names, pixel_model_named, pixel_pendulum, pixel_pendulums
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
@@ -263,6 +263,18 @@ contains
       end if
       call new_model(spec, model, error)
    end subroutine pixel_model
+
+   !> The double pendulum's constant records of the pixels p(:, j) of a parameter
+   !> sweep (`pixel_pendulum` of each).
+   pure function pixel_pendulums(cfg, p) result(pars)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: p(:, :)          !! (4, n) (m1, m2, l1, l2) [kg, kg, m, m]
+      type(pendulum_t) :: pars(size(p, 2))
+      integer :: j
+      do j = 1, size(p, 2)
+         pars(j) = pixel_pendulum(cfg, p(:, j))
+      end do
+   end function pixel_pendulums
 
    !> The double pendulum's constant record of a pixel of a parameter sweep (the lane
    !> kernel's parameters, not a model): the run's with (m1, m2, l1, l2) = p; point
