@@ -77,18 +77,9 @@
 !> chain is of uniform rods and keeps the rod's arithmetic (results bit for bit).
 module dpend_chain
    use dpend_kinds, only: dp
-   use dpend_error, only: error_t, fatal_error
-   use dpend_limits, only: check_range, check_parameter, parameter_mass, parameter_length, &
-                           parameter_gravity, diverged_bound, max_damping, max_support_amplitude, &
-                           max_support_frequency, max_angle
-   use dpend_strings, only: to_str
-   use dpend_model, only: model_t, max_dof, model_check_parameter_rates
-   use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
-                                link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
-                                n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, two_link_aliases, body_text
-   use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max, body_rod, body_general, &
-                             check_bodies
+   use dpend_error, only: error_t
+   use dpend_limits, only: diverged_bound
+   use dpend_model, only: model_t, max_dof
    implicit none
    private
    public :: chain_t, chain_model
@@ -171,153 +162,159 @@ module dpend_chain
       procedure :: rest_state => chain_rest_state
    end type chain_t
 
-contains
+   ! The cold procedures, implemented by the submodules dpend_chain_build (the
+   ! constructor and its checks) and dpend_chain_outputs (outputs, force recovery,
+   ! sections, descriptions, parameter listing), where the type-bound ones are
+   ! described. No procedure below `contains` (the hot path) calls them.
+   interface
+      !> The chain with masses m [kg], lengths l [m] (one per link) and g [m/s²],
+      !> checked: 1 ≤ N ≤ max_dof links, m and l of the same size, each within
+      !> dpend_limits' range table (`check_parameter`: masses, lengths and g each in
+      !> [1e-6, 1e6]).
+      !> The error names the field (m3, l2, g, links), its value and the accepted range.
+      !> Optional: joint damping c [N m s] (one per link, each in
+      !> [0, max_damping]) and the support motion: amplitudes (a_x, a_y) [m] (each in
+      !> [−max_support_amplitude, max_support_amplitude]), angular frequency ω [rad/s]
+      !> (in [0, max_support_frequency]), phases (φ_x, φ_y) [rad] (|φ| ≤ max_angle).
+      !> All zero (the default) is the conservative chain.
+      !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
+      !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
+      module function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
+                                  inertia) result(model)
+         real(dp), intent(in) :: m(:)                      !! masses [kg]
+         real(dp), intent(in) :: l(:)                      !! lengths [m]
+         real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
+         type(error_t), allocatable, intent(out) :: error  !! set when refused
+         real(dp), intent(in), optional :: damping(:)      !! c_i [N m s]
+         real(dp), intent(in), optional :: amplitude(2)    !! (a_x, a_y) [m]
+         real(dp), intent(in), optional :: frequency       !! ω [rad/s]
+         real(dp), intent(in), optional :: phase(2)        !! (φ_x, φ_y) [rad]
+         real(dp), intent(in), optional :: com(:)          !! d_i [m] (N)
+         real(dp), intent(in), optional :: inertia(:)      !! I_i [kg m²] (N)
+         type(chain_t) :: model                            !! the chain (n = 0 when refused)
+      end function chain_model
 
-   !> The chain with masses m [kg], lengths l [m] (one per link) and g [m/s²],
-   !> checked: 1 ≤ N ≤ max_dof links, m and l of the same size, each within
-   !> dpend_limits' range table (`check_parameter`: masses, lengths and g each in
-   !> [1e-6, 1e6]).
-   !> The error names the field (m3, l2, g, links), its value and the accepted range.
-   !> Optional: joint damping c [N m s] (one per link, each in
-   !> [0, max_damping]) and the support motion: amplitudes (a_x, a_y) [m] (each in
-   !> [−max_support_amplitude, max_support_amplitude]), angular frequency ω [rad/s]
-   !> (in [0, max_support_frequency]), phases (φ_x, φ_y) [rad] (|φ| ≤ max_angle).
-   !> All zero (the default) is the conservative chain.
-   !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
-   !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
-   function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
-                        inertia) result(model)
-      real(dp), intent(in) :: m(:)                      !! masses [kg]
-      real(dp), intent(in) :: l(:)                      !! lengths [m]
-      real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
-      type(error_t), allocatable, intent(out) :: error  !! set when refused
-      real(dp), intent(in), optional :: damping(:)      !! c_i [N m s]
-      real(dp), intent(in), optional :: amplitude(2)    !! (a_x, a_y) [m]
-      real(dp), intent(in), optional :: frequency       !! ω [rad/s]
-      real(dp), intent(in), optional :: phase(2)        !! (φ_x, φ_y) [rad]
-      real(dp), intent(in), optional :: com(:)          !! d_i [m] (N)
-      real(dp), intent(in), optional :: inertia(:)      !! I_i [kg m²] (N)
-      type(chain_t) :: model                            !! the chain (n = 0 when refused)
-      character(len=*), parameter :: reason = 'keeps every product of the model finite'
-      integer :: i, j, n
-      real(dp) :: tail
-      n = size(m)
-      if (n < 1 .or. n > max_dof) then
-         call fatal_error(error, 'invalid links: '//to_str(n)//' is outside [1, ' &
-                          //to_str(max_dof)//']')
-         return
-      end if
-      if (size(l) /= n) then
-         call fatal_error(error, 'invalid l: '//to_str(size(l))//' lengths for ' &
-                          //to_str(n)//' links (one per link)')
-         return
-      end if
-      do i = 1, n
-         call check_parameter(parameter_mass, 'm'//to_str(i), m(i), error)
-         if (allocated(error)) return
-      end do
-      do i = 1, n
-         call check_parameter(parameter_length, 'l'//to_str(i), l(i), error)
-         if (allocated(error)) return
-      end do
-      call check_parameter(parameter_gravity, 'g', g, error)   ! g >= 1e-6 as for N = 2
-      if (allocated(error)) return
-      allocate (model%c(n))
-      model%c = 0.0_dp
-      if (present(damping)) then
-         if (size(damping) /= n) then
-            call fatal_error(error, 'invalid damping: '//to_str(size(damping))// &
-                             ' coefficients for '//to_str(n)//' links (one per joint)')
-            return
-         end if
-         do i = 1, n
-            call check_range('damping c'//to_str(i), damping(i), 0.0_dp, max_damping, &
-                             'N m s', error, reason)
-            if (allocated(error)) return
-         end do
-         model%c = damping
-      end if
-      model%damped = any(model%c > 0.0_dp)
-      if (present(amplitude)) then
-         do i = 1, 2
-            call check_range('support_amplitude '//merge('a_x', 'a_y', i == 1), &
-                             amplitude(i), -max_support_amplitude, max_support_amplitude, &
-                             'm', error, reason)
-            if (allocated(error)) return
-         end do
-         model%sup_a = amplitude
-      end if
-      if (present(frequency)) then
-         call check_range('support_frequency', frequency, 0.0_dp, max_support_frequency, &
-                          'rad/s', error, reason)
-         if (allocated(error)) return
-         model%sup_w = frequency
-      end if
-      if (present(phase)) then
-         do i = 1, 2
-            call check_range('support_phase '//merge('phi_x', 'phi_y', i == 1), phase(i), &
-                             -max_angle, max_angle, 'rad', error, reason)
-            if (allocated(error)) return
-         end do
-         model%sup_phi = phase
-      end if
-      ! a nonzero amplitude moves the pin (with ω = 0 it only offsets it)
-      model%driven = any(model%sup_a /= 0.0_dp)
-      model%rod = .not. (present(com) .or. present(inertia))
-      if (model%rod) then
-         model%d = 0.5_dp*l
-         model%ic = m*l**2/12.0_dp
-      else
-         if (.not. (present(com) .and. present(inertia))) then
-            call fatal_error(error, 'internal error: chain_model needs both com and inertia')
-            return
-         end if
-         if (size(com) /= n) then
-            call fatal_error(error, 'invalid com: '//to_str(size(com))//' values for ' &
-                             //to_str(n)//' links (one per link)')
-            return
-         end if
-         if (size(inertia) /= n) then
-            call fatal_error(error, 'invalid inertia: '//to_str(size(inertia))//' values for ' &
-                             //to_str(n)//' links (one per link)')
-            return
-         end if
-         call check_bodies(m, l, com, inertia, error)
-         if (allocated(error)) return
-         model%d = com
-         model%ic = inertia
-      end if
-      model%n = n
-      model%m = m
-      model%l = l
-      model%g = g
-      allocate (model%k(n, n), model%gl(n), model%mu(n))
-      ! tail = Σ_(k>i) m_k, from the tip
-      tail = 0.0_dp
-      if (.not. model%rod) then
-         do i = n, 1, -1
-            model%k(i, i) = model%ic(i) + m(i)*model%d(i)**2 + tail*l(i)**2
-            do j = i + 1, n
-               model%k(i, j) = l(i)*(m(j)*model%d(j) + l(j)*sum(m(j + 1:n)))
-               model%k(j, i) = model%k(i, j)
-            end do
-            model%gl(i) = g*(m(i)*model%d(i) + l(i)*tail)
-            model%mu(i) = m(i)*model%d(i) + l(i)*tail
-            tail = tail + m(i)
-         end do
-         return
-      end if
-      do i = n, 1, -1
-         model%k(i, i) = (m(i)/3.0_dp + tail)*l(i)**2
-         do j = i + 1, n
-            model%k(i, j) = (0.5_dp*m(j) + sum(m(j + 1:n)))*l(i)*l(j)
-            model%k(j, i) = model%k(i, j)
-         end do
-         model%gl(i) = g*l(i)*(0.5_dp*m(i) + tail)
-         model%mu(i) = l(i)*(0.5_dp*m(i) + tail)
-         tail = tail + m(i)
-      end do
-   end function chain_model
+      ! dpend_chain_outputs: the outputs of a sample, the force recovery, the energy scale
+      pure module subroutine chain_kinematics(self, q, qd, qdd, rc, vc, ac, rj, vj, aj, t)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: q(:), qd(:), qdd(:)         !! q [rad], q̇ [rad/s], q̈ [rad/s²]
+         real(dp), intent(out) :: rc(:, :), vc(:, :), ac(:, :) !! of C_i (2, n)
+         real(dp), intent(out) :: rj(:, :), vj(:, :), aj(:, :) !! of P_i (2, n)
+         real(dp), intent(in), optional :: t                 !! time [s]
+      end subroutine chain_kinematics
+      pure module subroutine chain_reactions(self, q, qd, qdd, f, t)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: q(:), qd(:), qdd(:)   !! q [rad], q̇ [rad/s], q̈ [rad/s²]
+         real(dp), intent(out) :: f(:, :)              !! reactions (2, n) [N]
+         real(dp), intent(in), optional :: t           !! time [s] (default 0)
+      end subroutine chain_reactions
+      pure module subroutine chain_powers(self, t, y, qdd, p_friction, p_support)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: t            !! time [s]
+         real(dp), intent(in) :: y(*)         !! state (q, q̇)
+         real(dp), intent(in) :: qdd(*)       !! q̈ [rad/s²]
+         real(dp), intent(out) :: p_friction  !! power dissipated in the joints [W]
+         real(dp), intent(out) :: p_support   !! power delivered by the support [W]
+      end subroutine chain_powers
+      pure real(dp) module function chain_potential_energy(self, t, y)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: t, y(:)
+      end function chain_potential_energy
+      pure real(dp) module function chain_energy_scale(self, e0)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: e0
+      end function chain_energy_scale
+      pure integer module function chain_n_outputs(self)
+         class(chain_t), intent(in) :: self
+      end function chain_n_outputs
+      module subroutine chain_output_info(self, i, name, n_comp, units, description, rows)
+         class(chain_t), intent(in) :: self
+         integer, intent(in) :: i
+         character(len=:), allocatable, intent(out) :: name, units, description
+         integer, intent(out) :: n_comp
+         integer, intent(out), optional :: rows
+      end subroutine chain_output_info
+      pure module subroutine chain_outputs(self, t, y, f, values)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: t, y(:), f(:)
+         real(dp), intent(out) :: values(:)
+      end subroutine chain_outputs
+
+      ! dpend_chain_outputs: the Poincaré sections (two links: the double pendulum's)
+      pure logical module function chain_energy_sections(self)
+         class(chain_t), intent(in) :: self
+      end function chain_energy_sections
+      pure module subroutine chain_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, &
+                                                 found)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: e, angle, q_o, p_o
+         integer, intent(in) :: link, direction
+         real(dp), intent(out) :: q(:), qd(:)
+         logical, intent(out) :: found
+      end subroutine chain_section_state
+      pure real(dp) module function chain_section_p_max(self, e, link, angle) result(p)
+         class(chain_t), intent(in) :: self
+         real(dp), intent(in) :: e, angle
+         integer, intent(in) :: link
+      end function chain_section_p_max
+
+      ! dpend_chain_outputs: descriptions, the parameter listing
+      pure module function chain_name(self) result(name)
+         class(chain_t), intent(in) :: self
+         character(len=:), allocatable :: name
+      end function chain_name
+      pure integer module function chain_n_parameters(self)
+         class(chain_t), intent(in) :: self
+      end function chain_n_parameters
+      module subroutine chain_parameter(self, i, name, value, units)
+         class(chain_t), intent(in) :: self
+         integer, intent(in) :: i
+         character(len=:), allocatable, intent(out) :: name, units
+         real(dp), intent(out) :: value
+      end subroutine chain_parameter
+      module subroutine chain_coordinate(self, i, name, units, momentum_units)
+         class(chain_t), intent(in) :: self
+         integer, intent(in) :: i
+         character(len=:), allocatable, intent(out) :: name, units, momentum_units
+      end subroutine chain_coordinate
+      module function chain_coordinates_text(self, order) result(text)
+         class(chain_t), intent(in) :: self
+         integer, intent(in) :: order
+         character(len=:), allocatable :: text
+      end function chain_coordinates_text
+      module subroutine chain_figure(self, anchor, points, style, forces)
+         class(chain_t), intent(in) :: self
+         character(len=:), allocatable, intent(out) :: anchor, points, style, forces
+      end subroutine chain_figure
+      module subroutine chain_check_parameter_rates(self, name, error)
+         class(chain_t), intent(in) :: self
+         character(len=*), intent(in) :: name              !! parameter name
+         type(error_t), allocatable, intent(out) :: error  !! set when refused
+      end subroutine chain_check_parameter_rates
+      pure module subroutine chain_time_unit(self, seconds, name)
+         class(chain_t), intent(in) :: self                  !! the model
+         real(dp), intent(out) :: seconds                    !! the unit [s]
+         character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
+      end subroutine chain_time_unit
+      pure module subroutine chain_rest_state(self, q)
+         class(chain_t), intent(in) :: self  !! the model
+         real(dp), intent(out) :: q(:)       !! angles at rest [rad]
+      end subroutine chain_rest_state
+      module function chain_body_description(self) result(text)
+         class(chain_t), intent(in) :: self  !! the chain
+         character(len=:), allocatable :: text
+      end function chain_body_description
+      pure module function chain_potential_weights(self) result(gl)
+         class(chain_t), intent(in) :: self  !! the chain
+         real(dp), allocatable :: gl(:)
+      end function chain_potential_weights
+      pure module function chain_mass_weights(self) result(k)
+         class(chain_t), intent(in) :: self  !! the chain
+         real(dp), allocatable :: k(:, :)
+      end function chain_mass_weights
+   end interface
+
+contains
 
    ! ---------------------------------------------------------------- linear algebra
 
@@ -487,38 +484,6 @@ contains
       a = -self%sup_w**2*r
    end subroutine chain_support
 
-   !> P_friction = Σ c_i (q̇_i − q̇_(i−1))² and P_support = F_(0,1) · v_A [W] at
-   !> (t, q, q̇) with the accelerations q̈ (see the module's notes).
-   pure subroutine chain_powers(self, t, y, qdd, p_friction, p_support)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: t            !! time [s]
-      real(dp), intent(in) :: y(*)         !! state (q, q̇)
-      real(dp), intent(in) :: qdd(*)       !! q̈ [rad/s²]
-      real(dp), intent(out) :: p_friction  !! power dissipated in the joints [W]
-      real(dp), intent(out) :: p_support   !! power delivered by the support [W]
-      real(dp) :: ra(2), va(2), aa(2), f(2), w, ci, si
-      integer :: i, n
-      n = self%n
-      p_friction = 0.0_dp
-      p_support = 0.0_dp
-      if (self%damped) then
-         do i = 1, n
-            w = y(n + i)
-            if (i > 1) w = w - y(n + i - 1)
-            p_friction = p_friction + self%c(i)*w**2
-         end do
-      end if
-      if (self%driven) then
-         call self%support(t, ra, va, aa)
-         f = sum(self%m)*(aa + [0.0_dp, self%g])
-         do i = 1, n
-            ci = cos(y(i)); si = sin(y(i))
-            f = f + self%mu(i)*(qdd(i)*[-si, ci] - y(n + i)**2*[ci, si])
-         end do
-         p_support = dot_product(f, va)
-      end if
-   end subroutine chain_powers
-
    !> q̇ = M⁻¹ p (leading n of qd) and the Cholesky factor of M.
    pure subroutine solve_qd(self, q, p, qd, a, c, s)
       class(chain_t), intent(in) :: self
@@ -584,22 +549,6 @@ contains
       class(chain_t), intent(in) :: self
       chain_n_dof = self%n
    end function chain_n_dof
-
-   pure function chain_name(self) result(name)
-      class(chain_t), intent(in) :: self
-      character(len=:), allocatable :: name
-      name = 'chain of '//to_str(self%n)//' links'
-      if (.not. self%rod) then
-         if (all(self%d(1:self%n) == self%l(1:self%n)) .and. all(self%ic(1:self%n) == 0.0_dp)) &
-            then
-            name = name//' of point masses on massless rods'
-         else
-            name = name//' of general bodies (com d_i, inertia I_i)'
-         end if
-      end if
-      if (self%damped) name = 'damped '//name
-      if (self%driven) name = name//' on a moving support'
-   end function chain_name
 
    !> Hamiltonian and conservative without damping and support.
    pure logical function chain_hamiltonian(self)
@@ -732,19 +681,6 @@ contains
       end do
    end function chain_potential
 
-   !> V = Σ G_i sin q_i, and with a moving support the height of the whole mass at
-   !> the pin, M g y_A(t) [J] (the potential part of `chain_energy`).
-   pure real(dp) function chain_potential_energy(self, t, y)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: t, y(:)
-      real(dp) :: ra(2), va(2), aa(2)
-      chain_potential_energy = self%potential(y(1:self%n))
-      if (self%driven) then
-         call self%support(t, ra, va, aa)
-         chain_potential_energy = chain_potential_energy + sum(self%m)*self%g*ra(2)
-      end if
-   end function chain_potential_energy
-
    !> ½ q̇ᵀ M q̇ + V [J].
    !> On a moving support, the inertial energy (module notes): plus
    !> v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A.
@@ -766,19 +702,6 @@ contains
          end do
       end if
    end function chain_energy
-
-   !> The unit of relative energy errors [J], as for the double pendulum: |E0| when it is
-   !> at least 1e-3 of E_ref = V(π/2, …, π/2) = Σ G_i (every link upright), E_ref itself
-   !> when E0 ≈ 0 (e.g. released horizontally); 1 J when both vanish (g = 0 at rest),
-   !> so that the relative error is then the error in joules.
-   pure real(dp) function chain_energy_scale(self, e0)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: e0
-      real(dp) :: e_ref
-      e_ref = sum(self%gl)
-      chain_energy_scale = merge(abs(e0), e_ref, abs(e0) >= 1e-3_dp*e_ref)
-      if (.not. chain_energy_scale > 0.0_dp) chain_energy_scale = 1.0_dp
-   end function chain_energy_scale
 
    !> p = M(q) q̇ into the leading n of p.
    pure subroutine momenta_of(self, q, qd, p)
@@ -1041,242 +964,7 @@ contains
       end if
    end subroutine chain_energy_gradient
 
-   ! ---------------------------------------------------------------- Poincaré sections
-
-   !> Energy-shell sections exist for two links only (a two-degree-of-freedom
-   !> Hamiltonian); there the chain is the double pendulum, whose formulas are used.
-   pure logical function chain_energy_sections(self)
-      class(chain_t), intent(in) :: self
-      chain_energy_sections = self%n == 2 .and. self%hamiltonian()
-   end function chain_energy_sections
-
-   !> The double pendulum of a two-link chain.
-   pure function as_pendulum(self) result(par)
-      class(chain_t), intent(in) :: self
-      type(pendulum_t) :: par
-      par = pendulum_t(m1=self%m(1), m2=self%m(2), l1=self%l(1), l2=self%l(2), g=self%g)
-      if (.not. self%rod) then
-         par%body = body_general
-         par%d1 = self%d(1); par%d2 = self%d(2); par%i1 = self%ic(1); par%i2 = self%ic(2)
-      end if
-   end function as_pendulum
-
-   !> N = 2 only (`energy_sections`): the double pendulum's `shell_state`.
-   pure subroutine chain_section_state(self, e, link, angle, direction, q_o, p_o, q, qd, &
-                                       found)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: e, angle, q_o, p_o
-      integer, intent(in) :: link, direction
-      real(dp), intent(out) :: q(:), qd(:)
-      logical, intent(out) :: found
-      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
-      call shell_state(as_pendulum(self), e, link, angle, direction, q_o, p_o, q, qd, found)
-   end subroutine chain_section_state
-
-   !> N = 2 only (`energy_sections`): the double pendulum's `shell_p_max`.
-   pure real(dp) function chain_section_p_max(self, e, link, angle) result(p)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: e, angle
-      integer, intent(in) :: link
-      if (self%n /= 2) error stop 'internal error: the chain has sections for N = 2 only'
-      p = shell_p_max(as_pendulum(self), e, link, angle)
-   end function chain_section_p_max
-
-   ! ---------------------------------------------------------------- kinematics, reactions
-
-   !> Positions [m], velocities [m/s], accelerations [m/s²] of every centre of mass C_i
-   !> and far end P_i, as (2, n) arrays (x, y per link), at time t (default 0; the
-   !> support's motion included).
-   pure subroutine chain_kinematics(self, q, qd, qdd, rc, vc, ac, rj, vj, aj, t)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: q(:), qd(:), qdd(:)         !! q [rad], q̇ [rad/s], q̈ [rad/s²]
-      real(dp), intent(out) :: rc(:, :), vc(:, :), ac(:, :) !! of C_i (2, n)
-      real(dp), intent(out) :: rj(:, :), vj(:, :), aj(:, :) !! of P_i (2, n)
-      real(dp), intent(in), optional :: t                 !! time [s]
-      real(dp) :: u(2), nv(2), r0(2), v0(2), a0(2), h
-      integer :: i
-      r0 = 0.0_dp; v0 = 0.0_dp; a0 = 0.0_dp
-      if (self%driven) then
-         h = 0.0_dp
-         if (present(t)) h = t
-         call self%support(h, r0, v0, a0)
-      end if
-      do i = 1, self%n
-         u = [cos(q(i)), sin(q(i))]
-         nv = [-u(2), u(1)]
-         h = self%d(i)          ! L_i/2 for rods (the same bits as 0.5 L_i)
-         rc(:, i) = r0 + h*u
-         vc(:, i) = v0 + h*qd(i)*nv
-         ac(:, i) = a0 + h*(qdd(i)*nv - qd(i)**2*u)
-         rj(:, i) = r0 + self%l(i)*u
-         vj(:, i) = v0 + self%l(i)*qd(i)*nv
-         aj(:, i) = a0 + self%l(i)*(qdd(i)*nv - qd(i)**2*u)
-         r0 = rj(:, i); v0 = vj(:, i); a0 = aj(:, i)
-      end do
-   end subroutine chain_kinematics
-
-   !> F_(i−1,i) [N] (2, n), the force of body i − 1 on body i at joint i, from the tip:
-   !> F_(i−1,i) = F_(i,i+1) + m_i (a_Ci + g ĵ), F_(N,N+1) = 0.
-   pure subroutine chain_reactions(self, q, qd, qdd, f, t)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: q(:), qd(:), qdd(:)   !! q [rad], q̇ [rad/s], q̈ [rad/s²]
-      real(dp), intent(out) :: f(:, :)              !! reactions (2, n) [N]
-      real(dp), intent(in), optional :: t           !! time [s] (default 0)
-      real(dp) :: rc(2, max_dof), vc(2, max_dof), ac(2, max_dof)
-      real(dp) :: rj(2, max_dof), vj(2, max_dof), aj(2, max_dof), nxt(2)
-      integer :: i, n
-      n = self%n
-      call self%kinematics(q, qd, qdd, rc(:, 1:n), vc(:, 1:n), ac(:, 1:n), &
-                           rj(:, 1:n), vj(:, 1:n), aj(:, 1:n), t)
-      nxt = 0.0_dp
-      do i = n, 1, -1
-         f(1, i) = nxt(1) + self%m(i)*ac(1, i)
-         f(2, i) = nxt(2) + self%m(i)*(ac(2, i) + self%g)
-         nxt = f(:, i)
-      end do
-   end subroutine chain_reactions
-
-   pure integer function chain_n_outputs(self)
-      class(chain_t), intent(in) :: self
-      chain_n_outputs = n_link_out
-      if (self%n == 2) chain_n_outputs = n_link_out + n_alias_out
-   end function chain_n_outputs
-
-   !> The pendulum layout of dpend_link_layout: F_joint rC vC aC rJ vJ aJ (N rows)
-   !> and rA; for two links also the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB.
-   subroutine chain_output_info(self, i, name, n_comp, units, description, rows)
-      class(chain_t), intent(in) :: self
-      integer, intent(in) :: i
-      character(len=:), allocatable, intent(out) :: name, units, description
-      integer, intent(out) :: n_comp
-      integer, intent(out), optional :: rows
-      integer :: r
-      if (i <= n_link_out) then
-         name = trim(link_out_name(i)); units = trim(link_out_units(i))
-         description = trim(link_out_text(i))
-         r = merge(self%n, 0, link_out_rows(i))
-      else
-         name = trim(alias_out_name(i - n_link_out))
-         units = trim(alias_out_units(i - n_link_out))
-         description = trim(alias_out_text(i - n_link_out))
-         r = 0
-      end if
-      n_comp = 2*max(1, r)
-      if (present(rows)) rows = r
-   end subroutine chain_output_info
-
-   !> The outputs of one sample (14 N + 2 values, 20 more for two links), q̈ taken
-   !> from f = (q̇, q̈).
-   pure subroutine chain_outputs(self, t, y, f, values)
-      class(chain_t), intent(in) :: self
-      real(dp), intent(in) :: t, y(:), f(:)
-      real(dp), intent(out) :: values(:)
-      real(dp) :: w(2, max_dof, n_link_out - 1), v(2), a(2)
-      integer :: n, k
-      n = self%n
-      associate (q => y(1:n), qd => y(n + 1:2*n), qdd => f(n + 1:2*n))
-         call self%reactions(q, qd, qdd, w(:, 1:n, 1), t)
-         call self%kinematics(q, qd, qdd, w(:, 1:n, 2), w(:, 1:n, 3), w(:, 1:n, 4), &
-                              w(:, 1:n, 5), w(:, 1:n, 6), w(:, 1:n, 7), t)
-      end associate
-      do k = 1, n_link_out - 1
-         values(2*n*(k - 1) + 1:2*n*k) = reshape(w(:, 1:n, k), [2*n])
-      end do
-      call self%support(t, values(14*n + 1:14*n + 2), v, a)
-      if (n == 2) call two_link_aliases(w(:, 1:2, :), values(31:48))
-   end subroutine chain_outputs
-
-   pure integer function chain_n_parameters(self)
-      class(chain_t), intent(in) :: self
-      chain_n_parameters = 2*self%n + 1
-      if (self%damped) chain_n_parameters = chain_n_parameters + self%n
-      if (self%driven) chain_n_parameters = chain_n_parameters + 5
-      if (.not. self%rod) chain_n_parameters = chain_n_parameters + 2*self%n
-   end function chain_n_parameters
-
-   !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order; then, when present, the
-   !> damping c1 … cN [N m s] and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
-   !> last, for links other than uniform rods, com1 … comN [m] and inertia1 … inertiaN
-   !> [kg m^2].
-   subroutine chain_parameter(self, i, name, value, units)
-      class(chain_t), intent(in) :: self
-      integer, intent(in) :: i
-      character(len=:), allocatable, intent(out) :: name, units
-      real(dp), intent(out) :: value
-      integer :: j
-      character(len=*), parameter :: sup_names(5) = &
-         [character(len=17) :: 'support_ax', 'support_ay', 'support_frequency', &
-          'support_phase_x', 'support_phase_y']
-      character(len=*), parameter :: sup_units(5) = &
-         [character(len=5) :: 'm', 'm', 'rad/s', 'rad', 'rad']
-      j = i - (2*self%n + 1)
-      if (j > 0 .and. .not. self%rod) then   ! the last: com1 … comN, inertia1 … inertiaN
-         j = i - (chain_n_parameters(self) - 2*self%n)
-         if (j > 0) then
-            if (j <= self%n) then
-               name = 'com'//to_str(j); value = self%d(j); units = 'm'
-            else
-               name = 'inertia'//to_str(j - self%n); value = self%ic(j - self%n)
-               units = 'kg m^2'
-            end if
-            return
-         end if
-         j = i - (2*self%n + 1)
-      end if
-      if (j > 0 .and. self%damped) then
-         if (j <= self%n) then
-            name = 'c'//to_str(j); value = self%c(j); units = 'N m s'
-            return
-         end if
-         j = j - self%n
-      end if
-      if (j > 0) then
-         name = trim(sup_names(j)); units = trim(sup_units(j))
-         select case (j)
-         case (1, 2); value = self%sup_a(j)
-         case (3); value = self%sup_w
-         case default; value = self%sup_phi(j - 3)
-         end select
-         return
-      end if
-      if (i <= self%n) then
-         name = 'm'//to_str(i); value = self%m(i); units = 'kg'
-      else if (i <= 2*self%n) then
-         name = 'l'//to_str(i - self%n); value = self%l(i - self%n); units = 'm'
-      else
-         name = 'g'; value = self%g; units = 'm/s^2'
-      end if
-   end subroutine chain_parameter
-
-   subroutine chain_coordinate(self, i, name, units, momentum_units)
-      class(chain_t), intent(in) :: self
-      integer, intent(in) :: i
-      character(len=:), allocatable, intent(out) :: name, units, momentum_units
-      call rod_coordinate(i, name, units, momentum_units)
-   end subroutine chain_coordinate
-
-   function chain_coordinates_text(self, order) result(text)
-      class(chain_t), intent(in) :: self
-      integer, intent(in) :: order
-      character(len=:), allocatable :: text
-      text = rod_coordinates_text(self%n, order)
-   end function chain_coordinates_text
-
-   subroutine chain_figure(self, anchor, points, style, forces)
-      class(chain_t), intent(in) :: self
-      character(len=:), allocatable, intent(out) :: anchor, points, style, forces
-      call rod_figure(anchor, points, style, forces)
-   end subroutine chain_figure
-
    ! the sensitivities of the motion to the damping (dpend fit --fit-damping)
-
-   !> The chain gives the sensitivities to its joint damping.
-   subroutine chain_check_parameter_rates(self, name, error)
-      class(chain_t), intent(in) :: self
-      character(len=*), intent(in) :: name              !! parameter name
-      type(error_t), allocatable, intent(out) :: error  !! set when refused
-      if (name /= 'damping') call model_check_parameter_rates(self, name, error)
-   end subroutine chain_check_parameter_rates
 
    !> ∂q̈/∂c_i = M⁻¹ ∂Q/∂c_i with ∂Q/∂c_i = −w_i e_i + w_i e_(i−1),
    !> w_i = q̇_i − q̇_(i−1) (q̇_0 = 0): one column per joint.
@@ -1304,46 +992,4 @@ contains
          d(:, i) = b(1:n)
       end do
    end subroutine chain_parameter_rates
-
-   !> The natural time unit sqrt(l1/g) of the first link [s].
-   pure subroutine chain_time_unit(self, seconds, name)
-      class(chain_t), intent(in) :: self                  !! the model
-      real(dp), intent(out) :: seconds                    !! the unit [s]
-      character(len=:), allocatable, intent(out) :: name  !! 'sqrt(l1/g)'
-      seconds = sqrt(self%l(1)/self%g)
-      name = 'sqrt(l1/g)'
-   end subroutine chain_time_unit
-
-   !> Every link hanging: q_i = −π/2 (the support's mean position if it moves).
-   pure subroutine chain_rest_state(self, q)
-      class(chain_t), intent(in) :: self  !! the model
-      real(dp), intent(out) :: q(:)       !! angles at rest [rad]
-      q = -0.5_dp*acos(-1.0_dp)
-   end subroutine chain_rest_state
-
-   !> The links' mass distribution with units ('' for uniform rods).
-   function chain_body_description(self) result(text)
-      class(chain_t), intent(in) :: self  !! the chain
-      character(len=:), allocatable :: text
-      text = body_text(self%rod, self%l, self%d, self%ic)
-   end function chain_body_description
-
-   !> G_i of V = Σ G_i sin q_i [J] (n).
-   pure function chain_potential_weights(self) result(gl)
-      class(chain_t), intent(in) :: self  !! the chain
-      real(dp), allocatable :: gl(:)
-      gl = self%gl
-   end function chain_potential_weights
-
-   !> K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²] (n × n); none (0 × 0) when the
-   !> support moves (the mass matrix is that, but the forces have more terms).
-   pure function chain_mass_weights(self) result(k)
-      class(chain_t), intent(in) :: self  !! the chain
-      real(dp), allocatable :: k(:, :)
-      if (self%driven) then
-         allocate (k(0, 0))
-      else
-         k = self%k
-      end if
-   end function chain_mass_weights
 end module dpend_chain
