@@ -570,7 +570,7 @@ F=src/models/dpend_model_factory.f90
 insert $F 'model, step 2' 'the use of the module' \
   '^module dpend_model_factory\n(?P<at>)' $'   use dpend_simple, only: simple_t, simple_model\n'
 insert $F 'model, step 2' 'the row of model_catalogue' \
-  '^[ \t]*models = \[[^\]\n]*_info\(\)(?P<at>)\][ \t]*$' ', simple_info()'
+  '^[ \t]*models = \[[^\]]*_info\(\)(?P<at>)\]' ', simple_info()'
 insert $F 'model, step 2' 'the <name>_info function' \
   '(?P<at>)^end module dpend_model_factory' "@$SCRATCH/simple_info.f90"
 insert $F 'model, step 2' "the case of build" \
@@ -657,11 +657,14 @@ else
 fi
 
 # ------------------------------------------------------------- the method
-if "$BIN" methods --names 2> /dev/null | grep -qw heun &&
-   "$BIN" methods 2> /dev/null | grep -qE '^heun +\(q, qdot\) +2 '; then
+# (outputs kept before grep -q reads them: under pipefail, `dpend | grep -q` fails
+# when grep exits on its first match while dpend still writes)
+names=$("$BIN" methods --names 2>&1)
+table=$("$BIN" methods 2>&1)
+if grep -qw heun <<< "$names" && grep -qE '^heun +\(q, qdot\) +2 ' <<< "$table"; then
   ok "dpend methods lists heun, order 2"
 else
-  fail "dpend methods does not list heun with order 2: $("$BIN" methods --names 2>&1 | head -n 1)"
+  fail "dpend methods does not list heun with order 2: $names"
 fi
 # final_state METHOD DT: q and qdot at t = 2 s of the simple pendulum from q = -1
 final_state() {
@@ -743,7 +746,8 @@ if [ $rc = 2 ] && [ "$(grep -c '' err.txt)" = 1 ] && grep -q "invalid model" err
 else
   fail "dpend time-unit --model nosuch: exit $rc (expected 2): $(head -n 1 err.txt)"
 fi
-if "$BIN" --help 2> /dev/null | grep -q '^  time-unit '; then
+usage=$("$BIN" --help 2>&1)
+if grep -q '^  time-unit ' <<< "$usage"; then
   ok "dpend --help lists time-unit"
 else
   fail "dpend --help does not list time-unit (the row's line of the usage text)"
