@@ -648,13 +648,19 @@ contains
          call integ%check_model(model, err)
          if (allocated(err)) cycle      ! refused: `methods_follow_registry`
          ! steps Δ/n, n = 2, 3, 4, 6, 8, 12, … (ratios 3/2 and 4/3): the first with an
-         ! error below min(1e-5, 10^-order), and the next two
+         ! error below min(1e-5, 10^-order), and the next two (n up to 24576: a second-
+         ! order method such as Heun's needs n = 2048 here)
          nn = 2
-         do k = 1, 20
+         do k = 1, 28
             call run_errors(integ, model, y0, dt, dt/nn, yref, e(1), ee(1))
             if (e(1) < min(1e-5_dp, 10.0_dp**(-order))) exit
             nn = next_n(nn)
          end do
+         ! the ladder exhausted: e(1) is the error of the step before nn, not of dt/nn
+         call check_true(error, e(1) < min(1e-5_dp, 10.0_dp**(-order)), name// &
+                         ': no step dt/n, n < '//to_str(nn)//', has an error below ' &
+                         //real_str(min(1e-5_dp, 10.0_dp**(-order)), 2))
+         if (allocated(error)) exit
          h(1) = dt/nn
          do k = 2, 3
             nn = next_n(nn)

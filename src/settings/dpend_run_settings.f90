@@ -86,10 +86,12 @@ module dpend_run_settings
       !> (`build_model`), never dropped.
       character(len=:), allocatable :: given
    contains
-      !> Initial angles q(1:N) [rad].
+      !> Initial coordinates q(1:n) [rad for angles], n those of the model (`n_coords`).
       procedure :: q0 => run_q0
-      !> Initial angular velocities w(1:N) [rad/s].
+      !> Initial rates w(1:n) [rad/s for angles].
       procedure :: w0 => run_w0
+      !> The model's coordinates n once it is built (`validate_run_config`), else N.
+      procedure :: n_coords => run_n_coords
       !> The double pendulum's parameters (links 1 and 2, g).
       procedure :: pendulum => run_pendulum
    end type run_config_t
@@ -99,14 +101,26 @@ contains
    pure function run_q0(self) result(q)
       class(run_config_t), intent(in) :: self  !! configuration
       real(dp), allocatable :: q(:)
-      q = self%q(:self%links)
+      q = self%q(:self%n_coords())
    end function run_q0
 
    pure function run_w0(self) result(w)
       class(run_config_t), intent(in) :: self  !! configuration
       real(dp), allocatable :: w(:)
-      w = self%w(:self%links)
+      w = self%w(:self%n_coords())
    end function run_w0
+
+   !> The coordinates of the built model (its n_dof: N links, the elastic pendulum's
+   !> 2, a model of one coordinate's 1), else the links N: `links` keeps its default
+   !> 2 for a model without links, which need not have two coordinates.
+   pure integer function run_n_coords(self) result(n)
+      class(run_config_t), intent(in) :: self  !! configuration
+      if (allocated(self%model)) then
+         n = self%model%n_dof()
+      else
+         n = self%links
+      end if
+   end function run_n_coords
 
    pure function run_pendulum(self) result(par)
       class(run_config_t), intent(in) :: self  !! configuration

@@ -9,7 +9,9 @@
 # fit of each parameter to the model's own simulated motion. Each run must exit 0,
 # or exit 2 with exactly one line on stderr (a capability the model or the body
 # lacks); never exit 1, never a trap of the debug build.
-# Environment (set by the reliability runner): DPEND, ROOT, SCRATCH (the cwd).
+# Environment (set by the reliability runner): DPEND, ROOT, SCRATCH (the cwd);
+# DPEND_MODELS (optional): only these models of the catalogue, blank- or
+# comma-separated (default: every model); a name not in the catalogue fails.
 set -uo pipefail
 : "${DPEND:?DPEND must name the dpend binary}" "${ROOT:?}" "${SCRATCH:?}"
 for tool in gnuplot h5dump awk; do
@@ -65,6 +67,18 @@ mapfile -t catalogue < <(LC_ALL=C awk '
   }
   END { flush() }' models.txt)
 [ ${#catalogue[@]} -gt 0 ] || { echo "FAIL no model in 'dpend models'"; exit 1; }
+if [ -n "${DPEND_MODELS:-}" ]; then   # only the models asked for, each of them listed
+  wanted=()
+  for want in ${DPEND_MODELS//,/ }; do
+    found=0
+    for entry in "${catalogue[@]}"; do
+      if [ "${entry%%|*}" = "$want" ]; then wanted+=("$entry"); found=1; fi
+    done
+    [ $found = 1 ] || { echo "FAIL DPEND_MODELS: no model '$want' in 'dpend models'"; exit 1; }
+  done
+  [ ${#wanted[@]} -gt 0 ] || { echo "FAIL DPEND_MODELS='$DPEND_MODELS' names no model"; exit 1; }
+  catalogue=("${wanted[@]}")
+fi
 
 for entry in "${catalogue[@]}"; do
   IFS='|' read -r model rest params <<< "$entry"
@@ -114,8 +128,13 @@ for entry in "${catalogue[@]}"; do
     {
       printf "&model name = '%s' /\n" "$model"
       [ -n "$body" ] && printf "&pendulum body = '%s' /\n" "$body"
-      printf "&study case_name(1) = 'a', case_q1(1) = %s, case_q2(1) = %s,\n" \
-        "${qs[0]}" "${qs[1]:-0}"
+      if [ ${#qs[@]} = 2 ]; then
+        printf "&study case_name(1) = 'a', case_q1(1) = %s, case_q2(1) = %s,\n" \
+          "${qs[0]}" "${qs[1]}"
+      else   # another count of coordinates: the list form, case_links of them
+        printf "&study case_name(1) = 'a', case_links(1) = %s, case_q(1:%s, 1) = %s,\n" \
+          "${#qs[@]}" "${#qs[@]}" "$q0"
+      fi
       printf " order_case = 'a', drift_case = 'a', ro_case = 'a', tao_case = 'a' /\n"
     } > study.nml
     check "$tag study" study --config study.nml --quick --no-figures --methods rk4,gauss4 \
