@@ -93,8 +93,18 @@ module dpend_chain_lanes
    !> The lanes of a batch of chains: the batch, its results, and every lane's
    !> state, flips and indicator sums (structure of arrays).
    type, extends(lane_kernel_t) :: chain_lanes_t
+      ! the lanes' arrays first (multiples of 64 bytes from the start of the object:
+      ! aligned wherever the object is, as the kernel's vector loads want them)
+      real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
+      real(dp), dimension(w, nm) :: fa, fb
+      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync
+      real(dp), dimension(w) :: lg, ig, yy, sy
+      integer(i8) :: ks(w)                           !! steps taken
+      type(chain_coef_t) :: cf                       !! the chain's constants
+      integer :: lane_ic(w)                          !! trajectory held, 0: none
+      logical :: lane_can(w, nm)
+      logical :: ind_ok(w), jfresh(w)
       class(model_t), allocatable :: model           !! the chain
-      type(chain_coef_t) :: cf                       !! its constants
       integer :: nl = 0                              !! links N
       type(batch_options_t) :: opt                   !! step, length, stop rule
       real(dp), allocatable :: y0(:, :)              !! (2N, n) initial states
@@ -102,18 +112,11 @@ module dpend_chain_lanes
       type(batch_result_t) :: res                    !! the results
       real(dp) :: escale = 1.0_dp                    !! unit of the energy error [J]
       real(dp) :: nan
-      real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
-      logical :: lane_can(w, nm)
-      real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync
-      integer(i8) :: ks(w)                           !! steps taken
-      integer :: lane_ic(w)                          !! trajectory held, 0: none
       ! the indicators (opt%vectors 1 or 2): vectors, Jacobians at the step start,
-      ! vector fields at the step ends, running sums of vector 1 (dpend_indicators)
+      ! vector fields at the step ends (fa, fb), running sums of vector 1 (lg, ig, yy,
+      ! sy; dpend_indicators)
       integer :: nv = 0
       real(dp), allocatable :: dv(:, :, :), jl(:, :, :), v0(:, :)
-      real(dp), dimension(w, nm) :: fa, fb
-      real(dp), dimension(w) :: lg, ig, yy, sy
-      logical :: ind_ok(w), jfresh(w)
       logical :: stale = .true.   !! f at the step start to be computed anew
    contains
       procedure :: step => chain_step

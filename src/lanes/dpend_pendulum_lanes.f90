@@ -30,13 +30,8 @@ module dpend_pendulum_lanes
    !> The lanes of a batch of double pendulums: the batch, its results, and every
    !> lane's state, flips and sums (structure of arrays).
    type, extends(lane_kernel_t) :: pendulum_lanes_t
-      type(batch_options_t) :: opt                 !! step, length, stop rule
-      integer :: rule = stop_both                  !! the stop rule applied
-      type(lane_coef_t) :: c                       !! the constants of each lane's trajectory
-      type(batch_coef_t), allocatable :: coefs(:)  !! (1), or (n) one per trajectory
-      real(dp), allocatable :: y0(:, :)            !! (4, n) initial states
-      logical, allocatable :: can_flip1(:), can_flip2(:)  !! (n) links that can flip
-      type(batch_result_t) :: res                  !! the results
+      ! the lanes' arrays first (multiples of 64 bytes from the start of the object:
+      ! aligned wherever the object is, as the kernels' vector loads want them)
       real(dp), dimension(w) :: q1, q2, w1, w2, u1, u2, v1, v2, e, e0, err, tf1, tf2
       real(dp), dimension(w) :: p1, p2, n1, n2, lacc
       !> the angles between lo and hi cannot have crossed an upward vertical since the
@@ -46,10 +41,17 @@ module dpend_pendulum_lanes
       real(dp), dimension(w) :: left           !! steps left to n_steps
       real(dp), dimension(w) :: sync           !! steps left to the next exact sin/cos
       type(lane_trig_t) :: tr                  !! sin, cos of the angles (rk4_lanes)
+      type(lane_coef_t) :: c                   !! the constants of each lane's trajectory
       integer(i8) :: ks(w)                     !! steps taken
+      real(dp) :: dv(w, 4, 2), acc(w, 5), v0(4, 4)   !! indicators' vectors and sums
       integer :: lane_ic(w)                    !! trajectory held, 0: none
       logical :: can1(w), can2(w)              !! its links can flip
-      real(dp) :: dv(w, 4, 2), acc(w, 5), v0(4, 4)   !! indicators' vectors and sums
+      type(batch_options_t) :: opt                 !! step, length, stop rule
+      integer :: rule = stop_both                  !! the stop rule applied
+      type(batch_coef_t), allocatable :: coefs(:)  !! (1), or (n) one per trajectory
+      real(dp), allocatable :: y0(:, :)            !! (4, n) initial states
+      logical, allocatable :: can_flip1(:), can_flip2(:)  !! (n) links that can flip
+      type(batch_result_t) :: res                  !! the results
       real(dp) :: nan
    contains
       procedure :: step => pendulum_step
