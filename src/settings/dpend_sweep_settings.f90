@@ -12,7 +12,10 @@
 !>                  more links): 'm1' 'm2' [kg], 'l1' 'l2' [m] of links 1 and 2, or the
 !>                  ratios 'm2/m1' (m2 = value m1), 'l2/l1' (l2 = value l1) [1] (rods
 !>                  and point masses); the natural time unit stays √(l1/g) of the
-!>                  configured l1; a model without flips: its real scalar parameters
+!>                  configured l1; any other real parameter of the pendulum by name
+!>                  (`pendulum_axis`: g, m3.., l3.., com1.., inertia1..; not damping
+!>                  or support_*), each pixel its own model on the per-trajectory
+!>                  path; a model without flips: its real scalar parameters
 !>                  by name (`model_axis`: the elastic pendulum's m, k, l0, g)
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
