@@ -16,11 +16,13 @@ module test_sweep
       set_lane_trig, sincos_exact, flip_energy_bounds
    use dpend_pendulum_tangent_lanes, only: rk4_tangent_lanes
    use dpend_hdf5, only: h5file_t, is_hdf5
-   use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected
+   use test_cli, only: dpend_binary, run_command, scratch_dir, read_text, expect_rejected, &
+      args_of
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
-   use dpend_sweep_setup, only: block_initial_conditions, sweep_setup_t, build_setup, block_range
+   use dpend_sweep_setup, only: block_initial_conditions, sweep_setup_t, build_setup, block_range, &
+      block_parameters, parameter_names
    use dpend_sweep_engine, only: compute_block
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_layout, only: write_block
@@ -77,7 +79,10 @@ contains
                new_unittest('indicators_kernel_match_one_orbit', test_indicators_kernel), &
                new_unittest('indicators_per_trajectory_match_kernel', test_indicators_paths), &
                new_unittest('elastic_pixels_match_single_runs', test_elastic_pixels), &
-               new_unittest('parameter_maps_of_other_bodies', test_parameter_bodies)]
+               new_unittest('parameter_maps_of_other_bodies', test_parameter_bodies), &
+               new_unittest('named_axes_g_theta1_pixels_match_direct_runs', test_named_g), &
+               new_unittest('named_axes_bodies_pixels_match_direct_runs', test_named_bodies), &
+               new_unittest('named_axis_out_of_range_refused', test_named_refused)]
    end subroutine collect_sweep
 
    ! ------------------------------------------------------------ kernel ---
@@ -1130,10 +1135,10 @@ contains
       dir = scratch_dir('sweeplinks')
       call expect_rejected(error, dir, base//' --links 3', '--axis1 theta4', &
                            "axis1: 'theta4' (accepted: theta1..theta3 q1..q3 w1..w3 m1 m2 l1 l2 m2/m1 "// &
-                           "l2/l1 for 3 links)")
+                           "l2/l1 m3 l3 g com1..com3 inertia1..inertia3 for 3 links)")
       call expect_rejected(error, dir, base//' --links 3', '--axis2 w0', "axis2: 'w0'")
       call expect_rejected(error, dir, base//' --links 1', '--axis1 theta1 --axis2 w2', &
-                           "axis2: 'w2' (accepted: theta1 q1 w1 for 1 link)")
+                           "axis2: 'w2' (accepted: theta1 q1 w1 g com1 inertia1 for 1 link)")
       call expect_rejected(error, dir, base//' --links 4', '--axis1 q3 --axis2 theta3', &
                            'invalid axis2')
       call expect_rejected(error, dir, base//' --links 3', '--lyapunov', 'invalid lyapunov')
@@ -1739,5 +1744,180 @@ contains
       if (.not. allocated(error)) call h5%read(path, v, error)
       call h5%close()
    end subroutine read_map
+
+   !> The pendulum's parameters by name on the per-trajectory path: g beside θ1
+   !> (rods), g beside θ2 (point masses), g beside the coded m2/m1, and m3 beside w1
+   !> (three links). Every pixel equals, bit for bit, a one-pixel sweep of its initial
+   !> state with its parameters given as fixed values on the per-trajectory path
+   !> (the factory's model of that specification); /sweep/param holds the values.
+   subroutine test_named_g(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: common = '--quiet --t-end 3 --dt 0.01 --time-unit s '
+      call named_map_matches(error, common//'--q2 -0.4 --axis1 g --min1 1 --max1 12 ' &
+                             //'--n1 3 --axis2 theta1 --min2 -2.5 --max2 2.9 --n2 2 --block 3', &
+                             [character(len=8) :: '1', '6.5', '12'], &
+                             [character(len=8) :: '-2.5', '2.9'], &
+                             common//'--q2 -0.4 --g X1 --axis1 theta1 --min1 X2 --max1 X2 ' &
+                             //'--axis2 w2 --min2 0 --max2 0 --n 1', ['g'], 'g x theta1')
+      if (allocated(error)) return
+      call named_map_matches(error, common//'--body point --q1 2.5 --axis1 theta2 ' &
+                             //'--min1 -2 --max1 2 --n1 2 --axis2 g --min2 2 --max2 20 --n2 2', &
+                             [character(len=8) :: '-2', '2'], [character(len=8) :: '2', '20'], &
+                             common//'--body point --q1 2.5 --g X2 --axis1 theta2 --min1 X1 ' &
+                             //'--max1 X1 --axis2 w2 --min2 0 --max2 0 --n 1', ['g'], &
+                             'point masses theta2 x g')
+      if (allocated(error)) return
+      call named_map_matches(error, common//'--q1 1.2 --axis1 m2/m1 --min1 0.5 --max1 2 ' &
+                             //'--n1 2 --axis2 g --min2 4 --max2 16 --n2 2', &
+                             [character(len=8) :: '0.5', '2'], [character(len=8) :: '4', '16'], &
+                             common//'--q1 1.2 --m2 X1 --g X2 --axis1 q2 --min1 0 ' &
+                             //'--max1 0 --axis2 w2 --min2 0 --max2 0 --n 1', &
+                             [character(len=2) :: 'm1', 'm2', 'l1', 'l2', 'g'], 'm2/m1 x g')
+      if (allocated(error)) return
+      call named_map_matches(error, common//'--links 3 --q 0.5,-0.3,0.2 --axis1 m3 ' &
+                             //'--min1 0.5 --max1 3 --n1 2 --axis2 w1 --min2 -1 --max2 2 --n2 2', &
+                             [character(len=8) :: '0.5', '3'], [character(len=8) :: '-1', '2'], &
+                             common//'--links 3 --q 0.5,-0.3,0.2 --m 1,1,X1 --axis1 w1 ' &
+                             //'--min1 X2 --max1 X2 --axis2 w2 --min2 0 --max2 0 --n 1', ['m3'], &
+                             'three links m3 x w1')
+   end subroutine test_named_g
+
+   !> Bodies by name: com1 x inertia2 of general bodies (--com, --inertia given), and
+   !> com2 x inertia1 of rods (their com and inertia not given: the other values are
+   !> the rod's, l_i/2 and m_i l_i^2/12); every pixel as a direct run.
+   subroutine test_named_bodies(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: common = '--quiet --t-end 3 --dt 0.01 --time-unit s ' &
+                                      //'--q1 1.0 '
+      call named_map_matches(error, common//'--com 0.4,0.6 --inertia 0.1,0.05 --axis1 com1 ' &
+                             //'--min1 0.25 --max1 1.5 --n1 3 --axis2 inertia2 --min2 0 ' &
+                             //'--max2 0.5 --n2 2 --stats', &
+                             [character(len=8) :: '0.25', '0.875', '1.5'], &
+                             [character(len=8) :: '0', '0.5'], &
+                             common//'--com X1,0.6 --inertia 0.1,X2 --axis1 q2 --min1 0 ' &
+                             //'--max1 0 --axis2 w2 --min2 0 --max2 0 --n 1 --stats', &
+                             [character(len=8) :: 'com1', 'inertia2'], 'com1 x inertia2')
+      if (allocated(error)) return
+      call named_map_matches(error, common//'--axis1 com2 --min1 0.25 --max1 1 --n1 2 ' &
+                             //'--axis2 inertia1 --min2 0 --max2 0.25 --n2 2', &
+                             [character(len=8) :: '0.25', '1'], [character(len=8) :: '0', '0.25'], &
+                             common//'--com 0.5,X1 --inertia X2,0.083333333333333329 ' &
+                             //'--axis1 q2 --min1 0 --max1 0 --axis2 w2 --min2 0 --max2 0 ' &
+                             //'--n 1', [character(len=8) :: 'com2', 'inertia1'], &
+                             'rods com2 x inertia1')
+   end subroutine test_named_bodies
+
+   !> A named axis's values out of the catalogue's range are refused naming the
+   !> pixel, the parameter, its value and the range; damping is not an axis.
+   subroutine test_named_refused(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir
+      character(len=*), parameter :: base = 'sweep --quiet --n 4 --t-end 1'
+      dir = scratch_dir('sweepnamed')
+      call expect_rejected(error, dir, base, '--axis1 g --min1 0 --max1 10', &
+                           'invalid min1, max1, min2, max2: the pixel at (0, -3) is refused: ' &
+                           //'invalid g: 0 m/s^2 is outside [1e-6, 1e6]')
+      call expect_rejected(error, dir, base, '--axis2 inertia2 --min2 -1 --max2 1', &
+                           'invalid inertia2: -1 kg m^2 is outside [0, 1e18]')
+      call expect_rejected(error, dir, base//' --links 3', '--axis1 com3 --min1 -0.5 --max1 1', &
+                           'invalid com3: -0.5 m is outside')
+      call expect_rejected(error, dir, base, '--axis1 damping1', &
+                           "invalid axis1: 'damping1' (accepted: theta1 theta2 q1 q2 w1 w2 m1 m2 " &
+                           //'l1 l2 m2/m1 l2/l1 g com1 com2 inertia1 inertia2; damping')
+      call expect_rejected(error, dir, base, '--axis1 m3', "invalid axis1: 'm3'")
+      call expect_rejected(error, dir, base//' --g 3', '--axis1 g --min1 1 --max1 2', &
+                           "invalid g: axis1 'g' sweeps the value it fixes")
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_named_refused
+
+   !> The map `map_line` (in process) against, for each pixel (x1(i), x2(j)), the
+   !> one-pixel sweep `template` (X1, X2 replaced) on the per-trajectory path: every
+   !> result bit for bit; /sweep/param's names and values those of the axes.
+   subroutine named_map_matches(error, map_line, x1, x2, template, pnames, what)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: map_line, x1(:), x2(:), template, pnames(:), what
+      type(sweep_config_t) :: cfg, cfg1
+      type(sweep_setup_t) :: setup, setup1
+      type(batch_result_t) :: res, one
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: p(:, :)
+      character(len=32), allocatable :: names(:)
+      character(len=:), allocatable :: line
+      logical :: help
+      integer :: i, j, jj, b, j0, nb, k
+      call parse_sweep(args_of(map_line), cfg, help, err)
+      if (.not. allocated(err)) call build_setup(cfg, setup, err)
+      if (allocated(err)) then
+         call fatal_error(error, what//': map refused: '//err%message)
+         return
+      end if
+      call check_true(error, setup%per_trajectory, what//': the per-trajectory path')
+      if (allocated(error)) return
+      names = parameter_names(setup)
+      call check_true(error, size(names) == size(pnames), what//': parameters recorded')
+      if (allocated(error)) return
+      do k = 1, size(names)
+         call check_true(error, trim(names(k)) == trim(pnames(k)), what//': /sweep/param/'// &
+                         trim(pnames(k)))
+         if (allocated(error)) return
+      end do
+      line = ''
+      do b = 1, setup%nblocks
+         call compute_block(setup, b, res)
+         call block_parameters(setup, b, p)
+         call block_range(setup, b, j0, nb)
+         do jj = 1, nb
+            i = mod(j0 + jj - 2, size(x1)) + 1
+            j = (j0 + jj - 2)/size(x1) + 1
+            ! the named axes' values recorded per pixel (the last row: axis 2 if named)
+            if (names(size(names)) == cfg%axis1) call check(error, p(size(names), jj), &
+               setup%axis1(i), what//': param of axis 1', rel=0.0_dp, abs=0.0_dp)
+            if (names(size(names)) == cfg%axis2) call check(error, p(size(names), jj), &
+               setup%axis2(j), what//': param of axis 2', rel=0.0_dp, abs=0.0_dp)
+            if (allocated(error)) return
+            line = replace(replace(template, 'X1', trim(x1(i))), 'X2', trim(x2(j)))
+            call parse_sweep(args_of(line), cfg1, help, err)
+            if (.not. allocated(err)) call build_setup(cfg1, setup1, err)
+            if (allocated(err)) then
+               call fatal_error(error, what//": pixel '"//line//"' refused: "//err%message)
+               return
+            end if
+            setup1%per_trajectory = .true.; setup1%chain_lanes = .false.
+            call compute_block(setup1, 1, one)
+            call same_bits(res%t_flip(jj), one%t_flip(1), 't_flip')
+            call same_bits(res%t_flip1(jj), one%t_flip1(1), 't_flip1')
+            call same_bits(res%t_flip2(jj), one%t_flip2(1), 't_flip2')
+            call same_bits(res%energy0(jj), one%energy0(1), 'energy0')
+            call same_bits(res%energy_error(jj), one%energy_error(1), 'energy_error')
+            call same_bits(res%t_stop(jj), one%t_stop(1), 't_stop')
+            do k = 1, size(res%final, 1)
+               call same_bits(res%final(k, jj), one%final(k, 1), 'final state')
+            end do
+            if (allocated(error)) return
+            if (res%status(jj) /= one%status(1) .or. res%steps(jj) /= one%steps(1)) &
+               call fatal_error(error, what//": status or steps differ at '"//line//"'")
+            if (allocated(error)) return
+         end do
+      end do
+   contains
+      subroutine same_bits(a, c, name)
+         real(dp), intent(in) :: a, c
+         character(len=*), intent(in) :: name
+         if (allocated(error)) return
+         if (transfer(a, 1_i8) /= transfer(c, 1_i8)) call fatal_error(error, what//': '// &
+            name//" differs from the direct run '"//line//"'")
+      end subroutine same_bits
+      function replace(t, key, val) result(r)
+         character(len=*), intent(in) :: t, key, val
+         character(len=:), allocatable :: r
+         integer :: k
+         r = t
+         k = index(r, key)
+         do while (k > 0)
+            r = r(:k - 1)//val//r(k + len(key):)
+            k = index(r, key)
+         end do
+      end function replace
+   end subroutine named_map_matches
 
 end module test_sweep

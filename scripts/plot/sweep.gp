@@ -48,8 +48,9 @@ set terminal pngcairo size 900,800 enhanced font fontspec(900)
 set size ratio -1
 set tics out
 set border lw 1
-axlabel(a) = (a eq "m1" || a eq "m2") ? a." [kg]" : (a eq "l1" || a eq "l2") ? a." [m]" : \
-             (a eq "m2/m1" || a eq "l2/l1") ? a : \
+axlabel(a) = (a eq "m2/m1" || a eq "l2/l1") ? a : (a eq "g") ? "g [m/s^2]" : \
+             (a[1:3] eq "com") ? a." [m]" : (a[1:7] eq "inertia") ? a." [kg m^2]" : \
+             (a[1:1] eq "m") ? a." [kg]" : (a[1:1] eq "l") ? a." [m]" : \
              (a[1:5] eq "theta") ? "{/Symbol q}_".a[6:]." [rad] (from hanging)" : \
              (a[1:1] eq "w") ? a." [rad/s]" : a." [rad] (from horizontal)"
 set xlabel axlabel(ax1)

@@ -37,8 +37,13 @@ contains
           '                    w1..wN; or a parameter (2 or more links): m1 m2 (kg),'//nl// &
           '                    l1 l2 (m), m2/m1 (m2 = value m1), l2/l1 (l2 = value l1),'//nl// &
           '                    stored per pixel in /sweep/param (--time-unit natural'//nl// &
-          '                    uses --l1); rods and point masses (--body point); a'//nl// &
-          '                    model without flips: its own parameters by name (the'//nl// &
+          '                    uses --l1); rods and point masses (--body point); any'//nl// &
+          '                    other real parameter of the pendulum by name (dpend'//nl// &
+          '                    models): g (m/s^2), and per link k = 1..N: mk, lk (k >= 3),'//nl// &
+          '                    comk (m), inertiak (kg m^2), any body, each pixel its own'//nl// &
+          '                    model one trajectory at a time (not damping or'//nl// &
+          '                    support_*: the sweep is conservative); a model'//nl// &
+          '                    without flips: its own parameters by name (the'//nl// &
           '                    elastic pendulum: m k l0 g); default '//cfg%axis1//', ' &
           //cfg%axis2//nl// &
           '  --n N             points on both axes; --n1 N, --n2 N each (1 to 1e6, at most'//nl// &

@@ -12,7 +12,7 @@ module dpend_sweep_engine
    use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
-      pixel_pendulums
+      pixel_pendulums, pixel_model_axes
    use dpend_model, only: model_t
    use dpend_trajectory_batch, only: integrate_trajectories
    use dpend_chain_lanes, only: integrate_chain_lanes
@@ -21,7 +21,7 @@ module dpend_sweep_engine
    use dpend_progress, only: progress_t, wall_seconds
    use dpend_cli, only: to_str
    use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
-      block_initial_conditions, parameter_axes, block_parameters, parameter_names
+      block_initial_conditions, parameter_axes, block_parameters, parameter_names, named_axes
    use dpend_sweep_layout, only: result_names, write_block, working_file, finalize_file
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_gpu, only: gpu_integrate_block
@@ -91,7 +91,7 @@ contains
    !> Integrate block b of a sweep over parameters. Two links: the whole block by the
    !> batch kernel, every pixel with its own constants in its lane
    !> (`integrate_batch`'s `pars`), so that the lanes fill whatever the axes. Other
-   !> models: the pixels in groups of equal parameters (`parameter_groups`), each
+   !> models, N links and axes over a parameter by name (g, com1, m3, ...): the pixels in groups of equal parameters (`parameter_groups`), each
    !> group by the per-trajectory path with its own model. The lanes never mix, so a
    !> pixel's results do not depend on its block or thread, and equal those of a
    !> direct run with its parameters.
@@ -123,7 +123,10 @@ contains
          ! one thread at a time: the factory is not reentrant under gfortran 12
          ! (docs/architecture.md, "Threads")
          !$omp critical (dpend_build)
-         if (setup%flips) then
+         if (setup%flips .and. named_axes(setup)) then   ! the pendulum's by name
+            names = parameter_names(setup)
+            call pixel_model_axes(setup%cfg, names, p(:, idx(1)), model, err)
+         else if (setup%flips) then
             call pixel_model(setup%cfg, p(:, idx(1)), model, err)
          else
             names = parameter_names(setup)

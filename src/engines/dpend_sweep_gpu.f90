@@ -20,7 +20,8 @@ module dpend_sweep_gpu
    use dpend_pendulum_lanes, only: integrate_batch
    use dpend_os, only: executable_path
    use dpend_error, only: error_t, fatal_error
-   use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter
+   use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter, &
+      model_axis
    implicit none
    private
    public :: resolve_device
@@ -238,7 +239,8 @@ contains
       else if (cfg%lyapunov .or. cfg%indicator /= 'flip') then
          why = 'the GPU computes flip maps only (--lyapunov and --indicator run on the CPU)'
       else if (grid_mode(cfg)) then
-         if (axis_parameter(cfg%axis1) > 0 .or. axis_parameter(cfg%axis2) > 0) &
+         if (axis_parameter(cfg%axis1) > 0 .or. axis_parameter(cfg%axis2) > 0 .or. &
+             model_axis(cfg, cfg%axis1) .or. model_axis(cfg, cfg%axis2)) &
             why = 'the GPU computes maps over initial values only (parameter axes run on ' &
                   //'the CPU)'
       end if

@@ -9,7 +9,7 @@ module dpend_sweep_layout
    use dpend_os, only: remove_file
    use dpend_lane_batch, only: batch_result_t
    use dpend_pendulum_kernel, only: potential_range, flip_energy_bounds
-   use dpend_sweep_settings, only: stop_rule, axis_parameter
+   use dpend_sweep_settings, only: stop_rule, axis_parameter, pendulum_axis, named_axis_units
    use dpend_lane_batch, only: link_flip_bounds
    use dpend_hdf5, only: h5file_t
    use dpend_version, only: version
@@ -215,6 +215,12 @@ contains
       do i = 1, size(reals)
          call dataset_info(trim(reals(i)), '', units, text, setup%links)
          if (.not. setup%flips) call model_dataset_info(setup, trim(reals(i)), units, text)
+         if (setup%flips .and. index(reals(i), 'param/') == 1) then
+            if (pendulum_axis(setup%cfg, trim(reals(i)(7:)))) then   ! a parameter by name
+               units = named_axis_units(setup%cfg, trim(reals(i)(7:)))
+               text = 'parameter '//trim(reals(i)(7:))//' of the pixel (parameter axes)'
+            end if
+         end if
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
                                 checksum=final .or. setup%checksum, units=units, &
@@ -237,9 +243,13 @@ contains
       if (setup%grid) then
          call dataset_info('axis1', axis_units(setup%cfg%axis1), units, text)
          if (.not. setup%flips) call model_dataset_info(setup, 'axis1', units, text)
+         if (setup%flips .and. pendulum_axis(setup%cfg, setup%cfg%axis1)) &
+            call named_axis_info(setup%cfg%axis1, 'axis1', units, text)
          call h5%write('/sweep/axis1', setup%axis1, error, units, text)
          call dataset_info('axis2', axis_units(setup%cfg%axis2), units, text)
          if (.not. setup%flips) call model_dataset_info(setup, 'axis2', units, text)
+         if (setup%flips .and. pendulum_axis(setup%cfg, setup%cfg%axis2)) &
+            call named_axis_info(setup%cfg%axis2, 'axis2', units, text)
          if (.not. allocated(error)) call h5%write('/sweep/axis2', setup%axis2, error, &
                                                    units, text)
       else
@@ -308,6 +318,15 @@ contains
          end if
       end associate
       call h5%take_error(error)
+   contains
+      !> Units and description of the grid values of an axis over a pendulum
+      !> parameter by name (its catalogue units).
+      subroutine named_axis_info(axis, name, units, text)
+         character(len=*), intent(in) :: axis, name
+         character(len=:), allocatable, intent(inout) :: units, text
+         units = named_axis_units(setup%cfg, axis)
+         text = 'grid values on '//name(1:4)//' '//name(5:5)//': parameter '//axis
+      end subroutine named_axis_info
    end subroutine create_layout
 
    !> Units and description of dataset `name` of a sweep of a model without flips

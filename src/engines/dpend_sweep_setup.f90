@@ -11,7 +11,7 @@ module dpend_sweep_setup
    use dpend_lane_batch, only: batch_options_t
    use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
-      natural_time, model_axis
+      natural_time, model_axis, pendulum_param_names, pendulum_param_values
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_chain_lanes, only: chain_kernel_choice
@@ -23,10 +23,11 @@ module dpend_sweep_setup
    private
    public :: sweep_setup_t, sweep_summary_t, summary_text, build_setup, block_range, &
       block_initial_conditions, parameter_axes, block_parameters, stop_name, parameter_names
-   public :: named_parameter
+   public :: named_parameter, named_axes
 
-   !> The code of a parameter axis of a model without flips (its parameter by name;
-   !> the pendulum's axes are coded 1 to 6 by `axis_parameter`).
+   !> The code of a parameter axis by name (a model without flips: its parameters;
+   !> the pendulum: those of `pendulum_axis`, beside the axes coded 1 to 6 by
+   !> `axis_parameter`).
    integer, parameter :: named_parameter = 7
 
    !> Everything derived from a configuration that the blocks need.
@@ -127,6 +128,8 @@ contains
          setup%par2 = axis_parameter(cfg%axis2)
          if (model_axis(cfg, cfg%axis1)) setup%par1 = named_parameter
          if (model_axis(cfg, cfg%axis2)) setup%par2 = named_parameter
+         ! a pendulum map over a parameter by name: each pixel its own model
+         if (named_axes(setup)) setup%per_trajectory = .true.
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
          do i = 1, cfg%n1
             setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
@@ -231,7 +234,9 @@ contains
    function parameter_names(setup) result(names)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       character(len=32), allocatable :: names(:)
-      if (setup%flips) then
+      if (setup%flips .and. named_axes(setup)) then
+         names = pendulum_param_names(setup%cfg)
+      else if (setup%flips) then
          names = [character(len=32) :: 'm1', 'm2', 'l1', 'l2']
       else
          names = [character(len=32) :: '', '']
@@ -240,7 +245,13 @@ contains
       end if
    end function parameter_names
 
-   !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1).
+   !> True if an axis sweeps a parameter by name (`named_parameter`).
+   pure logical function named_axes(setup)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      named_axes = setup%par1 == named_parameter .or. setup%par2 == named_parameter
+   end function named_axes
+
+   !> True if an axis sweeps a parameter (m1, m2, l1, l2, m2/m1, l2/l1, by name).
    pure logical function parameter_axes(setup)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       parameter_axes = setup%par1 > 0 .or. setup%par2 > 0
@@ -264,6 +275,16 @@ contains
             i2 = (jj - 1)/setup%cfg%n1 + 1
             if (setup%par1 == named_parameter) p(1, j) = setup%axis1(i1)
             if (setup%par2 == named_parameter) p(2, j) = setup%axis2(i2)
+         end do
+         return
+      end if
+      if (named_axes(setup)) then   ! the pendulum's parameters by name
+         allocate (p(size(parameter_names(setup)), nb))
+         do j = 1, nb
+            jj = j0 + j - 1
+            i1 = mod(jj - 1, setup%cfg%n1) + 1
+            i2 = (jj - 1)/setup%cfg%n1 + 1
+            p(:, j) = pendulum_param_values(setup%cfg, setup%axis1(i1), setup%axis2(i2))
          end do
          return
       end if
@@ -450,7 +471,8 @@ contains
                 'q = '//rl(c%run%q0())//nl//'w = '//rl(c%run%w0())//nl
          else if (setup%links == 2) then   ! two-link files of every version resume
             s = 'program = dpend '//version//nl//'command = sweep'//nl// &
-                'method = '//c%run%method//nl//'kernel = batch rk4'//nl// &
+                'method = '//c%run%method//nl//'kernel = '// &
+                trim(merge('per trajectory', 'batch rk4     ', named_axes(setup)))//nl// &
                 'm1 = '//r(p%m1)//nl//'m2 = '//r(p%m2)//nl//'l1 = '//r(p%l1)//nl// &
                 'l2 = '//r(p%l2)//nl//'g = '//r(p%g)//nl// &
                 'q1 = '//r(c%run%q(1))//nl//'q2 = '//r(c%run%q(2))//nl// &

@@ -12,7 +12,10 @@
 !>                  more links): 'm1' 'm2' [kg], 'l1' 'l2' [m] of links 1 and 2, or the
 !>                  ratios 'm2/m1' (m2 = value m1), 'l2/l1' (l2 = value l1) [1] (rods
 !>                  and point masses); the natural time unit stays √(l1/g) of the
-!>                  configured l1; a model without flips: its real scalar parameters
+!>                  configured l1; any other real parameter of the pendulum by name
+!>                  (`pendulum_axis`: g, m3.., l3.., com1.., inertia1..; not damping
+!>                  or support_*), each pixel its own model on the per-trajectory
+!>                  path; a model without flips: its real scalar parameters
 !>                  by name (`model_axis`: the elastic pendulum's m, k, l0, g)
 !>   n1, n2         points per axis (>= 1); min1, max1, min2, max2 the axis ranges
 !>   ic_file        a list of initial conditions instead of a grid: a text file of
@@ -40,7 +43,7 @@ module dpend_sweep_settings
    use dpend_model, only: model_t
    use dpend_pendulum, only: pendulum_t
    use dpend_model_factory, only: model_spec_t, new_model, model_info_t, model_catalogue, &
-      find_model
+      find_model, spec_values
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_strings, only: to_lower, did_you_mean
    use dpend_run_settings, only: run_config_t, validate_run_config
@@ -51,12 +54,20 @@ module dpend_sweep_settings
       axis_parameter, param_axis_names, pixel_parameters, pixel_model, flip_model, &
       sweep_variable, natural_time, horizon_text
    public :: model_axis, model_axis_names, pixel_model_named, pixel_pendulum, pixel_pendulums
+   public :: pendulum_axis, pendulum_param_names, pendulum_param_values, pixel_model_axes, &
+      named_axis_units, coded_axes
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
    character(len=*), parameter :: axis_names = 'theta1 theta2 q1 q2 w1 w2'
 
    !> Parameters accepted as axes (grids of two or more links).
    character(len=*), parameter :: param_axis_names = 'm1 m2 l1 l2 m2/m1 l2/l1'
+
+   !> Parameters of the pendulum's catalogue row that are not axes: the sweep
+   !> integrates the conservative chain only (damping and the support's motion 0),
+   !> and the support's amplitudes and phases are pairs.
+   character(len=*), parameter :: unswept_parameters = &
+      ' links damping support_amplitude support_frequency support_phase '
 
    !> Names accepted for the per-pixel indicator.
    character(len=*), parameter :: indicator_names = 'flip lambda1 megno fli sali gali2'
@@ -250,8 +261,18 @@ contains
       class(model_t), allocatable, intent(out) :: model  !! the pixel's model
       type(error_t), allocatable, intent(out) :: error   !! refused by the factory
       type(model_spec_t) :: spec
-      real(dp), allocatable :: m(:), l(:)
       spec = cfg%run%spec
+      call coded_spec(cfg, p, spec)
+      call new_model(spec, model, error)
+   end subroutine pixel_model
+
+   !> Set the masses and lengths of links 1 and 2 of `spec` to p = (m1, m2, l1, l2)
+   !> of `pixel_parameters` (point masses: com and inertia follow the lengths).
+   subroutine coded_spec(cfg, p, spec)
+      type(sweep_config_t), intent(in) :: cfg     !! configuration, model built
+      real(dp), intent(in) :: p(4)                !! (m1, m2, l1, l2) [kg, kg, m, m]
+      type(model_spec_t), intent(inout) :: spec   !! the pixel's specification
+      real(dp), allocatable :: m(:), l(:)
       m = spec%get('m', cfg%run%m(:cfg%run%links))
       l = spec%get('l', cfg%run%l(:cfg%run%links))
       m(1:2) = p(1:2); l(1:2) = p(3:4)
@@ -261,8 +282,197 @@ contains
          call spec%set('com', l)
          call spec%set('inertia', spread(0.0_dp, 1, size(l)))
       end if
+   end subroutine coded_spec
+
+   !> True if an axis of the grid is a coded parameter axis (m1 m2 l1 l2 m2/m1 l2/l1).
+   pure logical function coded_axes(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration
+      coded_axes = axis_parameter(cfg%axis1) > 0 .or. axis_parameter(cfg%axis2) > 0
+   end function coded_axes
+
+   !> Whether `axis` sweeps a parameter of the pendulum by name, beside the coded
+   !> axes (`axis_parameter`): a real scalar of its catalogue row (g) or component k
+   !> of a per-link list, k = 1 .. N (m3, l3, com1, inertia2, ...). Not the
+   !> parameters of `unswept_parameters`.
+   logical function pendulum_axis(cfg, axis)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=*), intent(in) :: axis     !! axis name
+      character(len=:), allocatable :: base
+      integer :: k
+      pendulum_axis = .false.
+      if (.not. flip_model(cfg)) return
+      if (axis_parameter(axis) > 0 .or. axis_variable(axis, cfg%run%links) > 0) return
+      call split_axis(cfg, axis, base, k)
+      pendulum_axis = len(base) > 0
+   end function pendulum_axis
+
+   !> The catalogue parameter `base` of a named pendulum axis and its link k (0 for a
+   !> scalar); base = '' if `axis` is none.
+   subroutine split_axis(cfg, axis, base, k)
+      type(sweep_config_t), intent(in) :: cfg             !! configuration, model built
+      character(len=*), intent(in) :: axis                !! axis name
+      character(len=:), allocatable, intent(out) :: base  !! catalogue name or ''
+      integer, intent(out) :: k                           !! link, 0: a scalar
+      type(model_info_t), allocatable :: models(:)
+      integer :: i, m, d, stat
+      base = ''; k = 0
+      models = model_catalogue()
+      m = find_model(models, cfg%run%spec%model_name())
+      if (m == 0 .or. len_trim(axis) == 0) return
+      do i = 1, size(models(m)%params)
+         associate (p => models(m)%params(i))
+            if (p%integer_valued .or. index(unswept_parameters, ' '//p%name//' ') > 0) cycle
+            if (p%count == 1 .and. axis == p%name) then
+               base = p%name; k = 0
+               return
+            else if (p%count == -1 .and. index(axis, p%name) == 1 .and. &
+                     len(axis) > len(p%name) .and. len(axis) <= len(p%name) + 3) then
+               d = len(p%name) + 1
+               if (verify(axis(d:), '0123456789') /= 0 .or. axis(d:d) == '0') cycle
+               read (axis(d:), *, iostat=stat) k
+               if (stat /= 0 .or. k < 1 .or. k > cfg%run%links) then
+                  k = 0
+                  cycle
+               end if
+               base = p%name
+               return
+            end if
+         end associate
+      end do
+   end subroutine split_axis
+
+   !> The units of a named pendulum axis (its catalogue parameter's), '' if none.
+   function named_axis_units(cfg, axis) result(units)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=*), intent(in) :: axis     !! axis name
+      character(len=:), allocatable :: units, base
+      type(model_info_t), allocatable :: models(:)
+      integer :: i, m, k
+      units = ''
+      call split_axis(cfg, axis, base, k)
+      if (len(base) == 0) return
+      models = model_catalogue()
+      m = find_model(models, cfg%run%spec%model_name())
+      do i = 1, size(models(m)%params)
+         if (models(m)%params(i)%name == base) units = models(m)%params(i)%units
+      end do
+   end function named_axis_units
+
+   !> The named pendulum axes of N links for messages: ' m3..mN l3..lN g com1..comN
+   !> inertia1..inertiaN' (the per-link lists beyond the coded m1 m2 l1 l2).
+   function pendulum_axis_text(links) result(s)
+      integer, intent(in) :: links  !! number of links N
+      character(len=:), allocatable :: s
+      type(model_info_t), allocatable :: models(:)
+      integer :: i, m, first
+      s = ''
+      models = model_catalogue()
+      m = find_model(models, 'pendulum')
+      do i = 1, size(models(m)%params)
+         associate (p => models(m)%params(i))
+            if (p%integer_valued .or. index(unswept_parameters, ' '//p%name//' ') > 0) cycle
+            if (p%count == 1) then
+               s = s//' '//p%name
+            else if (p%count == -1) then
+               first = 1
+               if (p%name == 'm' .or. p%name == 'l') first = 3   ! m1 m2 l1 l2: coded
+               if (links < first) cycle
+               if (links == first) then
+                  s = s//' '//p%name//to_str(first)
+               else if (links == first + 1) then
+                  s = s//' '//p%name//to_str(first)//' '//p%name//to_str(links)
+               else
+                  s = s//' '//p%name//to_str(first)//'..'//p%name//to_str(links)
+               end if
+            end if
+         end associate
+      end do
+   end function pendulum_axis_text
+
+   !> The parameters recorded per pixel of a pendulum map with a named axis
+   !> (`pendulum_axis`): m1 m2 l1 l2 with a coded axis, then each named axis.
+   function pendulum_param_names(cfg) result(names)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=32), allocatable :: names(:)
+      character(len=32) :: all(6)
+      integer :: n
+      n = 0
+      if (coded_axes(cfg)) then
+         all(1:4) = [character(len=32) :: 'm1', 'm2', 'l1', 'l2']
+         n = 4
+      end if
+      if (pendulum_axis(cfg, cfg%axis1)) then
+         n = n + 1
+         all(n) = cfg%axis1
+      end if
+      if (pendulum_axis(cfg, cfg%axis2)) then
+         n = n + 1
+         all(n) = cfg%axis2
+      end if
+      names = all(:n)
+   end function pendulum_param_names
+
+   !> The values of `pendulum_param_names` of the pixel at axis values (x1, x2).
+   function pendulum_param_values(cfg, x1, x2) result(p)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: x1, x2           !! the pixel's axis values
+      real(dp), allocatable :: p(:)
+      real(dp) :: all(6)
+      integer :: n
+      n = 0
+      if (coded_axes(cfg)) then
+         all(1:4) = pixel_parameters(cfg, axis_parameter(cfg%axis1), x1, &
+                                     axis_parameter(cfg%axis2), x2)
+         n = 4
+      end if
+      if (pendulum_axis(cfg, cfg%axis1)) then
+         n = n + 1
+         all(n) = x1
+      end if
+      if (pendulum_axis(cfg, cfg%axis2)) then
+         n = n + 1
+         all(n) = x2
+      end if
+      p = all(:n)
+   end function pendulum_param_values
+
+   !> The model of a pixel of a pendulum map with a named axis, from the factory: a
+   !> copy of the run's specification with (m1, m2, l1, l2) = x(1:4) as
+   !> `pixel_model` when names(1:4) are those of a coded axis, then each named
+   !> parameter (`pendulum_param_names`) set by name: a scalar to x(k), a per-link
+   !> list's component to x(k), its other components those the run's model uses
+   !> (`spec_values`: com and inertia of rods follow the pixel's m and l).
+   subroutine pixel_model_axes(cfg, names, x, model, error)
+      type(sweep_config_t), intent(in) :: cfg            !! configuration, model built
+      character(len=*), intent(in) :: names(:)           !! `pendulum_param_names`
+      real(dp), intent(in) :: x(:)                       !! the pixel's values of names
+      class(model_t), allocatable, intent(out) :: model  !! the pixel's model
+      type(error_t), allocatable, intent(out) :: error   !! refused by the factory
+      type(model_spec_t) :: spec
+      character(len=:), allocatable :: base
+      real(dp), allocatable :: v(:)
+      integer :: j, k, first
+      spec = cfg%run%spec
+      first = 1
+      if (size(names) >= 4) then
+         if (names(1) == 'm1' .and. names(4) == 'l2') then   ! a coded axis
+            call coded_spec(cfg, x(1:4), spec)
+            first = 5
+         end if
+      end if
+      do j = first, size(names)
+         call split_axis(cfg, trim(names(j)), base, k)
+         if (len(base) == 0) error stop 'internal error: not a pendulum axis: '//trim(names(j))
+         if (k == 0) then
+            call spec%set(base, [x(j)])
+         else
+            v = spec_values(spec, base, cfg%run%links)
+            v(k) = x(j)
+            call spec%set(base, v)
+         end if
+      end do
       call new_model(spec, model, error)
-   end subroutine pixel_model
+   end subroutine pixel_model_axes
 
    !> The double pendulum's constant records of the pixels p(:, j) of a parameter
    !> sweep (`pixel_pendulum` of each).
@@ -297,13 +507,17 @@ contains
       if (allocated(cfg%run%body)) point_masses = cfg%run%body == 'point'
    end function point_masses
 
-   !> Whether `axis` sweeps a parameter of a model without flips: a real scalar
-   !> parameter of its catalogue row (the elastic pendulum's m, k, l0, g).
+   !> Whether `axis` sweeps a parameter by name: of a model without flips a real
+   !> scalar parameter of its catalogue row (the elastic pendulum's m, k, l0, g); of
+   !> the pendulum those of `pendulum_axis` (not the coded axes).
    logical function model_axis(cfg, axis)
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
       character(len=*), intent(in) :: axis     !! axis name
       model_axis = .false.
-      if (flip_model(cfg)) return
+      if (flip_model(cfg)) then   ! the pendulum's parameters by name
+         model_axis = pendulum_axis(cfg, axis)
+         return
+      end if
       model_axis = index(' '//model_axis_names(cfg)//' ', ' '//axis//' ') > 0 .and. &
                    len_trim(axis) > 0
    end function model_axis
@@ -426,13 +640,18 @@ contains
       if (grid_mode(cfg) .and. .not. flip_model(cfg)) then
          call check_model_axes(cfg, error)
       else if (grid_mode(cfg)) then
-         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error)
+         call check_axis(cfg%axis1, 1, cfg%n1, cfg%min1, cfg%max1, cfg%run%links, error, &
+                         pendulum_axis(cfg, cfg%axis1))
          if (allocated(error)) return
-         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error)
+         call check_axis(cfg%axis2, 2, cfg%n2, cfg%min2, cfg%max2, cfg%run%links, error, &
+                         pendulum_axis(cfg, cfg%axis2))
          if (allocated(error)) return
-         if (same_value(cfg%axis1, cfg%axis2, cfg%run%links)) then
+         if (merge(cfg%axis1 == cfg%axis2, same_value(cfg%axis1, cfg%axis2, cfg%run%links), &
+                   pendulum_axis(cfg, cfg%axis1) .or. pendulum_axis(cfg, cfg%axis2))) then
             call fatal_error(error, "invalid axis2: '"//cfg%axis2//"' sweeps the same "// &
-                             "initial value as axis1 '"//cfg%axis1//"'")
+                             trim(merge('value        ', 'initial value', &
+                                        pendulum_axis(cfg, cfg%axis2)))// &
+                             " as axis1 '"//cfg%axis1//"'")
          else if (real(cfg%n1, dp)*real(cfg%n2, dp) > real(max_sweep_points, dp)) then
             call fatal_error(error, 'invalid n1, n2: n1*n2 = '// &
                              sci(real(cfg%n1, dp)*real(cfg%n2, dp))//' points, at most '// &
@@ -724,11 +943,14 @@ contains
       real(dp) :: p(4), x1, x2
       character(len=*), parameter :: what = 'min1, max1, min2, max2'
       class(model_t), allocatable :: model
+      logical :: named
       p1 = axis_parameter(cfg%axis1); p2 = axis_parameter(cfg%axis2)
-      if (p1 == 0 .and. p2 == 0) return
+      named = pendulum_axis(cfg, cfg%axis1) .or. pendulum_axis(cfg, cfg%axis2)
+      if (p1 == 0 .and. p2 == 0 .and. .not. named) return
       ! the com and inertia given would not follow a swept mass or length (the
       ! bodies --body rod and point do)
-      if (cfg%run%extra%find('com') > 0 .or. cfg%run%extra%find('inertia') > 0) then
+      if ((p1 > 0 .or. p2 > 0) .and. &
+          (cfg%run%extra%find('com') > 0 .or. cfg%run%extra%find('inertia') > 0)) then
          call fatal_error(error, 'invalid axis1, axis2: a mass or length axis sweeps ' &
                           //'uniform rods or point masses only (the com and inertia ' &
                           //'given would not follow it); sweep the initial values instead')
@@ -738,6 +960,16 @@ contains
          do i = 1, 2
             x1 = merge(cfg%min1, cfg%max1, i == 1)
             x2 = merge(cfg%min2, cfg%max2, j == 1)
+            if (named) then   ! every parameter's range from the catalogue (the factory)
+               call pixel_model_axes(cfg, pendulum_param_names(cfg), &
+                                     pendulum_param_values(cfg, x1, x2), model, error)
+               if (allocated(error)) then
+                  error%message = 'invalid '//what//': the pixel at ('//real_str(x1)//', ' &
+                                  //real_str(x2)//') is refused: '//error%message
+                  return
+               end if
+               if (p1 == 0 .and. p2 == 0) cycle
+            end if
             p = pixel_parameters(cfg, p1, x1, p2, x2)
             call check_parameter(parameter_mass, what//' (m1 of a pixel)', p(1), error)
             if (.not. allocated(error)) call check_parameter(parameter_mass, &
@@ -758,13 +990,16 @@ contains
    end subroutine check_pixel_parameters
 
    !> Check one axis: a known name, n >= 1, finite min <= max (min < max if n > 1).
-   subroutine check_axis(name, k, n, lo, hi, links, error)
+   subroutine check_axis(name, k, n, lo, hi, links, error, named)
       character(len=*), intent(in) :: name              !! axis name
       integer, intent(in) :: k                          !! 1 or 2
       integer, intent(in) :: n                          !! points
       real(dp), intent(in) :: lo, hi                    !! range
       integer, intent(in) :: links                      !! number of links N
       type(error_t), allocatable, intent(out) :: error  !! what is wrong
+      !> a parameter by name (`pendulum_axis`): n and the range as any axis; its
+      !> values' range from the catalogue (`check_pixel_parameters`)
+      logical, intent(in) :: named
       character(len=1) :: c
       character(len=5) :: unit
       real(dp) :: bound
@@ -775,6 +1010,17 @@ contains
          call check_param_axis(name, k, n, lo, hi, links, error)
          return
       end if
+      if (named) then
+         if (n < 1 .or. n > max_axis_points) then
+            call fatal_error(error, 'invalid n'//c//': '//to_str(n)//' must be an integer ' &
+                             //'from 1 to '//to_str(max_axis_points)//' (points on axis '//c//')')
+         else if (.not. (ieee_is_finite(lo) .and. ieee_is_finite(hi))) then
+            call fatal_error(error, 'invalid min'//c//', max'//c//': must be finite')
+         else
+            call check_grid_range(name, c, n, lo, hi, error)
+         end if
+         return
+      end if
       ! the angles' and angular velocities' ranges of every command (dpend_limits)
       bound = max_angle
       unit = 'rad'
@@ -782,7 +1028,11 @@ contains
          bound = max_angular_velocity
          unit = 'rad/s'
       end if
-      if (var == 0) then
+      if (var == 0 .and. (index(name, 'damping') == 1 .or. index(name, 'support') == 1)) then
+         call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
+                          //accepted_axes(links)//'; damping and the support''s motion are ' &
+                          //'not axes: dpend sweep integrates the conservative chain only)')
+      else if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))
       else if (n < 1 .or. n > max_axis_points) then
@@ -908,17 +1158,17 @@ contains
    end function axis_variable
 
    !> The accepted axis names for N links, for messages.
-   pure function accepted_axes(links) result(s)
+   function accepted_axes(links) result(s)
       integer, intent(in) :: links  !! number of links N
       character(len=:), allocatable :: s
       character(len=:), allocatable :: n
       n = to_str(links)
       select case (links)
-      case (1); s = 'theta1 q1 w1 for 1 link'
-      case (2); s = axis_names//' '//param_axis_names
+      case (1); s = 'theta1 q1 w1'//pendulum_axis_text(1)//' for 1 link'
+      case (2); s = axis_names//' '//param_axis_names//pendulum_axis_text(2)
       case default
-         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' '//param_axis_names//' for ' &
-             //n//' links'
+         s = 'theta1..theta'//n//' q1..q'//n//' w1..w'//n//' '//param_axis_names// &
+             pendulum_axis_text(links)//' for '//n//' links'
       end select
    end function accepted_axes
 

@@ -43,3 +43,16 @@ refuse  swm-elastic-same-axis "invalid axis2: 'k' sweeps the same value" -- swee
 refuse  swm-com-ratio         'invalid axis1, axis2: a mass or length axis sweeps uniform rods or point masses only' -- sweep --output s.h5 --quiet --com 0.4,0.4 --axis1 m2/m1 --axis2 l2/l1 --min1 0.5 --max1 2 --min2 0.5 --max2 2 --n 3 --t-end 1
 refuse  swm-list-with-q       'invalid q: given with ic_file' -- "${EL[@]}" --indicator megno --ic-file swm_list.txt --q 1.2,-1
 refuse  swm-pend-list-with-q  'invalid q: given with ic_file' -- sweep --ic-file swm_list.txt --q 1,1 --t-end 1 --quiet --output p.h5
+# ---- the pendulum's other parameters by name (per-trajectory path, any body):
+# g, com_k, inertia_k, m_k and l_k beyond the coded axes; ranges from the catalogue
+succeed swm-named-g-theta1-ok     -- sweep --output s.h5 --quiet --axis1 g --min1 1 --max1 10 --axis2 theta1 --n 3 --t-end 1
+succeed swm-named-com-inertia-ok  -- sweep --output s.h5 --quiet --com 0.4,0.6 --inertia 0.1,0.05 --axis1 com1 --min1 0.1 --max1 0.9 --axis2 inertia2 --min2 0 --max2 0.2 --n 3 --t-end 1
+succeed swm-named-point-g-ok      -- sweep --output s.h5 --quiet --body point --axis1 theta2 --axis2 g --min2 2 --max2 20 --n 3 --t-end 1
+succeed swm-named-ratio-g-ok      -- sweep --output s.h5 --quiet --axis1 m2/m1 --min1 0.5 --max1 2 --axis2 g --min2 4 --max2 16 --n 3 --t-end 1 --indicator megno
+succeed swm-named-m3-ok           -- sweep --output s.h5 --quiet --links 3 --axis1 m3 --min1 0.5 --max1 2 --axis2 l3 --min2 0.5 --max2 2 --n 3 --t-end 1
+refuse  swm-named-g-range         'invalid min1, max1, min2, max2: the pixel at (0, -3) is refused: invalid g: 0 m/s^2 is outside' -- sweep --output s.h5 --quiet --axis1 g --min1 0 --max1 10 --n 3 --t-end 1
+refuse  swm-named-inertia-range   'invalid inertia2: -1 kg m^2 is outside' -- sweep --output s.h5 --quiet --axis1 inertia2 --min1 -1 --max1 1 --n 3 --t-end 1
+refuse  swm-named-g-fixed         "invalid g: axis1 'g' sweeps the value it fixes" -- sweep --output s.h5 --quiet --g 3 --axis1 g --min1 1 --max1 2 --n 3 --t-end 1
+refuse  swm-named-same-axis       "invalid axis2: 'g' sweeps the same value" -- sweep --output s.h5 --quiet --axis1 g --axis2 g --min1 1 --max1 2 --min2 1 --max2 2 --n 3 --t-end 1
+refuse  swm-named-damping         "invalid axis1: 'damping1'" -- sweep --output s.h5 --quiet --axis1 damping1 --min1 0 --max1 1 --n 3 --t-end 1
+refuse  swm-named-m3-two-links    "invalid axis1: 'm3'" -- sweep --output s.h5 --quiet --axis1 m3 --min1 1 --max1 2 --n 3 --t-end 1
