@@ -11,7 +11,7 @@ module dpend_sweep_setup
    use dpend_lane_batch, only: batch_options_t
    use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
-      natural_time, model_axis, pendulum_param_names, pendulum_param_values
+      natural_time, model_axis, pendulum_param_names, pendulum_param_values, pendulum_axis
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_chain_lanes, only: chain_kernel_choice
@@ -64,6 +64,11 @@ module dpend_sweep_setup
       logical :: checksum = .true.
       ! the chain lanes: flip maps of 3 to 8 links through dpend_chain_lanes
       logical :: chain_lanes = .false.  !! the blocks go through the chain lanes
+      !> axis 1, axis 2 sweeps a parameter of the pendulum by name (com1, g, ...)
+      logical :: named1 = .false., named2 = .false.
+      !> the names of `block_parameters`' rows, set once by build_setup (no call in
+      !> the blocks' threads of what gfortran 12 keeps in static lengths: "Threads")
+      character(len=32), allocatable :: param_names(:)
    end type sweep_setup_t
 
    !> What a run did, for the closing line.
@@ -130,6 +135,10 @@ contains
          if (model_axis(cfg, cfg%axis2)) setup%par2 = named_parameter
          ! a pendulum map over a parameter by name: each pixel its own model
          if (named_axes(setup)) setup%per_trajectory = .true.
+         if (setup%flips .and. named_axes(setup)) then
+            setup%named1 = pendulum_axis(cfg, cfg%axis1)
+            setup%named2 = pendulum_axis(cfg, cfg%axis2)
+         end if
          allocate (setup%axis1(cfg%n1), setup%axis2(cfg%n2))
          do i = 1, cfg%n1
             setup%axis1(i) = axis_value(cfg%min1, cfg%max1, cfg%n1, i)
@@ -154,6 +163,7 @@ contains
       call chain_kernel_choice(cfg%run%model, setup%opt, setup%chain_lanes, error)
       if (allocated(error)) return
       setup%chain_lanes = setup%chain_lanes .and. .not. parameter_axes(setup)
+      setup%param_names = make_parameter_names(setup)
       setup%config = canonical_config(setup)
    end subroutine build_setup
 
@@ -229,9 +239,17 @@ contains
       end do
    end subroutine block_initial_conditions
 
+   !> The names of the parameters of `block_parameters` (set by build_setup).
+   pure function parameter_names(setup) result(names)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      character(len=32), allocatable :: names(:)
+      names = setup%param_names
+   end function parameter_names
+
    !> The names of the parameters of `block_parameters`: m1 m2 l1 l2 of a model with
-   !> flips, the swept parameters of another model ('' for an axis of initial values).
-   function parameter_names(setup) result(names)
+   !> flips, with the pendulum's parameters by name after them; the swept parameters
+   !> of another model ('' for an axis of initial values).
+   function make_parameter_names(setup) result(names)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       character(len=32), allocatable :: names(:)
       if (setup%flips .and. named_axes(setup)) then
@@ -243,7 +261,7 @@ contains
          if (setup%par1 == named_parameter) names(1) = setup%cfg%axis1
          if (setup%par2 == named_parameter) names(2) = setup%cfg%axis2
       end if
-   end function parameter_names
+   end function make_parameter_names
 
    !> True if an axis sweeps a parameter by name (`named_parameter`).
    pure logical function named_axes(setup)
@@ -284,7 +302,8 @@ contains
             jj = j0 + j - 1
             i1 = mod(jj - 1, setup%cfg%n1) + 1
             i2 = (jj - 1)/setup%cfg%n1 + 1
-            p(:, j) = pendulum_param_values(setup%cfg, setup%axis1(i1), setup%axis2(i2))
+            p(:, j) = pendulum_param_values(setup%cfg, setup%named1, setup%named2, &
+                                             setup%axis1(i1), setup%axis2(i2))
          end do
          return
       end if
