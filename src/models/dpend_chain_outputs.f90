@@ -10,7 +10,7 @@ submodule (dpend_chain) dpend_chain_outputs
    use dpend_link_layout, only: n_link_out, link_out_name, link_out_units, link_out_text, &
                                 link_out_rows, rod_coordinate, rod_coordinates_text, rod_figure, &
                                 n_alias_out, alias_out_name, alias_out_units, &
-                                alias_out_text, two_link_aliases, body_text
+                                alias_out_text, two_link_aliases, body_text, link_output_info
    use dpend_pendulum, only: pendulum_t, shell_state, shell_p_max, body_general
    implicit none
 
@@ -97,19 +97,7 @@ contains
    !> The pendulum layout of dpend_link_layout: F_joint rC vC aC rJ vJ aJ (N rows)
    !> and rA; for two links also the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB.
    module procedure chain_output_info
-      integer :: r
-      if (i <= n_link_out) then
-         name = trim(link_out_name(i)); units = trim(link_out_units(i))
-         description = trim(link_out_text(i))
-         r = merge(self%n, 0, link_out_rows(i))
-      else
-         name = trim(alias_out_name(i - n_link_out))
-         units = trim(alias_out_units(i - n_link_out))
-         description = trim(alias_out_text(i - n_link_out))
-         r = 0
-      end if
-      n_comp = 2*max(1, r)
-      if (present(rows)) rows = r
+      call link_output_info(i, self%n, name, n_comp, units, description, rows)
    end procedure chain_output_info
 
    !> The outputs of one sample (14 N + 2 values, 20 more for two links), q̈ taken

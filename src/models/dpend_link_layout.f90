@@ -18,7 +18,7 @@ module dpend_link_layout
    public :: n_link_out, link_out_name, link_out_units, link_out_text, link_out_rows
    public :: n_alias_out, alias_out_name, alias_out_units, alias_out_text
    public :: two_link_aliases, chain_from_aliases, rod_coordinate, rod_coordinates_text
-   public :: rod_figure, body_text
+   public :: rod_figure, body_text, link_output_info
 
    !> Outputs of every pendulum of N links: F_joint rC vC aC rJ vJ aJ (2N values
    !> each), then rA (2 values).
@@ -145,4 +145,28 @@ contains
       character(len=:), allocatable, intent(out) :: anchor, points, style, forces
       anchor = 'rA'; points = 'rJ'; style = 'rods'; forces = 'F_joint'
    end subroutine rod_figure
+   !> Output i of the layout of a pendulum of n links: F_joint rC vC aC rJ vJ aJ (n
+   !> rows) and rA, then the two-link aliases (`output_info` of the model interface).
+   subroutine link_output_info(i, n, name, n_comp, units, description, rows)
+      integer, intent(in) :: i                                   !! output
+      integer, intent(in) :: n                                   !! links
+      character(len=:), allocatable, intent(out) :: name         !! dataset name
+      integer, intent(out) :: n_comp                             !! components per sample
+      character(len=:), allocatable, intent(out) :: units        !! SI units
+      character(len=:), allocatable, intent(out) :: description  !! one line
+      integer, intent(out), optional :: rows                     !! vectors per sample
+      integer :: r
+      if (i <= n_link_out) then
+         name = trim(link_out_name(i)); units = trim(link_out_units(i))
+         description = trim(link_out_text(i))
+         r = merge(n, 0, link_out_rows(i))
+      else
+         name = trim(alias_out_name(i - n_link_out))
+         units = trim(alias_out_units(i - n_link_out))
+         description = trim(alias_out_text(i - n_link_out))
+         r = 0
+      end if
+      n_comp = 2*max(1, r)
+      if (present(rows)) rows = r
+   end subroutine link_output_info
 end module dpend_link_layout
