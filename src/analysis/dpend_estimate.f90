@@ -41,13 +41,26 @@ module dpend_estimate
    public :: initial_guess, student_t95, fit_work_t, estimate_fit_work, set_fitted, n_fitted
    public :: noise_estimate, observation_noise, misfit_suspects, misfit_factor, suspect_t, condition_text
 
+   !> The fit stops beyond this many times the step-equivalents of `estimate_fit_work`
+   !> (its worst case of integrations, each at the first guess's rate of steps): a fit
+   !> doing every iteration it may can still afford trial motions `work_margin` times
+   !> costlier than the first guess's; one whose trial parameters make the motion stiff
+   !> (a link of kilometres, a damping driven to its bound) ends with an error instead
+   !> of running hours.
+   real(dp), parameter :: work_margin = 4.0_dp
+   !> The least limit of step-equivalents (a first guess whose probe integration
+   !> failed at once gives a bound of 0; the fit then reports the failure itself).
+   real(dp), parameter :: min_work_limit = 1e6_dp
+
 contains
 
    !> Fit the samples with t ≤ t_window (all when t_window ≥ the last time), then
    !> predict the whole series and measure the horizon with `tolerance` [rad]. The
-   !> integration steps are counted: beyond `prob%work_limit` step-equivalents the fit
-   !> stops with an error. With `progress`, long fits report on stderr the integrations
-   !> done of the bound of `estimate_fit_work` (the time left is then an upper bound).
+   !> integration steps are counted: beyond `work_margin` times the bound of
+   !> `estimate_fit_work` (at most `prob%work_limit`) step-equivalents the fit stops
+   !> with an error, so a fit whose trial parameters make the motion far costlier than
+   !> its first guess's ends in about the time announced. With `progress`, long fits
+   !> report on stderr the step-equivalents done of that limit.
    subroutine fit_series(prob, t, q, t_window, tolerance, res, error, guess, progress)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: t(:)                      !! sample times (K) [s]
@@ -62,15 +75,16 @@ contains
       logical, intent(in), optional :: progress         !! report progress on stderr
       type(fit_counter_t) :: counter
       type(fit_work_t) :: work
-      counter%limit = prob%work_limit
+      call estimate_fit_work(prob, t, q, t_window, work, error)
+      if (allocated(error)) return
+      counter%limit = min(prob%work_limit, max(work_margin*work%work, min_work_limit))
       if (present(progress)) counter%show = progress
       if (counter%show) then
-         call estimate_fit_work(prob, t, q, t_window, work, error)
-         if (allocated(error)) return
-         call counter%progress%start('dpend fit (integrations of at most '// &
-                                     real_str(work%evaluations)//')', &
-                                     int(min(work%evaluations, 1e15_dp), i8), 0_i8, .false., &
-                                     what='integrations')
+         call counter%progress%start('dpend fit (step-equivalents of at most '// &
+                                     real_str(counter%limit, 3)//', up to '// &
+                                     real_str(work%evaluations)//' integrations)', &
+                                     int(min(counter%limit, 1e15_dp), i8), 0_i8, .false., &
+                                     what='steps')
          ! a line only once the fit has run for a while (none for a quick fit)
          counter%progress%t_last = counter%progress%t_start
          counter%progress%reported = 0

@@ -29,6 +29,11 @@ module dpend_estimate_problem
    public :: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, evaluate_fit, counted_fit
    public :: start_model, initial_guess, wrap_angles
 
+   !> Most substeps of the sensitivities over one step of the motion: a step whose
+   !> local frequency needs more is far too long for the tangents (trial parameters
+   !> that made the motion stiff), and its evaluation fails.
+   integer, parameter :: fit_max_substeps = 4096
+
    !> What is fitted and how the model is integrated.
    type :: fit_problem_t
       !> the model with fixed parameters (used when no model parameter is fitted)
@@ -81,8 +86,9 @@ module dpend_estimate_problem
       !> the links are point masses at their ends (`--body point`): a fitted
       !> length l_i moves the centre of mass com_i = l_i with it
       logical :: com_at_tip = .false.
-      !> most step-equivalents (steps × (1 + P) with sensitivities) of the whole fit;
-      !> `fit_series` stops with an error beyond
+      !> most step-equivalents (a step, and P per substep of the sensitivities) of the
+      !> whole fit; `fit_series` stops with an error beyond (or beyond 4 times the
+      !> bound of `estimate_fit_work`)
       real(dp) :: work_limit = max_fit_work
       !> the noise of the observations [rad or m] (`--sigma`); 0: estimated from the
       !> data (`observation_noise`)
@@ -141,7 +147,12 @@ contains
 
    !> Residuals r (N k) of the first k samples for the parameters p and, if `jac` is
    !> present, their Jacobian ∂r/∂p (N k, P). Residual (i, j) is r(i + N (j − 1)).
-   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac, steps, budget)
+   !> With `counter`, the work is added to it as it is done, in step-equivalents: one
+   !> per integration step, and with `jac` P more per substep of the tangents (one
+   !> substep per step where the step is short for the local frequency, many where
+   !> the trial parameters make the motion stiff); the progress is reported during the
+   !> integration, and beyond the counter's limit the integration stops with an error.
+   subroutine evaluate_fit(prob, p, t, q, k, r, error, jac, counter)
       type(fit_problem_t), intent(in) :: prob           !! the problem
       real(dp), intent(in) :: p(:)                      !! parameters
       real(dp), intent(in) :: t(:)                      !! sample times [s]
@@ -151,11 +162,11 @@ contains
       real(dp), intent(out) :: r(:)                     !! residuals (N k) [rad]
       type(error_t), allocatable, intent(out) :: error  !! the integration failed
       real(dp), intent(out), optional :: jac(:, :)      !! ∂r/∂p (N k, P)
-      integer(i8), intent(out), optional :: steps       !! integration steps taken
-      !> with `steps`: stop with an error once more steps than this are taken
-      real(dp), intent(in), optional :: budget
+      type(fit_counter_t), intent(inout), optional :: counter  !! work done, its limit
       type(sens_model_t) :: sm
       class(integrator_t), allocatable :: integ
+      integer(i8) :: nstep
+      real(dp) :: counted
       type(tangent_t) :: tan
       type(march_t) :: march
       real(dp), allocatable :: y(:), v0(:, :), o(:), d(:, :), lv(:), dl(:, :)
@@ -165,7 +176,8 @@ contains
       no = size(q, 1)
       n = merge(no/2, no, prob%positions)
       np = size(p)
-      if (present(steps)) steps = 0
+      nstep = 0
+      counted = 0.0_dp
       allocate (o(no), d(no, n), dl(no, n))
       call observed_lengths(prob, p, n, lv, lc)
       call start_model(prob, p, t(1), sm, integ, y, error)
@@ -184,6 +196,9 @@ contains
          end do
          call tan%init(v0)
          tan%theta = 0.05_dp
+         ! a trial needing more substeps is rejected (too stiff): the fit's progress
+         ! then advances every few seconds even in the debug build
+         tan%max_substeps = fit_max_substeps
       end if
       call observe(prob, t(1), p(1:n), o, d, lv, dl)
       r(1:no) = residual(prob, o, q(:, 1))
@@ -198,19 +213,11 @@ contains
          call march%start(integ, tt, t(j), h)
          do while (.not. march%finished)
             call march%next(integ, sm, tt, y, h, stat)
-            if (present(steps)) then
-               steps = steps + 1
-               if (present(budget)) then
-                  if (real(steps, dp) > budget) then
-                     call fatal_error(error, 'the integration took more than '// &
-                                      real_str(budget, 3)//' steps')
-                     return
-                  end if
-               end if
-            end if
+            nstep = nstep + 1
             if (stat /= stat_ok) then
                call fatal_error(error, 'the model''s integration failed: '// &
                                 status_message(stat)//' after t = '//real_str(tt)//' s')
+               if (present(counter)) call count_work()
                return
             end if
             if (present(jac)) then
@@ -219,14 +226,20 @@ contains
                   call fatal_error(error, 'the sensitivities could not be propagated ' &
                                    //'(a step too long for the local frequency) after t = ' &
                                    //real_str(tt)//' s')
+                  if (present(counter)) call count_work()
                   return
                end if
                if (tan%too_large) then
                   call fatal_error(error, 'the sensitivities grew beyond 1e100 by t = ' &
                                    //real_str(tt)//' s: the trajectory is chaotic over ' &
                                    //'the fit window (fit a shorter --fit-window or series)')
+                  if (present(counter)) call count_work()
                   return
                end if
+            end if
+            if (present(counter)) then   ! counted every 1024 step-equivalents
+               if (work_done() - counted >= 1024.0_dp) call count_work()
+               if (counter%exceeded) return
             end if
          end do
          call observe(prob, tt, y(1:n), o, d, lv, dl)
@@ -236,7 +249,32 @@ contains
             call add_length_columns(j)
          end if
       end do
+      if (present(counter)) call count_work()
    contains
+      !> The step-equivalents done since the last count added to the counter; beyond
+      !> its limit, an error.
+      subroutine count_work()
+         real(dp) :: work
+         work = work_done()
+         counter%used = counter%used + (work - counted)
+         if (counter%show) call counter%progress%update(int(work - counted, i8))
+         counted = work
+         if (counter%used > counter%limit) then
+            counter%exceeded = .true.
+            if (allocated(error)) deallocate (error)
+            call fatal_error(error, 'the fit stopped at its work limit: '// &
+                             real_str(counter%used, 3)//' step-equivalents (each step, ' &
+                             //'and P per substep of the sensitivities) done, at most '// &
+                             real_str(counter%limit, 3)//' (the trial motions needed far ' &
+                             //'more steps than the first guess''s; check the guesses and ' &
+                             //'--body, or shorten the fit window)')
+         end if
+      end subroutine count_work
+      !> The step-equivalents of this evaluation so far.
+      real(dp) function work_done()
+         work_done = real(nstep, dp)
+         if (present(jac)) work_done = work_done + real(np, dp)*real(tan%n_sub, dp)
+      end function work_done
       !> Positions with fitted lengths: ∂P/∂l_i added to the columns of the lengths
       !> (besides their effect on the motion, carried by the tangents), sample jj.
       subroutine add_length_columns(jj)
@@ -249,8 +287,8 @@ contains
       end subroutine add_length_columns
    end subroutine evaluate_fit
 
-   !> `evaluate_fit` with its steps added to the counter (× (1 + P) with the
-   !> Jacobian); an error when the fit's work goes beyond the counter's limit.
+   !> `evaluate_fit` with its step-equivalents added to the counter; an error when the
+   !> fit's work goes beyond the counter's limit (`counter%exceeded`).
    subroutine counted_fit(prob, p, t, q, k, r, counter, error, jac)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: p(:), t(:), q(:, :)
@@ -259,28 +297,10 @@ contains
       type(fit_counter_t), intent(inout) :: counter
       type(error_t), allocatable, intent(out) :: error
       real(dp), intent(out), optional :: jac(:, :)
-      integer(i8) :: steps
-      real(dp) :: factor
-      real(dp) :: budget
-      factor = 1.0_dp
-      if (present(jac)) factor = real(1 + size(p), dp)
-      ! the steps left (an integration stops once beyond them)
-      budget = max(counter%limit - counter%used, 0.0_dp)/factor
       if (present(jac)) then
-         call evaluate_fit(prob, p, t, q, k, r, error, jac, steps=steps, budget=budget)
+         call evaluate_fit(prob, p, t, q, k, r, error, jac, counter)
       else
-         call evaluate_fit(prob, p, t, q, k, r, error, steps=steps, budget=budget)
-      end if
-      counter%used = counter%used + factor*real(steps, dp)
-      if (counter%show) call counter%progress%update(1_i8)
-      if (counter%used > counter%limit) then
-         counter%exceeded = .true.
-         if (allocated(error)) deallocate (error)
-         call fatal_error(error, 'the fit stopped at its work limit: '// &
-                          real_str(counter%used, 3)//' integration steps (sensitivities ' &
-                          //'counted x(1 + P)) done, at most '//real_str(counter%limit)// &
-                          ' (the motion needed more steps than its first guess; shorten ' &
-                          //'the fit window)')
+         call evaluate_fit(prob, p, t, q, k, r, error, counter=counter)
       end if
    end subroutine counted_fit
 

@@ -49,8 +49,10 @@ module dpend_tangent
       real(dp) :: theta = 0.1_dp
       integer(i8) :: n_jac = 0   !! Jacobian evaluations
       integer(i8) :: n_sub = 0   !! RK4 substeps taken
-      !> the last step needed more than `max_tangent_substeps` substeps: the vectors
-      !> were not propagated (the step is far too long for the local frequency)
+      !> most substeps of one step (at most `max_tangent_substeps`)
+      integer :: max_substeps = max_tangent_substeps
+      !> the last step needed more than `max_substeps` substeps: the vectors were not
+      !> propagated (the step is far too long for the local frequency)
       logical :: too_stiff = .false.
       !> a component of the vectors passed `max_tangent_size` (or is not finite): they
       !> were not propagated further. Callers that renormalize (Lyapunov, indicators)
@@ -122,7 +124,7 @@ contains
       call mat_mul(ja, ja, ja2)
       omega = sqrt(maxval(sum(abs(ja2), dim=2)))
       ! compared before converting: the substep count must fit an integer
-      self%too_stiff = .not. (abs(h)*omega <= self%theta*real(max_tangent_substeps, dp))
+      self%too_stiff = .not. (abs(h)*omega <= self%theta*real(self%max_substeps, dp))
       if (self%too_stiff) return
       n = max(1, ceiling(abs(h)*omega/self%theta))
       hs = h/real(n, dp)
