@@ -2,7 +2,7 @@
 # The floors of dpend use only the floors below them (docs/architecture.md, "Layers"):
 #
 #   core < models < integrators < analysis < lanes < io < settings < engines
-#        < commands < front ends (app/, bench/, mpi/)
+#        < commands < front ends (app/, bench/, mpi/, src/capi/)
 #
 # This check reads every `use` statement of the Fortran sources in src/, app/, bench/
 # and mpi/, finds the folder of the module each one names, and fails on any edge
@@ -55,6 +55,7 @@ check_tree() {
       if (parts[2] == "settings") return 6
       if (parts[2] == "engines") return 7
       if (parts[2] == "commands") return 8
+      if (parts[2] == "capi") return 9        # src/capi/: the C interface, a front end
       return -1
     }
     # The floor of the code in `path`: that of its ancestor module for a submodule.

@@ -45,7 +45,7 @@ module dpend_hdf5
    use hdf5
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
-   use dpend_os, only: io_failure_reason
+   use dpend_os, only: io_failure_reason, capturing_outputs, capture_buffer
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory
    use dpend_strings, only: to_str
@@ -70,6 +70,9 @@ module dpend_hdf5
       character(len=:), allocatable :: filename  !! name given to `open`
       integer(hid_t) :: id = -1                  !! HDF5 file id, -1 when closed
       logical :: readonly = .false.              !! opened with mode 'r'
+      !> created in memory (a captured output, `capture_outputs`): its image is kept
+      !> when it is closed
+      logical :: memory = .false.
       !> first failure of a write called without `error` (see `take_error`)
       type(error_t), allocatable :: error
    contains

@@ -37,7 +37,12 @@ contains
             call h5fcreate_f(trim(filename), H5F_ACC_EXCL_F, fid, hdferr, access_prp=fapl)
          end if
       case ('w', 'x')
-         if (mode == 'x' .and. on_disk) then
+         if (capturing_outputs()) then
+            ! a library call's output: in memory (no backing store), whatever is on disk
+            call h5pset_fapl_core_f(fapl, 1048576_size_t, .false., ierr)
+            call h5fcreate_f(trim(filename), H5F_ACC_TRUNC_F, fid, hdferr, access_prp=fapl)
+            self%memory = hdferr == 0
+         else if (mode == 'x' .and. on_disk) then
             why = 'file exists'
          else
             call h5fcreate_f(trim(filename), merge(H5F_ACC_TRUNC_F, H5F_ACC_EXCL_F, mode == 'w'), &
@@ -57,7 +62,7 @@ contains
    end procedure file_open
 
    module procedure file_close
-      integer :: ierr
+      integer :: ierr, kerr
       logical :: valid
       if (present(error)) call self%take_error(error)
       if (allocated(self%error)) deallocate (self%error)
@@ -65,7 +70,12 @@ contains
       call quiet_thread()
       ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
-      if (valid .and. ierr == 0) call h5fclose_f(self%id, ierr)
+      if (valid .and. ierr == 0) then
+         kerr = 0
+         if (self%memory) call keep_image(self%id, kerr)
+         call h5fclose_f(self%id, ierr)
+         if (kerr /= 0) ierr = kerr
+      end if
       if (ierr /= 0 .and. present(error)) then
          if (.not. allocated(error)) call fatal_error(error, 'cannot close '// &
             quoted(self%filename)//': '//io_failure_reason(self%filename, &
@@ -73,7 +83,28 @@ contains
       end if
       self%id = -1
       self%readonly = .false.
+      self%memory = .false.
    end procedure file_close
+
+   !> The image of the in-memory file `fid` into the capture buffer of this thread
+   !> (`capture_buffer`); ierr nonzero when it could not be taken.
+   subroutine keep_image(fid, ierr)
+      integer(hid_t), intent(in) :: fid
+      integer, intent(out) :: ierr
+      integer(size_t) :: n
+      type(c_ptr) :: buf
+      call h5fflush_f(fid, H5F_SCOPE_GLOBAL_F, ierr)
+      if (ierr /= 0) return
+      buf = c_null_ptr
+      call h5fget_file_image_f(fid, buf, 0_size_t, ierr, n)
+      if (ierr /= 0) return
+      buf = capture_buffer(int(n, c_size_t))
+      if (.not. c_associated(buf)) then
+         ierr = -1
+         return
+      end if
+      call h5fget_file_image_f(fid, buf, n, ierr)
+   end subroutine keep_image
 
    module procedure file_flush
       integer :: ierr

@@ -20,6 +20,7 @@ module dpend_os
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
    public :: echo_to_stderr  ! for the figure scripts
    public :: errno_exists, errno_nospc, io_failure_reason
+   public :: capture_outputs, capturing_outputs, capture_buffer, take_capture
 
    !> What `path_kind` finds at a path.
    integer, parameter :: path_missing = 0, path_file = 1, path_directory = 2, &
@@ -46,6 +47,21 @@ module dpend_os
          integer(c_int), value :: mode
          integer(c_int) :: r
       end function c_mkdir
+      subroutine c_capture_set(on) bind(C, name='dpend_capture_set')
+         import :: c_int
+         integer(c_int), value :: on
+      end subroutine c_capture_set
+      integer(c_int) function c_capture_active() bind(C, name='dpend_capture_active')
+         import :: c_int
+      end function c_capture_active
+      type(c_ptr) function c_capture_buffer(n) bind(C, name='dpend_capture_buffer')
+         import :: c_ptr, c_size_t
+         integer(c_size_t), value :: n
+      end function c_capture_buffer
+      type(c_ptr) function c_capture_take(n) bind(C, name='dpend_capture_take')
+         import :: c_ptr, c_size_t
+         integer(c_size_t), intent(out) :: n
+      end function c_capture_take
       integer(c_int) function c_path_kind(path, follow) bind(C, name='dpend_path_kind')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -448,4 +464,34 @@ contains
       end if
       close (unit)
    end subroutine echo_to_stderr
+   !> Start (`on`) or stop capturing this thread's outputs in memory (a library
+   !> call, src/capi): while on, the HDF5 files this thread creates are written to
+   !> memory and the image of the last one closed is kept for `take_capture`;
+   !> `output_t` makes no temporary file and moves nothing. Either drops an image
+   !> not taken. The state is this thread's alone.
+   subroutine capture_outputs(on)
+      logical, intent(in) :: on  !! capture from now on, or stop
+      call c_capture_set(merge(1_c_int, 0_c_int, on))
+   end subroutine capture_outputs
+
+   !> Whether this thread captures its outputs in memory (`capture_outputs`).
+   logical function capturing_outputs()
+      capturing_outputs = c_capture_active() /= 0
+   end function capturing_outputs
+
+   !> A buffer of n bytes for the image of the captured file being closed (replacing
+   !> the last one); c_null_ptr when memory is short.
+   function capture_buffer(n) result(p)
+      integer(c_size_t), intent(in) :: n  !! bytes
+      type(c_ptr) :: p
+      p = c_capture_buffer(n)
+   end function capture_buffer
+
+   !> The image of the last captured file, handed over (free it with C's free), and
+   !> its size in bytes; c_null_ptr and 0 if none.
+   function take_capture(n) result(p)
+      integer(c_size_t), intent(out) :: n  !! bytes
+      type(c_ptr) :: p
+      p = c_capture_take(n)
+   end function take_capture
 end module dpend_os

@@ -26,7 +26,7 @@
 module dpend_output
    use dpend_error, only: error_t, fatal_error
    use, intrinsic :: iso_fortran_env, only: int64
-   use dpend_os, only: file_id, path_kind, path_missing, path_file, path_directory, path_link, &
+   use dpend_os, only: capturing_outputs, file_id, path_kind, path_missing, path_file, path_directory, path_link, &
                            directory_of, base_name, make_temp_file, sync_path, &
                            move_noreplace, move_replace, remove_file, errno_text, &
                            errno_exists, path_other
@@ -52,6 +52,9 @@ module dpend_output
       character(len=:), allocatable :: option  !! the option that named it (for messages)
       logical :: force = .false.               !! replace an existing regular file
       logical :: active = .false.              !! a temporary file exists
+      !> a library call's output, captured in memory (`capture_outputs`): no
+      !> temporary file, nothing moved or removed
+      logical :: memory = .false.
    contains
       procedure :: begin => output_begin
       procedure :: commit => output_commit
@@ -183,8 +186,17 @@ contains
       character(len=:), allocatable :: dir, name, opt
       integer :: err
       call self%discard()
+      self%memory = .false.
       opt = '--output'
       if (present(option)) opt = option
+      if (capturing_outputs()) then   ! written in memory under its own name
+         self%temp = target
+         self%target = target
+         self%option = opt
+         self%memory = .true.
+         self%active = .true.
+         return
+      end if
       call check_output_path(target, force, error, opt)
       if (allocated(error)) return
       dir = directory_of(target)
@@ -210,6 +222,10 @@ contains
       integer :: err
       if (.not. self%active) then
          call fatal_error(error, 'internal error: commit without begin')
+         return
+      end if
+      if (self%memory) then   ! the image was kept when the file closed
+         self%active = .false.
          return
       end if
       err = sync_path(self%temp)
@@ -257,7 +273,7 @@ contains
       class(output_t), intent(inout) :: self  !! the output
       integer :: err
       if (.not. self%active) return
-      err = remove_file(self%temp)
+      if (.not. self%memory) err = remove_file(self%temp)
       self%active = .false.
    end subroutine output_discard
 

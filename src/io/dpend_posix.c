@@ -208,3 +208,43 @@ int dpend_gpu_call_run(const double *coef, const double *bounds, double escale, 
                              y0, t_flip1, t_flip2, t_flip, energy0, energy_error, t_stop, fin,
                              status, steps, kernel_ms, launches, msg, msg_len);
 }
+
+/* In-memory outputs of a library call (src/capi): while this thread captures, the
+ * HDF5 files it creates live in memory (HDF5's core driver, no backing store) and
+ * the image of the last one closed is kept here, in storage of this thread alone:
+ * two library calls in two threads never see each other's. */
+static _Thread_local int dpend_capturing = 0;
+static _Thread_local unsigned char *dpend_captured = NULL;
+static _Thread_local size_t dpend_captured_bytes = 0;
+
+/* Start (on nonzero) or stop capturing; either drops an image not taken. */
+void dpend_capture_set(int on)
+{
+    free(dpend_captured);
+    dpend_captured = NULL;
+    dpend_captured_bytes = 0;
+    dpend_capturing = on != 0;
+}
+
+/* 1 while this thread captures its outputs, else 0. */
+int dpend_capture_active(void) { return dpend_capturing; }
+
+/* A buffer of n bytes for the image of the file being closed (replacing the last
+ * one); NULL when memory is short. */
+void *dpend_capture_buffer(size_t n)
+{
+    free(dpend_captured);
+    dpend_captured = malloc(n > 0 ? n : 1);
+    dpend_captured_bytes = dpend_captured != NULL ? n : 0;
+    return dpend_captured;
+}
+
+/* The last image, handed over (the caller frees it with free()); NULL if none. */
+void *dpend_capture_take(size_t *n)
+{
+    void *image = dpend_captured;
+    *n = dpend_captured_bytes;
+    dpend_captured = NULL;
+    dpend_captured_bytes = 0;
+    return image;
+}

@@ -1,0 +1,319 @@
+!> dpend as a library: the C interface (`bind(C)`; the header is
+!> src/capi/dpend.h, the Python package in python/dpend calls it through ctypes).
+!>
+!> `dpend_run` runs one command in the calling thread, as `dpend COMMAND ARGS...`
+!> would: its options are the command line's, parsed and checked by the same
+!> settings layer (so a refusal is the command line's one line, word for word), and
+!> the HDF5 file the command writes is written to memory instead of disk
+!> (`capture_outputs`: HDF5's core driver without a backing store). The result is
+!> that file's image, byte for byte the file the command would write apart from the
+!> creation time, handed over as an opaque handle: `dpend_result_bytes` and
+!> `dpend_result_copy` read it, `dpend_result_free` releases it. Nothing here stops
+!> or exits the process; every error comes back as a kind (0 ok, 1 the run failed
+!> partway, 2 refused input, 3 not available in the library) and one line.
+!> The capture is per thread, so two calls in two threads do not meet. Progress
+!> reports are silenced for the whole process once the library is called.
+module dpend_capi
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_null_ptr, c_null_char, &
+      c_associated, c_f_pointer, c_loc, c_size_t, c_long_long
+   use dpend_error, only: error_t, fatal_error, exit_status
+   use dpend_cli, only: arg_t, check_repeated_options, printable
+   use dpend_os, only: capture_outputs, take_capture
+   use dpend_progress, only: silence_progress
+   use dpend_version, only: version
+   use dpend_command_common, only: refusal_line, error_line
+   use dpend_run_settings, only: run_config_t
+   use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
+   use dpend_chaos_common, only: chaos_config_t, parse_chaos, run_chaos, chaos_help, &
+      chaos_run_body
+   use dpend_lyapunov_command, only: run_lyapunov
+   use dpend_indicators_command, only: run_indicators
+   use dpend_divergence_command, only: run_divergence
+   use dpend_poincare_command, only: run_poincare
+   use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
+   implicit none
+   private
+   public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
+   public :: dpend_version
+
+   !> The error kinds of the interface.
+   integer(c_int), parameter :: kind_ok = 0, kind_refused = 2, kind_unavailable = 3
+
+   !> The commands the library runs.
+   character(len=10), parameter :: commands(6) = [character(len=10) :: 'simulate', &
+      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit']
+
+   !> A run's result: the image of the file the command wrote (C memory, freed by
+   !> `dpend_result_free`).
+   type :: result_t
+      type(c_ptr) :: image = c_null_ptr
+      integer(c_size_t) :: bytes = 0
+   end type result_t
+
+   interface
+      subroutine c_free(p) bind(C, name='free')
+         import :: c_ptr
+         type(c_ptr), value :: p
+      end subroutine c_free
+      type(c_ptr) function c_memcpy(dst, src, n) bind(C, name='memcpy')
+         import :: c_ptr, c_size_t
+         type(c_ptr), value :: dst, src
+         integer(c_size_t), value :: n
+      end function c_memcpy
+   end interface
+
+contains
+
+   !> Run `command` with the `nargs` options `args` (C strings, as the command line
+   !> takes them; not --output, --force, --quiet). Returns the error kind; `result`
+   !> receives the file's image (c_null_ptr when nothing was written), `message` one
+   !> line (the command's closing line, its refusal or why the run failed), at most
+   !> msg_len bytes with the terminating NUL. With --help, `message` holds the help.
+   integer(c_int) function dpend_run(command, nargs, args, result, message, msg_len) &
+      bind(C, name='dpend_run')
+      type(c_ptr), value :: command                !! const char *
+      integer(c_int), value :: nargs               !! number of options
+      type(c_ptr), value :: args                   !! const char *const *
+      type(c_ptr), intent(out) :: result           !! void **: the result or NULL
+      type(c_ptr), value :: message                !! char *
+      integer(c_int), value :: msg_len             !! its size [B]
+      type(arg_t), allocatable :: argv(:)
+      type(c_ptr), pointer :: ptrs(:)
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: name, text
+      integer :: i
+      result = c_null_ptr
+      call silence_progress()
+      name = c_string(command)
+      allocate (argv(max(nargs, 0)))
+      if (nargs > 0) then
+         call c_f_pointer(args, ptrs, [nargs])
+         do i = 1, nargs
+            argv(i)%s = c_string(ptrs(i))
+         end do
+      end if
+      if (.not. any(name == commands)) then
+         text = "dpend: '"//printable(name)//"' is not available in the library (" &
+                //'simulate, lyapunov, indicators, divergence, poincare and fit are)'
+         call put_c_string(text, message, msg_len)
+         dpend_run = kind_unavailable
+         return
+      end if
+      call run_captured(name, argv, text, error, result)
+      if (allocated(error)) then
+         dpend_run = int(exit_status(error), c_int)
+         text = printable(error%message, controls_only=.true.)
+      else
+         dpend_run = kind_ok
+      end if
+      call put_c_string(text, message, msg_len)
+   end function dpend_run
+
+   !> `command` run with its outputs captured in memory (see the module's notes):
+   !> `text` the help when asked for, `result` the handle of the last file written.
+   subroutine run_captured(command, argv, text, error, result)
+      character(len=*), intent(in) :: command
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(out) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(c_ptr), intent(out) :: result
+      type(result_t), pointer :: res
+      type(c_ptr) :: image
+      integer(c_size_t) :: bytes
+      text = ''
+      result = c_null_ptr
+      call check_library_args(command, argv, error)
+      if (allocated(error)) return
+      call capture_outputs(.true.)
+      call dispatch(command, argv, text, error)
+      image = take_capture(bytes)
+      call capture_outputs(.false.)
+      if (c_associated(image)) then
+         allocate (res)
+         res%image = image
+         res%bytes = bytes
+         result = c_loc(res)
+      end if
+   end subroutine run_captured
+
+   !> The options the library sets itself are refused (the result is returned, not
+   !> written; progress is never printed), as is an option given twice.
+   subroutine check_library_args(command, argv, error)
+      character(len=*), intent(in) :: command
+      type(arg_t), intent(in) :: argv(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: i
+      character(len=:), allocatable :: opt
+      do i = 1, size(argv)
+         opt = argv(i)%s
+         if (index(opt, '=') > 0) opt = opt(:index(opt, '=') - 1)
+         select case (opt)
+         case ('--output', '--force', '--quiet')
+            call fatal_error(error, 'dpend '//printable(command)//': invalid option '// &
+                             opt//' in the library (the result is returned; write it ' &
+                             //'with to_hdf5)')
+            return
+         end select
+      end do
+      call check_repeated_options(argv, error)
+      if (allocated(error)) error%message = 'dpend '//printable(command)//': '// &
+         error%message
+   end subroutine check_library_args
+
+   !> The command's parse and run, without printing: its closing text in `text`.
+   subroutine dispatch(command, argv, text, error)
+      character(len=*), intent(in) :: command
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      select case (command)
+      case ('simulate')
+         call simulate(argv, text, error)
+      case ('lyapunov')
+         call chaos(command, argv, run_lyapunov, text, error)
+      case ('indicators')
+         call chaos(command, argv, run_indicators, text, error)
+      case ('divergence')
+         call chaos(command, argv, run_divergence, text, error)
+      case ('poincare')
+         call chaos(command, argv, run_poincare, text, error)
+      case ('fit')
+         call fit(argv, text, error)
+      end select
+   end subroutine dispatch
+
+   subroutine simulate(argv, text, error)
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      logical :: help
+      call parse_simulate(argv, cfg, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'simulate')
+      else if (help) then
+         text = simulate_help()
+      else
+         call run_simulate(cfg, error, text)
+         if (allocated(error)) call error_line(error, 'simulate')
+      end if
+   end subroutine simulate
+
+   subroutine chaos(command, argv, body, text, error)
+      character(len=*), intent(in) :: command
+      type(arg_t), intent(in) :: argv(:)
+      procedure(chaos_run_body) :: body
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      type(chaos_config_t) :: ch
+      logical :: help
+      call parse_chaos(command, argv, cfg, ch, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, command)
+      else if (help) then
+         text = chaos_help(command)
+      else
+         call run_chaos(cfg, ch, body, text, error)
+         if (allocated(error)) call error_line(error, command)
+      end if
+   end subroutine chaos
+
+   subroutine fit(argv, text, error)
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(fit_config_t) :: fc
+      logical :: help
+      call parse_fit(argv, fc, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'fit')
+      else if (help) then
+         text = fit_help()
+      else
+         call run_fit(fc, error)
+         if (allocated(error)) call error_line(error, 'fit')
+      end if
+   end subroutine fit
+
+   !> Bytes of the result's file image (0 for a null handle).
+   integer(c_long_long) function dpend_result_bytes(result) bind(C, name='dpend_result_bytes')
+      type(c_ptr), value :: result  !! the handle of `dpend_run`
+      type(result_t), pointer :: res
+      dpend_result_bytes = 0
+      if (.not. c_associated(result)) return
+      call c_f_pointer(result, res)
+      dpend_result_bytes = int(res%bytes, c_long_long)
+   end function dpend_result_bytes
+
+   !> Copy the image into `buf` of n bytes; 0 on success, 2 when n is too small or a
+   !> pointer is null.
+   integer(c_int) function dpend_result_copy(result, buf, n) bind(C, name='dpend_result_copy')
+      type(c_ptr), value :: result  !! the handle of `dpend_run`
+      type(c_ptr), value :: buf     !! the destination
+      integer(c_long_long), value :: n  !! its size [B]
+      type(result_t), pointer :: res
+      type(c_ptr) :: dst
+      dpend_result_copy = kind_refused
+      if (.not. c_associated(result) .or. .not. c_associated(buf)) return
+      call c_f_pointer(result, res)
+      if (n < int(res%bytes, c_long_long)) return
+      dst = c_memcpy(buf, res%image, res%bytes)
+      dpend_result_copy = kind_ok
+   end function dpend_result_copy
+
+   !> Release a result (a null handle is ignored).
+   subroutine dpend_result_free(result) bind(C, name='dpend_result_free')
+      type(c_ptr), value :: result  !! the handle of `dpend_run`
+      type(result_t), pointer :: res
+      if (.not. c_associated(result)) return
+      call c_f_pointer(result, res)
+      call c_free(res%image)
+      deallocate (res)
+   end subroutine dpend_result_free
+
+   !> The version into buf (n bytes with the NUL); returns its length.
+   integer(c_int) function dpend_version(buf, n) bind(C, name='dpend_version')
+      type(c_ptr), value :: buf     !! char *
+      integer(c_int), value :: n    !! its size [B]
+      call put_c_string(version, buf, n)
+      dpend_version = len(version, c_int)
+   end function dpend_version
+
+   !> The Fortran text of a NUL-terminated C string ('' for a null pointer).
+   function c_string(p) result(s)
+      type(c_ptr), intent(in) :: p
+      character(len=:), allocatable :: s
+      character(kind=c_char), pointer :: chars(:)
+      integer :: n, i
+      if (.not. c_associated(p)) then
+         s = ''
+         return
+      end if
+      call c_f_pointer(p, chars, [huge(1)])
+      n = 0
+      do while (chars(n + 1) /= c_null_char)
+         n = n + 1
+      end do
+      allocate (character(len=n) :: s)
+      do i = 1, n
+         s(i:i) = chars(i)
+      end do
+   end function c_string
+
+   !> `text` into the C buffer p of n bytes, cut to n − 1 bytes and NUL-terminated.
+   subroutine put_c_string(text, p, n)
+      character(len=*), intent(in) :: text
+      type(c_ptr), intent(in) :: p
+      integer(c_int), intent(in) :: n
+      character(kind=c_char), pointer :: chars(:)
+      integer :: k, i
+      if (.not. c_associated(p) .or. n < 1) return
+      call c_f_pointer(p, chars, [n])
+      k = min(len(text), n - 1)
+      do i = 1, k
+         chars(i) = text(i:i)
+      end do
+      chars(k + 1) = c_null_char
+   end subroutine put_c_string
+end module dpend_capi
