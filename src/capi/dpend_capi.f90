@@ -18,8 +18,17 @@ module dpend_capi
       c_associated, c_f_pointer, c_loc, c_size_t, c_long_long
    use dpend_error, only: error_t, fatal_error, exit_status
    use dpend_cli, only: arg_t, check_repeated_options, printable
-   use dpend_os, only: capture_outputs, take_capture
+   use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
+      remove_directory, remove_file, errno_text, path_kind, path_file
+   use dpend_error, only: run_failure
+   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_config, only: parse_sweep, sweep_help
+   use dpend_sweep_setup, only: sweep_summary_t, summary_text
+   use dpend_sweep_engine, only: run_sweep
+   use dpend_sweep_layout, only: working_file
    use dpend_progress, only: silence_progress
+   use dpend_strings, only: to_str
+   use, intrinsic :: iso_fortran_env, only: int8, int64
    use dpend_version, only: version
    use dpend_command_common, only: refusal_line, error_line
    use dpend_run_settings, only: run_config_t
@@ -40,8 +49,8 @@ module dpend_capi
    integer(c_int), parameter :: kind_ok = 0, kind_refused = 2, kind_unavailable = 3
 
    !> The commands the library runs.
-   character(len=10), parameter :: commands(6) = [character(len=10) :: 'simulate', &
-      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit']
+   character(len=10), parameter :: commands(7) = [character(len=10) :: 'simulate', &
+      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep']
 
    !> A run's result: the image of the file the command wrote (C memory, freed by
    !> `dpend_result_free`).
@@ -94,7 +103,7 @@ contains
       end if
       if (.not. any(name == commands)) then
          text = "dpend: '"//printable(name)//"' is not available in the library (" &
-                //'simulate, lyapunov, indicators, divergence, poincare and fit are)'
+                //'simulate, lyapunov, indicators, divergence, poincare, fit and sweep are)'
          call put_c_string(text, message, msg_len)
          dpend_run = kind_unavailable
          return
@@ -179,6 +188,8 @@ contains
          call chaos(command, argv, run_poincare, text, error)
       case ('fit')
          call fit(argv, text, error)
+      case ('sweep')
+         call sweep(argv, text, error)
       end select
    end subroutine dispatch
 
@@ -235,6 +246,90 @@ contains
          if (allocated(error)) call error_line(error, 'fit')
       end if
    end subroutine fit
+
+   !> A sweep writes a working file beside its output and resumes from it, so the
+   !> library runs it on disk, in a private temporary directory (under $TMPDIR, else
+   !> /tmp), quiet, and keeps the bytes of the file it wrote; the directory goes after.
+   subroutine sweep(argv, text, error)
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(sweep_config_t) :: cfg
+      type(sweep_summary_t) :: summary
+      character(len=:), allocatable :: dir, file
+      logical :: help
+      integer :: err
+      call capture_outputs(.false.)   ! the sweep's own files, in the directory
+      err = make_temp_directory(temp_root()//'/dpend-sweep-', dir)
+      if (err /= 0) then
+         call fatal_error(error, 'dpend sweep: cannot make a directory in '//temp_root()// &
+                          ' for the working file: '//errno_text(err))
+         call run_failure(error)
+         return
+      end if
+      file = dir//'/sweep.h5'
+      call parse_sweep([argv, arg_t('--output'), arg_t(file), arg_t('--quiet')], cfg, &
+                       help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'sweep')
+      else if (help) then
+         text = sweep_help()
+      else
+         call run_sweep(cfg, summary, error)
+         if (allocated(error)) then
+            call error_line(error, 'sweep')
+         else
+            text = 'dpend sweep: '//summary_text(summary)
+         end if
+         if (path_kind(file) == path_file) call keep_file(file, error)
+      end if
+      err = remove_file(file)
+      err = remove_file(working_file(file))
+      err = remove_directory(dir)
+   end subroutine sweep
+
+   !> $TMPDIR, else /tmp.
+   function temp_root() result(root)
+      character(len=:), allocatable :: root
+      integer :: n, stat
+      call get_environment_variable('TMPDIR', length=n, status=stat)
+      if (stat == 0 .and. n > 0) then
+         allocate (character(len=n) :: root)
+         call get_environment_variable('TMPDIR', root)
+      else
+         root = '/tmp'
+      end if
+   end function temp_root
+
+   !> The bytes of the file at `path` as this thread's captured image.
+   subroutine keep_file(path, error)
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(inout) :: error
+      integer(int8), pointer :: bytes(:)
+      type(c_ptr) :: buf
+      integer :: unit, stat
+      integer(int64) :: n
+      inquire (file=path, size=n)
+      if (n <= 0) return
+      buf = capture_buffer(int(n, c_size_t))
+      if (.not. c_associated(buf)) then
+         if (.not. allocated(error)) then
+            call fatal_error(error, 'dpend sweep: no memory for the result''s '// &
+                             to_str(n)//' bytes')
+            call run_failure(error)
+         end if
+         return
+      end if
+      call c_f_pointer(buf, bytes, [n])
+      open (newunit=unit, file=path, access='stream', form='unformatted', action='read', &
+            status='old', iostat=stat)
+      if (stat == 0) read (unit, iostat=stat) bytes
+      if (stat == 0) close (unit, iostat=stat)
+      if (stat /= 0 .and. .not. allocated(error)) then
+         call fatal_error(error, 'dpend sweep: cannot read back the file it wrote')
+         call run_failure(error)
+      end if
+   end subroutine keep_file
 
    !> Bytes of the result's file image (0 for a null handle).
    integer(c_long_long) function dpend_result_bytes(result) bind(C, name='dpend_result_bytes')

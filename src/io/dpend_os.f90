@@ -21,6 +21,7 @@ module dpend_os
    public :: echo_to_stderr  ! for the figure scripts
    public :: errno_exists, errno_nospc, io_failure_reason
    public :: capture_outputs, capturing_outputs, capture_buffer, take_capture
+   public :: make_temp_directory, remove_directory
 
    !> What `path_kind` finds at a path.
    integer, parameter :: path_missing = 0, path_file = 1, path_directory = 2, &
@@ -47,6 +48,14 @@ module dpend_os
          integer(c_int), value :: mode
          integer(c_int) :: r
       end function c_mkdir
+      integer(c_int) function c_make_temp_dir(template) bind(C, name='dpend_make_temp_dir')
+         import :: c_int, c_char
+         character(kind=c_char), intent(inout) :: template(*)
+      end function c_make_temp_dir
+      integer(c_int) function c_remove_dir(path) bind(C, name='dpend_remove_dir')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_remove_dir
       subroutine c_capture_set(on) bind(C, name='dpend_capture_set')
          import :: c_int
          integer(c_int), value :: on
@@ -494,4 +503,28 @@ contains
       type(c_ptr) :: p
       p = c_capture_take(n)
    end function take_capture
+   !> A new private directory `path` = prefix followed by six random characters
+   !> (mkdtemp); 0 or an errno value.
+   integer function make_temp_directory(prefix, path) result(err)
+      character(len=*), intent(in) :: prefix             !! e.g. '/tmp/dpend-'
+      character(len=:), allocatable, intent(out) :: path  !! the directory made
+      character(kind=c_char) :: buf(len(prefix) + 7)
+      integer :: i
+      do i = 1, len(prefix)
+         buf(i) = prefix(i:i)
+      end do
+      buf(len(prefix) + 1:len(prefix) + 6) = 'X'
+      buf(len(prefix) + 7) = c_null_char
+      err = int(c_make_temp_dir(buf))
+      allocate (character(len=len(prefix) + 6) :: path)
+      do i = 1, len(path)
+         path(i:i) = buf(i)
+      end do
+   end function make_temp_directory
+
+   !> Remove the empty directory `path`; 0 or an errno value.
+   integer function remove_directory(path) result(err)
+      character(len=*), intent(in) :: path  !! the directory
+      err = int(c_remove_dir(path//c_null_char))
+   end function remove_directory
 end module dpend_os

@@ -248,3 +248,16 @@ void *dpend_capture_take(size_t *n)
     dpend_captured_bytes = 0;
     return image;
 }
+
+/* A new private directory from template (its last six characters XXXXXX are
+ * replaced; mkdtemp). 0 or errno. */
+int dpend_make_temp_dir(char *template)
+{
+    return mkdtemp(template) != NULL ? 0 : errno;
+}
+
+/* Remove an empty directory. 0 or errno. */
+int dpend_remove_dir(const char *path)
+{
+    return rmdir(path) == 0 ? 0 : errno;
+}
