@@ -62,6 +62,7 @@ program tester
    use test_figures, only: collect_figures
    use test_values_sweep, only: collect_values_sweep
    use test_values_fit, only: collect_values_fit
+   use test_capi, only: collect_capi
    implicit none
 
    type :: suite_t
@@ -142,6 +143,8 @@ program tester
    call add('figures', collect_figures)
    call add('values_sweep', collect_values_sweep)
    call add('values_fit', collect_values_fit)
+   ! src/capi/: the C interface, its files against the commands'
+   call add('capi', collect_capi)
 
    n_arg = command_argument_count()
    allocate (filters(n_arg))

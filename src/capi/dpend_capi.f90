@@ -11,8 +11,11 @@
 !> `dpend_result_copy` read it, `dpend_result_free` releases it. Nothing here stops
 !> or exits the process; every error comes back as a kind (0 ok, 1 the run failed
 !> partway, 2 refused input, 3 not available in the library) and one line.
-!> The capture is per thread, so two calls in two threads do not meet. Progress
-!> reports are silenced for the whole process once the library is called.
+!> Calls from several threads are safe and run one at a time (a process-wide lock:
+!> gfortran 12 keeps the lengths of deferred-length character results in static
+!> storage, so the settings and command code is not reentrant); each run uses its
+!> own OpenMP threads inside as the command does. The captured image is per thread.
+!> Progress reports are silenced for the whole process once the library is called.
 module dpend_capi
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_null_ptr, c_null_char, &
       c_associated, c_f_pointer, c_loc, c_size_t, c_long_long
@@ -60,6 +63,12 @@ module dpend_capi
    end type result_t
 
    interface
+      !> One library call at a time (dpend_posix.c: the command code keeps string
+      !> lengths in static storage, gfortran 12)
+      subroutine library_lock() bind(C, name='dpend_library_lock')
+      end subroutine library_lock
+      subroutine library_unlock() bind(C, name='dpend_library_unlock')
+      end subroutine library_unlock
       subroutine c_free(p) bind(C, name='free')
          import :: c_ptr
          type(c_ptr), value :: p
@@ -92,6 +101,7 @@ contains
       character(len=:), allocatable :: name, text
       integer :: i
       result = c_null_ptr
+      call library_lock()
       call silence_progress()
       name = c_string(command)
       allocate (argv(max(nargs, 0)))
@@ -106,6 +116,7 @@ contains
                 //'simulate, lyapunov, indicators, divergence, poincare, fit and sweep are)'
          call put_c_string(text, message, msg_len)
          dpend_run = kind_unavailable
+         call library_unlock()
          return
       end if
       call run_captured(name, argv, text, error, result)
@@ -116,6 +127,7 @@ contains
          dpend_run = kind_ok
       end if
       call put_c_string(text, message, msg_len)
+      call library_unlock()
    end function dpend_run
 
    !> `command` run with its outputs captured in memory (see the module's notes):

@@ -261,3 +261,12 @@ int dpend_remove_dir(const char *path)
 {
     return rmdir(path) == 0 ? 0 : errno;
 }
+
+/* One library call at a time in the process (src/capi): gfortran 12 keeps the length
+ * of a function's deferred-length character result in static storage of the caller,
+ * so the settings and command code is not reentrant; each call still runs its own
+ * OpenMP threads inside, whose code keeps off those lengths (scripts/check_threads.sh). */
+#include <pthread.h>
+static pthread_mutex_t dpend_library_mutex = PTHREAD_MUTEX_INITIALIZER;
+void dpend_library_lock(void) { pthread_mutex_lock(&dpend_library_mutex); }
+void dpend_library_unlock(void) { pthread_mutex_unlock(&dpend_library_mutex); }

@@ -1,0 +1,230 @@
+!> Tests of the C interface (src/capi): a run through `dpend_run` writes, in memory,
+!> the file the command writes (compared dataset by dataset and attribute by
+!> attribute with h5diff against the command's file, for several methods, models,
+!> bodies and commands); its refusals are the command line's lines; two runs in two
+!> threads give the results of two single runs; options the library sets itself and
+!> commands it does not run are refused with their kinds.
+module test_capi
+   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_loc, &
+      c_null_ptr, c_associated, c_long_long
+   use, intrinsic :: iso_fortran_env, only: int8
+   use testing, only: unittest_t, new_unittest, check_true, error_t, have_tool, skip_test
+   use test_cli, only: run_command, scratch_dir, read_text
+   use dpend_strings, only: to_str
+   use dpend_capi, only: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
+   implicit none
+   private
+   public :: collect_capi
+
+   !> A string kept alive for its C pointer.
+   type :: c_text_t
+      character(kind=c_char, len=:), allocatable :: s
+   end type c_text_t
+
+contains
+
+   subroutine collect_capi(tests)
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+      tests = [ &
+               new_unittest('runs_equal_command_files', test_equal_files), &
+               new_unittest('refusals_are_the_command_lines', test_refusals), &
+               new_unittest('two_threads_equal_single_runs', test_threads), &
+               new_unittest('library_options_refused', test_library_options)]
+   end subroutine collect_capi
+
+   !> Run `command` with the blank-separated `options` through dpend_run: the error
+   !> kind, the message and the image (empty when there is none).
+   subroutine library_run(command, options, kind, message, image)
+      character(len=*), intent(in) :: command, options
+      integer, intent(out) :: kind
+      character(len=:), allocatable, intent(out) :: message
+      integer(int8), allocatable, intent(out) :: image(:)
+      type(c_text_t), allocatable, target :: words(:)
+      type(c_text_t), target :: name
+      type(c_ptr), allocatable, target :: ptrs(:)
+      character(kind=c_char, len=4096), target :: msg
+      type(c_ptr) :: result
+      integer :: i, n
+      integer(c_long_long) :: bytes
+      integer(int8), allocatable, target :: buf(:)
+      call split_words(options, words)
+      allocate (ptrs(max(size(words), 1)))
+      do i = 1, size(words)
+         ptrs(i) = c_loc(words(i)%s)
+      end do
+      name%s = command//c_null_char
+      kind = dpend_run(c_loc(name%s), int(size(words), c_int), c_loc(ptrs), result, &
+                       c_loc(msg), int(len(msg), c_int))
+      n = index(msg, c_null_char) - 1
+      message = msg(:n)
+      allocate (image(0))
+      if (.not. c_associated(result)) return
+      bytes = dpend_result_bytes(result)
+      allocate (buf(bytes))
+      if (dpend_result_copy(result, c_loc(buf), bytes) == 0) call move_alloc(buf, image)
+      call dpend_result_free(result)
+   end subroutine library_run
+
+   !> The blank-separated words of `text`, each NUL-terminated.
+   subroutine split_words(text, words)
+      character(len=*), intent(in) :: text
+      type(c_text_t), allocatable, intent(out) :: words(:)
+      integer :: i, j
+      allocate (words(0))
+      i = 1
+      do while (i <= len(text))
+         if (text(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         j = index(text(i:)//' ', ' ') + i - 2
+         words = [words, c_text_t(text(i:j)//c_null_char)]
+         i = j + 1
+      end do
+   end subroutine split_words
+
+   subroutine write_bytes(path, image)
+      character(len=*), intent(in) :: path
+      integer(int8), intent(in) :: image(:)
+      integer :: unit
+      open (newunit=unit, file=path, access='stream', form='unformatted', status='replace', &
+            action='write')
+      write (unit) image
+      close (unit)
+   end subroutine write_bytes
+
+   !> Whether h5diff finds no difference between files a and b.
+   logical function same_files(a, b)
+      character(len=*), intent(in) :: a, b
+      integer :: stat
+      call execute_command_line('h5diff '//a//' '//b//' > /dev/null 2>&1', exitstat=stat)
+      same_files = stat == 0
+   end function same_files
+
+   !> Each case through the library and through the command: the same file.
+   subroutine test_equal_files(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: cases(*) = [character(len=120) :: &
+         'simulate --q1 0 --q2 0 --t-end 1', &
+         'simulate --method dop853 --q1 0.3 --q2 -1 --t-end 2', &
+         'simulate --method gauss6 --q1 0.3 --q2 -1 --t-end 0.5', &
+         'simulate --method verlet --t-end 0.5', &
+         'simulate --model elastic --q 1.2,-1 --k 40 --l0 1 --t-end 1', &
+         'simulate --links 3 --t-end 0.5', &
+         'simulate --body point --q1 0.2 --t-end 0.5', &
+         'simulate --damping 0.1,0.05 --t-end 0.5', &
+         'lyapunov --t-end 2 --tau 0.5', &
+         'indicators --t-end 2', &
+         'divergence --t-end 1', &
+         'poincare --t-end 5', &
+         'sweep --n 16 --t-end 1']
+      character(len=:), allocatable :: dir, message, cmd, opts
+      integer(int8), allocatable :: image(:)
+      integer :: i, kind, stat, sp
+      if (.not. have_tool('h5diff')) then
+         call skip_test('h5diff is not installed')
+         return
+      end if
+      dir = scratch_dir('capi')
+      do i = 1, size(cases)
+         sp = index(cases(i), ' ')
+         cmd = cases(i)(:sp - 1)
+         opts = trim(cases(i)(sp + 1:))
+         call library_run(cmd, opts, kind, message, image)
+         call check_true(error, kind == 0 .and. size(image) > 0, '['//trim(cases(i))// &
+                         '] kind 0 and a file, got kind '//to_str(kind)//': '//message)
+         if (allocated(error)) return
+         call write_bytes(dir//'/lib.h5', image)
+         stat = run_command(dir, trim(cases(i))//' --output '//dir//'/cli.h5 --force')
+         call check_true(error, stat == 0, '['//trim(cases(i))//'] the command ran')
+         if (allocated(error)) return
+         call check_true(error, same_files(dir//'/lib.h5', dir//'/cli.h5'), &
+                         '['//trim(cases(i))//'] the library''s file equals the command''s')
+         if (allocated(error)) return
+      end do
+   end subroutine test_equal_files
+
+   !> A bad value: the library's message is the command's stderr line, and no file.
+   subroutine test_refusals(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: cases(*) = [character(len=80) :: &
+         'simulate --t-end -1', 'simulate --q1 1x', 'simulate --method nosuch', &
+         'simulate --q1 0 --q1 1', 'simulate --links 0', 'lyapunov --tau 0', &
+         'sweep --n 0', 'indicators --t-end nan', 'fit', 'simulate --nosuch 1']
+      character(len=:), allocatable :: dir, message, text
+      integer(int8), allocatable :: image(:)
+      integer :: i, kind, stat, sp, n
+      dir = scratch_dir('capi-refusals')
+      do i = 1, size(cases)
+         sp = index(cases(i), ' ')
+         call library_run(cases(i)(:sp - 1), trim(cases(i)(sp + 1:)), kind, message, image)
+         stat = run_command(dir, trim(cases(i))//' --output '//dir//'/out.h5')
+         call read_text(dir//'/stderr', text, n)
+         call check_true(error, kind == 2 .and. stat == 2 .and. size(image) == 0, &
+                         '['//trim(cases(i))//'] kind 2, no file; got '//to_str(kind)// &
+                         ', command exit '//to_str(stat))
+         call check_true(error, message//new_line('a') == text, '['//trim(cases(i))// &
+                         '] the library says "'//message//'", the command "'//text//'"')
+         if (allocated(error)) return
+      end do
+   end subroutine test_refusals
+
+   !> Two runs at once in two threads (the library runs them one after the other):
+   !> each file is that of its single run.
+   subroutine test_threads(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=*), parameter :: cases(2) = [character(len=60) :: &
+         '--method dop853 --q1 0.1 --q2 0.2 --t-end 3', '--q1 -1 --q2 2 --t-end 3']
+      character(len=:), allocatable :: dir, message
+      integer(int8), allocatable :: image(:)
+      integer :: i, kind, kinds(2)
+      character(len=:), allocatable :: paths(:)
+      dir = scratch_dir('capi-threads')
+      do i = 1, 2
+         call library_run('simulate', trim(cases(i)), kind, message, image)
+         call write_bytes(dir//'/single'//to_str(i)//'.h5', image)
+      end do
+      paths = [character(len=len(dir) + 12) :: dir//'/thread1.h5', dir//'/thread2.h5']
+      ! (nothing in the region calls a function with a deferred-length result)
+      !$omp parallel do num_threads(2)
+      do i = 1, 2
+         call thread_run(cases(i), paths(i), kinds(i))
+      end do
+      !$omp end parallel do
+      do i = 1, 2
+         call check_true(error, kinds(i) == 0 .and. same_files(dir//'/single'//to_str(i)// &
+                         '.h5', dir//'/thread'//to_str(i)//'.h5'), 'run '//to_str(i)// &
+                         ' in a thread equals its single run')
+      end do
+   end subroutine test_threads
+
+   !> One run of simulate with `options`, its file written to `path`.
+   subroutine thread_run(options, path, kind)
+      character(len=*), intent(in) :: options, path
+      integer, intent(out) :: kind
+      character(len=:), allocatable :: message
+      integer(int8), allocatable :: image(:)
+      call library_run('simulate', options, kind, message, image)
+      call write_bytes(path, image)
+   end subroutine thread_run
+
+   !> --output, --force and --quiet are the library's (kind 2); a command it does not
+   !> run is kind 3.
+   subroutine test_library_options(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: message
+      integer(int8), allocatable :: image(:)
+      integer :: kind
+      call library_run('simulate', '--output x.h5', kind, message, image)
+      call check_true(error, kind == 2 .and. index(message, 'dpend simulate: invalid ' &
+                      //'option --output in the library') == 1, 'simulate --output: '//message)
+      call library_run('sweep', '--quiet', kind, message, image)
+      call check_true(error, kind == 2, 'sweep --quiet refused: '//message)
+      call library_run('study', '', kind, message, image)
+      call check_true(error, kind == 3 .and. index(message, "'study' is not available") > 0, &
+                      'study: kind 3, got '//to_str(kind)//': '//message)
+      call library_run('simulate', '--help', kind, message, image)
+      call check_true(error, kind == 0 .and. index(message, 'usage: dpend simulate') == 1 &
+                      .and. size(image) == 0, 'simulate --help gives the help')
+   end subroutine test_library_options
+end module test_capi
