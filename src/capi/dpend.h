@@ -4,7 +4,8 @@
  * the options are the command line's, checked by the same settings layer (a refusal
  * is the command line's line, word for word); the HDF5 file the command writes is
  * written to memory and handed over as a result whose bytes are that file. Nothing
- * prints, stops or exits the process. Two calls in two threads do not meet.
+ * prints, stops or exits the process. Calls from several threads are safe and run one
+ * at a time (each with its own OpenMP threads inside).
  *
  * Error kinds: 0 ok, 1 the run failed partway (the result holds what was computed and
  * the status), 2 refused input (no result), 3 not available in the library. */
@@ -31,6 +32,11 @@ int dpend_result_copy(void *result, void *buf, long long n);
 
 /* Release a result (NULL is ignored). */
 void dpend_result_free(void *result);
+
+/* Ask the call in progress in another thread to stop (safe from a signal handler): a
+ * sweep stops taking blocks within a block's time and returns kind 1, its result
+ * holding the blocks done. Each dpend_run forgets an earlier request as it starts. */
+void dpend_cancel(void);
 
 /* The version into buf (n bytes with the NUL); returns its length. */
 int dpend_version(char *buf, int n);

@@ -22,7 +22,7 @@ module dpend_capi
    use dpend_error, only: error_t, fatal_error, exit_status
    use dpend_cli, only: arg_t, check_repeated_options, printable
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
-      remove_directory, remove_file, errno_text, path_kind, path_file
+      remove_directory, remove_file, errno_text, path_kind, path_file, clear_cancel
    use dpend_error, only: run_failure
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep, sweep_help
@@ -102,6 +102,7 @@ contains
       integer :: i
       result = c_null_ptr
       call library_lock()
+      call clear_cancel()
       call silence_progress()
       name = c_string(command)
       allocate (argv(max(nargs, 0)))
@@ -270,7 +271,7 @@ contains
       type(sweep_summary_t) :: summary
       character(len=:), allocatable :: dir, file
       logical :: help
-      integer :: err
+      integer :: err, k
       call capture_outputs(.false.)   ! the sweep's own files, in the directory
       err = make_temp_directory(temp_root()//'/dpend-sweep-', dir)
       if (err /= 0) then
@@ -289,11 +290,19 @@ contains
       else
          call run_sweep(cfg, summary, error)
          if (allocated(error)) then
+            ! the working file holds the blocks done (not resumable here: it goes)
+            k = index(error%message, "; '"//working_file(file)//"'")
+            if (k > 0) error%message = error%message(:k - 1)//' (the result holds ' &
+                                       //'the blocks done)'
             call error_line(error, 'sweep')
          else
             text = 'dpend sweep: '//summary_text(summary)
          end if
-         if (path_kind(file) == path_file) call keep_file(file, error)
+         if (path_kind(file) == path_file) then
+            call keep_file(file, error)
+         else if (path_kind(working_file(file)) == path_file) then
+            call keep_file(working_file(file), error)
+         end if
       end if
       err = remove_file(file)
       err = remove_file(working_file(file))

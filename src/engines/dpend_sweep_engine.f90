@@ -8,7 +8,8 @@ module dpend_sweep_engine
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory, check_disk
    use dpend_kinds, only: dp, i8
-   use dpend_error, only: error_t, run_failure
+   use dpend_error, only: error_t, run_failure, fatal_error
+   use dpend_os, only: cancel_requested
    use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
@@ -263,6 +264,16 @@ contains
          !$omp atomic read
          stop_now = failed
          if (stop_now) return
+         if (cancel_requested()) then   ! a library caller asked to stop (src/capi)
+            !$omp critical (dpend_sweep_io)
+            if (.not. failed) then
+               call fatal_error(error, 'interrupted on request')
+               !$omp atomic write
+               failed = .true.
+            end if
+            !$omp end critical (dpend_sweep_io)
+            return
+         end if
          call compute_block(setup, bb, res)
          call block_range(setup, bb, jj0, nnb)
          !$omp critical (dpend_sweep_io)
