@@ -223,6 +223,12 @@ contains
       call library_run('study', '', kind, message, image)
       call check_true(error, kind == 3 .and. index(message, "'study' is not available") > 0, &
                       'study: kind 3, got '//to_str(kind)//': '//message)
+      call library_run('methods', '', kind, message, image)
+      call check_true(error, kind == 0 .and. index(message, 'rk4') > 0 .and. &
+                      index(message, 'dop853') > 0, 'methods: the names, got '//message)
+      call library_run('models', '', kind, message, image)
+      call check_true(error, kind == 0 .and. index(message, 'elastic') > 0, &
+                      'models: the table, got '//message)
       call library_run('simulate', '--help', kind, message, image)
       call check_true(error, kind == 0 .and. index(message, 'usage: dpend simulate') == 1 &
                       .and. size(image) == 0, 'simulate --help gives the help')

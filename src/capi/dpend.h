@@ -16,7 +16,8 @@
 extern "C" {
 #endif
 
-/* Run `command` (simulate, lyapunov, indicators, divergence, poincare, fit) with its
+/* Run `command` (simulate, lyapunov, indicators, divergence, poincare, fit, sweep;
+ * models and methods without options give their text as the message) with its
  * nargs options args, e.g. {"--q1", "0", "--t-end", "1"} (not --output, --force or
  * --quiet). *result receives the result or NULL; message one line (the command's
  * closing text, its refusal or why the run failed; with --help the help text), at

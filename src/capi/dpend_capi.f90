@@ -43,6 +43,8 @@ module dpend_capi
    use dpend_divergence_command, only: run_divergence
    use dpend_poincare_command, only: run_poincare
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
+   use dpend_model_factory, only: describe_models
+   use dpend_method_registry, only: method_names
    implicit none
    private
    public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
@@ -52,8 +54,9 @@ module dpend_capi
    integer(c_int), parameter :: kind_ok = 0, kind_refused = 2, kind_unavailable = 3
 
    !> The commands the library runs.
-   character(len=10), parameter :: commands(7) = [character(len=10) :: 'simulate', &
-      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep']
+   character(len=10), parameter :: commands(9) = [character(len=10) :: 'simulate', &
+      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep', 'models', &
+      'methods']
 
    !> A run's result: the image of the file the command wrote (C memory, freed by
    !> `dpend_result_free`).
@@ -114,7 +117,8 @@ contains
       end if
       if (.not. any(name == commands)) then
          text = "dpend: '"//printable(name)//"' is not available in the library (" &
-                //'simulate, lyapunov, indicators, divergence, poincare, fit and sweep are)'
+                //'simulate, lyapunov, indicators, divergence, poincare, fit, sweep, ' &
+                //'models and methods are)'
          call put_c_string(text, message, msg_len)
          dpend_run = kind_unavailable
          call library_unlock()
@@ -203,6 +207,16 @@ contains
          call fit(argv, text, error)
       case ('sweep')
          call sweep(argv, text, error)
+      case ('models', 'methods')   ! their text: the models' table, the methods' names
+         if (size(argv) > 0) then
+            call fatal_error(error, 'the library takes no options here (got '// &
+                             printable(argv(1)%s)//')')
+            call refusal_line(error, trim(command))
+         else if (command == 'models') then
+            text = describe_models()
+         else
+            text = method_names()
+         end if
       end select
    end subroutine dispatch
 
