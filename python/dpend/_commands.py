@@ -1,0 +1,156 @@
+"""The dpend commands as Python functions: keyword arguments become the command
+line's options, the HDF5 file the command writes comes back as an xarray.Dataset.
+"""
+from __future__ import annotations
+
+import numbers
+import os
+from typing import Any, List, Optional, Sequence
+
+import numpy as np
+import xarray as xr
+
+from . import _library
+from ._dataset import from_image
+
+_RESERVED = ("output", "force", "quiet")
+
+
+class RunError(RuntimeError):
+    """A run that started and failed partway (the command line's exit status 1).
+    ``result`` holds what was computed (an xarray.Dataset), or None."""
+
+    def __init__(self, message: str, result: Optional[xr.Dataset] = None) -> None:
+        super().__init__(message)
+        self.result = result
+
+
+def _value(value: Any) -> str:
+    """One option value as the command line takes it: floats by repr() (the
+    shortest text that reads back to the same double), integers in decimal."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"a boolean inside a list: {value!r}")
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise TypeError(f"cannot pass {type(value).__name__} {value!r} as an option value")
+
+
+def options(**kw: Any) -> List[str]:
+    """The command-line options of keyword arguments: ``t_end=1`` -> ``--t-end 1``,
+    ``m=[1, 2]`` -> ``--m 1,2``, ``True`` -> the bare flag, ``False``/``None`` ->
+    left out. Order kept. ``output``, ``force`` and ``quiet`` are refused (the
+    file stays in memory: ``ds.dpend.to_hdf5(path)`` writes it)."""
+    args: List[str] = []
+    for key, value in kw.items():
+        name = key.rstrip("_")                  # lambda_ -> lambda
+        if name in _RESERVED:
+            raise TypeError(f"dpend: {key}= is not an option here (the file stays in "
+                            "memory; write it with ds.dpend.to_hdf5(path))")
+        flag = "--" + name.replace("_", "-")
+        if value is None or value is False or (isinstance(value, np.bool_) and not value):
+            continue
+        if value is True or isinstance(value, np.bool_):
+            args.append(flag)
+        elif isinstance(value, (list, tuple, np.ndarray)):
+            args += [flag, ",".join(_value(v) for v in np.asarray(value, dtype=object).ravel())
+                     if isinstance(value, np.ndarray) else ",".join(_value(v) for v in value)]
+        else:
+            args += [flag, _value(value)]
+    return args
+
+
+def run(command: str, *positional: "str | os.PathLike[str]", **kw: Any) -> xr.Dataset:
+    """Run ``dpend COMMAND [POSITIONAL...] OPTIONS...`` in this process and return
+    the file it writes as an xarray.Dataset (``ds.dpend.to_hdf5`` writes it out).
+
+    Raises ValueError (refused input: the command line's one line, e.g.
+    ``dpend simulate: invalid --t-end: ...``), RunError (the run failed partway;
+    ``.result`` holds the partial Dataset or None), RuntimeError (internal error,
+    or a library without the C interface). The GIL is released during the run
+    (ctypes does so for every call into a CDLL): other threads go on, and
+    ``dpend.cancel()`` from one of them stops the run (a RunError)."""
+    args = [os.fspath(p) for p in positional] + options(**kw)
+    kind, image, message = _library.run(command, args)
+    result = from_image(image) if image is not None else None
+    if kind == _library.OK:
+        if result is None:
+            raise RuntimeError(f"dpend {command}: the run succeeded but gave no file")
+        return result
+    if kind == _library.BAD_INPUT:
+        raise ValueError(message)
+    if kind == _library.RUN_FAILED:
+        raise RunError(message, result)
+    raise RuntimeError(message or f"dpend {command}: internal error (kind {kind})")
+
+
+def simulate(**kw: Any) -> xr.Dataset:
+    """``dpend simulate``: one trajectory (variables t, q, qdot, energy, ... of
+    /trajectory, dimension ``time``). Options as in docs/cli.md, e.g.
+    ``simulate(q1=0, q2=0, method="rk4", dt=1e-4, t_end=10)``."""
+    return run("simulate", **kw)
+
+
+def lyapunov(**kw: Any) -> xr.Dataset:
+    """``dpend lyapunov``: Lyapunov exponents with their running estimates."""
+    return run("lyapunov", **kw)
+
+
+def divergence(**kw: Any) -> xr.Dataset:
+    """``dpend divergence``: divergence of nearby trajectories."""
+    return run("divergence", **kw)
+
+
+def poincare(**kw: Any) -> xr.Dataset:
+    """``dpend poincare``: a Poincare section at one energy."""
+    return run("poincare", **kw)
+
+
+def indicators(**kw: Any) -> xr.Dataset:
+    """``dpend indicators``: MEGNO, FLI, SALI, GALI_k against time."""
+    return run("indicators", **kw)
+
+
+def sweep(**kw: Any) -> xr.Dataset:
+    """``dpend sweep``: maps over initial conditions or parameters (dimensions
+    ``axis2, axis1`` for a grid, as /sweep stores them: rows axis 2)."""
+    return run("sweep", **kw)
+
+
+def fit(data: "str | os.PathLike[str]", **kw: Any) -> xr.Dataset:
+    """``dpend fit DATA.csv``: estimate the initial state (and damping) from
+    measured angles or positions; `data` the CSV file's path."""
+    return run("fit", data, **kw)
+
+
+def study(**kw: Any) -> xr.Dataset:
+    """``dpend study``: the energy-conservation study of the methods (its data;
+    figures need the command line)."""
+    return run("study", **kw)
+
+
+def _table(command: str) -> xr.Dataset:
+    try:
+        kind, image, message = _library.run(command, [])
+    except RuntimeError as e:
+        raise NotImplementedError(f"dpend.{command}(): {e}") from None
+    if kind == _library.OK and image is not None:
+        return from_image(image)
+    raise NotImplementedError(
+        f"dpend.{command}(): the library's C interface gives no table for "
+        f"'{command}' ({message or 'no file'}); run `dpend {command}` on the command line")
+
+
+def models() -> xr.Dataset:
+    """What ``dpend models`` knows, when the C interface provides it as a file;
+    NotImplementedError until then."""
+    return _table("models")
+
+
+def methods() -> xr.Dataset:
+    """What ``dpend methods`` knows, when the C interface provides it as a file;
+    NotImplementedError until then."""
+    return _table("methods")

@@ -1,0 +1,248 @@
+"""An HDF5 file image of dpend as an xarray.Dataset, and the ``ds.dpend`` accessor.
+
+Naming (docs/python.md, "The dpend package"):
+
+* **Variables.** Every HDF5 dataset is a variable, named by its path below the
+  command's group when the file has one top-level group (``/trajectory/energy``
+  -> ``energy``, ``/sweep/final/q1`` -> ``final/q1``), else by its whole path
+  without the leading ``/``. Values, dtypes and shapes exactly as h5py reads them
+  (strings: ``bytes`` decoded to ``str`` only in attributes). The attributes of a
+  dataset (``units``, ``description``, ...) become the variable's ``attrs``.
+* **Attributes.** The root attributes go to ``ds.attrs``, then those of the
+  command's group (``/sweep@axis1`` -> ``ds.attrs['axis1']``; a name already taken
+  by the root gets the group's prefix, ``'sweep/g'``), then those of deeper
+  groups as ``'final/NAME'``.
+* **Dimensions.** In a group with a 1-D dataset ``t`` (n samples), ``t`` is a
+  coordinate on the dimension ``time`` (``crossing`` for the Poincare section;
+  ``GROUP/time`` for a nested group), and every dataset of that group whose first
+  axis has n entries starts with that dimension. Then, by the axis' length and
+  the dataset's meaning: ``coordinate`` for q, qdot, qddot, p (coordinate labels
+  from the root attribute ``coordinates``: q1 q2; r phi), ``link`` for the N links
+  (root attribute ``links``), ``xy`` (labels x, y) for the last axis of a vector
+  whose description has ``(x, y)``, ``axis2, axis1`` for a sweep map (the
+  datasets ``axis1``, ``axis2`` are their coordinates), ``pair``, ``orbit``,
+  ``vector``, ``exponent``, ``parameter`` where the command's layout names them.
+  Any other axis is ``NAME_dim_K`` (K from 0), private to the variable NAME.
+"""
+from __future__ import annotations
+
+import io
+import os
+import tempfile
+from typing import Any, Dict, List, Optional, Tuple
+
+import h5py
+import numpy as np
+import xarray as xr
+
+_ENCODING_KEY = "dpend_image"        # ds.encoding[...]: the HDF5 file image (bytes)
+
+# The second axis of these datasets, by (group, name): per-command layouts.
+_AXES: Dict[Tuple[str, str], Tuple[str, ...]] = {
+    ("divergence", "delta_start"): ("pair",),
+    ("divergence", "energy_difference"): ("pair",),
+    ("divergence", "start"): ("pair", "state"),
+    ("divergence", "log10_delta_pairs"): ("time", "pair"),
+    ("poincare", "count"): ("orbit",),
+    ("poincare", "orbit_status"): ("orbit",),
+    ("poincare", "initial_q"): ("orbit", "coordinate"),
+    ("poincare", "initial_qdot"): ("orbit", "coordinate"),
+    ("lyapunov", "exponents"): ("exponent",),
+    ("lyapunov", "spread"): ("exponent",),
+    ("lyapunov", "batches"): ("batch", "exponent"),
+    ("lyapunov", "running"): ("time", "exponent"),
+    ("indicators", "log_norm"): ("time", "vector"),
+    ("indicators", "megno_vectors"): ("time", "vector"),
+    ("indicators", "megno_mean_vectors"): ("time", "vector"),
+    ("indicators", "gali"): ("time", "k"),
+    ("fit", "estimate"): ("parameter",),
+    ("fit", "guess"): ("parameter",),
+    ("fit", "standard_error"): ("parameter",),
+    ("fit", "interval95"): ("parameter", "bound"),
+    ("fit", "covariance"): ("parameter", "parameter_2"),
+    ("fit", "correlation"): ("parameter", "parameter_2"),
+}
+_TIME_NAME = {"poincare": "crossing"}
+_COORDINATE_DATASETS = ("q", "qdot", "qddot", "p")
+
+
+def _text(value: Any) -> Any:
+    """An attribute's value with bytes decoded (h5py gives fixed-length strings so)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, np.ndarray) and value.dtype.kind in ("S", "O"):
+        return [_text(v) for v in value.tolist()]
+    return value
+
+
+def _attrs(obj: h5py.HLObject) -> Dict[str, Any]:
+    return {k: _text(v) for k, v in obj.attrs.items()}
+
+
+def _dims(top: str, rel: str, name: str, dset: h5py.Dataset, time: Optional[Tuple[str, int]],
+          root: Dict[str, Any], maps: Optional[Tuple[int, int]]) -> List[str]:
+    """The dimension names of one dataset (see the module's docstring)."""
+    shape = dset.shape
+    dims: List[Optional[str]] = [None] * len(shape)
+    leaf = rel.rsplit("/", 1)[-1]
+    known = _AXES.get((top, leaf)) if "/" not in rel else None
+    if known is not None and len(known) == len(shape):
+        dims = list(known)
+        if dims[0] == "time" and time is not None and time[1] == shape[0]:
+            dims[0] = time[0]
+        elif dims[0] == "time":
+            dims[0] = None
+    else:
+        if shape and time is not None and shape[0] == time[1]:
+            dims[0] = time[0]
+        if maps is not None and len(shape) == 2 and tuple(shape) == maps:
+            dims = ["axis2", "axis1"]
+        description = str(dset.attrs.get("description", ""))
+        if len(shape) >= 2 and shape[-1] == 2 and "(x, y)" in description:
+            dims[-1] = "xy"
+        if leaf in _COORDINATE_DATASETS and len(shape) == 2 and dims[1] is None:
+            dims[1] = "coordinate"
+        links = root.get("links")
+        if isinstance(links, (int, np.integer)):
+            for k in range(1, len(shape)):
+                if dims[k] is None and shape[k] == int(links) and any(
+                        w in description for w in ("link", "joint", "body")):
+                    dims[k] = "link"
+    safe = name.replace("/", "_")
+    return [d if d is not None else f"{safe}_dim_{k}" for k, d in enumerate(dims)]
+
+
+def from_image(image: bytes) -> xr.Dataset:
+    """The Dataset of an HDF5 file image (the bytes of a file dpend writes); the
+    image is kept in ``ds.encoding`` for ``ds.dpend.to_hdf5``."""
+    with h5py.File(io.BytesIO(image), "r") as f:
+        root = _attrs(f)
+        groups = [k for k, v in f.items() if isinstance(v, h5py.Group)]
+        top = groups[0] if len(groups) == 1 else ""
+        attrs: Dict[str, Any] = dict(root)
+        datasets: List[Tuple[str, str, h5py.Dataset]] = []   # (name, group path, dataset)
+        group_attrs: List[Tuple[str, Dict[str, Any]]] = []
+
+        def visit(path: str, obj: Any) -> None:
+            rel = path[len(top) + 1:] if top and path.startswith(top + "/") else path
+            if isinstance(obj, h5py.Dataset):
+                datasets.append((rel, path.rsplit("/", 1)[0] if "/" in path else "", obj))
+            elif isinstance(obj, h5py.Group):
+                group_attrs.append((rel if path != top else "", _attrs(obj)))
+
+        f.visititems(visit)
+        for rel, a in group_attrs:
+            for k, v in a.items():
+                key = k if not rel and k not in attrs else (f"{rel}/{k}" if rel else f"{top}/{k}")
+                attrs[key] = v
+
+        # The time axis and the sweep maps of each group.
+        times: Dict[str, Tuple[str, int]] = {}
+        maps: Dict[str, Tuple[int, int]] = {}
+        for name, group, dset in datasets:
+            leaf = name.rsplit("/", 1)[-1]
+            if leaf == "t" and dset.ndim == 1:
+                rel_group = name.rsplit("/", 1)[0] if "/" in name else ""
+                base = _TIME_NAME.get(top, "time")
+                times[group] = (f"{rel_group}/{base}" if rel_group else base, dset.shape[0])
+        for group in {g for _, g, _ in datasets}:
+            if group in f and "axis1" in f[group] and "axis2" in f[group]:
+                maps[group] = (f[group]["axis2"].shape[0], f[group]["axis1"].shape[0])
+        # a nested group without its own t or axes shares its parent's (sweep/final)
+        for name, group, dset in datasets:
+            parent = group
+            while parent and parent not in maps and "/" in parent:
+                parent = parent.rsplit("/", 1)[0]
+            if parent in maps:
+                maps.setdefault(group, maps[parent])
+
+        data_vars: Dict[str, xr.Variable] = {}
+        coords: Dict[str, xr.Variable] = {}
+        for name, group, dset in datasets:
+            values = dset[()]
+            dims = _dims(top, name, name, dset, times.get(group), root, maps.get(group))
+            leaf = name.rsplit("/", 1)[-1]
+            if group in maps and leaf in ("axis1", "axis2") and dset.ndim == 1:
+                dims = [leaf]
+            var = xr.Variable(dims, values, attrs=_attrs(dset))
+            if (leaf == "t" and group in times) or dims == [name]:
+                coords[name] = var
+            else:
+                data_vars[name] = var
+        labels = root.get("coordinates")
+        if isinstance(labels, str):
+            names = labels.split()
+            used = [v for v in list(data_vars.values()) + list(coords.values())
+                    if "coordinate" in v.dims]
+            if used and all(v.sizes["coordinate"] == len(names) for v in used):
+                coords["coordinate"] = xr.Variable(["coordinate"], names)
+        if any("xy" in v.dims for v in data_vars.values()):
+            coords["xy"] = xr.Variable(["xy"], ["x", "y"])
+
+    ds = xr.Dataset(data_vars, coords=coords, attrs=attrs)
+    ds.encoding[_ENCODING_KEY] = bytes(image)
+    return ds
+
+
+def _same(ds: xr.Dataset, image: bytes) -> bool:
+    """Whether ds still holds the image's values (same variables, shapes, dtypes,
+    values; NaN equal to NaN)."""
+    original = from_image(image)
+    names = set(ds.variables) - {"coordinate", "xy"}
+    if names != set(original.variables) - {"coordinate", "xy"}:
+        return False
+    for name in names:
+        a, b = ds.variables[name].values, original.variables[name].values
+        if a.shape != b.shape or a.dtype != b.dtype:
+            return False
+        if a.dtype.kind in "fc":
+            if not np.array_equal(a, b, equal_nan=True):
+                return False
+        elif not np.array_equal(a, b):
+            return False
+    return True
+
+
+@xr.register_dataset_accessor("dpend")
+class DpendAccessor:
+    """``ds.dpend``: the HDF5 file that the dpend run of ``ds`` wrote in memory."""
+
+    def __init__(self, ds: xr.Dataset) -> None:
+        self._ds = ds
+
+    @property
+    def image(self) -> bytes:
+        """The HDF5 file image (bytes: exactly the file the command line writes)."""
+        image = self._ds.encoding.get(_ENCODING_KEY)
+        if image is None:
+            raise ValueError("this Dataset holds no dpend file image (it was not "
+                             "returned by a dpend function, or encoding was reset)")
+        return image
+
+    def to_hdf5(self, path: "os.PathLike[str] | str", force: bool = False) -> None:
+        """Write the run's HDF5 file to `path`: exactly the file the command line
+        writes with --output. Refuses an existing `path` unless `force`, and a
+        Dataset whose variables no longer hold the run's values (a selection or an
+        edit: save that with ``ds.to_netcdf``). Written to a temporary file in the
+        same folder, then renamed (os.replace): never a partial file at `path`."""
+        image = self.image
+        if not _same(self._ds, image):
+            raise ValueError("to_hdf5: this Dataset differs from the run's file (a "
+                             "selection or a change); write it with to_netcdf instead")
+        path = os.fspath(path)
+        if os.path.exists(path) and not force:
+            raise FileExistsError(f"to_hdf5: {path} exists (force=True replaces it)")
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, tmp = tempfile.mkstemp(prefix=".dpend-", suffix=".h5.tmp", dir=folder)
+        try:
+            with os.fdopen(fd, "wb") as out:
+                out.write(image)
+                out.flush()
+                os.fsync(out.fileno())
+            if not force and os.path.exists(path):
+                raise FileExistsError(f"to_hdf5: {path} exists (force=True replaces it)")
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise

@@ -1,0 +1,128 @@
+"""The package's functions on the library (no command line needed)."""
+from __future__ import annotations
+
+import pathlib
+import threading
+
+import h5py
+import io
+import numpy as np
+import pytest
+import xarray as xr
+
+import dpend
+
+
+def test_simulate_returns_the_energy():
+    ds = dpend.simulate(q1=0, q2=0, t_end=1)
+    assert isinstance(ds, xr.Dataset)
+    assert ds.energy.dims == ("time",)
+    assert ds.energy.attrs["units"] == "J"
+    assert ds.t.attrs["units"] == "s" and ds.t.values[-1] == 1.0
+    assert ds.q.dims == ("time", "coordinate")
+    assert list(ds.coordinate.values) == ["q1", "q2"]
+    assert ds.attrs["method"] == "rk4"
+    e = ds.energy.values
+    assert np.all(np.isfinite(e)) and abs(e[-1] - e[0]) < 1e-8
+
+
+def test_the_dataset_holds_the_file_as_h5py_reads_it():
+    ds = dpend.simulate(q1=0.5, q2=-0.25, t_end=0.5, method="dop853")
+    with h5py.File(io.BytesIO(ds.dpend.image), "r") as f:
+        for name, dset in f["trajectory"].items():
+            assert ds[name].shape == dset.shape and ds[name].dtype == dset.dtype
+            assert np.array_equal(ds[name].values, dset[()], equal_nan=True)
+            assert ds[name].attrs["description"] == dset.attrs["description"]
+
+
+def test_refused_input_raises_value_error():
+    with pytest.raises(ValueError) as info:
+        dpend.simulate(q1=0, q2=0, t_end=-1)
+    assert str(info.value).startswith("dpend simulate: ")
+
+
+def test_an_unknown_option_is_refused():
+    with pytest.raises(ValueError, match=r"^dpend simulate: "):
+        dpend.simulate(no_such_option=1)
+
+
+def test_options():
+    assert dpend.options(t_end=1, q1=0.1, m=[1, 2.5], fit_damping=True, x=False,
+                         y=None) == ["--t-end", "1", "--q1", "0.1", "--m", "1,2.5",
+                                     "--fit-damping"]
+    assert dpend.options(dt=1e-4, g=np.float64(9.81)) == ["--dt", "0.0001", "--g", "9.81"]
+    with pytest.raises(TypeError):
+        dpend.options(output="x.h5")
+
+
+def test_to_hdf5_roundtrip(tmp_path):
+    ds = dpend.simulate(q1=0, q2=0, t_end=1)
+    path = tmp_path / "release.h5"
+    ds.dpend.to_hdf5(path)
+    assert path.read_bytes() == ds.dpend.image
+    with pytest.raises(FileExistsError):
+        ds.dpend.to_hdf5(path)
+    ds.dpend.to_hdf5(path, force=True)
+    with h5py.File(path, "r") as f:
+        assert np.array_equal(f["trajectory/energy"][()], ds.energy.values)
+    back = dpend.from_image(path.read_bytes())
+    xr.testing.assert_identical(back, ds)
+    assert [p.name for p in tmp_path.iterdir()] == ["release.h5"]   # no temporary left
+
+
+def test_to_hdf5_refuses_a_changed_dataset(tmp_path):
+    ds = dpend.simulate(q1=0, q2=0, t_end=1)
+    with pytest.raises(ValueError):
+        ds.isel(time=slice(0, 10)).dpend.to_hdf5(tmp_path / "part.h5")
+
+
+@pytest.mark.parametrize("function, dims", [
+    (dpend.lyapunov, {"exponent"}),
+    (dpend.divergence, {"time", "pair"}),
+    (dpend.indicators, {"time", "vector"}),
+])
+def test_chaos_commands(function, dims):
+    ds = function(t_end=2)
+    assert dims <= set(ds.sizes)
+
+
+def test_sweep_maps_have_the_axes():
+    ds = dpend.sweep(n1=8, n2=6, t_end=1)
+    assert ds.t_flip.dims == ("axis2", "axis1")
+    assert ds.sizes["axis1"] == 8 and ds.sizes["axis2"] == 6
+    assert ds["final/q1"].dims == ("axis2", "axis1")
+
+
+def test_runs_in_threads():
+    results = [None, None]
+
+    def work(i):
+        results[i] = dpend.simulate(q1=0.1 * i, q2=0, t_end=0.5).energy.values
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert all(r is not None for r in results)
+
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "data"
+
+
+def test_fit_takes_the_csv_path():
+    ds = dpend.fit(DATA / "fit_example.csv")
+    assert ds.estimate.dims == ("parameter",)
+    assert ds.q_data.dims == ("time", "coordinate") or ds.q_data.dims[0] == "time"
+    assert ds.attrs["command"] == "fit"
+
+
+def test_study_quick():
+    ds = dpend.study(quick=True, no_figures=True, methods=["rk4", "verlet"])
+    assert "summary/markdown" in ds.variables and ds.attrs["program"]
+    assert any(name.endswith("/step/h") for name in ds.variables)
+
+
+def test_a_missing_csv_is_refused(tmp_path):
+    with pytest.raises(ValueError, match=r"^dpend fit: "):
+        dpend.fit(tmp_path / "none.csv")
