@@ -84,6 +84,8 @@ def run(command: str, *positional: "str | os.PathLike[str]", **kw: Any) -> xr.Da
         raise ValueError(message)
     if kind == _library.RUN_FAILED:
         raise RunError(message, result)
+    if kind == _library.UNAVAILABLE:
+        raise NotImplementedError(message)
     raise RuntimeError(message or f"dpend {command}: internal error (kind {kind})")
 
 
@@ -127,30 +129,24 @@ def fit(data: "str | os.PathLike[str]", **kw: Any) -> xr.Dataset:
 
 
 def study(**kw: Any) -> xr.Dataset:
-    """``dpend study``: the energy-conservation study of the methods (its data;
-    figures need the command line)."""
+    """``dpend study``: the energy-conservation study of the methods. Not in the
+    library yet (NotImplementedError): run ``dpend study`` and read its file."""
     return run("study", **kw)
 
 
-def _table(command: str) -> xr.Dataset:
-    try:
-        kind, image, message = _library.run(command, [])
-    except RuntimeError as e:
-        raise NotImplementedError(f"dpend.{command}(): {e}") from None
-    if kind == _library.OK and image is not None:
-        return from_image(image)
-    raise NotImplementedError(
-        f"dpend.{command}(): the library's C interface gives no table for "
-        f"'{command}' ({message or 'no file'}); run `dpend {command}` on the command line")
+def _text(command: str) -> str:
+    kind, _, message = _library.run(command, [])
+    if kind != _library.OK:
+        raise RuntimeError(message)
+    return message
 
 
-def models() -> xr.Dataset:
-    """What ``dpend models`` knows, when the C interface provides it as a file;
-    NotImplementedError until then."""
-    return _table("models")
+def models() -> str:
+    """The models, their parameters with units and ranges, and what each command
+    takes: the table of ``dpend models``."""
+    return _text("models")
 
 
-def methods() -> xr.Dataset:
-    """What ``dpend methods`` knows, when the C interface provides it as a file;
-    NotImplementedError until then."""
-    return _table("methods")
+def methods() -> List[str]:
+    """The integration methods' names (``dpend methods --names``), e.g. 'rk4'."""
+    return _text("methods").split()

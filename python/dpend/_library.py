@@ -15,13 +15,13 @@ import pathlib
 import threading
 from typing import Optional, Sequence, Tuple
 
-_MESSAGE_BYTES = 4096
+_MESSAGE_BYTES = 1 << 16   # the help texts and the models' table fit
 _lock = threading.Lock()
 _run_lock = threading.Lock()
 _lib: Optional[ctypes.CDLL] = None
 
 #: The error kinds of dpend_run (the command line's exit statuses, and 3).
-OK, RUN_FAILED, BAD_INPUT, INTERNAL = 0, 1, 2, 3
+OK, RUN_FAILED, BAD_INPUT, UNAVAILABLE = 0, 1, 2, 3
 
 
 def library_path() -> pathlib.Path:
@@ -86,7 +86,8 @@ def run(command: str, args: Sequence[str]) -> Tuple[int, Optional[bytes], str]:
     """dpend_run: (error kind, the HDF5 file image or None, the message).
 
     Runs are serialized (one at a time in the process, ``_run_lock``: the Fortran
-    library keeps state between calls; each run uses OpenMP threads itself). In the
+    library runs one call at a time too: its command code is not reentrant; each
+    run uses OpenMP threads itself). In the
     main thread the run goes to a worker thread so that Ctrl-C is seen: it calls
     dpend_cancel, waits for the run to stop and raises KeyboardInterrupt."""
     function("dpend_run")                      # a clear error before any thread

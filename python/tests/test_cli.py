@@ -19,18 +19,19 @@ pytestmark = pytest.mark.skipif(not CLI, reason="DPEND_CLI names no dpend binary
 # far; the wall time of a run is printed, not stored).
 VOLATILE: set = set()
 
-CASES = [
+METHODS = ["rk4", "dopri5", "dop853", "midpoint", "gauss4", "gauss6", "gauss8", "verlet",
+           "yoshida4", "comp6", "comp8", "tao2", "tao4"]
+CASES = [dict(method=m, q1=0.5, q2=-1.25, t_end=1) for m in METHODS] + [
     dict(method="rk4", q1=0, q2=0, t_end=1),
-    dict(method="dop853", q1=0.5, q2=-1.25, t_end=2),
-    dict(method="dopri5", q1=1, q2=2, t_end=1),
-    dict(method="verlet", q1=0, q2=0, t_end=1, dt=1e-3),
-    dict(method="gauss6", q1=0.3, q2=0.1, t_end=0.5),
-    dict(method="yoshida4", q1=0, q2=0, t_end=1),
-    dict(method="tao4", q1=0, q2=0, t_end=1),
     dict(model="elastic", q1=1.0, q2=0.5, t_end=1),
+    dict(model="elastic", method="dop853", q=[1.2, -1], k=40, l0=1, t_end=1),
     dict(links=3, t_end=1),
+    dict(links=4, method="dop853", t_end=0.5),
     dict(body="point", q1=0, q2=0.5, t_end=1),
+    dict(body="rod", q1=0, q2=0.5, t_end=1),
+    dict(com=[0.6, 0.5], inertia=[0.08, 0.03], q1=0.2, t_end=1),
     dict(damping=[0.1, 0.05], q1=0, q2=0, t_end=1),
+    dict(support_amplitude=[0, 0.01], support_frequency=20, method="dop853", t_end=1),
 ]
 
 
@@ -81,6 +82,10 @@ def test_simulate_is_bitwise_the_command_line(kw, tmp_path):
     ("divergence", dict(t_end=2)),
     ("poincare", dict(t_end=10)),
     ("sweep", dict(n1=16, n2=12, t_end=2)),
+    ("sweep", dict(n=64, t_end=5)),
+    ("sweep", dict(n=32, t_end=5, indicator="megno")),
+    ("sweep", dict(n=32, t_end=5, indicator="megno", axis1="m2/m1", axis2="l2/l1",
+                   min1=0.1, max1=4, min2=0.1, max2=4, q1=0, q2=0)),
 ])
 def test_other_commands_are_bitwise_the_command_line(command, kw, tmp_path):
     ds = getattr(dpend, command)(**kw)
@@ -99,9 +104,10 @@ def test_refusal_is_the_command_lines(tmp_path):
 def test_fit_is_bitwise_the_command_line(tmp_path):
     csv = os.path.join(os.path.dirname(__file__), "..", "..", "data", "fit_example.csv")
     csv = os.path.abspath(csv)
-    ds = dpend.fit(csv)
-    out = tmp_path / "cli.h5"
-    done = subprocess.run([CLI, "fit", csv, "--output", str(out), "--quiet"],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, done.stderr
-    _same_files(out, ds.dpend.image)
+    for kw in (dict(), dict(fit_damping=True)):
+        ds = dpend.fit(csv, **kw)
+        out = tmp_path / "cli.h5"
+        done = subprocess.run([CLI, "fit", csv, *dpend.options(**kw), "--output", str(out),
+                               "--quiet", "--force"], capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr
+        _same_files(out, ds.dpend.image)

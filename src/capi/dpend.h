@@ -34,9 +34,10 @@ int dpend_result_copy(void *result, void *buf, long long n);
 /* Release a result (NULL is ignored). */
 void dpend_result_free(void *result);
 
-/* Ask the call in progress in another thread to stop (safe from a signal handler): a
- * sweep stops taking blocks within a block's time and returns kind 1, its result
- * holding the blocks done. Each dpend_run forgets an earlier request as it starts. */
+/* Ask the call in progress in another thread to stop: a sweep's lanes stop taking
+ * trajectories and its threads blocks (the trajectories in flight end first), and it
+ * returns kind 1, its result holding the blocks done. Each dpend_run forgets an
+ * earlier request as it starts. */
 void dpend_cancel(void);
 
 /* The version into buf (n bytes with the NUL); returns its length. */

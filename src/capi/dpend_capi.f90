@@ -22,7 +22,8 @@ module dpend_capi
    use dpend_error, only: error_t, fatal_error, exit_status
    use dpend_cli, only: arg_t, check_repeated_options, printable
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
-      remove_directory, remove_file, errno_text, path_kind, path_file, clear_cancel
+      remove_directory, remove_file, errno_text, path_kind, path_file
+   use dpend_stop_request, only: request_stop, clear_stop_request
    use dpend_error, only: run_failure
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep, sweep_help
@@ -48,7 +49,7 @@ module dpend_capi
    implicit none
    private
    public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
-   public :: dpend_version
+   public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
    integer(c_int), parameter :: kind_ok = 0, kind_refused = 2, kind_unavailable = 3
@@ -105,7 +106,7 @@ contains
       integer :: i
       result = c_null_ptr
       call library_lock()
-      call clear_cancel()
+      call clear_stop_request()
       call silence_progress()
       name = c_string(command)
       allocate (argv(max(nargs, 0)))
@@ -401,6 +402,13 @@ contains
       call c_free(res%image)
       deallocate (res)
    end subroutine dpend_result_free
+
+   !> Ask the call in progress (in another thread) to stop: a sweep stops its lanes
+   !> taking trajectories and its threads taking blocks, and returns kind 1 with the
+   !> blocks done. Each call of `dpend_run` forgets an earlier request as it starts.
+   subroutine dpend_cancel() bind(C, name='dpend_cancel')
+      call request_stop()
+   end subroutine dpend_cancel
 
    !> The version into buf (n bytes with the NUL); returns its length.
    integer(c_int) function dpend_version(buf, n) bind(C, name='dpend_version')

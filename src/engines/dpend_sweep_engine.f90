@@ -9,7 +9,7 @@ module dpend_sweep_engine
    use dpend_resources, only: check_memory, check_disk
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, run_failure, fatal_error
-   use dpend_os, only: cancel_requested
+   use dpend_stop_request, only: stop_requested
    use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_pendulum_lanes, only: integrate_batch
    use dpend_sweep_settings, only: sweep_config_t, pixel_model, pixel_model_named, &
@@ -264,7 +264,7 @@ contains
          !$omp atomic read
          stop_now = failed
          if (stop_now) return
-         if (cancel_requested()) then   ! a library caller asked to stop (src/capi)
+         if (stop_requested()) then   ! a library caller asked to stop (src/capi)
             !$omp critical (dpend_sweep_io)
             if (.not. failed) then
                call fatal_error(error, 'interrupted on request')
@@ -277,6 +277,12 @@ contains
          call compute_block(setup, bb, res)
          call block_range(setup, bb, jj0, nnb)
          !$omp critical (dpend_sweep_io)
+         ! a block cut short by a stop request is not written
+         if (stop_requested() .and. .not. failed) then
+            call fatal_error(error, 'interrupted on request')
+            !$omp atomic write
+            failed = .true.
+         end if
          if (.not. failed) then
             call write_block(h5, setup, bb, res, werr)
             if (allocated(werr)) then

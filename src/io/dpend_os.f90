@@ -21,7 +21,7 @@ module dpend_os
    public :: echo_to_stderr  ! for the figure scripts
    public :: errno_exists, errno_nospc, io_failure_reason
    public :: capture_outputs, capturing_outputs, capture_buffer, take_capture
-   public :: make_temp_directory, remove_directory, cancel_requested, clear_cancel
+   public :: make_temp_directory, remove_directory
 
    !> What `path_kind` finds at a path.
    integer, parameter :: path_missing = 0, path_file = 1, path_directory = 2, &
@@ -56,11 +56,6 @@ module dpend_os
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
       end function c_remove_dir
-      integer(c_int) function c_cancel_requested() bind(C, name='dpend_cancel_requested')
-         import :: c_int
-      end function c_cancel_requested
-      subroutine c_cancel_clear() bind(C, name='dpend_cancel_clear')
-      end subroutine c_cancel_clear
       subroutine c_capture_set(on) bind(C, name='dpend_capture_set')
          import :: c_int
          integer(c_int), value :: on
@@ -532,14 +527,4 @@ contains
       character(len=*), intent(in) :: path  !! the directory
       err = int(c_remove_dir(path//c_null_char))
    end function remove_directory
-   !> Whether a library caller asked the run in progress to stop (dpend_cancel of the
-   !> C interface, from another thread or a signal handler).
-   logical function cancel_requested()
-      cancel_requested = c_cancel_requested() /= 0
-   end function cancel_requested
-
-   !> Forget a request to stop (at the start of a library call).
-   subroutine clear_cancel()
-      call c_cancel_clear()
-   end subroutine clear_cancel
 end module dpend_os

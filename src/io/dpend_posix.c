@@ -6,7 +6,6 @@
  * or a positive errno value; nothing here prints or exits. */
 #define _GNU_SOURCE
 #include <errno.h>
-#include <signal.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -272,9 +271,3 @@ static pthread_mutex_t dpend_library_mutex = PTHREAD_MUTEX_INITIALIZER;
 void dpend_library_lock(void) { pthread_mutex_lock(&dpend_library_mutex); }
 void dpend_library_unlock(void) { pthread_mutex_unlock(&dpend_library_mutex); }
 
-/* A request to stop the library call in progress (src/capi: dpend_cancel, from any
- * thread or a signal handler); the engines check it between blocks. */
-static volatile sig_atomic_t dpend_cancel_flag = 0;
-void dpend_cancel(void) { dpend_cancel_flag = 1; }
-void dpend_cancel_clear(void) { dpend_cancel_flag = 0; }
-int dpend_cancel_requested(void) { return dpend_cancel_flag != 0; }

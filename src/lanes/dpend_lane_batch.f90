@@ -18,6 +18,7 @@
 !> the order in which lanes are refilled.
 module dpend_lane_batch
    use dpend_kinds, only: dp, i8
+   use dpend_stop_request, only: stop_requested
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
@@ -158,9 +159,11 @@ contains
 
    contains
 
-      !> Lane l takes the next trajectory to integrate, or idles.
+      !> Lane l takes the next trajectory to integrate, or idles (all lanes do once a
+      !> stop is requested: the block is then cut short, and not written).
       subroutine take_next(l)
          integer, intent(in) :: l
+         if (stop_requested()) next = size(todo) + 1
          do while (next <= size(todo))
             if (todo(next)) exit
             next = next + 1
