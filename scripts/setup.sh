@@ -18,6 +18,8 @@ done
 packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools locales)
 # Python: the recipes of docs/python.md and scripts/check_python.py (h5py, pandas, xarray).
 packages+=(python3 python3-h5py python3-pandas python3-xarray)
+# The Python package (pip install ., meson-python from PyPI) in a virtual environment.
+packages+=(python3-venv)
 if ((mpi)); then
   packages+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 fi
