@@ -34,7 +34,8 @@ module dpend_capi
    use dpend_strings, only: to_str
    use, intrinsic :: iso_fortran_env, only: int8, int64
    use dpend_version, only: version
-   use dpend_command_common, only: refusal_line, error_line
+   use dpend_command_common, only: refusal_line, error_line, set_report_unit
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_run_settings, only: run_config_t
    use dpend_simulate, only: parse_simulate, run_simulate, simulate_help
    use dpend_chaos_common, only: chaos_config_t, parse_chaos, run_chaos, chaos_help, &
@@ -264,16 +265,41 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(fit_config_t) :: fc
       logical :: help
+      integer :: unit, stat
       call parse_fit(argv, fc, help, error)
       if (allocated(error)) then
          call refusal_line(error, 'fit')
       else if (help) then
          text = fit_help()
-      else
+      else   ! its report, which the command prints, as the message
+         open (newunit=unit, status='scratch', action='readwrite', form='formatted', &
+               iostat=stat)
+         if (stat == 0) call set_report_unit(unit)
          call run_fit(fc, error)
+         call set_report_unit(output_unit)
          if (allocated(error)) call error_line(error, 'fit')
+         if (stat == 0) then
+            text = scratch_text(unit)
+            close (unit)
+         end if
       end if
    end subroutine fit
+
+   !> The lines written to the scratch unit, joined by new lines.
+   function scratch_text(unit) result(text)
+      integer, intent(in) :: unit
+      character(len=:), allocatable :: text
+      character(len=4096) :: line
+      integer :: stat
+      text = ''
+      rewind (unit)
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         if (len(text) > 0) text = text//new_line('a')
+         text = text//trim(line)
+      end do
+   end function scratch_text
 
    !> A sweep writes a working file beside its output and resumes from it, so the
    !> library runs it on disk, in a private temporary directory (under $TMPDIR, else

@@ -8,13 +8,14 @@
 !> (`refusal_line`, exit 2 whatever kind it was made with) or an error of the run
 !> (`error_line`, its kind kept).
 module dpend_command_common
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_error, only: error_t, error_bad_input
    use dpend_cli, only: arg_t
    use dpend_progress, only: silence_progress
    implicit none
    private
    public :: take_quiet, with_quiet, last_line, refusal_line, error_line
-   public :: summary_quiet, data_quiet
+   public :: summary_quiet, data_quiet, report_unit, set_report_unit
 
    character(len=*), parameter :: nl = new_line('a')
    !> The --quiet line of the help texts that lack one (every command's --help
@@ -24,7 +25,23 @@ module dpend_command_common
    character(len=*), parameter :: data_quiet = '  --quiet           accepted (every ' &
       //'command takes it); the data print as always'
 
+   !> Where a command writes its report (standard output; a library call sends it to
+   !> a scratch file and returns it as its message, src/capi). Library calls run one
+   !> at a time, so one unit for the process.
+   integer, save :: report = output_unit
+
 contains
+
+   !> The unit of the command's report (`set_report_unit`).
+   integer function report_unit()
+      report_unit = report
+   end function report_unit
+
+   !> Send the commands' reports to `unit` (output_unit again after a library call).
+   subroutine set_report_unit(unit)
+      integer, intent(in) :: unit  !! an open formatted unit
+      report = unit
+   end subroutine set_report_unit
 
    !> `args` without any `--quiet` (all commands take it; values never start with
    !> '--'); when one was given, `quiet` is set and every progress report of the

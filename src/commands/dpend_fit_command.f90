@@ -21,7 +21,8 @@ module dpend_fit_command
    use dpend_model_record, only: record_model
    use dpend_output, only: output_t
    use dpend_version, only: version
-   use dpend_command_common, only: take_quiet, with_quiet, summary_quiet, refusal_line, error_line
+   use dpend_command_common, only: report_unit, take_quiet, with_quiet, summary_quiet, &
+      refusal_line, error_line
    use dpend_fit_config, only: fit_config_t, parse_fit, fit_help, fit_problem, state_names, &
                                coordinate_units
    implicit none
@@ -96,7 +97,7 @@ contains
          call move_alloc(werr, error)
          return
       end if
-      write (output_unit, '(a)') "dpend fit: wrote '"//fc%run%output//"'"
+      write (report_unit(), '(a)') "dpend fit: wrote '"//fc%run%output//"'"
    end subroutine run_fit_body
 
    !> The file of a fit that failed partway: the root attributes of the settings and
@@ -140,14 +141,14 @@ contains
       if (fc%model_coords) ou = '(in the coordinates'' units)'
       noise = observation_noise(prob, fc%series%q, res%k_fit, how)
       if (.not. (res%rms > misfit_factor*noise)) return
-      write (output_unit, '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
+      write (report_unit(), '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
          //ou//' is '//real_str(res%rms/max(noise, tiny(1.0_dp)), 3)//' times the noise ' &
          //real_str(noise, 3)//' '//ou//' ('//how//'), more than '//real_str(misfit_factor)// &
          ': the model does not describe the data (the residuals are model error: a ' &
          //'fixed parameter is wrong, or the model is not the system)'
       call misfit_suspects(prob, fc%series%t, fc%series%q, res, sus, error)
       if (allocated(error)) then
-         write (output_unit, '(a)') '  (the parameters that may be wrong could not be ' &
+         write (report_unit(), '(a)') '  (the parameters that may be wrong could not be ' &
             //'ranked: '//error%message//')'
          return
       end if
@@ -157,7 +158,7 @@ contains
          if (i > 1) line = line//', '
          line = line//trim(sus(i)%label)//' ('//real_str(sus(i)%rms, 3)//')'
       end do
-      write (output_unit, '(a)') '  parameters that may be wrong, by the RMS residual ' &
+      write (report_unit(), '(a)') '  parameters that may be wrong, by the RMS residual ' &
          //'fitting each too would leave (linearized): '//line//'; fit them with ' &
          //'--fit-param '//trim(sus(1)%label)
    end subroutine misfit_warning
@@ -223,36 +224,36 @@ contains
       call parameter_names(fc, names, units)
       if (fc%model_coords) ou = '('//coordinates_joined(fc, ' in ', ', ')//')'
       associate (s => fc%series)
-         write (output_unit, '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
+         write (report_unit(), '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
             ', '//to_str(s%k)//' samples, t1 = '// &
             real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
             real_str(res%t_window)//' s ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
-         if (len(csv_format(s)) > 0) write (output_unit, '(a)') '  csv: '//csv_format(s)
-         if (s%theta) write (output_unit, '(a)') '  (the file gives theta from the hanging ' &
+         if (len(csv_format(s)) > 0) write (report_unit(), '(a)') '  csv: '//csv_format(s)
+         if (s%theta) write (report_unit(), '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
-         if (s%positions) write (output_unit, '(a)') '  (the file gives the positions of ' &
+         if (s%positions) write (report_unit(), '(a)') '  (the file gives the positions of ' &
             //'the link ends: residuals and tolerance in m)'
       end associate
       call parameter_names(fc, names, units)
       np = res%np
-      write (output_unit, '(a)') '  parameter    estimate                     standard error' &
+      write (report_unit(), '(a)') '  parameter    estimate                     standard error' &
          //'   95 % interval'
       do i = 1, np
-         write (output_unit, '(a)') '  '//pad(names(i), 13)//pad(real_str(res%p(i), 12)// &
+         write (report_unit(), '(a)') '  '//pad(names(i), 13)//pad(real_str(res%p(i), 12)// &
             ' '//trim(units(i)), 29)//pad(real_str(res%se(i), 3), 17)//'['// &
             real_str(res%p(i) - res%t95*res%se(i), 6)//', '// &
             real_str(res%p(i) + res%t95*res%se(i), 6)//']'
       end do
-      write (output_unit, '(a)') '  correlation matrix (rows and columns in the order above):'
+      write (report_unit(), '(a)') '  correlation matrix (rows and columns in the order above):'
       do i = 1, np
          line = '   '
          do j = 1, np
             line = line//' '//fixed(res%corr(i, j))
          end do
-         write (output_unit, '(a)') line
+         write (report_unit(), '(a)') line
       end do
-      write (output_unit, '(a)') '  RMS residual '//real_str(res%rms, 3)//' '//ou// &
+      write (report_unit(), '(a)') '  RMS residual '//real_str(res%rms, 3)//' '//ou// &
          ' (sigma '//real_str(res%sigma, 3)//' '//ou//', '//to_str(res%dof)// &
          ' degrees of freedom, t = '//real_str(res%t95, 4)//'); '// &
          to_str(res%iterations)//' iterations in '//to_str(res%stages)//' stages, '// &
@@ -262,21 +263,21 @@ contains
          if (i > 1) line = line//', '
          line = line//real_str(res%singular(i), 3)
       end do
-      write (output_unit, '(a)') '  identifiability: singular values of the sensitivities ' &
+      write (report_unit(), '(a)') '  identifiability: singular values of the sensitivities ' &
          //'(columns scaled to 1) '//line//'; condition number '// &
          condition_text(res%condition)
       if (res%has_after) then
          if (res%horizon_censored) then
-            write (output_unit, '(a)') '  prediction horizon after t = '// &
+            write (report_unit(), '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: at least '//real_str(res%horizon, 4)// &
                ' s (within '//real_str(res%tolerance)//' '//ou//' up to the last sample)'
          else
-            write (output_unit, '(a)') '  prediction horizon after t = '// &
+            write (report_unit(), '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: '//real_str(res%horizon, 4)//' s (tolerance ' &
                //real_str(res%tolerance)//' '//ou//')'
          end if
       else
-         write (output_unit, '(a)') '  prediction horizon: none (no samples after the fit ' &
+         write (report_unit(), '(a)') '  prediction horizon: none (no samples after the fit ' &
             //'window; give --fit-window T)'
       end if
    contains
