@@ -5,25 +5,30 @@
 # runs the release binary given by --dpend.
 #
 # Usage: scripts/python_package.sh --dpend PATH [--python PYTHON] [--keep DIR]
+#                                  [--notebook DIR]
 #   --dpend PATH     the release dpend binary (scripts/dpend's build, e.g.
 #                    build/gfortran_*/app/dpend); the tests run it as DPEND_CLI
 #   --python PYTHON  the interpreter that makes the venv (default python3; Debian's
 #                    /usr/bin/python3 needs the package python3-venv)
 #   --keep DIR       make the venv in DIR and keep it (default: a temporary one,
 #                    removed at the end)
+#   --notebook DIR   also execute examples/python/tour.ipynb (nbclient; with
+#                    matplotlib, ipykernel from PyPI) into DIR with its figures
 # Needs PyPI (meson-python, meson, numpy, h5py, xarray, pytest), gfortran, gcc,
 # ninja or PyPI's, and the Debian packages of the command line's build (HDF5,
 # LAPACK). Exit status: 0 all passed, 1 a step failed, 2 bad usage.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-dpend="" python=python3 keep=""
+dpend="" python=python3 keep="" notebook=""
 while (($#)); do
   case "$1" in
     --dpend) dpend="${2:?--dpend needs a path}"; shift 2 ;;
     --python) python="${2:?--python needs an interpreter}"; shift 2 ;;
     --keep) keep="${2:?--keep needs a folder}"; shift 2 ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "python_package.sh: unknown argument '$1' (--dpend PATH, --python, --keep)" >&2
+    --notebook) notebook="${2:?--notebook needs a folder}"; shift 2 ;;
+    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "python_package.sh: unknown argument '$1' (--dpend PATH, --python, --keep," \
+         "--notebook)" >&2
        exit 2 ;;
   esac
 done
@@ -64,4 +69,11 @@ echo "python_package.sh: dpend.simulate(q1=0, q2=0, t_end=1).energy[-1] [J]:"
 echo "python_package.sh: pytest python/tests (DPEND_CLI=$dpend)"
 DPEND_CLI="$dpend" "$py" -m pytest -q -p no:cacheprovider "$root/python/tests" ||
   fail "pytest python/tests"
+if [[ -n "$notebook" ]]; then
+  mkdir -p "$notebook" && notebook="$(cd "$notebook" && pwd)"
+  "$py" -m pip install --quiet nbclient nbformat ipykernel matplotlib ||
+    fail "pip install nbclient nbformat ipykernel matplotlib"
+  "$py" "$root/scripts/run_notebook.py" "$root/examples/python/tour.ipynb" "$notebook" ||
+    fail "examples/python/tour.ipynb"
+fi
 echo "python_package.sh: all passed"
