@@ -57,6 +57,7 @@ def _declare(lib: ctypes.CDLL) -> None:
                               ctypes.POINTER(c_void_p), c_char_p, c_int]),
         "dpend_result_bytes": (c_ll, [c_void_p]),
         "dpend_result_copy": (c_int, [c_void_p, c_void_p, c_ll]),
+        "dpend_result_data": (c_void_p, [c_void_p]),
         "dpend_result_free": (None, [c_void_p]),
         "dpend_cancel": (None, []),
         "dpend_version": (c_int, [c_char_p, c_int]),
@@ -143,18 +144,17 @@ def _run_unlocked(command: str, args: Sequence[str]) -> Tuple[int, Optional[byte
 
 
 def _image(result: ctypes.c_void_p) -> bytes:
-    """The bytes of a result's file image."""
+    """The bytes of a result's file image (one copy, from the library's memory)."""
     n = function("dpend_result_bytes")(result)
     if n < 0:
         raise RuntimeError(f"dpend: dpend_result_bytes gave {n}")
-    buf = bytearray(n)
-    if n:
-        c_buf = (ctypes.c_char * n).from_buffer(buf)
-        status = function("dpend_result_copy")(result, c_buf, n)
-        del c_buf            # release the export of buf
-        if status != 0:
-            raise RuntimeError(f"dpend: dpend_result_copy failed (status {status})")
-    return bytes(buf)
+    if n == 0:
+        return b""
+    address = function("dpend_result_data")(result)
+    if not address:
+        raise RuntimeError("dpend: dpend_result_data gave NULL for a result of "
+                           f"{n} bytes")
+    return ctypes.string_at(address, n)
 
 
 def cancel() -> None:

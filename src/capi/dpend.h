@@ -31,6 +31,10 @@ long long dpend_result_bytes(void *result);
 /* Copy the image into buf of n bytes: 0, or 2 when n is too small or a pointer NULL. */
 int dpend_result_copy(void *result, void *buf, long long n);
 
+/* The image's address (dpend_result_bytes bytes), valid until dpend_result_free;
+ * NULL for NULL. */
+const void *dpend_result_data(void *result);
+
 /* Release a result (NULL is ignored). */
 void dpend_result_free(void *result);
 

@@ -50,6 +50,7 @@ module dpend_capi
    implicit none
    private
    public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
+   public :: dpend_result_data
    public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
@@ -418,6 +419,17 @@ contains
       dst = c_memcpy(buf, res%image, res%bytes)
       dpend_result_copy = kind_ok
    end function dpend_result_copy
+
+   !> The address of the result's image (dpend_result_bytes bytes, valid until
+   !> `dpend_result_free`); NULL for a null handle.
+   type(c_ptr) function dpend_result_data(result) bind(C, name='dpend_result_data')
+      type(c_ptr), value :: result  !! the handle of `dpend_run`
+      type(result_t), pointer :: res
+      dpend_result_data = c_null_ptr
+      if (.not. c_associated(result)) return
+      call c_f_pointer(result, res)
+      dpend_result_data = res%image
+   end function dpend_result_data
 
    !> Release a result (a null handle is ignored).
    subroutine dpend_result_free(result) bind(C, name='dpend_result_free')

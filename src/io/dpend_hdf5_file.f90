@@ -38,8 +38,9 @@ contains
          end if
       case ('w', 'x')
          if (capturing_outputs()) then
-            ! a library call's output: in memory (no backing store), whatever is on disk
-            call h5pset_fapl_core_f(fapl, 1048576_size_t, .false., ierr)
+            ! a library call's output: in memory (no backing store), whatever is on disk;
+            ! grown 16 MiB at a time (a trajectory of 10^5 samples is 48 MB)
+            call h5pset_fapl_core_f(fapl, 16777216_size_t, .false., ierr)
             call h5fcreate_f(trim(filename), H5F_ACC_TRUNC_F, fid, hdferr, access_prp=fapl)
             self%memory = hdferr == 0
          else if (mode == 'x' .and. on_disk) then
