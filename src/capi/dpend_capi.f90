@@ -134,6 +134,7 @@ contains
       else
          dpend_run = kind_ok
       end if
+      text = without_wrote_lines(text, name)
       call put_c_string(text, message, msg_len)
       call library_unlock()
    end function dpend_run
@@ -455,6 +456,25 @@ contains
       call put_c_string(version, buf, n)
       dpend_version = len(version, c_int)
    end function dpend_version
+
+   !> `text` without the command's lines "dpend COMMAND: wrote 'FILE'..." (the library
+   !> writes no file: the result holds it).
+   function without_wrote_lines(text, command) result(s)
+      character(len=*), intent(in) :: text, command
+      character(len=:), allocatable :: s, line, rest
+      integer :: k
+      s = ''
+      rest = text
+      do while (len(rest) > 0)
+         k = index(rest, new_line('a'))
+         if (k == 0) k = len(rest) + 1
+         line = rest(:k - 1)
+         rest = rest(min(k + 1, len(rest) + 1):)
+         if (index(line, 'dpend '//command//": wrote '") == 1) cycle
+         if (len(s) > 0) s = s//new_line('a')
+         s = s//line
+      end do
+   end function without_wrote_lines
 
    !> The Fortran text of a NUL-terminated C string ('' for a null pointer).
    function c_string(p) result(s)

@@ -16,7 +16,7 @@ module dpend_progress
    implicit none
    private
    public :: progress_t, stderr_is_terminal, wall_seconds, silence_progress, progress_silenced
-   public :: progress_header
+   public :: progress_header, show_progress_header
 
    !> A line the next `progress_start` prints first (unless quiet); '' none.
    character(len=:), allocatable, save :: pending_header
@@ -66,6 +66,18 @@ contains
       character(len=*), intent(in) :: line  !! e.g. 'dpend sweep: t_end = ...'
       pending_header = line
    end subroutine progress_header
+
+   !> Print the queued header now (unless the process is silenced), before work that
+   !> may take long ahead of the report's start, once nothing can be refused any more
+   !> (a refusal stays one line).
+   subroutine show_progress_header()
+      if (.not. allocated(pending_header)) return
+      if (.not. silenced .and. len(pending_header) > 0) then
+         write (error_unit, '(a)') pending_header
+         flush (error_unit)
+      end if
+      deallocate (pending_header)
+   end subroutine show_progress_header
 
    !> Whether `silence_progress` was called (reports of their own stay quiet then).
    logical function progress_silenced()

@@ -23,6 +23,7 @@ module dpend_sweep_resume
    use dpend_os, only: path_kind, path_file
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_cli, only: to_str, real_str
+   use dpend_progress, only: show_progress_header
    use dpend_sweep_compare, only: config_value
    use dpend_sweep_setup, only: sweep_setup_t, block_range
    use dpend_sweep_layout, only: result_names, create_layout, write_block, working_file, &
@@ -81,6 +82,9 @@ contains
       ! a new working file, complete before it gets its name
       call work%begin(part, .true., error, '--output (its working file)')
       if (allocated(error)) return
+      ! nothing is refused from here on, and the layout may take long (a 10^4 x 10^4
+      ! map's is 10 GB): the horizon line goes out now
+      call show_progress_header()
       call create_layout(h5, work%temp, setup, .false., error)
       call install_file(h5, work, setup, error)
       if (allocated(error)) then
