@@ -39,6 +39,9 @@ if [[ ! -x "$dpend" ]]; then
   echo "python_package.sh: --dpend '$dpend' is not an executable file" >&2; exit 2
 fi
 dpend="$(cd "$(dirname "$dpend")" && pwd)/$(basename "$dpend")"
+if [[ -n "$notebook" ]]; then   # relative to where the script was started
+  mkdir -p "$notebook" && notebook="$(cd "$notebook" && pwd)"
+fi
 
 fail() { echo "python_package.sh: FAILED: $*" >&2; exit 1; }
 work="$(mktemp -d "${TMPDIR:-/tmp}/dpend-python.XXXXXX")"
@@ -70,7 +73,6 @@ echo "python_package.sh: pytest python/tests (DPEND_CLI=$dpend)"
 DPEND_CLI="$dpend" "$py" -m pytest -q -p no:cacheprovider "$root/python/tests" ||
   fail "pytest python/tests"
 if [[ -n "$notebook" ]]; then
-  mkdir -p "$notebook" && notebook="$(cd "$notebook" && pwd)"
   "$py" -m pip install --quiet nbclient nbformat ipykernel matplotlib ||
     fail "pip install nbclient nbformat ipykernel matplotlib"
   "$py" "$root/scripts/run_notebook.py" "$root/examples/python/tour.ipynb" "$notebook" ||
