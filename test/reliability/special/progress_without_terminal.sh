@@ -32,7 +32,9 @@ done
 for p in "${pids[@]}"; do wait "$p"; done
 for i in "${!names[@]}"; do
   cmd=${runs[$i]%% *}
-  if grep -Eq "^dpend $cmd( \(integrations of at most [0-9.e+]+\))?: [0-9.e-]+%( \([0-9]+/[0-9]+\), [0-9.e+]+ integrations/s)?, elapsed 0:00:1[0-9], ETA ~([0-9]+:[0-9]{2}:[0-9]{2}|--)$" "${names[$i]}.err"; then
+  # (the fit counts step-equivalents: 'dpend fit (step-equivalents of at most 7.73e8,
+  # up to 7777 integrations): 0.2% (1501105/772811246), 150000 steps/s, ...')
+  if grep -Eq "^dpend $cmd( \(step-equivalents of at most [0-9.e+]+, up to [0-9.e+]+ integrations\))?: [0-9.e-]+%( \([0-9]+/[0-9]+\), [0-9.e+]+ steps/s)?, elapsed 0:00:1[0-9], ETA ~([0-9]+:[0-9]{2}:[0-9]{2}|--)$" "${names[$i]}.err"; then
     pass "${names[$i]}: $(head -n 1 "${names[$i]}.err")"
   else
     fail "${names[$i]}: no progress line in 12 s: '$(head -c 300 "${names[$i]}.err")'"
