@@ -220,9 +220,13 @@ contains
                       //'option --output in the library') == 1, 'simulate --output: '//message)
       call library_run('sweep', '--quiet', kind, message, image)
       call check_true(error, kind == 2, 'sweep --quiet refused: '//message)
-      call library_run('study', '', kind, message, image)
-      call check_true(error, kind == 3 .and. index(message, "'study' is not available") > 0, &
-                      'study: kind 3, got '//to_str(kind)//': '//message)
+      call library_run('animate', '', kind, message, image)
+      call check_true(error, kind == 3 .and. index(message, "'animate' is not available") &
+                      > 0, 'animate: kind 3, got '//to_str(kind)//': '//message)
+      call library_run('study', '--quick --methods rk4 --cases small', kind, message, image)
+      call check_true(error, kind == 0 .and. index(message, '| small |') > 0 .and. &
+                      size(image) > 0, 'study: its summary and its file, got '// &
+                      to_str(kind)//': '//message(:min(len(message), 200)))
       call library_run('methods', '', kind, message, image)
       call check_true(error, kind == 0 .and. index(message, 'rk4') > 0 .and. &
                       index(message, 'dop853') > 0, 'methods: the names, got '//message)

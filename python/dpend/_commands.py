@@ -129,8 +129,11 @@ def fit(data: "str | os.PathLike[str]", **kw: Any) -> xr.Dataset:
 
 
 def study(**kw: Any) -> xr.Dataset:
-    """``dpend study``: the energy-conservation study of the methods. Not in the
-    library yet (NotImplementedError): run ``dpend study`` and read its file."""
+    """``dpend study``: the energy-conservation study of the methods (docs/study.md);
+    e.g. ``study(quick=True)``. The Dataset holds the file docs/study-hdf5.md
+    describes; its Markdown summary is ``ds["summary/markdown"]``. No figures are
+    drawn (``scripts/plot_study.sh FILE DIR`` draws them from ``ds.dpend.to_hdf5``'s
+    file)."""
     return run("study", **kw)
 
 

@@ -117,9 +117,10 @@ def test_fit_takes_the_csv_path():
     assert ds.attrs["command"] == "fit"
 
 
-def test_study_is_not_in_the_library_yet():
-    with pytest.raises(NotImplementedError, match="'study' is not available"):
-        dpend.study(quick=True)
+def test_study_quick_holds_its_summary():
+    ds = dpend.study(quick=True, methods="rk4,dop853", cases="small")
+    assert "rk4" in str(ds["summary/markdown"].values)
+    assert ds.attrs["threads"] >= 1
 
 
 def test_models_and_methods():

@@ -45,6 +45,10 @@ module dpend_capi
    use dpend_divergence_command, only: run_divergence
    use dpend_poincare_command, only: run_poincare
    use dpend_fit_command, only: fit_config_t, parse_fit, run_fit, fit_help
+   use dpend_study_settings, only: study_config_t
+   use dpend_study_config, only: parse_study, study_help
+   use dpend_study, only: study_result_t, run_study
+   use dpend_study_command, only: write_study_h5, study_summary
    use dpend_model_factory, only: describe_models
    use dpend_method_registry, only: method_names
    implicit none
@@ -57,9 +61,9 @@ module dpend_capi
    integer(c_int), parameter :: kind_ok = 0, kind_refused = 2, kind_unavailable = 3
 
    !> The commands the library runs.
-   character(len=10), parameter :: commands(9) = [character(len=10) :: 'simulate', &
-      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep', 'models', &
-      'methods']
+   character(len=10), parameter :: commands(10) = [character(len=10) :: 'simulate', &
+      'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep', 'study', &
+      'models', 'methods']
 
    !> A run's result: the image of the file the command wrote (C memory, freed by
    !> `dpend_result_free`).
@@ -121,7 +125,7 @@ contains
       if (.not. any(name == commands)) then
          text = "dpend: '"//printable(name)//"' is not available in the library (" &
                 //'simulate, lyapunov, indicators, divergence, poincare, fit, sweep, ' &
-                //'models and methods are)'
+                //'study, models and methods are)'
          call put_c_string(text, message, msg_len)
          dpend_run = kind_unavailable
          call library_unlock()
@@ -211,6 +215,8 @@ contains
          call fit(argv, text, error)
       case ('sweep')
          call sweep(argv, text, error)
+      case ('study')
+         call study(argv, text, error)
       case ('models', 'methods')   ! their text: the models' table, the methods' names
          if (size(argv) > 0) then
             call fatal_error(error, 'the library takes no options here (got '// &
@@ -286,6 +292,31 @@ contains
          end if
       end if
    end subroutine fit
+
+   !> The study's file in memory, its summary as the message; no figures are drawn
+   !> (--no-figures is accepted and changes nothing here).
+   subroutine study(argv, text, error)
+      type(arg_t), intent(in) :: argv(:)
+      character(len=:), allocatable, intent(inout) :: text
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(study_result_t) :: res
+      logical :: help
+      call parse_study(argv, cfg, help, error)
+      if (allocated(error)) then
+         call refusal_line(error, 'study')
+      else if (help) then
+         text = study_help()
+      else
+         call run_study(cfg, res)
+         text = study_summary(cfg, res)
+         call write_study_h5(cfg, res, 'study.h5', error)
+         if (allocated(error)) then
+            call run_failure(error)
+            call error_line(error, 'study')
+         end if
+      end if
+   end subroutine study
 
    !> The lines written to the scratch unit, joined by new lines.
    function scratch_text(unit) result(text)
