@@ -17,10 +17,26 @@ releases the GIL during each call.
 from __future__ import annotations
 
 from . import _dataset  # noqa: F401  (registers the ds.dpend accessor)
+from . import _library
 from ._commands import (RunError, divergence, fit, indicators, lyapunov, methods, models,
                         options, poincare, run, simulate, study, sweep)
 from ._dataset import from_image
 from ._library import cancel, library_path
+from ._signatures import document as _document
+from . import _commands
+
+
+def _help_text(command: str) -> str:
+    kind, _, text = _library._run(command, ["--help"])
+    if kind != _library.OK:
+        raise RuntimeError(text)
+    return text
+
+
+# help(dpend.sweep): the options and the text of `dpend sweep --help`
+_document({name: getattr(_commands, name) for name in (
+    "simulate", "lyapunov", "indicators", "divergence", "poincare", "sweep", "fit",
+    "study")}, _help_text)
 
 
 def _version() -> str:

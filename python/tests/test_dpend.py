@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import pathlib
 import threading
+import typing
 
 import h5py
 import io
@@ -131,3 +132,31 @@ def test_models_and_methods():
 def test_a_missing_csv_is_refused(tmp_path):
     with pytest.raises(ValueError, match=r"^dpend fit: "):
         dpend.fit(tmp_path / "none.csv")
+
+
+def test_help_shows_the_command_lines_options():
+    import inspect
+    params = inspect.signature(dpend.sweep).parameters
+    assert {"t_end", "n", "indicator", "axis1", "stop_at", "threads"} <= set(params)
+    assert params["n"].annotation == typing.Optional[int]
+    assert params["lyapunov"].annotation == typing.Optional[bool]
+    assert "output" not in params and "quiet" not in params
+    assert "usage: dpend sweep" in dpend.sweep.__doc__
+    assert list(inspect.signature(dpend.fit).parameters)[0] == "data"
+    assert "usage: dpend study" in dpend.study.__doc__
+
+
+def test_help_parsing_of_option_lines():
+    from dpend._signatures import parse_help
+    text = ("usage: dpend x [options]\n--links N) and prose\n"
+            "  --m1, --m2 KG     masses; default 1, 1\n"
+            "  --support-amplitude AX,AY  moving pin\n"
+            "  --rtol, --atol    tolerances; default 1e-9, 1e-12\n"
+            "  --model elastic   the spring pendulum\n"
+            "  --force           overwrite\n"
+            "  --config, --links, --dt (default 1e-3),\n"
+            "                    --not-an-option here\n")
+    assert parse_help(text) == [("m1", "float"), ("m2", "float"),
+                                ("support_amplitude", "sequence"), ("rtol", "float"),
+                                ("atol", "float"), ("model", "text"), ("config", "any"),
+                                ("links", "any"), ("dt", "any")]
