@@ -61,7 +61,7 @@ if ! (cd "$root" && "$py" -m pip install --quiet . > "$work/pip.log" 2>&1); then
   fail "pip install . (log above)"
 fi
 echo "python_package.sh: pip install . took $((SECONDS - start)) s"
-"$py" -m pip install --quiet pytest || fail "pip install pytest"
+"$py" -m pip install --quiet pytest tqdm || fail "pip install pytest tqdm"
 
 # Outside the checkout, so that the installed package is the one imported.
 cd "$work"

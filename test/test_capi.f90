@@ -3,18 +3,31 @@
 !> attribute with h5diff against the command's file, for several methods, models,
 !> bodies and commands); its refusals are the command line's lines; two runs in two
 !> threads give the results of two single runs; options the library sets itself and
-!> commands it does not run are refused with their kinds.
+!> commands it does not run are refused with their kinds; a progress callback is
+!> told of a sweep from its start to its end.
 module test_capi
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_loc, &
-      c_null_ptr, c_associated, c_long_long
+      c_null_ptr, c_associated, c_long_long, c_funptr, c_funloc, c_null_funptr, &
+      c_f_pointer
    use, intrinsic :: iso_fortran_env, only: int8
    use testing, only: unittest_t, new_unittest, check_true, error_t, have_tool, skip_test
    use test_cli, only: run_command, scratch_dir, read_text
    use dpend_strings, only: to_str
-   use dpend_capi, only: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
+   use dpend_capi, only: dpend_run, dpend_result_bytes, dpend_result_copy, &
+      dpend_result_free, dpend_run_progress
    implicit none
    private
    public :: collect_capi
+
+   !> What the progress callback was told: calls, the first and last `done`, the
+   !> totals seen, whether `done` ever went back, the last unit and label.
+   type :: told_t
+      integer :: calls = 0
+      integer(c_long_long) :: first = -1, last = -1, total = -1
+      logical :: monotone = .true., same_total = .true.
+      character(len=32) :: what = '', label = ''
+   end type told_t
+   type(told_t), save :: told
 
    !> A string kept alive for its C pointer.
    type :: c_text_t
@@ -29,16 +42,18 @@ contains
                new_unittest('runs_equal_command_files', test_equal_files), &
                new_unittest('refusals_are_the_command_lines', test_refusals), &
                new_unittest('two_threads_equal_single_runs', test_threads), &
-               new_unittest('library_options_refused', test_library_options)]
+               new_unittest('library_options_refused', test_library_options), &
+               new_unittest('progress_callback_told', test_progress)]
    end subroutine collect_capi
 
    !> Run `command` with the blank-separated `options` through dpend_run: the error
    !> kind, the message and the image (empty when there is none).
-   subroutine library_run(command, options, kind, message, image)
+   subroutine library_run(command, options, kind, message, image, progress)
       character(len=*), intent(in) :: command, options
       integer, intent(out) :: kind
       character(len=:), allocatable, intent(out) :: message
       integer(int8), allocatable, intent(out) :: image(:)
+      type(c_funptr), intent(in), optional :: progress   !! dpend_run_progress's fn
       type(c_text_t), allocatable, target :: words(:)
       type(c_text_t), target :: name
       type(c_ptr), allocatable, target :: ptrs(:)
@@ -53,8 +68,14 @@ contains
          ptrs(i) = c_loc(words(i)%s)
       end do
       name%s = command//c_null_char
-      kind = dpend_run(c_loc(name%s), int(size(words), c_int), c_loc(ptrs), result, &
-                       c_loc(msg), int(len(msg), c_int))
+      if (present(progress)) then
+         kind = dpend_run_progress(c_loc(name%s), int(size(words), c_int), c_loc(ptrs), &
+                                   result, c_loc(msg), int(len(msg), c_int), progress, &
+                                   c_null_ptr)
+      else
+         kind = dpend_run(c_loc(name%s), int(size(words), c_int), c_loc(ptrs), result, &
+                          c_loc(msg), int(len(msg), c_int))
+      end if
       n = index(msg, c_null_char) - 1
       message = msg(:n)
       allocate (image(0))
@@ -237,4 +258,60 @@ contains
       call check_true(error, kind == 0 .and. index(message, 'usage: dpend simulate') == 1 &
                       .and. size(image) == 0, 'simulate --help gives the help')
    end subroutine test_library_options
+
+   !> dpend_run_progress: the callback is told of a sweep's 4096 trajectories from 0 to
+   !> all, never backwards, with its unit and label; dpend_run tells nothing.
+   subroutine test_progress(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: message
+      integer(int8), allocatable :: image(:)
+      integer :: kind
+      told = told_t()
+      call library_run('sweep', '--n 64 --t-end 5', kind, message, image, &
+                       c_funloc(record_progress))
+      call check_true(error, kind == 0 .and. told%calls >= 2 .and. told%first == 0 .and. &
+                      told%last == 4096 .and. told%total == 4096 .and. told%monotone &
+                      .and. told%same_total, 'sweep: '//to_str(told%calls)//' calls, '// &
+                      to_str(told%first)//' .. '//to_str(told%last)//' of '// &
+                      to_str(told%total)//': '//message)
+      if (allocated(error)) return
+      call check_true(error, told%what == 'traj' .and. told%label == 'dpend sweep', &
+                      'unit and label: '//trim(told%what)//', '//trim(told%label))
+      if (allocated(error)) return
+      told = told_t()
+      call library_run('sweep', '--n 16 --t-end 1', kind, message, image, c_null_funptr)
+      call check_true(error, kind == 0 .and. told%calls == 0, 'a NULL callback is not ' &
+                      //'called: '//to_str(told%calls))
+   end subroutine test_progress
+
+   !> The progress callback of test_progress.
+   subroutine record_progress(done, total, what, label, user) bind(C)
+      integer(c_long_long), value :: done, total
+      type(c_ptr), value :: what, label, user
+      if (told%calls > 0) then
+         told%monotone = told%monotone .and. done >= told%last
+         told%same_total = told%same_total .and. total == told%total
+      else
+         told%first = done
+      end if
+      told%calls = told%calls + 1
+      told%last = done
+      told%total = total
+      told%what = from_c(what)
+      told%label = from_c(label)
+   end subroutine record_progress
+
+   !> A NUL-terminated C string (at most 32 characters of it).
+   function from_c(p) result(s)
+      type(c_ptr), intent(in) :: p
+      character(len=32) :: s
+      character(kind=c_char), pointer :: chars(:)
+      integer :: i
+      s = ''
+      call c_f_pointer(p, chars, [32])
+      do i = 1, 32
+         if (chars(i) == c_null_char) exit
+         s(i:i) = chars(i)
+      end do
+   end function from_c
 end module test_capi

@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import numbers
 import os
-from typing import Any, List, Optional, Sequence
+import sys
+import time
+from typing import Any, Callable, List, Optional, Sequence, Union
 
 import numpy as np
 import xarray as xr
@@ -63,7 +65,64 @@ def options(**kw: Any) -> List[str]:
     return args
 
 
-def run(command: str, *positional: "str | os.PathLike[str]", **kw: Any) -> xr.Dataset:
+ProgressArg = Union[None, bool, str, Callable[[int, int, str, str], None]]
+
+
+class _Bar:
+    """A tqdm bar (tqdm.auto: a widget in a notebook) over a run's progress reports,
+    drawn once the run has lasted `after` seconds (0: at once); without tqdm, a
+    plain line on stderr at most every 10 s when asked for explicitly (`after` 0)."""
+
+    def __init__(self, after: float) -> None:
+        self.after = after
+        self.start = time.monotonic()
+        self.bar = None
+        self.last_line = self.start
+        try:
+            from tqdm.auto import tqdm
+            self.tqdm = tqdm
+        except ImportError:
+            self.tqdm = None
+
+    def __call__(self, done: int, total: int, what: str, label: str) -> None:
+        now = time.monotonic()
+        if self.bar is None and self.tqdm is not None and now - self.start >= self.after:
+            self.bar = self.tqdm(total=total, desc=label, unit=what or "part",
+                                 unit_scale=True, leave=True)
+        if self.bar is not None:
+            self.bar.total = total
+            self.bar.n = done
+            self.bar.refresh()
+        elif self.tqdm is None and self.after == 0 and now - self.last_line >= 10:
+            self.last_line = now
+            print(f"{label}: {done}/{total} {what}", file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _progress(progress: ProgressArg):
+    """The callback of a `progress=` argument, and the bar to close after the run."""
+    if progress is None or progress is False:
+        return None, None
+    if progress is True:
+        bar = _Bar(after=0.0)
+        return bar, bar
+    if isinstance(progress, str):
+        if progress != "auto":
+            raise ValueError(f"dpend: progress={progress!r}: give 'auto', True, False, "
+                             "None or a callable (done, total, what, label)")
+        bar = _Bar(after=1.0)
+        return (bar, bar) if bar.tqdm is not None else (None, None)
+    if callable(progress):
+        return progress, None
+    raise TypeError(f"dpend: progress= takes 'auto', True, False, None or a callable, "
+                    f"not {type(progress).__name__}")
+
+
+def run(command: str, *positional: "str | os.PathLike[str]", progress: ProgressArg = "auto",
+        **kw: Any) -> xr.Dataset:
     """Run ``dpend COMMAND [POSITIONAL...] OPTIONS...`` in this process and return
     the file it writes as an xarray.Dataset (``ds.dpend.to_hdf5`` writes it out).
 
@@ -72,9 +131,21 @@ def run(command: str, *positional: "str | os.PathLike[str]", **kw: Any) -> xr.Da
     ``.result`` holds the partial Dataset or None), RuntimeError (internal error,
     or a library without the C interface). The GIL is released during the run
     (ctypes does so for every call into a CDLL): other threads go on, and
-    ``dpend.cancel()`` from one of them stops the run (a RunError)."""
+    ``dpend.cancel()`` from one of them stops the run (a RunError).
+
+    ``progress``: ``"auto"`` (the default) a tqdm bar once a run has lasted a second
+    (when tqdm is installed: ``pip install tqdm``); ``True`` a bar at once (or a
+    line on stderr every 10 s without tqdm); ``None``/``False`` none; a callable
+    ``f(done, total, what, label)`` is called at most every 0.1 s (``what`` the unit:
+    'traj', 'runs', 'steps', or '' for parts of a horizon); if it raises, the run
+    stops and the exception propagates."""
     args = [os.fspath(p) for p in positional] + options(**kw)
-    kind, image, message = _library.run(command, args)
+    callback, bar = _progress(progress)
+    try:
+        kind, image, message = _library.run(command, args, callback)
+    finally:
+        if bar is not None:
+            bar.close()
     result = from_image(image) if image is not None else None
     if kind == _library.OK:
         if result is None:

@@ -13,7 +13,7 @@ import ctypes
 import os
 import pathlib
 import threading
-from typing import Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple
 
 _MESSAGE_BYTES = 1 << 16   # the help texts and the models' table fit
 _lock = threading.Lock()
@@ -22,6 +22,13 @@ _lib: Optional[ctypes.CDLL] = None
 
 #: The error kinds of dpend_run (the command line's exit statuses, and 3).
 OK, RUN_FAILED, BAD_INPUT, UNAVAILABLE = 0, 1, 2, 3
+
+#: dpend_progress_fn: (done, total, what, label, user)
+PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.c_longlong, ctypes.c_longlong, ctypes.c_char_p,
+                               ctypes.c_char_p, ctypes.c_void_p)
+
+#: A progress callback of Python: (done, total, what, label).
+Progress = Callable[[int, int, str, str], None]
 
 
 def library_path() -> pathlib.Path:
@@ -55,6 +62,9 @@ def _declare(lib: ctypes.CDLL) -> None:
     signatures = {
         "dpend_run": (c_int, [c_char_p, c_int, ctypes.POINTER(c_char_p),
                               ctypes.POINTER(c_void_p), c_char_p, c_int]),
+        "dpend_run_progress": (c_int, [c_char_p, c_int, ctypes.POINTER(c_char_p),
+                                       ctypes.POINTER(c_void_p), c_char_p, c_int,
+                                       PROGRESS_FN, c_void_p]),
         "dpend_result_bytes": (c_ll, [c_void_p]),
         "dpend_result_copy": (c_int, [c_void_p, c_void_p, c_ll]),
         "dpend_result_data": (c_void_p, [c_void_p]),
@@ -83,22 +93,27 @@ def function(name: str):
             "reinstall (pip install .)") from None
 
 
-def run(command: str, args: Sequence[str]) -> Tuple[int, Optional[bytes], str]:
+def run(command: str, args: Sequence[str],
+        progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
     """dpend_run: (error kind, the HDF5 file image or None, the message).
 
     Runs are serialized (one at a time in the process, ``_run_lock``: the Fortran
     library runs one call at a time too: its command code is not reentrant; each
     run uses OpenMP threads itself). In the
     main thread the run goes to a worker thread so that Ctrl-C is seen: it calls
-    dpend_cancel, waits for the run to stop and raises KeyboardInterrupt."""
+    dpend_cancel, waits for the run to stop and raises KeyboardInterrupt.
+
+    `progress(done, total, what, label)` is called from the run's threads (see
+    dpend_run_progress in dpend.h); if it raises, the run is cancelled and the
+    exception raised here."""
     function("dpend_run")                      # a clear error before any thread
     if threading.current_thread() is not threading.main_thread():
-        return _run(command, args)
+        return _run(command, args, progress)
     box: list = []
 
     def work() -> None:
         try:
-            box.append(("ok", _run(command, args)))
+            box.append(("ok", _run(command, args, progress)))
         except BaseException as e:             # handed to the caller below
             box.append(("error", e))
 
@@ -120,19 +135,41 @@ def run(command: str, args: Sequence[str]) -> Tuple[int, Optional[bytes], str]:
     return value
 
 
-def _run(command: str, args: Sequence[str]) -> Tuple[int, Optional[bytes], str]:
+def _run(command: str, args: Sequence[str],
+         progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
     with _run_lock:
-        return _run_unlocked(command, args)
+        return _run_unlocked(command, args, progress)
 
 
-def _run_unlocked(command: str, args: Sequence[str]) -> Tuple[int, Optional[bytes], str]:
-    dpend_run = function("dpend_run")
+def _run_unlocked(command: str, args: Sequence[str],
+                  progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
     encoded = [a.encode("utf-8") for a in args]
     argv = (ctypes.c_char_p * max(len(encoded), 1))(*encoded)
     result = ctypes.c_void_p()
     message = ctypes.create_string_buffer(_MESSAGE_BYTES)
-    kind = dpend_run(command.encode("utf-8"), len(encoded), argv, ctypes.byref(result),
-                     message, _MESSAGE_BYTES)
+    raised: List[BaseException] = []
+    if progress is None:
+        kind = function("dpend_run")(command.encode("utf-8"), len(encoded), argv,
+                                     ctypes.byref(result), message, _MESSAGE_BYTES)
+    else:
+        def tell(done, total, what, label, _user):
+            if raised:
+                return
+            try:
+                progress(int(done), int(total), (what or b"").decode(),
+                         (label or b"").decode())
+            except BaseException as e:         # the run stops; raised below
+                raised.append(e)
+                cancel()
+
+        callback = PROGRESS_FN(tell)           # alive until the call returns
+        kind = function("dpend_run_progress")(command.encode("utf-8"), len(encoded), argv,
+                                              ctypes.byref(result), message,
+                                              _MESSAGE_BYTES, callback, None)
+    if raised:
+        if result.value:
+            function("dpend_result_free")(result)
+        raise raised[0]
     text = message.value.decode("utf-8", errors="replace")
     image = None
     if result.value:

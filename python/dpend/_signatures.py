@@ -95,6 +95,9 @@ def signature(text: str, positional: Sequence[str] = ()) -> inspect.Signature:
         taken.add(name)
         params.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY,
                                         default=None, annotation=Optional[_TYPES[kind]]))
+    params.append(inspect.Parameter(
+        "progress", inspect.Parameter.KEYWORD_ONLY, default="auto",
+        annotation=Union[None, bool, str, Callable[[int, int, str, str], None]]))
     params.append(inspect.Parameter("options", inspect.Parameter.VAR_KEYWORD,
                                     annotation=Any))
     return inspect.Signature(params, return_annotation="xarray.Dataset")
@@ -107,6 +110,8 @@ lists are Python sequences (``m=[1, 2]``), ``True`` gives a bare flag, ``None``
 and ``False`` leave an option out (the command's default). Returns the file the
 command writes as an xarray.Dataset; raises ValueError with the command line's
 one line for refused input, dpend.RunError for a run that failed partway.
+``progress``: "auto" a tqdm bar once the run has lasted a second (tqdm installed),
+True at once, None none, or a callable f(done, total, what, label) (dpend.run).
 
 The command's help (``dpend {command} --help``):
 

@@ -28,6 +28,7 @@ module dpend_estimate
    use dpend_model, only: max_dof
    use dpend_lapack, only: dpotrf, dpotrs
    use dpend_strings, only: real_str, to_str
+   use dpend_progress, only: progress_listened
    use dpend_estimate_sensitivity, only: sens_model_t
    use dpend_estimate_problem, only: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, &
                                      evaluate_fit, counted_fit, initial_guess
@@ -90,7 +91,8 @@ contains
          counter%progress%reported = 0
       end if
       call fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
-      if (counter%show .and. counter%progress%reported > 0) call counter%progress%finish()
+      if (counter%show .and. (counter%progress%reported > 0 .or. progress_listened())) &
+         call counter%progress%finish()
    end subroutine fit_series
 
    !> `fit_series` with its work counter: the continuation stages, the statistics of

@@ -25,6 +25,19 @@ extern "C" {
 int dpend_run(const char *command, int nargs, const char *const *args, void **result,
               char *message, int msg_len);
 
+/* A progress callback: `done` of `total` units (`what`: "traj" a sweep's
+ * trajectories, "runs" the study's runs, "steps" a fit's step-equivalents, "" parts
+ * of a simulation's horizon) of the report `label` (e.g. "dpend sweep"). */
+typedef void (*dpend_progress_fn)(long long done, long long total, const char *what,
+                                  const char *label, void *user);
+
+/* dpend_run with a progress callback (NULL: none), called from the run's threads one
+ * call at a time: when a report starts, at most every 0.1 s, and when it ends; `user`
+ * is handed to it. It must return quickly and not call dpend_run (dpend_cancel may). */
+int dpend_run_progress(const char *command, int nargs, const char *const *args,
+                       void **result, char *message, int msg_len, dpend_progress_fn fn,
+                       void *user);
+
 /* Bytes of the result's file image (0 for NULL). */
 long long dpend_result_bytes(void *result);
 

@@ -30,9 +30,12 @@ module dpend_capi
    use dpend_sweep_setup, only: sweep_summary_t, summary_text
    use dpend_sweep_engine, only: run_sweep
    use dpend_sweep_layout, only: working_file
-   use dpend_progress, only: silence_progress
+   use dpend_progress, only: silence_progress, set_progress_listener, progress_listener_i
+   use, intrinsic :: iso_c_binding, only: c_funptr, c_null_funptr, c_f_procpointer, &
+      c_associated_funptr => c_associated
    use dpend_strings, only: to_str
    use, intrinsic :: iso_fortran_env, only: int8, int64
+   use dpend_kinds, only: i8
    use dpend_version, only: version
    use dpend_command_common, only: refusal_line, error_line, set_report_unit
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -54,7 +57,7 @@ module dpend_capi
    implicit none
    private
    public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
-   public :: dpend_result_data
+   public :: dpend_result_data, dpend_run_progress
    public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
@@ -71,6 +74,21 @@ module dpend_capi
       type(c_ptr) :: image = c_null_ptr
       integer(c_size_t) :: bytes = 0
    end type result_t
+
+   !> The progress callback of the run in progress and its user pointer (set and
+   !> cleared by `dpend_run_progress` under the lock of library runs).
+   type(c_funptr), save :: progress_fn = c_null_funptr
+   type(c_ptr), save :: progress_user = c_null_ptr
+
+   abstract interface
+      !> void (*)(long long done, long long total, const char *what,
+      !>          const char *label, void *user)
+      subroutine c_progress_i(done, total, what, label, user) bind(C)
+         import :: c_long_long, c_ptr
+         integer(c_long_long), value :: done, total
+         type(c_ptr), value :: what, label, user
+      end subroutine c_progress_i
+   end interface
 
    interface
       !> One library call at a time (dpend_posix.c: the command code keeps string
@@ -105,6 +123,26 @@ contains
       type(c_ptr), intent(out) :: result           !! void **: the result or NULL
       type(c_ptr), value :: message                !! char *
       integer(c_int), value :: msg_len             !! its size [B]
+      dpend_run = dpend_run_progress(command, nargs, args, result, message, msg_len, &
+                                     c_null_funptr, c_null_ptr)
+   end function dpend_run
+
+   !> `dpend_run` with a progress callback `fn` (NULL: none), called from the run's
+   !> threads, one call at a time, at its start, at most every 0.1 s and at its end
+   !> with the units done, their total, the unit ('traj', 'runs', 'steps'; '' parts
+   !> of a horizon) and the report's label; `user` is handed to it.
+   integer(c_int) function dpend_run_progress(command, nargs, args, result, message, &
+                                              msg_len, fn, user) &
+      bind(C, name='dpend_run_progress')
+      type(c_ptr), value :: command                !! const char *
+      integer(c_int), value :: nargs               !! number of options
+      type(c_ptr), value :: args                   !! const char *const *
+      type(c_ptr), intent(out) :: result           !! void **: the result or NULL
+      type(c_ptr), value :: message                !! char *
+      integer(c_int), value :: msg_len             !! its size [B]
+      type(c_funptr), value :: fn                  !! the progress callback or NULL
+      type(c_ptr), value :: user                   !! handed to fn
+      procedure(progress_listener_i), pointer :: listener
       type(arg_t), allocatable :: argv(:)
       type(c_ptr), pointer :: ptrs(:)
       type(error_t), allocatable :: error
@@ -114,6 +152,11 @@ contains
       call library_lock()
       call clear_stop_request()
       call silence_progress()
+      progress_fn = fn
+      progress_user = user
+      listener => null()
+      if (c_associated_funptr(fn)) listener => tell_progress
+      call set_progress_listener(listener)
       name = c_string(command)
       allocate (argv(max(nargs, 0)))
       if (nargs > 0) then
@@ -127,21 +170,56 @@ contains
                 //'simulate, lyapunov, indicators, divergence, poincare, fit, sweep, ' &
                 //'study, models and methods are)'
          call put_c_string(text, message, msg_len)
-         dpend_run = kind_unavailable
-         call library_unlock()
+         dpend_run_progress = kind_unavailable
+         call end_run()
          return
       end if
       call run_captured(name, argv, text, error, result)
       if (allocated(error)) then
-         dpend_run = int(exit_status(error), c_int)
+         dpend_run_progress = int(exit_status(error), c_int)
          text = printable(error%message, controls_only=.true.)
       else
-         dpend_run = kind_ok
+         dpend_run_progress = kind_ok
       end if
       text = without_wrote_lines(text, name)
       call put_c_string(text, message, msg_len)
+      call end_run()
+   end function dpend_run_progress
+
+   !> The run's progress callback forgotten, the lock released.
+   subroutine end_run()
+      procedure(progress_listener_i), pointer :: none
+      none => null()
+      call set_progress_listener(none)
+      progress_fn = c_null_funptr
+      progress_user = c_null_ptr
       call library_unlock()
-   end function dpend_run
+   end subroutine end_run
+
+   !> The listener of the run's progress reports: the C callback.
+   subroutine tell_progress(label, what, done, total)
+      character(len=*), intent(in) :: label, what
+      integer(i8), intent(in) :: done, total
+      procedure(c_progress_i), pointer :: f
+      character(kind=c_char), allocatable, target :: c_label(:), c_what(:)
+      call c_f_procpointer(progress_fn, f)
+      call to_c_chars(label, c_label)
+      call to_c_chars(what, c_what)
+      call f(int(done, c_long_long), int(total, c_long_long), c_loc(c_what), &
+             c_loc(c_label), progress_user)
+   end subroutine tell_progress
+
+   !> `text` as a NUL-terminated C string.
+   subroutine to_c_chars(text, chars)
+      character(len=*), intent(in) :: text
+      character(kind=c_char), allocatable, intent(out) :: chars(:)
+      integer :: i
+      allocate (chars(len(text) + 1))
+      do i = 1, len(text)
+         chars(i) = text(i:i)
+      end do
+      chars(len(text) + 1) = c_null_char
+   end subroutine to_c_chars
 
    !> `command` run with its outputs captured in memory (see the module's notes):
    !> `text` the help when asked for, `result` the handle of the last file written.

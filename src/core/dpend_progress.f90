@@ -8,6 +8,8 @@
 !> command silences every report of the process (`silence_progress`). A command may
 !> queue one line (`progress_header`: the horizon of a sweep) that the next report
 !> prints when it starts, so that a run refused before it starts stays one line.
+!> A listener (`set_progress_listener`: the library's progress callback, src/capi) is
+!> told of every report, silenced or not, at most every 0.1 s and at its start and end.
 module dpend_progress
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
@@ -17,12 +19,26 @@ module dpend_progress
    private
    public :: progress_t, stderr_is_terminal, wall_seconds, silence_progress, progress_silenced
    public :: progress_header, show_progress_header
+   public :: progress_listener_i, set_progress_listener, progress_listened
 
    !> A line the next `progress_start` prints first (unless quiet); '' none.
    character(len=:), allocatable, save :: pending_header
 
    !> Every report of this process is quiet (a command's --quiet: `silence_progress`).
    logical, save :: silenced = .false.
+
+   abstract interface
+      !> Told that `done` of `total` units of the report `label` are done (`what`
+      !> the unit: 'traj', 'runs', ''  a fraction of a horizon, in parts).
+      subroutine progress_listener_i(label, what, done, total)
+         import :: i8
+         character(len=*), intent(in) :: label, what
+         integer(i8), intent(in) :: done, total
+      end subroutine progress_listener_i
+   end interface
+
+   !> The listener of every report (null: none).
+   procedure(progress_listener_i), pointer, save :: listener => null()
 
    interface
       !> POSIX isatty(3): 1 if the file descriptor is a terminal.
@@ -48,6 +64,8 @@ module dpend_progress
       character(len=:), allocatable :: what
       integer :: unit = error_unit     !! where the lines go (tests: a scratch file)
       integer :: lines = 0             !! lines written (plain) or bars drawn (tty)
+      real(dp) :: t_told = -1e30_dp    !! wall clock when the listener was last told [s]
+      integer(i8) :: told = -1         !! `done` the listener was last told
    contains
       procedure :: start => progress_start
       procedure :: update => progress_update
@@ -55,6 +73,32 @@ module dpend_progress
    end type progress_t
 
 contains
+
+   !> Tell `f` of every report from now on (null(): no listener). A library run sets
+   !> it and clears it after; the lock of library runs keeps it one run's.
+   subroutine set_progress_listener(f)
+      procedure(progress_listener_i), pointer, intent(in) :: f  !! the listener or null
+      listener => f
+   end subroutine set_progress_listener
+
+   !> Whether a listener is set (a report that would be silent is made for it).
+   logical function progress_listened()
+      progress_listened = associated(listener)
+   end function progress_listened
+
+   !> Tell the listener, when there is one: at most every 0.1 s, and always when all
+   !> is done or `always`.
+   subroutine tell_listener(self, now, always)
+      class(progress_t), intent(inout) :: self  !! the report
+      real(dp), intent(in) :: now               !! the clock [s]
+      logical, intent(in) :: always             !! tell now, whatever the clock
+      if (.not. associated(listener)) return
+      if (.not. always .and. self%done < self%total .and. now - self%t_told < 0.1_dp) return
+      if (self%told == self%done .and. .not. always) return
+      self%t_told = now
+      self%told = self%done
+      call listener(self%label, self%what, self%done, self%total)
+   end subroutine tell_listener
 
    !> Make every progress report of this process quiet (a command's --quiet).
    subroutine silence_progress()
@@ -122,6 +166,8 @@ contains
       ! a plain line only after `interval` (a short run writes none)
       if (.not. self%tty) self%t_last = self%t_start
       self%lines = 0
+      self%told = -1
+      call tell_listener(self, self%t_start, .true.)
       if (allocated(pending_header)) then
          if (.not. self%quiet .and. len(pending_header) > 0) then
             write (self%unit, '(a)') pending_header
@@ -140,12 +186,14 @@ contains
       real(dp), intent(in), optional :: now     !! the clock [s] (default wall_seconds)
       real(dp) :: t
       self%done = self%done + units
-      if (self%quiet) return
+      if (self%quiet .and. .not. associated(listener)) return
       if (present(now)) then
          t = now
       else
          t = wall_seconds()
       end if
+      call tell_listener(self, t, .false.)
+      if (self%quiet) return
       if (self%tty) then
          if (t - self%t_last < 0.2_dp .and. self%done < self%total) return
       else
@@ -159,6 +207,7 @@ contains
    !> in a log (its lines stay at most one every `interval`).
    subroutine progress_finish(self)
       class(progress_t), intent(inout) :: self  !! the report
+      if (self%told /= self%done) call tell_listener(self, wall_seconds(), .true.)
       if (self%quiet .or. .not. self%tty) return
       if (self%reported /= self%done) call report(self, wall_seconds())
       write (self%unit, '(a)') ''
