@@ -13,8 +13,8 @@ module test_capi
    use testing, only: unittest_t, new_unittest, check_true, error_t, have_tool, skip_test
    use test_cli, only: run_command, scratch_dir, read_text
    use dpend_strings, only: to_str
-   use dpend_capi, only: dpend_run, dpend_result_bytes, dpend_result_copy, &
-      dpend_result_free, dpend_run_progress
+   use dpend_capi, only: dpend_run, dpend_run_progress
+   use dpend_capi_result, only: dpend_result_bytes, dpend_result_copy, dpend_result_free
    implicit none
    private
    public :: collect_capi

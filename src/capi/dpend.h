@@ -3,7 +3,8 @@
  * dpend_run runs one command in the calling thread, as `dpend COMMAND ARGS...` would:
  * the options are the command line's, checked by the same settings layer (a refusal
  * is the command line's line, word for word); the HDF5 file the command writes is
- * written to memory and handed over as a result whose bytes are that file. Nothing
+ * recorded in memory and handed over as a result: its datasets and attributes as
+ * named arrays, and the file's image. Nothing
  * prints, stops or exits the process. Calls from several threads are safe and run one
  * at a time (each with its own OpenMP threads inside).
  *
@@ -38,7 +39,38 @@ int dpend_run_progress(const char *command, int nargs, const char *const *args,
                        void **result, char *message, int msg_len, dpend_progress_fn fn,
                        void *user);
 
-/* Bytes of the result's file image (0 for NULL). */
+/* A result is the file the command writes, as named arrays (its items) and as an
+ * HDF5 file image. The items are the file's datasets and attributes in the order
+ * written; a sweep's result has its image only (0 items). */
+
+/* Item types: IEEE double (itemsize 8), signed little-endian integer (4 or 8),
+ * fixed-length NUL-padded string (itemsize its length), UTF-8 text (a scalar
+ * attribute; itemsize its length, no NUL). */
+enum { DPEND_REAL = 1, DPEND_INTEGER = 2, DPEND_STRING = 3, DPEND_TEXT = 4 };
+
+/* The number of items (0 for NULL or a sweep's result). */
+int dpend_result_items(void *result);
+
+/* Item i (from 0): path (the dataset, or the object of an attribute, e.g.
+ * "/trajectory/energy", "/"), name ("" for a dataset, else the attribute's, e.g.
+ * "units"), type, bytes per element, rank and shape in C order (as the file and h5py
+ * give it; dims holds 8). Returns 0, or 2 for no such item or a buffer too small. */
+int dpend_result_item(void *result, int i, char *path, int path_len, char *name,
+                      int name_len, int *type, long long *itemsize, int *rank,
+                      long long *dims);
+
+/* The index of item path, name ("" or NULL: the dataset), or -1. */
+int dpend_result_find(void *result, const char *path, const char *name);
+
+/* Bytes of item i's values, their address (C order, valid until dpend_result_free;
+ * NULL when empty), and a copy into buf of n bytes (0, or 2: no such item, n too
+ * small or buf NULL). */
+long long dpend_result_item_bytes(void *result, int i);
+const void *dpend_result_item_data(void *result, int i);
+int dpend_result_item_copy(void *result, int i, void *buf, long long n);
+
+/* Bytes of the result's file image (0 for NULL); the image is made from the items
+ * the first time it is asked for. */
 long long dpend_result_bytes(void *result);
 
 /* Copy the image into buf of n bytes: 0, or 2 when n is too small or a pointer NULL. */

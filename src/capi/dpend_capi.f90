@@ -24,6 +24,8 @@ module dpend_capi
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
       remove_directory, remove_file, errno_text, path_kind, path_file
    use dpend_stop_request, only: request_stop, clear_stop_request
+   use dpend_output_record, only: record_t, record_outputs, take_record
+   use dpend_capi_result, only: new_result, library_lock, library_unlock, c_free
    use dpend_error, only: run_failure
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep, sweep_help
@@ -56,8 +58,7 @@ module dpend_capi
    use dpend_method_registry, only: method_names
    implicit none
    private
-   public :: dpend_run, dpend_result_bytes, dpend_result_copy, dpend_result_free
-   public :: dpend_result_data, dpend_run_progress
+   public :: dpend_run, dpend_run_progress
    public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
@@ -68,12 +69,6 @@ module dpend_capi
       'lyapunov', 'indicators', 'divergence', 'poincare', 'fit', 'sweep', 'study', &
       'models', 'methods']
 
-   !> A run's result: the image of the file the command wrote (C memory, freed by
-   !> `dpend_result_free`).
-   type :: result_t
-      type(c_ptr) :: image = c_null_ptr
-      integer(c_size_t) :: bytes = 0
-   end type result_t
 
    !> The progress callback of the run in progress and its user pointer (set and
    !> cleared by `dpend_run_progress` under the lock of library runs).
@@ -90,23 +85,6 @@ module dpend_capi
       end subroutine c_progress_i
    end interface
 
-   interface
-      !> One library call at a time (dpend_posix.c: the command code keeps string
-      !> lengths in static storage, gfortran 12)
-      subroutine library_lock() bind(C, name='dpend_library_lock')
-      end subroutine library_lock
-      subroutine library_unlock() bind(C, name='dpend_library_unlock')
-      end subroutine library_unlock
-      subroutine c_free(p) bind(C, name='free')
-         import :: c_ptr
-         type(c_ptr), value :: p
-      end subroutine c_free
-      type(c_ptr) function c_memcpy(dst, src, n) bind(C, name='memcpy')
-         import :: c_ptr, c_size_t
-         type(c_ptr), value :: dst, src
-         integer(c_size_t), value :: n
-      end function c_memcpy
-   end interface
 
 contains
 
@@ -229,7 +207,7 @@ contains
       character(len=:), allocatable, intent(out) :: text
       type(error_t), allocatable, intent(out) :: error
       type(c_ptr), intent(out) :: result
-      type(result_t), pointer :: res
+      type(record_t), allocatable :: record
       type(c_ptr) :: image
       integer(c_size_t) :: bytes
       text = ''
@@ -237,15 +215,13 @@ contains
       call check_library_args(command, argv, error)
       if (allocated(error)) return
       call capture_outputs(.true.)
+      call record_outputs(.true.)
       call dispatch(command, argv, text, error)
+      call take_record(record)
+      call record_outputs(.false.)
       image = take_capture(bytes)
       call capture_outputs(.false.)
-      if (c_associated(image)) then
-         allocate (res)
-         res%image = image
-         res%bytes = bytes
-         result = c_loc(res)
-      end if
+      result = new_result(record, image, bytes)
    end subroutine run_captured
 
    !> The options the library sets itself are refused (the result is returned, not
@@ -503,53 +479,6 @@ contains
          call run_failure(error)
       end if
    end subroutine keep_file
-
-   !> Bytes of the result's file image (0 for a null handle).
-   integer(c_long_long) function dpend_result_bytes(result) bind(C, name='dpend_result_bytes')
-      type(c_ptr), value :: result  !! the handle of `dpend_run`
-      type(result_t), pointer :: res
-      dpend_result_bytes = 0
-      if (.not. c_associated(result)) return
-      call c_f_pointer(result, res)
-      dpend_result_bytes = int(res%bytes, c_long_long)
-   end function dpend_result_bytes
-
-   !> Copy the image into `buf` of n bytes; 0 on success, 2 when n is too small or a
-   !> pointer is null.
-   integer(c_int) function dpend_result_copy(result, buf, n) bind(C, name='dpend_result_copy')
-      type(c_ptr), value :: result  !! the handle of `dpend_run`
-      type(c_ptr), value :: buf     !! the destination
-      integer(c_long_long), value :: n  !! its size [B]
-      type(result_t), pointer :: res
-      type(c_ptr) :: dst
-      dpend_result_copy = kind_refused
-      if (.not. c_associated(result) .or. .not. c_associated(buf)) return
-      call c_f_pointer(result, res)
-      if (n < int(res%bytes, c_long_long)) return
-      dst = c_memcpy(buf, res%image, res%bytes)
-      dpend_result_copy = kind_ok
-   end function dpend_result_copy
-
-   !> The address of the result's image (dpend_result_bytes bytes, valid until
-   !> `dpend_result_free`); NULL for a null handle.
-   type(c_ptr) function dpend_result_data(result) bind(C, name='dpend_result_data')
-      type(c_ptr), value :: result  !! the handle of `dpend_run`
-      type(result_t), pointer :: res
-      dpend_result_data = c_null_ptr
-      if (.not. c_associated(result)) return
-      call c_f_pointer(result, res)
-      dpend_result_data = res%image
-   end function dpend_result_data
-
-   !> Release a result (a null handle is ignored).
-   subroutine dpend_result_free(result) bind(C, name='dpend_result_free')
-      type(c_ptr), value :: result  !! the handle of `dpend_run`
-      type(result_t), pointer :: res
-      if (.not. c_associated(result)) return
-      call c_f_pointer(result, res)
-      call c_free(res%image)
-      deallocate (res)
-   end subroutine dpend_result_free
 
    !> Ask the call in progress (in another thread) to stop: a sweep stops its lanes
    !> taking trajectories and its threads taking blocks, and returns kind 1 with the

@@ -40,12 +40,14 @@ module dpend_hdf5
    ! the submodules have these names too, by host association
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t
-   use, intrinsic :: iso_fortran_env, only: real64, int32
+   use, intrinsic :: iso_fortran_env, only: real64, int32, int64
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use hdf5
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_os, only: io_failure_reason, capturing_outputs, capture_buffer
+   use dpend_output_record, only: record_t, recording_outputs, keep_record, item_real, &
+      item_integer, item_string, item_text
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory
    use dpend_strings, only: to_str
@@ -73,6 +75,9 @@ module dpend_hdf5
       !> created in memory (a captured output, `capture_outputs`): its image is kept
       !> when it is closed
       logical :: memory = .false.
+      !> recorded, not written (`record_outputs`): whole datasets and attributes only;
+      !> the record is kept when the file is closed
+      type(record_t), allocatable :: record
       !> first failure of a write called without `error` (see `take_error`)
       type(error_t), allocatable :: error
    contains
@@ -88,6 +93,7 @@ module dpend_hdf5
       procedure :: create_dataset => file_create_dataset
       procedure :: describe => file_describe
       procedure :: datasets => file_datasets
+      procedure :: replay => file_replay
       procedure, private :: write_real, write_int, write_i64, write_str
       generic :: write => write_real, write_int, write_i64, write_str
       procedure, private :: slab_real, slab_int
@@ -305,6 +311,14 @@ module dpend_hdf5
          character(len=*), intent(in) :: value             !! text to store
          type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       end subroutine writeattr_str
+
+      !> Write the items of `record` (a recorded file's writes, in order) into this
+      !> open file: the file the recorded writes would have made.
+      module subroutine file_replay(self, record, error)
+         class(h5file_t), intent(inout) :: self            !! the file object
+         type(record_t), intent(in), target :: record      !! what was recorded
+         type(error_t), allocatable, intent(out) :: error  !! set on failure
+      end subroutine file_replay
 
       !> Write the attributes `units` and `description` (variable-length UTF-8 strings)
       !> of the dataset `path`; either may be left out. Dimensionless quantities have
@@ -603,7 +617,7 @@ contains
    !> True while a file is open.
    logical function file_is_open(self) result(is_open)
       class(h5file_t), intent(in) :: self  !! the file object
-      is_open = self%id >= 0
+      is_open = self%id >= 0 .or. allocated(self%record)
    end function file_is_open
 
    !> True if `filename` exists and is an HDF5 file.

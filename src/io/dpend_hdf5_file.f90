@@ -16,6 +16,14 @@ contains
       if (allocated(self%error)) deallocate (self%error)
       call init_library(error)
       if (allocated(error)) return
+      if ((mode == 'w' .or. mode == 'x') .and. capturing_outputs() .and. &
+          recording_outputs()) then   ! a library call's output, recorded (no HDF5 file)
+         allocate (self%record)
+         self%filename = trim(filename)
+         self%readonly = .false.
+         self%memory = .true.
+         return
+      end if
       inquire (file=filename, exist=on_disk)
       if (present(access)) then
          call h5pcopy_f(access, fapl, ierr)
@@ -67,6 +75,11 @@ contains
       logical :: valid
       if (present(error)) call self%take_error(error)
       if (allocated(self%error)) deallocate (self%error)
+      if (allocated(self%record)) then   ! kept for take_record
+         call keep_record(self%record)
+         self%memory = .false.
+         return
+      end if
       if (self%id < 0) return
       call quiet_thread()
       ierr = 0
@@ -118,6 +131,10 @@ contains
       integer :: i, n, ierr
       found = .false.
       if (.not. self%is_open() .or. len_trim(path) == 0) return
+      if (allocated(self%record)) then
+         found = self%record%has_object(path)
+         return
+      end if
       found = .true.
       n = len_trim(path)
       do i = 2, n + 1   ! check path(1:i-1) at every component end
@@ -135,6 +152,10 @@ contains
       integer :: ierr
       found = .false.
       if (.not. self%exists(path)) return
+      if (allocated(self%record)) then
+         found = self%record%find(path, name) > 0
+         return
+      end if
       call h5aexists_by_name_f(self%id, trim(path), trim(name), found, ierr)
       if (ierr /= 0) found = .false.
    end procedure file_attr_exists

@@ -187,6 +187,11 @@ contains
          buf(i) = value(i:i)
       end do
       buf(len(value) + 1) = c_null_char
+      if (allocated(self%record)) then   ! the text, without its NUL
+         call record_item(self, path, name, item_text, int(len(value), int64), &
+                          [integer(int64) ::], c_loc(buf), int(len(value), int64), error)
+         return
+      end if
       ptr = c_loc(buf)
       stype = vlen_string_type()
       call writeattr_now(self, path, name, stype, [integer(hsize_t) ::], c_loc(ptr), error)
@@ -314,6 +319,10 @@ contains
       integer(hsize_t), allocatable :: old_dims(:)
       integer :: hdferr, ierr
       logical :: same
+      if (allocated(self%record)) then
+         call record_typed(self, path, '', mem_type, dims, buf, error)
+         return
+      end if
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
       if (dset >= 0) then
@@ -457,6 +466,10 @@ contains
       logical :: found
       call require_open(self, path, .true., error)
       if (allocated(error)) return
+      if (allocated(self%record)) then
+         call record_typed(self, path, name, mem_type, dims, buf, error)
+         return
+      end if
       hdferr = -1
       if (self%exists(path)) call h5oopen_f(self%id, trim(path), obj, hdferr)
       if (hdferr /= 0) then
@@ -478,4 +491,88 @@ contains
       if (hdferr /= 0) call fail(error, 'write', self, attr_label(path, name), &
          'HDF5 write failed')
    end subroutine writeattr_now
+
+   ! -------------------------------------------------------- the record ---
+
+   module procedure file_replay
+      integer :: k
+      integer(hid_t) :: mem_type
+      character(len=:), allocatable :: text
+      do k = 1, record%n
+         associate (item => record%items(k))
+            if (item%type == item_text) then
+               allocate (character(len=size(item%bytes)) :: text)
+               if (size(item%bytes) > 0) text = transfer(item%bytes, text)
+               call writeattr_vlen(self, item%path, item%name, text, error)
+               deallocate (text)
+            else
+               select case (item%type)
+               case (item_real)
+                  mem_type = real_type()
+               case (item_integer)
+                  mem_type = merge(i64_type(), int_type(), item%itemsize == 8)
+               case default
+                  mem_type = string_type(int(item%itemsize))
+               end select
+               if (len(item%name) == 0) then
+                  call write_now(self, item%path, mem_type, int(item%dims, hsize_t), &
+                                 c_loc(item%bytes), error)
+               else
+                  call writeattr_now(self, item%path, item%name, mem_type, &
+                                     int(item%dims, hsize_t), c_loc(item%bytes), error)
+               end if
+               if (item%type == item_string) call close_id(mem_type)
+            end if
+         end associate
+         if (allocated(error)) return
+      end do
+   end procedure file_replay
+
+   !> Record a dataset (`name` '') or an attribute of HDF5 memory type `mem_type`: a
+   !> float, a signed integer or a fixed-length string.
+   subroutine record_typed(self, path, name, mem_type, dims, buf, error)
+      class(h5file_t), intent(inout) :: self            !! the recorded file
+      character(len=*), intent(in) :: path, name        !! the item
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      integer(hsize_t), intent(in) :: dims(:)           !! shape, size 0 for a scalar
+      type(c_ptr), intent(in) :: buf                    !! address of the data
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      integer(size_t) :: bytes
+      integer :: class, ierr, kind
+      logical :: vlen
+      call h5tget_class_f(mem_type, class, ierr)
+      if (ierr == 0) call h5tget_size_f(mem_type, bytes, ierr)
+      vlen = .false.
+      if (ierr == 0 .and. class == H5T_STRING_F) call h5tis_variable_str_f(mem_type, vlen, ierr)
+      kind = 0
+      if (class == H5T_FLOAT_F) kind = item_real
+      if (class == H5T_INTEGER_F) kind = item_integer
+      if (class == H5T_STRING_F .and. .not. vlen) kind = item_string
+      if (ierr /= 0 .or. kind == 0) then
+         if (len(name) == 0) then
+            call fail(error, 'write', self, quoted(path), 'a type a record cannot hold')
+         else
+            call fail(error, 'write', self, attr_label(path, name), &
+                      'a type a record cannot hold')
+         end if
+         return
+      end if
+      call record_item(self, path, name, kind, int(bytes, int64), int(dims, int64), buf, &
+                       product(int(dims, int64))*int(bytes, int64), error)
+   end subroutine record_typed
+
+   !> Add an item to the record; an attribute's object must be there, as in a file.
+   subroutine record_item(self, path, name, kind, itemsize, dims, buf, nbytes, error)
+      class(h5file_t), intent(inout) :: self            !! the recorded file
+      character(len=*), intent(in) :: path, name        !! the item
+      integer, intent(in) :: kind                       !! item_real .. item_text
+      integer(int64), intent(in) :: itemsize, dims(:), nbytes
+      type(c_ptr), intent(in) :: buf                    !! address of the data
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      if (len(name) > 0 .and. .not. self%record%has_object(path)) then
+         call fail(error, 'write', self, attr_label(path, name), 'no such group or dataset')
+         return
+      end if
+      call self%record%add(path, name, kind, itemsize, dims, buf, nbytes)
+   end subroutine record_item
 end submodule dpend_hdf5_write
