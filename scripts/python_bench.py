@@ -26,13 +26,17 @@ import h5py
 import dpend
 
 
-def best(f, repeat):
-    times = []
+def side_by_side(py, cli, repeat):
+    """Python and the command run in turns (so a change of the machine's load hits
+    both): the least time of each and the median of the ratios of each turn."""
+    t_py, t_cli = [], []
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        times.append(time.perf_counter() - t0)
-    return min(times)
+        for f, times in ((py, t_py), (cli, t_cli)):
+            t0 = time.perf_counter()
+            f()
+            times.append(time.perf_counter() - t0)
+    ratios = sorted(p / c for p, c in zip(t_py, t_cli))
+    return min(t_py), min(t_cli), ratios[len(ratios) // 2]
 
 
 def cpu_model():
@@ -49,13 +53,14 @@ def cpu_model():
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--dpend", required=True, help="the release dpend binary")
-    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--repeat", type=int, default=11)
     a = ap.parse_args()
     cli = os.path.abspath(a.dpend)
     work = tempfile.mkdtemp(prefix="dpend-bench-")
     print(f"python_bench: {cpu_model()}, {os.cpu_count()} CPUs, load "
           f"{os.getloadavg()[0]:.2f}; Python {platform.python_version()}, dpend "
-          f"{dpend.__version__}; least of {a.repeat} runs")
+          f"{dpend.__version__}; {a.repeat} turns, each Python then the command: the "
+          "least times and the median of the turns' ratios")
 
     sweep_kw = dict(n=128, t_end=100)
     out = os.path.join(work, "sweep.h5")
@@ -64,10 +69,10 @@ def main():
         subprocess.run([cli, "sweep", *dpend.options(**sweep_kw), "--output", out,
                         "--force", "--quiet"], check=True, stdout=subprocess.DEVNULL)
 
-    t_py = best(lambda: dpend.sweep(**sweep_kw), a.repeat)
-    t_cli = best(sweep_cli, a.repeat)
+    t_py, t_cli, ratio = side_by_side(lambda: dpend.sweep(**sweep_kw, progress=None),
+                                      sweep_cli, a.repeat)
     print(f"sweep 128x128 to t = 100 sqrt(l1/g): Python {t_py:.3f} s, command {t_cli:.3f} s,"
-          f" ratio {t_py / t_cli:.3f}")
+          f" median ratio {ratio:.3f}")
 
     sim_kw = dict(method="rk4", dt=1e-4, t_end=10, save_every=1, q1=0, q2=0)
     sim = os.path.join(work, "sim.h5")
@@ -75,18 +80,21 @@ def main():
     def simulate_cli():
         subprocess.run([cli, "simulate", *dpend.options(**sim_kw), "--output", sim,
                         "--force", "--quiet"], check=True, stdout=subprocess.DEVNULL)
+        arrays = []
         with h5py.File(sim, "r") as f:   # every dataset, as the Dataset holds them
-            f.visititems(lambda name, obj: obj[()] if isinstance(obj, h5py.Dataset)
-                         else None)
+            # (visititems stops at the first callback that returns a value: append)
+            f.visititems(lambda name, obj: arrays.append(obj[()])
+                         if isinstance(obj, h5py.Dataset) else None)
+        if len(arrays) < 20:
+            raise RuntimeError(f"read {len(arrays)} datasets of {sim}")
 
     def simulate_py():
-        ds = dpend.simulate(**sim_kw)
+        ds = dpend.simulate(**sim_kw, progress=None)
         _ = [v.values for v in ds.variables.values()]
 
-    t_py = best(simulate_py, a.repeat)
-    t_cli = best(simulate_cli, a.repeat)
+    t_py, t_cli, ratio = side_by_side(simulate_py, simulate_cli, a.repeat)
     print(f"simulate rk4 1e5 steps, every step kept: Python {t_py:.3f} s, command + h5py "
-          f"{t_cli:.3f} s, ratio {t_py / t_cli:.3f}")
+          f"{t_cli:.3f} s, median ratio {ratio:.3f}")
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 from . import _library
-from ._dataset import from_image
+from ._dataset import from_result
 
 _RESERVED = ("output", "force", "quiet")
 
@@ -142,11 +142,11 @@ def run(command: str, *positional: "str | os.PathLike[str]", progress: ProgressA
     args = [os.fspath(p) for p in positional] + options(**kw)
     callback, bar = _progress(progress)
     try:
-        kind, image, message = _library.run(command, args, callback)
+        kind, handle, message = _library.run(command, args, callback)
     finally:
         if bar is not None:
             bar.close()
-    result = from_image(image) if image is not None else None
+    result = from_result(handle) if handle is not None else None
     if kind == _library.OK:
         if result is None:
             raise RuntimeError(f"dpend {command}: the run succeeded but gave no file")

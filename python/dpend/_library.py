@@ -13,7 +13,9 @@ import ctypes
 import os
 import pathlib
 import threading
-from typing import Callable, List, Optional, Sequence, Tuple
+from typing import Any, Callable, List, Optional, Sequence, Tuple
+
+import numpy as np
 
 _MESSAGE_BYTES = 1 << 16   # the help texts and the models' table fit
 _lock = threading.Lock()
@@ -65,6 +67,12 @@ def _declare(lib: ctypes.CDLL) -> None:
         "dpend_run_progress": (c_int, [c_char_p, c_int, ctypes.POINTER(c_char_p),
                                        ctypes.POINTER(c_void_p), c_char_p, c_int,
                                        PROGRESS_FN, c_void_p]),
+        "dpend_result_items": (c_int, [c_void_p]),
+        "dpend_result_item": (c_int, [c_void_p, c_int, c_char_p, c_int, c_char_p, c_int,
+                                      ctypes.POINTER(c_int), ctypes.POINTER(c_ll),
+                                      ctypes.POINTER(c_int), ctypes.POINTER(c_ll)]),
+        "dpend_result_item_bytes": (c_ll, [c_void_p, c_int]),
+        "dpend_result_item_data": (c_void_p, [c_void_p, c_int]),
         "dpend_result_bytes": (c_ll, [c_void_p]),
         "dpend_result_copy": (c_int, [c_void_p, c_void_p, c_ll]),
         "dpend_result_data": (c_void_p, [c_void_p]),
@@ -93,9 +101,89 @@ def function(name: str):
             "reinstall (pip install .)") from None
 
 
+#: The item types of dpend_result_item (dpend.h).
+REAL, INTEGER, STRING, TEXT = 1, 2, 3, 4
+
+
+class _Memory:
+    """Bytes of a result's item seen by numpy without a copy (read-only); holds the
+    result, so the memory lives as long as any array made from it."""
+
+    def __init__(self, owner: "Result", address: int, size: int) -> None:
+        self.owner = owner
+        self.__array_interface__ = {"shape": (size,), "typestr": "|u1",
+                                    "data": (address, True), "version": 3}
+
+
+class Result:
+    """A run's result (dpend_result_* of dpend.h): its items, the file's datasets and
+    attributes in the order written, and the file's image (made when first asked
+    for). Released when the last reference to it (or to an array of it) goes."""
+
+    def __init__(self, handle: int) -> None:
+        self._handle = ctypes.c_void_p(handle)
+        self._image: Optional[bytes] = None
+        self._free = function("dpend_result_free")
+
+    def __del__(self) -> None:
+        if getattr(self, "_handle", None) is not None and self._handle.value:
+            self._free(self._handle)
+            self._handle = ctypes.c_void_p()
+
+    def __len__(self) -> int:
+        return function("dpend_result_items")(self._handle)
+
+    def item(self, i: int) -> Tuple[str, str, int, int, Tuple[int, ...]]:
+        """Item i: (path, name ('' a dataset), type, bytes per element, shape)."""
+        path = ctypes.create_string_buffer(4096)
+        name = ctypes.create_string_buffer(1024)
+        kind, rank = ctypes.c_int(), ctypes.c_int()
+        itemsize = ctypes.c_longlong()
+        dims = (ctypes.c_longlong * 8)()
+        if function("dpend_result_item")(self._handle, i, path, len(path), name, len(name),
+                                         ctypes.byref(kind), ctypes.byref(itemsize),
+                                         ctypes.byref(rank), dims) != OK:
+            raise RuntimeError(f"dpend: dpend_result_item refused item {i}")
+        return (path.value.decode("utf-8"), name.value.decode("utf-8"), kind.value,
+                itemsize.value, tuple(dims[:rank.value]))
+
+    def value(self, i: int, kind: int, itemsize: int, shape: Tuple[int, ...]) -> Any:
+        """Item i's values: a read-only numpy array over the result's memory (no
+        copy), or a str for a text attribute."""
+        n = function("dpend_result_item_bytes")(self._handle, i)
+        address = function("dpend_result_item_data")(self._handle, i)
+        if kind == TEXT:
+            return ctypes.string_at(address, n).decode("utf-8", errors="replace") if n else ""
+        if kind == REAL:
+            dtype = np.dtype("<f%d" % itemsize)
+        elif kind == INTEGER:
+            dtype = np.dtype("<i%d" % itemsize)
+        elif kind == STRING:
+            dtype = np.dtype("S%d" % itemsize)
+        else:
+            raise RuntimeError(f"dpend: item {i} has the unknown type {kind}")
+        count = int(np.prod(shape, dtype=np.int64))
+        if count * dtype.itemsize != n:
+            raise RuntimeError(f"dpend: item {i} holds {n} bytes, not {count} x "
+                               f"{dtype.itemsize}")
+        if n == 0:
+            return np.zeros(shape, dtype)
+        return np.asarray(_Memory(self, address, n)).view(dtype).reshape(shape)
+
+    def image(self) -> bytes:
+        """The file's image (bytes), made once."""
+        if self._image is None:
+            n = function("dpend_result_bytes")(self._handle)
+            address = function("dpend_result_data")(self._handle)
+            if n <= 0 or not address:
+                raise RuntimeError("dpend: the result's file image could not be made")
+            self._image = ctypes.string_at(address, n)
+        return self._image
+
+
 def run(command: str, args: Sequence[str],
-        progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
-    """dpend_run: (error kind, the HDF5 file image or None, the message).
+        progress: Optional[Progress] = None) -> Tuple[int, Optional[Result], str]:
+    """dpend_run: (error kind, the result or None, the message).
 
     Runs are serialized (one at a time in the process, ``_run_lock``: the Fortran
     library runs one call at a time too: its command code is not reentrant; each
@@ -136,13 +224,13 @@ def run(command: str, args: Sequence[str],
 
 
 def _run(command: str, args: Sequence[str],
-         progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
+         progress: Optional[Progress] = None) -> Tuple[int, Optional[Result], str]:
     with _run_lock:
         return _run_unlocked(command, args, progress)
 
 
 def _run_unlocked(command: str, args: Sequence[str],
-                  progress: Optional[Progress] = None) -> Tuple[int, Optional[bytes], str]:
+                  progress: Optional[Progress] = None) -> Tuple[int, Optional[Result], str]:
     encoded = [a.encode("utf-8") for a in args]
     argv = (ctypes.c_char_p * max(len(encoded), 1))(*encoded)
     result = ctypes.c_void_p()
@@ -171,27 +259,7 @@ def _run_unlocked(command: str, args: Sequence[str],
             function("dpend_result_free")(result)
         raise raised[0]
     text = message.value.decode("utf-8", errors="replace")
-    image = None
-    if result.value:
-        try:
-            image = _image(result)
-        finally:
-            function("dpend_result_free")(result)
-    return kind, image, text
-
-
-def _image(result: ctypes.c_void_p) -> bytes:
-    """The bytes of a result's file image (one copy, from the library's memory)."""
-    n = function("dpend_result_bytes")(result)
-    if n < 0:
-        raise RuntimeError(f"dpend: dpend_result_bytes gave {n}")
-    if n == 0:
-        return b""
-    address = function("dpend_result_data")(result)
-    if not address:
-        raise RuntimeError("dpend: dpend_result_data gave NULL for a result of "
-                           f"{n} bytes")
-    return ctypes.string_at(address, n)
+    return kind, (Result(result.value) if result.value else None), text
 
 
 def cancel() -> None:

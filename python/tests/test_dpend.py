@@ -160,3 +160,32 @@ def test_help_parsing_of_option_lines():
                                 ("support_amplitude", "sequence"), ("rtol", "float"),
                                 ("atol", "float"), ("model", "text"), ("config", "any"),
                                 ("links", "any"), ("dt", "any")]
+
+
+@pytest.mark.parametrize("command, kw", [
+    ("simulate", dict(q1=0.5, q2=-1, t_end=1)),
+    ("simulate", dict(links=3, body="point", t_end=0.5)),
+    ("simulate", dict(model="elastic", q1=1.0, q2=0.5, t_end=0.5)),
+    ("lyapunov", dict(t_end=2)),
+    ("indicators", dict(t_end=2)),
+    ("divergence", dict(t_end=2)),
+    ("poincare", dict(t_end=10)),
+    ("sweep", dict(n=16, t_end=5)),
+    ("sweep", dict(n=16, t_end=5, indicator="megno")),
+    ("study", dict(quick=True, methods="rk4", cases="small")),
+])
+def test_arrays_are_the_files_datasets(command, kw):
+    """The Dataset made from the result's arrays (no HDF5) is identical, variable by
+    variable and attribute by attribute, to the one read from the file's image."""
+    ds = getattr(dpend, command)(**kw)
+    assert len(ds.encoding["dpend_result"]) > 0          # made from the items
+    assert ds.identical(dpend.from_image(ds.dpend.image))
+    values = next(iter(ds.data_vars.values())).values
+    assert not values.flags.writeable                     # the library's memory
+
+
+def test_the_arrays_outlive_the_dataset():
+    energy = dpend.simulate(t_end=1).energy.values
+    import gc
+    gc.collect()
+    assert energy.shape == (101,) and np.isfinite(energy).all()

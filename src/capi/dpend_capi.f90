@@ -24,7 +24,8 @@ module dpend_capi
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
       remove_directory, remove_file, errno_text, path_kind, path_file
    use dpend_stop_request, only: request_stop, clear_stop_request
-   use dpend_output_record, only: record_t, record_outputs, take_record
+   use dpend_output_record, only: record_t, record_outputs, take_record, keep_record
+   use dpend_hdf5, only: h5file_t
    use dpend_capi_result, only: new_result, library_lock, library_unlock, c_free
    use dpend_error, only: run_failure
    use dpend_sweep_settings, only: sweep_config_t
@@ -430,7 +431,9 @@ contains
             call keep_file(file, error)
          else if (path_kind(working_file(file)) == path_file) then
             call keep_file(working_file(file), error)
+            file = working_file(file)
          end if
+         if (path_kind(file) == path_file) call keep_items(file, error)
       end if
       err = remove_file(file)
       err = remove_file(working_file(file))
@@ -449,6 +452,27 @@ contains
          root = '/tmp'
       end if
    end function temp_root
+
+   !> The items of the file at `path` as the run's record (`take_record`).
+   subroutine keep_items(path, error)
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(inout) :: error
+      type(h5file_t) :: h5
+      type(record_t), allocatable :: record
+      type(error_t), allocatable :: err
+      call h5%open(path, 'r', err)
+      if (.not. allocated(err)) call h5%to_record(record, err)
+      call h5%close()
+      if (allocated(err)) then
+         if (.not. allocated(error)) then
+            call move_alloc(err, error)
+            error%message = 'dpend sweep: '//error%message
+            call run_failure(error)
+         end if
+         return
+      end if
+      call keep_record(record)
+   end subroutine keep_items
 
    !> The bytes of the file at `path` as this thread's captured image.
    subroutine keep_file(path, error)

@@ -40,7 +40,7 @@ module dpend_hdf5
    ! the submodules have these names too, by host association
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t
-   use, intrinsic :: iso_fortran_env, only: real64, int32, int64
+   use, intrinsic :: iso_fortran_env, only: real64, int32, int64, int8
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use hdf5
    use dpend_kinds, only: dp, i8
@@ -94,6 +94,7 @@ module dpend_hdf5
       procedure :: describe => file_describe
       procedure :: datasets => file_datasets
       procedure :: replay => file_replay
+      procedure :: to_record => file_record
       procedure, private :: write_real, write_int, write_i64, write_str
       generic :: write => write_real, write_int, write_i64, write_str
       procedure, private :: slab_real, slab_int
@@ -311,6 +312,16 @@ module dpend_hdf5
          character(len=*), intent(in) :: value             !! text to store
          type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
       end subroutine writeattr_str
+
+      !> The record of this open file, every dataset and attribute in HDF5's name
+      !> order, depth first: the root's attributes, then each child (a group's
+      !> attributes and its children; a dataset, then its attributes). Sizes are
+      !> checked before anything is read.
+      module subroutine file_record(self, record, error)
+         class(h5file_t), intent(inout) :: self               !! the file object
+         type(record_t), allocatable, intent(out) :: record   !! what it holds
+         type(error_t), allocatable, intent(out) :: error     !! unreadable or too big
+      end subroutine file_record
 
       !> Write the items of `record` (a recorded file's writes, in order) into this
       !> open file: the file the recorded writes would have made.

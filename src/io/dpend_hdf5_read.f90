@@ -432,4 +432,207 @@ contains
       end do
       call h5free_memory(text)
    end subroutine read_vlen
+
+   ! ---------------------------------------------------------- the record ---
+
+   module procedure file_record
+      allocate (record)
+      call require_open(self, '/', .false., error)
+      if (.not. allocated(error)) call record_attributes(self, '/', record, error)
+      if (.not. allocated(error)) call visit('/')
+   contains
+      !> The children of group `g`, in name order.
+      recursive subroutine visit(g)
+         character(len=*), intent(in) :: g
+         character(len=1024) :: name
+         character(len=:), allocatable :: child
+         integer(hid_t) :: obj
+         integer(size_t) :: name_len
+         integer :: storage, nlinks, max_corder, ierr, id_type, k
+         call h5gget_info_by_name_f(self%id, g, storage, nlinks, max_corder, ierr)
+         if (ierr /= 0) then
+            call fail(error, 'record', self, quoted(g), 'not a group')
+            return
+         end if
+         do k = 0, nlinks - 1
+            name = ''
+            call h5lget_name_by_idx_f(self%id, g, H5_INDEX_NAME_F, H5_ITER_INC_F, &
+               int(k, hsize_t), name, ierr, name_len)
+            if (ierr /= 0 .or. name_len > len(name)) then
+               call fail(error, 'record', self, quoted(g), 'a name of its is unreadable')
+               return
+            end if
+            if (g == '/') then
+               child = '/'//name(1:name_len)
+            else
+               child = g//'/'//name(1:name_len)
+            end if
+            call h5oopen_f(self%id, child, obj, ierr)
+            id_type = -1
+            if (ierr == 0) call h5iget_type_f(obj, id_type, ierr)
+            if (ierr == 0) call h5oclose_f(obj, ierr)
+            if (id_type == H5I_GROUP_F) then
+               call record_attributes(self, child, record, error)
+               if (.not. allocated(error)) call visit(child)
+            else if (id_type == H5I_DATASET_F) then
+               call record_dataset(self, child, record, error)
+               if (.not. allocated(error)) call record_attributes(self, child, record, error)
+            else
+               call fail(error, 'record', self, quoted(child), 'not a group or dataset')
+            end if
+            if (allocated(error)) return
+         end do
+      end subroutine visit
+   end procedure file_record
+
+   !> The memory type, record type and element size of the HDF5 type `ftype`:
+   !> floats read as double, integers as 4 or 8 bytes, strings as they are; `kind`
+   !> 0 for a type a record cannot hold.
+   subroutine record_type(ftype, mem_type, kind, itemsize)
+      integer(hid_t), intent(in) :: ftype
+      integer(hid_t), intent(out) :: mem_type      !! close it when kind is item_string
+      integer, intent(out) :: kind
+      integer(i8), intent(out) :: itemsize
+      integer(size_t) :: bytes
+      integer :: class, ierr
+      logical :: vlen
+      kind = 0
+      mem_type = -1
+      itemsize = 0
+      call h5tget_class_f(ftype, class, ierr)
+      if (ierr == 0) call h5tget_size_f(ftype, bytes, ierr)
+      if (ierr /= 0) return
+      if (class == H5T_FLOAT_F) then
+         kind = item_real
+         mem_type = real_type()
+         itemsize = 8
+      else if (class == H5T_INTEGER_F) then
+         kind = item_integer
+         itemsize = merge(4_i8, 8_i8, bytes <= 4)
+         mem_type = merge(int_type(), i64_type(), bytes <= 4)
+      else if (class == H5T_STRING_F) then
+         call h5tis_variable_str_f(ftype, vlen, ierr)
+         if (ierr /= 0) return
+         if (vlen) then
+            kind = item_text
+         else
+            kind = item_string
+            itemsize = int(bytes, i8)
+            mem_type = string_type(int(bytes))
+         end if
+      end if
+   end subroutine record_type
+
+   !> Record the dataset `path` (not a variable-length string).
+   subroutine record_dataset(self, path, record, error)
+      class(h5file_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      type(record_t), intent(inout) :: record
+      type(error_t), allocatable, intent(out) :: error
+      integer(hid_t) :: dset, ftype, space, mem_type
+      integer(hsize_t), allocatable :: dims(:)
+      integer(int8), allocatable, target :: bytes(:)
+      integer(i8) :: itemsize
+      integer :: kind, ierr
+      call h5dopen_f(self%id, path, dset, ierr)
+      if (ierr /= 0) then
+         call fail(error, 'record', self, quoted(path), 'it cannot be opened')
+         return
+      end if
+      call h5dget_type_f(dset, ftype, ierr)
+      call record_type(ftype, mem_type, kind, itemsize)
+      call close_id(ftype)
+      call h5dget_space_f(dset, space, ierr)
+      call space_dims(space, dims)
+      call close_id(space)
+      if (kind == 0 .or. kind == item_text) then
+         call close_id(dset)
+         call fail(error, 'record', self, quoted(path), 'a type a record cannot hold')
+         return
+      end if
+      call check_read_size(self, quoted(path), dims, itemsize, error)
+      if (.not. allocated(error)) then
+         allocate (bytes(product(int(dims, i8))*itemsize))
+         call read_obj(self, quoted(path), dset, mem_type, c_loc(bytes), &
+                       int(product(int(dims, i8))), error)
+      else
+         call close_id(dset)
+      end if
+      if (kind == item_string) call close_id(mem_type)
+      if (allocated(error)) return
+      call record%add(path, '', kind, itemsize, int(dims, i8), c_loc(bytes), &
+                      size(bytes, kind=i8))
+   end subroutine record_dataset
+
+   !> Record the attributes of the object `path`, in name order.
+   subroutine record_attributes(self, path, record, error)
+      class(h5file_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      type(record_t), intent(inout) :: record
+      type(error_t), allocatable, intent(out) :: error
+      integer(hid_t) :: obj, attr, ftype, space, mem_type
+      integer(hsize_t), allocatable :: dims(:)
+      integer(int8), allocatable, target :: bytes(:)
+      character(len=1024) :: name
+      character(len=:), allocatable :: what, text
+      integer(i8) :: itemsize
+      integer :: kind, ierr, nattrs, k, name_len
+      logical :: unreadable
+      unreadable = .false.
+      call h5oopen_f(self%id, path, obj, ierr)
+      if (ierr /= 0) then
+         call fail(error, 'record', self, quoted(path), 'it cannot be opened')
+         return
+      end if
+      call h5aget_num_attrs_f(obj, nattrs, ierr)
+      do k = 0, nattrs - 1
+         call h5aopen_by_idx_f(obj, '.', H5_INDEX_NAME_F, H5_ITER_INC_F, int(k, hsize_t), &
+                               attr, ierr)
+         unreadable = ierr /= 0
+         if (unreadable) exit
+         name = ''
+         call h5aget_name_f(attr, int(len(name), size_t), name, name_len)
+         if (name_len < 0 .or. name_len >= len(name)) then
+            call close_id(attr)
+            unreadable = .true.
+            exit
+         end if
+         what = attr_label(path, name(:name_len))
+         call h5aget_type_f(attr, ftype, ierr)
+         call record_type(ftype, mem_type, kind, itemsize)
+         call close_id(ftype)
+         call h5aget_space_f(attr, space, ierr)
+         call space_dims(space, dims)
+         call close_id(space)
+         if (kind == item_text) then
+            call read_vlen(self, what, attr, text, error)
+            if (allocated(error)) exit
+            bytes = transfer(text, [0_int8], len(text))
+            call record%add(path, name(:name_len), item_text, int(len(text), i8), &
+                            [integer(i8) ::], c_loc(bytes), int(len(text), i8))
+            cycle
+         end if
+         if (kind == 0) then
+            call close_id(attr)
+            call fail(error, 'record', self, what, 'a type a record cannot hold')
+            exit
+         end if
+         call check_read_size(self, what, dims, itemsize, error)
+         if (allocated(error)) then
+            call close_id(attr)
+            exit
+         end if
+         if (allocated(bytes)) deallocate (bytes)
+         allocate (bytes(product(int(dims, i8))*itemsize))
+         call read_obj(self, what, attr, mem_type, c_loc(bytes), &
+                       int(product(int(dims, i8))), error)
+         if (kind == item_string) call close_id(mem_type)
+         if (allocated(error)) exit
+         call record%add(path, name(:name_len), kind, itemsize, int(dims, i8), c_loc(bytes), &
+                         size(bytes, kind=i8))
+      end do
+      call h5oclose_f(obj, ierr)
+      if (unreadable .and. .not. allocated(error)) &
+         call fail(error, 'record', self, quoted(path), 'its attributes are unreadable')
+   end subroutine record_attributes
 end submodule dpend_hdf5_read
