@@ -4,7 +4,8 @@
 !> bodies and commands); its refusals are the command line's lines; two runs in two
 !> threads give the results of two single runs; options the library sets itself and
 !> commands it does not run are refused with their kinds; a progress callback is
-!> told of a sweep from its start to its end.
+!> told of a sweep from its start to its end; a result's named arrays are the
+!> datasets and attributes of its file.
 module test_capi
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_loc, &
       c_null_ptr, c_associated, c_long_long, c_funptr, c_funloc, c_null_funptr, &
@@ -14,7 +15,11 @@ module test_capi
    use test_cli, only: run_command, scratch_dir, read_text
    use dpend_strings, only: to_str
    use dpend_capi, only: dpend_run, dpend_run_progress
-   use dpend_capi_result, only: dpend_result_bytes, dpend_result_copy, dpend_result_free
+   use dpend_capi_result, only: dpend_result_bytes, dpend_result_copy, dpend_result_free, &
+      dpend_result_items, dpend_result_item, dpend_result_find, dpend_result_item_copy, &
+      dpend_result_item_bytes
+   use dpend_hdf5, only: h5file_t
+   use dpend_kinds, only: dp
    implicit none
    private
    public :: collect_capi
@@ -43,7 +48,8 @@ contains
                new_unittest('refusals_are_the_command_lines', test_refusals), &
                new_unittest('two_threads_equal_single_runs', test_threads), &
                new_unittest('library_options_refused', test_library_options), &
-               new_unittest('progress_callback_told', test_progress)]
+               new_unittest('progress_callback_told', test_progress), &
+               new_unittest('items_are_the_files_datasets', test_items)]
    end subroutine collect_capi
 
    !> Run `command` with the blank-separated `options` through dpend_run: the error
@@ -283,6 +289,86 @@ contains
       call check_true(error, kind == 0 .and. told%calls == 0, 'a NULL callback is not ' &
                       //'called: '//to_str(told%calls))
    end subroutine test_progress
+
+   !> simulate's result: /trajectory/q is item (REAL, rank 2, 101 x 2 in C order) whose
+   !> values are those of the file's image read back with HDF5, and its units
+   !> attribute is the text 'rad'; the root's attribute 'method' is 'rk4'; a missing
+   !> item is -1; an item index out of range is refused.
+   subroutine test_items(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, file
+      integer(int8), allocatable :: image(:)
+      type(c_text_t), target :: name, opt(4), path, attr, none
+      type(c_ptr), target :: ptrs(4)
+      character(kind=c_char, len=256), target :: msg, p_buf, n_buf
+      type(c_ptr) :: result
+      integer(c_int) :: kind, type, rank
+      integer(c_long_long) :: itemsize, dims(8), bytes
+      real(dp), allocatable, target :: q(:, :), q_file(:, :)
+      character(kind=c_char, len=16), target :: units
+      type(h5file_t) :: h5
+      integer :: k, j
+      name%s = 'simulate'//c_null_char
+      opt(1)%s = '--t-end'//c_null_char; opt(2)%s = '1'//c_null_char
+      opt(3)%s = '--method'//c_null_char; opt(4)%s = 'rk4'//c_null_char
+      do k = 1, 4
+         ptrs(k) = c_loc(opt(k)%s)
+      end do
+      kind = dpend_run(c_loc(name%s), 4_c_int, c_loc(ptrs), result, c_loc(msg), 256_c_int)
+      call check_true(error, kind == 0 .and. dpend_result_items(result) > 20, &
+                      'simulate: items, got kind '//to_str(kind))
+      if (allocated(error)) return
+      path%s = '/trajectory/q'//c_null_char
+      none%s = c_null_char
+      attr%s = 'units'//c_null_char
+      k = dpend_result_find(result, c_loc(path%s), c_loc(none%s))
+      j = dpend_result_item(result, int(k, c_int), c_loc(p_buf), 256_c_int, c_loc(n_buf), &
+                            256_c_int, type, itemsize, rank, dims)
+      call check_true(error, k >= 0 .and. j == 0 .and. type == 1 .and. itemsize == 8 &
+                      .and. rank == 2 .and. dims(1) == 101 .and. dims(2) == 2 .and. &
+                      p_buf(:index(p_buf, c_null_char) - 1) == '/trajectory/q', &
+                      '/trajectory/q: item '//to_str(k)//', type '//to_str(type)// &
+                      ', rank '//to_str(rank)//', '//to_str(dims(1))//' x '//to_str(dims(2)))
+      if (allocated(error)) return
+      allocate (q(2, 101))
+      bytes = dpend_result_item_bytes(result, int(k, c_int))
+      j = dpend_result_item_copy(result, int(k, c_int), c_loc(q), bytes)
+      k = dpend_result_find(result, c_loc(path%s), c_loc(attr%s))
+      units = ''
+      j = j + dpend_result_item_copy(result, int(k, c_int), c_loc(units), &
+                                     dpend_result_item_bytes(result, int(k, c_int)))
+      call check_true(error, j == 0 .and. bytes == 8*202 .and. units(:3) == 'rad', &
+                      'q copied ('//to_str(bytes)//' B), its units '//units)
+      if (allocated(error)) return
+      call check_true(error, dpend_result_find(result, c_loc(attr%s), c_loc(none%s)) == -1 &
+                      .and. dpend_result_item(result, 100000_c_int, c_loc(p_buf), 256_c_int, &
+                      c_loc(n_buf), 256_c_int, type, itemsize, rank, dims) == 2, &
+                      'a missing item: -1, an index out of range: 2')
+      if (allocated(error)) return
+      call library_image(result, image)
+      dir = scratch_dir('capi-items')
+      file = dir//'/image.h5'
+      call write_bytes(file, image)
+      call h5%open(file, 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q_file, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, all(shape(q_file) == shape(q)) .and. &
+                      all(transfer(q_file, [0_int8]) == transfer(q, [0_int8])), &
+                      'the item q is bitwise the file''s /trajectory/q')
+      call dpend_result_free(result)
+   end subroutine test_items
+
+   !> The image of `result` (made from its items).
+   subroutine library_image(result, image)
+      type(c_ptr), intent(in) :: result
+      integer(int8), allocatable, target, intent(out) :: image(:)
+      integer(c_long_long) :: bytes
+      bytes = dpend_result_bytes(result)
+      allocate (image(bytes))
+      if (dpend_result_copy(result, c_loc(image), bytes) /= 0) deallocate (image)
+      if (.not. allocated(image)) allocate (image(0))
+   end subroutine library_image
 
    !> The progress callback of test_progress.
    subroutine record_progress(done, total, what, label, user) bind(C)

@@ -289,8 +289,10 @@ contains
       character(len=:), allocatable :: s
       character(kind=c_char), pointer :: chars(:)
       integer :: n, k
-      s = ''
-      if (.not. c_associated(p)) return
+      if (.not. c_associated(p)) then
+         s = ''
+         return
+      end if
       call c_f_pointer(p, chars, [huge(1)])
       n = 0
       do while (chars(n + 1) /= c_null_char)
