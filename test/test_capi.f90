@@ -20,6 +20,8 @@ module test_capi
       dpend_result_item_bytes
    use dpend_hdf5, only: h5file_t
    use dpend_kinds, only: dp
+   use dpend_output, only: output_t
+   use dpend_error, only: fatal_error
    implicit none
    private
    public :: collect_capi
@@ -49,7 +51,8 @@ contains
                new_unittest('two_threads_equal_single_runs', test_threads), &
                new_unittest('library_options_refused', test_library_options), &
                new_unittest('progress_callback_told', test_progress), &
-               new_unittest('items_are_the_files_datasets', test_items)]
+               new_unittest('items_are_the_files_datasets', test_items), &
+               new_unittest('captured_output_explained', test_explain_captured)]
    end subroutine collect_capi
 
    !> Run `command` with the blank-separated `options` through dpend_run: the error
@@ -358,6 +361,26 @@ contains
                       'the item q is bitwise the file''s /trajectory/q')
       call dpend_result_free(result)
    end subroutine test_items
+
+   !> A failed run's message names its output by its target: every temporary name
+   !> replaced once; a captured output's temporary name is its target, and the
+   !> message stays as it is (the loop that replaced it ran forever: a cancelled
+   !> lyapunov in the library).
+   subroutine test_explain_captured(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(output_t) :: out
+      type(error_t), allocatable :: e
+      out%target = 'run.h5'
+      out%temp = 'run.h5'
+      call fatal_error(e, "cannot write 'run.h5' (run.h5)")
+      call out%explain(e)
+      call check_true(error, e%message == "cannot write 'run.h5' (run.h5)", e%message)
+      if (allocated(error)) return
+      out%temp = '.run.h5.tmp-1'
+      call fatal_error(e, "a .run.h5.tmp-1 b .run.h5.tmp-1")
+      call out%explain(e)
+      call check_true(error, e%message == 'a run.h5 b run.h5', e%message)
+   end subroutine test_explain_captured
 
    !> The image of `result` (made from its items).
    subroutine library_image(result, image)

@@ -48,6 +48,38 @@ def test_cancel_from_another_thread():
     assert float(dpend.simulate(t_end=0.1).energy[0]) == 0.0
 
 
+@pytest.mark.parametrize("command, kw", [
+    ("simulate", dict(t_end=1e5, dt=1e-4, save_every=10000)),
+    ("lyapunov", dict(t_end=1e6)),
+    ("indicators", dict(t_end=1e6)),
+])
+def test_cancel_stops_the_other_commands(command, kw):
+    """A trajectory of minutes stops within 256 steps of the request: a RunError
+    whose result holds the samples so far."""
+    box = {}
+
+    def work():
+        try:
+            getattr(dpend, command)(**kw, progress=None)
+            box["error"] = None
+        except BaseException as e:
+            box["error"] = e
+        box["t"] = time.monotonic()
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    time.sleep(1.0)
+    t0 = time.monotonic()
+    dpend.cancel()
+    worker.join(30)
+    assert not worker.is_alive(), f"{command} did not stop"
+    seconds = box["t"] - t0
+    print(f"cancel: {command} returned {seconds:.3f} s after the request")
+    assert isinstance(box["error"], dpend.RunError), box["error"]
+    assert "stopped on request" in str(box["error"]), str(box["error"])
+    assert seconds < 1.0
+
+
 def test_sigint_stops_a_sweep_in_the_main_thread(tmp_path):
     script = tmp_path / "run.py"
     script.write_text(textwrap.dedent(f"""

@@ -8,7 +8,9 @@
 !> proposed size, the last one capped to end exactly on t_end; a step is stretched
 !> by up to 1 % to avoid a tiny last step (as in DOPRI5/DOP853). Both directions
 !> of time are supported: the sign of t_end - t decides, h is taken as |h|.
-!> A fixed-step method given h = 0 fails with stat_step_too_small.
+!> A fixed-step method given h = 0 fails with stat_step_too_small. Every 256 steps a
+!> march looks at the stop request (`dpend_stop_request`: a library caller's
+!> dpend_cancel) and fails with stat_stopped when there is one.
 !>
 !> Progress: a command whose work is one or more marches (lyapunov, indicators,
 !> divergence, poincare, simulate) reports it in model time through one
@@ -20,7 +22,8 @@ module dpend_propagate
    use dpend_kinds, only: dp, i8
    use dpend_model, only: model_t, max_state
    use dpend_integrator, only: integrator_t, stat_ok, stat_step_too_small, stat_max_steps, &
-                               stat_count_limit
+                               stat_count_limit, stat_stopped
+   use dpend_stop_request, only: stop_requested
    use dpend_limits, only: max_steps, max_samples
    use dpend_progress, only: progress_t
    implicit none
@@ -65,6 +68,7 @@ module dpend_propagate
       real(dp) :: t_reported = 0.0_dp
       integer :: since_report = 0
       integer(i8) :: n_adaptive = 0    !! accepted steps so far (adaptive methods)
+      integer :: since_stop_check = 0  !! steps since the stop request was looked at
    contains
       procedure :: start => march_start
       procedure :: next => march_next
@@ -137,6 +141,14 @@ contains
       stat = stat_ok
       ns = size(y)
       if (self%finished) return
+      self%since_stop_check = self%since_stop_check + 1
+      if (self%since_stop_check >= 256) then   ! a library caller's dpend_cancel
+         self%since_stop_check = 0
+         if (stop_requested()) then
+            stat = stat_stopped
+            return
+         end if
+      end if
       if (associated(self%progress)) then
          self%since_report = self%since_report + 1
          if (self%since_report >= 256) call report_progress(self, t)

@@ -84,9 +84,11 @@ const void *dpend_result_data(void *result);
 void dpend_result_free(void *result);
 
 /* Ask the call in progress in another thread to stop: a sweep's lanes stop taking
- * trajectories and its threads blocks (the trajectories in flight end first), and it
- * returns kind 1, its result holding the blocks done. Each dpend_run forgets an
- * earlier request as it starts. */
+ * trajectories and its threads blocks (the trajectories in flight end first); every
+ * other command stops within 256 steps of the method it integrates with. The call
+ * returns kind 1, its result holding what was computed (a sweep's blocks done, a
+ * trajectory's samples so far). Each dpend_run forgets an earlier request as it
+ * starts. */
 void dpend_cancel(void);
 
 /* The version into buf (n bytes with the NUL); returns its length. */

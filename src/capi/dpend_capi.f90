@@ -23,7 +23,7 @@ module dpend_capi
    use dpend_cli, only: arg_t, check_repeated_options, printable
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
       remove_directory, remove_file, errno_text, path_kind, path_file
-   use dpend_stop_request, only: request_stop, clear_stop_request
+   use dpend_stop_request, only: request_stop, clear_stop_request, stop_requested
    use dpend_output_record, only: record_t, record_outputs, take_record, keep_record
    use dpend_hdf5, only: h5file_t
    use dpend_capi_result, only: new_result, library_lock, library_unlock, c_free
@@ -154,6 +154,11 @@ contains
          return
       end if
       call run_captured(name, argv, text, error, result)
+      if (.not. allocated(error) .and. stop_requested()) then   ! a run that went on
+         call fatal_error(error, 'dpend '//name//': stopped on request (dpend_cancel); ' &
+                          //'the result holds what was computed')
+         call run_failure(error)
+      end if
       if (allocated(error)) then
          dpend_run_progress = int(exit_status(error), c_int)
          text = printable(error%message, controls_only=.true.)
@@ -506,7 +511,8 @@ contains
 
    !> Ask the call in progress (in another thread) to stop: a sweep stops its lanes
    !> taking trajectories and its threads taking blocks, and returns kind 1 with the
-   !> blocks done. Each call of `dpend_run` forgets an earlier request as it starts.
+   !> blocks done; the other commands stop within 256 steps of a march. Each call of
+   !> `dpend_run` forgets an earlier request as it starts.
    subroutine dpend_cancel() bind(C, name='dpend_cancel')
       call request_stop()
    end subroutine dpend_cancel

@@ -1,7 +1,8 @@
 !> A request to stop the run in progress, made from outside it: a library caller's
 !> `dpend_cancel` (src/capi), from another thread. Long loops look at it where they
 !> can stop cleanly: the sweep between blocks and when a lane takes its next
-!> trajectory. The one piece of process-wide state of the core, like a signal; a
+!> trajectory, every march of a method every 256 steps (`dpend_propagate`: simulate,
+!> the chaos commands, the fit, the study). The one piece of process-wide state of the core, like a signal; a
 !> volatile flag, set and cleared whole.
 module dpend_stop_request
    implicit none

@@ -27,7 +27,7 @@ module dpend_integrator
    private
    public :: integrator_t, integrator_configure
    public :: stat_ok, stat_no_convergence, stat_nonfinite, stat_step_too_small
-   public :: stat_max_steps, stat_count_limit, stat_tangent_substeps
+   public :: stat_max_steps, stat_count_limit, stat_tangent_substeps, stat_stopped
    public :: status_message, state_ok, diverged_bound
 
    integer, parameter :: stat_ok = 0              !! the step was taken
@@ -37,6 +37,7 @@ module dpend_integrator
    integer, parameter :: stat_max_steps = 4       !! the integration reached max_steps
    integer, parameter :: stat_count_limit = 5     !! a step or sample count above its limit
    integer, parameter :: stat_tangent_substeps = 6 !! tangent equations need too many substeps
+   integer, parameter :: stat_stopped = 7         !! stopped on request (dpend_cancel)
 
 
    !> Common state and counters of every method.
@@ -368,6 +369,7 @@ contains
                                      //'1e9 samples)'
       case (stat_tangent_substeps); msg = 'tangent equations need more than 1e6 substeps ' &
                                           //'in one step (use a smaller --dt)'
+      case (stat_stopped); msg = 'stopped on request (dpend_cancel)'
       case default; msg = 'unknown status'
       end select
    end function status_message

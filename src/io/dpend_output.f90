@@ -282,14 +282,17 @@ contains
    subroutine output_explain(self, error)
       class(output_t), intent(in) :: self                 !! the output
       type(error_t), allocatable, intent(inout) :: error  !! message to rewrite, if any
-      integer :: k
+      integer :: k, from
       if (.not. allocated(error) .or. .not. allocated(self%temp)) return
       if (len(self%temp) == 0) return
+      from = 1   ! past the last name put in (a captured output's temp is its target)
       do
-         k = index(error%message, self%temp)
+         k = index(error%message(from:), self%temp)
          if (k == 0) exit
+         k = from + k - 1
          error%message = error%message(:k - 1)//self%target// &
                          error%message(k + len(self%temp):)
+         from = k + len(self%target)
       end do
    end subroutine output_explain
 
