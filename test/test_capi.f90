@@ -21,6 +21,8 @@ module test_capi
    use dpend_hdf5, only: h5file_t
    use dpend_kinds, only: dp
    use dpend_output, only: output_t
+   use dpend_capi_settings, only: dpend_settings_new, dpend_settings_set, &
+      dpend_settings_run, dpend_settings_free
    use dpend_error, only: fatal_error
    implicit none
    private
@@ -52,7 +54,8 @@ contains
                new_unittest('library_options_refused', test_library_options), &
                new_unittest('progress_callback_told', test_progress), &
                new_unittest('items_are_the_files_datasets', test_items), &
-               new_unittest('captured_output_explained', test_explain_captured)]
+               new_unittest('captured_output_explained', test_explain_captured), &
+               new_unittest('settings_by_name_and_value', test_settings)]
    end subroutine collect_capi
 
    !> Run `command` with the blank-separated `options` through dpend_run: the error
@@ -381,6 +384,88 @@ contains
       call out%explain(e)
       call check_true(error, e%message == 'a run.h5 b run.h5', e%message)
    end subroutine test_explain_captured
+
+   !> Settings given by name and value run as the same options given as words: the
+   !> same trajectory, bitwise; a refused value gives the command line's line; a
+   !> misspelt name is refused as it is set.
+   subroutine test_settings(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(c_text_t), target :: cmd, k(4), v(4), bad
+      character(kind=c_char, len=512), target :: msg
+      character(len=:), allocatable :: message
+      integer(int8), allocatable :: image(:)
+      type(c_ptr) :: settings, result
+      real(dp), allocatable :: q_settings(:, :), q_words(:, :)
+      integer :: i, kind, stat
+      cmd%s = 'simulate'//c_null_char
+      k(1)%s = 'q1'//c_null_char; v(1)%s = '0.5'//c_null_char
+      k(2)%s = 't_end'//c_null_char; v(2)%s = '1'//c_null_char
+      k(3)%s = 'method'//c_null_char; v(3)%s = 'dop853'//c_null_char
+      settings = dpend_settings_new(c_loc(cmd%s))
+      stat = 0
+      do i = 1, 3
+         stat = stat + dpend_settings_set(settings, c_loc(k(i)%s), c_loc(v(i)%s))
+      end do
+      bad%s = '--t-end'//c_null_char
+      stat = stat + merge(0, 1, dpend_settings_set(settings, c_loc(bad%s), &
+                                                   c_loc(v(2)%s)) == 2)
+      kind = dpend_settings_run(settings, result, c_loc(msg), 512_c_int, c_null_funptr, &
+                                c_null_ptr)
+      call check_true(error, stat == 0 .and. kind == 0, 'settings run: kind '// &
+                      to_str(kind)//', set '//to_str(stat))
+      if (allocated(error)) return
+      call item_q(result, q_settings)
+      call dpend_result_free(result)
+      call library_run('simulate', '--q1 0.5 --t-end 1 --method dop853', kind, message, &
+                       image)
+      call read_image_q(image, q_words)
+      call check_true(error, size(q_settings) > 0 .and. &
+                      all(shape(q_settings) == shape(q_words)) .and. &
+                      all(transfer(q_settings, [0_int8]) == transfer(q_words, [0_int8])), &
+                      'settings and words: the same q, bitwise')
+      if (allocated(error)) return
+      k(4)%s = 'dt'//c_null_char; v(4)%s = '-1'//c_null_char
+      stat = dpend_settings_set(settings, c_loc(k(4)%s), c_loc(v(4)%s))
+      kind = dpend_settings_run(settings, result, c_loc(msg), 512_c_int, c_null_funptr, &
+                                c_null_ptr)
+      call library_run('simulate', '--q1 0.5 --t-end 1 --method dop853 --dt -1', i, &
+                       message, image)
+      call check_true(error, kind == 2 .and. i == 2 .and. .not. c_associated(result) &
+                      .and. msg(:index(msg, c_null_char) - 1) == message, &
+                      'a refused value: '//msg(:index(msg, c_null_char) - 1))
+      call dpend_settings_free(settings)
+   end subroutine test_settings
+
+   !> /trajectory/q of a result, from its item.
+   subroutine item_q(result, q)
+      type(c_ptr), intent(in) :: result
+      real(dp), allocatable, target, intent(out) :: q(:, :)
+      type(c_text_t), target :: path, none
+      integer :: k
+      path%s = '/trajectory/q'//c_null_char
+      none%s = c_null_char
+      k = dpend_result_find(result, c_loc(path%s), c_loc(none%s))
+      allocate (q(2, dpend_result_item_bytes(result, int(k, c_int))/16))
+      if (dpend_result_item_copy(result, int(k, c_int), c_loc(q), &
+                                 dpend_result_item_bytes(result, int(k, c_int))) /= 0) &
+         deallocate (q)
+      if (.not. allocated(q)) allocate (q(0, 0))
+   end subroutine item_q
+
+   !> /trajectory/q of a file's image, read back with HDF5.
+   subroutine read_image_q(image, q)
+      integer(int8), intent(in) :: image(:)
+      real(dp), allocatable, intent(out) :: q(:, :)
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: e
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('capi-settings')
+      call write_bytes(dir//'/words.h5', image)
+      call h5%open(dir//'/words.h5', 'r', e)
+      if (.not. allocated(e)) call h5%read('/trajectory/q', q, e)
+      call h5%close()
+      if (.not. allocated(q)) allocate (q(0, 0))
+   end subroutine read_image_q
 
    !> The image of `result` (made from its items).
    subroutine library_image(result, image)

@@ -39,6 +39,25 @@ int dpend_run_progress(const char *command, int nargs, const char *const *args,
                        void **result, char *message, int msg_len, dpend_progress_fn fn,
                        void *user);
 
+/* A run's settings as a handle: the command, then its options one by one by name and
+ * value, checked when the run starts by the same settings layer as the command line
+ * (the same refusals, word for word; an option given twice is refused). */
+void *dpend_settings_new(const char *command);
+
+/* Set an option: name as on the command line without its dashes ("t-end" or
+ * "t_end"), value its text (NULL for a flag such as "fit-damping"); a NULL or empty
+ * name gives a positional argument (fit's CSV file). Returns 0, or 2 for a NULL
+ * handle, a name not of letters, digits, '-' and '_' (a letter first), or a
+ * positional argument without a value. */
+int dpend_settings_set(void *settings, const char *name, const char *value);
+
+/* Run the command with the options set: as dpend_run_progress (fn NULL: none). */
+int dpend_settings_run(void *settings, void **result, char *message, int msg_len,
+                       dpend_progress_fn fn, void *user);
+
+/* Release settings (NULL is ignored); a result outlives its settings. */
+void dpend_settings_free(void *settings);
+
 /* A result is the file the command writes, as named arrays (its items) and as an
  * HDF5 file image. The items are the file's datasets and attributes in the order
  * written; a sweep's result has its image only (0 items). */

@@ -59,7 +59,7 @@ module dpend_capi
    use dpend_method_registry, only: method_names
    implicit none
    private
-   public :: dpend_run, dpend_run_progress
+   public :: dpend_run, dpend_run_progress, run_arguments, c_string
    public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
@@ -121,12 +121,35 @@ contains
       integer(c_int), value :: msg_len             !! its size [B]
       type(c_funptr), value :: fn                  !! the progress callback or NULL
       type(c_ptr), value :: user                   !! handed to fn
-      procedure(progress_listener_i), pointer :: listener
       type(arg_t), allocatable :: argv(:)
       type(c_ptr), pointer :: ptrs(:)
-      type(error_t), allocatable :: error
-      character(len=:), allocatable :: name, text
       integer :: i
+      allocate (argv(max(nargs, 0)))
+      if (nargs > 0) then
+         call c_f_pointer(args, ptrs, [nargs])
+         do i = 1, nargs
+            argv(i)%s = c_string(ptrs(i))
+         end do
+      end if
+      dpend_run_progress = run_arguments(c_string(command), argv, result, message, &
+                                         msg_len, fn, user)
+   end function dpend_run_progress
+
+   !> `command` run with the options `argv` (what `dpend_run_progress` and
+   !> `dpend_settings_run` do): the error kind; `result`, `message` and the progress
+   !> callback `fn` as there.
+   integer(c_int) function run_arguments(name, argv, result, message, msg_len, fn, &
+                                         user) result(kind)
+      character(len=*), intent(in) :: name         !! the command
+      type(arg_t), intent(in) :: argv(:)           !! its options
+      type(c_ptr), intent(out) :: result           !! the result or NULL
+      type(c_ptr), intent(in) :: message           !! char *
+      integer(c_int), intent(in) :: msg_len        !! its size [B]
+      type(c_funptr), intent(in) :: fn             !! the progress callback or NULL
+      type(c_ptr), intent(in) :: user              !! handed to fn
+      procedure(progress_listener_i), pointer :: listener
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: text
       result = c_null_ptr
       call library_lock()
       call clear_stop_request()
@@ -136,20 +159,12 @@ contains
       listener => null()
       if (c_associated_funptr(fn)) listener => tell_progress
       call set_progress_listener(listener)
-      name = c_string(command)
-      allocate (argv(max(nargs, 0)))
-      if (nargs > 0) then
-         call c_f_pointer(args, ptrs, [nargs])
-         do i = 1, nargs
-            argv(i)%s = c_string(ptrs(i))
-         end do
-      end if
       if (.not. any(name == commands)) then
          text = "dpend: '"//printable(name)//"' is not available in the library (" &
                 //'simulate, lyapunov, indicators, divergence, poincare, fit, sweep, ' &
                 //'study, models and methods are)'
          call put_c_string(text, message, msg_len)
-         dpend_run_progress = kind_unavailable
+         kind = kind_unavailable
          call end_run()
          return
       end if
@@ -160,15 +175,15 @@ contains
          call run_failure(error)
       end if
       if (allocated(error)) then
-         dpend_run_progress = int(exit_status(error), c_int)
+         kind = int(exit_status(error), c_int)
          text = printable(error%message, controls_only=.true.)
       else
-         dpend_run_progress = kind_ok
+         kind = kind_ok
       end if
       text = without_wrote_lines(text, name)
       call put_c_string(text, message, msg_len)
       call end_run()
-   end function dpend_run_progress
+   end function run_arguments
 
    !> The run's progress callback forgotten, the lock released.
    subroutine end_run()
