@@ -278,9 +278,14 @@ contains
       character(len=:), allocatable :: message
       integer(int8), allocatable :: image(:)
       integer :: kind
+      type(c_funptr) :: callback
+      procedure(record_progress), pointer :: recorder
+      ! the callback's address taken at run time (a c_funloc constant is a relocation
+      ! in read-only data: the linker warns of text relocations in the PIE)
+      recorder => record_progress
+      callback = c_funloc(recorder)
       told = told_t()
-      call library_run('sweep', '--n 64 --t-end 5', kind, message, image, &
-                       c_funloc(record_progress))
+      call library_run('sweep', '--n 64 --t-end 5', kind, message, image, callback)
       call check_true(error, kind == 0 .and. told%calls >= 2 .and. told%first == 0 .and. &
                       told%last == 4096 .and. told%total == 4096 .and. told%monotone &
                       .and. told%same_total, 'sweep: '//to_str(told%calls)//' calls, '// &
