@@ -26,7 +26,7 @@ module dpend_capi
    use dpend_stop_request, only: request_stop, clear_stop_request, stop_requested
    use dpend_output_record, only: record_t, record_outputs, take_record, keep_record
    use dpend_hdf5, only: h5file_t
-   use dpend_capi_result, only: new_result, library_lock, library_unlock, c_free
+   use dpend_capi_result, only: new_result, library_lock, library_unlock, c_free, c_string
    use dpend_error, only: run_failure
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep, sweep_help
@@ -59,7 +59,7 @@ module dpend_capi
    use dpend_method_registry, only: method_names
    implicit none
    private
-   public :: dpend_run, dpend_run_progress, run_arguments, c_string
+   public :: dpend_run, dpend_run_progress, run_arguments
    public :: dpend_version, dpend_cancel
 
    !> The error kinds of the interface.
@@ -558,27 +558,6 @@ contains
          s = s//line
       end do
    end function without_wrote_lines
-
-   !> The Fortran text of a NUL-terminated C string ('' for a null pointer).
-   function c_string(p) result(s)
-      type(c_ptr), intent(in) :: p
-      character(len=:), allocatable :: s
-      character(kind=c_char), pointer :: chars(:)
-      integer :: n, i
-      if (.not. c_associated(p)) then
-         s = ''
-         return
-      end if
-      call c_f_pointer(p, chars, [huge(1)])
-      n = 0
-      do while (chars(n + 1) /= c_null_char)
-         n = n + 1
-      end do
-      allocate (character(len=n) :: s)
-      do i = 1, n
-         s(i:i) = chars(i)
-      end do
-   end function c_string
 
    !> `text` into the C buffer p of n bytes, cut to n − 1 bytes and NUL-terminated.
    subroutine put_c_string(text, p, n)

@@ -18,7 +18,7 @@ module dpend_capi_result
    use dpend_hdf5, only: h5file_t
    implicit none
    private
-   public :: result_t, new_result, library_lock, library_unlock, c_free, c_memcpy
+   public :: result_t, new_result, library_lock, library_unlock, c_free, c_memcpy, c_string
    public :: dpend_result_bytes, dpend_result_copy, dpend_result_data, dpend_result_free
    public :: dpend_result_items, dpend_result_item, dpend_result_item_bytes, &
       dpend_result_item_data, dpend_result_item_copy, dpend_result_find
@@ -249,7 +249,7 @@ contains
       if (.not. c_associated(result) .or. .not. c_associated(path)) return
       call c_f_pointer(result, res)
       if (.not. allocated(res%record)) return
-      dpend_result_find = int(res%record%find(c_text(path), c_text(name)), c_int) - 1
+      dpend_result_find = int(res%record%find(c_string(path), c_string(name)), c_int) - 1
    end function dpend_result_find
 
    !> The result of `handle` when it has an item `i` (from 0), else null.
@@ -284,7 +284,7 @@ contains
    end function put
 
    !> The text of a NUL-terminated C string ('' for NULL).
-   function c_text(p) result(s)
+   function c_string(p) result(s)
       type(c_ptr), intent(in) :: p
       character(len=:), allocatable :: s
       character(kind=c_char), pointer :: chars(:)
@@ -302,5 +302,5 @@ contains
       do k = 1, n
          s(k:k) = chars(k)
       end do
-   end function c_text
+   end function c_string
 end module dpend_capi_result

@@ -8,7 +8,8 @@ module dpend_capi_settings
    use, intrinsic :: iso_c_binding, only: c_int, c_ptr, c_null_ptr, c_funptr, c_loc, &
       c_associated, c_f_pointer
    use dpend_cli, only: arg_t
-   use dpend_capi, only: run_arguments, c_string
+   use dpend_capi, only: run_arguments
+   use dpend_capi_result, only: c_string
    implicit none
    private
    public :: dpend_settings_new, dpend_settings_set, dpend_settings_run, dpend_settings_free
