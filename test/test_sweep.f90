@@ -1454,6 +1454,17 @@ contains
       call same_results(error, dir//'/m.h5', dir//'/m2.h5', .false.)
       call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/sali')
       call same_dataset(error, dir//'/m.h5', dir//'/m2.h5', '/sweep/param/l2')
+      ! a map of one pixel (its lanes hold that pixel's constants, not the configured
+      ! pendulum's) equals that pixel of the whole map (m2/m1 = l2/l1 = 3: the last)
+      stat = run_command(dir, common(:index(common, '--n 4') - 1)//'--n 1 --axis1 m2/m1 ' &
+                         //'--axis2 l2/l1 --min1 3 --max1 3 --min2 3 --max2 3 ' &
+                         //'--indicator sali --output '//dir//'/one.h5')
+      call check_true(error, stat == 0, 'map of one pixel over (m2/m1, l2/l1) exits 0')
+      call read_map(error, dir//'/m.h5', '/sweep/sali', a)
+      call read_map(error, dir//'/one.h5', '/sweep/sali', b)
+      if (allocated(error)) return
+      call check_true(error, all(bits(a(4:4, 4)) == bits(b(:, 1))), &
+                      'a map of one pixel equals its pixel of the whole map')
       ! three links: the per-trajectory path with a chain per pixel
       stat = run_command(dir, 'sweep --quiet --links 3 --n 3 --t-end 2 --dt 0.02 ' &
                          //'--axis1 theta1 --axis2 l2/l1 --min2 0.5 --max2 2 --indicator fli ' &

@@ -95,7 +95,10 @@ contains
          escale = [potential_range(par)]
          bounds = reshape(flip_energy_bounds(par), [2, 1])
       end if
-      k%c = lane_coef(batch_coef(par))   ! idle lanes keep valid constants
+      ! every lane starts with the first trajectory's constants (idle lanes keep valid
+      ! ones); with one trajectory per call (a parameter block of one pixel) no lane
+      ! is set again (`size(coefs) > 1` in the refill), so these must be its own
+      k%c = lane_coef(k%coefs(1))
       k%nan = ieee_value(k%nan, ieee_quiet_nan)
       k%opt = opt
       k%rule = opt%stop_rule
