@@ -28,6 +28,7 @@ module dpend_command_table
    use dpend_study_config, only: study_command
    use dpend_animate, only: animate_command
    use dpend_fit_command, only: fit_command
+   use dpend_explore_command, only: explore_command
    use dpend_methods_command, only: methods_command
    use dpend_models_command, only: models_command
    implicit none
@@ -84,6 +85,8 @@ contains
                    //'time', animate_command), &
          command_t('fit', 'estimate the initial state (and damping) from measured angles ' &
                    //'(CSV)', fit_command), &
+         command_t('explore', 'a map of dpend sweep in the browser: click a pixel, watch ' &
+                   //'its pendulum', explore_command), &
          command_t('methods', 'the integration methods: order, properties, commands', &
                    methods_command), &
          command_t('models', 'the models: coordinates, parameters (units, ranges), ' &

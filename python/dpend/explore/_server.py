@@ -1,0 +1,273 @@
+"""The page's server: the map it was started with, its own assets, and pixel runs.
+
+Routes (GET and HEAD only):
+
+  /                   the page (static/index.html); /explore.js, /explore.css
+  /api/map            the map's description (JSON: axes, maps, settings)
+  /api/values?name=N  one map's values, float64 little-endian, row j = axis 2
+  /api/pixel?i=I&j=J  pixel (I, J)'s run (JSON: map and run values, the motion)
+  /api/run.h5?i=I&j=J the same run's trajectory as dpend simulate's HDF5 file
+  /api/run.csv?i=I&j=J  the same as CSV
+
+Every request is checked before any work: the path among the routes, each query
+key among the route's, each value whole and in range. A refusal is one line (HTTP
+400, 404 or 405; the page shows it) and the same line goes to the log. A request
+starts at most one pixel's run (the value: the map's sweep for that pixel; the
+motion: simulate to the map's t_end), at most `max_runs` at once (503 beyond).
+"""
+from __future__ import annotations
+
+import collections
+import json
+import os
+import re
+import sys
+import threading
+import time
+from http import HTTPStatus
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from importlib import resources
+from typing import Any, Callable, Dict, List, Optional, TextIO, Tuple
+from urllib.parse import parse_qsl, urlsplit
+
+from ._map import MapFile
+from ._pixel import PixelRun, run_pixel
+
+_ASSETS = {"/": ("index.html", "text/html; charset=utf-8"),
+           "/index.html": ("index.html", "text/html; charset=utf-8"),
+           "/explore.js": ("explore.js", "text/javascript; charset=utf-8"),
+           "/explore.css": ("explore.css", "text/css; charset=utf-8")}
+_PIXEL_ROUTES = ("/api/pixel", "/api/run.h5", "/api/run.csv")
+_MAX_QUERY = 512
+_INDEX = re.compile(r"[0-9]{1,9}")
+
+
+class Refusal(Exception):
+    """A request refused before any work: (HTTP status, one line)."""
+
+    def __init__(self, status: HTTPStatus, line: str) -> None:
+        super().__init__(line)
+        self.status = status
+        self.line = line
+
+
+def _asset(name: str) -> bytes:
+    return resources.files("dpend.explore").joinpath("static", name).read_bytes()
+
+
+class Explorer:
+    """The state behind the page: the checked map, its assets, the runs in flight
+    (at most `max_runs`) and the last runs (a few, for the downloads)."""
+
+    def __init__(self, m: MapFile, max_runs: int = 2, log: TextIO = sys.stderr,
+                 runner: Callable[[MapFile, int, int], PixelRun] = run_pixel,
+                 quiet: bool = False) -> None:
+        self.map = m
+        self.quiet = quiet
+        self.log = log
+        self.runner = runner
+        self.max_runs = max_runs
+        self.slots = threading.BoundedSemaphore(max_runs)
+        self.recent: "collections.OrderedDict[Tuple[int, int], PixelRun]" = \
+            collections.OrderedDict()
+        self.lock = threading.Lock()
+        self.assets = {path: (_asset(name), kind) for path, (name, kind) in _ASSETS.items()}
+        self.description = json.dumps(m.describe()).encode("utf-8")
+        self.values = {name: a.astype("<f8").tobytes() for name, a in m.maps.items()}
+
+    def say(self, line: str) -> None:
+        print(f"dpend explore: {line}", file=self.log, flush=True)
+
+    # -- checks ------------------------------------------------------------------
+    def query(self, route: str, text: str, allowed: Tuple[str, ...]) -> Dict[str, str]:
+        """The query's values by key: each key allowed, given once, with a value."""
+        if len(text) > _MAX_QUERY:
+            raise Refusal(HTTPStatus.BAD_REQUEST,
+                          f"the query has {len(text)} characters (at most {_MAX_QUERY})")
+        try:
+            pairs = parse_qsl(text, keep_blank_values=True, strict_parsing=bool(text),
+                              errors="strict", max_num_fields=8)
+        except (ValueError, UnicodeDecodeError) as e:
+            raise Refusal(HTTPStatus.BAD_REQUEST, f"the query '{text[:60]}' is not "
+                          f"key=value pairs ({e})") from None
+        got: Dict[str, str] = {}
+        for key, value in pairs:
+            if key not in allowed:
+                hint = ""
+                if key in ("t_end", "dt", "n_steps", "method", "h"):
+                    hint = (f" (a pixel's run uses the map's settings: t_end = "
+                            f"{float(self.map.attrs['t_end']):.6g} s, rk4, "
+                            f"h = {float(self.map.attrs['h']):.6g} s)")
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"{key} = '{value[:40]}': not a "
+                              f"parameter of {route}{hint}; accepted: "
+                              f"{', '.join(allowed) or 'none'}")
+            if key in got:
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"{key} is given twice")
+            got[key] = value
+        for key in allowed:
+            if key not in got:
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"{key} is missing: {route} needs "
+                              f"{', '.join(allowed)}")
+        return got
+
+    def pixel(self, q: Dict[str, str]) -> Tuple[int, int]:
+        """The pixel (i, j) of a query: whole integers inside the grid."""
+        out = []
+        for key, n, axis in (("i", self.map.n1, self.map.axis1),
+                             ("j", self.map.n2, self.map.axis2)):
+            value = q[key]
+            if not _INDEX.fullmatch(value) or int(value) >= n:
+                raise Refusal(HTTPStatus.BAD_REQUEST,
+                              f"{key} = '{value[:40]}': the pixel's index along axis "
+                              f"{axis}, an integer in [0, {n - 1}]")
+            out.append(int(value))
+        return out[0], out[1]
+
+    # -- work --------------------------------------------------------------------
+    def run(self, i: int, j: int) -> PixelRun:
+        """Pixel (i, j)'s run (the last few are kept); at most max_runs at once."""
+        with self.lock:
+            done = self.recent.get((i, j))
+            if done is not None:
+                self.recent.move_to_end((i, j))
+                return done
+        if not self.slots.acquire(blocking=False):
+            raise Refusal(HTTPStatus.SERVICE_UNAVAILABLE,
+                          f"busy: {self.max_runs} runs in progress (the most at once); "
+                          "try again")
+        try:
+            result = self.runner(self.map, i, j)
+        finally:
+            self.slots.release()
+        with self.lock:
+            self.recent[(i, j)] = result
+            while len(self.recent) > 8:
+                self.recent.popitem(last=False)
+        return result
+
+    def answer(self, path: str, text: str) -> Tuple[bytes, str, Dict[str, str]]:
+        """The body, content type and extra headers of a GET of `path`?`text`."""
+        if path in self.assets:
+            self.query(path, text, ())
+            body, kind = self.assets[path]
+            return body, kind, {}
+        if path == "/api/map":
+            self.query(path, text, ())
+            return self.description, "application/json", {}
+        if path == "/api/values":
+            name = self.query(path, text, ("name",))["name"]
+            if name not in self.values:
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"name = '{name[:40]}': not a map "
+                              f"of this file; accepted: {', '.join(self.values)}")
+            return self.values[name], "application/octet-stream", {}
+        if path in _PIXEL_ROUTES:
+            i, j = self.pixel(self.query(path, text, ("i", "j")))
+            result = self.run(i, j)
+            if path == "/api/pixel":
+                return json.dumps(result.page).encode("utf-8"), "application/json", {}
+            stem = f"{os.path.splitext(os.path.basename(self.map.path))[0]}_pixel_{i}_{j}"
+            if path == "/api/run.csv":
+                return result.csv(), "text/csv; charset=utf-8", \
+                    {"Content-Disposition": f'attachment; filename="{stem}.csv"'}
+            return result.trajectory.dpend.image, "application/x-hdf5", \
+                {"Content-Disposition": f'attachment; filename="{stem}.h5"'}
+        raise Refusal(HTTPStatus.NOT_FOUND, f"'{path[:80]}' is not served (only the page, "
+                      f"its assets and the map {os.path.basename(self.map.path)}: "
+                      "/, /api/map, /api/values, /api/pixel, /api/run.h5, /api/run.csv)")
+
+
+def handler_for(explorer: Explorer) -> type:
+    """The request handler class of a server for `explorer`."""
+
+    class Handler(BaseHTTPRequestHandler):
+        server_version = "dpend-explore"
+        sys_version = ""
+
+        def log_message(self, format: str, *args: Any) -> None:   # noqa: A002
+            pass                                   # one line per request: below
+
+        def _send(self, status: HTTPStatus, body: bytes, kind: str,
+                  headers: Optional[Dict[str, str]] = None, head: bool = False) -> None:
+            self.send_response(status)
+            self.send_header("Content-Type", kind)
+            self.send_header("Content-Length", str(len(body)))
+            self.send_header("Cache-Control", "no-store")
+            self.send_header("X-Content-Type-Options", "nosniff")
+            self.send_header("Content-Security-Policy",
+                             "default-src 'self'; img-src 'self' data: blob:; "
+                             "style-src 'self'; script-src 'self'")
+            for k, v in (headers or {}).items():
+                self.send_header(k, v)
+            self.end_headers()
+            if not head:
+                self.wfile.write(body)
+
+        def _get(self, head: bool) -> None:
+            start = time.perf_counter()
+            try:
+                if len(self.path) > 2 * _MAX_QUERY:
+                    raise Refusal(HTTPStatus.BAD_REQUEST,
+                                  f"the request's path has {len(self.path)} characters")
+                parts = urlsplit(self.path)
+                body, kind, headers = explorer.answer(parts.path, parts.query)
+                self._send(HTTPStatus.OK, body, kind, headers, head)
+                if parts.path.startswith("/api/") and parts.path != "/api/values" \
+                        and not explorer.quiet:
+                    explorer.say(f"{self.command} {self.path[:120]}: "
+                                 f"{time.perf_counter() - start:.3f} s")
+            except Refusal as r:
+                explorer.say(f"refused {self.command} {self.path[:120]}: {r.line}")
+                self._send(r.status, (r.line + "\n").encode("utf-8"),
+                           "text/plain; charset=utf-8", head=head)
+            except (ValueError, RuntimeError) as e:   # the library's refusal or failure
+                line = str(e).splitlines()[0] if str(e) else type(e).__name__
+                refused = isinstance(e, ValueError)
+                explorer.say(f"{'refused' if refused else 'failed'} {self.command} "
+                             f"{self.path[:120]}: {line}")
+                self._send(HTTPStatus.BAD_REQUEST if refused else
+                           HTTPStatus.INTERNAL_SERVER_ERROR, (line + "\n").encode(),
+                           "text/plain; charset=utf-8", head=head)
+            except (BrokenPipeError, ConnectionResetError):
+                pass                                   # the page went away
+            except Exception as e:                     # a bug: said, and the server stays up
+                line = f"internal error: {type(e).__name__}: {e}".splitlines()[0]
+                explorer.say(f"failed {self.command} {self.path[:120]}: {line}")
+                self._send(HTTPStatus.INTERNAL_SERVER_ERROR, (line + "\n").encode(),
+                           "text/plain; charset=utf-8", head=head)
+
+        def do_GET(self) -> None:                      # noqa: N802
+            self._get(head=False)
+
+        def do_HEAD(self) -> None:                     # noqa: N802
+            self._get(head=True)
+
+        def _refuse_method(self) -> None:
+            line = f"method {self.command} is not served (GET and HEAD only)"
+            explorer.say(f"refused {self.command} {self.path[:120]}: {line}")
+            self._send(HTTPStatus.METHOD_NOT_ALLOWED, (line + "\n").encode(),
+                       "text/plain; charset=utf-8")
+
+        do_POST = do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse_method
+
+    return Handler
+
+
+def make_server(explorer: Explorer, host: str, port: int) -> ThreadingHTTPServer:
+    """A threading HTTP server for `explorer` bound to (host, port) (0: any free port)."""
+    server = ThreadingHTTPServer((host, port), handler_for(explorer))
+    server.daemon_threads = True
+    return server
+
+
+def serve_in_thread(explorer: Explorer, host: str = "127.0.0.1",
+                    port: int = 0) -> Tuple[ThreadingHTTPServer, str]:
+    """Start a server in a background thread (tests, notebooks): (server, address)."""
+    server = make_server(explorer, host, port)
+    thread = threading.Thread(target=server.serve_forever, name="dpend explore",
+                              daemon=True)
+    thread.start()
+    return server, f"http://{host}:{server.server_address[1]}/"
+
+
+def routes() -> List[str]:
+    return list(_ASSETS) + ["/api/map", "/api/values"] + list(_PIXEL_ROUTES)
