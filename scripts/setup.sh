@@ -20,6 +20,9 @@ packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox 
 packages+=(python3 python3-h5py python3-pandas python3-xarray)
 # The Python package (pip install ., meson-python from PyPI) in a virtual environment.
 packages+=(python3-venv)
+# dpend explore's browser test (python/tests/test_explore.py, Playwright from PyPI drives
+# Debian's chromium headless; its own browser download is not used) and its fonts.
+packages+=(chromium fonts-dejavu-core)
 if ((mpi)); then
   packages+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 fi

@@ -142,14 +142,16 @@ class MapFile:
             if name not in self.params:
                 raise MapError(f"{self.path}: axis '{axis}' has no /sweep/param dataset")
             v = float(self.params[name][j, i])
-            if name in opts or name in _SCALARS:
+            kind = name.rstrip("0123456789")
+            digits = name[len(kind):]
+            listed = digits and kind in _LISTS and (kind in opts or self.links != 2
+                                                    or name not in _SCALARS)
+            if listed:                              # entry k of a per-link list
+                _set_list(opts, kind, int(digits) - 1, v, self.links)
+            elif name in opts or name in _SCALARS:
                 opts[name] = v
             else:
-                kind = "".join(c for c in name if not c.isdigit())
-                k = int("".join(c for c in name if c.isdigit()) or "1") - 1
-                if kind not in _LISTS:
-                    raise MapError(f"{self.path}: cannot replay the parameter axis '{name}'")
-                _set_list(opts, kind, k, v, self.links)
+                raise MapError(f"{self.path}: cannot replay the parameter axis '{name}'")
 
     def describe(self) -> Dict[str, Any]:
         """What the page needs to draw the map (JSON)."""

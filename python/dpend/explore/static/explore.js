@@ -219,9 +219,10 @@ function showPixel(p) {
   const hover = $("hover");
   hover.textContent = "";
   const at = document.createElement("span");
+  const unit = u => (u && u !== "1" ? ` ${u}` : "");
   at.textContent = `pixel (${p.i}, ${p.j}): ${axisLabel(meta.axis1, meta.units1).split(" [")[0]} = ` +
-    `${fmt(meta.values1[p.i], 10)} ${meta.units1}, ${axisLabel(meta.axis2, meta.units2).split(" [")[0]} = ` +
-    `${fmt(meta.values2[p.j], 10)} ${meta.units2}; ${map.name} = `;
+    `${fmt(meta.values1[p.i], 10)}${unit(meta.units1)}, ${axisLabel(meta.axis2, meta.units2).split(" [")[0]} = ` +
+    `${fmt(meta.values2[p.j], 10)}${unit(meta.units2)}; ${map.name} = `;
   const value = document.createElement("span");
   value.id = "hover-value";
   value.dataset.value = Number.isFinite(v) ? String(v) : "NaN";
@@ -337,10 +338,11 @@ function drawAll() {
   $("clock").textContent = `t = ${fmt(t, 5)} s = ${fmt(t / S.meta.tau, 5)} ${S.meta.tau_label}`;
   const tf = r.run.t_flip;
   const names = r.coordinates.join(", ");
-  const what = r.model === "pendulum" ? `angles ${names} [rad] (from horizontal)` : `coordinates ${names} (SI)`;
+  const what = (r.model === "pendulum" ? `angles ${names} [rad] (from horizontal)` : `coordinates ${names} (SI)`) +
+    (r.t[r.t.length - 1] > 40 * S.meta.tau ? `, 40 ${S.meta.tau_label} around t` : "");
   drawSeries($("angles"), what, S.runs.map(run => run &&
     run.coordinates.map((_, k) => run.q.filter((_, n) => n % run.coordinates.length === k))), false,
-    tf !== undefined && tf !== null ? tf : null);
+    tf !== undefined && tf !== null ? tf : null, 40 * S.meta.tau);
   drawSeries($("energy"), "energy error (E − E0)/(V_max − V_min)",
     S.runs.map(run => run && [run.energy_error]), false, null);
   if (S.runs[1]) {
@@ -402,20 +404,27 @@ function coil(g, x0, y0, x1, y1) {
   }
   g.lineTo(x1, y1); g.stroke();
 }
-function drawSeries(c, title, sets, logY, mark) {
+// A plot against time of the runs' series (sets[k]: run k's series), over the whole
+// run or, with `window` seconds, a window around the current time.
+function drawSeries(c, title, sets, logY, mark, window) {
   const g = c.getContext("2d"), run = S.runs[0];
   g.clearRect(0, 0, c.width, c.height);
   const m = { l: 56, r: 10, t: 18, b: 22 }, w = c.width - m.l - m.r, h = c.height - m.t - m.b;
-  const t = run.t, t1 = t[t.length - 1] || 1;
+  const t = run.t, end = t[t.length - 1] || 1;
+  let t0 = 0, t1 = end;
+  if (window && window < end) {
+    t0 = Math.min(Math.max(0, t[S.frame] - window / 2), end - window); t1 = t0 + window;
+  }
   let lo = Infinity, hi = -Infinity;
-  sets.forEach(set => set && set.forEach(ys => ys.forEach(v => {
+  sets.forEach(set => set && set.forEach(ys => ys.forEach((v, f) => {
+    if (t[f] < t0 || t[f] > t1) return;
     if (v === null || !Number.isFinite(v) || (logY && !(v > 0))) return;
     const y = logY ? Math.log10(v) : v;
     if (y < lo) lo = y; if (y > hi) hi = y;
   })));
   if (!Number.isFinite(lo)) { lo = 0; hi = 1; }
   if (!(hi > lo)) { hi = lo + 1; lo -= 1; }
-  const X = x => m.l + x / t1 * w, Y = y => m.t + h - ((logY ? Math.log10(y) : y) - lo) / (hi - lo) * h;
+  const X = x => m.l + (x - t0) / (t1 - t0) * w, Y = y => m.t + h - ((logY ? Math.log10(y) : y) - lo) / (hi - lo) * h;
   g.fillStyle = "#222"; g.font = "11px 'DejaVu Sans', sans-serif";
   g.textAlign = "left"; g.fillText(title, m.l, 12);
   g.strokeStyle = "#999"; g.strokeRect(m.l, m.t, w, h);
@@ -424,7 +433,8 @@ function drawSeries(c, title, sets, logY, mark) {
     g.fillText(logY ? `1e${fmt(v, 3)}` : fmt(v, 3), m.l - 4, m.t + h - (v - lo) / (hi - lo) * h);
   }
   g.textAlign = "center"; g.textBaseline = "top";
-  for (const v of niceTicks(0, t1, 6)) g.fillText(fmt(v, 4), X(v), m.t + h + 3);
+  for (const v of niceTicks(t0, t1, 6)) g.fillText(fmt(v, 4), X(v), m.t + h + 3);
+  g.save(); g.beginPath(); g.rect(m.l, m.t, w, h); g.clip();
   sets.forEach((set, k) => {
     if (!set) return;
     set.forEach((ys, n) => {
@@ -432,6 +442,7 @@ function drawSeries(c, title, sets, logY, mark) {
       g.beginPath();
       let started = false;
       ys.forEach((v, f) => {
+        if (t[f] < t0 - (t1 - t0) / w || t[f] > t1 + (t1 - t0) / w) { started = false; return; }
         if (v === null || !Number.isFinite(v) || (logY && !(v > 0))) { started = false; return; }
         if (!started) { g.moveTo(X(t[f]), Y(v)); started = true; } else g.lineTo(X(t[f]), Y(v));
       });
@@ -439,12 +450,15 @@ function drawSeries(c, title, sets, logY, mark) {
     });
   });
   g.setLineDash([]); g.globalAlpha = 1;
-  if (mark !== null) {
+  if (mark !== null && mark >= t0 && mark <= t1) {
     g.strokeStyle = "#888"; g.setLineDash([3, 3]); g.beginPath();
     g.moveTo(X(mark), m.t); g.lineTo(X(mark), m.t + h); g.stroke(); g.setLineDash([]);
-    g.textAlign = "left"; g.fillStyle = "#555"; g.fillText("flip", X(mark) + 3, m.t + 2);
+    const right = X(mark) > m.l + w - 30;
+    g.textAlign = right ? "right" : "left"; g.fillStyle = "#555";
+    g.fillText("flip", X(mark) + (right ? -3 : 3), m.t + 2);
   }
   g.strokeStyle = "#000"; g.beginPath(); g.moveTo(X(t[S.frame]), m.t); g.lineTo(X(t[S.frame]), m.t + h); g.stroke();
+  g.restore();
 }
 
 // -- loading and events ------------------------------------------------------------------
