@@ -291,3 +291,41 @@ def test_requests_checked_before_work(maps):
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_runs_at_once_are_limited(maps):
+    """--max-runs: a pixel request beyond the runs in flight is refused ('busy', 503)
+    and the server goes on; a finished run is kept and served again without work."""
+    import threading
+    from dpend.explore._pixel import run_pixel
+
+    started, release = threading.Event(), threading.Event()
+    calls = []
+
+    def slow(m, i, j):
+        calls.append((i, j))
+        started.set()
+        release.wait(30)
+        return run_pixel(m, i, j)
+
+    log = io.StringIO()
+    server, url = serve_in_thread(Explorer(open_map(maps["flip"]), max_runs=1, log=log,
+                                           runner=slow))
+    try:
+        first = threading.Thread(target=urllib.request.urlopen,
+                                 args=(url + "api/pixel?i=1&j=1",), daemon=True)
+        first.start()
+        assert started.wait(30)
+        with pytest.raises(urllib.error.HTTPError) as e:
+            urllib.request.urlopen(url + "api/pixel?i=2&j=1")
+        assert e.value.code == 503 and "busy: 1 run in progress" in e.value.read().decode()
+        release.set()
+        first.join(30)
+        with urllib.request.urlopen(url + "api/pixel?i=1&j=1") as r:   # kept: no new run
+            assert r.status == 200
+        assert calls == [(1, 1)]
+        assert "refused GET /api/pixel?i=2&j=1: busy" in log.getvalue()
+    finally:
+        release.set()
+        server.shutdown()
+        server.server_close()

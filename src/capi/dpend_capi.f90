@@ -20,7 +20,7 @@ module dpend_capi
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_null_ptr, c_null_char, &
       c_associated, c_f_pointer, c_loc, c_size_t, c_long_long
    use dpend_error, only: error_t, fatal_error, exit_status
-   use dpend_cli, only: arg_t, check_repeated_options, printable
+   use dpend_cli, only: arg_t, check_repeated_options, printable, environment
    use dpend_os, only: capture_outputs, take_capture, capture_buffer, make_temp_directory, &
       remove_directory, remove_file, errno_text, path_kind, path_file
    use dpend_stop_request, only: request_stop, clear_stop_request, stop_requested
@@ -463,14 +463,7 @@ contains
    !> $TMPDIR, else /tmp.
    function temp_root() result(root)
       character(len=:), allocatable :: root
-      integer :: n, stat
-      call get_environment_variable('TMPDIR', length=n, status=stat)
-      if (stat == 0 .and. n > 0) then
-         allocate (character(len=n) :: root)
-         call get_environment_variable('TMPDIR', root)
-      else
-         root = '/tmp'
-      end if
+      root = environment('TMPDIR', '/tmp')
    end function temp_root
 
    !> The items of the file at `path` as the run's record (`take_record`).

@@ -10,7 +10,7 @@ module dpend_explore_command
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_loc, c_null_char, &
                                           c_null_ptr
    use dpend_error, only: error_t, fatal_error, error_run_failed
-   use dpend_cli, only: arg_t
+   use dpend_cli, only: arg_t, environment
    implicit none
    private
    public :: explore_command
@@ -54,14 +54,8 @@ contains
       type(c_text_t), allocatable, target :: texts(:)
       type(c_ptr), allocatable :: argv(:)
       character(len=:), allocatable :: python
-      integer :: k, status, length
-      call get_environment_variable('DPEND_PYTHON', length=length, status=status)
-      if (status == 0 .and. length > 0) then
-         allocate (character(len=length) :: python)
-         call get_environment_variable('DPEND_PYTHON', python)
-      else
-         python = 'python3'
-      end if
+      integer :: k, status
+      python = environment('DPEND_PYTHON', 'python3')
       allocate (texts(size(args) + 3))
       texts(1) = c_text(python)
       texts(2) = c_text('-c')

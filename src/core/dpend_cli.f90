@@ -12,7 +12,8 @@ module dpend_cli
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
-   public :: arg_t, get_arguments, next_option, parse_real, parse_int, parse_logical
+   public :: arg_t, get_arguments, environment, next_option, parse_real, parse_int
+   public :: parse_logical
    public :: check_repeated_options, help_options, unknown_option_text
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
    public :: overflows_real, to_lower, printable, pad, quoted
@@ -41,6 +42,21 @@ contains
          call get_command_argument(i, args(i)%s)
       end do
    end subroutine get_arguments
+
+   !> The environment variable `name`, or `default` when it is unset or empty.
+   function environment(name, default) result(value)
+      character(len=*), intent(in) :: name     !! the variable
+      character(len=*), intent(in) :: default  !! its value when unset or empty
+      character(len=:), allocatable :: value
+      integer :: n, stat
+      call get_environment_variable(name, length=n, status=stat)
+      if (stat == 0 .and. n > 0) then
+         allocate (character(len=n) :: value)
+         call get_environment_variable(name, value)
+      else
+         value = default
+      end if
+   end function environment
 
    !> Split the option at args(i): its name (with the leading dashes) and, for
    !> options that take one, its value, from `--name=value` or the next argument

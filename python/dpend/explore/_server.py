@@ -133,8 +133,8 @@ class Explorer:
                 return done
         if not self.slots.acquire(blocking=False):
             raise Refusal(HTTPStatus.SERVICE_UNAVAILABLE,
-                          f"busy: {self.max_runs} runs in progress (the most at once); "
-                          "try again")
+                          f"busy: {self.max_runs} run{'s' if self.max_runs > 1 else ''} in "
+                          "progress (the most at once: --max-runs); try again")
         try:
             result = self.runner(self.map, i, j)
         finally:
