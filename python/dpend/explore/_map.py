@@ -25,10 +25,11 @@ from typing import Any, Dict, List, Optional, Tuple
 import h5py
 import numpy as np
 
-# The most pixels a map may have (a 4096 x 4096 grid), and the most frames of a
-# pixel's motion sent to the page.
+# The most pixels a map may have (a 4096 x 4096 grid), the most frames of a pixel's
+# motion sent to the page, the most bytes of map values held.
 MAX_PIXELS = 4096 * 4096
 MAX_FRAMES = 4000
+MAX_BYTES = 2**30           # the maps and per-pixel parameters held in memory
 
 # Datasets of /sweep a page can colour the map by: (name, label, unit, scale).
 # scale: 'flip' (log, in sqrt(l1/g), white = none), 'log', 'megno' (0..4), 'linear'.
@@ -359,10 +360,16 @@ def open_map(path: str) -> MapFile:
             attrs["device"] = _string_attr(sweep, "device", path)
         maps: Dict[str, np.ndarray] = {}
         labels: Dict[str, Tuple[str, str, str]] = {}
-        for name, label, units, scale in _MAPS:
+        group = sweep.get("param")
+        shown = [row for row in _MAPS if row[0] in sweep]
+        held = (len(shown) + (len(group) if isinstance(group, h5py.Group) else 0)) \
+            * n1 * n2 * 8
+        if held > MAX_BYTES:                    # estimated before anything is read
+            raise MapError(f"{path}: its maps and parameters would take {held / 2**30:.1f} "
+                           f"GiB in memory; explore holds at most "
+                           f"{MAX_BYTES / 2**30:.0f} GiB (a coarser map: --n)")
+        for name, label, units, scale in shown:
             d = sweep.get(name)
-            if d is None:
-                continue
             if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 or d.shape != (n2, n1):
                 raise MapError(f"{path}: /sweep/{name} is not ({n2}, {n1}) float64 values")
             maps[name] = d[...]
@@ -370,7 +377,6 @@ def open_map(path: str) -> MapFile:
         if not maps:
             raise MapError(f"{path}: /sweep holds no map explore can show")
         params: Dict[str, np.ndarray] = {}
-        group = sweep.get("param")
         if isinstance(group, h5py.Group):
             for name, d in group.items():
                 if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 \

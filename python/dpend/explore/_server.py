@@ -73,7 +73,8 @@ class Explorer:
         self.lock = threading.Lock()
         self.assets = {path: (_asset(name), kind) for path, (name, kind) in _ASSETS.items()}
         self.description = json.dumps(m.describe()).encode("utf-8")
-        self.values = {name: a.astype("<f8").tobytes() for name, a in m.maps.items()}
+        stem = os.path.splitext(os.path.basename(m.path))[0]
+        self.stem = re.sub(r"[^A-Za-z0-9._-]", "_", stem) or "map"   # a header's file name
 
     def say(self, line: str) -> None:
         print(f"dpend explore: {line}", file=self.log, flush=True)
@@ -156,16 +157,16 @@ class Explorer:
             return self.description, "application/json", {}
         if path == "/api/values":
             name = self.query(path, text, ("name",))["name"]
-            if name not in self.values:
+            if name not in self.map.maps:
                 raise Refusal(HTTPStatus.BAD_REQUEST, f"name = '{name[:40]}': not a map "
-                              f"of this file; accepted: {', '.join(self.values)}")
-            return self.values[name], "application/octet-stream", {}
+                              f"of this file; accepted: {', '.join(self.map.maps)}")
+            return self.map.maps[name].astype("<f8").tobytes(), "application/octet-stream", {}
         if path in _PIXEL_ROUTES:
             i, j = self.pixel(self.query(path, text, ("i", "j")))
             result = self.run(i, j)
             if path == "/api/pixel":
                 return json.dumps(result.page).encode("utf-8"), "application/json", {}
-            stem = f"{os.path.splitext(os.path.basename(self.map.path))[0]}_pixel_{i}_{j}"
+            stem = f"{self.stem}_pixel_{i}_{j}"
             if path == "/api/run.csv":
                 return result.csv(), "text/csv; charset=utf-8", \
                     {"Content-Disposition": f'attachment; filename="{stem}.csv"'}

@@ -516,6 +516,7 @@ async function start() {
   $("setup").textContent = `${meta.n1} × ${meta.n2}, ${meta.axis1} × ${meta.axis2}, model ${meta.model}` +
     `${meta.model === "pendulum" ? `, ${meta.links} links` : ""}, rk4 to t_end = ${fmt(meta.t_end, 6)} s` +
     ` (${fmt(meta.t_end / meta.tau, 6)} ${meta.tau_label}), ${meta.n_steps} steps; ${meta.device}`;
+  $("config").textContent = meta.config.join("\n");
   for (const m of meta.maps) {
     const o = document.createElement("option");
     o.value = m.name; o.textContent = `${m.name}: ${m.label}`;
