@@ -472,14 +472,15 @@ async function loadMap(name) {
 }
 function wire() {
   const c = $("map");
-  c.addEventListener("mousemove", ev => { const p = pixelAt(ev); if (p) showPixel(p); });
+  c.addEventListener("mousemove", ev => { const p = S.values && pixelAt(ev); if (p) showPixel(p); });
   c.addEventListener("click", ev => {
-    const p = pixelAt(ev);
+    const p = S.values && pixelAt(ev);
     if (!p) return;
     S.cursor = p; showPixel(p); drawMap(); c.focus();
     runPixel(p.i, p.j, ev.shiftKey && !!S.runs[0]);
   });
   c.addEventListener("keydown", ev => {
+    if (!S.values) return;                        // the map is still loading
     const moves = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
     if (moves[ev.key]) {
       const [di, dj] = moves[ev.key], step = ev.ctrlKey ? 10 : 1;
@@ -490,15 +491,17 @@ function wire() {
       runPixel(S.cursor.i, S.cursor.j, ev.shiftKey && !!S.runs[0]); ev.preventDefault();
     }
   });
-  c.addEventListener("focus", () => showPixel(S.cursor));
+  c.addEventListener("focus", () => { if (S.values) showPixel(S.cursor); });
   $("mapname").addEventListener("change", async ev => {
     try { await loadMap(ev.target.value); showValues(); writeHash(); } catch (e) { say(e.message, true); }
   });
   $("play").addEventListener("click", () => {
+    if (!S.runs[0]) return;
     if (!S.playing && S.frame >= S.runs[0].frames - 1) { S.frame = 0; S.simTime = 0; }
     play(!S.playing);
   });
   $("time").addEventListener("input", ev => {
+    if (!S.runs[0]) return;
     play(false); S.frame = Number(ev.target.value); S.simTime = S.runs[0].t[S.frame];
     drawAll(); writeHash();
   });
