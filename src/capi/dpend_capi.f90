@@ -358,7 +358,7 @@ contains
          open (newunit=unit, status='scratch', action='readwrite', form='formatted', &
                iostat=stat)
          if (stat == 0) call set_report_unit(unit)
-         call run_fit(fc, error)
+         call run_fit(fc, error, .false.)
          call set_report_unit(output_unit)
          if (allocated(error)) call error_line(error, 'fit')
          if (stat == 0) then

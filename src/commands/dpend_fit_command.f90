@@ -38,35 +38,38 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
       type(arg_t), allocatable :: rest(:)
       type(fit_config_t) :: fc
-      logical :: help
-      call take_quiet(args, rest)
+      logical :: help, quiet
+      call take_quiet(args, rest, quiet)
       call parse_fit(rest, fc, help, error)
       if (allocated(error)) then
          call refusal_line(error, 'fit')
       else if (help) then
          write (output_unit, '(a)') with_quiet(fit_help(), summary_quiet)
       else
-         call run_fit(fc, error)
+         call run_fit(fc, error, quiet)
          if (allocated(error)) call error_line(error, 'fit')
       end if
    end subroutine fit_command
 
-   !> Run the fit and write its report and file.
+   !> Run the fit and write its report and file; `quiet`: of the report only its last
+   !> line (the file written), and any warning.
    !> The error's kind says whether the input was refused (nothing written) or
    !> the run started and failed (exit status 1).
-   subroutine run_fit(fc, error)
+   subroutine run_fit(fc, error, quiet)
       type(fit_config_t), intent(in) :: fc              !! validated configuration
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
+      logical, intent(in) :: quiet                      !! --quiet
       logical :: failed
-      call run_fit_body(fc, error, failed)
+      call run_fit_body(fc, quiet, error, failed)
       if (allocated(error) .and. failed) call run_failure(error)
    end subroutine run_fit
 
    !> Fit, print the report, write the HDF5 file. A fit that fails partway (any
    !> error but refused input, `error_bad_input`) still writes its file, holding the
    !> settings and the failure as its status (`write_fit_failure`).
-   subroutine run_fit_body(fc, error, failed)
+   subroutine run_fit_body(fc, quiet, error, failed)
       type(fit_config_t), intent(in) :: fc              !! validated configuration
+      logical, intent(in) :: quiet                      !! only the report's last line
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the fit started and failed
       type(fit_problem_t) :: prob
@@ -86,7 +89,7 @@ contains
          failed = .true.
          return
       end if
-      call print_report(fc, res)
+      if (.not. quiet) call print_report(fc, res)
       call misfit_warning(fc, prob, res)
       call write_fit(out%temp, fc, res, werr)
       if (.not. allocated(werr)) call out%commit(werr)

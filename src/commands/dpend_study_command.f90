@@ -34,14 +34,16 @@ contains
 
    ! ================================================================ command
 
-   !> Run the study, write the file and summary, draw the figures.
+   !> Run the study, write the file and summary, draw the figures; `quiet`: print of
+   !> the summary only its last line (the files written).
    !> The error's kind says whether the input was refused (nothing written) or
    !> the run started and failed (exit status 1).
-   subroutine run_study_command(cfg, error)
+   subroutine run_study_command(cfg, quiet, error)
       type(study_config_t), intent(in) :: cfg           !! validated configuration
+      logical, intent(in) :: quiet                      !! --quiet
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical :: failed
-      call run_study_command_body(cfg, error, failed)
+      call run_study_command_body(cfg, quiet, error, failed)
       if (allocated(error) .and. failed) call run_failure(error)
    end subroutine run_study_command
 
@@ -49,8 +51,9 @@ contains
    !> print the summary, draw the figures. `error` with `failed` false: invalid
    !> output (nothing written); with `failed` true: the study ran but a later
    !> stage (writing, figures) failed.
-   subroutine run_study_command_body(cfg, error, failed)
+   subroutine run_study_command_body(cfg, quiet, error, failed)
       type(study_config_t), intent(in) :: cfg           !! validated configuration
+      logical, intent(in) :: quiet                      !! the summary's last line only
       type(error_t), allocatable, intent(out) :: error  !! what went wrong
       logical, intent(out) :: failed                    !! the study ran, then failed
       type(study_result_t) :: res
@@ -113,7 +116,7 @@ contains
       call h5_out%discard()
       call md_out%discard()
       if (allocated(error)) return
-      write (output_unit, '(a)') text
+      if (.not. quiet) write (output_unit, '(a)') text
       write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md//"'"
       if (.not. cfg%figures) then
          failed = .false.

@@ -43,15 +43,15 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused input or a failed run
       type(arg_t), allocatable :: rest(:)
       type(study_config_t) :: cfg
-      logical :: help
-      call take_quiet(args, rest)
+      logical :: help, quiet
+      call take_quiet(args, rest, quiet)
       call parse_study(rest, cfg, help, error)
       if (allocated(error)) then
          call refusal_line(error, 'study')
       else if (help) then
          write (output_unit, '(a)') with_quiet(study_help(), summary_quiet)
       else
-         call run_study_command(cfg, error)
+         call run_study_command(cfg, quiet, error)
          if (allocated(error)) call error_line(error, 'study')
       end if
    end subroutine study_command

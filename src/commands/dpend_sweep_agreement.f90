@@ -133,6 +133,9 @@ contains
       write (u, '(a, i0)') 'chaotic_only_b: ', counts(5)
       write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
       write (u, '(a)') 'stored: '//output
+      write (u, '(a)') 'dpend sweep-compare: the regular/chaotic classes agree on '// &
+         real_str(anint(1e5_dp*fraction)/1e3_dp)//' % of the '//to_str(counts(1))// &
+         ' pixels classified; stored in '//output
    contains
       subroutine line(c, s)
          type(classified_t), intent(in) :: c

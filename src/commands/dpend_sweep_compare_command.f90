@@ -52,9 +52,9 @@ contains
       type(arg_t), allocatable :: rest(:), files(:)
       type(agreement_options_t) :: agree
       real(dp) :: rel
-      logical :: agreement, help
-      integer :: i
-      call take_quiet(args, rest)
+      logical :: agreement, help, quiet
+      integer :: i, unit, stat
+      call take_quiet(args, rest, quiet)
       help = any([(rest(i)%s == '--help' .or. rest(i)%s == '-h', i=1, size(rest))])
       if (help) then
          write (output_unit, '(a)') sweep_compare_help()
@@ -65,14 +65,38 @@ contains
          call refusal_line(error, 'sweep-compare')
          return
       end if
+      unit = output_unit
+      if (quiet) then   ! the report into a scratch file: of it only its last line
+         open (newunit=unit, status='scratch', action='readwrite', iostat=stat)
+         if (stat /= 0) unit = output_unit
+      end if
       if (agreement) then
-         call sweep_agreement(files(1)%s, files(2)%s, agree, output_unit, error)
+         call sweep_agreement(files(1)%s, files(2)%s, agree, unit, error)
       else
-         call compare_sweeps(files(1)%s, files(2)%s, rel, output_unit, error)
+         call compare_sweeps(files(1)%s, files(2)%s, rel, unit, error)
+      end if
+      if (unit /= output_unit) then
+         if (.not. allocated(error)) call print_last_line(unit)
+         close (unit)
       end if
       ! the engine's messages begin with 'sweep-compare: '
       if (allocated(error)) error%message = 'dpend '//error%message
    end subroutine sweep_compare_command
+
+   !> Print the last line of the formatted scratch file `unit` on standard output.
+   subroutine print_last_line(unit)
+      integer, intent(in) :: unit  !! an open formatted sequential file
+      character(len=4096) :: line, last
+      integer :: stat
+      last = ''
+      rewind (unit)
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         last = line
+      end do
+      write (output_unit, '(a)') trim(last)
+   end subroutine print_last_line
 
    !> The options and the two files of `dpend sweep-compare` (without --help and
    !> --quiet): --rel, or --agreement with its thresholds, output and --force.

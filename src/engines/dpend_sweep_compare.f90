@@ -235,6 +235,9 @@ contains
             ': '//pct(band_c(k), band_n(k))//' % (of ', band_n(k), ' pixels)'
       end do
       write (unit, '(a, i0)') 'pixels_changed_no_flip_in_a: ', n_noflip_changed
+      write (unit, '(a)') 'dpend sweep-compare: '//pct(n_changed, size(ta))//' % of the '// &
+         to_str(size(ta))//' pixels change their flip time by more than '// &
+         real_str(rel)//' relative ('//to_str(n_changed)//' pixels)'
    contains
       !> 100 a/b rounded to 3 decimals ('0' when b = 0).
       function pct(a, b) result(t)
