@@ -287,7 +287,18 @@ def test_requests_checked_before_work(maps):
         with pytest.raises(urllib.error.HTTPError) as e:
             urllib.request.urlopen(request)
         assert e.value.code == 405
-        assert log.getvalue().count("refused") == len(cases) + 1
+        # another Host (a page elsewhere through a name that resolves here): refused
+        request = urllib.request.Request(url + "api/map", headers={"Host": "evil.example"})
+        with pytest.raises(urllib.error.HTTPError) as e:
+            urllib.request.urlopen(request)
+        assert e.value.code == 403 and "evil.example" in e.value.read().decode()
+        # a line end or escape in a value stays escaped in its one line
+        with pytest.raises(urllib.error.HTTPError) as e:
+            urllib.request.urlopen(url + "api/pixel?i=1%0Aforged%1B[2J&j=1")
+        body = e.value.read().decode()
+        assert body.count("\n") == 1 and "\\n" in body and "\x1b" not in body
+        assert log.getvalue().count("refused") == len(cases) + 3
+        assert all(line.startswith("dpend explore: ") for line in log.getvalue().splitlines())
     finally:
         server.shutdown()
         server.server_close()

@@ -10,6 +10,7 @@ CDN), and runs pixels through the library in this process (``_pixel``).
 from __future__ import annotations
 
 import ipaddress
+import re
 import signal
 import sys
 from typing import List, Optional, Sequence, TextIO
@@ -45,8 +46,9 @@ class UsageError(ValueError):
 
 
 def _integer(name: str, text: str, low: int, high: int) -> int:
-    if not text.isdigit() or not (low <= int(text) <= high):
-        raise UsageError(f"{name} '{text}': an integer in [{low}, {high}] is needed")
+    if not re.fullmatch(r"[0-9]{1,9}", text) or not (low <= int(text) <= high):
+        raise UsageError(f"{name} '{ascii(text)[1:-1]}': an integer in [{low}, {high}] "
+                         "is needed")
     return int(text)
 
 

@@ -30,6 +30,8 @@ import numpy as np
 MAX_PIXELS = 4096 * 4096
 MAX_FRAMES = 4000
 MAX_BYTES = 2**30           # the maps and per-pixel parameters held in memory
+MAX_AXIS = 8192             # points on one axis (a browser's canvas holds 32767 px)
+MAX_STEPS = 10**8           # steps of one pixel's run (a few seconds of one click)
 
 # Datasets of /sweep a page can colour the map by: (name, label, unit, scale).
 # scale: 'flip' (log, in sqrt(l1/g), white = none), 'log', 'megno' (0..4), 'linear'.
@@ -89,7 +91,7 @@ class MapFile:
     def gpu(self) -> bool:
         return str(self.attrs.get("device", "cpu")).startswith("gpu")
 
-    def pixel_values(self, i: int, j: int) -> Dict[str, Optional[float]]:
+    def pixel_values(self, i: int, j: int) -> Dict[str, Any]:
         """The map's values at pixel (i, j): i along axis 1 (column), j along axis 2."""
         return {name: _number(m[j, i]) for name, m in self.maps.items()}
 
@@ -180,9 +182,20 @@ def _fixed_by(axis: str) -> str:
     return axis.split("/")[0]
 
 
-def _number(x: Any) -> Optional[float]:
+def _number(x: Any) -> Any:
+    """A value for JSON: the float, or 'nan', 'inf', '-inf' (JSON has no such numbers)."""
     x = float(x)
-    return x if math.isfinite(x) else None
+    if math.isfinite(x):
+        return x
+    return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+
+
+def same_bits(a: Any, b: Any) -> bool:
+    """The map's value and the run's are the same double (every NaN alike)."""
+    a, b = np.float64(a), np.float64(b)
+    if np.isnan(a) or np.isnan(b):
+        return bool(np.isnan(a) and np.isnan(b))
+    return a.tobytes() == b.tobytes()
 
 
 def _link_values(opts: Dict[str, Any], kind: str, n: int) -> List[float]:
@@ -296,10 +309,22 @@ def _real_attr(obj: Any, name: str, path: str, positive: bool = True) -> float:
     return x
 
 
+def _local(group: Any, name: str, shape: Tuple[int, ...], path: str) -> Any:
+    """group/name as a dataset of float64 values of `shape` stored in this file: a hard
+    link, not external or virtual (a map must not make the server read other files)."""
+    where = f"{group.name.rstrip('/')}/{name}"
+    if not isinstance(group.get(name, getlink=True), h5py.HardLink):
+        raise MapError(f"{path}: {where} is a link to elsewhere, not a dataset of the file")
+    d = group.get(name)
+    if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 or d.shape != shape:
+        raise MapError(f"{path}: {where} is not {' x '.join(map(str, shape))} float64 values")
+    if d.is_virtual or d.external:
+        raise MapError(f"{path}: {where} is stored outside the file (external or virtual)")
+    return d
+
+
 def _axis(sweep: Any, name: str, n: int, path: str) -> Tuple[np.ndarray, str]:
-    d = sweep.get(name)
-    if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 or d.shape != (n,):
-        raise MapError(f"{path}: /sweep/{name} is not {n} float64 values")
+    d = _local(sweep, name, (n,), path)
     values = d[...]
     if not np.all(np.isfinite(values)):
         raise MapError(f"{path}: /sweep/{name} holds a non-finite value")
@@ -309,7 +334,19 @@ def _axis(sweep: Any, name: str, n: int, path: str) -> Tuple[np.ndarray, str]:
 
 
 def open_map(path: str) -> MapFile:
-    """Read and check the map at `path` (MapError: one line naming what is wrong)."""
+    """Read and check the map at `path` (MapError: one line naming what is wrong; any
+    other failure to read it becomes one too)."""
+    try:
+        return _open_map(path)
+    except MapError:
+        raise
+    except (OSError, ValueError, TypeError, IndexError, KeyError, OverflowError) as e:
+        why = " ".join(str(e).split())[:160]
+        raise MapError(f"{path}: cannot be read as a map of dpend sweep "
+                       f"({type(e).__name__}: {why})") from None
+
+
+def _open_map(path: str) -> MapFile:
     if not os.path.isfile(path):
         raise MapError(f"{path}: not a readable HDF5 file (no such file, or a folder)")
     try:
@@ -339,9 +376,9 @@ def open_map(path: str) -> MapFile:
         if keys.get("command") != "sweep":
             raise MapError(f"{path}: its configuration is not that of a sweep")
         n1, n2 = (int(_parse_value(k, keys.get(k, "0"))) for k in ("n1", "n2"))
-        if not (1 <= n1 and 1 <= n2 and n1 * n2 <= MAX_PIXELS):
-            raise MapError(f"{path}: grid {n1} x {n2}: explore shows 1 to {MAX_PIXELS} "
-                           "pixels")
+        if not (1 <= n1 <= MAX_AXIS and 1 <= n2 <= MAX_AXIS and n1 * n2 <= MAX_PIXELS):
+            raise MapError(f"{path}: grid {n1} x {n2}: explore shows 1 to {MAX_AXIS} points "
+                           f"per axis and at most {MAX_PIXELS} pixels")
         values1, units1 = _axis(sweep, "axis1", n1, path)
         values2, units2 = _axis(sweep, "axis2", n2, path)
         attrs = {k: sweep.attrs[k] for k in ("t_end", "h", "n_steps", "links", "device", "potential_range")
@@ -354,8 +391,26 @@ def open_map(path: str) -> MapFile:
         attrs["tau"] = _real_attr(sweep, units[0], path)
         for k in ("t_end", "h"):
             attrs[k] = _real_attr(sweep, k, path)
-        if "n_steps" not in attrs or int(np.asarray(attrs["n_steps"]).reshape(())) < 1:
-            raise MapError(f"{path}: /sweep attribute 'n_steps' is missing or not positive")
+        n_steps = attrs.get("n_steps")
+        if n_steps is None or np.asarray(n_steps).dtype.kind not in "iu" \
+                or np.asarray(n_steps).size != 1:
+            raise MapError(f"{path}: /sweep attribute 'n_steps' is not one integer")
+        n_steps = attrs["n_steps"] = int(np.asarray(n_steps).reshape(()))
+        if not 1 <= n_steps <= MAX_STEPS:
+            raise MapError(f"{path}: n_steps = {n_steps}: explore runs pixels of 1 to "
+                           f"{MAX_STEPS} steps")
+        if abs(attrs["h"] * n_steps - attrs["t_end"]) > 1e-9 * attrs["t_end"]:
+            raise MapError(f"{path}: h x n_steps = {attrs['h'] * n_steps!r} s is not "
+                           f"t_end = {attrs['t_end']!r} s")
+        for k in ("h", "n_steps"):              # the settings say the same
+            if k in keys and float(keys[k]) != float(attrs[k]):
+                raise MapError(f"{path}: its configuration's {k} = {keys[k]} is not the "
+                               f"attribute's {attrs[k]!r}")
+        links = attrs.get("links", 2)
+        if np.asarray(links).dtype.kind not in "iu" or np.asarray(links).size != 1 \
+                or not 1 <= int(np.asarray(links).reshape(())) <= 32:
+            raise MapError(f"{path}: /sweep attribute 'links' is not an integer in [1, 32]")
+        attrs["links"] = int(np.asarray(links).reshape(()))
         if "device" in attrs:
             attrs["device"] = _string_attr(sweep, "device", path)
         maps: Dict[str, np.ndarray] = {}
@@ -369,21 +424,14 @@ def open_map(path: str) -> MapFile:
                            f"GiB in memory; explore holds at most "
                            f"{MAX_BYTES / 2**30:.0f} GiB (a coarser map: --n)")
         for name, label, units, scale in shown:
-            d = sweep.get(name)
-            if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 or d.shape != (n2, n1):
-                raise MapError(f"{path}: /sweep/{name} is not ({n2}, {n1}) float64 values")
-            maps[name] = d[...]
+            maps[name] = _local(sweep, name, (n2, n1), path)[...]
             labels[name] = (label, units, scale)
         if not maps:
             raise MapError(f"{path}: /sweep holds no map explore can show")
         params: Dict[str, np.ndarray] = {}
         if isinstance(group, h5py.Group):
-            for name, d in group.items():
-                if not isinstance(d, h5py.Dataset) or d.dtype != np.float64 \
-                        or d.shape != (n2, n1):
-                    raise MapError(f"{path}: /sweep/param/{name} is not ({n2}, {n1}) "
-                                   "float64 values")
-                params[name] = d[...]
+            for name in group:
+                params[name] = _local(group, name, (n2, n1), path)[...]
     m = MapFile(path=path, n1=n1, n2=n2, axis1=keys.get("axis1", "?"),
                 axis2=keys.get("axis2", "?"), values1=values1, values2=values2,
                 units1=units1, units2=units2, maps=maps, labels=labels, attrs=attrs,

@@ -12,7 +12,7 @@ import numpy as np
 import xarray as xr
 
 from .. import _commands
-from ._map import MapFile, _number
+from ._map import MapFile, _number, same_bits
 
 
 @dataclass
@@ -63,27 +63,30 @@ def run_pixel(m: MapFile, i: int, j: int) -> PixelRun:
     t_sweep = time.perf_counter() - start
     ds = _commands.run("simulate", progress=None, **m.simulate_options(i, j))
     t_simulate = time.perf_counter() - start - t_sweep
-    run_values = {name: _number(np.asarray(values[name].values).ravel()[0])
-                  for name in m.maps if name in values}
+    got = {name: np.asarray(values[name].values).ravel()[0] for name in m.maps
+           if name in values}
+    run_values = {name: _number(v) for name, v in got.items()}
+    same = {name: name in got and same_bits(m.maps[name][j, i], got[name])
+            for name in m.maps}
     status = int(np.asarray(values["status"].values).ravel()[0]) if "status" in values \
         else None
     energy = np.asarray(ds["energy"].values, dtype=float)
-    scale = float(m.attrs.get("potential_range", 0.0)) or max(abs(energy[0]), 1.0)
     points = _points(ds)
+    finite = np.abs(points[np.isfinite(points)])
     q = np.asarray(ds["q"].values, dtype=float)
     names = str(ds.attrs.get("coordinates", "")).split() or \
         [f"q{k + 1}" for k in range(q.shape[1])]
     page = {
         "i": i, "j": j,
         "x": float(m.values1[i]), "y": float(m.values2[j]),
-        "map": m.pixel_values(i, j), "run": run_values, "status": status,
+        "map": m.pixel_values(i, j), "run": run_values, "same": same, "status": status,
         "t": _rounded(ds["t"].values), "frames": int(points.shape[0]),
         "points": _rounded(points), "npoints": int(points.shape[1]),
         "coordinates": names, "q": _rounded(q),
-        "energy_error": _rounded((energy - energy[0]) / scale, 4),
+        "energy_change": _rounded(energy - energy[0], 4),
         "style": str(ds.attrs.get("draw_style", "rods")),
         "body": str(ds.attrs.get("body", "")),
-        "model": m.model, "extent": float(np.nanmax(np.abs(points))) if points.size else 1.0,
+        "model": m.model, "extent": float(finite.max()) if finite.size else 1.0,
         "save_every": int(ds.attrs.get("save_every", 1)),
         "seconds": {"sweep": t_sweep, "simulate": t_simulate},
     }

@@ -18,9 +18,11 @@ motion: simulate to the map's t_end), at most `max_runs` at once (503 beyond).
 from __future__ import annotations
 
 import collections
+import ipaddress
 import json
 import os
 import re
+import socket
 import sys
 import threading
 import time
@@ -40,6 +42,12 @@ _ASSETS = {"/": ("index.html", "text/html; charset=utf-8"),
 _PIXEL_ROUTES = ("/api/pixel", "/api/run.h5", "/api/run.csv")
 _MAX_QUERY = 512
 _INDEX = re.compile(r"[0-9]{1,9}")
+
+
+def _shown(text: str, n: int = 40) -> str:
+    """A request's text in a one-line message: at most n characters, control and
+    non-ASCII characters escaped (no forged log lines, no terminal escapes)."""
+    return ascii(text[:n])[1:-1]
 
 
 class Refusal(Exception):
@@ -75,6 +83,15 @@ class Explorer:
         self.description = json.dumps(m.describe()).encode("utf-8")
         stem = os.path.splitext(os.path.basename(m.path))[0]
         self.stem = re.sub(r"[^A-Za-z0-9._-]", "_", stem) or "map"   # a header's file name
+        self.values: Dict[str, bytes] = {}
+        self.hosts: Optional[set] = None       # the Host headers accepted (None: any)
+
+    def check_host(self, host: Optional[str]) -> None:
+        """A server on a loopback address answers only requests addressed to it (a web
+        page elsewhere cannot reach it through a name that resolves here)."""
+        if self.hosts is not None and (host or "").lower() not in self.hosts:
+            raise Refusal(HTTPStatus.FORBIDDEN, f"Host '{_shown(host or '')}' is not this "
+                          "server's address (only 127.0.0.1, localhost or ::1 and its port)")
 
     def say(self, line: str) -> None:
         print(f"dpend explore: {line}", file=self.log, flush=True)
@@ -89,7 +106,7 @@ class Explorer:
             pairs = parse_qsl(text, keep_blank_values=True, strict_parsing=bool(text),
                               errors="strict", max_num_fields=8)
         except (ValueError, UnicodeDecodeError) as e:
-            raise Refusal(HTTPStatus.BAD_REQUEST, f"the query '{text[:60]}' is not "
+            raise Refusal(HTTPStatus.BAD_REQUEST, f"the query '{_shown(text, 60)}' is not "
                           f"key=value pairs ({e})") from None
         got: Dict[str, str] = {}
         for key, value in pairs:
@@ -99,11 +116,11 @@ class Explorer:
                     hint = (f" (a pixel's run uses the map's settings: t_end = "
                             f"{float(self.map.attrs['t_end']):.6g} s, rk4, "
                             f"h = {float(self.map.attrs['h']):.6g} s)")
-                raise Refusal(HTTPStatus.BAD_REQUEST, f"{key} = '{value[:40]}': not a "
-                              f"parameter of {route}{hint}; accepted: "
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"{_shown(key)} = '{_shown(value)}': "
+                              f"not a parameter of {route}{hint}; accepted: "
                               f"{', '.join(allowed) or 'none'}")
             if key in got:
-                raise Refusal(HTTPStatus.BAD_REQUEST, f"{key} is given twice")
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"{_shown(key)} is given twice")
             got[key] = value
         for key in allowed:
             if key not in got:
@@ -119,7 +136,7 @@ class Explorer:
             value = q[key]
             if not _INDEX.fullmatch(value) or int(value) >= n:
                 raise Refusal(HTTPStatus.BAD_REQUEST,
-                              f"{key} = '{value[:40]}': the pixel's index along axis "
+                              f"{key} = '{_shown(value)}': the pixel's index along axis "
                               f"{axis}, an integer in [0, {n - 1}]")
             out.append(int(value))
         return out[0], out[1]
@@ -158,9 +175,12 @@ class Explorer:
         if path == "/api/values":
             name = self.query(path, text, ("name",))["name"]
             if name not in self.map.maps:
-                raise Refusal(HTTPStatus.BAD_REQUEST, f"name = '{name[:40]}': not a map "
+                raise Refusal(HTTPStatus.BAD_REQUEST, f"name = '{_shown(name)}': not a map "
                               f"of this file; accepted: {', '.join(self.map.maps)}")
-            return self.map.maps[name].astype("<f8").tobytes(), "application/octet-stream", {}
+            with self.lock:                     # each map's bytes made once
+                if name not in self.values:
+                    self.values[name] = self.map.maps[name].astype("<f8").tobytes()
+                return self.values[name], "application/octet-stream", {}
         if path in _PIXEL_ROUTES:
             i, j = self.pixel(self.query(path, text, ("i", "j")))
             result = self.run(i, j)
@@ -172,7 +192,7 @@ class Explorer:
                     {"Content-Disposition": f'attachment; filename="{stem}.csv"'}
             return result.trajectory.dpend.image, "application/x-hdf5", \
                 {"Content-Disposition": f'attachment; filename="{stem}.h5"'}
-        raise Refusal(HTTPStatus.NOT_FOUND, f"'{path[:80]}' is not served (only the page, "
+        raise Refusal(HTTPStatus.NOT_FOUND, f"'{_shown(path, 80)}' is not served (only the page, "
                       f"its assets and the map {os.path.basename(self.map.path)}: "
                       "/, /api/map, /api/values, /api/pixel, /api/run.h5, /api/run.csv)")
 
@@ -183,6 +203,7 @@ def handler_for(explorer: Explorer) -> type:
     class Handler(BaseHTTPRequestHandler):
         server_version = "dpend-explore"
         sys_version = ""
+        timeout = 60                           # an idle connection is closed
 
         def log_message(self, format: str, *args: Any) -> None:   # noqa: A002
             pass                                   # one line per request: below
@@ -206,6 +227,7 @@ def handler_for(explorer: Explorer) -> type:
         def _get(self, head: bool) -> None:
             start = time.perf_counter()
             try:
+                explorer.check_host(self.headers.get("Host"))
                 if len(self.path) > 2 * _MAX_QUERY:
                     raise Refusal(HTTPStatus.BAD_REQUEST,
                                   f"the request's path has {len(self.path)} characters")
@@ -214,25 +236,24 @@ def handler_for(explorer: Explorer) -> type:
                 self._send(HTTPStatus.OK, body, kind, headers, head)
                 if parts.path.startswith("/api/") and parts.path != "/api/values" \
                         and not explorer.quiet:
-                    explorer.say(f"{self.command} {self.path[:120]}: "
+                    explorer.say(f"{self.command} {_shown(self.path, 120)}: "
                                  f"{time.perf_counter() - start:.3f} s")
             except Refusal as r:
-                explorer.say(f"refused {self.command} {self.path[:120]}: {r.line}")
+                explorer.say(f"refused {self.command} {_shown(self.path, 120)}: {r.line}")
                 self._send(r.status, (r.line + "\n").encode("utf-8"),
                            "text/plain; charset=utf-8", head=head)
             except (ValueError, RuntimeError) as e:   # the library's refusal or failure
                 line = str(e).splitlines()[0] if str(e) else type(e).__name__
-                refused = isinstance(e, ValueError)
-                explorer.say(f"{'refused' if refused else 'failed'} {self.command} "
-                             f"{self.path[:120]}: {line}")
-                self._send(HTTPStatus.BAD_REQUEST if refused else
-                           HTTPStatus.INTERNAL_SERVER_ERROR, (line + "\n").encode(),
+                if isinstance(e, ValueError):    # the map's settings, not the request
+                    line = f"the library refused the map's settings: {line}"
+                explorer.say(f"failed {self.command} {_shown(self.path, 120)}: {line}")
+                self._send(HTTPStatus.INTERNAL_SERVER_ERROR, (line + "\n").encode(),
                            "text/plain; charset=utf-8", head=head)
             except (BrokenPipeError, ConnectionResetError):
                 pass                                   # the page went away
             except Exception as e:                     # a bug: said, and the server stays up
                 line = f"internal error: {type(e).__name__}: {e}".splitlines()[0]
-                explorer.say(f"failed {self.command} {self.path[:120]}: {line}")
+                explorer.say(f"failed {self.command} {_shown(self.path, 120)}: {line}")
                 self._send(HTTPStatus.INTERNAL_SERVER_ERROR, (line + "\n").encode(),
                            "text/plain; charset=utf-8", head=head)
 
@@ -243,8 +264,8 @@ def handler_for(explorer: Explorer) -> type:
             self._get(head=True)
 
         def _refuse_method(self) -> None:
-            line = f"method {self.command} is not served (GET and HEAD only)"
-            explorer.say(f"refused {self.command} {self.path[:120]}: {line}")
+            line = f"method {_shown(self.command)} is not served (GET and HEAD only)"
+            explorer.say(f"refused {_shown(self.command)} {_shown(self.path, 120)}: {line}")
             self._send(HTTPStatus.METHOD_NOT_ALLOWED, (line + "\n").encode(),
                        "text/plain; charset=utf-8")
 
@@ -253,10 +274,24 @@ def handler_for(explorer: Explorer) -> type:
     return Handler
 
 
+class _Server6(ThreadingHTTPServer):
+    address_family = socket.AF_INET6
+
+
 def make_server(explorer: Explorer, host: str, port: int) -> ThreadingHTTPServer:
-    """A threading HTTP server for `explorer` bound to (host, port) (0: any free port)."""
-    server = ThreadingHTTPServer((host, port), handler_for(explorer))
+    """A threading HTTP server for `explorer` bound to (host, port) (0: any free port;
+    an IPv6 address too). On a loopback address it answers only requests whose Host
+    header names it (`Explorer.check_host`)."""
+    kind = _Server6 if ":" in host else ThreadingHTTPServer
+    server = kind((host, port), handler_for(explorer))
     server.daemon_threads = True
+    bound = server.server_address[1]
+    try:
+        loopback = host == "localhost" or ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        loopback = False
+    if loopback:
+        explorer.hosts = {f"{name}:{bound}" for name in ("127.0.0.1", "localhost", "[::1]")}
     return server
 
 

@@ -70,13 +70,15 @@ fi
 grep -q 'this machine only' server.out && pass "binds to 127.0.0.1 and says so" ||
   fail "the address line: $(cat server.out)"
 
-# one request: METHOD URL -> "STATUS<TAB>BODY" (the body's lines joined by \n)
+# one request: METHOD URL [HOST] -> "STATUS<TAB>BODY" (the body's lines joined by \n)
 request() {
-  "$py" - "$1" "$2" << 'EOF'
+  "$py" - "$1" "$2" "${3:-}" << 'EOF'
 import sys, urllib.error, urllib.request
-method, url = sys.argv[1], sys.argv[2]
+method, url, host = sys.argv[1], sys.argv[2], sys.argv[3]
+headers = {"Host": host} if host else {}
 try:
-    with urllib.request.urlopen(urllib.request.Request(url, method=method), timeout=60) as r:
+    with urllib.request.urlopen(urllib.request.Request(url, method=method, headers=headers),
+                                timeout=60) as r:
         status, body = r.status, r.read()
 except urllib.error.HTTPError as e:
     status, body = e.code, e.read()
@@ -87,8 +89,8 @@ EOF
 
 # ID, HTTP status, the field the one line names, the request (path and query)
 row() {
-  local id=$1 status=$2 field=$3 path=$4 method=${5:-GET} got code body
-  got=$(request "$method" "${url%/}$path")
+  local id=$1 status=$2 field=$3 path=$4 method=${5:-GET} host=${6:-} got code body
+  got=$(request "$method" "${url%/}$path" "$host")
   code=${got%%$'\t'*}
   body=${got#*$'\t'}
   # one line: the body is 'LINE\n' (repr), no other newline
@@ -118,7 +120,16 @@ row map_param     400 "map = '/etc/passwd'" "/api/map?map=/etc/passwd"
 row values_path   400 "name = '/etc/passwd'" "/api/values?name=/etc/passwd"
 row download      400 "i = 'x'"             "/api/run.h5?i=x&j=1"
 row post          405 "method POST"         "/api/pixel?i=1&j=1" POST
+row other_host    403 "Host 'evil.example"  "/api/map" GET "evil.example"
 
+# a line end in a value is escaped: no forged line in the log
+got=$(request GET "${url%/}/api/pixel?i=1%0Adpend%20explore:%20forged&j=1")
+if [[ "${got%%$'\t'*}" == 400 ]] && ! grep -q '^dpend explore: forged' server.log &&
+   ! grep -v '^dpend explore: ' server.log | grep -q .; then
+  pass "a line end in a value stays escaped in its one line"
+else
+  fail "a line end in a value: ${got:0:200}; log: $(tail -n 3 server.log)"
+fi
 got=$(request GET "${url%/}/api/pixel?i=3&j=5")
 [[ "${got%%$'\t'*}" == 200 ]] && pass "the server is up: a pixel runs after the refusals" ||
   fail "a pixel after the refusals: ${got:0:300}"

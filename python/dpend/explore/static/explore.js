@@ -16,7 +16,7 @@ const M = { left: 78, right: 120, top: 16, bottom: 52 };   // the map's margins 
 const S = {
   meta: null, name: null, values: null, range: null,
   cursor: { i: 0, j: 0 }, runs: [null, null], pending: 0,
-  frame: 0, playing: false, speed: 1, simTime: 0, last: null,
+  frame: 0, playing: false, speed: 1, simTime: 0, last: null, tickets: [0, 0],
   timing: {},
 };
 window.dpendExplore = S;                          // for tests and benchmarks
@@ -41,8 +41,12 @@ function axisLabel(axis, units) {
   if (axis === "phi") return "φ [rad] (from horizontal)";
   return units && units !== "1" ? `${axis} [${units}]` : axis;
 }
+// A value as text: a number, or "nan"/"inf"/"-inf" as the server sends them (JSON has
+// no such numbers); undefined: the run has no such value.
 function valueText(x, map) {
-  if (x === null || x === undefined || !Number.isFinite(x)) {
+  if (x === undefined) return "(not in the run)";
+  if (x === "inf" || x === "-inf") return x;
+  if (x === null || x === "nan" || !Number.isFinite(x)) {
     return map.scale === "flip" ? "no flip before t_end" : "none (not integrated or not finite)";
   }
   let text = `${String(x)} ${map.units === "1" ? "" : map.units}`.trim();
@@ -206,9 +210,10 @@ function drawMarks(g, b) {
   g.lineWidth = 1;
 }
 function pixelAt(ev) {
+  // the canvas' content box: without its border (clientLeft/Top), scaled by CSS size
   const c = $("map"), rect = c.getBoundingClientRect(), b = plotBox();
-  const x = (ev.clientX - rect.left) * c.width / rect.width;
-  const y = (ev.clientY - rect.top) * c.height / rect.height;
+  const x = (ev.clientX - rect.left - c.clientLeft) * c.width / c.clientWidth;
+  const y = (ev.clientY - rect.top - c.clientTop) * c.height / c.clientHeight;
   const i = Math.floor((x - b.x) / b.w * S.meta.n1);
   const j = S.meta.n2 - 1 - Math.floor((y - b.y) / b.h * S.meta.n2);
   if (i < 0 || j < 0 || i >= S.meta.n1 || j >= S.meta.n2) return null;
@@ -234,13 +239,14 @@ function showPixel(p) {
 // -- a pixel's run ----------------------------------------------------------------------
 async function runPixel(i, j, second, extra) {
   S.timing = { click: performance.now() };
+  const which = second ? 1 : 0, ticket = (S.tickets[which] = (S.tickets[which] || 0) + 1);
   const q = new URLSearchParams({ i, j });
   if (extra) for (const [k, v] of Object.entries(extra)) q.set(k, v);
-  const which = second ? 1 : 0;
   say(`running pixel (${i}, ${j}) with the map's settings…`);
   S.pending++;
   try {
     const run = await get(`api/pixel?${q}`, "json");
+    if (ticket !== S.tickets[which]) return null;   // a later click of this slot won
     S.timing.received = performance.now();
     if (!second) { S.runs = [run, S.runs[1]]; S.frame = 0; S.simTime = 0; }
     else S.runs[1] = run;
@@ -254,7 +260,7 @@ async function runPixel(i, j, second, extra) {
     if (!second) play(true);
     return run;
   } catch (e) {
-    say(e.message, true);
+    if (ticket === S.tickets[which]) say(e.message, true);
     return null;
   } finally {
     S.pending--;
@@ -272,11 +278,12 @@ function showValues() {
       const a = run.map[name], b = run.run[name];
       const tr = document.createElement("tr");
       if (name === S.name) tr.id = k === 0 ? "value-row" : "value-row-b";
-      const same = a === b || (a === null && b === null);
+      const same = run.same[name] === true;           // compared bit by bit by the server
+      const numbers = typeof a === "number" && typeof b === "number";
       const cells = [`${k ? "second: " : ""}${name} (${run.i}, ${run.j})`, valueText(a, map), valueText(b, map),
         same ? "the same, to the bit" :
-          (S.meta.gpu ? `differs by ${fmt(Math.abs(a - b) / Math.abs(a), 2)} (a GPU map; the run is on the CPU)`
-            : `differs by ${fmt(Math.abs(a - b), 3)}`)];
+          (numbers ? `differs by ${fmt(Math.abs(a - b), 3)}${a !== 0 ? ` (${fmt(Math.abs(a - b) / Math.abs(a), 2)} relative)` : ""}` :
+            "differs") + (S.meta.gpu ? " (a GPU map; the run is on the CPU)" : "")];
       cells.forEach((text, n) => {
         const td = document.createElement("td");
         td.textContent = text;
@@ -343,8 +350,8 @@ function drawAll() {
   drawSeries($("angles"), what, S.runs.map(run => run &&
     run.coordinates.map((_, k) => run.q.filter((_, n) => n % run.coordinates.length === k))), false,
     tf !== undefined && tf !== null ? tf : null, 40 * S.meta.tau);
-  drawSeries($("energy"), "energy error (E − E0)/(V_max − V_min)",
-    S.runs.map(run => run && [run.energy_error]), false, null);
+  drawSeries($("energy"), "energy change E − E0 [J]",
+    S.runs.map(run => run && [run.energy_change]), false, null);
   if (S.runs[1]) {
     const a = S.runs[0], b = S.runs[1], n = a.coordinates.length;
     const sep = a.t.map((_, f) => {
@@ -528,7 +535,10 @@ async function start() {
   const h = readHash();
   S.cursor = { i: Math.floor(meta.n1 / 2), j: Math.floor(meta.n2 / 2) };
   try { await loadMap(h.map !== undefined ? h.map : meta.maps[0].name); }
-  catch (e) { say(e.message, true); await loadMap(meta.maps[0].name); say(e.message, true); }
+  catch (e) {
+    try { await loadMap(meta.maps[0].name); } catch (e2) { say(e2.message, true); return; }
+    say(e.message, true);
+  }
   if (h.speed !== undefined && [...$("speed").options].some(o => o.value === h.speed)) {
     S.speed = Number(h.speed); $("speed").value = h.speed;
   }
