@@ -437,7 +437,9 @@ function drawSeries(c, title, sets, logY, mark, window) {
   g.strokeStyle = "#999"; g.strokeRect(m.l, m.t, w, h);
   g.textAlign = "right"; g.textBaseline = "middle";
   for (const v of niceTicks(lo, hi, 4)) {
-    g.fillText(logY ? `1e${fmt(v, 3)}` : fmt(v, 3), m.l - 4, m.t + h - (v - lo) / (hi - lo) * h);
+    const small = v !== 0 && Math.abs(v) < 1e-3;   // 1e-6, not 0.000001
+    g.fillText(logY ? `1e${fmt(v, 3)}` : (small ? v.toExponential(1) : fmt(v, 3)), m.l - 4,
+      m.t + h - (v - lo) / (hi - lo) * h);
   }
   g.textAlign = "center"; g.textBaseline = "top";
   for (const v of niceTicks(t0, t1, 6)) g.fillText(fmt(v, 4), X(v), m.t + h + 3);
