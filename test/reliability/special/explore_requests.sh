@@ -9,18 +9,14 @@
 # installed (CI: the venv of scripts/python_package.sh --keep); without one, skipped.
 # Environment (set by the reliability runner): DPEND, ROOT, SCRATCH (the cwd).
 # Exit 0: pass, 77: skipped, other: fail.
-set -uo pipefail
-: "${DPEND:?DPEND must name the dpend binary}" "${ROOT:?}" "${SCRATCH:?}"
+. "$ROOT/test/reliability/lib.sh"
 py="${DPEND_PYTHON:-}"
 if [[ -z "$py" ]] || ! "$py" -c 'import dpend.explore' 2> /dev/null; then
   echo "SKIP explore_requests: DPEND_PYTHON does not name a python with dpend installed"
   exit 77
 fi
 export DPEND_PYTHON="$py"
-cd "$SCRATCH" || exit 1
-failures=0
 pass() { printf 'ok   %s\n' "$1"; }
-fail() { failures=$((failures + 1)); printf 'FAIL %s\n' "$1"; }
 
 "$DPEND" sweep --n 16 --t-end 10 --output map.h5 --quiet > /dev/null 2>&1 ||
   { echo "FAIL sweep for the map"; exit 1; }
@@ -37,7 +33,7 @@ cli() {
      [[ ! -s "cli_$id.out" ]]; then
     pass "cli $id"
   else
-    fail "cli $id: exit $st, stderr $(head -c 300 "cli_$id.err")"
+    bad "cli $id: exit $st, stderr $(head -c 300 "cli_$id.err")"
   fi
 }
 cli no_map       "MAP.h5 is missing"
@@ -68,7 +64,7 @@ if [[ -z "$url" ]]; then
   exit 1
 fi
 grep -q 'this machine only' server.out && pass "binds to 127.0.0.1 and says so" ||
-  fail "the address line: $(cat server.out)"
+  bad "the address line: $(cat server.out)"
 
 # one request: METHOD URL [HOST] -> "STATUS<TAB>BODY" (the body's lines joined by \n)
 request() {
@@ -99,7 +95,7 @@ row() {
      grep -F "refused $method" server.log | grep -qF -- "$field"; then
     pass "request $id"
   else
-    fail "request $id: $code $body"
+    bad "request $id: $code $body"
   fi
 }
 row nan_pixel     400 "i = 'nan'"           "/api/pixel?i=nan&j=3"
@@ -128,14 +124,14 @@ if [[ "${got%%$'\t'*}" == 400 ]] && ! grep -q '^dpend explore: forged' server.lo
    ! grep -v '^dpend explore: ' server.log | grep -q .; then
   pass "a line end in a value stays escaped in its one line"
 else
-  fail "a line end in a value: ${got:0:200}; log: $(tail -n 3 server.log)"
+  bad "a line end in a value: ${got:0:200}; log: $(tail -n 3 server.log)"
 fi
 got=$(request GET "${url%/}/api/pixel?i=3&j=5")
 [[ "${got%%$'\t'*}" == 200 ]] && pass "the server is up: a pixel runs after the refusals" ||
-  fail "a pixel after the refusals: ${got:0:300}"
+  bad "a pixel after the refusals: ${got:0:300}"
 kill -TERM "$server"
 wait "$server"
 st=$?
 [[ $st -eq 0 ]] && grep -q 'stopped' server.log && pass "SIGTERM stops it (exit 0)" ||
-  fail "SIGTERM: exit $st, $(tail -n 2 server.log)"
-exit $((failures > 0))
+  bad "SIGTERM: exit $st, $(tail -n 2 server.log)"
+finish

@@ -7,12 +7,8 @@
 # DPEND_PYTHON names an interpreter with the package (its address line only).
 # Environment (set by the reliability runner): DPEND, ROOT, SCRATCH (the cwd).
 # Exit 0: pass, 77: skipped, other: fail.
-set -uo pipefail
-: "${DPEND:?DPEND must name the dpend binary}" "${ROOT:?}" "${SCRATCH:?}"
-cd "$SCRATCH" || exit 1
-failures=0
+. "$ROOT/test/reliability/lib.sh"
 pass() { printf 'ok   %s\n' "$1"; }
-fail() { failures=$((failures + 1)); printf 'FAIL %s\n' "$1"; }
 
 "$DPEND" simulate --t-end 0.4 --output s.h5 --quiet > /dev/null 2>&1 &&
   "$DPEND" sweep --n 8 --t-end 2 --output w.h5 --quiet > /dev/null 2>&1 &&
@@ -44,7 +40,7 @@ summary() {
   then
     pass "$id: one line ($(head -c 80 "q_$id.out"))"
   else
-    fail "$id: exit $st, $lines lines on stdout, stderr '$(head -c 200 "q_$id.err")'," \
+    bad "$id: exit $st, $lines lines on stdout, stderr '$(head -c 200 "q_$id.err")'," \
       "stdout '$(head -c 300 "q_$id.out")', without --quiet the last line '$last'"
   fi
 }
@@ -61,7 +57,7 @@ summary study      study --quick --no-figures --methods rk4,verlet --output @_st
 if command -v gnuplot > /dev/null 2>&1; then
   summary animate  animate s.h5 --output @_anim.gif --size 64x64 --fps 5
 else
-  fail "animate: gnuplot is not installed"
+  bad "animate: gnuplot is not installed"
 fi
 
 # data commands: the same output with and without --quiet
@@ -73,7 +69,7 @@ data() {
   if [[ $st -eq 0 && ! -s "q_$id.err" && -s "q_$id.out" ]] && cmp -s "q_$id.out" "l_$id.out"; then
     pass "$id: the data as always"
   else
-    fail "$id: exit $st, stderr '$(head -c 200 "q_$id.err")', differs: $(cmp "q_$id.out" "l_$id.out" 2>&1)"
+    bad "$id: exit $st, stderr '$(head -c 200 "q_$id.err")', differs: $(cmp "q_$id.out" "l_$id.out" 2>&1)"
   fi
 }
 data export  export s.h5 /trajectory/t
@@ -94,9 +90,9 @@ if [[ -n "$py" ]] && "$py" -c 'import dpend.explore' 2> /dev/null; then
   if [[ $(wc -l < q_explore.out) -eq 1 ]] && grep -q '^dpend explore: serving at http' q_explore.out; then
     pass "explore: the address only"
   else
-    fail "explore: '$(cat q_explore.out)' '$(head -c 200 q_explore.err)'"
+    bad "explore: '$(cat q_explore.out)' '$(head -c 200 q_explore.err)'"
   fi
 else
   echo "note: explore not run (DPEND_PYTHON does not name a python with dpend)"
 fi
-exit $((failures > 0))
+finish
