@@ -29,7 +29,7 @@ import time
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
-from typing import Any, Callable, Dict, List, Optional, TextIO, Tuple
+from typing import Any, Callable, Dict, Optional, TextIO, Tuple
 from urllib.parse import parse_qsl, urlsplit
 
 from ._map import MapFile
@@ -303,7 +303,3 @@ def serve_in_thread(explorer: Explorer, host: str = "127.0.0.1",
                               daemon=True)
     thread.start()
     return server, f"http://{host}:{server.server_address[1]}/"
-
-
-def routes() -> List[str]:
-    return list(_ASSETS) + ["/api/map", "/api/values"] + list(_PIXEL_ROUTES)
