@@ -297,7 +297,7 @@ row_output() {
   [ $help = 0 ] || return 0
   case $cmd in
     simulate|lyapunov|indicators|divergence|poincare|sweep|fit|study|animate) ;;
-    sweep-compare) [ $agreement = 1 ] || return 0 ;;
+    sweep-compare) [ $agreement = 1 ] && [ -n "$out" ] || return 0 ;;   # a file only with --output
     *) return 0 ;;
   esac
   if [ -z "$out" ] && [ -n "$cfg" ] && [ -f "$cfg" ]; then
@@ -308,7 +308,6 @@ row_output() {
   if [ -z "$out" ]; then
     case $cmd in
       study) out=out/study/study.h5 ;;
-      sweep-compare) out=agreement.h5 ;;
       animate) out='*.gif' ;;
       *) out=$cmd.h5 ;;
     esac

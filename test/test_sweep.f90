@@ -68,6 +68,7 @@ contains
                new_unittest('resume_torn_blocks', test_torn_blocks), &
                new_unittest('parameter_axes', test_parameter_axes), &
                new_unittest('agreement_megno_lambda1', test_agreement), &
+               new_unittest('compare_indicator_values', test_compare_indicator), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
                new_unittest('export_matrix_and_compare', test_export_compare), &
@@ -1574,6 +1575,77 @@ contains
       call check_true(error, .not. is_hdf5(dir//'/b.h5'), 'no file after a refusal')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_agreement
+
+   !> `sweep-compare` of two MEGNO maps of the same 6 x 6 pixels (steps 0.04 and
+   !> 0.02 sqrt(l1/g), t_end 20) compares MEGNO, not flip times: the changed pixels
+   !> are those counted by hand from the two files' /sweep/megno (|b - a| > 0.01 |a|),
+   !> the classes those of <Y> > 2.5; nothing is written (no agreement.h5 in the
+   !> working directory, with --agreement too, unless --output); a MEGNO map against
+   !> a flip map, another indicator or another t_end is refused in one line.
+   subroutine test_compare_indicator(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, common, want
+      type(h5file_t) :: h5
+      real(dp), allocatable :: ma(:, :), mb(:, :)
+      integer :: stat, n, n_changed, n_only_a
+      logical :: existed, exists
+      dir = scratch_dir('sweepcmpind')
+      inquire (file='agreement.h5', exist=existed)
+      common = 'sweep --quiet --n 6 --threads 2 --t-end 20 '
+      stat = run_command(dir, common//'--dt 0.04 --indicator megno --output '//dir//'/a.h5')
+      stat = stat + run_command(dir, common//'--dt 0.02 --indicator megno --output '// &
+                                dir//'/b.h5')
+      stat = stat + run_command(dir, common//'--dt 0.02 --indicator sali --output '// &
+                                dir//'/s.h5')
+      stat = stat + run_command(dir, common//'--dt 0.02 --output '//dir//'/f.h5')
+      stat = stat + run_command(dir, 'sweep --quiet --n 6 --threads 2 --t-end 10 --dt 0.02 '// &
+                                '--indicator megno --output '//dir//'/t.h5')
+      call check_true(error, stat == 0, 'five maps exit 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/a.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/megno', ma, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/b.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/megno', mb, error)
+      call h5%close()
+      if (allocated(error)) return
+      n_changed = count(abs(mb - ma) > 0.01_dp*abs(ma))
+      n_only_a = count(ma > 2.5_dp .and. mb <= 2.5_dp)
+      stat = run_command(dir, 'sweep-compare '//dir//'/a.h5 '//dir//'/b.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'two MEGNO maps compared: '//text)
+      want = 'pixels_changed: '//to_str(n_changed)//new_line('a')
+      call check_true(error, index(text, 'indicator: megno') > 0 .and. &
+                      index(text, want) > 0 .and. index(text, 'pixels_flipping') == 0, &
+                      'MEGNO values compared ('//want//'): '//text)
+      call check_true(error, n_changed > 0 .and. n_changed < 36, &
+                      'some pixels change, not all: '//to_str(n_changed))
+      call check_true(error, index(text, 'pixels_classified: 36') > 0 .and. &
+                      index(text, 'both_regular: '//to_str(count(ma <= 2.5_dp .and. &
+                      mb <= 2.5_dp))) > 0 .and. index(text, 'chaotic_only_a: '// &
+                      to_str(n_only_a)) > 0, 'classes by <Y> > 2.5: '//text)
+      call check_true(error, index(text, 'the regular/chaotic classes agree on') > 0, &
+                      'the summary line names the classes')
+      stat = run_command(dir, 'sweep-compare '//dir//'/a.h5 '//dir//'/b.h5 --agreement')
+      call check_true(error, stat == 0, '--agreement without --output exits 0')
+      inquire (file='agreement.h5', exist=exists)
+      call check_true(error, existed .or. .not. exists, 'no agreement.h5 written unasked')
+      call refused(dir//'/a.h5 '//dir//'/f.h5', 'flip times')
+      call refused(dir//'/a.h5 '//dir//'/s.h5', 'maps sali')
+      call refused(dir//'/b.h5 '//dir//'/t.h5', 't_end')
+      call refused(dir//'/a.h5 '//dir//'/b.h5 --agreement --force', '--force')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine refused(files, needle)
+         character(len=*), intent(in) :: files, needle
+         integer :: st, lines
+         character(len=:), allocatable :: msg
+         st = run_command(dir, 'sweep-compare '//files)
+         call read_text(dir//'/stderr', msg, lines)
+         call check_true(error, st == 2 .and. lines == 1 .and. index(msg, needle) > 0, &
+                         'refused, naming '//needle//': '//msg)
+      end subroutine refused
+   end subroutine test_compare_indicator
 
    !> The elastic pendulum in the sweep: an indicator map over
    !> (r, phi) computed in process; four pixels against separate runs of the same

@@ -11,6 +11,10 @@
 !>   sali     SALI < x chaotic (default 1e-8)
 !>   gali2    GALI_2 < x chaotic (default 1e-8)
 !> A pixel whose value is NaN (not finite) is left out of the comparison.
+!>
+!> Without --agreement, two maps of one indicator (e.g. steps dt and dt/2) are
+!> compared by `compare_indicator_maps`: their values pixel by pixel (a change by
+!> more than a relative tolerance) and their regular/chaotic classes.
 module dpend_sweep_agreement
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use dpend_kinds, only: dp
@@ -23,7 +27,7 @@ module dpend_sweep_agreement
                                   config_difference
    implicit none
    private
-   public :: agreement_options_t, sweep_agreement
+   public :: agreement_options_t, sweep_agreement, compare_indicator_maps, map_indicator
 
    !> Options of the agreement report.
    type :: agreement_options_t
@@ -31,7 +35,7 @@ module dpend_sweep_agreement
       real(dp) :: threshold_b = 0.0_dp      !! threshold of file B's indicator
       logical :: set_a = .false.            !! threshold_a given (else the default)
       logical :: set_b = .false.            !! threshold_b given (else the default)
-      character(len=:), allocatable :: output  !! HDF5 file of the report
+      character(len=:), allocatable :: output  !! HDF5 file of the report ('': none)
       logical :: force = .false.            !! replace an existing output
    end type agreement_options_t
 
@@ -42,7 +46,10 @@ module dpend_sweep_agreement
       logical :: above = .true.             !! chaotic above the threshold
       real(dp) :: tau = 1.0_dp              !! √(l1/g) [s]
       real(dp) :: t_end = 0.0_dp            !! [s]
+      real(dp) :: h = 0.0_dp                !! the step [s]
+      logical :: classified = .true.        !! a threshold is known (FLI: given)
       integer, allocatable :: dims(:)       !! shape of the datasets
+      real(dp), allocatable :: v(:)         !! the indicator's values as stored
       integer, allocatable :: cls(:)        !! 1 chaotic, 0 regular, -1 not classified
    end type classified_t
 
@@ -59,18 +66,48 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! refused or I/O failure
       type(classified_t) :: a, b
       type(output_t) :: out
-      character(len=:), allocatable :: va
-      integer :: n_cls, both_reg, both_cha, only_a, only_b, n_agree
+      integer :: counts(5)
       real(dp) :: fraction
-      ! what must be equal for two sweeps to hold the same pixels (t_end, the step
-      ! and the stop rule may differ)
+      call classify_pair(file_a, file_b, opt, a, b, error)
+      if (allocated(error)) return
+      if (len(opt%output) > 0) then   ! a file only when asked for
+         call out%begin(opt%output, opt%force, error)
+         if (allocated(error)) then
+            error%message = 'sweep-compare: '//error%message
+            return
+         end if
+      end if
+      call class_counts(a, b, counts, fraction)
+      call print_agreement(unit, a, b, counts, fraction, opt%output)
+      if (len(opt%output) == 0) return
+      call store_agreement(out%temp, a, b, counts, fraction, error)
+      if (.not. allocated(error)) call out%commit(error)
+      call out%explain(error)
+      call out%discard()
+      if (allocated(error)) then   ! writing the agreement file failed: a failed run
+         error%message = 'sweep-compare: '//error%message
+         call run_failure(error)
+      end if
+   end subroutine sweep_agreement
+
+   !> Read and classify two sweeps (`classify`) and check that they hold the same
+   !> pixels: initial conditions, parameters, time unit and shapes (t_end, the step
+   !> and the stop rule may differ). `values_only`: an indicator without a default
+   !> threshold (FLI) is read unclassified instead of refused.
+   subroutine classify_pair(file_a, file_b, opt, a, b, error, values_only)
+      character(len=*), intent(in) :: file_a, file_b    !! the two sweeps
+      type(agreement_options_t), intent(in) :: opt      !! thresholds
+      type(classified_t), intent(out) :: a, b           !! their classifications
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      logical, intent(in), optional :: values_only      !! see above
+      character(len=:), allocatable :: va
       character(len=*), parameter :: same(*) = [character(len=10) :: 'initial', 'axis1', &
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
          'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 'links', 'm', 'l', 'q', &
          'w']
-      call classify(file_a, opt%set_a, opt%threshold_a, a, error)
+      call classify(file_a, opt%set_a, opt%threshold_a, a, error, values_only)
       if (allocated(error)) return
-      call classify(file_b, opt%set_b, opt%threshold_b, b, error)
+      call classify(file_b, opt%set_b, opt%threshold_b, b, error, values_only)
       if (allocated(error)) return
       va = config_difference(a%config, b%config, file_a, file_b, same)
       if (len(va) > 0) then
@@ -82,38 +119,164 @@ contains
       else if (any(a%dims /= b%dims)) then
          call refuse('the datasets have other shapes')
       end if
-      if (allocated(error)) return
-      call out%begin(opt%output, opt%force, error)
-      if (allocated(error)) then
-         error%message = 'sweep-compare: '//error%message
-         return
-      end if
-      n_cls = count(a%cls >= 0 .and. b%cls >= 0)
-      both_reg = count(a%cls == 0 .and. b%cls == 0)
-      both_cha = count(a%cls == 1 .and. b%cls == 1)
-      only_a = count(a%cls == 1 .and. b%cls == 0)
-      only_b = count(a%cls == 0 .and. b%cls == 1)
-      n_agree = both_reg + both_cha
-      fraction = 0.0_dp
-      if (n_cls > 0) fraction = real(n_agree, dp)/real(n_cls, dp)
-      call print_agreement(unit, a, b, [n_cls, both_reg, both_cha, only_a, only_b], &
-                           fraction, opt%output)
-      call store_agreement(out%temp, a, b, [n_cls, both_reg, both_cha, only_a, only_b], &
-                           fraction, error)
-      if (.not. allocated(error)) call out%commit(error)
-      call out%explain(error)
-      call out%discard()
-      if (allocated(error)) then   ! writing the agreement file failed: a failed run
-         error%message = 'sweep-compare: '//error%message
-         call run_failure(error)
-      end if
    contains
       subroutine refuse(what)
          character(len=*), intent(in) :: what
          call fatal_error(error, 'sweep-compare: invalid pair of sweeps, not comparable: '// &
-                          what//' (classify sweeps of the same initial conditions)')
+                          what//' (compare sweeps of the same initial conditions)')
       end subroutine refuse
-   end subroutine sweep_agreement
+   end subroutine classify_pair
+
+   !> The class counts of two classifications of the same pixels: (pixels classified
+   !> in both, both regular, both chaotic, chaotic only in A, only in B) and the
+   !> fraction of the classified pixels where they agree (0 if none).
+   pure subroutine class_counts(a, b, counts, fraction)
+      type(classified_t), intent(in) :: a, b   !! the two classifications
+      integer, intent(out) :: counts(5)        !! see above
+      real(dp), intent(out) :: fraction        !! agreement
+      counts(1) = count(a%cls >= 0 .and. b%cls >= 0)
+      counts(2) = count(a%cls == 0 .and. b%cls == 0)
+      counts(3) = count(a%cls == 1 .and. b%cls == 1)
+      counts(4) = count(a%cls == 1 .and. b%cls == 0)
+      counts(5) = count(a%cls == 0 .and. b%cls == 1)
+      fraction = 0.0_dp
+      if (counts(1) > 0) fraction = real(counts(2) + counts(3), dp)/real(counts(1), dp)
+   end subroutine class_counts
+
+   !> The indicator a sweep file maps ('megno', 'lambda1', 'fli', 'sali', 'gali2'),
+   !> by its configuration; '' for a flip-time map or a file that is not a readable
+   !> sweep (its checks are left to the comparison that reads it).
+   function map_indicator(file) result(indicator)
+      character(len=*), intent(in) :: file   !! a sweep file
+      character(len=:), allocatable :: indicator
+      type(h5file_t) :: h5
+      type(error_t), allocatable :: error
+      character(len=:), allocatable :: config
+      indicator = ''
+      call open_sweep_file(file, '', h5, config, error)
+      if (allocated(error)) return
+      call h5%close()
+      indicator = config_value(config, 'indicator')
+      if (indicator == 'flip') indicator = ''
+      if (len(indicator) == 0 .and. config_value(config, 'lyapunov') == 'true') &
+         indicator = 'lambda1'
+   end function map_indicator
+
+   !> sweep-compare of two maps of one indicator (e.g. steps dt and dt/2, same t_end):
+   !> the pixels whose value changes by more than `rel` relative (|v_B - v_A| > rel
+   !> |v_A|, or finite in one only) and the regular/chaotic classes by the default
+   !> thresholds (FLI: none), printed as `key: value` lines ending in a summary.
+   !> SALI and GALI_2 fall to round-off on chaotic orbits: their values are compared
+   !> where both maps call the pixel regular.
+   subroutine compare_indicator_maps(file_a, file_b, rel, unit, error)
+      character(len=*), intent(in) :: file_a, file_b    !! the two sweeps
+      real(dp), intent(in) :: rel                       !! relative tolerance
+      integer, intent(in) :: unit                       !! where to print
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      type(agreement_options_t) :: opt
+      type(classified_t) :: a, b
+      integer :: counts(5), j, n_cmp, n_changed
+      real(dp) :: fraction, largest, change
+      logical :: fa, fb, compare_here
+      character(len=:), allocatable :: summary
+      character(len=:), allocatable :: ind_a, ind_b
+      ind_a = map_indicator(file_a)
+      ind_b = map_indicator(file_b)
+      if (ind_a /= ind_b .and. len(ind_a) > 0 .and. len(ind_b) > 0) then
+         call fatal_error(error, "sweep-compare: invalid pair of maps: '"//file_a// &
+                          "' maps "//ind_a//", '"//file_b//"' maps "//ind_b// &
+                          ' (the values of one indicator are compared; --agreement ' &
+                          //'compares the regular/chaotic classes of two)')
+         return
+      else if (ind_a /= ind_b) then
+         call fatal_error(error, "sweep-compare: invalid pair of maps: '"//file_a// &
+                          "' maps "//map_name(ind_a)//", '"//file_b//"' maps "// &
+                          map_name(ind_b)//' (compare two maps of one quantity)')
+         return
+      end if
+      call classify_pair(file_a, file_b, opt, a, b, error, values_only=.true.)
+      if (allocated(error)) return
+      if (abs(a%t_end - b%t_end) > 1e-12_dp*a%t_end) then
+         call fatal_error(error, 'sweep-compare: invalid pair of maps: t_end = '// &
+                          real_str(a%t_end, 6)//" s in '"//file_a//"', "// &
+                          real_str(b%t_end, 6)//" s in '"//file_b//"' (an indicator " &
+                          //'depends on t_end: --agreement compares the classes)')
+         return
+      end if
+      n_cmp = 0; n_changed = 0; largest = 0.0_dp
+      do j = 1, size(a%v)   ! element by element: an ordered comparison with NaN traps
+         fa = .not. ieee_is_nan(a%v(j))
+         fb = .not. ieee_is_nan(b%v(j))
+         compare_here = fa .or. fb
+         if (a%indicator == 'sali' .or. a%indicator == 'gali2') &
+            compare_here = a%cls(j) == 0 .and. b%cls(j) == 0
+         if (.not. compare_here) cycle
+         n_cmp = n_cmp + 1
+         if (fa .and. fb) then
+            change = abs(b%v(j) - a%v(j))
+            if (change > rel*abs(a%v(j))) n_changed = n_changed + 1
+            if (abs(a%v(j)) > 0.0_dp) largest = max(largest, change/abs(a%v(j)))
+         else
+            n_changed = n_changed + 1
+         end if
+      end do
+      write (unit, '(a)') 'indicator: '//a%indicator//' ('//trim(value_name(a%indicator))//')'
+      write (unit, '(a)') 'step_a: '//real_str(a%h, 6)//' s'
+      write (unit, '(a)') 'step_b: '//real_str(b%h, 6)//' s'
+      write (unit, '(a)') 't_end: '//real_str(a%t_end, 6)//' s = '// &
+         real_str(a%t_end/a%tau, 6)//' sqrt(l1/g)'
+      write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
+      write (unit, '(a, i0)') 'pixels: ', size(a%v)
+      write (unit, '(a, i0)') 'pixels_compared: ', n_cmp
+      write (unit, '(a, i0)') 'pixels_changed: ', n_changed
+      write (unit, '(a)') 'changed_fraction: '//pct(n_changed, n_cmp)//' %'
+      write (unit, '(a)') 'largest_relative_change: '//real_str(largest, 3)
+      summary = 'dpend sweep-compare: '//trim(value_name(a%indicator))//' changes by more '// &
+                'than '//real_str(rel)//' relative at '//pct(n_changed, n_cmp)// &
+                ' % of the '//to_str(n_cmp)//' pixels compared'
+      if (a%classified) then
+         call class_counts(a, b, counts, fraction)
+         write (unit, '(a)') 'class: chaotic '//trim(merge('above', 'below', a%above))// &
+            ' '//real_str(a%threshold)//trim(merge(' per sqrt(l1/g)', '               ', &
+            a%indicator == 'lambda1'))
+         write (unit, '(a, i0)') 'pixels_classified: ', counts(1)
+         write (unit, '(a, i0)') 'both_regular: ', counts(2)
+         write (unit, '(a, i0)') 'both_chaotic: ', counts(3)
+         write (unit, '(a, i0)') 'chaotic_only_a: ', counts(4)
+         write (unit, '(a, i0)') 'chaotic_only_b: ', counts(5)
+         write (unit, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+         summary = summary//'; the regular/chaotic classes agree on '// &
+                   real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+      end if
+      write (unit, '(a)') summary
+   contains
+      !> 100 a/b rounded to 3 decimals ('0' when b = 0).
+      function pct(a, b) result(t)
+         integer, intent(in) :: a, b
+         character(len=:), allocatable :: t
+         t = '0'
+         if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
+      end function pct
+      function map_name(indicator) result(t)
+         character(len=*), intent(in) :: indicator
+         character(len=:), allocatable :: t
+         t = indicator
+         if (len(t) == 0) t = 'flip times'
+      end function map_name
+   end subroutine compare_indicator_maps
+
+   !> What the values of an indicator's map are, in words.
+   pure function value_name(indicator) result(s)
+      character(len=*), intent(in) :: indicator  !! megno, lambda1, fli, sali, gali2
+      character(len=:), allocatable :: s
+      select case (indicator)
+      case ('megno'); s = 'MEGNO <Y>'
+      case ('lambda1'); s = 'lambda1'
+      case ('fli'); s = 'FLI ln |d|'
+      case ('sali'); s = 'SALI'
+      case default; s = 'GALI_2'
+      end select
+   end function value_name
 
    !> The agreement report as `key: value` lines on unit u; counts = (pixels
    !> classified, both regular, both chaotic, chaotic only in A, only in B).
@@ -122,7 +285,8 @@ contains
       type(classified_t), intent(in) :: a, b       !! the two classifications
       integer, intent(in) :: counts(5)             !! see above
       real(dp), intent(in) :: fraction             !! (both regular + both chaotic)/classified
-      character(len=*), intent(in) :: output       !! the report's HDF5 file
+      character(len=*), intent(in) :: output       !! the report's HDF5 file ('': none)
+      character(len=:), allocatable :: stored
       call line(a, 'a')
       call line(b, 'b')
       write (u, '(a, i0)') 'pixels: ', size(a%cls)
@@ -132,10 +296,12 @@ contains
       write (u, '(a, i0)') 'chaotic_only_a: ', counts(4)
       write (u, '(a, i0)') 'chaotic_only_b: ', counts(5)
       write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
-      write (u, '(a)') 'stored: '//output
+      if (len(output) > 0) write (u, '(a)') 'stored: '//output
+      stored = ''
+      if (len(output) > 0) stored = '; stored in '//output
       write (u, '(a)') 'dpend sweep-compare: the regular/chaotic classes agree on '// &
          real_str(anint(1e5_dp*fraction)/1e3_dp)//' % of the '//to_str(counts(1))// &
-         ' pixels classified; stored in '//output
+         ' pixels classified'//stored
    contains
       subroutine line(c, s)
          type(classified_t), intent(in) :: c
@@ -203,12 +369,13 @@ contains
    end subroutine store_agreement
 
    !> Read a complete sweep file and classify its pixels by its indicator.
-   subroutine classify(file, set, threshold, c, error)
+   subroutine classify(file, set, threshold, c, error, values_only)
       character(len=*), intent(in) :: file              !! sweep file
       logical, intent(in) :: set                        !! threshold given
       real(dp), intent(in) :: threshold                 !! the given threshold
       type(classified_t), intent(out) :: c              !! the classification
       type(error_t), allocatable, intent(out) :: error  !! refused
+      logical, intent(in), optional :: values_only      !! FLI without threshold: unclassified
       type(h5file_t) :: h5
       real(dp), allocatable :: v(:), v2(:, :)
       integer, allocatable :: done(:)
@@ -219,7 +386,7 @@ contains
       complete = 0
       call open_sweep_file(file, pre, h5, c%config, error)
       if (allocated(error)) return
-      call choose_indicator(file, pre, set, threshold, c, error)
+      call choose_indicator(file, pre, set, threshold, c, error, values_only)
       if (allocated(error)) then
          call h5%close()
          return
@@ -233,6 +400,7 @@ contains
       if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', c%tau, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 't_end', c%t_end, error)
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'h', c%h, error)
       if (.not. allocated(error)) then
          if (size(c%dims) == 2) then
             call h5%read(c%dataset, v2, error)
@@ -264,11 +432,17 @@ contains
                           ' s (a sweep writes 0 to 1e9)')
          return
       end if
+      if (.not. in_range(c%h, 0.0_dp, 1e9_dp)) then
+         call fatal_error(error, pre//'damaged: attribute h = '//sci(c%h)// &
+                          ' s (a sweep writes 0 to 1e9)')
+         return
+      end if
       call check_values(c, v, pre, error)
       if (allocated(error)) return
+      c%v = v
       allocate (c%cls(size(v)))
       do j = 1, size(v)   ! element by element: an ordered comparison with NaN traps
-         if (ieee_is_nan(v(j))) then
+         if (ieee_is_nan(v(j)) .or. .not. c%classified) then
             c%cls(j) = -1
             cycle
          end if
@@ -284,13 +458,14 @@ contains
    !> The indicator of a sweep's configuration (lambda1 for lyapunov = true), its
    !> dataset, its default threshold and sense, or the given `threshold`; a file
    !> without an indicator, and FLI without a threshold, are refused.
-   subroutine choose_indicator(file, pre, set, threshold, c, error)
+   subroutine choose_indicator(file, pre, set, threshold, c, error, values_only)
       character(len=*), intent(in) :: file              !! sweep file
       character(len=*), intent(in) :: pre               !! message prefix
       logical, intent(in) :: set                        !! threshold given
       real(dp), intent(in) :: threshold                 !! the given threshold
       type(classified_t), intent(inout) :: c            !! config in, indicator out
       type(error_t), allocatable, intent(out) :: error  !! refused
+      logical, intent(in), optional :: values_only      !! FLI without threshold: unclassified
       c%indicator = config_value(c%config, 'indicator')
       if (len(c%indicator) == 0 .and. config_value(c%config, 'lyapunov') == 'true') &
          c%indicator = 'lambda1'
@@ -306,6 +481,12 @@ contains
          return
       end select
       if (set) c%threshold = threshold
+      if (c%indicator == 'fli' .and. .not. set .and. present(values_only)) then
+         if (values_only) then
+            c%classified = .false.
+            return
+         end if
+      end if
       if (c%indicator == 'fli' .and. .not. set) then
          call fatal_error(error, 'sweep-compare: invalid --threshold: FLI has no default '// &
                           "threshold (it grows with t_end): give one for '"//file//"'")

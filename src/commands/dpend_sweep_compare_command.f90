@@ -1,7 +1,8 @@
 !> `dpend sweep-compare A.h5 B.h5`: the accuracy report of two complete sweeps of the
-!> same initial conditions (the engine's `compare_sweeps`, dpend_sweep_compare), or
-!> with --agreement the pixels' regular or chaotic classes by their indicators
-!> (`sweep_agreement`, dpend_sweep_agreement). The entry point `sweep_compare_command`
+!> same initial conditions, of the quantity they map: flip times (the engine's
+!> `compare_sweeps`, dpend_sweep_compare) or an indicator's values and classes
+!> (`compare_indicator_maps`, dpend_sweep_agreement); or with --agreement the
+!> pixels' regular or chaotic classes by two indicators (`sweep_agreement`). The entry point `sweep_compare_command`
 !> reads the command line and prints the report; the engine's messages name the
 !> command themselves ('sweep-compare: ...').
 module dpend_sweep_compare_command
@@ -10,7 +11,8 @@ module dpend_sweep_compare_command
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, is_long_option, next_option, option_outcome, parse_real, to_str
    use dpend_sweep_compare, only: compare_sweeps
-   use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement
+   use dpend_sweep_agreement, only: agreement_options_t, sweep_agreement, &
+      compare_indicator_maps, map_indicator
    use dpend_command_common, only: take_quiet, summary_quiet, refusal_line
    implicit none
    private
@@ -25,17 +27,22 @@ contains
       character(len=:), allocatable :: s
       s = 'usage: dpend sweep-compare A.h5 B.h5 [--rel R]'//nl// &
           '       dpend sweep-compare A.h5 B.h5 --agreement [--threshold-a X]'//nl// &
-          '             [--threshold-b Y] [--output FILE] [--force]'//nl//nl// &
+          '             [--threshold-b Y] [--output FILE [--force]]'//nl//nl// &
           'Accuracy report of two complete sweeps of the same initial conditions (e.g.'//nl// &
-          'steps dt and dt/2): the fraction of pixels whose first flip time changes by'//nl// &
-          'more than R (default 0.01, at most 1000) relative, or that flip in one and'//nl// &
-          'not the other, overall and by flip time in units of sqrt(l1/g). Sweeps of'//nl// &
-          'other initial conditions (grid or list, shape, axes, ranges, parameters,'//nl// &
-          'time unit, t_end, stop rule) are refused.'//nl//nl// &
+          'steps dt and dt/2), of the quantity they map. Flip-time maps: the fraction'//nl// &
+          'of pixels whose first flip time changes by more than R (default 0.01, at'//nl// &
+          'most 1000) relative, or that flip in one and not the other, overall and by'//nl// &
+          'flip time in units of sqrt(l1/g). Indicator maps (dpend sweep --indicator,'//nl// &
+          '--lyapunov; the same indicator and t_end in both): the fraction of pixels'//nl// &
+          'whose value changes by more than R relative (SALI, GALI_2: where both call'//nl// &
+          'the pixel regular) and the agreement of their regular/chaotic classes by the'//nl// &
+          'default thresholds below. Sweeps of other initial conditions (grid or list,'//nl// &
+          'shape, axes, ranges, parameters, time unit, t_end, stop rule) are refused.'//nl// &
+          'Nothing is written.'//nl//nl// &
           '--agreement: classify every pixel of each sweep as regular or chaotic by its'//nl// &
-          'indicator (dpend sweep --indicator; t_end and the step may differ) and report'//nl// &
-          'the fraction of pixels where the two agree, with both times; stored in FILE'//nl// &
-          '(default agreement.h5). Chaotic: megno <Y> > X (default 2.5); lambda1'//nl// &
+          'indicator (the two may differ, as may t_end and the step) and report the'//nl// &
+          'fraction of pixels where the two agree, with both times; stored in FILE only'//nl// &
+          'with --output FILE. Chaotic: megno <Y> > X (default 2.5); lambda1'//nl// &
           'lambda1 sqrt(l1/g) > X (default 0.05); fli > X (no default); sali, gali2'//nl// &
           '< X (default 1e-8). --threshold-a, --threshold-b: X of file A, B.'//nl// &
           summary_quiet
@@ -72,6 +79,9 @@ contains
       end if
       if (agreement) then
          call sweep_agreement(files(1)%s, files(2)%s, agree, unit, error)
+      else if (len(map_indicator(files(1)%s)) > 0 .or. &
+               len(map_indicator(files(2)%s)) > 0) then
+         call compare_indicator_maps(files(1)%s, files(2)%s, rel, unit, error)
       else
          call compare_sweeps(files(1)%s, files(2)%s, rel, unit, error)
       end if
@@ -112,7 +122,7 @@ contains
       integer :: i
       rel = 0.01_dp
       agreement = .false.
-      agree%output = 'agreement.h5'
+      agree%output = ''
       needs_agreement = ''
       rel_given = .false.
       allocate (files(0))
@@ -140,7 +150,10 @@ contains
          case ('--threshold-b')
             call parse_real(value, name, agree%threshold_b, error)
             agree%set_b = .true.
-         case ('--output'); agree%output = value
+         case ('--output')
+            agree%output = value
+            if (len(value) == 0) call fatal_error(error, 'invalid --output: empty '// &
+                                                  '(accepted: a file name)')
          case default; matched = .false.
          end select
          if (name /= '--rel' .and. matched) needs_agreement = name
@@ -158,6 +171,9 @@ contains
       else if (agreement .and. rel_given) then
          call fatal_error(error, 'invalid --rel: not an option of --agreement '// &
                           '(its thresholds: --threshold-a, --threshold-b)')
+      else if (agree%force .and. len(agree%output) == 0) then
+         call fatal_error(error, 'invalid --force: given without --output (nothing is ' &
+                          //'written unless --output FILE is given)')
       end if
    end subroutine parse_sweep_compare
 end module dpend_sweep_compare_command

@@ -74,3 +74,11 @@ refuse  swi-agr-not-hdf5        'not an HDF5'     -- sweep-compare swi_list.txt 
 refuse  swi-agr-output-dir      directory         -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --output no/dir/a.h5
 refuse  swi-cmp-thr-no-agree    threshold-a       -- sweep-compare swi_megno.h5 swi_lambda1.h5 --threshold-a 3
 refuse  swi-cmp-out-no-agree    output            -- sweep-compare swi_megno.h5 swi_lambda1.h5 --output a.h5
+refuse  swi-agr-force-no-output --force           -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --force
+refuse  swi-agr-output-empty    output            -- sweep-compare swi_megno.h5 swi_lambda1.h5 --agreement --output ''
+# ---- sweep-compare of two maps of one indicator compares its values and classes
+succeed swi-cmp-megno           -- sweep-compare swi_megno.h5 swi_megno.h5
+succeed swi-cmp-fli             -- sweep-compare swi_fli.h5 swi_fli.h5 --rel 0.1
+refuse  swi-cmp-megno-flip      'flip times'      -- sweep-compare swi_megno.h5 swi_flip.h5
+refuse  swi-cmp-megno-lambda1   'maps lambda1'    -- sweep-compare swi_megno.h5 swi_lambda1.h5
+refuse  swi-cmp-megno-pixels    n1                -- sweep-compare swi_megno.h5 swi_megno5.h5
