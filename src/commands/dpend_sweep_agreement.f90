@@ -44,7 +44,8 @@ module dpend_sweep_agreement
       character(len=:), allocatable :: file, config, indicator, dataset
       real(dp) :: threshold = 0.0_dp        !! in the indicator's unit (λ1: natural)
       logical :: above = .true.             !! chaotic above the threshold
-      real(dp) :: tau = 1.0_dp              !! √(l1/g) [s]
+      real(dp) :: tau = 1.0_dp              !! the natural time unit [s]
+      character(len=:), allocatable :: tau_name  !! 'sqrt(l1/g)' (elastic: 'sqrt(l0/g)')
       real(dp) :: t_end = 0.0_dp            !! [s]
       real(dp) :: h = 0.0_dp                !! the step [s]
       logical :: classified = .true.        !! a threshold is known (FLI: given)
@@ -105,11 +106,14 @@ contains
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
          'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 'links', 'm', 'l', 'q', &
          'w']
+      ! what may differ: the step, the horizon and the indicator, how the work was done
+      character(len=*), parameter :: free = ' program command method kernel dt h '// &
+         'n_steps block stats t_end stop_at lyapunov indicator '
       call classify(file_a, opt%set_a, opt%threshold_a, a, error, values_only)
       if (allocated(error)) return
       call classify(file_b, opt%set_b, opt%threshold_b, b, error, values_only)
       if (allocated(error)) return
-      va = config_difference(a%config, b%config, file_a, file_b, same)
+      va = config_difference(a%config, b%config, file_a, file_b, same, free)
       if (len(va) > 0) then
          call refuse(va)
          return
@@ -224,7 +228,7 @@ contains
       write (unit, '(a)') 'step_a: '//real_str(a%h, 6)//' s'
       write (unit, '(a)') 'step_b: '//real_str(b%h, 6)//' s'
       write (unit, '(a)') 't_end: '//real_str(a%t_end, 6)//' s = '// &
-         real_str(a%t_end/a%tau, 6)//' sqrt(l1/g)'
+         real_str(a%t_end/a%tau, 6)//' '//a%tau_name
       write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
       write (unit, '(a, i0)') 'pixels: ', size(a%v)
       write (unit, '(a, i0)') 'pixels_compared: ', n_cmp
@@ -312,7 +316,7 @@ contains
          write (u, '(a)') 'indicator_'//s//': '//c%indicator//' (chaotic '// &
             trim(merge('above', 'below', c%above))//' '//real_str(c%threshold)//per//')'
          write (u, '(a)') 't_end_'//s//': '//real_str(c%t_end, 6)//' s = '// &
-            real_str(c%t_end/c%tau, 6)//' sqrt(l1/g)'
+            real_str(c%t_end/c%tau, 6)//' '//c%tau_name
       end subroutine line
    end subroutine print_agreement
 
@@ -398,7 +402,11 @@ contains
       end if
       call h5%readattr('/sweep', 'complete', complete, error)
       if (.not. allocated(error)) call h5%read('/sweep/done', done, error)
-      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_l1_over_g', c%tau, error)
+      c%tau_name = 'sqrt(l1/g)'   ! a model without flips: its own unit (elastic: l0)
+      if (.not. h5%attr_exists('/sweep', 'sqrt_l1_over_g') .and. &
+          h5%attr_exists('/sweep', 'sqrt_l0_over_g')) c%tau_name = 'sqrt(l0/g)'
+      if (.not. allocated(error)) call h5%readattr('/sweep', 'sqrt_'//c%tau_name(6:7)// &
+                                                   '_over_g', c%tau, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 't_end', c%t_end, error)
       if (.not. allocated(error)) call h5%readattr('/sweep', 'h', c%h, error)
       if (.not. allocated(error)) then
@@ -423,7 +431,8 @@ contains
       ! the ranges a sweep can write (l1, g within [1e-6, 1e6]: sqrt(l1/g) within
       ! [1e-6, 1e6] s; t_end at most 1e9 s): beyond, the file is damaged
       if (.not. in_range(c%tau, 1e-6_dp, 1e6_dp)) then
-         call fatal_error(error, pre//'damaged: attribute sqrt_l1_over_g = '//sci(c%tau)// &
+         call fatal_error(error, pre//'damaged: attribute sqrt_'//c%tau_name(6:7)// &
+                          '_over_g = '//sci(c%tau)// &
                           ' s (a sweep writes 1e-6 to 1e6)')
          return
       end if

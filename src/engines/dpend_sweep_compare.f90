@@ -46,6 +46,9 @@ contains
          'axis2', 'n1', 'n2', 'min1', 'max1', 'min2', 'max2', 'ic_count', 'ic_hash', 'q1', &
          'q2', 'w1', 'w2', 'm1', 'm2', 'l1', 'l2', 'g', 'time_unit', 't_end', 'stop_at', &
          'links', 'm', 'l', 'q', 'w']
+      ! what may differ: the step and how the work was done (and the program's version)
+      character(len=*), parameter :: free = ' program command method kernel dt h '// &
+                                            'n_steps block stats '
       if (.not. (rel > 0.0_dp .and. rel <= max_rel)) then
          call fatal_error(error, 'sweep-compare: invalid --rel: '//sci(rel)// &
                           ' (accepted: > 0 and <= 1000)')
@@ -66,7 +69,7 @@ contains
                         "', "//shape_text(dims_b)//" in '"//file_b//"'")
          end if
          if (allocated(error)) return
-         va = config_difference(cfg_a, cfg_b, file_a, file_b, same)
+         va = config_difference(cfg_a, cfg_b, file_a, file_b, same, free)
       end if
       if (len(va) > 0) then
          call refuse(va)
@@ -528,15 +531,17 @@ contains
    end function config_value
 
    !> The first difference between two sweeps' configurations (their /sweep config
-   !> attributes): of the keys `keys`, then of the bodies, the model and every
-   !> link's centre of mass and moment of inertia (com1 .., inertia1 .., written for
-   !> links other than uniform rods). As "KEY = VA in 'FILE_A', VB in
-   !> 'FILE_B'" ('(none)' for a key one file lacks), or '' if they agree. Shared by
-   !> the comparison and the agreement.
-   function config_difference(cfg_a, cfg_b, file_a, file_b, keys) result(what)
+   !> attributes): of the keys `keys` in their order, then of the model, then of every
+   !> other key either file has (the bodies' com1 .., inertia1 .., another model's
+   !> parameters: the elastic pendulum's k and l0, ...) except those of `free`, which
+   !> may differ. As "KEY = VA in 'FILE_A', VB in 'FILE_B'" ('(none)' for a key one
+   !> file lacks), or '' if they agree. Shared by the comparison and the agreement.
+   function config_difference(cfg_a, cfg_b, file_a, file_b, keys, free) result(what)
       character(len=*), intent(in) :: cfg_a, cfg_b     !! the config attributes
       character(len=*), intent(in) :: file_a, file_b    !! their files (for the text)
-      character(len=*), intent(in) :: keys(:)           !! keys that must agree
+      character(len=*), intent(in) :: keys(:)           !! keys that must agree, first
+      !> ' key key ': may differ; absent: `keys` and the model only
+      character(len=*), intent(in), optional :: free
       character(len=:), allocatable :: what
       integer :: i
       what = ''
@@ -544,11 +549,29 @@ contains
          if (differs(trim(keys(i)))) return
       end do
       if (differs('model')) return
-      do i = 1, max_dof   ! (two tests: Fortran's .or. may evaluate both)
-         if (differs('com'//to_str(i))) return
-         if (differs('inertia'//to_str(i))) return
-      end do
+      if (.not. present(free)) return
+      if (walk(cfg_a)) return
+      if (walk(cfg_b)) return
    contains
+      !> Whether a key of `cfg` (one 'key = value' a line) outside `free` differs.
+      logical function walk(cfg)
+         character(len=*), intent(in) :: cfg
+         integer :: start, eol, eq
+         walk = .false.
+         start = 1
+         do while (start <= len(cfg))
+            eol = index(cfg(start:), new_line('a'))
+            if (eol == 0) eol = len(cfg) - start + 2
+            eq = index(cfg(start:start + eol - 2), ' = ')
+            if (eq > 1) then
+               if (index(free, ' '//cfg(start:start + eq - 2)//' ') == 0) then
+                  walk = differs(cfg(start:start + eq - 2))
+                  if (walk) return
+               end if
+            end if
+            start = start + eol
+         end do
+      end function walk
       !> Whether `key` differs; then its text in `what`.
       logical function differs(key)
          character(len=*), intent(in) :: key

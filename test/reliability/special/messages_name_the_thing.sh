@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Special reliability test: messages and labels that name what is wrong, not a
-# neighbour of it. sweep-compare of indicator maps (no flip times); the elastic
+# neighbour of it. sweep-compare of the elastic pendulum's indicator maps (its
+# values, its own time unit sqrt(l0/g), another spring refused); the elastic
 # pendulum given the pendulum's damping; an elastic fit CSV with r <= 0; a fraction
 # for a whole-number namelist key; a resumed sweep whose configuration gained a key;
 # plot_simulate.sh on a file whose q lost its units; the units of an elastic
@@ -24,8 +25,13 @@ E=(--model elastic --q 1.2,-1)
 M=(sweep "${E[@]}" --axis1 r --axis2 phi --min1 1 --max1 1.4 --min2 -1 --max2 1 --n 4 --t-end 1 --indicator megno --quiet)
 "$DPEND" "${M[@]}" --output a.h5 > /dev/null 2>&1
 "$DPEND" "${M[@]}" --dt 0.005 --output b.h5 > /dev/null 2>&1
-expect compare-indicator-maps 2 'it holds no flip-time map (/sweep/t_flip; it is a map of megno of model elastic)' \
+expect compare-indicator-maps 0 'MEGNO <Y> changes by more than 0.01 relative at' \
   "$DPEND" sweep-compare a.h5 b.h5
+expect compare-indicator-unit 0 't_end_a: 0.319438 s = 1 sqrt(l0/g)' \
+  "$DPEND" sweep-compare a.h5 b.h5 --agreement
+"$DPEND" "${M[@]}" --k 50 --output k.h5 > /dev/null 2>&1
+expect compare-other-spring 2 "not comparable: k = 4.0000000000000000E+001 in 'a.h5'" \
+  "$DPEND" sweep-compare a.h5 k.h5
 expect elastic-damping 2 'invalid damping: not a parameter of model elastic' \
   "$DPEND" simulate "${E[@]}" --damping 0.1 --output e.h5
 printf 't [s],r [m],phi [rad]\n0,1.2,-1\n0.05,-0.1,-0.98\n0.1,1.23,-0.97\n0.15,1.24,-0.97\n0.2,1.25,-0.96\n' > neg.csv
