@@ -29,7 +29,7 @@ module test_values_fit
    use dpend_kinds, only: dp
    use dpend_hdf5, only: h5file_t
    use dpend_lapack, only: dgesv
-   use test_cli, only: run_command, scratch_dir
+   use test_cli, only: run_command, scratch_dir, read_text
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    implicit none
    private
@@ -215,9 +215,10 @@ contains
       type(h5file_t) :: h5
       real(dp), allocatable :: xy_data(:, :), xy_model(:, :), residual(:, :), estimate(:), &
                                t(:), q(:, :), ts(:), xy(:, :), rows(:, :)
-      real(dp) :: y0(4), noise
+      real(dp) :: y0(4), noise, tol
       integer :: stat, k, n, unit
       character(len=200) :: args
+      character(len=:), allocatable :: text, rule
       dir = scratch_dir('values-fitxy')
       y0 = [0.3_dp, -0.2_dp, 0.5_dp, -1.0_dp]
       write (args, '("--q1 ", es24.16e3, " --q2 ", es24.16e3, " --w1 ", es24.16e3, ' &
@@ -280,6 +281,23 @@ contains
                  'xy_model: far ends of the links of simulate of the estimate', abs=5e-10_dp)
       call check(error, reshape(residual, [4*n]), reshape(xy_data - xy_model, [4*n]), &
                  'residual: xy_data - xy_model', abs=1e-15_dp)
+      if (allocated(error)) return
+      ! the horizon's default tolerance for positions: 0.1 of the total length 1.9 m,
+      ! stated in the report and the file (it was 0.1 m for any size)
+      stat = run_command(dir, 'fit '//dir//'/xy.csv --l1 1.2 --l2 0.7 --fit-window 1 '// &
+                         '--output '//dir//'/w.h5')
+      call read_text(dir//'/stdout', text, k)
+      call check_true(error, stat == 0 .and. index(text, ' m: 0.1 of the total length '// &
+                      '1.9 m') > 0, 'the tolerance and its rule in the report: '//text)
+      call h5%open(dir//'/w.h5', 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'horizon_tolerance', tol, error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'horizon_tolerance_rule', rule, &
+                                                    error)
+      call h5%close()
+      if (allocated(error)) return
+      call check(error, tol, 0.1_dp*(1.2_dp + 0.7_dp), 'default tolerance 0.1 (l1 + l2)', &
+                 rel=1e-15_dp)
+      call check_true(error, rule == '0.1 of the total length 1.9 m', 'its rule: '//rule)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    contains
       !> (x1, y1, x2, y2) of the far ends of links of 1.2 m and 0.7 m.

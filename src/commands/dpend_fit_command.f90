@@ -221,7 +221,7 @@ contains
       type(fit_config_t), intent(in) :: fc
       type(fit_result_t), intent(in) :: res
       character(len=16), allocatable :: names(:), units(:)
-      character(len=:), allocatable :: line, ou
+      character(len=:), allocatable :: line, ou, rule
       integer :: i, j, np
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       call parameter_names(fc, names, units)
@@ -269,15 +269,19 @@ contains
       write (report_unit(), '(a)') '  identifiability: singular values of the sensitivities ' &
          //'(columns scaled to 1) '//line//'; condition number '// &
          condition_text(res%condition)
+      rule = ''
+      if (allocated(fc%tolerance_rule)) then
+         if (fc%tolerance_rule /= 'given') rule = ': '//fc%tolerance_rule
+      end if
       if (res%has_after) then
          if (res%horizon_censored) then
             write (report_unit(), '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: at least '//real_str(res%horizon, 4)// &
-               ' s (within '//real_str(res%tolerance)//' '//ou//' up to the last sample)'
+               ' s (within '//real_str(res%tolerance, 6)//' '//ou//rule//' up to the last sample)'
          else
             write (report_unit(), '(a)') '  prediction horizon after t = '// &
                real_str(res%t_window)//' s: '//real_str(res%horizon, 4)//' s (tolerance ' &
-               //real_str(res%tolerance)//' '//ou//')'
+               //real_str(res%tolerance, 6)//' '//ou//rule//')'
          end if
       else
          write (report_unit(), '(a)') '  prediction horizon: none (no samples after the fit ' &
@@ -389,6 +393,8 @@ contains
       call h5%writeattr('/fit', 'stages', res%stages)
       call h5%writeattr('/fit', 'converged', merge(1, 0, res%converged))
       call h5%writeattr('/fit', 'horizon_tolerance', res%tolerance)
+      if (allocated(fc%tolerance_rule)) &
+         call h5%writeattr('/fit', 'horizon_tolerance_rule', fc%tolerance_rule)
       call h5%writeattr('/fit', 'horizon_censored', merge(1, 0, res%horizon_censored))
       call h5%writeattr('/fit', 'has_after', merge(1, 0, res%has_after))
       call h5%writeattr('/fit', 'input', fc%input)
@@ -441,7 +447,7 @@ contains
       character(len=16), allocatable :: cn(:)
       integer :: i
       if (.not. fc%model_coords) then
-         s = to_str(fc%series%n)//merge(' link ', ' links', fc%series%n == 1)
+         s = to_str(fc%series%n)//trim(merge(' link ', ' links', fc%series%n == 1))
          return
       end if
       cn = coordinate_units(fc, -1)

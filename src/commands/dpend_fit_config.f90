@@ -28,6 +28,10 @@ module dpend_fit_config
    integer, parameter :: max_starts = 1000
    !> Largest horizon tolerance for positions [m].
    real(dp), parameter :: max_position_tol = 1e6_dp
+   !> The default horizon tolerance of positions as a fraction of the pendulum's total
+   !> length (the angles' default 0.1 rad moves a tip by about 0.1 of its distance
+   !> from the pin).
+   real(dp), parameter :: default_length_fraction = 0.1_dp
 
    !> Everything `dpend fit` needs.
    type :: fit_config_t
@@ -37,7 +41,10 @@ module dpend_fit_config
       logical :: fit_damping = .false.           !! estimate c_i too
       real(dp) :: fit_window = huge(1.0_dp)      !! fit t <= T [s] (default: all)
       logical :: window_given = .false.
-      real(dp) :: tolerance = 0.1_dp             !! horizon tolerance [rad]
+      real(dp) :: tolerance = 0.1_dp             !! horizon tolerance [rad or m]
+      logical :: tolerance_given = .false.       !! --horizon-tolerance given
+      !> how the tolerance was chosen, for the report ('given', or the default's rule)
+      character(len=:), allocatable :: tolerance_rule
       integer :: starts = 1                      !! first-stage starting points
       !> model parameters fitted by name (--fit-parameters; --fit-damping: damping)
       character(len=32), allocatable :: fit_names(:)
@@ -122,7 +129,9 @@ contains
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
           nl//'                    angle differs from the model by more than R (rad, in'//nl// &
           '                    (0, pi]; positions: m, in (0, 1e6]); default '// &
-          real_str(fc%tolerance)//nl// &
+          real_str(fc%tolerance)//' rad,'//nl// &
+          '                    positions: '//real_str(default_length_fraction)// &
+          ' of the total length (the sum of l_i)'//nl// &
           '  --starts K        first-stage starting points (1 to '//to_str(max_starts)// &
           '): the guess and'//nl// &
           '                    K-1 others spread over the rates (sparse samples of a chaotic'// &
@@ -229,6 +238,7 @@ contains
             fc%window_given = .true.
          case ('--horizon-tolerance')
             call parse_real(value, name, fc%tolerance, error)
+            fc%tolerance_given = .true.
          case ('--starts')
             call parse_int(value, name, fc%starts, error)
          case ('--fit-parameters', '--fit-param')
@@ -286,6 +296,7 @@ contains
             fc%run%links = s%n
             call validate_run_config(fc%run, error)
             if (allocated(error)) return
+            call default_tolerance(fc)
             call check_body_fit(fc, error)
             if (allocated(error)) return
          end if
@@ -330,6 +341,24 @@ contains
          end if
       end associate
    end subroutine check_fit_data
+
+   !> The horizon tolerance when none is given: for positions a fraction of the
+   !> pendulum's total length (its configured lengths), for angles 0.1 rad; the rule in
+   !> `tolerance_rule` for the report.
+   subroutine default_tolerance(fc)
+      type(fit_config_t), intent(inout) :: fc  !! the configuration, links set
+      real(dp) :: total
+      if (fc%tolerance_given) then
+         fc%tolerance_rule = 'given'
+      else if (fc%series%positions) then
+         total = sum(fc%run%l(1:fc%run%links))
+         fc%tolerance = default_length_fraction*total
+         fc%tolerance_rule = real_str(default_length_fraction)//' of the total length '// &
+                             real_str(total)//' m'
+      else
+         fc%tolerance_rule = 'the default for angles'
+      end if
+   end subroutine default_tolerance
 
    !> A body named by --body fixes every link's com and inertia ('point': com_i = l_i,
    !> inertia_i = 0; 'rod': com_i = l_i/2, inertia_i = m_i l_i^2/12): fitting one of them
