@@ -5,6 +5,7 @@ module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
    use dpend_cli, only: real_str, seconds_str, to_lower, to_str
+   use dpend_strings, only: with_uncertainty
    use dpend_run_settings, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos_common, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
@@ -47,6 +48,7 @@ contains
                new_unittest('simulate_largest_error', test_largest_error), &
                new_unittest('progress_rate_limited', test_progress_rate), &
                new_unittest('sweep_horizon', test_sweep_horizon), &
+               new_unittest('uncertainty_digits', test_uncertainty_digits), &
                new_unittest('indicators_verdict', test_verdict), &
                new_unittest('export_sweep_long_form', test_export_long), &
                new_unittest('help_mentions_quiet', test_help_quiet)]
@@ -593,6 +595,54 @@ contains
          call check_true(error, n == file_lines, 'lines in the file: '//to_str(n)//': '//text)
       end subroutine run
    end subroutine test_progress_rate
+
+   !> An estimate with its uncertainty to the digits the uncertainty supports (two
+   !> significant digits of it, the estimate to the same place; a common exponent
+   !> more than 6 decimals or beyond 1e7), against strings written by hand; then lyapunov and
+   !> divergence print every estimate so, and say what the uncertainty covers.
+   subroutine test_uncertainty_digits(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text
+      integer :: stat, n
+      call same(0.82405931_dp, 0.092779532_dp, '0.824 +- 0.093')
+      call same(1.1539559_dp, 0.0016414673_dp, '1.1540 +- 0.0016')
+      call same(123456.7_dp, 2345.6_dp, '123500 +- 2300')
+      call same(8.2e-7_dp, 3.1e-9_dp, '(8.200 +- 0.031)e-07')
+      call same(3e12_dp, 4e10_dp, '(3.000 +- 0.040)e+12')
+      call same(1.0_dp, 0.0996_dp, '1.00 +- 0.10')
+      call same(-0.024698354_dp, 0.042706098_dp, '-0.025 +- 0.043')
+      call same(-1e-4_dp, 0.042706098_dp, '0.000 +- 0.043')
+      call same(2.5_dp, 0.0_dp, '2.5 (no uncertainty)')
+      call same(0.6500013425_dp, 4.4e-5_dp, '0.650001 +- 0.000044')
+      if (allocated(error)) return
+      dir = scratch_dir('uncertainty')
+      stat = run_command(dir, 'lyapunov --t-end 20 --output '//dir//'/l.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'standard error') > 0 .and. &
+                      index(text, 'statistical only') > 0 .and. &
+                      index(text, nl//'  1   0.') > 0 .and. index(text, ' +- ') > 0 .and. &
+                      index(text, '0 within') > 0, 'lyapunov: estimates +- errors: '//text)
+      ! the report has no 8-digit exponent form; the scripting line after it keeps them
+      n = index(text, 'dpend lyapunov: wrote')
+      call check_true(error, n > 0, 'lyapunov: the closing line')
+      if (allocated(error)) return
+      call check_true(error, index(text(:n), 'E-0') == 0 .and. index(text(:n), 'E+0') == 0, &
+                      'lyapunov: no exponent form in the report: '//text)
+      stat = run_command(dir, 'divergence --t-end 20 --lyapunov-t 100 --output '//dir//'/d.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 'slope: 1.') > 0 .and. &
+                      index(text, 'statistical only, not the choice of the window') > 0 .and. &
+                      index(text, 'slope / lambda1 = 1.40 +- 0.16 (1 is 2.5 standard') > 0 .and. &
+                      index(text, 'standard error') > 0, 'divergence: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine same(x, u, want)
+         real(dp), intent(in) :: x, u
+         character(len=*), intent(in) :: want
+         call check_true(error, with_uncertainty(x, u) == want, real_str(x)//' +- '// &
+                         real_str(u)//': '//with_uncertainty(x, u)//', not '//want)
+      end subroutine same
+   end subroutine test_uncertainty_digits
 
    !> The sweep's horizon and step in both units, against the natural
    !> unit computed here: sqrt(l1/g) = sqrt(1/9.8) s = 0.31943828... s, so 100 of it

@@ -9,6 +9,7 @@ module dpend_divergence_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
+   use dpend_strings, only: with_uncertainty, real_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
@@ -123,16 +124,20 @@ contains
          summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &
                    //to_str(fit%n_points)//' samples); saturation at log10|delta| = ' &
                    //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
-                   'slope: '//es(fit%slope)//' +- '//es(fit%slope_stderr)//' 1/s'//nl
+                   'slope: '//with_uncertainty(fit%slope, fit%slope_stderr)//' 1/s (the ' &
+                   //'standard error of the straight line fitted in the window: statistical ' &
+                   //'only, not the choice of the window)'//nl
       else
          summary = summary//'fit: fewer than 3 samples in the window (no rise of one decade'// &
                    ' above delta0?)'//nl
       end if
       if (ch%lyapunov_t > 0.0_dp .and. lstat == stat_ok .and. stat == stat_ok) then
          summary = summary//'Benettin lambda1 over t = 0 .. '//num(ch%lyapunov_t)//' s: ' &
-                   //es(lam)//' +- '//es(lam_spread)//' 1/s'
+                   //with_uncertainty(lam, lam_spread)//' 1/s (the standard error of its ' &
+                   //'batch means)'
          if (lam > 0.0_dp .and. fit%ok) summary = summary//'; slope / lambda1 = '// &
-                                                  fixed(fit%slope/lam)
+                                                  ratio_text(fit%slope, fit%slope_stderr, &
+                                                             lam, lam_spread)
          summary = summary//nl
       end if
       summary = summary//"dpend divergence: wrote '"//cfg%output//"'"
@@ -190,5 +195,26 @@ contains
          s = b
       end if
    end function pick
+
+   !> a/b with its standard error (from those of a and b, taken independent) and how
+   !> far 1 lies from it in standard errors: '0.975 +- 0.037 (1 within 1 standard
+   !> error)'.
+   function ratio_text(a, ua, b, ub) result(s)
+      real(dp), intent(in) :: a, ua   !! the numerator and its standard error
+      real(dp), intent(in) :: b, ub   !! the denominator (> 0) and its standard error
+      character(len=:), allocatable :: s
+      real(dp) :: r, ur
+      r = a/b
+      ur = abs(r)*sqrt((ua/a)**2 + (ub/b)**2)
+      s = with_uncertainty(r, ur)
+      if (.not. (ur > 0.0_dp)) return
+      if (abs(r - 1.0_dp) <= ur) then
+         s = s//' (1 within 1 standard error)'
+      else if (abs(r - 1.0_dp) <= 2*ur) then
+         s = s//' (1 within 2 standard errors)'
+      else
+         s = s//' (1 is '//real_str(abs(r - 1.0_dp)/ur, 2)//' standard errors away)'
+      end if
+   end function ratio_text
 
 end module dpend_divergence_command

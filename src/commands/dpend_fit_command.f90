@@ -12,6 +12,7 @@ module dpend_fit_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
+   use dpend_strings, only: with_uncertainty
    use dpend_csv, only: csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, set_fitted, n_fitted, &
                              observation_noise, misfit_suspects, misfit_factor, suspect_t, &
@@ -240,14 +241,16 @@ contains
       end associate
       call parameter_names(fc, names, units)
       np = res%np
-      write (report_unit(), '(a)') '  parameter    estimate                     standard error' &
-         //'   95 % interval'
+      write (report_unit(), '(a)') '  parameter    estimate +- standard error (to its digits)' &
+         //'   95 % interval (Student t)'
       do i = 1, np
-         write (report_unit(), '(a)') '  '//pad(names(i), 13)//pad(real_str(res%p(i), 12)// &
-            ' '//trim(units(i)), 29)//pad(real_str(res%se(i), 3), 17)//'['// &
+         write (report_unit(), '(a)') '  '//pad(names(i), 13)//pad(with_uncertainty(res%p(i), &
+            res%se(i))//' '//trim(units(i)), 41)//'['// &
             real_str(res%p(i) - res%t95*res%se(i), 6)//', '// &
             real_str(res%p(i) + res%t95*res%se(i), 6)//']'
       end do
+      write (report_unit(), '(a)') '  (standard errors from the residuals at the optimum: ' &
+         //'the noise only, not a wrong model; every digit in /fit/estimate and /fit/standard_error)'
       write (report_unit(), '(a)') '  correlation matrix (rows and columns in the order above):'
       do i = 1, np
          line = '   '

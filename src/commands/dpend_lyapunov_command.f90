@@ -7,6 +7,7 @@ module dpend_lyapunov_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
+   use dpend_strings, only: with_uncertainty, real_str
    use dpend_run_settings, only: run_config_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
@@ -47,6 +48,7 @@ contains
       character(len=:), allocatable :: status, line
       integer :: stat, i, k
       real(dp), allocatable :: defects(:)
+      real(dp) :: u
       type(march_progress_t) :: prog   ! the report in model time
       call prog%begin('dpend lyapunov', cfg%t_end)
       call lyapunov_spectrum(integ, cfg%model, 0.0_dp, &
@@ -90,16 +92,18 @@ contains
                 //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
                 //num(ch%tau)//' s, ' &
                 //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
-                //' steps'//nl//'  i   lambda_i [1/s]    spread [1/s] (std. error of ' &
-                //to_str(size(res%batches, 2))//' batch means)'//nl
+                //' steps'//nl//'  i   lambda_i [1/s] +- its standard error (the spread of ' &
+                //to_str(size(res%batches, 2))//' batch means: statistical only, not the ' &
+                //'finite-time bias)'//nl
       do i = 1, res%k
-         summary = summary//'  '//to_str(i)//'  '//es(res%exponents(i))//'  '// &
-                   es(res%spread(i))//nl
+         summary = summary//'  '//to_str(i)//'   '// &
+                   with_uncertainty(res%exponents(i), res%spread(i))//nl
       end do
       do i = 1, size(defects)
+         u = sqrt(res%spread(i)**2 + res%spread(k + 1 - i)**2)
          summary = summary//'pairing defect: lambda'//to_str(i)//' + lambda'// &
-                   to_str(k + 1 - i)//' = '//es(defects(i))//' 1/s'// &
-                   pct(defects(i), res%exponents(1))//nl
+                   to_str(k + 1 - i)//' = '//with_uncertainty(defects(i), u)//' 1/s'// &
+                   pct(defects(i), res%exponents(1))//'; '//within(defects(i), u)//nl
       end do
       summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"
       if (stat /= stat_ok) then
@@ -115,12 +119,27 @@ contains
    end subroutine run_lyapunov
 
    !> " (x % of ref)" when ref /= 0.
+   !> How far x lies from 0 in units of its standard error u, in words.
+   function within(x, u) result(s)
+      real(dp), intent(in) :: x, u
+      character(len=:), allocatable :: s
+      if (.not. (u > 0.0_dp)) then
+         s = 'no standard error'
+      else if (abs(x) <= u) then
+         s = '0 within 1 standard error'
+      else if (abs(x) <= 2*u) then
+         s = '0 within 2 standard errors'
+      else
+         s = real_str(abs(x)/u, 2)//' standard errors from 0'
+      end if
+   end function within
+
    function pct(x, ref) result(s)
       real(dp), intent(in) :: x, ref
       character(len=:), allocatable :: s
       s = ''
       if (ref == 0.0_dp) return
-      s = ' ('//fixed(100.0_dp*abs(x/ref))//' % of |lambda1|)'
+      s = ' ('//real_str(100.0_dp*abs(x/ref), 2)//' % of |lambda1|)'
    end function pct
 
 end module dpend_lyapunov_command

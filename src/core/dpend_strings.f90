@@ -10,7 +10,7 @@ module dpend_strings
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
-   public :: to_lower, printable, pad, real_str, seconds_str, to_str
+   public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty
    public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
@@ -126,6 +126,66 @@ contains
          end if
       end function decimal
    end function real_str
+
+   !> An estimate with its uncertainty, each to the digits the uncertainty supports:
+   !> u rounded to two significant digits and x to the same decimal place, 'x +- u'
+   !> (0.824 +- 0.093, 1.1540 +- 0.0016, 123500 +- 2300); with more than 6 decimals or
+   !> beyond 1e7 a common exponent, '(8.200 +- 0.031)e-07'. Without a usable uncertainty (0, negative or
+   !> not finite) x alone to 6 digits and ' (no uncertainty)'; x not finite as it is.
+   function with_uncertainty(x, u) result(s)
+      real(dp), intent(in) :: x   !! the estimate
+      real(dp), intent(in) :: u   !! its uncertainty (a standard error), same unit
+      character(len=:), allocatable :: s
+      real(dp) :: ur, scale
+      integer :: d, e
+      if (.not. ieee_is_finite(x)) then
+         s = real_str(x)
+         return
+      else if (.not. (ieee_is_finite(u) .and. u > 0.0_dp)) then
+         s = real_str(x, 6)//' (no uncertainty)'
+         return
+      end if
+      d = 1 - floor(log10(u))                 ! decimals that keep two digits of u
+      ur = anint(10.0_dp*u/10.0_dp**real(floor(log10(u)), dp))   ! its two digits, 10 .. 100
+      if (ur >= 100.0_dp) d = d - 1           ! 0.0996 rounds to 0.10: one decimal less
+      if (max(abs(x), u) < 1e7_dp .and. d <= 6) then
+         s = fixed(x, d)//' +- '//fixed(u, d)
+      else
+         e = floor(log10(max(abs(x), u)))
+         scale = 10.0_dp**real(e, dp)
+         d = min(d + e, 16)   ! a double's digits at most
+         s = '('//fixed(x/scale, d)//' +- '//fixed(u/scale, d)//')e'
+         if (e < 0) then
+            s = s//'-'
+         else
+            s = s//'+'
+         end if
+         s = s//trim(int_str2(abs(e)))
+      end if
+   contains
+      !> y rounded to `dec` decimals (dec < 0: to 10^-dec), without exponent.
+      function fixed(y, dec) result(t)
+         real(dp), intent(in) :: y
+         integer, intent(in) :: dec
+         character(len=:), allocatable :: t
+         character(len=48) :: buf
+         if (dec <= 0) then
+            write (buf, '(i0)') nint(anint(y*10.0_dp**real(dec, dp))/10.0_dp**real(dec, dp), i8)
+         else
+            write (buf, '(f0.'//int_str(dec)//')') anint(y*10.0_dp**real(dec, dp))/ &
+               10.0_dp**real(dec, dp)
+            if (buf(1:1) == '.') buf = '0'//buf
+            if (buf(1:2) == '-.') buf = '-0'//buf(2:)
+         end if
+         t = trim(buf)
+         if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
+      end function fixed
+      function int_str2(k) result(t)
+         integer, intent(in) :: k
+         character(len=8) :: t
+         write (t, '(i2.2)') k
+      end function int_str2
+   end function with_uncertainty
 
    !> A duration for people, from `real_str`: two significant digits below 1 s
    !> (0.4, 0.043), one decimal above (2.5, 12.3, 1234.5); never '.4'.
