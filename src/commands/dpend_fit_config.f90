@@ -13,7 +13,7 @@ module dpend_fit_config
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series
    use dpend_estimate, only: fit_problem_t, fit_work_t, estimate_fit_work, set_fitted, n_fitted
-   use dpend_model_factory, only: default_model, model_catalogue, model_info_t
+   use dpend_model_factory, only: default_model, model_catalogue, model_info_t, body_list
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_output, only: check_output_path, register_input
@@ -142,7 +142,7 @@ contains
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
-          '  --body rod|point, --com LIST, --inertia LIST (links of any mass distribution),'// &
+          '  --body '//body_list('|')//', --com LIST, --inertia LIST (links of any mass distribution),'// &
           nl// &
           '  --model and its parameters (--model elastic --m --k --l0), --method (default '// &
           fc%run%method//'),'//nl//'  --dt, --rtol (default '//real_str(fc%run%rtol)// &

@@ -9,6 +9,7 @@ module dpend_run_flags
    use dpend_limits, only: in_range, max_angle
    use dpend_methods, only: method_names
    use dpend_strings, only: canonical_name
+   use dpend_model_factory, only: body_list
    use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
       mark_given
    implicit none
@@ -64,8 +65,9 @@ contains
       case ('--body'); call set_body(cfg, value, error)
       case default
          matched = .false.
-         ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum)
-         if (len(name) > 2) then
+         ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum);
+         ! a flag writes the name's '_' as '-' (one spelling: --support-phase)
+         if (len(name) > 2 .and. index(name, '_') == 0) then
             if (is_model_parameter(name(3:))) then
                matched = .true.
                call set_named(cfg, name(3:), name, value, error)
@@ -274,7 +276,7 @@ contains
           '  --l1, --l2 M      link lengths; default '//real_str(cfg%l(1))//', ' &
           //real_str(cfg%l(2))//nl// &
           '  --g M/S^2         gravitational acceleration; default '//real_str(cfg%g)//nl// &
-          '  --body rod|point  the links: uniform rods (default; com l_i/2, inertia'//nl// &
+          '  --body '//body_list('|')//'  the links: uniform rods (default; com l_i/2, inertia'//nl// &
           '                    m_i l_i^2/12) or point masses on massless rods (com l_i,'//nl// &
           '                    inertia 0: the textbook double pendulum)'//nl// &
           '  --com LIST        joint i to the centre of mass of link i along the link (m,'//nl// &

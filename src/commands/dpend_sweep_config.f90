@@ -7,6 +7,7 @@ module dpend_sweep_config
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, real_str, option_outcome, &
       to_str, scan_help_config, printable
    use dpend_model, only: max_dof
+   use dpend_model_factory, only: body_list
    use dpend_namelist, only: read_run_config, namelist_error
    use dpend_run_flags, only: apply_run_flag
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
@@ -56,8 +57,9 @@ contains
           //cfg%ic_dataset//nl// &
           '  --ic-angles q|theta  angles of the list measured as q or theta; default q' &
           //nl//nl// &
-          'integration (rk4 only; the step is t_end / ceiling(t_end / dt); two links: the'//nl// &
-          'vectorized kernel, other N: rk4 on the N-link chain, one trajectory at a time):' &
+          'integration (rk4 only: --method rk4; the step is t_end / ceiling(t_end / dt);'//nl// &
+          'two links: the vectorized kernel; 3 to 8 links: the chain lanes, flip maps and'//nl// &
+          'indicators; 1 link, more than 8, or a model per pixel: one trajectory at a time):' &
           //nl// &
           '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
           '                    default '//cfg%time_unit//nl// &
@@ -75,10 +77,19 @@ contains
           '  --stats           also the number of steps of every trajectory'//nl//nl// &
           'parameters (as in dpend simulate):'//nl// &
           '  --m1, --m2 KG, --l1, --l2 M, --g M/S^2; --q1, --q2 RAD, --w1, --w2 RAD/S'//nl// &
-          '                    (fixed initial values of what is not swept; default 0)'//nl// &
+          '                    (fixed initial values of what is not swept; default 0);'//nl// &
+          '                    --theta1, --theta2 RAD from the hanging position instead'//nl// &
           '  --links N         number of links, 1 to '//to_str(max_dof)// &
           ' (default 2); --m, --l, --q, --w LIST'//nl// &
           '                    one value per link, e.g. --links 3 --q 0,0,-1.5707963'//nl// &
+          '  --body NAME       the links'' mass distribution: '//body_list()//' (dpend models);'//nl// &
+          '                    --com, --inertia LIST any other body (d_i in m, I_i in'//nl// &
+          '                    kg m^2, one per link); default rod'//nl// &
+          '  --damping, --support-amplitude, --support-frequency, --support-phase'//nl// &
+          '                    refused unless 0: the sweep integrates the conservative'//nl// &
+          '                    pendulum (dpend simulate takes them)'//nl// &
+          '  --NAME X          any other parameter of the model by name (--k, --l0 of'//nl// &
+          '                    --model elastic; dpend models lists them)'//nl// &
           '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
           '                    (or q1 q2 w1 w2); indicator maps only: megno fli sali gali2'//nl// &
           '  --config FILE     namelist file: &pendulum &initial &integration &output'//nl// &

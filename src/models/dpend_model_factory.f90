@@ -25,7 +25,15 @@ module dpend_model_factory
    private
    public :: model_spec_t, spec_item_t, param_info_t, model_info_t
    public :: model_spec, new_model, model_catalogue, find_model, default_model, describe_models
-   public :: spec_values, derived_default, has_parameter
+   public :: spec_values, derived_default, has_parameter, body_names, body_list
+
+   !> The named bodies of the pendulum's links (--body NAME, &pendulum body = 'NAME'),
+   !> each link's mass distribution; --com and --inertia give any other.
+   character(len=*), parameter :: body_names(2) = [character(len=5) :: 'rod', 'point']
+   !> What each of `body_names` sets, in their order.
+   character(len=*), parameter :: body_meanings(2) = [character(len=64) :: &
+      'uniform rods, d_i = l_i/2, I_i = m_i l_i^2/12 (the default)', &
+      'point masses at the link ends, d_i = l_i, I_i = 0']
 
    !> The model a specification without a name asks for: the chapter's pendulum.
    character(len=*), parameter :: default_model = 'pendulum'
@@ -74,6 +82,7 @@ module dpend_model_factory
       character(len=:), allocatable :: summary      !! one line
       character(len=:), allocatable :: coordinates  !! names and units of q
       character(len=:), allocatable :: supports     !! capabilities, one line
+      character(len=:), allocatable :: bodies       !! its named bodies ('' : none)
       type(param_info_t), allocatable :: params(:)  !! its parameters
    end type model_info_t
 
@@ -92,12 +101,14 @@ contains
    function pendulum_info() result(info)
       type(model_info_t) :: info
       info%name = 'pendulum'
-      info%summary = 'N uniform rods hinged in a chain (N = 2: the chapter''s compound ' &
-                     //'double pendulum), optional joint damping and a moving support'
+      info%summary = 'N links hinged in a chain: uniform rods (N = 2: the chapter''s ' &
+                     //'compound double pendulum), point masses or any body; optional ' &
+                     //'joint damping and a moving support'
+      info%bodies = body_text()
       info%coordinates = 'q_i: angle of link i from the horizontal x axis, counter-' &
                          //'clockwise (rad), i = 1..N; hanging: q_i = -pi/2'
       info%supports = 'Hamiltonian structure (no damping, fixed support), damping, ' &
-                      //'driving (moving support), SIMD sweep lanes (2 links), ' &
+                      //'driving (moving support), SIMD sweep lanes (2 to 8 links), ' &
                       //'Poincare sections (2 links, conservative)'
       info%params = [ &
          param('links', '', 'number of links N', 1.0_dp, real(max_dof, dp), 2.0_dp, 1, &
@@ -129,6 +140,7 @@ contains
       info%name = 'elastic'
       info%summary = 'a point mass m on a massless spring (stiffness k, rest length l0) ' &
                      //'hung from the pin A (docs/elastic.md)'
+      info%bodies = ''
       info%coordinates = 'r: the spring length (m); phi: its angle from the horizontal x ' &
                          //'axis, counter-clockwise (rad); hanging: phi = -pi/2'
       info%supports = 'Hamiltonian structure (every method applies); sweep indicator maps ' &
@@ -446,8 +458,9 @@ contains
             s = s//m%name//': '//m%summary//nl// &
                 '  coordinates: '//m%coordinates//nl// &
                 '  at rest:     '//rest_text(m%name)//nl// &
-                '  supports:    '//m%supports//nl// &
-                '  parameters (flag --NAME, namelist key NAME):'//nl
+                '  supports:    '//m%supports//nl
+            if (len(m%bodies) > 0) s = s//'  bodies:      '//m%bodies//nl
+            s = s//'  parameters (flag --NAME with - for _, namelist key NAME):'//nl
             do i = 1, size(m%params)
                s = s//param_line(m%params(i))//nl
             end do
@@ -455,6 +468,31 @@ contains
       end do
       s = s(:len(s) - 1)
    end function describe_models
+
+   !> The named bodies in words: '--body rod: uniform rods, ... (the default); --body
+   !> point: ...; any other: --com and --inertia, one value per link'.
+   function body_text() result(s)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(body_names)
+         s = s//'--body '//trim(body_names(i))//': '//trim(body_meanings(i))//'; '
+      end do
+      s = s//'any other body: --com and --inertia, one value per link'
+   end function body_text
+
+   !> The body names joined by `sep` (default ', '): 'rod, point', 'rod|point'.
+   function body_list(sep) result(s)
+      character(len=*), intent(in), optional :: sep  !! the separator
+      character(len=:), allocatable :: s, between
+      integer :: i
+      between = ', '
+      if (present(sep)) between = sep
+      s = trim(body_names(1))
+      do i = 2, size(body_names)
+         s = s//between//trim(body_names(i))
+      end do
+   end function body_list
 
    !> The state of rest of the model's defaults: 'q = -1.5707963267948966,
    !> -1.5707963267948966 (--q of the defaults' state of rest)'.

@@ -10,7 +10,7 @@ module dpend_run_settings
    use dpend_pendulum, only: pendulum_t, body_general
    use dpend_limits, only: finite_positive
    use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
-      model_catalogue, find_model, default_model, has_parameter
+      model_catalogue, find_model, default_model, has_parameter, body_names, body_list
    use dpend_model, only: model_t, max_dof
    use dpend_cli, only: to_str, to_lower, printable
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_time, max_dt, &
@@ -446,14 +446,13 @@ contains
       type(run_config_t), intent(inout) :: cfg          !! cfg%body set
       character(len=*), intent(in) :: value             !! the name given
       type(error_t), allocatable, intent(out) :: error  !! not a body
-      select case (to_lower(value))
-      case ('rod', 'point')
+      if (any(body_names == to_lower(value))) then
          cfg%body = to_lower(value)
-      case default
+      else
          call fatal_error(error, "invalid body: '"//printable(value)//"' is not a body " &
-                          //'(accepted: rod, point; --com and --inertia give any other) ' &
-                          //'[--body / &pendulum body]')
-      end select
+                          //'(accepted: '//body_list()//'; --com and --inertia give any ' &
+                          //'other) [--body / &pendulum body]')
+      end if
    end subroutine set_body
 
    !> The body asked for into cfg%spec: 'point' sets com = l and inertia = 0, 'rod'
