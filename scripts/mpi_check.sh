@@ -5,7 +5,9 @@
 #  2. kill -9 of mpirun twice in the middle of a run, then a rerun: identical to an
 #     uninterrupted run; an MPI run killed and finished by the serial dpend sweep:
 #     identical; a serial run killed is refused by dpend-mpi (its working file
-#     carries checksums, which parallel HDF5 cannot write block by block).
+#     carries checksums, which parallel HDF5 cannot write block by block);
+#  3. a map of fewer blocks than ranks says so on stderr, with the --block that
+#     would share it; a map of enough blocks says nothing.
 # "Identical in content": h5diff finds no difference, every dataset is equal bit for
 # bit (h5dump -b) and the attributes are equal (h5dump -A). Prints what differs and
 # exits 1 on any difference. Usage: scripts/mpi_check.sh [WORKDIR]   (default out/mpi_check)
@@ -122,6 +124,20 @@ if partial "$dir/cross2.h5.part"; then
   else
     echo "  unexpected failure:"; cat "$dir/cross2.err"; failures=$((failures + 1))
   fi
+fi
+
+echo "== 3. fewer blocks than ranks: said, with the --block that shares them"
+small=(--n 16 --t-end 1)   # 16 x 16 in the default 4096-pixel blocks: one block
+mpi "${small[@]}" --output "$dir/small.h5" >/dev/null 2>"$dir/small.err"
+if grep -q "note: 1 block of 256 pixels for 2 ranks: 1 ranks get no work" "$dir/small.err" &&
+   grep -q -- "--block 32 makes 8 blocks" "$dir/small.err"; then
+  echo "  said: $(cut -c1-100 "$dir/small.err")..."
+else
+  echo "  no note about the idle rank:"; cat "$dir/small.err"; failures=$((failures + 1))
+fi
+mpi --n 128 --t-end 1 --output "$dir/shared.h5" >/dev/null 2>"$dir/shared.err"
+if [ -s "$dir/shared.err" ]; then
+  echo "  a note where every rank has blocks:"; cat "$dir/shared.err"; failures=$((failures + 1))
 fi
 
 echo "== mpi_check: $((SECONDS - t0)) s of runs, $failures difference(s)"

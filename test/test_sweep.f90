@@ -21,6 +21,7 @@ module test_sweep
    use dpend_cli, only: arg_t, to_str
    use dpend_sweep_settings, only: sweep_config_t
    use dpend_sweep_config, only: parse_sweep
+   use dpend_sweep_setup, only: block_share_note
    use dpend_sweep_setup, only: block_initial_conditions, sweep_setup_t, build_setup, block_range, &
       block_parameters, parameter_names
    use dpend_sweep_engine, only: compute_block
@@ -69,6 +70,7 @@ contains
                new_unittest('parameter_axes', test_parameter_axes), &
                new_unittest('agreement_megno_lambda1', test_agreement), &
                new_unittest('compare_indicator_values', test_compare_indicator), &
+               new_unittest('block_share_note', test_block_share_note), &
                new_unittest('config_mismatch_refused', test_mismatch), &
                new_unittest('bad_input_rejected', test_bad_input), &
                new_unittest('export_matrix_and_compare', test_export_compare), &
@@ -1646,6 +1648,45 @@ contains
                          'refused, naming '//needle//': '//msg)
       end subroutine refused
    end subroutine test_compare_indicator
+
+   !> Fewer blocks than MPI ranks are said, with why the blocks stay and what would
+   !> share them: a 16 x 16 map in the default 4096-pixel blocks is one block of 16
+   !> rows (256 pixels) for 4 ranks, 3 idle; --block 16 (one row) makes 16 blocks.
+   !> The same with block = 4096 given says "as given"; a map of 3 rows for 4 ranks
+   !> says that at most 3 can work; 256 x 256 (16 blocks) for 4 ranks, and any map
+   !> on one rank, say nothing.
+   subroutine test_block_share_note(error)
+      type(error_t), allocatable, intent(out) :: error
+      call expect('--n 16', 4, '1 block of 256 pixels for 4 ranks: 3 ranks get no work')
+      call expect('--n 16', 4, 'so it stays as default; --block 16 makes 16 blocks')
+      call expect('--n 16 --block 4096', 4, 'so it stays as given; --block 16 makes 16')
+      call expect('--n1 16 --n2 3', 4, 'the map has 3 rows of axis 1: at most that many')
+      call expect('--n 256', 4, '')
+      call expect('--n 16', 1, '')
+   contains
+      subroutine expect(line, workers, want)
+         character(len=*), intent(in) :: line, want
+         integer, intent(in) :: workers
+         type(sweep_config_t) :: cfg
+         type(sweep_setup_t) :: setup
+         type(error_t), allocatable :: err
+         character(len=:), allocatable :: note
+         logical :: help
+         if (allocated(error)) return
+         call parse_sweep(args_of(line//' --quiet'), cfg, help, err)
+         if (.not. allocated(err)) call build_setup(cfg, setup, err)
+         if (allocated(err)) then
+            call check_true(error, .false., line//': refused: '//err%message)
+            return
+         end if
+         note = block_share_note(setup, workers)
+         if (len(want) == 0) then
+            call check_true(error, len(note) == 0, line//': no note, got '//note)
+         else
+            call check_true(error, index(note, want) > 0, line//': '//note)
+         end if
+      end subroutine expect
+   end subroutine test_block_share_note
 
    !> The elastic pendulum in the sweep: an indicator map over
    !> (r, phi) computed in process; four pixels against separate runs of the same

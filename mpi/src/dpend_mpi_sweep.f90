@@ -32,7 +32,8 @@ module dpend_mpi_sweep
    use dpend_error, only: error_t, fatal_error
    use dpend_lane_batch, only: batch_result_t, st_cannot_flip
    use dpend_sweep_settings, only: sweep_config_t
-   use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range
+   use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
+      block_share_note
    use dpend_sweep_engine, only: compute_block
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_layout, only: write_block, finalize_file, working_file
@@ -86,6 +87,7 @@ contains
       integer(i8) :: n_before, written
       integer :: me, np, complete, b, nmissing
       logical :: failed
+      character(len=:), allocatable :: note
       real(dp) :: t0, mine(n_fields)
       real :: cpu0, cpu1
 
@@ -97,6 +99,10 @@ contains
       setup%checksum = .false.   ! independent block writes: no filters in the working file
       call agree(comm, error)
       if (allocated(error)) return
+      if (me == 0) then   ! fewer blocks than ranks: why, and what would share them
+         note = block_share_note(setup, np)
+         if (len(note) > 0) write (error_unit, '(a)') 'dpend-mpi sweep: note: '//note
+      end if
       report%summary%n = setup%n
       report%summary%flips = setup%flips
 

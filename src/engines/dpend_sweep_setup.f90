@@ -23,7 +23,7 @@ module dpend_sweep_setup
    private
    public :: sweep_setup_t, sweep_summary_t, summary_text, build_setup, block_range, &
       block_initial_conditions, parameter_axes, block_parameters, stop_name, parameter_names
-   public :: named_parameter, named_axes
+   public :: named_parameter, named_axes, block_share_note
 
    !> The code of a parameter axis by name (a model without flips: its parameters;
    !> the pendulum: those of `pendulum_axis`, beside the axes coded 1 to 6 by
@@ -207,6 +207,43 @@ contains
    end function state_value
 
    !> First initial condition and number of initial conditions of block b.
+   !> Whether the blocks give each of `workers` (MPI ranks) work, and if not why they
+   !> stay as they are and what would: '' when there are at least as many blocks as
+   !> workers, else "1 block of 4096 pixels for 4 ranks: 3 ranks get no work; ...".
+   !> The block size is part of the file's configuration (a rerun resumes only the
+   !> same blocks, and the serial sweep may finish an MPI file), so it is not changed
+   !> behind the user's back: the note names the --block that makes about four
+   !> blocks per worker (whole rows of axis 1 in a grid), or says that the map has
+   !> fewer rows than workers.
+   function block_share_note(setup, workers) result(s)
+      type(sweep_setup_t), intent(in) :: setup  !! setup (blocks known)
+      integer, intent(in) :: workers            !! MPI ranks
+      character(len=:), allocatable :: s
+      integer :: units, per_unit, rows
+      s = ''
+      if (setup%nblocks >= workers) return
+      s = to_str(setup%nblocks)//trim(merge(' block ', ' blocks', setup%nblocks == 1))// &
+          ' of '//to_str(setup%block)//' pixels for '//to_str(workers)//' ranks: '// &
+          to_str(workers - setup%nblocks)//' ranks get no work; the block size is part of ' &
+          //"the file's configuration (a rerun resumes the same blocks), so it stays as "// &
+          trim(merge('given  ', 'default', setup%cfg%block_given))
+      if (setup%grid) then
+         units = setup%cfg%n2           ! whole rows of axis 1
+         per_unit = setup%cfg%n1
+      else
+         units = setup%n
+         per_unit = 1
+      end if
+      if (units < workers) then
+         s = s//'; the map has '//to_str(units)//trim(merge(' rows of axis 1', &
+             ' pixels        ', setup%grid))//': at most that many ranks can work'
+      else
+         rows = max(1, units/(4*workers))   ! about four blocks per rank
+         s = s//'; --block '//to_str(rows*per_unit)//' makes '// &
+             to_str((units + rows - 1)/rows)//' blocks'
+      end if
+   end function block_share_note
+
    pure subroutine block_range(setup, b, j0, nb)
       type(sweep_setup_t), intent(in) :: setup  !! setup
       integer, intent(in) :: b                  !! block, 1-based
