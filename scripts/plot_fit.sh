@@ -118,9 +118,15 @@ rms=$(attr /fit rms_residual "$h5")
 plot_number tw "$tw" "the fit window of '$1'"
 plot_number tol "${tol:-0.1}" "the horizon tolerance of '$1'"
 plot_number rms "${rms:-0}" "the RMS residual of '$1'"
+# the prediction horizon after the window (s), when samples follow it; else -1
+hz=-1
+if [[ $(attr /fit has_after "$h5") == 1 ]]; then
+  hz=$("$dpend" export "$h5" /fit/horizon | tr -d ' ')
+  plot_number hz "$hz" "the prediction horizon of '$1'"
+fi
 plot_base name "$1"
 plot_enhanced title "$name"
 plot_begin "$out" fit_overlay.png fit_residuals.png
 plot_run gnuplot -c "$here/plot/fit.gp" fit "$tmp/fit.dat" "$figdir" "$title" "$cols" "$tw" \
-  "$tol" "$rms" "$kind${labels:+ $labels}"
+  "$tol" "$rms $hz" "$kind${labels:+ $labels}"
 printf 'plot_fit.sh: wrote %s/{fit_overlay,fit_residuals}.png\n' "$out"

@@ -10,6 +10,8 @@ module test_figures
    use testing, only: unittest_t, new_unittest, check_true, error_t, skip_test, have_tool
    use test_cli, only: run_command, scratch_dir, read_text, dpend_binary
    use dpend_cli, only: to_str
+   use dpend_kinds, only: dp
+   use dpend_hdf5, only: h5file_t
    implicit none
    private
    public :: collect_figures
@@ -20,7 +22,8 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('indicators_keys', test_indicators_keys), &
                new_unittest('sweep_keys', test_sweep_keys), &
-               new_unittest('every_plot_script', test_every_script)]
+               new_unittest('every_plot_script', test_every_script), &
+               new_unittest('fit_position_ranges', test_fit_position_ranges)]
    end subroutine collect_figures
 
    !> True when the tools the plot scripts need are on PATH (else the test is skipped).
@@ -207,4 +210,84 @@ contains
       call expect_png(error, dir//'/fit/fit_overlay.png')
       call expect_png(error, dir//'/fit/fit_residuals.png')
    end subroutine test_every_script
+   !> The fit figures of positions (a 43 cm double pendulum of point masses, tip
+   !> and elbow tracked with 1 mm noise): every residual panel is scaled to its own
+   !> data, +-5 times the RMS of its residuals in the fit window (about 5 mm here, not
+   !> the horizon tolerance 0.043 m, which flattened 1 mm residuals to a line), and
+   !> every overlay panel has at most 6 tic labels, at least 30 px apart (they
+   !> overlapped in 130 px panels). The ranges and tics come from the script's key
+   !> sidecar (range and tics entries).
+   subroutine test_fit_position_ranges(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, title
+      type(h5file_t) :: h5
+      real(dp), allocatable :: q(:, :), t(:)
+      real(dp) :: lim, rms_i, x(4)
+      character(len=1024) :: line
+      integer :: stat, unit, k, t1, t2, nranges, ntics, tics, px, at
+      if (.not. tools_present()) return
+      dir = scratch_dir('figures-fitxy')
+      stat = run_command(dir, 'simulate --l1 0.25 --l2 0.18 --body point --q1 -0.6 '// &
+                         '--q2 -0.2 --method dop853 --rtol 1e-12 --atol 1e-14 --t-end 6 '// &
+                         '--output-dt 0.02 --output '//dir//'/g.h5')
+      call check_true(error, stat == 0, 'simulate of the data')
+      if (allocated(error)) return
+      call h5%open(dir//'/g.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/xy.csv', status='replace', action='write')
+      write (unit, '(a)') 't,x1,y1,x2,y2'
+      do k = 1, size(t)
+         x(1:2) = 0.25_dp*[cos(q(1, k)), sin(q(1, k))]
+         x(3:4) = x(1:2) + 0.18_dp*[cos(q(2, k)), sin(q(2, k))]
+         x = x + 1e-3_dp*[sin(7.3_dp*k), cos(5.1_dp*k), sin(3.7_dp*k), cos(2.9_dp*k)]
+         write (unit, '(f0.4, 4(",", es22.14e3))') t(k), x
+      end do
+      close (unit)
+      stat = run_command(dir, 'fit '//dir//'/xy.csv --body point --l1 0.25 --l2 0.18 '// &
+                         '--fit-window 3 --output '//dir//'/fit.h5')
+      call check_true(error, stat == 0, 'fit of the positions')
+      if (allocated(error)) return
+      stat = run_plot(dir, 'plot_fit.sh', dir//'/fit.h5 '//dir//'/figs')
+      call check_true(error, stat == 0, 'plot_fit.sh')
+      if (allocated(error)) return
+      call expect_png(error, dir//'/figs/fit_residuals.png')
+      call expect_png(error, dir//'/figs/fit_overlay.png')
+      nranges = 0; ntics = 0
+      open (newunit=unit, file=dir//'/keys.txt', status='old', action='read', iostat=stat)
+      call check_true(error, stat == 0, 'the key sidecar')
+      if (allocated(error)) return
+      do
+         read (unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         t1 = index(line, achar(9)); t2 = index(line, achar(9), back=.true.)
+         if (t1 == 0 .or. t2 <= t1) cycle
+         title = line(t1 + 1:t2 - 1)
+         if (line(:t1 - 1) == 'fit_residuals.png' .and. index(title, 'range ') == 1) then
+            ! 'range x_1 [m]: ±0.004625 (5 RMS of the window, RMS 0.000925)'
+            at = index(title, '±')
+            read (title(at + len('±'):index(title, ' (') - 1), *, iostat=stat) lim
+            read (title(index(title, 'RMS ', back=.true.) + 4:len(title) - 1), *, &
+                  iostat=stat) rms_i
+            call check_true(error, stat == 0 .and. lim > 0 .and. lim < 0.01_dp .and. &
+                            abs(lim - 5*rms_i) <= 1e-3_dp*lim, 'residual panel scaled '// &
+                            'to 5 RMS of its data: '//title)
+            nranges = nranges + 1
+         else if (line(:t1 - 1) == 'fit_overlay.png' .and. index(title, 'tics ') == 1) then
+            ! 'tics x_1 [m]: 5 in 190 px'
+            at = index(title, ': ')
+            read (title(at + 2:), *, iostat=stat) tics
+            read (title(index(title, ' in ') + 4:index(title, ' px') - 1), *, iostat=stat) px
+            call check_true(error, stat == 0 .and. tics >= 2 .and. tics <= 6 .and. &
+                            px/tics >= 30, 'overlay tics readable: '//title)
+            ntics = ntics + 1
+         end if
+      end do
+      close (unit)
+      call check_true(error, nranges == 4 .and. ntics == 4, 'four residual ranges ('// &
+                      to_str(nranges)//') and four overlay tic sets ('//to_str(ntics)//')')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_fit_position_ranges
 end module test_figures
