@@ -144,15 +144,19 @@ contains
       call check_true(error, .not. found, 'chaotic orbit: no power law in the key')
    end subroutine test_indicators_keys
 
-   !> A small sweep, every pixel integrated: the maps are drawn and none lists the
-   !> grey "not integrated" key entry.
+   !> A small sweep, every pixel computed: the maps are drawn and none lists the grey
+   !> "not integrated" key entry; the energy map lists the pixels below the flip
+   !> energy bound (grey: not integrated, their energy error NaN) with their count,
+   !> the file's NaN pixels of /sweep/energy_error.
    subroutine test_sweep_keys(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir
       character(len=*), parameter :: maps(4) = [character(len=18) :: 'flip_map.png', &
                                     'flip_map_link1.png', 'flip_map_link2.png', &
                                     'energy_error.png']
-      integer :: stat, n, i
+      type(h5file_t) :: h5
+      real(dp), allocatable :: e(:, :)
+      integer :: stat, n, i, n_nan
       logical :: found
       if (.not. tools_present()) return
       dir = scratch_dir('figures-sweep')
@@ -164,9 +168,39 @@ contains
       do i = 1, size(maps)
          call expect_png(error, dir//'/maps/'//trim(maps(i)))
          call key_entries(error, dir//'/keys.txt', trim(maps(i)), 'not integrated', n, found)
-         call check_true(error, .not. found, trim(maps(i))//': no grey "not integrated" '// &
-                         'key entry when every pixel was integrated')
+         call check_true(error, .not. found .or. i == 4, trim(maps(i))//': no grey "not '// &
+                         'integrated" key entry when every pixel was computed')
       end do
+      call h5%open(dir//'/sweep.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/sweep/energy_error', e, error)
+      call h5%close()
+      if (allocated(error)) return
+      n_nan = count(e /= e)
+      call check_true(error, n_nan > 0, 'some pixels below the flip energy bound')
+      call key_count(dir//'/keys.txt', 'energy_error.png', 'cannot flip (below the energy '// &
+                     'bound)', n)
+      call check_true(error, n == n_nan, 'energy map: the grey pixels below the bound in '// &
+                      'the key ('//to_str(n)//' of '//to_str(n_nan)//' NaN pixels)')
+   contains
+      !> The point count of the key entry of `figure` whose title holds `needle` (0: none).
+      subroutine key_count(keys, figure, needle, count)
+         character(len=*), intent(in) :: keys, figure, needle
+         integer, intent(out) :: count
+         character(len=1024) :: line
+         integer :: unit, st, t1, t2
+         count = 0
+         open (newunit=unit, file=keys, status='old', action='read', iostat=st)
+         if (st /= 0) return
+         do
+            read (unit, '(a)', iostat=st) line
+            if (st /= 0) exit
+            t1 = index(line, achar(9)); t2 = index(line, achar(9), back=.true.)
+            if (t1 == 0 .or. t2 <= t1) cycle
+            if (line(:t1 - 1) == figure .and. index(line(t1 + 1:t2 - 1), needle) > 0) &
+               read (line(t2 + 1:), *, iostat=st) count
+         end do
+         close (unit)
+      end subroutine key_count
    end subroutine test_sweep_keys
 
    !> Each plot script on a tiny file of its command: every figure it names is written

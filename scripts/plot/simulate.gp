@@ -147,7 +147,7 @@ what = conserved ? "Energy error" : "Energy change (damped or driven: see balanc
 set title sprintf("%s |E(t) - E(0)| / E_s, E(0) = %.6g J,\nE_s = %.6g J%s (%s)", what, E0, Escale, scale_is_E0 ? " = |E(0)|" : (rods ? (N == 2 ? \
   " (E(0) ≈ 0: V with both links upright)" : " (E(0) ≈ 0: V with all links upright)") : \
   " (E(0) ≈ 0: the model's energy scale)"), title)
-set xlabel "t [s]"; set ylabel (conserved ? "relative energy error" : "relative energy change")
+set xlabel "t [s]"; set ylabel (conserved ? "relative energy error |E(t) - E(0)| / E_s" : "relative energy change |E(t) - E(0)| / E_s")
 set logscale y
 set format y "10^{%L}"
 plot datafile u 1:(abs(column(cE) - E0)/Escale + 1e-18) w l lw 1.2 t (conserved ? "energy error" : "energy change")

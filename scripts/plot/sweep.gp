@@ -46,6 +46,7 @@ set print ARG2."/keys.txt" append
 set key outside bottom center horizontal
 set terminal pngcairo size 900,800 enhanced font fontspec(900)
 set size ratio -1
+set rmargin 14   # room for the colour bar's tic labels (10^{-12}) and its label
 set tics out
 set border lw 1
 axlabel(a) = (a eq "m2/m1" || a eq "l2/l1") ? a : (a eq "g") ? "g [m/s^2]" : \
@@ -86,14 +87,23 @@ do for [k = 1:links] {
 
 # NaN here means not integrated: the background is the grey of the key entry
 set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb grey fs solid noborder
+# the sweep's energy error is in units of the potential's range V_max - V_min (one
+# scale for the whole map), not the relative energy error |E(t) - E(0)| / E_s of
+# simulate and study: the label says which
 set output outdir."/energy_error.png"
-set title "Maximum energy error |E(t) - E(0)| / (V_{max} - V_{min})\n".name
+set title "Largest energy error in units of the potential's range, max_t |E(t) - E(0)| / (V_{max} - V_{min})\n".name
 set autoscale cb
-set cblabel "relative energy error"
-ng = nst
-if (strlen(status) == 0) { stats dir.'/eerr.dat' nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput; ng = STATS_sum }
+set cblabel "max_t |E(t) - E(0)| / (V_{max} - V_{min})"
+# grey: not integrated (status 0 or 4), and the pixels below the flip energy bound,
+# which cannot flip and are not integrated (status 3; their energy error is NaN)
+stats dir.'/eerr.dat' nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput
+nnan = int(STATS_sum)
+ng = (strlen(status) > 0 ? nst : nnan)
+nb = (strlen(status) > 0 && nnan > nst ? nnan - nst : 0)
+below = "NaN w boxes fs solid 1.0 noborder fc rgb grey t 'cannot flip (below the energy bound): not integrated'"
 if (ng > 0) { print keyline("energy_error.png", "not integrated", ng) }
-eval "plot dir.'/eerr.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint(ng)
+if (nb > 0) { print keyline("energy_error.png", "cannot flip (below the energy bound): not integrated", nb) }
+eval "plot dir.'/eerr.dat' nonuniform matrix using 1:2:(($3 != $3) ? NaN : ($3 > 1e-16 ? $3 : 1e-16)) with image notitle, ".notint(ng).(nb > 0 ? ", ".below : "")
 
 if (strlen(lyap) > 0) {
   set output outdir."/lyapunov.png"
