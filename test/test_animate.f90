@@ -6,6 +6,8 @@ module test_animate
                       skip_test, have_tool
    use test_cli, only: run_command, scratch_dir, read_text, dpend_binary
    use dpend_cli, only: to_str
+   use dpend_kinds, only: dp
+   use dpend_animate, only: animate_config_t, track_t, read_track, animation_labels
    implicit none
    private
    public :: collect_animate, gif_info
@@ -17,8 +19,65 @@ contains
       tests = [new_unittest('gif_frames_and_size', test_gif), &
                new_unittest('three_links', test_three_links), &
                new_unittest('refused_options', test_refused), &
-               new_unittest('tidy_summary_quiet_gnuplot', test_tidy_summary)]
+               new_unittest('tidy_summary_quiet_gnuplot', test_tidy_summary), &
+               new_unittest('overlay_labels_bobs_side', test_overlay_labels)]
    end subroutine collect_animate
+
+   !> Two runs of point masses from q2 = 0 and 0.001 rad, and one of rods: each point
+   !> mass is drawn as a bob at the end of its link (com_i / l_i = 1), a rod has none;
+   !> the labels name each file with its method and step, the title says in what the
+   !> runs differ (q0), or that they do not; --layout side draws the two side by side
+   !> (1280 x 640 by default), and is refused without --overlay or with another name.
+   subroutine test_overlay_labels(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, title, label1, label2, text
+      type(animate_config_t) :: cfg
+      type(track_t) :: a, b, r
+      integer :: stat, n
+      if (.not. have_tool('gnuplot')) then
+         call skip_test('gnuplot not found')
+         return
+      end if
+      dir = scratch_dir('animate-labels')
+      stat = run_command(dir, 'simulate --body point --q1 0 --q2 0 --t-end 1 --output-dt '// &
+                         '0.02 --output '//dir//'/pa.h5')
+      stat = stat + run_command(dir, 'simulate --body point --q1 0 --q2 0.001 --t-end 1 '// &
+                                '--output-dt 0.02 --output '//dir//'/pb.h5')
+      stat = stat + run_command(dir, 'simulate --q1 0 --q2 0 --t-end 1 --output-dt 0.02 '// &
+                                '--output '//dir//'/rod.h5')
+      call check_true(error, stat == 0, 'three simulations')
+      if (allocated(error)) return
+      call read_track(dir//'/pa.h5', 'input', a, error)
+      if (.not. allocated(error)) call read_track(dir//'/pb.h5', 'overlay', b, error)
+      if (.not. allocated(error)) call read_track(dir//'/rod.h5', 'overlay', r, error)
+      if (allocated(error)) return
+      call check_true(error, size(a%bob) == 2 .and. all(abs(a%bob - 1.0_dp) < 1e-15_dp), &
+                      'point masses: a bob at the end of each link')
+      call check_true(error, all(r%bob < 0.0_dp), 'rods: no bob')
+      cfg%input = dir//'/pa.h5'
+      cfg%overlay = dir//'/pb.h5'
+      call animation_labels(cfg, a, b, .true., title, label1, label2)
+      call check_true(error, label1 == 'pa.h5 (rk4, dt 0.001 s)' .and. &
+                      label2 == 'pb.h5 (rk4, dt 0.001 s)', 'labels: '//label1//'; '//label2)
+      call check_true(error, index(title, 'pa.h5 and pb.h5') > 0 .and. &
+                      index(title, 'they differ in q0 (0,0 rad | 0,0.001 rad)') > 0, &
+                      'title: '//title)
+      call animation_labels(cfg, a, a, .true., title, label1, label2)
+      call check_true(error, index(title, 'the same method, dt') > 0, 'same runs: '//title)
+      call expect_gif(error, dir, '--overlay '//dir//'/pb.h5 --layout side --duration 0.4 '// &
+                      '--fps 10', 'side.gif', 4, 1280, 640, 'pa.h5')
+      stat = run_command(dir, 'animate '//dir//'/pa.h5 --layout side --output '//dir// &
+                         '/x.gif')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. index(text, 'needs --overlay') > 0, &
+                      'side without an overlay refused: '//text)
+      stat = run_command(dir, 'animate '//dir//'/pa.h5 --overlay '//dir//'/pb.h5 '// &
+                         '--layout sides --output '//dir//'/x.gif')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 2 .and. index(text, 'invalid layout') > 0, &
+                      'an unknown layout refused: '//text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_overlay_labels
 
    !> Parse the GIF file `path`: logical screen width and height, the number of
    !> images, and whether it is well formed up to its trailer (`why` says otherwise).

@@ -4,15 +4,19 @@
 # PARAMS  gnuplot assignments of numbers only, written by dpend: links, links2 (points
 #         of the input's and the overlay's figure, 0 without an overlay), nforces,
 #         spring, spring2 (1: the segments are springs, else rods), nframes, nrows,
-#         per_frame, ntrail, delay [1/100 s], width, height [px], overlay, reactions
-#         (0/1), lim [m], newtons_per_m [N/m], fmax [N]
+#         per_frame, ntrail, delay [1/100 s], width, height [px], overlay, side (0/1:
+#         the overlay in its own panel), reactions (0/1), lim [m], newtons_per_m
+#         [N/m], fmax [N]; the arrays BOB, BOB2 (per link of each file: where its point
+#         mass sits as a fraction of the link, -1: none, a rod)
 # FRAMES  one row per frame: t, the anchor xA yA, the points x1 y1 .. xP yP (the far
 #         end of each link; the bob), the forces (x, y of each: for rods the force of
 #         body i-1 on body i at joint i, acting at the start of segment i), then the
 #         overlay's anchor and points
 # TRAIL   the last point per_frame times per frame interval: t x y [x2 y2]
 #         (frame i, from 0, is trail row i*per_frame; the trail is ntrail rows long)
-# GIF     the animation to write; TITLE, LABEL1, LABEL2: text shown as it is
+# GIF     the animation to write; TITLE, LABEL1, LABEL2: text shown as it is (the
+#         key names every link of each file: LABEL1 link 1, ...; side by side, the
+#         panels' titles)
 # PNGSTEM if not empty: also PNGSTEM-0001.png, PNGSTEM-0002.png, ...
 # The arguments are data: never pasted into code (only PARAMS is loaded).
 load ARG1
@@ -103,6 +107,20 @@ if (reactions) { set bmargin 6 }
 set style fill solid 1.0 noborder
 r_pin = 0.025*lim
 
+# pendulum w (1: the input, 2: the overlay): its segment starts, points, colours
+nlw(w) = (w == 1 ? links : links2)
+springw(w) = (w == 1 ? spring : spring2)
+stx(w, k, i) = (w == 1 ? sx(k, i) : sx2(k, i))
+sty(w, k, i) = (w == 1 ? sy(k, i) : sy2(k, i))
+ptx(w, j) = (w == 1 ? PX[j] : PX2[j])
+pty(w, j) = (w == 1 ? PY[j] : PY2[j])
+ancx(w, k) = (w == 1 ? AX[k] : AX2[k])
+ancy(w, k) = (w == 1 ? AY[k] : AY2[k])
+rcw(w, i) = (w == 1 ? rc1(i) : rc2(i))
+bobw(w, i) = (w == 1 ? BOB[i] : BOB2[i])
+if (!exists("side")) { side = 0 }
+if (side) { set key bmargin center horizontal noenhanced samplen 2 tc rgb "#333333" }
+
 do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
   fsize = sprintf(",%.3g", fpt)
   if (pass == 1) {
@@ -114,86 +132,107 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
   do for [i = 0:nframes - 1] {
     k = i + 1
     if (pass == 2) { set output sprintf("%s-%04d.png", ARG8, k) }
-    unset arrow; unset object; unset label
-    set label 1 sprintf("t = %.2f s", T[k]) at graph 0.03, graph 0.95 left front
-    # tags (drawn in tag order): rods 1..links, the overlay's 41..; pin A 1, the
-    # joints 2..links, the tip links + 1, the overlay's pins and tip 41..; reactions 101..
-    if (overlay) {
-      do for [i = 1:links2] {
-        j = (k - 1)*links2 + i
-        if (spring2) {
-          do for [v = 0:ncoil + 1] {
-            set arrow 200 + 40*i + v from vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v), \
-              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v) to \
-              vx(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1), \
-              vy(sx2(k, i), sy2(k, i), PX2[j], PY2[j], v + 1) nohead lw 2.5*s lc rgb rc2(i) front
+    if (side) {
+      unset title
+      set multiplot layout 1, 2 title ARG5 noenhanced
+    }
+    do for [panel = 1:(side ? 2 : 1)] {
+      unset arrow; unset object; unset label
+      set label 1 sprintf("t = %.2f s", T[k]) at graph 0.03, graph 0.95 left front
+      if (side) { set title (panel == 1 ? ARG6 : ARG7) noenhanced }
+      # the pendulums this panel draws: side, its own; overlay, the second below
+      wfirst = (side ? panel : (overlay ? 2 : 1))
+      wlast = (side ? panel : 1)
+      do for [w = wfirst:wlast:(wfirst > wlast ? -1 : 1)] {
+        # tags: rods w*40 - 40 + i, springs 1000*w + 40*i + v; pins: the anchor
+        # 39*w - 38, points 40*w - 40 + i + 1; bobs 300 + 40*w + i; reactions 101..
+        set object 39*w - 38 circle at ancx(w, k),ancy(w, k) size 1.3*r_pin fc rgb pin front
+        do for [i = 1:nlw(w)] {
+          j = (k - 1)*nlw(w) + i
+          if (springw(w)) {
+            do for [v = 0:ncoil + 1] {
+              set arrow 1000*w + 40*i + v \
+                from vx(stx(w, k, i), sty(w, k, i), ptx(w, j), pty(w, j), v), \
+                vy(stx(w, k, i), sty(w, k, i), ptx(w, j), pty(w, j), v) to \
+                vx(stx(w, k, i), sty(w, k, i), ptx(w, j), pty(w, j), v + 1), \
+                vy(stx(w, k, i), sty(w, k, i), ptx(w, j), pty(w, j), v + 1) nohead \
+                lw 2.5*s lc rgb rcw(w, i) front
+            }
+          } else {
+            set arrow 40*w - 40 + i from stx(w, k, i),sty(w, k, i) to ptx(w, j),pty(w, j) \
+              nohead lw 7*s lc rgb rcw(w, i) front
           }
-        } else {
-          set arrow 40 + i from sx2(k, i),sy2(k, i) to PX2[j],PY2[j] nohead lw 7*s \
-            lc rgb rc2(i) front
+          set object 40*w - 40 + i + 1 circle at ptx(w, j),pty(w, j) \
+            size (springw(w) ? 2.5 : 1)*r_pin fc rgb (i < nlw(w) ? pin : rcw(w, i)) front
+          # a point mass: a bob at its place on the link (com_i / l_i)
+          if (bobw(w, i) >= 0) {
+            set object 300 + 40*w + i circle \
+              at stx(w, k, i) + bobw(w, i)*(ptx(w, j) - stx(w, k, i)), \
+                 sty(w, k, i) + bobw(w, i)*(pty(w, j) - sty(w, k, i)) \
+              size 2.4*r_pin fc rgb rcw(w, i) fs solid 1.0 border lc rgb pin front
+          }
         }
-        set object 40 + i circle at PX2[j],PY2[j] size (spring2 ? 2.5 : 1)*r_pin \
-          fc rgb (i < links2 ? pin : rc2(i)) front
       }
-      set object 39 circle at AX2[k],AY2[k] size 1.3*r_pin fc rgb pin front
-    }
-    set object 1 circle at AX[k],AY[k] size 1.3*r_pin fc rgb pin front
-    do for [i = 1:links] {
-      j = (k - 1)*links + i
-      if (spring) {
-        do for [v = 0:ncoil + 1] {
-          set arrow 1000 + 40*i + v from vx(sx(k, i), sy(k, i), PX[j], PY[j], v), \
-            vy(sx(k, i), sy(k, i), PX[j], PY[j], v) to \
-            vx(sx(k, i), sy(k, i), PX[j], PY[j], v + 1), \
-            vy(sx(k, i), sy(k, i), PX[j], PY[j], v + 1) nohead lw 2.5*s lc rgb rc1(i) front
+      if (reactions && (panel == 1)) {
+        do for [i = 1:nforces] {
+          j = (k - 1)*nf + i
+          set arrow 100 + i from sx(k, i),sy(k, i) rto FX[j]/newtons_per_m,FY[j]/newtons_per_m \
+            head filled size screen 0.018,20 lw 3*s lc rgb rc(i) front
+        }
+        fsmall = sprintf(",%.3g", (0.8*fpt > 7 ? 0.8*fpt : 7))
+        if (spring) {
+          set label 2 "F01: the ground on the spring, at A (the spring's pull on the bob)" \
+            at screen 0.03, screen 0.065 left front font fsmall tc rgb react1
+        } else {
+          if (links == 2) {
+            set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
+              font fsmall tc rgb react1
+            set label 3 "F12 = -F21: link 1 on link 2, at B" at screen 0.03, screen 0.03 left \
+              front font fsmall tc rgb react2
+          } else {
+            set label 2 "at joint i: the force of link i-1 on link i" at screen 0.03, \
+              screen 0.065 left front font fsmall tc rgb "#333333"
+            set label 3 "(link 0: the ground; joint 1: the pin A)" at screen 0.03, \
+              screen 0.03 left front font fsmall tc rgb "#333333"
+          }
+        }
+        set label 4 sprintf("arrows: 1 m = %g N\n(largest |F| shown %.3g N)", newtons_per_m, \
+          fmax) at screen 0.97, screen 0.065 right front font fsmall tc rgb "#333333"
+      }
+      last = i*per_frame + 1
+      first = (last - ntrail > 1 ? last - ntrail : 1)
+      if (side) {
+        # this panel's trail, its links named in the key
+        if (panel == 1) {
+          plot sample [j = first:last:1] '+' using (TX[j]):(TY[j]):\
+                 (fade(trail_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
+                 notitle, \
+               for [m = 1:links] NaN with lines lw 7*s lc rgb rc1(m) title sprintf("link %d", m)
+        } else {
+          plot sample [j = first:last:1] '+' using (TX2[j]):(TY2[j]):\
+                 (fade(trail2_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
+                 notitle, \
+               for [m = 1:links2] NaN with lines lw 7*s lc rgb rc2(m) title sprintf("link %d", m)
         }
       } else {
-        set arrow i from sx(k, i),sy(k, i) to PX[j],PY[j] nohead lw 7*s lc rgb rc1(i) front
-      }
-      set object i + 1 circle at PX[j],PY[j] size (spring ? 2.5 : 1)*r_pin \
-        fc rgb (i < links ? pin : rc1(i)) front
-    }
-    if (reactions) {
-      do for [i = 1:nforces] {
-        j = (k - 1)*nf + i
-        set arrow 100 + i from sx(k, i),sy(k, i) rto FX[j]/newtons_per_m,FY[j]/newtons_per_m \
-          head filled size screen 0.018,20 lw 3*s lc rgb rc(i) front
-      }
-      fsmall = sprintf(",%.3g", (0.8*fpt > 7 ? 0.8*fpt : 7))
-      if (spring) {
-        set label 2 "F01: the ground on the spring, at A (the spring's pull on the bob)" \
-          at screen 0.03, screen 0.065 left front font fsmall tc rgb react1
-      } else {
-        if (links == 2) {
-          set label 2 "F01: ground on link 1, at A" at screen 0.03, screen 0.065 left front \
-            font fsmall tc rgb react1
-          set label 3 "F12 = -F21: link 1 on link 2, at B" at screen 0.03, screen 0.03 left \
-            front font fsmall tc rgb react2
+        if (overlay) {
+          plot sample [j = first:last:1] '+' using (TX2[j]):(TY2[j]):\
+                 (fade(trail2_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
+                 notitle, \
+               [j = first:last:1] '+' using (TX[j]):(TY[j]):\
+                 (fade(trail_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
+                 notitle, \
+               for [m = 1:links] NaN with lines lw 7*s lc rgb rc1(m) \
+                 title sprintf("%s: link %d", ARG6, m), \
+               for [m = 1:links2] NaN with lines lw 7*s lc rgb rc2(m) \
+                 title sprintf("%s: link %d", ARG7, m)
         } else {
-          set label 2 "at joint i: the force of link i-1 on link i" at screen 0.03, \
-            screen 0.065 left front font fsmall tc rgb "#333333"
-          set label 3 "(link 0: the ground; joint 1: the pin A)" at screen 0.03, \
-            screen 0.03 left front font fsmall tc rgb "#333333"
+          plot sample [j = first:last:1] '+' using (TX[j]):(TY[j]):\
+                 (fade(trail_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable
         }
       }
-      set label 4 sprintf("arrows: 1 m = %g N\n(largest |F| shown %.3g N)", newtons_per_m, \
-        fmax) at screen 0.97, screen 0.065 right front font fsmall tc rgb "#333333"
     }
-    last = i*per_frame + 1
-    first = (last - ntrail > 1 ? last - ntrail : 1)
-    if (overlay) {
-      plot sample [j = first:last:1] '+' using (TX2[j]):(TY2[j]):\
-             (fade(trail2_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
-             notitle, \
-           [j = first:last:1] '+' using (TX[j]):(TY[j]):\
-             (fade(trail_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable \
-             notitle, \
-           NaN with lines lw 7*s lc rgb rod title ARG6, \
-           NaN with lines lw 7*s lc rgb rod2 title ARG7
-    } else {
-      plot sample [j = first:last:1] '+' using (TX[j]):(TY[j]):\
-             (fade(trail_rgb, (last - j)/real(ntrail))) with lines lw 3*s lc rgb variable
-    }
+    if (side) { unset multiplot }
   }
   set output
 }

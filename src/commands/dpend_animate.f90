@@ -10,10 +10,11 @@
 !> of the command is `animate_command`.
 module dpend_animate
    use, intrinsic :: iso_fortran_env, only: output_unit
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_cli, only: arg_t, next_option, option_outcome, parse_int, parse_real, to_str, &
-                        is_long_option
+                        is_long_option, printable
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_output, only: output_t, check_output_path, register_input
    use dpend_trajectory_figure, only: figure_track_t, read_figure, resample_figure
@@ -30,6 +31,7 @@ module dpend_animate
    public :: animate_command
    public :: animate_config_t, parse_animate, run_animate, animate_help
    public :: max_frames
+   public :: track_t, read_track, animation_labels
 
    integer, parameter :: max_frames = 10000        !! most frames of one animation
    integer, parameter :: min_fps = 1, max_fps = 100
@@ -55,11 +57,20 @@ module dpend_animate
       integer :: width = 640, height = 640          !! pixels
       real(dp) :: speed = 1.0_dp                    !! simulated s per real s
       real(dp) :: duration = -1.0_dp                !! animation length [s]; < 0 = all
+      character(len=:), allocatable :: layout       !! with --overlay: 'overlay' or 'side'
+      logical :: size_given = .false.               !! --size given
    end type animate_config_t
 
    !> The samples of one simulate file that the animation needs.
    type :: track_t
       character(len=:), allocatable :: path, method
+      !> what the run was, for the labels: 'rk4, dt 0.001 s'; and the settings compared
+      !> between two files ('method', 'dt', 'q0', 'qdot0', 'body', 'm', 'l', 'g': text)
+      character(len=:), allocatable :: run_text
+      character(len=64) :: settings(8) = ''
+      !> per link, where its point mass sits as a fraction of the link (com_i / l_i when
+      !> the link has no moment of inertia about its centre of mass), else -1: no bob
+      real(dp), allocatable :: bob(:)
       real(dp), allocatable :: t(:)                 !! sample times (n) [s]
       !> the figure the file describes (anchor, points, forces; dpend_trajectory_figure)
       type(figure_track_t) :: fig
@@ -147,7 +158,11 @@ contains
           '                  scale [N per m] chosen from the largest |F| shown, stated in'//nl// &
           '                  a legend'//nl// &
           '  --overlay FILE2 a second simulate file drawn in another colour on the same'//nl// &
-          '                  frames (e.g. two nearby initial conditions separating)'//nl// &
+          '                  frames (e.g. two nearby initial conditions separating); the'//nl// &
+          '                  title says in what the two runs differ, the key names each'//nl// &
+          '                  link of each file'//nl// &
+          '  --layout L      with --overlay: overlay (both in one frame, default) or side'//nl// &
+          '                  (side by side, each in its own panel; default size 1280x640)'//nl// &
           '  --frames DIR    also write frame_0001.png, ... into the existing directory DIR'//nl// &
           '  -h, --help      this text'//nl//nl// &
           'Needs gnuplot (5.4 or later) on PATH and scripts/plot/animate.gp of the source'//nl// &
@@ -168,6 +183,7 @@ contains
       cfg%output = ''
       cfg%overlay = ''
       cfg%frames = ''
+      cfg%layout = 'overlay'
       help = any([(args(i)%s == '-h' .or. args(i)%s == '--help', i=1, size(args))])
       if (help) return
       i = 1
@@ -220,6 +236,12 @@ contains
             cfg%duration = x
          case ('--size')
             call parse_size(value, cfg%width, cfg%height, error)
+            cfg%size_given = .true.
+         case ('--layout')
+            cfg%layout = value
+            if (value /= 'overlay' .and. value /= 'side' .and. .not. missing) &
+               call fatal_error(error, "invalid layout: '"//printable(value)// &
+                                "' (accepted: overlay, side)")
          case default
             matched = .false.
          end select
@@ -232,6 +254,12 @@ contains
                           '(usage: dpend animate FILE.h5 [options])')
          return
       end if
+      if (cfg%layout == 'side' .and. len(cfg%overlay) == 0) then
+         call fatal_error(error, 'invalid layout: side needs --overlay FILE2 (two runs '// &
+                          'side by side)')
+         return
+      end if
+      if (cfg%layout == 'side' .and. .not. cfg%size_given) cfg%width = 2*cfg%height
       if (len(cfg%output) == 0) cfg%output = gif_name(cfg%input)
       ! a frame budget known from the options alone (the default duration is checked
       ! once the file's span is known)
@@ -341,6 +369,7 @@ contains
             tr%method = '?'
          end if
       end if
+      if (.not. allocated(error)) call read_run_facts(h5, tr, error)
       call h5%close()
       if (allocated(error)) error%message = 'invalid '//field//": '"//path//"': "// &
                                             error%message
@@ -416,6 +445,131 @@ contains
       if (maxval(abs(t)) > max_time) call fatal_error(error, '/trajectory/t holds ' &
          //sci(maxval(abs(t)))//' s (accepted: |t| <= '//sci(max_time)//' s)')
    end subroutine check_times
+
+   !> The run's facts for the labels and the title (method, dt, the initial state, the
+   !> body, masses, lengths, g: their texts in tr%settings, missing or unreadable ones
+   !> '?') and each link's point mass (tr%bob: com_i / l_i where inertia_i = 0, from
+   !> the attributes com<i>, inertia<i> and l, each checked finite, l_i > 0, 0 <=
+   !> com_i <= 1e6 l_i; else no bob). A file from elsewhere: nothing here is trusted
+   !> beyond a label, and a label that cannot be read says '?'.
+   subroutine read_run_facts(h5, tr, error)
+      type(h5file_t), intent(inout) :: h5               !! the open simulate file
+      type(track_t), intent(inout) :: tr                !! method read; facts set
+      type(error_t), allocatable, intent(inout) :: error  !! unchanged (labels only)
+      character(len=*), parameter :: scalars(2) = [character(len=4) :: 'dt', 'g']
+      character(len=*), parameter :: arrays(4) = [character(len=5) :: 'q0', 'qdot0', 'm', 'l']
+      real(dp), allocatable :: l(:)
+      real(dp) :: com, inertia
+      integer :: i, links
+      tr%settings(1) = 'method '//tr%method
+      tr%settings(2) = 'dt '//scalar_text('dt')//' s'
+      tr%settings(3) = 'q0 '//array_text('q0')//' rad'
+      tr%settings(4) = 'qdot0 '//array_text('qdot0')//' rad/s'
+      tr%settings(5) = 'body '//string_text('body')
+      tr%settings(6) = 'm '//array_text('m')//' kg'
+      tr%settings(7) = 'l '//array_text('l')//' m'
+      tr%settings(8) = 'g '//scalar_text('g')//' m/s^2'
+      tr%run_text = tr%method//', dt '//scalar_text('dt')//' s'
+      links = tr%fig%n_points
+      allocate (tr%bob(max(links, 1)))
+      tr%bob = -1.0_dp
+      if (tr%fig%style /= 'rods' .or. .not. h5%attr_exists('/', 'l')) return
+      call h5%readattr('/', 'l', l, error)
+      if (allocated(error)) then
+         deallocate (error)
+         return
+      end if
+      if (size(l) /= links) return
+      do i = 1, links
+         if (.not. (h5%attr_exists('/', 'com'//to_str(i)) .and. &
+                    h5%attr_exists('/', 'inertia'//to_str(i)))) cycle
+         call h5%readattr('/', 'com'//to_str(i), com, error)
+         if (.not. allocated(error)) call h5%readattr('/', 'inertia'//to_str(i), inertia, error)
+         if (allocated(error)) then
+            deallocate (error)
+            cycle
+         end if
+         if (.not. (ieee_is_finite(com) .and. ieee_is_finite(l(i)))) cycle
+         if (inertia == 0.0_dp .and. l(i) > 0.0_dp .and. com >= 0.0_dp .and. &
+             com <= 1e6_dp*l(i)) tr%bob(i) = com/l(i)
+      end do
+   contains
+      function scalar_text(name) result(t)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: t
+         real(dp) :: x
+         type(error_t), allocatable :: err
+         t = '?'
+         if (.not. h5%attr_exists('/', name)) return
+         call h5%readattr('/', name, x, err)
+         if (.not. allocated(err)) t = sci(x, 6)
+      end function scalar_text
+      function array_text(name) result(t)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: t
+         real(dp), allocatable :: x(:)
+         type(error_t), allocatable :: err
+         integer :: k
+         t = '?'
+         if (.not. h5%attr_exists('/', name)) return
+         call h5%readattr('/', name, x, err)
+         if (allocated(err) .or. size(x) == 0 .or. size(x) > 32) return
+         t = sci(x(1), 6)
+         do k = 2, size(x)
+            t = t//','//sci(x(k), 6)
+         end do
+      end function array_text
+      function string_text(name) result(t)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: t, v
+         type(error_t), allocatable :: err
+         t = '?'
+         if (.not. h5%attr_exists('/', name)) return
+         call h5%readattr('/', name, v, err)
+         if (.not. allocated(err)) t = printable(v(:min(len(v), 40)))
+      end function string_text
+   end subroutine read_run_facts
+
+   !> The animation's title and the labels of its two files: 'sim.h5 (rk4, dt 0.001
+   !> s)'; with an overlay the title names both files and, on a second line, in what
+   !> the runs differ (`run_differences`).
+   subroutine animation_labels(cfg, a, b, overlay, title, label1, label2)
+      type(animate_config_t), intent(in) :: cfg          !! the files' names
+      type(track_t), intent(in) :: a, b                  !! their tracks (b: overlay)
+      logical, intent(in) :: overlay                     !! b is drawn
+      character(len=:), allocatable, intent(out) :: title, label1, label2
+      label1 = base_name(cfg%input)//' ('//a%run_text//')'
+      label2 = ''
+      title = figure_title(a)//': '//label1
+      if (overlay) then
+         label2 = base_name(cfg%overlay)//' ('//b%run_text//')'
+         title = figure_title(a)//': '//base_name(cfg%input)//' and '// &
+                 base_name(cfg%overlay)//new_line('a')//run_differences(a, b)
+      end if
+   end subroutine animation_labels
+
+   !> In what two runs differ, by the settings read (read_run_facts): 'differ in dt
+   !> (0.001 s, 0.0005 s)'; or 'the same method, dt, initial state, body, m, l, g'.
+   function run_differences(a, b) result(s)
+      type(track_t), intent(in) :: a, b   !! the input's and the overlay's tracks
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: name
+      integer :: k, sp
+      s = ''
+      do k = 1, size(a%settings)
+         if (a%settings(k) == b%settings(k)) cycle
+         sp = index(a%settings(k), ' ')
+         name = a%settings(k)(:sp - 1)
+         if (len(s) > 0) s = s//'; '
+         s = s//name//' ('//trim(a%settings(k)(sp + 1:))//' | '// &
+             trim(b%settings(k)(index(b%settings(k), ' ') + 1:))//')'
+      end do
+      if (len(s) == 0) then
+         s = 'the same method, dt, initial state, body, m, l and g'
+      else
+         s = 'they differ in '//s
+      end if
+   end function run_differences
 
    !> The figure's reach: the largest |x| or |y| of its anchor and points [m].
    pure real(dp) function reach(tr)
@@ -575,14 +729,7 @@ contains
          call out%discard()
          return
       end if
-      title = base_name(cfg%input)//' ('//a%method//')'
-      label1 = title
-      label2 = ''
-      if (overlay) then
-         label2 = base_name(cfg%overlay)//' ('//b%method//')'
-         title = label1//'  and  '//label2
-      end if
-      title = figure_title(a)//': '//title
+      call animation_labels(cfg, a, b, overlay, title, label1, label2)
       ! component by component (gfortran 12 mangles an array constructor of
       ! structure constructors with deferred-length components)
       argv(1)%s = 'gnuplot'; argv(2)%s = '-c'; argv(3)%s = script; argv(4)%s = tmp%params
@@ -843,6 +990,12 @@ contains
       write (u, '(a, i0)', iostat=stat) 'width = ', cfg%width
       write (u, '(a, i0)', iostat=stat) 'height = ', cfg%height
       write (u, '(a, i0)', iostat=stat) 'overlay = ', merge(1, 0, overlay)
+      write (u, '(a, i0)', iostat=stat) 'side = ', merge(1, 0, overlay .and. &
+                                                          cfg%layout == 'side')
+      ! where each link's point mass sits, as a fraction of the link (-1: none)
+      write (u, '(a)', iostat=stat) 'array BOB['//to_str(size(a%bob))//'] = '//bobs(a%bob)
+      if (overlay) write (u, '(a)', iostat=stat) 'array BOB2['//to_str(size(b%bob))// &
+         '] = '//bobs(b%bob)
       write (u, '(a, i0)', iostat=stat) 'reactions = ', merge(1, 0, cfg%reactions .and. &
                                                                npm > 0)
       write (u, '(a, es24.16e3)', iostat=stat) 'lim = ', 1.08_dp*lim
@@ -851,6 +1004,20 @@ contains
       write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
       close (u, iostat=err)
       if (err /= 0) stat = err
+   contains
+      !> '[1.0, -1.0]': numbers only (the file is loaded by gnuplot).
+      function bobs(x) result(t)
+         real(dp), intent(in) :: x(:)
+         character(len=:), allocatable :: t
+         character(len=32) :: buf
+         integer :: k
+         t = '['
+         do k = 1, size(x)
+            write (buf, '(es24.16e3)') x(k)
+            t = t//trim(adjustl(buf))//merge(',', ']', k < size(x))
+         end do
+         if (size(x) == 0) t = '[-1]'
+      end function bobs
    end subroutine write_params
 
    !> Write rows t(i), pa(:, i) [, pb(:, i) with the overlay]: the frames or the trail.
