@@ -104,6 +104,15 @@ if [[ -n $labels ]]; then
 elif [[ $(attr /fit observations "$h5") == positions ]]; then
   kind=xy
   cols=$((2 * links))
+  # the points observed (a tip-only series: '2'), in the order of the columns
+  points=$(attr /fit observed_points "$h5")
+  if [[ -n $points ]]; then
+    [[ $points =~ ^[1-9][0-9]?( [1-9][0-9]?)*$ ]] ||
+      plot_fail 2 "'$1' is not a dpend fit file (observed_points)"
+    read -r -a pts <<< "$points"
+    cols=$((2 * ${#pts[@]}))
+    kind="xy $points"
+  fi
   "$dpend" export "$h5" /fit/t /fit/xy_data /fit/xy_model /fit/residual /fit/in_window \
     > "$tmp/fit.dat" || plot_fail 2 "'$1' is not a dpend fit file"
 else

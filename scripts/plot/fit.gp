@@ -2,7 +2,7 @@
 #   gnuplot -c fit.gp fit DATAFILE OUTDIR TITLE M TWINDOW TOL "RMS HORIZON" KIND
 #     DATAFILE: columns t data(1..M) model(1..M) residual(1..M) in_window; KIND q: M = N
 #     angles from the horizontal x axis (rad), KIND xy: M = 2N positions x1 y1 ... of
-#     the link ends (m); TWINDOW: end of the fit window (s); TOL: the horizon
+#     the link ends (m), or "xy K ..." the points K observed (M = 2 per point); TWINDOW: end of the fit window (s); TOL: the horizon
 #     tolerance, RMS: the RMS residual of the window (rad or m); KIND model NAME:UNIT ...:
 #     M = the model's coordinates, named with their units ("model r:m phi:rad");
 #     HORIZON (one argument with RMS: gnuplot -c takes nine): the prediction horizon
@@ -50,15 +50,17 @@ N = int(real(ARG5))
 Tw = real(ARG6)
 tol = real(ARG7)
 rms = real(word(ARG8, 1))
-xy = (ARG9 eq "xy")
+xy = (word(ARG9, 1) eq "xy")
+# the point of panel i (x_k, y_k): the observed points after "xy", else 1, 2, ...
+pnt(i) = (xy && words(ARG9) > 1 ? int(word(ARG9, 1 + (i + 1)/2)) : (i + 1)/2)
 model = (word(ARG9, 1) eq "model")
 unit = xy ? "m" : (model ? "(units of each panel)" : "rad")
 labels = model ? ARG9[7:] : ""
 # panel i: q_i, or x_k / y_k of link k = (i + 1)/2, or the model's coordinate i
 wlabel(w) = sprintf("%s [%s]", w[1:strstrt(w, ":") - 1], w[strstrt(w, ":") + 1:])
-label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), (i + 1)/2) : \
+label(i) = xy ? sprintf("%s_%d [m]", (i%2 == 1 ? "x" : "y"), pnt(i)) : \
            (model ? wlabel(word(labels, i)) : sprintf("q_%d [rad]", i))
-colour(i) = xy ? lc((i + 1)/2) : lc(i)
+colour(i) = xy ? lc(pnt(i)) : lc(i)
 isangle(i) = (!xy && (!model || word(labels, i)[strstrt(word(labels, i), ":") + 1:] eq "rad"))
 # the same left and right margins for every panel: the plot areas line up whatever
 # the tic labels, the key (top panel only) in the right margin; each panel about 190

@@ -31,7 +31,8 @@ module dpend_estimate
    use dpend_progress, only: progress_listened
    use dpend_estimate_sensitivity, only: sens_model_t
    use dpend_estimate_problem, only: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, &
-                                     evaluate_fit, counted_fit, initial_guess
+                                     evaluate_fit, counted_fit, initial_guess, problem_links, &
+                                     unobserved_points
    use dpend_estimate_setup, only: fit_work_t, estimate_fit_work, set_fitted
    use dpend_estimate_statistics, only: window_statistics, predict_series, student_t95, &
                                         noise_estimate, observation_noise, misfit_suspects, &
@@ -90,10 +91,110 @@ contains
          counter%progress%t_last = counter%progress%t_start
          counter%progress%reported = 0
       end if
-      call fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
+      if (.not. present(guess) .and. size(unobserved_points(prob, &
+                                          problem_links(prob, size(q, 1)))) > 0) then
+         call fit_mirrors(prob, t, q, t_window, tolerance, res, counter, error)
+      else
+         call fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
+      end if
       if (counter%show .and. (counter%progress%reported > 0 .or. progress_listened())) &
          call counter%progress%finish()
    end subroutine fit_series
+
+   !> Points not observed (the elbow of a tip-only series) have two mirror places for
+   !> each observed configuration: the fit starts from every combination of sides
+   !> (at most 2^4) and keeps the one of lowest RMS residual in the window; res%mirror
+   !> says which, with the others' RMS. A start that fails is passed over unless all
+   !> fail (its error then).
+   subroutine fit_mirrors(prob, t, q, t_window, tolerance, res, counter, error)
+      type(fit_problem_t), intent(in) :: prob           !! the problem, points given
+      real(dp), intent(in) :: t(:), q(:, :)             !! the samples
+      real(dp), intent(in) :: t_window, tolerance       !! as fit_series
+      type(fit_result_t), intent(out) :: res            !! the best start's fit
+      type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
+      type(error_t), allocatable, intent(out) :: error  !! every start failed
+      type(fit_problem_t) :: trial
+      type(fit_result_t) :: one
+      type(error_t), allocatable :: err
+      integer, allocatable :: gaps(:)
+      integer :: n, combo, g, same, distinct
+      character(len=:), allocatable :: others, kept
+      logical :: found
+      n = problem_links(prob, size(q, 1))
+      gaps = unobserved_points(prob, n)
+      if (size(gaps) > 4) then
+         call fatal_error(error, to_str(size(gaps))//' points are not observed: at most 4 ' &
+                          //'(each doubles the starts: the mirror places of its link pair)')
+         return
+      end if
+      trial = prob
+      allocate (trial%branch(n))
+      found = .false.
+      others = ''
+      same = 0
+      distinct = 0
+      do combo = 0, 2**size(gaps) - 1
+         trial%branch = 1
+         do g = 1, size(gaps)
+            if (btest(combo, g - 1)) trial%branch(gaps(g)) = -1
+         end do
+         call fit_stages(trial, t, q, t_window, tolerance, one, counter, err)
+         if (counter%exceeded) then
+            call move_alloc(err, error)
+            return
+         end if
+         if (allocated(err)) then
+            if (.not. found .and. .not. allocated(error)) call move_alloc(err, error)
+            if (allocated(err)) deallocate (err)
+            others = others//'; '//sides(trial%branch)//': failed'
+            cycle
+         end if
+         if (.not. found) then
+            res = one
+            kept = sides(trial%branch)
+            found = .true.
+            cycle
+         end if
+         ! the same estimates (within 3 standard errors): the dynamics chose the place
+         if (all(abs(one%p - res%p) <= 3*max(res%se, one%se))) then
+            same = same + 1
+         else
+            distinct = distinct + 1
+         end if
+         if (one%rms < res%rms) then
+            others = others//'; '//kept//': RMS '//real_str(res%rms, 3)
+            res = one
+            kept = sides(trial%branch)
+         else
+            others = others//'; '//sides(trial%branch)//': RMS '//real_str(one%rms, 3)
+         end if
+      end do
+      if (.not. found) return
+      if (allocated(error)) deallocate (error)
+      if (distinct == 0 .and. same > 0) then
+         res%mirror = 'the unobserved '//trim(merge('point: ', 'points:', size(gaps) == 1))// &
+                      ' the fit started from every mirror place and each reached the same ' &
+                      //'estimates (within 3 standard errors; RMS '//real_str(res%rms, 3)// &
+                      '): the motion decides the place'
+      else
+         res%mirror = 'the unobserved '//trim(merge('point: ', 'points:', size(gaps) == 1))// &
+                      ' the mirror places give different fits; kept '//kept//' (RMS '// &
+                      real_str(res%rms, 3)//others//')'
+      end if
+   contains
+      !> 'point 1 counter-clockwise of the chord' for each gap.
+      function sides(branch) result(txt)
+         integer, intent(in) :: branch(:)
+         character(len=:), allocatable :: txt
+         integer :: gg
+         txt = ''
+         do gg = 1, size(gaps)
+            if (gg > 1) txt = txt//', '
+            txt = txt//'point '//to_str(gaps(gg))//trim(merge(' left ', ' right', &
+                  branch(gaps(gg)) > 0))//' of the chord'
+         end do
+      end function sides
+   end subroutine fit_mirrors
 
    !> `fit_series` with its work counter: the continuation stages, the statistics of
    !> the fit window, the prediction of the whole series.
@@ -109,7 +210,7 @@ contains
       real(dp), intent(in), optional :: guess(:)        !! first guess
       integer :: n, np, no
       no = size(q, 1)
-      n = merge(no/2, no, prob%positions)
+      n = problem_links(prob, no)
       res%n = n
       np = 2*n + n_fitted(prob)
       res%np = np

@@ -27,7 +27,7 @@ module dpend_estimate_problem
    implicit none
    private
    public :: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, evaluate_fit, counted_fit
-   public :: start_model, initial_guess, wrap_angles
+   public :: start_model, initial_guess, wrap_angles, problem_links, unobserved_points
 
    !> Most substeps of the sensitivities over one step of the motion: a step whose
    !> local frequency needs more is far too long for the tangents (trial parameters
@@ -78,6 +78,13 @@ module dpend_estimate_problem
       !> the observations are the positions x_i, y_i of the link ends [m] (lengths `l`,
       !> the support's motion from sup_*), not the angles
       logical :: positions = .false.
+      !> with positions: the points observed, in order (link ends; the last is the
+      !> tip N); unallocated: every point 1..N. A point missing between two observed
+      !> ones (or the pin) is placed by the two lengths, on the side `branch` says
+      !> (+1: counter-clockwise of the chord from the point before to the point after,
+      !> -1: clockwise; the two mirror solutions, both tried by `fit_series`)
+      integer, allocatable :: points(:)
+      integer, allocatable :: branch(:)
       !> first-stage starts: the guess and starts-1 others whose rates spread over
       !> guess ± max(|guess rates|, 1 rad/s) (a Halton sequence); the lowest cost wins
       integer :: starts = 1
@@ -128,6 +135,8 @@ module dpend_estimate_problem
       real(dp) :: horizon = 0.0_dp          !! prediction horizon after T [s]
       logical :: horizon_censored = .false. !! never left the tolerance (a lower bound)
       real(dp) :: tolerance = 0.1_dp        !! its tolerance [rad]
+      !> points not observed: which mirror place was kept, and the others' RMS ('': none)
+      character(len=:), allocatable :: mirror
       !> singular values of the sensitivity matrix with unit columns, largest first
       real(dp), allocatable :: singular(:)
       real(dp) :: condition = 0.0_dp        !! their ratio largest / smallest
@@ -174,7 +183,7 @@ contains
       real(dp) :: tt, h
       integer :: n, nc, np, ns, j, stat, no
       no = size(q, 1)
-      n = merge(no/2, no, prob%positions)
+      n = problem_links(prob, no)
       np = size(p)
       nstep = 0
       counted = 0.0_dp
@@ -459,7 +468,7 @@ contains
       real(dp), intent(in) :: lv(:)          !! lengths [m] (positions)
       real(dp), intent(out) :: dl(:, :)      !! ∂o/∂L (positions)
       real(dp) :: pos(2)
-      integer :: i, j, n
+      integer :: i, j, n, k, pt
       n = size(q)
       d = 0.0_dp
       dl = 0.0_dp
@@ -470,17 +479,51 @@ contains
          end do
          return
       end if
+      ! the observed points only (all, or those of prob%points, in order)
+      k = 0
       pos = prob%sup_a*cos(prob%sup_w*t + prob%sup_phi)
       do i = 1, n
          pos = pos + lv(i)*[cos(q(i)), sin(q(i))]
-         o(2*i - 1:2*i) = pos
-         do j = 1, i
-            d(2*i - 1, j) = -lv(j)*sin(q(j))
-            d(2*i, j) = lv(j)*cos(q(j))
-            dl(2*i - 1:2*i, j) = [cos(q(j)), sin(q(j))]
+         pt = i
+         if (allocated(prob%points)) then
+            if (.not. any(prob%points == i)) cycle
+         end if
+         k = k + 1
+         o(2*k - 1:2*k) = pos
+         do j = 1, pt
+            d(2*k - 1, j) = -lv(j)*sin(q(j))
+            d(2*k, j) = lv(j)*cos(q(j))
+            dl(2*k - 1:2*k, j) = [cos(q(j)), sin(q(j))]
          end do
       end do
    end subroutine observe
+
+   !> The links N of a problem whose observations have `no` rows: the angles N, all
+   !> points (2N), or the last observed point (the tip) of `points`.
+   pure integer function problem_links(prob, no) result(n)
+      type(fit_problem_t), intent(in) :: prob  !! the problem
+      integer, intent(in) :: no                !! observations per sample
+      if (.not. prob%positions) then
+         n = no
+      else if (allocated(prob%points)) then
+         n = prob%points(size(prob%points))
+      else
+         n = no/2
+      end if
+   end function problem_links
+
+   !> The points 1..n not observed (none without `prob%points`).
+   pure function unobserved_points(prob, n) result(u)
+      type(fit_problem_t), intent(in) :: prob  !! the problem
+      integer, intent(in) :: n                 !! links
+      integer, allocatable :: u(:)
+      integer :: i
+      allocate (u(0))
+      if (.not. allocated(prob%points)) return
+      do i = 1, n
+         if (.not. any(prob%points == i)) u = [u, i]
+      end do
+   end function unobserved_points
 
    !> Model minus data: angles wrapped into [−π, π), positions as they are.
    pure function residual(prob, o, data) result(r)
@@ -507,18 +550,44 @@ contains
       end if
    end function wrap_angles
 
-   !> The angles of the link ends' positions xy (2N, K) at times t.
+   !> The angles of the link ends' positions xy (the observed points, K) at times t.
+   !> A point not observed lies between two known ones (the pin or observed points):
+   !> it is placed at the lengths l_i, l_(i+1) from them, on the side prob%branch(i)
+   !> says (the chord too long or too short for the two lengths: on the chord).
    pure function angles_of(prob, t, xy) result(q)
       type(fit_problem_t), intent(in) :: prob
       real(dp), intent(in) :: t(:), xy(:, :)
-      real(dp) :: q(size(xy, 1)/2, size(t))
-      real(dp) :: prev(2)
-      integer :: i, j
+      real(dp), allocatable :: q(:, :)
+      real(dp), allocatable :: pts(:, :)
+      logical, allocatable :: known(:)
+      real(dp) :: u(2), d, a, h, side
+      integer :: i, j, k, n
+      n = problem_links(prob, size(xy, 1))
+      allocate (q(n, size(t)), pts(2, 0:n), known(0:n))
       do j = 1, size(t)
-         prev = prob%sup_a*cos(prob%sup_w*t(j) + prob%sup_phi)
-         do i = 1, size(q, 1)
-            q(i, j) = atan2(xy(2*i, j) - prev(2), xy(2*i - 1, j) - prev(1))
-            prev = xy(2*i - 1:2*i, j)
+         pts(:, 0) = prob%sup_a*cos(prob%sup_w*t(j) + prob%sup_phi)
+         known = .false.
+         known(0) = .true.
+         do k = 1, size(xy, 1)/2
+            i = k
+            if (allocated(prob%points)) i = prob%points(k)
+            pts(:, i) = xy(2*k - 1:2*k, j)
+            known(i) = .true.
+         end do
+         do i = 1, n - 1   ! a missing point between two known ones
+            if (known(i) .or. .not. (known(i - 1) .and. known(i + 1))) cycle
+            u = pts(:, i + 1) - pts(:, i - 1)
+            d = max(norm2(u), tiny(1.0_dp))
+            u = u/d
+            d = min(max(d, abs(prob%l(i) - prob%l(i + 1))), prob%l(i) + prob%l(i + 1))
+            a = (prob%l(i)**2 - prob%l(i + 1)**2 + d**2)/(2*d)
+            h = sqrt(max(prob%l(i)**2 - a**2, 0.0_dp))
+            side = 1.0_dp
+            if (allocated(prob%branch)) side = real(prob%branch(i), dp)
+            pts(:, i) = pts(:, i - 1) + a*u + side*h*[-u(2), u(1)]
+         end do
+         do i = 1, n
+            q(i, j) = atan2(pts(2, i) - pts(2, i - 1), pts(1, i) - pts(1, i - 1))
          end do
       end do
    end function angles_of

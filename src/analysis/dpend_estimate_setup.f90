@@ -27,7 +27,8 @@ module dpend_estimate_setup
    use dpend_propagate, only: march_t
    use dpend_strings, only: to_str
    use dpend_estimate_sensitivity, only: sens_model_t
-   use dpend_estimate_problem, only: fit_problem_t, n_fitted, start_model, initial_guess
+   use dpend_estimate_problem, only: fit_problem_t, n_fitted, start_model, initial_guess, &
+      problem_links
    implicit none
    private
    public :: set_fitted, component_label, fit_work_t, estimate_fit_work
@@ -286,7 +287,7 @@ contains
       real(dp) :: lm, quick_lm, fac, m
       integer :: no, n, np, k_fit, kmax, k, k_min
       no = size(q, 1)
-      n = merge(no/2, no, prob%positions)
+      n = problem_links(prob, no)
       np = 2*n + n_fitted(prob)
       kmax = size(t)
       k_fit = count(t <= t_window)

@@ -456,8 +456,6 @@ contains
       type(h5file_t), intent(inout) :: h5               !! the open simulate file
       type(track_t), intent(inout) :: tr                !! method read; facts set
       type(error_t), allocatable, intent(inout) :: error  !! unchanged (labels only)
-      character(len=*), parameter :: scalars(2) = [character(len=4) :: 'dt', 'g']
-      character(len=*), parameter :: arrays(4) = [character(len=5) :: 'q0', 'qdot0', 'm', 'l']
       real(dp), allocatable :: l(:)
       real(dp) :: com, inertia
       integer :: i, links

@@ -236,8 +236,12 @@ contains
          if (len(csv_format(s)) > 0) write (report_unit(), '(a)') '  csv: '//csv_format(s)
          if (s%theta) write (report_unit(), '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
-         if (s%positions) write (report_unit(), '(a)') '  (the file gives the positions of ' &
-            //'the link ends: residuals and tolerance in m)'
+         if (s%positions .and. size(s%points) == s%n) write (report_unit(), '(a)') &
+            '  (the file gives the positions of the link ends: residuals and tolerance in m)'
+         if (s%positions .and. size(s%points) < s%n) write (report_unit(), '(a)') &
+            '  (the file gives the positions of point '//points_text(s%points)// &
+            ' of the link ends 1 to '//to_str(s%n)//'; the others are placed by the '// &
+            'lengths and the dynamics: residuals and tolerance in m)'
       end associate
       call parameter_names(fc, names, units)
       np = res%np
@@ -269,6 +273,7 @@ contains
          if (i > 1) line = line//', '
          line = line//real_str(res%singular(i), 3)
       end do
+      if (allocated(res%mirror)) write (report_unit(), '(a)') '  '//res%mirror
       write (report_unit(), '(a)') '  identifiability: singular values of the sensitivities ' &
          //'(columns scaled to 1) '//line//'; condition number '// &
          condition_text(res%condition)
@@ -299,6 +304,18 @@ contains
          t = buf(:7)
       end function fixed
    end subroutine print_report
+
+   !> The observed points as text: '1 2', '2'.
+   function points_text(points) result(s)
+      integer, intent(in) :: points(:)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(points)
+         if (i > 1) s = s//' '
+         s = s//to_str(points(i))
+      end do
+   end function points_text
 
    !> The /fit group and the root attributes.
    subroutine write_fit(filename, fc, res, error)
@@ -407,6 +424,10 @@ contains
          call h5%writeattr('/fit', 'coordinate_labels', coordinates_joined(fc, ':', ' '))
       else if (fc%series%positions) then
          call h5%writeattr('/fit', 'observations', 'positions')
+         ! the points of xy_data, xy_model and residual, in their order ('1 2'; '2': the
+         ! tip of two links only)
+         call h5%writeattr('/fit', 'observed_points', points_text(fc%series%points))
+         if (allocated(res%mirror)) call h5%writeattr('/fit', 'mirror', res%mirror)
       else
          call h5%writeattr('/fit', 'observations', 'angles')
          call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &

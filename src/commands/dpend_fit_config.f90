@@ -100,6 +100,10 @@ contains
           nl//'                          the links (joint i+1, the tip for i = N), origin at'// &
           nl//'                          the pin, y up; units [m], [cm], [mm] (none: m);'// &
           nl//'                          residuals and --horizon-tolerance are then in m.'// &
+          nl//'                          Some points may be missing (t,x2,y2: the tip'// &
+          nl//'                          only; N = the last point): each missing point'// &
+          nl//'                          between two known ones, placed by the lengths and'// &
+          nl//'                          the dynamics (both mirror places tried).'// &
           nl//'  t,r,phi                 with --model elastic: the model''s coordinates'// &
           nl//'                          (dpend models), r in m, phi in rad from the'// &
           nl//'                          horizontal x axis (units [m], [rad], [deg], none).'// &
@@ -286,11 +290,25 @@ contains
                              ' rad is outside (0, pi] [--horizon-tolerance]')
             return
          end if
-         if (links_given .and. fc%run%links /= s%n) then
+         if (links_given .and. s%positions .and. fc%run%links > s%n) then
+            call fatal_error(error, 'invalid links: '//to_str(fc%run%links)//" given, the " &
+                             //"data file '"//printable(fc%input)//"' ends at point "// &
+                             to_str(s%n)//': the angles of links '//to_str(s%n + 1)// &
+                             ' to '//to_str(fc%run%links)//' are not observed (give x'// &
+                             to_str(fc%run%links)//',y'//to_str(fc%run%links)// &
+                             ', the tip) [--links]')
+            return
+         else if (links_given .and. fc%run%links /= s%n) then
             call fatal_error(error, 'invalid links: '//to_str(fc%run%links)//" given, the " &
                              //"data file '"//printable(fc%input)//"' has "//to_str(s%n)// &
-                             ' angle columns (N is the number of angle columns) [--links]')
+                             trim(merge(' angle columns', ' points       ', .not. s%positions)) &
+                             //' (N is the number of '//trim(merge('angle columns  ', &
+                             'the last point ', .not. s%positions))//') [--links]')
             return
+         end if
+         if (s%positions) then
+            call check_observed_points(s, error)
+            if (allocated(error)) return
          end if
          if (.not. fc%model_coords) then
             fc%run%links = s%n
@@ -341,6 +359,25 @@ contains
          end if
       end associate
    end subroutine check_fit_data
+
+   !> Positions of some points only: each point not observed must lie between two
+   !> known ones (the pin or observed points), which place it up to its mirror image;
+   !> two missing in a row leave a link pair's angles undetermined by the geometry and
+   !> are refused, naming the points to add.
+   subroutine check_observed_points(s, error)
+      type(series_t), intent(in) :: s                   !! the series (positions)
+      type(error_t), allocatable, intent(out) :: error  !! undetermined
+      integer :: i
+      do i = 1, s%n - 1
+         if (any(s%points == i) .or. any(s%points == i + 1)) cycle
+         call fatal_error(error, "invalid data file: points "//to_str(i)//' and '// &
+                          to_str(i + 1)//' are both missing (a missing point must lie ' &
+                          //'between two known ones, the pin or observed points: give x'// &
+                          to_str(i)//',y'//to_str(i)//' or x'//to_str(i + 1)//',y'// &
+                          to_str(i + 1)//')')
+         return
+      end do
+   end subroutine check_observed_points
 
    !> The horizon tolerance when none is given: for positions a fraction of the
    !> pendulum's total length (its configured lengths), for angles 0.1 rad; the rule in
@@ -438,6 +475,9 @@ contains
                                                 prob%comp_labels]
       end block
       prob%positions = fc%series%positions
+      if (prob%positions) then   ! some points only: which
+         if (size(fc%series%points) < n) prob%points = fc%series%points
+      end if
       prob%l = fc%run%l(:n)
       prob%sup_a = fc%run%support_amplitude
       prob%sup_w = fc%run%support_frequency

@@ -174,10 +174,12 @@ contains
          else
             write (buf, '(f0.'//int_str(dec)//')') anint(y*10.0_dp**real(dec, dp))/ &
                10.0_dp**real(dec, dp)
-            if (buf(1:1) == '.') buf = '0'//buf
-            if (buf(1:2) == '-.') buf = '-0'//buf(2:)
          end if
          t = trim(buf)
+         if (t(1:1) == '.') t = '0'//t
+         if (len(t) >= 2) then
+            if (t(1:2) == '-.') t = '-0'//t(2:)
+         end if
          if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
       end function fixed
       function int_str2(k) result(t)

@@ -62,6 +62,10 @@ module dpend_csv
       real(dp), allocatable :: q(:, :)
       integer :: n_obs = 0                !! observations per sample
       logical :: positions = .false.      !! the file gave positions, not angles
+      !> with positions: the points observed (link ends i with both x_i and y_i, in
+      !> order; n_obs = 2 size(points)); N = the last one (the tip), the others may be
+      !> missing (the elbow of a tip-only series)
+      integer, allocatable :: points(:)
       integer, allocatable :: line(:)     !! line number of each row in the file (k)
       logical :: theta = .false.          !! the file gave θ (from hanging), not q
       character(len=1) :: separator = ',' !! field separator: ',', ';' or a tab
@@ -505,32 +509,42 @@ contains
       end if
    end subroutine position_column
 
-   !> Positions x_i, y_i of the link ends: every link 1..N has both columns.
+   !> Positions x_i, y_i of link ends: each point given has both columns; N is the
+   !> last point given (the tip), and the points before it may be missing (a camera
+   !> that sees the tip only: t,x2,y2). Whether the points given determine the motion
+   !> is the fit's to judge (`check_observed_points`).
    subroutine positions_complete(pre, col_x, col_y, sx, sy, col_q, scale, series, error)
       character(len=*), intent(in) :: pre               !! message prefix
       integer, intent(in) :: col_x(:), col_y(:)         !! columns of x_i and y_i
       real(dp), intent(in) :: sx(:), sy(:)              !! their scales to m
       integer, intent(inout) :: col_q(:)                !! column of observation i
       real(dp), intent(inout) :: scale(:)               !! value = scale × number
-      type(series_t), intent(inout) :: series           !! n, n_obs, positions set
-      type(error_t), allocatable, intent(out) :: error  !! a column missing
-      integer :: idx
-      series%n = count(col_x > 0 .or. col_y > 0)
+      type(series_t), intent(inout) :: series           !! n, n_obs, points set
+      type(error_t), allocatable, intent(out) :: error  !! a half point
+      integer :: idx, k
+      series%n = 0
+      do idx = 1, size(col_x)
+         if (col_x(idx) > 0 .or. col_y(idx) > 0) series%n = idx
+      end do
+      allocate (series%points(0))
+      k = 0
       do idx = 1, series%n
+         if (col_x(idx) == 0 .and. col_y(idx) == 0) cycle
          if (col_x(idx) == 0 .or. col_y(idx) == 0) then
             call fatal_error(error, pre//'missing column '//trim(merge('x', 'y', &
-                             col_x(idx) == 0))//to_str(idx)//' ('//to_str(series%n)// &
-                             ' links need the columns x1,y1 to x'//to_str(series%n)//',y' &
-                             //to_str(series%n)//')')
+                             col_x(idx) == 0))//to_str(idx)//' (a point needs both x'// &
+                             to_str(idx)//' and y'//to_str(idx)//')')
             return
          end if
-         col_q(2*idx - 1) = col_x(idx)
-         col_q(2*idx) = col_y(idx)
-         scale(2*idx - 1) = sx(idx)
-         scale(2*idx) = sy(idx)
+         k = k + 1
+         series%points = [series%points, idx]
+         col_q(2*k - 1) = col_x(idx)
+         col_q(2*k) = col_y(idx)
+         scale(2*k - 1) = sx(idx)
+         scale(2*k) = sy(idx)
       end do
       series%positions = .true.
-      series%n_obs = 2*series%n
+      series%n_obs = 2*k
    end subroutine positions_complete
 
    !> Column names of the observations, for messages.
@@ -538,12 +552,16 @@ contains
       type(series_t), intent(in) :: series
       character(len=16) :: names(series%n_obs)
       integer :: i
+      if (series%positions) then   ! the points given, in order
+         do i = 1, series%n_obs/2
+            names(2*i - 1) = 'x'//to_str(series%points(i))
+            names(2*i) = 'y'//to_str(series%points(i))
+         end do
+         return
+      end if
       do i = 1, series%n
          if (series%coords_found) then
             names(i) = series%coord_names(i)
-         else if (series%positions) then
-            names(2*i - 1) = 'x'//to_str(i)
-            names(2*i) = 'y'//to_str(i)
          else if (series%theta) then
             names(i) = 'theta'//to_str(i)
          else
