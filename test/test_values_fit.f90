@@ -43,7 +43,8 @@ contains
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('fit_example_file', test_example), &
                new_unittest('positions_file', test_positions), &
-               new_unittest('tip_only', test_tip_only)]
+               new_unittest('tip_only', test_tip_only), &
+               new_unittest('wrong_body_stops', test_wrong_body)]
    end subroutine collect_values_fit
 
    !> data/fit_example.csv (two links, damping 0.05, 0.03 N m s known, the state
@@ -393,6 +394,68 @@ contains
                          option//' refused naming '//needle//': '//msg)
       end subroutine refused
    end subroutine test_tip_only
+
+   !> Point-mass data fitted as rods (no --body point), the tip of the series of
+   !> `tip_only`: the fit stalls far above the noise and stops, its message naming the
+   !> body (uniform rods, and the remedy --body point, which fits the stalled window
+   !> to the noise), exit 1, its file holding the failure; its work (step-equivalents,
+   !> the stalled fit's and the alternatives', the same on every machine) at most
+   !> 1.1 times the right body's whole fit (it ran 14 times longer before).
+   subroutine test_wrong_body(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, status
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :)
+      real(dp) :: work_right, work_wrong
+      integer :: stat, k, unit, n
+      dir = scratch_dir('values-fitbody')
+      stat = run_command(dir, 'simulate --body point --m1 0.3 --m2 0.2 --l1 0.25 --l2 0.18 '// &
+                         '--damping 0.002,0.001 --q1 -0.5 --q2 0.3 --method dop853 --rtol '// &
+                         '1e-12 --atol 1e-14 --t-end 5 --output-dt 0.025 --output '// &
+                         dir//'/g.h5')
+      call check_true(error, stat == 0, 'simulate of the truth')
+      if (allocated(error)) return
+      call h5%open(dir//'/g.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/tip.csv', status='replace', action='write')
+      write (unit, '(a)') 't,x2,y2'
+      do k = 1, size(t)
+         write (unit, '(f0.4, 2(",", es22.14e3))') t(k), &
+            0.25_dp*cos(q(1, k)) + 0.18_dp*cos(q(2, k)) + 1e-3_dp*sin(7.3_dp*k), &
+            0.25_dp*sin(q(1, k)) + 0.18_dp*sin(q(2, k)) + 1e-3_dp*cos(5.1_dp*k)
+      end do
+      close (unit)
+      stat = run_command(dir, 'fit '//dir//'/tip.csv --body point --m1 0.3 --m2 0.25 '// &
+                         '--l1 0.24 --l2 0.19 --fit-param m2,l,damping --output '//dir//'/r.h5')
+      call check_true(error, stat == 0, 'the right body fits')
+      if (allocated(error)) return
+      stat = run_command(dir, 'fit '//dir//'/tip.csv --m1 0.3 --m2 0.25 --l1 0.24 '// &
+                         '--l2 0.19 --fit-param m2,l,damping --output '//dir//'/w.h5')
+      call read_text(dir//'/stderr', text, n)
+      call check_true(error, stat == 1 .and. index(text, 'the fit stalls far above the ' &
+                      //'noise') > 0 .and. index(text, 'uniform rods') > 0 .and. &
+                      index(text, 'give --body point') > 0, 'the wrong body stops, named: ' &
+                      //text)
+      if (allocated(error)) return
+      call h5%open(dir//'/r.h5', 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'work', work_right, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/w.h5', 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/', 'work', work_wrong, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'status', status, error)
+      call h5%close()
+      if (allocated(error)) return
+      write (output_unit, '(a, es10.3, a, es10.3)') '    wrong_body_stops: work of the '// &
+         'wrong body ', work_wrong, ', of the right body ', work_right
+      call check_true(error, work_wrong <= 1.1_dp*work_right, 'the wrong body stops within ' &
+                      //'1.1 times the right body''s work')
+      call check_true(error, index(status, 'give --body point') > 0, 'the file says why: ' &
+                      //status)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_wrong_body
 
    ! ---------------------------------------------------------------- helpers ---
 

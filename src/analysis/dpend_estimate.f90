@@ -54,6 +54,12 @@ module dpend_estimate
    !> failed at once gives a bound of 0; the fit then reports the failure itself).
    real(dp), parameter :: min_work_limit = 1e6_dp
 
+   !> A stage whose RMS residual stays above this many times the noise, after one
+   !> that did too and was no worse, stalls (prob%stall_check): the model does not
+   !> describe the data (a right model's continuation passes such a stage once, then
+   !> falls back to the noise)
+   real(dp), parameter, public :: stall_factor = 10.0_dp
+
 contains
 
    !> Fit the samples with t ≤ t_window (all when t_window ≥ the last time), then
@@ -97,6 +103,7 @@ contains
       else
          call fit_stages(prob, t, q, t_window, tolerance, res, counter, error, guess)
       end if
+      res%work = counter%used
       if (counter%show .and. (counter%progress%reported > 0 .or. progress_listened())) &
          call counter%progress%finish()
    end subroutine fit_series
@@ -114,7 +121,7 @@ contains
       type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
       type(error_t), allocatable, intent(out) :: error  !! every start failed
       type(fit_problem_t) :: trial
-      type(fit_result_t) :: one
+      type(fit_result_t) :: one, failed
       type(error_t), allocatable :: err
       integer, allocatable :: gaps(:)
       integer :: n, combo, g, same, distinct
@@ -144,7 +151,10 @@ contains
             return
          end if
          if (allocated(err)) then
-            if (.not. found .and. .not. allocated(error)) call move_alloc(err, error)
+            if (.not. found .and. .not. allocated(error)) then
+               call move_alloc(err, error)
+               failed = one   ! (stalled: where, for the caller)
+            end if
             if (allocated(err)) deallocate (err)
             others = others//'; '//sides(trial%branch)//': failed'
             cycle
@@ -169,7 +179,10 @@ contains
             others = others//'; '//sides(trial%branch)//': RMS '//real_str(one%rms, 3)
          end if
       end do
-      if (.not. found) return
+      if (.not. found) then
+         res = failed
+         return
+      end if
       if (allocated(error)) deallocate (error)
       if (distinct == 0 .and. same > 0) then
          res%mirror = 'the unobserved '//trim(merge('point: ', 'points:', size(gaps) == 1))// &
@@ -247,11 +260,14 @@ contains
       type(fit_counter_t), intent(inout) :: counter     !! work done, its limit
       type(error_t), allocatable, intent(out) :: error  !! failed runs
       real(dp), allocatable :: r(:)
-      real(dp) :: period, thr
+      real(dp) :: period, thr, rms_stage, rms_before
       integer :: np, k_min, k_stage, it, j, no
       logical :: conv
+      character(len=:), allocatable :: how, ou
       no = size(q, 1)
       np = res%np
+      res%noise = observation_noise(prob, q, res%k_fit, how)
+      rms_before = 0.0_dp
       ! continuation: the window grows from the fewest samples that determine p
       k_min = min(res%k_fit, max(3, np/no + 1))
       k_stage = k_min
@@ -279,9 +295,31 @@ contains
          ! by max(10 RMS, 0.01 rad or 0.01 Σ L_i), at least 1.25 times longer
          call counted_fit(prob, res%p, t, q, res%k_fit, r, counter, error)
          if (allocated(error)) return
+         rms_stage = sqrt(sum(r(:no*k_stage)**2)/real(no*k_stage, dp))
+         if (rms_stage <= misfit_factor*res%noise) res%good_k = k_stage
+         if (prob%stall_check .and. rms_stage > stall_factor*res%noise .and. &
+             rms_before > stall_factor*res%noise .and. rms_stage >= rms_before .and. &
+             t(k_stage) - t(1) >= 0.5_dp*prob%swing) then
+            res%stalled = .true.
+            res%stall_k = k_stage
+            res%stall_rms = rms_stage
+            ou = ''   ! the residuals' unit (a model's own coordinates: their own)
+            if (prob%positions) then
+               ou = ' m'
+            else if (.not. allocated(prob%angular)) then
+               ou = ' rad'
+            end if
+            call fatal_error(error, 'the fit stalls far above the noise: over the first '// &
+                             real_str(t(k_stage) - t(1), 3)//' s the model stays '// &
+                             real_str(rms_stage, 3)//ou//' (RMS) from the data, '// &
+                             real_str(rms_stage/res%noise, 2)//' times the noise '// &
+                             real_str(res%noise, 2)//ou)
+            return
+         end if
+         rms_before = rms_stage
          thr = 0.01_dp   ! (rad; m per metre of chain for positions)
          if (prob%positions) thr = 0.01_dp*sum(prob%l)
-         thr = max(10.0_dp*sqrt(sum(r(:no*k_stage)**2)/real(no*k_stage, dp)), thr)
+         thr = max(10.0_dp*rms_stage, thr)
          j = k_stage + 1
          do while (j <= res%k_fit)
             if (maxval(abs(r(no*(j - 1) + 1:no*j))) > thr) exit

@@ -100,6 +100,14 @@ module dpend_estimate_problem
       !> the noise of the observations [rad or m] (`--sigma`); 0: estimated from the
       !> data (`observation_noise`)
       real(dp) :: noise = 0.0_dp
+      !> stop the continuation when the residuals stall far above the noise (two
+      !> stages in a row, the second no better, above `stall_factor` times it): the
+      !> result says where (`stalled`), for the caller to weigh the alternatives
+      logical :: stall_check = .false.
+      !> the swing period of the configured pendulum [s] (2π √(Σ l_i / g)): a stall is
+      !> judged on windows of at least half of it (a shorter one barely determines
+      !> the fitted parameters, whatever the body)
+      real(dp) :: swing = 0.0_dp
    end type fit_problem_t
 
    !> The work a running fit has done, against its limit, and its progress report.
@@ -137,6 +145,16 @@ module dpend_estimate_problem
       real(dp) :: tolerance = 0.1_dp        !! its tolerance [rad]
       !> points not observed: which mirror place was kept, and the others' RMS ('': none)
       character(len=:), allocatable :: mirror
+      !> the continuation stopped stalling (prob%stall_check): over the first
+      !> `stall_k` samples the RMS residual `stall_rms` stays above stall_factor times
+      !> the noise `noise`; the longest window the model described (RMS within
+      !> misfit_factor noise) ended at sample `good_k` (0: none)
+      logical :: stalled = .false.
+      integer :: stall_k = 0, good_k = 0
+      !> the work the fit did, in step-equivalents (each step, and P per substep of the
+      !> sensitivities): its cost, the same on every machine
+      real(dp) :: work = 0.0_dp
+      real(dp) :: stall_rms = 0.0_dp, noise = 0.0_dp
       !> singular values of the sensitivity matrix with unit columns, largest first
       real(dp), allocatable :: singular(:)
       real(dp) :: condition = 0.0_dp        !! their ratio largest / smallest

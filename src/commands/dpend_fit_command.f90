@@ -8,7 +8,7 @@
 !> a fit that fails partway writes its settings and why it stopped (`status`).
 !> The command line, the data and their checks: `dpend_fit_config`.
 module dpend_fit_command
-   use, intrinsic :: iso_fortran_env, only: output_unit
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
@@ -24,6 +24,7 @@ module dpend_fit_command
    use dpend_version, only: version
    use dpend_command_common, only: report_unit, take_quiet, with_quiet, summary_quiet, &
       refusal_line, error_line
+   use dpend_fit_alternatives, only: weigh_alternatives
    use dpend_fit_config, only: fit_config_t, parse_fit, fit_help, fit_problem, state_names, &
                                coordinate_units
    implicit none
@@ -82,10 +83,21 @@ contains
       if (allocated(error)) return
       call out%begin(fc%run%output, fc%run%force, error)
       if (allocated(error)) return
+      ! a fit that stalls far above the noise stops early: the alternatives a user
+      ! can choose are weighed on its window; none clearly better, it goes on
+      prob%stall_check = .true.
       call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
                       error, progress=.true.)
+      if (allocated(error) .and. res%stalled) then
+         call stalled_fit(fc, res, quiet, error)
+         if (.not. allocated(error)) then
+            prob%stall_check = .false.
+            call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, &
+                            res, error, progress=.true.)
+         end if
+      end if
       if (allocated(error)) then
-         if (error%kind /= error_bad_input) call write_fit_failure(out, fc, error)
+         if (error%kind /= error_bad_input) call write_fit_failure(out, fc, error, res%work)
          call out%discard()
          failed = .true.
          return
@@ -104,19 +116,71 @@ contains
       write (report_unit(), '(a)') "dpend fit: wrote '"//fc%run%output//"'"
    end subroutine run_fit_body
 
+   !> A fit that stalled (`res%stalled`): the alternatives weighed on its window
+   !> (`weigh_alternatives`). One clearly better: the fit stops, `error` naming it
+   !> ('... give --body point'); none: `error` is cleared and the caller fits on,
+   !> saying so on stderr unless the alternatives failed to be weighed.
+   subroutine stalled_fit(fc, res, quiet, error)
+      type(fit_config_t), intent(in) :: fc                !! the configuration
+      logical, intent(in) :: quiet                        !! --quiet: no note
+      type(fit_result_t), intent(inout) :: res            !! the stalled fit; its work
+                                                          !! adds the alternatives'
+      type(error_t), allocatable, intent(inout) :: error  !! its stall; kept or cleared
+      character(len=:), allocatable :: text, advice, ou
+      logical :: better
+      real(dp) :: work
+      ou = trim(merge('m  ', 'rad', fc%series%positions))
+      if (fc%model_coords) ou = '(units)'
+      call weigh_alternatives(fc, res, ou, text, advice, better, work)
+      res%work = res%work + work
+      if (better) then
+         error%message = error%message//' with '//setting_text(fc)// &
+                         '; on that window '//text//': '//advice
+         return
+      end if
+      if (.not. quiet) write (error_unit, '(a)') 'dpend fit: note: '//error%message// &
+         ' with '//setting_text(fc)//'; no alternative fits that window clearly better ('// &
+         text//'): the fit goes on'
+      deallocate (error)
+   end subroutine stalled_fit
+
+   !> The body and fitted parameters of a fit, in words: 'rods (--body rod), fitting
+   !> m2,l,damping'.
+   function setting_text(fc) result(s)
+      type(fit_config_t), intent(in) :: fc
+      character(len=:), allocatable :: s
+      integer :: i
+      s = 'uniform rods (the default body)'
+      if (allocated(fc%run%body)) then
+         if (fc%run%body == 'point') s = 'point masses (--body point)'
+         if (fc%run%body == 'rod') s = 'uniform rods (--body rod)'
+      else if (fc%run%spec%find('com') > 0) then
+         s = 'the links of --com and --inertia'
+      end if
+      if (fc%model_coords) s = 'model '//fc%run%model_name
+      if (size(fc%fit_names) > 0) then
+         s = s//', fitting '//trim(fc%fit_names(1))
+         do i = 2, size(fc%fit_names)
+            s = s//','//trim(fc%fit_names(i))
+         end do
+      end if
+   end function setting_text
+
    !> The file of a fit that failed partway: the root attributes of the settings and
    !> `status` = the failure's message, no /fit group; `error` then names the file
    !> too (or, when the file could not be written, why not).
-   subroutine write_fit_failure(out, fc, error)
+   subroutine write_fit_failure(out, fc, error, work)
       type(output_t), intent(inout) :: out                !! the output, begun
       type(fit_config_t), intent(in) :: fc                !! validated configuration
       type(error_t), allocatable, intent(inout) :: error  !! the fit's failure
+      real(dp), intent(in) :: work                        !! the work done [step-eq.]
       type(error_t), allocatable :: werr
       type(h5file_t) :: h5
       call h5%open(out%temp, 'w', werr)
       if (.not. allocated(werr)) then
          call write_fit_root(h5, fc, error%message)
          call h5%writeattr('/', 'input', fc%input)
+         call h5%writeattr('/', 'work', work)
          call h5%close(werr)
       end if
       if (.not. allocated(werr)) call out%commit(werr)
@@ -413,6 +477,7 @@ contains
       call h5%writeattr('/fit', 'stages', res%stages)
       call h5%writeattr('/fit', 'converged', merge(1, 0, res%converged))
       call h5%writeattr('/fit', 'horizon_tolerance', res%tolerance)
+      call h5%writeattr('/fit', 'work', res%work)
       if (allocated(fc%tolerance_rule)) &
          call h5%writeattr('/fit', 'horizon_tolerance_rule', fc%tolerance_rule)
       call h5%writeattr('/fit', 'horizon_censored', merge(1, 0, res%horizon_censored))

@@ -466,6 +466,7 @@ contains
          if (allocated(error)) return
          prob%hold_period = hold_period(fc)
       end if
+      prob%swing = hold_period(fc)
       if (fc%model_coords) prob%angular = coordinate_units(fc, 0) == 'rad'
       block
          character(len=16), allocatable :: names(:), units(:)
