@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Turn the .h5 of `dpend sweep` (a grid) into PNG maps:
 #   scripts/plot_sweep.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
-# Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g),
-# white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
+# Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g), or
+# in s with --time-unit s, white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
 # attribute /sweep@links, 2 for files without it),
 # energy_error.png and, if the sweep has them, lyapunov.png and the map of its
 # indicator (dpend sweep --indicator): megno.png (<Y> over [0, 4], 2 the value of
@@ -23,7 +23,22 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 # shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_sweep.sh
-[[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR]" >&2; exit 2; }
+# --time-unit natural (default: sqrt(l1/g), the sweep's unit) or s: the unit of the
+# flip-time colour scales and of the Lyapunov map (1/sqrt(l1/g) or 1/s)
+unit=natural
+args=()
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --time-unit) [[ $# -ge 2 ]] || { echo "$0: --time-unit needs natural or s" >&2; exit 2; }
+                 unit=$2; shift 2 ;;
+    --time-unit=*) unit=${1#--time-unit=}; shift ;;
+    *) args+=("$1"); shift ;;
+  esac
+done
+[[ $unit == natural || $unit == s ]] ||
+  { echo "$0: invalid --time-unit '$unit' (accepted: natural, s)" >&2; exit 2; }
+set -- "${args[@]}"
+[[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR] [--time-unit natural|s]" >&2; exit 2; }
 plot_abs h5 "$1"
 if [[ $# -ge 2 ]]; then out=$2; else plot_dir out "$1"; fi
 [[ -f "$h5" && -r "$h5" ]] || plot_fail 2 "cannot read '$1'"
@@ -43,11 +58,14 @@ links=$(attr links)
 plot_dpend
 plot_tmpdir
 ex() { "$dpend" export "$h5" --matrix "$1" /sweep/axis1 /sweep/axis2 "$2" > "$tmp/$3"; }
-ex /sweep/t_flip "$tau" flip.dat
+fscale=$tau   # the flip times' unit: sqrt(l1/g), or s
+[[ $unit == s ]] && fscale=1
+ex /sweep/t_flip "$fscale" flip.dat
 figures=(flip_map.png)
 printf '%s\n' "$links" > "$tmp/links"   # read by sweep.gp
+printf '%s\n' "$([[ $unit == s ]] && echo 1 || echo 0)" > "$tmp/seconds"   # read by sweep.gp
 for ((k = 1; k <= links; k++)); do
-  ex "/sweep/t_flip$k" "$tau" "flip$k.dat"
+  ex "/sweep/t_flip$k" "$fscale" "flip$k.dat"
   figures+=("flip_map_link$k.png")
 done
 ex /sweep/energy_error 1 eerr.dat

@@ -181,6 +181,15 @@ contains
                      'bound)', n)
       call check_true(error, n == n_nan, 'energy map: the grey pixels below the bound in '// &
                       'the key ('//to_str(n)//' of '//to_str(n_nan)//' NaN pixels)')
+      ! the flip maps in the sweep's unit, and in seconds with --time-unit s: the colour
+      ! scale 0.3 .. 20 sqrt(l1/g), or 0.3 .. 20 times sqrt(1/9.8) s
+      call key_count(dir//'/keys.txt', 'flip_map.png', 'colour scale 0.3 .. 20 sqrt(l1/g)', n)
+      call check_true(error, n == 1, 'flip map coloured in sqrt(l1/g) by default')
+      stat = run_plot(dir, 'plot_sweep.sh', dir//'/sweep.h5 '//dir//'/maps_s --time-unit s')
+      call check_true(error, stat == 0, 'plot_sweep.sh --time-unit s')
+      call expect_png(error, dir//'/maps_s/flip_map.png')
+      call key_count(dir//'/keys.txt', 'flip_map.png', 'colour scale 0.0958315 .. 6.38877 s', n)
+      call check_true(error, n == 1, 'flip map coloured in s with --time-unit s')
    contains
       !> The point count of the key entry of `figure` whose title holds `needle` (0: none).
       subroutine key_count(keys, figure, needle, count)

@@ -27,6 +27,7 @@
 module test_values_fit
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
+   use dpend_strings, only: with_uncertainty
    use dpend_hdf5, only: h5file_t
    use dpend_lapack, only: dgesv
    use test_cli, only: run_command, scratch_dir, read_text
@@ -44,7 +45,8 @@ contains
       tests = [new_unittest('fit_example_file', test_example), &
                new_unittest('positions_file', test_positions), &
                new_unittest('tip_only', test_tip_only), &
-               new_unittest('wrong_body_stops', test_wrong_body)]
+               new_unittest('wrong_body_stops', test_wrong_body), &
+               new_unittest('answers_in_data_convention', test_data_convention)]
    end subroutine collect_values_fit
 
    !> data/fit_example.csv (two links, damping 0.05, 0.03 N m s known, the state
@@ -456,6 +458,48 @@ contains
                       //status)
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_wrong_body
+
+   !> Data in the chapter's theta from the hanging position, in degrees (data/
+   !> fit_example.csv converted): the fit answers in q radians as always, and also in
+   !> the data's convention, theta_i(t1) = (q_i + pi/2) 180/pi deg with its standard
+   !> error scaled alike (report and /fit attribute estimate_in_data_convention).
+   subroutine test_data_convention(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, text, attr, want
+      real(dp), allocatable :: rows(:, :), est(:), se(:)
+      type(h5file_t) :: h5
+      integer :: stat, unit, k, n
+      dir = scratch_dir('values-fitdeg')
+      call read_csv('data/fit_example.csv', 3, rows, error)
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/deg.csv', status='replace', action='write')
+      write (unit, '(a)') 't,theta1 [deg],theta2 [deg]'
+      do k = 1, size(rows, 2)
+         write (unit, '(f0.4, 2(",", es24.16e3))') rows(1, k), rows(2:3, k)*180.0_dp/pi
+      end do
+      close (unit)
+      stat = run_command(dir, 'fit '//dir//'/deg.csv --fit-damping --fit-window 1.5 '// &
+                         '--output '//dir//'/f.h5')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0, 'fit of degree data: '//text)
+      if (allocated(error)) return
+      call h5%open(dir//'/f.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', est, error)
+      if (.not. allocated(error)) call h5%read('/fit/standard_error', se, error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'estimate_in_data_convention', &
+                                                    attr, error)
+      call h5%close()
+      if (allocated(error)) return
+      want = 'theta1(t1) = '//with_uncertainty((est(1) + pi/2)*180.0_dp/pi, &
+                                               se(1)*180.0_dp/pi)//' deg'
+      call check_true(error, index(text, 'in the data''s convention: '//want) > 0 .and. &
+                      index(attr, want) == 1 .and. index(attr, 'thetadot2(t1) = ') > 0 .and. &
+                      index(attr, ' deg/s') > 0, 'theta in degrees answered ('//want//'): '// &
+                      attr)
+      call check_true(error, abs((est(1) + pi/2)*180.0_dp/pi - 103.13_dp) < 0.5_dp, &
+                      'theta1(t1) near the release at 1.8 rad = 103.13 deg')
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_data_convention
 
    ! ---------------------------------------------------------------- helpers ---
 

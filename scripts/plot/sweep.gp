@@ -6,7 +6,7 @@
 # text, escaped); STATUS: status matrix file or '' (0 not computed, 4 non-finite:
 # drawn grey as "not integrated"). DIR/links holds the number of links N (a file:
 # gnuplot -c takes nine arguments at most): one map flip_map_linkK.png per link from
-# DIR/flipK.dat; DIR/indicator the code of the sweep's fast indicator (0 none,
+# DIR/flipK.dat (in DIR/seconds: 1 s, 0 sqrt(l1/g)); DIR/indicator the code of the sweep's fast indicator (0 none,
 # 1 megno, 2 fli, 3 sali, 4 gali2), its matrix DIR/ind.dat. Every map uses the
 # perceptual palette viridis (style.gp); angle axes are ticked in multiples of pi; the
 # grey "not integrated" key entry is drawn only when a pixel is grey (the key entries
@@ -25,6 +25,11 @@ name = ARG8
 status = ARG9
 stats dir.'/links' using 1 nooutput
 links = int(STATS_max)
+# DIR/seconds: 1 when the times are in s (--time-unit s), 0 in sqrt(l1/g)
+stats dir.'/seconds' using 1 nooutput
+secs = int(STATS_max)
+tscale = (secs ? tau : 1.0)        # a natural time unit in the figures' unit
+tunit = (secs ? "s" : "{/Symbol \326}(L/g)")
 stats dir.'/indicator' using 1 nooutput
 ind = int(STATS_max)
 # "not integrated": grey, which viridis does not hold, drawn over the map from the
@@ -67,14 +72,16 @@ if (isangle(ax2) && STATS_max > STATS_min) { eval "set ytics (".pitics(STATS_min
 set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb "white" fs solid noborder
 # flip times: log scale, white = no flip before t_end (NaN pixels are not drawn)
 set logscale cb
-set cbrange [0.3:tend]
+set cbrange [0.3*tscale:tend*tscale]
 set format cb "10^{%L}"
 eval "set palette ".viridis
-set cblabel "time of the first flip [{/Symbol \326}(L/g)]"
+set cblabel "time of the first flip [".tunit."]"
+print keyline("flip_map.png", sprintf("colour scale %.6g .. %.6g %s", 0.3*tscale, tend*tscale, \
+              secs ? "s" : "sqrt(l1/g)"), 1)
 
 set output outdir."/flip_map.png"
 which = (links == 2) ? "either" : "any"
-set title "First flip of ".which." link (white: none before ".sprintf("%g", tend)." {/Symbol \326}(L/g))\n".name
+set title "First flip of ".which." link (white: none before ".sprintf("%g", tend*tscale)." ".tunit.")\n".name
 if (nst > 0) { print keyline("flip_map.png", "not integrated", nst) }
 eval "plot dir.'/flip.dat' nonuniform matrix using 1:2:3 with image notitle, ".notint(nst)
 
@@ -111,11 +118,11 @@ if (strlen(lyap) > 0) {
   unset logscale cb
   set format cb "%g"
   set autoscale cb
-  set cblabel "{/Symbol l} [1/{/Symbol \326}(L/g)]"
+  set cblabel "{/Symbol l} [1/".tunit."]"
   ng = nst
   if (strlen(status) == 0) { stats lyap nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput; ng = STATS_sum }
   if (ng > 0) { print keyline("lyapunov.png", "not integrated", ng) }
-  eval "plot lyap nonuniform matrix using 1:2:($3*tau) with image notitle, ".notint(ng)
+  eval "plot lyap nonuniform matrix using 1:2:($3*tau/tscale) with image notitle, ".notint(ng)
 }
 
 # the fast indicator: a scale for each (NaN, not finite: the grey background)

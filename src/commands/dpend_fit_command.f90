@@ -9,7 +9,7 @@
 !> The command line, the data and their checks: `dpend_fit_config`.
 module dpend_fit_command
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, pi, half_pi
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
    use dpend_strings, only: with_uncertainty
@@ -317,6 +317,8 @@ contains
             real_str(res%p(i) - res%t95*res%se(i), 6)//', '// &
             real_str(res%p(i) + res%t95*res%se(i), 6)//']'
       end do
+      if (.not. fc%model_coords .and. (fc%series%theta .or. fc%series%degrees)) &
+         write (report_unit(), '(a)') '  in the data''s convention: '//data_convention(fc, res)
       write (report_unit(), '(a)') '  (standard errors from the residuals at the optimum: ' &
          //'the noise only, not a wrong model; every digit in /fit/estimate and /fit/standard_error)'
       write (report_unit(), '(a)') '  correlation matrix (rows and columns in the order above):'
@@ -368,6 +370,32 @@ contains
          t = buf(:7)
       end function fixed
    end subroutine print_report
+
+   !> The initial state in the convention and unit of the data (theta from the
+   !> hanging position, theta = q + pi/2, and/or degrees), each with its standard
+   !> error: 'theta1(t1) = 103.14 +- 0.09 deg, ..., thetadot1(t1) = ... deg/s'.
+   function data_convention(fc, res) result(s)
+      type(fit_config_t), intent(in) :: fc       !! the data's convention
+      type(fit_result_t), intent(in) :: res      !! the estimates (q, qdot first)
+      character(len=:), allocatable :: s, name, unit
+      real(dp) :: scale, offset
+      integer :: i, n
+      n = res%n
+      name = trim(merge('theta', 'q    ', fc%series%theta))
+      offset = merge(half_pi, 0.0_dp, fc%series%theta)
+      scale = merge(180.0_dp/pi, 1.0_dp, fc%series%degrees)
+      unit = trim(merge('deg', 'rad', fc%series%degrees))
+      s = ''
+      do i = 1, n
+         if (i > 1) s = s//', '
+         s = s//name//to_str(i)//'(t1) = '//with_uncertainty(scale*(res%p(i) + offset), &
+             scale*res%se(i))//' '//unit
+      end do
+      do i = 1, n
+         s = s//', '//name//'dot'//to_str(i)//'(t1) = '// &
+             with_uncertainty(scale*res%p(n + i), scale*res%se(n + i))//' '//unit//'/s'
+      end do
+   end function data_convention
 
    !> The observed points as text: '1 2', '2'.
    function points_text(points) result(s)
@@ -497,6 +525,8 @@ contains
          call h5%writeattr('/fit', 'observations', 'angles')
          call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &
                            fc%series%theta)))
+         if (fc%series%theta .or. fc%series%degrees) &
+            call h5%writeattr('/fit', 'estimate_in_data_convention', data_convention(fc, res))
       end if
       call write_fit_root(h5, fc, 'completed')
       if (fc%model_coords) then
