@@ -326,29 +326,12 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text, pts
       type(h5file_t) :: h5
-      real(dp), allocatable :: t(:), q(:, :), est(:), se(:), xy(:, :)
+      real(dp), allocatable :: est(:), se(:), xy(:, :)
       real(dp), parameter :: truth(5) = [0.2_dp, 0.25_dp, 0.18_dp, 0.002_dp, 0.001_dp]
-      integer :: stat, k, unit, n
+      integer :: stat, unit, n
       dir = scratch_dir('values-fittip')
-      stat = run_command(dir, 'simulate --body point --m1 0.3 --m2 0.2 --l1 0.25 --l2 0.18 '// &
-                         '--damping 0.002,0.001 --q1 -0.5 --q2 0.3 --method dop853 --rtol '// &
-                         '1e-12 --atol 1e-14 --t-end 5 --output-dt 0.025 --output '// &
-                         dir//'/g.h5')
-      call check_true(error, stat == 0, 'simulate of the truth')
+      call write_tip_series(dir, error)
       if (allocated(error)) return
-      call h5%open(dir//'/g.h5', 'r', error)
-      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
-      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
-      call h5%close()
-      if (allocated(error)) return
-      open (newunit=unit, file=dir//'/tip.csv', status='replace', action='write')
-      write (unit, '(a)') 't,x2,y2'
-      do k = 1, size(t)
-         write (unit, '(f0.4, 2(",", es22.14e3))') t(k), &
-            0.25_dp*cos(q(1, k)) + 0.18_dp*cos(q(2, k)) + 1e-3_dp*sin(7.3_dp*k), &
-            0.25_dp*sin(q(1, k)) + 0.18_dp*sin(q(2, k)) + 1e-3_dp*cos(5.1_dp*k)
-      end do
-      close (unit)
       stat = run_command(dir, 'fit '//dir//'/tip.csv --body point --m1 0.3 --m2 0.25 '// &
                          '--l1 0.24 --l2 0.19 --fit-param m2,l,damping --output '//dir//'/f.h5')
       call read_text(dir//'/stdout', text, n)
@@ -407,29 +390,11 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text, status
       type(h5file_t) :: h5
-      real(dp), allocatable :: t(:), q(:, :)
       real(dp) :: work_right, work_wrong
-      integer :: stat, k, unit, n
+      integer :: stat, n
       dir = scratch_dir('values-fitbody')
-      stat = run_command(dir, 'simulate --body point --m1 0.3 --m2 0.2 --l1 0.25 --l2 0.18 '// &
-                         '--damping 0.002,0.001 --q1 -0.5 --q2 0.3 --method dop853 --rtol '// &
-                         '1e-12 --atol 1e-14 --t-end 5 --output-dt 0.025 --output '// &
-                         dir//'/g.h5')
-      call check_true(error, stat == 0, 'simulate of the truth')
+      call write_tip_series(dir, error)
       if (allocated(error)) return
-      call h5%open(dir//'/g.h5', 'r', error)
-      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
-      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
-      call h5%close()
-      if (allocated(error)) return
-      open (newunit=unit, file=dir//'/tip.csv', status='replace', action='write')
-      write (unit, '(a)') 't,x2,y2'
-      do k = 1, size(t)
-         write (unit, '(f0.4, 2(",", es22.14e3))') t(k), &
-            0.25_dp*cos(q(1, k)) + 0.18_dp*cos(q(2, k)) + 1e-3_dp*sin(7.3_dp*k), &
-            0.25_dp*sin(q(1, k)) + 0.18_dp*sin(q(2, k)) + 1e-3_dp*cos(5.1_dp*k)
-      end do
-      close (unit)
       stat = run_command(dir, 'fit '//dir//'/tip.csv --body point --m1 0.3 --m2 0.25 '// &
                          '--l1 0.24 --l2 0.19 --fit-param m2,l,damping --output '//dir//'/r.h5')
       call check_true(error, stat == 0, 'the right body fits')
@@ -502,6 +467,37 @@ contains
    end subroutine test_data_convention
 
    ! ---------------------------------------------------------------- helpers ---
+
+   !> dir/tip.csv: the tip x2, y2 of a double pendulum of point masses (m1 = 0.3 kg,
+   !> m2 = 0.2 kg, l = 0.25, 0.18 m, damping 0.002, 0.001 N m s, released at rest from
+   !> q = (-0.5, 0.3) rad; dop853, rtol 1e-12), every 0.025 s over 5 s, with 1 mm of
+   !> deterministic noise (1e-3 sin 7.3k, 1e-3 cos 5.1k).
+   subroutine write_tip_series(dir, error)
+      character(len=*), intent(in) :: dir
+      type(error_t), allocatable, intent(inout) :: error
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :)
+      integer :: stat, k, unit
+      stat = run_command(dir, 'simulate --body point --m1 0.3 --m2 0.2 --l1 0.25 --l2 0.18 '// &
+                         '--damping 0.002,0.001 --q1 -0.5 --q2 0.3 --method dop853 --rtol '// &
+                         '1e-12 --atol 1e-14 --t-end 5 --output-dt 0.025 --output '// &
+                         dir//'/g.h5')
+      call check_true(error, stat == 0, 'simulate of the truth')
+      if (allocated(error)) return
+      call h5%open(dir//'/g.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/t', t, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      call h5%close()
+      if (allocated(error)) return
+      open (newunit=unit, file=dir//'/tip.csv', status='replace', action='write')
+      write (unit, '(a)') 't,x2,y2'
+      do k = 1, size(t)
+         write (unit, '(f0.4, 2(",", es22.14e3))') t(k), &
+            0.25_dp*cos(q(1, k)) + 0.18_dp*cos(q(2, k)) + 1e-3_dp*sin(7.3_dp*k), &
+            0.25_dp*sin(q(1, k)) + 0.18_dp*sin(q(2, k)) + 1e-3_dp*cos(5.1_dp*k)
+      end do
+      close (unit)
+   end subroutine write_tip_series
 
    !> x wrapped to [−π, π).
    elemental real(dp) function wrap(x)

@@ -15,7 +15,7 @@ module dpend_fit_alternatives
    use dpend_model_factory, only: body_names, has_parameter
    use dpend_run_settings, only: validate_run_config
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, misfit_factor
-   use dpend_fit_config, only: fit_config_t, fit_problem
+   use dpend_fit_config, only: fit_config_t, fit_problem, joined_names
    implicit none
    private
    public :: weigh_alternatives
@@ -66,7 +66,7 @@ contains
           .not. any(fc%fit_names == 'damping')) then   ! the damping fitted too
          alt = fc
          alt%fit_names = [character(len=32) :: fc%fit_names, 'damping']
-         call try(alt, '--fit-param '//joined(alt%fit_names))
+         call try(alt, '--fit-param '//joined_names(alt%fit_names))
       end if
       if (better) then
          ! the fit as configured, afresh on that window, at most the best alternative's
@@ -125,14 +125,5 @@ contains
             advice = 'give '//what
          end if
       end subroutine try
-      function joined(names) result(s)
-         character(len=32), intent(in) :: names(:)
-         character(len=:), allocatable :: s
-         integer :: j
-         s = trim(names(1))
-         do j = 2, size(names)
-            s = s//','//trim(names(j))
-         end do
-      end function joined
    end subroutine weigh_alternatives
 end module dpend_fit_alternatives

@@ -26,6 +26,7 @@ module dpend_fit_command
       refusal_line, error_line
    use dpend_fit_alternatives, only: weigh_alternatives
    use dpend_fit_config, only: fit_config_t, parse_fit, fit_help, fit_problem, state_names, &
+      joined_names, &
                                coordinate_units
    implicit none
    private
@@ -149,7 +150,6 @@ contains
    function setting_text(fc) result(s)
       type(fit_config_t), intent(in) :: fc
       character(len=:), allocatable :: s
-      integer :: i
       s = 'uniform rods (the default body)'
       if (allocated(fc%run%body)) then
          if (fc%run%body == 'point') s = 'point masses (--body point)'
@@ -158,12 +158,7 @@ contains
          s = 'the links of --com and --inertia'
       end if
       if (fc%model_coords) s = 'model '//fc%run%model_name
-      if (size(fc%fit_names) > 0) then
-         s = s//', fitting '//trim(fc%fit_names(1))
-         do i = 2, size(fc%fit_names)
-            s = s//','//trim(fc%fit_names(i))
-         end do
-      end if
+      if (size(fc%fit_names) > 0) s = s//', fitting '//joined_names(fc%fit_names)
    end function setting_text
 
    !> The file of a fit that failed partway: the root attributes of the settings and
@@ -593,16 +588,4 @@ contains
          s = s//trim(cn(i))//between//trim(cu(i))
       end do
    end function coordinates_joined
-
-   !> 'k,l0'.
-   function joined_names(names) result(s)
-      character(len=32), intent(in) :: names(:)  !! names
-      character(len=:), allocatable :: s
-      integer :: i
-      s = ''
-      do i = 1, size(names)
-         if (i > 1) s = s//','
-         s = s//trim(names(i))
-      end do
-   end function joined_names
 end module dpend_fit_command

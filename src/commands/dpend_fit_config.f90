@@ -22,7 +22,8 @@ module dpend_fit_config
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: fit_config_t, parse_fit, fit_help, fit_problem, state_names, coordinate_units
+   public :: fit_config_t, parse_fit, fit_help, fit_problem, state_names, coordinate_units, &
+      joined_names
 
    !> Most starting points of the first stage (--starts).
    integer, parameter :: max_starts = 1000
@@ -643,4 +644,16 @@ contains
          start = start + comma
       end do
    end subroutine parse_names
+
+   !> 'k,l0': fitted parameter names joined by commas.
+   function joined_names(names) result(s)
+      character(len=32), intent(in) :: names(:)  !! names
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(names)
+         if (i > 1) s = s//','
+         s = s//trim(names(i))
+      end do
+   end function joined_names
 end module dpend_fit_config

@@ -24,7 +24,7 @@ module dpend_sweep_agreement
    use dpend_cli, only: to_str, real_str
    use dpend_limits, only: sci, in_range
    use dpend_sweep_compare, only: config_value, open_sweep_file, check_sweep_data, &
-                                  config_difference
+                                  config_difference, pct
    implicit none
    private
    public :: agreement_options_t, sweep_agreement, compare_indicator_maps, map_indicator
@@ -243,24 +243,12 @@ contains
          write (unit, '(a)') 'class: chaotic '//trim(merge('above', 'below', a%above))// &
             ' '//real_str(a%threshold)//trim(merge(' per sqrt(l1/g)', '               ', &
             a%indicator == 'lambda1'))
-         write (unit, '(a, i0)') 'pixels_classified: ', counts(1)
-         write (unit, '(a, i0)') 'both_regular: ', counts(2)
-         write (unit, '(a, i0)') 'both_chaotic: ', counts(3)
-         write (unit, '(a, i0)') 'chaotic_only_a: ', counts(4)
-         write (unit, '(a, i0)') 'chaotic_only_b: ', counts(5)
-         write (unit, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+         call print_counts(unit, counts, fraction)
          summary = summary//'; the regular/chaotic classes agree on '// &
                    real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
       end if
       write (unit, '(a)') summary
    contains
-      !> 100 a/b rounded to 3 decimals ('0' when b = 0).
-      function pct(a, b) result(t)
-         integer, intent(in) :: a, b
-         character(len=:), allocatable :: t
-         t = '0'
-         if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
-      end function pct
       function map_name(indicator) result(t)
          character(len=*), intent(in) :: indicator
          character(len=:), allocatable :: t
@@ -294,12 +282,7 @@ contains
       call line(a, 'a')
       call line(b, 'b')
       write (u, '(a, i0)') 'pixels: ', size(a%cls)
-      write (u, '(a, i0)') 'pixels_classified: ', counts(1)
-      write (u, '(a, i0)') 'both_regular: ', counts(2)
-      write (u, '(a, i0)') 'both_chaotic: ', counts(3)
-      write (u, '(a, i0)') 'chaotic_only_a: ', counts(4)
-      write (u, '(a, i0)') 'chaotic_only_b: ', counts(5)
-      write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+      call print_counts(u, counts, fraction)
       if (len(output) > 0) write (u, '(a)') 'stored: '//output
       stored = ''
       if (len(output) > 0) stored = '; stored in '//output
@@ -319,6 +302,20 @@ contains
             real_str(c%t_end/c%tau, 6)//' '//c%tau_name
       end subroutine line
    end subroutine print_agreement
+
+   !> The class counts as `key: value` lines (see print_agreement) and the agreement.
+   subroutine print_counts(u, counts, fraction)
+      integer, intent(in) :: u               !! where to print
+      integer, intent(in) :: counts(5)       !! classified, both regular, both chaotic,
+                                             !! chaotic only in A, only in B
+      real(dp), intent(in) :: fraction       !! agreement
+      write (u, '(a, i0)') 'pixels_classified: ', counts(1)
+      write (u, '(a, i0)') 'both_regular: ', counts(2)
+      write (u, '(a, i0)') 'both_chaotic: ', counts(3)
+      write (u, '(a, i0)') 'chaotic_only_a: ', counts(4)
+      write (u, '(a, i0)') 'chaotic_only_b: ', counts(5)
+      write (u, '(a)') 'agreement: '//real_str(anint(1e5_dp*fraction)/1e3_dp)//' %'
+   end subroutine print_counts
 
    !> Write the agreement file `path` (the writer's temporary file): both
    !> classifications (/agreement/class_a, class_b) and the counts as attributes.

@@ -15,7 +15,8 @@ module dpend_sweep_compare
    use dpend_cli, only: to_str, real_str, printable
    implicit none
    private
-   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, config_difference
+   public :: compare_sweeps, open_sweep_file, check_sweep_data, config_value, config_difference, &
+      pct
 
    !> sweep-compare: accepted --rel, stored time unit sqrt(l1/g) [s] and flip times [s]
    real(dp), parameter :: max_rel = 1000.0_dp, min_tau = 1e-150_dp, max_tau = 1e150_dp, &
@@ -241,15 +242,15 @@ contains
       write (unit, '(a)') 'dpend sweep-compare: '//pct(n_changed, size(ta))//' % of the '// &
          to_str(size(ta))//' pixels change their flip time by more than '// &
          real_str(rel)//' relative ('//to_str(n_changed)//' pixels)'
-   contains
-      !> 100 a/b rounded to 3 decimals ('0' when b = 0).
-      function pct(a, b) result(t)
-         integer, intent(in) :: a, b
-         character(len=:), allocatable :: t
-         t = '0'
-         if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
-      end function pct
    end subroutine report_changes
+
+   !> 100 a/b rounded to 3 decimals ('0' when b = 0): the percentages of the reports.
+   function pct(a, b) result(t)
+      integer, intent(in) :: a, b
+      character(len=:), allocatable :: t
+      t = '0'
+      if (b > 0) t = real_str(anint(1e5_dp*real(a, dp)/real(b, dp))/1e3_dp)
+   end function pct
 
    !> What a sweep file without flip times maps: its indicator (/sweep/megno, ...)
    !> and the model, as far as the file says ('unknown quantities' otherwise).
