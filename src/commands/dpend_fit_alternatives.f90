@@ -2,7 +2,8 @@
 !> model does not describe the data), the alternatives a user can choose are fitted
 !> on the window where it stalled and compared by their RMS residuals: the other
 !> named bodies (--body rod, point), the joint damping fitted too, and a shorter fit
-!> window (the longest the model described). `weigh_alternatives` says which fits and
+!> window (the longest the model described). `weigh_alternatives` says which fits,
+!> whether another body is what the data need, and
 !> whether one is clearly better: its RMS a third or less of the stalled fit's and of
 !> the configured model's fitted afresh on that window (a continuation stuck in a
 !> local minimum is not the model's fault). Each alternative may do at most twice the
@@ -32,13 +33,16 @@ contains
    !> what they give: `text` lists them with their RMS ('--body point: RMS 0.00098 m,
    !> 1 times the noise'), `advice` the best one if clearly better ('' if none),
    !> `better` whether one is.
-   subroutine weigh_alternatives(fc, res, unit, text, advice, better, work)
+   subroutine weigh_alternatives(fc, res, unit, text, advice, better, work, body)
       type(fit_config_t), intent(in) :: fc           !! the fit as configured
       type(fit_result_t), intent(in) :: res          !! the stalled fit (stall_k set)
       character(len=*), intent(in) :: unit           !! of the residuals ('m', 'rad')
       character(len=:), allocatable, intent(out) :: text, advice
       logical, intent(out) :: better
       real(dp), intent(out) :: work                  !! their work [step-equivalents]
+      !> the clearly better alternative is another body (the configured one cannot
+      !> describe the data: a fit with it runs long and ends far off)
+      logical, intent(out) :: body
       type(fit_config_t) :: alt
       type(error_t), allocatable :: err
       character(len=:), allocatable :: current, chosen
@@ -47,6 +51,7 @@ contains
       text = ''
       advice = ''
       better = .false.
+      body = .false.
       work = 0.0_dp
       best = huge(1.0_dp)
       best_work = 0.0_dp
@@ -77,9 +82,11 @@ contains
          call try(fc, 'as configured, afresh on that window')
          if (.not. (best <= better_fraction*last_rms)) then
             better = .false.
+            body = .false.
             advice = ''
          else
             advice = chosen
+            body = index(chosen, 'give --body ') == 1
          end if
       end if
       if (res%good_k > 0 .and. res%good_k < res%stall_k) then   ! a shorter window
@@ -122,6 +129,7 @@ contains
             best = r%rms
             best_work = r%work
             better = .true.
+            body = index(what, '--body ') == 1
             advice = 'give '//what
          end if
       end subroutine try

@@ -118,9 +118,10 @@ contains
    end subroutine run_fit_body
 
    !> A fit that stalled (`res%stalled`): the alternatives weighed on its window
-   !> (`weigh_alternatives`). One clearly better: the fit stops, `error` naming it
-   !> ('... give --body point'); none: `error` is cleared and the caller fits on,
-   !> saying so on stderr unless the alternatives failed to be weighed.
+   !> (`weigh_alternatives`). Another body clearly better: the fit stops, `error`
+   !> naming it ('... give --body point'); otherwise `error` is cleared and the caller
+   !> fits on as configured (as before: a model lacking a setting ends with its misfit
+   !> warning), saying on stderr what fitted better, unless --quiet.
    subroutine stalled_fit(fc, res, quiet, error)
       type(fit_config_t), intent(in) :: fc                !! the configuration
       logical, intent(in) :: quiet                        !! --quiet: no note
@@ -128,20 +129,30 @@ contains
                                                           !! adds the alternatives'
       type(error_t), allocatable, intent(inout) :: error  !! its stall; kept or cleared
       character(len=:), allocatable :: text, advice, ou
-      logical :: better
+      logical :: better, body
       real(dp) :: work
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       if (fc%model_coords) ou = '(units)'
-      call weigh_alternatives(fc, res, ou, text, advice, better, work)
+      call weigh_alternatives(fc, res, ou, text, advice, better, work, body)
       res%work = res%work + work
-      if (better) then
+      if (better .and. body) then   ! the body cannot describe the data: stop
          error%message = error%message//' with '//setting_text(fc)// &
                          '; on that window '//text//': '//advice
          return
       end if
-      if (.not. quiet) write (error_unit, '(a)') 'dpend fit: note: '//error%message// &
-         ' with '//setting_text(fc)//'; no alternative fits that window clearly better ('// &
-         text//'): the fit goes on'
+      ! another setting (the damping fitted, a shorter window) or none fits better:
+      ! the fit goes on as configured, its misfit warning at the end
+      if (.not. quiet) then
+         if (better) then
+            write (error_unit, '(a)') 'dpend fit: note: '//error%message//' with '// &
+               setting_text(fc)//'; on that window '//text//': '//advice// &
+               ' (the fit goes on as configured)'
+         else
+            write (error_unit, '(a)') 'dpend fit: note: '//error%message//' with '// &
+               setting_text(fc)//'; no alternative fits that window clearly better ('// &
+               text//'): the fit goes on'
+         end if
+      end if
       deallocate (error)
    end subroutine stalled_fit
 
