@@ -30,6 +30,7 @@ module dpend_estimate
    use dpend_strings, only: real_str, to_str
    use dpend_progress, only: progress_listened
    use dpend_estimate_sensitivity, only: sens_model_t
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_estimate_problem, only: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, &
                                      evaluate_fit, counted_fit, initial_guess, problem_links, &
                                      unobserved_points
@@ -126,7 +127,7 @@ contains
       integer, allocatable :: gaps(:)
       integer :: n, combo, g, same, distinct
       character(len=:), allocatable :: others, kept
-      logical :: found
+      logical :: found, close_by
       n = problem_links(prob, size(q, 1))
       gaps = unobserved_points(prob, n)
       if (size(gaps) > 4) then
@@ -150,6 +151,11 @@ contains
             call move_alloc(err, error)
             return
          end if
+         if (allocated(err) .and. one%stalled) then   ! the model, not the start: stop
+            call move_alloc(err, error)
+            res = one
+            return
+         end if
          if (allocated(err)) then
             if (.not. found .and. .not. allocated(error)) then
                call move_alloc(err, error)
@@ -166,7 +172,13 @@ contains
             cycle
          end if
          ! the same estimates (within 3 standard errors): the dynamics chose the place
-         if (all(abs(one%p - res%p) <= 3*max(res%se, one%se))) then
+         if (all(ieee_is_finite(res%se)) .and. all(ieee_is_finite(one%se)) .and. &
+             all(ieee_is_finite(one%p)) .and. all(ieee_is_finite(res%p))) then
+            close_by = all(abs(one%p - res%p) <= 3*max(res%se, one%se))
+         else
+            close_by = .false.
+         end if
+         if (close_by) then
             same = same + 1
          else
             distinct = distinct + 1

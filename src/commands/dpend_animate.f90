@@ -511,7 +511,8 @@ contains
          t = '?'
          if (.not. h5%attr_exists('/', name)) return
          call h5%readattr('/', name, x, err)
-         if (allocated(err) .or. size(x) == 0 .or. size(x) > 32) return
+         if (allocated(err)) return   ! (then x may not be allocated: a test of its own)
+         if (size(x) == 0 .or. size(x) > 32) return
          t = sci(x(1), 6)
          do k = 2, size(x)
             t = t//','//sci(x(k), 6)

@@ -19,7 +19,7 @@ module dpend_divergence_command
    use dpend_hdf5, only: h5file_t
    use dpend_model_record, only: coordinate_labels
    use dpend_simulate, only: natural_text
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, num, &
                                  es, fixed
    use dpend_chaos_common, only: chaos_command
@@ -205,8 +205,9 @@ contains
       character(len=:), allocatable :: s
       real(dp) :: r, ur
       r = a/b
-      ur = abs(r)*sqrt((ua/a)**2 + (ub/b)**2)
+      ur = sqrt((ua/b)**2 + (a*ub/b**2)**2)   ! |r| sqrt((ua/a)^2 + (ub/b)^2), a = 0 too
       s = with_uncertainty(r, ur)
+      if (ieee_is_nan(ur) .or. ieee_is_nan(r)) return   ! (an ordered test with NaN traps)
       if (.not. (ur > 0.0_dp)) return
       if (abs(r - 1.0_dp) <= ur) then
          s = s//' (1 within 1 standard error)'

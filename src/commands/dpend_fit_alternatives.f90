@@ -7,8 +7,8 @@
 !> whether one is clearly better: its RMS a third or less of the stalled fit's and of
 !> the configured model's fitted afresh on that window (a continuation stuck in a
 !> local minimum is not the model's fault). Each alternative may do at most twice the
-!> stalled fit's work, the fresh configured fit at most the best alternative's: the
-!> weighing costs about what the stalled fit did.
+!> stalled fit's work, the fresh configured fit at most half the best alternative's:
+!> the weighing costs about what the stalled fit did.
 module dpend_fit_alternatives
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
@@ -74,11 +74,11 @@ contains
          call try(alt, '--fit-param '//joined_names(alt%fit_names))
       end if
       if (better) then
-         ! the fit as configured, afresh on that window, at most the best alternative's
-         ! work: a continuation stuck on its way (a local minimum) fits it here too,
-         ! and the alternative is then no better
+         ! the fit as configured, afresh on that window, at most half the best
+         ! alternative's work: a continuation stuck on its way (a local minimum) fits it
+         ! here too, and the alternative is then no better
          chosen = advice
-         cap = max(best_work, min_work)
+         cap = max(0.5_dp*best_work, min_work)
          call try(fc, 'as configured, afresh on that window')
          if (.not. (best <= better_fraction*last_rms)) then
             better = .false.

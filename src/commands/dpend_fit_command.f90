@@ -306,12 +306,17 @@ contains
          if (len(csv_format(s)) > 0) write (report_unit(), '(a)') '  csv: '//csv_format(s)
          if (s%theta) write (report_unit(), '(a)') '  (the file gives theta from the hanging ' &
             //'position; estimates are q = theta - pi/2 from the horizontal x axis)'
-         if (s%positions .and. size(s%points) == s%n) write (report_unit(), '(a)') &
-            '  (the file gives the positions of the link ends: residuals and tolerance in m)'
-         if (s%positions .and. size(s%points) < s%n) write (report_unit(), '(a)') &
-            '  (the file gives the positions of point '//points_text(s%points)// &
-            ' of the link ends 1 to '//to_str(s%n)//'; the others are placed by the '// &
-            'lengths and the dynamics: residuals and tolerance in m)'
+         if (s%positions) then   ! (nested: Fortran's .and. may evaluate both sides)
+            if (size(s%points) == s%n) then
+               write (report_unit(), '(a)') '  (the file gives the positions of the link ' &
+                  //'ends: residuals and tolerance in m)'
+            else
+               write (report_unit(), '(a)') '  (the file gives the positions of point '// &
+                  points_text(s%points)//' of the link ends 1 to '//to_str(s%n)// &
+                  '; the others are placed by the lengths and the dynamics: residuals and ' &
+                  //'tolerance in m)'
+            end if
+         end if
       end associate
       call parameter_names(fc, names, units)
       np = res%np

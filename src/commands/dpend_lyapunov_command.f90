@@ -5,6 +5,7 @@
 !> and the run around it are in `dpend_chaos_common`.
 module dpend_lyapunov_command
    use dpend_kinds, only: dp
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
    use dpend_strings, only: with_uncertainty, real_str
@@ -123,7 +124,9 @@ contains
    function within(x, u) result(s)
       real(dp), intent(in) :: x, u
       character(len=:), allocatable :: s
-      if (.not. (u > 0.0_dp)) then
+      if (ieee_is_nan(x) .or. ieee_is_nan(u)) then   ! (an ordered test with NaN traps)
+         s = 'no standard error'
+      else if (.not. (u > 0.0_dp)) then
          s = 'no standard error'
       else if (abs(x) <= u) then
          s = '0 within 1 standard error'

@@ -138,10 +138,15 @@ contains
       character(len=:), allocatable :: s
       real(dp) :: ur, scale
       integer :: d, e
+      logical :: no_u
       if (.not. ieee_is_finite(x)) then
          s = real_str(x)
          return
-      else if (.not. (ieee_is_finite(u) .and. u > 0.0_dp)) then
+      end if
+      ! (two tests: Fortran's .and. may evaluate both, and u > 0 with a NaN traps)
+      no_u = .not. ieee_is_finite(u)
+      if (.not. no_u) no_u = u <= 0.0_dp
+      if (no_u) then
          s = real_str(x, 6)//' (no uncertainty)'
          return
       end if
