@@ -339,10 +339,15 @@ contains
       word = index('0123456789+-.', v(1:1)) == 0 .and. .not. non_finite(v)
       if (len(v) >= 2) word = word .or. (v(1:1) == '.' .and. index('0123456789', v(2:2)) == 0)
       if (word) then
-         if (.not. is_string_key(s%key) .and. .not. logical_word(v)) &
+         if (is_string_key(s%key)) return
+         if (.not. logical_word(v)) then
             call scan_refuse(s, scan_key_text(s)//quoted(v)//' is not a number or a ' &
                              //'logical (t, f, true, false, .t., .f., .true., .false.; ' &
                              //'quote a text)', error)
+         else if (.not. is_logical_key(s%key)) then   ! a number's key given a logical
+            call scan_refuse(s, scan_key_text(s)//quoted(v)//' is a logical; this key ' &
+                             //'takes a number', error)
+         end if
          return
       end if
       call read_real(v, x, why)
@@ -409,6 +414,18 @@ contains
       end if
       logical_word = u == 't' .or. u == 'f' .or. u == 'true' .or. u == 'false'
    end function logical_word
+
+   !> Whether `k` is read into a logical variable (force, quick, lyapunov, stats,
+   !> quiet, same_energy): the only keys a logical word may be given to.
+   pure logical function is_logical_key(k)
+      character(len=*), intent(in) :: k  !! key
+      select case (k)
+      case ('force', 'quick', 'lyapunov', 'stats', 'quiet', 'same_energy')
+         is_logical_key = .true.
+      case default
+         is_logical_key = .false.
+      end select
+   end function is_logical_key
 
    !> Whether `k` is read into a text variable (string_length applies).
    pure logical function is_string_key(k)

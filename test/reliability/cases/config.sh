@@ -11,6 +11,8 @@ mkfifo "$_cfg_fx/cfg_fifo.nml" 2>/dev/null
 printf '&pendulum m1 = 2 /\n&initial q1 = 1 /\n' > "$_cfg_fx/cfg_ok.nml"
 printf 'm1 = 2\n&pendulum m2 = 3 /\n' > "$_cfg_fx/cfg_keybefore.nml"
 printf '&pendulum m1 = 2 /\n&pendulum m1 = 3 /\n' > "$_cfg_fx/cfg_twice.nml"
+# a logical for a number's key (fuzz seed 20261202: n_omega = true was read as nothing)
+printf '&integration save_every = true /\n' > "$_cfg_fx/cfg_logical_number.nml"
 printf 'm1 = 5\n' > "$_cfg_fx/cfg_nogroup.nml"
 printf '! only a comment\n\n' > "$_cfg_fx/cfg_comment.nml"
 printf '&integration dt = 1e999 /\n' > "$_cfg_fx/cfg_huge.nml"
@@ -89,6 +91,7 @@ fi
 # ------------------------------------------------- strict config files: simulate ---
 refuse  cfg-sim-keybefore     'outside any namelist group' -- simulate --config cfg_keybefore.nml --output o.h5
 refuse  cfg-sim-twice         'appears twice'      -- simulate --config cfg_twice.nml --output o.h5
+refuse  cfg-sim-logical-number 'takes a number'   -- simulate --config cfg_logical_number.nml --output o.h5
 refuse  cfg-sim-huge-number   'line 1'             -- simulate --config cfg_huge.nml --output o.h5
 succeed cfg-sim-huge-in-text  -- simulate --config cfg_huge_quoted.nml --output o.h5
 refuse  cfg-sim-nogroup       'outside any'        -- simulate --config cfg_nogroup.nml --output o.h5
