@@ -51,7 +51,8 @@ contains
                new_unittest('uncertainty_digits', test_uncertainty_digits), &
                new_unittest('indicators_verdict', test_verdict), &
                new_unittest('export_sweep_long_form', test_export_long), &
-               new_unittest('help_mentions_quiet', test_help_quiet)]
+               new_unittest('help_mentions_quiet', test_help_quiet), &
+               new_unittest('time_unit_every_command', test_time_unit_commands)]
    end subroutine collect_messages
 
    !> The table of formatter cases.
@@ -307,7 +308,7 @@ contains
                          //'--lyapunov-t 0 --output '//dir//'/d.h5')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. index(text, nl//'divergence slope: none (no ' &
-                      //'exponential phase: ') > 0 .and. index(text, ' within 1 s;') > 0 &
+                      //'exponential phase: ') > 0 .and. index(text, ' within 1 s = 3.13 sqrt(l1/g);') > 0 &
                       .and. index(to_lower(text), 'nan') == 0, 'no slope: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_divergence_no_slope
@@ -333,6 +334,46 @@ contains
                       'lyapunov: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_quiet
+
+   !> Every command that takes times accepts --time-unit natural and reports its
+   !> times in that unit first, then in seconds: with l1 = 2.45 m, g = 9.8 m/s^2 the
+   !> unit sqrt(l1/g) is 0.5 s exactly, so 4 units are 2 s, and tau = 0.5 units gives
+   !> 2 s / 0.25 s = 8 renormalisations (the command's own times converted too).
+   subroutine test_time_unit_commands(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, common
+      dir = scratch_dir('timeunit')
+      common = ' --l1 2.45 --t-end 4 --time-unit natural --force --output '//dir//'/o.h5'
+      call expect_out('simulate'//common, 't = 0 .. 4 sqrt(l1/g) = 2 s')
+      call expect_out('lyapunov --tau 0.5'//common, &
+                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g), 8 renormalisations')
+      call expect_out('indicators --tau 0.5'//common, &
+                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g), 8 samples')
+      call expect_out('divergence --pairs 1 --lyapunov-t 0'//common, &
+                      '1 pair(s) over 4 sqrt(l1/g) = 2 s')
+      call expect_out('poincare --ics 2'//common, 'orbits up to t = 4 sqrt(l1/g) = 2 s')
+      call expect_out('sweep --n 2 --l1 2.45 --t-end 4 --force --output '//dir//'/w.h5', &
+                      't_end = 4 sqrt(l1/g) = 2 s')
+      ! fit: the window in the unit (9.4 sqrt(1/9.8) s = 3.003 s: the samples to 3 s)
+      call expect_out('fit data/fit_example.csv --time-unit natural --fit-window 9.4 ' &
+                      //'--force --output '//dir//'/f.h5', 'fit window t <= 3 s (151 samples)')
+      call expect_out('simulate --l1 2.45 --t-end 4 --force --output '//dir//'/o.h5', &
+                      't = 0 .. 4 s = 8 sqrt(l1/g)')
+      call execute_command_line('rm -rf '//dir)
+   contains
+      subroutine expect_out(args, text)
+         character(len=*), intent(in) :: args, text
+         character(len=:), allocatable :: out, err
+         integer :: n, stat
+         if (allocated(error)) return
+         stat = run_command(dir, args)
+         call read_text(dir//'/stdout', out, n)
+         call read_text(dir//'/stderr', err, n)   ! (sweep: the horizon on stderr)
+         out = out//err
+         call check_true(error, stat == 0 .and. index(out, text) > 0, 'dpend '//args// &
+                         ': no '''//text//''' in '//out)
+      end subroutine expect_out
+   end subroutine test_time_unit_commands
 
    ! ----------------------------------------------------------------- helpers
 

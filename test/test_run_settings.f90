@@ -22,7 +22,8 @@ contains
               new_unittest('same_quantity_three_ways', test_three_ways), &
               new_unittest('flags_over_either_group', test_flags_over_file), &
               new_unittest('two_groups_refused', test_two_groups), &
-              new_unittest('unused_settings_refused', test_unused) &
+              new_unittest('unused_settings_refused', test_unused), &
+              new_unittest('time_unit_once', test_time_unit) &
               ]
    end subroutine collect_run_settings
 
@@ -109,6 +110,50 @@ contains
                     '&pendulum support_frequency = 2 /', '&initial q = 1.2, -1 /'], &
                    [character(len=16) ::], 'invalid support_frequency', error)
    end subroutine test_unused
+
+   !> time_unit natural: dt, t_end and output_dt given in sqrt(l1/g) are converted to
+   !> seconds once, by sqrt(l1/g) computed here (l1 = 2.45 m, g = 9.8: exactly 0.5 s),
+   !> and validating again converts nothing more; from &integration or a flag, which
+   !> overrides the file; an unknown unit and the elastic pendulum's sqrt(l0/g).
+   subroutine test_time_unit(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      character(len=*), parameter :: pend = '&pendulum l1 = 2.45, g = 9.8 /'
+      call settings_of([character(len=80) :: pend, "&integration dt = 0.01, t_end = 40, " &
+                        //"output_dt = 0.5, time_unit = 'natural' /"], [character(len=16) ::], &
+                       cfg, error)
+      if (allocated(error)) return
+      call check_true(error, abs(cfg%dt - 0.005_dp) < 1e-15_dp .and. &
+                      abs(cfg%t_end - 20.0_dp) < 1e-13_dp .and. &
+                      abs(cfg%output_dt - 0.25_dp) < 1e-15_dp .and. &
+                      abs(cfg%seconds(3.0_dp) - 1.5_dp) < 1e-15_dp, &
+                      'natural: dt, t_end, output_dt in s (sqrt(2.45/9.8) = 0.5 s)')
+      if (allocated(error)) return
+      call validate_run_config(cfg, error)
+      if (allocated(error)) return
+      call check_true(error, abs(cfg%t_end - 20.0_dp) < 1e-13_dp, 'converted once')
+      if (allocated(error)) return
+      call settings_of([character(len=80) :: pend, "&integration t_end = 40, " &
+                        //"time_unit = 'natural' /"], [character(len=16) :: '--time-unit', &
+                        's'], cfg, error)
+      if (allocated(error)) return
+      call check_true(error, cfg%t_end == 40.0_dp .and. cfg%time_scale == 1.0_dp, &
+                      '--time-unit s overrides the file')
+      if (allocated(error)) return
+      call settings_of([character(len=80) :: '&initial q = 1.2, -1 /'], [character(len=16) :: &
+                       '--model', 'elastic', '--l0', '0.98', '--g', '9.8', '--k', '40', &
+                       '--t-end', '10', '--time-unit', 'natural'], cfg, error)
+      if (allocated(error)) return
+      call check_true(error, abs(cfg%t_end - 10.0_dp*sqrt(0.1_dp)) < 1e-14_dp, &
+                      'elastic: sqrt(l0/g)')
+      if (allocated(error)) return
+      call refused([character(len=80) :: "&integration time_unit = 'min' /"], &
+                   [character(len=16) ::], "invalid time_unit: 'min' (accepted: s, natural)", &
+                   error)
+      if (allocated(error)) return
+      call refused([character(len=80) ::], [character(len=16) :: '--time-unit', 'S'], &
+                   "invalid time_unit: 'S'", error)
+   end subroutine test_time_unit
 
    !> The settings of a file with these lines, then these flags (name, value pairs).
    subroutine settings_of(lines, flags, cfg, error)

@@ -322,6 +322,12 @@ contains
       end do
       call validate_run_config(cfg, error)
       if (allocated(error)) return
+      ! the command's own times, given in the run's unit (dt and t_end are converted)
+      ch%tau = cfg%seconds(ch%tau)
+      ch%pair_spacing = cfg%seconds(ch%pair_spacing)
+      ch%fit_start = cfg%seconds(ch%fit_start)
+      ch%fit_end = cfg%seconds(ch%fit_end)
+      ch%lyapunov_t = cfg%seconds(ch%lyapunov_t)
       call validate_chaos(cfg, ch, error)
    end subroutine parse_chaos
 

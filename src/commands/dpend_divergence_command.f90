@@ -10,7 +10,7 @@ module dpend_divergence_command
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
    use dpend_strings, only: with_uncertainty, real_str
-   use dpend_run_settings, only: run_config_t
+   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, natural_time
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_propagate, only: march_progress_t
@@ -18,7 +18,6 @@ module dpend_divergence_command
                                fit_exponential_phase
    use dpend_hdf5, only: h5file_t
    use dpend_model_record, only: coordinate_labels
-   use dpend_simulate, only: natural_text
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, num, &
                                  es, fixed
@@ -116,12 +115,13 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend divergence: '//integ%name()//', dt = '//num(cfg%dt)//' s, ' &
-                //to_str(size(res%delta_start))//' pair(s) over '//num(cfg%t_end) &
-                //' s ('//natural_text(cfg, cfg%t_end)//'), delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
+      summary = 'dpend divergence: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+                ', '//to_str(size(res%delta_start))//' pair(s) over '// &
+                time_text(cfg, cfg%t_end)//', delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl
       if (fit%ok) then
-         summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s (' &
+         summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s'// &
+                   natural_window(fit%t_start, fit%t_end)//' (' &
                    //to_str(fit%n_points)//' samples); saturation at log10|delta| = ' &
                    //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
                    'slope: '//with_uncertainty(fit%slope, fit%slope_stderr)//' 1/s (the ' &
@@ -132,7 +132,7 @@ contains
                    ' above delta0?)'//nl
       end if
       if (ch%lyapunov_t > 0.0_dp .and. lstat == stat_ok .and. stat == stat_ok) then
-         summary = summary//'Benettin lambda1 over t = 0 .. '//num(ch%lyapunov_t)//' s: ' &
+         summary = summary//'Benettin lambda1 over t = 0 .. '//time_text(cfg, ch%lyapunov_t)//': ' &
                    //with_uncertainty(lam, lam_spread)//' 1/s (the standard error of its ' &
                    //'batch means)'
          if (lam > 0.0_dp .and. fit%ok) summary = summary//'; slope / lambda1 = '// &
@@ -149,14 +149,23 @@ contains
          summary = summary//nl//'divergence slope: '//es(fit%slope)
       else if (ch%fit_end > ch%fit_start) then
          summary = summary//nl//'divergence slope: none (fewer than 3 samples in the fit ' &
-                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s; widen ' &
+                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s'// &
+                   natural_window(ch%fit_start, ch%fit_end)//'; widen ' &
                    //'--fit-start/--fit-end or lower --output-dt)'
       else
          summary = summary//nl//'divergence slope: none (no exponential phase: log10|delta| ' &
-                   //'did not rise one decade above its start within '//num(cfg%t_end) &
-                   //' s; a regular orbit, or try a longer --t-end)'
+                   //'did not rise one decade above its start within '// &
+                   time_text(cfg, cfg%t_end)//'; a regular orbit, or try a longer --t-end)'
       end if
    contains
+      !> With time_unit natural, the window [a, b] s in it: ' = 5.07 .. 17.8 sqrt(l1/g)'.
+      function natural_window(a, b) result(t)
+         real(dp), intent(in) :: a, b
+         character(len=:), allocatable :: t
+         t = ''
+         if (trim(cfg%time_unit) == 'natural') t = ' = '//real_str(a/natural_time(cfg), 4)// &
+            ' .. '//time_in_unit(cfg, b)
+      end function natural_window
       !> 'q1, q2, qdot1, qdot2' or 'r, phi, rdot, phidot': the state's components.
       function state_names(blank_separated) result(t)
          character(len=*), intent(in) :: blank_separated

@@ -13,6 +13,7 @@ module dpend_fit_command
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
    use dpend_strings, only: with_uncertainty
+   use dpend_run_settings, only: time_text
    use dpend_csv, only: csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, set_fitted, n_fitted, &
                              observation_noise, misfit_suspects, misfit_factor, suspect_t, &
@@ -361,11 +362,13 @@ contains
       if (res%has_after) then
          if (res%horizon_censored) then
             write (report_unit(), '(a)') '  prediction horizon after t = '// &
-               real_str(res%t_window)//' s: at least '//real_str(res%horizon, 4)// &
-               ' s (within '//real_str(res%tolerance, 6)//' '//ou//rule//' up to the last sample)'
+               time_text(fc%run, res%t_window)//': at least '// &
+               time_text(fc%run, res%horizon)//' (within '//real_str(res%tolerance, 6)// &
+               ' '//ou//rule//' up to the last sample)'
          else
             write (report_unit(), '(a)') '  prediction horizon after t = '// &
-               real_str(res%t_window)//' s: '//real_str(res%horizon, 4)//' s (tolerance ' &
+               time_text(fc%run, res%t_window)//': '//time_text(fc%run, res%horizon)// &
+               ' (tolerance ' &
                //real_str(res%tolerance, 6)//' '//ou//rule//')'
          end if
       else

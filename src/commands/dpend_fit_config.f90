@@ -7,7 +7,7 @@ module dpend_fit_config
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, printable
-   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag
    use dpend_model, only: max_dof
@@ -57,10 +57,10 @@ module dpend_fit_config
    end type fit_config_t
 
    !> The run flags that make sense for a fit (the initial state comes from the data).
-   character(len=20), parameter :: run_flags(20) = [character(len=20) :: '--links', '--m', &
+   character(len=20), parameter :: run_flags(21) = [character(len=20) :: '--links', '--m', &
       '--l', '--g', '--m1', '--m2', '--l1', '--l2', '--damping', '--support-amplitude', &
       '--support-frequency', '--support-phase', '--method', '--dt', '--rtol', '--atol', &
-      '--max-steps', '--output', '-o', '--body']
+      '--max-steps', '--output', '-o', '--body', '--time-unit']
 
 contains
 
@@ -129,8 +129,11 @@ contains
           nl//'  --sigma S         the noise of the observations (rad or m): a fit whose RMS'// &
           nl//'                    residual exceeds 3 S warns and names the parameters'// &
           nl//'                    that may be wrong; default: estimated from the data'//nl// &
-          '  --fit-window T    fit only the samples with t <= T (s); the rest measures the'// &
-          nl//'                    prediction horizon; default: all samples'//nl// &
+          '  --fit-window T    fit only the samples with t <= T (in --time-unit); the rest'// &
+          nl//'                    measures the prediction horizon; default: all samples'//nl// &
+          time_unit_option_help('s')//nl// &
+          '                    (the data keep the unit of their t column; the natural'//nl// &
+          '                    unit is that of the configured model, not the fitted one)'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
           nl//'                    angle differs from the model by more than R (rad, in'//nl// &
           '                    (0, pi]; positions: m, in (0, 1e6]); default '// &
@@ -334,6 +337,7 @@ contains
             return
          end if
          if (fc%window_given) then
+            fc%fit_window = fc%run%seconds(fc%fit_window)   ! given in the run's unit
             x = fc%fit_window
             call check_range('fit-window', x, -max_time, max_time, 's', error, &
                              'times are at most 1e9 s')

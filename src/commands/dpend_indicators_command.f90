@@ -8,12 +8,11 @@ module dpend_indicators_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str, real_str
-   use dpend_run_settings, only: run_config_t
+   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, natural_time, natural_unit_name
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_propagate, only: march_progress_t
    use dpend_hdf5, only: h5file_t
-   use dpend_simulate, only: natural_time_of, natural_text
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, num, es
    use dpend_chaos_common, only: chaos_command
    implicit none
@@ -73,9 +72,9 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend indicators: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
-                //num(ch%tau)//' s, '//to_str(n) &
+      summary = 'dpend indicators: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+                ', t = 0 .. '//time_text(cfg, res%t_reached)//', tau = ' &
+                //time_in_unit(cfg, ch%tau)//', '//to_str(n) &
                 //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
                 //' deviation vectors'//nl
       if (n > 0) then
@@ -89,7 +88,8 @@ contains
       end if
       summary = summary//"dpend indicators: wrote '"//cfg%output//"'"
       if (n > 0) then
-         tn = natural_time_of(cfg, unit)
+         tn = natural_time(cfg)
+         unit = natural_unit_name(cfg)
          summary = summary//nl//indicator_verdict(res%mean_all(1, n), res%sali(n), res%t(n), &
                                                   tn, unit)
       end if

@@ -9,12 +9,11 @@ module dpend_lyapunov_command
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
    use dpend_strings, only: with_uncertainty, real_str
-   use dpend_run_settings, only: run_config_t
+   use dpend_run_settings, only: run_config_t, time_text, time_in_unit
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_propagate, only: march_progress_t
    use dpend_hdf5, only: h5file_t
-   use dpend_simulate, only: natural_text
    use dpend_chaos_common, only: chaos_config_t, write_common, run_status, stopped, &
                                  n_vectors, num, es, fixed
    use dpend_chaos_common, only: chaos_command
@@ -89,9 +88,9 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend lyapunov: '//integ%name()//', dt = '//num(cfg%dt)//' s, t = 0 .. ' &
-                //num(res%t_reached)//' s ('//natural_text(cfg, res%t_reached)//'), tau = ' &
-                //num(ch%tau)//' s, ' &
+      summary = 'dpend lyapunov: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+                ', t = 0 .. '//time_text(cfg, res%t_reached)//', tau = ' &
+                //time_in_unit(cfg, ch%tau)//', ' &
                 //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
                 //' steps'//nl//'  i   lambda_i [1/s] +- its standard error (the spread of ' &
                 //to_str(size(res%batches, 2))//' batch means: statistical only, not the ' &

@@ -15,6 +15,7 @@ module dpend_namelist
    use dpend_strings, only: canonical_name
    use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
       mark_given, list_names
+   use dpend_run_flags, only: set_time_unit
    use dpend_namelist_scan, only: check_groups, read_config_bytes, stripped, &
       without_comments
    implicit none
@@ -36,6 +37,7 @@ module dpend_namelist
       real(dp) :: support_amplitude(2) = 0, support_frequency = 0, support_phase(2) = 0
       character(len=16) :: body = ''
       character(len=64) :: method = ''
+      character(len=16) :: time_unit = ''
       character(len=1024) :: file = ''
       logical :: force = .false.
    end type run_groups_t
@@ -142,6 +144,7 @@ contains
       integer :: save_every, unit, stat, links
       integer(i8) :: max_steps
       character(len=64) :: method
+      character(len=16) :: time_unit
       character(len=1024) :: file
       character(len=512) :: msg
       character(len=16) :: group
@@ -150,12 +153,13 @@ contains
          support_frequency, support_phase, body, com, inertia
       namelist /initial/ q, w, q1, q2, w1, w2
       namelist /integration/ method, dt, t_end, save_every, rtol, atol, output_dt, omega, &
-         max_steps
+         max_steps, time_unit
       namelist /output/ file, force
       m = unset; l = unset; q = unset; w = unset; damping = unset
       com = unset; inertia = unset; body = ''
       method = ''
       if (allocated(cfg%method)) method = cfg%method
+      time_unit = ''
       dt = cfg%dt; t_end = cfg%t_end
       rtol = cfg%rtol; atol = cfg%atol; omega = cfg%omega
       max_steps = cfg%max_steps
@@ -204,7 +208,7 @@ contains
       r%support_amplitude = support_amplitude; r%support_frequency = support_frequency
       r%support_phase = support_phase
       r%com = com; r%inertia = inertia; r%body = body
-      r%method = method; r%file = file; r%force = force
+      r%method = method; r%file = file; r%force = force; r%time_unit = time_unit
    end subroutine read_run_groups
 
    !> A quantity given in &model and in &pendulum (m and m1, g and g, com and com)
@@ -343,6 +347,12 @@ contains
       cfg%dt = r%dt; cfg%t_end = r%t_end; cfg%save_every = r%save_every
       cfg%rtol = r%rtol; cfg%atol = r%atol; cfg%output_dt = r%output_dt; cfg%omega = r%omega
       cfg%max_steps = r%max_steps
+      if (len_trim(r%time_unit) > 0) then
+         call set_time_unit(cfg, trim(r%time_unit), "namelist &integration time_unit in '" &
+                            //printable(filename)//"'", error)
+         if (allocated(error)) return
+         call mark_given(cfg, 'time_unit')
+      end if
       if (len_trim(r%file) > 0) cfg%output = trim(r%file)
       cfg%force = r%force
    end subroutine take_run_groups

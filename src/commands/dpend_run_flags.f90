@@ -11,10 +11,10 @@ module dpend_run_flags
    use dpend_strings, only: canonical_name
    use dpend_model_factory, only: body_list
    use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
-      mark_given
+      mark_given, time_unit_option_help
    implicit none
    private
-   public :: apply_run_flag, run_flags_help
+   public :: apply_run_flag, run_flags_help, set_time_unit
 
 contains
 
@@ -54,6 +54,7 @@ contains
       case ('--output-dt'); call parse_real(value, name, cfg%output_dt, error)
       case ('--omega'); call parse_real(value, name, cfg%omega, error)
       case ('--max-steps'); call parse_int(value, name, cfg%max_steps, error)
+      case ('--time-unit'); call set_time_unit(cfg, value, '--time-unit', error)
       case ('--damping'); call set_list(cfg, 0, name, value, error)
       case ('--support-amplitude')
          call parse_pair(name, value, cfg%support_amplitude, 'a_x,a_y (m)', error)
@@ -76,6 +77,20 @@ contains
       end select
       if (matched .and. .not. allocated(error)) call mark_given(cfg, setting_key(name))
    end subroutine apply_run_flag
+
+   !> Set the unit of the times given: 's' or 'natural' (`run_config_t%time_unit`).
+   subroutine set_time_unit(cfg, value, field, error)
+      type(run_config_t), intent(inout) :: cfg          !! cfg%time_unit set
+      character(len=*), intent(in) :: value             !! as given
+      character(len=*), intent(in) :: field             !! '--time-unit' or the key's name
+      type(error_t), allocatable, intent(out) :: error  !! neither unit
+      if (value /= 's' .and. value /= 'natural') then
+         call fatal_error(error, "invalid time_unit: '"//printable(value)//"' (accepted: s, " &
+                          //'natural) ['//field//']')
+         return
+      end if
+      cfg%time_unit = value
+   end subroutine set_time_unit
 
    !> The setting a flag gives, by its namelist key: '--support-frequency' is
    !> 'support_frequency', '-o' is 'output'.
@@ -297,6 +312,7 @@ contains
           '  --dt S            step (first trial step for adaptive methods); default ' &
           //real_str(cfg%dt)//nl// &
           '  --t-end S         '//t_end_line//'; default '//real_str(cfg%t_end)//nl// &
+          time_unit_option_help(trim(cfg%time_unit))//nl// &
           '  --rtol, --atol    tolerances of the adaptive methods; default '//real_str(cfg%rtol) &
           //', '//real_str(cfg%atol)//nl// &
           "  --omega 1/S       binding constant of Tao's methods; default "//real_str(cfg%omega)// &

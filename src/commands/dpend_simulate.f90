@@ -6,7 +6,7 @@ module dpend_simulate
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, option_outcome
-   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config, time_text
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: model_t, max_dof
@@ -32,7 +32,7 @@ module dpend_simulate
    public :: simulate_command
    public :: simulate_defaults, parse_simulate, run_simulate, simulate_help
    public :: trajectory_t, write_trajectory, check_simulate_resources
-   public :: natural_text, largest_error, natural_time_of
+   public :: largest_error
 
    !> Memory per kept sample: t, q, q̇ with room for the geometric growth (2 × 40 B)
    !> and the derived quantities written beside them (25 reals) [B].
@@ -81,7 +81,7 @@ contains
       end if
       if (.not. quiet .or. len(summary) == 0) &
          write (output_unit, '(a)') "dpend simulate: wrote '"//cfg%output//"': t = 0 .. " &
-         //real_str(cfg%t_end)//' s = '//natural_text(cfg, cfg%t_end)
+         //time_text(cfg, cfg%t_end)
       if (len(summary) > 0) write (output_unit, '(a)') 'dpend simulate: '//summary
    end subroutine simulate_command
 
@@ -303,26 +303,6 @@ contains
          e_fin = e
       end do
    end subroutine largest_error
-
-   !> A time in the natural unit: '31.94 sqrt(l1/g)' (the elastic pendulum:
-   !> sqrt(l0/g)), for the lines that quote seconds.
-   function natural_text(cfg, t) result(s)
-      type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
-      real(dp), intent(in) :: t              !! time [s]
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: name
-      s = real_str(t/natural_time_of(cfg, name), 4)//' '//name
-   end function natural_text
-
-   !> The natural time unit [s] of the run's model (`time_unit`: sqrt(l1/g) for the
-   !> pendulum, sqrt(l0/g) for the elastic pendulum); `name` says which.
-   real(dp) function natural_time_of(cfg, name) result(tn)
-      type(run_config_t), intent(in) :: cfg  !! validated configuration (model built)
-      character(len=:), allocatable, intent(out), optional :: name  !! 'sqrt(l1/g)' ...
-      character(len=:), allocatable :: which
-      call cfg%model%time_unit(tn, which)
-      if (present(name)) name = which
-   end function natural_time_of
 
    !> Integrate from t = 0 to t_end with the configured method, keeping every
    !> save_every-th step and the last one, or, with output_dt > 0, the states at

@@ -10,6 +10,7 @@ module dpend_sweep_config
    use dpend_model_factory, only: body_list
    use dpend_namelist, only: read_run_config, namelist_error
    use dpend_run_flags, only: apply_run_flag
+   use dpend_run_settings, only: time_unit_option_help
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
    implicit none
@@ -61,8 +62,7 @@ contains
           'two links: the vectorized kernel; 3 to 8 links: the chain lanes, flip maps and'//nl// &
           'indicators; 1 link, more than 8, or a model per pixel: one trajectory at a time):' &
           //nl// &
-          '  --time-unit U     unit of --dt and --t-end: natural (sqrt(l1/g)) or s;'//nl// &
-          '                    default '//cfg%time_unit//nl// &
+          time_unit_option_help(trim(cfg%run%time_unit))//nl// &
           '  --dt DT, --t-end T  step and end time in that unit; default ' &
           //real_str(cfg%run%dt)//', '//real_str(cfg%run%t_end)//nl// &
           '  --stop-at RULE    both: stop once every link that can flip has flipped;'//nl// &
@@ -171,7 +171,6 @@ contains
          case ('--ic-file'); cfg%ic_file = value
          case ('--ic-dataset'); cfg%ic_dataset = value; cfg%ic_dataset_given = .true.
          case ('--ic-angles'); cfg%ic_angles = value; cfg%ic_angles_given = .true.
-         case ('--time-unit'); cfg%time_unit = value
          case ('--stop-at'); cfg%stop_at = value; cfg%stop_at_given = '--stop-at'
          case ('--indicator'); cfg%indicator = value
          case ('--block')
@@ -215,7 +214,7 @@ contains
       min1 = cfg%min1; max1 = cfg%max1; min2 = cfg%min2; max2 = cfg%max2
       ! blank: not given in the file (then the current values stay)
       ic_file = cfg%ic_file; ic_dataset = ''; ic_angles = ''
-      time_unit = cfg%time_unit; stop_at = cfg%stop_at; indicator = cfg%indicator
+      time_unit = ''; stop_at = cfg%stop_at; indicator = cfg%indicator
       block = cfg%block; threads = cfg%threads
       lyapunov = cfg%lyapunov; stats = cfg%stats; quiet = cfg%quiet
       device = cfg%device; gpu_repack = cfg%gpu_repack
@@ -256,7 +255,13 @@ contains
       if (len_trim(ic_angles) > 0) then
          cfg%ic_angles = trim(ic_angles); cfg%ic_angles_given = .true.
       end if
-      cfg%time_unit = trim(time_unit); cfg%stop_at = trim(stop_at)
+      if (len_trim(time_unit) > 0) then
+         call fatal_error(error, "invalid config '"//printable(filename)//"' in &sweep: " &
+                          //'time_unit is a setting of every command: give it in ' &
+                          //"&integration (time_unit = '"//printable(trim(time_unit))//"')")
+         return
+      end if
+      cfg%stop_at = trim(stop_at)
       cfg%indicator = trim(indicator)
       if (block == -huge(1)) then
          block = cfg%block

@@ -543,7 +543,7 @@ contains
                 'w = '//rl(c%run%w0())//nl
          end if
          if (setup%flips) s = s//body_lines()   ! '' for uniform rods
-         s = s//'time_unit = '//c%time_unit//nl//'dt = '//r(c%run%dt)//nl// &
+         s = s//'time_unit = '//trim(c%run%time_unit)//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
              'stop_at = '//stop_name(setup%opt%stop_rule)//nl// &

@@ -12,7 +12,7 @@ module dpend_run_settings
    use dpend_model_factory, only: model_spec_t, model_spec, model_info_t, new_model, &
       model_catalogue, find_model, default_model, has_parameter, body_names, body_list
    use dpend_model, only: model_t, max_dof
-   use dpend_cli, only: to_str, to_lower, printable
+   use dpend_cli, only: to_str, to_lower, printable, real_str
    use dpend_limits, only: in_range, check_range, check_count, max_angle, max_time, max_dt, &
       min_rtol, min_atol, max_atol, max_omega, max_steps, default_max_steps, sci, &
       max_support_frequency
@@ -21,7 +21,8 @@ module dpend_run_settings
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
-      is_model_parameter, list_names, mark_given, unused_setting
+      is_model_parameter, list_names, mark_given, unused_setting, natural_time, &
+      natural_unit_name, time_text, time_in_unit, time_unit_option_help
 
    !> Settings of the pendulum's links and their parameter in the model catalogue: a
    !> setting given for a model without that parameter is refused. The second link's
@@ -61,6 +62,13 @@ module dpend_run_settings
       real(dp) :: rtol = 1e-9_dp               !! relative tolerance (adaptive methods)
       real(dp) :: atol = 1e-12_dp              !! absolute tolerance (adaptive methods)
       real(dp) :: output_dt = 0.0_dp           !! sample at k·output_dt (0: every save_every steps) [s]
+      !> The unit of the times given (dt, t_end, output_dt and a command's own: tau,
+      !> pair spacing, fit window): 's' or 'natural', the model's √(l1/g) (√(l0/g) for
+      !> the elastic pendulum). `validate_run_config` converts them to seconds once
+      !> (`time_scale`, `in_seconds`); a sweep keeps them in the unit its file records.
+      character(len=7) :: time_unit = 's'
+      real(dp) :: time_scale = 1.0_dp          !! seconds per unit of the times given
+      logical :: times_resolved = .false.      !! dt, t_end, output_dt are in seconds
       real(dp) :: omega = 20.0_dp              !! Tao's binding constant [1/s]
       integer(i8) :: max_steps = default_max_steps !! most accepted steps of one
                                                !! integration (adaptive methods)
@@ -94,6 +102,8 @@ module dpend_run_settings
       procedure :: n_coords => run_n_coords
       !> The double pendulum's parameters (links 1 and 2, g).
       procedure :: pendulum => run_pendulum
+      !> A time given in the run's unit, in seconds (once the model is built).
+      procedure :: seconds => run_seconds
    end type run_config_t
 
 contains
@@ -146,6 +156,76 @@ contains
       end if
    end function run_pendulum
 
+   !> A time `t` given in the run's unit (`time_unit`), in seconds: t·time_scale,
+   !> bounded by ±huge (refused then by the range checks) instead of overflowing.
+   pure real(dp) function run_seconds(self, t) result(s)
+      class(run_config_t), intent(in) :: self  !! configuration, times resolved
+      real(dp), intent(in) :: t                !! time in the unit given
+      s = t
+      if (self%time_scale == 1.0_dp) return
+      ! (huge/scale overflows for a scale below 1, where t·scale cannot; nested, as
+      ! Fortran may evaluate both operands of .and.)
+      if (self%time_scale > 1.0_dp) then
+         if (abs(t) > huge(1.0_dp)/self%time_scale) then
+            s = sign(huge(1.0_dp), t)
+            return
+         end if
+      end if
+      s = t*self%time_scale
+   end function run_seconds
+
+   !> The natural time unit [s] of the built model: √(l1/g) of the configured l1
+   !> for the pendulum of any N, √(l0/g) for the elastic pendulum.
+   real(dp) function natural_time(cfg)
+      type(run_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=:), allocatable :: name
+      call cfg%model%time_unit(natural_time, name)
+   end function natural_time
+
+   !> The name of the natural time unit of the built model, e.g. 'sqrt(l1/g)'.
+   function natural_unit_name(cfg) result(name)
+      type(run_config_t), intent(in) :: cfg  !! configuration, model built
+      character(len=:), allocatable :: name
+      real(dp) :: seconds
+      call cfg%model%time_unit(seconds, name)
+   end function natural_unit_name
+
+   !> A time [s] in both units, the run's unit first: '50 s = 156.5 sqrt(l1/g)', or
+   !> with time_unit natural '156.5 sqrt(l1/g) = 50 s' (6 and 4 digits).
+   function time_text(cfg, t) result(s)
+      type(run_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: t              !! time [s]
+      character(len=:), allocatable :: s
+      if (trim(cfg%time_unit) == 'natural') then
+         s = time_in_unit(cfg, t)//' = '//real_str(t, 4)//' s'
+      else
+         s = time_in_unit(cfg, t)//' = '//real_str(t/natural_time(cfg), 4)//' '// &
+             natural_unit_name(cfg)
+      end if
+   end function time_text
+
+   !> A time [s] in the run's unit, to 6 digits: '0.001 s' or '0.00313 sqrt(l1/g)'.
+   function time_in_unit(cfg, t) result(s)
+      type(run_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: t              !! time [s]
+      character(len=:), allocatable :: s
+      if (trim(cfg%time_unit) == 'natural') then
+         s = real_str(t/natural_time(cfg), 6)//' '//natural_unit_name(cfg)
+      else
+         s = real_str(t, 6)//' s'
+      end if
+   end function time_in_unit
+
+   !> The help line of --time-unit, for every command that takes times.
+   pure function time_unit_option_help(default) result(s)
+      character(len=*), intent(in) :: default  !! the command's default unit
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      s = '  --time-unit U     unit of the times given and reported first: s or natural'// &
+          nl//'                    (sqrt(l1/g), sqrt(l0/g) for the elastic pendulum; rates'// &
+          nl//'                    stay in 1/s); default '//default
+   end function time_unit_option_help
+
    !> Set the parameters of the double pendulum (two links) from `par`.
    pure subroutine set_pendulum(cfg, par)
       type(run_config_t), intent(inout) :: cfg  !! configuration
@@ -158,12 +238,14 @@ contains
    !> the number of steps t_end/dt is at most `max_steps`; an adaptive method stops
    !> after `max_steps` accepted steps instead (`--max-steps`).
    !> Builds `cfg%model` (the double pendulum for two links, the chain otherwise).
-   subroutine validate_run_config(cfg, error, initial_state)
+   subroutine validate_run_config(cfg, error, initial_state, keep_time_unit)
       type(run_config_t), intent(inout) :: cfg          !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       !> whether the run starts from the configured state (default true; false for a
       !> sweep of a list, whose rows give every initial state)
       logical, intent(in), optional :: initial_state
+      !> keep dt and t_end in the unit given (a sweep; default false: in seconds)
+      logical, intent(in), optional :: keep_time_unit
       class(integrator_t), allocatable :: integ
       integer :: i, n
       if (allocated(cfg%model)) deallocate (cfg%model)
@@ -195,6 +277,8 @@ contains
          if (allocated(error)) return
       end do
       call build_model(cfg, error)
+      if (allocated(error)) return
+      call resolve_times(cfg, error, keep_time_unit)
       if (allocated(error)) return
       if (.not. present(initial_state)) then
          call check_initial_state(cfg, error)
@@ -250,6 +334,30 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> Check the time unit and, unless kept, convert dt, t_end and output_dt from it
+   !> to seconds, once (`times_resolved`); `time_scale` converts a command's own.
+   subroutine resolve_times(cfg, error, keep_time_unit)
+      type(run_config_t), intent(inout) :: cfg          !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! an unknown unit
+      logical, intent(in), optional :: keep_time_unit   !! leave the times as given
+      if (trim(cfg%time_unit) /= 's' .and. trim(cfg%time_unit) /= 'natural') then
+         call fatal_error(error, "invalid time_unit: '"//printable(trim(cfg%time_unit))// &
+                          "' (accepted: s, natural) [--time-unit / namelist " &
+                          //'&integration time_unit]')
+         return
+      end if
+      if (present(keep_time_unit)) then
+         if (keep_time_unit) return
+      end if
+      if (cfg%times_resolved) return
+      cfg%time_scale = 1.0_dp
+      if (trim(cfg%time_unit) == 'natural') cfg%time_scale = natural_time(cfg)
+      cfg%dt = cfg%seconds(cfg%dt)
+      cfg%t_end = cfg%seconds(cfg%t_end)
+      cfg%output_dt = cfg%seconds(cfg%output_dt)
+      cfg%times_resolved = .true.
+   end subroutine resolve_times
 
    !> Whether the model `cfg` asks for has the parameter `name` (the factory's
    !> catalogue; an unknown model: none).

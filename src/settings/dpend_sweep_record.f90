@@ -1,6 +1,7 @@
 !> The settings record of a sweep (`dpend sweep`, the MPI front end, library
 !> callers; validated by dpend_sweep_settings): the run settings (&pendulum,
-!> &initial for the values that are not swept, &integration for dt and t_end,
+!> &initial for the values that are not swept, &integration for dt, t_end and their
+!> time_unit (the sweep keeps them in it: default natural, √(L1/g)),
 !> &output) plus those of &sweep below, their validation (`validate_sweep`) and what follows
 !> from them: the time unit, the stop rule, the axes and a pixel's model.
 !>
@@ -23,7 +24,6 @@
 !>                  for N links rows "q1 .. qN w1 .. wN", (n, 2N)
 !>   ic_dataset     dataset of an HDF5 list, default '/initial'
 !>   ic_angles      angles of a list: 'q' (from horizontal, default) or 'theta'
-!>   time_unit      unit of dt and t_end: 's' or 'natural' (√(L1/g))
 !>   stop_at        'both' (every link that can flip has flipped), 'either', 'end'
 !>   block          initial conditions per block (unit of parallel work, output
 !>                  chunks and resume); whole rows of axis 1 in a grid
@@ -87,7 +87,6 @@ module dpend_sweep_record
       !> Whether ic_dataset, ic_angles were given (flag or namelist): both describe the
       !> list of --ic-file and are refused without it.
       logical :: ic_dataset_given = .false., ic_angles_given = .false.
-      character(len=:), allocatable :: time_unit   !! 's' or 'natural'
       character(len=:), allocatable :: stop_at     !! 'both', 'either' or 'end'
       integer :: block = 4096                      !! initial conditions per block
       logical :: lyapunov = .false.                !! largest Lyapunov exponent
@@ -127,7 +126,7 @@ contains
       cfg%ic_file = ''
       cfg%ic_dataset = '/initial'
       cfg%ic_angles = 'q'
-      cfg%time_unit = 'natural'
+      cfg%run%time_unit = 'natural'
       cfg%stop_at = 'both'
       cfg%indicator = 'flip'
       cfg%grid_given = ' '
@@ -156,7 +155,7 @@ contains
    real(dp) function time_scale(cfg)
       type(sweep_config_t), intent(in) :: cfg  !! configuration
       time_scale = 1.0_dp
-      if (cfg%time_unit == 'natural') time_scale = natural_time(cfg)
+      if (trim(cfg%run%time_unit) == 'natural') time_scale = natural_time(cfg)
    end function time_scale
 
    !> The natural time unit [s] of the run's model (`time_unit`: √(l1/g) of the

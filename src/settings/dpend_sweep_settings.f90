@@ -38,7 +38,8 @@ contains
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
       character(len=:), allocatable :: field
-      call validate_run_config(cfg%run, error, initial_state=grid_mode(cfg))
+      call validate_run_config(cfg%run, error, initial_state=grid_mode(cfg), &
+                               keep_time_unit=.true.)
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
@@ -78,9 +79,6 @@ contains
                           "' (dpend sweep accepts: rk4)")
       else if (.not. (cfg%run%t_end > 0.0_dp)) then
          call fatal_error(error, 'invalid t_end: must be finite and > 0')
-      else if (cfg%time_unit /= 's' .and. cfg%time_unit /= 'natural') then
-         call fatal_error(error, "invalid time_unit: '"//cfg%time_unit// &
-                          "' (accepted: s, natural)")
       else if (cfg%stop_at /= 'both' .and. cfg%stop_at /= 'either' .and. &
                cfg%stop_at /= 'end') then
          call fatal_error(error, "invalid stop_at: '"//cfg%stop_at// &
@@ -591,7 +589,7 @@ contains
       function both(t) result(b)
          real(dp), intent(in) :: t
          character(len=:), allocatable :: b
-         if (cfg%time_unit == 'natural') then
+         if (trim(cfg%run%time_unit) == 'natural') then
             b = real_str(t)//' '//nat//' = '//real_str(t*tn, 4)//' s'
          else
             b = real_str(t)//' s = '//real_str(t/tn, 4)//' '//nat
@@ -604,7 +602,7 @@ contains
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
       character(len=:), allocatable :: u
       u = 's'
-      if (cfg%time_unit == 'natural') u = natural_name(cfg)
+      if (trim(cfg%run%time_unit) == 'natural') u = natural_name(cfg)
    end function unit_name
 
    !> The accepted axis names for N links, for messages.

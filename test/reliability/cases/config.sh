@@ -13,6 +13,8 @@ printf 'm1 = 2\n&pendulum m2 = 3 /\n' > "$_cfg_fx/cfg_keybefore.nml"
 printf '&pendulum m1 = 2 /\n&pendulum m1 = 3 /\n' > "$_cfg_fx/cfg_twice.nml"
 # a logical for a number's key (fuzz seed 20261202: n_omega = true was read as nothing)
 printf '&integration save_every = true /\n' > "$_cfg_fx/cfg_logical_number.nml"
+printf "&integration time_unit = 'hours' /\n" > "$_cfg_fx/cfg_time_unit_bad.nml"
+printf "&sweep n1 = 4, n2 = 4, time_unit = 's' /\n" > "$_cfg_fx/cfg_sweep_time_unit.nml"
 printf 'm1 = 5\n' > "$_cfg_fx/cfg_nogroup.nml"
 printf '! only a comment\n\n' > "$_cfg_fx/cfg_comment.nml"
 printf '&integration dt = 1e999 /\n' > "$_cfg_fx/cfg_huge.nml"
@@ -92,6 +94,8 @@ fi
 refuse  cfg-sim-keybefore     'outside any namelist group' -- simulate --config cfg_keybefore.nml --output o.h5
 refuse  cfg-sim-twice         'appears twice'      -- simulate --config cfg_twice.nml --output o.h5
 refuse  cfg-sim-logical-number 'takes a number'   -- simulate --config cfg_logical_number.nml --output o.h5
+refuse  cfg-sim-time-unit     "time_unit: 'hours'" -- simulate --config cfg_time_unit_bad.nml --output o.h5
+refuse  cfg-swp-time-unit-group 'give it in &integration' -- sweep --config cfg_sweep_time_unit.nml --output o.h5
 refuse  cfg-sim-huge-number   'line 1'             -- simulate --config cfg_huge.nml --output o.h5
 succeed cfg-sim-huge-in-text  -- simulate --config cfg_huge_quoted.nml --output o.h5
 refuse  cfg-sim-nogroup       'outside any'        -- simulate --config cfg_nogroup.nml --output o.h5

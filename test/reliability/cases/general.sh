@@ -90,6 +90,9 @@ refuse gen-swp-max2-inf      max2      -- "${SWP[@]}" --max2 inf
 refuse gen-swp-n1-junk       n1        -- "${SWP[@]}" --n1 4x
 refuse gen-swp-axis          axis1     -- "${SWP[@]}" --axis1 bogus
 refuse gen-swp-unit          time_unit -- "${SWP[@]}" --time-unit hours
+refuse gen-sim-unit          time_unit -- "${SIM[@]}" --time-unit S
+refuse gen-lya-unit          time_unit -- "${LYA[@]}" --time-unit natural,s
+succeed gen-div-unit-natural          -- "${DIV[@]}" --time-unit natural
 refuse gen-swp-stop          stop_at   -- "${SWP[@]}" --stop-at never
 refuse gen-swp-block-zero    block     -- "${SWP[@]}" --block 0
 succeed gen-swp-threads-zero          -- "${SWP[@]}" --threads 0   # 0: all CPUs

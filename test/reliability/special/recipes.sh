@@ -437,20 +437,20 @@ module dpend_time_unit_command
    use dpend_command_common, only: take_quiet, data_quiet, refusal_line
    implicit none
    private
-   public :: time_unit_command, time_unit_help
+   public :: time_unit_command, time_unit_option_help
 
    character(len=*), parameter :: nl = new_line('a')
 
 contains
 
    !> Help text of `dpend time-unit`.
-   function time_unit_help() result(s)
+   function time_unit_option_help() result(s)
       character(len=:), allocatable :: s
       s = 'usage: dpend time-unit [--model NAME]'//nl//nl// &
           'Prints the natural time unit of model NAME (default '//default_model// &
           ') built from'//nl//'its defaults: its name and its value in seconds.'//nl// &
           '  --model NAME      a model of dpend models'//nl//data_quiet
-   end function time_unit_help
+   end function time_unit_option_help
 
    !> The entry point of `dpend time-unit` (app/main.f90): parse, build, print. A
    !> refusal comes back as `error`, its message the one line 'dpend time-unit: ...'.
@@ -468,7 +468,7 @@ contains
       do while (i <= size(rest))
          select case (rest(i)%s)
          case ('-h', '--help')
-            write (output_unit, '(a)') time_unit_help()
+            write (output_unit, '(a)') time_unit_option_help()
             return
          case ('--model')
             if (i == size(rest)) then
