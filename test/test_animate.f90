@@ -272,6 +272,7 @@ contains
       call refused('--size 10x10', 'invalid size')
       call refused('--speed 0', 'invalid speed')
       call refused('--duration 1000', 'invalid duration')
+      call refused('--time-unit hours', "invalid time_unit: 'hours'")
    contains
       subroutine refused(options, needle)
          character(len=*), intent(in) :: options, needle
@@ -313,6 +314,13 @@ contains
                       'summary with times to 4 digits: '//text)
       call read_text(dir//'/stderr', text, n)
       call check_true(error, n == 0, 'nothing on stderr on success, got: '//text)
+      if (allocated(error)) return
+      ! the clock in the natural unit too: sqrt(1/9.8) s = 0.3194 s, so 1 s = 3.13 of it
+      stat = run_command(dir, 'animate '//dir//'/sim.h5 --output '//dir//'/n.gif '// &
+                         '--fps 30 --size 64x64 --time-unit natural')
+      call read_text(dir//'/stdout', text, n)
+      call check_true(error, stat == 0 .and. index(text, 't = 0 .. 1 s = 0 .. 3.13 ' &
+                      //'sqrt(l1/g)') > 0, 'summary in both units: '//text)
       if (allocated(error)) return
       ! a broken copy of scripts/plot/animate.gp: gnuplot fails, its message is shown
       root = dpend_binary()

@@ -9,7 +9,8 @@ module test_study
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_hdf5, only: h5file_t, is_hdf5
    use dpend_study_settings, only: study_config_t, study_case_t, study_method_t, &
-      study_defaults, validate_study_config, study_namelist, apply_quick, balance_case
+      study_defaults, validate_study_config, study_namelist, apply_quick, balance_case, &
+      study_times_in_seconds
    use dpend_study_config, only: read_study_config
    use dpend_study, only: study_result_t, run_study, step_grid, time_bins
    use dpend_study_command, only: write_study_h5, study_summary
@@ -47,7 +48,8 @@ contains
               new_unittest('damped_config_file', test_damped_config), &
               new_unittest('chain_config_file', test_chain_config), &
               new_unittest('default_config_file', test_default_config), &
-              new_unittest('bad_input_rejected', test_bad_input)]
+              new_unittest('bad_input_rejected', test_bad_input), &
+              new_unittest('time_unit_natural', test_time_unit)]
    end subroutine collect_study
 
    ! ----------------------------------------------------------------- helpers
@@ -658,6 +660,43 @@ contains
                       == 1, 'message: '//text)
       call execute_command_line('rm -rf '//dir)
    end subroutine test_damped_config
+
+   !> &integration time_unit = 'natural': the study's times in sqrt(l1/g), with l1 =
+   !> 2.45 m, g = 9.8 m/s^2 exactly 0.5 s, converted to seconds once (t_short, the
+   !> reference step, a method's steps, Tao's horizon); any other key of
+   !> &integration is refused (the study's steps are in &study).
+   subroutine test_time_unit(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg, given
+      type(error_t), allocatable :: why
+      character(len=:), allocatable :: dir
+      dir = scratch_dir('study-time-unit')
+      call write_file(dir//'/n.nml', "&pendulum l1 = 2.45, g = 9.8 /"//new_line('a')// &
+                      "&integration time_unit = 'natural' /"//new_line('a')// &
+                      '&study t_short = 2, tao_t_end = 40 /')
+      cfg = study_defaults()
+      call read_study_config(dir//'/n.nml', cfg, error)
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      given = cfg
+      call study_times_in_seconds(cfg)
+      call study_times_in_seconds(cfg)   ! once: a second call changes nothing
+      call check_true(error, cfg%time_scale == 0.5_dp .and. cfg%t_short == 1.0_dp .and. &
+                      cfg%tao_t_end == 20.0_dp .and. cfg%ref_dt == 0.5_dp*given%ref_dt .and. &
+                      cfg%methods(1)%h_max == 0.5_dp*given%methods(1)%h_max .and. &
+                      trim(cfg%time_unit_name) == 'sqrt(l1/g)', 'times in s: t_short '// &
+                      sci(cfg%t_short)//', tao_t_end '//sci(cfg%tao_t_end))
+      if (allocated(error)) return
+      call write_file(dir//'/d.nml', '&integration dt = 0.1 /')
+      cfg = study_defaults()
+      call read_study_config(dir//'/d.nml', cfg, why)
+      call check_true(error, allocated(why), '&integration dt refused')
+      if (allocated(error)) return
+      call check_true(error, index(why%message, 'reads only time_unit') > 0, &
+                      'the refusal says why: '//why%message)
+      call execute_command_line('rm -rf '//dir)
+   end subroutine test_time_unit
 
    !> data/study_chain.nml: two triple-pendulum cases; the effective configuration
    !> written by study_namelist reads back to the same text (lists of links), also

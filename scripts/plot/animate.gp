@@ -7,7 +7,8 @@
 #         per_frame, ntrail, delay [1/100 s], width, height [px], overlay, side (0/1:
 #         the overlay in its own panel), reactions (0/1), lim [m], newtons_per_m
 #         [N/m], fmax [N]; the arrays BOB, BOB2 (per link of each file: where its point
-#         mass sits as a fraction of the link, -1: none, a rod)
+#         mass sits as a fraction of the link, -1: none, a rod); clock_unit (0: the
+#         clock in s; 1, 2: in sqrt(l1/g), sqrt(l0/g) of clock_seconds s, then in s)
 # FRAMES  one row per frame: t, the anchor xA yA, the points x1 y1 .. xP yP (the far
 #         end of each link; the bob), the forces (x, y of each: for rods the force of
 #         body i-1 on body i at joint i, acting at the start of segment i), then the
@@ -21,6 +22,11 @@
 # The arguments are data: never pasted into code (only PARAMS is loaded).
 load ARG1
 if (!exists("spring2")) { spring2 = 0 }
+if (!exists("clock_unit")) { clock_unit = 0; clock_seconds = 1 }
+# the clock: t in s, or in the natural unit first and then in s (--time-unit natural)
+clock(t) = (clock_unit == 0 ? sprintf("t = %.2f s", t) : \
+  sprintf("t = %.2f %s = %.2f s", t/clock_seconds, \
+          (clock_unit == 1 ? "sqrt(l1/g)" : "sqrt(l0/g)"), t))
 framefile = ARG2
 trailfile = ARG3
 
@@ -138,7 +144,7 @@ do for [pass = 1:(strlen(ARG8) > 0 ? 2 : 1)] {
     }
     do for [panel = 1:(side ? 2 : 1)] {
       unset arrow; unset object; unset label
-      set label 1 sprintf("t = %.2f s", T[k]) at graph 0.03, graph 0.95 left front
+      set label 1 clock(T[k]) at graph 0.03, graph 0.95 left front
       if (side) { set title (panel == 1 ? ARG6 : ARG7) noenhanced }
       # the pendulums this panel draws: side, its own; overlay, the second below
       wfirst = (side ? panel : (overlay ? 2 : 1))

@@ -59,6 +59,8 @@ module dpend_animate
       real(dp) :: duration = -1.0_dp                !! animation length [s]; < 0 = all
       character(len=:), allocatable :: layout       !! with --overlay: 'overlay' or 'side'
       logical :: size_given = .false.               !! --size given
+      !> the clock's unit: 's', or 'natural' (also in s; the file's √(l1/g) or √(l0/g))
+      character(len=7) :: time_unit = 's'
    end type animate_config_t
 
    !> The samples of one simulate file that the animation needs.
@@ -72,6 +74,10 @@ module dpend_animate
       !> the link has no moment of inertia about its centre of mass), else -1: no bob
       real(dp), allocatable :: bob(:)
       real(dp), allocatable :: t(:)                 !! sample times (n) [s]
+      !> the natural time unit of the file's model [s] (√(l1/g) from the attributes l
+      !> and g, √(l0/g) from l0 and g; 0: not recorded) and its name
+      real(dp) :: natural = 0.0_dp
+      character(len=16) :: natural_name = ''
       !> the figure the file describes (anchor, points, forces; dpend_trajectory_figure)
       type(figure_track_t) :: fig
    end type track_t
@@ -161,6 +167,8 @@ contains
           '                  frames (e.g. two nearby initial conditions separating); the'//nl// &
           '                  title says in what the two runs differ, the key names each'//nl// &
           '                  link of each file'//nl// &
+          '  --time-unit U   the clock of the frames: s (default) or natural, also in the'//nl// &
+          "                  file's sqrt(l1/g) (sqrt(l0/g) for the elastic pendulum)"//nl// &
           '  --layout L      with --overlay: overlay (both in one frame, default) or side'//nl// &
           '                  (side by side, each in its own panel; default size 1280x640)'//nl// &
           '  --frames DIR    also write frame_0001.png, ... into the existing directory DIR'//nl// &
@@ -237,6 +245,11 @@ contains
          case ('--size')
             call parse_size(value, cfg%width, cfg%height, error)
             cfg%size_given = .true.
+         case ('--time-unit')
+            cfg%time_unit = value(:min(len(value), 7))
+            if (value /= 's' .and. value /= 'natural' .and. .not. missing) &
+               call fatal_error(error, "invalid time_unit: '"//printable(value)// &
+                                "' (accepted: s, natural) [--time-unit]")
          case ('--layout')
             cfg%layout = value
             if (value /= 'overlay' .and. value /= 'side' .and. .not. missing) &
@@ -446,6 +459,39 @@ contains
          //sci(maxval(abs(t)))//' s (accepted: |t| <= '//sci(max_time)//' s)')
    end subroutine check_times
 
+   !> The natural time unit of the file's model from its attributes: √(l1/g) from l
+   !> (the first link) and g, else √(l0/g) from l0 and g; each read checked, finite
+   !> and positive, else 0 (not recorded: --time-unit natural is then refused).
+   subroutine read_natural_unit(h5, tr)
+      type(h5file_t), intent(inout) :: h5   !! the open simulate file
+      type(track_t), intent(inout) :: tr    !! tr%natural, tr%natural_name set
+      real(dp), allocatable :: l(:)
+      real(dp) :: g, l0
+      type(error_t), allocatable :: err
+      tr%natural = 0.0_dp
+      tr%natural_name = ''
+      if (.not. h5%attr_exists('/', 'g')) return
+      call h5%readattr('/', 'g', g, err)
+      if (allocated(err)) return
+      if (.not. (ieee_is_finite(g) .and. g > 0.0_dp)) return
+      if (h5%attr_exists('/', 'l')) then
+         call h5%readattr('/', 'l', l, err)
+         if (allocated(err)) return
+         if (size(l) < 1) return
+         l0 = l(1)
+         tr%natural_name = 'sqrt(l1/g)'
+      else if (h5%attr_exists('/', 'l0')) then
+         call h5%readattr('/', 'l0', l0, err)
+         if (allocated(err)) return
+         tr%natural_name = 'sqrt(l0/g)'
+      else
+         return
+      end if
+      if (.not. (ieee_is_finite(l0) .and. l0 > 0.0_dp)) return
+      if (.not. (ieee_is_finite(l0/g) .and. l0/g > 0.0_dp)) return
+      tr%natural = sqrt(l0/g)
+   end subroutine read_natural_unit
+
    !> The run's facts for the labels and the title (method, dt, the initial state, the
    !> body, masses, lengths, g: their texts in tr%settings, missing or unreadable ones
    !> '?') and each link's point mass (tr%bob: com_i / l_i where inertia_i = 0, from
@@ -468,6 +514,7 @@ contains
       tr%settings(7) = 'l '//array_text('l')//' m'
       tr%settings(8) = 'g '//scalar_text('g')//' m/s^2'
       tr%run_text = tr%method//', dt '//scalar_text('dt')//' s'
+      call read_natural_unit(h5, tr)
       links = tr%fig%n_points
       allocate (tr%bob(max(links, 1)))
       tr%bob = -1.0_dp
@@ -678,6 +725,12 @@ contains
          end if
          span = min(span, b%t(size(b%t)) - a%t(1))
       end if
+      if (trim(cfg%time_unit) == 'natural' .and. .not. (a%natural > 0.0_dp)) then
+         call fatal_error(error, "invalid time_unit: natural, but '"//printable(cfg%input)// &
+                          "' records no l1 (or l0) and g of its model (accepted: s) " &
+                          //'[--time-unit]')
+         return
+      end if
       call plan_frames(cfg, a%t(1), span, overlay, plan, error)
       if (allocated(error)) return
       nb = 0
@@ -758,6 +811,9 @@ contains
       summary = "wrote '"//cfg%output//"': "//to_str(plan%nframes)//' frames, '// &
                 sci(real(plan%nframes, dp)/real(cfg%fps, dp), 4)//' s at '//to_str(cfg%fps)// &
                 ' fps, t = '//sci(tf(1), 4)//' .. '//sci(tf(plan%nframes), 4)//' s'
+      if (trim(cfg%time_unit) == 'natural') summary = summary//' = '// &
+         sci(tf(1)/a%natural, 4)//' .. '//sci(tf(plan%nframes)/a%natural, 4)//' '// &
+         trim(a%natural_name)
       if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
       if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &
                                                  sci(npm, 4)//' N'
@@ -1001,6 +1057,16 @@ contains
       ! the scale the summary reports (below 1 N/m for light pendulums); 1 without arrows
       write (u, '(a, es24.16e3)', iostat=stat) 'newtons_per_m = ', merge(npm, 1.0_dp, npm > 0)
       write (u, '(a, es24.16e3)', iostat=stat) 'fmax = ', fmax
+      ! the clock: in s (clock_unit 0), or also in sqrt(l1/g) (1) or sqrt(l0/g) (2),
+      ! t/clock_seconds of it
+      if (trim(cfg%time_unit) == 'natural' .and. a%natural > 0.0_dp) then
+         write (u, '(a, i0)', iostat=stat) 'clock_unit = ', &
+            merge(1, 2, a%natural_name == 'sqrt(l1/g)')
+         write (u, '(a, es24.16e3)', iostat=stat) 'clock_seconds = ', a%natural
+      else
+         write (u, '(a, i0)', iostat=stat) 'clock_unit = ', 0
+         write (u, '(a, es24.16e3)', iostat=stat) 'clock_seconds = ', 1.0_dp
+      end if
       close (u, iostat=err)
       if (err /= 0) stat = err
    contains

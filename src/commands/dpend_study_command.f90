@@ -219,6 +219,16 @@ contains
            ' checkpoints up to '// &
            't = '//pretty(cfg%t_short)//' s against '//cfg%ref_method//' at h = '// &
            fmt(cfg%ref_dt, 'es8.2')//' s.'
+      ! the unit: the times here are in s; with --time-unit natural also the unit's value
+      md = md//' Times in s'
+      if (trim(cfg%time_unit) == 'natural') then
+         md = md//' (given in '//trim(cfg%time_unit_name)//' = '//pretty(cfg%time_scale)// &
+              ' s: t_short = '//pretty(cfg%t_short/cfg%time_scale)//' '// &
+              trim(cfg%time_unit_name)//')'
+      else
+         md = md//' (as given)'
+      end if
+      md = md//'.'
       if (any([(balance_case(cfg, ic), ic=1, size(cfg%cases))])) md = md//' In a damped or '// &
          'driven case the energy error is that of the energy balance, |E(t) − E(0) + '// &
          'W_friction − W_support| / E_s, the works integrated along the solution by the '// &

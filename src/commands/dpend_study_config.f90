@@ -18,12 +18,12 @@ module dpend_study_config
       scan_help_config, printable
    use dpend_method_registry, only: method_names
    use dpend_limits, only: sci
-   use dpend_run_settings, only: run_config_t, unused_setting
+   use dpend_run_settings, only: run_config_t, unused_setting, time_unit_option_help
    use dpend_model_factory, only: default_model
    use dpend_namelist, only: read_run_config, check_groups, namelist_error
    use dpend_run_flags, only: apply_run_flag
    use dpend_study_settings, only: study_config_t, study_defaults, validate_study_config, &
-      apply_quick, case_index, default_ranges, max_cases, max_methods, max_extra, &
+      apply_quick, study_times_in_seconds, case_index, default_ranges, max_cases, max_methods, max_extra, &
       case_list, split_list, unset
    use dpend_study_command, only: run_study_command
    use dpend_command_common, only: take_quiet, with_quiet, summary_quiet, refusal_line, &
@@ -88,6 +88,9 @@ contains
           "                    the chapter's 1 kg, 1 m, 9.8 m/s^2)"//nl// &
           '  --m LIST, --l LIST  per-link masses, lengths (comma separated) for cases of'//nl// &
           '                    N links (case_links in &study; N = 2: the double pendulum)'//nl// &
+          time_unit_option_help('s')//nl// &
+          '                    (t_short, ref_dt, h_min, h_max, ro_dt, ro_fit_t_min,'//nl// &
+          '                    tao_dt, tao_t_end; the report and file are in s)'//nl// &
           '  -h, --help        this text'//nl//nl// &
           'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
           'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &
@@ -152,6 +155,9 @@ contains
          case ('--cases')
             only_cases = value
             cases_given = .true.
+         case ('--time-unit')
+            call apply_run_flag(rcfg, name, value, matched, error)
+            cfg%time_unit = rcfg%time_unit
          case ('--m1', '--m2', '--l1', '--l2', '--g', '--m', '--l')
             call apply_run_flag(rcfg, name, value, matched, error)
             cfg%m = rcfg%m; cfg%l = rcfg%l; cfg%g = rcfg%g
@@ -169,6 +175,11 @@ contains
       if (allocated(error)) return
       call validate_study_config(cfg, error)
       if (allocated(error)) return
+      if (trim(cfg%time_unit) == 'natural') then   ! its times in seconds, checked again
+         call study_times_in_seconds(cfg)
+         call validate_study_config(cfg, error)
+         if (allocated(error)) return
+      end if
       call apply_quick(cfg)
    end subroutine parse_study
 
@@ -367,7 +378,9 @@ contains
       type(error_t), allocatable, intent(out) :: error   !! unreadable or invalid
       type(run_config_t) :: rcfg
       call check_groups(filename, [character(len=16) :: 'pendulum', 'output', 'study', &
-                                   'model'], error)
+                                   'model', 'integration'], error)
+      if (allocated(error)) return
+      call read_time_unit(error)
       if (allocated(error)) return
       rcfg%m = cfg%m; rcfg%l = cfg%l; rcfg%g = cfg%g; rcfg%list_size(1:2) = cfg%list_size
       rcfg%output = cfg%output
@@ -389,7 +402,29 @@ contains
       cfg%model_params = rcfg%extra
       cfg%output = rcfg%output
       cfg%force = rcfg%force
+      cfg%time_unit = rcfg%time_unit
    contains
+      !> &integration holds only time_unit for the study (its steps and horizons are
+      !> in &study): any other key of it is refused by this namelist's read.
+      subroutine read_time_unit(error)
+         type(error_t), allocatable, intent(out) :: error
+         character(len=16) :: time_unit
+         character(len=512) :: msg
+         integer :: unit, stat
+         namelist /integration/ time_unit
+         time_unit = ''
+         open (newunit=unit, file=filename, status='old', action='read', iostat=stat)
+         if (stat /= 0) then
+            call fatal_error(error, "invalid --config: cannot read '"//printable(filename)// &
+                             "'")
+            return
+         end if
+         read (unit, nml=integration, iostat=stat, iomsg=msg)
+         close (unit)
+         if (stat > 0) call fatal_error(error, namelist_error(filename, 'integration', msg)// &
+                                        ' (dpend study reads only time_unit there; its ' &
+                                        //'steps and horizons are keys of &study)')
+      end subroutine read_time_unit
       !> The settings of a run the study has no use for are refused, never dropped:
       !> the links' body (its cases are uniform rods, or the &model's), the damping and
       !> the support's motion (each case carries its own: case_damping,

@@ -26,7 +26,7 @@ module dpend_study_settings
    implicit none
    private
    public :: study_config_t, study_case_t, study_method_t, study_defaults, &
-      validate_study_config, apply_quick, study_namelist, case_index, default_ranges, &
+      validate_study_config, apply_quick, study_times_in_seconds, study_namelist, case_index, default_ranges, &
       balance_case, case_model, study_model_name, default_model_study, max_cases, &
       max_methods, max_extra, case_damping, case_list, split_list, unset
 
@@ -106,6 +106,12 @@ module dpend_study_settings
       integer :: n_omega = 41              !! values of ω (geometric)
       character(len=:), allocatable :: tao_case  !! case
       ! run control
+      !> the unit of the times given (t_short, ref_dt, h_min, h_max, ro_dt,
+      !> ro_fit_t_min, tao_dt, tao_t_end): 's' or 'natural' (the first case's model's
+      !> √(l1/g), `study_times_in_seconds`; --time-unit, &integration time_unit)
+      character(len=7) :: time_unit = 's'
+      real(dp) :: time_scale = 1.0_dp      !! seconds per unit of those times
+      character(len=16) :: time_unit_name = 's'  !! its name, e.g. 'sqrt(l1/g)'
       logical :: quick = .false.           !! reduced long runs (smoke test, CI)
       integer :: threads = 0               !! OpenMP threads (0: the default)
       logical :: figures = .true.          !! run scripts/plot_study.sh at the end
@@ -166,6 +172,30 @@ contains
       cfg%tao_case = 'small'
       cfg%output = 'out/study/study.h5'
    end function study_defaults
+
+   !> With time_unit natural, the study's times given in the natural unit of the first
+   !> case's model (√(l1/g) of the study's l1, √(l0/g) of an elastic &model) into
+   !> seconds, once (validated before and after: the model must be built first).
+   subroutine study_times_in_seconds(cfg)
+      type(study_config_t), intent(inout) :: cfg  !! validated configuration
+      class(model_t), allocatable :: model
+      character(len=:), allocatable :: name
+      integer :: i
+      if (trim(cfg%time_unit) /= 'natural' .or. cfg%time_scale /= 1.0_dp) return
+      call case_model(cfg, 1, model)
+      call model%time_unit(cfg%time_scale, name)
+      cfg%time_unit_name = name
+      cfg%t_short = cfg%t_short*cfg%time_scale
+      cfg%ref_dt = cfg%ref_dt*cfg%time_scale
+      do i = 1, size(cfg%methods)
+         cfg%methods(i)%h_min = cfg%methods(i)%h_min*cfg%time_scale
+         cfg%methods(i)%h_max = cfg%methods(i)%h_max*cfg%time_scale
+      end do
+      cfg%ro_dt = cfg%ro_dt*cfg%time_scale
+      cfg%ro_fit_t_min = cfg%ro_fit_t_min*cfg%time_scale
+      cfg%tao_dt = cfg%tao_dt*cfg%time_scale
+      cfg%tao_t_end = cfg%tao_t_end*cfg%time_scale
+   end subroutine study_times_in_seconds
 
    !> Reduce the study to a smoke test (`--quick`, about 50× cheaper): long runs
    !> of 2 % of their steps, 4 roundoff runs of at most 10⁵ steps, Tao runs of a
