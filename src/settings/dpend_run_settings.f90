@@ -294,20 +294,8 @@ contains
       if (allocated(error)) return
       call integ%check_model(cfg%model, error)   ! e.g. a canonical method, no Hamiltonian
       if (allocated(error)) return
-      if (.not. finite_positive(cfg%dt)) then
-         call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
-                          //' s')
-         return
-      end if
-      call check_range('dt', cfg%dt, 0.0_dp, max_dt, 's', error)
+      call check_times(cfg, integ%adaptive(), error)
       if (allocated(error)) return
-      call check_range('t_end', cfg%t_end, 0.0_dp, max_time, 's', error)
-      if (allocated(error)) return
-      if (.not. integ%adaptive()) then
-         call check_count('dt', cfg%dt, cfg%t_end, 't_end', max_steps, 'steps', &
-                          'use a larger --dt or a shorter --t-end', error)
-         if (allocated(error)) return
-      end if
       if (cfg%save_every < 1) then
          call fatal_error(error, 'invalid save_every: '//sci(real(cfg%save_every, dp))// &
                           ' must be an integer >= 1')
@@ -321,11 +309,6 @@ contains
       else if (.not. in_range(cfg%atol, min_atol, max_atol)) then
          call fatal_error(error, 'invalid atol: must be in ['//sci(min_atol)//', ' &
                           //sci(max_atol)//'] (rad, rad/s)')
-      else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
-         call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
-      else if (cfg%output_dt > max_time) then
-         call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
-                          //sci(max_time)//' s')
       else if (.not. (finite_positive(cfg%omega) .and. in_range(cfg%omega, 0.0_dp, max_omega))) &
          then
          call fatal_error(error, 'invalid omega: must be in (0, '//sci(max_omega)//'] (1/s)')
@@ -334,6 +317,36 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> dt, t_end (and the steps they make for a fixed-step method) and output_dt, in
+   !> seconds; with time_unit natural a refusal says what the unit was.
+   subroutine check_times(cfg, adaptive, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration, times resolved
+      logical, intent(in) :: adaptive                   !! the method adapts its step
+      type(error_t), allocatable, intent(out) :: error  !! the first time refused
+      if (.not. finite_positive(cfg%dt)) then
+         call fatal_error(error, 'invalid dt: must be finite and > 0, at most '//sci(max_dt) &
+                          //' s')
+      else
+         call check_range('dt', cfg%dt, 0.0_dp, max_dt, 's', error)
+      end if
+      if (.not. allocated(error)) call check_range('t_end', cfg%t_end, 0.0_dp, max_time, 's', &
+                                                   error)
+      if (.not. (allocated(error) .or. adaptive)) &
+         call check_count('dt', cfg%dt, cfg%t_end, 't_end', max_steps, 'steps', &
+                          'use a larger --dt or a shorter --t-end', error)
+      if (allocated(error)) then
+         continue
+      else if (.not. (finite_positive(cfg%output_dt) .or. cfg%output_dt == 0.0_dp)) then
+         call fatal_error(error, 'invalid output_dt: must be finite and >= 0 (s; 0 = off)')
+      else if (cfg%output_dt > max_time) then
+         call fatal_error(error, 'invalid output_dt: '//sci(cfg%output_dt)//' s is above ' &
+                          //sci(max_time)//' s')
+      end if
+      if (allocated(error) .and. cfg%times_resolved .and. trim(cfg%time_unit) == 'natural') &
+         error%message = error%message//' (given in '//natural_unit_name(cfg)//' = '// &
+                         real_str(cfg%time_scale, 6)//' s: --time-unit natural)'
+   end subroutine check_times
 
    !> Check the time unit and, unless kept, convert dt, t_end and output_dt from it
    !> to seconds, once (`times_resolved`); `time_scale` converts a command's own.
