@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Turn the .h5 of `dpend sweep` (a grid) into PNG maps:
-#   scripts/plot_sweep.sh FILE.h5 [OUTDIR]   (OUTDIR defaults to FILE's folder)
-# Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g), or
-# in s with --time-unit s, white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
+#   scripts/plot_sweep.sh FILE.h5 [OUTDIR] [--time-unit natural|s]
+#   (OUTDIR defaults to FILE's folder; the time unit to the sweep's own, its
+#   attribute time_unit: natural unless the sweep ran with --time-unit s)
+# Writes flip_map.png (first flip of any link, log colour scale in sqrt(l1/g) or
+# in s, white: no flip before the end), flip_map_link1.png .. flip_map_linkN.png (N the
 # attribute /sweep@links, 2 for files without it),
 # energy_error.png and, if the sweep has them, lyapunov.png and the map of its
 # indicator (dpend sweep --indicator): megno.png (<Y> over [0, 4], 2 the value of
@@ -23,19 +25,20 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 # shellcheck source-path=SCRIPTDIR source=lib/output.sh
 . "$here/lib/output.sh"
 plot_init plot_sweep.sh
-# --time-unit natural (default: sqrt(l1/g), the sweep's unit) or s: the unit of the
-# flip-time colour scales and of the Lyapunov map (1/sqrt(l1/g) or 1/s)
-unit=natural
+# --time-unit natural (sqrt(l1/g)) or s: the unit of the flip-time colour scales
+# and of the Lyapunov map (1/sqrt(l1/g) or 1/s); default: the sweep's own unit
+unit=
 args=()
 while [[ $# -gt 0 ]]; do
   case $1 in
+    -h|--help) sed -n '2,/^# DPEND:/s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; exit 0 ;;
     --time-unit) [[ $# -ge 2 ]] || { echo "$0: --time-unit needs natural or s" >&2; exit 2; }
                  unit=$2; shift 2 ;;
     --time-unit=*) unit=${1#--time-unit=}; shift ;;
     *) args+=("$1"); shift ;;
   esac
 done
-[[ $unit == natural || $unit == s ]] ||
+[[ -z $unit || $unit == natural || $unit == s ]] ||
   { echo "$0: invalid --time-unit '$unit' (accepted: natural, s)" >&2; exit 2; }
 set -- "${args[@]}"
 [[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 FILE.h5 [OUTDIR] [--time-unit natural|s]" >&2; exit 2; }
@@ -50,6 +53,10 @@ if [[ -n "$(attr model)" && -z "$(attr sqrt_l1_over_g)" ]]; then
   plot_fail 2 "'$1' is a sweep of model $(attr model), which has no flip maps; this script draws the pendulum's (export its indicator map with dpend export FILE --matrix /sweep/megno /sweep/axis1 /sweep/axis2)"
 fi
 plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
+if [[ -z $unit ]]; then   # the sweep's own unit (files before it: natural)
+  unit=$(attr time_unit)
+  [[ $unit == s ]] || unit=natural
+fi
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
 ax1=$(attr axis1); ax2=$(attr axis2)
 links=$(attr links)

@@ -356,7 +356,7 @@ contains
                       't_end = 4 sqrt(l1/g) = 2 s')
       ! fit: the window in the unit (9.4 sqrt(1/9.8) s = 3.003 s: the samples to 3 s)
       call expect_out('fit data/fit_example.csv --time-unit natural --fit-window 9.4 ' &
-                      //'--force --output '//dir//'/f.h5', 'fit window t <= 3 s (151 samples)')
+                      //'--force --output '//dir//'/f.h5', 'sqrt(l1/g) = 3 s (151 samples)')
       call expect_out('simulate --l1 2.45 --t-end 4 --force --output '//dir//'/o.h5', &
                       't = 0 .. 4 s = 8 sqrt(l1/g)')
       call execute_command_line('rm -rf '//dir)

@@ -9,8 +9,8 @@ module dpend_divergence_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
-   use dpend_strings, only: with_uncertainty, real_str
-   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, natural_time
+   use dpend_strings, only: with_uncertainty, real_str, distance_in_errors
+   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, span_text
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_propagate, only: march_progress_t
@@ -120,8 +120,7 @@ contains
                 time_text(cfg, cfg%t_end)//', delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl
       if (fit%ok) then
-         summary = summary//'fit window: '//fixed(fit%t_start)//' .. '//fixed(fit%t_end)//' s'// &
-                   natural_window(fit%t_start, fit%t_end)//' (' &
+         summary = summary//'fit window: '//span_text(cfg, fit%t_start, fit%t_end)//' (' &
                    //to_str(fit%n_points)//' samples); saturation at log10|delta| = ' &
                    //fixed(fit%saturation)//pick(fit%saturated, '', ' (not saturated)')//nl// &
                    'slope: '//with_uncertainty(fit%slope, fit%slope_stderr)//' 1/s (the ' &
@@ -149,8 +148,7 @@ contains
          summary = summary//nl//'divergence slope: '//es(fit%slope)
       else if (ch%fit_end > ch%fit_start) then
          summary = summary//nl//'divergence slope: none (fewer than 3 samples in the fit ' &
-                   //'window '//num(ch%fit_start)//' .. '//num(ch%fit_end)//' s'// &
-                   natural_window(ch%fit_start, ch%fit_end)//'; widen ' &
+                   //'window '//span_text(cfg, ch%fit_start, ch%fit_end)//'; widen ' &
                    //'--fit-start/--fit-end or lower --output-dt)'
       else
          summary = summary//nl//'divergence slope: none (no exponential phase: log10|delta| ' &
@@ -158,14 +156,6 @@ contains
                    time_text(cfg, cfg%t_end)//'; a regular orbit, or try a longer --t-end)'
       end if
    contains
-      !> With time_unit natural, the window [a, b] s in it: ' = 5.07 .. 17.8 sqrt(l1/g)'.
-      function natural_window(a, b) result(t)
-         real(dp), intent(in) :: a, b
-         character(len=:), allocatable :: t
-         t = ''
-         if (trim(cfg%time_unit) == 'natural') t = ' = '//real_str(a/natural_time(cfg), 4)// &
-            ' .. '//time_in_unit(cfg, b)
-      end function natural_window
       !> 'q1, q2, qdot1, qdot2' or 'r, phi, rdot, phidot': the state's components.
       function state_names(blank_separated) result(t)
          character(len=*), intent(in) :: blank_separated
@@ -217,14 +207,7 @@ contains
       ur = sqrt((ua/b)**2 + (a*ub/b**2)**2)   ! |r| sqrt((ua/a)^2 + (ub/b)^2), a = 0 too
       s = with_uncertainty(r, ur)
       if (ieee_is_nan(ur) .or. ieee_is_nan(r)) return   ! (an ordered test with NaN traps)
-      if (.not. (ur > 0.0_dp)) return
-      if (abs(r - 1.0_dp) <= ur) then
-         s = s//' (1 within 1 standard error)'
-      else if (abs(r - 1.0_dp) <= 2*ur) then
-         s = s//' (1 within 2 standard errors)'
-      else
-         s = s//' (1 is '//real_str(abs(r - 1.0_dp)/ur, 2)//' standard errors away)'
-      end if
+      if (ur > 0.0_dp) s = s//' ('//distance_in_errors(r, 1.0_dp, '1', ur)//')'
    end function ratio_text
 
 end module dpend_divergence_command

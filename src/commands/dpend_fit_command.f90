@@ -302,7 +302,7 @@ contains
          write (report_unit(), '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
             ', '//to_str(s%k)//' samples, t1 = '// &
             real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
-            real_str(res%t_window)//' s ('//to_str(res%k_fit)//' samples); '// &
+            time_text(fc%run, res%t_window)//' ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
          if (len(csv_format(s)) > 0) write (report_unit(), '(a)') '  csv: '//csv_format(s)
          if (s%theta) write (report_unit(), '(a)') '  (the file gives theta from the hanging ' &

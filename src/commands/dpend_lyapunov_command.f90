@@ -5,10 +5,9 @@
 !> and the run around it are in `dpend_chaos_common`.
 module dpend_lyapunov_command
    use dpend_kinds, only: dp
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
-   use dpend_strings, only: with_uncertainty, real_str
+   use dpend_strings, only: with_uncertainty, real_str, distance_in_errors
    use dpend_run_settings, only: run_config_t, time_text, time_in_unit
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
@@ -103,7 +102,8 @@ contains
          u = sqrt(res%spread(i)**2 + res%spread(k + 1 - i)**2)
          summary = summary//'pairing defect: lambda'//to_str(i)//' + lambda'// &
                    to_str(k + 1 - i)//' = '//with_uncertainty(defects(i), u)//' 1/s'// &
-                   pct(defects(i), res%exponents(1))//'; '//within(defects(i), u)//nl
+                   pct(defects(i), res%exponents(1))//'; '// &
+                   distance_in_errors(defects(i), 0.0_dp, '0', u)//nl
       end do
       summary = summary//"dpend lyapunov: wrote '"//cfg%output//"'"
       if (stat /= stat_ok) then
@@ -119,23 +119,6 @@ contains
    end subroutine run_lyapunov
 
    !> " (x % of ref)" when ref /= 0.
-   !> How far x lies from 0 in units of its standard error u, in words.
-   function within(x, u) result(s)
-      real(dp), intent(in) :: x, u
-      character(len=:), allocatable :: s
-      if (ieee_is_nan(x) .or. ieee_is_nan(u)) then   ! (an ordered test with NaN traps)
-         s = 'no standard error'
-      else if (.not. (u > 0.0_dp)) then
-         s = 'no standard error'
-      else if (abs(x) <= u) then
-         s = '0 within 1 standard error'
-      else if (abs(x) <= 2*u) then
-         s = '0 within 2 standard errors'
-      else
-         s = real_str(abs(x)/u, 2)//' standard errors from 0'
-      end if
-   end function within
-
    function pct(x, ref) result(s)
       real(dp), intent(in) :: x, ref
       character(len=:), allocatable :: s

@@ -10,7 +10,8 @@ module dpend_strings
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_is_negative
    implicit none
    private
-   public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty
+   public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty, &
+      distance_in_errors
    public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
@@ -193,6 +194,27 @@ contains
          write (t, '(i2.2)') k
       end function int_str2
    end function with_uncertainty
+
+   !> How far an estimate x lies from a value in standard errors u: '0 within 1
+   !> standard error', '1 within 2 standard errors', '0 is 3.4 standard errors away'
+   !> (`value_text` names the value); 'no standard error' for u not > 0 or NaN.
+   function distance_in_errors(x, value, value_text, u) result(s)
+      real(dp), intent(in) :: x, value, u      !! the estimate, the value, the error
+      character(len=*), intent(in) :: value_text  !! the value as printed, e.g. '0'
+      character(len=:), allocatable :: s
+      real(dp) :: d
+      s = 'no standard error'
+      if (ieee_is_nan(x) .or. ieee_is_nan(u)) return   ! (an ordered test with NaN traps)
+      if (.not. (u > 0.0_dp)) return
+      d = abs(x - value)
+      if (d <= u) then
+         s = value_text//' within 1 standard error'
+      else if (d <= 2*u) then
+         s = value_text//' within 2 standard errors'
+      else
+         s = value_text//' is '//real_str(d/u, 2)//' standard errors away'
+      end if
+   end function distance_in_errors
 
    !> A duration for people, from `real_str`: two significant digits below 1 s
    !> (0.4, 0.043), one decimal above (2.5, 12.3, 1234.5); never '.4'.

@@ -295,6 +295,8 @@ contains
          call h5%writeattr('/sweep', 't_end', setup%opt%h*setup%opt%n_steps)
          call h5%writeattr('/sweep', 'n_steps', setup%opt%n_steps)
          call h5%writeattr('/sweep', 'sqrt_l1_over_g', setup%tau)
+         ! the unit its dt and t_end were given in (the file's times are in s)
+         call h5%writeattr('/sweep', 'time_unit', trim(c%run%time_unit))
          call h5%writeattr('/sweep', 'potential_range', range)
          call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
          call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))

@@ -22,7 +22,7 @@ module dpend_run_settings
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
       is_model_parameter, list_names, mark_given, unused_setting, natural_time, &
-      natural_unit_name, time_text, time_in_unit, time_unit_option_help
+      natural_unit_name, time_text, time_in_unit, span_text, time_unit_option_help
 
    !> Settings of the pendulum's links and their parameter in the model catalogue: a
    !> setting given for a model without that parameter is refused. The second link's
@@ -204,15 +204,34 @@ contains
       end if
    end function time_text
 
-   !> A time [s] in the run's unit, to 6 digits: '0.001 s' or '0.00313 sqrt(l1/g)'.
-   function time_in_unit(cfg, t) result(s)
+   !> A span [a, b] s in both units, the run's first, to 4 digits: '1.22 .. 8.229 s'
+   !> (time_unit s, which the summaries quote alone) or '3.82 .. 25.76 sqrt(l1/g) =
+   !> 1.22 .. 8.229 s' (natural).
+   function span_text(cfg, a, b) result(s)
+      type(run_config_t), intent(in) :: cfg  !! configuration, model built
+      real(dp), intent(in) :: a, b           !! the span's ends [s]
+      character(len=:), allocatable :: s
+      real(dp) :: tn
+      s = real_str(a, 4)//' .. '//real_str(b, 4)//' s'
+      if (trim(cfg%time_unit) /= 'natural') return
+      tn = natural_time(cfg)
+      s = real_str(a/tn, 4)//' .. '//real_str(b/tn, 4)//' '//natural_unit_name(cfg)//' = '//s
+   end function span_text
+
+   !> A time [s] in the run's unit, to 6 digits (or `digits`): '0.001 s' or '0.00313
+   !> sqrt(l1/g)'.
+   function time_in_unit(cfg, t, digits) result(s)
       type(run_config_t), intent(in) :: cfg  !! configuration, model built
       real(dp), intent(in) :: t              !! time [s]
+      integer, intent(in), optional :: digits  !! significant digits (default 6)
       character(len=:), allocatable :: s
+      integer :: d
+      d = 6
+      if (present(digits)) d = digits
       if (trim(cfg%time_unit) == 'natural') then
-         s = real_str(t/natural_time(cfg), 6)//' '//natural_unit_name(cfg)
+         s = real_str(t/natural_time(cfg), d)//' '//natural_unit_name(cfg)
       else
-         s = real_str(t, 6)//' s'
+         s = real_str(t, d)//' s'
       end if
    end function time_in_unit
 
