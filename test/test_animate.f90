@@ -27,7 +27,8 @@ contains
    !> mass is drawn as a bob at the end of its link (com_i / l_i = 1), a rod has none;
    !> the labels name each file with its method and step, the title says in what the
    !> runs differ (q0), or that they do not; --layout side draws the two side by side
-   !> (1280 x 640 by default), and is refused without --overlay or with another name.
+   !> (1280 x 640 by default), and is refused without --overlay or with another name;
+   !> rods against points: 'body (uniform rods | point masses)'.
    subroutine test_overlay_labels(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, title, label1, label2, text
@@ -64,6 +65,16 @@ contains
                       'title: '//title)
       call animation_labels(cfg, a, a, .true., title, label1, label2)
       call check_true(error, index(title, 'the same method, dt') > 0, 'same runs: '//title)
+      ! rods against point masses: the body in a few words (a rod file has no body
+      ! attribute: the default); a title too wide for the frame names the setting only
+      call animation_labels(cfg, r, a, .true., title, label1, label2)
+      call check_true(error, index(title, 'they differ in body (uniform rods | point ' &
+                      //'masses)') > 0, 'rods and points: '//title)
+      cfg%width = 200
+      call animation_labels(cfg, r, a, .true., title, label1, label2)
+      call check_true(error, index(title, 'they differ in body (in full on stdout)') > 0, &
+                      'a narrow title: '//title)
+      cfg%width = 640
       call expect_gif(error, dir, '--overlay '//dir//'/pb.h5 --layout side --duration 0.4 '// &
                       '--fps 10', 'side.gif', 4, 1280, 640, 'pa.h5')
       stat = run_command(dir, 'animate '//dir//'/pa.h5 --layout side --output '//dir// &
