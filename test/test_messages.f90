@@ -5,7 +5,7 @@ module test_messages
    use dpend_kinds, only: dp
    use testing, only: unittest_t, new_unittest, check_true, error_t
    use dpend_cli, only: real_str, seconds_str, to_lower, to_str
-   use dpend_strings, only: with_uncertainty
+   use dpend_strings, only: with_uncertainty, interval_text, distance_in_errors
    use dpend_run_settings, only: run_config_t
    use dpend_simulate, only: simulate_help, simulate_defaults
    use dpend_chaos_common, only: chaos_help, chaos_config_t, chaos_defaults, chaos_run_defaults
@@ -655,6 +655,14 @@ contains
       call same(-1e-4_dp, 0.042706098_dp, '0.000 +- 0.043')
       call same(2.5_dp, 0.0_dp, '2.5 (no uncertainty)')
       call same(0.6500013425_dp, 4.4e-5_dp, '0.650001 +- 0.000044')
+      ! an interval's ends to the estimate's decimal place (the fit's 95 % intervals)
+      call same_interval(0.226246_dp, 0.23227_dp, 0.0015_dp, '[0.2262, 0.2323]')
+      call same_interval(-0.00522459_dp, 0.0110134_dp, 0.0041_dp, '[-0.0052, 0.0110]')
+      call same_interval(8.14e-7_dp, 8.26e-7_dp, 3.1e-9_dp, '[8.140, 8.260]e-07')
+      call same_interval(1.0_dp, 2.0_dp, 0.0_dp, '[1, 2]')
+      call check_true(error, distance_in_errors(1.3_dp, 1.0_dp, '1', 0.1_dp) == &
+                      '1 is 3 standard errors away' .and. distance_in_errors(-0.1_dp, &
+                      0.0_dp, '0', 0.1_dp) == '0 within 1 standard error', 'distances')
       if (allocated(error)) return
       dir = scratch_dir('uncertainty')
       stat = run_command(dir, 'lyapunov --t-end 20 --output '//dir//'/l.h5')
@@ -685,6 +693,13 @@ contains
          call check_true(error, with_uncertainty(x, u) == want, real_str(x)//' +- '// &
                          real_str(u)//': '//with_uncertainty(x, u)//', not '//want)
       end subroutine same
+      subroutine same_interval(lo, hi, u, want)
+         real(dp), intent(in) :: lo, hi, u
+         character(len=*), intent(in) :: want
+         if (allocated(error)) return
+         call check_true(error, interval_text(lo, hi, u) == want, 'interval: '// &
+                         interval_text(lo, hi, u)//', not '//want)
+      end subroutine same_interval
    end subroutine test_uncertainty_digits
 
    !> The sweep's horizon and step in both units, against the natural

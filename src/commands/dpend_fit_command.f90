@@ -12,7 +12,7 @@ module dpend_fit_command
    use dpend_kinds, only: dp, pi, half_pi
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
-   use dpend_strings, only: with_uncertainty
+   use dpend_strings, only: with_uncertainty, interval_text
    use dpend_run_settings, only: time_text
    use dpend_csv, only: csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, set_fitted, n_fitted, &
@@ -325,9 +325,9 @@ contains
          //'   95 % interval (Student t)'
       do i = 1, np
          write (report_unit(), '(a)') '  '//pad(names(i), 13)//pad(with_uncertainty(res%p(i), &
-            res%se(i))//' '//trim(units(i)), 41)//'['// &
-            real_str(res%p(i) - res%t95*res%se(i), 6)//', '// &
-            real_str(res%p(i) + res%t95*res%se(i), 6)//']'
+            res%se(i))//' '//trim(units(i)), 41)// &
+            interval_text(res%p(i) - res%t95*res%se(i), res%p(i) + res%t95*res%se(i), &
+                          res%se(i))
       end do
       if (.not. fc%model_coords .and. (fc%series%theta .or. fc%series%degrees)) &
          write (report_unit(), '(a)') '  in the data''s convention: '//data_convention(fc, res)

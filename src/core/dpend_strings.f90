@@ -11,7 +11,7 @@ module dpend_strings
    implicit none
    private
    public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty, &
-      distance_in_errors
+      distance_in_errors, interval_text
    public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
@@ -137,63 +137,96 @@ contains
       real(dp), intent(in) :: x   !! the estimate
       real(dp), intent(in) :: u   !! its uncertainty (a standard error), same unit
       character(len=:), allocatable :: s
-      real(dp) :: ur, scale
+      real(dp) :: scale
       integer :: d, e
-      logical :: no_u
       if (.not. ieee_is_finite(x)) then
          s = real_str(x)
          return
       end if
-      ! (two tests: Fortran's .and. may evaluate both, and u > 0 with a NaN traps)
-      no_u = .not. ieee_is_finite(u)
-      if (.not. no_u) no_u = u <= 0.0_dp
-      if (no_u) then
+      if (.not. usable(u)) then
          s = real_str(x, 6)//' (no uncertainty)'
          return
       end if
+      call decimal_place(max(abs(x), u), u, d, e)
+      if (e == 0) then
+         s = fixed(x, d)//' +- '//fixed(u, d)
+      else
+         scale = 10.0_dp**real(e, dp)
+         s = '('//fixed(x/scale, d)//' +- '//fixed(u/scale, d)//')'//exponent_text(e)
+      end if
+   end function with_uncertainty
+
+   !> An interval [a, b] of an estimate with uncertainty u, its ends to the decimal
+   !> place `with_uncertainty` gives the estimate: '[0.2262, 0.2323]', or with a
+   !> common exponent '[8.140, 8.260]e-07'; without a usable u, each to 6 digits.
+   function interval_text(a, b, u) result(s)
+      real(dp), intent(in) :: a, b   !! the ends
+      real(dp), intent(in) :: u      !! the estimate's uncertainty, same unit
+      character(len=:), allocatable :: s
+      real(dp) :: scale
+      integer :: d, e
+      if (.not. (ieee_is_finite(a) .and. ieee_is_finite(b) .and. usable(u))) then
+         s = '['//real_str(a, 6)//', '//real_str(b, 6)//']'
+         return
+      end if
+      call decimal_place(max(abs(a), abs(b), u), u, d, e)
+      scale = 10.0_dp**real(e, dp)
+      s = '['//fixed(a/scale, d)//', '//fixed(b/scale, d)//']'
+      if (e /= 0) s = s//exponent_text(e)
+   end function interval_text
+
+   !> Whether u is an uncertainty to round to: finite and > 0 (two tests: Fortran's
+   !> .and. may evaluate both, and u > 0 with a NaN traps).
+   pure logical function usable(u)
+      real(dp), intent(in) :: u
+      usable = ieee_is_finite(u)
+      if (usable) usable = u > 0.0_dp
+   end function usable
+
+   !> The decimals d that keep two significant digits of u > 0 and, for numbers up to
+   !> `big` beyond 1e7 or with more than 6 decimals, the common exponent e (then d
+   !> counts the decimals of the numbers divided by 10^e; else e = 0).
+   pure subroutine decimal_place(big, u, d, e)
+      real(dp), intent(in) :: big, u
+      integer, intent(out) :: d, e
+      real(dp) :: ur
       d = 1 - floor(log10(u))                 ! decimals that keep two digits of u
       ur = anint(10.0_dp*u/10.0_dp**real(floor(log10(u)), dp))   ! its two digits, 10 .. 100
       if (ur >= 100.0_dp) d = d - 1           ! 0.0996 rounds to 0.10: one decimal less
-      if (max(abs(x), u) < 1e7_dp .and. d <= 6) then
-         s = fixed(x, d)//' +- '//fixed(u, d)
+      e = 0
+      if (big < 1e7_dp .and. d <= 6) return
+      e = floor(log10(big))
+      d = min(d + e, 16)   ! a double's digits at most
+   end subroutine decimal_place
+
+   !> 'e-07', 'e+08': a common exponent.
+   pure function exponent_text(e) result(t)
+      integer, intent(in) :: e
+      character(len=:), allocatable :: t
+      character(len=8) :: buf
+      write (buf, '(i2.2)') abs(e)
+      t = 'e'//merge('-', '+', e < 0)//trim(buf)
+   end function exponent_text
+
+   !> y rounded to `dec` decimals (dec < 0: to 10^-dec), without exponent.
+   function fixed(y, dec) result(t)
+      real(dp), intent(in) :: y
+      integer, intent(in) :: dec
+      character(len=:), allocatable :: t
+      character(len=48) :: buf
+      if (dec <= 0) then
+         write (buf, '(i0)') nint(anint(y*10.0_dp**real(dec, dp))/10.0_dp**real(dec, dp), i8)
       else
-         e = floor(log10(max(abs(x), u)))
-         scale = 10.0_dp**real(e, dp)
-         d = min(d + e, 16)   ! a double's digits at most
-         s = '('//fixed(x/scale, d)//' +- '//fixed(u/scale, d)//')e'
-         if (e < 0) then
-            s = s//'-'
-         else
-            s = s//'+'
-         end if
-         s = s//trim(int_str2(abs(e)))
+         write (buf, '(f0.'//int_str(dec)//')') anint(y*10.0_dp**real(dec, dp))/ &
+            10.0_dp**real(dec, dp)
       end if
-   contains
-      !> y rounded to `dec` decimals (dec < 0: to 10^-dec), without exponent.
-      function fixed(y, dec) result(t)
-         real(dp), intent(in) :: y
-         integer, intent(in) :: dec
-         character(len=:), allocatable :: t
-         character(len=48) :: buf
-         if (dec <= 0) then
-            write (buf, '(i0)') nint(anint(y*10.0_dp**real(dec, dp))/10.0_dp**real(dec, dp), i8)
-         else
-            write (buf, '(f0.'//int_str(dec)//')') anint(y*10.0_dp**real(dec, dp))/ &
-               10.0_dp**real(dec, dp)
-         end if
-         t = trim(buf)
-         if (t(1:1) == '.') t = '0'//t
-         if (len(t) >= 2) then
-            if (t(1:2) == '-.') t = '-0'//t(2:)
-         end if
-         if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
-      end function fixed
-      function int_str2(k) result(t)
-         integer, intent(in) :: k
-         character(len=8) :: t
-         write (t, '(i2.2)') k
-      end function int_str2
-   end function with_uncertainty
+      t = trim(buf)
+      if (t(1:1) == '.') t = '0'//t
+      if (len(t) >= 2) then
+         if (t(1:2) == '-.') t = '-0'//t(2:)
+      end if
+      if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
+   end function fixed
 
    !> How far an estimate x lies from a value in standard errors u: '0 within 1
    !> standard error', '1 within 2 standard errors', '0 is 3.4 standard errors away'
