@@ -488,4 +488,5 @@ fi
 plot_begin "$out" "${figures[@]}"
 plot_run gnuplot -c "$gp" "$tmp" "$figdir" "$oc_text" "$dc_text" "$here/plot/style.gp"
 fig_list=$(IFS=,; echo "${figures[*]%.png}")
-printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"
+# DPEND_PLOT_QUIET=1 (dpend study --quiet): the caller's line is the last
+[[ ${DPEND_PLOT_QUIET:-0} == 1 ]] || printf 'plot_study.sh: wrote %s/{%s}.png\n' "$out" "$fig_list"

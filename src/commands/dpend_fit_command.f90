@@ -105,7 +105,8 @@ contains
          return
       end if
       if (.not. quiet) call print_report(fc, res)
-      call misfit_warning(fc, prob, res)
+      ! --quiet: the warning on stderr, the closing line alone on stdout
+      call misfit_warning(fc, prob, res, merge(error_unit, report_unit(), quiet))
       call write_fit(out%temp, fc, res, werr)
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -201,12 +202,14 @@ contains
    end subroutine write_fit_failure
 
    !> A fit whose RMS residual exceeds `misfit_factor` times the noise (--sigma, or
-   !> estimated from the data's third differences) says so on stdout and names the
-   !> unfitted parameters whose fit would lower it most (`misfit_suspects`).
-   subroutine misfit_warning(fc, prob, res)
+   !> estimated from the data's third differences) says so on `unit` (the report's,
+   !> stderr with --quiet) and names the unfitted parameters whose fit would lower it
+   !> most (`misfit_suspects`).
+   subroutine misfit_warning(fc, prob, res, unit)
       type(fit_config_t), intent(in) :: fc      !! configuration
       type(fit_problem_t), intent(in) :: prob   !! the problem fitted
       type(fit_result_t), intent(in) :: res     !! the fit
+      integer, intent(in) :: unit               !! where the warning goes
       type(suspect_t), allocatable :: sus(:)
       type(error_t), allocatable :: error
       character(len=:), allocatable :: ou, how, line
@@ -216,14 +219,14 @@ contains
       if (fc%model_coords) ou = '(in the coordinates'' units)'
       noise = observation_noise(prob, fc%series%q, res%k_fit, how)
       if (.not. (res%rms > misfit_factor*noise)) return
-      write (report_unit(), '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
+      write (unit, '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
          //ou//' is '//real_str(res%rms/max(noise, tiny(1.0_dp)), 3)//' times the noise ' &
          //real_str(noise, 3)//' '//ou//' ('//how//'), more than '//real_str(misfit_factor)// &
          ': the model does not describe the data (the residuals are model error: a ' &
          //'fixed parameter is wrong, or the model is not the system)'
       call misfit_suspects(prob, fc%series%t, fc%series%q, res, sus, error)
       if (allocated(error)) then
-         write (report_unit(), '(a)') '  (the parameters that may be wrong could not be ' &
+         write (unit, '(a)') '  (the parameters that may be wrong could not be ' &
             //'ranked: '//error%message//')'
          return
       end if
@@ -233,7 +236,7 @@ contains
          if (i > 1) line = line//', '
          line = line//trim(sus(i)%label)//' ('//real_str(sus(i)%rms, 3)//')'
       end do
-      write (report_unit(), '(a)') '  parameters that may be wrong, by the RMS residual ' &
+      write (unit, '(a)') '  parameters that may be wrong, by the RMS residual ' &
          //'fitting each too would leave (linearized): '//line//'; fit them with ' &
          //'--fit-param '//trim(sus(1)%label)
    end subroutine misfit_warning

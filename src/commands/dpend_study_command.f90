@@ -60,7 +60,7 @@ contains
       type(output_t) :: h5_out, md_out
       character(len=:), allocatable :: text, md, script, fig_dir, exe, errlog
       integer :: gone
-      type(arg_t) :: argv(6)
+      type(arg_t) :: argv(7)
       integer :: unit, stat
       character(len=512) :: msg
       failed = .false.
@@ -117,8 +117,8 @@ contains
       call md_out%discard()
       if (allocated(error)) return
       if (.not. quiet) write (output_unit, '(a)') text
-      write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md//"'"
       if (.not. cfg%figures) then
+         write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md//"'"
          failed = .false.
          return
       end if
@@ -133,8 +133,9 @@ contains
       exe = executable_path()
       ! component by component (gfortran 12 mangles an array constructor of
       ! structure constructors with deferred-length components)
-      argv(1)%s = 'env'; argv(2)%s = 'DPEND='//exe; argv(3)%s = 'bash'
-      argv(4)%s = script; argv(5)%s = cfg%output; argv(6)%s = fig_dir
+      argv(1)%s = 'env'; argv(2)%s = 'DPEND='//exe
+      argv(3)%s = 'DPEND_PLOT_QUIET='//trim(merge('1', '0', quiet)); argv(4)%s = 'bash'
+      argv(5)%s = script; argv(6)%s = cfg%output; argv(7)%s = fig_dir
       ! gnuplot's messages go to a file, shown only when the figures fail
       if (make_temp_file(fig_dir//'/.'//base_name(cfg%output)//'.plot-', errlog) /= 0) &
          errlog = ''
@@ -152,6 +153,9 @@ contains
                           'with the file and the figure directory')
          return
       end if
+      ! the closing line last (--quiet: the only one)
+      write (output_unit, '(a)') "dpend study: wrote '"//cfg%output//"' and '"//md// &
+         "', figures in '"//fig_dir//"'"
       failed = .false.
    end subroutine run_study_command_body
 

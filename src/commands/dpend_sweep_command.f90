@@ -56,11 +56,11 @@ contains
          write (output_unit, '(a)') "dpend sweep: '"//cfg%run%output// &
             "' is complete (nothing to compute)"
       else
+         ! a body other than the uniform rod, before the closing line (--quiet: that alone)
+         if (len(cfg%run%model%body_description()) > 0 .and. .not. cfg%quiet) &
+            write (output_unit, '(a)') 'dpend sweep: links: '//cfg%run%model%body_description()
          write (output_unit, '(a)') "dpend sweep: wrote '"//cfg%run%output//"': "// &
             summary_text(summary)
-         ! a body other than the uniform rod
-         if (len(cfg%run%model%body_description()) > 0) write (output_unit, '(a)') &
-            'dpend sweep: links: '//cfg%run%model%body_description()
       end if
    end subroutine sweep_command
 end module dpend_sweep_command

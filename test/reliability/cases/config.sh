@@ -145,7 +145,7 @@ succeed cfg-swp-config-ok     -- sweep --config cfg_sweep_ok.nml --quiet --outpu
 refuse  cfg-std-fifo          'FIFO'               -- study --config cfg_fifo.nml --output o/s.h5
 refuse  cfg-std-hdf5          'HDF5 file'          -- study --config existing.h5 --output o/s.h5
 refuse  cfg-std-study-twice   'appears twice'      -- study --config cfg_study_twice.nml --output o/s.h5
-refuse  cfg-std-integration   'unknown namelist group' -- study --config cfg_study_integration.nml --output o/s.h5
+refuse  cfg-std-integration   'reads only time_unit' -- study --config cfg_study_integration.nml --output o/s.h5
 refuse  cfg-std-dir           'directory'          -- study --config dir --output o/s.h5
 refuse  cfg-std-nogroup       'outside any'        -- study --config cfg_nogroup.nml --output o/s.h5
 

@@ -54,10 +54,24 @@ summary compare    sweep-compare w.h5 w2.h5
 summary agreement  sweep-compare m.h5 m2.h5 --agreement --output @_agree.h5
 summary fit        fit "$ROOT/data/fit_example.csv" --fit-damping --output @_fit.h5
 summary study      study --quick --no-figures --methods rk4,verlet --output @_study.h5
+summary sweep-point sweep --n 4 --t-end 2 --body point --output @_swp.h5
 if command -v gnuplot > /dev/null 2>&1; then
   summary animate  animate s.h5 --output @_anim.gif --size 64x64 --fps 5
+  # the figures' script says nothing with --quiet: the study's line is the last
+  mkdir -p quiet_st loud_st
+  summary study-figures study --quick --methods rk4 --cases small --output @_st/study.h5
 else
   bad "animate: gnuplot is not installed"
+fi
+
+# a fit that does not describe its data: --quiet keeps its warning, on stderr
+"$DPEND" fit "$ROOT/data/fit_mass_length.csv" --output misfit.h5 --quiet > q_misfit.out 2> q_misfit.err
+st=$?
+if [[ $st -eq 0 && $(wc -l < q_misfit.out) -eq 1 ]] && grep -q "dpend fit: wrote" q_misfit.out &&
+   grep -q "warning: the RMS residual" q_misfit.err; then
+  pass "fit-misfit: one line on stdout, the warning on stderr"
+else
+  bad "fit-misfit: exit $st, stdout '$(head -c 300 q_misfit.out)', stderr '$(head -c 300 q_misfit.err)'"
 fi
 
 # data commands: the same output with and without --quiet
