@@ -15,7 +15,8 @@ module dpend_command_table
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t
-   use dpend_strings, only: did_you_mean
+   use dpend_strings, only: did_you_mean, word_wrap
+   use dpend_model_factory, only: model_catalogue, model_info_t, body_list
    use dpend_version, only: version
    use dpend_simulate, only: simulate_command
    use dpend_lyapunov_command, only: lyapunov_command
@@ -73,24 +74,25 @@ contains
          command_t('divergence', 'divergence of nearby trajectories, fitted exponential ' &
                    //'slope', divergence_command), &
          command_t('poincare', 'Poincare section at one energy', poincare_command), &
-         command_t('sweep', 'maps over initial conditions (flip time, energy error, ' &
-                   //'Lyapunov)', sweep_command), &
-         command_t('sweep-compare', 'accuracy report: flip times of two sweeps (e.g. dt, ' &
-                   //'dt/2)', sweep_compare_command), &
+         command_t('sweep', 'maps over initial conditions or parameters: flip time, ' &
+                   //'energy error, lambda1, MEGNO, FLI, SALI, GALI_2', sweep_command), &
+         command_t('sweep-compare', 'two sweeps (e.g. dt, dt/2) compared by their own ' &
+                   //'quantity: flip times, or indicator values and classes', &
+                   sweep_compare_command), &
          command_t('export', 'print HDF5 datasets as text columns, CSV or a matrix; --list', &
                    export_command), &
          command_t('study', 'energy-conservation study of every method: data, summary, ' &
                    //'figures', study_command), &
-         command_t('animate', 'animated GIF of a simulate file (gnuplot): rods, tip trail, ' &
-                   //'time', animate_command), &
-         command_t('fit', 'estimate the initial state (and damping) from measured angles ' &
-                   //'(CSV)', fit_command), &
+         command_t('animate', 'animated GIF of a simulate file (gnuplot): rods and bobs, ' &
+                   //'tip trail, time; two runs overlaid or side by side', animate_command), &
+         command_t('fit', 'estimate the initial state and parameters from measured angles ' &
+                   //'or positions (CSV; the tip alone too)', fit_command), &
          command_t('explore', 'a map of dpend sweep in the browser: click a pixel, watch ' &
                    //'its pendulum', explore_command), &
          command_t('methods', 'the integration methods: order, properties, commands', &
                    methods_command), &
-         command_t('models', 'the models: coordinates, parameters (units, ranges), ' &
-                   //'capabilities', models_command), &
+         command_t('models', 'the models: coordinates, bodies, parameters (units, ' &
+                   //'ranges), capabilities', models_command), &
          command_t('version', 'print the version', version_command), &
          command_t('help', '', help_command), &
          command_t('--help', '', help_command), &
@@ -140,32 +142,67 @@ contains
       do i = 1, size(table)
          if (len(table(i)%line) == 0) cycle
          ! the names in a column of 10; a longer one two blanks before its line
+         ! (lines wrapped at 78 columns, continued under the first)
          if (len(table(i)%name) <= 10) then
             rows = rows//'  '//table(i)%name//repeat(' ', 11 - len(table(i)%name))// &
-                   table(i)%line//nl
+                   word_wrap(table(i)%line, 65, 13)//nl
          else
-            rows = rows//'  '//table(i)%name//'  '//table(i)%line//nl
+            rows = rows//'  '//table(i)%name//'  '// &
+                   word_wrap(table(i)%line, 78 - 4 - len(table(i)%name), 13)//nl
          end if
       end do
       s = 'dpend '//version//' - the compound double pendulum, chains of N rods and the'// &
           nl//'elastic pendulum: trajectories, chaos, maps, accuracy studies, fits'//nl//nl// &
           'usage: dpend COMMAND [options]     (dpend COMMAND --help for its options)'//nl//nl// &
           'commands:'//nl//rows//nl// &
-          'models (--model NAME; dpend models lists parameters, ranges, capabilities):'//nl// &
-          '  pendulum   N uniform rods hinged in a chain (--links N, default 2: the'//nl// &
-          '             chapter''s compound double pendulum; --m, --l: one value per link)'// &
-          nl//'             with optional joint damping (--damping c1,c2,...) and a moving'// &
-          nl//'             support (--support-amplitude ax,ay --support-frequency w'//nl// &
-          '             --support-phase px,py): simulate, lyapunov, indicators,'//nl// &
-          '             divergence and fit take them, study as cases of &study; sweep'// &
-          nl//'             and poincare need the conservative chain'//nl// &
-          '  elastic    a point mass on a spring (--k, --l0, --m; coordinates r, phi)'//nl//nl// &
+          'models (--model NAME; dpend models lists coordinates, bodies, parameters, ranges,'// &
+          nl//'capabilities):'//nl//model_rows()//nl// &
           'Every command takes --quiet: no progress report, and of a summary only its'//nl// &
-          'last line (export, methods and models print their data as always).'//nl//nl// &
+          'last line (export, methods and models print their data as always).'//nl// &
+          'Every command that takes or shows times takes --time-unit s|natural: seconds'//nl// &
+          '(the default; the sweep''s is natural) or sqrt(l1/g), sqrt(l0/g) for the elastic'//nl// &
+          'pendulum; summaries quote both, the chosen one first.'//nl//nl// &
           'Conventions: SI units; angles q1 .. qN in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q_i = -pi/2); --theta1'//nl// &
           'and the sweep''s theta axes from the hanging position.'//nl// &
           'Defaults are the chapter''s: m1 = m2 = 1 kg, l1 = l2 = 1 m, g = 9.8 m/s^2.'
+   contains
+      !> A row per model of the factory's catalogue: its name and its one-line summary,
+      !> wrapped (the catalogue is the one description: `dpend models` prints it too).
+      function model_rows() result(t)
+         character(len=:), allocatable :: t
+         type(model_info_t), allocatable :: models(:)
+         integer :: k
+         models = model_catalogue()
+         t = ''
+         do k = 1, size(models)
+            t = t//'  '//models(k)%name//repeat(' ', max(1, 11 - len(models(k)%name)))// &
+                word_wrap(models(k)%summary, 65, 13)//nl//repeat(' ', 13)// &
+                word_wrap('options: '//flags_of(models(k)), 65, 13)//nl
+         end do
+      end function model_rows
+      !> The flags of a model's parameters ('--links N --m LIST ...') and its bodies.
+      function flags_of(model) result(t)
+         type(model_info_t), intent(in) :: model
+         character(len=:), allocatable :: t
+         integer :: i
+         t = ''
+         do i = 1, size(model%params)
+            if (i > 1) t = t//' '
+            t = t//'--'//dashed(model%params(i)%name)
+            if (model%params(i)%name == 'links') t = t//' N'
+         end do
+         if (len(model%bodies) > 0) t = t//' --body '//body_list('|')
+      end function flags_of
+      pure function dashed(name) result(d)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: d
+         integer :: i
+         d = name
+         do i = 1, len(d)
+            if (d(i:i) == '_') d(i:i) = '-'
+         end do
+      end function dashed
    end function usage_text
 end module dpend_command_table
 

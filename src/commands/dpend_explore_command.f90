@@ -37,6 +37,13 @@ module dpend_explore_command
       'try:'//new_line('a')// &
       '    from dpend.explore import main'//new_line('a')// &
       'except ImportError as e:'//new_line('a')// &
+      '    if "-h" in sys.argv[1:] or "--help" in sys.argv[1:]:'//new_line('a')// &
+      '        print("usage: dpend explore MAP.h5 [options]\n\nA map of dpend sweep in '// &
+      'the browser: click a pixel, watch its pendulum.\nIts server is the Python '// &
+      'package dpend, not importable by " + sys.executable + " (" + str(e) + "):\n'// &
+      'pip install . in the checkout, or set DPEND_PYTHON to the interpreter that has '// &
+      'it;\nthen dpend explore --help lists the options (docs/explore.md).")'//new_line('a')// &
+      '        sys.exit(0)'//new_line('a')// &
       '    print("dpend explore: the Python package dpend is not importable by " + '// &
       'sys.executable + " (" + str(e) + "): pip install . in the checkout, or set '// &
       'DPEND_PYTHON to the interpreter that has it (docs/explore.md)", '// &

@@ -11,7 +11,7 @@ module dpend_strings
    implicit none
    private
    public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty, &
-      distance_in_errors, interval_text
+      distance_in_errors, interval_text, word_wrap
    public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
@@ -227,6 +227,47 @@ contains
       end if
       if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
    end function fixed
+
+   !> `text` broken at blanks into lines of at most `width` characters (a longer word
+   !> on a line of its own), every line after the first starting with `indent`
+   !> blanks; the lines joined by new_line.
+   pure function word_wrap(text, width, indent) result(s)
+      character(len=*), intent(in) :: text   !! one paragraph
+      integer, intent(in) :: width           !! longest line, indent included
+      integer, intent(in) :: indent          !! blanks before the second line on
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: line
+      integer :: i, j, n
+      logical :: fresh   ! no word on the line yet
+      s = ''
+      line = ''
+      fresh = .true.
+      i = 1
+      n = len_trim(text)
+      do while (i <= n)
+         if (text(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         j = index(text(i:n), ' ')
+         if (j == 0) then
+            j = n
+         else
+            j = i + j - 2
+         end if
+         if (fresh) then
+            line = line//text(i:j)
+         else if (len(line) + 1 + (j - i + 1) > width) then
+            s = s//line//new_line('a')
+            line = repeat(' ', indent)//text(i:j)
+         else
+            line = line//' '//text(i:j)
+         end if
+         fresh = .false.
+         i = j + 1
+      end do
+      s = s//line
+   end function word_wrap
 
    !> How far an estimate x lies from a value in standard errors u: '0 within 1
    !> standard error', '1 within 2 standard errors', '0 is 3.4 standard errors away'
