@@ -1658,6 +1658,7 @@ contains
    subroutine test_block_share_note(error)
       type(error_t), allocatable, intent(out) :: error
       call expect('--n 16', 4, '1 block of 256 pixels for 4 ranks: 3 ranks get no work')
+      call expect('--n 16', 2, '1 block of 256 pixels for 2 ranks: 1 rank gets no work')
       call expect('--n 16', 4, 'so it stays as default; --block 16 makes 16 blocks')
       call expect('--n 16 --block 4096', 4, 'so it stays as given; --block 16 makes 16')
       call expect('--n1 16 --n2 3', 4, 'the map has 3 rows of axis 1: at most that many')

@@ -29,12 +29,34 @@ sed '/^Requires/d' "$pcdir/$pcname.pc" >"$gen/hdf5.pc.new"
 mv "$gen/hdf5.pc.new" "$gen/hdf5.pc"
 export PKG_CONFIG_PATH="$gen${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
 cd "$root/mpi"
-if ! log=$(fpm build --profile release --flag "$RELEASE_FLAGS" 2>&1); then
-  printf '%s\n' "$log" >&2
+# the build in the background: after 2 s a notice on stderr of what is happening
+# and how long it takes, then progress every 30 s (an up-to-date build says nothing)
+log=$(mktemp "${TMPDIR:-/tmp}/dpend-mpi-build.XXXXXX")
+trap 'rm -f "$log"' EXIT
+fpm build --profile release --flag "$RELEASE_FLAGS" > "$log" 2>&1 &
+pid=$!
+trap 'kill "$pid" 2> /dev/null; rm -f "$log"; exit 130' INT TERM
+ticks=0   # tenths of a second
+while kill -0 "$pid" 2> /dev/null; do
+  sleep 0.1
+  ticks=$((ticks + 1))
+  if [ "$ticks" = 20 ]; then
+    echo "build_mpi.sh: building the MPI variant of the sweep (release profile, once:" \
+         "about 1.5 minutes on 2 cores; later builds only what changed)" >&2
+  elif [ $((ticks % 300)) = 0 ]; then
+    done_pct=$(grep -o '^\[ *[0-9]*%\]' "$log" | tail -n 1 | tr -d '[] ' || true)
+    echo "build_mpi.sh: still building ($((ticks / 10)) s${done_pct:+, $done_pct of the files})" >&2
+  fi
+done
+if ! wait "$pid"; then
+  cat "$log" >&2
   echo "build_mpi.sh: build failed (after sources moved or changed interfaces, fpm may" \
     "keep stale objects: remove mpi/build and rerun)" >&2
   exit 1
 fi
+[ "$ticks" -lt 20 ] || echo "build_mpi.sh: built in $((ticks / 10)) s" >&2
+trap - INT TERM EXIT
+rm -f "$log"
 bin=$(fpm run dpend-mpi --profile release --flag "$RELEASE_FLAGS" --runner echo 2>/dev/null |
   tail -n 1)
 case "$bin" in /*) ;; *) bin="$root/mpi/$bin" ;; esac

@@ -224,7 +224,8 @@ contains
       if (setup%nblocks >= workers) return
       s = to_str(setup%nblocks)//trim(merge(' block ', ' blocks', setup%nblocks == 1))// &
           ' of '//to_str(setup%block)//' pixels for '//to_str(workers)//' ranks: '// &
-          to_str(workers - setup%nblocks)//' ranks get no work; the block size is part of ' &
+          to_str(workers - setup%nblocks)//merge(' rank gets', ' ranks get', &
+          workers - setup%nblocks == 1)//' no work; the block size is part of ' &
           //"the file's configuration (a rerun resumes the same blocks), so it stays as "// &
           trim(merge('given  ', 'default', setup%cfg%block_given))
       if (setup%grid) then
