@@ -54,7 +54,7 @@ if [[ -n "$(attr model)" && -z "$(attr sqrt_l1_over_g)" ]]; then
 fi
 plot_number tau "$(attr sqrt_l1_over_g)" "the attribute sqrt_l1_over_g of '$1'"
 if [[ -z $unit ]]; then   # the sweep's own unit (files before it: natural)
-  unit=$(attr time_unit)
+  unit=$(attr time_unit || true)
   [[ $unit == s ]] || unit=natural
 fi
 plot_number t_end "$(attr t_end)" "the attribute t_end of '$1'"
@@ -104,6 +104,12 @@ if h5dump -H -d /sweep/status "$h5" >/dev/null 2>&1; then
   status="$tmp/status.dat"
 fi
 plot_base name "$1"
+# links other than uniform rods say so in every title: 'point masses on massless rods'
+body=$(attr body || true)   # (none for uniform rods)
+if [[ -n $body ]]; then
+  body=${body%% (*}
+  name="$name: ${body%%;*}"
+fi
 plot_enhanced name "$name"
 plot_begin "$out" "${figures[@]}"
 # (no-flip pixels are NaN on purpose: gnuplot leaves them white and warns)

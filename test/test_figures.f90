@@ -190,6 +190,16 @@ contains
       call expect_png(error, dir//'/maps_s/flip_map.png')
       call key_count(dir//'/keys.txt', 'flip_map.png', 'colour scale 0.0958315 .. 6.38877 s', n)
       call check_true(error, n == 1, 'flip map coloured in s with --time-unit s')
+      if (allocated(error)) return
+      ! a sweep run in seconds is coloured in seconds without being told (its
+      ! attribute time_unit): 6.38877 s, the same end, given as --t-end 6.38877
+      stat = run_command(dir, 'sweep --n 6 --t-end 6.388765649999399 --time-unit s ' &
+                         //'--dt 0.003194382824999699 --quiet --output '//dir//'/sweep_s.h5')
+      call execute_command_line('rm -f '//dir//'/keys.txt')   ! this plot's entries alone
+      stat = stat + run_plot(dir, 'plot_sweep.sh', dir//'/sweep_s.h5 '//dir//'/maps_ss')
+      call check_true(error, stat == 0, 'a sweep in s and its maps')
+      call key_count(dir//'/keys.txt', 'flip_map.png', 'colour scale 0.0958315 .. 6.38877 s', n)
+      call check_true(error, n == 1, 'flip map of a sweep in s coloured in s by default')
    contains
       !> The point count of the key entry of `figure` whose title holds `needle` (0: none).
       subroutine key_count(keys, figure, needle, count)

@@ -336,7 +336,7 @@ contains
                          '--l1 0.24 --l2 0.19 --fit-param m2,l,damping --output '//dir//'/f.h5')
       call read_text(dir//'/stdout', text, n)
       call check_true(error, stat == 0 .and. index(text, 'the unobserved point') > 0 .and. &
-                      index(text, 'positions of point 2 ') > 0, 'tip-only fit: '//text)
+                      index(text, 'positions of x2, y2 only') > 0, 'tip-only fit: '//text)
       if (allocated(error)) return
       call h5%open(dir//'/f.h5', 'r', error)
       if (.not. allocated(error)) call h5%read('/fit/estimate', est, error)

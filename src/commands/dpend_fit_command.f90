@@ -236,9 +236,16 @@ contains
          if (i > 1) line = line//', '
          line = line//trim(sus(i)%label)//' ('//real_str(sus(i)%rms, 3)//')'
       end do
+      how = 'fit them with --fit-param '//trim(sus(1)%label)
+      ! a com or inertia that --body fixes is fitted by giving them instead of the body
+      if (allocated(fc%run%body)) then
+         if (any([(index(sus(i)%label, 'com') == 1 .or. index(sus(i)%label, 'inertia') == 1, &
+                   i=1, min(size(sus), 4))])) &
+            how = how//' (com and inertia are fixed by --body '//fc%run%body//': to fit ' &
+                  //'them give --com and --inertia, their first guesses, instead)'
+      end if
       write (unit, '(a)') '  parameters that may be wrong, by the RMS residual ' &
-         //'fitting each too would leave (linearized): '//line//'; fit them with ' &
-         //'--fit-param '//trim(sus(1)%label)
+         //'fitting each too would leave (linearized): '//line//'; '//how
    end subroutine misfit_warning
 
    !> Names and units of the parameters: the state at t1 (q_i, qdot_i for the
@@ -315,9 +322,9 @@ contains
                write (report_unit(), '(a)') '  (the file gives the positions of the link ' &
                   //'ends: residuals and tolerance in m)'
             else
-               write (report_unit(), '(a)') '  (the file gives the positions of point '// &
-                  points_text(s%points)//' of the link ends 1 to '//to_str(s%n)// &
-                  '; the others are placed by the lengths and the dynamics: residuals and ' &
+               write (report_unit(), '(a)') '  (the file gives the positions of '// &
+                  xy_names(s%points)//' only, of the '//to_str(s%n)//' link ends; the ' &
+                  //'others are placed by the lengths and the dynamics: residuals and ' &
                   //'tolerance in m)'
             end if
          end if
@@ -414,6 +421,18 @@ contains
       end do
    end function data_convention
 
+   !> The columns of the observed points: 'x1, y1, x2, y2', 'x2, y2'.
+   function xy_names(points) result(s)
+      integer, intent(in) :: points(:)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = ''
+      do i = 1, size(points)
+         if (i > 1) s = s//', '
+         s = s//'x'//to_str(points(i))//', y'//to_str(points(i))
+      end do
+   end function xy_names
+
    !> The observed points as text: '1 2', '2'.
    function points_text(points) result(s)
       integer, intent(in) :: points(:)
@@ -467,11 +486,12 @@ contains
                        //'minus model (angles wrapped to [-pi, pi))')
       else if (fc%series%positions) then
          call h5%write('/fit/xy_data', fc%series%q, units='m', description='measured ' &
-                       //'positions x_i, y_i of the far ends of the links (origin: the pin)')
+                       //'positions '//xy_names(fc%series%points)//' of the far ends of ' &
+                       //'the links observed (origin: the pin)')
          call h5%write('/fit/xy_model', res%q_model, units='m', description='positions ' &
                        //'of the fitted model at the sample times')
          call h5%write('/fit/residual', res%resid, units='m', description='data minus ' &
-                       //'model (x_1, y_1, ..., x_N, y_N)')
+                       //'model ('//xy_names(fc%series%points)//')')
       else
          call h5%write('/fit/q_data', fc%series%q, units='rad', description='measured ' &
                        //'angles q_i from the horizontal x axis (theta - pi/2 for theta ' &

@@ -535,8 +535,8 @@ contains
    !> attributes): of the keys `keys` in their order, then of the model, then of every
    !> other key either file has (the bodies' com1 .., inertia1 .., another model's
    !> parameters: the elastic pendulum's k and l0, ...) except those of `free`, which
-   !> may differ. As "KEY = VA in 'FILE_A', VB in 'FILE_B'" ('(none)' for a key one
-   !> file lacks), or '' if they agree. Shared by the comparison and the agreement.
+   !> may differ. As "KEY = VA in 'FILE_A', VB in 'FILE_B'" ('(not set: the default)'
+   !> for a key one file lacks), or '' if they agree. Shared by the comparison and the agreement.
    function config_difference(cfg_a, cfg_b, file_a, file_b, keys, free) result(what)
       character(len=*), intent(in) :: cfg_a, cfg_b     !! the config attributes
       character(len=*), intent(in) :: file_a, file_b    !! their files (for the text)
@@ -581,9 +581,12 @@ contains
          vb = config_value(cfg_b, key)
          differs = va /= vb
          if (.not. differs) return
-         if (len(va) == 0) va = '(none)'
-         if (len(vb) == 0) vb = '(none)'
+         if (len(va) == 0) va = '(not set: the default)'
+         if (len(vb) == 0) vb = '(not set: the default)'
          what = key//' = '//va//" in '"//file_a//"', "//vb//" in '"//file_b//"'"
+         if (index(key, 'com') == 1 .or. index(key, 'inertia') == 1) &
+            what = what//" (the links' bodies differ: uniform rods are the default, " &
+                   //'--body point or --com, --inertia set them)'
       end function differs
    end function config_difference
 

@@ -219,6 +219,8 @@ contains
       if (allocated(error)) return
       summary%n = setup%n
       summary%flips = setup%flips
+      summary%bound_integrated = setup%opt%vectors > 0 .or. setup%opt%lyapunov .or. &
+                                 .not. setup%opt%skip_cannot_flip
       call open_output(setup, h5, done, complete, error)
       if (allocated(error)) return
       summary%blocks_before = count(done == 1)

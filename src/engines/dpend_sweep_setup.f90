@@ -80,6 +80,8 @@ module dpend_sweep_setup
       integer(i8) :: skipped = 0         !! of those: below the flip energy bound
       real(dp) :: seconds = 0            !! wall time of the computation [s]
       logical :: flips = .true.          !! the model has flips (the closing line's bound)
+      !> those below the bound are integrated all the same (an indicator, lambda1)
+      logical :: bound_integrated = .false.
    end type sweep_summary_t
 
 contains
@@ -90,7 +92,12 @@ contains
       type(sweep_summary_t), intent(in) :: summary  !! what the run did
       character(len=:), allocatable :: s
       s = to_str(summary%computed)//' initial conditions computed'
-      if (summary%flips) s = s//' ('//to_str(summary%skipped)//' below the flip energy bound)'
+      if (summary%flips) then
+         s = s//' ('//to_str(summary%skipped)//' below the flip energy bound'
+         if (summary%bound_integrated .and. summary%skipped > 0) &
+            s = s//': they cannot flip, integrated all the same for the map'
+         s = s//')'
+      end if
       s = s//' in '//seconds_str(summary%seconds)//' s, '// &
           real_str(real(summary%computed, dp)/max(summary%seconds, 1e-9_dp), 3)//' per second'
    end function summary_text
