@@ -15,7 +15,7 @@ module dpend_command_table
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t
-   use dpend_strings, only: did_you_mean, word_wrap
+   use dpend_strings, only: did_you_mean, word_wrap, replace_char
    use dpend_model_factory, only: model_catalogue, model_info_t, body_list
    use dpend_version, only: version
    use dpend_simulate, only: simulate_command
@@ -189,20 +189,11 @@ contains
          t = ''
          do i = 1, size(model%params)
             if (i > 1) t = t//' '
-            t = t//'--'//dashed(model%params(i)%name)
+            t = t//'--'//replace_char(model%params(i)%name, '_', '-')
             if (model%params(i)%name == 'links') t = t//' N'
          end do
          if (len(model%bodies) > 0) t = t//' --body '//body_list('|')
       end function flags_of
-      pure function dashed(name) result(d)
-         character(len=*), intent(in) :: name
-         character(len=:), allocatable :: d
-         integer :: i
-         d = name
-         do i = 1, len(d)
-            if (d(i:i) == '_') d(i:i) = '-'
-         end do
-      end function dashed
    end function usage_text
 end module dpend_command_table
 

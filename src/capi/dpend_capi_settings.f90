@@ -10,6 +10,7 @@ module dpend_capi_settings
    use dpend_cli, only: arg_t
    use dpend_capi, only: run_arguments
    use dpend_capi_result, only: c_string
+   use dpend_strings, only: replace_char
    implicit none
    private
    public :: dpend_settings_new, dpend_settings_set, dpend_settings_run, dpend_settings_free
@@ -54,7 +55,7 @@ contains
          call add(s, c_string(value))
       else
          if (.not. option_name(key)) return
-         call add(s, '--'//translate_underscores(key))
+         call add(s, '--'//replace_char(key, '_', '-'))
          if (c_associated(value)) call add(s, c_string(value))
       end if
       dpend_settings_set = kind_ok
@@ -118,14 +119,4 @@ contains
       end do
    end function option_name
 
-   !> `key` with '_' as '-' (t_end: --t-end).
-   pure function translate_underscores(key) result(t)
-      character(len=*), intent(in) :: key
-      character(len=len(key)) :: t
-      integer :: i
-      t = key
-      do i = 1, len(t)
-         if (t(i:i) == '_') t(i:i) = '-'
-      end do
-   end function translate_underscores
 end module dpend_capi_settings

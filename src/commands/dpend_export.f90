@@ -14,7 +14,7 @@ module dpend_export
    use dpend_limits, only: sci
    use dpend_resources, only: check_memory
    use dpend_cli, only: to_str
-   use dpend_strings, only: printable
+   use dpend_strings, only: printable, replace_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -424,7 +424,7 @@ contains
          end do
       end block
       if (k == 0) then
-         call header%add(name//bracket(replace_commas(units)))
+         call header%add(name//bracket(replace_char(units, ',', ';')))
          return
       end if
       vector = .false.
@@ -436,7 +436,7 @@ contains
          if (m > 1 .and. mod(k, m) == 0) then
             unit_j = trim(parts((j - 1)/(k/m) + 1))
          else
-            unit_j = replace_commas(units)
+            unit_j = replace_char(units, ',', ';')
          end if
          if (j > 1) call header%add(',')
          if (present(inner)) then
@@ -466,16 +466,6 @@ contains
             if (text(i:i) == ',') c = c + 1
          end do
       end function count_commas
-      !> `text` with every comma replaced by ';' (a CSV field holds none).
-      pure function replace_commas(text) result(t)
-         character(len=*), intent(in) :: text
-         character(len=:), allocatable :: t
-         integer :: i
-         t = text
-         do i = 1, len(t)
-            if (t(i:i) == ',') t(i:i) = ';'
-         end do
-      end function replace_commas
       !> ' [u]', or nothing for blank units.
       pure function bracket(u) result(t)
          character(len=*), intent(in) :: u

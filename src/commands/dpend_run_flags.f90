@@ -8,7 +8,7 @@ module dpend_run_flags
    use dpend_cli, only: parse_real, parse_int, real_str, to_str, printable
    use dpend_limits, only: in_range, max_angle
    use dpend_methods, only: method_names
-   use dpend_strings, only: canonical_name
+   use dpend_strings, only: canonical_name, replace_char
    use dpend_model_factory, only: body_list
    use dpend_run_settings, only: run_config_t, set_body, model_names, is_model_parameter, &
       mark_given, time_unit_option_help
@@ -97,15 +97,11 @@ contains
    pure function setting_key(flag) result(key)
       character(len=*), intent(in) :: flag  !! the option
       character(len=:), allocatable :: key
-      integer :: i
       if (flag == '-o') then
          key = 'output'
          return
       end if
-      key = flag(3:)
-      do i = 1, len(key)
-         if (key(i:i) == '-') key(i:i) = '_'
-      end do
+      key = replace_char(flag(3:), '-', '_')
    end function setting_key
 
    !> Refuse a second form of one quantity on the command line (`--m 1,2 --m1 3`,

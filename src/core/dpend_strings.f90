@@ -11,7 +11,7 @@ module dpend_strings
    implicit none
    private
    public :: to_lower, printable, pad, real_str, seconds_str, to_str, with_uncertainty, &
-      distance_in_errors, interval_text, word_wrap
+      distance_in_errors, interval_text, word_wrap, replace_char
    public :: edit_distance, nearest_name, did_you_mean, canonical_name
 
    !> Text of an integer (default or 64-bit), without blanks.
@@ -227,6 +227,19 @@ contains
       end if
       if (t(1:1) == '-' .and. verify(t, '-0.') == 0) t = t(2:)   ! no -0.00
    end function fixed
+
+   !> `text` with every character `old` replaced by `new` ('t_end' to 't-end').
+   pure function replace_char(text, old, new) result(t)
+      character(len=*), intent(in) :: text  !! the text
+      character(len=1), intent(in) :: old   !! the character replaced
+      character(len=1), intent(in) :: new   !! its replacement
+      character(len=len(text)) :: t
+      integer :: i
+      t = text
+      do i = 1, len(t)
+         if (t(i:i) == old) t(i:i) = new
+      end do
+   end function replace_char
 
    !> `text` broken at blanks into lines of at most `width` characters (a longer word
    !> on a line of its own), every line after the first starting with `indent`
