@@ -129,7 +129,7 @@ fi
 echo "== 3. fewer blocks than ranks: said, with the --block that shares them"
 small=(--n 16 --t-end 1)   # 16 x 16 in the default 4096-pixel blocks: one block
 mpi "${small[@]}" --output "$dir/small.h5" >/dev/null 2>"$dir/small.err"
-if grep -q "note: 1 block of 256 pixels for 2 ranks: 1 ranks get no work" "$dir/small.err" &&
+if grep -q "note: 1 block of 256 pixels for 2 ranks: 1 rank gets no work" "$dir/small.err" &&
    grep -q -- "--block 32 makes 8 blocks" "$dir/small.err"; then
   echo "  said: $(cut -c1-100 "$dir/small.err")..."
 else
