@@ -226,8 +226,9 @@ contains
             n_noflip_changed = n_noflip_changed + 1
          end if
       end do
-      write (unit, '(a)') 'step_a: '//real_str(ha, 6)//' s'
-      write (unit, '(a)') 'step_b: '//real_str(hb, 6)//' s'
+      write (unit, '(a)') 'step_a: '//real_str(ha, 6)//' s = '//real_str(ha/tau, 6)//' sqrt(l1/g)'
+      write (unit, '(a)') 'step_b: '//real_str(hb, 6)//' s = '//real_str(hb/tau, 6)//' sqrt(l1/g)'
+      write (unit, '(a)') 'tflip_bands_unit: sqrt(l1/g) = '//real_str(tau, 6)//' s'
       write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
       write (unit, '(a, i0)') 'pixels: ', size(ta)
       write (unit, '(a, i0)') 'pixels_flipping: ', n_flip
