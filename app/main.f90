@@ -159,9 +159,10 @@ contains
           nl//'capabilities):'//nl//model_rows()//nl// &
           'Every command takes --quiet: no progress report, and of a summary only its'//nl// &
           'last line (export, methods and models print their data as always).'//nl// &
-          'Every command that takes or shows times takes --time-unit s|natural: seconds'//nl// &
-          '(the default; the sweep''s is natural) or sqrt(l1/g), sqrt(l0/g) for the elastic'//nl// &
-          'pendulum; summaries quote both, the chosen one first.'//nl//nl// &
+          'Every command that takes times takes --time-unit s|natural: seconds (the'//nl// &
+          'default; the sweep''s is natural) or sqrt(l1/g), sqrt(l0/g) for the elastic'//nl// &
+          'pendulum; the reports quote both, the unit in use first (sweep-compare: the'//nl// &
+          'sweeps'' own).'//nl//nl// &
           'Conventions: SI units; angles q1 .. qN in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q_i = -pi/2); --theta1'//nl// &
           'and the sweep''s theta axes from the hanging position.'//nl// &

@@ -113,9 +113,12 @@ contains
       end if
       write (output_unit, '(a)') "dpend-mpi sweep: wrote '"//cfg%run%output//"': "// &
          summary_text(report%summary)
-      write (output_unit, '(a, i0, a, i0)') 'ranks: ', np, ', threads of rank 0: ', &
-         omp_get_max_threads()
-      call write_balance(report, output_unit)
+      ! the ranks' table follows the closing line; --quiet: that line alone
+      if (.not. cfg%quiet) then
+         write (output_unit, '(a, i0, a, i0)') 'ranks: ', np, ', threads of rank 0: ', &
+            omp_get_max_threads()
+         call write_balance(report, output_unit)
+      end if
       if (allocated(times_file)) then
          call write_block_times(report, times_file, cfg%run%force, error)
          if (allocated(error)) then

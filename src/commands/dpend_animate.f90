@@ -844,10 +844,12 @@ contains
       failed = .false.
       summary = "wrote '"//cfg%output//"': "//to_str(plan%nframes)//' frames, '// &
                 sci(real(plan%nframes, dp)/real(cfg%fps, dp), 4)//' s at '//to_str(cfg%fps)// &
-                ' fps, t = '//sci(tf(1), 4)//' .. '//sci(tf(plan%nframes), 4)//' s'
-      if (trim(cfg%time_unit) == 'natural') summary = summary//' = '// &
+                ' fps, t = '
+      ! the simulated times in the clock's unit (natural: that first, then s)
+      if (trim(cfg%time_unit) == 'natural') summary = summary// &
          sci(tf(1)/a%natural, 4)//' .. '//sci(tf(plan%nframes)/a%natural, 4)//' '// &
-         trim(a%natural_name)
+         trim(a%natural_name)//' = '
+      summary = summary//sci(tf(1), 4)//' .. '//sci(tf(plan%nframes), 4)//' s'
       if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
       if (overlay) summary = summary//'; '//run_differences(a, b, huge(1))
       if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &

@@ -80,7 +80,9 @@ contains
       type(fit_result_t) :: res
       type(output_t) :: out
       type(error_t), allocatable :: werr
+      character(len=:), allocatable :: note
       failed = .false.
+      note = ''
       call fit_problem(fc, prob, error)
       if (allocated(error)) return
       call out%begin(fc%run%output, fc%run%force, error)
@@ -91,7 +93,7 @@ contains
       call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, res, &
                       error, progress=.true.)
       if (allocated(error) .and. res%stalled) then
-         call stalled_fit(fc, res, quiet, error)
+         call stalled_fit(fc, res, quiet, error, note)
          if (.not. allocated(error)) then
             prob%stall_check = .false.
             call fit_series(prob, fc%series%t, fc%series%q, fc%fit_window, fc%tolerance, &
@@ -106,7 +108,8 @@ contains
       end if
       if (.not. quiet) call print_report(fc, res)
       ! --quiet: the warning on stderr, the closing line alone on stdout
-      call misfit_warning(fc, prob, res, merge(error_unit, report_unit(), quiet))
+      ! (a stall the continued fit got past, ending at the noise, is not mentioned)
+      call misfit_warning(fc, prob, res, merge(error_unit, report_unit(), quiet), note)
       call write_fit(out%temp, fc, res, werr)
       if (.not. allocated(werr)) call out%commit(werr)
       call out%explain(werr)
@@ -123,16 +126,19 @@ contains
    !> (`weigh_alternatives`). Another body clearly better: the fit stops, `error`
    !> naming it ('... give --body point'); otherwise `error` is cleared and the caller
    !> fits on as configured (as before: a model lacking a setting ends with its misfit
-   !> warning), saying on stderr what fitted better, unless --quiet.
-   subroutine stalled_fit(fc, res, quiet, error)
+   !> warning), `note` saying what fitted better for stderr (unless --quiet), shown
+   !> if the continued fit does not reach the noise either.
+   subroutine stalled_fit(fc, res, quiet, error, note)
       type(fit_config_t), intent(in) :: fc                !! the configuration
       logical, intent(in) :: quiet                        !! --quiet: no note
       type(fit_result_t), intent(inout) :: res            !! the stalled fit; its work
                                                           !! adds the alternatives'
       type(error_t), allocatable, intent(inout) :: error  !! its stall; kept or cleared
+      character(len=:), allocatable, intent(out) :: note  !! the note ('' : none)
       character(len=:), allocatable :: text, advice, ou
       logical :: better, body
       real(dp) :: work
+      note = ''
       ou = trim(merge('m  ', 'rad', fc%series%positions))
       if (fc%model_coords) ou = '(units)'
       call weigh_alternatives(fc, res, ou, text, advice, better, work, body)
@@ -146,13 +152,14 @@ contains
       ! the fit goes on as configured, its misfit warning at the end
       if (.not. quiet) then
          if (better) then
-            write (error_unit, '(a)') 'dpend fit: note: '//error%message//' with '// &
+            note = 'dpend fit: note: '//error%message//' with '// &
                setting_text(fc)//'; on that window '//text//': '//advice// &
                ' (the fit goes on as configured)'
          else
-            write (error_unit, '(a)') 'dpend fit: note: '//error%message//' with '// &
-               setting_text(fc)//'; no alternative fits that window clearly better ('// &
-               text//'): the fit goes on'
+            if (len(text) > 0) text = ' ('//text//')'
+            note = 'dpend fit: note: '//error%message//' with '// &
+               setting_text(fc)//'; no alternative fits that window clearly better'// &
+               text//': the fit goes on'
          end if
       end if
       deallocate (error)
@@ -205,11 +212,12 @@ contains
    !> estimated from the data's third differences) says so on `unit` (the report's,
    !> stderr with --quiet) and names the unfitted parameters whose fit would lower it
    !> most (`misfit_suspects`).
-   subroutine misfit_warning(fc, prob, res, unit)
+   subroutine misfit_warning(fc, prob, res, unit, note)
       type(fit_config_t), intent(in) :: fc      !! configuration
       type(fit_problem_t), intent(in) :: prob   !! the problem fitted
       type(fit_result_t), intent(in) :: res     !! the fit
       integer, intent(in) :: unit               !! where the warning goes
+      character(len=*), intent(in) :: note      !! a stall's note for stderr ('' : none)
       type(suspect_t), allocatable :: sus(:)
       type(error_t), allocatable :: error
       character(len=:), allocatable :: ou, how, line
@@ -219,6 +227,7 @@ contains
       if (fc%model_coords) ou = '(in the coordinates'' units)'
       noise = observation_noise(prob, fc%series%q, res%k_fit, how)
       if (.not. (res%rms > misfit_factor*noise)) return
+      if (len(note) > 0) write (error_unit, '(a)') note
       write (unit, '(a)') '  warning: the RMS residual '//real_str(res%rms, 3)//' ' &
          //ou//' is '//real_str(res%rms/max(noise, tiny(1.0_dp)), 3)//' times the noise ' &
          //real_str(noise, 3)//' '//ou//' ('//how//'), more than '//real_str(misfit_factor)// &

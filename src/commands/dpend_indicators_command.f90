@@ -80,7 +80,7 @@ contains
       if (n > 0) then
          summary = summary//'MEGNO <Y> = '//es(res%mean_all(1, n))//' (Y = '// &
                    es(res%megno_all(1, n))//'; 2: regular, ~ lambda1 t/2: chaotic)'//nl// &
-                   'FLI = '//es(res%fli(n))//' (ln t = '//es(log(res%t(n)))// &
+                   'FLI = '//es(res%fli(n))//' (ln(t/s) = '//es(log(res%t(n)))// &
                    ': regular ~ ln t + c)'//nl//'SALI = '//es(res%sali(n))//nl
          do j = 2, res%k
             summary = summary//'GALI_'//to_str(j)//' = '//es(res%gali(j - 1, n))//nl

@@ -225,10 +225,10 @@ contains
          end if
       end do
       write (unit, '(a)') 'indicator: '//a%indicator//' ('//trim(value_name(a%indicator))//')'
-      write (unit, '(a)') 'step_a: '//real_str(a%h, 6)//' s'
-      write (unit, '(a)') 'step_b: '//real_str(b%h, 6)//' s'
-      write (unit, '(a)') 't_end: '//real_str(a%t_end, 6)//' s = '// &
-         real_str(a%t_end/a%tau, 6)//' '//a%tau_name
+      ! the times in the unit the sweeps were run in first (/sweep@time_unit), then the other
+      write (unit, '(a)') 'step_a: '//times_text(a, a%h)
+      write (unit, '(a)') 'step_b: '//times_text(b, b%h)
+      write (unit, '(a)') 't_end: '//times_text(a, a%t_end)
       write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
       write (unit, '(a, i0)') 'pixels: ', size(a%v)
       write (unit, '(a, i0)') 'pixels_compared: ', n_cmp
@@ -298,10 +298,22 @@ contains
          if (c%indicator == 'lambda1') per = ' per sqrt(l1/g)'
          write (u, '(a)') 'indicator_'//s//': '//c%indicator//' (chaotic '// &
             trim(merge('above', 'below', c%above))//' '//real_str(c%threshold)//per//')'
-         write (u, '(a)') 't_end_'//s//': '//real_str(c%t_end, 6)//' s = '// &
-            real_str(c%t_end/c%tau, 6)//' '//c%tau_name
+         write (u, '(a)') 't_end_'//s//': '//times_text(c, c%t_end)
       end subroutine line
    end subroutine print_agreement
+
+   !> A time [s] of sweep c in both units, the one it was run in first (the config's
+   !> time_unit; natural when it is not 's'): '20 sqrt(l1/g) = 6.38877 s'.
+   function times_text(c, t) result(s)
+      type(classified_t), intent(in) :: c  !! the sweep
+      real(dp), intent(in) :: t            !! the time [s]
+      character(len=:), allocatable :: s
+      if (config_value(c%config, 'time_unit') == 's') then
+         s = real_str(t, 6)//' s = '//real_str(t/c%tau, 6)//' '//c%tau_name
+      else
+         s = real_str(t/c%tau, 6)//' '//c%tau_name//' = '//real_str(t, 6)//' s'
+      end if
+   end function times_text
 
    !> The class counts as `key: value` lines (see print_agreement) and the agreement.
    subroutine print_counts(u, counts, fraction)

@@ -290,7 +290,7 @@ contains
       order = sort_by_cost(jobs)
       if (show) then
          write (error_unit, '(a, i0, a, i0, a)') 'dpend study: ', size(jobs), ' runs on ', &
-            res%threads, ' threads'
+            res%threads, trim(merge(' thread ', ' threads', res%threads == 1))
          flush (error_unit)
       end if
       ! the one progress report: a bar on a terminal, else a line at most

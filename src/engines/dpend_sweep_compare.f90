@@ -81,7 +81,8 @@ contains
                      sci(tau_b)//" s in '"//file_b//"' (another time unit)")
          return
       end if
-      call report_changes(ta, tb, tau, rel, ha, hb, unit)
+      call report_changes(ta, tb, tau, rel, ha, hb, config_value(cfg_a, 'time_unit') == 's', &
+                          unit)
    contains
       subroutine refuse(what)
          character(len=*), intent(in) :: what
@@ -189,10 +190,11 @@ contains
 
    !> sweep-compare's report: the pixels whose flip changes (|t_B - t_A| > rel t_A, or
    !> a flip in one only), in all and by band of t_A / sqrt(l1/g), as `key: value`.
-   subroutine report_changes(ta, tb, tau, rel, ha, hb, unit)
+   subroutine report_changes(ta, tb, tau, rel, ha, hb, seconds, unit)
       real(dp), intent(in) :: ta(:), tb(:)   !! flip times of A and B [s] (NaN: none)
       real(dp), intent(in) :: tau            !! sqrt(l1/g) [s]
       real(dp), intent(in) :: rel            !! relative tolerance
+      logical, intent(in) :: seconds         !! the sweeps ran in s (else sqrt(l1/g)): first
       real(dp), intent(in) :: ha, hb         !! the two steps [s]
       integer, intent(in) :: unit            !! where to print
       real(dp) :: bands(5)
@@ -226,8 +228,8 @@ contains
             n_noflip_changed = n_noflip_changed + 1
          end if
       end do
-      write (unit, '(a)') 'step_a: '//real_str(ha, 6)//' s = '//real_str(ha/tau, 6)//' sqrt(l1/g)'
-      write (unit, '(a)') 'step_b: '//real_str(hb, 6)//' s = '//real_str(hb/tau, 6)//' sqrt(l1/g)'
+      write (unit, '(a)') 'step_a: '//both(ha)
+      write (unit, '(a)') 'step_b: '//both(hb)
       write (unit, '(a)') 'tflip_bands_unit: sqrt(l1/g) = '//real_str(tau, 6)//' s'
       write (unit, '(a)') 'relative_tolerance: '//real_str(rel)
       write (unit, '(a, i0)') 'pixels: ', size(ta)
@@ -243,6 +245,17 @@ contains
       write (unit, '(a)') 'dpend sweep-compare: '//pct(n_changed, size(ta))//' % of the '// &
          to_str(size(ta))//' pixels change their flip time by more than '// &
          real_str(rel)//' relative ('//to_str(n_changed)//' pixels)'
+   contains
+      !> A time [s] in both units, the sweeps' own first.
+      function both(t) result(b)
+         real(dp), intent(in) :: t
+         character(len=:), allocatable :: b
+         if (seconds) then
+            b = real_str(t, 6)//' s = '//real_str(t/tau, 6)//' sqrt(l1/g)'
+         else
+            b = real_str(t/tau, 6)//' sqrt(l1/g) = '//real_str(t, 6)//' s'
+         end if
+      end function both
    end subroutine report_changes
 
    !> 100 a/b rounded to 3 decimals ('0' when b = 0): the percentages of the reports.

@@ -191,31 +191,36 @@ contains
    end function natural_unit_name
 
    !> A time [s] in both units, the run's unit first: '50 s = 156.5 sqrt(l1/g)', or
-   !> with time_unit natural '156.5 sqrt(l1/g) = 50 s' (6 and 4 digits).
+   !> with time_unit natural '156.5 sqrt(l1/g) = 50 s' (4 digits each).
    function time_text(cfg, t) result(s)
       type(run_config_t), intent(in) :: cfg  !! configuration, model built
       real(dp), intent(in) :: t              !! time [s]
       character(len=:), allocatable :: s
       if (trim(cfg%time_unit) == 'natural') then
-         s = time_in_unit(cfg, t)//' = '//real_str(t, 4)//' s'
+         s = time_in_unit(cfg, t, 4)//' = '//real_str(t, 4)//' s'
       else
-         s = time_in_unit(cfg, t)//' = '//real_str(t/natural_time(cfg), 4)//' '// &
+         s = time_in_unit(cfg, t, 4)//' = '//real_str(t/natural_time(cfg), 4)//' '// &
              natural_unit_name(cfg)
       end if
    end function time_text
 
-   !> A span [a, b] s in both units, the run's first, to 4 digits: '1.22 .. 8.229 s'
-   !> (time_unit s, which the summaries quote alone) or '3.82 .. 25.76 sqrt(l1/g) =
-   !> 1.22 .. 8.229 s' (natural).
+   !> A span [a, b] s in both units, the run's first, to 4 digits: '1.22 .. 8.229 s =
+   !> 3.82 .. 25.76 sqrt(l1/g)', or with time_unit natural '3.82 .. 25.76 sqrt(l1/g) =
+   !> 1.22 .. 8.229 s'.
    function span_text(cfg, a, b) result(s)
       type(run_config_t), intent(in) :: cfg  !! configuration, model built
       real(dp), intent(in) :: a, b           !! the span's ends [s]
       character(len=:), allocatable :: s
       real(dp) :: tn
-      s = real_str(a, 4)//' .. '//real_str(b, 4)//' s'
-      if (trim(cfg%time_unit) /= 'natural') return
+      character(len=:), allocatable :: nat
       tn = natural_time(cfg)
-      s = real_str(a/tn, 4)//' .. '//real_str(b/tn, 4)//' '//natural_unit_name(cfg)//' = '//s
+      s = real_str(a, 4)//' .. '//real_str(b, 4)//' s'
+      nat = real_str(a/tn, 4)//' .. '//real_str(b/tn, 4)//' '//natural_unit_name(cfg)
+      if (trim(cfg%time_unit) == 'natural') then
+         s = nat//' = '//s
+      else
+         s = s//' = '//nat
+      end if
    end function span_text
 
    !> A time [s] in the run's unit, to 6 digits (or `digits`): '0.001 s' or '0.00313
