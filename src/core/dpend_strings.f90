@@ -344,9 +344,9 @@ contains
          do j = 1, len(y)
             cost = merge(0, 1, x(i:i) == y(j:j))
             t(i, j) = min(t(i - 1, j) + 1, t(i, j - 1) + 1, t(i - 1, j - 1) + cost)
-            if (i > 1 .and. j > 1) then
+            if (i > 1 .and. j > 1) then   ! (max: indices the compiler sees in bounds)
                if (x(i:i) == y(j - 1:j - 1) .and. x(i - 1:i - 1) == y(j:j)) &
-                  t(i, j) = min(t(i, j), t(i - 2, j - 2) + 1)
+                  t(i, j) = min(t(i, j), t(max(i - 2, 0), max(j - 2, 0)) + 1)
             end if
          end do
       end do
