@@ -162,7 +162,7 @@ contains
           'Every command that takes times takes --time-unit s|natural: seconds (the'//nl// &
           'default; the sweep''s is natural) or sqrt(l1/g), sqrt(l0/g) for the elastic'//nl// &
           'pendulum; the reports quote both, the unit in use first (sweep-compare: the'//nl// &
-          'sweeps'' own).'//nl//nl// &
+          'sweeps'' own; study reports in s, saying what was given).'//nl//nl// &
           'Conventions: SI units; angles q1 .. qN in rad from the horizontal x axis,'//nl// &
           'counter-clockwise positive, y up (hanging equilibrium q_i = -pi/2); --theta1'//nl// &
           'and the sweep''s theta axes from the hanging position.'//nl// &

@@ -246,7 +246,7 @@ contains
       if (allocated(error)) return
       call check_true(error, index(text, 'dpend simulate: rk4: 1000 steps, 4000 f evaluations,' &
                                    //' relative energy error largest ') > 0 .and. &
-                      index(text, ' s), final ') > 0 .and. &
+                      index(text, ' sqrt(l1/g)), final ') > 0 .and. &
                       index(text, ' s'//nl) > 0, 'simulate summary: '//text)
       ! the horizon in seconds and in the natural unit sqrt(l1/g) = sqrt(1/9.8) s
       call check_true(error, index(text, "wrote '"//dir//"/s.h5': t = 0 .. 1 s = 3.13 " &
@@ -346,9 +346,9 @@ contains
       common = ' --l1 2.45 --t-end 4 --time-unit natural --force --output '//dir//'/o.h5'
       call expect_out('simulate'//common, 't = 0 .. 4 sqrt(l1/g) = 2 s')
       call expect_out('lyapunov --tau 0.5'//common, &
-                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g), 8 renormalisations')
+                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g) = 0.25 s, 8 renormalisations')
       call expect_out('indicators --tau 0.5'//common, &
-                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g), 8 samples')
+                      't = 0 .. 4 sqrt(l1/g) = 2 s, tau = 0.5 sqrt(l1/g) = 0.25 s, 8 samples')
       call expect_out('divergence --pairs 1 --lyapunov-t 0'//common, &
                       '1 pair(s) over 4 sqrt(l1/g) = 2 s')
       call expect_out('poincare --ics 2'//common, 'orbits up to t = 4 sqrt(l1/g) = 2 s')

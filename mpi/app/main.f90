@@ -15,7 +15,7 @@ program dpend_mpi
    use dpend_cli, only: arg_t, get_arguments
    use dpend_version, only: version
    use dpend_output, only: check_output_path
-   use dpend_sweep_settings, only: sweep_config_t
+   use dpend_sweep_settings, only: sweep_config_t, horizon_text
    use dpend_sweep_config, only: parse_sweep, sweep_help
    use dpend_mpi_sweep, only: run_mpi_sweep, mpi_report_t, write_balance, &
       write_block_times
@@ -103,6 +103,9 @@ contains
          if (allocated(error)) call finish(2, 'dpend-mpi sweep: '//error%message)
       end if
       if (provided < MPI_THREAD_SERIALIZED) cfg%threads = 1
+      ! the horizon and step in both units, as dpend sweep says them (rank 0)
+      if (me == 0 .and. .not. cfg%quiet) write (error_unit, '(a)') 'dpend-mpi sweep: '// &
+         horizon_text(cfg)
       call run_mpi_sweep(cfg, MPI_COMM_WORLD, report, error)
       if (allocated(error)) call finish(2, 'dpend-mpi sweep: '//error%message)
       if (me /= 0) return

@@ -850,6 +850,9 @@ contains
          sci(tf(1)/a%natural, 4)//' .. '//sci(tf(plan%nframes)/a%natural, 4)//' '// &
          trim(a%natural_name)//' = '
       summary = summary//sci(tf(1), 4)//' .. '//sci(tf(plan%nframes), 4)//' s'
+      if (trim(cfg%time_unit) /= 'natural' .and. a%natural > 0.0_dp) summary = summary// &
+         ' = '//sci(tf(1)/a%natural, 4)//' .. '//sci(tf(plan%nframes)/a%natural, 4)//' '// &
+         trim(a%natural_name)
       if (len(cfg%frames) > 0) summary = summary//"; PNG frames in '"//cfg%frames//"'"
       if (overlay) summary = summary//'; '//run_differences(a, b, huge(1))
       if (cfg%reactions .and. npm > 0) summary = summary//'; reaction arrows: 1 m = '// &

@@ -10,7 +10,7 @@ module dpend_divergence_command
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
    use dpend_strings, only: with_uncertainty, real_str, distance_in_errors
-   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, span_text
+   use dpend_run_settings, only: run_config_t, time_text, span_text
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_propagate, only: march_progress_t
@@ -115,7 +115,7 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend divergence: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+      summary = 'dpend divergence: '//integ%name()//', dt = '//time_text(cfg, cfg%dt)// &
                 ', '//to_str(size(res%delta_start))//' pair(s) over '// &
                 time_text(cfg, cfg%t_end)//', delta0 = '//num(ch%delta0)//pick(ch%same_energy, &
                                                                ' on the energy surface', '')//nl

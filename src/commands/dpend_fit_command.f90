@@ -13,7 +13,7 @@ module dpend_fit_command
    use dpend_error, only: error_t, run_failure, error_bad_input
    use dpend_cli, only: arg_t, real_str, to_str, pad
    use dpend_strings, only: with_uncertainty, interval_text
-   use dpend_run_settings, only: time_text
+   use dpend_run_settings, only: time_text, span_text
    use dpend_csv, only: csv_format
    use dpend_estimate, only: fit_problem_t, fit_result_t, fit_series, set_fitted, n_fitted, &
                              observation_noise, misfit_suspects, misfit_factor, suspect_t, &
@@ -319,8 +319,8 @@ contains
       if (fc%model_coords) ou = '('//coordinates_joined(fc, ' in ', ', ')//')'
       associate (s => fc%series)
          write (report_unit(), '(a)') "dpend fit: '"//fc%input//"': "//model_text(fc)// &
-            ', '//to_str(s%k)//' samples, t1 = '// &
-            real_str(s%t(1))//' s to '//real_str(s%t(s%k))//' s; fit window t <= '// &
+            ', '//to_str(s%k)//' samples, t = '//span_text(fc%run, s%t(1), s%t(s%k))// &
+            '; fit window t <= '// &
             time_text(fc%run, res%t_window)//' ('//to_str(res%k_fit)//' samples); '// &
             fc%run%method//' rtol '//real_str(fc%run%rtol)
          if (len(csv_format(s)) > 0) write (report_unit(), '(a)') '  csv: '//csv_format(s)

@@ -8,7 +8,7 @@ module dpend_indicators_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str, real_str
-   use dpend_run_settings, only: run_config_t, time_text, time_in_unit, natural_time, natural_unit_name
+   use dpend_run_settings, only: run_config_t, time_text, natural_time, natural_unit_name
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_indicators, only: indicators_result_t, chaos_indicators
    use dpend_propagate, only: march_progress_t
@@ -72,9 +72,9 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend indicators: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+      summary = 'dpend indicators: '//integ%name()//', dt = '//time_text(cfg, cfg%dt)// &
                 ', t = 0 .. '//time_text(cfg, res%t_reached)//', tau = ' &
-                //time_in_unit(cfg, ch%tau)//', '//to_str(n) &
+                //time_text(cfg, ch%tau)//', '//to_str(n) &
                 //' samples, '//to_str(integ%n_steps)//' steps, '//to_str(res%k) &
                 //' deviation vectors'//nl
       if (n > 0) then
@@ -91,7 +91,7 @@ contains
          tn = natural_time(cfg)
          unit = natural_unit_name(cfg)
          summary = summary//nl//indicator_verdict(res%mean_all(1, n), res%sali(n), res%t(n), &
-                                                  tn, unit)
+                                                  tn, unit, trim(cfg%time_unit) == 'natural')
       end if
       if (stat /= stat_ok .or. n == 0) then
          call stopped(status, cfg%output, error, failed)
@@ -133,26 +133,32 @@ contains
    !> and the run lasted at least 100 natural time units (before, a chaotic orbit
    !> can still look regular); 'verdict: undecided' otherwise. The line names the
    !> criterion and the values.
-   function indicator_verdict(mean_y, sali, t, t_nat, unit) result(s)
+   function indicator_verdict(mean_y, sali, t, t_nat, unit, natural_first) result(s)
       real(dp), intent(in) :: mean_y  !! MEGNO's running mean <Y> at the end
       real(dp), intent(in) :: sali    !! SALI at the end
       real(dp), intent(in) :: t       !! the time reached [s]
       real(dp), intent(in) :: t_nat   !! the natural time unit [s] (sqrt(l1/g))
       character(len=*), intent(in) :: unit  !! its name: 'sqrt(l1/g)' or 'sqrt(l0/g)'
+      !> t in the natural unit first (--time-unit natural; default: seconds first)
+      logical, intent(in), optional :: natural_first
       character(len=:), allocatable :: s
-      character(len=:), allocatable :: values
+      character(len=:), allocatable :: values, tt
+      tt = real_str(t, 4)//' s = '//real_str(t/t_nat, 4)//' '//unit
+      if (present(natural_first)) then
+         if (natural_first) tt = real_str(t/t_nat, 4)//' '//unit//' = '//real_str(t, 4)//' s'
+      end if
       values = 'MEGNO <Y> = '//real_str(mean_y, 4)//', SALI = '//real_str(sali, 3)
       if (.not. (mean_y == mean_y .and. sali == sali)) then
          s = 'verdict: undecided ('//values//': not finite)'
       else if (mean_y > 4.0_dp .and. sali < 1e-4_dp) then
          s = 'verdict: chaotic ('//values//'; criterion: <Y> > 4 and SALI < 1e-4)'
       else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp .and. t >= 100.0_dp*t_nat) then
-         s = 'verdict: regular ('//values//' at t = '//real_str(t, 4)//' s; criterion: ' &
+         s = 'verdict: regular ('//values//' at t = '//tt//'; criterion: ' &
              //'<Y> <= 2.1 and SALI >= 1e-4 after at least 100 '//unit//' = '// &
              real_str(100.0_dp*t_nat, 4)//' s)'
       else if (mean_y <= 2.1_dp .and. sali >= 1e-4_dp) then
-         s = 'verdict: undecided ('//values//' look regular, but t = '//real_str(t, 4)// &
-             ' s is below 100 '//unit//' = '//real_str(100.0_dp*t_nat, 4)// &
+         s = 'verdict: undecided ('//values//' look regular, but t = '//tt// &
+             ' is below 100 '//unit//' = '//real_str(100.0_dp*t_nat, 4)// &
              ' s; criterion: chaotic <Y> > 4 and SALI < 1e-4, regular <Y> <= 2.1 and ' &
              //'SALI >= 1e-4 after 100 '//unit//'; a longer --t-end)'
       else

@@ -8,7 +8,7 @@ module dpend_lyapunov_command
    use dpend_error, only: error_t
    use dpend_cli, only: arg_t, to_str
    use dpend_strings, only: with_uncertainty, real_str, distance_in_errors
-   use dpend_run_settings, only: run_config_t, time_text, time_in_unit
+   use dpend_run_settings, only: run_config_t, time_text
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_lyapunov, only: lyapunov_result_t, lyapunov_spectrum
    use dpend_propagate, only: march_progress_t
@@ -87,9 +87,9 @@ contains
       end if
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend lyapunov: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+      summary = 'dpend lyapunov: '//integ%name()//', dt = '//time_text(cfg, cfg%dt)// &
                 ', t = 0 .. '//time_text(cfg, res%t_reached)//', tau = ' &
-                //time_in_unit(cfg, ch%tau)//', ' &
+                //time_text(cfg, ch%tau)//', ' &
                 //to_str(size(res%t))//' renormalisations, '//to_str(integ%n_steps) &
                 //' steps'//nl//'  i   lambda_i [1/s] +- its standard error (the spread of ' &
                 //to_str(size(res%batches, 2))//' batch means: statistical only, not the ' &

@@ -7,7 +7,7 @@ module dpend_poincare_command
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error, error_bad_input
    use dpend_cli, only: arg_t, to_str
-   use dpend_run_settings, only: run_config_t, time_text, time_in_unit
+   use dpend_run_settings, only: run_config_t, time_text
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_events, only: angle_crossing_t
    use dpend_propagate, only: march_progress_t
@@ -104,7 +104,7 @@ contains
       call h5%writeattr('/', 'max_points', ch%n_points)
       call h5%close(error)   ! reports the first failed write, if any
       if (allocated(error)) return
-      summary = 'dpend poincare: '//integ%name()//', dt = '//time_in_unit(cfg, cfg%dt)// &
+      summary = 'dpend poincare: '//integ%name()//', dt = '//time_text(cfg, cfg%dt)// &
                 ', orbits up to t = '//time_text(cfg, cfg%t_end)//', E = ' &
                 //num(e)//' J, section q'//to_str(ch%section_link)//' = ' &
                 //num(ch%section_angle)//' (mod 2 pi), direction '// &

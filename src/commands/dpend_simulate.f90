@@ -6,7 +6,7 @@ module dpend_simulate
    use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure, error_run_failed
    use dpend_cli, only: arg_t, next_option, option_outcome
-   use dpend_run_settings, only: run_config_t, validate_run_config, time_text, time_in_unit
+   use dpend_run_settings, only: run_config_t, validate_run_config, time_text
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: model_t, max_dof
@@ -258,7 +258,7 @@ contains
          summary = integ%name()//': '//to_str(integ%n_steps)//' steps, '// &
                    to_str(integ%n_rhs)//' f evaluations, relative energy '// &
                    trim(merge('balance error', 'error        ', allocated(traj%w)))// &
-                   ' largest '//real_str(e_max, 2)//' (t = '//time_in_unit(cfg, t_max, 4)// &
+                   ' largest '//real_str(e_max, 2)//' (t = '//time_text(cfg, t_max)// &
                    '), final '//real_str(e_fin, 2)//', '// &
                    seconds_str(wall_seconds() - t0)//' s'
          ! a body other than the uniform rod

@@ -203,7 +203,8 @@ contains
       md = '# dpend energy-conservation study'//nl//nl// &
            'dpend '//version//', '//date(1:4)//'-'//date(5:6)//'-'//date(7:8)//' '// &
            time(1:2)//':'//time(3:4)//', host '//host_name()//', '//cpu_model()//', '// &
-           to_str(res%threads)//' threads, '//fmt(res%wall_total, 'f0.1')//' s'
+           to_str(res%threads)//trim(merge(' thread ', ' threads', res%threads == 1))//', '// &
+           fmt(res%wall_total, 'f0.1')//' s'
       if (cfg%quick) md = md//' (**--quick**: shortened long runs)'
       upright = 'both links'
       if (any([(size(cfg%cases(ic)%q0) /= 2, ic=1, size(cfg%cases))])) upright = 'every link'

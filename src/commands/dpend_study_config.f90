@@ -18,7 +18,7 @@ module dpend_study_config
       scan_help_config, printable
    use dpend_method_registry, only: method_names
    use dpend_limits, only: sci
-   use dpend_run_settings, only: run_config_t, unused_setting, time_unit_option_help
+   use dpend_run_settings, only: run_config_t, unused_setting
    use dpend_model_factory, only: default_model
    use dpend_namelist, only: read_run_config, check_groups, namelist_error
    use dpend_run_flags, only: apply_run_flag
@@ -88,9 +88,11 @@ contains
           "                    the chapter's 1 kg, 1 m, 9.8 m/s^2)"//nl// &
           '  --m LIST, --l LIST  per-link masses, lengths (comma separated) for cases of'//nl// &
           '                    N links (case_links in &study; N = 2: the double pendulum)'//nl// &
-          time_unit_option_help('s')//nl// &
-          '                    (t_short, ref_dt, h_min, h_max, ro_dt, ro_fit_t_min,'//nl// &
-          '                    tao_dt, tao_t_end; the report and file are in s)'//nl// &
+          '  --time-unit U     unit of the times given (t_short, ref_dt, h_min, h_max,'//nl// &
+          '                    ro_dt, ro_fit_t_min, tao_dt, tao_t_end): s or natural'//nl// &
+          '                    (sqrt(l1/g) of the first case, sqrt(l0/g) for the elastic'//nl// &
+          '                    pendulum); default s. The report and the file are in s'//nl// &
+          '                    and say what was given'//nl// &
           '  -h, --help        this text'//nl//nl// &
           'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
           'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &

@@ -115,10 +115,10 @@ contains
                .true.), &
          param('m', 'kg', 'link masses m_i', min_mass, max_mass, &
                1.0_dp, -1), &
-         param('l', 'm', 'link lengths l_i (one per link)', min_length, max_length, &
+         param('l', 'm', 'link lengths l_i', min_length, max_length, &
                1.0_dp, -1), &
          param('g', 'm/s^2', 'gravitational acceleration (-y)', min_g, max_g, 9.8_dp, 1), &
-         param('damping', 'N m s', 'joint damping c_i (one per joint)', 0.0_dp, &
+         param('damping', 'N m s', 'joint damping c_i', 0.0_dp, &
                max_damping, 0.0_dp, -1), &
          param('support_amplitude', 'm', 'support motion amplitudes a_x, a_y', &
                -max_support_amplitude, max_support_amplitude, 0.0_dp, 2), &
