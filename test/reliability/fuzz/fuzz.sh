@@ -970,7 +970,7 @@ run_case() {
     if [ $rc != 124 ] && [ $rc != 137 ]; then long=1
     elif progressing stderr; then long=1; progressed=1; rc=0
     elif { [ "${ARGS[0]}" = sweep ] && grep -q '^dpend sweep: t_end = .*, dt = ' stderr; } ||
-         { [ "${ARGS[0]}" = study ] && grep -q '^dpend study: [0-9]* runs on [0-9]* threads' stderr; }; then
+         { [ "${ARGS[0]}" = study ] && grep -q '^dpend study: [0-9]* runs on [0-9]* thread' stderr; }; then
       # a sweep reports progress per block of trajectories, a study per run (its
       # longest first), either of which may take days: their work was bounded
       # before they started (the sweep's horizon line, the study's run count, after
