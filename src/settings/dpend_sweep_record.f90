@@ -46,7 +46,8 @@ module dpend_sweep_record
       find_model, spec_values
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_strings, only: to_lower, did_you_mean
-   use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_run_settings, only: run_config_t, validate_run_config, natural_unit_name, &
+      run_natural_time => natural_time
    implicit none
    private
    public :: axis_names, param_axis_names, unswept_parameters, indicator_names, &
@@ -158,21 +159,19 @@ contains
       if (trim(cfg%run%time_unit) == 'natural') time_scale = natural_time(cfg)
    end function time_scale
 
-   !> The natural time unit [s] of the run's model (`time_unit`: √(l1/g) of the
-   !> configured l1 for the pendulum of any N, √(l0/g) for the elastic pendulum);
-   !> parameter sweeps keep the unit of the configured model.
+   !> The natural time unit [s] of the run's model (dpend_run_settings' one rule:
+   !> √(l1/g) of the configured l1, √(l0/g) for the elastic pendulum); parameter sweeps
+   !> keep the unit of the configured model.
    real(dp) function natural_time(cfg)
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
-      character(len=:), allocatable :: name
-      call cfg%run%model%time_unit(natural_time, name)
+      natural_time = run_natural_time(cfg%run)
    end function natural_time
 
    !> The name of the natural time unit of the run's model, e.g. 'sqrt(l1/g)'.
    function natural_name(cfg) result(name)
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
       character(len=:), allocatable :: name
-      real(dp) :: seconds
-      call cfg%run%model%time_unit(seconds, name)
+      name = natural_unit_name(cfg%run)
    end function natural_name
 
    !> True if the run's model has rods that flip (a potential V = Σ G_i sin q_i of
