@@ -16,12 +16,14 @@
 !> `dpend-bench --batch` only the figures of the batch kernel (`bench_batch`) and of
 !> the chain lanes of N = 3, 5, 8 links (`bench_chain`);
 !> `dpend-bench --indicators` only the cost of the sweep's per-pixel indicators and
-!> parameter axes (`bench_indicators`).
+!> parameter axes (`bench_indicators`);
+!> `dpend-bench --map-file` only the cost of a map's file (`bench_map_file`).
 program bench
    use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options, int64, &
                                             output_unit, error_unit
    use bench_batch, only: run_batch_benchmarks
    use bench_indicators, only: run_indicator_benchmarks
+   use bench_map_file, only: run_map_file_benchmarks
    use bench_chain, only: run_chain_lane_benchmarks
    use dpend_kinds, only: dp, i8
    use dpend_pendulum, only: pendulum_t, rhs_qqdot
@@ -49,10 +51,17 @@ program bench
    if (command_argument_count() > 0) then
       call get_command_argument(1, arg)
       if ((trim(arg) /= '--chain-energy' .and. trim(arg) /= '--batch' .and. &
-           trim(arg) /= '--indicators') .or. command_argument_count() > 1) then
+           trim(arg) /= '--indicators' .and. trim(arg) /= '--map-file') .or. &
+          command_argument_count() > 1) then
          write (error_unit, '(a)') 'dpend-bench: argument "'//trim(arg)// &
-            '" refused; accepted: none, --chain-energy, --batch or --indicators'
+            '" refused; accepted: none, --chain-energy, --batch, --indicators or --map-file'
          stop 2, quiet=.true.
+      end if
+      if (trim(arg) == '--map-file') then
+         write (*, '(a)') 'compiler: '//compiler_version()
+         write (*, '(a)') 'flags: '//compiler_options()
+         call run_map_file_benchmarks(output_unit)
+         stop
       end if
       if (trim(arg) == '--indicators') then
          write (*, '(a)') 'compiler: '//compiler_version()

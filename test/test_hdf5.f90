@@ -8,8 +8,10 @@ module test_hdf5
       h5pset_fapl_core_f, hsize_t, H5F_ACC_TRUNC_F, H5P_DATASET_CREATE_F, H5T_IEEE_F64LE, &
       H5T_STD_I32LE, H5T_NATIVE_INTEGER, h5fcreate_f, h5fclose_f, h5screate_simple_f, &
       h5sclose_f, h5pset_chunk_f, h5dcreate_f, h5dclose_f, h5acreate_f, h5awrite_f, &
-      h5aclose_f
+      h5aclose_f, h5fopen_f, H5F_ACC_RDONLY_F, h5dopen_f, h5dget_storage_size_f
    use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
+   use dpend_strings, only: to_str
    use testing, only: unittest_t, new_unittest, check, check_true, error_t, fatal_error
    use test_cli, only: run_command, scratch_dir
    use dpend_export, only: export_columns
@@ -28,6 +30,7 @@ contains
          new_unittest('hdf5_string_roundtrip', test_string_roundtrip), &
          new_unittest('hdf5_attributes', test_attributes), &
          new_unittest('hdf5_slabs', test_slabs), &
+         new_unittest('hdf5_chunks_encoded_here', test_chunks_encoded_here), &
          new_unittest('hdf5_extendible', test_extendible), &
          new_unittest('hdf5_overwrite', test_overwrite), &
          new_unittest('hdf5_exists', test_exists), &
@@ -447,6 +450,149 @@ contains
       call h5%close()
       call delete_file(name)
    end subroutine test_slabs
+
+   !> `write_chunked` encodes the chunks itself (shuffle, deflate by plane, Fletcher-32)
+   !> and HDF5 reads them back through its own filters, checksums checked: the same
+   !> values, bit for bit, as written through HDF5's filters (`write_slab`), for real
+   !> and integer data of rank 1 and 2 with edge chunks, with and without checksums,
+   !> NaN, infinities and -0 among them; a plane of random bytes is stored, a
+   !> constant one shrinks. A dataset without those filters goes through HDF5; whole
+   !> chunks of an unfiltered dataset (`write_slab` with `whole_chunks`) are written
+   !> as stored, and read back as written.
+   subroutine test_chunks_encoded_here(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(h5file_t) :: h5
+      character(len=:), allocatable :: name
+      real(dp) :: grid(37, 23), line(1000), noise(4096)
+      integer :: counts(37, 23), j, n, noise_bytes, zero_bytes
+      integer(i8) :: state
+      real(dp), allocatable :: back2(:, :), via2(:, :), back1(:)
+      integer, allocatable :: iback(:, :)
+      logical :: summed
+      name = temp_name('chunked')
+      do j = 1, 23
+         grid(:, j) = [(sin(0.1_dp*real(j*37 + n, dp)), n=1, 37)]
+         counts(:, j) = [(mod(j*n, 5) - 2, n=1, 37)]
+      end do
+      grid(1, 1) = ieee_value(1.0_dp, ieee_quiet_nan)
+      grid(2, 1) = ieee_value(1.0_dp, ieee_positive_inf)
+      grid(3, 1) = -0.0_dp
+      line = [(real(j, dp)/7.0_dp, j=1, 1000)]
+      state = 88172645463325252_i8   ! xorshift64: bytes with no pattern
+      do j = 1, size(noise)
+         state = ieor(state, ishft(state, 13))
+         state = ieor(state, ishft(state, -7))
+         state = ieor(state, ishft(state, 17))
+         noise(j) = transfer(state, 1.0_dp)
+      end do
+      do n = 1, 2
+         summed = n == 1
+         call h5%open(name, 'w', error)
+         if (allocated(error)) return
+         call h5%create_dataset('/grid', 'real64', [37, 23], [37, 5], error, checksum=summed)
+         if (.not. allocated(error)) call h5%write_chunked('/grid', grid, error)
+         if (.not. allocated(error)) call h5%create_dataset('/via', 'real64', [37, 23], &
+            [37, 5], error, checksum=summed)
+         if (.not. allocated(error)) call h5%write_slab('/via', grid, [1, 1], error)
+         if (.not. allocated(error)) call h5%create_dataset('/counts', 'int32', [37, 23], &
+            [10, 4], error, checksum=summed)
+         if (.not. allocated(error)) call h5%write_chunked('/counts', counts, error)
+         if (.not. allocated(error)) call h5%create_dataset('/line', 'real64', [1000], &
+            [300], error, checksum=summed)
+         if (.not. allocated(error)) call h5%write_chunked('/line', line, error)
+         if (.not. allocated(error)) call h5%create_dataset('/plain', 'real64', [1000], &
+            [300], error, compress=.false.)
+         if (.not. allocated(error)) call h5%write_chunked('/plain', line, error)
+         if (.not. allocated(error)) call h5%create_dataset('/noise', 'real64', [4096], &
+            [4096], error)
+         if (.not. allocated(error)) call h5%write_chunked('/noise', noise, error)
+         if (.not. allocated(error)) call h5%create_dataset('/zeros', 'real64', [4096], &
+            [4096], error)
+         if (.not. allocated(error)) call h5%write_chunked('/zeros', 0*noise, error)
+         call h5%close()
+         if (allocated(error)) return
+         call h5%open(name, 'r', error)
+         if (.not. allocated(error)) call h5%read('/grid', back2, error)
+         if (.not. allocated(error)) call h5%read('/via', via2, error)
+         if (allocated(error)) return
+         call check_true(error, all(transfer(back2, [0_i8]) == transfer(grid, [0_i8])) .and. &
+                         all(transfer(via2, [0_i8]) == transfer(grid, [0_i8])), &
+                         'real grid back bit for bit, both ways')
+         if (.not. allocated(error)) call h5%read('/counts', iback, error)
+         if (.not. allocated(error)) call check_true(error, all(iback == counts), &
+                                                     'integers back')
+         if (.not. allocated(error)) call h5%read('/line', back1, error)
+         if (.not. allocated(error)) call check_true(error, all(back1 == line), 'rank 1 back')
+         if (.not. allocated(error)) call h5%read('/plain', back1, error)
+         if (.not. allocated(error)) call check_true(error, all(back1 == line), &
+                                                     'unfiltered dataset back')
+         if (.not. allocated(error)) call h5%read('/noise', back1, error)
+         if (.not. allocated(error)) call check_true(error, &
+            all(transfer(back1, [0_i8]) == transfer(noise, [0_i8])), 'random bytes back')
+         call h5%close()
+         if (allocated(error)) return
+      end do
+      noise_bytes = stored_size(name, '/noise')
+      zero_bytes = stored_size(name, '/zeros')
+      ! whole chunks of datasets without filters, written as stored (H5Dwrite_chunk):
+      ! blocks of one and of several chunks, edge chunks, chunks cut in both dimensions
+      call h5%open(name, 'w', error)
+      if (allocated(error)) return
+      call h5%create_dataset('/rows', 'real64', [37, 23], [37, 5], error, compress=.false., &
+                             alloc_early=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/rows', grid(:, 1:5), [1, 1], error, &
+         whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/rows', grid(:, 6:15), [1, 6], error, &
+         whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/rows', grid(:, 16:23), [1, 16], error, &
+         whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%create_dataset('/tiles', 'int32', [37, 23], [10, 4], &
+         error, compress=.false.)
+      if (.not. allocated(error)) call h5%write_slab('/tiles', counts, [1, 1], error, &
+         whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%create_dataset('/list', 'real64', [1000], [300], &
+         error, compress=.false., alloc_early=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/list', line(1:600), [1], error, &
+         whole_chunks=.true.)
+      if (.not. allocated(error)) call h5%write_slab('/list', line(601:1000), [601], error, &
+         whole_chunks=.true.)
+      call h5%close()
+      if (allocated(error)) return
+      call h5%open(name, 'r', error)
+      if (.not. allocated(error)) call h5%read('/rows', back2, error)
+      if (.not. allocated(error)) call check_true(error, &
+         all(transfer(back2, [0_i8]) == transfer(grid, [0_i8])), 'whole chunks as stored, 2-D')
+      if (.not. allocated(error)) call h5%read('/tiles', iback, error)
+      if (.not. allocated(error)) call check_true(error, all(iback == counts), &
+                                                  'chunks cut in both dimensions')
+      if (.not. allocated(error)) call h5%read('/list', back1, error)
+      if (.not. allocated(error)) call check_true(error, all(back1 == line), &
+                                                  'whole chunks as stored, 1-D')
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, noise_bytes > 32768 .and. noise_bytes < 33200 .and. &
+                      zero_bytes < 1500, 'random planes stored ('//to_str(noise_bytes)// &
+                      ' B for 32768), zeros shrink ('//to_str(zero_bytes)//' B)')
+      call delete_file(name)
+   contains
+      !> Bytes the dataset takes in the file (its chunks as stored)
+      integer function stored_size(file, path) result(bytes)
+         character(len=*), intent(in) :: file, path
+         integer(hid_t) :: fid, did
+         integer(hsize_t) :: nbytes
+         integer :: ierr
+         bytes = -1
+         call h5fopen_f(file, H5F_ACC_RDONLY_F, fid, ierr)
+         if (ierr /= 0) return
+         call h5dopen_f(fid, path, did, ierr)
+         if (ierr == 0) then
+            call h5dget_storage_size_f(did, nbytes, ierr)
+            if (ierr == 0) bytes = int(nbytes)
+            call h5dclose_f(did, ierr)
+         end if
+         call h5fclose_f(fid, ierr)
+      end function stored_size
+   end subroutine test_chunks_encoded_here
 
    !> An extendible dataset grows along its last dimension as columns are written.
    subroutine test_extendible(error)

@@ -3,10 +3,12 @@
 !> writing one block, and the final file installed through the one writer.
 module dpend_sweep_layout
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t
-   use dpend_os, only: remove_file
+   use dpend_os, only: remove_file, reserve_space, errno_text
+   use dpend_checksum, only: crc32_of
    use dpend_lane_batch, only: batch_result_t
    use dpend_pendulum_kernel, only: potential_range, flip_energy_bounds
    use dpend_sweep_settings, only: stop_rule, axis_parameter, pendulum_axis, named_axis_units
@@ -20,6 +22,19 @@ module dpend_sweep_layout
    implicit none
    private
    public :: result_names, create_layout, write_block, working_file, finalize_file, install_file
+   public :: crc_path, block_crcs, read_crcs
+
+   !> The CRC-32 of every block of a result held whole (`write_block`'s checksums).
+   interface block_crcs
+      module procedure block_crcs_real, block_crcs_int
+   end interface block_crcs
+
+   !> The working file's checksums: the CRC-32 of every block of every result as
+   !> written (row k: the k-th of `result_names`' reals then integers; column b:
+   !> block b), written with the block before its flag in /sweep/done. Its datasets
+   !> carry no HDF5 filter, so that they are allocated, not written, when the file
+   !> is made (a sparse file whose space `install_file` reserves).
+   character(len=*), parameter :: crc_path = '/sweep/block_crc32'
 
 contains
 
@@ -206,10 +221,10 @@ contains
       if (allocated(error)) return
       if (setup%grid) then
          dims = [setup%cfg%n1, setup%cfg%n2]
-         chunk = [setup%cfg%n1, setup%rows]
+         chunk = [setup%cfg%n1, setup%rows*merge(final_blocks(setup), 1, final)]
       else
          dims = [setup%n]
-         chunk = [setup%block]
+         chunk = [setup%block*merge(final_blocks(setup), 1, final)]
       end if
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
@@ -223,7 +238,7 @@ contains
          end if
          call h5%create_dataset('/sweep/'//trim(reals(i)), 'real64', dims, chunk, error, &
                                 fill=nan, compress=final, alloc_early=.not. final, &
-                                checksum=final .or. setup%checksum, units=units, &
+                                checksum=final, units=units, &
                                 description=text)
          if (allocated(error)) return
       end do
@@ -232,7 +247,7 @@ contains
          if (.not. setup%flips) call model_dataset_info(setup, trim(ints(i)), units, text)
          call h5%create_dataset('/sweep/'//trim(ints(i)), 'int32', dims, chunk, error, &
                                 fill=0.0_dp, compress=final, alloc_early=.not. final, &
-                                checksum=final .or. setup%checksum, units=units, &
+                                checksum=final, units=units, &
                                 description=text)
          if (allocated(error)) return
       end do
@@ -240,6 +255,14 @@ contains
       call h5%write('/sweep/done', spread(merge(1, 0, final), 1, setup%nblocks), error, &
                     units, text)
       if (allocated(error)) return
+      if (.not. final .and. setup%checksum) then
+         call h5%create_dataset(crc_path, 'int32', [size(reals) + size(ints), setup%nblocks], &
+                                [size(reals) + size(ints), min(setup%nblocks, 4096)], error, &
+                                compress=.false., alloc_early=.true., units='1', &
+                                description='CRC-32 of each block (column) of each result '// &
+                                '(row: the result datasets in the order they were created)')
+         if (allocated(error)) return
+      end if
       if (setup%grid) then
          call dataset_info('axis1', axis_units(setup%cfg%axis1), units, text)
          if (.not. setup%flips) call model_dataset_info(setup, 'axis1', units, text)
@@ -448,6 +471,15 @@ contains
       end associate
    end subroutine model_attributes
 
+   !> Blocks in one chunk of the final file: chunks of about `final_chunk_values`
+   !> values (the working file's chunk is one block, the unit of a resume; the
+   !> final file is written once, whole, and reads faster in larger chunks).
+   integer function final_blocks(setup) result(k)
+      type(sweep_setup_t), intent(in) :: setup  !! setup
+      integer, parameter :: final_chunk_values = 32768
+      k = max(1, min(setup%nblocks, final_chunk_values/max(1, setup%block)))
+   end function final_blocks
+
    !> Write the results of block b, flush, then flag it done and flush again.
    !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
    !> flush is collective and the independent raw-data writes of allocated,
@@ -461,12 +493,15 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
       real(dp), allocatable :: p(:, :)
-      character(len=32), allocatable :: names(:)
-      integer :: j0, nb, i, k
+      character(len=32), allocatable :: names(:), written(:)
+      integer, allocatable :: crcs(:)
+      integer :: j0, nb, i, k, nw
       logical :: sync
       sync = .true.
       if (present(flush)) sync = flush
       call block_range(setup, b, j0, nb)
+      allocate (written(64), crcs(64))
+      nw = 0
       if (setup%flips) call put_r('t_flip', res%t_flip)
       if (.not. setup%flips) then
       else if (setup%links == 2) then
@@ -505,6 +540,8 @@ contains
       call put_i('status', res%status)
       if (setup%cfg%stats) call put_i('steps', res%steps)
       if (allocated(error)) return
+      if (h5%exists(crc_path)) call put_crcs()
+      if (allocated(error)) return
       if (sync) call h5%flush()
       call h5%write_slab('/sweep/done', [1], [b], error)
       if (allocated(error)) return
@@ -525,6 +562,7 @@ contains
             a1 = v   ! contiguous copy
             call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
          end if
+         call keep_crc(name, crc32_of(v))
       end subroutine put_r
       subroutine put_i(name, v)
          character(len=*), intent(in) :: name
@@ -539,7 +577,38 @@ contains
             a1 = v   ! contiguous copy
             call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
          end if
+         call keep_crc(name, crc32_of(v))
       end subroutine put_i
+      subroutine keep_crc(name, crc)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: crc
+         if (nw == size(written)) then
+            written = [written, written]
+            crcs = [crcs, crcs]
+         end if
+         nw = nw + 1
+         written(nw) = name
+         crcs(nw) = crc
+      end subroutine keep_crc
+      ! the block's column of the checksums, in the order of `result_names`
+      subroutine put_crcs()
+         character(len=32), allocatable :: reals(:), ints(:), all_names(:)
+         integer, allocatable :: column(:, :)
+         integer :: m, w
+         call result_names(setup, reals, ints)
+         all_names = [reals, ints]
+         allocate (column(size(all_names), 1))
+         do m = 1, size(all_names)
+            w = findloc(written(:nw), all_names(m), dim=1)
+            if (w == 0) then
+               call fatal_error(error, 'cannot write block '//to_str(b)//': no '// &
+                                trim(all_names(m))//' among its results')
+               return
+            end if
+            column(m, 1) = crcs(w)
+         end do
+         call h5%write_slab(crc_path, column, [1, b], error)
+      end subroutine put_crcs
    end subroutine write_block
 
    !> The working file of the sweep whose output is `output`: FILE.part.
@@ -550,19 +619,21 @@ contains
    end function working_file
 
    !> Rewrite the complete working file of `filename` with compressed chunks into
-   !> `filename` (through the one writer), then remove the working file.
+   !> `filename` (through the one writer), then remove the working file. Each
+   !> result is read whole, its blocks checked against their CRC-32 (a working file
+   !> that has them), and its chunks encoded on every thread (`write_chunked`).
    subroutine finalize_file(filename, setup, error)
       character(len=*), intent(in) :: filename          !! the output file
       type(sweep_setup_t), intent(in) :: setup          !! setup
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       type(h5file_t) :: src, dst
       type(output_t) :: out
-      character(len=32), allocatable :: reals(:), ints(:)
+      character(len=32), allocatable :: names(:), reals(:), ints(:)
       character(len=:), allocatable :: path, part
       real(dp), allocatable :: r1(:), r2(:, :)
-      integer, allocatable :: i1(:), i2(:, :)
+      integer, allocatable :: i1(:), i2(:, :), stored(:, :), crcs(:)
       integer :: k, err
-      logical :: unreadable
+      logical :: unreadable, summed
       unreadable = .false.
       part = working_file(filename)
       call out%begin(filename, setup%cfg%run%force, error)
@@ -572,32 +643,43 @@ contains
          call out%discard()
          return
       end if
-      call create_layout(dst, out%temp, setup, .true., error)
       call result_names(setup, reals, ints)
-      do k = 1, size(reals)
+      names = [reals, ints]
+      summed = src%exists(crc_path)
+      if (summed) call read_crcs(src, setup, size(names), stored, error)
+      unreadable = allocated(error)
+      if (.not. allocated(error)) call create_layout(dst, out%temp, setup, .true., error)
+      do k = 1, size(names)
          if (allocated(error)) exit
-         path = '/sweep/'//trim(reals(k))
-         if (setup%grid) then
+         path = '/sweep/'//trim(names(k))
+         if (k <= size(reals) .and. setup%grid) then
             call src%read(path, r2, error)
-            unreadable = unreadable .or. allocated(error)
-            if (.not. allocated(error)) call dst%write_slab(path, r2, [1, 1], error)
-         else
+            if (summed .and. .not. allocated(error)) crcs = block_crcs(setup, r2)
+         else if (k <= size(reals)) then
             call src%read(path, r1, error)
-            unreadable = unreadable .or. allocated(error)
-            if (.not. allocated(error)) call dst%write_slab(path, r1, [1], error)
-         end if
-      end do
-      do k = 1, size(ints)
-         if (allocated(error)) exit
-         path = '/sweep/'//trim(ints(k))
-         if (setup%grid) then
+            if (summed .and. .not. allocated(error)) crcs = block_crcs(setup, r1)
+         else if (setup%grid) then
             call src%read(path, i2, error)
-            unreadable = unreadable .or. allocated(error)
-            if (.not. allocated(error)) call dst%write_slab(path, i2, [1, 1], error)
+            if (summed .and. .not. allocated(error)) crcs = block_crcs(setup, i2)
          else
             call src%read(path, i1, error)
-            unreadable = unreadable .or. allocated(error)
-            if (.not. allocated(error)) call dst%write_slab(path, i1, [1], error)
+            if (summed .and. .not. allocated(error)) crcs = block_crcs(setup, i1)
+         end if
+         if (summed .and. .not. allocated(error)) then
+            if (any(crcs /= stored(k, :))) call fatal_error(error, path// &
+               ' does not read back as written in block '// &
+               to_str(findloc(crcs /= stored(k, :), .true., dim=1)))
+         end if
+         unreadable = allocated(error)
+         if (allocated(error)) exit
+         if (k <= size(reals) .and. setup%grid) then
+            call dst%write_chunked(path, r2, error)
+         else if (k <= size(reals)) then
+            call dst%write_chunked(path, r1, error)
+         else if (setup%grid) then
+            call dst%write_chunked(path, i2, error)
+         else
+            call dst%write_chunked(path, i1, error)
          end if
       end do
       call src%close()
@@ -616,19 +698,84 @@ contains
       err = remove_file(part)
    end subroutine finalize_file
 
+   !> The checksums of a working file (`crc_path`), checked to be one per result
+   !> (`n_results`) and block.
+   subroutine read_crcs(h5, setup, n_results, stored, error)
+      type(h5file_t), intent(inout) :: h5               !! the open working file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: n_results                  !! results per block
+      integer, allocatable, intent(out) :: stored(:, :) !! (n_results, nblocks)
+      type(error_t), allocatable, intent(out) :: error  !! unreadable or another shape
+      integer, allocatable :: dims(:)
+      call h5%shape(crc_path, dims, error)
+      if (allocated(error)) return
+      if (size(dims) /= 2) then
+         call fatal_error(error, crc_path//' has rank '//to_str(size(dims))//', not 2')
+      else if (dims(1) /= n_results .or. dims(2) /= setup%nblocks) then
+         call fatal_error(error, crc_path//' has shape ['//to_str(dims(1))//', '// &
+                          to_str(dims(2))//'], not ['//to_str(n_results)//', '// &
+                          to_str(setup%nblocks)//']')
+      else
+         call h5%read(crc_path, stored, error)
+      end if
+   end subroutine read_crcs
+
+   !> The CRC-32 of every block of a real(dp) result held whole (rank 1 or 2, the
+   !> sweep's shape), as `write_block` computes it, on every thread.
+   function block_crcs_real(setup, values) result(crcs)
+      type(sweep_setup_t), intent(in) :: setup                !! setup
+      real(dp), intent(in), target, contiguous :: values(..)  !! the result
+      integer :: crcs(setup%nblocks)
+      real(dp), pointer :: v(:)
+      integer :: b, j0, nb
+      call c_f_pointer(c_loc(values), v, [size(values)])
+      !$omp parallel do schedule(static) private(j0, nb)
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, nb)
+         crcs(b) = crc32_of(v(j0:j0 + nb - 1))
+      end do
+      !$omp end parallel do
+   end function block_crcs_real
+
+   !> `block_crcs_real` for a default-integer result.
+   function block_crcs_int(setup, values) result(crcs)
+      type(sweep_setup_t), intent(in) :: setup                !! setup
+      integer, intent(in), target, contiguous :: values(..)   !! the result
+      integer :: crcs(setup%nblocks)
+      integer, pointer :: v(:)
+      integer :: b, j0, nb
+      call c_f_pointer(c_loc(values), v, [size(values)])
+      !$omp parallel do schedule(static) private(j0, nb)
+      do b = 1, setup%nblocks
+         call block_range(setup, b, j0, nb)
+         crcs(b) = crc32_of(v(j0:j0 + nb - 1))
+      end do
+      !$omp end parallel do
+   end function block_crcs_int
+
    !> Put a freshly written file in place: close it (the close checked unless an
-   !> error is already set), verify it, and commit it through the one writer; on
-   !> any failure the temporary file is removed and the target is as it was.
-   subroutine install_file(h5, out, setup, error)
+   !> error is already set), with `reserve` give it disk blocks for all its length
+   !> (the working file, whose chunks are allocated and not written), verify it,
+   !> and commit it through the one writer; on any failure the temporary file is
+   !> removed and the target is as it was.
+   subroutine install_file(h5, out, setup, error, reserve)
       type(h5file_t), intent(inout) :: h5                 !! the new file, open on out%temp
       type(output_t), intent(inout) :: out                !! its output
       type(sweep_setup_t), intent(in) :: setup            !! setup, for the check
       type(error_t), allocatable, intent(inout) :: error  !! set on entry or by a step
+      logical, intent(in), optional :: reserve            !! take its disk space now
+      integer :: err
       if (allocated(error)) then
          call h5%close()
       else
          call h5%close(error)
       end if
+      err = 0
+      if (present(reserve) .and. .not. allocated(error) .and. .not. out%memory) then
+         if (reserve) err = reserve_space(out%temp)
+      end if
+      if (err /= 0) call fatal_error(error, "cannot take the disk space of '"//out%temp// &
+                                     "': "//errno_text(err))
       if (.not. allocated(error)) call verify_file(out%temp, setup, error)
       if (.not. allocated(error)) call out%commit(error)
       call out%explain(error)

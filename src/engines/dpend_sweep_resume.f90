@@ -4,12 +4,13 @@
 !>
 !> Crash safety and resume. While it runs, the results go to a *working* file,
 !> FILE.part beside the output FILE, whose datasets are chunked (one chunk per
-!> block), uncompressed and allocated in full when the file is created, so writing
-!> a block changes raw data only, never the file's metadata: a kill at any moment
-!> leaves a valid file. A block's data are written and flushed before its flag in
-!> /sweep/done. A kill during a block's write may tear its chunks (a checksum
-!> that no longer matches); the block is not flagged, so the resume does not check
-!> its checksums (`verify_blocks`) nor needs its old contents (`write_block`).
+!> block), unfiltered and allocated in full when the file is created (not written:
+!> its disk space is reserved), so writing a block changes raw data only, never the
+!> file's metadata: a kill at any moment leaves a valid file. A block's data and
+!> their CRC-32 are written and flushed before its flag in /sweep/done. A kill
+!> during a block's write may tear its chunks (a checksum that no longer matches);
+!> the block is not flagged, so the resume does not check its checksums
+!> (`verify_blocks`) nor needs its old contents (`write_block`).
 !> When every block is done, the results are rewritten with compressed chunks
 !> through the one writer (dpend_output: temporary file, checked close, one-step
 !> move) into FILE, marked complete, and the working file is removed. FILE itself
@@ -27,7 +28,8 @@ module dpend_sweep_resume
    use dpend_sweep_compare, only: config_value
    use dpend_sweep_setup, only: sweep_setup_t, block_range
    use dpend_sweep_layout, only: result_names, create_layout, write_block, working_file, &
-      install_file
+      install_file, crc_path, read_crcs
+   use dpend_checksum, only: crc32_of
    implicit none
    private
    public :: open_output
@@ -86,7 +88,7 @@ contains
       ! map's is 10 GB): the horizon line goes out now
       call show_progress_header()
       call create_layout(h5, work%temp, setup, .false., error)
-      call install_file(h5, work, setup, error)
+      call install_file(h5, work, setup, error, reserve=.true.)
       if (allocated(error)) then
          error%message = 'cannot create the working file: '//error%message
          call run_failure(error)
@@ -96,14 +98,16 @@ contains
       allocate (done(setup%nblocks))
       done = 0
    contains
-      !> A program that writes blocks without filters (the MPI sweep) cannot resume a
-      !> working file whose datasets carry checksums (one started by `dpend sweep`).
+      !> A program that writes blocks without checksums (the MPI sweep) cannot resume
+      !> a working file that has them (one started by `dpend sweep`: CRC-32 of its
+      !> blocks, or in older files HDF5's Fletcher-32 filter).
       subroutine check_unfiltered()
          character(len=32), allocatable :: reals(:), ints(:)
          integer :: n
          call result_names(setup, reals, ints)
          call h5%filters('/sweep/'//trim(reals(1)), n, error)
-         if (allocated(error) .or. n == 0) return
+         if (allocated(error)) return
+         if (n == 0 .and. .not. h5%exists(crc_path)) return
          call h5%close()
          call fatal_error(error, "invalid --output: '"//part//"' was started by dpend "// &
                           'sweep, whose checksummed blocks parallel HDF5 cannot write one '// &
@@ -156,8 +160,10 @@ contains
 
    !> Check the results of an existing sweep file before it is resumed or reported
    !> complete: every flag in /sweep/done is 0 or 1; every result dataset has the
-   !> sweep's shape; every block flagged done reads back (the Fletcher-32 checksums
-   !> of its chunks match; files written before checksums are read all the same)
+   !> sweep's shape; every block flagged done reads back as written (its CRC-32 in
+   !> a working file's `crc_path`, the Fletcher-32 checksums of the chunks of a final
+   !> file or an older working file; files written before checksums are read all
+   !> the same)
    !> and has a status for each of its initial conditions; the chunk index of every
    !> other block reads. Those other blocks' checksums are not checked: a kill
    !> during a block's write may leave its chunks torn, and resuming rewrites them
@@ -169,9 +175,10 @@ contains
       integer, intent(in) :: done(:)                    !! its block flags
       type(error_t), allocatable, intent(out) :: error  !! the first damage found
       character(len=32), allocatable :: reals(:), ints(:), names(:)
-      integer, allocatable :: status(:), start(:), cnt(:), dims(:), want(:)
+      integer, allocatable :: status(:), start(:), cnt(:), dims(:), want(:), stored(:, :)
       character(len=:), allocatable :: damaged, name
       integer :: k, b, j0, nb
+      logical :: summed
       damaged = "invalid --output: '"//path//"' is damaged ("
       if (any(done /= 0 .and. done /= 1)) then
          call fatal_error(error, damaged//'/sweep/done holds flags other than 0 and 1); '// &
@@ -185,6 +192,14 @@ contains
          want = [setup%n]
       end if
       names = [reals, ints]
+      summed = h5%exists(crc_path)
+      if (summed) then
+         call read_crcs(h5, setup, size(names), stored, error)
+         if (allocated(error)) then
+            error%message = damaged//error%message//'); use --force to start again'
+            return
+         end if
+      end if
       do k = 1, size(names)
          name = '/sweep/'//trim(names(k))
          call h5%shape(name, dims, error)
@@ -211,7 +226,7 @@ contains
             cnt = [nb]
          end if
          do k = 1, size(ints)
-            call read_block(trim(ints(k)), .false.)
+            call read_block(trim(ints(k)), .false., size(reals) + k)
             if (allocated(error)) return
             if (k == 1 .and. done(b) == 1 .and. any(status == 0)) then
                call fatal_error(error, damaged//'block '//to_str(b)//' is flagged done '// &
@@ -220,29 +235,39 @@ contains
             end if
          end do
          do k = 1, size(reals)
-            call read_block(trim(reals(k)), .true.)
+            call read_block(trim(reals(k)), .true., k)
             if (allocated(error)) return
          end do
       end do
    contains
-      !> Read block b of dataset /sweep/name (integers into `status`), with its
-      !> checksums checked if the block is flagged done.
-      subroutine read_block(name, real_values)
+      !> Read block b of dataset /sweep/name (integers into `status`), the k-th
+      !> result, with its checksums checked if the block is flagged done: its
+      !> CRC-32 in `crc_path`, or in older working files HDF5's Fletcher-32.
+      subroutine read_block(name, real_values, k)
          character(len=*), intent(in) :: name
          logical, intent(in) :: real_values
+         integer, intent(in) :: k
          real(dp), allocatable :: r1(:), r2(:, :)
          integer, allocatable :: i2(:, :)
          logical :: sums
+         integer :: crc
          sums = done(b) == 1
          if (real_values .and. setup%grid) then
             call h5%read_slab('/sweep/'//name, start, cnt, r2, error, sums)
+            if (.not. allocated(error)) crc = crc32_of(r2)
          else if (real_values) then
             call h5%read_slab('/sweep/'//name, start, cnt, r1, error, sums)
+            if (.not. allocated(error)) crc = crc32_of(r1)
          else if (setup%grid) then
             call h5%read_slab('/sweep/'//name, start, cnt, i2, error, sums)
             if (.not. allocated(error)) status = reshape(i2, [size(i2)])
+            if (.not. allocated(error)) crc = crc32_of(i2)
          else
             call h5%read_slab('/sweep/'//name, start, cnt, status, error, sums)
+            if (.not. allocated(error)) crc = crc32_of(status)
+         end if
+         if (.not. allocated(error) .and. sums .and. summed) then
+            if (crc /= stored(k, b)) call fatal_error(error, 'CRC-32')
          end if
          if (.not. allocated(error)) return
          if (sums) then

@@ -18,7 +18,9 @@
 !> fixed-size chunked dataset (the last ones cut at its edge; anything else is
 !> refused): every value of those chunks is replaced, so the old contents HDF5
 !> reads to rewrite a partial edge chunk are not checked against their checksum,
-!> and a chunk torn by a kill during an earlier write is simply rewritten.
+!> and a chunk torn by a kill during an earlier write is simply rewritten. Chunks
+!> of a dataset without filters, in a file opened without an access list, are
+!> written as stored (H5Dwrite_chunk, in place): no selection, copy or cache.
 !> `read_slab(..., check_sums=.false.)` reads a block without verifying checksums
 !> (the chunk index is still read): for blocks that will be rewritten so.
 !> `write`, `write_slab` and `writeattr` take real(dp), default-integer and
@@ -31,8 +33,8 @@
 !> This module holds the type, the interfaces of the procedures its submodules
 !> implement and a few small procedures; the submodules hold the rest:
 !> dpend_hdf5_file (open, close, flush; exists, attr_exists, shape, filters,
-!> datasets), dpend_hdf5_write (write, create_dataset, write_slab, writeattr,
-!> describe), dpend_hdf5_read (read, read_slab, readattr) and dpend_hdf5_common
+!> datasets), dpend_hdf5_write (write, create_dataset, write_slab, write_chunked,
+!> writeattr, describe), dpend_hdf5_read (read, read_slab, readattr) and dpend_hdf5_common
 !> (the helpers they share). A helper shared by submodules has its interface here
 !> and its body in a submodule: gfortran gives a private procedure of the module
 !> itself internal linkage, so a submodule could not call it.
@@ -62,6 +64,10 @@ module dpend_hdf5
    integer(i8), parameter :: max_read_values = int(huge(1), i8)
    !> At most 64 MiB in one fixed-length string (dataset or attribute).
    integer(i8), parameter :: max_string_bytes = 67108864_i8
+   !> The deflate level of compressed datasets (`create_dataset`), chosen by
+   !> measurement (docs/performance.md, "A map's file"): level 1 against level 4 on
+   !> a sweep's results, files 1 to 2 % larger, compression a fifth faster.
+   integer, parameter :: deflate_level = 1
 
    !> What a read accepts in the file: anything, numbers, integers, a string.
    integer, parameter :: want_any = 0, want_real = 1, want_int = 2, want_str = 3
@@ -80,6 +86,9 @@ module dpend_hdf5
       type(record_t), allocatable :: record
       !> first failure of a write called without `error` (see `take_error`)
       type(error_t), allocatable :: error
+      !> a file on disk opened with the default access (not MPI-IO): whole unfiltered
+      !> chunks are written as stored (`write_slab` with `whole_chunks`)
+      logical :: direct = .false.
    contains
       procedure :: open => file_open
       procedure :: close => file_close
@@ -99,6 +108,8 @@ module dpend_hdf5
       generic :: write => write_real, write_int, write_i64, write_str
       procedure, private :: slab_real, slab_int
       generic :: write_slab => slab_real, slab_int
+      procedure, private :: chunked_real, chunked_int
+      generic :: write_chunked => chunked_real, chunked_int
       procedure, private :: slabread_real_rank1, slabread_real_rank2, &
          slabread_int_rank1, slabread_int_rank2
       generic :: read_slab => slabread_real_rank1, slabread_real_rank2, &
@@ -229,12 +240,14 @@ module dpend_hdf5
       end subroutine write_str
 
       !> Create a chunked dataset of shape `dims` for partial writes with `write_slab`,
-      !> compressed with shuffle + deflate level 4 when the filters are available.
+      !> compressed with shuffle + deflate (`deflate_level`) when the filters are available.
       !> An existing dataset at `path` is replaced. Unwritten elements read as `fill`
       !> (default 0; rounded with `nint` for 'int32'). With `extendible`, the
       !> last dimension is unlimited and `write_slab` grows it as needed. With
       !> `compress` false no filter is set; with `alloc_early` every chunk is allocated
-      !> (and filled) now, so that later writes change no metadata (crash-safe updates).
+      !> now, so that later writes change no metadata (crash-safe updates), and not
+      !> written: until written, its elements read as what the file holds there (a
+      !> sparse file's zeros, whose checksum does not match), not as `fill`.
       !> With `checksum`, every chunk carries a Fletcher-32 checksum (filter applied
       !> last, size fixed: a rewrite stays in place), and reading a damaged chunk fails.
       module subroutine file_create_dataset(self, path, dtype, dims, chunk, error, fill, &
@@ -275,6 +288,28 @@ module dpend_hdf5
          type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
          logical, intent(in), optional :: whole_chunks  !! see the module's header
       end subroutine slab_int
+
+      !> Write the whole of the fixed-size chunked dataset `path` (rank 1 or 2) from
+      !> `array`, of its shape. A dataset stored with the filters `create_dataset`
+      !> sets (shuffle, deflate, and a Fletcher-32 checksum or not) has its chunks
+      !> encoded here, on every OpenMP thread (dpend_chunk_codec.c: the bytes HDF5's
+      !> filters would store), and written as stored (H5Dwrite_chunk); any other
+      !> dataset, and a recorded file, is written through HDF5's filters in one
+      !> thread (`write_slab`). Either way the file reads back the same values.
+      module subroutine chunked_real(self, path, array, error)
+         class(h5file_t), intent(inout) :: self                 !! the file object
+         character(len=*), intent(in) :: path                   !! dataset path
+         real(dp), intent(in), target, contiguous :: array(..)  !! its whole contents
+         type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      end subroutine chunked_real
+
+      !> `chunked_real` for a default-integer dataset.
+      module subroutine chunked_int(self, path, array, error)
+         class(h5file_t), intent(inout) :: self                 !! the file object
+         character(len=*), intent(in) :: path                   !! dataset path
+         integer, intent(in), target, contiguous :: array(..)   !! its whole contents
+         type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      end subroutine chunked_int
 
       !> Write a real(dp) attribute of the value's shape on the group or dataset `path`.
       module subroutine writeattr_real(self, path, name, value, error)

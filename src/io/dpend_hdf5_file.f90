@@ -68,6 +68,7 @@ contains
       self%id = fid
       self%filename = trim(filename)
       self%readonly = mode == 'r'
+      self%direct = .not. present(access) .and. .not. self%memory
    end procedure file_open
 
    module procedure file_close
@@ -98,6 +99,7 @@ contains
       self%id = -1
       self%readonly = .false.
       self%memory = .false.
+      self%direct = .false.
    end procedure file_close
 
    !> The image of the in-memory file `fid` into the capture buffer of this thread

@@ -8,6 +8,35 @@
 submodule (dpend_hdf5) dpend_hdf5_write
    implicit none
 
+   ! dpend_chunk_codec.c, and HDF5's direct chunk write (C API, HDF5 1.10.3 on)
+   interface
+      integer(c_int64_t) function c_chunk_bound(nbytes) bind(C, name='dpend_chunk_bound')
+         import :: c_int64_t
+         integer(c_int64_t), value :: nbytes
+      end function c_chunk_bound
+      integer(c_int) function c_chunk_encode(base, n1, n2, i0, j0, c1, c2, esize, level, &
+                                             by_plane, sum, work, dst, cap, len) &
+         bind(C, name='dpend_chunk_encode')
+         import :: c_int, c_int64_t, c_ptr, c_int8_t
+         type(c_ptr), value :: base
+         integer(c_int64_t), value :: n1, n2, i0, j0, c1, c2
+         integer(c_int), value :: esize, level, by_plane, sum
+         integer(c_int8_t), intent(inout) :: work(*)
+         integer(c_int8_t), intent(out) :: dst(*)
+         integer(c_int64_t), value :: cap
+         integer(c_int64_t), intent(out) :: len
+      end function c_chunk_encode
+      integer(c_int) function c_h5dwrite_chunk(dset, dxpl, filters, offset, size, buf) &
+         bind(C, name='H5Dwrite_chunk')
+         import :: c_int, c_int32_t, c_int64_t, c_size_t, c_ptr
+         integer(c_int64_t), value :: dset, dxpl   ! hid_t: int64_t since HDF5 1.10
+         integer(c_int32_t), value :: filters
+         integer(c_int64_t), intent(in) :: offset(*)   ! hsize_t
+         integer(c_size_t), value :: size
+         type(c_ptr), value :: buf
+      end function c_h5dwrite_chunk
+   end interface
+
 contains
 
    module procedure write_real
@@ -83,14 +112,15 @@ contains
       call h5pset_chunk_f(dcpl, rank, hchunk, ierr)
       if (packed) then
          if (filter_available(H5Z_FILTER_SHUFFLE_F)) call h5pset_shuffle_f(dcpl, ierr)
-         if (filter_available(H5Z_FILTER_DEFLATE_F)) call h5pset_deflate_f(dcpl, 4, ierr)
+         if (filter_available(H5Z_FILTER_DEFLATE_F)) &
+            call h5pset_deflate_f(dcpl, deflate_level, ierr)
       end if
       ! last in the pipeline: the checksum covers the bytes as stored
       if (summed .and. filter_available(H5Z_FILTER_FLETCHER32_F)) &
          call h5pset_fletcher32_f(dcpl, ierr)
-      if (early) then
+      if (early) then   ! allocated, not written (with a checksum: at its filtered size)
          call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, ierr)
-         call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, ierr)
+         call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_NEVER_F, ierr)
       end if
       if (present(fill)) then
          if (dtype == 'int32') then
@@ -123,6 +153,16 @@ contains
       call slab_raw(self, path, int_type(), int(shape(array), hsize_t), start, &
          c_loc(array), error, whole_chunks)
    end procedure slab_int
+
+   module procedure chunked_real
+      call chunked_raw(self, path, real_type(), int(shape(array), hsize_t), c_loc(array), &
+         int(storage_size(1.0_dp)/8), error)
+   end procedure chunked_real
+
+   module procedure chunked_int
+      call chunked_raw(self, path, int_type(), int(shape(array), hsize_t), c_loc(array), &
+         int(storage_size(1)/8), error)
+   end procedure chunked_int
 
    module procedure writeattr_real
       call writeattr_raw(self, path, name, real_type(), int(shape(value), hsize_t), &
@@ -278,6 +318,28 @@ contains
       call settle(self, err, error)
    end subroutine slab_raw
 
+   !> `write_chunked` for the public writers: the chunks encoded here when the
+   !> dataset's filters allow (`chunked_now`), else `slab_now`; failures handled as
+   !> by `write_raw`.
+   subroutine chunked_raw(self, path, mem_type, mem_dims, buf, esize, error)
+      class(h5file_t), intent(inout) :: self                      !! the file object
+      character(len=*), intent(in) :: path                        !! dataset path
+      integer(hid_t), intent(in) :: mem_type                      !! type of `buf`
+      integer(hsize_t), intent(in) :: mem_dims(:)                 !! shape of the array
+      type(c_ptr), intent(in) :: buf                              !! address of the array
+      integer, intent(in) :: esize                                !! bytes per element
+      type(error_t), allocatable, intent(out), optional :: error  !! see `take_error`
+      type(error_t), allocatable :: err
+      logical :: written
+      if (.not. present(error) .and. allocated(self%error)) return
+      written = .false.
+      if (.not. allocated(self%record)) &
+         call chunked_now(self, path, mem_type, mem_dims, buf, esize, written, err)
+      if (.not. written .and. .not. allocated(err)) &
+         call slab_now(self, path, mem_type, mem_dims, spread(1, 1, size(mem_dims)), buf, err)
+      call settle(self, err, error)
+   end subroutine chunked_raw
+
    !> `writeattr_now` for the public writers, failures handled as by `write_raw`.
    subroutine writeattr_raw(self, path, name, mem_type, dims, buf, error)
       class(h5file_t), intent(inout) :: self                      !! the file object
@@ -374,7 +436,7 @@ contains
       integer(hid_t) :: dset, fspace, mspace, dxpl
       integer(hsize_t), allocatable :: dims(:), maxdims(:), cnt(:), last(:)
       integer :: rank, hdferr, ierr
-      logical :: whole
+      logical :: whole, written
       character(len=:), allocatable :: why
       whole = .false.
       if (present(whole_chunks)) whole = whole_chunks
@@ -409,7 +471,12 @@ contains
             call h5dget_space_f(dset, fspace, ierr)
          end if
       end if
-      if (hdferr == 0) then
+      written = .false.
+      if (hdferr == 0 .and. whole .and. self%direct .and. product(cnt) > 0) then
+         why = 'HDF5 write failed'
+         call stored_chunks(dset, mem_type, buf, start, cnt, written, hdferr)
+      end if
+      if (hdferr == 0 .and. .not. written) then
          if (product(cnt) > 0) then
             why = 'HDF5 write failed'
             call h5pcreate_f(H5P_DATASET_XFER_F, dxpl, ierr)
@@ -575,4 +642,234 @@ contains
       end if
       call self%record%add(path, name, kind, itemsize, dims, buf, nbytes)
    end subroutine record_item
+
+   !> Write the block at `buf` (shape `cnt`, from 1-based `start`, whole chunks of
+   !> the fixed-size dataset `dset`, the last cut at its edge) chunk by chunk as
+   !> stored (H5Dwrite_chunk), when the dataset has no filters, is of rank 1 or 2
+   !> and of the memory type (`written`); an edge chunk is padded with zeros, which
+   !> HDF5 never shows. Else nothing is done. `hdferr` < 0: a write failed.
+   subroutine stored_chunks(dset, mem_type, buf, start, cnt, written, hdferr)
+      integer(hid_t), intent(in) :: dset               !! open dataset
+      integer(hid_t), intent(in) :: mem_type           !! type of `buf`
+      type(c_ptr), intent(in) :: buf                   !! the block
+      integer, intent(in) :: start(:)                  !! its first index
+      integer(hsize_t), intent(in) :: cnt(:)           !! its shape
+      logical, intent(out) :: written                  !! written here
+      integer, intent(out) :: hdferr                   !! < 0: failed
+      integer(hid_t) :: dcpl, dtype
+      integer(hsize_t) :: chunk(2)
+      integer(size_t) :: esize
+      integer(i8) :: c(2), b(2), nch(2), i, j, k, col, rows, cols, bytes
+      integer(c_int8_t), pointer :: block(:)
+      integer(c_int8_t), allocatable, target :: padded(:)
+      integer(c_int64_t) :: offset(2)
+      integer :: rank, layout, nfilters, ierr
+      logical :: same
+      written = .false.
+      hdferr = 0
+      rank = size(cnt)
+      if (rank /= 1 .and. rank /= 2) return
+      call h5dget_type_f(dset, dtype, ierr)
+      call h5tequal_f(dtype, mem_type, same, ierr)
+      call h5tget_size_f(dtype, esize, ierr)
+      call close_id(dtype)
+      if (.not. same .or. ierr /= 0) return
+      call h5dget_create_plist_f(dset, dcpl, ierr)
+      call h5pget_layout_f(dcpl, layout, ierr)
+      nfilters = -1
+      if (layout == H5D_CHUNKED_F) then
+         call h5pget_chunk_f(dcpl, rank, chunk, ierr)
+         call h5pget_nfilters_f(dcpl, nfilters, ierr)
+      end if
+      call close_id(dcpl)
+      if (nfilters /= 0) return
+      c = 1; b = 1
+      c(1:rank) = int(chunk(1:rank), i8)
+      b(1:rank) = int(cnt, i8)
+      nch = (b + c - 1)/c
+      bytes = c(1)*c(2)*int(esize, i8)
+      call c_f_pointer(buf, block, [b(1)*b(2)*int(esize, i8)])
+      do k = 0, nch(1)*nch(2) - 1
+         i = mod(k, nch(1))*c(1)   ! the chunk's origin in the block, 0-based
+         j = (k/nch(1))*c(2)
+         rows = min(c(1), b(1) - i)
+         cols = min(c(2), b(2) - j)
+         offset = [int(start(min(2, rank)) - 1, i8) + j, int(start(1) - 1, i8) + i]
+         if (rank == 1) offset(1) = int(start(1) - 1, i8) + i
+         if (rows == c(1) .and. cols == c(2) .and. (rank == 1 .or. b(1) == c(1))) then
+            ! the chunk is a contiguous part of the block
+            hdferr = c_h5dwrite_chunk(int(dset, c_int64_t), int(H5P_DEFAULT_F, c_int64_t), &
+                                      0_c_int32_t, offset, int(bytes, c_size_t), &
+                                      c_loc(block((j*b(1) + i)*esize + 1)))
+         else
+            if (.not. allocated(padded)) allocate (padded(bytes))
+            padded = 0
+            do col = 0, cols - 1
+               padded(col*c(1)*esize + 1:(col*c(1) + rows)*esize) = &
+                  block(((j + col)*b(1) + i)*esize + 1:((j + col)*b(1) + i + rows)*esize)
+            end do
+            hdferr = c_h5dwrite_chunk(int(dset, c_int64_t), int(H5P_DEFAULT_F, c_int64_t), &
+                                      0_c_int32_t, offset, int(bytes, c_size_t), c_loc(padded))
+         end if
+         if (hdferr < 0) return
+      end do
+      written = .true.
+   end subroutine stored_chunks
+
+   !> Write the whole dataset `path` from `buf` (shape `mem_dims`, `esize` bytes per
+   !> element) by encoding its chunks here, when the dataset is fixed-size, chunked,
+   !> of rank 1 or 2, of the memory type, and stored with shuffle, deflate and
+   !> optionally Fletcher-32, in that order (`written` true); else nothing is done
+   !> (`written` false, no error). The chunks are encoded in groups, each group on
+   !> every OpenMP thread, then written as stored in this thread.
+   subroutine chunked_now(self, path, mem_type, mem_dims, buf, esize, written, error)
+      class(h5file_t), intent(inout) :: self            !! the file object
+      character(len=*), intent(in) :: path              !! dataset path
+      integer(hid_t), intent(in) :: mem_type            !! type of `buf`
+      integer(hsize_t), intent(in) :: mem_dims(:)       !! shape of the array
+      type(c_ptr), intent(in) :: buf                    !! address of the array
+      integer, intent(in) :: esize                      !! bytes per element
+      logical, intent(out) :: written                   !! encoded and written here
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      !> bytes of encoded chunks held at once
+      integer(i8), parameter :: group_bytes = 33554432_i8
+      integer(c_int8_t), allocatable, target :: out(:, :)
+      integer(c_int8_t), allocatable :: work(:)   ! a chunk, shuffled (one per thread)
+      integer(i8), allocatable :: lens(:)
+      integer, allocatable :: codes(:)
+      integer(hid_t) :: dset
+      integer(hsize_t) :: chunk(2)
+      integer(c_int64_t) :: offset(2)
+      integer(i8) :: n(2), c(2), nc(2), cap, nch, g0, k, i0, j0
+      integer :: level, rank, hdferr, ng
+      logical :: summed, usable
+      written = .false.
+      call open_for_write(self, path, dset, error)
+      if (allocated(error)) return
+      if (dset < 0) then
+         call fail(error, 'write', self, quoted(path), 'no such dataset')
+         return
+      end if
+      rank = size(mem_dims)
+      call encodable(dset, mem_type, mem_dims, chunk, level, summed, usable)
+      if (.not. usable) then
+         call close_id(dset)
+         return
+      end if
+      n = 1; c = 1
+      n(1:rank) = int(mem_dims, i8)
+      c(1:rank) = int(chunk(1:rank), i8)
+      nc = (n + c - 1)/c
+      nch = nc(1)*nc(2)
+      cap = c_chunk_bound(c(1)*c(2)*esize)
+      ng = int(max(1_i8, min(nch, group_bytes/cap)))
+      allocate (out(cap, ng), lens(ng), codes(ng))
+      hdferr = 0
+      do g0 = 0, nch - 1, ng
+         !$omp parallel default(shared) private(i0, j0, work)
+         allocate (work(c(1)*c(2)*esize))
+         !$omp do schedule(dynamic)
+         do k = 1, min(int(ng, i8), nch - g0)
+            call chunk_origin(g0 + k - 1, i0, j0)
+            codes(k) = c_chunk_encode(buf, n(1), n(2), i0, j0, c(1), c(2), int(esize, c_int), &
+                                      int(level, c_int), 1_c_int, &
+                                      merge(1_c_int, 0_c_int, summed), work, &
+                                      out(:, k), cap, lens(k))
+         end do
+         !$omp end do
+         deallocate (work)
+         !$omp end parallel
+         do k = 1, min(int(ng, i8), nch - g0)
+            if (codes(k) /= 0) then
+               call close_id(dset)
+               call fail(error, 'write', self, quoted(path), 'could not encode chunk '// &
+                         to_str(g0 + k)//trim(merge(' (out of memory)     ', &
+                                                    ' (compression failed)', codes(k) == 1)))
+               return
+            end if
+            call chunk_origin(g0 + k - 1, i0, j0)
+            offset = int([j0, i0], c_int64_t)   ! C order: the last Fortran index first
+            if (rank == 1) offset(1) = int(i0, c_int64_t)
+            hdferr = c_h5dwrite_chunk(int(dset, c_int64_t), int(H5P_DEFAULT_F, c_int64_t), &
+                                      0_c_int32_t, offset, &
+                                      int(lens(k), c_size_t), c_loc(out(1, k)))
+            if (hdferr < 0) exit
+         end do
+         if (hdferr < 0) exit
+      end do
+      call close_id(dset)
+      if (hdferr < 0) then
+         call fail(error, 'write', self, quoted(path), 'HDF5 write failed')
+      else
+         written = .true.
+      end if
+   contains
+      !> 0-based first element (i0, j0) of chunk `ch` (0-based, the first index fastest)
+      subroutine chunk_origin(ch, i0, j0)
+         integer(i8), intent(in) :: ch
+         integer(i8), intent(out) :: i0, j0
+         i0 = mod(ch, nc(1))*c(1)
+         j0 = (ch/nc(1))*c(2)
+      end subroutine chunk_origin
+   end subroutine chunked_now
+
+   !> Whether the open dataset `dset` can have its chunks encoded by
+   !> dpend_chunk_codec.c for a write of the whole of it from memory of type
+   !> `mem_type` and shape `mem_dims`; if so, its chunk shape (Fortran order), deflate
+   !> level and whether it carries a checksum.
+   subroutine encodable(dset, mem_type, mem_dims, chunk, level, summed, usable)
+      integer(hid_t), intent(in) :: dset               !! open dataset
+      integer(hid_t), intent(in) :: mem_type           !! type in memory
+      integer(hsize_t), intent(in) :: mem_dims(:)      !! shape in memory
+      integer(hsize_t), intent(out) :: chunk(2)        !! chunk shape
+      integer, intent(out) :: level                    !! deflate level
+      logical, intent(out) :: summed                   !! Fletcher-32 last
+      logical, intent(out) :: usable                   !! all of the above hold
+      integer(hid_t) :: space, dtype, dcpl
+      integer(hsize_t), allocatable :: dims(:), maxdims(:)
+      integer :: layout, nfilters, ierr, rank, f, flags, id
+      integer(size_t) :: nelmts
+      integer :: values(8)
+      character(len=32) :: name
+      logical :: same
+      chunk = 1; level = 0; summed = .false.
+      rank = size(mem_dims)
+      call h5dget_space_f(dset, space, ierr)
+      call space_dims(space, dims, maxdims)
+      call close_id(space)
+      call h5dget_type_f(dset, dtype, ierr)
+      call h5tequal_f(dtype, mem_type, same, ierr)
+      call close_id(dtype)
+      usable = same .and. ierr == 0 .and. (rank == 1 .or. rank == 2) .and. size(dims) == rank
+      if (usable) usable = all(dims == mem_dims) .and. all(maxdims == dims) .and. &
+                           product(dims) > 0
+      if (.not. usable) return
+      call h5dget_create_plist_f(dset, dcpl, ierr)
+      call h5pget_layout_f(dcpl, layout, ierr)
+      usable = layout == H5D_CHUNKED_F
+      if (usable) call h5pget_chunk_f(dcpl, rank, chunk, ierr)
+      if (usable) usable = ierr >= 0 .and. all(chunk(1:rank) >= 1)
+      nfilters = 0
+      if (usable) call h5pget_nfilters_f(dcpl, nfilters, ierr)
+      usable = usable .and. (nfilters == 2 .or. nfilters == 3)
+      do f = 0, nfilters - 1
+         if (.not. usable) exit
+         nelmts = size(values, kind=size_t)
+         values = 0
+         call h5pget_filter_f(dcpl, f, flags, nelmts, values, int(len(name), size_t), name, &
+                              id, ierr)
+         select case (f)
+         case (0); usable = ierr >= 0 .and. id == H5Z_FILTER_SHUFFLE_F
+         case (1)
+            usable = ierr >= 0 .and. id == H5Z_FILTER_DEFLATE_F .and. nelmts >= 1
+            if (usable) level = values(1)
+            usable = usable .and. level >= 0 .and. level <= 9
+         case (2)
+            usable = ierr >= 0 .and. id == H5Z_FILTER_FLETCHER32_F
+            summed = usable
+         end select
+      end do
+      call close_id(dcpl)
+   end subroutine encodable
+
 end submodule dpend_hdf5_write

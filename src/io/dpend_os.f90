@@ -17,6 +17,7 @@ module dpend_os
    public :: wall_clock, directory_of, base_name, find_script
    public :: path_kind, path_missing, path_file, path_directory, path_link, path_other
    public :: free_disk_bytes, available_memory_bytes, file_id, make_temp_file, sync_path
+   public :: reserve_space
    public :: move_noreplace, move_replace, remove_file, errno_text, run_program
    public :: echo_to_stderr  ! for the figure scripts
    public :: errno_exists, errno_nospc, io_failure_reason
@@ -93,6 +94,10 @@ module dpend_os
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
       end function c_sync_path
+      integer(c_int) function c_reserve_space(path) bind(C, name='dpend_reserve_space')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c_reserve_space
       integer(c_int) function c_move_noreplace(from, to) bind(C, name='dpend_move_noreplace')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: from(*), to(*)
@@ -201,6 +206,13 @@ contains
       character(len=*), intent(in) :: path
       sync_path = int(c_sync_path(path//c_null_char))
    end function sync_path
+
+   !> Give the file `path` disk blocks for all its length, its contents unchanged (a
+   !> sparse file takes its space now). Returns 0 or an errno value.
+   integer function reserve_space(path)
+      character(len=*), intent(in) :: path
+      reserve_space = int(c_reserve_space(path//c_null_char))
+   end function reserve_space
 
    !> Rename `from` to `to` in one step unless `to` exists (then errno_exists).
    integer function move_noreplace(from, to)

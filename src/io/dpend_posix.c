@@ -1,5 +1,6 @@
 /* POSIX services that Fortran cannot reach portably: the kind of a path (lstat),
- * a file's identity (device and inode), free disk space (statvfs), unique temporary files (mkstemp), fsync, a move that
+ * a file's identity (device and inode), free disk space (statvfs), unique temporary files (mkstemp), fsync,
+ * disk blocks for a sparse file (posix_fallocate), a move that
  * never replaces (renameat2 RENAME_NOREPLACE, else link + unlink), errno texts,
  * and running a program with an argument vector and no shell (posix_spawnp).
  * Called from dpend_os through bind(C) interfaces. Every function returns 0
@@ -73,6 +74,20 @@ int dpend_sync_path(const char *path)
     int err = fsync(fd) != 0 ? errno : 0;
     /* directories on some file systems refuse fsync: not an error for us */
     if (err == EINVAL || err == EROFS) err = 0;
+    if (close(fd) != 0 && err == 0) err = errno;
+    return err;
+}
+
+/* Give the file `path` disk blocks for all of its length (posix_fallocate), so
+ * that later writes inside it cannot meet a full disk: a file made sparse (HDF5
+ * datasets allocated and not written) takes its space now. The contents stay. */
+int dpend_reserve_space(const char *path)
+{
+    int fd = open(path, O_RDWR | O_CLOEXEC);
+    if (fd < 0) return errno;
+    struct stat st;
+    int err = fstat(fd, &st) != 0 ? errno : 0;
+    if (err == 0 && st.st_size > 0) err = posix_fallocate(fd, 0, st.st_size);
     if (close(fd) != 0 && err == 0) err = errno;
     return err;
 }
