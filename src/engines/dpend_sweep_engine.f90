@@ -23,7 +23,8 @@ module dpend_sweep_engine
    use dpend_cli, only: to_str
    use dpend_sweep_setup, only: sweep_setup_t, sweep_summary_t, build_setup, block_range, &
       block_initial_conditions, parameter_axes, block_parameters, parameter_names, named_axes
-   use dpend_sweep_layout, only: result_names, write_block, working_file, finalize_file
+   use dpend_sweep_layout, only: result_names, working_file, finalize_file, &
+      block_result_crcs, block_values_t, block_values, write_values
    use dpend_sweep_resume, only: open_output
    use dpend_sweep_gpu, only: gpu_integrate_block
    implicit none
@@ -263,6 +264,8 @@ contains
          type(error_t), allocatable :: werr
          logical :: stop_now
          integer :: jj0, nnb
+         integer, allocatable :: crcs(:)
+         type(block_values_t), target :: vals
          !$omp atomic read
          stop_now = failed
          if (stop_now) return
@@ -277,6 +280,9 @@ contains
             return
          end if
          call compute_block(setup, bb, res)
+         ! the block's columns and checksums on this thread, before the lock
+         call block_values(setup, bb, res, vals)
+         crcs = block_result_crcs(setup, vals)
          call block_range(setup, bb, jj0, nnb)
          !$omp critical (dpend_sweep_io)
          ! a block cut short by a stop request is not written
@@ -286,7 +292,7 @@ contains
             failed = .true.
          end if
          if (.not. failed) then
-            call write_block(h5, setup, bb, res, werr)
+            call write_values(h5, setup, bb, vals, crcs, werr)
             if (allocated(werr)) then
                call move_alloc(werr, error)
                !$omp atomic write

@@ -22,7 +22,16 @@ module dpend_sweep_layout
    implicit none
    private
    public :: result_names, create_layout, write_block, working_file, finalize_file, install_file
-   public :: crc_path, block_crcs, read_crcs
+   public :: crc_path, block_crcs, read_crcs, block_result_crcs, block_values_t, block_values
+   public :: write_values
+
+   !> The results of one block as written: real and integer columns by name.
+   type :: block_values_t
+      character(len=32), allocatable :: real_names(:)  !! /sweep/ names of r's columns
+      character(len=32), allocatable :: int_names(:)   !! /sweep/ names of i's columns
+      real(dp), allocatable :: r(:, :)                 !! (initial conditions, results)
+      integer, allocatable :: i(:, :)                  !! (initial conditions, results)
+   end type block_values_t
 
    !> The CRC-32 of every block of a result held whole (`write_block`'s checksums).
    interface block_crcs
@@ -480,11 +489,96 @@ contains
       k = max(1, min(setup%nblocks, final_chunk_values/max(1, setup%block)))
    end function final_blocks
 
-   !> Write the results of block b, flush, then flag it done and flush again.
-   !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
-   !> flush is collective and the independent raw-data writes of allocated,
-   !> unfiltered chunks bypass HDF5's caches (they reach the file, in order, before
-   !> the write returns).
+   !> The results of block b as written, each a column: the one list of a block's
+   !> results, in the order they are written (`result_names` names the same).
+   subroutine block_values(setup, b, res, v)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: b                          !! block, 1-based
+      type(batch_result_t), intent(in) :: res           !! its results
+      type(block_values_t), intent(out) :: v            !! its columns
+      real(dp), allocatable :: p(:, :)
+      character(len=32), allocatable :: names(:)
+      integer :: i, k, j0, nb
+      call block_range(setup, b, j0, nb)
+      allocate (v%real_names(0), v%int_names(0), v%r(nb, 0), v%i(nb, 0))
+      if (setup%flips) call take_r('t_flip', res%t_flip)
+      if (.not. setup%flips) then
+      else if (setup%links == 2) then
+         call take_r('t_flip1', res%t_flip1)
+         call take_r('t_flip2', res%t_flip2)
+      else
+         do i = 1, setup%links
+            call take_r('t_flip'//to_str(i), res%t_flip_link(i, :))
+         end do
+      end if
+      call take_r('energy0', res%energy0)
+      call take_r('energy_error', res%energy_error)
+      call take_r('t_stop', res%t_stop)
+      do i = 1, setup%links
+         call take_r('final/q'//to_str(i), res%final(i, :))
+      end do
+      do i = 1, setup%links
+         call take_r('final/w'//to_str(i), res%final(setup%links + i, :))
+      end do
+      if (setup%cfg%lyapunov) call take_r('lyapunov', res%lyapunov)
+      select case (setup%cfg%indicator)
+      case ('megno')
+         call take_r('megno', res%megno)
+         call take_r('megno_y', res%megno_y)
+      case ('fli'); call take_r('fli', res%fli)
+      case ('sali'); call take_r('sali', res%sali)
+      case ('gali2'); call take_r('gali2', res%gali2)
+      end select
+      if (parameter_axes(setup)) then
+         call block_parameters(setup, b, p)
+         names = parameter_names(setup)
+         do k = 1, size(names)
+            if (len_trim(names(k)) > 0) call take_r('param/'//trim(names(k)), p(k, :))
+         end do
+      end if
+      v%int_names = [character(len=32) :: 'status']
+      v%i = reshape(res%status, [nb, 1])
+      if (setup%cfg%stats) then
+         v%int_names = [v%int_names, [character(len=32) :: 'steps']]
+         v%i = reshape([v%i(:, 1), res%steps], [nb, 2])
+      end if
+   contains
+      subroutine take_r(name, x)
+         character(len=*), intent(in) :: name
+         real(dp), intent(in) :: x(:)
+         real(dp), allocatable :: grown(:, :)
+         v%real_names = [v%real_names, [character(len=32) :: name]]
+         allocate (grown(nb, size(v%real_names)))
+         grown(:, :size(v%real_names) - 1) = v%r
+         grown(:, size(v%real_names)) = x
+         call move_alloc(grown, v%r)
+      end subroutine take_r
+   end subroutine block_values
+
+   !> The CRC-32 of each result of a block as written (`block_values`), in the
+   !> order of `result_names` (reals, then integers).
+   function block_result_crcs(setup, v) result(crcs)
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      type(block_values_t), intent(in) :: v             !! the block's results
+      integer, allocatable :: crcs(:)
+      character(len=32), allocatable :: reals(:), ints(:), names(:)
+      integer :: m, k
+      call result_names(setup, reals, ints)
+      names = [reals, ints]
+      allocate (crcs(size(names)))
+      crcs = 0
+      do k = 1, size(v%real_names)
+         m = findloc(names, v%real_names(k), dim=1)
+         if (m > 0) crcs(m) = crc32_of(v%r(:, k))
+      end do
+      do k = 1, size(v%int_names)
+         m = findloc(names, v%int_names(k), dim=1)
+         if (m > 0) crcs(m) = crc32_of(v%i(:, k))
+      end do
+   end function block_result_crcs
+
+   !> Write the results of block b and their CRC-32, flush, then flag it done and
+   !> flush again (`write_values`).
    subroutine write_block(h5, setup, b, res, error, flush)
       type(h5file_t), intent(inout) :: h5               !! open working file
       type(sweep_setup_t), intent(in) :: setup          !! setup
@@ -492,124 +586,66 @@ contains
       type(batch_result_t), intent(in) :: res           !! its results
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
-      real(dp), allocatable :: p(:, :)
-      character(len=32), allocatable :: names(:), written(:)
-      integer, allocatable :: crcs(:)
-      integer :: j0, nb, i, k, nw
+      type(block_values_t), target :: v
+      call block_values(setup, b, res, v)
+      call write_values(h5, setup, b, v, block_result_crcs(setup, v), error, flush)
+   end subroutine write_block
+
+   !> Write the results `v` of block b and their CRC-32 `crcs` (`crc_path`, when the
+   !> file has it; `block_result_crcs`), flush, then flag it done and flush again.
+   !> `flush` false leaves out the flushes: for a file opened with MPI-IO, where a
+   !> flush is collective and the independent raw-data writes of allocated,
+   !> unfiltered chunks bypass HDF5's caches (they reach the file, in order, before
+   !> the write returns).
+   subroutine write_values(h5, setup, b, v, crcs, error, flush)
+      type(h5file_t), intent(inout) :: h5               !! open working file
+      type(sweep_setup_t), intent(in) :: setup          !! setup
+      integer, intent(in) :: b                          !! block, 1-based
+      type(block_values_t), intent(in), target :: v     !! its results
+      integer, intent(in) :: crcs(:)                    !! their CRC-32
+      type(error_t), allocatable, intent(out) :: error  !! I/O failure
+      logical, intent(in), optional :: flush            !! flush the file (default true)
+      real(dp), pointer :: r2(:, :)
+      integer, pointer :: i2(:, :)
+      integer :: j0, nb, k, n1
       logical :: sync
       sync = .true.
       if (present(flush)) sync = flush
       call block_range(setup, b, j0, nb)
-      allocate (written(64), crcs(64))
-      nw = 0
-      if (setup%flips) call put_r('t_flip', res%t_flip)
-      if (.not. setup%flips) then
-      else if (setup%links == 2) then
-         call put_r('t_flip1', res%t_flip1)
-         call put_r('t_flip2', res%t_flip2)
-      else
-         do i = 1, setup%links
-            call put_r('t_flip'//to_str(i), res%t_flip_link(i, :))
-         end do
-      end if
-      call put_r('energy0', res%energy0)
-      call put_r('energy_error', res%energy_error)
-      call put_r('t_stop', res%t_stop)
-      do i = 1, setup%links
-         call put_r('final/q'//to_str(i), res%final(i, :))
+      ! each block is whole chunks: a chunk torn by a kill during its write (its
+      ! block not flagged done) is replaced without its old checksum being checked
+      n1 = merge(setup%cfg%n1, nb, setup%grid)
+      do k = 1, size(v%real_names)
+         if (allocated(error)) exit
+         r2(1:n1, 1:nb/n1) => v%r(:, k)
+         if (setup%grid) then
+            call h5%write_slab('/sweep/'//trim(v%real_names(k)), r2, &
+                               [1, (j0 - 1)/n1 + 1], error, whole_chunks=.true.)
+         else
+            call h5%write_slab('/sweep/'//trim(v%real_names(k)), v%r(:, k), [j0], error, &
+                               whole_chunks=.true.)
+         end if
       end do
-      do i = 1, setup%links
-         call put_r('final/w'//to_str(i), res%final(setup%links + i, :))
+      do k = 1, size(v%int_names)
+         if (allocated(error)) exit
+         i2(1:n1, 1:nb/n1) => v%i(:, k)
+         if (setup%grid) then
+            call h5%write_slab('/sweep/'//trim(v%int_names(k)), i2, &
+                               [1, (j0 - 1)/n1 + 1], error, whole_chunks=.true.)
+         else
+            call h5%write_slab('/sweep/'//trim(v%int_names(k)), v%i(:, k), [j0], error, &
+                               whole_chunks=.true.)
+         end if
       end do
-      if (setup%cfg%lyapunov) call put_r('lyapunov', res%lyapunov)
-      select case (setup%cfg%indicator)
-      case ('megno')
-         call put_r('megno', res%megno)
-         call put_r('megno_y', res%megno_y)
-      case ('fli'); call put_r('fli', res%fli)
-      case ('sali'); call put_r('sali', res%sali)
-      case ('gali2'); call put_r('gali2', res%gali2)
-      end select
-      if (parameter_axes(setup)) then
-         call block_parameters(setup, b, p)
-         names = parameter_names(setup)
-         do k = 1, size(names)
-            if (len_trim(names(k)) > 0) call put_r('param/'//trim(names(k)), p(k, :))
-         end do
-      end if
-      call put_i('status', res%status)
-      if (setup%cfg%stats) call put_i('steps', res%steps)
       if (allocated(error)) return
-      if (h5%exists(crc_path)) call put_crcs()
+      if (h5%exists(crc_path)) call h5%write_slab(crc_path, reshape(crcs, [size(crcs), 1]), &
+                                                  [1, b], error)
       if (allocated(error)) return
       if (sync) call h5%flush()
       call h5%write_slab('/sweep/done', [1], [b], error)
       if (allocated(error)) return
       if (sync) call h5%flush()
-   contains
-      ! each block is whole chunks: a chunk torn by a kill during its write (its
-      ! block not flagged done) is replaced without its old checksum being checked
-      subroutine put_r(name, v)
-         character(len=*), intent(in) :: name
-         real(dp), intent(in) :: v(:)
-         real(dp), allocatable :: a2(:, :), a1(:)
-         if (allocated(error)) return
-         if (setup%grid) then
-            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
-            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
-                               whole_chunks=.true.)
-         else
-            a1 = v   ! contiguous copy
-            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
-         end if
-         call keep_crc(name, crc32_of(v))
-      end subroutine put_r
-      subroutine put_i(name, v)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: v(:)
-         integer, allocatable :: a2(:, :), a1(:)
-         if (allocated(error)) return
-         if (setup%grid) then
-            a2 = reshape(v, [setup%cfg%n1, nb/setup%cfg%n1])
-            call h5%write_slab('/sweep/'//name, a2, [1, (j0 - 1)/setup%cfg%n1 + 1], error, &
-                               whole_chunks=.true.)
-         else
-            a1 = v   ! contiguous copy
-            call h5%write_slab('/sweep/'//name, a1, [j0], error, whole_chunks=.true.)
-         end if
-         call keep_crc(name, crc32_of(v))
-      end subroutine put_i
-      subroutine keep_crc(name, crc)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: crc
-         if (nw == size(written)) then
-            written = [written, written]
-            crcs = [crcs, crcs]
-         end if
-         nw = nw + 1
-         written(nw) = name
-         crcs(nw) = crc
-      end subroutine keep_crc
-      ! the block's column of the checksums, in the order of `result_names`
-      subroutine put_crcs()
-         character(len=32), allocatable :: reals(:), ints(:), all_names(:)
-         integer, allocatable :: column(:, :)
-         integer :: m, w
-         call result_names(setup, reals, ints)
-         all_names = [reals, ints]
-         allocate (column(size(all_names), 1))
-         do m = 1, size(all_names)
-            w = findloc(written(:nw), all_names(m), dim=1)
-            if (w == 0) then
-               call fatal_error(error, 'cannot write block '//to_str(b)//': no '// &
-                                trim(all_names(m))//' among its results')
-               return
-            end if
-            column(m, 1) = crcs(w)
-         end do
-         call h5%write_slab(crc_path, column, [1, b], error)
-      end subroutine put_crcs
-   end subroutine write_block
+   end subroutine write_values
 
    !> The working file of the sweep whose output is `output`: FILE.part.
    pure function working_file(output) result(path)

@@ -72,6 +72,18 @@ module dpend_hdf5
    !> What a read accepts in the file: anything, numbers, integers, a string.
    integer, parameter :: want_any = 0, want_real = 1, want_int = 2, want_str = 3
 
+   !> A dataset whose whole chunks `write_slab` writes as stored, kept open with
+   !> what the writes check: its type, shape and chunk shape (rank 1 or 2).
+   type :: stored_dataset_t
+      character(len=:), allocatable :: path      !! its path
+      integer(hid_t) :: dset = -1                !! open dataset, -1: not eligible
+      integer(hid_t) :: dtype = -1               !! its type, open
+      integer :: rank = 0                        !! 1 or 2
+      integer(hsize_t) :: dims(2) = 1            !! its fixed shape
+      integer(hsize_t) :: chunk(2) = 1           !! its chunk shape
+      integer(size_t) :: esize = 0               !! bytes per element
+   end type stored_dataset_t
+
    !> One open HDF5 file. Do not copy an open `h5file_t`: the copy shares the id.
    type :: h5file_t
       private
@@ -89,6 +101,9 @@ module dpend_hdf5
       !> a file on disk opened with the default access (not MPI-IO): whole unfiltered
       !> chunks are written as stored (`write_slab` with `whole_chunks`)
       logical :: direct = .false.
+      !> the datasets so written, kept open until a dataset is created or replaced,
+      !> or the file closed (`forget_stored`)
+      type(stored_dataset_t), allocatable :: stored(:)
    contains
       procedure :: open => file_open
       procedure :: close => file_close
@@ -592,6 +607,11 @@ module dpend_hdf5
       end function vlen_string_type
 
       !> Close any HDF5 identifier we own and set it to -1.
+      !> Close the datasets kept open for `write_slab`'s writes as stored.
+      module subroutine forget_stored(self)
+         class(h5file_t), intent(inout) :: self  !! the file object
+      end subroutine forget_stored
+
       module subroutine close_id(id)
          integer(hid_t), intent(inout) :: id  !! dataset, space, type, attribute or plist
       end subroutine close_id

@@ -62,6 +62,16 @@ contains
       call h5tset_cset_f(stype, H5T_CSET_UTF8_F, ierr)
    end procedure vlen_string_type
 
+   module procedure forget_stored
+      integer :: k
+      if (.not. allocated(self%stored)) return
+      do k = 1, size(self%stored)
+         call close_id(self%stored(k)%dset)
+         call close_id(self%stored(k)%dtype)
+      end do
+      deallocate (self%stored)
+   end procedure forget_stored
+
    module procedure close_id
       integer :: id_type, ierr
       if (id < 0) return

@@ -83,6 +83,7 @@ contains
       end if
       if (self%id < 0) return
       call quiet_thread()
+      call forget_stored(self)
       ierr = 0
       call h5iis_valid_f(self%id, valid, ierr)
       if (valid .and. ierr == 0) then

@@ -75,6 +75,7 @@ contains
       integer :: rank, hdferr, ierr
       logical :: grows, packed, early, summed
 
+      call forget_stored(self)   ! a dataset may be replaced
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
       call close_id(dset)
@@ -385,6 +386,7 @@ contains
          call record_typed(self, path, '', mem_type, dims, buf, error)
          return
       end if
+      call forget_stored(self)   ! a dataset may be replaced
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
       if (dset >= 0) then
@@ -440,6 +442,12 @@ contains
       character(len=:), allocatable :: why
       whole = .false.
       if (present(whole_chunks)) whole = whole_chunks
+      if (whole .and. self%direct) then
+         call stored_chunks(self, path, mem_type, mem_dims, start, buf, written, hdferr)
+         if (hdferr < 0) call fail(error, 'write a slab of', self, quoted(path), &
+                                   'HDF5 write failed')
+         if (written .or. hdferr < 0) return
+      end if
       call open_for_write(self, path, dset, error)
       if (allocated(error)) return
       if (dset < 0) then
@@ -471,12 +479,7 @@ contains
             call h5dget_space_f(dset, fspace, ierr)
          end if
       end if
-      written = .false.
-      if (hdferr == 0 .and. whole .and. self%direct .and. product(cnt) > 0) then
-         why = 'HDF5 write failed'
-         call stored_chunks(dset, mem_type, buf, start, cnt, written, hdferr)
-      end if
-      if (hdferr == 0 .and. .not. written) then
+      if (hdferr == 0) then
          if (product(cnt) > 0) then
             why = 'HDF5 write failed'
             call h5pcreate_f(H5P_DATASET_XFER_F, dxpl, ierr)
@@ -643,78 +646,124 @@ contains
       call self%record%add(path, name, kind, itemsize, dims, buf, nbytes)
    end subroutine record_item
 
-   !> Write the block at `buf` (shape `cnt`, from 1-based `start`, whole chunks of
-   !> the fixed-size dataset `dset`, the last cut at its edge) chunk by chunk as
-   !> stored (H5Dwrite_chunk), when the dataset has no filters, is of rank 1 or 2
-   !> and of the memory type (`written`); an edge chunk is padded with zeros, which
-   !> HDF5 never shows. Else nothing is done. `hdferr` < 0: a write failed.
-   subroutine stored_chunks(dset, mem_type, buf, start, cnt, written, hdferr)
-      integer(hid_t), intent(in) :: dset               !! open dataset
+   !> Write the block at `buf` (shape `mem_dims`, from 1-based `start`) chunk by chunk
+   !> as stored (H5Dwrite_chunk), when it is whole chunks of a fixed-size dataset of
+   !> rank 1 or 2 without filters, of the memory type (`written`); an edge chunk is
+   !> padded with zeros, which HDF5 never shows. Else nothing is done and `write_slab`
+   !> goes its usual way. The dataset stays open, with what is checked
+   !> (`stored_dataset`). `hdferr` < 0: a write failed.
+   subroutine stored_chunks(self, path, mem_type, mem_dims, start, buf, written, hdferr)
+      class(h5file_t), intent(inout) :: self           !! the file object
+      character(len=*), intent(in) :: path             !! dataset path
       integer(hid_t), intent(in) :: mem_type           !! type of `buf`
-      type(c_ptr), intent(in) :: buf                   !! the block
+      integer(hsize_t), intent(in) :: mem_dims(:)      !! shape of the block
       integer, intent(in) :: start(:)                  !! its first index
-      integer(hsize_t), intent(in) :: cnt(:)           !! its shape
+      type(c_ptr), intent(in) :: buf                   !! the block
       logical, intent(out) :: written                  !! written here
       integer, intent(out) :: hdferr                   !! < 0: failed
-      integer(hid_t) :: dcpl, dtype
-      integer(hsize_t) :: chunk(2)
-      integer(size_t) :: esize
-      integer(i8) :: c(2), b(2), nch(2), i, j, k, col, rows, cols, bytes
+      integer(i8) :: c(2), b(2), s(2), d(2), nch(2), i, j, k, col, rows, cols, bytes, e
       integer(c_int8_t), pointer :: block(:)
       integer(c_int8_t), allocatable, target :: padded(:)
       integer(c_int64_t) :: offset(2)
-      integer :: rank, layout, nfilters, ierr
+      integer :: slot, ierr
       logical :: same
       written = .false.
       hdferr = 0
-      rank = size(cnt)
-      if (rank /= 1 .and. rank /= 2) return
-      call h5dget_type_f(dset, dtype, ierr)
-      call h5tequal_f(dtype, mem_type, same, ierr)
-      call h5tget_size_f(dtype, esize, ierr)
-      call close_id(dtype)
-      if (.not. same .or. ierr /= 0) return
-      call h5dget_create_plist_f(dset, dcpl, ierr)
-      call h5pget_layout_f(dcpl, layout, ierr)
-      nfilters = -1
-      if (layout == H5D_CHUNKED_F) then
-         call h5pget_chunk_f(dcpl, rank, chunk, ierr)
-         call h5pget_nfilters_f(dcpl, nfilters, ierr)
-      end if
-      call close_id(dcpl)
-      if (nfilters /= 0) return
-      c = 1; b = 1
-      c(1:rank) = int(chunk(1:rank), i8)
-      b(1:rank) = int(cnt, i8)
-      nch = (b + c - 1)/c
-      bytes = c(1)*c(2)*int(esize, i8)
-      call c_f_pointer(buf, block, [b(1)*b(2)*int(esize, i8)])
-      do k = 0, nch(1)*nch(2) - 1
-         i = mod(k, nch(1))*c(1)   ! the chunk's origin in the block, 0-based
-         j = (k/nch(1))*c(2)
-         rows = min(c(1), b(1) - i)
-         cols = min(c(2), b(2) - j)
-         offset = [int(start(min(2, rank)) - 1, i8) + j, int(start(1) - 1, i8) + i]
-         if (rank == 1) offset(1) = int(start(1) - 1, i8) + i
-         if (rows == c(1) .and. cols == c(2) .and. (rank == 1 .or. b(1) == c(1))) then
-            ! the chunk is a contiguous part of the block
-            hdferr = c_h5dwrite_chunk(int(dset, c_int64_t), int(H5P_DEFAULT_F, c_int64_t), &
-                                      0_c_int32_t, offset, int(bytes, c_size_t), &
-                                      c_loc(block((j*b(1) + i)*esize + 1)))
-         else
-            if (.not. allocated(padded)) allocate (padded(bytes))
-            padded = 0
-            do col = 0, cols - 1
-               padded(col*c(1)*esize + 1:(col*c(1) + rows)*esize) = &
-                  block(((j + col)*b(1) + i)*esize + 1:((j + col)*b(1) + i + rows)*esize)
-            end do
-            hdferr = c_h5dwrite_chunk(int(dset, c_int64_t), int(H5P_DEFAULT_F, c_int64_t), &
-                                      0_c_int32_t, offset, int(bytes, c_size_t), c_loc(padded))
-         end if
-         if (hdferr < 0) return
-      end do
+      slot = stored_dataset(self, path)
+      if (slot == 0) return
+      associate (ds => self%stored(slot))
+         if (ds%dset < 0 .or. size(start) /= ds%rank .or. size(mem_dims) > ds%rank) return
+         c = int(ds%chunk, i8); d = int(ds%dims, i8)
+         b = 1; s = 1
+         b(1:size(mem_dims)) = int(mem_dims, i8)
+         s(1:ds%rank) = int(start, i8)
+         if (any(s < 1) .or. any(s - 1 + b > d) .or. product(b) == 0) return
+         if (any(mod(s - 1, c) /= 0) .or. any(mod(b, c) /= 0 .and. s - 1 + b /= d)) return
+         call h5tequal_f(ds%dtype, mem_type, same, ierr)
+         if (.not. same .or. ierr /= 0) return
+         e = int(ds%esize, i8)
+         nch = (b + c - 1)/c
+         bytes = c(1)*c(2)*e
+         call c_f_pointer(buf, block, [b(1)*b(2)*e])
+         do k = 0, nch(1)*nch(2) - 1
+            i = mod(k, nch(1))*c(1)   ! the chunk's origin in the block, 0-based
+            j = (k/nch(1))*c(2)
+            rows = min(c(1), b(1) - i)
+            cols = min(c(2), b(2) - j)
+            offset = [s(2) - 1 + j, s(1) - 1 + i]   ! C order: the last index first
+            if (ds%rank == 1) offset(1) = s(1) - 1 + i
+            if (rows == c(1) .and. cols == c(2) .and. (ds%rank == 1 .or. b(1) == c(1))) then
+               ! the chunk is a contiguous part of the block
+               hdferr = c_h5dwrite_chunk(int(ds%dset, c_int64_t), &
+                                         int(H5P_DEFAULT_F, c_int64_t), 0_c_int32_t, offset, &
+                                         int(bytes, c_size_t), c_loc(block((j*b(1) + i)*e + 1)))
+            else
+               if (.not. allocated(padded)) allocate (padded(bytes))
+               padded = 0
+               do col = 0, cols - 1
+                  padded(col*c(1)*e + 1:(col*c(1) + rows)*e) = &
+                     block(((j + col)*b(1) + i)*e + 1:((j + col)*b(1) + i + rows)*e)
+               end do
+               hdferr = c_h5dwrite_chunk(int(ds%dset, c_int64_t), &
+                                         int(H5P_DEFAULT_F, c_int64_t), 0_c_int32_t, offset, &
+                                         int(bytes, c_size_t), c_loc(padded))
+            end if
+            if (hdferr < 0) return
+         end do
+      end associate
       written = .true.
    end subroutine stored_chunks
+
+   !> The slot of `path` among the datasets kept for `stored_chunks`, opened and
+   !> examined on its first write: eligible (`dset` >= 0) when it is a fixed-size
+   !> chunked dataset of rank 1 or 2 without filters. 0: no such dataset.
+   integer function stored_dataset(self, path) result(slot)
+      class(h5file_t), intent(inout) :: self  !! the file object
+      character(len=*), intent(in) :: path    !! dataset path
+      type(stored_dataset_t) :: ds
+      type(error_t), allocatable :: err
+      integer(hid_t) :: dcpl, space
+      integer(hsize_t), allocatable :: dims(:), maxdims(:)
+      integer :: layout, nfilters, ierr
+      if (allocated(self%stored)) then
+         do slot = 1, size(self%stored)
+            if (self%stored(slot)%path == trim(path)) return
+         end do
+      end if
+      slot = 0
+      call open_for_write(self, path, ds%dset, err)
+      if (allocated(err) .or. ds%dset < 0) return
+      ds%path = trim(path)
+      call h5dget_space_f(ds%dset, space, ierr)
+      call space_dims(space, dims, maxdims)
+      call close_id(space)
+      ds%rank = size(dims)
+      nfilters = -1
+      layout = -1
+      if (ds%rank == 1 .or. ds%rank == 2) then
+         if (all(maxdims == dims)) then
+            ds%dims(1:ds%rank) = dims
+            call h5dget_create_plist_f(ds%dset, dcpl, ierr)
+            call h5pget_layout_f(dcpl, layout, ierr)
+            if (layout == H5D_CHUNKED_F) then
+               call h5pget_chunk_f(dcpl, ds%rank, ds%chunk, ierr)
+               call h5pget_nfilters_f(dcpl, nfilters, ierr)
+            end if
+            call close_id(dcpl)
+         end if
+      end if
+      if (nfilters == 0 .and. all(ds%chunk >= 1)) then
+         call h5dget_type_f(ds%dset, ds%dtype, ierr)
+         call h5tget_size_f(ds%dtype, ds%esize, ierr)
+      else
+         call close_id(ds%dset)   ! kept as not eligible
+         ds%dset = -1
+      end if
+      if (.not. allocated(self%stored)) allocate (self%stored(0))
+      self%stored = [self%stored, ds]
+      slot = size(self%stored)
+   end function stored_dataset
+
 
    !> Write the whole dataset `path` from `buf` (shape `mem_dims`, `esize` bytes per
    !> element) by encoding its chunks here, when the dataset is fixed-size, chunked,
