@@ -7,7 +7,8 @@
 !> interleaved runs of each. Then the map's results written again, whole, into
 !> compressed datasets two ways, sizes and times side by side: through HDF5's own
 !> filters in one thread (`write_slab`) and with the chunks encoded on every thread
-!> (`write_chunked`, dpend_chunk_codec.c).
+!> (`write_chunked`, dpend_chunk_codec.c). The same map's file with --device gpu
+!> (one block: one call of the library) when the GPU library loads.
 !> Printed one per line as `key: value unit`. Run in the release profile:
 !>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --map-file
 module bench_map_file
@@ -29,18 +30,32 @@ module bench_map_file
 
 contains
 
-   !> Print the figures of a map's file to `unit`.
+   !> Print the figures of a map's file to `unit`: on the CPU, then, when a GPU
+   !> library loads (a GPU, or the host emulation of scripts/gpu/build_gpu.sh
+   !> --emulate named by $DPEND_GPU_LIB), with --device gpu and one block.
    subroutine run_map_file_benchmarks(unit)
       integer, intent(in) :: unit  !! where the figures go
+      write (unit, '(a)') 'load_average_1min_at_start: '//load_average()
+      write (unit, '(a, i0)') 'threads: ', omp_get_max_threads()
+      call map_file_figures(unit, 'cpu')
+      call map_file_figures(unit, 'gpu')
+   end subroutine run_map_file_benchmarks
+
+   !> The figures of the 1024^2 map's file on `device` ('cpu'; 'gpu' only when its
+   !> library loads, else a line saying why not).
+   subroutine map_file_figures(unit, device)
+      integer, intent(in) :: unit              !! where the figures go
+      character(len=*), intent(in) :: device   !! cpu or gpu
       type(sweep_config_t) :: cfg
       type(sweep_setup_t) :: setup
       type(error_t), allocatable :: error
       character(len=:), allocatable :: dir, file
       real(dp) :: memory_only, with_file, t
       integer(i8) :: fsize
+      character(len=:), allocatable :: key
       integer :: round, err
-      write (unit, '(a)') 'load_average_1min_at_start: '//load_average()
-      write (unit, '(a, i0)') 'threads: ', omp_get_max_threads()
+      key = 'map_file_'//merge('    ', 'gpu_', device == 'cpu')
+      key = trim(key)//'1024_'
       err = make_temp_directory('/tmp/dpend-bench-', dir)
       if (err /= 0) then
          write (unit, '(a)') 'map_file: cannot make a temporary directory'
@@ -55,11 +70,14 @@ contains
       cfg%quiet = .true.
       cfg%run%output = file
       cfg%run%force = .true.
+      cfg%device = device
+      if (device == 'gpu') cfg%block = cfg%n1*cfg%n2   ! one call of the library
       call validate_sweep(cfg, error)
       if (.not. allocated(error)) call resolve_device(cfg, error)
       if (.not. allocated(error)) call build_setup(cfg, setup, error)
       if (allocated(error)) then
-         write (unit, '(a)') 'map_file: '//error%message
+         write (unit, '(a)') trim(key)//'not_measured: '//error%message
+         err = remove_directory(dir)
          return
       end if
       memory_only = huge(1.0_dp); with_file = huge(1.0_dp)
@@ -70,11 +88,11 @@ contains
          with_file = min(with_file, t)
       end do
       inquire (file=file, size=fsize)
-      write (unit, '(a, f0.3, a)') 'map_file_1024_memory_only_seconds: ', memory_only, ' s'
-      write (unit, '(a, f0.3, a)') 'map_file_1024_with_file_seconds: ', with_file, ' s'
-      write (unit, '(a, f0.3, a)') 'map_file_1024_file_seconds: ', with_file - memory_only, ' s'
-      write (unit, '(a, f0.1, a)') 'map_file_1024_size: ', real(fsize, dp)/1e6_dp, ' MB'
-      call compression_side_by_side(unit, file, dir)
+      write (unit, '(a, f0.3, a)') key//'memory_only_seconds: ', memory_only, ' s'
+      write (unit, '(a, f0.3, a)') key//'with_file_seconds: ', with_file, ' s'
+      write (unit, '(a, f0.3, a)') key//'file_seconds: ', with_file - memory_only, ' s'
+      write (unit, '(a, f0.1, a)') key//'size: ', real(fsize, dp)/1e6_dp, ' MB'
+      if (device == 'cpu') call compression_side_by_side(unit, file, dir)
       err = remove_file(file)
       err = remove_directory(dir)
    contains
@@ -108,7 +126,7 @@ contains
             s = -1
          end if
       end function in_file
-   end subroutine run_map_file_benchmarks
+   end subroutine map_file_figures
 
    !> The results of the map in `file` written again into compressed datasets of
    !> the final file's chunks: through HDF5's filters in one thread, and encoded on

@@ -208,6 +208,7 @@ contains
       type(h5file_t) :: h5
       type(progress_t) :: progress
       integer, allocatable :: done(:), missing(:)
+      character(len=32), allocatable :: reals(:), ints(:)
       integer(i8) :: n_done
       integer :: complete, b, j0, nb, k
       logical :: failed
@@ -231,6 +232,7 @@ contains
       end if
 
       missing = pack([(b, b=1, setup%nblocks)], done /= 1)
+      call result_names(setup, reals, ints)   ! here: no text is made on the threads
       n_done = 0
       do b = 1, setup%nblocks
          call block_range(setup, b, j0, nb)
@@ -281,8 +283,8 @@ contains
          end if
          call compute_block(setup, bb, res)
          ! the block's columns and checksums on this thread, before the lock
-         call block_values(setup, bb, res, vals)
-         crcs = block_result_crcs(setup, vals)
+         call block_values(setup, bb, res, reals, ints, vals)
+         crcs = block_result_crcs(vals)
          call block_range(setup, bb, jj0, nnb)
          !$omp critical (dpend_sweep_io)
          ! a block cut short by a stop request is not written

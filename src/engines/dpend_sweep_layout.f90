@@ -45,6 +45,11 @@ module dpend_sweep_layout
    !> is made (a sparse file whose space `install_file` reserves).
    character(len=*), parameter :: crc_path = '/sweep/block_crc32'
 
+   !> Values in a chunk of the final file (whole rows of a grid, at least one): the
+   !> final file is written once, whole, its chunks encoded on every thread, and read
+   !> by any program, so its chunks need not be blocks (the working file's are).
+   integer, parameter :: final_chunk_values = 32768
+
 contains
 
    ! ------------------------------------------------------------ layout ---
@@ -228,12 +233,12 @@ contains
       nan = ieee_value(nan, ieee_quiet_nan)
       call h5%open(filename, 'w', error)
       if (allocated(error)) return
-      if (setup%grid) then
+      if (setup%grid) then   ! the working file: one chunk per block
          dims = [setup%cfg%n1, setup%cfg%n2]
-         chunk = [setup%cfg%n1, setup%rows*merge(final_blocks(setup), 1, final)]
+         chunk = [setup%cfg%n1, merge(max(1, final_chunk_values/setup%cfg%n1), setup%rows, final)]
       else
          dims = [setup%n]
-         chunk = [setup%block*merge(final_blocks(setup), 1, final)]
+         chunk = [merge(final_chunk_values, setup%block, final)]
       end if
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
@@ -480,100 +485,80 @@ contains
       end associate
    end subroutine model_attributes
 
-   !> Blocks in one chunk of the final file: chunks of about `final_chunk_values`
-   !> values (the working file's chunk is one block, the unit of a resume; the
-   !> final file is written once, whole, and reads faster in larger chunks).
-   integer function final_blocks(setup) result(k)
-      type(sweep_setup_t), intent(in) :: setup  !! setup
-      integer, parameter :: final_chunk_values = 32768
-      k = max(1, min(setup%nblocks, final_chunk_values/max(1, setup%block)))
-   end function final_blocks
-
-   !> The results of block b as written, each a column: the one list of a block's
-   !> results, in the order they are written (`result_names` names the same).
-   subroutine block_values(setup, b, res, v)
+   !> The results of block b as written, each a column, in the order of
+   !> `result_names`, whose names `reals` and `ints` are (given, not made here: no
+   !> text is built on the blocks' threads, see dpend_sweep_setup's "Threads").
+   subroutine block_values(setup, b, res, reals, ints, v)
       type(sweep_setup_t), intent(in) :: setup          !! setup
       integer, intent(in) :: b                          !! block, 1-based
       type(batch_result_t), intent(in) :: res           !! its results
+      character(len=32), intent(in) :: reals(:), ints(:)  !! `result_names`
       type(block_values_t), intent(out) :: v            !! its columns
       real(dp), allocatable :: p(:, :)
-      character(len=32), allocatable :: names(:)
-      integer :: i, k, j0, nb
+      integer :: i, k, j0, nb, nr
       call block_range(setup, b, j0, nb)
-      allocate (v%real_names(0), v%int_names(0), v%r(nb, 0), v%i(nb, 0))
-      if (setup%flips) call take_r('t_flip', res%t_flip)
+      allocate (v%r(nb, size(reals)), v%i(nb, size(ints)))
+      v%real_names = reals
+      v%int_names = ints
+      nr = 0
+      if (setup%flips) call take_r(res%t_flip)
       if (.not. setup%flips) then
       else if (setup%links == 2) then
-         call take_r('t_flip1', res%t_flip1)
-         call take_r('t_flip2', res%t_flip2)
+         call take_r(res%t_flip1)
+         call take_r(res%t_flip2)
       else
          do i = 1, setup%links
-            call take_r('t_flip'//to_str(i), res%t_flip_link(i, :))
+            call take_r(res%t_flip_link(i, :))
          end do
       end if
-      call take_r('energy0', res%energy0)
-      call take_r('energy_error', res%energy_error)
-      call take_r('t_stop', res%t_stop)
+      call take_r(res%energy0)
+      call take_r(res%energy_error)
+      call take_r(res%t_stop)
       do i = 1, setup%links
-         call take_r('final/q'//to_str(i), res%final(i, :))
+         call take_r(res%final(i, :))
       end do
       do i = 1, setup%links
-         call take_r('final/w'//to_str(i), res%final(setup%links + i, :))
+         call take_r(res%final(setup%links + i, :))
       end do
-      if (setup%cfg%lyapunov) call take_r('lyapunov', res%lyapunov)
+      if (setup%cfg%lyapunov) call take_r(res%lyapunov)
       select case (setup%cfg%indicator)
       case ('megno')
-         call take_r('megno', res%megno)
-         call take_r('megno_y', res%megno_y)
-      case ('fli'); call take_r('fli', res%fli)
-      case ('sali'); call take_r('sali', res%sali)
-      case ('gali2'); call take_r('gali2', res%gali2)
+         call take_r(res%megno)
+         call take_r(res%megno_y)
+      case ('fli'); call take_r(res%fli)
+      case ('sali'); call take_r(res%sali)
+      case ('gali2'); call take_r(res%gali2)
       end select
       if (parameter_axes(setup)) then
          call block_parameters(setup, b, p)
-         names = parameter_names(setup)
-         do k = 1, size(names)
-            if (len_trim(names(k)) > 0) call take_r('param/'//trim(names(k)), p(k, :))
+         do k = 1, size(setup%param_names)
+            if (len_trim(setup%param_names(k)) > 0) call take_r(p(k, :))
          end do
       end if
-      v%int_names = [character(len=32) :: 'status']
-      v%i = reshape(res%status, [nb, 1])
-      if (setup%cfg%stats) then
-         v%int_names = [v%int_names, [character(len=32) :: 'steps']]
-         v%i = reshape([v%i(:, 1), res%steps], [nb, 2])
-      end if
+      if (nr /= size(reals) .or. size(ints) /= merge(2, 1, setup%cfg%stats)) &
+         error stop 'internal error: block results are not result_names'
+      v%i(:, 1) = res%status
+      if (setup%cfg%stats) v%i(:, 2) = res%steps
    contains
-      subroutine take_r(name, x)
-         character(len=*), intent(in) :: name
+      subroutine take_r(x)
          real(dp), intent(in) :: x(:)
-         real(dp), allocatable :: grown(:, :)
-         v%real_names = [v%real_names, [character(len=32) :: name]]
-         allocate (grown(nb, size(v%real_names)))
-         grown(:, :size(v%real_names) - 1) = v%r
-         grown(:, size(v%real_names)) = x
-         call move_alloc(grown, v%r)
+         nr = nr + 1
+         if (nr > size(reals)) error stop 'internal error: block results exceed result_names'
+         v%r(:, nr) = x
       end subroutine take_r
    end subroutine block_values
 
    !> The CRC-32 of each result of a block as written (`block_values`), in the
    !> order of `result_names` (reals, then integers).
-   function block_result_crcs(setup, v) result(crcs)
-      type(sweep_setup_t), intent(in) :: setup          !! setup
+   function block_result_crcs(v) result(crcs)
       type(block_values_t), intent(in) :: v             !! the block's results
-      integer, allocatable :: crcs(:)
-      character(len=32), allocatable :: reals(:), ints(:), names(:)
-      integer :: m, k
-      call result_names(setup, reals, ints)
-      names = [reals, ints]
-      allocate (crcs(size(names)))
-      crcs = 0
-      do k = 1, size(v%real_names)
-         m = findloc(names, v%real_names(k), dim=1)
-         if (m > 0) crcs(m) = crc32_of(v%r(:, k))
+      integer :: crcs(size(v%r, 2) + size(v%i, 2))
+      integer :: k
+      do k = 1, size(v%r, 2)
+         crcs(k) = crc32_of(v%r(:, k))
       end do
-      do k = 1, size(v%int_names)
-         m = findloc(names, v%int_names(k), dim=1)
-         if (m > 0) crcs(m) = crc32_of(v%i(:, k))
+      do k = 1, size(v%i, 2)
+         crcs(size(v%r, 2) + k) = crc32_of(v%i(:, k))
       end do
    end function block_result_crcs
 
@@ -587,8 +572,10 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
       type(block_values_t), target :: v
-      call block_values(setup, b, res, v)
-      call write_values(h5, setup, b, v, block_result_crcs(setup, v), error, flush)
+      character(len=32), allocatable :: reals(:), ints(:)
+      call result_names(setup, reals, ints)
+      call block_values(setup, b, res, reals, ints, v)
+      call write_values(h5, setup, b, v, block_result_crcs(v), error, flush)
    end subroutine write_block
 
    !> Write the results `v` of block b and their CRC-32 `crcs` (`crc_path`, when the
