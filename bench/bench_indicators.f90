@@ -5,7 +5,8 @@
 !> theta2), flip maps on one thread and on all threads, MEGNO maps on one thread.
 !> The indicator figures are the least of twelve interleaved rounds (flip, λ1, MEGNO,
 !> FLI, SALI, GALI_2, then again), so that a slow spell of a shared machine does not
-!> fall on one indicator only.
+!> fall on one indicator only; then the same on all threads at once (each its own
+!> batch; six rounds), `..._all_threads`.
 !> Printed one per line as `key: value unit`, with the CPU and the load average.
 !> Run in the release profile:
 !>   fpm run --example dpend-bench --profile release --flag "$RELEASE_FLAGS" -- --indicators
@@ -70,6 +71,25 @@ contains
          call put('indicator_'//trim(names(k)), '_ns_per_traj_step_1thread', ns, ' ns')
          if (k > 1) call put('indicator_'//trim(names(k)), '_cost_vs_flip', ns/base, ' x')
       end do
+      ! the same on all threads at once, each its own batch (rounds interleaved too):
+      ! ns per trajectory-step of the threads together, ratios to flip on as many
+      if (nthreads > 1) then
+         call omp_set_num_threads(nthreads)
+         best = huge(1.0_dp)
+         do r = 1, rounds/2
+            do k = 1, size(names)
+               best(:, k) = min(best(:, k), indicator_ns_all(trim(names(k)), steps(k)))
+            end do
+         end do
+         base = best(:, 1)
+         do k = 1, size(names)
+            ns = best(:, k)
+            call put('indicator_'//trim(names(k)), '_ns_per_traj_step_all_threads', ns, ' ns')
+            if (k > 1) call put('indicator_'//trim(names(k)), '_cost_vs_flip_all_threads', &
+                                ns/base, ' x')
+         end do
+         call omp_set_num_threads(1)
+      end if
       ! flip maps (run to t_end) over initial values and over (m2/m1, l2/l1), where
       ! every pixel has its own parameters: one thread, then all threads
       do t = 1, 2
@@ -121,11 +141,51 @@ contains
    function indicator_ns(name, n_steps) result(ns)
       character(len=*), intent(in) :: name  !! flip, lambda1, megno, fli, sali, gali2
       integer, intent(in) :: n_steps        !! steps per trajectory
-      real(dp) :: ns(2)
+      real(dp) :: ns(2), t0, c0, c1
+      call cpu_time(c0)
+      t0 = wall_seconds()
+      if (.not. (one_batch(name, n_steps) > -1e300_dp)) then   ! keep the results alive
+         ns = -1.0_dp
+         return
+      end if
+      ns(1) = wall_seconds() - t0
+      call cpu_time(c1)
+      ns(2) = c1 - c0
+      ns = ns/(real(batch_size, dp)*real(n_steps, dp))*1e9_dp
+   end function indicator_ns
+
+   !> `indicator_ns` with every thread running its own batch at once: ns per
+   !> trajectory-step of all the threads' trajectories together (wall clock), and
+   !> the process CPU time per trajectory-step.
+   function indicator_ns_all(name, n_steps) result(ns)
+      character(len=*), intent(in) :: name  !! flip, lambda1, megno, fli, sali, gali2
+      integer, intent(in) :: n_steps        !! steps per trajectory
+      real(dp) :: ns(2), t0, c0, c1, check
+      integer :: nt
+      nt = omp_get_max_threads()
+      check = 0
+      call cpu_time(c0)
+      t0 = wall_seconds()
+      !$omp parallel reduction(+:check)
+      check = one_batch(name, n_steps)
+      !$omp end parallel
+      ns(1) = wall_seconds() - t0
+      call cpu_time(c1)
+      ns(2) = c1 - c0
+      ns = ns/(real(nt, dp)*real(batch_size, dp)*real(n_steps, dp))*1e9_dp
+      if (.not. (check > -1e300_dp)) ns = -1.0_dp   ! keep the results alive
+   end function indicator_ns_all
+
+   !> One run of integrate_batch with the indicator `name` (batch_size chaotic
+   !> trajectories run to the end, step 1e-3 s, n_steps steps): the sum of the final
+   !> angles (NaN if a result is not finite).
+   real(dp) function one_batch(name, n_steps) result(check)
+      character(len=*), intent(in) :: name  !! flip, lambda1, megno, fli, sali, gali2
+      integer, intent(in) :: n_steps        !! steps per trajectory
       type(pendulum_t) :: par
       type(batch_options_t) :: opt
       type(batch_result_t) :: res
-      real(dp) :: y0(4, batch_size), t0, c0, c1
+      real(dp) :: y0(4, batch_size)
       integer :: j
       do j = 1, batch_size   ! angles well above the flip bound: full-length chaotic runs
          y0(:, j) = [1.0_dp + 1e-3_dp*j, 1.5_dp, 0.0_dp, 0.0_dp]
@@ -138,15 +198,9 @@ contains
       case ('sali', 'gali2'); opt%vectors = 2
       end select
       opt%n_steps = n_steps
-      call cpu_time(c0)
-      t0 = wall_seconds()
       call integrate_batch(par, opt, y0, res)
-      ns(1) = wall_seconds() - t0
-      call cpu_time(c1)
-      ns(2) = c1 - c0
-      ns = ns/(real(batch_size, dp)*real(opt%n_steps, dp))*1e9_dp
-      if (.not. (sum(res%final(1, :)) > -1e300_dp)) ns = -1.0_dp   ! keep the results alive
-   end function indicator_ns
+      check = sum(res%final(1, :))
+   end function one_batch
 
    !> ns per trajectory-step of a 32 x 32 map of `indicator` (flip or megno) over the
    !> axes ax1, ax2 computed in memory, blocks of 64 over the threads (runs to t_end;

@@ -592,8 +592,8 @@ contains
       integer, intent(in) :: crcs(:)                    !! their CRC-32
       type(error_t), allocatable, intent(out) :: error  !! I/O failure
       logical, intent(in), optional :: flush            !! flush the file (default true)
-      real(dp), pointer :: r2(:, :)
-      integer, pointer :: i2(:, :)
+      real(dp), pointer, contiguous :: r2(:, :)
+      integer, pointer, contiguous :: i2(:, :)
       integer :: j0, nb, k, n1
       logical :: sync
       sync = .true.
@@ -749,7 +749,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup                !! setup
       real(dp), intent(in), target, contiguous :: values(..)  !! the result
       integer :: crcs(setup%nblocks)
-      real(dp), pointer :: v(:)
+      real(dp), pointer, contiguous :: v(:)
       integer :: b, j0, nb
       call c_f_pointer(c_loc(values), v, [size(values)])
       !$omp parallel do schedule(static) private(j0, nb)
@@ -765,7 +765,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup                !! setup
       integer, intent(in), target, contiguous :: values(..)   !! the result
       integer :: crcs(setup%nblocks)
-      integer, pointer :: v(:)
+      integer, pointer, contiguous :: v(:)
       integer :: b, j0, nb
       call c_f_pointer(c_loc(values), v, [size(values)])
       !$omp parallel do schedule(static) private(j0, nb)
