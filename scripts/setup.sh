@@ -15,7 +15,7 @@ for a in "$@"; do
   esac
 done
 
-packages=(gfortran liblapack-dev libblas-dev libhdf5-dev pkg-config gnuplot-nox hdf5-tools locales)
+packages=(gfortran liblapack-dev libblas-dev libhdf5-dev zlib1g-dev pkg-config gnuplot-nox hdf5-tools locales)
 # Python: the recipes of docs/python.md and scripts/check_python.py (h5py, pandas, xarray).
 packages+=(python3 python3-h5py python3-pandas python3-xarray)
 # The Python package (pip install ., meson-python from PyPI) in a virtual environment.
