@@ -18,7 +18,7 @@
 !> computes only the blocks not flagged done in FILE.part; another configuration
 !> is refused unless --force.
 module dpend_sweep_resume
-   use dpend_kinds, only: dp
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error, run_failure
    use dpend_output, only: output_t, check_output_path
    use dpend_os, only: path_kind, path_file
@@ -163,11 +163,13 @@ contains
    !> sweep's shape; every block flagged done reads back as written (its CRC-32 in
    !> a working file's `crc_path`, the Fletcher-32 checksums of the chunks of a final
    !> file or an older working file; files written before checksums are read all
-   !> the same)
-   !> and has a status for each of its initial conditions; the chunk index of every
-   !> other block reads. Those other blocks' checksums are not checked: a kill
-   !> during a block's write may leave its chunks torn, and resuming rewrites them
-   !> whole (`write_block`). A damaged file is refused, never finished or copied.
+   !> the same) and has a status for each of its initial conditions; the chunk
+   !> index of every other block reads. Those other blocks' checksums are not
+   !> checked: a kill during a block's write may leave its chunks torn, and resuming
+   !> rewrites them whole (`write_block`). Of a working file with CRC-32s the blocks
+   !> not done are not read at all (the work of a resume is that of the blocks
+   !> done): each dataset's chunk index is read once, whole, and must hold one chunk
+   !> per block. A damaged file is refused, never finished or copied.
    subroutine verify_blocks(h5, path, setup, done, error)
       type(h5file_t), intent(inout) :: h5               !! the open file
       character(len=*), intent(in) :: path              !! its name, for messages
@@ -215,8 +217,13 @@ contains
                              ', not '//shape_str(want)//'); use --force to start again')
          end if
          if (allocated(error)) return
+         ! a working file with CRC-32s: its chunks, one per block, were all allocated
+         ! when it was made; their index is read once here, not block by block
+         if (summed) call check_chunk_index(name)
+         if (allocated(error)) return
       end do
       do b = 1, setup%nblocks
+         if (summed .and. done(b) /= 1) cycle
          call block_range(setup, b, j0, nb)
          if (setup%grid) then
             start = [1, (j0 - 1)/setup%cfg%n1 + 1]
@@ -240,6 +247,18 @@ contains
          end do
       end do
    contains
+      !> The chunk index of dataset `name` reads and holds one chunk per block.
+      subroutine check_chunk_index(name)
+         character(len=*), intent(in) :: name
+         integer(i8) :: n
+         call h5%chunks(name, n, error)
+         if (allocated(error)) then
+            error%message = damaged//error%message//'); use --force to start again'
+         else if (n /= int(setup%nblocks, i8)) then
+            call fatal_error(error, damaged//name//' has '//to_str(n)//' chunks, not '// &
+                             to_str(setup%nblocks)//'); use --force to start again')
+         end if
+      end subroutine check_chunk_index
       !> Read block b of dataset /sweep/name (integers into `status`), the k-th
       !> result, with its checksums checked if the block is flagged done: its
       !> CRC-32 in `crc_path`, or in older working files HDF5's Fletcher-32.

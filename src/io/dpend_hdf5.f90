@@ -33,7 +33,7 @@
 !> This module holds the type, the interfaces of the procedures its submodules
 !> implement and a few small procedures; the submodules hold the rest:
 !> dpend_hdf5_file (open, close, flush; exists, attr_exists, shape, filters,
-!> datasets), dpend_hdf5_write (write, create_dataset, write_slab, write_chunked,
+!> chunks, datasets), dpend_hdf5_write (write, create_dataset, write_slab, write_chunked,
 !> writeattr, describe), dpend_hdf5_read (read, read_slab, readattr) and dpend_hdf5_common
 !> (the helpers they share). A helper shared by submodules has its interface here
 !> and its body in a submodule: gfortran gives a private procedure of the module
@@ -114,6 +114,7 @@ module dpend_hdf5
       procedure :: attr_exists => file_attr_exists
       procedure :: shape => file_shape
       procedure :: filters => file_filters
+      procedure :: chunks => file_chunks
       procedure :: create_dataset => file_create_dataset
       procedure :: describe => file_describe
       procedure :: datasets => file_datasets
@@ -201,6 +202,15 @@ module dpend_hdf5
          integer, intent(out) :: n                         !! its filters
          type(error_t), allocatable, intent(out) :: error  !! set on failure
       end subroutine file_filters
+
+      !> Number of chunks stored (allocated) for dataset `path`, its chunk index read
+      !> whole (0 for a contiguous dataset).
+      module subroutine file_chunks(self, path, n, error)
+         class(h5file_t), intent(inout) :: self            !! the file object
+         character(len=*), intent(in) :: path              !! dataset path
+         integer(i8), intent(out) :: n                     !! its chunks
+         type(error_t), allocatable, intent(out) :: error  !! set on failure
+      end subroutine file_chunks
 
       !> Paths of all datasets in the group `group` and the groups below it, in name
       !> order (groups before the datasets they hold come in their place).

@@ -193,6 +193,33 @@ contains
       call close_id(dset)
    end procedure file_filters
 
+   module procedure file_chunks
+      interface
+         integer(c_int) function c_num_chunks(dset, fspace, nchunks) &
+            bind(C, name='H5Dget_num_chunks')   ! HDF5 1.10.5 on
+            import :: c_int, c_int64_t
+            integer(c_int64_t), value :: dset, fspace   ! hid_t
+            integer(c_int64_t), intent(out) :: nchunks  ! hsize_t
+         end function c_num_chunks
+      end interface
+      integer(hid_t) :: dset, space
+      integer(hsize_t), allocatable :: hdims(:)
+      integer(c_int64_t) :: nchunks
+      integer :: ierr
+      n = 0
+      call open_read(self, path, -1, want_any, dset, hdims, error)
+      if (allocated(error)) return
+      call h5dget_space_f(dset, space, ierr)   ! (HDF5 1.10.8 refuses H5S_ALL here)
+      if (ierr /= 0 .or. c_num_chunks(int(dset, c_int64_t), int(space, c_int64_t), &
+                                      nchunks) < 0) then
+         call fail(error, 'read the chunk index of', self, quoted(path), 'HDF5 refused it')
+      else
+         n = int(nchunks, i8)
+      end if
+      call close_id(space)
+      call close_id(dset)
+   end procedure file_chunks
+
    module procedure file_datasets
       character(len=1024), allocatable :: found(:)
       integer :: n, i, width
