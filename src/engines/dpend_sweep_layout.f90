@@ -3,8 +3,9 @@
 !> writing one block, and the final file installed through the one writer.
 module dpend_sweep_layout
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-   use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
-   use dpend_kinds, only: dp
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_f_pointer
+   use, intrinsic :: iso_fortran_env, only: int8
+   use dpend_kinds, only: dp, i8
    use dpend_error, only: error_t, fatal_error
    use dpend_output, only: output_t
    use dpend_os, only: remove_file, reserve_space, errno_text
@@ -749,15 +750,7 @@ contains
       type(sweep_setup_t), intent(in) :: setup                !! setup
       real(dp), intent(in), target, contiguous :: values(..)  !! the result
       integer :: crcs(setup%nblocks)
-      real(dp), pointer, contiguous :: v(:)
-      integer :: b, j0, nb
-      call c_f_pointer(c_loc(values), v, [size(values)])
-      !$omp parallel do schedule(static) private(j0, nb)
-      do b = 1, setup%nblocks
-         call block_range(setup, b, j0, nb)
-         crcs(b) = crc32_of(v(j0:j0 + nb - 1))
-      end do
-      !$omp end parallel do
+      crcs = block_crcs_at(setup, c_loc(values), storage_size(values)/8)
    end function block_crcs_real
 
    !> `block_crcs_real` for a default-integer result.
@@ -765,16 +758,29 @@ contains
       type(sweep_setup_t), intent(in) :: setup                !! setup
       integer, intent(in), target, contiguous :: values(..)   !! the result
       integer :: crcs(setup%nblocks)
-      integer, pointer, contiguous :: v(:)
+      crcs = block_crcs_at(setup, c_loc(values), storage_size(values)/8)
+   end function block_crcs_int
+
+   !> The CRC-32 of every block of the result at `base` (the sweep's values in
+   !> order, `esize` bytes each), on every thread.
+   function block_crcs_at(setup, base, esize) result(crcs)
+      type(sweep_setup_t), intent(in) :: setup   !! setup
+      type(c_ptr), intent(in) :: base            !! the result's first byte
+      integer, intent(in) :: esize               !! bytes per value
+      integer :: crcs(setup%nblocks)
+      integer(int8), pointer, contiguous :: bytes(:)
+      integer(i8) :: first, last
       integer :: b, j0, nb
-      call c_f_pointer(c_loc(values), v, [size(values)])
-      !$omp parallel do schedule(static) private(j0, nb)
+      call c_f_pointer(base, bytes, [int(setup%n, i8)*esize])
+      !$omp parallel do schedule(static) private(j0, nb, first, last)
       do b = 1, setup%nblocks
          call block_range(setup, b, j0, nb)
-         crcs(b) = crc32_of(v(j0:j0 + nb - 1))
+         first = int(j0 - 1, i8)*esize + 1
+         last = int(j0 - 1 + nb, i8)*esize
+         crcs(b) = crc32_of(bytes(first:last))
       end do
       !$omp end parallel do
-   end function block_crcs_int
+   end function block_crcs_at
 
    !> Put a freshly written file in place: close it (the close checked unless an
    !> error is already set), with `reserve` give it disk blocks for all its length

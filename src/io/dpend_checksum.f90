@@ -3,15 +3,16 @@
 !> that a block flagged done is checked before it is trusted.
 module dpend_checksum
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_int64_t
+   use, intrinsic :: iso_fortran_env, only: int8
    use dpend_kinds, only: dp
    implicit none
    private
    public :: crc32_of
 
-   !> CRC-32 of the bytes of a real(dp) or default-integer array, as a default
+   !> CRC-32 of the bytes of a real(dp), default-integer or byte array, as a default
    !> integer holding its 32-bit pattern.
    interface crc32_of
-      module procedure crc32_real, crc32_int
+      module procedure crc32_real, crc32_int, crc32_bytes
    end interface crc32_of
 
    interface
@@ -33,6 +34,11 @@ contains
       integer, intent(in), target, contiguous :: a(..)   !! values
       crc = bits32(c_crc32(c_loc(a), int(size(a), c_int64_t)*storage_size(a)/8))
    end function crc32_int
+
+   integer function crc32_bytes(a) result(crc)
+      integer(int8), intent(in), target, contiguous :: a(:)  !! bytes
+      crc = bits32(c_crc32(c_loc(a), int(size(a), c_int64_t)))
+   end function crc32_bytes
 
    !> The low 32 bits of v as a default integer (two's complement).
    pure integer function bits32(v)
