@@ -36,14 +36,19 @@
 !> per-trajectory path (`integrate_trajectories` → `chaos_indicators`: vectors 1 and 2
 !> of `initial_vectors(2N)`, renormalised to length 1 after every step, `megno_step`
 !> on vector 1, one sample at t_end; every trajectory runs to t_end, those below the
-!> flip bounds too). The state steps in the lanes; each lane's vectors step by
-!> `chain_tangent_lane`, the per-trajectory path's tangent step (`tangent_t%propagate`:
-!> the chain model's own Jacobian on the step's cubic Hermite interpolant, ⌈hω/θ⌉
-!> substeps of RK4), which test chain_lanes/tangent_matches_model compares with it.
-!> Only the vectors the indicator needs are carried (the path carries 2N): a
-!> trajectory whose state runs away, or whose vectors fail (not finite, too many
-!> substeps), has NaN indicators, as on the path (the path also fails when one of its
-!> other vectors does: not met in practice, all grow at most like vector 1).
+!> flip bounds too). The vectors step in the lanes with the state: the derivative of
+!> the lanes' RK4 step (`chain_rk4_lanes` with vectors: RK4 on the variational
+!> equation M δq̈ = r, each stage's Jacobian–vector product `chain_tangent_lanes`
+!> from the stage's own factors of M), where the path integrates the variational
+!> equation along the step's cubic Hermite interpolant with ⌈hω/θ⌉ substeps
+!> (`tangent_t%propagate`). Both are fourth-order approximations of the same
+!> tangent flow: the maps differ by less than the path's own change from dt to dt/2
+!> (docs/sweep.md, "Chain lanes"; test chain_lanes/indicators_match_per_trajectory).
+!> Only the vectors the indicator needs are carried (the path carries 2N). A
+!> trajectory whose state runs away, whose step turns a link by more than
+!> `max_tangent_turn`, or whose vector's length leaves (0, `diverged_bound`) has NaN
+!> indicators (the path: its state runs away, its tangent needs more than
+!> `max_tangent_substeps` substeps, or a vector leaves its bounds).
 !> DPEND_SWEEP_KERNEL=trajectory in the environment sends every chain to the
 !> per-trajectory path (`chain_kernel_choice`); two links are not affected.
 !>
@@ -52,21 +57,20 @@
 module dpend_chain_lanes
    use dpend_kinds, only: dp, i8, pi, half_pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_limits, only: diverged_bound
+   use dpend_limits, only: diverged_bound, max_tangent_substeps
    use dpend_strings, only: printable
    use dpend_model, only: model_t
    use dpend_lane_batch, only: lane_width, batch_options_t, batch_result_t, lane_kernel_t, &
       refill_lanes, resync_steps, stop_both, stop_either, st_end, st_flipped, st_cannot_flip, &
       st_nonfinite, link_flip_bounds, first_flips, bound_margin
    use dpend_pendulum_kernel, only: sincos_near_lanes, sincos_exact
-   use dpend_limits, only: max_tangent_substeps
-   use dpend_indicator_math, only: initial_vectors, sali, gali, megno_step
-   use dpend_tangent, only: max_tangent_size, mat_mul
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
+   use dpend_pendulum_tangent_lanes, only: log_lanes, megno_step_lanes
+   use dpend_indicator_math, only: initial_vectors, sali, gali
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
    public :: max_lane_links, chain_coef_t, chain_coef, chain_lanes_serve, chain_kernel_choice
-   public :: chain_accel_lanes, chain_rk4_lanes, integrate_chain_lanes, chain_tangent_lane
+   public :: chain_accel_lanes, chain_rk4_lanes, integrate_chain_lanes, chain_tangent_lanes
 
    integer, parameter :: min_lane_links = 3  !! fewest links of the chain lanes
    integer, parameter :: max_lane_links = 8  !! most links of the chain lanes
@@ -80,8 +84,11 @@ module dpend_chain_lanes
    real(dp), parameter :: chain_lane_bound = diverged_bound
    !> Margin of the angle windows [rad] (as the two-link kernel's)
    real(dp), parameter :: window_margin = 1.0e-6_dp
-   !> Largest ω·h per tangent substep [1] (`tangent_t`'s theta, dpend_tangent)
-   real(dp), parameter :: tangent_theta = 0.1_dp
+   !> Largest turn h max |q̇_i| of a step with indicators [rad]: beyond it the
+   !> per-trajectory path's tangent would need more than `max_tangent_substeps`
+   !> substeps of θ = 0.1 (its ω is at least about max |q̇_i|), and the lanes' tangent
+   !> step is no approximation of the tangent flow: the trajectory has no indicators
+   real(dp), parameter :: max_tangent_turn = 0.1_dp*real(max_tangent_substeps, dp)
 
    !> The chain's constants for the lanes [SI].
    type :: chain_coef_t
@@ -90,20 +97,31 @@ module dpend_chain_lanes
       real(dp) :: gl(nm) = 0.0_dp          !! G_i of V = Σ G_i sin q_i [J]
    end type chain_coef_t
 
+   !> The chain's system at a state of every lane, solved and kept for the tangent's
+   !> Jacobian–vector products (`solve_system`, `system_jvp`).
+   type :: lane_system_t
+      real(dp), dimension(w, nm, nm) :: mm      !! L of M = L D Lᵀ (below the diagonal)
+      real(dp), dimension(w, nm, nm) :: kc, sk  !! K_ij cos, K_ij sin of q_i − q_j (i > j)
+      real(dp), dimension(w, nm) :: a           !! q̈ [rad/s²]
+      real(dp), dimension(w, nm) :: dinv        !! D⁻¹
+      real(dp), dimension(w, nm) :: wq          !! q̇², clamped [rad²/s²]
+      real(dp), dimension(w, nm) :: s, qd       !! sin q, q̇ [rad/s]
+   end type lane_system_t
+
    !> The lanes of a batch of chains: the batch, its results, and every lane's
    !> state, flips and indicator sums (structure of arrays).
    type, extends(lane_kernel_t) :: chain_lanes_t
       ! the lanes' arrays first (multiples of 64 bytes from the start of the object:
       ! aligned wherever the object is, as the kernel's vector loads want them)
       real(dp), dimension(w, nm) :: q, qd, ts, tc, p, pd, lo, hi, nk, tf
-      real(dp), dimension(w, nm) :: fa, fb
+      real(dp), dimension(w, nm, 2) :: dq, dw        !! deviation vectors (δq, δq̇)
       real(dp), dimension(w) :: e, e0, err, active, fresh, left, sync
-      real(dp), dimension(w) :: lg, ig, yy, sy
+      real(dp), dimension(w) :: lg, ig, yy, sy, vok
       integer(i8) :: ks(w)                           !! steps taken
       type(chain_coef_t) :: cf                       !! the chain's constants
       integer :: lane_ic(w)                          !! trajectory held, 0: none
       logical :: lane_can(w, nm)
-      logical :: ind_ok(w), jfresh(w)
+      logical :: ind_ok(w)
       class(model_t), allocatable :: model           !! the chain
       integer :: nl = 0                              !! links N
       type(batch_options_t) :: opt                   !! step, length, stop rule
@@ -112,12 +130,10 @@ module dpend_chain_lanes
       type(batch_result_t) :: res                    !! the results
       real(dp) :: escale = 1.0_dp                    !! unit of the energy error [J]
       real(dp) :: nan
-      ! the indicators (opt%vectors 1 or 2): vectors, Jacobians at the step start,
-      ! vector fields at the step ends (fa, fb), running sums of vector 1 (lg, ig, yy,
-      ! sy; dpend_indicators)
+      ! the indicators (opt%vectors 1 or 2): vectors dq, dw, running sums of vector 1
+      ! (lg, ig, yy, sy; dpend_indicators), vok = 1 where a lane's indicators hold
       integer :: nv = 0
-      real(dp), allocatable :: dv(:, :, :), jl(:, :, :), v0(:, :)
-      logical :: stale = .true.   !! f at the step start to be computed anew
+      real(dp), allocatable :: v0(:, :)   !! the initial vectors (2N, 2N)
    contains
       procedure :: step => chain_step
       procedure :: load => chain_load
@@ -194,110 +210,163 @@ contains
       real(dp), intent(in) :: qd(w, nm)             !! q̇ [rad/s]
       real(dp), intent(out) :: a(w, nm)             !! q̈ [rad/s²]
       real(dp), intent(out), optional :: e(w)       !! energy [J]
+      logical, parameter :: keep = .false.
       real(dp) :: mm(w, nm, nm), u(w, nm, nm), wq(w, nm), dinv(w, nm), t(w)
+      real(dp) :: kc(w, nm, nm), sk(w, nm, nm)      !! (not kept)
       real(dp) :: kij, sij
       integer :: n, i, j, k, l
-      n = cf%n
-      do i = 1, n
-         do l = 1, w
-            wq(l, i) = min(qd(l, i)*qd(l, i), chain_lane_bound*chain_lane_bound)
-            a(l, i) = -cf%gl(i)*c(l, i)
-         end do
-      end do
-      ! M below the diagonal and f: sin(q_i − q_j) enters f_i and f_j with opposite signs
-      do j = 1, n
-         do i = j + 1, n
-            kij = cf%k(i, j)
-            do l = 1, w
-               mm(l, i, j) = kij*(c(l, i)*c(l, j) + s(l, i)*s(l, j))
-               sij = kij*(s(l, i)*c(l, j) - c(l, i)*s(l, j))
-               a(l, i) = a(l, i) - sij*wq(l, j)
-               a(l, j) = a(l, j) + sij*wq(l, i)
-            end do
-         end do
-      end do
-      if (present(e)) then
-         do l = 1, w
-            e(l) = 0.0_dp
-         end do
-         do i = 1, n
-            do l = 1, w
-               t(l) = 0.5_dp*cf%k(i, i)*qd(l, i)
-            end do
-            do j = 1, i - 1
-               do l = 1, w
-                  t(l) = t(l) + mm(l, i, j)*qd(l, j)
-               end do
-            end do
-            do l = 1, w
-               e(l) = e(l) + (t(l)*qd(l, i) + cf%gl(i)*s(l, i))
-            end do
-         end do
-      end if
-      ! M = L D Lᵀ (L unit lower, in mm below the diagonal; u_ik = L_ik D_k): D_j ≥ the
-      ! least eigenvalue of M > 0 (clamped at tiny, as dpend_chain's cholesky)
-      do j = 1, n
-         do l = 1, w
-            t(l) = cf%k(j, j)
-         end do
-         do k = 1, j - 1
-            do l = 1, w
-               t(l) = t(l) - mm(l, j, k)*u(l, j, k)
-            end do
-         end do
-         do l = 1, w
-            dinv(l, j) = 1.0_dp/max(t(l), tiny(1.0_dp))
-         end do
-         do i = j + 1, n
-            do k = 1, j - 1
-               do l = 1, w
-                  mm(l, i, j) = mm(l, i, j) - mm(l, i, k)*u(l, j, k)
-               end do
-            end do
-            do l = 1, w
-               u(l, i, j) = mm(l, i, j)
-               mm(l, i, j) = mm(l, i, j)*dinv(l, j)
-            end do
-         end do
-      end do
-      ! L z = f, then Lᵀ q̈ = D⁻¹ z
+      include 'dpend_chain_system.inc'
+   end subroutine chain_accel_lanes
+
+   !> The chain's system M q̈ = f of every lane at (q, q̇) (s = sin q, c = cos q), solved:
+   !> q̈ in `a`, M = L D Lᵀ in `mm` (L unit lower, below the diagonal) and `dinv` (D⁻¹),
+   !> the clamped squares of the rates in `wq`, and K_ij cos(q_i − q_j) and
+   !> K_ij sin(q_i − q_j) for i > j in kc and sk (the tangent's terms, `system_jvp`);
+   !> with `e`, the energy [J]. The arithmetic of `chain_accel_lanes`, bit for bit
+   !> (dpend_chain_system.inc).
+   pure subroutine chain_system_lanes(cf, s, c, qd, a, mm, dinv, wq, kc, sk, e)
+      type(chain_coef_t), intent(in) :: cf               !! constants
+      real(dp), intent(in) :: s(w, nm), c(w, nm)         !! sin q_i, cos q_i
+      real(dp), intent(in) :: qd(w, nm)                  !! q̇ [rad/s]
+      real(dp), intent(out) :: a(w, nm)                  !! q̈ [rad/s²]
+      real(dp), intent(out) :: mm(w, nm, nm), dinv(w, nm)  !! L, D⁻¹
+      real(dp), intent(out) :: wq(w, nm)                 !! q̇², clamped
+      real(dp), intent(inout) :: kc(w, nm, nm), sk(w, nm, nm)  !! K cos, K sin (i > j)
+      real(dp), intent(out), optional :: e(w)            !! energy [J]
+      logical, parameter :: keep = .true.
+      real(dp) :: u(w, nm, nm), t(w)
+      real(dp) :: kij, sij
+      integer :: n, i, j, k, l
+      include 'dpend_chain_system.inc'
+   end subroutine chain_system_lanes
+
+   !> Solve L D Lᵀ x = b of every lane in place (x: b in, the solution out): L z = b,
+   !> then Lᵀ x = D⁻¹ z.
+   pure subroutine ldl_solve_lanes(n, mm, dinv, x)
+      integer, intent(in) :: n                            !! links N
+      real(dp), intent(in) :: mm(w, nm, nm), dinv(w, nm)  !! L (below the diagonal), D⁻¹
+      real(dp), intent(inout) :: x(w, nm)                 !! b in, x out
+      integer :: i, k, l
       do i = 2, n
          do k = 1, i - 1
             do l = 1, w
-               a(l, i) = a(l, i) - mm(l, i, k)*a(l, k)
+               x(l, i) = x(l, i) - mm(l, i, k)*x(l, k)
             end do
          end do
       end do
       do i = n, 1, -1
          do l = 1, w
-            a(l, i) = a(l, i)*dinv(l, i)
+            x(l, i) = x(l, i)*dinv(l, i)
          end do
          do k = i + 1, n
             do l = 1, w
-               a(l, i) = a(l, i) - mm(l, k, i)*a(l, k)
+               x(l, i) = x(l, i) - mm(l, k, i)*x(l, k)
             end do
          end do
       end do
-   end subroutine chain_accel_lanes
+   end subroutine ldl_solve_lanes
+
+   !> The chain's system of every lane at (q, q̇) (s = sin q, c = cos q), solved and
+   !> kept for Jacobian–vector products (`system_jvp`).
+   pure subroutine solve_system(cf, s, c, qd, sys, e)
+      type(chain_coef_t), intent(in) :: cf          !! constants
+      real(dp), intent(in) :: s(w, nm), c(w, nm)    !! sin q_i, cos q_i
+      real(dp), intent(in) :: qd(w, nm)             !! q̇ [rad/s]
+      type(lane_system_t), intent(inout) :: sys     !! the system there
+      real(dp), intent(out), optional :: e(w)       !! energy [J]
+      sys%s = s
+      sys%qd = qd
+      call chain_system_lanes(cf, s, c, qd, sys%a, sys%mm, sys%dinv, sys%wq, sys%kc, &
+                              sys%sk, e)
+   end subroutine solve_system
+
+   !> δq̈ of every lane's nv deviation vectors (xq, xw) = (δq, δq̇) at the state of the
+   !> solved system `sys`: the variational equation M δq̈ = r of M q̈ = f, with the
+   !> state's own factors of M,
+   !>   r_i = G_i sin q_i δq_i − Σ_{j≠i} [ (K_ij cos(q_i − q_j) q̇_j² − K_ij sin(q_i − q_j) q̈_j)
+   !>         (δq_i − δq_j) + 2 K_ij sin(q_i − q_j) q̇_j δq̇_j ]
+   !> (q̇_j² clamped as in the forces): the lower half of the Jacobian J of
+   !> (q̇, q̈)(q, q̇) times the vector. Test chain_lanes/tangent_matches_differences
+   !> compares it with central differences of `chain_accel_lanes`.
+   pure subroutine system_jvp(cf, sys, nv, xq, xw, b)
+      type(chain_coef_t), intent(in) :: cf                !! constants
+      type(lane_system_t), intent(in) :: sys              !! the solved system
+      integer, intent(in) :: nv                           !! vectors, 1 or 2
+      real(dp), intent(in) :: xq(w, nm, 2), xw(w, nm, 2)  !! δq, δq̇ (vectors 1:nv)
+      real(dp), intent(out) :: b(w, nm, 2)                !! δq̈ (vectors 1:nv)
+      real(dp) :: pj(w, nm), dd
+      integer :: n, i, j, k, l
+      n = cf%n
+      do k = 1, nv
+         do i = 1, n
+            do l = 1, w
+               b(l, i, k) = cf%gl(i)*sys%s(l, i)*xq(l, i, k)
+               pj(l, i) = 2.0_dp*sys%qd(l, i)*xw(l, i, k)
+            end do
+         end do
+         do j = 1, n
+            do i = j + 1, n
+               do l = 1, w
+                  dd = xq(l, i, k) - xq(l, j, k)
+                  b(l, i, k) = b(l, i, k) - ((sys%kc(l, i, j)*sys%wq(l, j) &
+                               - sys%sk(l, i, j)*sys%a(l, j))*dd + sys%sk(l, i, j)*pj(l, j))
+                  b(l, j, k) = b(l, j, k) + ((sys%kc(l, i, j)*sys%wq(l, i) &
+                               + sys%sk(l, i, j)*sys%a(l, i))*dd + sys%sk(l, i, j)*pj(l, i))
+               end do
+            end do
+         end do
+         call ldl_solve_lanes(n, sys%mm, sys%dinv, b(:, :, k))
+      end do
+   end subroutine system_jvp
+
+   !> q̈ of every lane at (q, q̇) (as `chain_accel_lanes`, energy `e`) and δq̈ of its nv
+   !> deviation vectors (xq, xw) = (δq, δq̇) there (`system_jvp`).
+   pure subroutine chain_tangent_lanes(cf, s, c, qd, a, nv, xq, xw, b, e)
+      type(chain_coef_t), intent(in) :: cf                !! constants
+      real(dp), intent(in) :: s(w, nm), c(w, nm)          !! sin q_i, cos q_i
+      real(dp), intent(in) :: qd(w, nm)                   !! q̇ [rad/s]
+      real(dp), intent(out) :: a(w, nm)                   !! q̈ [rad/s²]
+      integer, intent(in) :: nv                           !! vectors, 1 or 2
+      real(dp), intent(in) :: xq(w, nm, 2), xw(w, nm, 2)  !! δq, δq̇ (vectors 1:nv)
+      real(dp), intent(out) :: b(w, nm, 2)                !! δq̈ (vectors 1:nv)
+      real(dp), intent(out), optional :: e(w)             !! energy [J]
+      type(lane_system_t) :: sys
+      call solve_system(cf, s, c, qd, sys, e)
+      a = sys%a
+      call system_jvp(cf, sys, nv, xq, xw, b)
+   end subroutine chain_tangent_lanes
 
    !> One classical RK4 step of size h on every lane; `e` is the energy of the state
    !> before the step [J]. `ts`, `tc` hold sin and cos of the angles on entry and of
    !> the new angles on return (the stages' and the new state's from the step start's
    !> by `sincos_near_lanes`, exact for a lane whose offset exceeds its range).
-   pure subroutine chain_rk4_lanes(cf, h, q, qd, e, ts, tc)
+   !> With nv > 0, the deviation vectors (dq, dw) = (δq, δq̇) 1:nv step with it: the
+   !> derivative of the step (the discrete tangent), RK4 on the variational equation
+   !> with each stage's Jacobian (`chain_tangent_lanes`) at the stage's own state. The
+   !> state's values are the same with and without the vectors.
+   pure subroutine chain_rk4_lanes(cf, h, q, qd, e, ts, tc, nv, dq, dw)
       type(chain_coef_t), intent(in) :: cf           !! constants
       real(dp), intent(in) :: h                      !! step [s]
       real(dp), intent(inout) :: q(w, nm)            !! angles [rad]
       real(dp), intent(inout) :: qd(w, nm)           !! rates [rad/s]
       real(dp), intent(out) :: e(w)                  !! energy before the step [J]
       real(dp), intent(inout) :: ts(w, nm), tc(w, nm)  !! sin q, cos q
+      integer, intent(in), optional :: nv            !! deviation vectors, 0 … 2
+      real(dp), intent(inout), optional :: dq(w, nm, 2), dw(w, nm, 2)  !! δq, δq̇
       real(dp), dimension(w, nm) :: ka, kb, kc, kd, vb, vc, vd, x, d, s, c
+      real(dp), dimension(w, nm, 2) :: xq, xb, xc, xd, ba, bb, bc, bd
       real(dp) :: hh, h6
-      integer :: n, i, l
+      integer :: n, i, l, m, k
       n = cf%n
+      m = 0
+      if (present(nv)) m = nv
       hh = 0.5_dp*h
       h6 = h/6.0_dp
-      call chain_accel_lanes(cf, ts, tc, qd, ka, e)
+      if (m > 0) then
+         call chain_tangent_lanes(cf, ts, tc, qd, ka, m, dq, dw, ba, e)
+      else
+         call chain_accel_lanes(cf, ts, tc, qd, ka, e)
+      end if
       do i = 1, n
          do l = 1, w
             x(l, i) = q(l, i) + hh*qd(l, i)
@@ -306,7 +375,12 @@ contains
          end do
       end do
       call stage_trig(n, ts, tc, x, d, s, c)
-      call chain_accel_lanes(cf, s, c, vb, kb)
+      if (m > 0) then
+         call offset_vectors(n, m, hh, dq, dw, dw, ba, xq, xb)
+         call chain_tangent_lanes(cf, s, c, vb, kb, m, xq, xb, bb)
+      else
+         call chain_accel_lanes(cf, s, c, vb, kb)
+      end if
       do i = 1, n
          do l = 1, w
             x(l, i) = q(l, i) + hh*vb(l, i)
@@ -315,7 +389,12 @@ contains
          end do
       end do
       call stage_trig(n, ts, tc, x, d, s, c)
-      call chain_accel_lanes(cf, s, c, vc, kc)
+      if (m > 0) then
+         call offset_vectors(n, m, hh, dq, dw, xb, bb, xq, xc)
+         call chain_tangent_lanes(cf, s, c, vc, kc, m, xq, xc, bc)
+      else
+         call chain_accel_lanes(cf, s, c, vc, kc)
+      end if
       do i = 1, n
          do l = 1, w
             x(l, i) = q(l, i) + h*vc(l, i)
@@ -324,7 +403,12 @@ contains
          end do
       end do
       call stage_trig(n, ts, tc, x, d, s, c)
-      call chain_accel_lanes(cf, s, c, vd, kd)
+      if (m > 0) then
+         call offset_vectors(n, m, h, dq, dw, xc, bc, xq, xd)
+         call chain_tangent_lanes(cf, s, c, vd, kd, m, xq, xd, bd)
+      else
+         call chain_accel_lanes(cf, s, c, vd, kd)
+      end if
       do i = 1, n
          do l = 1, w
             x(l, i) = q(l, i) + h6*((qd(l, i) + 2.0_dp*(vb(l, i) + vc(l, i))) + vd(l, i))
@@ -340,7 +424,18 @@ contains
             tc(l, i) = c(l, i)
          end do
       end do
+      do k = 1, m
+         do i = 1, n
+            do l = 1, w
+               dq(l, i, k) = dq(l, i, k) + h6*((dw(l, i, k) + 2.0_dp*(xb(l, i, k) &
+                             + xc(l, i, k))) + xd(l, i, k))
+               dw(l, i, k) = dw(l, i, k) + h6*((ba(l, i, k) + 2.0_dp*(bb(l, i, k) &
+                             + bc(l, i, k))) + bd(l, i, k))
+            end do
+         end do
+      end do
    end subroutine chain_rk4_lanes
+
 
    !> s, c of the angles x = q + d of links 1 … n from the step start's (ts, tc).
    pure subroutine stage_trig(n, ts, tc, x, d, s, c)
@@ -359,65 +454,6 @@ contains
          call sincos_near_lanes(ts(:, j), tc(:, j), x(:, j), dc, s(:, j), c(:, j))
       end do
    end subroutine stage_trig
-
-   !> One lane's tangent step: the vectors v (2N, nv) carried over the RK4 step [t_a,
-   !> t_a + h] from state yo to yn (vector fields fo, fn at its ends) as
-   !> `tangent_t%propagate` (dpend_tangent) does for the per-trajectory path: the chain
-   !> model's own Jacobian (`chain_t%jacobian`) at the substep ends and midpoints on the
-   !> cubic Hermite interpolant of the step (`integrator_t%interpolate`), n = ⌈h ω/θ⌉
-   !> substeps (ω = ‖J²‖∞^½, θ = 0.1), classical RK4 for the linear system. ja holds J
-   !> at yo on entry, J at yn on return. stiff: more than `max_tangent_substeps`
-   !> substeps were needed (v is left unchanged), or a component of v passed
-   !> `max_tangent_size` (v is not propagated further).
-   subroutine chain_tangent_lane(model, t_a, h, yo, yn, fo, fn, ja, v, stiff)
-      class(model_t), intent(in) :: model            !! the chain, N links
-      real(dp), intent(in) :: t_a                    !! start of the step [s]
-      real(dp), intent(in) :: h                      !! step [s]
-      real(dp), intent(in) :: yo(:), yn(:)           !! states (q, q̇) at the ends (2N)
-      real(dp), intent(in) :: fo(:), fn(:)           !! vector fields there (2N)
-      real(dp), intent(inout) :: ja(:, :)            !! Jacobian at yo in, at yn out
-      real(dp), intent(inout) :: v(:, :)             !! tangent vectors (2N, nv)
-      logical, intent(out) :: stiff                  !! too many substeps
-      real(dp), dimension(size(yo), size(yo)) :: jm, jb, ja2
-      real(dp), dimension(size(yo)) :: ym, dy
-      real(dp), dimension(size(yo), size(v, 2)) :: k1, k2, k3, k4
-      real(dp) :: hs, ta, omega, th
-      integer :: n, i
-      call mat_mul(ja, ja, ja2)
-      omega = sqrt(maxval(sum(abs(ja2), dim=2)))
-      stiff = .not. (abs(h)*omega <= tangent_theta*real(max_tangent_substeps, dp))
-      if (stiff) return
-      n = max(1, ceiling(abs(h)*omega/tangent_theta))
-      hs = h/real(n, dp)
-      dy = yn - yo
-      do i = 1, n
-         ta = t_a + real(i - 1, dp)*hs
-         th = ((ta + 0.5_dp*hs) - t_a)/h
-         ym = (1.0_dp - th)*yo + th*yn + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
-              + (th - 1.0_dp)*h*fo + th*h*fn)
-         call model%jacobian(ta + 0.5_dp*hs, ym, jm)
-         if (i == n) then
-            call model%jacobian(ta + hs, yn, jb)
-         else
-            th = ((ta + hs) - t_a)/h
-            ym = (1.0_dp - th)*yo + th*yn + th*(th - 1.0_dp)*((1.0_dp - 2.0_dp*th)*dy &
-                 + (th - 1.0_dp)*h*fo + th*h*fn)
-            call model%jacobian(ta + hs, ym, jb)
-         end if
-         call mat_mul(ja, v, k1)
-         call mat_mul(jm, v + (0.5_dp*hs)*k1, k2)
-         call mat_mul(jm, v + (0.5_dp*hs)*k2, k3)
-         call mat_mul(jb, v + hs*k3, k4)
-         v = v + (hs/6.0_dp)*(k1 + 2.0_dp*(k2 + k3) + k4)
-         ! as `tangent_propagate`: a substep grows v by about e^θ at most, so checking
-         ! each one keeps the next far from overflow (the lane's indicators fail)
-         if (.not. all(abs(v) <= max_tangent_size)) then
-            stiff = .true.
-            return
-         end if
-         ja = jb
-      end do
-   end subroutine chain_tangent_lane
 
    !> Integrate the initial conditions y0(:, j) = (q, q̇) of the chain `model` (served:
    !> `chain_lanes_serve`) with RK4 of step opt%h for at most opt%n_steps steps each,
@@ -445,13 +481,10 @@ contains
       margin = bound_margin*sum(k%cf%gl(1:nl))
       k%escale = 2.0_dp*sum(k%cf%gl(1:nl))
       k%nv = opt%vectors
-      if (k%nv > 0) then
-         allocate (k%dv(2*nl, k%nv, w), k%jl(2*nl, 2*nl, w))
-         k%v0 = initial_vectors(2*nl)
-         k%fa = 0.0_dp
-         k%fb = 0.0_dp
-      end if
-      k%stale = .true.
+      k%dq = 0.0_dp
+      k%dw = 0.0_dp
+      k%vok = 0.0_dp
+      if (k%nv > 0) k%v0 = initial_vectors(2*nl)
       allocate (k%can(nl, n))
       associate (res => k%res)
          res%n = n
@@ -499,12 +532,14 @@ contains
       real(dp) :: n_events
       self%p = self%q
       self%pd = self%qd
-      if (self%nv > 0 .and. self%stale) then   ! a lane loaded or resynced: f at the start anew
-         call chain_accel_lanes(self%cf, self%ts, self%tc, self%qd, self%fa)
-         self%stale = .false.
+      if (self%nv > 0) then
+         call tangent_guard(self)
+         call chain_rk4_lanes(self%cf, self%opt%h, self%q, self%qd, self%e, self%ts, &
+                              self%tc, self%nv, self%dq, self%dw)
+         call vectors_update(self)
+      else
+         call chain_rk4_lanes(self%cf, self%opt%h, self%q, self%qd, self%e, self%ts, self%tc)
       end if
-      call chain_rk4_lanes(self%cf, self%opt%h, self%q, self%qd, self%e, self%ts, self%tc)
-      if (self%nv > 0) call tangent_step(self)
       call count_events(self%nl, self%q, self%qd, self%e, self%e0, self%active, self%fresh, &
                         self%lo, self%hi, self%err, self%ks, self%left, self%sync, n_events)
       events = .not. (n_events == 0.0_dp)   ! true for NaN
@@ -553,52 +588,126 @@ contains
       end do
    end subroutine count_events
 
-   !> The indicators' step of every lane with a trajectory (after the state's): the
-   !> vectors by `chain_tangent_lane`, renormalised to length 1, the running sums
-   !> by `megno_step` (as `chaos_indicators`, vector 1). A lane whose state ran away
-   !> or whose vectors fail is left to the rare path (indicators NaN).
-   subroutine tangent_step(self)
-      type(chain_lanes_t), intent(inout) :: self  !! the lanes
-      real(dp) :: yo(2*self%nl), yn(2*self%nl), fo(2*self%nl), fn(2*self%nl)
-      real(dp) :: nrm, dl(self%nv), t_b, t_a
-      logical :: stiff
-      integer :: ll, kv, nl
-      nl = self%nl
-      call chain_accel_lanes(self%cf, self%ts, self%tc, self%qd, self%fb)
-      do ll = 1, w
-         if (self%lane_ic(ll) == 0 .or. .not. self%ind_ok(ll)) cycle
-         if (runaway(self, ll)) cycle
-         yo(1:nl) = self%p(ll, 1:nl); yo(nl + 1:) = self%pd(ll, 1:nl)
-         yn(1:nl) = self%q(ll, 1:nl); yn(nl + 1:) = self%qd(ll, 1:nl)
-         fo(1:nl) = self%pd(ll, 1:nl); fo(nl + 1:) = self%fa(ll, 1:nl)
-         fn(1:nl) = self%qd(ll, 1:nl); fn(nl + 1:) = self%fb(ll, 1:nl)
-         t_a = real(self%ks(ll), dp)*self%opt%h   ! (ks counts the step just after)
-         t_b = real(self%ks(ll) + 1, dp)*self%opt%h
-         if (self%jfresh(ll)) then
-            call self%model%jacobian(t_a, yo, self%jl(:, :, ll))
-            self%jfresh(ll) = .false.
-         end if
-         call chain_tangent_lane(self%model, t_a, self%opt%h, yo, yn, fo, fn, &
-                                 self%jl(:, :, ll), self%dv(:, :, ll), stiff)
-         if (stiff .or. .not. all(ieee_is_finite(self%dv(:, :, ll)))) then
-            self%ind_ok(ll) = .false.
-            cycle
-         end if
-         do kv = 1, self%nv
-            nrm = norm2(self%dv(:, kv, ll))
-            if (.not. (nrm > 0.0_dp .and. nrm < diverged_bound)) then
-               self%ind_ok(ll) = .false.
-               exit
-            end if
-            self%dv(:, kv, ll) = self%dv(:, kv, ll)/nrm
-            dl(kv) = log(nrm)
+   !> The vectors of an RK4 stage: xq = δq + hs δq̇', xw = δq̇ + hs δq̈' from the
+   !> previous stage's slopes (pw = its δq̇, pb = its δq̈), vectors 1:nv.
+   pure subroutine offset_vectors(n, nv, hs, dq, dw, pw, pb, xq, xw)
+      integer, intent(in) :: n, nv                        !! links, vectors
+      real(dp), intent(in) :: hs                          !! the stage's offset [s]
+      real(dp), intent(in) :: dq(w, nm, 2), dw(w, nm, 2)  !! vectors at the step start
+      real(dp), intent(in) :: pw(w, nm, 2), pb(w, nm, 2)  !! previous stage's slopes
+      real(dp), intent(out) :: xq(w, nm, 2), xw(w, nm, 2) !! the stage's vectors
+      integer :: i, k, l
+      do k = 1, nv
+         do i = 1, n
+            do l = 1, w
+               xq(l, i, k) = dq(l, i, k) + hs*pw(l, i, k)
+               xw(l, i, k) = dw(l, i, k) + hs*pb(l, i, k)
+            end do
          end do
-         if (.not. self%ind_ok(ll)) cycle
-         call megno_step(dl(1), t_a, t_b, 0.0_dp, self%lg(ll), self%ig(ll), self%yy(ll), &
-                         self%sy(ll))
       end do
-      self%fa = self%fb
-   end subroutine tangent_step
+   end subroutine offset_vectors
+
+   !> Before a step with vectors: a lane whose step turns a link by more than
+   !> `max_tangent_turn` (h max |q̇_i|) gets no indicators; its vectors are set to zero,
+   !> so that the step's arithmetic on them stays finite.
+   subroutine tangent_guard(self)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      real(dp) :: over, g(w)
+      integer :: i, l
+      do l = 1, w
+         g(l) = 0.0_dp
+      end do
+      do i = 1, self%nl
+         do l = 1, w
+            g(l) = max(g(l), abs(self%qd(l, i)))
+         end do
+      end do
+      over = 0.0_dp
+      do l = 1, w
+         over = over + self%vok(l)*max(0.0_dp, self%opt%h*g(l) - max_tangent_turn)
+      end do
+      if (over == 0.0_dp) return
+      do l = 1, w
+         if (self%vok(l) > 0.0_dp .and. self%opt%h*g(l) > max_tangent_turn) &
+            call vectors_fail(self, l)
+      end do
+   end subroutine tangent_guard
+
+   !> After a step: every vector of a lane with indicators renormalised to length 1,
+   !> and ln of vector 1's growth into the MEGNO sums of the step [ks h, (ks + 1) h]
+   !> (`megno_step`, as `chaos_indicators` does with vector 1). A lane whose vector's
+   !> |δ|² is not a positive normal number below `diverged_bound`² gets no indicators.
+   !> Lanes without indicators keep their vectors (idle lanes: bounded; failed: zero).
+   subroutine vectors_update(self)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      real(dp), dimension(w) :: n2, sc, lnn2, dl, ta, tb
+      real(dp) :: bad
+      integer :: i, k, l, nl
+      nl = self%nl
+      do k = 1, self%nv
+         do l = 1, w
+            n2(l) = 0.0_dp
+         end do
+         do i = 1, nl
+            do l = 1, w
+               n2(l) = n2(l) + (self%dq(l, i, k)**2 + self%dw(l, i, k)**2)
+            end do
+         end do
+         bad = 0.0_dp
+         do l = 1, w
+            bad = bad + self%vok(l)*norm_outside(n2(l))
+         end do
+         if (bad > 0.0_dp) then   ! rare: a vector collapsed, overflowed or ran away
+            do l = 1, w
+               if (self%vok(l) > 0.0_dp .and. norm_outside(n2(l)) > 0.0_dp) then
+                  call vectors_fail(self, l)
+                  n2(l) = 1.0_dp
+               end if
+            end do
+         end if
+         do l = 1, w   ! (lanes without indicators: |δ|² taken as 1)
+            n2(l) = self%vok(l)*n2(l) + (1.0_dp - self%vok(l))
+            sc(l) = 1.0_dp/sqrt(n2(l))
+         end do
+         do i = 1, nl
+            do l = 1, w
+               self%dq(l, i, k) = self%dq(l, i, k)*sc(l)
+               self%dw(l, i, k) = self%dw(l, i, k)*sc(l)
+            end do
+         end do
+         if (k == 1) then
+            call log_lanes(n2, lnn2)
+            do l = 1, w
+               dl(l) = 0.5_dp*lnn2(l)
+               ta(l) = real(self%ks(l), dp)*self%opt%h
+               tb(l) = real(self%ks(l) + 1, dp)*self%opt%h
+            end do
+            call megno_step_lanes(dl, ta, tb, self%lg, self%ig, self%yy, self%sy)
+         end if
+      end do
+   end subroutine vectors_update
+
+   !> 1 where |δ|² = x is not a positive normal number below `diverged_bound`² (0,
+   !> subnormal, negative, too large, Inf, NaN), else 0: from the bits (positive
+   !> doubles order as their bit patterns; no floating-point compare on NaN).
+   pure elemental real(dp) function norm_outside(x)
+      real(dp), intent(in) :: x  !! |δ|²
+      integer(i8), parameter :: lo = transfer(tiny(1.0_dp), 0_i8)
+      integer(i8), parameter :: hi = transfer(diverged_bound*diverged_bound, 0_i8)
+      integer(i8) :: ix
+      ix = transfer(x, 0_i8)
+      norm_outside = merge(0.0_dp, 1.0_dp, ix >= lo .and. ix < hi)
+   end function norm_outside
+
+   !> Lane ll's indicators fail (NaN at its end): its vectors are set to zero.
+   subroutine vectors_fail(self, ll)
+      type(chain_lanes_t), intent(inout) :: self  !! the lanes
+      integer, intent(in) :: ll                   !! lane
+      self%ind_ok(ll) = .false.
+      self%vok(ll) = 0.0_dp
+      self%dq(ll, :, :) = 0.0_dp
+      self%dw(ll, :, :) = 0.0_dp
+   end subroutine vectors_fail
 
    !> Every lane's events, decided exactly (`chain_check_lane`).
    subroutine chain_check(self, ended)
@@ -681,10 +790,13 @@ contains
       end do
       call resync(self, l)
       if (self%nv > 0) then
-         self%dv(:, :, l) = self%v0(:, 1:self%nv)
+         do ii = 1, self%nv
+            self%dq(l, 1:nl, ii) = self%v0(1:nl, ii)
+            self%dw(l, 1:nl, ii) = self%v0(nl + 1:2*nl, ii)
+         end do
          self%lg(l) = 0.0_dp; self%ig(l) = 0.0_dp; self%yy(l) = 0.0_dp; self%sy(l) = 0.0_dp
          self%ind_ok(l) = .true.
-         self%jfresh(l) = .true.
+         self%vok(l) = self%active(l)
       end if
    end subroutine chain_load
 
@@ -697,7 +809,6 @@ contains
          call sincos_exact(self%q(ll, ii), self%ts(ll, ii), self%tc(ll, ii))
       end do
       self%sync(ll) = real(resync_steps, dp)
-      self%stale = .true.
    end subroutine resync
 
    !> The window of link ii's angle in lane ll: between two upward verticals, shrunk
@@ -770,13 +881,19 @@ contains
       type(chain_lanes_t), intent(inout) :: self  !! the lanes
       integer, intent(in) :: jj, ll               !! trajectory, lane
       real(dp), intent(in) :: t_b                 !! end time [s]
-      integer :: info
+      real(dp) :: v(2*self%nl, 2)
+      integer :: info, k, nl
       self%res%fli(jj) = self%lg(ll)
       self%res%megno_y(jj) = self%yy(ll)
       self%res%megno(jj) = self%sy(ll)/t_b
       if (self%nv < 2) return
-      self%res%sali(jj) = sali(self%dv(:, 1, ll), self%dv(:, 2, ll))
-      call gali(self%dv(:, 1:2, ll), self%res%gali2(jj), info)
+      nl = self%nl
+      do k = 1, 2
+         v(1:nl, k) = self%dq(ll, 1:nl, k)
+         v(nl + 1:, k) = self%dw(ll, 1:nl, k)
+      end do
+      self%res%sali(jj) = sali(v(:, 1), v(:, 2))
+      call gali(v, self%res%gali2(jj), info)
       if (info /= 0) self%res%gali2(jj) = self%nan
    end subroutine finish_indicators
 
