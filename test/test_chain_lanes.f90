@@ -251,30 +251,35 @@ contains
    end subroutine test_paths
 
    !> The same states in reverse order (other lanes, other neighbours): bitwise the
-   !> same results.
+   !> same results, flip map and indicators.
    subroutine test_order(error)
       type(error_t), allocatable, intent(out) :: error
       type(chain_t) :: chain
       type(batch_options_t) :: opt
       type(batch_result_t) :: a, b
       real(dp), allocatable :: y0(:, :)
-      integer :: j, m
+      integer :: j, m, k, nv
       call seed()
       call draw_chain(5, .true., chain)
       call draw_states(5, y0)
       opt%h = 0.01_dp
       opt%n_steps = 200
       opt%stop_rule = stop_either
-      call integrate_chain_lanes(chain, opt, y0, a)
       m = size(y0, 2)
-      call integrate_chain_lanes(chain, opt, y0(:, m:1:-1), b)
-      do j = 1, m
-         call check_true(error, all(a%final(:, j) == b%final(:, m + 1 - j)) .and. &
-                         a%steps(j) == b%steps(m + 1 - j) .and. &
-                         a%status(j) == b%status(m + 1 - j) .and. &
-                         same(a%energy_error(j), b%energy_error(m + 1 - j)) .and. &
-                         all(same(a%t_flip_link(:, j), b%t_flip_link(:, m + 1 - j))), &
-                         'results independent of the lane')
+      do nv = 0, 2, 2   ! the flip map, and the indicators with two vectors
+         opt%vectors = nv
+         call integrate_chain_lanes(chain, opt, y0, a)
+         call integrate_chain_lanes(chain, opt, y0(:, m:1:-1), b)
+         do j = 1, m
+            k = m + 1 - j
+            call check_true(error, all(a%final(:, j) == b%final(:, k)) .and. &
+                            a%steps(j) == b%steps(k) .and. a%status(j) == b%status(k) .and. &
+                            same(a%energy_error(j), b%energy_error(k)) .and. &
+                            all(same(a%t_flip_link(:, j), b%t_flip_link(:, k))) .and. &
+                            same(a%megno(j), b%megno(k)) .and. same(a%fli(j), b%fli(k)) .and. &
+                            same(a%sali(j), b%sali(k)) .and. same(a%gali2(j), b%gali2(k)), &
+                            'results independent of the lane')
+         end do
       end do
    contains
       elemental logical function same(x, y)
