@@ -79,8 +79,9 @@ contains
    end subroutine collect_inventory
 
    !> simulate: two rods, damped with a moving support (W_friction, W_support,
-   !> balance_error), a chain of 3 links, a damped chain, the elastic pendulum, dense
-   !> output of an adaptive method (--output-dt) and --save-every.
+   !> balance_error), a chain of 3 links, a damped chain, applied joint torques
+   !> (W_torque, tau, the torque samples), the elastic pendulum, dense output of an
+   !> adaptive method (--output-dt) and --save-every.
    subroutine test_simulate(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       character(len=*), parameter :: common = 'simulate --t-end 0.05 --output @OUT'
@@ -91,6 +92,7 @@ contains
          variant_t('chain3', common//' --links 3 --q 0,0.1,0.2'), &
          variant_t('chain3_damped', common//' --links 3 --q 0,0.1,0.2 --damping 0.1,0.1,0.1'), &
          variant_t('chain1', common//' --links 1 --q 0.3'), &
+         variant_t('torques', common//' --torque-file data/torque_example.csv'), &
          variant_t('elastic', common//' --model elastic --q 1.2,-1'), &
          variant_t('output_dt', common//' --method dop853 --output-dt 0.01'), &
          variant_t('save_every', common//' --save-every 3')])

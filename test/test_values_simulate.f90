@@ -11,10 +11,13 @@
 !>   F21 = −F_joint_2),
 !>   E = Σ ½ m_k |v_Ck|² + ½ (m_k L_k²/12) q̇_k² + m_k g y_Ck,  p = M q̇,
 !>   q̈ from the principle of virtual work: Σ_k m_k (∂C_k/∂q_i)·(a_Ck + g ĵ) + I_i q̈_i = Q_i,
-!>   Q_i = −c_i (q̇_i − q̇_(i−1)) + c_(i+1) (q̇_(i+1) − q̇_i),
+!>   Q_i = −c_i (q̇_i − q̇_(i−1)) + c_(i+1) (q̇_(i+1) − q̇_i) + τ_i − τ_(i+1),
+!>   with applied joint torques τ_i = a_i + b_i t (linear: the torque file's samples
+!>   interpolate it exactly),
 !>   q, q̇ by a classical RK4 of that q̈ written here, with the file's step,
-!>   W_friction, W_support by composite Boole quadrature over the samples of
-!>   Σ c_i (q̇_i − q̇_(i−1))² and F01 · v_A, balance_error from E, the works and E_s = |E(0)|.
+!>   W_friction, W_support, W_torque by composite Boole quadrature over the samples of
+!>   Σ c_i (q̇_i − q̇_(i−1))², F01 · v_A and Σ τ_i (q̇_i − q̇_(i−1)), balance_error from E,
+!>   the works and E_s = |E(0)|.
 !> The elastic pendulum (q = (r, φ), bob m on a spring k, l0):
 !>   r̈ = r φ̇² − (k/m)(r − l0) − g sin φ,  φ̈ = −(2 ṙ φ̇ + g cos φ)/r,
 !>   E = ½ m (ṙ² + r² φ̇²) + ½ k (r − l0)² + m g r sin φ,  p = (m ṙ, m r² φ̇),
@@ -43,6 +46,8 @@ module test_values_simulate
       real(dp) :: a(2) = 0.0_dp                 !! support amplitudes [m]
       real(dp) :: w = 0.0_dp                    !! support frequency [rad/s]
       real(dp) :: ph(2) = 0.0_dp                !! support phases [rad]
+      !> applied joint torques τ_i = ta_i + tb_i t [N m] (none when not allocated)
+      real(dp), allocatable :: ta(:), tb(:)
    end type chain_t
 
 contains
@@ -52,6 +57,7 @@ contains
       tests = [new_unittest('two_rods_every_dataset', test_two_rods), &
                new_unittest('damped_moving_support_every_dataset', test_damped_support), &
                new_unittest('chain3_every_dataset', test_chain3), &
+               new_unittest('torques_every_dataset', test_torques), &
                new_unittest('elastic_every_dataset', test_elastic)]
    end subroutine collect_values_simulate
 
@@ -86,6 +92,22 @@ contains
                        'F01', 'F21', 'F_joint'])
    end subroutine test_damped_support
 
+   !> Three rods, damped, with applied joint torques τ_i = a_i + b_i t from a torque
+   !> file of 4 irregular samples over [0, 0.5] s.
+   subroutine test_torques(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      type(chain_t) :: ch
+      ch%n = 3
+      ch%m = [1.1_dp, 0.8_dp, 1.4_dp]; ch%l = [1.0_dp, 0.7_dp, 1.2_dp]
+      ch%c = [0.1_dp, 0.0_dp, 0.05_dp]
+      ch%ta = [2.0_dp, -1.5_dp, 0.5_dp]; ch%tb = [-3.0_dp, 4.0_dp, 1.0_dp]
+      call check_chain(error, 'torques', ch, '--links 3 --m 1.1,0.8,1.4 --l 1,0.7,1.2 ' &
+                       //'--q 0.1,0.5,-1 --w 0,1,0 --damping 0.1,0,0.05', &
+                       [character(len=nl) :: 't', 'q', 'qdot', 'qddot', 'energy', &
+                       'kinetic', 'potential', 'W_torque', 'balance_error', 'tau', 'F_joint', &
+                       'samples'])
+   end subroutine test_torques
+
    !> A chain of three rods of unequal masses and lengths.
    subroutine test_chain3(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
@@ -117,17 +139,26 @@ contains
       character(len=*), intent(in) :: args              !! its dpend options
       character(len=*), intent(in) :: names(:)          !! datasets to check
       real(dp), parameter :: dt = 1.0e-3_dp
+      !> the torque file's sample times [s] (a chain with torques)
+      real(dp), parameter :: sample_times(4) = [0.0_dp, 0.13_dp, 0.31_dp, 0.5_dp]
       type(h5file_t) :: h5
       character(len=:), allocatable :: dir
       real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), x2(:, :), x3(:, :, :), x1(:)
       real(dp), allocatable :: rc(:, :, :), vc(:, :, :), ac(:, :, :), rj(:, :, :), vj(:, :, :)
       real(dp), allocatable :: aj(:, :, :), fj(:, :, :), ra(:, :), va(:, :), e(:), p(:, :)
       real(dp), allocatable :: qddx(:, :), pf(:), ps(:), wf(:), ws(:), y(:, :), tk(:), vp(:)
+      real(dp), allocatable :: pt(:), wt(:), tau(:, :)
       real(dp) :: e_s
       integer :: stat, n, i, k
       dir = scratch_dir('values-'//tag)
-      stat = run_command(dir, 'simulate --method rk4 --dt 1e-3 --t-end 0.5 --save-every 1 ' &
-                         //args//' --output '//dir//'/sim.h5')
+      if (allocated(ch%ta)) then   ! the torque file: t, tau1 .. tauN at 4 irregular times
+         call write_torques(dir//'/tau.csv', ch, sample_times)
+         stat = run_command(dir, 'simulate --method rk4 --dt 1e-3 --t-end 0.5 --save-every 1 ' &
+                            //args//' --torque-file '//dir//'/tau.csv --output '//dir//'/sim.h5')
+      else
+         stat = run_command(dir, 'simulate --method rk4 --dt 1e-3 --t-end 0.5 --save-every 1 ' &
+                            //args//' --output '//dir//'/sim.h5')
+      end if
       call check_true(error, stat == 0, tag//': simulate exits 0')
       if (allocated(error)) return
       call h5%open(dir//'/sim.h5', 'r', error)
@@ -144,7 +175,7 @@ contains
       ! closed forms from the stored q, qdot, qddot
       allocate (rc(2, ch%n, n), vc(2, ch%n, n), ac(2, ch%n, n), rj(2, ch%n, n), &
                 vj(2, ch%n, n), aj(2, ch%n, n), fj(2, ch%n, n), ra(2, n), va(2, n), e(n), &
-                p(ch%n, n), qddx(ch%n, n), pf(n), ps(n), tk(n), vp(n))
+                p(ch%n, n), qddx(ch%n, n), pf(n), ps(n), tk(n), vp(n), pt(n), tau(ch%n, n))
       do i = 1, n
          call kinematics(ch, t(i), q(:, i), qd(:, i), qdd(:, i), ra(:, i), va(:, i), &
                          rc(:, :, i), vc(:, :, i), ac(:, :, i), rj(:, :, i), vj(:, :, i), &
@@ -162,6 +193,8 @@ contains
          qddx(:, i) = accelerations(ch, t(i), q(:, i), qd(:, i))
          pf(i) = sum(ch%c*(qd(:, i) - eoshift(qd(:, i), -1))**2)
          ps(i) = dot_product(fj(:, 1, i), va(:, i))
+         tau(:, i) = torques(ch, t(i))
+         pt(i) = sum(tau(:, i)*(qd(:, i) - eoshift(qd(:, i), -1)))
       end do
       e_s = abs(e(1))
       do k = 1, size(names)
@@ -210,13 +243,34 @@ contains
             call compare(error, tag, 'W_support', x1(1:n:4), ws, 1.0e-10_dp)   ! measured 1.3e-11
             call check_true(error, maxval(abs(x1)) > 1.0e-2_dp*e_s, tag// &
                             ': W_support too small')
+         case ('W_torque')
+            call h5%read('/trajectory/W_torque', x1, error)
+            wt = boole(t, pt)
+            call compare(error, tag, 'W_torque', x1(1:n:4), wt, 5.0e-10_dp)   ! measured 1.1e-10
+            ! (the quadrature's error, as W_friction's: both works come out of the run's
+            ! own integration of the power)
+            call check_true(error, maxval(abs(x1)) > 1.0e-2_dp*e_s, tag// &
+                            ': W_torque too small')
+         case ('samples')   ! /torque/t and /torque/tau: the file's samples, as written
+            call h5%read('/torque/t', x1, error)
+            if (.not. allocated(error)) call h5%read('/torque/tau', x2, error)
+            if (allocated(error)) exit
+            call compare(error, tag, 'torque/t', x1, sample_times, 1.0e-16_dp)
+            call compare(error, tag, 'torque/tau', pack(x2, .true.), &
+                         [(torques(ch, sample_times(i)), i = 1, 4)], 1.0e-15_dp)
+         case ('tau')   ! a_i + b_i t
+            call h5%read('/trajectory/tau', x2, error)
+            call compare(error, tag, 'tau', pack(x2, .true.), pack(tau, .true.), 1.0e-15_dp)
          case ('balance_error')   ! from the closed-form E and the quadratures
             call h5%read('/trajectory/balance_error', x1, error)
-            wf = boole(t, pf); ws = boole(t, ps)
+            wf = boole(t, pf); ws = boole(t, ps); wt = boole(t, pt)
             call compare(error, tag, 'balance_error', x1(1:n:4), &
-                         (e(1:n:4) - e(1) + wf - ws)/e_s, 2.0e-10_dp)   ! measured 1.8e-11
-            call check_true(error, maxval(abs(x1)) < 1.0e-9_dp, tag// &
-                            ': |balance_error| below 1e-9 (rk4, dt = 1 ms)')
+                         (e(1:n:4) - e(1) + wf - ws - wt)/e_s, 2.0e-10_dp)   ! measured 1.8e-11
+            ! the torques' case 1.5e-9 (2.3e-8, 1.5e-9, 9.4e-11 at dt = 2, 1, 0.5 ms:
+            ! fourth order), the damped one below 1e-9
+            call check_true(error, maxval(abs(x1)) < merge(5.0e-9_dp, 1.0e-9_dp, &
+                            tag == 'torques'), tag//': |balance_error| below 1e-9 '// &
+                            '(5e-9 with torques; rk4, dt = 1 ms)')
          case ('rA')
             call h5%read('/trajectory/rA', x2, error)
             call compare(error, tag, 'rA', pack(x2, .true.), pack(ra, .true.), 1.0e-15_dp)
@@ -281,15 +335,46 @@ contains
       character(len=*), intent(in) :: tag  !! case name
       real(dp), allocatable :: q(:)
       q = [0.3_dp, -0.4_dp]
-      if (tag == 'chain3') q = [0.1_dp, 0.5_dp, -1.0_dp]
+      if (tag == 'chain3' .or. tag == 'torques') q = [0.1_dp, 0.5_dp, -1.0_dp]
    end function q0_of
+
+   !> τ_i = a_i + b_i t of the chain (zero without torques).
+   pure function torques(ch, t) result(tau)
+      type(chain_t), intent(in) :: ch   !! the chain
+      real(dp), intent(in) :: t         !! time [s]
+      real(dp) :: tau(ch%n)
+      tau = 0.0_dp
+      if (allocated(ch%ta)) tau = ch%ta + ch%tb*t
+   end function torques
+
+   !> Write the torque file of the chain: a header t,tau1,… and a row per time.
+   subroutine write_torques(path, ch, times)
+      character(len=*), intent(in) :: path      !! file to write
+      type(chain_t), intent(in) :: ch           !! the chain (ta, tb)
+      real(dp), intent(in) :: times(:)          !! sample times [s]
+      integer :: unit, k, i
+      open (newunit=unit, file=path, status='replace', action='write')
+      write (unit, '(a)', advance='no') 't [s]'
+      do i = 1, ch%n
+         write (unit, '(a)', advance='no') ',tau'//to_str(i)//' [N m]'
+      end do
+      write (unit, '(a)') ''
+      do k = 1, size(times)
+         write (unit, '(es24.17)', advance='no') times(k)
+         do i = 1, ch%n
+            write (unit, '(a,es24.17)', advance='no') ',', ch%ta(i) + ch%tb(i)*times(k)
+         end do
+         write (unit, '(a)') ''
+      end do
+      close (unit)
+   end subroutine write_torques
 
    !> The initial angular velocities of a case.
    function w0_of(tag) result(w)
       character(len=*), intent(in) :: tag  !! case name
       real(dp), allocatable :: w(:)
       w = [1.5_dp, -2.0_dp]
-      if (tag == 'chain3') w = [0.0_dp, 1.0_dp, 0.0_dp]
+      if (tag == 'chain3' .or. tag == 'torques') w = [0.0_dp, 1.0_dp, 0.0_dp]
    end function w0_of
 
    !> Fail unless max |got − want| ≤ rel · max(|want|, 1); prints the measured value.
@@ -376,14 +461,18 @@ contains
       real(dp), intent(in) :: t, q(:), qd(:)   !! time, angles, rates
       real(dp) :: qdd(ch%n)
       real(dp) :: mm(ch%n, ch%n), rhs(ch%n), ra(2), va(2), aa(2), b(2), qdx(0:ch%n + 1)
+      real(dp) :: tau(ch%n)
       integer :: i, j, k
       call support(ch, t, ra, va, aa)
+      tau = torques(ch, t)
       mm = mass_matrix(ch, q)
       qdx = 0.0_dp
       qdx(1:ch%n) = qd
       do i = 1, ch%n
          rhs(i) = -ch%c(i)*(qdx(i) - qdx(i - 1))
          if (i < ch%n) rhs(i) = rhs(i) + ch%c(i + 1)*(qdx(i + 1) - qdx(i))
+         rhs(i) = rhs(i) + tau(i)
+         if (i < ch%n) rhs(i) = rhs(i) - tau(i + 1)
          do k = 1, ch%n
             b = aa + [0.0_dp, ch%g]
             do j = 1, ch%n

@@ -10,7 +10,8 @@ module dpend_simulate
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: model_t, max_dof
-   use dpend_work, only: needs_work, work_model, split_work, is_work_model
+   use dpend_work, only: needs_work, work_model, split_work, is_work_model, augmented_state, &
+                         work_slots, n_works
    use dpend_integrator, only: integrator_t, stat_ok, status_message
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled, march_progress_t
@@ -46,7 +47,8 @@ module dpend_simulate
       real(dp), allocatable :: t(:)         !! times [s]
       real(dp), allocatable :: q(:, :)      !! angles (2, n) [rad]
       real(dp), allocatable :: qd(:, :)     !! angular velocities (2, n) [rad/s]
-      !> W_friction, W_support (2, n) [J] of a damped or driven chain (dpend_work)
+      !> W_friction, W_support, W_torque (n_works, n) [J] of a damped or driven chain
+      !> (dpend_work)
       real(dp), allocatable :: w(:, :)
       character(len=:), allocatable :: status  !! 'completed' or why the run stopped
    end type trajectory_t
@@ -110,11 +112,28 @@ contains
           '  --save-every N    keep every N-th step (and always the last); default ' &
           //to_str(cfg%save_every)//nl// &
           '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
+          '  --torque-file F   applied joint torques: CSV with columns t [s] and tau1 ..'//nl// &
+          '                    tauN [N m] (joint i on link i), linear between samples,'//nl// &
+          '                    covering [0, t_end] (docs/robot.md)'//nl// &
           '  --output FILE     HDF5 file to write; default '//cfg%output//nl// &
           '  --force           overwrite an existing output file'//nl// &
           '  --quiet           print only the summary line (standard output)'//nl// &
           '  -h, --help        this text'
    end function simulate_help
+
+   !> --torque-file FILE: once, a path that is not empty.
+   subroutine take_torque_file(cfg, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! torque_file set
+      character(len=*), intent(in) :: value             !! the path given
+      type(error_t), allocatable, intent(out) :: error  !! given twice, empty
+      if (allocated(cfg%torque_file)) then
+         call fatal_error(error, 'invalid torque_file: given twice (--torque-file)')
+      else if (len_trim(value) == 0) then
+         call fatal_error(error, 'invalid torque_file: an empty path (--torque-file)')
+      else
+         cfg%torque_file = value
+      end if
+   end subroutine take_torque_file
 
    !> Build the configuration from defaults, --config and flags.
    subroutine parse_simulate(args, cfg, help, error)
@@ -148,7 +167,12 @@ contains
          end if
          call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
-         call apply_run_flag(cfg, name, value, matched, error)
+         if (name == '--torque-file') then
+            matched = .true.
+            if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
+         else
+            call apply_run_flag(cfg, name, value, matched, error)
+         end if
          call option_outcome('simulate', name, matched, missing, &
                              [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
@@ -159,10 +183,11 @@ contains
       if (allocated(error)) return
       call validate_run_config(cfg, error)
       if (allocated(error)) return
-      if (needs_work(cfg%model) .and. cfg%links >= max_dof) then
-         call fatal_error(error, 'invalid links: '//to_str(cfg%links)//' with damping or a ' &
-                          //'moving support is outside [1, '//to_str(max_dof - 1)// &
-                          '] (the energy balance takes two state components)')
+      if (cfg%links + work_slots(cfg%model) > max_dof) then
+         call fatal_error(error, 'invalid links: '//to_str(cfg%links)//' with damping, a ' &
+                          //'moving support or joint torques is outside [1, '// &
+                          to_str(max_dof - work_slots(cfg%model))//'] (the energy balance ' &
+                          //'takes '//to_str(2*work_slots(cfg%model))//' state components)')
          return
       end if
       call check_simulate_resources(cfg, error)
@@ -294,7 +319,7 @@ contains
       t_max = traj%t(1)
       do k = 1, traj%n
          e = model%energy(traj%t(k), [traj%q(:, k), traj%qd(:, k)]) - e0
-         if (allocated(traj%w)) e = e + traj%w(1, k) - traj%w(2, k)
+         if (allocated(traj%w)) e = e + traj%w(1, k) - traj%w(2, k) - traj%w(3, k)
          e = abs(e)/scale
          if (e > e_max) then
             e_max = e
@@ -329,11 +354,11 @@ contains
       cap = max_samples
       avail = available_memory_bytes()
       if (avail > 0) cap = max(1024_i8, min(cap, int(real(avail, dp)/sample_memory, i8)))
-      if (model%n_dof() > cfg%links) then   ! the works start at 0
-         y = integ%to_internal(model, [cfg%q0(), 0.0_dp], [cfg%w0(), 0.0_dp])
-      else
-         y = integ%to_internal(model, cfg%q0(), cfg%w0())
-      end if
+      block   ! the works, if any, start at 0
+         real(dp), allocatable :: q_aug(:), qd_aug(:)
+         call augmented_state(model, cfg%q0(), cfg%w0(), q_aug, qd_aug)
+         y = integ%to_internal(model, q_aug, qd_aug)
+      end block
       t = 0.0_dp
       h = cfg%dt
       traj%status = 'completed'
@@ -384,22 +409,22 @@ contains
       real(dp), intent(in) :: t                     !! time [s]
       real(dp), intent(in) :: y(:)                  !! internal state
       real(dp), allocatable :: tt(:), qq(:, :), ww(:, :), wk(:, :)
-      real(dp) :: qa(max_dof + 1), qda(max_dof + 1)
-      integer :: cap, nd
+      real(dp) :: qa(max_dof), qda(max_dof)
+      integer :: cap, nd, na
       logical :: works
-      nd = model%n_dof()
+      na = model%n_dof()
       works = is_work_model(model)
-      if (works) nd = nd - 1
+      nd = na - work_slots(model)
       if (.not. allocated(traj%t)) then
          allocate (traj%t(1024), traj%q(nd, 1024), traj%qd(nd, 1024))
-         if (works) allocate (traj%w(2, 1024))
+         if (works) allocate (traj%w(n_works, 1024))
       else if (traj%n == size(traj%t)) then
          cap = 2*size(traj%t)
          allocate (tt(cap), qq(nd, cap), ww(nd, cap))
          tt(:traj%n) = traj%t; qq(:, :traj%n) = traj%q; ww(:, :traj%n) = traj%qd
          call move_alloc(tt, traj%t); call move_alloc(qq, traj%q); call move_alloc(ww, traj%qd)
          if (works) then
-            allocate (wk(2, cap))
+            allocate (wk(n_works, cap))
             wk(:, :traj%n) = traj%w
             call move_alloc(wk, traj%w)
          end if
@@ -407,8 +432,8 @@ contains
       traj%n = traj%n + 1
       traj%t(traj%n) = t
       if (works) then
-         call integ%to_physical(model, y, qa(1:nd + 1), qda(1:nd + 1), t)
-         call split_work(qa(1:nd + 1), qda(1:nd + 1), traj%q(:, traj%n), &
+         call integ%to_physical(model, y, qa(1:na), qda(1:na), t)
+         call split_work(qa(1:na), qda(1:na), traj%q(:, traj%n), &
                          traj%qd(:, traj%n), traj%w(:, traj%n))
       else
          call integ%to_physical(model, y, traj%q(:, traj%n), traj%qd(:, traj%n), t)
@@ -485,9 +510,15 @@ contains
             e_w = traj%w(2, :n)
             call h5%write('/trajectory/W_support', e_w, units='J', description= &
                'work done by the moving support since t = 0, integral of F_01 . v_A dt')
+            if (work_slots(model) > 1) then   ! applied torques
+               e_w = traj%w(3, :n)
+               call h5%write('/trajectory/W_torque', e_w, units='J', description= &
+                  'work done by the applied joint torques since t = 0, integral of sum ' &
+                  //'tau_i (qdot_i - qdot_(i-1)) dt')
+            end if
             call h5%write('/trajectory/balance_error', (e - e(1) + traj%w(1, :n) - &
-               traj%w(2, :n))/model%energy_scale(e(1)), units='1', description= &
-               '(E(t) - E(0) + W_friction - W_support) / energy_scale: the integration ' &
+               traj%w(2, :n) - traj%w(3, :n))/model%energy_scale(e(1)), units='1', description= &
+               '(E(t) - E(0) + W_friction - W_support - W_torque) / energy_scale: the integration ' &
                //'error of the energy balance')
          end if
          off = 0
@@ -504,6 +535,16 @@ contains
          end do
          call record_model(h5, model)
       end associate
+      if (cfg%torque%active()) then   ! what the run applied, exactly
+         call h5%writeattr('/', 'torque', cfg%torque%text())
+         if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)
+         if (allocated(cfg%torque%t)) then
+            call h5%write('/torque/t', cfg%torque%t, units='s', description='sample ' &
+                          //'times of the applied joint torques (linear between samples)')
+            call h5%write('/torque/tau', cfg%torque%tau, units='N m', description= &
+                          'applied joint torques tau_1 .. tau_N at the sample times')
+         end if
+      end if
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'dt', cfg%dt)
       call h5%writeattr('/', 't_end', cfg%t_end)

@@ -27,6 +27,7 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
+   public :: max_torque, max_torque_frequency
    public :: finite_positive, bound_threads
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, sci, bytes_text
@@ -93,6 +94,12 @@ module dpend_limits
    !> Largest support amplitude |a_x|, |a_y| [m] and frequency ω [rad/s].
    real(dp), parameter :: max_support_amplitude = 1e6_dp
    real(dp), parameter :: max_support_frequency = 1e6_dp
+   !> Largest applied joint torque |τ_i| [N m] (a sample of a series, a closed form's
+   !> bias or amplitude; the sum of a closed form's terms too), as the damping's 1e6:
+   !> with the masses and lengths above, q̈ stays finite.
+   real(dp), parameter :: max_torque = 1e6_dp
+   !> Largest angular frequency of a closed-form torque's sine [rad/s].
+   real(dp), parameter :: max_torque_frequency = 1e6_dp
 
    !> At most 1e12 steps in one integration of a fixed-step method (a day at 1e7
    !> steps/s): the step index is exact in real(dp) (< 2^53) and t0 + i h never

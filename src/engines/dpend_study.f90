@@ -67,7 +67,8 @@ module dpend_study
    use dpend_os, only: wall_clock
    use dpend_progress, only: progress_silenced, progress_t
    use dpend_study_settings, only: study_config_t, case_index, case_model, balance_case
-   use dpend_work, only: needs_work, work_model, is_work_model
+   use dpend_work, only: needs_work, work_model, is_work_model, augmented_state, &
+                         balance_energy
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
    private
@@ -248,18 +249,16 @@ contains
    end function energy_of
 
    !> The energy monitored by the sweeps: `energy_of` (H or T + V), and for a damped
-   !> or driven chain with its works (dpend_work) E(t) + W_friction − W_support, whose
-   !> change from t = 0 is the error of the energy balance.
+   !> or driven chain with its works (dpend_work) E(t) + W_friction − W_support
+   !> (− W_torque), whose change from t = 0 is the error of the energy balance.
    function monitored_energy(integ, model, t, y) result(e)
       class(integrator_t), intent(in) :: integ  !! the method
       class(model_t), intent(in) :: model       !! the system
       real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: y(:)              !! internal state
       real(dp) :: e
-      integer :: n
       if (is_work_model(model)) then   ! y = (q, W_friction, q̇, W_support), (q, q̇) inside
-         n = model%n_dof()
-         e = model%energy(t, y) + y(n) - y(2*n)
+         e = balance_energy(model, t, y)
       else
          e = energy_of(integ, model, y)
       end if
@@ -675,7 +674,11 @@ contains
                call move_alloc(model, chain)
                call work_model(chain, model)
             end block
-            y0 = integ%to_internal(model, [cs%q0, 0.0_dp], [cs%w0, 0.0_dp])
+            block
+               real(dp), allocatable :: q_aug(:), qd_aug(:)
+               call augmented_state(model, cs%q0, cs%w0, q_aug, qd_aug)
+               y0 = integ%to_internal(model, q_aug, qd_aug)
+            end block
          else
             y0 = integ%to_internal(model, cs%q0, cs%w0)
          end if
@@ -696,8 +699,8 @@ contains
                                         abs(monitored_energy(integ, model, t, y) - e0)/es)
             end do
             if (stat /= stat_ok) exit
-            if (works) then   ! (q, W_friction), (q̇, W_support)
-               call integ%to_physical(model, y, qa(:n + 1), qda(:n + 1), t)
+            if (works) then   ! (q, W_friction …), (q̇, W_support …)
+               call integ%to_physical(model, y, qa(:model%n_dof()), qda(:model%n_dof()), t)
                sw%y_check(1:n, kc, k) = qa(:n)
                sw%y_check(n + 1:2*n, kc, k) = qda(:n)
             else

@@ -77,6 +77,9 @@ module dpend_csv
       logical :: coords_found = .false.
       !> some angle columns were in degrees ([deg]), converted to rad (× π/180)
       logical :: degrees = .false.
+      !> what the named columns (`coords`) are, for messages ('the joint torques'); set:
+      !> those columns only, no angles or positions (default: a model's coordinates)
+      character(len=:), allocatable :: what
    end type series_t
 
    !> Radians per degree: a column in [deg] is converted by this factor.
@@ -85,13 +88,16 @@ module dpend_csv
 contains
 
    !> Read and check the series file `filename` (see the module's notes).
-   subroutine read_series(filename, series, error, coords, units)
+   subroutine read_series(filename, series, error, coords, units, what)
       character(len=*), intent(in) :: filename          !! the CSV file
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem, one line
       !> a model's coordinates (names, units): columns of these names are its q
       !> (instead of theta or q columns), e.g. r [m], phi [rad]
       character(len=*), intent(in), optional :: coords(:), units(:)
+      !> what the `coords` columns are, e.g. 'the joint torques' (messages); default:
+      !> the model's coordinates
+      character(len=*), intent(in), optional :: what
       character(len=:), allocatable :: text, pre
       integer :: unit, stat
       integer(i8) :: bytes
@@ -127,19 +133,21 @@ contains
          call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
          return
       end if
-      call parse_series(text, series, error, coords, units)
+      call parse_series(text, series, error, coords, units, what)
       if (allocated(error)) error%message = "invalid data file '"//printable(filename)// &
                                             "' "//error%message
    end subroutine read_series
 
    !> Parse the whole text of a series file; an error message starts with
    !> 'line L: ' (or 'has ...' for a file without a header or rows).
-   subroutine parse_series(text, series, error, coords, units)
+   subroutine parse_series(text, series, error, coords, units, what)
       character(len=*), intent(in) :: text              !! the file's contents
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem
       !> a model's coordinates (names, units; see `read_series`)
       character(len=*), intent(in), optional :: coords(:), units(:)
+      !> what the coords columns are (see `read_series`)
+      character(len=*), intent(in), optional :: what
       character(len=1), parameter :: lf = achar(10), cr = achar(13)
       integer :: start, eol, line, n_fields, col_t, cap
       integer :: col_q(2*max_dof)
@@ -153,6 +161,7 @@ contains
       if (present(coords) .and. present(units)) then
          series%coord_names = coords
          series%coord_units = units
+         if (present(what)) series%what = what
       end if
       start = 1
       if (len(text) >= 3) then
@@ -211,7 +220,8 @@ contains
          call append_row(series, cap, line, values(0:series%n_obs))
       end do
       if (.not. header_seen) then
-         call fatal_error(error, 'has no header line (expected e.g. t,theta1,theta2)')
+         call fatal_error(error, 'has no header line (expected e.g. '//example_header(series) &
+                          //')')
          return
       end if
       if (series%k == 0) then
@@ -241,9 +251,14 @@ contains
          return
       end if
       if (any(abs(values(1:series%n_obs)) > max_sample_value)) then
-         call fatal_error(error, 'line '//to_str(line)//': a value beyond '// &
-                          real_str(max_sample_value)//' (angles in rad, positions in '// &
-                          'the file''s unit)')
+         if (allocated(series%what)) then
+            call fatal_error(error, 'line '//to_str(line)//': a value of '//series%what// &
+                             ' beyond '//real_str(max_sample_value))
+         else
+            call fatal_error(error, 'line '//to_str(line)//': a value beyond '// &
+                             real_str(max_sample_value)//' (angles in rad, positions in '// &
+                             'the file''s unit)')
+         end if
          return
       end if
       if (series%k > 0) then
@@ -352,14 +367,14 @@ contains
       end do
       if (n_fields == 1) then
          call fatal_error(error, pre//'1 field ('//listing//'); separators tried: , ; tab ' &
-                          //'(expected a header such as t,theta1,theta2)')
+                          //'(expected a header such as '//example_header(series)//')')
          return
       end if
       if (col_t == 0) then
          call fatal_error(error, pre//"no column 't' among the "//to_str(n_fields)// &
                           ' fields '//listing//trim(merge(', ...', '     ', n_fields > 8))// &
                           ' (separator '//separator_name(series%separator)// &
-                          '; expected a header such as t,theta1,theta2)')
+                          '; expected a header such as '//example_header(series)//')')
          return
       end if
       if (kind == 'model') then
@@ -372,8 +387,13 @@ contains
          return
       end if
       if (series%n == 0 .and. allocated(series%coord_names)) then
-         call fatal_error(error, pre//'no columns '//coordinate_list(series)// &
-                          " (the model's coordinates) and no positions (x1,y1)")
+         if (allocated(series%what)) then
+            call fatal_error(error, pre//'no columns '//coordinate_list(series)// &
+                             ' ('//series%what//')')
+         else
+            call fatal_error(error, pre//'no columns '//coordinate_list(series)// &
+                             " (the model's coordinates) and no positions (x1,y1)")
+         end if
          return
       end if
       if (series%n == 0) then
@@ -813,7 +833,8 @@ contains
       deg = trim(series%coord_units(i)) == 'rad' .and. unit == '[deg]'
       if (col_q(i) /= 0) then
          call fatal_error(error, pre//"column '"//name//"' appears twice")
-      else if (len(unit) > 0 .and. unit /= '['//trim(series%coord_units(i))//']' .and. &
+      else if (len(unit) > 0 .and. unit /= '['//to_lower(trim(series%coord_units(i)))//']' &
+               .and. &
                .not. deg) then
          call fatal_error(error, pre//"column '"//name//"' has the unit '"// &
                           printable_40(unit)//"' (accepted: ["// &
@@ -847,6 +868,20 @@ contains
       series%n_obs = series%n
       series%coords_found = .true.
    end subroutine coordinates_complete
+
+   !> An example header for messages: 't,theta1,theta2', or 't,tau1,tau2' for the
+   !> named columns of `what`.
+   function example_header(series) result(s)
+      type(series_t), intent(in) :: series  !! with coord_names when named
+      character(len=:), allocatable :: s
+      integer :: i
+      s = 't,theta1,theta2'
+      if (.not. allocated(series%what)) return
+      s = 't'
+      do i = 1, min(2, size(series%coord_names))
+         s = s//','//trim(series%coord_names(i))
+      end do
+   end function example_header
 
    !> 'r [m], phi [rad]'.
    function coordinate_list(series) result(s)

@@ -55,12 +55,16 @@
 !>   acceleration a_A starts the recursion of accelerations (a⁰ of the near end of link
 !>   1), so that f gains −μ_i u_i × a_A, μ_i = L_i (m_i/2 + Σ_(k>i) m_k) (gravity g ĵ
 !>   becomes g ĵ + a_A); kinematics and reactions include the motion of A.
-!> With either, the model is neither Hamiltonian nor conservative (the support also
-!> makes it non-autonomous). The energy is then the inertial one,
+!> - applied joint torques τ_i(t) (dpend_joint_torque): joint i's motor exerts τ_i on
+!>   body i and −τ_i on body i − 1, so that f gains the generalized forces
+!>   Q_i = τ_i − τ_(i+1) (τ_(N+1) = 0); they are couples, so the reactions of the
+!>   recursion (given q̈) are unchanged.
+!> With any of these, the model is neither Hamiltonian nor conservative (the support
+!> and the torques also make it non-autonomous). The energy is then the inertial one,
 !>   E = T + V with T = Σ ½ m_k |v_Ck|² + ½ I_Ck q̇_k², V = Σ m_k g y_Ck,
 !>     = ½ q̇ᵀ M q̇ + Σ G_i sin q_i + v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A
-!> (m the total mass), and its balance is dE/dt = P_support − P_friction with
-!>   P_friction = Σ c_i (q̇_i − q̇_(i−1))² ≥ 0,
+!> (m the total mass), and its balance is dE/dt = P_support + P_torque − P_friction with
+!>   P_friction = Σ c_i (q̇_i − q̇_(i−1))² ≥ 0,  P_torque = Σ τ_i (q̇_i − q̇_(i−1)),
 !>   P_support = F_(0,1) · v_A,  F_(0,1) = m (a_A + g ĵ) + Σ μ_i (q̈_i n_i − q̇_i² u_i)
 !> (`powers`; `dpend_work` integrates both along the solution).
 !>
@@ -80,6 +84,7 @@ module dpend_chain
    use dpend_error, only: error_t
    use dpend_limits, only: diverged_bound
    use dpend_model, only: model_t, max_dof
+   use dpend_joint_torque, only: joint_torque_t
    implicit none
    private
    public :: chain_t, chain_model
@@ -103,6 +108,8 @@ module dpend_chain
       real(dp) :: sup_a(2) = 0.0_dp          !! support amplitudes (a_x, a_y) [m]
       real(dp) :: sup_w = 0.0_dp             !! support angular frequency ω [rad/s]
       real(dp) :: sup_phi(2) = 0.0_dp        !! support phases (φ_x, φ_y) [rad]
+      logical :: torqued = .false.           !! joint torques are applied
+      type(joint_torque_t) :: torque         !! the applied joint torques τ_i(t)
    contains
       procedure :: n_dof => chain_n_dof
       procedure :: name => chain_name
@@ -180,7 +187,7 @@ module dpend_chain
       !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
       !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
       module function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
-                                  inertia) result(model)
+                                  inertia, torque) result(model)
          real(dp), intent(in) :: m(:)                      !! masses [kg]
          real(dp), intent(in) :: l(:)                      !! lengths [m]
          real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
@@ -191,6 +198,7 @@ module dpend_chain
          real(dp), intent(in), optional :: phase(2)        !! (φ_x, φ_y) [rad]
          real(dp), intent(in), optional :: com(:)          !! d_i [m] (N)
          real(dp), intent(in), optional :: inertia(:)      !! I_i [kg m²] (N)
+         type(joint_torque_t), intent(in), optional :: torque  !! τ_i(t) (N joints)
          type(chain_t) :: model                            !! the chain (n = 0 when refused)
       end function chain_model
 
@@ -208,13 +216,15 @@ module dpend_chain
          real(dp), intent(out) :: f(:, :)              !! reactions (2, n) [N]
          real(dp), intent(in), optional :: t           !! time [s] (default 0)
       end subroutine chain_reactions
-      pure module subroutine chain_powers(self, t, y, qdd, p_friction, p_support)
+      pure module subroutine chain_powers(self, t, y, qdd, p_friction, p_support, p_torque)
          class(chain_t), intent(in) :: self
          real(dp), intent(in) :: t            !! time [s]
          real(dp), intent(in) :: y(*)         !! state (q, q̇)
          real(dp), intent(in) :: qdd(*)       !! q̈ [rad/s²]
          real(dp), intent(out) :: p_friction  !! power dissipated in the joints [W]
          real(dp), intent(out) :: p_support   !! power delivered by the support [W]
+         !> power delivered by the applied joint torques [W]
+         real(dp), intent(out), optional :: p_torque
       end subroutine chain_powers
       pure real(dp) module function chain_potential_energy(self, t, y)
          class(chain_t), intent(in) :: self
@@ -454,7 +464,7 @@ contains
       real(dp), intent(in) :: qd(*)                   !! rates [rad/s]
       real(dp), intent(out) :: qdd(max_dof)           !! q̈ [rad/s²]
       real(dp), intent(out) :: a(max_dof, max_dof)    !! Cholesky factor of M
-      real(dp) :: ra(2), va(2), aa(2)
+      real(dp) :: ra(2), va(2), aa(2), tau(max_dof)
       integer :: i
       aa = 0.0_dp
       if (self%driven) call self%support(t, ra, va, aa)
@@ -465,6 +475,13 @@ contains
          do i = 1, self%n
             qdd(i) = qdd(i) - self%c(i)*(qd(i) - merge(qd(max(i - 1, 1)), 0.0_dp, i > 1))
             if (i < self%n) qdd(i) = qdd(i) + self%c(i + 1)*(qd(i + 1) - qd(i))
+         end do
+      end if
+      if (self%torqued) then   ! Q_i = τ_i − τ_(i+1)
+         call self%torque%values(t, tau(1:self%n))
+         do i = 1, self%n
+            qdd(i) = qdd(i) + tau(i)
+            if (i < self%n) qdd(i) = qdd(i) - tau(i + 1)
          end do
       end if
       call cholesky_solve(self%n, a, qdd)
@@ -550,16 +567,16 @@ contains
       chain_n_dof = self%n
    end function chain_n_dof
 
-   !> Hamiltonian and conservative without damping and support.
+   !> Hamiltonian and conservative without damping, support motion and torques.
    pure logical function chain_hamiltonian(self)
       class(chain_t), intent(in) :: self
-      chain_hamiltonian = .not. (self%damped .or. self%driven)
+      chain_hamiltonian = .not. (self%damped .or. self%driven .or. self%torqued)
    end function chain_hamiltonian
 
-   !> Autonomous unless the support moves.
+   !> Autonomous unless the support moves or torques are applied.
    pure logical function chain_autonomous(self)
       class(chain_t), intent(in) :: self
-      chain_autonomous = .not. self%driven
+      chain_autonomous = .not. (self%driven .or. self%torqued)
    end function chain_autonomous
 
    !> (q̇, q̈) with q̈ from Newton–Euler and a Cholesky solve.

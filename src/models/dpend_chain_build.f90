@@ -79,6 +79,17 @@ contains
       end if
       ! a nonzero amplitude moves the pin (with ω = 0 it only offsets it)
       model%driven = any(model%sup_a /= 0.0_dp)
+      if (present(torque)) then
+         if (torque%active()) then
+            if (torque%n /= n) then
+               call fatal_error(error, 'invalid torque: '//to_str(torque%n)// &
+                                ' joint torques for '//to_str(n)//' links (one per joint)')
+               return
+            end if
+            model%torque = torque
+            model%torqued = .true.
+         end if
+      end if
       model%rod = .not. (present(com) .or. present(inertia))
       if (model%rod) then
          model%d = 0.5_dp*l

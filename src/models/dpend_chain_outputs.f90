@@ -61,10 +61,11 @@ contains
       end do
    end procedure chain_reactions
 
-   !> P_friction = Σ c_i (q̇_i − q̇_(i−1))² and P_support = F_(0,1) · v_A [W] at
-   !> (t, q, q̇) with the accelerations q̈ (see the module's notes).
+   !> P_friction = Σ c_i (q̇_i − q̇_(i−1))², P_support = F_(0,1) · v_A and
+   !> P_torque = Σ τ_i (q̇_i − q̇_(i−1)) [W] at (t, q, q̇) with the accelerations q̈ (see
+   !> the module's notes).
    module procedure chain_powers
-      real(dp) :: ra(2), va(2), aa(2), f(2), w, ci, si
+      real(dp) :: ra(2), va(2), aa(2), f(2), w, ci, si, tau(max_dof)
       integer :: i, n
       n = self%n
       p_friction = 0.0_dp
@@ -85,6 +86,17 @@ contains
          end do
          p_support = dot_product(f, va)
       end if
+      if (present(p_torque)) then
+         p_torque = 0.0_dp
+         if (self%torqued) then
+            call self%torque%values(t, tau(1:n))
+            do i = 1, n
+               w = y(n + i)
+               if (i > 1) w = w - y(n + i - 1)
+               p_torque = p_torque + tau(i)*w
+            end do
+         end if
+      end if
    end procedure chain_powers
 
    ! ---------------------------------------------------------------- outputs, energies
@@ -92,11 +104,22 @@ contains
    module procedure chain_n_outputs
       chain_n_outputs = n_link_out
       if (self%n == 2) chain_n_outputs = n_link_out + n_alias_out
+      if (self%torqued) chain_n_outputs = chain_n_outputs + 1   ! tau, the last
    end procedure chain_n_outputs
 
    !> The pendulum layout of dpend_link_layout: F_joint rC vC aC rJ vJ aJ (N rows)
-   !> and rA; for two links also the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB.
+   !> and rA; for two links also the chapter's F01 F21 rC1 vC1 aC1 rC2 vC2 aC2 rB;
+   !> last, with applied torques, tau (N).
    module procedure chain_output_info
+      if (self%torqued .and. i == self%n_outputs()) then
+         name = 'tau'
+         n_comp = self%n
+         units = 'N m'
+         description = 'applied joint torques tau_1 .. tau_N: joint i''s motor on link i ' &
+                       //'(its reaction on link i - 1), '//self%torque%text()
+         if (present(rows)) rows = 0
+         return
+      end if
       call link_output_info(i, self%n, name, n_comp, units, description, rows)
    end procedure chain_output_info
 
@@ -116,6 +139,10 @@ contains
       end do
       call self%support(t, values(14*n + 1:14*n + 2), v, a)
       if (n == 2) call two_link_aliases(w(:, 1:2, :), values(31:48))
+      if (self%torqued) then   ! after rA (and the two links' aliases)
+         k = 14*n + 2 + merge(18, 0, n == 2)
+         call self%torque%values(t, values(k + 1:k + n))
+      end if
    end procedure chain_outputs
 
    !> V = Σ G_i sin q_i, and with a moving support the height of the whole mass at
@@ -185,6 +212,7 @@ contains
       end if
       if (self%damped) name = 'damped '//name
       if (self%driven) name = name//' on a moving support'
+      if (self%torqued) name = name//' with applied joint torques'
    end procedure chain_name
 
    module procedure chain_n_parameters

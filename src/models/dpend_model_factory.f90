@@ -16,6 +16,7 @@ module dpend_model_factory
    use dpend_model, only: model_t, max_dof
    use dpend_pendulum, only: pendulum_t, pendulum_model, body_general
    use dpend_chain, only: chain_t, chain_model
+   use dpend_joint_torque, only: joint_torque_t
    use dpend_elastic, only: elastic_t, elastic_model, min_stiffness, max_stiffness
    use dpend_strings, only: to_str, real_str, did_you_mean
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
@@ -52,6 +53,9 @@ module dpend_model_factory
       !> build the general form (the chain, also for two links without damping),
       !> whose parameters a fit varies continuously
       logical :: general = .false.
+      !> applied joint torques τ_i(t) (a series or a closed form; inactive: none), for
+      !> a model whose description takes them (`model_info_t%torques`)
+      type(joint_torque_t) :: torque
    contains
       !> Set parameter `name` to `values` (replacing an earlier value).
       procedure :: set => spec_set
@@ -84,6 +88,7 @@ module dpend_model_factory
       character(len=:), allocatable :: supports     !! capabilities, one line
       character(len=:), allocatable :: bodies       !! its named bodies ('' : none)
       type(param_info_t), allocatable :: params(:)  !! its parameters
+      logical :: torques = .false.                  !! takes applied joint torques
    end type model_info_t
 
 contains
@@ -108,8 +113,9 @@ contains
       info%coordinates = 'q_i: angle of link i from the horizontal x axis, counter-' &
                          //'clockwise (rad), i = 1..N; hanging: q_i = -pi/2'
       info%supports = 'Hamiltonian structure (no damping, fixed support), damping, ' &
-                      //'driving (moving support), SIMD sweep lanes (2 to 8 links), ' &
-                      //'Poincare sections (2 links, conservative)'
+                      //'driving (moving support), applied joint torques, SIMD sweep ' &
+                      //'lanes (2 to 8 links), Poincare sections (2 links, conservative)'
+      info%torques = .true.
       info%params = [ &
          param('links', '', 'number of links N', 1.0_dp, real(max_dof, dp), 2.0_dp, 1, &
                .true.), &
@@ -235,6 +241,11 @@ contains
       type(model_info_t), intent(in) :: info            !! the model's description
       type(error_t), allocatable, intent(out) :: error  !! first violation
       integer :: i, j, k, want
+      if (spec%torque%active() .and. .not. info%torques) then
+         call fatal_error(error, 'invalid torque: model '//info%name//' has no joints to ' &
+                          //'apply torques to (model pendulum takes them)')
+         return
+      end if
       if (allocated(spec%items)) then
          do i = 1, size(spec%items)
             k = param_index(info, spec%items(i)%name)
@@ -388,8 +399,8 @@ contains
    end subroutine build
 
    !> The chapter's pendulum: the double pendulum's own formulation for two links
-   !> without damping or support motion (the fast path of every method), the chain
-   !> otherwise.
+   !> without damping, support motion or torques (the fast path of every method), the
+   !> chain otherwise.
    subroutine build_pendulum(spec, info, model, error)
       type(model_spec_t), intent(in) :: spec             !! what to build (checked)
       type(model_info_t), intent(in) :: info             !! its description
@@ -413,7 +424,7 @@ contains
          type(chain_t) :: chain
          type(pendulum_t) :: par
          ! the chain checks every parameter (also those the two-link form ignores)
-         chain = chain_model(m, l, g(1), error, c, a, w(1), phi)
+         chain = chain_model(m, l, g(1), error, c, a, w(1), phi, torque=spec%torque)
          if (allocated(error)) return
          if (.not. rod) then   ! m and l checked: the defaults m l²/12 are finite
             if (spec%find('com') > 0) then
@@ -426,10 +437,11 @@ contains
             else
                ic = m*l**2/12.0_dp
             end if
-            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic)
+            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic, spec%torque)
             if (allocated(error)) return
          end if
-         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. .not. spec%general) then
+         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. &
+             .not. (spec%general .or. spec%torque%active())) then
             par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
             if (.not. rod) then
                par%body = body_general

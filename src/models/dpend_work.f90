@@ -2,13 +2,19 @@
 !> of its joint friction and of its support as two extra quadrature components,
 !> integrated along the solution by the same method, to its order.
 !>
-!> The chain's balance (dpend_chain's notes) is dE/dt = P_support − P_friction, so
-!>   W_friction(t) = ∫₀ᵗ Σ c_i (q̇_i − q̇_(i−1))² dt,  W_support(t) = ∫₀ᵗ F_(0,1) · v_A dt
-!> make E(t) − E(0) + W_friction(t) − W_support(t) an error of the integration alone.
+!> The chain's balance (dpend_chain's notes) is dE/dt = P_support + P_torque −
+!> P_friction, so
+!>   W_friction(t) = ∫₀ᵗ Σ c_i (q̇_i − q̇_(i−1))² dt,  W_support(t) = ∫₀ᵗ F_(0,1) · v_A dt,
+!>   W_torque(t) = ∫₀ᵗ Σ τ_i (q̇_i − q̇_(i−1)) dt
+!> make E(t) − E(0) + W_friction(t) − W_support(t) − W_torque(t) an error of the
+!> integration alone.
 !>
-!> The augmented model has n = N + 1 "degrees of freedom" so that the integrators'
-!> state layout y = (y(1:n), y(n+1:2n)) holds unchanged: y = (q, W_friction, q̇,
-!> W_support), f = (q̇, P_friction, q̈, P_support). It is not Hamiltonian (the methods
+!> The augmented model has n = N + k "degrees of freedom" so that the integrators'
+!> state layout y = (y(1:n), y(n+1:2n)) holds unchanged. Without applied torques k = 1:
+!> y = (q, W_friction, q̇, W_support), f = (q̇, P_friction, q̈, P_support). With them
+!> k = 2: y = (q, W_friction, W_torque, q̇, W_support, 0), f = (q̇, P_friction, P_torque,
+!> q̈, P_support, 0) (the last slot pads the halves to equal length; its rate is zero,
+!> so it stays 0). It is not Hamiltonian (the methods
 !> that need one refuse it, as they refuse the damped chain itself); the explicit
 !> Runge–Kutta methods integrate it, their dense output interpolating the works too,
 !> and the Gauss methods collocate it on (q, q̇) (the works to the same order). The work
@@ -20,11 +26,16 @@ module dpend_work
    use dpend_chain, only: chain_t
    implicit none
    private
-   public :: work_model_t, needs_work, work_model, split_work, is_work_model
+   public :: work_model_t, needs_work, work_model, split_work, is_work_model, &
+             augmented_state, balance_energy, n_works, work_slots
 
-   !> The chain and its two work integrals (state 2N + 2).
+   !> The works each `split_work` returns: W_friction, W_support, W_torque [J].
+   integer, parameter :: n_works = 3
+
+   !> The chain and its work integrals (state 2N + 2k).
    type, extends(model_t) :: work_model_t
       type(chain_t) :: chain   !! the damped or driven chain
+      integer :: k = 1         !! work slots per half: 1, or 2 with applied torques
    contains
       procedure :: n_dof => work_n_dof
       procedure :: name => work_name
@@ -68,27 +79,71 @@ contains
       class(model_t), allocatable, intent(out) :: work      !! its work_model_t
       select type (model)
       type is (chain_t)
-         allocate (work, source=work_model_t(chain=model))
+         allocate (work, source=work_model_t(chain=model, k=merge(2, 1, model%torqued)))
       class default
          error stop 'internal error: work_model needs a chain'
       end select
    end subroutine work_model
 
-   !> (q, q̇) and (W_friction, W_support) from the augmented pair q_aug = (q, W_friction),
-   !> qd_aug = (q̇, W_support) of size N + 1 each.
+   !> The work slots k per half of the state (n_dof = N + k) of a work model, or of a
+   !> chain integrated with its works (`needs_work`): 1, or 2 with applied torques (its
+   !> works include W_torque); 0 for any other model.
+   pure integer function work_slots(model)
+      class(model_t), intent(in) :: model   !! the system
+      work_slots = 0
+      select type (model)
+      type is (work_model_t)
+         work_slots = model%k
+      type is (chain_t)
+         if (needs_work(model)) work_slots = merge(2, 1, model%torqued)
+      end select
+   end function work_slots
+
+   !> (q, q̇) and (W_friction, W_support, W_torque) from the augmented pair q_aug =
+   !> (q, W_friction[, W_torque]), qd_aug = (q̇, W_support[, 0]) of size N + k each
+   !> (W_torque = 0 for k = 1).
    pure subroutine split_work(q_aug, qd_aug, q, qd, w)
       real(dp), intent(in) :: q_aug(:), qd_aug(:)   !! augmented halves of the state
       real(dp), intent(out) :: q(:), qd(:)          !! angles [rad], rates [rad/s] (N)
-      real(dp), intent(out) :: w(2)                 !! W_friction, W_support [J]
+      real(dp), intent(out) :: w(n_works)           !! W_friction, W_support, W_torque [J]
       integer :: n
       n = size(q)
       q = q_aug(1:n); qd = qd_aug(1:n)
-      w = [q_aug(n + 1), qd_aug(n + 1)]
+      w = [q_aug(n + 1), qd_aug(n + 1), 0.0_dp]
+      if (size(q_aug) > n + 1) w(3) = q_aug(n + 2)
    end subroutine split_work
+
+   !> The augmented halves (q, 0 …), (q̇, 0 …) of size n_dof of a work model (the works
+   !> start at 0), or (q, q̇) for any other model.
+   pure subroutine augmented_state(model, q, qd, q_aug, qd_aug)
+      class(model_t), intent(in) :: model                  !! the system
+      real(dp), intent(in) :: q(:), qd(:)                  !! angles, rates (N)
+      real(dp), allocatable, intent(out) :: q_aug(:), qd_aug(:)  !! (n_dof each)
+      allocate (q_aug(model%n_dof()), qd_aug(model%n_dof()))
+      q_aug = 0.0_dp; qd_aug = 0.0_dp
+      q_aug(1:size(q)) = q; qd_aug(1:size(qd)) = qd
+   end subroutine augmented_state
+
+   !> E(t) + W_friction − W_support − W_torque at the internal state y = (q, q̇ with
+   !> works) of a work model, whose change from t = 0 is the error of the energy
+   !> balance; the energy for any other model.
+   pure real(dp) function balance_energy(model, t, y) result(e)
+      class(model_t), intent(in) :: model  !! the system
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(in) :: y(:)         !! state (2 n_dof)
+      integer :: n
+      e = model%energy(t, y)
+      select type (model)
+      type is (work_model_t)
+         n = model%chain%n
+         e = e + y(n + 1) - y(2*n + model%k + 1)
+         if (model%k > 1) e = e - y(n + 2)
+      end select
+   end function balance_energy
 
    pure integer function work_n_dof(self)
       class(work_model_t), intent(in) :: self
-      work_n_dof = self%chain%n + 1
+      work_n_dof = self%chain%n + self%k
    end function work_n_dof
 
    pure function work_name(self) result(name)
@@ -118,35 +173,43 @@ contains
    !> The chain's rest state, with no work done.
    pure subroutine work_rest_state(self, q)
       class(work_model_t), intent(in) :: self  !! the model
-      real(dp), intent(out) :: q(:)            !! (q, W_friction) at rest
+      real(dp), intent(out) :: q(:)            !! (q, W_friction[, W_torque]) at rest
       call self%chain%rest_state(q(1:self%chain%n))
       q(self%chain%n + 1:) = 0.0_dp
    end subroutine work_rest_state
 
    !> The chain's state (q, q̇) of the augmented y.
-   pure subroutine inner(n, y, yc)
+   pure subroutine inner(n, k, y, yc)
       integer, intent(in) :: n           !! links N
-      real(dp), intent(in) :: y(*)       !! (q, W_friction, q̇, W_support)
+      integer, intent(in) :: k           !! work slots per half
+      real(dp), intent(in) :: y(*)       !! (q, W_friction[, W_torque], q̇, W_support[, 0])
       real(dp), intent(out) :: yc(2*n)   !! (q, q̇)
       yc(1:n) = y(1:n)
-      yc(n + 1:2*n) = y(n + 2:2*n + 1)
+      yc(n + 1:2*n) = y(n + k + 1:2*n + k)
    end subroutine inner
 
-   !> f = (q̇, P_friction, q̈, P_support).
+   !> f = (q̇, P_friction[, P_torque], q̈, P_support[, 0]).
    pure subroutine work_field(self, t, y, f)
       class(work_model_t), intent(in) :: self
       real(dp), intent(in) :: t, y(*)
       real(dp), intent(out) :: f(*)
-      real(dp) :: yc(2*max_dof), fc(2*max_dof), pf, ps
-      integer :: n
+      real(dp) :: yc(2*max_dof), fc(2*max_dof), pf, ps, pt
+      integer :: n, k
       n = self%chain%n
-      call inner(n, y, yc)
+      k = self%k
+      call inner(n, k, y, yc)
       call self%chain%field(t, yc, fc)
-      call self%chain%powers(t, yc, fc(n + 1:2*n), pf, ps)
+      if (k == 1) then
+         call self%chain%powers(t, yc, fc(n + 1:2*n), pf, ps)
+      else
+         call self%chain%powers(t, yc, fc(n + 1:2*n), pf, ps, pt)
+         f(n + 2) = pt
+         f(2*n + 4) = 0.0_dp
+      end if
       f(1:n) = fc(1:n)
       f(n + 1) = pf
-      f(n + 2:2*n + 1) = fc(n + 1:2*n)
-      f(2*n + 2) = ps
+      f(n + k + 1:2*n + k) = fc(n + 1:2*n)
+      f(2*n + k + 1) = ps
    end subroutine work_field
 
    !> ∂f/∂y: the chain's Jacobian, rows of the powers by central differences (the
@@ -156,14 +219,15 @@ contains
       real(dp), intent(in) :: t, y(:)
       real(dp), intent(out) :: jac(:, :)
       real(dp) :: yc(2*max_dof), jc(2*self%chain%n, 2*self%chain%n)
-      real(dp) :: fp(2*max_dof + 2), fm(2*max_dof + 2), yp(size(y)), d
-      integer :: n, m, j, jj
-      integer :: map(2*self%chain%n)
+      real(dp) :: fp(2*max_dof + 4), fm(2*max_dof + 4), yp(size(y)), d
+      integer :: n, k, j, jj, r
+      integer :: map(2*self%chain%n), rows(3)
       n = self%chain%n
-      m = 2*n + 2
-      call inner(n, y, yc)
+      k = self%k
+      call inner(n, k, y, yc)
       call self%chain%jacobian(t, yc(1:2*n), jc)
-      map = [(j, j = 1, n), (j, j = n + 2, 2*n + 1)]
+      map = [(j, j = 1, n), (j, j = n + k + 1, 2*n + k)]
+      rows = [n + 1, 2*n + k + 1, n + 2]   ! P_friction, P_support[, P_torque]
       jac = 0.0_dp
       jac(map, map) = jc
       do jj = 1, 2*n
@@ -173,8 +237,9 @@ contains
          call self%field(t, yp, fp)
          yp(j) = y(j) - d
          call self%field(t, yp, fm)
-         jac(n + 1, j) = (fp(n + 1) - fm(n + 1))/(2.0_dp*d)
-         jac(m, j) = (fp(m) - fm(m))/(2.0_dp*d)
+         do r = 1, merge(3, 2, k > 1)
+            jac(rows(r), j) = (fp(rows(r)) - fm(rows(r)))/(2.0_dp*d)
+         end do
       end do
    end subroutine work_jacobian
 
@@ -185,7 +250,7 @@ contains
       real(dp) :: yc(2*max_dof)
       integer :: n
       n = self%chain%n
-      call inner(n, y, yc)
+      call inner(n, self%k, y, yc)
       work_energy = self%chain%energy(t, yc(1:2*n))
    end function work_energy
 
@@ -196,7 +261,7 @@ contains
       real(dp) :: yc(2*max_dof)
       integer :: n
       n = self%chain%n
-      call inner(n, y, yc)
+      call inner(n, self%k, y, yc)
       work_potential_energy = self%chain%potential_energy(t, yc(1:2*n))
    end function work_potential_energy
 

@@ -18,6 +18,8 @@ module dpend_run_settings
       max_support_frequency
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
+   use dpend_joint_torque, only: joint_torque_t, torque_series
+   use dpend_csv, only: series_t, read_series
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
@@ -54,6 +56,11 @@ module dpend_run_settings
       real(dp) :: support_amplitude(2) = 0.0_dp
       real(dp) :: support_frequency = 0.0_dp
       real(dp) :: support_phase(2) = 0.0_dp
+      !> Applied joint torques: the torque file (columns t, tau1 … tauN; '' or unset:
+      !> none), read by `validate_run_config` into `torque`; a library caller may set
+      !> `torque` itself (a series or a closed form) and leave the file unset.
+      character(len=:), allocatable :: torque_file
+      type(joint_torque_t) :: torque
       class(model_t), allocatable :: model     !! the system, built by validate_run_config
       character(len=:), allocatable :: method  !! integrator name
       real(dp) :: dt = 1e-3_dp                 !! step (initial step for adaptive) [s]
@@ -300,9 +307,13 @@ contains
                           cfg%support_phase(i), -max_angle, max_angle, 'rad', error)
          if (allocated(error)) return
       end do
+      call read_torques(cfg, error)
+      if (allocated(error)) return
       call build_model(cfg, error)
       if (allocated(error)) return
       call resolve_times(cfg, error, keep_time_unit)
+      if (allocated(error)) return
+      call check_torque_span(cfg, error)
       if (allocated(error)) return
       if (.not. present(initial_state)) then
          call check_initial_state(cfg, error)
@@ -341,6 +352,79 @@ contains
                           //sci(real(max_steps, dp))//' (steps)')
       end if
    end subroutine validate_run_config
+
+   !> Read the torque file (`cfg%torque_file`, if given) into `cfg%torque`: a CSV
+   !> series (dpend_csv's format) with the columns t [s] and tau1 … tauN [N m], one per
+   !> joint; every value checked (`torque_series`), refusals naming the file and line.
+   subroutine read_torques(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! configuration; torque set
+      type(error_t), allocatable, intent(out) :: error  !! unreadable, refused
+      type(series_t) :: series
+      character(len=16), allocatable :: names(:), units(:)
+      integer :: i
+      if (.not. allocated(cfg%torque_file)) return
+      if (len(cfg%torque_file) == 0) return
+      if (.not. model_torques(cfg)) then
+         call fatal_error(error, 'invalid torque_file: model '//model_asked(cfg)// &
+                          ' has no joints to apply torques to (model pendulum takes them)')
+         return
+      end if
+      allocate (names(cfg%links), units(cfg%links))
+      do i = 1, cfg%links
+         names(i) = 'tau'//to_str(i)
+         units(i) = 'N m'
+      end do
+      call read_series(cfg%torque_file, series, error, names, units, &
+                       what='the joint torques')
+      if (allocated(error)) then
+         error%message = replace_lead(error%message)
+         return
+      end if
+      cfg%torque = torque_series(series%t, series%q, error)
+      if (allocated(error)) then
+         if (index(error%message, 'invalid torque series: ') == 1) &
+            error%message = "invalid torque file '"//printable(cfg%torque_file)//"': "// &
+                            error%message(len('invalid torque series: ') + 1:)
+      end if
+   contains
+      !> 'invalid data file' → 'invalid torque file' (the reader is the fit's too).
+      function replace_lead(message) result(m)
+         character(len=*), intent(in) :: message
+         character(len=:), allocatable :: m
+         if (index(message, 'invalid data file') == 1) then
+            m = 'invalid torque file'//message(len('invalid data file') + 1:)
+         else
+            m = message
+         end if
+      end function replace_lead
+   end subroutine read_torques
+
+   !> Whether the model asked for takes applied joint torques (its description).
+   logical function model_torques(cfg)
+      type(run_config_t), intent(in) :: cfg  !! configuration
+      type(model_info_t), allocatable :: models(:)
+      integer :: k
+      models = model_catalogue()
+      k = find_model(models, model_asked(cfg))
+      model_torques = .false.
+      if (k > 0) model_torques = models(k)%torques
+   end function model_torques
+
+   !> The torques are defined over the whole run [0, t_end] (a series does not
+   !> extrapolate); t_end in seconds or, kept in the natural unit, converted.
+   subroutine check_torque_span(cfg, error)
+      type(run_config_t), intent(in) :: cfg             !! configuration, model built
+      type(error_t), allocatable, intent(out) :: error  !! the span not covered
+      real(dp) :: t_end
+      if (.not. cfg%torque%active()) return
+      t_end = cfg%t_end
+      if (.not. cfg%times_resolved) t_end = cfg%seconds(cfg%t_end)
+      if (cfg%torque%covers(0.0_dp, t_end)) return
+      call fatal_error(error, 'invalid t_end: the run spans [0, '//sci(t_end, 6)// &
+                       '] s, the torques are '//cfg%torque%text()// &
+                       ' (a series is not extrapolated: give samples from t <= 0 to t >= ' &
+                       //'t_end)')
+   end subroutine check_torque_span
 
    !> dt, t_end (and the steps they make for a fixed-step method) and output_dt, in
    !> seconds; with time_unit natural a refusal says what the unit was.
@@ -520,6 +604,7 @@ contains
       end if
       call apply_body(cfg, error)
       if (allocated(error)) return
+      cfg%spec%torque = cfg%torque
       call new_model(cfg%spec, cfg%model, error)
       if (allocated(error)) error%message = error%message//hint(error%message)
    contains

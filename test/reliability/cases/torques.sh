@@ -1,0 +1,74 @@
+# `dpend simulate --torque-file`: torque files refused with their line numbers (gaps,
+# NaN, times not increasing, too short, a span that leaves the run, wrong columns and
+# units, values beyond the limit), the option refused where it does not belong (one
+# line naming the field, exit 2, no file touched), and edge values that must succeed
+# without a trap in the debug build.
+
+# fixtures: CSV files, good and bad (each row's problem in its name)
+fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
+fx tau_ok.csv          't [s],tau1 [N m],tau2 [N m]\n0,0.5,-0.2\n0.5,0.4,0.1\n1,0,0\n'
+fx tau_ok_units.csv    '# no units, semicolons\nt;tau2;tau1\n-1;0;1\n2;1;0\n'
+fx tau_one_link.csv    't,tau1\n0,1\n1,1\n'
+fx tau_gap.csv         't,tau1,tau2\n0,0.5,-0.2\n0.5,,0.1\n1,0,0\n'
+fx tau_nan.csv         't,tau1,tau2\n0,0.5,-0.2\n0.5,NaN,0.1\n1,0,0\n'
+fx tau_inf.csv         't,tau1,tau2\n0,0.5,-0.2\n0.5,inf,0.1\n1,0,0\n'
+fx tau_time_nan.csv    't,tau1,tau2\n0,0.5,-0.2\nnan,0.4,0.1\n1,0,0\n'
+fx tau_back.csv        't,tau1,tau2\n0,0.5,-0.2\n0.7,0.4,0.1\n0.6,0,0\n1,0,0\n'
+fx tau_repeat.csv      't,tau1,tau2\n0,0.5,-0.2\n0.5,0.4,0.1\n0.5,0,0\n1,0,0\n'
+fx tau_one_row.csv     't,tau1,tau2\n0,0.5,-0.2\n'
+fx tau_header_only.csv 't,tau1,tau2\n'
+fx tau_empty.csv       ''
+fx tau_late.csv        't,tau1,tau2\n0.1,0.5,-0.2\n1,0,0\n'
+fx tau_short.csv       't,tau1,tau2\n0,0.5,-0.2\n0.5,0,0\n'
+fx tau_missing.csv     't,tau1\n0,0.5\n1,0\n'
+fx tau_no_t.csv        'time,tau1,tau2\n0,0.5,-0.2\n1,0,0\n'
+fx tau_angles.csv      't,theta1,theta2\n0,0.5,-0.2\n1,0,0\n'
+fx tau_unit.csv        't,tau1 [N cm],tau2\n0,0.5,-0.2\n1,0,0\n'
+fx tau_big.csv         't,tau1,tau2\n0,0.5,-0.2\n1,2e6,0\n'
+fx tau_word.csv        't,tau1,tau2\n0,0.5,-0.2\n1,zero,0\n'
+fx tau_short_row.csv   't,tau1,tau2\n0,0.5,-0.2\n1,0\n'
+fx tau_utf16.csv       '\377\376t\000,\000t\000'
+
+S=(simulate --t-end 1 --output g.h5)
+# ---- the torque file
+refuse  torque-missing-file    'no such file'       -- "${S[@]}" --torque-file nosuch.csv
+refuse  torque-directory       'directory'          -- "${S[@]}" --torque-file dir
+refuse  torque-empty-path      'empty path'         -- "${S[@]}" --torque-file ''
+refuse  torque-twice           'given twice'        -- "${S[@]}" --torque-file tau_ok.csv --torque-file tau_ok.csv
+refuse  torque-no-value        'needs a value'      -- "${S[@]}" --torque-file
+refuse  torque-gap             'line 3'             -- "${S[@]}" --torque-file tau_gap.csv
+refuse  torque-nan             'line 3'             -- "${S[@]}" --torque-file tau_nan.csv
+refuse  torque-inf             'line 3'             -- "${S[@]}" --torque-file tau_inf.csv
+refuse  torque-time-nan        'line 3'             -- "${S[@]}" --torque-file tau_time_nan.csv
+refuse  torque-back            'line 4'             -- "${S[@]}" --torque-file tau_back.csv
+refuse  torque-repeat          'line 4'             -- "${S[@]}" --torque-file tau_repeat.csv
+refuse  torque-one-row         'at least 2'         -- "${S[@]}" --torque-file tau_one_row.csv
+refuse  torque-header-only     'no data rows'       -- "${S[@]}" --torque-file tau_header_only.csv
+refuse  torque-empty           'no header'          -- "${S[@]}" --torque-file tau_empty.csv
+refuse  torque-starts-late     'not extrapolated'   -- "${S[@]}" --torque-file tau_late.csv
+refuse  torque-ends-early      'not extrapolated'   -- "${S[@]}" --torque-file tau_short.csv
+refuse  torque-missing-column  'missing column tau2' -- "${S[@]}" --torque-file tau_missing.csv
+refuse  torque-no-t            "column 't'"         -- "${S[@]}" --torque-file tau_no_t.csv
+refuse  torque-angles          'no columns tau1'    -- "${S[@]}" --torque-file tau_angles.csv
+refuse  torque-unit            "unit '[n cm]'"      -- "${S[@]}" --torque-file tau_unit.csv
+refuse  torque-big             'line 3'             -- "${S[@]}" --torque-file tau_big.csv
+refuse  torque-word            'line 3'             -- "${S[@]}" --torque-file tau_word.csv
+refuse  torque-short-row       'line 3'             -- "${S[@]}" --torque-file tau_short_row.csv
+refuse  torque-utf16           'UTF-16'             -- "${S[@]}" --torque-file tau_utf16.csv
+refuse  torque-links           'missing column tau3' -- "${S[@]}" --links 3 --torque-file tau_ok.csv
+refuse  torque-elastic         'no joints'          -- "${S[@]}" --model elastic --torque-file tau_ok.csv
+refuse  torque-hamiltonian     'torque'             -- "${S[@]}" --method verlet --torque-file tau_ok.csv
+# 4 sqrt(l1/g) = 1.28 s: beyond the series' 1 s (1 sqrt(l1/g) = 0.32 s is within)
+refuse  torque-natural-span    'not extrapolated'   -- simulate --t-end 4 --time-unit natural --output g.h5 --torque-file tau_ok.csv
+succeed torque-ok-natural      -- simulate --t-end 1 --time-unit natural --output g.h5 --torque-file tau_ok.csv
+# ---- where the option does not belong (commands that do not apply torques yet)
+refuse  torque-sweep           'unknown option'     -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-fit             'unknown option'     -- fit --output g.h5 --torque-file tau_ok.csv fit_ok.csv
+refuse  torque-lyapunov        'unknown option'     -- lyapunov --output g.h5 --torque-file tau_ok.csv
+
+# edge values that must succeed
+succeed torque-ok              -- "${S[@]}" --torque-file tau_ok.csv
+succeed torque-ok-order-units  -- "${S[@]}" --torque-file tau_ok_units.csv --method dop853
+succeed torque-ok-one-link     -- "${S[@]}" --links 1 --q -1 --torque-file tau_one_link.csv
+succeed torque-ok-damped-gauss -- "${S[@]}" --torque-file tau_ok.csv --damping 0.1,0.2 --method gauss6
+succeed torque-ok-output-dt    -- "${S[@]}" --torque-file tau_ok.csv --method dopri5 --output-dt 0.1
