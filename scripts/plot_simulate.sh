@@ -10,7 +10,7 @@
 # body i-1 on body i at joint i: one panel per joint up to 4, the magnitudes beyond),
 # tip_path.png (the last point: the free end of link N, or the mass), and for a
 # damped or driven run balance.png (the energy
-# balance) (each through a temporary file, moved into place once all
+# balance), with applied joint torques torques.png (each through a temporary file, moved into place once all
 # are drawn: scripts/lib/output.sh). Attributes are read at full precision
 # (h5dump -m %.17g). DPEND: the dpend executable to use (default: the release build).
 # shellcheck disable=SC2154  # variables set with printf -v by lib/output.sh
@@ -132,11 +132,22 @@ plot_run gnuplot -c "$here/plot/simulate.gp" "$tmp/sim.dat" "$figdir" "$title" "
   "${cnames[*]}" "${ulist[*]}" "$k" "${style:-rods} $conserved"
 printf 'plot_simulate.sh: wrote %s/{angles,angles_wrapped,phase,energy_error,reactions,tip_path}.png\n' "$out"
 if ((conserved == 0)); then
-  # a damped or driven run: E(t) - E(0), the work of the friction and of the
-  # support, and the balance error E(t) - E(0) + W_friction - W_support
-  "$dpend" export "$h5" /trajectory/t /trajectory/energy /trajectory/W_friction \
-    /trajectory/W_support /trajectory/balance_error > "$tmp/balance.dat"
+  # a damped or driven run: E(t) - E(0), the work of the friction, of the support
+  # (and of applied joint torques), and the balance error E(t) - E(0) + W_friction -
+  # W_support (- W_torque)
+  columns=(/trajectory/t /trajectory/energy /trajectory/W_friction /trajectory/W_support
+    /trajectory/balance_error)
+  if has W_torque; then columns+=(/trajectory/W_torque); torque=1; else torque=0; fi
+  "$dpend" export "$h5" "${columns[@]}" > "$tmp/balance.dat"
   plot_begin "$out" balance.png
-  plot_run gnuplot -c "$here/plot/balance.gp" "$tmp/balance.dat" "$figdir" "$title" "$escale"
+  plot_run gnuplot -c "$here/plot/balance.gp" "$tmp/balance.dat" "$figdir" "$title" "$escale" \
+    "$torque"
   printf 'plot_simulate.sh: wrote %s/balance.png\n' "$out"
+fi
+if has tau; then
+  # applied joint torques: tau_1 .. tau_N against t
+  "$dpend" export "$h5" /trajectory/t /trajectory/tau > "$tmp/tau.dat"
+  plot_begin "$out" torques.png
+  plot_run gnuplot -c "$here/plot/torques.gp" "$tmp/tau.dat" "$figdir" "$title" "$n"
+  printf 'plot_simulate.sh: wrote %s/torques.png\n' "$out"
 fi

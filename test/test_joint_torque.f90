@@ -12,7 +12,12 @@
 !>   `qddot_lagrange`) with the generalized forces Q1 = τ1 − τ2, Q2 = τ2, rods and
 !>   general bodies;
 !> - the energy balance E(t) − E(0) + W_friction − W_support − W_torque of dop853 at
-!>   rtol 1e-12 over 50 s with torques, damping and a moving support.
+!>   rtol 1e-12 over 50 s with torques, damping, Coulomb friction and a moving support;
+!> - Coulomb friction c_f tanh(ω/v_s) on one rod (gravity 1e-6) under a constant τ:
+!>   below c_f it creeps at v_s atanh(τ/c_f), and its rate from rest follows the
+!>   closed form t(ω) = K v_s [τ u + c_f ln((τ cosh u − c_f sinh u)/τ)]/(τ² − c_f²),
+!>   u = ω/v_s (the integral of K dω/(τ − c_f tanh(ω/v_s))), below and above c_f;
+!> - the chain's Jacobian with Coulomb friction and damping against central differences.
 !> Each test prints its measured figures on one line ('    joint_torque: …').
 module test_joint_torque
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -45,7 +50,9 @@ contains
                new_unittest('single_link_uniform_rotation', test_rotation), &
                new_unittest('single_link_constant_torque_work', test_constant), &
                new_unittest('double_pendulum_vs_lagrange', test_lagrange), &
-               new_unittest('energy_balance_dop853', test_balance)]
+               new_unittest('energy_balance_dop853', test_balance), &
+               new_unittest('coulomb_creep_and_closed_form', test_coulomb), &
+               new_unittest('coulomb_jacobian', test_coulomb_jacobian)]
    end subroutine collect_joint_torque
 
    subroutine report(text)
@@ -326,7 +333,8 @@ contains
             end if
             chain = chain_model([(1.0_dp, i = 1, n)], [(1.0_dp, i = 1, n)], 9.81_dp, err, &
                                 damping=[(0.05_dp/i, i = 1, n)], amplitude=[0.01_dp, 0.02_dp], &
-                                frequency=5.0_dp, phase=[0.5_dp, 0.0_dp], torque=tq)
+                                frequency=5.0_dp, phase=[0.5_dp, 0.0_dp], torque=tq, &
+                                coulomb=[(0.2_dp*(form - 1)/i, i = 1, n)], coulomb_speed=0.05_dp)
             call check_true(error, .not. allocated(err), 'chain refused')
             if (allocated(error)) return
             call work_model(chain, wm)
@@ -351,8 +359,110 @@ contains
             deallocate (y)
          end do
       end do
-      call report('energy balance with torques, damping, support, dop853 rtol 1e-12, '// &
+      call report('energy balance with torques, damping, support (sines: and Coulomb '// &
+                  'friction), dop853 rtol 1e-12, '// &
                   '50 s, max rel error:'//text)
       call check(error, worst, 0.0_dp, 'energy balance error', abs=1e-10_dp)
    end subroutine test_balance
+
+   !> One rod (m 1 kg, l 1 m, g 1e-6: K = 1/3 kg m², gravity's torque ≤ 5e-7 N m) with
+   !> Coulomb friction c_f = 1 N m, v_s = 1e-3 rad/s, from rest under a constant τ:
+   !> τ = 0.5 creeps at v_s atanh(0.5) and never faster; τ = 0.5 and τ = 2 follow
+   !> t(ω) of the closed form (times compared, gravity's share below 1e-5 s).
+   subroutine test_coulomb(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(chain_t) :: chain
+      class(model_t), allocatable :: wm
+      class(integrator_t), allocatable :: integ
+      real(dp), parameter :: cf = 1.0_dp, vs = 1e-3_dp, kk = 1.0_dp/3.0_dp
+      real(dp) :: y(6), t, h, tau, wmax, dtime, creep, u
+      integer :: k, stat, case
+      do case = 1, 2
+         tau = merge(0.5_dp, 2.0_dp, case == 1)
+         chain = chain_model([1.0_dp], [1.0_dp], 1e-6_dp, err, &
+                             torque=torque_series([0.0_dp, 10.0_dp], reshape([tau, tau], &
+                                                  [1, 2]), err), coulomb=[cf], coulomb_speed=vs)
+         call check_true(error, .not. allocated(err), 'chain refused')
+         if (allocated(error)) return
+         call work_model(chain, wm)
+         call new_integrator('dop853', integ, err, method_options_t(rtol=1e-13_dp, &
+                             atol=1e-16_dp))
+         y = [-0.5_dp*pi, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+         t = 0.0_dp; h = 0.0_dp; wmax = 0.0_dp; dtime = 0.0_dp
+         creep = huge(1.0_dp)   ! (no creep above c_f)
+         if (tau < cf) creep = vs*atanh(tau/cf)
+         do k = 1, 200   ! every 10 µs over the first millisecond, then every 50 ms
+            call advance_to(integ, wm, t, y, merge(1e-5_dp*k, 1e-3_dp + 0.05_dp*(k - 100), &
+                            k <= 100), h, stat)
+            call check_true(error, stat == stat_ok, 'integration failed')
+            if (allocated(error)) return
+            wmax = max(wmax, y(4))
+            u = y(4)/vs
+            ! the closed form's time, where it is well conditioned (not at the creep
+            ! rate itself, where t(ω) has its logarithmic pole); ln(τ cosh u − c_f sinh u)
+            ! = u + ln(((τ − c_f) + (τ + c_f) e^(−2u))/2), finite for large u
+            if (case == 2 .or. y(4) < 0.9_dp*creep) dtime = max(dtime, abs(t - kk*vs* &
+               (tau*u + cf*(u + log(((tau - cf) + (tau + cf)*exp(-2.0_dp*u))/(2.0_dp*tau)))) &
+               /(tau**2 - cf**2)))
+         end do
+         if (case == 1) then
+            call report('Coulomb c_f 1 N m, v_s 1e-3 rad/s, tau 0.5 N m, 5 s: creep '// &
+                        real_str(y(4), 6)//' rad/s (v_s atanh(tau/c_f) '// &
+                        real_str(creep, 6)//'), fastest '//real_str(wmax, 6)// &
+                        ', closed-form time error '//real_str(dtime, 2)//' s')
+            call check(error, y(4), creep, 'creep rate', rel=1e-6_dp)
+            call check_true(error, wmax <= creep*(1.0_dp + 1e-6_dp) .and. wmax < vs, &
+                            'faster than the creep rate')
+         else
+            call report('Coulomb c_f 1 N m, tau 2 N m: qdot '//real_str(y(4), 9)// &
+                        ' rad/s at t = '//real_str(t, 6)//' s (closed form for u >> 1: '// &
+                        real_str((tau - cf)/kk*(t - kk*vs*cf*log((tau - cf)/(2.0_dp*tau)) &
+                        /(tau**2 - cf**2)), 9)//'), closed-form time error '// &
+                        real_str(dtime, 2)//' s')
+         end if
+         call check(error, dtime, 0.0_dp, 'time of the closed form', abs=1e-5_dp)
+         if (allocated(error)) return
+      end do
+   end subroutine test_coulomb
+
+   !> The Jacobian of the chain with Coulomb friction (v_s 0.3 rad/s: the slope varies
+   !> over the states) and damping, N = 1, 2, 3, against central differences of the field.
+   subroutine test_coulomb_jacobian(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(chain_t) :: chain
+      real(dp) :: y(6), yp(6), ym(6), fp(6), fm(6), jac(6, 6), jfd(6, 6), s, dx, worst
+      integer :: n, m, k, i
+      worst = 0.0_dp
+      s = 0.41_dp
+      do n = 1, 3
+         m = 2*n
+         chain = chain_model([(0.5_dp + 0.3_dp*i, i = 1, n)], [(1.2_dp - 0.2_dp*i, i = 1, n)], &
+                             9.81_dp, err, damping=[(0.1_dp*i, i = 1, n)], &
+                             coulomb=[(0.4_dp/i, i = 1, n)], coulomb_speed=0.3_dp)
+         call check_true(error, .not. allocated(err), 'chain refused')
+         if (allocated(error)) return
+         do k = 1, 20
+            do i = 1, m
+               s = mod(s*7.31_dp + 0.17_dp, 1.0_dp)
+               y(i) = 2.0_dp*s - 1.0_dp
+            end do
+            call chain%jacobian(0.0_dp, y(1:m), jac(1:m, 1:m))
+            do i = 1, m
+               dx = 1e-6_dp*max(1.0_dp, abs(y(i)))
+               yp(1:m) = y(1:m); ym(1:m) = y(1:m)
+               yp(i) = y(i) + dx; ym(i) = y(i) - dx
+               call chain%field(0.0_dp, yp(1:m), fp(1:m))
+               call chain%field(0.0_dp, ym(1:m), fm(1:m))
+               jfd(1:m, i) = (fp(1:m) - fm(1:m))/(2.0_dp*dx)
+            end do
+            worst = max(worst, maxval(abs(jac(1:m, 1:m) - jfd(1:m, 1:m))) &
+                        /maxval(abs(jfd(1:m, 1:m))))
+         end do
+      end do
+      call report('Jacobian with Coulomb friction and damping, N = 1..3, 60 states: '// &
+                  'max rel difference from central differences '//real_str(worst, 2))
+      call check(error, worst, 0.0_dp, 'Jacobian against differences', abs=1e-7_dp)
+   end subroutine test_coulomb_jacobian
 end module test_joint_torque

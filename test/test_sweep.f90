@@ -1949,6 +1949,11 @@ contains
       call expect_rejected(error, dir, base, '--axis1 damping1', &
                            "invalid axis1: 'damping1' (accepted: theta1 theta2 q1 q2 w1 w2 m1 m2 " &
                            //'l1 l2 m2/m1 l2/l1 g com1 com2 inertia1 inertia2; damping')
+      call expect_rejected(error, dir, base, '--axis1 coulomb2', &
+                           "invalid axis1: 'coulomb2' (accepted: theta1 theta2 q1 q2 w1 w2 m1 m2 " &
+                           //'l1 l2 m2/m1 l2/l1 g com1 com2 inertia1 inertia2; damping, friction')
+      call expect_rejected(error, dir, base, '--axis2 coulomb_speed', "invalid axis2: " &
+                           //"'coulomb_speed' (accepted:")
       call expect_rejected(error, dir, base, '--axis1 m3', "invalid axis1: 'm3'")
       call expect_rejected(error, dir, base//' --g 3', '--axis1 g --min1 1 --max1 2', &
                            "invalid g: axis1 'g' sweeps the value it fixes")

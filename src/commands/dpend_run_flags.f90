@@ -69,9 +69,9 @@ contains
          ! a parameter of another model, by name (--k 40 --l0 1 for the elastic pendulum);
          ! a flag writes the name's '_' as '-' (one spelling: --support-phase)
          if (len(name) > 2 .and. index(name, '_') == 0) then
-            if (is_model_parameter(name(3:))) then
+            if (is_model_parameter(setting_key(name))) then
                matched = .true.
-               call set_named(cfg, name(3:), name, value, error)
+               call set_named(cfg, setting_key(name), name, value, error)
             end if
          end if
       end select
@@ -296,6 +296,10 @@ contains
           '                    (kg m^2, one per link, >= 0; default m_i l_i^2/12)'//nl// &
           '  --damping LIST    joint damping c_i (N m s, one per joint, each in [0, 1e6]):'//nl// &
           '                    torque -c_i (qdot_i - qdot_(i-1)) at joint i; default 0'//nl// &
+          '  --coulomb LIST    Coulomb joint friction c_f,i (N m, one per joint, each in'//nl// &
+          '                    [0, 1e6]): torque -c_f,i tanh(w_i/v_s) at joint i, w_i ='//nl// &
+          '                    qdot_i - qdot_(i-1); default 0 (docs/robot.md)'//nl// &
+          '  --coulomb-speed V its smoothing speed v_s (rad/s, in [1e-6, 1e3]); default 1e-3'//nl// &
           '  --support-amplitude AX,AY  moving pin: x_A = AX cos(w t + PX),'//nl// &
           '                    y_A = AY cos(w t + PY) (m, each in [-1e6, 1e6]); default 0,0'//nl// &
           '  --support-frequency W  w (rad/s, in [0, 1e6]); default 0'//nl// &

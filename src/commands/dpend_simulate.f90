@@ -505,8 +505,9 @@ contains
          if (allocated(traj%w)) then   ! the energy balance (dpend_work)
             e_w = traj%w(1, :n)   ! contiguous, for the HDF5 layer
             call h5%write('/trajectory/W_friction', e_w, units='J', description= &
-               'work dissipated by the joint damping since t = 0, integral of sum c_i ' &
-               //'(qdot_i - qdot_(i-1))^2 dt')
+               'work dissipated by the joint friction since t = 0, integral of sum c_i ' &
+               //'w_i^2 + c_f,i tanh(w_i/v_s) w_i dt, w_i = qdot_i - qdot_(i-1) (viscous ' &
+               //'damping and Coulomb friction)')
             e_w = traj%w(2, :n)
             call h5%write('/trajectory/W_support', e_w, units='J', description= &
                'work done by the moving support since t = 0, integral of F_01 . v_A dt')

@@ -27,7 +27,7 @@ module dpend_limits
    public :: max_omega, max_steps, default_max_steps, max_samples, max_threads
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
-   public :: max_torque, max_torque_frequency
+   public :: max_torque, max_torque_frequency, min_coulomb_speed, max_coulomb_speed
    public :: finite_positive, bound_threads
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, sci, bytes_text
@@ -100,6 +100,11 @@ module dpend_limits
    real(dp), parameter :: max_torque = 1e6_dp
    !> Largest angular frequency of a closed-form torque's sine [rad/s].
    real(dp), parameter :: max_torque_frequency = 1e6_dp
+   !> The speed v_s of the smoothed Coulomb friction c_f tanh(ω/v_s) [rad/s]: at least
+   !> 1e-6 (c_f/v_s, the friction's stiffness near rest, stays ≤ 1e12 N m s with
+   !> c_f ≤ max_torque), at most 1e3 (beyond, nothing is left of the sign).
+   real(dp), parameter :: min_coulomb_speed = 1e-6_dp
+   real(dp), parameter :: max_coulomb_speed = 1e3_dp
 
    !> At most 1e12 steps in one integration of a fixed-step method (a day at 1e7
    !> steps/s): the step index is exact in real(dp) (< 2^53) and t0 + i h never

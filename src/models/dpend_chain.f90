@@ -55,6 +55,11 @@
 !>   acceleration a_A starts the recursion of accelerations (a⁰ of the near end of link
 !>   1), so that f gains −μ_i u_i × a_A, μ_i = L_i (m_i/2 + Σ_(k>i) m_k) (gravity g ĵ
 !>   becomes g ĵ + a_A); kinematics and reactions include the motion of A.
+!> - Coulomb joint friction, smoothed: joint i exerts −c_f,i tanh(ω_i/v_s) on body i and
+!>   its opposite on body i − 1 (ω_i = q̇_i − q̇_(i−1)), a torque of magnitude c_f,i
+!>   once |ω_i| ≫ v_s and a steep viscous one of slope c_f,i/v_s near rest (a link held
+!>   by a torque τ < c_f,i creeps at v_s atanh(τ/c_f,i) < v_s (τ/c_f,i ≤ 0.76) rather
+!>   than sticking); its power c_f,i tanh(ω_i/v_s) ω_i ≥ 0 joins P_friction;
 !> - applied joint torques τ_i(t) (dpend_joint_torque): joint i's motor exerts τ_i on
 !>   body i and −τ_i on body i − 1, so that f gains the generalized forces
 !>   Q_i = τ_i − τ_(i+1) (τ_(N+1) = 0); they are couples, so the reactions of the
@@ -64,7 +69,7 @@
 !>   E = T + V with T = Σ ½ m_k |v_Ck|² + ½ I_Ck q̇_k², V = Σ m_k g y_Ck,
 !>     = ½ q̇ᵀ M q̇ + Σ G_i sin q_i + v_A · Σ μ_i q̇_i n_i + ½ m |v_A|² + m g y_A
 !> (m the total mass), and its balance is dE/dt = P_support + P_torque − P_friction with
-!>   P_friction = Σ c_i (q̇_i − q̇_(i−1))² ≥ 0,  P_torque = Σ τ_i (q̇_i − q̇_(i−1)),
+!>   P_friction = Σ c_i ω_i² + c_f,i tanh(ω_i/v_s) ω_i ≥ 0,  P_torque = Σ τ_i ω_i,
 !>   P_support = F_(0,1) · v_A,  F_(0,1) = m (a_A + g ĵ) + Σ μ_i (q̈_i n_i − q̇_i² u_i)
 !> (`powers`; `dpend_work` integrates both along the solution).
 !>
@@ -108,6 +113,9 @@ module dpend_chain
       real(dp) :: sup_a(2) = 0.0_dp          !! support amplitudes (a_x, a_y) [m]
       real(dp) :: sup_w = 0.0_dp             !! support angular frequency ω [rad/s]
       real(dp) :: sup_phi(2) = 0.0_dp        !! support phases (φ_x, φ_y) [rad]
+      logical :: coulomb = .false.           !! some joint has Coulomb friction c_f,i > 0
+      real(dp), allocatable :: cf(:)         !! Coulomb friction torques c_f,i [N m] (N)
+      real(dp) :: vs = 1e-3_dp               !! its smoothing speed v_s [rad/s]
       logical :: torqued = .false.           !! joint torques are applied
       type(joint_torque_t) :: torque         !! the applied joint torques τ_i(t)
    contains
@@ -187,7 +195,7 @@ module dpend_chain
       !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
       !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
       module function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
-                                  inertia, torque) result(model)
+                                  inertia, torque, coulomb, coulomb_speed) result(model)
          real(dp), intent(in) :: m(:)                      !! masses [kg]
          real(dp), intent(in) :: l(:)                      !! lengths [m]
          real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
@@ -199,6 +207,8 @@ module dpend_chain
          real(dp), intent(in), optional :: com(:)          !! d_i [m] (N)
          real(dp), intent(in), optional :: inertia(:)      !! I_i [kg m²] (N)
          type(joint_torque_t), intent(in), optional :: torque  !! τ_i(t) (N joints)
+         real(dp), intent(in), optional :: coulomb(:)      !! c_f,i [N m] (N)
+         real(dp), intent(in), optional :: coulomb_speed   !! v_s [rad/s]
          type(chain_t) :: model                            !! the chain (n = 0 when refused)
       end function chain_model
 
@@ -464,7 +474,7 @@ contains
       real(dp), intent(in) :: qd(*)                   !! rates [rad/s]
       real(dp), intent(out) :: qdd(max_dof)           !! q̈ [rad/s²]
       real(dp), intent(out) :: a(max_dof, max_dof)    !! Cholesky factor of M
-      real(dp) :: ra(2), va(2), aa(2), tau(max_dof)
+      real(dp) :: ra(2), va(2), aa(2), tau(max_dof), w
       integer :: i
       aa = 0.0_dp
       if (self%driven) call self%support(t, ra, va, aa)
@@ -475,6 +485,13 @@ contains
          do i = 1, self%n
             qdd(i) = qdd(i) - self%c(i)*(qd(i) - merge(qd(max(i - 1, 1)), 0.0_dp, i > 1))
             if (i < self%n) qdd(i) = qdd(i) + self%c(i + 1)*(qd(i + 1) - qd(i))
+         end do
+      end if
+      if (self%coulomb) then   ! Q_i = −c_f,i tanh(ω_i/v_s) + c_f,(i+1) tanh(ω_(i+1)/v_s)
+         do i = 1, self%n
+            w = self%cf(i)*tanh((qd(i) - merge(qd(max(i - 1, 1)), 0.0_dp, i > 1))/self%vs)
+            qdd(i) = qdd(i) - w
+            if (i > 1) qdd(i - 1) = qdd(i - 1) + w
          end do
       end if
       if (self%torqued) then   ! Q_i = τ_i − τ_(i+1)
@@ -567,10 +584,11 @@ contains
       chain_n_dof = self%n
    end function chain_n_dof
 
-   !> Hamiltonian and conservative without damping, support motion and torques.
+   !> Hamiltonian and conservative without damping, friction, support motion and torques.
    pure logical function chain_hamiltonian(self)
       class(chain_t), intent(in) :: self
-      chain_hamiltonian = .not. (self%damped .or. self%driven .or. self%torqued)
+      chain_hamiltonian = .not. (self%damped .or. self%driven .or. self%torqued .or. &
+                                 self%coulomb)
    end function chain_hamiltonian
 
    !> Autonomous unless the support moves or torques are applied.
@@ -644,10 +662,19 @@ contains
       real(dp), intent(in) :: t, y(:)
       real(dp), intent(out) :: jac(:, :)
       real(dp) :: qdd(max_dof), a(max_dof, max_dof), c(max_dof), s(max_dof), col(max_dof)
-      real(dp) :: cij, sij, qd(max_dof), ra(2), va(2), aa(2)
+      real(dp) :: cij, sij, qd(max_dof), ra(2), va(2), aa(2), ce(max_dof), th
       integer :: n, i, k
       n = self%n
       qd(1:n) = y(n + 1:2*n)
+      ! the joints' viscous slopes: c_i, plus c_f,i (1 − tanh²(ω_i/v_s))/v_s with friction
+      if (self%damped) ce(1:n) = self%c
+      if (self%coulomb) then
+         if (.not. self%damped) ce(1:n) = 0.0_dp
+         do i = 1, n
+            th = tanh((qd(i) - merge(qd(max(i - 1, 1)), 0.0_dp, i > 1))/self%vs)
+            ce(i) = ce(i) + self%cf(i)*(1.0_dp - th*th)/self%vs
+         end do
+      end if
       call solve_qdd(self, t, y(1:n), qd, qdd, a, c, s)
       if (self%driven) call self%support(t, ra, va, aa)
       jac = 0.0_dp
@@ -674,12 +701,12 @@ contains
             sij = s(i)*c(k) - c(i)*s(k)
             col(i) = -2.0_dp*self%k(i, k)*sij*qd(k)
          end do
-         if (self%damped) then   ! −C e_k
-            col(k) = col(k) - self%c(k)
-            if (k > 1) col(k - 1) = col(k - 1) + self%c(k)
+         if (self%damped .or. self%coulomb) then   ! −C e_k
+            col(k) = col(k) - ce(k)
+            if (k > 1) col(k - 1) = col(k - 1) + ce(k)
             if (k < n) then
-               col(k) = col(k) - self%c(k + 1)
-               col(k + 1) = col(k + 1) + self%c(k + 1)
+               col(k) = col(k) - ce(k + 1)
+               col(k + 1) = col(k + 1) + ce(k + 1)
             end if
          end if
          call cholesky_solve(n, a, col)

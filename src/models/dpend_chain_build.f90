@@ -6,7 +6,8 @@ submodule (dpend_chain) dpend_chain_build
    use dpend_error, only: fatal_error
    use dpend_limits, only: check_range, check_parameter, parameter_mass, parameter_length, &
                            parameter_gravity, max_damping, max_support_amplitude, &
-                           max_support_frequency, max_angle
+                           max_support_frequency, max_angle, max_torque, &
+                           min_coulomb_speed, max_coulomb_speed
    use dpend_strings, only: to_str
    use dpend_pendulum, only: check_bodies
    implicit none
@@ -54,6 +55,29 @@ contains
          model%c = damping
       end if
       model%damped = any(model%c > 0.0_dp)
+      allocate (model%cf(n))
+      model%cf = 0.0_dp
+      if (present(coulomb)) then
+         if (size(coulomb) /= n) then
+            call fatal_error(error, 'invalid coulomb: '//to_str(size(coulomb))// &
+                             ' friction torques for '//to_str(n)//' links (one per joint)')
+            return
+         end if
+         do i = 1, n
+            call check_range('coulomb c_f'//to_str(i), coulomb(i), 0.0_dp, max_torque, &
+                             'N m', error, reason)
+            if (allocated(error)) return
+         end do
+         model%cf = coulomb
+      end if
+      model%coulomb = any(model%cf > 0.0_dp)
+      if (present(coulomb_speed)) then
+         call check_range('coulomb_speed', coulomb_speed, min_coulomb_speed, &
+                          max_coulomb_speed, 'rad/s', error, 'keeps the friction''s ' &
+                          //'slope c_f/v_s finite')
+         if (allocated(error)) return
+         model%vs = coulomb_speed
+      end if
       if (present(amplitude)) then
          do i = 1, 2
             call check_range('support_amplitude '//merge('a_x', 'a_y', i == 1), &

@@ -77,6 +77,13 @@ contains
             p_friction = p_friction + self%c(i)*w**2
          end do
       end if
+      if (self%coulomb) then
+         do i = 1, n
+            w = y(n + i)
+            if (i > 1) w = w - y(n + i - 1)
+            p_friction = p_friction + self%cf(i)*tanh(w/self%vs)*w
+         end do
+      end if
       if (self%driven) then
          call self%support(t, ra, va, aa)
          f = sum(self%m)*(aa + [0.0_dp, self%g])
@@ -211,6 +218,7 @@ contains
          end if
       end if
       if (self%damped) name = 'damped '//name
+      if (self%coulomb) name = name//' with Coulomb joint friction'
       if (self%driven) name = name//' on a moving support'
       if (self%torqued) name = name//' with applied joint torques'
    end procedure chain_name
@@ -218,12 +226,14 @@ contains
    module procedure chain_n_parameters
       chain_n_parameters = 2*self%n + 1
       if (self%damped) chain_n_parameters = chain_n_parameters + self%n
+      if (self%coulomb) chain_n_parameters = chain_n_parameters + self%n + 1
       if (self%driven) chain_n_parameters = chain_n_parameters + 5
       if (.not. self%rod) chain_n_parameters = chain_n_parameters + 2*self%n
    end procedure chain_n_parameters
 
    !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order; then, when present, the
-   !> damping c1 … cN [N m s] and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
+   !> damping c1 … cN [N m s], the Coulomb friction coulomb1 … coulombN [N m] and
+   !> coulomb_speed [rad/s], and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
    !> last, for links other than uniform rods, com1 … comN [m] and inertia1 … inertiaN
    !> [kg m^2].
    module procedure chain_parameter
@@ -253,6 +263,16 @@ contains
             return
          end if
          j = j - self%n
+      end if
+      if (j > 0 .and. self%coulomb) then
+         if (j <= self%n) then
+            name = 'coulomb'//to_str(j); value = self%cf(j); units = 'N m'
+            return
+         else if (j == self%n + 1) then
+            name = 'coulomb_speed'; value = self%vs; units = 'rad/s'
+            return
+         end if
+         j = j - self%n - 1
       end if
       if (j > 0) then
          name = trim(sup_names(j)); units = trim(sup_units(j))

@@ -21,7 +21,7 @@ module dpend_model_factory
    use dpend_strings, only: to_str, real_str, did_you_mean
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
                            max_damping, max_support_amplitude, max_support_frequency, &
-                           max_angle
+                           max_angle, max_torque, min_coulomb_speed, max_coulomb_speed
    implicit none
    private
    public :: model_spec_t, spec_item_t, param_info_t, model_info_t
@@ -78,6 +78,10 @@ module dpend_model_factory
       !> How many values: 1 (a scalar), -1 (one per link), or a fixed count (2: x, y).
       integer :: count = 1
       logical :: integer_valued = .false.       !! a count (e.g. links)
+      !> A map (dpend sweep, whose kernels integrate the conservative model) may take
+      !> it as an axis: false for what makes the model dissipative or driven (damping,
+      !> friction, the support's motion) or only shapes such a term
+      logical :: map_axis = .true.
    end type param_info_t
 
    !> The description of one model.
@@ -125,13 +129,19 @@ contains
                1.0_dp, -1), &
          param('g', 'm/s^2', 'gravitational acceleration (-y)', min_g, max_g, 9.8_dp, 1), &
          param('damping', 'N m s', 'joint damping c_i', 0.0_dp, &
-               max_damping, 0.0_dp, -1), &
+               max_damping, 0.0_dp, -1, map_axis=.false.), &
+         param('coulomb', 'N m', 'Coulomb joint friction c_f,i, smoothed: c_f,i tanh(w_i/v_s) ' &
+               //'against the joint''s relative rate w_i', 0.0_dp, max_torque, 0.0_dp, -1, &
+               map_axis=.false.), &
+         param('coulomb_speed', 'rad/s', 'the Coulomb friction''s smoothing speed v_s (a link ' &
+               //'held below c_f creeps at most at about v_s)', min_coulomb_speed, &
+               max_coulomb_speed, 1e-3_dp, 1, map_axis=.false.), &
          param('support_amplitude', 'm', 'support motion amplitudes a_x, a_y', &
-               -max_support_amplitude, max_support_amplitude, 0.0_dp, 2), &
+               -max_support_amplitude, max_support_amplitude, 0.0_dp, 2, map_axis=.false.), &
          param('support_frequency', 'rad/s', 'support motion angular frequency', 0.0_dp, &
-               max_support_frequency, 0.0_dp, 1), &
+               max_support_frequency, 0.0_dp, 1, map_axis=.false.), &
          param('support_phase', 'rad', 'support motion phases phi_x, phi_y', -max_angle, &
-               max_angle, 0.0_dp, 2), &
+               max_angle, 0.0_dp, 2, map_axis=.false.), &
          param('com', 'm', 'distance d_i from joint i to the centre of mass of link i, ' &
                //'along the link (default l_i/2: a uniform rod; d_i > l_i: a bob beyond ' &
                //'the next pin)', 0.0_dp, max_length, 0.5_dp, -1), &
@@ -161,16 +171,18 @@ contains
    end function elastic_info
 
    !> A parameter description.
-   pure function param(name, units, meaning, lower, upper, default, count, integer_valued) &
-      result(p)
+   pure function param(name, units, meaning, lower, upper, default, count, integer_valued, &
+                       map_axis) result(p)
       character(len=*), intent(in) :: name, units, meaning  !! see param_info_t
       real(dp), intent(in) :: lower, upper, default         !! range and default
       integer, intent(in) :: count                          !! values (-1: per link)
       logical, intent(in), optional :: integer_valued       !! a count
+      logical, intent(in), optional :: map_axis             !! may be a map's axis
       type(param_info_t) :: p
       p%name = name; p%units = units; p%meaning = meaning
       p%lower = lower; p%upper = upper; p%default = default; p%count = count
       if (present(integer_valued)) p%integer_valued = integer_valued
+      if (present(map_axis)) p%map_axis = map_axis
    end function param
 
    !> Index of model `name` in the catalogue `models`, 0 if none.
@@ -399,14 +411,15 @@ contains
    end subroutine build
 
    !> The chapter's pendulum: the double pendulum's own formulation for two links
-   !> without damping, support motion or torques (the fast path of every method), the
+   !> without damping, friction, support motion or torques (the fast path of every method), the
    !> chain otherwise.
    subroutine build_pendulum(spec, info, model, error)
       type(model_spec_t), intent(in) :: spec             !! what to build (checked)
       type(model_info_t), intent(in) :: info             !! its description
       class(model_t), allocatable, intent(out) :: model  !! the model built
       type(error_t), allocatable, intent(out) :: error   !! set when refused
-      real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:), d(:), ic(:)
+      real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:), d(:), ic(:), &
+                               cf(:), vs(:)
       integer :: n
       logical :: rod
       n = n_links(spec, info)
@@ -414,6 +427,8 @@ contains
       l = value_of(spec, info, 'l', n)
       g = value_of(spec, info, 'g', n)
       c = value_of(spec, info, 'damping', n)
+      cf = value_of(spec, info, 'coulomb', n)
+      vs = value_of(spec, info, 'coulomb_speed', n)
       a = value_of(spec, info, 'support_amplitude', n)
       w = value_of(spec, info, 'support_frequency', n)
       phi = value_of(spec, info, 'support_phase', n)
@@ -424,7 +439,8 @@ contains
          type(chain_t) :: chain
          type(pendulum_t) :: par
          ! the chain checks every parameter (also those the two-link form ignores)
-         chain = chain_model(m, l, g(1), error, c, a, w(1), phi, torque=spec%torque)
+         chain = chain_model(m, l, g(1), error, c, a, w(1), phi, torque=spec%torque, &
+                             coulomb=cf, coulomb_speed=vs(1))
          if (allocated(error)) return
          if (.not. rod) then   ! m and l checked: the defaults m l²/12 are finite
             if (spec%find('com') > 0) then
@@ -437,10 +453,12 @@ contains
             else
                ic = m*l**2/12.0_dp
             end if
-            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic, spec%torque)
+            chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic, spec%torque, &
+                                cf, vs(1))
             if (allocated(error)) return
          end if
-         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. &
+         if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. all(cf == 0.0_dp) &
+             .and. &
              .not. (spec%general .or. spec%torque%active())) then
             par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
             if (.not. rod) then

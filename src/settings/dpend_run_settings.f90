@@ -631,6 +631,8 @@ contains
             s = ' [dpend models lists the parameters of '//model_asked(cfg)//']'
          else if (index(message, 'invalid damping') == 1) then
             s = ' [--damping / &pendulum damping]'
+         else if (index(message, 'invalid coulomb') == 1) then
+            s = ' [--coulomb --coulomb-speed / &model coulomb coulomb_speed]'
          else if (index(message, 'invalid com') == 1 .or. index(message, 'invalid inertia') &
                   == 1) then
             s = ' [--com --inertia --body / &pendulum com inertia body]'

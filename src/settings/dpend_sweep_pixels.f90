@@ -100,7 +100,7 @@ contains
    !> Whether `axis` sweeps a parameter of the pendulum by name, beside the coded
    !> axes (`axis_parameter`): a real scalar of its catalogue row (g) or component k
    !> of a per-link list, k = 1 .. N (m3, l3, com1, inertia2, ...). Not the
-   !> parameters of `unswept_parameters`.
+   !> parameters the catalogue marks as no map's axis (`param_info_t%map_axis`).
    logical function pendulum_axis(cfg, axis)
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
       character(len=*), intent(in) :: axis     !! axis name
@@ -128,7 +128,7 @@ contains
       if (m == 0 .or. len_trim(axis) == 0) return
       do i = 1, size(models(m)%params)
          associate (p => models(m)%params(i))
-            if (p%integer_valued .or. index(unswept_parameters, ' '//p%name//' ') > 0) cycle
+            if (p%integer_valued .or. .not. p%map_axis) cycle
             if (p%count == 1 .and. axis == p%name) then
                base = p%name; k = 0
                return
@@ -177,7 +177,7 @@ contains
       m = find_model(models, 'pendulum')
       do i = 1, size(models(m)%params)
          associate (p => models(m)%params(i))
-            if (p%integer_valued .or. index(unswept_parameters, ' '//p%name//' ') > 0) cycle
+            if (p%integer_valued .or. .not. p%map_axis) cycle
             if (p%count == 1) then
                s = s//' '//p%name
             else if (p%count == -1) then

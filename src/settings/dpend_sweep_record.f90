@@ -50,7 +50,7 @@ module dpend_sweep_record
       run_natural_time => natural_time
    implicit none
    private
-   public :: axis_names, param_axis_names, unswept_parameters, indicator_names, &
+   public :: axis_names, param_axis_names, indicator_names, &
       sweep_config_t, sweep_defaults, indicator_vectors, grid_mode, time_scale, &
       natural_time, natural_name, flip_model, sweep_variable, stop_rule, axis_variable
 
@@ -60,12 +60,6 @@ module dpend_sweep_record
 
    !> Parameters accepted as axes (grids of two or more links).
    character(len=*), parameter :: param_axis_names = 'm1 m2 l1 l2 m2/m1 l2/l1'
-
-   !> Parameters of the pendulum's catalogue row that are not axes: the sweep
-   !> integrates the conservative chain only (damping and the support's motion 0),
-   !> and the support's amplitudes and phases are pairs.
-   character(len=*), parameter :: unswept_parameters = &
-      ' links damping support_amplitude support_frequency support_phase '
 
    !> Names accepted for the per-pixel indicator.
    character(len=*), parameter :: indicator_names = 'flip lambda1 megno fli sali gali2'

@@ -43,8 +43,8 @@ contains
       if (allocated(error)) return
       if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
          call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
-                          //'conservative chain only (--damping and --support-amplitude ' &
-                          //'must be 0; dpend simulate takes them)')
+                          //'conservative chain only (--damping, --coulomb and ' &
+                          //'--support-amplitude must be 0; dpend simulate takes them)')
          return
       end if
       cfg%indicator = to_lower(cfg%indicator); cfg%axis1 = to_lower(cfg%axis1)
@@ -500,10 +500,11 @@ contains
          bound = max_angular_velocity
          unit = 'rad/s'
       end if
-      if (var == 0 .and. (index(name, 'damping') == 1 .or. index(name, 'support') == 1)) then
+      if (var == 0 .and. not_an_axis(name)) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
-                          //accepted_axes(links)//'; damping and the support''s motion are ' &
-                          //'not axes: dpend sweep integrates the conservative chain only)')
+                          //accepted_axes(links)//'; damping, friction and the support''s ' &
+                          //'motion are not axes: dpend sweep integrates the conservative ' &
+                          //'chain only)')
       else if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))
@@ -606,6 +607,34 @@ contains
    end function unit_name
 
    !> The accepted axis names for N links, for messages.
+   !> `name` (a per-link one with its link number) is a parameter of the pendulum
+   !> that its catalogue row marks as no map's axis (damping, friction, the support's
+   !> motion: `param_info_t%map_axis`).
+   logical function not_an_axis(name)
+      character(len=*), intent(in) :: name   !! the axis asked for
+      type(model_info_t), allocatable :: models(:)
+      integer :: i, m
+      not_an_axis = .false.
+      models = model_catalogue()
+      m = find_model(models, 'pendulum')
+      do i = 1, size(models(m)%params)
+         associate (p => models(m)%params(i))
+            if (p%map_axis) cycle
+            ! 'damping2', 'coulomb_speed', 'support_ax': the word before a link number or '_'
+            if (lead(name) == lead(p%name)) not_an_axis = .true.
+         end associate
+      end do
+   contains
+      !> The leading word of a name: up to its first '_', without a link number.
+      pure function lead(x) result(w)
+         character(len=*), intent(in) :: x
+         character(len=:), allocatable :: w
+         w = x
+         if (index(w, '_') > 0) w = w(:index(w, '_') - 1)
+         w = w(:verify(w, '0123456789', back=.true.))
+      end function lead
+   end function not_an_axis
+
    function accepted_axes(links) result(s)
       integer, intent(in) :: links  !! number of links N
       character(len=:), allocatable :: s

@@ -1,8 +1,9 @@
-# `dpend simulate --torque-file`: torque files refused with their line numbers (gaps,
-# NaN, times not increasing, too short, a span that leaves the run, wrong columns and
-# units, values beyond the limit), the option refused where it does not belong (one
-# line naming the field, exit 2, no file touched), and edge values that must succeed
-# without a trap in the debug build.
+# Pendulums with motors. `dpend simulate --torque-file`: torque files refused with
+# their line numbers (gaps, NaN, times not increasing, too short, a span that leaves the
+# run, wrong columns and units, values beyond the limit), the option refused where it
+# does not belong; Coulomb joint friction (--coulomb, --coulomb-speed) out of range or
+# of the wrong count; each in one line naming the field, exit 2, no file touched; and
+# edge values that must succeed without a trap in the debug build.
 
 # fixtures: CSV files, good and bad (each row's problem in its name)
 fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
@@ -28,6 +29,7 @@ fx tau_big.csv         't,tau1,tau2\n0,0.5,-0.2\n1,2e6,0\n'
 fx tau_word.csv        't,tau1,tau2\n0,0.5,-0.2\n1,zero,0\n'
 fx tau_short_row.csv   't,tau1,tau2\n0,0.5,-0.2\n1,0\n'
 fx tau_utf16.csv       '\377\376t\000,\000t\000'
+fx coulomb.nml         '&model\n coulomb = 0.5, 0.2\n coulomb_speed = 0.01\n/\n'
 
 S=(simulate --t-end 1 --output g.h5)
 # ---- the torque file
@@ -72,3 +74,24 @@ succeed torque-ok-order-units  -- "${S[@]}" --torque-file tau_ok_units.csv --met
 succeed torque-ok-one-link     -- "${S[@]}" --links 1 --q -1 --torque-file tau_one_link.csv
 succeed torque-ok-damped-gauss -- "${S[@]}" --torque-file tau_ok.csv --damping 0.1,0.2 --method gauss6
 succeed torque-ok-output-dt    -- "${S[@]}" --torque-file tau_ok.csv --method dopri5 --output-dt 0.1
+
+# ---- Coulomb joint friction
+refuse  coulomb-negative       'coulomb c_f1'       -- "${S[@]}" --coulomb -1,0
+refuse  coulomb-nan            'coulomb'            -- "${S[@]}" --coulomb nan,0
+refuse  coulomb-big            'outside [0, 1e6]'   -- "${S[@]}" --coulomb 0,2e6
+refuse  coulomb-count          'one per link (2)'   -- "${S[@]}" --coulomb 0.1
+refuse  coulomb-count-links    'one per link (3)'   -- "${S[@]}" --links 3 --coulomb 0.1,0.1
+refuse  coulomb-twice          'given twice'        -- "${S[@]}" --coulomb 0.1,0.1 --coulomb 0.2,0.2
+refuse  coulomb-speed-zero     'outside [1e-6, 1000]' -- "${S[@]}" --coulomb 0.1,0.1 --coulomb-speed 0
+refuse  coulomb-speed-big      'outside [1e-6, 1000]' -- "${S[@]}" --coulomb-speed 1e4
+refuse  coulomb-speed-word     'coulomb-speed'      -- "${S[@]}" --coulomb-speed fast
+refuse  coulomb-speed-list     'coulomb_speed'      -- "${S[@]}" --coulomb-speed 1,2
+refuse  coulomb-underscore     'unknown option'     -- "${S[@]}" --coulomb_speed 0.1
+refuse  coulomb-elastic        'not a parameter of model elastic' -- "${S[@]}" --model elastic --coulomb 1
+refuse  coulomb-verlet         'Hamiltonian'        -- "${S[@]}" --method verlet --coulomb 0.1,0.1
+refuse  coulomb-sweep          'conservative chain only' -- sweep --n 4 --output g.h5 --coulomb 0.1,0.1
+succeed coulomb-ok             -- "${S[@]}" --coulomb 0.5,0.2 --coulomb-speed 0.01 --method dop853
+succeed coulomb-ok-config      -- "${S[@]}" --config coulomb.nml
+succeed coulomb-ok-zero        -- "${S[@]}" --coulomb 0,0
+succeed coulomb-ok-torques     -- "${S[@]}" --torque-file tau_ok.csv --coulomb 0.5,0.2 --method gauss4
+succeed coulomb-ok-one-link-rk4 -- "${S[@]}" --links 1 --coulomb 0.3 --coulomb-speed 1e-6 --method rk4
