@@ -7,13 +7,15 @@ module dpend_fit_config
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, printable
-   use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help
+   use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help, &
+                                 is_model_parameter
+   use dpend_strings, only: replace_char
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series
    use dpend_estimate, only: fit_problem_t, fit_work_t, estimate_fit_work, set_fitted, n_fitted
-   use dpend_model_factory, only: default_model, model_catalogue, model_info_t, body_list
+   use dpend_model_factory, only: default_model, body_list
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_output, only: check_output_path, register_input
@@ -149,6 +151,7 @@ contains
           'model and integration (the initial state comes from the data; the links from'// &
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
+          '  --coulomb, --coulomb-speed (Coulomb joint friction),'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
           '  --body '//body_list('|')//', --com LIST, --inertia LIST (links of any mass distribution),'// &
           nl// &
@@ -531,16 +534,11 @@ contains
    !> --model, or --NAME for a parameter NAME of some model (--k, --l0).
    logical function model_flag(name)
       character(len=*), intent(in) :: name  !! the option
-      type(model_info_t), allocatable :: models(:)
-      integer :: k, i
       model_flag = name == '--model'
       if (model_flag .or. len(name) < 3) return
-      models = model_catalogue()
-      do k = 1, size(models)
-         do i = 1, size(models(k)%params)
-            if (models(k)%params(i)%name == name(3:)) model_flag = .true.
-         end do
-      end do
+      ! a parameter of a model of the catalogue, its '_' written '-' (--coulomb-speed)
+      if (index(name, '_') > 0) return
+      model_flag = is_model_parameter(replace_char(name(3:), '-', '_'))
    end function model_flag
 
    !> The fitted model parameters are held at their guess while the fit window is

@@ -85,9 +85,10 @@ contains
           '  --body NAME       the links'' mass distribution: '//body_list()//' (dpend models);'//nl// &
           '                    --com, --inertia LIST any other body (d_i in m, I_i in'//nl// &
           '                    kg m^2, one per link); default rod'//nl// &
-          '  --damping, --support-amplitude, --support-frequency, --support-phase'//nl// &
-          '                    refused unless 0: the sweep integrates the conservative'//nl// &
-          '                    pendulum (dpend simulate takes them)'//nl// &
+          '  --damping, --coulomb, --support-amplitude, --support-frequency,'//nl// &
+          '  --support-phase   refused unless 0: the sweep integrates the conservative'//nl// &
+          '                    pendulum (dpend simulate takes them); --coulomb-speed'//nl// &
+          '                    has no effect without --coulomb'//nl// &
           '  --NAME X          any other parameter of the model by name (--k, --l0 of'//nl// &
           '                    --model elastic; dpend models lists them)'//nl// &
           '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
