@@ -21,6 +21,7 @@ program tester
    use test_chain, only: collect_chain
    use test_damping, only: collect_damping
    use test_joint_torque, only: collect_joint_torque
+   use test_inverse_dynamics, only: collect_inverse_dynamics
    use test_kapitza, only: collect_kapitza
    use test_factory, only: collect_factory
    use test_elastic, only: collect_elastic
@@ -103,6 +104,7 @@ program tester
    call add('chain', collect_chain)
    call add('damping', collect_damping)
    call add('joint_torque', collect_joint_torque)
+   call add('inverse_dynamics', collect_inverse_dynamics)
    call add('kapitza', collect_kapitza)
    call add('factory', collect_factory)
    call add('elastic', collect_elastic)

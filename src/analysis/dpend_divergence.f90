@@ -24,6 +24,7 @@
 module dpend_divergence
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_kinds, only: dp
+   use dpend_sorting, only: median
    use dpend_model, only: model_t
    use dpend_integrator, only: integrator_t, stat_ok
    use dpend_propagate, only: integrate_sampled, march_progress_t
@@ -262,32 +263,6 @@ contains
          end do
       end function first_above
    end subroutine fit_exponential_phase
-
-   !> Median of x (insertion sort of a copy; x is short).
-   pure real(dp) function median(x)
-      real(dp), intent(in) :: x(:)
-      real(dp) :: s(size(x)), v
-      integer :: i, j, n
-      n = size(x)
-      if (n == 0) then
-         median = 0.0_dp
-         return
-      end if
-      s = x
-      do i = 2, n
-         v = s(i); j = i - 1
-         do while (j >= 1)
-            if (s(j) <= v) exit
-            s(j + 1) = s(j); j = j - 1
-         end do
-         s(j + 1) = v
-      end do
-      if (mod(n, 2) == 1) then
-         median = s((n + 1)/2)
-      else
-         median = 0.5_dp*(s(n/2) + s(n/2 + 1))
-      end if
-   end function median
 
    !> Which coordinates of `model` are angles (in rad, wrapped by 2π in distances).
    function angle_coordinates(model) result(angle)
