@@ -29,6 +29,7 @@ module dpend_command_table
    use dpend_study_config, only: study_command
    use dpend_animate, only: animate_command
    use dpend_fit_command, only: fit_command
+   use dpend_torques_command, only: torques_command
    use dpend_explore_command, only: explore_command
    use dpend_methods_command, only: methods_command
    use dpend_models_command, only: models_command
@@ -87,6 +88,9 @@ contains
                    //'tip trail, time; two runs overlaid or side by side', animate_command), &
          command_t('fit', 'estimate the initial state and parameters from measured angles ' &
                    //'or positions (CSV; the tip alone too)', fit_command), &
+         command_t('torques', 'inverse dynamics: the joint torques and reactions a measured ' &
+                   //'motion requires (Newton-Euler, filtered angles); residuals', &
+                   torques_command), &
          command_t('explore', 'a map of dpend sweep in the browser: click a pixel, watch ' &
                    //'its pendulum', explore_command), &
          command_t('methods', 'the integration methods: order, properties, commands', &

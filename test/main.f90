@@ -64,6 +64,7 @@ program tester
    use test_figures, only: collect_figures
    use test_values_sweep, only: collect_values_sweep
    use test_values_fit, only: collect_values_fit
+   use test_values_torques, only: collect_values_torques
    use test_capi, only: collect_capi
    implicit none
 
@@ -147,6 +148,7 @@ program tester
    call add('figures', collect_figures)
    call add('values_sweep', collect_values_sweep)
    call add('values_fit', collect_values_fit)
+   call add('values_torques', collect_values_torques)
    ! src/capi/: the C interface, its files against the commands'
    call add('capi', collect_capi)
 

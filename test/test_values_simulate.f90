@@ -251,9 +251,9 @@ contains
             ! own integration of the power)
             call check_true(error, maxval(abs(x1)) > 1.0e-2_dp*e_s, tag// &
                             ': W_torque too small')
-         case ('samples')   ! /torque/t and /torque/tau: the file's samples, as written
-            call h5%read('/torque/t', x1, error)
-            if (.not. allocated(error)) call h5%read('/torque/tau', x2, error)
+         case ('samples')   ! /torque/sample_t, sample_tau: the file's samples, as written
+            call h5%read('/torque/sample_t', x1, error)
+            if (.not. allocated(error)) call h5%read('/torque/sample_tau', x2, error)
             if (allocated(error)) exit
             call compare(error, tag, 'torque/t', x1, sample_times, 1.0e-16_dp)
             call compare(error, tag, 'torque/tau', pack(x2, .true.), &

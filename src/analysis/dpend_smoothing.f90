@@ -24,7 +24,8 @@ module dpend_smoothing
    implicit none
    private
    public :: derivative_weights, smooth_derivatives, noise_sigma, bias_order, &
-      choose_half_width, filter_error, min_half_width, max_half_width, max_degree
+      choose_half_width, filter_error, predicted_errors, min_half_width, max_half_width, &
+      max_degree
 
    !> Highest polynomial degree of the filter.
    integer, parameter :: max_degree = 8
@@ -43,16 +44,31 @@ contains
       integer, intent(in) :: j, k, p     !! the sample, half-width, degree
       integer, intent(out) :: lo         !! first sample of the window
       real(dp), intent(out) :: w(0:, :)  !! (0:2, 2k + 1) weights
-      real(dp) :: q(2*k + 1, p + 1), r(p + 1, p + 1), z(p + 1), h, x
-      integer :: n, c, i, d, pass
-      n = 2*k + 1
+      real(dp) :: h
+      integer :: d
       lo = window_start(size(t), j, k)
-      h = max(abs(t(lo + n - 1) - t(j)), abs(t(lo) - t(j)))
-      ! the scaled Vandermonde matrix's QR by Gram–Schmidt, each column twice
-      ! orthogonalised (as accurate as Householder for these few columns)
+      h = max(abs(t(lo + 2*k) - t(j)), abs(t(lo) - t(j)))
+      call coefficient_weights((t(lo:lo + 2*k) - t(j))/h, p, min(2, p), w)
+      do d = 0, min(2, p)
+         w(d, :) = w(d, :)*factorial(d)/h**d
+      end do
+      w(min(2, p) + 1:, :) = 0.0_dp
+   end subroutine derivative_weights
+
+   !> The weights (0:dmax, n) of the coefficients a_0 .. a_dmax of the least-squares
+   !> polynomial Σ a_c s^c of degree p through (s_i, y_i): a_d = Σ w(d, i) y_i. By
+   !> the QR factorisation of the Vandermonde matrix (Gram–Schmidt, each column twice
+   !> orthogonalised): a = R⁻¹ Qᵀ y, so w(d, :) = Q z with Rᵀ z = e_d. Needs
+   !> p + 1 <= n distinct s, scaled to about [−1, 1].
+   pure subroutine coefficient_weights(s, p, dmax, w)
+      real(dp), intent(in) :: s(:)       !! abscissae (n)
+      integer, intent(in) :: p, dmax     !! degree, highest coefficient wanted
+      real(dp), intent(out) :: w(0:, :)  !! (0:dmax, n)
+      real(dp) :: q(size(s), p + 1), r(p + 1, p + 1), z(p + 1), x
+      integer :: c, i, d, pass
       r = 0.0_dp
       do c = 1, p + 1
-         q(:, c) = ((t(lo:lo + n - 1) - t(j))/h)**(c - 1)
+         q(:, c) = s**(c - 1)
          do pass = 1, 2
             do i = 1, c - 1
                x = dot_product(q(:, i), q(:, c))
@@ -63,17 +79,15 @@ contains
          r(c, c) = norm2(q(:, c))
          q(:, c) = q(:, c)/r(c, c)
       end do
-      w = 0.0_dp
-      do d = 0, min(2, p)
-         ! coefficient d = e_dᵀ R⁻¹ Qᵀ y: the weights Q z with Rᵀ z = e_d
+      do d = 0, dmax
          z = 0.0_dp
          z(d + 1) = 1.0_dp
          do c = 1, p + 1
             z(c) = (z(c) - dot_product(r(1:c - 1, c), z(1:c - 1)))/r(c, c)
          end do
-         w(d, :) = matmul(q, z)*factorial(d)/h**d
+         w(d, :) = matmul(q, z)
       end do
-   end subroutine derivative_weights
+   end subroutine coefficient_weights
 
    !> The first sample of the window of half-width k about sample j of n.
    pure integer function window_start(n, j, k) result(lo)
@@ -138,7 +152,7 @@ contains
    pure integer function choose_half_width(t, y, sigma, p) result(k)
       real(dp), intent(in) :: t(:), y(:, :), sigma(:)
       integer, intent(in) :: p
-      integer :: lower, upper, round, kk, kp, mo, c, j
+      integer :: lower, upper, round, kk, mo, c, j
       real(dp) :: r(size(y, 1)), best, mse, noise, bias
       lower = max(min_half_width, p/2 + 1)
       upper = min(max_half_width, (size(t) - 1)/4)
@@ -151,8 +165,7 @@ contains
       k = min(8, upper)
       do round = 1, 3
          ! the pilot: y^(m) of each column by degree m + 1 on the half-width 2k; its RMS
-         kp = min(max(2*k, (mo + 2)/2 + 1), (size(t) - 1)/2)
-         r = pilot_rms(t, y, kp, mo)
+         r = pilot_rms(t, y, pilot_half_width(size(t), k, mo), mo)
          best = huge(1.0_dp)
          kk = lower
          do while (kk <= upper)
@@ -171,57 +184,55 @@ contains
    end function choose_half_width
 
    !> The RMS over the samples of y^(m) of each column, by a local polynomial of degree
-   !> m + 1 on the half-width kp (a derivative beyond the second: from the fitted
-   !> coefficients directly).
+   !> m + 1 on the half-width kp (every size(t)/200-th sample); 0 when the series is
+   !> too short for it (2 kp + 1 < m + 2).
    pure function pilot_rms(t, y, kp, m) result(r)
       real(dp), intent(in) :: t(:), y(:, :)
       integer, intent(in) :: kp, m
       real(dp) :: r(size(y, 1))
-      real(dp) :: a(2*kp + 1, m + 2), coef(m + 2), h, s2(size(y, 1))
+      real(dp) :: w(0:m, 2*kp + 1), h, s2(size(y, 1))
       integer :: j, lo, c, n, stride, count
       n = 2*kp + 1
+      r = 0.0_dp
+      if (n < m + 2 .or. n > size(t)) return
       s2 = 0.0_dp
       count = 0
       stride = max(1, size(t)/200)   ! 200 samples of the series suffice for an RMS
       do j = 1, size(t), stride
          lo = window_start(size(t), j, kp)
          h = max(abs(t(lo + n - 1) - t(j)), abs(t(lo) - t(j)))
-         do c = 0, m + 1
-            a(:, c + 1) = ((t(lo:lo + n - 1) - t(j))/h)**c
-         end do
+         call coefficient_weights((t(lo:lo + n - 1) - t(j))/h, m + 1, m, w)
          do c = 1, size(y, 1)
-            coef = least_squares(a, y(c, lo:lo + n - 1))
-            s2(c) = s2(c) + (coef(m + 1)*factorial(m)/h**m)**2
+            ! (bounded: a hostile series of huge values at tiny steps stays finite)
+            s2(c) = s2(c) + min(abs(dot_product(w(m, :), y(c, lo:lo + n - 1))*factorial(m)/ &
+                                    h**m), 1e100_dp)**2
          end do
          count = count + 1
       end do
       r = sqrt(s2/max(count, 1))
    end function pilot_rms
 
-   !> The least-squares coefficients of a x ≈ b (normal equations by Cholesky; a is
-   !> a scaled Vandermonde matrix of low degree).
-   pure function least_squares(a, b) result(x)
-      real(dp), intent(in) :: a(:, :), b(:)
-      real(dp) :: x(size(a, 2))
-      real(dp) :: g(size(a, 2), size(a, 2)), l(size(a, 2), size(a, 2))
-      integer :: i, j, n
-      n = size(a, 2)
-      g = matmul(transpose(a), a)
-      x = matmul(transpose(a), b)
-      l = 0.0_dp
-      do j = 1, n
-         l(j, j) = sqrt(max(g(j, j) - dot_product(l(j, 1:j - 1), l(j, 1:j - 1)), tiny(1.0_dp)))
-         do i = j + 1, n
-            l(i, j) = (g(i, j) - dot_product(l(i, 1:j - 1), l(j, 1:j - 1)))/l(j, j)
-         end do
-      end do
-      do i = 1, n
-         x(i) = (x(i) - dot_product(l(i, 1:i - 1), x(1:i - 1)))/l(i, i)
-      end do
-      do i = n, 1, -1
-         x(i) = (x(i) - dot_product(l(i + 1:n, i), x(i + 1:n)))/l(i, i)
-      end do
-   end function least_squares
+   !> The predicted RMS errors of ÿ of each column at the half-width k and degree p:
+   !> noise σ_c (Σ w_2,i²)^(1/2) and bias R_c |Σ w_2,i s_i^m| / m! at the middle
+   !> sample, R_c the pilot RMS of y_c^(m) on the half-width 2k (module's notes).
+   pure subroutine predicted_errors(t, y, sigma, k, p, noise, bias)
+      real(dp), intent(in) :: t(:), y(:, :), sigma(:)
+      integer, intent(in) :: k, p
+      real(dp), allocatable, intent(out) :: noise(:), bias(:)
+      real(dp) :: fn, fb
+      integer :: mo
+      mo = bias_order(p)
+      call filter_error(t, (size(t) + 1)/2, k, p, fn, fb)
+      noise = sigma*fn
+      bias = pilot_rms(t, y, pilot_half_width(size(t), k, mo), mo)*fb
+   end subroutine predicted_errors
+
+   !> The pilot's half-width for the chosen k: 2k, at least enough samples for its
+   !> degree m + 1, at most what the series holds.
+   pure integer function pilot_half_width(n, k, m) result(kp)
+      integer, intent(in) :: n, k, m
+      kp = min(max(2*k, (m + 2)/2 + 1), (n - 1)/2)
+   end function pilot_half_width
 
    pure real(dp) function factorial(n)
       integer, intent(in) :: n

@@ -18,7 +18,7 @@ module dpend_export
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: export_columns, export_matrix, export_list, max_export_values
+   public :: export_columns, export_matrix, export_list, max_export_values, print_csv
 
    !> At most 1e9 values (columns x rows) in one export: the table is indexed with
    !> default integers and printed as text of about 25 bytes a value (25 GB).
@@ -342,13 +342,17 @@ contains
 
    !> Print the rows of `table` as comma-separated lines, each built in one buffer
    !> of its final length (the time is linear in the number of values).
-   subroutine print_csv(unit, table)
+   subroutine print_csv(unit, table, stat)
       integer, intent(in) :: unit           !! output unit
       real(dp), intent(in) :: table(:, :)   !! (columns, rows)
+      !> the status of the writes (0, or the first failure's, the rest not written);
+      !> absent: a failed write stops the program
+      integer, intent(out), optional :: stat
       character(len=:), allocatable :: line
       character(len=32) :: field
-      integer :: i, j, pos
+      integer :: i, j, pos, ios
       allocate (character(len=25*max(size(table, 1), 1)) :: line)
+      if (present(stat)) stat = 0
       do j = 1, size(table, 2)
          pos = 0
          do i = 1, size(table, 1)
@@ -361,7 +365,13 @@ contains
             line(pos + 1:pos + len_trim(field)) = trim(field)
             pos = pos + len_trim(field)
          end do
-         write (unit, '(a)') line(1:pos)
+         if (present(stat)) then
+            write (unit, '(a)', iostat=ios) line(1:pos)
+            stat = ios
+            if (ios /= 0) return
+         else
+            write (unit, '(a)') line(1:pos)
+         end if
       end do
    end subroutine print_csv
 

@@ -7,11 +7,9 @@ module dpend_fit_config
    use dpend_error, only: error_t, fatal_error
    use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, printable
-   use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help, &
-                                 is_model_parameter
-   use dpend_strings, only: replace_char
+   use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag
+   use dpend_run_flags, only: apply_run_flag, is_model_flag
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series
    use dpend_estimate, only: fit_problem_t, fit_work_t, estimate_fit_work, set_fitted, n_fitted
@@ -260,7 +258,7 @@ contains
                                                          max_position_tol, '', error, &
                                                          'the noise of the observations')
          case default
-            if (any(run_flags == name) .or. model_flag(name)) then
+            if (any(run_flags == name) .or. is_model_flag(name)) then
                if (name == '--links') links_given = .true.
                call apply_run_flag(fc%run, name, value, matched, error)
             else
@@ -530,16 +528,6 @@ contains
    end subroutine state_names
 
    ! ------------------------------------------------ models other than the pendulum
-
-   !> --model, or --NAME for a parameter NAME of some model (--k, --l0).
-   logical function model_flag(name)
-      character(len=*), intent(in) :: name  !! the option
-      model_flag = name == '--model'
-      if (model_flag .or. len(name) < 3) return
-      ! a parameter of a model of the catalogue, its '_' written '-' (--coulomb-speed)
-      if (index(name, '_') > 0) return
-      model_flag = is_model_parameter(replace_char(name(3:), '-', '_'))
-   end function model_flag
 
    !> The fitted model parameters are held at their guess while the fit window is
    !> shorter than the slowest small oscillation: 2 pi sqrt(sum l / g) for the

@@ -14,7 +14,7 @@ module dpend_run_flags
       mark_given, time_unit_option_help
    implicit none
    private
-   public :: apply_run_flag, run_flags_help, set_time_unit
+   public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag
 
 contains
 
@@ -77,6 +77,16 @@ contains
       end select
       if (matched .and. .not. allocated(error)) call mark_given(cfg, setting_key(name))
    end subroutine apply_run_flag
+
+   !> Whether `name` is --model or the flag of a parameter of a model of the catalogue
+   !> (its '_' written '-': --coulomb-speed), which `apply_run_flag` takes.
+   logical function is_model_flag(name)
+      character(len=*), intent(in) :: name  !! the option
+      is_model_flag = name == '--model'
+      if (is_model_flag .or. len(name) < 3) return
+      if (index(name, '_') > 0) return
+      is_model_flag = is_model_parameter(setting_key(name))
+   end function is_model_flag
 
    !> Set the unit of the times given: 's' or 'natural' (`run_config_t%time_unit`).
    subroutine set_time_unit(cfg, value, field, error)

@@ -540,9 +540,9 @@ contains
          call h5%writeattr('/', 'torque', cfg%torque%text())
          if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)
          if (allocated(cfg%torque%t)) then
-            call h5%write('/torque/t', cfg%torque%t, units='s', description='sample ' &
+            call h5%write('/torque/sample_t', cfg%torque%t, units='s', description='sample ' &
                           //'times of the applied joint torques (linear between samples)')
-            call h5%write('/torque/tau', cfg%torque%tau, units='N m', description= &
+            call h5%write('/torque/sample_tau', cfg%torque%tau, units='N m', description= &
                           'applied joint torques tau_1 .. tau_N at the sample times')
          end if
       end if

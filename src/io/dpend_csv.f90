@@ -80,6 +80,8 @@ module dpend_csv
       !> what the named columns (`coords`) are, for messages ('the joint torques'); set:
       !> those columns only, no angles or positions (default: a model's coordinates)
       character(len=:), allocatable :: what
+      !> the named columns (`coords`) may be absent altogether (`optional_columns`)
+      logical :: optional = .false.
    end type series_t
 
    !> Radians per degree: a column in [deg] is converted by this factor.
@@ -88,7 +90,7 @@ module dpend_csv
 contains
 
    !> Read and check the series file `filename` (see the module's notes).
-   subroutine read_series(filename, series, error, coords, units, what)
+   subroutine read_series(filename, series, error, coords, units, what, optional_columns)
       character(len=*), intent(in) :: filename          !! the CSV file
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem, one line
@@ -98,6 +100,9 @@ contains
       !> what the `coords` columns are, e.g. 'the joint torques' (messages); default:
       !> the model's coordinates
       character(len=*), intent(in), optional :: what
+      !> the `coords` columns may be absent altogether: then n = n_obs = 0 and
+      !> coords_found false (the rows are still read and checked)
+      logical, intent(in), optional :: optional_columns
       character(len=:), allocatable :: text, pre
       integer :: unit, stat
       integer(i8) :: bytes
@@ -133,14 +138,14 @@ contains
          call fatal_error(error, pre//'cannot be read ('//trim(msg)//')')
          return
       end if
-      call parse_series(text, series, error, coords, units, what)
+      call parse_series(text, series, error, coords, units, what, optional_columns)
       if (allocated(error)) error%message = "invalid data file '"//printable(filename)// &
                                             "' "//error%message
    end subroutine read_series
 
    !> Parse the whole text of a series file; an error message starts with
    !> 'line L: ' (or 'has ...' for a file without a header or rows).
-   subroutine parse_series(text, series, error, coords, units, what)
+   subroutine parse_series(text, series, error, coords, units, what, optional_columns)
       character(len=*), intent(in) :: text              !! the file's contents
       type(series_t), intent(out) :: series             !! the samples
       type(error_t), allocatable, intent(out) :: error  !! the first problem
@@ -148,6 +153,8 @@ contains
       character(len=*), intent(in), optional :: coords(:), units(:)
       !> what the coords columns are (see `read_series`)
       character(len=*), intent(in), optional :: what
+      !> the coords columns may be absent (see `read_series`)
+      logical, intent(in), optional :: optional_columns
       character(len=1), parameter :: lf = achar(10), cr = achar(13)
       integer :: start, eol, line, n_fields, col_t, cap
       integer :: col_q(2*max_dof)
@@ -162,6 +169,7 @@ contains
          series%coord_names = coords
          series%coord_units = units
          if (present(what)) series%what = what
+         if (present(optional_columns)) series%optional = optional_columns
       end if
       start = 1
       if (len(text) >= 3) then
@@ -384,6 +392,10 @@ contains
       series%n = count(col_q > 0)
       if (series%n == 0 .and. any(col_x > 0 .or. col_y > 0)) then
          call positions_complete(pre, col_x, col_y, sx, sy, col_q, scale, series, error)
+         return
+      end if
+      if (series%n == 0 .and. allocated(series%coord_names) .and. series%optional) then
+         series%n_obs = 0
          return
       end if
       if (series%n == 0 .and. allocated(series%coord_names)) then
