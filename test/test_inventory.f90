@@ -75,6 +75,7 @@ contains
                new_unittest('sweep', test_sweep), &
                new_unittest('study', test_study), &
                new_unittest('fit', test_fit), &
+               new_unittest('torques', test_torques), &
                new_unittest('animate', test_animate)]
    end subroutine collect_inventory
 
@@ -197,6 +198,17 @@ contains
          variant_t('positions', 'fit @DIR/positions.csv --output @OUT')], &
          'positions.csv', csv)
    end subroutine test_fit
+
+   !> torques: angles only (data/fit_example.csv) and with measured torques
+   !> (data/robot_example.csv): the latter adds tau_measured and residual.
+   subroutine test_torques(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call produce_and_check(error, 'torques', [ &
+         variant_t('angles', 'torques data/fit_example.csv --damping 0.05,0.03 --quiet ' &
+                   //'--output @OUT'), &
+         variant_t('measured', 'torques data/robot_example.csv --m 1,0.7 --l 0.8,0.6 ' &
+                   //'--quiet --output @OUT')])
+   end subroutine test_torques
 
    !> animate writes a GIF and no HDF5 file: its data go to gnuplot through transient
    !> text tables written by private procedures. The inventory of `animate` lists no

@@ -93,7 +93,8 @@ contains
    end subroutine test_damped_support
 
    !> Three rods, damped, with applied joint torques τ_i = a_i + b_i t from a torque
-   !> file of 4 irregular samples over [0, 0.5] s.
+   !> file of 4 irregular samples over [0, 0.5] s ('samples': /torque/sample_t and
+   !> /torque/sample_tau, the series as the file gave it).
    subroutine test_torques(error)
       type(error_t), allocatable, intent(out) :: error  !! set on failure
       type(chain_t) :: ch
@@ -101,6 +102,7 @@ contains
       ch%m = [1.1_dp, 0.8_dp, 1.4_dp]; ch%l = [1.0_dp, 0.7_dp, 1.2_dp]
       ch%c = [0.1_dp, 0.0_dp, 0.05_dp]
       ch%ta = [2.0_dp, -1.5_dp, 0.5_dp]; ch%tb = [-3.0_dp, 4.0_dp, 1.0_dp]
+      ! 'samples' compares /torque/sample_t and /torque/sample_tau with the file written
       call check_chain(error, 'torques', ch, '--links 3 --m 1.1,0.8,1.4 --l 1,0.7,1.2 ' &
                        //'--q 0.1,0.5,-1 --w 0,1,0 --damping 0.1,0,0.05', &
                        [character(len=nl) :: 't', 'q', 'qdot', 'qddot', 'energy', &
@@ -255,8 +257,8 @@ contains
             call h5%read('/torque/sample_t', x1, error)
             if (.not. allocated(error)) call h5%read('/torque/sample_tau', x2, error)
             if (allocated(error)) exit
-            call compare(error, tag, 'torque/t', x1, sample_times, 1.0e-16_dp)
-            call compare(error, tag, 'torque/tau', pack(x2, .true.), &
+            call compare(error, tag, 'torque/sample_t', x1, sample_times, 1.0e-16_dp)
+            call compare(error, tag, 'torque/sample_tau', pack(x2, .true.), &
                          [(torques(ch, sample_times(i)), i = 1, 4)], 1.0e-15_dp)
          case ('tau')   ! a_i + b_i t
             call h5%read('/trajectory/tau', x2, error)

@@ -1,0 +1,110 @@
+# Inverse dynamics, `dpend torques DATA.csv`: data files refused with their line
+# numbers (gaps, NaN, times not increasing, too few samples for the filter, positions
+# instead of angles, partial or mis-united torque and rate columns), the filter's
+# options out of range (--degree, --window, --sigma), the model's flags checked as
+# every command checks them, options of other commands refused, outputs that would
+# replace the data; each in one line naming the field, exit 2, no file touched; and
+# edge values that must succeed without a trap in the debug build.
+
+# fixtures: N samples of a smooth motion every 10 ms (t, q1, q2), with rates (qdot1,
+# qdot2) and torques (tau1, tau2) when asked; each bad file's problem in its name
+fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
+motion() {  # motion FILE N COLUMNS...  (COLUMNS among q, qdot, tau)
+  local file=$1 n=$2; shift 2
+  awk -v n="$n" -v cols="$*" 'BEGIN {
+      m = split(cols, c, " "); h = "t"
+      for (i = 1; i <= m; i++) h = h "," c[i] "1," c[i] "2"
+      print h
+      for (k = 0; k < n; k++) { t = k/100; r = sprintf("%.6g", t)
+        for (i = 1; i <= m; i++) {
+          if (c[i] == "q")    r = r sprintf(",%.9g,%.9g", -1.2 + 0.3*sin(2*t), -1 + 0.2*sin(3*t))
+          if (c[i] == "qdot") r = r sprintf(",%.9g,%.9g", 0.6*cos(2*t), 0.6*cos(3*t))
+          if (c[i] == "tau")  r = r sprintf(",%.9g,%.9g", 0.1*sin(t), 0.05) }
+        print r } }' > "$FIXTURES/$file"
+}
+motion id_ok.csv        15 q
+motion id_ok_tau.csv    15 q tau
+motion id_ok_rates.csv  15 q qdot tau
+motion id_ok_long.csv   400 q tau
+motion id_few.csv       6 q
+motion id_one_link.csv  15 q
+sed -i 's/,[^,]*$//; 1s/.*/t,q1/' "$FIXTURES/id_one_link.csv"
+fx id_gap.csv          't,q1,q2\n0,-1.2,-1\n0.01,,-0.99\n0.02,-1.18,-0.98\n'
+fx id_nan.csv          't,q1,q2\n0,-1.2,-1\n0.01,NaN,-0.99\n0.02,-1.18,-0.98\n'
+fx id_back.csv         't,q1,q2\n0,-1.2,-1\n0.02,-1.19,-0.99\n0.01,-1.18,-0.98\n'
+fx id_positions.csv    't,x1,y1\n0,0.1,-0.9\n0.01,0.11,-0.9\n'
+fx id_tau_partial.csv  't,q1,q2,tau1\n0,-1.2,-1,0.1\n0.01,-1.19,-0.99,0.1\n'
+fx id_tau_unit.csv     't,q1,q2,tau1 [N cm],tau2\n0,-1.2,-1,0.1,0\n0.01,-1.19,-0.99,0.1,0\n'
+fx id_tau_nan.csv      't,q1,q2,tau1,tau2\n0,-1.2,-1,0.1,0\n0.01,-1.19,-0.99,nan,0\n'
+fx id_tau_big.csv      't,q1,q2,tau1,tau2\n0,-1.2,-1,0.1,0\n0.01,-1.19,-0.99,3e6,0\n'
+fx id_rates_unit.csv   't,q1,q2,qdot1 [deg/s],qdot2\n0,-1.2,-1,1,0\n0.01,-1.19,-0.99,1,0\n'
+fx id_rates_twice.csv  't,q1,q2,qdot1,qdot1,qdot2\n0,-1.2,-1,1,1,0\n0.01,-1.19,-0.99,1,1,0\n'
+fx id_no_angles.csv    't,tau1,tau2\n0,0.1,0\n0.01,0.1,0\n'
+fx id_utf16.csv        '\377\376t\000,\000q\000'
+
+T=(torques id_ok.csv --output g.h5)
+# ---- the data file
+refuse  id-no-data            'no data file'         -- torques --output g.h5
+refuse  id-two-data           'unexpected argument'  -- torques id_ok.csv id_ok_tau.csv --output g.h5
+refuse  id-missing-file       'no such file'         -- torques nosuch.csv --output g.h5
+refuse  id-directory          'directory'            -- torques dir --output g.h5
+refuse  id-gap                'line 3'               -- torques id_gap.csv --output g.h5
+refuse  id-nan                'line 3'               -- torques id_nan.csv --output g.h5
+refuse  id-back               'line 4'               -- torques id_back.csv --output g.h5
+refuse  id-few                'needs at least 7'     -- torques id_few.csv --output g.h5
+refuse  id-positions          'positions'            -- torques id_positions.csv --output g.h5
+refuse  id-no-angles          'no angle columns'     -- torques id_no_angles.csv --output g.h5
+refuse  id-tau-partial        'missing column tau2'  -- torques id_tau_partial.csv --output g.h5
+refuse  id-tau-unit           "unit '[n cm]'"        -- torques id_tau_unit.csv --output g.h5
+refuse  id-tau-nan            'line 3'               -- torques id_tau_nan.csv --output g.h5
+refuse  id-tau-big            'measured torques'     -- torques id_tau_big.csv --output g.h5
+refuse  id-rates-unit         "unit '[deg/s]'"       -- torques id_rates_unit.csv --output g.h5
+refuse  id-rates-twice        'appears twice'        -- torques id_rates_twice.csv --output g.h5
+refuse  id-utf16              'UTF-16'               -- torques id_utf16.csv --output g.h5
+# ---- the filter
+refuse  id-degree-low         'outside [2, 8]'       -- "${T[@]}" --degree 1
+refuse  id-degree-high        'outside [2, 8]'       -- "${T[@]}" --degree 9
+refuse  id-degree-word        'degree'               -- "${T[@]}" --degree four
+refuse  id-degree-real        'degree'               -- "${T[@]}" --degree 4.0
+refuse  id-window-even        'even'                 -- "${T[@]}" --window 8
+refuse  id-window-small       'window'               -- "${T[@]}" --window 3
+refuse  id-window-degree      'degree + 1'           -- "${T[@]}" --degree 6 --window 5
+refuse  id-window-big         'outside [5, 4001]'    -- "${T[@]}" --window 4003
+refuse  id-window-samples     'needs at least 21'    -- "${T[@]}" --window 21
+refuse  id-window-negative    'window'               -- "${T[@]}" --window -5
+refuse  id-sigma-zero         'sigma'                -- "${T[@]}" --sigma 0
+refuse  id-sigma-negative     'sigma'                -- "${T[@]}" --sigma -1e-3
+refuse  id-sigma-big          'sigma'                -- "${T[@]}" --sigma 2
+refuse  id-sigma-nan          'sigma'                -- "${T[@]}" --sigma nan
+refuse  id-window-twice       'given twice'          -- "${T[@]}" --window 5 --window 7
+# ---- the model
+refuse  id-links              'angle columns'        -- "${T[@]}" --links 3
+refuse  id-elastic            'no joints'            -- "${T[@]}" --model elastic
+refuse  id-damping-count      'damping'              -- "${T[@]}" --damping 0.1
+refuse  id-coulomb-negative   'coulomb'              -- "${T[@]}" --coulomb -1,0
+refuse  id-mass-zero          'm'                    -- "${T[@]}" --m 0,1
+refuse  id-body-com           'com'                  -- "${T[@]}" --body point --com 0.5,0.5
+# ---- options of other commands, and outputs that would replace the data
+refuse  id-config             "unknown option '--config'" -- "${T[@]}" --config coulomb.nml
+refuse  id-t-end              'unknown option'       -- "${T[@]}" --t-end 5
+refuse  id-method             'unknown option'       -- "${T[@]}" --method rk4
+refuse  id-torque-file        'unknown option'       -- "${T[@]}" --torque-file tau_ok.csv
+refuse  id-time-unit          'unknown option'       -- "${T[@]}" --time-unit natural
+refuse  id-output-is-data     'input'                -- torques id_ok.csv --output id_ok.csv --force
+refuse  id-csv-is-data        'input'                -- "${T[@]}" --csv id_ok.csv --force
+refuse  id-csv-is-output      'also the HDF5 output' -- "${T[@]}" --csv g.h5
+refuse  id-csv-no-value       'needs a value'        -- "${T[@]}" --csv
+
+# edge values that must succeed
+succeed id-ok                 -- "${T[@]}"
+succeed id-ok-measured-csv    -- torques id_ok_tau.csv --output g.h5 --csv g.csv
+succeed id-ok-rates           -- torques id_ok_rates.csv --output g.h5
+succeed id-ok-one-link        -- torques id_one_link.csv --output g.h5
+succeed id-ok-long            -- torques id_ok_long.csv --output g.h5 --degree 8
+succeed id-ok-degree2-window5 -- "${T[@]}" --degree 2 --window 5
+succeed id-ok-window-all      -- "${T[@]}" --window 15
+succeed id-ok-sigma           -- "${T[@]}" --sigma 1e-12
+succeed id-ok-friction        -- "${T[@]}" --damping 0.1,0.2 --coulomb 0.05,0.02 --coulomb-speed 1e-6
+succeed id-ok-bodies          -- "${T[@]}" --com 0.3,0.4 --inertia 0.02,0.01 --support-amplitude 0.01,0.02 --support-frequency 3
+succeed id-ok-point           -- "${T[@]}" --body point
+succeed id-ok-quiet           -- torques id_ok_tau.csv --output g.h5 --quiet
