@@ -22,6 +22,7 @@ program tester
    use test_damping, only: collect_damping
    use test_joint_torque, only: collect_joint_torque
    use test_inverse_dynamics, only: collect_inverse_dynamics
+   use test_identify, only: collect_identify
    use test_kapitza, only: collect_kapitza
    use test_factory, only: collect_factory
    use test_elastic, only: collect_elastic
@@ -106,6 +107,7 @@ program tester
    call add('damping', collect_damping)
    call add('joint_torque', collect_joint_torque)
    call add('inverse_dynamics', collect_inverse_dynamics)
+   call add('identify', collect_identify)
    call add('kapitza', collect_kapitza)
    call add('factory', collect_factory)
    call add('elastic', collect_elastic)

@@ -19,6 +19,7 @@ module dpend_estimate_statistics
    use dpend_model_factory, only: model_catalogue, find_model, spec_values, derived_default, &
                                   model_info_t
    use dpend_lapack, only: dpotrf, dpotrs
+   use dpend_least_squares, only: jacobi_svd
    use dpend_strings, only: real_str, to_str
    use dpend_estimate_problem, only: fit_problem_t, fit_result_t, fit_counter_t, n_fitted, &
                                      evaluate_fit, counted_fit, wrap_angles
@@ -219,54 +220,14 @@ contains
       real(dp), intent(in) :: jac(:, :)        !! ∂r/∂p (m, P)
       real(dp), intent(in) :: ds(:)            !! column scales (P)
       type(fit_result_t), intent(inout) :: res !! singular, condition, directions set
-      real(dp), allocatable :: u(:, :), v(:, :), sv(:), col(:)
-      real(dp) :: alpha, beta, gamma, zeta, tt, cs, sn
-      integer :: np, i, j, sweep, order(size(ds))
-      logical :: rotated
+      real(dp), allocatable :: u(:, :)
+      integer :: np, j
       np = size(ds)
       u = jac
       do j = 1, np
          u(:, j) = u(:, j)*ds(j)
       end do
-      allocate (v(np, np))
-      v = 0.0_dp
-      do j = 1, np
-         v(j, j) = 1.0_dp
-      end do
-      do sweep = 1, 60
-         rotated = .false.
-         do i = 1, np - 1
-            do j = i + 1, np
-               alpha = sum(u(:, i)**2)
-               beta = sum(u(:, j)**2)
-               gamma = sum(u(:, i)*u(:, j))
-               if (abs(gamma) <= 1e-15_dp*sqrt(alpha*beta) .or. gamma == 0.0_dp) cycle
-               rotated = .true.
-               zeta = (beta - alpha)/(2.0_dp*gamma)
-               tt = sign(1.0_dp, zeta)/(abs(zeta) + sqrt(1.0_dp + zeta**2))
-               cs = 1.0_dp/sqrt(1.0_dp + tt**2)
-               sn = cs*tt
-               col = u(:, i)
-               u(:, i) = cs*col - sn*u(:, j)
-               u(:, j) = sn*col + cs*u(:, j)
-               col = v(:, i)
-               v(:, i) = cs*col - sn*v(:, j)
-               v(:, j) = sn*col + cs*v(:, j)
-            end do
-         end do
-         if (.not. rotated) exit
-      end do
-      allocate (sv(np))
-      do j = 1, np
-         sv(j) = sqrt(sum(u(:, j)**2))
-      end do
-      do i = 1, np   ! largest first
-         order(i) = maxloc(sv, dim=1)
-         sv(order(i)) = -sv(order(i)) - 1.0_dp
-      end do
-      sv = -sv - 1.0_dp
-      res%singular = sv(order)
-      res%directions = v(:, order)
+      call jacobi_svd(u, res%singular, res%directions)
       if (res%singular(np) > 0.0_dp) then
          res%condition = res%singular(1)/res%singular(np)
       else
