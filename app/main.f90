@@ -30,6 +30,7 @@ module dpend_command_table
    use dpend_animate, only: animate_command
    use dpend_fit_command, only: fit_command
    use dpend_torques_command, only: torques_command
+   use dpend_identify_command, only: identify_command
    use dpend_explore_command, only: explore_command
    use dpend_methods_command, only: methods_command
    use dpend_models_command, only: models_command
@@ -91,6 +92,9 @@ contains
          command_t('torques', 'inverse dynamics: the joint torques and reactions a measured ' &
                    //'motion requires (Newton-Euler, filtered angles); residuals', &
                    torques_command), &
+         command_t('identify', 'the inertial and friction parameters that measured motion ' &
+                   //'and torques determine (base parameters, SVD, least squares)', &
+                   identify_command), &
          command_t('explore', 'a map of dpend sweep in the browser: click a pixel, watch ' &
                    //'its pendulum', explore_command), &
          command_t('methods', 'the integration methods: order, properties, commands', &

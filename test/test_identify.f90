@@ -9,7 +9,9 @@
 !> - a rotation at constant rate: viscous and Coulomb friction not separated, the
 !>   refusal naming the combination;
 !> - 50 seeds of noisy runs (angles with white noise 1e-5 rad, torques with 0.01 N m)
-!>   through the filter: each base parameter inside its 95 % interval in >= 45 of 50.
+!>   through the filter (the torques through the same filter, rows every window, as
+!>   `dpend identify` does): each base parameter inside its 95 % interval in >= 45 of
+!>   50.
 !> Each test prints its measured figures on one line ('    identify: …').
 module test_identify
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -20,7 +22,7 @@ module test_identify
    use dpend_inverse_dynamics, only: joint_torques
    use dpend_identify, only: n_kinds, parameter_torques, base_t, base_parameters, &
                              identify_result_t, identify_parameters, standard_values
-   use dpend_smoothing, only: smooth_derivatives, noise_sigma, choose_half_width
+   use dpend_smoothing, only: smooth_derivatives, noise_sigma, choose_half_width, noise_factors
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: advance_to
@@ -225,8 +227,10 @@ contains
       type(base_t) :: base
       type(identify_result_t) :: res
       real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), tau(:, :), truth(:), &
-                               qn(:, :), tn(:, :), ys(:, :, :), z(:, :)
+                               qn(:, :), tn(:, :), ys(:, :, :), ts(:, :, :), z(:, :)
       integer, allocatable :: covered(:), seed(:), rows(:)
+      real(dp), allocatable :: zsum(:), z2sum(:)
+      real(dp) :: nf(0:2), nv(2, 2)
       integer :: s, i, k, ns, kw, nseed
       character(len=:), allocatable :: text
       call robot_run(chain, t, q, qd, qdd, tau, error, 20.0_dp, 500.0_dp)
@@ -234,8 +238,11 @@ contains
       call base_parameters(chain, [(.true., i = 1, 10)], base)
       truth = true_base(base, pack(standard_values(chain), .true.))
       ns = size(t)
-      allocate (covered(size(truth)), qn(2, ns), tn(2, ns), ys(0:2, 2, ns), z(2, ns))
+      allocate (covered(size(truth)), qn(2, ns), tn(2, ns), ys(0:2, 2, ns), ts(0:2, 2, ns), &
+                z(2, ns))
       covered = 0
+      allocate (zsum(size(truth)), z2sum(size(truth)))
+      zsum = 0; z2sum = 0
       call random_seed(size=nseed)
       allocate (seed(nseed))
       do s = 1, 50
@@ -247,19 +254,33 @@ contains
          tn = tau + 0.01_dp*z
          kw = choose_half_width(t, qn, [noise_sigma(qn(1, :)), noise_sigma(qn(2, :))], 4)
          call smooth_derivatives(t, qn, kw, 4, ys)
+         call smooth_derivatives(t, tn, kw, 4, ts)   ! the torques through the same filter
          rows = [(k, k = kw + 1, ns - kw, 2*kw + 1)]
+         nf = noise_factors(t, kw, 4)
+         do i = 1, 2
+            nv(:, i) = (noise_sigma(qn(i, :))*nf(1:2))**2
+         end do
          call identify_parameters(chain, base, t(rows), ys(0, :, rows), ys(1, :, rows), &
-                                  ys(2, :, rows), tn(:, rows), [(0.0_dp, i = 1, 10)], res, &
-                                  error)
+                                  ys(2, :, rows), ts(0, :, rows), [(0.0_dp, i = 1, 10)], res, &
+                                  error, noise_var=nv)
          if (allocated(error)) return
          where (abs(res%estimate - truth) <= res%t95*res%std_error) covered = covered + 1
+         zsum = zsum + (res%estimate - truth)/res%std_error
+         z2sum = z2sum + ((res%estimate - truth)/res%std_error)**2
       end do
       text = ''
       do i = 1, size(truth)
          text = text//' '//trim(base%names(i))//' '//to_str(covered(i))//';'
       end do
+      call report('compensated for the filter''s noise in the regressor: '// &
+                  trim(merge('yes', 'no ', res%compensated)))
       call report('50 seeds (angles 1e-5 rad, torques 0.01 N m, 500 Hz, 20 s; last: window '// &
                   to_str(2*kw + 1)//', '//to_str(size(rows))//' rows): covered'//text)
+      text = ''
+      do i = 1, size(truth)
+         text = text//' '//real_str(zsum(i)/50, 2)//'/'//real_str(sqrt(z2sum(i)/50), 3)
+      end do
+      call report('(estimate - truth)/std_error over the seeds, mean/RMS:'//text)
       call check_true(error, all(covered >= 45), 'coverage below 45 of 50')
    contains
       subroutine gauss(x)

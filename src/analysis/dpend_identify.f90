@@ -38,7 +38,7 @@ module dpend_identify
    private
    public :: n_kinds, kind_names, kind_units, parameter_torques, regressor, base_t, &
       base_parameters, identify_result_t, identify_parameters, standard_values, &
-      separable_tolerance
+      separable_tolerance, physical_parameters, parameter_label
 
    !> Standard parameters per link, in this order in θ (5, N).
    integer, parameter :: n_kinds = 5
@@ -74,6 +74,8 @@ module dpend_identify
       real(dp), allocatable :: residual(:, :)     !! (N, rows) measured − model
       real(dp) :: t95 = 0.0_dp                    !! Student t quantile used
       integer :: rows = 0                         !! samples used
+      !> the estimate was compensated for the filter's noise in the regressor
+      logical :: compensated = .false.
    end type identify_result_t
 
 contains
@@ -257,13 +259,17 @@ contains
    !> The estimate of the base parameters from the samples (t, q, q̇, q̈ of the filter,
    !> the measured torques) with the parameters not identified fixed at theta_fixed.
    !> A direction the data do not separate is refused naming it.
-   subroutine identify_parameters(chain, base, t, q, qd, qdd, tau, theta_fixed, res, error)
+   subroutine identify_parameters(chain, base, t, q, qd, qdd, tau, theta_fixed, res, error, &
+                                  noise_var)
       type(chain_t), intent(in) :: chain
       type(base_t), intent(in) :: base
       real(dp), intent(in) :: t(:), q(:, :), qd(:, :), qdd(:, :), tau(:, :)
       real(dp), intent(in) :: theta_fixed(:)        !! (5N) values of the fixed ones
       type(identify_result_t), intent(out) :: res
       type(error_t), allocatable, intent(out) :: error
+      !> (2, N): the variances of the errors of q̇_i and q̈_i (the filter's): the
+      !> estimate is then compensated for the noise they put into the regressor
+      real(dp), intent(in), optional :: noise_var(:, :)
       real(dp), allocatable :: w(:, :), b(:), scale(:), ws(:, :), v(:, :), &
                                x(:), r(:, :), ri(:, :), wt(:), known(:)
       real(dp) :: y1(size(q, 1), n_kinds*size(q, 1)), s2
@@ -341,10 +347,15 @@ contains
          end do
       end do
       res%estimate = x/scale
+      ri = r_inverse(r)
+      res%covariance = matmul(ri, transpose(ri))   ! (W_sᵀ W_s)⁻¹, scaled columns
+      if (present(noise_var)) then
+         call compensate(chain, base, t, q, qd, qdd, noise_var, w, b, wt, scale, res)
+      end if
+      res%residual = reshape(b - matmul(w, res%estimate), [n, k])
       res%rms_residual = sqrt(sum(res%residual**2, dim=2)/k)
       s2 = sum((b - matmul(w, res%estimate))**2*wt**2)/max(m - np, 1)
-      ri = r_inverse(r)
-      res%covariance = s2*matmul(ri, transpose(ri))
+      res%covariance = s2*res%covariance
       do i = 1, np
          res%covariance(i, :) = res%covariance(i, :)/scale(i)
          res%covariance(:, i) = res%covariance(:, i)/scale(i)
@@ -355,6 +366,133 @@ contains
       res%interval95(1, :) = res%estimate - res%t95*res%std_error
       res%interval95(2, :) = res%estimate + res%t95*res%std_error
    end subroutine identify_parameters
+
+   !> The standard parameters θ (5, N) that the base estimate gives once the masses
+   !> are known: θ_k = base_k − Σ_j β_kj m_j for a kept k whose dropped partners are all
+   !> masses (`found` true), with its standard error (the masses exact).
+   pure subroutine physical_parameters(base, estimate, std_error, masses, theta, se, found)
+      type(base_t), intent(in) :: base
+      real(dp), intent(in) :: estimate(:), std_error(:)   !! base parameters (P)
+      real(dp), intent(in) :: masses(:)                   !! m_i [kg] (N)
+      real(dp), intent(out) :: theta(:, :), se(:, :)      !! (5, N)
+      logical, intent(out) :: found(:, :)                 !! (5, N)
+      integer :: k, j, jj
+      logical :: ok
+      real(dp) :: x
+      theta = 0.0_dp
+      se = 0.0_dp
+      found = .false.
+      do k = 1, size(base%kept)
+         x = estimate(k)
+         ok = .true.
+         do j = 1, size(base%dropped)
+            if (base%beta(k, j) == 0.0_dp) cycle
+            jj = base%dropped(j)
+            if (kind_of(jj) /= 3) then
+               ok = .false.
+            else
+               x = x - base%beta(k, j)*masses((jj - 1)/n_kinds + 1)
+            end if
+         end do
+         if (.not. ok) cycle
+         jj = base%kept(k)
+         theta(kind_of(jj), (jj - 1)/n_kinds + 1) = x
+         se(kind_of(jj), (jj - 1)/n_kinds + 1) = std_error(k)
+         found(kind_of(jj), (jj - 1)/n_kinds + 1) = .true.
+      end do
+      do j = 1, size(masses)   ! the masses themselves: given
+         theta(3, j) = masses(j)
+         found(3, j) = .true.
+      end do
+   end subroutine physical_parameters
+
+   !> The name of standard parameter (kind c, link i): 'J1', 'cf2'.
+   pure function parameter_label(c, i) result(s)
+      integer, intent(in) :: c, i
+      character(len=:), allocatable :: s
+      s = label((i - 1)*n_kinds + c)
+   end function parameter_label
+
+   !> Bias-compensated least squares (errors in the regressor): the filter's errors
+   !> δq̇, δq̈ put E[δYᵀ D² δY] = Σ_rows Σ_k (var q̈_k A_kᵀ D² A_k + var q̇_k B_kᵀ D² B_k)
+   !> into WᵀD²W (A_k = ∂Y/∂q̈_k, exact: Y is linear in q̈; B_k = ∂Y/∂q̇_k by central
+   !> differences); the estimate solves (WᵀD²W − S) θ = WᵀD² b, and its covariance is
+   !> the sandwich G⁻¹ (WᵀD²W) G⁻¹ (× s² by the caller). Where G is not positive
+   !> definite (noise beyond the signal) the plain estimate stays.
+   subroutine compensate(chain, base, t, q, qd, qdd, noise_var, w, b, wt, scale, res)
+      type(chain_t), intent(in) :: chain
+      type(base_t), intent(in) :: base
+      real(dp), intent(in) :: t(:), q(:, :), qd(:, :), qdd(:, :), noise_var(:, :)
+      real(dp), intent(in) :: w(:, :), b(:), wt(:), scale(:)
+      type(identify_result_t), intent(inout) :: res
+      real(dp) :: y0(size(q, 1), n_kinds*size(q, 1)), y1(size(q, 1), n_kinds*size(q, 1)), &
+                  y2(size(q, 1), n_kinds*size(q, 1)), v(size(q, 1)), hstep
+      real(dp), allocatable :: a(:, :), sn(:, :), g(:, :), gi(:, :), ww(:, :), rhs(:), x(:)
+      integer :: n, j, kk, i, np, lo, hi
+      n = size(q, 1)
+      np = size(base%kept)
+      allocate (sn(np, np), a(n, np))
+      sn = 0.0_dp
+      do j = 1, size(t)
+         lo = (j - 1)*n + 1
+         hi = j*n
+         call regressor(chain, t(j), q(:, j), qd(:, j), qdd(:, j), y0)
+         do kk = 1, n
+            v = qdd(:, j)
+            v(kk) = v(kk) + 1.0_dp
+            call regressor(chain, t(j), q(:, j), qd(:, j), v, y1)
+            a = (y1(:, base%kept) - y0(:, base%kept))
+            do i = 1, np
+               a(:, i) = a(:, i)*wt(lo:hi)/scale(i)
+            end do
+            sn = sn + noise_var(2, kk)*matmul(transpose(a), a)
+            hstep = 1e-5_dp*max(1.0_dp, abs(qd(kk, j)))
+            v = qd(:, j)
+            v(kk) = v(kk) + hstep
+            call regressor(chain, t(j), q(:, j), v, qdd(:, j), y1)
+            v(kk) = v(kk) - 2*hstep
+            call regressor(chain, t(j), q(:, j), v, qdd(:, j), y2)
+            a = (y1(:, base%kept) - y2(:, base%kept))/(2*hstep)
+            do i = 1, np
+               a(:, i) = a(:, i)*wt(lo:hi)/scale(i)
+            end do
+            sn = sn + noise_var(1, kk)*matmul(transpose(a), a)
+         end do
+      end do
+      allocate (ww(size(w, 1), np))
+      do i = 1, np
+         ww(:, i) = w(:, i)*wt/scale(i)
+      end do
+      g = matmul(transpose(ww), ww) - sn
+      gi = spd_inverse(g)
+      if (.not. allocated(gi)) return
+      rhs = matmul(b*wt, ww)
+      x = matmul(gi, rhs)
+      res%estimate = x/scale
+      res%covariance = matmul(matmul(gi, matmul(transpose(ww), ww)), gi)
+      res%compensated = .true.
+   end subroutine compensate
+
+   !> The inverse of a symmetric positive definite matrix by Cholesky; unallocated
+   !> when it is not positive definite.
+   pure function spd_inverse(g) result(gi)
+      real(dp), intent(in) :: g(:, :)
+      real(dp), allocatable :: gi(:, :)
+      real(dp) :: l(size(g, 1), size(g, 1)), d
+      integer :: i, j, n
+      n = size(g, 1)
+      l = 0.0_dp
+      do j = 1, n
+         d = g(j, j) - dot_product(l(j, 1:j - 1), l(j, 1:j - 1))
+         if (.not. (d > 1e-12_dp*abs(g(j, j)))) return
+         l(j, j) = sqrt(d)
+         do i = j + 1, n
+            l(i, j) = (g(i, j) - dot_product(l(i, 1:j - 1), l(j, 1:j - 1)))/l(j, j)
+         end do
+      end do
+      l = r_inverse(transpose(l))   ! L⁻ᵀ (upper triangular)
+      gi = matmul(l, transpose(l))
+   end function spd_inverse
 
    !> A direction in the base parameters in words, its largest component 1:
    !> 'c1 - 5 cf1' (components below 1e-3 of the largest left out).

@@ -24,8 +24,8 @@ module dpend_smoothing
    implicit none
    private
    public :: derivative_weights, smooth_derivatives, noise_sigma, bias_order, &
-      choose_half_width, filter_error, predicted_errors, min_half_width, max_half_width, &
-      max_degree
+      choose_half_width, filter_error, predicted_errors, noise_factors, min_half_width, &
+      max_half_width, max_degree
 
    !> Highest polynomial degree of the filter.
    integer, parameter :: max_degree = 8
@@ -131,6 +131,18 @@ contains
       m = p + 1
       if (mod(p, 2) == 0) m = p + 2
    end function bias_order
+
+   !> The noise factors (Σ w_d,i²)^(1/2) of y, ẏ, ÿ (d = 0, 1, 2) at the middle
+   !> sample: white noise σ gives errors of standard deviation σ × factor(d).
+   pure function noise_factors(t, k, p) result(f)
+      real(dp), intent(in) :: t(:)
+      integer, intent(in) :: k, p
+      real(dp) :: f(0:2)
+      real(dp) :: w(0:2, 2*k + 1)
+      integer :: lo
+      call derivative_weights(t, (size(t) + 1)/2, k, p, lo, w)
+      f = norm2(w, dim=2)
+   end function noise_factors
 
    !> The filter's error factors for ÿ at an interior sample j of t: noise factor
    !> (Σ w_2,i²)^(1/2) [1/s²] and bias factor |Σ w_2,i s_i^m| / m! [s^(m−2)].

@@ -27,7 +27,7 @@ module dpend_torques_command
       filter_work, max_filter_work
    implicit none
    private
-   public :: torques_command, torques_result_t, compute_torques
+   public :: torques_command, torques_result_t, compute_torques, filter_motion
 
    character(len=*), parameter :: nl = new_line('a')
 
@@ -58,7 +58,7 @@ contains
       type(torques_result_t) :: res
       logical :: help, quiet
       call take_quiet(args, rest, quiet)
-      call parse_torques(rest, tc, help, error)
+      call parse_torques(rest, tc, help, error, 'torques')
       if (allocated(error)) then
          call refusal_line(error, 'torques')
          return
@@ -80,14 +80,16 @@ contains
       call print_report(tc, res, quiet)
    end subroutine torques_command
 
-   !> Filter, then Newton–Euler at every sample. `error` (a refusal): the window the
+   !> The filter: the noise of the angles (given or estimated), the window (given or
+   !> by the plug-in rule), its predicted errors, and the smoothed q, q̇, q̈ (from the
+   !> measured rates when the file has them). `error` (a refusal): the window the
    !> plug-in rule chose needs more work than allowed.
-   subroutine compute_torques(tc, res, error)
+   subroutine filter_motion(tc, res, error)
       type(torques_config_t), intent(in) :: tc          !! validated configuration
-      type(torques_result_t), intent(out) :: res        !! the results
+      type(torques_result_t), intent(out) :: res        !! the filter's results set
       type(error_t), allocatable, intent(out) :: error  !! too much work
-      real(dp), allocatable :: ys(:, :, :), gain(:, :), acc(:)
-      integer :: n, k, c, j, lo, hi, p
+      real(dp), allocatable :: ys(:, :, :)
+      integer :: n, k, c, p
       n = tc%angles%n
       k = tc%angles%k
       p = tc%degree
@@ -125,7 +127,23 @@ contains
             res%qd = ys(0, :, :)
             res%qdd = ys(1, :, :)
          end if
-         allocate (res%tau(n, k), res%f(2, n, k), gain(n, n), acc(n))
+      end associate
+   end subroutine filter_motion
+
+   !> Filter, then Newton–Euler at every sample. `error` (a refusal): the window the
+   !> plug-in rule chose needs more work than allowed.
+   subroutine compute_torques(tc, res, error)
+      type(torques_config_t), intent(in) :: tc          !! validated configuration
+      type(torques_result_t), intent(out) :: res        !! the results
+      type(error_t), allocatable, intent(out) :: error  !! too much work
+      real(dp), allocatable :: gain(:, :)
+      integer :: n, k, c, j, lo, hi
+      call filter_motion(tc, res, error)
+      if (allocated(error)) return
+      n = tc%angles%n
+      k = tc%angles%k
+      associate (t => tc%angles%t)
+         allocate (res%tau(n, k), res%f(2, n, k), gain(n, n))
          res%tau_noise = [(0.0_dp, c = 1, n)]
          res%tau_bias = res%tau_noise
          do j = 1, k

@@ -1,8 +1,9 @@
-!> The command line and the data of `dpend torques`: the settings record
-!> `torques_config_t` and its defaults, the parsing of the arguments, the reading of
-!> the measured series (angles; rates and torques when the file has them), their
-!> checks against the model and the filter, the work and memory bounds, and the
-!> `--help` text. The computation is in `dpend_torques_command`.
+!> The command line and the data of `dpend torques` and `dpend identify` (both read a
+!> measured motion and filter it): the settings record `torques_config_t` and its
+!> defaults, the parsing of the arguments, the reading of the measured series
+!> (angles; rates and torques when the file has them), their checks against the
+!> model and the filter, the work and memory bounds, and the `--help` texts. The
+!> computations are in `dpend_torques_command` and `dpend_identify_command`.
 module dpend_torques_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
@@ -20,7 +21,8 @@ module dpend_torques_config
    use dpend_resources, only: check_memory
    implicit none
    private
-   public :: torques_config_t, parse_torques, torques_help, filter_work, max_filter_work
+   public :: torques_config_t, parse_torques, torques_help, identify_help, filter_work, &
+      max_filter_work
 
    !> Most floating-point operations of the filter (samples × window × degree²).
    real(dp), parameter :: max_filter_work = 2e10_dp
@@ -39,6 +41,10 @@ module dpend_torques_config
       integer :: window = 0                      !! samples in a window (0: plug-in rule)
       real(dp) :: sigma = 0.0_dp                 !! noise of the angles (0: estimated)
       character(len=:), allocatable :: csv       !! --csv FILE ('' none)
+      character(len=:), allocatable :: command   !! 'torques' or 'identify'
+      !> identify: which frictions are estimated (--friction); the others are known,
+      !> at the model's values (--damping, --coulomb)
+      logical :: fit_viscous = .true., fit_coulomb = .true.
    end type torques_config_t
 
    !> The run flags that make sense here (the model; no integration, no initial state).
@@ -48,10 +54,12 @@ module dpend_torques_config
 
 contains
 
-   !> Defaults: degree 4, the plug-in window, output torques.h5.
-   function torques_defaults() result(tc)
+   !> Defaults: degree 4, the plug-in window, output COMMAND.h5.
+   function torques_defaults(command) result(tc)
+      character(len=*), intent(in) :: command  !! 'torques' or 'identify'
       type(torques_config_t) :: tc
-      tc%run%output = 'torques.h5'
+      tc%command = command
+      tc%run%output = command//'.h5'
       tc%run%method = 'rk4'   ! unused (nothing is integrated); the settings' check needs one
       tc%input = ''
       tc%csv = ''
@@ -62,7 +70,7 @@ contains
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
       type(torques_config_t) :: tc
-      tc = torques_defaults()
+      tc = torques_defaults('torques')
       s = 'usage: dpend torques DATA.csv [options]'//nl//nl// &
           'Inverse dynamics: the joint torques tau_i (joint i''s motor on link i, its'//nl// &
           'reaction on link i-1) and every joint reaction F_(i-1,i) that a measured motion'//nl// &
@@ -81,14 +89,7 @@ contains
           '  tau1..tauN              optional: measured torques [N m], compared'//nl// &
           '  other columns ignored; lines starting with # and blank lines skipped.'//nl//nl// &
           'torques options:'//nl// &
-          '  --degree P        the local polynomial''s degree, 2 to '//to_str(max_degree)// &
-          '; default '//to_str(tc%degree)//nl// &
-          '  --window W        samples per window, odd, from P+1 (at least 5) to '// &
-          to_str(2*max_half_width + 1)//nl// &
-          '                    and the number of samples; default: the plug-in rule (the'//nl// &
-          '                    least predicted error of qddot for the estimated noise)'//nl// &
-          '  --sigma S         the noise of the angles (rad, in [1e-12, 1]); default:'//nl// &
-          '                    estimated from their fourth differences'//nl// &
+          filter_options_help(tc)// &
           '  --csv FILE        also write t, tau1..N (and tau_measured, residual) as CSV'//nl// &
           '  --output FILE     HDF5 file to write; default '//tc%run%output//nl// &
           '  --force           overwrite existing output files'//nl//nl// &
@@ -99,32 +100,84 @@ contains
           '  -h, --help        this text'
    end function torques_help
 
+   !> Help text of `dpend identify`.
+   function identify_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      type(torques_config_t) :: tc
+      tc = torques_defaults('identify')
+      s = 'usage: dpend identify DATA.csv [options]'//nl//nl// &
+          'Identify the inertial and friction parameters that the measured joint torques'//nl// &
+          'determine: the dynamics is linear in J_i (inertia about joint i), h_i = m_i d_i,'// &
+          nl//'m_i, c_i (viscous) and cf_i (Coulomb); the regressor of the filtered motion'//nl// &
+          '(Newton-Euler) is reduced to the identifiable base combinations (e.g. J1 +'//nl// &
+          'l1^2 m2) and solved by weighted least squares. Prints the base parameters with'// &
+          nl//'standard errors and 95 % intervals, the condition number, the combinations'//nl// &
+          'the data cannot separate (refused, named), the torque residual per joint and'//nl// &
+          'the physical checks with the masses given (--m): J_i >= m_i d_i^2, c_i, cf_i >='// &
+          nl//'0. Writes HDF5 (group /identify). docs/robot.md explains the method.'//nl//nl// &
+          'DATA.csv: as dpend torques reads it, with the measured torques tau1..tauN [N m].'// &
+          nl//'The rows used are every window-th sample (their filter errors independent).'// &
+          nl//nl//'identify options:'//nl// &
+          '  --friction LIST   the frictions estimated: viscous,coulomb (default), viscous,'//nl// &
+          '                    coulomb or none; the others are known: --damping, --coulomb'//nl// &
+          filter_options_help(tc)// &
+          '  --output FILE     HDF5 file to write; default '//tc%run%output//nl// &
+          '  --force           overwrite an existing output file'//nl//nl// &
+          'model (known: lengths, g, the support; the masses for the checks):'//nl// &
+          '  --links, --m, --l, --g, --m1, --m2, --l1, --l2, --coulomb-speed (v_s of'//nl// &
+          '  tanh(w/v_s)), --damping and --coulomb (known when not estimated),'//nl// &
+          '  --support-amplitude, --support-frequency, --support-phase, --model pendulum'// &
+          nl//'  -h, --help        this text'
+   end function identify_help
+
+   !> The filter's options, shared by the help texts.
+   function filter_options_help(tc) result(s)
+      type(torques_config_t), intent(in) :: tc  !! defaults
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      s = '  --degree P        the local polynomial''s degree, 2 to '//to_str(max_degree)// &
+          '; default '//to_str(tc%degree)//nl// &
+          '  --window W        samples per window, odd, from P+1 (at least 5) to '// &
+          to_str(2*max_half_width + 1)//nl// &
+          '                    and the number of samples; default: the plug-in rule (the'//nl// &
+          '                    least predicted error of qddot for the estimated noise)'//nl// &
+          '  --sigma S         the noise of the angles (rad, in [1e-12, 1]); default:'//nl// &
+          '                    estimated from their fourth differences'//nl
+   end function filter_options_help
+
    !> Build the configuration and read the data; every refusal is one line.
-   subroutine parse_torques(args, tc, help, error)
+   subroutine parse_torques(args, tc, help, error, command)
       type(arg_t), intent(in) :: args(:)                !! arguments after 'torques'
       type(torques_config_t), intent(out) :: tc         !! the configuration
       logical, intent(out) :: help                      !! --help was given
       type(error_t), allocatable, intent(out) :: error  !! invalid input
+      character(len=*), intent(in) :: command           !! 'torques' or 'identify'
       character(len=:), allocatable :: config
       logical :: links_given
-      tc = torques_defaults()
+      tc = torques_defaults(command)
       help = .false.
       call scan_help_config(args, help, config, error)
       if (allocated(error) .or. help) return
       if (len(config) > 0) then
-         call fatal_error(error, "unknown option '--config' (dpend torques takes the " &
-                          //'model by its flags; dpend torques --help lists the options)')
+         call fatal_error(error, "unknown option '--config' (dpend "//command//' takes ' &
+                          //'the model by its flags; dpend '//command//' --help lists the ' &
+                          //'options)')
          return
       end if
       call parse_args(args, tc, links_given, error)
       if (allocated(error)) return
       if (len(tc%input) == 0) then
-         call fatal_error(error, 'no data file given (usage: dpend torques DATA.csv ' &
-                          //'[options]; dpend torques --help)')
+         call fatal_error(error, 'no data file given (usage: dpend '//command// &
+                          ' DATA.csv [options]; dpend '//command//' --help)')
          return
       end if
       call check_filter_options(tc, error)
       if (allocated(error)) return
+      if (command == 'identify') then
+         call check_known_parameters(tc, error)
+         if (allocated(error)) return
+      end if
       call register_input(tc%input)   ! the outputs never replace the data file
       call check_output_path(tc%run%output, tc%run%force, error)
       if (allocated(error)) return
@@ -139,6 +192,12 @@ contains
       end if
       call read_data(tc, error)
       if (allocated(error)) return
+      if (command == 'identify' .and. .not. tc%measured%coords_found) then
+         call fatal_error(error, "invalid data file '"//printable(tc%input)//"': no " &
+                          //'measured torques (columns tau1 .. tau'//to_str(tc%angles%n)// &
+                          ' [N m]); dpend identify needs them')
+         return
+      end if
       call build_chain(tc, links_given, error)
       if (allocated(error)) return
       call check_data(tc, error)
@@ -164,7 +223,7 @@ contains
          if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
             if (len(tc%input) > 0) then
                call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
-                                "' (one data file; dpend torques --help)")
+                                "' (one data file; dpend "//tc%command//' --help)')
                return
             end if
             tc%input = args(i)%s
@@ -184,7 +243,11 @@ contains
                                                          max_sigma, 'rad', error, &
                                                          'the noise of the angles')
          case ('--csv')
+            matched = tc%command == 'torques'
             tc%csv = value
+         case ('--friction')
+            matched = tc%command == 'identify'
+            if (matched) call parse_friction(value, tc, error)
          case default
             if (any(run_flags == name) .or. is_model_flag(name)) then
                if (name == '--links') links_given = .true.
@@ -193,11 +256,66 @@ contains
                matched = .false.
             end if
          end select
-         call option_outcome('torques', name, matched, missing, [character(len=16) :: &
-                             '--force'], error, torques_help())
+         if (tc%command == 'identify') then
+            call option_outcome('identify', name, matched, missing, [character(len=16) :: &
+                                '--force'], error, identify_help())
+         else
+            call option_outcome('torques', name, matched, missing, [character(len=16) :: &
+                                '--force'], error, torques_help())
+         end if
          if (allocated(error)) return
       end do
    end subroutine parse_args
+
+   !> --friction: 'viscous,coulomb', 'viscous', 'coulomb' or 'none'.
+   subroutine parse_friction(value, tc, error)
+      character(len=*), intent(in) :: value             !! as given
+      type(torques_config_t), intent(inout) :: tc       !! fit_viscous, fit_coulomb set
+      type(error_t), allocatable, intent(out) :: error  !! none of these
+      select case (value)
+      case ('viscous,coulomb', 'coulomb,viscous')
+         tc%fit_viscous = .true.; tc%fit_coulomb = .true.
+      case ('viscous')
+         tc%fit_viscous = .true.; tc%fit_coulomb = .false.
+      case ('coulomb')
+         tc%fit_viscous = .false.; tc%fit_coulomb = .true.
+      case ('none')
+         tc%fit_viscous = .false.; tc%fit_coulomb = .false.
+      case default
+         call fatal_error(error, "invalid friction: '"//printable(value)//"' (accepted: " &
+                          //'viscous,coulomb, viscous, coulomb, none) [--friction]')
+      end select
+   end subroutine parse_friction
+
+   !> identify estimates the bodies and the frictions it is asked for: a value given
+   !> for one of them would be dropped, so it is refused.
+   subroutine check_known_parameters(tc, error)
+      type(torques_config_t), intent(in) :: tc          !! the configuration
+      type(error_t), allocatable, intent(out) :: error  !! an estimated value given
+      character(len=16), parameter :: keys(3) = [character(len=16) :: 'com', 'inertia', &
+                                                 'body']
+      integer :: i
+      character(len=:), allocatable :: given
+      given = ' '
+      if (allocated(tc%run%given)) given = tc%run%given
+      do i = 1, size(keys)
+         if (index(given, ' '//trim(keys(i))//' ') > 0) then
+            call fatal_error(error, 'invalid '//trim(keys(i))//': dpend identify estimates ' &
+                             //'the bodies (J_i, h_i = m_i d_i); give the masses (--m) for ' &
+                             //'its checks [--'//trim(keys(i))//']')
+            return
+         end if
+      end do
+      if (tc%fit_viscous .and. index(given, ' damping ') > 0) then
+         call fatal_error(error, 'invalid damping: dpend identify estimates the viscous ' &
+                          //'friction c_i (--friction coulomb or none: then --damping ' &
+                          //'gives its known values) [--damping]')
+      else if (tc%fit_coulomb .and. index(given, ' coulomb ') > 0) then
+         call fatal_error(error, 'invalid coulomb: dpend identify estimates the Coulomb ' &
+                          //'friction cf_i (--friction viscous or none: then --coulomb ' &
+                          //'gives its known values) [--coulomb]')
+      end if
+   end subroutine check_known_parameters
 
    !> The degree and the window given, before the data are read.
    subroutine check_filter_options(tc, error)
