@@ -76,6 +76,7 @@ contains
                new_unittest('study', test_study), &
                new_unittest('fit', test_fit), &
                new_unittest('torques', test_torques), &
+               new_unittest('identify', test_identify), &
                new_unittest('animate', test_animate)]
    end subroutine collect_inventory
 
@@ -209,6 +210,17 @@ contains
          variant_t('measured', 'torques data/robot_example.csv --m 1,0.7 --l 0.8,0.6 ' &
                    //'--quiet --output @OUT')])
    end subroutine test_torques
+
+   !> identify: data/robot_example.csv, every friction estimated and none.
+   subroutine test_identify(error)
+      type(error_t), allocatable, intent(out) :: error  !! set on failure
+      call produce_and_check(error, 'identify', [ &
+         variant_t('robot', 'identify data/robot_example.csv --m 1,0.7 --l 0.8,0.6 ' &
+                   //'--coulomb-speed 0.5 --quiet --output @OUT'), &
+         variant_t('friction_known', 'identify data/robot_example.csv --m 1,0.7 --l 0.8,0.6 ' &
+                   //'--friction none --damping 0.02,0.01 --coulomb 0.05,0.03 ' &
+                   //'--coulomb-speed 0.5 --quiet --output @OUT')])
+   end subroutine test_identify
 
    !> animate writes a GIF and no HDF5 file: its data go to gnuplot through transient
    !> text tables written by private procedures. The inventory of `animate` lists no

@@ -7,7 +7,12 @@
 !>   states), tau_measured against the CSV, residual recomputed, and the --csv file
 !>   against the HDF5 datasets;
 !> - the same angles quantised as a 16384-count encoder reads them: the RMS torque
-!>   error against the filter's predicted error (noise and bias combined).
+!>   error against the filter's predicted error (noise and bias combined);
+!> - `dpend identify` of the noise-free run: the base parameters against the rods'
+!>   closed forms (J = m l²/3, h = m l/2, J1 + l1² m2, h1 + l1 m2) and the known
+!>   frictions, the names and units in words, the intervals and standard errors
+!>   recomputed from the covariance and t95, the singular values against the
+!>   condition number, the rows' times against the CSV, sigma_joint from the residual.
 module test_values_torques
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
@@ -29,7 +34,8 @@ contains
    subroutine collect_values_torques(tests)
       type(unittest_t), allocatable, intent(out) :: tests(:)
       tests = [new_unittest('known_torques_every_dataset', test_known), &
-               new_unittest('encoder_error_predicted', test_encoder)]
+               new_unittest('encoder_error_predicted', test_encoder), &
+               new_unittest('identify_every_dataset', test_identify)]
    end subroutine collect_values_torques
 
    subroutine report(text)
@@ -200,5 +206,88 @@ contains
                       'RMS torque error not within [1/4, 2] of the predicted')
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_encoder
+
+   subroutine test_identify(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, names, units
+      type(h5file_t) :: h5
+      real(dp), allocatable :: t(:), q(:, :), qd(:, :), qdd(:, :), f(:, :, :), tau_sim(:, :)
+      real(dp), allocatable :: estimate(:), std_error(:), interval95(:, :), covariance(:, :), &
+                               singular(:), tt(:), residual(:, :), sigma_joint(:), &
+                               physical(:, :), truth(:), phys_truth(:, :)
+      real(dp) :: t95, condition, worst, e_phys
+      integer :: stat, window, i, np
+      dir = scratch_dir('identify')
+      call execute_command_line('mkdir -p '//dir)
+      call make_data(dir, 0, t, q, qd, qdd, f, tau_sim, error)
+      if (allocated(error)) return
+      stat = run_command(dir, 'identify '//dir//'/data.csv --m 1,0.7 --l 0.8,0.6 ' &
+                         //'--coulomb-speed 0.5 --output '//dir//'/i.h5')
+      call check_true(error, stat == 0, 'identify exits 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/i.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/identify/names', names, error)
+      if (.not. allocated(error)) call h5%read('/identify/units', units, error)
+      if (.not. allocated(error)) call h5%read('/identify/estimate', estimate, error)
+      if (.not. allocated(error)) call h5%read('/identify/std_error', std_error, error)
+      if (.not. allocated(error)) call h5%read('/identify/interval95', interval95, error)
+      if (.not. allocated(error)) call h5%read('/identify/covariance', covariance, error)
+      if (.not. allocated(error)) call h5%read('/identify/singular', singular, error)
+      if (.not. allocated(error)) call h5%read('/identify/t', tt, error)
+      if (.not. allocated(error)) call h5%read('/identify/residual', residual, error)
+      if (.not. allocated(error)) call h5%read('/identify/sigma_joint', sigma_joint, error)
+      if (.not. allocated(error)) call h5%read('/identify/physical', physical, error)
+      if (.not. allocated(error)) call h5%readattr('/', 't95', t95, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'condition', condition, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'window', window, error)
+      call h5%close()
+      if (allocated(error)) return
+      call check_true(error, names == 'J1 + 0.64 m2; h1 + 0.8 m2; c1; cf1; J2; h2; c2; cf2' &
+                      .and. units == 'kg m^2; kg m; N m s; N m; kg m^2; kg m; N m s; N m', &
+                      'names and units: '//names//' / '//units)
+      if (allocated(error)) return
+      ! rods: J = m l^2/3, h = m l/2; the frictions of the model
+      truth = [1.0_dp*0.8_dp**2/3 + 0.64_dp*0.7_dp, 1.0_dp*0.4_dp + 0.8_dp*0.7_dp, 0.02_dp, &
+               0.05_dp, 0.7_dp*0.6_dp**2/3, 0.7_dp*0.3_dp, 0.01_dp, 0.03_dp]
+      worst = maxval(abs(estimate - truth)/abs(truth))
+      phys_truth = reshape([0.8_dp**2/3, 0.4_dp, 1.0_dp, 0.02_dp, 0.05_dp, &
+                            0.7_dp*0.6_dp**2/3, 0.21_dp, 0.7_dp, 0.01_dp, 0.03_dp], [5, 2])
+      e_phys = maxval(abs(physical - phys_truth)/phys_truth)
+      call report('identify of the noise-free run (window '//real_str(real(window, dp))// &
+                  ', '//real_str(real(size(tt), dp))//' rows): max rel error of the base '// &
+                  'parameters '//real_str(worst, 2)//', of J, h, c, cf per link with the '// &
+                  'masses given '//real_str(e_phys, 2))
+      call check(error, worst, 0.0_dp, 'estimate against the closed forms', abs=1e-4_dp)
+      if (allocated(error)) return
+      call check(error, e_phys, 0.0_dp, 'physical against the rods', abs=1e-4_dp)
+      if (allocated(error)) return
+      np = size(estimate)
+      call check(error, std_error, [(sqrt(covariance(i, i)), i = 1, np)], &
+                 'std_error = sqrt(diag covariance)', rel=1e-15_dp)
+      if (allocated(error)) return
+      call check(error, interval95(1, :), estimate - t95*std_error, 'interval95 low', &
+                 rel=1e-15_dp)
+      if (allocated(error)) return
+      call check(error, interval95(2, :), estimate + t95*std_error, 'interval95 high', &
+                 rel=1e-15_dp)
+      if (allocated(error)) return
+      call check(error, pack(covariance, .true.), pack(transpose(covariance), .true.), &
+                 'covariance symmetric', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check_true(error, all(singular(1:np - 1) >= singular(2:np)), 'singular sorted')
+      if (allocated(error)) return
+      call check(error, singular(1)/singular(np), condition, 'singular: the condition', &
+                 rel=1e-15_dp)
+      if (allocated(error)) return
+      call check(error, tt, t(window/2 + 1:size(t) - window/2:window), &
+                 't: every window-th CSV time', abs=0.0_dp)
+      if (allocated(error)) return
+      call check(error, sigma_joint, sqrt(sum(residual**2, dim=2)/(size(tt) - &
+                 real(np, dp)/2)), 'sigma_joint from the residual', rel=1e-12_dp)
+      if (allocated(error)) return
+      call check_true(error, maxval(abs(residual)) < 1e-5_dp, 'residual of noise-free ' &
+                      //'data: '//real_str(maxval(abs(residual)), 2))
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_identify
 
 end module test_values_torques

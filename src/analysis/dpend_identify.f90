@@ -69,7 +69,8 @@ module dpend_identify
       real(dp), allocatable :: covariance(:, :)   !! (P, P)
       real(dp), allocatable :: singular(:)        !! of the scaled base regressor
       real(dp) :: condition = 0.0_dp              !! σ_max/σ_min
-      real(dp), allocatable :: sigma_joint(:)     !! residual scatter per joint [N m]
+      !> residual scatter per joint [N m] (the weights 1/σ_i are the first fit's)
+      real(dp), allocatable :: sigma_joint(:)
       real(dp), allocatable :: rms_residual(:)    !! RMS torque residual per joint
       real(dp), allocatable :: residual(:, :)     !! (N, rows) measured − model
       real(dp) :: t95 = 0.0_dp                    !! Student t quantile used
@@ -326,7 +327,7 @@ contains
       allocate (x(np), r(np, np), wt(m), res%residual(n, k), res%sigma_joint(n), &
                 res%rms_residual(n))
       wt = 1.0_dp
-      do pass = 1, 2   ! unweighted, then each joint weighted by 1/σ_i
+      do pass = 1, 2   ! unweighted, then each joint weighted by 1/σ_i of the first
          do i = 1, np
             ws(:, i) = w(:, i)*wt/scale(i)
          end do
@@ -336,12 +337,9 @@ contains
                              //'base regressor is rank deficient)')
             return
          end if
+         if (pass == 2) exit
          res%residual = reshape(b - matmul(w, x/scale), [n, k])
-         do i = 1, n
-            res%sigma_joint(i) = sqrt(sum(res%residual(i, :)**2)/max(k - real(np, dp)/n, &
-                                                                      1.0_dp))
-            if (.not. (res%sigma_joint(i) > 0.0_dp)) res%sigma_joint(i) = 1.0_dp
-         end do
+         call joint_scatter(res%residual, np, res%sigma_joint)
          do j = 1, k
             wt((j - 1)*n + 1:j*n) = 1.0_dp/res%sigma_joint
          end do
@@ -354,6 +352,7 @@ contains
       end if
       res%residual = reshape(b - matmul(w, res%estimate), [n, k])
       res%rms_residual = sqrt(sum(res%residual**2, dim=2)/k)
+      call joint_scatter(res%residual, np, res%sigma_joint)
       s2 = sum((b - matmul(w, res%estimate))**2*wt**2)/max(m - np, 1)
       res%covariance = s2*res%covariance
       do i = 1, np
@@ -412,6 +411,19 @@ contains
       character(len=:), allocatable :: s
       s = label((i - 1)*n_kinds + c)
    end function parameter_label
+
+   !> The residual scatter of each joint, (Σ r_i² / (K − P/N))^(1/2) (1 where 0).
+   pure subroutine joint_scatter(residual, np, sigma)
+      real(dp), intent(in) :: residual(:, :)   !! (N, K)
+      integer, intent(in) :: np                !! parameters estimated
+      real(dp), intent(out) :: sigma(:)        !! (N)
+      integer :: i
+      do i = 1, size(residual, 1)
+         sigma(i) = sqrt(sum(residual(i, :)**2)/max(size(residual, 2) - &
+                                                    real(np, dp)/size(residual, 1), 1.0_dp))
+         if (.not. (sigma(i) > 0.0_dp)) sigma(i) = 1.0_dp
+      end do
+   end subroutine joint_scatter
 
    !> Bias-compensated least squares (errors in the regressor): the filter's errors
    !> δq̇, δq̈ put E[δYᵀ D² δY] = Σ_rows Σ_k (var q̈_k A_kᵀ D² A_k + var q̇_k B_kᵀ D² B_k)

@@ -108,3 +108,36 @@ succeed id-ok-friction        -- "${T[@]}" --damping 0.1,0.2 --coulomb 0.05,0.02
 succeed id-ok-bodies          -- "${T[@]}" --com 0.3,0.4 --inertia 0.02,0.01 --support-amplitude 0.01,0.02 --support-frequency 3
 succeed id-ok-point           -- "${T[@]}" --body point
 succeed id-ok-quiet           -- torques id_ok_tau.csv --output g.h5 --quiet
+
+# ---- dpend identify: the same data checks, the torques required, what it estimates
+motion id_ok_long_rates.csv 400 q qdot tau
+motion id_few_tau.csv 6 q tau
+I=(identify id_ok_long.csv --output g.h5)
+refuse  ident-no-data         'no data file'         -- identify --output g.h5
+refuse  ident-no-torques      'no measured torques'  -- identify id_ok.csv --output g.h5
+refuse  ident-few             'needs at least 7'     -- identify id_few_tau.csv --output g.h5
+refuse  ident-tau-partial     'missing column tau2'  -- identify id_tau_partial.csv --output g.h5
+refuse  ident-positions       'positions'            -- identify id_positions.csv --output g.h5
+refuse  ident-friction-word   'friction'             -- "${I[@]}" --friction dry
+refuse  ident-friction-empty  'friction'             -- "${I[@]}" --friction ''
+refuse  ident-friction-twice  'given twice'          -- "${I[@]}" --friction none --friction viscous
+refuse  ident-damping-fitted  'estimates the viscous' -- "${I[@]}" --damping 0.1,0.1
+refuse  ident-coulomb-fitted  'estimates the Coulomb' -- "${I[@]}" --coulomb 0.1,0.1
+refuse  ident-com             'estimates'            -- "${I[@]}" --com 0.4,0.3
+refuse  ident-inertia         'estimates'            -- "${I[@]}" --inertia 0.1,0.1
+refuse  ident-body            'estimates'            -- "${I[@]}" --body point
+refuse  ident-csv             'unknown option'       -- "${I[@]}" --csv g.csv
+refuse  ident-method          'unknown option'       -- "${I[@]}" --method rk4
+refuse  ident-degree          'outside [2, 8]'       -- "${I[@]}" --degree 0
+refuse  ident-window-even     'even'                 -- "${I[@]}" --window 10
+refuse  ident-links           'angle columns'        -- "${I[@]}" --links 1
+refuse  ident-elastic         'no joints'            -- "${I[@]}" --model elastic
+refuse  ident-output-is-data  'input'                -- identify id_ok_long.csv --output id_ok_long.csv --force
+# a motion that does not excite every direction: 15 samples of slow sines in one
+# window, far too few rows; and a wide window that leaves too few rows
+refuse  ident-too-few-rows    'rows are needed'      -- identify id_ok_tau.csv --output g.h5
+refuse  ident-window-rows     'rows are needed'      -- "${I[@]}" --window 201
+succeed ident-ok              -- "${I[@]}"
+succeed ident-ok-viscous      -- "${I[@]}" --friction viscous --coulomb 0.01,0.02
+succeed ident-ok-none         -- "${I[@]}" --friction none --damping 0.1,0.1 --coulomb 0.01,0.02 --coulomb-speed 0.2
+succeed ident-ok-rates        -- identify id_ok_long_rates.csv --output g.h5 --m 1,0.7 --degree 2
