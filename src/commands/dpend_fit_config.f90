@@ -5,7 +5,7 @@
 module dpend_fit_config
    use dpend_kinds, only: dp, pi
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
+   use dpend_cli, only: arg_t, take_data_file, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, printable
    use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help
    use dpend_namelist, only: read_run_config
@@ -228,13 +228,8 @@ contains
             i = i + 1
             cycle
          end if
-         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            if (len(fc%input) > 0) then
-               call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
-                                "' (one data file; dpend fit --help)")
-               return
-            end if
-            fc%input = args(i)%s
+         if (take_data_file(args(i)%s, fc%input, 'fit', error)) then
+            if (allocated(error)) return
             i = i + 1
             cycle
          end if

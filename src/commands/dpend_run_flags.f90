@@ -79,13 +79,15 @@ contains
    end subroutine apply_run_flag
 
    !> Whether `name` is --model or the flag of a parameter of a model of the catalogue
-   !> (its '_' written '-': --coulomb-speed), which `apply_run_flag` takes.
-   logical function is_model_flag(name)
+   !> (its '_' written '-': --coulomb-speed), which `apply_run_flag` takes; with
+   !> `model`, of that model only.
+   logical function is_model_flag(name, model)
       character(len=*), intent(in) :: name  !! the option
+      character(len=*), intent(in), optional :: model  !! e.g. 'pendulum'
       is_model_flag = name == '--model'
       if (is_model_flag .or. len(name) < 3) return
       if (index(name, '_') > 0) return
-      is_model_flag = is_model_parameter(setting_key(name))
+      is_model_flag = is_model_parameter(setting_key(name), model)
    end function is_model_flag
 
    !> Set the unit of the times given: 's' or 'natural' (`run_config_t%time_unit`).

@@ -7,7 +7,7 @@
 module dpend_torques_config
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, next_option, option_outcome, scan_help_config, parse_real, &
+   use dpend_cli, only: arg_t, take_data_file, next_option, option_outcome, scan_help_config, parse_real, &
                         parse_int, real_str, to_str, printable
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_run_flags, only: apply_run_flag, is_model_flag
@@ -128,6 +128,7 @@ contains
           '  --links, --m, --l, --g, --m1, --m2, --l1, --l2, --coulomb-speed (v_s of'//nl// &
           '  tanh(w/v_s)), --damping and --coulomb (known when not estimated),'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase, --model pendulum'// &
+          nl//'  (--com, --inertia and --body are refused: identify estimates the bodies)'// &
           nl//'  -h, --help        this text'
    end function identify_help
 
@@ -220,13 +221,8 @@ contains
             i = i + 1
             cycle
          end if
-         if (args(i)%s(1:min(2, len(args(i)%s))) /= '--' .and. args(i)%s /= '-o') then
-            if (len(tc%input) > 0) then
-               call fatal_error(error, "unexpected argument '"//printable(args(i)%s)// &
-                                "' (one data file; dpend "//tc%command//' --help)')
-               return
-            end if
-            tc%input = args(i)%s
+         if (take_data_file(args(i)%s, tc%input, tc%command, error)) then
+            if (allocated(error)) return
             i = i + 1
             cycle
          end if
@@ -249,7 +245,7 @@ contains
             matched = tc%command == 'identify'
             if (matched) call parse_friction(value, tc, error)
          case default
-            if (any(run_flags == name) .or. is_model_flag(name)) then
+            if (any(run_flags == name) .or. is_model_flag(name, default_model)) then
                if (name == '--links') links_given = .true.
                call apply_run_flag(tc%run, name, value, matched, error)
             else

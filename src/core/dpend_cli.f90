@@ -13,7 +13,7 @@ module dpend_cli
    implicit none
    private
    public :: arg_t, get_arguments, environment, next_option, parse_real, parse_int
-   public :: parse_logical
+   public :: parse_logical, take_data_file
    public :: check_repeated_options, help_options, unknown_option_text
    public :: real_str, seconds_str, to_str, scan_help_config, option_outcome, is_long_option
    public :: overflows_real, to_lower, printable, pad, quoted
@@ -316,4 +316,21 @@ contains
          end if
       end do
    end subroutine scan_help_config
+   !> Whether `arg` is a positional argument (not an option, not -o): then it is the
+   !> command's one data file, stored in `input` ('' before); a second is refused.
+   logical function take_data_file(arg, input, command, error) result(taken)
+      character(len=*), intent(in) :: arg                 !! the argument
+      character(len=:), allocatable, intent(inout) :: input  !! the data file so far
+      character(len=*), intent(in) :: command             !! e.g. 'fit'
+      type(error_t), allocatable, intent(out) :: error    !! a second data file
+      taken = arg(1:min(2, len(arg))) /= '--' .and. arg /= '-o'
+      if (.not. taken) return
+      if (len(input) > 0) then
+         call fatal_error(error, "unexpected argument '"//printable(arg)// &
+                          "' (one data file; dpend "//command//' --help)')
+         return
+      end if
+      input = arg
+   end function take_data_file
+
 end module dpend_cli

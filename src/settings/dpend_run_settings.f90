@@ -512,13 +512,18 @@ contains
    end function model_names
 
    !> Whether `name` is a parameter of any model of the catalogue (a flag --NAME).
-   logical function is_model_parameter(name)
+   logical function is_model_parameter(name, model)
       character(len=*), intent(in) :: name  !! parameter name
+      !> only this model's parameters (default: any model of the catalogue)
+      character(len=*), intent(in), optional :: model
       type(model_info_t), allocatable :: models(:)
       integer :: k, i
       models = model_catalogue()
       is_model_parameter = .false.
       do k = 1, size(models)
+         if (present(model)) then
+            if (models(k)%name /= model) cycle
+         end if
          do i = 1, size(models(k)%params)
             if (models(k)%params(i)%name == name) is_model_parameter = .true.
          end do

@@ -27,9 +27,10 @@ mapfile -t candidates < <(
 
 checked=0
 for cmd in simulate lyapunov indicators divergence poincare sweep study fit animate export \
-           sweep-compare methods models; do
+           sweep-compare methods models torques identify; do
   case $cmd in
-    fit) input=("$ROOT/data/fit_example.csv") ;;
+    fit|torques) input=("$ROOT/data/fit_example.csv") ;;
+    identify) input=("$ROOT/data/robot_example.csv") ;;
     animate|export) input=(s.h5) ;;
     sweep-compare) input=(w.h5 w.h5) ;;
     *) input=() ;;

@@ -55,6 +55,8 @@ summary agreement  sweep-compare m.h5 m2.h5 --agreement --output @_agree.h5
 summary fit        fit "$ROOT/data/fit_example.csv" --fit-damping --output @_fit.h5
 summary study      study --quick --no-figures --methods rk4,verlet --output @_study.h5
 summary sweep-point sweep --n 4 --t-end 2 --body point --output @_swp.h5
+summary torques    torques "$ROOT/data/fit_example.csv" --output @_tq.h5 --csv @_tq.csv
+summary identify   identify "$ROOT/data/robot_example.csv" --m 1,0.7 --l 0.8,0.6 --output @_id.h5
 if command -v gnuplot > /dev/null 2>&1; then
   summary animate  animate s.h5 --output @_anim.gif --size 64x64 --fps 5
   # the figures' script says nothing with --quiet: the study's line is the last
