@@ -46,7 +46,8 @@ contains
                new_unittest('positions_file', test_positions), &
                new_unittest('tip_only', test_tip_only), &
                new_unittest('wrong_body_stops', test_wrong_body), &
-               new_unittest('answers_in_data_convention', test_data_convention)]
+               new_unittest('answers_in_data_convention', test_data_convention), &
+               new_unittest('relative_angles_round_trip', test_relative_round_trip)]
    end subroutine collect_values_fit
 
    !> data/fit_example.csv (two links, damping 0.05, 0.03 N m s known, the state
@@ -428,6 +429,96 @@ contains
    !> fit_example.csv converted): the fit answers in q radians as always, and also in
    !> the data's convention, theta_i(t1) = (q_i + pi/2) 180/pi deg with its standard
    !> error scaled alike (report and /fit attribute estimate_in_data_convention).
+   !> The robotics convention: `dpend export --angles relative` of a simulate run
+   !> (phi1 = q1 + pi/2, phi2 = q2 - q1), read back by `dpend fit` (phi columns) and
+   !> exported again (`--angles relative` of /fit/q_data): the angle columns are the
+   !> same text, bit for bit; the fit of the phi file estimates what the fit of the
+   !> same run's q columns does (within 0.05 standard errors: the two series differ in
+   !> the last bit, the fits stop by their own rule); and the relative columns against
+   !> the closed form of the conversion.
+   subroutine test_relative_round_trip(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, first, again
+      real(dp), allocatable :: rows_rel(:, :), rows_abs(:, :), est_rel(:), est_abs(:), &
+                               se(:)
+      type(h5file_t) :: h5
+      integer :: stat, n1, n2, k
+      real(dp) :: worst
+      dir = scratch_dir('relative')
+      call execute_command_line('mkdir -p '//dir)
+      stat = run_command(dir, 'simulate --theta1 1.8 --theta2 2.4 --damping 0.05,0.03 ' &
+                         //'--method dop853 --rtol 1e-12 --atol 1e-14 --t-end 3 ' &
+                         //'--output-dt 0.02 --output '//dir//'/s.h5')
+      if (stat == 0) stat = export_to(dir//'/s.h5 --angles relative --csv t q', 'rel.csv')
+      if (stat == 0) stat = export_to(dir//'/s.h5 --csv t q', 'abs.csv')
+      if (stat == 0) stat = run_command(dir, 'fit '//dir//'/rel.csv --damping 0.05,0.03 ' &
+                                        //'--output '//dir//'/fr.h5')
+      if (stat == 0) stat = run_command(dir, 'fit '//dir//'/abs.csv --damping 0.05,0.03 ' &
+                                        //'--output '//dir//'/fa.h5')
+      if (stat == 0) stat = export_to(dir//'/fr.h5 --angles relative --csv t q_data', &
+                                      'back.csv')
+      call check_true(error, stat == 0, 'the commands of the round trip exit 0')
+      if (allocated(error)) return
+      first = columns_after_t(dir//'/rel.csv')
+      again = columns_after_t(dir//'/back.csv')
+      call check_true(error, first == again .and. len(first) > 1000, 'the angle columns ' &
+                      //'of export -> fit -> export differ (or are empty)')
+      if (allocated(error)) return
+      ! the conversion against its closed form
+      call read_csv(dir//'/rel.csv', 3, rows_rel, error)
+      if (.not. allocated(error)) call read_csv(dir//'/abs.csv', 3, rows_abs, error)
+      if (allocated(error)) return
+      worst = 0.0_dp
+      do k = 1, size(rows_rel, 2)
+         worst = max(worst, abs(rows_rel(2, k) - (rows_abs(2, k) + pi/2)), &
+                     abs(rows_rel(3, k) - (rows_abs(3, k) - rows_abs(2, k))))
+      end do
+      call h5%open(dir//'/fr.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', est_rel, error)
+      if (.not. allocated(error)) call h5%read('/fit/standard_error', se, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/fa.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', est_abs, error)
+      call h5%close()
+      if (allocated(error)) return
+      n1 = len(first)
+      n2 = size(rows_rel, 2)
+      write (output_unit, '(a, i0, a, i0, a, es9.2, a, es9.2)') '    values_fit: relative ' &
+         //'angles: ', n2, ' rows (', n1, ' characters) identical after export -> fit -> ' &
+         //'export; phi against q + pi/2, q2 - q1: ', worst, '; fit of phi vs q: max ' &
+         //'|difference| / standard error ', maxval(abs(est_rel - est_abs)/se)
+      call check(error, worst, 0.0_dp, 'phi from q', abs=4e-16_dp)
+      if (allocated(error)) return
+      call check(error, maxval(abs(est_rel - est_abs)/se), 0.0_dp, 'fit of phi vs of q', &
+                 abs=0.05_dp)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   contains
+      !> `dpend export ARGS` with its standard output kept as dir/NAME.
+      integer function export_to(args, name) result(st)
+         character(len=*), intent(in) :: args, name
+         st = run_command(dir, 'export '//args)
+         if (st == 0) call execute_command_line('cp '//dir//'/stdout '//dir//'/'//name, &
+                                                exitstat=st)
+      end function export_to
+      !> Every line's text after its first comma (the header's names left out).
+      function columns_after_t(path) result(text)
+         character(len=*), intent(in) :: path
+         character(len=:), allocatable :: text
+         character(len=512) :: line
+         integer :: unit, st
+         text = ''
+         open (newunit=unit, file=path, status='old', action='read', iostat=st)
+         if (st /= 0) return
+         read (unit, '(a)', iostat=st) line   ! the header
+         do
+            read (unit, '(a)', iostat=st) line
+            if (st /= 0) exit
+            text = text//trim(line(index(line, ',') + 1:))//';'
+         end do
+         close (unit)
+      end function columns_after_t
+   end subroutine test_relative_round_trip
+
    subroutine test_data_convention(error)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: dir, text, attr, want

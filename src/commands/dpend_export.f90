@@ -15,6 +15,7 @@ module dpend_export
    use dpend_resources, only: check_memory
    use dpend_cli, only: to_str
    use dpend_strings, only: printable, replace_char
+   use dpend_angle_convention, only: to_relative, to_absolute, rates_to_relative, rates_to_absolute
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -41,18 +42,22 @@ contains
    !> The table's size is bounded before anything is read (`max_export_values`
    !> values, in the available memory), and every line is built in one buffer of
    !> its final length, so the time is linear in the number of values.
-   subroutine export_columns(filename, names, unit, error, csv)
+   subroutine export_columns(filename, names, unit, error, csv, angles)
       character(len=*), intent(in) :: filename          !! HDF5 file
       character(len=*), intent(in) :: names(:)          !! dataset paths or relative names
       integer, intent(in) :: unit                       !! output unit
       type(error_t), allocatable, intent(out) :: error  !! unreadable or mismatched
       logical, intent(in), optional :: csv              !! CSV with a header line
+      !> the link angles in this convention, 'relative' or 'absolute' (absent or '':
+      !> as stored); the datasets say theirs (attribute `angles`)
+      character(len=*), intent(in), optional :: angles
       type(h5file_t) :: h5
       real(dp), allocatable :: table(:, :)
       character(len=:), allocatable :: paths(:)
       type(text_buffer_t) :: header
       real(dp) :: cols, largest
       integer :: j, n
+      integer, allocatable :: plan(:)
       logical :: as_csv
       as_csv = .false.
       if (present(csv)) as_csv = csv
@@ -88,8 +93,13 @@ contains
          return
       end if
       allocate (table(nint(cols), max(n, 0)))
-      if (as_csv) call csv_headers(h5, filename, paths, header, error)
-      if (.not. allocated(error)) call read_table(h5, paths, table, error)
+      if (present(angles)) then
+         if (len(angles) > 0) call angle_plan(h5, filename, paths, angles, plan, error)
+      end if
+      if (.not. allocated(plan)) allocate (plan(size(paths)), source=0)
+      if (as_csv .and. .not. allocated(error)) &
+         call csv_headers(h5, filename, paths, header, error, plan)
+      if (.not. allocated(error)) call read_table(h5, paths, table, error, plan)
       call h5%close()
       if (allocated(error)) return
       if (as_csv) then
@@ -283,12 +293,13 @@ contains
    end subroutine table_shape
 
    !> The CSV header line of the datasets `paths` (`csv_header` for each).
-   subroutine csv_headers(h5, filename, paths, header, error)
+   subroutine csv_headers(h5, filename, paths, header, error, plan)
       type(h5file_t), intent(inout) :: h5               !! open file
       character(len=*), intent(in) :: filename          !! its name, for messages
       character(len=*), intent(in) :: paths(:)          !! dataset paths
       type(text_buffer_t), intent(inout) :: header      !! the header line
       type(error_t), allocatable, intent(out) :: error  !! an attribute refused
+      integer, intent(in) :: plan(:)                    !! the angle conversions (angle_plan)
       integer, allocatable :: dims(:)
       integer :: i
       do i = 1, size(paths)
@@ -298,6 +309,10 @@ contains
          if (size(dims) == 3) then
             call csv_header(h5, filename, trim(paths(i)), dims(1)*dims(2), header, error, &
                             dims(1))
+         else if (plan(i) /= 0) then
+            call csv_header(h5, filename, trim(paths(i)), merge(dims(1), 0, &
+                            size(dims) == 2), header, error, &
+                            label=converted_name(trim(paths(i)), plan(i)))
          else
             call csv_header(h5, filename, trim(paths(i)), merge(dims(1), 0, &
                             size(dims) == 2), header, error)
@@ -306,13 +321,68 @@ contains
       end do
    end subroutine csv_headers
 
+   !> The conversion of each dataset to the angle convention asked for: 0 none, 1 to
+   !> relative angles, 2 to relative rates, 3 to absolute angles, 4 to absolute rates
+   !> (dpend_angle_convention), from the dataset's attribute `angles` ('absolute',
+   !> 'absolute rates', 'relative', 'relative rates'). Refused when no dataset holds
+   !> link angles (the option would do nothing).
+   subroutine angle_plan(h5, filename, paths, angles, plan, error)
+      type(h5file_t), intent(inout) :: h5               !! open file
+      character(len=*), intent(in) :: filename          !! its name, for messages
+      character(len=*), intent(in) :: paths(:)          !! dataset paths
+      character(len=*), intent(in) :: angles            !! 'relative' or 'absolute'
+      integer, allocatable, intent(out) :: plan(:)      !! per dataset
+      type(error_t), allocatable, intent(out) :: error  !! no link angles
+      character(len=:), allocatable :: conv
+      integer :: i
+      logical :: any_angles
+      allocate (plan(size(paths)), source=0)
+      any_angles = .false.
+      do i = 1, size(paths)
+         if (.not. h5%attr_exists(trim(paths(i)), 'angles')) cycle
+         call h5%readattr(trim(paths(i)), 'angles', conv, error)
+         if (allocated(error)) return
+         any_angles = .true.
+         select case (angles//' '//conv)
+         case ('relative absolute'); plan(i) = 1
+         case ('relative absolute rates'); plan(i) = 2
+         case ('absolute relative'); plan(i) = 3
+         case ('absolute relative rates'); plan(i) = 4
+         end select
+      end do
+      if (.not. any_angles) call fatal_error(error, "invalid angles: none of the datasets " &
+         //"of '"//printable(filename)//"' asked for holds link angles (their attribute " &
+         //"'angles'), so --angles "//angles//' would change nothing')
+   end subroutine angle_plan
+
+   !> The name of a converted dataset's columns: q → phi, qdot → phidot, qddot →
+   !> phiddot; other names get '_rel' (to relative) or '_abs' (to absolute).
+   pure function converted_name(path, how) result(name)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: how
+      character(len=:), allocatable :: name
+      name = path(index(path, '/', back=.true.) + 1:)
+      if (how <= 2) then
+         select case (name)
+         case ('q'); name = 'phi'
+         case ('qdot'); name = 'phidot'
+         case ('qddot'); name = 'phiddot'
+         case default; name = name//'_rel'
+         end select
+      else
+         name = name//'_abs'
+      end if
+   end function converted_name
+
    !> Read the datasets `paths` into the columns of `table` (its shape from
    !> `table_shape`), each dataset's columns after the previous one's.
-   subroutine read_table(h5, paths, table, error)
+   subroutine read_table(h5, paths, table, error, plan)
       type(h5file_t), intent(inout) :: h5               !! open file
       character(len=*), intent(in) :: paths(:)          !! dataset paths
       real(dp), intent(inout) :: table(:, :)            !! (columns, rows)
       type(error_t), allocatable, intent(out) :: error  !! a read failed
+      !> the angle conversion of each dataset (`angle_plan`; absent: none)
+      integer, intent(in), optional :: plan(:)
       real(dp), allocatable :: v1(:), v2(:, :), v3(:, :, :)
       integer, allocatable :: dims(:)
       integer :: i, col
@@ -328,6 +398,14 @@ contains
          else if (size(dims) == 2) then
             call h5%read(trim(paths(i)), v2, error)
             if (allocated(error)) exit
+            if (present(plan)) then
+               select case (plan(i))
+               case (1); v2 = to_relative(v2)
+               case (2); v2 = rates_to_relative(v2)
+               case (3); v2 = to_absolute(v2)
+               case (4); v2 = rates_to_absolute(v2)
+               end select
+            end if
             table(col + 1:col + dims(1), :) = v2
             col = col + dims(1)
          else
@@ -398,7 +476,7 @@ contains
    !> for 4 columns: rad, rad, rad/s, rad/s) are spread over them; other commas
    !> become ';'. A dataset without units gets no brackets; a `units` attribute
    !> that is not one string is refused.
-   subroutine csv_header(h5, filename, path, k, header, error, inner)
+   subroutine csv_header(h5, filename, path, k, header, error, inner, label)
       type(h5file_t), intent(inout) :: h5   !! open file
       character(len=*), intent(in) :: filename  !! its name, for messages
       character(len=*), intent(in) :: path  !! dataset path
@@ -408,12 +486,15 @@ contains
       !> For a 3-D dataset (samples, N, inner): columns NAME_i_x, NAME_i_y (inner = 2)
       !> or NAME_i_j, i = 1 … N.
       integer, intent(in), optional :: inner
+      !> the columns' name instead of the dataset's (converted angles: phi1, phi2)
+      character(len=*), intent(in), optional :: label
       character(len=:), allocatable :: name, units, unit_j
       character(len=64), allocatable :: parts(:)
       character(len=max_coordinate_len), allocatable :: coords(:)
       logical :: vector
       integer :: j, m, pos
       name = path(index(path, '/', back=.true.) + 1:)
+      if (present(label)) name = label
       units = ''
       if (h5%attr_exists(path, 'units')) call h5%readattr(path, 'units', units, error)
       if (allocated(error)) return
@@ -438,7 +519,7 @@ contains
          return
       end if
       vector = .false.
-      if (.not. present(inner)) then
+      if (.not. present(inner) .and. .not. present(label)) then
          call column_scheme(h5, filename, path, name, k, vector, coords, error)
          if (allocated(error)) return
       end if

@@ -6,7 +6,8 @@ module dpend_export_command
    use, intrinsic :: iso_fortran_env, only: output_unit
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, is_long_option, parse_real, real_str, unknown_option_text
+   use dpend_cli, only: arg_t, is_long_option, parse_real, real_str, unknown_option_text, &
+                        printable
    use dpend_export, only: export_columns, export_matrix, export_list
    use dpend_command_common, only: take_quiet, data_quiet, refusal_line
    implicit none
@@ -30,6 +31,11 @@ contains
           '  --csv     comma-separated, after a header line of names and units'//nl// &
           '            ("t [s],q1 [rad],q2 [rad]"; numpy.genfromtxt(names=True) and'//nl// &
           '            pandas.read_csv read it as written)'//nl// &
+          '  --angles relative|absolute  the link angles (and their rates) in this'//nl// &
+          '            convention: relative (robotics: phi_1 from the hanging position,'//nl// &
+          '            phi_i of link i against link i-1; columns phi1.., phidot1..) or'//nl// &
+          '            absolute (from the horizontal x axis); default: as stored (each'//nl// &
+          "            dataset's attribute 'angles' says which); other datasets as stored"//nl// &
           '  --list    the datasets of the file: path, shape (h5py order), units'//nl// &
           "            ('1': dimensionless) and description"//nl// &
           '  --matrix  a 2-D dataset (ny, nx) as a gnuplot nonuniform matrix, with'//nl// &
@@ -47,20 +53,24 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! the refusal
       type(arg_t), allocatable :: rest(:), pos(:)
       logical :: matrix, csv, list
+      character(len=:), allocatable :: angles
       integer :: i
       call take_quiet(args, rest)
       if (any([(rest(i)%s == '--help' .or. rest(i)%s == '-h', i=1, size(rest))])) then
          write (output_unit, '(a)') export_help()
          return
       end if
-      call parse_export(rest, pos, matrix, csv, list, error)
+      call parse_export(rest, pos, matrix, csv, list, angles, error)
       if (.not. allocated(error)) then
-         if (list) then
+         if (len(angles) > 0 .and. (list .or. matrix)) then
+            call fatal_error(error, '--angles applies to columns and CSV (not with --list ' &
+                             //'or --matrix)')
+         else if (list) then
             call print_list(pos, error)
          else if (matrix) then
             call print_matrix(pos, error)
          else
-            call print_columns(pos, csv, error)
+            call print_columns(pos, csv, angles, error)
          end if
       end if
       if (allocated(error)) call refusal_line(error, 'export')
@@ -68,18 +78,39 @@ contains
 
    !> The options of `dpend export` (anywhere; without --help and --quiet) and its
    !> positional arguments (the file, then the datasets and numbers).
-   subroutine parse_export(args, pos, matrix, csv, list, error)
+   subroutine parse_export(args, pos, matrix, csv, list, angles, error)
       type(arg_t), intent(in) :: args(:)                 !! the arguments after `export`
       type(arg_t), allocatable, intent(out) :: pos(:)    !! the positional arguments
       logical, intent(out) :: matrix, csv, list          !! --matrix, --csv, --list
+      character(len=:), allocatable, intent(out) :: angles  !! --angles ('' not given)
       type(error_t), allocatable, intent(out) :: error   !! invalid input
       integer :: i
+      logical :: value_next
       matrix = .false.
       csv = .false.
       list = .false.
+      angles = ''
+      value_next = .false.
       allocate (pos(0))
       do i = 1, size(args)
-         if (args(i)%s == '--matrix') then
+         if (value_next) then
+            value_next = .false.
+            if (args(i)%s /= 'relative' .and. args(i)%s /= 'absolute') then
+               call fatal_error(error, "invalid angles: '"//printable(args(i)%s)// &
+                                "' (accepted: relative, absolute) [--angles]")
+               return
+            end if
+            angles = args(i)%s
+            cycle
+         end if
+         if (args(i)%s == '--angles') then
+            if (len(angles) > 0) then
+               call fatal_error(error, 'option --angles given twice')
+               return
+            end if
+            value_next = .true.
+            if (i == size(args)) call fatal_error(error, 'option --angles needs a value')
+         else if (args(i)%s == '--matrix') then
             matrix = .true.
          else if (args(i)%s == '--csv') then
             csv = .true.
@@ -93,7 +124,7 @@ contains
             call fatal_error(error, 'option --list takes no value')
          else if (is_long_option(args(i)%s)) then
             call fatal_error(error, unknown_option_text('export', args(i)%s, &
-                                                        '--matrix --csv --list --help'))
+                                                        '--matrix --csv --list --angles --help'))
          else
             pos = [pos, args(i)]
          end if
@@ -142,9 +173,10 @@ contains
    end subroutine print_matrix
 
    !> `FILE [--csv] DATASET...`: datasets as columns (CSV with a header line).
-   subroutine print_columns(pos, csv, error)
+   subroutine print_columns(pos, csv, angles, error)
       type(arg_t), intent(in) :: pos(:)                  !! the positional arguments
       logical, intent(in) :: csv                         !! --csv
+      character(len=*), intent(in) :: angles             !! --angles ('' as stored)
       type(error_t), allocatable, intent(out) :: error   !! refused or unreadable
       character(len=:), allocatable :: paths(:)
       integer :: i, n, width
@@ -161,7 +193,7 @@ contains
       do i = 2, n
          paths(i - 1) = pos(i)%s
       end do
-      call export_columns(pos(1)%s, paths, output_unit, error, csv)
+      call export_columns(pos(1)%s, paths, output_unit, error, csv, angles)
    end subroutine print_columns
 
    !> The refusal of a command line without a file and a dataset.

@@ -501,12 +501,24 @@ contains
                        //'of the fitted model at the sample times')
          call h5%write('/fit/residual', res%resid, units='m', description='data minus ' &
                        //'model ('//xy_names(fc%series%points)//')')
+      else if (fc%series%relative) then   ! the data as read: the round trip is exact
+         call h5%write('/fit/q_data', fc%series%raw, units='rad', description='measured ' &
+                       //'relative angles phi_i as read (phi_1 from the hanging position, ' &
+                       //'phi_i of link i against link i - 1)')
+         call h5%writeattr('/fit/q_data', 'angles', 'relative')
+         call h5%write('/fit/q_model', res%q_model, units='rad', description='angles of ' &
+                       //'the fitted model at the sample times, from the horizontal x axis')
+         call h5%writeattr('/fit/q_model', 'angles', 'absolute')
+         call h5%write('/fit/residual', res%resid, units='rad', description='data minus ' &
+                       //'model in absolute angles, wrapped to [-pi, pi)')
       else
          call h5%write('/fit/q_data', fc%series%q, units='rad', description='measured ' &
                        //'angles q_i from the horizontal x axis (theta - pi/2 for theta ' &
                        //'columns)')
+         call h5%writeattr('/fit/q_data', 'angles', 'absolute')
          call h5%write('/fit/q_model', res%q_model, units='rad', description='angles of ' &
                        //'the fitted model at the sample times')
+         call h5%writeattr('/fit/q_model', 'angles', 'absolute')
          call h5%write('/fit/residual', res%resid, units='rad', description='data minus ' &
                        //'model, wrapped to [-pi, pi)')
       end if
@@ -569,8 +581,12 @@ contains
          if (allocated(res%mirror)) call h5%writeattr('/fit', 'mirror', res%mirror)
       else
          call h5%writeattr('/fit', 'observations', 'angles')
-         call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &
-                           fc%series%theta)))
+         if (fc%series%relative) then
+            call h5%writeattr('/fit', 'angle_columns', 'phi')
+         else
+            call h5%writeattr('/fit', 'angle_columns', trim(merge('theta', 'q    ', &
+                              fc%series%theta)))
+         end if
          if (fc%series%theta .or. fc%series%degrees) &
             call h5%writeattr('/fit', 'estimate_in_data_convention', data_convention(fc, res))
       end if

@@ -10,6 +10,7 @@ module dpend_simulate
    use dpend_namelist, only: read_run_config
    use dpend_run_flags, only: apply_run_flag, run_flags_help
    use dpend_model, only: model_t, max_dof
+   use dpend_model_factory, only: default_model
    use dpend_work, only: needs_work, work_model, split_work, is_work_model, augmented_state, &
                          work_slots, n_works
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -487,6 +488,11 @@ contains
                        description=model%coordinates_text(1))
          call h5%write('/trajectory/qddot', qdd, units=acc_units, &
                        description=model%coordinates_text(2))
+         if (cfg%spec%model_name() == default_model) then   ! link angles: their convention
+            call h5%writeattr('/trajectory/q', 'angles', 'absolute')
+            call h5%writeattr('/trajectory/qdot', 'angles', 'absolute rates')
+            call h5%writeattr('/trajectory/qddot', 'angles', 'absolute rates')
+         end if
          if (canonical) call h5%write('/trajectory/p', p, units=p_units, &
             description='canonical momenta p = M(q) qdot (p1 .. p'//to_str(nd)//')')
          call h5%writeattr('/', 'coordinates', cols)

@@ -240,6 +240,9 @@ contains
                                                               tc%rates%coords_found)))
       call h5%write('/torques/qddot', res%qdd, units='rad/s^2', description='angular ' &
                     //'accelerations of the filter')
+      call h5%writeattr('/torques/q', 'angles', 'absolute')
+      call h5%writeattr('/torques/qdot', 'angles', 'absolute rates')
+      call h5%writeattr('/torques/qddot', 'angles', 'absolute rates')
       call h5%write('/torques/tau', res%tau, units='N m', description='joint torques ' &
                     //'tau_1 .. tau_N the motion requires (Newton-Euler): joint i''s motor ' &
                     //'on link i, its reaction on link i - 1')

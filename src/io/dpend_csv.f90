@@ -14,9 +14,12 @@
 !>   the quotes are removed, "" inside stands for one quote, and a separator inside
 !>   quotes belongs to the field;
 !> - the column `t` (s) and the angles of links 1 … N, either `theta1 … thetaN` (from
-!>   the hanging position, counter-clockwise, as --theta1: q = θ − π/2) or `q1 … qN`
+!>   the hanging position, counter-clockwise, as --theta1: q = θ − π/2), `q1 … qN`
 !>   (the project's angles from the horizontal x axis, as `dpend export --csv`
-!>   writes them); N is the number of angle columns. Columns with other names are
+!>   writes them) or `phi1 … phiN` (robotics: relative to the previous link, zero
+!>   hanging down, as `dpend export --angles relative` writes them; converted by
+!>   dpend_angle_convention, the values as read kept in `raw`); N is the number of
+!>   angle columns. Columns with other names are
 !>   allowed and ignored (e.g. qdot1);
 !> - or, without angle columns, the positions of the far ends of the links (joint i + 1,
 !>   the tip for i = N) in the project's frame (origin at the pin A, x to the right, y
@@ -35,6 +38,7 @@ module dpend_csv
    use dpend_parse, only: read_real, quote_text => quoted
    use dpend_model, only: max_dof
    use dpend_limits, only: max_time
+   use dpend_angle_convention, only: to_absolute
    use dpend_os, only: path_kind, path_missing, path_file, path_directory
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
@@ -68,6 +72,10 @@ module dpend_csv
       integer, allocatable :: points(:)
       integer, allocatable :: line(:)     !! line number of each row in the file (k)
       logical :: theta = .false.          !! the file gave θ (from hanging), not q
+      !> the file gave the relative angles φ1 … φN (robotics: link 1 from hanging,
+      !> link i against link i − 1): q holds them converted, `raw` as read [rad]
+      logical :: relative = .false.
+      real(dp), allocatable :: raw(:, :)
       character(len=1) :: separator = ',' !! field separator: ',', ';' or a tab
       logical :: bom = .false.            !! a UTF-8 byte order mark was removed
       logical :: quoted = .false.         !! some header names were quoted
@@ -241,6 +249,10 @@ contains
       call move_alloc(tt, series%t)
       qq = series%q(:series%n_obs, :series%k)
       call move_alloc(qq, series%q)
+      if (series%relative) then   ! as read, and as the absolute angles q
+         series%raw = series%q
+         series%q = to_absolute(series%raw)
+      end if
       ll = series%line(:series%k)
       call move_alloc(ll, series%line)
    end subroutine parse_series
@@ -363,7 +375,8 @@ contains
             kind = 'model'
          else if (allocated(series%coord_names)) then
             continue   ! theta and q columns name the pendulum's angles only
-         else if (angle_name(name, 'theta') .or. angle_name(name, 'q')) then
+         else if (angle_name(name, 'theta') .or. angle_name(name, 'q') .or. &
+                  angle_name(name, 'phi')) then
             call angle_column(name, unit, col, pre, kind, col_q, scale, error)
             if (allocated(error)) return
             if (unit == '[deg]') series%degrees = .true.
@@ -410,8 +423,9 @@ contains
       end if
       if (series%n == 0) then
          call fatal_error(error, pre//'no angle columns (theta1, theta2, ... from the ' &
-                          //'hanging position or q1, q2, ... from the horizontal, in rad) ' &
-                          //'and no positions (x1,y1, ...)')
+                          //'hanging position, q1, q2, ... from the horizontal, or phi1, ' &
+                          //'phi2, ... relative to the previous link, in rad) and no ' &
+                          //'positions (x1,y1, ...)')
          return
       end if
       series%n_obs = series%n
@@ -424,6 +438,7 @@ contains
          end if
       end do
       series%theta = kind == 'theta'
+      series%relative = kind == 'phi'
       if (series%theta) offset(:series%n) = -half_pi
    end subroutine parse_header
 
@@ -458,13 +473,15 @@ contains
       integer :: idx
       if (angle_name(name, 'theta')) then
          this = 'theta'
+      else if (angle_name(name, 'phi')) then
+         this = 'phi'
       else
          this = 'q'
       end if
       if (len(kind) == 0) kind = this
       if (this /= kind) then
-         call fatal_error(error, pre//"column '"//name//"' mixes theta and q " &
-                          //'columns (give all angles one way)')
+         call fatal_error(error, pre//"column '"//name//"' mixes "//kind//' and '//this// &
+                          ' columns (give all angles one way: theta, phi or q)')
          return
       end if
       call link_index(name, len(this) + 1, pre, idx, error)
