@@ -141,3 +141,27 @@ succeed ident-ok              -- "${I[@]}"
 succeed ident-ok-viscous      -- "${I[@]}" --friction viscous --coulomb 0.01,0.02
 succeed ident-ok-none         -- "${I[@]}" --friction none --damping 0.1,0.1 --coulomb 0.01,0.02 --coulomb-speed 0.2
 succeed ident-ok-rates        -- identify id_ok_long_rates.csv --output g.h5 --m 1,0.7 --degree 2
+
+# ---- the robotics convention: phi columns (relative angles) and export --angles
+fx ang_phi.csv         't,phi1,phi2\n0,0.3,0.2\n0.02,0.31,0.19\n0.04,0.32,0.18\n0.06,0.33,0.17\n0.08,0.34,0.16\n0.1,0.35,0.15\n0.12,0.36,0.14\n0.14,0.37,0.13\n'
+fx ang_mixed.csv       't,phi1,q2\n0,0.3,0.2\n0.02,0.31,0.19\n'
+fx ang_phi_gap.csv     't,phi1,phi2\n0,0.3,0.2\n0.02,,0.19\n'
+fx ang_phi_unit.csv    't,phi1 [m],phi2\n0,0.3,0.2\n0.02,0.31,0.19\n'
+fx ang_phi_missing.csv 't,phi1,phi3\n0,0.3,0.2\n0.02,0.31,0.19\n'
+"$DPEND" simulate --t-end 0.2 --output "$FIXTURES/ang_sim.h5" --quiet > /dev/null 2>&1 || true
+"$DPEND" simulate --model elastic --q 1.2,-1 --t-end 0.2 --output "$FIXTURES/ang_el.h5" --quiet > /dev/null 2>&1 || true
+refuse  ang-mixed             'mixes phi and q'      -- fit ang_mixed.csv --output g.h5
+refuse  ang-gap               'line 3'               -- fit ang_phi_gap.csv --output g.h5
+refuse  ang-unit              "unit '[m]'"           -- fit ang_phi_unit.csv --output g.h5
+refuse  ang-missing           'missing column phi2'  -- torques ang_phi_missing.csv --output g.h5
+refuse  ang-export-value      "invalid angles: 'up'" -- export ang_sim.h5 --angles up t q
+refuse  ang-export-no-value   'needs a value'        -- export ang_sim.h5 t q --angles
+refuse  ang-export-twice      'given twice'          -- export ang_sim.h5 --angles relative --angles absolute t q
+refuse  ang-export-none       'none of the datasets' -- export ang_sim.h5 --angles relative t energy
+refuse  ang-export-elastic    'none of the datasets' -- export ang_el.h5 --angles relative t q
+refuse  ang-export-list       'not with --list or --matrix' -- export ang_sim.h5 --angles relative --list
+refuse  ang-export-matrix     'not with --list or --matrix' -- export ang_sim.h5 --angles relative --matrix q
+succeed ang-ok-fit-phi        -- fit ang_phi.csv --output g.h5
+succeed ang-ok-torques-phi    -- torques ang_phi.csv --output g.h5
+succeed ang-ok-export-rel     -- export ang_sim.h5 --angles relative --csv t q qdot qddot energy
+succeed ang-ok-export-abs     -- export ang_sim.h5 --angles absolute t q
