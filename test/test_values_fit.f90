@@ -47,7 +47,8 @@ contains
                new_unittest('tip_only', test_tip_only), &
                new_unittest('wrong_body_stops', test_wrong_body), &
                new_unittest('answers_in_data_convention', test_data_convention), &
-               new_unittest('relative_angles_round_trip', test_relative_round_trip)]
+               new_unittest('relative_angles_round_trip', test_relative_round_trip), &
+               new_unittest('applied_torques_state', test_applied_torques)]
    end subroutine collect_values_fit
 
    !> data/fit_example.csv (two links, damping 0.05, 0.03 N m s known, the state
@@ -518,6 +519,64 @@ contains
          close (unit)
       end function columns_after_t
    end subroutine test_relative_round_trip
+
+   !> A motion driven by known joint torques (`dpend simulate --torque-file`, two damped
+   !> rods with Coulomb friction, 4 s sampled at 50 Hz, noise-free): `dpend fit
+   !> --torque-file` of its angles with the same torques and model recovers the
+   !> initial state (q, qdot at t = 0); without the torques the fit leaves a residual
+   !> far above the one with them; the file records the torques applied.
+   subroutine test_applied_torques(error)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: dir, model, torque_text
+      real(dp), allocatable :: estimate(:)
+      real(dp) :: rms_with, rms_without, worst
+      type(h5file_t) :: h5
+      integer :: stat, unit, k
+      real(dp), parameter :: state(4) = [-1.2_dp, -1.0_dp, 0.3_dp, -0.2_dp]
+      dir = scratch_dir('fit-torques')
+      call execute_command_line('mkdir -p '//dir)
+      open (newunit=unit, file=dir//'/tq.csv', status='replace', action='write')
+      write (unit, '(a)') 't [s],tau1 [N m],tau2 [N m]'
+      do k = 0, 400
+         write (unit, '(f6.2, 2(",", es24.16e3))') 0.01_dp*k, &
+            0.8_dp*sin(1.3_dp*0.01_dp*k), 0.3_dp*sin(2.2_dp*0.01_dp*k + 1.0_dp)
+      end do
+      close (unit)
+      model = '--m 1,0.7 --l 0.8,0.6 --damping 0.02,0.01 --coulomb 0.05,0.03 ' &
+              //'--coulomb-speed 0.5'
+      stat = run_command(dir, 'simulate '//model//' --torque-file '//dir//'/tq.csv ' &
+                         //'--q1 -1.2 --q2 -1.0 --w1 0.3 --w2 -0.2 --method dop853 ' &
+                         //'--rtol 1e-12 --atol 1e-14 --t-end 4 --output-dt 0.02 --output ' &
+                         //dir//'/s.h5')
+      if (stat == 0) stat = run_command(dir, 'export '//dir//'/s.h5 --csv t q')
+      if (stat == 0) call execute_command_line('cp '//dir//'/stdout '//dir//'/d.csv', &
+                                               exitstat=stat)
+      if (stat == 0) stat = run_command(dir, 'fit '//dir//'/d.csv '//model//' --torque-file ' &
+                                        //dir//'/tq.csv --output '//dir//'/f.h5')
+      if (stat == 0) stat = run_command(dir, 'fit '//dir//'/d.csv '//model//' --output ' &
+                                        //dir//'/g.h5')
+      call check_true(error, stat == 0, 'simulate, export and the fits exit 0')
+      if (allocated(error)) return
+      call h5%open(dir//'/f.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/fit/estimate', estimate, error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'rms_residual', rms_with, error)
+      if (.not. allocated(error)) call h5%readattr('/', 'torque_file', torque_text, error)
+      call h5%close()
+      if (.not. allocated(error)) call h5%open(dir//'/g.h5', 'r', error)
+      if (.not. allocated(error)) call h5%readattr('/fit', 'rms_residual', rms_without, error)
+      call h5%close()
+      if (allocated(error)) return
+      worst = maxval(abs(estimate - state))
+      write (output_unit, '(a, es9.2, a, es9.2, a, es9.2, a)') '    values_fit: applied ' &
+         //'torques: |estimate - state| ', worst, '; RMS residual with the torques ', &
+         rms_with, ' rad, without ', rms_without, ' rad'
+      call check(error, worst, 0.0_dp, 'the initial state under applied torques', &
+                 abs=1e-6_dp)
+      if (allocated(error)) return
+      call check_true(error, rms_without > 1e3_dp*rms_with .and. index(torque_text, &
+                      'tq.csv') > 0, 'the torques matter and are recorded: '//torque_text)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_applied_torques
 
    subroutine test_data_convention(error)
       type(error_t), allocatable, intent(out) :: error

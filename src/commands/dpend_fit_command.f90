@@ -195,6 +195,11 @@ contains
       if (.not. allocated(werr)) then
          call write_fit_root(h5, fc, error%message)
          call h5%writeattr('/', 'input', fc%input)
+         if (fc%run%torque%active()) then
+            call h5%writeattr('/', 'torque', fc%run%torque%text())
+            if (allocated(fc%run%torque_file)) &
+               call h5%writeattr('/', 'torque_file', fc%run%torque_file)
+         end if
          call h5%writeattr('/', 'work', work)
          call h5%close(werr)
       end if
@@ -569,6 +574,11 @@ contains
       call h5%writeattr('/fit', 'horizon_censored', merge(1, 0, res%horizon_censored))
       call h5%writeattr('/fit', 'has_after', merge(1, 0, res%has_after))
       call h5%writeattr('/fit', 'input', fc%input)
+      if (fc%run%torque%active()) then   ! the joint torques applied to the model
+         call h5%writeattr('/', 'torque', fc%run%torque%text())
+         if (allocated(fc%run%torque_file)) &
+            call h5%writeattr('/', 'torque_file', fc%run%torque_file)
+      end if
       if (fc%model_coords) then
          call h5%writeattr('/fit', 'observations', 'coordinates')
          call h5%writeattr('/fit', 'n_coordinates', fc%series%n)

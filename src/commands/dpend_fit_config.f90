@@ -9,7 +9,7 @@ module dpend_fit_config
                         parse_int, real_str, to_str, printable
    use dpend_run_settings, only: run_config_t, validate_run_config, time_unit_option_help
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag, is_model_flag
+   use dpend_run_flags, only: apply_run_flag, is_model_flag, take_torque_file
    use dpend_model, only: max_dof
    use dpend_csv, only: series_t, read_series
    use dpend_estimate, only: fit_problem_t, fit_work_t, estimate_fit_work, set_fitted, n_fitted
@@ -134,6 +134,10 @@ contains
           time_unit_option_help('s')//nl// &
           '                    (the data keep the unit of their t column; the natural'//nl// &
           '                    unit is that of the configured model, not the fitted one)'//nl// &
+          '  --torque-file F   apply joint torques (a CSV of t [s], tau1 .. tauN [N m],'// &
+          nl//'                    linear between samples, covering the data''s times; the'// &
+          nl//'                    data file itself when it has tau columns): a fit of the'// &
+          nl//'                    motion a robot''s measured torques drove'//nl// &
           '  --horizon-tolerance R  the horizon ends at the first sample after T where an'// &
           nl//'                    angle differs from the model by more than R (rad, in'//nl// &
           '                    (0, pi]; positions: m, in (0, 1e6]); default '// &
@@ -245,6 +249,9 @@ contains
             fc%tolerance_given = .true.
          case ('--starts')
             call parse_int(value, name, fc%starts, error)
+         case ('--torque-file')
+            if (.not. (missing .or. allocated(error))) call take_torque_file(fc%run, value, &
+                                                                             error)
          case ('--fit-parameters', '--fit-param')
             call parse_names(value, fc%fit_names, error)
          case ('--sigma')
@@ -310,6 +317,7 @@ contains
             call check_observed_points(s, error)
             if (allocated(error)) return
          end if
+         fc%run%torque_span = [s%t(1), s%t(s%k)]   ! the torques must cover the data
          if (.not. fc%model_coords) then
             fc%run%links = s%n
             call validate_run_config(fc%run, error)

@@ -14,7 +14,7 @@ module dpend_run_flags
       mark_given, time_unit_option_help
    implicit none
    private
-   public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag
+   public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag, take_torque_file
 
 contains
 
@@ -89,6 +89,20 @@ contains
       if (index(name, '_') > 0) return
       is_model_flag = is_model_parameter(setting_key(name), model)
    end function is_model_flag
+
+   !> --torque-file FILE: once, a path that is not empty.
+   subroutine take_torque_file(cfg, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! torque_file set
+      character(len=*), intent(in) :: value             !! the path given
+      type(error_t), allocatable, intent(out) :: error  !! given twice, empty
+      if (allocated(cfg%torque_file)) then
+         call fatal_error(error, 'invalid torque_file: given twice (--torque-file)')
+      else if (len_trim(value) == 0) then
+         call fatal_error(error, 'invalid torque_file: an empty path (--torque-file)')
+      else
+         cfg%torque_file = value
+      end if
+   end subroutine take_torque_file
 
    !> Set the unit of the times given: 's' or 'natural' (`run_config_t%time_unit`).
    subroutine set_time_unit(cfg, value, field, error)

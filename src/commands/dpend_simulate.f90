@@ -8,7 +8,7 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config, time_text
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag, run_flags_help
+   use dpend_run_flags, only: apply_run_flag, take_torque_file, run_flags_help
    use dpend_model, only: model_t, max_dof
    use dpend_model_factory, only: default_model
    use dpend_work, only: needs_work, work_model, split_work, is_work_model, augmented_state, &
@@ -121,20 +121,6 @@ contains
           '  --quiet           print only the summary line (standard output)'//nl// &
           '  -h, --help        this text'
    end function simulate_help
-
-   !> --torque-file FILE: once, a path that is not empty.
-   subroutine take_torque_file(cfg, value, error)
-      type(run_config_t), intent(inout) :: cfg          !! torque_file set
-      character(len=*), intent(in) :: value             !! the path given
-      type(error_t), allocatable, intent(out) :: error  !! given twice, empty
-      if (allocated(cfg%torque_file)) then
-         call fatal_error(error, 'invalid torque_file: given twice (--torque-file)')
-      else if (len_trim(value) == 0) then
-         call fatal_error(error, 'invalid torque_file: an empty path (--torque-file)')
-      else
-         cfg%torque_file = value
-      end if
-   end subroutine take_torque_file
 
    !> Build the configuration from defaults, --config and flags.
    subroutine parse_simulate(args, cfg, help, error)

@@ -20,6 +20,7 @@ module dpend_run_settings
    use dpend_methods, only: new_integrator
    use dpend_joint_torque, only: joint_torque_t, torque_series
    use dpend_csv, only: series_t, read_series
+   use dpend_output, only: register_input
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
@@ -76,6 +77,9 @@ module dpend_run_settings
       character(len=7) :: time_unit = 's'
       real(dp) :: time_scale = 1.0_dp          !! seconds per unit of the times given
       logical :: times_resolved = .false.      !! dt, t_end, output_dt are in seconds
+      !> the span [s] the torques must cover when it is not [0, t_end] (a fit: the
+      !> data's times); unset when torque_span(2) < torque_span(1)
+      real(dp) :: torque_span(2) = [0.0_dp, -1.0_dp]
       real(dp) :: omega = 20.0_dp              !! Tao's binding constant [1/s]
       integer(i8) :: max_steps = default_max_steps !! most accepted steps of one
                                                !! integration (adaptive methods)
@@ -374,6 +378,7 @@ contains
          names(i) = 'tau'//to_str(i)
          units(i) = 'N m'
       end do
+      call register_input(cfg%torque_file)   ! no output of the run replaces it
       call read_series(cfg%torque_file, series, error, names, units, &
                        what='the joint torques')
       if (allocated(error)) then
@@ -417,6 +422,14 @@ contains
       type(error_t), allocatable, intent(out) :: error  !! the span not covered
       real(dp) :: t_end
       if (.not. cfg%torque%active()) return
+      if (cfg%torque_span(2) >= cfg%torque_span(1)) then
+         if (cfg%torque%covers(cfg%torque_span(1), cfg%torque_span(2))) return
+         call fatal_error(error, 'invalid torque_file: the data span ['// &
+                          sci(cfg%torque_span(1), 6)//', '//sci(cfg%torque_span(2), 6)// &
+                          '] s, the torques are '//cfg%torque%text()//' (a series is ' &
+                          //'not extrapolated: give samples over the whole data)')
+         return
+      end if
       t_end = cfg%t_end
       if (.not. cfg%times_resolved) t_end = cfg%seconds(cfg%t_end)
       if (cfg%torque%covers(0.0_dp, t_end)) return

@@ -30,6 +30,7 @@ fx tau_word.csv        't,tau1,tau2\n0,0.5,-0.2\n1,zero,0\n'
 fx tau_short_row.csv   't,tau1,tau2\n0,0.5,-0.2\n1,0\n'
 fx tau_utf16.csv       '\377\376t\000,\000t\000'
 fx coulomb.nml         '&model\n coulomb = 0.5, 0.2\n coulomb_speed = 0.01\n/\n'
+fx tau_fit_data.csv     't,theta1\n0,0.1\n0.1,0.09\n0.2,0.06\n0.3,0.02\n0.4,-0.03\n'
 
 S=(simulate --t-end 1 --output g.h5)
 # ---- the torque file
@@ -63,9 +64,15 @@ refuse  torque-hamiltonian     'torque'             -- "${S[@]}" --method verlet
 # 4 sqrt(l1/g) = 1.28 s: beyond the series' 1 s (1 sqrt(l1/g) = 0.32 s is within)
 refuse  torque-natural-span    'not extrapolated'   -- simulate --t-end 4 --time-unit natural --output g.h5 --torque-file tau_ok.csv
 succeed torque-ok-natural      -- simulate --t-end 1 --time-unit natural --output g.h5 --torque-file tau_ok.csv
-# ---- where the option does not belong (commands that do not apply torques yet)
+# ---- where the option does not belong (commands that do not apply torques yet), and fit
 refuse  torque-sweep           'unknown option'     -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
-refuse  torque-fit             'unknown option'     -- fit --output g.h5 --torque-file tau_ok.csv fit_ok.csv
+# fit applies torques (the motion a robot's measured torques drove): over the data's times
+succeed torque-fit-ok          -- fit --output g.h5 --torque-file tau_ok.csv tau_fit_data.csv
+refuse  torque-fit-span        'not extrapolated'   -- fit --output g.h5 --torque-file tau_late.csv tau_fit_data.csv
+refuse  torque-fit-twice       'given twice'        -- fit --output g.h5 --torque-file tau_ok.csv --torque-file tau_ok.csv tau_fit_data.csv
+refuse  torque-fit-missing     'no such file'       -- fit --output g.h5 --torque-file nosuch.csv tau_fit_data.csv
+refuse  torque-fit-output      'input'              -- fit tau_fit_data.csv --torque-file tau_ok.csv --output tau_ok.csv --force
+refuse  torque-simulate-output 'input'              -- simulate --t-end 0.5 --torque-file tau_ok.csv --output tau_ok.csv --force
 refuse  torque-lyapunov        'unknown option'     -- lyapunov --output g.h5 --torque-file tau_ok.csv
 
 # edge values that must succeed
