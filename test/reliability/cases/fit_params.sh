@@ -36,7 +36,7 @@ refuse  fitp-mass-all       'fit parameters'  -- "${F[@]}" fitp_ml.csv --fit-par
 refuse  fitp-mass-damping   'fit parameters'  -- "${F[@]}" fitp_ml.csv --fit-param m,damping \
     --damping 0.1,0.1
 refuse  fitp-elastic-m-k    'fit parameters'  -- "${E[@]}" fitp_el_deg.csv --fit-param m,k
-refuse  fitp-length-scale  'fit parameters'  -- "${F[@]}" fitp_deg.csv --fit-param l,g
+refuse  fitp-length-scale  'fit parameters'  -- "${F[@]}" fitp_deg.csv --fit-param l,g --quiet
 refuse  fitp-no-effect      'fit parameters'  -- "${F[@]}" fitp_qdeg.csv --fit-param support_phase1
 refuse  fitp-links          'fit parameter'   -- "${F[@]}" fitp_qdeg.csv --fit-param links
 refuse  fitp-unknown        'fit parameter'   -- "${F[@]}" fitp_qdeg.csv --fit-param mass
