@@ -83,7 +83,9 @@ contains
                                    amplitude=[0.02_dp, 0.01_dp], frequency=4.0_dp, &
                                    phase=[0.3_dp, 0.1_dp], com=0.4_dp*l, &
                                    inertia=[(0.02_dp*i, i = 1, n)], torque=tq, &
-                                   coulomb=[(0.1_dp*i, i = 1, n)], coulomb_speed=0.3_dp)
+                                   coulomb=[(0.1_dp*i, i = 1, n)], coulomb_speed=0.3_dp, &
+                                   rotor_inertia=[(1e-3_dp*i, i = 1, n)], &
+                                   gear_ratio=[(12.0_dp - i, i = 1, n)])
             end if
             call check_true(error, .not. allocated(err), 'chain refused')
             if (allocated(error)) return
@@ -101,7 +103,7 @@ contains
          end do
       end do
       call report('forward chain under known torques, then Newton-Euler backwards, '// &
-                  'N = 1,2,3,5, plain and damped/Coulomb/driven/bodies, 320 states: max '// &
+                  'N = 1,2,3,5, plain and damped/Coulomb/driven/bodies/motors, 320 states: max '// &
                   '|tau back - tau| / max(1, |f|) '//real_str(worst, 2))
       call check(error, worst, 0.0_dp, 'inverse of the forward chain', abs=1e-12_dp)
    end subroutine test_forward

@@ -13,6 +13,9 @@
 !>   general bodies;
 !> - the energy balance E(t) − E(0) + W_friction − W_support − W_torque of dop853 at
 !>   rtol 1e-12 over 50 s with torques, damping, Coulomb friction and a moving support;
+!> - a motor (rotor inertia I_r, gear ratio g_r): one rod without gravity's effect
+!>   under a constant τ turns by τ t²/(2 (J + g_r² I_r)); the double pendulum with
+!>   motors at both joints against Lagrange's equations with M + Dᵀ diag(g_r² I_r) D;
 !> - Coulomb friction c_f tanh(ω/v_s) on one rod (gravity 1e-6) under a constant τ:
 !>   below c_f it creeps at v_s atanh(τ/c_f), and its rate from rest follows the
 !>   closed form t(ω) = K v_s [τ u + c_f ln((τ cosh u − c_f sinh u)/τ)]/(τ² − c_f²),
@@ -52,7 +55,9 @@ contains
                new_unittest('double_pendulum_vs_lagrange', test_lagrange), &
                new_unittest('energy_balance_dop853', test_balance), &
                new_unittest('coulomb_creep_and_closed_form', test_coulomb), &
-               new_unittest('coulomb_jacobian', test_coulomb_jacobian)]
+               new_unittest('coulomb_jacobian', test_coulomb_jacobian), &
+               new_unittest('motor_constant_torque', test_motor_constant), &
+               new_unittest('motors_vs_lagrange', test_motor_lagrange)]
    end subroutine collect_joint_torque
 
    subroutine report(text)
@@ -334,7 +339,9 @@ contains
             chain = chain_model([(1.0_dp, i = 1, n)], [(1.0_dp, i = 1, n)], 9.81_dp, err, &
                                 damping=[(0.05_dp/i, i = 1, n)], amplitude=[0.01_dp, 0.02_dp], &
                                 frequency=5.0_dp, phase=[0.5_dp, 0.0_dp], torque=tq, &
-                                coulomb=[(0.2_dp*(form - 1)/i, i = 1, n)], coulomb_speed=0.05_dp)
+                                coulomb=[(0.2_dp*(form - 1)/i, i = 1, n)], coulomb_speed=0.05_dp, &
+                                rotor_inertia=[(2e-3_dp*(form - 1), i = 1, n)], &
+                                gear_ratio=[(4.0_dp + i, i = 1, n)])
             call check_true(error, .not. allocated(err), 'chain refused')
             if (allocated(error)) return
             call work_model(chain, wm)
@@ -360,10 +367,97 @@ contains
          end do
       end do
       call report('energy balance with torques, damping, support (sines: and Coulomb '// &
-                  'friction), dop853 rtol 1e-12, '// &
+                  'friction, motors), dop853 rtol 1e-12, '// &
                   '50 s, max rel error:'//text)
       call check(error, worst, 0.0_dp, 'energy balance error', abs=1e-10_dp)
    end subroutine test_balance
+
+   !> One rod (m 1 kg, l 1 m, g 1e-6: J = 1/3 kg m², gravity's torque ≤ 5e-7 N m) with a
+   !> motor (I_r = 2e-3 kg m², g_r = 10: 0.2 kg m² reflected) from rest under τ = 1 N m:
+   !> q − q0 = τ t²/(2 (J + g_r² I_r)) = 0.9375 t², to gravity's share (1e-6 relative).
+   subroutine test_motor_constant(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(chain_t) :: chain
+      class(integrator_t), allocatable :: integ
+      real(dp), parameter :: tau = 1.0_dp, q0 = -0.5_dp*pi, jt = 1.0_dp/3.0_dp + 0.2_dp
+      real(dp) :: y(2), t, h, d
+      integer :: k, stat
+      chain = chain_model([1.0_dp], [1.0_dp], 1e-6_dp, err, &
+                          torque=torque_series([0.0_dp, 3.0_dp], &
+                                               reshape([tau, tau], [1, 2]), err), &
+                          rotor_inertia=[2e-3_dp], gear_ratio=[10.0_dp])
+      call check_true(error, .not. allocated(err), 'chain refused')
+      if (allocated(error)) return
+      call new_integrator('dop853', integ, err, method_options_t(rtol=1e-12_dp, &
+                          atol=1e-14_dp))
+      y = [q0, 0.0_dp]
+      t = 0.0_dp; h = 0.0_dp; d = 0.0_dp
+      do k = 1, 30
+         call advance_to(integ, chain, t, y, 0.1_dp*k, h, stat)
+         call check_true(error, stat == stat_ok, 'integration failed')
+         if (allocated(error)) return
+         d = max(d, abs((y(1) - q0) - tau*t**2/(2*jt))/(tau*t**2/(2*jt)))
+      end do
+      call report('motor (J 1/3 + g_r^2 I_r 0.2 kg m^2) under 1 N m, 3 s: max rel '// &
+                  '|q - q0 - tau t^2/(2 J_total)| '//real_str(d, 2)//' (without the '// &
+                  'rotor the angle would be '//real_str(jt/(1.0_dp/3.0_dp), 3)//' times larger)')
+      call check(error, d, 0.0_dp, 'motor under a constant torque', abs=1e-5_dp)
+   end subroutine test_motor_constant
+
+   !> The double pendulum with motors at both joints (reflected inertias 0.05 and
+   !> 0.02 kg m²) and torques at both joints: (M + R) q̈ = M q̈_Lagrange + Q, R =
+   !> Dᵀ diag(Im) D = [[Im1 + Im2, −Im2], [−Im2, Im2]], Q = (τ1 − τ2, τ2), 100 states,
+   !> rods and general bodies.
+   subroutine test_motor_lagrange(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      type(joint_torque_t) :: tq
+      type(chain_t) :: chain
+      type(pendulum_t) :: par
+      real(dp), parameter :: im(2) = [0.05_dp, 0.02_dp]
+      real(dp) :: y(4), f(4), mm(2, 2), q(2), tau(2), expect(2), rhs(2), s, t, worst, det
+      integer :: k, body
+      worst = 0.0_dp
+      s = 0.53_dp
+      tq = torque_sines([0.4_dp, -0.3_dp], reshape([2.0_dp, 1.0_dp, -0.7_dp, 0.5_dp], [2, 2]), &
+                        [1.9_dp, 3.3_dp], reshape([0.1_dp, 0.2_dp, 0.3_dp, 0.4_dp], [2, 2]), err)
+      do body = 1, 2
+         par = pendulum_t(m1=1.1_dp, m2=0.6_dp, l1=0.7_dp, l2=0.9_dp, g=9.81_dp)
+         if (body == 1) then
+            chain = chain_model([par%m1, par%m2], [par%l1, par%l2], par%g, err, torque=tq, &
+                                rotor_inertia=im/[25.0_dp, 4.0_dp], gear_ratio=[5.0_dp, 2.0_dp])
+         else
+            par%body = body_general
+            par%d1 = 0.5_dp; par%d2 = 1.2_dp; par%i1 = 0.04_dp; par%i2 = 0.09_dp
+            chain = chain_model([par%m1, par%m2], [par%l1, par%l2], par%g, err, &
+                                com=[par%d1, par%d2], inertia=[par%i1, par%i2], torque=tq, &
+                                rotor_inertia=im/[25.0_dp, 4.0_dp], gear_ratio=[5.0_dp, 2.0_dp])
+         end if
+         call check_true(error, .not. allocated(err), 'chain refused')
+         if (allocated(error)) return
+         do k = 1, 50
+            s = mod(s*7.31_dp + 0.17_dp, 1.0_dp); y(1) = 6.0_dp*s - 3.0_dp
+            s = mod(s*7.31_dp + 0.17_dp, 1.0_dp); y(2) = 6.0_dp*s - 3.0_dp
+            s = mod(s*7.31_dp + 0.17_dp, 1.0_dp); y(3) = 8.0_dp*s - 4.0_dp
+            s = mod(s*7.31_dp + 0.17_dp, 1.0_dp); y(4) = 8.0_dp*s - 4.0_dp
+            t = 0.61_dp*k
+            call chain%field(t, y, f)
+            call tq%values(t, tau)
+            q = y(1:2)
+            mm = mass_matrix(par, q)
+            rhs = matmul(mm, qddot_lagrange(par, q, y(3:4))) + [tau(1) - tau(2), tau(2)]
+            mm = mm + reshape([im(1) + im(2), -im(2), -im(2), im(2)], [2, 2])
+            det = mm(1, 1)*mm(2, 2) - mm(1, 2)*mm(2, 1)
+            expect = [mm(2, 2)*rhs(1) - mm(1, 2)*rhs(2), mm(1, 1)*rhs(2) - mm(2, 1)*rhs(1)]/det
+            worst = max(worst, maxval(abs(f(3:4) - expect))/max(1.0_dp, maxval(abs(expect))))
+         end do
+      end do
+      call report('double pendulum with motors (g_r^2 I_r 0.05, 0.02 kg m^2), torques at '// &
+                  'both joints, rods and bodies, 100 states: max |qddot chain - qddot '// &
+                  'Lagrange + rotors| / max(1, |qddot|) '//real_str(worst, 2))
+      call check(error, worst, 0.0_dp, 'chain with motors against Lagrange', abs=1e-12_dp)
+   end subroutine test_motor_lagrange
 
    !> One rod (m 1 kg, l 1 m, g 1e-6: K = 1/3 kg m², gravity's torque ≤ 5e-7 N m) with
    !> Coulomb friction c_f = 1 N m, v_s = 1e-3 rad/s, from rest under a constant τ:

@@ -4,18 +4,20 @@
 !>   h_i  first moment m_i d_i [kg m],
 !>   m_i  mass [kg],
 !>   c_i  viscous friction [N m s],  cf_i  Coulomb friction [N m] (tanh(ω_i/v_s), v_s known),
+!>   Im_i the motor's reflected rotor inertia g_r,i² I_r,i [kg m²] (on ω̇_i at joint i only),
 !> with the lengths L_i, g and the support's motion known. Newton–Euler written in
 !> them (`parameter_torques`; about joint i, which accelerates with a_Ai):
 !>   F_i = F_(i+1) + m_i (a_Ai + g ĵ) + h_i (q̈_i n_i − q̇_i² u_i),
 !>   s_i = s_(i+1) + J_i q̈_i + h_i (u_i × a_Ai + g cos q_i) + L_i u_i × F_(i+1),
-!>   τ_i = s_i + c_i ω_i + cf_i tanh(ω_i/v_s),
+!>   τ_i = s_i + c_i ω_i + cf_i tanh(ω_i/v_s) + Im_i (q̈_i − q̈_(i−1)),
 !> so τ = Y(q, q̇, q̈) θ, and column j of the regressor Y is τ(θ = e_j) (`regressor`).
 !>
 !> Not every standard parameter shows in the torques: m_1 never does, and m_(i+1)
-!> only through J_i + L_i² Σ_(k>i) m_k and h_i + L_i Σ_(k>i) m_k. The base parameters
+!> only through J_i + L_i² Σ_(k>i) m_k and h_i + L_i Σ_(k>i) m_k; Im_1 only through J_1 + Im_1
+!> (joint 1's relative rate is q̇_1). The base parameters
 !> are found numerically, not assumed: the regressor of 64 generic states (angles,
 !> rates, accelerations spread over their ranges) has the structural rank; its
-!> columns are taken in the order J_1 h_1 c_1 cf_1 J_2 … m_1 … m_N and each kept
+!> columns are taken in the order J_1 h_1 c_1 cf_1 Im_1 J_2 … m_1 … m_N and each kept
 !> when it is not (to 1e-8 of its norm) a combination of those kept before
 !> (`base_parameters`); a dropped column j is Σ_k β_kj (kept column k), which makes
 !> base parameter k = θ_k + Σ_j β_kj θ_j (named so in words: 'J1 + 0.64 m2').
@@ -40,11 +42,11 @@ module dpend_identify
       base_parameters, identify_result_t, identify_parameters, standard_values, &
       separable_tolerance, physical_parameters, parameter_label
 
-   !> Standard parameters per link, in this order in θ (5, N).
-   integer, parameter :: n_kinds = 5
-   character(len=2), parameter :: kind_names(n_kinds) = ['J ', 'h ', 'm ', 'c ', 'cf']
+   !> Standard parameters per link, in this order in θ (6, N).
+   integer, parameter :: n_kinds = 6
+   character(len=2), parameter :: kind_names(n_kinds) = ['J ', 'h ', 'm ', 'c ', 'cf', 'Im']
    character(len=6), parameter :: kind_units(n_kinds) = ['kg m^2', 'kg m  ', 'kg    ', &
-                                                         'N m s ', 'N m   ']
+                                                         'N m s ', 'N m   ', 'kg m^2']
    !> A base direction whose scaled singular value is below this fraction of the
    !> largest is not separated by the data.
    real(dp), parameter :: separable_tolerance = 1e-6_dp
@@ -52,7 +54,7 @@ module dpend_identify
    !> The base parameters: which standard parameters are kept, and how the others
    !> fold into them.
    type :: base_t
-      integer, allocatable :: kept(:)          !! columns of θ (flattened, 5N) kept
+      integer, allocatable :: kept(:)          !! columns of θ (flattened, 6N) kept
       integer, allocatable :: dropped(:)       !! the others, in the base order
       real(dp), allocatable :: beta(:, :)      !! (kept, dropped): Y_dropped = Y_kept β
       logical, allocatable :: absent(:)        !! (dropped) the column is zero
@@ -81,21 +83,22 @@ module dpend_identify
 
 contains
 
-   !> θ (5, N) of a chain_t: J = I_C + m d², h = m d, m, c, cf.
+   !> θ (6, N) of a chain_t: J = I_C + m d², h = m d, m, c, cf, Im = g_r² I_r.
    pure function standard_values(chain) result(theta)
       type(chain_t), intent(in) :: chain
       real(dp) :: theta(n_kinds, chain%n)
       integer :: i
       do i = 1, chain%n
          theta(:, i) = [chain%ic(i) + chain%m(i)*chain%d(i)**2, chain%m(i)*chain%d(i), &
-                        chain%m(i), 0.0_dp, 0.0_dp]
+                        chain%m(i), 0.0_dp, 0.0_dp, 0.0_dp]
          if (chain%damped) theta(4, i) = chain%c(i)
          if (chain%coulomb) theta(5, i) = chain%cf(i)
+         if (chain%motors) theta(6, i) = chain%im(i)
       end do
    end function standard_values
 
    !> The joint torques τ (N) of the motion (q, q̇, q̈) at t for the standard
-   !> parameters θ (5, N), any values (module's notes); the chain gives L_i, g, v_s
+   !> parameters θ (6, N), any values (module's notes); the chain gives L_i, g, v_s
    !> and the support's motion.
    pure subroutine parameter_torques(chain, t, q, qd, qdd, theta, tau)
       type(chain_t), intent(in) :: chain
@@ -123,13 +126,14 @@ contains
              chain%l(i)*(u(1)*f_next(2) - u(2)*f_next(1))
          w = qd(i)
          if (i > 1) w = w - qd(i - 1)
-         tau(i) = s + theta(4, i)*w + theta(5, i)*tanh(w/chain%vs)
+         tau(i) = s + theta(4, i)*w + theta(5, i)*tanh(w/chain%vs) + theta(6, i)*qdd(i)
+         if (i > 1) tau(i) = tau(i) - theta(6, i)*qdd(i - 1)
          f_next = f
          s_next = s
       end do
    end subroutine parameter_torques
 
-   !> The regressor Y (N, 5N) at one sample: τ = Y θ with θ flattened (5, N).
+   !> The regressor Y (N, 6N) at one sample: τ = Y θ with θ flattened (6, N).
    pure subroutine regressor(chain, t, q, qd, qdd, y)
       type(chain_t), intent(in) :: chain
       real(dp), intent(in) :: t, q(:), qd(:), qdd(:)
@@ -148,7 +152,7 @@ contains
    !> from 64 generic states (module's notes).
    subroutine base_parameters(chain, free, base)
       type(chain_t), intent(in) :: chain
-      logical, intent(in) :: free(:)          !! (5N) the parameters identified
+      logical, intent(in) :: free(:)          !! (6N) the parameters identified
       type(base_t), intent(out) :: base
       integer :: n, np, k, j, c, i, order(size(free)), nk
       real(dp), allocatable :: y(:, :), w(:, :), kept_cols(:, :), x(:), r(:, :)
@@ -167,7 +171,7 @@ contains
          call regressor(chain, 0.37_dp*k, q, qd, qdd, w)
          y((k - 1)*n + 1:k*n, :) = w
       end do
-      ! the preferred order: J h c cf of each link, then the masses
+      ! the preferred order: J h c cf Im of each link, then the masses
       nk = 0
       do i = 1, n
          do c = 1, n_kinds
@@ -235,8 +239,9 @@ contains
          do j = 1, size(base%dropped)
             b = base%beta(k, j)
             if (b == 0.0_dp) cycle
-            t = t//merge(' + ', ' - ', b > 0.0_dp)//real_str(abs(b), 6)//' '// &
-                label(base%dropped(j))
+            t = t//merge(' + ', ' - ', b > 0.0_dp)
+            if (abs(abs(b) - 1.0_dp) > 1e-12_dp) t = t//real_str(abs(b), 6)//' '
+            t = t//label(base%dropped(j))
          end do
          names(k) = t
          units(k) = trim(kind_units(kind_of(base%kept(k))))
@@ -265,7 +270,7 @@ contains
       type(chain_t), intent(in) :: chain
       type(base_t), intent(in) :: base
       real(dp), intent(in) :: t(:), q(:, :), qd(:, :), qdd(:, :), tau(:, :)
-      real(dp), intent(in) :: theta_fixed(:)        !! (5N) values of the fixed ones
+      real(dp), intent(in) :: theta_fixed(:)        !! (6N) values of the fixed ones
       type(identify_result_t), intent(out) :: res
       type(error_t), allocatable, intent(out) :: error
       !> (2, N): the variances of the errors of q̇_i and q̈_i (the filter's): the
@@ -366,15 +371,15 @@ contains
       res%interval95(2, :) = res%estimate + res%t95*res%std_error
    end subroutine identify_parameters
 
-   !> The standard parameters θ (5, N) that the base estimate gives once the masses
+   !> The standard parameters θ (6, N) that the base estimate gives once the masses
    !> are known: θ_k = base_k − Σ_j β_kj m_j for a kept k whose dropped partners are all
    !> masses (`found` true), with its standard error (the masses exact).
    pure subroutine physical_parameters(base, estimate, std_error, masses, theta, se, found)
       type(base_t), intent(in) :: base
       real(dp), intent(in) :: estimate(:), std_error(:)   !! base parameters (P)
       real(dp), intent(in) :: masses(:)                   !! m_i [kg] (N)
-      real(dp), intent(out) :: theta(:, :), se(:, :)      !! (5, N)
-      logical, intent(out) :: found(:, :)                 !! (5, N)
+      real(dp), intent(out) :: theta(:, :), se(:, :)      !! (6, N)
+      logical, intent(out) :: found(:, :)                 !! (6, N)
       integer :: k, j, jj
       logical :: ok
       real(dp) :: x

@@ -14,8 +14,12 @@
 !> gives, with τ_(N+1) − φ_(N+1) = 0,
 !>   τ_i = φ_i + (τ_(i+1) − φ_(i+1)) + I_i q̈_i + d_i u_i × F_(i−1,i)
 !>         + (L_i − d_i) u_i × F_(i,i+1),
-!> where a × b = a_x b_y − a_y b_x. A moving support enters through the accelerations
-!> of the recursion (the chain's `kinematics` at t). This is the forward model's
+!> where a × b = a_x b_y − a_y b_x. A motor at joint i (the chain's reflected rotor
+!> inertia Im_i = g_r,i² I_r,i) needs Im_i ω̇_i more to turn its rotor:
+!>   τ_i ← τ_i + Im_i (q̈_i − q̈_(i−1))
+!> (the couple on the links is unchanged, the forces too). A moving support enters
+!> through the accelerations of the recursion (the chain's `kinematics` at t). This
+!> is the forward model's
 !> equation read backwards: for the q̈ of the chain's field under torques τ(t), it
 !> returns τ(t) (test_inverse_dynamics, to rounding).
 module dpend_inverse_dynamics
@@ -56,6 +60,10 @@ contains
          l = chain%l(i)
          s = next_s + chain%ic(i)*qdd(i) + d*cross(u, f(:, i)) + (l - d)*cross(u, next_f)
          tau(i) = s + phi(i)
+         if (chain%motors) then
+            tau(i) = tau(i) + chain%im(i)*qdd(i)
+            if (i > 1) tau(i) = tau(i) - chain%im(i)*qdd(i - 1)
+         end if
          next_s = s
          next_f = f(:, i)
       end do
@@ -63,8 +71,9 @@ contains
 
    !> The gain A (N, N) [kg m²] of the torques on the accelerations at q: τ changes
    !> by A δq̈ for a change δq̈ (the mass matrix summed from the tip: A_ij =
-   !> Σ_(k>=i) M_kj), so that white errors of standard deviation σ_j in q̈_j give τ_i
-   !> errors of standard deviation (Σ_j A_ij² σ_j²)^(1/2).
+   !> Σ_(k>=i) M_kj, the rotors' Im_i on ω̇_i included), so that white errors of
+   !> standard deviation σ_j in q̈_j give τ_i errors of standard deviation
+   !> (Σ_j A_ij² σ_j²)^(1/2).
    pure subroutine torque_gain(chain, q, a)
       type(chain_t), intent(in) :: chain  !! the model
       real(dp), intent(in) :: q(:)        !! angles (N)

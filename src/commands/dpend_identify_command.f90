@@ -99,6 +99,7 @@ contains
       free = .true.
       free(4, :) = tc%fit_viscous
       free(5, :) = tc%fit_coulomb
+      free(6, :) = tc%fit_rotors
       call base_parameters(tc%chain, pack(free, .true.), base)
       if (n*size(rows) <= 2*size(base%kept)) then
          call fatal_error(error, "invalid data file '"//printable(tc%input)//"': "// &
@@ -129,7 +130,7 @@ contains
    end subroutine identify_run
 
    !> Per link, the standard parameters that the base estimate gives with the masses
-   !> given (--m), and the checks: J_i > 0, J_i >= m_i d_i² (I_C >= 0), c_i, cf_i >= 0
+   !> given (--m), and the checks: J_i > 0, J_i >= m_i d_i² (I_C >= 0), c_i, cf_i, Im_i >= 0
    !> (each within 2 standard errors counts as holding).
    function physical_checks(tc, res) result(checks)
       type(torques_config_t), intent(in) :: tc
@@ -154,7 +155,7 @@ contains
             if (checks(i)%ic + 2*se(1, i) < 0.0_dp) bad = bad//' J'//to_str(i)// &
                ' < m d^2 (inertia about the centre of mass negative);'
          end if
-         do c = 4, 5
+         do c = 4, 6
             if (found(c, i)) then
                if (theta(c, i) + 2*se(c, i) < 0.0_dp) bad = bad//' '// &
                   parameter_label(c, i)//' < 0;'
@@ -195,24 +196,33 @@ contains
          call h5%writeattr('/', 'sigma', filt%sigma)
          call h5%writeattr('/', 'friction', trim(merge('viscous ', '        ', &
                            tc%fit_viscous))//trim(merge(' coulomb', '        ', tc%fit_coulomb)))
+         call h5%writeattr('/', 'rotors', trim(merge('estimated', 'known    ', tc%fit_rotors)))
          call h5%writeattr('/', 'condition', res%condition)
          call h5%writeattr('/', 'compensated', merge(1, 0, res%compensated))
          call h5%writeattr('/', 't95', res%t95)
          call h5%writeattr('/', 'version', version)
          call h5%writeattr('/', 'status', 'completed')
-         call h5%write('/identify/names', joined(res%base%names), description='the base ' &
+         call h5%write('/identify/names', joined(res%base%names), units='text', &
+                       description='the base ' &
                        //'parameters in words, separated by "; " (the order of estimate)')
-         call h5%write('/identify/units', joined(res%base%units), description='their ' &
+         call h5%write('/identify/units', joined(res%base%units), units='text', &
+                       description='their ' &
                        //'units, separated by "; "')
-         call h5%write('/identify/estimate', res%estimate, description='the base ' &
+         call h5%write('/identify/estimate', res%estimate, units=joined(res%base%units), &
+                       description='the base ' &
                        //'parameters (units: /identify/units)')
-         call h5%write('/identify/std_error', res%std_error, description='their standard ' &
+         call h5%write('/identify/std_error', res%std_error, units=joined(res%base%units), &
+                       description='their standard ' &
                        //'errors')
-         call h5%write('/identify/interval95', res%interval95, description='95 % ' &
+         call h5%write('/identify/interval95', res%interval95, units= &
+                       joined(res%base%units), description='95 % ' &
                        //'intervals: estimate -/+ t95 std_error (low, high)')
-         call h5%write('/identify/covariance', res%covariance, description='covariance ' &
+         call h5%write('/identify/covariance', res%covariance, units='products of ' &
+                       //'/identify/units (row i, column j: units_i units_j)', &
+                       description='covariance ' &
                        //'of the estimates')
-         call h5%write('/identify/singular', res%singular, description='singular values ' &
+         call h5%write('/identify/singular', res%singular, units='1', &
+                       description='singular values ' &
                        //'of the base regressor with unit columns, largest first')
          t_rows = tc%angles%t(rows)
          call h5%write('/identify/t', t_rows, units='s', description='the ' &
@@ -225,9 +235,10 @@ contains
          do i = 1, size(checks)
             phys(:, i) = merge(checks(i)%theta, ieee_nan(), checks(i)%found)
          end do
-         call h5%write('/identify/physical', phys, description='per link J, h, m, c, cf ' &
-                       //'(kg m^2, kg m, kg, N m s, N m) from the base estimate with the ' &
-                       //'masses given; NaN: not determined')
+         call h5%write('/identify/physical', phys, units='kg m^2; kg m; kg; N m s; N m; ' &
+                       //'kg m^2', description='per link J, h, m, c, cf, Im (the units in ' &
+                       //'this order) from the base estimate with the masses given; NaN: not ' &
+                       //'determined')
          call h5%close(werr)
       end if
       if (.not. allocated(werr)) call out%commit(werr)

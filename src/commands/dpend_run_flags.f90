@@ -326,6 +326,11 @@ contains
           '                    [0, 1e6]): torque -c_f,i tanh(w_i/v_s) at joint i, w_i ='//nl// &
           '                    qdot_i - qdot_(i-1); default 0 (docs/robot.md)'//nl// &
           '  --coulomb-speed V its smoothing speed v_s (rad/s, in [1e-6, 1e3]); default 1e-3'//nl// &
+          '  --rotor-inertia LIST  rotor inertia I_r,i of the motor at joint i (kg m^2,'//nl// &
+          '                    one per joint, each in [0, 1e6]): adds g_r,i^2 I_r,i to the'//nl// &
+          '                    inertia of w_i; default 0 (docs/robot.md)'//nl// &
+          '  --gear-ratio LIST its gear ratio g_r,i (rotor speed / joint speed, each in'//nl// &
+          '                    [1e-3, 1e4], g_r^2 I_r <= 1e12); default 1'//nl// &
           '  --support-amplitude AX,AY  moving pin: x_A = AX cos(w t + PX),'//nl// &
           '                    y_A = AY cos(w t + PY) (m, each in [-1e6, 1e6]); default 0,0'//nl// &
           '  --support-frequency W  w (rad/s, in [0, 1e6]); default 0'//nl// &

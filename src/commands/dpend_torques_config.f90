@@ -45,6 +45,9 @@ module dpend_torques_config
       !> identify: which frictions are estimated (--friction); the others are known,
       !> at the model's values (--damping, --coulomb)
       logical :: fit_viscous = .true., fit_coulomb = .true.
+      !> identify: the motors' reflected inertias g_r² I_r are estimated (--rotors
+      !> estimate), else known (--rotor-inertia, --gear-ratio; default none)
+      logical :: fit_rotors = .false.
    end type torques_config_t
 
    !> The run flags that make sense here (the model; no integration, no initial state).
@@ -121,12 +124,16 @@ contains
           nl//nl//'identify options:'//nl// &
           '  --friction LIST   the frictions estimated: viscous,coulomb (default), viscous,'//nl// &
           '                    coulomb or none; the others are known: --damping, --coulomb'//nl// &
+          '  --rotors WHAT     the motors'' reflected inertias Im_i = g_r,i^2 I_r,i: known'//nl// &
+          '                    (default: from --rotor-inertia, --gear-ratio; none if not'//nl// &
+          '                    given) or estimate (Im1 shows only within J1 + Im1)'//nl// &
           filter_options_help(tc)// &
           '  --output FILE     HDF5 file to write; default '//tc%run%output//nl// &
           '  --force           overwrite an existing output file'//nl//nl// &
           'model (known: lengths, g, the support; the masses for the checks):'//nl// &
           '  --links, --m, --l, --g, --m1, --m2, --l1, --l2, --coulomb-speed (v_s of'//nl// &
           '  tanh(w/v_s)), --damping and --coulomb (known when not estimated),'//nl// &
+          '  --rotor-inertia and --gear-ratio (the motors, with --rotors known),'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase, --model pendulum'// &
           nl//'  (--com, --inertia and --body are refused: identify estimates the bodies)'// &
           nl//'  -h, --help        this text'
@@ -244,6 +251,17 @@ contains
          case ('--friction')
             matched = tc%command == 'identify'
             if (matched) call parse_friction(value, tc, error)
+         case ('--rotors')
+            matched = tc%command == 'identify'
+            if (matched) then
+               select case (value)
+               case ('known'); tc%fit_rotors = .false.
+               case ('estimate'); tc%fit_rotors = .true.
+               case default
+                  call fatal_error(error, "invalid rotors: '"//printable(value)// &
+                                   "' (accepted: known, estimate) [--rotors]")
+               end select
+            end if
          case default
             if (any(run_flags == name) .or. is_model_flag(name, default_model)) then
                if (name == '--links') links_given = .true.
@@ -302,6 +320,13 @@ contains
             return
          end if
       end do
+      if (tc%fit_rotors .and. (index(given, ' rotor_inertia ') > 0 .or. &
+                               index(given, ' gear_ratio ') > 0)) then
+         call fatal_error(error, 'invalid rotor_inertia: dpend identify estimates the ' &
+                          //'reflected rotor inertias g_r^2 I_r (--rotors known: then ' &
+                          //'--rotor-inertia and --gear-ratio give them) [--rotors]')
+         return
+      end if
       if (tc%fit_viscous .and. index(given, ' damping ') > 0) then
          call fatal_error(error, 'invalid damping: dpend identify estimates the viscous ' &
                           //'friction c_i (--friction coulomb or none: then --damping ' &

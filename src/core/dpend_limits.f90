@@ -28,6 +28,7 @@ module dpend_limits
    public :: max_axis_points, max_sweep_points, max_tangent_substeps, min_delta0_relative
    public :: diverged_bound, max_damping, max_support_amplitude, max_support_frequency
    public :: max_torque, max_torque_frequency, min_coulomb_speed, max_coulomb_speed
+   public :: max_rotor_inertia, min_gear_ratio, max_gear_ratio, max_reflected_inertia
    public :: finite_positive, bound_threads
    public :: check_parameter, parameter_mass, parameter_length, parameter_gravity
    public :: in_range, check_range, check_count, sci, bytes_text
@@ -105,6 +106,16 @@ module dpend_limits
    !> c_f ≤ max_torque), at most 1e3 (beyond, nothing is left of the sign).
    real(dp), parameter :: min_coulomb_speed = 1e-6_dp
    real(dp), parameter :: max_coulomb_speed = 1e3_dp
+   !> A motor at a joint: rotor inertia I_r [kg m²] in [0, 1e6] (as a link's inertia
+   !> about its centre, m l²/12 with the largest m and l above, is bounded by the
+   !> reflected inertia below), gear ratio g_r in [1e-3, 1e4] (direct drive: 1; the
+   !> strongest harmonic drives: a few hundred), and the reflected inertia g_r² I_r
+   !> at most 1e12 kg m² (M's added part stays finite, its condition with the lightest
+   !> links below 1e18).
+   real(dp), parameter :: max_rotor_inertia = 1e6_dp
+   real(dp), parameter :: min_gear_ratio = 1e-3_dp
+   real(dp), parameter :: max_gear_ratio = 1e4_dp
+   real(dp), parameter :: max_reflected_inertia = 1e12_dp
 
    !> At most 1e12 steps in one integration of a fixed-step method (a day at 1e7
    !> steps/s): the step index is exact in real(dp) (< 2^53) and t0 + i h never

@@ -64,6 +64,15 @@
 !>   body i and −τ_i on body i − 1, so that f gains the generalized forces
 !>   Q_i = τ_i − τ_(i+1) (τ_(N+1) = 0); they are couples, so the reactions of the
 !>   recursion (given q̈) are unchanged.
+!> - a motor at joint i (rotor inertia I_r,i, gear ratio g_r,i; stator on body i − 1,
+!>   the gear's output on body i): the rotor spins at g_r,i ω_i and adds
+!>   ½ g_r,i² I_r,i ω_i² to T (the rotor's own rotation with body i − 1 and its mass
+!>   neglected: the usual reflected-inertia model), so M gains the constant
+!>   Dᵀ diag(g_r² I_r) D, D q̇ = ω (`fill_mass`); a constant part of M changes neither
+!>   f, ∂M/∂q nor the Hamiltonian form's ∂H/∂q, and its couples
+!>   −g_r,i² I_r,i ω̇_i on body i (the opposite on body i − 1) leave the reactions
+!>   unchanged. The motion stays conservative; the chain lanes (which assemble
+!>   M = K cos) do not serve it (`mass_weights` of size 0).
 !> With any of these, the model is neither Hamiltonian nor conservative (the support
 !> and the torques also make it non-autonomous). The energy is then the inertial one,
 !>   E = T + V with T = Σ ½ m_k |v_Ck|² + ½ I_Ck q̇_k², V = Σ m_k g y_Ck,
@@ -116,6 +125,12 @@ module dpend_chain
       logical :: coulomb = .false.           !! some joint has Coulomb friction c_f,i > 0
       real(dp), allocatable :: cf(:)         !! Coulomb friction torques c_f,i [N m] (N)
       real(dp) :: vs = 1e-3_dp               !! its smoothing speed v_s [rad/s]
+      logical :: motors = .false.            !! some joint has a rotor: g_r,i² I_r,i > 0
+      real(dp), allocatable :: ir(:)         !! rotor inertias I_r,i [kg m²] (N)
+      real(dp), allocatable :: gr(:)         !! gear ratios g_r,i (N)
+      !> reflected rotor inertias g_r,i² I_r,i [kg m²] (N): the rotor of joint i spins at
+      !> g_r,i ω_i (ω_i = q̇_i − q̇_(i−1)), kinetic energy ½ g_r,i² I_r,i ω_i²
+      real(dp), allocatable :: im(:)
       logical :: torqued = .false.           !! joint torques are applied
       type(joint_torque_t) :: torque         !! the applied joint torques τ_i(t)
    contains
@@ -195,7 +210,8 @@ module dpend_chain
       !> Optional: the mass distribution, com d_i [m] and inertia I_i [kg m²]
       !> (one per link, both or neither; `check_bodies` checks them); absent: uniform rods.
       module function chain_model(m, l, g, error, damping, amplitude, frequency, phase, com, &
-                                  inertia, torque, coulomb, coulomb_speed) result(model)
+                                  inertia, torque, coulomb, coulomb_speed, rotor_inertia, &
+                                  gear_ratio) result(model)
          real(dp), intent(in) :: m(:)                      !! masses [kg]
          real(dp), intent(in) :: l(:)                      !! lengths [m]
          real(dp), intent(in) :: g                         !! gravitational acceleration [m/s²]
@@ -209,6 +225,8 @@ module dpend_chain
          type(joint_torque_t), intent(in), optional :: torque  !! τ_i(t) (N joints)
          real(dp), intent(in), optional :: coulomb(:)      !! c_f,i [N m] (N)
          real(dp), intent(in), optional :: coulomb_speed   !! v_s [rad/s]
+         real(dp), intent(in), optional :: rotor_inertia(:) !! I_r,i [kg m²] (N)
+         real(dp), intent(in), optional :: gear_ratio(:)   !! g_r,i (N)
          type(chain_t) :: model                            !! the chain (n = 0 when refused)
       end function chain_model
 
@@ -399,7 +417,10 @@ contains
       end do
    end subroutine trig
 
-   !> M(q) = K_ij cos(q_i − q_j) into the leading block of a, from cos and sin.
+   !> M(q) = K_ij cos(q_i − q_j) into the leading block of a, from cos and sin; with
+   !> motors plus the constant Dᵀ diag(g_r² I_r) D of the rotors (D q̇ = ω, the joints'
+   !> relative rates): g_r,i² I_r,i + g_r,(i+1)² I_r,(i+1) on the diagonal,
+   !> −g_r,(i+1)² I_r,(i+1) beside it.
    pure subroutine fill_mass(self, c, s, a)
       class(chain_t), intent(in) :: self
       real(dp), intent(in) :: c(max_dof), s(max_dof)  !! cos q, sin q
@@ -411,6 +432,15 @@ contains
             a(i, j) = self%k(i, j)*(c(i)*c(j) + s(i)*s(j))
             a(j, i) = a(i, j)
          end do
+      end do
+      if (.not. self%motors) return
+      do i = 1, self%n
+         a(i, i) = a(i, i) + self%im(i)
+         if (i > 1) then
+            a(i - 1, i - 1) = a(i - 1, i - 1) + self%im(i)
+            a(i, i - 1) = a(i, i - 1) - self%im(i)
+            a(i - 1, i) = a(i, i - 1)
+         end if
       end do
    end subroutine fill_mass
 
@@ -584,7 +614,8 @@ contains
       chain_n_dof = self%n
    end function chain_n_dof
 
-   !> Hamiltonian and conservative without damping, friction, support motion and torques.
+   !> Hamiltonian and conservative without damping, friction, support motion and torques
+   !> (motors keep it so: their inertia is kinetic energy).
    pure logical function chain_hamiltonian(self)
       class(chain_t), intent(in) :: self
       chain_hamiltonian = .not. (self%damped .or. self%driven .or. self%torqued .or. &

@@ -7,7 +7,8 @@ submodule (dpend_chain) dpend_chain_build
    use dpend_limits, only: check_range, check_parameter, parameter_mass, parameter_length, &
                            parameter_gravity, max_damping, max_support_amplitude, &
                            max_support_frequency, max_angle, max_torque, &
-                           min_coulomb_speed, max_coulomb_speed
+                           min_coulomb_speed, max_coulomb_speed, max_rotor_inertia, &
+                           min_gear_ratio, max_gear_ratio, max_reflected_inertia
    use dpend_strings, only: to_str
    use dpend_pendulum, only: check_bodies
    implicit none
@@ -78,6 +79,8 @@ contains
          if (allocated(error)) return
          model%vs = coulomb_speed
       end if
+      call set_motors(error)
+      if (allocated(error)) return
       if (present(amplitude)) then
          do i = 1, 2
             call check_range('support_amplitude '//merge('a_x', 'a_y', i == 1), &
@@ -168,5 +171,50 @@ contains
          model%mu(i) = l(i)*(0.5_dp*m(i) + tail)
          tail = tail + m(i)
       end do
+   contains
+      !> The motors: rotor inertia I_r,i ∈ [0, max_rotor_inertia], gear ratio g_r,i ∈
+      !> [min_gear_ratio, max_gear_ratio] (default 1), the reflected g_r,i² I_r,i at
+      !> most max_reflected_inertia.
+      subroutine set_motors(error)
+         type(error_t), allocatable, intent(out) :: error
+         allocate (model%ir(n), model%gr(n))
+         model%ir = 0.0_dp
+         model%gr = 1.0_dp
+         if (present(rotor_inertia)) then
+            if (size(rotor_inertia) /= n) then
+               call fatal_error(error, 'invalid rotor_inertia: '//to_str(size(rotor_inertia)) &
+                                //' values for '//to_str(n)//' links (one per joint)')
+               return
+            end if
+            do i = 1, n
+               call check_range('rotor_inertia I_r'//to_str(i), rotor_inertia(i), 0.0_dp, &
+                                max_rotor_inertia, 'kg m^2', error, reason)
+               if (allocated(error)) return
+            end do
+            model%ir = rotor_inertia
+         end if
+         if (present(gear_ratio)) then
+            if (size(gear_ratio) /= n) then
+               call fatal_error(error, 'invalid gear_ratio: '//to_str(size(gear_ratio)) &
+                                //' values for '//to_str(n)//' links (one per joint)')
+               return
+            end if
+            do i = 1, n
+               call check_range('gear_ratio g_r'//to_str(i), gear_ratio(i), min_gear_ratio, &
+                                max_gear_ratio, '', error, reason)
+               if (allocated(error)) return
+            end do
+            model%gr = gear_ratio
+         end if
+         model%im = model%gr**2*model%ir
+         do i = 1, n
+            call check_range('rotor_inertia I_r'//to_str(i)//' times gear_ratio g_r' &
+                             //to_str(i)//' squared', model%im(i), 0.0_dp, &
+                             max_reflected_inertia, 'kg m^2', error, 'keeps the mass ' &
+                             //'matrix''s condition finite')
+            if (allocated(error)) return
+         end do
+         model%motors = any(model%im > 0.0_dp)
+      end subroutine set_motors
    end procedure chain_model
 end submodule dpend_chain_build

@@ -179,7 +179,8 @@ contains
    !> Energy-shell sections exist for two links only (a two-degree-of-freedom
    !> Hamiltonian); there the chain is the double pendulum, whose formulas are used.
    module procedure chain_energy_sections
-      chain_energy_sections = self%n == 2 .and. self%hamiltonian()
+      ! (the double pendulum's shell, `as_pendulum`: no rotors)
+      chain_energy_sections = self%n == 2 .and. self%hamiltonian() .and. .not. self%motors
    end procedure chain_energy_sections
 
    !> The double pendulum of a two-link chain.
@@ -219,6 +220,7 @@ contains
       end if
       if (self%damped) name = 'damped '//name
       if (self%coulomb) name = name//' with Coulomb joint friction'
+      if (self%motors) name = name//' with motors (rotor inertia)'
       if (self%driven) name = name//' on a moving support'
       if (self%torqued) name = name//' with applied joint torques'
    end procedure chain_name
@@ -227,13 +229,15 @@ contains
       chain_n_parameters = 2*self%n + 1
       if (self%damped) chain_n_parameters = chain_n_parameters + self%n
       if (self%coulomb) chain_n_parameters = chain_n_parameters + self%n + 1
+      if (self%motors) chain_n_parameters = chain_n_parameters + 2*self%n
       if (self%driven) chain_n_parameters = chain_n_parameters + 5
       if (.not. self%rod) chain_n_parameters = chain_n_parameters + 2*self%n
    end procedure chain_n_parameters
 
    !> m1 … mN [kg], l1 … lN [m], g [m/s²], in that order; then, when present, the
    !> damping c1 … cN [N m s], the Coulomb friction coulomb1 … coulombN [N m] and
-   !> coulomb_speed [rad/s], and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
+   !> coulomb_speed [rad/s], the motors' rotor_inertia1 … rotor_inertiaN [kg m^2] and
+   !> gear_ratio1 … gear_ratioN, and the support's a_x, a_y [m], ω [rad/s], φ_x, φ_y [rad];
    !> last, for links other than uniform rods, com1 … comN [m] and inertia1 … inertiaN
    !> [kg m^2].
    module procedure chain_parameter
@@ -273,6 +277,16 @@ contains
             return
          end if
          j = j - self%n - 1
+      end if
+      if (j > 0 .and. self%motors) then
+         if (j <= self%n) then
+            name = 'rotor_inertia'//to_str(j); value = self%ir(j); units = 'kg m^2'
+            return
+         else if (j <= 2*self%n) then
+            name = 'gear_ratio'//to_str(j - self%n); value = self%gr(j - self%n); units = ''
+            return
+         end if
+         j = j - 2*self%n
       end if
       if (j > 0) then
          name = trim(sup_names(j)); units = trim(sup_units(j))
@@ -326,9 +340,10 @@ contains
    end procedure chain_potential_weights
 
    !> K_ij of M_ij = K_ij cos(q_i − q_j) [kg m²] (n × n); none (0 × 0) when the
-   !> support moves (the mass matrix is that, but the forces have more terms).
+   !> support moves (the mass matrix is that, but the forces have more terms) or
+   !> motors add their constant part to M.
    module procedure chain_mass_weights
-      if (self%driven) then
+      if (self%driven .or. self%motors) then
          allocate (k(0, 0))
       else
          k = self%k

@@ -21,7 +21,8 @@ module dpend_model_factory
    use dpend_strings, only: to_str, real_str, did_you_mean
    use dpend_limits, only: min_mass, max_mass, min_length, max_length, min_g, max_g, &
                            max_damping, max_support_amplitude, max_support_frequency, &
-                           max_angle, max_torque, min_coulomb_speed, max_coulomb_speed
+                           max_angle, max_torque, min_coulomb_speed, max_coulomb_speed, &
+                           max_rotor_inertia, min_gear_ratio, max_gear_ratio
    implicit none
    private
    public :: model_spec_t, spec_item_t, param_info_t, model_info_t
@@ -136,6 +137,13 @@ contains
          param('coulomb_speed', 'rad/s', 'the Coulomb friction''s smoothing speed v_s (a link ' &
                //'held below c_f creeps at most at about v_s)', min_coulomb_speed, &
                max_coulomb_speed, 1e-3_dp, 1, map_axis=.false.), &
+         param('rotor_inertia', 'kg m^2', 'rotor inertia I_r,i of the motor at joint i ' &
+               //'(its stator on link i-1): adds g_r,i^2 I_r,i to the inertia of the ' &
+               //'relative rate w_i', 0.0_dp, max_rotor_inertia, 0.0_dp, -1, &
+               map_axis=.false.), &
+         param('gear_ratio', '', 'gear ratio g_r,i of the motor at joint i (rotor speed / ' &
+               //'joint speed)', min_gear_ratio, max_gear_ratio, 1.0_dp, -1, &
+               map_axis=.false.), &
          param('support_amplitude', 'm', 'support motion amplitudes a_x, a_y', &
                -max_support_amplitude, max_support_amplitude, 0.0_dp, 2, map_axis=.false.), &
          param('support_frequency', 'rad/s', 'support motion angular frequency', 0.0_dp, &
@@ -419,7 +427,7 @@ contains
       class(model_t), allocatable, intent(out) :: model  !! the model built
       type(error_t), allocatable, intent(out) :: error   !! set when refused
       real(dp), allocatable :: m(:), l(:), c(:), g(:), a(:), w(:), phi(:), d(:), ic(:), &
-                               cf(:), vs(:)
+                               cf(:), vs(:), ir(:), gr(:)
       integer :: n
       logical :: rod
       n = n_links(spec, info)
@@ -429,6 +437,13 @@ contains
       c = value_of(spec, info, 'damping', n)
       cf = value_of(spec, info, 'coulomb', n)
       vs = value_of(spec, info, 'coulomb_speed', n)
+      ir = value_of(spec, info, 'rotor_inertia', n)
+      gr = value_of(spec, info, 'gear_ratio', n)
+      if (spec%find('gear_ratio') > 0 .and. all(ir == 0.0_dp)) then
+         call fatal_error(error, 'invalid gear_ratio: given without a rotor_inertia (it ' &
+                          //'only scales the rotor''s inertia: g_r^2 I_r)')
+         return
+      end if
       a = value_of(spec, info, 'support_amplitude', n)
       w = value_of(spec, info, 'support_frequency', n)
       phi = value_of(spec, info, 'support_phase', n)
@@ -440,7 +455,7 @@ contains
          type(pendulum_t) :: par
          ! the chain checks every parameter (also those the two-link form ignores)
          chain = chain_model(m, l, g(1), error, c, a, w(1), phi, torque=spec%torque, &
-                             coulomb=cf, coulomb_speed=vs(1))
+                             coulomb=cf, coulomb_speed=vs(1), rotor_inertia=ir, gear_ratio=gr)
          if (allocated(error)) return
          if (.not. rod) then   ! m and l checked: the defaults m l²/12 are finite
             if (spec%find('com') > 0) then
@@ -454,11 +469,11 @@ contains
                ic = m*l**2/12.0_dp
             end if
             chain = chain_model(m, l, g(1), error, c, a, w(1), phi, d, ic, spec%torque, &
-                                cf, vs(1))
+                                cf, vs(1), ir, gr)
             if (allocated(error)) return
          end if
          if (n == 2 .and. all(c == 0.0_dp) .and. all(a == 0.0_dp) .and. all(cf == 0.0_dp) &
-             .and. &
+             .and. .not. chain%motors .and. &
              .not. (spec%general .or. spec%torque%active())) then
             par = pendulum_t(m1=m(1), m2=m(2), l1=l(1), l2=l(2), g=g(1))
             if (.not. rod) then

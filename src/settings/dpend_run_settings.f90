@@ -651,6 +651,9 @@ contains
             s = ' [--damping / &pendulum damping]'
          else if (index(message, 'invalid coulomb') == 1) then
             s = ' [--coulomb --coulomb-speed / &model coulomb coulomb_speed]'
+         else if (index(message, 'invalid rotor_inertia') == 1 .or. &
+                  index(message, 'invalid gear_ratio') == 1) then
+            s = ' [--rotor-inertia --gear-ratio / &model rotor_inertia gear_ratio]'
          else if (index(message, 'invalid com') == 1 .or. index(message, 'invalid inertia') &
                   == 1) then
             s = ' [--com --inertia --body / &pendulum com inertia body]'
