@@ -17,7 +17,7 @@ module dpend_chaos_common
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_namelist, only: read_run_config, namelist_error
-   use dpend_run_flags, only: apply_run_flag, run_flags_help
+   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_torque_file
    use dpend_pendulum, only: energy_limit
    use dpend_limits, only: finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -162,6 +162,9 @@ contains
       s = s//nl//'Output: HDF5 (docs/hdf5-layout.md); figures: scripts/plot_chaos.sh FILE.h5'// &
           nl//nl//'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
           run_flags_help(cfg, t_end_text(command))//nl// &
+          '  --torque-file F   applied joint torques: CSV with columns t [s] and tau1 ..'//nl// &
+          '                    tauN [N m] (joint i on link i), linear between samples,'//nl// &
+          '                    covering '//torque_span_text(command)//' (docs/robot.md)'//nl// &
           '                    (namelist group &chaos holds the settings below)'//nl
       select case (command)
       case ('lyapunov')
@@ -307,8 +310,13 @@ contains
          call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
          matched = .false.
-         if (name /= '--save-every' .and. (name /= '--output-dt' .or. command == 'divergence')) &
+         if (name == '--torque-file') then
+            matched = .true.
+            if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
+         else if (name /= '--save-every' .and. &
+                  (name /= '--output-dt' .or. command == 'divergence')) then
             call apply_run_flag(cfg, name, value, matched, error)
+         end if
          if (.not. matched) call apply_chaos_flag(command, ch, name, value, matched, error)
          if (command == 'divergence') then
             call option_outcome(command, name, matched, missing, &
@@ -450,6 +458,20 @@ contains
                            ' samples', 'use a larger --tau', error)
    end subroutine validate_indicators
 
+   !> The times the torques must cover, in words for the help.
+   pure function torque_span_text(command) result(s)
+      character(len=*), intent(in) :: command  !! command name
+      character(len=:), allocatable :: s
+      select case (command)
+      case ('divergence')
+         s = '[0, max(t_end, lyapunov_t, (pairs-1) pair_spacing)]'
+      case ('poincare')
+         s = '[0, t_end] (refused: a section needs a conservative model)'
+      case default
+         s = '[0, t_end]'
+      end select
+   end function torque_span_text
+
    !> `dpend divergence`: delta0, the pairs, the fit window, lyapunov_t, output_dt;
    !> steps, samples and renormalisations kept.
    subroutine validate_divergence(cfg, ch, fixed, error)
@@ -512,6 +534,20 @@ contains
                            //to_str(ch%pairs)//' pair(s)', &
                            'use a larger --output-dt or fewer --pairs', error)
       if (allocated(error)) return
+      ! every pair starts at t = 0 (its state from the reference orbit at its start),
+      ! the reference runs (pairs − 1) pair_spacing, Benettin's lambda1 lyapunov_t
+      if (cfg%torque%active()) then
+         if (.not. cfg%torque%covers(0.0_dp, max(cfg%t_end, ch%lyapunov_t, &
+                                                 ch%pair_spacing*real(ch%pairs - 1, dp)))) then
+            call fatal_error(error, 'invalid torque_file: the runs span [0, '// &
+                             sci(max(cfg%t_end, ch%lyapunov_t, ch%pair_spacing* &
+                                     real(ch%pairs - 1, dp)), 6)//'] s (t_end, ' &
+                             //'lyapunov_t, (pairs - 1) pair_spacing), the torques are ' &
+                             //cfg%torque%text()//' (a series is not extrapolated; ' &
+                             //'--lyapunov-t 0 skips Benettin''s exponent)')
+            return
+         end if
+      end if
       n = ch%lyapunov_t/0.5_dp + 2.0_dp
       call check_resources(cfg%output, 'lyapunov_t', n, 48.0_dp, 0.0_dp, &
                            sci(n)//' renormalisations', &
@@ -664,6 +700,8 @@ contains
       call h5%writeattr('/', 'm', cfg%m(:cfg%links))
       call h5%writeattr('/', 'l', cfg%l(:cfg%links))
       call h5%writeattr('/', 'energy0', cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()]))
+      if (cfg%torque%active()) call h5%writeattr('/', 'torque', cfg%torque%text())
+      if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)
       call h5%writeattr('/', 'n_steps', integ%n_steps)
       call h5%writeattr('/', 'status', status)
       call h5%writeattr('/', 'version', version)

@@ -156,6 +156,13 @@ contains
          case ('--axis1', '--axis2', '--min1', '--max1', '--min2', '--max2')
             cfg%grid_given = cfg%grid_given//name//' '
          end select
+         if (name == '--torque-file') then   ! a clearer word than 'unknown option'
+            call fatal_error(error, 'invalid torque_file: dpend sweep maps the conservative ' &
+                             //'chain only (its flip bounds, energy errors and lanes); ' &
+                             //'simulate, fit, lyapunov, indicators and divergence take ' &
+                             //'joint torques [--torque-file]')
+            return
+         end if
          select case (name)
          case ('--config')
          case ('--axis1'); cfg%axis1 = value

@@ -21,7 +21,7 @@ module dpend_sweep_gpu
    use dpend_os, only: executable_path
    use dpend_error, only: error_t, fatal_error
    use dpend_sweep_settings, only: sweep_config_t, flip_model, grid_mode, axis_parameter, &
-      model_axis
+      model_axis, kernel_pendulum
    implicit none
    private
    public :: resolve_device
@@ -234,8 +234,8 @@ contains
       integer :: state
       if (cfg%device == 'cpu') return   ! (its name and gpu_repack: validate_sweep)
       why = ''
-      if (cfg%run%links /= 2 .or. .not. flip_model(cfg)) then
-         why = 'the GPU computes the two-link pendulum only'
+      if (cfg%run%links /= 2 .or. .not. flip_model(cfg) .or. .not. kernel_pendulum(cfg)) then
+         why = 'the GPU computes the two-link pendulum only (no motors)'
       else if (cfg%lyapunov .or. cfg%indicator /= 'flip') then
          why = 'the GPU computes flip maps only (--lyapunov and --indicator run on the CPU)'
       else if (grid_mode(cfg)) then

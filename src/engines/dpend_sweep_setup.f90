@@ -11,7 +11,8 @@ module dpend_sweep_setup
    use dpend_lane_batch, only: batch_options_t
    use dpend_sweep_settings, only: sweep_config_t, time_scale, stop_rule, grid_mode, &
       indicator_vectors, axis_parameter, pixel_parameters, flip_model, sweep_variable, &
-      natural_time, model_axis, pendulum_param_names, pendulum_param_values, pendulum_axis
+      natural_time, model_axis, pendulum_param_names, pendulum_param_values, pendulum_axis, &
+      kernel_pendulum
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
    use dpend_chain_lanes, only: chain_kernel_choice
@@ -121,7 +122,8 @@ contains
       setup%grid = grid_mode(cfg)
       setup%links = cfg%run%model%n_dof()   ! N links; the elastic pendulum's 2
       setup%flips = flip_model(cfg)
-      setup%per_trajectory = setup%links /= 2 .or. .not. setup%flips
+      setup%per_trajectory = setup%links /= 2 .or. .not. setup%flips .or. &
+                             .not. kernel_pendulum(cfg)
       call new_integrator(cfg%run%method, setup%integ, error)
       if (allocated(error)) return
       setup%gl = cfg%run%model%potential_weights()   ! G_i (any N, also 2)
@@ -533,7 +535,8 @@ contains
                 'method = '//c%run%method//nl//'kernel = per trajectory'//nl// &
                 'model = '//c%run%spec%model_name()//nl//model_lines()// &
                 'q = '//rl(c%run%q0())//nl//'w = '//rl(c%run%w0())//nl
-         else if (setup%links == 2) then   ! two-link files of every version resume
+         else if (setup%links == 2 .and. kernel_pendulum(c)) then
+            ! two-link files of every version resume
             s = 'program = dpend '//version//nl//'command = sweep'//nl// &
                 'method = '//c%run%method//nl//'kernel = '// &
                 trim(merge('per trajectory', 'batch rk4     ', named_axes(setup)))//nl// &
@@ -573,7 +576,8 @@ contains
       end associate
    contains
       !> 'com1 = …' and 'inertia1 = …' lines of links other than uniform rods
-      !> (a sweep of another body never resumes one of rods); none for rods.
+      !> (a sweep of another body never resumes one of rods), 'rotor_inertia1 = …' and
+      !> 'gear_ratio1 = …' of the motors; none for rods without motors.
       function body_lines() result(t)
          character(len=:), allocatable :: t, pname, units
          real(dp) :: x
@@ -581,7 +585,8 @@ contains
          t = ''
          do i = 1, setup%cfg%run%model%n_parameters()
             call setup%cfg%run%model%parameter(i, pname, x, units)
-            if (index(pname, 'com') == 1 .or. index(pname, 'inertia') == 1) &
+            if (index(pname, 'com') == 1 .or. index(pname, 'inertia') == 1 .or. &
+                index(pname, 'rotor_inertia') == 1 .or. index(pname, 'gear_ratio') == 1) &
                t = t//pname//' = '//r(x)//nl
          end do
       end function body_lines

@@ -41,7 +41,7 @@ module dpend_sweep_record
    use dpend_limits, only: sci, max_threads, max_axis_points, max_sweep_points, max_angle, &
       max_angular_velocity, max_time, check_parameter, parameter_mass, parameter_length
    use dpend_model, only: model_t
-   use dpend_pendulum, only: pendulum_t
+   use dpend_pendulum, only: pendulum_t, double_pendulum_t
    use dpend_model_factory, only: model_spec_t, new_model, model_info_t, model_catalogue, &
       find_model, spec_values
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -52,7 +52,8 @@ module dpend_sweep_record
    private
    public :: axis_names, param_axis_names, indicator_names, &
       sweep_config_t, sweep_defaults, indicator_vectors, grid_mode, time_scale, &
-      natural_time, natural_name, flip_model, sweep_variable, stop_rule, axis_variable
+      natural_time, natural_name, flip_model, sweep_variable, stop_rule, axis_variable, &
+      kernel_pendulum
 
 
    !> Names accepted for axis1 and axis2 (two links; `accepted_axes` for N).
@@ -175,6 +176,19 @@ contains
       type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
       flip_model = size(cfg%run%model%potential_weights()) == cfg%run%model%n_dof()
    end function flip_model
+
+   !> The two-link kernels (the batch lanes, the GPU) serve the run's model: the
+   !> double pendulum's own formulation (`double_pendulum_t`; a chain of two links with
+   !> motors is not: its mass matrix has the rotors' part, so it goes per trajectory).
+   logical function kernel_pendulum(cfg)
+      type(sweep_config_t), intent(in) :: cfg  !! configuration, model built
+      select type (m => cfg%run%model)
+      type is (double_pendulum_t)
+         kernel_pendulum = .true.
+      class default
+         kernel_pendulum = .false.
+      end select
+   end function kernel_pendulum
 
    !> Index in the state (q, q̇) of the initial value an axis sweeps, 0 for an unknown
    !> name: `axis_variable` for the pendulum; for another model qk and wk, or its

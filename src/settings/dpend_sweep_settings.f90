@@ -26,7 +26,7 @@ module dpend_sweep_settings
    public :: sweep_config_t, sweep_defaults, validate_sweep, axis_names, time_scale, &
       stop_rule, grid_mode, axis_variable, indicator_names, indicator_vectors, &
       axis_parameter, param_axis_names, pixel_parameters, pixel_model, flip_model, &
-      sweep_variable, natural_time, horizon_text
+      sweep_variable, natural_time, horizon_text, kernel_pendulum
    public :: model_axis, model_axis_names, pixel_model_named, pixel_pendulum, pixel_pendulums
    public :: pendulum_axis, pendulum_param_names, pendulum_param_values, pixel_model_axes, &
       named_axis_units, coded_axes
