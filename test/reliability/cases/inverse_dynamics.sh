@@ -108,6 +108,9 @@ succeed id-ok-friction        -- "${T[@]}" --damping 0.1,0.2 --coulomb 0.05,0.02
 succeed id-ok-bodies          -- "${T[@]}" --com 0.3,0.4 --inertia 0.02,0.01 --support-amplitude 0.01,0.02 --support-frequency 3
 succeed id-ok-point           -- "${T[@]}" --body point
 succeed id-ok-quiet           -- torques id_ok_tau.csv --output g.h5 --quiet
+succeed id-ok-motors          -- "${T[@]}" --rotor-inertia 1e-3,2e-4 --gear-ratio 10,30
+refuse  id-rotors             'unknown option'       -- "${T[@]}" --rotors estimate
+refuse  id-motor-big          'rotor_inertia I_r1'   -- "${T[@]}" --rotor-inertia 1e7,0
 
 # ---- dpend identify: the same data checks, the torques required, what it estimates
 motion id_ok_long_rates.csv 400 q qdot tau
@@ -123,6 +126,12 @@ refuse  ident-friction-empty  'friction'             -- "${I[@]}" --friction ''
 refuse  ident-friction-twice  'given twice'          -- "${I[@]}" --friction none --friction viscous
 refuse  ident-damping-fitted  'estimates the viscous' -- "${I[@]}" --damping 0.1,0.1
 refuse  ident-coulomb-fitted  'estimates the Coulomb' -- "${I[@]}" --coulomb 0.1,0.1
+refuse  ident-rotors-word     "rotors: 'maybe'"      -- "${I[@]}" --rotors maybe
+refuse  ident-rotors-case     "rotors: 'Estimate'"   -- "${I[@]}" --rotors Estimate
+refuse  ident-rotors-twice    'given twice'          -- "${I[@]}" --rotors known --rotors estimate
+refuse  ident-rotors-given    'estimates the reflected' -- "${I[@]}" --rotors estimate --rotor-inertia 0.1,0.1
+refuse  ident-gear-given      'estimates the reflected' -- "${I[@]}" --rotors estimate --rotor-inertia 0,0 --gear-ratio 2,2
+refuse  ident-gear-alone      'without a rotor_inertia' -- "${I[@]}" --gear-ratio 2,2
 refuse  ident-com             'estimates'            -- "${I[@]}" --com 0.4,0.3
 refuse  ident-inertia         'estimates'            -- "${I[@]}" --inertia 0.1,0.1
 refuse  ident-body            'estimates'            -- "${I[@]}" --body point
@@ -141,6 +150,8 @@ succeed ident-ok              -- "${I[@]}"
 succeed ident-ok-viscous      -- "${I[@]}" --friction viscous --coulomb 0.01,0.02
 succeed ident-ok-none         -- "${I[@]}" --friction none --damping 0.1,0.1 --coulomb 0.01,0.02 --coulomb-speed 0.2
 succeed ident-ok-rates        -- identify id_ok_long_rates.csv --output g.h5 --m 1,0.7 --degree 2
+succeed ident-ok-rotors       -- "${I[@]}" --rotors estimate
+succeed ident-ok-rotors-known -- "${I[@]}" --rotors known --rotor-inertia 1e-3,1e-3 --gear-ratio 5,5
 
 # ---- the robotics convention: phi columns (relative angles) and export --angles
 fx ang_phi.csv         't,phi1,phi2\n0,0.3,0.2\n0.02,0.31,0.19\n0.04,0.32,0.18\n0.06,0.33,0.17\n0.08,0.34,0.16\n0.1,0.35,0.15\n0.12,0.36,0.14\n0.14,0.37,0.13\n'

@@ -2,8 +2,10 @@
 # their line numbers (gaps, NaN, times not increasing, too short, a span that leaves the
 # run, wrong columns and units, values beyond the limit), the option refused where it
 # does not belong; Coulomb joint friction (--coulomb, --coulomb-speed) out of range or
-# of the wrong count; each in one line naming the field, exit 2, no file touched; and
-# edge values that must succeed without a trap in the debug build.
+# of the wrong count; the motors (--rotor-inertia, --gear-ratio) out of range, of the
+# wrong count or a gear ratio without a rotor; the chaos commands' torque files; each
+# in one line naming the field, exit 2, no file touched; and edge values that must
+# succeed without a trap in the debug build.
 
 # fixtures: CSV files, good and bad (each row's problem in its name)
 fx() { printf '%b' "$2" > "$FIXTURES/$1"; }
@@ -31,6 +33,9 @@ fx tau_short_row.csv   't,tau1,tau2\n0,0.5,-0.2\n1,0\n'
 fx tau_utf16.csv       '\377\376t\000,\000t\000'
 fx coulomb.nml         '&model\n coulomb = 0.5, 0.2\n coulomb_speed = 0.01\n/\n'
 fx tau_fit_data.csv     't,theta1\n0,0.1\n0.1,0.09\n0.2,0.06\n0.3,0.02\n0.4,-0.03\n'
+fx motors.nml          '&model\n rotor_inertia = 0.01, 0.002\n gear_ratio = 5, 20\n/\n'
+fx tau_long.csv        't,tau1,tau2\n0,0.5,-0.2\n3000,0.4,0.1\n'
+fx tau_three.csv       't,tau1,tau2,tau3\n0,0.5,-0.2,0.1\n2,0.4,0.1,0\n'
 
 S=(simulate --t-end 1 --output g.h5)
 # ---- the torque file
@@ -64,8 +69,10 @@ refuse  torque-hamiltonian     'torque'             -- "${S[@]}" --method verlet
 # 4 sqrt(l1/g) = 1.28 s: beyond the series' 1 s (1 sqrt(l1/g) = 0.32 s is within)
 refuse  torque-natural-span    'not extrapolated'   -- simulate --t-end 4 --time-unit natural --output g.h5 --torque-file tau_ok.csv
 succeed torque-ok-natural      -- simulate --t-end 1 --time-unit natural --output g.h5 --torque-file tau_ok.csv
-# ---- where the option does not belong (commands that do not apply torques yet), and fit
-refuse  torque-sweep           'unknown option'     -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
+# ---- where the option does not belong (the sweep, poincare: conservative), and fit
+refuse  torque-sweep           'conservative chain only' -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-poincare        'energy-shell sections' -- poincare --t-end 1 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-study           'unknown option'     -- study --torque-file tau_ok.csv
 # fit applies torques (the motion a robot's measured torques drove): over the data's times
 succeed torque-fit-ok          -- fit --output g.h5 --torque-file tau_ok.csv tau_fit_data.csv
 refuse  torque-fit-span        'not extrapolated'   -- fit --output g.h5 --torque-file tau_late.csv tau_fit_data.csv
@@ -73,7 +80,20 @@ refuse  torque-fit-twice       'given twice'        -- fit --output g.h5 --torqu
 refuse  torque-fit-missing     'no such file'       -- fit --output g.h5 --torque-file nosuch.csv tau_fit_data.csv
 refuse  torque-fit-output      'input'              -- fit tau_fit_data.csv --torque-file tau_ok.csv --output tau_ok.csv --force
 refuse  torque-simulate-output 'input'              -- simulate --t-end 0.5 --torque-file tau_ok.csv --output tau_ok.csv --force
-refuse  torque-lyapunov        'unknown option'     -- lyapunov --output g.h5 --torque-file tau_ok.csv
+# the chaos commands apply torques over their runs' span
+succeed torque-lyapunov-ok     -- lyapunov --t-end 1 --tau 0.5 --output g.h5 --torque-file tau_ok.csv
+succeed torque-indicators-ok   -- indicators --t-end 1 --tau 0.5 --output g.h5 --torque-file tau_ok.csv
+succeed torque-divergence-ok   -- divergence --t-end 1 --output-dt 0.1 --lyapunov-t 0 --pairs 1 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-lyapunov-span   'not extrapolated'   -- lyapunov --t-end 2 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-indicators-span 'not extrapolated'   -- indicators --t-end 2 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-divergence-lyap 'lyapunov-t 0'       -- divergence --t-end 1 --output-dt 0.1 --pairs 1 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-divergence-pairs 'pair_spacing'      -- divergence --t-end 1 --output-dt 0.1 --lyapunov-t 0 --pairs 3 --pair-spacing 1 --output g.h5 --torque-file tau_ok.csv
+succeed torque-divergence-long -- divergence --t-end 1 --output-dt 0.1 --pairs 2 --pair-spacing 0.5 --lyapunov-t 2 --output g.h5 --torque-file tau_long.csv
+refuse  torque-lyapunov-twice  'given twice'        -- lyapunov --t-end 1 --output g.h5 --torque-file tau_ok.csv --torque-file tau_ok.csv
+refuse  torque-lyapunov-missing 'no such file'      -- lyapunov --t-end 1 --output g.h5 --torque-file nosuch.csv
+refuse  torque-lyapunov-nan    'line 3'             -- lyapunov --t-end 1 --output g.h5 --torque-file tau_nan.csv
+refuse  torque-lyapunov-output 'input'              -- lyapunov --t-end 0.5 --torque-file tau_ok.csv --output tau_ok.csv --force
+refuse  torque-indicators-verlet 'torque'           -- indicators --t-end 1 --method verlet --output g.h5 --torque-file tau_ok.csv
 
 # edge values that must succeed
 succeed torque-ok              -- "${S[@]}" --torque-file tau_ok.csv
@@ -102,3 +122,35 @@ succeed coulomb-ok-config      -- "${S[@]}" --config coulomb.nml
 succeed coulomb-ok-zero        -- "${S[@]}" --coulomb 0,0
 succeed coulomb-ok-torques     -- "${S[@]}" --torque-file tau_ok.csv --coulomb 0.5,0.2 --method gauss4
 succeed coulomb-ok-one-link-rk4 -- "${S[@]}" --links 1 --coulomb 0.3 --coulomb-speed 1e-6 --method rk4
+
+# ---- motors: rotor inertia and gear ratio per joint
+refuse  rotor-negative         'rotor_inertia I_r1' -- "${S[@]}" --rotor-inertia -0.1,0
+refuse  rotor-nan              "--rotor-inertia: 'nan' is not finite" -- "${S[@]}" --rotor-inertia 0,nan
+refuse  rotor-inf              "--rotor-inertia: 'inf' is not finite" -- "${S[@]}" --rotor-inertia inf,0
+refuse  rotor-big              'outside [0, 1e6]'   -- "${S[@]}" --rotor-inertia 2e6,0
+refuse  rotor-count            'one per link (2)'   -- "${S[@]}" --rotor-inertia 0.1
+refuse  rotor-count-links      'one per link (3)'   -- "${S[@]}" --links 3 --rotor-inertia 0.1,0.1
+refuse  rotor-twice            'given twice'        -- "${S[@]}" --rotor-inertia 0.1,0.1 --rotor-inertia 0.2,0.2
+refuse  rotor-word             'rotor-inertia'      -- "${S[@]}" --rotor-inertia heavy,0
+refuse  rotor-trailing         'rotor-inertia'      -- "${S[@]}" --rotor-inertia 0.1x,0
+refuse  gear-zero              'gear_ratio g_r1'    -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 0,1
+refuse  gear-negative          'outside [0.001, 10000]' -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 1,-5
+refuse  gear-big               'outside [0.001, 10000]' -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 1e5,1
+refuse  gear-nan               "--gear-ratio: 'nan' is not finite" -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 1,nan
+refuse  gear-count             'one per link (2)'   -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 10
+refuse  gear-without-rotor     'without a rotor_inertia' -- "${S[@]}" --gear-ratio 10,10
+refuse  gear-rotor-zero        'without a rotor_inertia' -- "${S[@]}" --rotor-inertia 0,0 --gear-ratio 10,10
+refuse  reflected-big          'times gear_ratio'   -- "${S[@]}" --rotor-inertia 1e5,0 --gear-ratio 1e4,1
+refuse  rotor-elastic          'not a parameter of model elastic' -- "${S[@]}" --model elastic --rotor-inertia 1
+refuse  rotor-underscore       'unknown option'     -- "${S[@]}" --rotor_inertia 0.1,0.1
+refuse  rotor-poincare         'energy-shell sections' -- poincare --t-end 1 --output g.h5 --rotor-inertia 0.1,0.1
+refuse  rotor-sweep-gpu        'no motors'          -- sweep --n 4 --device gpu --output g.h5 --rotor-inertia 0.1,0.1
+refuse  rotor-sweep-axis       'rotor_inertia1'     -- sweep --n 4 --axis1 rotor_inertia1 --output g.h5 --rotor-inertia 0.1,0.1
+succeed rotor-ok               -- "${S[@]}" --rotor-inertia 0.01,0.002 --gear-ratio 5,20 --method dop853
+succeed rotor-ok-config        -- "${S[@]}" --config motors.nml
+succeed rotor-ok-zero          -- "${S[@]}" --rotor-inertia 0,0
+succeed rotor-ok-one-gear-edge -- "${S[@]}" --rotor-inertia 1e-3,1e-3 --gear-ratio 1e-3,1e4 --method gauss4
+succeed rotor-ok-verlet        -- "${S[@]}" --rotor-inertia 0.01,0.01 --method verlet
+succeed rotor-ok-chain-torques -- "${S[@]}" --links 3 --rotor-inertia 0.01,0.01,0.01 --torque-file tau_three.csv --coulomb 0.1,0.1,0.1 --method rk4
+succeed rotor-ok-sweep         -- sweep --n 4 --t-end 2 --output g.h5 --rotor-inertia 0.01,0.02 --gear-ratio 3,2
+succeed rotor-ok-lyapunov      -- lyapunov --t-end 1 --tau 0.5 --output g.h5 --rotor-inertia 0.01,0.02
