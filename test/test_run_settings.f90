@@ -8,7 +8,8 @@ module test_run_settings
    use dpend_error, only: error_t
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag
+   use dpend_run_flags, only: apply_run_flag, take_initial_angles
+   use dpend_kinds, only: half_pi
    use testing, only: unittest_t, new_unittest, check_true
    implicit none
    private
@@ -23,7 +24,8 @@ contains
               new_unittest('flags_over_either_group', test_flags_over_file), &
               new_unittest('two_groups_refused', test_two_groups), &
               new_unittest('unused_settings_refused', test_unused), &
-              new_unittest('time_unit_once', test_time_unit) &
+              new_unittest('time_unit_once', test_time_unit), &
+              new_unittest('relative_initial_angles_once', test_relative_angles) &
               ]
    end subroutine collect_run_settings
 
@@ -154,6 +156,32 @@ contains
       call refused([character(len=80) ::], [character(len=16) :: '--time-unit', 'S'], &
                    "invalid time_unit: 'S'", error)
    end subroutine test_time_unit
+
+   !> --angles relative: φ = (0.3, −0.5, 0.2) rad, φ̇ = (0.1, 0.2, −0.4) rad/s of three
+   !> links give q = (0.3 − π/2, q1 − 0.5, q2 + 0.2), q̇ = (0.1, 0.3, −0.1), converted
+   !> once (a second validation leaves them).
+   subroutine test_relative_angles(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(run_config_t) :: cfg
+      real(dp) :: q(3), w(3)
+      call settings_of([character(len=80) ::], [character(len=16) :: '--links', '3', &
+                       '--q', '0.3,-0.5,0.2', '--w', '0.1,0.2,-0.4'], cfg, error)
+      if (allocated(error)) return
+      q = cfg%q(1:3); w = cfg%w(1:3)
+      call check_true(error, all(q == [0.3_dp, -0.5_dp, 0.2_dp]), 'absolute by default')
+      if (allocated(error)) return
+      call take_initial_angles(cfg, 'relative', error)
+      if (allocated(error)) return
+      cfg%angles_resolved = .false.
+      call validate_run_config(cfg, error)
+      if (allocated(error)) return
+      call validate_run_config(cfg, error)
+      if (allocated(error)) return
+      q(1) = 0.3_dp - half_pi; q(2) = q(1) - 0.5_dp; q(3) = q(2) + 0.2_dp
+      call check_true(error, all(cfg%q(1:3) == q) .and. &
+                      all(cfg%w(1:3) == [0.1_dp, 0.1_dp + 0.2_dp, 0.1_dp + 0.2_dp - 0.4_dp]), &
+                      'relative: q1 = phi1 - pi/2, q_i = q_(i-1) + phi_i, once')
+   end subroutine test_relative_angles
 
    !> The settings of a file with these lines, then these flags (name, value pairs).
    subroutine settings_of(lines, flags, cfg, error)

@@ -17,7 +17,8 @@ module dpend_chaos_common
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_namelist, only: read_run_config, namelist_error
-   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_torque_file
+   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_torque_file, &
+      take_initial_angles, initial_angles_help
    use dpend_pendulum, only: energy_limit
    use dpend_limits, only: finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -162,6 +163,7 @@ contains
       s = s//nl//'Output: HDF5 (docs/hdf5-layout.md); figures: scripts/plot_chaos.sh FILE.h5'// &
           nl//nl//'options (SI units; angles in rad from the horizontal x axis, y up):'//nl// &
           run_flags_help(cfg, t_end_text(command))//nl// &
+          initial_angles_help()// &
           '  --torque-file F   applied joint torques: CSV with columns t [s] and tau1 ..'//nl// &
           '                    tauN [N m] (joint i on link i), linear between samples,'//nl// &
           '                    covering '//torque_span_text(command)//' (docs/robot.md)'//nl// &
@@ -313,6 +315,9 @@ contains
          if (name == '--torque-file') then
             matched = .true.
             if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
+         else if (name == '--angles') then
+            matched = .true.
+            if (.not. (missing .or. allocated(error))) call take_initial_angles(cfg, value, error)
          else if (name /= '--save-every' .and. &
                   (name /= '--output-dt' .or. command == 'divergence')) then
             call apply_run_flag(cfg, name, value, matched, error)
@@ -702,6 +707,8 @@ contains
       call h5%writeattr('/', 'energy0', cfg%model%energy(0.0_dp, [cfg%q0(), cfg%w0()]))
       if (cfg%torque%active()) call h5%writeattr('/', 'torque', cfg%torque%text())
       if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)
+      if (cfg%initial_angles == 'relative') call h5%writeattr('/', 'initial_angles', &
+         'relative (given; q0 and qdot0 are the absolute ones)')
       call h5%writeattr('/', 'n_steps', integ%n_steps)
       call h5%writeattr('/', 'status', status)
       call h5%writeattr('/', 'version', version)

@@ -14,7 +14,8 @@ module dpend_run_flags
       mark_given, time_unit_option_help
    implicit none
    private
-   public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag, take_torque_file
+   public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag, take_torque_file, &
+      take_initial_angles, initial_angles_help
 
 contains
 
@@ -103,6 +104,39 @@ contains
          cfg%torque_file = value
       end if
    end subroutine take_torque_file
+
+   !> --angles relative|absolute: the convention of the initial angles and rates
+   !> given (`run_config_t%initial_angles`), once.
+   subroutine take_initial_angles(cfg, value, error)
+      type(run_config_t), intent(inout) :: cfg          !! initial_angles set
+      character(len=*), intent(in) :: value             !! as given
+      type(error_t), allocatable, intent(out) :: error  !! twice, another word
+      if (allocated(cfg%flags_seen)) then
+         if (index(cfg%flags_seen, ' --angles ') > 0) then
+            call fatal_error(error, 'invalid angles: given twice (--angles)')
+            return
+         end if
+      else
+         cfg%flags_seen = ' '
+      end if
+      if (value /= 'relative' .and. value /= 'absolute') then
+         call fatal_error(error, "invalid angles: '"//printable(value)//"' (accepted: " &
+                          //'absolute, relative) [--angles]')
+         return
+      end if
+      cfg%initial_angles = value
+      cfg%flags_seen = cfg%flags_seen//'--angles '
+   end subroutine take_initial_angles
+
+   !> The help lines of --angles.
+   pure function initial_angles_help() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      s = '  --angles WHICH    the convention of the initial angles and rates given (--q,'//nl// &
+          '                    --q1, --q2, --w, ...): absolute (default; from the'//nl// &
+          '                    horizontal x axis) or relative (robotics: phi1 = q1 + pi/2'//nl// &
+          '                    from hanging, phi_i = q_i - q_(i-1); unset values 0 in it)'//nl
+   end function initial_angles_help
 
    !> Set the unit of the times given: 's' or 'natural' (`run_config_t%time_unit`).
    subroutine set_time_unit(cfg, value, field, error)

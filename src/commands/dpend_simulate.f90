@@ -8,7 +8,8 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config, time_text
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag, take_torque_file, run_flags_help
+   use dpend_run_flags, only: apply_run_flag, take_torque_file, run_flags_help, &
+      take_initial_angles, initial_angles_help
    use dpend_model, only: model_t, max_dof
    use dpend_model_factory, only: default_model
    use dpend_work, only: needs_work, work_model, split_work, is_work_model, augmented_state, &
@@ -113,6 +114,7 @@ contains
           '  --save-every N    keep every N-th step (and always the last); default ' &
           //to_str(cfg%save_every)//nl// &
           '  --output-dt S     sample at exactly k*S and t_end (dense output); 0 = off'//nl// &
+          initial_angles_help()// &
           '  --torque-file F   applied joint torques: CSV with columns t [s] and tau1 ..'//nl// &
           '                    tauN [N m] (joint i on link i), linear between samples,'//nl// &
           '                    covering [0, t_end] (docs/robot.md)'//nl// &
@@ -157,6 +159,9 @@ contains
          if (name == '--torque-file') then
             matched = .true.
             if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
+         else if (name == '--angles') then
+            matched = .true.
+            if (.not. (missing .or. allocated(error))) call take_initial_angles(cfg, value, error)
          else
             call apply_run_flag(cfg, name, value, matched, error)
          end if
@@ -528,6 +533,8 @@ contains
          end do
          call record_model(h5, model)
       end associate
+      if (cfg%initial_angles == 'relative') call h5%writeattr('/', 'initial_angles', &
+         'relative (given; q0 and qdot0 are the absolute ones)')
       if (cfg%torque%active()) then   ! what the run applied, exactly
          call h5%writeattr('/', 'torque', cfg%torque%text())
          if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)

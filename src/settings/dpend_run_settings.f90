@@ -21,6 +21,7 @@ module dpend_run_settings
    use dpend_joint_torque, only: joint_torque_t, torque_series
    use dpend_csv, only: series_t, read_series
    use dpend_output, only: register_input
+   use dpend_angle_convention, only: to_absolute, rates_to_absolute
    implicit none
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
@@ -77,6 +78,12 @@ module dpend_run_settings
       character(len=7) :: time_unit = 's'
       real(dp) :: time_scale = 1.0_dp          !! seconds per unit of the times given
       logical :: times_resolved = .false.      !! dt, t_end, output_dt are in seconds
+      !> The convention of the initial angles and rates given (q, w; `--angles`):
+      !> 'absolute' (the chapter's, from the horizontal x axis) or 'relative' (the
+      !> robotics convention, φ_1 = q_1 + π/2, φ_i = q_i − q_(i−1)), converted to
+      !> absolute once by `validate_run_config` (`angles_resolved`).
+      character(len=8) :: initial_angles = 'absolute'
+      logical :: angles_resolved = .false.
       !> the span [s] the torques must cover when it is not [0, t_end] (a fit: the
       !> data's times); unset when torque_span(2) < torque_span(1)
       real(dp) :: torque_span(2) = [0.0_dp, -1.0_dp]
@@ -319,12 +326,18 @@ contains
       if (allocated(error)) return
       call check_torque_span(cfg, error)
       if (allocated(error)) return
+      call resolve_initial_angles(cfg, error)
+      if (allocated(error)) return
       if (.not. present(initial_state)) then
          call check_initial_state(cfg, error)
       else if (initial_state) then
          call check_initial_state(cfg, error)
       end if
-      if (allocated(error)) return
+      if (allocated(error)) then
+         if (cfg%initial_angles == 'relative') error%message = error%message// &
+            ' (the absolute value of the relative angles and rates given: --angles relative)'
+         return
+      end if
       if (.not. allocated(cfg%method)) then
          call fatal_error(error, 'invalid method: none given')
          return
@@ -666,6 +679,40 @@ contains
          end if
       end function hint
    end subroutine build_model
+
+   !> Initial angles and rates given in the relative convention (`initial_angles`),
+   !> converted to the absolute ones once (`dpend_angle_convention`); refused for a
+   !> model without links and beside --theta1/--theta2 (absolute from hanging).
+   subroutine resolve_initial_angles(cfg, error)
+      type(run_config_t), intent(inout) :: cfg          !! q, w converted
+      type(error_t), allocatable, intent(out) :: error  !! not a chain, theta given
+      integer :: n
+      if (cfg%initial_angles /= 'relative' .or. cfg%angles_resolved) return
+      if (.not. model_has(cfg, 'links')) then
+         call fatal_error(error, 'invalid angles: relative needs links; model '// &
+                          model_asked(cfg)//' has none [--angles]')
+         return
+      end if
+      if (allocated(cfg%given)) then
+         if (index(cfg%given, ' theta1 ') > 0 .or. index(cfg%given, ' theta2 ') > 0) then
+            call fatal_error(error, 'invalid angles: relative with --theta1/--theta2 ' &
+                             //'(absolute angles from the hanging position); give the ' &
+                             //'relative angles by --q or --q1, --q2 [--angles]')
+            return
+         end if
+      end if
+      n = cfg%links
+      block
+         real(dp) :: state(n, 1)
+         state(:, 1) = cfg%q(1:n)
+         state = to_absolute(state)
+         cfg%q(1:n) = state(:, 1)
+         state(:, 1) = cfg%w(1:n)
+         state = rates_to_absolute(state)
+         cfg%w(1:n) = state(:, 1)
+      end block
+      cfg%angles_resolved = .true.
+   end subroutine resolve_initial_angles
 
    !> The initial state: as many q and w as the model has coordinates, within what
    !> the model accepts (`check_state`: angles and angular velocities within 1e6 for

@@ -176,3 +176,19 @@ succeed ang-ok-fit-phi        -- fit ang_phi.csv --output g.h5
 succeed ang-ok-torques-phi    -- torques ang_phi.csv --output g.h5
 succeed ang-ok-export-rel     -- export ang_sim.h5 --angles relative --csv t q qdot qddot energy
 succeed ang-ok-export-abs     -- export ang_sim.h5 --angles absolute t q
+# the initial state in the relative convention (simulate and the chaos commands)
+refuse  ang-initial-word      "invalid angles: 'hanging'" -- simulate --t-end 0.1 --output g.h5 --angles hanging
+refuse  ang-initial-case      "invalid angles: 'Relative'" -- simulate --t-end 0.1 --output g.h5 --angles Relative
+refuse  ang-initial-twice     'given twice'          -- simulate --t-end 0.1 --output g.h5 --angles relative --angles absolute
+refuse  ang-initial-no-value  'needs a value'        -- simulate --t-end 0.1 --output g.h5 --angles
+refuse  ang-initial-theta     'theta1/--theta2'      -- simulate --t-end 0.1 --output g.h5 --angles relative --theta1 0.3
+refuse  ang-initial-elastic   'relative needs links' -- simulate --t-end 0.1 --output g.h5 --model elastic --angles relative
+refuse  ang-initial-sweep     'unknown option'       -- sweep --n 4 --output g.h5 --angles relative
+refuse  ang-initial-fit       'unknown option'       -- fit ang_phi.csv --output g.h5 --angles relative
+refuse  ang-initial-nan       'not finite'           -- simulate --t-end 0.1 --output g.h5 --angles relative --q nan,0
+refuse  ang-initial-big       'q2'                   -- simulate --t-end 0.1 --output g.h5 --angles relative --q 1e6,1e6
+succeed ang-ok-initial        -- simulate --t-end 0.1 --output g.h5 --angles relative --q 0.3,-0.5 --w 0.1,0.2
+succeed ang-ok-initial-abs    -- simulate --t-end 0.1 --output g.h5 --angles absolute --q1 0.3
+succeed ang-ok-initial-chain  -- simulate --t-end 0.1 --output g.h5 --links 4 --angles relative --q 0.1,0.2,0.3,0.4
+succeed ang-ok-initial-lyap   -- lyapunov --t-end 1 --tau 0.5 --output g.h5 --angles relative --q2 0.4
+succeed ang-ok-initial-div    -- divergence --t-end 1 --output-dt 0.1 --pairs 1 --lyapunov-t 0 --output g.h5 --angles relative
