@@ -155,8 +155,7 @@ contains
                     p%upper + max(abs(p%upper)*1e-3_dp, 1e-12_dp)]
          do j = 1, 2
             if (p%name == 'links' .and. j == 2) cycle  ! the most links builds below
-            spec = model_spec(info%name)
-            call spec%set(p%name, spread(bound(j), 1, n))
+            call single(spec, bound(j))
             call new_model(spec, model, refused)
             call check_true(error, .not. allocated(refused), info%name//' '//p%name// &
                             ' at its bound accepted')
@@ -164,8 +163,7 @@ contains
                error%message = error%message//': '//refused%message
                return
             end if
-            spec = model_spec(info%name)
-            call spec%set(p%name, spread(outside(j), 1, n))
+            call single(spec, outside(j))
             call new_model(spec, model, refused)
             call check_true(error, allocated(refused), info%name//' '//p%name// &
                             ' outside its range refused')
@@ -175,6 +173,17 @@ contains
             if (allocated(error)) return
          end do
       end associate
+   contains
+      !> The model's defaults with parameter i at x (the gear ratio with a rotor
+      !> inertia of 1e-6 kg m², without which it is refused as unused).
+      subroutine single(spec, x)
+         type(model_spec_t), intent(out) :: spec
+         real(dp), intent(in) :: x
+         spec = model_spec(info%name)
+         call spec%set(info%params(i)%name, spread(x, 1, n))
+         if (info%params(i)%name == 'gear_ratio') &
+            call spec%set('rotor_inertia', spread(1e-6_dp, 1, n))
+      end subroutine single
    end subroutine one_parameter
 
    !> An unknown model, an unknown parameter, a wrong count and a non-integer count

@@ -124,7 +124,15 @@ contains
          end associate
          prob%fit_names(i) = names(i)
          prob%fit_counts(i) = last - first + 1
+         ! the model as the fit builds it, with the parameter set at its start: a
+         ! model that refuses it so (a gear ratio without a rotor) is refused now
+         call spec%set(base, spec_values(spec, base, cnt))
       end do
+      call new_model(spec, model, no_rates)
+      if (allocated(no_rates)) then   ! (its own error variable: fatal_error resets error)
+         call fatal_error(error, 'invalid fit parameters: '//no_rates%message, error_bad_input)
+         return
+      end if
       if (.not. present(scale_check)) then
          call mass_scale(prob, models(k), model%n_dof(), error)
       else if (scale_check) then

@@ -460,6 +460,11 @@ contains
          character(len=*), intent(in) :: name
          real(dp), allocatable :: a(:), w(:)
          no_effect = .false.
+         if (name == 'gear_ratio') then   ! it only scales a rotor inertia (none: refused)
+            a = spec_values(prob%spec, 'rotor_inertia', n)
+            no_effect = all(a == 0.0_dp)
+            return
+         end if
          if (index(name, 'support_') /= 1) return   ! (a model that has the support)
          a = spec_values(prob%spec, 'support_amplitude', 2)
          w = spec_values(prob%spec, 'support_frequency', 1)

@@ -153,7 +153,8 @@ contains
           'model and integration (the initial state comes from the data; the links from'// &
           nl//'its angle columns; --method: a method on (q, qdot): rk4, dopri5, dop853):'// &
           nl//'  --config, --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping,'//nl// &
-          '  --coulomb, --coulomb-speed (Coulomb joint friction),'//nl// &
+          '  --coulomb, --coulomb-speed (Coulomb joint friction), --rotor-inertia,'//nl// &
+          '  --gear-ratio (motors),'//nl// &
           '  --support-amplitude, --support-frequency, --support-phase,'//nl// &
           '  --body '//body_list('|')//', --com LIST, --inertia LIST (links of any mass distribution),'// &
           nl// &

@@ -89,6 +89,9 @@ contains
           '  --support-phase   refused unless 0: the sweep integrates the conservative'//nl// &
           '                    pendulum (dpend simulate takes them); --coulomb-speed'//nl// &
           '                    has no effect without --coulomb'//nl// &
+          '  --rotor-inertia, --gear-ratio LIST  motors at the joints (dpend simulate'//nl// &
+          '                    --help): integrated one trajectory at a time, not on the GPU'//nl// &
+          '  --torque-file F   refused: the sweep integrates the conservative pendulum'//nl// &
           '  --NAME X          any other parameter of the model by name (--k, --l0 of'//nl// &
           '                    --model elastic; dpend models lists them)'//nl// &
           '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &

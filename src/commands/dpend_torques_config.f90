@@ -99,6 +99,7 @@ contains
           'model (the links from the angle columns; dpend simulate --help for each):'//nl// &
           '  --links, --m, --l, --g, --m1, --m2, --l1, --l2, --damping, --coulomb,'//nl// &
           '  --coulomb-speed, --support-amplitude, --support-frequency, --support-phase,'//nl// &
+          '  --rotor-inertia, --gear-ratio (motors),'//nl// &
           '  --body '//body_list('|')//', --com LIST, --inertia LIST, --model pendulum'//nl// &
           '  -h, --help        this text'
    end function torques_help
