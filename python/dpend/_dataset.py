@@ -65,6 +65,11 @@ _AXES: Dict[Tuple[str, str], Tuple[str, ...]] = {
     ("fit", "interval95"): ("parameter", "bound"),
     ("fit", "covariance"): ("parameter", "parameter_2"),
     ("fit", "correlation"): ("parameter", "parameter_2"),
+    ("identify", "estimate"): ("parameter",),
+    ("identify", "std_error"): ("parameter",),
+    ("identify", "interval95"): ("parameter", "bound"),
+    ("identify", "covariance"): ("parameter", "parameter_2"),
+    ("identify", "physical"): ("link", "standard"),
 }
 _TIME_NAME = {"poincare": "crossing"}
 _COORDINATE_DATASETS = ("q", "qdot", "qddot", "p")

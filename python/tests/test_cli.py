@@ -133,3 +133,30 @@ def test_study_is_bitwise_the_command_line(tmp_path):
                 volatile=lambda name: name.rsplit("/", 1)[-1].startswith("wall_")
                 or name == "summary/markdown",
                 volatile_attrs=("created", "wall_time", "compiler_options"))
+
+
+def test_identify_and_torques_files_read(tmp_path):
+    """A file of `dpend identify` reads with its base parameters on one dimension,
+    every variable with its units; a file of `dpend torques` with its angles'
+    convention (data/robot_example.csv, the docs' worked example)."""
+    data = os.path.join(os.path.dirname(__file__), "..", "..", "data", "robot_example.csv")
+    flags = ["--m", "1,0.7", "--l", "0.8,0.6", "--coulomb-speed", "0.5", "--quiet"]
+    out = tmp_path / "identify.h5"
+    done = subprocess.run([CLI, "identify", data, *flags, "--output", str(out)],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    ds = dpend.from_image(out.read_bytes())
+    names = ds["names"].values.item()
+    names = names.decode() if isinstance(names, bytes) else names
+    assert names.split("; ")[0] == "J1 + 0.64 m2"
+    assert ds["estimate"].dims == ("parameter",) and ds.sizes["parameter"] == 8
+    assert ds["covariance"].dims == ("parameter", "parameter_2")
+    assert all("units" in ds[v].attrs for v in ds.data_vars)
+    assert ds.attrs["rotors"] == "known"
+    out = tmp_path / "torques.h5"
+    done = subprocess.run([CLI, "torques", data, *flags, "--output", str(out)],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    ds = dpend.from_image(out.read_bytes())
+    assert ds["q"].attrs["angles"] == "absolute"
+    assert ds["tau"].dims == ("time", "link") and ds["tau"].attrs["units"] == "N m"

@@ -102,6 +102,9 @@ mkdir -p "$F"
   # the fit seed: the header and the first 26 samples (0 .. 0.5 s) of the example
   grep -v '^#' "$ROOT"/data/fit_example.csv | head -n 27 > fit.csv
   printf '%s\n' '0.1 0.2 0.0 0.0' '-1.5 -1.5 0.0 0.0' '1.0 1.0 0.5 0.5' > list.txt
+  # the motors' seeds: a torque file and 3 s of the robot example (angles, torques)
+  printf '%s\n' 't,tau1,tau2' '0,0.5,-0.2' '100,0.1,0.3' > tq.csv
+  grep -v '^#' "$ROOT"/data/robot_example.csv | head -n 1501 > robot.csv
   "$DPEND" simulate --t-end 0.2 --save-every 5 --output sim.h5
   "$DPEND" simulate --links 3 --damping 0.1,0,0 --t-end 0.2 --save-every 5 --output sim3.h5
   "$DPEND" sweep --n 3 --t-end 1 --dt 0.01 --threads 1 --output sw_a.h5 --quiet
@@ -253,6 +256,11 @@ FLAG_BASES=(
   "lyapunov --model elastic --q #1.2,-1 --k #40 --l0 #1 --t-end #0.3 --tau #0.1 --batches #2 --output out.h5"
   "indicators --body point --q1 #0.3 --m2 #0.5 --l2 #0.8 --t-end #0.2 --tau #0.05 --output out.h5"
   "divergence --com #0.6,0.5 --inertia #0.08,0.03 --g #9.8 --t-end #0.3 --pairs #2 --pair-spacing #0.1 --output-dt #0.05 --lyapunov-t #0 --output out.h5"
+  "simulate --rotor-inertia #0.01,0.02 --gear-ratio #10,5 --coulomb #0.1,0 --coulomb-speed #0.01 --t-end #0.02 --output out.h5"
+  "simulate --angles relative --q #0.3,-0.5 --w #0.1,0 --torque-file tq.csv --t-end #0.02 --output out.h5"
+  "lyapunov --torque-file tq.csv --rotor-inertia #0.01,0 --angles relative --q2 #0.4 --t-end #0.2 --tau #0.1 --batches #2 --output out.h5"
+  "torques robot.csv --degree #4 --window #9 --m #1,0.7 --l #0.8,0.6 --coulomb-speed #0.5 --rotor-inertia #1e-4,0 --output out.h5 --quiet"
+  "identify robot.csv --degree #2 --m #1,0.7 --l #0.8,0.6 --coulomb-speed #0.5 --rotors estimate --output out.h5 --quiet"
   "animate sim.h5 --fps #25 --duration #0.04 --speed #1 --size @64x64 --output a.gif"
   "animate sim.h5 --overlay sim.h5 --reactions --fps #10 --duration #0.1 --size @64x64 --output a.gif"
   "export sw_a.h5 --matrix t_flip axis1 axis2 #2"
