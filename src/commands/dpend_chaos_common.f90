@@ -17,8 +17,8 @@ module dpend_chaos_common
    use dpend_cli, only: arg_t, next_option, parse_real, parse_int, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config
    use dpend_namelist, only: read_run_config, namelist_error
-   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_torque_file, &
-      take_initial_angles, initial_angles_help
+   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_initial_run_flag, &
+      initial_angles_help
    use dpend_pendulum, only: energy_limit
    use dpend_limits, only: finite_positive
    use dpend_integrator, only: integrator_t, stat_ok, status_message
@@ -311,17 +311,10 @@ contains
          end if
          call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
-         matched = .false.
-         if (name == '--torque-file') then
-            matched = .true.
-            if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
-         else if (name == '--angles') then
-            matched = .true.
-            if (.not. (missing .or. allocated(error))) call take_initial_angles(cfg, value, error)
-         else if (name /= '--save-every' .and. &
-                  (name /= '--output-dt' .or. command == 'divergence')) then
+         call take_initial_run_flag(cfg, name, value, missing, matched, error)
+         if (.not. matched .and. name /= '--save-every' .and. &
+             (name /= '--output-dt' .or. command == 'divergence')) &
             call apply_run_flag(cfg, name, value, matched, error)
-         end if
          if (.not. matched) call apply_chaos_flag(command, ch, name, value, matched, error)
          if (command == 'divergence') then
             call option_outcome(command, name, matched, missing, &

@@ -15,7 +15,7 @@ module dpend_run_flags
    implicit none
    private
    public :: apply_run_flag, run_flags_help, set_time_unit, is_model_flag, take_torque_file, &
-      take_initial_angles, initial_angles_help
+      take_initial_angles, initial_angles_help, take_initial_run_flag
 
 contains
 
@@ -104,6 +104,25 @@ contains
          cfg%torque_file = value
       end if
    end subroutine take_torque_file
+
+   !> The flags of the commands that integrate from a given initial state (simulate,
+   !> the chaos commands) beside the common ones: --torque-file and --angles.
+   !> `matched` is false for any other; an error of reading the option (`missing`, or
+   !> `error` set already) is kept.
+   subroutine take_initial_run_flag(cfg, name, value, missing, matched, error)
+      type(run_config_t), intent(inout) :: cfg            !! configuration to update
+      character(len=*), intent(in) :: name, value         !! the option and its value
+      logical, intent(in) :: missing                      !! the value is missing
+      logical, intent(out) :: matched                     !! it is one of the two
+      type(error_t), allocatable, intent(inout) :: error  !! invalid value
+      matched = name == '--torque-file' .or. name == '--angles'
+      if (.not. matched .or. missing .or. allocated(error)) return
+      if (name == '--torque-file') then
+         call take_torque_file(cfg, value, error)
+      else
+         call take_initial_angles(cfg, value, error)
+      end if
+   end subroutine take_initial_run_flag
 
    !> --angles relative|absolute: the convention of the initial angles and rates
    !> given (`run_config_t%initial_angles`), once.

@@ -8,8 +8,8 @@ module dpend_simulate
    use dpend_cli, only: arg_t, next_option, option_outcome
    use dpend_run_settings, only: run_config_t, validate_run_config, time_text
    use dpend_namelist, only: read_run_config
-   use dpend_run_flags, only: apply_run_flag, take_torque_file, run_flags_help, &
-      take_initial_angles, initial_angles_help
+   use dpend_run_flags, only: apply_run_flag, run_flags_help, take_initial_run_flag, &
+      initial_angles_help
    use dpend_model, only: model_t, max_dof
    use dpend_model_factory, only: default_model
    use dpend_work, only: needs_work, work_model, split_work, is_work_model, augmented_state, &
@@ -156,15 +156,8 @@ contains
          end if
          call next_option(args, i, name, value, .true., error, missing)
          if (name == '--config') cycle
-         if (name == '--torque-file') then
-            matched = .true.
-            if (.not. (missing .or. allocated(error))) call take_torque_file(cfg, value, error)
-         else if (name == '--angles') then
-            matched = .true.
-            if (.not. (missing .or. allocated(error))) call take_initial_angles(cfg, value, error)
-         else
-            call apply_run_flag(cfg, name, value, matched, error)
-         end if
+         call take_initial_run_flag(cfg, name, value, missing, matched, error)
+         if (.not. matched) call apply_run_flag(cfg, name, value, matched, error)
          call option_outcome('simulate', name, matched, missing, &
                              [character(len=16) :: '--force'], error, simulate_help())
          if (allocated(error)) return
