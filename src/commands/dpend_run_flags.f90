@@ -151,8 +151,8 @@ contains
    pure function initial_angles_help() result(s)
       character(len=:), allocatable :: s
       character(len=*), parameter :: nl = new_line('a')
-      s = '  --angles WHICH    the convention of the initial angles and rates given (--q,'//nl// &
-          '                    --q1, --q2, --w, ...): absolute (default; from the'//nl// &
+      s = '  --angles WHICH    the convention of the initial angles and rates given (the'//nl// &
+          '                    q and w flags): absolute (default; from the'//nl// &
           '                    horizontal x axis) or relative (robotics: phi1 = q1 + pi/2'//nl// &
           '                    from hanging, phi_i = q_i - q_(i-1); unset values 0 in it)'//nl
    end function initial_angles_help

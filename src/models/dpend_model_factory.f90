@@ -117,9 +117,11 @@ contains
       info%bodies = body_text()
       info%coordinates = 'q_i: angle of link i from the horizontal x axis, counter-' &
                          //'clockwise (rad), i = 1..N; hanging: q_i = -pi/2'
-      info%supports = 'Hamiltonian structure (no damping, fixed support), damping, ' &
-                      //'driving (moving support), applied joint torques, SIMD sweep ' &
-                      //'lanes (2 to 8 links), Poincare sections (2 links, conservative)'
+      info%supports = 'Hamiltonian structure (no damping, fixed support; motors keep ' &
+                      //'it), damping, driving (moving support), applied joint torques, ' &
+                      //'motors (rotor inertia, gear ratio), SIMD sweep lanes (2 to 8 ' &
+                      //'links, without motors), Poincare sections (2 links, conservative, ' &
+                      //'without motors)'
       info%torques = .true.
       info%params = [ &
          param('links', '', 'number of links N', 1.0_dp, real(max_dof, dp), 2.0_dp, 1, &
