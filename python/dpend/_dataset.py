@@ -70,6 +70,7 @@ _AXES: Dict[Tuple[str, str], Tuple[str, ...]] = {
     ("identify", "interval95"): ("parameter", "bound"),
     ("identify", "covariance"): ("parameter", "parameter_2"),
     ("identify", "physical"): ("link", "standard"),
+    ("identify", "singular"): ("direction",),
 }
 _TIME_NAME = {"poincare": "crossing"}
 _COORDINATE_DATASETS = ("q", "qdot", "qddot", "p")

@@ -152,7 +152,9 @@ contains
    !> damping and the stiffnesses (every parameter whose units hold kg or N), so
    !> multiplying them all by one factor leaves the motion, hence the observed
    !> coordinates, unchanged. The symmetry holds when every such parameter is either
-   !> fitted in all its components or zero (a damping of 0 fixes no scale).
+   !> fitted in all its components or zero (a damping of 0 fixes no scale); a rotor
+   !> inertia whose gear ratio is fitted scales through it (g_r² I_r), and applied
+   !> joint torques (their size given) fix the scale.
    subroutine mass_scale(prob, info, n_dof, error)
       type(fit_problem_t), intent(in) :: prob           !! components set
       type(model_info_t), intent(in) :: info            !! the model's description
@@ -164,6 +166,7 @@ contains
       logical :: any_fitted
       any_fitted = .false.
       names = ''
+      if (prob%spec%torque%active()) return
       do j = 1, size(info%params)
          associate (par => info%params(j))
             if (index(par%units, 'kg') == 0 .and. index(par%units, 'N') == 0) cycle
@@ -178,6 +181,9 @@ contains
                   any_fitted = .true.
                   if (len(names) > 0) names = names//','
                   names = names//component_label(par%name, i, cnt)
+               else if (par%name == 'rotor_inertia' .and. any(prob%comp_names == &
+                        'gear_ratio' .and. prob%comp_index == i)) then
+                  cycle   ! its gear ratio, fitted, carries the scale (listed there)
                else if (v(i) /= 0.0_dp) then
                   return   ! a fixed nonzero mass, inertia or stiffness sets the scale
                end if

@@ -110,8 +110,9 @@ module dpend_limits
    !> about its centre, m l²/12 with the largest m and l above, is bounded by the
    !> reflected inertia below), gear ratio g_r in [1e-3, 1e4] (direct drive: 1; the
    !> strongest harmonic drives: a few hundred), and the reflected inertia g_r² I_r
-   !> at most 1e12 kg m² (M's added part stays finite, its condition with the lightest
-   !> links below 1e18).
+   !> at most 1e12 kg m² (M's added part and its products stay finite; a rotor far
+   !> heavier than its links makes M ill-conditioned, as do the extreme masses and
+   !> lengths the ranges above allow).
    real(dp), parameter :: max_rotor_inertia = 1e6_dp
    real(dp), parameter :: min_gear_ratio = 1e-3_dp
    real(dp), parameter :: max_gear_ratio = 1e4_dp

@@ -441,7 +441,7 @@ contains
       vs = value_of(spec, info, 'coulomb_speed', n)
       ir = value_of(spec, info, 'rotor_inertia', n)
       gr = value_of(spec, info, 'gear_ratio', n)
-      if (spec%find('gear_ratio') > 0 .and. all(ir == 0.0_dp)) then
+      if (spec%find('gear_ratio') > 0 .and. spec%find('rotor_inertia') == 0) then
          call fatal_error(error, 'invalid gear_ratio: given without a rotor_inertia (it ' &
                           //'only scales the rotor''s inertia: g_r^2 I_r)')
          return

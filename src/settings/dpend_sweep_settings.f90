@@ -74,6 +74,29 @@ contains
                           'dpend lyapunov computes it for any N)')
          return
       end if
+      ! the per-trajectory path has no exponent: motors, or an axis by name (g, com1)
+      if (cfg%lyapunov .and. .not. kernel_pendulum(cfg)) then
+         field = 'lyapunov: true'
+         if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
+         call fatal_error(error, 'invalid '//field//' with the '//cfg%run%model%name()// &
+                          ' (dpend sweep computes it in the double pendulum''s kernel only; ' &
+                          //'dpend lyapunov computes it for this model)')
+         return
+      end if
+      if (cfg%lyapunov .and. grid_mode(cfg)) then
+         if (model_axis(cfg, cfg%axis1) .or. model_axis(cfg, cfg%axis2)) then
+            field = 'lyapunov: true'
+            if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
+            field = field//' with an axis by name ('//cfg%axis2
+            if (model_axis(cfg, cfg%axis1)) field = field(:index(field, '(')) &
+                                                    //cfg%axis1
+            call fatal_error(error, 'invalid '//field// &
+                             '): such a map runs one trajectory at a time, without the ' &
+                             //'exponent (the double pendulum''s kernel computes it over ' &
+                             //'initial values and m1 m2 l1 l2 m2/m1 l2/l1)')
+            return
+         end if
+      end if
       if (cfg%run%method /= 'rk4') then
          call fatal_error(error, "invalid method: '"//cfg%run%method// &
                           "' (dpend sweep accepts: rk4)")
@@ -502,9 +525,9 @@ contains
       end if
       if (var == 0 .and. not_an_axis(name)) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
-                          //accepted_axes(links)//'; damping, friction and the support''s ' &
-                          //'motion are not axes: dpend sweep integrates the conservative ' &
-                          //'chain only)')
+                          //accepted_axes(links)//'; damping, friction, the support''s ' &
+                          //'motion and the motors are not axes: dpend sweep integrates the ' &
+                          //'conservative chain and keeps its motors fixed)')
       else if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))

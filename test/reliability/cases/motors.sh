@@ -139,13 +139,15 @@ refuse  gear-big               'outside [0.001, 10000]' -- "${S[@]}" --rotor-ine
 refuse  gear-nan               "--gear-ratio: 'nan' is not finite" -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 1,nan
 refuse  gear-count             'one per link (2)'   -- "${S[@]}" --rotor-inertia 0.1,0.1 --gear-ratio 10
 refuse  gear-without-rotor     'without a rotor_inertia' -- "${S[@]}" --gear-ratio 10,10
-refuse  gear-rotor-zero        'without a rotor_inertia' -- "${S[@]}" --rotor-inertia 0,0 --gear-ratio 10,10
+succeed gear-ok-rotor-zero     -- "${S[@]}" --rotor-inertia 0,0 --gear-ratio 10,10
+refuse  rotor-sweep-lyapunov   "double pendulum's kernel only" -- sweep --n 4 --lyapunov --output g.h5 --rotor-inertia 0.1,0.1
+refuse  rotor-sweep-lambda1    'indicator: lambda1'  -- sweep --n 4 --indicator lambda1 --output g.h5 --rotor-inertia 0.1,0.1
 refuse  reflected-big          'times gear_ratio'   -- "${S[@]}" --rotor-inertia 1e5,0 --gear-ratio 1e4,1
 refuse  rotor-elastic          'not a parameter of model elastic' -- "${S[@]}" --model elastic --rotor-inertia 1
 refuse  rotor-underscore       'unknown option'     -- "${S[@]}" --rotor_inertia 0.1,0.1
 refuse  rotor-poincare         'energy-shell sections' -- poincare --t-end 1 --output g.h5 --rotor-inertia 0.1,0.1
 refuse  rotor-sweep-gpu        'no motors'          -- sweep --n 4 --device gpu --output g.h5 --rotor-inertia 0.1,0.1
-refuse  rotor-sweep-axis       'rotor_inertia1'     -- sweep --n 4 --axis1 rotor_inertia1 --output g.h5 --rotor-inertia 0.1,0.1
+refuse  rotor-sweep-axis       'the motors are not axes' -- sweep --n 4 --axis1 rotor_inertia1 --output g.h5 --rotor-inertia 0.1,0.1
 succeed rotor-ok               -- "${S[@]}" --rotor-inertia 0.01,0.002 --gear-ratio 5,20 --method dop853
 succeed rotor-ok-config        -- "${S[@]}" --config motors.nml
 succeed rotor-ok-zero          -- "${S[@]}" --rotor-inertia 0,0
@@ -154,3 +156,6 @@ succeed rotor-ok-verlet        -- "${S[@]}" --rotor-inertia 0.01,0.01 --method v
 succeed rotor-ok-chain-torques -- "${S[@]}" --links 3 --rotor-inertia 0.01,0.01,0.01 --torque-file tau_three.csv --coulomb 0.1,0.1,0.1 --method rk4
 succeed rotor-ok-sweep         -- sweep --n 4 --t-end 2 --output g.h5 --rotor-inertia 0.01,0.02 --gear-ratio 3,2
 succeed rotor-ok-lyapunov      -- lyapunov --t-end 1 --tau 0.5 --output g.h5 --rotor-inertia 0.01,0.02
+# the per-trajectory path has no Lyapunov exponent: a map over a parameter by name
+refuse  sweep-lyapunov-named   'axis by name (g)'   -- sweep --n 3 --axis1 g --axis2 theta1 --min1 5 --max1 10 --lyapunov --output g.h5
+succeed sweep-lyapunov-coded   -- sweep --n 3 --axis1 m1 --axis2 theta1 --min1 0.5 --max1 2 --t-end 1 --lyapunov --output g.h5
