@@ -18,7 +18,7 @@ module dpend_simulate
    use dpend_methods, only: new_integrator, method_options_t
    use dpend_propagate, only: march_t, integrate_sampled, march_progress_t
    use dpend_hdf5, only: h5file_t
-   use dpend_model_record, only: record_model, coordinate_labels
+   use dpend_model_record, only: record_model, coordinate_labels, record_torques
    use dpend_output, only: output_t
    use dpend_version, only: version
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -528,16 +528,7 @@ contains
       end associate
       if (cfg%initial_angles == 'relative') call h5%writeattr('/', 'initial_angles', &
          'relative (given; q0 and qdot0 are the absolute ones)')
-      if (cfg%torque%active()) then   ! what the run applied, exactly
-         call h5%writeattr('/', 'torque', cfg%torque%text())
-         if (allocated(cfg%torque_file)) call h5%writeattr('/', 'torque_file', cfg%torque_file)
-         if (allocated(cfg%torque%t)) then
-            call h5%write('/torque/sample_t', cfg%torque%t, units='s', description='sample ' &
-                          //'times of the applied joint torques (linear between samples)')
-            call h5%write('/torque/sample_tau', cfg%torque%tau, units='N m', description= &
-                          'applied joint torques tau_1 .. tau_N at the sample times')
-         end if
-      end if
+      call record_torques(h5, cfg%torque, cfg%torque_file)   ! what the run applied
       call h5%writeattr('/', 'method', integ%name())
       call h5%writeattr('/', 'dt', cfg%dt)
       call h5%writeattr('/', 't_end', cfg%t_end)

@@ -9,7 +9,7 @@ module dpend_sweep_config
    use dpend_model, only: max_dof
    use dpend_model_factory, only: body_list
    use dpend_namelist, only: read_run_config, namelist_error
-   use dpend_run_flags, only: apply_run_flag
+   use dpend_run_flags, only: apply_run_flag, take_torque_file
    use dpend_run_settings, only: time_unit_option_help
    use dpend_sweep_settings, only: sweep_config_t, sweep_defaults, validate_sweep
    use dpend_sweep_gpu, only: resolve_device
@@ -43,8 +43,8 @@ contains
           '                    other real parameter of the pendulum by name (dpend'//nl// &
           '                    models): g (m/s^2), and per link k = 1..N: mk, lk (k >= 3),'//nl// &
           '                    comk (m), inertiak (kg m^2), any body, each pixel its own'//nl// &
-          '                    model one trajectory at a time (not damping or'//nl// &
-          '                    support_*: the sweep is conservative); a model'//nl// &
+          '                    model one trajectory at a time (not damping,'//nl// &
+          '                    friction, support_* or motors); a model'//nl// &
           '                    without flips: its own parameters by name (the'//nl// &
           '                    elastic pendulum: m k l0 g); default '//cfg%axis1//', ' &
           //cfg%axis2//nl// &
@@ -85,13 +85,15 @@ contains
           '  --body NAME       the links'' mass distribution: '//body_list()//' (dpend models);'//nl// &
           '                    --com, --inertia LIST any other body (d_i in m, I_i in'//nl// &
           '                    kg m^2, one per link); default rod'//nl// &
-          '  --damping, --coulomb, --support-amplitude, --support-frequency,'//nl// &
-          '  --support-phase   refused unless 0: the sweep integrates the conservative'//nl// &
-          '                    pendulum (dpend simulate takes them); --coulomb-speed'//nl// &
-          '                    has no effect without --coulomb'//nl// &
-          '  --rotor-inertia, --gear-ratio LIST  motors at the joints (dpend simulate'//nl// &
-          '                    --help): integrated one trajectory at a time, not on the GPU'//nl// &
-          '  --torque-file F   refused: the sweep integrates the conservative pendulum'//nl// &
+          '  --damping, --coulomb, --coulomb-speed, --support-amplitude,'//nl// &
+          '  --support-frequency, --support-phase, --rotor-inertia, --gear-ratio'//nl// &
+          '                    as in dpend simulate (--help there): a damped, driven or'//nl// &
+          '                    motored chain, integrated one trajectory at a time (not on'//nl// &
+          '                    the GPU, no --lyapunov); its energy_error is then that of'//nl// &
+          '                    the energy balance (docs/sweep.md)'//nl// &
+          '  --torque-file F   applied joint torques: CSV with columns t [s] and tau1 ..'//nl// &
+          '                    tauN [N m], linear between samples, covering [0, t_end];'//nl// &
+          '                    every trajectory starts at t = 0 (docs/robot.md)'//nl// &
           '  --NAME X          any other parameter of the model by name (--k, --l0 of'//nl// &
           '                    --model elastic; dpend models lists them)'//nl// &
           '  --model elastic   the spring pendulum (docs/sweep.md): axes r phi rdot phidot'//nl// &
@@ -159,13 +161,6 @@ contains
          case ('--axis1', '--axis2', '--min1', '--max1', '--min2', '--max2')
             cfg%grid_given = cfg%grid_given//name//' '
          end select
-         if (name == '--torque-file') then   ! a clearer word than 'unknown option'
-            call fatal_error(error, 'invalid torque_file: dpend sweep maps the conservative ' &
-                             //'chain only (its flip bounds, energy errors and lanes); ' &
-                             //'simulate, fit, lyapunov, indicators and divergence take ' &
-                             //'joint torques [--torque-file]')
-            return
-         end if
          select case (name)
          case ('--config')
          case ('--axis1'); cfg%axis1 = value
@@ -189,6 +184,8 @@ contains
          case ('--device'); cfg%device = value
          case ('--gpu-repack'); call parse_int(value, name, cfg%gpu_repack, error)
          case ('--threads'); call parse_int(value, name, cfg%threads, error)
+         case ('--torque-file')
+            if (.not. (missing .or. allocated(error))) call take_torque_file(cfg%run, value, error)
          case ('--save-every', '--rtol', '--atol', '--output-dt', '--omega', '--max-steps')
             matched = .false.
          case default

@@ -18,8 +18,9 @@ module dpend_sweep_layout
    use dpend_version, only: version
    use dpend_cli, only: to_str
    use dpend_sweep_gpu, only: gpu_fallback_blocks
-   use dpend_sweep_setup, only: sweep_setup_t, block_range, parameter_axes, block_parameters, &
-      parameter_names, stop_name
+   use dpend_model_record, only: record_torques
+   use dpend_sweep_setup, only: mass_length_or_g, sweep_setup_t, block_range, parameter_axes, &
+      block_parameters, parameter_names, stop_name
    implicit none
    private
    public :: result_names, create_layout, write_block, working_file, finalize_file, install_file
@@ -244,6 +245,9 @@ contains
       call result_names(setup, reals, ints)
       do i = 1, size(reals)
          call dataset_info(trim(reals(i)), '', units, text, setup%links)
+         if (trim(reals(i)) == 'energy_error' .and. .not. setup%cfg%run%model%conservative()) &
+            text = 'max |E(t) - E(0) + W_friction - W_support - W_torque| / potential_range: ' &
+                   //'the error of the energy balance (NaN: not integrated)'
          if (.not. setup%flips) call model_dataset_info(setup, trim(reals(i)), units, text)
          if (setup%flips .and. index(reals(i), 'param/') == 1) then
             if (pendulum_axis(setup%cfg, trim(reals(i)(7:)))) then   ! a parameter by name
@@ -336,7 +340,9 @@ contains
          ! the unit its dt and t_end were given in (the file's times are in s)
          call h5%writeattr('/sweep', 'time_unit', trim(c%run%time_unit))
          call h5%writeattr('/sweep', 'potential_range', range)
-         call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
+         ! energy fed by a support or torques: no bound holds (none applied)
+         if (c%run%model%autonomous()) call h5%writeattr('/sweep', 'flip_energy_bounds', bounds)
+         call record_forces(h5, setup)
          call h5%writeattr('/sweep', 'stop_at', stop_name(setup%opt%stop_rule))
          call h5%writeattr('/sweep', 'block', setup%block)
          call h5%writeattr('/sweep', 'initial', merge('grid', 'list', setup%grid))
@@ -368,6 +374,26 @@ contains
          text = 'grid values on '//name(1:4)//' '//name(5:5)//': parameter '//axis
       end subroutine named_axis_info
    end subroutine create_layout
+
+   !> What a damped, driven or motored chain adds to the /sweep attributes: each of its
+   !> parameters beyond m, l, g and the body (c1, coulomb1, coulomb_speed,
+   !> rotor_inertia1, gear_ratio1, support_ax, …; none for the conservative rods), and
+   !> the applied torques (`record_torques`).
+   subroutine record_forces(h5, setup)
+      type(h5file_t), intent(inout) :: h5        !! open file (keeps the first failure)
+      type(sweep_setup_t), intent(in) :: setup   !! setup, flips true
+      character(len=:), allocatable :: name, units
+      real(dp) :: x
+      integer :: i
+      associate (model => setup%cfg%run%model)
+         do i = 1, model%n_parameters()
+            call model%parameter(i, name, x, units)
+            if (.not. mass_length_or_g(name) .and. index(name, 'com') /= 1 .and. &
+                index(name, 'inertia') /= 1) call h5%writeattr('/sweep', name, x)
+         end do
+      end associate
+      call record_torques(h5, setup%cfg%run%torque, setup%cfg%run%torque_file)
+   end subroutine record_forces
 
    !> Units and description of dataset `name` of a sweep of a model without flips
    !> (the elastic pendulum), from the model's coordinates: q_k and w_k, the axes and

@@ -14,6 +14,7 @@ module dpend_sweep_setup
       natural_time, model_axis, pendulum_param_names, pendulum_param_values, pendulum_axis, &
       kernel_pendulum
    use dpend_integrator, only: integrator_t
+   use dpend_joint_torque, only: joint_torque_t
    use dpend_methods, only: new_integrator
    use dpend_chain_lanes, only: chain_kernel_choice
    use dpend_hdf5, only: h5file_t, is_hdf5
@@ -24,7 +25,7 @@ module dpend_sweep_setup
    private
    public :: sweep_setup_t, sweep_summary_t, summary_text, build_setup, block_range, &
       block_initial_conditions, parameter_axes, block_parameters, stop_name, parameter_names
-   public :: named_parameter, named_axes, block_share_note
+   public :: named_parameter, named_axes, block_share_note, mass_length_or_g
 
    !> The code of a parameter axis by name (a model without flips: its parameters;
    !> the pendulum: those of `pendulum_axis`, beside the axes coded 1 to 6 by
@@ -554,6 +555,8 @@ contains
                 'w = '//rl(c%run%w0())//nl
          end if
          if (setup%flips) s = s//body_lines()   ! '' for uniform rods
+         if (c%run%torque%active()) s = s//'torque = '//c%run%torque%text()//nl// &
+            'torque_hash = '//to_str(torque_hash(c%run%torque))//nl
          s = s//'time_unit = '//trim(c%run%time_unit)//nl//'dt = '//r(c%run%dt)//nl// &
              't_end = '//r(c%run%t_end)//nl//'h = '//r(setup%opt%h)//nl// &
              'n_steps = '//to_str(setup%opt%n_steps)//nl// &
@@ -575,9 +578,10 @@ contains
          end if
       end associate
    contains
-      !> 'com1 = …' and 'inertia1 = …' lines of links other than uniform rods
-      !> (a sweep of another body never resumes one of rods), 'rotor_inertia1 = …' and
-      !> 'gear_ratio1 = …' of the motors; none for rods without motors.
+      !> A line of every parameter of the model beyond m_i, l_i and g, in its order:
+      !> 'c1 = …' of the damping, the Coulomb friction, the motors, the support's motion,
+      !> 'com1 = …' and 'inertia1 = …' of links other than uniform rods (a sweep of another
+      !> body never resumes one of rods); none for the conservative rods.
       function body_lines() result(t)
          character(len=:), allocatable :: t, pname, units
          real(dp) :: x
@@ -585,9 +589,7 @@ contains
          t = ''
          do i = 1, setup%cfg%run%model%n_parameters()
             call setup%cfg%run%model%parameter(i, pname, x, units)
-            if (index(pname, 'com') == 1 .or. index(pname, 'inertia') == 1 .or. &
-                index(pname, 'rotor_inertia') == 1 .or. index(pname, 'gear_ratio') == 1) &
-               t = t//pname//' = '//r(x)//nl
+            if (.not. mass_length_or_g(pname)) t = t//pname//' = '//r(x)//nl
          end do
       end function body_lines
       !> 'k = 4.0e+001' lines of the model's parameters, in its order.
@@ -637,6 +639,30 @@ contains
       case default; s = 'end'
       end select
    end function stop_name
+
+   !> The parameter is one of the pendulum's masses, lengths or g: m1, m2, …, l1, l2, …
+   !> or g (of every pendulum file; the others, c1, com1, gear_ratio2, … only of some).
+   pure logical function mass_length_or_g(pname)
+      character(len=*), intent(in) :: pname  !! the model's name of a parameter
+      mass_length_or_g = pname == 'g'
+      if (len(pname) > 1) then
+         if (pname(1:1) == 'm' .or. pname(1:1) == 'l') &
+            mass_length_or_g = verify(pname(2:), '0123456789') == 0
+      end if
+   end function mass_length_or_g
+
+   !> A hash of the applied torques' numbers (a series' times and values, a closed
+   !> form's coefficients), for the resume key: two files of one configuration text
+   !> but other torques never resume one another.
+   pure integer(i8) function torque_hash(torque)
+      type(joint_torque_t), intent(in) :: torque  !! the torques, active
+      real(dp), allocatable :: v(:)
+      v = [real(dp) :: real(torque%n, dp)]
+      if (allocated(torque%t)) v = [v, torque%t, reshape(torque%tau, [size(torque%tau)])]
+      if (allocated(torque%bias)) v = [v, torque%bias, reshape(torque%amp, [size(torque%amp)]), &
+                                       torque%omega, reshape(torque%phase, [size(torque%phase)])]
+      torque_hash = list_hash(reshape(v, [1, size(v)]))
+   end function torque_hash
 
    !> A checksum of the bit patterns of a list of initial conditions.
    pure integer(i8) function list_hash(list)

@@ -7,9 +7,10 @@ module dpend_model_record
    use dpend_kinds, only: dp
    use dpend_model, only: model_t
    use dpend_hdf5, only: h5file_t
+   use dpend_joint_torque, only: joint_torque_t
    implicit none
    private
-   public :: record_model, coordinate_labels
+   public :: record_model, coordinate_labels, record_torques
 
 contains
 
@@ -30,6 +31,23 @@ contains
       if (len(model%body_description()) > 0) &
          call h5%writeattr(where, 'body', model%body_description())
    end subroutine record_model
+
+   !> The applied joint torques a run used, exactly: the root attributes `torque` (the
+   !> form in words) and `torque_file` (when read from one), and a series' samples as
+   !> /torque/sample_t [s] and /torque/sample_tau [N m]. Nothing without torques.
+   subroutine record_torques(h5, torque, torque_file)
+      type(h5file_t), intent(inout) :: h5                    !! the open file
+      type(joint_torque_t), intent(in) :: torque             !! the torques applied
+      character(len=:), allocatable, intent(in) :: torque_file  !! its file, if any
+      if (.not. torque%active()) return
+      call h5%writeattr('/', 'torque', torque%text())
+      if (allocated(torque_file)) call h5%writeattr('/', 'torque_file', torque_file)
+      if (.not. allocated(torque%t)) return
+      call h5%write('/torque/sample_t', torque%t, units='s', description='sample ' &
+                    //'times of the applied joint torques (linear between samples)')
+      call h5%write('/torque/sample_tau', torque%tau, units='N m', description= &
+                    'applied joint torques tau_1 .. tau_N at the sample times')
+   end subroutine record_torques
 
    !> The labels of the coordinates' datasets from the model's description: the
    !> names ('q1 q2', 'r phi'), and the units of q, q̇, q̈ and p: one unit when every

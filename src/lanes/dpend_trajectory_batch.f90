@@ -27,6 +27,14 @@
 !> Difference from the kernel: a step whose result is not finite (or beyond the
 !> integrators' `diverged_bound`) is not taken; the trajectory ends there with
 !> st_nonfinite, its final state the last finite one and t_stop the time reached.
+!>
+!> A damped or driven chain (damping, Coulomb friction, a moving support, applied joint
+!> torques: `needs_work`) is integrated with its work integrals (dpend_work), and its
+!> accuracy figure is the error of the energy balance, max over the steps of
+!> |E(t_k) − E(0) + W_friction − W_support − W_torque|, in the same unit. Its flip bounds
+!> hold while the energy cannot grow: with damping and friction alone (an autonomous
+!> chain, dE/dt = −P_friction ≤ 0); a moving support or torques can feed any energy, so
+!> every initial condition is integrated.
 module dpend_trajectory_batch
    use dpend_kinds, only: dp, i8, pi, half_pi
    use dpend_model, only: model_t
@@ -36,6 +44,7 @@ module dpend_trajectory_batch
       first_flips, bound_margin
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use dpend_indicators, only: indicators_result_t, chaos_indicators
+   use dpend_work, only: needs_work, work_model, augmented_state, balance_energy
    implicit none
    private
    public :: integrate_trajectories
@@ -60,12 +69,13 @@ contains
       type(batch_options_t), intent(in) :: opt       !! step, length, stop rule
       real(dp), intent(in) :: y0(:, :)               !! (2N, n) initial states
       type(batch_result_t), intent(out) :: res       !! results
-      real(dp), allocatable :: y(:)
+      real(dp), allocatable :: y(:), qa(:), qda(:)
       real(dp) :: bounds(size(y0, 1)/2), tf(size(y0, 1)/2)
       real(dp) :: escale, nan, margin, err
-      logical :: can(size(y0, 1)/2), flips, nonfinite
+      logical :: can(size(y0, 1)/2), flips, nonfinite, works
+      class(model_t), allocatable :: wm
       integer(i8) :: ks
-      integer :: n, nl, j, i, stat
+      integer :: n, nl, j, i, stat, na
 
       nl = size(y0, 1)/2
       n = size(y0, 2)
@@ -73,18 +83,28 @@ contains
       nan = ieee_value(nan, ieee_quiet_nan)
       bounds = 0.0_dp
       if (flips) bounds = link_flip_bounds(gl)
+      ! a damped or driven chain: integrated with its works (the balance's terms)
+      works = needs_work(model)
+      if (works) then
+         call work_model(model, wm)
+      else
+         allocate (wm, source=model)
+      end if
+      ! energy can enter (support, torques): no flip bound holds
+      if (.not. model%autonomous()) bounds = -huge(1.0_dp)
+      na = wm%n_dof()
       margin = bound_margin*sum(gl)
       escale = 2.0_dp*sum(gl)
       res%n = n
       allocate (res%t_flip1(n), res%t_flip2(n), res%t_flip(n), res%t_flip_link(nl, n), &
                 res%energy0(n), res%energy_error(n), res%t_stop(n), res%final(2*nl, n), &
                 res%lyapunov(n), res%status(n), res%steps(n))
-      allocate (y(2*nl))
+      allocate (y(2*na))
       res%lyapunov = nan
       allocate (res%megno(n), res%megno_y(n), res%fli(n), res%sali(n), res%gali2(n))
       res%megno = nan; res%megno_y = nan; res%fli = nan; res%sali = nan; res%gali2 = nan
       do j = 1, n
-         res%energy0(j) = model%energy(0.0_dp, y0(:, j))
+         res%energy0(j) = model%energy(0.0_dp, y0(:, j))   ! the chain's E(0), works 0
          do i = 1, nl
             can(i) = .not. (res%energy0(j) < bounds(i) - margin)
          end do
@@ -106,10 +126,11 @@ contains
             res%energy_error(j) = nan
             cycle
          end if
-         y = y0(:, j)
-         call march(model, integ, opt, flips, can, res%energy0(j), y, ks, tf, err, nonfinite)
+         call augmented_state(wm, y0(1:nl, j), y0(nl + 1:, j), qa, qda)
+         y = [qa, qda]
+         call march(wm, integ, opt, flips, can, res%energy0(j), y, ks, tf, err, nonfinite)
          if (nonfinite) res%status(j) = st_nonfinite
-         res%final(:, j) = y
+         res%final(:, j) = [y(1:nl), y(na + 1:na + nl)]
          res%t_stop(j) = real(ks, dp)*opt%h
          res%steps(j) = int(ks)
          res%t_flip_link(:, j) = tf
@@ -145,7 +166,8 @@ contains
    !> One trajectory from y at t = 0 by steps of opt%h: at most opt%n_steps, ended by
    !> the stop rule; the first flip time of every link (`flips` true: its q_i passes
    !> π/2 + 2π k, interpolated linearly in q_i within the step; -1 if none) and the
-   !> largest |E(t_k) − E(0)|. A step that fails (not finite) is not taken.
+   !> largest |E(t_k) − E(0)| (a chain with its works: of the balance, `balance_energy`).
+   !> A step that fails (not finite) is not taken.
    subroutine march(model, integ, opt, flips, can, e0, y, ks, tf, err, nonfinite)
       class(model_t), intent(in) :: model            !! the system, N degrees of freedom
       class(integrator_t), intent(inout) :: integ    !! fixed-step method (rk4)
@@ -181,7 +203,7 @@ contains
          end if
          ks = ks + 1
          t = real(ks, dp)*opt%h
-         err = max(err, abs(model%energy(t, y) - e0))
+         err = max(err, abs(balance_energy(model, t, y) - e0))
          ! link i: index of the last upward vertical below q_i, π/2 + 2π k
          do i = 1, merge(nl, 0, flips)
             mk = real(floor((y(i) - half_pi)*inv_two_pi, i8), dp)

@@ -18,6 +18,7 @@ module dpend_sweep_settings
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use dpend_strings, only: to_lower, did_you_mean
    use dpend_run_settings, only: run_config_t, validate_run_config
+   use dpend_work, only: needs_work
    use dpend_sweep_record
    use dpend_sweep_pixels
    implicit none
@@ -37,14 +38,13 @@ contains
    subroutine validate_sweep(cfg, error)
       type(sweep_config_t), intent(inout) :: cfg        !! configuration; model built
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
-      character(len=:), allocatable :: field
       call validate_run_config(cfg%run, error, initial_state=grid_mode(cfg), &
                                keep_time_unit=.true.)
       if (allocated(error)) return
-      if (.not. cfg%run%model%conservative()) then   ! the sweep's kernels are conservative
-         call fatal_error(error, 'invalid damping/support: dpend sweep integrates the ' &
-                          //'conservative chain only (--damping, --coulomb and ' &
-                          //'--support-amplitude must be 0; dpend simulate takes them)')
+      ! a damped or driven chain runs per trajectory with its works (the balance)
+      if (.not. (cfg%run%model%conservative() .or. needs_work(cfg%run%model))) then
+         call fatal_error(error, 'invalid model: dpend sweep integrates the '// &
+                          cfg%run%model%name()//' without an energy balance to check it by')
          return
       end if
       cfg%indicator = to_lower(cfg%indicator); cfg%axis1 = to_lower(cfg%axis1)
@@ -66,36 +66,9 @@ contains
                           '= true (one indicator per sweep; lambda1 is the Lyapunov exponent)')
          return
       end if
-      if (cfg%run%links /= 2 .and. cfg%lyapunov) then
-         field = 'lyapunov: true'
-         if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
-         call fatal_error(error, 'invalid '//field//' with '//to_str(cfg%run%links)// &
-                          ' links (dpend sweep computes it for links = 2 only; '// &
-                          'dpend lyapunov computes it for any N)')
-         return
-      end if
-      ! the per-trajectory path has no exponent: motors, or an axis by name (g, com1)
-      if (cfg%lyapunov .and. .not. kernel_pendulum(cfg)) then
-         field = 'lyapunov: true'
-         if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
-         call fatal_error(error, 'invalid '//field//' with the '//cfg%run%model%name()// &
-                          ' (dpend sweep computes it in the double pendulum''s kernel only; ' &
-                          //'dpend lyapunov computes it for this model)')
-         return
-      end if
-      if (cfg%lyapunov .and. grid_mode(cfg)) then
-         if (model_axis(cfg, cfg%axis1) .or. model_axis(cfg, cfg%axis2)) then
-            field = 'lyapunov: true'
-            if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
-            field = field//' with an axis by name ('//cfg%axis2
-            if (model_axis(cfg, cfg%axis1)) field = field(:index(field, '(')) &
-                                                    //cfg%axis1
-            call fatal_error(error, 'invalid '//field// &
-                             '): such a map runs one trajectory at a time, without the ' &
-                             //'exponent (the double pendulum''s kernel computes it over ' &
-                             //'initial values and m1 m2 l1 l2 m2/m1 l2/l1)')
-            return
-         end if
+      if (cfg%lyapunov) then
+         call check_sweep_lyapunov(cfg, error)
+         if (allocated(error)) return
       end if
       if (cfg%run%method /= 'rk4') then
          call fatal_error(error, "invalid method: '"//cfg%run%method// &
@@ -168,6 +141,34 @@ contains
                           ' must be an integer from 0 (one launch) to '//to_str(huge(1)))
       end if
    end subroutine validate_sweep
+
+   !> The Lyapunov exponent of a sweep is the double pendulum's kernel's: refused, in
+   !> one line saying why, for another number of links, another model (motors, damping,
+   !> a moving support, torques: the per-trajectory path has no exponent) or an axis by
+   !> name (g, com1: one trajectory at a time).
+   subroutine check_sweep_lyapunov(cfg, error)
+      type(sweep_config_t), intent(in) :: cfg           !! configuration, lyapunov true
+      type(error_t), allocatable, intent(out) :: error  !! refused
+      character(len=:), allocatable :: field, why
+      why = ''
+      if (cfg%run%links /= 2) then
+         why = ' with '//to_str(cfg%run%links)//' links (dpend sweep computes it for ' &
+               //'links = 2 only; dpend lyapunov computes it for any N)'
+      else if (.not. kernel_pendulum(cfg)) then
+         why = ' with the '//cfg%run%model%name()//' (dpend sweep computes it in the ' &
+               //'double pendulum''s kernel only; dpend lyapunov computes it for this model)'
+      else if (grid_mode(cfg)) then
+         if (model_axis(cfg, cfg%axis2)) field = cfg%axis2
+         if (model_axis(cfg, cfg%axis1)) field = cfg%axis1
+         if (allocated(field)) why = ' with an axis by name ('//field//'): such a map ' &
+            //'runs one trajectory at a time, without the exponent (the double ' &
+            //'pendulum''s kernel computes it over initial values and m1 m2 l1 l2 m2/m1 l2/l1)'
+      end if
+      if (len(why) == 0) return
+      field = 'lyapunov: true'
+      if (cfg%indicator == 'lambda1') field = 'indicator: lambda1'
+      call fatal_error(error, 'invalid '//field//why)
+   end subroutine check_sweep_lyapunov
 
    !> Refuse two settings of one quantity, from flags or the namelist
    !> file: a fixed initial value or parameter and a grid axis that sweeps it (q1 or
@@ -526,8 +527,8 @@ contains
       if (var == 0 .and. not_an_axis(name)) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//'; damping, friction, the support''s ' &
-                          //'motion and the motors are not axes: dpend sweep integrates the ' &
-                          //'conservative chain and keeps its motors fixed)')
+                          //'motion and the motors are not axes: a map keeps them fixed, ' &
+                          //'given as in dpend simulate)')
       else if (var == 0) then
          call fatal_error(error, 'invalid axis'//c//": '"//printable(name)//"' (accepted: " &
                           //accepted_axes(links)//')'//did_you_mean(name, accepted_axes(2), '; '))
