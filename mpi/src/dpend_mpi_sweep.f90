@@ -105,6 +105,7 @@ contains
       end if
       report%summary%n = setup%n
       report%summary%flips = setup%flips
+      report%summary%energy_fed = .not. setup%cfg%run%model%autonomous()
 
       call share_resume(setup, comm, me, report, done, complete, error)
       if (allocated(error)) return

@@ -86,3 +86,15 @@ def test_what_is_not_a_map_is_refused(folder, tmp_path):
     dpend.sweep(progress=None, ic_file=str(lst), t_end=1).dpend.to_hdf5(listed)
     with pytest.raises(MapError, match="list of initial conditions"):
         open_map(listed)
+
+
+def test_a_forced_map_is_refused_not_replayed_without_its_forces(folder):
+    """A map of a damped chain (the sweep integrates it with its energy balance) has
+    forces in its configuration (c1, c2) that explore does not replay: refused when
+    opened, never shown with pixel runs of the free pendulum."""
+    path = str(folder / "damped.h5")
+    ds = dpend.sweep(progress=None, **COMMON, damping=[0.1, 0.05])
+    assert "energy balance" in ds["sweep/energy_error"].attrs["description"]
+    ds.dpend.to_hdf5(path)
+    with pytest.raises(MapError, match="c1.*cannot replay"):
+        open_map(path)

@@ -221,6 +221,7 @@ contains
       if (allocated(error)) return
       summary%n = setup%n
       summary%flips = setup%flips
+      summary%energy_fed = .not. setup%cfg%run%model%autonomous()
       summary%bound_integrated = setup%opt%vectors > 0 .or. setup%opt%lyapunov .or. &
                                  .not. setup%opt%skip_cannot_flip
       call open_output(setup, h5, done, complete, error)

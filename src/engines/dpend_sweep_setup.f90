@@ -84,6 +84,8 @@ module dpend_sweep_setup
       logical :: flips = .true.          !! the model has flips (the closing line's bound)
       !> those below the bound are integrated all the same (an indicator, lambda1)
       logical :: bound_integrated = .false.
+      !> no flip bound holds: a moving support or torques feed energy
+      logical :: energy_fed = .false.
    end type sweep_summary_t
 
 contains
@@ -94,7 +96,10 @@ contains
       type(sweep_summary_t), intent(in) :: summary  !! what the run did
       character(len=:), allocatable :: s
       s = to_str(summary%computed)//' initial conditions computed'
-      if (summary%flips) then
+      if (summary%flips .and. summary%energy_fed) then
+         s = s//' (every one integrated: the support or the torques feed energy, so no ' &
+             //'flip energy bound holds)'
+      else if (summary%flips) then
          s = s//' ('//to_str(summary%skipped)//' below the flip energy bound'
          if (summary%bound_integrated .and. summary%skipped > 0) &
             s = s//': they cannot flip, integrated all the same for the map'

@@ -433,7 +433,7 @@ contains
    subroutine check_torque_span(cfg, error)
       type(run_config_t), intent(in) :: cfg             !! configuration, model built
       type(error_t), allocatable, intent(out) :: error  !! the span not covered
-      real(dp) :: t_end
+      real(dp) :: t_end, scale
       if (.not. cfg%torque%active()) return
       if (cfg%torque_span(2) >= cfg%torque_span(1)) then
          if (cfg%torque%covers(cfg%torque_span(1), cfg%torque_span(2))) return
@@ -444,7 +444,12 @@ contains
          return
       end if
       t_end = cfg%t_end
-      if (.not. cfg%times_resolved) t_end = cfg%seconds(cfg%t_end)
+      if (.not. cfg%times_resolved .and. trim(cfg%time_unit) == 'natural') then
+         ! kept in the natural unit (a sweep): converted here, without overflow
+         scale = natural_time(cfg)
+         t_end = huge(1.0_dp)
+         if (abs(cfg%t_end) <= huge(1.0_dp)/max(scale, 1.0_dp)) t_end = cfg%t_end*scale
+      end if
       if (cfg%torque%covers(0.0_dp, t_end)) return
       call fatal_error(error, 'invalid t_end: the run spans [0, '//sci(t_end, 6)// &
                        '] s, the torques are '//cfg%torque%text()// &

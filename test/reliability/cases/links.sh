@@ -44,7 +44,11 @@ refuse  lnk-support-amp-one     support -- "${S[@]}" --support-amplitude 0.1
 refuse  lnk-support-amp-huge    support -- "${S[@]}" --support-amplitude 1e300,0
 refuse  lnk-support-freq-neg    support -- "${S[@]}" --support-amplitude 0,0.01 --support-frequency -1
 refuse  lnk-support-freq-nan    support -- "${S[@]}" --support-amplitude 0,0.01 --support-frequency nan
-refuse  lnk-sweep-damping       damping -- sweep --n 4 --t-end 1 --quiet --damping 0.1,0.1 --output g.h5
+succeed lnk-sweep-damping       -- sweep --n 4 --t-end 1 --quiet --damping 0.1,0.1 --output g.h5
+succeed lnk-sweep-damping-3     -- sweep --links 3 --n 4 --t-end 1 --quiet --damping 0.1,0.1,0 --output g.h5
+succeed lnk-sweep-support       -- sweep --n 4 --t-end 1 --quiet --support-amplitude 0,0.01 --support-frequency 20 --output g.h5
+refuse  lnk-sweep-damping-short damping -- sweep --n 4 --t-end 1 --quiet --damping 0.1 --output g.h5
+refuse  lnk-sweep-damping-lyap  "double pendulum's kernel only" -- sweep --n 4 --t-end 1 --quiet --damping 0.1,0.1 --lyapunov --output g.h5
 # ---- indicators
 refuse  lnk-ind-tau-zero        tau     -- indicators --t-end 1 --tau 0 --output g.h5
 refuse  lnk-ind-tau-nan         tau     -- indicators --t-end 1 --tau nan --output g.h5

@@ -69,8 +69,35 @@ refuse  torque-hamiltonian     'torque'             -- "${S[@]}" --method verlet
 # 4 sqrt(l1/g) = 1.28 s: beyond the series' 1 s (1 sqrt(l1/g) = 0.32 s is within)
 refuse  torque-natural-span    'not extrapolated'   -- simulate --t-end 4 --time-unit natural --output g.h5 --torque-file tau_ok.csv
 succeed torque-ok-natural      -- simulate --t-end 1 --time-unit natural --output g.h5 --torque-file tau_ok.csv
-# ---- where the option does not belong (the sweep, poincare: conservative), and fit
-refuse  torque-sweep           'conservative chain only' -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
+# ---- the sweep takes torques (one trajectory at a time, over [0, t_end] of every pixel)
+W=(sweep --n 4 --t-end 1 --time-unit s --quiet --output g.h5)
+succeed torque-sweep           -- "${W[@]}" --torque-file tau_ok.csv
+succeed torque-sweep-natural   -- sweep --n 4 --t-end 3 --time-unit natural --quiet --output g.h5 --torque-file tau_ok.csv
+succeed torque-sweep-megno     -- "${W[@]}" --torque-file tau_ok.csv --indicator megno
+succeed torque-sweep-param     -- "${W[@]}" --torque-file tau_ok.csv --axis1 m1 --min1 0.5 --max1 2
+succeed torque-sweep-named     -- "${W[@]}" --torque-file tau_ok.csv --axis1 g --min1 5 --max1 10
+succeed torque-sweep-one-link  -- "${W[@]}" --torque-file tau_one_link.csv --links 1 --axis1 theta1 --axis2 w1
+succeed torque-sweep-everything -- "${W[@]}" --torque-file tau_ok.csv --rotor-inertia 0.01,0.01 --coulomb 0.1,0.1 --damping 0.1,0 --support-amplitude 0.01,0 --support-frequency 3
+# the default t_end, 100 sqrt(l1/g) = 31.9 s, leaves the series' [0, 1] s (3.2 too)
+refuse  torque-sweep-span      'not extrapolated'   -- sweep --n 4 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-sweep-span-nat  'spans [0, 1.0222] s' -- sweep --n 4 --t-end 3.2 --time-unit natural --output g.h5 --torque-file tau_ok.csv
+refuse  torque-sweep-huge-t    'not extrapolated'   -- sweep --n 4 --t-end 1e300 --time-unit natural --l1 1e6 --output g.h5 --torque-file tau_ok.csv
+refuse  torque-sweep-lyapunov  "double pendulum's kernel only" -- "${W[@]}" --torque-file tau_ok.csv --lyapunov
+refuse  torque-sweep-lambda1   'indicator: lambda1' -- "${W[@]}" --torque-file tau_ok.csv --indicator lambda1
+refuse  torque-sweep-gpu       'conservative two-link pendulum only' -- "${W[@]}" --torque-file tau_ok.csv --device gpu
+refuse  torque-sweep-twice     'given twice'        -- "${W[@]}" --torque-file tau_ok.csv --torque-file tau_ok.csv
+refuse  torque-sweep-empty     'an empty path'      -- "${W[@]}" --torque-file ''
+refuse  torque-sweep-novalue   'needs a value'      -- "${W[@]}" --torque-file
+refuse  torque-sweep-gap       'line 3'             -- "${W[@]}" --torque-file tau_gap.csv
+refuse  torque-sweep-nan       'line 3'             -- "${W[@]}" --torque-file tau_nan.csv
+refuse  torque-sweep-back      'line 4'             -- "${W[@]}" --torque-file tau_back.csv
+refuse  torque-sweep-one-row   'at least 2'              -- "${W[@]}" --torque-file tau_one_row.csv
+refuse  torque-sweep-links     'missing column tau3' -- "${W[@]}" --links 3 --torque-file tau_ok.csv
+refuse  torque-sweep-elastic   'no joints'          -- "${W[@]}" --model elastic --torque-file tau_ok.csv
+refuse  torque-sweep-missing   'no such file'       -- "${W[@]}" --torque-file nosuch.csv
+refuse  torque-sweep-output    'an output never replaces an input' -- sweep --n 4 --t-end 1 --time-unit s --quiet --force --output tau_ok.csv --torque-file tau_ok.csv
+refuse  torque-sweep-axis      "invalid axis1: 'damping1'" -- "${W[@]}" --damping 0.1,0.1 --axis1 damping1 --min1 0 --max1 1
+# ---- where the option does not belong (poincare: conservative; the study's cases), and fit
 refuse  torque-poincare        'energy-shell sections' -- poincare --t-end 1 --output g.h5 --torque-file tau_ok.csv
 refuse  torque-study           'unknown option'     -- study --torque-file tau_ok.csv
 # fit applies torques (the motion a robot's measured torques drove): over the data's times
@@ -116,7 +143,8 @@ refuse  coulomb-speed-list     'coulomb_speed'      -- "${S[@]}" --coulomb-speed
 refuse  coulomb-underscore     'unknown option'     -- "${S[@]}" --coulomb_speed 0.1
 refuse  coulomb-elastic        'not a parameter of model elastic' -- "${S[@]}" --model elastic --coulomb 1
 refuse  coulomb-verlet         'Hamiltonian'        -- "${S[@]}" --method verlet --coulomb 0.1,0.1
-refuse  coulomb-sweep          'conservative chain only' -- sweep --n 4 --output g.h5 --coulomb 0.1,0.1
+succeed coulomb-sweep          -- sweep --n 4 --t-end 1 --quiet --output g.h5 --coulomb 0.1,0.1
+refuse  coulomb-sweep-count    'one per link (2)'   -- sweep --n 4 --t-end 1 --quiet --output g.h5 --coulomb 0.1
 succeed coulomb-ok             -- "${S[@]}" --coulomb 0.5,0.2 --coulomb-speed 0.01 --method dop853
 succeed coulomb-ok-config      -- "${S[@]}" --config coulomb.nml
 succeed coulomb-ok-zero        -- "${S[@]}" --coulomb 0,0
@@ -146,7 +174,7 @@ refuse  reflected-big          'times gear_ratio'   -- "${S[@]}" --rotor-inertia
 refuse  rotor-elastic          'not a parameter of model elastic' -- "${S[@]}" --model elastic --rotor-inertia 1
 refuse  rotor-underscore       'unknown option'     -- "${S[@]}" --rotor_inertia 0.1,0.1
 refuse  rotor-poincare         'energy-shell sections' -- poincare --t-end 1 --output g.h5 --rotor-inertia 0.1,0.1
-refuse  rotor-sweep-gpu        'no motors'          -- sweep --n 4 --device gpu --output g.h5 --rotor-inertia 0.1,0.1
+refuse  rotor-sweep-gpu        'motors or torques'   -- sweep --n 4 --device gpu --output g.h5 --rotor-inertia 0.1,0.1
 refuse  rotor-sweep-axis       'the motors are not axes' -- sweep --n 4 --axis1 rotor_inertia1 --output g.h5 --rotor-inertia 0.1,0.1
 succeed rotor-ok               -- "${S[@]}" --rotor-inertia 0.01,0.002 --gear-ratio 5,20 --method dop853
 succeed rotor-ok-config        -- "${S[@]}" --config motors.nml
