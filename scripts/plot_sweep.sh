@@ -76,6 +76,10 @@ for ((k = 1; k <= links; k++)); do
   figures+=("flip_map_link$k.png")
 done
 ex /sweep/energy_error 1 eerr.dat
+# a damped or driven chain's energy_error is that of its energy balance (its description)
+balance=0
+h5dump -a /sweep/energy_error/description "$h5" 2> /dev/null | grep -q 'energy balance' && balance=1
+printf '%s\n' "$balance" > "$tmp/balance"   # read by sweep.gp
 lyap=""
 figures+=(energy_error.png)
 if h5dump -H -d /sweep/lyapunov "$h5" >/dev/null 2>&1; then

@@ -6,7 +6,8 @@
 # text, escaped); STATUS: status matrix file or '' (0 not computed, 4 non-finite:
 # drawn grey as "not integrated"). DIR/links holds the number of links N (a file:
 # gnuplot -c takes nine arguments at most): one map flip_map_linkK.png per link from
-# DIR/flipK.dat (in DIR/seconds: 1 s, 0 sqrt(l1/g)); DIR/indicator the code of the sweep's fast indicator (0 none,
+# DIR/flipK.dat (in DIR/seconds: 1 s, 0 sqrt(l1/g)); DIR/balance 1 when the energy
+# error is that of a damped or driven chain's energy balance; DIR/indicator the code of the sweep's fast indicator (0 none,
 # 1 megno, 2 fli, 3 sali, 4 gali2), its matrix DIR/ind.dat. Every map uses the
 # perceptual palette viridis (style.gp); angle axes are ticked in multiples of pi; the
 # grey "not integrated" key entry is drawn only when a pixel is grey (the key entries
@@ -97,10 +98,19 @@ set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb grey fs solid n
 # the sweep's energy error is in units of the potential's range V_max - V_min (one
 # scale for the whole map), not the relative energy error |E(t) - E(0)| / E_s of
 # simulate and study: the label says which
+# (a damped or driven chain: the error of its energy balance, with the works of the
+# friction, the support and the torques)
+stats dir.'/balance' using 1 nooutput
+balance = int(STATS_max)
 set output outdir."/energy_error.png"
-set title "Largest energy error in units of the potential's range, max_t |E(t) - E(0)| / (V_{max} - V_{min})\n".name
+if (balance) {
+  set title "Largest error of the energy balance in units of the potential's range\nmax_t |E(t) - E(0) + W_{friction} - W_{support} - W_{torque}| / (V_{max} - V_{min})\n".name
+  set cblabel "max_t |E - E(0) + W_f - W_s - W_{/Symbol t}| / (V_{max} - V_{min})"
+} else {
+  set title "Largest energy error in units of the potential's range, max_t |E(t) - E(0)| / (V_{max} - V_{min})\n".name
+  set cblabel "max_t |E(t) - E(0)| / (V_{max} - V_{min})"
+}
 set autoscale cb
-set cblabel "max_t |E(t) - E(0)| / (V_{max} - V_{min})"
 # grey: not integrated (status 0 or 4), and the pixels below the flip energy bound,
 # which cannot flip and are not integrated (status 3; their energy error is NaN)
 stats dir.'/eerr.dat' nonuniform matrix u ($3 != $3 ? 1 : 0) nooutput

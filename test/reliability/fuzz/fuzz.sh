@@ -242,6 +242,8 @@ FLAG_BASES=(
   "sweep --ic-file list.txt --t-end #0.5 --m1 #1 --threads #1 --lyapunov --output out.h5 --quiet"
   "sweep --body point --n #2 --axis1 m2/m1 --axis2 l2/l1 --min1 #0.5 --max1 #2 --min2 #0.5 --max2 #2 --q1 #0.3 --t-end #0.5 --dt #0.05 --threads #1 --output out.h5 --quiet"
   "sweep --com #0.5,0.5 --n #2 --axis1 g --axis2 com1 --min1 #2 --max1 #12 --min2 #0.2 --max2 #0.8 --t-end #0.3 --dt #0.05 --threads #1 --output out.h5 --quiet"
+  "sweep --n #2 --t-end #0.3 --time-unit s --dt #0.05 --torque-file tq.csv --damping #0.1,0 --coulomb #0.05,0.02 --threads #1 --output out.h5 --quiet"
+  "sweep --links #3 --n #2 --axis1 m1 --axis2 theta2 --min1 #0.5 --max1 #2 --t-end #0.3 --dt #0.05 --support-amplitude #0,0.02 --support-frequency #9 --indicator megno --threads #1 --output out.h5 --quiet"
   "sweep --model elastic --q #1.2,-1 --n #2 --axis1 k --axis2 l0 --min1 #20 --max1 #60 --min2 #0.5 --max2 #1.5 --t-end #0.3 --dt #0.05 --indicator megno --threads #1 --output out.h5 --quiet"
   "simulate --model elastic --q #1.2,-1 --w #0,0 --m #1 --k #40 --l0 #1 --g #9.8 --t-end #0.02 --output out.h5"
   "sweep --n #2 --t-end #0.5 --dt #0.05 --device auto --gpu-repack #2048 --block #4 --threads #1 --output out.h5 --quiet"
