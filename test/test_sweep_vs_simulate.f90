@@ -81,20 +81,9 @@ contains
             call check_true(error, status(i1, i2) == 1, 'status 1 (integrated to t_end)')
             write (qs, '("--q1 ", es25.16e3, " --q2 ", es25.16e3)') ax1(i1) - half_pi, &
                ax2(i2) - half_pi
-            stat = run_command(dir, 'simulate '//par//' '//trim(qs)//' --w2 0 --method rk4 '// &
-                               '--dt 0.01 --t-end 2 --save-every 1 --output '//dir// &
-                               '/p.h5 --force')
-            call check_true(error, stat == 0, 'simulate exits 0: '//trim(qs))
-            if (allocated(error)) return
-            call h5%open(dir//'/p.h5', 'r', error)
-            if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
-            if (.not. allocated(error)) call h5%read('/trajectory/qdot', qd, error)
-            if (.not. allocated(error)) call h5%read('/trajectory/energy', e, error)
-            call h5%close()
+            call simulated_run(dir, par//' '//trim(qs)//' --w2 0', q, qd, e, error)
             if (allocated(error)) return
             n = size(q, 2)
-            call check_true(error, n == 201, 'every step sampled')
-            if (allocated(error)) return
             sim = [q(1, n), q(2, n), qd(1, n), qd(2, n)]
             swept = [fq1(i1, i2), fq2(i1, i2), fw1(i1, i2), fw2(i1, i2)]
             worst = max(worst, maxval(abs(swept - sim)/max(1.0_dp, abs(sim))))
@@ -110,6 +99,33 @@ contains
          'relative difference', worst, '; energy0', worst_e
       if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
    end subroutine test_final_states
+
+   !> `dpend simulate ARGS --method rk4 --dt 0.01 --t-end 2`, every step sampled: its
+   !> angles, rates and energy, and with wf the works W_friction, W_support, W_torque.
+   subroutine simulated_run(dir, args, q, qd, e, error, wf, ws, wt)
+      character(len=*), intent(in) :: dir, args
+      real(dp), allocatable, intent(out) :: q(:, :), qd(:, :), e(:)
+      type(error_t), allocatable, intent(out) :: error
+      real(dp), allocatable, intent(out), optional :: wf(:), ws(:), wt(:)
+      type(h5file_t) :: h5
+      integer :: stat
+      stat = run_command(dir, 'simulate '//args//' --method rk4 --dt 0.01 --t-end 2 ' &
+                         //'--save-every 1 --output '//dir//'/p.h5 --force')
+      call check_true(error, stat == 0, 'simulate exits 0: '//args)
+      if (allocated(error)) return
+      call h5%open(dir//'/p.h5', 'r', error)
+      if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/qdot', qd, error)
+      if (.not. allocated(error)) call h5%read('/trajectory/energy', e, error)
+      if (present(wf)) then
+         if (.not. allocated(error)) call h5%read('/trajectory/W_friction', wf, error)
+         if (.not. allocated(error)) call h5%read('/trajectory/W_support', ws, error)
+         if (.not. allocated(error)) call h5%read('/trajectory/W_torque', wt, error)
+      end if
+      call h5%close()
+      if (.not. allocated(error)) call check_true(error, size(q, 2) == 201, &
+                                                  'every step sampled')
+   end subroutine simulated_run
 
    !> Torque samples τ1 = 0.4 sin 2t, τ2 = 0.15 cos 3t (τ3 = −0.1 sin t) every 10 ms
    !> over [0, 4] s, written to `path` for n joints; `scale` multiplies them.
@@ -185,24 +201,10 @@ contains
                q0 = [ax1(i1) - half_pi, ax2(i2) - half_pi, 0.3_dp]
                write (qs, '("--q ", es24.16e3, 2(:, ",", es24.16e3))') q0(1:nl)
                qs = '--q '//no_blanks(qs(5:))
-               stat = run_command(dir, 'simulate '//simulated(par)//' '//trim(qs)//forced// &
-                                  ' --method ' &
-                                  //'rk4 --dt 0.01 --t-end 2 --save-every 1 --output '//dir// &
-                                  '/p.h5 --force')
-               call check_true(error, stat == 0, 'simulate exits 0: '//trim(qs))
-               if (allocated(error)) return
-               call h5%open(dir//'/p.h5', 'r', error)
-               if (.not. allocated(error)) call h5%read('/trajectory/q', q, error)
-               if (.not. allocated(error)) call h5%read('/trajectory/qdot', qd, error)
-               if (.not. allocated(error)) call h5%read('/trajectory/energy', e, error)
-               if (.not. allocated(error)) call h5%read('/trajectory/W_friction', wf, error)
-               if (.not. allocated(error)) call h5%read('/trajectory/W_support', ws, error)
-               if (.not. allocated(error)) call h5%read('/trajectory/W_torque', wt, error)
-               call h5%close()
+               call simulated_run(dir, simulated(par)//' '//trim(qs)//forced, q, qd, e, &
+                                  error, wf, ws, wt)
                if (allocated(error)) return
                n = size(q, 2)
-               call check_true(error, n == 201, 'every step sampled')
-               if (allocated(error)) return
                balance = maxval(abs(e - e(1) + wf - ws - wt))/range
                worst = max(worst, maxval(abs(fin(i1, i2, :) - [q(:, n), qd(:, n)])))
                worst_e = max(worst_e, abs(err2(i1, i2) - balance))
