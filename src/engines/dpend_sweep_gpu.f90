@@ -235,8 +235,8 @@ contains
       if (cfg%device == 'cpu') return   ! (its name and gpu_repack: validate_sweep)
       why = ''
       if (cfg%run%links /= 2 .or. .not. flip_model(cfg) .or. .not. kernel_pendulum(cfg)) then
-         why = 'the GPU computes the conservative two-link pendulum only (no damping, ' &
-               //'friction, support motion, motors or torques)'
+         why = 'the GPU computes the two-link pendulum only, without damping, friction, ' &
+               //'support motion, motors or torques'
       else if (cfg%lyapunov .or. cfg%indicator /= 'flip') then
          why = 'the GPU computes flip maps only (--lyapunov and --indicator run on the CPU)'
       else if (grid_mode(cfg)) then

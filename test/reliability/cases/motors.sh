@@ -84,7 +84,7 @@ refuse  torque-sweep-span-nat  'spans [0, 1.0222] s' -- sweep --n 4 --t-end 3.2 
 refuse  torque-sweep-huge-t    'not extrapolated'   -- sweep --n 4 --t-end 1e300 --time-unit natural --l1 1e6 --output g.h5 --torque-file tau_ok.csv
 refuse  torque-sweep-lyapunov  "double pendulum's kernel only" -- "${W[@]}" --torque-file tau_ok.csv --lyapunov
 refuse  torque-sweep-lambda1   'indicator: lambda1' -- "${W[@]}" --torque-file tau_ok.csv --indicator lambda1
-refuse  torque-sweep-gpu       'conservative two-link pendulum only' -- "${W[@]}" --torque-file tau_ok.csv --device gpu
+refuse  torque-sweep-gpu       'two-link pendulum only, without damping' -- "${W[@]}" --torque-file tau_ok.csv --device gpu
 refuse  torque-sweep-twice     'given twice'        -- "${W[@]}" --torque-file tau_ok.csv --torque-file tau_ok.csv
 refuse  torque-sweep-empty     'an empty path'      -- "${W[@]}" --torque-file ''
 refuse  torque-sweep-novalue   'needs a value'      -- "${W[@]}" --torque-file
