@@ -23,6 +23,8 @@ module test_study
    use dpend_model_factory, only: model_spec, new_model
    use dpend_study_settings, only: case_model
    use dpend_limits, only: sci
+   use dpend_joint_torque, only: torque_sines
+   use dpend_study_settings, only: read_case_torques, check_case_torques
    implicit none
    private
    public :: collect_study
@@ -43,6 +45,8 @@ contains
               new_unittest('tiny_study_orders', test_tiny_study), &
               new_unittest('tiny_chain_study', test_tiny_chain_study), &
               new_unittest('tiny_damped_study', test_tiny_damped_study), &
+              new_unittest('tiny_torqued_study', test_tiny_torqued_study), &
+              new_unittest('torque_file_cases', test_torque_config), &
               new_unittest('tiny_elastic_study', test_tiny_elastic_study), &
               new_unittest('quadruple_h_through_the_model', test_model_hamiltonian_qp), &
               new_unittest('damped_config_file', test_damped_config), &
@@ -600,6 +604,111 @@ contains
                                    //'driven') > 0 .and. index(md, '## Energy balance') > 0, &
                       'summary: drift not applied, energy balance section')
    end subroutine test_tiny_damped_study
+
+   !> A tiny study of a double pendulum driven by joint torques (the closed form
+   !> τ1 = 0.3 + 0.4 sin(3 t), τ2 = −0.2 cos(5 t) with a little damping): a balance case
+   !> whose energy balance includes W_torque; rk4 and gauss6 keep their orders in the
+   !> global error and in the balance error, gauss6 balances to 1e-10, no drift verdict.
+   subroutine test_tiny_torqued_study(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(study_result_t) :: res
+      type(verdicts_t) :: v
+      integer :: s
+      cfg = study_defaults()
+      cfg%cases = [study_case_t('torqued', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
+                                [0.0_dp, 0.0_dp], 300.0_dp)]
+      cfg%cases(1)%damping = [0.02_dp, 0.01_dp]
+      cfg%cases(1)%torque = torque_sines([0.3_dp, 0.0_dp], &
+                                         reshape([0.4_dp, 0.0_dp, 0.0_dp, 0.2_dp], [2, 2]), &
+                                         [3.0_dp, 5.0_dp], &
+                                         reshape([0.0_dp, 0.0_dp, 0.0_dp, -0.5_dp*pi], &
+                                                 [2, 2]), error)
+      if (allocated(error)) return
+      cfg%methods = [study_method_t('rk4', 1.0e-3_dp, 2.5e-3_dp, 0.0_dp, 0.0_dp), &
+                     study_method_t('gauss6', 6.0e-3_dp, 1.6e-2_dp, 0.0_dp, 0.0_dp)]
+      cfg%n_h = 4
+      cfg%order_case = 'torqued'; cfg%drift_case = 'torqued'
+      cfg%ro_case = 'torqued'; cfg%tao_case = 'torqued'
+      cfg%decades = 2
+      cfg%wall_min = 0.0_dp
+      cfg%threads = 2
+      call check_true(error, balance_case(cfg, 1), 'a case with torques is a balance case')
+      if (allocated(error)) return
+      call validate_study_config(cfg, error)
+      if (allocated(error)) return
+      call check_case_torques(cfg, error)   ! a closed form covers every run
+      if (allocated(error)) return
+      call run_study(cfg, res, quiet=.true.)
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            call check_true(error, all(sw%stat == 0) .and. .not. sw%symplectic, sw%method// &
+                            ': every run succeeded, not symplectic with torques')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, real(sw%order, dp), &
+                       sw%method//' order from the global error (torques)', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
+                       sw%method//' order from the energy balance error (torques)', abs=0.3_dp)
+            if (allocated(error)) return
+            if (sw%method == 'gauss6') call check(error, sw%energy_long(size(sw%x)), 0.0_dp, &
+                                                  'gauss6 balance error with torques at h = '// &
+                                                  sci(sw%x(size(sw%x))), abs=1e-10_dp)
+            write (*, '(a, f6.3, a, f6.3, a, es9.2)') '    study: torques, '//sw%method// &
+               ' order (global) ', sw%fit_global%slope, ', (balance) ', sw%fit_energy%slope, &
+               ', longest balance error ', maxval(sw%energy_long)
+         end associate
+      end do
+      v = study_verdicts(cfg, res)
+      call check_true(error, v%orders, 'order verdict: '//v%orders_text)
+      call check_true(error, .not. v%drift_judged, 'no drift verdict with torques')
+   end subroutine test_tiny_torqued_study
+
+   !> case_torque_file in &study: read for the case's links, recorded in the namelist
+   !> the file keeps, its span checked against the case's runs (refused in one line
+   !> naming the key), refused for a model of &model.
+   subroutine test_torque_config(error)
+      type(error_t), allocatable, intent(out) :: error
+      type(study_config_t) :: cfg
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: dir
+      character(len=*), parameter :: cases = "order_case = 'driven', drift_case = " &
+                                             //"'driven', ro_case = 'driven', tao_case = 'driven'"
+      dir = scratch_dir('studytorque')
+      call write_file(dir//'/tq.csv', 't,tau1,tau2'//new_line('a')//'0,0.5,-0.2'// &
+                      new_line('a')//'1e6,0.4,0.1'//new_line('a'))
+      call write_file(dir//'/short.csv', 't,tau1,tau2'//new_line('a')//'0,0.5,-0.2'// &
+                      new_line('a')//'1,0.4,0.1'//new_line('a'))
+      call write_file(dir//'/s.nml', "&study case_name(1) = 'driven', case_q1(1) = 0.3, " &
+                      //"case_torque_file(1) = '"//dir//"/tq.csv', method(1) = 'rk4', "//cases//' /')
+      cfg = study_defaults()
+      call read_study_config(dir//'/s.nml', cfg, error)
+      if (allocated(error)) return
+      call read_case_torques(cfg, error)
+      if (allocated(error)) return
+      call check_true(error, cfg%cases(1)%torque%active() .and. balance_case(cfg, 1), &
+                      'the case has its torques: a balance case')
+      if (allocated(error)) return
+      call validate_study_config(cfg, err)
+      if (.not. allocated(err)) call check_case_torques(cfg, err)
+      call check_true(error, .not. allocated(err), 'a series over [0, 1e6] s covers the runs')
+      if (allocated(error)) return
+      call check_true(error, index(study_namelist(cfg), "case_torque_file(1) = '"//dir// &
+                                   "/tq.csv'") > 0, 'the namelist records the torque file')
+      if (allocated(error)) return
+      call write_file(dir//'/s.nml', "&study case_name(1) = 'driven', case_q1(1) = 0.3, " &
+                      //"case_torque_file(1) = '"//dir//"/short.csv', method(1) = 'rk4', "//cases//' /')
+      cfg = study_defaults()
+      call read_study_config(dir//'/s.nml', cfg, error)
+      if (.not. allocated(error)) call read_case_torques(cfg, error)
+      if (allocated(error)) return
+      call check_case_torques(cfg, err)
+      call check_true(error, allocated(err), 'a series over [0, 1] s does not cover the runs')
+      if (allocated(error)) return
+      call check_true(error, index(err%message, 'invalid case_torque_file(1)') == 1 .and. &
+                      index(err%message, 'not extrapolated') > 0, 'refused: '//err%message)
+      if (.not. allocated(error)) call execute_command_line('rm -rf '//dir)
+   end subroutine test_torque_config
 
    !> data/study_damped.nml: three balance cases (damped; driven; damped and driven, three
    !> links) that read back through study_namelist; a method that needs a Hamiltonian

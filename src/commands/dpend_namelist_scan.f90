@@ -394,7 +394,7 @@ contains
       b = k
       if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
       select case (b)
-      case ('file', 'ic_file', 'ic_dataset'); n = 1024
+      case ('file', 'ic_file', 'ic_dataset', 'case_torque_file'); n = 1024
       case ('name'); n = 1024                         ! &model: read by dpend itself
       case ('case_name', 'order_case', 'drift_case', 'ro_case', 'tao_case'); n = 32
       case ('method')
@@ -435,7 +435,7 @@ contains
       if (index(b, '(') > 0) b = b(:index(b, '(') - 1)
       select case (b)
       case ('file', 'ic_file', 'ic_dataset', 'name', 'case_name', 'order_case', &
-            'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
+            'case_torque_file', 'drift_case', 'ro_case', 'tao_case', 'method', 'ref_method', 'check_method', &
             'ro_method', 'tao_method', 'axis1', 'axis2', 'ic_angles', 'time_unit', &
             'stop_at', 'indicator', 'device', 'body')
          is_string_key = .true.

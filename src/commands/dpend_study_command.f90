@@ -835,6 +835,16 @@ contains
             call h5%writeattr(g, 'support_amplitude', cs%support_amplitude)
             call h5%writeattr(g, 'support_frequency', cs%support_frequency)
             call h5%writeattr(g, 'support_phase', cs%support_phase)
+            if (cs%torque%active()) then   ! the torques applied, exactly
+               call h5%writeattr(g, 'torque', cs%torque%text())
+               call h5%writeattr(g, 'torque_file', cs%torque_file)
+               call h5%write(g//'/torque/sample_t', cs%torque%t, units='s', description= &
+                             'sample times of the applied joint torques (linear between ' &
+                             //'samples)')
+               call h5%write(g//'/torque/sample_tau', cs%torque%tau, units='N m', &
+                             description='applied joint torques tau_1 .. tau_N at the ' &
+                             //'sample times')
+            end if
          end if
       end associate
    end subroutine write_h5_case

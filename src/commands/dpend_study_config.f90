@@ -22,6 +22,7 @@ module dpend_study_config
    use dpend_model_factory, only: default_model
    use dpend_namelist, only: read_run_config, check_groups, namelist_error
    use dpend_run_flags, only: apply_run_flag
+   use dpend_study_settings, only: read_case_torques, check_case_torques
    use dpend_study_settings, only: study_config_t, study_defaults, validate_study_config, &
       apply_quick, study_times_in_seconds, case_index, default_ranges, max_cases, max_methods, max_extra, &
       case_list, split_list, unset
@@ -97,9 +98,11 @@ contains
           'Relative energy error: |H(t) - H(0)| / E_s with E_s = |H(0)|, or, when'//nl// &
           'H(0) ~ 0 (both links released horizontally), the potential energy with both'//nl// &
           'links upright, (m1/2 + m2) g l1 + (m2/2) g l2. A damped or driven case'//nl// &
-          '(case_damping, case_support_* in &study) measures the energy balance'//nl// &
-          '|E(t) - E(0) + W_friction - W_support| / E_s instead (methods that need a'//nl// &
-          'Hamiltonian refuse such a case; no drift, roundoff or Tao runs on it).'
+          '(case_damping, case_support_*, case_torque_file in &study: a CSV of t [s],'//nl// &
+          'tau1 .. tauN [N m] covering every run of the case, docs/robot.md) measures'//nl// &
+          'the energy balance |E(t) - E(0) + W_friction - W_support - W_torque| / E_s'//nl// &
+          'instead (methods that need a Hamiltonian refuse such a case; no drift,'//nl// &
+          'roundoff or Tao runs on it).'
    end function study_help
 
    !> Build the study configuration from the defaults, --config and the flags.
@@ -175,6 +178,8 @@ contains
       if (allocated(error)) return
       if (cases_given) call select_cases(cfg, only_cases, error)
       if (allocated(error)) return
+      call read_case_torques(cfg, error)   ! the cases' torque files, once
+      if (allocated(error)) return
       call validate_study_config(cfg, error)
       if (allocated(error)) return
       if (trim(cfg%time_unit) == 'natural') then   ! its times in seconds, checked again
@@ -183,6 +188,7 @@ contains
          if (allocated(error)) return
       end if
       call apply_quick(cfg)
+      call check_case_torques(cfg, error)   ! over the runs, in seconds, after --quick
    end subroutine parse_study
 
    !> Keep only the methods named in the comma-separated `list`.
@@ -263,6 +269,7 @@ contains
       real(dp) :: case_q(max_dof, max_cases), case_w(max_dof, max_cases)
       real(dp) :: case_damping(max_dof, max_cases), case_support_amplitude(2, max_cases), &
                   case_support_frequency(max_cases), case_support_phase(2, max_cases)
+      character(len=1024) :: case_torque_file(max_cases)
       character(len=16) :: method(max_methods), ref_method, check_method
       real(dp) :: h_min(max_methods), h_max(max_methods), rtol_min(max_methods), &
                   rtol_max(max_methods)
@@ -276,7 +283,7 @@ contains
       character(len=512) :: msg
       namelist /study/ case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
          case_links, case_q, case_w, case_damping, case_support_amplitude, &
-         case_support_frequency, case_support_phase, &
+         case_support_frequency, case_support_phase, case_torque_file, &
          method, h_min, h_max, rtol_min, rtol_max, n_h, n_rtol, atol_ratio, t_short, &
          n_check, order_case, drift_case, drift_decades, bins_per_decade, decades, &
          ref_method, ref_dt, check_method, check_rtol, wall_min, ro_method, ro_dt, ro_steps, &
@@ -290,7 +297,7 @@ contains
       case_name = ''; case_q1 = unset; case_q2 = unset; case_w1 = unset; case_w2 = unset
       case_long_steps = 0; case_links = 0; case_q = unset; case_w = unset
       case_damping = unset; case_support_amplitude = 0; case_support_frequency = 0
-      case_support_phase = 0
+      case_support_phase = 0; case_torque_file = ''
       method = ''; h_min = 0; h_max = 0; rtol_min = 0; rtol_max = 0
       ro_method = ''; ro_dt = 0; tao_method = ''
       n_h = cfg%n_h; n_rtol = cfg%n_rtol; atol_ratio = cfg%atol_ratio; t_short = cfg%t_short
@@ -317,7 +324,7 @@ contains
 
       call set_cases(filename, case_name, case_q1, case_q2, case_w1, case_w2, case_long_steps, &
                      case_links, case_q, case_w, case_damping, case_support_amplitude, &
-                     case_support_frequency, case_support_phase, cfg, error)
+                     case_support_frequency, case_support_phase, case_torque_file, cfg, error)
       if (allocated(error)) return
       call set_methods(filename, method, h_min, h_max, rtol_min, rtol_max, cfg, error)
       if (allocated(error)) return
@@ -475,7 +482,7 @@ contains
    subroutine set_cases(filename, case_name, case_q1, case_q2, case_w1, case_w2, &
                         case_long_steps, case_links, case_q, case_w, case_damping, &
                         case_support_amplitude, case_support_frequency, case_support_phase, &
-                        cfg, error)
+                        case_torque_file, cfg, error)
       character(len=*), intent(in) :: filename           !! namelist file (for messages)
       character(len=*), intent(in) :: case_name(:)       !! names ('' not given)
       real(dp), intent(in) :: case_q1(:), case_q2(:), case_w1(:), case_w2(:)
@@ -484,6 +491,7 @@ contains
       real(dp), intent(in) :: case_q(:, :), case_w(:, :), case_damping(:, :)
       real(dp), intent(in) :: case_support_amplitude(:, :), case_support_frequency(:), &
                               case_support_phase(:, :)
+      character(len=*), intent(in) :: case_torque_file(:)  !! '' none
       type(study_config_t), intent(inout) :: cfg         !! updated
       type(error_t), allocatable, intent(out) :: error   !! invalid
       integer :: i, n
@@ -519,6 +527,7 @@ contains
             cfg%cases(i)%support_amplitude = case_support_amplitude(:, i)
             cfg%cases(i)%support_frequency = case_support_frequency(i)
             cfg%cases(i)%support_phase = case_support_phase(:, i)
+            cfg%cases(i)%torque_file = trim(case_torque_file(i))
          end do
       end if
    contains
@@ -531,6 +540,7 @@ contains
          a = '('//to_str(i)//')'      ! a value per case
          b = '(:, '//to_str(i)//')'   ! a list per case
          key = ''
+         if (len_trim(case_torque_file(i)) > 0) key = 'case_torque_file'//a
          if (any(case_support_phase(:, i) /= 0.0_dp)) key = 'case_support_phase'//b
          if (case_support_frequency(i) /= 0.0_dp) key = 'case_support_frequency'//a
          if (any(case_support_amplitude(:, i) /= 0.0_dp)) key = 'case_support_amplitude'//b

@@ -66,7 +66,8 @@ module dpend_study
    use dpend_fit, only: fit_t, loglog_fit, drift_exponent
    use dpend_os, only: wall_clock
    use dpend_progress, only: progress_silenced, progress_t
-   use dpend_study_settings, only: study_config_t, case_index, case_model, balance_case
+   use dpend_study_settings, only: study_config_t, case_index, case_model, balance_case, &
+      step_grid
    use dpend_work, only: needs_work, work_model, is_work_model, augmented_state, &
                          balance_energy
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
@@ -179,29 +180,6 @@ module dpend_study
 contains
 
    ! ================================================================ grids
-
-   !> Steps of a fixed-step sweep: n values from h_max down to h_min, geometric,
-   !> each rounded to (t_short/n_check)/m with m an integer so that the steps hit
-   !> the checkpoints; m is made strictly increasing.
-   pure function step_grid(h_min, h_max, n, interval) result(h)
-      real(dp), intent(in) :: h_min     !! smallest step [s]
-      real(dp), intent(in) :: h_max     !! largest step [s]
-      integer, intent(in) :: n          !! number of steps (>= 1)
-      real(dp), intent(in) :: interval  !! checkpoint interval t_short/n_check [s]
-      real(dp) :: h(n)
-      integer :: m(n), k
-      real(dp) :: hk
-      do k = 1, n
-         if (n == 1) then
-            hk = sqrt(h_min*h_max)
-         else
-            hk = h_max*(h_min/h_max)**(real(k - 1, dp)/real(n - 1, dp))
-         end if
-         m(k) = max(1, nint(interval/hk))
-         if (k > 1) m(k) = max(m(k), m(k - 1) + 1)
-         h(k) = interval/real(m(k), dp)
-      end do
-   end function step_grid
 
    !> Upper edges of the logarithmic time bins below t_end: t_end·10^(−j/b),
    !> j = n_bins − 1 … 0, n_bins = decades·b; bin 1 starts at 0.

@@ -26,7 +26,8 @@ module dpend_run_settings
    private
    public :: run_config_t, validate_run_config, set_pendulum, set_body, model_names, &
       is_model_parameter, list_names, mark_given, unused_setting, natural_time, &
-      natural_unit_name, time_text, time_in_unit, span_text, time_unit_option_help
+      natural_unit_name, time_text, time_in_unit, span_text, time_unit_option_help, &
+      read_torque_file
 
    !> Settings of the pendulum's links and their parameter in the model catalogue: a
    !> setting given for a model without that parameter is refused. The second link's
@@ -376,9 +377,6 @@ contains
    subroutine read_torques(cfg, error)
       type(run_config_t), intent(inout) :: cfg          !! configuration; torque set
       type(error_t), allocatable, intent(out) :: error  !! unreadable, refused
-      type(series_t) :: series
-      character(len=16), allocatable :: names(:), units(:)
-      integer :: i
       if (.not. allocated(cfg%torque_file)) return
       if (len(cfg%torque_file) == 0) return
       if (.not. model_torques(cfg)) then
@@ -386,22 +384,36 @@ contains
                           ' has no joints to apply torques to (model pendulum takes them)')
          return
       end if
-      allocate (names(cfg%links), units(cfg%links))
-      do i = 1, cfg%links
+      call read_torque_file(cfg%torque_file, cfg%links, cfg%torque, error)
+   end subroutine read_torques
+
+   !> Read a torque file of `n` joints into `torque`: a CSV series (dpend_csv's format)
+   !> with the columns t [s] and tau1 … tauN [N m]; every value checked
+   !> (`torque_series`), refusals naming the file and the line. The file is registered
+   !> as an input of the run (no output replaces it).
+   subroutine read_torque_file(path, n, torque, error)
+      character(len=*), intent(in) :: path              !! the torque file
+      integer, intent(in) :: n                          !! joints N
+      type(joint_torque_t), intent(out) :: torque       !! the series read
+      type(error_t), allocatable, intent(out) :: error  !! unreadable, refused
+      type(series_t) :: series
+      character(len=16), allocatable :: names(:), units(:)
+      integer :: i
+      allocate (names(n), units(n))
+      do i = 1, n
          names(i) = 'tau'//to_str(i)
          units(i) = 'N m'
       end do
-      call register_input(cfg%torque_file)   ! no output of the run replaces it
-      call read_series(cfg%torque_file, series, error, names, units, &
-                       what='the joint torques')
+      call register_input(path)   ! no output of the run replaces it
+      call read_series(path, series, error, names, units, what='the joint torques')
       if (allocated(error)) then
          error%message = replace_lead(error%message)
          return
       end if
-      cfg%torque = torque_series(series%t, series%q, error)
+      torque = torque_series(series%t, series%q, error)
       if (allocated(error)) then
          if (index(error%message, 'invalid torque series: ') == 1) &
-            error%message = "invalid torque file '"//printable(cfg%torque_file)//"': "// &
+            error%message = "invalid torque file '"//printable(path)//"': "// &
                             error%message(len('invalid torque series: ') + 1:)
       end if
    contains
@@ -415,7 +427,7 @@ contains
             m = message
          end if
       end function replace_lead
-   end subroutine read_torques
+   end subroutine read_torque_file
 
    !> Whether the model asked for takes applied joint torques (its description).
    logical function model_torques(cfg)

@@ -15,6 +15,8 @@ module dpend_study_settings
    use dpend_model_factory, only: model_spec_t, model_spec, new_model, default_model, &
       has_parameter
    use dpend_model, only: model_t, max_dof
+   use dpend_joint_torque, only: joint_torque_t
+   use dpend_run_settings, only: read_torque_file
    use dpend_cli, only: to_str, printable
    use dpend_integrator, only: integrator_t
    use dpend_methods, only: new_integrator
@@ -28,7 +30,8 @@ module dpend_study_settings
    public :: study_config_t, study_case_t, study_method_t, study_defaults, &
       validate_study_config, apply_quick, study_times_in_seconds, study_namelist, case_index, default_ranges, &
       balance_case, case_model, study_model_name, default_model_study, max_cases, &
-      max_methods, max_extra, case_damping, case_list, split_list, unset
+      max_methods, max_extra, case_damping, case_list, split_list, unset, read_case_torques, &
+      check_case_torques, step_grid
 
    integer, parameter :: max_cases = 8      !! most cases in &study
    integer, parameter :: max_methods = 16   !! most methods in &study
@@ -52,6 +55,10 @@ module dpend_study_settings
       real(dp) :: support_amplitude(2) = 0.0_dp  !! moving pin (a_x, a_y) [m]
       real(dp) :: support_frequency = 0.0_dp     !! its ω [rad/s]
       real(dp) :: support_phase(2) = 0.0_dp      !! its phases (φ_x, φ_y) [rad]
+      !> applied joint torques: the file (columns t, tau1 … tauN; '' none), read by
+      !> `read_case_torques` into `torque`
+      character(len=:), allocatable :: torque_file
+      type(joint_torque_t) :: torque
    end type study_case_t
 
    !> One method and its sweeps.
@@ -245,13 +252,15 @@ contains
       default_model_study = study_model_name(cfg) == default_model
    end function default_model_study
 
-   !> Case ic is damped or driven (joint damping, a moving support): a balance case,
-   !> whose energy error is the energy balance E(t) − E(0) + W_friction − W_support
-   !> (dpend_work) and to which the drift verdicts are not applied.
+   !> Case ic is damped or driven (joint damping, a moving support, applied joint
+   !> torques): a balance case, whose energy error is the energy balance E(t) − E(0) +
+   !> W_friction − W_support − W_torque (dpend_work) and to which the drift verdicts
+   !> are not applied.
    pure logical function balance_case(cfg, ic)
       type(study_config_t), intent(in) :: cfg  !! configuration
       integer, intent(in) :: ic                !! case index
-      balance_case = any(cfg%cases(ic)%support_amplitude /= 0.0_dp)
+      balance_case = any(cfg%cases(ic)%support_amplitude /= 0.0_dp) .or. &
+                     cfg%cases(ic)%torque%active()
       if (allocated(cfg%cases(ic)%damping)) balance_case = balance_case .or. &
                                                           any(cfg%cases(ic)%damping /= 0.0_dp)
    end function balance_case
@@ -304,6 +313,7 @@ contains
          call spec%set('support_amplitude', cs%support_amplitude)
          call spec%set('support_frequency', [cs%support_frequency])
          call spec%set('support_phase', cs%support_phase)
+         spec%torque = cs%torque
       end associate
    end function case_spec
 
@@ -383,6 +393,8 @@ contains
                       ', case_support_frequency('//trim(b)//') = '// &
                       g(cs%support_frequency)//', case_support_phase(1:2, '//trim(b)// &
                       ') = '//list(cs%support_phase)//nl
+               if (cs%torque%active()) text = text//'  case_torque_file('//trim(b)// &
+                  ") = '"//quoted_path(cs%torque_file)//"'"//nl
             end associate
          end if
       end do
@@ -447,7 +459,96 @@ contains
             s = s//', '//g(x(k))
          end do
       end function list
+      !> A path in a namelist string: each ' doubled.
+      function quoted_path(path) result(s)
+         character(len=*), intent(in) :: path
+         character(len=:), allocatable :: s
+         integer :: k
+         s = ''
+         do k = 1, len(path)
+            s = s//path(k:k)
+            if (path(k:k) == "'") s = s//"'"
+         end do
+      end function quoted_path
    end function study_namelist
+
+   !> Read the torque file of every case that names one (`case_torque_file`) into its
+   !> `torque` (the columns tau1 … tauN of its N links): the pendulum's cases only (a
+   !> model of &model has no joints), refusals naming the case's key, the file and the
+   !> line.
+   subroutine read_case_torques(cfg, error)
+      type(study_config_t), intent(inout) :: cfg        !! configuration; torques set
+      type(error_t), allocatable, intent(out) :: error  !! unreadable, refused
+      integer :: i
+      do i = 1, size(cfg%cases)
+         if (.not. allocated(cfg%cases(i)%torque_file)) cycle
+         if (len(cfg%cases(i)%torque_file) == 0) cycle
+         if (.not. default_model_study(cfg)) then
+            call fatal_error(error, 'invalid case_torque_file('//to_str(i)//'): model ' &
+                             //study_model_name(cfg)//' has no joints to apply torques ' &
+                             //'to (the pendulum of &pendulum takes them)')
+            return
+         end if
+         call read_torque_file(cfg%cases(i)%torque_file, size(cfg%cases(i)%q0), &
+                               cfg%cases(i)%torque, error)
+         if (allocated(error)) then
+            error%message = error%message//" (case_torque_file("//to_str(i)//"), case '" &
+                            //cfg%cases(i)%name//"')"
+            return
+         end if
+      end do
+   end subroutine read_case_torques
+
+   !> The torques of a case cover every run of it (a series is not extrapolated): the
+   !> short runs and the reference to t_short, the long runs of each method to
+   !> case_long_steps × the middle step of its fixed-step sweep (`step_grid`). Times in
+   !> seconds, after --quick (whose long runs are shorter).
+   subroutine check_case_torques(cfg, error)
+      type(study_config_t), intent(in) :: cfg           !! validated, times in seconds
+      type(error_t), allocatable, intent(out) :: error  !! a span not covered
+      real(dp) :: t_end, hs(cfg%n_h)
+      integer :: i, im
+      do i = 1, size(cfg%cases)
+         if (.not. cfg%cases(i)%torque%active()) cycle
+         t_end = cfg%t_short
+         do im = 1, size(cfg%methods)
+            hs = step_grid(cfg%methods(im)%h_min, cfg%methods(im)%h_max, cfg%n_h, &
+                           cfg%t_short/real(cfg%n_check, dp))
+            t_end = max(t_end, cfg%cases(i)%long_steps*hs((cfg%n_h + 1)/2))
+         end do
+         if (cfg%cases(i)%torque%covers(0.0_dp, t_end)) cycle
+         call fatal_error(error, 'invalid case_torque_file('//to_str(i)//"): the runs of " &
+                          //"case '"//cfg%cases(i)%name//"' span [0, "//sci(t_end, 6)// &
+                          '] s (t_short and case_long_steps times the middle step of each ' &
+                          //"method's sweep), the torques are "//cfg%cases(i)%torque%text()// &
+                          ' (a series is not extrapolated: fewer case_long_steps, or samples' &
+                          //' over the whole span)')
+         return
+      end do
+   end subroutine check_case_torques
+
+   !> Steps of a fixed-step sweep: n values from h_max down to h_min, geometric,
+   !> each rounded to (t_short/n_check)/m with m an integer so that the steps hit
+   !> the checkpoints; m is made strictly increasing.
+   pure function step_grid(h_min, h_max, n, interval) result(h)
+      real(dp), intent(in) :: h_min     !! smallest step [s]
+      real(dp), intent(in) :: h_max     !! largest step [s]
+      integer, intent(in) :: n          !! number of steps (>= 1)
+      real(dp), intent(in) :: interval  !! checkpoint interval t_short/n_check [s]
+      real(dp) :: h(n)
+      integer :: m(n), k
+      real(dp) :: hk
+      do k = 1, n
+         if (n == 1) then
+            hk = sqrt(h_min*h_max)
+         else
+            hk = h_max*(h_min/h_max)**(real(k - 1, dp)/real(n - 1, dp))
+         end if
+         m(k) = max(1, nint(interval/hk))
+         if (k > 1) m(k) = max(m(k), m(k - 1) + 1)
+         h(k) = interval/real(m(k), dp)
+      end do
+   end function step_grid
 
    !> Check the whole configuration; messages name the field and the accepted range.
    !> The order of the checks is the order of the first refusal: the cases' systems,
@@ -829,17 +930,18 @@ contains
          end if
       end if
       if (allocated(error) .or. .not. balance_case(cfg, ic)) return
-      if (n > max_dof - 1) then
+      k = merge(2, 1, cfg%cases(ic)%torque%active())   ! the works' state slots
+      if (n > max_dof - k) then
          call fatal_error(error, 'invalid case_links('//to_str(ic)//'): '//to_str(n)// &
-                          ' with damping or a moving support is outside [1, '// &
-                          to_str(max_dof - 1)//'] (the energy balance takes two state ' &
-                          //'components)')
+                          ' with damping, a moving support or torques is outside [1, '// &
+                          to_str(max_dof - k)//'] (the energy balance takes '// &
+                          to_str(2*k)//' state components)')
          return
       end if
       call new_model(case_spec(cfg, ic), model, error)
       if (allocated(error)) error%message = error%message//" (case '"// &
                                             cfg%cases(ic)%name//"': case_damping, " &
-                                            //'case_support_*)'
+                                            //'case_support_*, case_torque_file)'
    end subroutine check_system
 
    !> Case ic of a model given by &model (not the pendulum of m, l, g): the factory

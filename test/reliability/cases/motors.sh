@@ -99,7 +99,26 @@ refuse  torque-sweep-output    'an output never replaces an input' -- sweep --n 
 refuse  torque-sweep-axis      "invalid axis1: 'damping1'" -- "${W[@]}" --damping 0.1,0.1 --axis1 damping1 --min1 0 --max1 1
 # ---- where the option does not belong (poincare: conservative; the study's cases), and fit
 refuse  torque-poincare        'energy-shell sections' -- poincare --t-end 1 --output g.h5 --torque-file tau_ok.csv
+# the study: a case carries its torques (case_torque_file in &study), not a flag
 refuse  torque-study           'unknown option'     -- study --torque-file tau_ok.csv
+ST="order_case = 'd', drift_case = 'd', ro_case = 'd', tao_case = 'd'"
+fx st_tq.nml      "&study\n case_name(1) = 'd', case_q1(1) = 0.3, case_torque_file(1) = 'tau_long.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_short.nml "&study\n case_name(1) = 'd', case_torque_file(1) = 'tau_ok.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_gap.nml  "&study\n case_name(1) = 'd', case_torque_file(1) = 'tau_gap.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_none.nml "&study\n case_name(1) = 'd', case_torque_file(1) = 'nosuch.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_links.nml "&study\n case_name(1) = 'd', case_links(1) = 3, case_torque_file(1) = 'tau_long.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_verlet.nml "&study\n case_name(1) = 'd', case_torque_file(1) = 'tau_long.csv'\n method(1) = 'verlet'\n $ST\n/\n"
+fx st_tq_gap_case.nml "&study\n case_name(1) = 'd', case_torque_file(2) = 'tau_long.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+fx st_tq_elastic.nml "&model\n name = 'elastic'\n/\n&study\n case_name(1) = 'd', case_q1(1) = 1.2, case_torque_file(1) = 'tau_long.csv'\n method(1) = 'rk4'\n $ST\n/\n"
+succeed study-torque           -- study --quick --no-figures --config st_tq.nml --output s.h5
+refuse  study-torque-span      'not extrapolated'   -- study --quick --no-figures --config st_tq_short.nml --output s.h5
+refuse  study-torque-gap       'line 3'             -- study --quick --no-figures --config st_tq_gap.nml --output s.h5
+refuse  study-torque-missing   'no such file'       -- study --quick --no-figures --config st_tq_none.nml --output s.h5
+refuse  study-torque-links     'missing column tau3' -- study --quick --no-figures --config st_tq_links.nml --output s.h5
+refuse  study-torque-verlet    'needs a Hamiltonian' -- study --quick --no-figures --config st_tq_verlet.nml --output s.h5
+refuse  study-torque-no-case   'case_torque_file(2)' -- study --quick --no-figures --config st_tq_gap_case.nml --output s.h5
+refuse  study-torque-elastic   'has no joints'      -- study --quick --no-figures --config st_tq_elastic.nml --output s.h5
+refuse  study-torque-output    'an output never replaces an input' -- study --quick --no-figures --force --config st_tq.nml --output tau_long.csv
 # fit applies torques (the motion a robot's measured torques drove): over the data's times
 succeed torque-fit-ok          -- fit --output g.h5 --torque-file tau_ok.csv tau_fit_data.csv
 refuse  torque-fit-span        'not extrapolated'   -- fit --output g.h5 --torque-file tau_late.csv tau_fit_data.csv
