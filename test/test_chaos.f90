@@ -23,6 +23,8 @@ module test_chaos
    use dpend_events, only: angle_crossing_t
    use dpend_error, only: error_t
    use dpend_hdf5, only: h5file_t
+   use dpend_model, only: model_t
+   use dpend_model_factory, only: model_spec, model_spec_t, new_model
    use testing, only: unittest_t, new_unittest, check, check_true, error_t
    use test_cli, only: run_command, scratch_dir, read_text, expect_rejected
    implicit none
@@ -49,6 +51,7 @@ contains
               new_unittest('perturbation_on_energy_surface', test_perturbation), &
               new_unittest('fit_synthetic_divergence', test_fit_synthetic), &
               new_unittest('divergence_slope_vs_lyapunov', test_divergence_slope), &
+              new_unittest('divergence_pairs_on_the_driven_orbit', test_divergence_driven), &
               new_unittest('progress_covers_span', test_progress_span), &
               new_unittest('halton_sequence', test_halton), &
               new_unittest('shell_sampling_on_energy', test_shell), &
@@ -540,6 +543,61 @@ contains
       call check(error, fit%slope, lres%exponents(1), 'slope vs lambda1', &
                  rel=0.2_dp)
    end subroutine test_divergence_slope
+
+   !> Pairs of a driven system start where and when the orbit is: pair 2 of a double
+   !> pendulum on a vertically shaken support (a_y 0.05 m, ω 12 rad/s: its motion depends
+   !> on the drive's phase) against the same pair built here by hand: the orbit advanced
+   !> to the spacing s, the partner displaced at t = s, both advanced to s + T (rk4, the
+   !> same steps): log10 |δ| at the end equal to 1e-9. Pair 1 (from t = 0) likewise.
+   subroutine test_divergence_driven(error)
+      type(error_t), allocatable, intent(out) :: error
+      class(integrator_t), allocatable :: integ
+      class(model_t), allocatable :: model
+      type(model_spec_t) :: spec
+      type(divergence_result_t) :: dres
+      real(dp), parameter :: s = 0.37_dp, span = 2.0_dp, h = 1e-3_dp, d0 = 1e-6_dp
+      real(dp) :: q0(2), ya(4), yb(4), t, hh, qa(2), qda(2), qb(2), qdb(2), expected
+      integer :: stat, p, n
+      call new_integrator('rk4', integ, error)
+      if (allocated(error)) return
+      spec = model_spec('pendulum')
+      call spec%set('support_amplitude', [0.0_dp, 0.05_dp])
+      call spec%set('support_frequency', [12.0_dp])
+      call new_model(spec, model, error)
+      if (allocated(error)) return
+      call check_true(error, .not. model%autonomous(), 'a driven model')
+      if (allocated(error)) return
+      q0 = [-0.4_dp, -1.2_dp]
+      call divergence_pairs(integ, model, q0, [0.0_dp, 0.0_dp], span, 0.1_dp, d0, .false., &
+                            2, s, h, dres, stat)
+      call check_true(error, stat == stat_ok .and. size(dres%log10_pairs, 1) == 2, &
+                      'two pairs computed')
+      if (allocated(error)) return
+      n = size(dres%t)
+      call check(error, dres%t(n), span, 'sample times from the pair''s start', abs=1e-12_dp)
+      do p = 1, 2
+         ya = integ%to_internal(model, q0, [0.0_dp, 0.0_dp])
+         t = 0.0_dp; hh = h
+         if (p == 2) call advance_to(integ, model, t, ya, s, hh, stat)
+         call integ%to_physical(model, ya, qa, qda, t)
+         call perturbed_state(model, qa, qda, d0, .false., qb, qdb, t)
+         call check(error, dres%start(:, p), [qa, qda], 'start of pair '//to_str(p), &
+                    abs=1e-12_dp)
+         ya = integ%to_internal(model, qa, qda, t)
+         yb = integ%to_internal(model, qb, qdb, t)
+         hh = h
+         call advance_to(integ, model, t, ya, real(p - 1, dp)*s + span, hh, stat)
+         t = real(p - 1, dp)*s; hh = h
+         call advance_to(integ, model, t, yb, real(p - 1, dp)*s + span, hh, stat)
+         call integ%to_physical(model, ya, qa, qda, t)
+         call integ%to_physical(model, yb, qb, qdb, t)
+         expected = log10(phase_distance(qa, qda, qb, qdb))
+         call check(error, dres%log10_pairs(p, n), expected, 'log10 |delta| at the end of ' &
+                    //'pair '//to_str(p)//' (started at t = '//real_str(real(p - 1, dp)*s)// &
+                    ')', abs=1e-9_dp)
+         if (allocated(error)) return
+      end do
+   end subroutine test_divergence_driven
 
    !> A command's progress in model time covers exactly the span it announced, however
    !> the work is split into marches: the divergence's reference orbit and its pairs

@@ -71,6 +71,8 @@ _AXES: Dict[Tuple[str, str], Tuple[str, ...]] = {
     ("identify", "covariance"): ("parameter", "parameter_2"),
     ("identify", "physical"): ("link", "standard"),
     ("identify", "singular"): ("direction",),
+    ("torque", "sample_t"): ("sample",),
+    ("torque", "sample_tau"): ("sample", "link"),
 }
 _TIME_NAME = {"poincare": "crossing"}
 _COORDINATE_DATASETS = ("q", "qdot", "qddot", "p")
@@ -94,6 +96,8 @@ def _dims(top: str, rel: str, name: str, dset: "_Data", time: Optional[Tuple[str
     """The dimension names of one dataset (see the module's docstring)."""
     shape = dset.shape
     dims: List[Optional[str]] = [None] * len(shape)
+    if not top and "/" in rel:   # a file of several groups (a sweep's /sweep and /torque)
+        top, rel = rel.split("/", 1)
     leaf = rel.rsplit("/", 1)[-1]
     known = _AXES.get((top, leaf)) if "/" not in rel else None
     if known is not None and len(known) == len(shape):

@@ -92,6 +92,8 @@ def test_simulate_is_bitwise_the_command_line(kw, tmp_path):
     ("sweep", dict(n=32, t_end=5, indicator="megno")),
     ("sweep", dict(n=32, t_end=5, indicator="megno", axis1="m2/m1", axis2="l2/l1",
                    min1=0.1, max1=4, min2=0.1, max2=4, q1=0, q2=0)),
+    ("sweep", dict(n=16, t_end=2, damping=[0.1, 0.05], support_amplitude=[0, 0.01],
+                   support_frequency=20)),
 ])
 def test_other_commands_are_bitwise_the_command_line(command, kw, tmp_path):
     ds = getattr(dpend, command)(**kw)
@@ -160,3 +162,18 @@ def test_identify_and_torques_files_read(tmp_path):
     ds = dpend.from_image(out.read_bytes())
     assert ds["q"].attrs["angles"] == "absolute"
     assert ds["tau"].dims == ("time", "link") and ds["tau"].attrs["units"] == "N m"
+
+
+def test_forced_sweep_reads_with_its_torques(tmp_path):
+    """A sweep of a damped chain under joint torques (data/torque_example.csv): the
+    library's file is the command line's, bit for bit; the torque samples read on
+    (sample, link); the energy error says it is the energy balance's."""
+    torques = os.path.join(os.path.dirname(__file__), "..", "..", "data",
+                           "torque_example.csv")
+    kw = dict(n=8, t_end=2, time_unit="s", damping=[0.05, 0.02], torque_file=torques)
+    ds = dpend.sweep(progress=None, **kw)
+    _same_files(_cli("sweep", tmp_path, **kw), ds.dpend.image)
+    assert ds["torque/sample_tau"].dims == ("sample", "link")
+    assert ds["torque/sample_t"].attrs["units"] == "s"
+    assert "energy balance" in ds["sweep/energy_error"].attrs["description"]
+    assert ds.attrs["torque_file"] == torques

@@ -15,7 +15,11 @@
 !> orbit at t = 0, s, 2s, … (s the spacing) and the curve is the mean of
 !> log10 |δ| over the pairs (the average of the logarithm, as for the Lyapunov
 !> exponent itself), which removes much of the finite-time scatter of one pair.
-!> Pair 1 always starts at the given initial state.
+!> Pair 1 always starts at the given initial state. A driven system (a moving
+!> support, applied torques: not `autonomous`) runs pair p from its start time
+!> t_p = (p − 1) s on, so that both of its trajectories see the forcing of the orbit
+!> they left; an autonomous one from t = 0 (its motion does not depend on the start
+!> time; the results stay bitwise those of every earlier version).
 !>
 !> Both trajectories are sampled through the method's continuous extension
 !> (`integrate_sampled`). Fixed-step methods take the same steps on both, so the
@@ -63,7 +67,7 @@ contains
    !> The partner of (q, q̇): displaced by δ0 (1, 1, 1, 1)/2, or with `same_energy`
    !> by δ0 along the projection of that direction on the energy surface, then
    !> put back on E = E(q, q̇) by Newton steps along ∇E (see the module header).
-   pure subroutine perturbed_state(model, q, qd, delta0, same_energy, qb, qdb)
+   pure subroutine perturbed_state(model, q, qd, delta0, same_energy, qb, qdb, t)
       class(model_t), intent(in) :: model  !! the system
       real(dp), intent(in) :: q(:)          !! angles [rad]
       real(dp), intent(in) :: qd(:)         !! angular velocities [rad/s]
@@ -71,24 +75,27 @@ contains
       logical, intent(in) :: same_energy    !! keep the energy
       real(dp), intent(out) :: qb(:)        !! displaced angles [rad]
       real(dp), intent(out) :: qdb(:)       !! displaced angular velocities [rad/s]
-      real(dp) :: u(2*size(q)), n(2*size(q)), z(2*size(q)), e0, nn
+      real(dp), intent(in), optional :: t   !! the time of the state [s] (default 0)
+      real(dp) :: u(2*size(q)), n(2*size(q)), z(2*size(q)), e0, nn, t0
       integer :: it, m
       m = size(q)
+      t0 = 0.0_dp
+      if (present(t)) t0 = t
       u = 0.5_dp
       if (same_energy) then
-         call model%energy_gradient(0.0_dp, [q, qd], n)
+         call model%energy_gradient(t0, [q, qd], n)
          nn = dot_product(n, n)
          if (nn > 0.0_dp) u = u - (dot_product(u, n)/nn)*n
          u = u/norm2(u)
       end if
       z = [q, qd] + delta0*u
       if (same_energy) then
-         e0 = model%energy(0.0_dp, [q, qd])
+         e0 = model%energy(t0, [q, qd])
          do it = 1, 3
-            call model%energy_gradient(0.0_dp, z, n)
+            call model%energy_gradient(t0, z, n)
             nn = dot_product(n, n)
             if (nn == 0.0_dp) exit
-            z = z - ((model%energy(0.0_dp, z) - e0)/nn)*n
+            z = z - ((model%energy(t0, z) - e0)/nn)*n
          end do
       end if
       qb = z(1:m); qdb = z(m + 1:)
@@ -133,7 +140,7 @@ contains
       type(march_progress_t), intent(inout), optional :: progress
       real(dp), allocatable :: times(:), sa(:, :), sb(:, :), tref(:), sref(:, :)
       real(dp), dimension(size(q0)) :: qa, qda, qb, qdb
-      real(dp) :: ya(2*size(q0)), yb(2*size(q0))
+      real(dp) :: ya(2*size(q0)), yb(2*size(q0)), tp
       logical :: angle(size(q0))
       integer :: p, i, n_done
       angle = angle_coordinates(model)
@@ -158,26 +165,31 @@ contains
       end if
       n_done = 0
       do p = 1, n_pairs
-         call integ%to_physical(model, sref(:, p), qa, qda)
-         call perturbed_state(model, qa, qda, delta0, same_energy, qb, qdb)
+         ! the pair's start time: its place on the orbit for a driven system
+         tp = 0.0_dp
+         if (.not. model%autonomous()) tp = tref(p)
+         call integ%to_physical(model, sref(:, p), qa, qda, tp)
+         call perturbed_state(model, qa, qda, delta0, same_energy, qb, qdb, tp)
          res%start(:, p) = [qa, qda]
          res%delta_start(p) = phase_distance(qa, qda, qb, qdb, angle)
-         res%energy_diff(p) = model%energy(0.0_dp, [qb, qdb]) - model%energy(0.0_dp, [qa, qda])
-         ya = integ%to_internal(model, qa, qda)
-         yb = integ%to_internal(model, qb, qdb)
-         call integrate_sampled(integ, model, 0.0_dp, ya, t_span, h, sample_dt, times, sa, stat, &
-                                progress)
+         res%energy_diff(p) = model%energy(tp, [qb, qdb]) - model%energy(tp, [qa, qda])
+         ya = integ%to_internal(model, qa, qda, tp)
+         yb = integ%to_internal(model, qb, qdb, tp)
+         call integrate_sampled(integ, model, tp, ya, tp + t_span, h, sample_dt, times, sa, &
+                                stat, progress)
          if (stat /= stat_ok) exit
-         call integrate_sampled(integ, model, 0.0_dp, yb, t_span, h, sample_dt, times, sb, stat, &
-                                progress)
+         call integrate_sampled(integ, model, tp, yb, tp + t_span, h, sample_dt, times, sb, &
+                                stat, progress)
          if (stat /= stat_ok) exit
          if (p == 1) then
-            res%t = times
+            res%t = times   ! from the pair's start (pair 1 starts at 0)
             allocate (res%log10_pairs(n_pairs, size(times)))
+         else if (size(times) /= size(res%t)) then   ! (the grid's tolerance keeps them)
+            error stop 'internal error: divergence pairs sampled at different counts'
          end if
          do i = 1, size(times)
-            call integ%to_physical(model, sa(:, i), qa, qda)
-            call integ%to_physical(model, sb(:, i), qb, qdb)
+            call integ%to_physical(model, sa(:, i), qa, qda, times(i))
+            call integ%to_physical(model, sb(:, i), qb, qdb, times(i))
             res%log10_pairs(p, i) = log10(max(phase_distance(qa, qda, qb, qdb, angle), &
                                               tiny(1.0_dp)))
          end do

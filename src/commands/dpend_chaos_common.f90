@@ -462,7 +462,7 @@ contains
       character(len=:), allocatable :: s
       select case (command)
       case ('divergence')
-         s = '[0, max(t_end, lyapunov_t, (pairs-1) pair_spacing)]'
+         s = '[0, max((pairs-1) pair_spacing + t_end, lyapunov_t)]'
       case ('poincare')
          s = '[0, t_end] (refused: a section needs a conservative model)'
       case default
@@ -477,7 +477,7 @@ contains
       type(chaos_config_t), intent(in) :: ch            !! chaos settings
       logical, intent(in) :: fixed                      !! a fixed-step method
       type(error_t), allocatable, intent(out) :: error  !! first invalid field
-      real(dp) :: n, y_max
+      real(dp) :: n, y_max, span
       y_max = max(1.0_dp, maxval(abs(cfg%q0())), maxval(abs(cfg%w0())))
       if (.not. finite_positive(ch%delta0) .or. .not. finite_positive(0.1_dp - ch%delta0)) &
          then
@@ -532,17 +532,15 @@ contains
                            //to_str(ch%pairs)//' pair(s)', &
                            'use a larger --output-dt or fewer --pairs', error)
       if (allocated(error)) return
-      ! every pair starts at t = 0 (its state from the reference orbit at its start),
-      ! the reference runs (pairs − 1) pair_spacing, Benettin's lambda1 lyapunov_t
+      ! pair p runs [(p − 1) pair_spacing, (p − 1) pair_spacing + t_end] of the driven
+      ! orbit; Benettin's lambda1 [0, lyapunov_t]
       if (cfg%torque%active()) then
-         if (.not. cfg%torque%covers(0.0_dp, max(cfg%t_end, ch%lyapunov_t, &
-                                                 ch%pair_spacing*real(ch%pairs - 1, dp)))) then
-            call fatal_error(error, 'invalid torque_file: the runs span [0, '// &
-                             sci(max(cfg%t_end, ch%lyapunov_t, ch%pair_spacing* &
-                                     real(ch%pairs - 1, dp)), 6)//'] s (t_end, ' &
-                             //'lyapunov_t, (pairs - 1) pair_spacing), the torques are ' &
-                             //cfg%torque%text()//' (a series is not extrapolated; ' &
-                             //'--lyapunov-t 0 skips Benettin''s exponent)')
+         span = max(ch%pair_spacing*real(ch%pairs - 1, dp) + cfg%t_end, ch%lyapunov_t)
+         if (.not. cfg%torque%covers(0.0_dp, span)) then
+            call fatal_error(error, 'invalid torque_file: the runs span [0, '//sci(span, 6) &
+                             //'] s ((pairs - 1) pair_spacing + t_end, lyapunov_t), the ' &
+                             //'torques are '//cfg%torque%text()//' (a series is not ' &
+                             //'extrapolated; --lyapunov-t 0 skips Benettin''s exponent)')
             return
          end if
       end if

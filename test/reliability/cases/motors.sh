@@ -134,6 +134,9 @@ refuse  torque-lyapunov-span   'not extrapolated'   -- lyapunov --t-end 2 --outp
 refuse  torque-indicators-span 'not extrapolated'   -- indicators --t-end 2 --output g.h5 --torque-file tau_ok.csv
 refuse  torque-divergence-lyap 'lyapunov-t 0'       -- divergence --t-end 1 --output-dt 0.1 --pairs 1 --output g.h5 --torque-file tau_ok.csv
 refuse  torque-divergence-pairs 'pair_spacing'      -- divergence --t-end 1 --output-dt 0.1 --lyapunov-t 0 --pairs 3 --pair-spacing 1 --output g.h5 --torque-file tau_ok.csv
+# pair p runs [(p - 1) pair_spacing, (p - 1) pair_spacing + t_end] of the forced orbit
+refuse  torque-divergence-pair-end 'pair_spacing + t_end' -- divergence --t-end 1 --output-dt 0.1 --lyapunov-t 0 --pairs 2 --pair-spacing 0.5 --output g.h5 --torque-file tau_ok.csv
+succeed torque-divergence-pair-fits -- divergence --t-end 0.75 --output-dt 0.05 --lyapunov-t 0 --pairs 2 --pair-spacing 0.25 --output g.h5 --torque-file tau_ok.csv
 succeed torque-divergence-long -- divergence --t-end 1 --output-dt 0.1 --pairs 2 --pair-spacing 0.5 --lyapunov-t 2 --output g.h5 --torque-file tau_long.csv
 refuse  torque-lyapunov-twice  'given twice'        -- lyapunov --t-end 1 --output g.h5 --torque-file tau_ok.csv --torque-file tau_ok.csv
 refuse  torque-lyapunov-missing 'no such file'      -- lyapunov --t-end 1 --output g.h5 --torque-file nosuch.csv
