@@ -140,5 +140,19 @@ if [ -s "$dir/shared.err" ]; then
   echo "  a note where every rank has blocks:"; cat "$dir/shared.err"; failures=$((failures + 1))
 fi
 
+echo "== 4. one value per option, as dpend's; a forced chain swept as the serial one"
+if mpi --n 4 --n 8 --t-end 1 --output "$dir/twice.h5" >/dev/null 2>"$dir/twice.err"; then
+  echo "  an option given twice was taken"; failures=$((failures + 1))
+elif grep -q "invalid --n: given twice" "$dir/twice.err"; then
+  echo "  refused: $(cut -c1-80 "$dir/twice.err")"
+else
+  echo "  unexpected failure:"; cat "$dir/twice.err"; failures=$((failures + 1))
+fi
+forced=(--n 8 --t-end 1 --time-unit s --damping 0.1,0.05 --support-amplitude 0,0.02
+        --support-frequency 9 --block 16)
+mpi "${forced[@]}" --output "$dir/forced_mpi.h5" >/dev/null
+ser "${forced[@]}" --output "$dir/forced_ser.h5" >/dev/null
+same_content "$dir/forced_mpi.h5" "$dir/forced_ser.h5"
+
 echo "== mpi_check: $((SECONDS - t0)) s of runs, $failures difference(s)"
 ((failures == 0))

@@ -12,7 +12,7 @@ program dpend_mpi
    use omp_lib, only: omp_get_max_threads
    use dpend_kinds, only: dp
    use dpend_error, only: error_t, fatal_error
-   use dpend_cli, only: arg_t, get_arguments
+   use dpend_cli, only: arg_t, get_arguments, check_repeated_options
    use dpend_version, only: version
    use dpend_output, only: check_output_path
    use dpend_sweep_settings, only: sweep_config_t, horizon_text
@@ -89,7 +89,8 @@ contains
       type(error_t), allocatable :: error
       character(len=:), allocatable :: times_file
       logical :: help
-      call take_block_times(sub, rest, times_file, error)
+      call check_repeated_options(sub, error)   ! as dpend's: one value per option
+      if (.not. allocated(error)) call take_block_times(sub, rest, times_file, error)
       if (.not. allocated(error)) call parse_sweep(rest, cfg, help, error)
       if (allocated(error)) call finish(2, 'dpend-mpi sweep: '//error%message)
       if (help) then
