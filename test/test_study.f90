@@ -555,7 +555,6 @@ contains
       type(study_result_t) :: res
       type(verdicts_t) :: v
       character(len=:), allocatable :: md
-      integer :: s
       cfg = study_defaults()
       cfg%cases = [study_case_t('shaken', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
                                 [0.0_dp, 0.0_dp], 300.0_dp)]
@@ -576,22 +575,8 @@ contains
       call check_true(error, res%refs(1)%check_difference < 1e-12_dp, &
                       'reference (gauss8 on (q, qdot)) and dop853 agree: '// &
                       sci(res%refs(1)%check_difference))
-      do s = 1, size(res%sweeps)
-         associate (sw => res%sweeps(s))
-            call check_true(error, all(sw%stat == 0) .and. .not. sw%symplectic, sw%method// &
-                            ': every run succeeded, not symplectic on the damped case')
-            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
-            if (allocated(error)) return
-            call check(error, sw%fit_global%slope, real(sw%order, dp), &
-                       sw%method//' order from the global error (damped, driven)', abs=0.3_dp)
-            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
-                       sw%method//' order from the energy balance error', abs=0.3_dp)
-            if (allocated(error)) return
-            if (sw%method == 'gauss6') call check(error, sw%energy_long(size(sw%x)), 0.0_dp, &
-                                                  'gauss6 balance error at h = '// &
-                                                  sci(sw%x(size(sw%x))), abs=1e-10_dp)
-         end associate
-      end do
+      call check_balance_sweeps(res, 'damped, driven', error)
+      if (allocated(error)) return
       call check_true(error, size(res%roundoff) == 0 .and. size(res%tao) == 0, &
                       'no roundoff or Tao runs on a damped case')
       v = study_verdicts(cfg, res)
@@ -605,6 +590,37 @@ contains
                       'summary: drift not applied, energy balance section')
    end subroutine test_tiny_damped_study
 
+   !> The sweeps of a balance case (`what`: its forces): every run succeeded, none
+   !> symplectic, each method's order (within 0.3) in the global error and in the
+   !> energy balance error, gauss6's balance at its smallest step within 1e-10; the
+   !> figures printed ('    study: …').
+   subroutine check_balance_sweeps(res, what, error)
+      type(study_result_t), intent(in) :: res
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(out) :: error
+      integer :: s
+      do s = 1, size(res%sweeps)
+         associate (sw => res%sweeps(s))
+            call check_true(error, all(sw%stat == 0) .and. .not. sw%symplectic, sw%method// &
+                            ': every run succeeded, not symplectic ('//what//')')
+            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
+            if (allocated(error)) return
+            call check(error, sw%fit_global%slope, real(sw%order, dp), &
+                       sw%method//' order from the global error ('//what//')', abs=0.3_dp)
+            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
+                       sw%method//' order from the energy balance error ('//what//')', &
+                       abs=0.3_dp)
+            if (allocated(error)) return
+            if (sw%method == 'gauss6') call check(error, sw%energy_long(size(sw%x)), 0.0_dp, &
+                                                  'gauss6 balance error ('//what//') at h = '// &
+                                                  sci(sw%x(size(sw%x))), abs=1e-10_dp)
+            write (*, '(a, f6.3, a, f6.3, a, es9.2)') '    study: '//what//', '//sw%method// &
+               ' order (global) ', sw%fit_global%slope, ', (balance) ', sw%fit_energy%slope, &
+               ', longest balance error ', maxval(sw%energy_long)
+         end associate
+      end do
+   end subroutine check_balance_sweeps
+
    !> A tiny study of a double pendulum driven by joint torques (the closed form
    !> τ1 = 0.3 + 0.4 sin(3 t), τ2 = −0.2 cos(5 t) with a little damping): a balance case
    !> whose energy balance includes W_torque; rk4 and gauss6 keep their orders in the
@@ -614,7 +630,6 @@ contains
       type(study_config_t) :: cfg
       type(study_result_t) :: res
       type(verdicts_t) :: v
-      integer :: s
       cfg = study_defaults()
       cfg%cases = [study_case_t('torqued', [-0.5_dp*pi + 0.3_dp, -0.5_dp*pi - 0.2_dp], &
                                 [0.0_dp, 0.0_dp], 300.0_dp)]
@@ -640,25 +655,8 @@ contains
       call check_case_torques(cfg, error)   ! a closed form covers every run
       if (allocated(error)) return
       call run_study(cfg, res, quiet=.true.)
-      do s = 1, size(res%sweeps)
-         associate (sw => res%sweeps(s))
-            call check_true(error, all(sw%stat == 0) .and. .not. sw%symplectic, sw%method// &
-                            ': every run succeeded, not symplectic with torques')
-            call check_true(error, sw%fit_global%ok .and. sw%fit_energy%ok, sw%method//' fitted')
-            if (allocated(error)) return
-            call check(error, sw%fit_global%slope, real(sw%order, dp), &
-                       sw%method//' order from the global error (torques)', abs=0.3_dp)
-            call check(error, sw%fit_energy%slope, real(sw%order, dp), &
-                       sw%method//' order from the energy balance error (torques)', abs=0.3_dp)
-            if (allocated(error)) return
-            if (sw%method == 'gauss6') call check(error, sw%energy_long(size(sw%x)), 0.0_dp, &
-                                                  'gauss6 balance error with torques at h = '// &
-                                                  sci(sw%x(size(sw%x))), abs=1e-10_dp)
-            write (*, '(a, f6.3, a, f6.3, a, es9.2)') '    study: torques, '//sw%method// &
-               ' order (global) ', sw%fit_global%slope, ', (balance) ', sw%fit_energy%slope, &
-               ', longest balance error ', maxval(sw%energy_long)
-         end associate
-      end do
+      call check_balance_sweeps(res, 'torques', error)
+      if (allocated(error)) return
       v = study_verdicts(cfg, res)
       call check_true(error, v%orders, 'order verdict: '//v%orders_text)
       call check_true(error, .not. v%drift_judged, 'no drift verdict with torques')
